@@ -1,0 +1,32 @@
+# Two set-up commands on a fresh machine with Python 3.11 and pip (see README):
+#   make demo   installs into .venv and performs "move A around B" on the default scene
+#   make test   installs into .venv and runs the whole test suite
+# torch is pinned to the 2.13.0 CPU build and installed first, so nothing pulls a CUDA build.
+PYTHON ?= python3
+VENV ?= .venv
+PY := $(VENV)/bin/python
+TORCH := torch==2.13.0
+
+.PHONY: install demo test lint bench clean
+
+$(VENV)/.installed: pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet $(TORCH)
+	$(PY) -m pip install --quiet -e '.[test]'
+	touch $@
+
+install: $(VENV)/.installed
+
+demo: install
+	$(VENV)/bin/l2p-bullet perform "move A around B" --force --out runs/demo
+
+test: install
+	$(VENV)/bin/ruff check l2p_bullet tests benchmarks
+	$(PY) -m pytest -q
+
+bench: install
+	for b in benchmarks/bench_*.py; do $(PY) $$b || exit 1; done
+
+clean:
+	rm -rf $(VENV) build dist *.egg-info runs

@@ -1,0 +1,1 @@
+"""Built-in action bundles; each subpackage folder holds manifest.toml and weights."""

@@ -1,0 +1,1 @@
+"""Built-in action bundle: next_to (manifest.toml and weights live in this folder)."""

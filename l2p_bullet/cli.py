@@ -1,0 +1,51 @@
+"""The ``l2p-bullet`` command line.
+
+Every command lives in ``l2p_bullet/commands/`` and imports only click at module level: torch and
+pybullet are imported inside the command bodies, so ``l2p-bullet --help`` starts fast.
+User errors (:class:`L2PError`) become a one-line message and exit code 2; anything else is a bug
+and keeps its traceback.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from . import __version__
+from .commands import actions, learn, perform, plan, replay
+from .errors import L2PError
+
+
+class _Group(click.Group):
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except L2PError as e:
+            click.echo(f"error: {e}", err=True)
+            sys.exit(e.exit_code)
+        except KeyboardInterrupt:
+            click.echo("interrupted", err=True)
+            sys.exit(130)
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="l2p-bullet")
+def main() -> None:
+    """Teach a simulated robot arm spatial actions from human demonstrations.
+
+    \b
+    Examples:
+      l2p-bullet perform "move A around B"
+      l2p-bullet replay --demo around:0
+      l2p-bullet actions
+    """
+
+
+for _module in (perform, plan, replay, learn, actions):
+    for _cmd in _module.COMMANDS:
+        main.add_command(_cmd)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

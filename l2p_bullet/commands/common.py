@@ -1,0 +1,19 @@
+"""Options and helpers the commands share."""
+
+from __future__ import annotations
+
+import click
+
+seed_option = click.option("--seed", type=int, default=0, show_default=True, help="Random seed (runs are deterministic for a seed).")
+force_option = click.option("--force", is_flag=True, help="Overwrite the output folder if it exists.")
+scene_option = click.option(
+    "--scene", "scene_path", type=click.Path(dir_okay=False), default=None,
+    help="Scene file (JSON, see README); default: blocks A (red) and B (green).",
+)
+
+
+def load_scene_or_default(scene_path: str | None):
+    """The scene from ``--scene``, or the default two-block scene."""
+    from ..scene import default_scene, load_scene
+
+    return default_scene() if scene_path is None else load_scene(scene_path)

@@ -1,0 +1,70 @@
+"""One root error for everything a user can get wrong.
+
+The CLI catches :class:`L2PError` and prints its message on one line with a non-zero exit code;
+anything else is a bug and keeps its traceback. Subclasses exist so that callers (and tests) can
+tell failures apart without parsing messages.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+
+class L2PError(Exception):
+    """Root of every user-facing failure. The message must say what is wrong and, if possible, what to do."""
+
+    exit_code = 2
+
+
+class SceneError(L2PError):
+    """A scene file or scene description is invalid (bad JSON, missing field, overlap, off the table...)."""
+
+
+class UnknownObjectError(SceneError):
+    """A sentence or path names an object that is not in the scene."""
+
+
+class ReachError(L2PError):
+    """The arm cannot reach a pose (inverse kinematics failed or a joint limit would be violated)."""
+
+
+class ExecutionError(L2PError):
+    """The physical execution went wrong (grasp lost, block tilted, constraint missing...)."""
+
+
+class PathError(L2PError):
+    """A 2-D path file is unreadable or malformed, or a path leaves the workspace."""
+
+
+class DataError(L2PError):
+    """A demonstration file is missing, unreadable or malformed."""
+
+
+class BundleError(L2PError):
+    """An action bundle (manifest + weights) is missing, invalid, incompatible or tampered with."""
+
+
+class PluginError(L2PError):
+    """An action plugin cannot be found or loaded, or two plugins claim the same phrase."""
+
+
+class LanguageError(L2PError):
+    """A sentence could not be understood."""
+
+
+class PlanError(L2PError):
+    """The planner cannot produce a path (no collision-free move, unknown planner...)."""
+
+
+class RunFolderError(L2PError):
+    """A run folder already exists (and --force was not given) or cannot be written."""
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """Return ' Did you mean "x"?' for the closest choice, or '' when nothing is close.
+
+    Used by every "unknown X" error so that the suggestion reads the same everywhere.
+    """
+    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f' Did you mean "{close[0]}"?' if close else ""
