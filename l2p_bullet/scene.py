@@ -43,6 +43,13 @@ COLORS: dict[str, tuple[float, float, float, float]] = {
 ROBOT_BASE_XY: tuple[float, float] = (-0.53, 0.0)
 """Where the arm's base stands in the scene frame (off the table's near edge, facing +x)."""
 
+GRIPPER_MARGIN: float = 0.005
+"""Clearance (metres) the 2-D planner keeps between the mover's footprint and any other object.
+
+The arm grasps from above with its fingers closed and resting on the block's top (a fixed constraint,
+like a suction cup), so nothing of the gripper reaches down beside the block: obstacles are inflated
+only by this safety margin, not by the fingers' footprint (DESIGN.md, the finger note)."""
+
 MIN_SIZE, MAX_SIZE = 0.02, 0.08
 """Block sides the gripper can hold (metres): the Panda's fingers open to 0.08 m."""
 
