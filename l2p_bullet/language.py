@@ -1,0 +1,200 @@
+"""Sentence -> :class:`Command`, from the phrases the installed action plugins declare.
+
+The grammar is deliberately small and predictable: ``[polite words] VERB MOVER PREPOSITION ANCHOR``,
+for example "move A around B" or "Please slide the red block around the green one.". Prepositions
+are not hard-coded: they are the phrases of the installed manifests (``phrases`` maps each phrase to
+its action), so installing a plugin teaches the parser a new preposition. When several phrases match,
+the longest wins ("to the left of" over "left of", "closer to" over "to").
+
+Objects are named ("A", "block A") or described by colour ("the red block", "red cube", "the green
+one"). Every failure is a :class:`LanguageError` (or :class:`UnknownObjectError`) that says which
+words were not understood and suggests the closest known ones, because the person typing the sentence
+cannot see the grammar.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .errors import LanguageError, UnknownObjectError, did_you_mean
+from .registry import normalize_phrase
+from .scene import COLORS, Scene
+
+VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
+POLITE_PREFIXES: tuple[tuple[str, ...], ...] = (
+    ("please",), ("kindly",), ("could", "you"), ("can", "you"), ("would", "you"), ("will", "you"),
+    ("i", "want", "you", "to"), ("i'd", "like", "you", "to"), ("now",), ("then",), ("and",),
+)
+POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = (("please",), ("thanks",), ("thank", "you"), ("for", "me"))
+DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
+NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object"})
+COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
+EXAMPLE = 'try for example "move A around B" or "slide the red block next to the green one"'
+
+
+@dataclass(frozen=True)
+class Command:
+    """What a sentence asks for: ``mover`` and ``anchor`` are object names, ``action`` the plugin name."""
+
+    verb: str
+    mover: str
+    preposition: str
+    action: str
+    anchor: str
+    sentence: str = ""
+
+
+def _tokens(sentence: str) -> list[str]:
+    """Words without surrounding punctuation ("one." -> "one"); apostrophes inside words are kept."""
+    words = [w.strip(".,;:!?\"()[]") for w in sentence.split()]
+    return [w for w in words if w]
+
+
+def _strip_polite(words: list[str]) -> list[str]:
+    changed = True
+    while changed and words:
+        changed = False
+        low = [w.lower() for w in words]
+        for pre in POLITE_PREFIXES:
+            if tuple(low[: len(pre)]) == pre:
+                words, changed = words[len(pre):], True
+                break
+        low = [w.lower() for w in words]
+        for suf in POLITE_SUFFIXES:
+            if len(low) > len(suf) and tuple(low[-len(suf):]) == suf:
+                words, changed = words[: -len(suf)], True
+                break
+    return words
+
+
+def _phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str]]:
+    """(tokens, phrase, action) sorted longest first, so the longest phrase wins."""
+    table = {normalize_phrase(p): a for p, a in phrases.items()}
+    items = [(tuple(p.split()), p, a) for p, a in table.items() if p]
+    return sorted(items, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
+
+
+def parse(sentence: str, scene: Scene, phrases: dict[str, str]) -> Command:
+    """Parse ``sentence`` against the objects of ``scene`` and the installed ``phrases`` (phrase -> action)."""
+    if not isinstance(sentence, str) or not sentence.strip():
+        raise LanguageError(f"the sentence is empty; {EXAMPLE}")
+    if not phrases:
+        raise LanguageError("no action plugins are installed, so no preposition is known (see: l2p-bullet actions)")
+    words = _strip_polite(_tokens(sentence))
+    if not words:
+        raise LanguageError(f'"{sentence.strip()}" asks for nothing; {EXAMPLE}')
+    verb = words[0].lower()
+    if verb not in VERBS:
+        raise LanguageError(
+            f'"{words[0]}" is not a verb I know (known: {", ".join(VERBS)}).' + did_you_mean(verb, VERBS)
+            + f" {EXAMPLE[0].upper()}{EXAMPLE[1:]}"
+        )
+    rest = words[1:]
+    if not rest:
+        raise LanguageError(f'"{sentence.strip()}" does not say what to {verb}; {EXAMPLE}')
+    low = [w.lower() for w in rest]
+    # The longest phrase wins; among its positions the first that names two objects. If no phrase
+    # gives a valid reading, the error of the longest phrase's first reading is the most useful one.
+    first_error: Exception | None = None
+    for toks, phrase, action in _phrase_tokens(phrases):
+        n = len(toks)
+        for i in range(0, len(low) - n + 1):
+            if tuple(low[i : i + n]) != toks:
+                continue
+            try:
+                mover = resolve_object(" ".join(rest[:i]), scene, role="block to move")
+                anchor = resolve_object(" ".join(rest[i + n :]), scene, role=f'reference block after "{phrase}"')
+            except (LanguageError, UnknownObjectError) as e:
+                first_error = first_error or e
+                continue
+            if mover == anchor:
+                first_error = first_error or LanguageError(
+                    f'the block to move and the reference block are both "{mover}": '
+                    f"a block cannot be moved {phrase} itself")
+                continue
+            return Command(verb, mover, phrase, action, anchor, sentence.strip())
+    middle = _unplaced_words(rest, scene)
+    if first_error is not None and (middle is None or _contains_phrase(middle, phrases)):
+        raise first_error
+    raise _unknown_preposition(rest, middle, phrases, verb)
+
+
+def _contains_phrase(text: str, phrases: dict[str, str]) -> bool:
+    low = tuple(text.lower().split())
+    return any(low[i : i + len(t)] == t for t, _, _ in _phrase_tokens(phrases) for i in range(len(low)))
+
+
+def _unplaced_words(rest: list[str], scene: Scene) -> str | None:
+    """The words between the longest object description at the start and one at the end, if any."""
+    for i in range(len(rest) - 1, 0, -1):
+        if _try_object(" ".join(rest[:i]), scene) is None:
+            continue
+        for j in range(i + 1, len(rest)):
+            if _try_object(" ".join(rest[j:]), scene) is not None:
+                return " ".join(rest[i:j])
+    return None
+
+
+def _unknown_preposition(rest: list[str], middle: str | None, phrases: dict[str, str], verb: str) -> LanguageError:
+    """Say which words sit where a preposition should be, and which prepositions are installed."""
+    known = sorted({normalize_phrase(p) for p in phrases})
+    listing = f"installed: {', '.join(known)}"
+    if middle is None:
+        if len(rest) >= 2:
+            return LanguageError(f'cannot find a preposition in "{" ".join(rest)}" ({listing}); {EXAMPLE}')
+        return LanguageError(f"the sentence does not say where to {verb} the block: no preposition ({listing})")
+    return LanguageError(f'"{middle}" is not a preposition I know ({listing}).' + did_you_mean(middle.lower(), known))
+
+
+def _try_object(text: str, scene: Scene) -> str | None:
+    try:
+        return resolve_object(text, scene)
+    except (LanguageError, UnknownObjectError):
+        return None
+
+
+def _describe(scene: Scene) -> str:
+    return ", ".join(f"{o.name} ({o.color})" for o in scene.objects)
+
+
+def resolve_object(text: str, scene: Scene, role: str = "block") -> str:
+    """The name of the object ``text`` refers to: a name ("A", "block A") or a colour ("the red one")."""
+    words = text.split()
+    if not words:
+        raise LanguageError(f"the sentence does not name the {role}")
+    names = scene.names
+    if text in names:  # exact name first: a block may well be called "a" or "the cube"
+        return text
+    low = [w.lower() for w in words]
+    while len(low) > 1 and low[0] in DETERMINERS:
+        words, low = words[1:], low[1:]
+    if len(words) == 2 and low[0] in NOUNS and low[0] != "one":  # "block A"
+        words, low = words[1:], low[1:]
+    if len(words) == 2 and low[1] in NOUNS and low[1] != "one" and words[0] in names:  # "A block"
+        words, low = words[:1], low[:1]
+    candidate = " ".join(words)
+    if candidate in names:
+        return candidate
+    colour_words = [COLOR_SYNONYMS.get(w, w) for w in low]
+    if colour_words and colour_words[0] in COLORS and (len(low) == 1 or (len(low) == 2 and low[1] in NOUNS)):
+        colour = colour_words[0]
+        matching = [o.name for o in scene.objects if o.color == colour]
+        if len(matching) == 1:
+            return matching[0]
+        if not matching:
+            raise UnknownObjectError(
+                f'there is no {colour} block in the scene (blocks: {_describe(scene)}).'
+                + did_you_mean(colour, sorted({o.color for o in scene.objects}))
+            )
+        raise LanguageError(f'"{text}" is ambiguous: {len(matching)} {colour} blocks ({", ".join(matching)}); '
+                            "name the one you mean")
+    folded = [n for n in names if n.lower() == candidate.lower()]
+    if len(folded) == 1:
+        return folded[0]
+    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:
+        raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {_describe(scene)}).'
+                                 + did_you_mean(low[0], COLORS))
+    choices = names + [f"the {o.color} block" for o in scene.objects]
+    raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {_describe(scene)}).'
+                             + did_you_mean(text, choices))
+
