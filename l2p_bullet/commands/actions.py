@@ -1,5 +1,108 @@
-"""Placeholder: filled in by the issue that owns this command."""
+"""``l2p-bullet actions`` and ``l2p-bullet new-action``: list installed action plugins, start a new one."""
+
+from __future__ import annotations
+
+import json
 
 import click
 
-COMMANDS: list[click.Command] = []
+
+def _metrics_line(metrics: dict) -> str:
+    """A short 'key=value' summary of a manifest's [metrics]: scalars, one level of nesting."""
+    parts = []
+    for k, v in metrics.items():
+        if isinstance(v, bool) or not isinstance(v, int | float | str):
+            if isinstance(v, dict):
+                parts += [f"{k}.{k2}={_fmt(v2)}" for k2, v2 in v.items() if isinstance(v2, int | float | str)]
+            continue
+        parts.append(f"{k}={_fmt(v)}")
+    return " ".join(parts)
+
+
+def _fmt(v: object) -> str:
+    return f"{v:.3g}" if isinstance(v, float) else str(v)
+
+
+@click.command("actions")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON (for scripts).")
+@click.option("--check", is_flag=True, help="Also load every plugin (imports it, verifies its weights).")
+def actions_cmd(as_json: bool, check: bool) -> None:
+    """List the installed action plugins: name, version, package, phrases, metrics.
+
+    Plugins are found through the entry-point group "l2p_bullet.actions" without importing them;
+    broken ones are listed with the reason. --check loads each one as perform would.
+    """
+    from .. import registry
+
+    plugins = registry.discover()
+    reasons = {p.name: p.error for p in plugins if not p.ok}
+    if check:
+        for p in plugins:
+            if p.ok:
+                reason = registry.check(p.name, plugins)
+                if reason:
+                    reasons[p.name] = reason
+    problems = registry.conflicts(plugins)
+    rows = [
+        {
+            "name": p.name, "version": p.version, "package": p.package, "package_version": p.package_version,
+            "module": p.module, "path": str(p.path) if p.path else None, "phrases": list(p.phrases),
+            "description": p.description, "metrics": p.metrics, "ok": p.name not in reasons,
+            "error": reasons.get(p.name),
+        }
+        for p in plugins
+    ]
+    if as_json:
+        click.echo(json.dumps({"actions": rows, "conflicts": problems}, indent=1, default=str))
+        return
+    good = [r for r in rows if r["ok"]]
+    bad = [r for r in rows if not r["ok"]]
+    if not good:
+        click.echo("no usable action plugins installed")
+    else:
+        w = max(len(r["name"]) for r in good)
+        wp = max(len(f'{r["package"]} {r["package_version"]}') for r in good)
+        for r in good:
+            pkg = f'{r["package"]} {r["package_version"]}'
+            click.echo(f'{r["name"]:<{w}}  v{r["version"] or "?":<6} {pkg:<{wp}}  {", ".join(r["phrases"])}')
+            line = _metrics_line(r["metrics"])
+            if line:
+                click.echo(f'{"":<{w}}  {line}')
+    if bad:
+        click.echo("\nbroken plugins (not usable):")
+        for r in bad:
+            click.echo(f'  {r["name"]} (package {r["package"]} {r["package_version"]}): {r["error"]}')
+    for msg in problems:
+        click.echo(f"conflict: {msg}", err=True)
+
+
+@click.command("new-action")
+@click.argument("name")
+@click.option("--phrase", "phrases", multiple=True, required=True,
+              help='A preposition this action answers to, e.g. "to the left of" (repeat for synonyms).')
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Folder to create (default: ./l2p-NAME). Never overwritten.")
+@click.option("--description", default="", help="One line for the manifest.")
+def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, description: str) -> None:
+    """Scaffold an installable action plugin package for NAME (e.g. left-of).
+
+    \b
+    Then: write demonstrations into DIR/demos (see DIR/README.md),
+          l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
+          pip install DIR
+          l2p-bullet perform "move A <phrase> B"
+    """
+    from .. import registry
+    from ..scaffold import scaffold
+
+    plugins = registry.discover()
+    installed = {ph: p.name for p in plugins if p.ok for ph in p.phrases}
+    s = scaffold(name, list(phrases), out, installed=installed, description=description)
+    click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
+    click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
+    click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")
+    click.echo(f"  3. pip install {s.root}")
+    click.echo(f'  4. l2p-bullet perform "move A {registry.normalize_phrase(phrases[0])} B"')
+
+
+COMMANDS: list[click.Command] = [actions_cmd, new_action_cmd]
