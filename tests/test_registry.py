@@ -1,0 +1,177 @@
+"""Plugin discovery through entry points: no imports at discovery, broken plugins reported, conflicts named.
+
+Fake plugins are real installed distributions as far as importlib.metadata is concerned: a
+``*.dist-info`` folder with METADATA and entry_points.txt in a temporary folder put on sys.path.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from l2p_bullet import registry
+from l2p_bullet.cli import main
+from l2p_bullet.errors import PluginError
+
+
+def make_dist(root: Path, dist: str, entry_points: dict[str, str]) -> None:
+    info = root / f"{dist.replace('-', '_')}-0.3.dist-info"
+    info.mkdir(parents=True)
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {dist}\nVersion: 0.3\n")
+    lines = "\n".join(f"{k} = {v}" for k, v in entry_points.items())
+    (info / "entry_points.txt").write_text(f"[l2p_bullet.actions]\n{lines}\n")
+
+
+def make_bundle(folder: Path, name: str, phrases: list[str], init: str = "", weights: bool = True,
+                manifest: str | None = None) -> None:
+    folder.mkdir(parents=True)
+    (folder / "__init__.py").write_text(init)
+    if manifest is None:
+        manifest = (f'schema = 1\nname = "{name}"\nversion = "1.2.0"\nphrases = {json.dumps(phrases)}\n'
+                    '[metrics]\nfinal_progress = 0.91\n')
+    (folder / "manifest.toml").write_text(manifest)
+    if weights:
+        (folder / "progress.safetensors").write_bytes(b"not read at discovery")
+
+
+@pytest.fixture
+def plugins_dir(tmp_path, monkeypatch):
+    """A site folder with one good plugin, one that explodes on import and several broken ones."""
+    root = tmp_path / "site"
+    make_bundle(root / "fk_good", "sideways", ["sideways", "to the side of"])
+    # Importing this module would raise: discovery must not import it.
+    make_bundle(root / "fk_explodes", "upside", ["upside of"], init="raise RuntimeError('plugin bug: boom')\n")
+    make_bundle(root / "fk_badtoml", "badtoml", [], manifest="phrases = [unterminated\n")
+    make_bundle(root / "fk_untrained", "untrained", ["untrained to"], weights=False)
+    make_bundle(root / "fk_nophrases", "nophrases", [], manifest='name = "nophrases"\nversion = "1"\n')
+    # A plugin whose parent package would explode on import: locating the child must not run it.
+    make_bundle(root / "fk_parent", "x", [], init="raise RuntimeError('parent imported')\n", weights=False,
+                manifest="")
+    make_bundle(root / "fk_parent" / "child", "nested", ["nested in"])
+    make_dist(root, "fake-plugins", {
+        "sideways": "fk_good", "upside": "fk_explodes", "badtoml": "fk_badtoml",
+        "untrained": "fk_untrained", "nophrases": "fk_nophrases", "missing": "fk_not_there",
+        "nested": "fk_parent.child",
+    })
+    monkeypatch.syspath_prepend(str(root))
+    return root
+
+
+def by_name(plugins):
+    return {p.name: p for p in plugins}
+
+
+def test_builtin_actions_are_found_through_the_entry_point_group():
+    found = by_name(registry.discover())
+    for name in ("closer", "away", "next-to", "past", "around"):
+        assert found[name].package == "l2p-bullet"
+        assert found[name].path is not None and found[name].path.name == name.replace("-", "_")
+
+
+def test_discovery_reports_broken_plugins_without_importing(plugins_dir):
+    found = by_name(registry.discover())
+    assert not any(m.startswith("fk_") for m in sys.modules), "discovery imported plugin code"
+    good = found["sideways"]
+    assert good.ok and good.package == "fake-plugins" and good.package_version == "0.3"
+    assert good.phrases == ("sideways", "to the side of") and good.version == "1.2.0"
+    assert good.metrics == {"final_progress": 0.91}
+    assert found["nested"].ok and found["nested"].path == plugins_dir / "fk_parent" / "child"
+    assert found["upside"].ok  # its bug only shows when it is loaded
+    assert "not valid TOML" in found["badtoml"].error
+    assert "no trained weights" in found["untrained"].error and "l2p-bullet train untrained" in found["untrained"].error
+    assert '"phrases"' in found["nophrases"].error
+    assert "fk_not_there is not installed" in found["missing"].error
+    broken = {p.name for p in registry.broken()}
+    assert {"badtoml", "untrained", "nophrases", "missing"} <= broken
+    # The others still work: their phrases are in the table.
+    table = registry.phrase_table()
+    assert table["to the side of"] == "sideways" and table["nested in"] == "nested"
+    assert "untrained to" not in table
+
+
+def test_load_reports_import_failure_with_name_and_package(plugins_dir):
+    with pytest.raises(PluginError) as e:
+        registry.load("upside")
+    msg = str(e.value)
+    assert '"upside"' in msg and "fake-plugins" in msg and "RuntimeError: plugin bug: boom" in msg
+
+
+def test_load_of_broken_or_unknown_plugin_is_a_clear_error(plugins_dir):
+    with pytest.raises(PluginError, match="cannot be used: no trained weights"):
+        registry.load("untrained")
+    with pytest.raises(PluginError, match='Did you mean "sideways"'):
+        registry.load("sidewayz")
+
+
+def test_duplicate_phrase_names_both_plugins(plugins_dir, tmp_path, monkeypatch):
+    other = tmp_path / "other"
+    make_bundle(other / "fk_rival", "rival", ["beyond", "sideways"])
+    make_dist(other, "rival-plugin", {"rival": "fk_rival"})
+    monkeypatch.syspath_prepend(str(other))
+    with pytest.raises(PluginError) as e:
+        registry.phrase_table()
+    msg = str(e.value)
+    assert '"sideways"' in msg and "fake-plugins" in msg and "rival-plugin" in msg and '"rival"' in msg
+
+
+def test_duplicate_name_is_a_conflict(plugins_dir, tmp_path, monkeypatch):
+    other = tmp_path / "other"
+    make_bundle(other / "fk_twin", "sideways", ["twinned"])
+    make_dist(other, "twin-plugin", {"sideways": "fk_twin"})
+    monkeypatch.syspath_prepend(str(other))
+    with pytest.raises(PluginError, match="both named"):
+        registry.phrase_table()
+    with pytest.raises(PluginError, match="both named"):
+        registry.load("sideways")
+
+
+def test_actions_command_lists_good_and_broken(plugins_dir):
+    result = CliRunner().invoke(main, ["actions", "--json"])
+    assert result.exit_code == 0, result.output
+    rows = {r["name"]: r for r in json.loads(result.output)["actions"]}
+    assert rows["sideways"]["ok"] and rows["sideways"]["phrases"] == ["sideways", "to the side of"]
+    assert rows["sideways"]["metrics"] == {"final_progress": 0.91} and rows["sideways"]["package"] == "fake-plugins"
+    assert not rows["missing"]["ok"] and "not installed" in rows["missing"]["error"]
+    text = CliRunner().invoke(main, ["actions"]).output
+    assert "sideways" in text and "broken plugins" in text and "missing (package fake-plugins 0.3)" in text
+
+
+def test_actions_check_loads_each_plugin(plugins_dir):
+    pytest.importorskip("l2p_bullet.bundle")
+    checked = CliRunner().invoke(main, ["actions", "--json", "--check"])
+    rows = {r["name"]: r for r in json.loads(checked.output)["actions"]}
+    assert not rows["upside"]["ok"] and "boom" in rows["upside"]["error"]
+
+
+def test_discovery_does_not_import_torch():
+    code = ("import sys; from l2p_bullet import registry; registry.discover(); registry.phrase_table() "
+            "if False else None; assert 'torch' not in sys.modules and 'pybullet' not in sys.modules, "
+            "sorted(m for m in sys.modules if m.startswith(('torch', 'pybullet')))")
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_new_action_scaffold_never_overwrites(tmp_path):
+    out = tmp_path / "pkg"
+    runner = CliRunner()
+    r = runner.invoke(main, ["new-action", "left-of", "--phrase", "to the left of", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    assert (out / "pyproject.toml").read_text().count('left-of = "l2p_left_of"') == 1
+    manifest = (out / "l2p_left_of" / "manifest.toml").read_text()
+    assert 'phrases = ["to the left of"]' in manifest
+    readme = (out / "README.md").read_text()
+    assert "event_start_end" in readme and "l2p-bullet train left-of" in readme and "pip install" in readme
+    again = runner.invoke(main, ["new-action", "left-of", "--phrase", "to the left of", "--out", str(out)])
+    assert again.exit_code != 0 and "already exists" in again.output
+    bad = runner.invoke(main, ["new-action", "Left Of", "--phrase", "x", "--out", str(tmp_path / "b")])
+    assert bad.exit_code != 0 and "not a valid action name" in bad.output
+
+
+def test_new_action_refuses_an_installed_phrase(plugins_dir, tmp_path):
+    r = CliRunner().invoke(main, ["new-action", "lateral", "--phrase", "sideways", "--out", str(tmp_path / "p")])
+    assert r.exit_code != 0 and 'already belongs to the installed action "sideways"' in r.output
+    assert not (tmp_path / "p").exists()
