@@ -1,5 +1,61 @@
-"""Placeholder: filled in by the issue that owns this command."""
+"""``l2p-bullet perform SENTENCE``: the product's main command."""
+
+from __future__ import annotations
+
+import json
+import time
 
 import click
 
-COMMANDS: list[click.Command] = []
+from .common import force_option, load_scene_or_default, scene_option, seed_option
+
+
+@click.command("perform")
+@click.argument("sentence")
+@scene_option
+@seed_option
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Run folder (default: runs/perform-<timestamp>).")
+@click.option("--planner", default="default", show_default=True,
+              help="Planner: greedy, beam, reinforce, discrete or default.")
+@click.option("--no-render", is_flag=True, help="Skip frames and video (much faster).")
+@force_option
+@click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr.")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
+def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
+                no_render: bool, force: bool, quiet: bool, as_json: bool) -> None:
+    """Make the arm perform SENTENCE, e.g. "move A around B", and record the run.
+
+    \b
+    Sentences: VERB MOVER PREPOSITION ANCHOR, e.g.
+      "move A around B"   "Please slide the red block next to the green one."
+    Verbs: move, slide, push, shift, put. Prepositions: those of the installed actions
+    (l2p-bullet actions). The run folder gets trajectory.json, plan.json, summary.json and,
+    unless --no-render, frames and a video.
+    """
+    from ..pipeline import perform
+
+    t0 = time.perf_counter()
+
+    def on_stage(message: str) -> None:
+        if not quiet:
+            click.echo(f"[{time.perf_counter() - t0:5.1f}s] {message}", err=True)
+
+    scene = load_scene_or_default(scene_path)
+    r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
+                on_stage=on_stage)
+    if as_json:
+        click.echo(json.dumps(r.to_dict(), indent=1))
+        return
+    v = r.verdict
+    fp = "n/a" if r.final_progress is None else f"{r.final_progress:.2f}"
+    click.echo(f'{r.command.mover} {r.command.preposition} {r.command.anchor}: action "{r.command.action}", '
+               f'{"success" if r.success else "FAILED"} ({v.get("reason", "")})')
+    click.echo(f"final progress {fp} (planned {r.planned_progress:.2f}), "
+               f"block within {r.max_deviation_m * 1000:.1f} mm of the plan, "
+               f"anchor moved {r.anchor_displacement_m * 1000:.1f} mm, {r.timings.get('total', 0):.1f} s")
+    video = r.files.get("video")
+    click.echo(f"run folder: {r.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
+
+
+COMMANDS: list[click.Command] = [perform_cmd]
