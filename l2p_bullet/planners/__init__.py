@@ -1,0 +1,108 @@
+"""Plan the mover's 2-D path for an action: search for moves that make the learned progress rise to 1.
+
+The planners differ only in where candidate moves come from and how the search keeps them (see
+docs/planning.md):
+
+- ``greedy``    the paper's baseline: random moves around the mover, keep the best, back up when none helps;
+- ``beam``      beam search over the same random moves;
+- ``discrete``  greedy search with back-up over the qualitative space, cardinal direction x quantised
+                distance around the anchor;
+- ``reinforce`` greedy search with back-up over moves proposed by the action's REINFORCE-trained Gaussian
+                policy (stored in its bundle);
+- ``default``   an alias (``DEFAULT``), unless the bundle's ``[policy]`` section names another planner.
+
+Every planner maximises the action's learned progress model: the model alone decides which move is
+better. The 2-D simulator only says which moves are legal; ``evaluate`` judges the result afterwards.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import PlanError, did_you_mean
+from ..paths import Plan
+from ..scene import Scene
+from ..sim2d import World2D
+from .problem import Problem, finish
+from .proposals import discrete_moves, random_moves
+from .search import beam, greedy
+
+PLANNERS: dict[str, str] = {
+    "greedy": "random search with back-up (the paper's baseline)",
+    "beam": "beam search over random moves",
+    "discrete": "greedy search over cardinal direction x distance around the anchor",
+    "reinforce": "greedy search over moves proposed by the action's REINFORCE policy",
+    "default": "the action's preferred planner (see DEFAULT)",
+}
+DEFAULT = "discrete"
+
+THRESHOLD = 0.9
+"""Stop when the learned progress reaches this (the models rise to about 1 at an event's end)."""
+
+BUDGETS = {"greedy": 40, "beam": 15, "discrete": 30, "reinforce": 30}
+"""Default step budgets (a step = one batch of candidates scored in one forward pass)."""
+
+CANDIDATES = {"greedy": 32, "beam": 48, "discrete": 0, "reinforce": 16}
+BEAM_WIDTH = 4
+
+
+def resolve_planner(name: str, settings: dict | None = None) -> str:
+    """The concrete planner behind ``name`` ("default" follows the bundle's settings); clear error if unknown."""
+    key = name.strip().lower()
+    if key not in PLANNERS:
+        raise PlanError(f'unknown planner "{name}" (known: {", ".join(PLANNERS)}).' + did_you_mean(key, PLANNERS))
+    if key == "default":
+        key = str((settings or {}).get("planner", DEFAULT))
+        if key not in PLANNERS or key == "default":
+            raise PlanError(f'the bundle asks for an unknown default planner "{key}" (known: {", ".join(PLANNERS)})')
+    return key
+
+
+def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "default", seed: int = 0,
+         budget: int | None = None, threshold: float | None = None, time_limit: float | None = None) -> Plan:
+    """Plan ``mover``'s path for the bundle's action relative to ``anchor`` in ``scene``.
+
+    Deterministic for a seed. ``budget`` counts search steps (forward passes of the progress model);
+    ``time_limit`` (seconds), when given, also ends the search (for equal-time comparisons).
+    """
+    settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
+    name = resolve_planner(planner, settings)
+    if mover == anchor:
+        raise PlanError(f'the mover and the anchor are the same object "{mover}"')
+    anchor_obj = scene.get(anchor)
+    world = World2D(scene, mover)
+    if world.overlaps(world.mover.pose):
+        raise PlanError(f'"{mover}" starts touching another object (closer than the gripper margin): '
+                        "move it apart in the scene first")
+    problem = Problem(
+        world=world, model=bundle.progress_model(), anchor_pose=anchor_obj.pose, size=world.size,
+        threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
+        budget=int(budget if budget is not None else BUDGETS[name]),
+        rng=np.random.default_rng(seed),
+    )
+    if time_limit is not None:
+        problem.deadline = time.perf_counter() + time_limit
+    n = CANDIDATES[name]
+    if name == "greedy":
+        node, stopped, steps = greedy(problem, random_moves, n)
+    elif name == "beam":
+        node, stopped, steps = beam(problem, random_moves, n, BEAM_WIDTH)
+    elif name == "discrete":
+        node, stopped, steps = greedy(problem, discrete_moves, n)
+    else:
+        node, stopped, steps = greedy(problem, _policy_proposer(bundle), n)
+    return finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
+                  stopped=stopped, steps=steps)
+
+
+def _policy_proposer(bundle):
+    from .policy import PolicyProposer, policy_from_tensors
+
+    tensors = bundle.policy_tensors()
+    if not tensors:
+        raise PlanError(f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
+                        f'"python -m l2p_bullet.planners.train_policy {bundle.name}" or pick another planner '
+                        f'(known: {", ".join(PLANNERS)})')
+    return PolicyProposer(policy_from_tensors(tensors))

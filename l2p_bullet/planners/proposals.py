@@ -1,0 +1,61 @@
+"""Where the next move could go: the proposal distributions the searches draw candidates from.
+
+- ``random_moves``: the paper's continuous space, a Gaussian around the mover's pose in x, y and
+  rotation (the baseline knows nothing about the action or the anchor);
+- ``discrete_moves``: the paper's qualitative space, cardinal direction x quantised distance **around the
+  anchor**, in the anchor's own frame (so "east of B at 1.25 blocks" is face to face with B). It is a
+  small fixed set, so a step costs one forward pass over about 40 paths;
+- the learned policy's proposals live in ``policy.py``.
+
+Every proposal keeps rotations moderate (at most ``MAX_TURN`` per move); illegal ones (colliding,
+leaving the workspace) are dropped later by the 2-D simulator, not here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .problem import MAX_TURN, Node, Problem
+
+STEP_STD = 2.0
+"""Standard deviation (block sizes) of a random move's x and y."""
+
+TURN_STD = 0.3
+"""Standard deviation (radians) of a random move's rotation."""
+
+DIRECTIONS = 8
+"""Cardinal and intercardinal directions around the anchor (E, NE, N, ... in the anchor's frame)."""
+
+DISTANCES = (1.25, 1.75, 2.5, 3.5, 5.0)
+"""Quantised centre distances from the anchor, in block sizes (1.25 = face to face with a small gap)."""
+
+
+def random_moves(problem: Problem, node: Node, n: int) -> np.ndarray:
+    """``n`` end poses drawn from a Gaussian around the current pose (the paper's random search)."""
+    d = problem.rng.normal(0.0, 1.0, size=(n, 3)) * np.array([STEP_STD * problem.size] * 2 + [TURN_STD])
+    d[:, 2] = np.clip(d[:, 2], -MAX_TURN, MAX_TURN)
+    return node.pose + d
+
+
+def discrete_targets(problem: Problem) -> np.ndarray:
+    """All (direction, distance) cells around the anchor as mover poses' x, y: (DIRECTIONS*len(DISTANCES), 2)."""
+    ang = problem.anchor_pose[2] + 2 * np.pi * np.arange(DIRECTIONS) / DIRECTIONS
+    dist = np.asarray(DISTANCES) * problem.size
+    xy = problem.anchor_pose[:2] + dist[None, :, None] * np.stack([np.cos(ang), np.sin(ang)], -1)[:, None, :]
+    return xy.reshape(-1, 2)
+
+
+def discrete_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
+    """Every cell of the discrete space, twice: keeping the mover's yaw and squared up with the anchor.
+
+    ``n`` is ignored (the set is fixed). Cells the mover already stands in are dropped (a move must move).
+    """
+    xy = discrete_targets(problem)
+    xy = xy[np.hypot(*(xy - node.pose[:2]).T) > 0.25 * problem.size]
+    quarter = np.pi / 2
+    square = node.pose[2] + ((problem.anchor_pose[2] - node.pose[2] + quarter / 2) % quarter - quarter / 2)
+    out = np.empty((2 * len(xy), 3))
+    out[:, :2] = np.vstack([xy, xy])
+    out[: len(xy), 2] = node.pose[2]
+    out[len(xy):, 2] = square
+    return out
