@@ -126,19 +126,24 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--bundle", default=None, help="bundle folder (default: the installed action's)")
     args = ap.parse_args(argv)
-    from ..bundle import load_bundle, write_policy
-    from ..registry import find
+    from pathlib import Path
 
-    folder = args.bundle or str(find(args.action).folder)
+    from ..bundle import POLICY_FILE, load_bundle, write_weights
+    from ..demos import canonical_action
+
+    folder = Path(args.bundle) if args.bundle else (
+        Path(__file__).resolve().parents[1] / "actions" / canonical_action(args.action).replace("-", "_"))
     bundle = load_bundle(folder)
     cfg = TrainConfig(iterations=args.iterations, episodes=args.episodes, seed=args.seed)
     t0 = time.perf_counter()
     net, history = train_policy(bundle.progress_model(), cfg)
     settings = policy_settings(cfg, history, time.perf_counter() - t0)
+    settings |= {k: v for k, v in bundle.manifest.get("policy", {}).items() if k in ("planner", "threshold")}
     tensors = {k: v.detach().contiguous() for k, v in net.state_dict().items()}
-    write_policy(folder, tensors, settings)
-    print(f"wrote the {args.action} policy into {folder} (final progress {settings['training']['final_progress_first']}"
-          f" -> {settings['training']['final_progress_last']})")
+    write_weights(folder, POLICY_FILE, tensors, "policy", settings)
+    t = settings["training"]
+    print(f"wrote the {args.action} policy into {folder} (mean final progress "
+          f"{t['final_progress_first']} -> {t['final_progress_last']}, {t['seconds']} s)")
 
 
 if __name__ == "__main__":  # pragma: no cover
