@@ -24,7 +24,6 @@ from typing import Any
 
 import numpy as np
 
-from . import __version__
 from .errors import L2PError, PluginError
 from .language import Command, parse
 from .scene import Scene
@@ -90,6 +89,29 @@ class _Clock:
         self.timings[stage] = self.timings.get(stage, 0.0) + time.perf_counter() - t
 
 
+class _ModelOnce:
+    """A bundle whose progress model is built once per process and weights digest.
+
+    The planner and the recorder both need the model; building it twice would read and check the
+    weights twice, and a benchmark performing many sentences would rebuild it every time.
+    """
+
+    _cache: dict[tuple[str, str], Any] = {}
+
+    def __init__(self, bundle: Any):
+        self._bundle = bundle
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._bundle, name)
+
+    def progress_model(self) -> Any:
+        digest = str(self._bundle.manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256", ""))
+        key = (str(self._bundle.path), digest)
+        if key not in self._cache:
+            self._cache[key] = self._bundle.progress_model()
+        return self._cache[key]
+
+
 def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
     """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported)."""
     from . import registry
@@ -150,19 +172,18 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     cmd = resolve(sentence, scene, plugins)
     clock.stop("parse", t)
 
-    t = clock.start("load", f'{cmd.action}: loading the plugin "{cmd.action}" and its progress model')
-    bundle = registry.load(cmd.action, plugins)
-    model = bundle.progress_model()
-    clock.stop("load", t)
-
     out = prepare_run_folder(out_dir, force=force, prefix="perform")
     try:
+        t = clock.start("load", f'loading the plugin "{cmd.action}" and its progress model')
+        bundle = _ModelOnce(registry.load(cmd.action, plugins))
+        model = bundle.progress_model()
+        clock.stop("load", t)
         return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
                     budget=budget, threshold=threshold, render_settings=render_settings)
     except L2PError as e:
         _write_json(out / "summary.json", {
             "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
-            "failed_stage": clock.stage, "error": str(e), "timings": clock.timings,
+            "failed_stage": clock.stage, "error": str(e), "timings_s": clock.timings,
         })
         raise
 
@@ -172,7 +193,7 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: 
     from . import execute, planners
 
     size = scene.get(cmd.mover).size
-    t = clock.start("plan", f"{cmd.action}: planning with the {planner} planner")
+    t = clock.start("plan", f"planning with the {planner} planner")
     plan = planners.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
                          threshold=threshold)
     clock.stop("plan", t)
@@ -183,11 +204,11 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: 
         return np.asarray(model.curve(mover, anchor, size), float).reshape(-1)
 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
-    t = clock.start("execute", f"{cmd.action}: executing with the arm" + ("" if render else " (no rendering)"))
+    t = clock.start("execute", "executing with the arm" + ("" if render else " (no rendering)"))
     kwargs: dict[str, Any] = {"render": None}
     if render:
         kwargs = {} if render_settings is None else {"render": render_settings}
-    stage_cb = (lambda s: clock.on_stage(f"{cmd.action}: {s}")) if clock.on_stage else None
+    stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
                               meta=meta, on_stage=stage_cb, **kwargs)
     clock.stop("execute", t)
@@ -219,7 +240,8 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
     except (OSError, json.JSONDecodeError):
         summary = {}
     d = r.to_dict()
-    exec_timings = summary.get("timings", {}) if isinstance(summary.get("timings"), dict) else {}
+    timings = summary.get("timings_s") if isinstance(summary.get("timings_s"), dict) else {}
+    files = summary.get("files") if isinstance(summary.get("files"), dict) else {}
     summary.update({
         "schema": summary.get("schema", 1), "ok": True, "sentence": d["sentence"],
         "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor")},
@@ -228,10 +250,10 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
         "seed": seed, "final_error_m": d["final_error_m"],
         "max_deviation_m": d["max_deviation_m"], "anchor_displacement_m": d["anchor_displacement_m"],
         "plugin": {"name": bundle.name, "version": bundle.version, "path": str(bundle.path)},
-        "timings": {**exec_timings, **{f"perform.{k}": v for k, v in d["timings"].items()}},
-        "versions": {**summary.get("versions", {}), "l2p-bullet": __version__},
+        # execute's sub-stages (check, setup, reach, engage, move, disengage, record) and perform's stages
+        "timings_s": {**timings, **d["timings"]},
+        "files": {**files, "plan": "plan.json"},
     })
-    summary.setdefault("files", {}).update({"plan": "plan.json"})
     _write_json(path, summary)
 
 

@@ -256,6 +256,8 @@ def find(name: str, plugins: list[PluginInfo] | None = None) -> PluginInfo:
         names = sorted({p.name for p in plugins})
         raise PluginError(f'no action plugin named "{name}" is installed (installed: {", ".join(names) or "none"}).'
                           + did_you_mean(key, names))
+    if len(matches) > 1 and sum(m.ok for m in matches) == 1:  # a broken twin does not block a usable one
+        matches = [m for m in matches if m.ok]
     if len(matches) > 1:
         raise PluginError(f'two action plugins are both named "{name}": '
                           + " and ".join(m.label() for m in matches) + "; uninstall one of the two packages")
