@@ -93,22 +93,31 @@ class _ModelOnce:
     """A bundle whose progress model is built once per process and weights digest.
 
     The planner and the recorder both need the model; building it twice would read and check the
-    weights twice, and a benchmark performing many sentences would rebuild it every time.
+    weights twice, and a benchmark performing many sentences would rebuild it every time. With
+    ``inference="numpy"`` (the default) the model is :class:`NumpyProgressModel`, the same network
+    evaluated without torch: importing torch alone would take half of perform's time budget.
     """
 
-    _cache: dict[tuple[str, str], Any] = {}
+    _cache: dict[tuple[str, str, str], Any] = {}
 
-    def __init__(self, bundle: Any):
-        self._bundle = bundle
+    def __init__(self, bundle: Any, inference: str = "numpy"):
+        if inference not in ("numpy", "torch"):
+            raise ValueError(f"inference must be numpy or torch, not {inference!r}")
+        self._bundle, self._inference = bundle, inference
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._bundle, name)
 
     def progress_model(self) -> Any:
-        digest = str(self._bundle.manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256", ""))
-        key = (str(self._bundle.path), digest)
+        weights = self._bundle.manifest.get("weights", {}).get("progress.safetensors", {})
+        key = (str(self._bundle.path), str(weights.get("sha256", "")), self._inference)
         if key not in self._cache:
-            self._cache[key] = self._bundle.progress_model()
+            if self._inference == "numpy" and self._bundle.manifest.get("model", {}).get("arch", "lstm") == "lstm":
+                from .progress_numpy import NumpyProgressModel
+
+                self._cache[key] = NumpyProgressModel.from_bundle(self._bundle)
+            else:
+                self._cache[key] = self._bundle.progress_model()
         return self._cache[key]
 
 
@@ -155,7 +164,7 @@ def judge(action: str, mover: np.ndarray, anchor: np.ndarray, size: float,
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None) -> PerformResult:
+            plugins: list | None = None, render_settings: Any = None, inference: str = "numpy") -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
 
     Raises an :class:`L2PError` subclass for anything a user can get wrong (sentence, plugin, run
@@ -175,7 +184,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     out = prepare_run_folder(out_dir, force=force, prefix="perform")
     try:
         t = clock.start("load", f'loading the plugin "{cmd.action}" and its progress model')
-        bundle = _ModelOnce(registry.load(cmd.action, plugins))
+        bundle = _ModelOnce(registry.load(cmd.action, plugins), inference)
         model = bundle.progress_model()
         clock.stop("load", t)
         return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,

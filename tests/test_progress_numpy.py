@@ -1,0 +1,62 @@
+"""The numpy forward pass perform uses gives the torch model's numbers (to float32 rounding)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+torch = pytest.importorskip("torch")
+
+from l2p_bullet.architecture import ModelConfig  # noqa: E402
+from l2p_bullet.progress import ProgressModel, ProgressNet, ensemble_state  # noqa: E402
+from l2p_bullet.progress_numpy import NumpyProgressModel  # noqa: E402
+from l2p_bullet.qsr import QSRConfig  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def models():
+    torch.manual_seed(0)
+    qcfg = QSRConfig()
+    mcfg = ModelConfig(n_features=qcfg.n_features, hidden=16, ensemble=3)
+    nets = [ProgressNet(mcfg.n_features, mcfg.hidden) for _ in range(mcfg.ensemble)]
+    for net in nets:  # larger weights than the init so that the gates saturate somewhere
+        with torch.no_grad():
+            for p in net.parameters():
+                p.mul_(3.0)
+    tensors = ensemble_state(nets)
+    ref = ProgressModel(tensors, mcfg, qcfg)
+    fast = NumpyProgressModel({k: v.numpy() for k, v in tensors.items()}, mcfg, qcfg)
+    return ref, fast
+
+
+def motions(seed: int, n: int):
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        steps = rng.normal(0, 0.012, (int(rng.integers(2, 160)), 3))
+        out.append(np.array([0.1, -0.05, 0.2]) + np.cumsum(steps, axis=0))
+    return out
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_same_numbers_as_torch(models, seed):
+    ref, fast = models
+    movers = motions(seed, 24)
+    anchor = np.array([0.0, 0.02, 0.4])
+    np.testing.assert_allclose(fast.final_batch(movers, anchor, 0.05), ref.final_batch(movers, anchor, 0.05),
+                               atol=2e-5)
+    for a, b in zip(fast.curve_batch(movers, anchor, 0.05), ref.curve_batch(movers, anchor, 0.05), strict=True):
+        assert a.shape == b.shape
+        np.testing.assert_allclose(a, b, atol=2e-5)
+    tracks = [np.repeat(anchor[None], len(m), axis=0) for m in movers[:3]]
+    np.testing.assert_allclose(fast.curve(movers[0], tracks[0], 0.05), ref.curve(movers[0], tracks[0], 0.05),
+                               atol=2e-5)
+
+
+def test_numpy_model_does_not_import_torch():
+    code = ("import sys; import l2p_bullet.progress_numpy; import l2p_bullet.pipeline; "
+            "assert 'torch' not in sys.modules")
+    subprocess.run([sys.executable, "-c", code], check=True)
