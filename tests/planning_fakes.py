@@ -24,7 +24,7 @@ class RuleProgress:
                          for i, m in enumerate(movers)])
 
     def curve(self, mover, anchor, size):
-        return np.array([self.final_batch([mover[: i + 1]], anchor, size)[0] for i in range(len(mover))])
+        return np.array([evaluate(self.action, mover[: i + 1], anchor, size).score for i in range(len(mover))])
 
 
 class FakeBundle:

@@ -81,6 +81,7 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: TrainConfig):
 def train_policy(model, cfg: TrainConfig = TrainConfig(), log=print) -> tuple[GaussianPolicy, list[float]]:
     """REINFORCE with a per-step mean baseline; returns the policy and the mean final progress per iteration."""
     torch.manual_seed(cfg.seed)
+    torch.set_num_threads(1)  # small batches: a second thread only adds contention on a shared machine
     rng = np.random.default_rng(cfg.seed)
     net = GaussianPolicy()
     opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)

@@ -1,0 +1,116 @@
+"""Planners: legal paths, determinism, stopping rules, batching, the policy, clear errors.
+
+They run on ``planning_fakes.FakeBundle`` (a rule-based stand-in for the learned model) so that these
+tests say something about the search itself, fast and independently of the shipped weights.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from planning_fakes import FakeBundle
+
+from l2p_bullet.errors import L2PError, PlanError
+from l2p_bullet.geometry2d import polygons_overlap
+from l2p_bullet.planners import PLANNERS, plan, resolve_planner
+from l2p_bullet.scene import GRIPPER_MARGIN, default_scene, random_scene
+
+SEARCHES = ["greedy", "beam", "discrete"]
+
+
+def _assert_executable(p, scene):
+    mover, anchor = scene.get(p.mover), scene.get(p.anchor)
+    assert np.allclose(p.path[0], mover.pose)
+    assert len(p.progress) == len(p.path)
+    assert np.all(np.hypot(*(p.path[:, :2] - np.array(scene.workspace.center)).T) <= scene.workspace.radius + 1e-9)
+    for pose in p.path:
+        assert not polygons_overlap(mover.footprint(pose), anchor.footprint(), GRIPPER_MARGIN * 0.99)
+    steps = np.linalg.norm(np.diff(p.path[:, :2], axis=0), axis=1)
+    assert steps.max() <= 0.25 * p.size + 1e-9  # dense enough to draw and to score
+    turns = np.abs(np.angle(np.exp(1j * np.diff(p.path[:, 2]))))
+    assert turns.max(initial=0) <= 0.2 + 1e-9
+
+
+@pytest.mark.parametrize("planner", SEARCHES)
+@pytest.mark.parametrize("action", ["next-to", "around"])
+def test_paths_are_legal_and_reach_the_threshold(planner, action):
+    scene = random_scene(3)
+    p = plan(scene, "A", "B", FakeBundle(action), planner=planner, seed=1)
+    _assert_executable(p, scene)
+    assert p.stopped == "threshold" and p.extra["final_progress"] >= 0.9
+    assert p.planner == planner and p.action == action
+
+
+@pytest.mark.parametrize("planner", SEARCHES)
+def test_a_seed_gives_the_same_plan(planner):
+    scene = random_scene(5)
+    a = plan(scene, "A", "B", FakeBundle("past"), planner=planner, seed=7)
+    b = plan(scene, "A", "B", FakeBundle("past"), planner=planner, seed=7)
+    assert np.array_equal(a.path, b.path) and a.stopped == b.stopped
+
+
+def test_different_seeds_explore_differently():
+    scene = random_scene(5)
+    paths = {plan(scene, "A", "B", FakeBundle("around"), planner="greedy", seed=s).path.tobytes() for s in range(3)}
+    assert len(paths) > 1
+
+
+def test_the_budget_stops_the_search_and_says_so():
+    p = plan(default_scene(), "A", "B", FakeBundle("around"), planner="greedy", budget=2, threshold=0.99)
+    assert p.stopped == "budget" and p.extra["steps"] == 2
+
+
+def test_each_step_scores_its_candidates_in_one_forward_pass():
+    bundle = FakeBundle("around")
+    p = plan(default_scene(), "A", "B", bundle, planner="discrete")
+    calls = bundle.model.batches
+    assert p.extra["forward_passes"] == len(calls)
+    assert len(calls) <= p.extra["steps"] + 1  # the start's score, then at most one batch per step
+    assert max(calls) > 20  # the whole discrete space at once
+
+
+def test_a_bad_planner_name_lists_the_known_ones():
+    with pytest.raises(PlanError) as e:
+        plan(default_scene(), "A", "B", FakeBundle("around"), planner="bean")
+    msg = str(e.value)
+    assert all(name in msg for name in PLANNERS) and 'Did you mean "beam"' in msg
+    assert resolve_planner("default", {}) in PLANNERS and resolve_planner("default", {"planner": "beam"}) == "beam"
+
+
+def test_bad_objects_are_reported():
+    with pytest.raises(L2PError, match="no object named"):
+        plan(default_scene(), "A", "C", FakeBundle("around"))
+    with pytest.raises(PlanError, match="same object"):
+        plan(default_scene(), "A", "A", FakeBundle("around"))
+
+
+def test_reinforce_needs_a_trained_policy():
+    with pytest.raises(PlanError, match="no trained policy"):
+        plan(default_scene(), "A", "B", FakeBundle("around"), planner="reinforce")
+
+
+def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
+    import torch
+
+    from l2p_bullet.planners.policy import policy_from_tensors
+    from l2p_bullet.planners.train_policy import TrainConfig, train_policy
+
+    net, history = train_policy(FakeBundle("around").model, TrainConfig(iterations=2, episodes=4, horizon=3), log=None)
+    assert len(history) == 2
+    tensors = {k: v.clone() for k, v in net.state_dict().items()}
+    again = policy_from_tensors(tensors)
+    x = torch.randn(5, 10)
+    assert torch.equal(net(x)[0], again(x)[0])
+    scene = random_scene(2)
+    p = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
+    q = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
+    _assert_executable(p, scene)
+    assert np.array_equal(p.path, q.path)
+
+
+def test_a_mover_touching_another_object_is_a_clear_error():
+    from l2p_bullet.scene import Scene, SceneObject
+
+    scene = Scene([SceneObject("A", "red", 0.05, (0.0, 0.0)), SceneObject("B", "green", 0.05, (0.052, 0.0))])
+    with pytest.raises(PlanError, match="touching"):
+        plan(scene.validate(), "A", "B", FakeBundle("away"))
