@@ -92,7 +92,8 @@ def test_reinforce_needs_a_trained_policy():
 def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     import torch
 
-    from l2p_bullet.planners.policy import policy_from_tensors
+    from l2p_bullet.planners.policy import NumpyPolicy
+    from l2p_bullet.planners.policy_net import policy_from_tensors
     from l2p_bullet.planners.train_policy import TrainConfig, train_policy
 
     net, history = train_policy(FakeBundle("around").model, TrainConfig(iterations=2, episodes=4, horizon=3), log=None)
@@ -101,6 +102,9 @@ def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     again = policy_from_tensors(tensors)
     x = torch.randn(5, 10)
     assert torch.equal(net(x)[0], again(x)[0])
+    mean, log_std = NumpyPolicy({k: v.numpy() for k, v in tensors.items()})(x.numpy().astype(float))
+    assert np.allclose(mean, net(x)[0].detach().numpy(), atol=1e-5)
+    assert np.allclose(log_std, net(x)[1].detach().numpy(), atol=1e-5)
     scene = random_scene(2)
     p = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
     q = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
@@ -114,3 +118,29 @@ def test_a_mover_touching_another_object_is_a_clear_error():
     scene = Scene([SceneObject("A", "red", 0.05, (0.0, 0.0)), SceneObject("B", "green", 0.05, (0.052, 0.0))])
     with pytest.raises(PlanError, match="touching"):
         plan(scene.validate(), "A", "B", FakeBundle("away"))
+
+
+def test_planning_never_imports_torch(tmp_path):
+    """perform scores in numpy to stay fast; the planners (policy included) must not pull torch in."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = (
+        "import sys; sys.path.insert(0, sys.argv[1])\n"
+        "import numpy as np\n"
+        "from planning_fakes import FakeBundle\n"
+        "from l2p_bullet.planners import plan\n"
+        "from l2p_bullet.planners.policy import NumpyPolicy\n"
+        "from l2p_bullet.scene import default_scene\n"
+        "rng = np.random.default_rng(0)\n"
+        "shapes = {'body.0': (64, 10), 'body.2': (64, 64), 'mean': (3, 64), 'log_std': (3, 64)}\n"
+        "arrays = {f'{k}.weight': rng.normal(0, 0.1, s) for k, s in shapes.items()}\n"
+        "arrays |= {f'{k}.bias': np.zeros(s[0]) for k, s in shapes.items()}\n"
+        "import l2p_bullet.planners.policy as pol\n"
+        "pol.load_policy = lambda bundle: NumpyPolicy(arrays)\n"
+        "for name in ('discrete', 'greedy', 'reinforce'):\n"
+        "    plan(default_scene(), 'A', 'B', FakeBundle('around'), planner=name, budget=3)\n"
+        "assert 'torch' not in sys.modules, 'torch was imported'\n"
+    )
+    subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent)], check=True, cwd=tmp_path)

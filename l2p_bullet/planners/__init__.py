@@ -17,6 +17,7 @@ better. The 2-D simulator only says which moves are legal; ``evaluate`` judges t
 
 from __future__ import annotations
 
+import sys
 import time
 from contextlib import contextmanager
 
@@ -95,8 +96,10 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
 def _one_thread():
     """Score on one torch thread: the batches are small, and on a shared 2-core machine a second thread
     made each forward pass 5-10 times slower (measured: 8 ms vs 49 ms for 80 paths of 150 frames)."""
-    import torch
-
+    torch = sys.modules.get("torch")  # never import it here: perform scores in numpy without it
+    if torch is None:
+        yield
+        return
     prev = torch.get_num_threads()
     torch.set_num_threads(1)
     try:
@@ -117,11 +120,11 @@ def _search(name: str, problem: Problem, bundle):
 
 
 def _policy_proposer(bundle):
-    from .policy import PolicyProposer, policy_from_tensors
+    from .policy import PolicyProposer, load_policy
 
-    tensors = bundle.policy_tensors()
-    if not tensors:
+    net = load_policy(bundle)
+    if net is None:
         raise PlanError(f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
                         f'"python -m l2p_bullet.planners.train_policy {bundle.name}" or pick another planner '
                         f'(known: {", ".join(PLANNERS)})')
-    return PolicyProposer(policy_from_tensors(tensors))
+    return PolicyProposer(net)

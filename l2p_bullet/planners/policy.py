@@ -7,45 +7,27 @@ so far); its output is a Gaussian over the next move in that frame (radial, tang
 and a rotation). One small network per action; the weights live in the action's bundle
 (``policy.safetensors``) with the settings in the manifest's ``[policy]`` section.
 
-torch is imported here (the planning layer's only torch dependency besides the progress model).
+Planning never imports torch: the network (``policy_net.py``, trained in torch) is evaluated here in
+numpy from the bundle's safetensors, as the progress model is in ``progress_numpy.py`` (importing torch
+costs 1.4-2.5 s, half of ``perform``'s time budget).
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
+from pathlib import Path
 
 import numpy as np
-import torch
-from torch import nn
 
+from ..errors import BundleError
 from ..evaluate import turn
 from .problem import MAX_TURN, Node, Problem
 
 FEATURES = 10
 HIDDEN = 64
 LOG_STD_RANGE = (-3.0, 1.0)
-
-
-class GaussianPolicy(nn.Module):
-    """state features (B, FEATURES) -> mean (B,3) and log standard deviation (B,3) of the next move."""
-
-    def __init__(self, hidden: int = HIDDEN):
-        super().__init__()
-        self.body = nn.Sequential(nn.Linear(FEATURES, hidden), nn.Tanh(), nn.Linear(hidden, hidden), nn.Tanh())
-        self.mean = nn.Linear(hidden, 3)
-        self.log_std = nn.Linear(hidden, 3)
-        nn.init.zeros_(self.mean.weight)
-        nn.init.zeros_(self.mean.bias)
-        nn.init.zeros_(self.log_std.weight)
-        nn.init.constant_(self.log_std.bias, math.log(1.5))
-
-    def forward(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        h = self.body(x)
-        return self.mean(h), self.log_std(h).clamp(*LOG_STD_RANGE)
-
-    def distribution(self, x: torch.Tensor) -> torch.distributions.Normal:
-        mean, log_std = self(x)
-        return torch.distributions.Normal(mean, log_std.exp())
+POLICY_FILE = "policy.safetensors"
 
 
 def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,
@@ -79,13 +61,45 @@ def to_poses(actions: np.ndarray, poses: np.ndarray, anchor_pose: np.ndarray, si
     return out
 
 
-def policy_from_tensors(tensors: dict[str, torch.Tensor]) -> GaussianPolicy:
-    """Rebuild the network from a bundle's policy tensors (shapes checked by ``load_state_dict``)."""
-    hidden = int(tensors["body.0.weight"].shape[0])
-    net = GaussianPolicy(hidden)
-    net.load_state_dict({k: v.float() for k, v in tensors.items()})
-    net.eval()
-    return net
+class NumpyPolicy:
+    """The trained network's forward pass in numpy: features (B, FEATURES) -> mean, log_std (B, 3)."""
+
+    def __init__(self, arrays: dict[str, np.ndarray]):
+        try:
+            self.w = [np.asarray(arrays[f"{k}.weight"], np.float64).T for k in ("body.0", "body.2", "mean", "log_std")]
+            self.b = [np.asarray(arrays[f"{k}.bias"], np.float64) for k in ("body.0", "body.2", "mean", "log_std")]
+        except KeyError as e:
+            raise BundleError(f"the policy weights lack the tensor {e.args[0]}") from None
+        if self.w[0].shape[0] != FEATURES:
+            raise BundleError(f"the policy expects {self.w[0].shape[0]} features, this planner gives {FEATURES}")
+
+    def __call__(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        h = np.tanh(np.tanh(x @ self.w[0] + self.b[0]) @ self.w[1] + self.b[1])
+        return h @ self.w[2] + self.b[2], np.clip(h @ self.w[3] + self.b[3], *LOG_STD_RANGE)
+
+
+def load_policy(bundle) -> NumpyPolicy | None:
+    """The bundle's policy, read with safetensors' numpy loader (digest checked); None when it has none.
+
+    Bundles without a folder on disk (test doubles) hand over their tensors through ``policy_tensors``.
+    """
+    manifest = getattr(bundle, "manifest", {}) or {}
+    entry = manifest.get("weights", {}).get(POLICY_FILE)
+    folder = getattr(bundle, "path", None)
+    if entry is None or folder is None:
+        tensors = bundle.policy_tensors()
+        return None if not tensors else NumpyPolicy({k: v.detach().cpu().numpy() for k, v in tensors.items()})
+    from safetensors.numpy import load
+
+    path = Path(folder) / POLICY_FILE
+    try:
+        data = path.read_bytes()
+    except OSError as e:
+        raise BundleError(f"bundle {folder}: cannot read {POLICY_FILE} ({e.strerror or e})") from None
+    if hashlib.sha256(data).hexdigest() != entry.get("sha256"):
+        raise BundleError(f"bundle {folder}: {POLICY_FILE} does not match the sha256 digest in manifest.toml "
+                          "(the file was modified or corrupted; re-train the policy)")
+    return NumpyPolicy(load(data))
 
 
 class PolicyProposer:
@@ -93,16 +107,15 @@ class PolicyProposer:
 
     deterministic = False
 
-    def __init__(self, net: GaussianPolicy, spread: float = 1.0):
+    def __init__(self, net: NumpyPolicy, spread: float = 1.0):
         self.net = net
         self.spread = spread
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
         x = features([node.frames], problem.anchor_pose, problem.size, np.array([node.progress]),
                      np.array([node.moves]), problem.max_moves)
-        with torch.no_grad():
-            mean, log_std = self.net(torch.from_numpy(x))
-        mean, std = mean.numpy()[0].astype(float), np.exp(log_std.numpy()[0]).astype(float) * self.spread
+        mean, log_std = self.net(x.astype(np.float64))
+        mean, std = mean[0], np.exp(log_std[0]) * self.spread
         acts = mean + std * problem.rng.normal(size=(max(n, 1), 3))
         acts[0] = mean
         return to_poses(acts, np.repeat(node.pose[None], len(acts), 0), problem.anchor_pose, problem.size)

@@ -21,7 +21,8 @@ import torch
 
 from ..scene import random_scene
 from ..sim2d import World2D, segment_frames
-from .policy import GaussianPolicy, features, to_poses
+from .policy import features, to_poses
+from .policy_net import GaussianPolicy
 from .problem import FRAME_STEP
 
 
