@@ -1,0 +1,60 @@
+"""``l2p-bullet plan``: the files it writes and its errors (with a stand-in bundle, no weights needed)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from planning_fakes import FakeBundle
+
+from l2p_bullet import registry
+from l2p_bullet.cli import main
+from l2p_bullet.paths import load_motion
+
+PHRASES = {"around": "around", "past": "past", "next to": "next-to", "closer to": "closer", "away from": "away"}
+
+
+@pytest.fixture
+def fake_actions(monkeypatch):
+    monkeypatch.setattr(registry, "phrase_table", lambda plugins=None: dict(PHRASES))
+    monkeypatch.setattr(registry, "load", lambda name, plugins=None: FakeBundle(name))
+
+
+def test_plan_writes_plan_json_and_a_plot(fake_actions, tmp_path):
+    out = tmp_path / "run"
+    r = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(out), "--planner", "discrete"])
+    assert r.exit_code == 0, r.output
+    summary = json.loads(r.output.strip().splitlines()[-1])
+    assert summary["action"] == "around" and summary["stopped"] in ("threshold", "budget")
+    plan = json.loads((out / "plan.json").read_text())
+    assert plan["schema"] == 1 and plan["mover"] == "A" and plan["anchor"] == "B" and plan["planner"] == "discrete"
+    assert len(plan["path"]) == len(plan["progress"]) > 2
+    assert plan["verdict"]["success"] is True
+    motion = load_motion(out / "plan.json")  # readable by the scoring tools
+    assert np.allclose(motion.mover[0], plan["start"])
+    png = (out / "plan.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
+
+
+def test_plan_reads_a_scene_file_and_never_overwrites_without_force(fake_actions, tmp_path):
+    scene = {"objects": [{"name": "A", "color": "red", "size": 0.04, "xy": [0.12, 0.0], "yaw": 0.0},
+                         {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.0], "yaw": 0.0}]}
+    (tmp_path / "scene.json").write_text(json.dumps(scene))
+    out = tmp_path / "run"
+    args = ["plan", "slide the red block next to the green one", "--scene", str(tmp_path / "scene.json"),
+            "--out", str(out), "--seed", "3"]
+    r = CliRunner().invoke(main, args)
+    assert r.exit_code == 0, r.output
+    assert json.loads((out / "plan.json").read_text())["size"] == 0.04
+    again = CliRunner().invoke(main, args)
+    assert again.exit_code == 2 and "--force" in again.output
+    assert CliRunner().invoke(main, [*args, "--force"]).exit_code == 0
+
+
+def test_an_unknown_planner_is_a_one_line_error_listing_the_planners(fake_actions, tmp_path):
+    r = CliRunner().invoke(main, ["plan", "move A around B", "--planner", "astar", "--out", str(tmp_path / "x")])
+    assert r.exit_code == 2
+    assert "unknown planner" in r.output and "greedy, beam, discrete, reinforce, default" in r.output
+    assert not (tmp_path / "x").exists()
