@@ -30,3 +30,10 @@ bench: install
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info runs
+
+# Re-train the five built-in action bundles (progress models) into l2p_bullet/actions/ (minutes on 2 cores).
+.PHONY: bundles
+bundles: install
+	for a in closer away next-to past around; do \
+	  $(VENV)/bin/l2p-bullet train $$a --seed 0 --force --out l2p_bullet/actions/$$(echo $$a | tr - _) || exit 1; \
+	done

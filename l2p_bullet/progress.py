@@ -1,0 +1,96 @@
+"""The LSTM progress model: QSR feature sequence -> per-frame event progress in [0, 1].
+
+Progress is the paper's f(S, i, e): 0 before (and outside) the event, rising linearly to 1 at its end.
+A bundle holds an **ensemble** of small LSTMs trained from different seeds; their outputs are averaged
+because one model's agreement with people varies a lot between seeds (DESIGN.md section 5).
+
+Inference is batched: every candidate path of a planner step is resampled, padded and scored in one
+forward pass per ensemble member under ``torch.inference_mode``. The net is causal, so the progress
+at a frame only depends on the frames before it: scoring a path's prefix gives the same values.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import torch
+from torch import nn
+
+from .architecture import ModelConfig
+from .qsr import QSRConfig, batch_features
+
+
+class ProgressNet(nn.Module):
+    """One LSTM layer and a sigmoid read-out per frame."""
+
+    def __init__(self, n_features: int, hidden: int):
+        super().__init__()
+        self.lstm = nn.LSTM(n_features, hidden, batch_first=True)
+        self.head = nn.Linear(hidden, 1)
+
+    def forward(self, x: torch.Tensor) -> torch.Tensor:  # (B, T, F) -> (B, T)
+        h, _ = self.lstm(x)
+        return torch.sigmoid(self.head(h)).squeeze(-1)
+
+
+def ensemble_state(nets: Sequence[ProgressNet]) -> dict[str, torch.Tensor]:
+    """Flatten an ensemble into one safetensors-ready dict (``m<i>.<param>``)."""
+    return {f"m{i}.{k}": v.detach().contiguous().clone() for i, n in enumerate(nets) for k, v in n.state_dict().items()}
+
+
+class ProgressModel:
+    """A loaded ensemble plus its feature settings: scores metric motions of blocks of side ``size``."""
+
+    def __init__(self, tensors: dict[str, torch.Tensor], model_cfg: ModelConfig, qsr_cfg: QSRConfig):
+        self.model_cfg, self.qsr_cfg = model_cfg, qsr_cfg
+        self.nets: list[ProgressNet] = []
+        for i in range(model_cfg.ensemble):
+            net = ProgressNet(model_cfg.n_features, model_cfg.hidden)
+            net.load_state_dict({k.split(".", 1)[1]: v for k, v in tensors.items() if k.startswith(f"m{i}.")})
+            net.eval()
+            self.nets.append(net)
+
+    @classmethod
+    def from_nets(cls, nets: Sequence[ProgressNet], model_cfg: ModelConfig, qsr_cfg: QSRConfig) -> ProgressModel:
+        return cls(ensemble_state(nets), model_cfg, qsr_cfg)
+
+    def forward_features(self, feats: np.ndarray) -> np.ndarray:
+        """Mean ensemble progress ``(B, K)`` for padded features ``(B, K, F)``."""
+        with torch.inference_mode():
+            x = torch.from_numpy(np.ascontiguousarray(feats, dtype=np.float32))
+            out = sum(net(x) for net in self.nets) / len(self.nets)
+        return out.numpy().astype(float)
+
+    def _run(self, movers: list[np.ndarray], anchors, size: float):
+        movers = [np.asarray(m, float) for m in movers]
+        feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
+        return self.forward_features(feats), lengths, rss
+
+    def final_batch(self, movers: list[np.ndarray], anchors, size: float) -> np.ndarray:
+        """Progress at the last frame of every motion, ``(B,)``; one forward pass for the batch."""
+        if len(movers) == 0:
+            return np.zeros(0)
+        out, lengths, _ = self._run(movers, anchors, size)
+        return out[np.arange(len(lengths)), lengths - 1]
+
+    def curve_batch(self, movers: list[np.ndarray], anchors, size: float) -> list[np.ndarray]:
+        """Per-input-frame progress of every motion (a frame gets the value of the last resampled frame
+        at or before its arc length: frames where the block stands still repeat the value)."""
+        if len(movers) == 0:
+            return []
+        out, lengths, rss = self._run(movers, anchors, size)
+        curves = []
+        for i, rs in enumerate(rss):
+            k = np.searchsorted(rs.arc, rs.input_arc + 1e-9, side="right") - 1
+            curves.append(out[i, np.clip(k, 0, lengths[i] - 1)])
+        return curves
+
+    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
+        """Per-input-frame progress ``(T,)`` of one motion; ``anchor`` is ``(T, 3)`` or one pose ``(3,)``."""
+        anchor = np.asarray(anchor, float)
+        return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0]
+
+    def final(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> float:
+        anchor = np.asarray(anchor, float)
+        return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0])

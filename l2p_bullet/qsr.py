@@ -1,0 +1,235 @@
+"""Qualitative spatial features (QSR) of a mover relative to an anchor, per frame, in block units.
+
+The paper describes a motion by four qualitative relations between the two blocks, per frame:
+cardinal direction (CD), moving or static (MV), qualitative distance (QDC) and the qualitative
+trajectory calculus QTC-C, plus their frame-to-frame changes and the blocks' relative rotation.
+We compute those, and next to them the few continuous quantities they quantise (distance, gap,
+bearing, the angle swept around the anchor), because an LSTM learns a graded progress far better
+from "how close" than from "which distance bin" (a planner needs the gradient, people grade it).
+
+Invariances (property-tested in ``tests/test_qsr.py``):
+- translating or rotating the whole scene changes nothing: bearings are measured from the first
+  frame's anchor->mover direction, alignments in the anchor's own frame;
+- scaling the scene together with the block size changes nothing: every length is divided by the
+  block side before anything else.
+
+Sequences are first resampled by **arc length** of the mover's path (``spacing`` blocks apart): the
+progress of "around" depends on where the block went, not on how fast a person slid it, and a
+planner's straight moves given by their end points become frames like a demonstration's.
+Everything is vectorised numpy; a batch is a padded ``(B, T, F)`` array.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class QSRConfig:
+    """Feature parameters. Every length is in blocks (units of the block side), angles in radians."""
+
+    spacing: float = 0.25
+    """Arc-length distance between resampled frames (DESIGN.md section 5: 0.25 beat time sampling)."""
+    cd_sectors: int = 8
+    """Cardinal-direction sectors around the anchor (8: the compass rose N, NE, E, ...)."""
+    qdc_edges: tuple[float, ...] = (1.5, 3.0, 5.0)
+    """QDC bins on the centre distance: touching/adjacent < 1.5 <= near < 3 <= far < 5 <= very far."""
+    moving_eps: float = 0.02
+    """A block moving less than this per resampled frame is static (MV and QTC's 0)."""
+    max_distance: float = 12.0
+    """Distances are clipped here before scaling (the network sees bounded inputs)."""
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d["qdc_edges"] = list(self.qdc_edges)
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict) -> QSRConfig:
+        known = {f.name for f in fields(cls)}
+        kw = {k: v for k, v in d.items() if k in known}
+        if "qdc_edges" in kw:
+            kw["qdc_edges"] = tuple(float(v) for v in kw["qdc_edges"])
+        return cls(**kw)
+
+    @property
+    def n_features(self) -> int:
+        return len(feature_names(self))
+
+
+def feature_names(cfg: QSRConfig = QSRConfig()) -> list[str]:
+    """Names of the feature columns, in order (written to the manifest so a bundle documents itself)."""
+    names = ["dist", "log_dist", "gap", "dist_change_from_start", "log_dist_ratio", "bearing_cos",
+             "bearing_sin", "swept", "swept_abs", "face_alignment", "rot_cos", "rot_sin",
+             "path_length", "displacement", "first_frame"]
+    names += [f"cd_{i}" for i in range(cfg.cd_sectors)]
+    names += [f"qdc_{i}" for i in range(len(cfg.qdc_edges) + 1)]
+    names += ["mv_mover", "mv_anchor", "qtc_k_mover", "qtc_k_anchor", "qtc_l_mover", "qtc_l_anchor"]
+    names += ["d_dist", "d_swept", "d_rot", "cd_changed", "qdc_changed", "qtc_changed"]
+    return names
+
+
+@dataclass
+class Resampled:
+    """A motion resampled by arc length: poses in block units and where each input frame falls."""
+
+    mover: np.ndarray  # (K, 3), x/y in blocks
+    anchor: np.ndarray  # (K, 3)
+    arc: np.ndarray  # (K,) arc length of each resampled frame (blocks)
+    input_arc: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (T,) arc length of input frames
+    times: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (K,) fractional input-frame index
+
+
+def _as_track(poses: np.ndarray, n: int) -> np.ndarray:
+    a = np.asarray(poses, dtype=float)
+    if a.ndim == 1:
+        a = np.repeat(a[None], n, axis=0)
+    return a
+
+
+def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig()) -> Resampled:
+    """Resample a motion every ``cfg.spacing`` blocks of mover travel (end points always kept).
+
+    ``anchor`` may be one pose ``(3,)`` (a static anchor). Angles are unwrapped before interpolating.
+    A motion that does not move becomes a single frame: staying still is never a long sequence.
+    """
+    m = np.asarray(mover, dtype=float)
+    if m.ndim != 2 or m.shape[1] != 3 or len(m) == 0:
+        raise ValueError(f"mover must be (T, 3) poses, got shape {m.shape}")
+    a = _as_track(anchor, len(m))
+    if a.shape != m.shape:
+        raise ValueError(f"anchor must be (3,) or {m.shape}, got {a.shape}")
+    m = np.column_stack([m[:, :2] / size, np.unwrap(m[:, 2])])
+    a = np.column_stack([a[:, :2] / size, np.unwrap(a[:, 2])])
+    step = np.linalg.norm(np.diff(m[:, :2], axis=0), axis=1)
+    arc_in = np.concatenate([[0.0], np.cumsum(step)])
+    total = arc_in[-1]
+    n = int(round(total / cfg.spacing))
+    if n < 1:
+        return Resampled(m[-1:].copy(), a[-1:].copy(), np.array([total]), arc_in, np.array([len(m) - 1.0]))
+    s = np.linspace(0.0, total, n + 1)
+    idx = np.arange(len(m), dtype=float)
+    # strictly increasing abscissa for interp: static input frames share an arc value; take the last
+    keep = np.concatenate([np.diff(arc_in) > 1e-12, [True]])
+    keep[0] = True
+    xs, ts = arc_in[keep], idx[keep]
+    if len(xs) > 1 and xs[0] == xs[1]:
+        xs, ts = xs[1:], ts[1:]
+    t = np.interp(s, xs, ts)
+    t0 = np.floor(t).astype(int).clip(0, len(m) - 1)
+    t1 = np.minimum(t0 + 1, len(m) - 1)
+    w = (t - t0)[:, None]
+    mr = m[t0] * (1 - w) + m[t1] * w
+    ar = a[t0] * (1 - w) + a[t1] * w
+    return Resampled(mr, ar, s, arc_in, t)
+
+
+def _half_extent(phi: np.ndarray) -> np.ndarray:
+    """Distance from a unit square's centre to its boundary in direction ``phi`` (square frame)."""
+    return 0.5 / np.maximum(np.abs(np.cos(phi)), np.abs(np.sin(phi)))
+
+
+def features(mover: np.ndarray, anchor: np.ndarray, cfg: QSRConfig = QSRConfig()) -> np.ndarray:
+    """Per-frame features ``(K, F)`` of resampled poses in block units (see :func:`feature_names`)."""
+    return features_batch(mover[None], anchor[None], np.array([len(mover)]), cfg)[0]
+
+
+def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
+                   cfg: QSRConfig = QSRConfig()) -> np.ndarray:
+    """Features of a padded batch ``(B, K, 3)`` of block-unit poses; frames past ``lengths`` are 0."""
+    m, a = np.asarray(movers, float), np.asarray(anchors, float)
+    B, K, _ = m.shape
+    valid = np.arange(K)[None, :] < np.asarray(lengths)[:, None]  # (B, K)
+    d = m[..., :2] - a[..., :2]
+    r = np.linalg.norm(d, axis=-1)
+    r_safe = np.maximum(r, 1e-6)
+    bearing = np.arctan2(d[..., 1], d[..., 0])  # world frame
+    rel = bearing - bearing[:, :1]  # measured from the first frame: rotation invariant
+    swept = np.unwrap(rel, axis=1)
+    swept = np.where(valid, swept, 0.0)
+    swept = swept - swept[:, :1]
+    phi_a = bearing - a[..., 2]  # bearing in the anchor's frame
+    phi_m = bearing + np.pi - m[..., 2]  # bearing of the anchor in the mover's frame
+    gap = r - _half_extent(phi_a) - _half_extent(phi_m)
+    rot = 4.0 * (m[..., 2] - a[..., 2])  # squares: rotation is only defined modulo 90 degrees
+    r0 = r_safe[:, :1]
+    rc = np.minimum(r, cfg.max_distance)
+    step_m = np.diff(m[..., :2], axis=1, prepend=m[:, :1, :2])
+    step_a = np.diff(a[..., :2], axis=1, prepend=a[:, :1, :2])
+    path = np.cumsum(np.linalg.norm(step_m, axis=-1), axis=1)
+    disp = np.linalg.norm(m[..., :2] - m[:, :1, :2], axis=-1)
+    first = np.zeros((B, K))
+    first[:, 0] = 1.0
+    cont = [rc / 5.0, np.log(np.maximum(rc, 0.3)), np.clip(gap, -1.0, cfg.max_distance) / 5.0,
+            np.clip(r - r0, -cfg.max_distance, cfg.max_distance) / 5.0,
+            np.clip(np.log(r_safe / r0), -3, 3), np.cos(rel), np.sin(rel), np.clip(swept / np.pi, -4, 4),
+            np.clip(np.abs(swept) / np.pi, 0, 4), np.cos(4.0 * phi_a), np.cos(rot), np.sin(rot),
+            np.minimum(path, 4 * cfg.max_distance) / 10.0, np.minimum(disp, cfg.max_distance) / 5.0, first]
+    # cardinal direction: sector of the bearing, sector 0 = the side the mover started on
+    n_cd = cfg.cd_sectors
+    cd = np.mod(np.round(rel / (2 * np.pi / n_cd)), n_cd).astype(int)
+    qdc = np.searchsorted(np.asarray(cfg.qdc_edges), r)
+    # QTC-C: k = moving towards (-) / away (+) from the other, l = to its left (-) / right (+)
+    u = d / r_safe[..., None]  # unit anchor->mover
+    u_prev = np.concatenate([u[:, :1], u[:, :-1]], axis=1)
+    eps = cfg.moving_eps
+
+    def sign(v: np.ndarray) -> np.ndarray:
+        return np.where(v > eps, 1.0, np.where(v < -eps, -1.0, 0.0))
+
+    k_m = sign(np.sum(step_m * u_prev, axis=-1))
+    k_a = sign(-np.sum(step_a * u_prev, axis=-1))
+    cross = u_prev[..., 0] * step_m[..., 1] - u_prev[..., 1] * step_m[..., 0]
+    l_m = sign(-cross)
+    cross_a = u_prev[..., 0] * step_a[..., 1] - u_prev[..., 1] * step_a[..., 0]
+    l_a = sign(cross_a)
+    mv_m = (np.linalg.norm(step_m, axis=-1) > eps).astype(float)
+    mv_a = (np.linalg.norm(step_a, axis=-1) > eps).astype(float)
+    qtc = np.stack([k_m, k_a, l_m, l_a], axis=-1)
+
+    def changed(x: np.ndarray) -> np.ndarray:
+        prev = np.concatenate([x[:, :1], x[:, :-1]], axis=1)
+        diff = x != prev
+        return (diff.any(axis=-1) if diff.ndim == 3 else diff).astype(float)
+
+    d_dist = np.diff(rc, axis=1, prepend=rc[:, :1]) / cfg.spacing
+    d_swept = np.diff(swept, axis=1, prepend=swept[:, :1]) / cfg.spacing
+    d_rot = np.sin(np.diff(rot, axis=1, prepend=rot[:, :1]))
+    out = np.concatenate(
+        [np.stack(cont, axis=-1), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc],
+         np.stack([mv_m, mv_a], axis=-1), qtc,
+         np.stack([np.clip(d_dist, -2, 2), np.clip(d_swept, -2, 2), d_rot,
+                   changed(cd), changed(qdc), changed(qtc)], axis=-1)],
+        axis=-1,
+    )
+    out[~valid] = 0.0
+    return out.astype(np.float32)
+
+
+def motion_features(mover: np.ndarray, anchor: np.ndarray, size: float,
+                    cfg: QSRConfig = QSRConfig()) -> tuple[np.ndarray, Resampled]:
+    """Resample a metric motion and compute its features: ``(K, F)`` and the resampling."""
+    rs = resample(mover, anchor, size, cfg)
+    return features(rs.mover, rs.anchor, cfg), rs
+
+
+def batch_features(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
+                   cfg: QSRConfig = QSRConfig()) -> tuple[np.ndarray, np.ndarray, list[Resampled]]:
+    """Resample every motion, pad, and compute features in one vectorised pass.
+
+    Returns ``(B, K, F)`` features, ``(B,)`` lengths and the resamplings (to map back to input frames).
+    ``anchors`` may be one pose ``(3,)`` shared by every motion, or one track/pose per motion.
+    """
+    shared = not isinstance(anchors, list) and np.asarray(anchors).ndim == 1
+    rss = [resample(mv, anchors if shared else anchors[i], size, cfg) for i, mv in enumerate(movers)]
+    lengths = np.array([len(rs.arc) for rs in rss])
+    K = int(lengths.max()) if len(rss) else 1
+    M = np.zeros((len(rss), K, 3))
+    A = np.zeros((len(rss), K, 3))
+    for i, rs in enumerate(rss):
+        n = lengths[i]
+        M[i, :n], A[i, :n] = rs.mover, rs.anchor
+        M[i, n:], A[i, n:] = rs.mover[-1], rs.anchor[-1]  # edge padding keeps diffs at 0
+    return features_batch(M, A, lengths, cfg), lengths, rss

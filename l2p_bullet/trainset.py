@@ -1,0 +1,187 @@
+"""Training sequences for one action's progress model: positives, negatives and their labels.
+
+Why each part is here:
+- **Positives** are the action's demonstrations with their context: progress is 0 on the frames before
+  the event, rises linearly with the mover's arc length to 1 at the event's end, and falls back to 0
+  over ``post_decay`` blocks of further motion (the person resetting the block is not the event).
+  Each is also used cropped to the event alone (a planner's path has no context), mirrored (left/right
+  does not change any of the five actions) and simplified into 1-3 straight moves, because planners
+  and the graded 2-D demonstrations move in straight lines while people slide along curves.
+- **Negatives** (label 0 everywhere) teach the model what the action is not, so that a planner
+  maximising it cannot cheat: the other actions' demonstrations (except those that are also this action,
+  e.g. a good "next to" is also "closer"), standing still, and random straight-line motions, including
+  far jumps, that break a necessary condition of the action (:func:`violates`).
+Everything is in block units; motion-capture jitter is smoothed before resampling.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .demos import ACTIONS, Demo
+from .qsr import QSRConfig, features, resample
+
+
+@dataclass(frozen=True)
+class DataConfig:
+    """How the training set is built (written to the manifest's ``[training]``)."""
+
+    smooth_frames: int = 9
+    """Moving-average window on the captured poses (about 0.3 s at 30 fps) against tracking jitter."""
+    post_decay: float = 1.0
+    """After the event, progress falls linearly to 0 over this many blocks of further motion."""
+    polylines_per_demo: int = 2
+    random_negatives: int = 300
+    negatives: dict = field(default_factory=lambda: {
+        "closer": ["away", "past", "around"],
+        "away": ["closer", "next-to", "around"],
+        "next-to": ["away", "past", "around"],
+        "past": ["closer", "away", "next-to", "around"],
+        "around": ["closer", "away", "next-to", "past"],
+    })
+    """Whose demonstrations are negatives for each action (similar pairs are left out on purpose)."""
+
+    def to_dict(self) -> dict:
+        return {"smooth_frames": self.smooth_frames, "post_decay": self.post_decay,
+                "polylines_per_demo": self.polylines_per_demo, "random_negatives": self.random_negatives,
+                "negatives": dict(self.negatives)}
+
+
+@dataclass
+class Sequence:
+    """One training sequence: per-frame features, targets and a weight."""
+
+    x: np.ndarray  # (K, F) float32
+    y: np.ndarray  # (K,) float32
+    weight: float = 1.0
+    positive: bool = False
+    end: int = -1  # index of the event's last frame (positives), else the last frame
+
+
+def smooth(poses: np.ndarray, window: int) -> np.ndarray:
+    """Centred moving average with edge padding (angles unwrapped first)."""
+    if window <= 1 or len(poses) < 3:
+        return poses
+    p = poses.copy()
+    p[:, 2] = np.unwrap(p[:, 2])
+    k = np.ones(window) / window
+    pad = window // 2
+    padded = np.pad(p, ((pad, window - 1 - pad), (0, 0)), mode="edge")
+    return np.stack([np.convolve(padded[:, j], k, mode="valid") for j in range(3)], axis=1)
+
+
+def mirror(poses: np.ndarray) -> np.ndarray:
+    out = poses.copy()
+    out[:, 1] *= -1
+    out[:, 2] *= -1
+    return out
+
+
+def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, end: float,
+              qcfg: QSRConfig, dcfg: DataConfig, positive: bool) -> Sequence:
+    rs = resample(mover, anchor, size, qcfg)
+    x = features(rs.mover, rs.anchor, qcfg)
+    if not positive:
+        return Sequence(x, np.zeros(len(x), np.float32), end=len(x) - 1)
+    idx = np.arange(len(rs.input_arc), dtype=float)
+    s0, s1 = np.interp([start, end], idx, rs.input_arc)
+    s = rs.arc
+    y = np.where(s <= s0, 0.0, np.clip((s - s0) / max(s1 - s0, 1e-6), 0, 1))
+    after = rs.times > end + 1e-9
+    y = np.where(after, np.clip(1.0 - (s - s1) / dcfg.post_decay, 0, 1), y)
+    k_end = int(np.clip(np.searchsorted(s, s1 - 1e-9), 0, len(s) - 1))
+    return Sequence(x, y.astype(np.float32), positive=True, end=k_end)
+
+
+def _polyline(demo_m: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """Replace a motion by straight moves between 0-3 of its own intermediate poses (dense frames)."""
+    n_mid = int(rng.integers(0, 4))
+    ks = np.sort(rng.choice(np.arange(1, len(demo_m) - 1), size=min(n_mid, len(demo_m) - 2), replace=False))
+    way = demo_m[np.concatenate([[0], ks, [len(demo_m) - 1]]).astype(int)]
+    return np.concatenate([np.linspace(way[i], way[i + 1], 20, endpoint=i == len(way) - 2)
+                           for i in range(len(way) - 1)])
+
+
+def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
+    """True when a block-unit motion clearly is *not* the action (a necessary condition fails).
+
+    Used only to label random motions as negatives; motions that pass are left out, not made positive.
+    """
+    d = mover[:, :2] - anchor[:, :2]
+    r = np.linalg.norm(d, axis=1)
+    swept = abs(np.unwrap(np.arctan2(d[:, 1], d[:, 0]))[-1] - np.arctan2(d[0, 1], d[0, 0]))
+    if action == "closer":
+        return r[-1] >= r[0] - 0.25
+    if action == "away":
+        return r[-1] <= r[0] + 0.25
+    if action == "next-to":
+        return r[-1] > 2.5
+    if action == "past":
+        return swept < np.radians(45) or swept > np.radians(240) or r.max() > 8.0
+    if action == "around":
+        return swept < np.radians(150) or r.max() > 8.0
+    raise ValueError(action)
+
+
+def random_motion(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """A random 0-4 segment straight-line motion of the mover around a static anchor (block units)."""
+    anchor = np.array([0.0, 0.0, rng.uniform(0, np.pi / 2)])
+    r0, b0 = rng.uniform(1.2, 8.0), rng.uniform(-np.pi, np.pi)
+    pts = [np.array([r0 * np.cos(b0), r0 * np.sin(b0), rng.uniform(0, np.pi / 2)])]
+    for _ in range(int(rng.integers(0, 5))):
+        if rng.random() < 0.2:  # a far jump
+            r, b = rng.uniform(6, 14), rng.uniform(-np.pi, np.pi)
+        else:
+            r, b = rng.uniform(1.1, 7.0), rng.uniform(-np.pi, np.pi)
+        pts.append(np.array([r * np.cos(b), r * np.sin(b), pts[-1][2] + rng.normal(0, 0.3)]))
+    if len(pts) == 1:
+        mover = pts[0][None] + np.concatenate([np.zeros((1, 3)), rng.normal(0, 0.01, (5, 3))])
+    else:
+        mover = np.concatenate([np.linspace(pts[i], pts[i + 1], 30) for i in range(len(pts) - 1)])
+    return mover, np.repeat(anchor[None], len(mover), axis=0)
+
+
+def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
+          seed: int = 0) -> list[Sequence]:
+    """All training sequences for ``action`` from the demonstrations of every action (train split)."""
+    rng = np.random.default_rng(seed)
+    seqs: list[Sequence] = []
+    for d in demos.get(action, []):
+        m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
+        for mm, aa in ((m, a), (mirror(m), mirror(a))):
+            seqs.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True))
+            seqs.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True))
+            ev_m, ev_a = mm[d.start:d.end + 1], aa[d.start:d.end + 1]
+            for _ in range(dcfg.polylines_per_demo):
+                pm = _polyline(ev_m, rng)
+                pa = np.repeat(ev_a.mean(axis=0)[None], len(pm), axis=0)
+                seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True))
+    n_pos = len(seqs)
+    neg: list[Sequence] = []
+    for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
+        for d in demos.get(other, []):
+            m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
+            for mm, aa in ((m, a), (mirror(m), mirror(a))):
+                neg.append(_labelled(mm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
+                neg.append(_labelled(mm[d.start:d.end + 1], aa[d.start:d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
+    n_rand = 0
+    tries = 0
+    while n_rand < dcfg.random_negatives and tries < 20 * dcfg.random_negatives:
+        tries += 1
+        mover, anchor = random_motion(rng)
+        if violates(action, mover, anchor):
+            neg.append(_labelled(mover, anchor, 1.0, 0, 0, qcfg, dcfg, False))
+            n_rand += 1
+    # balance: the negatives together weigh as much as the positives
+    w = n_pos / max(len(neg), 1)
+    for s in neg:
+        s.weight = w
+    return seqs + neg
+
+
+def demo_sequence(d: Demo, qcfg: QSRConfig, dcfg: DataConfig) -> Sequence:
+    """A demonstration with its whole context, labelled as a positive (for held-out MSE)."""
+    m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
+    return _labelled(m, a, d.size, d.start, d.end, qcfg, dcfg, True)
