@@ -55,17 +55,36 @@ class ProgressModel:
     def from_nets(cls, nets: Sequence[ProgressNet], model_cfg: ModelConfig, qsr_cfg: QSRConfig) -> ProgressModel:
         return cls(ensemble_state(nets), model_cfg, qsr_cfg)
 
-    def forward_features(self, feats: np.ndarray) -> np.ndarray:
-        """Mean ensemble progress ``(B, K)`` for padded features ``(B, K, F)``."""
+    def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
+        """Mean ensemble progress ``(B, K)`` for padded features ``(B, K, F)``.
+
+        Frames that every sequence of the batch shares at its start (a planner's candidates all extend
+        the same path) go through the LSTMs once, at batch size 1; only the rest runs for the batch.
+        """
+        B, K, _ = feats.shape
+        lengths = np.full(B, K) if lengths is None else np.asarray(lengths)
+        P = 0
+        if B > 1:
+            same = np.all(feats == feats[:1], axis=(0, 2))
+            P = K if same.all() else int(np.argmin(same))
+            P = min(P, int(lengths.min()) - 1)  # every sequence keeps at least its last frame
+        x = torch.from_numpy(np.ascontiguousarray(feats, dtype=np.float32))
+        out = torch.zeros(B, K)
         with torch.inference_mode():
-            x = torch.from_numpy(np.ascontiguousarray(feats, dtype=np.float32))
-            out = sum(net(x) for net in self.nets) / len(self.nets)
-        return out.numpy().astype(float)
+            for net in self.nets:
+                if P >= 2:
+                    hp, (h, c) = net.lstm(x[:1, :P])
+                    hr, _ = net.lstm(x[:, P:], (h.expand(-1, B, -1).contiguous(), c.expand(-1, B, -1).contiguous()))
+                    h_all = torch.cat([hp.expand(B, -1, -1), hr], dim=1)
+                else:
+                    h_all, _ = net.lstm(x)
+                out += torch.sigmoid(net.head(h_all)).squeeze(-1)
+        return (out / len(self.nets)).numpy().astype(float)
 
     def _run(self, movers: list[np.ndarray], anchors, size: float):
         movers = [np.asarray(m, float) for m in movers]
         feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
-        return self.forward_features(feats), lengths, rss
+        return self.forward_features(feats, lengths), lengths, rss
 
     def final_batch(self, movers: list[np.ndarray], anchors, size: float) -> np.ndarray:
         """Progress at the last frame of every motion, ``(B,)``; one forward pass for the batch."""

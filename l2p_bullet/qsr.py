@@ -89,41 +89,66 @@ def _as_track(poses: np.ndarray, n: int) -> np.ndarray:
     return a
 
 
-def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig()) -> Resampled:
-    """Resample a motion every ``cfg.spacing`` blocks of mover travel (end points always kept).
+def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
+                   cfg: QSRConfig = QSRConfig()) -> list[Resampled]:
+    """Resample motions at arc lengths 0, spacing, 2 spacing, ... of the mover's path, plus its end.
 
-    ``anchor`` may be one pose ``(3,)`` (a static anchor). Angles are unwrapped before interpolating.
-    A motion that does not move becomes a single frame: staying still is never a long sequence.
+    The grid is fixed (not stretched to fit each path), so a path's prefix resamples to the same frames
+    as the path itself: scoring many candidates that extend one path shares their common prefix.
+    ``anchors`` is one pose ``(3,)`` for all, or one ``(T,3)`` track or ``(3,)`` pose per motion.
+    Angles are unwrapped before interpolating. A motion that does not move becomes a single frame:
+    standing still is never a long sequence. One vectorised pass for the whole batch.
     """
-    m = np.asarray(mover, dtype=float)
-    if m.ndim != 2 or m.shape[1] != 3 or len(m) == 0:
-        raise ValueError(f"mover must be (T, 3) poses, got shape {m.shape}")
-    a = _as_track(anchor, len(m))
-    if a.shape != m.shape:
-        raise ValueError(f"anchor must be (3,) or {m.shape}, got {a.shape}")
-    m = np.column_stack([m[:, :2] / size, np.unwrap(m[:, 2])])
-    a = np.column_stack([a[:, :2] / size, np.unwrap(a[:, 2])])
-    step = np.linalg.norm(np.diff(m[:, :2], axis=0), axis=1)
-    arc_in = np.concatenate([[0.0], np.cumsum(step)])
-    total = arc_in[-1]
-    n = int(round(total / cfg.spacing))
-    if n < 1:
-        return Resampled(m[-1:].copy(), a[-1:].copy(), np.array([total]), arc_in, np.array([len(m) - 1.0]))
-    s = np.linspace(0.0, total, n + 1)
-    idx = np.arange(len(m), dtype=float)
-    # strictly increasing abscissa for interp: static input frames share an arc value; take the last
-    keep = np.concatenate([np.diff(arc_in) > 1e-12, [True]])
-    keep[0] = True
-    xs, ts = arc_in[keep], idx[keep]
-    if len(xs) > 1 and xs[0] == xs[1]:
-        xs, ts = xs[1:], ts[1:]
-    t = np.interp(s, xs, ts)
-    t0 = np.floor(t).astype(int).clip(0, len(m) - 1)
-    t1 = np.minimum(t0 + 1, len(m) - 1)
-    w = (t - t0)[:, None]
-    mr = m[t0] * (1 - w) + m[t1] * w
-    ar = a[t0] * (1 - w) + a[t1] * w
-    return Resampled(mr, ar, s, arc_in, t)
+    ms = [np.asarray(m, dtype=float) for m in movers]
+    for m in ms:
+        if m.ndim != 2 or m.shape[1] != 3 or len(m) == 0:
+            raise ValueError(f"mover must be (T, 3) poses, got shape {m.shape}")
+    shared = not isinstance(anchors, list)
+    if shared and np.asarray(anchors).ndim != 1:
+        anchors = [np.asarray(anchors, float)] if len(ms) == 1 else list(anchors)
+        shared = False
+    as_ = [_as_track(anchors if shared else anchors[i], len(m)) for i, m in enumerate(ms)]
+    for m, a in zip(ms, as_, strict=True):
+        if a.shape != m.shape:
+            raise ValueError(f"anchor must be (3,) or {m.shape}, got {a.shape}")
+    T = np.array([len(m) for m in ms])
+    first = np.concatenate([[0], np.cumsum(T)[:-1]])
+    M, A = np.concatenate(ms), np.concatenate(as_)
+    M = np.column_stack([M[:, :2] / size, np.unwrap(M[:, 2])])
+    A = np.column_stack([A[:, :2] / size, np.unwrap(A[:, 2])])
+    step = np.linalg.norm(np.diff(M[:, :2], axis=0, prepend=M[:1, :2]), axis=1)
+    step[first] = 0.0
+    cum = np.cumsum(step)
+    arc = cum - np.repeat(cum[first], T)  # per-path arc length of every input frame
+    total = arc[first + T - 1]
+    total = np.where(total < 1e-9, 0.0, total)
+    # query arc lengths: the fixed grid below the total, then the total itself
+    n_grid = np.where(total > 0, np.floor(total / cfg.spacing - 1e-9).astype(int) + 1, 0)
+    K = n_grid + 1
+    path_of_q = np.repeat(np.arange(len(ms)), K)
+    k_in_path = np.arange(K.sum()) - np.repeat(np.concatenate([[0], np.cumsum(K)[:-1]]), K)
+    q = np.where(k_in_path < n_grid[path_of_q], k_in_path * cfg.spacing, total[path_of_q])
+    # one global monotone abscissa: paths separated by offsets, static frames by a tiny epsilon
+    offset = np.concatenate([[0.0], np.cumsum(total + 1.0)[:-1]])
+    local = np.arange(len(M)) - np.repeat(first, T)
+    xs = arc + np.repeat(offset, T) + local * 1e-9
+    t_glob = np.interp(q + offset[path_of_q] + 0.5e-9 * (q > 0), xs, np.arange(len(M), dtype=float))
+    t_glob = np.clip(t_glob, first[path_of_q], (first + T - 1)[path_of_q])
+    i0 = np.floor(t_glob).astype(int)
+    i1 = np.minimum(i0 + 1, (first + T - 1)[path_of_q])
+    w = (t_glob - i0)[:, None]
+    Mq, Aq = M[i0] * (1 - w) + M[i1] * w, A[i0] * (1 - w) + A[i1] * w
+    out, qs = [], np.concatenate([[0], np.cumsum(K)])
+    for i in range(len(ms)):
+        sl = slice(qs[i], qs[i + 1])
+        out.append(Resampled(Mq[sl], Aq[sl], q[sl], arc[first[i]:first[i] + T[i]], t_glob[sl] - first[i]))
+    return out
+
+
+def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig()) -> Resampled:
+    """Resample one motion (see :func:`resample_batch`); ``anchor`` is ``(T,3)`` or one pose ``(3,)``."""
+    anchor = np.asarray(anchor, float)
+    return resample_batch([mover], anchor if anchor.ndim == 1 else [anchor], size, cfg)[0]
 
 
 def _half_extent(phi: np.ndarray) -> np.ndarray:
@@ -222,8 +247,7 @@ def batch_features(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     Returns ``(B, K, F)`` features, ``(B,)`` lengths and the resamplings (to map back to input frames).
     ``anchors`` may be one pose ``(3,)`` shared by every motion, or one track/pose per motion.
     """
-    shared = not isinstance(anchors, list) and np.asarray(anchors).ndim == 1
-    rss = [resample(mv, anchors if shared else anchors[i], size, cfg) for i, mv in enumerate(movers)]
+    rss = resample_batch(movers, anchors, size, cfg)
     lengths = np.array([len(rs.arc) for rs in rss])
     K = int(lengths.max()) if len(rss) else 1
     M = np.zeros((len(rss), K, 3))
