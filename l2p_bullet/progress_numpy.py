@@ -68,29 +68,52 @@ class NumpyProgressModel:
         return cls(tensors, ModelConfig.from_dict(bundle.manifest["model"]),
                    QSRConfig.from_dict(bundle.manifest["features"]))
 
-    def forward_features(self, feats: np.ndarray) -> np.ndarray:
-        """Mean ensemble progress ``(B, K)`` for padded features ``(B, K, F)``."""
+    def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
+        """Mean ensemble progress ``(B, K)`` for padded features ``(B, K, F)``.
+
+        As in :meth:`ProgressModel.forward_features`, frames that every sequence shares at its start (a
+        planner's candidates all extend the same path) run once, at batch size 1.
+        """
         x = np.ascontiguousarray(feats, dtype=np.float32)
         B, K, _ = x.shape
+        lengths = np.full(B, K) if lengths is None else np.asarray(lengths)
+        P = 0
+        if B > 1:
+            same = np.all(x == x[:1], axis=(0, 2))
+            P = K if same.all() else int(np.argmin(same))
+            P = min(P, int(lengths.min()) - 1)
         out = np.zeros((B, K), np.float32)
-        for w_ih, w_hh, bias, head_w, head_b in self.members:
-            H = w_hh.shape[0]
-            xi = (x.reshape(B * K, -1) @ w_ih).reshape(B, K, 4 * H) + bias
-            h = np.zeros((B, H), np.float32)
-            c = np.zeros((B, H), np.float32)
-            hs = np.empty((B, K, H), np.float32)
-            for t in range(K):
-                z = xi[:, t] + h @ w_hh
-                c = _sigmoid(z[:, H:2 * H]) * c + _sigmoid(z[:, :H]) * np.tanh(z[:, 2 * H:3 * H])
-                h = _sigmoid(z[:, 3 * H:]) * np.tanh(c)
-                hs[:, t] = h
-            out += _sigmoid(hs @ head_w + head_b)
+        for member in self.members:
+            if P >= 2:
+                hp, h, c = self._lstm(member, x[:1, :P])
+                hr, _, _ = self._lstm(member, x[:, P:], np.repeat(h, B, 0), np.repeat(c, B, 0))
+                hs = np.concatenate([np.repeat(hp, B, 0), hr], axis=1)
+            else:
+                hs, _, _ = self._lstm(member, x)
+            out += _sigmoid(hs @ member[3] + member[4])
         return (out / len(self.members)).astype(float)
+
+    @staticmethod
+    def _lstm(member: tuple, x: np.ndarray, h: np.ndarray | None = None, c: np.ndarray | None = None):
+        """One LSTM layer over ``x`` (B, T, F) from state (h, c): all hidden states, final h and c."""
+        w_ih, w_hh, bias = member[0], member[1], member[2]
+        B, T, _ = x.shape
+        H = w_hh.shape[0]
+        xi = (x.reshape(B * T, -1) @ w_ih).reshape(B, T, 4 * H) + bias
+        h = np.zeros((B, H), np.float32) if h is None else h
+        c = np.zeros((B, H), np.float32) if c is None else c
+        hs = np.empty((B, T, H), np.float32)
+        for t in range(T):
+            z = xi[:, t] + h @ w_hh
+            c = _sigmoid(z[:, H:2 * H]) * c + _sigmoid(z[:, :H]) * np.tanh(z[:, 2 * H:3 * H])
+            h = _sigmoid(z[:, 3 * H:]) * np.tanh(c)
+            hs[:, t] = h
+        return hs, h, c
 
     def _run(self, movers: list[np.ndarray], anchors: Any, size: float):
         movers = [np.asarray(m, float) for m in movers]
         feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
-        return self.forward_features(feats), lengths, rss
+        return self.forward_features(feats, lengths), lengths, rss
 
     def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> np.ndarray:
         """Progress at the last frame of every motion, ``(B,)``; one forward pass for the batch."""

@@ -60,3 +60,15 @@ def test_numpy_model_does_not_import_torch():
     code = ("import sys; import l2p_bullet.progress_numpy; import l2p_bullet.pipeline; "
             "assert 'torch' not in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_shared_prefix_batch_matches(models):
+    """A planner's batch: every candidate extends the same path (the prefix runs once, at batch size 1)."""
+    ref, fast = models
+    base = motions(5, 1)[0][:80]
+    rng = np.random.default_rng(3)
+    movers = [np.vstack([base, base[-1] + np.cumsum(rng.normal(0, 0.01, (int(rng.integers(2, 30)), 3)), 0)])
+              for _ in range(16)]
+    anchor = np.array([0.0, 0.0, 0.0])
+    np.testing.assert_allclose(fast.final_batch(movers, anchor, 0.05), ref.final_batch(movers, anchor, 0.05),
+                               atol=2e-5)
