@@ -19,7 +19,7 @@ thresholds, which broke as soon as the blocks changed size, and its "next to" ru
 - around:  the mover sweeps nearly a full turn around the anchor (at least 0.8 turn) while staying near
            it (centre distance at most 4 blocks).
 
-"Steadily" allows wobbles of 0.3 block against the running best. Every rule also gives a graded
+"Steadily" allows wobbles of half a block against the running best. Every rule also gives a graded
 ``score`` in [0, 1] (used for the correlation with people's grades; ``success`` is the yes/no verdict).
 Motions are read in the anchor's frame (mover minus anchor), so a moving anchor is handled too.
 """
@@ -33,8 +33,9 @@ import numpy as np
 
 from .demos import canonical_action
 
-WOBBLE = 0.3
-"""Blocks a 'steady' change may go back against its running best."""
+WOBBLE = 0.5
+"""Blocks a 'steady' change may go back against its running best (motion-capture jitter in the human
+demonstrations reaches this: at 0.3 the rule rejected 37 % of people's "closer" demonstrations)."""
 
 
 @dataclass(frozen=True)
@@ -195,6 +196,14 @@ def graded_motion(demo: dict, step_blocks: float = 0.25) -> tuple[np.ndarray, np
     way += [s["to"] for s in demo["steps"] if s["accepted"] and s.get("object_index", 0) == 0]
     frames = interpolate(np.asarray(way, float), step=step_blocks * size)
     return frames, np.array([anchor["x"], anchor["y"], anchor["theta"]]), size
+
+
+def demo_acceptance() -> dict[str, float]:
+    """Share of the people's motion-capture demonstrations (the training data) each rule accepts."""
+    from .demos import ACTIONS, load_demos
+
+    return {a: float(np.mean([evaluate(a, d.event_mover, d.event_anchor, d.size).success for d in load_demos(a)]))
+            for a in ACTIONS}
 
 
 def graded_agreement() -> dict[str, float]:

@@ -26,8 +26,9 @@ TURN_STD = 0.3
 DIRECTIONS = 8
 """Cardinal and intercardinal directions around the anchor (E, NE, N, ... in the anchor's frame)."""
 
-DISTANCES = (1.25, 1.75, 2.5, 3.5, 5.0)
-"""Quantised centre distances from the anchor, in block sizes (1.25 = face to face with a small gap)."""
+DISTANCES = (1.25, 1.75, 2.5, 3.5, 5.0, 6.5)
+"""Quantised centre distances from the anchor, in block sizes (1.25 = face to face with a small gap; the
+outer rings only exist where the workspace reaches, which is what "away" needs)."""
 
 
 def random_moves(problem: Problem, node: Node, n: int) -> np.ndarray:
@@ -45,7 +46,7 @@ def discrete_targets(problem: Problem) -> np.ndarray:
     return xy.reshape(-1, 2)
 
 
-def discrete_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
+def _discrete_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
     """Every cell of the discrete space, twice: keeping the mover's yaw and squared up with the anchor.
 
     ``n`` is ignored (the set is fixed). Cells the mover already stands in are dropped (a move must move).
@@ -59,3 +60,7 @@ def discrete_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
     out[: len(xy), 2] = node.pose[2]
     out[len(xy):, 2] = square
     return out
+
+
+_discrete_moves.deterministic = True  # type: ignore[attr-defined]
+discrete_moves = _discrete_moves

@@ -17,8 +17,10 @@ def greedy(problem: Problem, proposer: Proposer, candidates: int) -> tuple[Node,
     """Random search with back-up: keep the candidate that raises progress most; back up when none does.
 
     Backing up marks the abandoned move as dead at its parent, so a deterministic proposal set (the
-    discrete space) tries its next-best move instead of the same one again.
+    discrete space) tries its next-best move instead of the same one again; with such a set, a start
+    from which no move helps ends the search (nothing new can happen).
     """
+    fixed = getattr(proposer, "deterministic", False)
     root = problem.root()
     best, stack, steps = root, [root], 0
     while problem.go_on(best, steps):
@@ -33,8 +35,8 @@ def greedy(problem: Problem, proposer: Proposer, candidates: int) -> tuple[Node,
         elif len(stack) > 1:
             stack.pop()
             stack[-1].dead.append(node.pose.copy())
-        elif top is None:
-            break  # nothing legal from the start: no point spending the budget
+        elif top is None or fixed:
+            break  # nothing (new) to try from the start: no point spending the budget
     return best, ("threshold" if best.progress >= problem.threshold else "budget"), steps
 
 
