@@ -1,0 +1,147 @@
+"""Recording an episode from the simulated world: trajectory.json, frames, video, contact sheet, summary.
+
+The :class:`Recorder` is called after every physics step and samples the world itself (not the plan) at
+a fixed rate; rendering happens on every k-th step only, because one TinyRenderer frame costs as much
+as hundreds of physics steps. PyBullet's own MP4 logging writes nothing in DIRECT mode, so the video is
+written here with imageio-ffmpeg.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+TRAJECTORY_FPS = 30.0
+
+
+def _r(v: float) -> float:
+    return round(float(v), 6)
+
+
+class Recorder:
+    """Samples trajectory frames every ``1/fps`` s and images every ``1/render_fps`` s of sim time."""
+
+    def __init__(self, world, camera=None, fps: float = TRAJECTORY_FPS):
+        self.world, self.camera, self.fps = world, camera, fps
+        self.traj_every = max(1, round(1.0 / (fps * world.dt)))
+        self.render_every = max(1, round(1.0 / (camera.settings.fps * world.dt))) if camera else 0
+        self.frames: list[dict] = []
+        self.images: list[np.ndarray] = []
+        self.render_s = 0.0
+        self.grasped: str | None = None
+        self.stage = ""
+
+    def __call__(self) -> None:
+        """Record after a physics step (also called once before the first step)."""
+        n = self.world.steps
+        if n % self.traj_every == 0:
+            self.frames.append(self.snapshot())
+        if self.render_every and n % self.render_every == 0:
+            import time
+
+            t0 = time.perf_counter()
+            self.images.append(self.camera.render())
+            self.render_s += time.perf_counter() - t0
+
+    def snapshot(self) -> dict:
+        poses = {name: [_r(v) for v in pose] for name, pose in self.world.poses().items()}
+        ee, _ = self.world.robot.tool_pose()
+        return {"t": _r(self.world.time), "poses": poses, "ee": [_r(v) for v in ee],
+                "grasped": self.grasped, "progress": None}
+
+    # --- writing ------------------------------------------------------------------------------
+    def fill_progress(self, mover: str | None, anchor: str | None,
+                      progress_fn: Callable[[np.ndarray, np.ndarray], np.ndarray] | None) -> None:
+        """Set every frame's ``progress`` from ``progress_fn(mover (T,3), anchor (T,3))``; else null."""
+        if progress_fn is None or mover is None or anchor is None or not self.frames:
+            return
+        m = np.array([[f["poses"][mover][i] for i in (0, 1, 3)] for f in self.frames])
+        a = np.array([[f["poses"][anchor][i] for i in (0, 1, 3)] for f in self.frames])
+        values = np.asarray(progress_fn(m, a), dtype=float).reshape(-1)
+        if len(values) != len(self.frames):
+            raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames)} frames")
+        for f, v in zip(self.frames, values, strict=True):
+            f["progress"] = _r(v)
+
+    def write_trajectory(self, path: Path, meta: dict, sizes: dict[str, float]) -> None:
+        doc = {
+            "schema": 1,
+            "sentence": meta.get("sentence"),
+            "action": meta.get("action"),
+            "mover": meta.get("mover"),
+            "anchor": meta.get("anchor"),
+            "fps": self.fps,
+            "objects": {name: {"size": size} for name, size in sizes.items()},
+            "frames": self.frames,
+        }
+        path.write_text(json.dumps(doc, separators=(",", ":")) + "\n")
+
+    def write_images(self, out: Path, video: str = "mp4") -> dict[str, Path]:
+        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path."""
+        import imageio.v2 as imageio
+
+        if not self.images:
+            return {}
+        files: dict[str, Path] = {}
+        folder = out / "frames"
+        folder.mkdir(exist_ok=True)
+        for i, img in enumerate(self.images):
+            imageio.imwrite(folder / f"{i:04d}.png", img)
+        files["frames"] = folder
+        fps = self.camera.settings.fps
+        if video == "gif":
+            files["video"] = out / "video.gif"
+            imageio.mimwrite(files["video"], self.images, duration=1000.0 / fps, loop=0)
+        else:
+            files["video"] = out / "video.mp4"
+            with imageio.get_writer(files["video"], fps=fps, codec="libx264", quality=7,
+                                    pixelformat="yuv420p", macro_block_size=8) as writer:
+                for img in self.images:
+                    writer.append_data(img)
+        files["contact_sheet"] = out / "contact_sheet.png"
+        imageio.imwrite(files["contact_sheet"], contact_sheet(self.images))
+        return files
+
+
+def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4) -> np.ndarray:
+    """``n`` frames evenly spread over the episode (first and last included), in a grid."""
+    idx = np.unique(np.linspace(0, len(images) - 1, min(n, len(images))).round().astype(int))
+    h, w, _ = images[0].shape
+    rows = -(-len(idx) // cols)
+    sheet = np.full((rows * h, cols * w, 3), 255, dtype=np.uint8)
+    for k, i in enumerate(idx):
+        r, c = divmod(k, cols)
+        sheet[r * h : (r + 1) * h, c * w : (c + 1) * w] = images[i]
+    return sheet
+
+
+def versions() -> dict[str, str]:
+    """Versions of everything that can change a result."""
+    from importlib import metadata
+
+    out = {"python": sys.version.split()[0], "platform": platform.platform()}
+    for pkg in ("l2p-bullet", "pybullet", "numpy", "ruckig", "torch"):
+        try:
+            out[pkg] = metadata.version(pkg)
+        except metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+def write_summary(path: Path, summary: dict) -> None:
+    path.write_text(json.dumps(summary, indent=1, default=_json_default) + "\n")
+
+
+def _json_default(v):
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    if isinstance(v, Path):
+        return str(v)
+    raise TypeError(f"not JSON serialisable: {type(v)}")

@@ -1,0 +1,112 @@
+"""Put a recorded 2-D motion (a human demonstration, a scoring input) onto the scene's blocks.
+
+The demonstrations live in per-session table frames with 0.15 m blocks; only the mover's motion
+*relative to the anchor* means anything. So each frame's mover pose is expressed in the anchor's frame
+(rotated into it), divided by the block size, then multiplied by the scene's block size and placed on
+the scene's anchor. The anchor's own drift in the recording (people nudge it) is thereby ignored.
+
+Two documented fix-ups make a real human motion executable on a small table (see docs/embodiment.md):
+- points outside the arm's workspace are pulled radially back onto its edge;
+- points where the scaled mover would touch the anchor (motion-capture noise, or a person sliding the
+  block along its neighbour) are pushed straight away from the anchor until ``GRIPPER_MARGIN`` clears.
+Both are reported in :class:`Retargeted` so a caller can see how much of the motion was changed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import PathError
+from .geometry2d import polygons_overlap
+from .motion import resample, unwrap_yaw
+from .scene import GRIPPER_MARGIN, Scene
+
+SMOOTH_FRAMES = 5
+"""Moving-average window (frames) against motion-capture jitter, which would otherwise be read as
+tight curves and force the arm to crawl (v <= sqrt(a / kappa))."""
+RESAMPLE_BLOCKS = 0.2
+"""Spacing of the executed path, in block sizes."""
+PUSH_STEP = 0.0005  # m per push-out step
+
+
+@dataclass
+class Retargeted:
+    path: np.ndarray  # (N,3) mover poses in the scene frame
+    clamped: int  # points pulled back into the workspace
+    pushed: int  # points pushed away from the anchor
+    max_fix_m: float  # the largest distance a point was moved by either fix-up
+
+
+def relative(mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
+    """Mover poses (T,3) in the anchor's frame, in block units, yaw relative to the anchor's."""
+    m, a = np.asarray(mover, float), np.asarray(anchor, float)
+    if a.ndim == 1:
+        a = np.repeat(a[None], len(m), axis=0)
+    d = m[:, :2] - a[:, :2]
+    c, s = np.cos(a[:, 2]), np.sin(a[:, 2])
+    rel = np.column_stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]]) / size
+    return np.column_stack([rel, m[:, 2] - a[:, 2]])
+
+
+def place(rel: np.ndarray, anchor_pose: np.ndarray, size: float) -> np.ndarray:
+    """Inverse of :func:`relative` onto a fixed anchor pose [x, y, yaw] with blocks of ``size``."""
+    x, y, yaw = anchor_pose
+    c, s = math.cos(yaw), math.sin(yaw)
+    d = rel[:, :2] * size
+    return np.column_stack([x + c * d[:, 0] - s * d[:, 1], y + s * d[:, 0] + c * d[:, 1], rel[:, 2] + yaw])
+
+
+def smooth(path: np.ndarray, window: int = SMOOTH_FRAMES) -> np.ndarray:
+    """Centred moving average (ends kept exactly, yaw unwrapped first)."""
+    p = unwrap_yaw(path)
+    if len(p) <= window or window < 2:
+        return p
+    kernel = np.ones(window) / window
+    pad = window // 2
+    padded = np.concatenate([np.repeat(p[:1], pad, 0), p, np.repeat(p[-1:], pad, 0)])
+    out = np.stack([np.convolve(padded[:, i], kernel, mode="valid") for i in range(3)], axis=1)[: len(p)]
+    out[0], out[-1] = p[0], p[-1]
+    return out
+
+
+def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, mover_name: str,
+             anchor_name: str) -> Retargeted:
+    """The recorded motion as an executable path of ``mover_name`` around ``anchor_name`` in ``scene``."""
+    if len(mover) < 2:
+        raise PathError("a motion to replay needs at least two poses")
+    a_obj, m_obj = scene.get(anchor_name), scene.get(mover_name)
+    if a_obj.name == m_obj.name:
+        raise PathError(f'the mover and the anchor are the same block ("{mover_name}")')
+    rel = relative(mover, anchor, size)
+    path = place(smooth(rel), a_obj.pose, m_obj.size)
+    path = resample(path, RESAMPLE_BLOCKS * m_obj.size)
+    fixed = path.copy()
+    ws = scene.workspace
+    centre = np.array(ws.center)
+    clamped = pushed = 0
+    anchor_fp = a_obj.footprint()
+    limit = ws.radius - 1e-4
+    for k in range(len(fixed)):
+        d = fixed[k, :2] - centre
+        r = float(np.hypot(*d))
+        if r > limit:
+            fixed[k, :2] = centre + d * (limit / r)
+            clamped += 1
+        away = fixed[k, :2] - a_obj.pose[:2]
+        n = float(np.hypot(*away))
+        away = away / n if n > 1e-9 else np.array([1.0, 0.0])
+        moved = False
+        for _ in range(400):
+            if not polygons_overlap(m_obj.footprint(fixed[k]), anchor_fp, GRIPPER_MARGIN):
+                break
+            fixed[k, :2] += PUSH_STEP * away
+            moved = True
+        pushed += moved
+    if not ws.contains(fixed[:, :2]).all():
+        raise PathError("the motion cannot be fitted into the workspace around the anchor "
+                        f'"{anchor_name}"; move the anchor nearer the table centre')
+    max_fix = float(np.max(np.hypot(*(fixed[:, :2] - path[:, :2]).T)))
+    return Retargeted(fixed, clamped, pushed, max_fix)

@@ -1,0 +1,166 @@
+"""The paper's primitives on the simulated arm: ``engage(obj)``, ``move(path)``, ``disengage()``.
+
+Every motion is: geometric end-effector path (motion.py) -> ruckig timing (smoothing.py) -> IK at the
+control rate, all solved *before* the arm moves (so an unreachable pose raises ReachError with the world
+untouched) -> physics steps with the joint targets interpolated between control samples.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import motion
+from ..errors import ExecutionError
+from ..smoothing import Limits, Timed, time_parameterise
+from .grasp import Grasp, attach, detach
+
+CONTROL_HZ = 60.0
+"""IK rate. Physics runs at 240 Hz with joint targets interpolated in between (IK is the costly part)."""
+HOVER = 0.08  # m above the grasp height for approach and retract
+APPROACH = Limits(velocity=0.3, acceleration=1.0, jerk=10.0, lateral=1.0)
+DESCEND = Limits(velocity=0.1, acceleration=0.5, jerk=5.0, lateral=0.5)
+SLIDE = Limits(velocity=0.1, acceleration=0.5, jerk=5.0, lateral=0.5)
+SETTLE_S = 0.1  # s held still after touching the block and after letting go
+MAX_TILT = math.radians(10.0)  # a held block tilting more than this means the grasp went wrong
+MAX_SLIP = 0.01  # m between where the block is and where the grasp says it is
+
+
+class _NoRecorder:
+    grasped: str | None = None
+
+    def __call__(self) -> None:
+        pass
+
+
+class Primitives:
+    """Drives ``world.robot``; ``recorder()`` is called after every physics step and its ``grasped``
+    attribute follows the grasp (see record.Recorder)."""
+
+    def __init__(self, world, recorder=None):
+        self.world, self.robot = world, world.robot
+        self.recorder = recorder if recorder is not None else _NoRecorder()
+        self.on_step = self.recorder
+        self.q = self.robot.joints()
+        pos, _ = self.robot.tool_pose()
+        self.pose = np.array([pos[0], pos[1], pos[2], self.robot.tool_yaw()])  # last commanded tool pose
+        self.grasp: Grasp | None = None
+        self.steps_per_control = max(1, round(1.0 / (CONTROL_HZ * world.dt)))
+        self.timed: list[tuple[str, Timed]] = []  # every timed chunk, for the summary
+        self.ik_solves = 0
+
+    # --- the control loop --------------------------------------------------------------------
+    def solve(self, poses: np.ndarray, seeds: bool = False) -> np.ndarray:
+        """Joint targets (K,7) for tool poses (K,4), each seeded with the previous solution."""
+        kin, out, q = self.robot.kin, np.empty((len(poses), len(self.q))), self.q
+        extra = self.robot.spec.ik_seeds
+        for k, p in enumerate(poses):
+            q = kin.solve(p[:3], p[3], q, seeds=extra if (seeds or k == 0) else ())
+            out[k] = q
+        self.ik_solves += len(poses)
+        return out
+
+    def run(self, timed: Timed, stage: str) -> None:
+        """Track a timed tool path: IK at the control rate first, then the physics steps."""
+        poses = self._control_samples(timed)
+        joints = self.solve(poses)
+        self.timed.append((stage, timed))
+        prev = self.q
+        n = self.steps_per_control
+        for q in joints:
+            for i in range(1, n + 1):
+                self.robot.command(prev + (q - prev) * (i / n))
+                self.world.step()
+                self.on_step()
+            prev = q
+        self.q = prev
+        self.pose = timed.poses[-1].copy()
+
+    def _control_samples(self, timed: Timed) -> np.ndarray:
+        """Re-time at the control period (timing is done at that period already: see go/slide)."""
+        return timed.poses[1:] if len(timed.poses) > 1 else timed.poses
+
+    def hold(self, seconds: float) -> None:
+        for _ in range(max(1, round(seconds / self.world.dt))):
+            self.robot.command(self.q)
+            self.world.step()
+            self.on_step()
+
+    def go(self, target: np.ndarray, limits: Limits, stage: str) -> None:
+        """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
+        target = np.asarray(target, float).copy()
+        target[3] = self.pose[3] + (target[3] - self.pose[3] + math.pi) % (2 * math.pi) - math.pi  # short way
+        timed = time_parameterise(motion.line(self.pose, target), limits, 1.0 / CONTROL_HZ)
+        self.run(timed, stage)
+
+    # --- the primitives ----------------------------------------------------------------------
+    def grasp_height(self, name: str) -> float:
+        """Tool height with the closed fingertips just touching the block's top."""
+        return self.world.sizes[name] + self.robot.drop
+
+    def engage(self, name: str, yaw_offset: float = 0.0) -> Grasp:
+        """Approach ``name`` from above, descend until the closed fingers rest on its top, fix it.
+
+        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; choose it with
+        :func:`l2p_bullet.motion.grasp_yaw_offset` so the wrist stays inside its range while sliding.
+        """
+        if self.grasp is not None:
+            raise ExecutionError(f'already holding "{self.grasp.name}"; disengage first')
+        block = self.world.pose(name)
+        z = self.grasp_height(name)
+        yaw = block[3] + yaw_offset
+        self.go([block[0], block[1], z + HOVER, yaw], APPROACH, "approach")
+        self.go([block[0], block[1], z, yaw], DESCEND, "descend")
+        self.hold(SETTLE_S)
+        self.grasp = attach(self.world, name)
+        self.recorder.grasped = name
+        return self.grasp
+
+    def tool_targets(self, block_poses: np.ndarray) -> np.ndarray:
+        """Tool poses (M,4) that put the held block at ``block_poses`` (M,3), at the locked height."""
+        g = self.grasp
+        c, s = np.cos(block_poses[:, 2]), np.sin(block_poses[:, 2])
+        x = block_poses[:, 0] + c * g.offset_xy[0] - s * g.offset_xy[1]
+        y = block_poses[:, 1] + s * g.offset_xy[0] + c * g.offset_xy[1]
+        return np.column_stack([x, y, np.full(len(x), g.tool_z), block_poses[:, 2] + g.yaw_offset])
+
+    def move(self, path: np.ndarray) -> None:
+        """Slide the held block along ``path`` (N,3) on the table, the grasp height locked."""
+        if self.grasp is None:
+            raise ExecutionError("move() needs a grasped block: engage(obj) first")
+        path = motion.clean_path(path)
+        # Continue the tool's yaw without a turn: shift the path's yaw by whole turns to match.
+        turns = round((self.pose[3] - self.grasp.yaw_offset - path[0, 2]) / (2 * math.pi))
+        path[:, 2] += 2 * math.pi * turns
+        chunks = motion.slide_chunks(path)
+        timed = [time_parameterise(self.tool_targets(ch), SLIDE, 1.0 / CONTROL_HZ) for ch in chunks]
+        for t in timed:
+            self.run(t, "slide")
+            self.check_grasp()
+
+    def check_grasp(self) -> None:
+        g = self.grasp
+        if g is None:
+            return
+        if self.world.tilt(g.name) > MAX_TILT:
+            raise ExecutionError(
+                f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name)):.0f} deg while held')
+        pos, _ = self.robot.tool_pose()
+        block = self.world.pose(g.name)
+        want = self.tool_targets(block[None, [0, 1, 3]])[0]
+        if np.hypot(*(want[:2] - pos[:2])) > MAX_SLIP:
+            raise ExecutionError(f'block "{g.name}" slipped out of the grasp')
+
+    def disengage(self, rest: np.ndarray | None = None) -> None:
+        """Remove the constraint, let go, retract straight up, then return to the rest pose."""
+        if self.grasp is not None:
+            detach(self.world, self.grasp)
+            self.grasp = None
+            self.recorder.grasped = None
+        self.hold(SETTLE_S)
+        up = self.pose.copy()
+        up[2] += HOVER
+        self.go(up, DESCEND, "retract")
+        if rest is not None:
+            self.go(rest, APPROACH, "rest")
