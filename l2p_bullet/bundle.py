@@ -255,7 +255,9 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, model: Progre
 
     man = {
         "schema": SCHEMA, "name": action, "version": version, "requires": REQUIRES,
-        "phrases": PHRASES.get(action, [action]), "description": DESCRIPTIONS.get(action, ""),
+        # a plugin action keeps the phrases and description its scaffolded manifest declares
+        "phrases": PHRASES.get(action) or old.get("phrases") or [action],
+        "description": DESCRIPTIONS.get(action) or old.get("description", ""),
         "features": {**model.qsr_cfg.to_dict(), "names": feature_names(model.qsr_cfg)},
         "model": model.model_cfg.to_dict(), "training": training, "metrics": metrics,
         "weights": keep_weights,

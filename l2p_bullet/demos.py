@@ -77,6 +77,24 @@ def canonical_action(name: str) -> str:
     raise DataError(f'unknown action "{name}" (known: {", ".join(ACTIONS)}).' + did_you_mean(key, ACTIONS))
 
 
+PLUGIN_ACTION = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
+"""What a plugin action's name looks like ("left-of"); see ``l2p-bullet new-action``."""
+
+
+def action_for_files(name: str) -> str:
+    """A built-in action's canonical name, else a plugin action's own name.
+
+    Only for demonstrations given as files: a plugin author trains a new action on their own sessions
+    (issue 5); the shipped data only has the built-in actions.
+    """
+    try:
+        return canonical_action(name)
+    except DataError:
+        if PLUGIN_ACTION.match(name):
+            return name
+        raise
+
+
 def load_session(path: str | Path) -> dict[str, np.ndarray]:
     """Load and validate one capture session file."""
     p = Path(path)
@@ -122,8 +140,9 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
     """Cut the annotated events of one session file, each with up to ``context`` frames either side.
 
     The context stops at the neighbouring events so that one demonstration never contains another.
+    ``action`` may also be a plugin action's own name (``l2p-bullet new-action``): explicit files.
     """
-    action = canonical_action(action)
+    action = action_for_files(action)
     arrays = load_session(path)
     p = Path(path)
     m = re.search(r"(Session\d+)", p.stem)
@@ -155,7 +174,7 @@ def _load_demos_cached(action: str, context: int) -> tuple[Demo, ...]:
 
 def load_demos(action: str, files: list[str | Path] | None = None, context: int = 45) -> list[Demo]:
     """All demonstrations of ``action``: from the shipped data, or from the given session files."""
-    action = canonical_action(action)
+    action = action_for_files(action) if files else canonical_action(action)
     if files:
         return [d for f in files for d in demos_from_session(f, action, context)]
     return list(_load_demos_cached(action, context))

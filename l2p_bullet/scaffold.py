@@ -14,10 +14,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import __version__
+from .demos import PLUGIN_ACTION
 from .errors import PluginError
 from .registry import normalize_phrase
-
-NAME_RE = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 
 
 @dataclass(frozen=True)
@@ -32,7 +31,7 @@ class Scaffold:
 
 
 def check_name(name: str) -> str:
-    if not NAME_RE.match(name):
+    if not PLUGIN_ACTION.match(name):
         raise PluginError(
             f'"{name}" is not a valid action name: use lower-case words joined by hyphens, e.g. "left-of"'
         )

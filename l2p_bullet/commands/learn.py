@@ -22,6 +22,30 @@ def _resolve(spec: str):
     return resolve_action(spec)
 
 
+def _resolve_for_training(action: str, out_dir: str | None, demo_files: tuple[str, ...]) -> tuple[str, bool]:
+    """(action name, is it a plugin action) for ``train``.
+
+    Built-in names and bundle folders resolve as everywhere else. A plugin action (``l2p-bullet
+    new-action``) is trained before its package is installed, so it is recognised by the manifest the
+    scaffold put in ``--out``, which must name it, and it needs the author's ``--demos``.
+    """
+    from ..bundle import read_manifest
+    from ..errors import BundleError
+
+    try:
+        return _resolve(action)[0], False
+    except BundleError:
+        out = Path(out_dir) if out_dir else None
+        if out is None or not (out / "manifest.toml").is_file():
+            raise
+        if str(read_manifest(out).get("name", "")) != action:
+            raise
+        if not demo_files:
+            raise BundleError(f'the plugin action "{action}" has no shipped demonstrations: give yours with '
+                              "--demos FILE (capture-session .npz, see the plugin's README)") from None
+        return action, True
+
+
 @click.command()
 @click.argument("action")
 @click.option("--demos", "demo_files", multiple=True, type=click.Path(dir_okay=False),
@@ -49,19 +73,28 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     from ..bundle import write_progress_bundle
     from ..errors import RunFolderError
     from ..train import TrainConfig, all_demos, train_action
+    from ..trainset import DataConfig
 
-    name, _ = _resolve(action)
+    name, plugin = _resolve_for_training(action, out_dir, demo_files)
     out = Path(out_dir) if out_dir else Path("runs") / "bundles" / name
-    if (out / "manifest.toml").exists() and not force:
+    # a scaffolded plugin's manifest without weights is a template to fill, not a bundle to protect
+    if (out / "manifest.toml").exists() and (out / "progress.safetensors").exists() and not force:
         raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
     cfg = TrainConfig()
     if ensemble is not None:
         cfg = dataclasses.replace(cfg, ensemble=ensemble)
     if epochs is not None:
         cfg = dataclasses.replace(cfg, epochs=epochs)
-    demos = all_demos({name: list(demo_files)} if demo_files else None)
+    if plugin:  # the author's demonstrations; the built-in actions' shipped ones are the negatives
+        from ..demos import load_demos
+
+        demos = {**all_demos(), name: load_demos(name, list(demo_files))}
+    else:
+        demos = all_demos({name: list(demo_files)} if demo_files else None)
     with click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {name}", file=sys.stderr) as bar:
-        result = train_action(name, demos, seed=seed, cfg=cfg, tick=lambda: bar.update(1))
+        # a plugin action has no rule telling a random motion is not it: no random negatives
+        data_cfg = DataConfig(random_negatives=0) if plugin else None
+        result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=lambda: bar.update(1))
     cmd = f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
     from ..train import training_section
 
