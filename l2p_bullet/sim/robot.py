@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from ..errors import ReachError
-from .arms import ArmSpec
+from .arms import ArmSpec, arm_urdf
 from .client import new_client
 
 IK_POS_TOL = 0.002  # metres between the commanded and the reached tool point
@@ -38,7 +38,8 @@ class Kinematics:
         import pybullet as pb
 
         self.pb, self.spec = pb, spec
-        self.body = self.client.loadURDF(spec.urdf, base_xyz, useFixedBase=True)
+        self.body = self.client.loadURDF(arm_urdf(spec, visuals=False, collisions=False), base_xyz,
+                                         useFixedBase=True)
         c, b = self.client, self.body
         info = [c.getJointInfo(b, j) for j in range(c.getNumJoints(b))]
         # IK returns one value per movable joint, in joint order: remember where the arm's are.
@@ -49,32 +50,31 @@ class Kinematics:
         self.arm_lower = self.lower[self.ik_index]
         self.arm_upper = self.upper[self.ik_index]
         self.movable = movable
+        self.cid = c._client
+        self.current: np.ndarray | None = None  # the twin's joints now (skips a reset when unchanged)
+        self.joint_ids = list(spec.arm_joints)
         self.n_solves = 0
         for j, q in zip(spec.finger_joints, spec.finger_closed, strict=True):
             c.resetJointState(b, j, q)
 
     def set(self, q: np.ndarray) -> None:
-        for j, v in zip(self.spec.arm_joints, q, strict=True):
-            self.client.resetJointState(self.body, j, float(v))
+        # Hot path (several calls per IK): one multi-joint call, straight to pybullet with the client id
+        # (BulletClient's attribute wrapper costs a few microseconds per call).
+        self.pb.resetJointStatesMultiDof(self.body, self.joint_ids, [[float(v)] for v in q], physicsClientId=self.cid)
 
     def fk(self, q: np.ndarray) -> tuple[np.ndarray, tuple[float, ...]]:
         """Tool position and orientation quaternion for arm joints ``q``."""
         self.set(q)
-        s = self.client.getLinkState(self.body, self.spec.tool_link, computeForwardKinematics=True)
+        s = self.pb.getLinkState(self.body, self.spec.tool_link, computeForwardKinematics=True,
+                                 physicsClientId=self.cid)
         return np.array(s[4]), s[5]
-
-    def fingertip_drop(self, q: np.ndarray) -> float:
-        """How far the fingertips reach below the tool point at joints ``q`` (metres)."""
-        pos, _ = self.fk(q)
-        low = min(self.client.getAABB(self.body, link)[0][2] for link in self.spec.fingertip_links)
-        return float(pos[2] - low)
 
     def _try(self, pos, orn, seed: np.ndarray, iterations: int, rounds: int, null_space: bool):
         """Damped least squares from ``seed`` (PyBullet seeds from the twin's joints), re-seeded
         ``rounds`` times. Plain DLS converges near the reach limit where the null-space variant stalls
         millimetres short; the null-space variant (pulled towards ``seed``) is the fallback when plain
         DLS ends outside a joint limit."""
-        c, b = self.client, self.body
+        b = self.body
         extra = {}
         if null_space:
             rest = np.zeros(len(self.movable))
@@ -84,11 +84,13 @@ class Kinematics:
         q = np.asarray(seed, float)
         err = ang = math.inf
         for _ in range(rounds):
-            self.set(q)
-            sol = c.calculateInverseKinematics(b, self.spec.tool_link, pos, orn, maxNumIterations=iterations,
-                                               residualThreshold=1e-6, **extra)
+            if self.current is None or not np.array_equal(self.current, q):
+                self.set(q)
+            sol = self.pb.calculateInverseKinematics(b, self.spec.tool_link, pos, orn, maxNumIterations=iterations,
+                                                     residualThreshold=1e-6, physicsClientId=self.cid, **extra)
             q = np.asarray(sol)[self.ik_index]
             got, got_orn = self.fk(q)
+            self.current = q
             err, ang = float(np.linalg.norm(got - pos)), quat_angle(got_orn, orn)
             if err < IK_POS_TOL * 0.25 and ang < IK_ANG_TOL * 0.25:
                 break
@@ -132,15 +134,18 @@ class Kinematics:
 class Robot:
     """The simulated arm: position control of its joints at high gain, fingers held closed."""
 
-    def __init__(self, world, spec: ArmSpec, base_xyz: tuple[float, float, float]):
+    def __init__(self, world, spec: ArmSpec, base_xyz: tuple[float, float, float], visuals: bool = True):
         self.world, self.spec = world, spec
         c = world.client
-        self.body = c.loadURDF(spec.urdf, base_xyz, useFixedBase=True)
+        # Without rendering the visual meshes are dead weight (most of the load time): physics is the same.
+        self.body = c.loadURDF(arm_urdf(spec, visuals=visuals), base_xyz, useFixedBase=True)
         self.base_xyz = np.array(base_xyz, float)
         self.kin = Kinematics(spec, base_xyz)
         self.forces = [c.getJointInfo(self.body, j)[10] for j in spec.arm_joints]
+        self.joint_ids = list(spec.arm_joints)
+        self.gains = [spec.position_gain] * len(self.joint_ids)
         self.reset(np.array(spec.home))
-        self.drop = self.kin.fingertip_drop(np.array(spec.home))
+        self.drop = self.fingertip_drop()
 
     def reset(self, q: np.ndarray) -> None:
         c = self.world.client
@@ -154,13 +159,19 @@ class Robot:
             targetPositions=list(self.spec.finger_closed), forces=[20.0] * len(self.spec.finger_joints),
         )
 
+    def fingertip_drop(self) -> float:
+        """How far the fingertips reach below the tool point (metres), measured on the collision shapes
+        with the tool pointing down (the home pose does; the kinematic twin has no shapes)."""
+        pos, _ = self.tool_pose()
+        c = self.world.client
+        low = min(c.getAABB(self.body, link)[0][2] for link in self.spec.fingertip_links)
+        return float(pos[2] - low)
+
     def command(self, q: np.ndarray) -> None:
         """Set the arm's joint targets (the motors track them during the next physics steps)."""
-        n = len(self.spec.arm_joints)
-        self.world.client.setJointMotorControlArray(
-            self.body, list(self.spec.arm_joints), self.world.pb.POSITION_CONTROL,
-            targetPositions=[float(v) for v in q], forces=self.forces,
-            positionGains=[self.spec.position_gain] * n,
+        self.world.pb.setJointMotorControlArray(
+            self.body, self.joint_ids, self.world.pb.POSITION_CONTROL, targetPositions=q.tolist(),
+            forces=self.forces, positionGains=self.gains, physicsClientId=self.world.cid,
         )
 
     def joints(self) -> np.ndarray:
@@ -168,7 +179,8 @@ class Robot:
         return np.array([s[0] for s in states])
 
     def tool_pose(self) -> tuple[np.ndarray, tuple[float, ...]]:
-        s = self.world.client.getLinkState(self.body, self.spec.tool_link, computeForwardKinematics=True)
+        s = self.world.pb.getLinkState(self.body, self.spec.tool_link, computeForwardKinematics=True,
+                                       physicsClientId=self.world.cid)
         return np.array(s[4]), s[5]
 
     def tool_yaw(self) -> float:

@@ -27,15 +27,19 @@ def urdf_path(name: str) -> str:
 
 
 class World:
-    """Table + blocks + arm in one DIRECT PyBullet client. Close it (or use ``with``) when done."""
+    """Table + blocks + arm in one DIRECT PyBullet client. Close it (or use ``with``) when done.
 
-    def __init__(self, scene: Scene, arm: ArmSpec = PANDA):
+    ``visuals=False`` loads the arm without its visual meshes (for runs that render nothing).
+    """
+
+    def __init__(self, scene: Scene, arm: ArmSpec = PANDA, visuals: bool = True):
         self.client = new_client()
         import pybullet as pb
 
         self.pb = pb
         self.scene = scene
         c = self.client
+        self.cid = c._client  # hot paths call pybullet directly with it (no wrapper per call)
         c.setGravity(0, 0, -9.81)
         c.setTimeStep(1.0 / PHYSICS_HZ)
         self.dt = 1.0 / PHYSICS_HZ
@@ -55,13 +59,14 @@ class World:
             self.sizes[o.name] = o.size
         from .robot import Robot  # local: robot imports world's constants
 
-        self.robot = Robot(self, arm, base_xyz=(ROBOT_BASE_XY[0], ROBOT_BASE_XY[1], 0.0))
+        self.robot = Robot(self, arm, base_xyz=(ROBOT_BASE_XY[0], ROBOT_BASE_XY[1], 0.0), visuals=visuals)
 
     # --- state -----------------------------------------------------------------------------
     def pose(self, name: str) -> np.ndarray:
         """[x, y, z, yaw] of a block (z: its centre above the table top)."""
-        pos, orn = self.client.getBasePositionAndOrientation(self.bodies[name])
-        yaw = self.client.getEulerFromQuaternion(orn)[2]
+        pos, orn = self.pb.getBasePositionAndOrientation(self.bodies[name], physicsClientId=self.cid)
+        x, y, z, w = orn
+        yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
         return np.array([pos[0], pos[1], pos[2], yaw])
 
     def tilt(self, name: str) -> float:
@@ -80,7 +85,7 @@ class World:
         return self.steps * self.dt
 
     def step(self) -> None:
-        self.client.stepSimulation()
+        self.pb.stepSimulation(physicsClientId=self.cid)
         self.steps += 1
 
     def close(self) -> None:
