@@ -127,3 +127,15 @@ def test_language_error_is_raised_before_any_work(tmp_path):
     with pytest.raises(LanguageError):
         perform("", default_scene(), out_dir=tmp_path / "x", render=False)
     assert not (tmp_path / "x").exists()
+
+
+@needs_next_to
+def test_perform_never_imports_torch(tmp_path):
+    """Importing torch alone would take half of perform's 3 s budget: scoring runs in numpy."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from l2p_bullet.pipeline import perform; from l2p_bullet.scene import default_scene; "
+            f"perform('move A next to B', default_scene(), out_dir={str(tmp_path / 'r')!r}, render=False); "
+            "assert 'torch' not in sys.modules, 'perform imported torch'")
+    subprocess.run([sys.executable, "-c", code], check=True)
