@@ -42,6 +42,10 @@ def ensemble_state(nets: Sequence[ProgressNet]) -> dict[str, torch.Tensor]:
 class ProgressModel:
     """A loaded ensemble plus its feature settings: scores metric motions of blocks of side ``size``."""
 
+    threads: int = 1
+    """Intra-op threads while scoring. One: these LSTMs are too small to gain from more, and on shared
+    cores a second spinning thread made batch scoring 3-4x slower (measured)."""
+
     def __init__(self, tensors: dict[str, torch.Tensor], model_cfg: ModelConfig, qsr_cfg: QSRConfig):
         self.model_cfg, self.qsr_cfg = model_cfg, qsr_cfg
         self.nets: list[ProgressNet] = []
@@ -70,6 +74,17 @@ class ProgressModel:
             P = min(P, int(lengths.min()) - 1)  # every sequence keeps at least its last frame
         x = torch.from_numpy(np.ascontiguousarray(feats, dtype=np.float32))
         out = torch.zeros(B, K)
+        prev = torch.get_num_threads()
+        if prev != self.threads:
+            torch.set_num_threads(self.threads)
+        try:
+            self._forward(x, out, B, P)
+        finally:
+            if prev != self.threads:
+                torch.set_num_threads(prev)
+        return (out / len(self.nets)).numpy().astype(float)
+
+    def _forward(self, x: torch.Tensor, out: torch.Tensor, B: int, P: int) -> None:
         with torch.inference_mode():
             for net in self.nets:
                 if P >= 2:
@@ -79,7 +94,6 @@ class ProgressModel:
                 else:
                     h_all, _ = net.lstm(x)
                 out += torch.sigmoid(net.head(h_all)).squeeze(-1)
-        return (out / len(self.nets)).numpy().astype(float)
 
     def _run(self, movers: list[np.ndarray], anchors, size: float):
         movers = [np.asarray(m, float) for m in movers]

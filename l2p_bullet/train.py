@@ -83,7 +83,8 @@ def _pad(seqs: list[Sequence]) -> tuple[torch.Tensor, ...]:
     for i, s in enumerate(seqs):
         n = len(s.y)
         x[i, :n], y[i, :n] = s.x, s.y
-        mask[i, :n] = s.weight / n
+        fw = np.ones(n, np.float32) if s.frame_w is None else s.frame_w
+        mask[i, :n] = s.weight * fw / max(float(fw.sum()), 1.0)
         endw[i, s.end] = s.weight
     return tuple(torch.from_numpy(v) for v in (x, y, mask, endw))
 
@@ -91,6 +92,16 @@ def _pad(seqs: list[Sequence]) -> tuple[torch.Tensor, ...]:
 def train_net(seqs: list[Sequence], n_features: int, cfg: TrainConfig, seed: int,
               tick: Callable[[], None] | None = None) -> tuple[ProgressNet, list[float]]:
     """Train one ensemble member. Batches are length-sorted chunks (little padding), shuffled per epoch."""
+    prev_threads = torch.get_num_threads()
+    torch.set_num_threads(cfg.threads)
+    try:
+        return _train_net(seqs, n_features, cfg, seed, tick)
+    finally:
+        torch.set_num_threads(prev_threads)
+
+
+def _train_net(seqs: list[Sequence], n_features: int, cfg: TrainConfig, seed: int,
+               tick: Callable[[], None] | None) -> tuple[ProgressNet, list[float]]:
     torch.manual_seed(seed)
     rng = np.random.default_rng(seed)
     net = ProgressNet(n_features, cfg.hidden)
@@ -127,17 +138,12 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     """Build the training set and train the ensemble; ``tick`` is called once per member-epoch."""
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or TrainConfig()
     t0 = time.perf_counter()
-    prev_threads = torch.get_num_threads()
-    torch.set_num_threads(cfg.threads)
-    try:
-        seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
-        nets, last = [], []
-        for i in range(cfg.ensemble):
-            net, hist = train_net(seqs, qsr_cfg.n_features, cfg, seed * 1000 + i, tick)
-            nets.append(net)
-            last.append(hist[-1])
-    finally:
-        torch.set_num_threads(prev_threads)
+    seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
+    nets, last = [], []
+    for i in range(cfg.ensemble):
+        net, hist = train_net(seqs, qsr_cfg.n_features, cfg, seed * 1000 + i, tick)
+        nets.append(net)
+        last.append(hist[-1])
     mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=cfg.ensemble)
     return TrainResult(
         model=ProgressModel.from_nets(nets, mcfg, qsr_cfg),

@@ -33,7 +33,19 @@ class DataConfig:
     post_decay: float = 1.0
     """After the event, progress falls linearly to 0 over this many blocks of further motion."""
     polylines_per_demo: int = 2
+    scaled_per_demo: int = 2
+    """Copies of each positive with its geometry stretched about the anchor by a factor in ``scale_range``
+    (blocks keep their size): people graded motions that start farther than the captures ever did.
+    Not for "next-to", whose end state is a fixed distance."""
+    scale_range: tuple[float, float] = (0.75, 1.7)
     random_negatives: int = 300
+    static_negatives: int = 40
+    """Motions that stand still (tracking jitter only): progress must not rise for doing nothing."""
+    negative_tail: float = 0.4
+    """Negatives are only penalised on this final fraction of their motion: the start of another action
+    (or of a random motion) can be the start of this one, its completion is not."""
+    negative_weight: float = 1.0
+    """Total weight of the negatives relative to the positives."""
     negatives: dict = field(default_factory=lambda: {
         "closer": ["away", "past", "around"],
         "away": ["closer", "next-to", "around"],
@@ -44,9 +56,9 @@ class DataConfig:
     """Whose demonstrations are negatives for each action (similar pairs are left out on purpose)."""
 
     def to_dict(self) -> dict:
-        return {"smooth_frames": self.smooth_frames, "post_decay": self.post_decay,
-                "polylines_per_demo": self.polylines_per_demo, "random_negatives": self.random_negatives,
-                "negatives": dict(self.negatives)}
+        d = {f: getattr(self, f) for f in ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo",
+                                           "random_negatives", "static_negatives", "negative_tail", "negative_weight")}
+        return {**d, "scale_range": list(self.scale_range), "negatives": dict(self.negatives)}
 
 
 @dataclass
@@ -57,6 +69,7 @@ class Sequence:
     y: np.ndarray  # (K,) float32
     weight: float = 1.0
     positive: bool = False
+    frame_w: np.ndarray | None = None  # (K,) relative per-frame weights (None: uniform)
     end: int = -1  # index of the event's last frame (positives), else the last frame
 
 
@@ -84,13 +97,17 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     rs = resample(mover, anchor, size, qcfg)
     x = features(rs.mover, rs.anchor, qcfg)
     if not positive:
-        return Sequence(x, np.zeros(len(x), np.float32), end=len(x) - 1)
+        # penalise only the tail: arc length past (1 - tail) of the way from the start to the end
+        s_from = rs.arc[-1] * (1.0 - dcfg.negative_tail)
+        fw = (rs.arc >= s_from - 1e-9).astype(np.float32)
+        return Sequence(x, np.zeros(len(x), np.float32), end=len(x) - 1, frame_w=fw)
     idx = np.arange(len(rs.input_arc), dtype=float)
     s0, s1 = np.interp([start, end], idx, rs.input_arc)
     s = rs.arc
     y = np.where(s <= s0, 0.0, np.clip((s - s0) / max(s1 - s0, 1e-6), 0, 1))
     after = rs.times > end + 1e-9
-    y = np.where(after, np.clip(1.0 - (s - s1) / dcfg.post_decay, 0, 1), y)
+    # the first frame at or past the end is the end (the grid rarely hits it exactly), then decay
+    y = np.where(after, np.clip(1.0 - np.maximum(s - s1 - qcfg.spacing, 0) / dcfg.post_decay, 0, 1), y)
     k_end = int(np.clip(np.searchsorted(s, s1 - 1e-9), 0, len(s) - 1))
     return Sequence(x, y.astype(np.float32), positive=True, end=k_end)
 
@@ -105,32 +122,36 @@ def _polyline(demo_m: np.ndarray, rng: np.random.Generator) -> np.ndarray:
 
 
 def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
-    """True when a block-unit motion clearly is *not* the action (a necessary condition fails).
+    """True when a block-unit motion is clearly not even a *partial* instance of the action.
 
     Used only to label random motions as negatives; motions that pass are left out, not made positive.
+    Partial instances must keep a partial progress (the planner climbs it), so the rules only reject
+    motions that went the wrong way: a "closer" that ends farther, an "around" that never turned, ...
     """
     d = mover[:, :2] - anchor[:, :2]
     r = np.linalg.norm(d, axis=1)
     swept = abs(np.unwrap(np.arctan2(d[:, 1], d[:, 0]))[-1] - np.arctan2(d[0, 1], d[0, 0]))
+    length = np.linalg.norm(np.diff(mover[:, :2], axis=0), axis=1).sum()
+    far = r.max() > 9.0
     if action == "closer":
-        return r[-1] >= r[0] - 0.25
+        return r[-1] >= r[0] + 0.5 or (far and r[0] < 8.0)
     if action == "away":
-        return r[-1] <= r[0] + 0.25
+        return r[-1] <= r[0] - 0.5
     if action == "next-to":
-        return r[-1] > 2.5
+        return r[-1] >= r[0] + 0.5 or (r[-1] > 2.5 and r[-1] >= r[0] - 0.25) or (far and r[0] < 8.0)
     if action == "past":
-        return swept < np.radians(45) or swept > np.radians(240) or r.max() > 8.0
+        return (swept < np.radians(20) and length > 2.0) or swept > np.radians(270) or far
     if action == "around":
-        return swept < np.radians(150) or r.max() > 8.0
+        return (swept < np.radians(20) and length > 2.0) or far
     raise ValueError(action)
 
 
-def random_motion(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
-    """A random 0-4 segment straight-line motion of the mover around a static anchor (block units)."""
+def random_motion(rng: np.random.Generator, n_moves: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """A random 1-4 segment (or ``n_moves``) straight-line motion of the mover around a static anchor (block units)."""
     anchor = np.array([0.0, 0.0, rng.uniform(0, np.pi / 2)])
     r0, b0 = rng.uniform(1.2, 8.0), rng.uniform(-np.pi, np.pi)
     pts = [np.array([r0 * np.cos(b0), r0 * np.sin(b0), rng.uniform(0, np.pi / 2)])]
-    for _ in range(int(rng.integers(0, 5))):
+    for _ in range(int(rng.integers(1, 5)) if n_moves is None else n_moves):
         if rng.random() < 0.2:  # a far jump
             r, b = rng.uniform(6, 14), rng.uniform(-np.pi, np.pi)
         else:
@@ -158,6 +179,14 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
                 pm = _polyline(ev_m, rng)
                 pa = np.repeat(ev_a.mean(axis=0)[None], len(pm), axis=0)
                 seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True))
+            for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
+                f = rng.uniform(*dcfg.scale_range)
+                pm = _polyline(ev_m, rng) if rng.random() < 0.5 else ev_m
+                c = ev_a.mean(axis=0)
+                sm = pm.copy()
+                sm[:, :2] = c[:2] + (pm[:, :2] - c[:2]) * f
+                pa = np.repeat(c[None], len(sm), axis=0)
+                seqs.append(_labelled(sm, pa, d.size, 0, len(sm) - 1, qcfg, dcfg, True))
     n_pos = len(seqs)
     neg: list[Sequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
@@ -174,8 +203,11 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
         if violates(action, mover, anchor):
             neg.append(_labelled(mover, anchor, 1.0, 0, 0, qcfg, dcfg, False))
             n_rand += 1
-    # balance: the negatives together weigh as much as the positives
-    w = n_pos / max(len(neg), 1)
+    for _ in range(dcfg.static_negatives):
+        mover, anchor = random_motion(rng, n_moves=0)
+        neg.append(_labelled(mover, anchor, 1.0, 0, 0, qcfg, dcfg, False))
+    # balance: the negatives together weigh negative_weight times the positives
+    w = dcfg.negative_weight * n_pos / max(len(neg), 1)
     for s in neg:
         s.weight = w
     return seqs + neg

@@ -1,0 +1,138 @@
+"""Bundles: the shipped ones load and score; bad ones fail with clear BundleErrors; write_weights works."""
+
+from __future__ import annotations
+
+import shutil
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import tomli_w
+import torch
+
+from l2p_bullet.bundle import (
+    MANIFEST,
+    PHRASES,
+    POLICY_FILE,
+    PROGRESS_FILE,
+    builtin_bundle_dir,
+    load_bundle,
+    resolve_action,
+    version_satisfies,
+    write_weights,
+)
+from l2p_bullet.demos import ACTIONS
+from l2p_bullet.errors import BundleError
+
+
+@pytest.fixture
+def bundle_copy(tmp_path: Path) -> Path:
+    dst = tmp_path / "around"
+    shutil.copytree(builtin_bundle_dir("around"), dst)
+    return dst
+
+
+def _edit_manifest(folder: Path, **changes) -> None:
+    man = tomllib.loads((folder / MANIFEST).read_text())
+    for k, v in changes.items():
+        if v is None:
+            man.pop(k, None)
+        else:
+            man[k] = v
+    (folder / MANIFEST).write_text(tomli_w.dumps(man))
+
+
+@pytest.mark.parametrize("action", ACTIONS)
+def test_builtin_bundles_load_and_score(action):
+    b = load_bundle(builtin_bundle_dir(action))
+    assert b.name == action and b.phrases == PHRASES[action]
+    assert {"features", "model", "training", "metrics"} <= set(b.manifest)
+    model = b.progress_model()
+    mover = np.column_stack([np.linspace(0.4, 0.2, 20), np.zeros(20), np.zeros(20)])
+    curve = model.curve(mover, np.zeros(3), 0.05)
+    assert curve.shape == (20,) and np.all((curve >= 0) & (curve <= 1))
+
+
+def test_resolve_action_by_name_alias_and_folder(bundle_copy):
+    assert resolve_action("next_to") == ("next-to", builtin_bundle_dir("next-to"))
+    assert resolve_action(str(bundle_copy)) == ("around", bundle_copy)
+    with pytest.raises(BundleError, match="Did you mean"):
+        resolve_action("arround")
+
+
+def test_missing_folder_manifest_and_weights(tmp_path, bundle_copy):
+    with pytest.raises(BundleError, match="does not exist"):
+        load_bundle(tmp_path / "nope")
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(BundleError, match="no manifest.toml"):
+        load_bundle(tmp_path / "empty")
+    (bundle_copy / PROGRESS_FILE).unlink()
+    with pytest.raises(BundleError, match="missing"):
+        load_bundle(bundle_copy)
+
+
+def test_tampered_weights_are_refused(bundle_copy):
+    data = bytearray((bundle_copy / PROGRESS_FILE).read_bytes())
+    data[-5] ^= 0xFF
+    (bundle_copy / PROGRESS_FILE).write_bytes(bytes(data))
+    with pytest.raises(BundleError, match="sha256"):
+        load_bundle(bundle_copy)
+
+
+def test_incompatible_manifest(bundle_copy):
+    _edit_manifest(bundle_copy, schema=99)
+    with pytest.raises(BundleError, match="schema 99"):
+        load_bundle(bundle_copy)
+    _edit_manifest(bundle_copy, schema=1, requires=">=2.0")
+    with pytest.raises(BundleError, match="requires l2p-bullet >=2.0"):
+        load_bundle(bundle_copy)
+    _edit_manifest(bundle_copy, requires=">=0.1,<1.0", phrases=None)
+    with pytest.raises(BundleError, match="missing phrases"):
+        load_bundle(bundle_copy)
+    (bundle_copy / MANIFEST).write_text("name = [unclosed")
+    with pytest.raises(BundleError, match="not valid TOML"):
+        load_bundle(bundle_copy)
+
+
+def test_wrong_shape_is_refused(bundle_copy):
+    man = tomllib.loads((bundle_copy / MANIFEST).read_text())
+    man["model"]["hidden"] = man["model"]["hidden"] + 1
+    (bundle_copy / MANIFEST).write_text(tomli_w.dumps(man))
+    with pytest.raises(BundleError, match="has shape"):
+        load_bundle(bundle_copy)
+
+
+def test_write_weights_adds_a_policy(bundle_copy):
+    assert load_bundle(bundle_copy).policy_tensors() is None
+    tensors = {"mean.weight": torch.arange(6.0).reshape(2, 3), "log_std": torch.zeros(3)}
+    write_weights(bundle_copy, POLICY_FILE, tensors, "policy", {"planner": "reinforce", "steps": 20})
+    b = load_bundle(bundle_copy)
+    assert b.manifest["policy"] == {"planner": "reinforce", "steps": 20}
+    got = b.policy_tensors()
+    assert set(got) == set(tensors) and torch.equal(got["mean.weight"], tensors["mean.weight"])
+    # tampering with the policy is caught too, and the progress weights are untouched
+    (bundle_copy / POLICY_FILE).write_bytes(b"junk")
+    with pytest.raises(BundleError, match=POLICY_FILE):
+        load_bundle(bundle_copy)
+
+
+def test_weights_are_never_unpickled(bundle_copy):
+    """A pickle renamed to .safetensors with a matching digest still fails as a safetensors file."""
+    import hashlib
+    import pickle
+
+    (bundle_copy / PROGRESS_FILE).write_bytes(pickle.dumps({"x": 1}))
+    man = tomllib.loads((bundle_copy / MANIFEST).read_text())
+    man["weights"][PROGRESS_FILE]["sha256"] = hashlib.sha256((bundle_copy / PROGRESS_FILE).read_bytes()).hexdigest()
+    (bundle_copy / MANIFEST).write_text(tomli_w.dumps(man))
+    with pytest.raises(BundleError, match="safetensors"):
+        load_bundle(bundle_copy)
+
+
+def test_version_ranges():
+    assert version_satisfies("0.1.0", ">=0.1,<1.0")
+    assert not version_satisfies("1.0.0", ">=0.1,<1.0")
+    assert version_satisfies("0.1.0", "==0.1")
+    with pytest.raises(BundleError):
+        version_satisfies("0.1.0", "~0.1")

@@ -1,0 +1,123 @@
+"""QSR features: the invariances the models rely on, and the relations on hand-made cases."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from l2p_bullet.qsr import QSRConfig, feature_names, motion_features, resample, resample_batch
+
+NAMES = feature_names()
+COL = {n: i for i, n in enumerate(NAMES)}
+
+
+def _motion(seed: int, n: int = 40, size: float = 0.15) -> tuple[np.ndarray, np.ndarray]:
+    """A smooth random mover path around an anchor that drifts a little (metres, blocks of ``size``)."""
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0, 1, n)[:, None]
+    start = rng.uniform(-4, 4, 2) * size
+    while np.linalg.norm(start) < 1.5 * size:
+        start = rng.uniform(-4, 4, 2) * size
+    ctrl = rng.normal(0, 3 * size, (2, 2))
+    xy = start + t * ctrl[0] + t**2 * ctrl[1]
+    theta = rng.uniform(0, 1.5) + t[:, 0] * rng.normal(0, 0.5)
+    mover = np.column_stack([xy, theta])
+    anchor = np.column_stack([t * rng.normal(0, 0.2 * size, 2), 0.3 + t[:, 0] * 0.05])
+    return mover, anchor
+
+
+def _transform(poses: np.ndarray, angle: float, shift: np.ndarray, scale: float = 1.0) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    xy = poses[:, :2] @ np.array([[c, s], [-s, c]]) * scale + shift
+    return np.column_stack([xy, poses[:, 2] + angle])
+
+
+def _close_except_boundaries(f1: np.ndarray, f2: np.ndarray) -> None:
+    """Continuous columns match tightly; a one-hot may flip only where its value sits on a bin edge,
+    which floating-point rounding makes ambiguous: allow at most 2 flipped frames."""
+    assert f1.shape == f2.shape
+    cont = [COL[n] for n in NAMES if not n.startswith(("cd_", "qdc_", "qtc_", "mv_")) and "changed" not in n]
+    np.testing.assert_allclose(f1[:, cont], f2[:, cont], atol=1e-4)
+    disc = [i for i in range(len(NAMES)) if i not in cont]
+    flipped = np.any(np.abs(f1[:, disc] - f2[:, disc]) > 1e-6, axis=1).sum()
+    assert flipped <= 2
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 10_000), angle=st.floats(-np.pi, np.pi),
+       dx=st.floats(-5, 5), dy=st.floats(-5, 5))
+def test_invariant_to_moving_and_rotating_the_scene(seed, angle, dx, dy):
+    mover, anchor = _motion(seed)
+    f1, _ = motion_features(mover, anchor, 0.15)
+    shift = np.array([dx, dy])
+    f2, _ = motion_features(_transform(mover, angle, shift), _transform(anchor, angle, shift), 0.15)
+    _close_except_boundaries(f1, f2)
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 10_000), scale=st.floats(0.1, 10.0))
+def test_invariant_to_scaling_scene_and_block_size_together(seed, scale):
+    mover, anchor = _motion(seed)
+    f1, r1 = motion_features(mover, anchor, 0.15)
+    f2, r2 = motion_features(_transform(mover, 0.0, np.zeros(2), scale), _transform(anchor, 0.0, np.zeros(2), scale),
+                             0.15 * scale)
+    assert len(r1.arc) == len(r2.arc)
+    _close_except_boundaries(f1, f2)
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(0, 10_000), cut=st.floats(0.2, 0.9))
+def test_a_prefix_resamples_to_the_same_frames(seed, cut):
+    """The planner's candidates extend one path: their shared prefix must give identical frames."""
+    mover, anchor = _motion(seed)
+    k = max(2, int(cut * len(mover)))
+    full, pre = resample_batch([mover, mover[:k]], [anchor, anchor[:k]], 0.15)
+    n = len(pre.arc) - 1  # the prefix's last frame is its own end point, off the grid
+    np.testing.assert_allclose(pre.mover[:n], full.mover[:n], atol=1e-9)
+    np.testing.assert_allclose(pre.arc[:n], full.arc[:n])
+
+
+def test_resampling_spacing_and_end_point():
+    mover = np.array([[0.0, 0, 0], [0.15, 0, 0], [0.15, 0.15 * 1.1, 0]])
+    rs = resample(mover, np.array([1.0, 1.0, 0.0]), 0.15)
+    assert np.allclose(np.diff(rs.arc)[:-1], 0.25)
+    assert np.isclose(rs.arc[-1], 2.1)
+    np.testing.assert_allclose(rs.mover[-1, :2], [1.0, 1.1])
+
+
+def test_standing_still_is_one_frame():
+    mover = np.repeat([[0.3, 0.0, 0.1]], 50, axis=0)
+    rs = resample(mover, np.zeros(3), 0.15)
+    assert len(rs.arc) == 1
+
+
+def test_relations_on_hand_made_motions():
+    cfg = QSRConfig()
+    # straight towards the anchor from 6 blocks to 2 blocks
+    mover = np.column_stack([np.linspace(6, 2, 30), np.zeros(30), np.zeros(30)])
+    f, _ = motion_features(mover, np.zeros(3), 1.0, cfg)
+    assert np.allclose(f[1:, COL["qtc_k_mover"]], -1)  # moving towards
+    assert np.allclose(f[:, COL["qtc_k_anchor"]], 0)  # anchor static
+    assert np.allclose(f[1:, COL["mv_mover"]], 1) and np.allclose(f[:, COL["mv_anchor"]], 0)
+    assert f[0, COL["qdc_3"]] == 1 and f[-1, COL["qdc_1"]] == 1  # very far -> near
+    assert f[:, [COL[f"cd_{i}"] for i in range(8)]].argmax(axis=1).max() == 0  # never changes side
+    assert np.isclose(f[-1, COL["dist"]] * 5, 2.0)
+    # half a circle around it: swept angle pi, ends on the opposite side (cd_4), moving sideways
+    a = np.linspace(0, np.pi, 60)
+    mover = np.column_stack([3 * np.cos(a), 3 * np.sin(a), np.zeros(60)])
+    f, _ = motion_features(mover, np.zeros(3), 1.0, cfg)
+    assert np.isclose(f[-1, COL["swept"]], 1.0, atol=1e-6)
+    assert f[-1, [COL[f"cd_{i}"] for i in range(8)]].argmax() == 4
+    assert np.all(f[1:, COL["qtc_l_mover"]] != 0) and np.allclose(f[1:, COL["qtc_k_mover"]], 0)
+    # touching face to face: the gap is 0
+    f, _ = motion_features(np.array([[1.0, 0, 0], [1.0, 0, 0]]), np.zeros(3), 1.0, cfg)
+    assert np.isclose(f[-1, COL["gap"]], 0.0) and np.isclose(f[-1, COL["face_alignment"]], 1.0)
+
+
+def test_config_round_trip_and_names():
+    cfg = QSRConfig(spacing=0.5, qdc_edges=(1.0, 2.0))
+    assert QSRConfig.from_dict(cfg.to_dict()) == cfg
+    assert cfg.n_features == len(feature_names(cfg))
+    f, _ = motion_features(np.array([[3.0, 0, 0], [0, 3.0, 0]]), np.zeros(3), 1.0, cfg)
+    assert f.shape[1] == cfg.n_features and f.dtype == np.float32

@@ -1,0 +1,99 @@
+"""``l2p-bullet score`` and ``train`` from the command line."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from l2p_bullet.bundle import builtin_bundle_dir, load_bundle, sha256_file
+from l2p_bullet.cli import main
+from l2p_bullet.demos import data_dir
+
+
+def _scoring_input(tmp_path: Path, mover: np.ndarray, size: float = 0.05, anchor=None) -> Path:
+    p = tmp_path / "motion.json"
+    anchor = [[0.0, 0.0, 0.0]] if anchor is None else anchor
+    p.write_text(json.dumps({"size": size, "mover": mover.tolist(), "anchor": anchor}))
+    return p
+
+
+def _circle(n: int = 60, radius: float = 0.12, turns: float = 1.0) -> np.ndarray:
+    a = np.linspace(0, 2 * np.pi * turns, n)
+    return np.column_stack([radius * np.cos(a), radius * np.sin(a), np.zeros(n)])
+
+
+def test_score_prints_per_frame_progress_and_final(tmp_path):
+    f = _scoring_input(tmp_path, _circle())
+    res = CliRunner().invoke(main, ["score", "around", str(f)])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.output)
+    assert out["action"] == "around" and len(out["progress"]) == 60
+    assert out["final"] == out["progress"][-1]
+    assert all(0.0 <= v <= 1.0 for v in out["progress"])
+
+
+def test_score_accepts_a_bundle_folder_and_alias(tmp_path):
+    folder = tmp_path / "my_bundle"
+    shutil.copytree(builtin_bundle_dir("next-to"), folder)
+    f = _scoring_input(tmp_path, np.array([[0.3, 0.0, 0.0], [0.06, 0.0, 0.0]]))
+    by_path = json.loads(CliRunner().invoke(main, ["score", str(folder), str(f)]).output)
+    by_alias = json.loads(CliRunner().invoke(main, ["score", "next_to", str(f)]).output)
+    assert by_path == by_alias and by_path["action"] == "next-to"
+
+
+def test_score_is_resampled_so_frame_rate_does_not_matter(tmp_path):
+    """A square path around the anchor given by its corners only, or by 200 frames, scores the same."""
+    c = 0.16  # not on a QDC bin edge (3 blocks), where rounding could flip a bin
+    corners = np.array([[c, 0, 0], [c, c, 0], [-c, c, 0], [-c, -c, 0], [c, -c, 0]])
+    dense = np.concatenate([np.linspace(corners[i], corners[i + 1], 50, endpoint=False) for i in range(4)]
+                           + [corners[-1:]])
+    a = json.loads(CliRunner().invoke(main, ["score", "around", str(_scoring_input(tmp_path, corners))]).output)
+    b = json.loads(CliRunner().invoke(main, ["score", "around", str(_scoring_input(tmp_path, dense))]).output)
+    assert abs(a["final"] - b["final"]) < 1e-3
+    assert len(a["progress"]) == 5 and len(b["progress"]) == 201
+
+
+def test_score_reads_trajectory_json(tmp_path):
+    circle = _circle(40)
+    frames = [{"t": i / 30, "poses": {"A": [x, y, 0.025, th], "B": [0.0, 0.0, 0.025, 0.0]}, "ee": [x, y, 0.1],
+               "grasped": "A", "progress": None} for i, (x, y, th) in enumerate(circle)]
+    traj = {"schema": 1, "sentence": "move A around B", "action": "around", "mover": "A", "anchor": "B",
+            "fps": 30.0, "objects": {"A": {"size": 0.05}, "B": {"size": 0.05}}, "frames": frames}
+    p = tmp_path / "trajectory.json"
+    p.write_text(json.dumps(traj))
+    res = CliRunner().invoke(main, ["score", "around", str(p)])
+    assert res.exit_code == 0, res.output
+    assert len(json.loads(res.output)["progress"]) == 40
+
+
+def test_score_errors_are_one_line(tmp_path):
+    runner = CliRunner()
+    res = runner.invoke(main, ["score", "arround", str(_scoring_input(tmp_path, _circle()))])
+    assert res.exit_code == 2 and 'Did you mean "around"' in res.output
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"size": 0.05, "mover": [[0, 0, 0]], "anchor": [[0, 0, 0], [1, 1, 1]]}))
+    res = runner.invoke(main, ["score", "around", str(bad)])
+    assert res.exit_code == 2 and "anchor" in res.output
+
+
+@pytest.mark.slow
+def test_train_is_deterministic_and_writes_a_loadable_bundle(tmp_path):
+    session = data_dir() / "captures" / "SlidePast_Session1.npz"
+    args = ["train", "past", "--demos", str(session), "--ensemble", "1", "--epochs", "2", "--seed", "3"]
+    runner = CliRunner()
+    r1 = runner.invoke(main, [*args, "--out", str(tmp_path / "a")])
+    assert r1.exit_code == 0, r1.output
+    r2 = runner.invoke(main, [*args, "--out", str(tmp_path / "b")])
+    assert r2.exit_code == 0, r2.output
+    assert sha256_file(tmp_path / "a" / "progress.safetensors") == sha256_file(tmp_path / "b" / "progress.safetensors")
+    b = load_bundle(tmp_path / "a")
+    assert b.name == "past" and b.manifest["training"]["seed"] == 3
+    assert "--demos" in b.manifest["training"]["command"]
+    # refuses to overwrite without --force
+    r3 = runner.invoke(main, [*args, "--out", str(tmp_path / "a")])
+    assert r3.exit_code == 2 and "--force" in r3.output
