@@ -99,7 +99,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     stage("check")
     p = check_path(scene, mover, path)
     stage("setup")
-    world = World(scene, visuals=render is not None)
+    world = World(scene, visuals=render is not None, egl=render is not None and render.renderer == "egl")
     try:
         camera = Camera(world, render) if render is not None else None
         recorder = Recorder(world, camera)

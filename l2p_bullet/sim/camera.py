@@ -1,8 +1,9 @@
 """A fixed camera looking at the table, its renderers, and the pinhole model that predicts pixels.
 
-TinyRenderer (CPU) is the default: its images are bit-identical across processes. ``egl`` loads
-PyBullet's EGL plugin where it exists (faster, but other pixels); loading it prints to the C-level
-streams, which :func:`~l2p_bullet.sim.client.quiet_stdout` hides.
+TinyRenderer (CPU) is the default: its images are bit-identical across processes. ``egl`` uses
+PyBullet's EGL plugin where it loads (see World(egl=True); other pixels); it prints to the C-level
+streams on load and on every frame, which :func:`~l2p_bullet.sim.client.quiet_stdout` hides. It is never
+unloaded explicitly (unloading segfaulted here): disconnecting the world's client ends it.
 """
 
 from __future__ import annotations
@@ -30,8 +31,10 @@ class RenderSettings:
 
 @dataclass(frozen=True)
 class CameraPose:
-    eye: tuple[float, float, float] = (0.55, -0.55, 0.6)
-    target: tuple[float, float, float] = (-0.05, 0.0, 0.0)
+    """Front right of the table, looking back at the arm: the workspace fills the lower image."""
+
+    eye: tuple[float, float, float] = (0.5, -0.5, 0.6)
+    target: tuple[float, float, float] = (-0.15, 0.0, 0.1)
     up: tuple[float, float, float] = (0.0, 0.0, 1.0)
     fov: float = 50.0
     near: float = 0.05
@@ -49,29 +52,26 @@ class Camera:
         self.view = c.computeViewMatrix(pose.eye, pose.target, pose.up)
         self.proj = c.computeProjectionMatrixFOV(pose.fov, settings.width / settings.height, pose.near, pose.far)
         self.renderer = world.pb.ER_TINY_RENDERER
-        self.plugin = None
         if settings.renderer == "egl":
-            self._load_egl()
-
-    def _load_egl(self) -> None:
-        import importlib.util
-
-        spec = importlib.util.find_spec("eglRenderer")
-        with quiet_stdout():
-            plugin = self.world.client.loadPlugin(spec.origin, "_eglRendererPlugin") if spec else -1
-        if plugin < 0:
-            raise ExecutionError("the EGL renderer plugin does not load here; use --renderer tiny")
-        self.plugin = plugin
-        self.renderer = self.world.pb.ER_BULLET_HARDWARE_OPENGL
+            if world.egl_plugin is None:
+                raise ExecutionError("the EGL renderer must be loaded with the world: World(..., egl=True)")
+            self.renderer = world.pb.ER_BULLET_HARDWARE_OPENGL
 
     def render(self) -> np.ndarray:
         """An RGB image (H, W, 3) uint8 of the world as it is now."""
         w, h = self.settings.width, self.settings.height
-        _, _, rgba, _, _ = self.world.client.getCameraImage(
+        if self.renderer == self.world.pb.ER_TINY_RENDERER:
+            rgba = self._grab(w, h)
+        else:
+            with quiet_stdout():  # the EGL plugin prints on every frame
+                rgba = self._grab(w, h)
+        return np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3].copy()
+
+    def _grab(self, w: int, h: int):
+        return self.world.client.getCameraImage(
             w, h, self.view, self.proj, renderer=self.renderer, shadow=0,
             flags=self.world.pb.ER_NO_SEGMENTATION_MASK,
-        )
-        return np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3].copy()
+        )[2]
 
     def project(self, points: np.ndarray) -> np.ndarray:
         """Pixel (column, row) of world points (K,3), with the matrices the renderer uses."""
@@ -83,8 +83,3 @@ class Camera:
         col = (ndc[:, 0] + 1.0) * 0.5 * self.settings.width
         row = (1.0 - ndc[:, 1]) * 0.5 * self.settings.height
         return np.column_stack([col, row])
-
-    def close(self) -> None:
-        if self.plugin is not None and self.world.client is not None:
-            self.world.client.unloadPlugin(self.plugin)
-            self.plugin = None

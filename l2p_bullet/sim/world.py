@@ -15,7 +15,7 @@ import numpy as np
 
 from ..scene import COLORS, ROBOT_BASE_XY, Scene
 from .arms import PANDA, ArmSpec
-from .client import new_client
+from .client import new_client, quiet_stdout
 
 PHYSICS_HZ = 240.0
 BLOCK_URDF_SIZE = 0.05  # the side of urdf/block.urdf; other sizes load it with globalScaling
@@ -26,13 +26,29 @@ def urdf_path(name: str) -> str:
     return str(Path(str(resources.files("l2p_bullet") / "urdf" / name)))
 
 
+def load_egl(client) -> int:
+    """Load the EGL renderer plugin into ``client``; ExecutionError where it does not load."""
+    import importlib.util
+
+    from ..errors import ExecutionError
+
+    spec = importlib.util.find_spec("eglRenderer")
+    with quiet_stdout():
+        plugin = client.loadPlugin(spec.origin, "_eglRendererPlugin") if spec and spec.origin else -1
+    if plugin < 0:
+        raise ExecutionError("the EGL renderer plugin does not load here; use --renderer tiny")
+    return plugin
+
+
 class World:
     """Table + blocks + arm in one DIRECT PyBullet client. Close it (or use ``with``) when done.
 
     ``visuals=False`` loads the arm without its visual meshes (for runs that render nothing).
+    ``egl=True`` loads PyBullet's EGL renderer plugin first: bodies loaded before it never reach it
+    (their images come out empty).
     """
 
-    def __init__(self, scene: Scene, arm: ArmSpec = PANDA, visuals: bool = True):
+    def __init__(self, scene: Scene, arm: ArmSpec = PANDA, visuals: bool = True, egl: bool = False):
         self.client = new_client()
         import pybullet as pb
 
@@ -43,6 +59,7 @@ class World:
         c.setGravity(0, 0, -9.81)
         c.setTimeStep(1.0 / PHYSICS_HZ)
         self.dt = 1.0 / PHYSICS_HZ
+        self.egl_plugin = load_egl(c) if egl else None
         self.steps = 0
         self.table = c.loadURDF(urdf_path("table.urdf"), [0, 0, 0], useFixedBase=True)
         self.bodies: dict[str, int] = {}
@@ -90,7 +107,8 @@ class World:
 
     def close(self) -> None:
         if self.client is not None:
-            self.client.disconnect()
+            with quiet_stdout():  # the EGL plugin says goodbye on the C-level stdout
+                self.client.disconnect()
             self.client = None
 
     def __enter__(self) -> World:

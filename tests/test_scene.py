@@ -1,0 +1,88 @@
+"""Bad scene files give a SceneError that names the problem (and the CLI prints it on one line)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from l2p_bullet.cli import main
+from l2p_bullet.errors import SceneError
+from l2p_bullet.scene import default_scene, load_scene, save_scene
+
+
+def _write(tmp_path, objects, name="scene.json"):
+    p = tmp_path / name
+    p.write_text(json.dumps({"objects": objects}))
+    return p
+
+
+def _obj(name="A", color="red", size=0.05, xy=(0.05, -0.10), yaw=0.0):
+    return {"name": name, "color": color, "size": size, "xy": list(xy), "yaw": yaw}
+
+
+def test_default_scene_round_trips(tmp_path):
+    p = tmp_path / "s.json"
+    save_scene(default_scene(), p)
+    assert load_scene(p).to_dict() == default_scene().to_dict()
+
+
+def test_unreadable_json_names_the_line(tmp_path):
+    p = tmp_path / "bad.json"
+    p.write_text('{"objects": [\n  {"name": "A",,}\n]}')
+    with pytest.raises(SceneError, match=r"not valid JSON \(line 2"):
+        load_scene(p)
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(SceneError, match="cannot read scene file"):
+        load_scene(tmp_path / "nope.json")
+
+
+@pytest.mark.parametrize("field", ["name", "color", "size", "xy"])
+def test_missing_field_is_named(tmp_path, field):
+    obj = _obj()
+    del obj[field]
+    p = _write(tmp_path, [obj, _obj("B", "green", xy=(0.0, 0.05))])
+    with pytest.raises(SceneError, match=f'missing the field "{field}"'):
+        load_scene(p)
+
+
+def test_duplicate_names(tmp_path):
+    p = _write(tmp_path, [_obj("A"), _obj("A", "green", xy=(0.0, 0.1))])
+    with pytest.raises(SceneError, match='two objects are named "A"'):
+        load_scene(p)
+
+
+def test_overlapping_blocks(tmp_path):
+    p = _write(tmp_path, [_obj("A", xy=(0.0, 0.0)), _obj("B", "green", xy=(0.03, 0.0))])
+    with pytest.raises(SceneError, match='"A" and "B" overlap'):
+        load_scene(p)
+
+
+def test_touching_but_apart_blocks_are_fine(tmp_path):
+    p = _write(tmp_path, [_obj("A", xy=(0.0, 0.0)), _obj("B", "green", xy=(0.051, 0.0))])
+    assert load_scene(p).names == ["A", "B"]
+
+
+def test_block_off_the_table(tmp_path):
+    p = _write(tmp_path, [_obj("A", xy=(0.39, 0.0)), _obj("B", "green", xy=(0.0, 0.05))])
+    with pytest.raises(SceneError, match='"A" .* is off the table'):
+        load_scene(p)
+
+
+def test_block_outside_the_workspace(tmp_path):
+    p = _write(tmp_path, [_obj("A", xy=(0.2, 0.2)), _obj("B", "green", xy=(0.0, 0.05))])
+    with pytest.raises(SceneError, match="outside the arm's workspace"):
+        load_scene(p)
+
+
+def test_cli_prints_scene_error_on_one_line(tmp_path):
+    p = _write(tmp_path, [_obj("A"), _obj("A", "green", xy=(0.0, 0.1))])
+    r = CliRunner().invoke(main, ["replay", "--demo", "past:0", "--scene", str(p), "--no-render",
+                                  "--out", str(tmp_path / "run")])
+    assert r.exit_code == 2
+    lines = [line for line in r.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: ") and 'two objects are named "A"' in lines[0]
+    assert "Traceback" not in r.output
