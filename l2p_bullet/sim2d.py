@@ -83,6 +83,9 @@ class World2D:
         self.obstacles = [Body(o.name, o.footprint(np.zeros(3)), o.pose) for o in scene.objects if o.name != mover]
         self._obs_polys = [b.polygon() for b in self.obstacles]
         self._obs_normals = [_normals(p) for p in self._obs_polys]
+        self._obs_centres = np.array([b.pose[:2] for b in self.obstacles]).reshape(-1, 2)
+        self._obs_radii = np.array([np.linalg.norm(b.outline, axis=1).max() for b in self.obstacles])
+        self._mover_radius = float(np.linalg.norm(self.mover.outline, axis=1).max())
         ws = scene.workspace
         self.center = np.array(ws.center, float)
         self.radius = float(ws.radius)
@@ -100,6 +103,23 @@ class World2D:
         ok = self.inside(ends[:, :2]) & bool(self.inside(start[:2]))
         if not self.obstacles or not ok.any():
             return ok
+        # cheap pre-test: a move whose centre line stays farther from every obstacle than the two bounding
+        # circles plus the margin cannot touch it; only the others need the swept-area test
+        near = self._near(start[:2], ends[:, :2]) & ok
+        if not near.any():
+            return ok
+        ok[near] = self._swept_free(start, ends[near])
+        return ok
+
+    def _near(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        ab = b - a
+        t = np.clip(((self._obs_centres - a) @ ab.T) / np.maximum((ab * ab).sum(1), 1e-18), 0.0, 1.0)  # (O, M)
+        closest = a + t[..., None] * ab
+        d = np.linalg.norm(closest - self._obs_centres[:, None], axis=-1)
+        return (d <= (self._obs_radii + self._mover_radius + self.margin)[:, None] + 1e-9).any(0)
+
+    def _swept_free(self, start: np.ndarray, ends: np.ndarray) -> np.ndarray:
+        ok = np.ones(len(ends), bool)
         dyaw = wrap_angle(ends[:, 2] - start[2])
         n_sub = max(1, math.ceil(float(np.abs(dyaw).max()) / SUB_ROTATION))
         t = np.linspace(0.0, 1.0, n_sub + 1)

@@ -56,5 +56,5 @@ def test_plan_reads_a_scene_file_and_never_overwrites_without_force(fake_actions
 def test_an_unknown_planner_is_a_one_line_error_listing_the_planners(fake_actions, tmp_path):
     r = CliRunner().invoke(main, ["plan", "move A around B", "--planner", "astar", "--out", str(tmp_path / "x")])
     assert r.exit_code == 2
-    assert "unknown planner" in r.output and "greedy, beam, discrete, reinforce, default" in r.output
+    assert "unknown planner" in r.output and "greedy, beam, discrete, reinforce, mixed, default" in r.output
     assert not (tmp_path / "x").exists()

@@ -15,7 +15,7 @@ from l2p_bullet.geometry2d import polygons_overlap
 from l2p_bullet.planners import PLANNERS, plan, resolve_planner
 from l2p_bullet.scene import GRIPPER_MARGIN, default_scene, random_scene
 
-SEARCHES = ["greedy", "beam", "discrete"]
+SEARCHES = ["greedy", "beam", "discrete", "mixed"]
 
 
 def _assert_executable(p, scene):
@@ -100,7 +100,7 @@ def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     assert len(history) == 2
     tensors = {k: v.clone() for k, v in net.state_dict().items()}
     again = policy_from_tensors(tensors)
-    x = torch.randn(5, 10)
+    x = torch.randn(5, 12)
     assert torch.equal(net(x)[0], again(x)[0])
     mean, log_std = NumpyPolicy({k: v.numpy() for k, v in tensors.items()})(x.numpy().astype(float))
     assert np.allclose(mean, net(x)[0].detach().numpy(), atol=1e-5)
@@ -134,7 +134,7 @@ def test_planning_never_imports_torch(tmp_path):
         "from l2p_bullet.planners.policy import NumpyPolicy\n"
         "from l2p_bullet.scene import default_scene\n"
         "rng = np.random.default_rng(0)\n"
-        "shapes = {'body.0': (64, 10), 'body.2': (64, 64), 'mean': (3, 64), 'log_std': (3, 64)}\n"
+        "shapes = {'body.0': (64, 12), 'body.2': (64, 64), 'mean': (3, 64), 'log_std': (3, 64)}\n"
         "arrays = {f'{k}.weight': rng.normal(0, 0.1, s) for k, s in shapes.items()}\n"
         "arrays |= {f'{k}.bias': np.zeros(s[0]) for k, s in shapes.items()}\n"
         "import l2p_bullet.planners.policy as pol\n"

@@ -9,6 +9,7 @@ docs/planning.md):
                 distance around the anchor;
 - ``reinforce`` greedy search with back-up over moves proposed by the action's REINFORCE-trained Gaussian
                 policy (stored in its bundle);
+- ``mixed``     greedy search with back-up over all of the above at once (one forward pass per step);
 - ``default``   an alias (``DEFAULT``), unless the bundle's ``[policy]`` section names another planner.
 
 Every planner maximises the action's learned progress model: the model alone decides which move is
@@ -28,7 +29,7 @@ from ..paths import Plan
 from ..scene import Scene
 from ..sim2d import World2D
 from .problem import Problem, finish
-from .proposals import discrete_moves, random_moves
+from .proposals import MixedProposer, discrete_moves, random_moves
 from .search import beam, greedy
 
 PLANNERS: dict[str, str] = {
@@ -36,17 +37,18 @@ PLANNERS: dict[str, str] = {
     "beam": "beam search over random moves",
     "discrete": "greedy search over cardinal direction x distance around the anchor",
     "reinforce": "greedy search over moves proposed by the action's REINFORCE policy",
+    "mixed": "greedy search over the discrete cells, the policy's proposals and random moves together",
     "default": "the action's preferred planner (see DEFAULT)",
 }
-DEFAULT = "discrete"
+DEFAULT = "mixed"
 
 THRESHOLD = 0.9
 """Stop when the learned progress reaches this (the models rise to about 1 at an event's end)."""
 
-BUDGETS = {"greedy": 40, "beam": 15, "discrete": 30, "reinforce": 30}
+BUDGETS = {"greedy": 40, "beam": 15, "discrete": 30, "reinforce": 30, "mixed": 30}
 """Default step budgets (a step = one batch of candidates scored in one forward pass)."""
 
-CANDIDATES = {"greedy": 32, "beam": 48, "discrete": 0, "reinforce": 16}
+CANDIDATES = {"greedy": 32, "beam": 48, "discrete": 0, "reinforce": 16, "mixed": 16}
 BEAM_WIDTH = 4
 
 
@@ -116,13 +118,17 @@ def _search(name: str, problem: Problem, bundle):
         return beam(problem, random_moves, n, BEAM_WIDTH)
     if name == "discrete":
         return greedy(problem, discrete_moves, n)
+    if name == "mixed":
+        return greedy(problem, MixedProposer(_policy_proposer(bundle, required=False)), n)
     return greedy(problem, _policy_proposer(bundle), n)
 
 
-def _policy_proposer(bundle):
+def _policy_proposer(bundle, required: bool = True):
     from .policy import PolicyProposer, load_policy
 
     net = load_policy(bundle)
+    if net is None and not required:
+        return None
     if net is None:
         raise PlanError(f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
                         f'"python -m l2p_bullet.planners.train_policy {bundle.name}" or pick another planner '

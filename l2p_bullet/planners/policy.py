@@ -24,17 +24,22 @@ from ..errors import BundleError
 from ..evaluate import turn
 from .problem import MAX_TURN, Node, Problem
 
-FEATURES = 10
+FEATURES = 12
 HIDDEN = 64
 LOG_STD_RANGE = (-3.0, 1.0)
 POLICY_FILE = "policy.safetensors"
 
 
 def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,
-             moves: np.ndarray, max_moves: int) -> np.ndarray:
-    """The policy's view of B paths (frames in metres; anchors (3,) or (B,3)): (B, FEATURES), block units."""
+             moves: np.ndarray, centres: np.ndarray, radius: float) -> np.ndarray:
+    """The policy's view of B paths: (B, FEATURES), in block units and the anchor's polar frame.
+
+    ``frames`` in metres; ``anchor_poses`` and the workspace ``centres`` one for all ((3,), (2,)) or one
+    per path. The workspace's centre (seen from the mover) tells the policy where there is room to move.
+    """
     out = np.zeros((len(frames), FEATURES), dtype=np.float32)
     anchors = np.broadcast_to(np.asarray(anchor_poses, float), (len(frames), 3))
+    centres = np.broadcast_to(np.asarray(centres, float), (len(frames), 2))
     for i, f in enumerate(frames):
         anchor_pose = anchors[i]
         rel = (f[:, :2] - anchor_pose[:2]) / size
@@ -44,8 +49,10 @@ def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, pr
         last = (rel[-1] - rel[-2]) if len(rel) > 1 else np.zeros(2)
         phi = math.atan2(rel[-1, 1], rel[-1, 0]) - anchor_pose[2]
         yaw = f[-1, 2] - anchor_pose[2]
+        room = (centres[i] - f[-1, :2]) / size
         out[i] = [r / 5.0, 1.0 / r, progress[i], turn(rel) / (2 * math.pi), last @ e1, last @ e2,
-                  moves[i] / max_moves, math.sin(4 * phi), math.cos(4 * phi), math.cos(4 * yaw)]
+                  moves[i] / 8.0, math.sin(4 * phi), math.cos(4 * phi), math.cos(4 * yaw),
+                  room @ e1 / (radius / size), room @ e2 / (radius / size)]
     return out
 
 
@@ -113,7 +120,7 @@ class PolicyProposer:
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
         x = features([node.frames], problem.anchor_pose, problem.size, np.array([node.progress]),
-                     np.array([node.moves]), problem.max_moves)
+                     np.array([node.moves]), problem.world.center, problem.world.radius)
         mean, log_std = self.net(x.astype(np.float64))
         mean, std = mean[0], np.exp(log_std[0]) * self.spread
         acts = mean + std * problem.rng.normal(size=(max(n, 1), 3))

@@ -9,6 +9,9 @@ from torch import nn
 
 from .policy import FEATURES, HIDDEN, LOG_STD_RANGE
 
+INITIAL_STD = 2.5
+"""Starting spread of a move (block sizes): wide enough to stumble on a long move past the anchor."""
+
 
 class GaussianPolicy(nn.Module):
     """state features (B, FEATURES) -> mean (B,3) and log standard deviation (B,3) of the next move."""
@@ -21,7 +24,7 @@ class GaussianPolicy(nn.Module):
         nn.init.zeros_(self.mean.weight)
         nn.init.zeros_(self.mean.bias)
         nn.init.zeros_(self.log_std.weight)
-        nn.init.constant_(self.log_std.bias, math.log(1.5))
+        nn.init.constant_(self.log_std.bias, math.log(INITIAL_STD))
 
     def forward(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         h = self.body(x)

@@ -64,3 +64,24 @@ def _discrete_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
 
 _discrete_moves.deterministic = True  # type: ignore[attr-defined]
 discrete_moves = _discrete_moves
+
+
+class MixedProposer:
+    """The discrete cells, the policy's proposals (when the bundle has a policy) and random moves, together.
+
+    Each source covers another's blind spot: the cells reach exact places around the anchor (face to face,
+    the far side), the policy proposes the moves that paid off in training, random moves fill the gaps
+    between cells. The model still decides, in one forward pass over all of them.
+    """
+
+    deterministic = False
+
+    def __init__(self, policy=None, random_share: int = 16):
+        self.policy = policy
+        self.random_share = random_share
+
+    def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
+        parts = [discrete_moves(problem, node), random_moves(problem, node, self.random_share)]
+        if self.policy is not None:
+            parts.append(self.policy(problem, node, n))
+        return np.vstack(parts)

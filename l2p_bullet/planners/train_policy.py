@@ -21,7 +21,7 @@ import torch
 
 from ..scene import random_scene
 from ..sim2d import World2D, segment_frames
-from .policy import features, to_poses
+from .policy import FEATURES, features, to_poses
 from .policy_net import GaussianPolicy
 from .problem import FRAME_STEP
 
@@ -43,13 +43,15 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: TrainConfig):
     """Run one batch of episodes; returns log-probs (H,B) and rewards (H,B) as tensors, and final progress."""
     worlds = [World2D(random_scene(s, cfg.size), "A") for s in seeds]
     anchors = np.stack([w.scene.get("B").pose for w in worlds])
+    centres = np.stack([w.center for w in worlds])
     frames = [w.mover.pose[None].copy() for w in worlds]
     progress = np.asarray(model.final_batch(frames, [a[None] for a in anchors], cfg.size), float)
     moves = np.zeros(len(seeds))
     active = np.ones(len(seeds), bool)
     logps, rewards = [], []
     for _ in range(cfg.horizon):
-        x = torch.from_numpy(features(frames, anchors, cfg.size, progress, moves, cfg.horizon))
+        x = torch.from_numpy(features(frames, anchors, cfg.size, progress, moves, centres,
+                                      worlds[0].radius))
         dist = net.distribution(x)
         act = dist.sample()
         logps.append(dist.log_prob(act).sum(-1) * torch.from_numpy(active.astype(np.float32)))
@@ -113,7 +115,7 @@ def policy_settings(cfg: TrainConfig, history: list[float], seconds: float) -> d
     return {
         "file": "policy.safetensors",
         "kind": "gaussian-mlp",
-        "features": 10,
+        "features": FEATURES,
         "training": asdict(cfg) | {"seconds": round(seconds, 1),
                                    "final_progress_first": round(float(np.mean(history[:10])), 4),
                                    "final_progress_last": round(float(np.mean(history[-10:])), 4)},
