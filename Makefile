@@ -37,3 +37,7 @@ bundles: install
 	for a in closer away next-to past around; do \
 	  $(VENV)/bin/l2p-bullet train $$a --seed 0 --force --out l2p_bullet/actions/$$(echo $$a | tr - _) || exit 1; \
 	done
+	# then each action's REINFORCE move policy, trained against the new progress model (issue 4)
+	for a in closer away next-to past around; do \
+	  $(PY) -m l2p_bullet.planners.train_policy $$a --seed 0 || exit 1; \
+	done
