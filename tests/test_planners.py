@@ -144,3 +144,16 @@ def test_planning_never_imports_torch(tmp_path):
         "assert 'torch' not in sys.modules, 'torch was imported'\n"
     )
     subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent)], check=True, cwd=tmp_path)
+
+
+def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
+    from l2p_bullet.planners.policy import features, to_poses
+
+    path = np.array([[0.1, 0.03, 0.2], [0.08, 0.06, 0.25], [0.05, 0.09, 0.3]])
+    mirror = path * np.array([1, -1, -1])  # across the x axis, through the anchor and the workspace centre
+    args = (np.zeros(3), 0.05, np.array([0.3]), np.array([2]), np.zeros(2), 0.25)
+    (x1, h1), (x2, h2) = features([path], *args), features([mirror], *args)
+    assert np.allclose(x1, x2, atol=1e-6) and h1[0] == -h2[0]
+    move = np.array([[0.5, 1.0, 0.2]])
+    a, b = to_poses(move, path[-1:], np.zeros(3), 0.05, h1), to_poses(move, mirror[-1:], np.zeros(3), 0.05, h2)
+    assert np.allclose(a * np.array([1, -1, -1]), b)

@@ -31,13 +31,20 @@ POLICY_FILE = "policy.safetensors"
 
 
 def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,
-             moves: np.ndarray, centres: np.ndarray, radius: float) -> np.ndarray:
-    """The policy's view of B paths: (B, FEATURES), in block units and the anchor's polar frame.
+             moves: np.ndarray, centres: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """The policy's view of B paths: features (B, FEATURES) and the frame's handedness (B,) of +-1.
 
-    ``frames`` in metres; ``anchor_poses`` and the workspace ``centres`` one for all ((3,), (2,)) or one
-    per path. The workspace's centre (seen from the mover) tells the policy where there is room to move.
+    Block units, in the anchor's polar frame (radial, tangential). ``frames`` in metres; ``anchor_poses``
+    and the workspace ``centres`` one for all ((3,), (2,)) or one per path. The workspace's centre, seen
+    from the mover, tells the policy where there is room to move.
+
+    The actions are mirror-symmetric (a mirrored "past" is a "past"), so the frame is mirrored to make
+    the tangential direction point the way the mover already turns around the anchor, or, before it has
+    turned, the way with more room. The policy then learns one of the two mirror-image solutions
+    instead of hesitating between them; ``to_poses`` applies the same handedness to its moves.
     """
     out = np.zeros((len(frames), FEATURES), dtype=np.float32)
+    hand = np.ones(len(frames))
     anchors = np.broadcast_to(np.asarray(anchor_poses, float), (len(frames), 3))
     centres = np.broadcast_to(np.asarray(centres, float), (len(frames), 2))
     for i, f in enumerate(frames):
@@ -50,21 +57,26 @@ def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, pr
         phi = math.atan2(rel[-1, 1], rel[-1, 0]) - anchor_pose[2]
         yaw = f[-1, 2] - anchor_pose[2]
         room = (centres[i] - f[-1, :2]) / size
-        out[i] = [r / 5.0, 1.0 / r, progress[i], turn(rel) / (2 * math.pi), last @ e1, last @ e2,
-                  moves[i] / 8.0, math.sin(4 * phi), math.cos(4 * phi), math.cos(4 * yaw),
-                  room @ e1 / (radius / size), room @ e2 / (radius / size)]
-    return out
+        swept = turn(rel)
+        h = (1.0 if swept > 0 else -1.0) if abs(swept) > 0.05 else (1.0 if room @ e2 >= 0 else -1.0)
+        hand[i] = h
+        out[i] = [r / 5.0, 1.0 / r, progress[i], h * swept / (2 * math.pi), last @ e1, h * (last @ e2),
+                  moves[i] / 8.0, h * math.sin(4 * phi), math.cos(4 * phi), math.cos(4 * yaw),
+                  room @ e1 / (radius / size), h * (room @ e2) / (radius / size)]
+    return out, hand
 
 
-def to_poses(actions: np.ndarray, poses: np.ndarray, anchor_pose: np.ndarray, size: float) -> np.ndarray:
+def to_poses(actions: np.ndarray, poses: np.ndarray, anchor_pose: np.ndarray, size: float,
+             hand: np.ndarray | float = 1.0) -> np.ndarray:
     """Moves in the anchor-polar frame (B,3: radial, tangential blocks; turn) -> end poses (B,3) in metres;
-    ``anchor_pose`` is (3,) or (B,3)."""
+    ``anchor_pose`` is (3,) or (B,3); ``hand`` mirrors the tangential direction and the turn (see features)."""
+    hand = np.broadcast_to(np.asarray(hand, float), (len(actions),))
     rel = poses[:, :2] - np.asarray(anchor_pose, float)[..., :2]
     e1 = rel / np.maximum(np.linalg.norm(rel, axis=1, keepdims=True), 1e-9)
     e2 = np.stack([-e1[:, 1], e1[:, 0]], axis=1)
     out = poses.copy()
-    out[:, :2] += size * (actions[:, :1] * e1 + actions[:, 1:2] * e2)
-    out[:, 2] += np.clip(actions[:, 2], -MAX_TURN, MAX_TURN)
+    out[:, :2] += size * (actions[:, :1] * e1 + (hand * actions[:, 1])[:, None] * e2)
+    out[:, 2] += np.clip(hand * actions[:, 2], -MAX_TURN, MAX_TURN)
     return out
 
 
@@ -119,10 +131,11 @@ class PolicyProposer:
         self.spread = spread
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
-        x = features([node.frames], problem.anchor_pose, problem.size, np.array([node.progress]),
-                     np.array([node.moves]), problem.world.center, problem.world.radius)
+        x, hand = features([node.frames], problem.anchor_pose, problem.size, np.array([node.progress]),
+                           np.array([node.moves]), problem.world.center, problem.world.radius)
         mean, log_std = self.net(x.astype(np.float64))
         mean, std = mean[0], np.exp(log_std[0]) * self.spread
         acts = mean + std * problem.rng.normal(size=(max(n, 1), 3))
         acts[0] = mean
-        return to_poses(acts, np.repeat(node.pose[None], len(acts), 0), problem.anchor_pose, problem.size)
+        return to_poses(acts, np.repeat(node.pose[None], len(acts), 0), problem.anchor_pose, problem.size,
+                        hand[0])

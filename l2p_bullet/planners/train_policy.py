@@ -7,7 +7,7 @@ penalty), and the reward is the increase of the action's **learned** progress: t
 sum to the final progress gained, which is what the planner maximises. An episode ends early once
 progress passes ``done_at``. All episodes of a step are scored in one forward pass.
 
-    python -m l2p_bullet.planners.train_policy around [--iterations 120] [--episodes 32] [--bundle DIR]
+    python -m l2p_bullet.planners.train_policy around [--iterations 300] [--episodes 48] [--bundle DIR]
 """
 
 from __future__ import annotations
@@ -28,8 +28,8 @@ from .problem import FRAME_STEP
 
 @dataclass(frozen=True)
 class TrainConfig:
-    iterations: int = 120
-    episodes: int = 32
+    iterations: int = 300
+    episodes: int = 48
     horizon: int = 8
     lr: float = 3e-3
     entropy: float = 1e-3
@@ -50,13 +50,13 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: TrainConfig):
     active = np.ones(len(seeds), bool)
     logps, rewards = [], []
     for _ in range(cfg.horizon):
-        x = torch.from_numpy(features(frames, anchors, cfg.size, progress, moves, centres,
-                                      worlds[0].radius))
+        feats, hand = features(frames, anchors, cfg.size, progress, moves, centres, worlds[0].radius)
+        x = torch.from_numpy(feats)
         dist = net.distribution(x)
         act = dist.sample()
         logps.append(dist.log_prob(act).sum(-1) * torch.from_numpy(active.astype(np.float32)))
         poses = np.stack([f[-1] for f in frames])
-        ends = to_poses(act.numpy().astype(float), poses, anchors, cfg.size)
+        ends = to_poses(act.numpy().astype(float), poses, anchors, cfg.size, hand)
         reward = np.zeros(len(seeds))
         moved = []
         for i, w in enumerate(worlds):
@@ -143,6 +143,8 @@ def main(argv: list[str] | None = None) -> None:
     net, history = train_policy(bundle.progress_model(), cfg)
     settings = policy_settings(cfg, history, time.perf_counter() - t0)
     settings |= {k: v for k, v in bundle.manifest.get("policy", {}).items() if k in ("planner", "threshold")}
+    # which progress model the policy learned to please: a re-trained model makes it stale
+    settings["progress_sha256"] = bundle.manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256", "")
     tensors = {k: v.detach().contiguous() for k, v in net.state_dict().items()}
     write_weights(folder, POLICY_FILE, tensors, "policy", settings)
     t = settings["training"]
