@@ -195,7 +195,11 @@ Check that they load: `python -c "from l2p_bullet.demos import load_session; loa
     l2p-bullet train {name} --demos demos/*.npz --out {module}
 
 This writes `{module}/progress.safetensors` and completes `{module}/manifest.toml` (model, training data
-digest, metrics). Keep the `phrases` line.
+digest, metrics); the phrases stay. The shipped demonstrations of the built-in actions serve as
+negatives. Optionally, train a REINFORCE move policy against the new model (the default planner then
+also proposes the policy's moves; without one it searches without it):
+
+    python -m l2p_bullet.planners.train_policy {name} --bundle {module}
 
 ## 3. Install and use
 
