@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from . import motion
-from .errors import PathError
+from .errors import PathError, ReachError
 from .geometry2d import polygons_overlap
 from .scene import Scene
 from .sim.camera import RenderSettings
@@ -105,8 +105,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         recorder = Recorder(world, camera)
         prims = Primitives(world, recorder)
         stage("reach")
-        offset = motion.grasp_yaw_offset(p, (world.robot.base_xyz[0], world.robot.base_xyz[1]))
-        _check_reach(prims, mover, p, offset)
+        offset = _choose_grasp_yaw(prims, mover, p)
         recorder()
         rest = prims.pose.copy()
         stage("engage")
@@ -147,14 +146,33 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         world.close()
 
 
+def _choose_grasp_yaw(prims, mover: str, path: np.ndarray) -> float:
+    """The grasp yaw (a multiple of 90 deg relative to the block) whose whole slide the arm reaches.
+
+    Candidates come best first from a wrist model; each is checked with IK on the slide's poses every
+    REACH_CHECK_STEP before anything moves. ReachError (the best candidate's) if none works.
+    """
+    base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
+    first_error = None
+    for offset in motion.grasp_yaw_offsets(path, base)[:3]:
+        try:
+            _check_reach(prims, mover, path, offset)
+            return offset
+        except ReachError as e:
+            first_error = first_error or e
+    raise first_error
+
+
 def _check_reach(prims, mover: str, path: np.ndarray, offset: float) -> None:
-    """IK on the slide's poses every REACH_CHECK_STEP before anything moves: ReachError if unreachable."""
+    """IK on the slide's poses (ReachError if one is unreachable), leaving the arm's state as it was."""
     z = prims.grasp_height(mover)
     pts = motion.resample(path, REACH_CHECK_STEP)
     tool = np.column_stack([pts[:, :2], np.full(len(pts), z), pts[:, 2] + offset])
     saved = prims.q.copy()
-    prims.solve(tool, seeds=False)
-    prims.q = saved
+    try:
+        prims.solve(tool)
+    finally:
+        prims.q = saved
 
 
 def _honesty(frames, mover, path, lo, hi, sizes) -> tuple[float, float, float]:

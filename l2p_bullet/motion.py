@@ -156,17 +156,20 @@ def predicted_wrist(xy: np.ndarray, tool_yaw: np.ndarray, base_xy: tuple[float, 
     return math.pi / 4 + az - tool_yaw
 
 
-def grasp_yaw_offset(block_path: np.ndarray, base_xy: tuple[float, float]) -> float:
-    """The tool yaw relative to the block's (a multiple of 90 deg: blocks are square) that keeps the
-    wrist nearest the middle of its range over the whole slide."""
+def grasp_yaw_offsets(block_path: np.ndarray, base_xy: tuple[float, float]) -> list[float]:
+    """Tool yaws relative to the block's (multiples of 90 deg: blocks are square), best first: the one
+    that keeps the predicted wrist angle nearest the middle of its range over the whole slide."""
     p = np.asarray(block_path, float)
-    best, best_cost = 0.0, math.inf
+    costs = []
     for k in (-2, -1, 0, 1, 2):
         off = k * math.pi / 2
-        cost = float(np.max(np.abs(predicted_wrist(p[:, :2], p[:, 2] + off, base_xy))))
-        if cost < best_cost - 1e-9:
-            best, best_cost = off, cost
-    return best
+        costs.append((float(np.max(np.abs(predicted_wrist(p[:, :2], p[:, 2] + off, base_xy)))), abs(k), off))
+    return [off for _, _, off in sorted(costs)]
+
+
+def grasp_yaw_offset(block_path: np.ndarray, base_xy: tuple[float, float]) -> float:
+    """The best of :func:`grasp_yaw_offsets`."""
+    return grasp_yaw_offsets(block_path, base_xy)[0]
 
 
 def resample(path: np.ndarray, step: float) -> np.ndarray:

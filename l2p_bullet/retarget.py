@@ -87,7 +87,6 @@ def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, m
     ws = scene.workspace
     centre = np.array(ws.center)
     clamped = pushed = 0
-    anchor_fp = a_obj.footprint()
     limit = ws.radius - 1e-4
     for k in range(len(fixed)):
         d = fixed[k, :2] - centre
@@ -95,18 +94,54 @@ def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, m
         if r > limit:
             fixed[k, :2] = centre + d * (limit / r)
             clamped += 1
-        away = fixed[k, :2] - a_obj.pose[:2]
-        n = float(np.hypot(*away))
-        away = away / n if n > 1e-9 else np.array([1.0, 0.0])
-        moved = False
-        for _ in range(400):
-            if not polygons_overlap(m_obj.footprint(fixed[k]), anchor_fp, GRIPPER_MARGIN):
-                break
-            fixed[k, :2] += PUSH_STEP * away
-            moved = True
-        pushed += moved
+        pushed += _push_out(fixed[k], m_obj, a_obj)
+    fixed, inserted = _clear_segments(fixed, m_obj, a_obj)
     if not ws.contains(fixed[:, :2]).all():
         raise PathError("the motion cannot be fitted into the workspace around the anchor "
                         f'"{anchor_name}"; move the anchor nearer the table centre')
-    max_fix = float(np.max(np.hypot(*(fixed[:, :2] - path[:, :2]).T)))
-    return Retargeted(fixed, clamped, pushed, max_fix)
+    orig = motion_resample_like(path, fixed)
+    max_fix = float(np.max(np.hypot(*(fixed[:, :2] - orig[:, :2]).T)))
+    return Retargeted(fixed, clamped, pushed + inserted, max_fix)
+
+
+def _push_out(pose: np.ndarray, m_obj, a_obj) -> bool:
+    """Push ``pose`` (in place) straight away from the anchor until the footprints clear the margin."""
+    anchor_fp = a_obj.footprint()
+    away = pose[:2] - a_obj.pose[:2]
+    n = float(np.hypot(*away))
+    away = away / n if n > 1e-9 else np.array([1.0, 0.0])
+    moved = False
+    for _ in range(400):
+        if not polygons_overlap(m_obj.footprint(pose), anchor_fp, GRIPPER_MARGIN):
+            break
+        pose[:2] += PUSH_STEP * away
+        moved = True
+    return moved
+
+
+def _clear_segments(path: np.ndarray, m_obj, a_obj, rounds: int = 6) -> tuple[np.ndarray, int]:
+    """Split segments whose straight sweep touches the anchor (between two clear points) and push
+    their midpoints out; repeat until every segment is clear."""
+    anchor_fp = a_obj.footprint()
+    inserted = 0
+    for _ in range(rounds):
+        out, changed = [path[0]], False
+        for a, b in zip(path[:-1], path[1:], strict=True):
+            if any(polygons_overlap(m_obj.footprint(a + (b - a) * w), anchor_fp, GRIPPER_MARGIN * 0.5)
+                   for w in (0.25, 0.5, 0.75)):
+                mid = (a + b) / 2
+                _push_out(mid, m_obj, a_obj)
+                out.append(mid)
+                inserted += 1
+                changed = True
+            out.append(b)
+        path = np.array(out)
+        if not changed:
+            break
+    return path, inserted
+
+
+def motion_resample_like(original: np.ndarray, fixed: np.ndarray) -> np.ndarray:
+    """For each fixed point, the nearest original point (to measure how far the fix-ups moved it)."""
+    d = np.hypot(fixed[:, None, 0] - original[None, :, 0], fixed[:, None, 1] - original[None, :, 1])
+    return original[np.argmin(d, axis=1)]

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from .. import motion
-from ..errors import ExecutionError
+from ..errors import ExecutionError, ReachError
 from ..smoothing import Limits, Timed, time_parameterise
 from .grasp import Grasp, attach, detach
 
@@ -25,6 +25,7 @@ SLIDE = Limits(velocity=0.1, acceleration=0.5, jerk=5.0, lateral=0.5)
 SETTLE_S = 0.1  # s held still after touching the block and after letting go
 MAX_TILT = math.radians(10.0)  # a held block tilting more than this means the grasp went wrong
 MAX_SLIP = 0.01  # m between where the block is and where the grasp says it is
+MAX_JOINT_JUMP = 0.5  # rad between neighbouring IK samples (<= 1 cm apart), beyond the yaw change: a flip
 
 
 class _NoRecorder:
@@ -51,12 +52,26 @@ class Primitives:
         self.ik_solves = 0
 
     # --- the control loop --------------------------------------------------------------------
-    def solve(self, poses: np.ndarray, seeds: bool = False) -> np.ndarray:
-        """Joint targets (K,7) for tool poses (K,4), each seeded with the previous solution."""
+    def solve(self, poses: np.ndarray, max_jump: float = MAX_JOINT_JUMP) -> np.ndarray:
+        """Joint targets (K,7) for tool poses (K,4), each seeded with the previous solution.
+
+        The arm's other IK seeds are tried only when the previous solution fails to converge; a
+        solution from another seed may sit on another branch, so a joint jump larger than ``max_jump``
+        (plus the yaw change, which the wrist takes) between neighbouring samples (the arm flipping
+        over mid-motion) is a ReachError too.
+        """
         kin, out, q = self.robot.kin, np.empty((len(poses), len(self.q))), self.q
         extra = self.robot.spec.ik_seeds
         for k, p in enumerate(poses):
-            q = kin.solve(p[:3], p[3], q, seeds=extra if (seeds or k == 0) else ())
+            prev = q
+            q = kin.solve(p[:3], p[3], q, seeds=extra)
+            jump = float(np.max(np.abs(q - prev)))
+            turn = abs(float(p[3] - poses[k - 1][3])) if k > 0 else 0.0  # the wrist follows the yaw
+            if k > 0 and jump > max_jump + turn:
+                raise ReachError(
+                    f"the arm would have to flip its configuration to reach ({p[0]:.3f}, {p[1]:.3f}) with "
+                    f"yaw {math.degrees(p[3]):.0f} deg (a {jump:.1f} rad joint jump); keep the path in the "
+                    "middle of the workspace or turn the block less")
             out[k] = q
         self.ik_solves += len(poses)
         return out
