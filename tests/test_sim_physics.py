@@ -13,6 +13,7 @@ from l2p_bullet.errors import PathError, ReachError, UnknownObjectError
 from l2p_bullet.execute import execute_path
 from l2p_bullet.scene import Scene, SceneObject, Workspace, default_scene
 from l2p_bullet.sim.arms import PANDA
+from l2p_bullet.sim.camera import RenderSettings
 from l2p_bullet.sim.robot import Kinematics
 
 
@@ -90,12 +91,14 @@ def test_two_runs_give_identical_trajectory_json(tmp_path):
         calls.append(len(m))
         return np.linspace(0, 1, len(m))
 
-    for name in ("one", "two"):
+    # The third run renders: the arm is then loaded with its visual meshes, which must not change physics.
+    for name, render in (("one", None), ("two", None), ("three", RenderSettings(width=80, height=60, fps=2))):
         (tmp_path / name).mkdir()
-        execute_path(scene, "A", _short_path(scene), out_dir=tmp_path / name, render=None,
+        execute_path(scene, "A", _short_path(scene), out_dir=tmp_path / name, render=render,
                      progress_fn=progress, meta={"anchor": "B", "action": "closer"})
-    one, two = ((tmp_path / n / "trajectory.json").read_bytes() for n in ("one", "two"))
-    assert one == two
+    one, two, three = ((tmp_path / n / "trajectory.json").read_bytes() for n in ("one", "two", "three"))
+    assert one == two == three
+    assert (tmp_path / "three" / "video.mp4").exists() and not (tmp_path / "one" / "video.mp4").exists()
     frames = json.loads(one)["frames"]
     assert calls[0] == len(frames) and frames[-1]["progress"] == 1.0
 

@@ -93,7 +93,8 @@ class Primitives:
         self.pose = timed.poses[-1].copy()
 
     def _control_samples(self, timed: Timed) -> np.ndarray:
-        """Re-time at the control period (timing is done at that period already: see go/slide)."""
+        """The samples the arm is sent to: all but the first, which is where the tool already is
+        (chunks are timed at the control period, see go and move)."""
         return timed.poses[1:] if len(timed.poses) > 1 else timed.poses
 
     def hold(self, seconds: float) -> None:
