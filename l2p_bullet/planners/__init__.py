@@ -45,7 +45,7 @@ DEFAULT = "mixed"
 THRESHOLD = 0.9
 """Stop when the learned progress reaches this (the models rise to about 1 at an event's end)."""
 
-BUDGETS = {"greedy": 40, "beam": 15, "discrete": 30, "reinforce": 30, "mixed": 30}
+BUDGETS = {"greedy": 40, "beam": 15, "discrete": 30, "reinforce": 30, "mixed": 20}
 """Default step budgets (a step = one batch of candidates scored in one forward pass)."""
 
 CANDIDATES = {"greedy": 32, "beam": 48, "discrete": 0, "reinforce": 16, "mixed": 16}
@@ -90,8 +90,21 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
         problem.deadline = time.perf_counter() + time_limit
     with _one_thread():
         node, stopped, steps = _search(name, problem, bundle)
-    return finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
-                  stopped=stopped, steps=steps)
+    result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
+                    stopped=stopped, steps=steps)
+    if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
+        result.extra["note"] = ("the bundle's policy was trained against another progress model: "
+                                "re-train it (python -m l2p_bullet.planners.train_policy)")
+    return result
+
+
+def _policy_is_stale(bundle) -> bool:
+    """The policy records the digest of the progress model it learned to please; a re-trained model
+    leaves it usable (it only proposes moves) but no longer tuned."""
+    manifest = getattr(bundle, "manifest", {}) or {}
+    trained = manifest.get("policy", {}).get("progress_sha256")
+    current = manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256")
+    return bool(trained and current and trained != current)
 
 
 @contextmanager

@@ -46,17 +46,19 @@ def discrete_targets(problem: Problem) -> np.ndarray:
     return xy.reshape(-1, 2)
 
 
-def _discrete_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
-    """Every cell of the discrete space, twice: keeping the mover's yaw and squared up with the anchor.
+def _discrete_moves(problem: Problem, node: Node, n: int = 0, squared_within: float = np.inf) -> np.ndarray:
+    """Every cell of the discrete space keeping the mover's yaw, and again squared up with the anchor.
 
-    ``n`` is ignored (the set is fixed). Cells the mover already stands in are dropped (a move must move).
+    ``n`` is ignored (the set is fixed). ``squared_within`` (blocks) limits the squared-up copies to the
+    inner rings, where alignment matters (face to face); cells the mover stands in are dropped.
     """
     xy = discrete_targets(problem)
     xy = xy[np.hypot(*(xy - node.pose[:2]).T) > 0.25 * problem.size]
     quarter = np.pi / 2
     square = node.pose[2] + ((problem.anchor_pose[2] - node.pose[2] + quarter / 2) % quarter - quarter / 2)
-    out = np.empty((2 * len(xy), 3))
-    out[:, :2] = np.vstack([xy, xy])
+    inner = xy[np.hypot(*(xy - problem.anchor_pose[:2]).T) <= squared_within * problem.size + 1e-9]
+    out = np.empty((len(xy) + len(inner), 3))
+    out[:, :2] = np.vstack([xy, inner])
     out[: len(xy), 2] = node.pose[2]
     out[len(xy):, 2] = square
     return out
@@ -81,7 +83,7 @@ class MixedProposer:
         self.random_share = random_share
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
-        parts = [discrete_moves(problem, node), random_moves(problem, node, self.random_share)]
+        parts = [discrete_moves(problem, node, squared_within=1.75), random_moves(problem, node, self.random_share)]
         if self.policy is not None:
             parts.append(self.policy(problem, node, n))
         return np.vstack(parts)
