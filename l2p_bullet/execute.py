@@ -22,7 +22,6 @@ from .sim.camera import RenderSettings
 
 START_TOLERANCE = 0.003  # m: a path must start where its block is
 DEFAULT_RENDER = RenderSettings()
-REACH_CHECK_STEP = 0.01  # m between the slide poses whose IK is checked before simulating
 
 
 @dataclass
@@ -149,8 +148,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
 def _choose_grasp_yaw(prims, mover: str, path: np.ndarray) -> float:
     """The grasp yaw (a multiple of 90 deg relative to the block) whose whole slide the arm reaches.
 
-    Candidates come best first from a wrist model; each is checked with IK on the slide's poses every
-    REACH_CHECK_STEP before anything moves. ReachError (the best candidate's) if none works.
+    Candidates come best first from a wrist model; each is checked by solving the slide's IK at the
+    control rate before anything moves. ReachError (the best candidate's) if none works.
     """
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
     first_error = None
@@ -164,15 +163,8 @@ def _choose_grasp_yaw(prims, mover: str, path: np.ndarray) -> float:
 
 
 def _check_reach(prims, mover: str, path: np.ndarray, offset: float) -> None:
-    """IK on the slide's poses (ReachError if one is unreachable), leaving the arm's state as it was."""
-    z = prims.grasp_height(mover)
-    pts = motion.resample(path, REACH_CHECK_STEP)
-    tool = np.column_stack([pts[:, :2], np.full(len(pts), z), pts[:, 2] + offset])
-    saved = prims.q.copy()
-    try:
-        prims.solve(tool)
-    finally:
-        prims.q = saved
+    """Approach, descent and slide IK, as the arm will run them (ReachError), before anything moves."""
+    prims.check_engage_and_slide(mover, path, offset)
 
 
 def _honesty(frames, mover, path, lo, hi, sizes) -> tuple[float, float, float]:

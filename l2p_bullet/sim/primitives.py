@@ -28,6 +28,29 @@ MAX_SLIP = 0.01  # m between where the block is and where the grasp says it is
 MAX_JOINT_JUMP = 0.5  # rad between neighbouring IK samples (<= 1 cm apart), beyond the yaw change: a flip
 
 
+def tool_targets(block_poses: np.ndarray, yaw_offset: float, z: float,
+                 offset_xy: np.ndarray = (0.0, 0.0)) -> np.ndarray:
+    """Tool poses (M,4) holding a block at ``block_poses`` (M,3): tool = block + offset (block frame)."""
+    c, s = np.cos(block_poses[:, 2]), np.sin(block_poses[:, 2])
+    x = block_poses[:, 0] + c * offset_xy[0] - s * offset_xy[1]
+    y = block_poses[:, 1] + s * offset_xy[0] + c * offset_xy[1]
+    return np.column_stack([x, y, np.full(len(x), z), block_poses[:, 2] + yaw_offset])
+
+
+def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits) -> Timed:
+    """A timed straight tool move; the yaw turns the short way round."""
+    target = np.asarray(target, float).copy()
+    target[3] = start[3] + (target[3] - start[3] + math.pi) % (2 * math.pi) - math.pi
+    return time_parameterise(motion.line(start, target), limits, 1.0 / CONTROL_HZ)
+
+
+def slide_plan(path: np.ndarray, yaw_offset: float, z: float,
+               offset_xy: np.ndarray = (0.0, 0.0)) -> list[Timed]:
+    """The timed tool chunks of a slide: corners rounded or stopped at (motion.py), ruckig timing."""
+    return [time_parameterise(tool_targets(ch, yaw_offset, z, offset_xy), SLIDE, 1.0 / CONTROL_HZ)
+            for ch in motion.slide_chunks(path)]
+
+
 class _NoRecorder:
     grasped: str | None = None
 
@@ -57,17 +80,20 @@ class Primitives:
 
         The arm's other IK seeds are tried only when the previous solution fails to converge; a
         solution from another seed may sit on another branch, so a joint jump larger than ``max_jump``
-        (plus the yaw change, which the wrist takes) between neighbouring samples (the arm flipping
-        over mid-motion) is a ReachError too.
+        between neighbouring samples (the arm flipping over mid-motion) is a ReachError too; the
+        wrist's share of the yaw change does not count as a jump.
         """
         kin, out, q = self.robot.kin, np.empty((len(poses), len(self.q))), self.q
         extra = self.robot.spec.ik_seeds
+        wrist = self.robot.spec.arm_joints.index(self.robot.spec.wrist_joint)
         for k, p in enumerate(poses):
             prev = q
             q = kin.solve(p[:3], p[3], q, seeds=extra)
-            jump = float(np.max(np.abs(q - prev)))
-            turn = abs(float(p[3] - poses[k - 1][3])) if k > 0 else 0.0  # the wrist follows the yaw
-            if k > 0 and jump > max_jump + turn:
+            step = np.abs(q - prev)
+            turn = abs(float(p[3] - poses[k - 1][3])) if k > 0 else 0.0
+            step[wrist] = max(0.0, step[wrist] - turn)  # the wrist follows the yaw: only its excess counts
+            jump = float(step.max())
+            if k > 0 and jump > max_jump:
                 raise ReachError(
                     f"the arm would have to flip its configuration to reach ({p[0]:.3f}, {p[1]:.3f}) with "
                     f"yaw {math.degrees(p[3]):.0f} deg (a {jump:.1f} rad joint jump); keep the path in the "
@@ -76,10 +102,10 @@ class Primitives:
         self.ik_solves += len(poses)
         return out
 
-    def run(self, timed: Timed, stage: str) -> None:
-        """Track a timed tool path: IK at the control rate first, then the physics steps."""
-        poses = self._control_samples(timed)
-        joints = self.solve(poses)
+    def run(self, timed: Timed, stage: str, joints: np.ndarray | None = None) -> None:
+        """Track a timed tool path: IK at the control rate first (unless given), then the physics steps."""
+        if joints is None:
+            joints = self.solve(self._control_samples(timed))
         self.timed.append((stage, timed))
         prev = self.q
         n = self.steps_per_control
@@ -105,15 +131,19 @@ class Primitives:
 
     def go(self, target: np.ndarray, limits: Limits, stage: str) -> None:
         """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
-        target = np.asarray(target, float).copy()
-        target[3] = self.pose[3] + (target[3] - self.pose[3] + math.pi) % (2 * math.pi) - math.pi  # short way
-        timed = time_parameterise(motion.line(self.pose, target), limits, 1.0 / CONTROL_HZ)
-        self.run(timed, stage)
+        self.run(line_plan(self.pose, target, limits), stage)
 
     # --- the primitives ----------------------------------------------------------------------
     def grasp_height(self, name: str) -> float:
         """Tool height with the closed fingertips just touching the block's top."""
         return self.world.sizes[name] + self.robot.drop
+
+    def grasp_poses(self, name: str, yaw_offset: float) -> tuple[np.ndarray, np.ndarray]:
+        """Tool poses above block ``name`` and with the fingertips on its top."""
+        block = self.world.pose(name)
+        z = self.grasp_height(name)
+        down = np.array([block[0], block[1], z, block[3] + yaw_offset])
+        return down + [0.0, 0.0, HOVER, 0.0], down
 
     def engage(self, name: str, yaw_offset: float = 0.0) -> Grasp:
         """Approach ``name`` from above, descend until the closed fingers rest on its top, fix it.
@@ -123,11 +153,9 @@ class Primitives:
         """
         if self.grasp is not None:
             raise ExecutionError(f'already holding "{self.grasp.name}"; disengage first')
-        block = self.world.pose(name)
-        z = self.grasp_height(name)
-        yaw = block[3] + yaw_offset
-        self.go([block[0], block[1], z + HOVER, yaw], APPROACH, "approach")
-        self.go([block[0], block[1], z, yaw], DESCEND, "descend")
+        above, down = self.grasp_poses(name, yaw_offset)
+        self.go(above, APPROACH, "approach")
+        self.go(down, DESCEND, "descend")
         self.hold(SETTLE_S)
         self.grasp = attach(self.world, name)
         self.recorder.grasped = name
@@ -136,23 +164,45 @@ class Primitives:
     def tool_targets(self, block_poses: np.ndarray) -> np.ndarray:
         """Tool poses (M,4) that put the held block at ``block_poses`` (M,3), at the locked height."""
         g = self.grasp
-        c, s = np.cos(block_poses[:, 2]), np.sin(block_poses[:, 2])
-        x = block_poses[:, 0] + c * g.offset_xy[0] - s * g.offset_xy[1]
-        y = block_poses[:, 1] + s * g.offset_xy[0] + c * g.offset_xy[1]
-        return np.column_stack([x, y, np.full(len(x), g.tool_z), block_poses[:, 2] + g.yaw_offset])
+        return tool_targets(block_poses, g.yaw_offset, g.tool_z, g.offset_xy)
+
+    def slide_joints(self, timed: list[Timed]) -> list[np.ndarray]:
+        """IK for every control sample of a whole slide, continuous across its chunks, per chunk."""
+        samples = [self._control_samples(t) for t in timed]
+        if not samples:
+            return []
+        joints = self.solve(np.concatenate(samples))
+        return np.split(joints, np.cumsum([len(s) for s in samples])[:-1])
+
+    def check_engage_and_slide(self, name: str, path: np.ndarray, yaw_offset: float) -> None:
+        """Solve the IK of the approach, descent and slide exactly as :meth:`engage` and :meth:`move`
+        will (same chunks, timing and seeds, nominal grasp height) without moving anything, so an
+        unreachable pose is a ReachError now rather than halfway through. The arm's state is kept."""
+        saved_q, saved_pose = self.q.copy(), self.pose.copy()
+        try:
+            above, down = self.grasp_poses(name, yaw_offset)
+            for target, limits in ((above, APPROACH), (down, DESCEND)):
+                timed = line_plan(self.pose, target, limits)
+                self.q = self.solve(self._control_samples(timed))[-1]
+                self.pose = timed.poses[-1].copy()
+            p = motion.clean_path(path)
+            p[:, 2] += 2 * math.pi * round((self.pose[3] - yaw_offset - p[0, 2]) / (2 * math.pi))
+            self.slide_joints(slide_plan(p, yaw_offset, float(down[2])))
+        finally:
+            self.q, self.pose = saved_q, saved_pose
 
     def move(self, path: np.ndarray) -> None:
         """Slide the held block along ``path`` (N,3) on the table, the grasp height locked."""
         if self.grasp is None:
             raise ExecutionError("move() needs a grasped block: engage(obj) first")
+        g = self.grasp
         path = motion.clean_path(path)
         # Continue the tool's yaw without a turn: shift the path's yaw by whole turns to match.
-        turns = round((self.pose[3] - self.grasp.yaw_offset - path[0, 2]) / (2 * math.pi))
+        turns = round((self.pose[3] - g.yaw_offset - path[0, 2]) / (2 * math.pi))
         path[:, 2] += 2 * math.pi * turns
-        chunks = motion.slide_chunks(path)
-        timed = [time_parameterise(self.tool_targets(ch), SLIDE, 1.0 / CONTROL_HZ) for ch in chunks]
-        for t in timed:
-            self.run(t, "slide")
+        timed = slide_plan(path, g.yaw_offset, g.tool_z, g.offset_xy)
+        for t, joints in zip(timed, self.slide_joints(timed), strict=True):  # all IK before moving
+            self.run(t, "slide", joints)
             self.check_grasp()
 
     def check_grasp(self) -> None:
