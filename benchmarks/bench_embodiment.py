@@ -43,9 +43,9 @@ def project_run(render):
     captured: list[tuple[str, np.ndarray]] = []
     original = primitives.Primitives.run
 
-    def spy(self, timed, stage):
+    def spy(self, timed, stage, joints=None):
         captured.append((stage, self._control_samples(timed)))
-        return original(self, timed, stage)
+        return original(self, timed, stage, joints)
 
     primitives.Primitives.run = spy
     try:
