@@ -24,8 +24,10 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--height", type=int, default=240, show_default=True, help="Frame height in pixels.")
 @click.option("--render-fps", type=float, default=10.0, show_default=True,
               help="Rendered frames per second of simulated time.")
+@click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
+              help="Video format written next to the frames.")
 def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_render, renderer, width, height,
-           render_fps):
+           render_fps, video):
     """Execute a 2-D motion of a block with the arm in PyBullet.
 
     \b
@@ -48,7 +50,7 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     scene = load_scene_or_default(scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
     folder = prepare_run_folder(out, force=force, prefix="replay")
-    render = None if no_render else RenderSettings(width, height, render_fps, renderer)
+    render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
     ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
