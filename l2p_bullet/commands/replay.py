@@ -20,9 +20,9 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--no-render", is_flag=True, help="Skip images and video (much faster).")
 @click.option("--renderer", type=click.Choice(["tiny", "egl"]), default="tiny", show_default=True,
               help="tiny: deterministic CPU renderer; egl: faster where the plugin loads.")
-@click.option("--width", type=int, default=320, show_default=True, help="Frame width in pixels.")
-@click.option("--height", type=int, default=240, show_default=True, help="Frame height in pixels.")
-@click.option("--render-fps", type=float, default=10.0, show_default=True,
+@click.option("--width", type=click.IntRange(16, 4096), default=320, show_default=True, help="Frame width in pixels.")
+@click.option("--height", type=click.IntRange(16, 4096), default=240, show_default=True, help="Frame height in pixels.")
+@click.option("--render-fps", type=click.FloatRange(0.1, 240.0), default=10.0, show_default=True,
               help="Rendered frames per second of simulated time.")
 @click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
               help="Video format written next to the frames.")
