@@ -38,6 +38,10 @@ class DataConfig:
     (blocks keep their size): people graded motions that start farther than the captures ever did.
     Not for "next-to", whose end state is a fixed distance."""
     scale_range: tuple[float, float] = (0.75, 1.7)
+    twisted_per_demo: int = 2
+    twist_actions: tuple[str, ...] = ("closer", "away", "next-to")
+    twist_max_deg: float = 100.0
+    """Copies of these actions' positives whose bearing drifts by up to this angle (see ``_twist``)."""
     random_negatives: int = 300
     static_negatives: int = 40
     """Motions that stand still (tracking jitter only): progress must not rise for doing nothing."""
@@ -56,9 +60,11 @@ class DataConfig:
     """Whose demonstrations are negatives for each action (similar pairs are left out on purpose)."""
 
     def to_dict(self) -> dict:
-        d = {f: getattr(self, f) for f in ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo",
-                                           "random_negatives", "static_negatives", "negative_tail", "negative_weight")}
-        return {**d, "scale_range": list(self.scale_range), "negatives": dict(self.negatives)}
+        keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",
+                "twist_max_deg", "random_negatives", "static_negatives", "negative_tail", "negative_weight")
+        d = {k: getattr(self, k) for k in keys}
+        return {**d, "scale_range": list(self.scale_range), "twist_actions": list(self.twist_actions),
+                "negatives": dict(self.negatives)}
 
 
 @dataclass
@@ -112,13 +118,45 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     return Sequence(x, y.astype(np.float32), positive=True, end=k_end)
 
 
-def _polyline(demo_m: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """Replace a motion by straight moves between 0-3 of its own intermediate poses (dense frames)."""
-    n_mid = int(rng.integers(0, 4))
-    ks = np.sort(rng.choice(np.arange(1, len(demo_m) - 1), size=min(n_mid, len(demo_m) - 2), replace=False))
-    way = demo_m[np.concatenate([[0], ks, [len(demo_m) - 1]]).astype(int)]
-    return np.concatenate([np.linspace(way[i], way[i + 1], 20, endpoint=i == len(way) - 2)
-                           for i in range(len(way) - 1)])
+def _sweep(m: np.ndarray, c: np.ndarray) -> float:
+    d = m[:, :2] - c[:2]
+    ang = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    return float(ang[-1] - ang[0])
+
+
+def _polyline(demo_m: np.ndarray, c: np.ndarray, rng: np.random.Generator,
+              tol: float = np.radians(30)) -> np.ndarray | None:
+    """Replace a motion by straight moves between 0-3 of its own intermediate poses (dense frames).
+
+    The angle swept around the anchor (at ``c``) must stay within ``tol`` of the original's: an "around"
+    cut down to one straight hop would teach that a short hop is an around. None if no try keeps it.
+    """
+    target = _sweep(demo_m, c)
+    for _ in range(8):
+        n_mid = int(rng.integers(0, 4))
+        ks = np.sort(rng.choice(np.arange(1, len(demo_m) - 1), size=min(n_mid, len(demo_m) - 2), replace=False))
+        way = demo_m[np.concatenate([[0], ks, [len(demo_m) - 1]]).astype(int)]
+        poly = np.concatenate([np.linspace(way[i], way[i + 1], 20, endpoint=i == len(way) - 2)
+                               for i in range(len(way) - 1)])
+        if abs(_sweep(poly, c) - target) < tol:
+            return poly
+    return None
+
+
+def _twist(m: np.ndarray, c: np.ndarray, angle: float) -> np.ndarray:
+    """Rotate the mover about the anchor progressively (``angle`` at the start, 0 at the end, by arc
+    length): distances and the end state are unchanged, so "closer"/"away"/"next to" stay what they
+    were while the bearing drifts. People graded sweeping motions as good; the captures are almost radial."""
+    step = np.linalg.norm(np.diff(m[:, :2], axis=0), axis=1)
+    frac = np.concatenate([[0.0], np.cumsum(step)]) / max(step.sum(), 1e-9)
+    phi = angle * (1.0 - frac)
+    cs, sn = np.cos(phi), np.sin(phi)
+    d = m[:, :2] - c[:2]
+    out = m.copy()
+    out[:, 0] = c[0] + cs * d[:, 0] - sn * d[:, 1]
+    out[:, 1] = c[1] + sn * d[:, 0] + cs * d[:, 1]
+    out[:, 2] = m[:, 2] + phi
+    return out
 
 
 def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
@@ -175,18 +213,22 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
             seqs.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True))
             seqs.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True))
             ev_m, ev_a = mm[d.start:d.end + 1], aa[d.start:d.end + 1]
-            for _ in range(dcfg.polylines_per_demo):
-                pm = _polyline(ev_m, rng)
-                pa = np.repeat(ev_a.mean(axis=0)[None], len(pm), axis=0)
-                seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True))
+            c = ev_a.mean(axis=0)
+            variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
             for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
-                f = rng.uniform(*dcfg.scale_range)
-                pm = _polyline(ev_m, rng) if rng.random() < 0.5 else ev_m
-                c = ev_a.mean(axis=0)
-                sm = pm.copy()
-                sm[:, :2] = c[:2] + (pm[:, :2] - c[:2]) * f
-                pa = np.repeat(c[None], len(sm), axis=0)
-                seqs.append(_labelled(sm, pa, d.size, 0, len(sm) - 1, qcfg, dcfg, True))
+                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                if pm is not None:
+                    pm = pm.copy()
+                    pm[:, :2] = c[:2] + (pm[:, :2] - c[:2]) * rng.uniform(*dcfg.scale_range)
+                variants.append(pm)
+            for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions else 0):
+                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
+                variants.append(None if pm is None else _twist(pm, c, angle))
+            for pm in variants:
+                if pm is not None:
+                    pa = np.repeat(c[None], len(pm), axis=0)
+                    seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True))
     n_pos = len(seqs)
     neg: list[Sequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):

@@ -104,6 +104,12 @@ def test_wrong_shape_is_refused(bundle_copy):
 
 
 def test_write_weights_adds_a_policy(bundle_copy):
+    # start from a bundle without a policy (the shipped ones have one since the planning issue)
+    man = tomllib.loads((bundle_copy / MANIFEST).read_text())
+    man["weights"].pop(POLICY_FILE, None)
+    man.pop("policy", None)
+    (bundle_copy / MANIFEST).write_text(tomli_w.dumps(man))
+    (bundle_copy / POLICY_FILE).unlink(missing_ok=True)
     assert load_bundle(bundle_copy).policy_tensors() is None
     tensors = {"mean.weight": torch.arange(6.0).reshape(2, 3), "log_std": torch.zeros(3)}
     write_weights(bundle_copy, POLICY_FILE, tensors, "policy", {"planner": "reinforce", "steps": 20})

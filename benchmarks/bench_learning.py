@@ -1,0 +1,116 @@
+"""Learning benchmark: training time, scoring throughput, session-split evaluation, agreement with people.
+
+Prints (tables in Markdown, pasted into docs/learning.md):
+1. training time per action (the shipped bundles' settings, all demonstrations);
+2. scoring throughput of the shipped bundles, sequences/s at batch 1 and 256, for random paths and
+   for planner-style candidates that extend one shared path;
+3. the honest session split (train on one person, test on the other, both ways): held-out MSE, final
+   progress on the same action's held-out demonstrations and the 5x5 discrimination matrix;
+4. Spearman(final progress, mean human grade) per graded folder, for the shipped bundles (trained on
+   all human demonstrations, never on grades) and for the session-split models' ensemble.
+
+    .venv/bin/python benchmarks/bench_learning.py            # everything (~10-20 min on 2 busy cores)
+    .venv/bin/python benchmarks/bench_learning.py --quick    # 1 LSTM x 10 epochs per model
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import time
+
+import numpy as np
+import torch
+
+from l2p_bullet.bundle import builtin_bundle_dir, load_bundle
+from l2p_bullet.demos import ACTIONS
+from l2p_bullet.evaluation import graded_agreement, graded_motions, session_split
+from l2p_bullet.train import TrainConfig, all_demos, train_action
+
+
+def throughput(model, batch: int, shared_prefix: bool, repeats: int = 5) -> float:
+    rng = np.random.default_rng(0)
+    size = 0.05
+    base = np.cumsum(np.concatenate([[[0.2, 0.1, 0]], rng.normal(0, 0.02, (20, 3))]), axis=0)
+    if shared_prefix:  # the planner's candidates: the path so far plus one new move each
+        movers = [np.concatenate([base, base[-1] + np.linspace(0, 1, 5)[1:, None] * rng.normal(0, 0.04, 3)])
+                  for _ in range(batch)]
+    else:
+        movers = [np.cumsum(np.concatenate([[[0.2, 0.1, 0]], rng.normal(0, 0.02, (20, 3))]), axis=0)
+                  for _ in range(batch)]
+    model.final_batch(movers, np.zeros(3), size)  # warm-up
+    t = time.perf_counter()
+    for _ in range(repeats):
+        model.final_batch(movers, np.zeros(3), size)
+    return batch * repeats / (time.perf_counter() - t)
+
+
+def fmt_matrix(m: np.ndarray) -> str:
+    lines = ["| model \\ demos | " + " | ".join(ACTIONS) + " |", "|---" * (len(ACTIONS) + 1) + "|"]
+    for i, a in enumerate(ACTIONS):
+        lines.append(f"| {a} | " + " | ".join(f"{v:.2f}" for v in m[i]) + " |")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true", help="1 LSTM x 10 epochs per model (smoke run)")
+    ap.add_argument("--skip-split", action="store_true", help="skip the session split (10 trainings)")
+    args = ap.parse_args()
+    cfg = TrainConfig()
+    if args.quick:
+        cfg = dataclasses.replace(cfg, ensemble=1, epochs=10)
+    torch.set_num_threads(1)
+
+    print(f"## Training time (all demonstrations, {cfg.ensemble} LSTMs x {cfg.epochs} epochs, 1 thread)\n")
+    demos = all_demos()
+    print("| action | seconds | sequences |\n|---|---|---|")
+    total = 0.0
+    for a in ACTIONS:
+        r = train_action(a, demos, cfg=cfg)
+        total += r.seconds
+        print(f"| {a} | {r.seconds:.1f} | {r.n_sequences} |", flush=True)
+    print(f"| all five | {total:.1f} | |\n")
+
+    print("## Scoring throughput of the shipped bundles (sequences/s, 21-move paths, ~80 frames)\n")
+    print("| action | batch 1 | batch 256 random | batch 256 shared prefix (planner) | ms per 256-call |")
+    print("|---|---|---|---|---|")
+    models = {a: load_bundle(builtin_bundle_dir(a)).progress_model() for a in ACTIONS}
+    for a, m in models.items():
+        b1 = throughput(m, 1, False, repeats=20)
+        br = throughput(m, 256, False)
+        bs = throughput(m, 256, True)
+        print(f"| {a} | {b1:.0f} | {br:.0f} | {bs:.0f} | {256e3 / bs:.0f} |", flush=True)
+    print()
+
+    motions = graded_motions()
+    ga = graded_agreement(models, motions)
+    print("## Agreement with people: Spearman(final progress, mean grade), 15 graded demos each\n")
+    print("| folder | action | shipped bundle |\n|---|---|---|")
+    for folder, v in ga.items():
+        print(f"| {folder} | {_action(folder)} | {v['spearman']:.2f} |")
+    five = [v["spearman"] for f, v in ga.items() if f != "SlideAroundDiscrete"]
+    print(f"| mean of the five actions | | {np.mean(five):.2f} |")
+    print(f"| mean of all six folders | | {np.mean([v['spearman'] for v in ga.values()]):.2f} |\n")
+
+    if args.skip_split:
+        return
+    print("## Session split (train on one person's session, test on the other's; mean of both ways)\n")
+    rep = session_split(cfg, on_model=lambda a, s, t: print(f"  trained {a} on {s} in {t:.1f} s", flush=True))
+    print("\n| action | held-out MSE | final, same action (with context) | final, event only |")
+    print("|---|---|---|---|")
+    for a in ACTIONS:
+        print(f"| {a} | {rep.mse[a]:.4f} | {rep.final_same[a]:.2f} | {rep.final_event_only[a]:.2f} |")
+    print("\nDiscrimination matrix: row = model, column = held-out demonstrations of that action "
+          "(final progress; the diagonal should be high, the rest low)\n")
+    print(fmt_matrix(rep.matrix))
+
+
+def _action(folder: str) -> str:
+    from l2p_bullet.evaluation import GRADED_FOLDERS
+
+    return GRADED_FOLDERS[folder]
+
+
+if __name__ == "__main__":
+    main()
