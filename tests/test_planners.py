@@ -157,3 +157,19 @@ def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
     move = np.array([[0.5, 1.0, 0.2]])
     a, b = to_poses(move, path[-1:], np.zeros(3), 0.05, h1), to_poses(move, mirror[-1:], np.zeros(3), 0.05, h2)
     assert np.allclose(a * np.array([1, -1, -1]), b)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("action", ["closer", "away", "next-to", "past", "around"])
+def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
+    """The real bundles (progress model + policy) through the default planner: legal, dense, repeatable."""
+    from l2p_bullet import registry
+
+    bundle = registry.load(action)
+    scene = random_scene(11)
+    a = plan(scene, "A", "B", bundle, seed=4)
+    b = plan(scene, "A", "B", bundle, seed=4)
+    _assert_executable(a, scene)
+    assert np.array_equal(a.path, b.path) and a.planner == "mixed" and a.stopped in ("threshold", "budget")
+    assert "note" not in a.extra  # the shipped policy was trained against the shipped progress model
+    assert a.extra["final_progress"] > 0.5
