@@ -171,5 +171,7 @@ def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     b = plan(scene, "A", "B", bundle, seed=4)
     _assert_executable(a, scene)
     assert np.array_equal(a.path, b.path) and a.planner == "mixed" and a.stopped in ("threshold", "budget")
-    assert "note" not in a.extra  # the shipped policy was trained against the shipped progress model
+    assert "note" not in a.extra, (f"{action}: the bundle's policy.safetensors was trained against another "
+                                   "progress model; re-train it (make bundles, or python -m "
+                                   f"l2p_bullet.planners.train_policy {action})")
     assert a.extra["final_progress"] > 0.5
