@@ -42,7 +42,7 @@ def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -
     r = ws.radius * 1.05
     ax.set(xlim=(ws.center[0] - r, ws.center[0] + r), ylim=(ws.center[1] - r, ws.center[1] + r),
            aspect="equal", xlabel="x (m)", ylabel="y (m)",
-           title=f"move {plan.mover} {plan.action} {plan.anchor} ({plan.planner})")
+           title=f"{plan.extra.get('sentence') or f'{plan.mover} {plan.action} {plan.anchor}'} ({plan.planner})")
     axp.plot(np.arange(len(plan.progress)), plan.progress, "-", color=rgb)
     axp.axhline(float(plan.extra.get("threshold", 0.9)), ls=":", color="0.5", label="threshold")
     axp.set(ylim=(-0.02, 1.02), xlabel="path point", ylabel="learned progress",
