@@ -19,8 +19,11 @@ SEARCHES = ["greedy", "beam", "discrete", "mixed"]
 
 
 def _assert_executable(p, scene):
+    from l2p_bullet.sim2d import World2D
+
     mover, anchor = scene.get(p.mover), scene.get(p.anchor)
     assert np.allclose(p.path[0], mover.pose)
+    assert World2D(scene, p.mover).path_free(np.array(p.extra["waypoints"]))  # every straight move, swept
     assert len(p.progress) == len(p.path)
     assert np.all(np.hypot(*(p.path[:, :2] - np.array(scene.workspace.center)).T) <= scene.workspace.radius + 1e-9)
     for pose in p.path:

@@ -16,7 +16,7 @@ from typing import Protocol
 import numpy as np
 
 from ..paths import Plan
-from ..sim2d import World2D, interpolate, segment_frames
+from ..sim2d import World2D, segment_frames
 
 FRAME_STEP = 0.25
 """Frames are spaced this many block sizes apart along a move (the progress models' arc-length grid)."""
@@ -142,7 +142,3 @@ def finish(problem: Problem, node: Node, *, action: str, mover: str, anchor: str
         },
     )
 
-
-def dense(waypoints: np.ndarray, size: float) -> np.ndarray:
-    """Frames of a waypoint path on the planners' grid (for callers that only kept waypoints)."""
-    return interpolate(waypoints, FRAME_STEP * size)
