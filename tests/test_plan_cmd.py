@@ -58,3 +58,14 @@ def test_an_unknown_planner_is_a_one_line_error_listing_the_planners(fake_action
     assert r.exit_code == 2
     assert "unknown planner" in r.output and "greedy, beam, discrete, reinforce, mixed, default" in r.output
     assert not (tmp_path / "x").exists()
+
+
+def test_budget_and_threshold_reach_the_planner(fake_actions, tmp_path):
+    out = tmp_path / "run"
+    r = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(out), "--planner", "greedy",
+                                  "--budget", "2", "--threshold", "0.999"])
+    assert r.exit_code == 0, r.output
+    plan = json.loads((out / "plan.json").read_text())
+    assert plan["stopped"] == "budget" and plan["steps"] == 2 and plan["threshold"] == 0.999
+    bad = CliRunner().invoke(main, ["plan", "move A around B", "--threshold", "2"])
+    assert bad.exit_code == 2 and "threshold" in bad.output

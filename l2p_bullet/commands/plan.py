@@ -14,11 +14,14 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
               help="greedy, beam, discrete, reinforce or default (the action's preferred one).")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: runs/plan-<time>).")
-@click.option("--budget", type=int, default=None, help="Search steps at most (default: the planner's).")
+@click.option("--budget", type=click.IntRange(min=1), default=None,
+              help="Search steps at most (default: the planner's).")
+@click.option("--threshold", type=click.FloatRange(0.0, 1.0), default=None,
+              help="Stop when the learned progress reaches this (default: 0.9 or the bundle's).")
 @seed_option
 @force_option
 def plan_command(sentence: str, scene_path: str | None, planner: str, out: str | None, budget: int | None,
-                 seed: int, force: bool) -> None:
+                 threshold: float | None, seed: int, force: bool) -> None:
     """Plan SENTENCE (e.g. "move A around B") in 2-D and write plan.json and a plot.
 
     \b
@@ -37,7 +40,8 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     scene = load_scene_or_default(scene_path)
     cmd = language.parse(sentence, scene, registry.phrase_table())
     bundle = registry.load(cmd.action)
-    result = plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget)
+    result = plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
+                  threshold=threshold)
     result.extra.setdefault("sentence", sentence)
     verdict = evaluate(cmd.action, result.path, result.anchor_pose, result.size)
     result.extra["verdict"] = {"success": verdict.success, "score": round(verdict.score, 4), "reason": verdict.reason}
