@@ -45,6 +45,32 @@ def throughput(model, batch: int, shared_prefix: bool, repeats: int = 5) -> floa
     return batch * repeats / (time.perf_counter() - t)
 
 
+def probes() -> dict[str, np.ndarray]:
+    """Motions a planner maximising progress could exploit, and plain instances for contrast (blocks)."""
+    rng = np.random.default_rng(0)
+
+    def line(p0, p1, n=40):
+        return np.linspace(np.r_[p0, 0.0], np.r_[p1, 0.0], n)
+
+    def circle(radius, turns):
+        a = np.linspace(0, 2 * np.pi * turns, int(100 * turns) + 2)
+        return np.column_stack([radius * np.cos(a), radius * np.sin(a), np.zeros(len(a))])
+
+    return {
+        "stand still": np.repeat([[3.0, 0, 0]], 30, axis=0),
+        "jitter in place": np.r_[[[3.0, 0, 0]]] + np.cumsum(rng.normal(0, 0.03, (60, 3)), axis=0) * [1, 1, 0],
+        "far jump (3 -> 15 blocks)": line((3, 0), (15, 2)),
+        "far jump and back": np.concatenate([line((3, 0), (15, 2)), line((15, 2), (3.2, 0.5))]),
+        "back and forth x5": np.concatenate([line((3, 0), (4, 0), 10), line((4, 0), (3, 0), 10)] * 5),
+        "circle of radius 10": circle(10, 1),
+        "closer 3 -> 1.5": line((3, 0), (1.5, 0)),
+        "away 3 -> 7": line((3, 0), (7, 0)),
+        "straight past at 2": np.column_stack([np.full(40, -2.0), np.linspace(-4, 4, 40), np.zeros(40)]),
+        "half circle r=3": circle(3, 0.5),
+        "full circle r=3": circle(3, 1),
+    }
+
+
 def fmt_matrix(m: np.ndarray) -> str:
     lines = ["| model \\ demos | " + " | ".join(ACTIONS) + " |", "|---" * (len(ACTIONS) + 1) + "|"]
     for i, a in enumerate(ACTIONS):
@@ -81,6 +107,12 @@ def main() -> None:
         br = throughput(m, 256, False)
         bs = throughput(m, 256, True)
         print(f"| {a} | {b1:.0f} | {br:.0f} | {bs:.0f} | {256e3 / bs:.0f} |", flush=True)
+    print()
+
+    print("## Exploit probes: final progress of the shipped bundles (anchor at the origin, block units)\n")
+    print("| motion | " + " | ".join(ACTIONS) + " |\n" + "|---" * (len(ACTIONS) + 1) + "|")
+    for name, mv in probes().items():
+        print(f"| {name} | " + " | ".join(f"{models[a].final(mv, np.zeros(3), 1.0):.2f}" for a in ACTIONS) + " |")
     print()
 
     motions = graded_motions()

@@ -55,9 +55,11 @@ class DataConfig:
         "away": ["closer", "next-to", "around"],
         "next-to": ["away", "past", "around"],
         "past": ["closer", "away", "next-to", "around"],
-        "around": ["closer", "away", "next-to", "past"],
+        "around": ["closer", "away", "next-to"],
     })
-    """Whose demonstrations are negatives for each action (similar pairs are left out on purpose)."""
+    """Whose demonstrations are negatives for each action. Left out on purpose: pairs where one is (a
+    prefix of) the other, whose completion must keep a partial progress: a good "next to" is also
+    "closer", a "past" often ends farther "away", and a "past" is the first half of an "around"."""
 
     def to_dict(self) -> dict:
         keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",
