@@ -99,8 +99,11 @@ def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     from l2p_bullet.planners.policy_net import policy_from_tensors
     from l2p_bullet.planners.train_policy import TrainConfig, train_policy
 
-    net, history = train_policy(FakeBundle("around").model, TrainConfig(iterations=2, episodes=4, horizon=3), log=None)
-    assert len(history) == 2
+    cfg = TrainConfig(iterations=2, episodes=4, horizon=3)
+    net, history = train_policy(FakeBundle("around").model, cfg, log=None)
+    again_net, again_history = train_policy(FakeBundle("around").model, cfg, log=None)
+    assert len(history) == 2 and history == again_history  # training is deterministic for a seed
+    assert all(torch.equal(v, again_net.state_dict()[k]) for k, v in net.state_dict().items())
     tensors = {k: v.clone() for k, v in net.state_dict().items()}
     again = policy_from_tensors(tensors)
     x = torch.randn(5, 12)
