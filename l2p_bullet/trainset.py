@@ -5,12 +5,14 @@ Why each part is here:
   the event, rises linearly with the mover's arc length to 1 at the event's end, and falls back to 0
   over ``post_decay`` blocks of further motion (the person resetting the block is not the event).
   Each is also used cropped to the event alone (a planner's path has no context), mirrored (left/right
-  does not change any of the five actions) and simplified into 1-3 straight moves, because planners
-  and the graded 2-D demonstrations move in straight lines while people slide along curves.
-- **Negatives** (label 0 everywhere) teach the model what the action is not, so that a planner
-  maximising it cannot cheat: the other actions' demonstrations (except those that are also this action,
-  e.g. a good "next to" is also "closer"), standing still, and random straight-line motions, including
-  far jumps, that break a necessary condition of the action (:func:`violates`).
+  does not change any of the five actions), simplified into 1-4 straight moves (planners and the
+  graded 2-D demonstrations move in straight lines while people slide along curves), stretched about
+  the anchor, and with a drifting bearing (see :class:`DataConfig`).
+- **Negatives** (label 0, penalised on the last ``negative_tail`` of their motion) teach the model
+  what the action is not, so that a planner maximising it cannot cheat: the other actions'
+  demonstrations (except those that are also, or begin, this action: a good "next to" is also
+  "closer"), standing still, and random straight-line motions, including far jumps, that are clearly
+  not even a partial instance of the action (:func:`violates`).
 Everything is in block units; motion-capture jitter is smoothed before resampling.
 """
 

@@ -142,3 +142,14 @@ def test_version_ranges():
     assert version_satisfies("0.1.0", "==0.1")
     with pytest.raises(BundleError):
         version_satisfies("0.1.0", "~0.1")
+
+
+def test_update_manifest_merges_a_section_and_keeps_the_bundle_valid(bundle_copy):
+    from l2p_bullet.bundle import update_manifest
+
+    update_manifest(bundle_copy, "metrics", {"graded_spearman": 0.5})
+    b = load_bundle(bundle_copy)
+    assert b.manifest["metrics"]["graded_spearman"] == 0.5
+    assert "train_loss" in b.manifest["metrics"]  # merged, not replaced
+    with pytest.raises(BundleError, match="weights"):
+        update_manifest(bundle_copy, "weights", {})
