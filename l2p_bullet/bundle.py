@@ -236,6 +236,16 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, tensors: dict[st
     return path
 
 
+def update_manifest(bundle_dir: str | os.PathLike, section: str, values: dict) -> None:
+    """Merge ``values`` into one manifest section (e.g. ``metrics`` from the benchmark); weights untouched."""
+    folder = Path(bundle_dir)
+    man = read_manifest(folder)
+    if section in ("schema", "name", "version", "requires", "weights"):
+        raise BundleError(f'update_manifest does not change "{section}"')
+    man[section] = {**man.get(section, {}), **values}
+    _write_manifest(folder, man)
+
+
 def write_progress_bundle(out_dir: str | os.PathLike, action: str, model: ProgressModel, *,
                           training: dict, metrics: dict, version: str = "1.0.0") -> Path:
     """Write (or overwrite) a bundle's manifest and progress weights, keeping any policy it already has."""
