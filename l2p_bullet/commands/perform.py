@@ -17,7 +17,7 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Run folder (default: runs/perform-<timestamp>).")
 @click.option("--planner", default="default", show_default=True,
-              help="Planner: greedy, beam, reinforce, discrete or default.")
+              help="Planner: default (the action's choice), mixed, greedy, beam, discrete or reinforce (docs/planning.md).")
 @click.option("--no-render", is_flag=True, help="Skip frames and video (much faster).")
 @force_option
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr.")
