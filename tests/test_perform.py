@@ -139,3 +139,24 @@ def test_perform_never_imports_torch(tmp_path):
             f"perform('move A next to B', default_scene(), out_dir={str(tmp_path / 'r')!r}, render=False); "
             "assert 'torch' not in sys.modules, 'perform imported torch'")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@needs_next_to
+def test_scene_file_and_colour_names(tmp_path):
+    """--scene with three blocks: colours pick the mover and the anchor; the third block stays put."""
+    from l2p_bullet.scene import Scene, SceneObject, save_scene
+
+    scene = Scene([SceneObject("A", "red", 0.05, (0.10, -0.10)), SceneObject("B", "green", 0.05, (0.0, 0.05)),
+                   SceneObject("C", "blue", 0.05, (-0.12, -0.08), 0.4)]).validate()
+    save_scene(scene, tmp_path / "scene.json")
+    out = tmp_path / "run"
+    result = CliRunner().invoke(main, ["perform", "Push the blue cube beside the green one", "--scene",
+                                       str(tmp_path / "scene.json"), "--no-render", "--out", str(out), "-q", "--json"])
+    assert result.exit_code == 0, result.output
+    d = json.loads(result.output)
+    assert (d["mover"], d["anchor"], d["action"]) == ("C", "B", "next-to")
+    traj = json.loads((out / "trajectory.json").read_text())
+    assert set(traj["frames"][0]["poses"]) == {"A", "B", "C"}
+    for still in ("A", "B"):
+        xy = np.array([f["poses"][still][:2] for f in traj["frames"]])
+        assert np.abs(xy - xy[0]).max() < 0.001
