@@ -1,7 +1,8 @@
 """``perform``: a sentence in, a recorded robot action out. The stages of DESIGN.md, in order.
 
     parse      sentence -> Command, against the phrases of the installed plugins (registry, language)
-    load       the one plugin the command needs -> Bundle, and its progress model (torch starts here)
+    load       the one plugin the command needs -> Bundle, and its progress model (scored in numpy:
+               perform never imports torch, see progress_numpy.py)
     plan       planners.plan -> Plan (2-D path of the mover), saved as plan.json
     execute    execute.execute_path: the arm performs the path in PyBullet; trajectory.json gets the
                progress model's value per frame, so a run can be read without the model
