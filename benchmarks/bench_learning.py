@@ -82,6 +82,8 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="1 LSTM x 10 epochs per model (smoke run)")
     ap.add_argument("--skip-split", action="store_true", help="skip the session split (10 trainings)")
+    ap.add_argument("--write-metrics", action="store_true",
+                    help="store the results in the shipped bundles' [metrics] (manifest only, weights untouched)")
     args = ap.parse_args()
     cfg = TrainConfig()
     if args.quick:
@@ -125,7 +127,12 @@ def main() -> None:
     print(f"| mean of the five actions | | {np.mean(five):.2f} |")
     print(f"| mean of all six folders | | {np.mean([v['spearman'] for v in ga.values()]):.2f} |\n")
 
+    metrics = {a: {} for a in ACTIONS}
+    for folder, v in ga.items():
+        key = "graded_spearman" + ("_discrete" if folder.endswith("Discrete") else "")
+        metrics[_action(folder)][key] = round(float(v["spearman"]), 3)
     if args.skip_split:
+        _write(metrics, args.write_metrics)
         return
     print("## Session split (train on one person's session, test on the other's; mean of both ways)\n")
     rep = session_split(cfg, on_model=lambda a, s, t: print(f"  trained {a} on {s} in {t:.1f} s", flush=True))
@@ -136,6 +143,24 @@ def main() -> None:
     print("\nDiscrimination matrix: row = model, column = held-out demonstrations of that action "
           "(final progress; the diagonal should be high, the rest low)\n")
     print(fmt_matrix(rep.matrix))
+    for i, a in enumerate(ACTIONS):
+        metrics[a].update({
+            "split_mse": round(rep.mse[a], 4), "split_final_same": round(rep.final_same[a], 3),
+            "split_final_event_only": round(rep.final_event_only[a], 3),
+            "split_final_on_others": {b: round(float(rep.matrix[i, j]), 3) for j, b in enumerate(ACTIONS) if b != a},
+            "split_note": "trained on one person's session, tested on the other's, both ways (bench_learning.py)",
+        })
+    _write(metrics, args.write_metrics)
+
+
+def _write(metrics: dict, enabled: bool) -> None:
+    if not enabled:
+        return
+    from l2p_bullet.bundle import update_manifest
+
+    for a, values in metrics.items():
+        update_manifest(builtin_bundle_dir(a), "metrics", values)
+    print("\nwrote [metrics] into the five shipped manifests")
 
 
 def _action(folder: str) -> str:
