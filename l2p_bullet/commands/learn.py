@@ -54,8 +54,8 @@ def _resolve_for_training(action: str, out_dir: str | None, demo_files: tuple[st
               help="Bundle folder to write (default: runs/bundles/<action>).")
 @seed_option
 @force_option
-@click.option("--ensemble", type=int, default=None, help="Number of LSTMs averaged (default from the trainer).")
-@click.option("--epochs", type=int, default=None, help="Epochs per ensemble member (default from the trainer).")
+@click.option("--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer).")
+@click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer).")
 def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: int, force: bool,
           ensemble: int | None, epochs: int | None) -> None:
     """Train ACTION's progress model on the human demonstrations and write a bundle.
@@ -95,7 +95,8 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
         # a plugin action has no rule telling a random motion is not it: no random negatives
         data_cfg = DataConfig(random_negatives=0) if plugin else None
         result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=lambda: bar.update(1))
-    cmd = f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
+    cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
+           + (f" --ensemble {ensemble}" if ensemble else "") + (f" --epochs {epochs}" if epochs else ""))
     from ..train import training_section
 
     write_progress_bundle(out, name, result.model, training=training_section(result, cfg, seed, cmd),
