@@ -3,19 +3,23 @@
 from __future__ import annotations
 
 import json
+import textwrap
 
 import click
 
 
 def _metrics_line(metrics: dict) -> str:
-    """A short 'key=value' summary of a manifest's [metrics]: scalars, one level of nesting."""
+    """A short 'key=value' summary of a manifest's [metrics]: numbers only (notes and the rest are in
+    --json), one level of nesting as 'table.key'."""
+    def number(v: object) -> bool:
+        return isinstance(v, int | float) and not isinstance(v, bool)
+
     parts = []
     for k, v in metrics.items():
-        if isinstance(v, bool) or not isinstance(v, int | float | str):
-            if isinstance(v, dict):
-                parts += [f"{k}.{k2}={_fmt(v2)}" for k2, v2 in v.items() if isinstance(v2, int | float | str)]
-            continue
-        parts.append(f"{k}={_fmt(v)}")
+        if number(v):
+            parts.append(f"{k}={_fmt(v)}")
+        elif isinstance(v, dict):
+            parts += [f"{k}.{k2}={_fmt(v2)}" for k2, v2 in v.items() if number(v2)]
     return " ".join(parts)
 
 
@@ -67,7 +71,9 @@ def actions_cmd(as_json: bool, check: bool) -> None:
             click.echo(f'{r["name"]:<{w}}  v{r["version"] or "?":<6} {pkg:<{wp}}  {", ".join(r["phrases"])}')
             line = _metrics_line(r["metrics"])
             if line:
-                click.echo(f'{"":<{w}}  {line}')
+                pad = " " * (w + 2)
+                click.echo(textwrap.fill(line, width=100, initial_indent=pad, subsequent_indent=pad,
+                                         break_on_hyphens=False))
     if bad:
         click.echo("\nbroken plugins (not usable):")
         for r in bad:
