@@ -44,6 +44,10 @@ class DataConfig:
     twist_actions: tuple[str, ...] = ("closer", "away", "next-to")
     twist_max_deg: float = 100.0
     """Copies of these actions' positives whose bearing drifts by up to this angle (see ``_twist``)."""
+    detour_per_demo: int = 2
+    """Copies of "closer"/"away" positives that first move the other way (a straight move from a start
+    between the event's start and end distances to the event's start): the net motion is still the
+    action, as in graded 2-D demonstrations that dip towards the anchor before leaving it."""
     random_negatives: int = 300
     static_negatives: int = 40
     """Motions that stand still (tracking jitter only): progress must not rise for doing nothing."""
@@ -65,7 +69,7 @@ class DataConfig:
 
     def to_dict(self) -> dict:
         keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",
-                "twist_max_deg", "random_negatives", "static_negatives", "negative_tail", "negative_weight")
+                "twist_max_deg", "detour_per_demo", "random_negatives", "static_negatives", "negative_tail", "negative_weight")
         d = {k: getattr(self, k) for k in keys}
         return {**d, "scale_range": list(self.scale_range), "twist_actions": list(self.twist_actions),
                 "negatives": dict(self.negatives)}
@@ -163,6 +167,19 @@ def _twist(m: np.ndarray, c: np.ndarray, angle: float) -> np.ndarray:
     return out
 
 
+def _detour(m: np.ndarray, c: np.ndarray, rng: np.random.Generator, size: float) -> np.ndarray | None:
+    r0 = float(np.linalg.norm(m[0, :2] - c[:2])) / size
+    r1 = float(np.linalg.norm(m[-1, :2] - c[:2])) / size
+    lo, hi = sorted((r0, r1))
+    if hi - lo < 2.0:
+        return None
+    # a new start between the two distances, at least 1 block short of the end's: net motion kept
+    r_new = rng.uniform(lo, hi - 1.0) if r1 > r0 else rng.uniform(lo + 1.0, hi)
+    b = np.arctan2(*(m[0, 1::-1] - c[1::-1])) + rng.uniform(-1.0, 1.0)
+    p0 = np.array([c[0] + r_new * size * np.cos(b), c[1] + r_new * size * np.sin(b), m[0, 2]])
+    return np.concatenate([np.linspace(p0, m[0], 20, endpoint=False), m])
+
+
 def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
     """True when a block-unit motion is clearly not even a *partial* instance of the action.
 
@@ -229,6 +246,8 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
                 pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
                 angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
                 variants.append(None if pm is None else _twist(pm, c, angle))
+            for _ in range(dcfg.detour_per_demo if action in ("closer", "away") else 0):
+                variants.append(_detour(ev_m, c, rng, d.size))
             for pm in variants:
                 if pm is not None:
                     pa = np.repeat(c[None], len(pm), axis=0)
