@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .demos import ACTIONS, Demo, canonical_action, load_graded_demos
+from .evaluate import spearman
 from .progress import ProgressModel
 from .trainset import smooth
 
@@ -54,23 +55,6 @@ def graded_motions(frames_per_move: int = 30) -> list[GradedMotion]:
         out.append(GradedMotion(g["id"], g["folder"], GRADED_FOLDERS[g["folder"]], mover, anchor,
                                 float(np.mean(grades)), float(c0["side"])))
     return out
-
-
-def spearman(x: np.ndarray, y: np.ndarray) -> float:
-    """Spearman rank correlation with average ranks for ties (no scipy needed)."""
-    def ranks(v: np.ndarray) -> np.ndarray:
-        v = np.asarray(v, float)
-        order = np.argsort(v, kind="stable")
-        r = np.empty(len(v))
-        r[order] = np.arange(len(v), dtype=float)
-        for val in np.unique(v):
-            sel = v == val
-            r[sel] = r[sel].mean()
-        return r
-    rx, ry = ranks(x), ranks(y)
-    if rx.std() == 0 or ry.std() == 0:
-        return float("nan")
-    return float(np.corrcoef(rx, ry)[0, 1])
 
 
 def graded_agreement(models: dict[str, ProgressModel], motions: list[GradedMotion] | None = None) -> dict:

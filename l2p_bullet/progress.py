@@ -18,7 +18,8 @@ import torch
 from torch import nn
 
 from .architecture import ModelConfig
-from .qsr import QSRConfig, batch_features
+from .qsr import QSRConfig
+from .scoring import ScoringMixin
 
 
 class ProgressNet(nn.Module):
@@ -39,7 +40,7 @@ def ensemble_state(nets: Sequence[ProgressNet]) -> dict[str, torch.Tensor]:
     return {f"m{i}.{k}": v.detach().contiguous().clone() for i, n in enumerate(nets) for k, v in n.state_dict().items()}
 
 
-class ProgressModel:
+class ProgressModel(ScoringMixin):
     """A loaded ensemble plus its feature settings: scores metric motions of blocks of side ``size``."""
 
     threads: int = 1
@@ -94,36 +95,3 @@ class ProgressModel:
                 else:
                     h_all, _ = net.lstm(x)
                 out += torch.sigmoid(net.head(h_all)).squeeze(-1)
-
-    def _run(self, movers: list[np.ndarray], anchors, size: float):
-        movers = [np.asarray(m, float) for m in movers]
-        feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
-        return self.forward_features(feats, lengths), lengths, rss
-
-    def final_batch(self, movers: list[np.ndarray], anchors, size: float) -> np.ndarray:
-        """Progress at the last frame of every motion, ``(B,)``; one forward pass for the batch."""
-        if len(movers) == 0:
-            return np.zeros(0)
-        out, lengths, _ = self._run(movers, anchors, size)
-        return out[np.arange(len(lengths)), lengths - 1]
-
-    def curve_batch(self, movers: list[np.ndarray], anchors, size: float) -> list[np.ndarray]:
-        """Per-input-frame progress of every motion (a frame gets the value of the last resampled frame
-        at or before its arc length: frames where the block stands still repeat the value)."""
-        if len(movers) == 0:
-            return []
-        out, lengths, rss = self._run(movers, anchors, size)
-        curves = []
-        for i, rs in enumerate(rss):
-            k = np.searchsorted(rs.arc, rs.input_arc + 1e-9, side="right") - 1
-            curves.append(out[i, np.clip(k, 0, lengths[i] - 1)])
-        return curves
-
-    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
-        """Per-input-frame progress ``(T,)`` of one motion; ``anchor`` is ``(T, 3)`` or one pose ``(3,)``."""
-        anchor = np.asarray(anchor, float)
-        return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0]
-
-    def final(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> float:
-        anchor = np.asarray(anchor, float)
-        return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0])

@@ -22,7 +22,8 @@ import numpy as np
 
 from .architecture import ModelConfig
 from .errors import BundleError
-from .qsr import QSRConfig, batch_features
+from .qsr import QSRConfig
+from .scoring import ScoringMixin
 
 WEIGHTS = "progress.safetensors"
 
@@ -31,7 +32,7 @@ def _sigmoid(z: np.ndarray) -> np.ndarray:
     return 0.5 * (1.0 + np.tanh(0.5 * z))  # = 1 / (1 + exp(-z)), without overflow warnings
 
 
-class NumpyProgressModel:
+class NumpyProgressModel(ScoringMixin):
     """Same interface as :class:`l2p_bullet.progress.ProgressModel` for scoring (no training)."""
 
     def __init__(self, tensors: dict[str, np.ndarray], model_cfg: ModelConfig, qsr_cfg: QSRConfig):
@@ -109,34 +110,3 @@ class NumpyProgressModel:
             h = _sigmoid(z[:, 3 * H:]) * np.tanh(c)
             hs[:, t] = h
         return hs, h, c
-
-    def _run(self, movers: list[np.ndarray], anchors: Any, size: float):
-        movers = [np.asarray(m, float) for m in movers]
-        feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
-        return self.forward_features(feats, lengths), lengths, rss
-
-    def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> np.ndarray:
-        """Progress at the last frame of every motion, ``(B,)``; one forward pass for the batch."""
-        if len(movers) == 0:
-            return np.zeros(0)
-        out, lengths, _ = self._run(movers, anchors, size)
-        return out[np.arange(len(lengths)), lengths - 1]
-
-    def curve_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> list[np.ndarray]:
-        """Per-input-frame progress of every motion (as :meth:`ProgressModel.curve_batch`)."""
-        if len(movers) == 0:
-            return []
-        out, lengths, rss = self._run(movers, anchors, size)
-        curves = []
-        for i, rs in enumerate(rss):
-            k = np.searchsorted(rs.arc, rs.input_arc + 1e-9, side="right") - 1
-            curves.append(out[i, np.clip(k, 0, lengths[i] - 1)])
-        return curves
-
-    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
-        anchor = np.asarray(anchor, float)
-        return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0]
-
-    def final(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> float:
-        anchor = np.asarray(anchor, float)
-        return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0])
