@@ -4,6 +4,7 @@ Why each part is here:
 - **Positives** are the action's demonstrations with their context: progress is 0 on the frames before
   the event, rises linearly with the mover's arc length to 1 at the event's end, and falls back to 0
   over ``post_decay`` blocks of further motion (the person resetting the block is not the event).
+  "around" is labelled by the net turn swept round the anchor instead (``DataConfig.turn_label``).
   Each is also used cropped to the event alone (a planner's path has no context), mirrored (left/right
   does not change any of the five actions), simplified into 1-4 straight moves (planners and the
   graded 2-D demonstrations move in straight lines while people slide along curves), stretched about
@@ -48,6 +49,17 @@ class DataConfig:
     """Copies of "closer"/"away" positives that first move the other way (a straight move from a start
     between the event's start and end distances to the event's start): the net motion is still the
     action, as in graded 2-D demonstrations that dip towards the anchor before leaving it."""
+    turn_label: dict = field(default_factory=lambda: {"around": 1.0})
+    """Actions whose progress label on the event is the net turn swept round the anchor since the
+    event's start, divided by this many turns (clipped to [0, 1]), instead of the fraction of the event's
+    arc length: the event of going around ends when the circle closes, and people's captures are
+    truncated circles (0.48-0.99 of a turn). With arc-length labels every capture ended at 1, so half a
+    turn already scored about 1 and a planner maximising progress stopped there."""
+    turn_copies: int = 2
+    """For the ``turn_label`` actions, per demonstration and copy kind: crops that stop at 40-60 % of
+    the event (partial arounds end at their partial label), copies that sweep back along their own path
+    (out-and-back: large absolute turn, small net turn, labelled by the net turn) and copies continued
+    along a circle at the end's distance to 0.85-1.25 turns in all (a closed circle is a full around)."""
     random_negatives: int = 300
     static_negatives: int = 40
     """Motions that stand still (tracking jitter only): progress must not rise for doing nothing."""
@@ -69,10 +81,10 @@ class DataConfig:
 
     def to_dict(self) -> dict:
         keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",
-                "twist_max_deg", "detour_per_demo", "random_negatives", "static_negatives", "negative_tail", "negative_weight")
+                "twist_max_deg", "detour_per_demo", "turn_copies", "random_negatives", "static_negatives", "negative_tail", "negative_weight")
         d = {k: getattr(self, k) for k in keys}
         return {**d, "scale_range": list(self.scale_range), "twist_actions": list(self.twist_actions),
-                "negatives": dict(self.negatives)}
+                "negatives": dict(self.negatives), "turn_label": dict(self.turn_label)}
 
 
 @dataclass
@@ -107,7 +119,7 @@ def mirror(poses: np.ndarray) -> np.ndarray:
 
 
 def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, end: float,
-              qcfg: QSRConfig, dcfg: DataConfig, positive: bool) -> Sequence:
+              qcfg: QSRConfig, dcfg: DataConfig, positive: bool, turns: float | None = None) -> Sequence:
     rs = resample(mover, anchor, size, qcfg)
     x = features(rs.mover, rs.anchor, qcfg)
     if not positive:
@@ -118,11 +130,18 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     idx = np.arange(len(rs.input_arc), dtype=float)
     s0, s1 = np.interp([start, end], idx, rs.input_arc)
     s = rs.arc
-    y = np.where(s <= s0, 0.0, np.clip((s - s0) / max(s1 - s0, 1e-6), 0, 1))
+    k_end = int(np.clip(np.searchsorted(s, s1 - 1e-9), 0, len(s) - 1))
+    if turns is None:
+        frac = np.clip((s - s0) / max(s1 - s0, 1e-6), 0, 1)
+    else:  # net turn round the anchor since the event's start, in units of ``turns`` full turns
+        d = rs.mover[:, :2] - rs.anchor[:, :2]
+        ang = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+        frac = np.clip(np.abs(ang - np.interp(s0, s, ang)) / (2 * np.pi * turns), 0, 1)
+    y = np.where(s <= s0, 0.0, frac)
     after = rs.times > end + 1e-9
     # the first frame at or past the end is the end (the grid rarely hits it exactly), then decay
-    y = np.where(after, np.clip(1.0 - np.maximum(s - s1 - qcfg.spacing, 0) / dcfg.post_decay, 0, 1), y)
-    k_end = int(np.clip(np.searchsorted(s, s1 - 1e-9), 0, len(s) - 1))
+    decay = np.clip(1.0 - np.maximum(s - s1 - qcfg.spacing, 0) / dcfg.post_decay, 0, 1)
+    y = np.where(after, frac[k_end] * decay, y)
     return Sequence(x, y.astype(np.float32), positive=True, end=k_end)
 
 
@@ -180,6 +199,26 @@ def _detour(m: np.ndarray, c: np.ndarray, rng: np.random.Generator, size: float)
     return np.concatenate([np.linspace(p0, m[0], 20, endpoint=False), m])
 
 
+def _back(m: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """The motion, then back along its own path for 30-100 % of its frames (net turn shrinks)."""
+    k = max(2, int(len(m) * rng.uniform(0.3, 1.0)))
+    return np.concatenate([m, m[-2:-k - 1:-1]])
+
+
+def _close_circle(m: np.ndarray, c: np.ndarray, rng: np.random.Generator) -> np.ndarray | None:
+    """The motion continued along a circle round ``c`` at its end's distance, in the direction it
+    turned, to 0.85-1.25 turns in all; None if it already turned that far."""
+    net = _sweep(m, c)
+    extra = np.sign(net) * 2 * np.pi * rng.uniform(0.85, 1.25) - net
+    if np.sign(extra) != np.sign(net):
+        return None
+    d = m[-1, :2] - c[:2]
+    r, a0 = float(np.linalg.norm(d)), float(np.arctan2(d[1], d[0]))
+    phi = np.linspace(0, extra, max(10, int(abs(extra) / 0.05)) + 1)[1:]
+    arc = np.column_stack([c[0] + r * np.cos(a0 + phi), c[1] + r * np.sin(a0 + phi), m[-1, 2] + phi])
+    return np.concatenate([m, arc])
+
+
 def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
     """True when a block-unit motion is clearly not even a *partial* instance of the action.
 
@@ -228,11 +267,12 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
     """All training sequences for ``action`` from the demonstrations of every action (train split)."""
     rng = np.random.default_rng(seed)
     seqs: list[Sequence] = []
+    turns = dcfg.turn_label.get(action)
     for d in demos.get(action, []):
         m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
         for mm, aa in ((m, a), (mirror(m), mirror(a))):
-            seqs.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True))
-            seqs.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True))
+            seqs.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns))
+            seqs.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True, turns))
             ev_m, ev_a = mm[d.start:d.end + 1], aa[d.start:d.end + 1]
             c = ev_a.mean(axis=0)
             variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
@@ -248,10 +288,17 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
                 variants.append(None if pm is None else _twist(pm, c, angle))
             for _ in range(dcfg.detour_per_demo if action in ("closer", "away") else 0):
                 variants.append(_detour(ev_m, c, rng, d.size))
+            for _ in range(dcfg.turn_copies if turns is not None else 0):
+                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                if pm is None:
+                    continue
+                variants.append(pm[: max(2, int(len(pm) * rng.uniform(0.4, 0.6)))])
+                variants.append(_back(pm, rng))
+                variants.append(_close_circle(pm, c, rng))
             for pm in variants:
                 if pm is not None:
                     pa = np.repeat(c[None], len(pm), axis=0)
-                    seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True))
+                    seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, turns))
     n_pos = len(seqs)
     neg: list[Sequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
