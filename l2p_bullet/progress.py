@@ -19,7 +19,7 @@ from torch import nn
 
 from .architecture import ModelConfig
 from .qsr import QSRConfig
-from .scoring import ScoringMixin
+from .scoring import ScoringMixin, shared_prefix
 
 
 class ProgressNet(nn.Module):
@@ -67,12 +67,7 @@ class ProgressModel(ScoringMixin):
         the same path) go through the LSTMs once, at batch size 1; only the rest runs for the batch.
         """
         B, K, _ = feats.shape
-        lengths = np.full(B, K) if lengths is None else np.asarray(lengths)
-        P = 0
-        if B > 1:
-            same = np.all(feats == feats[:1], axis=(0, 2))
-            P = K if same.all() else int(np.argmin(same))
-            P = min(P, int(lengths.min()) - 1)  # every sequence keeps at least its last frame
+        lengths, P = shared_prefix(feats, lengths)
         x = torch.from_numpy(np.ascontiguousarray(feats, dtype=np.float32))
         out = torch.zeros(B, K)
         prev = torch.get_num_threads()

@@ -23,7 +23,7 @@ import numpy as np
 from .architecture import ModelConfig
 from .errors import BundleError
 from .qsr import QSRConfig
-from .scoring import ScoringMixin
+from .scoring import ScoringMixin, shared_prefix
 
 WEIGHTS = "progress.safetensors"
 
@@ -77,12 +77,7 @@ class NumpyProgressModel(ScoringMixin):
         """
         x = np.ascontiguousarray(feats, dtype=np.float32)
         B, K, _ = x.shape
-        lengths = np.full(B, K) if lengths is None else np.asarray(lengths)
-        P = 0
-        if B > 1:
-            same = np.all(x == x[:1], axis=(0, 2))
-            P = K if same.all() else int(np.argmin(same))
-            P = min(P, int(lengths.min()) - 1)
+        lengths, P = shared_prefix(x, lengths)
         out = np.zeros((B, K), np.float32)
         for member in self.members:
             if P >= 2:

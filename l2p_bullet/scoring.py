@@ -14,6 +14,22 @@ import numpy as np
 from .qsr import QSRConfig, batch_features
 
 
+def shared_prefix(feats: np.ndarray, lengths: np.ndarray | None) -> tuple[np.ndarray, int]:
+    """(lengths, P): how many leading frames every sequence of the batch shares.
+
+    A planner's candidates all extend the same path: those P frames go through the LSTMs once, at batch
+    size 1, and only the rest runs for the whole batch. Every sequence keeps at least its last frame.
+    """
+    B, K = feats.shape[:2]
+    lengths = np.full(B, K) if lengths is None else np.asarray(lengths)
+    P = 0
+    if B > 1:
+        same = np.all(feats == feats[:1], axis=(0, 2))
+        P = K if same.all() else int(np.argmin(same))
+        P = min(P, int(lengths.min()) - 1)
+    return lengths, P
+
+
 class ScoringMixin:
     """``final_batch``/``curve_batch``/``curve``/``final`` on top of a subclass's ``forward_features``."""
 

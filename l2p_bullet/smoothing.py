@@ -3,8 +3,8 @@
 Ruckig is run on one degree of freedom only: the arc length ``s`` of the exact geometric path (with its
 corners already rounded, see :mod:`l2p_bullet.motion`), from rest to rest. The timed ``s(t)`` is then
 mapped back onto the path, so the end effector never leaves the geometric path (no blending error),
-whatever the limits. ruckig's ``intermediate_positions`` is never used: the community build sends such
-problems to a remote server.
+whatever the limits. ruckig's intermediate waypoints (its multi-waypoint input) are never used: the
+community build sends such problems to a remote server.
 
 Along a curve the path's own curvature adds an acceleration v^2 / r that a 1-DoF profile cannot see, so
 each rest-to-rest chunk's speed limit is lowered to sqrt(a_lat / kappa_max) before planning, and the
