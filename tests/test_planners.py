@@ -176,7 +176,9 @@ def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     a = plan(scene, "A", "B", bundle, seed=4)
     b = plan(scene, "A", "B", bundle, seed=4)
     _assert_executable(a, scene)
-    assert np.array_equal(a.path, b.path) and a.planner == "mixed" and a.stopped in ("threshold", "budget")
+    # away's manifest picks greedy search ([policy] planner; 100 % vs 92-94 % for mixed on 100 scenes)
+    expected = {"away": "greedy"}.get(action, "mixed")
+    assert np.array_equal(a.path, b.path) and a.planner == expected and a.stopped in ("threshold", "budget")
     assert "note" not in a.extra, (f"{action}: the bundle's policy.safetensors was trained against another "
                                    "progress model; re-train it (make bundles, or python -m "
                                    f"l2p_bullet.planners.train_policy {action})")
