@@ -27,3 +27,17 @@ def polygons_overlap(a: np.ndarray, b: np.ndarray, margin: float = 0.0) -> bool:
 def wrap_angle(a: np.ndarray | float) -> np.ndarray | float:
     """Wrap angles to (-pi, pi]."""
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+def moving_average(poses: np.ndarray, window: int) -> np.ndarray:
+    """Centred moving average of a pose sequence (N,3), edges padded with the end poses, yaw unwrapped first.
+
+    Shared by the replay (capture jitter would read as tight curves and slow the arm) and the training set
+    (jitter would read as motion); callers decide what to do with short sequences and the end points.
+    """
+    p = np.array(poses, dtype=float)
+    p[:, 2] = np.unwrap(p[:, 2])
+    kernel = np.ones(window) / window
+    pad = window // 2
+    padded = np.pad(p, ((pad, window - 1 - pad), (0, 0)), mode="edge")
+    return np.stack([np.convolve(padded[:, j], kernel, mode="valid") for j in range(3)], axis=1)

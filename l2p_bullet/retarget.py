@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import PathError
-from .geometry2d import polygons_overlap
+from .geometry2d import moving_average, polygons_overlap
 from .motion import resample, unwrap_yaw
 from .scene import GRIPPER_MARGIN, Scene
 
@@ -64,10 +64,7 @@ def smooth(path: np.ndarray, window: int = SMOOTH_FRAMES) -> np.ndarray:
     p = unwrap_yaw(path)
     if len(p) <= window or window < 2:
         return p
-    kernel = np.ones(window) / window
-    pad = window // 2
-    padded = np.concatenate([np.repeat(p[:1], pad, 0), p, np.repeat(p[-1:], pad, 0)])
-    out = np.stack([np.convolve(padded[:, i], kernel, mode="valid") for i in range(3)], axis=1)[: len(p)]
+    out = moving_average(p, window)
     out[0], out[-1] = p[0], p[-1]
     return out
 

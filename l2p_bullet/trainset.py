@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .demos import ACTIONS, Demo
+from .geometry2d import moving_average
 from .qsr import QSRConfig, features, resample
 
 
@@ -115,12 +116,7 @@ def smooth(poses: np.ndarray, window: int) -> np.ndarray:
     """Centred moving average with edge padding (angles unwrapped first)."""
     if window <= 1 or len(poses) < 3:
         return poses
-    p = poses.copy()
-    p[:, 2] = np.unwrap(p[:, 2])
-    k = np.ones(window) / window
-    pad = window // 2
-    padded = np.pad(p, ((pad, window - 1 - pad), (0, 0)), mode="edge")
-    return np.stack([np.convolve(padded[:, j], k, mode="valid") for j in range(3)], axis=1)
+    return moving_average(poses, window)
 
 
 def mirror(poses: np.ndarray) -> np.ndarray:
