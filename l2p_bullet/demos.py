@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import DataError, did_you_mean
+from .tracking import clean_track
 
 ACTIONS: tuple[str, ...] = ("closer", "away", "next-to", "past", "around")
 """Canonical action names, in the order used by every table."""
@@ -140,6 +141,7 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
     """Cut the annotated events of one session file, each with up to ``context`` frames either side.
 
     The context stops at the neighbouring events so that one demonstration never contains another.
+    Glyph detections that teleport are dropped first (:mod:`tracking`; the data README's known glitch).
     ``action`` may also be a plugin action's own name (``l2p-bullet new-action``): explicit files.
     """
     action = action_for_files(action)
@@ -147,7 +149,7 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
     p = Path(path)
     m = re.search(r"(Session\d+)", p.stem)
     session = m.group(1) if m else p.stem
-    poses = (arrays["shell_pose"], arrays["stella_pose"])
+    poses = tuple(clean_track(arrays[f"{b}_pose"], arrays.get(f"{b}_observed"))[0] for b in ("shell", "stella"))
     events = arrays["event_start_end"]
     out = []
     for i, ((s, e), who) in enumerate(zip(events, arrays["event_mover"], strict=True)):

@@ -1,0 +1,78 @@
+"""Cleaning capture tracks: glitch detections are dropped, real motion is kept."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from l2p_bullet.demos import load_demos, load_session, session_files
+from l2p_bullet.tracking import clean_track, teleporting
+
+
+def _slide(n: int = 120) -> np.ndarray:
+    """A block slid along x at 0.3 m/s (30 fps) with 2 mm detection jitter."""
+    rng = np.random.default_rng(0)
+    t = np.arange(n)
+    pose = np.column_stack([0.01 * t, np.zeros(n), np.full(n, 0.3)])
+    pose[:, :2] += rng.normal(0, 0.002, (n, 2))
+    return pose
+
+
+def test_real_motion_is_untouched():
+    pose = _slide()
+    observed = np.ones(len(pose), bool)
+    observed[30:40] = False  # a stretch the pipeline interpolated
+    cleaned, dropped = clean_track(pose, observed)
+    assert dropped == 0
+    assert np.array_equal(cleaned, pose)
+
+
+def test_a_single_far_detection_is_dropped_and_the_gap_reinterpolated():
+    pose = _slide()
+    observed = np.ones(len(pose), bool)
+    # the pipeline's picture of the known glitch: one detection 2.5 m away, unobserved frames either
+    # side interpolated towards it
+    observed[50:70] = False
+    observed[60] = True
+    pose[60, :2] = [-1.9, -0.6]
+    for i in range(50, 70):
+        if i != 60:
+            lo, hi = (49, 60) if i < 60 else (60, 70)
+            w = (i - lo) / (hi - lo)
+            pose[i] = (1 - w) * pose[lo] + w * pose[hi]
+    assert teleporting(pose, observed).nonzero()[0].tolist() == [60]
+    cleaned, dropped = clean_track(pose, observed)
+    assert dropped == 1
+    # the gap is a straight line between the good detections on either side
+    expected_x = np.interp(np.arange(50, 70), [49, 70], [pose[49, 0], pose[70, 0]])
+    assert np.allclose(cleaned[50:70, 0], expected_x)
+    assert np.abs(cleaned[:, 1]).max() < 0.01
+    # frames that never depended on the glitch are bit-identical
+    assert np.array_equal(cleaned[:49], pose[:49]) and np.array_equal(cleaned[71:], pose[71:])
+
+
+def test_a_short_run_of_wrong_detections_is_dropped_whole():
+    pose = _slide()
+    pose[80:85, 1] += 0.4  # five frames of a glyph seen 40 cm off
+    cleaned, dropped = clean_track(pose, None)  # no observed flags: every frame is a detection
+    assert dropped == 5
+    assert np.abs(cleaned[:, 1]).max() < 0.01
+
+
+def test_a_fast_real_move_between_long_runs_is_kept():
+    # a block picked up and put down 0.5 m away within 2 frames: impossible speed, but both sides are
+    # long runs, so there is no way to tell which is wrong and nothing is dropped
+    pose = _slide()
+    pose[60:, 1] += 0.5
+    assert clean_track(pose, None)[1] == 0
+
+
+def test_the_known_around_glitch_is_gone_from_the_demonstrations():
+    """The data README's glitch (SlideAround Session2, Shell at x = -1.87 m) no longer reaches a demo."""
+    path = next(p for p in session_files("around") if "Session2" in p.name)
+    raw = load_session(path)
+    assert raw["shell_pose"][:, 0].min() < -1.8
+    far = []
+    for d in load_demos("around"):
+        rel = (d.event_mover[:, :2] - d.event_anchor[:, :2].mean(axis=0)) / d.size
+        far.append(np.linalg.norm(rel, axis=1).max())
+    assert np.percentile(far, 90) < 4.0 and max(far) < 10.0
