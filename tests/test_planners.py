@@ -100,9 +100,10 @@ def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     from l2p_bullet.planners.train_policy import TrainConfig, train_policy
 
     cfg = TrainConfig(iterations=2, episodes=4, horizon=3)
-    net, history = train_policy(FakeBundle("around").model, cfg, log=None)
-    again_net, again_history = train_policy(FakeBundle("around").model, cfg, log=None)
+    net, history, kept = train_policy(FakeBundle("around").model, cfg, log=None)
+    again_net, again_history, _ = train_policy(FakeBundle("around").model, cfg, log=None)
     assert len(history) == 2 and history == again_history  # training is deterministic for a seed
+    assert kept == 1  # fewer iterations than the selection window: the last weights
     assert all(torch.equal(v, again_net.state_dict()[k]) for k, v in net.state_dict().items())
     tensors = {k: v.clone() for k, v in net.state_dict().items()}
     again = policy_from_tensors(tensors)
@@ -116,6 +117,16 @@ def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     q = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
     _assert_executable(p, scene)
     assert np.array_equal(p.path, q.path)
+
+
+def test_policy_training_keeps_the_weights_of_its_best_window():
+    """A late collapse of REINFORCE must not be what ships: the kept iteration ends the best run."""
+    from l2p_bullet.planners.train_policy import BEST_WINDOW, TrainConfig, train_policy
+
+    cfg = TrainConfig(iterations=BEST_WINDOW + 4, episodes=4, horizon=2)
+    _, history, kept = train_policy(FakeBundle("around").model, cfg, log=None)
+    windows = [np.mean(history[i - BEST_WINDOW + 1:i + 1]) for i in range(BEST_WINDOW - 1, len(history))]
+    assert kept == BEST_WINDOW - 1 + int(np.argmax(windows))
 
 
 def test_a_mover_touching_another_object_is_a_clear_error():
