@@ -51,14 +51,15 @@ class DataConfig:
     people started 3.7-7.4 blocks away, scenes start 2-4 blocks apart, and the model had no example of
     closing in from 2 blocks (4 of 50 planned closers from 2.0-2.2 blocks stalled). A copy is never
     shrunk to pass nearer than 1 block (centre to centre, two squares touch) unless the original did."""
-    shortened: dict = field(default_factory=lambda: {"away": (0.5, 0.85)})
+    shortened: dict = field(default_factory=lambda: {"away": (0.75, 0.95)})
     """Actions with ``scaled_per_demo`` extra copies per demonstration shrunk about their own start
     point by a factor in this range: the same motion, stopped sooner, is still a complete instance.
     People moved "away" by a median 3.7 blocks; a scene's workspace often leaves room for only 1.5-2.5
     blocks straight out, which the model scored 0.5-0.75, so planners reached the threshold by longer
     paths that first swing round the anchor (7 of 100 away plans came 0.7-1.4 blocks nearer first).
-    With these copies greedy search succeeds on 97 of 100 scenes (93 without); shrinking to 0.3-0.7
-    made it accept gains under a block (90)."""
+    With these copies greedy search succeeds on 98 of 100 scenes (93 without). The price is agreement
+    with people's grades on "away" (Spearman 0.42 -> 0.20 on 15 graded demos; the grades reward going
+    far): shrinking to 0.5-0.85 gave 97 % and 0.04, to 0.3-0.7 accepted gains under a block (90 %)."""
     twisted_per_demo: int = 2
     twist_actions: tuple[str, ...] = ("closer", "away", "next-to")
     twist_max_deg: float = 100.0
