@@ -203,6 +203,18 @@ def _polyline(demo_m: np.ndarray, c: np.ndarray, rng: np.random.Generator,
     return None
 
 
+def _event_or_polyline(ev_m: np.ndarray, c: np.ndarray, rng: np.random.Generator) -> np.ndarray | None:
+    """The event itself or (half the time) one of its straight-line simplifications: the base of a copy."""
+    return _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+
+
+def _scaled(m: np.ndarray, centre: np.ndarray, k: float) -> np.ndarray:
+    """A copy of the motion with its positions scaled by ``k`` about ``centre`` (x, y); yaw unchanged."""
+    out = m.copy()
+    out[:, :2] = centre[:2] + (m[:, :2] - centre[:2]) * k
+    return out
+
+
 def _twist(m: np.ndarray, c: np.ndarray, angle: float) -> np.ndarray:
     """Rotate the mover about the anchor progressively (``angle`` at the start, 0 at the end, by arc
     length): distances and the end state are unchanged, so "closer"/"away"/"next to" stay what they
@@ -323,22 +335,19 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
             c = ev_a.mean(axis=0)
             variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
             for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
-                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                pm = _event_or_polyline(ev_m, c, rng)
                 if pm is not None:
-                    pm = pm.copy()
                     lo, hi = dcfg.scale_ranges.get(action, dcfg.scale_range)
                     nearest = float(np.linalg.norm(pm[:, :2] - c[:2], axis=1).min()) / d.size
-                    k = max(rng.uniform(lo, hi), min(1.0, 1.0 / max(nearest, 1e-9)))
-                    pm[:, :2] = c[:2] + (pm[:, :2] - c[:2]) * k
+                    pm = _scaled(pm, c, max(rng.uniform(lo, hi), min(1.0, 1.0 / max(nearest, 1e-9))))
                 variants.append(pm)
             for _ in range(dcfg.scaled_per_demo if action in dcfg.shortened else 0):
-                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                pm = _event_or_polyline(ev_m, c, rng)
                 if pm is not None:
-                    pm = pm.copy()
-                    pm[:, :2] = pm[0, :2] + (pm[:, :2] - pm[0, :2]) * rng.uniform(*dcfg.shortened[action])
+                    pm = _scaled(pm, pm[0], rng.uniform(*dcfg.shortened[action]))
                 variants.append(pm)
             for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions else 0):
-                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                pm = _event_or_polyline(ev_m, c, rng)
                 angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
                 variants.append(None if pm is None else _twist(pm, c, angle))
             for _ in range(dcfg.detour_per_demo if action in ("closer", "away") else 0):
@@ -347,13 +356,13 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
             if net is not None:  # the last detour too: coming closer first is not progress away
                 net_variants, variants = variants[len(variants) - 1:], variants[:len(variants) - 1]
                 for _ in range(dcfg.net_copies):
-                    pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                    pm = _event_or_polyline(ev_m, c, rng)
                     if pm is None:
                         continue
                     net_variants.append(_dip(pm, c, rng, d.size))
                     net_variants.append(_back(pm, rng))
             for _ in range(dcfg.turn_copies if turns is not None else 0):
-                pm = _polyline(ev_m, c, rng) if rng.random() < 0.5 else ev_m
+                pm = _event_or_polyline(ev_m, c, rng)
                 if pm is None:
                     continue
                 variants.append(pm[: max(2, int(len(pm) * rng.uniform(0.4, 0.6)))])
