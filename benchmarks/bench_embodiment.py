@@ -21,10 +21,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from l2p_bullet.execute import execute_path  # noqa: E402
-from l2p_bullet.scene import default_scene  # noqa: E402
-from l2p_bullet.sim import primitives  # noqa: E402
-from l2p_bullet.sim.camera import RenderSettings  # noqa: E402
+from l2p_bullet.core.scene import default_scene  # noqa: E402
+from l2p_bullet.embodiment.execute import execute_path  # noqa: E402
+from l2p_bullet.embodiment.sim import primitives  # noqa: E402
+from l2p_bullet.embodiment.sim.camera import RenderSettings  # noqa: E402
 
 RENDER = RenderSettings(width=320, height=240, fps=10.0)
 
@@ -63,8 +63,8 @@ def bare_run(captured, render):
     import pybullet as pb
     import pybullet_data
 
-    from l2p_bullet.sim.arms import PANDA, arm_urdf
-    from l2p_bullet.sim.world import urdf_path
+    from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+    from l2p_bullet.embodiment.sim.world import urdf_path
 
     t0 = time.perf_counter()
     cid = pb.connect(pb.DIRECT)
@@ -131,8 +131,8 @@ def bare_run(captured, render):
 
 def micro():
     """Steps/s, IK/s and ms per frame measured on their own."""
-    from l2p_bullet.sim.camera import Camera
-    from l2p_bullet.sim.world import World
+    from l2p_bullet.embodiment.sim.camera import Camera
+    from l2p_bullet.embodiment.sim.world import World
 
     out = {}
     world = World(default_scene())

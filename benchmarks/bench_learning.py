@@ -22,10 +22,10 @@ import time
 import numpy as np
 import torch
 
-from l2p_bullet.bundle import builtin_bundle_dir, load_bundle
-from l2p_bullet.demos import ACTIONS
-from l2p_bullet.evaluation import graded_agreement, graded_motions, session_split
-from l2p_bullet.train import TrainConfig, all_demos, train_action
+from l2p_bullet.learning.demos import ACTIONS
+from l2p_bullet.learning.train_progress import TrainConfig, all_demos, train_action
+from l2p_bullet.learning.validation import graded_agreement, graded_motions, session_split
+from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
 
 
 def throughput(model, batch: int, shared_prefix: bool, repeats: int = 5) -> float:
@@ -156,7 +156,7 @@ def main() -> None:
 def _write(metrics: dict, enabled: bool) -> None:
     if not enabled:
         return
-    from l2p_bullet.bundle import update_manifest
+    from l2p_bullet.plugins.bundle import update_manifest
 
     for a, values in metrics.items():
         update_manifest(builtin_bundle_dir(a), "metrics", values)
@@ -164,7 +164,7 @@ def _write(metrics: dict, enabled: bool) -> None:
 
 
 def _action(folder: str) -> str:
-    from l2p_bullet.evaluation import GRADED_FOLDERS
+    from l2p_bullet.learning.validation import GRADED_FOLDERS
 
     return GRADED_FOLDERS[folder]
 

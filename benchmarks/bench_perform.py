@@ -56,7 +56,7 @@ def help_time(repeats: int = 5) -> float:
 
 def cold_perform_times(seeds: list[int], tmp: Path, actions: list[str]) -> list[float]:
     """``l2p-bullet perform --no-render`` as fresh processes: what a user waits for."""
-    from l2p_bullet.scene import random_scene, save_scene
+    from l2p_bullet.core.scene import random_scene, save_scene
 
     out = []
     for i, seed in enumerate(seeds):
@@ -74,9 +74,9 @@ def cold_perform_times(seeds: list[int], tmp: Path, actions: list[str]) -> list[
 
 
 def run_one(action: str, seed: int, tmp: Path, render: bool, plugins: list) -> dict:
+    from l2p_bullet.core.scene import random_scene
     from l2p_bullet.errors import L2PError
     from l2p_bullet.pipeline import perform
-    from l2p_bullet.scene import random_scene
 
     scene = random_scene(seed)
     out = tmp / f"{action}-{seed}-{'r' if render else 'n'}"
@@ -131,7 +131,7 @@ def main() -> None:
     ap.add_argument("--json", type=Path, default=None, help="also write every row and the summary here")
     args = ap.parse_args()
 
-    from l2p_bullet import registry
+    from l2p_bullet.plugins import registry
 
     plugins = registry.discover()
     actions = [a for a in args.actions.split(",") if a]

@@ -35,16 +35,16 @@ ACTIONS = ("closer", "away", "next-to", "past", "around")
 
 
 def load(action: str, root: Path | None):
-    from l2p_bullet import registry
-    from l2p_bullet.bundle import load_bundle
+    from l2p_bullet.plugins import registry
+    from l2p_bullet.plugins.bundle import load_bundle
 
     return load_bundle(root / action) if root else registry.load(action)
 
 
 def run(action: str, bundle, planner: str, seeds: list[int], time_limits: list[float] | None = None) -> list[dict]:
-    from l2p_bullet.evaluate import evaluate
-    from l2p_bullet.planners import plan
-    from l2p_bullet.scene import random_scene
+    from l2p_bullet.core.scene import random_scene
+    from l2p_bullet.judge.rules import evaluate
+    from l2p_bullet.planning import plan
 
     rows = []
     for i, seed in enumerate(seeds):
@@ -91,7 +91,7 @@ def main() -> None:
     ap.add_argument("--json", type=Path, default=None, help="also write every row and the summary here")
     args = ap.parse_args()
 
-    from l2p_bullet.planners import resolve_planner
+    from l2p_bullet.planning import resolve_planner
 
     seeds = list(range(args.scenes))
     rows: list[dict] = []
@@ -117,7 +117,7 @@ def main() -> None:
                 rows += eq
                 summary[(action, "greedy@=t")] = summarise(eq)
                 print(f"{action:8s} {'greedy@=t':22s} {summary[(action, 'greedy@=t')]}", file=sys.stderr, flush=True)
-    from l2p_bullet.evaluate import demo_acceptance, graded_agreement
+    from l2p_bullet.judge.rules import demo_acceptance, graded_agreement
 
     agree, accept = graded_agreement(), demo_acceptance()
     print("\nThe evaluator: Spearman with people's grades (90 graded 2-D demos) "

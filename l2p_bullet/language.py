@@ -16,9 +16,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .core.scene import COLORS, Scene
 from .errors import LanguageError, UnknownObjectError, did_you_mean
-from .registry import normalize_phrase
-from .scene import COLORS, Scene
+from .plugins.registry import normalize_phrase
 
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = (

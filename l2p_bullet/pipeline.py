@@ -25,9 +25,9 @@ from typing import Any
 
 import numpy as np
 
+from .core.scene import Scene
 from .errors import L2PError, PluginError
 from .language import Command, parse
-from .scene import Scene
 
 StageFn = Callable[[str], None]
 
@@ -114,7 +114,7 @@ class _ModelOnce:
         key = (str(self._bundle.path), str(weights.get("sha256", "")), self._inference)
         if key not in self._cache:
             if self._inference == "numpy" and self._bundle.manifest.get("model", {}).get("arch", "lstm") == "lstm":
-                from .progress_numpy import NumpyProgressModel
+                from .progress.model import NumpyProgressModel
 
                 self._cache[key] = NumpyProgressModel.from_bundle(self._bundle)
             else:
@@ -124,7 +124,7 @@ class _ModelOnce:
 
 def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
     """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported)."""
-    from . import registry
+    from .plugins import registry
 
     plugins = registry.discover() if plugins is None else plugins
     table = registry.phrase_table(plugins)
@@ -149,10 +149,10 @@ def judge(action: str, mover: np.ndarray, anchor: np.ndarray, size: float,
     A plugin action has no rules in this project, so its only judge is its own progress model; the
     verdict says so ("judge": "progress-model") rather than pretending to be independent.
     """
-    from .demos import ACTIONS
+    from .learning.demos import ACTIONS
 
     if action in ACTIONS:
-        from .evaluate import evaluate
+        from .judge.rules import evaluate
 
         v = evaluate(action, mover, anchor, size)
         return {"success": bool(v.success), "score": round(float(v.score), 4), "reason": v.reason, "judge": "rules"}
@@ -172,8 +172,8 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
     failed, so a failed run is still explained on disk.
     """
-    from . import registry
-    from .runfolder import prepare_run_folder
+    from .core.runfolder import prepare_run_folder
+    from .plugins import registry
 
     clock = _Clock(on_stage)
     t = clock.start("parse")
@@ -200,11 +200,12 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
 
 def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: _Clock, *, planner: str,
          seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any) -> PerformResult:
-    from . import execute, planners
+    from . import planning
+    from .embodiment import execute
 
     size = scene.get(cmd.mover).size
     t = clock.start("plan", f"planning with the {planner} planner")
-    plan = planners.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
+    plan = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
                          threshold=threshold)
     clock.stop("plan", t)
     plan.extra.setdefault("sentence", cmd.sentence)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from l2p_bullet.evaluate import evaluate
+from l2p_bullet.judge.rules import evaluate
 
 
 class RuleProgress:

@@ -11,7 +11,9 @@ import pytest
 import tomli_w
 import torch
 
-from l2p_bullet.bundle import (
+from l2p_bullet.errors import BundleError
+from l2p_bullet.learning.demos import ACTIONS
+from l2p_bullet.plugins.bundle import (
     MANIFEST,
     PHRASES,
     POLICY_FILE,
@@ -22,8 +24,6 @@ from l2p_bullet.bundle import (
     version_satisfies,
     write_weights,
 )
-from l2p_bullet.demos import ACTIONS
-from l2p_bullet.errors import BundleError
 
 
 @pytest.fixture
@@ -145,7 +145,7 @@ def test_version_ranges():
 
 
 def test_update_manifest_merges_a_section_and_keeps_the_bundle_valid(bundle_copy):
-    from l2p_bullet.bundle import update_manifest
+    from l2p_bullet.plugins.bundle import update_manifest
 
     update_manifest(bundle_copy, "metrics", {"graded_spearman": 0.5})
     b = load_bundle(bundle_copy)

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from l2p_bullet.evaluate import evaluate, graded_agreement, spearman, square_gap
-from l2p_bullet.sim2d import interpolate
+from l2p_bullet.judge.rules import evaluate, graded_agreement, spearman, square_gap
+from l2p_bullet.planning.world2d import interpolate
 
 ANCHOR = np.array([0.0, 0.0, 0.0])
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
+from l2p_bullet.core.scene import Scene, SceneObject, default_scene
 from l2p_bullet.errors import LanguageError, UnknownObjectError
 from l2p_bullet.language import Command, parse
-from l2p_bullet.scene import Scene, SceneObject, default_scene
 
 # The phrases the five built-in manifests declare (the parser gets them from the registry in perform).
 PHRASES = {
@@ -123,7 +123,7 @@ def test_parse_is_torch_free():
     import subprocess
     import sys
 
-    code = ("import sys; from l2p_bullet.language import parse; from l2p_bullet.scene import default_scene; "
+    code = ("import sys; from l2p_bullet.language import parse; from l2p_bullet.core.scene import default_scene; "
             "parse('move A around B', default_scene(), {'around': 'around'}); "
             "assert 'torch' not in sys.modules and 'pybullet' not in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from l2p_bullet import registry
 from l2p_bullet.cli import main
+from l2p_bullet.core.scene import default_scene
 from l2p_bullet.errors import LanguageError, RunFolderError
 from l2p_bullet.pipeline import perform
-from l2p_bullet.scene import default_scene
+from l2p_bullet.plugins import registry
 
 FRAME_KEYS = {"t", "poses", "ee", "grasped", "progress"}
 
@@ -135,7 +135,7 @@ def test_perform_never_imports_torch(tmp_path):
     import subprocess
     import sys
 
-    code = ("import sys; from l2p_bullet.pipeline import perform; from l2p_bullet.scene import default_scene; "
+    code = ("import sys; from l2p_bullet.pipeline import perform; from l2p_bullet.core.scene import default_scene; "
             f"perform('move A next to B', default_scene(), out_dir={str(tmp_path / 'r')!r}, render=False); "
             "assert 'torch' not in sys.modules, 'perform imported torch'")
     subprocess.run([sys.executable, "-c", code], check=True)
@@ -144,7 +144,7 @@ def test_perform_never_imports_torch(tmp_path):
 @needs_next_to
 def test_scene_file_and_colour_names(tmp_path):
     """--scene with three blocks: colours pick the mover and the anchor; the third block stays put."""
-    from l2p_bullet.scene import Scene, SceneObject, save_scene
+    from l2p_bullet.core.scene import Scene, SceneObject, save_scene
 
     scene = Scene([SceneObject("A", "red", 0.05, (0.10, -0.10)), SceneObject("B", "green", 0.05, (0.0, 0.05)),
                    SceneObject("C", "blue", 0.05, (-0.12, -0.08), 0.4)]).validate()

@@ -9,9 +9,9 @@ import pytest
 from click.testing import CliRunner
 from planning_fakes import FakeBundle
 
-from l2p_bullet import registry
 from l2p_bullet.cli import main
-from l2p_bullet.paths import load_motion
+from l2p_bullet.core.contracts import load_motion
+from l2p_bullet.plugins import registry
 
 PHRASES = {"around": "around", "past": "past", "next to": "next-to", "closer to": "closer", "away from": "away"}
 

@@ -10,16 +10,16 @@ import numpy as np
 import pytest
 from planning_fakes import FakeBundle
 
+from l2p_bullet.core.geometry import polygons_overlap
+from l2p_bullet.core.scene import GRIPPER_MARGIN, default_scene, random_scene
 from l2p_bullet.errors import L2PError, PlanError
-from l2p_bullet.geometry2d import polygons_overlap
-from l2p_bullet.planners import PLANNERS, plan, resolve_planner
-from l2p_bullet.scene import GRIPPER_MARGIN, default_scene, random_scene
+from l2p_bullet.planning import PLANNERS, plan, resolve_planner
 
 SEARCHES = ["greedy", "beam", "discrete", "mixed"]
 
 
 def _assert_executable(p, scene):
-    from l2p_bullet.sim2d import World2D
+    from l2p_bullet.planning.world2d import World2D
 
     mover, anchor = scene.get(p.mover), scene.get(p.anchor)
     assert np.allclose(p.path[0], mover.pose)
@@ -95,9 +95,9 @@ def test_reinforce_needs_a_trained_policy():
 def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
     import torch
 
-    from l2p_bullet.planners.policy import NumpyPolicy
-    from l2p_bullet.planners.policy_net import policy_from_tensors
-    from l2p_bullet.planners.train_policy import TrainConfig, train_policy
+    from l2p_bullet.learning.policy_net import policy_from_tensors
+    from l2p_bullet.learning.train_policy import TrainConfig, train_policy
+    from l2p_bullet.planning.policy import NumpyPolicy
 
     cfg = TrainConfig(iterations=2, episodes=4, horizon=3)
     net, history, kept = train_policy(FakeBundle("around").model, cfg, log=None)
@@ -121,7 +121,7 @@ def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
 
 def test_policy_training_keeps_the_weights_of_its_best_window():
     """A late collapse of REINFORCE must not be what ships: the kept iteration ends the best run."""
-    from l2p_bullet.planners.train_policy import BEST_WINDOW, TrainConfig, train_policy
+    from l2p_bullet.learning.train_policy import BEST_WINDOW, TrainConfig, train_policy
 
     cfg = TrainConfig(iterations=BEST_WINDOW + 4, episodes=4, horizon=2)
     _, history, kept = train_policy(FakeBundle("around").model, cfg, log=None)
@@ -130,7 +130,7 @@ def test_policy_training_keeps_the_weights_of_its_best_window():
 
 
 def test_a_mover_touching_another_object_is_a_clear_error():
-    from l2p_bullet.scene import Scene, SceneObject
+    from l2p_bullet.core.scene import Scene, SceneObject
 
     scene = Scene([SceneObject("A", "red", 0.05, (0.0, 0.0)), SceneObject("B", "green", 0.05, (0.052, 0.0))])
     with pytest.raises(PlanError, match="touching"):
@@ -147,14 +147,14 @@ def test_planning_never_imports_torch(tmp_path):
         "import sys; sys.path.insert(0, sys.argv[1])\n"
         "import numpy as np\n"
         "from planning_fakes import FakeBundle\n"
-        "from l2p_bullet.planners import plan\n"
-        "from l2p_bullet.planners.policy import NumpyPolicy\n"
-        "from l2p_bullet.scene import default_scene\n"
+        "from l2p_bullet.planning import plan\n"
+        "from l2p_bullet.planning.policy import NumpyPolicy\n"
+        "from l2p_bullet.core.scene import default_scene\n"
         "rng = np.random.default_rng(0)\n"
         "shapes = {'body.0': (64, 12), 'body.2': (64, 64), 'mean': (3, 64), 'log_std': (3, 64)}\n"
         "arrays = {f'{k}.weight': rng.normal(0, 0.1, s) for k, s in shapes.items()}\n"
         "arrays |= {f'{k}.bias': np.zeros(s[0]) for k, s in shapes.items()}\n"
-        "import l2p_bullet.planners.policy as pol\n"
+        "import l2p_bullet.planning.policy as pol\n"
         "pol.load_policy = lambda bundle: NumpyPolicy(arrays)\n"
         "for name in ('discrete', 'greedy', 'reinforce'):\n"
         "    plan(default_scene(), 'A', 'B', FakeBundle('around'), planner=name, budget=3)\n"
@@ -164,7 +164,7 @@ def test_planning_never_imports_torch(tmp_path):
 
 
 def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
-    from l2p_bullet.planners.policy import features, to_poses
+    from l2p_bullet.planning.policy import features, to_poses
 
     path = np.array([[0.1, 0.03, 0.2], [0.08, 0.06, 0.25], [0.05, 0.09, 0.3]])
     mirror = path * np.array([1, -1, -1])  # across the x axis, through the anchor and the workspace centre
@@ -180,7 +180,7 @@ def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
 @pytest.mark.parametrize("action", ["closer", "away", "next-to", "past", "around"])
 def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     """The real bundles (progress model + policy) through the default planner: legal, dense, repeatable."""
-    from l2p_bullet import registry
+    from l2p_bullet.plugins import registry
 
     bundle = registry.load(action)
     scene = random_scene(11)
@@ -192,5 +192,5 @@ def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     assert np.array_equal(a.path, b.path) and a.planner == expected and a.stopped in ("threshold", "budget")
     assert "note" not in a.extra, (f"{action}: the bundle's policy.safetensors was trained against another "
                                    "progress model; re-train it (make bundles, or python -m "
-                                   f"l2p_bullet.planners.train_policy {action})")
+                                   f"l2p_bullet.learning.train_policy {action})")
     assert a.extra["final_progress"] > 0.5

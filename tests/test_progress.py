@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 import torch
 
-from l2p_bullet.architecture import ModelConfig
-from l2p_bullet.bundle import builtin_bundle_dir, load_bundle
-from l2p_bullet.demos import ACTIONS, load_demos
-from l2p_bullet.progress import ProgressModel, ProgressNet
-from l2p_bullet.qsr import QSRConfig
-from l2p_bullet.train import TrainConfig, train_net
-from l2p_bullet.trainset import DataConfig, demo_sequence, violates
+from l2p_bullet.learning.demos import ACTIONS, load_demos
+from l2p_bullet.learning.progress_net import ProgressModel, ProgressNet
+from l2p_bullet.learning.train_progress import TrainConfig, train_net
+from l2p_bullet.learning.trainset import DataConfig, demo_sequence, violates
+from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
+from l2p_bullet.progress.config import ModelConfig
+from l2p_bullet.progress.features import QSRConfig
 
 
 @pytest.fixture(scope="module")
@@ -79,7 +79,7 @@ def test_training_is_deterministic_and_learns():
     """Approaching lines labelled as rising progress, receding lines as 0: a tiny net must fit them."""
     q = QSRConfig()
     rng = np.random.default_rng(0)
-    from l2p_bullet.trainset import Sequence, features, resample
+    from l2p_bullet.learning.trainset import Sequence, features, resample
 
     seqs = []
     for i in range(8):

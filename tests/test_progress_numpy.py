@@ -10,10 +10,10 @@ import pytest
 
 torch = pytest.importorskip("torch")
 
-from l2p_bullet.architecture import ModelConfig  # noqa: E402
-from l2p_bullet.progress import ProgressModel, ProgressNet, ensemble_state  # noqa: E402
-from l2p_bullet.progress_numpy import NumpyProgressModel  # noqa: E402
-from l2p_bullet.qsr import QSRConfig  # noqa: E402
+from l2p_bullet.learning.progress_net import ProgressModel, ProgressNet, ensemble_state  # noqa: E402
+from l2p_bullet.progress.config import ModelConfig  # noqa: E402
+from l2p_bullet.progress.features import QSRConfig  # noqa: E402
+from l2p_bullet.progress.model import NumpyProgressModel  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -57,7 +57,7 @@ def test_same_numbers_as_torch(models, seed):
 
 
 def test_numpy_model_does_not_import_torch():
-    code = ("import sys; import l2p_bullet.progress_numpy; import l2p_bullet.pipeline; "
+    code = ("import sys; import l2p_bullet.progress.model; import l2p_bullet.pipeline; "
             "assert 'torch' not in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)
 

@@ -6,7 +6,13 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from l2p_bullet.qsr import QSRConfig, feature_names, motion_features, resample, resample_batch
+from l2p_bullet.progress.features import (
+    QSRConfig,
+    feature_names,
+    motion_features,
+    resample,
+    resample_batch,
+)
 
 NAMES = feature_names()
 COL = {n: i for i, n in enumerate(NAMES)}

@@ -14,9 +14,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from l2p_bullet import registry
 from l2p_bullet.cli import main
 from l2p_bullet.errors import PluginError
+from l2p_bullet.plugins import registry
 
 
 def make_dist(root: Path, dist: str, entry_points: dict[str, str]) -> None:
@@ -142,14 +142,14 @@ def test_actions_command_lists_good_and_broken(plugins_dir):
 
 
 def test_actions_check_loads_each_plugin(plugins_dir):
-    pytest.importorskip("l2p_bullet.bundle")
+    pytest.importorskip("l2p_bullet.plugins.bundle")
     checked = CliRunner().invoke(main, ["actions", "--json", "--check"])
     rows = {r["name"]: r for r in json.loads(checked.output)["actions"]}
     assert not rows["upside"]["ok"] and "boom" in rows["upside"]["error"]
 
 
 def test_discovery_does_not_import_torch():
-    code = ("import sys; from l2p_bullet import registry; registry.discover(); registry.phrase_table() "
+    code = ("import sys; from l2p_bullet.plugins import registry; registry.discover(); registry.phrase_table() "
             "if False else None; assert 'torch' not in sys.modules and 'pybullet' not in sys.modules, "
             "sorted(m for m in sys.modules if m.startswith(('torch', 'pybullet')))")
     subprocess.run([sys.executable, "-c", code], check=True)

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from l2p_bullet import motion
 from l2p_bullet.cli import main
-from l2p_bullet.demos import get_demo
-from l2p_bullet.retarget import relative
-from l2p_bullet.scene import default_scene
+from l2p_bullet.core.scene import default_scene
+from l2p_bullet.embodiment import motion
+from l2p_bullet.embodiment.retarget import relative
+from l2p_bullet.learning.demos import get_demo
 
 
 def _replay(*args):

@@ -8,8 +8,8 @@ import pytest
 from click.testing import CliRunner
 
 from l2p_bullet.cli import main
+from l2p_bullet.core.scene import default_scene, load_scene, save_scene
 from l2p_bullet.errors import SceneError
-from l2p_bullet.scene import default_scene, load_scene, save_scene
 
 
 def _write(tmp_path, objects, name="scene.json"):

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from l2p_bullet.bundle import builtin_bundle_dir, load_bundle, sha256_file
 from l2p_bullet.cli import main
-from l2p_bullet.demos import data_dir
+from l2p_bullet.learning.demos import data_dir
+from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle, sha256_file
 
 
 def _scoring_input(tmp_path: Path, mover: np.ndarray, size: float = 0.05, anchor=None) -> Path:

@@ -7,9 +7,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from l2p_bullet.geometry2d import polygons_overlap
-from l2p_bullet.scene import GRIPPER_MARGIN, Scene, SceneObject
-from l2p_bullet.sim2d import World2D, interpolate, place, segment_frames
+from l2p_bullet.core.geometry import polygons_overlap
+from l2p_bullet.core.scene import GRIPPER_MARGIN, Scene, SceneObject
+from l2p_bullet.planning.world2d import World2D, interpolate, place, segment_frames
 
 
 def _scene(b_xy=(0.0, 0.0), a_xy=(-0.15, 0.0), size=0.05) -> Scene:

@@ -8,12 +8,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from l2p_bullet import motion
+from l2p_bullet.core.geometry import polygons_overlap
+from l2p_bullet.core.scene import GRIPPER_MARGIN, default_scene
+from l2p_bullet.embodiment import motion
+from l2p_bullet.embodiment.retarget import place, relative, retarget
+from l2p_bullet.embodiment.smoothing import Limits, curvature, time_parameterise
 from l2p_bullet.errors import PathError
-from l2p_bullet.geometry2d import polygons_overlap
-from l2p_bullet.retarget import place, relative, retarget
-from l2p_bullet.scene import GRIPPER_MARGIN, default_scene
-from l2p_bullet.smoothing import Limits, curvature, time_parameterise
 
 LIM = Limits(velocity=0.1, acceleration=0.5, jerk=5.0, lateral=0.5)
 DT = 1.0 / 240

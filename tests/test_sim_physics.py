@@ -8,13 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from l2p_bullet import motion
+from l2p_bullet.core.scene import Scene, SceneObject, Workspace, default_scene
+from l2p_bullet.embodiment import motion
+from l2p_bullet.embodiment.execute import execute_path
+from l2p_bullet.embodiment.sim.arms import PANDA
+from l2p_bullet.embodiment.sim.camera import RenderSettings
+from l2p_bullet.embodiment.sim.robot import Kinematics
 from l2p_bullet.errors import PathError, ReachError, UnknownObjectError
-from l2p_bullet.execute import execute_path
-from l2p_bullet.scene import Scene, SceneObject, Workspace, default_scene
-from l2p_bullet.sim.arms import PANDA
-from l2p_bullet.sim.camera import RenderSettings
-from l2p_bullet.sim.robot import Kinematics
 
 
 def circle_around(scene: Scene, mover: str = "A", anchor: str = "B", n: int = 121) -> np.ndarray:

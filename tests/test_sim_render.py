@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from l2p_bullet.core.scene import Scene, SceneObject
+from l2p_bullet.embodiment.sim.camera import Camera, RenderSettings
+from l2p_bullet.embodiment.sim.world import World
 from l2p_bullet.errors import ExecutionError
-from l2p_bullet.scene import Scene, SceneObject
-from l2p_bullet.sim.camera import Camera, RenderSettings
-from l2p_bullet.sim.world import World
 
 
 def _is(colour: str, px: np.ndarray) -> bool:

@@ -36,7 +36,7 @@ def actions_cmd(as_json: bool, check: bool) -> None:
     Plugins are found through the entry-point group "l2p_bullet.actions" without importing them;
     broken ones are listed with the reason. --check loads each one as perform would.
     """
-    from .. import registry
+    from ..plugins import registry
 
     plugins = registry.discover()
     reasons = {p.name: p.error for p in plugins if not p.ok}
@@ -98,8 +98,8 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
           pip install DIR
           l2p-bullet perform "move A <phrase> B"
     """
-    from .. import registry
-    from ..scaffold import scaffold
+    from ..plugins import registry
+    from ..plugins.scaffold import scaffold
 
     plugins = registry.discover()
     installed = {ph: p.name for p in plugins if p.ok for ph in p.phrases}

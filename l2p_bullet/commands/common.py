@@ -14,6 +14,6 @@ scene_option = click.option(
 
 def load_scene_or_default(scene_path: str | None):
     """The scene from ``--scene``, or the default two-block scene."""
-    from ..scene import default_scene, load_scene
+    from ..core.scene import default_scene, load_scene
 
     return default_scene() if scene_path is None else load_scene(scene_path)

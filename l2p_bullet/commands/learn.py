@@ -1,7 +1,7 @@
 """``train`` and ``score``: learn an action's progress model into a bundle, and score a motion with one.
 
 ACTION is a built-in action name (closer, away, next-to, past, around, or an alias such as next_to) or
-the path of a bundle folder; :func:`l2p_bullet.bundle.resolve_action` decides which (the plugin
+the path of a bundle folder; :func:`l2p_bullet.plugins.bundle.resolve_action` decides which (the plugin
 registry can replace that one function). torch is imported inside the command bodies.
 """
 
@@ -17,7 +17,7 @@ from .common import force_option, seed_option
 
 
 def _resolve(spec: str):
-    from ..bundle import resolve_action
+    from ..plugins.bundle import resolve_action
 
     return resolve_action(spec)
 
@@ -29,8 +29,8 @@ def _resolve_for_training(action: str, out_dir: str | None, demo_files: tuple[st
     new-action``) is trained before its package is installed, so it is recognised by the manifest the
     scaffold put in ``--out``, which must name it, and it needs the author's ``--demos``.
     """
-    from ..bundle import read_manifest
     from ..errors import BundleError
+    from ..plugins.bundle import read_manifest
 
     try:
         return _resolve(action)[0], False
@@ -70,10 +70,10 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     """
     import dataclasses
 
-    from ..bundle import write_progress_bundle
     from ..errors import RunFolderError
-    from ..train import TrainConfig, all_demos, train_action
-    from ..trainset import DataConfig
+    from ..learning.train_progress import TrainConfig, all_demos, train_action
+    from ..learning.trainset import DataConfig
+    from ..plugins.bundle import write_progress_bundle
 
     name, plugin = _resolve_for_training(action, out_dir, demo_files)
     out = Path(out_dir) if out_dir else Path("runs") / "bundles" / name
@@ -86,7 +86,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     if epochs is not None:
         cfg = dataclasses.replace(cfg, epochs=epochs)
     if plugin:  # the author's demonstrations; the built-in actions' shipped ones are the negatives
-        from ..demos import load_demos
+        from ..learning.demos import load_demos
 
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
     else:
@@ -97,7 +97,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
         result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=lambda: bar.update(1))
     cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
            + (f" --ensemble {ensemble}" if ensemble else "") + (f" --epochs {epochs}" if epochs else ""))
-    from ..train import training_section
+    from ..learning.train_progress import training_section
 
     write_progress_bundle(out, name, result.model, training=training_section(result, cfg, seed, cmd),
                           metrics={"train_loss": round(result.final_loss, 6)})
@@ -113,8 +113,8 @@ def score(action: str, file: str) -> None:
     FILE is a scoring input {"size", "mover", "anchor"}, a plan.json or a trajectory.json. The motion
     is resampled to the model's frame spacing; the output has one progress value per input frame.
     """
-    from ..bundle import load_bundle
-    from ..paths import load_motion
+    from ..core.contracts import load_motion
+    from ..plugins.bundle import load_bundle
 
     name, folder = _resolve(action)
     motion = load_motion(file)

@@ -30,11 +30,12 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     """
     import json
 
-    from .. import language, registry
-    from ..evaluate import evaluate
-    from ..planners import plan, resolve_planner
-    from ..planners.plot import plot_plan
-    from ..runfolder import prepare_run_folder
+    from .. import language
+    from ..core.runfolder import prepare_run_folder
+    from ..judge.rules import evaluate
+    from ..planning import plan, resolve_planner
+    from ..planning.plot import plot_plan
+    from ..plugins import registry
 
     resolve_planner(planner, {})  # a bad name fails before anything is loaded
     scene = load_scene_or_default(scene_path)

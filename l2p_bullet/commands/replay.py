@@ -40,10 +40,10 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
       l2p-bullet replay --demo around:0
       l2p-bullet replay runs/demo/plan.json --no-render
     """
+    from ..core.runfolder import prepare_run_folder
+    from ..embodiment.replay import motion_source, run_replay
+    from ..embodiment.sim.camera import RenderSettings
     from ..errors import PathError
-    from ..replaying import motion_source, run_replay
-    from ..runfolder import prepare_run_folder
-    from ..sim.camera import RenderSettings
 
     if (path_json is None) == (demo is None):
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")

@@ -1,0 +1,292 @@
+"""The scene: blocks on a table, the table itself and the arm's workspace.
+
+Frame (the scene file's frame, DESIGN.md section 4): metres on the table top, origin at the table's
+centre, +x pointing away from the robot's base, +y to the robot's left, yaw in radians about +z.
+
+The robot base stands off the table's near edge at ``ROBOT_BASE_XY``: a Panda with its gripper pointing
+down reaches grasp points at table height from about 0.25 m to 0.78 m from its base, and a disk of
+0.25 m radius centred 0.53 m in front of the base fits inside that ring (DESIGN.md, reach note). That
+disk is the workspace: every block centre, and every point of a planned path, must lie inside it.
+
+Block footprints come from their meshes through trimesh so that non-cube objects can follow later;
+a cube's footprint is its square, rotated by its yaw.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SceneError, UnknownObjectError, did_you_mean
+
+# Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
+COLORS: dict[str, tuple[float, float, float, float]] = {
+    "red": (0.85, 0.1, 0.1, 1.0),
+    "green": (0.1, 0.7, 0.2, 1.0),
+    "blue": (0.15, 0.3, 0.9, 1.0),
+    "yellow": (0.95, 0.85, 0.1, 1.0),
+    "orange": (1.0, 0.55, 0.0, 1.0),
+    "purple": (0.55, 0.2, 0.75, 1.0),
+    "white": (0.95, 0.95, 0.95, 1.0),
+    "black": (0.1, 0.1, 0.1, 1.0),
+    "gray": (0.5, 0.5, 0.5, 1.0),
+    "brown": (0.55, 0.35, 0.15, 1.0),
+    "pink": (1.0, 0.5, 0.7, 1.0),
+    "cyan": (0.0, 0.8, 0.85, 1.0),
+}
+
+ROBOT_BASE_XY: tuple[float, float] = (-0.53, 0.0)
+"""Where the arm's base stands in the scene frame (off the table's near edge, facing +x)."""
+
+GRIPPER_MARGIN: float = 0.005
+"""Clearance (metres) the 2-D planner keeps between the mover's footprint and any other object.
+
+The arm grasps from above with its fingers closed and resting on the block's top (a fixed constraint,
+like a suction cup), so nothing of the gripper reaches down beside the block: obstacles are inflated
+only by this safety margin, not by the fingers' footprint (DESIGN.md, the finger note)."""
+
+MIN_SIZE, MAX_SIZE = 0.02, 0.08
+"""Block sides the gripper can hold (metres): the Panda's fingers open to 0.08 m."""
+
+
+@dataclass(frozen=True)
+class Table:
+    """A rectangular table top centred at the origin; ``height`` is its top above the floor."""
+
+    half_x: float = 0.4
+    half_y: float = 0.4
+    height: float = 0.0
+
+    def contains(self, points: np.ndarray) -> bool:
+        p = np.asarray(points, dtype=float).reshape(-1, 2)
+        return bool(np.all(np.abs(p[:, 0]) <= self.half_x + 1e-9) and np.all(np.abs(p[:, 1]) <= self.half_y + 1e-9))
+
+
+@dataclass(frozen=True)
+class Workspace:
+    """The disk the gripper reaches pointing down at block height (see the module docstring)."""
+
+    center: tuple[float, float] = (0.0, 0.0)
+    radius: float = 0.25
+
+    def contains(self, points: np.ndarray, margin: float = 0.0) -> np.ndarray:
+        """Per point: inside the disk shrunk by ``margin``."""
+        p = np.asarray(points, dtype=float).reshape(-1, 2)
+        d = np.hypot(p[:, 0] - self.center[0], p[:, 1] - self.center[1])
+        return d <= self.radius - margin + 1e-9
+
+
+@lru_cache(maxsize=64)
+def _unit_footprint(shape: str) -> np.ndarray:
+    """Convex 2-D outline (K,2) of a unit-size object, from its mesh, counter-clockwise."""
+    import trimesh  # imported lazily: the CLI's --help must stay fast
+
+    if shape != "cube":
+        raise SceneError(f'unknown object shape "{shape}" (known: cube)')
+    mesh = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    pts = np.unique(np.round(mesh.vertices[:, :2], 9), axis=0)
+    c = pts.mean(axis=0)
+    order = np.argsort(np.arctan2(pts[:, 1] - c[1], pts[:, 0] - c[0]))
+    return pts[order]
+
+
+@dataclass(frozen=True)
+class SceneObject:
+    """One block on the table. ``size`` is the cube's side in metres; ``xy``/``yaw`` its pose."""
+
+    name: str
+    color: str
+    size: float
+    xy: tuple[float, float]
+    yaw: float = 0.0
+    shape: str = "cube"
+
+    @property
+    def pose(self) -> np.ndarray:
+        """[x, y, yaw] as an array."""
+        return np.array([self.xy[0], self.xy[1], self.yaw], dtype=float)
+
+    def footprint(self, pose: np.ndarray | None = None) -> np.ndarray:
+        """The object's outline (K,2) on the table at ``pose`` ([x, y, yaw], default its own)."""
+        x, y, yaw = self.pose if pose is None else np.asarray(pose, dtype=float)
+        c, s = math.cos(yaw), math.sin(yaw)
+        rot = np.array([[c, -s], [s, c]])
+        return (_unit_footprint(self.shape) * self.size) @ rot.T + np.array([x, y])
+
+    def moved(self, pose: np.ndarray) -> SceneObject:
+        return replace(self, xy=(float(pose[0]), float(pose[1])), yaw=float(pose[2]))
+
+
+@dataclass
+class Scene:
+    """Objects on a table with a workspace. Validate with :meth:`validate` (load does it for you)."""
+
+    objects: list[SceneObject]
+    table: Table = field(default_factory=Table)
+    workspace: Workspace = field(default_factory=Workspace)
+
+    @property
+    def names(self) -> list[str]:
+        return [o.name for o in self.objects]
+
+    def get(self, name: str) -> SceneObject:
+        """The object called ``name``; a clear error with a suggestion otherwise."""
+        for o in self.objects:
+            if o.name == name:
+                return o
+        raise UnknownObjectError(
+            f'no object named "{name}" in the scene (objects: {", ".join(self.names)}).'
+            + did_you_mean(name, self.names)
+        )
+
+    def with_pose(self, name: str, pose: np.ndarray) -> Scene:
+        self.get(name)
+        return Scene([o.moved(pose) if o.name == name else o for o in self.objects], self.table, self.workspace)
+
+    def validate(self) -> Scene:
+        """Raise :class:`SceneError` naming the first problem found; return self when all is well."""
+        if not self.objects:
+            raise SceneError("the scene has no objects")
+        seen: set[str] = set()
+        for o in self.objects:
+            if not o.name or not isinstance(o.name, str):
+                raise SceneError("every object needs a non-empty name")
+            if o.name in seen:
+                raise SceneError(f'two objects are named "{o.name}": names must be unique')
+            seen.add(o.name)
+            if o.color not in COLORS:
+                raise SceneError(
+                    f'object "{o.name}": unknown colour "{o.color}" (known: {", ".join(COLORS)}).'
+                    + did_you_mean(o.color, COLORS)
+                )
+            if not (MIN_SIZE <= o.size <= MAX_SIZE):
+                raise SceneError(
+                    f'object "{o.name}": size {o.size} m is outside what the gripper holds '
+                    f"({MIN_SIZE}-{MAX_SIZE} m)"
+                )
+            if not all(math.isfinite(v) for v in (*o.xy, o.yaw)):
+                raise SceneError(f'object "{o.name}": pose must be finite numbers')
+            if not self.table.contains(o.footprint()):
+                raise SceneError(
+                    f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is off the table '
+                    f"(the table spans +-{self.table.half_x} m in x and +-{self.table.half_y} m in y)"
+                )
+            if not self.workspace.contains(np.array(o.xy))[0]:
+                raise SceneError(
+                    f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is outside the arm\'s workspace '
+                    f"(a disk of radius {self.workspace.radius} m around {self.workspace.center})"
+                )
+        from .geometry import polygons_overlap  # local: keeps the module's import graph flat
+
+        for i, a in enumerate(self.objects):
+            for b in self.objects[i + 1 :]:
+                if polygons_overlap(a.footprint(), b.footprint()):
+                    raise SceneError(f'objects "{a.name}" and "{b.name}" overlap')
+        return self
+
+    # --- the scene file (DESIGN.md section 4) -------------------------------------------------
+    def to_dict(self) -> dict:
+        return {
+            "objects": [
+                {"name": o.name, "color": o.color, "size": o.size, "xy": [o.xy[0], o.xy[1]], "yaw": o.yaw}
+                | ({} if o.shape == "cube" else {"shape": o.shape})
+                for o in self.objects
+            ]
+        }
+
+    @classmethod
+    def from_dict(cls, data: object, source: str = "scene") -> Scene:
+        if not isinstance(data, dict) or "objects" not in data:
+            raise SceneError(f'{source}: expected a JSON object with an "objects" list')
+        objs = data["objects"]
+        if not isinstance(objs, list):
+            raise SceneError(f'{source}: "objects" must be a list')
+        out = []
+        for i, raw in enumerate(objs):
+            where = f"{source}: object {i}"
+            if not isinstance(raw, dict):
+                raise SceneError(f"{where} must be a JSON object")
+            for key in ("name", "color", "size", "xy"):
+                if key not in raw:
+                    raise SceneError(f'{where} ({raw.get("name", "unnamed")}) is missing the field "{key}"')
+            xy = raw["xy"]
+            if not (isinstance(xy, list | tuple) and len(xy) == 2 and all(_is_number(v) for v in xy)):
+                raise SceneError(f'{where} ({raw["name"]}): "xy" must be two numbers [x, y] in metres')
+            if not _is_number(raw["size"]):
+                raise SceneError(f'{where} ({raw["name"]}): "size" must be a number (metres)')
+            yaw = raw.get("yaw", 0.0)
+            if not _is_number(yaw):
+                raise SceneError(f'{where} ({raw["name"]}): "yaw" must be a number (radians)')
+            out.append(
+                SceneObject(
+                    name=str(raw["name"]),
+                    color=str(raw["color"]).lower(),
+                    size=float(raw["size"]),
+                    xy=(float(xy[0]), float(xy[1])),
+                    yaw=float(yaw),
+                    shape=str(raw.get("shape", "cube")),
+                )
+            )
+        return cls(out)
+
+
+def _is_number(v: object) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool)
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file; every problem becomes a :class:`SceneError` naming the file."""
+    p = Path(path)
+    try:
+        text = p.read_text()
+    except OSError as e:
+        raise SceneError(f"cannot read scene file {p}: {e.strerror or e}") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise SceneError(f"scene file {p} is not valid JSON (line {e.lineno}, column {e.colno}: {e.msg})") from None
+    return Scene.from_dict(data, source=str(p)).validate()
+
+
+def save_scene(scene: Scene, path: str | Path) -> None:
+    Path(path).write_text(json.dumps(scene.to_dict(), indent=2) + "\n")
+
+
+def default_scene() -> Scene:
+    """Blocks A (red) and B (green), 5 cm cubes, as in DESIGN.md's example."""
+    return Scene(
+        [
+            SceneObject("A", "red", 0.05, (0.05, -0.10), 0.3),
+            SceneObject("B", "green", 0.05, (0.0, 0.05), 0.0),
+        ]
+    ).validate()
+
+
+def random_scene(seed: int, size: float = 0.05) -> Scene:
+    """A valid two-block scene drawn from ``seed``: anchor B near the centre, mover A 2-4 block sizes away.
+
+    The anchor stays within 0.07 m of the centre so that every action (even "around" and "away from")
+    has room to be performed inside the workspace.
+    """
+    rng = np.random.default_rng(seed)
+    for _ in range(1000):
+        r, a = 0.07 * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
+        b_xy = (r * math.cos(a), r * math.sin(a))
+        d, a2 = rng.uniform(2.0, 4.0) * size, rng.uniform(-math.pi, math.pi)
+        a_xy = (b_xy[0] + d * math.cos(a2), b_xy[1] + d * math.sin(a2))
+        scene = Scene(
+            [
+                SceneObject("A", "red", size, a_xy, float(rng.uniform(0, math.pi / 2))),
+                SceneObject("B", "green", size, b_xy, float(rng.uniform(0, math.pi / 2))),
+            ]
+        )
+        try:
+            return scene.validate()
+        except SceneError:
+            continue
+    raise SceneError(f"could not draw a valid random scene for seed {seed}")  # pragma: no cover

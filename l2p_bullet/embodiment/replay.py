@@ -1,0 +1,90 @@
+"""What ``replay`` executes: a demonstration, a scoring input or a plan, turned into a scene path.
+
+Kept apart from the click command so that tests and the benchmark can use it without a CLI.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..core.scene import Scene
+from ..errors import PathError, SceneError
+
+
+@dataclass
+class Source:
+    """A path of ``mover`` in the scene frame, where it came from, and how it was fitted."""
+
+    label: str
+    mover: str
+    anchor: str
+    path: np.ndarray  # (N,3), scene frame
+    action: str | None = None
+    info: dict = field(default_factory=dict)
+
+
+def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
+    """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`."""
+    from .retarget import retarget
+
+    if demo is not None:
+        from ..learning.demos import canonical_action, get_demo
+
+        action, sep, index = demo.partition(":")
+        if not sep or not index.strip().lstrip("-").isdigit():
+            raise PathError(f'--demo expects ACTION:INDEX, e.g. around:0 (got "{demo}")')
+        d = get_demo(canonical_action(action), int(index))
+        fit = retarget(d.event_mover, d.event_anchor, d.size, scene, mover, anchor)
+        return Source(f"demonstration {d.id}", mover, anchor, fit.path, d.action,
+                      {"source": {"demo": d.id, "frames": [d.start, d.end]}, "retarget": _fit_info(fit)})
+    from ..core.contracts import Plan, read_json
+
+    data = read_json(path_json)
+    if "path" in data:  # plan.json: already in the scene frame
+        plan = Plan.from_dict(data, source=str(path_json))
+        scene.get(plan.mover)
+        return Source(f"plan {path_json}", plan.mover, plan.anchor, plan.path, plan.action,
+                      {"source": {"plan": str(path_json)}})
+    from ..core.contracts import motion_from_dict
+
+    m = motion_from_dict(data, source=str(path_json))
+    mover, anchor = m.mover_name or mover, m.anchor_name or anchor
+    fit = retarget(m.mover, m.anchor, m.size, scene, mover, anchor)
+    return Source(f"motion {Path(path_json).name}", mover, anchor, fit.path, m.action,
+                  {"source": {"motion": str(path_json)}, "retarget": _fit_info(fit)})
+
+
+def _fit_info(fit) -> dict:
+    return {"clamped_points": fit.clamped, "pushed_points": fit.pushed, "max_fix_m": round(fit.max_fix_m, 6),
+            "points": len(fit.path)}
+
+
+def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed: int = 0, on_stage=None):
+    """Put the mover at the path's start (the motion defines where it begins) and execute the path."""
+    from .execute import execute_path
+
+    start = scene.with_pose(source.mover, source.path[0])
+    try:
+        start.validate()
+    except SceneError as e:
+        raise PathError(f"the motion's start pose does not fit the scene: {e}") from None
+    plan_file = None
+    if out_dir is not None:
+        from ..core.contracts import Plan
+
+        plan_file = Path(out_dir) / "plan.json"
+        plan = Plan(source.action or "replay", source.mover, source.anchor, start.get(source.mover).size,
+                    start.get(source.anchor).pose, source.path[0], source.path, np.zeros(len(source.path)),
+                    "replay", "replay", {"replay": source.info})
+        doc = plan.to_dict() | {"progress": [None] * len(source.path)}  # no model scored a replay
+        plan_file.write_text(json.dumps(doc, indent=1) + "\n")
+    meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info}
+    ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
+                      on_stage=on_stage)
+    if plan_file is not None:
+        ex.files["plan"] = plan_file
+    return ex

@@ -1,0 +1,232 @@
+"""The paper's primitives on the simulated arm: ``engage(obj)``, ``move(path)``, ``disengage()``.
+
+Every motion is: geometric end-effector path (motion.py) -> ruckig timing (smoothing.py) -> IK at the
+control rate, all solved *before* the arm moves (so an unreachable pose raises ReachError with the world
+untouched) -> physics steps with the joint targets interpolated between control samples.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...errors import ExecutionError, ReachError
+from .. import motion
+from ..smoothing import Limits, Timed, time_parameterise
+from .grasp import Grasp, attach, detach
+
+CONTROL_HZ = 60.0
+"""IK rate. Physics runs at 240 Hz with joint targets interpolated in between (IK is the costly part)."""
+HOVER = 0.08  # m above the grasp height for approach and retract
+APPROACH = Limits(velocity=0.3, acceleration=1.0, jerk=10.0, lateral=1.0)
+DESCEND = Limits(velocity=0.1, acceleration=0.5, jerk=5.0, lateral=0.5)
+SLIDE = Limits(velocity=0.1, acceleration=0.5, jerk=5.0, lateral=0.5)
+SETTLE_S = 0.1  # s held still after touching the block and after letting go
+MAX_TILT = math.radians(10.0)  # a held block tilting more than this means the grasp went wrong
+MAX_SLIP = 0.01  # m between where the block is and where the grasp says it is
+MAX_JOINT_JUMP = 0.5  # rad between neighbouring IK samples (<= 1 cm apart), beyond the yaw change: a flip
+
+
+def tool_targets(block_poses: np.ndarray, yaw_offset: float, z: float,
+                 offset_xy: np.ndarray = (0.0, 0.0)) -> np.ndarray:
+    """Tool poses (M,4) holding a block at ``block_poses`` (M,3): tool = block + offset (block frame)."""
+    c, s = np.cos(block_poses[:, 2]), np.sin(block_poses[:, 2])
+    x = block_poses[:, 0] + c * offset_xy[0] - s * offset_xy[1]
+    y = block_poses[:, 1] + s * offset_xy[0] + c * offset_xy[1]
+    return np.column_stack([x, y, np.full(len(x), z), block_poses[:, 2] + yaw_offset])
+
+
+def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits) -> Timed:
+    """A timed straight tool move; the yaw turns the short way round."""
+    target = np.asarray(target, float).copy()
+    target[3] = start[3] + (target[3] - start[3] + math.pi) % (2 * math.pi) - math.pi
+    return time_parameterise(motion.line(start, target), limits, 1.0 / CONTROL_HZ)
+
+
+def slide_plan(path: np.ndarray, yaw_offset: float, z: float,
+               offset_xy: np.ndarray = (0.0, 0.0)) -> list[Timed]:
+    """The timed tool chunks of a slide: corners rounded or stopped at (motion.py), ruckig timing."""
+    return [time_parameterise(tool_targets(ch, yaw_offset, z, offset_xy), SLIDE, 1.0 / CONTROL_HZ)
+            for ch in motion.slide_chunks(path)]
+
+
+class _NoRecorder:
+    grasped: str | None = None
+
+    def __call__(self) -> None:
+        pass
+
+
+class Primitives:
+    """Drives ``world.robot``; ``recorder()`` is called after every physics step and its ``grasped``
+    attribute follows the grasp (see record.Recorder)."""
+
+    def __init__(self, world, recorder=None):
+        self.world, self.robot = world, world.robot
+        self.recorder = recorder if recorder is not None else _NoRecorder()
+        self.on_step = self.recorder
+        self.q = self.robot.joints()
+        pos, _ = self.robot.tool_pose()
+        self.pose = np.array([pos[0], pos[1], pos[2], self.robot.tool_yaw()])  # last commanded tool pose
+        self.grasp: Grasp | None = None
+        self.steps_per_control = max(1, round(1.0 / (CONTROL_HZ * world.dt)))
+        self.timed: list[tuple[str, Timed]] = []  # every timed chunk, for the summary
+        self.ik_solves = 0
+
+    # --- the control loop --------------------------------------------------------------------
+    def solve(self, poses: np.ndarray, max_jump: float = MAX_JOINT_JUMP) -> np.ndarray:
+        """Joint targets (K,7) for tool poses (K,4), each seeded with the previous solution.
+
+        The arm's other IK seeds are tried only when the previous solution fails to converge; a
+        solution from another seed may sit on another branch, so a joint jump larger than ``max_jump``
+        between neighbouring samples (the arm flipping over mid-motion) is a ReachError too; the
+        wrist's share of the yaw change does not count as a jump.
+        """
+        kin, out, q = self.robot.kin, np.empty((len(poses), len(self.q))), self.q
+        extra = self.robot.spec.ik_seeds
+        wrist = self.robot.spec.arm_joints.index(self.robot.spec.wrist_joint)
+        for k, p in enumerate(poses):
+            prev = q
+            q = kin.solve(p[:3], p[3], q, seeds=extra)
+            step = np.abs(q - prev)
+            turn = abs(float(p[3] - poses[k - 1][3])) if k > 0 else 0.0
+            step[wrist] = max(0.0, step[wrist] - turn)  # the wrist follows the yaw: only its excess counts
+            jump = float(step.max())
+            if k > 0 and jump > max_jump:
+                raise ReachError(
+                    f"the arm would have to flip its configuration to reach ({p[0]:.3f}, {p[1]:.3f}) with "
+                    f"yaw {math.degrees(p[3]):.0f} deg (a {jump:.1f} rad joint jump); keep the path in the "
+                    "middle of the workspace or turn the block less")
+            out[k] = q
+        self.ik_solves += len(poses)
+        return out
+
+    def run(self, timed: Timed, stage: str, joints: np.ndarray | None = None) -> None:
+        """Track a timed tool path: IK at the control rate first (unless given), then the physics steps."""
+        if joints is None:
+            joints = self.solve(self._control_samples(timed))
+        self.timed.append((stage, timed))
+        prev = self.q
+        n = self.steps_per_control
+        for q in joints:
+            for i in range(1, n + 1):
+                self.robot.command(prev + (q - prev) * (i / n))
+                self.world.step()
+                self.on_step()
+            prev = q
+        self.q = prev
+        self.pose = timed.poses[-1].copy()
+
+    def _control_samples(self, timed: Timed) -> np.ndarray:
+        """The samples the arm is sent to: all but the first, which is where the tool already is
+        (chunks are timed at the control period, see go and move)."""
+        return timed.poses[1:] if len(timed.poses) > 1 else timed.poses
+
+    def hold(self, seconds: float) -> None:
+        for _ in range(max(1, round(seconds / self.world.dt))):
+            self.robot.command(self.q)
+            self.world.step()
+            self.on_step()
+
+    def go(self, target: np.ndarray, limits: Limits, stage: str) -> None:
+        """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
+        self.run(line_plan(self.pose, target, limits), stage)
+
+    # --- the primitives ----------------------------------------------------------------------
+    def grasp_height(self, name: str) -> float:
+        """Tool height with the closed fingertips just touching the block's top."""
+        return self.world.sizes[name] + self.robot.drop
+
+    def grasp_poses(self, name: str, yaw_offset: float) -> tuple[np.ndarray, np.ndarray]:
+        """Tool poses above block ``name`` and with the fingertips on its top."""
+        block = self.world.pose(name)
+        z = self.grasp_height(name)
+        down = np.array([block[0], block[1], z, block[3] + yaw_offset])
+        return down + [0.0, 0.0, HOVER, 0.0], down
+
+    def engage(self, name: str, yaw_offset: float = 0.0) -> Grasp:
+        """Approach ``name`` from above, descend until the closed fingers rest on its top, fix it.
+
+        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; choose it with
+        :func:`l2p_bullet.embodiment.motion.grasp_yaw_offset` so the wrist stays inside its range while sliding.
+        """
+        if self.grasp is not None:
+            raise ExecutionError(f'already holding "{self.grasp.name}"; disengage first')
+        above, down = self.grasp_poses(name, yaw_offset)
+        self.go(above, APPROACH, "approach")
+        self.go(down, DESCEND, "descend")
+        self.hold(SETTLE_S)
+        self.grasp = attach(self.world, name)
+        self.recorder.grasped = name
+        return self.grasp
+
+    def tool_targets(self, block_poses: np.ndarray) -> np.ndarray:
+        """Tool poses (M,4) that put the held block at ``block_poses`` (M,3), at the locked height."""
+        g = self.grasp
+        return tool_targets(block_poses, g.yaw_offset, g.tool_z, g.offset_xy)
+
+    def slide_joints(self, timed: list[Timed]) -> list[np.ndarray]:
+        """IK for every control sample of a whole slide, continuous across its chunks, per chunk."""
+        samples = [self._control_samples(t) for t in timed]
+        if not samples:
+            return []
+        joints = self.solve(np.concatenate(samples))
+        return np.split(joints, np.cumsum([len(s) for s in samples])[:-1])
+
+    def check_engage_and_slide(self, name: str, path: np.ndarray, yaw_offset: float) -> None:
+        """Solve the IK of the approach, descent and slide exactly as :meth:`engage` and :meth:`move`
+        will (same chunks, timing and seeds, nominal grasp height) without moving anything, so an
+        unreachable pose is a ReachError now rather than halfway through. The arm's state is kept."""
+        saved_q, saved_pose = self.q.copy(), self.pose.copy()
+        try:
+            above, down = self.grasp_poses(name, yaw_offset)
+            for target, limits in ((above, APPROACH), (down, DESCEND)):
+                timed = line_plan(self.pose, target, limits)
+                self.q = self.solve(self._control_samples(timed))[-1]
+                self.pose = timed.poses[-1].copy()
+            p = motion.clean_path(path)
+            p[:, 2] += 2 * math.pi * round((self.pose[3] - yaw_offset - p[0, 2]) / (2 * math.pi))
+            self.slide_joints(slide_plan(p, yaw_offset, float(down[2])))
+        finally:
+            self.q, self.pose = saved_q, saved_pose
+
+    def move(self, path: np.ndarray) -> None:
+        """Slide the held block along ``path`` (N,3) on the table, the grasp height locked."""
+        if self.grasp is None:
+            raise ExecutionError("move() needs a grasped block: engage(obj) first")
+        g = self.grasp
+        path = motion.clean_path(path)
+        # Continue the tool's yaw without a turn: shift the path's yaw by whole turns to match.
+        turns = round((self.pose[3] - g.yaw_offset - path[0, 2]) / (2 * math.pi))
+        path[:, 2] += 2 * math.pi * turns
+        timed = slide_plan(path, g.yaw_offset, g.tool_z, g.offset_xy)
+        for t, joints in zip(timed, self.slide_joints(timed), strict=True):  # all IK before moving
+            self.run(t, "slide", joints)
+            self.check_grasp()
+
+    def check_grasp(self) -> None:
+        g = self.grasp
+        if g is None:
+            return
+        if self.world.tilt(g.name) > MAX_TILT:
+            raise ExecutionError(
+                f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name)):.0f} deg while held')
+        pos, _ = self.robot.tool_pose()
+        block = self.world.pose(g.name)
+        want = self.tool_targets(block[None, [0, 1, 3]])[0]
+        if np.hypot(*(want[:2] - pos[:2])) > MAX_SLIP:
+            raise ExecutionError(f'block "{g.name}" slipped out of the grasp')
+
+    def disengage(self, rest: np.ndarray | None = None) -> None:
+        """Remove the constraint, let go, retract straight up, then return to the rest pose."""
+        if self.grasp is not None:
+            detach(self.world, self.grasp)
+            self.grasp = None
+            self.recorder.grasped = None
+        self.hold(SETTLE_S)
+        up = self.pose.copy()
+        up[2] += HOVER
+        self.go(up, DESCEND, "retract")
+        if rest is not None:
+            self.go(rest, APPROACH, "rest")

@@ -1,0 +1,200 @@
+"""Human demonstrations: load and validate the capture sessions and cut out annotated events.
+
+A demonstration is one annotated event of a session: the mover's and the anchor's poses over the event,
+plus the frames around it (``context``) so a progress model can learn that progress is 0 outside it.
+All loaders read ``.npz`` with ``allow_pickle=False``; a bad file becomes a :class:`DataError` that
+names the file and the problem.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import DataError, did_you_mean
+from .tracking import clean_track
+
+ACTIONS: tuple[str, ...] = ("closer", "away", "next-to", "past", "around")
+"""Canonical action names, in the order used by every table."""
+
+SOURCE_NAMES: dict[str, str] = {
+    "closer": "SlideToward",
+    "away": "SlideAway",
+    "next-to": "SlideNext",
+    "past": "SlidePast",
+    "around": "SlideAround",
+}
+DEMO_BLOCK_SIZE = 0.15
+"""Side of the blocks in the demonstrations' frame (metres)."""
+
+_REQUIRED = {
+    "shell_pose": (None, 3),
+    "stella_pose": (None, 3),
+    "event_start_end": (None, 2),
+    "event_mover": (None,),
+}
+
+
+@dataclass(frozen=True)
+class Demo:
+    """One demonstration. Poses are (T,3) ``[x, y, theta]``; ``start``/``end`` index the event in them."""
+
+    id: str
+    action: str
+    session: str
+    mover: np.ndarray
+    anchor: np.ndarray
+    start: int  # first event frame in mover/anchor (frames before it are context)
+    end: int  # last event frame (inclusive)
+    size: float = DEMO_BLOCK_SIZE
+    fps: float = 30.0
+
+    @property
+    def event_mover(self) -> np.ndarray:
+        return self.mover[self.start : self.end + 1]
+
+    @property
+    def event_anchor(self) -> np.ndarray:
+        return self.anchor[self.start : self.end + 1]
+
+
+def data_dir() -> Path:
+    """The shipped data folder inside the installed package."""
+    return Path(str(resources.files("l2p_bullet") / "data"))
+
+
+def canonical_action(name: str) -> str:
+    """Map 'around', 'SlideAround' or 'next_to' to the canonical name; clear error otherwise."""
+    key = name.strip().lower().replace("_", "-")
+    for canon, src in SOURCE_NAMES.items():
+        if key in (canon, src.lower()):
+            return canon
+    raise DataError(f'unknown action "{name}" (known: {", ".join(ACTIONS)}).' + did_you_mean(key, ACTIONS))
+
+
+PLUGIN_ACTION = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
+"""What a plugin action's name looks like ("left-of"); see ``l2p-bullet new-action``."""
+
+
+def action_for_files(name: str) -> str:
+    """A built-in action's canonical name, else a plugin action's own name.
+
+    Only for demonstrations given as files: a plugin author trains a new action on their own sessions
+    (issue 5); the shipped data only has the built-in actions.
+    """
+    try:
+        return canonical_action(name)
+    except DataError:
+        if PLUGIN_ACTION.match(name):
+            return name
+        raise
+
+
+def load_session(path: str | Path) -> dict[str, np.ndarray]:
+    """Load and validate one capture session file."""
+    p = Path(path)
+    try:
+        with np.load(p, allow_pickle=False) as z:
+            arrays = {k: z[k] for k in z.files}
+    except FileNotFoundError:
+        raise DataError(f"demonstration file {p} does not exist") from None
+    except (OSError, ValueError) as e:
+        raise DataError(f"demonstration file {p} is not a readable .npz without pickles ({e})") from None
+    for key, shape in _REQUIRED.items():
+        if key not in arrays:
+            raise DataError(f'demonstration file {p} lacks the array "{key}"')
+        a = arrays[key]
+        if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape, strict=True)):
+            raise DataError(f'demonstration file {p}: "{key}" has shape {a.shape}, expected {shape}')
+    n = len(arrays["shell_pose"])
+    if len(arrays["stella_pose"]) != n:
+        raise DataError(f"demonstration file {p}: the two blocks' tracks differ in length")
+    if not (np.all(np.isfinite(arrays["shell_pose"])) and np.all(np.isfinite(arrays["stella_pose"]))):
+        raise DataError(f"demonstration file {p}: poses contain non-finite numbers")
+    ev = arrays["event_start_end"]
+    if len(ev) != len(arrays["event_mover"]):
+        raise DataError(f"demonstration file {p}: event_start_end and event_mover differ in length")
+    if len(ev) and (ev.min() < 0 or ev.max() >= n or np.any(ev[:, 1] <= ev[:, 0])):
+        raise DataError(f"demonstration file {p}: an event span is empty or outside the {n} frames")
+    if not np.isin(arrays["event_mover"], (0, 1)).all():
+        raise DataError(f"demonstration file {p}: event_mover must be 0 (Shell) or 1 (Stella Artois)")
+    return arrays
+
+
+def session_files(action: str, root: str | Path | None = None) -> list[Path]:
+    """The capture files of an action, sorted by session."""
+    src = SOURCE_NAMES[canonical_action(action)]
+    folder = Path(root) if root is not None else data_dir() / "captures"
+    files = sorted(folder.glob(f"{src}_Session*.npz"))
+    if not files:
+        raise DataError(f"no capture sessions for {src} in {folder}")
+    return files
+
+
+def demos_from_session(path: str | Path, action: str, context: int = 45) -> list[Demo]:
+    """Cut the annotated events of one session file, each with up to ``context`` frames either side.
+
+    The context stops at the neighbouring events so that one demonstration never contains another.
+    Glyph detections that teleport are dropped first (:mod:`tracking`; the data README's known glitch).
+    ``action`` may also be a plugin action's own name (``l2p-bullet new-action``): explicit files.
+    """
+    action = action_for_files(action)
+    arrays = load_session(path)
+    p = Path(path)
+    m = re.search(r"(Session\d+)", p.stem)
+    session = m.group(1) if m else p.stem
+    poses = tuple(clean_track(arrays[f"{b}_pose"], arrays.get(f"{b}_observed"))[0] for b in ("shell", "stella"))
+    events = arrays["event_start_end"]
+    out = []
+    for i, ((s, e), who) in enumerate(zip(events, arrays["event_mover"], strict=True)):
+        lo = max(0, s - context, (events[i - 1][1] + 1) if i > 0 else 0)
+        hi = min(len(poses[0]) - 1, e + context, (events[i + 1][0] - 1) if i + 1 < len(events) else 10**9)
+        out.append(
+            Demo(
+                id=f"{action}/{session}/e{i:02d}",
+                action=action,
+                session=session,
+                mover=np.array(poses[int(who)][lo : hi + 1]),
+                anchor=np.array(poses[1 - int(who)][lo : hi + 1]),
+                start=int(s - lo),
+                end=int(e - lo),
+            )
+        )
+    return out
+
+
+@lru_cache(maxsize=16)
+def _load_demos_cached(action: str, context: int) -> tuple[Demo, ...]:
+    return tuple(d for f in session_files(action) for d in demos_from_session(f, action, context))
+
+
+def load_demos(action: str, files: list[str | Path] | None = None, context: int = 45) -> list[Demo]:
+    """All demonstrations of ``action``: from the shipped data, or from the given session files."""
+    action = action_for_files(action) if files else canonical_action(action)
+    if files:
+        return [d for f in files for d in demos_from_session(f, action, context)]
+    return list(_load_demos_cached(action, context))
+
+
+def get_demo(action: str, index: int) -> Demo:
+    """Demonstration ``index`` of ``action`` (order: session, then event); clear error when out of range."""
+    demos = load_demos(action)
+    if not 0 <= index < len(demos):
+        raise DataError(f'action "{canonical_action(action)}" has {len(demos)} demonstrations (0-{len(demos) - 1}); '
+                        f"there is no index {index}")
+    return demos[index]
+
+
+def load_graded_demos() -> list[dict]:
+    """The 90 generated 2-D demonstrations graded by two people (evaluation only, never for training)."""
+    path = data_dir() / "sim" / "human_eval_2d_demos.jsonl"
+    try:
+        return [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    except (OSError, json.JSONDecodeError) as e:
+        raise DataError(f"cannot read graded demonstrations {path}: {e}") from None

@@ -1,0 +1,149 @@
+"""Plan the mover's 2-D path for an action: search for moves that make the learned progress rise to 1.
+
+The planners differ only in where candidate moves come from and how the search keeps them (see
+docs/planning.md):
+
+- ``greedy``    the paper's baseline: random moves around the mover, keep the best, back up when none helps;
+- ``beam``      beam search over the same random moves;
+- ``discrete``  greedy search with back-up over the qualitative space, cardinal direction x quantised
+                distance around the anchor;
+- ``reinforce`` greedy search with back-up over moves proposed by the action's REINFORCE-trained Gaussian
+                policy (stored in its bundle);
+- ``mixed``     greedy search with back-up over all of the above at once (one forward pass per step);
+- ``default``   an alias (``DEFAULT``), unless the bundle's ``[policy]`` section names another planner.
+
+Every planner maximises the action's learned progress model: the model alone decides which move is
+better. The 2-D simulator only says which moves are legal; ``evaluate`` judges the result afterwards.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from contextlib import contextmanager
+
+import numpy as np
+
+from ..core.contracts import Plan
+from ..core.scene import Scene
+from ..errors import PlanError, did_you_mean
+from .problem import Problem, finish
+from .proposals import MixedProposer, discrete_moves, random_moves
+from .search import beam, greedy
+from .world2d import World2D
+
+PLANNERS: dict[str, str] = {
+    "greedy": "random search with back-up (the paper's baseline)",
+    "beam": "beam search over random moves",
+    "discrete": "greedy search over cardinal direction x distance around the anchor",
+    "reinforce": "greedy search over moves proposed by the action's REINFORCE policy",
+    "mixed": "greedy search over the discrete cells, the policy's proposals and random moves together",
+    "default": "the action's preferred planner (see DEFAULT)",
+}
+DEFAULT = "mixed"
+
+THRESHOLD = 0.9
+"""Stop when the learned progress reaches this (the models rise to about 1 at an event's end)."""
+
+BUDGETS = {"greedy": 40, "beam": 15, "discrete": 30, "reinforce": 30, "mixed": 20}
+"""Default step budgets (a step = one batch of candidates scored in one forward pass)."""
+
+CANDIDATES = {"greedy": 32, "beam": 48, "discrete": 0, "reinforce": 16, "mixed": 16}
+BEAM_WIDTH = 4
+
+
+def resolve_planner(name: str, settings: dict | None = None) -> str:
+    """The concrete planner behind ``name`` ("default" follows the bundle's settings); clear error if unknown."""
+    key = name.strip().lower()
+    if key not in PLANNERS:
+        raise PlanError(f'unknown planner "{name}" (known: {", ".join(PLANNERS)}).' + did_you_mean(key, PLANNERS))
+    if key == "default":
+        key = str((settings or {}).get("planner", DEFAULT))
+        if key not in PLANNERS or key == "default":
+            raise PlanError(f'the bundle asks for an unknown default planner "{key}" (known: {", ".join(PLANNERS)})')
+    return key
+
+
+def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "default", seed: int = 0,
+         budget: int | None = None, threshold: float | None = None, time_limit: float | None = None) -> Plan:
+    """Plan ``mover``'s path for the bundle's action relative to ``anchor`` in ``scene``.
+
+    Deterministic for a seed. ``budget`` counts search steps (forward passes of the progress model);
+    ``time_limit`` (seconds), when given, also ends the search (for equal-time comparisons).
+    """
+    settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
+    name = resolve_planner(planner, settings)
+    if mover == anchor:
+        raise PlanError(f'the mover and the anchor are the same object "{mover}"')
+    anchor_obj = scene.get(anchor)
+    world = World2D(scene, mover)
+    if world.overlaps(world.mover.pose):
+        raise PlanError(f'"{mover}" starts touching another object (closer than the gripper margin): '
+                        "move it apart in the scene first")
+    problem = Problem(
+        world=world, model=bundle.progress_model(), anchor_pose=anchor_obj.pose, size=world.size,
+        threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
+        budget=int(budget if budget is not None else BUDGETS[name]),
+        rng=np.random.default_rng(seed),
+    )
+    if time_limit is not None:
+        problem.deadline = time.perf_counter() + time_limit
+    with _one_thread():
+        node, stopped, steps = _search(name, problem, bundle)
+    result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
+                    stopped=stopped, steps=steps)
+    if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
+        result.extra["note"] = ("the bundle's policy was trained against another progress model: "
+                                "re-train it (python -m l2p_bullet.learning.train_policy)")
+    return result
+
+
+def _policy_is_stale(bundle) -> bool:
+    """The policy records the digest of the progress model it learned to please; a re-trained model
+    leaves it usable (it only proposes moves) but no longer tuned."""
+    manifest = getattr(bundle, "manifest", {}) or {}
+    trained = manifest.get("policy", {}).get("progress_sha256")
+    current = manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256")
+    return bool(trained and current and trained != current)
+
+
+@contextmanager
+def _one_thread():
+    """Score on one torch thread: the batches are small, and on a shared 2-core machine a second thread
+    made each forward pass 5-10 times slower (measured: 8 ms vs 49 ms for 80 paths of 150 frames)."""
+    torch = sys.modules.get("torch")  # never import it here: perform scores in numpy without it
+    if torch is None:
+        yield
+        return
+    prev = torch.get_num_threads()
+    torch.set_num_threads(1)
+    try:
+        yield
+    finally:
+        torch.set_num_threads(prev)
+
+
+def _search(name: str, problem: Problem, bundle):
+    n = CANDIDATES[name]
+    if name == "greedy":
+        return greedy(problem, random_moves, n)
+    if name == "beam":
+        return beam(problem, random_moves, n, BEAM_WIDTH)
+    if name == "discrete":
+        return greedy(problem, discrete_moves, n)
+    if name == "mixed":
+        return greedy(problem, MixedProposer(_policy_proposer(bundle, required=False)), n)
+    return greedy(problem, _policy_proposer(bundle), n)
+
+
+def _policy_proposer(bundle, required: bool = True):
+    from .policy import PolicyProposer, load_policy
+
+    net = load_policy(bundle)
+    if net is None and not required:
+        return None
+    if net is None:
+        raise PlanError(f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
+                        f'"python -m l2p_bullet.learning.train_policy {bundle.name}" or pick another planner '
+                        f'(known: {", ".join(PLANNERS)})')
+    return PolicyProposer(net)

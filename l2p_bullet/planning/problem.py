@@ -1,0 +1,144 @@
+"""What every planner shares: the problem, the search node, batched scoring and the finished plan.
+
+A planner grows a path of straight moves from the mover's start. A search node is such a path (its
+waypoints and its frames); a child appends one move. Children are judged by the action's learned progress
+model on the whole path so far (the model reads history: "around" is only progress if the earlier moves
+went round too), and all children of a step are scored in **one** ``final_batch`` call.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from ..core.contracts import Plan
+from .world2d import World2D, segment_frames
+
+FRAME_STEP = 0.25
+"""Frames are spaced this many block sizes apart along a move (the progress models' arc-length grid)."""
+
+MAX_TURN = np.pi / 4
+"""Largest rotation of the mover in one move (radians): moderate, so the arm's wrist follows comfortably,
+and just enough to square a block up with any other (a square's yaw matters modulo a quarter turn)."""
+
+
+class ProgressScorer(Protocol):
+    """The part of a learned ProgressModel the planners use (see docs/INTERFACES.md, Learning)."""
+
+    def final_batch(self, movers: list[np.ndarray], anchors: object, size: float) -> np.ndarray: ...
+
+    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray: ...
+
+
+@dataclass
+class Node:
+    """A path of straight moves: ``waypoints`` (n,3), its frames (T,3) and the model's final progress."""
+
+    waypoints: np.ndarray
+    frames: np.ndarray
+    progress: float
+    parent: Node | None = None
+    dead: list[np.ndarray] = field(default_factory=list)  # ends already backed up from (greedy search)
+
+    @property
+    def pose(self) -> np.ndarray:
+        return self.waypoints[-1]
+
+    @property
+    def moves(self) -> int:
+        return len(self.waypoints) - 1
+
+
+@dataclass
+class Problem:
+    """One planning problem: the world, the action's model, the anchor and the stopping rules."""
+
+    world: World2D
+    model: ProgressScorer
+    anchor_pose: np.ndarray
+    size: float
+    threshold: float
+    budget: int
+    rng: np.random.Generator
+    max_moves: int = 12
+    evaluations: int = 0
+    forward_passes: int = 0
+    started: float = field(default_factory=time.perf_counter)
+    deadline: float | None = None  # perf_counter time after which the search stops (equal-time runs)
+
+    def go_on(self, best: Node, steps: int) -> bool:
+        """Whether the search may take another step."""
+        if best.progress >= self.threshold or steps >= self.budget:
+            return False
+        return self.deadline is None or time.perf_counter() < self.deadline
+
+    @property
+    def step(self) -> float:
+        return FRAME_STEP * self.size
+
+    def root(self) -> Node:
+        start = self.world.mover.pose.copy()
+        frames = start[None].copy()
+        p = float(self.model.final_batch([frames], self.anchor_pose, self.size)[0])
+        self.forward_passes += 1
+        return Node(start[None].copy(), frames, p)
+
+    def children(self, parents: list[Node], ends: list[np.ndarray]) -> list[Node]:
+        """Legal children of each parent (ends[i] (Mi,3) proposed for parents[i]), scored in one pass."""
+        kids: list[Node] = []
+        for node, e in zip(parents, ends, strict=True):
+            if len(e) == 0 or node.moves >= self.max_moves:
+                continue
+            e = np.asarray(e, float).reshape(-1, 3)
+            if node.dead:
+                dead = np.asarray(node.dead)
+                gap = np.abs(e[:, None, :] - dead[None]).max(-1).min(1)
+                e = e[gap > 1e-6]
+            for end in e[self.world.moves_free(node.pose, e)]:
+                seg = segment_frames(node.pose, end, self.step)
+                kids.append(Node(np.vstack([node.waypoints, end]), np.vstack([node.frames, seg]), 0.0, node))
+        if kids:
+            scores = np.asarray(self.model.final_batch([k.frames for k in kids], self.anchor_pose, self.size))
+            self.forward_passes += 1
+            self.evaluations += len(kids)
+            for k, s in zip(kids, scores, strict=True):
+                k.progress = float(s)
+        return kids
+
+    def relative(self, node: Node) -> tuple[np.ndarray, float]:
+        """The mover's offset from the anchor in block units and its distance, for proposals."""
+        rel = (node.pose[:2] - self.anchor_pose[:2]) / self.size
+        return rel, float(np.hypot(*rel))
+
+
+Proposer = Callable[[Problem, Node, int], np.ndarray]
+"""A proposal distribution: (problem, node, how many) -> candidate end poses (M,3) of the next move."""
+
+
+def finish(problem: Problem, node: Node, *, action: str, mover: str, anchor: str, planner: str,
+           stopped: str, steps: int) -> Plan:
+    """The plan.json of the best node: frames as the path, the model's curve as per-point progress."""
+    path = node.frames
+    progress = np.asarray(problem.model.curve(path, problem.anchor_pose, problem.size), float).reshape(-1)
+    if len(progress) != len(path):  # a model that resamples internally: spread its curve over the frames
+        progress = np.interp(np.linspace(0, 1, len(path)), np.linspace(0, 1, max(len(progress), 1)), progress)
+    return Plan(
+        action=action, mover=mover, anchor=anchor, size=problem.size,
+        anchor_pose=np.asarray(problem.anchor_pose, float), start=path[0].copy(), path=path,
+        progress=progress, planner=planner, stopped=stopped,
+        extra={
+            "final_progress": round(float(node.progress), 6),
+            "waypoints": np.asarray(node.waypoints, float).round(6).tolist(),
+            "steps": steps,
+            "evaluations": problem.evaluations,
+            "forward_passes": problem.forward_passes,
+            "threshold": problem.threshold,
+            "budget": problem.budget,
+            "seconds": round(time.perf_counter() - problem.started, 4),
+        },
+    )
+

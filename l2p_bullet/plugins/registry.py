@@ -1,0 +1,312 @@
+"""Action plugins: find them through entry points without importing them, load one only when needed.
+
+An action plugin is any installed distribution that declares an entry point in the group
+``l2p_bullet.actions``; its value names a module whose folder holds a bundle (``manifest.toml`` plus
+weights). The five built-in actions register the same way in the project's own pyproject, so a
+third-party action is a first-class citizen.
+
+Two phases, as in flake8 and llm:
+
+- **found** (:func:`discover`): entry points are read from installed metadata and each module's folder
+  is located with the import system's finders *without executing any module* (not even the plugin's
+  parent packages), then ``manifest.toml`` is read with :mod:`tomllib`. No torch, no plugin code, no
+  weights: listing actions and parsing a sentence stay fast and cannot be broken by one bad plugin.
+- **loaded** (:func:`load`): only the plugin a command needs is imported and its bundle validated and
+  read by :func:`l2p_bullet.plugins.bundle.load_bundle`.
+
+A plugin that cannot be located, has no or an invalid manifest, or fails to import is *reported*
+(name, package, reason) and the others keep working. Two plugins that claim the same phrase (or the
+same name) make the phrase table ambiguous: :func:`phrase_table` raises a :class:`PluginError`
+naming both, since silently picking one would make sentences mean different things on different
+machines.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+import tomllib
+from dataclasses import dataclass, field
+from importlib import metadata
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ..errors import PluginError, did_you_mean
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .bundle import Bundle
+
+GROUP = "l2p_bullet.actions"
+MANIFEST = "manifest.toml"
+PROGRESS_WEIGHTS = "progress.safetensors"
+
+
+@dataclass(frozen=True)
+class PluginInfo:
+    """One found plugin, as far as can be known without importing it.
+
+    ``error`` is None for a usable plugin, otherwise the reason it cannot be used (shown by
+    ``l2p-bullet actions`` and by :func:`load`).
+    """
+
+    name: str  # the entry point's name: the canonical action name ("next-to")
+    module: str  # the entry point's value: the module whose folder holds the bundle
+    package: str  # the distribution that declares it ("l2p-bullet", "l2p-left-of")
+    package_version: str
+    path: Path | None = None  # the bundle folder, when it could be located
+    manifest: dict[str, Any] = field(default_factory=dict)
+    error: str | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+    @property
+    def version(self) -> str:
+        return str(self.manifest.get("version", ""))
+
+    @property
+    def phrases(self) -> tuple[str, ...]:
+        raw = self.manifest.get("phrases", ())
+        return tuple(normalize_phrase(p) for p in raw if isinstance(p, str)) if isinstance(raw, list) else ()
+
+    @property
+    def description(self) -> str:
+        return str(self.manifest.get("description", ""))
+
+    @property
+    def metrics(self) -> dict[str, Any]:
+        m = self.manifest.get("metrics", {})
+        return m if isinstance(m, dict) else {}
+
+    def label(self) -> str:
+        return f'"{self.name}" (package {self.package} {self.package_version})'
+
+
+def normalize_phrase(phrase: str) -> str:
+    """Lower case, single spaces: how phrases are compared everywhere."""
+    return " ".join(phrase.lower().split())
+
+
+def _normalize_name(name: str) -> str:
+    return name.strip().lower().replace("_", "-")
+
+
+# --- locating a module's folder without importing anything ------------------------------------------
+def _find_spec_no_import(fullname: str, path: list[str] | None):
+    """Ask the meta-path finders for a spec, as the import system would, but execute nothing."""
+    if fullname in sys.modules and getattr(sys.modules[fullname], "__spec__", None) is not None:
+        return sys.modules[fullname].__spec__
+    for finder in sys.meta_path:
+        find_spec = getattr(finder, "find_spec", None)
+        if find_spec is None:
+            continue
+        try:
+            spec = find_spec(fullname, path)
+        except (ImportError, ValueError, OSError):
+            continue
+        if spec is not None:
+            return spec
+    return None
+
+
+def locate_module_folder(module: str) -> Path:
+    """The folder of ``module`` (a package's directory, or the directory holding a plain module).
+
+    Walks the dotted name level by level with the meta-path finders and each parent's search
+    locations, which is what ``import`` does, minus executing the parents' ``__init__``. Raises
+    :class:`LookupError` with a readable reason when the module cannot be found.
+    """
+    parts = module.split(".")
+    if not all(p.isidentifier() for p in parts):
+        raise LookupError(f'"{module}" is not a module name')
+    locations: list[str] | None = None
+    spec = None
+    for i in range(len(parts)):
+        fullname = ".".join(parts[: i + 1])
+        spec = _find_spec_no_import(fullname, locations)
+        if spec is None:
+            raise LookupError(f"module {fullname} is not installed (no finder knows it)")
+        if i < len(parts) - 1:
+            if spec.submodule_search_locations is None:
+                raise LookupError(f"{fullname} is a module, not a package, so it has no {parts[i + 1]}")
+            locations = list(spec.submodule_search_locations)
+    assert spec is not None
+    if spec.submodule_search_locations is not None:  # a package (regular or namespace)
+        for loc in spec.submodule_search_locations:
+            if Path(loc).is_dir():
+                return Path(loc)
+        raise LookupError(f"package {module} has no folder on disk")
+    if spec.origin and Path(spec.origin).is_file():
+        return Path(spec.origin).parent
+    raise LookupError(f"module {module} has no file on disk (origin {spec.origin!r})")
+
+
+def _locate_from_files(dist: metadata.Distribution | None, module: str) -> Path | None:
+    """Fallback for installs whose files are listed in RECORD but not reachable by the finders."""
+    if dist is None or not dist.files:
+        return None
+    parts = tuple(module.split("."))
+    for f in dist.files:
+        if f.parts[: len(parts)] == parts and f.name in (MANIFEST, "__init__.py") and len(f.parts) == len(parts) + 1:
+            folder = Path(str(dist.locate_file(f))).parent
+            if folder.is_dir():
+                return folder
+    return None
+
+
+# --- discovery --------------------------------------------------------------------------------------
+def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None]:
+    """Read the manifest and check what discovery can check cheaply (no weights are read)."""
+    path = folder / MANIFEST
+    train_hint = f"train it with: l2p-bullet train {name} --demos ... --out {folder}"
+    if not path.is_file():
+        return {}, f"no {MANIFEST} in {folder} ({train_hint})"
+    try:
+        manifest = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as e:
+        return {}, f"cannot read {path}: {e}"
+    except tomllib.TOMLDecodeError as e:
+        return {}, f"{path} is not valid TOML ({e})"
+    phrases = manifest.get("phrases")
+    if not (isinstance(phrases, list) and phrases and all(isinstance(p, str) and p.strip() for p in phrases)):
+        return manifest, f'{path}: "phrases" must be a non-empty list of phrases such as ["next to", "beside"]'
+    declared = manifest.get("name")
+    if declared is not None and _normalize_name(str(declared)) != _normalize_name(name):
+        return manifest, f'{path} describes the action "{declared}" but the entry point is named "{name}"'
+    weights = manifest.get("weights", {})
+    files = list(weights) if isinstance(weights, dict) and weights else [PROGRESS_WEIGHTS]
+    missing = [f for f in files if not (folder / f).is_file()]
+    if missing:
+        return manifest, f"no trained weights ({', '.join(missing)} missing in {folder}; {train_hint})"
+    return manifest, None
+
+
+def discover() -> list[PluginInfo]:
+    """Every installed action plugin, usable or not, sorted by name. Imports no plugin code."""
+    found: list[PluginInfo] = []
+    for ep in metadata.entry_points(group=GROUP):
+        dist = getattr(ep, "dist", None)
+        package = dist.metadata["Name"] if dist is not None else "unknown package"
+        package_version = dist.version if dist is not None else ""
+        module = ep.value.split(":", 1)[0].strip()
+        base = dict(name=ep.name, module=module, package=package, package_version=package_version)
+        try:
+            folder = locate_module_folder(module)
+        except LookupError as e:
+            folder = _locate_from_files(dist, module)
+            if folder is None:
+                found.append(PluginInfo(**base, error=str(e)))
+                continue
+        manifest, error = _check_manifest(ep.name, folder)
+        found.append(PluginInfo(**base, path=folder, manifest=manifest, error=error))
+    return sorted(found, key=lambda p: (p.name, p.package))
+
+
+def conflicts(plugins: list[PluginInfo]) -> list[str]:
+    """Messages for every name or phrase claimed by two usable plugins (empty when all is well)."""
+    out: list[str] = []
+    by_name: dict[str, PluginInfo] = {}
+    by_phrase: dict[str, PluginInfo] = {}
+    for p in plugins:
+        if not p.ok:
+            continue
+        other = by_name.setdefault(_normalize_name(p.name), p)
+        if other is not p:
+            out.append(f"two action plugins are both named \"{p.name}\": {other.label()} and {p.label()}; "
+                       "uninstall one of the two packages")
+            continue
+        for phrase in p.phrases:
+            other = by_phrase.setdefault(phrase, p)
+            if other is not p and other.name != p.name:
+                out.append(f'the phrase "{phrase}" is claimed by two action plugins: {other.label()} and '
+                           f"{p.label()}; uninstall one of the two packages or remove the phrase from one manifest")
+    return out
+
+
+def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
+    """Phrase -> action name over the usable plugins; :class:`PluginError` on any conflict."""
+    plugins = discover() if plugins is None else plugins
+    problems = conflicts(plugins)
+    if problems:
+        raise PluginError(problems[0] + (f" (and {len(problems) - 1} more conflicts)" if len(problems) > 1 else ""))
+    return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases}
+
+
+def broken(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
+    """The plugins that cannot be used, each with its reason."""
+    return [p for p in (discover() if plugins is None else plugins) if not p.ok]
+
+
+# --- loading ----------------------------------------------------------------------------------------
+_LOADED: dict[tuple[str, str], Bundle] = {}
+
+
+def loaded() -> list[str]:
+    """Names of the plugins loaded in this process (as opposed to merely found)."""
+    return sorted({name for name, _ in _LOADED})
+
+
+def find(name: str, plugins: list[PluginInfo] | None = None) -> PluginInfo:
+    """The found plugin called ``name`` (``next_to`` and ``next-to`` are the same); clear error otherwise."""
+    plugins = discover() if plugins is None else plugins
+    key = _normalize_name(name)
+    matches = [p for p in plugins if _normalize_name(p.name) == key]
+    if not matches:
+        names = sorted({p.name for p in plugins})
+        raise PluginError(f'no action plugin named "{name}" is installed (installed: {", ".join(names) or "none"}).'
+                          + did_you_mean(key, names))
+    if len(matches) > 1 and sum(m.ok for m in matches) == 1:  # a broken twin does not block a usable one
+        matches = [m for m in matches if m.ok]
+    if len(matches) > 1:
+        raise PluginError(f'two action plugins are both named "{name}": '
+                          + " and ".join(m.label() for m in matches) + "; uninstall one of the two packages")
+    return matches[0]
+
+
+def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
+    """Import plugin ``name`` and load its bundle; every failure is a :class:`PluginError` naming it.
+
+    Only this plugin's module is imported (a plugin may run code on import, for example to check its
+    own requirements); the bundle itself is read by :func:`l2p_bullet.plugins.bundle.load_bundle`, which
+    validates the manifest and the weights' digests and never unpickles.
+    """
+    info = find(name, plugins)
+    if info.error is not None:
+        raise PluginError(f"action plugin {info.label()} cannot be used: {info.error}")
+    key = (info.name, str(info.path))
+    if key in _LOADED:
+        return _LOADED[key]
+    try:
+        mod = importlib.import_module(info.module)
+    except Exception as e:  # a plugin's import error is its own bug: report it, don't crash
+        raise PluginError(f"action plugin {info.label()} failed to import {info.module}: "
+                          f"{type(e).__name__}: {e}") from None
+    folder = _module_folder(mod) or info.path
+    from ..errors import L2PError
+    from .bundle import load_bundle  # torch-free import; the model itself loads later, on demand
+
+    try:
+        bundle = load_bundle(folder)
+    except L2PError as e:
+        raise PluginError(f"action plugin {info.label()} has an invalid bundle: {e}") from None
+    _LOADED[key] = bundle
+    return bundle
+
+
+def _module_folder(mod: Any) -> Path | None:
+    paths = list(getattr(mod, "__path__", []) or [])
+    for p in paths:
+        if Path(p).is_dir():
+            return Path(p)
+    f = getattr(mod, "__file__", None)
+    return Path(f).parent if f else None
+
+
+def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
+    """Load plugin ``name`` fully and return the reason it fails, or None if it loads."""
+    try:
+        load(name, plugins)
+    except PluginError as e:
+        return str(e)
+    return None

@@ -1,0 +1,211 @@
+"""``l2p-bullet new-action``: write a ready-to-install action plugin package.
+
+The package is the smallest thing that makes a new preposition work end to end: a pyproject that
+declares the entry point in ``l2p_bullet.actions``, an empty package whose folder will hold the bundle,
+a manifest template carrying the phrases (so the parser learns them as soon as the package is
+installed and trained) and a README that walks an author through demonstrations, training and
+installation. Everything is plain text written from templates: no network, no build step.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .. import __version__
+from ..errors import PluginError
+from ..learning.demos import PLUGIN_ACTION
+from .registry import normalize_phrase
+
+
+@dataclass(frozen=True)
+class Scaffold:
+    """What :func:`scaffold` wrote: the project folder, the package folder (the bundle goes there)."""
+
+    root: Path
+    package_dir: Path
+    module: str
+    dist_name: str
+    files: list[Path]
+
+
+def check_name(name: str) -> str:
+    if not PLUGIN_ACTION.match(name):
+        raise PluginError(
+            f'"{name}" is not a valid action name: use lower-case words joined by hyphens, e.g. "left-of"'
+        )
+    return name
+
+
+def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
+             installed: dict[str, str] | None = None, description: str = "") -> Scaffold:
+    """Write the plugin project for action ``name`` (claiming ``phrases``) into ``out``.
+
+    ``installed`` maps phrases already claimed to their action: a new plugin that reuses one would make
+    every sentence ambiguous once installed, so that is refused here rather than after ``pip install``.
+    Never overwrites: an existing ``out`` is an error.
+    """
+    check_name(name)
+    clean = [normalize_phrase(p) for p in phrases if p.strip()]
+    if not clean:
+        raise PluginError('give at least one phrase, e.g. --phrase "to the left of"')
+    if len(set(clean)) != len(clean):
+        raise PluginError("the same phrase is given twice: " + ", ".join(sorted({p for p in clean if clean.count(p) > 1})))
+    for p in clean:
+        if not re.fullmatch(r"[a-z][a-z' ]*", p):
+            raise PluginError(f'phrase "{p}" must be words made of letters (no digits or punctuation)')
+        owner = (installed or {}).get(p)
+        if owner is not None and owner != name:
+            raise PluginError(f'the phrase "{p}" already belongs to the installed action "{owner}"; '
+                              "choose another phrase (two plugins may not claim the same one)")
+    module = "l2p_" + name.replace("-", "_")
+    dist_name = "l2p-" + name
+    root = Path(out) if out is not None else Path(dist_name)
+    if root.exists():
+        raise PluginError(f"{root} already exists; choose another --out (new-action never overwrites)")
+    pkg = root / module
+    pkg.mkdir(parents=True)
+    (root / "demos").mkdir()
+    texts = {
+        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__),
+        pkg / "__init__.py": _INIT.format(name=name),
+        pkg / "manifest.toml": _MANIFEST.format(
+            name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
+            description=(description or f'Slide a block {clean[0]} another block.').replace('"', "'"),
+        ),
+        root / "README.md": _README.format(
+            name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
+            phrases=", ".join(f'"{p}"' for p in clean),
+        ),
+        root / "demos" / ".gitkeep": "",
+    }
+    for path, text in texts.items():
+        path.write_text(text, encoding="utf-8")
+    return Scaffold(root, pkg, module, dist_name, sorted(texts))
+
+
+_PYPROJECT = """\
+[build-system]
+requires = ["setuptools>=68", "wheel"]
+build-backend = "setuptools.build_meta"
+
+[project]
+name = "{dist}"
+version = "0.1.0"
+description = "l2p-bullet action plugin: {name}"
+requires-python = ">=3.11"
+dependencies = ["l2p-bullet>={version}"]
+
+# This line is the whole plugin mechanism: l2p-bullet finds actions in this entry-point group. The value
+# is the package whose folder holds the bundle (manifest.toml + weights); it is located without being
+# imported, so listing actions stays fast.
+[project.entry-points."l2p_bullet.actions"]
+{name} = "{module}"
+
+[tool.setuptools]
+packages = ["{module}"]
+
+[tool.setuptools.package-data]
+"{module}" = ["*.toml", "*.safetensors", "*.md"]
+"""
+
+_INIT = '''"""Action plugin "{name}" for l2p-bullet: this folder holds the bundle (manifest.toml and weights).
+
+Nothing needs to run here; l2p-bullet reads the bundle next to this file.
+"""
+'''
+
+_MANIFEST = """\
+# Bundle manifest of the action "{name}".
+# "phrases" are the prepositions this action answers to in sentences ("move A <phrase> B").
+# `l2p-bullet train {name} ... --out <this folder>` fills in the model, training and metrics sections and
+# writes progress.safetensors next to this file; until then the action is listed as "not trained".
+schema = 1
+name = "{name}"
+version = "0.1.0"
+requires = ">={version}"
+phrases = [{phrases}]
+description = "{description}"
+"""
+
+_README = """\
+# {dist}: the "{name}" action for l2p-bullet
+
+Teaches `l2p-bullet perform` the phrases {phrases}, as in `l2p-bullet perform "move A {phrase} B"`.
+
+    {root}/
+      pyproject.toml        declares the entry point  [project.entry-points."l2p_bullet.actions"]  {name} = "{module}"
+      {module}/manifest.toml  the phrases; training adds the model's details and metrics
+      {module}/progress.safetensors   written by training
+      demos/                your demonstrations (.npz)
+
+## 1. Demonstrations
+
+Training reads the same capture-session format as the shipped human demonstrations
+(`l2p_bullet/data/captures/*.npz`, described in `l2p_bullet/data/README.md`). One `.npz` file is one
+session: the 2-D tracks of two blocks over time, and the annotated events in which one block performs the
+action relative to the other. Required arrays:
+
+| array             | shape  | meaning                                                                  |
+|-------------------|--------|--------------------------------------------------------------------------|
+| `shell_pose`      | (T, 3) | block 0: `[x, y, theta]` of its centre per frame (metres, radians)         |
+| `stella_pose`     | (T, 3) | block 1, same frames                                                      |
+| `event_start_end` | (E, 2) | `[first, last]` frame of each event (inclusive)                           |
+| `event_mover`     | (E,)   | which block moves in each event: 0 (shell) or 1 (stella); the other is the anchor |
+
+Optional: `frame` (T,), `shell_observed`/`stella_observed` (T,) bool, `table_points_2d` (K, 2).
+Frames are about 30 per second; blocks are 0.15 m squares (only relative geometry matters, so any fixed
+frame works). Leave some still frames before and after each event: the progress model learns that
+progress is 0 outside the event and rises to 1 at its end. Files are loaded with `allow_pickle=False`,
+so save plain numeric arrays.
+
+**Record** them with any tracker (motion capture, a phone video and a marker tracker, ...), or **write**
+them: a short script that moves one block along plausible paths ending "{phrase}" the other, with some
+variety (start positions, speeds, curved and straight paths, both blocks as mover), is enough for a first
+model. For example:
+
+```python
+import numpy as np
+
+rng = np.random.default_rng(0)
+for session in range(2):
+    shell, stella, events = [], [], []
+    t = 0
+    for _ in range(20):                                # 20 events per session
+        anchor = rng.uniform(-0.5, 0.5, 2)
+        start = anchor + rng.uniform(-0.8, 0.8, 2)
+        goal = anchor + np.array([0.0, 0.25])          # <- where "{phrase}" ends, relative to the anchor
+        n = int(rng.integers(40, 80))
+        s = np.linspace(0, 1, n)[:, None] ** rng.uniform(0.8, 1.2)
+        path = np.vstack([np.repeat([start], 15, 0), start + s * (goal - start), np.repeat([goal], 15, 0)])
+        shell.append(np.column_stack([path, np.zeros(len(path))]))
+        stella.append(np.tile([*anchor, 0.0], (len(path), 1)))
+        events.append([t + 15, t + 15 + n - 1])
+        t += len(path)
+    np.savez(f"demos/{name}_Session{{session + 1}}.npz", shell_pose=np.vstack(shell),
+             stella_pose=np.vstack(stella), event_start_end=np.array(events),
+             event_mover=np.zeros(len(events), dtype=np.int8))
+```
+
+Check that they load: `python -c "from l2p_bullet.learning.demos import load_session; load_session('demos/{name}_Session1.npz')"`.
+
+## 2. Train
+
+    l2p-bullet train {name} --demos demos/*.npz --out {module}
+
+This writes `{module}/progress.safetensors` and completes `{module}/manifest.toml` (model, training data
+digest, metrics); the phrases stay. The shipped demonstrations of the built-in actions serve as
+negatives. Optionally, train a REINFORCE move policy against the new model (the default planner then
+also proposes the policy's moves; without one it searches without it):
+
+    python -m l2p_bullet.learning.train_policy {name} --bundle {module}
+
+## 3. Install and use
+
+    pip install .            # or: pip install -e .
+    l2p-bullet actions       # "{name}" is listed with its phrases
+    l2p-bullet perform "move A {phrase} B"
+
+To share the action, build a wheel (`pip wheel . --no-deps`) and publish it like any Python package.
+"""

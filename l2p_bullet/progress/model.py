@@ -1,0 +1,107 @@
+"""The progress ensemble's forward pass in numpy: inference without importing torch.
+
+Why: ``perform`` is a command a person waits for, with a goal of 3 s on 2 cores, and importing torch
+alone costs 1.4-2.5 s there; the models are one small LSTM layer per ensemble member, whose forward
+pass is a few lines of numpy and, at the planner's batch sizes, as fast as torch's. Training stays in
+torch (:mod:`l2p_bullet.progress`); this module only reads the same safetensors weights (with
+safetensors' numpy loader) and computes the same numbers, to float32 rounding. ``tests/test_perform.py``
+checks the two against each other on random motions, so a change to the network in
+:mod:`l2p_bullet.progress` that is not mirrored here fails loudly.
+
+The batching and the mapping back to input frames are those of :class:`l2p_bullet.progress.ProgressModel`
+(same feature code, :func:`l2p_bullet.progress.features.batch_features`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import BundleError
+from .config import ModelConfig
+from .features import QSRConfig
+from .scoring import ScoringMixin, shared_prefix
+
+WEIGHTS = "progress.safetensors"
+
+
+def _sigmoid(z: np.ndarray) -> np.ndarray:
+    return 0.5 * (1.0 + np.tanh(0.5 * z))  # = 1 / (1 + exp(-z)), without overflow warnings
+
+
+class NumpyProgressModel(ScoringMixin):
+    """Same interface as :class:`l2p_bullet.progress.ProgressModel` for scoring (no training)."""
+
+    def __init__(self, tensors: dict[str, np.ndarray], model_cfg: ModelConfig, qsr_cfg: QSRConfig):
+        if model_cfg.arch != "lstm":
+            raise BundleError(f'no numpy inference for the architecture "{model_cfg.arch}"')
+        self.model_cfg, self.qsr_cfg = model_cfg, qsr_cfg
+        self.members = []
+        for i in range(model_cfg.ensemble):
+            def g(k: str, i: int = i) -> np.ndarray:
+                return np.asarray(tensors[f"m{i}.{k}"], np.float32)
+
+            # PyTorch's LSTM gate order is input, forget, cell, output; its two biases are added.
+            self.members.append((g("lstm.weight_ih_l0").T.copy(), g("lstm.weight_hh_l0").T.copy(),
+                                 g("lstm.bias_ih_l0") + g("lstm.bias_hh_l0"), g("head.weight")[0], g("head.bias")[0]))
+
+    @classmethod
+    def from_bundle(cls, bundle: Any) -> NumpyProgressModel:
+        """Read a loaded bundle's progress weights (digest checked again: the file may have changed)."""
+        from safetensors import SafetensorError
+        from safetensors.numpy import load_file
+
+        path = Path(bundle.path) / WEIGHTS
+        expected = bundle.manifest.get("weights", {}).get(WEIGHTS, {}).get("sha256")
+        try:
+            data = path.read_bytes()
+        except OSError as e:
+            raise BundleError(f"cannot read {path}: {e.strerror or e}") from None
+        if hashlib.sha256(data).hexdigest() != expected:
+            raise BundleError(f"{path} does not match the sha256 digest in its manifest (modified or corrupted)")
+        try:
+            tensors = load_file(str(path))
+        except (SafetensorError, OSError) as e:
+            raise BundleError(f"{path}: not a readable safetensors file ({e})") from None
+        return cls(tensors, ModelConfig.from_dict(bundle.manifest["model"]),
+                   QSRConfig.from_dict(bundle.manifest["features"]))
+
+    def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
+        """Mean ensemble progress ``(B, K)`` for padded features ``(B, K, F)``.
+
+        As in :meth:`ProgressModel.forward_features`, frames that every sequence shares at its start (a
+        planner's candidates all extend the same path) run once, at batch size 1.
+        """
+        x = np.ascontiguousarray(feats, dtype=np.float32)
+        B, K, _ = x.shape
+        lengths, P = shared_prefix(x, lengths)
+        out = np.zeros((B, K), np.float32)
+        for member in self.members:
+            if P >= 2:
+                hp, h, c = self._lstm(member, x[:1, :P])
+                hr, _, _ = self._lstm(member, x[:, P:], np.repeat(h, B, 0), np.repeat(c, B, 0))
+                hs = np.concatenate([np.repeat(hp, B, 0), hr], axis=1)
+            else:
+                hs, _, _ = self._lstm(member, x)
+            out += _sigmoid(hs @ member[3] + member[4])
+        return (out / len(self.members)).astype(float)
+
+    @staticmethod
+    def _lstm(member: tuple, x: np.ndarray, h: np.ndarray | None = None, c: np.ndarray | None = None):
+        """One LSTM layer over ``x`` (B, T, F) from state (h, c): all hidden states, final h and c."""
+        w_ih, w_hh, bias = member[0], member[1], member[2]
+        B, T, _ = x.shape
+        H = w_hh.shape[0]
+        xi = (x.reshape(B * T, -1) @ w_ih).reshape(B, T, 4 * H) + bias
+        h = np.zeros((B, H), np.float32) if h is None else h
+        c = np.zeros((B, H), np.float32) if c is None else c
+        hs = np.empty((B, T, H), np.float32)
+        for t in range(T):
+            z = xi[:, t] + h @ w_hh
+            c = _sigmoid(z[:, H:2 * H]) * c + _sigmoid(z[:, :H]) * np.tanh(z[:, 2 * H:3 * H])
+            h = _sigmoid(z[:, 3 * H:]) * np.tanh(c)
+            hs[:, t] = h
+        return hs, h, c

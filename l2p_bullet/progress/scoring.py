@@ -1,0 +1,72 @@
+"""The scoring API shared by the torch and the numpy progress models.
+
+Both models differ only in ``forward_features`` (the LSTM ensemble's forward pass); resampling, feature
+extraction and mapping resampled frames back to input frames are the same, so they live here once.
+Torch-free: ``perform`` scores with the numpy model and must never import torch.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .features import QSRConfig, batch_features
+
+
+def shared_prefix(feats: np.ndarray, lengths: np.ndarray | None) -> tuple[np.ndarray, int]:
+    """(lengths, P): how many leading frames every sequence of the batch shares.
+
+    A planner's candidates all extend the same path: those P frames go through the LSTMs once, at batch
+    size 1, and only the rest runs for the whole batch. Every sequence keeps at least its last frame.
+    """
+    B, K = feats.shape[:2]
+    lengths = np.full(B, K) if lengths is None else np.asarray(lengths)
+    P = 0
+    if B > 1:
+        same = np.all(feats == feats[:1], axis=(0, 2))
+        P = K if same.all() else int(np.argmin(same))
+        P = min(P, int(lengths.min()) - 1)
+    return lengths, P
+
+
+class ScoringMixin:
+    """``final_batch``/``curve_batch``/``curve``/``final`` on top of a subclass's ``forward_features``."""
+
+    qsr_cfg: QSRConfig
+
+    def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
+        raise NotImplementedError
+
+    def _run(self, movers: list[np.ndarray], anchors: Any, size: float):
+        movers = [np.asarray(m, float) for m in movers]
+        feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
+        return self.forward_features(feats, lengths), lengths, rss
+
+    def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> np.ndarray:
+        """Final progress ``(B,)`` of every motion, in one forward pass for the whole batch."""
+        if len(movers) == 0:
+            return np.zeros(0)
+        out, lengths, _ = self._run(movers, anchors, size)
+        return out[np.arange(len(lengths)), lengths - 1]
+
+    def curve_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> list[np.ndarray]:
+        """Per-input-frame progress of every motion (a frame gets the value of the last resampled frame
+        at or before its arc length: frames where the block stands still repeat the value)."""
+        if len(movers) == 0:
+            return []
+        out, lengths, rss = self._run(movers, anchors, size)
+        curves = []
+        for i, rs in enumerate(rss):
+            k = np.searchsorted(rs.arc, rs.input_arc + 1e-9, side="right") - 1
+            curves.append(out[i, np.clip(k, 0, lengths[i] - 1)])
+        return curves
+
+    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
+        """Per-input-frame progress ``(T,)`` of one motion; ``anchor`` is ``(T, 3)`` or one pose ``(3,)``."""
+        anchor = np.asarray(anchor, float)
+        return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0]
+
+    def final(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> float:
+        anchor = np.asarray(anchor, float)
+        return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0])
