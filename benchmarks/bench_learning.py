@@ -22,9 +22,11 @@ import time
 import numpy as np
 import torch
 
-from l2p_bullet.learning.demos import ACTIONS
-from l2p_bullet.learning.train_progress import TrainConfig, all_demos, train_action
-from l2p_bullet.learning.validation import graded_agreement, graded_motions, session_split
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.learning.agreement import graded_motions, model_agreement
+from l2p_bullet.learning.progress_net import ProgressModel
+from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, train_action
+from l2p_bullet.learning.validation import session_split
 from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
 
 
@@ -85,7 +87,7 @@ def main() -> None:
     ap.add_argument("--write-metrics", action="store_true",
                     help="store the results in the shipped bundles' [metrics] (manifest only, weights untouched)")
     args = ap.parse_args()
-    cfg = TrainConfig()
+    cfg = ProgressTrainConfig()
     if args.quick:
         cfg = dataclasses.replace(cfg, ensemble=1, epochs=10)
     torch.set_num_threads(1)
@@ -103,7 +105,7 @@ def main() -> None:
     print("## Scoring throughput of the shipped bundles (sequences/s, 21-move paths, ~80 frames)\n")
     print("| action | batch 1 | batch 256 random | batch 256 shared prefix (planner) | ms per 256-call |")
     print("|---|---|---|---|---|")
-    models = {a: load_bundle(builtin_bundle_dir(a)).progress_model() for a in ACTIONS}
+    models = {a: ProgressModel.from_bundle(load_bundle(builtin_bundle_dir(a))) for a in ACTIONS}
     for a, m in models.items():
         b1 = throughput(m, 1, False, repeats=20)
         br = throughput(m, 256, False)
@@ -118,7 +120,7 @@ def main() -> None:
     print()
 
     motions = graded_motions()
-    ga = graded_agreement(models, motions)
+    ga = model_agreement(models, motions)
     print("## Agreement with people: Spearman(final progress, mean grade), 15 graded demos each\n")
     print("| folder | action | shipped bundle |\n|---|---|---|")
     for folder, v in ga.items():
@@ -164,7 +166,7 @@ def _write(metrics: dict, enabled: bool) -> None:
 
 
 def _action(folder: str) -> str:
-    from l2p_bullet.learning.validation import GRADED_FOLDERS
+    from l2p_bullet.core.vocabulary import GRADED_FOLDERS
 
     return GRADED_FOLDERS[folder]
 

@@ -103,7 +103,7 @@ def main() -> None:
         settings = bundle.manifest.get("policy", {})
         for planner in [p for p in args.planners.split(",") if p]:
             label = f"default ({resolve_planner('default', settings)})" if planner == "default" else planner
-            if planner == "reinforce" and bundle.policy_tensors() is None:
+            if planner == "reinforce" and bundle.policy_arrays() is None:
                 print(f"{action}: no policy in the bundle, skipping reinforce", file=sys.stderr)
                 continue
             r = run(action, bundle, planner, seeds)
@@ -117,9 +117,9 @@ def main() -> None:
                 rows += eq
                 summary[(action, "greedy@=t")] = summarise(eq)
                 print(f"{action:8s} {'greedy@=t':22s} {summary[(action, 'greedy@=t')]}", file=sys.stderr, flush=True)
-    from l2p_bullet.judge.rules import demo_acceptance, graded_agreement
+    from l2p_bullet.learning.agreement import demo_acceptance, rule_agreement
 
-    agree, accept = graded_agreement(), demo_acceptance()
+    agree, accept = rule_agreement(), demo_acceptance()
     print("\nThe evaluator: Spearman with people's grades (90 graded 2-D demos) "
           + ", ".join(f"{k} {v:.2f}" for k, v in agree.items())
           + "; accepts of the people's capture demos " + ", ".join(f"{k} {100 * v:.0f} %" for k, v in accept.items()))

@@ -1,8 +1,10 @@
-"""One root error for everything a user can get wrong.
+"""One root error for everything a user can get wrong, and subclasses that carry their data.
 
 The CLI catches :class:`L2PError` and prints its message on one line with a non-zero exit code;
 anything else is a bug and keeps its traceback. Subclasses exist so that callers (and tests) can
-tell failures apart without parsing messages.
+tell failures apart without parsing messages; the ones a caller may want to act on carry the facts
+as attributes (like flake8's ``FailedToLoadPlugin(name, exception)``): an unknown action is one
+:class:`UnknownActionError` with ``.name`` and ``.known`` wherever it is raised.
 """
 
 from __future__ import annotations
@@ -23,6 +25,10 @@ class SceneError(L2PError):
 
 class UnknownObjectError(SceneError):
     """A sentence or path names an object that is not in the scene."""
+
+    def __init__(self, message: str, name: str = "", known: Iterable[str] = ()):
+        super().__init__(message)
+        self.name, self.known = name, tuple(known)
 
 
 class ReachError(L2PError):
@@ -49,12 +55,47 @@ class PluginError(L2PError):
     """An action plugin cannot be found or loaded, or two plugins claim the same phrase."""
 
 
+class UnknownActionError(PluginError):
+    """No installed action (built-in or plugin) has this name."""
+
+    def __init__(self, name: str, known: Iterable[str], context: str = ""):
+        self.name, self.known = name, tuple(sorted(known))
+        key = name.strip().lower().replace("_", "-")
+        super().__init__(f'unknown action "{name}" (known: {", ".join(self.known) or "none"}).'
+                         + did_you_mean(key, self.known) + (f" {context}" if context else ""))
+
+
+class FailedToLoadPlugin(PluginError):
+    """A found plugin cannot be used: its bundle is broken, its import failed, it is not trained..."""
+
+    def __init__(self, name: str, package: str, reason: str):
+        self.name, self.package, self.reason = name, package, reason
+        super().__init__(f'action plugin "{name}" (package {package}) cannot be used: {reason}')
+
+
+class PluginConflict(PluginError):
+    """Two usable plugins claim the same action name or phrase (``claim``), so sentences are ambiguous."""
+
+    def __init__(self, message: str, claim: str, plugins: Iterable[str]):
+        super().__init__(message)
+        self.claim, self.plugins = claim, tuple(plugins)
+
+
 class LanguageError(L2PError):
     """A sentence could not be understood."""
 
 
 class PlanError(L2PError):
     """The planner cannot produce a path (no collision-free move, unknown planner...)."""
+
+
+class UnknownPlannerError(PlanError):
+    """A planner name that does not exist; ``.known`` lists the ones that do."""
+
+    def __init__(self, name: str, known: Iterable[str], where: str = ""):
+        self.name, self.known = name, tuple(known)
+        super().__init__(f'{where}unknown planner "{name}" (known: {", ".join(self.known)}).'
+                         + did_you_mean(name.strip().lower(), self.known))
 
 
 class RunFolderError(L2PError):

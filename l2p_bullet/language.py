@@ -17,8 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .core.scene import COLORS, Scene
+from .core.vocabulary import normalize_phrase
 from .errors import LanguageError, UnknownObjectError, did_you_mean
-from .plugins.registry import normalize_phrase
 
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = (

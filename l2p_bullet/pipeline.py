@@ -1,23 +1,22 @@
-"""``perform``: a sentence in, a recorded robot action out. The stages of DESIGN.md, in order.
+"""The front door: a sentence in, a run folder out. ``perform`` and ``plan`` run the stages of DESIGN.md.
 
     parse      sentence -> Command, against the phrases of the installed plugins (registry, language)
     load       the one plugin the command needs -> Bundle, and its progress model (scored in numpy:
-               perform never imports torch, see progress_numpy.py)
-    plan       planners.plan -> Plan (2-D path of the mover), saved as plan.json
-    execute    execute.execute_path: the arm performs the path in PyBullet; trajectory.json gets the
-               progress model's value per frame, so a run can be read without the model
-    evaluate   the project's rule-based judge on the *executed* trajectory (what the simulator did,
-               not what was planned): a plan that the arm cannot follow must not count as success
+               perform never imports torch)
+    plan       planning.plan -> Plan (2-D path of the mover), saved as plan.json
+    execute    embodiment.execute.execute_path: the arm performs the path in PyBullet; trajectory.json
+               gets the progress model's value per frame, so a run can be read without the model
+    evaluate   the bundle's judge (rules for the built-in actions) on the *executed* trajectory (what the
+               simulator did, not what was planned): a plan the arm cannot follow must not count as success
 
 Each stage is timed; the timings, the verdict and the final progress are merged into summary.json.
-The cheap checks (sentence, plugin, run folder) run before the expensive ones so that a typo costs
-milliseconds, not a planning run.
+The cheap checks (options, sentence, plugin, run folder) run before the expensive ones so that a typo
+costs milliseconds, not a planning run, and never touches the disk.
 """
 
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,7 +24,9 @@ from typing import Any
 
 import numpy as np
 
+from .core.contracts import Plan, trajectory_poses
 from .core.scene import Scene
+from .core.timing import StageClock
 from .errors import L2PError, PluginError
 from .language import Command, parse
 
@@ -71,57 +72,6 @@ def _round(v: float | None) -> float | None:
     return None if v is None else round(float(v), 6)
 
 
-class _Clock:
-    """Times the stages and tells the caller when each starts (for progress on stderr)."""
-
-    def __init__(self, on_stage: StageFn | None):
-        self.on_stage = on_stage
-        self.timings: dict[str, float] = {}
-        self.stage = ""
-        self.t0 = time.perf_counter()
-
-    def start(self, stage: str, message: str | None = None) -> float:
-        self.stage = stage
-        if self.on_stage is not None and message:
-            self.on_stage(message)
-        return time.perf_counter()
-
-    def stop(self, stage: str, t: float) -> None:
-        self.timings[stage] = self.timings.get(stage, 0.0) + time.perf_counter() - t
-
-
-class _ModelOnce:
-    """A bundle whose progress model is built once per process and weights digest.
-
-    The planner and the recorder both need the model; building it twice would read and check the
-    weights twice, and a benchmark performing many sentences would rebuild it every time. With
-    ``inference="numpy"`` (the default) the model is :class:`NumpyProgressModel`, the same network
-    evaluated without torch: importing torch alone would take half of perform's time budget.
-    """
-
-    _cache: dict[tuple[str, str, str], Any] = {}
-
-    def __init__(self, bundle: Any, inference: str = "numpy"):
-        if inference not in ("numpy", "torch"):
-            raise ValueError(f"inference must be numpy or torch, not {inference!r}")
-        self._bundle, self._inference = bundle, inference
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._bundle, name)
-
-    def progress_model(self) -> Any:
-        weights = self._bundle.manifest.get("weights", {}).get("progress.safetensors", {})
-        key = (str(self._bundle.path), str(weights.get("sha256", "")), self._inference)
-        if key not in self._cache:
-            if self._inference == "numpy" and self._bundle.manifest.get("model", {}).get("arch", "lstm") == "lstm":
-                from .progress.model import NumpyProgressModel
-
-                self._cache[key] = NumpyProgressModel.from_bundle(self._bundle)
-            else:
-                self._cache[key] = self._bundle.progress_model()
-        return self._cache[key]
-
-
 def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
     """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported)."""
     from .plugins import registry
@@ -135,37 +85,10 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
     return parse(sentence, scene, table)
 
 
-def trajectory_motion(frames: list[dict], mover: str, anchor: str) -> tuple[np.ndarray, np.ndarray]:
-    """(T,3) ``[x, y, yaw]`` of mover and anchor from trajectory.json frames."""
-    m = np.array([[f["poses"][mover][0], f["poses"][mover][1], f["poses"][mover][3]] for f in frames], float)
-    a = np.array([[f["poses"][anchor][0], f["poses"][anchor][1], f["poses"][anchor][3]] for f in frames], float)
-    return m, a
-
-
-def judge(action: str, mover: np.ndarray, anchor: np.ndarray, size: float,
-          final_progress: float | None, threshold: float = 0.5) -> dict[str, Any]:
-    """The verdict: the rule-based evaluator for the built-in actions.
-
-    A plugin action has no rules in this project, so its only judge is its own progress model; the
-    verdict says so ("judge": "progress-model") rather than pretending to be independent.
-    """
-    from .learning.demos import ACTIONS
-
-    if action in ACTIONS:
-        from .judge.rules import evaluate
-
-        v = evaluate(action, mover, anchor, size)
-        return {"success": bool(v.success), "score": round(float(v.score), 4), "reason": v.reason, "judge": "rules"}
-    fp = 0.0 if final_progress is None else float(final_progress)
-    return {"success": fp >= threshold, "score": round(fp, 4), "judge": "progress-model",
-            "reason": f"no rule-based judge for the plugin action {action}; its own progress model gives "
-                      f"{fp:.2f} at the end (success at {threshold:.2f} or more)"}
-
-
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None, inference: str = "numpy") -> PerformResult:
+            plugins: list | None = None, render_settings: Any = None) -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
 
     Raises an :class:`L2PError` subclass for anything a user can get wrong (sentence, plugin, run
@@ -173,41 +96,45 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     failed, so a failed run is still explained on disk.
     """
     from .core.runfolder import prepare_run_folder
+    from .planning import resolve_planner
     from .plugins import registry
 
-    clock = _Clock(on_stage)
-    t = clock.start("parse")
+    clock = StageClock(on_stage)
+    clock.stage("parse")
+    resolve_planner(planner)  # a typo must fail before anything is loaded or written
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
-    clock.stop("parse", t)
+    clock.stop()
 
     out = prepare_run_folder(out_dir, force=force, prefix="perform")
     try:
-        t = clock.start("load", f'loading the plugin "{cmd.action}" and its progress model')
-        bundle = _ModelOnce(registry.load(cmd.action, plugins), inference)
+        clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
+        bundle = registry.load(cmd.action, plugins)
         model = bundle.progress_model()
-        clock.stop("load", t)
         return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
                     budget=budget, threshold=threshold, render_settings=render_settings)
     except L2PError as e:
+        clock.stop()
         _write_json(out / "summary.json", {
             "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
-            "failed_stage": clock.stage, "error": str(e), "timings_s": clock.timings,
+            "failed_stage": clock.last, "error": str(e), "timings_s": clock.timings,
         })
         raise
 
 
-def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: _Clock, *, planner: str,
+def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: StageClock, *, planner: str,
          seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any) -> PerformResult:
     from . import planning
     from .embodiment import execute
+    from .judge import judge_for
 
     size = scene.get(cmd.mover).size
-    t = clock.start("plan", f"planning with the {planner} planner")
+    judge = judge_for(bundle)  # a broken [judge] fails at load, not after the arm moved
+    clock.stage("plan", f"planning with the {planner} planner")
     plan = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
                          threshold=threshold)
-    clock.stop("plan", t)
+    clock.stop()
     plan.extra.setdefault("sentence", cmd.sentence)
     plan.save(out / "plan.json")
 
@@ -215,23 +142,22 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: 
         return np.asarray(model.curve(mover, anchor, size), float).reshape(-1)
 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
-    t = clock.start("execute", "executing with the arm" + ("" if render else " (no rendering)"))
+    clock.stage("execute", "executing with the arm" + ("" if render else " (no rendering)"))
     kwargs: dict[str, Any] = {"render": None}
     if render:
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
                               meta=meta, on_stage=stage_cb, **kwargs)
-    clock.stop("execute", t)
 
-    t = clock.start("evaluate")
-    mover, anchor = trajectory_motion(ex.frames, cmd.mover, cmd.anchor)
+    clock.stage("evaluate")
+    mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
     prog = [f.get("progress") for f in ex.frames]
     final_progress = float(prog[-1]) if prog and prog[-1] is not None else None
-    verdict = judge(cmd.action, mover, anchor, size, final_progress)
+    verdict = judge.judge(mover, anchor, size, final_progress=final_progress).to_dict()
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
-    clock.stop("evaluate", t)
-    clock.timings["total"] = time.perf_counter() - clock.t0
+    clock.stop()
+    clock.timings["total"] = clock.elapsed
 
     result = PerformResult(
         command=cmd, out_dir=out, plan=plan, verdict=verdict, final_progress=final_progress,
@@ -242,6 +168,57 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: 
     )
     _merge_summary(out / "summary.json", result, bundle, ex, seed)
     return result
+
+
+@dataclass
+class PlanResult:
+    """What ``plan`` did: the command, the plan (with its verdict in ``plan.extra``) and where it went."""
+
+    command: Command
+    plan: Plan
+    verdict: dict[str, Any]
+    out_dir: Path
+
+    def to_dict(self) -> dict[str, Any]:
+        """What ``l2p-bullet plan`` prints."""
+        x = self.plan.extra
+        return {"out": str(self.out_dir), "action": self.command.action, "planner": self.plan.planner,
+                "stopped": self.plan.stopped, "final_progress": x["final_progress"], "steps": x["steps"],
+                "seconds": x["seconds"], "success": self.verdict["success"], "reason": self.verdict["reason"]}
+
+
+def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
+         seed: int = 0, budget: int | None = None, threshold: float | None = None, force: bool = False,
+         plot: bool = True, plugins: list | None = None) -> PlanResult:
+    """Plan ``sentence`` in 2-D only and write plan.json (and plan.png) with the bundle's judge's verdict.
+
+    The plan maximises the action's learned progress; the judge only reads the result (the planner never
+    sees it), exactly as ``perform`` judges its executed trajectory.
+    """
+    from . import planning
+    from .core.runfolder import prepare_run_folder
+    from .judge import judge_for
+    from .plugins import registry
+
+    planning.resolve_planner(planner)  # a bad name fails before anything is loaded
+    scene.validate()
+    plugins = registry.discover() if plugins is None else plugins
+    cmd = resolve(sentence, scene, plugins)
+    bundle = registry.load(cmd.action, plugins)
+    judge = judge_for(bundle)
+    result = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
+                           threshold=threshold)
+    result.extra.setdefault("sentence", sentence)
+    verdict = judge.judge(result.path, result.anchor_pose, result.size,
+                          final_progress=result.extra.get("final_progress")).to_dict()
+    result.extra["verdict"] = verdict
+    folder = prepare_run_folder(out_dir, force=force, prefix="plan")
+    result.save(folder / "plan.json")
+    if plot:
+        from .planning.plot import plot_plan
+
+        plot_plan(result, scene, folder / "plan.png")
+    return PlanResult(cmd, result, verdict, folder)
 
 
 def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int) -> None:

@@ -37,5 +37,5 @@ class FakeBundle:
     def progress_model(self):
         return self.model
 
-    def policy_tensors(self):
+    def policy_arrays(self):
         return self._policy

@@ -9,21 +9,19 @@ from pathlib import Path
 import numpy as np
 import pytest
 import tomli_w
-import torch
 
-from l2p_bullet.errors import BundleError
-from l2p_bullet.learning.demos import ACTIONS
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.errors import BundleError, UnknownActionError
 from l2p_bullet.plugins.bundle import (
     MANIFEST,
-    PHRASES,
     POLICY_FILE,
     PROGRESS_FILE,
     builtin_bundle_dir,
     load_bundle,
-    resolve_action,
     version_satisfies,
     write_weights,
 )
+from l2p_bullet.plugins.registry import resolve
 
 
 @pytest.fixture
@@ -46,7 +44,7 @@ def _edit_manifest(folder: Path, **changes) -> None:
 @pytest.mark.parametrize("action", ACTIONS)
 def test_builtin_bundles_load_and_score(action):
     b = load_bundle(builtin_bundle_dir(action))
-    assert b.name == action and b.phrases == PHRASES[action]
+    assert b.name == action and b.phrases and b.manifest["judge"] == {"rules": action}
     assert {"features", "model", "training", "metrics"} <= set(b.manifest)
     model = b.progress_model()
     mover = np.column_stack([np.linspace(0.4, 0.2, 20), np.zeros(20), np.zeros(20)])
@@ -55,10 +53,12 @@ def test_builtin_bundles_load_and_score(action):
 
 
 def test_resolve_action_by_name_alias_and_folder(bundle_copy):
-    assert resolve_action("next_to") == ("next-to", builtin_bundle_dir("next-to"))
-    assert resolve_action(str(bundle_copy)) == ("around", bundle_copy)
-    with pytest.raises(BundleError, match="Did you mean"):
-        resolve_action("arround")
+    name, folder = resolve("next_to")
+    assert name == "next-to" and folder.resolve() == builtin_bundle_dir("next-to").resolve()
+    assert resolve(str(bundle_copy)) == ("around", bundle_copy)
+    with pytest.raises(UnknownActionError) as e:
+        resolve("arround")
+    assert e.value.name == "arround" and set(ACTIONS) <= set(e.value.known) and "Did you mean" in str(e.value)
 
 
 def test_missing_folder_manifest_and_weights(tmp_path, bundle_copy):
@@ -110,13 +110,13 @@ def test_write_weights_adds_a_policy(bundle_copy):
     man.pop("policy", None)
     (bundle_copy / MANIFEST).write_text(tomli_w.dumps(man))
     (bundle_copy / POLICY_FILE).unlink(missing_ok=True)
-    assert load_bundle(bundle_copy).policy_tensors() is None
-    tensors = {"mean.weight": torch.arange(6.0).reshape(2, 3), "log_std": torch.zeros(3)}
-    write_weights(bundle_copy, POLICY_FILE, tensors, "policy", {"planner": "reinforce", "steps": 20})
+    assert load_bundle(bundle_copy).policy_arrays() is None
+    arrays = {"mean.weight": np.arange(6.0, dtype=np.float32).reshape(2, 3), "log_std": np.zeros(3, np.float32)}
+    write_weights(bundle_copy, POLICY_FILE, arrays, "policy", {"planner": "reinforce", "steps": 20})
     b = load_bundle(bundle_copy)
     assert b.manifest["policy"] == {"planner": "reinforce", "steps": 20}
-    got = b.policy_tensors()
-    assert set(got) == set(tensors) and torch.equal(got["mean.weight"], tensors["mean.weight"])
+    got = b.policy_arrays()
+    assert set(got) == set(arrays) and np.array_equal(got["mean.weight"], arrays["mean.weight"])
     # tampering with the policy is caught too, and the progress weights are untouched
     (bundle_copy / POLICY_FILE).write_bytes(b"junk")
     with pytest.raises(BundleError, match=POLICY_FILE):

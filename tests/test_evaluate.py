@@ -7,7 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from l2p_bullet.judge.rules import evaluate, graded_agreement, spearman, square_gap
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.judge.rules import evaluate, square_gap
+from l2p_bullet.learning.agreement import rule_agreement, spearman
 from l2p_bullet.planning.world2d import interpolate
 
 ANCHOR = np.array([0.0, 0.0, 0.0])
@@ -73,11 +75,12 @@ def test_around_needs_nearly_a_full_turn_close_by():
 
 
 def test_action_names_are_canonicalised_and_unknown_ones_rejected():
-    from l2p_bullet.errors import L2PError
+    from l2p_bullet.errors import UnknownActionError
 
     assert evaluate("next_to", _path([(3, 0), (1.2, 0)]), ANCHOR, 1.0).success
-    with pytest.raises(L2PError, match="known: closer"):
+    with pytest.raises(UnknownActionError) as e:
         evaluate("sideways", _path([(3, 0), (1.2, 0)]), ANCHOR, 1.0)
+    assert e.value.name == "sideways" and set(e.value.known) == set(ACTIONS)
 
 
 def test_spearman_handles_ties_and_constants():
@@ -88,7 +91,7 @@ def test_spearman_handles_ties_and_constants():
 
 
 def test_agreement_with_people_is_measured_per_action_and_pooled():
-    r = graded_agreement()
+    r = rule_agreement()
     assert set(r) == {"closer", "away", "next-to", "past", "around", "all"}
     # measured when the rules were written (docs/planning.md): keep them from silently getting worse
     assert r["all"] >= 0.55

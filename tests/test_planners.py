@@ -92,38 +92,35 @@ def test_reinforce_needs_a_trained_policy():
         plan(default_scene(), "A", "B", FakeBundle("around"), planner="reinforce")
 
 
-def test_a_trained_policy_round_trips_through_tensors_and_proposes_moves():
+def test_a_trained_policy_is_deterministic_matches_its_numpy_twin_and_proposes_moves():
     import torch
 
-    from l2p_bullet.learning.policy_net import policy_from_tensors
-    from l2p_bullet.learning.train_policy import TrainConfig, train_policy
+    from l2p_bullet.learning.train_policy import PolicyTrainConfig, train_policy
     from l2p_bullet.planning.policy import NumpyPolicy
 
-    cfg = TrainConfig(iterations=2, episodes=4, horizon=3)
+    cfg = PolicyTrainConfig(iterations=2, episodes=4, horizon=3)
     net, history, kept = train_policy(FakeBundle("around").model, cfg, log=None)
     again_net, again_history, _ = train_policy(FakeBundle("around").model, cfg, log=None)
     assert len(history) == 2 and history == again_history  # training is deterministic for a seed
     assert kept == 1  # fewer iterations than the selection window: the last weights
     assert all(torch.equal(v, again_net.state_dict()[k]) for k, v in net.state_dict().items())
-    tensors = {k: v.clone() for k, v in net.state_dict().items()}
-    again = policy_from_tensors(tensors)
+    arrays = {k: v.detach().clone().numpy() for k, v in net.state_dict().items()}
     x = torch.randn(5, 12)
-    assert torch.equal(net(x)[0], again(x)[0])
-    mean, log_std = NumpyPolicy({k: v.numpy() for k, v in tensors.items()})(x.numpy().astype(float))
+    mean, log_std = NumpyPolicy(arrays)(x.numpy().astype(float))  # planning's numpy twin of the network
     assert np.allclose(mean, net(x)[0].detach().numpy(), atol=1e-5)
     assert np.allclose(log_std, net(x)[1].detach().numpy(), atol=1e-5)
     scene = random_scene(2)
-    p = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
-    q = plan(scene, "A", "B", FakeBundle("around", policy=tensors), planner="reinforce", seed=0)
+    p = plan(scene, "A", "B", FakeBundle("around", policy=arrays), planner="reinforce", seed=0)
+    q = plan(scene, "A", "B", FakeBundle("around", policy=arrays), planner="reinforce", seed=0)
     _assert_executable(p, scene)
     assert np.array_equal(p.path, q.path)
 
 
 def test_policy_training_keeps_the_weights_of_its_best_window():
     """A late collapse of REINFORCE must not be what ships: the kept iteration ends the best run."""
-    from l2p_bullet.learning.train_policy import BEST_WINDOW, TrainConfig, train_policy
+    from l2p_bullet.learning.train_policy import BEST_WINDOW, PolicyTrainConfig, train_policy
 
-    cfg = TrainConfig(iterations=BEST_WINDOW + 4, episodes=4, horizon=2)
+    cfg = PolicyTrainConfig(iterations=BEST_WINDOW + 4, episodes=4, horizon=2)
     _, history, kept = train_policy(FakeBundle("around").model, cfg, log=None)
     windows = [np.mean(history[i - BEST_WINDOW + 1:i + 1]) for i in range(BEST_WINDOW - 1, len(history))]
     assert kept == BEST_WINDOW - 1 + int(np.argmax(windows))
@@ -164,12 +161,12 @@ def test_planning_never_imports_torch(tmp_path):
 
 
 def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
-    from l2p_bullet.planning.policy import features, to_poses
+    from l2p_bullet.planning.policy import policy_features, to_poses
 
     path = np.array([[0.1, 0.03, 0.2], [0.08, 0.06, 0.25], [0.05, 0.09, 0.3]])
     mirror = path * np.array([1, -1, -1])  # across the x axis, through the anchor and the workspace centre
     args = (np.zeros(3), 0.05, np.array([0.3]), np.array([2]), np.zeros(2), 0.25)
-    (x1, h1), (x2, h2) = features([path], *args), features([mirror], *args)
+    (x1, h1), (x2, h2) = policy_features([path], *args), policy_features([mirror], *args)
     assert np.allclose(x1, x2, atol=1e-6) and h1[0] == -h2[0]
     move = np.array([[0.5, 1.0, 0.2]])
     a, b = to_poses(move, path[-1:], np.zeros(3), 0.05, h1), to_poses(move, mirror[-1:], np.zeros(3), 0.05, h2)

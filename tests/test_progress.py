@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 import torch
 
-from l2p_bullet.learning.demos import ACTIONS, load_demos
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.learning.demos import load_demos
 from l2p_bullet.learning.progress_net import ProgressModel, ProgressNet
-from l2p_bullet.learning.train_progress import TrainConfig, train_net
+from l2p_bullet.learning.train_progress import ProgressTrainConfig, train_net
 from l2p_bullet.learning.trainset import DataConfig, demo_sequence, violates
 from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
 from l2p_bullet.progress.config import ModelConfig
@@ -17,7 +18,7 @@ from l2p_bullet.progress.features import QSRConfig
 
 @pytest.fixture(scope="module")
 def models() -> dict[str, ProgressModel]:
-    return {a: load_bundle(builtin_bundle_dir(a)).progress_model() for a in ACTIONS}
+    return {a: ProgressModel.from_bundle(load_bundle(builtin_bundle_dir(a))) for a in ACTIONS}
 
 
 def _line(p0, p1, n=40):
@@ -79,7 +80,8 @@ def test_training_is_deterministic_and_learns():
     """Approaching lines labelled as rising progress, receding lines as 0: a tiny net must fit them."""
     q = QSRConfig()
     rng = np.random.default_rng(0)
-    from l2p_bullet.learning.trainset import Sequence, features, resample
+    from l2p_bullet.learning.trainset import TrainingSequence
+    from l2p_bullet.progress.features import features, resample
 
     seqs = []
     for i in range(8):
@@ -89,8 +91,8 @@ def test_training_is_deterministic_and_learns():
         rs = resample(m, np.zeros(3), 1.0, q)
         x = features(rs.mover, rs.anchor, q)
         y = np.linspace(0, 1, len(x)).astype(np.float32) if i % 2 else np.zeros(len(x), np.float32)
-        seqs.append(Sequence(x, y, positive=bool(i % 2), end=len(x) - 1))
-    cfg = TrainConfig(hidden=8, ensemble=1, epochs=30, batch=8, lr=0.03)
+        seqs.append(TrainingSequence(x, y, positive=bool(i % 2), end=len(x) - 1))
+    cfg = ProgressTrainConfig(hidden=8, ensemble=1, epochs=30, batch=8, lr=0.03)
     n1, h1 = train_net(seqs, q.n_features, cfg, seed=5)
     n2, h2 = train_net(seqs, q.n_features, cfg, seed=5)
     assert h1 == h2

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 from l2p_bullet.cli import main
 from l2p_bullet.core.scene import default_scene
 from l2p_bullet.embodiment import motion
-from l2p_bullet.embodiment.retarget import relative
+from l2p_bullet.embodiment.retarget import to_anchor_frame
 from l2p_bullet.learning.demos import get_demo
 
 
@@ -49,9 +49,9 @@ def test_demo_replay_keeps_the_demo_relative_to_the_anchor(demo_run):
     assert traj["action"] == "past" and traj["mover"] == "A" and traj["anchor"] == "B"
     held = np.array([[f["poses"]["A"][i] for i in (0, 1, 3)] for f in traj["frames"] if f["grasped"] == "A"])
     b = default_scene().get("B")
-    got = relative(held, b.pose, b.size)  # in block units around B
+    got = to_anchor_frame(held, b.pose, b.size)  # in block units around B
     demo = get_demo("past", 0)
-    want = relative(demo.event_mover, demo.event_anchor, demo.size)
+    want = to_anchor_frame(demo.event_mover, demo.event_anchor, demo.size)
     # every executed point lies near the demonstrated relative path (block units; smoothing and the
     # documented fix-ups may move it a little), and both ends match
     d = motion.polyline_distance(got[:, :2], want[:, :2])

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from l2p_bullet.core.geometry import polygons_overlap
 from l2p_bullet.core.scene import GRIPPER_MARGIN, Scene, SceneObject
-from l2p_bullet.planning.world2d import World2D, interpolate, place, segment_frames
+from l2p_bullet.planning.world2d import World2D, interpolate, place_outline, segment_frames
 
 
 def _scene(b_xy=(0.0, 0.0), a_xy=(-0.15, 0.0), size=0.05) -> Scene:
@@ -76,7 +76,7 @@ def test_turns_take_the_short_way_round():
 def test_place_is_vectorised():
     sq = np.array([[0.5, 0.5], [-0.5, 0.5], [-0.5, -0.5], [0.5, -0.5]])
     poses = np.array([[0, 0, 0], [1, 2, np.pi / 2]])
-    out = place(sq, poses)
+    out = place_outline(sq, poses)
     assert out.shape == (2, 4, 2)
     assert np.allclose(out[1, 0], [1 - 0.5, 2 + 0.5])
 

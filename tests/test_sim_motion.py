@@ -11,7 +11,7 @@ import pytest
 from l2p_bullet.core.geometry import polygons_overlap
 from l2p_bullet.core.scene import GRIPPER_MARGIN, default_scene
 from l2p_bullet.embodiment import motion
-from l2p_bullet.embodiment.retarget import place, relative, retarget
+from l2p_bullet.embodiment.retarget import from_anchor_frame, retarget, to_anchor_frame
 from l2p_bullet.embodiment.smoothing import Limits, curvature, time_parameterise
 from l2p_bullet.errors import PathError
 
@@ -79,8 +79,8 @@ def test_relative_and_place_round_trip():
     rng = np.random.default_rng(0)
     m, a = rng.normal(size=(20, 3)), rng.normal(size=(20, 3))
     a[:] = a[0]
-    rel = relative(m, a, 0.15)
-    back = place(rel, a[0], 0.15)
+    rel = to_anchor_frame(m, a, 0.15)
+    back = from_anchor_frame(rel, a[0], 0.15)
     assert np.allclose(back, m)
 
 
@@ -91,7 +91,7 @@ def test_retarget_fits_workspace_and_clears_the_anchor():
     # and ends 8 blocks away (outside the 0.25 m workspace once scaled to 5 cm blocks).
     anchor = np.array([1.0, 2.0, 0.7])
     rel = np.column_stack([np.linspace(-2, 8, 60), np.zeros(60), np.zeros(60)])
-    mover = place(rel, anchor, size)
+    mover = from_anchor_frame(rel, anchor, size)
     fit = retarget(mover, anchor, size, scene, "A", "B")
     assert fit.clamped > 0 and fit.pushed > 0
     assert scene.workspace.contains(fit.path[:, :2]).all()

@@ -1,8 +1,9 @@
-"""``train`` and ``score``: learn an action's progress model into a bundle, and score a motion with one.
+"""``train``, ``train-policy`` and ``score``: learn an action's progress model and move policy into a
+bundle, and score a motion with one.
 
-ACTION is a built-in action name (closer, away, next-to, past, around, or an alias such as next_to) or
-the path of a bundle folder; :func:`l2p_bullet.plugins.bundle.resolve_action` decides which (the plugin
-registry can replace that one function). torch is imported inside the command bodies.
+ACTION is an installed action (built-in or plugin; ``next_to`` = ``next-to``) or the path of a bundle
+folder (:func:`l2p_bullet.plugins.registry.resolve`). The commands only parse options: the logic is in
+:mod:`l2p_bullet.learning` (torch, imported inside the command bodies) and :mod:`l2p_bullet.progress`.
 """
 
 from __future__ import annotations
@@ -14,36 +15,6 @@ from pathlib import Path
 import click
 
 from .common import force_option, seed_option
-
-
-def _resolve(spec: str):
-    from ..plugins.bundle import resolve_action
-
-    return resolve_action(spec)
-
-
-def _resolve_for_training(action: str, out_dir: str | None, demo_files: tuple[str, ...]) -> tuple[str, bool]:
-    """(action name, is it a plugin action) for ``train``.
-
-    Built-in names and bundle folders resolve as everywhere else. A plugin action (``l2p-bullet
-    new-action``) is trained before its package is installed, so it is recognised by the manifest the
-    scaffold put in ``--out``, which must name it, and it needs the author's ``--demos``.
-    """
-    from ..errors import BundleError
-    from ..plugins.bundle import read_manifest
-
-    try:
-        return _resolve(action)[0], False
-    except BundleError:
-        out = Path(out_dir) if out_dir else None
-        if out is None or not (out / "manifest.toml").is_file():
-            raise
-        if str(read_manifest(out).get("name", "")) != action:
-            raise
-        if not demo_files:
-            raise BundleError(f'the plugin action "{action}" has no shipped demonstrations: give yours with '
-                              "--demos FILE (capture-session .npz, see the plugin's README)") from None
-        return action, True
 
 
 @click.command()
@@ -70,38 +41,43 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     """
     import dataclasses
 
-    from ..errors import RunFolderError
-    from ..learning.train_progress import TrainConfig, all_demos, train_action
-    from ..learning.trainset import DataConfig
-    from ..plugins.bundle import write_progress_bundle
+    from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
-    name, plugin = _resolve_for_training(action, out_dir, demo_files)
-    out = Path(out_dir) if out_dir else Path("runs") / "bundles" / name
-    # a scaffolded plugin's manifest without weights is a template to fill, not a bundle to protect
-    if (out / "manifest.toml").exists() and (out / "progress.safetensors").exists() and not force:
-        raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
-    cfg = TrainConfig()
-    if ensemble is not None:
-        cfg = dataclasses.replace(cfg, ensemble=ensemble)
-    if epochs is not None:
-        cfg = dataclasses.replace(cfg, epochs=epochs)
-    if plugin:  # the author's demonstrations; the built-in actions' shipped ones are the negatives
-        from ..learning.demos import load_demos
-
-        demos = {**all_demos(), name: load_demos(name, list(demo_files))}
-    else:
-        demos = all_demos({name: list(demo_files)} if demo_files else None)
-    with click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {name}", file=sys.stderr) as bar:
-        # a plugin action has no rule telling a random motion is not it: no random negatives
-        data_cfg = DataConfig(random_negatives=0) if plugin else None
-        result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=lambda: bar.update(1))
-    cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
-           + (f" --ensemble {ensemble}" if ensemble else "") + (f" --epochs {epochs}" if epochs else ""))
-    from ..learning.train_progress import training_section
-
-    write_progress_bundle(out, name, result.model, training=training_section(result, cfg, seed, cmd),
-                          metrics={"train_loss": round(result.final_loss, 6)})
+    cfg = ProgressTrainConfig()
+    cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
+    with click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {action}", file=sys.stderr) as bar:
+        out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
+                                   cfg=cfg, force=force, tick=lambda: bar.update(1))
     click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences)")
+
+
+@click.command("train-policy")
+@click.argument("action")
+@click.option("--bundle", "bundle_dir", type=click.Path(file_okay=False, exists=True), default=None,
+              help="Bundle folder to train in (default: the installed action's own bundle).")
+@click.option("--iterations", type=click.IntRange(min=1), default=None, help="REINFORCE iterations (default 300).")
+@click.option("--episodes", type=click.IntRange(min=1), default=None, help="Episodes per iteration (default 48).")
+@seed_option
+def train_policy_cmd(action: str, bundle_dir: str | None, iterations: int | None, episodes: int | None,
+                     seed: int) -> None:
+    """Train ACTION's move policy by REINFORCE against its progress model, into its bundle.
+
+    The reward is the rise of the action's learned progress in the 2-D simulator, on random scenes
+    the benchmarks never use (docs/planning.md). Minutes on 2 cores; deterministic for a seed.
+    """
+    import dataclasses
+
+    from ..learning.train_policy import PolicyTrainConfig, train_policy_bundle
+    from ..plugins.registry import resolve
+
+    folder = Path(bundle_dir) if bundle_dir else resolve(action)[1]
+    cfg = PolicyTrainConfig(seed=seed)
+    cfg = dataclasses.replace(cfg, iterations=iterations or cfg.iterations, episodes=episodes or cfg.episodes)
+    settings = train_policy_bundle(folder, cfg, log=lambda s: click.echo(s, err=True))
+    t = settings["training"]
+    click.echo(f"wrote the {action} policy into {folder} (mean final progress {t['final_progress_first']} -> "
+               f"{t['final_progress_last']}; kept iteration {t['kept_iteration']} at {t['final_progress_kept']}, "
+               f"{t['seconds']} s)")
 
 
 @click.command()
@@ -113,15 +89,9 @@ def score(action: str, file: str) -> None:
     FILE is a scoring input {"size", "mover", "anchor"}, a plan.json or a trajectory.json. The motion
     is resampled to the model's frame spacing; the output has one progress value per input frame.
     """
-    from ..core.contracts import load_motion
-    from ..plugins.bundle import load_bundle
+    from ..progress.scoring import score_file
 
-    name, folder = _resolve(action)
-    motion = load_motion(file)
-    model = load_bundle(folder).progress_model()
-    curve = model.curve(motion.mover, motion.anchor, motion.size)
-    click.echo(json.dumps({"action": name, "progress": [round(float(v), 4) for v in curve],
-                           "final": round(float(curve[-1]), 4)}))
+    click.echo(json.dumps(score_file(action, file)))
 
 
-COMMANDS: list[click.Command] = [train, score]
+COMMANDS: list[click.Command] = [train, train_policy_cmd, score]

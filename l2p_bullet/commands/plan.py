@@ -25,35 +25,16 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     """Plan SENTENCE (e.g. "move A around B") in 2-D and write plan.json and a plot.
 
     \b
-    The plan maximises the action's learned progress model; the rule-based evaluator's verdict is
-    printed alongside (it judges the path, the planner never sees it).
+    The plan maximises the action's learned progress model; the action's judge (rules for the built-in
+    actions) gives its verdict alongside (it judges the path, the planner never sees it).
     """
     import json
 
-    from .. import language
-    from ..core.runfolder import prepare_run_folder
-    from ..judge.rules import evaluate
-    from ..planning import plan, resolve_planner
-    from ..planning.plot import plot_plan
-    from ..plugins import registry
+    from ..pipeline import plan
 
-    resolve_planner(planner, {})  # a bad name fails before anything is loaded
-    scene = load_scene_or_default(scene_path)
-    cmd = language.parse(sentence, scene, registry.phrase_table())
-    bundle = registry.load(cmd.action)
-    result = plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
-                  threshold=threshold)
-    result.extra.setdefault("sentence", sentence)
-    verdict = evaluate(cmd.action, result.path, result.anchor_pose, result.size)
-    result.extra["verdict"] = {"success": verdict.success, "score": round(verdict.score, 4), "reason": verdict.reason}
-    folder = prepare_run_folder(out, force=force, prefix="plan")
-    result.save(folder / "plan.json")
-    plot_plan(result, scene, folder / "plan.png")
-    click.echo(json.dumps({
-        "out": str(folder), "action": cmd.action, "planner": result.planner, "stopped": result.stopped,
-        "final_progress": result.extra["final_progress"], "steps": result.extra["steps"],
-        "seconds": result.extra["seconds"], "success": verdict.success, "reason": verdict.reason,
-    }))
+    result = plan(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
+                  budget=budget, threshold=threshold, force=force)
+    click.echo(json.dumps(result.to_dict()))
 
 
 COMMANDS: list[click.Command] = [plan_command]

@@ -1,6 +1,6 @@
-"""2-D motions between stages and on disk: the plan (plan.json) and the motion files users hand in.
+"""The file contracts of DESIGN.md section 4 that carry motions: plan.json, trajectory.json, scoring inputs.
 
-Readers accept the three formats of DESIGN.md section 4 and say clearly what is wrong with a bad file:
+The plan (:class:`Plan`) is also what the planner hands to the executor. Readers accept the three formats of DESIGN.md section 4 and say clearly what is wrong with a bad file:
 - the scoring input ``{"size", "mover": [[x, y, theta], ...], "anchor": [...]}``;
 - a run folder's ``plan.json``;
 - a run folder's ``trajectory.json``.
@@ -72,6 +72,8 @@ class Plan:
             )
         except KeyError as e:
             raise PathError(f'{source}: plan is missing the field "{e.args[0]}"') from None
+        except (TypeError, ValueError) as e:  # "size": "big", "action": {...}: a malformed plan, not a bug
+            raise PathError(f"{source}: malformed plan ({e})") from None
 
 
 @dataclass
@@ -100,6 +102,11 @@ def _poses(value: object, source: str, key: str) -> np.ndarray:
     return arr
 
 
+def trajectory_poses(frames: list[dict], name: str) -> np.ndarray:
+    """(T,3) ``[x, y, yaw]`` of object ``name`` from trajectory.json frames (their poses are [x, y, z, yaw])."""
+    return np.array([[f["poses"][name][0], f["poses"][name][1], f["poses"][name][3]] for f in frames], float)
+
+
 def read_json(path: str | Path) -> dict:
     p = Path(path)
     try:
@@ -118,16 +125,13 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
     if "frames" in d:  # trajectory.json
         try:
             mover, anchor = str(d["mover"]), str(d["anchor"])
-            frames = d["frames"]
-            m = [f["poses"][mover] for f in frames]
-            a = [f["poses"][anchor] for f in frames]
+            m_arr = trajectory_poses(d["frames"], mover)
+            a_arr = trajectory_poses(d["frames"], anchor)
             size = float(d["objects"][mover]["size"])
-        except (KeyError, TypeError) as e:
-            raise PathError(f"{source}: not a valid trajectory.json (missing {e})") from None
-        # trajectory poses are [x, y, z, yaw]: drop z
-        m_arr = _poses([[p[0], p[1], p[3]] for p in m], source, "frames")
-        a_arr = _poses([[p[0], p[1], p[3]] for p in a], source, "frames")
-        return Motion(m_arr, a_arr, size, mover, anchor, d.get("action"))
+        except (KeyError, TypeError, IndexError, ValueError) as e:
+            raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {e})") from None
+        return Motion(_poses(m_arr, source, "frames"), _poses(a_arr, source, "frames"), size, mover, anchor,
+                      d.get("action"))
     if "path" in d:  # plan.json
         plan = Plan.from_dict(d, source)
         anchor = np.repeat(plan.anchor_pose[None], len(plan.path), axis=0)

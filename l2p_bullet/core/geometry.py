@@ -1,4 +1,4 @@
-"""Small, dependency-free 2-D geometry shared by the scene, the 2-D simulator and the evaluator."""
+"""Small, dependency-free 2-D geometry shared by the scene, the 2-D world, the judges and the learning code."""
 
 from __future__ import annotations
 
@@ -41,3 +41,21 @@ def moving_average(poses: np.ndarray, window: int) -> np.ndarray:
     pad = window // 2
     padded = np.pad(p, ((pad, window - 1 - pad), (0, 0)), mode="edge")
     return np.stack([np.convolve(padded[:, j], kernel, mode="valid") for j in range(3)], axis=1)
+
+
+def unwrapped_bearing(d: np.ndarray) -> np.ndarray:
+    """Bearing (radians) of offsets ``d`` (T, 2+) seen from the origin, unwrapped along the track."""
+    return np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+
+
+def swept_angle(points: np.ndarray, centre: np.ndarray | None = None) -> float:
+    """Signed angle (radians) a point track (T, 2+) sweeps around ``centre`` (default the origin), frame to
+    frame: positive counter-clockwise, a full circle is 2 pi, going out and back sweeps 0. One copy for
+    the judges, the policy's features and the training set's turn labels. Frames must be dense enough
+    that the track turns less than half a turn between two of them."""
+    p = np.asarray(points, float)
+    if len(p) < 2:
+        return 0.0
+    d = p[:, :2] if centre is None else p[:, :2] - np.asarray(centre, float)[:2]
+    ang = unwrapped_bearing(d)
+    return float(ang[-1] - ang[0])

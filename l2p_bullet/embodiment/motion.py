@@ -172,7 +172,7 @@ def grasp_yaw_offset(block_path: np.ndarray, base_xy: tuple[float, float]) -> fl
     return grasp_yaw_offsets(block_path, base_xy)[0]
 
 
-def resample(path: np.ndarray, step: float) -> np.ndarray:
+def resample_path(path: np.ndarray, step: float) -> np.ndarray:
     """Resample a (N,3) path every ``step`` metres of x-y arc length (yaw interpolated), ends kept."""
     p = unwrap_yaw(path)
     seg = np.hypot(*np.diff(p[:, :2], axis=0).T)

@@ -32,7 +32,8 @@ def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: 
     from .retarget import retarget
 
     if demo is not None:
-        from ..learning.demos import canonical_action, get_demo
+        from ..core.vocabulary import canonical_action
+        from ..learning.demos import get_demo
 
         action, sep, index = demo.partition(":")
         if not sep or not index.strip().lstrip("-").isdigit():

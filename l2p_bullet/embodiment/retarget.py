@@ -22,7 +22,7 @@ import numpy as np
 from ..core.geometry import moving_average, polygons_overlap
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..errors import PathError
-from .motion import resample, unwrap_yaw
+from .motion import resample_path, unwrap_yaw
 
 SMOOTH_FRAMES = 5
 """Moving-average window (frames) against motion-capture jitter, which would otherwise be read as
@@ -40,7 +40,7 @@ class Retargeted:
     max_fix_m: float  # the largest distance a point was moved by either fix-up
 
 
-def relative(mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
+def to_anchor_frame(mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
     """Mover poses (T,3) in the anchor's frame, in block units, yaw relative to the anchor's."""
     m, a = np.asarray(mover, float), np.asarray(anchor, float)
     if a.ndim == 1:
@@ -51,15 +51,15 @@ def relative(mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
     return np.column_stack([rel, m[:, 2] - a[:, 2]])
 
 
-def place(rel: np.ndarray, anchor_pose: np.ndarray, size: float) -> np.ndarray:
-    """Inverse of :func:`relative` onto a fixed anchor pose [x, y, yaw] with blocks of ``size``."""
+def from_anchor_frame(rel: np.ndarray, anchor_pose: np.ndarray, size: float) -> np.ndarray:
+    """Inverse of :func:`to_anchor_frame` onto a fixed anchor pose [x, y, yaw] with blocks of ``size``."""
     x, y, yaw = anchor_pose
     c, s = math.cos(yaw), math.sin(yaw)
     d = rel[:, :2] * size
     return np.column_stack([x + c * d[:, 0] - s * d[:, 1], y + s * d[:, 0] + c * d[:, 1], rel[:, 2] + yaw])
 
 
-def smooth(path: np.ndarray, window: int = SMOOTH_FRAMES) -> np.ndarray:
+def smooth_path(path: np.ndarray, window: int = SMOOTH_FRAMES) -> np.ndarray:
     """Centred moving average (ends kept exactly, yaw unwrapped first)."""
     p = unwrap_yaw(path)
     if len(p) <= window or window < 2:
@@ -77,9 +77,9 @@ def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, m
     a_obj, m_obj = scene.get(anchor_name), scene.get(mover_name)
     if a_obj.name == m_obj.name:
         raise PathError(f'the mover and the anchor are the same block ("{mover_name}")')
-    rel = relative(mover, anchor, size)
-    path = place(smooth(rel), a_obj.pose, m_obj.size)
-    path = resample(path, RESAMPLE_BLOCKS * m_obj.size)
+    rel = to_anchor_frame(mover, anchor, size)
+    path = from_anchor_frame(smooth_path(rel), a_obj.pose, m_obj.size)
+    path = resample_path(path, RESAMPLE_BLOCKS * m_obj.size)
     fixed = path.copy()
     ws = scene.workspace
     centre = np.array(ws.center)

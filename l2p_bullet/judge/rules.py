@@ -1,4 +1,4 @@
-"""The project's own rule-based judge of a motion: did the mover do what the action says?
+"""The rule judges of the five built-in actions: did the mover do what the action says?
 
 Why rules and not the learned model: the planner maximises the learned progress model, so judging its
 paths with the same model would only measure how well the planner exploits it. These rules are written
@@ -27,24 +27,18 @@ Motions are read in the anchor's frame (mover minus anchor), so a moving anchor 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
 
 import numpy as np
 
-from ..learning.demos import canonical_action
+from ..core.geometry import polygons_overlap, swept_angle
+from ..core.vocabulary import canonical_action
+from ..errors import UnknownActionError
+from .base import Verdict
 
 WOBBLE = 0.5
 """Blocks a 'steady' change may go back against its running best (motion-capture jitter in the human
 demonstrations reaches this: at 0.3 the rule rejected 37 % of people's "closer" demonstrations)."""
-
-
-@dataclass(frozen=True)
-class Verdict:
-    """The judge's answer: yes/no, a graded score in [0, 1] and the reason in words."""
-
-    success: bool
-    score: float
-    reason: str
 
 
 def _unit_square(pose: np.ndarray) -> np.ndarray:
@@ -62,8 +56,6 @@ def _point_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def square_gap(a: np.ndarray, b: np.ndarray) -> float:
     """Gap between two unit squares at poses a, b (block units); 0 when they touch or overlap."""
-    from ..core.geometry import polygons_overlap
-
     pa, pb = _unit_square(a), _unit_square(b)
     if polygons_overlap(pa, pb):
         return 0.0
@@ -78,12 +70,6 @@ def _relative(mover: np.ndarray, anchor: np.ndarray, size: float) -> tuple[np.nd
         anchor = np.repeat(anchor, len(mover), axis=0)
     rel = (mover[:, :2] - anchor[:, :2]) / size
     return rel, np.linalg.norm(rel, axis=1)
-
-
-def turn(rel: np.ndarray) -> float:
-    """Signed angle (radians) swept by ``rel`` (T,2) around the origin, summed frame to frame."""
-    ang = np.arctan2(rel[:, 1], rel[:, 0])
-    return float(np.sum(np.angle(np.exp(1j * np.diff(ang))))) if len(ang) > 1 else 0.0
 
 
 def _closer(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
@@ -117,8 +103,6 @@ def _next_to(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarr
 
 
 def _overlaps(a: np.ndarray, b: np.ndarray) -> bool:
-    from ..core.geometry import polygons_overlap
-
     return polygons_overlap(_unit_square(a), _unit_square(b), margin=-0.02)
 
 
@@ -130,7 +114,7 @@ def _past(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
     u = travel / length
     before, beyond = -float(rel[0] @ u), float(rel[-1] @ u)
     near = float(d.min())
-    swept = math.degrees(abs(turn(rel)))
+    swept = math.degrees(abs(swept_angle(rel)))
     crossing = min(np.clip(before / 0.5, 0, 1), np.clip(beyond / 0.5, 0, 1))
     nearness = float(np.clip(1.0 - (near - 4.0) / 8.0, 0.5, 1.0))
     straight = float(np.clip((200.0 - swept) / 40.0, 0.3, 1.0))  # more than a half-turn is circling
@@ -142,86 +126,48 @@ def _past(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
 
 
 def _around(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
-    turns = abs(turn(rel)) / (2 * math.pi)
+    turns = abs(swept_angle(rel)) / (2 * math.pi)
     far = float(d.max())
     score = float(np.clip(turns, 0, 1)) * (1.0 if far <= 4.0 else 0.5)
     ok = turns >= 0.8 and far <= 4.0
     return Verdict(ok, score, f"swept {turns:.2f} of a turn around the anchor, at most {far:.2f} blocks away")
 
 
-_RULES = {"closer": _closer, "away": _away, "next-to": _next_to, "past": _past, "around": _around}
+RULES: dict[str, Callable[..., Verdict]] = {
+    "closer": _closer, "away": _away, "next-to": _next_to, "past": _past, "around": _around,
+}
+"""Rule sets by name; a bundle's manifest picks one with ``[judge] rules = "<name>"``."""
 
 
 def evaluate(action: str, mover: np.ndarray, anchor: np.ndarray, size: float) -> Verdict:
-    """Judge a motion: ``mover`` (T,3) and ``anchor`` (T,3) or (3,) poses in metres, blocks of side ``size``.
+    """Judge a motion by the rules named ``action``: ``mover`` (T,3) and ``anchor`` (T,3) or (3,) poses in
+    metres, blocks of side ``size``.
 
     Frames must be dense enough that the mover turns less than half a turn around the anchor between
-    two of them (``sim2d.interpolate`` gives that).
+    two of them (``planning.world2d.interpolate`` gives that).
     """
-    name = canonical_action(action)
+    try:
+        name = canonical_action(action)
+    except UnknownActionError:
+        raise UnknownActionError(action, RULES, "(no rule judge has that name)") from None
     mover = np.asarray(mover, float).reshape(-1, 3)
     anchor_arr = np.asarray(anchor, float).reshape(-1, 3)
     if len(anchor_arr) == 1:
         anchor_arr = np.repeat(anchor_arr, len(mover), axis=0)
     rel, d = _relative(mover, anchor_arr, size)
-    return _RULES[name](rel, d, mover, anchor_arr, size)
+    return RULES[name](rel, d, mover, anchor_arr, size)
 
 
-# --- agreement with people ---------------------------------------------------------------------
-def spearman(a: np.ndarray, b: np.ndarray) -> float:
-    """Spearman's rank correlation (ties get their average rank); nan when either side is constant."""
+class RuleJudge:
+    """The :class:`~l2p_bullet.judge.base.Judge` over one of :data:`RULES` (the progress model is not asked)."""
 
-    def ranks(x: np.ndarray) -> np.ndarray:
-        x = np.asarray(x, float)
-        order = np.argsort(x, kind="mergesort")
-        r = np.empty(len(x))
-        r[order] = np.arange(len(x), dtype=float)
-        for v in np.unique(x):  # average the ranks of ties
-            r[x == v] = r[x == v].mean()
-        return r
+    name = "rules"
 
-    ra, rb = ranks(a), ranks(b)
-    if ra.std() == 0 or rb.std() == 0:
-        return float("nan")
-    return float(np.corrcoef(ra, rb)[0, 1])
+    def __init__(self, rules: str):
+        if rules not in RULES:
+            raise UnknownActionError(rules, RULES, "(no rule judge has that name)")
+        self.rules = rules
 
-
-def graded_motion(demo: dict, step_blocks: float = 0.25) -> tuple[np.ndarray, np.ndarray, float]:
-    """A graded 2-D demonstration as (mover frames, anchor pose, size): its accepted straight moves, dense."""
-    from ..planning.world2d import interpolate
-
-    start, anchor = demo["start_config"][0], demo["start_config"][1]
-    size = float(start["side"])
-    way = [[start["x"], start["y"], start["theta"]]]
-    way += [s["to"] for s in demo["steps"] if s["accepted"] and s.get("object_index", 0) == 0]
-    frames = interpolate(np.asarray(way, float), step=step_blocks * size)
-    return frames, np.array([anchor["x"], anchor["y"], anchor["theta"]]), size
-
-
-def demo_acceptance() -> dict[str, float]:
-    """Share of the people's motion-capture demonstrations (the training data) each rule accepts."""
-    from ..learning.demos import ACTIONS, load_demos
-
-    return {a: float(np.mean([evaluate(a, d.event_mover, d.event_anchor, d.size).success for d in load_demos(a)]))
-            for a in ACTIONS}
-
-
-def graded_agreement() -> dict[str, float]:
-    """Spearman correlation of the rule score with the people's mean grade, per action and pooled.
-
-    Uses the 90 graded demonstrations shipped in ``data/sim`` (15 per folder; "SlideAroundDiscrete" is
-    around too). Pooled = over all 90, ranks taken within the whole set.
-    """
-    from ..learning.demos import load_graded_demos
-
-    rows: dict[str, tuple[list[float], list[float]]] = {}
-    for demo in load_graded_demos():
-        action = canonical_action(demo["action"])
-        mover, anchor, size = graded_motion(demo)
-        v = evaluate(action, mover, anchor, size)
-        grade = float(np.mean(list(demo["scores_txt"].values())))
-        for key in (action, "all"):
-            rows.setdefault(key, ([], []))
-            rows[key][0].append(v.score)
-            rows[key][1].append(grade)
-    return {k: spearman(np.array(s), np.array(g)) for k, (s, g) in rows.items()}
+    def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+              final_progress: float | None = None) -> Verdict:
+        return evaluate(self.rules, mover, anchor, size)

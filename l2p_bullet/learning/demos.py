@@ -17,19 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import DataError, did_you_mean
+from ..core.vocabulary import SOURCE_NAMES, action_for_files, canonical_action
+from ..errors import DataError
 from .tracking import clean_track
 
-ACTIONS: tuple[str, ...] = ("closer", "away", "next-to", "past", "around")
-"""Canonical action names, in the order used by every table."""
-
-SOURCE_NAMES: dict[str, str] = {
-    "closer": "SlideToward",
-    "away": "SlideAway",
-    "next-to": "SlideNext",
-    "past": "SlidePast",
-    "around": "SlideAround",
-}
 DEMO_BLOCK_SIZE = 0.15
 """Side of the blocks in the demonstrations' frame (metres)."""
 
@@ -67,33 +58,6 @@ class Demo:
 def data_dir() -> Path:
     """The shipped data folder inside the installed package."""
     return Path(str(resources.files("l2p_bullet") / "data"))
-
-
-def canonical_action(name: str) -> str:
-    """Map 'around', 'SlideAround' or 'next_to' to the canonical name; clear error otherwise."""
-    key = name.strip().lower().replace("_", "-")
-    for canon, src in SOURCE_NAMES.items():
-        if key in (canon, src.lower()):
-            return canon
-    raise DataError(f'unknown action "{name}" (known: {", ".join(ACTIONS)}).' + did_you_mean(key, ACTIONS))
-
-
-PLUGIN_ACTION = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
-"""What a plugin action's name looks like ("left-of"); see ``l2p-bullet new-action``."""
-
-
-def action_for_files(name: str) -> str:
-    """A built-in action's canonical name, else a plugin action's own name.
-
-    Only for demonstrations given as files: a plugin author trains a new action on their own sessions
-    (issue 5); the shipped data only has the built-in actions.
-    """
-    try:
-        return canonical_action(name)
-    except DataError:
-        if PLUGIN_ACTION.match(name):
-            return name
-        raise
 
 
 def load_session(path: str | Path) -> dict[str, np.ndarray]:

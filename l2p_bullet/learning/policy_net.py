@@ -1,4 +1,4 @@
-"""The move policy's network in torch, for training (planning evaluates it in numpy, see ``policy.py``)."""
+"""The move policy's network in torch, for training (planning evaluates it in numpy: ``planning/policy.py``)."""
 
 from __future__ import annotations
 
@@ -33,12 +33,3 @@ class GaussianPolicy(nn.Module):
     def distribution(self, x: torch.Tensor) -> torch.distributions.Normal:
         mean, log_std = self(x)
         return torch.distributions.Normal(mean, log_std.exp())
-
-
-def policy_from_tensors(tensors: dict[str, torch.Tensor]) -> GaussianPolicy:
-    """Rebuild the network from a bundle's policy tensors (shapes checked by ``load_state_dict``)."""
-    hidden = int(tensors["body.0.weight"].shape[0])
-    net = GaussianPolicy(hidden)
-    net.load_state_dict({k: v.float() for k, v in tensors.items()})
-    net.eval()
-    return net

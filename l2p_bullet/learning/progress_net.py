@@ -1,4 +1,4 @@
-"""The LSTM progress model: QSR feature sequence -> per-frame event progress in [0, 1].
+"""The LSTM progress model in torch (the training half): QSR features -> per-frame progress in [0, 1].
 
 Progress is the paper's f(S, i, e): 0 before (and outside) the event, rising linearly to 1 at its end.
 A bundle holds an **ensemble** of small LSTMs trained from different seeds; their outputs are averaged
@@ -7,6 +7,7 @@ because one model's agreement with people varies a lot between seeds (DESIGN.md 
 Inference is batched: every candidate path of a planner step is resampled, padded and scored in one
 forward pass per ensemble member under ``torch.inference_mode``. The net is causal, so the progress
 at a frame only depends on the frames before it: scoring a path's prefix gives the same values.
+Everything but training scores with the numpy twin, :class:`l2p_bullet.progress.model.NumpyProgressModel`.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 import torch
 from torch import nn
 
+from ..core.threads import torch_threads
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from ..progress.scoring import ScoringMixin, shared_prefix
@@ -40,6 +42,11 @@ def ensemble_state(nets: Sequence[ProgressNet]) -> dict[str, torch.Tensor]:
     return {f"m{i}.{k}": v.detach().contiguous().clone() for i, n in enumerate(nets) for k, v in n.state_dict().items()}
 
 
+def ensemble_arrays(nets: Sequence[ProgressNet]) -> dict[str, np.ndarray]:
+    """The same as numpy arrays, what :func:`l2p_bullet.plugins.bundle.write_progress_bundle` stores."""
+    return {k: v.numpy() for k, v in ensemble_state(nets).items()}
+
+
 class ProgressModel(ScoringMixin):
     """A loaded ensemble plus its feature settings: scores metric motions of blocks of side ``size``."""
 
@@ -57,6 +64,15 @@ class ProgressModel(ScoringMixin):
             self.nets.append(net)
 
     @classmethod
+    def from_bundle(cls, bundle) -> ProgressModel:
+        """The torch ensemble of a loaded bundle (for training and validation; scoring uses numpy)."""
+        from ..plugins.bundle import PROGRESS_FILE
+
+        tensors = {k: torch.from_numpy(v.copy()) for k, v in bundle.arrays(PROGRESS_FILE).items()}
+        return cls(tensors, ModelConfig.from_dict(bundle.manifest["model"]),
+                   QSRConfig.from_dict(bundle.manifest["features"]))
+
+    @classmethod
     def from_nets(cls, nets: Sequence[ProgressNet], model_cfg: ModelConfig, qsr_cfg: QSRConfig) -> ProgressModel:
         return cls(ensemble_state(nets), model_cfg, qsr_cfg)
 
@@ -70,14 +86,8 @@ class ProgressModel(ScoringMixin):
         lengths, P = shared_prefix(feats, lengths)
         x = torch.from_numpy(np.ascontiguousarray(feats, dtype=np.float32))
         out = torch.zeros(B, K)
-        prev = torch.get_num_threads()
-        if prev != self.threads:
-            torch.set_num_threads(self.threads)
-        try:
+        with torch_threads(self.threads):
             self._forward(x, out, B, P)
-        finally:
-            if prev != self.threads:
-                torch.set_num_threads(prev)
         return (out / len(self.nets)).numpy().astype(float)
 
     def _forward(self, x: torch.Tensor, out: torch.Tensor, B: int, P: int) -> None:

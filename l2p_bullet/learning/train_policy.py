@@ -7,30 +7,33 @@ penalty), and the reward is the increase of the action's **learned** progress: t
 sum to the final progress gained, which is what the planner maximises. An episode ends early once
 progress passes ``done_at``. All episodes of a step are scored in one forward pass.
 
-    python -m l2p_bullet.learning.train_policy around [--iterations 300] [--episodes 48] [--bundle DIR]
+    l2p-bullet train-policy around [--iterations 300] [--episodes 48] [--bundle DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import time
 from dataclasses import asdict, dataclass
+from pathlib import Path
 
 import numpy as np
 import torch
 
 from ..core.scene import random_scene
-from ..planning.policy import FEATURES, features, to_poses
+from ..core.threads import torch_threads
+from ..planning.policy import FEATURES, policy_features, to_poses
 from ..planning.problem import FRAME_STEP
 from ..planning.world2d import World2D, segment_frames
+from ..plugins.bundle import POLICY_FILE, PROGRESS_FILE, load_bundle, write_weights
 from .policy_net import GaussianPolicy
+from .progress_net import ProgressModel
 
 BEST_WINDOW = 10
 """Iterations averaged when choosing which weights to keep (see :func:`train_policy`)."""
 
 
 @dataclass(frozen=True)
-class TrainConfig:
+class PolicyTrainConfig:
     iterations: int = 300
     episodes: int = 48
     horizon: int = 8
@@ -42,7 +45,7 @@ class TrainConfig:
     size: float = 0.05
 
 
-def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: TrainConfig):
+def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: PolicyTrainConfig):
     """Run one batch of episodes; returns log-probs (H,B) and rewards (H,B) as tensors, and final progress."""
     worlds = [World2D(random_scene(s, cfg.size), "A") for s in seeds]
     anchors = np.stack([w.scene.get("B").pose for w in worlds])
@@ -53,7 +56,7 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: TrainConfig):
     active = np.ones(len(seeds), bool)
     logps, rewards = [], []
     for _ in range(cfg.horizon):
-        feats, hand = features(frames, anchors, cfg.size, progress, moves, centres, worlds[0].radius)
+        feats, hand = policy_features(frames, anchors, cfg.size, progress, moves, centres, worlds[0].radius)
         x = torch.from_numpy(feats)
         dist = net.distribution(x)
         act = dist.sample()
@@ -84,7 +87,7 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: TrainConfig):
     return torch.stack(logps), torch.stack(rewards), progress
 
 
-def train_policy(model, cfg: TrainConfig = TrainConfig(), log=print) -> tuple[GaussianPolicy, list[float], int]:
+def train_policy(model, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print) -> tuple[GaussianPolicy, list[float], int]:
     """REINFORCE with a per-step mean baseline.
 
     Returns the policy, the mean final progress per iteration and the iteration whose weights are
@@ -93,8 +96,12 @@ def train_policy(model, cfg: TrainConfig = TrainConfig(), log=print) -> tuple[Ga
     a few steps earlier). REINFORCE can collapse late: with a re-trained past model, the last
     iterations reached 0.42 after 0.8 earlier on, and the planner's success fell from 100 % to 42 %.
     """
+    with torch_threads(1):  # small batches: a second thread only adds contention on a shared machine
+        return _train_policy(model, cfg, log)
+
+
+def _train_policy(model, cfg: PolicyTrainConfig, log) -> tuple[GaussianPolicy, list[float], int]:
     torch.manual_seed(cfg.seed)
-    torch.set_num_threads(1)  # small batches: a second thread only adds contention on a shared machine
     rng = np.random.default_rng(cfg.seed)
     net = GaussianPolicy()
     opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)
@@ -126,7 +133,7 @@ def train_policy(model, cfg: TrainConfig = TrainConfig(), log=print) -> tuple[Ga
     return net, history, best_it
 
 
-def policy_settings(cfg: TrainConfig, history: list[float], seconds: float, best_it: int) -> dict:
+def policy_settings(cfg: PolicyTrainConfig, history: list[float], seconds: float, best_it: int) -> dict:
     """The manifest's ``[policy]`` section describing the trained policy."""
     return {
         "file": "policy.safetensors",
@@ -141,36 +148,25 @@ def policy_settings(cfg: TrainConfig, history: list[float], seconds: float, best
     }
 
 
-def main(argv: list[str] | None = None) -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("action")
-    ap.add_argument("--iterations", type=int, default=TrainConfig.iterations)
-    ap.add_argument("--episodes", type=int, default=TrainConfig.episodes)
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--bundle", default=None, help="bundle folder (default: the installed action's)")
-    args = ap.parse_args(argv)
-    from pathlib import Path
+def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print) -> dict:
+    """Train the move policy of the bundle in ``folder`` against its progress model and store it there.
 
-    from ..plugins.bundle import POLICY_FILE, load_bundle, write_weights
-    from .demos import canonical_action
-
-    folder = Path(args.bundle) if args.bundle else (
-        Path(__file__).resolve().parents[1] / "actions" / canonical_action(args.action).replace("-", "_"))
+    Returns the manifest's new ``[policy]`` section. The bundle's own planner choices (``planner``,
+    ``threshold``) are kept; ``progress_sha256`` records which progress model the policy learned to
+    please, so a re-trained model marks it stale (see :func:`l2p_bullet.planning.plan`).
+    """
     bundle = load_bundle(folder)
-    cfg = TrainConfig(iterations=args.iterations, episodes=args.episodes, seed=args.seed)
     t0 = time.perf_counter()
-    net, history, best_it = train_policy(bundle.progress_model(), cfg)
+    net, history, best_it = train_policy(ProgressModel.from_bundle(bundle), cfg, log)
     settings = policy_settings(cfg, history, time.perf_counter() - t0, best_it)
     settings |= {k: v for k, v in bundle.manifest.get("policy", {}).items() if k in ("planner", "threshold")}
-    # which progress model the policy learned to please: a re-trained model makes it stale
-    settings["progress_sha256"] = bundle.manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256", "")
-    tensors = {k: v.detach().contiguous() for k, v in net.state_dict().items()}
-    write_weights(folder, POLICY_FILE, tensors, "policy", settings)
-    t = settings["training"]
-    print(f"wrote the {args.action} policy into {folder} (mean final progress "
-          f"{t['final_progress_first']} -> {t['final_progress_last']}; kept iteration {best_it} at "
-          f"{t['final_progress_kept']}, {t['seconds']} s)")
+    settings["progress_sha256"] = bundle.manifest["weights"][PROGRESS_FILE]["sha256"]
+    arrays = {k: v.detach().contiguous().numpy() for k, v in net.state_dict().items()}
+    write_weights(folder, POLICY_FILE, arrays, "policy", settings)
+    return settings
 
 
-if __name__ == "__main__":  # pragma: no cover
-    main()
+if __name__ == "__main__":  # pragma: no cover - the old spelling of ``l2p-bullet train-policy``
+    from ..commands.learn import train_policy_cmd
+
+    train_policy_cmd()

@@ -10,21 +10,24 @@ from __future__ import annotations
 
 import hashlib
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import torch
 
+from ..core.threads import torch_threads
+from ..core.vocabulary import ACTIONS
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
-from .demos import ACTIONS, Demo, load_demos
-from .progress_net import ProgressModel, ProgressNet
-from .trainset import DataConfig, Sequence, build
+from .demos import Demo, load_demos
+from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
+from .trainset import DataConfig, TrainingSequence, build
 
 
 @dataclass(frozen=True)
-class TrainConfig:
+class ProgressTrainConfig:
     """Optimisation settings (written to the manifest's ``[training]``)."""
 
     hidden: int = 32
@@ -73,7 +76,7 @@ def all_demos(files: dict[str, list] | None = None, sessions: set[str] | None = 
     return out
 
 
-def _pad(seqs: list[Sequence]) -> tuple[torch.Tensor, ...]:
+def _pad(seqs: list[TrainingSequence]) -> tuple[torch.Tensor, ...]:
     K = max(len(s.y) for s in seqs)
     F = seqs[0].x.shape[1]
     x = np.zeros((len(seqs), K, F), np.float32)
@@ -89,18 +92,14 @@ def _pad(seqs: list[Sequence]) -> tuple[torch.Tensor, ...]:
     return tuple(torch.from_numpy(v) for v in (x, y, mask, endw))
 
 
-def train_net(seqs: list[Sequence], n_features: int, cfg: TrainConfig, seed: int,
+def train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrainConfig, seed: int,
               tick: Callable[[], None] | None = None) -> tuple[ProgressNet, list[float]]:
     """Train one ensemble member. Batches are length-sorted chunks (little padding), shuffled per epoch."""
-    prev_threads = torch.get_num_threads()
-    torch.set_num_threads(cfg.threads)
-    try:
+    with torch_threads(cfg.threads):
         return _train_net(seqs, n_features, cfg, seed, tick)
-    finally:
-        torch.set_num_threads(prev_threads)
 
 
-def _train_net(seqs: list[Sequence], n_features: int, cfg: TrainConfig, seed: int,
+def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrainConfig, seed: int,
                tick: Callable[[], None] | None) -> tuple[ProgressNet, list[float]]:
     torch.manual_seed(seed)
     rng = np.random.default_rng(seed)
@@ -134,9 +133,9 @@ def _train_net(seqs: list[Sequence], n_features: int, cfg: TrainConfig, seed: in
 
 def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  qsr_cfg: QSRConfig | None = None, data_cfg: DataConfig | None = None,
-                 cfg: TrainConfig | None = None, tick: Callable[[], None] | None = None) -> TrainResult:
+                 cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None) -> TrainResult:
     """Build the training set and train the ensemble; ``tick`` is called once per member-epoch."""
-    qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or TrainConfig()
+    qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
     t0 = time.perf_counter()
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
     nets, last = [], []
@@ -156,9 +155,70 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     )
 
 
-def training_section(result: TrainResult, cfg: TrainConfig, seed: int, command: str,
+def training_section(result: TrainResult, cfg: ProgressTrainConfig, seed: int, command: str,
                      data_cfg: DataConfig | None = None) -> dict:
     """The manifest's ``[training]``: how to reproduce the weights and what data went in."""
     return {"command": command, "seed": seed, "data_digest": result.data_digest,
             "n_sequences": result.n_sequences, "n_positive": result.n_positive,
             "seconds": round(result.seconds, 1), **cfg.to_dict(), "data": (data_cfg or DataConfig()).to_dict()}
+
+
+def training_target(action: str, out: Path | None, demo_files: Sequence[str]) -> tuple[str, bool]:
+    """(action name, is it a plugin action still being authored) for ``l2p-bullet train ACTION``.
+
+    An installed action (built-in or plugin) or a bundle folder resolves as everywhere else. A plugin
+    action (``l2p-bullet new-action``) is trained before its package is installed, so it is recognised
+    by the manifest the scaffold put in ``out``, which must name it, and it needs the author's demos.
+    """
+    from ..errors import BundleError, PluginError
+    from ..plugins.bundle import MANIFEST, read_manifest
+    from ..plugins.registry import resolve
+
+    try:
+        name = resolve(action)[0]
+    except (BundleError, PluginError):
+        if out is None or not (out / MANIFEST).is_file() or str(read_manifest(out).get("name", "")) != action:
+            raise
+        name = action
+    plugin = name not in ACTIONS
+    if plugin and not demo_files:
+        raise BundleError(f'the plugin action "{name}" has no shipped demonstrations: give yours with '
+                          "--demos FILE (capture-session .npz, see the plugin's README)")
+    return name, plugin
+
+
+def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (), seed: int = 0,
+                 cfg: ProgressTrainConfig | None = None, force: bool = False,
+                 tick: Callable[[], None] | None = None) -> tuple[Path, TrainResult]:
+    """``l2p-bullet train``: train ``action``'s progress ensemble and write it into a bundle folder.
+
+    The default folder is ``runs/bundles/<action>``. An existing trained bundle is only replaced with
+    ``force``; a scaffolded plugin's manifest without weights is a template to fill, not a bundle to
+    protect. Built-in actions train on the shipped demonstrations (or ``demo_files``); a plugin action on
+    its author's files, with the built-in actions' demonstrations as negatives and no random negatives
+    (no rule says a random motion is not the new action).
+    """
+    from ..errors import RunFolderError
+    from ..plugins.bundle import MANIFEST, PROGRESS_FILE, write_progress_bundle
+    from .demos import load_demos
+
+    name, plugin = training_target(action, out, demo_files)
+    out = out if out is not None else Path("runs") / "bundles" / name
+    if (out / MANIFEST).exists() and (out / PROGRESS_FILE).exists() and not force:
+        raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
+    cfg = cfg or ProgressTrainConfig()
+    if plugin:
+        demos = {**all_demos(), name: load_demos(name, list(demo_files))}
+        data_cfg = DataConfig(random_negatives=0)
+    else:
+        demos = all_demos({name: list(demo_files)} if demo_files else None)
+        data_cfg = DataConfig()
+    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=tick)
+    default = ProgressTrainConfig()
+    cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
+           + (f" --ensemble {cfg.ensemble}" if cfg.ensemble != default.ensemble else "")
+           + (f" --epochs {cfg.epochs}" if cfg.epochs != default.epochs else ""))
+    write_progress_bundle(out, name, ensemble_arrays(result.model.nets), result.model.model_cfg,
+                          result.model.qsr_cfg, training=training_section(result, cfg, seed, cmd, data_cfg),
+                          metrics={"train_loss": round(result.final_loss, 6)})
+    return out, result

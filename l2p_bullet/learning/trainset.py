@@ -25,8 +25,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.geometry import moving_average
+from ..core.vocabulary import ACTIONS
 from ..progress.features import QSRConfig, features, resample
-from .demos import ACTIONS, Demo
+from .demos import Demo
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,7 @@ class DataConfig:
 
 
 @dataclass
-class Sequence:
+class TrainingSequence:
     """One training sequence: per-frame features, targets and a weight."""
 
     x: np.ndarray  # (K, F) float32
@@ -131,7 +132,7 @@ class Sequence:
     end: int = -1  # index of the event's last frame (positives), else the last frame
 
 
-def smooth(poses: np.ndarray, window: int) -> np.ndarray:
+def smooth_poses(poses: np.ndarray, window: int) -> np.ndarray:
     """Centred moving average with edge padding (angles unwrapped first)."""
     if window <= 1 or len(poses) < 3:
         return poses
@@ -147,14 +148,14 @@ def mirror(poses: np.ndarray) -> np.ndarray:
 
 def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, end: float,
               qcfg: QSRConfig, dcfg: DataConfig, positive: bool, turns: float | None = None,
-              net: float | None = None) -> Sequence:
+              net: float | None = None) -> TrainingSequence:
     rs = resample(mover, anchor, size, qcfg)
     x = features(rs.mover, rs.anchor, qcfg)
     if not positive:
         # penalise only the tail: arc length past (1 - tail) of the way from the start to the end
         s_from = rs.arc[-1] * (1.0 - dcfg.negative_tail)
         fw = (rs.arc >= s_from - 1e-9).astype(np.float32)
-        return Sequence(x, np.zeros(len(x), np.float32), end=len(x) - 1, frame_w=fw)
+        return TrainingSequence(x, np.zeros(len(x), np.float32), end=len(x) - 1, frame_w=fw)
     idx = np.arange(len(rs.input_arc), dtype=float)
     s0, s1 = np.interp([start, end], idx, rs.input_arc)
     s = rs.arc
@@ -175,7 +176,7 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     # the first frame at or past the end is the end (the grid rarely hits it exactly), then decay
     decay = np.clip(1.0 - np.maximum(s - s1 - qcfg.spacing, 0) / dcfg.post_decay, 0, 1)
     y = np.where(after, frac[k_end] * decay, y)
-    return Sequence(x, y.astype(np.float32), positive=True, end=k_end)
+    return TrainingSequence(x, y.astype(np.float32), positive=True, end=k_end)
 
 
 def _sweep(m: np.ndarray, c: np.ndarray) -> float:
@@ -320,14 +321,14 @@ def random_motion(rng: np.random.Generator, n_moves: int | None = None) -> tuple
 
 
 def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
-          seed: int = 0) -> list[Sequence]:
+          seed: int = 0) -> list[TrainingSequence]:
     """All training sequences for ``action`` from the demonstrations of every action (train split)."""
     rng = np.random.default_rng(seed)
-    seqs: list[Sequence] = []
+    seqs: list[TrainingSequence] = []
     turns = dcfg.turn_label.get(action)
     net = dcfg.net_label.get(action)
     for d in demos.get(action, []):
-        m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
+        m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
         for mm, aa in ((m, a), (mirror(m), mirror(a))):
             seqs.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns))
             seqs.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True, turns))
@@ -377,10 +378,10 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
                     pa = np.repeat(c[None], len(pm), axis=0)
                     seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, net=net))
     n_pos = len(seqs)
-    neg: list[Sequence] = []
+    neg: list[TrainingSequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
         for d in demos.get(other, []):
-            m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
+            m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
             for mm, aa in ((m, a), (mirror(m), mirror(a))):
                 neg.append(_labelled(mm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
                 neg.append(_labelled(mm[d.start:d.end + 1], aa[d.start:d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
@@ -402,7 +403,7 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
     return seqs + neg
 
 
-def demo_sequence(d: Demo, qcfg: QSRConfig, dcfg: DataConfig) -> Sequence:
+def demo_sequence(d: Demo, qcfg: QSRConfig, dcfg: DataConfig) -> TrainingSequence:
     """A demonstration with its whole context, labelled as a positive (for held-out MSE)."""
-    m, a = smooth(d.mover, dcfg.smooth_frames), smooth(d.anchor, dcfg.smooth_frames)
+    m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
     return _labelled(m, a, d.size, d.start, d.end, qcfg, dcfg, True)

@@ -1,12 +1,11 @@
-"""Honest evaluation of progress models: session split, discrimination, agreement with people.
+"""Honest evaluation of progress models: session split and discrimination (agreement: ``agreement.py``).
 
 - **Session split**: models are trained on one person's capture session (all actions) and tested on the
   other person's, never on overlapping windows of the same demonstrations.
 - **Discrimination**: an action's model must stay low on the other actions' held-out demonstrations,
   because the planner maximises it.
-- **Agreement with people**: the graded 2-D demonstrations (evaluation only, never trained on) are turned
-  into mover/anchor motions by sliding block 0 along each accepted straight move, and the model's final
-  progress is rank-correlated (Spearman) with the mean of the two people's grades.
+- **Agreement with people** (:mod:`l2p_bullet.learning.agreement`): final progress on the graded 2-D
+  demonstrations, rank-correlated with the people's mean grade.
 """
 
 from __future__ import annotations
@@ -16,63 +15,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..judge.rules import spearman
-from .demos import ACTIONS, Demo, canonical_action, load_graded_demos
+from ..core.vocabulary import ACTIONS
+from .demos import Demo
 from .progress_net import ProgressModel
-from .trainset import smooth
-
-GRADED_FOLDERS = {"SlideToward": "closer", "SlideAway": "away", "SlideNext": "next-to", "SlidePast": "past",
-                  "SlideAround": "around", "SlideAroundDiscrete": "around"}
-
-
-@dataclass
-class GradedMotion:
-    id: str
-    folder: str
-    action: str
-    mover: np.ndarray  # (T, 3) metres
-    anchor: np.ndarray  # (T, 3)
-    grade: float  # mean of the two people's grades
-    size: float = 0.15
-
-
-def graded_motions(frames_per_move: int = 30) -> list[GradedMotion]:
-    """The graded 2-D demonstrations as motions: block 0 slides along each accepted move, block 1 stays."""
-    out = []
-    for g in load_graded_demos():
-        c0, c1 = g["start_config"]
-        pose = np.array([c0["x"], c0["y"], c0["theta"]])
-        pts = [pose[None]]
-        for st in g["steps"]:
-            if not st["accepted"] or st["object_index"] != 0:
-                continue
-            to = np.asarray(st["to"], float)
-            pts.append(np.linspace(pose, to, frames_per_move + 1)[1:])
-            pose = to
-        mover = np.concatenate(pts)
-        anchor = np.repeat(np.array([[c1["x"], c1["y"], c1["theta"]]]), len(mover), axis=0)
-        grades = list(g["scores_txt"].values())
-        out.append(GradedMotion(g["id"], g["folder"], GRADED_FOLDERS[g["folder"]], mover, anchor,
-                                float(np.mean(grades)), float(c0["side"])))
-    return out
-
-
-def graded_agreement(models: dict[str, ProgressModel], motions: list[GradedMotion] | None = None) -> dict:
-    """Spearman(final progress, mean grade) per graded folder, with the finals for the tables."""
-    motions = motions if motions is not None else graded_motions()
-    out = {}
-    for folder in GRADED_FOLDERS:
-        ms = [m for m in motions if m.folder == folder]
-        model = models[canonical_action(GRADED_FOLDERS[folder])]
-        finals = model.final_batch([m.mover for m in ms], [m.anchor for m in ms], ms[0].size)
-        grades = np.array([m.grade for m in ms])
-        out[folder] = {"spearman": spearman(finals, grades), "finals": finals, "grades": grades}
-    return out
+from .trainset import smooth_poses
 
 
 def demo_targets(d: Demo, model: ProgressModel, smooth_frames: int = 9) -> tuple[float, float]:
     """(final progress at the event's end, with the pre-event context), and the event-only final."""
-    m, a = smooth(d.mover, smooth_frames), smooth(d.anchor, smooth_frames)
+    m, a = smooth_poses(d.mover, smooth_frames), smooth_poses(d.anchor, smooth_frames)
     with_ctx = model.final(m[: d.end + 1], a[: d.end + 1], d.size)
     ev = model.final(m[d.start : d.end + 1], a[d.start : d.end + 1], d.size)
     return with_ctx, ev

@@ -18,15 +18,14 @@ better. The 2-D simulator only says which moves are legal; ``evaluate`` judges t
 
 from __future__ import annotations
 
-import sys
 import time
-from contextlib import contextmanager
 
 import numpy as np
 
 from ..core.contracts import Plan
 from ..core.scene import Scene
-from ..errors import PlanError, did_you_mean
+from ..core.threads import torch_threads
+from ..errors import PlanError, UnknownPlannerError
 from .problem import Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .search import beam, greedy
@@ -53,14 +52,14 @@ BEAM_WIDTH = 4
 
 
 def resolve_planner(name: str, settings: dict | None = None) -> str:
-    """The concrete planner behind ``name`` ("default" follows the bundle's settings); clear error if unknown."""
+    """The concrete planner behind ``name`` ("default" follows the bundle's settings); UnknownPlannerError if unknown."""
     key = name.strip().lower()
     if key not in PLANNERS:
-        raise PlanError(f'unknown planner "{name}" (known: {", ".join(PLANNERS)}).' + did_you_mean(key, PLANNERS))
+        raise UnknownPlannerError(name, PLANNERS)
     if key == "default":
         key = str((settings or {}).get("planner", DEFAULT))
         if key not in PLANNERS or key == "default":
-            raise PlanError(f'the bundle asks for an unknown default planner "{key}" (known: {", ".join(PLANNERS)})')
+            raise UnknownPlannerError(key, [p for p in PLANNERS if p != "default"], "the bundle's [policy] names an ")
     return key
 
 
@@ -88,13 +87,13 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
     )
     if time_limit is not None:
         problem.deadline = time.perf_counter() + time_limit
-    with _one_thread():
+    with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
         node, stopped, steps = _search(name, problem, bundle)
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps)
     if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "
-                                "re-train it (python -m l2p_bullet.learning.train_policy)")
+                                "re-train it: l2p-bullet train-policy")
     return result
 
 
@@ -105,22 +104,6 @@ def _policy_is_stale(bundle) -> bool:
     trained = manifest.get("policy", {}).get("progress_sha256")
     current = manifest.get("weights", {}).get("progress.safetensors", {}).get("sha256")
     return bool(trained and current and trained != current)
-
-
-@contextmanager
-def _one_thread():
-    """Score on one torch thread: the batches are small, and on a shared 2-core machine a second thread
-    made each forward pass 5-10 times slower (measured: 8 ms vs 49 ms for 80 paths of 150 frames)."""
-    torch = sys.modules.get("torch")  # never import it here: perform scores in numpy without it
-    if torch is None:
-        yield
-        return
-    prev = torch.get_num_threads()
-    torch.set_num_threads(1)
-    try:
-        yield
-    finally:
-        torch.set_num_threads(prev)
 
 
 def _search(name: str, problem: Problem, bundle):
@@ -144,6 +127,5 @@ def _policy_proposer(bundle, required: bool = True):
         return None
     if net is None:
         raise PlanError(f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
-                        f'"python -m l2p_bullet.learning.train_policy {bundle.name}" or pick another planner '
-                        f'(known: {", ".join(PLANNERS)})')
+                        f'"l2p-bullet train-policy {bundle.name}" or pick another planner (known: {", ".join(PLANNERS)})')
     return PolicyProposer(net)

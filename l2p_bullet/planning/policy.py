@@ -7,30 +7,27 @@ so far); its output is a Gaussian over the next move in that frame (radial, tang
 and a rotation). One small network per action; the weights live in the action's bundle
 (``policy.safetensors``) with the settings in the manifest's ``[policy]`` section.
 
-Planning never imports torch: the network (``policy_net.py``, trained in torch) is evaluated here in
-numpy from the bundle's safetensors, as the progress model is in ``progress_numpy.py`` (importing torch
-costs 1.4-2.5 s, half of ``perform``'s time budget).
+Planning never imports torch: the network (``learning/policy_net.py``, trained in torch) is evaluated
+here in numpy from the bundle's safetensors, as the progress model is in ``progress/model.py``
+(importing torch costs 1.4-2.5 s, more than the rest of ``perform``).
 """
 
 from __future__ import annotations
 
-import hashlib
 import math
-from pathlib import Path
 
 import numpy as np
 
+from ..core.geometry import swept_angle
 from ..errors import BundleError
-from ..judge.rules import turn
 from .problem import MAX_TURN, Node, Problem
 
 FEATURES = 12
 HIDDEN = 64
 LOG_STD_RANGE = (-3.0, 1.0)
-POLICY_FILE = "policy.safetensors"
 
 
-def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,
+def policy_features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,
              moves: np.ndarray, centres: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
     """The policy's view of B paths: features (B, FEATURES) and the frame's handedness (B,) of +-1.
 
@@ -57,7 +54,7 @@ def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, pr
         phi = math.atan2(rel[-1, 1], rel[-1, 0]) - anchor_pose[2]
         yaw = f[-1, 2] - anchor_pose[2]
         room = (centres[i] - f[-1, :2]) / size
-        swept = turn(rel)
+        swept = swept_angle(rel)
         h = (1.0 if swept > 0 else -1.0) if abs(swept) > 0.05 else (1.0 if room @ e2 >= 0 else -1.0)
         hand[i] = h
         out[i] = [r / 5.0, 1.0 / r, progress[i], h * swept / (2 * math.pi), last @ e1, h * (last @ e2),
@@ -69,7 +66,7 @@ def features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, pr
 def to_poses(actions: np.ndarray, poses: np.ndarray, anchor_pose: np.ndarray, size: float,
              hand: np.ndarray | float = 1.0) -> np.ndarray:
     """Moves in the anchor-polar frame (B,3: radial, tangential blocks; turn) -> end poses (B,3) in metres;
-    ``anchor_pose`` is (3,) or (B,3); ``hand`` mirrors the tangential direction and the turn (see features)."""
+    ``anchor_pose`` is (3,) or (B,3); ``hand`` mirrors the tangential direction and the turn (see policy_features)."""
     hand = np.broadcast_to(np.asarray(hand, float), (len(actions),))
     rel = poses[:, :2] - np.asarray(anchor_pose, float)[..., :2]
     e1 = rel / np.maximum(np.linalg.norm(rel, axis=1, keepdims=True), 1e-9)
@@ -98,27 +95,9 @@ class NumpyPolicy:
 
 
 def load_policy(bundle) -> NumpyPolicy | None:
-    """The bundle's policy, read with safetensors' numpy loader (digest checked); None when it has none.
-
-    Bundles without a folder on disk (test doubles) hand over their tensors through ``policy_tensors``.
-    """
-    manifest = getattr(bundle, "manifest", {}) or {}
-    entry = manifest.get("weights", {}).get(POLICY_FILE)
-    folder = getattr(bundle, "path", None)
-    if entry is None or folder is None:
-        tensors = bundle.policy_tensors()
-        return None if not tensors else NumpyPolicy({k: v.detach().cpu().numpy() for k, v in tensors.items()})
-    from safetensors.numpy import load
-
-    path = Path(folder) / POLICY_FILE
-    try:
-        data = path.read_bytes()
-    except OSError as e:
-        raise BundleError(f"bundle {folder}: cannot read {POLICY_FILE} ({e.strerror or e})") from None
-    if hashlib.sha256(data).hexdigest() != entry.get("sha256"):
-        raise BundleError(f"bundle {folder}: {POLICY_FILE} does not match the sha256 digest in manifest.toml "
-                          "(the file was modified or corrupted; re-train the policy)")
-    return NumpyPolicy(load(data))
+    """The bundle's policy (its digest-checked ``policy_arrays``), or None when it has none."""
+    arrays = bundle.policy_arrays()
+    return None if arrays is None else NumpyPolicy(arrays)
 
 
 class PolicyProposer:
@@ -131,7 +110,7 @@ class PolicyProposer:
         self.spread = spread
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
-        x, hand = features([node.frames], problem.anchor_pose, problem.size, np.array([node.progress]),
+        x, hand = policy_features([node.frames], problem.anchor_pose, problem.size, np.array([node.progress]),
                            np.array([node.moves]), problem.world.center, problem.world.radius)
         mean, log_std = self.net(x.astype(np.float64))
         mean, std = mean[0], np.exp(log_std[0]) * self.spread

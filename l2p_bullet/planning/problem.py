@@ -109,11 +109,6 @@ class Problem:
                 k.progress = float(s)
         return kids
 
-    def relative(self, node: Node) -> tuple[np.ndarray, float]:
-        """The mover's offset from the anchor in block units and its distance, for proposals."""
-        rel = (node.pose[:2] - self.anchor_pose[:2]) / self.size
-        return rel, float(np.hypot(*rel))
-
 
 Proposer = Callable[[Problem, Node, int], np.ndarray]
 """A proposal distribution: (problem, node, how many) -> candidate end poses (M,3) of the next move."""

@@ -49,10 +49,10 @@ class Body:
     def polygon(self, poses: np.ndarray | None = None) -> np.ndarray:
         """The outline placed at ``poses`` ((3,) -> (K,2); (N,3) -> (N,K,2)); default: its own pose."""
         p = self.pose if poses is None else np.asarray(poses, float)
-        return place(self.outline, p)
+        return place_outline(self.outline, p)
 
 
-def place(outline: np.ndarray, poses: np.ndarray) -> np.ndarray:
+def place_outline(outline: np.ndarray, poses: np.ndarray) -> np.ndarray:
     """Rotate and translate ``outline`` (K,2) to each pose ((3,) or (N,3)); vectorised."""
     poses = np.asarray(poses, float)
     single = poses.ndim == 1
@@ -126,7 +126,7 @@ class World2D:
         sub = np.empty((len(ends), n_sub + 1, 3))
         sub[..., :2] = start[:2] + t[None, :, None] * (ends[:, None, :2] - start[:2])
         sub[..., 2] = start[2] + t[None, :] * dyaw[:, None]
-        polys = place(self.mover.outline, sub.reshape(-1, 3)).reshape(len(ends), n_sub + 1, -1, 2)
+        polys = place_outline(self.mover.outline, sub.reshape(-1, 3)).reshape(len(ends), n_sub + 1, -1, 2)
         hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
         travel = ends[:, :2] - start[:2]
         perp = np.stack([-travel[:, 1], travel[:, 0]], axis=-1)

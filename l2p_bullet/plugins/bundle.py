@@ -7,7 +7,9 @@ problem: a missing file, a manifest from an incompatible version, a tampered wei
 mismatch) or weights of the wrong shape. Weights are only ever read with safetensors: nothing is
 unpickled, so a bundle from a stranger cannot run code.
 
-torch is imported lazily (``progress_model``/``policy_tensors``) so that listing bundles stays fast.
+Torch-free: :meth:`Bundle.progress_model` is the numpy ensemble (:mod:`l2p_bullet.progress.model`) and
+:meth:`Bundle.policy_arrays` the policy's numpy arrays; the training code builds its torch twins from
+the same arrays (:mod:`l2p_bullet.learning.progress_net`, :mod:`l2p_bullet.learning.policy_net`).
 """
 
 from __future__ import annotations
@@ -20,14 +22,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .. import __version__
-from ..errors import BundleError, DataError
-from ..learning.demos import ACTIONS, canonical_action
+from ..core.vocabulary import ACTIONS, canonical_action
+from ..errors import BundleError
 from ..progress.config import ModelConfig, expected_shapes
 
 if TYPE_CHECKING:  # pragma: no cover
-    import torch
+    import numpy as np
 
-    from ..learning.progress_net import ProgressModel
+    from ..progress.model import NumpyProgressModel
 
 MANIFEST = "manifest.toml"
 PROGRESS_FILE = "progress.safetensors"
@@ -38,21 +40,6 @@ REQUIRES = ">=0.1,<1.0"
 """l2p-bullet versions a bundle written now works with (written into ``requires``)."""
 REQUIRED_KEYS = ("schema", "name", "version", "requires", "phrases", "features", "model", "weights")
 
-PHRASES: dict[str, list[str]] = {
-    "closer": ["closer to", "nearer to", "toward", "towards"],
-    "away": ["away from"],
-    "next-to": ["next to", "beside", "alongside"],
-    "past": ["past"],
-    "around": ["around", "round"],
-}
-DESCRIPTIONS: dict[str, str] = {
-    "closer": "Slide the mover closer to the anchor.",
-    "away": "Slide the mover away from the anchor.",
-    "next-to": "Slide the mover until it rests next to the anchor.",
-    "past": "Slide the mover past the anchor, from one side of it to the other.",
-    "around": "Slide the mover around the anchor.",
-}
-
 
 def sha256_file(path: Path) -> str:
     h = hashlib.sha256()
@@ -60,6 +47,40 @@ def sha256_file(path: Path) -> str:
         for chunk in iter(lambda: f.read(1 << 20), b""):
             h.update(chunk)
     return h.hexdigest()
+
+
+def read_weights(folder: Path, filename: str, manifest: dict) -> bytes:
+    """The bytes of a bundle's weights file, after checking them against the manifest's sha256.
+
+    Read once and checked in memory: the file may have changed since the bundle was loaded, and a
+    check followed by a second read would leave a window in which it could change again.
+    """
+    entry = manifest.get("weights", {}).get(filename)
+    if not isinstance(entry, dict) or "sha256" not in entry:
+        raise BundleError(f'{folder / MANIFEST}: no [weights."{filename}"] sha256 entry')
+    p = folder / filename
+    try:
+        data = p.read_bytes()
+    except FileNotFoundError:
+        raise BundleError(f"bundle {folder}: weights file {filename} is missing") from None
+    except OSError as e:
+        raise BundleError(f"bundle {folder}: cannot read {filename} ({e.strerror or e})") from None
+    if hashlib.sha256(data).hexdigest() != entry["sha256"]:
+        raise BundleError(f"bundle {folder}: {filename} does not match the sha256 digest in {MANIFEST} "
+                          "(the file was modified or corrupted; re-train or re-install the bundle)")
+    return data
+
+
+def read_arrays(folder: Path, filename: str, manifest: dict) -> dict[str, np.ndarray]:
+    """A weights file's tensors as numpy arrays (digest checked, safetensors only: nothing unpickled)."""
+    from safetensors import SafetensorError
+    from safetensors.numpy import load
+
+    data = read_weights(folder, filename, manifest)
+    try:
+        return load(data)
+    except (SafetensorError, OSError, ValueError) as e:
+        raise BundleError(f"{folder / filename}: not a readable safetensors file ({e})") from None
 
 
 def _version_tuple(v: str) -> tuple[int, ...]:
@@ -87,6 +108,11 @@ def version_satisfies(version: str, spec: str) -> bool:
     return True
 
 
+_MODELS: dict[tuple[str, str], Any] = {}
+"""Numpy progress models by (bundle folder, weights digest): the planner, the recorder and a benchmark
+performing many sentences all share one, read and checked once per process."""
+
+
 @dataclass
 class Bundle:
     """A validated bundle. ``manifest`` is the parsed manifest.toml."""
@@ -97,44 +123,24 @@ class Bundle:
     manifest: dict
     path: Path
 
-    def weights_path(self, filename: str) -> Path:
-        return self.path / filename
+    def arrays(self, filename: str) -> dict[str, np.ndarray]:
+        """A weights file's tensors as numpy arrays (the digest is checked again: the file may have changed)."""
+        return read_arrays(self.path, filename, self.manifest)
 
-    def _tensors(self, filename: str) -> dict[str, torch.Tensor]:
-        from safetensors import SafetensorError
-        from safetensors.torch import load_file
+    def progress_model(self) -> NumpyProgressModel:
+        """The progress ensemble for batched scoring, in numpy (no torch), built once per process."""
+        from ..progress.model import NumpyProgressModel
 
-        _check_digest(self.path, filename, self.manifest)  # the file may have changed since loading
-        try:
-            return load_file(self.path / filename)
-        except (SafetensorError, OSError) as e:
-            raise BundleError(f"{self.path / filename}: not a readable safetensors file ({e})") from None
+        key = (str(self.path), str(self.manifest["weights"][PROGRESS_FILE].get("sha256", "")))
+        if key not in _MODELS:
+            _MODELS[key] = NumpyProgressModel.from_bundle(self)
+        return _MODELS[key]
 
-    def progress_model(self) -> ProgressModel:
-        """The ensemble, ready for batched scoring (imports torch)."""
-        from ..learning.progress_net import ProgressModel
-        from ..progress.features import QSRConfig
-
-        mcfg = ModelConfig.from_dict(self.manifest["model"])
-        return ProgressModel(self._tensors(PROGRESS_FILE), mcfg, QSRConfig.from_dict(self.manifest["features"]))
-
-    def policy_tensors(self) -> dict[str, torch.Tensor] | None:
-        """The planner's policy weights (``policy.safetensors``), or None when the bundle has none."""
+    def policy_arrays(self) -> dict[str, np.ndarray] | None:
+        """The planner's policy weights (``policy.safetensors``) as arrays, or None when the bundle has none."""
         if POLICY_FILE not in self.manifest.get("weights", {}):
             return None
-        return self._tensors(POLICY_FILE)
-
-
-def _check_digest(folder: Path, filename: str, manifest: dict) -> None:
-    entry = manifest.get("weights", {}).get(filename)
-    if not isinstance(entry, dict) or "sha256" not in entry:
-        raise BundleError(f'{folder / MANIFEST}: no [weights."{filename}"] sha256 entry')
-    p = folder / filename
-    if not p.is_file():
-        raise BundleError(f"bundle {folder}: weights file {filename} is missing")
-    if sha256_file(p) != entry["sha256"]:
-        raise BundleError(f"bundle {folder}: {filename} does not match the sha256 digest in {MANIFEST} "
-                          "(the file was modified or corrupted; re-train or re-install the bundle)")
+        return self.arrays(POLICY_FILE)
 
 
 def _check_shapes(folder: Path, manifest: dict) -> None:
@@ -188,7 +194,7 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
     if not isinstance(man["phrases"], list) or not all(isinstance(p, str) for p in man["phrases"]):
         raise BundleError(f"{folder / MANIFEST}: phrases must be a list of strings")
     for filename in man["weights"]:
-        _check_digest(folder, filename, man)
+        read_weights(folder, filename, man)
     if PROGRESS_FILE not in man["weights"]:
         raise BundleError(f'{folder / MANIFEST}: no [weights."{PROGRESS_FILE}"] entry')
     _check_shapes(folder, man)
@@ -214,21 +220,23 @@ def _plain(v: Any) -> Any:
     return v
 
 
-def write_weights(bundle_dir: str | os.PathLike, filename: str, tensors: dict[str, torch.Tensor],
+def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str, np.ndarray],
                   section: str | None = None, settings: dict | None = None) -> Path:
     """Add or replace a weights file in a bundle and record its digest (and a manifest section).
 
-    Used by the trainers: ``write_weights(dir, "policy.safetensors", tensors, "policy", {...})`` stores a
-    planner policy that :meth:`Bundle.policy_tensors` then returns. The manifest must already exist.
+    Used by the trainers: ``write_weights(dir, "policy.safetensors", arrays, "policy", {...})`` stores a
+    planner policy that :meth:`Bundle.policy_arrays` then returns. The manifest must already exist.
+    Arrays are numpy (a torch tensor's ``.numpy()``): the file is byte-identical to torch's writer.
     """
-    from safetensors.torch import save_file
+    import numpy as np
+    from safetensors.numpy import save_file
 
     folder = Path(bundle_dir)
     man = read_manifest(folder)
     if "/" in filename or not filename.endswith(".safetensors"):
         raise BundleError(f'weights file name "{filename}" must be a plain *.safetensors name')
     path = folder / filename
-    save_file({k: v.detach().contiguous().cpu() for k, v in tensors.items()}, str(path))
+    save_file({k: np.ascontiguousarray(v) for k, v in arrays.items()}, str(path))
     man.setdefault("weights", {})[filename] = {"sha256": sha256_file(path), "bytes": path.stat().st_size}
     if section is not None:
         man[section] = dict(settings or {})
@@ -246,10 +254,15 @@ def update_manifest(bundle_dir: str | os.PathLike, section: str, values: dict) -
     _write_manifest(folder, man)
 
 
-def write_progress_bundle(out_dir: str | os.PathLike, action: str, model: ProgressModel, *,
-                          training: dict, metrics: dict, version: str = "1.0.0") -> Path:
-    """Write (or overwrite) a bundle's manifest and progress weights, keeping any policy it already has."""
-    from ..learning.progress_net import ensemble_state
+def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[str, np.ndarray],
+                          model_cfg: ModelConfig, qsr_cfg: Any, *, training: dict, metrics: dict,
+                          version: str = "1.0.0") -> Path:
+    """Write (or overwrite) a bundle's manifest and progress weights, keeping any policy it already has.
+
+    The phrases and description come from the manifest already in ``out_dir`` (a scaffolded plugin's),
+    else, for a built-in action, from its shipped manifest: manifests declare phrases, nothing else does.
+    """
+    from ..progress.features import feature_names
 
     folder = Path(out_dir)
     folder.mkdir(parents=True, exist_ok=True)
@@ -259,24 +272,24 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, model: Progre
             old = tomllib.loads((folder / MANIFEST).read_text())
         except tomllib.TOMLDecodeError:
             old = {}
+    shipped = read_manifest(builtin_bundle_dir(action)) if action in ACTIONS else {}
     keep_weights = {k: v for k, v in old.get("weights", {}).items()
                     if k != PROGRESS_FILE and (folder / k).is_file()}
-    from ..progress.features import feature_names
-
     man = {
         "schema": SCHEMA, "name": action, "version": version, "requires": REQUIRES,
-        # a plugin action keeps the phrases and description its scaffolded manifest declares
-        "phrases": PHRASES.get(action) or old.get("phrases") or [action],
-        "description": DESCRIPTIONS.get(action) or old.get("description", ""),
-        "features": {**model.qsr_cfg.to_dict(), "names": feature_names(model.qsr_cfg)},
-        "model": model.model_cfg.to_dict(), "training": training, "metrics": metrics,
+        "phrases": shipped.get("phrases") or old.get("phrases") or [action],
+        "description": shipped.get("description") or old.get("description", ""),
+        "features": {**qsr_cfg.to_dict(), "names": feature_names(qsr_cfg)},
+        "model": model_cfg.to_dict(), "training": training, "metrics": metrics,
         "weights": keep_weights,
     }
     for k, v in old.items():  # sections other stages own (e.g. [policy]) survive a re-train
         if k not in man:
             man[k] = v
+    if "judge" in shipped and "judge" not in man:  # a built-in trained into a new folder keeps its judge
+        man["judge"] = shipped["judge"]
     _write_manifest(folder, man)
-    write_weights(folder, PROGRESS_FILE, ensemble_state(model.nets))
+    write_weights(folder, PROGRESS_FILE, arrays)
     return folder
 
 
@@ -286,20 +299,3 @@ def builtin_bundle_dir(action: str) -> Path:
 
     canon = canonical_action(action)
     return Path(str(resources.files("l2p_bullet") / "actions" / canon.replace("-", "_")))
-
-
-def resolve_action(spec: str) -> tuple[str, Path]:
-    """``ACTION`` on the command line -> (canonical name, bundle folder).
-
-    A path to a folder with a manifest is a bundle; anything else must name a built-in action. This is
-    the one place the plugin registry replaces to resolve third-party actions.
-    """
-    p = Path(spec)
-    if p.is_dir() and (p / MANIFEST).is_file():
-        return str(read_manifest(p).get("name", p.name)), p
-    try:
-        canon = canonical_action(spec)
-    except DataError as e:
-        raise BundleError(f"{e} It is not a bundle folder either.") from None
-    assert canon in ACTIONS
-    return canon, builtin_bundle_dir(canon)

@@ -31,14 +31,14 @@ from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..errors import PluginError, did_you_mean
+from ..core.vocabulary import normalize_name, normalize_phrase
+from ..errors import FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
+from .bundle import MANIFEST, PROGRESS_FILE
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
 
 GROUP = "l2p_bullet.actions"
-MANIFEST = "manifest.toml"
-PROGRESS_WEIGHTS = "progress.safetensors"
 
 
 @dataclass(frozen=True)
@@ -81,15 +81,6 @@ class PluginInfo:
 
     def label(self) -> str:
         return f'"{self.name}" (package {self.package} {self.package_version})'
-
-
-def normalize_phrase(phrase: str) -> str:
-    """Lower case, single spaces: how phrases are compared everywhere."""
-    return " ".join(phrase.lower().split())
-
-
-def _normalize_name(name: str) -> str:
-    return name.strip().lower().replace("_", "-")
 
 
 # --- locating a module's folder without importing anything ------------------------------------------
@@ -172,10 +163,10 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     if not (isinstance(phrases, list) and phrases and all(isinstance(p, str) and p.strip() for p in phrases)):
         return manifest, f'{path}: "phrases" must be a non-empty list of phrases such as ["next to", "beside"]'
     declared = manifest.get("name")
-    if declared is not None and _normalize_name(str(declared)) != _normalize_name(name):
+    if declared is not None and normalize_name(str(declared)) != normalize_name(name):
         return manifest, f'{path} describes the action "{declared}" but the entry point is named "{name}"'
     weights = manifest.get("weights", {})
-    files = list(weights) if isinstance(weights, dict) and weights else [PROGRESS_WEIGHTS]
+    files = list(weights) if isinstance(weights, dict) and weights else [PROGRESS_FILE]
     missing = [f for f in files if not (folder / f).is_file()]
     if missing:
         return manifest, f"no trained weights ({', '.join(missing)} missing in {folder}; {train_hint})"
@@ -203,33 +194,37 @@ def discover() -> list[PluginInfo]:
     return sorted(found, key=lambda p: (p.name, p.package))
 
 
-def conflicts(plugins: list[PluginInfo]) -> list[str]:
-    """Messages for every name or phrase claimed by two usable plugins (empty when all is well)."""
-    out: list[str] = []
+def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
+    """Every name or phrase claimed by two usable plugins (empty when all is well)."""
+    out: list[PluginConflict] = []
     by_name: dict[str, PluginInfo] = {}
     by_phrase: dict[str, PluginInfo] = {}
     for p in plugins:
         if not p.ok:
             continue
-        other = by_name.setdefault(_normalize_name(p.name), p)
+        other = by_name.setdefault(normalize_name(p.name), p)
         if other is not p:
-            out.append(f"two action plugins are both named \"{p.name}\": {other.label()} and {p.label()}; "
-                       "uninstall one of the two packages")
+            out.append(PluginConflict(f"two action plugins are both named \"{p.name}\": {other.label()} and "
+                                      f"{p.label()}; uninstall one of the two packages", p.name, (other.name, p.name)))
             continue
         for phrase in p.phrases:
             other = by_phrase.setdefault(phrase, p)
             if other is not p and other.name != p.name:
-                out.append(f'the phrase "{phrase}" is claimed by two action plugins: {other.label()} and '
-                           f"{p.label()}; uninstall one of the two packages or remove the phrase from one manifest")
+                out.append(PluginConflict(
+                    f'the phrase "{phrase}" is claimed by two action plugins: {other.label()} and {p.label()}; '
+                    "uninstall one of the two packages or remove the phrase from one manifest",
+                    phrase, (other.name, p.name)))
     return out
 
 
 def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
-    """Phrase -> action name over the usable plugins; :class:`PluginError` on any conflict."""
+    """Phrase -> action name over the usable plugins; the first :class:`PluginConflict` on any conflict."""
     plugins = discover() if plugins is None else plugins
     problems = conflicts(plugins)
     if problems:
-        raise PluginError(problems[0] + (f" (and {len(problems) - 1} more conflicts)" if len(problems) > 1 else ""))
+        if len(problems) > 1:
+            problems[0].args = (f"{problems[0]} (and {len(problems) - 1} more conflicts)",)
+        raise problems[0]
     return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases}
 
 
@@ -242,30 +237,24 @@ def broken(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
 _LOADED: dict[tuple[str, str], Bundle] = {}
 
 
-def loaded() -> list[str]:
-    """Names of the plugins loaded in this process (as opposed to merely found)."""
-    return sorted({name for name, _ in _LOADED})
-
-
 def find(name: str, plugins: list[PluginInfo] | None = None) -> PluginInfo:
-    """The found plugin called ``name`` (``next_to`` and ``next-to`` are the same); clear error otherwise."""
+    """The found plugin called ``name`` (``next_to`` and ``next-to`` are the same); UnknownActionError otherwise."""
     plugins = discover() if plugins is None else plugins
-    key = _normalize_name(name)
-    matches = [p for p in plugins if _normalize_name(p.name) == key]
+    key = normalize_name(name)
+    matches = [p for p in plugins if normalize_name(p.name) == key]
     if not matches:
-        names = sorted({p.name for p in plugins})
-        raise PluginError(f'no action plugin named "{name}" is installed (installed: {", ".join(names) or "none"}).'
-                          + did_you_mean(key, names))
+        raise UnknownActionError(name, {p.name for p in plugins}, "(no installed action plugin has that name)")
     if len(matches) > 1 and sum(m.ok for m in matches) == 1:  # a broken twin does not block a usable one
         matches = [m for m in matches if m.ok]
     if len(matches) > 1:
-        raise PluginError(f'two action plugins are both named "{name}": '
-                          + " and ".join(m.label() for m in matches) + "; uninstall one of the two packages")
+        raise PluginConflict(f'two action plugins are both named "{name}": '
+                             + " and ".join(m.label() for m in matches) + "; uninstall one of the two packages",
+                             name, [m.name for m in matches])
     return matches[0]
 
 
 def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
-    """Import plugin ``name`` and load its bundle; every failure is a :class:`PluginError` naming it.
+    """Import plugin ``name`` and load its bundle; every failure is a :class:`FailedToLoadPlugin` naming it.
 
     Only this plugin's module is imported (a plugin may run code on import, for example to check its
     own requirements); the bundle itself is read by :func:`l2p_bullet.plugins.bundle.load_bundle`, which
@@ -273,25 +262,42 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     """
     info = find(name, plugins)
     if info.error is not None:
-        raise PluginError(f"action plugin {info.label()} cannot be used: {info.error}")
+        raise FailedToLoadPlugin(info.name, info.package, info.error)
     key = (info.name, str(info.path))
     if key in _LOADED:
         return _LOADED[key]
     try:
         mod = importlib.import_module(info.module)
     except Exception as e:  # a plugin's import error is its own bug: report it, don't crash
-        raise PluginError(f"action plugin {info.label()} failed to import {info.module}: "
-                          f"{type(e).__name__}: {e}") from None
+        raise FailedToLoadPlugin(info.name, info.package,
+                                 f"importing {info.module} failed: {type(e).__name__}: {e}") from None
     folder = _module_folder(mod) or info.path
     from ..errors import L2PError
-    from .bundle import load_bundle  # torch-free import; the model itself loads later, on demand
+    from .bundle import load_bundle
 
     try:
         bundle = load_bundle(folder)
     except L2PError as e:
-        raise PluginError(f"action plugin {info.label()} has an invalid bundle: {e}") from None
+        raise FailedToLoadPlugin(info.name, info.package, f"invalid bundle: {e}") from None
     _LOADED[key] = bundle
     return bundle
+
+
+def resolve(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Path]:
+    """``ACTION`` on the command line -> (action name, bundle folder).
+
+    A folder with a manifest is a bundle (its manifest names the action); anything else names an
+    installed action, built-in or plugin (``UnknownActionError``, ``FailedToLoadPlugin`` otherwise).
+    """
+    from .bundle import read_manifest
+
+    p = Path(spec)
+    if p.is_dir() and (p / MANIFEST).is_file():
+        return str(read_manifest(p).get("name", p.name)), p
+    info = find(spec, plugins)
+    if info.error is not None or info.path is None:
+        raise FailedToLoadPlugin(info.name, info.package, info.error or "its bundle folder cannot be found")
+    return info.name, info.path
 
 
 def _module_folder(mod: Any) -> Path | None:

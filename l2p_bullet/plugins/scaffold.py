@@ -14,9 +14,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
+from ..core.vocabulary import PLUGIN_ACTION, normalize_phrase
 from ..errors import PluginError
-from ..learning.demos import PLUGIN_ACTION
-from .registry import normalize_phrase
 
 
 @dataclass(frozen=True)

@@ -1,21 +1,16 @@
-"""The progress ensemble's forward pass in numpy: inference without importing torch.
+"""The progress ensemble's forward pass in numpy: the model every stage but training scores with.
 
-Why: ``perform`` is a command a person waits for, with a goal of 3 s on 2 cores, and importing torch
-alone costs 1.4-2.5 s there; the models are one small LSTM layer per ensemble member, whose forward
-pass is a few lines of numpy and, at the planner's batch sizes, as fast as torch's. Training stays in
-torch (:mod:`l2p_bullet.progress`); this module only reads the same safetensors weights (with
-safetensors' numpy loader) and computes the same numbers, to float32 rounding. ``tests/test_perform.py``
-checks the two against each other on random motions, so a change to the network in
-:mod:`l2p_bullet.progress` that is not mirrored here fails loudly.
-
-The batching and the mapping back to input frames are those of :class:`l2p_bullet.progress.ProgressModel`
-(same feature code, :func:`l2p_bullet.progress.features.batch_features`).
+Why: ``perform`` is a command a person waits for, and importing torch alone costs 1.4-2.5 s on 2
+cores; the models are one small LSTM layer per ensemble member, whose forward pass is a few lines of
+numpy and, at the planner's batch sizes, as fast as torch's. Training stays in torch
+(:mod:`l2p_bullet.learning.progress_net`); this module reads the same safetensors weights and computes
+the same numbers, to float32 rounding. ``tests/test_progress_numpy.py`` checks the two against each
+other on random motions, so a change to the torch network that is not mirrored here fails loudly.
+Batching and the mapping back to input frames are shared (:mod:`l2p_bullet.progress.scoring`).
 """
 
 from __future__ import annotations
 
-import hashlib
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -25,15 +20,13 @@ from .config import ModelConfig
 from .features import QSRConfig
 from .scoring import ScoringMixin, shared_prefix
 
-WEIGHTS = "progress.safetensors"
-
 
 def _sigmoid(z: np.ndarray) -> np.ndarray:
     return 0.5 * (1.0 + np.tanh(0.5 * z))  # = 1 / (1 + exp(-z)), without overflow warnings
 
 
 class NumpyProgressModel(ScoringMixin):
-    """Same interface as :class:`l2p_bullet.progress.ProgressModel` for scoring (no training)."""
+    """The scoring API of :mod:`l2p_bullet.progress.scoring` over the ensemble's numpy forward pass."""
 
     def __init__(self, tensors: dict[str, np.ndarray], model_cfg: ModelConfig, qsr_cfg: QSRConfig):
         if model_cfg.arch != "lstm":
@@ -51,22 +44,9 @@ class NumpyProgressModel(ScoringMixin):
     @classmethod
     def from_bundle(cls, bundle: Any) -> NumpyProgressModel:
         """Read a loaded bundle's progress weights (digest checked again: the file may have changed)."""
-        from safetensors import SafetensorError
-        from safetensors.numpy import load_file
+        from ..plugins.bundle import PROGRESS_FILE
 
-        path = Path(bundle.path) / WEIGHTS
-        expected = bundle.manifest.get("weights", {}).get(WEIGHTS, {}).get("sha256")
-        try:
-            data = path.read_bytes()
-        except OSError as e:
-            raise BundleError(f"cannot read {path}: {e.strerror or e}") from None
-        if hashlib.sha256(data).hexdigest() != expected:
-            raise BundleError(f"{path} does not match the sha256 digest in its manifest (modified or corrupted)")
-        try:
-            tensors = load_file(str(path))
-        except (SafetensorError, OSError) as e:
-            raise BundleError(f"{path}: not a readable safetensors file ({e})") from None
-        return cls(tensors, ModelConfig.from_dict(bundle.manifest["model"]),
+        return cls(bundle.arrays(PROGRESS_FILE), ModelConfig.from_dict(bundle.manifest["model"]),
                    QSRConfig.from_dict(bundle.manifest["features"]))
 
     def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:

@@ -7,6 +7,7 @@ Torch-free: ``perform`` scores with the numpy model and must never import torch.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -70,3 +71,19 @@ class ScoringMixin:
     def final(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> float:
         anchor = np.asarray(anchor, float)
         return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0])
+
+
+def score_file(action: str, path: str | Path) -> dict[str, Any]:
+    """``l2p-bullet score``: per-frame progress of the motion in ``path`` under ``action``'s model.
+
+    ``action`` is an installed action (built-in or plugin) or a bundle folder. Returns
+    ``{"action", "progress": [per input frame], "final"}`` rounded to 4 digits (DESIGN.md section 4).
+    """
+    from ..core.contracts import load_motion
+    from ..plugins.bundle import load_bundle
+    from ..plugins.registry import resolve
+
+    name, folder = resolve(action)
+    motion = load_motion(path)
+    curve = load_bundle(folder).progress_model().curve(motion.mover, motion.anchor, motion.size)
+    return {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}

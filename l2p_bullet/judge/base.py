@@ -1,0 +1,40 @@
+"""What a judge is: a verdict on a motion, from rules written for the words or from a learned model."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """A judge's answer: yes/no, a graded score in [0, 1], the reason in words, and which judge said it."""
+
+    success: bool
+    score: float
+    reason: str
+    judge: str = "rules"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The verdict as run folders and ``--json`` outputs hold it (summary.json's ``verdict``)."""
+        return {"success": bool(self.success), "score": round(float(self.score), 4), "reason": self.reason,
+                "judge": self.judge}
+
+
+@runtime_checkable
+class Judge(Protocol):
+    """Judges one motion of the mover relative to the anchor.
+
+    ``mover`` is (T,3) ``[x, y, yaw]`` in metres, ``anchor`` (T,3) or one pose (3,), blocks of side
+    ``size``; frames dense enough that the mover turns less than half a turn around the anchor between
+    two of them. ``final_progress`` is the action's learned progress at the end when the caller already
+    has it (a judge that needs it and is not given it computes it). ``name`` is what verdicts report as
+    their ``judge`` ("rules", "progress-model", or a plugin's own).
+    """
+
+    name: str
+
+    def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+              final_progress: float | None = None) -> Verdict: ...
