@@ -30,7 +30,7 @@ class RuleProgress:
 class FakeBundle:
     def __init__(self, action: str, policy=None, settings: dict | None = None):
         self.name = action
-        self.manifest = {"policy": settings or {}}
+        self.manifest = {"policy": settings or {}, "judge": {"rules": action}}
         self.model = RuleProgress(action)
         self._policy = policy
 

@@ -186,8 +186,8 @@ def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     _assert_executable(a, scene)
     # away's manifest picks greedy search ([policy] planner; 100 % vs 92-94 % for mixed on 100 scenes)
     expected = {"away": "greedy"}.get(action, "mixed")
-    assert np.array_equal(a.path, b.path) and a.planner == expected and a.stopped in ("threshold", "budget")
+    assert np.array_equal(a.path, b.path) and a.planner == expected
     assert "note" not in a.extra, (f"{action}: the bundle's policy.safetensors was trained against another "
-                                   "progress model; re-train it (make bundles, or python -m "
-                                   f"l2p_bullet.learning.train_policy {action})")
-    assert a.extra["final_progress"] > 0.5
+                                   f"progress model; re-train it (make bundles, or l2p-bullet train-policy {action})")
+    # every shipped bundle reaches its planning threshold on this scene (0.96-1.00 when this was written)
+    assert a.stopped == "threshold" and a.extra["final_progress"] >= a.extra["threshold"]

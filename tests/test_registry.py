@@ -9,34 +9,14 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from plugin_fixtures import make_bundle, make_dist
 
 from l2p_bullet.cli import main
 from l2p_bullet.errors import PluginError
 from l2p_bullet.plugins import registry
-
-
-def make_dist(root: Path, dist: str, entry_points: dict[str, str]) -> None:
-    info = root / f"{dist.replace('-', '_')}-0.3.dist-info"
-    info.mkdir(parents=True)
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {dist}\nVersion: 0.3\n")
-    lines = "\n".join(f"{k} = {v}" for k, v in entry_points.items())
-    (info / "entry_points.txt").write_text(f"[l2p_bullet.actions]\n{lines}\n")
-
-
-def make_bundle(folder: Path, name: str, phrases: list[str], init: str = "", weights: bool = True,
-                manifest: str | None = None) -> None:
-    folder.mkdir(parents=True)
-    (folder / "__init__.py").write_text(init)
-    if manifest is None:
-        manifest = (f'schema = 1\nname = "{name}"\nversion = "1.2.0"\nphrases = {json.dumps(phrases)}\n'
-                    '[metrics]\nfinal_progress = 0.91\n')
-    (folder / "manifest.toml").write_text(manifest)
-    if weights:
-        (folder / "progress.safetensors").write_bytes(b"not read at discovery")
 
 
 @pytest.fixture

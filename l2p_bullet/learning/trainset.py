@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.geometry import moving_average
+from ..core.geometry import moving_average, swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
 from ..progress.features import QSRConfig, features, resample
 from .demos import Demo
@@ -32,70 +32,45 @@ from .demos import Demo
 
 @dataclass(frozen=True)
 class DataConfig:
-    """How the training set is built (written to the manifest's ``[training]``)."""
+    """How the training set is built (written to the manifest's ``[training]``). Each field says why it
+    exists in one line; how each value was arrived at, with the numbers, is in docs/learning.md."""
 
     smooth_frames: int = 9
-    """Moving-average window on the captured poses (about 0.3 s at 30 fps) against tracking jitter."""
+    """Moving-average window (0.3 s at 30 fps) on captured poses: tracking jitter would read as motion."""
     post_decay: float = 1.0
-    """After the event, progress falls linearly to 0 over this many blocks of further motion."""
+    """Blocks of further motion over which progress falls back to 0 after the event (the reset is not it)."""
     polylines_per_demo: int = 2
+    """Straight-line simplifications per positive: planners and the graded demos move in straight lines."""
     scaled_per_demo: int = 2
-    """Copies of each positive with its geometry stretched about the anchor by a factor in ``scale_range``
-    (blocks keep their size): people graded motions that start farther than the captures ever did.
-    Not for "next-to", whose end state is a fixed distance."""
+    """Copies stretched about the anchor (not next-to): people graded starts farther than any capture's."""
     scale_range: tuple[float, float] = (0.75, 1.7)
+    """Stretch factors of those copies (blocks keep their size)."""
     scale_ranges: dict = field(default_factory=lambda: {"around": (0.75, 1.2), "closer": (0.45, 1.7)})
-    """Per-action ``scale_range`` overrides. around at most 1.2: people went around the anchor at a
-    median 2.9 blocks (90 % within 3.5, tracking glitches removed), and "around" is about staying near
-    it; stretched by up to 1.7, the copies looped at 5 blocks and taught the model that a wide loop is as
-    good a circle as a tight one (10 of 100 planned arounds went 4.8-5 blocks out). closer down to 0.45:
-    people started 3.7-7.4 blocks away, scenes start 2-4 blocks apart, and the model had no example of
-    closing in from 2 blocks (4 of 50 planned closers from 2.0-2.2 blocks stalled). A copy is never
-    shrunk to pass nearer than 1 block (centre to centre, two squares touch) unless the original did."""
+    """Per-action stretch ranges: around stays near the anchor; closer must have seen closing in from 2 blocks."""
     shortened: dict = field(default_factory=lambda: {"away": (0.75, 0.95)})
-    """Actions with ``scaled_per_demo`` extra copies per demonstration shrunk about their own start
-    point by a factor in this range: the same motion, stopped sooner, is still a complete instance.
-    People moved "away" by a median 3.7 blocks; a scene's workspace often leaves room for only 1.5-2.5
-    blocks straight out, which the model scored 0.5-0.75, so planners reached the threshold by longer
-    paths that first swing round the anchor (7 of 100 away plans came 0.7-1.4 blocks nearer first).
-    With these copies greedy search succeeds on 98 of 100 scenes (93 without). The price is agreement
-    with people's grades on "away" (Spearman 0.42 -> 0.20 on 15 graded demos; the grades reward going
-    far): shrinking to 0.5-0.85 gave 97 % and 0.04, to 0.3-0.7 accepted gains under a block (90 %)."""
+    """Actions with extra copies shrunk about their own start: the same motion stopped sooner is complete."""
     twisted_per_demo: int = 2
+    """Copies whose bearing drifts (``_twist``): people graded sweeping motions well; captures are radial."""
     twist_actions: tuple[str, ...] = ("closer", "away", "next-to")
+    """The actions whose meaning a drifting bearing does not change."""
     twist_max_deg: float = 100.0
-    """Copies of these actions' positives whose bearing drifts by up to this angle (see ``_twist``)."""
+    """Largest bearing drift of a twisted copy."""
     detour_per_demo: int = 2
-    """Copies of "closer"/"away" positives that first move the other way (a straight move from a start
-    between the event's start and end distances to the event's start): the net motion is still the
-    action, as in graded 2-D demonstrations that dip towards the anchor before leaving it."""
+    """Copies of closer/away that first move the other way: the net motion is still the action."""
     turn_label: dict = field(default_factory=lambda: {"around": 1.0})
-    """Actions whose progress label on the event is the net turn swept round the anchor since the
-    event's start, divided by this many turns (clipped to [0, 1]), instead of the fraction of the event's
-    arc length: the event of going around ends when the circle closes, and people's captures are
-    truncated circles (0.48-0.99 of a turn). With arc-length labels every capture ended at 1, so half a
-    turn already scored about 1 and a planner maximising progress stopped there."""
+    """Actions labelled by the net turn swept (in these many turns): an around ends when the circle closes."""
     turn_copies: int = 2
-    """For the ``turn_label`` actions, per demonstration and copy kind: crops that stop at 40-60 % of
-    the event (partial arounds end at their partial label), copies that sweep back along their own path
-    (out-and-back: large absolute turn, small net turn, labelled by the net turn) and copies continued
-    along a circle at the end's distance to 0.85-1.25 turns in all (a closed circle is a full around)."""
+    """Per turn-labelled demo and kind: partial crops, out-and-back copies and closed circles."""
     net_label: dict = field(default_factory=lambda: {"away": 1.5})
-    """Actions (here "away") whose last detour copy per demonstration and ``net_copies`` are labelled by
-    the net gain in distance from the anchor since the copy's start, less this many times the inward
-    motion so far, over the copy's largest gain (clipped to [0, 1]): coming closer on the way out
-    lowers progress for good, so a plan that wobbles (which the evaluator rejects: "steadily") no longer
-    scores like a steady one. The other positives keep the arc-length label (people graded some dipping
-    motions well: relabelling both detour copies gave 96 % planning success but graded Spearman 0.23)."""
+    """Actions whose dip/back-off copies are labelled by net gain less this times the inward motion."""
     net_copies: int = 2
-    """For the ``net_label`` actions, per demonstration and copy kind: copies with an inward dip of
-    0.5-1.5 blocks inserted part-way, and copies that back off along their own path at the end."""
+    """Per net-labelled demo and kind: copies with an inward dip, and copies that back off at the end."""
     random_negatives: int = 300
+    """Random straight-line motions that clearly are not the action (:func:`violates`), labelled 0."""
     static_negatives: int = 40
-    """Motions that stand still (tracking jitter only): progress must not rise for doing nothing."""
+    """Motions that stand still: progress must not rise for doing nothing."""
     negative_tail: float = 0.4
-    """Negatives are only penalised on this final fraction of their motion: the start of another action
-    (or of a random motion) can be the start of this one, its completion is not."""
+    """Final fraction of a negative that is penalised: another motion's start can be this one's start."""
     negative_weight: float = 1.0
     """Total weight of the negatives relative to the positives."""
     negatives: dict = field(default_factory=lambda: {
@@ -105,13 +80,12 @@ class DataConfig:
         "past": ["closer", "away", "next-to", "around"],
         "around": ["closer", "away", "next-to"],
     })
-    """Whose demonstrations are negatives for each action. Left out on purpose: pairs where one is (a
-    prefix of) the other, whose completion must keep a partial progress: a good "next to" is also
-    "closer", a "past" often ends farther "away", and a "past" is the first half of an "around"."""
+    """Whose demonstrations are negatives; pairs where one is (a prefix of) the other are left out."""
 
     def to_dict(self) -> dict:
         keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",
-                "twist_max_deg", "detour_per_demo", "turn_copies", "net_copies", "random_negatives", "static_negatives", "negative_tail", "negative_weight")
+                "twist_max_deg", "detour_per_demo", "turn_copies", "net_copies", "random_negatives",
+                "static_negatives", "negative_tail", "negative_weight")
         d = {k: getattr(self, k) for k in keys}
         return {**d, "scale_range": list(self.scale_range), "twist_actions": list(self.twist_actions),
                 "negatives": dict(self.negatives), "turn_label": dict(self.turn_label),
@@ -168,8 +142,7 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     elif turns is None:
         frac = np.clip((s - s0) / max(s1 - s0, 1e-6), 0, 1)
     else:  # net turn round the anchor since the event's start, in units of ``turns`` full turns
-        d = rs.mover[:, :2] - rs.anchor[:, :2]
-        ang = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+        ang = unwrapped_bearing(rs.mover[:, :2] - rs.anchor[:, :2])
         frac = np.clip(np.abs(ang - np.interp(s0, s, ang)) / (2 * np.pi * turns), 0, 1)
     y = np.where(s <= s0, 0.0, frac)
     after = rs.times > end + 1e-9
@@ -179,12 +152,6 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     return TrainingSequence(x, y.astype(np.float32), positive=True, end=k_end)
 
 
-def _sweep(m: np.ndarray, c: np.ndarray) -> float:
-    d = m[:, :2] - c[:2]
-    ang = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
-    return float(ang[-1] - ang[0])
-
-
 def _polyline(demo_m: np.ndarray, c: np.ndarray, rng: np.random.Generator,
               tol: float = np.radians(30)) -> np.ndarray | None:
     """Replace a motion by straight moves between 0-3 of its own intermediate poses (dense frames).
@@ -192,14 +159,14 @@ def _polyline(demo_m: np.ndarray, c: np.ndarray, rng: np.random.Generator,
     The angle swept around the anchor (at ``c``) must stay within ``tol`` of the original's: an "around"
     cut down to one straight hop would teach that a short hop is an around. None if no try keeps it.
     """
-    target = _sweep(demo_m, c)
+    target = swept_angle(demo_m, c)
     for _ in range(8):
         n_mid = int(rng.integers(0, 4))
         ks = np.sort(rng.choice(np.arange(1, len(demo_m) - 1), size=min(n_mid, len(demo_m) - 2), replace=False))
         way = demo_m[np.concatenate([[0], ks, [len(demo_m) - 1]]).astype(int)]
         poly = np.concatenate([np.linspace(way[i], way[i + 1], 20, endpoint=i == len(way) - 2)
                                for i in range(len(way) - 1)])
-        if abs(_sweep(poly, c) - target) < tol:
+        if abs(swept_angle(poly, c) - target) < tol:
             return poly
     return None
 
@@ -266,7 +233,7 @@ def _dip(m: np.ndarray, c: np.ndarray, rng: np.random.Generator, size: float) ->
 def _close_circle(m: np.ndarray, c: np.ndarray, rng: np.random.Generator) -> np.ndarray | None:
     """The motion continued along a circle round ``c`` at its end's distance, in the direction it
     turned, to 0.85-1.25 turns in all; None if it already turned that far."""
-    net = _sweep(m, c)
+    net = swept_angle(m, c)
     extra = np.sign(net) * 2 * np.pi * rng.uniform(0.85, 1.25) - net
     if np.sign(extra) != np.sign(net):
         return None
@@ -286,7 +253,7 @@ def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
     """
     d = mover[:, :2] - anchor[:, :2]
     r = np.linalg.norm(d, axis=1)
-    swept = abs(np.unwrap(np.arctan2(d[:, 1], d[:, 0]))[-1] - np.arctan2(d[0, 1], d[0, 0]))
+    swept = abs(swept_angle(d))
     length = np.linalg.norm(np.diff(mover[:, :2], axis=0), axis=1).sum()
     far = r.max() > 9.0
     if action == "closer":
@@ -322,62 +289,89 @@ def random_motion(rng: np.random.Generator, n_moves: int | None = None) -> tuple
 
 def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
           seed: int = 0) -> list[TrainingSequence]:
-    """All training sequences for ``action`` from the demonstrations of every action (train split)."""
+    """All training sequences for ``action`` from the demonstrations of every action (train split).
+
+    Positives first (each demonstration and its mirror image, with their copies), then the negatives,
+    weighted so that together they weigh ``negative_weight`` times the positives. One random generator
+    drives every draw, in this order, so a seed reproduces the set bit for bit.
+    """
     rng = np.random.default_rng(seed)
-    seqs: list[TrainingSequence] = []
-    turns = dcfg.turn_label.get(action)
-    net = dcfg.net_label.get(action)
-    for d in demos.get(action, []):
-        m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
-        for mm, aa in ((m, a), (mirror(m), mirror(a))):
-            seqs.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns))
-            seqs.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True, turns))
-            ev_m, ev_a = mm[d.start:d.end + 1], aa[d.start:d.end + 1]
-            c = ev_a.mean(axis=0)
-            variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
-            for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
-                pm = _event_or_polyline(ev_m, c, rng)
-                if pm is not None:
-                    lo, hi = dcfg.scale_ranges.get(action, dcfg.scale_range)
-                    nearest = float(np.linalg.norm(pm[:, :2] - c[:2], axis=1).min()) / d.size
-                    pm = _scaled(pm, c, max(rng.uniform(lo, hi), min(1.0, 1.0 / max(nearest, 1e-9))))
-                variants.append(pm)
-            for _ in range(dcfg.scaled_per_demo if action in dcfg.shortened else 0):
-                pm = _event_or_polyline(ev_m, c, rng)
-                if pm is not None:
-                    pm = _scaled(pm, pm[0], rng.uniform(*dcfg.shortened[action]))
-                variants.append(pm)
-            for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions else 0):
-                pm = _event_or_polyline(ev_m, c, rng)
-                angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
-                variants.append(None if pm is None else _twist(pm, c, angle))
-            for _ in range(dcfg.detour_per_demo if action in ("closer", "away") else 0):
-                variants.append(_detour(ev_m, c, rng, d.size))
-            net_variants = []
-            if net is not None:  # the last detour too: coming closer first is not progress away
-                net_variants, variants = variants[len(variants) - 1:], variants[:len(variants) - 1]
-                for _ in range(dcfg.net_copies):
-                    pm = _event_or_polyline(ev_m, c, rng)
-                    if pm is None:
-                        continue
-                    net_variants.append(_dip(pm, c, rng, d.size))
-                    net_variants.append(_back(pm, rng))
-            for _ in range(dcfg.turn_copies if turns is not None else 0):
-                pm = _event_or_polyline(ev_m, c, rng)
-                if pm is None:
-                    continue
-                variants.append(pm[: max(2, int(len(pm) * rng.uniform(0.4, 0.6)))])
-                variants.append(_back(pm, rng))
-                variants.append(_close_circle(pm, c, rng))
-            for pm in variants:
-                if pm is not None:
-                    pa = np.repeat(c[None], len(pm), axis=0)
-                    seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, turns))
-            for pm in net_variants:
-                if pm is not None:
-                    pa = np.repeat(c[None], len(pm), axis=0)
-                    seqs.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, net=net))
-    n_pos = len(seqs)
+    pos = [s for d in demos.get(action, []) for s in _positives(action, d, qcfg, dcfg, rng)]
+    neg = _negatives(action, demos, qcfg, dcfg, rng)
+    w = dcfg.negative_weight * len(pos) / max(len(neg), 1)
+    for s in neg:
+        s.weight = w
+    return pos + neg
+
+
+def _positives(action: str, d: Demo, qcfg: QSRConfig, dcfg: DataConfig,
+               rng: np.random.Generator) -> list[TrainingSequence]:
+    """A demonstration and its mirror image, each with its context, cropped to the event, and its copies."""
+    turns, net = dcfg.turn_label.get(action), dcfg.net_label.get(action)
+    out = []
+    m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
+    for mm, aa in ((m, a), (mirror(m), mirror(a))):
+        out.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns))
+        out.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True, turns))
+        c = aa[d.start:d.end + 1].mean(axis=0)
+        variants, net_variants = _copies(action, mm[d.start:d.end + 1], c, d.size, dcfg, rng)
+        for pm in variants:
+            if pm is not None:
+                pa = np.repeat(c[None], len(pm), axis=0)
+                out.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, turns))
+        for pm in net_variants:
+            if pm is not None:
+                pa = np.repeat(c[None], len(pm), axis=0)
+                out.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, net=net))
+    return out
+
+
+def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: DataConfig,
+            rng: np.random.Generator) -> tuple[list, list]:
+    """The event's copies (see :class:`DataConfig`): those labelled like the event, and those labelled by
+    the net distance gained (``net_label`` actions). None entries are copies that could not be made."""
+    variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
+    for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
+        pm = _event_or_polyline(ev_m, c, rng)
+        if pm is not None:
+            lo, hi = dcfg.scale_ranges.get(action, dcfg.scale_range)
+            nearest = float(np.linalg.norm(pm[:, :2] - c[:2], axis=1).min()) / size
+            pm = _scaled(pm, c, max(rng.uniform(lo, hi), min(1.0, 1.0 / max(nearest, 1e-9))))
+        variants.append(pm)
+    for _ in range(dcfg.scaled_per_demo if action in dcfg.shortened else 0):
+        pm = _event_or_polyline(ev_m, c, rng)
+        if pm is not None:
+            pm = _scaled(pm, pm[0], rng.uniform(*dcfg.shortened[action]))
+        variants.append(pm)
+    for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions else 0):
+        pm = _event_or_polyline(ev_m, c, rng)
+        angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
+        variants.append(None if pm is None else _twist(pm, c, angle))
+    for _ in range(dcfg.detour_per_demo if action in ("closer", "away") else 0):
+        variants.append(_detour(ev_m, c, rng, size))
+    net_variants: list = []
+    if action in dcfg.net_label:  # the last detour too: coming closer first is not progress away
+        net_variants, variants = variants[len(variants) - 1:], variants[:len(variants) - 1]
+        for _ in range(dcfg.net_copies):
+            pm = _event_or_polyline(ev_m, c, rng)
+            if pm is None:
+                continue
+            net_variants.append(_dip(pm, c, rng, size))
+            net_variants.append(_back(pm, rng))
+    for _ in range(dcfg.turn_copies if action in dcfg.turn_label else 0):
+        pm = _event_or_polyline(ev_m, c, rng)
+        if pm is None:
+            continue
+        variants.append(pm[: max(2, int(len(pm) * rng.uniform(0.4, 0.6)))])
+        variants.append(_back(pm, rng))
+        variants.append(_close_circle(pm, c, rng))
+    return variants, net_variants
+
+
+def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
+               rng: np.random.Generator) -> list[TrainingSequence]:
+    """The other actions' demonstrations (with context and cropped, both mirror images), random motions
+    that :func:`violates` the action, and motions that stand still."""
     neg: list[TrainingSequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
         for d in demos.get(other, []):
@@ -385,8 +379,7 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
             for mm, aa in ((m, a), (mirror(m), mirror(a))):
                 neg.append(_labelled(mm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
                 neg.append(_labelled(mm[d.start:d.end + 1], aa[d.start:d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
-    n_rand = 0
-    tries = 0
+    n_rand = tries = 0
     while n_rand < dcfg.random_negatives and tries < 20 * dcfg.random_negatives:
         tries += 1
         mover, anchor = random_motion(rng)
@@ -396,11 +389,7 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
     for _ in range(dcfg.static_negatives):
         mover, anchor = random_motion(rng, n_moves=0)
         neg.append(_labelled(mover, anchor, 1.0, 0, 0, qcfg, dcfg, False))
-    # balance: the negatives together weigh negative_weight times the positives
-    w = dcfg.negative_weight * n_pos / max(len(neg), 1)
-    for s in neg:
-        s.weight = w
-    return seqs + neg
+    return neg
 
 
 def demo_sequence(d: Demo, qcfg: QSRConfig, dcfg: DataConfig) -> TrainingSequence:

@@ -163,74 +163,105 @@ def features(mover: np.ndarray, anchor: np.ndarray, cfg: QSRConfig = QSRConfig()
 
 def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
                    cfg: QSRConfig = QSRConfig()) -> np.ndarray:
-    """Features of a padded batch ``(B, K, 3)`` of block-unit poses; frames past ``lengths`` are 0."""
-    m, a = np.asarray(movers, float), np.asarray(anchors, float)
-    B, K, _ = m.shape
-    valid = np.arange(K)[None, :] < np.asarray(lengths)[:, None]  # (B, K)
-    d = m[..., :2] - a[..., :2]
-    r = np.linalg.norm(d, axis=-1)
-    r_safe = np.maximum(r, 1e-6)
-    bearing = np.arctan2(d[..., 1], d[..., 0])  # world frame
-    rel = bearing - bearing[:, :1]  # measured from the first frame: rotation invariant
-    swept = np.unwrap(rel, axis=1)
-    swept = np.where(valid, swept, 0.0)
-    swept = swept - swept[:, :1]
-    phi_a = bearing - a[..., 2]  # bearing in the anchor's frame
-    phi_m = bearing + np.pi - m[..., 2]  # bearing of the anchor in the mover's frame
-    gap = r - _half_extent(phi_a) - _half_extent(phi_m)
-    rot = 4.0 * (m[..., 2] - a[..., 2])  # squares: rotation is only defined modulo 90 degrees
-    r0 = r_safe[:, :1]
-    rc = np.minimum(r, cfg.max_distance)
-    step_m = np.diff(m[..., :2], axis=1, prepend=m[:, :1, :2])
-    step_a = np.diff(a[..., :2], axis=1, prepend=a[:, :1, :2])
-    path = np.cumsum(np.linalg.norm(step_m, axis=-1), axis=1)
-    disp = np.linalg.norm(m[..., :2] - m[:, :1, :2], axis=-1)
+    """Features of a padded batch ``(B, K, 3)`` of block-unit poses; frames past ``lengths`` are 0.
+
+    Columns in :func:`feature_names` order: the continuous quantities, the one-hot cardinal direction
+    and QDC bins, MV and QTC-C, then the frame-to-frame changes.
+    """
+    g = _Geometry.of(np.asarray(movers, float), np.asarray(anchors, float), np.asarray(lengths), cfg)
+    n_cd = cfg.cd_sectors
+    # cardinal direction: sector of the bearing, sector 0 = the side the mover started on
+    cd = np.mod(np.round(g.rel / (2 * np.pi / n_cd)), n_cd).astype(int)
+    qdc = np.searchsorted(np.asarray(cfg.qdc_edges), g.r)
+    mv, qtc = _mv_qtc(g, cfg.moving_eps)
+    d_dist = np.diff(g.rc, axis=1, prepend=g.rc[:, :1]) / cfg.spacing
+    d_swept = np.diff(g.swept, axis=1, prepend=g.swept[:, :1]) / cfg.spacing
+    d_rot = np.sin(np.diff(g.rot, axis=1, prepend=g.rot[:, :1]))
+    out = np.concatenate(
+        [_continuous(g, cfg), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc], mv, qtc,
+         np.stack([np.clip(d_dist, -2, 2), np.clip(d_swept, -2, 2), d_rot,
+                   _changed(cd), _changed(qdc), _changed(qtc)], axis=-1)],
+        axis=-1,
+    )
+    out[~g.valid] = 0.0
+    return out.astype(np.float32)
+
+
+@dataclass
+class _Geometry:
+    """Per-frame geometry of a padded batch that several feature groups read (all ``(B, K)`` unless noted)."""
+
+    m: np.ndarray  # (B, K, 3) mover poses, block units
+    a: np.ndarray  # (B, K, 3) anchor poses
+    valid: np.ndarray  # frames before each sequence's length
+    d: np.ndarray  # (B, K, 2) anchor -> mover
+    r: np.ndarray  # centre distance
+    r_safe: np.ndarray  # the same, at least 1e-6
+    rc: np.ndarray  # the same, clipped at cfg.max_distance
+    rel: np.ndarray  # bearing measured from the first frame's: rotation invariant
+    swept: np.ndarray  # the bearing unwrapped, 0 at the first frame and past the length
+    phi_a: np.ndarray  # bearing in the anchor's frame
+    phi_m: np.ndarray  # bearing of the anchor in the mover's frame
+    rot: np.ndarray  # 4 x relative yaw: squares' rotation is only defined modulo 90 degrees
+    step_m: np.ndarray  # (B, K, 2) mover's step from the previous frame
+    step_a: np.ndarray  # (B, K, 2) anchor's step
+
+    @classmethod
+    def of(cls, m: np.ndarray, a: np.ndarray, lengths: np.ndarray, cfg: QSRConfig) -> _Geometry:
+        K = m.shape[1]
+        valid = np.arange(K)[None, :] < lengths[:, None]
+        d = m[..., :2] - a[..., :2]
+        r = np.linalg.norm(d, axis=-1)
+        bearing = np.arctan2(d[..., 1], d[..., 0])  # world frame
+        rel = bearing - bearing[:, :1]
+        swept = np.unwrap(rel, axis=1)
+        swept = np.where(valid, swept, 0.0)
+        swept = swept - swept[:, :1]
+        return cls(m, a, valid, d, r, np.maximum(r, 1e-6), np.minimum(r, cfg.max_distance), rel, swept,
+                   bearing - a[..., 2], bearing + np.pi - m[..., 2], 4.0 * (m[..., 2] - a[..., 2]),
+                   np.diff(m[..., :2], axis=1, prepend=m[:, :1, :2]), np.diff(a[..., :2], axis=1, prepend=a[:, :1, :2]))
+
+
+def _continuous(g: _Geometry, cfg: QSRConfig) -> np.ndarray:
+    """The continuous columns (B, K, 15): how close, how far it turned, how aligned, how far it went."""
+    B, K = g.r.shape
+    gap = g.r - _half_extent(g.phi_a) - _half_extent(g.phi_m)
+    r0 = g.r_safe[:, :1]
+    path = np.cumsum(np.linalg.norm(g.step_m, axis=-1), axis=1)
+    disp = np.linalg.norm(g.m[..., :2] - g.m[:, :1, :2], axis=-1)
     first = np.zeros((B, K))
     first[:, 0] = 1.0
-    cont = [rc / 5.0, np.log(np.maximum(rc, 0.3)), np.clip(gap, -1.0, cfg.max_distance) / 5.0,
-            np.clip(r - r0, -cfg.max_distance, cfg.max_distance) / 5.0,
-            np.clip(np.log(r_safe / r0), -3, 3), np.cos(rel), np.sin(rel), np.clip(swept / np.pi, -4, 4),
-            np.clip(np.abs(swept) / np.pi, 0, 4), np.cos(4.0 * phi_a), np.cos(rot), np.sin(rot),
-            np.minimum(path, 4 * cfg.max_distance) / 10.0, np.minimum(disp, cfg.max_distance) / 5.0, first]
-    # cardinal direction: sector of the bearing, sector 0 = the side the mover started on
-    n_cd = cfg.cd_sectors
-    cd = np.mod(np.round(rel / (2 * np.pi / n_cd)), n_cd).astype(int)
-    qdc = np.searchsorted(np.asarray(cfg.qdc_edges), r)
-    # QTC-C: k = moving towards (-) / away (+) from the other, l = to its left (-) / right (+)
-    u = d / r_safe[..., None]  # unit anchor->mover
+    mx = cfg.max_distance
+    cont = [g.rc / 5.0, np.log(np.maximum(g.rc, 0.3)), np.clip(gap, -1.0, mx) / 5.0,
+            np.clip(g.r - r0, -mx, mx) / 5.0, np.clip(np.log(g.r_safe / r0), -3, 3), np.cos(g.rel), np.sin(g.rel),
+            np.clip(g.swept / np.pi, -4, 4), np.clip(np.abs(g.swept) / np.pi, 0, 4), np.cos(4.0 * g.phi_a),
+            np.cos(g.rot), np.sin(g.rot), np.minimum(path, 4 * mx) / 10.0, np.minimum(disp, mx) / 5.0, first]
+    return np.stack(cont, axis=-1)
+
+
+def _mv_qtc(g: _Geometry, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """MV (B, K, 2: each block moving or static) and QTC-C (B, K, 4): k = moving towards (-) / away (+)
+    from the other, l = to its left (-) / right (+), for the mover and the anchor."""
+    u = g.d / g.r_safe[..., None]  # unit anchor->mover
     u_prev = np.concatenate([u[:, :1], u[:, :-1]], axis=1)
-    eps = cfg.moving_eps
 
     def sign(v: np.ndarray) -> np.ndarray:
         return np.where(v > eps, 1.0, np.where(v < -eps, -1.0, 0.0))
 
-    k_m = sign(np.sum(step_m * u_prev, axis=-1))
-    k_a = sign(-np.sum(step_a * u_prev, axis=-1))
-    cross = u_prev[..., 0] * step_m[..., 1] - u_prev[..., 1] * step_m[..., 0]
-    l_m = sign(-cross)
-    cross_a = u_prev[..., 0] * step_a[..., 1] - u_prev[..., 1] * step_a[..., 0]
-    l_a = sign(cross_a)
-    mv_m = (np.linalg.norm(step_m, axis=-1) > eps).astype(float)
-    mv_a = (np.linalg.norm(step_a, axis=-1) > eps).astype(float)
-    qtc = np.stack([k_m, k_a, l_m, l_a], axis=-1)
+    k_m = sign(np.sum(g.step_m * u_prev, axis=-1))
+    k_a = sign(-np.sum(g.step_a * u_prev, axis=-1))
+    l_m = sign(-(u_prev[..., 0] * g.step_m[..., 1] - u_prev[..., 1] * g.step_m[..., 0]))
+    l_a = sign(u_prev[..., 0] * g.step_a[..., 1] - u_prev[..., 1] * g.step_a[..., 0])
+    mv_m = (np.linalg.norm(g.step_m, axis=-1) > eps).astype(float)
+    mv_a = (np.linalg.norm(g.step_a, axis=-1) > eps).astype(float)
+    return np.stack([mv_m, mv_a], axis=-1), np.stack([k_m, k_a, l_m, l_a], axis=-1)
 
-    def changed(x: np.ndarray) -> np.ndarray:
-        prev = np.concatenate([x[:, :1], x[:, :-1]], axis=1)
-        diff = x != prev
-        return (diff.any(axis=-1) if diff.ndim == 3 else diff).astype(float)
 
-    d_dist = np.diff(rc, axis=1, prepend=rc[:, :1]) / cfg.spacing
-    d_swept = np.diff(swept, axis=1, prepend=swept[:, :1]) / cfg.spacing
-    d_rot = np.sin(np.diff(rot, axis=1, prepend=rot[:, :1]))
-    out = np.concatenate(
-        [np.stack(cont, axis=-1), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc],
-         np.stack([mv_m, mv_a], axis=-1), qtc,
-         np.stack([np.clip(d_dist, -2, 2), np.clip(d_swept, -2, 2), d_rot,
-                   changed(cd), changed(qdc), changed(qtc)], axis=-1)],
-        axis=-1,
-    )
-    out[~valid] = 0.0
-    return out.astype(np.float32)
+def _changed(x: np.ndarray) -> np.ndarray:
+    """1 where a qualitative relation (B, K) or (B, K, n) differs from the frame before."""
+    prev = np.concatenate([x[:, :1], x[:, :-1]], axis=1)
+    diff = x != prev
+    return (diff.any(axis=-1) if diff.ndim == 3 else diff).astype(float)
 
 
 def motion_features(mover: np.ndarray, anchor: np.ndarray, size: float,
