@@ -166,6 +166,22 @@ def _check_shapes(folder: Path, manifest: dict) -> None:
                               f"[model] implies {list(shape)}")
 
 
+def _check_declaration(folder: Path, manifest: dict) -> None:
+    """The declared frame and number of anchors are valid and match what the model was trained with."""
+    from ..core.frames import declaration
+    from ..progress.features import QSRConfig
+
+    try:
+        frame, anchors = declaration(manifest)
+        trained = QSRConfig.from_dict(manifest["features"] if isinstance(manifest["features"], dict) else {})
+    except BundleError as e:
+        raise BundleError(f"{folder / MANIFEST}: {e}") from None
+    if (trained.frame, trained.anchors) != (frame.name, anchors):
+        raise BundleError(f'{folder / MANIFEST}: declares frame = "{frame.name}", anchors = {anchors} but its progress '
+                          f'model was trained with frame "{trained.frame}", {trained.anchors} anchor(s): re-train it '
+                          "(l2p-bullet train ... --out this folder)")
+
+
 def read_manifest(folder: Path) -> dict:
     p = folder / MANIFEST
     if not folder.is_dir():
@@ -197,6 +213,7 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
         read_weights(folder, filename, man)
     if PROGRESS_FILE not in man["weights"]:
         raise BundleError(f'{folder / MANIFEST}: no [weights."{PROGRESS_FILE}"] entry')
+    _check_declaration(folder, man)
     _check_shapes(folder, man)
     return Bundle(str(man["name"]), str(man["version"]), list(man["phrases"]), man, folder)
 
@@ -279,6 +296,9 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
         "schema": SCHEMA, "name": action, "version": version, "requires": REQUIRES,
         "phrases": shipped.get("phrases") or old.get("phrases") or [action],
         "description": shipped.get("description") or old.get("description", ""),
+        # the declaration the model was trained for (left out at the defaults, like the built-ins')
+        "frame": None if qsr_cfg.frame == "relative" else qsr_cfg.frame,
+        "anchors": None if qsr_cfg.anchors == 1 else qsr_cfg.anchors,
         "features": {**qsr_cfg.to_dict(), "names": feature_names(qsr_cfg)},
         "model": model_cfg.to_dict(), "training": training, "metrics": metrics,
         "weights": keep_weights,

@@ -31,8 +31,9 @@ from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..core.frames import declaration
 from ..core.vocabulary import normalize_name, normalize_phrase
-from ..errors import FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
+from ..errors import BundleError, FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
 from .bundle import MANIFEST, PROGRESS_FILE
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -69,6 +70,17 @@ class PluginInfo:
     def phrases(self) -> tuple[str, ...]:
         raw = self.manifest.get("phrases", ())
         return tuple(normalize_phrase(p) for p in raw if isinstance(p, str)) if isinstance(raw, list) else ()
+
+    @property
+    def anchors(self) -> int:
+        """Reference objects its sentences name (the manifest's ``anchors``; 1 unless declared)."""
+        a = self.manifest.get("anchors", 1)
+        return a if isinstance(a, int) and not isinstance(a, bool) else 1
+
+    @property
+    def frame(self) -> str:
+        """Where its relation is seen from (the manifest's ``frame``; "relative" unless declared)."""
+        return str(self.manifest.get("frame", "relative"))
 
     @property
     def description(self) -> str:
@@ -162,6 +174,10 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     phrases = manifest.get("phrases")
     if not (isinstance(phrases, list) and phrases and all(isinstance(p, str) and p.strip() for p in phrases)):
         return manifest, f'{path}: "phrases" must be a non-empty list of phrases such as ["next to", "beside"]'
+    try:
+        declaration(manifest)
+    except BundleError as e:
+        return manifest, f"{path}: {e}"
     declared = manifest.get("name")
     if declared is not None and normalize_name(str(declared)) != normalize_name(name):
         return manifest, f'{path} describes the action "{declared}" but the entry point is named "{name}"'
@@ -226,6 +242,12 @@ def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
             problems[0].args = (f"{problems[0]} (and {len(problems) - 1} more conflicts)",)
         raise problems[0]
     return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases}
+
+
+def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
+    """Action name -> how many reference objects its sentences name, over the usable plugins."""
+    plugins = discover() if plugins is None else plugins
+    return {p.name: p.anchors for p in plugins if p.ok}
 
 
 def broken(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
