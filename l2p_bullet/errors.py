@@ -98,6 +98,10 @@ class UnknownPlannerError(PlanError):
                          + did_you_mean(name.strip().lower(), self.known))
 
 
+class TeachError(L2PError):
+    """A demonstration recorded on the teach page cannot be saved, or the teach app cannot start."""
+
+
 class RunFolderError(L2PError):
     """A run folder already exists (and --force was not given) or cannot be written."""
 

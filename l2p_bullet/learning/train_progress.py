@@ -256,3 +256,20 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                           training=training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg),
                           metrics={"train_loss": round(result.final_loss, 6)})
     return out, result
+
+
+@dataclass(frozen=True)
+class BundleTrainer:
+    """:func:`train_bundle` with fixed settings, handed to code outside ``learning/`` that must not import
+    torch itself (the teach page gets one from its command, which may)."""
+
+    cfg: ProgressTrainConfig = field(default_factory=ProgressTrainConfig)
+
+    @property
+    def ticks(self) -> int:
+        """How many times a training calls ``tick`` (once per member-epoch)."""
+        return self.cfg.ensemble * self.cfg.epochs
+
+    def __call__(self, action: str, out: Path, demo_files: Sequence[str], seed: int = 0,
+                 tick: Callable[[], None] | None = None) -> tuple[Path, TrainResult]:
+        return train_bundle(action, out, demo_files=demo_files, seed=seed, cfg=self.cfg, force=True, tick=tick)

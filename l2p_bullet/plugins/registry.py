@@ -210,6 +210,15 @@ def discover() -> list[PluginInfo]:
     return sorted(found, key=lambda p: (p.name, p.package))
 
 
+def local(name: str, folder: Path) -> PluginInfo:
+    """A bundle folder being authored (not installed: the teach page trains it and performs with it),
+    as a plugin that :func:`load` reads without importing anything and never caches (it may be
+    re-trained at any time). Pass it in the ``plugins`` list of ``perform`` instead of the installed one."""
+    manifest, error = _check_manifest(name, folder)
+    return PluginInfo(name=name, module="", package="(not installed)", package_version="", path=folder,
+                      manifest=manifest, error=error)
+
+
 def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
     """Every name or phrase claimed by two usable plugins (empty when all is well)."""
     out: list[PluginConflict] = []
@@ -288,12 +297,14 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     key = (info.name, str(info.path))
     if key in _LOADED:
         return _LOADED[key]
-    try:
-        mod = importlib.import_module(info.module)
-    except Exception as e:  # a plugin's import error is its own bug: report it, don't crash
-        raise FailedToLoadPlugin(info.name, info.package,
-                                 f"importing {info.module} failed: {type(e).__name__}: {e}") from None
-    folder = _module_folder(mod) or info.path
+    folder = info.path
+    if info.module:  # an installed plugin (not a folder being authored, see local())
+        try:
+            mod = importlib.import_module(info.module)
+        except Exception as e:  # a plugin's import error is its own bug: report it, don't crash
+            raise FailedToLoadPlugin(info.name, info.package,
+                                     f"importing {info.module} failed: {type(e).__name__}: {e}") from None
+        folder = _module_folder(mod) or info.path
     from ..errors import L2PError
     from .bundle import load_bundle
 
@@ -301,7 +312,8 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
         bundle = load_bundle(folder)
     except L2PError as e:
         raise FailedToLoadPlugin(info.name, info.package, f"invalid bundle: {e}") from None
-    _LOADED[key] = bundle
+    if info.module:
+        _LOADED[key] = bundle
     return bundle
 
 
