@@ -202,7 +202,8 @@ class TeachSession:
         tk = t[keep]
         track = np.column_stack([np.interp(grid, tk, s[keep, 1]), np.interp(grid, tk, s[keep, 2]),
                                  np.interp(grid, tk, yaw[keep])])
-        i0, i1 = int(round(start * FPS)), min(int(round(end * FPS)), n - 1)
+        # the event covers the marked interval: the frame at or before the start, at or after the end
+        i0, i1 = int(np.floor(start * FPS + 1e-9)), min(int(np.ceil(end * FPS - 1e-9)), n - 1)
         if i1 - i0 < 5:
             raise TeachError("the demonstration is too short: mark the start, slide the block, then mark the end")
         travel = float(np.linalg.norm(np.diff(track[i0:i1 + 1, :2], axis=0), axis=1).sum()) / mover.size
