@@ -25,8 +25,10 @@ declaration (:func:`build`; the five built-in actions take none of these branche
   the line through the anchor at right angles to it (in front <-> behind): a reflection that moves the
   ends to a side the demonstrations never end on (:func:`viewer_sides`) is a **negative** (the left-of
   model learns that right-of motions are not it), one that keeps them where they end is a positive
-  (in front stays in front when left and right are swapped). The other actions' demonstrations, as
-  negatives, are seen from a viewpoint placed so that they end on a side this action does not.
+  (in front stays in front when left and right are swapped). Near misses are negatives too: the end
+  turned (start kept) to a bearing no demonstration ends at, or stretched beyond the farthest; twisted
+  copies (start turned, end kept) are positives. The other actions' demonstrations, as negatives, are
+  seen from a viewpoint placed so that they end on a side this action does not.
 - **two anchors**: the second anchor's track goes along; stretched copies are stretched about the
   event's end (where the relation holds) instead of about the first anchor; the other actions'
   demonstrations get a second anchor on the far side of the first from where they end (ending beside
@@ -54,7 +56,7 @@ from .views import (
     placed,
     smooth_poses,
     stretched,
-    turned_viewer,
+    twisted_end,
     viewer_sides,
     views,
 )
@@ -348,7 +350,8 @@ def _positives(action: str, d: Demo, qcfg: QSRConfig, dcfg: DataConfig, rng: np.
         c = aa[d.start:d.end + 1].mean(axis=0)
         cc = None if cx is None else cx.at_event(d)
         about_end = qcfg.anchors > 1
-        variants, net_variants = _copies(action, mm[d.start:d.end + 1], c, d.size, dcfg, rng, about_end)
+        variants, net_variants = _copies(action, mm[d.start:d.end + 1], c, d.size, dcfg, rng, about_end,
+                                         twist=qcfg.viewer)
         for pm in variants:
             if pm is not None:
                 pa = np.repeat(c[None], len(pm), axis=0)
@@ -361,10 +364,12 @@ def _positives(action: str, d: Demo, qcfg: QSRConfig, dcfg: DataConfig, rng: np.
 
 
 def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: DataConfig,
-            rng: np.random.Generator, about_end: bool = False) -> tuple[list, list]:
+            rng: np.random.Generator, about_end: bool = False, twist: bool = False) -> tuple[list, list]:
     """The event's copies (see :class:`DataConfig`): those labelled like the event, and those labelled by
     the net distance gained (``net_label`` actions). None entries are copies that could not be made.
-    ``about_end`` stretches about the event's end instead of the anchor (two-anchor actions)."""
+    ``about_end`` stretches about the event's end instead of the anchor (two-anchor actions); ``twist``
+    adds twisted copies (a viewer-frame action: where the block comes from is not the relation, where
+    it ends is)."""
     variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
     for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
         pm = _event_or_polyline(ev_m, c, rng)
@@ -381,7 +386,7 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
         if pm is not None:
             pm = _scaled(pm, pm[0], rng.uniform(*dcfg.shortened[action]))
         variants.append(pm)
-    for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions else 0):
+    for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions or twist else 0):
         pm = _event_or_polyline(ev_m, c, rng)
         angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
         variants.append(None if pm is None else _twist(pm, c, angle))
@@ -407,7 +412,7 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
 
 
 NEAR_MISSES = 2
-"""Near misses per positive view of a two-anchor or viewer-frame demonstration (``views.displaced``, ``views.turned_viewer``)."""
+"""Near misses per positive view of a two-anchor or viewer-frame demonstration (``views.displaced``, ``views.twisted_end``)."""
 
 
 def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
@@ -446,10 +451,10 @@ def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg:
             m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
             for mm, aa, cx, positive in views(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
                 wrong = [(mm, cx)] if not positive else (
-                    [(mm, turned_viewer(d, mm, aa, cx, bearings, rng)) for _ in range(NEAR_MISSES)]
+                    [(twisted_end(d, mm, aa, cx, bearings, rng), cx) for _ in range(NEAR_MISSES)]
                     + [(stretched(d, mm, aa, farthest, rng), cx)])
                 for wm, x in wrong:
-                    if x is None:
+                    if wm is None:
                         continue
                     neg.append(_labelled(wm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False,
                                          ctx=x.crop(0, d.end + 1)))

@@ -132,19 +132,27 @@ def end_bearings(demos: list[Demo]) -> tuple[float, float]:
     return centre, float(np.abs(np.angle(np.exp(1j * (beta - centre)))).max())
 
 
-def turned_viewer(d: Demo, m: np.ndarray, a: np.ndarray, ctx: Context, bearings: tuple[float, float],
-                  rng: np.random.Generator) -> Context | None:
-    """The demonstration seen from a viewer turned about the anchor so that the mover ends at a bearing no
-    demonstration ends at (:data:`BEARING_MARGIN` beyond them): a near miss, the negative that teaches how
-    exactly "left of" is left. None when the demonstrations end all round (nothing is outside)."""
+def twisted_end(d: Demo, m: np.ndarray, a: np.ndarray, ctx: Context, bearings: tuple[float, float],
+                rng: np.random.Generator) -> np.ndarray | None:
+    """The mover's track turned about the anchor progressively (not at all at the event's start, fully at
+    its end, by arc length) so that it ends at a bearing (seen from the viewer) :data:`BEARING_MARGIN`
+    or more beyond every demonstration's: the same start, the same distances, the wrong place. A near
+    miss, the negative that teaches how exactly "left of" is left, and with the same starts as the
+    positives, so that where a motion starts is no cue. None when the demonstrations end all round."""
     centre, half = bearings
     if half + BEARING_MARGIN >= np.pi:
         return None
     beta = float(np.arctan2(*viewer_offset(m[d.end, :2], a[d.end, :2], ctx.viewer)))
     target = centre + rng.choice([-1.0, 1.0]) * rng.uniform(half + BEARING_MARGIN, np.pi)
+    turn = float(np.angle(np.exp(1j * (target - beta))))
     c = a[d.start:d.end + 1].mean(axis=0)
-    viewer = turn_about(np.r_[ctx.viewer, 0.0], c, beta - target)[:2]
-    return Context(ctx.more, viewer)
+    step = np.linalg.norm(np.diff(m[d.start:d.end + 1, :2], axis=0), axis=1)
+    frac = np.concatenate([np.zeros(d.start), np.concatenate([[0.0], np.cumsum(step)]) / max(step.sum(), 1e-9),
+                           np.ones(len(m) - d.end - 1)])
+    out = np.array(m, float)
+    for k in np.flatnonzero(frac > 0):
+        out[k] = turn_about(m[k], c, turn * frac[k])
+    return out
 
 
 FAR = (1.25, 2.5)
