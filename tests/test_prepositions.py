@@ -331,3 +331,30 @@ def test_two_anchor_planning_leaves_both_anchors_untouched():
     with pytest.raises(PlanError):  # the model reads two anchors
         plan(scene, "A", "B", FakeBundle())
 
+
+
+def test_train_takes_a_folder_of_demonstrations(tmp_path):
+    from l2p_bullet.learning.demos import expand_files
+
+    files = write_sessions(tmp_path / "d", "left-of", sessions=2, events=2)
+    assert expand_files([tmp_path / "d"]) == sorted(files)
+    assert expand_files([files[0]]) == [files[0]]
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(DataError):
+        expand_files([tmp_path / "empty"])
+
+
+def test_new_action_and_teach_on_the_command_line(tmp_path, monkeypatch):
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    r = CliRunner().invoke(main, ["new-action", "between", "--phrase", "between", "--anchors", "2",
+                                  "--judge", "between"])
+    assert r.exit_code == 0, r.output
+    assert "pip install ./l2p-between" in r.output and 'perform "move A between B and C"' in r.output
+    r = CliRunner().invoke(main, ["new-action", "left2", "--phrase", "leftish", "--judge", "nowhere"])
+    assert r.exit_code == 2 and r.output.startswith("error:")
+    r = CliRunner().invoke(main, ["teach", "left-of"])  # not scaffolded here
+    assert r.exit_code == 2 and r.output.startswith("error:") and "new-action left-of" in r.output

@@ -107,8 +107,8 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
       l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
       l2p-bullet new-action between --phrase between --anchors 2 --judge between
     \b
-    Then: write demonstrations into DIR/demos (see DIR/README.md),
-          l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
+    Then: write demonstrations into DIR/demos (see DIR/README.md, or use l2p-bullet teach NAME),
+          l2p-bullet train NAME --demos DIR/demos --out DIR/<module>
           pip install DIR
           l2p-bullet perform "move A <phrase> B"
     """
@@ -121,8 +121,9 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
                  anchors=anchors, judge=judge)
     click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
     click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
-    click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")
-    click.echo(f"  3. pip install {s.root}")
+    here = s.root if s.root.is_absolute() else f"./{s.root}"
+    click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos --out {s.package_dir}")
+    click.echo(f"  3. pip install {here}")
     click.echo(f'  4. l2p-bullet perform "move A {registry.normalize_phrase(phrases[0])} B'
                + (' and C"' if anchors == 2 else '"'))
 

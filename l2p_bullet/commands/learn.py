@@ -19,8 +19,9 @@ from .common import force_option, seed_option
 
 @click.command()
 @click.argument("action")
-@click.option("--demos", "demo_files", multiple=True, type=click.Path(dir_okay=False),
-              help="Capture session files (.npz) of ACTION to train on instead of the shipped ones (repeatable).")
+@click.option("--demos", "demo_files", multiple=True, type=click.Path(),
+              help="Capture session files (.npz) of ACTION to train on instead of the shipped ones, or a folder "
+                   "of them (repeatable).")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
               help="Bundle folder to write (default: runs/bundles/<action>).")
 @seed_option
@@ -38,6 +39,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     Examples:
       l2p-bullet train around --out my_around
       l2p-bullet train closer --demos SlideToward_Session1.npz --seed 3 --out closer_s1
+      l2p-bullet train left-of --demos l2p-left-of/demos --out l2p-left-of/l2p_left_of
     """
     import dataclasses
 

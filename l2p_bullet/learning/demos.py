@@ -175,6 +175,21 @@ def save_session(path: str | Path, tracks: list[np.ndarray], events: np.ndarray,
     return p
 
 
+def expand_files(paths: list[str | Path]) -> list[Path]:
+    """Demonstration files as given on the command line: a folder stands for every ``.npz`` in it."""
+    out: list[Path] = []
+    for raw in paths:
+        p = Path(raw)
+        if p.is_dir():
+            found = sorted(p.glob("*.npz"))
+            if not found:
+                raise DataError(f"no demonstration files (.npz) in the folder {p}")
+            out += found
+        else:
+            out.append(p)
+    return out
+
+
 def session_files(action: str, root: str | Path | None = None) -> list[Path]:
     """The capture files of an action, sorted by session."""
     src = SOURCE_NAMES[canonical_action(action)]

@@ -230,7 +230,9 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     """
     from ..errors import RunFolderError
     from ..plugins.bundle import MANIFEST, PROGRESS_FILE, write_progress_bundle
-    from .demos import load_demos
+    from .demos import expand_files, load_demos
+
+    demo_files = [str(f) for f in expand_files(list(demo_files))]
 
     name, plugin = training_target(action, out, demo_files)
     out = out if out is not None else Path("runs") / "bundles" / name

@@ -199,9 +199,9 @@ model was trained with is refused).
 
 Any of three ways; all end as capture-session files in `demos/`:
 
-- **record them in the browser**: `l2p-bullet teach {name} --demos demos/{name}.npz` opens a page with a
-  top-down view of a random scene; drag the block with the mouse, mark start and end, and each
-  demonstration is appended to the file;
+- **record them in the browser**: `l2p-bullet teach {name}` (run next to this folder, or with
+  `--plugin {root}`) opens a page with a top-down view of a random scene; drag the block with the mouse,
+  mark start and end, and each demonstration is appended to `demos/{name}_taught.npz`;
 - **generate examples** of a few simple prepositions (left-of, right-of, in-front-of, behind, between),
   enough to try the whole path:
 
@@ -265,7 +265,7 @@ Check that they load: `python -c "from l2p_bullet.learning.demos import load_ses
 
 ## 2. Train
 
-    l2p-bullet train {name} --demos demos/*.npz --out {module}
+    l2p-bullet train {name} --demos demos --out {module}
 
 This writes `{module}/progress.safetensors` and completes `{module}/manifest.toml` (model, training data
 digest, metrics); the phrases and the declaration stay. The shipped demonstrations of the built-in
@@ -277,7 +277,7 @@ searches without it):
 
 ## 3. Install and use
 
-    pip install .            # or: pip install -e .
+    pip install .            # or: pip install -e .  (a plain install copies the bundle: re-install after re-training)
     l2p-bullet actions       # "{name}" is listed with its phrases
     l2p-bullet perform "{example}"
 
