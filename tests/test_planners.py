@@ -173,7 +173,6 @@ def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
     assert np.allclose(a * np.array([1, -1, -1]), b)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("action", ["closer", "away", "next-to", "past", "around"])
 def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     """The real bundles (progress model + policy) through the default planner: legal, dense, repeatable."""
