@@ -85,7 +85,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
     it would in a new world) and left open. A world made here is closed here.
     """
-    from .record import write_summary
+    from ..core.runfolder import write_summary
     from .sim.world import World
 
     meta = dict(meta or {})
