@@ -132,7 +132,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             files["trajectory"] = out_dir / "trajectory.json"
             recorder.write_trajectory(files["trajectory"], meta, world.sizes)
             if camera is not None:
-                files |= recorder.write_images(out_dir, render.video)
+                files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
         stage("done")
         execution = Execution(recorder.frames, timings, files, deviation, displaced, lift, removed,
                               world.time, stats)
