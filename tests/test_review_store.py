@@ -179,3 +179,35 @@ def test_disparity_and_confusion():
     c = confusion([("a", "a"), ("a", "b"), ("b", "b"), ("x", "a")], ["a", "b"], ["a", "b", "none"])
     assert c["counts"] == [[1, 1, 0], [0, 1, 0]]
     assert c["shares"] == [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0]]
+
+
+def test_report_of_blind_labels_and_of_both_views(tmp_path, run_folder):  # noqa: F811
+    """Question 2 and 3 from answers stored the way the app stores them, on real runs."""
+    store = Store(tmp_path / "r.sqlite")
+    runs = [r for r in find_runs([run_folder]) if r.video is not None]  # closer, next-to, past
+    store.register_runs(runs)
+    by_action = {r.action: r for r in runs}
+    labels = {"ann": {"closer": "closer", "next-to": "closer", "past": "past"},
+              "bob": {"closer": "closer", "next-to": "next-to", "past": "none"},
+              "cy": {"closer": "next-to", "next-to": "closer", "past": "past"}}
+    for who, picks in labels.items():
+        for action, label in picks.items():
+            store.save_answer(Answer(by_action[action].run_id, who, "blind", "3d", 5, label),
+                              by_action[action].trajectory_sha256)
+    for view, grades in (("2d", {"closer": 4, "next-to": 6, "past": 8}), ("3d", {"closer": 5, "next-to": 9, "past": 9})):
+        for action, g in grades.items():
+            store.save_answer(Answer(by_action[action].run_id, "ann", "graded", view, g), by_action[action].trajectory_sha256)
+    rep = build_report(store.grades())
+    b = rep["blind"]
+    assert b["confusion"]["rows"] == ["closer", "next-to", "past"]
+    assert b["confusion"]["cols"] == ["closer", "next-to", "past", "none"]
+    assert b["confusion"]["counts"] == [[2, 1, 0, 0], [2, 1, 0, 0], [0, 0, 2, 1]]
+    expected = fleiss_kappa(np.array([[2, 1, 0, 0], [2, 1, 0, 0], [0, 0, 2, 1]]))["kappa"]
+    assert b["fleiss"]["kappa"] == pytest.approx(expected, abs=1e-4) and b["fleiss"]["items"] == 3
+    assert b["accuracy"] == pytest.approx(5 / 9, abs=1e-4)
+    views = {v["action"]: v for v in rep["views"]}
+    assert views["past"]["mean_2d"] == 8 and views["past"]["mean_3d"] == 9 and views["next-to"]["mean_3d_minus_2d"] == 3
+    (row,) = [r for r in rep["graded"]["app"] if r["action"] == "past"]
+    assert row["views"] == "3d+2d" and row["mean_grade"] == 8.5 and row["disparity"] is None  # one grader
+    files = write_report(rep, tmp_path / "rep")
+    assert {"confusion.png", "views.png", "confusion.csv", "table1_app.csv"} <= {f.name for f in files}

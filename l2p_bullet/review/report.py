@@ -147,12 +147,15 @@ def graded_table(rows: list[GradeRow], motions: _Motions) -> list[dict]:
             f, j = motions.scores(rs[0].action, m) if m is not None and rs[0].action else (None, None)
             finals.append(f)
             judged.append(j)
-        per_item = [[r.grade for r in rs] for rs in runs.values()]
+        per_item: dict[tuple[str, str], list[int]] = defaultdict(list)  # between graders, within one view
+        for rs in runs.values():
+            for r in rs:
+                per_item[(r.run_id, r.view)].append(r.grade)
         table.append({
             "group": g, "action": next(iter(runs.values()))[0].action, "runs": len(runs), "grades": len(all_grades),
             "reviewers": len({r.reviewer for rs in runs.values() for r in rs}),
             "views": "+".join(sorted({r.view for rs in runs.values() for r in rs}, reverse=True)),
-            "mean_grade": _f(np.mean(all_grades)), "disparity": _f(disparity(per_item)),
+            "mean_grade": _f(np.mean(all_grades)), "disparity": _f(disparity(per_item.values())),
             "spearman_final_progress": _spearman(finals, means), "spearman_judge": _spearman(judged, means),
             "_points": {"mean": means, "final": finals, "judge": judged},
         })

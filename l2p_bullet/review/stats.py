@@ -4,7 +4,8 @@
   the same number when both graded every demo);
 - evaluator disparity (the paper's Table 1): per demo the absolute difference between its two graders'
   grades, averaged over the demos (the study's spreadsheet: ``AVERAGE(ABS(B - C))``). With more than
-  two graders a demo contributes the mean absolute difference over its pairs of graders;
+  two graders a demo contributes the mean absolute difference over its pairs of graders; a run shown
+  in both views is two items (the disparity is between people, not between views);
 - Fleiss' kappa over the blind labels (as ``notebooks/score_3d_scene.ipynb``): P_i the share of agreeing
   rater pairs on item i, p_j the share of all labels in category j,
   kappa = (mean P_i - sum p_j^2) / (1 - sum p_j^2). Items rated by fewer than two people carry no

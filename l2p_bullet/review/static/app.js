@@ -198,7 +198,13 @@ function play() {
     for (let i = 0; i < it.frames; i++) { const img = new Image(); img.src = `/api/media/${it.key}/frames/${i}`; S.frames.push(img); }
   }
   S.clock0 = performance.now();
-  const tick = () => { draw(now()); S.raf = requestAnimationFrame(tick); };
+  delete document.body.dataset.ended;
+  const tick = () => {
+    const t = now();
+    draw(t);
+    if (t >= S.item.duration) document.body.dataset.ended = "1";  // played to the end (tests, benchmark)
+    S.raf = requestAnimationFrame(tick);
+  };
   tick();
 }
 
