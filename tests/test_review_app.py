@@ -124,29 +124,31 @@ BAD = [
     (b"{not json", "not valid JSON"),
     (b"[]", None),
     (b'{"reviewer": "ann"}', "key"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": 11}).encode(), "grade"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": -1}).encode(), "grade"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": "7"}).encode(), "grade"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": 7.5}).encode(), "grade"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": True}).encode(), "grade"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 11}).encode(), "grade"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": -1}).encode(), "grade"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": "7"}).encode(), "grade"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7.5}).encode(), "grade"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": True}).encode(), "grade"),
     (json.dumps({"reviewer": "ann", "key": "KEY", "view": "4d", "grade": 7}).encode(), "view"),
-    (json.dumps({"reviewer": "", "key": "KEY", "view": "3d", "grade": 7}).encode(), "reviewer"),
-    (json.dumps({"reviewer": "a\u0007b", "key": "KEY", "view": "3d", "grade": 7}).encode(), "name"),
-    (json.dumps({"reviewer": "x" * 41, "key": "KEY", "view": "3d", "grade": 7}).encode(), "reviewer"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": 7, "admin": True}).encode(), "admin"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": 7, "comment": "x" * 2001}).encode(), "comment"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d", "grade": 7, "label": "past"}).encode(), "label"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "3d"}).encode(), "grade"),
-    (json.dumps({"reviewer": "ann", "key": "0123456789abcdef", "view": "3d", "grade": 7}).encode(), "no run"),
-    (json.dumps({"reviewer": "ann", "key": "../../etc/passwd", "view": "3d", "grade": 7}).encode(), "key"),
+    (json.dumps({"reviewer": "", "key": "KEY", "view": "VIEW", "grade": 7}).encode(), "reviewer"),
+    (json.dumps({"reviewer": "a\u0007b", "key": "KEY", "view": "VIEW", "grade": 7}).encode(), "name"),
+    (json.dumps({"reviewer": "x" * 41, "key": "KEY", "view": "VIEW", "grade": 7}).encode(), "reviewer"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "admin": True}).encode(), "admin"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "comment": "x" * 2001}).encode(), "comment"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "label": "past"}).encode(), "label"),
+    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW"}).encode(), "grade"),
+    (json.dumps({"reviewer": "ann", "key": "0123456789abcdef", "view": "VIEW", "grade": 7}).encode(), "no run"),
+    (json.dumps({"reviewer": "ann", "key": "../../etc/passwd", "view": "VIEW", "grade": 7}).encode(), "key"),
 ]
 
 
 def test_bad_requests_get_a_4xx_with_a_message(live):  # noqa: F811
     s = live()
-    key = _next(s, "ann")["key"]
+    item = _next(s, "ann")
+    key = item["key"]
     for raw, words in BAD:
-        status, body = s.call("POST", "/api/answer", raw=raw.replace(b"KEY", key.encode()))
+        raw = raw.replace(b"KEY", key.encode()).replace(b"VIEW", item["view"].encode())
+        status, body = s.call("POST", "/api/answer", raw=raw)
         assert 400 <= status < 500, (raw, status, body)
         assert isinstance(body, dict) and body["error"], (raw, body)
         if words:

@@ -109,6 +109,7 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
     served = [r for r in run_infos if regrade_changed or r.run_id not in changed]
     labels = [p.name for p in registry.discover() if p.ok]
     session = ReviewSession(store, served, mode=mode, view=view, labels=labels)
+    session.problems.update({rid: "changed" for rid in changed if not regrade_changed})  # the page says so too
     app = create_app(session, host=host)
     sock = bind(host, port)
     if host not in LOOPBACK:

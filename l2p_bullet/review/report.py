@@ -103,7 +103,7 @@ def _group(row: GradeRow) -> str:
 
 def problems(rows: list[GradeRow]) -> tuple[list[GradeRow], list[dict]]:
     """(rows whose run is still the one graded, problems: runs gone or changed since graded)."""
-    from .runs import sha256_file
+    from ..plugins.bundle import sha256_file
 
     status: dict[tuple[str, str], str | None] = {}
     for r in rows:

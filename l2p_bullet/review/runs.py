@@ -13,17 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ReviewError
+from ..plugins.bundle import sha256_file
 
 VIEWS = ("3d", "2d")
 """What a reviewer is shown: "3d" the rendered video (or its raw frames), "2d" a top-down animation."""
-
-
-def sha256_file(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for chunk in iter(lambda: f.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
 
 
 def run_id_for(folder: Path) -> str:
