@@ -116,3 +116,25 @@ def test_two_reviewers_at_once(live, chromium):  # noqa: F811
     assert sorted((g.reviewer, g.grade) for g in grades) == [("ann", 3), ("ann", 3), ("bob", 8), ("bob", 8)]
     assert len({g.run_id for g in grades if g.reviewer == "ann"}) == 2
     assert not ea and not eb
+
+
+def test_the_same_reviewer_in_two_windows_never_overwrites_silently(live, chromium):  # noqa: F811
+    s = live()
+    context = chromium.new_context(viewport={"width": 1000, "height": 660})
+    a, b = context.new_page(), context.new_page()
+    a.goto(s.url)
+    first = _login(a, "ann")
+    b.goto(s.url)  # same browser profile: the name is remembered, the same run is shown
+    assert _shown(b) == first
+    _keys(a, "4", "Enter")
+    _shown(a, first)
+    _keys(b, "6", "Enter")  # refused: b shows ann's stored answer instead
+    b.wait_for_function("document.getElementById('status').textContent.includes('the stored answer now')")
+    assert b.inner_text("#grades button.selected") == "44"
+    (g,) = s.store.grades()
+    assert g.grade == 4
+    _keys(b, "6", "Enter")  # now it is a change of the stored answer
+    _shown(b, first)
+    (g,) = s.store.grades()
+    assert g.grade == 6 and [e["grade"] for e in s.store.log()] == [4, 6]
+    context.close()

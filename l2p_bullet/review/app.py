@@ -69,7 +69,7 @@ def static_dir() -> Path:
 def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
     app = FastAPI(title="l2p-bullet review", version=__version__, docs_url=None, redoc_url=None)
     if host in LOOPBACK:  # a web page elsewhere cannot reach the app through a rebound DNS name
-        app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]", "testserver"])
+        app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]"])
     _errors(app)
 
     @app.middleware("http")

@@ -156,6 +156,14 @@ async function submit() {
       S.config = await api("GET", "/api/config");
       showProblems(S.config.problems);
       await loadHistory();
+      if (e.reason === "changed" || e.reason === "missing") {  // this run is out of the queue: go on
+        await loadNext();
+        status(`not saved: ${e.message}`, "error");
+      } else {  // answered or changed in another window: show the stored answer, to change it from there
+        const r = await api("GET", `/api/item/${body.key}?view=${body.view}&reviewer=${encodeURIComponent(S.reviewer)}`);
+        await show(r.item);
+        status(`not saved: ${e.message}; this is the stored answer now`, "error");
+      }
     }
   } finally { S.busy = false; }
 }
