@@ -197,7 +197,7 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     files = {"trajectory": out_dir / "trajectory.json"}
     recorder.write_trajectory(files["trajectory"], meta, sizes)
     if recorder.camera is not None:
-        files |= recorder.write_images(out_dir, render.video)
+        files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
     return files
 
 
