@@ -2,8 +2,8 @@
 
 Every command lives in ``l2p_bullet/commands/`` and imports only click at module level: torch and
 pybullet are imported inside the command bodies, so ``l2p-bullet --help`` starts fast.
-User errors (:class:`L2PError`) become a one-line message and exit code 2; anything else is a bug
-and keeps its traceback.
+User errors (:class:`L2PError`, and a command's bad options) become a one-line message and exit code 2;
+anything else is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
@@ -23,6 +23,10 @@ class _Group(click.Group):
             return super().invoke(ctx)
         except L2PError as e:
             click.echo(f"error: {e}", err=True)
+            sys.exit(e.exit_code)
+        except click.UsageError as e:  # a bad option of a command: one line too, like every other error
+            where = f" (see: {e.ctx.command_path} --help)" if e.ctx is not None else ""
+            click.echo(f"error: {e.format_message()}{where}", err=True)
             sys.exit(e.exit_code)
         except KeyboardInterrupt:
             click.echo("interrupted", err=True)

@@ -99,7 +99,11 @@ class UnknownPlannerError(PlanError):
 
 
 class RunFolderError(L2PError):
-    """A run folder already exists (and --force was not given) or cannot be written."""
+    """A run folder cannot be made: it exists (``state``: finished, running, foreign...) or cannot be written."""
+
+    def __init__(self, message: str, path: object = None, state: str = ""):
+        super().__init__(message)
+        self.path, self.state = path, state
 
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:

@@ -25,10 +25,10 @@ from typing import Any
 import numpy as np
 
 from .core.contracts import Plan, trajectory_poses
-from .core.runfolder import write_summary
+from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .errors import L2PError, PluginError
+from .errors import L2PError, PlanError, PluginError
 from .language import Command, parse
 
 StageFn = Callable[[str], None]
@@ -96,32 +96,57 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
     failed, so a failed run is still explained on disk.
     """
-    from .core.runfolder import prepare_run_folder
-    from .planning import resolve_planner
     from .plugins import registry
 
     clock = StageClock(on_stage)
     clock.stage("parse")
-    resolve_planner(planner)  # a typo must fail before anything is loaded or written
+    check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
     clock.stop()
 
-    out = prepare_run_folder(out_dir, force=force, prefix="perform")
+    with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
+        try:
+            clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
+            bundle = registry.load(cmd.action, plugins)
+            model = bundle.progress_model()
+            return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
+                        budget=budget, threshold=threshold, render_settings=render_settings)
+        except L2PError as e:
+            clock.stop()
+            write_summary(out / "summary.json", {
+                "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
+                "failed_stage": clock.last, "error": str(e), "timings_s": clock.timings,
+            })
+            raise
+        except KeyboardInterrupt:
+            clock.stop()  # run_folder marks the run interrupted; the stage it was in is worth keeping
+            write_summary(out / "summary.json", {
+                **_summary_or_empty(out / "summary.json"), "sentence": cmd.sentence, "action": cmd.action,
+                "interrupted_stage": clock.last, "timings_s": clock.timings})
+            raise
+
+
+def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
+    """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched."""
+    from .planning import resolve_planner
+
+    resolve_planner(planner)
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**32:
+        raise PlanError(f"the seed must be an integer from 0 to {2**32 - 1} (got {str(seed)[:20]})")
+    if budget is not None and (isinstance(budget, bool) or not isinstance(budget, int) or budget < 1):
+        raise PlanError(f"the budget must be a positive number of search steps (got {str(budget)[:20]})")
+    if threshold is not None and not (isinstance(threshold, int | float) and 0.0 <= threshold <= 1.0):
+        raise PlanError(f"the threshold must be a progress between 0 and 1 (got {str(threshold)[:20]})")
+
+
+def _summary_or_empty(path: Path) -> dict:
     try:
-        clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
-        bundle = registry.load(cmd.action, plugins)
-        model = bundle.progress_model()
-        return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
-                    budget=budget, threshold=threshold, render_settings=render_settings)
-    except L2PError as e:
-        clock.stop()
-        write_summary(out / "summary.json", {
-            "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
-            "failed_stage": clock.last, "error": str(e), "timings_s": clock.timings,
-        })
-        raise
+        d = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {"schema": 1}
+    return d if isinstance(d, dict) else {"schema": 1}
 
 
 def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: StageClock, *, planner: str,
@@ -197,11 +222,10 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     sees it), exactly as ``perform`` judges its executed trajectory.
     """
     from . import planning
-    from .core.runfolder import prepare_run_folder
     from .judge import judge_for
     from .plugins import registry
 
-    planning.resolve_planner(planner)  # a bad name fails before anything is loaded
+    check_options(planner, seed, budget, threshold)  # a bad name fails before anything is loaded
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
@@ -213,12 +237,12 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     verdict = judge.judge(result.path, result.anchor_pose, result.size,
                           final_progress=result.extra.get("final_progress")).to_dict()
     result.extra["verdict"] = verdict
-    folder = prepare_run_folder(out_dir, force=force, prefix="plan")
-    result.save(folder / "plan.json")
-    if plot:
-        from .planning.plot import plot_plan
+    with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
+        result.save(folder / "plan.json")
+        if plot:
+            from .planning.plot import plot_plan
 
-        plot_plan(result, scene, folder / "plan.png")
+            plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
 
 

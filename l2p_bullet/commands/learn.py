@@ -8,7 +8,6 @@ folder (:func:`l2p_bullet.plugins.registry.resolve`). The commands only parse op
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -89,9 +88,10 @@ def score(action: str, file: str) -> None:
     FILE is a scoring input {"size", "mover", "anchor"}, a plan.json or a trajectory.json. The motion
     is resampled to the model's frame spacing; the output has one progress value per input frame.
     """
+    from ..core.contracts import dumps_json
     from ..progress.scoring import score_file
 
-    click.echo(json.dumps(score_file(action, file)))
+    click.echo(dumps_json(score_file(action, file)))
 
 
 COMMANDS: list[click.Command] = [train, train_policy_cmd, score]
