@@ -18,7 +18,12 @@ from click.testing import CliRunner
 from l2p_bullet.cli import main
 from l2p_bullet.core.contracts import dumps_json
 from l2p_bullet.core.runfolder import (
-    MARKER, claim_run_folder, finish_run_folder, prepare_run_folder, run_folder, run_folder_state,
+    MARKER,
+    claim_run_folder,
+    finish_run_folder,
+    prepare_run_folder,
+    run_folder,
+    run_folder_state,
 )
 from l2p_bullet.errors import RunFolderError
 

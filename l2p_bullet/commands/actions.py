@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import textwrap
+from pathlib import Path
 
 import click
 
@@ -95,7 +96,8 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
     \b
     Then: write demonstrations into DIR/demos (see DIR/README.md),
           l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
-          pip install DIR
+          <this environment>/bin/pip install ./DIR   (a path: never the bare name, which
+                                                      would fetch a stranger's package)
           l2p-bullet perform "move A <phrase> B"
     """
     from ..plugins import registry
@@ -107,8 +109,25 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
     click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
     click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
     click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")
-    click.echo(f"  3. pip install {s.root}")
+    click.echo(f"  3. {pip_install_command(s.root)}")
     click.echo(f'  4. l2p-bullet perform "move A {registry.normalize_phrase(phrases[0])} B"')
+
+
+def pip_install_command(folder: Path) -> str:
+    """The command that installs the scaffolded plugin into the environment running l2p-bullet.
+
+    Always a path (``./l2p-left-of``), never a bare name: ``pip install l2p-left-of`` would look the
+    name up on the package index and install whatever a stranger published under it.
+    """
+    import shlex
+    import sys
+
+    pip = Path(sys.prefix) / "bin" / "pip"
+    cmd = shlex.quote(str(pip)) if pip.is_file() else f"{shlex.quote(sys.executable)} -m pip"
+    target = str(folder)
+    if not (folder.is_absolute() or target.startswith(("./", "../"))):
+        target = "./" + target
+    return f"{cmd} install {shlex.quote(target)}"
 
 
 COMMANDS: list[click.Command] = [actions_cmd, new_action_cmd]

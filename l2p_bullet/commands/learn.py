@@ -13,17 +13,20 @@ from pathlib import Path
 
 import click
 
-from .common import force_option, seed_option
+from .common import greedy_options, seed_option
 
 
-@click.command()
+@click.command(cls=greedy_options("--demos"))
 @click.argument("action")
 @click.option("--demos", "demo_files", multiple=True, type=click.Path(dir_okay=False),
-              help="Capture session files (.npz) of ACTION to train on instead of the shipped ones (repeatable).")
+              help="Capture session files (.npz) of ACTION to train on instead of the shipped ones: one or "
+                   "more (--demos demos/*.npz), or the option repeated.")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
               help="Bundle folder to write (default: runs/bundles/<action>).")
 @seed_option
-@force_option
+@click.option("--force", is_flag=True,
+              help="Overwrite the manifest and progress weights if --out already holds a trained bundle "
+                   "(other files in it, e.g. policy.safetensors, are kept).")
 @click.option("--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer).")
 @click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer).")
 def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: int, force: bool,
@@ -37,6 +40,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     Examples:
       l2p-bullet train around --out my_around
       l2p-bullet train closer --demos SlideToward_Session1.npz --seed 3 --out closer_s1
+      l2p-bullet train left-of --demos l2p-left-of/demos/*.npz --out l2p-left-of/l2p_left_of
     """
     import dataclasses
 

@@ -202,11 +202,39 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
 
 
 def _write_manifest(folder: Path, manifest: dict) -> None:
-    import tomli_w
+    """Write ``manifest`` as the bundle's manifest.toml, keeping what the author wrote around it.
 
+    The file on disk is edited, not regenerated (tomlkit): comments, key order and formatting of every
+    value that does not change survive a re-train, so a scaffolded plugin's notes and version stay.
+    Written to a temporary file and renamed: a reader never sees half a manifest.
+    """
+    import tomlkit
+    from tomlkit.exceptions import TOMLKitError
+
+    path = folder / MANIFEST
+    try:
+        doc = tomlkit.parse(path.read_text(encoding="utf-8")) if path.is_file() else tomlkit.document()
+    except (OSError, UnicodeDecodeError, TOMLKitError):
+        doc = tomlkit.document()
+    _merge_into(doc, _plain(manifest))
     tmp = folder / (MANIFEST + ".tmp")
-    tmp.write_text(tomli_w.dumps(_plain(manifest)))
-    os.replace(tmp, folder / MANIFEST)
+    tmp.write_text(tomlkit.dumps(doc), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def _merge_into(table: Any, values: dict) -> None:
+    """Make the tomlkit ``table`` hold exactly ``values``, touching only the entries that differ."""
+    for k in [k for k in table if k not in values]:
+        del table[k]
+    for k, v in values.items():
+        if k in table and isinstance(v, dict) and hasattr(table[k], "unwrap") and isinstance(table[k].unwrap(), dict):
+            _merge_into(table[k], v)
+        elif k not in table or _unwrapped(table[k]) != v:
+            table[k] = v
+
+
+def _unwrapped(item: Any) -> Any:
+    return item.unwrap() if hasattr(item, "unwrap") else item
 
 
 def _plain(v: Any) -> Any:
@@ -256,11 +284,13 @@ def update_manifest(bundle_dir: str | os.PathLike, section: str, values: dict) -
 
 def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[str, np.ndarray],
                           model_cfg: ModelConfig, qsr_cfg: Any, *, training: dict, metrics: dict,
-                          version: str = "1.0.0") -> Path:
+                          version: str | None = None) -> Path:
     """Write (or overwrite) a bundle's manifest and progress weights, keeping any policy it already has.
 
     The phrases and description come from the manifest already in ``out_dir`` (a scaffolded plugin's),
     else, for a built-in action, from its shipped manifest: manifests declare phrases, nothing else does.
+    The version is ``version``, else the one already in ``out_dir`` (the author's), else 1.0.0; the
+    manifest's comments survive (:func:`_write_manifest`).
     """
     from ..progress.features import feature_names
 
@@ -276,7 +306,8 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
     keep_weights = {k: v for k, v in old.get("weights", {}).items()
                     if k != PROGRESS_FILE and (folder / k).is_file()}
     man = {
-        "schema": SCHEMA, "name": action, "version": version, "requires": REQUIRES,
+        "schema": SCHEMA, "name": action, "version": version or str(old.get("version") or "1.0.0"),
+        "requires": REQUIRES,
         "phrases": shipped.get("phrases") or old.get("phrases") or [action],
         "description": shipped.get("description") or old.get("description", ""),
         "features": {**qsr_cfg.to_dict(), "names": feature_names(qsr_cfg)},
