@@ -73,17 +73,29 @@ def _round(v: float | None) -> float | None:
     return None if v is None else round(float(v), 6)
 
 
+BLOCKED = "\0blocked:"
+"""Action name given to a blocked phrase while parsing, so that the sentence's own phrase is found."""
+
+
 def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
-    """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported)."""
+    """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported).
+
+    A sentence whose preposition belongs to a broken plugin, or is claimed by two plugins, gets that
+    plugin's error (naming it), not "not a preposition I know"; every other phrase keeps working.
+    """
     from .plugins import registry
 
     plugins = registry.discover() if plugins is None else plugins
     table = registry.phrase_table(plugins)
-    if not table and plugins:
+    blocked = registry.blocked_phrases(plugins)
+    if not table and not blocked and plugins:
         bad = registry.broken(plugins)
         raise PluginError(f"none of the {len(plugins)} installed action plugins can be used (first: "
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
-    return parse(sentence, scene, table)
+    cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table})
+    if cmd.action.startswith(BLOCKED):
+        raise blocked[cmd.action[len(BLOCKED):]]
+    return cmd
 
 
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
@@ -96,6 +108,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
     failed, so a failed run is still explained on disk.
     """
+    from .judge import judge_for
     from .plugins import registry
 
     clock = StageClock(on_stage)
@@ -104,14 +117,15 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
+    clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
+    bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
+    model = bundle.progress_model()
+    judge = judge_for(bundle)
     clock.stop()
 
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:
-            clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
-            bundle = registry.load(cmd.action, plugins)
-            model = bundle.progress_model()
-            return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
+            return _run(cmd, scene, bundle, model, judge, out, clock, planner=planner, seed=seed, render=render,
                         budget=budget, threshold=threshold, render_settings=render_settings)
         except L2PError as e:
             clock.stop()
@@ -149,14 +163,13 @@ def _summary_or_empty(path: Path) -> dict:
     return d if isinstance(d, dict) else {"schema": 1}
 
 
-def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: StageClock, *, planner: str,
+def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: Path, clock: StageClock, *,
+         planner: str,
          seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any) -> PerformResult:
     from . import planning
     from .embodiment import execute
-    from .judge import judge_for
 
     size = scene.get(cmd.mover).size
-    judge = judge_for(bundle)  # a broken [judge] fails at load, not after the arm moved
     clock.stage("plan", f"planning with the {planner} planner")
     plan = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
                          threshold=threshold)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import json
+import sys
 import textwrap
 from pathlib import Path
 
@@ -30,13 +30,17 @@ def _fmt(v: object) -> str:
 
 @click.command("actions")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (for scripts).")
-@click.option("--check", is_flag=True, help="Also load every plugin (imports it, verifies its weights).")
+@click.option("--check", is_flag=True,
+              help="Also load every plugin as perform would (import, manifest, weights, judge); exit 1 if any "
+                   "plugin is broken or two conflict.")
 def actions_cmd(as_json: bool, check: bool) -> None:
     """List the installed action plugins: name, version, package, phrases, metrics.
 
     Plugins are found through the entry-point group "l2p_bullet.actions" without importing them;
-    broken ones are listed with the reason. --check loads each one as perform would.
+    broken ones are listed with the reason. --check loads each one as perform would and exits with
+    status 1 when any plugin is broken or two plugins claim the same name or phrase (0 otherwise).
     """
+    from ..core.contracts import dumps_json
     from ..plugins import registry
 
     plugins = registry.discover()
@@ -57,8 +61,11 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         }
         for p in plugins
     ]
+    failed = check and (bool(reasons) or bool(problems))
     if as_json:
-        click.echo(json.dumps({"actions": rows, "conflicts": problems}, indent=1, default=str))
+        click.echo(dumps_json({"actions": rows, "conflicts": [str(p) for p in problems]}, indent=1))
+        if failed:
+            sys.exit(1)
         return
     good = [r for r in rows if r["ok"]]
     bad = [r for r in rows if not r["ok"]]
@@ -81,6 +88,8 @@ def actions_cmd(as_json: bool, check: bool) -> None:
             click.echo(f'  {r["name"]} (package {r["package"]} {r["package_version"]}): {r["error"]}')
     for msg in problems:
         click.echo(f"conflict: {msg}", err=True)
+    if failed:
+        sys.exit(1)
 
 
 @click.command("new-action")

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 from .. import __version__
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..errors import BundleError
-from ..progress.config import ModelConfig, expected_shapes
+from ..progress.config import ModelConfig
 
 if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
@@ -55,10 +55,13 @@ def read_weights(folder: Path, filename: str, manifest: dict) -> bytes:
     Read once and checked in memory: the file may have changed since the bundle was loaded, and a
     check followed by a second read would leave a window in which it could change again.
     """
-    entry = manifest.get("weights", {}).get(filename)
+    from .validate import safe_weight_name
+
+    weights = manifest.get("weights", {})
+    entry = weights.get(filename) if isinstance(weights, dict) else None
     if not isinstance(entry, dict) or "sha256" not in entry:
         raise BundleError(f'{folder / MANIFEST}: no [weights."{filename}"] sha256 entry')
-    p = folder / filename
+    p = safe_weight_name(folder, filename)
     try:
         data = p.read_bytes()
     except FileNotFoundError:
@@ -143,29 +146,6 @@ class Bundle:
         return self.arrays(POLICY_FILE)
 
 
-def _check_shapes(folder: Path, manifest: dict) -> None:
-    from safetensors import SafetensorError, safe_open
-
-    try:
-        mcfg = ModelConfig.from_dict(manifest["model"])
-    except (KeyError, TypeError, ValueError) as e:
-        raise BundleError(f"{folder / MANIFEST}: [model] needs integer n_features, hidden, ensemble ({e})") from None
-    expected = expected_shapes(mcfg)
-    try:
-        with safe_open(folder / PROGRESS_FILE, framework="numpy") as f:
-            got = {k: tuple(f.get_slice(k).get_shape()) for k in f.keys()}  # noqa: SIM118
-    except (SafetensorError, OSError) as e:
-        raise BundleError(f"{folder / PROGRESS_FILE}: not a readable safetensors file ({e})") from None
-    missing = sorted(set(expected) - set(got))
-    if missing:
-        raise BundleError(f"{folder / PROGRESS_FILE}: missing tensors {', '.join(missing[:3])}"
-                          + (" ..." if len(missing) > 3 else ""))
-    for k, shape in expected.items():
-        if got[k] != shape:
-            raise BundleError(f"{folder / PROGRESS_FILE}: tensor {k} has shape {list(got[k])}, the manifest's "
-                              f"[model] implies {list(shape)}")
-
-
 def read_manifest(folder: Path) -> dict:
     p = folder / MANIFEST
     if not folder.is_dir():
@@ -179,25 +159,28 @@ def read_manifest(folder: Path) -> dict:
 
 
 def load_bundle(path: str | os.PathLike) -> Bundle:
-    """Read and validate a bundle folder (manifest, version, digests, tensor shapes); never unpickles."""
+    """Read and validate a bundle folder; never unpickles.
+
+    The manifest's fields by type and range, the version range, every weights file's digest, and every
+    tensor's shape, dtype and finiteness (:mod:`l2p_bullet.plugins.validate`): a bundle that loads can
+    be planned and scored with, and never yields NaN.
+    """
+    from .validate import check_manifest, check_weights
+
     folder = Path(path)
     man = read_manifest(folder)
     missing = [k for k in REQUIRED_KEYS if k not in man]
     if missing:
         raise BundleError(f"{folder / MANIFEST}: missing {', '.join(missing)}")
-    if man["schema"] != SCHEMA:
-        raise BundleError(f"{folder / MANIFEST}: manifest schema {man['schema']} is not supported "
+    if man["schema"] != SCHEMA or isinstance(man["schema"], bool):
+        raise BundleError(f"{folder / MANIFEST}: manifest schema {str(man['schema'])[:20]} is not supported "
                           f"(this l2p-bullet {__version__} reads schema {SCHEMA})")
-    if not version_satisfies(__version__, str(man["requires"])):
-        raise BundleError(f"{folder / MANIFEST}: bundle requires l2p-bullet {man['requires']}, "
+    if not isinstance(man["requires"], str) or not version_satisfies(__version__, man["requires"]):
+        raise BundleError(f"{folder / MANIFEST}: bundle requires l2p-bullet {str(man['requires'])[:40]}, "
                           f"this is {__version__}")
-    if not isinstance(man["phrases"], list) or not all(isinstance(p, str) for p in man["phrases"]):
-        raise BundleError(f"{folder / MANIFEST}: phrases must be a list of strings")
+    check_manifest(folder, man)
     for filename in man["weights"]:
-        read_weights(folder, filename, man)
-    if PROGRESS_FILE not in man["weights"]:
-        raise BundleError(f'{folder / MANIFEST}: no [weights."{PROGRESS_FILE}"] entry')
-    _check_shapes(folder, man)
+        check_weights(folder, filename, read_arrays(folder, filename, man), man)
     return Bundle(str(man["name"]), str(man["version"]), list(man["phrases"]), man, folder)
 
 
@@ -259,11 +242,13 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     import numpy as np
     from safetensors.numpy import save_file
 
+    from .validate import safe_weight_name
+
     folder = Path(bundle_dir)
     man = read_manifest(folder)
-    if "/" in filename or not filename.endswith(".safetensors"):
+    if not filename.endswith(".safetensors"):
         raise BundleError(f'weights file name "{filename}" must be a plain *.safetensors name')
-    path = folder / filename
+    path = safe_weight_name(folder, filename)
     save_file({k: np.ascontiguousarray(v) for k, v in arrays.items()}, str(path))
     man.setdefault("weights", {})[filename] = {"sha256": sha256_file(path), "bytes": path.stat().st_size}
     if section is not None:
