@@ -28,7 +28,7 @@ from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .errors import L2PError, PlanError, PluginError
+from .errors import L2PError, LanguageError, PlanError, PluginError
 from .language import Command, parse
 
 StageFn = Callable[[str], None]
@@ -92,7 +92,15 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
         bad = registry.broken(plugins)
         raise PluginError(f"none of the {len(plugins)} installed action plugins can be used (first: "
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
-    cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table})
+    try:
+        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table})
+    except LanguageError as e:
+        unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
+        if not unknown or "preposition" not in str(e):
+            raise
+        names = ", ".join(p.label() for p in unknown[:3]) + (" ..." if len(unknown) > 3 else "")
+        raise LanguageError(f"{e} Broken plugins whose phrases cannot be read, one may own it: {names} "
+                            "(see: l2p-bullet actions --check)") from None
     if cmd.action.startswith(BLOCKED):
         raise blocked[cmd.action[len(BLOCKED):]]
     return cmd
