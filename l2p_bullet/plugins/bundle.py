@@ -111,8 +111,8 @@ def version_satisfies(version: str, spec: str) -> bool:
     return True
 
 
-_MODELS: dict[tuple[str, str], Any] = {}
-"""Numpy progress models by (bundle folder, weights digest): the planner, the recorder and a benchmark
+_MODELS: dict[tuple[str, str, str], Any] = {}
+"""Numpy progress models by (bundle folder, weights digest, feature and model settings): the planner, the recorder and a benchmark
 performing many sentences all share one, read and checked once per process."""
 
 
@@ -132,9 +132,12 @@ class Bundle:
 
     def progress_model(self) -> NumpyProgressModel:
         """The progress ensemble for batched scoring, in numpy (no torch), built once per process."""
+        import json
+
         from ..progress.model import NumpyProgressModel
 
-        key = (str(self.path), str(self.manifest["weights"][PROGRESS_FILE].get("sha256", "")))
+        key = (str(self.path), str(self.manifest["weights"][PROGRESS_FILE].get("sha256", "")),
+               json.dumps([self.manifest["features"], self.manifest["model"]], sort_keys=True, default=str))
         if key not in _MODELS:
             _MODELS[key] = NumpyProgressModel.from_bundle(self)
         return _MODELS[key]
