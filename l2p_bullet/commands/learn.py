@@ -48,9 +48,20 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
 
     cfg = ProgressTrainConfig()
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
-    with click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {action}", file=sys.stderr) as bar:
+    bars: list = []
+
+    def tick() -> None:  # the bar starts with the first epoch: a file error before it stays one line
+        if not bars:
+            bars.append(click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {action}",
+                                          file=sys.stderr).__enter__())
+        bars[0].update(1)
+
+    try:
         out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
-                                   cfg=cfg, force=force, tick=lambda: bar.update(1))
+                                   cfg=cfg, force=force, tick=tick)
+    finally:
+        if bars:
+            bars[0].__exit__(None, None, None)
     click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences)")
 
 
