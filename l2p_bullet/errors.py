@@ -43,6 +43,14 @@ class PathError(L2PError):
     """A 2-D path file is unreadable or malformed, or a path leaves the workspace."""
 
 
+class MotionError(L2PError):
+    """A motion cannot be scored: non-finite poses, or longer or wider than :data:`limit` block sides."""
+
+    def __init__(self, message: str, extent_blocks: float = float("nan"), limit: float = float("nan")):
+        super().__init__(message)
+        self.extent_blocks, self.limit = extent_blocks, limit
+
+
 class DataError(L2PError):
     """A demonstration file is missing, unreadable or malformed."""
 
@@ -99,7 +107,11 @@ class UnknownPlannerError(PlanError):
 
 
 class RunFolderError(L2PError):
-    """A run folder already exists (and --force was not given) or cannot be written."""
+    """A run folder cannot be made: it exists (``state``: finished, running, foreign...) or cannot be written."""
+
+    def __init__(self, message: str, path: object = None, state: str = ""):
+        super().__init__(message)
+        self.path, self.state = path, state
 
 
 class ReviewError(L2PError):

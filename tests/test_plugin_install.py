@@ -57,7 +57,11 @@ def test_new_preposition_via_plugin_package(venv: Path, tmp_path: Path):
     work = tmp_path
 
     # 1. scaffold
-    run([*cli, "new-action", "left-of", "--phrase", "to the left of"], work)
+    printed = run([*cli, "new-action", "left-of", "--phrase", "to the left of"], work).stdout
+    # the install step is the local folder with this environment's pip, never a lookup by name
+    assert f"{Path(sys.prefix) / 'bin' / 'pip'} install ./l2p-left-of" in printed or \
+        f"{py} -m pip install ./l2p-left-of" in printed, printed
+    assert "--demos l2p-left-of/demos/*.npz" in printed
     pkg = work / "l2p-left-of"
     module_dir = pkg / "l2p_left_of"
     assert (pkg / "pyproject.toml").exists() and (module_dir / "manifest.toml").exists()
@@ -66,11 +70,14 @@ def test_new_preposition_via_plugin_package(venv: Path, tmp_path: Path):
     files = plugin_demos.write_sessions(pkg / "demos", sessions=2, events=16, seed=0)
 
     # 3. train into the package folder (small ensemble: this is a test of the plumbing)
-    run([*cli, "train", "left-of", *[a for f in files for a in ("--demos", str(f))], "--out", str(module_dir),
+    # as documented: `--demos DIR/demos/*.npz`, which the shell expands to several files after one --demos
+    run([*cli, "train", "left-of", "--demos", *map(str, files), "--out", str(module_dir),
          "--ensemble", "2", "--epochs", "12", "--force"], work, timeout=150)
     assert (module_dir / "progress.safetensors").exists()
     manifest = (module_dir / "manifest.toml").read_text()
     assert "to the left of" in manifest, "training dropped the scaffold's phrases"
+    assert manifest.startswith('# Bundle manifest of the action "left-of".'), "training dropped the comments"
+    assert 'version = "0.1.0"' in manifest, "training replaced the scaffold's version"
 
     # 4. install it into the temporary environment (no network, no build isolation)
     run([sys.executable, "-m", "pip", "--python", py, "install", "--no-deps", "--no-build-isolation",

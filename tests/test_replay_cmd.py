@@ -70,7 +70,7 @@ def test_demo_replay_keeps_the_demo_relative_to_the_anchor(demo_run):
 def test_existing_run_folder_needs_force(demo_run, tmp_path):
     out, _ = demo_run
     r = _replay("--demo", "past:0", "--out", str(out), "--no-render")
-    assert r.exit_code == 2 and "already exists; pass --force" in r.output
+    assert r.exit_code == 2 and "already holds a finished run" in r.output and "--force" in r.output
 
 
 def test_replay_a_scoring_input_and_its_plan(tmp_path):

@@ -9,12 +9,17 @@ The plan (:class:`Plan`) is also what the planner hands to the executor. Readers
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import PathError
+from ..errors import L2PError, PathError
+
+MAX_JSON_BYTES = 64 * 1024 * 1024
+"""The largest JSON input read (a scene, a plan, a trajectory, a scoring input): a 20 s run's
+trajectory.json is about 150 kB, so this only stops a file that would exhaust memory."""
 
 
 @dataclass
@@ -50,7 +55,7 @@ class Plan:
         }
 
     def save(self, path: str | Path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+        Path(path).write_text(dumps_json(self.to_dict(), indent=1) + "\n")
 
     @classmethod
     def from_dict(cls, d: dict, source: str = "plan") -> Plan:
@@ -61,7 +66,7 @@ class Plan:
                 action=str(d["action"]),
                 mover=str(d["mover"]),
                 anchor=str(d["anchor"]),
-                size=float(d["size"]),
+                size=block_size(d["size"], source),
                 anchor_pose=_poses(d["anchor_pose"], source, "anchor_pose").reshape(3),
                 start=_poses(d["start"], source, "start").reshape(3),
                 path=_poses(d["path"], source, "path"),
@@ -72,8 +77,8 @@ class Plan:
             )
         except KeyError as e:
             raise PathError(f'{source}: plan is missing the field "{e.args[0]}"') from None
-        except (TypeError, ValueError) as e:  # "size": "big", "action": {...}: a malformed plan, not a bug
-            raise PathError(f"{source}: malformed plan ({e})") from None
+        except (TypeError, ValueError, OverflowError) as e:  # "size": "big", "action": {...}: malformed, not a bug
+            raise PathError(f"{source}: malformed plan ({str(e)[:120]})") from None
 
 
 @dataclass
@@ -88,10 +93,28 @@ class Motion:
     action: str | None = None
 
 
+MIN_SIZE_M, MAX_SIZE_M = 1e-4, 1e3
+"""Block sides a motion file may give (metres): anything outside is a unit mistake, not a block."""
+
+
+def block_size(value: object, source: str, key: str = "size") -> float:
+    """A motion's block side from a file: a finite number of metres within [MIN_SIZE_M, MAX_SIZE_M]."""
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise PathError(f'{source}: "{key}" must be a number (the block side in metres)')
+    try:
+        size = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise PathError(f'{source}: "{key}" must be a number (the block side in metres)') from None
+    if not MIN_SIZE_M <= size <= MAX_SIZE_M:
+        raise PathError(f'{source}: "{key}" is {size:.3g} m; a block side must be between {MIN_SIZE_M:g} and '
+                        f"{MAX_SIZE_M:g} m")
+    return size
+
+
 def _poses(value: object, source: str, key: str) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError, RecursionError):
         raise PathError(f'{source}: "{key}" must be numbers') from None
     if arr.ndim == 1:
         arr = arr[None]
@@ -107,16 +130,66 @@ def trajectory_poses(frames: list[dict], name: str) -> np.ndarray:
     return np.array([[f["poses"][name][0], f["poses"][name][1], f["poses"][name][3]] for f in frames], float)
 
 
-def read_json(path: str | Path) -> dict:
+def dumps_json(value: object, **kwargs) -> str:
+    """``json.dumps`` for every JSON this tool writes or prints: NaN and infinities become null (JSON has
+    no such numbers; strict readers reject Python's ``NaN`` literal), numpy values and paths plain JSON."""
+    return json.dumps(_finite(value), allow_nan=False, default=_json_default, **kwargs)
+
+
+def _finite(v: object) -> object:
+    if isinstance(v, float):
+        return v if math.isfinite(v) else None
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [_finite(x) for x in v]
+    if isinstance(v, np.generic | np.ndarray):
+        return _finite(v.tolist())
+    return v
+
+
+def _json_default(v: object) -> object:
+    if isinstance(v, Path):
+        return str(v)
+    raise TypeError(f"not JSON serialisable: {type(v).__name__}")
+
+
+def _no_constant(name: str) -> float:
+    raise ValueError(f"{name} is not a JSON number")
+
+
+def load_json_file(path: str | Path, error: type[L2PError] = PathError, what: str = "") -> object:
+    """Parse a JSON file, every failure a one-line ``error`` naming the file.
+
+    Not UTF-8, too large (:data:`MAX_JSON_BYTES`), nested too deep, an integer too long to read, or the
+    ``NaN``/``Infinity`` literals Python's json would otherwise accept: all are the user's file, not a bug.
+    """
     p = Path(path)
+    label = f"{what} {p}" if what else str(p)
     try:
-        data = json.loads(p.read_text())
+        if p.is_file() and p.stat().st_size > MAX_JSON_BYTES:
+            raise error(f"{label} is {p.stat().st_size / 1e6:.0f} MB; the limit is {MAX_JSON_BYTES // 2**20} MiB")
+        raw = p.read_bytes()
     except OSError as e:
-        raise PathError(f"cannot read {p}: {e.strerror or e}") from None
+        raise error(f"cannot read {label}: {e.strerror or e}") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise error(f"{label} is not UTF-8 text (byte {e.start}); save it as UTF-8 JSON") from None
+    try:
+        return json.loads(text, parse_constant=_no_constant)
     except json.JSONDecodeError as e:
-        raise PathError(f"{p} is not valid JSON (line {e.lineno}, column {e.colno}: {e.msg})") from None
+        raise error(f"{label} is not valid JSON (line {e.lineno}, column {e.colno}: {e.msg})") from None
+    except RecursionError:
+        raise error(f"{label} is nested too deeply to be a JSON file of this tool") from None
+    except ValueError as e:  # NaN/Infinity literals, integers beyond Python's digit limit
+        raise error(f"{label} is not valid JSON ({str(e)[:120]})") from None
+
+
+def read_json(path: str | Path) -> dict:
+    data = load_json_file(path)
     if not isinstance(data, dict):
-        raise PathError(f"{p}: expected a JSON object")
+        raise PathError(f"{path}: expected a JSON object")
     return data
 
 
@@ -127,9 +200,14 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
             mover, anchor = str(d["mover"]), str(d["anchor"])
             m_arr = trajectory_poses(d["frames"], mover)
             a_arr = trajectory_poses(d["frames"], anchor)
-            size = float(d["objects"][mover]["size"])
-        except (KeyError, TypeError, IndexError, ValueError) as e:
-            raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {e})") from None
+            size = block_size(d["objects"][mover]["size"], source, f"objects.{mover[:40]}.size")
+        except KeyError as e:
+            raise PathError(f"{source}: not a valid trajectory.json (missing {str(e)[:80]})") from None
+        except IndexError:
+            raise PathError(f"{source}: not a valid trajectory.json (every pose in \"frames\" must be "
+                            "[x, y, z, yaw])") from None
+        except (TypeError, ValueError, OverflowError) as e:
+            raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {str(e)[:80]})") from None
         return Motion(_poses(m_arr, source, "frames"), _poses(a_arr, source, "frames"), size, mover, anchor,
                       d.get("action"))
     if "path" in d:  # plan.json
@@ -148,13 +226,7 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
         anchor = np.repeat(anchor, len(mover), axis=0)
     if len(mover) != len(anchor):
         raise PathError(f'{source}: "mover" has {len(mover)} poses but "anchor" has {len(anchor)}')
-    try:
-        size = float(d["size"])
-    except (TypeError, ValueError):
-        raise PathError(f'{source}: "size" must be a number') from None
-    if not size > 0:
-        raise PathError(f'{source}: "size" must be positive')
-    return Motion(mover, anchor, size)
+    return Motion(mover, anchor, block_size(d["size"], source))
 
 
 def load_motion(path: str | Path) -> Motion:

@@ -8,7 +8,6 @@ written here with imageio-ffmpeg.
 
 from __future__ import annotations
 
-import json
 import platform
 import sys
 from collections.abc import Callable
@@ -16,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.contracts import trajectory_poses
+from ..core.contracts import dumps_json, trajectory_poses
 
 TRAJECTORY_FPS = 30.0
 
@@ -81,7 +80,7 @@ class Recorder:
             "objects": {name: {"size": size} for name, size in sizes.items()},
             "frames": self.frames,
         }
-        path.write_text(json.dumps(doc, separators=(",", ":")) + "\n")
+        path.write_text(dumps_json(doc, separators=(",", ":")) + "\n")
 
     def write_images(self, out: Path, video: str = "mp4", sentence: str | None = None) -> dict[str, Path]:
         """frames/NNNN.png, the video and contact_sheet.png; returns name -> path.

@@ -193,8 +193,9 @@ Check that they load: `python -c "from l2p_bullet.learning.demos import load_ses
 
     l2p-bullet train {name} --demos demos/*.npz --out {module}
 
-This writes `{module}/progress.safetensors` and completes `{module}/manifest.toml` (model, training data
-digest, metrics); the phrases stay. The shipped demonstrations of the built-in actions serve as
+`--demos` takes several files (the shell expands `demos/*.npz`). This writes
+`{module}/progress.safetensors` and completes `{module}/manifest.toml` in place (model, training data
+digest, metrics); its comments, version and phrases stay. The shipped demonstrations of the built-in actions serve as
 negatives. Optionally, train a REINFORCE move policy against the new model (the default planner then
 also proposes the policy's moves; without one it searches without it):
 
@@ -202,7 +203,8 @@ also proposes the policy's moves; without one it searches without it):
 
 ## 3. Install and use
 
-    pip install .            # or: pip install -e .
+    <env>/bin/pip install .  # the pip of the environment l2p-bullet runs in (or: install -e .)
+                             # always a path: `pip install {dist}` would fetch a stranger's package
     l2p-bullet actions       # "{name}" is listed with its phrases
     l2p-bullet perform "move A {phrase} B"
 
