@@ -39,5 +39,5 @@ bundles: install
 	done
 	# then each action's REINFORCE move policy, trained against the new progress model (issue 4)
 	for a in closer away next-to past around; do \
-	  $(PY) -m l2p_bullet.learning.train_policy $$a --seed 0 || exit 1; \
+	  $(VENV)/bin/l2p-bullet train-policy $$a --seed 0 || exit 1; \
 	done

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.contracts import trajectory_poses
+
 TRAJECTORY_FPS = 30.0
 
 
@@ -34,7 +36,6 @@ class Recorder:
         self.images: list[np.ndarray] = []
         self.render_s = 0.0
         self.grasped: str | None = None
-        self.stage = ""
 
     def __call__(self) -> None:
         """Record after a physics step (also called once before the first step)."""
@@ -60,8 +61,7 @@ class Recorder:
         """Set every frame's ``progress`` from ``progress_fn(mover (T,3), anchor (T,3))``; else null."""
         if progress_fn is None or mover is None or anchor is None or not self.frames:
             return
-        m = np.array([[f["poses"][mover][i] for i in (0, 1, 3)] for f in self.frames])
-        a = np.array([[f["poses"][anchor][i] for i in (0, 1, 3)] for f in self.frames])
+        m, a = trajectory_poses(self.frames, mover), trajectory_poses(self.frames, anchor)
         values = np.asarray(progress_fn(m, a), dtype=float).reshape(-1)
         if len(values) != len(self.frames):
             raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames)} frames")

@@ -198,7 +198,7 @@ digest, metrics); the phrases stay. The shipped demonstrations of the built-in a
 negatives. Optionally, train a REINFORCE move policy against the new model (the default planner then
 also proposes the policy's moves; without one it searches without it):
 
-    python -m l2p_bullet.learning.train_policy {name} --bundle {module}
+    l2p-bullet train-policy {name} --bundle {module}
 
 ## 3. Install and use
 

@@ -46,9 +46,6 @@ PANDA = ArmSpec(
     fingertip_links=(9, 10),
 )
 
-ARMS: dict[str, ArmSpec] = {"panda": PANDA}
-
-
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:
     """Path of the arm's URDF, stripped of visual and/or collision elements when they are not needed.
 
