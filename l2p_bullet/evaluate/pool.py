@@ -28,16 +28,20 @@ OnRow = Callable[[dict], None]
 def _worker_main(conn) -> None:
     """A worker process: receive a task, send its row, until told to stop (None) or the pipe closes."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    from .worker import run_task
+    from .worker import Worker
 
-    while True:
-        try:
-            task = conn.recv()
-        except (EOFError, OSError):
-            return
-        if task is None:
-            return
-        conn.send(run_task(task))
+    worker = Worker()
+    try:
+        while True:
+            try:
+                task = conn.recv()
+            except (EOFError, OSError):
+                return
+            if task is None:
+                return
+            conn.send(worker.run(task))
+    finally:
+        worker.close()
 
 
 class _Slot:

@@ -1,10 +1,12 @@
 """What a worker does with a task: perform (or plan) it, judge it by every installed action, return a row.
 
 A :class:`Worker` lives as long as its process (a pool worker or a Ray actor) and keeps what is
-expensive to make and holds no run's state: the discovered plugins, the loaded bundles with their numpy
-progress models (``registry.load`` and ``Bundle.progress_model`` cache them per process) and one judge
-per action. The planner and the PyBullet world are made per run by ``pipeline.perform``, so no run
-sees another's state.
+expensive to make: the discovered plugins, the loaded bundles with their numpy progress models
+(``registry.load`` and ``Bundle.progress_model`` cache them per process), one judge per action, and its
+PyBullet worlds (one without visuals, one with, made on first use). No run sees another's state: a
+planner is made per run, and ``execute_path`` resets the world to the run's scene before it starts
+(``World.reset``: a reused world records byte for byte what a new one would, tests/test_sim_world.py).
+A run that fails inside the simulator leaves its world behind: the next run gets a new one.
 
 The automatic confusion matrix is computed here, where the executed trajectory is in memory: every
 installed action's judge reads it (``judge_for``: the built-ins' rules; a plugin without rules falls
@@ -61,6 +63,7 @@ class Worker:
         self.ident = f"{socket.gethostname()}:{os.getpid()}"
         self._judges: dict[str, Any] | None = None
         self._scratch: Path | None = None
+        self._worlds: dict[bool, Any] = {}  # visuals -> World
 
     # --- per process, built once ---------------------------------------------------------------
     def judges(self) -> dict[str, tuple[Any, Any]]:
@@ -79,9 +82,31 @@ class Worker:
 
     def scratch(self) -> Path:
         """A folder for the run folders nobody asked to keep (emptied after each run)."""
-        if self._scratch is None:
-            self._scratch = Path(tempfile.mkdtemp(prefix="l2p-evaluate-"))
+        if self._scratch is None:  # removed when the process exits (TemporaryDirectory's finalizer)
+            self._tmp = tempfile.TemporaryDirectory(prefix="l2p-evaluate-")
+            self._scratch = Path(self._tmp.name)
         return self._scratch
+
+    def world(self, scene: Any, visuals: bool) -> Any:
+        """This process's world (with or without the arm's visuals), made on first use."""
+        if visuals not in self._worlds:
+            from ..embodiment.sim.world import World
+
+            self._worlds[visuals] = World(scene, visuals=visuals)
+        return self._worlds[visuals]
+
+    def drop_world(self, visuals: bool) -> None:
+        """Close and forget a world a failed run may have left in an unknown state."""
+        w = self._worlds.pop(visuals, None)
+        if w is not None:
+            w.close()
+
+    def close(self) -> None:
+        for v in list(self._worlds):
+            self.drop_world(v)
+        if self._scratch is not None:
+            self._tmp.cleanup()
+            self._scratch = None
 
     # --- one task ------------------------------------------------------------------------------
     def run(self, task: Task) -> dict[str, Any]:
@@ -112,8 +137,14 @@ class Worker:
         out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
         scene = Scene.from_dict(task.scene, source=task.scene_id)
         try:
-            r = perform(task.sentence, scene, out_dir=out, planner=task.planner, seed=task.seed, render=task.render,
-                        force=True, budget=task.budget, threshold=task.threshold, plugins=self.plugins)
+            world = self.world(scene.validate(), visuals=task.render)
+            try:
+                r = perform(task.sentence, scene, out_dir=out, planner=task.planner, seed=task.seed,
+                            render=task.render, force=True, budget=task.budget, threshold=task.threshold,
+                            plugins=self.plugins, world=world)
+            except BaseException:
+                self.drop_world(task.render)
+                raise
             traj = json.loads((r.out_dir / "trajectory.json").read_text())
             frames = traj["frames"]
             mover, anchor = trajectory_poses(frames, task.mover), trajectory_poses(frames, task.anchor)
