@@ -28,13 +28,14 @@ COLUMNS: dict[str, str] = {
     "success": "INTEGER", "score": "REAL", "reason": "TEXT", "judge": "TEXT", "final_progress": "REAL",
     "planned_progress": "REAL", "max_deviation_m": "REAL", "anchor_displacement_m": "REAL",
     "final_error_m": "REAL", "final_gap_blocks": "REAL", "stopped": "TEXT", "plan_steps": "INTEGER",
-    "judged": "TEXT", "scored": "TEXT", "plan_s": "REAL", "execute_s": "REAL", "total_s": "REAL",
+    "judged": "TEXT", "scored": "TEXT", "timings": "TEXT", "plan_s": "REAL", "execute_s": "REAL", "total_s": "REAL",
     "wall_s": "REAL", "worker": "TEXT", "run_dir": "TEXT", "error": "TEXT", "error_type": "TEXT",
     "finished_at": "REAL",
 }
 """Column -> SQLite type. ``judged`` (every action's judge: {action: {success, score}}) and ``scored``
-(every action's learned progress: {action: value}) are JSON text: the automatic confusion matrix."""
-JSON_COLUMNS = ("judged", "scored")
+(every action's learned progress: {action: value}) are JSON text: the automatic confusion matrix;
+``timings`` (JSON) has perform's stages (parse, load, plan, execute, evaluate, total) in seconds."""
+JSON_COLUMNS = ("judged", "scored", "timings")
 
 
 class ResultsStore:

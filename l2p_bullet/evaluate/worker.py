@@ -29,7 +29,7 @@ import numpy as np
 
 from .tasks import Task
 
-TIMING_FIELDS = ("plan_s", "execute_s", "total_s", "wall_s", "worker", "finished_at")
+TIMING_FIELDS = ("plan_s", "execute_s", "total_s", "wall_s", "timings", "worker", "finished_at")
 """Row fields that depend on the machine and the moment, not on the task (left out when comparing runs)."""
 
 
@@ -41,7 +41,7 @@ def empty_row(task: Task) -> dict[str, Any]:
         "planner_used": None, "mode": task.mode, "success": None, "score": None, "reason": None, "judge": None,
         "final_progress": None, "planned_progress": None, "max_deviation_m": None, "anchor_displacement_m": None,
         "final_error_m": None, "final_gap_blocks": None, "stopped": None, "plan_steps": None,
-        "judged": None, "scored": None, "plan_s": None, "execute_s": None, "total_s": None, "wall_s": None,
+        "judged": None, "scored": None, "timings": None, "plan_s": None, "execute_s": None, "total_s": None, "wall_s": None,
         "worker": None, "run_dir": None, "error": None, "error_type": None, "finished_at": None,
     }
 
@@ -156,6 +156,7 @@ class Worker:
                 anchor_displacement_m=r.anchor_displacement_m, final_error_m=r.final_error_m,
                 stopped=r.plan.stopped, plan_steps=r.plan.extra.get("steps"),
                 plan_s=r.timings.get("plan"), execute_s=r.timings.get("execute"), total_s=r.timings.get("total"),
+                timings={k: round(v, 5) for k, v in r.timings.items()},
             )
             self._confusion(row, mover, anchor, size)
             kept = keep_always or (task.keep == "failed" and not r.success)
@@ -187,7 +188,8 @@ class Worker:
         row.update(planner_used=plan.planner, success=int(bool(v["success"])), score=v.get("score"),
                    reason=v.get("reason"), judge=v.get("judge"), final_progress=plan.extra.get("final_progress"),
                    planned_progress=plan.extra.get("final_progress"), stopped=plan.stopped,
-                   plan_steps=plan.extra.get("steps"), plan_s=plan_s, total_s=plan_s)
+                   plan_steps=plan.extra.get("steps"), plan_s=plan_s, total_s=plan_s,
+                   timings={"plan": round(plan_s, 5), "total": round(plan_s, 5)})
         anchor = np.repeat(np.asarray(plan.anchor_pose, float)[None], len(plan.path), axis=0)
         self._confusion(row, np.asarray(plan.path, float), anchor, plan.size)
         if task.keep == "all" and task.run_dir:
