@@ -88,4 +88,5 @@ def touching_finding(rows: list[dict], asked: str = "closer", also: str = "next-
         "success_and_also": len(both),
         "median_gap_blocks": float(np.median(gaps)) if len(gaps) else float("nan"),
         "threshold_blocks": TOUCHING_BLOCKS,
+        "share_within": {str(t): float((gaps <= t).mean()) if len(gaps) else float("nan") for t in (0.2, 0.3, 0.5)},
     }

@@ -66,10 +66,11 @@ def report_text(rows: list[dict], c: Confusion | None = None) -> str:
     if "closer" in c.asked:
         f = touching_finding(rows)
         if f["runs"]:
-            lines += ["", f'"closer" runs ending touching the anchor (final gap <= {f["threshold_blocks"]} block): '
-                          f'{f["touching"]} of {f["runs"]} ({100 * f["touching_share"]:.0f} %), median gap '
-                          f'{f["median_gap_blocks"]:.2f} blocks; read as "next to" by its judge: {f["read_as_also"]} '
-                          f'of {f["runs"]}. People graded such endings as wrong for "closer" ("the blocks touched").']
+            w = f["share_within"]
+            lines += ["", f'"closer" runs: final gap to the anchor within 0.2 / 0.3 / 0.5 block: {100 * w["0.2"]:.0f} / '
+                          f'{100 * w["0.3"]:.0f} / {100 * w["0.5"]:.0f} % of {f["runs"]} (median {f["median_gap_blocks"]:.2f} '
+                          f'block); read as "next to" by its judge: {f["read_as_also"]} of {f["runs"]}. People graded '
+                          'closer motions ending with the blocks touching as wrong ("the blocks touched").']
     return "\n".join(lines)
 
 
