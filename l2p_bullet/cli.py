@@ -13,7 +13,7 @@ import sys
 import click
 
 from . import __version__
-from .commands import actions, evaluate, export, learn, perform, plan, replay
+from .commands import actions, evaluate, export, learn, perform, plan, replay, review
 from .errors import L2PError
 
 
@@ -42,7 +42,7 @@ def main() -> None:
     """
 
 
-for _module in (perform, plan, replay, learn, actions, evaluate, export):
+for _module in (perform, plan, replay, learn, actions, review, evaluate, export):
     for _cmd in _module.COMMANDS:
         main.add_command(_cmd)
 

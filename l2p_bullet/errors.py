@@ -102,6 +102,20 @@ class RunFolderError(L2PError):
     """A run folder already exists (and --force was not given) or cannot be written."""
 
 
+class ReviewError(L2PError):
+    """The review app cannot use a database, a run folder or a grades file, or a request to it is wrong."""
+
+
+class SchemaVersionError(ReviewError):
+    """A review database with a schema this l2p-bullet does not know (``found`` > ``supported``)."""
+
+    def __init__(self, path: str, found: int, supported: int):
+        self.path, self.found, self.supported = path, found, supported
+        super().__init__(f"review database {path} has schema version {found}, but this l2p-bullet knows "
+                         f"versions up to {supported}: it was written by a newer l2p-bullet; upgrade to use it "
+                         "(nothing was changed in it)")
+
+
 class EvaluationError(L2PError):
     """An evaluation cannot start or go on: a bad scene set, a results table from another evaluation..."""
 

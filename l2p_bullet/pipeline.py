@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from .core.contracts import Plan, trajectory_poses
+from .core.runfolder import write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
 from .errors import L2PError, PluginError
@@ -119,7 +120,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
                     budget=budget, threshold=threshold, render_settings=render_settings, world=world)
     except L2PError as e:
         clock.stop()
-        _write_json(out / "summary.json", {
+        write_summary(out / "summary.json", {
             "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
             "failed_stage": clock.last, "error": str(e), "timings_s": clock.timings,
         })
@@ -246,18 +247,4 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
         "timings_s": {**timings, **d["timings"]},
         "files": {**files, "plan": "plan.json"},
     })
-    _write_json(path, summary)
-
-
-def _write_json(path: Path, data: dict) -> None:
-    path.write_text(json.dumps(data, indent=1, default=_json_default) + "\n")
-
-
-def _json_default(o: object) -> object:
-    if isinstance(o, Path):
-        return str(o)
-    if isinstance(o, np.generic):
-        return o.item()
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+    write_summary(path, summary)

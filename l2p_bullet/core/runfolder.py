@@ -1,7 +1,8 @@
-"""Run folders: never overwrite one unless asked; default names are timestamped."""
+"""Run folders: never overwrite one unless asked; default names are timestamped; summary.json is written here."""
 
 from __future__ import annotations
 
+import json
 import shutil
 import time
 from pathlib import Path
@@ -35,3 +36,20 @@ def prepare_run_folder(out: str | Path | None, force: bool = False, prefix: str 
     except OSError as e:
         raise RunFolderError(f"cannot create run folder {path}: {e.strerror or e}") from None
     return path
+
+
+def write_summary(path: Path, summary: dict) -> None:
+    """Write a run folder's summary.json (numpy numbers and paths become plain JSON)."""
+    path.write_text(json.dumps(summary, indent=1, default=_json_default) + "\n")
+
+
+def _json_default(v: object) -> object:
+    import numpy as np
+
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    if isinstance(v, Path):
+        return str(v)
+    raise TypeError(f"not JSON serialisable: {type(v).__name__}")

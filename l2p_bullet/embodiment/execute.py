@@ -85,7 +85,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
     it would in a new world) and left open. A world made here is closed here.
     """
-    from .record import write_summary
+    from ..core.runfolder import write_summary
     from .sim.world import World
 
     meta = dict(meta or {})
@@ -197,7 +197,7 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     files = {"trajectory": out_dir / "trajectory.json"}
     recorder.write_trajectory(files["trajectory"], meta, sizes)
     if recorder.camera is not None:
-        files |= recorder.write_images(out_dir, render.video)
+        files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
     return files
 
 

@@ -34,6 +34,7 @@ class Recorder:
         self.render_every = max(1, round(1.0 / (camera.settings.fps * world.dt))) if camera else 0
         self.frames: list[dict] = []
         self.images: list[np.ndarray] = []
+        self.image_times: list[float] = []  # sim time of each image (the video's caption strip needs it)
         self.render_s = 0.0
         self.grasped: str | None = None
 
@@ -47,6 +48,7 @@ class Recorder:
 
             t0 = time.perf_counter()
             self.images.append(self.camera.render())
+            self.image_times.append(self.world.time)
             self.render_s += time.perf_counter() - t0
 
     def snapshot(self) -> dict:
@@ -81,9 +83,15 @@ class Recorder:
         }
         path.write_text(json.dumps(doc, separators=(",", ":")) + "\n")
 
-    def write_images(self, out: Path, video: str = "mp4") -> dict[str, Path]:
-        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path."""
+    def write_images(self, out: Path, video: str = "mp4", sentence: str | None = None) -> dict[str, Path]:
+        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path.
+
+        Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
+        the frames and the contact sheet stay the raw renders.
+        """
         import imageio.v2 as imageio
+
+        from .overlay import overlay, progress_at
 
         if not self.images:
             return {}
@@ -94,14 +102,17 @@ class Recorder:
             imageio.imwrite(folder / f"{i:04d}.png", img)
         files["frames"] = folder
         fps = self.camera.settings.fps
+        shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
+                            [f["progress"] for f in self.frames])
+        captioned = [overlay(img, sentence, p) for img, p in zip(self.images, shown, strict=True)]
         if video == "gif":
             files["video"] = out / "video.gif"
-            imageio.mimwrite(files["video"], self.images, duration=1000.0 / fps, loop=0)
+            imageio.mimwrite(files["video"], captioned, duration=1000.0 / fps, loop=0)
         else:
             files["video"] = out / "video.mp4"
             with imageio.get_writer(files["video"], fps=fps, codec="libx264", quality=7,
                                     pixelformat="yuv420p", macro_block_size=8) as writer:
-                for img in self.images:
+                for img in captioned:
                     writer.append_data(img)
         files["contact_sheet"] = out / "contact_sheet.png"
         imageio.imwrite(files["contact_sheet"], contact_sheet(self.images))
@@ -131,17 +142,3 @@ def versions() -> dict[str, str]:
         except metadata.PackageNotFoundError:
             out[pkg] = "not installed"
     return out
-
-
-def write_summary(path: Path, summary: dict) -> None:
-    path.write_text(json.dumps(summary, indent=1, default=_json_default) + "\n")
-
-
-def _json_default(v):
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, Path):
-        return str(v)
-    raise TypeError(f"not JSON serialisable: {type(v)}")
