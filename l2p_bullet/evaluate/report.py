@@ -50,7 +50,9 @@ def _matrix_text(title: str, names_r: list[str], names_c: list[str], m: np.ndarr
 def report_text(rows: list[dict], c: Confusion | None = None) -> str:
     """The whole report as text (what ``evaluate --report`` prints)."""
     c = c or confusion(rows)
-    lines = ["success per action (the action's own judge on the executed trajectory)",
+    modes = {r.get("mode") for r in rows}
+    what = "the plan (--plan-only)" if modes == {"plan"} else "the executed trajectory"
+    lines = [f"success per action (the action's own judge on {what})",
              f"{'action':<12}{'runs':>6}{'success':>9}{'errors':>8}{'progress':>10}{'dev mm':>8}{'anchor mm':>10}"
              f"{'plan s':>8}{'total s':>9}"]
     for s in success_table(rows):
