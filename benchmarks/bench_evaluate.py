@@ -13,7 +13,9 @@ Part 1, side by side on the same runs (seeded random scenes x the five actions, 
 
 Each is timed from the command's start to its last row (process and Ray start-up included) and also
 in steady state (from the first row to the last, start-up excluded); runs/s per worker is the steady
-rate divided by the workers. The rows of the three evaluate backends are checked equal apart from
+rate divided by the workers. For the pool it also reports the CPU seconds its workers used per run: on a
+shared machine the wall-clock ratio measures the other jobs too, while equal CPU per run with 1 and 2
+workers says the pool itself adds nothing that would keep 2 idle cores from doing twice the work. The rows of the three evaluate backends are checked equal apart from
 timings (and their success counted against the fresh processes' own verdicts).
 
 Part 2 (``--confusion N``): N seeded random scenes per action on the pool, and the 5 x 5 judge- and
@@ -80,12 +82,23 @@ def evaluate_backend(scenes: int, actions: list[str], tmp: Path, workers: int, r
     name = f"evaluate --ray {ray} --workers {workers}" if ray else f"evaluate --workers {workers}"
     out = tmp / name.replace(" ", "_")
     t0 = time.time()
+    cpu0 = _children_cpu()
     s = evaluate(EvaluationConfig(actions=actions, scenes=scenes), out, workers=workers, ray=ray, progress=False)
+    cpu = _children_cpu() - cpu0
     rows = load_rows(out)
     finished = sorted(r["finished_at"] for r in rows)
     return {"backend": name, "workers": workers, "runs": s.ran, "seconds": s.seconds,
             "steady_seconds": finished[-1] - finished[0], "first_row_s": finished[0] - t0,
-            "success": sum(bool(r["success"]) for r in rows), "errors": s.errors}, rows
+            "success": sum(bool(r["success"]) for r in rows), "errors": s.errors,
+            # CPU seconds the pool's workers used per run (reaped children; Ray's workers are not ours to reap)
+            "worker_cpu_s_per_run": None if ray else cpu / max(s.ran, 1)}, rows
+
+
+def _children_cpu() -> float:
+    import resource
+
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
 
 
 def throughput(runs: int, actions: list[str], ray: bool) -> list[dict]:
@@ -117,18 +130,23 @@ def print_throughput(results: list[dict]) -> None:
     base = results[0]["runs_per_s"]
     pool1 = next(r for r in results if r["backend"] == "evaluate --workers 1")
     print("\n| backend | runs | wall s | runs/s | steady runs/s | steady runs/s per worker | vs one process per run "
-          "| vs 1 worker (steady) | rows = 1 worker's |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---|")
+          "| vs 1 worker (steady) | worker CPU s / run | rows = 1 worker's |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for r in results:
         eq = "-" if "rows_equal_to_1_worker" not in r else ("yes" if r["rows_equal_to_1_worker"] else "NO")
         print(f"| {r['backend']} | {r['runs']} | {r['seconds']:.1f} | {r['runs_per_s']:.2f} | "
               f"{r['steady_runs_per_s']:.2f} | {r['steady_per_worker']:.2f} | {r['runs_per_s'] / base:.2f}x | "
-              f"{r['steady_runs_per_s'] / pool1['steady_runs_per_s']:.2f}x | {eq} |")
+              f"{r['steady_runs_per_s'] / pool1['steady_runs_per_s']:.2f}x | {_cpu(r)} | {eq} |")
     pool2 = next((r for r in results if r["backend"] == "evaluate --workers 2"), None)
     ray2 = next((r for r in results if "ray" in r["backend"]), None)
     if pool2 and ray2:
         print(f"\nRay local vs the pool, 2 workers: steady {ray2['steady_runs_per_s'] / pool2['steady_runs_per_s']:.2f}x, "
               f"with start-up {ray2['runs_per_s'] / pool2['runs_per_s']:.2f}x")
+
+
+def _cpu(r: dict) -> str:
+    v = r.get("worker_cpu_s_per_run")
+    return "-" if v is None else f"{v:.2f}"
 
 
 def confusion_matrix(scenes: int, workers: int, out: Path | None) -> dict:
