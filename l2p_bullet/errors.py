@@ -128,6 +128,19 @@ class SchemaVersionError(ReviewError):
                          "(nothing was changed in it)")
 
 
+class EvaluationError(L2PError):
+    """An evaluation cannot start or go on: a bad scene set, a results table from another evaluation..."""
+
+
+class MissingExtraError(L2PError):
+    """An optional dependency is not installed; ``.package`` is what is missing, ``.extra`` the extra
+    that installs it (``pip install 'l2p-bullet[<extra>]'``)."""
+
+    def __init__(self, package: str, extra: str, purpose: str):
+        self.package, self.extra = package, extra
+        super().__init__(f"{purpose} needs {package}, which is not installed: pip install 'l2p-bullet[{extra}]'")
+
+
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
     """Return ' Did you mean "x"?' for the closest choice, or '' when nothing is close.
 

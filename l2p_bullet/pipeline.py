@@ -109,8 +109,11 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None) -> PerformResult:
+            plugins: list | None = None, render_settings: Any = None, world: Any = None) -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
+
+    ``world``: an open simulator world to execute in (``execute_path`` resets it to ``scene`` first, so
+    the run records what a new world would); a batch (``l2p-bullet evaluate``) keeps one per process.
 
     Raises an :class:`L2PError` subclass for anything a user can get wrong (sentence, plugin, run
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
@@ -134,7 +137,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:
             return _run(cmd, scene, bundle, model, judge, out, clock, planner=planner, seed=seed, render=render,
-                        budget=budget, threshold=threshold, render_settings=render_settings)
+                        budget=budget, threshold=threshold, render_settings=render_settings, world=world)
         except L2PError as e:
             clock.stop()
             write_summary(out / "summary.json", {
@@ -172,8 +175,8 @@ def _summary_or_empty(path: Path) -> dict:
 
 
 def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: Path, clock: StageClock, *,
-         planner: str,
-         seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any) -> PerformResult:
+         planner: str, seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
+         world: Any = None) -> PerformResult:
     from . import planning
     from .embodiment import execute
 
@@ -195,7 +198,7 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, **kwargs)
+                              meta=meta, on_stage=stage_cb, world=world, **kwargs)
 
     clock.stage("evaluate")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
