@@ -90,3 +90,15 @@ def test_cli_exports_plain_json_by_default_and_lerobot_without_video(runs, tmp_p
     assert VIDEO_KEY not in info["features"]
     again = CliRunner().invoke(main, ["export", str(runs[0]), "--format", "lerobot", str(tmp_path / "lr")])
     assert again.exit_code == 2 and "--force" in again.output  # nothing is overwritten without asking
+
+
+def test_export_force_replaces_only_a_previous_export(runs, tmp_path):
+    """--force may replace an export of ours, never a folder holding someone else's file."""
+    out = tmp_path / "plain"
+    assert CliRunner().invoke(main, ["export", str(runs[0]), str(out)]).exit_code == 0
+    assert CliRunner().invoke(main, ["export", str(runs[0]), str(out), "--force"]).exit_code == 0
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "thesis.txt").write_text("x")
+    r = CliRunner().invoke(main, ["export", str(runs[0]), str(foreign), "--force"])
+    assert r.exit_code == 2 and r.output.startswith("error: ") and (foreign / "thesis.txt").read_text() == "x"

@@ -28,23 +28,27 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     Every episode's task is its sentence ("move A around B"). Render the runs (perform without
     --no-render, evaluate --render-every 1) to have videos.
     """
+    from ..core.runfolder import run_folder
     from ..errors import PathError
-    from ..export.episodes import demo_episodes, episode_from_run, find_runs, write_jsonl
+    from ..export.episodes import EXPORT_FILES, demo_episodes, episode_from_run, find_runs, write_jsonl
 
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
-    episodes = [episode_from_run(r) for r in find_runs(list(runs))] if runs else []
-    if demos:
-        episodes += list(demo_episodes(list(demos), render=not no_video and fmt == "lerobot"))
-    if fmt == "lerobot":
-        from ..export.lerobot import write_lerobot
+    sources = find_runs(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
+    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES) as folder:
+        episodes = [episode_from_run(r) for r in sources]
+        if demos:
+            episodes += list(demo_episodes(list(demos), render=not no_video and fmt == "lerobot"))
+        if fmt == "lerobot":
+            from ..export.lerobot import write_lerobot
 
-        info = write_lerobot(episodes, out, video=False if no_video else None, force=force)
-        click.echo(json.dumps({"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
-                               "tasks": info["total_tasks"], "fps": info["fps"], "video": info["video_path"] is not None}))
-    else:
-        path = write_jsonl(episodes, out, force=force)
-        click.echo(json.dumps({"out": str(path), "episodes": len(episodes)}))
+            info = write_lerobot(episodes, folder, video=False if no_video else None)
+            click.echo(json.dumps({"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
+                                   "tasks": info["total_tasks"], "fps": info["fps"],
+                                   "video": info["video_path"] is not None}))
+        else:
+            path = write_jsonl(episodes, folder)
+            click.echo(json.dumps({"out": str(path), "episodes": len(episodes)}))
 
 
 COMMANDS: list[click.Command] = [export_cmd]

@@ -8,7 +8,6 @@ render rate, 10 fps by default). Nothing here depends on an export format.
 from __future__ import annotations
 
 import json
-import shutil
 import tempfile
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
@@ -16,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import DataError, PathError, RunFolderError
+from ..errors import DataError, PathError
 
 
 @dataclass
@@ -130,13 +129,17 @@ def demo_episodes(specs: list[str], render: bool | object = True, plugins: list 
                       {"action": action, "demo": source.info.get("source", {}).get("demo")})
 
 
-def write_jsonl(episodes: Iterable[Episode], out: str | Path, *, force: bool = False) -> Path:
-    """The plain format: ``OUT/episodes.jsonl``, one episode per line (task, source, fps, names, frames)."""
+EXPORT_FILES: tuple[str, ...] = ("episodes.jsonl", "meta", "meta/*", "data", "data/*", "videos", "videos/*")
+"""What an export writes into its folder (fnmatch patterns, ``*`` spans sub-folders): the plain format's
+one file, or a LeRobot dataset's meta/, data/ and videos/. ``--force`` replaces only such a folder."""
+
+
+def write_jsonl(episodes: Iterable[Episode], out: str | Path) -> Path:
+    """The plain format: ``OUT/episodes.jsonl``, one episode per line (task, source, fps, names, frames).
+
+    ``out`` is the caller's folder (``l2p-bullet export`` claims it with ``core.runfolder.run_folder``).
+    """
     out = Path(out)
-    if out.exists() and any(out.iterdir()):
-        if not force:
-            raise RunFolderError(f"{out} already exists; pass --force to overwrite it")
-        shutil.rmtree(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "episodes.jsonl"
     with path.open("w") as f:

@@ -23,13 +23,12 @@ rate (10 fps: every third 30-fps trajectory frame, each matching one rendered im
 from __future__ import annotations
 
 import json
-import shutil
 from collections.abc import Iterable
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import MissingExtraError, PathError, RunFolderError
+from ..errors import MissingExtraError, PathError
 from .episodes import Episode
 
 CODEBASE_VERSION = "v3.0"
@@ -66,9 +65,11 @@ def _xyyaw(frame: dict, name: str) -> list[float]:
     return [p[0], p[1], p[3]]
 
 
-def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool | None = None,
-                  force: bool = False) -> dict:
-    """Write ``episodes`` to ``out`` as a LeRobot v3.0 dataset; returns info.json's content.
+def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool | None = None) -> dict:
+    """Write ``episodes`` into the folder ``out`` as a LeRobot v3.0 dataset; returns info.json's content.
+
+    ``out`` is the caller's: ``l2p-bullet export`` claims it with :func:`l2p_bullet.core.runfolder.run_folder`
+    (never overwriting anything but a previous export of ours), files already in it are left alone.
 
     ``video`` None: images are written when every episode has them; True: they must; False: never.
     """
@@ -77,10 +78,6 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     if not eps:
         raise PathError("nothing to export: no run folders and no demonstrations")
     out = Path(out)
-    if out.exists() and any(out.iterdir()):
-        if not force:
-            raise RunFolderError(f"{out} already exists; pass --force to overwrite it")
-        shutil.rmtree(out)
     with_images = [e.images is not None for e in eps]
     if video is None:
         video = all(with_images)
