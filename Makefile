@@ -13,7 +13,7 @@ $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet $(TORCH)
-	$(PY) -m pip install --quiet -e '.[test]'
+	$(PY) -m pip install --quiet -e '.[test,ray,export]'  # the extras' tests (evaluate --ray local, export) run in CI
 	touch $@
 
 install: $(VENV)/.installed
@@ -39,5 +39,5 @@ bundles: install
 	done
 	# then each action's REINFORCE move policy, trained against the new progress model (issue 4)
 	for a in closer away next-to past around; do \
-	  $(PY) -m l2p_bullet.learning.train_policy $$a --seed 0 || exit 1; \
+	  $(VENV)/bin/l2p-bullet train-policy $$a --seed 0 || exit 1; \
 	done

@@ -1,7 +1,7 @@
 """Benchmark of the embodiment: one replay of a circle of A around B on the default scene.
 
-Prints a table: physics steps per second, IK per second, ms per rendered frame, wall time per stage,
-and the project's execute_path against the same loop written as bare pybullet calls (same tool
+Prints a table: physics steps per second, IK per second, ms per rendered frame, the cost of a new
+world against reusing one (World.reset), wall time per stage, and the project's execute_path against the same loop written as bare pybullet calls (same tool
 targets, same rates, same bodies), as a ratio, without and with rendering.
 
     .venv/bin/python benchmarks/bench_embodiment.py [--repeats 3]
@@ -147,11 +147,7 @@ def micro():
     for p in targets:
         q = kin.solve(p[:3], p[3], q)
     out["IK/s (project: seeded, FK-checked)"] = len(targets) / (time.perf_counter() - t)
-    orn = world.pb.getQuaternionFromEuler([math.pi, 0, 0.2])
-    t = time.perf_counter()
-    for p in targets:
-        world.pb.calculateInverseKinematics(kin.body, 11, p[:3], orn, maxNumIterations=10, physicsClientId=kin.cid)
-    out["IK/s (bare calculateInverseKinematics, 10 it.)"] = len(targets) / (time.perf_counter() - t)
+    out["IK/s (bare calculateInverseKinematics, 10 it.)"] = len(targets) / bare_ik(targets)
     for w, h in ((320, 240), (640, 480)):
         cam = Camera(world, RenderSettings(width=w, height=h))
         cam.render()
@@ -159,9 +155,36 @@ def micro():
         for _ in range(10):
             cam.render()
         out[f"ms per frame, tiny {w}x{h}"] = (time.perf_counter() - t) / 10 * 1000
-    world.robot.close()
     world.close()
+    for visuals in (False, True):
+        t = time.perf_counter()
+        for _ in range(10):
+            World(default_scene(), visuals=visuals).close()
+        out[f"ms per new World (visuals={visuals})"] = (time.perf_counter() - t) / 10 * 1000
+        with World(default_scene(), visuals=visuals) as world:
+            t = time.perf_counter()
+            for _ in range(10):
+                world.reset(default_scene())
+            out[f"ms per World.reset (visuals={visuals})"] = (time.perf_counter() - t) / 10 * 1000
     return out
+
+
+def bare_ik(targets) -> float:
+    """Seconds for PyBullet's own IK (10 iterations, no checks) on a bare copy of the IK twin."""
+    import pybullet as pb
+
+    from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+
+    cid = pb.connect(pb.DIRECT)
+    body = pb.loadURDF(arm_urdf(PANDA, visuals=False, collisions=False), [-0.53, 0, 0], useFixedBase=True,
+                       physicsClientId=cid)
+    orn = pb.getQuaternionFromEuler([math.pi, 0, 0.2])
+    t = time.perf_counter()
+    for p in targets:
+        pb.calculateInverseKinematics(body, 11, p[:3], orn, maxNumIterations=10, physicsClientId=cid)
+    wall = time.perf_counter() - t
+    pb.disconnect(cid)
+    return wall
 
 
 def main() -> None:

@@ -3,14 +3,15 @@
     .venv/bin/python benchmarks/bench_perform.py                 # 30 scenes, render on 3 per action
     .venv/bin/python benchmarks/bench_perform.py --scenes 5 --render-scenes 0 --json out.json
 
-For each action and scene (``scene.random_scene(seed)``) it runs ``pipeline.perform`` in-process with
-rendering off, and on a subset with rendering on, then prints per action:
+For each action and scene (``scene.random_scene(seed)``) it runs ``l2p-bullet evaluate`` (``pipeline.perform``
+in a worker process that keeps its bundles and world, ``--workers 1`` by default) with rendering off, and on
+a subset with rendering on, then prints per action:
 
 - success rate: the project's rule-based evaluator on the *executed* trajectory (trajectory.json
   from the simulator), not on the plan;
 - plan vs execution: the block's largest distance from the planned path during the slide, its final
   distance from the plan's goal, and how far the anchor was pushed;
-- wall time per stage (parse, load, plan, execute, evaluate, total) in-process;
+- wall time per stage (parse, load, plan, execute, evaluate, total) inside the worker, per run;
 - the cold command-line cost: ``l2p-bullet perform --no-render`` as a fresh process (Python start,
   imports, torch) on a few scenes, and ``l2p-bullet --help``.
 
@@ -73,22 +74,23 @@ def cold_perform_times(seeds: list[int], tmp: Path, actions: list[str]) -> list[
     return out
 
 
-def run_one(action: str, seed: int, tmp: Path, render: bool, plugins: list) -> dict:
-    from l2p_bullet.core.scene import random_scene
-    from l2p_bullet.errors import L2PError
-    from l2p_bullet.pipeline import perform
+def evaluate_rows(actions: list[str], scenes: int, render: bool, tmp: Path, workers: int) -> list[dict]:
+    """``l2p-bullet evaluate`` on seeds 0..scenes-1 (each run plans with its scene's seed, as before);
+    its rows in this benchmark's shape. Stage times are measured inside the worker, per run."""
+    from l2p_bullet.evaluate.runner import EvaluationConfig, evaluate, load_rows
 
-    scene = random_scene(seed)
-    out = tmp / f"{action}-{seed}-{'r' if render else 'n'}"
-    try:
-        r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=render, plugins=plugins)
-    except L2PError as e:
-        return {"action": action, "seed": seed, "render": render, "ok": False, "success": False, "error": str(e)}
-    d = r.to_dict()
-    return {"action": action, "seed": seed, "render": render, "ok": True, "success": r.success,
-            "reason": r.verdict.get("reason"), "final_progress": d["final_progress"],
-            "max_deviation_m": d["max_deviation_m"], "final_error_m": d["final_error_m"],
-            "anchor_displacement_m": d["anchor_displacement_m"], "timings": d["timings"]}
+    out = tmp / ("render" if render else "fast")
+    evaluate(EvaluationConfig(actions=actions, scenes=scenes, render_every=1 if render else 0), out,
+             workers=workers, progress=True)
+    rows = []
+    for r in load_rows(out):
+        ok = r["error"] is None
+        rows.append({"action": r["action"], "seed": r["seed"], "render": render, "ok": ok,
+                     "success": bool(r["success"]), "error": r["error"], "reason": r["reason"],
+                     "final_progress": r["final_progress"], "max_deviation_m": r["max_deviation_m"],
+                     "final_error_m": r["final_error_m"], "anchor_displacement_m": r["anchor_displacement_m"],
+                     "timings": r["timings"] or {}})
+    return rows
 
 
 def summarise(rows: list[dict]) -> dict:
@@ -128,31 +130,23 @@ def main() -> None:
     ap.add_argument("--render-scenes", type=int, default=3, help="of those, how many also run with rendering")
     ap.add_argument("--cold", type=int, default=5, help="fresh-process perform runs to time")
     ap.add_argument("--actions", default=",".join(SENTENCES), help="comma-separated actions")
+    ap.add_argument("--workers", type=int, default=1,
+                    help="evaluate's worker processes (1: stage times without a neighbour on the cores)")
     ap.add_argument("--json", type=Path, default=None, help="also write every row and the summary here")
     args = ap.parse_args()
 
-    from l2p_bullet.plugins import registry
-
-    plugins = registry.discover()
     actions = [a for a in args.actions.split(",") if a]
-    rows: list[dict] = []
     t_all = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="bench-perform-") as td:
         tmp = Path(td)
-        for action in actions:
-            registry.load(action, plugins).progress_model()  # warm: load time is reported by the cold runs
-            for seed in range(args.scenes):
-                for render in (False, True) if seed < args.render_scenes else (False,):
-                    row = run_one(action, seed, tmp, render, plugins)
-                    rows.append(row)
-                    mark = "ok " if row["success"] else ("ERR" if not row["ok"] else "no ")
-                    print(f"{action:<8} seed {seed:2d} {'render' if render else 'fast  '} {mark} "
-                          + (f"{row['timings']['total']:.2f}s" if row["ok"] else row["error"]), file=sys.stderr)
+        rows = evaluate_rows(actions, args.scenes, False, tmp, args.workers)
+        if args.render_scenes:
+            rows += evaluate_rows(actions, args.render_scenes, True, tmp, args.workers)
         cold = cold_perform_times(list(range(args.cold)), tmp, actions) if args.cold else []
     fast = {a: summarise([r for r in rows if r["action"] == a and not r["render"]]) for a in actions}
     rendered = {a: summarise([r for r in rows if r["action"] == a and r["render"]]) for a in actions}
     h = help_time()
-    print_table(f"perform without rendering, {args.scenes} random scenes per action (in-process, seconds)", fast)
+    print_table(f"perform without rendering, {args.scenes} random scenes per action (l2p-bullet evaluate, stage seconds inside the worker)", fast)
     if args.render_scenes:
         print_table(f"perform with rendering, first {args.render_scenes} scenes per action", rendered)
     if cold:

@@ -6,7 +6,7 @@
 
 For each action (its installed bundle, or ``--bundles DIR/<action>``), planner and scene
 (``scene.random_scene(seed)``, seeds 0..N-1; the policies are trained on seeds from 10 000 on) it plans
-in-process and reports:
+in-process (``l2p-bullet evaluate``'s plan mode, ``workers=0``; a direct loop for ``--bundles``) and reports:
 
 - success: the project's rule-based evaluator (``evaluate.py``) on the planned path; the planner never
   sees it, it maximises the action's learned progress model;
@@ -41,23 +41,52 @@ def load(action: str, root: Path | None):
     return load_bundle(root / action) if root else registry.load(action)
 
 
-def run(action: str, bundle, planner: str, seeds: list[int], time_limits: list[float] | None = None) -> list[dict]:
+def run(action: str, bundle, planner: str, seeds: list[int], time_limits: list[float] | None = None,
+        installed: bool = True) -> list[dict]:
+    """One planner on the seeded scenes: through ``evaluate``'s plan mode for an installed bundle (in this
+    process, ``workers=0``: a plan's time is not shared with a neighbour), else a direct loop over
+    ``planning.plan`` for a bundle folder (``--bundles``), judged by the same rules."""
+    if installed:
+        return _run_evaluate(action, planner, seeds, time_limits)
     from l2p_bullet.core.scene import random_scene
     from l2p_bullet.judge.rules import evaluate
     from l2p_bullet.planning import plan
 
     rows = []
     for i, seed in enumerate(seeds):
-        scene = random_scene(seed)
         kw = {} if time_limits is None else {"time_limit": time_limits[i], "budget": 10**6}
         t = time.perf_counter()
-        p = plan(scene, "A", "B", bundle, planner=planner, seed=seed, **kw)
+        p = plan(random_scene(seed), "A", "B", bundle, planner=planner, seed=seed, **kw)
         dt = time.perf_counter() - t
         v = evaluate(action, p.path, p.anchor_pose, p.size)
         rows.append({"action": action, "planner": planner if time_limits is None else "greedy@=t", "seed": seed,
                      "success": v.success, "score": v.score, "reason": v.reason,
                      "progress": p.extra["final_progress"], "stopped": p.stopped, "steps": p.extra["steps"],
                      "seconds": dt})
+    return rows
+
+
+def _run_evaluate(action: str, planner: str, seeds: list[int], time_limits: list[float] | None) -> list[dict]:
+    from dataclasses import replace
+
+    from l2p_bullet.evaluate.runner import run_tasks
+    from l2p_bullet.evaluate.scenes import random_scenes
+    from l2p_bullet.evaluate.tasks import make_tasks
+
+    specs = [s for seed in seeds for s in random_scenes(1, seed)]
+    tasks = make_tasks(specs, [action], planner=planner, mode="plan")
+    if time_limits is not None:
+        tasks = [replace(t, time_limit=tl, budget=10**6) for t, tl in zip(tasks, time_limits, strict=True)]
+    got: list[dict] = []
+    run_tasks(tasks, workers=0, ray=None, on_row=got.append)
+    rows = []
+    for r in sorted(got, key=lambda r: r["idx"]):
+        if r["error"]:
+            raise SystemExit(f"{action} {planner} seed {r['seed']}: {r['error']}")
+        rows.append({"action": action, "planner": planner if time_limits is None else "greedy@=t", "seed": r["seed"],
+                     "success": bool(r["success"]), "score": r["score"], "reason": r["reason"],
+                     "progress": r["final_progress"], "stopped": r["stopped"], "steps": r["plan_steps"],
+                     "seconds": r["plan_s"]})
     return rows
 
 
@@ -106,14 +135,15 @@ def main() -> None:
             if planner == "reinforce" and bundle.policy_arrays() is None:
                 print(f"{action}: no policy in the bundle, skipping reinforce", file=sys.stderr)
                 continue
-            r = run(action, bundle, planner, seeds)
+            r = run(action, bundle, planner, seeds, installed=args.bundles is None)
             for x in r:
                 x["planner"] = label
             rows += r
             summary[(action, label)] = summarise(r)
             print(f"{action:8s} {label:22s} {summary[(action, label)]}", file=sys.stderr, flush=True)
             if planner == "reinforce":
-                eq = run(action, bundle, "greedy", seeds, time_limits=[x["seconds"] for x in r])
+                eq = run(action, bundle, "greedy", seeds, time_limits=[x["seconds"] for x in r],
+                         installed=args.bundles is None)
                 rows += eq
                 summary[(action, "greedy@=t")] = summarise(eq)
                 print(f"{action:8s} {'greedy@=t':22s} {summary[(action, 'greedy@=t')]}", file=sys.stderr, flush=True)

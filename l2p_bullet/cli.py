@@ -2,19 +2,27 @@
 
 Every command lives in ``l2p_bullet/commands/`` and imports only click at module level: torch and
 pybullet are imported inside the command bodies, so ``l2p-bullet --help`` starts fast.
-User errors (:class:`L2PError`) become a one-line message and exit code 2; anything else is a bug
-and keeps its traceback.
+User errors (:class:`L2PError`, and a command's bad options) become a one-line message and exit code 2;
+anything else is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
 
+import re
 import sys
 
 import click
 
 from . import __version__
-from .commands import actions, learn, perform, plan, replay, teach
+from .commands import actions, evaluate, export, learn, perform, plan, replay, review, teach
 from .errors import L2PError
+
+
+def one_line(message: str, limit: int = 1000) -> str:
+    """An error message as one printable line: file contents it quotes may hold newlines or control
+    characters, and an error must never scroll a terminal or fake a second line."""
+    text = re.sub(r"[\x00-\x1f\x7f]", lambda m: " " if m.group() in "\n\r\t" else "?", message)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 class _Group(click.Group):
@@ -22,7 +30,11 @@ class _Group(click.Group):
         try:
             return super().invoke(ctx)
         except L2PError as e:
-            click.echo(f"error: {e}", err=True)
+            click.echo(f"error: {one_line(str(e))}", err=True)
+            sys.exit(e.exit_code)
+        except click.UsageError as e:  # a bad option of a command: one line too, like every other error
+            where = f" (see: {e.ctx.command_path} --help)" if e.ctx is not None else ""
+            click.echo(f"error: {one_line(e.format_message())}{where}", err=True)
             sys.exit(e.exit_code)
         except KeyboardInterrupt:
             click.echo("interrupted", err=True)
@@ -42,7 +54,7 @@ def main() -> None:
     """
 
 
-for _module in (perform, plan, replay, learn, actions, teach):
+for _module in (perform, plan, replay, learn, actions, review, evaluate, export, teach):
     for _cmd in _module.COMMANDS:
         main.add_command(_cmd)
 

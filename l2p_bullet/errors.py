@@ -43,6 +43,14 @@ class PathError(L2PError):
     """A 2-D path file is unreadable or malformed, or a path leaves the workspace."""
 
 
+class MotionError(L2PError):
+    """A motion cannot be scored: non-finite poses, or longer or wider than :data:`limit` block sides."""
+
+    def __init__(self, message: str, extent_blocks: float = float("nan"), limit: float = float("nan")):
+        super().__init__(message)
+        self.extent_blocks, self.limit = extent_blocks, limit
+
+
 class DataError(L2PError):
     """A demonstration file is missing, unreadable or malformed."""
 
@@ -103,7 +111,38 @@ class TeachError(L2PError):
 
 
 class RunFolderError(L2PError):
-    """A run folder already exists (and --force was not given) or cannot be written."""
+    """A run folder cannot be made: it exists (``state``: finished, running, foreign...) or cannot be written."""
+
+    def __init__(self, message: str, path: object = None, state: str = ""):
+        super().__init__(message)
+        self.path, self.state = path, state
+
+
+class ReviewError(L2PError):
+    """The review app cannot use a database, a run folder or a grades file, or a request to it is wrong."""
+
+
+class SchemaVersionError(ReviewError):
+    """A review database with a schema this l2p-bullet does not know (``found`` > ``supported``)."""
+
+    def __init__(self, path: str, found: int, supported: int):
+        self.path, self.found, self.supported = path, found, supported
+        super().__init__(f"review database {path} has schema version {found}, but this l2p-bullet knows "
+                         f"versions up to {supported}: it was written by a newer l2p-bullet; upgrade to use it "
+                         "(nothing was changed in it)")
+
+
+class EvaluationError(L2PError):
+    """An evaluation cannot start or go on: a bad scene set, a results table from another evaluation..."""
+
+
+class MissingExtraError(L2PError):
+    """An optional dependency is not installed; ``.package`` is what is missing, ``.extra`` the extra
+    that installs it (``pip install 'l2p-bullet[<extra>]'``)."""
+
+    def __init__(self, package: str, extra: str, purpose: str):
+        self.package, self.extra = package, extra
+        super().__init__(f"{purpose} needs {package}, which is not installed: pip install 'l2p-bullet[{extra}]'")
 
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:

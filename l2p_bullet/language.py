@@ -32,6 +32,9 @@ DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object"})
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
 EXAMPLE = 'try for example "move A around B" or "slide the red block next to the green one"'
+MAX_SENTENCE = 200
+"""Longest sentence read, in characters: a command is a few words; a longer text is refused at once
+(parsing is quadratic in the words, and an error must not echo kilobytes back)."""
 
 
 @dataclass(frozen=True)
@@ -100,6 +103,9 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     """
     if not isinstance(sentence, str) or not sentence.strip():
         raise LanguageError(f"the sentence is empty; {EXAMPLE}")
+    if len(sentence) > MAX_SENTENCE:
+        raise LanguageError(f"the sentence is {len(sentence)} characters long; a command has at most {MAX_SENTENCE} "
+                            f'("{sentence[:30].strip()}..."); {EXAMPLE}')
     if not phrases:
         raise LanguageError("no action plugins are installed, so no preposition is known (see: l2p-bullet actions)")
     words = _strip_polite(_tokens(sentence))

@@ -25,9 +25,10 @@ from typing import Any
 import numpy as np
 
 from .core.contracts import Plan, trajectory_poses
+from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .errors import L2PError, PluginError
+from .errors import L2PError, LanguageError, PlanError, PluginError
 from .language import Command, parse
 
 StageFn = Callable[[str], None]
@@ -72,65 +73,114 @@ def _round(v: float | None) -> float | None:
     return None if v is None else round(float(v), 6)
 
 
+BLOCKED = "\0blocked:"
+"""Action name given to a blocked phrase while parsing, so that the sentence's own phrase is found."""
+
+
 def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
-    """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported)."""
+    """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported).
+
+    A sentence whose preposition belongs to a broken plugin, or is claimed by two plugins, gets that
+    plugin's error (naming it), not "not a preposition I know"; every other phrase keeps working.
+    """
     from .plugins import registry
 
     plugins = registry.discover() if plugins is None else plugins
     table = registry.phrase_table(plugins)
-    if not table and plugins:
+    blocked = registry.blocked_phrases(plugins)
+    if not table and not blocked and plugins:
         bad = registry.broken(plugins)
         raise PluginError(f"none of the {len(plugins)} installed action plugins can be used (first: "
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
-    return parse(sentence, scene, table, registry.anchor_counts(plugins))
+    try:
+        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins))
+    except LanguageError as e:
+        unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
+        if not unknown or "preposition" not in str(e):
+            raise
+        names = ", ".join(p.label() for p in unknown[:3]) + (" ..." if len(unknown) > 3 else "")
+        raise LanguageError(f"{e} Broken plugins whose phrases cannot be read, one may own it: {names} "
+                            "(see: l2p-bullet actions --check)") from None
+    if cmd.action.startswith(BLOCKED):
+        raise blocked[cmd.action[len(BLOCKED):]]
+    return cmd
 
 
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None) -> PerformResult:
+            plugins: list | None = None, render_settings: Any = None, world: Any = None) -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
+
+    ``world``: an open simulator world to execute in (``execute_path`` resets it to ``scene`` first, so
+    the run records what a new world would); a batch (``l2p-bullet evaluate``) keeps one per process.
 
     Raises an :class:`L2PError` subclass for anything a user can get wrong (sentence, plugin, run
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
     failed, so a failed run is still explained on disk.
     """
-    from .core.runfolder import prepare_run_folder
-    from .planning import resolve_planner
+    from .judge import judge_for
     from .plugins import registry
 
     clock = StageClock(on_stage)
     clock.stage("parse")
-    resolve_planner(planner)  # a typo must fail before anything is loaded or written
+    check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
+    clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
+    bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
+    model = bundle.progress_model()
+    judge = judge_for(bundle)
     clock.stop()
 
-    out = prepare_run_folder(out_dir, force=force, prefix="perform")
+    with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
+        try:
+            return _run(cmd, scene, bundle, model, judge, out, clock, planner=planner, seed=seed, render=render,
+                        budget=budget, threshold=threshold, render_settings=render_settings, world=world)
+        except L2PError as e:
+            clock.stop()
+            write_summary(out / "summary.json", {
+                "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
+                "failed_stage": clock.last, "error": str(e), "timings_s": clock.timings,
+            })
+            raise
+        except KeyboardInterrupt:
+            clock.stop()  # run_folder marks the run interrupted; the stage it was in is worth keeping
+            write_summary(out / "summary.json", {
+                **_summary_or_empty(out / "summary.json"), "sentence": cmd.sentence, "action": cmd.action,
+                "interrupted_stage": clock.last, "timings_s": clock.timings})
+            raise
+
+
+def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
+    """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched."""
+    from .planning import resolve_planner
+
+    resolve_planner(planner)
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**32:
+        raise PlanError(f"the seed must be an integer from 0 to {2**32 - 1} (got {str(seed)[:20]})")
+    if budget is not None and (isinstance(budget, bool) or not isinstance(budget, int) or budget < 1):
+        raise PlanError(f"the budget must be a positive number of search steps (got {str(budget)[:20]})")
+    if threshold is not None and not (isinstance(threshold, int | float) and 0.0 <= threshold <= 1.0):
+        raise PlanError(f"the threshold must be a progress between 0 and 1 (got {str(threshold)[:20]})")
+
+
+def _summary_or_empty(path: Path) -> dict:
     try:
-        clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
-        bundle = registry.load(cmd.action, plugins)
-        model = bundle.progress_model()
-        return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
-                    budget=budget, threshold=threshold, render_settings=render_settings)
-    except L2PError as e:
-        clock.stop()
-        _write_json(out / "summary.json", {
-            "schema": 1, "sentence": cmd.sentence, "action": cmd.action, "ok": False,
-            "failed_stage": clock.last, "error": str(e), "timings_s": clock.timings,
-        })
-        raise
+        d = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {"schema": 1}
+    return d if isinstance(d, dict) else {"schema": 1}
 
 
-def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: StageClock, *, planner: str,
-         seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any) -> PerformResult:
+def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: Path, clock: StageClock, *,
+         planner: str, seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
+         world: Any = None) -> PerformResult:
     from . import planning
     from .embodiment import execute
-    from .judge import judge_for
 
     size = scene.get(cmd.mover).size
-    judge = judge_for(bundle)  # a broken [judge] fails at load, not after the arm moved
     clock.stage("plan", f"planning with the {planner} planner")
     plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
                          threshold=threshold)
@@ -154,7 +204,7 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, out: Path, clock: 
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, **kwargs)
+                              meta=meta, on_stage=stage_cb, world=world, **kwargs)
 
     clock.stage("evaluate")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -203,11 +253,10 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     sees it), exactly as ``perform`` judges its executed trajectory.
     """
     from . import planning
-    from .core.runfolder import prepare_run_folder
     from .judge import judge_for
     from .plugins import registry
 
-    planning.resolve_planner(planner)  # a bad name fails before anything is loaded
+    check_options(planner, seed, budget, threshold)  # a bad name fails before anything is loaded
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
@@ -221,12 +270,12 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
                           final_progress=result.extra.get("final_progress"),
                           **judge_context(poses, result.viewer)).to_dict()
     result.extra["verdict"] = verdict
-    folder = prepare_run_folder(out_dir, force=force, prefix="plan")
-    result.save(folder / "plan.json")
-    if plot:
-        from .planning.plot import plot_plan
+    with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
+        result.save(folder / "plan.json")
+        if plot:
+            from .planning.plot import plot_plan
 
-        plot_plan(result, scene, folder / "plan.png")
+            plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
 
 
@@ -263,18 +312,4 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
         "timings_s": {**timings, **d["timings"]},
         "files": {**files, "plan": "plan.json"},
     })
-    _write_json(path, summary)
-
-
-def _write_json(path: Path, data: dict) -> None:
-    path.write_text(json.dumps(data, indent=1, default=_json_default) + "\n")
-
-
-def _json_default(o: object) -> object:
-    if isinstance(o, Path):
-        return str(o)
-    if isinstance(o, np.generic):
-        return o.item()
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+    write_summary(path, summary)

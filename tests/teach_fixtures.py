@@ -1,18 +1,13 @@
-"""A scaffolded plugin, a live teach server and a real Chromium for the teach page's tests."""
+"""A scaffolded plugin and a live teach server for the teach page's tests (Chromium: review_fixtures)."""
 
 from __future__ import annotations
 
 import json
-import os
 import urllib.error
 import urllib.request
 from pathlib import Path
 
 import pytest
-
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 
 
 class Live:
@@ -22,15 +17,15 @@ class Live:
                  ensemble: int = 1, epochs: int = 2, seed: int = 0):
         from l2p_bullet.learning.train_progress import BundleTrainer, ProgressTrainConfig
         from l2p_bullet.plugins.scaffold import scaffold
+        from l2p_bullet.review.server import start
         from l2p_bullet.teach.app import create_app
-        from l2p_bullet.teach.server import start
         from l2p_bullet.teach.session import TeachSession, find_action
 
         self.root = scaffold(name, [phrase], root / f"l2p-{name}", frame=frame, anchors=anchors).root
         self.action = find_action(name, self.root)
         trainer = BundleTrainer(ProgressTrainConfig(ensemble=ensemble, epochs=epochs))
         self.session = TeachSession(self.action, trainer, seed=seed)
-        self.server = start(create_app(self.session))
+        self.server = start(create_app(self.session), name="teach-server")
         self.url = self.server.url
 
     def call(self, method: str, path: str, body=None, raw: bytes | None = None):
@@ -64,19 +59,3 @@ def live(tmp_path):
     yield start
     for s in servers:
         s.stop()
-
-
-@pytest.fixture(scope="session")
-def chromium():
-    """Headless Debian Chromium through Playwright. CI (CI=true) must have it: there it fails, never skips."""
-    if not os.path.exists(CHROMIUM):
-        message = f"{CHROMIUM} is missing (apt-get install -y chromium; .ci/run installs it)"
-        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
-            pytest.fail(message)
-        pytest.skip(message)
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS, headless=True)
-        yield browser
-        browser.close()

@@ -111,7 +111,13 @@ def test_write_weights_adds_a_policy(bundle_copy):
     (bundle_copy / MANIFEST).write_text(tomli_w.dumps(man))
     (bundle_copy / POLICY_FILE).unlink(missing_ok=True)
     assert load_bundle(bundle_copy).policy_arrays() is None
-    arrays = {"mean.weight": np.arange(6.0, dtype=np.float32).reshape(2, 3), "log_std": np.zeros(3, np.float32)}
+    from l2p_bullet.planning.policy import FEATURES
+
+    h = 8
+    arrays = {"body.0.weight": np.zeros((h, FEATURES), np.float32), "body.0.bias": np.zeros(h, np.float32),
+              "body.2.weight": np.zeros((h, h), np.float32), "body.2.bias": np.zeros(h, np.float32),
+              "mean.weight": np.arange(3.0 * h, dtype=np.float32).reshape(3, h), "mean.bias": np.zeros(3, np.float32),
+              "log_std.weight": np.zeros((3, h), np.float32), "log_std.bias": np.zeros(3, np.float32)}
     write_weights(bundle_copy, POLICY_FILE, arrays, "policy", {"planner": "reinforce", "steps": 20})
     b = load_bundle(bundle_copy)
     assert b.manifest["policy"] == {"planner": "reinforce", "steps": 20}

@@ -32,6 +32,8 @@ def test_wheel_ships_data_urdf_and_bundles_under_the_package(wheel: Path) -> Non
         assert f"l2p_bullet/actions/{action}/progress.safetensors" in names
     assert any(n.startswith("l2p_bullet/urdf/") and n.endswith(".urdf") for n in names)
     assert "l2p_bullet/data/LICENSE" in names
+    for page in ("index.html", "app.js", "style.css"):  # the review app's page
+        assert f"l2p_bullet/review/static/{page}" in names
     assert sum(n.startswith("l2p_bullet/data/captures/") and n.endswith(".npz") for n in names) == 11
     for f in ("index.html", "teach.js", "style.css"):  # the teach page
         assert f"l2p_bullet/teach/static/{f}" in names

@@ -100,15 +100,15 @@ def test_existing_folder_needs_force(tmp_path):
     out = tmp_path / "taken"
     out.mkdir()
     (out / "keep.txt").write_text("mine")
-    with pytest.raises(RunFolderError, match="--force"):
+    with pytest.raises(RunFolderError, match="did not write"):
         perform("move A next to B", default_scene(), out_dir=out, render=False)
     assert (out / "keep.txt").read_text() == "mine"
     result = CliRunner().invoke(main, ["perform", "move A next to B", "--no-render", "--out", str(out), "-q"])
     assert result.exit_code == 2 and "already exists" in result.output
     result = CliRunner().invoke(main, ["perform", "move A next to B", "--no-render", "--out", str(out), "-q",
-                                       "--force"])
-    assert result.exit_code == 0, result.output
-    assert not (out / "keep.txt").exists() and (out / "trajectory.json").exists()
+                                       "--force"])  # --force replaces only run folders: keep.txt is not ours
+    assert result.exit_code == 2 and "did not write (keep.txt)" in result.output
+    assert (out / "keep.txt").read_text() == "mine"
 
 
 def test_language_error_is_raised_before_any_work(tmp_path):

@@ -173,7 +173,6 @@ def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
     assert np.allclose(a * np.array([1, -1, -1]), b)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("action", ["closer", "away", "next-to", "past", "around"])
 def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
     """The real bundles (progress model + policy) through the default planner: legal, dense, repeatable."""
@@ -191,3 +190,27 @@ def test_the_shipped_bundles_plan_legal_paths_deterministically(action):
                                    f"progress model; re-train it (make bundles, or l2p-bullet train-policy {action})")
     # every shipped bundle reaches its planning threshold on this scene (0.96-1.00 when this was written)
     assert a.stopped == "threshold" and a.extra["final_progress"] >= a.extra["threshold"]
+
+
+def test_train_policy_command_writes_a_policy_tied_to_its_progress_model(tmp_path):
+    """``l2p-bullet train-policy`` (what ``make bundles`` runs) stores a loadable policy that records which
+    progress model it learned to please, and keeps the bundle's planner choices."""
+    import shutil
+
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
+
+    folder = tmp_path / "away"
+    shutil.copytree(builtin_bundle_dir("away"), folder)
+    before = load_bundle(folder).manifest
+    r = CliRunner().invoke(main, ["train-policy", "away", "--bundle", str(folder), "--iterations", "2",
+                                  "--episodes", "4", "--seed", "1"])
+    assert r.exit_code == 0, r.output
+    b = load_bundle(folder)
+    policy = b.manifest["policy"]
+    assert policy["progress_sha256"] == b.manifest["weights"]["progress.safetensors"]["sha256"]
+    assert policy["planner"] == before["policy"]["planner"] and policy["training"]["iterations"] == 2
+    assert b.manifest["weights"]["policy.safetensors"]["sha256"] != before["weights"]["policy.safetensors"]["sha256"]
+    assert set(b.policy_arrays()) >= {"body.0.weight", "mean.weight", "log_std.weight"}

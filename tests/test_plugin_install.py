@@ -91,16 +91,24 @@ def installed(venv: Path, tmp_path_factory) -> Path:
     cli = [str(venv), "-m", "l2p_bullet.cli"]
     trains = []
     for name, (phrase, options) in PLUGINS.items():
-        run([*cli, "new-action", name, "--phrase", phrase, *options], work)
+        printed = run([*cli, "new-action", name, "--phrase", phrase, *options], work).stdout
+        # the install step is the local folder with this environment's pip, never a lookup by name
+        assert f"{Path(sys.prefix) / 'bin' / 'pip'} install ./l2p-{name}" in printed or \
+            f"{venv} -m pip install ./l2p-{name}" in printed, printed
+        assert f"--demos l2p-{name}/demos/*.npz" in printed
         pkg = work / f"l2p-{name}"
         module_dir = pkg / f"l2p_{name.replace('-', '_')}"
         files = write_sessions(pkg / "demos", name, sessions=2, events=16, seed=0)
-        trains.append([*cli, "train", name, *[a for f in files for a in ("--demos", str(f))], "--out",
-                       str(module_dir), "--ensemble", "2", "--epochs", "12"])
+        # as documented: `--demos DIR/demos/*.npz`, which the shell expands to several files after one --demos
+        trains.append([*cli, "train", name, "--demos", *map(str, files), "--out", str(module_dir),
+                       "--ensemble", "2", "--epochs", "12"])
     run_all(trains, work)
     for name in PLUGINS:
         manifest = (work / f"l2p-{name}" / f"l2p_{name.replace('-', '_')}" / "manifest.toml").read_text()
         assert PLUGINS[name][0] in manifest, "training dropped the scaffold's phrases"
+        assert manifest.startswith(f'# Bundle manifest of the action "{name}".'), "training dropped the comments"
+        assert 'version = "0.1.0"' in manifest, "training replaced the scaffold's version"
+        assert "# Where the relation is seen from" in manifest, "training dropped the declaration's comment"
     run([sys.executable, "-m", "pip", "--python", str(venv), "install", "--no-deps", "--no-build-isolation",
          "--no-index", "--quiet", *[str(work / f"l2p-{n}") for n in PLUGINS]], work, timeout=300)
     return work

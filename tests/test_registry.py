@@ -15,7 +15,7 @@ from click.testing import CliRunner
 from plugin_fixtures import make_bundle, make_dist
 
 from l2p_bullet.cli import main
-from l2p_bullet.errors import PluginError
+from l2p_bullet.errors import PluginConflict, PluginError
 from l2p_bullet.plugins import registry
 
 
@@ -93,9 +93,12 @@ def test_duplicate_phrase_names_both_plugins(plugins_dir, tmp_path, monkeypatch)
     make_bundle(other / "fk_rival", "rival", ["beyond", "sideways"])
     make_dist(other, "rival-plugin", {"rival": "fk_rival"})
     monkeypatch.syspath_prepend(str(other))
-    with pytest.raises(PluginError) as e:
-        registry.phrase_table()
-    msg = str(e.value)
+    # the contested phrase is blocked with an error naming both plugins; the others keep working
+    table = registry.phrase_table()
+    assert "sideways" not in table and table["beyond"] == "rival" and table["to the side of"] == "sideways"
+    e = registry.blocked_phrases()["sideways"]
+    assert isinstance(e, PluginConflict) and e.claim == "sideways" and set(e.plugins) == {"rival", "sideways"}
+    msg = str(e)
     assert '"sideways"' in msg and "fake-plugins" in msg and "rival-plugin" in msg and '"rival"' in msg
 
 
@@ -104,9 +107,11 @@ def test_duplicate_name_is_a_conflict(plugins_dir, tmp_path, monkeypatch):
     make_bundle(other / "fk_twin", "sideways", ["twinned"])
     make_dist(other, "twin-plugin", {"sideways": "fk_twin"})
     monkeypatch.syspath_prepend(str(other))
-    with pytest.raises(PluginError, match="both named"):
-        registry.phrase_table()
-    with pytest.raises(PluginError, match="both named"):
+    table = registry.phrase_table()
+    assert "twinned" not in table and "sideways" not in table and table["nested in"] == "nested"
+    blocked = registry.blocked_phrases()
+    assert isinstance(blocked["twinned"], PluginConflict) and blocked["twinned"].claim == "sideways"
+    with pytest.raises(PluginConflict, match="both named"):
         registry.load("sideways")
 
 

@@ -40,7 +40,10 @@ def test_demo_replay_writes_the_run_folder(demo_run):
     assert imageio.imread(out / "contact_sheet.png").shape[1] == 4 * 160
     with imageio.get_reader(out / "video.mp4") as video:  # a real, decodable video of every frame
         decoded = [f for f in video]
-    assert len(decoded) == len(frames) and decoded[0].shape == (120, 160, 3)
+    from l2p_bullet.embodiment.overlay import strip_height
+
+    # every frame, with the caption strip (sentence, learned progress) under it
+    assert len(decoded) == len(frames) and decoded[0].shape == (120 + strip_height(120), 160, 3)
 
 
 def test_demo_replay_keeps_the_demo_relative_to_the_anchor(demo_run):
@@ -67,7 +70,7 @@ def test_demo_replay_keeps_the_demo_relative_to_the_anchor(demo_run):
 def test_existing_run_folder_needs_force(demo_run, tmp_path):
     out, _ = demo_run
     r = _replay("--demo", "past:0", "--out", str(out), "--no-render")
-    assert r.exit_code == 2 and "already exists; pass --force" in r.output
+    assert r.exit_code == 2 and "already holds a finished run" in r.output and "--force" in r.output
 
 
 def test_replay_a_scoring_input_and_its_plan(tmp_path):

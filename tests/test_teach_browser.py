@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from teach_fixtures import chromium, live  # noqa: F401 - fixtures
+from teach_fixtures import live  # noqa: F401 - fixture (chromium: conftest.py)
 
 from l2p_bullet.learning.demos import DEMO_BLOCK_SIZE, load_demos
 

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import json
+import sys
 import textwrap
+from pathlib import Path
 
 import click
 
@@ -29,13 +30,17 @@ def _fmt(v: object) -> str:
 
 @click.command("actions")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (for scripts).")
-@click.option("--check", is_flag=True, help="Also load every plugin (imports it, verifies its weights).")
+@click.option("--check", is_flag=True,
+              help="Also load every plugin as perform would (import, manifest, weights, judge); exit 1 if any "
+                   "plugin is broken or two conflict.")
 def actions_cmd(as_json: bool, check: bool) -> None:
     """List the installed action plugins: name, version, package, phrases, metrics.
 
     Plugins are found through the entry-point group "l2p_bullet.actions" without importing them;
-    broken ones are listed with the reason. --check loads each one as perform would.
+    broken ones are listed with the reason. --check loads each one as perform would and exits with
+    status 1 when any plugin is broken or two plugins claim the same name or phrase (0 otherwise).
     """
+    from ..core.contracts import dumps_json
     from ..plugins import registry
 
     plugins = registry.discover()
@@ -57,8 +62,11 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         }
         for p in plugins
     ]
+    failed = check and (bool(reasons) or bool(problems))
     if as_json:
-        click.echo(json.dumps({"actions": rows, "conflicts": problems}, indent=1, default=str))
+        click.echo(dumps_json({"actions": rows, "conflicts": [str(p) for p in problems]}, indent=1))
+        if failed:
+            sys.exit(1)
         return
     good = [r for r in rows if r["ok"]]
     bad = [r for r in rows if not r["ok"]]
@@ -83,6 +91,8 @@ def actions_cmd(as_json: bool, check: bool) -> None:
             click.echo(f'  {r["name"]} (package {r["package"]} {r["package_version"]}): {r["error"]}')
     for msg in problems:
         click.echo(f"conflict: {msg}", err=True)
+    if failed:
+        sys.exit(1)
 
 
 @click.command("new-action")
@@ -108,8 +118,9 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
       l2p-bullet new-action between --phrase between --anchors 2 --judge between
     \b
     Then: write demonstrations into DIR/demos (see DIR/README.md, or use l2p-bullet teach NAME),
-          l2p-bullet train NAME --demos DIR/demos --out DIR/<module>
-          pip install DIR
+          l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
+          <this environment>/bin/pip install ./DIR   (a path: never the bare name, which
+                                                      would fetch a stranger's package)
           l2p-bullet perform "move A <phrase> B"
     """
     from ..plugins import registry
@@ -121,11 +132,27 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
                  anchors=anchors, judge=judge)
     click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
     click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
-    here = s.root if s.root.is_absolute() else f"./{s.root}"
-    click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos --out {s.package_dir}")
-    click.echo(f"  3. pip install {here}")
+    click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")
+    click.echo(f"  3. {pip_install_command(s.root)}")
     click.echo(f'  4. l2p-bullet perform "move A {registry.normalize_phrase(phrases[0])} B'
                + (' and C"' if anchors == 2 else '"'))
+
+
+def pip_install_command(folder: Path) -> str:
+    """The command that installs the scaffolded plugin into the environment running l2p-bullet.
+
+    Always a path (``./l2p-left-of``), never a bare name: ``pip install l2p-left-of`` would look the
+    name up on the package index and install whatever a stranger published under it.
+    """
+    import shlex
+    import sys
+
+    pip = Path(sys.prefix) / "bin" / "pip"
+    cmd = shlex.quote(str(pip)) if pip.is_file() else f"{shlex.quote(sys.executable)} -m pip"
+    target = str(folder)
+    if not (folder.is_absolute() or target.startswith(("./", "../"))):
+        target = "./" + target
+    return f"{cmd} install {shlex.quote(target)}"
 
 
 COMMANDS: list[click.Command] = [actions_cmd, new_action_cmd]

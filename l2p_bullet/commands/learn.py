@@ -8,24 +8,25 @@ folder (:func:`l2p_bullet.plugins.registry.resolve`). The commands only parse op
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
 import click
 
-from .common import force_option, seed_option
+from .common import greedy_options, seed_option
 
 
-@click.command()
+@click.command(cls=greedy_options("--demos"))
 @click.argument("action")
 @click.option("--demos", "demo_files", multiple=True, type=click.Path(),
-              help="Capture session files (.npz) of ACTION to train on instead of the shipped ones, or a folder "
-                   "of them (repeatable).")
+              help="Capture session files (.npz) of ACTION to train on instead of the shipped ones: one or "
+                   "more (--demos demos/*.npz), a folder of them, or the option repeated.")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
               help="Bundle folder to write (default: runs/bundles/<action>).")
 @seed_option
-@force_option
+@click.option("--force", is_flag=True,
+              help="Overwrite the manifest and progress weights if --out already holds a trained bundle "
+                   "(other files in it, e.g. policy.safetensors, are kept).")
 @click.option("--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer).")
 @click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer).")
 def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: int, force: bool,
@@ -39,7 +40,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     Examples:
       l2p-bullet train around --out my_around
       l2p-bullet train closer --demos SlideToward_Session1.npz --seed 3 --out closer_s1
-      l2p-bullet train left-of --demos l2p-left-of/demos --out l2p-left-of/l2p_left_of
+      l2p-bullet train left-of --demos l2p-left-of/demos/*.npz --out l2p-left-of/l2p_left_of
     """
     import dataclasses
 
@@ -47,9 +48,20 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
 
     cfg = ProgressTrainConfig()
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
-    with click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {action}", file=sys.stderr) as bar:
+    bars: list = []
+
+    def tick() -> None:  # the bar starts with the first epoch: a file error before it stays one line
+        if not bars:
+            bars.append(click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {action}",
+                                          file=sys.stderr).__enter__())
+        bars[0].update(1)
+
+    try:
         out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
-                                   cfg=cfg, force=force, tick=lambda: bar.update(1))
+                                   cfg=cfg, force=force, tick=tick)
+    finally:
+        if bars:
+            bars[0].__exit__(None, None, None)
     click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences)")
 
 
@@ -91,9 +103,10 @@ def score(action: str, file: str) -> None:
     FILE is a scoring input {"size", "mover", "anchor"}, a plan.json or a trajectory.json. The motion
     is resampled to the model's frame spacing; the output has one progress value per input frame.
     """
+    from ..core.contracts import dumps_json
     from ..progress.scoring import score_file
 
-    click.echo(json.dumps(score_file(action, file)))
+    click.echo(dumps_json(score_file(action, file)))
 
 
 COMMANDS: list[click.Command] = [train, train_policy_cmd, score]

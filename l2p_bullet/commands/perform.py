@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import time
 
 import click
@@ -33,6 +32,7 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     (l2p-bullet actions). The run folder gets trajectory.json, plan.json, summary.json and,
     unless --no-render, frames and a video.
     """
+    from ..core.contracts import dumps_json
     from ..pipeline import perform
 
     t0 = time.perf_counter()
@@ -45,7 +45,7 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
                 on_stage=on_stage)
     if as_json:
-        click.echo(json.dumps(r.to_dict(), indent=1))
+        click.echo(dumps_json(r.to_dict(), indent=1))
         return
     v = r.verdict
     fp = "n/a" if r.final_progress is None else f"{r.final_progress:.2f}"

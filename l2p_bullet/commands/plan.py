@@ -28,13 +28,12 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     The plan maximises the action's learned progress model; the action's judge (rules for the built-in
     actions) gives its verdict alongside (it judges the path, the planner never sees it).
     """
-    import json
-
+    from ..core.contracts import dumps_json
     from ..pipeline import plan
 
     result = plan(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
                   budget=budget, threshold=threshold, force=force)
-    click.echo(json.dumps(result.to_dict()))
+    click.echo(dumps_json(result.to_dict()))
 
 
 COMMANDS: list[click.Command] = [plan_command]

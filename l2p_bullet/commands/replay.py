@@ -40,7 +40,7 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
       l2p-bullet replay --demo around:0
       l2p-bullet replay runs/demo/plan.json --no-render
     """
-    from ..core.runfolder import prepare_run_folder
+    from ..core.runfolder import run_folder
     from ..embodiment.replay import motion_source, run_replay
     from ..embodiment.sim.camera import RenderSettings
     from ..errors import PathError
@@ -49,9 +49,9 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")
     scene = load_scene_or_default(scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
-    folder = prepare_run_folder(out, force=force, prefix="replay")
     render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
-    ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
+    with run_folder(out, force=force, prefix="replay", command="replay") as folder:
+        ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")

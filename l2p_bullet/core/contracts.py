@@ -9,12 +9,17 @@ The plan (:class:`Plan`) is also what the planner hands to the executor. Readers
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import PathError
+from ..errors import L2PError, PathError
+
+MAX_JSON_BYTES = 64 * 1024 * 1024
+"""The largest JSON input read (a scene, a plan, a trajectory, a scoring input): a 20 s run's
+trajectory.json is about 150 kB, so this only stops a file that would exhaust memory."""
 
 
 @dataclass
@@ -66,7 +71,7 @@ class Plan:
         }
 
     def save(self, path: str | Path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+        Path(path).write_text(dumps_json(self.to_dict(), indent=1) + "\n")
 
     @classmethod
     def from_dict(cls, d: dict, source: str = "plan") -> Plan:
@@ -74,7 +79,7 @@ class Plan:
             known = {"schema", "action", "mover", "anchor", "size", "anchor_pose", "start", "path",
                      "progress", "planner", "stopped", "anchors", "anchor_poses", "viewer"}
             anchors = d.get("anchors", [d["anchor"]])
-            if not isinstance(anchors, list) or not anchors or str(anchors[0]) != str(d["anchor"]):
+            if not isinstance(anchors, list) or not 1 <= len(anchors) <= 2 or str(anchors[0]) != str(d["anchor"]):
                 raise ValueError('"anchors" must be a list starting with "anchor"')
             more_poses = None
             if len(anchors) > 1:
@@ -86,7 +91,7 @@ class Plan:
                 action=str(d["action"]),
                 mover=str(d["mover"]),
                 anchor=str(d["anchor"]),
-                size=float(d["size"]),
+                size=block_size(d["size"], source),
                 anchor_pose=_poses(d["anchor_pose"], source, "anchor_pose").reshape(3),
                 start=_poses(d["start"], source, "start").reshape(3),
                 path=_poses(d["path"], source, "path"),
@@ -100,8 +105,8 @@ class Plan:
             )
         except KeyError as e:
             raise PathError(f'{source}: plan is missing the field "{e.args[0]}"') from None
-        except (TypeError, ValueError) as e:  # "size": "big", "action": {...}: a malformed plan, not a bug
-            raise PathError(f"{source}: malformed plan ({e})") from None
+        except (TypeError, ValueError, OverflowError) as e:  # "size": "big", "action": {...}: malformed, not a bug
+            raise PathError(f"{source}: malformed plan ({str(e)[:120]})") from None
 
 
 @dataclass
@@ -118,10 +123,28 @@ class Motion:
     viewer: np.ndarray | None = None  # (2,) viewpoint in the same frame, when the file gives one
 
 
+MIN_SIZE_M, MAX_SIZE_M = 1e-4, 1e3
+"""Block sides a motion file may give (metres): anything outside is a unit mistake, not a block."""
+
+
+def block_size(value: object, source: str, key: str = "size") -> float:
+    """A motion's block side from a file: a finite number of metres within [MIN_SIZE_M, MAX_SIZE_M]."""
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise PathError(f'{source}: "{key}" must be a number (the block side in metres)')
+    try:
+        size = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise PathError(f'{source}: "{key}" must be a number (the block side in metres)') from None
+    if not MIN_SIZE_M <= size <= MAX_SIZE_M:
+        raise PathError(f'{source}: "{key}" is {size:.3g} m; a block side must be between {MIN_SIZE_M:g} and '
+                        f"{MAX_SIZE_M:g} m")
+    return size
+
+
 def _poses(value: object, source: str, key: str) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError, RecursionError):
         raise PathError(f'{source}: "{key}" must be numbers') from None
     if arr.ndim == 1:
         arr = arr[None]
@@ -149,16 +172,66 @@ def trajectory_poses(frames: list[dict], name: str) -> np.ndarray:
     return np.array([[f["poses"][name][0], f["poses"][name][1], f["poses"][name][3]] for f in frames], float)
 
 
-def read_json(path: str | Path) -> dict:
+def dumps_json(value: object, **kwargs) -> str:
+    """``json.dumps`` for every JSON this tool writes or prints: NaN and infinities become null (JSON has
+    no such numbers; strict readers reject Python's ``NaN`` literal), numpy values and paths plain JSON."""
+    return json.dumps(_finite(value), allow_nan=False, default=_json_default, **kwargs)
+
+
+def _finite(v: object) -> object:
+    if isinstance(v, float):
+        return v if math.isfinite(v) else None
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [_finite(x) for x in v]
+    if isinstance(v, np.generic | np.ndarray):
+        return _finite(v.tolist())
+    return v
+
+
+def _json_default(v: object) -> object:
+    if isinstance(v, Path):
+        return str(v)
+    raise TypeError(f"not JSON serialisable: {type(v).__name__}")
+
+
+def _no_constant(name: str) -> float:
+    raise ValueError(f"{name} is not a JSON number")
+
+
+def load_json_file(path: str | Path, error: type[L2PError] = PathError, what: str = "") -> object:
+    """Parse a JSON file, every failure a one-line ``error`` naming the file.
+
+    Not UTF-8, too large (:data:`MAX_JSON_BYTES`), nested too deep, an integer too long to read, or the
+    ``NaN``/``Infinity`` literals Python's json would otherwise accept: all are the user's file, not a bug.
+    """
     p = Path(path)
+    label = f"{what} {p}" if what else str(p)
     try:
-        data = json.loads(p.read_text())
+        if p.is_file() and p.stat().st_size > MAX_JSON_BYTES:
+            raise error(f"{label} is {p.stat().st_size / 1e6:.0f} MB; the limit is {MAX_JSON_BYTES // 2**20} MiB")
+        raw = p.read_bytes()
     except OSError as e:
-        raise PathError(f"cannot read {p}: {e.strerror or e}") from None
+        raise error(f"cannot read {label}: {e.strerror or e}") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise error(f"{label} is not UTF-8 text (byte {e.start}); save it as UTF-8 JSON") from None
+    try:
+        return json.loads(text, parse_constant=_no_constant)
     except json.JSONDecodeError as e:
-        raise PathError(f"{p} is not valid JSON (line {e.lineno}, column {e.colno}: {e.msg})") from None
+        raise error(f"{label} is not valid JSON (line {e.lineno}, column {e.colno}: {e.msg})") from None
+    except RecursionError:
+        raise error(f"{label} is nested too deeply to be a JSON file of this tool") from None
+    except ValueError as e:  # NaN/Infinity literals, integers beyond Python's digit limit
+        raise error(f"{label} is not valid JSON ({str(e)[:120]})") from None
+
+
+def read_json(path: str | Path) -> dict:
+    data = load_json_file(path)
     if not isinstance(data, dict):
-        raise PathError(f"{p}: expected a JSON object")
+        raise PathError(f"{path}: expected a JSON object")
     return data
 
 
@@ -167,13 +240,21 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
     if "frames" in d:  # trajectory.json
         try:
             mover, anchor = str(d["mover"]), str(d["anchor"])
-            more = [str(a) for a in d.get("anchors", [anchor])[1:]]
+            names = d.get("anchors", [anchor])
+            if not isinstance(names, list) or not 1 <= len(names) <= 2:
+                raise TypeError('"anchors" must be a list of one or two object names')
+            more = [str(a) for a in names[1:]]
             m_arr = trajectory_poses(d["frames"], mover)
             a_arr = trajectory_poses(d["frames"], anchor)
             x_arr = [_poses(trajectory_poses(d["frames"], a), source, "frames") for a in more]
-            size = float(d["objects"][mover]["size"])
-        except (KeyError, TypeError, IndexError, ValueError) as e:
-            raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {e})") from None
+            size = block_size(d["objects"][mover]["size"], source, f"objects.{mover[:40]}.size")
+        except KeyError as e:
+            raise PathError(f"{source}: not a valid trajectory.json (missing {str(e)[:80]})") from None
+        except IndexError:
+            raise PathError(f"{source}: not a valid trajectory.json (every pose in \"frames\" must be "
+                            "[x, y, z, yaw])") from None
+        except (TypeError, ValueError, OverflowError) as e:
+            raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {str(e)[:80]})") from None
         return Motion(_poses(m_arr, source, "frames"), _poses(a_arr, source, "frames"), size, mover, anchor,
                       d.get("action"), x_arr, _viewer(d.get("viewer"), source))
     if "path" in d:  # plan.json
@@ -190,8 +271,8 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
     mover = _poses(d["mover"], source, "mover")
     tracks = []
     raw_more = d.get("more_anchors", [])
-    if not isinstance(raw_more, list):
-        raise PathError(f'{source}: "more_anchors" must be a list of pose sequences')
+    if not isinstance(raw_more, list) or len(raw_more) > 1:
+        raise PathError(f'{source}: "more_anchors" must be a list of at most one pose sequence')
     for key, value in [("anchor", d["anchor"])] + [(f"more_anchors[{i}]", v) for i, v in enumerate(raw_more)]:
         track = _poses(value, source, key)
         if len(track) == 1:
@@ -199,13 +280,8 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
         if len(mover) != len(track):
             raise PathError(f'{source}: "mover" has {len(mover)} poses but "{key}" has {len(track)}')
         tracks.append(track)
-    try:
-        size = float(d["size"])
-    except (TypeError, ValueError):
-        raise PathError(f'{source}: "size" must be a number') from None
-    if not size > 0:
-        raise PathError(f'{source}: "size" must be positive')
-    return Motion(mover, tracks[0], size, more_anchors=tracks[1:], viewer=_viewer(d.get("viewer"), source))
+    return Motion(mover, tracks[0], block_size(d["size"], source), more_anchors=tracks[1:],
+                  viewer=_viewer(d.get("viewer"), source))
 
 
 def load_motion(path: str | Path) -> Motion:

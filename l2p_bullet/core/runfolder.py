@@ -1,37 +1,311 @@
-"""Run folders: never overwrite one unless asked; default names are timestamped."""
+"""Run folders: nothing a person wrote is ever deleted, and two runs never share a folder.
+
+Every command that writes a run folder (perform, plan, replay, and whatever comes next) gets it from
+:func:`run_folder` (a context manager) or :func:`prepare_run_folder`, so the rules hold everywhere:
+
+- A new folder is made with ``mkdir`` while holding an exclusive lock on its parent folder, and gets a
+  marker file (:data:`MARKER`) on which the run holds a second lock (``flock``) until it ends. Two runs
+  started together into one ``--out``: one gets the folder, the other a :class:`RunFolderError`.
+- An existing folder is only ever *replaced*, never emptied in place, and only when it is a run folder
+  this tool wrote: it has the marker (or, from before the marker, a summary.json of ours) and nothing
+  else than the files a run writes. Never the current directory or one of its parents, never a
+  symbolic link, never a folder holding a file of someone else (``thesis.txt``).
+- A finished run folder is replaced only with ``force``; an *incomplete* one (its run was interrupted
+  or killed: no summary.json, or ``"failed_stage": "interrupted"``) and an empty folder are replaced
+  without asking. A folder whose run is still going (its marker is locked) is never touched.
+- The old folder is renamed to a hidden sibling first and deleted after the new one exists: a crash in
+  between loses nothing that was not going to be replaced anyway.
+- A run that ends by an exception leaves a summary.json with ``"ok": false``: ``failed_stage`` is
+  ``"interrupted"`` for Ctrl-C (KeyboardInterrupt) and the stage the caller recorded otherwise.
+
+Callers validate every option *before* asking for the folder: a typo must never cost a previous run.
+Locks are POSIX ``flock`` (released by the kernel when a process dies, so a killed run never blocks
+the next one).
+"""
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
+import fnmatch
+import json
+import os
 import shutil
 import time
+import uuid
+from collections.abc import Iterator
 from pathlib import Path
 
 from ..errors import RunFolderError
+from .contracts import dumps_json
+
+MARKER = ".l2p-run.json"
+"""The file that makes a folder a run folder of ours: which command wrote it, when, by which process."""
+
+RUN_FILES: tuple[str, ...] = (
+    MARKER, "summary.json", "trajectory.json", "plan.json", "plan.png", "video.mp4", "video.gif",
+    "contact_sheet.png", "frames", "frames/*.png",
+)
+"""Relative paths (fnmatch patterns) a run may write. A folder holding anything else is not replaced.
+A command that writes other files lists them in ``run_folder(..., files=...)``: they are recorded in
+the marker, so that a later ``--force`` recognises them."""
+
+INTERRUPTED = "interrupted"
+
+
+def run_folder_state(path: Path) -> str:
+    """What an existing folder is, for the rules above: ``"missing"``, ``"empty"``, ``"running"`` (its run
+    holds the lock), ``"incomplete"``, ``"finished"`` (run folders of ours) or ``"foreign"``."""
+    if not path.exists() and not path.is_symlink():
+        return "missing"
+    if path.is_symlink() or not path.is_dir():
+        return "foreign"
+    entries = list(path.iterdir())
+    if not entries:
+        return "empty"
+    marker = _read_json(path / MARKER)
+    summary = _read_json(path / "summary.json")
+    ours = isinstance(marker, dict) and marker.get("tool") == "l2p-bullet"
+    plan = _read_json(path / "plan.json") if not ours else None
+    legacy = (isinstance(summary, dict) and summary.get("schema") == 1 and "timings_s" in summary) or (
+        isinstance(plan, dict) and plan.get("schema") == 1 and "path" in plan and "planner" in plan)
+    if not (ours or legacy):
+        return "foreign"
+    extra = tuple(marker.get("files", ())) if ours and isinstance(marker.get("files"), list) else ()
+    if _unknown_files(path, RUN_FILES + tuple(str(f) for f in extra)):
+        return "foreign"
+    if ours and _locked(path / MARKER):
+        return "running"
+    interrupted = isinstance(summary, dict) and summary.get("failed_stage") == INTERRUPTED
+    if ours:
+        return "finished" if marker.get("finished") and not interrupted else "incomplete"
+    return "incomplete" if interrupted else "finished"
+
+
+def _read_json(p: Path) -> object:
+    try:
+        if p.is_symlink() or not p.is_file() or p.stat().st_size > 10_000_000:
+            return None
+        return json.loads(p.read_text(encoding="utf-8"))
+    except (OSError, ValueError, RecursionError):
+        return None
+
+
+def _unknown_files(folder: Path, patterns: tuple[str, ...]) -> list[str]:
+    """Relative paths under ``folder`` that no pattern matches (symbolic links always count)."""
+    unknown = []
+    for root, dirs, files in os.walk(folder):
+        for name in dirs + files:
+            full = Path(root) / name
+            rel = full.relative_to(folder).as_posix()
+            if full.is_symlink() or not any(fnmatch.fnmatchcase(rel, p) for p in patterns):
+                unknown.append(rel)
+    return sorted(unknown)
+
+
+def _locked(marker: Path) -> bool:
+    """True while some process holds the marker's lock (its run is going on)."""
+    try:
+        fd = os.open(marker, os.O_RDONLY | os.O_NOFOLLOW)
+    except OSError:
+        return False
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+        return False
+    except BlockingIOError:
+        return True
+    finally:
+        os.close(fd)
+
+
+@contextlib.contextmanager
+def _parent_lock(parent: Path) -> Iterator[None]:
+    """Serialise the creation and replacement of run folders inside ``parent`` (a few milliseconds)."""
+    fd = os.open(parent, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)  # closing releases the lock
+
+
+class _Claim:
+    """A run folder this process made, with the marker's lock held until :meth:`release`."""
+
+    def __init__(self, path: Path, command: str, files: tuple[str, ...]):
+        self.path = path
+        self.fd = -1
+        marker = {"tool": "l2p-bullet", "command": command, "id": uuid.uuid4().hex, "pid": os.getpid(),
+                  "started": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "files": list(files)}
+        fd = os.open(path / MARKER, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o644)
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        os.write(fd, (json.dumps(marker) + "\n").encode())
+        self.fd = fd
+
+    def finish(self) -> None:
+        """Record in the marker that the run ended (well or with an error), so it is not "incomplete"."""
+        if self.fd < 0:
+            return
+        try:
+            with open(self.path / MARKER, encoding="utf-8") as f:
+                marker = json.load(f)
+            marker["finished"] = time.strftime("%Y-%m-%dT%H:%M:%S%z")
+            data = (json.dumps(marker) + "\n").encode()
+            os.ftruncate(self.fd, 0)
+            os.pwrite(self.fd, data, 0)
+        except (OSError, ValueError):
+            pass
+
+    def release(self) -> None:
+        if self.fd >= 0:
+            os.close(self.fd)
+            self.fd = -1
+
+
+_HELD: list[_Claim] = []
+"""Claims made by :func:`prepare_run_folder`: held until the process ends."""
+
+
+def _describe(path: Path, state: str) -> str:
+    if state == "running":
+        return f"run folder {path} is being written by another l2p-bullet run right now; choose another --out"
+    if state == "finished":
+        return (f"run folder {path} already holds a finished run; choose another --out, or pass --force to "
+                "replace that run (--force only ever replaces a run folder l2p-bullet wrote)")
+    if path.is_symlink():
+        return f"{path} is a symbolic link; give the folder itself as --out (links are never replaced)"
+    if not path.is_dir():
+        return f"{path} exists and is not a folder; choose another --out"
+    names = _unknown_files(path, RUN_FILES)
+    shown = ", ".join(names[:3]) + (" ..." if len(names) > 3 else "")
+    return (f"{path} already exists and holds files l2p-bullet did not write ({shown}); choose another --out "
+            "(--force never deletes them)")
+
+
+def _protected(path: Path) -> bool:
+    """The current directory, any of its parents, the home folder and the file system's root."""
+    real = path.resolve()
+    cwd = Path.cwd().resolve()
+    try:
+        home = Path.home().resolve()
+    except (RuntimeError, KeyError):
+        home = None
+    return real == cwd or real in cwd.parents or real == home or real == Path(real.anchor)
+
+
+def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
+                     command: str = "", files: tuple[str, ...] = ()) -> _Claim:
+    """Make the run folder (the rules of the module docstring) and lock it; the caller releases the claim."""
+    if out is None:
+        base = Path(root) / f"{prefix}-{time.strftime('%Y%m%d-%H%M%S')}"
+        _mkdirs(base.parent)
+        with _parent_lock(base.parent):
+            path, n = base, 1
+            while path.exists() or path.is_symlink():
+                n += 1
+                path = base.with_name(f"{base.name}-{n}")
+            return _make(path, command or prefix, files)
+    path = Path(out)
+    if str(out).strip() == "" or path.name in ("", ".", "..") or _protected(path):
+        raise RunFolderError(f'"{out}" cannot be a run folder (it is the current folder, one of its parents, '
+                             "the home folder or the root); choose a new folder name for --out")
+    _mkdirs(path.parent)
+    trash = None
+    with _parent_lock(path.parent):
+        state = run_folder_state(path)
+        if state in ("foreign", "running") or (state == "finished" and not force):
+            raise RunFolderError(_describe(path, state), path, state)
+        if state in ("empty", "incomplete", "finished"):
+            trash = path.with_name(f".{path.name}.replaced-{uuid.uuid4().hex[:8]}")
+            try:
+                path.rename(trash)
+            except OSError as e:
+                raise RunFolderError(f"cannot replace run folder {path}: {e.strerror or e}") from None
+        claim = _make(path, command or prefix, files)
+    if trash is not None:
+        shutil.rmtree(trash, ignore_errors=True)
+    return claim
+
+
+def _mkdirs(folder: Path) -> None:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise RunFolderError(f"cannot create the folder {folder}: {e.strerror or e}") from None
+    if not folder.is_dir():
+        raise RunFolderError(f"{folder} is not a folder")
+
+
+def _make(path: Path, command: str, files: tuple[str, ...]) -> _Claim:
+    try:
+        path.mkdir()
+        return _Claim(path, command, files)
+    except FileExistsError:
+        state = run_folder_state(path)
+        raise RunFolderError(_describe(path, state), path, state) from None
+    except OSError as e:
+        raise RunFolderError(f"cannot create run folder {path}: {e.strerror or e}") from None
 
 
 def prepare_run_folder(out: str | Path | None, force: bool = False, prefix: str = "run",
-                       root: str | Path = "runs") -> Path:
-    """Create and return the run folder.
+                       root: str | Path = "runs", command: str = "") -> Path:
+    """Create and return a run folder (``out=None``: ``runs/<prefix>-YYYYmmdd-HHMMSS[-n]``).
 
-    ``out=None`` gives ``runs/<prefix>-YYYYmmdd-HHMMSS`` (a suffix is added if that exists). An existing,
-    non-empty ``out`` is an error unless ``force`` is true, in which case it is emptied first.
+    The folder stays locked until the process ends or :func:`finish_run_folder` is called. Prefer
+    :func:`run_folder`, which also marks an interrupted run; this form is for callers that cannot wrap
+    their work in a ``with``. A folder whose run never called ``finish_run_folder`` counts as incomplete.
     """
-    if out is None:
-        base = Path(root) / f"{prefix}-{time.strftime('%Y%m%d-%H%M%S')}"
-        path, n = base, 1
-        while path.exists():
-            n += 1
-            path = base.with_name(f"{base.name}-{n}")
-    else:
-        path = Path(out)
-        if path.exists() and not path.is_dir():
-            raise RunFolderError(f"{path} exists and is not a folder")
-        if path.exists() and any(path.iterdir()):
-            if not force:
-                raise RunFolderError(f"run folder {path} already exists; pass --force to overwrite it")
-            shutil.rmtree(path)
+    claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command)
+    _HELD.append(claim)
+    return claim.path
+
+
+def finish_run_folder(path: Path) -> None:
+    """End a :func:`prepare_run_folder` run: mark it finished and release its lock."""
+    for claim in [c for c in _HELD if c.path == Path(path)]:
+        claim.finish()
+        claim.release()
+        _HELD.remove(claim)
+
+
+@contextlib.contextmanager
+def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
+               command: str = "", files: tuple[str, ...] = ()) -> Iterator[Path]:
+    """``with run_folder(out, force=force, prefix="perform") as folder: ...`` -- the one way to get a run folder.
+
+    Inside the block the folder is locked (another run cannot take or replace it). If the block ends by
+    an exception, summary.json is left with ``"ok": false``: ``"failed_stage": "interrupted"`` for
+    Ctrl-C; otherwise a summary the block already wrote with ``ok: false`` is kept, and a missing one is
+    written naming the error. ``files``: patterns of extra files this command writes (see RUN_FILES).
+    """
+    claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files)
     try:
-        path.mkdir(parents=True, exist_ok=True)
-    except OSError as e:
-        raise RunFolderError(f"cannot create run folder {path}: {e.strerror or e}") from None
-    return path
+        yield claim.path
+        claim.finish()
+    except KeyboardInterrupt:
+        mark_failed(claim.path, INTERRUPTED, "interrupted (Ctrl-C) before the run finished")
+        raise
+    except BaseException as e:
+        mark_failed(claim.path, None, str(e) or type(e).__name__)
+        claim.finish()
+        raise
+    finally:
+        claim.release()
+
+
+def mark_failed(folder: Path, stage: str | None, error: str) -> None:
+    """Leave ``folder/summary.json`` saying the run failed (``stage`` None: keep a failure already recorded)."""
+    path = folder / "summary.json"
+    summary = _read_json(path)
+    summary = summary if isinstance(summary, dict) else {"schema": 1}
+    if stage is None and summary.get("ok") is False:
+        return
+    summary.update({"ok": False, "failed_stage": stage or summary.get("failed_stage") or "unknown",
+                    "error": error[:2000]})
+    with contextlib.suppress(OSError):
+        write_summary(path, summary)
+
+
+def write_summary(path: Path, summary: dict) -> None:
+    """Write a run folder's summary.json (numpy numbers and paths become plain JSON, NaN becomes null)."""
+    path.write_text(dumps_json(summary, indent=1) + "\n")

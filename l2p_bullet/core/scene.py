@@ -166,19 +166,19 @@ class Scene:
                 )
             if not (MIN_SIZE <= o.size <= MAX_SIZE):
                 raise SceneError(
-                    f'object "{o.name}": size {o.size} m is outside what the gripper holds '
+                    f'object "{o.name}": size {o.size:.3g} m is outside what the gripper holds '
                     f"({MIN_SIZE}-{MAX_SIZE} m)"
                 )
             if not all(math.isfinite(v) for v in (*o.xy, o.yaw)):
                 raise SceneError(f'object "{o.name}": pose must be finite numbers')
             if not self.table.contains(o.footprint()):
                 raise SceneError(
-                    f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is off the table '
+                    f'object "{o.name}" at ({_m(o.xy[0])}, {_m(o.xy[1])}) is off the table '
                     f"(the table spans +-{self.table.half_x} m in x and +-{self.table.half_y} m in y)"
                 )
             if not self.workspace.contains(np.array(o.xy))[0]:
                 raise SceneError(
-                    f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is outside the arm\'s workspace '
+                    f'object "{o.name}" at ({_m(o.xy[0])}, {_m(o.xy[1])}) is outside the arm\'s workspace '
                     f"(a disk of radius {self.workspace.radius} m around {self.workspace.center})"
                 )
         from .geometry import polygons_overlap  # local: keeps the module's import graph flat
@@ -206,6 +206,8 @@ class Scene:
         objs = data["objects"]
         if not isinstance(objs, list):
             raise SceneError(f'{source}: "objects" must be a list')
+        if len(objs) > MAX_OBJECTS:
+            raise SceneError(f"{source}: {len(objs)} objects; a scene holds at most {MAX_OBJECTS}")
         out = []
         for i, raw in enumerate(objs):
             where = f"{source}: object {i}"
@@ -213,7 +215,13 @@ class Scene:
                 raise SceneError(f"{where} must be a JSON object")
             for key in ("name", "color", "size", "xy"):
                 if key not in raw:
-                    raise SceneError(f'{where} ({raw.get("name", "unnamed")}) is missing the field "{key}"')
+                    raise SceneError(f'{where} is missing the field "{key}"')
+            if not isinstance(raw["name"], str) or not 0 < len(raw["name"]) <= MAX_NAME:
+                raise SceneError(f'{where}: "name" must be a text of 1 to {MAX_NAME} characters')
+            if not isinstance(raw["color"], str) or len(raw["color"]) > MAX_NAME:
+                raise SceneError(f'{where} ({raw["name"]}): "color" must be a colour name such as "red"')
+            if not isinstance(raw.get("shape", "cube"), str) or len(raw.get("shape", "cube")) > MAX_NAME:
+                raise SceneError(f'{where} ({raw["name"]}): "shape" must be a shape name such as "cube"')
             xy = raw["xy"]
             if not (isinstance(xy, list | tuple) and len(xy) == 2 and all(_is_number(v) for v in xy)):
                 raise SceneError(f'{where} ({raw["name"]}): "xy" must be two numbers [x, y] in metres')
@@ -235,22 +243,33 @@ class Scene:
         return cls(out)
 
 
+MAX_OBJECTS = 100
+"""Most objects a scene file may hold (the workspace fits far fewer blocks; validation is quadratic)."""
+MAX_NAME = 64
+"""Longest object name, colour or shape a scene file may give (they are echoed in error messages)."""
+
+
 def _is_number(v: object) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool)
+    """A JSON number that is a finite float (a 300-digit integer is not a coordinate)."""
+    if isinstance(v, bool) or not isinstance(v, int | float):
+        return False
+    try:
+        return math.isfinite(float(v))
+    except OverflowError:
+        return False
+
+
+def _m(v: float) -> str:
+    """A coordinate in an error message: millimetre precision, or 3 digits when it is absurdly large."""
+    return f"{v:.3f}" if abs(v) < 1e4 else f"{v:.3g}"
 
 
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file; every problem becomes a :class:`SceneError` naming the file."""
+    from .contracts import load_json_file
+
     p = Path(path)
-    try:
-        text = p.read_text()
-    except OSError as e:
-        raise SceneError(f"cannot read scene file {p}: {e.strerror or e}") from None
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise SceneError(f"scene file {p} is not valid JSON (line {e.lineno}, column {e.colno}: {e.msg})") from None
-    return Scene.from_dict(data, source=str(p)).validate()
+    return Scene.from_dict(load_json_file(p, SceneError, "scene file"), source=str(p)).validate()
 
 
 def save_scene(scene: Scene, path: str | Path) -> None:

@@ -7,18 +7,23 @@ block, starts where the block is, reachable by the arm), so a bad path fails fas
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.contracts import trajectory_poses
 from ..core.geometry import polygons_overlap
 from ..core.scene import Scene
-from ..errors import PathError, ReachError
+from ..core.timing import StageClock
+from ..errors import ExecutionError, PathError, ReachError
 from . import motion
 from .sim.camera import RenderSettings
+
+if TYPE_CHECKING:  # the simulator loads only when a path is executed
+    from .sim.world import World
 
 START_TOLERANCE = 0.003  # m: a path must start where its block is
 DEFAULT_RENDER = RenderSettings()
@@ -70,119 +75,145 @@ def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
 def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | None,
                  render: RenderSettings | None = DEFAULT_RENDER, seed: int = 0,
                  progress_fn: Callable[..., np.ndarray] | None = None,
-                 meta: dict | None = None, on_stage: Callable[[str], None] | None = None) -> Execution:
+                 meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
+                 world: World | None = None) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
 
     ``out_dir`` None records nothing to disk (frames are still returned); ``render`` None renders
     nothing. ``seed`` is recorded only: the simulation is deterministic. ``on_stage`` is told each
-    stage's name as it starts.
+    stage's name as it starts. ``world``: an open :class:`~.sim.world.World` to run in instead of a new
+    one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
+    it would in a new world) and left open. A world made here is closed here.
     """
-    from .record import Recorder, write_summary
-    from .sim.camera import Camera
-    from .sim.primitives import Primitives
+    from ..core.runfolder import write_summary
     from .sim.world import World
 
     meta = dict(meta or {})
     meta.setdefault("mover", mover)
-    timings: dict[str, float] = {}
-    clock = [time.perf_counter(), None]
-
-    def stage(name: str) -> None:
-        now = time.perf_counter()
-        if clock[1] is not None:
-            timings[clock[1]] = round(timings.get(clock[1], 0.0) + now - clock[0], 4)
-        clock[0], clock[1] = now, name
-        if on_stage is not None and name != "done":
-            on_stage(name)
-
-    stage("check")
+    clock = StageClock(on_stage)
+    clock.stage("check", "check")
     p = check_path(scene, mover, path)
-    stage("setup")
-    world = World(scene, visuals=render is not None, egl=render is not None and render.renderer == "egl")
+    clock.stage("setup", "setup")
+    own = world is None
+    if own:
+        world = World(scene, visuals=render is not None, egl=render is not None and render.renderer == "egl")
     try:
-        camera = Camera(world, render) if render is not None else None
-        recorder = Recorder(world, camera)
-        prims = Primitives(world, recorder)
-        stage("reach")
-        offset = _choose_grasp_yaw(prims, mover, p)
-        recorder()
-        rest = prims.pose.copy()
-        stage("engage")
-        prims.engage(mover, offset)
-        stage("move")
-        slide_from = len(recorder.frames)
-        prims.move(p)
-        slide_to = len(recorder.frames)
-        stage("disengage")
-        prims.disengage(rest)
-        removed = world.client.getNumConstraints() == 0
-        stage("record")
-        files: dict[str, Path] = {}
+        if not own:
+            _reuse(world, scene, render)
+        prims = _primitives(world, render)
+        slide, removed = _perform(prims, mover, p, clock)
+        clock.stage("record", "record")
+        recorder = prims.recorder
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
-        deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide_from, slide_to, world.sizes)
-        stats = {
-            "physics_steps": world.steps,
-            "ik_solves": prims.ik_solves,
-            "rendered_frames": len(recorder.images),
-            "render_s": round(recorder.render_s, 4),
-            "max_lateral_acc": round(max((t.max_lateral_acc for _, t in prims.timed), default=0.0), 4),
-        }
+        deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
+        stats = _stats(prims)
+        files = _write_files(recorder, out_dir, meta, world.sizes, render)
+        clock.stop()
+        execution = Execution(recorder.frames, {k: round(v, 4) for k, v in clock.timings.items()}, files,
+                              max_deviation_m=deviation, anchor_displacement_m=displaced, max_lift_m=lift,
+                              constraint_removed=removed, duration_s=world.time, stats=stats)
         if out_dir is not None:
-            out_dir = Path(out_dir)
-            files["trajectory"] = out_dir / "trajectory.json"
-            recorder.write_trajectory(files["trajectory"], meta, world.sizes)
-            if camera is not None:
-                files |= recorder.write_images(out_dir, render.video)
-        stage("done")
-        execution = Execution(recorder.frames, timings, files, deviation, displaced, lift, removed,
-                              world.time, stats)
-        if out_dir is not None:
-            files["summary"] = out_dir / "summary.json"
+            files["summary"] = Path(out_dir) / "summary.json"
             write_summary(files["summary"], _summary(execution, meta, seed, render))
         return execution
     finally:
-        world.robot.close()
-        world.close()
+        if own:
+            world.close()
+
+
+def _reuse(world: World, scene: Scene, render: RenderSettings | None) -> None:
+    """Reset a caller's world to ``scene``, once it is clear that it can render what is asked."""
+    if render is not None and not world.visuals:
+        raise ExecutionError("rendering needs a world loaded with the arm's visuals: World(scene, visuals=True)")
+    world.reset(scene)
+
+
+def _primitives(world: World, render: RenderSettings | None):
+    """The arm's primitives with a recorder (and a camera when rendering) attached to ``world``."""
+    from .record import Recorder
+    from .sim.camera import Camera
+    from .sim.primitives import Primitives
+
+    camera = Camera(world, render) if render is not None else None
+    return Primitives(world, Recorder(world, camera))
+
+
+def _perform(prims, mover: str, path: np.ndarray, clock: StageClock) -> tuple[slice, bool]:
+    """The arm's part, stage by stage: reach (choose the grasp yaw, every IK solved before anything
+    moves), engage, move, disengage. Returns the frames recorded while sliding and whether the grasp's
+    constraint is gone."""
+    recorder = prims.recorder
+    clock.stage("reach", "reach")
+    offset = _choose_grasp_yaw(prims, mover, path)
+    recorder()  # the first frame: the world before the arm moves
+    rest = prims.pose.copy()
+    clock.stage("engage", "engage")
+    prims.engage(mover, offset)
+    clock.stage("move", "move")
+    start = len(recorder.frames)
+    prims.move(path)
+    slide = slice(start, len(recorder.frames))
+    clock.stage("disengage", "disengage")
+    prims.disengage(rest)
+    return slide, prims.world.sim.constraint_count() == 0
 
 
 def _choose_grasp_yaw(prims, mover: str, path: np.ndarray) -> float:
     """The grasp yaw (a multiple of 90 deg relative to the block) whose whole slide the arm reaches.
 
-    Candidates come best first from a wrist model; each is checked by solving the slide's IK at the
-    control rate before anything moves. ReachError (the best candidate's) if none works.
+    Candidates come best first from a wrist model; for each, the approach, descent and slide IK are
+    solved as the arm will run them, before anything moves. ReachError (the best candidate's) if none
+    works.
     """
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
     first_error = None
     for offset in motion.grasp_yaw_offsets(path, base)[:3]:
         try:
-            _check_reach(prims, mover, path, offset)
+            prims.check_engage_and_slide(mover, path, offset)
             return offset
         except ReachError as e:
             first_error = first_error or e
     raise first_error
 
 
-def _check_reach(prims, mover: str, path: np.ndarray, offset: float) -> None:
-    """Approach, descent and slide IK, as the arm will run them (ReachError), before anything moves."""
-    prims.check_engage_and_slide(mover, path, offset)
+def _stats(prims) -> dict:
+    """The counts summary.json reports under ``execution``."""
+    recorder = prims.recorder
+    return {
+        "physics_steps": prims.world.steps,
+        "ik_solves": prims.ik_solves,
+        "rendered_frames": len(recorder.images),
+        "render_s": round(recorder.render_s, 4),
+        "max_lateral_acc": round(max((t.max_lateral_acc for _, t in prims.timed), default=0.0), 4),
+    }
 
 
-def _honesty(frames, mover, path, lo, hi, sizes) -> tuple[float, float, float]:
+def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, float],
+                 render: RenderSettings | None) -> dict[str, Path]:
+    """trajectory.json and, when rendering, frames, video and contact sheet; name -> path."""
+    if out_dir is None:
+        return {}
+    out_dir = Path(out_dir)
+    files = {"trajectory": out_dir / "trajectory.json"}
+    recorder.write_trajectory(files["trajectory"], meta, sizes)
+    if recorder.camera is not None:
+        files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
+    return files
+
+
+def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
+             sizes: dict[str, float]) -> tuple[float, float, float]:
     """Deviation of the held block from the planned path (while sliding), its lift, others' motion."""
-    xy = path[:, :2]
-    slide = frames[lo:hi]
     deviation = 0.0
-    if slide:
-        pts = np.array([f["poses"][mover][:2] for f in slide])
-        deviation = float(motion.polyline_distance(pts, xy).max())
+    if frames[slide]:
+        pts = trajectory_poses(frames[slide], mover)[:, :2]
+        deviation = float(motion.polyline_distance(pts, path[:, :2]).max())
     lift = max(f["poses"][mover][2] for f in frames) - sizes[mover] / 2
     displaced = 0.0
     for name in sizes:
-        if name == mover:
-            continue
-        start = np.array(frames[0]["poses"][name][:2])
-        moved = max(float(np.hypot(*(np.array(f["poses"][name][:2]) - start))) for f in frames)
-        displaced = max(displaced, moved)
+        if name != mover:
+            xy = trajectory_poses(frames, name)[:, :2]
+            displaced = max(displaced, float(np.hypot(*(xy - xy[0]).T).max()))
     return deviation, float(lift), displaced
 
 

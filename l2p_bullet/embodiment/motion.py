@@ -167,11 +167,6 @@ def grasp_yaw_offsets(block_path: np.ndarray, base_xy: tuple[float, float]) -> l
     return [off for _, _, off in sorted(costs)]
 
 
-def grasp_yaw_offset(block_path: np.ndarray, base_xy: tuple[float, float]) -> float:
-    """The best of :func:`grasp_yaw_offsets`."""
-    return grasp_yaw_offsets(block_path, base_xy)[0]
-
-
 def resample_path(path: np.ndarray, step: float) -> np.ndarray:
     """Resample a (N,3) path every ``step`` metres of x-y arc length (yaw interpolated), ends kept."""
     p = unwrap_yaw(path)

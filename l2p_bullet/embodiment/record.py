@@ -8,13 +8,14 @@ written here with imageio-ffmpeg.
 
 from __future__ import annotations
 
-import json
 import platform
 import sys
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+
+from ..core.contracts import dumps_json, trajectory_poses
 
 TRAJECTORY_FPS = 30.0
 
@@ -32,9 +33,9 @@ class Recorder:
         self.render_every = max(1, round(1.0 / (camera.settings.fps * world.dt))) if camera else 0
         self.frames: list[dict] = []
         self.images: list[np.ndarray] = []
+        self.image_times: list[float] = []  # sim time of each image (the video's caption strip needs it)
         self.render_s = 0.0
         self.grasped: str | None = None
-        self.stage = ""
 
     def __call__(self) -> None:
         """Record after a physics step (also called once before the first step)."""
@@ -46,6 +47,7 @@ class Recorder:
 
             t0 = time.perf_counter()
             self.images.append(self.camera.render())
+            self.image_times.append(self.world.time)
             self.render_s += time.perf_counter() - t0
 
     def snapshot(self) -> dict:
@@ -65,8 +67,8 @@ class Recorder:
         names = [anchor] if isinstance(anchor, str) else list(anchor or [])
         if progress_fn is None or mover is None or not names or not self.frames:
             return
-        m, a, *more = ([[f["poses"][n][i] for i in (0, 1, 3)] for f in self.frames] for n in [mover, *names])
-        args = (np.array(m), np.array(a)) + ((list(map(np.array, more)),) if more else ())
+        m, a, *more = (trajectory_poses(self.frames, n) for n in [mover, *names])
+        args = (m, a) + ((more,) if more else ())
         values = np.asarray(progress_fn(*args), dtype=float).reshape(-1)
         if len(values) != len(self.frames):
             raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames)} frames")
@@ -86,11 +88,17 @@ class Recorder:
             "objects": {name: {"size": size} for name, size in sizes.items()},
             "frames": self.frames,
         }
-        path.write_text(json.dumps(doc, separators=(",", ":")) + "\n")
+        path.write_text(dumps_json(doc, separators=(",", ":")) + "\n")
 
-    def write_images(self, out: Path, video: str = "mp4") -> dict[str, Path]:
-        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path."""
+    def write_images(self, out: Path, video: str = "mp4", sentence: str | None = None) -> dict[str, Path]:
+        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path.
+
+        Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
+        the frames and the contact sheet stay the raw renders.
+        """
         import imageio.v2 as imageio
+
+        from .overlay import overlay, progress_at
 
         if not self.images:
             return {}
@@ -101,14 +109,17 @@ class Recorder:
             imageio.imwrite(folder / f"{i:04d}.png", img)
         files["frames"] = folder
         fps = self.camera.settings.fps
+        shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
+                            [f["progress"] for f in self.frames])
+        captioned = [overlay(img, sentence, p) for img, p in zip(self.images, shown, strict=True)]
         if video == "gif":
             files["video"] = out / "video.gif"
-            imageio.mimwrite(files["video"], self.images, duration=1000.0 / fps, loop=0)
+            imageio.mimwrite(files["video"], captioned, duration=1000.0 / fps, loop=0)
         else:
             files["video"] = out / "video.mp4"
             with imageio.get_writer(files["video"], fps=fps, codec="libx264", quality=7,
                                     pixelformat="yuv420p", macro_block_size=8) as writer:
-                for img in self.images:
+                for img in captioned:
                     writer.append_data(img)
         files["contact_sheet"] = out / "contact_sheet.png"
         imageio.imwrite(files["contact_sheet"], contact_sheet(self.images))
@@ -138,17 +149,3 @@ def versions() -> dict[str, str]:
         except metadata.PackageNotFoundError:
             out[pkg] = "not installed"
     return out
-
-
-def write_summary(path: Path, summary: dict) -> None:
-    path.write_text(json.dumps(summary, indent=1, default=_json_default) + "\n")
-
-
-def _json_default(v):
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, Path):
-        return str(v)
-    raise TypeError(f"not JSON serialisable: {type(v)}")

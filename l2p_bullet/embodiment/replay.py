@@ -5,7 +5,6 @@ Kept apart from the click command so that tests and the benchmark can use it wit
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -75,14 +74,14 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
         raise PathError(f"the motion's start pose does not fit the scene: {e}") from None
     plan_file = None
     if out_dir is not None:
-        from ..core.contracts import Plan
+        from ..core.contracts import Plan, dumps_json
 
         plan_file = Path(out_dir) / "plan.json"
         plan = Plan(source.action or "replay", source.mover, source.anchor, start.get(source.mover).size,
                     start.get(source.anchor).pose, source.path[0], source.path, np.zeros(len(source.path)),
                     "replay", "replay", {"replay": source.info})
         doc = plan.to_dict() | {"progress": [None] * len(source.path)}  # no model scored a replay
-        plan_file.write_text(json.dumps(doc, indent=1) + "\n")
+        plan_file.write_text(dumps_json(doc, indent=1) + "\n")
     meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info}
     ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
                       on_stage=on_stage)

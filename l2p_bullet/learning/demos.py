@@ -68,25 +68,54 @@ def data_dir() -> Path:
     return Path(str(resources.files("l2p_bullet") / "data"))
 
 
+MAX_SESSION_BYTES = 1 << 30
+"""Largest uncompressed content of a session file read (the shipped ones are under 1 MB each)."""
+
+
+def _open_npz(p: Path) -> dict[str, np.ndarray]:
+    """The arrays of a ``.npz`` (a zip of ``.npy`` files, as ``numpy.savez`` writes), or a DataError saying
+    what the file is instead. Never unpickles; refuses an archive that would inflate past MAX_SESSION_BYTES."""
+    import zipfile
+
+    if not p.exists():
+        raise DataError(f"demonstration file {p} does not exist")
+    if not p.is_file():
+        raise DataError(f"demonstration file {p} is not a file")
+    try:
+        if p.stat().st_size == 0:
+            raise DataError(f"demonstration file {p} is empty")
+        if not zipfile.is_zipfile(p):
+            raise DataError(f"demonstration file {p} is not a .npz file (a zip of arrays, as numpy.savez writes)")
+        with zipfile.ZipFile(p) as zf:
+            if sum(i.file_size for i in zf.infolist()) > MAX_SESSION_BYTES:
+                raise DataError(f"demonstration file {p} unpacks to more than {MAX_SESSION_BYTES >> 20} MiB")
+        with np.load(p, allow_pickle=False) as z:
+            return {k: z[k] for k in z.files}
+    except DataError:
+        raise
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as e:
+        raise DataError(f"demonstration file {p} cannot be read as a .npz of plain numeric arrays "
+                        f"({type(e).__name__}: {str(e)[:100]})") from None
+
+
 def load_session(path: str | Path) -> dict[str, np.ndarray]:
     """Load and validate one capture session file."""
     p = Path(path)
-    try:
-        with np.load(p, allow_pickle=False) as z:
-            arrays = {k: z[k] for k in z.files}
-    except FileNotFoundError:
-        raise DataError(f"demonstration file {p} does not exist") from None
-    except (OSError, ValueError) as e:
-        raise DataError(f"demonstration file {p} is not a readable .npz without pickles ({e})") from None
+    arrays = _open_npz(p)
     for key, shape in _REQUIRED.items():
         if key not in arrays:
             raise DataError(f'demonstration file {p} lacks the array "{key}"')
         a = arrays[key]
         if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape, strict=True)):
             raise DataError(f'demonstration file {p}: "{key}" has shape {a.shape}, expected {shape}')
+        if a.dtype.kind not in "biuf":
+            raise DataError(f'demonstration file {p}: "{key}" holds {a.dtype} values, expected numbers')
     n = len(arrays["shell_pose"])
     if len(arrays["stella_pose"]) != n:
         raise DataError(f"demonstration file {p}: the two blocks' tracks differ in length")
+    for key in ("shell_observed", "stella_observed"):
+        if key in arrays and (arrays[key].shape != (n,) or arrays[key].dtype.kind not in "biuf"):
+            raise DataError(f'demonstration file {p}: "{key}" must be {n} true/false values, one per frame')
     if not (np.all(np.isfinite(arrays["shell_pose"])) and np.all(np.isfinite(arrays["stella_pose"]))):
         raise DataError(f"demonstration file {p}: poses contain non-finite numbers")
     ev = arrays["event_start_end"]
@@ -94,6 +123,8 @@ def load_session(path: str | Path) -> dict[str, np.ndarray]:
         raise DataError(f"demonstration file {p}: event_start_end and event_mover differ in length")
     if len(ev) and (ev.min() < 0 or ev.max() >= n or np.any(ev[:, 1] <= ev[:, 0])):
         raise DataError(f"demonstration file {p}: an event span is empty or outside the {n} frames")
+    if ev.dtype.kind == "f" and not np.array_equal(ev, np.round(ev)):
+        raise DataError(f"demonstration file {p}: event_start_end must hold frame numbers (integers)")
     blocks = 2 + _check_optional(p, arrays, n)
     if "event_anchors" not in arrays:
         if not np.isin(arrays["event_mover"], (0, 1)).all():
@@ -115,7 +146,7 @@ def _check_optional(p: Path, arrays: dict[str, np.ndarray], n: int) -> int:
     """Validate ``more_poses`` and ``viewer_xy`` when present; the number of further blocks."""
     if "viewer_xy" in arrays:
         v = arrays["viewer_xy"]
-        if v.shape != (2,) or not np.issubdtype(v.dtype, np.number) or not np.all(np.isfinite(v)):
+        if v.shape != (2,) or v.dtype.kind not in "iuf" or not np.all(np.isfinite(v)):
             raise DataError(f'demonstration file {p}: "viewer_xy" must be one finite point [x, y], got shape {v.shape}')
     if "more_poses" not in arrays:
         if "event_anchors" in arrays and arrays["event_anchors"].size and arrays["event_anchors"].max() > 1:
@@ -123,8 +154,8 @@ def _check_optional(p: Path, arrays: dict[str, np.ndarray], n: int) -> int:
                             '(add its track to "more_poses")')
         return 0
     more = arrays["more_poses"]
-    if more.ndim != 3 or more.shape[1:] != (n, 3):
-        raise DataError(f'demonstration file {p}: "more_poses" has shape {more.shape}, expected (K, {n}, 3)')
+    if more.ndim != 3 or more.shape[1:] != (n, 3) or more.dtype.kind not in "biuf":
+        raise DataError(f'demonstration file {p}: "more_poses" has shape {more.shape}, expected (K, {n}, 3) numbers')
     if not np.all(np.isfinite(more)):
         raise DataError(f"demonstration file {p}: more_poses contain non-finite numbers")
     if "event_anchors" not in arrays:
@@ -215,6 +246,7 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
     poses = tuple(clean_track(arrays[f"{b}_pose"], arrays.get(f"{b}_observed"))[0] for b in ("shell", "stella"))
     poses += tuple(clean_track(t, None)[0] for t in arrays.get("more_poses", ()))
     events = arrays["event_start_end"]
+    events = events.astype(np.int64)
     refs = arrays.get("event_anchors")
     viewer = np.array(arrays["viewer_xy"], float) if "viewer_xy" in arrays else None
     out = []
@@ -222,6 +254,7 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
         lo = max(0, s - context, (events[i - 1][1] + 1) if i > 0 else 0)
         hi = min(len(poses[0]) - 1, e + context, (events[i + 1][0] - 1) if i + 1 < len(events) else 10**9)
         anchors = [1 - int(who)] if refs is None else [int(k) for k in refs[i]]
+        _check_span(p, i, poses[int(who)][lo : hi + 1], poses[anchors[0]][lo : hi + 1])
         out.append(
             Demo(
                 id=f"{action}/{session}/e{i:02d}",
@@ -236,6 +269,25 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
             )
         )
     return out
+
+
+MAX_DEMO_BLOCKS = 250.0
+"""Longest path and widest spread of one demonstration (with its context), in block sides of
+DEMO_BLOCK_SIZE: the shipped ones travel at most 29 and stay within 8 of the anchor. A quarter of what
+scoring accepts (:data:`l2p_bullet.progress.features.MAX_BLOCKS`), so that the training set's scaled
+and detoured copies stay scoreable."""
+
+
+def _check_span(p: Path, i: int, mover: np.ndarray, anchor: np.ndarray) -> None:
+    """A DataError naming the file and event when a demonstration is far beyond any table (unit mistake)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        arc = float(np.sum(np.hypot(*np.diff(mover[:, :2], axis=0).T))) / DEMO_BLOCK_SIZE
+        spread = float(max(np.max(np.abs(mover[:, :2] - anchor[0, :2])),
+                           np.max(np.abs(anchor[:, :2] - anchor[0, :2])))) / DEMO_BLOCK_SIZE
+    if not (arc <= MAX_DEMO_BLOCKS and spread <= MAX_DEMO_BLOCKS):
+        raise DataError(f"demonstration file {p}: event {i} spans {max(arc, spread):.3g} block sides "
+                        f"({DEMO_BLOCK_SIZE} m blocks); at most {MAX_DEMO_BLOCKS:g} are plausible: poses must be "
+                        "in metres")
 
 
 @lru_cache(maxsize=16)

@@ -142,7 +142,12 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  qsr_cfg: QSRConfig | None = None, data_cfg: DataConfig | None = None,
                  cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None) -> TrainResult:
     """Build the training set and train the ensemble; ``tick`` is called once per member-epoch."""
+    from ..errors import DataError
+
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
+    if not demos.get(action):
+        raise DataError(f'no demonstrations of "{action}" to learn from: the session files hold no events '
+                        "(event_start_end is empty)")
     t0 = time.perf_counter()
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
     nets, last = [], []
@@ -228,7 +233,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     its author's files, with the built-in actions' demonstrations as negatives and no random negatives
     (no rule says a random motion is not the new action).
     """
-    from ..errors import RunFolderError
+    from ..errors import DataError, RunFolderError
     from ..plugins.bundle import MANIFEST, PROGRESS_FILE, write_progress_bundle
     from .demos import expand_files, load_demos
 
@@ -248,12 +253,18 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     else:
         demos = all_demos({name: list(demo_files)} if demo_files else None)
         data_cfg = DataConfig()
+    if demo_files and not demos[name]:
+        raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
+                        f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick)
+    arrays = ensemble_arrays(result.model.nets)
+    if not (np.isfinite(result.final_loss) and all(np.all(np.isfinite(a)) for a in arrays.values())):
+        raise DataError(f'training "{name}" diverged (the loss or a weight is not a number); no bundle written')
     default = ProgressTrainConfig()
     cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
            + (f" --ensemble {cfg.ensemble}" if cfg.ensemble != default.ensemble else "")
            + (f" --epochs {cfg.epochs}" if cfg.epochs != default.epochs else ""))
-    write_progress_bundle(out, name, ensemble_arrays(result.model.nets), result.model.model_cfg,
+    write_progress_bundle(out, name, arrays, result.model.model_cfg,
                           result.model.qsr_cfg,
                           training=training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg),
                           metrics={"train_loss": round(result.final_loss, 6)})

@@ -116,7 +116,9 @@ class World2D:
         t = np.clip(((self._obs_centres - a) @ ab.T) / np.maximum((ab * ab).sum(1), 1e-18), 0.0, 1.0)  # (O, M)
         closest = a + t[..., None] * ab
         d = np.linalg.norm(closest - self._obs_centres[:, None], axis=-1)
-        return (d <= (self._obs_radii + self._mover_radius + self.margin)[:, None] + 1e-9).any(0)
+        # the exact test inflates by the margin along edge normals, so past a corner it reaches up to
+        # margin / sin(half the corner angle): sqrt(2) x margin for squares (2 x covers any corner of 60+ deg)
+        return (d <= (self._obs_radii + self._mover_radius + 2.0 * self.margin)[:, None] + 1e-9).any(0)
 
     def _swept_free(self, start: np.ndarray, ends: np.ndarray) -> np.ndarray:
         ok = np.ones(len(ends), bool)

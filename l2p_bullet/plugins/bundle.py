@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 from .. import __version__
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..errors import BundleError
-from ..progress.config import ModelConfig, expected_shapes
+from ..progress.config import ModelConfig
 
 if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
@@ -55,10 +55,13 @@ def read_weights(folder: Path, filename: str, manifest: dict) -> bytes:
     Read once and checked in memory: the file may have changed since the bundle was loaded, and a
     check followed by a second read would leave a window in which it could change again.
     """
-    entry = manifest.get("weights", {}).get(filename)
+    from .validate import safe_weight_name
+
+    weights = manifest.get("weights", {})
+    entry = weights.get(filename) if isinstance(weights, dict) else None
     if not isinstance(entry, dict) or "sha256" not in entry:
         raise BundleError(f'{folder / MANIFEST}: no [weights."{filename}"] sha256 entry')
-    p = folder / filename
+    p = safe_weight_name(folder, filename)
     try:
         data = p.read_bytes()
     except FileNotFoundError:
@@ -108,8 +111,8 @@ def version_satisfies(version: str, spec: str) -> bool:
     return True
 
 
-_MODELS: dict[tuple[str, str], Any] = {}
-"""Numpy progress models by (bundle folder, weights digest): the planner, the recorder and a benchmark
+_MODELS: dict[tuple[str, str, str], Any] = {}
+"""Numpy progress models by (bundle folder, weights digest, feature and model settings): the planner, the recorder and a benchmark
 performing many sentences all share one, read and checked once per process."""
 
 
@@ -129,9 +132,12 @@ class Bundle:
 
     def progress_model(self) -> NumpyProgressModel:
         """The progress ensemble for batched scoring, in numpy (no torch), built once per process."""
+        import json
+
         from ..progress.model import NumpyProgressModel
 
-        key = (str(self.path), str(self.manifest["weights"][PROGRESS_FILE].get("sha256", "")))
+        key = (str(self.path), str(self.manifest["weights"][PROGRESS_FILE].get("sha256", "")),
+               json.dumps([self.manifest["features"], self.manifest["model"]], sort_keys=True, default=str))
         if key not in _MODELS:
             _MODELS[key] = NumpyProgressModel.from_bundle(self)
         return _MODELS[key]
@@ -141,45 +147,6 @@ class Bundle:
         if POLICY_FILE not in self.manifest.get("weights", {}):
             return None
         return self.arrays(POLICY_FILE)
-
-
-def _check_shapes(folder: Path, manifest: dict) -> None:
-    from safetensors import SafetensorError, safe_open
-
-    try:
-        mcfg = ModelConfig.from_dict(manifest["model"])
-    except (KeyError, TypeError, ValueError) as e:
-        raise BundleError(f"{folder / MANIFEST}: [model] needs integer n_features, hidden, ensemble ({e})") from None
-    expected = expected_shapes(mcfg)
-    try:
-        with safe_open(folder / PROGRESS_FILE, framework="numpy") as f:
-            got = {k: tuple(f.get_slice(k).get_shape()) for k in f.keys()}  # noqa: SIM118
-    except (SafetensorError, OSError) as e:
-        raise BundleError(f"{folder / PROGRESS_FILE}: not a readable safetensors file ({e})") from None
-    missing = sorted(set(expected) - set(got))
-    if missing:
-        raise BundleError(f"{folder / PROGRESS_FILE}: missing tensors {', '.join(missing[:3])}"
-                          + (" ..." if len(missing) > 3 else ""))
-    for k, shape in expected.items():
-        if got[k] != shape:
-            raise BundleError(f"{folder / PROGRESS_FILE}: tensor {k} has shape {list(got[k])}, the manifest's "
-                              f"[model] implies {list(shape)}")
-
-
-def _check_declaration(folder: Path, manifest: dict) -> None:
-    """The declared frame and number of anchors are valid and match what the model was trained with."""
-    from ..core.frames import declaration
-    from ..progress.features import QSRConfig
-
-    try:
-        frame, anchors = declaration(manifest)
-        trained = QSRConfig.from_dict(manifest["features"] if isinstance(manifest["features"], dict) else {})
-    except BundleError as e:
-        raise BundleError(f"{folder / MANIFEST}: {e}") from None
-    if (trained.frame, trained.anchors) != (frame.name, anchors):
-        raise BundleError(f'{folder / MANIFEST}: declares frame = "{frame.name}", anchors = {anchors} but its progress '
-                          f'model was trained with frame "{trained.frame}", {trained.anchors} anchor(s): re-train it '
-                          "(l2p-bullet train ... --out this folder)")
 
 
 def read_manifest(folder: Path) -> dict:
@@ -195,35 +162,65 @@ def read_manifest(folder: Path) -> dict:
 
 
 def load_bundle(path: str | os.PathLike) -> Bundle:
-    """Read and validate a bundle folder (manifest, version, digests, tensor shapes); never unpickles."""
+    """Read and validate a bundle folder; never unpickles.
+
+    The manifest's fields by type and range, the version range, every weights file's digest, and every
+    tensor's shape, dtype and finiteness (:mod:`l2p_bullet.plugins.validate`): a bundle that loads can
+    be planned and scored with, and never yields NaN.
+    """
+    from .validate import check_manifest, check_weights
+
     folder = Path(path)
     man = read_manifest(folder)
     missing = [k for k in REQUIRED_KEYS if k not in man]
     if missing:
         raise BundleError(f"{folder / MANIFEST}: missing {', '.join(missing)}")
-    if man["schema"] != SCHEMA:
-        raise BundleError(f"{folder / MANIFEST}: manifest schema {man['schema']} is not supported "
+    if man["schema"] != SCHEMA or isinstance(man["schema"], bool):
+        raise BundleError(f"{folder / MANIFEST}: manifest schema {str(man['schema'])[:20]} is not supported "
                           f"(this l2p-bullet {__version__} reads schema {SCHEMA})")
-    if not version_satisfies(__version__, str(man["requires"])):
-        raise BundleError(f"{folder / MANIFEST}: bundle requires l2p-bullet {man['requires']}, "
+    if not isinstance(man["requires"], str) or not version_satisfies(__version__, man["requires"]):
+        raise BundleError(f"{folder / MANIFEST}: bundle requires l2p-bullet {str(man['requires'])[:40]}, "
                           f"this is {__version__}")
-    if not isinstance(man["phrases"], list) or not all(isinstance(p, str) for p in man["phrases"]):
-        raise BundleError(f"{folder / MANIFEST}: phrases must be a list of strings")
+    check_manifest(folder, man)
     for filename in man["weights"]:
-        read_weights(folder, filename, man)
-    if PROGRESS_FILE not in man["weights"]:
-        raise BundleError(f'{folder / MANIFEST}: no [weights."{PROGRESS_FILE}"] entry')
-    _check_declaration(folder, man)
-    _check_shapes(folder, man)
+        check_weights(folder, filename, read_arrays(folder, filename, man), man)
     return Bundle(str(man["name"]), str(man["version"]), list(man["phrases"]), man, folder)
 
 
 def _write_manifest(folder: Path, manifest: dict) -> None:
-    import tomli_w
+    """Write ``manifest`` as the bundle's manifest.toml, keeping what the author wrote around it.
 
+    The file on disk is edited, not regenerated (tomlkit): comments, key order and formatting of every
+    value that does not change survive a re-train, so a scaffolded plugin's notes and version stay.
+    Written to a temporary file and renamed: a reader never sees half a manifest.
+    """
+    import tomlkit
+    from tomlkit.exceptions import TOMLKitError
+
+    path = folder / MANIFEST
+    try:
+        doc = tomlkit.parse(path.read_text(encoding="utf-8")) if path.is_file() else tomlkit.document()
+    except (OSError, UnicodeDecodeError, TOMLKitError):
+        doc = tomlkit.document()
+    _merge_into(doc, _plain(manifest))
     tmp = folder / (MANIFEST + ".tmp")
-    tmp.write_text(tomli_w.dumps(_plain(manifest)))
-    os.replace(tmp, folder / MANIFEST)
+    tmp.write_text(tomlkit.dumps(doc), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def _merge_into(table: Any, values: dict) -> None:
+    """Make the tomlkit ``table`` hold exactly ``values``, touching only the entries that differ."""
+    for k in [k for k in table if k not in values]:
+        del table[k]
+    for k, v in values.items():
+        if k in table and isinstance(v, dict) and hasattr(table[k], "unwrap") and isinstance(table[k].unwrap(), dict):
+            _merge_into(table[k], v)
+        elif k not in table or _unwrapped(table[k]) != v:
+            table[k] = v
+
+
+def _unwrapped(item: Any) -> Any:
+    return item.unwrap() if hasattr(item, "unwrap") else item
 
 
 def _plain(v: Any) -> Any:
@@ -248,11 +245,13 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     import numpy as np
     from safetensors.numpy import save_file
 
+    from .validate import safe_weight_name
+
     folder = Path(bundle_dir)
     man = read_manifest(folder)
-    if "/" in filename or not filename.endswith(".safetensors"):
+    if not filename.endswith(".safetensors"):
         raise BundleError(f'weights file name "{filename}" must be a plain *.safetensors name')
-    path = folder / filename
+    path = safe_weight_name(folder, filename)
     save_file({k: np.ascontiguousarray(v) for k, v in arrays.items()}, str(path))
     man.setdefault("weights", {})[filename] = {"sha256": sha256_file(path), "bytes": path.stat().st_size}
     if section is not None:
@@ -273,11 +272,13 @@ def update_manifest(bundle_dir: str | os.PathLike, section: str, values: dict) -
 
 def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[str, np.ndarray],
                           model_cfg: ModelConfig, qsr_cfg: Any, *, training: dict, metrics: dict,
-                          version: str = "1.0.0") -> Path:
+                          version: str | None = None) -> Path:
     """Write (or overwrite) a bundle's manifest and progress weights, keeping any policy it already has.
 
     The phrases and description come from the manifest already in ``out_dir`` (a scaffolded plugin's),
     else, for a built-in action, from its shipped manifest: manifests declare phrases, nothing else does.
+    The version is ``version``, else the one already in ``out_dir`` (the author's), else 1.0.0; the
+    manifest's comments survive (:func:`_write_manifest`).
     """
     from ..progress.features import feature_names
 
@@ -293,12 +294,13 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
     keep_weights = {k: v for k, v in old.get("weights", {}).items()
                     if k != PROGRESS_FILE and (folder / k).is_file()}
     man = {
-        "schema": SCHEMA, "name": action, "version": version, "requires": REQUIRES,
+        "schema": SCHEMA, "name": action, "version": version or str(old.get("version") or "1.0.0"),
+        "requires": REQUIRES,
         "phrases": shipped.get("phrases") or old.get("phrases") or [action],
         "description": shipped.get("description") or old.get("description", ""),
-        # the declaration the model was trained for (left out at the defaults, like the built-ins')
-        "frame": None if qsr_cfg.frame == "relative" else qsr_cfg.frame,
-        "anchors": None if qsr_cfg.anchors == 1 else qsr_cfg.anchors,
+        # the declaration the model was trained for (left out at the defaults unless the author wrote it)
+        "frame": qsr_cfg.frame if qsr_cfg.frame != "relative" or "frame" in old else None,
+        "anchors": qsr_cfg.anchors if qsr_cfg.anchors != 1 or "anchors" in old else None,
         "features": {**qsr_cfg.to_dict(), "names": feature_names(qsr_cfg)},
         "model": model_cfg.to_dict(), "training": training, "metrics": metrics,
         "weights": keep_weights,

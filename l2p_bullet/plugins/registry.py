@@ -14,11 +14,12 @@ Two phases, as in flake8 and llm:
 - **loaded** (:func:`load`): only the plugin a command needs is imported and its bundle validated and
   read by :func:`l2p_bullet.plugins.bundle.load_bundle`.
 
-A plugin that cannot be located, has no or an invalid manifest, or fails to import is *reported*
-(name, package, reason) and the others keep working. Two plugins that claim the same phrase (or the
-same name) make the phrase table ambiguous: :func:`phrase_table` raises a :class:`PluginError`
-naming both, since silently picking one would make sentences mean different things on different
-machines.
+A plugin that cannot be located, has no or an invalid manifest, or fails to import (even by calling
+``sys.exit``) is *reported* (name, package, reason) and the others keep working. Two plugins that claim
+the same phrase (or the same name) make that phrase ambiguous: it is left out of :func:`phrase_table`
+and a sentence using it gets the :class:`PluginConflict` naming both (:func:`blocked_phrases`), since
+silently picking one would make sentences mean different things on different machines; every other
+phrase keeps working. The phrases of a broken plugin are blocked the same way, with its reason.
 """
 
 from __future__ import annotations
@@ -222,35 +223,59 @@ def local(name: str, folder: Path) -> PluginInfo:
 def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
     """Every name or phrase claimed by two usable plugins (empty when all is well)."""
     out: list[PluginConflict] = []
-    by_name: dict[str, PluginInfo] = {}
-    by_phrase: dict[str, PluginInfo] = {}
+    usable = [p for p in plugins if p.ok]
+    by_name: dict[str, list[PluginInfo]] = {}
+    for p in usable:
+        by_name.setdefault(normalize_name(p.name), []).append(p)
+    for group in by_name.values():
+        if len(group) > 1:
+            out.append(PluginConflict(f'two action plugins are both named "{group[0].name}": '
+                                      + " and ".join(p.label() for p in group) + "; uninstall one of the packages",
+                                      group[0].name, [p.name for p in group]))
+    by_phrase: dict[str, list[PluginInfo]] = {}
+    for p in usable:
+        for phrase in dict.fromkeys(p.phrases):
+            by_phrase.setdefault(phrase, []).append(p)
+    for phrase, group in by_phrase.items():
+        if len({normalize_name(p.name) for p in group}) > 1:
+            out.append(PluginConflict(
+                f'the phrase "{phrase}" is claimed by several action plugins: '
+                + " and ".join(p.label() for p in group)
+                + "; uninstall one of the packages or remove the phrase from one manifest",
+                phrase, [p.name for p in group]))
+    return out
+
+
+def blocked_phrases(plugins: list[PluginInfo] | None = None) -> dict[str, PluginError]:
+    """Phrases no sentence may use, each with the error that says why: the phrases of plugins in a name
+    conflict, phrases claimed by two plugins, and the phrases of broken plugins that no usable one owns.
+
+    Only those phrases are blocked: a plugin that claims "past" must not stop "move A around B".
+    """
+    plugins = discover() if plugins is None else plugins
+    out: dict[str, PluginError] = {}
+    for c in conflicts(plugins):
+        if all(normalize_name(n) == normalize_name(c.claim) for n in c.plugins):
+            for p in plugins:  # a name conflict: every phrase of every plugin of that name
+                if p.ok and normalize_name(p.name) == normalize_name(c.claim):
+                    for phrase in p.phrases:
+                        out.setdefault(phrase, c)
+        else:
+            out.setdefault(c.claim, c)
+    owned = {phrase for p in plugins if p.ok for phrase in p.phrases}
     for p in plugins:
         if not p.ok:
-            continue
-        other = by_name.setdefault(normalize_name(p.name), p)
-        if other is not p:
-            out.append(PluginConflict(f"two action plugins are both named \"{p.name}\": {other.label()} and "
-                                      f"{p.label()}; uninstall one of the two packages", p.name, (other.name, p.name)))
-            continue
-        for phrase in p.phrases:
-            other = by_phrase.setdefault(phrase, p)
-            if other is not p and other.name != p.name:
-                out.append(PluginConflict(
-                    f'the phrase "{phrase}" is claimed by two action plugins: {other.label()} and {p.label()}; '
-                    "uninstall one of the two packages or remove the phrase from one manifest",
-                    phrase, (other.name, p.name)))
+            for phrase in p.phrases:
+                if phrase not in owned:
+                    out.setdefault(phrase, FailedToLoadPlugin(p.name, p.package, p.error or "broken"))
     return out
 
 
 def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
-    """Phrase -> action name over the usable plugins; the first :class:`PluginConflict` on any conflict."""
+    """Phrase -> action name over the usable plugins, without the :func:`blocked_phrases`."""
     plugins = discover() if plugins is None else plugins
-    problems = conflicts(plugins)
-    if problems:
-        if len(problems) > 1:
-            problems[0].args = (f"{problems[0]} (and {len(problems) - 1} more conflicts)",)
-        raise problems[0]
-    return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases}
+    blocked = blocked_phrases(plugins)
+    return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases if phrase not in blocked}
 
 
 def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
@@ -301,9 +326,12 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     if info.module:  # an installed plugin (not a folder being authored, see local())
         try:
             mod = importlib.import_module(info.module)
-        except Exception as e:  # a plugin's import error is its own bug: report it, don't crash
-            raise FailedToLoadPlugin(info.name, info.package,
-                                     f"importing {info.module} failed: {type(e).__name__}: {e}") from None
+        except KeyboardInterrupt:  # the person at the keyboard wants to stop: that is not the plugin's bug
+            raise
+        except BaseException as e:  # noqa: BLE001 - sys.exit(7) or a BaseException in a plugin's import must
+            # not end the program: it is the plugin's bug, reported with its name like any other
+            what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
+            raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: {what}"[:500]) from None
         folder = _module_folder(mod) or info.path
     from ..errors import L2PError
     from .bundle import load_bundle
@@ -344,9 +372,18 @@ def _module_folder(mod: Any) -> Path | None:
 
 
 def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
-    """Load plugin ``name`` fully and return the reason it fails, or None if it loads."""
+    """Load plugin ``name`` as ``perform`` would (bundle, progress model, judge, policy) and return the
+    reason it fails, or None if it loads."""
+    from ..errors import L2PError
+
     try:
-        load(name, plugins)
-    except PluginError as e:
+        bundle = load(name, plugins)
+        from ..judge import judge_for
+        from ..planning.policy import load_policy
+
+        bundle.progress_model()
+        judge_for(bundle)
+        load_policy(bundle)
+    except L2PError as e:
         return str(e)
     return None

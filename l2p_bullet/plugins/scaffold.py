@@ -267,17 +267,20 @@ Check that they load: `python -c "from l2p_bullet.learning.demos import load_ses
 
     l2p-bullet train {name} --demos demos --out {module}
 
-This writes `{module}/progress.safetensors` and completes `{module}/manifest.toml` (model, training data
-digest, metrics); the phrases and the declaration stay. The shipped demonstrations of the built-in
-actions serve as negatives. Optionally (relative one-anchor actions), train a REINFORCE move policy
-against the new model (the default planner then also proposes the policy's moves; without one it
-searches without it):
+`--demos` takes several files (the shell expands `demos/*.npz`) or a folder. This writes
+`{module}/progress.safetensors` and completes `{module}/manifest.toml` in place (model, training data
+digest, metrics); its comments, version, phrases and declaration stay. The shipped demonstrations of the
+built-in actions serve as negatives. Optionally (relative one-anchor actions), train a REINFORCE move
+policy against the new model (the default planner then also proposes the policy's moves; without one
+it searches without it):
 
     l2p-bullet train-policy {name} --bundle {module}
 
 ## 3. Install and use
 
-    pip install .            # or: pip install -e .  (a plain install copies the bundle: re-install after re-training)
+    <env>/bin/pip install .  # the pip of the environment l2p-bullet runs in (or: install -e .)
+                             # always a path: `pip install {dist}` would fetch a stranger's package;
+                             # a plain install copies the bundle: install again after re-training
     l2p-bullet actions       # "{name}" is listed with its phrases
     l2p-bullet perform "{example}"
 

@@ -27,11 +27,19 @@ Two declarations of an action's manifest (:mod:`l2p_bullet.core.frames`) append 
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
 from ..core.frames import RELATIVE, parse_anchors, parse_frame, viewer_offset
+from ..errors import MotionError
+
+MAX_BLOCKS = 1000.0
+"""Longest path and widest spread of a motion, in block sides, that is scored. The human demonstrations
+travel at most 29 block sides (59 with the training set's augmentations) and stay within 14 of the
+anchor; the planner's paths within a 0.25 m disk. A motion beyond this is a unit mistake (millimetres
+read as metres, a wrong block size): resampling it every 0.25 block would take gigabytes."""
 
 
 @dataclass(frozen=True)
@@ -164,6 +172,8 @@ def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     T = np.array([len(m) for m in ms])
     first = np.concatenate([[0], np.cumsum(T)[:-1]])
     M, A = np.concatenate(ms), np.concatenate(as_)
+    _check_extent(M, A, T, first, size)
+    M_raw = M
     M = np.column_stack([M[:, :2] / size, np.unwrap(M[:, 2])])
     A = np.column_stack([A[:, :2] / size, np.unwrap(A[:, 2])])
     step = np.linalg.norm(np.diff(M[:, :2], axis=0, prepend=M[:1, :2]), axis=1)
@@ -171,6 +181,10 @@ def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     cum = np.cumsum(step)
     arc = cum - np.repeat(cum[first], T)  # per-path arc length of every input frame
     total = arc[first + T - 1]
+    if not np.all(total <= MAX_BLOCKS):
+        raise MotionError(f"the mover travels {float(np.max(total)):.3g} block sides (blocks of {size:.3g} m); at most "
+                          f"{MAX_BLOCKS:g} are scored: are the poses in metres and the block size right?",
+                          float(np.max(total)), MAX_BLOCKS)
     total = np.where(total < 1e-9, 0.0, total)
     # query arc lengths: the fixed grid below the total, then the total itself
     n_grid = np.where(total > 0, np.floor(total / cfg.spacing - 1e-9).astype(int) + 1, 0)
@@ -191,6 +205,7 @@ def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     Xq = []
     for extra in more_anchors or []:
         X = np.concatenate(_tracks(extra, ms, "a further anchor"))
+        _check_extent(M_raw, X, T, first, size)
         X = np.column_stack([X[:, :2] / size, np.unwrap(X[:, 2])])
         Xq.append(X[i0] * (1 - w) + X[i1] * w)
     out, qs = [], np.concatenate([[0], np.cumsum(K)])
@@ -199,6 +214,22 @@ def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
         out.append(Resampled(Mq[sl], Aq[sl], q[sl], arc[first[i]:first[i] + T[i]], t_glob[sl] - first[i],
                              [x[sl] for x in Xq]))
     return out
+
+
+def _check_extent(M: np.ndarray, A: np.ndarray, T: np.ndarray, first: np.ndarray, size: float) -> None:
+    """Refuse (:class:`MotionError`) what cannot be scored in bounded memory: a block size that is not a
+    positive number, non-finite poses, or poses farther than MAX_BLOCKS block sides from the anchor's start."""
+    if not (isinstance(size, int | float | np.floating) and math.isfinite(size) and size > 0):
+        raise MotionError(f"the block size must be a positive number of metres (got {size!r:.30})")
+    if not (np.all(np.isfinite(M)) and np.all(np.isfinite(A))):
+        raise MotionError("the motion contains non-finite poses (NaN or infinity)")
+    ref = np.repeat(A[first, :2], T, axis=0)
+    with np.errstate(over="ignore"):
+        extent = max(float(np.max(np.abs(M[:, :2] - ref))), float(np.max(np.abs(A[:, :2] - ref)))) / size
+    if not extent <= MAX_BLOCKS:
+        raise MotionError(f"the motion spreads over {extent:.3g} block sides (blocks of {size:.3g} m); at most "
+                          f"{MAX_BLOCKS:g} are scored: are the poses in metres and the block size right?",
+                          extent, MAX_BLOCKS)
 
 
 def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig(),

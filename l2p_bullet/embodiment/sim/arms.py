@@ -46,20 +46,18 @@ PANDA = ArmSpec(
     fingertip_links=(9, 10),
 )
 
-ARMS: dict[str, ArmSpec] = {"panda": PANDA}
-
-
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:
     """Path of the arm's URDF, stripped of visual and/or collision elements when they are not needed.
 
     Parsing the Panda's visual meshes is most of the cost of loading it (0.27 s against 0.025 s without
     them), and the IK twin needs neither visuals nor collisions (0.6 ms). The stripped copy is written
-    once to a cache folder (mesh paths made absolute) and reused; it is derived data, never edited.
+    to a cache folder (mesh paths made absolute) and reused; it is derived data, never edited. A cached
+    file is only used when its content is exactly the expected text (a stale, corrupt or planted file is
+    rewritten), and only from a folder this user owns and nobody else can write (:func:`_cache_dir`).
     """
     import hashlib
     import os
     import re
-    import tempfile
 
     import pybullet_data
 
@@ -75,13 +73,59 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     folder = os.path.dirname(src)
     text = text.replace("package://", folder + "/")
     text = re.sub(r'filename="(?!/)', f'filename="{folder}/', text)
-    digest = hashlib.sha256(text.encode()).hexdigest()[:16]
-    cache = os.path.join(tempfile.gettempdir(), "l2p_bullet-urdf")
-    os.makedirs(cache, exist_ok=True)
-    path = os.path.join(cache, f"{spec.name}-{digest}.urdf")
-    if not os.path.exists(path):
+    data = text.encode()
+    digest = hashlib.sha256(data).hexdigest()[:16]
+    path = os.path.join(_cache_dir(), f"{spec.name}-{digest}.urdf")
+    if not _holds(path, data):
         tmp = f"{path}.{os.getpid()}.tmp"
-        with open(tmp, "w") as f:
-            f.write(text)
+        with open(tmp, "wb") as f:
+            f.write(data)
         os.replace(tmp, path)  # atomic: concurrent processes never read a half-written file
     return path
+
+
+_PRIVATE: list[str] = []
+
+
+def _cache_dir() -> str:
+    """``<tmp>/l2p_bullet-urdf-<uid>``, made with mode 0700; if it exists but is not a folder this user
+    owns and alone can write (a link, someone else's), a private folder for this process instead."""
+    import os
+    import stat
+    import tempfile
+
+    uid = os.getuid() if hasattr(os, "getuid") else 0
+    path = os.path.join(tempfile.gettempdir(), f"l2p_bullet-urdf-{uid}")
+    try:
+        os.mkdir(path, 0o700)
+    except FileExistsError:
+        pass
+    except OSError:
+        return _private_dir()
+    st = os.lstat(path)
+    if not stat.S_ISDIR(st.st_mode) or st.st_uid != uid or st.st_mode & 0o022:
+        return _private_dir()
+    return path
+
+
+def _private_dir() -> str:
+    import tempfile
+
+    if not _PRIVATE:
+        _PRIVATE.append(tempfile.mkdtemp(prefix="l2p_bullet-urdf-"))
+    return _PRIVATE[0]
+
+
+def _holds(path: str, data: bytes) -> bool:
+    """True when ``path`` is a regular file (not a link) whose bytes are exactly ``data``."""
+    import os
+    import stat
+
+    try:
+        st = os.lstat(path)
+        if not stat.S_ISREG(st.st_mode) or st.st_size != len(data):
+            return False
+        with open(path, "rb") as f:
+            return f.read() == data
+    except OSError:
+        return False

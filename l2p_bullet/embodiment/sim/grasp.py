@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .robot import ARM
+
 MAX_FORCE = 100.0  # N: holds a 0.1 kg block against table friction with a wide margin
 
 
@@ -20,7 +22,6 @@ class Grasp:
     """An active grasp. ``tool_z`` is the tool height measured at grasp time: the slide keeps it."""
 
     name: str
-    body: int
     constraint: int
     tool_z: float
     yaw_offset: float  # tool yaw minus block yaw at grasp time
@@ -29,30 +30,16 @@ class Grasp:
 
 def attach(world, name: str) -> Grasp:
     """Fix block ``name`` to the tool where they are now."""
-    c, robot = world.client, world.robot
-    body = world.bodies[name]
-    tool = c.getLinkState(robot.body, robot.spec.tool_link, computeForwardKinematics=True)
-    t_pos = tool[4]
-    b_pos, b_orn = c.getBasePositionAndOrientation(body)
-    # PyBullet places a constraint's parent frame relative to the link's centre of mass frame.
-    com_pos, com_orn = tool[0], tool[1]
-    inv_pos, inv_orn = c.invertTransform(com_pos, com_orn)
-    par_pos, par_orn = c.multiplyTransforms(inv_pos, inv_orn, b_pos, b_orn)
-    cid = c.createConstraint(robot.body, robot.spec.tool_link, body, -1, world.pb.JOINT_FIXED, [0, 0, 0],
-                             parentFramePosition=par_pos, childFramePosition=[0, 0, 0],
-                             parentFrameOrientation=par_orn, childFrameOrientation=[0, 0, 0, 1])
-    c.changeConstraint(cid, maxForce=MAX_FORCE)
+    robot = world.robot
+    cid = world.sim.fix(ARM, robot.spec.tool_link, name, MAX_FORCE)
+    t_pos, _ = robot.tool_pose()
     block = world.pose(name)
     tool_yaw = robot.tool_yaw()
     cy, sy = np.cos(block[3]), np.sin(block[3])
     d = np.array(t_pos[:2]) - block[:2]
     offset = np.array([cy * d[0] + sy * d[1], -sy * d[0] + cy * d[1]])
-    return Grasp(name, body, cid, float(t_pos[2]), float(tool_yaw - block[3]), offset)
+    return Grasp(name, cid, float(t_pos[2]), float(tool_yaw - block[3]), offset)
 
 
 def detach(world, grasp: Grasp) -> None:
-    world.client.removeConstraint(grasp.constraint)
-
-
-def constraint_count(world) -> int:
-    return world.client.getNumConstraints()
+    world.sim.remove_constraint(grasp.constraint)

@@ -51,21 +51,12 @@ def slide_plan(path: np.ndarray, yaw_offset: float, z: float,
             for ch in motion.slide_chunks(path)]
 
 
-class _NoRecorder:
-    grasped: str | None = None
-
-    def __call__(self) -> None:
-        pass
-
-
 class Primitives:
     """Drives ``world.robot``; ``recorder()`` is called after every physics step and its ``grasped``
     attribute follows the grasp (see record.Recorder)."""
 
-    def __init__(self, world, recorder=None):
-        self.world, self.robot = world, world.robot
-        self.recorder = recorder if recorder is not None else _NoRecorder()
-        self.on_step = self.recorder
+    def __init__(self, world, recorder):
+        self.world, self.robot, self.recorder = world, world.robot, recorder
         self.q = self.robot.joints()
         pos, _ = self.robot.tool_pose()
         self.pose = np.array([pos[0], pos[1], pos[2], self.robot.tool_yaw()])  # last commanded tool pose
@@ -113,7 +104,7 @@ class Primitives:
             for i in range(1, n + 1):
                 self.robot.command(prev + (q - prev) * (i / n))
                 self.world.step()
-                self.on_step()
+                self.recorder()
             prev = q
         self.q = prev
         self.pose = timed.poses[-1].copy()
@@ -127,7 +118,7 @@ class Primitives:
         for _ in range(max(1, round(seconds / self.world.dt))):
             self.robot.command(self.q)
             self.world.step()
-            self.on_step()
+            self.recorder()
 
     def go(self, target: np.ndarray, limits: Limits, stage: str) -> None:
         """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
@@ -148,8 +139,9 @@ class Primitives:
     def engage(self, name: str, yaw_offset: float = 0.0) -> Grasp:
         """Approach ``name`` from above, descend until the closed fingers rest on its top, fix it.
 
-        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; choose it with
-        :func:`l2p_bullet.embodiment.motion.grasp_yaw_offset` so the wrist stays inside its range while sliding.
+        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; choose it among
+        :func:`l2p_bullet.embodiment.motion.grasp_yaw_offsets` so the wrist stays inside its range while
+        sliding.
         """
         if self.grasp is not None:
             raise ExecutionError(f'already holding "{self.grasp.name}"; disengage first')
@@ -185,22 +177,24 @@ class Primitives:
                 timed = line_plan(self.pose, target, limits)
                 self.q = self.solve(self._control_samples(timed))[-1]
                 self.pose = timed.poses[-1].copy()
-            p = motion.clean_path(path)
-            p[:, 2] += 2 * math.pi * round((self.pose[3] - yaw_offset - p[0, 2]) / (2 * math.pi))
+            p = self._continued(path, yaw_offset)
             self.slide_joints(slide_plan(p, yaw_offset, float(down[2])))
         finally:
             self.q, self.pose = saved_q, saved_pose
+
+    def _continued(self, path: np.ndarray, yaw_offset: float) -> np.ndarray:
+        """The cleaned path with its yaw shifted by whole turns so that the tool's yaw (block yaw +
+        ``yaw_offset``) continues from where the tool is, without a turn."""
+        p = motion.clean_path(path)
+        p[:, 2] += 2 * math.pi * round((self.pose[3] - yaw_offset - p[0, 2]) / (2 * math.pi))
+        return p
 
     def move(self, path: np.ndarray) -> None:
         """Slide the held block along ``path`` (N,3) on the table, the grasp height locked."""
         if self.grasp is None:
             raise ExecutionError("move() needs a grasped block: engage(obj) first")
         g = self.grasp
-        path = motion.clean_path(path)
-        # Continue the tool's yaw without a turn: shift the path's yaw by whole turns to match.
-        turns = round((self.pose[3] - g.yaw_offset - path[0, 2]) / (2 * math.pi))
-        path[:, 2] += 2 * math.pi * turns
-        timed = slide_plan(path, g.yaw_offset, g.tool_z, g.offset_xy)
+        timed = slide_plan(self._continued(path, g.yaw_offset), g.yaw_offset, g.tool_z, g.offset_xy)
         for t, joints in zip(timed, self.slide_joints(timed), strict=True):  # all IK before moving
             self.run(t, "slide", joints)
             self.check_grasp()

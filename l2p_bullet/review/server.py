@@ -1,5 +1,6 @@
-"""Running the teach app with uvicorn on a socket bound here (so the port is known, 0 picks a free one):
-in the foreground for ``l2p-bullet teach``, in a thread for tests."""
+"""Running the review app (and the teach page, ``l2p_bullet.teach``) with uvicorn: on a socket bound here
+(so the port is known, 0 picks a free one), in the foreground for ``l2p-bullet review`` / ``teach`` or in
+a thread for tests and benchmarks."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import threading
 import time
 from dataclasses import dataclass
 
-from ..errors import TeachError
+from ..errors import ReviewError
 
 
 def bind(host: str, port: int) -> socket.socket:
@@ -21,8 +22,8 @@ def bind(host: str, port: int) -> socket.socket:
     except OSError as e:
         sock.close()
         if e.errno == errno.EADDRINUSE:
-            raise TeachError(f"port {port} on {host} is in use; pass another --port (or --port 0 for a free one)") from None
-        raise TeachError(f"cannot listen on {host}:{port}: {e.strerror or e}") from None
+            raise ReviewError(f"port {port} on {host} is in use; pass another --port (or --port 0 for a free one)") from None
+        raise ReviewError(f"cannot listen on {host}:{port}: {e.strerror or e}") from None
     sock.listen(128)
     return sock
 
@@ -54,15 +55,16 @@ class RunningServer:
         self.thread.join(timeout=10)
 
 
-def start(app, host: str = "127.0.0.1", port: int = 0, log_level: str = "warning") -> RunningServer:
+def start(app, host: str = "127.0.0.1", port: int = 0, log_level: str = "warning",
+          name: str = "review-server") -> RunningServer:
     """Serve ``app`` in a daemon thread; returns once it accepts connections."""
     sock = bind(host, port)
     server = _server(app, log_level)
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True, name="teach-server")
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True, name=name)
     thread.start()
     deadline = time.monotonic() + 20
     while not server.started:
         if not thread.is_alive() or time.monotonic() > deadline:
-            raise TeachError("the teach server did not start")
+            raise ReviewError(f"the server ({name}) did not start")
         time.sleep(0.02)
     return RunningServer(url_of(sock), server, thread)

@@ -1,0 +1,118 @@
+"""``l2p-bullet evaluate``: every scene x action on a process pool or Ray, one results table, a report."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+
+import click
+
+
+@click.command("evaluate")
+@click.option("--actions", default=None, help="Comma-separated actions (default: every installed one).")
+@click.option("--scenes", type=int, default=None, help="N seeded random scenes (default 10; seeds --seed .. --seed+N-1).")
+@click.option("--scene-file", type=click.Path(dir_okay=False), default=None,
+              help="A JSON-lines file, one scene per line (optional id, mover, anchor, seed per line).")
+@click.option("--study", is_flag=True, default=None, help="The original study's start configurations (75 scenes).")
+@click.option("--bystanders", type=int, default=None, help="Add K bystander blocks to every scene.")
+@click.option("--seed", type=int, default=None, help="First random scene seed (default 0).")
+@click.option("--planner", default=None, help="Planner for every run (default: each action's own).")
+@click.option("--plan-only", "plan_only", is_flag=True, default=None, help="Plan in 2-D only; no arm, no physics.")
+@click.option("--render-every", type=int, default=None, help="Render (and keep) every K-th run of each action (default 0: none).")
+@click.option("--no-render", is_flag=True, help="Render nothing (the same as --render-every 0).")
+@click.option("--keep", type=click.Choice(["none", "failed", "all"]), default=None,
+              help="Run folders to keep besides the rendered ones (default: none).")
+@click.option("--workers", type=int, default=None, help="Worker processes (default: the cores; 0: in this process).")
+@click.option("--ray", "ray_address", default=None,
+              help="Run on Ray: a cluster ADDRESS, auto, or local (an embedded Ray). Needs l2p-bullet[ray].")
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Evaluation folder (default runs/evaluate-<timestamp>): results.sqlite, kept runs, report.")
+@click.option("--resume", is_flag=True, help="Continue the evaluation in --out: skip the runs already recorded.")
+@click.option("--retry-errors", is_flag=True, help="With --resume: run again the runs that ended in an error.")
+@click.option("--report", is_flag=True,
+              help="Print success per action and the confusion matrices, save them as PNG. Alone with an "
+                   "existing --out: report what is recorded and run nothing.")
+@click.option("--parquet", type=click.Path(dir_okay=False), default=None, help="Also write the results table as Parquet.")
+@click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
+@click.option("--json", "as_json", is_flag=True, help="Print the summary (and the report's numbers) as JSON.")
+def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, plan_only, render_every, no_render,
+                 keep, workers, ray_address, out, resume, retry_errors, report, parquet, quiet, as_json) -> None:
+    """Perform (or plan) every scene x action and record one row per run in OUT/results.sqlite.
+
+    \b
+    Examples:
+      l2p-bullet evaluate --scenes 100 --workers 2 --out runs/eval --report
+      l2p-bullet evaluate --study --actions closer,next-to --report
+      l2p-bullet evaluate --scenes 1000 --ray auto --out runs/big
+      l2p-bullet evaluate --out runs/big --resume          (after Ctrl-C)
+      l2p-bullet evaluate --out runs/eval --report         (report what is recorded)
+    Every run is judged by every installed action's judge and scored by every progress model: the
+    report's confusion matrices (rows = asked, columns = recognised).
+    """
+    from pathlib import Path
+
+    from ..evaluate.runner import evaluate, load_rows
+
+    given = {"actions": [a.strip() for a in actions.split(",") if a.strip()] if actions else None,
+             "scenes": scenes, "scene_file": scene_file, "study": study, "bystanders": bystanders, "seed": seed,
+             "planner": planner, "mode": "plan" if plan_only else None,
+             "render_every": 0 if no_render else render_every, "keep": keep}
+    given = {k: v for k, v in given.items() if v is not None}
+    folder = Path(out) if out else Path("runs") / f"evaluate-{time.strftime('%Y%m%d-%H%M%S')}"
+    report_only = report and not resume and not given and (folder / "results.sqlite").exists()
+    summary = None
+    if not report_only:
+        config = _config(given, folder, resume)
+        try:
+            summary = evaluate(config, folder, workers=workers, ray=ray_address, resume=resume,
+                               retry_errors=retry_errors, progress=not quiet)
+        except KeyboardInterrupt:
+            n = len(load_rows(folder)) if (folder / "results.sqlite").exists() else 0
+            click.echo(f"\ninterrupted: {n} runs recorded in {folder}; continue with: "
+                       f"l2p-bullet evaluate --out {folder} --resume", err=True)
+            sys.exit(130)
+    rows = load_rows(folder)
+    if parquet:
+        from ..evaluate.results import ResultsStore
+
+        with ResultsStore(folder) as store:
+            store.to_parquet(parquet)
+    out_json: dict = {"out": str(folder), "rows": len(rows)}
+    if summary is not None:
+        out_json.update(total=summary.total, skipped=summary.skipped, ran=summary.ran, failed=summary.failed,
+                        errors=summary.errors, seconds=round(summary.seconds, 3),
+                        runs_per_s=round(summary.runs_per_s, 4), backend=summary.backend, workers=summary.workers)
+        if not as_json:
+            click.echo(f"{summary.ran} runs in {summary.seconds:.1f} s ({summary.runs_per_s:.2f} runs/s, "
+                       f"{summary.backend}, {summary.workers} workers); {summary.skipped} already recorded; "
+                       f"{summary.failed} failed, {summary.errors} errors; results: {folder / 'results.sqlite'}")
+    if report:
+        from ..evaluate.report import write_report
+
+        text, files = write_report(rows, folder)
+        out_json["report"] = json.loads(files["json"].read_text())
+        if not as_json:
+            click.echo(text)
+            click.echo("plots: " + ", ".join(str(p) for k, p in files.items() if k != "json"))
+    if as_json:
+        click.echo(json.dumps(out_json, indent=1, default=str))
+
+
+def _config(given: dict, folder, resume: bool):
+    """The evaluation's settings: the options given over the defaults, or (``--resume``) over the stored ones."""
+    from ..evaluate.results import ResultsStore
+    from ..evaluate.runner import EvaluationConfig
+
+    if not resume:
+        return EvaluationConfig(**given)
+    if not given:
+        return None
+    if not (folder / "results.sqlite").exists():
+        return EvaluationConfig(**given)  # evaluate() says there is nothing to resume
+    with ResultsStore(folder) as store:
+        stored = store.get_meta("config") or {}
+    return EvaluationConfig.from_dict({**stored, **given})
+
+
+COMMANDS: list[click.Command] = [evaluate_cmd]

@@ -1,0 +1,89 @@
+"""The caption strip under a video frame: the sentence and the learned progress (the paper's Fig. 7).
+
+A run's video is watched outside the review app too (a file browser, a slide): the strip makes it say
+what was asked and how far the action's learned progress model thinks it got, frame by frame. It is
+drawn *under* the rendered image, never over it, so no pixel of the scene is hidden, and only on the
+video: ``frames/*.png`` stay the raw renders (the review app's blind mode shows those, because the
+strip names the action; the determinism tests compare them).
+
+Pure function of its inputs (Pillow's built-in font, no system fonts), so videos stay reproducible.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+MACRO_BLOCK = 8
+"""Video encoders want frame sides divisible by this; the strip's height makes the total fit."""
+
+BACKGROUND = (24, 24, 24)
+TEXT = (240, 240, 240)
+BAR_BACK = (70, 70, 70)
+BAR_FILL = (80, 190, 110)
+
+
+@lru_cache(maxsize=8)
+def _font(size: int):
+    from PIL import ImageFont
+
+    return ImageFont.load_default(size=size)
+
+
+def strip_height(height: int) -> int:
+    """Height of the strip under an image ``height`` pixels high: about a fifth, total a multiple of 8."""
+    h = max(28, round(height * 0.2))
+    return h + (-(height + h)) % MACRO_BLOCK
+
+
+def _fit(draw, text: str, font, width: int) -> str:
+    """``text``, shortened with an ellipsis until it fits ``width`` pixels."""
+    if draw.textlength(text, font=font) <= width:
+        return text
+    while text and draw.textlength(text + "...", font=font) > width:
+        text = text[:-1]
+    return text + "..."
+
+
+def overlay(image: np.ndarray, sentence: str | None, progress: float | None) -> np.ndarray:
+    """``image`` (H, W, 3) uint8 with a strip under it: ``sentence`` and a bar for ``progress`` in [0, 1].
+
+    ``progress`` None (no model scored the run) writes "progress n/a" and no bar. Returns a new
+    (H + strip_height(H), W, 3) uint8 array; ``image`` is not modified.
+    """
+    from PIL import Image, ImageDraw
+
+    img = np.asarray(image)
+    if img.ndim != 3 or img.shape[2] < 3:
+        raise ValueError(f"expected an (H, W, 3) image, got shape {img.shape}")
+    h, w = img.shape[:2]
+    sh = strip_height(h)
+    strip = Image.new("RGB", (w, sh), BACKGROUND)
+    draw = ImageDraw.Draw(strip)
+    pad = max(3, sh // 10)
+    font = _font(max(9, (sh - 3 * pad) // 2))
+    line = int(getattr(font, "size", 11)) + 1
+    draw.text((pad, pad), _fit(draw, sentence or "", font, w - 2 * pad), fill=TEXT, font=font)
+    y = pad + line + pad // 2
+    if progress is None or not np.isfinite(progress):
+        draw.text((pad, y), "progress n/a", fill=TEXT, font=font)
+    else:
+        p = float(np.clip(progress, 0.0, 1.0))
+        label = f"{p:.2f}"
+        lw = int(draw.textlength("0.00", font=font)) + pad
+        x0, x1, y1 = pad, w - pad - lw, min(sh - pad, y + line)
+        draw.rectangle((x0, y, x1, y1), fill=BAR_BACK)
+        if p > 0:
+            draw.rectangle((x0, y, x0 + round((x1 - x0) * p), y1), fill=BAR_FILL)
+        draw.text((x1 + pad, y), label, fill=TEXT, font=font)
+    return np.concatenate([img[:, :, :3].astype(np.uint8), np.asarray(strip, dtype=np.uint8)], axis=0)
+
+
+def progress_at(times: list[float], frame_times: np.ndarray, frame_progress: list[float | None]) -> list[float | None]:
+    """The progress shown at each image time: that of the last trajectory frame at or before it."""
+    if not len(frame_times):
+        return [None] * len(times)
+    idx = np.clip(np.searchsorted(frame_times, np.asarray(times, float) + 1e-6, side="right") - 1,
+                  0, len(frame_times) - 1)
+    return [frame_progress[i] for i in idx]

@@ -1,0 +1,279 @@
+"""The simulator facade: the one place in the project that calls PyBullet.
+
+Like panda-gym's ``PyBullet`` class, one :class:`Bullet` owns one DIRECT ``BulletClient`` and knows the
+bodies loaded into it by name; the world, the robot, the grasp and the camera ask it for poses, joint
+states, constraints, IK and images and never see a body id, a client id or the ``pybullet`` module.
+What touches the C library can thus be read (and replaced) in one file.
+
+The methods call the ``pybullet`` module's functions with the client id rather than going through
+``BulletClient``'s attribute wrapper, which costs a few microseconds per call: the physics step, the joint
+command, pose reads and IK run thousands of times an episode (benchmarks/bench_embodiment.py holds the
+whole loop within a small factor of bare pybullet).
+
+PyBullet prints "pybullet build time" on import and "argv[0]=" on connect straight to the C-level
+file descriptors, and the EGL plugin prints on load, on every frame and on exit. Printed into the middle
+of a command's output (or a JSON answer) that breaks things, so those calls run inside
+:func:`quiet_stdout`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+Vec3 = Sequence[float]
+Quat = Sequence[float]
+
+
+def _flush_c_stdio() -> None:
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError):  # pragma: no cover - no libc: nothing buffered we can reach
+        pass
+
+
+@contextlib.contextmanager
+def quiet_stdout():
+    """Send file descriptors 1 and 2 to /dev/null for the duration (Python's streams flushed first).
+
+    Only ever wraps an import, a connect, a plugin or an EGL frame: nothing a user needs to see is
+    printed there.
+    """
+    fds = [1, 2]  # the C library writes to the descriptors, whatever Python's sys.stdout is now
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (AttributeError, ValueError):  # pragma: no cover - a closed or odd stream
+            pass
+    saved = [os.dup(fd) for fd in fds]
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        for fd in fds:
+            os.dup2(devnull, fd)
+        yield
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        _flush_c_stdio()  # C stdio buffers what it printed; flush it while it still goes nowhere
+        for fd, keep in zip(fds, saved, strict=True):
+            os.dup2(keep, fd)
+            os.close(keep)
+        os.close(devnull)
+
+
+@dataclass(frozen=True)
+class JointInfo:
+    """What the controller and IK need to know of one joint of a body."""
+
+    index: int
+    movable: bool  # not a fixed joint (IK returns one value per movable joint, in joint order)
+    lower: float
+    upper: float
+    max_force: float
+
+
+class Bullet:
+    """One DIRECT PyBullet client and its bodies, by name. :meth:`close` it (or use ``with``) when done.
+
+    Bodies are loaded with a name (:meth:`load_urdf`) and every other method takes that name. Nothing
+    is global: two instances never see each other's bodies.
+    """
+
+    def __init__(self) -> None:
+        with quiet_stdout():
+            import pybullet as pb
+            import pybullet_data
+            from pybullet_utils import bullet_client
+
+            client = bullet_client.BulletClient(connection_mode=pb.DIRECT)
+        self._pb, self._client = pb, client
+        self._id: int = client._client
+        self._bodies: dict[str, int] = {}
+        self._physics: tuple[float, tuple[float, float, float]] | None = None
+        self.egl = False  # whether the EGL renderer plugin is loaded (see load_egl)
+        pb.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self._id)
+
+    # --- the simulation ----------------------------------------------------------------------
+    def set_physics(self, time_step: float, gravity: tuple[float, float, float] = (0.0, 0.0, -9.81)) -> None:
+        """Time step (s) and gravity (m/s^2); kept across :meth:`reset`."""
+        self._physics = (time_step, gravity)
+        self._pb.setGravity(*gravity, physicsClientId=self._id)
+        self._pb.setTimeStep(time_step, physicsClientId=self._id)
+
+    def reset(self) -> None:
+        """Remove every body and constraint and start the physics afresh (the client stays connected).
+
+        PyBullet rebuilds its dynamics world, so bodies loaded afterwards in the same order as into a new
+        client simulate bit for bit like them (a run on a reset world equals a run on a new one).
+        """
+        self._pb.resetSimulation(physicsClientId=self._id)
+        self._bodies.clear()
+        if self._physics is not None:
+            self.set_physics(*self._physics)
+
+    def load_egl(self) -> None:
+        """Load the EGL renderer plugin; ExecutionError where it does not load.
+
+        Load it before any body: bodies loaded earlier never reach it (their images come out empty).
+        It is never unloaded explicitly (unloading segfaulted here): disconnecting the client ends it.
+        """
+        import importlib.util
+
+        from ...errors import ExecutionError
+
+        spec = importlib.util.find_spec("eglRenderer")
+        with quiet_stdout():
+            plugin = (self._pb.loadPlugin(spec.origin, "_eglRendererPlugin", physicsClientId=self._id)
+                      if spec and spec.origin else -1)
+        if plugin < 0:
+            raise ExecutionError("the EGL renderer plugin does not load here; use --renderer tiny")
+        self.egl = True
+
+    def step(self) -> None:
+        self._pb.stepSimulation(physicsClientId=self._id)
+
+    def close(self) -> None:
+        """Disconnect (idempotent)."""
+        if self._id >= 0:
+            with quiet_stdout():  # the EGL plugin says goodbye on the C-level stdout
+                self._client.disconnect()
+            self._id = -1
+            self._bodies.clear()
+
+    def __enter__(self) -> Bullet:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # --- bodies ------------------------------------------------------------------------------
+    def load_urdf(self, name: str, path: str, position: Vec3, orientation: Quat = (0.0, 0.0, 0.0, 1.0), *,
+                  fixed: bool = False, scale: float = 1.0) -> None:
+        """Load a URDF as body ``name`` (names are unique within a client)."""
+        if name in self._bodies:
+            raise ValueError(f'a body named "{name}" is already loaded')
+        self._bodies[name] = self._pb.loadURDF(path, list(position), list(orientation), useFixedBase=fixed,
+                                               globalScaling=scale, physicsClientId=self._id)
+
+    def set_color(self, name: str, rgba: Sequence[float]) -> None:
+        """Colour of the body's base link."""
+        self._pb.changeVisualShape(self._bodies[name], -1, rgbaColor=list(rgba), physicsClientId=self._id)
+
+    def base_pose(self, name: str) -> tuple[Vec3, Quat]:
+        """Position and orientation quaternion (x, y, z, w) of the body's base."""
+        return self._pb.getBasePositionAndOrientation(self._bodies[name], physicsClientId=self._id)
+
+    def link_pose(self, name: str, link: int) -> tuple[Vec3, Quat]:
+        """World pose of the link's URDF frame, forward kinematics computed from the joints now."""
+        s = self._pb.getLinkState(self._bodies[name], link, computeForwardKinematics=True,
+                                  physicsClientId=self._id)
+        return s[4], s[5]
+
+    def aabb(self, name: str, link: int) -> tuple[Vec3, Vec3]:
+        """Lower and upper corner of the link's axis-aligned bounding box (its collision shapes)."""
+        return self._pb.getAABB(self._bodies[name], link, physicsClientId=self._id)
+
+    # --- joints ------------------------------------------------------------------------------
+    def joints(self, name: str) -> list[JointInfo]:
+        """Every joint of the body, in index order."""
+        b, pb = self._bodies[name], self._pb
+        out = []
+        for j in range(pb.getNumJoints(b, physicsClientId=self._id)):
+            info = pb.getJointInfo(b, j, physicsClientId=self._id)
+            out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10]))
+        return out
+
+    def joint_positions(self, name: str, joints: Sequence[int]) -> np.ndarray:
+        states = self._pb.getJointStates(self._bodies[name], list(joints), physicsClientId=self._id)
+        return np.array([s[0] for s in states])
+
+    def reset_joints(self, name: str, joints: Sequence[int], positions: Sequence[float]) -> None:
+        """Teleport the joints to ``positions``, at rest (no physics; for set-up and the IK twin)."""
+        # One multi-joint call (the IK twin makes several per solve); velocities default to zero.
+        self._pb.resetJointStatesMultiDof(self._bodies[name], joints, [[float(v)] for v in positions],
+                                          physicsClientId=self._id)
+
+    def control_joints(self, name: str, joints: Sequence[int], targets: Sequence[float], forces: Sequence[float],
+                       gains: Sequence[float] | None = None) -> None:
+        """Position control: the motors track ``targets`` during the next physics steps.
+
+        ``gains`` None keeps PyBullet's default position gain.
+        """
+        extra = {} if gains is None else {"positionGains": gains}
+        self._pb.setJointMotorControlArray(self._bodies[name], joints, self._pb.POSITION_CONTROL,
+                                           targetPositions=targets, forces=forces, physicsClientId=self._id,
+                                           **extra)
+
+    def inverse_kinematics(self, name: str, link: int, position: Vec3, orientation: Quat, *, iterations: int,
+                           threshold: float, lower: Sequence[float] | None = None,
+                           upper: Sequence[float] | None = None, rest: Sequence[float] | None = None) -> tuple:
+        """PyBullet's damped least squares, seeded from the body's joints now: one value per movable joint.
+
+        With ``lower``, ``upper`` and ``rest`` (one per movable joint) the null-space variant, pulled
+        towards ``rest``.
+        """
+        extra = {}
+        if rest is not None:
+            extra = dict(lowerLimits=list(lower), upperLimits=list(upper),
+                         jointRanges=[u - lo for lo, u in zip(lower, upper, strict=True)], restPoses=list(rest))
+        return self._pb.calculateInverseKinematics(self._bodies[name], link, position, orientation,
+                                                   maxNumIterations=iterations, residualThreshold=threshold,
+                                                   physicsClientId=self._id, **extra)
+
+    # --- constraints -------------------------------------------------------------------------
+    def fix(self, parent: str, parent_link: int, child: str, max_force: float) -> int:
+        """Fix body ``child`` to ``parent``'s link at their relative pose now; returns the constraint's id."""
+        pb, cid = self._pb, self._id
+        link = pb.getLinkState(self._bodies[parent], parent_link, computeForwardKinematics=True,
+                               physicsClientId=cid)
+        c_pos, c_orn = pb.getBasePositionAndOrientation(self._bodies[child], physicsClientId=cid)
+        # PyBullet places a constraint's parent frame relative to the link's centre of mass frame.
+        inv_pos, inv_orn = pb.invertTransform(link[0], link[1])
+        par_pos, par_orn = pb.multiplyTransforms(inv_pos, inv_orn, c_pos, c_orn)
+        uid = pb.createConstraint(self._bodies[parent], parent_link, self._bodies[child], -1, pb.JOINT_FIXED,
+                                  [0, 0, 0], parentFramePosition=par_pos, childFramePosition=[0, 0, 0],
+                                  parentFrameOrientation=par_orn, childFrameOrientation=[0, 0, 0, 1],
+                                  physicsClientId=cid)
+        pb.changeConstraint(uid, maxForce=max_force, physicsClientId=cid)
+        return uid
+
+    def remove_constraint(self, uid: int) -> None:
+        self._pb.removeConstraint(uid, physicsClientId=self._id)
+
+    def constraint_count(self) -> int:
+        return self._pb.getNumConstraints(physicsClientId=self._id)
+
+    # --- camera ------------------------------------------------------------------------------
+    def view_matrix(self, eye: Vec3, target: Vec3, up: Vec3) -> tuple[float, ...]:
+        """Column-major 4x4 view matrix, as the renderer takes it."""
+        return self._pb.computeViewMatrix(eye, target, up, physicsClientId=self._id)
+
+    def projection_matrix(self, fov: float, aspect: float, near: float, far: float) -> tuple[float, ...]:
+        """Column-major 4x4 perspective projection (``fov`` vertical, degrees)."""
+        return self._pb.computeProjectionMatrixFOV(fov, aspect, near, far, physicsClientId=self._id)
+
+    def camera_image(self, width: int, height: int, view: Sequence[float], projection: Sequence[float],
+                     hardware: bool = False) -> Sequence[int]:
+        """RGBA pixels, row-major, no shadows; TinyRenderer (CPU) or, with ``hardware``, the EGL plugin."""
+        pb = self._pb
+        renderer = pb.ER_BULLET_HARDWARE_OPENGL if hardware else pb.ER_TINY_RENDERER
+        quiet = quiet_stdout() if hardware else contextlib.nullcontext()  # the EGL plugin prints every frame
+        with quiet:
+            return pb.getCameraImage(width, height, view, projection, renderer=renderer, shadow=0,
+                                     flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self._id)[2]
+
+    # --- rotations (PyBullet's own, so that results match its internals to the last bit) -----------
+    def quaternion(self, roll: float, pitch: float, yaw: float) -> Quat:
+        """Quaternion (x, y, z, w) of fixed-axis roll, pitch, yaw."""
+        return self._pb.getQuaternionFromEuler([roll, pitch, yaw])
+
+    def rotation_matrix(self, orientation: Quat) -> tuple[float, ...]:
+        """Row-major 3x3 rotation matrix of a quaternion (x, y, z, w), as 9 numbers."""
+        return self._pb.getMatrixFromQuaternion(orientation)

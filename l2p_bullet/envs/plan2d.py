@@ -1,0 +1,181 @@
+"""``l2p_bullet/Plan2D-v0``: the 2-D planning problem as a Gymnasium environment.
+
+One episode = one sentence "move A <action> B" on one scene. The agent moves the mover block by
+(dx, dy, dyaw) per step, in block units in the scene's frame; the reward is the increase of the
+action's learned progress over the whole motion so far (the numpy model of the action's bundle: no
+torch at step time), exactly what the project's planners maximise. The episode is
+
+- terminated when the progress reaches the action's threshold (its bundle's ``[policy] threshold``, else
+  0.9), or when a move is illegal: it collides with another block (inflated by the gripper margin) or
+  leaves the arm's workspace (the block then stays where it was; ``info["illegal"]`` says which);
+- truncated after ``max_steps`` moves (12, the planners' ``max_moves``).
+
+Observation (float32, 7): mover x, y (block units from the workspace centre), yaw; anchor x, y, yaw;
+the progress so far. Scenes come from ``core.scene.random_scene`` seeded by the environment's RNG, so
+``reset(seed=s)`` is deterministic; ``reset(options={"scene": scene_or_dict})`` poses a given one.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from ..core.geometry import wrap_angle
+from ..core.scene import MIN_SIZE, Scene, random_scene
+from ..planning.problem import FRAME_STEP, MAX_TURN
+from ..planning.world2d import World2D, segment_frames
+
+POSITION_BOUND = 16.0
+"""Block units: the workspace's radius (0.25 m) over the smallest block (0.02 m) is 12.5."""
+
+
+class Plan2DEnv(gym.Env):
+    """See the module docstring. ``action`` names an installed action (built-in or plugin)."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
+
+    def __init__(self, action: str = "around", render_mode: str | None = None, max_steps: int = 12,
+                 max_move: float = 2.0, threshold: float | None = None, size: float = 0.05,
+                 illegal_penalty: float = 0.0):
+        from ..planning import THRESHOLD
+        from ..plugins import registry
+
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None")
+        if not MIN_SIZE <= size:
+            raise ValueError(f"size must be at least {MIN_SIZE} m")
+        self.bundle = registry.load(action)
+        self.action_name = self.bundle.name
+        self.model = self.bundle.progress_model()
+        settings = self.bundle.manifest.get("policy", {})
+        self.threshold = float(threshold if threshold is not None else settings.get("threshold", THRESHOLD))
+        self.render_mode, self.max_steps, self.max_move = render_mode, int(max_steps), float(max_move)
+        self.size, self.illegal_penalty = float(size), float(illegal_penalty)
+        b = POSITION_BOUND
+        self.observation_space = spaces.Box(np.array([-b, -b, -math.pi, -b, -b, -math.pi, 0.0], np.float32),
+                                            np.array([b, b, math.pi, b, b, math.pi, 1.0], np.float32),
+                                            dtype=np.float32)
+        m = self.max_move
+        self.action_space = spaces.Box(np.array([-m, -m, -MAX_TURN], np.float32),
+                                       np.array([m, m, MAX_TURN], np.float32), dtype=np.float32)
+        self.scene: Scene | None = None
+        self.mover, self.anchor = "A", "B"
+
+    # --- the episode ---------------------------------------------------------------------------
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        options = options or {}
+        scene = options.get("scene")
+        if scene is None:
+            scene = random_scene(int(self.np_random.integers(0, 2**31 - 1)), self.size)
+        elif isinstance(scene, dict):
+            scene = Scene.from_dict(scene, source="options['scene']")
+        self.scene = scene.validate()
+        self.mover, self.anchor = str(options.get("mover", "A")), str(options.get("anchor", "B"))
+        self.world2d = World2D(self.scene, self.mover)
+        self.block = self.world2d.size
+        self.anchor_pose = self.scene.get(self.anchor).pose
+        self.pose = self.scene.get(self.mover).pose.copy()
+        self.waypoints = [self.pose.copy()]
+        self.frames = self.pose[None].copy()
+        self.steps = 0
+        self._start_episode()
+        self.progress = self._score()
+        return self._obs(), self._info()
+
+    def step(self, action):
+        a = np.clip(np.asarray(action, np.float64).reshape(3), self.action_space.low, self.action_space.high)
+        target = self.pose + np.array([a[0] * self.block, a[1] * self.block, a[2]])
+        self.steps += 1
+        illegal = self._illegal(target)
+        reward = -self.illegal_penalty if illegal else 0.0
+        info_extra: dict[str, Any] = {}
+        if not illegal:
+            reached, info_extra = self._move(target)
+            if reached is None:  # the arm could not do it (Arm-v0): the episode ends there
+                illegal = info_extra.get("illegal", "arm")
+                reward = -self.illegal_penalty
+            else:
+                seg = segment_frames(self.pose, reached, FRAME_STEP * self.block)
+                self.frames = np.vstack([self.frames, seg])
+                self.pose = reached
+                self.waypoints.append(reached.copy())
+                before, self.progress = self.progress, self._score()
+                reward = self.progress - before
+        terminated = bool(illegal) or self.progress >= self.threshold
+        truncated = not terminated and self.steps >= self.max_steps
+        info = self._info() | info_extra | ({"illegal": illegal} if illegal else {})
+        return self._obs(), float(reward), terminated, truncated, info
+
+    # --- hooks Arm-v0 overrides ----------------------------------------------------------------
+    def _start_episode(self) -> None:
+        """Called by reset once the scene is set (Arm-v0 builds its world here)."""
+
+    def _move(self, target: np.ndarray) -> tuple[np.ndarray | None, dict]:
+        """Carry out a legal move; return where the mover ended (None: it could not) and extra info."""
+        return target, {}
+
+    def _anchor_now(self) -> np.ndarray:
+        return self.anchor_pose
+
+    # --- helpers -------------------------------------------------------------------------------
+    def _illegal(self, target: np.ndarray) -> str | None:
+        if not bool(self.world2d.inside(target[:2])):
+            return "workspace"
+        if not bool(self.world2d.moves_free(self.pose, target[None])[0]):
+            return "collision"
+        return None
+
+    def _score(self) -> float:
+        return float(np.clip(self.model.final(self.frames, self._anchor_now(), self.block), 0.0, 1.0))
+
+    def _obs(self) -> np.ndarray:
+        c, s = np.array(self.scene.workspace.center), self.block
+        m, an = self.pose, self._anchor_now()
+        obs = [(m[0] - c[0]) / s, (m[1] - c[1]) / s, wrap_angle(m[2]), (an[0] - c[0]) / s, (an[1] - c[1]) / s,
+               wrap_angle(an[2]), self.progress]
+        return np.clip(np.array(obs, np.float32), self.observation_space.low, self.observation_space.high)
+
+    def _info(self) -> dict[str, Any]:
+        return {"progress": self.progress, "steps": self.steps, "action": self.action_name}
+
+    @property
+    def path(self) -> np.ndarray:
+        """The mover's waypoints so far (n,3), scene frame, metres: a path ``execute_path`` can perform."""
+        return np.array(self.waypoints)
+
+    def render(self):
+        if self.render_mode != "rgb_array" or self.scene is None:
+            return None
+        return _draw(self.scene, self.mover, self.path, self.pose)
+
+
+def _draw(scene: Scene, mover: str, path: np.ndarray, pose: np.ndarray, px: int = 240) -> np.ndarray:
+    """A top view of the workspace: blocks, the mover where it is now and its path so far (H, W, 3) uint8."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from ..core.scene import COLORS
+
+    fig = Figure(figsize=(px / 80, px / 80), dpi=80)
+    canvas = FigureCanvasAgg(fig)
+    ax = fig.add_axes((0, 0, 1, 1))
+    r = scene.workspace.radius
+    ax.add_patch(matplotlib.patches.Circle(scene.workspace.center, r, fill=False, color="0.6"))
+    for o in scene.objects:
+        fp = o.footprint(pose if o.name == mover else None)
+        ax.fill(fp[:, 0], fp[:, 1], color=COLORS[o.color][:3])
+    ax.plot(path[:, 0], path[:, 1], "k.-", lw=1, ms=3)
+    ax.set_xlim(-r * 1.05, r * 1.05)
+    ax.set_ylim(-r * 1.05, r * 1.05)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    canvas.draw()
+    return np.asarray(canvas.buffer_rgba())[:, :, :3].copy()

@@ -1,0 +1,149 @@
+"""Episodes to export: performed runs (run folders) and the shipped human demonstrations, replayed by the arm.
+
+An :class:`Episode` is what every export format writes: the sentence (the task), the trajectory.json
+frames the simulator recorded (30 fps) and, when the run was rendered, its camera images (at the
+render rate, 10 fps by default). Nothing here depends on an export format.
+"""
+
+from __future__ import annotations
+
+import json
+import tempfile
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import DataError, PathError
+
+
+@dataclass
+class Episode:
+    """One performed (or replayed) motion with its sentence; ``images`` (H,W,3) uint8 at ``image_fps``."""
+
+    task: str
+    frames: list[dict]
+    fps: float
+    mover: str
+    anchor: str
+    source: str
+    images: list[np.ndarray] | None = None
+    image_fps: float | None = None
+    extra: dict = field(default_factory=dict)
+
+
+def find_runs(paths: list[str | Path]) -> list[Path]:
+    """Run folders (holding trajectory.json) among ``paths``: a run folder itself, or any folder below
+    which run folders lie (an evaluation's folder, ``runs/``), sorted."""
+    out: list[Path] = []
+    for p in map(Path, paths):
+        if (p / "trajectory.json").is_file():
+            out.append(p)
+        elif p.is_dir():
+            found = sorted(t.parent for t in p.rglob("trajectory.json"))
+            if not found:
+                raise PathError(f"{p} holds no run folder (no trajectory.json in it or below it)")
+            out += found
+        else:
+            raise PathError(f"{p} is not a run folder")
+    return out
+
+
+def episode_from_run(run: str | Path) -> Episode:
+    """A run folder as an episode: trajectory.json, the sentence, and frames/*.png when it was rendered."""
+    run = Path(run)
+    try:
+        traj = json.loads((run / "trajectory.json").read_text())
+        summary = json.loads((run / "summary.json").read_text()) if (run / "summary.json").exists() else {}
+    except (OSError, json.JSONDecodeError) as e:
+        raise PathError(f"{run}: cannot read the run ({e})") from None
+    for key in ("frames", "mover", "anchor", "fps"):
+        if key not in traj:
+            raise PathError(f'{run}/trajectory.json lacks "{key}"')
+    task = traj.get("sentence") or summary.get("sentence")
+    if not task:
+        action = traj.get("action") or "an action"
+        task = f"move {traj['mover']} {action} {traj['anchor']}"
+    images, image_fps = _read_images(run / "frames"), (summary.get("render") or {}).get("fps")
+    return Episode(task, traj["frames"], float(traj["fps"]), traj["mover"], traj["anchor"], str(run),
+                   images or None, float(image_fps) if images and image_fps else None,
+                   {"action": traj.get("action"), "success": summary.get("success")})
+
+
+def _read_images(folder: Path) -> list[np.ndarray]:
+    if not folder.is_dir():
+        return []
+    import imageio.v2 as imageio
+
+    return [np.asarray(imageio.imread(f))[:, :, :3] for f in sorted(folder.glob("*.png"))]
+
+
+def demo_specs(specs: list[str]) -> list[tuple[str, int]]:
+    """``all``, ``ACTION`` (all its demonstrations) or ``ACTION:INDEX`` -> (action, index) pairs."""
+    from ..core.vocabulary import ACTIONS, canonical_action
+    from ..learning.demos import load_demos
+
+    out: list[tuple[str, int]] = []
+    for spec in specs:
+        name, sep, index = spec.partition(":")
+        actions = list(ACTIONS) if name.strip().lower() == "all" else [canonical_action(name)]
+        for a in actions:
+            n = len(load_demos(a))
+            if sep:
+                if not index.strip().isdigit() or int(index) >= n:
+                    raise DataError(f'--demos {spec}: "{a}" has demonstrations 0..{n - 1}')
+                out.append((a, int(index)))
+            else:
+                out += [(a, i) for i in range(n)]
+    return out
+
+
+def demo_episodes(specs: list[str], render: bool | object = True, plugins: list | None = None) -> Iterator[Episode]:
+    """The shipped human demonstrations, retargeted onto the default scene and performed by the arm
+    (``embodiment.replay``, as ``l2p-bullet replay --demo``), with the action's learned progress per frame.
+
+    ``render``: True (the default camera, 320x240 at 10 fps), False, or a ``RenderSettings``."""
+    from ..core.contracts import trajectory_poses
+    from ..core.scene import default_scene
+    from ..embodiment.record import TRAJECTORY_FPS
+    from ..embodiment.replay import motion_source, run_replay
+    from ..embodiment.sim.camera import RenderSettings
+    from ..evaluate.tasks import sentence_for
+    from ..plugins import registry
+
+    plugins = registry.discover() if plugins is None else plugins
+    scene = default_scene()
+    settings = RenderSettings() if render is True else (render or None)
+    for action, index in demo_specs(specs):
+        source = motion_source(None, f"{action}:{index}", scene, "A", "B")
+        with tempfile.TemporaryDirectory(prefix="l2p-export-") as td:
+            ex = run_replay(scene, source, Path(td), settings)
+            images = _read_images(Path(td) / "frames")
+        model = registry.load(action, plugins).progress_model()
+        m, a = trajectory_poses(ex.frames, "A"), trajectory_poses(ex.frames, "B")
+        for f, v in zip(ex.frames, model.curve(m, a, scene.get("A").size), strict=True):
+            f["progress"] = round(float(v), 6)
+        yield Episode(sentence_for(action, "A", "B", plugins), ex.frames, TRAJECTORY_FPS, "A", "B",
+                      f"demo {action}:{index}", images or None, settings.fps if images else None,
+                      {"action": action, "demo": source.info.get("source", {}).get("demo")})
+
+
+EXPORT_FILES: tuple[str, ...] = ("episodes.jsonl", "meta", "meta/*", "data", "data/*", "videos", "videos/*")
+"""What an export writes into its folder (fnmatch patterns, ``*`` spans sub-folders): the plain format's
+one file, or a LeRobot dataset's meta/, data/ and videos/. ``--force`` replaces only such a folder."""
+
+
+def write_jsonl(episodes: Iterable[Episode], out: str | Path) -> Path:
+    """The plain format: ``OUT/episodes.jsonl``, one episode per line (task, source, fps, names, frames).
+
+    ``out`` is the caller's folder (``l2p-bullet export`` claims it with ``core.runfolder.run_folder``).
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "episodes.jsonl"
+    with path.open("w") as f:
+        for e in episodes:
+            f.write(json.dumps({"task": e.task, "source": e.source, "fps": e.fps, "mover": e.mover, "anchor": e.anchor,
+                                "extra": e.extra, "frames": e.frames}, default=str, separators=(",", ":")) + "\n")
+    return path

@@ -1,0 +1,317 @@
+"""``l2p-bullet report``: the evaluation's tables from the grades (the paper's Table 1 and the 3-D study).
+
+Question 1 (graded: the action's name was shown): per action, or per folder of the original study, the
+mean grade and the evaluator disparity (stats.py), and how well the installed action's learned final
+progress and its judge (``judge_for(bundle)``, the rules for the built-in actions) rank the runs like
+people do (Spearman with each run's mean grade). Question 2 (blind): the confusion matrix of true action
+x label, row-normalised, and Fleiss' kappa over the runs labelled by two or more people. Question 3:
+runs graded both as the 3-D video and as the 2-D animation, side by side.
+
+Only grades of a run's current trajectory count; grades whose run folder disappeared or whose
+trajectory.json changed since (sha256) are listed as problems, never silently scored against another
+motion. Torch-free: the models are the bundles' numpy ones.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import defaultdict
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..core.vocabulary import ACTIONS, GRADED_FOLDERS
+from .stats import confusion, disparity, fleiss_kappa
+from .store import NONE_LABEL, GradeRow
+
+MIN_SPEARMAN = 3
+"""Runs a Spearman needs before it is reported (fewer: n/a)."""
+
+
+def _order(actions) -> list[str]:
+    actions = set(actions)
+    return [a for a in ACTIONS if a in actions] + sorted(actions - set(ACTIONS) - {NONE_LABEL}) + (
+        [NONE_LABEL] if NONE_LABEL in actions else [])
+
+
+def _f(v) -> float | None:
+    return None if v is None or not np.isfinite(v) else round(float(v), 4)
+
+
+class _Motions:
+    """Each graded run's motion (original demo or trajectory.json), and the scores of the installed models."""
+
+    def __init__(self):
+        self._graded = None
+        self._bundles: dict[str, Any] = {}
+        self.notes: list[str] = []
+
+    def motion(self, row: GradeRow):
+        if row.source == "original":
+            if self._graded is None:
+                from ..learning.agreement import graded_motions
+
+                self._graded = {m.id: m for m in graded_motions()}
+            m = self._graded.get(row.demo_id or "")
+            return None if m is None else (m.mover, m.anchor, m.size)
+        from ..core.contracts import load_motion
+        from ..errors import L2PError
+
+        try:
+            m = load_motion(Path(row.run_path) / "trajectory.json")
+        except L2PError:
+            return None
+        return m.mover, m.anchor, m.size
+
+    def scores(self, action: str, motion) -> tuple[float | None, float | None]:
+        """(learned final progress, the judge's score) of the installed action, or None where unavailable."""
+        from ..errors import L2PError
+
+        if action not in self._bundles:
+            try:
+                from ..judge import judge_for
+                from ..plugins import registry
+
+                bundle = registry.load(action)
+                self._bundles[action] = (bundle.progress_model(), judge_for(bundle))
+            except L2PError as e:
+                self._bundles[action] = None
+                self.notes.append(f"{action}: no model or judge to compare with ({e})")
+        if self._bundles[action] is None:
+            return None, None
+        model, judge = self._bundles[action]
+        mover, anchor, size = motion
+        final = float(model.final(mover, anchor, size))
+        return final, float(judge.judge(mover, anchor, size, final_progress=final).score)
+
+
+def _spearman(x: list, y: list) -> float | None:
+    from ..learning.agreement import spearman
+
+    pairs = [(a, b) for a, b in zip(x, y, strict=True) if a is not None and b is not None]
+    if len(pairs) < MIN_SPEARMAN:
+        return None
+    return _f(spearman(np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])))
+
+
+def _group(row: GradeRow) -> str:
+    if row.source == "original" and row.folder:
+        return f"{GRADED_FOLDERS.get(row.folder, row.action)} ({row.folder})"
+    return row.action or "(no action)"
+
+
+def problems(rows: list[GradeRow]) -> tuple[list[GradeRow], list[dict]]:
+    """(rows whose run is still the one graded, problems: runs gone or changed since graded)."""
+    from ..plugins.bundle import sha256_file
+
+    status: dict[tuple[str, str], str | None] = {}
+    for r in rows:
+        k = (r.run_path, r.trajectory_sha256)
+        if r.source != "app" or k in status:
+            continue
+        try:
+            now = sha256_file(Path(r.run_path) / "trajectory.json")
+            status[k] = None if now == r.trajectory_sha256 else "changed since graded"
+        except OSError:
+            status[k] = "run folder disappeared"
+    good = [r for r in rows if not r.stale and (r.source != "app" or status[(r.run_path, r.trajectory_sha256)] is None)]
+    out: dict[tuple[str, str], dict] = {}
+    for r in rows:
+        why = "graded again after it changed (stale)" if r.stale else (
+            status.get((r.run_path, r.trajectory_sha256)) if r.source == "app" else None)
+        if why:
+            d = out.setdefault((r.run_id, why), {"run_id": r.run_id, "run_path": r.run_path, "problem": why, "answers": 0})
+            d["answers"] += 1
+    return good, list(out.values())
+
+
+def graded_table(rows: list[GradeRow], motions: _Motions) -> list[dict]:
+    """Table 1 (+ agreement) per group, from the graded-mode rows of one source."""
+    by_group: dict[str, dict[str, list[GradeRow]]] = defaultdict(lambda: defaultdict(list))
+    for r in rows:
+        if r.grade is not None:
+            by_group[_group(r)][r.run_id].append(r)
+    table = []
+    def order(g: str) -> tuple:
+        action = next(iter(by_group[g].values()))[0].action
+        return (ACTIONS.index(action) if action in ACTIONS else len(ACTIONS), g)
+
+    for g in sorted(by_group, key=order):
+        runs = by_group[g]
+        all_grades = [r.grade for rs in runs.values() for r in rs]
+        means, finals, judged = [], [], []
+        for rs in runs.values():
+            means.append(float(np.mean([r.grade for r in rs])))
+            m = motions.motion(rs[0])
+            f, j = motions.scores(rs[0].action, m) if m is not None and rs[0].action else (None, None)
+            finals.append(f)
+            judged.append(j)
+        per_item: dict[tuple[str, str], list[int]] = defaultdict(list)  # between graders, within one view
+        for rs in runs.values():
+            for r in rs:
+                per_item[(r.run_id, r.view)].append(r.grade)
+        table.append({
+            "group": g, "action": next(iter(runs.values()))[0].action, "runs": len(runs), "grades": len(all_grades),
+            "reviewers": len({r.reviewer for rs in runs.values() for r in rs}),
+            "views": "+".join(sorted({r.view for rs in runs.values() for r in rs}, reverse=True)),
+            "mean_grade": _f(np.mean(all_grades)), "disparity": _f(disparity(per_item.values())),
+            "spearman_final_progress": _spearman(finals, means), "spearman_judge": _spearman(judged, means),
+            "_points": {"mean": means, "final": finals, "judge": judged},
+        })
+    return table
+
+
+def blind_table(rows: list[GradeRow]) -> dict | None:
+    rows = [r for r in rows if r.label]
+    if not rows:
+        return None
+    true = _order({r.action for r in rows})
+    given = _order({r.label for r in rows} | set(true) | {NONE_LABEL})
+    conf = confusion([(r.action, r.label) for r in rows], true, given)
+    items: dict[tuple[str, str], list[str]] = defaultdict(list)
+    for r in rows:
+        items[(r.run_id, r.view)].append(r.label)
+    counts = np.array([[labels.count(c) for c in given] for labels in items.values()])
+    k = fleiss_kappa(counts)
+    k.pop("p_i")
+    correct = [r.label == r.action for r in rows]
+    return {"confusion": conf, "fleiss": {kk: _f(v) if isinstance(v, float) else v for kk, v in k.items()},
+            "labels": len(rows), "items": len(items), "accuracy": _f(np.mean(correct)),
+            "mean_grade": _f(np.mean([r.grade for r in rows if r.grade is not None] or [np.nan]))}
+
+
+def views_table(rows: list[GradeRow]) -> list[dict]:
+    """Runs graded in both views: per action the mean grade of each and their rank agreement."""
+    per: dict[str, dict[str, dict[str, list[int]]]] = defaultdict(lambda: defaultdict(lambda: defaultdict(list)))
+    for r in rows:
+        if r.grade is not None and r.source == "app":
+            per[r.action][r.run_id][r.view].append(r.grade)
+    out = []
+    for action in _order(per):
+        both = {rid: v for rid, v in per[action].items() if v.get("2d") and v.get("3d")}
+        if not both:
+            continue
+        m2 = [float(np.mean(v["2d"])) for v in both.values()]
+        m3 = [float(np.mean(v["3d"])) for v in both.values()]
+        out.append({"action": action, "runs": len(both), "mean_2d": _f(np.mean(m2)), "mean_3d": _f(np.mean(m3)),
+                    "mean_3d_minus_2d": _f(np.mean(np.subtract(m3, m2))), "spearman_2d_3d": _spearman(m2, m3),
+                    "_points": {"2d": m2, "3d": m3}})
+    return out
+
+
+def build_report(rows: list[GradeRow], source: str = "") -> dict:
+    good, probs = problems(rows)
+    motions = _Motions()
+    graded = [r for r in good if r.mode == "graded"]
+    rep = {
+        "source": source,
+        "answers": len(rows), "reviewers": len({r.reviewer for r in rows}),
+        "graded": {
+            "original": graded_table([r for r in graded if r.source == "original"], motions),
+            "app": graded_table([r for r in graded if r.source != "original"], motions),
+        },
+        "blind": blind_table([r for r in good if r.mode == "blind"]),
+        "views": views_table(graded),
+        "problems": probs,
+    }
+    rep["notes"] = list(motions.notes)
+    if any(r.source == "original" for r in rows):
+        rep["notes"].append("the original 3-D study's per-rater labels are not shipped, so its blind confusion matrix "
+                            "and Fleiss' kappa (0.5087) are not in this database (docs/review.md: what this code "
+                            "reproduces from them)")
+    return rep
+
+
+# --- output ----------------------------------------------------------------------------------------
+def _fmt(v, digits: int = 2) -> str:
+    if v is None:
+        return "n/a"
+    return f"{v:.{digits}f}" if isinstance(v, float) else str(v)
+
+
+def _md(header: list[str], rows: list[list]) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" if i == 0 else "---:" for i in range(len(header))) + "|"]
+    lines += ["| " + " | ".join(_fmt(c) for c in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def render_text(rep: dict) -> str:
+    out = [f"Review report: {rep['source']}: {rep['answers']} answers from {rep['reviewers']} reviewers"]
+    head = ["action", "runs", "grades", "view", "mean grade", "disparity", "Spearman final progress",
+            "Spearman judge"]
+    for key, title in (("original", "the original study (imported, 2-D, two graders who knew the action)"),
+                       ("app", "runs graded here (the sentence shown)")):
+        t = rep["graded"][key]
+        if t:
+            out += ["", f"Question 1, grades: {title}", _md(head, [
+                [r["group"], r["runs"], r["grades"], r["views"], r["mean_grade"], r["disparity"],
+                 r["spearman_final_progress"], r["spearman_judge"]] for r in t])]
+    b = rep["blind"]
+    if b:
+        c = b["confusion"]
+        out += ["", f"Question 2, blind labels: {b['labels']} labels of {b['items']} runs; share of each row's labels",
+                _md(["true \\ label"] + c["cols"] + ["n"],
+                    [[r] + [float(v) if np.isfinite(v) else None for v in s] + [sum(n)]
+                     for r, s, n in zip(c["rows"], c["shares"], c["counts"], strict=True)]),
+                f"Fleiss' kappa {_fmt(b['fleiss']['kappa'], 3)} over {b['fleiss']['items']} runs labelled by two or "
+                f"more people ({_fmt(b['fleiss']['raters_per_item'], 1)} each on average); "
+                f"labels matching the run's action: {_fmt(b['accuracy'])}"]
+    if rep["views"]:
+        out += ["", "Question 3, the same runs graded as the 3-D video and as the 2-D animation",
+                _md(["action", "runs", "mean 2-D", "mean 3-D", "3-D minus 2-D", "Spearman 2-D vs 3-D"],
+                    [[v["action"], v["runs"], v["mean_2d"], v["mean_3d"], v["mean_3d_minus_2d"], v["spearman_2d_3d"]]
+                     for v in rep["views"]])]
+    if rep["problems"]:
+        out += ["", "Not counted (the run is not the one that was graded):"]
+        out += [f"  {p['run_id']}: {p['problem']} ({p['answers']} answers) {p['run_path']}" for p in rep["problems"]]
+    if rep["notes"]:
+        out += [""] + [f"note: {n}" for n in rep["notes"]]
+    return "\n".join(out)
+
+
+def _public(rep: dict) -> dict:
+    """The report without the plotting points (what --json prints and report.json holds)."""
+    def strip(x):
+        if isinstance(x, dict):
+            return {k: strip(v) for k, v in x.items() if not k.startswith("_")}
+        if isinstance(x, list):
+            return [strip(v) for v in x]
+        return x
+    return strip(rep)
+
+
+def write_report(rep: dict, folder: Path) -> list[Path]:
+    """report.md, report.json, table CSVs and PNG plots into ``folder``; returns the files written."""
+    import csv
+
+    from ..errors import ReviewError
+    from .plots import plot_all
+
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        files = [folder / "report.md", folder / "report.json"]
+        files[0].write_text(render_text(rep) + "\n", encoding="utf-8")
+        files[1].write_text(json.dumps(_public(rep), indent=1, default=str) + "\n", encoding="utf-8")
+        for key in ("original", "app"):
+            t = _public(rep["graded"][key])
+            if t:
+                p = folder / f"table1_{key}.csv"
+                with open(p, "w", newline="", encoding="utf-8") as f:
+                    w = csv.DictWriter(f, fieldnames=list(t[0]))
+                    w.writeheader()
+                    w.writerows(t)
+                files.append(p)
+        if rep["blind"]:
+            p = folder / "confusion.csv"
+            c = rep["blind"]["confusion"]
+            with open(p, "w", newline="", encoding="utf-8") as f:
+                w = csv.writer(f)
+                w.writerow(["true_label", *c["cols"], "n"])
+                for r, s, n in zip(c["rows"], c["shares"], c["counts"], strict=True):
+                    w.writerow([r, *[f"{v:.3f}" for v in s], sum(n)])
+            files.append(p)
+        files += plot_all(rep, folder)
+    except OSError as e:
+        raise ReviewError(f"cannot write the report into {folder}: {e.strerror or e}") from None
+    return files

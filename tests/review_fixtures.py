@@ -1,0 +1,96 @@
+"""Real run folders, a live review server and a real Chromium for the review app's tests.
+
+The runs are made once per test process by ``perform`` (small renders, so it stays quick): three
+rendered runs and one without rendering (its only view is the 2-D animation).
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                  "--disable-component-update", "--disable-sync", "--no-first-run"]
+LABELS = ["closer", "away", "next-to", "past", "around"]
+RUNS = [("move A closer to B", 1, True), ("move A next to B", 2, True), ("move A past B", 3, True),
+        ("move A away from B", 4, False)]
+_made: dict[str, Path] = {}
+
+
+def make_runs(root: Path) -> Path:
+    """Perform the four runs into ``root`` once per process; later calls copy them (cheap)."""
+    if "runs" not in _made:
+        from l2p_bullet.core.scene import random_scene
+        from l2p_bullet.embodiment.sim.camera import RenderSettings
+        from l2p_bullet.pipeline import perform
+
+        src = root.parent / "review-runs-original"
+        for i, (sentence, seed, render) in enumerate(RUNS):
+            perform(sentence, random_scene(seed), out_dir=src / f"run{i}", render=render,
+                    render_settings=RenderSettings(width=160, height=120, fps=5))
+        _made["runs"] = src
+    shutil.copytree(_made["runs"], root, dirs_exist_ok=True)
+    return root
+
+
+@pytest.fixture
+def run_folder(tmp_path_factory) -> Path:
+    """A fresh copy of the four real runs (tests may change or delete them)."""
+    return make_runs(tmp_path_factory.mktemp("runs") / "runs")
+
+
+class Live:
+    """A review app served by uvicorn on 127.0.0.1 (a free port) in a thread, over ``runs``."""
+
+    def __init__(self, db: Path, runs: Path, mode: str = "graded", view: str = "3d"):
+        from l2p_bullet.review.app import create_app
+        from l2p_bullet.review.runs import find_runs
+        from l2p_bullet.review.server import start
+        from l2p_bullet.review.session import ReviewSession
+        from l2p_bullet.review.store import Store
+
+        self.store = Store(db)
+        infos = find_runs([runs])
+        self.store.register_runs(infos)
+        self.session = ReviewSession(self.store, infos, mode=mode, view=view, labels=LABELS)
+        self.server = start(create_app(self.session))
+        self.url = self.server.url
+
+    def call(self, method: str, path: str, body=None, raw: bytes | None = None, headers: dict | None = None):
+        """(status, JSON body) of one request."""
+        data = raw if raw is not None else (None if body is None else json.dumps(body).encode())
+        req = urllib.request.Request(self.url.rstrip("/") + path, data=data, method=method,
+                                     headers={"Content-Type": "application/json", **(headers or {})})
+        try:
+            with urllib.request.urlopen(req, timeout=30) as r:
+                payload = r.read()
+                status = r.status
+        except urllib.error.HTTPError as e:
+            payload, status = e.read(), e.code
+        try:
+            return status, json.loads(payload)
+        except ValueError:
+            return status, payload
+
+    def stop(self) -> None:
+        self.server.stop()
+
+
+@pytest.fixture
+def live(tmp_path, run_folder):
+    servers = []
+
+    def start(mode: str = "graded", view: str = "3d", db: Path | None = None) -> Live:
+        s = Live(db or tmp_path / "reviews.sqlite", run_folder, mode, view)
+        servers.append(s)
+        return s
+
+    yield start
+    for s in servers:
+        s.stop()

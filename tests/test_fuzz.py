@@ -1,0 +1,180 @@
+"""Fuzzing the inputs a user hands the CLI (issue 15): scene files, scoring inputs (and plan.json /
+trajectory.json look-alikes) and bundle manifests. Whatever the file holds, the command exits 0, or 2
+with one ``error:`` line; never a traceback, and never more than a fixed amount of memory.
+
+The CLI runs in a worker process (tests/fuzz_worker.py) whose address space is capped with
+``RLIMIT_AS`` at what it uses after start-up plus :data:`MARGIN`: an input that made it allocate
+gigabytes (the issue's 1e5-metre motion took 3 GB) fails the test with a MemoryError traceback.
+Examples are derandomised so CI runs the same ones every time.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+import tomli_w
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from l2p_bullet.plugins.bundle import MANIFEST, builtin_bundle_dir
+
+MARGIN = 1 << 30
+"""Memory the CLI may use on top of its start-up footprint (1 GiB)."""
+FUZZ = settings(max_examples=40, deadline=None, derandomize=True, database=None,
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+
+
+class Worker:
+    def __init__(self, cwd: Path):
+        env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+        self.proc = subprocess.Popen([sys.executable, str(Path(__file__).with_name("fuzz_worker.py")), str(MARGIN)],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env, cwd=cwd)
+        ready = json.loads(self.proc.stdout.readline())
+        self.limit = ready["limit"]
+
+    def run(self, args: list[str], cwd: Path) -> dict:
+        self.proc.stdin.write(json.dumps({"args": args, "cwd": str(cwd)}) + "\n")
+        self.proc.stdin.flush()
+        line = self.proc.stdout.readline()
+        assert line, f"the worker died on {args}"
+        return json.loads(line)
+
+    def close(self) -> None:
+        self.proc.stdin.close()
+        self.proc.wait(timeout=30)
+
+
+@pytest.fixture(scope="module")
+def worker(tmp_path_factory):
+    w = Worker(tmp_path_factory.mktemp("fuzz"))
+    yield w
+    w.close()
+
+
+def _no_constant(name: str) -> None:
+    raise AssertionError(f"{name} in JSON output")
+
+
+def check(resp: dict, worker: Worker) -> None:
+    assert resp["exception"] is None, resp["exception"]
+    assert resp["exit_code"] in (0, 2), resp
+    lines = resp["output"].strip().splitlines()
+    if resp["exit_code"] == 2:
+        assert len(lines) == 1 and lines[0].startswith("error: ") and len(lines[0]) < 2000, resp["output"][:3000]
+    assert resp["peak_rss"] < worker.limit
+
+
+# --- strategies ------------------------------------------------------------------------------------
+weird = st.one_of(
+    st.integers(-10**400, 10**400), st.floats(width=64), st.sampled_from([1e-300, 1e300, 5e-324, 0.0, -0.0, 1e5, 1e12]),
+)
+plausible = st.floats(-0.3, 0.3)
+number = st.one_of(plausible, plausible, weird)
+scalar = st.one_of(st.none(), st.booleans(), weird, st.text(max_size=12))
+value = st.recursive(scalar, lambda c: st.lists(c, max_size=4) | st.dictionaries(st.text(max_size=6), c, max_size=4),
+                     max_leaves=8)
+pose = st.one_of(st.lists(number, min_size=3, max_size=3), st.lists(number, max_size=5), value)
+poses = st.one_of(st.lists(pose, min_size=1, max_size=6), value)
+scene_object = st.fixed_dictionaries(
+    {"name": st.sampled_from(["A", "B", "C"]) | value, "color": st.sampled_from(["red", "green", "blue"]) | value,
+     "size": st.floats(0.01, 0.09) | weird | value, "xy": st.lists(number, min_size=2, max_size=2) | value},
+    optional={"yaw": number | value, "shape": st.sampled_from(["cube", "sphere"]) | value},
+)
+scene_doc = st.one_of(st.fixed_dictionaries({"objects": st.lists(scene_object, max_size=4)}), value)
+scoring_doc = st.one_of(
+    st.fixed_dictionaries({"size": st.floats(0.01, 0.2) | weird | value, "mover": poses, "anchor": poses}),
+    st.fixed_dictionaries({"schema": st.just(1), "action": st.just("past") | value, "mover": st.just("A") | value,
+                           "anchor": st.just("B") | value, "size": st.floats(0.01, 0.2) | weird | value,
+                           "anchor_pose": pose, "start": pose, "path": poses},
+                          optional={"progress": value}),
+    st.fixed_dictionaries({"mover": st.just("A") | value, "anchor": st.just("B") | value,
+                           "objects": st.fixed_dictionaries({"A": st.fixed_dictionaries({"size": number | value})})
+                           | value,
+                           "frames": st.lists(st.fixed_dictionaries({"poses": st.fixed_dictionaries(
+                               {"A": pose, "B": pose}) | value}), max_size=4) | value}),
+    value,
+)
+
+
+def _file_bytes(doc, raw: bytes | None) -> bytes:
+    return raw if raw is not None else json.dumps(doc).encode()
+
+
+raw_or_none = st.one_of(st.none(), st.none(), st.none(), st.binary(max_size=40))
+
+
+@FUZZ
+@given(doc=scene_doc, raw=raw_or_none)
+def test_any_scene_file_is_a_plan_or_one_line_error(worker, tmp_path_factory, doc, raw):
+    d = tmp_path_factory.mktemp("scene")
+    (d / "scene.json").write_bytes(_file_bytes(doc, raw))
+    resp = worker.run(["plan", "move A past B", "--scene", "scene.json", "--out", "out", "--planner", "greedy",
+                       "--budget", "2"], d)
+    check(resp, worker)
+
+
+@FUZZ
+@given(doc=scoring_doc, raw=raw_or_none)
+def test_any_scoring_input_is_a_score_or_one_line_error(worker, tmp_path_factory, doc, raw):
+    d = tmp_path_factory.mktemp("score")
+    (d / "motion.json").write_bytes(_file_bytes(doc, raw))
+    resp = worker.run(["score", "past", "motion.json"], d)
+    check(resp, worker)
+    if resp["exit_code"] == 0:
+        out = json.loads(resp["output"], parse_constant=_no_constant)
+        assert all(0.0 <= v <= 1.0 for v in out["progress"])
+
+
+SECTIONS = ["", "features", "model", "policy", "weights", "judge", "metrics", "training"]
+toml_value = st.recursive(
+    st.one_of(st.booleans(), st.integers(-2**63, 2**63 - 1), st.floats(width=64), st.text(max_size=10)),
+    lambda c: st.lists(c, max_size=3) | st.dictionaries(st.text(min_size=1, max_size=6), c, max_size=3),
+    max_leaves=6,
+)
+
+
+@pytest.fixture(scope="module")
+def bundle_template(tmp_path_factory) -> tuple[Path, dict]:
+    folder = tmp_path_factory.mktemp("bundle") / "b"
+    shutil.copytree(builtin_bundle_dir("past"), folder)
+    motion = folder.parent / "motion.json"
+    motion.write_text(json.dumps({"size": 0.15, "mover": [[0.4, 0, 0], [0.2, 0.1, 0.3], [0.0, 0.3, 0.5]],
+                                  "anchor": [[0, 0, 0]]}))
+    return folder, tomllib.loads((folder / MANIFEST).read_text())
+
+
+_SHIPPED = tomllib.loads((builtin_bundle_dir("past") / MANIFEST).read_text())
+PATHS = [("", k) for k in _SHIPPED] + [(sec, k) for sec in ("features", "model", "policy", "weights", "judge")
+                                        for k in _SHIPPED[sec]]
+"""Every field of a real manifest that the code reads ([training] and [metrics] are notes)."""
+
+
+@settings(FUZZ, max_examples=250)
+@given(target=st.sampled_from(PATHS) | st.tuples(st.sampled_from(SECTIONS), st.text(min_size=1, max_size=12)),
+       new=st.one_of(st.none(), toml_value), raw=st.one_of(st.none(), st.none(), st.none(), st.binary(max_size=60)))
+def test_any_manifest_loads_or_is_a_one_line_error(worker, bundle_template, target, new, raw):
+    folder, manifest = bundle_template
+    section, key = target
+    man = json.loads(json.dumps(manifest))
+    table = man if not section else man.get(section)
+    if isinstance(table, dict):
+        if new is None:
+            table.pop(key, None)
+        else:
+            table[key] = new
+    elif new is not None:
+        man[section] = new
+    try:
+        text = tomli_w.dumps(man).encode() if raw is None else raw
+    except (TypeError, ValueError):
+        return
+    (folder / MANIFEST).write_bytes(text)
+    resp = worker.run(["score", str(folder), "motion.json"], folder.parent)
+    check(resp, worker)

@@ -1,0 +1,140 @@
+"""The review app in a real browser (headless Debian Chromium via Playwright), keyboard only.
+
+Set L2P_DOCS_SCREENSHOT=1 to refresh docs/img/review_app.png from the graded-mode test.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+from review_fixtures import live, run_folder  # noqa: F401 - fixtures (chromium: conftest.py)
+
+pytestmark = pytest.mark.slow
+DOCS_IMG = Path(__file__).resolve().parents[1] / "docs" / "img" / "review_app.png"
+
+
+def _page(browser, url: str):
+    context = browser.new_context(viewport={"width": 1000, "height": 660})
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(url)
+    return page, errors
+
+
+def _login(page, name: str) -> str:
+    page.wait_for_selector("#name")
+    page.fill("#name", name)
+    page.press("#name", "Enter")
+    return _shown(page)
+
+
+def _shown(page, previous: str | None = None) -> str:
+    """Wait until a run other than ``previous`` is shown; its key:view."""
+    page.wait_for_function("(prev) => document.body.dataset.state === 'review' && document.body.dataset.key "
+                           "&& document.body.dataset.key !== prev", arg=previous or "")
+    return page.get_attribute("body", "data-key")
+
+
+def _keys(page, *keys: str) -> None:
+    for k in keys:
+        page.keyboard.press(k)
+
+
+def test_grade_with_the_keyboard_reload_and_change_it(live, chromium, tmp_path):  # noqa: F811
+    s = live()
+    page, errors = _page(chromium, s.url)
+    first = _login(page, "ann")
+    sentence = page.inner_text("#sentence")
+    assert sentence.startswith("“move A")
+    _keys(page, "7")
+    assert page.inner_text("#grades button.selected") == "77"  # the key hint and the grade
+    _keys(page, "Enter")
+    second = _shown(page, first)
+    (g,) = s.store.grades()
+    assert (g.reviewer, g.grade, g.mode, f"{s.session.runs[first.split(':')[0]].key}:{g.view}") == (
+        "ann", 7, "graded", first)
+
+    page.reload()  # the name is remembered, the grade is in the database
+    assert _shown(page) == second
+    assert "1 / 4 answered" in page.inner_text("#count")
+    _keys(page, "ArrowLeft")
+    assert _shown(page, second) == first
+    assert page.inner_text("#sentence") == sentence
+    assert page.inner_text("#grades button.selected") == "77"
+    _keys(page, "t", "Enter")  # change it to 10
+    assert _shown(page, first) == second
+    (g,) = s.store.grades()
+    assert g.grade == 10
+    _keys(page, "s")  # skip the second run: a third one comes
+    third = _shown(page, second)
+    assert third not in (first, second)
+    _screenshot(page, tmp_path / "review_app.png")
+    assert not errors
+
+
+def _screenshot(page, path: Path) -> None:
+    """The picture in docs/review.md: a rendered run (skip to one), a grade picked, the video playing."""
+    shown = page.get_attribute("body", "data-key")
+    while page.is_hidden("#video"):
+        _keys(page, "s")
+        shown = _shown(page, shown)
+    _keys(page, "8")
+    page.wait_for_timeout(2000)  # the video and the progress curve play on a little
+    page.screenshot(path=str(path))
+    if os.environ.get("L2P_DOCS_SCREENSHOT"):
+        shutil.copy(path, DOCS_IMG)
+
+
+def test_blind_mode_label_then_grade(live, chromium):  # noqa: F811
+    s = live(mode="blind")
+    page, errors = _page(chromium, s.url)
+    first = _login(page, "bob")
+    assert page.inner_text("#sentence") == ""
+    assert "move A" not in page.content()
+    _keys(page, "5", "Enter")  # no label yet: refused on the page, nothing sent
+    assert "pick the action" in page.inner_text("#status")
+    _keys(page, "p", "Enter")
+    _shown(page, first)
+    (g,) = s.store.grades()
+    assert (g.mode, g.label, g.grade) == ("blind", "past", 5)
+    assert not errors
+
+
+def test_two_reviewers_at_once(live, chromium):  # noqa: F811
+    s = live()
+    (a, ea), (b, eb) = _page(chromium, s.url), _page(chromium, s.url)
+    ka, kb = _login(a, "ann"), _login(b, "bob")
+    for _ in range(2):
+        _keys(a, "3", "Enter")
+        _keys(b, "8", "Enter")
+        ka, kb = _shown(a, ka), _shown(b, kb)
+    grades = s.store.grades()
+    assert sorted((g.reviewer, g.grade) for g in grades) == [("ann", 3), ("ann", 3), ("bob", 8), ("bob", 8)]
+    assert len({g.run_id for g in grades if g.reviewer == "ann"}) == 2
+    assert not ea and not eb
+
+
+def test_the_same_reviewer_in_two_windows_never_overwrites_silently(live, chromium):  # noqa: F811
+    s = live()
+    context = chromium.new_context(viewport={"width": 1000, "height": 660})
+    a, b = context.new_page(), context.new_page()
+    a.goto(s.url)
+    first = _login(a, "ann")
+    b.goto(s.url)  # same browser profile: the name is remembered, the same run is shown
+    assert _shown(b) == first
+    _keys(a, "4", "Enter")
+    _shown(a, first)
+    _keys(b, "6", "Enter")  # refused: b shows ann's stored answer instead
+    b.wait_for_function("document.getElementById('status').textContent.includes('the stored answer now')")
+    assert b.inner_text("#grades button.selected") == "44"
+    (g,) = s.store.grades()
+    assert g.grade == 4
+    _keys(b, "6", "Enter")  # now it is a change of the stored answer
+    _shown(b, first)
+    (g,) = s.store.grades()
+    assert g.grade == 6 and [e["grade"] for e in s.store.log()] == [4, 6]
+    context.close()
