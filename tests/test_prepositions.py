@@ -358,3 +358,53 @@ def test_new_action_and_teach_on_the_command_line(tmp_path, monkeypatch):
     assert r.exit_code == 2 and r.output.startswith("error:")
     r = CliRunner().invoke(main, ["teach", "left-of"])  # not scaffolded here
     assert r.exit_code == 2 and r.output.startswith("error:") and "new-action left-of" in r.output
+
+
+def _random_bundle(folder, name: str, phrases: list[str], qsr: QSRConfig) -> None:
+    """A loadable bundle with random weights of the right shapes (for plumbing tests; nothing learned)."""
+    from l2p_bullet.plugins.bundle import write_progress_bundle
+    from l2p_bullet.progress.config import ModelConfig, expected_shapes
+
+    mcfg = ModelConfig(n_features=len(feature_names(qsr)), hidden=4, ensemble=1)
+    rng = np.random.default_rng(0)
+    arrays = {k: rng.normal(0, 0.1, shape).astype(np.float32) for k, shape in expected_shapes(mcfg).items()}
+    folder.mkdir(parents=True)
+    (folder / "__init__.py").write_text("")
+    (folder / "manifest.toml").write_text(f'schema = 1\nname = "{name}"\nversion = "0.1.0"\nphrases = {json.dumps(phrases)}\n')
+    write_progress_bundle(folder, name, arrays, mcfg, qsr, training={}, metrics={})
+
+
+def test_evaluation_and_the_report_live_with_two_anchor_and_viewer_plugins(tmp_path, monkeypatch):
+    """Installed next to the built-ins, a between and a left-of plugin must not break the evaluation's
+    confusion matrix (every installed action judges every motion) nor the review report."""
+    from plugin_fixtures import make_dist
+
+    from l2p_bullet.evaluate.worker import Worker
+    from l2p_bullet.plugins import registry
+    from l2p_bullet.review.report import _Motions
+
+    site = tmp_path / "site"
+    _random_bundle(site / "l2p_test_between", "between-test", ["midway between"], QSRConfig(anchors=2))
+    _random_bundle(site / "l2p_test_leftof", "leftof-test", ["leftwards of"], QSRConfig(frame="viewer"))
+    make_dist(site, "l2p-test-prepositions", {"between-test": "l2p_test_between", "leftof-test": "l2p_test_leftof"})
+    monkeypatch.syspath_prepend(str(site))
+    registry._LOADED.clear()
+    try:
+        w = Worker()
+        assert {"between-test", "leftof-test"} <= {p.name for p in w.plugins if p.ok}
+        row: dict = {}
+        mover = np.linspace([0.1, 0.1, 0.0], [0.0, 0.08, 0.0], 20)
+        w._confusion(row, mover, np.repeat(np.zeros((1, 3)), 20, 0), 0.05)
+        assert "leftof-test" in row["judged"] and "between-test" not in row["judged"]
+        # a two-anchor run in the review report: scored with both anchors
+        from l2p_bullet.pipeline import perform
+
+        scene = random_between_scene(0)
+        out = tmp_path / "run"
+        perform("move A midway between B and C", scene, out_dir=out, render=False, budget=2, plugins=w.plugins)
+        row = type("Row", (), {"source": "app", "run_path": str(out), "demo_id": None})()
+        motions = _Motions()
+        final, score = motions.scores("between-test", motions.motion(row))
+        assert final is not None and score is not None and not motions.notes
+    finally:
+        registry._LOADED.clear()
