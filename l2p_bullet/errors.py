@@ -106,6 +106,10 @@ class UnknownPlannerError(PlanError):
                          + did_you_mean(name.strip().lower(), self.known))
 
 
+class TeachError(L2PError):
+    """A demonstration recorded on the teach page cannot be saved, or the teach app cannot start."""
+
+
 class RunFolderError(L2PError):
     """A run folder cannot be made: it exists (``state``: finished, running, foreign...) or cannot be written."""
 

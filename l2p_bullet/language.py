@@ -1,7 +1,9 @@
 """Sentence -> :class:`Command`, from the phrases the installed action plugins declare.
 
 The grammar is deliberately small and predictable: ``[polite words] VERB MOVER PREPOSITION ANCHOR``,
-for example "move A around B" or "Please slide the red block around the green one.". Prepositions
+for example "move A around B" or "Please slide the red block around the green one.", and for an action
+that declares two reference objects (``anchors = 2``) ``... PREPOSITION ANCHOR and ANCHOR``, as in
+"put A between B and C". Prepositions
 are not hard-coded: they are the phrases of the installed manifests (``phrases`` maps each phrase to
 its action), so installing a plugin teaches the parser a new preposition. When several phrases match,
 the longest wins ("to the left of" over "left of", "closer to" over "to").
@@ -37,7 +39,11 @@ MAX_SENTENCE = 200
 
 @dataclass(frozen=True)
 class Command:
-    """What a sentence asks for: ``mover`` and ``anchor`` are object names, ``action`` the plugin name."""
+    """What a sentence asks for: ``mover`` and ``anchor`` are object names, ``action`` the plugin name.
+
+    ``anchors`` lists every reference object in the sentence's order; ``anchor`` is the first (the only
+    one for a one-anchor action: "move A next to B").
+    """
 
     verb: str
     mover: str
@@ -45,6 +51,18 @@ class Command:
     action: str
     anchor: str
     sentence: str = ""
+    anchors: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not self.anchors:
+            object.__setattr__(self, "anchors", (self.anchor,))
+        elif self.anchors[0] != self.anchor:
+            raise ValueError(f"anchors {self.anchors} must start with the anchor {self.anchor!r}")
+
+    @property
+    def more_anchors(self) -> tuple[str, ...]:
+        """The reference objects after the first (a two-anchor action's second)."""
+        return self.anchors[1:]
 
 
 def _tokens(sentence: str) -> list[str]:
@@ -77,8 +95,12 @@ def _phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, 
     return sorted(items, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
 
 
-def parse(sentence: str, scene: Scene, phrases: dict[str, str]) -> Command:
-    """Parse ``sentence`` against the objects of ``scene`` and the installed ``phrases`` (phrase -> action)."""
+def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None) -> Command:
+    """Parse ``sentence`` against the objects of ``scene`` and the installed ``phrases`` (phrase -> action).
+
+    ``anchors`` says how many reference objects each action's sentences name (action -> 1 or 2; 1 when
+    not listed): a two-anchor action reads "B and C" after its phrase.
+    """
     if not isinstance(sentence, str) or not sentence.strip():
         raise LanguageError(f"the sentence is empty; {EXAMPLE}")
     if len(sentence) > MAX_SENTENCE:
@@ -109,20 +131,57 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str]) -> Command:
                 continue
             try:
                 mover = resolve_object(" ".join(rest[:i]), scene, role="block to move")
-                anchor = resolve_object(" ".join(rest[i + n :]), scene, role=f'reference block after "{phrase}"')
+                refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1))
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
-            if mover == anchor:
+            if mover in refs:
                 first_error = first_error or LanguageError(
                     f'the block to move and the reference block are both "{mover}": '
                     f"a block cannot be moved {phrase} itself")
                 continue
-            return Command(verb, mover, phrase, action, anchor, sentence.strip())
+            return Command(verb, mover, phrase, action, refs[0], sentence.strip(), refs)
     middle = _unplaced_words(rest, scene)
     if first_error is not None and (middle is None or _contains_phrase(middle, phrases)):
         raise first_error
     raise _unknown_preposition(rest, middle, phrases, verb)
+
+
+CONJUNCTIONS = frozenset({"and", "&"})
+"""Words that join a two-anchor action's reference objects ("between B and C")."""
+
+
+def _references(words: list[str], scene: Scene, phrase: str, count: int) -> tuple[str, ...]:
+    """The ``count`` reference objects named by ``words`` (after the preposition)."""
+    role = f'reference block after "{phrase}"'
+    if count == 1:
+        return (resolve_object(" ".join(words), scene, role=role),)
+    joins = [k for k, w in enumerate(words) if w.lower() in CONJUNCTIONS and 0 < k < len(words) - 1]
+    if not joins:
+        raise LanguageError(f'"{phrase}" needs two reference blocks, as in "move A {phrase} B and C"'
+                            + (f' (got "{" ".join(words)}")' if words else ""))
+    first_error: Exception | None = None
+    for k in joins:
+        try:
+            b = resolve_object(" ".join(words[:k]), scene, role=f"first {role}")
+            c = resolve_object(" ".join(words[k + 1 :]), scene, role=f"second {role}")
+        except (LanguageError, UnknownObjectError) as e:
+            first_error = first_error or e
+            continue
+        if b == c:
+            raise LanguageError(f'the two reference blocks are both "{b}": "{phrase}" needs two different blocks')
+        return (b, c)
+    assert first_error is not None
+    raise first_error
+
+
+def _try_pair(words: list[str], scene: Scene) -> bool:
+    """Whether ``words`` read as "OBJECT and OBJECT"."""
+    try:
+        _references(words, scene, "", 2)
+    except (LanguageError, UnknownObjectError):
+        return False
+    return True
 
 
 def _contains_phrase(text: str, phrases: dict[str, str]) -> bool:
@@ -136,7 +195,7 @@ def _unplaced_words(rest: list[str], scene: Scene) -> str | None:
         if _try_object(" ".join(rest[:i]), scene) is None:
             continue
         for j in range(i + 1, len(rest)):
-            if _try_object(" ".join(rest[j:]), scene) is not None:
+            if _try_object(" ".join(rest[j:]), scene) is not None or _try_pair(rest[j:], scene):
                 return " ".join(rest[i:j])
     return None
 

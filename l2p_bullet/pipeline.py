@@ -58,7 +58,7 @@ class PerformResult:
         c = self.command
         return {
             "sentence": c.sentence, "verb": c.verb, "mover": c.mover, "preposition": c.preposition,
-            "action": c.action, "anchor": c.anchor, "out_dir": str(self.out_dir),
+            "action": c.action, "anchor": c.anchor, "anchors": list(c.anchors), "out_dir": str(self.out_dir),
             "verdict": self.verdict, "final_progress": _round(self.final_progress),
             "planned_progress": _round(self.planned_progress), "planner": self.plan.planner,
             "stopped": self.plan.stopped, "max_deviation_m": _round(self.max_deviation_m),
@@ -93,7 +93,7 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
         raise PluginError(f"none of the {len(plugins)} installed action plugins can be used (first: "
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
     try:
-        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table})
+        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins))
     except LanguageError as e:
         unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
         if not unknown or "preposition" not in str(e):
@@ -182,16 +182,22 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
 
     size = scene.get(cmd.mover).size
     clock.stage("plan", f"planning with the {planner} planner")
-    plan = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
+    plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
                          threshold=threshold)
     clock.stop()
     plan.extra.setdefault("sentence", cmd.sentence)
     plan.save(out / "plan.json")
+    viewer = getattr(model, "viewpoint", None)
 
-    def progress_fn(mover: np.ndarray, anchor: np.ndarray) -> np.ndarray:
-        return np.asarray(model.curve(mover, anchor, size), float).reshape(-1)
+    def progress_fn(mover: np.ndarray, anchor: np.ndarray, more: list | None = None) -> np.ndarray:
+        kw = {"more_anchors": more} if more else {}
+        return np.asarray(model.curve(mover, anchor, size, **kw), float).reshape(-1)
 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
+    if cmd.more_anchors:
+        meta["anchors"] = list(cmd.anchors)
+    if viewer is not None:
+        meta["viewer"] = [float(v) for v in viewer]
     clock.stage("execute", "executing with the arm" + ("" if render else " (no rendering)"))
     kwargs: dict[str, Any] = {"render": None}
     if render:
@@ -204,7 +210,8 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
     prog = [f.get("progress") for f in ex.frames]
     final_progress = float(prog[-1]) if prog and prog[-1] is not None else None
-    verdict = judge.judge(mover, anchor, size, final_progress=final_progress).to_dict()
+    context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
+    verdict = judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict()
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed
@@ -255,11 +262,13 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     cmd = resolve(sentence, scene, plugins)
     bundle = registry.load(cmd.action, plugins)
     judge = judge_for(bundle)
-    result = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=planner, seed=seed, budget=budget,
+    result = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
                            threshold=threshold)
     result.extra.setdefault("sentence", sentence)
+    poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
     verdict = judge.judge(result.path, result.anchor_pose, result.size,
-                          final_progress=result.extra.get("final_progress")).to_dict()
+                          final_progress=result.extra.get("final_progress"),
+                          **judge_context(poses, result.viewer)).to_dict()
     result.extra["verdict"] = verdict
     with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
         result.save(folder / "plan.json")
@@ -268,6 +277,18 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
 
             plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
+
+
+def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None) -> dict[str, Any]:
+    """The keywords a judge gets besides mover, anchor and size: ``anchors`` (every reference object's
+    poses) only for a two-anchor action and ``viewer`` only for a viewer-frame one, so a plugin's judge
+    written for one-anchor relative actions keeps working unchanged."""
+    kw: dict[str, Any] = {}
+    if len(anchors) > 1:
+        kw["anchors"] = anchors
+    if viewer is not None:
+        kw["viewer"] = np.asarray(viewer, float)
+    return kw
 
 
 def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int) -> None:
@@ -281,7 +302,7 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
     files = summary.get("files") if isinstance(summary.get("files"), dict) else {}
     summary.update({
         "schema": summary.get("schema", 1), "ok": True, "sentence": d["sentence"],
-        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor")},
+        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor", "anchors")},
         "verdict": d["verdict"], "success": r.success, "final_progress": d["final_progress"],
         "planned_progress": d["planned_progress"], "planner": d["planner"], "stopped": d["stopped"],
         "seed": seed, "final_error_m": d["final_error_m"],

@@ -35,6 +35,8 @@ def test_wheel_ships_data_urdf_and_bundles_under_the_package(wheel: Path) -> Non
     for page in ("index.html", "app.js", "style.css"):  # the review app's page
         assert f"l2p_bullet/review/static/{page}" in names
     assert sum(n.startswith("l2p_bullet/data/captures/") and n.endswith(".npz") for n in names) == 11
+    for f in ("index.html", "teach.js", "style.css"):  # the teach page
+        assert f"l2p_bullet/teach/static/{f}" in names
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     text = zipfile.ZipFile(wheel).read(entry_points).decode()
     assert "[l2p_bullet.actions]" in text and "around = l2p_bullet.actions.around" in text

@@ -10,7 +10,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from review_fixtures import chromium, live, run_folder  # noqa: F401 - fixtures
+from review_fixtures import live, run_folder  # noqa: F401 - fixtures (chromium: conftest.py)
 
 pytestmark = pytest.mark.slow
 DOCS_IMG = Path(__file__).resolve().parents[1] / "docs" / "img" / "review_app.png"

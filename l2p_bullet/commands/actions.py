@@ -56,7 +56,8 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         {
             "name": p.name, "version": p.version, "package": p.package, "package_version": p.package_version,
             "module": p.module, "path": str(p.path) if p.path else None, "phrases": list(p.phrases),
-            "description": p.description, "metrics": p.metrics, "ok": p.name not in reasons,
+            "description": p.description, "frame": p.frame, "anchors": p.anchors,
+            "metrics": p.metrics, "ok": p.name not in reasons,
             "error": reasons.get(p.name),
         }
         for p in plugins
@@ -76,7 +77,9 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         wp = max(len(f'{r["package"]} {r["package_version"]}') for r in good)
         for r in good:
             pkg = f'{r["package"]} {r["package_version"]}'
-            click.echo(f'{r["name"]:<{w}}  v{r["version"] or "?":<6} {pkg:<{wp}}  {", ".join(r["phrases"])}')
+            shape = "".join([f' ({r["frame"]} frame)' if r["frame"] != "relative" else "",
+                             f' ({r["anchors"]} anchors)' if r["anchors"] != 1 else ""])
+            click.echo(f'{r["name"]:<{w}}  v{r["version"] or "?":<6} {pkg:<{wp}}  {", ".join(r["phrases"])}{shape}')
             line = _metrics_line(r["metrics"])
             if line:
                 pad = " " * (w + 2)
@@ -99,11 +102,22 @@ def actions_cmd(as_json: bool, check: bool) -> None:
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Folder to create (default: ./l2p-NAME). Never overwritten.")
 @click.option("--description", default="", help="One line for the manifest.")
-def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, description: str) -> None:
+@click.option("--frame", default="relative", show_default=True,
+              help='Where the relation is seen from: relative, viewer (the robot\'s base) or viewer:camera.')
+@click.option("--anchors", type=click.IntRange(1, 2), default=1, show_default=True,
+              help='Reference objects in a sentence: 1 ("next to B") or 2 ("between B and C").')
+@click.option("--judge", "judge", default=None,
+              help="A rule judge of l2p_bullet/judge/rules.py (e.g. between, left-of); default: the model's own.")
+def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, description: str, frame: str,
+                   anchors: int, judge: str | None) -> None:
     """Scaffold an installable action plugin package for NAME (e.g. left-of).
 
     \b
-    Then: write demonstrations into DIR/demos (see DIR/README.md),
+    Examples:
+      l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
+      l2p-bullet new-action between --phrase between --anchors 2 --judge between
+    \b
+    Then: write demonstrations into DIR/demos (see DIR/README.md, or use l2p-bullet teach NAME),
           l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
           <this environment>/bin/pip install ./DIR   (a path: never the bare name, which
                                                       would fetch a stranger's package)
@@ -114,12 +128,14 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
 
     plugins = registry.discover()
     installed = {ph: p.name for p in plugins if p.ok for ph in p.phrases}
-    s = scaffold(name, list(phrases), out, installed=installed, description=description)
+    s = scaffold(name, list(phrases), out, installed=installed, description=description, frame=frame,
+                 anchors=anchors, judge=judge)
     click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
     click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
     click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")
     click.echo(f"  3. {pip_install_command(s.root)}")
-    click.echo(f'  4. l2p-bullet perform "move A {registry.normalize_phrase(phrases[0])} B"')
+    click.echo(f'  4. l2p-bullet perform "move A {registry.normalize_phrase(phrases[0])} B'
+               + (' and C"' if anchors == 2 else '"'))
 
 
 def pip_install_command(folder: Path) -> str:

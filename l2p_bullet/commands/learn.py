@@ -18,9 +18,9 @@ from .common import greedy_options, seed_option
 
 @click.command(cls=greedy_options("--demos"))
 @click.argument("action")
-@click.option("--demos", "demo_files", multiple=True, type=click.Path(dir_okay=False),
+@click.option("--demos", "demo_files", multiple=True, type=click.Path(),
               help="Capture session files (.npz) of ACTION to train on instead of the shipped ones: one or "
-                   "more (--demos demos/*.npz), or the option repeated.")
+                   "more (--demos demos/*.npz), a folder of them, or the option repeated.")
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
               help="Bundle folder to write (default: runs/bundles/<action>).")
 @seed_option

@@ -49,7 +49,7 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
         return
     v = r.verdict
     fp = "n/a" if r.final_progress is None else f"{r.final_progress:.2f}"
-    click.echo(f'{r.command.mover} {r.command.preposition} {r.command.anchor}: action "{r.command.action}", '
+    click.echo(f'{r.command.mover} {r.command.preposition} {" and ".join(r.command.anchors)}: action "{r.command.action}", '
                f'{"success" if r.success else "FAILED"} ({v.get("reason", "")})')
     click.echo(f"final progress {fp} (planned {r.planned_progress:.2f}), "
                f"block within {r.max_deviation_m * 1000:.1f} mm of the plan, "

@@ -37,8 +37,23 @@ class Plan:
     planner: str
     stopped: str  # "threshold" | "budget"
     extra: dict = field(default_factory=dict)  # added fields (timings, steps...): contracts only grow
+    more_anchors: list[str] = field(default_factory=list)  # a two-anchor action's further anchors
+    more_anchor_poses: np.ndarray | None = None  # (k, 3), their poses
+    viewer: np.ndarray | None = None  # (2,) the viewpoint of a viewer-frame action, scene frame
+
+    @property
+    def anchors(self) -> list[str]:
+        """Every reference object, the first being ``anchor``."""
+        return [self.anchor, *self.more_anchors]
 
     def to_dict(self) -> dict:
+        more = {}
+        if self.more_anchors:  # only for two-anchor actions: a one-anchor plan.json reads as it always did
+            poses = np.asarray(self.more_anchor_poses, float).reshape(-1, 3)
+            more["anchors"] = self.anchors
+            more["anchor_poses"] = [[float(v) for v in self.anchor_pose]] + [[float(v) for v in p] for p in poses]
+        if self.viewer is not None:
+            more["viewer"] = [float(v) for v in self.viewer]
         return {
             "schema": 1,
             "action": self.action,
@@ -51,6 +66,7 @@ class Plan:
             "progress": np.asarray(self.progress, float).round(6).tolist(),
             "planner": self.planner,
             "stopped": self.stopped,
+            **more,
             **self.extra,
         }
 
@@ -61,7 +77,16 @@ class Plan:
     def from_dict(cls, d: dict, source: str = "plan") -> Plan:
         try:
             known = {"schema", "action", "mover", "anchor", "size", "anchor_pose", "start", "path",
-                     "progress", "planner", "stopped"}
+                     "progress", "planner", "stopped", "anchors", "anchor_poses", "viewer"}
+            anchors = d.get("anchors", [d["anchor"]])
+            if not isinstance(anchors, list) or not 1 <= len(anchors) <= 2 or str(anchors[0]) != str(d["anchor"]):
+                raise ValueError('"anchors" must be a list starting with "anchor"')
+            more_poses = None
+            if len(anchors) > 1:
+                more_poses = _poses(d["anchor_poses"], source, "anchor_poses")
+                if len(more_poses) != len(anchors):
+                    raise ValueError('"anchor_poses" must hold one pose per entry of "anchors"')
+                more_poses = more_poses[1:]
             return cls(
                 action=str(d["action"]),
                 mover=str(d["mover"]),
@@ -74,6 +99,9 @@ class Plan:
                 planner=str(d.get("planner", "unknown")),
                 stopped=str(d.get("stopped", "unknown")),
                 extra={k: v for k, v in d.items() if k not in known},
+                more_anchors=[str(a) for a in anchors[1:]],
+                more_anchor_poses=more_poses,
+                viewer=_viewer(d.get("viewer"), source),
             )
         except KeyError as e:
             raise PathError(f'{source}: plan is missing the field "{e.args[0]}"') from None
@@ -91,6 +119,8 @@ class Motion:
     mover_name: str | None = None
     anchor_name: str | None = None
     action: str | None = None
+    more_anchors: list[np.ndarray] = field(default_factory=list)  # (T, 3) per further anchor (two-anchor actions)
+    viewer: np.ndarray | None = None  # (2,) viewpoint in the same frame, when the file gives one
 
 
 MIN_SIZE_M, MAX_SIZE_M = 1e-4, 1e3
@@ -123,6 +153,18 @@ def _poses(value: object, source: str, key: str) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         raise PathError(f'{source}: "{key}" contains non-finite numbers')
     return arr
+
+
+def _viewer(value: object, source: str) -> np.ndarray | None:
+    if value is None:
+        return None
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        v = np.zeros(0)
+    if v.shape != (2,) or not np.all(np.isfinite(v)):
+        raise PathError(f'{source}: "viewer" must be a point [x, y]')
+    return v
 
 
 def trajectory_poses(frames: list[dict], name: str) -> np.ndarray:
@@ -198,8 +240,13 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
     if "frames" in d:  # trajectory.json
         try:
             mover, anchor = str(d["mover"]), str(d["anchor"])
+            names = d.get("anchors", [anchor])
+            if not isinstance(names, list) or not 1 <= len(names) <= 2:
+                raise TypeError('"anchors" must be a list of one or two object names')
+            more = [str(a) for a in names[1:]]
             m_arr = trajectory_poses(d["frames"], mover)
             a_arr = trajectory_poses(d["frames"], anchor)
+            x_arr = [_poses(trajectory_poses(d["frames"], a), source, "frames") for a in more]
             size = block_size(d["objects"][mover]["size"], source, f"objects.{mover[:40]}.size")
         except KeyError as e:
             raise PathError(f"{source}: not a valid trajectory.json (missing {str(e)[:80]})") from None
@@ -209,11 +256,12 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
         except (TypeError, ValueError, OverflowError) as e:
             raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {str(e)[:80]})") from None
         return Motion(_poses(m_arr, source, "frames"), _poses(a_arr, source, "frames"), size, mover, anchor,
-                      d.get("action"))
+                      d.get("action"), x_arr, _viewer(d.get("viewer"), source))
     if "path" in d:  # plan.json
         plan = Plan.from_dict(d, source)
         anchor = np.repeat(plan.anchor_pose[None], len(plan.path), axis=0)
-        return Motion(plan.path, anchor, plan.size, plan.mover, plan.anchor, plan.action)
+        more = [np.repeat(p[None], len(plan.path), axis=0) for p in (plan.more_anchor_poses if plan.more_anchors else [])]
+        return Motion(plan.path, anchor, plan.size, plan.mover, plan.anchor, plan.action, more, plan.viewer)
     for key in ("size", "mover", "anchor"):
         if key not in d:
             raise PathError(
@@ -221,12 +269,19 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
                 "a plan.json or a trajectory.json)"
             )
     mover = _poses(d["mover"], source, "mover")
-    anchor = _poses(d["anchor"], source, "anchor")
-    if len(anchor) == 1:
-        anchor = np.repeat(anchor, len(mover), axis=0)
-    if len(mover) != len(anchor):
-        raise PathError(f'{source}: "mover" has {len(mover)} poses but "anchor" has {len(anchor)}')
-    return Motion(mover, anchor, block_size(d["size"], source))
+    tracks = []
+    raw_more = d.get("more_anchors", [])
+    if not isinstance(raw_more, list) or len(raw_more) > 1:
+        raise PathError(f'{source}: "more_anchors" must be a list of at most one pose sequence')
+    for key, value in [("anchor", d["anchor"])] + [(f"more_anchors[{i}]", v) for i, v in enumerate(raw_more)]:
+        track = _poses(value, source, key)
+        if len(track) == 1:
+            track = np.repeat(track, len(mover), axis=0)
+        if len(mover) != len(track):
+            raise PathError(f'{source}: "mover" has {len(mover)} poses but "{key}" has {len(track)}')
+        tracks.append(track)
+    return Motion(mover, tracks[0], block_size(d["size"], source), more_anchors=tracks[1:],
+                  viewer=_viewer(d.get("viewer"), source))
 
 
 def load_motion(path: str | Path) -> Motion:

@@ -309,3 +309,39 @@ def random_scene(seed: int, size: float = 0.05) -> Scene:
         except SceneError:
             continue
     raise SceneError(f"could not draw a valid random scene for seed {seed}")  # pragma: no cover
+
+
+def random_between_scene(seed: int, size: float = 0.05) -> Scene:
+    """A valid three-block scene drawn from ``seed``, for two-anchor actions ("move A between B and C").
+
+    The anchors B (green) and C (blue) lie 3-4.5 block sizes apart, their midpoint within 0.05 m of the
+    centre; the mover A (red) starts 2-4 block sizes from that midpoint, not already between them (its
+    centre projects outside the segment or lies more than 1.5 blocks off it) and not touching either.
+    """
+    rng = np.random.default_rng(seed)
+    for _ in range(1000):
+        r, a = 0.05 * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
+        mid = np.array([r * math.cos(a), r * math.sin(a)])
+        phi = rng.uniform(-math.pi, math.pi)
+        half = 0.5 * rng.uniform(3.0, 4.5) * size * np.array([math.cos(phi), math.sin(phi)])
+        b_xy, c_xy = mid - half, mid + half
+        d, a2 = rng.uniform(2.0, 4.0) * size, rng.uniform(-math.pi, math.pi)
+        a_xy = mid + d * np.array([math.cos(a2), math.sin(a2)])
+        e, rel = c_xy - b_xy, a_xy - b_xy
+        t = float(rel @ e / (e @ e))
+        off = abs(float(rel[0] * e[1] - rel[1] * e[0])) / float(np.linalg.norm(e)) / size
+        if 0.0 < t < 1.0 and off < 1.5:
+            continue
+        scene = Scene([
+            SceneObject("A", "red", size, (float(a_xy[0]), float(a_xy[1])), float(rng.uniform(0, math.pi / 2))),
+            SceneObject("B", "green", size, (float(b_xy[0]), float(b_xy[1])), float(rng.uniform(0, math.pi / 2))),
+            SceneObject("C", "blue", size, (float(c_xy[0]), float(c_xy[1])), float(rng.uniform(0, math.pi / 2))),
+        ])
+        try:
+            scene.validate()
+        except SceneError:
+            continue
+        if min(np.linalg.norm(a_xy - b_xy), np.linalg.norm(a_xy - c_xy)) < 1.6 * size:
+            continue  # touching or nearly: the planner refuses a mover that starts touching
+        return scene
+    raise SceneError(f"could not draw a valid three-block scene for seed {seed}")  # pragma: no cover

@@ -74,7 +74,7 @@ def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
 
 def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | None,
                  render: RenderSettings | None = DEFAULT_RENDER, seed: int = 0,
-                 progress_fn: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+                 progress_fn: Callable[..., np.ndarray] | None = None,
                  meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
                  world: World | None = None) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
@@ -104,7 +104,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         slide, removed = _perform(prims, mover, p, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
-        recorder.fill_progress(mover, meta.get("anchor"), progress_fn)
+        recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
         deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
         stats = _stats(prims)
         files = _write_files(recorder, out_dir, meta, world.sizes, render)

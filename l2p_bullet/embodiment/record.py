@@ -57,13 +57,19 @@ class Recorder:
                 "grasped": self.grasped, "progress": None}
 
     # --- writing ------------------------------------------------------------------------------
-    def fill_progress(self, mover: str | None, anchor: str | None,
-                      progress_fn: Callable[[np.ndarray, np.ndarray], np.ndarray] | None) -> None:
-        """Set every frame's ``progress`` from ``progress_fn(mover (T,3), anchor (T,3))``; else null."""
-        if progress_fn is None or mover is None or anchor is None or not self.frames:
+    def fill_progress(self, mover: str | None, anchor: str | list[str] | None,
+                      progress_fn: Callable[..., np.ndarray] | None) -> None:
+        """Set every frame's ``progress`` from ``progress_fn(mover (T,3), anchor (T,3))``; else null.
+
+        ``anchor`` may list several reference objects (a two-anchor action): the further ones' tracks
+        are then passed as a third argument, a list of (T,3) arrays.
+        """
+        names = [anchor] if isinstance(anchor, str) else list(anchor or [])
+        if progress_fn is None or mover is None or not names or not self.frames:
             return
-        m, a = trajectory_poses(self.frames, mover), trajectory_poses(self.frames, anchor)
-        values = np.asarray(progress_fn(m, a), dtype=float).reshape(-1)
+        m, a, *more = (trajectory_poses(self.frames, n) for n in [mover, *names])
+        args = (m, a) + ((more,) if more else ())
+        values = np.asarray(progress_fn(*args), dtype=float).reshape(-1)
         if len(values) != len(self.frames):
             raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames)} frames")
         for f, v in zip(self.frames, values, strict=True):
@@ -76,6 +82,8 @@ class Recorder:
             "action": meta.get("action"),
             "mover": meta.get("mover"),
             "anchor": meta.get("anchor"),
+            # a two-anchor action's every reference object, a viewer-frame action's viewpoint (only then)
+            **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
             "fps": self.fps,
             "objects": {name: {"size": size} for name, size in sizes.items()},
             "frames": self.frames,

@@ -173,18 +173,20 @@ class Worker:
         from .. import planning
         from ..core.scene import Scene
         from ..judge import judge_for
-        from ..pipeline import resolve
+        from ..pipeline import judge_context, resolve
         from ..plugins import registry
 
         scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
         cmd = resolve(task.sentence, scene, self.plugins)
         bundle = registry.load(cmd.action, self.plugins)
         t = time.perf_counter()
-        plan = planning.plan(scene, cmd.mover, cmd.anchor, bundle, planner=task.planner, seed=task.seed,
+        plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=task.planner, seed=task.seed,
                              budget=task.budget, threshold=task.threshold, time_limit=task.time_limit)
         plan_s = time.perf_counter() - t
+        poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
         v = judge_for(bundle).judge(plan.path, plan.anchor_pose, plan.size,
-                                    final_progress=plan.extra.get("final_progress")).to_dict()
+                                    final_progress=plan.extra.get("final_progress"),
+                                    **judge_context(poses, plan.viewer)).to_dict()
         row.update(planner_used=plan.planner, success=int(bool(v["success"])), score=v.get("score"),
                    reason=v.get("reason"), judge=v.get("judge"), final_progress=plan.extra.get("final_progress"),
                    planned_progress=plan.extra.get("final_progress"), stopped=plan.stopped,
@@ -205,6 +207,8 @@ class Worker:
 
         judged, scored = {}, {}
         for name, (judge, model) in self.judges().items():
+            if getattr(model, "anchors", 1) != 1:  # a two-anchor action cannot judge a one-anchor motion
+                continue
             progress = float(model.final(mover, anchor, size))
             v = judge.judge(mover, anchor, size, final_progress=progress)
             judged[name] = {"success": bool(v.success), "score": round(float(v.score), 6)}

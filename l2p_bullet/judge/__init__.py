@@ -10,7 +10,7 @@
 A bundle picks its judge in its manifest's ``[judge]`` section::
 
     [judge]
-    rules = "next-to"                       # one of the rule sets in judge/rules.py
+    rules = "next-to"                       # one of the rule sets in judge/rules.py ("between", "left-of", ...)
     # or
     entry = "l2p_between.judge:make_judge"  # a callable (bundle) -> Judge in the plugin's package
     # or nothing: the progress-model judge, optionally with  threshold = 0.6
@@ -26,7 +26,7 @@ from typing import Any
 from ..errors import FailedToLoadPlugin, L2PError
 from .base import Judge, Verdict
 from .progress import THRESHOLD, ProgressJudge
-from .rules import RULES, RuleJudge, evaluate
+from .rules import RULES, TWO_ANCHOR_RULES, RuleJudge, evaluate
 
 __all__ = ["Judge", "Verdict", "RuleJudge", "ProgressJudge", "RULES", "evaluate", "judge_for"]
 
@@ -38,7 +38,12 @@ def judge_for(bundle: Any) -> Judge:
         raise FailedToLoadPlugin(bundle.name, str(bundle.path), "[judge] must be a table")
     try:
         if "rules" in spec:
-            return RuleJudge(str(spec["rules"]))
+            judge = RuleJudge(str(spec["rules"]))
+            wants = 2 if judge.rules in TWO_ANCHOR_RULES else 1
+            if wants != int(bundle.manifest.get("anchors", 1)):
+                raise ValueError(f'the rules "{judge.rules}" read {wants} reference object(s), the action declares '
+                                 f'anchors = {bundle.manifest.get("anchors", 1)}')
+            return judge
         if "entry" in spec:
             return _entry_judge(bundle, str(spec["entry"]))
         return ProgressJudge(bundle.name, bundle.progress_model(), float(spec.get("threshold", THRESHOLD)))
@@ -60,5 +65,6 @@ def _entry_judge(bundle: Any, entry: str) -> Judge:
                                  f"its judge {entry} failed to load: {type(e).__name__}: {e}") from None
     if not isinstance(judge, Judge):
         raise FailedToLoadPlugin(bundle.name, str(bundle.path), f"{entry} did not return a judge "
-                                 "(an object with .name and .judge(mover, anchor, size, final_progress=None))")
+                                 "(an object with .name and .judge(mover, anchor, size, final_progress=None), "
+                                 "see l2p_bullet/judge/base.py)")
     return judge

@@ -32,9 +32,18 @@ class Judge(Protocol):
     two of them. ``final_progress`` is the action's learned progress at the end when the caller already
     has it (a judge that needs it and is not given it computes it). ``name`` is what verdicts report as
     their ``judge`` ("rules", "progress-model", or a plugin's own).
+
+    Two more keywords exist for actions that declare them (:mod:`l2p_bullet.core.frames`) and are passed
+    **only** to those actions' judges, so a judge written for one-anchor relative actions, with exactly
+    the signature above, keeps working:
+
+    - ``anchors``: a two-anchor action's every reference object, a list of (T,3) tracks or (3,) poses,
+      the first being ``anchor`` ("between B and C": ``[B, C]``);
+    - ``viewer``: a viewer-frame action's viewpoint (2,) in the same metric frame (the robot's base in
+      the scene frame for ``frame = "viewer"``).
     """
 
     name: str
 
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
-              final_progress: float | None = None) -> Verdict: ...
+              final_progress: float | None = None, **context: Any) -> Verdict: ...

@@ -25,8 +25,12 @@ class ProgressJudge:
         self.action, self.model, self.threshold = action, model, float(threshold)
 
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
-              final_progress: float | None = None) -> Verdict:
-        fp = float(self.model.final(mover, anchor, size)) if final_progress is None else float(final_progress)
+              final_progress: float | None = None, anchors: list | None = None,
+              viewer: np.ndarray | None = None) -> Verdict:
+        kw: dict[str, Any] = {} if viewer is None else {"viewer": viewer}
+        if anchors is not None and len(anchors) > 1:
+            kw["more_anchors"] = list(anchors[1:])
+        fp = float(self.model.final(mover, anchor, size, **kw)) if final_progress is None else float(final_progress)
         return Verdict(fp >= self.threshold, fp,
                        f"no rule-based judge for the plugin action {self.action}; its own progress model gives "
                        f"{fp:.2f} at the end (success at {self.threshold:.2f} or more)", self.name)

@@ -19,6 +19,16 @@ thresholds, which broke as soon as the blocks changed size, and its "next to" ru
 - around:  the mover sweeps nearly a full turn around the anchor (at least 0.8 turn) while staying near
            it (centre distance at most 4 blocks).
 
+For plugin actions (a manifest's ``[judge] rules = "..."``):
+
+- between:     a two-anchor rule: the mover ends on the segment between the two anchors (its centre
+               projects strictly between theirs and lies within half a block of the line through them)
+               without touching either;
+- left-of, right-of, in-front-of, behind: viewer-frame rules: the mover ends on that side of the anchor
+               as the viewer sees it (its offset from the anchor within 45 degrees of the viewer's left,
+               right, towards the viewer, away from it), near it (centre distance at most 4 blocks) and
+               not overlapping it. The viewer is the ``viewer`` keyword, the robot's base by default.
+
 "Steadily" allows wobbles of half a block against the running best. Every rule also gives a graded
 ``score`` in [0, 1] (used for the correlation with people's grades; ``success`` is the yes/no verdict).
 Motions are read in the anchor's frame (mover minus anchor), so a moving anchor is handled too.
@@ -72,7 +82,7 @@ def _relative(mover: np.ndarray, anchor: np.ndarray, size: float) -> tuple[np.nd
     return rel, np.linalg.norm(rel, axis=1)
 
 
-def _closer(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
+def _closer(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     room = max(float(d[0]) - 1.0, 0.25)
     moved = float(d[0]) - float(d[-1])
     closed = moved / room
@@ -84,7 +94,7 @@ def _closer(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
     return Verdict(ok, score, why)
 
 
-def _away(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
+def _away(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     gained = float(d[-1]) - float(d[0])
     drop = float(np.max(np.maximum.accumulate(d) - d))
     score = float(np.clip((gained - drop) / 6.0, 0, 1))
@@ -92,7 +102,8 @@ def _away(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
     return Verdict(ok, score, f"distance grew by {gained:.2f} blocks (start {d[0]:.2f}), went back {drop:.2f} blocks")
 
 
-def _next_to(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float) -> Verdict:
+def _next_to(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float,
+             **_: object) -> Verdict:
     m = np.r_[rel[-1], mover[-1, 2]]
     a = np.r_[0.0, 0.0, anchor[-1, 2]]
     gap = square_gap(m, a)
@@ -106,7 +117,7 @@ def _overlaps(a: np.ndarray, b: np.ndarray) -> bool:
     return polygons_overlap(_unit_square(a), _unit_square(b), margin=-0.02)
 
 
-def _past(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
+def _past(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     travel = rel[-1] - rel[0]
     length = float(np.linalg.norm(travel))
     if length < 1e-9:
@@ -125,7 +136,7 @@ def _past(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
     return Verdict(ok, score, why)
 
 
-def _around(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
+def _around(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     turns = abs(swept_angle(rel)) / (2 * math.pi)
     far = float(d.max())
     score = float(np.clip(turns, 0, 1)) * (1.0 if far <= 4.0 else 0.5)
@@ -133,29 +144,91 @@ def _around(rel: np.ndarray, d: np.ndarray, *_: object) -> Verdict:
     return Verdict(ok, score, f"swept {turns:.2f} of a turn around the anchor, at most {far:.2f} blocks away")
 
 
+def _between(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+             anchors: list[np.ndarray] | None = None, **_: object) -> Verdict:
+    if anchors is None or len(anchors) != 2:
+        raise ValueError('the rule "between" needs the two reference objects (anchors=[B, C])')
+    m = np.r_[mover[-1, :2] / size, mover[-1, 2]]
+    b, c = (np.asarray(a, float).reshape(-1, 3)[-1] for a in anchors)
+    b, c = np.r_[b[:2] / size, b[2]], np.r_[c[:2] / size, c[2]]
+    e = c[:2] - b[:2]
+    sep = max(float(np.linalg.norm(e)), 1e-9)
+    t = float((m[:2] - b[:2]) @ e) / sep**2
+    w = m[:2] - b[:2]
+    off = abs(float(e[0] * w[1] - e[1] * w[0])) / sep
+    gaps = (square_gap(m, b), square_gap(m, c))
+    touching = min(gaps) <= 0.0
+    seg = float(np.linalg.norm(m[:2] - (b[:2] + np.clip(t, 0, 1) * e)))
+    score = float(np.clip(1.0 - seg / 2.0, 0, 1)) * (0.5 if touching else 1.0)
+    ok = 0.0 < t < 1.0 and off <= 0.5 and not touching
+    why = (f"ends {t:.0%} of the way from the first anchor to the second, {off:.2f} blocks off the line "
+           f"between them, gaps {gaps[0]:.2f} and {gaps[1]:.2f} blocks" + (" (touching)" if touching else ""))
+    return Verdict(ok, score, why)
+
+
+SIDES: dict[str, tuple[float, float, str]] = {
+    "left-of": (1.0, 0.0, "left of"), "right-of": (-1.0, 0.0, "right of"),
+    "in-front-of": (0.0, -1.0, "in front of"), "behind": (0.0, 1.0, "behind"),
+}
+"""Viewer-frame rules: the direction (lateral, depth) of the side, in the viewer's frame, and its words."""
+
+
+def _side(name: str) -> Callable[..., Verdict]:
+    """The viewer-frame rule for one side of the anchor (see the module docstring)."""
+    lat_dir, dep_dir, words = SIDES[name]
+
+    def rule(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+             viewer: np.ndarray | None = None, **_: object) -> Verdict:
+        from ..core.frames import VIEWPOINTS, viewer_offset
+
+        v = np.asarray(VIEWPOINTS["robot"] if viewer is None else viewer, float)
+        lat, dep = viewer_offset(mover[-1, :2] / size, anchor[-1, :2] / size, v[:2] / size)
+        r = max(float(np.hypot(lat, dep)), 1e-9)
+        along = (lat * lat_dir + dep * dep_dir) / r  # cosine of the angle from the side's direction
+        overlap = _overlaps(np.r_[rel[-1], mover[-1, 2]], np.r_[0.0, 0.0, anchor[-1, 2]])
+        score = float(np.clip(along, 0, 1)) * (1.0 if r <= 4.0 else 0.5) * (0.0 if overlap else 1.0)
+        ok = along >= math.cos(math.radians(45)) - 1e-9 and r <= 4.0 and not overlap
+        why = (f"ends {math.degrees(math.acos(float(np.clip(along, -1, 1)))):.0f} deg from straight {words} the "
+               f"anchor as the viewer sees it ({lat:+.2f} blocks to its left, {dep:+.2f} behind), "
+               f"{r:.2f} blocks away" + (" (overlapping it)" if overlap else ""))
+        return Verdict(ok, score, why)
+
+    return rule
+
+
 RULES: dict[str, Callable[..., Verdict]] = {
     "closer": _closer, "away": _away, "next-to": _next_to, "past": _past, "around": _around,
+    "between": _between, **{name: _side(name) for name in SIDES},
 }
 """Rule sets by name; a bundle's manifest picks one with ``[judge] rules = "<name>"``."""
 
+TWO_ANCHOR_RULES = ("between",)
+"""Rule sets that read two reference objects (``anchors=``)."""
 
-def evaluate(action: str, mover: np.ndarray, anchor: np.ndarray, size: float) -> Verdict:
+
+def evaluate(action: str, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+             anchors: list[np.ndarray] | None = None, viewer: np.ndarray | None = None) -> Verdict:
     """Judge a motion by the rules named ``action``: ``mover`` (T,3) and ``anchor`` (T,3) or (3,) poses in
-    metres, blocks of side ``size``.
+    metres, blocks of side ``size``; ``anchors`` every reference object of a two-anchor rule, ``viewer``
+    the viewpoint (2,) of a viewer-frame rule (default: the robot's base, scene frame).
 
     Frames must be dense enough that the mover turns less than half a turn around the anchor between
     two of them (``planning.world2d.interpolate`` gives that).
     """
-    try:
-        name = canonical_action(action)
-    except UnknownActionError:
-        raise UnknownActionError(action, RULES, "(no rule judge has that name)") from None
+    if action in RULES:
+        name = action
+    else:
+        try:
+            name = canonical_action(action)
+        except UnknownActionError:
+            raise UnknownActionError(action, RULES, "(no rule judge has that name)") from None
     mover = np.asarray(mover, float).reshape(-1, 3)
     anchor_arr = np.asarray(anchor, float).reshape(-1, 3)
     if len(anchor_arr) == 1:
         anchor_arr = np.repeat(anchor_arr, len(mover), axis=0)
     rel, d = _relative(mover, anchor_arr, size)
-    return RULES[name](rel, d, mover, anchor_arr, size)
+    context = {k: v for k, v in (("anchors", anchors), ("viewer", viewer)) if v is not None}
+    return RULES[name](rel, d, mover, anchor_arr, size, **context)
 
 
 class RuleJudge:
@@ -169,5 +242,6 @@ class RuleJudge:
         self.rules = rules
 
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
-              final_progress: float | None = None) -> Verdict:
-        return evaluate(self.rules, mover, anchor, size)
+              final_progress: float | None = None, anchors: list[np.ndarray] | None = None,
+              viewer: np.ndarray | None = None) -> Verdict:
+        return evaluate(self.rules, mover, anchor, size, anchors=anchors, viewer=viewer)

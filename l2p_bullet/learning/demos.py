@@ -4,6 +4,12 @@ A demonstration is one annotated event of a session: the mover's and the anchor'
 plus the frames around it (``context``) so a progress model can learn that progress is 0 outside it.
 All loaders read ``.npz`` with ``allow_pickle=False``; a bad file becomes a :class:`DataError` that
 names the file and the problem.
+
+Besides the shipped captures' arrays (two blocks, ``shell_pose`` and ``stella_pose``), a session may
+carry what plugin actions need (``l2p_bullet/data/README.md``): ``more_poses`` (K, T, 3), the tracks of
+blocks 2, 3, ...; ``event_anchors`` (E, n), each event's reference blocks by index (0 shell, 1 stella,
+2... ``more_poses``), required when there are more than two blocks; and ``viewer_xy`` (2,), where the
+person saying "to the left of" stood, required to train a viewer-frame action.
 """
 
 from __future__ import annotations
@@ -45,6 +51,8 @@ class Demo:
     end: int  # last event frame (inclusive)
     size: float = DEMO_BLOCK_SIZE
     fps: float = 30.0
+    more_anchors: tuple[np.ndarray, ...] = ()  # (T,3) tracks of further reference blocks (two-anchor actions)
+    viewer: np.ndarray | None = None  # (2,) where the viewpoint was, same frame (viewer-frame actions)
 
     @property
     def event_mover(self) -> np.ndarray:
@@ -117,9 +125,100 @@ def load_session(path: str | Path) -> dict[str, np.ndarray]:
         raise DataError(f"demonstration file {p}: an event span is empty or outside the {n} frames")
     if ev.dtype.kind == "f" and not np.array_equal(ev, np.round(ev)):
         raise DataError(f"demonstration file {p}: event_start_end must hold frame numbers (integers)")
-    if not np.isin(arrays["event_mover"], (0, 1)).all():
-        raise DataError(f"demonstration file {p}: event_mover must be 0 (Shell) or 1 (Stella Artois)")
+    blocks = 2 + _check_optional(p, arrays, n)
+    if "event_anchors" not in arrays:
+        if not np.isin(arrays["event_mover"], (0, 1)).all():
+            raise DataError(f"demonstration file {p}: event_mover must be 0 (Shell) or 1 (Stella Artois)")
+        return arrays
+    movers, anchors = arrays["event_mover"], arrays["event_anchors"]
+    if not np.issubdtype(anchors.dtype, np.integer) or anchors.ndim != 2 or len(anchors) != len(ev) or not anchors.shape[1]:
+        raise DataError(f'demonstration file {p}: "event_anchors" must be integers of shape ({len(ev)}, n)')
+    if not (np.isin(movers, np.arange(blocks)).all() and np.isin(anchors, np.arange(blocks)).all()):
+        raise DataError(f"demonstration file {p}: event_mover and event_anchors must name blocks 0-{blocks - 1}")
+    for i, (m, a) in enumerate(zip(movers, anchors, strict=True)):
+        if m in a or len(set(a.tolist())) != len(a):
+            raise DataError(f"demonstration file {p}: event {i} names block {m} as mover and anchors {a.tolist()} "
+                            "(the mover and every anchor must be different blocks)")
     return arrays
+
+
+def _check_optional(p: Path, arrays: dict[str, np.ndarray], n: int) -> int:
+    """Validate ``more_poses`` and ``viewer_xy`` when present; the number of further blocks."""
+    if "viewer_xy" in arrays:
+        v = arrays["viewer_xy"]
+        if v.shape != (2,) or v.dtype.kind not in "iuf" or not np.all(np.isfinite(v)):
+            raise DataError(f'demonstration file {p}: "viewer_xy" must be one finite point [x, y], got shape {v.shape}')
+    if "more_poses" not in arrays:
+        if "event_anchors" in arrays and arrays["event_anchors"].size and arrays["event_anchors"].max() > 1:
+            raise DataError(f'demonstration file {p}: "event_anchors" names a block beyond the two tracks '
+                            '(add its track to "more_poses")')
+        return 0
+    more = arrays["more_poses"]
+    if more.ndim != 3 or more.shape[1:] != (n, 3) or more.dtype.kind not in "biuf":
+        raise DataError(f'demonstration file {p}: "more_poses" has shape {more.shape}, expected (K, {n}, 3) numbers')
+    if not np.all(np.isfinite(more)):
+        raise DataError(f"demonstration file {p}: more_poses contain non-finite numbers")
+    if "event_anchors" not in arrays:
+        raise DataError(f'demonstration file {p}: with "more_poses", each event\'s reference blocks must be given '
+                        'in "event_anchors"')
+    return len(more)
+
+
+def save_session(path: str | Path, tracks: list[np.ndarray], events: np.ndarray, movers: np.ndarray, *,
+                 anchors: np.ndarray | None = None, viewer: np.ndarray | None = None) -> Path:
+    """Write one capture session in the shipped format, validated: nothing invalid is ever left on disk.
+
+    ``tracks`` are the blocks' (T,3) poses (two or more: block 0 is written as ``shell_pose``, 1 as
+    ``stella_pose``, the rest as ``more_poses``), ``events`` (E,2) the annotated spans, ``movers`` (E,)
+    who moves in each, ``anchors`` (E,n) the reference blocks of each (needed with more than two blocks),
+    ``viewer`` (2,) where the viewer stood. The file is written next to ``path``, read back with
+    :func:`load_session` (a :class:`DataError` if anything is wrong) and only then renamed into place.
+    """
+    import os
+
+    p = Path(path)
+    tracks = [np.asarray(t, float) for t in tracks]
+    if len(tracks) < 2:
+        raise DataError(f"a capture session needs at least two blocks' tracks, got {len(tracks)}")
+    n = len(tracks[0])
+    arrays = {
+        "frame": np.arange(n, dtype=np.int32), "shell_pose": tracks[0], "stella_pose": tracks[1],
+        "shell_observed": np.ones(n, bool), "stella_observed": np.ones(n, bool),
+        "event_start_end": np.asarray(events, np.int32).reshape(-1, 2),
+        "event_mover": np.asarray(movers, np.int8).reshape(-1),
+    }
+    if len(tracks) > 2:
+        arrays["more_poses"] = np.stack(tracks[2:])
+    if anchors is not None:
+        arrays["event_anchors"] = np.asarray(anchors, np.int8).reshape(len(arrays["event_mover"]), -1)
+    if viewer is not None:
+        arrays["viewer_xy"] = np.asarray(viewer, float).reshape(2)
+    tmp = p.with_name(f".{p.stem}.tmp.npz")
+    try:
+        np.savez(tmp, **arrays)
+        try:
+            load_session(tmp)
+        except DataError as e:
+            raise DataError(str(e).replace(str(tmp), str(p))) from None
+        os.replace(tmp, p)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return p
+
+
+def expand_files(paths: list[str | Path]) -> list[Path]:
+    """Demonstration files as given on the command line: a folder stands for every ``.npz`` in it."""
+    out: list[Path] = []
+    for raw in paths:
+        p = Path(raw)
+        if p.is_dir():
+            found = sorted(p.glob("*.npz"))
+            if not found:
+                raise DataError(f"no demonstration files (.npz) in the folder {p}")
+            out += found
+        else:
+            out.append(p)
+    return out
 
 
 def session_files(action: str, root: str | Path | None = None) -> list[Path]:
@@ -145,22 +244,28 @@ def demos_from_session(path: str | Path, action: str, context: int = 45) -> list
     m = re.search(r"(Session\d+)", p.stem)
     session = m.group(1) if m else p.stem
     poses = tuple(clean_track(arrays[f"{b}_pose"], arrays.get(f"{b}_observed"))[0] for b in ("shell", "stella"))
+    poses += tuple(clean_track(t, None)[0] for t in arrays.get("more_poses", ()))
     events = arrays["event_start_end"]
     events = events.astype(np.int64)
+    refs = arrays.get("event_anchors")
+    viewer = np.array(arrays["viewer_xy"], float) if "viewer_xy" in arrays else None
     out = []
     for i, ((s, e), who) in enumerate(zip(events, arrays["event_mover"], strict=True)):
         lo = max(0, s - context, (events[i - 1][1] + 1) if i > 0 else 0)
         hi = min(len(poses[0]) - 1, e + context, (events[i + 1][0] - 1) if i + 1 < len(events) else 10**9)
-        _check_span(p, i, poses[int(who)][lo : hi + 1], poses[1 - int(who)][lo : hi + 1])
+        anchors = [1 - int(who)] if refs is None else [int(k) for k in refs[i]]
+        _check_span(p, i, poses[int(who)][lo : hi + 1], poses[anchors[0]][lo : hi + 1])
         out.append(
             Demo(
                 id=f"{action}/{session}/e{i:02d}",
                 action=action,
                 session=session,
                 mover=np.array(poses[int(who)][lo : hi + 1]),
-                anchor=np.array(poses[1 - int(who)][lo : hi + 1]),
+                anchor=np.array(poses[anchors[0]][lo : hi + 1]),
                 start=int(s - lo),
                 end=int(e - lo),
+                more_anchors=tuple(np.array(poses[k][lo : hi + 1]) for k in anchors[1:]),
+                viewer=viewer,
             )
         )
     return out

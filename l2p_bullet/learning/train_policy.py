@@ -19,8 +19,10 @@ from pathlib import Path
 import numpy as np
 import torch
 
+from ..core.frames import declaration
 from ..core.scene import random_scene
 from ..core.threads import torch_threads
+from ..errors import BundleError
 from ..planning.policy import FEATURES, policy_features, to_poses
 from ..planning.problem import FRAME_STEP
 from ..planning.world2d import World2D, segment_frames
@@ -156,6 +158,13 @@ def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig
     please, so a re-trained model marks it stale (see :func:`l2p_bullet.planning.plan`).
     """
     bundle = load_bundle(folder)
+    frame, anchors = declaration(bundle.manifest)
+    if not frame.relative or anchors != 1:
+        # The policy sees the mover in the anchor's polar frame and mirrors it to the side with more room:
+        # it cannot know the viewer's left from right, nor a second anchor. Such actions plan without one.
+        raise BundleError(f'"{bundle.name}" declares frame = "{frame.name}", anchors = {anchors}: move policies are '
+                          "trained for relative one-anchor actions only; the default planner plans this action "
+                          "without one")
     t0 = time.perf_counter()
     net, history, best_it = train_policy(ProgressModel.from_bundle(bundle), cfg, log)
     settings = policy_settings(cfg, history, time.perf_counter() - t0, best_it)

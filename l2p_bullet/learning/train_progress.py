@@ -17,13 +17,16 @@ from pathlib import Path
 import numpy as np
 import torch
 
+from ..core.frames import Frame, declaration
 from ..core.threads import torch_threads
 from ..core.vocabulary import ACTIONS
+from ..errors import BundleError, L2PError
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from .demos import Demo, load_demos
 from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
 from .trainset import DataConfig, TrainingSequence, build
+from .views import viewer_sides
 
 
 @dataclass(frozen=True)
@@ -64,6 +67,10 @@ def data_digest(demos: dict[str, list[Demo]]) -> str:
             h.update(d.id.encode())
             h.update(np.ascontiguousarray(d.mover, np.float64).tobytes())
             h.update(np.ascontiguousarray(d.anchor, np.float64).tobytes())
+            for x in d.more_anchors:  # plugin actions' further anchors and viewpoint (none for the built-ins)
+                h.update(np.ascontiguousarray(x, np.float64).tobytes())
+            if d.viewer is not None:
+                h.update(np.ascontiguousarray(d.viewer, np.float64).tobytes())
     return h.hexdigest()
 
 
@@ -161,11 +168,34 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
 
 
 def training_section(result: TrainResult, cfg: ProgressTrainConfig, seed: int, command: str,
-                     data_cfg: DataConfig | None = None) -> dict:
-    """The manifest's ``[training]``: how to reproduce the weights and what data went in."""
-    return {"command": command, "seed": seed, "data_digest": result.data_digest,
-            "n_sequences": result.n_sequences, "n_positive": result.n_positive,
-            "seconds": round(result.seconds, 1), **cfg.to_dict(), "data": (data_cfg or DataConfig()).to_dict()}
+                     data_cfg: DataConfig | None = None, own: list[Demo] | None = None,
+                     qsr_cfg: QSRConfig | None = None) -> dict:
+    """The manifest's ``[training]``: how to reproduce the weights and what data went in (for a
+    viewer-frame action also on which sides its demonstrations end, which decides its negatives)."""
+    section = {"command": command, "seed": seed, "data_digest": result.data_digest,
+               "n_sequences": result.n_sequences, "n_positive": result.n_positive,
+               "seconds": round(result.seconds, 1), **cfg.to_dict(), "data": (data_cfg or DataConfig()).to_dict()}
+    if qsr_cfg is not None and qsr_cfg.viewer and own:
+        lateral, depth = viewer_sides(own)
+        section["viewer_sides"] = {"lateral": lateral, "depth": depth}
+    return section
+
+
+def declared(name: str, folder: Path | None) -> tuple[Frame, int]:
+    """The frame and number of anchors a plugin action declares: in the manifest in ``folder`` (the one
+    being trained), else in the installed plugin's; the defaults without either."""
+    from ..plugins.bundle import MANIFEST, read_manifest
+    from ..plugins.registry import resolve
+
+    if folder is None or not (folder / MANIFEST).is_file():
+        try:
+            folder = resolve(name)[1]
+        except L2PError:
+            return Frame(), 1
+    try:
+        return declaration(read_manifest(folder))
+    except BundleError as e:
+        raise BundleError(f"{folder / MANIFEST}: {e}") from None
 
 
 def training_target(action: str, out: Path | None, demo_files: Sequence[str]) -> tuple[str, bool]:
@@ -175,7 +205,7 @@ def training_target(action: str, out: Path | None, demo_files: Sequence[str]) ->
     action (``l2p-bullet new-action``) is trained before its package is installed, so it is recognised
     by the manifest the scaffold put in ``out``, which must name it, and it needs the author's demos.
     """
-    from ..errors import BundleError, PluginError
+    from ..errors import PluginError
     from ..plugins.bundle import MANIFEST, read_manifest
     from ..plugins.registry import resolve
 
@@ -205,23 +235,28 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     """
     from ..errors import DataError, RunFolderError
     from ..plugins.bundle import MANIFEST, PROGRESS_FILE, write_progress_bundle
-    from .demos import load_demos
+    from .demos import expand_files, load_demos
+
+    demo_files = [str(f) for f in expand_files(list(demo_files))]
 
     name, plugin = training_target(action, out, demo_files)
     out = out if out is not None else Path("runs") / "bundles" / name
     if (out / MANIFEST).exists() and (out / PROGRESS_FILE).exists() and not force:
         raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
     cfg = cfg or ProgressTrainConfig()
+    qsr_cfg = QSRConfig()
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
         data_cfg = DataConfig(random_negatives=0)
+        frame, anchors = declared(name, out)
+        qsr_cfg = QSRConfig(frame=frame.name, anchors=anchors)
     else:
         demos = all_demos({name: list(demo_files)} if demo_files else None)
         data_cfg = DataConfig()
     if demo_files and not demos[name]:
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
-    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=tick)
+    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick)
     arrays = ensemble_arrays(result.model.nets)
     if not (np.isfinite(result.final_loss) and all(np.all(np.isfinite(a)) for a in arrays.values())):
         raise DataError(f'training "{name}" diverged (the loss or a weight is not a number); no bundle written')
@@ -230,6 +265,24 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
            + (f" --ensemble {cfg.ensemble}" if cfg.ensemble != default.ensemble else "")
            + (f" --epochs {cfg.epochs}" if cfg.epochs != default.epochs else ""))
     write_progress_bundle(out, name, arrays, result.model.model_cfg,
-                          result.model.qsr_cfg, training=training_section(result, cfg, seed, cmd, data_cfg),
+                          result.model.qsr_cfg,
+                          training=training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg),
                           metrics={"train_loss": round(result.final_loss, 6)})
     return out, result
+
+
+@dataclass(frozen=True)
+class BundleTrainer:
+    """:func:`train_bundle` with fixed settings, handed to code outside ``learning/`` that must not import
+    torch itself (the teach page gets one from its command, which may)."""
+
+    cfg: ProgressTrainConfig = field(default_factory=ProgressTrainConfig)
+
+    @property
+    def ticks(self) -> int:
+        """How many times a training calls ``tick`` (once per member-epoch)."""
+        return self.cfg.ensemble * self.cfg.epochs
+
+    def __call__(self, action: str, out: Path, demo_files: Sequence[str], seed: int = 0,
+                 tick: Callable[[], None] | None = None) -> tuple[Path, TrainResult]:
+        return train_bundle(action, out, demo_files=demo_files, seed=seed, cfg=self.cfg, force=True, tick=tick)

@@ -16,6 +16,23 @@ Why each part is here:
   "closer"), standing still, and random straight-line motions, including far jumps, that are clearly
   not even a partial instance of the action (:func:`violates`).
 Everything is in block units; motion-capture jitter is smoothed before resampling.
+
+Plugin actions that declare a viewer frame or a second anchor (:mod:`l2p_bullet.core.frames`) read
+their demonstrations against more than the anchor (:class:`Context`), and the set follows the
+declaration (:func:`build`; the five built-in actions take none of these branches):
+- **viewer frame**: no mirroring (it would turn left into right). The demonstrations are reflected in
+  the viewer's frame instead, across the line of sight through the anchor (left <-> right) and across
+  the line through the anchor at right angles to it (in front <-> behind): a reflection that moves the
+  ends to a side the demonstrations never end on (:func:`viewer_sides`) is a **negative** (the left-of
+  model learns that right-of motions are not it), one that keeps them where they end is a positive
+  (in front stays in front when left and right are swapped). Near misses are negatives too: the end
+  turned (start kept) to a bearing no demonstration ends at, or stretched beyond the farthest; twisted
+  copies (start turned, end kept) are positives. The other actions' demonstrations, as negatives, are
+  seen from a viewpoint placed so that they end on a side this action does not.
+- **two anchors**: the second anchor's track goes along; stretched copies are stretched about the
+  event's end (where the relation holds) instead of about the first anchor; the other actions'
+  demonstrations get a second anchor on the far side of the first from where they end (ending beside
+  one anchor, away from the other, is not "between" them).
 """
 
 from __future__ import annotations
@@ -24,10 +41,25 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.geometry import moving_average, swept_angle, unwrapped_bearing
+from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
 from ..progress.features import QSRConfig, features, resample
 from .demos import Demo
+from .views import (
+    Context,
+    check_demos,
+    demo_context,
+    displaced,
+    end_bearings,
+    end_region,
+    mirror,
+    placed,
+    smooth_poses,
+    stretched,
+    twisted_end,
+    viewer_sides,
+    views,
+)
 
 
 @dataclass(frozen=True)
@@ -106,25 +138,16 @@ class TrainingSequence:
     end: int = -1  # index of the event's last frame (positives), else the last frame
 
 
-def smooth_poses(poses: np.ndarray, window: int) -> np.ndarray:
-    """Centred moving average with edge padding (angles unwrapped first)."""
-    if window <= 1 or len(poses) < 3:
-        return poses
-    return moving_average(poses, window)
-
-
-def mirror(poses: np.ndarray) -> np.ndarray:
-    out = poses.copy()
-    out[:, 1] *= -1
-    out[:, 2] *= -1
-    return out
-
-
 def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, end: float,
               qcfg: QSRConfig, dcfg: DataConfig, positive: bool, turns: float | None = None,
-              net: float | None = None) -> TrainingSequence:
-    rs = resample(mover, anchor, size, qcfg)
-    x = features(rs.mover, rs.anchor, qcfg)
+              net: float | None = None, ctx: Context | None = None) -> TrainingSequence:
+    if ctx is None:
+        rs = resample(mover, anchor, size, qcfg)
+        x = features(rs.mover, rs.anchor, qcfg)
+    else:
+        rs = resample(mover, anchor, size, qcfg, list(ctx.more) or None)
+        x = features(rs.mover, rs.anchor, qcfg, more=rs.more or None,
+                     viewer=None if ctx.viewer is None else np.asarray(ctx.viewer, float)[:2] / size)
     if not positive:
         # penalise only the tail: arc length past (1 - tail) of the way from the start to the end
         s_from = rs.arc[-1] * (1.0 - dcfg.negative_tail)
@@ -293,47 +316,67 @@ def build(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: Data
 
     Positives first (each demonstration and its mirror image, with their copies), then the negatives,
     weighted so that together they weigh ``negative_weight`` times the positives. One random generator
-    drives every draw, in this order, so a seed reproduces the set bit for bit.
+    drives every draw, in this order, so a seed reproduces the set bit for bit. A viewer frame or a
+    second anchor changes which mirror images are positives and how the negatives are read (module
+    docstring).
     """
     rng = np.random.default_rng(seed)
-    pos = [s for d in demos.get(action, []) for s in _positives(action, d, qcfg, dcfg, rng)]
-    neg = _negatives(action, demos, qcfg, dcfg, rng)
+    own = demos.get(action, [])
+    sides = None
+    if qcfg.viewer or qcfg.anchors > 1:
+        check_demos(action, own, qcfg)
+        sides = viewer_sides(own) if qcfg.viewer else None
+    pos = [s for d in own for s in _positives(action, d, qcfg, dcfg, rng, sides)]
+    neg = _negatives(action, demos, qcfg, dcfg, rng, sides)
     w = dcfg.negative_weight * len(pos) / max(len(neg), 1)
     for s in neg:
         s.weight = w
     return pos + neg
 
 
-def _positives(action: str, d: Demo, qcfg: QSRConfig, dcfg: DataConfig,
-               rng: np.random.Generator) -> list[TrainingSequence]:
+def _positives(action: str, d: Demo, qcfg: QSRConfig, dcfg: DataConfig, rng: np.random.Generator,
+               sides: tuple[int, int] | None = None) -> list[TrainingSequence]:
     """A demonstration and its mirror image, each with its context, cropped to the event, and its copies."""
     turns, net = dcfg.turn_label.get(action), dcfg.net_label.get(action)
     out = []
     m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
-    for mm, aa in ((m, a), (mirror(m), mirror(a))):
-        out.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns))
-        out.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True, turns))
+    ctx = demo_context(d, dcfg.smooth_frames) if sides is not None or qcfg.anchors > 1 else None
+    for mm, aa, cx, positive in views(d, m, a, ctx, qcfg, sides):
+        if not positive:
+            continue
+        out.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns, ctx=cx))
+        out.append(_labelled(mm[d.start:], aa[d.start:], d.size, 0, d.end - d.start, qcfg, dcfg, True, turns,
+                             ctx=None if cx is None else cx.crop(d.start)))
         c = aa[d.start:d.end + 1].mean(axis=0)
-        variants, net_variants = _copies(action, mm[d.start:d.end + 1], c, d.size, dcfg, rng)
+        cc = None if cx is None else cx.at_event(d)
+        about_end = qcfg.anchors > 1
+        variants, net_variants = _copies(action, mm[d.start:d.end + 1], c, d.size, dcfg, rng, about_end,
+                                         twist=qcfg.viewer)
         for pm in variants:
             if pm is not None:
                 pa = np.repeat(c[None], len(pm), axis=0)
-                out.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, turns))
+                out.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, turns, ctx=cc))
         for pm in net_variants:
             if pm is not None:
                 pa = np.repeat(c[None], len(pm), axis=0)
-                out.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, net=net))
+                out.append(_labelled(pm, pa, d.size, 0, len(pm) - 1, qcfg, dcfg, True, net=net, ctx=cc))
     return out
 
 
 def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: DataConfig,
-            rng: np.random.Generator) -> tuple[list, list]:
+            rng: np.random.Generator, about_end: bool = False, twist: bool = False) -> tuple[list, list]:
     """The event's copies (see :class:`DataConfig`): those labelled like the event, and those labelled by
-    the net distance gained (``net_label`` actions). None entries are copies that could not be made."""
+    the net distance gained (``net_label`` actions). None entries are copies that could not be made.
+    ``about_end`` stretches about the event's end instead of the anchor (two-anchor actions); ``twist``
+    adds twisted copies (a viewer-frame action: where the block comes from is not the relation, where
+    it ends is)."""
     variants = [_polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
     for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
         pm = _event_or_polyline(ev_m, c, rng)
-        if pm is not None:
+        if pm is not None and about_end:
+            lo, hi = dcfg.scale_ranges.get(action, dcfg.scale_range)
+            pm = _scaled(pm, pm[-1], max(rng.uniform(lo, hi), 1.0))  # the same end, from farther away
+        elif pm is not None:
             lo, hi = dcfg.scale_ranges.get(action, dcfg.scale_range)
             nearest = float(np.linalg.norm(pm[:, :2] - c[:2], axis=1).min()) / size
             pm = _scaled(pm, c, max(rng.uniform(lo, hi), min(1.0, 1.0 / max(nearest, 1e-9))))
@@ -343,7 +386,7 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
         if pm is not None:
             pm = _scaled(pm, pm[0], rng.uniform(*dcfg.shortened[action]))
         variants.append(pm)
-    for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions else 0):
+    for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions or twist else 0):
         pm = _event_or_polyline(ev_m, c, rng)
         angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
         variants.append(None if pm is None else _twist(pm, c, angle))
@@ -368,17 +411,55 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
     return variants, net_variants
 
 
+NEAR_MISSES = 2
+"""Near misses per positive view of a two-anchor or viewer-frame demonstration (``views.displaced``, ``views.twisted_end``)."""
+
+
 def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
-               rng: np.random.Generator) -> list[TrainingSequence]:
+               rng: np.random.Generator, sides: tuple[int, int] | None = None) -> list[TrainingSequence]:
     """The other actions' demonstrations (with context and cropped, both mirror images), random motions
-    that :func:`violates` the action, and motions that stand still."""
+    that :func:`violates` the action, and motions that stand still. A viewer-frame action adds its own
+    demonstrations' reflections that end on the wrong side (:func:`views`)."""
+    general = sides is not None or qcfg.anchors > 1
     neg: list[TrainingSequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
         for d in demos.get(other, []):
             m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
             for mm, aa in ((m, a), (mirror(m), mirror(a))):
-                neg.append(_labelled(mm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
-                neg.append(_labelled(mm[d.start:d.end + 1], aa[d.start:d.end + 1], d.size, 0, 0, qcfg, dcfg, False))
+                cx = placed(mm[d.end], aa[d.end], d.size, qcfg, sides, rng) if general else None
+                neg.append(_labelled(mm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False, ctx=cx))
+                neg.append(_labelled(mm[d.start:d.end + 1], aa[d.start:d.end + 1], d.size, 0, 0, qcfg, dcfg, False,
+                                     ctx=cx))
+    if qcfg.anchors > 1:
+        region = end_region(demos.get(action, []))
+        for d in demos.get(action, []):
+            m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
+            for mm, aa, cx, _ in views(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
+                for _ in range(NEAR_MISSES):
+                    miss = displaced(d, mm, aa, cx, region, rng)
+                    if miss is not None:
+                        neg.append(_labelled(mm[: d.end + 1], miss[0][: d.end + 1], d.size, 0, 0, qcfg, dcfg, False,
+                                             ctx=miss[1].crop(0, d.end + 1)))
+                        neg.append(_labelled(mm[d.start:d.end + 1], miss[0][d.start:d.end + 1], d.size, 0, 0, qcfg,
+                                             dcfg, False, ctx=miss[1].crop(d.start, d.end + 1)))
+    if sides is not None:
+        own = demos.get(action, [])
+        bearings = end_bearings(own)
+        farthest = max(float(np.linalg.norm(d.mover[d.end, :2] - d.anchor[d.end, :2])) / d.size for d in own) * max(
+            dcfg.scale_ranges.get(action, dcfg.scale_range))
+        for d in own:
+            m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
+            for mm, aa, cx, positive in views(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
+                wrong = [(mm, cx)] if not positive else (
+                    [(twisted_end(d, mm, aa, cx, bearings, rng), cx) for _ in range(NEAR_MISSES)]
+                    + [(stretched(d, mm, aa, farthest, rng), cx)])
+                for wm, x in wrong:
+                    if wm is None:
+                        continue
+                    neg.append(_labelled(wm[: d.end + 1], aa[: d.end + 1], d.size, 0, 0, qcfg, dcfg, False,
+                                         ctx=x.crop(0, d.end + 1)))
+                    neg.append(_labelled(wm[d.start:d.end + 1], aa[d.start:d.end + 1], d.size, 0, 0, qcfg, dcfg,
+                                         False, ctx=x.crop(d.start, d.end + 1)))
     n_rand = tries = 0
     while n_rand < dcfg.random_negatives and tries < 20 * dcfg.random_negatives:
         tries += 1
@@ -388,11 +469,13 @@ def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg:
             n_rand += 1
     for _ in range(dcfg.static_negatives):
         mover, anchor = random_motion(rng, n_moves=0)
-        neg.append(_labelled(mover, anchor, 1.0, 0, 0, qcfg, dcfg, False))
+        cx = placed(mover[-1], anchor[-1], 1.0, qcfg, (0, 0) if sides else None, rng) if general else None
+        neg.append(_labelled(mover, anchor, 1.0, 0, 0, qcfg, dcfg, False, ctx=cx))
     return neg
 
 
 def demo_sequence(d: Demo, qcfg: QSRConfig, dcfg: DataConfig) -> TrainingSequence:
     """A demonstration with its whole context, labelled as a positive (for held-out MSE)."""
     m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
-    return _labelled(m, a, d.size, d.start, d.end, qcfg, dcfg, True)
+    ctx = demo_context(d, dcfg.smooth_frames) if qcfg.viewer or qcfg.anchors > 1 else None
+    return _labelled(m, a, d.size, d.start, d.end, qcfg, dcfg, True, ctx=ctx)

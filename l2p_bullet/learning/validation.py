@@ -18,7 +18,7 @@ import numpy as np
 from ..core.vocabulary import ACTIONS
 from .demos import Demo
 from .progress_net import ProgressModel
-from .trainset import smooth_poses
+from .views import smooth_poses
 
 
 def demo_targets(d: Demo, model: ProgressModel, smooth_frames: int = 9) -> tuple[float, float]:

@@ -19,6 +19,7 @@ better. The 2-D simulator only says which moves are legal; ``evaluate`` judges t
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -63,34 +64,46 @@ def resolve_planner(name: str, settings: dict | None = None) -> str:
     return key
 
 
-def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "default", seed: int = 0,
+def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, planner: str = "default", seed: int = 0,
          budget: int | None = None, threshold: float | None = None, time_limit: float | None = None) -> Plan:
     """Plan ``mover``'s path for the bundle's action relative to ``anchor`` in ``scene``.
 
-    Deterministic for a seed. ``budget`` counts search steps (forward passes of the progress model);
-    ``time_limit`` (seconds), when given, also ends the search (for equal-time comparisons).
+    ``anchor`` is one object's name, or the names of every reference object of a two-anchor action
+    ("between B and C": ``("B", "C")``); every object but the mover is an obstacle either way, so the
+    anchors are never touched. Deterministic for a seed. ``budget`` counts search steps (forward passes of
+    the progress model); ``time_limit`` (seconds), when given, also ends the search (for equal-time
+    comparisons).
     """
     settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
     name = resolve_planner(planner, settings)
-    if mover == anchor:
+    anchors = [anchor] if isinstance(anchor, str) else list(anchor)
+    anchor = anchors[0]
+    if mover in anchors:
         raise PlanError(f'the mover and the anchor are the same object "{mover}"')
     anchor_obj = scene.get(anchor)
+    more_poses = [scene.get(a).pose for a in anchors[1:]]
+    model = bundle.progress_model()
+    needed = getattr(model, "anchors", 1)
+    if len(anchors) != needed:
+        raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '
+                        f"not {len(anchors)} ({', '.join(anchors)})")
     world = World2D(scene, mover)
     if world.overlaps(world.mover.pose):
         raise PlanError(f'"{mover}" starts touching another object (closer than the gripper margin): '
                         "move it apart in the scene first")
     problem = Problem(
-        world=world, model=bundle.progress_model(), anchor_pose=anchor_obj.pose, size=world.size,
+        world=world, model=model, anchor_pose=anchor_obj.pose, size=world.size,
         threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
         budget=int(budget if budget is not None else BUDGETS[name]),
-        rng=np.random.default_rng(seed),
+        rng=np.random.default_rng(seed), more_anchor_poses=more_poses,
+        viewer=getattr(model, "viewpoint", None),
     )
     if time_limit is not None:
         problem.deadline = time.perf_counter() + time_limit
     with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
         node, stopped, steps = _search(name, problem, bundle)
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
-                    stopped=stopped, steps=steps)
+                    stopped=stopped, steps=steps, more_anchors=anchors[1:])
     if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "
                                 "re-train it: l2p-bullet train-policy")

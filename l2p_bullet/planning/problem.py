@@ -27,11 +27,15 @@ and just enough to square a block up with any other (a square's yaw matters modu
 
 
 class ProgressScorer(Protocol):
-    """The part of a learned ProgressModel the planners use (see docs/INTERFACES.md, Learning)."""
+    """The part of a learned ProgressModel the planners use (see docs/INTERFACES.md, Learning).
 
-    def final_batch(self, movers: list[np.ndarray], anchors: object, size: float) -> np.ndarray: ...
+    ``context`` (``more_anchors``, ``viewer``) is only passed for actions that declare a second anchor or
+    a viewer frame (:attr:`Problem.context`), so a scorer of relative one-anchor actions may ignore it.
+    """
 
-    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray: ...
+    def final_batch(self, movers: list[np.ndarray], anchors: object, size: float, **context) -> np.ndarray: ...
+
+    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float, **context) -> np.ndarray: ...
 
 
 @dataclass
@@ -69,6 +73,18 @@ class Problem:
     forward_passes: int = 0
     started: float = field(default_factory=time.perf_counter)
     deadline: float | None = None  # perf_counter time after which the search stops (equal-time runs)
+    more_anchor_poses: list[np.ndarray] = field(default_factory=list)  # a two-anchor action's second anchor
+    viewer: np.ndarray | None = None  # (2,) the viewpoint of a viewer-frame action (scene frame, metres)
+
+    @property
+    def context(self) -> dict:
+        """What the model reads besides the mover and the anchor (empty for a relative one-anchor action)."""
+        kw: dict = {}
+        if self.more_anchor_poses:
+            kw["more_anchors"] = list(self.more_anchor_poses)
+        if self.viewer is not None:
+            kw["viewer"] = self.viewer
+        return kw
 
     def go_on(self, best: Node, steps: int) -> bool:
         """Whether the search may take another step."""
@@ -83,7 +99,7 @@ class Problem:
     def root(self) -> Node:
         start = self.world.mover.pose.copy()
         frames = start[None].copy()
-        p = float(self.model.final_batch([frames], self.anchor_pose, self.size)[0])
+        p = float(self.model.final_batch([frames], self.anchor_pose, self.size, **self.context)[0])
         self.forward_passes += 1
         return Node(start[None].copy(), frames, p)
 
@@ -102,7 +118,8 @@ class Problem:
                 seg = segment_frames(node.pose, end, self.step)
                 kids.append(Node(np.vstack([node.waypoints, end]), np.vstack([node.frames, seg]), 0.0, node))
         if kids:
-            scores = np.asarray(self.model.final_batch([k.frames for k in kids], self.anchor_pose, self.size))
+            scores = np.asarray(self.model.final_batch([k.frames for k in kids], self.anchor_pose, self.size,
+                                                       **self.context))
             self.forward_passes += 1
             self.evaluations += len(kids)
             for k, s in zip(kids, scores, strict=True):
@@ -115,10 +132,11 @@ Proposer = Callable[[Problem, Node, int], np.ndarray]
 
 
 def finish(problem: Problem, node: Node, *, action: str, mover: str, anchor: str, planner: str,
-           stopped: str, steps: int) -> Plan:
+           stopped: str, steps: int, more_anchors: list[str] | None = None) -> Plan:
     """The plan.json of the best node: frames as the path, the model's curve as per-point progress."""
     path = node.frames
-    progress = np.asarray(problem.model.curve(path, problem.anchor_pose, problem.size), float).reshape(-1)
+    progress = np.asarray(problem.model.curve(path, problem.anchor_pose, problem.size, **problem.context),
+                          float).reshape(-1)
     if len(progress) != len(path):  # a model that resamples internally: spread its curve over the frames
         progress = np.interp(np.linspace(0, 1, len(path)), np.linspace(0, 1, max(len(progress), 1)), progress)
     return Plan(
@@ -135,5 +153,8 @@ def finish(problem: Problem, node: Node, *, action: str, mover: str, anchor: str
             "budget": problem.budget,
             "seconds": round(time.perf_counter() - problem.started, 4),
         },
+        more_anchors=list(more_anchors or []),
+        more_anchor_poses=np.array(problem.more_anchor_poses, float).reshape(-1, 3) if more_anchors else None,
+        viewer=problem.viewer,
     )
 

@@ -4,7 +4,9 @@
   rotation (the baseline knows nothing about the action or the anchor);
 - ``discrete_moves``: the paper's qualitative space, cardinal direction x quantised distance **around the
   anchor**, in the anchor's own frame (so "east of B at 1.25 blocks" is face to face with B). It is a
-  small fixed set, so a step costs one forward pass over about 40 paths;
+  small fixed set, so a step costs one forward pass over about 40 paths. A viewer-frame action adds the
+  same rings in the viewer's frame (left, in front, ... of B exactly as the viewer sees them), a
+  two-anchor action cells along and beside the segment between its anchors and the rings of its second;
 - the learned policy's proposals live in ``policy.py``.
 
 Every proposal keeps rotations moderate (at most ``MAX_TURN`` per move); illegal ones (colliding,
@@ -38,12 +40,36 @@ def random_moves(problem: Problem, node: Node, n: int) -> np.ndarray:
     return node.pose + d
 
 
-def discrete_targets(problem: Problem) -> np.ndarray:
-    """All (direction, distance) cells around the anchor as mover poses' x, y: (DIRECTIONS*len(DISTANCES), 2)."""
-    ang = problem.anchor_pose[2] + 2 * np.pi * np.arange(DIRECTIONS) / DIRECTIONS
-    dist = np.asarray(DISTANCES) * problem.size
-    xy = problem.anchor_pose[:2] + dist[None, :, None] * np.stack([np.cos(ang), np.sin(ang)], -1)[:, None, :]
+def _rings(centre: np.ndarray, angle0: float, size: float) -> np.ndarray:
+    """DIRECTIONS x DISTANCES cells (x, y) around ``centre``, the first direction at ``angle0``."""
+    ang = angle0 + 2 * np.pi * np.arange(DIRECTIONS) / DIRECTIONS
+    dist = np.asarray(DISTANCES) * size
+    xy = centre[:2] + dist[None, :, None] * np.stack([np.cos(ang), np.sin(ang)], -1)[:, None, :]
     return xy.reshape(-1, 2)
+
+
+SEGMENT_T = (0.25, 0.5, 0.75)
+"""Where along the segment between two anchors the two-anchor cells lie (0 = the first anchor)."""
+
+SEGMENT_OFFSETS = (0.0, 1.25, -1.25, 2.5, -2.5)
+"""Their offsets across the segment, in block sizes."""
+
+
+def discrete_targets(problem: Problem) -> np.ndarray:
+    """All (direction, distance) cells around the anchor as mover poses' x, y: (DIRECTIONS*len(DISTANCES), 2),
+    then a viewer-frame action's rings in the viewer's frame and a two-anchor action's segment cells and
+    rings around its second anchor (see the module docstring)."""
+    a = problem.anchor_pose
+    cells = [_rings(a, a[2], problem.size)]
+    if problem.viewer is not None:
+        sight = a[:2] - np.asarray(problem.viewer, float)[:2]
+        cells.append(_rings(a, float(np.arctan2(sight[1], sight[0])), problem.size))
+    for c in problem.more_anchor_poses:
+        e = np.asarray(c, float)[:2] - a[:2]
+        n = np.array([-e[1], e[0]]) / max(float(np.linalg.norm(e)), 1e-9)
+        cells.append(np.array([a[:2] + t * e + k * problem.size * n for t in SEGMENT_T for k in SEGMENT_OFFSETS]))
+        cells.append(_rings(np.asarray(c, float), float(c[2]), problem.size))
+    return np.concatenate(cells)
 
 
 def _discrete_moves(problem: Problem, node: Node, n: int = 0, squared_within: float = np.inf) -> np.ndarray:

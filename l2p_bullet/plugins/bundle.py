@@ -298,6 +298,9 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
         "requires": REQUIRES,
         "phrases": shipped.get("phrases") or old.get("phrases") or [action],
         "description": shipped.get("description") or old.get("description", ""),
+        # the declaration the model was trained for (left out at the defaults unless the author wrote it)
+        "frame": qsr_cfg.frame if qsr_cfg.frame != "relative" or "frame" in old else None,
+        "anchors": qsr_cfg.anchors if qsr_cfg.anchors != 1 or "anchors" in old else None,
         "features": {**qsr_cfg.to_dict(), "names": feature_names(qsr_cfg)},
         "model": model_cfg.to_dict(), "training": training, "metrics": metrics,
         "weights": keep_weights,

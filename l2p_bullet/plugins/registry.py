@@ -32,8 +32,9 @@ from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..core.frames import declaration
 from ..core.vocabulary import normalize_name, normalize_phrase
-from ..errors import FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
+from ..errors import BundleError, FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
 from .bundle import MANIFEST, PROGRESS_FILE
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -70,6 +71,17 @@ class PluginInfo:
     def phrases(self) -> tuple[str, ...]:
         raw = self.manifest.get("phrases", ())
         return tuple(normalize_phrase(p) for p in raw if isinstance(p, str)) if isinstance(raw, list) else ()
+
+    @property
+    def anchors(self) -> int:
+        """Reference objects its sentences name (the manifest's ``anchors``; 1 unless declared)."""
+        a = self.manifest.get("anchors", 1)
+        return a if isinstance(a, int) and not isinstance(a, bool) else 1
+
+    @property
+    def frame(self) -> str:
+        """Where its relation is seen from (the manifest's ``frame``; "relative" unless declared)."""
+        return str(self.manifest.get("frame", "relative"))
 
     @property
     def description(self) -> str:
@@ -163,6 +175,10 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     phrases = manifest.get("phrases")
     if not (isinstance(phrases, list) and phrases and all(isinstance(p, str) and p.strip() for p in phrases)):
         return manifest, f'{path}: "phrases" must be a non-empty list of phrases such as ["next to", "beside"]'
+    try:
+        declaration(manifest)
+    except BundleError as e:
+        return manifest, f"{path}: {e}"
     declared = manifest.get("name")
     if declared is not None and normalize_name(str(declared)) != normalize_name(name):
         return manifest, f'{path} describes the action "{declared}" but the entry point is named "{name}"'
@@ -193,6 +209,15 @@ def discover() -> list[PluginInfo]:
         manifest, error = _check_manifest(ep.name, folder)
         found.append(PluginInfo(**base, path=folder, manifest=manifest, error=error))
     return sorted(found, key=lambda p: (p.name, p.package))
+
+
+def local(name: str, folder: Path) -> PluginInfo:
+    """A bundle folder being authored (not installed: the teach page trains it and performs with it),
+    as a plugin that :func:`load` reads without importing anything and never caches (it may be
+    re-trained at any time). Pass it in the ``plugins`` list of ``perform`` instead of the installed one."""
+    manifest, error = _check_manifest(name, folder)
+    return PluginInfo(name=name, module="", package="(not installed)", package_version="", path=folder,
+                      manifest=manifest, error=error)
 
 
 def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
@@ -253,6 +278,12 @@ def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
     return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases if phrase not in blocked}
 
 
+def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
+    """Action name -> how many reference objects its sentences name, over the usable plugins."""
+    plugins = discover() if plugins is None else plugins
+    return {p.name: p.anchors for p in plugins if p.ok}
+
+
 def broken(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
     """The plugins that cannot be used, each with its reason."""
     return [p for p in (discover() if plugins is None else plugins) if not p.ok]
@@ -291,15 +322,17 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     key = (info.name, str(info.path))
     if key in _LOADED:
         return _LOADED[key]
-    try:
-        mod = importlib.import_module(info.module)
-    except KeyboardInterrupt:  # the person at the keyboard wants to stop: that is not the plugin's bug
-        raise
-    except BaseException as e:  # noqa: BLE001 - sys.exit(7) or a BaseException in a plugin's import must
-        # not end the program: it is the plugin's bug, reported with its name like any other
-        what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
-        raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: {what}"[:500]) from None
-    folder = _module_folder(mod) or info.path
+    folder = info.path
+    if info.module:  # an installed plugin (not a folder being authored, see local())
+        try:
+            mod = importlib.import_module(info.module)
+        except KeyboardInterrupt:  # the person at the keyboard wants to stop: that is not the plugin's bug
+            raise
+        except BaseException as e:  # noqa: BLE001 - sys.exit(7) or a BaseException in a plugin's import must
+            # not end the program: it is the plugin's bug, reported with its name like any other
+            what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
+            raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: {what}"[:500]) from None
+        folder = _module_folder(mod) or info.path
     from ..errors import L2PError
     from .bundle import load_bundle
 
@@ -307,7 +340,8 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
         bundle = load_bundle(folder)
     except L2PError as e:
         raise FailedToLoadPlugin(info.name, info.package, f"invalid bundle: {e}") from None
-    _LOADED[key] = bundle
+    if info.module:
+        _LOADED[key] = bundle
     return bundle
 
 

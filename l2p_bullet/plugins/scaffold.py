@@ -14,8 +14,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
+from ..core.frames import parse_anchors, parse_frame
 from ..core.vocabulary import PLUGIN_ACTION, normalize_phrase
-from ..errors import PluginError
+from ..errors import BundleError, PluginError, UnknownActionError
 
 
 @dataclass(frozen=True)
@@ -29,6 +30,16 @@ class Scaffold:
     files: list[Path]
 
 
+def _example(phrase: str, anchors: int) -> str:
+    """A sentence for the README: "move A <phrase> B" (and C)."""
+    return f"move A {phrase} B" + (" and C" if anchors == 2 else "")
+
+
+_KIND = {"left-of": "left-of", "right-of": "right-of", "in-front-of": "in-front-of", "behind": "behind",
+         "between": "between"}
+"""Action names whose generated example demonstrations exist (``l2p_bullet.learning.synthetic``)."""
+
+
 def check_name(name: str) -> str:
     if not PLUGIN_ACTION.match(name):
         raise PluginError(
@@ -38,14 +49,29 @@ def check_name(name: str) -> str:
 
 
 def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
-             installed: dict[str, str] | None = None, description: str = "") -> Scaffold:
+             installed: dict[str, str] | None = None, description: str = "", frame: str = "relative",
+             anchors: int = 1, judge: str | None = None) -> Scaffold:
     """Write the plugin project for action ``name`` (claiming ``phrases``) into ``out``.
 
     ``installed`` maps phrases already claimed to their action: a new plugin that reuses one would make
     every sentence ambiguous once installed, so that is refused here rather than after ``pip install``.
-    Never overwrites: an existing ``out`` is an error.
+    ``frame`` and ``anchors`` are the manifest's declarations (:mod:`l2p_bullet.core.frames`), ``judge``
+    the name of a rule judge (``judge/rules.py``) for its ``[judge]`` section (default: none, the action's
+    own progress model judges). Never overwrites: an existing ``out`` is an error.
     """
     check_name(name)
+    try:
+        frame, anchors = parse_frame(frame).name, parse_anchors(anchors)
+    except BundleError as e:
+        raise PluginError(str(e)) from None
+    if judge is not None:
+        from ..judge.rules import RULES, TWO_ANCHOR_RULES
+
+        if judge not in RULES:
+            raise UnknownActionError(judge, RULES, "(no rule judge has that name)")
+        if (judge in TWO_ANCHOR_RULES) != (anchors == 2):
+            raise PluginError(f'the rules "{judge}" read {2 if judge in TWO_ANCHOR_RULES else 1} reference object(s); '
+                              f"this action takes {anchors} (--anchors)")
     clean = [normalize_phrase(p) for p in phrases if p.strip()]
     if not clean:
         raise PluginError('give at least one phrase, e.g. --phrase "to the left of"')
@@ -71,11 +97,14 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         pkg / "__init__.py": _INIT.format(name=name),
         pkg / "manifest.toml": _MANIFEST.format(
             name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
-            description=(description or f'Slide a block {clean[0]} another block.').replace('"', "'"),
-        ),
+            description=(description or f'Slide a block {clean[0]} another block'
+                         + (" and a third" if anchors == 2 else "") + ".").replace('"', "'"),
+            frame=frame, anchors=anchors,
+        ) + (_JUDGE.format(rules=judge) if judge else ""),
         root / "README.md": _README.format(
             name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
-            phrases=", ".join(f'"{p}"' for p in clean),
+            phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors),
+            kind=_KIND.get(name, "left-of" if anchors == 1 else "between"),
         ),
         root / "demos" / ".gitkeep": "",
     }
@@ -126,25 +155,64 @@ version = "0.1.0"
 requires = ">={version}"
 phrases = [{phrases}]
 description = "{description}"
+# Where the relation is seen from: "relative" (it means the same whichever way the table is turned:
+# around, past, closer to), "viewer" (left of, in front of, ... as seen from the robot's base) or
+# "viewer:camera" (as seen from the camera that films the runs).
+frame = "{frame}"
+# How many reference objects a sentence names: 1 ("move A <phrase> B") or 2 ("move A between B and C").
+anchors = {anchors}
+"""
+
+_JUDGE = """
+# Who decides whether a run succeeded: a rule judge of l2p_bullet/judge/rules.py (independent of the
+# learned model the planner maximises). Without this section the action's own progress model judges.
+[judge]
+rules = "{rules}"
 """
 
 _README = """\
 # {dist}: the "{name}" action for l2p-bullet
 
-Teaches `l2p-bullet perform` the phrases {phrases}, as in `l2p-bullet perform "move A {phrase} B"`.
+Teaches `l2p-bullet perform` the phrases {phrases}, as in `l2p-bullet perform "{example}"`.
 
     {root}/
       pyproject.toml        declares the entry point  [project.entry-points."l2p_bullet.actions"]  {name} = "{module}"
-      {module}/manifest.toml  the phrases; training adds the model's details and metrics
+      {module}/manifest.toml  the phrases, the frame, the number of anchors; training adds the model and metrics
       {module}/progress.safetensors   written by training
       demos/                your demonstrations (.npz)
 
+## 0. Declare what the words mean geometrically
+
+`{module}/manifest.toml` says where the relation is seen from and how many reference objects it has:
+
+- `frame = "relative"` when the words mean the same whichever way the table is turned (around, past,
+  closer to, next to); `frame = "viewer"` when they depend on who looks (left of, right of, in front of,
+  behind as seen from the robot's base; `"viewer:camera"`: as seen from the camera that films the runs).
+  A viewer-frame action is not trained on mirror images (they would turn left into right): the mirror
+  images that end on the wrong side are its negatives;
+- `anchors = 1` for "move A {phrase} B", `anchors = 2` for two reference objects ("move A between B and C").
+
+Change them before training (training reads them; a bundle whose declaration differs from what its
+model was trained with is refused).
+
 ## 1. Demonstrations
 
-Training reads the same capture-session format as the shipped human demonstrations
-(`l2p_bullet/data/captures/*.npz`, described in `l2p_bullet/data/README.md`). One `.npz` file is one
-session: the 2-D tracks of two blocks over time, and the annotated events in which one block performs the
-action relative to the other. Required arrays:
+Any of three ways; all end as capture-session files in `demos/`:
+
+- **record them in the browser**: `l2p-bullet teach {name}` (run next to this folder, or with
+  `--plugin {root}`) opens a page with a top-down view of a random scene; drag the block with the mouse,
+  mark start and end, and each demonstration is appended to `demos/{name}_taught.npz`;
+- **generate examples** of a few simple prepositions (left-of, right-of, in-front-of, behind, between),
+  enough to try the whole path:
+
+      python -c "from l2p_bullet.learning.synthetic import write_sessions; write_sessions('demos', '{kind}')"
+
+- **record them with any tracker** (motion capture, a phone video and a marker tracker, ...) or write
+  them with a script, in the format below.
+
+Training reads the capture-session format of the shipped human demonstrations (`l2p_bullet/data/README.md`).
+One `.npz` file is one session: the 2-D tracks of the blocks over time, and the annotated events in which
+one block performs the action relative to the others. Required arrays:
 
 | array             | shape  | meaning                                                                  |
 |-------------------|--------|--------------------------------------------------------------------------|
@@ -153,16 +221,22 @@ action relative to the other. Required arrays:
 | `event_start_end` | (E, 2) | `[first, last]` frame of each event (inclusive)                           |
 | `event_mover`     | (E,)   | which block moves in each event: 0 (shell) or 1 (stella); the other is the anchor |
 
+Needed by some declarations:
+
+| array             | shape     | meaning                                                                 |
+|-------------------|-----------|-------------------------------------------------------------------------|
+| `viewer_xy`       | (2,)      | `frame = "viewer"`: where the viewer stood, same frame as the tracks     |
+| `more_poses`      | (K, T, 3) | `anchors = 2`: tracks of blocks 2, 3, ...                                |
+| `event_anchors`   | (E, n)    | each event's reference blocks by index (0 shell, 1 stella, 2... `more_poses`); required with `more_poses` |
+
 Optional: `frame` (T,), `shell_observed`/`stella_observed` (T,) bool, `table_points_2d` (K, 2).
 Frames are about 30 per second; blocks are 0.15 m squares (only relative geometry matters, so any fixed
 frame works). Leave some still frames before and after each event: the progress model learns that
 progress is 0 outside the event and rises to 1 at its end. Files are loaded with `allow_pickle=False`,
-so save plain numeric arrays.
+so save plain numeric arrays; `l2p_bullet.learning.demos.save_session` writes them and checks them.
 
-**Record** them with any tracker (motion capture, a phone video and a marker tracker, ...), or **write**
-them: a short script that moves one block along plausible paths ending "{phrase}" the other, with some
-variety (start positions, speeds, curved and straight paths, both blocks as mover), is enough for a first
-model. For example:
+A script that writes them, for a one-anchor relative action (vary start positions, speeds, curved and
+straight paths, both blocks as mover):
 
 ```python
 import numpy as np
@@ -191,22 +265,24 @@ Check that they load: `python -c "from l2p_bullet.learning.demos import load_ses
 
 ## 2. Train
 
-    l2p-bullet train {name} --demos demos/*.npz --out {module}
+    l2p-bullet train {name} --demos demos --out {module}
 
-`--demos` takes several files (the shell expands `demos/*.npz`). This writes
+`--demos` takes several files (the shell expands `demos/*.npz`) or a folder. This writes
 `{module}/progress.safetensors` and completes `{module}/manifest.toml` in place (model, training data
-digest, metrics); its comments, version and phrases stay. The shipped demonstrations of the built-in actions serve as
-negatives. Optionally, train a REINFORCE move policy against the new model (the default planner then
-also proposes the policy's moves; without one it searches without it):
+digest, metrics); its comments, version, phrases and declaration stay. The shipped demonstrations of the
+built-in actions serve as negatives. Optionally (relative one-anchor actions), train a REINFORCE move
+policy against the new model (the default planner then also proposes the policy's moves; without one
+it searches without it):
 
     l2p-bullet train-policy {name} --bundle {module}
 
 ## 3. Install and use
 
     <env>/bin/pip install .  # the pip of the environment l2p-bullet runs in (or: install -e .)
-                             # always a path: `pip install {dist}` would fetch a stranger's package
+                             # always a path: `pip install {dist}` would fetch a stranger's package;
+                             # a plain install copies the bundle: install again after re-training
     l2p-bullet actions       # "{name}" is listed with its phrases
-    l2p-bullet perform "move A {phrase} B"
+    l2p-bullet perform "{example}"
 
 To share the action, build a wheel (`pip wheel . --no-deps`) and publish it like any Python package.
 """

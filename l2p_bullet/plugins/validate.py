@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.frames import declaration
 from ..errors import BundleError
 from ..progress.config import ModelConfig, expected_shapes
 
@@ -42,7 +43,7 @@ class _Checker:
         self.where = folder / "manifest.toml"
 
     def fail(self, field: str, what: str) -> BundleError:
-        return BundleError(f"{self.where}: {field} {what}")
+        return BundleError(f"{self.where}: {field} {what}" if field else f"{self.where}: {what}")
 
     def table(self, man: dict, key: str, required: bool = True) -> dict:
         v = man.get(key)
@@ -104,6 +105,10 @@ def check_manifest(folder: Path, man: dict) -> None:
     if not isinstance(man.get("description", ""), str) or len(man.get("description", "")) > 500:
         raise c.fail("description", "must be a text of at most 500 characters")
 
+    try:
+        frame, anchors = declaration(man)
+    except BundleError as e:
+        raise c.fail("", str(e).strip()) from None
     feats = c.table(man, "features")
     c.number(feats, "spacing", "[features] spacing", *LIMITS["spacing"])
     c.number(feats, "cd_sectors", "[features] cd_sectors", *LIMITS["cd_sectors"], integer=True)
@@ -113,7 +118,14 @@ def check_manifest(folder: Path, man: dict) -> None:
     if not (isinstance(edges, list) and 0 < len(edges) <= 16 and all(_is_num(e) and e > 0 for e in edges)
             and all(a < b for a, b in zip(edges, edges[1:], strict=False))):
         raise c.fail("[features] qdc_edges", "must be 1 to 16 increasing positive numbers (block sides)")
-    qsr = QSRConfig.from_dict(feats)
+    try:
+        qsr = QSRConfig.from_dict(feats)
+    except BundleError as e:
+        raise c.fail("[features]", str(e)) from None
+    if (qsr.frame, qsr.anchors) != (frame.name, anchors):
+        raise c.fail("", f'declares frame = "{frame.name}", anchors = {anchors} but its progress model was trained '
+                         f'with frame "{qsr.frame}", {qsr.anchors} anchor(s): re-train it (l2p-bullet train ... '
+                         "--out this folder)")
     names = feature_names(qsr)
     if "names" in feats and feats["names"] != names:
         raise c.fail("[features] names", "do not match the features these settings compute (re-train the bundle)")

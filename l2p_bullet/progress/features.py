@@ -17,6 +17,12 @@ Sequences are first resampled by **arc length** of the mover's path (``spacing``
 progress of "around" depends on where the block went, not on how fast a person slid it, and a
 planner's straight moves given by their end points become frames like a demonstration's.
 Everything is vectorised numpy; a batch is a padded ``(B, T, F)`` array.
+
+Two declarations of an action's manifest (:mod:`l2p_bullet.core.frames`) append columns; without them
+(the five built-in actions) the columns above are all there is, unchanged:
+- ``frame = "viewer"``: the mover's offset from the anchor as a viewer sees it (left/right, in front/
+  behind), which turning the scene changes: "to the left of" needs it, and only it;
+- ``anchors = 2``: the mover's place relative to the segment between the two anchors ("between").
 """
 
 from __future__ import annotations
@@ -26,6 +32,7 @@ from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
+from ..core.frames import RELATIVE, parse_anchors, parse_frame, viewer_offset
 from ..errors import MotionError
 
 MAX_BLOCKS = 1000.0
@@ -49,10 +56,21 @@ class QSRConfig:
     """A block moving less than this per resampled frame is static (MV and QTC's 0)."""
     max_distance: float = 12.0
     """Distances are clipped here before scaling (the network sees bounded inputs)."""
+    frame: str = RELATIVE
+    """Where the relation is seen from (``core/frames.py``): "relative", or "viewer[:name]" for the
+    viewer-frame columns."""
+    anchors: int = 1
+    """Reference objects: 2 appends the columns of the mover relative to the segment between them."""
 
     def to_dict(self) -> dict:
         d = asdict(self)
         d["qdc_edges"] = list(self.qdc_edges)
+        # Left out at their defaults: a relative one-anchor manifest reads exactly as it did before
+        # frames and second anchors existed.
+        if self.frame == RELATIVE:
+            d.pop("frame")
+        if self.anchors == 1:
+            d.pop("anchors")
         return d
 
     @classmethod
@@ -61,7 +79,16 @@ class QSRConfig:
         kw = {k: v for k, v in d.items() if k in known}
         if "qdc_edges" in kw:
             kw["qdc_edges"] = tuple(float(v) for v in kw["qdc_edges"])
+        if "frame" in kw:
+            kw["frame"] = parse_frame(kw["frame"]).name
+        if "anchors" in kw:
+            kw["anchors"] = parse_anchors(kw["anchors"])
         return cls(**kw)
+
+    @property
+    def viewer(self) -> bool:
+        """Whether the features need a viewpoint (a viewer frame)."""
+        return self.frame != RELATIVE
 
     @property
     def n_features(self) -> int:
@@ -77,7 +104,21 @@ def feature_names(cfg: QSRConfig = QSRConfig()) -> list[str]:
     names += [f"qdc_{i}" for i in range(len(cfg.qdc_edges) + 1)]
     names += ["mv_mover", "mv_anchor", "qtc_k_mover", "qtc_k_anchor", "qtc_l_mover", "qtc_l_anchor"]
     names += ["d_dist", "d_swept", "d_rot", "cd_changed", "qdc_changed", "qtc_changed"]
+    if cfg.viewer:
+        names += VIEWER_NAMES
+    if cfg.anchors == 2:
+        names += TWO_ANCHOR_NAMES
     return names
+
+
+VIEWER_NAMES = ["view_lateral", "view_depth", "view_cos", "view_sin", "d_view_lateral", "d_view_depth"]
+"""Viewer-frame columns: the mover's offset from the anchor seen from the viewpoint (lateral > 0 is the
+viewer's left, depth > 0 behind the anchor), its bearing from the line of sight, and their changes."""
+
+TWO_ANCHOR_NAMES = ["seg_t", "seg_lateral", "seg_dist", "mid_dist", "dist2", "gap2", "anchor_sep", "d_seg_dist"]
+"""Two-anchor columns: where the mover projects on the segment from anchor 1 (0) to anchor 2 (1), how far
+it is from that line, from the segment and from its midpoint, its distance and gap to anchor 2, how far
+apart the anchors are, and the change of the distance to the segment."""
 
 
 @dataclass
@@ -89,6 +130,7 @@ class Resampled:
     arc: np.ndarray  # (K,) arc length of each resampled frame (blocks)
     input_arc: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (T,) arc length of input frames
     times: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (K,) fractional input-frame index
+    more: list[np.ndarray] = field(default_factory=list)  # (K, 3) per further anchor, blocks
 
 
 def _as_track(poses: np.ndarray, n: int) -> np.ndarray:
@@ -98,20 +140,8 @@ def _as_track(poses: np.ndarray, n: int) -> np.ndarray:
     return a
 
 
-def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
-                   cfg: QSRConfig = QSRConfig()) -> list[Resampled]:
-    """Resample motions at arc lengths 0, spacing, 2 spacing, ... of the mover's path, plus its end.
-
-    The grid is fixed (not stretched to fit each path), so a path's prefix resamples to the same frames
-    as the path itself: scoring many candidates that extend one path shares their common prefix.
-    ``anchors`` is one pose ``(3,)`` for all, or one ``(T,3)`` track or ``(3,)`` pose per motion.
-    Angles are unwrapped before interpolating. A motion that does not move becomes a single frame:
-    standing still is never a long sequence. One vectorised pass for the whole batch.
-    """
-    ms = [np.asarray(m, dtype=float) for m in movers]
-    for m in ms:
-        if m.ndim != 2 or m.shape[1] != 3 or len(m) == 0:
-            raise ValueError(f"mover must be (T, 3) poses, got shape {m.shape}")
+def _tracks(anchors: list[np.ndarray] | np.ndarray, ms: list[np.ndarray], what: str = "anchor") -> list[np.ndarray]:
+    """One ``(T,3)`` track per motion from one shared pose ``(3,)``, or one track/pose per motion."""
     shared = not isinstance(anchors, list)
     if shared and np.asarray(anchors).ndim != 1:
         anchors = [np.asarray(anchors, float)] if len(ms) == 1 else list(anchors)
@@ -119,11 +149,31 @@ def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     as_ = [_as_track(anchors if shared else anchors[i], len(m)) for i, m in enumerate(ms)]
     for m, a in zip(ms, as_, strict=True):
         if a.shape != m.shape:
-            raise ValueError(f"anchor must be (3,) or {m.shape}, got {a.shape}")
+            raise ValueError(f"{what} must be (3,) or {m.shape}, got {a.shape}")
+    return as_
+
+
+def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
+                   cfg: QSRConfig = QSRConfig(), more_anchors: list | None = None) -> list[Resampled]:
+    """Resample motions at arc lengths 0, spacing, 2 spacing, ... of the mover's path, plus its end.
+
+    The grid is fixed (not stretched to fit each path), so a path's prefix resamples to the same frames
+    as the path itself: scoring many candidates that extend one path shares their common prefix.
+    ``anchors`` is one pose ``(3,)`` for all, or one ``(T,3)`` track or ``(3,)`` pose per motion;
+    ``more_anchors`` one such entry per further anchor (two-anchor actions).
+    Angles are unwrapped before interpolating. A motion that does not move becomes a single frame:
+    standing still is never a long sequence. One vectorised pass for the whole batch.
+    """
+    ms = [np.asarray(m, dtype=float) for m in movers]
+    for m in ms:
+        if m.ndim != 2 or m.shape[1] != 3 or len(m) == 0:
+            raise ValueError(f"mover must be (T, 3) poses, got shape {m.shape}")
+    as_ = _tracks(anchors, ms)
     T = np.array([len(m) for m in ms])
     first = np.concatenate([[0], np.cumsum(T)[:-1]])
     M, A = np.concatenate(ms), np.concatenate(as_)
     _check_extent(M, A, T, first, size)
+    M_raw = M
     M = np.column_stack([M[:, :2] / size, np.unwrap(M[:, 2])])
     A = np.column_stack([A[:, :2] / size, np.unwrap(A[:, 2])])
     step = np.linalg.norm(np.diff(M[:, :2], axis=0, prepend=M[:1, :2]), axis=1)
@@ -152,10 +202,17 @@ def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     i1 = np.minimum(i0 + 1, (first + T - 1)[path_of_q])
     w = (t_glob - i0)[:, None]
     Mq, Aq = M[i0] * (1 - w) + M[i1] * w, A[i0] * (1 - w) + A[i1] * w
+    Xq = []
+    for extra in more_anchors or []:
+        X = np.concatenate(_tracks(extra, ms, "a further anchor"))
+        _check_extent(M_raw, X, T, first, size)
+        X = np.column_stack([X[:, :2] / size, np.unwrap(X[:, 2])])
+        Xq.append(X[i0] * (1 - w) + X[i1] * w)
     out, qs = [], np.concatenate([[0], np.cumsum(K)])
     for i in range(len(ms)):
         sl = slice(qs[i], qs[i + 1])
-        out.append(Resampled(Mq[sl], Aq[sl], q[sl], arc[first[i]:first[i] + T[i]], t_glob[sl] - first[i]))
+        out.append(Resampled(Mq[sl], Aq[sl], q[sl], arc[first[i]:first[i] + T[i]], t_glob[sl] - first[i],
+                             [x[sl] for x in Xq]))
     return out
 
 
@@ -175,10 +232,14 @@ def _check_extent(M: np.ndarray, A: np.ndarray, T: np.ndarray, first: np.ndarray
                           extent, MAX_BLOCKS)
 
 
-def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig()) -> Resampled:
-    """Resample one motion (see :func:`resample_batch`); ``anchor`` is ``(T,3)`` or one pose ``(3,)``."""
+def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig(),
+             more_anchors: list | None = None) -> Resampled:
+    """Resample one motion (see :func:`resample_batch`); ``anchor`` (and each of ``more_anchors``) is
+    ``(T,3)`` or one pose ``(3,)``."""
     anchor = np.asarray(anchor, float)
-    return resample_batch([mover], anchor if anchor.ndim == 1 else [anchor], size, cfg)[0]
+    more = None if more_anchors is None else [np.asarray(x, float) if np.asarray(x).ndim == 1 else [np.asarray(x, float)]
+                                              for x in more_anchors]
+    return resample_batch([mover], anchor if anchor.ndim == 1 else [anchor], size, cfg, more)[0]
 
 
 def _half_extent(phi: np.ndarray) -> np.ndarray:
@@ -186,17 +247,24 @@ def _half_extent(phi: np.ndarray) -> np.ndarray:
     return 0.5 / np.maximum(np.abs(np.cos(phi)), np.abs(np.sin(phi)))
 
 
-def features(mover: np.ndarray, anchor: np.ndarray, cfg: QSRConfig = QSRConfig()) -> np.ndarray:
-    """Per-frame features ``(K, F)`` of resampled poses in block units (see :func:`feature_names`)."""
-    return features_batch(mover[None], anchor[None], np.array([len(mover)]), cfg)[0]
+def features(mover: np.ndarray, anchor: np.ndarray, cfg: QSRConfig = QSRConfig(), *,
+             more: list[np.ndarray] | None = None, viewer: np.ndarray | None = None) -> np.ndarray:
+    """Per-frame features ``(K, F)`` of resampled poses in block units (see :func:`feature_names`);
+    ``more`` the further anchors' resampled poses, ``viewer`` the viewpoint ``(2,)`` in block units."""
+    return features_batch(mover[None], anchor[None], np.array([len(mover)]), cfg,
+                          more=None if more is None else [x[None] for x in more],
+                          viewers=None if viewer is None else np.asarray(viewer, float)[None])[0]
 
 
 def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
-                   cfg: QSRConfig = QSRConfig()) -> np.ndarray:
+                   cfg: QSRConfig = QSRConfig(), *, more: list[np.ndarray] | None = None,
+                   viewers: np.ndarray | None = None) -> np.ndarray:
     """Features of a padded batch ``(B, K, 3)`` of block-unit poses; frames past ``lengths`` are 0.
 
     Columns in :func:`feature_names` order: the continuous quantities, the one-hot cardinal direction
-    and QDC bins, MV and QTC-C, then the frame-to-frame changes.
+    and QDC bins, MV and QTC-C, then the frame-to-frame changes; then, when the configuration asks for
+    them, the viewer-frame columns (``viewers`` (B, 2), block units) and the two-anchor columns
+    (``more[0]`` (B, K, 3), the second anchor).
     """
     g = _Geometry.of(np.asarray(movers, float), np.asarray(anchors, float), np.asarray(lengths), cfg)
     n_cd = cfg.cd_sectors
@@ -207,12 +275,18 @@ def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
     d_dist = np.diff(g.rc, axis=1, prepend=g.rc[:, :1]) / cfg.spacing
     d_swept = np.diff(g.swept, axis=1, prepend=g.swept[:, :1]) / cfg.spacing
     d_rot = np.sin(np.diff(g.rot, axis=1, prepend=g.rot[:, :1]))
-    out = np.concatenate(
-        [_continuous(g, cfg), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc], mv, qtc,
-         np.stack([np.clip(d_dist, -2, 2), np.clip(d_swept, -2, 2), d_rot,
-                   _changed(cd), _changed(qdc), _changed(qtc)], axis=-1)],
-        axis=-1,
-    )
+    parts = [_continuous(g, cfg), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc], mv, qtc,
+             np.stack([np.clip(d_dist, -2, 2), np.clip(d_swept, -2, 2), d_rot,
+                       _changed(cd), _changed(qdc), _changed(qtc)], axis=-1)]
+    if cfg.viewer:
+        if viewers is None:
+            raise ValueError(f'the frame "{cfg.frame}" needs the viewpoint of every motion')
+        parts.append(_viewer_columns(g, np.asarray(viewers, float).reshape(-1, 2), cfg))
+    if cfg.anchors == 2:
+        if not more:
+            raise ValueError("two-anchor features need the second anchor's poses")
+        parts.append(_two_anchor_columns(g, np.asarray(more[0], float), cfg))
+    out = np.concatenate(parts, axis=-1)
     out[~g.valid] = 0.0
     return out.astype(np.float32)
 
@@ -269,6 +343,41 @@ def _continuous(g: _Geometry, cfg: QSRConfig) -> np.ndarray:
     return np.stack(cont, axis=-1)
 
 
+def _clipped_change(x: np.ndarray, spacing: float) -> np.ndarray:
+    """Change of a per-frame quantity (B, K) from the frame before, per block of travel, in [-2, 2]."""
+    return np.clip(np.diff(x, axis=1, prepend=x[:, :1]) / spacing, -2, 2)
+
+
+def _viewer_columns(g: _Geometry, viewers: np.ndarray, cfg: QSRConfig) -> np.ndarray:
+    """The viewer-frame columns (B, K, 6) of :data:`VIEWER_NAMES`; ``viewers`` (B, 2) in block units."""
+    lat, dep = viewer_offset(g.m[..., :2], g.a[..., :2], viewers[:, None, :])
+    mx = cfg.max_distance
+    return np.stack([np.clip(lat, -mx, mx) / 5.0, np.clip(dep, -mx, mx) / 5.0, dep / g.r_safe, lat / g.r_safe,
+                     _clipped_change(lat, cfg.spacing), _clipped_change(dep, cfg.spacing)], axis=-1)
+
+
+def _two_anchor_columns(g: _Geometry, c: np.ndarray, cfg: QSRConfig) -> np.ndarray:
+    """The two-anchor columns (B, K, 8) of :data:`TWO_ANCHOR_NAMES`; ``c`` the second anchor (B, K, 3)."""
+    b, m = g.a[..., :2], g.m[..., :2]
+    e = c[..., :2] - b
+    sep = np.linalg.norm(e, axis=-1)
+    u = e / np.maximum(sep, 1e-6)[..., None]
+    rel = m - b
+    t = np.sum(rel * u, axis=-1) / np.maximum(sep, 1e-6)
+    lateral = np.abs(rel[..., 0] * u[..., 1] - rel[..., 1] * u[..., 0])
+    closest = b + np.clip(t, 0.0, 1.0)[..., None] * e
+    seg = np.linalg.norm(m - closest, axis=-1)
+    mid = np.linalg.norm(m - 0.5 * (b + c[..., :2]), axis=-1)
+    d2 = m - c[..., :2]
+    r2 = np.linalg.norm(d2, axis=-1)
+    bearing2 = np.arctan2(d2[..., 1], d2[..., 0])
+    gap2 = r2 - _half_extent(bearing2 - c[..., 2]) - _half_extent(bearing2 + np.pi - g.m[..., 2])
+    mx = cfg.max_distance
+    return np.stack([np.clip(t, -2.0, 3.0), np.minimum(lateral, mx) / 5.0, np.minimum(seg, mx) / 5.0,
+                     np.minimum(mid, mx) / 5.0, np.minimum(r2, mx) / 5.0, np.clip(gap2, -1.0, mx) / 5.0,
+                     np.minimum(sep, mx) / 5.0, _clipped_change(np.minimum(seg, mx), cfg.spacing)], axis=-1)
+
+
 def _mv_qtc(g: _Geometry, eps: float) -> tuple[np.ndarray, np.ndarray]:
     """MV (B, K, 2: each block moving or static) and QTC-C (B, K, 4): k = moving towards (-) / away (+)
     from the other, l = to its left (-) / right (+), for the mover and the anchor."""
@@ -294,27 +403,40 @@ def _changed(x: np.ndarray) -> np.ndarray:
     return (diff.any(axis=-1) if diff.ndim == 3 else diff).astype(float)
 
 
-def motion_features(mover: np.ndarray, anchor: np.ndarray, size: float,
-                    cfg: QSRConfig = QSRConfig()) -> tuple[np.ndarray, Resampled]:
-    """Resample a metric motion and compute its features: ``(K, F)`` and the resampling."""
-    rs = resample(mover, anchor, size, cfg)
-    return features(rs.mover, rs.anchor, cfg), rs
+def motion_features(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig(), *,
+                    more_anchors: list | None = None, viewer: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, Resampled]:
+    """Resample a metric motion and compute its features: ``(K, F)`` and the resampling.
+
+    ``viewer`` is the viewpoint ``(2,)`` in the motion's metric frame (viewer-frame configurations).
+    """
+    rs = resample(mover, anchor, size, cfg, more_anchors)
+    v = None if viewer is None else np.asarray(viewer, float)[:2] / size
+    return features(rs.mover, rs.anchor, cfg, more=rs.more or None, viewer=v), rs
 
 
 def batch_features(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
-                   cfg: QSRConfig = QSRConfig()) -> tuple[np.ndarray, np.ndarray, list[Resampled]]:
+                   cfg: QSRConfig = QSRConfig(), *, more_anchors: list | None = None,
+                   viewer: np.ndarray | list | None = None) -> tuple[np.ndarray, np.ndarray, list[Resampled]]:
     """Resample every motion, pad, and compute features in one vectorised pass.
 
     Returns ``(B, K, F)`` features, ``(B,)`` lengths and the resamplings (to map back to input frames).
-    ``anchors`` may be one pose ``(3,)`` shared by every motion, or one track/pose per motion.
+    ``anchors`` may be one pose ``(3,)`` shared by every motion, or one track/pose per motion; so may
+    each entry of ``more_anchors``. ``viewer`` is one viewpoint ``(2,)`` (metres) for all, or one per motion.
     """
-    rss = resample_batch(movers, anchors, size, cfg)
+    rss = resample_batch(movers, anchors, size, cfg, more_anchors)
     lengths = np.array([len(rs.arc) for rs in rss])
     K = int(lengths.max()) if len(rss) else 1
     M = np.zeros((len(rss), K, 3))
     A = np.zeros((len(rss), K, 3))
+    X = [np.zeros((len(rss), K, 3)) for _ in more_anchors or []]
     for i, rs in enumerate(rss):
         n = lengths[i]
         M[i, :n], A[i, :n] = rs.mover, rs.anchor
         M[i, n:], A[i, n:] = rs.mover[-1], rs.anchor[-1]  # edge padding keeps diffs at 0
-    return features_batch(M, A, lengths, cfg), lengths, rss
+        for x, r in zip(X, rs.more, strict=True):
+            x[i, :n], x[i, n:] = r, r[-1]
+    viewers = None
+    if viewer is not None:
+        viewers = np.broadcast_to(np.asarray(viewer, float).reshape(-1, 2), (len(rss), 2))[:, :2] / size
+    return features_batch(M, A, lengths, cfg, more=X or None, viewers=viewers), lengths, rss

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.frames import parse_frame
 from .features import QSRConfig, batch_features
 
 
@@ -32,45 +33,84 @@ def shared_prefix(feats: np.ndarray, lengths: np.ndarray | None) -> tuple[np.nda
 
 
 class ScoringMixin:
-    """``final_batch``/``curve_batch``/``curve``/``final`` on top of a subclass's ``forward_features``."""
+    """``final_batch``/``curve_batch``/``curve``/``final`` on top of a subclass's ``forward_features``.
+
+    Every call takes two optional keywords, needed only by actions that declare them
+    (:mod:`l2p_bullet.core.frames`): ``more_anchors``, one entry per further anchor (a two-anchor
+    action's second reference object; the same forms as ``anchors``), and ``viewer``, the viewpoint
+    ``(2,)`` in the motions' metric frame (a viewer-frame action; default: its declared viewpoint in the
+    scene frame, the robot's base for ``frame = "viewer"``).
+    """
 
     qsr_cfg: QSRConfig
 
     def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
         raise NotImplementedError
 
-    def _run(self, movers: list[np.ndarray], anchors: Any, size: float):
+    @property
+    def anchors(self) -> int:
+        """Reference objects the model reads: 1, or 2 for a two-anchor action."""
+        return self.qsr_cfg.anchors
+
+    @property
+    def viewpoint(self) -> np.ndarray | None:
+        """The declared viewpoint in the scene frame (metres), None for a relative model."""
+        return parse_frame(self.qsr_cfg.frame).viewpoint_xy()
+
+    def _run(self, movers: list[np.ndarray], anchors: Any, size: float, more_anchors: list | None = None,
+             viewer: Any = None):
         movers = [np.asarray(m, float) for m in movers]
-        feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg)
+        n_more = self.qsr_cfg.anchors - 1
+        if len(more_anchors or []) != n_more:
+            raise ValueError(f"this progress model reads {n_more + 1} anchor(s); got {len(more_anchors or []) + 1}")
+        kw: dict[str, Any] = {}
+        if n_more:
+            kw["more_anchors"] = more_anchors
+        if self.qsr_cfg.viewer:
+            kw["viewer"] = self.viewpoint if viewer is None else viewer
+        feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg, **kw)
         return self.forward_features(feats, lengths), lengths, rss
 
-    def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> np.ndarray:
+    def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float, *, more_anchors: list | None = None,
+                    viewer: Any = None) -> np.ndarray:
         """Final progress ``(B,)`` of every motion, in one forward pass for the whole batch."""
         if len(movers) == 0:
             return np.zeros(0)
-        out, lengths, _ = self._run(movers, anchors, size)
+        out, lengths, _ = self._run(movers, anchors, size, more_anchors, viewer)
         return out[np.arange(len(lengths)), lengths - 1]
 
-    def curve_batch(self, movers: list[np.ndarray], anchors: Any, size: float) -> list[np.ndarray]:
+    def curve_batch(self, movers: list[np.ndarray], anchors: Any, size: float, *, more_anchors: list | None = None,
+                    viewer: Any = None) -> list[np.ndarray]:
         """Per-input-frame progress of every motion (a frame gets the value of the last resampled frame
         at or before its arc length: frames where the block stands still repeat the value)."""
         if len(movers) == 0:
             return []
-        out, lengths, rss = self._run(movers, anchors, size)
+        out, lengths, rss = self._run(movers, anchors, size, more_anchors, viewer)
         curves = []
         for i, rs in enumerate(rss):
             k = np.searchsorted(rs.arc, rs.input_arc + 1e-9, side="right") - 1
             curves.append(out[i, np.clip(k, 0, lengths[i] - 1)])
         return curves
 
-    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
+    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
+              viewer: Any = None) -> np.ndarray:
         """Per-input-frame progress ``(T,)`` of one motion; ``anchor`` is ``(T, 3)`` or one pose ``(3,)``."""
         anchor = np.asarray(anchor, float)
-        return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0]
+        return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size,
+                                more_anchors=_one(more_anchors), viewer=viewer)[0]
 
-    def final(self, mover: np.ndarray, anchor: np.ndarray, size: float) -> float:
+    def final(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
+              viewer: Any = None) -> float:
         anchor = np.asarray(anchor, float)
-        return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size)[0])
+        return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size,
+                                      more_anchors=_one(more_anchors), viewer=viewer)[0])
+
+
+def _one(more_anchors: list | None) -> list | None:
+    """One motion's further anchors (each a pose or a track) in the batch calls' form."""
+    if more_anchors is None:
+        return None
+    return [x if np.asarray(x).ndim == 1 else [np.asarray(x, float)] for x in (np.asarray(a, float) for a in more_anchors)]
 
 
 def score_file(action: str, path: str | Path) -> dict[str, Any]:
@@ -80,10 +120,16 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
     ``{"action", "progress": [per input frame], "final"}`` rounded to 4 digits (DESIGN.md section 4).
     """
     from ..core.contracts import load_motion
+    from ..errors import PathError
     from ..plugins.bundle import load_bundle
     from ..plugins.registry import resolve
 
     name, folder = resolve(action)
     motion = load_motion(path)
-    curve = load_bundle(folder).progress_model().curve(motion.mover, motion.anchor, motion.size)
+    model = load_bundle(folder).progress_model()
+    if len(motion.more_anchors) + 1 != model.anchors:
+        raise PathError(f'{path}: the action "{name}" reads {model.anchors} reference block(s), the motion gives '
+                        f"{len(motion.more_anchors) + 1}" + (' (add "more_anchors")' if model.anchors > 1 else ""))
+    kw = {"more_anchors": motion.more_anchors} if motion.more_anchors else {}
+    curve = model.curve(motion.mover, motion.anchor, motion.size, viewer=motion.viewer, **kw)
     return {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}

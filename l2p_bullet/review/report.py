@@ -62,7 +62,14 @@ class _Motions:
             m = load_motion(Path(row.run_path) / "trajectory.json")
         except L2PError:
             return None
-        return m.mover, m.anchor, m.size
+        if not m.more_anchors and m.viewer is None:
+            return m.mover, m.anchor, m.size
+        from ..pipeline import judge_context
+
+        # a two-anchor or viewer-frame plugin's run: the model and the judge read the rest of it too
+        model_kw = {"more_anchors": m.more_anchors} if m.more_anchors else {}
+        model_kw |= {} if m.viewer is None else {"viewer": m.viewer}
+        return m.mover, m.anchor, m.size, (model_kw, judge_context([m.anchor, *m.more_anchors], m.viewer))
 
     def scores(self, action: str, motion) -> tuple[float | None, float | None]:
         """(learned final progress, the judge's score) of the installed action, or None where unavailable."""
@@ -81,9 +88,14 @@ class _Motions:
         if self._bundles[action] is None:
             return None, None
         model, judge = self._bundles[action]
-        mover, anchor, size = motion
-        final = float(model.final(mover, anchor, size))
-        return final, float(judge.judge(mover, anchor, size, final_progress=final).score)
+        mover, anchor, size, *rest = motion
+        model_kw, judge_kw = rest[0] if rest else ({}, {})
+        try:
+            final = float(model.final(mover, anchor, size, **model_kw))
+            return final, float(judge.judge(mover, anchor, size, final_progress=final, **judge_kw).score)
+        except ValueError as e:  # the motion does not have what the action reads (a second anchor)
+            self.notes.append(f"{action}: cannot score this run ({e})")
+            return None, None
 
 
 def _spearman(x: list, y: list) -> float | None:

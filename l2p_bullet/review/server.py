@@ -1,5 +1,6 @@
-"""Running the review app with uvicorn: on a socket bound here (so the port is known, 0 picks a free
-one), in the foreground for ``l2p-bullet review`` or in a thread for tests and benchmarks."""
+"""Running the review app (and the teach page, ``l2p_bullet.teach``) with uvicorn: on a socket bound here
+(so the port is known, 0 picks a free one), in the foreground for ``l2p-bullet review`` / ``teach`` or in
+a thread for tests and benchmarks."""
 
 from __future__ import annotations
 
@@ -54,15 +55,16 @@ class RunningServer:
         self.thread.join(timeout=10)
 
 
-def start(app, host: str = "127.0.0.1", port: int = 0, log_level: str = "warning") -> RunningServer:
+def start(app, host: str = "127.0.0.1", port: int = 0, log_level: str = "warning",
+          name: str = "review-server") -> RunningServer:
     """Serve ``app`` in a daemon thread; returns once it accepts connections."""
     sock = bind(host, port)
     server = _server(app, log_level)
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True, name="review-server")
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True, name=name)
     thread.start()
     deadline = time.monotonic() + 20
     while not server.started:
         if not thread.is_alive() or time.monotonic() > deadline:
-            raise ReviewError("the review server did not start")
+            raise ReviewError(f"the server ({name}) did not start")
         time.sleep(0.02)
     return RunningServer(url_of(sock), server, thread)

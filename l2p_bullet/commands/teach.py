@@ -1,0 +1,61 @@
+"""``l2p-bullet teach``: record demonstrations of a new preposition in the browser, train it, watch it.
+
+The web stack (FastAPI, uvicorn) is imported inside the command only, so ``l2p-bullet --help`` and
+``perform`` never load it.
+"""
+
+from __future__ import annotations
+
+import click
+
+from .common import seed_option
+
+
+@click.command("teach")
+@click.argument("action")
+@click.option("--plugin", "plugin_dir", type=click.Path(file_okay=False), default=None,
+              help="The plugin project made by new-action (default: ./l2p-ACTION).")
+@click.option("--demos", "demos", type=click.Path(dir_okay=False), default=None,
+              help="Demos file the recordings are appended to (default: PLUGIN/demos/ACTION_taught.npz).")
+@click.option("--host", default="127.0.0.1", show_default=True,
+              help="Address to listen on. Anything but 127.0.0.1 lets other machines write demonstrations.")
+@click.option("--port", type=click.IntRange(0, 65535), default=8766, show_default=True, help="Port (0: any free one).")
+@click.option("--ensemble", type=click.IntRange(min=1), default=None, help="LSTMs the train button trains (default 5).")
+@click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per LSTM (default 30).")
+@seed_option
+def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str, port: int,
+              ensemble: int | None, epochs: int | None, seed: int) -> None:
+    """Record demonstrations of ACTION in the browser, then train it and watch it performed.
+
+    ACTION is a plugin made by new-action. The page shows a random scene from above: drag block A with
+    the mouse (wheel or Q / W rotates it), mark the start (S) and the end (E), save (Enter). Each
+    demonstration is appended to the demos file; "train and perform" trains the plugin on every demos
+    file of PLUGIN/demos and performs it on a new scene, with video.
+
+    \b
+    Example:
+      l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
+      l2p-bullet teach left-of          # then open http://127.0.0.1:8766/
+    """
+    import dataclasses
+    from pathlib import Path
+
+    from ..learning.train_progress import BundleTrainer, ProgressTrainConfig
+    from ..teach.session import TeachSession, find_action
+
+    taught = find_action(action, plugin_dir, demos)  # a wrong name fails before anything listens
+    cfg = ProgressTrainConfig()
+    cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
+    session = TeachSession(taught, BundleTrainer(cfg), seed=seed)
+    session.count()  # an unreadable demos file is a one-line error now, not on the first save
+
+    from ..review.server import bind, serve, url_of
+    from ..teach.app import create_app
+
+    sock = bind(host, port)
+    click.echo(f"teaching \"{taught.sentence}\": open {url_of(sock)} (Ctrl+C to stop)", err=True)
+    click.echo(f"demonstrations go to {Path(taught.demos)}", err=True)
+    serve(create_app(session, host), sock)
+
+
+COMMANDS: list[click.Command] = [teach_cmd]

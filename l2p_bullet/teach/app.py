@@ -1,0 +1,124 @@
+"""The teach web app: FastAPI over a :class:`~l2p_bullet.teach.session.TeachSession`.
+
+The same stack and conventions as the review app (``l2p_bullet/review/app.py``; served by its runner,
+``review/server.py``): requests validated from type declarations (a bad
+payload is a 422 naming the field), JSON errors ``{"error": message}`` (400 a recording that cannot be
+saved (any L2PError), 404 an unknown run, 409 a training already under way, 500 a one-line message with the traceback
+in the server's log), static HTML/JS without a build step, no interactive API docs (they load scripts
+from a CDN; nothing here may reach outside the machine), bound to 127.0.0.1 unless told otherwise.
+"""
+
+from __future__ import annotations
+
+import logging
+from importlib import resources
+from pathlib import Path
+from typing import Annotated
+
+import numpy as np
+from fastapi import FastAPI, Query, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
+from fastapi.staticfiles import StaticFiles
+from pydantic import BaseModel, ConfigDict, Field
+from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.middleware.trustedhost import TrustedHostMiddleware
+
+from .. import __version__
+from ..errors import L2PError, TeachError
+from .session import MAX_SAMPLES, Recording, TeachSession
+
+log = logging.getLogger("l2p_bullet.teach")
+LOOPBACK = ("127.0.0.1", "localhost", "::1")
+
+Sample = Annotated[list[float], Field(min_length=4, max_length=4)]
+
+
+class RecordingIn(BaseModel):
+    """One demonstration as the page sampled it: ``samples`` rows ``[t, x, y, yaw]`` (seconds, scene frame)."""
+
+    model_config = ConfigDict(extra="forbid")
+    scene: Annotated[int, Field(ge=0, le=10**9)]
+    samples: Annotated[list[Sample], Field(min_length=2, max_length=MAX_SAMPLES)]
+    start: float
+    end: float
+
+
+class Busy(TeachError):
+    """A training is already under way."""
+
+
+def static_dir() -> Path:
+    return Path(str(resources.files("l2p_bullet.teach") / "static"))
+
+
+def create_app(session: TeachSession, host: str = "127.0.0.1") -> FastAPI:
+    app = FastAPI(title="l2p-bullet teach", version=__version__, docs_url=None, redoc_url=None)
+    if host in LOOPBACK:  # a web page elsewhere cannot reach the app through a rebound DNS name
+        app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]", "testserver"])
+    _errors(app)
+    app.mount("/static", StaticFiles(directory=static_dir()), name="static")
+
+    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
+    def index() -> HTMLResponse:
+        return HTMLResponse((static_dir() / "index.html").read_text(encoding="utf-8"),
+                            headers={"Cache-Control": "no-store"})
+
+    @app.get("/api/config")
+    def config() -> dict:
+        return session.config()
+
+    @app.get("/api/scene")
+    def scene(seed: Annotated[int, Query(ge=0, le=10**9)]) -> dict:
+        return session.scene_json(seed)
+
+    @app.post("/api/demos")
+    def save(body: RecordingIn) -> dict:
+        rec = Recording(body.scene, np.array(body.samples, float), body.start, body.end)
+        return session.save(rec)
+
+    @app.post("/api/train")
+    def train() -> dict:
+        if session.job.state in ("training", "performing"):
+            raise Busy("training is already under way")
+        return session.train()
+
+    @app.get("/api/train")
+    def status() -> dict:
+        return session.status()
+
+    @app.get("/api/runs/{k}/video")
+    def video(k: int) -> FileResponse:
+        try:
+            path = session.video(k)
+        except TeachError as e:
+            raise StarletteHTTPException(404, str(e)) from None
+        return FileResponse(path, media_type="video/mp4")
+
+    return app
+
+
+def _errors(app: FastAPI) -> None:
+    @app.exception_handler(RequestValidationError)
+    async def invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
+        parts = []
+        for e in exc.errors():
+            if e.get("type") == "json_invalid":
+                parts.append("the request body is not valid JSON")
+                continue
+            where = ".".join(str(p) for p in e.get("loc", ()) if p not in ("body", "query", "path"))
+            parts.append(f"{where or 'request'}: {e.get('msg', 'invalid')}")
+        return JSONResponse({"error": "; ".join(parts) or "invalid request"}, status_code=422)
+
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+        return JSONResponse({"error": str(exc.detail)}, status_code=exc.status_code)
+
+    @app.exception_handler(L2PError)
+    async def user_error(request: Request, exc: L2PError) -> JSONResponse:
+        return JSONResponse({"error": str(exc)}, status_code=409 if isinstance(exc, Busy) else 400)
+
+    @app.exception_handler(Exception)
+    async def bug(request: Request, exc: Exception) -> JSONResponse:
+        log.exception("teach app: unexpected error on %s %s", request.method, request.url.path)
+        return JSONResponse({"error": f"internal error ({type(exc).__name__}); see the server's log"}, status_code=500)

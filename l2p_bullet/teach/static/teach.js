@@ -1,0 +1,295 @@
+// The teach page: a top-down view of a random scene; the person drags block A, marks the start and the
+// end of the demonstration, and saves it. Samples [t, x, y, yaw] of A (seconds, scene frame, metres) are
+// taken on every change and by a 30 Hz timer while A rests; the server resamples, validates and writes.
+"use strict";
+
+const SCALE = 680;          // pixels per metre
+const TOP_X = 0.3;          // scene x at the top edge of the canvas (the robot is at the bottom)
+const ROTATE = Math.PI / 36; // 5 degrees per wheel notch or key press
+const SAMPLE_MS = 1000 / 30;
+
+const canvas = document.getElementById("view");
+const ctx = canvas.getContext("2d");
+const $ = (id) => document.getElementById(id);
+
+let config = null;
+let scene = null;         // the scene as the server drew it
+let blocks = [];          // {name, rgb, size, x, y, yaw}
+let mover = null;         // the block being moved (A)
+let seed = 0;
+let samples = [];
+let marks = { start: null, end: null };
+let drag = null;          // {dx, dy} while dragging
+let polling = null;
+
+function now() { return performance.now() / 1000; }
+
+// scene frame (+x away from the robot, +y to its left) -> canvas pixels, robot at the bottom
+function toScreen(x, y) { return [canvas.width / 2 - y * SCALE, 10 + (TOP_X - x) * SCALE]; }
+function toScene(px, py) { return [TOP_X - (py - 10) / SCALE, (canvas.width / 2 - px) / SCALE]; }
+
+function corners(b, x = b.x, y = b.y, yaw = b.yaw) {
+  const h = b.size / 2, c = Math.cos(yaw), s = Math.sin(yaw);
+  return [[h, h], [-h, h], [-h, -h], [h, -h]].map(([u, v]) => [x + c * u - s * v, y + s * u + c * v]);
+}
+
+function overlap(p, q) {  // separating-axis test for two convex polygons (touching is not overlapping)
+  for (const poly of [p, q]) {
+    for (let i = 0; i < poly.length; i++) {
+      const [x1, y1] = poly[i], [x2, y2] = poly[(i + 1) % poly.length];
+      const ax = -(y2 - y1), ay = x2 - x1;
+      const proj = (pts) => pts.map(([x, y]) => x * ax + y * ay);
+      const a = proj(p), b = proj(q);
+      if (Math.max(...a) <= Math.min(...b) + 1e-12 || Math.max(...b) <= Math.min(...a) + 1e-12) return false;
+    }
+  }
+  return true;
+}
+
+function allowed(x, y, yaw) {
+  const mine = corners(mover, x, y, yaw);
+  const t = scene.table;
+  if (!mine.every(([cx, cy]) => Math.abs(cx) <= t.half_x && Math.abs(cy) <= t.half_y)) return false;
+  return blocks.every((b) => b === mover || !overlap(mine, corners(b)));
+}
+
+function sample() {
+  if (!mover) return;
+  samples.push([now(), mover.x, mover.y, mover.yaw]);
+}
+
+function moveTo(x, y, yaw) {
+  if (!allowed(x, y, yaw)) return false;
+  mover.x = x; mover.y = y; mover.yaw = yaw;
+  sample();
+  draw();
+  return true;
+}
+
+function draw() {
+  if (!scene) return;
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const [tx0, ty0] = toScreen(scene.table.half_x, scene.table.half_y);
+  const [tx1, ty1] = toScreen(-scene.table.half_x, -scene.table.half_y);
+  ctx.fillStyle = "#e3d5bd";
+  ctx.fillRect(tx0, ty0, tx1 - tx0, ty1 - ty0);
+  const [wx, wy] = toScreen(scene.workspace.x, scene.workspace.y);
+  ctx.setLineDash([6, 6]);
+  ctx.strokeStyle = "#9a8a70";
+  ctx.beginPath(); ctx.arc(wx, wy, scene.workspace.r * SCALE, 0, 2 * Math.PI); ctx.stroke();
+  const anchors = scene.anchors.map((n) => blocks.find((b) => b.name === n));
+  if (config.viewer) {  // the line of sight from the viewer to the (first) anchor: left is the viewer's left
+    const [vx, vy] = toScreen(...config.viewer);
+    const [ax, ay] = toScreen(anchors[0].x, anchors[0].y);
+    ctx.strokeStyle = "#6b8fb3";
+    ctx.beginPath(); ctx.moveTo(vx, vy); ctx.lineTo(ax, ay); ctx.stroke();
+  }
+  if (anchors.length === 2) {
+    const [bx, by] = toScreen(anchors[0].x, anchors[0].y), [cx, cy] = toScreen(anchors[1].x, anchors[1].y);
+    ctx.strokeStyle = "#6b8fb3";
+    ctx.beginPath(); ctx.moveTo(bx, by); ctx.lineTo(cx, cy); ctx.stroke();
+  }
+  ctx.setLineDash([]);
+  const [rx, ry] = toScreen(...config.robot);
+  ctx.fillStyle = "#555";
+  ctx.beginPath(); ctx.arc(rx, Math.min(ry, canvas.height - 4), 14, Math.PI, 2 * Math.PI); ctx.fill();
+  ctx.fillText("robot", rx + 18, canvas.height - 8);
+  if (marks.start !== null) {  // the path since the start mark
+    ctx.strokeStyle = "#c33";
+    ctx.beginPath();
+    samples.filter((s) => s[0] >= marks.start && (marks.end === null || s[0] <= marks.end)).forEach((s, i) => {
+      const [px, py] = toScreen(s[1], s[2]);
+      if (i === 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+    });
+    ctx.stroke();
+  }
+  for (const b of blocks) {
+    const pts = corners(b).map(([x, y]) => toScreen(x, y));
+    ctx.fillStyle = `rgb(${b.rgb.join(",")})`;
+    ctx.beginPath();
+    pts.forEach(([px, py], i) => (i === 0 ? ctx.moveTo(px, py) : ctx.lineTo(px, py)));
+    ctx.closePath(); ctx.fill();
+    ctx.strokeStyle = b === mover ? "#000" : "#444";
+    ctx.lineWidth = b === mover ? 2 : 1;
+    ctx.stroke();
+    ctx.lineWidth = 1;
+    const [cx, cy] = toScreen(b.x, b.y);
+    ctx.fillStyle = "#fff";
+    ctx.font = "bold 14px sans-serif";
+    ctx.textAlign = "center"; ctx.textBaseline = "middle";
+    ctx.fillText(b.name, cx, cy);
+    ctx.textAlign = "start"; ctx.textBaseline = "alphabetic"; ctx.font = "12px sans-serif";
+  }
+}
+
+function status(text, error = false) {
+  $("status").textContent = text;
+  $("status").classList.toggle("error", error);
+}
+
+function setState(state) {
+  document.body.dataset.state = state;
+  $("start").classList.toggle("done", marks.start !== null);
+  $("end").classList.toggle("done", marks.end !== null);
+}
+
+async function api(method, path, body) {
+  const r = await fetch(path, { method, headers: { "Content-Type": "application/json" },
+                                body: body === undefined ? undefined : JSON.stringify(body) });
+  const data = await r.json().catch(() => ({ error: `HTTP ${r.status}` }));
+  if (!r.ok) throw new Error(data.error || `HTTP ${r.status}`);
+  return data;
+}
+
+async function loadScene(s) {
+  seed = s;
+  scene = await api("GET", `/api/scene?seed=${s}`);
+  blocks = scene.objects.map((o) => ({ ...o }));
+  mover = blocks.find((b) => b.name === scene.mover);
+  samples = [];
+  marks = { start: null, end: null };
+  sample();
+  document.body.dataset.seed = String(s);
+  status("");
+  setState("ready");
+  draw();
+}
+
+function markStart() {
+  marks = { start: now(), end: null };
+  sample();
+  status("recording: slide A, then mark the end");
+  setState("recording");
+  draw();
+}
+
+function markEnd() {
+  if (marks.start === null) { status("mark the start first", true); return; }
+  marks.end = now();
+  sample();
+  status("marked the end: save it (Enter), or start this scene again (R)");
+  setState("marked");
+  draw();
+}
+
+async function save() {
+  if (marks.start === null || marks.end === null) { status("mark the start and the end first", true); return; }
+  sample();
+  setState("saving");
+  try {
+    const r = await api("POST", "/api/demos", { scene: seed, samples, start: marks.start, end: marks.end });
+    $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
+    await loadScene(seed + 1);
+    status(`saved (${r.count} in all); here is another scene`);
+    document.body.dataset.saved = String(r.count);
+  } catch (e) {
+    status(e.message, true);
+    setState("marked");
+  }
+}
+
+async function train() {
+  try {
+    await api("POST", "/api/train");
+  } catch (e) {
+    $("train-status").textContent = e.message;
+    return;
+  }
+  $("progress").hidden = false;
+  $("video").hidden = true;
+  $("verdict").textContent = "";
+  document.body.dataset.train = "training";
+  clearInterval(polling);
+  polling = setInterval(poll, 500);
+}
+
+async function poll() {
+  let s;
+  try { s = await api("GET", "/api/train"); } catch (e) { $("train-status").textContent = e.message; return; }
+  $("progress").max = Math.max(s.total, 1);
+  $("progress").value = s.done;
+  $("train-status").textContent = `${s.message} (${s.seconds.toFixed(0)} s)`;
+  document.body.dataset.train = s.state;
+  if (s.state === "done" || s.state === "failed") {
+    clearInterval(polling);
+    $("progress").hidden = true;
+    if (s.state === "done" && s.run) {
+      const v = s.run.verdict;
+      $("verdict").textContent = `“${s.run.sentence}” on a new scene: ${v.success ? "success" : "failed"} ` +
+                                 `(${v.judge}: ${v.reason})`;
+      if (s.run.video) {
+        $("video").src = `${s.run.video}?t=${Date.now()}`;
+        $("video").hidden = false;
+        $("video").play().catch(() => {});
+      }
+    }
+  }
+}
+
+canvas.addEventListener("pointerdown", (ev) => {
+  if (!mover) return;
+  const r = canvas.getBoundingClientRect();
+  const [x, y] = toScene(ev.clientX - r.left, ev.clientY - r.top);
+  const c = Math.cos(-mover.yaw), s = Math.sin(-mover.yaw);
+  const u = c * (x - mover.x) - s * (y - mover.y), v = s * (x - mover.x) + c * (y - mover.y);
+  if (Math.abs(u) > mover.size / 2 || Math.abs(v) > mover.size / 2) return;
+  drag = { dx: mover.x - x, dy: mover.y - y };
+  canvas.setPointerCapture(ev.pointerId);
+  canvas.classList.add("dragging");
+  canvas.focus();
+});
+canvas.addEventListener("pointermove", (ev) => {
+  if (!drag) return;
+  const r = canvas.getBoundingClientRect();
+  const [x, y] = toScene(ev.clientX - r.left, ev.clientY - r.top);
+  moveTo(x + drag.dx, y + drag.dy, mover.yaw);
+});
+const stopDrag = () => { drag = null; canvas.classList.remove("dragging"); };
+canvas.addEventListener("pointerup", stopDrag);
+canvas.addEventListener("pointercancel", stopDrag);
+canvas.addEventListener("wheel", (ev) => {
+  ev.preventDefault();
+  if (mover) moveTo(mover.x, mover.y, mover.yaw + (ev.deltaY < 0 ? ROTATE : -ROTATE));
+}, { passive: false });
+
+document.addEventListener("keydown", (ev) => {
+  if (ev.target instanceof HTMLInputElement) return;
+  const k = ev.key.toLowerCase();
+  if (k === "s") markStart();
+  else if (k === "e") markEnd();
+  else if (k === "enter") { ev.preventDefault(); save(); }
+  else if (k === "r") loadScene(seed);
+  else if (k === "n") loadScene(seed + 1);
+  else if (k === "t") train();
+  else if (k === "q" && mover) moveTo(mover.x, mover.y, mover.yaw + ROTATE);
+  else if (k === "w" && mover) moveTo(mover.x, mover.y, mover.yaw - ROTATE);
+});
+$("start").addEventListener("click", markStart);
+$("end").addEventListener("click", markEnd);
+$("save").addEventListener("click", save);
+$("reset").addEventListener("click", () => loadScene(seed));
+$("next").addEventListener("click", () => loadScene(seed + 1));
+$("train").addEventListener("click", train);
+setInterval(() => { if (!drag) sample(); }, SAMPLE_MS);
+
+// for tests and scripts: where a scene point is on the page, and what is being recorded
+window.teach = {
+  toPage(x, y) { const r = canvas.getBoundingClientRect(); const [px, py] = toScreen(x, y); return [r.left + px, r.top + py]; },
+  mover() { return mover && { x: mover.x, y: mover.y, yaw: mover.yaw }; },
+  samples() { return samples.length; },
+};
+
+(async () => {
+  try {
+    config = await api("GET", "/api/config");
+    $("sentence").textContent = `“${config.sentence}”`;
+    $("frame").textContent = config.viewer
+      ? `Left, right, in front and behind as seen from the ${config.frame === "viewer" ? "robot (bottom of the view)" : config.frame}.`
+      : (config.anchors === 2 ? "Two reference blocks: B and C." : "");
+    $("count").textContent = `${config.count} demonstration${config.count === 1 ? "" : "s"} in ${config.demos}`;
+    const first = Number(new URLSearchParams(location.search).get("seed") || config.seed || 0);
+    await loadScene(first);
+  } catch (e) {
+    status(e.message, true);
+  }
+})();

@@ -1,0 +1,61 @@
+"""A scaffolded plugin and a live teach server for the teach page's tests (Chromium: review_fixtures)."""
+
+from __future__ import annotations
+
+import json
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+
+class Live:
+    """The teach app for a fresh plugin ``name`` (scaffolded in ``root``), served on 127.0.0.1 in a thread."""
+
+    def __init__(self, root: Path, name: str, phrase: str, frame: str = "relative", anchors: int = 1,
+                 ensemble: int = 1, epochs: int = 2, seed: int = 0):
+        from l2p_bullet.learning.train_progress import BundleTrainer, ProgressTrainConfig
+        from l2p_bullet.plugins.scaffold import scaffold
+        from l2p_bullet.review.server import start
+        from l2p_bullet.teach.app import create_app
+        from l2p_bullet.teach.session import TeachSession, find_action
+
+        self.root = scaffold(name, [phrase], root / f"l2p-{name}", frame=frame, anchors=anchors).root
+        self.action = find_action(name, self.root)
+        trainer = BundleTrainer(ProgressTrainConfig(ensemble=ensemble, epochs=epochs))
+        self.session = TeachSession(self.action, trainer, seed=seed)
+        self.server = start(create_app(self.session), name="teach-server")
+        self.url = self.server.url
+
+    def call(self, method: str, path: str, body=None, raw: bytes | None = None):
+        """(status, JSON body) of one request."""
+        data = raw if raw is not None else (None if body is None else json.dumps(body).encode())
+        req = urllib.request.Request(self.url.rstrip("/") + path, data=data, method=method,
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=60) as r:
+                payload, status = r.read(), r.status
+        except urllib.error.HTTPError as e:
+            payload, status = e.read(), e.code
+        try:
+            return status, json.loads(payload)
+        except ValueError:
+            return status, payload
+
+    def stop(self) -> None:
+        self.server.stop()
+
+
+@pytest.fixture
+def live(tmp_path):
+    servers = []
+
+    def start(name: str = "left-of", phrase: str = "to the left of", **kw) -> Live:
+        s = Live(tmp_path, name, phrase, **kw)
+        servers.append(s)
+        return s
+
+    yield start
+    for s in servers:
+        s.stop()
