@@ -88,12 +88,13 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None) -> PerformResult:
+            plugins: list | None = None, render_settings: Any = None, bundle: Any = None) -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
 
     Raises an :class:`L2PError` subclass for anything a user can get wrong (sentence, plugin, run
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
-    failed, so a failed run is still explained on disk.
+    failed, so a failed run is still explained on disk. ``bundle`` performs with that loaded bundle
+    instead of the installed plugin's (``l2p-bullet improve`` tries each round's re-trained bundle).
     """
     from .core.runfolder import prepare_run_folder
     from .planning import resolve_planner
@@ -110,7 +111,10 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     out = prepare_run_folder(out_dir, force=force, prefix="perform")
     try:
         clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
-        bundle = registry.load(cmd.action, plugins)
+        if bundle is None:
+            bundle = registry.load(cmd.action, plugins)
+        elif bundle.name != cmd.action:
+            raise PluginError(f'the sentence asks for "{cmd.action}" but the bundle given is "{bundle.name}"')
         model = bundle.progress_model()
         return _run(cmd, scene, bundle, model, out, clock, planner=planner, seed=seed, render=render,
                     budget=budget, threshold=threshold, render_settings=render_settings)
