@@ -49,6 +49,9 @@ def main() -> None:
     ap.add_argument("--weights", default="0.1,0.3,1.0", help="feedback weights the inner CV chooses among")
     ap.add_argument("--judge-scenes", type=int, default=30)
     ap.add_argument("--json", type=Path, default=None, help="also write every prediction and choice here")
+    ap.add_argument("--base-cache", type=Path, default=None,
+                    help="folder keeping the demonstration-only ensembles between runs (re-trained when the "
+                         "training settings differ)")
     args = ap.parse_args()
     torch.set_num_threads(1)
 
@@ -67,7 +70,7 @@ def main() -> None:
     cols = [c for c in args.only.split(",") if c]
     items = original_items()
     t0 = time.perf_counter()
-    tuner = FineTuner(all_demos(), cfg=cfg, log=log)
+    tuner = FineTuner(all_demos(), cfg=cfg, log=log, base=_cached_base(args.base_cache, cfg) if args.base_cache else None)
     res: dict[str, dict] = {}
 
     if "shipped" in cols:
@@ -124,6 +127,35 @@ def main() -> None:
     print(f"\n{cfg.ensemble} LSTMs x {cfg.epochs} epochs, {time.perf_counter() - t0:.0f} s in all")
     if args.json:
         args.json.write_text(json.dumps(res, indent=1, default=float) + "\n")
+
+
+def _cached_base(folder: Path, cfg) -> dict:
+    """The demonstration-only ensembles of every action from ``folder`` (bundles written by an earlier run),
+    trained and stored there when missing or trained with other settings."""
+    from l2p_bullet.core.vocabulary import ACTIONS
+    from l2p_bullet.learning.progress_net import ProgressModel, ensemble_arrays
+    from l2p_bullet.learning.train_progress import all_demos, train_action, training_section
+    from l2p_bullet.learning.trainset import DataConfig
+    from l2p_bullet.plugins.bundle import load_bundle, write_progress_bundle
+
+    out, demos = {}, all_demos()
+    for a in ACTIONS:
+        d = folder / a
+        want = {"data": DataConfig().to_dict(), **cfg.to_dict()}
+        try:
+            b = load_bundle(d)
+            t = b.manifest["training"]
+            if {k: t.get(k) for k in want} == want:
+                out[a] = ProgressModel.from_bundle(b).nets
+                continue
+        except Exception:  # missing or stale: train it below
+            pass
+        log(f"  training {a} on the demonstrations for the cache ({cfg.ensemble} x {cfg.epochs} epochs)")
+        r = train_action(a, demos, cfg=cfg)
+        write_progress_bundle(d, a, ensemble_arrays(r.model.nets), r.model.model_cfg, r.model.qsr_cfg,
+                              training=training_section(r, cfg, 0, "bench_feedback.py base"), metrics={})
+        out[a] = r.model.nets
+    return out
 
 
 def _lowest(sp: dict[str, float]) -> float:

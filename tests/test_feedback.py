@@ -145,9 +145,12 @@ def test_targets_follow_the_mean_grade_or_the_originals_clear_cases():
 def test_graded_motions_end_at_their_grade_and_blind_mislabels_are_negatives():
     q, d, cfg = QSRConfig(), DataConfig(), FeedbackConfig()
     seqs = feedback_sequences("past", [_item(6.0), _item(8.0, action="away")], q, d, cfg)
-    assert len(seqs) == 2  # the past item and its mirror image; the away item is not past's
+    assert len(seqs) == 2 * (1 + cfg.copies)  # the past item, its mirror image, their copies; away is not past's
     for s in seqs:
         assert s.y[s.end] == pytest.approx(0.6, abs=1e-6) and s.y[0] == 0 and np.all(np.diff(s.y) >= -1e-6)
+    assert not np.allclose(seqs[0].x[-1], seqs[1].x[-1])  # a perturbed copy is another motion
+    again = feedback_sequences("past", [_item(6.0)], q, d, cfg)
+    assert all(np.array_equal(a.x, b.x) for a, b in zip(seqs, again, strict=True))  # and the same every time
     neg = feedback_sequences("past", [_item(None, labels=["around", "none", "past"])], q, d, cfg)
     assert len(neg) == 2 and all(np.all(s.y == 0) and s.frame_w is not None for s in neg)
     assert feedback_sequences("past", [_item(None, labels=["past", "around"])], q, d, cfg) == []
@@ -162,7 +165,7 @@ def test_fine_tuning_is_deterministic_and_learns_the_grades():
     q, d = QSRConfig(), DataConfig()
     items = [_item(g, idx=str(g)) for g in (1.0, 9.0)]
     items[1].mover = items[1].mover * np.array([1.0, 0.5, 1.0])  # a nearer pass, graded high
-    seqs = feedback_sequences("past", items, q, d, FeedbackConfig())
+    seqs = feedback_sequences("past", items, q, d, FeedbackConfig(copies=0))
     torch.manual_seed(0)
     base = [ProgressNet(q.n_features, 8)]
     cfg, fcfg = ProgressTrainConfig(hidden=8, ensemble=1), FeedbackConfig(epochs=40, lr=0.02, demo_fraction=0.0)
@@ -249,7 +252,7 @@ def test_train_with_feedback_records_it_in_the_manifest(tmp_path):
     assert r.exit_code == 0, r.output
     m = load_bundle(tmp_path / "b").manifest["training"]
     assert m["feedback"]["sources"] == ["original"] and m["feedback"]["n_items"] == 15
-    assert m["feedback"]["n_sequences"] == 30 and "--feedback original" in m["command"]
+    assert m["feedback"]["n_sequences"] == 15 * 2 * (1 + FeedbackConfig().copies) and "--feedback original" in m["command"]
 
 
 @pytest.mark.slow

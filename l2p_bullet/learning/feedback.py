@@ -23,6 +23,7 @@ from __future__ import annotations
 import csv
 import hashlib
 import json
+import zlib
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -316,11 +317,19 @@ class FeedbackConfig:
     model does not forget what the demonstrations taught while it learns the grades."""
     blind_majority: float = 0.5
     """A motion is a negative of its action when more than this share of blind labels named something else."""
+    copies: int = 4
+    """Perturbed copies per graded motion (and per mirror image), same target: a dozen graded motions per
+    action are learnt by heart otherwise, and a grade does not hinge on a fifth of a block."""
+    jitter: float = 0.2
+    """Standard deviation (blocks) of the copies' smooth displacement (4 control points along the path)."""
+    stretch: float = 0.1
+    """The copies are also stretched about the anchor by a factor within 1 +- this."""
 
     def to_dict(self) -> dict:
         return {"target": self.target, "clear": {k: list(v) for k, v in self.clear.items()}, "weight": self.weight,
                 "epochs": self.epochs, "lr": self.lr, "demo_fraction": self.demo_fraction,
-                "blind_majority": self.blind_majority}
+                "blind_majority": self.blind_majority, "copies": self.copies, "jitter": self.jitter,
+                "stretch": self.stretch}
 
 
 def target_of(item: FeedbackItem, cfg: FeedbackConfig) -> float | None:
@@ -357,14 +366,32 @@ def feedback_sequences(action: str, items: Sequence[FeedbackItem], qcfg: QSRConf
             continue
         t = target_of(it, cfg)
         blind_neg = is_blind_negative(it, cfg)
+        rng = np.random.default_rng(zlib.crc32(it.id.encode()))
         for mm, aa in ((it.mover, it.anchor), (mirror(it.mover), mirror(it.anchor))):
             if t is not None:
-                s = _labelled(mm, aa, it.size, 0, len(mm) - 1, qcfg, dcfg, True)
-                s.y = (s.y * t).astype(np.float32)
-                s.positive = False  # not a demonstration: n_positive keeps counting those
-                out.append(s)
+                for k in range(1 + cfg.copies):
+                    m = mm if k == 0 else _perturbed(mm, aa, it.size, rng, cfg)
+                    s = _labelled(m, aa, it.size, 0, len(m) - 1, qcfg, dcfg, True)
+                    s.y = (s.y * t).astype(np.float32)
+                    s.positive = False  # not a demonstration: n_positive keeps counting those
+                    out.append(s)
             if blind_neg:
                 out.append(_labelled(mm, aa, it.size, 0, 0, qcfg, dcfg, False))
+    return out
+
+
+def _perturbed(mover: np.ndarray, anchor: np.ndarray, size: float, rng: np.random.Generator,
+               cfg: FeedbackConfig) -> np.ndarray:
+    """The motion stretched about the anchor by 1 +- ``cfg.stretch`` and displaced smoothly: offsets of
+    ``cfg.jitter`` blocks drawn at 4 points along its arc length, interpolated in between."""
+    step = np.linalg.norm(np.diff(mover[:, :2], axis=0), axis=1)
+    arc = np.concatenate([[0.0], np.cumsum(step)]) / max(float(step.sum()), 1e-9)
+    ctrl = rng.normal(0.0, cfg.jitter * size, (4, 2))
+    knots = np.linspace(0.0, 1.0, 4)
+    offset = np.column_stack([np.interp(arc, knots, ctrl[:, j]) for j in range(2)])
+    out = mover.copy()
+    c = anchor[:, :2]
+    out[:, :2] = c + (mover[:, :2] - c) * rng.uniform(1 - cfg.stretch, 1 + cfg.stretch) + offset
     return out
 
 
