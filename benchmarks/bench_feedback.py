@@ -11,8 +11,9 @@ Columns (Spearman(final progress, mean grade) per graded folder, 15 demos each, 
 - cold:      the original project's cold feedback, cross-validated: only the clear cases of the training
              folds (mean grade <= 3.5 -> 0, >= 7 -> 1; away <= 4.5, around 1.5 / 5.5, as in its code),
              fine-tuned 10 epochs on those alone;
-- rules:     automatic feedback: plans of the installed bundles on 30 scenes (seeds 5000 on), graded
-             10 x the rule judge's score, fine-tuned like ``train --feedback-judge rules``; it sees no
+- rules:     automatic feedback, as ``train --feedback-judge rules``: the demonstration-trained model plans
+             30 scenes (seeds 5000 on; random search with back-up stopped after 40, 6 and 2 steps), the
+             rule judge grades the plans 10 x its score, the model is fine-tuned on them; it sees no
              grade, so it is scored on all 90 demos without folds;
 - grades:    ``train --feedback`` (target = mean grade / 10), cross-validated with nested selection: each
              outer fold chooses the feedback weight among ``--weights`` by a 3-fold inner CV on its own
@@ -94,8 +95,8 @@ def main() -> None:
         log(f"automatic feedback: rule-judged plans on {args.judge_scenes} scenes per action")
         finals = {}
         for a in ACTIONS:
-            auto = judge_items(a, load_bundle(builtin_bundle_dir(a)),
-                               range(JUDGE_SEEDS, JUDGE_SEEDS + args.judge_scenes), RuleJudge(a), log=log)
+            auto = judge_items(a, tuner(a, [], {}), range(JUDGE_SEEDS, JUDGE_SEEDS + args.judge_scenes), RuleJudge(a),
+                               log=log)
             finals.update(score_items(tuner(a, auto, {}), [it for it in items if it.action == a]))
         res["rules"] = {"spearman": folder_agreement(items, finals), "finals": finals}
     if "grades" in cols:

@@ -281,3 +281,16 @@ def test_improve_waits_for_people_then_resumes_and_never_overwrites(tmp_path):
         improve("past", 1, out, scenes=2, judge="rules", feedback_cfg=fcfg)
     (again,) = improve("past", 1, out, scenes=1, judge=str(export), feedback_cfg=fcfg)  # finished: kept as is
     assert again.to_dict() == res.to_dict()
+
+
+@pytest.mark.slow
+def test_train_with_the_rule_judge_grades_the_models_own_plans(tmp_path):
+    from l2p_bullet.plugins.bundle import load_bundle
+
+    args = ["train", "closer", "--ensemble", "1", "--epochs", "1", "--feedback-judge", "rules", "--judge-scenes", "1"]
+    r = CliRunner().invoke(main, [*args, "--out", str(tmp_path / "a")])
+    assert r.exit_code == 0, r.output
+    fb = load_bundle(tmp_path / "a").manifest["training"]["feedback"]
+    assert fb["judge"] == "rules" and fb["n_items"] == 3 and fb["judge_scenes"] == 1  # 3 plans of one scene
+    r = CliRunner().invoke(main, [*args, "--out", str(tmp_path / "b")])
+    assert (tmp_path / "a" / "progress.safetensors").read_bytes() == (tmp_path / "b" / "progress.safetensors").read_bytes()

@@ -404,30 +404,45 @@ def weigh(demo_seqs: Sequence[TrainingSequence], fb_seqs: Sequence[TrainingSeque
             s.weight = w
 
 
-def judge_items(action: str, bundle, seeds: Sequence[int], judge=None,
-                budgets: Sequence[int | None] = (None, 6, 2), log=None) -> list[FeedbackItem]:
-    """Automatic feedback: plan ``action`` with ``bundle`` on ``random_scene(seed)`` for each seed and grade
-    each plan 10 x the judge's score (the bundle's own judge, rules for the built-ins).
+@dataclass
+class _ModelOnly:
+    """What the planner needs of a bundle, for a progress model that is not in one yet (no policy)."""
 
-    Each scene is planned with the bundle's default planner (``budgets`` None) and with random search
-    stopped after a few steps (the other budgets), so the judge also sees partial and poor motions: plans
-    the default planner finishes are nearly all good, and grading only those would teach nothing new.
+    name: str
+    model: object
+    manifest: dict = field(default_factory=dict)
+
+    def progress_model(self):
+        return self.model
+
+    def policy_arrays(self):
+        return None
+
+
+def judge_items(action: str, model, seeds: Sequence[int], judge, budgets: Sequence[int] = (40, 6, 2),
+                log=None) -> list[FeedbackItem]:
+    """Automatic feedback: plan ``action`` with ``model`` (a progress model) on ``random_scene(seed)`` for
+    each seed and grade each plan 10 x the judge's score.
+
+    The planner is random search with back-up (the paper's baseline, no policy needed), stopped after
+    each of ``budgets`` steps: its default budget, then a few steps only, so the judge also sees partial
+    and poor motions (plans that finish are nearly all good; grading only those would teach little).
+    Planning with the model being trained, not an installed bundle, keeps ``make bundles`` reproducible.
     """
     from ..core.scene import random_scene
-    from ..judge import judge_for
     from ..planning import plan
     from ..planning.world2d import interpolate
 
-    judge = judge or judge_for(bundle)
+    holder = _ModelOnly(action, model)
     out = []
     for i, seed in enumerate(seeds):
         scene = random_scene(seed)
         for b in budgets:
-            p = plan(scene, "A", "B", bundle, seed=seed, planner="default" if b is None else "greedy", budget=b)
+            p = plan(scene, "A", "B", holder, seed=seed, planner="greedy", budget=b)
             mover = interpolate(np.asarray(p.path, float), step=0.25 * p.size)
             anchor = np.repeat(np.asarray(p.anchor_pose, float)[None], len(mover), axis=0)
             v = judge.judge(mover, anchor, p.size)
-            out.append(FeedbackItem(f"rules/{action}/{seed}/{b or 'default'}", action, mover, anchor, p.size,
+            out.append(FeedbackItem(f"rules/{action}/{seed}/{b}", action, mover, anchor, p.size,
                                     [GRADE_MAX * float(v.score)], [], "rules"))
         if log and (i + 1) % 10 == 0:
             log(f"graded plans of {i + 1}/{len(seeds)} scenes with the {judge.name} judge")

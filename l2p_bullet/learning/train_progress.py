@@ -8,6 +8,7 @@ The honest evaluation (split by capture session) lives in :mod:`l2p_bullet.learn
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import time
 from collections.abc import Callable, Sequence
@@ -281,15 +282,28 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
         raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
     cfg = cfg or ProgressTrainConfig()
     fcfg = feedback_cfg or FeedbackConfig()
-    items, n_skipped = _feedback_items(name, feedback, feedback_judge, judge_scenes, log)
+    items, n_skipped = _feedback_items(name, feedback, log)
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
         data_cfg = DataConfig(random_negatives=0)
     else:
         demos = all_demos({name: list(demo_files)} if demo_files else None)
         data_cfg = DataConfig()
-    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=tick, feedback=items,
-                          feedback_cfg=fcfg)
+    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=tick)
+    if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
+        from ..errors import DataError
+        from ..judge import RuleJudge
+        from .feedback import judge_items
+
+        if feedback_judge != "rules":
+            raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
+        items += judge_items(name, result.model, range(JUDGE_SEEDS, JUDGE_SEEDS + judge_scenes), RuleJudge(name),
+                             log=log)
+    if items:
+        tuned = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, tick=tick, feedback=items,
+                             feedback_cfg=fcfg, base=result.model.nets)
+        result = dataclasses.replace(tuned, seconds=result.seconds + tuned.seconds, final_loss=result.final_loss,
+                                     history=result.history)
     default = ProgressTrainConfig()
     cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
            + (f" --ensemble {cfg.ensemble}" if cfg.ensemble != default.ensemble else "")
@@ -313,11 +327,9 @@ JUDGE_SEEDS = 5000
 1000-4999, REINFORCE 10 000 and up."""
 
 
-def _feedback_items(name: str, sources: Sequence[str], judge: str | None, scenes: int,
-                    log: Callable[[str], None] | None) -> tuple[list[FeedbackItem], int]:
-    """The feedback items for ``train_bundle``, and how many reviewed runs had to be left out."""
-    from ..errors import DataError
-    from .feedback import judge_items, load_feedback
+def _feedback_items(name: str, sources: Sequence[str], log: Callable[[str], None] | None) -> tuple[list[FeedbackItem], int]:
+    """The graded motions of ``sources`` for ``train_bundle``, and how many reviewed runs were left out."""
+    from .feedback import load_feedback
 
     items, skipped = load_feedback(sources)
     for s in skipped:
@@ -325,17 +337,6 @@ def _feedback_items(name: str, sources: Sequence[str], judge: str | None, scenes
             log(f"warning: left out reviewed run {s.id} ({s.path or 'no path'}): {s.reason}")
     if sources and not any(it.action == name for it in items) and log:
         log(f'warning: the feedback has no graded motion of "{name}"')
-    if judge:
-        if judge != "rules":
-            raise DataError(f'unknown feedback judge "{judge}" (known: rules)')
-        from ..judge import RuleJudge
-        from ..plugins.registry import resolve
-
-        _, folder = resolve(name)
-        from ..plugins.bundle import load_bundle
-
-        items += judge_items(name, load_bundle(folder), range(JUDGE_SEEDS, JUDGE_SEEDS + scenes), RuleJudge(name),
-                             log=log)
     return items, len(skipped)
 
 
