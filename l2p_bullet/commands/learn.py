@@ -51,7 +51,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     """
     import dataclasses
 
-    from ..learning.feedback import FeedbackConfig
+    from ..learning.feedback_targets import FeedbackConfig
     from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
     cfg = ProgressTrainConfig()

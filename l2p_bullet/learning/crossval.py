@@ -23,7 +23,8 @@ import numpy as np
 
 from ..core.vocabulary import GRADED_FOLDERS
 from .agreement import spearman
-from .feedback import FeedbackConfig, FeedbackItem, feedback_sequences, weigh
+from .feedback import FeedbackItem
+from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
 
 Trainer = Callable[[str, list[FeedbackItem], dict], Any]
 """(action, training items of every action, setting) -> a model with ``final_batch``."""

@@ -32,15 +32,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DataError, RunFolderError
-from .feedback import (
-    GRADE_MAX,
-    FeedbackConfig,
-    FeedbackItem,
-    GradeRow,
-    items_from_rows,
-    load_feedback,
-    read_grades,
-)
+from .feedback import GRADE_MAX, FeedbackItem, GradeRow, items_from_rows, load_feedback, read_grades
+from .feedback_targets import FeedbackConfig
 
 IMPROVE_SEEDS = 1000
 """Scene seed of round 1's first run; round k, run i uses IMPROVE_SEEDS + 100 (k - 1) + i."""

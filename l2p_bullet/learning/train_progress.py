@@ -23,7 +23,8 @@ from ..core.vocabulary import ACTIONS
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from .demos import Demo, load_demos
-from .feedback import FeedbackConfig, FeedbackItem, feedback_sequences, weigh
+from .feedback import FeedbackItem
+from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
 from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
 from .trainset import DataConfig, TrainingSequence, build
 
@@ -150,7 +151,7 @@ def fine_tune(nets: Sequence[ProgressNet], demo_seqs: list[TrainingSequence], fb
     """Continue training copies of ``nets`` on the feedback sequences, replaying demonstrations.
 
     Each epoch takes every feedback batch and a random ``fcfg.demo_fraction`` of the demonstration
-    batches (each scaled up by 1 / fraction, so the two keep the weights :func:`feedback.weigh` gave
+    batches (each scaled up by 1 / fraction, so the two keep the weights :func:`feedback_targets.weigh` gave
     them), shuffled; fresh Adam at ``fcfg.lr`` with cosine decay over ``fcfg.epochs``. Member ``i`` uses
     seed ``seed * 1000 + i``: deterministic for a seed. The inputs are left unchanged.
     """
@@ -269,7 +270,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
 
     ``feedback`` sources ("original" or review exports, :func:`feedback.load_feedback`) and
     ``feedback_judge`` ("rules": plans of the installed bundle on ``judge_scenes`` scenes graded by the
-    rule judge, :func:`feedback.judge_items`) fine-tune the ensemble after the demonstrations; reviewed
+    rule judge, :func:`feedback_targets.judge_items`) fine-tune the ensemble after the demonstrations; reviewed
     runs that cannot be used (changed trajectory, missing folder) are reported through ``log``.
     """
     from ..errors import RunFolderError
@@ -293,7 +294,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         from ..errors import DataError
         from ..judge import RuleJudge
-        from .feedback import judge_items
+        from .feedback_targets import judge_items
 
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
