@@ -47,7 +47,7 @@ def main() -> None:
     ap.add_argument("--only", default=",".join(COLUMNS), help="comma-separated columns to compute")
     ap.add_argument("--folds", type=int, default=5)
     ap.add_argument("--fold-seed", type=int, default=0)
-    ap.add_argument("--weights", default="0.1,0.3,1.0", help="feedback weights the inner CV chooses among")
+    ap.add_argument("--weights", default="0.3,1.0,3.0", help="feedback weights the inner CV chooses among")
     ap.add_argument("--judge-scenes", type=int, default=30)
     ap.add_argument("--json", type=Path, default=None, help="also write every prediction and choice here")
     ap.add_argument("--base-cache", type=Path, default=None,
