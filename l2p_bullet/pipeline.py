@@ -109,7 +109,8 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None, world: Any = None) -> PerformResult:
+            plugins: list | None = None, render_settings: Any = None, world: Any = None,
+            bundle: Any = None) -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
 
     ``world``: an open simulator world to execute in (``execute_path`` resets it to ``scene`` first, so
@@ -117,7 +118,8 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
 
     Raises an :class:`L2PError` subclass for anything a user can get wrong (sentence, plugin, run
     folder, unreachable plan); the run folder, once created, gets a summary.json naming the stage that
-    failed, so a failed run is still explained on disk.
+    failed, so a failed run is still explained on disk. ``bundle`` performs with that loaded bundle
+    instead of the installed plugin's (``l2p-bullet improve`` tries each round's re-trained bundle).
     """
     from .judge import judge_for
     from .plugins import registry
@@ -129,7 +131,10 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
-    bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
+    if bundle is None:
+        bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
+    elif bundle.name != cmd.action:
+        raise PluginError(f'the sentence asks for "{cmd.action}" but the bundle given is "{bundle.name}"')
     model = bundle.progress_model()
     judge = judge_for(bundle)
     clock.stop()

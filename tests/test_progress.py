@@ -135,3 +135,28 @@ def test_each_model_prefers_its_own_action(models):
         assert own > 0.4, (a, scores[a])
         others = [scores[a][i] for i, b in enumerate(names) if b != a and {a, b} != {"closer", "next-to"}]
         assert own > max(others), (a, scores[a])
+
+
+def test_approach_copies_start_farther_back_and_pass_as_near():
+    from l2p_bullet.learning.trainset import _approach
+
+    m = _line((-3, 2), (3, 2), 30)
+    a = _approach(m, 2.5)
+    assert np.allclose(a[-len(m):], m) and np.allclose(a[0, :2], (-5.5, 2.0))
+    assert np.isclose(np.abs(a[:, 1] - 2).max(), 0)  # along the first direction: the pass is unchanged
+
+
+def test_past_only_copies_leave_the_other_actions_training_sets_alone():
+    from dataclasses import replace
+
+    from l2p_bullet.learning.train_progress import all_demos
+    from l2p_bullet.learning.trainset import build
+
+    demos = {a: ds[:2] for a, ds in all_demos().items()}
+    q = QSRConfig()
+    plain = replace(DataConfig(), approach={}, scale_ranges={k: v for k, v in DataConfig().scale_ranges.items()
+                                                             if k != "past"}, random_negatives=5, static_negatives=2)
+    new = replace(plain, approach=DataConfig().approach, scale_ranges=DataConfig().scale_ranges)
+    a, b = build("away", demos, q, plain), build("away", demos, q, new)
+    assert len(a) == len(b) and all(np.array_equal(x.x, y.x) and np.array_equal(x.y, y.y) for x, y in zip(a, b, strict=True))
+    assert len(build("past", demos, q, new)) > len(build("past", demos, q, plain))

@@ -29,40 +29,54 @@ from .common import greedy_options, seed_option
                    "(other files in it, e.g. policy.safetensors, are kept).")
 @click.option("--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer).")
 @click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer).")
+@click.option("--feedback", "feedback", multiple=True, metavar="SOURCE",
+              help='People\'s grades to fine-tune on (repeatable): "original" (the study\'s 90 graded demos), '
+                   "a review export (.csv, .jsonl) or a review database (.sqlite, .db).")
+@click.option("--feedback-judge", type=click.Choice(["rules"]), default=None,
+              help="Also fine-tune on the installed bundle's plans graded by the rule judge (automatic feedback).")
+@click.option("--judge-scenes", type=click.IntRange(min=1), default=30, show_default=True,
+              help="Scenes planned for --feedback-judge (seeds 5000 on).")
 def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: int, force: bool,
-          ensemble: int | None, epochs: int | None) -> None:
+          ensemble: int | None, epochs: int | None, feedback: tuple[str, ...], feedback_judge: str | None,
+          judge_scenes: int) -> None:
     """Train ACTION's progress model on the human demonstrations and write a bundle.
 
     Deterministic for a seed; a few tens of seconds per action on 2 CPU cores. The other actions'
-    shipped demonstrations serve as negatives.
+    shipped demonstrations serve as negatives. With --feedback, the model is then fine-tuned so that
+    its progress at the end of each graded motion follows the people's mean grade (docs/learning.md).
 
     \b
     Examples:
       l2p-bullet train around --out my_around
       l2p-bullet train closer --demos SlideToward_Session1.npz --seed 3 --out closer_s1
       l2p-bullet train left-of --demos l2p-left-of/demos/*.npz --out l2p-left-of/l2p_left_of
+      l2p-bullet train past --feedback original --feedback reviews.csv --out past_fb
     """
     import dataclasses
 
+    from ..learning.feedback_targets import FeedbackConfig
     from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
     cfg = ProgressTrainConfig()
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
+    fcfg = FeedbackConfig()
+    ticks = cfg.ensemble * (cfg.epochs + (fcfg.epochs if feedback or feedback_judge else 0))
     bars: list = []
 
     def tick() -> None:  # the bar starts with the first epoch: a file error before it stays one line
         if not bars:
-            bars.append(click.progressbar(length=cfg.ensemble * cfg.epochs, label=f"training {action}",
-                                          file=sys.stderr).__enter__())
+            bars.append(click.progressbar(length=ticks, label=f"training {action}", file=sys.stderr).__enter__())
         bars[0].update(1)
 
     try:
         out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
-                                   cfg=cfg, force=force, tick=tick)
+                                   cfg=cfg, force=force, tick=tick, feedback=feedback, feedback_judge=feedback_judge,
+                                   judge_scenes=judge_scenes, feedback_cfg=fcfg, log=lambda m: click.echo(m, err=True))
     finally:
         if bars:
             bars[0].__exit__(None, None, None)
-    click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences)")
+    extra = f", {result.n_feedback} feedback sequences" if result.n_feedback else ""
+    click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences{extra})")
 
 
 @click.command("train-policy")
@@ -96,6 +110,42 @@ def train_policy_cmd(action: str, bundle_dir: str | None, iterations: int | None
 
 @click.command()
 @click.argument("action")
+@click.option("--rounds", type=click.IntRange(1, 40), default=2, show_default=True, help="Rounds of perform, grade, re-train.")
+@click.option("--scenes", type=click.IntRange(1, 100), default=10, show_default=True,
+              help="Seeded scenes performed per round (seeds 1000 + 100 (round - 1) + i).")
+@click.option("--judge", default="rules", show_default=True, metavar="rules|FILE",
+              help="Who grades the runs: the rule judge, or people (a review database or export holding grades of the runs).")
+@click.option("--feedback", "feedback", multiple=True, metavar="SOURCE",
+              help='Grades to fine-tune on in every round as well (repeatable), e.g. "original".')
+@click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
+              help="Folder for the rounds (default: runs/improve/<action>).")
+@seed_option
+@force_option
+def improve(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[str, ...], out_dir: str | None,
+            seed: int, force: bool) -> None:
+    """Hot feedback: perform ACTION on seeded scenes, grade the runs, re-train, repeat.
+
+    Each round's runs, grades (grades.csv), re-trained bundle and metrics are kept in
+    OUT/round-<k>/. With a review file as --judge, a round stops until its runs are graded there; run
+    the same command again to go on (finished rounds are kept). Nothing is overwritten without --force.
+
+    \b
+    Examples:
+      l2p-bullet improve past --rounds 3 --scenes 10
+      l2p-bullet improve away --judge reviews.sqlite --out runs/improve/away
+    """
+    from ..learning.improve import improve as run_improve
+
+    out = Path(out_dir) if out_dir else Path("runs") / "improve" / action.replace("_", "-")
+    results = run_improve(action, rounds, out, scenes=scenes, judge=judge, feedback=feedback, seed=seed,
+                          force=force, log=lambda m: click.echo(m, err=True))
+    for r in results:
+        click.echo(f"round {r.round}: success {100 * r.success_rate:.0f} %, final progress {r.mean_final_progress:.2f}, "
+                   f"{r.n_grades} grades (mean {r.mean_grade:.1f}), agreement {r.agreement_mean:.2f} -> {r.bundle}")
+
+
+@click.command()
+@click.argument("action")
 @click.argument("file", type=click.Path(dir_okay=False))
 def score(action: str, file: str) -> None:
     """Score a motion FILE with ACTION's progress model and print JSON.
@@ -109,4 +159,4 @@ def score(action: str, file: str) -> None:
     click.echo(dumps_json(score_file(action, file)))
 
 
-COMMANDS: list[click.Command] = [train, train_policy_cmd, score]
+COMMANDS: list[click.Command] = [train, train_policy_cmd, improve, score]

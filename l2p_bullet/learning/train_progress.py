@@ -8,6 +8,7 @@ The honest evaluation (split by capture session) lives in :mod:`l2p_bullet.learn
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import time
 from collections.abc import Callable, Sequence
@@ -24,6 +25,8 @@ from ..errors import BundleError, L2PError
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from .demos import Demo, load_demos
+from .feedback import FeedbackItem
+from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
 from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
 from .trainset import DataConfig, TrainingSequence, build
 from .views import viewer_sides
@@ -57,6 +60,8 @@ class TrainResult:
     final_loss: float
     data_digest: str
     history: list[float] = field(default_factory=list)
+    n_feedback: int = 0
+    """Feedback sequences fine-tuned on (graded motions and their mirror images, blind negatives)."""
 
 
 def data_digest(demos: dict[str, list[Demo]]) -> str:
@@ -67,10 +72,6 @@ def data_digest(demos: dict[str, list[Demo]]) -> str:
             h.update(d.id.encode())
             h.update(np.ascontiguousarray(d.mover, np.float64).tobytes())
             h.update(np.ascontiguousarray(d.anchor, np.float64).tobytes())
-            for x in d.more_anchors:  # plugin actions' further anchors and viewpoint (none for the built-ins)
-                h.update(np.ascontiguousarray(x, np.float64).tobytes())
-            if d.viewer is not None:
-                h.update(np.ascontiguousarray(d.viewer, np.float64).tobytes())
     return h.hexdigest()
 
 
@@ -106,6 +107,25 @@ def train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrainC
         return _train_net(seqs, n_features, cfg, seed, tick)
 
 
+def _batches(seqs: list[TrainingSequence], batch: int) -> list[tuple[torch.Tensor, ...]]:
+    """Length-sorted chunks of ``batch`` sequences, padded (little padding per chunk)."""
+    order = np.argsort([len(s.y) for s in seqs], kind="stable")
+    return [_pad([seqs[j] for j in order[i : i + batch]]) for i in range(0, len(order), batch)]
+
+
+def _step(net: ProgressNet, opt: torch.optim.Optimizer, batch: tuple[torch.Tensor, ...], total_w: float,
+          times: float, end_weight: float) -> float:
+    """One Adam step on a padded batch: its weighted error / ``total_w`` (the epoch's) x ``times``."""
+    x, y, mask, endw = batch
+    err = (net(x) - y) ** 2
+    loss = ((err * mask).sum() + end_weight * (err * endw).sum()) / total_w * times
+    opt.zero_grad()
+    loss.backward()
+    torch.nn.utils.clip_grad_norm_(net.parameters(), 1.0)
+    opt.step()
+    return float(loss.detach())
+
+
 def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrainConfig, seed: int,
                tick: Callable[[], None] | None) -> tuple[ProgressNet, list[float]]:
     torch.manual_seed(seed)
@@ -113,23 +133,13 @@ def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrain
     net = ProgressNet(n_features, cfg.hidden)
     opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)
     sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=cfg.epochs)
-    order = np.argsort([len(s.y) for s in seqs], kind="stable")
-    chunks = [order[i : i + cfg.batch] for i in range(0, len(order), cfg.batch)]
-    batches = [_pad([seqs[j] for j in c]) for c in chunks]
+    batches = _batches(seqs, cfg.batch)
     total_w = sum(s.weight for s in seqs)
     history = []
     for _ in range(cfg.epochs):
         ep = 0.0
         for b in rng.permutation(len(batches)):
-            x, y, mask, endw = batches[b]
-            p = net(x)
-            err = (p - y) ** 2
-            loss = ((err * mask).sum() + cfg.end_weight * (err * endw).sum()) / total_w * len(batches)
-            opt.zero_grad()
-            loss.backward()
-            torch.nn.utils.clip_grad_norm_(net.parameters(), 1.0)
-            opt.step()
-            ep += float(loss.detach()) / len(batches)
+            ep += _step(net, opt, batches[b], total_w, len(batches), cfg.end_weight) / len(batches)
         sched.step()
         history.append(ep)
         if tick:
@@ -138,32 +148,85 @@ def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrain
     return net, history
 
 
+def fine_tune(nets: Sequence[ProgressNet], demo_seqs: list[TrainingSequence], fb_seqs: list[TrainingSequence],
+              fcfg: FeedbackConfig, cfg: ProgressTrainConfig, seed: int = 0,
+              tick: Callable[[], None] | None = None) -> list[ProgressNet]:
+    """Continue training copies of ``nets`` on the feedback sequences, replaying demonstrations.
+
+    Each epoch takes every feedback batch and a random ``fcfg.demo_fraction`` of the demonstration
+    batches (each scaled up by 1 / fraction, so the two keep the weights :func:`feedback_targets.weigh` gave
+    them), shuffled; fresh Adam at ``fcfg.lr`` with cosine decay over ``fcfg.epochs``. Member ``i`` uses
+    seed ``seed * 1000 + i``: deterministic for a seed. The inputs are left unchanged.
+    """
+    import copy
+
+    with torch_threads(cfg.threads):
+        demo_b = _batches(demo_seqs, cfg.batch) if demo_seqs and fcfg.demo_fraction > 0 else []
+        fb_b = _batches(fb_seqs, cfg.batch) if fb_seqs else []
+        frac = fcfg.demo_fraction if demo_b else 0.0
+        total_w = frac * sum(s.weight for s in demo_seqs) * (1 if demo_b else 0) + sum(s.weight for s in fb_seqs)
+        n_demo = int(round(frac * len(demo_b)))
+        out = []
+        for i, base in enumerate(nets):
+            torch.manual_seed(seed * 1000 + i)
+            rng = np.random.default_rng(seed * 1000 + i)
+            net = copy.deepcopy(base).train()
+            opt = torch.optim.Adam(net.parameters(), lr=fcfg.lr)
+            sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=max(fcfg.epochs, 1))
+            for _ in range(fcfg.epochs):
+                chosen = [(b, 1.0 / frac) for b in rng.choice(len(demo_b), n_demo, replace=False)] if n_demo else []
+                plan = [(demo_b[b], s) for b, s in chosen] + [(b, 1.0) for b in fb_b]
+                n = len(plan)
+                for j in rng.permutation(n):
+                    batch, s = plan[j]
+                    _step(net, opt, batch, max(total_w, 1e-9), s * n, cfg.end_weight)
+                sched.step()
+                if tick:
+                    tick()
+            out.append(net.eval())
+        return out
+
+
 def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  qsr_cfg: QSRConfig | None = None, data_cfg: DataConfig | None = None,
-                 cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None) -> TrainResult:
-    """Build the training set and train the ensemble; ``tick`` is called once per member-epoch."""
+                 cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None,
+                 feedback: Sequence[FeedbackItem] = (), feedback_cfg: FeedbackConfig | None = None,
+                 base: Sequence[ProgressNet] | None = None) -> TrainResult:
+    """Build the training set and train the ensemble; ``tick`` is called once per member-epoch.
+
+    With ``feedback`` (graded motions of any action; those of ``action`` are used), the ensemble trained
+    on the demonstrations is then fine-tuned on them (:func:`fine_tune`, ``feedback_cfg``). ``base``
+    skips the training on the demonstrations and fine-tunes these nets instead (cross-validation and
+    ``improve`` reuse one such ensemble for many fine-tunings).
+    """
     from ..errors import DataError
 
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
     if not demos.get(action):
         raise DataError(f'no demonstrations of "{action}" to learn from: the session files hold no events '
                         "(event_start_end is empty)")
+    fcfg = feedback_cfg or FeedbackConfig()
     t0 = time.perf_counter()
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
-    nets, last = [], []
-    for i in range(cfg.ensemble):
+    nets, last = list(base or []), []
+    for i in range(0 if base else cfg.ensemble):
         net, hist = train_net(seqs, qsr_cfg.n_features, cfg, seed * 1000 + i, tick)
         nets.append(net)
         last.append(hist[-1])
-    mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=cfg.ensemble)
+    fb = feedback_sequences(action, feedback, qsr_cfg, data_cfg, fcfg)
+    if fb:
+        weigh(seqs, fb, fcfg.weight)
+        nets = fine_tune(nets, seqs, fb, fcfg, cfg, seed=seed, tick=tick)
+    mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=len(nets))
     return TrainResult(
         model=ProgressModel.from_nets(nets, mcfg, qsr_cfg),
         seconds=time.perf_counter() - t0,
         n_sequences=len(seqs),
         n_positive=sum(s.positive for s in seqs),
-        final_loss=float(np.mean(last)),
+        final_loss=float(np.mean(last)) if last else float("nan"),
         data_digest=data_digest(demos),
         history=last,
+        n_feedback=len(fb),
     )
 
 
@@ -224,7 +287,10 @@ def training_target(action: str, out: Path | None, demo_files: Sequence[str]) ->
 
 def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (), seed: int = 0,
                  cfg: ProgressTrainConfig | None = None, force: bool = False,
-                 tick: Callable[[], None] | None = None) -> tuple[Path, TrainResult]:
+                 tick: Callable[[], None] | None = None, feedback: Sequence[str] = (),
+                 feedback_judge: str | None = None, judge_scenes: int = 30,
+                 feedback_cfg: FeedbackConfig | None = None,
+                 log: Callable[[str], None] | None = None) -> tuple[Path, TrainResult]:
     """``l2p-bullet train``: train ``action``'s progress ensemble and write it into a bundle folder.
 
     The default folder is ``runs/bundles/<action>``. An existing trained bundle is only replaced with
@@ -232,18 +298,24 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     protect. Built-in actions train on the shipped demonstrations (or ``demo_files``); a plugin action on
     its author's files, with the built-in actions' demonstrations as negatives and no random negatives
     (no rule says a random motion is not the new action).
+
+    ``feedback`` sources ("original" or review exports, :func:`feedback.load_feedback`) and
+    ``feedback_judge`` ("rules": plans of the installed bundle on ``judge_scenes`` scenes graded by the
+    rule judge, :func:`feedback_targets.judge_items`) fine-tune the ensemble after the demonstrations; reviewed
+    runs that cannot be used (changed trajectory, missing folder) are reported through ``log``.
     """
     from ..errors import DataError, RunFolderError
     from ..plugins.bundle import MANIFEST, PROGRESS_FILE, write_progress_bundle
     from .demos import expand_files, load_demos
 
     demo_files = [str(f) for f in expand_files(list(demo_files))]
-
     name, plugin = training_target(action, out, demo_files)
     out = out if out is not None else Path("runs") / "bundles" / name
     if (out / MANIFEST).exists() and (out / PROGRESS_FILE).exists() and not force:
         raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
     cfg = cfg or ProgressTrainConfig()
+    fcfg = feedback_cfg or FeedbackConfig()
+    items, n_skipped = _feedback_items(name, feedback, log)
     qsr_cfg = QSRConfig()
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
@@ -257,18 +329,64 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick)
+    if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
+        from ..judge import RuleJudge
+        from .feedback_targets import judge_items
+
+        if feedback_judge != "rules":
+            raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
+        items += judge_items(name, result.model, range(JUDGE_SEEDS, JUDGE_SEEDS + judge_scenes), RuleJudge(name),
+                             log=log)
+    if items:
+        tuned = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
+                             feedback=items, feedback_cfg=fcfg, base=result.model.nets)
+        result = dataclasses.replace(tuned, seconds=result.seconds + tuned.seconds, final_loss=result.final_loss,
+                                     history=result.history)
     arrays = ensemble_arrays(result.model.nets)
     if not (np.isfinite(result.final_loss) and all(np.all(np.isfinite(a)) for a in arrays.values())):
         raise DataError(f'training "{name}" diverged (the loss or a weight is not a number); no bundle written')
     default = ProgressTrainConfig()
     cmd = (f"l2p-bullet train {name} --seed {seed}" + "".join(f" --demos {f}" for f in demo_files)
            + (f" --ensemble {cfg.ensemble}" if cfg.ensemble != default.ensemble else "")
-           + (f" --epochs {cfg.epochs}" if cfg.epochs != default.epochs else ""))
-    write_progress_bundle(out, name, arrays, result.model.model_cfg,
-                          result.model.qsr_cfg,
-                          training=training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg),
+           + (f" --epochs {cfg.epochs}" if cfg.epochs != default.epochs else "")
+           + "".join(f" --feedback {f}" for f in feedback)
+           + (f" --feedback-judge {feedback_judge} --judge-scenes {judge_scenes}" if feedback_judge else ""))
+    training = training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg)
+    if feedback or feedback_judge:
+        training["feedback"] = {"sources": list(feedback), "judge": feedback_judge or "",
+                                "judge_scenes": judge_scenes if feedback_judge else 0,
+                                "n_items": sum(it.action == name for it in items), "n_sequences": result.n_feedback,
+                                "skipped_runs": n_skipped, "digest": feedback_digest(items), **fcfg.to_dict()}
+    write_progress_bundle(out, name, arrays, result.model.model_cfg, result.model.qsr_cfg, training=training,
                           metrics={"train_loss": round(result.final_loss, 6)})
     return out, result
+
+
+JUDGE_SEEDS = 5000
+"""First scene seed of the automatic feedback (``--feedback-judge``): benchmarks use 0-99, ``improve``
+1000-4999, REINFORCE 10 000 and up."""
+
+
+def _feedback_items(name: str, sources: Sequence[str], log: Callable[[str], None] | None) -> tuple[list[FeedbackItem], int]:
+    """The graded motions of ``sources`` for ``train_bundle``, and how many reviewed runs were left out."""
+    from .feedback import load_feedback
+
+    items, skipped = load_feedback(sources)
+    for s in skipped:
+        if log:
+            log(f"warning: left out reviewed run {s.id} ({s.path or 'no path'}): {s.reason}")
+    if sources and not any(it.action == name for it in items) and log:
+        log(f'warning: the feedback has no graded motion of "{name}"')
+    return items, len(skipped)
+
+
+def feedback_digest(items: Sequence[FeedbackItem]) -> str:
+    """sha256 over the feedback used (ids, actions, grades, labels and poses), for the manifest."""
+    h = hashlib.sha256()
+    for it in items:
+        h.update(f"{it.id}|{it.action}|{it.grades}|{it.labels}".encode())
+        h.update(np.ascontiguousarray(it.mover, np.float64).tobytes())
+    return h.hexdigest()
 
 
 @dataclass(frozen=True)

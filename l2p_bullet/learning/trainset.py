@@ -79,6 +79,8 @@ class DataConfig:
     """Stretch factors of those copies (blocks keep their size)."""
     scale_ranges: dict = field(default_factory=lambda: {"around": (0.75, 1.2), "closer": (0.45, 1.7)})
     """Per-action stretch ranges: around stays near the anchor; closer must have seen closing in from 2 blocks."""
+    approach: dict = field(default_factory=lambda: {"past": (1.0, 4.0)})
+    """Actions with copies that start farther back along their first direction (blocks): far starts, near passes."""
     shortened: dict = field(default_factory=lambda: {"away": (0.75, 0.95)})
     """Actions with extra copies shrunk about their own start: the same motion stopped sooner is complete."""
     twisted_per_demo: int = 2
@@ -123,7 +125,8 @@ class DataConfig:
                 "negatives": dict(self.negatives), "turn_label": dict(self.turn_label),
                 "net_label": dict(self.net_label),
                 "scale_ranges": {k: list(v) for k, v in self.scale_ranges.items()},
-                "shortened": {k: list(v) for k, v in self.shortened.items()}}
+                "shortened": {k: list(v) for k, v in self.shortened.items()},
+                "approach": {k: list(v) for k, v in self.approach.items()}}
 
 
 @dataclass
@@ -232,6 +235,18 @@ def _detour(m: np.ndarray, c: np.ndarray, rng: np.random.Generator, size: float)
     r_new = rng.uniform(lo, hi - 1.0) if r1 > r0 else rng.uniform(lo + 1.0, hi)
     b = np.arctan2(*(m[0, 1::-1] - c[1::-1])) + rng.uniform(-1.0, 1.0)
     p0 = np.array([c[0] + r_new * size * np.cos(b), c[1] + r_new * size * np.sin(b), m[0, 2]])
+    return np.concatenate([np.linspace(p0, m[0], 20, endpoint=False), m])
+
+
+def _approach(m: np.ndarray, extra: float) -> np.ndarray:
+    """The motion with a straight run-up of ``extra`` (metres) before it, along its first direction of
+    travel: a start farther away that still passes the anchor as near as the person did."""
+    d = m[min(len(m) - 1, max(1, len(m) // 5)), :2] - m[0, :2]
+    n = float(np.linalg.norm(d))
+    if n < 1e-9:
+        return m
+    p0 = m[0].copy()
+    p0[:2] = m[0, :2] - d / n * extra
     return np.concatenate([np.linspace(p0, m[0], 20, endpoint=False), m])
 
 
@@ -386,6 +401,9 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
         if pm is not None:
             pm = _scaled(pm, pm[0], rng.uniform(*dcfg.shortened[action]))
         variants.append(pm)
+    for _ in range(dcfg.scaled_per_demo if action in dcfg.approach else 0):
+        pm = _event_or_polyline(ev_m, c, rng)
+        variants.append(None if pm is None else _approach(pm, rng.uniform(*dcfg.approach[action]) * size))
     for _ in range(dcfg.twisted_per_demo if action in dcfg.twist_actions or twist else 0):
         pm = _event_or_polyline(ev_m, c, rng)
         angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)

@@ -1,0 +1,295 @@
+"""Feedback from people's grades (and from a rule judge) as training sequences for a progress model.
+
+Why: the training set was reshaped, change after change, until planners passed our own rules, and
+each change cost agreement with people (docs/learning.md). Grades are the standard of truth, so the
+motions people graded become training sequences whose progress at the motion's end is the people's
+mean grade (0-10 -> 0-1), and motions people took for another action in a blind review are negatives.
+
+Where grades come from (:func:`load_feedback`), one :class:`FeedbackItem` per graded motion:
+
+- ``original``: the 90 graded 2-D demonstrations of the original study (``learning.agreement``);
+- a review-app export, CSV or JSON lines (:data:`COLUMNS`, one :class:`GradeRow` per line); a reviewed
+  run's motion is read from its run folder's trajectory.json, and a run whose trajectory.json no longer
+  has the sha256 that was reviewed is reported, never used;
+- the review app's SQLite database (``.sqlite``/``.db``), through ``l2p_bullet.review.store.load_grades``;
+- the rule judge (:func:`~l2p_bullet.learning.feedback_targets.judge_items`): planner outputs graded 10 x the judge's score, the original
+  project's "automatic feedback".
+
+How items become training sequences is :mod:`l2p_bullet.learning.feedback_targets`; the fine-tuning
+:func:`l2p_bullet.learning.train_progress.fine_tune`. Torch-free.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import json
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+
+import numpy as np
+
+from ..core.vocabulary import canonical_action, normalize_name
+from ..errors import DataError, UnknownActionError
+
+GRADE_MAX = 10.0
+"""Grades run from 0 (bad) to this (good); the training target is grade / GRADE_MAX."""
+
+ORIGINAL = "original"
+"""The built-in source: the original study's graded 2-D demonstrations."""
+
+
+class FeedbackError(DataError):
+    """A feedback source is missing, unreadable or malformed; ``.path`` and ``.line`` say where."""
+
+    def __init__(self, message: str, path: str = "", line: int | None = None):
+        self.path, self.line = path, line
+        where = f"{path}" + (f", line {line}" if line is not None else "")
+        super().__init__(f"{where}: {message}" if where else message)
+
+
+@dataclass(frozen=True)
+class GradeRow:
+    """One row of a review export: one reviewer's grade (``mode`` graded) or label (``mode`` blind) of a run.
+
+    ``source`` is "original" for the imported study rows (then ``demo_id`` names the graded demonstration
+    and no run folder is needed). Columns beyond these are ignored; missing ones are empty.
+    """
+
+    run_id: str = ""
+    run_path: str = ""
+    trajectory_sha256: str = ""
+    action: str = ""
+    sentence: str = ""
+    mode: str = "graded"
+    reviewer: str = ""
+    grade: float | None = None
+    label: str = ""
+    comment: str = ""
+    view: str = ""
+    created_at: str = ""
+    updated_at: str = ""
+    source: str = ""
+    demo_id: str = ""
+    folder: str = ""
+
+
+COLUMNS: tuple[str, ...] = tuple(f.name for f in fields(GradeRow))
+"""The export columns this reader understands (the review app writes at least these)."""
+
+
+def _row(d: dict, path: str, line: int) -> GradeRow:
+    """Validate one export row (a mapping of column -> value; CSV gives strings, JSON typed values)."""
+    vals = {k: ("" if d.get(k) is None else str(d.get(k)).strip()) for k in COLUMNS}
+    mode = vals["mode"].lower() or "graded"
+    if mode not in ("graded", "blind"):
+        raise FeedbackError(f'mode must be "graded" or "blind", not "{vals["mode"]}"', path, line)
+    grade = None
+    if vals["grade"]:
+        try:
+            grade = float(vals["grade"])
+        except ValueError:
+            raise FeedbackError(f'grade "{vals["grade"]}" is not a number', path, line) from None
+        if not 0.0 <= grade <= GRADE_MAX:
+            raise FeedbackError(f"grade {grade:g} is outside 0-{GRADE_MAX:g}", path, line)
+    if not vals["action"]:
+        raise FeedbackError("the row names no action", path, line)
+    if not (vals["run_id"] or vals["demo_id"]):
+        raise FeedbackError("the row has neither a run_id nor a demo_id", path, line)
+    return GradeRow(**{**vals, "mode": mode, "grade": grade})
+
+
+def read_grades(path: str | Path) -> list[GradeRow]:
+    """Every row of a review export: ``.csv`` (header row), ``.jsonl`` (one object a line), or the review
+    app's database (``.sqlite``/``.db``, read by ``l2p_bullet.review.store.load_grades``)."""
+    p = Path(path)
+    if not p.is_file():
+        raise FeedbackError("no such feedback file (expected a .csv or .jsonl export, a review .sqlite/.db, "
+                            f'or "{ORIGINAL}")', str(p))
+    suffix = p.suffix.lower()
+    if suffix in (".sqlite", ".db", ".sqlite3"):
+        return _read_store(p)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise FeedbackError(f"cannot read it ({e})", str(p)) from None
+    if suffix == ".csv":
+        reader = csv.DictReader(text.splitlines())
+        if not reader.fieldnames or "action" not in reader.fieldnames:
+            raise FeedbackError(f"a CSV export needs a header row with the columns {', '.join(COLUMNS)}", str(p))
+        return [_row(d, str(p), i) for i, d in enumerate(reader, start=2)]
+    if suffix in (".jsonl", ".ndjson"):
+        rows = []
+        for i, line in enumerate(text.splitlines(), start=1):
+            if not line.strip():
+                continue
+            try:
+                d = json.loads(line)
+            except json.JSONDecodeError as e:
+                raise FeedbackError(f"not valid JSON ({e.msg})", str(p), i) from None
+            if not isinstance(d, dict):
+                raise FeedbackError("each line must be a JSON object", str(p), i)
+            rows.append(_row(d, str(p), i))
+        return rows
+    raise FeedbackError(f'unknown feedback format "{suffix}" (expected .csv, .jsonl, .sqlite or .db)', str(p))
+
+
+def _read_store(p: Path) -> list[GradeRow]:
+    """The review app's database, through its own reader (imported here: the app is an optional part)."""
+    try:
+        from ..review.store import load_grades  # type: ignore[import-not-found]
+    except ImportError:
+        raise FeedbackError("reading a review database needs the review app (l2p_bullet.review.store), which "
+                            "is not installed here; export the grades to CSV or JSON lines instead", str(p)) from None
+    out = []
+    for i, r in enumerate(load_grades(p), start=1):
+        d = r if isinstance(r, dict) else {k: getattr(r, k, None) for k in COLUMNS}
+        out.append(_row(d, str(p), i))
+    return out
+
+
+def write_grades(rows: Iterable[GradeRow], path: str | Path) -> Path:
+    """Write rows as a CSV export with :data:`COLUMNS` (what ``improve`` keeps of each round's grades)."""
+    p = Path(path)
+    with p.open("w", newline="", encoding="utf-8") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(COLUMNS))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("" if getattr(r, k) is None else getattr(r, k)) for k in COLUMNS})
+    return p
+
+
+@dataclass
+class FeedbackItem:
+    """One motion and what people (or a judge) said of it, for the action it was performed for.
+
+    ``mover``/``anchor`` are (T,3) poses in metres, blocks of side ``size``; ``grades`` 0-10 from graded
+    reviews; ``labels`` the actions blind reviewers picked ("none" for none of them).
+    """
+
+    id: str
+    action: str
+    mover: np.ndarray
+    anchor: np.ndarray
+    size: float
+    grades: list[float] = field(default_factory=list)
+    labels: list[str] = field(default_factory=list)
+    source: str = ""
+    folder: str = ""
+
+    @property
+    def grade(self) -> float | None:
+        """The mean grade, or None when nobody graded the motion."""
+        return float(np.mean(self.grades)) if self.grades else None
+
+
+@dataclass
+class Skipped:
+    """A reviewed run that was not used, and why (its trajectory changed, its folder is gone, ...)."""
+
+    id: str
+    path: str
+    reason: str
+
+
+def original_items() -> list[FeedbackItem]:
+    """The original study's 90 graded 2-D demonstrations, one item each (grades of both people)."""
+    from .agreement import graded_motions
+
+    return [FeedbackItem(m.id, m.action, m.mover, m.anchor, m.size, list(m.grades.values()), [], ORIGINAL, m.folder)
+            for m in graded_motions()]
+
+
+def _label(value: str) -> str:
+    key = normalize_name(value)
+    if key in ("", "none"):
+        return "none"
+    try:
+        return canonical_action(value)
+    except UnknownActionError:
+        return key  # a plugin action's name: still "another action"
+
+
+def items_from_rows(rows: Sequence[GradeRow], base: str | Path | None = None) -> tuple[list[FeedbackItem], list[Skipped]]:
+    """Group export rows by motion (``demo_id`` for the study's rows, else ``run_id``) into items.
+
+    A run's motion is its run folder's trajectory.json (``run_path``, relative paths first against
+    ``base``, the export's folder); a run whose folder or trajectory is missing, or whose trajectory.json
+    no longer has the reviewed ``trajectory_sha256``, is returned in the second list instead of used.
+    """
+    from ..core.contracts import load_motion
+    from ..errors import L2PError
+
+    groups: dict[str, list[GradeRow]] = {}
+    for r in rows:
+        key = f"demo:{r.demo_id}" if (r.source == ORIGINAL and r.demo_id) else f"run:{r.run_id or r.run_path}"
+        groups.setdefault(key, []).append(r)
+    originals = {it.id: it for it in original_items()} if any(k.startswith("demo:") for k in groups) else {}
+    items, skipped = [], []
+    for key, rs in groups.items():
+        action = canonical_action(rs[0].action) if _is_builtin(rs[0].action) else normalize_name(rs[0].action)
+        grades = [r.grade for r in rs if r.mode == "graded" and r.grade is not None]
+        labels = [_label(r.label) for r in rs if r.mode == "blind" and r.label]
+        if key.startswith("demo:"):
+            demo_id = key[5:]
+            if demo_id not in originals:
+                skipped.append(Skipped(demo_id, "", "no graded demonstration has this demo_id"))
+                continue
+            o = originals[demo_id]
+            items.append(FeedbackItem(o.id, o.action, o.mover, o.anchor, o.size, grades, labels, ORIGINAL, o.folder))
+            continue
+        run_id = key[4:]
+        folder = _run_folder(rs[0].run_path, base)
+        traj = folder / "trajectory.json" if folder else None
+        if traj is None or not traj.is_file():
+            skipped.append(Skipped(run_id, rs[0].run_path, "the run folder or its trajectory.json is missing"))
+            continue
+        want = {r.trajectory_sha256.lower() for r in rs if r.trajectory_sha256}
+        have = hashlib.sha256(traj.read_bytes()).hexdigest()
+        if want and want != {have}:
+            skipped.append(Skipped(run_id, str(traj), "trajectory.json changed since it was reviewed "
+                                   f"(sha256 {have[:12]}..., reviewed {', '.join(sorted(w[:12] for w in want))}...)"))
+            continue
+        try:
+            m = load_motion(traj)
+        except L2PError as e:
+            skipped.append(Skipped(run_id, str(traj), f"unreadable trajectory ({e})"))
+            continue
+        items.append(FeedbackItem(run_id, action, m.mover, m.anchor, m.size, grades, labels, rs[0].source or "review",
+                                  rs[0].folder))
+    return items, skipped
+
+
+def _is_builtin(name: str) -> bool:
+    try:
+        canonical_action(name)
+    except UnknownActionError:
+        return False
+    return True
+
+
+def _run_folder(run_path: str, base: str | Path | None) -> Path | None:
+    if not run_path:
+        return None
+    p = Path(run_path)
+    if p.is_absolute():
+        return p
+    for root in ([Path(base)] if base else []) + [Path.cwd()]:
+        if (root / p).exists():
+            return root / p
+    return Path(base) / p if base else p
+
+
+def load_feedback(sources: Sequence[str]) -> tuple[list[FeedbackItem], list[Skipped]]:
+    """Items from every source: "original" (the built-in study grades) or an export/database path."""
+    items: list[FeedbackItem] = []
+    skipped: list[Skipped] = []
+    for src in sources:
+        if src.strip().lower() == ORIGINAL:
+            items += original_items()
+            continue
+        got, skip = items_from_rows(read_grades(src), Path(src).parent)
+        items += got
+        skipped += skip
+    return items, skipped

@@ -1,0 +1,251 @@
+"""``l2p-bullet improve``: "hot" feedback, rounds of perform -> grade -> re-train.
+
+Each round performs the action (no rendering) on N seeded scenes with the current bundle, collects a
+grade for every run, fine-tunes the current bundle's progress model on the demonstrations plus every
+grade collected so far (and any static ``--feedback``), and keeps the result::
+
+    DIR/round-<k>/runs/seed-<s>/   the run folders (trajectory.json, plan.json, summary.json)
+    DIR/round-<k>/grades.csv       the round's grades, in the review export's columns
+    DIR/round-<k>/bundle/          the re-trained bundle (its [policy] and [judge] kept)
+    DIR/round-<k>/metrics.json     success and final progress of the round's runs, agreement with people
+
+Grades come from the rule judge (``judge="rules"``: 10 x its score on the executed trajectory, the
+original's automatic feedback) or from people: a review database or export (``judge=FILE``) holding
+grades of this round's runs. People need time to grade, so a round whose runs have no grades in the
+file yet stops with a message; re-running the same command resumes there (finished rounds are kept,
+run folders already performed are reused). Nothing is overwritten without ``force``.
+
+Scenes are ``random_scene(seed)`` with seeds 1000 + 100 (k - 1) + i: the benchmarks use 0-99,
+automatic feedback 5000 on, REINFORCE 10 000 and up.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import shutil
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import DataError, RunFolderError
+from .feedback import GRADE_MAX, FeedbackItem, GradeRow, items_from_rows, load_feedback, read_grades
+from .feedback_targets import FeedbackConfig
+
+IMPROVE_SEEDS = 1000
+"""Scene seed of round 1's first run; round k, run i uses IMPROVE_SEEDS + 100 (k - 1) + i."""
+MAX_SCENES, MAX_ROUNDS = 100, 40
+
+SENTENCES = {"closer": "move A closer to B", "away": "move A away from B", "next-to": "move A next to B",
+             "past": "move A past B", "around": "move A around B"}
+
+
+@dataclass
+class RoundResult:
+    """What one round did (also its metrics.json)."""
+
+    round: int
+    bundle: str
+    seeds: list[int]
+    success_rate: float
+    mean_final_progress: float
+    n_grades: int
+    n_grades_total: int
+    mean_grade: float
+    agreement: dict[str, float] = field(default_factory=dict)
+    agreement_mean: float = float("nan")
+    agreement_in_sample: bool = False
+    seconds: float = 0.0
+
+    def to_dict(self) -> dict:
+        return {k: (round(v, 4) if isinstance(v, float) else v) for k, v in self.__dict__.items()}
+
+
+def round_seeds(k: int, scenes: int) -> list[int]:
+    return [IMPROVE_SEEDS + 100 * (k - 1) + i for i in range(scenes)]
+
+
+def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str = "rules",
+            feedback: Sequence[str] = (), seed: int = 0, force: bool = False,
+            feedback_cfg: FeedbackConfig | None = None,
+            log: Callable[[str], None] | None = None) -> list[RoundResult]:
+    """Run ``rounds`` rounds of hot feedback for the installed (or given folder's) ``action`` into ``out``."""
+    from ..plugins.registry import resolve
+
+    if not 1 <= scenes <= MAX_SCENES or not 1 <= rounds <= MAX_ROUNDS:
+        raise DataError(f"improve takes 1-{MAX_SCENES} scenes and 1-{MAX_ROUNDS} rounds")
+    name, current = resolve(action)
+    if name not in SENTENCES:
+        raise DataError(f'improve performs the built-in actions ({", ".join(SENTENCES)}), not "{name}"')
+    if judge != "rules" and not Path(judge).is_file():
+        raise DataError(f'--judge must be "rules" or a review database/export file; {judge} does not exist')
+    out = Path(out)
+    if force and out.exists():
+        shutil.rmtree(out)
+    settings = {"action": name, "scenes": scenes, "judge": judge, "feedback": list(feedback), "seed": seed,
+                "started_from": str(current)}
+    _claim(out, settings)
+    say = log or (lambda _m: None)
+    static, skipped = load_feedback(feedback)
+    for s in skipped:
+        say(f"warning: left out reviewed run {s.id}: {s.reason}")
+    collected: list[FeedbackItem] = []
+    results = []
+    for k in range(1, rounds + 1):
+        rd = out / f"round-{k}"
+        done = rd / "metrics.json"
+        if done.is_file() and (rd / "bundle" / "manifest.toml").is_file():
+            say(f"round {k}: already done, kept ({rd})")
+            collected += _round_items(rd, judge, name, round_seeds(k, scenes), say)
+            current = rd / "bundle"
+            results.append(RoundResult(**json.loads(done.read_text())))
+            continue
+        t0 = time.perf_counter()
+        seeds = round_seeds(k, scenes)
+        say(f"round {k}/{rounds}: performing {name} on {scenes} scenes with {current}")
+        summaries = _perform_round(name, current, rd / "runs", seeds, say)
+        items = _round_items(rd, judge, name, seeds, say)
+        collected += items
+        say(f"round {k}/{rounds}: {len(items)} graded runs (mean grade "
+            f"{np.mean([it.grade for it in items]):.1f}); fine-tuning on {len(collected)} + {len(static)} graded motions")
+        bundle_dir = _retrain(name, current, rd / "bundle", static + collected, seed, feedback_cfg, k, judge)
+        res = _metrics(k, bundle_dir, seeds, summaries, items, len(collected), static)
+        res.seconds = round(time.perf_counter() - t0, 1)
+        done.write_text(json.dumps(res.to_dict(), indent=1) + "\n")
+        say(f"round {k}/{rounds}: success {100 * res.success_rate:.0f} %, mean final progress "
+            f"{res.mean_final_progress:.2f}, agreement with people {res.agreement_mean:.2f}"
+            + (" (in sample)" if res.agreement_in_sample else "") + f" ({res.seconds:.0f} s)")
+        results.append(res)
+        current = bundle_dir
+    return results
+
+
+def _claim(out: Path, settings: dict) -> None:
+    """Create ``out`` for these settings, or resume it if it holds rounds of the very same ones."""
+    f = out / "improve.json"
+    if out.exists() and any(out.iterdir()):
+        try:
+            same = json.loads(f.read_text()) == settings
+        except (OSError, json.JSONDecodeError):
+            same = False
+        if not same:
+            raise RunFolderError(f"{out} already holds something else than rounds of these settings; "
+                                 "pass --force to overwrite it, or choose another --out")
+        return
+    out.mkdir(parents=True, exist_ok=True)
+    f.write_text(json.dumps(settings, indent=1) + "\n")
+
+
+def _perform_round(name: str, bundle_dir: Path, runs: Path, seeds: list[int], say) -> list[dict]:
+    """Perform (no rendering) on each seed's scene, reusing run folders a stopped round already finished."""
+    from ..core.scene import random_scene
+    from ..errors import L2PError
+    from ..pipeline import perform
+    from ..plugins.bundle import load_bundle
+
+    bundle = load_bundle(bundle_dir)
+    out = []
+    for i, s in enumerate(seeds):
+        folder = runs / f"seed-{s}"
+        summary = folder / "summary.json"
+        if not (summary.is_file() and json.loads(summary.read_text()).get("ok")):
+            try:
+                perform(SENTENCES[name], random_scene(s), out_dir=folder, seed=s, render=False, force=True,
+                        bundle=bundle)
+            except L2PError as e:
+                say(f"  seed {s}: failed ({e})")
+        d = json.loads(summary.read_text()) if summary.is_file() else {"ok": False}
+        out.append(d)
+        if (i + 1) % 5 == 0 or i + 1 == len(seeds):
+            say(f"  performed {i + 1}/{len(seeds)}")
+    return out
+
+
+def _round_items(rd: Path, judge: str, name: str, seeds: list[int], say) -> list[FeedbackItem]:
+    """This round's graded runs: judged by the rules (written to grades.csv) or looked up in the file."""
+    runs = [rd / "runs" / f"seed-{s}" for s in seeds]
+    runs = [r for r in runs if (r / "trajectory.json").is_file()]
+    if judge == "rules":
+        rows = [_rule_row(name, r) for r in runs]
+    else:
+        wanted = {r.name for r in runs} | {str(r.resolve()) for r in runs}
+        rows = [r for r in read_grades(judge)
+                if r.run_id in wanted or (r.run_path and str(Path(r.run_path).resolve()) in wanted)]
+        if not any(r.mode == "graded" and r.grade is not None for r in rows):
+            raise DataError(f"{judge} holds no grades of the runs in {rd / 'runs'} yet: review them in the review "
+                            "app, then run the same command again to go on from this round")
+    from .feedback import write_grades
+
+    write_grades(rows, rd / "grades.csv")
+    items, skipped = items_from_rows(rows, rd)
+    for s in skipped:
+        say(f"warning: left out run {s.id}: {s.reason}")
+    return items
+
+
+def _rule_row(name: str, run: Path) -> GradeRow:
+    """The rule judge's grade (10 x score) of a run's executed trajectory, as an export row."""
+    from ..core.contracts import load_motion
+    from ..judge import RuleJudge
+
+    traj = run / "trajectory.json"
+    m = load_motion(traj)
+    v = RuleJudge(name).judge(m.mover, m.anchor, m.size)
+    now = time.strftime("%Y-%m-%dT%H:%M:%S")
+    return GradeRow(run_id=run.name, run_path=str(run.resolve()), trajectory_sha256=hashlib.sha256(traj.read_bytes()).hexdigest(),
+                    action=name, sentence=SENTENCES[name], mode="graded", reviewer="rules",
+                    grade=round(GRADE_MAX * float(v.score), 3), comment=v.reason, view="2d", created_at=now,
+                    updated_at=now, source="rules")
+
+
+def _retrain(name: str, current: Path, out: Path, items: list[FeedbackItem], seed: int,
+             fcfg: FeedbackConfig | None, k: int, judge: str) -> Path:
+    """Fine-tune the current bundle's ensemble on the demonstrations and ``items`` into a copy of it."""
+    from ..plugins.bundle import load_bundle, write_progress_bundle
+    from .progress_net import ProgressModel, ensemble_arrays
+    from .train_progress import (
+        ProgressTrainConfig,
+        all_demos,
+        feedback_digest,
+        train_action,
+        training_section,
+    )
+
+    if out.exists():
+        shutil.rmtree(out)
+    shutil.copytree(current, out)
+    bundle = load_bundle(out)
+    base = ProgressModel.from_bundle(bundle)
+    fcfg = fcfg or FeedbackConfig()
+    cfg = ProgressTrainConfig(hidden=base.model_cfg.hidden, ensemble=base.model_cfg.ensemble)
+    result = train_action(name, all_demos(), seed=seed, cfg=cfg, feedback=items, feedback_cfg=fcfg, base=base.nets)
+    training = training_section(result, cfg, seed, f"l2p-bullet improve {name} (round {k}, judge {judge})")
+    training["feedback"] = {"round": k, "judge": judge, "started_from": str(current), "n_items": len(items),
+                            "n_sequences": result.n_feedback, "digest": feedback_digest(items), **fcfg.to_dict()}
+    write_progress_bundle(out, name, ensemble_arrays(result.model.nets), result.model.model_cfg,
+                          result.model.qsr_cfg, training=training, metrics={})
+    return out
+
+
+def _metrics(k: int, bundle_dir: Path, seeds: list[int], summaries: list[dict], items: list[FeedbackItem],
+             n_total: int, static: list[FeedbackItem]) -> RoundResult:
+    """The round's runs (success by the bundle's judge, final progress) and the new bundle's agreement with
+    the 90 graded demos (in sample when the study's grades were among the feedback)."""
+    from ..plugins.bundle import load_bundle
+    from .crossval import folder_agreement, score_items
+    from .feedback import original_items
+
+    bundle = load_bundle(bundle_dir)
+    graded = [it for it in original_items() if it.action == bundle.name]
+    agree = folder_agreement(graded, score_items(bundle.progress_model(), graded))
+    return RoundResult(
+        round=k, bundle=str(bundle_dir), seeds=seeds,
+        success_rate=float(np.mean([bool(s.get("success")) for s in summaries])),
+        mean_final_progress=float(np.mean([s.get("final_progress") or 0.0 for s in summaries])),
+        n_grades=len(items), n_grades_total=n_total,
+        mean_grade=float(np.mean([it.grade for it in items if it.grade is not None] or [np.nan])),
+        agreement={f: round(float(v), 4) for f, v in agree.items()}, agreement_mean=float(np.mean(list(agree.values()))),
+        agreement_in_sample=any(it.source == "original" for it in static))
