@@ -13,7 +13,7 @@ from pathlib import Path
 
 import click
 
-from .common import greedy_options, seed_option
+from .common import force_option, greedy_options, seed_option
 
 
 @click.command(cls=greedy_options("--demos"))
