@@ -27,6 +27,12 @@ class ArmSpec:
     down_euler: tuple[float, float] = (math.pi, 0.0)  # roll, pitch of the tool pointing down
     position_gain: float = 0.6  # 0.1 lags 10 mm, 0.6 lags 0.7 mm (DESIGN.md section 2)
     fingertip_links: tuple[int, ...] = ()  # links whose lowest point rests on the block's top
+    wrist_limit: float = math.pi  # |wrist joint| <= this (radians): bounds the tool's yaw
+    # (depth, hx, hy): every collision shape of the hand and fingers lower than ``depth`` above the fingertips
+    # lies within +-hx along the tool's x axis and +-hy across it (metres, Bullet's collision margin
+    # included); what the arm puts at the height of a block taller than the one it holds. Measured by
+    # Robot.hand_profile; tests/test_reach.py re-measures it.
+    hand_profile: tuple[tuple[float, float, float], ...] = ()
 
 
 PANDA = ArmSpec(
@@ -44,6 +50,14 @@ PANDA = ArmSpec(
     ),
     wrist_joint=6,
     fingertip_links=(9, 10),
+    wrist_limit=2.9671,
+    hand_profile=(  # fingers alone up to 4.5 cm above their tips (their long side across the tool's x), then the hand
+        (0.000, 0.0093, 0.0183), (0.005, 0.0130, 0.0199), (0.010, 0.0132, 0.0215), (0.015, 0.0135, 0.0231),
+        (0.020, 0.0138, 0.0247), (0.025, 0.0140, 0.0262), (0.030, 0.0143, 0.0278), (0.035, 0.0145, 0.0293),
+        (0.040, 0.0145, 0.0296), (0.045, 0.0145, 0.0299), (0.050, 0.0215, 0.1016), (0.055, 0.0228, 0.1045),
+        (0.060, 0.0241, 0.1048), (0.065, 0.0253, 0.1051), (0.070, 0.0266, 0.1055), (0.075, 0.0278, 0.1058),
+        (0.080, 0.0291, 0.1062),
+    ),
 )
 
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:

@@ -37,10 +37,12 @@ def tool_targets(block_poses: np.ndarray, yaw_offset: float, z: float,
     return np.column_stack([x, y, np.full(len(x), z), block_poses[:, 2] + yaw_offset])
 
 
-def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits) -> Timed:
-    """A timed straight tool move; the yaw turns the short way round."""
+def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits, short_turn: bool = True) -> Timed:
+    """A timed straight tool move; the yaw turns the short way round, or with ``short_turn`` False exactly to
+    the target's yaw (the wrist then ends where that yaw puts it, on the branch the caller chose)."""
     target = np.asarray(target, float).copy()
-    target[3] = start[3] + (target[3] - start[3] + math.pi) % (2 * math.pi) - math.pi
+    if short_turn:
+        target[3] = start[3] + (target[3] - start[3] + math.pi) % (2 * math.pi) - math.pi
     return time_parameterise(motion.line(start, target), limits, 1.0 / CONTROL_HZ)
 
 
@@ -120,33 +122,37 @@ class Primitives:
             self.world.step()
             self.recorder()
 
-    def go(self, target: np.ndarray, limits: Limits, stage: str) -> None:
+    def go(self, target: np.ndarray, limits: Limits, stage: str, short_turn: bool = True) -> None:
         """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
-        self.run(line_plan(self.pose, target, limits), stage)
+        self.run(line_plan(self.pose, target, limits, short_turn), stage)
 
     # --- the primitives ----------------------------------------------------------------------
     def grasp_height(self, name: str) -> float:
         """Tool height with the closed fingertips just touching the block's top."""
         return self.world.sizes[name] + self.robot.drop
 
-    def grasp_poses(self, name: str, yaw_offset: float) -> tuple[np.ndarray, np.ndarray]:
-        """Tool poses above block ``name`` and with the fingertips on its top."""
+    def grasp_poses(self, name: str, yaw_offset: float = 0.0,
+                    tool_yaw: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Tool poses above block ``name`` and with the fingertips on its top: the tool's yaw is the block's
+        plus ``yaw_offset``, or ``tool_yaw`` exactly when given (an unwrapped value: it picks the wrist's branch)."""
         block = self.world.pose(name)
         z = self.grasp_height(name)
-        down = np.array([block[0], block[1], z, block[3] + yaw_offset])
+        yaw = block[3] + yaw_offset if tool_yaw is None else float(tool_yaw)
+        down = np.array([block[0], block[1], z, yaw])
         return down + [0.0, 0.0, HOVER, 0.0], down
 
-    def engage(self, name: str, yaw_offset: float = 0.0) -> Grasp:
+    def engage(self, name: str, yaw_offset: float = 0.0, tool_yaw: float | None = None) -> Grasp:
         """Approach ``name`` from above, descend until the closed fingers rest on its top, fix it.
 
-        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; choose it among
-        :func:`l2p_bullet.embodiment.motion.grasp_yaw_offsets` so the wrist stays inside its range while
-        sliding.
+        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; or ``tool_yaw`` the
+        tool's yaw itself, turned to exactly (not the short way), which decides where the wrist starts the
+        slide: choose it with :func:`l2p_bullet.embodiment.reach.wrist_offsets` (execute.py does) so the wrist
+        stays inside its range while sliding.
         """
         if self.grasp is not None:
             raise ExecutionError(f'already holding "{self.grasp.name}"; disengage first')
-        above, down = self.grasp_poses(name, yaw_offset)
-        self.go(above, APPROACH, "approach")
+        above, down = self.grasp_poses(name, yaw_offset, tool_yaw)
+        self.go(above, APPROACH, "approach", short_turn=tool_yaw is None)
         self.go(down, DESCEND, "descend")
         self.hold(SETTLE_S)
         self.grasp = attach(self.world, name)
@@ -166,21 +172,34 @@ class Primitives:
         joints = self.solve(np.concatenate(samples))
         return np.split(joints, np.cumsum([len(s) for s in samples])[:-1])
 
-    def check_engage_and_slide(self, name: str, path: np.ndarray, yaw_offset: float) -> None:
-        """Solve the IK of the approach, descent and slide exactly as :meth:`engage` and :meth:`move`
-        will (same chunks, timing and seeds, nominal grasp height) without moving anything, so an
-        unreachable pose is a ReachError now rather than halfway through. The arm's state is kept."""
+    def check_engage_and_slide(self, name: str, path: np.ndarray, tool_yaw: float,
+                               rest: np.ndarray | None = None) -> None:
+        """Solve the IK of the approach, descent, slide, retract and return to ``rest`` exactly as
+        :meth:`engage`, :meth:`move` and :meth:`disengage` will (same chunks, timing and seeds, nominal
+        grasp height) without moving anything, so an unreachable pose is a ReachError now rather than
+        halfway through. The arm's state is kept."""
         saved_q, saved_pose = self.q.copy(), self.pose.copy()
         try:
-            above, down = self.grasp_poses(name, yaw_offset)
-            for target, limits in ((above, APPROACH), (down, DESCEND)):
-                timed = line_plan(self.pose, target, limits)
-                self.q = self.solve(self._control_samples(timed))[-1]
-                self.pose = timed.poses[-1].copy()
-            p = self._continued(path, yaw_offset)
-            self.slide_joints(slide_plan(p, yaw_offset, float(down[2])))
+            above, down = self.grasp_poses(name, tool_yaw=tool_yaw)
+            self._check_line(above, APPROACH, short_turn=False)
+            self._check_line(down, DESCEND)
+            offset = tool_yaw - float(self.world.pose(name)[3])
+            p = self._continued(path, offset)
+            timed = slide_plan(p, offset, float(down[2]))
+            joints = self.slide_joints(timed)
+            if joints:
+                self.q, self.pose = joints[-1][-1], timed[-1].poses[-1].copy()
+            up = self.pose + [0.0, 0.0, HOVER, 0.0]
+            self._check_line(up, DESCEND)
+            if rest is not None:
+                self._check_line(rest, APPROACH, short_turn=False)
         finally:
             self.q, self.pose = saved_q, saved_pose
+
+    def _check_line(self, target: np.ndarray, limits: Limits, short_turn: bool = True) -> None:
+        timed = line_plan(self.pose, target, limits, short_turn)
+        self.q = self.solve(self._control_samples(timed))[-1]
+        self.pose = timed.poses[-1].copy()
 
     def _continued(self, path: np.ndarray, yaw_offset: float) -> np.ndarray:
         """The cleaned path with its yaw shifted by whole turns so that the tool's yaw (block yaw +
@@ -222,5 +241,5 @@ class Primitives:
         up = self.pose.copy()
         up[2] += HOVER
         self.go(up, DESCEND, "retract")
-        if rest is not None:
-            self.go(rest, APPROACH, "rest")
+        if rest is not None:  # back to the rest pose's own yaw, so the wrist unwinds to where it started
+            self.go(rest, APPROACH, "rest", short_turn=False)
