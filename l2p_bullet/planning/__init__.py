@@ -25,7 +25,9 @@ import numpy as np
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
+from ..embodiment.reach import Wrist
 from ..errors import PlanError, UnknownPlannerError
+from .feasibility import grasp_holds
 from .problem import Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .search import beam, greedy
@@ -69,28 +71,40 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
 
     Deterministic for a seed. ``budget`` counts search steps (forward passes of the progress model);
     ``time_limit`` (seconds), when given, also ends the search (for equal-time comparisons).
+
+    The world's obstacles are what the arm meets: the mover's outline, grown against each taller object
+    by the hand beside it (``embodiment.reach``). When the hand's orientation matters, each grasp parity
+    whose hand clears the start is planned and the plan reaching the higher progress is kept
+    (``extra["grasp_parity"]``). Paths that no grasp yaw can follow within the wrist's range are illegal.
+    A mover that starts closer than the margin to another object may move away from it (world2d.py).
     """
     settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
     name = resolve_planner(planner, settings)
     if mover == anchor:
         raise PlanError(f'the mover and the anchor are the same object "{mover}"')
     anchor_obj = scene.get(anchor)
-    world = World2D(scene, mover)
-    if world.overlaps(world.mover.pose):
-        raise PlanError(f'"{mover}" starts touching another object (closer than the gripper margin): '
-                        "move it apart in the scene first")
-    problem = Problem(
-        world=world, model=bundle.progress_model(), anchor_pose=anchor_obj.pose, size=world.size,
-        threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
-        budget=int(budget if budget is not None else BUDGETS[name]),
-        rng=np.random.default_rng(seed),
-    )
-    if time_limit is not None:
-        problem.deadline = time.perf_counter() + time_limit
-    with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
-        node, stopped, steps = _search(name, problem, bundle)
+    holds = grasp_holds(scene, mover)  # InfeasibleError when no grasp's hand clears the start
+    deadline = None if time_limit is None else time.perf_counter() + time_limit
+    best = None
+    for hold in holds:
+        world = World2D(scene, mover, outlines=hold.outlines)
+        problem = Problem(
+            world=world, model=bundle.progress_model(), anchor_pose=anchor_obj.pose, size=world.size,
+            threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
+            budget=int(budget if budget is not None else BUDGETS[name]),
+            rng=np.random.default_rng(seed), wrist=Wrist(hold.parity),
+        )
+        problem.deadline = deadline
+        with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
+            node, stopped, steps = _search(name, problem, bundle)
+        if best is None or node.progress > best[1].progress + 1e-9:
+            best = (problem, node, stopped, steps, hold)
+        if stopped == "threshold":
+            break  # good enough: the first grasp (the roomier one) reached the threshold
+    problem, node, stopped, steps, hold = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps)
+    result.extra["grasp_parity"] = hold.parity
     if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "
                                 "re-train it: l2p-bullet train-policy")
