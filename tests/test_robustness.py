@@ -38,6 +38,12 @@ def _scene(*objects: tuple) -> Scene:
     return Scene([SceneObject(n, c, s, xy, y) for n, c, s, xy, y in objects]).validate()
 
 
+def _world(scene: Scene):
+    from l2p_bullet.embodiment.sim.world import World
+
+    return World(scene, visuals=False)
+
+
 # --- touching starts ------------------------------------------------------------------------------------
 @pytest.mark.slow
 @pytest.mark.parametrize("action", list(SENTENCES))
@@ -87,9 +93,8 @@ def test_a_run_that_moves_another_block_is_judged_a_failure():
 
 def test_the_stored_hand_profile_is_what_the_simulator_collides_with():
     from l2p_bullet.core.scene import default_scene
-    from l2p_bullet.embodiment.sim.world import World
 
-    with World(default_scene(), visuals=False) as world:
+    with _world(default_scene()) as world:
         robot = world.robot
         spec = robot.spec
         assert world.sim.joints("<arm>")[spec.wrist_joint].upper == pytest.approx(spec.wrist_limit)
@@ -108,9 +113,8 @@ def test_the_stored_hand_profile_is_what_the_simulator_collides_with():
 def test_the_wrist_model_is_exact_and_every_pose_in_the_workspace_is_reachable():
     """Grid over the workspace disk x grasp heights x wrist angles across the allowed range."""
     from l2p_bullet.core.scene import default_scene
-    from l2p_bullet.embodiment.sim.world import World
 
-    with World(default_scene(), visuals=False) as world:
+    with _world(default_scene()) as world:
         robot = world.robot
         limit = robot.spec.wrist_limit - reach.WRIST_MARGIN
         home = np.array(robot.spec.home)
@@ -126,6 +130,25 @@ def test_the_wrist_model_is_exact_and_every_pose_in_the_workspace_is_reachable()
                         seed[6] = wrist
                         q = robot.kin.solve([x, y, z + robot.drop], yaw, seed, seeds=robot.spec.ik_seeds)
                         assert q[6] == pytest.approx(wrist, abs=1e-4)
+
+
+def test_the_arm_stays_in_its_plane_along_a_long_motion():
+    """IK first guesses in the arm's plane keep every solution there (the 7th joint's freedom used to let a
+    long slide drift out of it until a joint limit forced a flip), so the wrist model holds all along."""
+    from l2p_bullet.core.scene import default_scene
+    from l2p_bullet.embodiment.record import Recorder
+    from l2p_bullet.embodiment.sim.primitives import Primitives
+
+    with _world(default_scene()) as world:
+        prims = Primitives(world, Recorder(world))
+        t = np.linspace(0.0, 1.0, 400)
+        xy = np.column_stack([-0.1 + 0.13 * np.cos(2 * np.pi * t), 0.13 * np.sin(2 * np.pi * t)])
+        yaw = 1.5 * np.sin(2 * np.pi * t)
+        poses = np.column_stack([xy, np.full(len(t), 0.04 + world.robot.drop), yaw])
+        q = prims.solve(poses)
+        az = np.arctan2(xy[:, 1] - ROBOT_BASE_XY[1], xy[:, 0] - ROBOT_BASE_XY[0])
+        assert np.abs(q[:, 0] - az).max() < 1e-3 and np.abs(q[:, [2, 4]]).max() < 1e-3
+        assert np.allclose(q[:, 6], reach.wrist_values(xy, yaw), atol=1e-3)
 
 
 def test_wrist_offsets_centre_the_wrist_with_the_allowed_parity():
@@ -177,12 +200,11 @@ def test_the_planner_refuses_moves_that_would_run_the_wrist_out():
 def test_a_path_the_wrist_cannot_follow_is_refused_before_the_arm_moves():
     from l2p_bullet.core.scene import default_scene
     from l2p_bullet.embodiment.execute import execute_path
-    from l2p_bullet.embodiment.sim.world import World
 
     scene = _scene(("A", "red", 0.05, (0.1, 0.0), 0.0), ("B", "green", 0.05, (-0.1, 0.0), 0.0))
     t = np.linspace(0.0, 1.0, 60)
     path = np.column_stack([0.1 + 0.02 * np.sin(2 * np.pi * t), 0.02 * (1 - np.cos(2 * np.pi * t)), 7.0 * t])
-    with World(default_scene(), visuals=False) as world:
+    with _world(default_scene()) as world:
         with pytest.raises(ReachError, match="wrist"):
             execute_path(scene, "A", path, out_dir=None, render=None, world=world)
         assert world.steps == 0

@@ -28,6 +28,13 @@ class ArmSpec:
     position_gain: float = 0.6  # 0.1 lags 10 mm, 0.6 lags 0.7 mm (DESIGN.md section 2)
     fingertip_links: tuple[int, ...] = ()  # links whose lowest point rests on the block's top
     wrist_limit: float = math.pi  # |wrist joint| <= this (radians): bounds the tool's yaw
+    # The arm's plane: with these joints (indices into arm_joints) at zero the arm stands in the vertical
+    # plane at the base joint's angle, the tool's azimuth seen from the base is the base joint's angle and
+    # wrist = wrist_offset + azimuth - tool yaw. IK first guesses are put in that plane (the 7th joint's
+    # freedom would otherwise let solutions drift out of it over a long motion, until a joint limit
+    # forces a flip), so the wrist model of embodiment/reach.py holds.
+    swivel_joints: tuple[int, ...] = ()
+    wrist_offset: float = 0.0
     # (depth, hx, hy): every collision shape of the hand and fingers lower than ``depth`` above the fingertips
     # lies within +-hx along the tool's x axis and +-hy across it (metres, Bullet's collision margin
     # included); what the arm puts at the height of a block taller than the one it holds. Measured by
@@ -51,6 +58,8 @@ PANDA = ArmSpec(
     wrist_joint=6,
     fingertip_links=(9, 10),
     wrist_limit=2.9671,
+    swivel_joints=(2, 4),
+    wrist_offset=math.pi / 4,  # the hand sits at -45 deg on the flange
     hand_profile=(  # fingers alone up to 4.5 cm above their tips (their long side across the tool's x), then the hand
         (0.000, 0.0093, 0.0183), (0.005, 0.0130, 0.0199), (0.010, 0.0132, 0.0215), (0.015, 0.0135, 0.0231),
         (0.020, 0.0138, 0.0247), (0.025, 0.0140, 0.0262), (0.030, 0.0143, 0.0278), (0.035, 0.0145, 0.0293),
