@@ -57,7 +57,7 @@ class PerformResult:
     timings: dict[str, float]
     files: dict[str, Path] = field(default_factory=dict)
     displacements_m: dict[str, float] = field(default_factory=dict)  # every block but the mover: how far it moved
-    grasp: dict[str, Any] = field(default_factory=dict)  # the grasp's yaw offset and parity (execute.py)
+    grasp: dict[str, Any] = field(default_factory=dict)  # the grasp's yaw offset and angle (execute.py)
 
     @property
     def success(self) -> bool:
@@ -279,7 +279,7 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
         "seed": seed, "final_error_m": d["final_error_m"],
         "max_deviation_m": d["max_deviation_m"], "anchor_displacement_m": d["anchor_displacement_m"],
         "displacements_m": d["displacements_m"], "disturbed": d["disturbed"], "grasp": d["grasp"],
-        "grasp_parity": r.plan.extra.get("grasp_parity"),
+        "grasp_angle_deg": r.plan.extra.get("grasp_angle_deg"),
         "plugin": {"name": bundle.name, "version": bundle.version, "path": str(bundle.path)},
         # execute's sub-stages (check, setup, reach, engage, move, disengage, record) and perform's stages
         "timings_s": {**timings, **d["timings"]},

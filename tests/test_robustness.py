@@ -57,14 +57,24 @@ def test_a_touching_start_is_performed_and_the_anchor_stays(action, tmp_path):
 # --- the hand beside a small block ------------------------------------------------------------------------
 def test_the_hand_outline_grows_only_against_taller_objects():
     same = _scene(("A", "red", 0.05, (0.1, 0.0), 0.0), ("B", "green", 0.05, (0.0, 0.0), 0.0))
-    assert reach.hold_outlines(same, "A", 0) == {} and reach.holds(same, "A")[0].parity is None
-    outlines = reach.hold_outlines(SMALL_BY_TALL, "A", 0)
+    assert reach.hold_outlines(same, "A", 0.0) == {} and reach.holds(same, "A")[0].angle is None
+    outlines = reach.hold_outlines(SMALL_BY_TALL, "A", 0.0)
     half = np.abs(outlines["B"]).max(axis=0)
-    assert half[1] > 0.1  # the hand (21 cm) along the block's y with parity 0
-    turned = np.abs(reach.hold_outlines(SMALL_BY_TALL, "A", 1)["B"]).max(axis=0)
+    assert half[1] > 0.1  # the hand (21 cm) along the block's y at angle 0
+    turned = np.abs(reach.hold_outlines(SMALL_BY_TALL, "A", math.pi / 2)["B"]).max(axis=0)
     assert np.allclose(turned, half[::-1])
-    # the hand along y would come down on B (8 cm away in y): only the other parity is usable
-    assert [h.parity for h in feasibility.grasp_holds(SMALL_BY_TALL, "A")] == [1]
+    # the hand along y would come down on B (8 cm away in y): only the hand along x is usable
+    assert [h.angle for h in feasibility.grasp_holds(SMALL_BY_TALL, "A")] == [pytest.approx(math.pi / 2)]
+
+
+def test_a_hemmed_in_small_block_is_grasped_at_another_angle():
+    """Tall blocks beside the small one on its +x and -y sides: neither square hand clears them, one at 140
+    degrees does (found by a search over random placements)."""
+    scene = _scene(("A", "red", 0.02, (0.0, 0.0), 0.0), ("B", "green", 0.08, (0.095, -0.019), 0.0),
+                   ("C", "blue", 0.08, (0.021, -0.114), 0.0))
+    assert not [h for h in reach.holds(scene, "A") if h.angle in reach.SQUARE_ANGLES]
+    (hold,) = feasibility.grasp_holds(scene, "A")
+    assert 0.0 < hold.angle % (math.pi / 2) and hold.start_gap >= 0.0
 
 
 @pytest.mark.slow
@@ -72,15 +82,15 @@ def test_the_hand_outline_grows_only_against_taller_objects():
 def test_a_small_mover_does_not_knock_a_tall_anchor(action, tmp_path):
     r = perform(SENTENCES[action], SMALL_BY_TALL, out_dir=tmp_path, render=False)
     assert r.displacements_m["B"] < 0.001, r.displacements_m
-    assert r.grasp["parity"] == 1
+    assert r.grasp["angle_deg"] == pytest.approx(90.0)
 
 
 def test_the_planner_keeps_the_hand_clear_of_a_tall_bystander():
     scene = _scene(("A", "red", 0.02, (0.06, -0.06), 0.0), ("B", "green", 0.05, (-0.05, 0.0), 0.0),
                    ("C", "blue", 0.07, (0.1, 0.05), 0.3))
     p = plan(scene, "A", "B", FakeBundle("around"), seed=0)
-    parity = p.extra["grasp_parity"]
-    assert reach.blocked_by(scene, "A", p.path, parity) is None
+    angle = p.extra["grasp_angle_deg"]
+    assert reach.blocked_by(scene, "A", p.path, None if angle is None else math.radians(angle)) is None
 
 
 def test_a_run_that_moves_another_block_is_judged_a_failure():
@@ -151,13 +161,13 @@ def test_the_arm_stays_in_its_plane_along_a_long_motion():
         assert np.allclose(q[:, 6], reach.wrist_values(xy, yaw), atol=1e-3)
 
 
-def test_wrist_offsets_centre_the_wrist_with_the_allowed_parity():
+def test_wrist_offsets_centre_the_wrist_with_the_allowed_angle():
     assert reach.wrist_offsets(-1.0, 1.0, None)[0] == 0.0
-    assert reach.wrist_offsets(-1.0, 1.0, 1) == [-math.pi / 2, math.pi / 2]
-    assert reach.wrist_offsets(-3.0, 0.5, 0) == []  # a half-turn grid cannot centre this range
+    assert reach.wrist_offsets(-1.0, 1.0, math.pi / 2) == [-math.pi / 2, math.pi / 2]
+    assert reach.wrist_offsets(-3.0, 0.5, 0.0) == []  # a half-turn grid cannot centre this range
     assert reach.wrist_offsets(-3.0, 3.0, None) == []  # wider than the wrist's range
-    for lo, hi, parity in ((-6.0, -4.0, 0), (2.0, 3.5, 1), (7.0, 9.0, None)):
-        for off in reach.wrist_offsets(lo, hi, parity):
+    for lo, hi, angle in ((-6.0, -4.0, 0.0), (2.0, 3.5, math.pi / 2), (7.0, 9.0, None), (-1.0, 0.5, 0.3)):
+        for off in reach.wrist_offsets(lo, hi, angle):
             assert abs(lo - off) <= PANDA_LIMIT and abs(hi - off) <= PANDA_LIMIT
 
 
@@ -176,7 +186,8 @@ def test_planned_arounds_keep_the_wrist_in_range(seed):
     p = plan(scene, "A", "B", FakeBundle("around"), planner="greedy", seed=seed)
     yaw = p.path[0, 2] + np.concatenate([[0.0], np.cumsum(np.angle(np.exp(1j * np.diff(p.path[:, 2]))))])
     v = reach.wrist_values(p.path[:, :2], yaw)
-    assert reach.wrist_offsets(float(v.min()), float(v.max()), p.extra["grasp_parity"])
+    angle = p.extra["grasp_angle_deg"]
+    assert reach.wrist_offsets(float(v.min()), float(v.max()), None if angle is None else math.radians(angle))
 
 
 def test_the_planner_refuses_moves_that_would_run_the_wrist_out():
@@ -185,7 +196,7 @@ def test_the_planner_refuses_moves_that_would_run_the_wrist_out():
 
     scene = _scene(("A", "red", 0.05, (0.1, 0.0), 0.0), ("B", "green", 0.05, (-0.1, 0.0), 0.0))
     problem = Problem(world=World2D(scene, "A"), model=FakeBundle("around").model, anchor_pose=scene.get("B").pose,
-                      size=0.05, threshold=0.9, budget=5, rng=np.random.default_rng(0), wrist=reach.Wrist(0))
+                      size=0.05, threshold=0.9, budget=5, rng=np.random.default_rng(0), wrist=reach.Wrist(0.0))
     limit = PANDA_LIMIT
     # a path that has already turned the block so far that the wrist sits at the low edge of its range
     lo = -limit + 0.05

@@ -76,7 +76,7 @@ def test_grasp_yaw_keeps_the_wrist_in_range():
     assert off % (math.pi / 2) == pytest.approx(0.0, abs=1e-9) or off % (math.pi / 2) == pytest.approx(math.pi / 2)
     wrist = reach.wrist_values(path[:, :2], path[:, 2], base) - off
     assert np.all(np.abs(wrist) <= math.pi / 4 + 0.2)
-    odd = grasp_candidates(path, [1], base)  # an odd multiple of 90 deg only: the hand must point the other way
+    odd = grasp_candidates(path, [math.pi / 2], base)  # the hand must point across the block
     assert odd and all(round(o / (math.pi / 2)) % 2 == 1 for o in odd)
 
 

@@ -49,9 +49,10 @@ def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
     return _check(scene, mover, path)[0]
 
 
-def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[int | None]]:
-    """:func:`check_path`, and the grasp parities whose hand clears every other object along the whole path
-    (``[None]`` when the hand never reaches beyond the block: any grasp yaw will do)."""
+def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
+    """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
+    (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
+    square angles that do, else those of a 5 degree grid."""
     obj = scene.get(mover)
     p = motion.clean_path(path)
     start_gap = float(np.hypot(*(p[0, :2] - np.array(obj.xy))))
@@ -65,24 +66,26 @@ def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list
         r = float(np.hypot(*(dense[k, :2] - np.array(scene.workspace.center))))
         raise PathError(f'the path of "{mover}" leaves the workspace at ({dense[k, 0]:.3f}, {dense[k, 1]:.3f}), '
                         f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)")
-    hit = reach.blocked_by(scene, mover, dense, parity=None, hand=False)  # the block itself
+    hit = reach.blocked_by(scene, mover, dense, None, hand=False)  # the block itself
     if hit is not None:
         pose = dense[hit[1]]
         raise PathError(f'the path of "{mover}" runs into "{hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f})')
-    if not reach.parity_matters(scene, mover):
+    if not reach.hand_matters(scene, mover):
         return p, [None]
-    clear, first_hit = [], None
-    for parity in (0, 1):
-        hit = reach.blocked_by(scene, mover, dense, parity)
-        if hit is None:
-            clear.append(parity)
-        elif first_hit is None:
-            first_hit = hit
-    if not clear:
-        pose = dense[first_hit[1]]
-        raise PathError(f'the hand holding "{mover}" would knock "{first_hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f}) '
-                        "whichever way its fingers point")
-    return p, clear
+    first_hit = None
+    for angles in (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP)):
+        clear = []
+        for angle in angles:
+            hit = reach.blocked_by(scene, mover, dense, float(angle))
+            if hit is None:
+                clear.append(float(angle))
+            elif first_hit is None:
+                first_hit = hit
+        if clear:
+            return p, clear
+    pose = dense[first_hit[1]]
+    raise PathError(f'the hand holding "{mover}" would knock "{first_hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f}) '
+                    "whichever way it turns")
 
 
 def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | None,
@@ -105,7 +108,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     meta.setdefault("mover", mover)
     clock = StageClock(on_stage)
     clock.stage("check", "check")
-    p, parities = _check(scene, mover, path)
+    p, angles = _check(scene, mover, path)
     clock.stage("setup", "setup")
     own = world is None
     if own:
@@ -114,7 +117,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         if not own:
             _reuse(world, scene, render)
         prims = _primitives(world, render)
-        slide, removed, grasp = _perform(prims, mover, p, parities, clock)
+        slide, removed, grasp = _perform(prims, mover, p, angles, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
         recorder.fill_progress(mover, meta.get("anchor"), progress_fn)
@@ -152,7 +155,7 @@ def _primitives(world: World, render: RenderSettings | None):
     return Primitives(world, Recorder(world, camera))
 
 
-def _perform(prims, mover: str, path: np.ndarray, parities: list[int | None],
+def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
              clock: StageClock) -> tuple[slice, bool, dict]:
     """The arm's part, stage by stage: reach (choose the grasp yaw, every IK solved before anything
     moves), engage, move, disengage. Returns the frames recorded while sliding, whether the grasp's
@@ -160,7 +163,7 @@ def _perform(prims, mover: str, path: np.ndarray, parities: list[int | None],
     recorder = prims.recorder
     clock.stage("reach", "reach")
     rest = prims.pose.copy()
-    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, parities, rest)
+    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest)
     recorder()  # the first frame: the world before the arm moves
     clock.stage("engage", "engage")
     prims.engage(mover, tool_yaw=tool_yaw)
@@ -173,24 +176,24 @@ def _perform(prims, mover: str, path: np.ndarray, parities: list[int | None],
     return slide, prims.world.sim.constraint_count() == 0, grasp
 
 
-def grasp_candidates(path: np.ndarray, parities: list[int | None], base_xy: tuple[float, float]) -> list[float]:
-    """Grasp offsets (tool yaw minus the path's unwrapped block yaw: multiples of 90 deg of an allowed parity)
+def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float]) -> list[float]:
+    """Grasp offsets (tool yaw minus the path's unwrapped block yaw, for one of the allowed grasp ``angles``)
     that keep the wrist inside its range over the whole slide, best centred first (``reach.wrist_offsets``)."""
     dense = np.concatenate(motion.slide_chunks(path)) if len(path) > 1 else path
     v = reach.wrist_values(dense[:, :2], dense[:, 2], base_xy)
     lo, hi = float(v.min()), float(v.max())
-    found = {off for parity in parities for off in reach.wrist_offsets(lo, hi, parity)}
+    found = {round(off, 12) for angle in angles for off in reach.wrist_offsets(lo, hi, angle)}
     return sorted(found, key=lambda off: (max(hi - off, off - lo), abs(off)))
 
 
-def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, parities: list[int | None],
+def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
                       rest: np.ndarray) -> tuple[float, dict]:
     """The tool's yaw at the grasp (unwrapped: it decides the wrist's branch) whose whole episode the arm
     reaches: candidates from the wrist model, best centred first (``grasp_candidates``); for each, the
     approach, descent, slide, retract and return IK are solved as the arm will run them, before anything
     moves. ReachError (the first candidate's) if none works."""
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
-    candidates = grasp_candidates(path, parities, base)
+    candidates = grasp_candidates(path, angles, base)
     if not candidates:
         raise ReachError(f'no grasp keeps the arm\'s wrist inside its range while "{mover}" turns along this path '
                          f"({np.ptp(path[:, 2]):.1f} rad); turn the block less")
@@ -199,9 +202,10 @@ def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, parities: list[int | 
         tool_yaw = float(path[0, 2] + off)
         try:
             prims.check_engage_and_slide(mover, path, tool_yaw, rest)
-            parity = int(round(off / reach.QUARTER)) % 2
-            return tool_yaw, {"yaw_offset_deg": round(float(np.degrees(off)), 3), "parity": parity,
-                              "parities_allowed": parities}
+            return tool_yaw, {"yaw_offset_deg": round(float(np.degrees(off)), 3),
+                              "angle_deg": round(float(np.degrees(off % np.pi)), 3),
+                              "angles_allowed_deg": [None if a is None else round(float(np.degrees(a)), 3)
+                                                     for a in angles]}
         except ReachError as e:
             first_error = first_error or e
     raise first_error

@@ -13,18 +13,22 @@ hand itself (21 cm long). A 2 cm block slid past an 8 cm one carries the hand in
 object, the mover's outline is grown by the arm's measured profile at that object's height
 (:func:`hold_outlines`); the arm's profile lives in :class:`~l2p_bullet.embodiment.sim.arms.ArmSpec`.
 
-The hand turns with the tool's yaw, which is the block's yaw plus a multiple of 90 degrees (the blocks
-are square). The hand's profile is symmetric under a half turn, so what matters is the multiple's
-**parity**: 0 puts the fingers' long side across the block's x axis, 1 along it. When the arm adds
-nothing beside the block at any other object's height, the parity is free (``None``).
+The hand turns with the tool's yaw, which is the block's yaw plus the grasp's **angle** (fixed while the
+block is held). The hand's profile is symmetric under a half turn, so the angle counts modulo 180 degrees.
+The arm grasps with its fingers square to the block's faces (an angle of 0 or 90 degrees) whenever one
+of these clears the block's neighbours; only a small block hemmed in by taller ones on two sides is
+grasped at another angle (5 degree steps), and one that no angle frees cannot be grasped. When the hand
+adds nothing beside the block at any other object's height, the angle is free (``None``: any multiple of
+90 degrees will do).
 
 **The wrist.** Pointing down, a Panda's tool yaw is set by its base joint (the azimuth of the tool seen
 from the base) and its wrist: wrist = pi/4 + azimuth - tool yaw, exactly, as long as the inverse
 kinematics keeps the arm in its vertical plane (it does, seeded continuously: tests/test_reach.py). The
 wrist turns within +-2.97 rad, less than a full turn, so a block whose yaw keeps accumulating (around a
-circle, turning a little at every move) runs the wrist out of range. The grasp picks the multiple of
-90 degrees (any one, or one of the allowed parity: spaced a half turn) that centres the wrist's values
-over the whole slide (:func:`wrist_offsets`); the planner only keeps paths for which one exists.
+circle, turning a little at every move) runs the wrist out of range. The grasp picks, among the offsets
+its angle allows (the angle plus any multiple of a half turn; any multiple of 90 degrees when the angle
+is free), the one that centres the wrist's values over the whole slide (:func:`wrist_offsets`); the
+planner only keeps paths for which one exists.
 """
 
 from __future__ import annotations
@@ -60,77 +64,92 @@ def hand_extent(depth: float, arm: ArmSpec = PANDA) -> tuple[float, float] | Non
     return arm.hand_profile[-1][1:]
 
 
-def grasp_outline(size: float, depth: float, parity: int, arm: ArmSpec = PANDA) -> np.ndarray:
+SQUARE_ANGLES = (0.0, QUARTER)
+"""The grasp angles tried first: fingers square to the block's faces."""
+ANGLE_STEP = math.radians(5.0)
+"""The grid of other grasp angles tried when neither square one clears the block's neighbours."""
+
+
+def grasp_outline(size: float, depth: float, angle: float, arm: ArmSpec = PANDA) -> np.ndarray:
     """The held block's outline (block frame, counter-clockwise) grown by the hand at ``depth`` below another
-    object's top, for a grasp of ``parity`` (0: the tool's x axis along the block's x axis, 1: across it)."""
+    object's top, for a grasp at ``angle`` (the tool's yaw minus the block's; 0: the tool's x axis along the
+    block's x axis)."""
     h = size / 2
     square = np.array([[h, -h], [h, h], [-h, h], [-h, -h]])
     ext = hand_extent(depth, arm)
     if ext is None:
         return square
-    hx, hy = ext if parity % 2 == 0 else ext[::-1]
-    if hx <= h + 1e-9 and hy <= h + 1e-9:
+    hx, hy = ext
+    c, s = math.cos(angle), math.sin(angle)
+    box = np.array([[hx, -hy], [hx, hy], [-hx, hy], [-hx, -hy]]) @ np.array([[c, s], [-s, c]])
+    if np.all(np.abs(box) <= h + 1e-9):
         return square
-    box = np.array([[hx, -hy], [hx, hy], [-hx, hy], [-hx, -hy]])
     return convex_hull(np.vstack([square, box]))
 
 
-def hold_outlines(scene: Scene, mover: str, parity: int | None, arm: ArmSpec = PANDA) -> dict[str, np.ndarray]:
+def hold_outlines(scene: Scene, mover: str, angle: float | None, arm: ArmSpec = PANDA) -> dict[str, np.ndarray]:
     """Per other object (by name), the mover's outline grown by what the arm puts at that object's height
-    for a grasp of ``parity``; objects the hand never reaches are left out (the block's own outline applies).
-    ``parity`` None: the union's hull over both parities (a conservative outline when the grasp is not known)."""
+    for a grasp at ``angle``; objects the hand never reaches are left out (the block's own outline applies).
+    ``angle`` None (any multiple of 90 degrees): the hull over both square angles."""
     m = scene.get(mover)
     out = {}
     for o in scene.objects:
         if o.name == mover:
             continue
         depth = o.size - m.size + HEIGHT_CLEARANCE
-        if parity is None:
-            outline = convex_hull(np.vstack([grasp_outline(m.size, depth, p, arm) for p in (0, 1)]))
-        else:
-            outline = grasp_outline(m.size, depth, parity, arm)
+        angles = SQUARE_ANGLES if angle is None else (angle,)
+        outline = convex_hull(np.vstack([grasp_outline(m.size, depth, a, arm) for a in angles]))
         if len(outline) != 4 or not np.allclose(np.abs(outline), m.size / 2):
             out[o.name] = outline
     return out
 
 
-def parity_matters(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> bool:
-    """Whether the hand reaches beyond the block at some other object's height (then its orientation counts)."""
-    return bool(hold_outlines(scene, mover, 0, arm) or hold_outlines(scene, mover, 1, arm))
+def hand_matters(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> bool:
+    """Whether the hand reaches beyond the block at some other object's height (then its angle counts)."""
+    return bool(hold_outlines(scene, mover, None, arm))
 
 
 @dataclass(frozen=True)
 class Hold:
-    """A way to hold the mover: the grasp's parity (None: any) and the outlines it gives per other object."""
+    """A way to hold the mover: the grasp's angle (None: any multiple of 90 degrees) and the outlines it
+    gives per other object."""
 
-    parity: int | None
+    angle: float | None
     outlines: dict[str, np.ndarray]
     start_gap: float  # the hand's smallest gap to another object at the start (inf when it adds nothing)
 
 
-def hold_gaps(scene: Scene, mover: str, parity: int | None, arm: ArmSpec = PANDA) -> dict[str, float]:
-    """Per object the hand reaches beside the mover (held with ``parity``), its gap (m) to the hand where
-    the mover stands now; negative: the hand would come down on it."""
+def hold_gaps(scene: Scene, mover: str, angle: float | None, arm: ArmSpec = PANDA) -> dict[str, float]:
+    """Per object the hand reaches beside the mover (held at ``angle``), its gap (m) to the hand where the
+    mover stands now; negative: the hand would come down on it."""
     m = scene.get(mover)
     return {name: float(separation(place(outline, m.pose)[None], scene.get(name).footprint())[0])
-            for name, outline in hold_outlines(scene, mover, parity, arm).items()}
+            for name, outline in hold_outlines(scene, mover, angle, arm).items()}
 
 
 def holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[Hold]:
-    """The grasps whose hand clears every other object where the mover stands, roomiest first.
+    """The grasps whose hand clears every other object where the mover stands, roomiest first: the square
+    angles that do; if neither does, the roomiest angle of a 5 degree grid that does.
 
-    One ``Hold(None, {}, inf)`` when the hand never reaches beyond the block; an empty list when every
-    parity's hand would come down on another object (the mover cannot be grasped).
+    One ``Hold(None, {}, inf)`` when the hand never reaches beyond the block; an empty list when no angle of
+    the hand clears the block's neighbours (the mover cannot be grasped).
     """
-    if not parity_matters(scene, mover, arm):
+    if not hand_matters(scene, mover, arm):
         return [Hold(None, {}, math.inf)]
-    found = []
-    for parity in (0, 1):
-        gaps = hold_gaps(scene, mover, parity, arm)
-        gap = min(gaps.values(), default=math.inf)
-        if gap >= 0.0:
-            found.append(Hold(parity, hold_outlines(scene, mover, parity, arm), gap))
-    return sorted(found, key=lambda h: -h.start_gap)
+
+    def clear(angles) -> list[Hold]:
+        found = []
+        for angle in angles:
+            gap = min(hold_gaps(scene, mover, angle, arm).values(), default=math.inf)
+            if gap >= 0.0:
+                found.append(Hold(float(angle), hold_outlines(scene, mover, angle, arm), gap))
+        return sorted(found, key=lambda h: -h.start_gap)
+
+    square = clear(SQUARE_ANGLES)
+    if square:
+        return square
+    others = [a for a in np.arange(0.0, math.pi, ANGLE_STEP) if min(abs(a - b) for b in SQUARE_ANGLES) > 1e-9]
+    return clear(others)[:1]
 
 
 def place(outline: np.ndarray, poses: np.ndarray) -> np.ndarray:
@@ -143,12 +162,12 @@ def place(outline: np.ndarray, poses: np.ndarray) -> np.ndarray:
     return out[0] if poses.ndim == 1 else out
 
 
-def blocked_by(scene: Scene, mover: str, poses: np.ndarray, parity: int | None, arm: ArmSpec = PANDA,
+def blocked_by(scene: Scene, mover: str, poses: np.ndarray, angle: float | None, arm: ArmSpec = PANDA,
                hand: bool = True) -> tuple[str, int] | None:
-    """The first other object that the mover, held with ``parity`` and moved through ``poses`` (M,3),
-    overlaps (the block or, with ``hand``, the hand beside it), and the pose's index; None when all are clear."""
+    """The first other object that the mover, held at ``angle`` and moved through ``poses`` (M,3), overlaps
+    (the block or, with ``hand``, the hand beside it), and the pose's index; None when all are clear."""
     m = scene.get(mover)
-    outlines = hold_outlines(scene, mover, parity, arm) if hand else {}
+    outlines = hold_outlines(scene, mover, angle, arm) if hand else {}
     poses = np.asarray(poses, float).reshape(-1, 3)
     first: tuple[int, str] | None = None
     for o in scene.objects:
@@ -175,17 +194,17 @@ def wrist_values(xy: np.ndarray, yaw: np.ndarray, base_xy: tuple[float, float] =
     return math.pi / 4 + az - np.asarray(yaw, float).reshape(-1)
 
 
-def wrist_offsets(lo: float, hi: float, parity: int | None, arm: ArmSpec = PANDA,
+def wrist_offsets(lo: float, hi: float, angle: float | None, arm: ArmSpec = PANDA,
                   margin: float = WRIST_MARGIN) -> list[float]:
-    """Grasp offsets (multiples of 90 degrees of the given parity, or any when None) that keep every wrist
-    value in [lo, hi] within the wrist's range less ``margin``, best centred first."""
+    """Grasp offsets (``angle`` plus multiples of a half turn, or any multiple of 90 degrees when ``angle`` is
+    None) that keep every wrist value in [lo, hi] within the wrist's range less ``margin``, best centred
+    first."""
     limit = arm.wrist_limit - margin
     if hi - lo > 2 * limit:
         return []
-    base, step = (0.0, QUARTER) if parity is None else (parity * QUARTER, 2 * QUARTER)
-    k0 = math.ceil((hi - limit - base) / step - 1e-12)
+    base, step = (0.0, QUARTER) if angle is None else (angle, 2 * QUARTER)
+    k = math.ceil((hi - limit - base) / step - 1e-12)
     out = []
-    k = k0
     while base + k * step <= lo + limit + 1e-12:
         out.append(base + k * step)
         k += 1
@@ -194,10 +213,10 @@ def wrist_offsets(lo: float, hi: float, parity: int | None, arm: ArmSpec = PANDA
 
 @dataclass(frozen=True)
 class Wrist:
-    """The wrist's constraint on a planned path, for a grasp of ``parity``: some offset must fit the path's
+    """The wrist's constraint on a planned path, for a grasp at ``angle``: some offset must fit the path's
     whole range of :func:`wrist_values`."""
 
-    parity: int | None
+    angle: float | None
     base_xy: tuple[float, float] = ROBOT_BASE_XY
     arm: ArmSpec = PANDA
 
@@ -205,4 +224,4 @@ class Wrist:
         return wrist_values(xy, yaw, self.base_xy)
 
     def fits(self, lo: float, hi: float) -> bool:
-        return bool(wrist_offsets(lo, hi, self.parity, self.arm))
+        return bool(wrist_offsets(lo, hi, self.angle, self.arm))

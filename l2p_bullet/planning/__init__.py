@@ -18,6 +18,7 @@ better. The 2-D simulator only says which moves are legal; ``evaluate`` judges t
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -73,9 +74,10 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
     ``time_limit`` (seconds), when given, also ends the search (for equal-time comparisons).
 
     The world's obstacles are what the arm meets: the mover's outline, grown against each taller object
-    by the hand beside it (``embodiment.reach``). When the hand's orientation matters, each grasp parity
-    whose hand clears the start is planned and the plan reaching the higher progress is kept
-    (``extra["grasp_parity"]``). Paths that no grasp yaw can follow within the wrist's range are illegal.
+    by the hand beside it (``embodiment.reach``). When the hand's orientation matters, each grasp angle
+    whose hand clears the start (``reach.holds``) is planned and the plan reaching the higher progress is
+    kept (``extra["grasp_angle_deg"]``, None when any multiple of 90 degrees will do). Paths that no grasp
+    yaw can follow within the wrist's range are illegal.
     A mover that starts closer than the margin to another object may move away from it (world2d.py).
     """
     settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
@@ -92,7 +94,7 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
             world=world, model=bundle.progress_model(), anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
             budget=int(budget if budget is not None else BUDGETS[name]),
-            rng=np.random.default_rng(seed), wrist=Wrist(hold.parity),
+            rng=np.random.default_rng(seed), wrist=Wrist(hold.angle),
         )
         problem.deadline = deadline
         with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
@@ -104,7 +106,7 @@ def plan(scene: Scene, mover: str, anchor: str, bundle, *, planner: str = "defau
     problem, node, stopped, steps, hold = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps)
-    result.extra["grasp_parity"] = hold.parity
+    result.extra["grasp_angle_deg"] = None if hold.angle is None else round(math.degrees(hold.angle), 6)
     if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "
                                 "re-train it: l2p-bullet train-policy")

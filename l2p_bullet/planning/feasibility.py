@@ -3,8 +3,8 @@
 Every check is a *necessary* condition, measured with bounds that favour the arm, so a refusal is a
 real impossibility and never a guess (docs/perform.md lists them with examples):
 
-- ``grasp``: with its fingers either way round, the hand coming down on the mover would meet another
-  object (a taller block too close beside a small one: ``embodiment.reach``).
+- ``grasp``: whichever way it turns (every 5 degrees), the hand coming down on the mover would meet
+  another object (taller blocks too close beside a small one: ``embodiment.reach``).
 - ``boxed-in``: no move at all is legal from the start: every short slide (72 directions) and every
   turn in place runs into another object or out of the workspace.
 - ``room-around``: the mover's centre must stay in the workspace disk, so around an anchor near the
@@ -42,18 +42,18 @@ def grasp_holds(scene: Scene, mover: str) -> list[reach.Hold]:
     if found:
         return found
     m = scene.get(mover)
-    worst = {}
-    for parity in (0, 1):
-        gaps = reach.hold_gaps(scene, mover, parity)
-        name = min(gaps, key=gaps.get)
-        worst[parity] = (name, gaps[name])
-    name = worst[0][0] if worst[0][1] >= worst[1][1] else worst[1][0]
+    gaps = {}
+    for angle in np.arange(0.0, math.pi, reach.ANGLE_STEP):
+        for name, gap in reach.hold_gaps(scene, mover, float(angle)).items():
+            gaps[name] = max(gaps.get(name, -math.inf), gap)  # each object's best case over the angles
+    name = min(gaps, key=gaps.get)
     other = scene.get(name)
     raise InfeasibleError(
         "grasp",
         f'the arm cannot grasp "{mover}": its hand, coming down on the {m.size * 100:.0f} cm block, would hit '
-        f'"{name}" ({other.size * 100:.0f} cm tall) whichever way its fingers point; move them apart',
-        {"mover": mover, "blocking": name, "overlap_m": {str(p): round(-g, 6) for p, (_, g) in worst.items()}})
+        f'"{name}" ({other.size * 100:.0f} cm tall) or another taller block beside it whichever way it turns; '
+        "move them apart",
+        {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}})
 
 
 def check(scene: Scene, mover: str, anchor: str, rules: str | None = None) -> list[reach.Hold]:
