@@ -114,9 +114,38 @@ def test_the_stored_hand_profile_is_what_the_simulator_collides_with():
             measured = robot.hand_profile(tuple(d for d, _, _ in spec.hand_profile))
             for (d, hx, hy), (_, mx, my) in zip(spec.hand_profile, measured, strict=True):
                 assert mx - 1e-4 <= hx <= mx + 1e-3 and my - 1e-4 <= hy <= my + 1e-3, (d, hx, hy, mx, my)
-        # nothing but the hand and fingers comes within 8 cm of the held block's top
-        low = min(world.sim.aabb("<arm>", link)[0][2] for link in range(spec.wrist_joint))
-        assert low - (robot.tool_pose()[0][2] - robot.drop) > 0.08
+
+
+def test_the_links_loaded_without_collision_shapes_stay_far_above_the_blocks():
+    """ArmSpec.collision_free_links: measured on the arm's full URDF, over the workspace and the wrist's range,
+    holding the smallest block (2 cm): more than 8 cm (the tallest block) above the held block's top."""
+    import os
+
+    import pybullet_data
+
+    from l2p_bullet.core.scene import default_scene
+    from l2p_bullet.embodiment.sim.bullet import Bullet
+
+    with _world(default_scene()) as world, Bullet() as full:
+        robot, spec = world.robot, world.robot.spec
+        full.load_urdf("arm", os.path.join(pybullet_data.getDataPath(), spec.urdf), robot.base_xyz.tolist(), fixed=True)
+        index = {j.index: j for j in full.joints("arm")}
+        names = [full.link_name("arm", i) for i in index]
+        links = [i for i, n in zip(index, names, strict=True) if n in spec.collision_free_links]
+        assert len(links) == len(spec.collision_free_links) - 1  # the base link is -1
+        home, lowest = np.array(spec.home), math.inf
+        for x in np.arange(-0.25, 0.2501, 0.1):
+            for y in np.arange(-0.25, 0.2501, 0.1):
+                if math.hypot(x, y) > 0.25:
+                    continue
+                az = math.atan2(y - ROBOT_BASE_XY[1], x - ROBOT_BASE_XY[0])
+                for wrist in (-2.7, 0.0, 2.7):
+                    seed = home.copy()
+                    seed[0], seed[6] = az, wrist
+                    q = robot.kin.solve([x, y, 0.02 + robot.drop], math.pi / 4 + az - wrist, seed, seeds=spec.ik_seeds)
+                    full.reset_joints("arm", spec.arm_joints, q)
+                    lowest = min(lowest, *(full.aabb("arm", i)[0][2] - 0.02 for i in links))
+        assert lowest > 0.08 + 0.02, lowest
 
 
 # --- the wrist ------------------------------------------------------------------------------------------

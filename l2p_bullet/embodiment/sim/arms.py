@@ -35,6 +35,11 @@ class ArmSpec:
     # forces a flip), so the wrist model of embodiment/reach.py holds.
     swivel_joints: tuple[int, ...] = ()
     wrist_offset: float = 0.0
+    # Links loaded without collision shapes: they stay far above every block (for the Panda the base, the
+    # shoulder, the upper arm and the forearm, at least 11.7 cm above the held block's top anywhere in the
+    # workspace, tests/test_robustness.py) and their meshes cost most of the arm's load time and a tenth
+    # of every physics step.
+    collision_free_links: tuple[str, ...] = ()
     # (depth, hx, hy): every collision shape of the hand and fingers lower than ``depth`` above the fingertips
     # lies within +-hx along the tool's x axis and +-hy across it (metres, Bullet's collision margin
     # included); what the arm puts at the height of a block taller than the one it holds. Measured by
@@ -59,6 +64,7 @@ PANDA = ArmSpec(
     fingertip_links=(9, 10),
     wrist_limit=2.9671,
     swivel_joints=(2, 4),
+    collision_free_links=tuple(f"panda_link{i}" for i in range(7)),
     wrist_offset=math.pi / 4,  # the hand sits at -45 deg on the flange
     hand_profile=(  # fingers alone up to 4.5 cm above their tips (their long side across the tool's x), then the hand
         (0.000, 0.0093, 0.0183), (0.005, 0.0130, 0.0199), (0.010, 0.0132, 0.0215), (0.015, 0.0135, 0.0231),
@@ -84,7 +90,7 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     import pybullet_data
 
     src = spec.urdf if os.path.isabs(spec.urdf) else os.path.join(pybullet_data.getDataPath(), spec.urdf)
-    if visuals and collisions:
+    if visuals and collisions and not spec.collision_free_links:
         return src
     with open(src) as f:
         text = f.read()
@@ -92,6 +98,7 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
         text = re.sub(r"<visual>.*?</visual>", "", text, flags=re.S)
     if not collisions:
         text = re.sub(r"<collision>.*?</collision>", "", text, flags=re.S)
+    text = _drop_collisions(text, spec.collision_free_links)
     folder = os.path.dirname(src)
     text = text.replace("package://", folder + "/")
     text = re.sub(r'filename="(?!/)', f'filename="{folder}/', text)
@@ -105,3 +112,15 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
             f.write(text)
         os.replace(tmp, path)  # atomic: concurrent processes never read a half-written file
     return path
+
+
+def _drop_collisions(text: str, links: tuple[str, ...]) -> str:
+    """The URDF ``text`` without the collision elements of the named links."""
+    import re
+
+    def strip(m: re.Match) -> str:
+        return re.sub(r"<collision>.*?</collision>", "", m.group(0), flags=re.S)
+
+    for name in links:
+        text = re.sub(rf'<link name="{re.escape(name)}">.*?</link>', strip, text, flags=re.S)
+    return text

@@ -217,6 +217,10 @@ class Bullet:
             out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10]))
         return out
 
+    def link_name(self, name: str, link: int) -> str:
+        """The URDF name of the body's link ``link`` (the child of joint ``link``)."""
+        return self._pb.getJointInfo(self._bodies[name], link, physicsClientId=self._id)[12].decode()
+
     def joint_positions(self, name: str, joints: Sequence[int]) -> np.ndarray:
         states = self._pb.getJointStates(self._bodies[name], list(joints), physicsClientId=self._id)
         return np.array([s[0] for s in states])
