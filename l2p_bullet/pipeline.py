@@ -1,8 +1,8 @@
 """The front door: a sentence in, a run folder out. ``perform`` and ``plan`` run the stages of DESIGN.md.
 
     parse      sentence -> Command, against the phrases of the installed plugins (registry, language)
-    check      the scene against what the arm can do (planning.feasibility): a scene it cannot do is
-               refused here, with the check that failed (InfeasibleError.check), before anything is
+    feasibility  the scene against what the arm can do (planning.feasibility): a scene it cannot do
+               is refused here, with the check that failed (InfeasibleError.check), before anything is
                planned, moved or written
     load       the one plugin the command needs -> Bundle, and its progress model (scored in numpy:
                perform never imports torch)
@@ -14,8 +14,8 @@
                and neither does a run in which the anchor or another block moved more than 1 mm
 
 Each stage is timed; the timings, the verdict and the final progress are merged into summary.json.
-The cheap checks (options, sentence, plugin, run folder) run before the expensive ones so that a typo
-costs milliseconds, not a planning run, and never touches the disk.
+The cheap checks (options, sentence, feasibility, plugin, run folder) run before the expensive ones so
+that a typo or an impossible scene costs milliseconds, not a planning run, and never touches the disk.
 """
 
 from __future__ import annotations
@@ -129,7 +129,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
-    clock.stage("check")
+    clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins)
     clock.stop()
 
