@@ -36,13 +36,8 @@ import time
 import traceback
 from pathlib import Path
 
-SENTENCES = {
-    "closer": "move A closer to B",
-    "away": "move A away from B",
-    "next-to": "move A next to B",
-    "past": "move A past B",
-    "around": "move A around B",
-}
+from bench_perform import SENTENCES  # the same sentence per action as the end-to-end benchmark
+
 SEED_BASE = 900_000
 COLORS = ("blue", "yellow", "orange", "purple", "white", "black", "gray", "brown", "pink", "cyan")
 
