@@ -13,16 +13,19 @@ a subset with rendering on, then prints per action:
   distance from the plan's goal, and how far the anchor was pushed;
 - wall time per stage (parse, load, plan, execute, evaluate, total) inside the worker, per run;
 - the cold command-line cost: ``l2p-bullet perform --no-render`` as a fresh process (Python start,
-  imports, torch) on a few scenes, and ``l2p-bullet --help``.
+  imports, plugin discovery, planning, simulation, files) on a few scenes, each run side by side with the
+  floor, a bare script that only imports pybullet and numpy, loads the same bodies and steps the same
+  number of physics steps; ``l2p-bullet plan`` with and without its plot; ``l2p-bullet --help``.
 
-Goals (issue 5): 95 % or more per action; perform without rendering under 3 s per command on 2 cores;
-``--help`` under 0.3 s.
+Goals (issues 5, 12): 95 % or more per action; a fresh ``perform --no-render`` median 0.5 s or less (the
+floor shows what the machine allows); ``--help`` under 0.3 s.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -45,33 +48,94 @@ def cli() -> list[str]:
     return [str(exe)] if exe.exists() else [sys.executable, "-m", "l2p_bullet.cli"]
 
 
+FLOOR = """
+import sys, time
+import numpy
+import pybullet as pb
+table, block, arm, steps = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+blocks = [float(v) for v in sys.argv[5:]]
+c = pb.connect(pb.DIRECT)
+pb.setGravity(0, 0, -9.81, physicsClientId=c)
+pb.setTimeStep(1 / 240, physicsClientId=c)
+pb.loadURDF(table, [0, 0, 0], useFixedBase=True, physicsClientId=c)
+for i in range(0, len(blocks), 3):
+    x, y, size = blocks[i:i + 3]
+    pb.loadURDF(block, [x, y, size / 2], globalScaling=size / 0.05, physicsClientId=c)
+pb.loadURDF(arm, [-0.53, 0, 0], useFixedBase=True, physicsClientId=c)
+for _ in range(steps):
+    pb.stepSimulation(physicsClientId=c)
+"""
+"""The floor: a fresh Python that imports pybullet and numpy, loads the same table, blocks and arm (the
+arm's URDF as the project loads it without rendering) and steps the physics as often as the run did."""
+
+
+def child_env() -> dict[str, str]:
+    """The environment of the fresh processes: Python may write its bytecode caches, as it does for a user
+    (a development shell that sets PYTHONDONTWRITEBYTECODE would recompile the package on every start)."""
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
+def timed_run(cmd: list[str]) -> tuple[float, subprocess.CompletedProcess]:
+    t = time.perf_counter()
+    r = subprocess.run(cmd, capture_output=True, text=True, env=child_env())
+    return time.perf_counter() - t, r
+
+
 def help_time(repeats: int = 5) -> float:
     """Median wall time of ``l2p-bullet --help`` as a fresh process."""
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        subprocess.run([*cli(), "--help"], check=True, capture_output=True)
-        times.append(time.perf_counter() - t)
-    return statistics.median(times)
+    return statistics.median(timed_run([*cli(), "--help"])[0] for _ in range(repeats))
 
 
-def cold_perform_times(seeds: list[int], tmp: Path, actions: list[str]) -> list[float]:
-    """``l2p-bullet perform --no-render`` as fresh processes: what a user waits for."""
+def cold_perform_times(seeds: list[int], tmp: Path, actions: list[str]) -> list[dict]:
+    """``l2p-bullet perform --no-render`` as fresh processes (what a user waits for), each followed by the
+    floor (FLOOR) stepping as many physics steps in the same scene: side by side, so that the machine's
+    load hits both alike. One unmeasured run first writes the bytecode caches."""
     from l2p_bullet.core.scene import random_scene, save_scene
+    from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+    from l2p_bullet.embodiment.sim.world import urdf_path
 
+    arm = arm_urdf(PANDA, visuals=False)
     out = []
-    for i, seed in enumerate(seeds):
+    for i, seed in enumerate([seeds[0], *seeds]):
         action = actions[i % len(actions)]
+        scene = random_scene(seed)
         scene_file = tmp / f"cold-{seed}.json"
-        save_scene(random_scene(seed), scene_file)
-        t = time.perf_counter()
-        r = subprocess.run([*cli(), "perform", SENTENCES[action], "--scene", str(scene_file), "--no-render",
-                            "--quiet", "--out", str(tmp / f"cold-{seed}-{action}")], capture_output=True, text=True)
+        save_scene(scene, scene_file)
+        folder = tmp / f"cold-{i}-{seed}-{action}"
+        dt, r = timed_run([*cli(), "perform", SENTENCES[action], "--scene", str(scene_file), "--no-render",
+                           "--quiet", "--out", str(folder)])
         if r.returncode != 0:
             print(f"  cold run {action} seed {seed} failed: {r.stderr.strip()}", file=sys.stderr)
-        else:
-            out.append(time.perf_counter() - t)
+            continue
+        steps = json.loads((folder / "summary.json").read_text())["execution"]["physics_steps"]
+        blocks = [str(v) for o in scene.objects for v in (o.xy[0], o.xy[1], o.size)]
+        floor, f = timed_run([sys.executable, "-c", FLOOR, urdf_path("table.urdf"), urdf_path("block.urdf"), arm,
+                              str(steps), *blocks])
+        if f.returncode != 0:
+            raise RuntimeError(f"the floor script failed: {f.stderr[-500:]}")
+        if i > 0:
+            out.append({"action": action, "seed": seed, "perform_s": dt, "floor_s": floor, "steps": steps})
     return out
+
+
+def cold_plan_times(repeats: int, tmp: Path) -> dict[str, float]:
+    """``l2p-bullet plan`` as fresh processes, with its plot and with ``--no-plot``: medians (s)."""
+    times: dict[str, list[float]] = {"plot": [], "no-plot": []}
+    for i in range(repeats + 1):
+        for kind, extra in (("plot", []), ("no-plot", ["--no-plot"])):
+            dt, r = timed_run([*cli(), "plan", "move A around B", "--out", str(tmp / f"plan-{kind}-{i}"), *extra])
+            if r.returncode != 0:
+                raise RuntimeError(f"plan failed: {r.stderr[-500:]}")
+            if i > 0:  # the first round writes the bytecode caches
+                times[kind].append(dt)
+    return {k: statistics.median(v) for k, v in times.items()}
+
+
+def python_start_time(repeats: int = 5) -> float:
+    """Median wall time of a fresh ``python -c pass`` (the interpreter's own start)."""
+    return statistics.median(timed_run([sys.executable, "-c", "pass"])[0] for _ in range(repeats))
 
 
 def evaluate_rows(actions: list[str], scenes: int, render: bool, tmp: Path, workers: int) -> list[dict]:
@@ -143,6 +207,7 @@ def main() -> None:
         if args.render_scenes:
             rows += evaluate_rows(actions, args.render_scenes, True, tmp, args.workers)
         cold = cold_perform_times(list(range(args.cold)), tmp, actions) if args.cold else []
+        plan_cold = cold_plan_times(args.cold, tmp) if args.cold else {}
     fast = {a: summarise([r for r in rows if r["action"] == a and not r["render"]]) for a in actions}
     rendered = {a: summarise([r for r in rows if r["action"] == a and r["render"]]) for a in actions}
     h = help_time()
@@ -150,13 +215,23 @@ def main() -> None:
     if args.render_scenes:
         print_table(f"perform with rendering, first {args.render_scenes} scenes per action", rendered)
     if cold:
-        print(f"\ncold `l2p-bullet perform --no-render` (fresh process): median {statistics.median(cold):.2f} s, "
-              f"max {max(cold):.2f} s over {len(cold)} runs")
+        perf = [c["perform_s"] for c in cold]
+        floor = [c["floor_s"] for c in cold]
+        ratio = [c["perform_s"] / c["floor_s"] for c in cold]
+        print(f"\ncold `l2p-bullet perform --no-render` (fresh process): median {statistics.median(perf):.2f} s, "
+              f"max {max(perf):.2f} s over {len(cold)} runs (goal: median <= 0.5 s)")
+        print(f"the floor (fresh python: import pybullet and numpy, load the same bodies, step as many physics "
+              f"steps, median {statistics.median([c['steps'] for c in cold]):.0f}): median {statistics.median(floor):.2f} s; "
+              f"perform / floor, run by run: median {statistics.median(ratio):.2f}x, max {max(ratio):.2f}x")
+        print(f"`python -c pass`: median {python_start_time():.3f} s")
+    if plan_cold:
+        print(f"cold `l2p-bullet plan`: median {plan_cold['plot']:.2f} s with plan.png, "
+              f"{plan_cold['no-plot']:.2f} s with --no-plot")
     print(f"`l2p-bullet --help`: median {h:.3f} s")
     print(f"benchmark wall time {time.perf_counter() - t_all:.0f} s")
     if args.json:
-        args.json.write_text(json.dumps({"rows": rows, "fast": fast, "rendered": rendered, "cold_s": cold,
-                                         "help_s": h}, indent=1))
+        args.json.write_text(json.dumps({"rows": rows, "fast": fast, "rendered": rendered, "cold": cold,
+                                         "plan_cold_s": plan_cold, "help_s": h}, indent=1))
 
 
 if __name__ == "__main__":

@@ -97,6 +97,18 @@ class PlanError(L2PError):
     """The planner cannot produce a path (no collision-free move, unknown planner...)."""
 
 
+class InfeasibleError(L2PError):
+    """The arm cannot do what is asked in this scene, found before anything is planned or moved.
+
+    ``check`` names the check that failed ("grasp", "boxed-in", "room-around", "room-away", "room-closer";
+    docs/perform.md says what each means), ``details`` carries its numbers.
+    """
+
+    def __init__(self, check: str, message: str, details: dict | None = None):
+        super().__init__(message)
+        self.check, self.details = check, dict(details or {})
+
+
 class UnknownPlannerError(PlanError):
     """A planner name that does not exist; ``.known`` lists the ones that do."""
 

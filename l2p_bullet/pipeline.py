@@ -1,17 +1,21 @@
 """The front door: a sentence in, a run folder out. ``perform`` and ``plan`` run the stages of DESIGN.md.
 
     parse      sentence -> Command, against the phrases of the installed plugins (registry, language)
+    feasibility  the scene against what the arm can do (planning.feasibility): a scene it cannot do
+               is refused here, with the check that failed (InfeasibleError.check), before anything is
+               planned, moved or written
     load       the one plugin the command needs -> Bundle, and its progress model (scored in numpy:
                perform never imports torch)
     plan       planning.plan -> Plan (2-D path of the mover), saved as plan.json
     execute    embodiment.execute.execute_path: the arm performs the path in PyBullet; trajectory.json
                gets the progress model's value per frame, so a run can be read without the model
     evaluate   the bundle's judge (rules for the built-in actions) on the *executed* trajectory (what the
-               simulator did, not what was planned): a plan the arm cannot follow must not count as success
+               simulator did, not what was planned): a plan the arm cannot follow must not count as success,
+               and neither does a run in which the anchor or another block moved more than 1 mm
 
 Each stage is timed; the timings, the verdict and the final progress are merged into summary.json.
-The cheap checks (options, sentence, plugin, run folder) run before the expensive ones so that a typo
-costs milliseconds, not a planning run, and never touches the disk.
+The cheap checks (options, sentence, feasibility, plugin, run folder) run before the expensive ones so
+that a typo or an impossible scene costs milliseconds, not a planning run, and never touches the disk.
 """
 
 from __future__ import annotations
@@ -33,6 +37,9 @@ from .language import Command, parse
 
 StageFn = Callable[[str], None]
 
+DISTURBED_M = 0.001
+"""A block other than the mover that moved more than this (m) during the run makes the verdict a failure."""
+
 
 @dataclass
 class PerformResult:
@@ -49,6 +56,8 @@ class PerformResult:
     final_error_m: float  # mover's final position vs the plan's goal
     timings: dict[str, float]
     files: dict[str, Path] = field(default_factory=dict)
+    displacements_m: dict[str, float] = field(default_factory=dict)  # every block but the mover: how far it moved
+    grasp: dict[str, Any] = field(default_factory=dict)  # the grasp's yaw offset and angle (execute.py)
 
     @property
     def success(self) -> bool:
@@ -66,6 +75,9 @@ class PerformResult:
             "final_error_m": _round(self.final_error_m),
             "timings": {k: round(v, 4) for k, v in self.timings.items()},
             "files": {k: str(v) for k, v in self.files.items()},
+            "displacements_m": {k: _round(v) for k, v in self.displacements_m.items()},
+            "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
+            "grasp": self.grasp,
         }
 
 
@@ -106,6 +118,17 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
     return cmd
 
 
+def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
+    """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, and
+    the room checks of the rule judge the action's manifest names (``[judge] rules``), if any."""
+    from .planning import feasibility
+
+    info = next((p for p in plugins if p.name == cmd.action), None)
+    spec = (info.manifest.get("judge") if info is not None else None) or {}
+    rules = spec.get("rules") if isinstance(spec, dict) else None
+    feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
+
+
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
@@ -130,6 +153,8 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
+    clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
+    check_feasible(cmd, scene, plugins)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
@@ -216,7 +241,8 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
     prog = [f.get("progress") for f in ex.frames]
     final_progress = float(prog[-1]) if prog and prog[-1] is not None else None
     context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
-    verdict = judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict()
+    verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
+                                  ex.displacements_m, cmd.anchor)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed
@@ -227,9 +253,22 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
         max_deviation_m=float(ex.max_deviation_m), anchor_displacement_m=float(ex.anchor_displacement_m),
         final_error_m=final_error, timings=dict(clock.timings),
         files={"plan": out / "plan.json", **{k: Path(v) for k, v in ex.files.items()}},
+        displacements_m=dict(ex.displacements_m), grasp=dict(ex.stats.get("grasp", {})),
     )
     _merge_summary(out / "summary.json", result, bundle, ex, seed)
     return result
+
+
+def disturbance_verdict(verdict: dict[str, Any], displacements_m: dict[str, float], anchor: str) -> dict[str, Any]:
+    """The judge's verdict, failed when the arm moved the anchor or a bystander more than DISTURBED_M: the
+    action is not done if the arm knocked its surroundings about (``disturbed_m`` lists who, how far)."""
+    moved = {k: round(float(v), 6) for k, v in displacements_m.items() if v > DISTURBED_M}
+    if not moved:
+        return verdict
+    who = ", ".join(f'{"the anchor " if k == anchor else ""}{k} by {v * 1000:.0f} mm'
+                    for k, v in sorted(moved.items(), key=lambda kv: -kv[1]))
+    return verdict | {"success": False, "disturbed_m": moved,
+                      "reason": f"{verdict.get('reason', '')}; but the arm moved {who}".lstrip("; ")}
 
 
 @dataclass
@@ -265,6 +304,7 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
+    check_feasible(cmd, scene, plugins)
     bundle = registry.load(cmd.action, plugins)
     judge = judge_for(bundle)
     result = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
@@ -312,6 +352,8 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
         "planned_progress": d["planned_progress"], "planner": d["planner"], "stopped": d["stopped"],
         "seed": seed, "final_error_m": d["final_error_m"],
         "max_deviation_m": d["max_deviation_m"], "anchor_displacement_m": d["anchor_displacement_m"],
+        "displacements_m": d["displacements_m"], "disturbed": d["disturbed"], "grasp": d["grasp"],
+        "grasp_angle_deg": r.plan.extra.get("grasp_angle_deg"),
         "plugin": {"name": bundle.name, "version": bundle.version, "path": str(bundle.path)},
         # execute's sub-stages (check, setup, reach, engage, move, disengage, record) and perform's stages
         "timings_s": {**timings, **d["timings"]},

@@ -36,6 +36,25 @@ def test_plan_writes_plan_json_and_a_plot(fake_actions, tmp_path):
     assert np.allclose(motion.mover[0], plan["start"])
     png = (out / "plan.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
+    again = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(tmp_path / "bare"), "--no-plot"])
+    assert again.exit_code == 0 and sorted(p.name for p in (tmp_path / "bare").iterdir()) == ["plan.json"]
+
+
+def test_the_plot_shows_the_objects_and_the_path(tmp_path):
+    """Pixels, not just a PNG header: the anchor's green, the mover's red footprints, the black path."""
+    from PIL import Image
+
+    from l2p_bullet.core.scene import default_scene
+    from l2p_bullet.planning import plan
+    from l2p_bullet.planning.plot import plot_plan
+
+    scene = default_scene()
+    p = plan(scene, "A", "B", FakeBundle("around"), planner="discrete")
+    img = np.asarray(Image.open(plot_plan(p, scene, tmp_path / "plan.png")).convert("RGB")).astype(int)
+    green = (img[..., 1] > 150) & (img[..., 0] < 60) & (img[..., 2] < 90)
+    red = (img[..., 0] > 180) & (img[..., 1] < 120) & (img[..., 2] < 120)
+    black = img.sum(-1) < 60
+    assert green.sum() > 300 and red.sum() > 300 and black.sum() > 300
 
 
 def test_plan_reads_a_scene_file_and_never_overwrites_without_force(fake_actions, tmp_path):

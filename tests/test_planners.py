@@ -14,13 +14,12 @@ from l2p_bullet.core.geometry import polygons_overlap
 from l2p_bullet.core.scene import GRIPPER_MARGIN, default_scene, random_scene
 from l2p_bullet.errors import L2PError, PlanError
 from l2p_bullet.planning import PLANNERS, plan, resolve_planner
+from l2p_bullet.planning.world2d import World2D
 
 SEARCHES = ["greedy", "beam", "discrete", "mixed"]
 
 
 def _assert_executable(p, scene):
-    from l2p_bullet.planning.world2d import World2D
-
     mover, anchor = scene.get(p.mover), scene.get(p.anchor)
     assert np.allclose(p.path[0], mover.pose)
     assert World2D(scene, p.mover).path_free(np.array(p.extra["waypoints"]))  # every straight move, swept
@@ -126,12 +125,21 @@ def test_policy_training_keeps_the_weights_of_its_best_window():
     assert kept == BEST_WINDOW - 1 + int(np.argmax(windows))
 
 
-def test_a_mover_touching_another_object_is_a_clear_error():
+@pytest.mark.parametrize("action", ["closer", "away", "next-to", "past", "around"])
+def test_a_mover_starting_inside_the_margin_moves_without_closing_the_gap(action):
+    """Issue 12: two blocks 1.37 sides apart, turned differently, 1.9 mm apart: planned, never closer."""
+    from l2p_bullet.core.geometry import separation
     from l2p_bullet.core.scene import Scene, SceneObject
 
-    scene = Scene([SceneObject("A", "red", 0.05, (0.0, 0.0)), SceneObject("B", "green", 0.05, (0.052, 0.0))])
-    with pytest.raises(PlanError, match="touching"):
-        plan(scene.validate(), "A", "B", FakeBundle("away"))
+    scene = Scene([SceneObject("A", "red", 0.05, (0.0685, 0.0), 1.1),
+                   SceneObject("B", "green", 0.05, (0.0, 0.0), 0.6)]).validate()
+    mover, anchor = scene.get("A"), scene.get("B")
+    start_gap = float(separation(mover.footprint()[None], anchor.footprint())[0])
+    assert 0.0 <= start_gap < GRIPPER_MARGIN
+    p = plan(scene, "A", "B", FakeBundle(action), seed=1)
+    gaps = separation(np.array([mover.footprint(q) for q in p.path]), anchor.footprint())
+    assert gaps.min() >= start_gap - 1e-6
+    assert World2D(scene, "A").path_free(p.path)  # every move (frames: waypoints rounded in extra)
 
 
 def test_planning_never_imports_torch(tmp_path):

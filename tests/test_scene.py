@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -86,3 +87,15 @@ def test_cli_prints_scene_error_on_one_line(tmp_path):
     lines = [line for line in r.output.splitlines() if line.strip()]
     assert len(lines) == 1 and lines[0].startswith("error: ") and 'two objects are named "A"' in lines[0]
     assert "Traceback" not in r.output
+
+
+def test_a_cubes_footprint_is_the_outline_of_its_mesh():
+    """The square is written down (no trimesh import per command); it must be what the box mesh gives."""
+    import trimesh
+
+    from l2p_bullet.core.scene import SceneObject
+
+    mesh = trimesh.creation.box(extents=(0.05, 0.05, 0.05))
+    pts = np.unique(np.round(mesh.vertices[:, :2], 9), axis=0)
+    order = np.argsort(np.arctan2(pts[:, 1], pts[:, 0]))
+    assert np.allclose(SceneObject("A", "red", 0.05, (0.0, 0.0)).footprint(), pts[order])

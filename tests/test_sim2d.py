@@ -54,9 +54,13 @@ def test_a_zero_length_move_agrees_with_the_polygon_overlap_test(x, y, yaw):
     scene = _scene()
     w = World2D(scene, "A")
     pose = np.array([x, y, yaw])
-    expected = not polygons_overlap(w.mover.polygon(pose), scene.get("B").footprint(), GRIPPER_MARGIN)
-    expected &= bool(np.hypot(x, y) <= 0.25)
-    assert bool(w.moves_free(pose, pose[None])[0]) == expected
+    inside = bool(np.hypot(x, y) <= 0.25)
+    expected = inside and not polygons_overlap(w.mover.polygon(pose), scene.get("B").footprint(), GRIPPER_MARGIN)
+    assert bool(w.moves_free(pose, pose[None], relax=False)[0]) == expected
+    assert w.overlaps(pose) == (not expected)
+    # a start inside the margin may stay where it is (its own gap is its margin), but never overlap
+    touching = inside and not polygons_overlap(w.mover.polygon(pose), scene.get("B").footprint())
+    assert bool(w.moves_free(pose, pose[None])[0]) == touching
 
 
 def test_frames_are_evenly_spaced_and_end_exactly_at_the_goal():

@@ -67,12 +67,17 @@ def test_yaw_follows_the_path_and_turns_in_place_are_chunks():
 
 
 def test_grasp_yaw_keeps_the_wrist_in_range():
+    from l2p_bullet.embodiment import reach
+    from l2p_bullet.embodiment.execute import grasp_candidates
+
     base = (-0.53, 0.0)
     path = np.array([[0.0, 0.0, math.pi / 2 + 0.1], [0.1, 0.0, math.pi / 2 + 0.1]])
-    off = motion.grasp_yaw_offsets(path, base)[0]  # the best candidate
+    off = grasp_candidates(path, [None], base)[0]  # the best candidate
     assert off % (math.pi / 2) == pytest.approx(0.0, abs=1e-9) or off % (math.pi / 2) == pytest.approx(math.pi / 2)
-    wrist = motion.predicted_wrist(path[:, :2], path[:, 2] + off, base)
+    wrist = reach.wrist_values(path[:, :2], path[:, 2], base) - off
     assert np.all(np.abs(wrist) <= math.pi / 4 + 0.2)
+    odd = grasp_candidates(path, [math.pi / 2], base)  # the hand must point across the block
+    assert odd and all(round(o / (math.pi / 2)) % 2 == 1 for o in odd)
 
 
 def test_relative_and_place_round_trip():

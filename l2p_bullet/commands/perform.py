@@ -41,9 +41,16 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
         if not quiet:
             click.echo(f"[{time.perf_counter() - t0:5.1f}s] {message}", err=True)
 
-    scene = load_scene_or_default(scene_path)
-    r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
-                on_stage=on_stage)
+    from ..errors import L2PError
+
+    try:
+        scene = load_scene_or_default(scene_path)
+        r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
+                    on_stage=on_stage)
+    except L2PError as e:
+        if as_json:  # scripts read why on stdout; the one-line error still goes to stderr (exit 2)
+            click.echo(json.dumps(error_json(sentence, e), indent=1))
+        raise
     if as_json:
         click.echo(dumps_json(r.to_dict(), indent=1))
         return
@@ -56,6 +63,15 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
                f"anchor moved {r.anchor_displacement_m * 1000:.1f} mm, {r.timings.get('total', 0):.1f} s")
     video = r.files.get("video")
     click.echo(f"run folder: {r.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
+
+
+def error_json(sentence: str, e: Exception) -> dict:
+    """What ``perform --json`` prints when it fails: the error, its type and, for a refusal, which check."""
+    out = {"sentence": sentence, "ok": False, "error": str(e), "error_type": type(e).__name__}
+    check = getattr(e, "check", None)
+    if check is not None:
+        out["refused"] = {"check": check, "details": getattr(e, "details", {})}
+    return out
 
 
 COMMANDS: list[click.Command] = [perform_cmd]

@@ -1,4 +1,5 @@
-"""``l2p-bullet plan SENTENCE``: plan the mover's 2-D path without the arm; writes plan.json and plan.png."""
+"""``l2p-bullet plan SENTENCE``: plan the mover's 2-D path without the arm; writes plan.json and plan.png
+(unless ``--no-plot``)."""
 
 from __future__ import annotations
 
@@ -18,10 +19,11 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
               help="Search steps at most (default: the planner's).")
 @click.option("--threshold", type=click.FloatRange(0.0, 1.0), default=None,
               help="Stop when the learned progress reaches this (default: 0.9 or the bundle's).")
+@click.option("--no-plot", is_flag=True, help="Write plan.json only, no plan.png.")
 @seed_option
 @force_option
 def plan_command(sentence: str, scene_path: str | None, planner: str, out: str | None, budget: int | None,
-                 threshold: float | None, seed: int, force: bool) -> None:
+                 threshold: float | None, no_plot: bool, seed: int, force: bool) -> None:
     """Plan SENTENCE (e.g. "move A around B") in 2-D and write plan.json and a plot.
 
     \b
@@ -32,7 +34,7 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     from ..pipeline import plan
 
     result = plan(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
-                  budget=budget, threshold=threshold, force=force)
+                  budget=budget, threshold=threshold, force=force, plot=not no_plot)
     click.echo(dumps_json(result.to_dict()))
 
 

@@ -59,3 +59,40 @@ def swept_angle(points: np.ndarray, centre: np.ndarray | None = None) -> float:
     d = p[:, :2] if centre is None else p[:, :2] - np.asarray(centre, float)[:2]
     ang = unwrapped_bearing(d)
     return float(ang[-1] - ang[0])
+
+
+def convex_hull(points: np.ndarray) -> np.ndarray:
+    """Convex hull (K,2) of 2-D points, counter-clockwise, without repeated or collinear points (monotone chain)."""
+    pts = sorted({(round(float(x), 12), round(float(y), 12)) for x, y in np.asarray(points, float).reshape(-1, 2)})
+    if len(pts) <= 2:
+        return np.array(pts, float)
+
+    def cross(o, a, b) -> float:
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower: list = []
+    upper: list = []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return np.array(lower[:-1] + upper[:-1], float)
+
+
+def separation(polys: np.ndarray, other: np.ndarray) -> np.ndarray:
+    """Separating-axis gap between each convex polygon of ``polys`` (M,K,2) and the convex polygon ``other``
+    (L,2): the largest separation along their edge normals, negative when they overlap (metres)."""
+    polys = np.asarray(polys, float)
+    other = np.asarray(other, float)
+    e = np.roll(polys, -1, axis=-2) - polys
+    n = np.stack([-e[..., 1], e[..., 0]], axis=-1)
+    n = n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-12)
+    axes = np.concatenate([n, np.broadcast_to(_axes(other), (len(polys), len(other), 2))], axis=1)  # (M,A,2)
+    pm = np.einsum("mad,mkd->mak", axes, polys)
+    po = np.einsum("mad,ld->mal", axes, other)
+    gap = np.maximum(po.min(-1) - pm.max(-1), pm.min(-1) - po.max(-1))
+    return gap.max(-1)

@@ -8,8 +8,9 @@ down reaches grasp points at table height from about 0.25 m to 0.78 m from its b
 0.25 m radius centred 0.53 m in front of the base fits inside that ring (DESIGN.md, reach note). That
 disk is the workspace: every block centre, and every point of a planned path, must lie inside it.
 
-Block footprints come from their meshes through trimesh so that non-cube objects can follow later;
-a cube's footprint is its square, rotated by its yaw.
+A block's footprint is its outline on the table: a cube's is its square, rotated by its yaw, written
+down directly (importing trimesh to derive it from a box mesh cost 0.3-0.5 s of every command's start;
+tests/test_scene.py checks the two agree). A non-cube shape would take its outline from its mesh.
 """
 
 from __future__ import annotations
@@ -17,7 +18,6 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -81,18 +81,15 @@ class Workspace:
         return d <= self.radius - margin + 1e-9
 
 
-@lru_cache(maxsize=64)
-def _unit_footprint(shape: str) -> np.ndarray:
-    """Convex 2-D outline (K,2) of a unit-size object, from its mesh, counter-clockwise."""
-    import trimesh  # imported lazily: the CLI's --help must stay fast
+_UNIT_SQUARE = np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]])
+"""A unit cube's outline on the table, counter-clockwise."""
 
+
+def _unit_footprint(shape: str) -> np.ndarray:
+    """Convex 2-D outline (K,2) of a unit-size object, counter-clockwise."""
     if shape != "cube":
         raise SceneError(f'unknown object shape "{shape}" (known: cube)')
-    mesh = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
-    pts = np.unique(np.round(mesh.vertices[:, :2], 9), axis=0)
-    c = pts.mean(axis=0)
-    order = np.argsort(np.arctan2(pts[:, 1] - c[1], pts[:, 0] - c[0]))
-    return pts[order]
+    return _UNIT_SQUARE
 
 
 @dataclass(frozen=True)

@@ -15,11 +15,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.contracts import trajectory_poses
-from ..core.geometry import polygons_overlap
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, PathError, ReachError
-from . import motion
+from . import motion, reach
 from .sim.camera import RenderSettings
 
 if TYPE_CHECKING:  # the simulator loads only when a path is executed
@@ -42,10 +41,18 @@ class Execution:
     constraint_removed: bool = True
     duration_s: float = 0.0  # simulated time of the episode
     stats: dict = field(default_factory=dict)
+    displacements_m: dict[str, float] = field(default_factory=dict)  # per block not held: its largest displacement
 
 
 def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
     """Validate a mover path against the scene; return it cleaned (yaw unwrapped, repeats merged)."""
+    return _check(scene, mover, path)[0]
+
+
+def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
+    """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
+    (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
+    square angles that do, else those of a 5 degree grid."""
     obj = scene.get(mover)
     p = motion.clean_path(path)
     start_gap = float(np.hypot(*(p[0, :2] - np.array(obj.xy))))
@@ -59,17 +66,26 @@ def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
         r = float(np.hypot(*(dense[k, :2] - np.array(scene.workspace.center))))
         raise PathError(f'the path of "{mover}" leaves the workspace at ({dense[k, 0]:.3f}, {dense[k, 1]:.3f}), '
                         f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)")
-    for other in scene.objects:
-        if other.name == mover:
-            continue
-        fp = other.footprint()
-        # Only poses whose bounding circles meet can overlap: test those (a few) exactly.
-        reach = (obj.size + other.size) * np.sqrt(0.5)
-        near = np.hypot(*(dense[:, :2] - np.array(other.xy)).T) < reach
-        for pose in dense[near]:
-            if polygons_overlap(obj.footprint(pose), fp):
-                raise PathError(f'the path of "{mover}" runs into "{other.name}" at ({pose[0]:.3f}, {pose[1]:.3f})')
-    return p
+    hit = reach.blocked_by(scene, mover, dense, None, hand=False)  # the block itself
+    if hit is not None:
+        pose = dense[hit[1]]
+        raise PathError(f'the path of "{mover}" runs into "{hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f})')
+    if not reach.hand_matters(scene, mover):
+        return p, [None]
+    first_hit = None
+    for angles in (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP)):
+        clear = []
+        for angle in angles:
+            hit = reach.blocked_by(scene, mover, dense, float(angle))
+            if hit is None:
+                clear.append(float(angle))
+            elif first_hit is None:
+                first_hit = hit
+        if clear:
+            return p, clear
+    pose = dense[first_hit[1]]
+    raise PathError(f'the hand holding "{mover}" would knock "{first_hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f}) '
+                    "whichever way it turns")
 
 
 def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | None,
@@ -92,7 +108,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     meta.setdefault("mover", mover)
     clock = StageClock(on_stage)
     clock.stage("check", "check")
-    p = check_path(scene, mover, path)
+    p, angles = _check(scene, mover, path)
     clock.stage("setup", "setup")
     own = world is None
     if own:
@@ -101,17 +117,18 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         if not own:
             _reuse(world, scene, render)
         prims = _primitives(world, render)
-        slide, removed = _perform(prims, mover, p, clock)
+        slide, removed, grasp = _perform(prims, mover, p, angles, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
         deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
-        stats = _stats(prims)
+        stats = _stats(prims) | {"grasp": grasp}
         files = _write_files(recorder, out_dir, meta, world.sizes, render)
         clock.stop()
         execution = Execution(recorder.frames, {k: round(v, 4) for k, v in clock.timings.items()}, files,
-                              max_deviation_m=deviation, anchor_displacement_m=displaced, max_lift_m=lift,
-                              constraint_removed=removed, duration_s=world.time, stats=stats)
+                              max_deviation_m=deviation, anchor_displacement_m=max(displaced.values(), default=0.0),
+                              max_lift_m=lift, constraint_removed=removed, duration_s=world.time, stats=stats,
+                              displacements_m=displaced)
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
             write_summary(files["summary"], _summary(execution, meta, seed, render))
@@ -138,39 +155,57 @@ def _primitives(world: World, render: RenderSettings | None):
     return Primitives(world, Recorder(world, camera))
 
 
-def _perform(prims, mover: str, path: np.ndarray, clock: StageClock) -> tuple[slice, bool]:
+def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
+             clock: StageClock) -> tuple[slice, bool, dict]:
     """The arm's part, stage by stage: reach (choose the grasp yaw, every IK solved before anything
-    moves), engage, move, disengage. Returns the frames recorded while sliding and whether the grasp's
-    constraint is gone."""
+    moves), engage, move, disengage. Returns the frames recorded while sliding, whether the grasp's
+    constraint is gone, and the grasp chosen (for the summary)."""
     recorder = prims.recorder
     clock.stage("reach", "reach")
-    offset = _choose_grasp_yaw(prims, mover, path)
-    recorder()  # the first frame: the world before the arm moves
     rest = prims.pose.copy()
+    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest)
+    recorder()  # the first frame: the world before the arm moves
     clock.stage("engage", "engage")
-    prims.engage(mover, offset)
+    prims.engage(mover, tool_yaw=tool_yaw)
     clock.stage("move", "move")
     start = len(recorder.frames)
     prims.move(path)
     slide = slice(start, len(recorder.frames))
     clock.stage("disengage", "disengage")
     prims.disengage(rest)
-    return slide, prims.world.sim.constraint_count() == 0
+    return slide, prims.world.sim.constraint_count() == 0, grasp
 
 
-def _choose_grasp_yaw(prims, mover: str, path: np.ndarray) -> float:
-    """The grasp yaw (a multiple of 90 deg relative to the block) whose whole slide the arm reaches.
+def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float]) -> list[float]:
+    """Grasp offsets (tool yaw minus the path's unwrapped block yaw, for one of the allowed grasp ``angles``)
+    that keep the wrist inside its range over the whole slide, best centred first (``reach.wrist_offsets``)."""
+    dense = np.concatenate(motion.slide_chunks(path)) if len(path) > 1 else path
+    v = reach.wrist_values(dense[:, :2], dense[:, 2], base_xy)
+    lo, hi = float(v.min()), float(v.max())
+    found = {round(off, 12) for angle in angles for off in reach.wrist_offsets(lo, hi, angle)}
+    return sorted(found, key=lambda off: (max(hi - off, off - lo), abs(off)))
 
-    Candidates come best first from a wrist model; for each, the approach, descent and slide IK are
-    solved as the arm will run them, before anything moves. ReachError (the best candidate's) if none
-    works.
-    """
+
+def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
+                      rest: np.ndarray) -> tuple[float, dict]:
+    """The tool's yaw at the grasp (unwrapped: it decides the wrist's branch) whose whole episode the arm
+    reaches: candidates from the wrist model, best centred first (``grasp_candidates``); for each, the
+    approach, descent, slide, retract and return IK are solved as the arm will run them, before anything
+    moves. ReachError (the first candidate's) if none works."""
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
+    candidates = grasp_candidates(path, angles, base)
+    if not candidates:
+        raise ReachError(f'no grasp keeps the arm\'s wrist inside its range while "{mover}" turns along this path '
+                         f"({np.ptp(path[:, 2]):.1f} rad); turn the block less")
     first_error = None
-    for offset in motion.grasp_yaw_offsets(path, base)[:3]:
+    for off in candidates[:3]:
+        tool_yaw = float(path[0, 2] + off)
         try:
-            prims.check_engage_and_slide(mover, path, offset)
-            return offset
+            prims.check_engage_and_slide(mover, path, tool_yaw, rest)
+            return tool_yaw, {"yaw_offset_deg": round(float(np.degrees(off)), 3),
+                              "angle_deg": round(float(np.degrees(off % np.pi)), 3),
+                              "angles_allowed_deg": [None if a is None else round(float(np.degrees(a)), 3)
+                                                     for a in angles]}
         except ReachError as e:
             first_error = first_error or e
     raise first_error
@@ -202,18 +237,19 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
 
 
 def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
-             sizes: dict[str, float]) -> tuple[float, float, float]:
-    """Deviation of the held block from the planned path (while sliding), its lift, others' motion."""
+             sizes: dict[str, float]) -> tuple[float, float, dict[str, float]]:
+    """Deviation of the held block from the planned path (while sliding), its lift, each other block's
+    largest displacement from where it started."""
     deviation = 0.0
     if frames[slide]:
         pts = trajectory_poses(frames[slide], mover)[:, :2]
         deviation = float(motion.polyline_distance(pts, path[:, :2]).max())
     lift = max(f["poses"][mover][2] for f in frames) - sizes[mover] / 2
-    displaced = 0.0
+    displaced = {}
     for name in sizes:
         if name != mover:
             xy = trajectory_poses(frames, name)[:, :2]
-            displaced = max(displaced, float(np.hypot(*(xy - xy[0]).T).max()))
+            displaced[name] = float(np.hypot(*(xy - xy[0]).T).max())
     return deviation, float(lift), displaced
 
 
@@ -229,6 +265,7 @@ def _summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None
         "execution": {
             "max_deviation_m": round(ex.max_deviation_m, 6),
             "anchor_displacement_m": round(ex.anchor_displacement_m, 6),
+            "displacements_m": {k: round(v, 6) for k, v in ex.displacements_m.items()},
             "max_lift_m": round(ex.max_lift_m, 6),
             "constraint_removed": ex.constraint_removed,
             **ex.stats,

@@ -147,26 +147,6 @@ def _round_chunk(part: np.ndarray, radius: float) -> np.ndarray:
     return np.column_stack([dxy, yaw])
 
 
-def predicted_wrist(xy: np.ndarray, tool_yaw: np.ndarray, base_xy: tuple[float, float]) -> np.ndarray:
-    """A Panda-like wrist angle for a downward tool: pi/4 + (azimuth from the base) - tool yaw.
-
-    Good to a few tenths of a radian, which is all the choice of grasp yaw below needs.
-    """
-    az = np.arctan2(xy[:, 1] - base_xy[1], xy[:, 0] - base_xy[0])
-    return math.pi / 4 + az - tool_yaw
-
-
-def grasp_yaw_offsets(block_path: np.ndarray, base_xy: tuple[float, float]) -> list[float]:
-    """Tool yaws relative to the block's (multiples of 90 deg: blocks are square), best first: the one
-    that keeps the predicted wrist angle nearest the middle of its range over the whole slide."""
-    p = np.asarray(block_path, float)
-    costs = []
-    for k in (-2, -1, 0, 1, 2):
-        off = k * math.pi / 2
-        costs.append((float(np.max(np.abs(predicted_wrist(p[:, :2], p[:, 2] + off, base_xy)))), abs(k), off))
-    return [off for _, _, off in sorted(costs)]
-
-
 def resample_path(path: np.ndarray, step: float) -> np.ndarray:
     """Resample a (N,3) path every ``step`` metres of x-y arc length (yaw interpolated), ends kept."""
     p = unwrap_yaw(path)

@@ -18,6 +18,7 @@ better. The 2-D simulator only says which moves are legal; ``evaluate`` judges t
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Sequence
 
@@ -26,7 +27,9 @@ import numpy as np
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
+from ..embodiment.reach import Wrist
 from ..errors import PlanError, UnknownPlannerError
+from .feasibility import grasp_holds
 from .problem import Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .search import beam, greedy
@@ -73,6 +76,13 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     anchors are never touched. Deterministic for a seed. ``budget`` counts search steps (forward passes of
     the progress model); ``time_limit`` (seconds), when given, also ends the search (for equal-time
     comparisons).
+
+    The world's obstacles are what the arm meets: the mover's outline, grown against each taller object
+    by the hand beside it (``embodiment.reach``). When the hand's orientation matters, each grasp angle
+    whose hand clears the start (``reach.holds``) is planned and the plan reaching the higher progress is
+    kept (``extra["grasp_angle_deg"]``, None when any multiple of 90 degrees will do). Paths that no grasp
+    yaw can follow within the wrist's range are illegal.
+    A mover that starts closer than the margin to another object may move away from it (world2d.py).
     """
     settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
     name = resolve_planner(planner, settings)
@@ -87,23 +97,29 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '
                         f"not {len(anchors)} ({', '.join(anchors)})")
-    world = World2D(scene, mover)
-    if world.overlaps(world.mover.pose):
-        raise PlanError(f'"{mover}" starts touching another object (closer than the gripper margin): '
-                        "move it apart in the scene first")
-    problem = Problem(
-        world=world, model=model, anchor_pose=anchor_obj.pose, size=world.size,
-        threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
-        budget=int(budget if budget is not None else BUDGETS[name]),
-        rng=np.random.default_rng(seed), more_anchor_poses=more_poses,
-        viewer=getattr(model, "viewpoint", None),
-    )
-    if time_limit is not None:
-        problem.deadline = time.perf_counter() + time_limit
-    with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
-        node, stopped, steps = _search(name, problem, bundle)
+    holds = grasp_holds(scene, mover)  # InfeasibleError when no grasp's hand clears the start
+    deadline = None if time_limit is None else time.perf_counter() + time_limit
+    best = None
+    for hold in holds:
+        world = World2D(scene, mover, outlines=hold.outlines)
+        problem = Problem(
+            world=world, model=model, anchor_pose=anchor_obj.pose, size=world.size,
+            threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
+            budget=int(budget if budget is not None else BUDGETS[name]),
+            rng=np.random.default_rng(seed), wrist=Wrist(hold.angle), more_anchor_poses=more_poses,
+            viewer=getattr(model, "viewpoint", None),
+        )
+        problem.deadline = deadline
+        with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
+            node, stopped, steps = _search(name, problem, bundle)
+        if best is None or node.progress > best[1].progress + 1e-9:
+            best = (problem, node, stopped, steps, hold)
+        if stopped == "threshold":
+            break  # good enough: the first grasp (the roomier one) reached the threshold
+    problem, node, stopped, steps, hold = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
+    result.extra["grasp_angle_deg"] = None if hold.angle is None else round(math.degrees(hold.angle), 6)
     if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "
                                 "re-train it: l2p-bullet train-policy")

@@ -16,6 +16,8 @@ from typing import Protocol
 import numpy as np
 
 from ..core.contracts import Plan
+from ..core.geometry import wrap_angle
+from ..embodiment.reach import Wrist
 from .world2d import World2D, segment_frames
 
 FRAME_STEP = 0.25
@@ -40,13 +42,19 @@ class ProgressScorer(Protocol):
 
 @dataclass
 class Node:
-    """A path of straight moves: ``waypoints`` (n,3), its frames (T,3) and the model's final progress."""
+    """A path of straight moves: ``waypoints`` (n,3), its frames (T,3) and the model's final progress.
+
+    ``yaw`` is the mover's yaw at the end, unwrapped along the path (the frames' yaws are wrapped);
+    ``wrist`` the range of :func:`~l2p_bullet.embodiment.reach.wrist_values` over the frames so far.
+    """
 
     waypoints: np.ndarray
     frames: np.ndarray
     progress: float
     parent: Node | None = None
     dead: list[np.ndarray] = field(default_factory=list)  # ends already backed up from (greedy search)
+    yaw: float = 0.0
+    wrist: tuple[float, float] = (0.0, 0.0)
 
     @property
     def pose(self) -> np.ndarray:
@@ -73,6 +81,7 @@ class Problem:
     forward_passes: int = 0
     started: float = field(default_factory=time.perf_counter)
     deadline: float | None = None  # perf_counter time after which the search stops (equal-time runs)
+    wrist: Wrist | None = None  # the arm's wrist range: paths no grasp yaw can follow are illegal
     more_anchor_poses: list[np.ndarray] = field(default_factory=list)  # a two-anchor action's second anchor
     viewer: np.ndarray | None = None  # (2,) the viewpoint of a viewer-frame action (scene frame, metres)
 
@@ -101,7 +110,8 @@ class Problem:
         frames = start[None].copy()
         p = float(self.model.final_batch([frames], self.anchor_pose, self.size, **self.context)[0])
         self.forward_passes += 1
-        return Node(start[None].copy(), frames, p)
+        w = float(self.wrist.values(start[None, :2], start[2:3])[0]) if self.wrist is not None else 0.0
+        return Node(start[None].copy(), frames, p, yaw=float(start[2]), wrist=(w, w))
 
     def children(self, parents: list[Node], ends: list[np.ndarray]) -> list[Node]:
         """Legal children of each parent (ends[i] (Mi,3) proposed for parents[i]), scored in one pass."""
@@ -116,7 +126,15 @@ class Problem:
                 e = e[gap > 1e-6]
             for end in e[self.world.moves_free(node.pose, e)]:
                 seg = segment_frames(node.pose, end, self.step)
-                kids.append(Node(np.vstack([node.waypoints, end]), np.vstack([node.frames, seg]), 0.0, node))
+                yaws = node.yaw + np.cumsum(wrap_angle(np.diff(np.r_[node.pose[2], seg[:, 2]])))
+                wrist = node.wrist
+                if self.wrist is not None:
+                    v = self.wrist.values(seg[:, :2], yaws)
+                    wrist = (min(wrist[0], float(v.min())), max(wrist[1], float(v.max())))
+                    if not self.wrist.fits(*wrist):
+                        continue  # no grasp yaw keeps the wrist in range over this path
+                kids.append(Node(np.vstack([node.waypoints, end]), np.vstack([node.frames, seg]), 0.0, node,
+                                 yaw=float(yaws[-1]), wrist=wrist))
         if kids:
             scores = np.asarray(self.model.final_batch([k.frames for k in kids], self.anchor_pose, self.size,
                                                        **self.context))

@@ -9,8 +9,13 @@ Rules of the world (the same ones the arm obeys when it executes the path):
 - Every object is a convex polygon (its footprint from ``scene.py``) with a transform ``[x, y, yaw]``.
 - The mover slides in straight moves, translating and rotating linearly. A move is rejected when its
   **swept area** overlaps another object inflated by :data:`~l2p_bullet.core.scene.GRIPPER_MARGIN`. The arm
-  grasps from above with closed fingers resting on the block's top, so nothing of the gripper reaches
-  down beside the block: the inflation is that safety margin only, not a finger's footprint.
+  grasps from above with closed fingers resting on the block's top, so nothing of it reaches down beside
+  the block to the height of a block no taller than the mover; against a taller object the mover's
+  outline is grown by what the hand puts at that object's height (``outlines``, from
+  :func:`l2p_bullet.embodiment.reach.hold_outlines`).
+- A mover that starts closer than the margin to an object (blocks placed touching) may still move, as
+  long as no move brings it closer to that object than it was where the move began: the margin of a move
+  is the smaller of the margin and the gap at its start.
 - A move is rejected when the grasp point (the mover's centre) leaves the workspace disk, the region
   the arm reaches pointing down (``scene.Workspace``); the disk is convex, so checking a straight move's
   end points suffices.
@@ -31,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.geometry import wrap_angle
+from ..core.geometry import separation, wrap_angle
 from ..core.scene import GRIPPER_MARGIN, Scene
 
 SUB_ROTATION = 0.1
@@ -72,20 +77,32 @@ def _normals(polys: np.ndarray) -> np.ndarray:
 
 
 class World2D:
-    """The mover and its obstacles taken from a scene; answers legality questions in batches."""
+    """The mover and its obstacles taken from a scene; answers legality questions in batches.
 
-    def __init__(self, scene: Scene, mover: str, margin: float = GRIPPER_MARGIN):
+    ``outlines`` maps an obstacle's name to the mover's outline (block frame) to test against it: the block
+    grown by the hand beside it at that obstacle's height. Obstacles not named use the block's footprint.
+    """
+
+    def __init__(self, scene: Scene, mover: str, margin: float = GRIPPER_MARGIN,
+                 outlines: dict[str, np.ndarray] | None = None):
         obj = scene.get(mover)
         self.scene = scene
         self.mover = Body(mover, obj.footprint(np.zeros(3)), obj.pose)
         self.size = obj.size
         self.margin = margin
         self.obstacles = [Body(o.name, o.footprint(np.zeros(3)), o.pose) for o in scene.objects if o.name != mover]
+        outlines = outlines or {}
+        self._outlines = [np.asarray(outlines.get(b.name, self.mover.outline), float) for b in self.obstacles]
         self._obs_polys = [b.polygon() for b in self.obstacles]
         self._obs_normals = [_normals(p) for p in self._obs_polys]
         self._obs_centres = np.array([b.pose[:2] for b in self.obstacles]).reshape(-1, 2)
         self._obs_radii = np.array([np.linalg.norm(b.outline, axis=1).max() for b in self.obstacles])
-        self._mover_radius = float(np.linalg.norm(self.mover.outline, axis=1).max())
+        self._mover_radii = np.array([np.linalg.norm(o, axis=1).max() for o in self._outlines])
+        # obstacles grouped by the mover outline they are tested against (most share the block's own)
+        groups: dict[bytes, list[int]] = {}
+        for i, o in enumerate(self._outlines):
+            groups.setdefault(o.tobytes() + bytes(str(o.shape), "ascii"), []).append(i)
+        self._groups = list(groups.values())
         ws = scene.workspace
         self.center = np.array(ws.center, float)
         self.radius = float(ws.radius)
@@ -96,8 +113,18 @@ class World2D:
         d = np.linalg.norm(np.asarray(xy, float) - self.center, axis=-1)
         return d <= self.radius + 1e-9
 
-    def moves_free(self, start: np.ndarray, ends: np.ndarray) -> np.ndarray:
-        """For straight moves from ``start`` (3,) to each of ``ends`` (M,3): legal or not, (M,) bool."""
+    def gaps(self, pose: np.ndarray) -> np.ndarray:
+        """The mover's gap (m, separating-axis) to each obstacle at ``pose``, with that obstacle's outline."""
+        pose = np.asarray(pose, float)
+        return np.array([float(separation(place_outline(o, pose)[None], p)[0])
+                         for o, p in zip(self._outlines, self._obs_polys, strict=True)])
+
+    def moves_free(self, start: np.ndarray, ends: np.ndarray, relax: bool = True) -> np.ndarray:
+        """For straight moves from ``start`` (3,) to each of ``ends`` (M,3): legal or not, (M,) bool.
+
+        ``relax``: an obstacle the start is already closer to than the margin only needs the gap of the start
+        (moves must not bring the mover closer to it); False holds every move to the full margin.
+        """
         ends = np.asarray(ends, float).reshape(-1, 3)
         start = np.asarray(start, float)
         ok = self.inside(ends[:, :2]) & bool(self.inside(start[:2]))
@@ -108,19 +135,26 @@ class World2D:
         near = self._near(start[:2], ends[:, :2]) & ok
         if not near.any():
             return ok
-        ok[near] = self._swept_free(start, ends[near])
+        margins = np.full(len(self.obstacles), self.margin)
+        if relax:
+            close = self._near(start[:2], start[None, :2], per_obstacle=True)[:, 0]
+            if close.any():
+                gaps = self.gaps(start)
+                margins = np.where(close, np.minimum(self.margin, np.maximum(gaps, 0.0) - 1e-9), margins)
+        ok[near] = self._swept_free(start, ends[near], margins)
         return ok
 
-    def _near(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    def _near(self, a: np.ndarray, b: np.ndarray, per_obstacle: bool = False) -> np.ndarray:
         ab = b - a
         t = np.clip(((self._obs_centres - a) @ ab.T) / np.maximum((ab * ab).sum(1), 1e-18), 0.0, 1.0)  # (O, M)
         closest = a + t[..., None] * ab
         d = np.linalg.norm(closest - self._obs_centres[:, None], axis=-1)
         # the exact test inflates by the margin along edge normals, so past a corner it reaches up to
         # margin / sin(half the corner angle): sqrt(2) x margin for squares (2 x covers any corner of 60+ deg)
-        return (d <= (self._obs_radii + self._mover_radius + 2.0 * self.margin)[:, None] + 1e-9).any(0)
+        hit = d <= (self._obs_radii + self._mover_radii + 2.0 * self.margin)[:, None] + 1e-9
+        return hit if per_obstacle else hit.any(0)
 
-    def _swept_free(self, start: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    def _swept_free(self, start: np.ndarray, ends: np.ndarray, margins: np.ndarray) -> np.ndarray:
         ok = np.ones(len(ends), bool)
         dyaw = wrap_angle(ends[:, 2] - start[2])
         n_sub = max(1, math.ceil(float(np.abs(dyaw).max()) / SUB_ROTATION))
@@ -128,20 +162,26 @@ class World2D:
         sub = np.empty((len(ends), n_sub + 1, 3))
         sub[..., :2] = start[:2] + t[None, :, None] * (ends[:, None, :2] - start[:2])
         sub[..., 2] = start[2] + t[None, :] * dyaw[:, None]
-        polys = place_outline(self.mover.outline, sub.reshape(-1, 3)).reshape(len(ends), n_sub + 1, -1, 2)
-        hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
         travel = ends[:, :2] - start[:2]
         perp = np.stack([-travel[:, 1], travel[:, 0]], axis=-1)
-        perp = perp / np.maximum(np.linalg.norm(perp, axis=-1, keepdims=True), 1e-12)
-        m_axes = np.concatenate(
-            [_normals(polys[:, :-1]), _normals(polys[:, 1:]),
-             np.broadcast_to(perp[:, None, None, :], (len(ends), n_sub, 1, 2))], axis=2)
-        for poly, normals in zip(self._obs_polys, self._obs_normals, strict=True):
-            axes = np.concatenate([m_axes, np.broadcast_to(normals, (len(ends), n_sub, *normals.shape))], axis=2)
-            pm = np.einsum("msad,mskd->msak", axes, hulls)
-            po = np.einsum("msad,kd->msak", axes, poly)
-            sep = (pm.max(-1) + self.margin <= po.min(-1) + 1e-12) | (po.max(-1) + self.margin <= pm.min(-1) + 1e-12)
-            ok &= sep.any(-1).all(-1)
+        length = np.linalg.norm(perp, axis=-1, keepdims=True)
+        # a move that does not travel has no travel direction: use the x axis there (a valid, redundant axis)
+        perp = np.where(length > 1e-12, perp / np.maximum(length, 1e-12), np.array([1.0, 0.0]))
+        for group in self._groups:
+            outline = self._outlines[group[0]]
+            polys = place_outline(outline, sub.reshape(-1, 3)).reshape(len(ends), n_sub + 1, -1, 2)
+            hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
+            m_axes = np.concatenate(
+                [_normals(polys[:, :-1]), _normals(polys[:, 1:]),
+                 np.broadcast_to(perp[:, None, None, :], (len(ends), n_sub, 1, 2))], axis=2)
+            for i in group:
+                poly, normals, margin = self._obs_polys[i], self._obs_normals[i], margins[i]
+                axes = np.concatenate([m_axes, np.broadcast_to(normals, (len(ends), n_sub, *normals.shape))], axis=2)
+                pm = np.einsum("msad,mskd->msak", axes, hulls)
+                po = np.einsum("msad,kd->msak", axes, poly)
+                sep = ((pm.max(-1) + margin <= po.min(-1) + 1e-12)
+                       | (po.max(-1) + margin <= pm.min(-1) + 1e-12))
+                ok &= sep.any(-1).all(-1)
         return ok
 
     def path_free(self, path: np.ndarray) -> bool:
@@ -150,8 +190,8 @@ class World2D:
         return all(bool(self.moves_free(a, b[None])[0]) for a, b in zip(path[:-1], path[1:], strict=True))
 
     def overlaps(self, pose: np.ndarray) -> bool:
-        """The mover at ``pose`` overlaps an (inflated) obstacle: a zero-length move's test."""
-        return not bool(self.moves_free(pose, np.asarray(pose, float)[None])[0])
+        """The mover at ``pose`` overlaps an obstacle inflated by the full margin: a zero-length move's test."""
+        return not bool(self.moves_free(pose, np.asarray(pose, float)[None], relax=False)[0])
 
 
 def segment_frames(start: np.ndarray, end: np.ndarray, step: float, rot_step: float = 0.2) -> np.ndarray:

@@ -193,10 +193,16 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
 def discover() -> list[PluginInfo]:
     """Every installed action plugin, usable or not, sorted by name. Imports no plugin code."""
     found: list[PluginInfo] = []
+    packages: dict[int, tuple[str, str]] = {}  # parsing a package's METADATA once, not twice per action
     for ep in metadata.entry_points(group=GROUP):
         dist = getattr(ep, "dist", None)
-        package = dist.metadata["Name"] if dist is not None else "unknown package"
-        package_version = dist.version if dist is not None else ""
+        if dist is None:
+            package, package_version = "unknown package", ""
+        else:
+            if id(dist) not in packages:
+                meta = dist.metadata
+                packages[id(dist)] = (meta["Name"], meta["Version"])
+            package, package_version = packages[id(dist)]
         module = ep.value.split(":", 1)[0].strip()
         base = dict(name=ep.name, module=module, package=package, package_version=package_version)
         try:

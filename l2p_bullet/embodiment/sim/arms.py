@@ -27,6 +27,24 @@ class ArmSpec:
     down_euler: tuple[float, float] = (math.pi, 0.0)  # roll, pitch of the tool pointing down
     position_gain: float = 0.6  # 0.1 lags 10 mm, 0.6 lags 0.7 mm (DESIGN.md section 2)
     fingertip_links: tuple[int, ...] = ()  # links whose lowest point rests on the block's top
+    wrist_limit: float = math.pi  # |wrist joint| <= this (radians): bounds the tool's yaw
+    # The arm's plane: with these joints (indices into arm_joints) at zero the arm stands in the vertical
+    # plane at the base joint's angle, the tool's azimuth seen from the base is the base joint's angle and
+    # wrist = wrist_offset + azimuth - tool yaw. IK first guesses are put in that plane (the 7th joint's
+    # freedom would otherwise let solutions drift out of it over a long motion, until a joint limit
+    # forces a flip), so the wrist model of embodiment/reach.py holds.
+    swivel_joints: tuple[int, ...] = ()
+    wrist_offset: float = 0.0
+    # Links loaded without collision shapes: they stay far above every block (for the Panda the base, the
+    # shoulder, the upper arm and the forearm, at least 11.7 cm above the held block's top anywhere in the
+    # workspace, tests/test_robustness.py) and their meshes cost most of the arm's load time and a tenth
+    # of every physics step.
+    collision_free_links: tuple[str, ...] = ()
+    # (depth, hx, hy): every collision shape of the hand and fingers lower than ``depth`` above the fingertips
+    # lies within +-hx along the tool's x axis and +-hy across it (metres, Bullet's collision margin
+    # included); what the arm puts at the height of a block taller than the one it holds. Measured by
+    # Robot.hand_profile; tests/test_reach.py re-measures it.
+    hand_profile: tuple[tuple[float, float, float], ...] = ()
 
 
 PANDA = ArmSpec(
@@ -44,6 +62,17 @@ PANDA = ArmSpec(
     ),
     wrist_joint=6,
     fingertip_links=(9, 10),
+    wrist_limit=2.9671,
+    swivel_joints=(2, 4),
+    collision_free_links=tuple(f"panda_link{i}" for i in range(7)),
+    wrist_offset=math.pi / 4,  # the hand sits at -45 deg on the flange
+    hand_profile=(  # fingers alone up to 4.5 cm above their tips (their long side across the tool's x), then the hand
+        (0.000, 0.0093, 0.0183), (0.005, 0.0130, 0.0199), (0.010, 0.0132, 0.0215), (0.015, 0.0135, 0.0231),
+        (0.020, 0.0138, 0.0247), (0.025, 0.0140, 0.0262), (0.030, 0.0143, 0.0278), (0.035, 0.0145, 0.0293),
+        (0.040, 0.0145, 0.0296), (0.045, 0.0145, 0.0299), (0.050, 0.0215, 0.1016), (0.055, 0.0228, 0.1045),
+        (0.060, 0.0241, 0.1048), (0.065, 0.0253, 0.1051), (0.070, 0.0266, 0.1055), (0.075, 0.0278, 0.1058),
+        (0.080, 0.0291, 0.1062),
+    ),
 )
 
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:
@@ -62,7 +91,7 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     import pybullet_data
 
     src = spec.urdf if os.path.isabs(spec.urdf) else os.path.join(pybullet_data.getDataPath(), spec.urdf)
-    if visuals and collisions:
+    if visuals and collisions and not spec.collision_free_links:
         return src
     with open(src) as f:
         text = f.read()
@@ -70,6 +99,7 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
         text = re.sub(r"<visual>.*?</visual>", "", text, flags=re.S)
     if not collisions:
         text = re.sub(r"<collision>.*?</collision>", "", text, flags=re.S)
+    text = _drop_collisions(text, spec.collision_free_links)
     folder = os.path.dirname(src)
     text = text.replace("package://", folder + "/")
     text = re.sub(r'filename="(?!/)', f'filename="{folder}/', text)
@@ -129,3 +159,15 @@ def _holds(path: str, data: bytes) -> bool:
             return f.read() == data
     except OSError:
         return False
+
+
+def _drop_collisions(text: str, links: tuple[str, ...]) -> str:
+    """The URDF ``text`` without the collision elements of the named links."""
+    import re
+
+    def strip(m: re.Match) -> str:
+        return re.sub(r"<collision>.*?</collision>", "", m.group(0), flags=re.S)
+
+    for name in links:
+        text = re.sub(rf'<link name="{re.escape(name)}">.*?</link>', strip, text, flags=re.S)
+    return text

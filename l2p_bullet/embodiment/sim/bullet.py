@@ -68,6 +68,12 @@ def quiet_stdout():
         os.close(devnull)
 
 
+def _obj_vertices(path: str) -> np.ndarray:
+    """The vertices (N,3) of a Wavefront .obj mesh (the arm's collision meshes)."""
+    with open(path) as f:
+        return np.array([[float(v) for v in line.split()[1:4]] for line in f if line.startswith("v ")])
+
+
 @dataclass(frozen=True)
 class JointInfo:
     """What the controller and IK need to know of one joint of a body."""
@@ -180,6 +186,27 @@ class Bullet:
         """Lower and upper corner of the link's axis-aligned bounding box (its collision shapes)."""
         return self._pb.getAABB(self._bodies[name], link, physicsClientId=self._id)
 
+    def collision_vertices(self, name: str, link: int) -> np.ndarray:
+        """World coordinates (N,3) of the vertices of the link's mesh and box collision shapes, where
+        they are now (Bullet collides with their convex hulls, grown by its collision margin)."""
+        pb = self._pb
+        b = self._bodies[name]
+        state = pb.getLinkState(b, link, computeForwardKinematics=True, physicsClientId=self._id)
+        com_pos, com_orn = state[0], state[1]  # shape frames are given relative to the link's inertial frame
+        out = []
+        for shape in pb.getCollisionShapeData(b, link, physicsClientId=self._id):
+            geom, dims, filename, pos, orn = shape[2], shape[3], shape[4], shape[5], shape[6]
+            if geom == pb.GEOM_MESH:
+                local = _obj_vertices(filename.decode() if isinstance(filename, bytes) else filename) * np.asarray(dims)
+            elif geom == pb.GEOM_BOX:
+                local = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * np.asarray(dims) / 2
+            else:
+                continue
+            w_pos, w_orn = pb.multiplyTransforms(com_pos, com_orn, pos, orn)
+            rot = np.array(pb.getMatrixFromQuaternion(w_orn)).reshape(3, 3)
+            out.append(local @ rot.T + np.asarray(w_pos))
+        return np.concatenate(out) if out else np.empty((0, 3))
+
     # --- joints ------------------------------------------------------------------------------
     def joints(self, name: str) -> list[JointInfo]:
         """Every joint of the body, in index order."""
@@ -189,6 +216,10 @@ class Bullet:
             info = pb.getJointInfo(b, j, physicsClientId=self._id)
             out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10]))
         return out
+
+    def link_name(self, name: str, link: int) -> str:
+        """The URDF name of the body's link ``link`` (the child of joint ``link``)."""
+        return self._pb.getJointInfo(self._bodies[name], link, physicsClientId=self._id)[12].decode()
 
     def joint_positions(self, name: str, joints: Sequence[int]) -> np.ndarray:
         states = self._pb.getJointStates(self._bodies[name], list(joints), physicsClientId=self._id)

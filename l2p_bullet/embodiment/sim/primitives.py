@@ -37,10 +37,12 @@ def tool_targets(block_poses: np.ndarray, yaw_offset: float, z: float,
     return np.column_stack([x, y, np.full(len(x), z), block_poses[:, 2] + yaw_offset])
 
 
-def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits) -> Timed:
-    """A timed straight tool move; the yaw turns the short way round."""
+def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits, short_turn: bool = True) -> Timed:
+    """A timed straight tool move; the yaw turns the short way round, or with ``short_turn`` False exactly to
+    the target's yaw (the wrist then ends where that yaw puts it, on the branch the caller chose)."""
     target = np.asarray(target, float).copy()
-    target[3] = start[3] + (target[3] - start[3] + math.pi) % (2 * math.pi) - math.pi
+    if short_turn:
+        target[3] = start[3] + (target[3] - start[3] + math.pi) % (2 * math.pi) - math.pi
     return time_parameterise(motion.line(start, target), limits, 1.0 / CONTROL_HZ)
 
 
@@ -64,27 +66,46 @@ class Primitives:
         self.steps_per_control = max(1, round(1.0 / (CONTROL_HZ * world.dt)))
         self.timed: list[tuple[str, Timed]] = []  # every timed chunk, for the summary
         self.ik_solves = 0
+        # per stage, what the last pre-flight check solved: (joints it started from, samples, joints);
+        # the run reuses or is seeded by them (see _solve_stage)
+        self._preflight: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
 
     # --- the control loop --------------------------------------------------------------------
-    def solve(self, poses: np.ndarray, max_jump: float = MAX_JOINT_JUMP) -> np.ndarray:
-        """Joint targets (K,7) for tool poses (K,4), each seeded with the previous solution.
+    def solve(self, poses: np.ndarray, max_jump: float = MAX_JOINT_JUMP, guide: np.ndarray | None = None) -> np.ndarray:
+        """Joint targets (K,7) for tool poses (K,4), each solved from a first guess next to the answer:
+        the previous solution moved on by the last step (the arm moves smoothly: from there damped least
+        squares converges in one round of 10 iterations, from the previous solution alone it needed 2-3),
+        or ``guide[k]``, a solution for nearly the same pose, when given. The previous solution itself is
+        the next seed, then the arm's other IK seeds.
 
-        The arm's other IK seeds are tried only when the previous solution fails to converge; a
-        solution from another seed may sit on another branch, so a joint jump larger than ``max_jump``
-        between neighbouring samples (the arm flipping over mid-motion) is a ReachError too; the
-        wrist's share of the yaw change does not count as a jump.
+        A solution from another seed may sit on another branch, so a joint jump larger than ``max_jump``
+        between neighbouring samples (the arm flipping over mid-motion) is a ReachError (after one more
+        try from the previous solution); the wrist's share of the yaw change does not count as a jump.
         """
         kin, out, q = self.robot.kin, np.empty((len(poses), len(self.q))), self.q
         extra = self.robot.spec.ik_seeds
         wrist = self.robot.spec.arm_joints.index(self.robot.spec.wrist_joint)
+        before = q
+
+        def jump_to(q_new: np.ndarray, k: int) -> float:
+            step = np.abs(q_new - prev)
+            turn = abs(float(poses[k][3] - poses[k - 1][3])) if k > 0 else 0.0
+            step[wrist] = max(0.0, step[wrist] - turn)  # the wrist follows the yaw: only its excess counts
+            return float(step.max()) if k > 0 else 0.0
+
         for k, p in enumerate(poses):
             prev = q
-            q = kin.solve(p[:3], p[3], q, seeds=extra)
-            step = np.abs(q - prev)
-            turn = abs(float(p[3] - poses[k - 1][3])) if k > 0 else 0.0
-            step[wrist] = max(0.0, step[wrist] - turn)  # the wrist follows the yaw: only its excess counts
-            jump = float(step.max())
-            if k > 0 and jump > max_jump:
+            if guide is not None:
+                first = guide[k]
+            else:  # the arm moves smoothly: the last step repeated is the better first guess, in the arm's plane
+                first = self.in_plane(2 * prev - before if k > 0 else prev, p)
+            q = kin.solve(p[:3], p[3], first, seeds=(tuple(prev), *extra))
+            jump = jump_to(q, k)
+            if jump > max_jump:  # the guess led elsewhere: start from where the arm is
+                q = kin.solve(p[:3], p[3], prev, seeds=extra)
+                jump = jump_to(q, k)
+            before = prev
+            if jump > max_jump:
                 raise ReachError(
                     f"the arm would have to flip its configuration to reach ({p[0]:.3f}, {p[1]:.3f}) with "
                     f"yaw {math.degrees(p[3]):.0f} deg (a {jump:.1f} rad joint jump); keep the path in the "
@@ -96,7 +117,7 @@ class Primitives:
     def run(self, timed: Timed, stage: str, joints: np.ndarray | None = None) -> None:
         """Track a timed tool path: IK at the control rate first (unless given), then the physics steps."""
         if joints is None:
-            joints = self.solve(self._control_samples(timed))
+            joints = self._solve_stage(stage, self._control_samples(timed))
         self.timed.append((stage, timed))
         prev = self.q
         n = self.steps_per_control
@@ -109,6 +130,34 @@ class Primitives:
         self.q = prev
         self.pose = timed.poses[-1].copy()
 
+    def in_plane(self, q: np.ndarray, pose: np.ndarray) -> np.ndarray:
+        """``q`` moved into the arm's vertical plane through ``pose`` (ArmSpec.swivel_joints): base joint at
+        the pose's azimuth, swivel joints at zero, wrist at the yaw's value there. A first guess only."""
+        spec = self.robot.spec
+        if not spec.swivel_joints:
+            return q
+        out = np.array(q, float)
+        az = math.atan2(pose[1] - self.robot.base_xyz[1], pose[0] - self.robot.base_xyz[0])
+        out[0] = az
+        out[list(spec.swivel_joints)] = 0.0
+        w = spec.arm_joints.index(spec.wrist_joint)
+        wrist = spec.wrist_offset + az - pose[3]
+        out[w] = wrist + 2 * math.pi * round((q[w] - wrist) / (2 * math.pi))  # the branch the wrist is on
+        return out
+
+    def _solve_stage(self, stage: str, samples: np.ndarray) -> np.ndarray:
+        """IK for a stage's samples, using what the pre-flight check solved for the same stage: the very
+        joints when the arm starts where the check did and the samples are the same (approach, descent:
+        solving again would give the same numbers), as seeds when only the grasp's measured pose moved
+        the samples a fraction of a millimetre (slide, retract, rest), nothing otherwise."""
+        start, pre_samples, pre_joints = self._preflight.pop(stage, (None, None, None))
+        if pre_samples is not None and pre_samples.shape == samples.shape:
+            if np.array_equal(start, self.q) and np.array_equal(pre_samples, samples):
+                self.ik_solves += len(samples)
+                return pre_joints.copy()
+            return self.solve(samples, guide=pre_joints)
+        return self.solve(samples)
+
     def _control_samples(self, timed: Timed) -> np.ndarray:
         """The samples the arm is sent to: all but the first, which is where the tool already is
         (chunks are timed at the control period, see go and move)."""
@@ -120,33 +169,37 @@ class Primitives:
             self.world.step()
             self.recorder()
 
-    def go(self, target: np.ndarray, limits: Limits, stage: str) -> None:
+    def go(self, target: np.ndarray, limits: Limits, stage: str, short_turn: bool = True) -> None:
         """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
-        self.run(line_plan(self.pose, target, limits), stage)
+        self.run(line_plan(self.pose, target, limits, short_turn), stage)
 
     # --- the primitives ----------------------------------------------------------------------
     def grasp_height(self, name: str) -> float:
         """Tool height with the closed fingertips just touching the block's top."""
         return self.world.sizes[name] + self.robot.drop
 
-    def grasp_poses(self, name: str, yaw_offset: float) -> tuple[np.ndarray, np.ndarray]:
-        """Tool poses above block ``name`` and with the fingertips on its top."""
+    def grasp_poses(self, name: str, yaw_offset: float = 0.0,
+                    tool_yaw: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Tool poses above block ``name`` and with the fingertips on its top: the tool's yaw is the block's
+        plus ``yaw_offset``, or ``tool_yaw`` exactly when given (an unwrapped value: it picks the wrist's branch)."""
         block = self.world.pose(name)
         z = self.grasp_height(name)
-        down = np.array([block[0], block[1], z, block[3] + yaw_offset])
+        yaw = block[3] + yaw_offset if tool_yaw is None else float(tool_yaw)
+        down = np.array([block[0], block[1], z, yaw])
         return down + [0.0, 0.0, HOVER, 0.0], down
 
-    def engage(self, name: str, yaw_offset: float = 0.0) -> Grasp:
+    def engage(self, name: str, yaw_offset: float = 0.0, tool_yaw: float | None = None) -> Grasp:
         """Approach ``name`` from above, descend until the closed fingers rest on its top, fix it.
 
-        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; choose it among
-        :func:`l2p_bullet.embodiment.motion.grasp_yaw_offsets` so the wrist stays inside its range while
-        sliding.
+        ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; or ``tool_yaw`` the
+        tool's yaw itself, turned to exactly (not the short way), which decides where the wrist starts the
+        slide: choose it with :func:`l2p_bullet.embodiment.reach.wrist_offsets` (execute.py does) so the wrist
+        stays inside its range while sliding.
         """
         if self.grasp is not None:
             raise ExecutionError(f'already holding "{self.grasp.name}"; disengage first')
-        above, down = self.grasp_poses(name, yaw_offset)
-        self.go(above, APPROACH, "approach")
+        above, down = self.grasp_poses(name, yaw_offset, tool_yaw)
+        self.go(above, APPROACH, "approach", short_turn=tool_yaw is None)
         self.go(down, DESCEND, "descend")
         self.hold(SETTLE_S)
         self.grasp = attach(self.world, name)
@@ -163,24 +216,45 @@ class Primitives:
         samples = [self._control_samples(t) for t in timed]
         if not samples:
             return []
-        joints = self.solve(np.concatenate(samples))
+        joints = self._solve_stage("slide", np.concatenate(samples))
         return np.split(joints, np.cumsum([len(s) for s in samples])[:-1])
 
-    def check_engage_and_slide(self, name: str, path: np.ndarray, yaw_offset: float) -> None:
-        """Solve the IK of the approach, descent and slide exactly as :meth:`engage` and :meth:`move`
-        will (same chunks, timing and seeds, nominal grasp height) without moving anything, so an
-        unreachable pose is a ReachError now rather than halfway through. The arm's state is kept."""
+    def check_engage_and_slide(self, name: str, path: np.ndarray, tool_yaw: float,
+                               rest: np.ndarray | None = None) -> None:
+        """Solve the IK of the approach, descent, slide, retract and return to ``rest`` exactly as
+        :meth:`engage`, :meth:`move` and :meth:`disengage` will (same chunks, timing and seeds, nominal
+        grasp height) without moving anything, so an unreachable pose is a ReachError now rather than
+        halfway through. The arm's state is kept."""
         saved_q, saved_pose = self.q.copy(), self.pose.copy()
+        self._preflight = {}
+        solved = {}
         try:
-            above, down = self.grasp_poses(name, yaw_offset)
-            for target, limits in ((above, APPROACH), (down, DESCEND)):
-                timed = line_plan(self.pose, target, limits)
-                self.q = self.solve(self._control_samples(timed))[-1]
-                self.pose = timed.poses[-1].copy()
-            p = self._continued(path, yaw_offset)
-            self.slide_joints(slide_plan(p, yaw_offset, float(down[2])))
+            above, down = self.grasp_poses(name, tool_yaw=tool_yaw)
+            solved["approach"] = self._check_line(above, APPROACH, short_turn=False)
+            solved["descend"] = self._check_line(down, DESCEND)
+            offset = tool_yaw - float(self.world.pose(name)[3])
+            p = self._continued(path, offset)
+            timed = slide_plan(p, offset, float(down[2]))
+            if timed:
+                samples = np.concatenate([self._control_samples(t) for t in timed])
+                joints = self.solve(samples)
+                solved["slide"] = (self.q, samples, joints)
+                self.q, self.pose = joints[-1], timed[-1].poses[-1].copy()
+            up = self.pose + [0.0, 0.0, HOVER, 0.0]
+            solved["retract"] = self._check_line(up, DESCEND)
+            if rest is not None:
+                solved["rest"] = self._check_line(rest, APPROACH, short_turn=False)
+            self._preflight = solved  # every stage reachable: the run may use them
         finally:
             self.q, self.pose = saved_q, saved_pose
+
+    def _check_line(self, target: np.ndarray, limits: Limits,
+                    short_turn: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        timed = line_plan(self.pose, target, limits, short_turn)
+        start, samples = self.q, self._control_samples(timed)
+        joints = self.solve(samples)
+        self.q, self.pose = joints[-1], timed.poses[-1].copy()
+        return start, samples, joints
 
     def _continued(self, path: np.ndarray, yaw_offset: float) -> np.ndarray:
         """The cleaned path with its yaw shifted by whole turns so that the tool's yaw (block yaw +
@@ -222,5 +296,5 @@ class Primitives:
         up = self.pose.copy()
         up[2] += HOVER
         self.go(up, DESCEND, "retract")
-        if rest is not None:
-            self.go(rest, APPROACH, "rest")
+        if rest is not None:  # back to the rest pose's own yaw, so the wrist unwinds to where it started
+            self.go(rest, APPROACH, "rest", short_turn=False)

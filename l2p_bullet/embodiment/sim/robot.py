@@ -159,6 +159,46 @@ class Robot:
         low = min(self.sim.aabb(ARM, link)[0][2] for link in self.spec.fingertip_links)
         return float(pos[2] - low)
 
+    def hand_profile(self, depths: tuple[float, ...]) -> list[tuple[float, float, float]]:
+        """Measure what the arm puts at block height: for each depth ``d``, the half extents (hx, hy) in the
+        tool frame (x along the tool's yaw) of every collision shape of the arm lower than ``d`` above the
+        fingertips, Bullet's collision margin included. The arm must point down; only the links from the wrist
+        on count (the hand turns with the tool's yaw; the rest of the arm stays high above the blocks).
+
+        The shapes are convex hulls of the meshes: a hull's part below a height is the hull of its
+        vertices below it and of the points where the hull's vertex pairs cross that height.
+        """
+        pos, _ = self.tool_pose()
+        yaw = self.tool_yaw()
+        c, s = math.cos(-yaw), math.sin(-yaw)
+        rot = np.array([[c, -s], [s, c]])
+        floor = pos[2] - self.drop  # the fingertips' lowest point
+        links = []
+        for link in range(self.spec.wrist_joint, len(self.sim.joints(ARM))):
+            v = self.sim.collision_vertices(ARM, link)
+            if not len(v):
+                continue
+            lo = np.asarray(self.sim.aabb(ARM, link)[0])
+            margin = max(float(v[:, 2].min() - lo[2]), 0.0)  # the bounding box's slack below a shape turned about z only
+            rel = np.column_stack([(v[:, :2] - pos[:2]) @ rot.T, v[:, 2] - floor])
+            links.append((rel, margin))
+        out = []
+        for d in depths:
+            hx = hy = 0.0
+            for rel, m in links:
+                cut = d + m  # a margin-grown shape reaches m below its hull
+                below, above = rel[rel[:, 2] <= cut], rel[rel[:, 2] > cut]
+                if not len(below):
+                    continue
+                pts = [below[:, :2]]
+                if len(above):
+                    t = (cut - below[:, None, 2]) / (above[None, :, 2] - below[:, None, 2])
+                    pts.append((below[:, None, :2] + t[..., None] * (above[None, :, :2] - below[:, None, :2])).reshape(-1, 2))
+                xy = np.abs(np.concatenate(pts))
+                hx, hy = max(hx, float(xy[:, 0].max()) + m), max(hy, float(xy[:, 1].max()) + m)
+            out.append((float(d), hx, hy))
+        return out
+
     def command(self, q: np.ndarray) -> None:
         """Set the arm's joint targets (the motors track them during the next physics steps)."""
         self.sim.control_joints(ARM, self.joint_ids, q.tolist(), self.forces, self.gains)

@@ -1,0 +1,138 @@
+"""Up-front checks: a scene the arm cannot do is refused before anything is planned or moved, with the reason.
+
+Every check is a *necessary* condition, measured with bounds that favour the arm, so a refusal is a
+real impossibility and never a guess (docs/perform.md lists them with examples):
+
+- ``grasp``: whichever way it turns (every 5 degrees), the hand coming down on the mover would meet
+  another object (taller blocks too close beside a small one: ``embodiment.reach``).
+- ``boxed-in``: no move at all is legal from the start: every short slide (72 directions) and every
+  turn in place runs into another object or out of the workspace.
+- ``room-around``: the mover's centre must stay in the workspace disk, so around an anchor near the
+  disk's rim the directions it can take around the anchor cover less than the 0.8 turn "around" needs
+  (even passing as close as two blocks' inscribed circles allow).
+- ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
+- ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
+  squares' centres are never nearer than the sum of their half sides.
+
+The room checks use the thresholds of the built-in rule judges (``judge/rules.py``) and apply to an
+action judged by those rules; a plugin action judged otherwise gets the arm's checks only.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.scene import Scene
+from ..embodiment import reach
+from ..errors import InfeasibleError
+from .world2d import World2D
+
+AROUND_TURN = 0.8  # judge/rules.py: "around" sweeps at least this share of a turn
+AWAY_GAIN = 1.0  # blocks "away" must gain
+CLOSER_SHARE = 0.5  # share of the room "closer" must close
+CHECKS = ("grasp", "boxed-in", "room-around", "room-away", "room-closer")
+
+
+def grasp_holds(scene: Scene, mover: str) -> list[reach.Hold]:
+    """The ways to hold the mover whose hand clears its neighbours (``reach.holds``); InfeasibleError
+    ("grasp") naming the object in the way when there is none."""
+    found = reach.holds(scene, mover)
+    if found:
+        return found
+    m = scene.get(mover)
+    gaps = {}
+    for angle in np.arange(0.0, math.pi, reach.ANGLE_STEP):
+        for name, gap in reach.hold_gaps(scene, mover, float(angle)).items():
+            gaps[name] = max(gaps.get(name, -math.inf), gap)  # each object's best case over the angles
+    name = min(gaps, key=gaps.get)
+    other = scene.get(name)
+    raise InfeasibleError(
+        "grasp",
+        f'the arm cannot grasp "{mover}": its hand, coming down on the {m.size * 100:.0f} cm block, would hit '
+        f'"{name}" ({other.size * 100:.0f} cm tall) or another taller block beside it whichever way it turns; '
+        "move them apart",
+        {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}})
+
+
+def check(scene: Scene, mover: str, anchor: str, rules: str | None = None) -> list[reach.Hold]:
+    """Run every check that applies; return the usable holds. ``rules``: the rule judge the action is
+    judged by ("around", "away", "closer", ...), None for an action judged otherwise."""
+    holds = grasp_holds(scene, mover)
+    _boxed_in(scene, mover, holds)
+    room = {"around": _room_around, "away": _room_away, "closer": _room_closer}.get(rules or "")
+    if room is not None:
+        room(scene, mover, anchor)
+    return holds
+
+
+def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
+    m = scene.get(mover)
+    ang = np.linspace(0.0, 2 * math.pi, 72, endpoint=False)
+    step = 0.25 * m.size
+    ends = np.column_stack([m.xy[0] + step * np.cos(ang), m.xy[1] + step * np.sin(ang), np.full(72, m.yaw)])
+    turns = np.array([[m.xy[0], m.xy[1], m.yaw + t] for t in (-math.pi / 4, math.pi / 4)])
+    for hold in holds:
+        if World2D(scene, mover, outlines=hold.outlines).moves_free(m.pose, np.vstack([ends, turns])).any():
+            return
+    raise InfeasibleError("boxed-in", f'"{mover}" cannot move at all: every way it could slide or turn runs into '
+                          "another object or out of the workspace", {"mover": mover})
+
+
+def _room_around(scene: Scene, mover: str, anchor: str) -> None:
+    m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
+    rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
+    rho_min = (m.size + a.size) / 2  # centres never closer than the half sides' sum
+    theta = np.linspace(-math.pi, math.pi, 1440, endpoint=False)
+    u = np.column_stack([np.cos(theta), np.sin(theta)])
+    rho = np.maximum(rho_min, -(u @ rel))  # the nearest point to the disk's centre along each bearing
+    ok = np.linalg.norm(rel + rho[:, None] * u, axis=1) <= ws.radius + 1e-9
+    arc = _longest_circular_run(ok) * 2 * math.pi / len(theta)
+    if arc < AROUND_TURN * 2 * math.pi - 2 * (2 * math.pi / len(theta)):
+        raise InfeasibleError(
+            "room-around",
+            f'no room to move "{mover}" around "{anchor}": at {np.linalg.norm(rel):.3f} m from the workspace\'s '
+            f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
+            f"the workspace (radius {ws.radius} m); around needs {AROUND_TURN * 360:.0f} deg",
+            {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURN * 360})
+
+
+def _room_away(scene: Scene, mover: str, anchor: str) -> None:
+    m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
+    d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy)))
+    farthest = ws.radius + float(np.hypot(*(np.asarray(a.xy) - ws.center)))
+    if farthest < d0 + AWAY_GAIN * m.size - 1e-9:
+        raise InfeasibleError(
+            "room-away",
+            f'no room to move "{mover}" away from "{anchor}": it is {d0 / m.size:.2f} blocks away and no point of '
+            f"the workspace is more than {farthest / m.size:.2f}; away needs {AWAY_GAIN:.0f} block more",
+            {"start_blocks": round(d0 / m.size, 3), "farthest_blocks": round(farthest / m.size, 3)})
+
+
+def _room_closer(scene: Scene, mover: str, anchor: str) -> None:
+    m, a = scene.get(mover), scene.get(anchor)
+    d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
+    room = max(d0 - 1.0, 0.25)  # judge/rules.py's closer
+    target = d0 - CLOSER_SHARE * room
+    nearest = (m.size + a.size) / 2 / m.size
+    if nearest > target + 1e-9:
+        raise InfeasibleError(
+            "room-closer",
+            f'"{mover}" cannot come closer to "{anchor}" by the half of the room that "closer" asks for: their '
+            f"centres are {d0:.2f} blocks apart, closer needs {target:.2f}, and the blocks' sizes keep them at "
+            f"least {nearest:.2f} apart", {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3),
+                                         "nearest_blocks": round(nearest, 3)})
+
+
+def _longest_circular_run(ok: np.ndarray) -> int:
+    if ok.all():
+        return len(ok)
+    if not ok.any():
+        return 0
+    k = int(np.argmin(ok))  # start the scan at a False so runs do not wrap
+    best = run = 0
+    for v in np.roll(ok, -k):
+        run = run + 1 if v else 0
+        best = max(best, run)
+    return best
