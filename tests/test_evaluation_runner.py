@@ -69,14 +69,15 @@ def test_resume_skips_recorded_runs_and_refuses_other_settings(serial, tmp_path)
 
 def test_a_failing_run_is_a_row_and_the_evaluation_goes_on(tmp_path):
     f = tmp_path / "s.jsonl"
-    f.write_text('{"id": "touching", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.0, 0.052]},'
-                 ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.0, 0.0]}]}\n'
+    # A and B at opposite ends of the workspace: no room to go one block farther (refused up front)
+    f.write_text('{"id": "no-room", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [-0.22, 0.0]},'
+                 ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.22, 0.0]}]}\n'
                  '{"id": "fine", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.15, 0.0]},'
                  ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.0, 0.0]}]}\n')
     evaluate(EvaluationConfig(actions=["away"], scene_file=str(f), mode="plan"), tmp_path / "e", workers=0,
              progress=False)
     bad, good = load_rows(tmp_path / "e")
-    assert bad["error_type"] == "PlanError" and "touching" in bad["error"] and bad["success"] == 0
+    assert bad["error_type"] == "InfeasibleError" and "no room" in bad["error"] and bad["success"] == 0
     assert good["error"] is None and good["success"] == 1 and good["mode"] == "plan"
 
 

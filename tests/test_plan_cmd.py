@@ -37,7 +37,7 @@ def test_plan_writes_plan_json_and_a_plot(fake_actions, tmp_path):
     png = (out / "plan.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
     again = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(tmp_path / "bare"), "--no-plot"])
-    assert again.exit_code == 0 and sorted(p.name for p in (tmp_path / "bare").iterdir()) == ["plan.json"]
+    assert again.exit_code == 0 and sorted(p.name for p in (tmp_path / "bare").iterdir()) == [".l2p-run.json", "plan.json"]
 
 
 def test_the_plot_shows_the_objects_and_the_path(tmp_path):

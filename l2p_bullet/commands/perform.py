@@ -49,7 +49,7 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
                     on_stage=on_stage)
     except L2PError as e:
         if as_json:  # scripts read why on stdout; the one-line error still goes to stderr (exit 2)
-            click.echo(json.dumps(error_json(sentence, e), indent=1))
+            click.echo(dumps_json(error_json(sentence, e), indent=1))
         raise
     if as_json:
         click.echo(dumps_json(r.to_dict(), indent=1))

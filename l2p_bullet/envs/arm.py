@@ -32,7 +32,7 @@ class ArmEnv(Plan2DEnv):
         self._camera = None
 
     def _start_episode(self) -> None:
-        from ..embodiment import motion
+        from ..embodiment.execute import grasp_candidates
         from ..embodiment.record import Recorder
         from ..embodiment.sim.camera import Camera, RenderSettings
         from ..embodiment.sim.primitives import Primitives
@@ -46,8 +46,9 @@ class ArmEnv(Plan2DEnv):
         self._camera = Camera(self._world, RenderSettings()) if visuals else None
         self._prims = Primitives(self._world, Recorder(self._world))  # trajectory frames at 30 fps: .recorder
         base = tuple(self._prims.robot.base_xyz[:2])
-        offset = motion.grasp_yaw_offsets(np.vstack([self.pose, self.pose]), base)[0]
-        self._prims.engage(self.mover, offset)
+        # the grasp whose wrist sits nearest the middle of its range at the start (the moves are not known yet)
+        offset = grasp_candidates(self.pose[None], [None], base)[0]
+        self._prims.engage(self.mover, tool_yaw=float(self.pose[2] + offset))
         self.anchor_pose = self._block(self.anchor)  # where the physics settled it
         self.pose = self._block(self.mover)
         self.frames = self.pose[None].copy()

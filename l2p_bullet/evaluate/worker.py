@@ -173,11 +173,12 @@ class Worker:
         from .. import planning
         from ..core.scene import Scene
         from ..judge import judge_for
-        from ..pipeline import judge_context, resolve
+        from ..pipeline import check_feasible, judge_context, resolve
         from ..plugins import registry
 
         scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
         cmd = resolve(task.sentence, scene, self.plugins)
+        check_feasible(cmd, scene, self.plugins)  # refused up front, as perform and plan refuse it
         bundle = registry.load(cmd.action, self.plugins)
         t = time.perf_counter()
         plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=task.planner, seed=task.seed,
