@@ -139,3 +139,17 @@ def _count(out: Path) -> int:
             return db.execute("SELECT COUNT(*) FROM runs").fetchone()[0]
     except sqlite3.OperationalError:
         return 0
+
+
+def test_pool_workers_start_with_one_blas_thread_unless_the_user_chose(monkeypatch):
+    """W workers for W cores: numpy's BLAS in each worker runs one thread (it made 2 workers only 1.44x one)."""
+    import os
+
+    from l2p_bullet.evaluate.pool import THREAD_VARIABLES, _one_thread_per_worker
+
+    monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
+    monkeypatch.setenv("MKL_NUM_THREADS", "3")
+    with _one_thread_per_worker():
+        assert os.environ["OMP_NUM_THREADS"] == "1" and os.environ["MKL_NUM_THREADS"] == "3"
+    assert "OMP_NUM_THREADS" not in os.environ and os.environ["MKL_NUM_THREADS"] == "3"
+    assert "OPENBLAS_NUM_THREADS" in THREAD_VARIABLES

@@ -8,12 +8,18 @@ on. Workers ignore SIGINT, so Ctrl-C reaches the parent alone, which stops them 
 already committed.
 
 Workers are started with ``spawn`` (a clean interpreter: nothing of the parent's state, threads or open
-files is inherited), the way Ray starts its workers too.
+files is inherited), the way Ray starts its workers too, and like Ray's each worker's numerical libraries
+run one thread (``OMP_NUM_THREADS=1`` ..., unless the user set them): W workers are meant for W cores.
+Measured on 2 cores: with numpy's OpenBLAS free to start a thread per core, one worker already used 1.4
+cores (0.39 CPU s per 0.27 s run) and two workers reached only 1.44x one; Ray, which pins its workers to
+one thread, reached 1.81x.
 """
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing as mp
+import os
 import signal
 from collections import deque
 from collections.abc import Callable, Iterable
@@ -23,6 +29,22 @@ from .tasks import Task
 from .worker import error_row
 
 OnRow = Callable[[dict], None]
+
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+"""Thread counts of numpy's BLAS (and OpenMP code) that a spawned worker reads at import."""
+
+
+@contextlib.contextmanager
+def _one_thread_per_worker():
+    """While a worker is started: its environment says one thread (only where the user said nothing)."""
+    unset = [k for k in THREAD_VARIABLES if k not in os.environ]
+    for k in unset:
+        os.environ[k] = "1"
+    try:
+        yield
+    finally:
+        for k in unset:
+            os.environ.pop(k, None)
 
 
 def _worker_main(conn) -> None:
@@ -48,7 +70,8 @@ class _Slot:
     def __init__(self, ctx) -> None:
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker_main, args=(child,), daemon=True)
-        self.proc.start()
+        with _one_thread_per_worker():  # spawn copies the environment at start
+            self.proc.start()
         child.close()
         self.task: Task | None = None
 
