@@ -6,12 +6,10 @@ rendered runs and one without rendering (its only view is the 2-D animation).
 
 from __future__ import annotations
 
-import json
 import shutil
-import urllib.error
-import urllib.request
 from pathlib import Path
 
+import http_client
 import pytest
 
 CHROMIUM = "/usr/bin/chromium"
@@ -64,19 +62,7 @@ class Live:
 
     def call(self, method: str, path: str, body=None, raw: bytes | None = None, headers: dict | None = None):
         """(status, JSON body) of one request."""
-        data = raw if raw is not None else (None if body is None else json.dumps(body).encode())
-        req = urllib.request.Request(self.url.rstrip("/") + path, data=data, method=method,
-                                     headers={"Content-Type": "application/json", **(headers or {})})
-        try:
-            with urllib.request.urlopen(req, timeout=30) as r:
-                payload = r.read()
-                status = r.status
-        except urllib.error.HTTPError as e:
-            payload, status = e.read(), e.code
-        try:
-            return status, json.loads(payload)
-        except ValueError:
-            return status, payload
+        return http_client.call(self.url, method, path, body, raw, headers)
 
     def stop(self) -> None:
         self.server.stop()

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import json
-import urllib.error
-import urllib.request
 from pathlib import Path
 
+import http_client
 import pytest
 
 
@@ -30,18 +28,7 @@ class Live:
 
     def call(self, method: str, path: str, body=None, raw: bytes | None = None):
         """(status, JSON body) of one request."""
-        data = raw if raw is not None else (None if body is None else json.dumps(body).encode())
-        req = urllib.request.Request(self.url.rstrip("/") + path, data=data, method=method,
-                                     headers={"Content-Type": "application/json"})
-        try:
-            with urllib.request.urlopen(req, timeout=60) as r:
-                payload, status = r.read(), r.status
-        except urllib.error.HTTPError as e:
-            payload, status = e.read(), e.code
-        try:
-            return status, json.loads(payload)
-        except ValueError:
-            return status, payload
+        return http_client.call(self.url, method, path, body, raw)
 
     def stop(self) -> None:
         self.server.stop()

@@ -96,9 +96,10 @@ def _schema_version() -> int:
 
 def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade_changed: bool) -> None:
     from ..plugins import registry
-    from ..review.app import LOOPBACK, create_app
+    from ..review.app import create_app
     from ..review.server import bind, serve, url_of
     from ..review.session import ReviewSession
+    from ..review.web import LOOPBACK
 
     reg = store.register_runs(run_infos, accept_changed=regrade_changed)
     changed = {run.run_id for run, _, _ in reg.changed}

@@ -21,25 +21,22 @@ from pathlib import Path
 from typing import Annotated, Literal
 
 from fastapi import FastAPI, Query, Request
-from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
+from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
-from starlette.exceptions import HTTPException as StarletteHTTPException
-from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from .. import __version__
 from ..errors import ReviewError
 from .runs import motion_for_browser
 from .session import Item, NotFound, ReviewSession
 from .store import AnswerConflict, GradeRow
+from .web import json_errors, new_app
 
 log = logging.getLogger("l2p_bullet.review")
 
 Reviewer = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1, max_length=40)]
 Key = Annotated[str, StringConstraints(pattern=r"^[0-9a-f]{16}$")]
 View = Literal["3d", "2d"]
-LOOPBACK = ("127.0.0.1", "localhost", "::1")
 
 
 class AnswerIn(BaseModel):
@@ -67,10 +64,8 @@ def static_dir() -> Path:
 
 
 def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
-    app = FastAPI(title="l2p-bullet review", version=__version__, docs_url=None, redoc_url=None)
-    if host in LOOPBACK:  # a web page elsewhere cannot reach the app through a rebound DNS name
-        app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]"])
-    _errors(app)
+    app = new_app("l2p-bullet review", host)
+    json_errors(app, log, ReviewError, _status)
 
     @app.middleware("http")
     async def server_timing(request: Request, call_next):
@@ -174,33 +169,11 @@ def _answer(g: GradeRow) -> dict:
             "created_at": g.created_at, "updated_at": g.updated_at}
 
 
-def _errors(app: FastAPI) -> None:
-    @app.exception_handler(RequestValidationError)
-    async def invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
-        parts = []
-        for e in exc.errors():
-            if e.get("type") == "json_invalid":
-                parts.append("the request body is not valid JSON")
-                continue
-            where = ".".join(str(p) for p in e.get("loc", ()) if p not in ("body", "query", "path"))
-            parts.append(f"{where or 'request'}: {e.get('msg', 'invalid')}")
-        return JSONResponse({"error": "; ".join(parts) or "invalid request"}, status_code=422)
-
-    @app.exception_handler(StarletteHTTPException)
-    async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
-        return JSONResponse({"error": str(exc.detail)}, status_code=exc.status_code)
-
-    @app.exception_handler(ReviewError)
-    async def review_error(request: Request, exc: ReviewError) -> JSONResponse:
-        status = 400
-        if isinstance(exc, NotFound):
-            status = 404
-        elif isinstance(exc, AnswerConflict):
-            status = 410 if exc.reason == "missing" else 409
-        return JSONResponse({"error": str(exc), **({"reason": exc.reason} if isinstance(exc, AnswerConflict) else {})},
-                            status_code=status)
-
-    @app.exception_handler(Exception)
-    async def bug(request: Request, exc: Exception) -> JSONResponse:
-        log.exception("review app: unexpected error on %s %s", request.method, request.url.path)
-        return JSONResponse({"error": f"internal error ({type(exc).__name__}); see the server's log"}, status_code=500)
+def _status(exc: Exception) -> tuple[int, dict]:
+    """A ReviewError's status: 404 for an unknown run, 410/409 for an answer to a run that disappeared or
+    changed, 400 otherwise."""
+    if isinstance(exc, NotFound):
+        return 404, {}
+    if isinstance(exc, AnswerConflict):
+        return (410 if exc.reason == "missing" else 409), {"reason": exc.reason}
+    return 400, {}

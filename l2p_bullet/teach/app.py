@@ -16,20 +16,17 @@ from pathlib import Path
 from typing import Annotated
 
 import numpy as np
-from fastapi import FastAPI, Query, Request
-from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
+from fastapi import FastAPI, Query
+from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
-from starlette.middleware.trustedhost import TrustedHostMiddleware
 
-from .. import __version__
 from ..errors import L2PError, TeachError
+from ..review.web import json_errors, new_app
 from .session import MAX_SAMPLES, Recording, TeachSession
 
 log = logging.getLogger("l2p_bullet.teach")
-LOOPBACK = ("127.0.0.1", "localhost", "::1")
 
 Sample = Annotated[list[float], Field(min_length=4, max_length=4)]
 
@@ -53,10 +50,8 @@ def static_dir() -> Path:
 
 
 def create_app(session: TeachSession, host: str = "127.0.0.1") -> FastAPI:
-    app = FastAPI(title="l2p-bullet teach", version=__version__, docs_url=None, redoc_url=None)
-    if host in LOOPBACK:  # a web page elsewhere cannot reach the app through a rebound DNS name
-        app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]", "testserver"])
-    _errors(app)
+    app = new_app("l2p-bullet teach", host, extra_hosts=("testserver",))
+    json_errors(app, log, L2PError, lambda exc: (409 if isinstance(exc, Busy) else 400, {}))
     app.mount("/static", StaticFiles(directory=static_dir()), name="static")
 
     @app.get("/", response_class=HTMLResponse, include_in_schema=False)
@@ -96,29 +91,3 @@ def create_app(session: TeachSession, host: str = "127.0.0.1") -> FastAPI:
         return FileResponse(path, media_type="video/mp4")
 
     return app
-
-
-def _errors(app: FastAPI) -> None:
-    @app.exception_handler(RequestValidationError)
-    async def invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
-        parts = []
-        for e in exc.errors():
-            if e.get("type") == "json_invalid":
-                parts.append("the request body is not valid JSON")
-                continue
-            where = ".".join(str(p) for p in e.get("loc", ()) if p not in ("body", "query", "path"))
-            parts.append(f"{where or 'request'}: {e.get('msg', 'invalid')}")
-        return JSONResponse({"error": "; ".join(parts) or "invalid request"}, status_code=422)
-
-    @app.exception_handler(StarletteHTTPException)
-    async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
-        return JSONResponse({"error": str(exc.detail)}, status_code=exc.status_code)
-
-    @app.exception_handler(L2PError)
-    async def user_error(request: Request, exc: L2PError) -> JSONResponse:
-        return JSONResponse({"error": str(exc)}, status_code=409 if isinstance(exc, Busy) else 400)
-
-    @app.exception_handler(Exception)
-    async def bug(request: Request, exc: Exception) -> JSONResponse:
-        log.exception("teach app: unexpected error on %s %s", request.method, request.url.path)
-        return JSONResponse({"error": f"internal error ({type(exc).__name__}); see the server's log"}, status_code=500)
