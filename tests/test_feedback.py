@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import sys
-import types
 from pathlib import Path
 
 import numpy as np
@@ -16,18 +14,16 @@ from click.testing import CliRunner
 from l2p_bullet.cli import main
 from l2p_bullet.learning.crossval import cross_validate, folder_agreement, select, stratified_folds
 from l2p_bullet.learning.feedback import (
-    COLUMNS,
     FeedbackError,
     FeedbackItem,
-    GradeRow,
     items_from_rows,
     original_items,
     read_grades,
-    write_grades,
 )
 from l2p_bullet.learning.feedback_targets import FeedbackConfig, feedback_sequences, target_of
 from l2p_bullet.learning.trainset import DataConfig
 from l2p_bullet.progress.features import QSRConfig
+from l2p_bullet.review.store import EXPORT_FIELDS, GradeRow, write_grades
 
 
 def _trajectory(folder: Path, end_x: float = 0.15) -> str:
@@ -50,10 +46,11 @@ def _row(**kw) -> GradeRow:
 
 def test_csv_and_jsonl_exports_round_trip(tmp_path):
     rows = [_row(), _row(reviewer="bob", grade=None, mode="blind", label="around"), _row(run_id="r2", grade=2.5)]
-    csv_path = write_grades(rows, tmp_path / "g.csv")
+    csv_path = tmp_path / "g.csv"
+    write_grades(rows, csv_path)
     assert read_grades(csv_path) == [GradeRow(**{**r.__dict__, "label": r.label}) for r in rows]
     jl = tmp_path / "g.jsonl"
-    jl.write_text("\n".join(json.dumps({k: getattr(r, k) for k in COLUMNS} | {"extra": 1}) for r in rows) + "\n\n")
+    jl.write_text("\n".join(json.dumps({k: getattr(r, k) for k in EXPORT_FIELDS} | {"extra": 1}) for r in rows) + "\n\n")
     assert read_grades(jl) == read_grades(csv_path)
 
 
@@ -79,22 +76,22 @@ def test_unknown_or_missing_files_are_clear_errors(tmp_path):
         read_grades(tmp_path / "missing.csv")
 
 
-def test_database_is_read_through_the_review_store(tmp_path, monkeypatch):
+def test_a_review_database_is_read_through_the_review_store(tmp_path):
+    """The review app's own database (here with the original study's grades imported) reads as its export."""
+    from l2p_bullet.review.original import import_original
+    from l2p_bullet.review.store import Store, load_grades
+
     db = tmp_path / "reviews.sqlite"
-    db.write_bytes(b"")
-    if "l2p_bullet.review.store" not in sys.modules:
-        try:
-            import l2p_bullet.review.store  # noqa: F401
-        except ImportError:
-            with pytest.raises(FeedbackError):
-                read_grades(db)
-    fake = types.ModuleType("l2p_bullet.review.store")
-    fake.load_grades = lambda path: [types.SimpleNamespace(run_id="r9", action="away", mode="graded", grade=6,
-                                                           reviewer="ann", source="")]
-    monkeypatch.setitem(sys.modules, "l2p_bullet.review", types.ModuleType("l2p_bullet.review"))
-    monkeypatch.setitem(sys.modules, "l2p_bullet.review.store", fake)
-    (row,) = read_grades(db)
-    assert (row.run_id, row.action, row.grade, row.reviewer) == ("r9", "away", 6.0, "ann")
+    import_original(Store(db))
+    rows = read_grades(db)
+    def key(r):
+        return (r.run_id, r.demo_id, r.reviewer, r.grade, r.mode, r.action, r.source)
+
+    assert [key(r) for r in rows] == [key(r) for r in load_grades(db)] and len(rows) == 180  # 90 demos x 2 graders
+    assert {r.source for r in rows} == {"original"} and all(r.demo_id and 0 <= r.grade <= 10 for r in rows)
+    (db.parent / "broken.sqlite").write_bytes(b"SQLite format 3\x00" + b"\x00" * 100)
+    with pytest.raises(FeedbackError):
+        read_grades(db.parent / "broken.sqlite")
 
 
 def test_runs_are_grouped_averaged_and_changed_runs_reported(tmp_path):
@@ -264,7 +261,7 @@ def test_improve_waits_for_people_then_resumes_and_never_overwrites(tmp_path):
     assert traj.is_file() and not (out / "round-1" / "bundle").exists()
     sha = hashlib.sha256(traj.read_bytes()).hexdigest()
     write_grades([GradeRow(run_id="seed-1000", run_path=str(traj.parent), trajectory_sha256=sha, action="past",
-                           reviewer="ann", grade=3.0)], export)
+                           reviewer="ann", grade=3.0)], export, force=True)  # the reviewer's new export
     (res,) = improve("past", 1, out, scenes=1, judge=str(export), feedback_cfg=fcfg)
     assert res.n_grades == 1 and res.mean_grade == 3.0 and res.seeds == [1000]
     assert hashlib.sha256(traj.read_bytes()).hexdigest() == sha  # the graded run was reused, not performed again

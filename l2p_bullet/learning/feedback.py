@@ -8,7 +8,7 @@ mean grade (0-10 -> 0-1), and motions people took for another action in a blind 
 Where grades come from (:func:`load_feedback`), one :class:`FeedbackItem` per graded motion:
 
 - ``original``: the 90 graded 2-D demonstrations of the original study (``learning.agreement``);
-- a review-app export, CSV or JSON lines (:data:`COLUMNS`, one :class:`GradeRow` per line); a reviewed
+- a review-app export, CSV or JSON lines (``review.store.EXPORT_FIELDS``, one ``GradeRow`` per line); a reviewed
   run's motion is read from its run folder's trajectory.json, and a run whose trajectory.json no longer
   has the sha256 that was reviewed is reported, never used;
 - the review app's SQLite database (``.sqlite``/``.db``), through ``l2p_bullet.review.store.load_grades``;
@@ -24,14 +24,15 @@ from __future__ import annotations
 import csv
 import hashlib
 import json
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field, fields
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from ..core.vocabulary import canonical_action, normalize_name
 from ..errors import DataError, UnknownActionError
+from ..review.store import EXPORT_FIELDS, GradeRow
 
 GRADE_MAX = 10.0
 """Grades run from 0 (bad) to this (good); the training target is grade / GRADE_MAX."""
@@ -49,39 +50,9 @@ class FeedbackError(DataError):
         super().__init__(f"{where}: {message}" if where else message)
 
 
-@dataclass(frozen=True)
-class GradeRow:
-    """One row of a review export: one reviewer's grade (``mode`` graded) or label (``mode`` blind) of a run.
-
-    ``source`` is "original" for the imported study rows (then ``demo_id`` names the graded demonstration
-    and no run folder is needed). Columns beyond these are ignored; missing ones are empty.
-    """
-
-    run_id: str = ""
-    run_path: str = ""
-    trajectory_sha256: str = ""
-    action: str = ""
-    sentence: str = ""
-    mode: str = "graded"
-    reviewer: str = ""
-    grade: float | None = None
-    label: str = ""
-    comment: str = ""
-    view: str = ""
-    created_at: str = ""
-    updated_at: str = ""
-    source: str = ""
-    demo_id: str = ""
-    folder: str = ""
-
-
-COLUMNS: tuple[str, ...] = tuple(f.name for f in fields(GradeRow))
-"""The export columns this reader understands (the review app writes at least these)."""
-
-
 def _row(d: dict, path: str, line: int) -> GradeRow:
     """Validate one export row (a mapping of column -> value; CSV gives strings, JSON typed values)."""
-    vals = {k: ("" if d.get(k) is None else str(d.get(k)).strip()) for k in COLUMNS}
+    vals = {k: ("" if d.get(k) is None else str(d.get(k)).strip()) for k in EXPORT_FIELDS if k != "stale"}
     mode = vals["mode"].lower() or "graded"
     if mode not in ("graded", "blind"):
         raise FeedbackError(f'mode must be "graded" or "blind", not "{vals["mode"]}"', path, line)
@@ -97,7 +68,9 @@ def _row(d: dict, path: str, line: int) -> GradeRow:
         raise FeedbackError("the row names no action", path, line)
     if not (vals["run_id"] or vals["demo_id"]):
         raise FeedbackError("the row has neither a run_id nor a demo_id", path, line)
-    return GradeRow(**{**vals, "mode": mode, "grade": grade})
+    return GradeRow(**{**vals, "mode": mode, "grade": grade, "source": vals["source"] or "app",
+                       **{k: vals[k] or None for k in ("label", "demo_id", "folder")},
+                       "stale": str(d.get("stale", "")).strip().lower() in ("true", "1")})
 
 
 def read_grades(path: str | Path) -> list[GradeRow]:
@@ -117,7 +90,7 @@ def read_grades(path: str | Path) -> list[GradeRow]:
     if suffix == ".csv":
         reader = csv.DictReader(text.splitlines())
         if not reader.fieldnames or "action" not in reader.fieldnames:
-            raise FeedbackError(f"a CSV export needs a header row with the columns {', '.join(COLUMNS)}", str(p))
+            raise FeedbackError(f"a CSV export needs a header row with the columns {', '.join(EXPORT_FIELDS)}", str(p))
         return [_row(d, str(p), i) for i, d in enumerate(reader, start=2)]
     if suffix in (".jsonl", ".ndjson"):
         rows = []
@@ -136,28 +109,17 @@ def read_grades(path: str | Path) -> list[GradeRow]:
 
 
 def _read_store(p: Path) -> list[GradeRow]:
-    """The review app's database, through its own reader (imported here: the app is an optional part)."""
+    """The review app's database, through its own reader, each row checked as an export row is."""
+    from dataclasses import asdict
+
+    from ..errors import ReviewError
+    from ..review.store import load_grades
+
     try:
-        from ..review.store import load_grades  # type: ignore[import-not-found]
-    except ImportError:
-        raise FeedbackError("reading a review database needs the review app (l2p_bullet.review.store), which "
-                            "is not installed here; export the grades to CSV or JSON lines instead", str(p)) from None
-    out = []
-    for i, r in enumerate(load_grades(p), start=1):
-        d = r if isinstance(r, dict) else {k: getattr(r, k, None) for k in COLUMNS}
-        out.append(_row(d, str(p), i))
-    return out
-
-
-def write_grades(rows: Iterable[GradeRow], path: str | Path) -> Path:
-    """Write rows as a CSV export with :data:`COLUMNS` (what ``improve`` keeps of each round's grades)."""
-    p = Path(path)
-    with p.open("w", newline="", encoding="utf-8") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(COLUMNS))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: ("" if getattr(r, k) is None else getattr(r, k)) for k in COLUMNS})
-    return p
+        rows = load_grades(p)
+    except ReviewError as e:
+        raise FeedbackError(str(e), str(p)) from None
+    return [_row(asdict(r), str(p), i) for i, r in enumerate(rows, start=1)]
 
 
 @dataclass

@@ -32,7 +32,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DataError, RunFolderError
-from .feedback import GRADE_MAX, FeedbackItem, GradeRow, items_from_rows, load_feedback, read_grades
+from ..review.store import GradeRow
+from .feedback import GRADE_MAX, FeedbackItem, items_from_rows, load_feedback, read_grades
 from .feedback_targets import FeedbackConfig
 
 IMPROVE_SEEDS = 1000
@@ -177,9 +178,9 @@ def _round_items(rd: Path, judge: str, name: str, seeds: list[int], say) -> list
         if not any(r.mode == "graded" and r.grade is not None for r in rows):
             raise DataError(f"{judge} holds no grades of the runs in {rd / 'runs'} yet: review them in the review "
                             "app, then run the same command again to go on from this round")
-    from .feedback import write_grades
+    from ..review.store import write_grades
 
-    write_grades(rows, rd / "grades.csv")
+    write_grades(rows, rd / "grades.csv", force=True)  # this round's own record, rewritten when it is resumed
     items, skipped = items_from_rows(rows, rd)
     for s in skipped:
         say(f"warning: left out run {s.id}: {s.reason}")

@@ -36,22 +36,26 @@ def now() -> str:
 
 @dataclass(frozen=True)
 class GradeRow:
-    """One answer, as exported (docs/review.md, "The grades export"). Fields are only ever added."""
+    """One answer, as exported (docs/review.md, "The grades export"). Fields are only ever added.
 
-    run_id: str
-    run_path: str  # absolute folder of the run; "" for the original study's demos
-    trajectory_sha256: str  # of the trajectory.json the reviewer saw (original: of the demo's JSON line)
-    action: str  # canonical action of the run ("" if the run had none)
-    sentence: str
-    mode: str  # "graded" (the sentence was shown) | "blind" (it was not; the reviewer labelled it)
-    reviewer: str
-    grade: int | None  # 0-10
-    label: str | None  # blind mode: the action the reviewer picked, or "none"
-    comment: str
-    view: str  # "3d" (the rendered video) | "2d" (the top-down animation)
-    created_at: str
-    updated_at: str
-    source: str = "app"  # "app" | "original" (the 2018 study's grades, review --import-original)
+    Also what the feedback learner reads (``learning/feedback.py``): one class for the contract, every
+    field with a default so that a reader of an older export (or a test) fills only what it has.
+    """
+
+    run_id: str = ""
+    run_path: str = ""  # absolute folder of the run; "" for the original study's demos
+    trajectory_sha256: str = ""  # of the trajectory.json the reviewer saw (original: of the demo's JSON line)
+    action: str = ""  # canonical action of the run ("" if the run had none)
+    sentence: str = ""
+    mode: str = "graded"  # "graded" (the sentence was shown) | "blind" (it was not; the reviewer labelled it)
+    reviewer: str = ""
+    grade: float | None = None  # 0-10: people give whole numbers, l2p-bullet improve's rule grades may not be
+    label: str | None = None  # blind mode: the action the reviewer picked, or "none"
+    comment: str = ""
+    view: str = ""  # "3d" (the rendered video) | "2d" (the top-down animation)
+    created_at: str = ""
+    updated_at: str = ""
+    source: str = "app"  # "app" | "original" (the 2018 study's grades) | "rules" (l2p-bullet improve)
     demo_id: str | None = None  # original: the graded demo's id in data/sim/human_eval_2d_demos.jsonl
     folder: str | None = None  # original: its folder (SlideToward, ..., SlideAroundDiscrete)
     stale: bool = False  # the run's trajectory changed after this grade (it was graded again since)
@@ -336,8 +340,11 @@ def _grades_read_only(path: Path) -> list[GradeRow]:
 def _from_record(r: dict) -> GradeRow:
     known = {f.name: f for f in fields(GradeRow)}
     d = {k: v for k, v in r.items() if k in known}
-    for k in ("grade",):
-        d[k] = None if d.get(k) in (None, "") else int(d[k])
+    if d.get("grade") in (None, ""):
+        d["grade"] = None
+    else:
+        g = float(d["grade"])
+        d["grade"] = int(g) if g.is_integer() else g
     for k in ("label", "demo_id", "folder"):
         if d.get(k) == "":
             d[k] = None
