@@ -21,6 +21,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -85,6 +86,14 @@ class JointInfo:
     max_force: float
 
 
+def _disconnect(client) -> None:
+    """Disconnect a BulletClient once and mark it so (its own ``__del__`` then does nothing)."""
+    if client._client >= 0:
+        with quiet_stdout():  # the EGL plugin says goodbye on the C-level stdout
+            client.disconnect()
+        client._client = -1
+
+
 class Bullet:
     """One DIRECT PyBullet client and its bodies, by name. :meth:`close` it (or use ``with``) when done.
 
@@ -101,6 +110,9 @@ class Bullet:
             client = bullet_client.BulletClient(connection_mode=pb.DIRECT)
         self._pb, self._client = pb, client
         self._id: int = client._client
+        # disconnect when this object goes, or at interpreter exit while pybullet still works (a
+        # BulletClient left to its own __del__ at shutdown prints a TypeError from a half-torn-down module)
+        self._finalize = weakref.finalize(self, _disconnect, client)
         self._bodies: dict[str, int] = {}
         self._physics: tuple[float, tuple[float, float, float]] | None = None
         self.egl = False  # whether the EGL renderer plugin is loaded (see load_egl)
@@ -148,8 +160,7 @@ class Bullet:
     def close(self) -> None:
         """Disconnect (idempotent)."""
         if self._id >= 0:
-            with quiet_stdout():  # the EGL plugin says goodbye on the C-level stdout
-                self._client.disconnect()
+            self._finalize()
             self._id = -1
             self._bodies.clear()
 
