@@ -80,3 +80,13 @@ def live(tmp_path, run_folder):
     yield start
     for s in servers:
         s.stop()
+
+
+def open_page(browser, url: str, width: int, height: int):
+    """A new page of ``browser`` at ``url`` (its own context) and the list its JavaScript errors go to."""
+    context = browser.new_context(viewport={"width": width, "height": height})
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(url)
+    return page, errors

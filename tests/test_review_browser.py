@@ -10,19 +10,14 @@ import shutil
 from pathlib import Path
 
 import pytest
-from review_fixtures import live, run_folder  # noqa: F401 - fixtures (chromium: conftest.py)
+from review_fixtures import live, open_page, run_folder  # noqa: F401 - fixtures (chromium: conftest.py)
 
 pytestmark = pytest.mark.slow
 DOCS_IMG = Path(__file__).resolve().parents[1] / "docs" / "img" / "review_app.png"
 
 
 def _page(browser, url: str):
-    context = browser.new_context(viewport={"width": 1000, "height": 660})
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(url)
-    return page, errors
+    return open_page(browser, url, 1000, 660)
 
 
 def _login(page, name: str) -> str:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from review_fixtures import open_page
 from teach_fixtures import live  # noqa: F401 - fixture (chromium: conftest.py)
 
 from l2p_bullet.learning.demos import DEMO_BLOCK_SIZE, load_demos
@@ -13,11 +14,7 @@ pytestmark = pytest.mark.slow
 
 
 def _page(browser, url: str):
-    context = browser.new_context(viewport={"width": 1200, "height": 760})
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(url)
+    page, errors = open_page(browser, url, 1200, 760)
     page.wait_for_function("document.body.dataset.state === 'ready'")
     return page, errors
 
