@@ -138,7 +138,7 @@ def test_each_model_prefers_its_own_action(models):
 
 
 def test_approach_copies_start_farther_back_and_pass_as_near():
-    from l2p_bullet.learning.trainset import _approach
+    from l2p_bullet.learning.augment import approach as _approach
 
     m = _line((-3, 2), (3, 2), 30)
     a = _approach(m, 2.5)
