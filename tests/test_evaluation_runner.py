@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 import pytest
+from interrupt import ctrl_c_as_at_a_terminal
 
 from l2p_bullet.errors import EvaluationError
 from l2p_bullet.evaluate.results import ResultsStore, comparable
@@ -114,7 +115,8 @@ def test_ctrl_c_keeps_what_was_recorded_and_resume_finishes(tmp_path):
     out = tmp_path / "e"
     cmd = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--actions", "closer", "--scenes", "8",
            "--workers", "2", "--out", str(out), "--quiet"]
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         preexec_fn=ctrl_c_as_at_a_terminal)
     deadline = time.time() + 120
     while time.time() < deadline and _count(out) < 2:
         time.sleep(0.2)

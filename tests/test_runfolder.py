@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from interrupt import ctrl_c_as_at_a_terminal
 
 from l2p_bullet.cli import main
 from l2p_bullet.core.contracts import dumps_json
@@ -184,7 +185,8 @@ def test_ctrl_c_marks_the_run_interrupted_and_the_next_run_replaces_it(tmp_path)
     out = tmp_path / "run"
     cmd = [*CLI, "perform", "move A around B", "--quiet", "--out", str(out)]
     # rendering: the arm executes and records frames for several seconds after plan.json appears
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=ctrl_c_as_at_a_terminal)
     _wait_for(out / "plan.json", proc)  # planned: the arm is about to execute and record
     os.kill(proc.pid, signal.SIGINT)
     code = proc.wait(timeout=120)

@@ -109,3 +109,23 @@ def test_only_the_facade_calls_pybullet():
             if any(n == "pybullet" or n.startswith(("pybullet.", "pybullet_utils")) for n in names):
                 offenders.append(str(path.relative_to(root)))
     assert offenders == []
+
+
+def test_ctrl_c_while_a_client_is_made_waits_until_it_is_whole():
+    """Ctrl-C inside client creation used to leave a half-made BulletClient (a traceback at exit)."""
+    import signal
+
+    from l2p_bullet.embodiment.sim.bullet import Bullet, ctrl_c_deferred
+
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)  # as at a terminal
+    try:
+        done = []
+        with pytest.raises(KeyboardInterrupt):
+            with ctrl_c_deferred():
+                signal.raise_signal(signal.SIGINT)  # as if Ctrl-C came during connect
+                done.append(Bullet())
+        assert done and done[0]._client._client >= 0  # the client was made whole, then the interrupt came
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+        done[0].close()
+    finally:
+        signal.signal(signal.SIGINT, before)

@@ -20,7 +20,9 @@ from __future__ import annotations
 
 import contextlib
 import os
+import signal
 import sys
+import threading
 import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -86,6 +88,31 @@ class JointInfo:
     max_force: float
 
 
+@contextlib.contextmanager
+def ctrl_c_deferred():
+    """Hold Ctrl-C back until the block is done, then deliver it.
+
+    Why: a KeyboardInterrupt that lands inside ``BulletClient.__init__`` (while ``connect`` runs) leaves
+    a client connected but never recorded, and a half-made BulletClient whose ``__del__`` prints a
+    traceback at exit ("no attribute '_client'"). Making a client and registering its disconnection is
+    therefore one step that Ctrl-C cannot split; the interrupt is raised right after it. Only the main
+    thread receives Python's signals, and only a Python-level handler can be swapped here: elsewhere,
+    or when Ctrl-C is not turned into KeyboardInterrupt, this does nothing.
+    """
+    if threading.current_thread() is not threading.main_thread() \
+            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield
+        return
+    caught: list[int] = []
+    signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        if caught:
+            raise KeyboardInterrupt
+
+
 def _disconnect(client) -> None:
     """Disconnect a BulletClient once and mark it so (its own ``__del__`` then does nothing)."""
     if client._client >= 0:
@@ -102,17 +129,18 @@ class Bullet:
     """
 
     def __init__(self) -> None:
-        with quiet_stdout():
-            import pybullet as pb
-            import pybullet_data
-            from pybullet_utils import bullet_client
+        with ctrl_c_deferred():
+            with quiet_stdout():
+                import pybullet as pb
+                import pybullet_data
+                from pybullet_utils import bullet_client
 
-            client = bullet_client.BulletClient(connection_mode=pb.DIRECT)
-        self._pb, self._client = pb, client
-        self._id: int = client._client
-        # disconnect when this object goes, or at interpreter exit while pybullet still works (a
-        # BulletClient left to its own __del__ at shutdown prints a TypeError from a half-torn-down module)
-        self._finalize = weakref.finalize(self, _disconnect, client)
+                client = bullet_client.BulletClient(connection_mode=pb.DIRECT)
+            self._pb, self._client = pb, client
+            self._id: int = client._client
+            # disconnect when this object goes, or at interpreter exit while pybullet still works (a
+            # BulletClient left to its own __del__ at shutdown prints a TypeError from a half-torn-down module)
+            self._finalize = weakref.finalize(self, _disconnect, client)
         self._bodies: dict[str, int] = {}
         self._physics: tuple[float, tuple[float, float, float]] | None = None
         self.egl = False  # whether the EGL renderer plugin is loaded (see load_egl)
