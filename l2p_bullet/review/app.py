@@ -16,13 +16,10 @@ from __future__ import annotations
 
 import logging
 import time
-from importlib import resources
-from pathlib import Path
 from typing import Annotated, Literal
 
 from fastapi import FastAPI, Query, Request
-from fastapi.responses import FileResponse, HTMLResponse
-from fastapi.staticfiles import StaticFiles
+from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from .. import __version__
@@ -30,7 +27,7 @@ from ..errors import ReviewError
 from .runs import motion_for_browser
 from .session import Item, NotFound, ReviewSession
 from .store import AnswerConflict, GradeRow
-from .web import json_errors, new_app
+from .web import json_errors, new_app, static_pages
 
 log = logging.getLogger("l2p_bullet.review")
 
@@ -59,10 +56,6 @@ class SkipIn(BaseModel):
     view: View
 
 
-def static_dir() -> Path:
-    return Path(str(resources.files("l2p_bullet.review") / "static"))
-
-
 def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
     app = new_app("l2p-bullet review", host)
     json_errors(app, log, ReviewError, _status)
@@ -74,12 +67,7 @@ def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
         response.headers["Server-Timing"] = f"app;dur={(time.perf_counter() - t0) * 1000:.2f}"
         return response
 
-    app.mount("/static", StaticFiles(directory=static_dir()), name="static")
-
-    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
-    def index() -> HTMLResponse:
-        return HTMLResponse((static_dir() / "index.html").read_text(encoding="utf-8"),
-                            headers={"Cache-Control": "no-store"})
+    static_pages(app, "l2p_bullet.review")
 
     @app.get("/api/config")
     def config() -> dict:

@@ -1,4 +1,4 @@
-"""What the review app and the teach page share as web apps: loopback-only hosts and JSON errors.
+"""What the review app and the teach page share as web apps: loopback-only hosts, JSON errors, the page.
 
 Every error a page can get is JSON ``{"error": message}`` with a 4xx status (a malformed request: 422; an
 answer that cannot be taken: the app's own status), never a traceback; a bug is a 500 with the
@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
+from importlib import resources
+from pathlib import Path
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import JSONResponse
+from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.middleware.trustedhost import TrustedHostMiddleware
 
@@ -32,6 +35,18 @@ def new_app(title: str, host: str, extra_hosts: tuple[str, ...] = ()) -> FastAPI
     if host in LOOPBACK:
         app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]", *extra_hosts])
     return app
+
+
+
+def static_pages(app: FastAPI, package: str) -> None:
+    """Serve ``package``'s ``static/`` folder under /static and its index.html at / (not cached, so a
+    page reloaded after an upgrade is the new one)."""
+    folder = Path(str(resources.files(package) / "static"))
+    app.mount("/static", StaticFiles(directory=folder), name="static")
+
+    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
+    def index() -> HTMLResponse:
+        return HTMLResponse((folder / "index.html").read_text(encoding="utf-8"), headers={"Cache-Control": "no-store"})
 
 
 def json_errors(app: FastAPI, log: logging.Logger, error_type: type[Exception], user_error: UserError) -> None:

@@ -11,19 +11,16 @@ from a CDN; nothing here may reach outside the machine), bound to 127.0.0.1 unle
 from __future__ import annotations
 
 import logging
-from importlib import resources
-from pathlib import Path
 from typing import Annotated
 
 import numpy as np
 from fastapi import FastAPI, Query
-from fastapi.responses import FileResponse, HTMLResponse
-from fastapi.staticfiles import StaticFiles
+from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..errors import L2PError, TeachError
-from ..review.web import json_errors, new_app
+from ..review.web import json_errors, new_app, static_pages
 from .session import MAX_SAMPLES, Recording, TeachSession
 
 log = logging.getLogger("l2p_bullet.teach")
@@ -45,19 +42,10 @@ class Busy(TeachError):
     """A training is already under way."""
 
 
-def static_dir() -> Path:
-    return Path(str(resources.files("l2p_bullet.teach") / "static"))
-
-
 def create_app(session: TeachSession, host: str = "127.0.0.1") -> FastAPI:
     app = new_app("l2p-bullet teach", host, extra_hosts=("testserver",))
     json_errors(app, log, L2PError, lambda exc: (409 if isinstance(exc, Busy) else 400, {}))
-    app.mount("/static", StaticFiles(directory=static_dir()), name="static")
-
-    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
-    def index() -> HTMLResponse:
-        return HTMLResponse((static_dir() / "index.html").read_text(encoding="utf-8"),
-                            headers={"Cache-Control": "no-store"})
+    static_pages(app, "l2p_bullet.teach")
 
     @app.get("/api/config")
     def config() -> dict:
