@@ -45,20 +45,23 @@ def scaled(m: np.ndarray, centre: np.ndarray, k: float) -> np.ndarray:
     return out
 
 
+def turn_about(poses: np.ndarray, centre: np.ndarray, angle: float | np.ndarray) -> np.ndarray:
+    """Poses (T,3) or one pose (3,) turned about ``centre`` (x, y) by ``angle``: one angle, or one per pose."""
+    p = np.array(poses, float).reshape(-1, 3)
+    c, s = np.cos(angle), np.sin(angle)
+    d = p[:, :2] - centre[:2]
+    p[:, 0], p[:, 1] = centre[0] + c * d[:, 0] - s * d[:, 1], centre[1] + s * d[:, 0] + c * d[:, 1]
+    p[:, 2] += angle
+    return p.reshape(np.shape(poses))
+
+
 def twist(m: np.ndarray, c: np.ndarray, angle: float) -> np.ndarray:
     """Rotate the mover about the anchor progressively (``angle`` at the start, 0 at the end, by arc
     length): distances and the end state are unchanged, so "closer"/"away"/"next to" stay what they
     were while the bearing drifts. People graded sweeping motions as good; the captures are almost radial."""
     step = np.linalg.norm(np.diff(m[:, :2], axis=0), axis=1)
     frac = np.concatenate([[0.0], np.cumsum(step)]) / max(step.sum(), 1e-9)
-    phi = angle * (1.0 - frac)
-    cs, sn = np.cos(phi), np.sin(phi)
-    d = m[:, :2] - c[:2]
-    out = m.copy()
-    out[:, 0] = c[0] + cs * d[:, 0] - sn * d[:, 1]
-    out[:, 1] = c[1] + sn * d[:, 0] + cs * d[:, 1]
-    out[:, 2] = m[:, 2] + phi
-    return out
+    return turn_about(m, c, angle * (1.0 - frac))
 
 
 def detour(m: np.ndarray, c: np.ndarray, rng: np.random.Generator, size: float) -> np.ndarray | None:

@@ -18,6 +18,7 @@ from ..core.frames import viewer_offset
 from ..core.geometry import moving_average
 from ..errors import DataError
 from ..progress.features import QSRConfig
+from .augment import scaled, turn_about
 from .demos import Demo
 
 
@@ -165,10 +166,7 @@ def stretched(d: Demo, m: np.ndarray, a: np.ndarray, farthest: float, rng: np.ra
     stretched copy of one (a planner would otherwise be free to end anywhere on that side)."""
     c = a[d.start:d.end + 1].mean(axis=0)
     r = float(np.linalg.norm(m[d.end, :2] - c[:2])) / d.size
-    k = rng.uniform(*FAR) * farthest / max(r, 1e-9)
-    out = m.copy()
-    out[:, :2] = c[:2] + (m[:, :2] - c[:2]) * k
-    return out
+    return scaled(m, c, rng.uniform(*FAR) * farthest / max(r, 1e-9))
 
 
 def segment_coords(end: np.ndarray, b: np.ndarray, c: np.ndarray, size: float) -> tuple[float, float]:
@@ -202,16 +200,6 @@ def end_region(demos: list[Demo]) -> Region:
     tc = np.array([segment_coords(d.mover[d.end], d.anchor[d.end], d.more_anchors[0][d.end], d.size) for d in demos])
     return Region(float(tc[:, 0].min()) - REGION_MARGIN[0], float(tc[:, 0].max()) + REGION_MARGIN[0],
                   float(tc[:, 1].max()) + REGION_MARGIN[1])
-
-
-def turn_about(poses: np.ndarray, centre: np.ndarray, angle: float) -> np.ndarray:
-    """Poses (T,3) or one pose (3,) turned by ``angle`` about ``centre`` (x, y)."""
-    p = np.array(poses, float).reshape(-1, 3)
-    c, s = np.cos(angle), np.sin(angle)
-    d = p[:, :2] - centre[:2]
-    p[:, 0], p[:, 1] = centre[0] + c * d[:, 0] - s * d[:, 1], centre[1] + s * d[:, 0] + c * d[:, 1]
-    p[:, 2] += angle
-    return p.reshape(np.shape(poses))
 
 
 def displaced(d: Demo, m: np.ndarray, a: np.ndarray, ctx: Context, region: Region, rng: np.random.Generator,
