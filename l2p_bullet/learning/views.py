@@ -151,8 +151,8 @@ def twisted_end(d: Demo, m: np.ndarray, a: np.ndarray, ctx: Context, bearings: t
     frac = np.concatenate([np.zeros(d.start), np.concatenate([[0.0], np.cumsum(step)]) / max(step.sum(), 1e-9),
                            np.ones(len(m) - d.end - 1)])
     out = np.array(m, float)
-    for k in np.flatnonzero(frac > 0):
-        out[k] = turn_about(m[k], c, turn * frac[k])
+    k = frac > 0  # the frames before the event stay exactly where they were
+    out[k] = turn_about(m[k], c, turn * frac[k])
     return out
 
 
