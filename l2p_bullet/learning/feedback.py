@@ -22,7 +22,6 @@ How items become training sequences is :mod:`l2p_bullet.learning.feedback_target
 from __future__ import annotations
 
 import csv
-import hashlib
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -32,6 +31,7 @@ import numpy as np
 
 from ..core.vocabulary import canonical_action, normalize_name
 from ..errors import DataError, UnknownActionError
+from ..plugins.bundle import sha256_file
 from ..review.store import EXPORT_FIELDS, GradeRow
 
 GRADE_MAX = 10.0
@@ -208,7 +208,7 @@ def items_from_rows(rows: Sequence[GradeRow], base: str | Path | None = None) ->
             skipped.append(Skipped(run_id, rs[0].run_path, "the run folder or its trajectory.json is missing"))
             continue
         want = {r.trajectory_sha256.lower() for r in rs if r.trajectory_sha256}
-        have = hashlib.sha256(traj.read_bytes()).hexdigest()
+        have = sha256_file(traj)
         if want and want != {have}:
             skipped.append(Skipped(run_id, str(traj), "trajectory.json changed since it was reviewed "
                                    f"(sha256 {have[:12]}..., reviewed {', '.join(sorted(w[:12] for w in want))}...)"))

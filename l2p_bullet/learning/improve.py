@@ -21,7 +21,6 @@ automatic feedback 5000 on, REINFORCE 10 000 and up.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import shutil
 import time
@@ -32,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DataError, RunFolderError
+from ..plugins.bundle import sha256_file
 from ..review.store import GradeRow
 from .feedback import GRADE_MAX, FeedbackItem, items_from_rows, load_feedback, read_grades
 from .feedback_targets import FeedbackConfig
@@ -196,7 +196,7 @@ def _rule_row(name: str, run: Path) -> GradeRow:
     m = load_motion(traj)
     v = RuleJudge(name).judge(m.mover, m.anchor, m.size)
     now = time.strftime("%Y-%m-%dT%H:%M:%S")
-    return GradeRow(run_id=run.name, run_path=str(run.resolve()), trajectory_sha256=hashlib.sha256(traj.read_bytes()).hexdigest(),
+    return GradeRow(run_id=run.name, run_path=str(run.resolve()), trajectory_sha256=sha256_file(traj),
                     action=name, sentence=SENTENCES[name], mode="graded", reviewer="rules",
                     grade=round(GRADE_MAX * float(v.score), 3), comment=v.reason, view="2d", created_at=now,
                     updated_at=now, source="rules")
