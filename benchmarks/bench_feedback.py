@@ -190,11 +190,11 @@ def _head_trainer(items: list):
     models, rows = {}, {}
     for it in items:
         if it.action not in models:
-            models[it.action] = load_bundle(builtin_bundle_dir(it.action)).progress_model()
-        m = models[it.action]
+            m = load_bundle(builtin_bundle_dir(it.action)).progress_model()
+            models[it.action] = m, [feature_names(m.qsr_cfg).index(c) for c in HEAD_COLUMNS]
+        m, cols = models[it.action]
         p = float(np.clip(m.final_batch([it.mover], [it.anchor], it.size)[0], 1e-3, 1 - 1e-3))
         f, _ = motion_features(it.mover, it.anchor, it.size, m.qsr_cfg)
-        cols = [feature_names(m.qsr_cfg).index(c) for c in HEAD_COLUMNS]
         rows[(it.mover.tobytes(), it.anchor.tobytes())] = np.r_[np.log(p / (1 - p)), f[-1, cols]]
 
     class Head:
