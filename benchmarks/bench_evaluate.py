@@ -83,7 +83,7 @@ def evaluate_backend(scenes: int, actions: list[str], tmp: Path, workers: int, r
     out = tmp / name.replace(" ", "_")
     t0 = time.time()
     cpu0 = _children_cpu()
-    s = evaluate(EvaluationConfig(actions=actions, scenes=scenes), out, workers=workers, ray=ray, progress=False)
+    s = evaluate(EvaluationConfig(actions=actions, scenes=scenes), out, workers=workers, ray=ray, progressbar=False)
     cpu = _children_cpu() - cpu0
     rows = load_rows(out)
     finished = sorted(r["finished_at"] for r in rows)
@@ -157,7 +157,7 @@ def confusion_matrix(scenes: int, workers: int, out: Path | None) -> dict:
     folder = Path(ctx.name) if ctx else out
     resume = (folder / "results.sqlite").exists()
     s = evaluate(None if resume else EvaluationConfig(actions=list(ACTIONS), scenes=scenes), folder,
-                 workers=workers, resume=resume, progress=True)
+                 workers=workers, resume=resume, progressbar=True)
     rows = load_rows(folder)
     _, files = write_report(rows, folder)
     print(f"\n{len(rows)} runs ({s.ran} now, {s.seconds:.0f} s, {workers} workers)\n")

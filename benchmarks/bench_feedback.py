@@ -67,7 +67,13 @@ def main() -> None:
 
     from l2p_bullet.core.vocabulary import ACTIONS, GRADED_FOLDERS
     from l2p_bullet.judge import RuleJudge
-    from l2p_bullet.learning.crossval import FineTuner, cross_validate, folder_agreement, score_items, select
+    from l2p_bullet.learning.agreement_cv import (
+        FineTuner,
+        cross_validate,
+        folder_agreement,
+        score_items,
+        select,
+    )
     from l2p_bullet.learning.feedback import original_items
     from l2p_bullet.learning.feedback_targets import judge_items
     from l2p_bullet.learning.train_progress import JUDGE_SEEDS, ProgressTrainConfig, all_demos

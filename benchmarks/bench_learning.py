@@ -24,9 +24,9 @@ import torch
 
 from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.learning.agreement import graded_motions, model_agreement
+from l2p_bullet.learning.heldout import session_split
 from l2p_bullet.learning.progress_net import ProgressModel
 from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, train_action
-from l2p_bullet.learning.validation import session_split
 from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
 
 

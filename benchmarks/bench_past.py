@@ -49,7 +49,7 @@ def study_scene(seed: int, size: float):
 
 
 def measure(bundle, size: float) -> dict:
-    from l2p_bullet.judge.rules import evaluate
+    from l2p_bullet.judge.rules import rule_verdict
     from l2p_bullet.planning import plan
 
     rows = []
@@ -59,7 +59,7 @@ def measure(bundle, size: float) -> dict:
         d = np.linalg.norm(rel, axis=1)
         u = (rel[-1] - rel[0]) / max(float(np.linalg.norm(rel[-1] - rel[0])), 1e-9)
         rows.append({"near": float(d.min()), "beyond": float(rel[-1] @ u), "start": float(d[0]),
-                     "success": evaluate("past", p.path, p.anchor_pose, p.size).success,
+                     "success": rule_verdict("past", p.path, p.anchor_pose, p.size).success,
                      "progress": float(p.extra["final_progress"])})
     return {
         "success": float(np.mean([r["success"] for r in rows])),

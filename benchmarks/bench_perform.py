@@ -40,7 +40,7 @@ SENTENCES = {
     "past": "move A past B",
     "around": "move A around B",
 }
-STAGES = ("parse", "load", "plan", "execute", "evaluate", "total")
+STAGES = ("parse", "load", "plan", "execute", "judge", "total")
 
 
 def cli() -> list[str]:
@@ -145,7 +145,7 @@ def evaluate_rows(actions: list[str], scenes: int, render: bool, tmp: Path, work
 
     out = tmp / ("render" if render else "fast")
     evaluate(EvaluationConfig(actions=actions, scenes=scenes, render_every=1 if render else 0), out,
-             workers=workers, progress=True)
+             workers=workers, progressbar=True)
     rows = []
     for r in load_rows(out):
         ok = r["error"] is None

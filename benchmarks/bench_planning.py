@@ -8,7 +8,7 @@ For each action (its installed bundle, or ``--bundles DIR/<action>``), planner a
 (``scene.random_scene(seed)``, seeds 0..N-1; the policies are trained on seeds from 10 000 on) it plans
 in-process (``l2p-bullet evaluate``'s plan mode, ``workers=0``; a direct loop for ``--bundles``) and reports:
 
-- success: the project's rule-based evaluator (``evaluate.py``) on the planned path; the planner never
+- success: the project's rule judges (``judge/rules.py``) on the planned path; the planner never
   sees it, it maximises the action's learned progress model;
 - progress: the learned model's value at the path's end (what the planner maximised);
 - threshold: how often the planner stopped because progress passed the threshold (vs. its budget);
@@ -49,7 +49,7 @@ def run(action: str, bundle, planner: str, seeds: list[int], time_limits: list[f
     if installed:
         return _run_evaluate(action, planner, seeds, time_limits)
     from l2p_bullet.core.scene import random_scene
-    from l2p_bullet.judge.rules import evaluate
+    from l2p_bullet.judge.rules import rule_verdict
     from l2p_bullet.planning import plan
 
     rows = []
@@ -58,7 +58,7 @@ def run(action: str, bundle, planner: str, seeds: list[int], time_limits: list[f
         t = time.perf_counter()
         p = plan(random_scene(seed), "A", "B", bundle, planner=planner, seed=seed, **kw)
         dt = time.perf_counter() - t
-        v = evaluate(action, p.path, p.anchor_pose, p.size)
+        v = rule_verdict(action, p.path, p.anchor_pose, p.size)
         rows.append({"action": action, "planner": planner if time_limits is None else "greedy@=t", "seed": seed,
                      "success": v.success, "score": v.score, "reason": v.reason,
                      "progress": p.extra["final_progress"], "stopped": p.stopped, "steps": p.extra["steps"],

@@ -94,9 +94,9 @@ def main() -> None:
     args = ap.parse_args()
 
     from l2p_bullet.review.app import create_app
+    from l2p_bullet.review.queue import ReviewQueue
     from l2p_bullet.review.runs import find_runs
     from l2p_bullet.review.server import start
-    from l2p_bullet.review.session import ReviewSession
     from l2p_bullet.review.store import Store
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -107,7 +107,7 @@ def main() -> None:
         runs = find_runs([root])[: args.runs]
         store = Store(Path(tmp) / "reviews.sqlite")
         store.register_runs(runs)
-        server = start(create_app(ReviewSession(store, runs, "graded", "3d", LABELS)))
+        server = start(create_app(ReviewQueue(store, runs, "graded", "3d", LABELS)))
         try:
             r = grade_by_keyboard(server.url, len(runs), watch=not args.no_watch)
         finally:

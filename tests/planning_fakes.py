@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from l2p_bullet.judge.rules import evaluate
+from l2p_bullet.judge.rules import rule_verdict
 
 
 class RuleProgress:
@@ -20,11 +20,11 @@ class RuleProgress:
     def final_batch(self, movers, anchors, size):
         self.batches.append(len(movers))
         shared = not isinstance(anchors, list)
-        return np.array([evaluate(self.action, m, anchors if shared else anchors[i], size).score
+        return np.array([rule_verdict(self.action, m, anchors if shared else anchors[i], size).score
                          for i, m in enumerate(movers)])
 
     def curve(self, mover, anchor, size):
-        return np.array([evaluate(self.action, mover[: i + 1], anchor, size).score for i in range(len(mover))])
+        return np.array([rule_verdict(self.action, mover[: i + 1], anchor, size).score for i in range(len(mover))])
 
 
 class FakeBundle:

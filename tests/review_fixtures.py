@@ -48,16 +48,16 @@ class Live:
 
     def __init__(self, db: Path, runs: Path, mode: str = "graded", view: str = "3d"):
         from l2p_bullet.review.app import create_app
+        from l2p_bullet.review.queue import ReviewQueue
         from l2p_bullet.review.runs import find_runs
         from l2p_bullet.review.server import start
-        from l2p_bullet.review.session import ReviewSession
         from l2p_bullet.review.store import Store
 
         self.store = Store(db)
         infos = find_runs([runs])
         self.store.register_runs(infos)
-        self.session = ReviewSession(self.store, infos, mode=mode, view=view, labels=LABELS)
-        self.server = start(create_app(self.session))
+        self.queue = ReviewQueue(self.store, infos, mode=mode, view=view, labels=LABELS)
+        self.server = start(create_app(self.queue))
         self.url = self.server.url
 
     def call(self, method: str, path: str, body=None, raw: bytes | None = None, headers: dict | None = None):

@@ -17,13 +17,13 @@ class Live:
         from l2p_bullet.plugins.scaffold import scaffold
         from l2p_bullet.review.server import start
         from l2p_bullet.teach.app import create_app
-        from l2p_bullet.teach.session import TeachSession, find_action
+        from l2p_bullet.teach.lesson import Lesson, find_action
 
         self.root = scaffold(name, [phrase], root / f"l2p-{name}", frame=frame, anchors=anchors).root
         self.action = find_action(name, self.root)
         trainer = BundleTrainer(ProgressTrainConfig(ensemble=ensemble, epochs=epochs))
-        self.session = TeachSession(self.action, trainer, seed=seed)
-        self.server = start(create_app(self.session), name="teach-server")
+        self.lesson = Lesson(self.action, trainer, seed=seed)
+        self.server = start(create_app(self.lesson), name="teach-server")
         self.url = self.server.url
 
     def call(self, method: str, path: str, body=None, raw: bytes | None = None):

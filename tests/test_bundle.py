@@ -21,7 +21,7 @@ from l2p_bullet.plugins.bundle import (
     version_satisfies,
     write_weights,
 )
-from l2p_bullet.plugins.registry import resolve
+from l2p_bullet.plugins.registry import locate
 
 
 @pytest.fixture
@@ -53,11 +53,11 @@ def test_builtin_bundles_load_and_score(action):
 
 
 def test_resolve_action_by_name_alias_and_folder(bundle_copy):
-    name, folder = resolve("next_to")
+    name, folder = locate("next_to")
     assert name == "next-to" and folder.resolve() == builtin_bundle_dir("next-to").resolve()
-    assert resolve(str(bundle_copy)) == ("around", bundle_copy)
+    assert locate(str(bundle_copy)) == ("around", bundle_copy)
     with pytest.raises(UnknownActionError) as e:
-        resolve("arround")
+        locate("arround")
     assert e.value.name == "arround" and set(ACTIONS) <= set(e.value.known) and "Did you mean" in str(e.value)
 
 

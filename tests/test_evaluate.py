@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from l2p_bullet.core.vocabulary import ACTIONS
-from l2p_bullet.judge.rules import RULES, evaluate, square_gap
+from l2p_bullet.judge.rules import RULES, rule_verdict, square_gap
 from l2p_bullet.learning.agreement import rule_agreement, spearman
 from l2p_bullet.planning.world2d import interpolate
 
@@ -28,29 +28,29 @@ def _circle(turns, r=2.0, size=1.0):
 @pytest.mark.parametrize("size", [0.05, 0.15, 1.0])
 def test_every_rule_is_in_block_units(size):
     a = ANCHOR * size
-    assert evaluate("closer", _path([(4, 0), (1.3, 0)], size), a, size).success
-    assert evaluate("away", _path([(2, 0), (5, 0)], size), a, size).success
-    assert evaluate("next-to", _path([(3, 0), (1.2, 0)], size), a, size).success
-    assert evaluate("past", _path([(-3, 1.5), (3, 1.5)], size), a, size).success
-    assert evaluate("around", _circle(0.9, size=size), a, size).success
+    assert rule_verdict("closer", _path([(4, 0), (1.3, 0)], size), a, size).success
+    assert rule_verdict("away", _path([(2, 0), (5, 0)], size), a, size).success
+    assert rule_verdict("next-to", _path([(3, 0), (1.2, 0)], size), a, size).success
+    assert rule_verdict("past", _path([(-3, 1.5), (3, 1.5)], size), a, size).success
+    assert rule_verdict("around", _circle(0.9, size=size), a, size).success
 
 
 def test_closer_needs_a_steady_and_real_approach():
-    assert not evaluate("closer", _path([(4, 0), (3.8, 0)]), ANCHOR, 1.0).success  # too little
-    assert not evaluate("closer", _path([(4, 0), (6, 0), (1.3, 0)]), ANCHOR, 1.0).success  # went away first
-    assert not evaluate("closer", _path([(3, 0), (5, 0)]), ANCHOR, 1.0).success
+    assert not rule_verdict("closer", _path([(4, 0), (3.8, 0)]), ANCHOR, 1.0).success  # too little
+    assert not rule_verdict("closer", _path([(4, 0), (6, 0), (1.3, 0)]), ANCHOR, 1.0).success  # went away first
+    assert not rule_verdict("closer", _path([(3, 0), (5, 0)]), ANCHOR, 1.0).success
 
 
 def test_away_needs_a_steady_retreat_of_a_block():
-    assert not evaluate("away", _path([(2, 0), (2.5, 0)]), ANCHOR, 1.0).success
-    assert not evaluate("away", _path([(3, 0), (1.3, 0), (5, 0)]), ANCHOR, 1.0).success
-    assert not evaluate("away", _path([(3, 0), (1.5, 0)]), ANCHOR, 1.0).success
+    assert not rule_verdict("away", _path([(2, 0), (2.5, 0)]), ANCHOR, 1.0).success
+    assert not rule_verdict("away", _path([(3, 0), (1.3, 0), (5, 0)]), ANCHOR, 1.0).success
+    assert not rule_verdict("away", _path([(3, 0), (1.5, 0)]), ANCHOR, 1.0).success
 
 
 def test_next_to_is_about_where_it_ends_not_how_close_it_came():
-    assert not evaluate("next-to", _path([(3, 0), (1.2, 0), (3, 0)]), ANCHOR, 1.0).success
-    assert not evaluate("next-to", _path([(5, 0), (2.2, 0)]), ANCHOR, 1.0).success  # a block away: not adjacent
-    assert evaluate("next-to", _path([(0, -4), (0, -1.3)]), ANCHOR, 1.0).success
+    assert not rule_verdict("next-to", _path([(3, 0), (1.2, 0), (3, 0)]), ANCHOR, 1.0).success
+    assert not rule_verdict("next-to", _path([(5, 0), (2.2, 0)]), ANCHOR, 1.0).success  # a block away: not adjacent
+    assert rule_verdict("next-to", _path([(0, -4), (0, -1.3)]), ANCHOR, 1.0).success
 
 
 def test_square_gap_measures_between_footprints():
@@ -62,24 +62,24 @@ def test_square_gap_measures_between_footprints():
 
 
 def test_past_must_cross_near_the_anchor_without_circling():
-    assert not evaluate("past", _path([(-3, 1.5), (-0.5, 1.5)]), ANCHOR, 1.0).success  # stops before it
-    assert not evaluate("past", _path([(-3, 6), (3, 6)]), ANCHOR, 1.0).success  # far from it
-    assert not evaluate("past", _circle(0.9), ANCHOR, 1.0).success  # goes round it
+    assert not rule_verdict("past", _path([(-3, 1.5), (-0.5, 1.5)]), ANCHOR, 1.0).success  # stops before it
+    assert not rule_verdict("past", _path([(-3, 6), (3, 6)]), ANCHOR, 1.0).success  # far from it
+    assert not rule_verdict("past", _circle(0.9), ANCHOR, 1.0).success  # goes round it
 
 
 def test_around_needs_nearly_a_full_turn_close_by():
-    assert not evaluate("around", _circle(0.5), ANCHOR, 1.0).success
-    assert not evaluate("around", _circle(0.95, r=6), ANCHOR, 1.0).success
-    v = evaluate("around", _circle(-0.9), ANCHOR, 1.0)  # clockwise counts too
+    assert not rule_verdict("around", _circle(0.5), ANCHOR, 1.0).success
+    assert not rule_verdict("around", _circle(0.95, r=6), ANCHOR, 1.0).success
+    v = rule_verdict("around", _circle(-0.9), ANCHOR, 1.0)  # clockwise counts too
     assert v.success and 0.85 < v.score <= 1.0 and "0.90 of a turn" in v.reason
 
 
 def test_action_names_are_canonicalised_and_unknown_ones_rejected():
     from l2p_bullet.errors import UnknownActionError
 
-    assert evaluate("next_to", _path([(3, 0), (1.2, 0)]), ANCHOR, 1.0).success
+    assert rule_verdict("next_to", _path([(3, 0), (1.2, 0)]), ANCHOR, 1.0).success
     with pytest.raises(UnknownActionError) as e:
-        evaluate("sideways", _path([(3, 0), (1.2, 0)]), ANCHOR, 1.0)
+        rule_verdict("sideways", _path([(3, 0), (1.2, 0)]), ANCHOR, 1.0)
     assert e.value.name == "sideways" and set(e.value.known) == set(RULES) > set(ACTIONS)
 
 

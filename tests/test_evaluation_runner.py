@@ -23,7 +23,7 @@ TEN = EvaluationConfig(actions=["closer", "past"], scenes=5, seed=3)  # 5 scenes
 @pytest.fixture(scope="module")
 def serial(tmp_path_factory):
     out = tmp_path_factory.mktemp("eval") / "serial"
-    evaluate(TEN, out, workers=1, progress=False)
+    evaluate(TEN, out, workers=1, progressbar=False)
     return [comparable(r) for r in load_rows(out)]
 
 
@@ -42,10 +42,10 @@ def test_rows_hold_the_run_and_every_actions_verdict(serial):
 
 @pytest.mark.slow
 def test_two_workers_and_ray_local_give_the_serial_rows(serial, tmp_path):
-    evaluate(TEN, tmp_path / "pool", workers=2, progress=False)
+    evaluate(TEN, tmp_path / "pool", workers=2, progressbar=False)
     assert [comparable(r) for r in load_rows(tmp_path / "pool")] == serial
     pytest.importorskip("ray")
-    s = evaluate(TEN, tmp_path / "ray", workers=2, ray="local", progress=False)
+    s = evaluate(TEN, tmp_path / "ray", workers=2, ray="local", progressbar=False)
     assert s.backend == "ray"
     rows = load_rows(tmp_path / "ray")
     assert [comparable(r) for r in rows] == serial
@@ -55,15 +55,15 @@ def test_two_workers_and_ray_local_give_the_serial_rows(serial, tmp_path):
 def test_resume_skips_recorded_runs_and_refuses_other_settings(serial, tmp_path):
     out = tmp_path / "e"
     cfg = EvaluationConfig(actions=["closer", "past"], scenes=2, seed=3)
-    evaluate(cfg, out, workers=0, progress=False)
+    evaluate(cfg, out, workers=0, progressbar=False)
     with sqlite3.connect(out / "results.sqlite") as db:  # as if the last two runs had been in flight
         db.execute("DELETE FROM runs WHERE idx >= 2")
     with pytest.raises(EvaluationError):
-        evaluate(cfg, out, workers=0, progress=False)  # not without --resume: nothing is overwritten
+        evaluate(cfg, out, workers=0, progressbar=False)  # not without --resume: nothing is overwritten
     with pytest.raises(EvaluationError) as e:
-        evaluate(EvaluationConfig(actions=["closer"], scenes=2, seed=3), out, resume=True, workers=0, progress=False)
+        evaluate(EvaluationConfig(actions=["closer"], scenes=2, seed=3), out, resume=True, workers=0, progressbar=False)
     assert "actions" in str(e.value)
-    s = evaluate(None, out, resume=True, workers=0, progress=False)
+    s = evaluate(None, out, resume=True, workers=0, progressbar=False)
     assert (s.total, s.skipped, s.ran) == (4, 2, 2)
     assert [comparable(r) for r in load_rows(out)] == serial[:4]
 
@@ -76,7 +76,7 @@ def test_a_failing_run_is_a_row_and_the_evaluation_goes_on(tmp_path):
                  '{"id": "fine", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.15, 0.0]},'
                  ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.0, 0.0]}]}\n')
     evaluate(EvaluationConfig(actions=["away"], scene_file=str(f), mode="plan"), tmp_path / "e", workers=0,
-             progress=False)
+             progressbar=False)
     bad, good = load_rows(tmp_path / "e")
     assert bad["error_type"] == "InfeasibleError" and "no room" in bad["error"] and bad["success"] == 0
     assert good["error"] is None and good["success"] == 1 and good["mode"] == "plan"

@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from l2p_bullet.cli import main
-from l2p_bullet.learning.crossval import cross_validate, folder_agreement, select, stratified_folds
+from l2p_bullet.learning.agreement_cv import cross_validate, folder_agreement, select, stratified_folds
 from l2p_bullet.learning.feedback import (
     FeedbackError,
     FeedbackItem,

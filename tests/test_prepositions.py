@@ -20,11 +20,11 @@ from l2p_bullet.errors import (
     PluginError,
     UnknownObjectError,
 )
-from l2p_bullet.judge.rules import evaluate
+from l2p_bullet.judge.rules import rule_verdict
 from l2p_bullet.language import Command, parse
+from l2p_bullet.learning.augment import reflect, viewer_sides
 from l2p_bullet.learning.demos import load_demos, load_session, save_session
 from l2p_bullet.learning.synthetic import write_sessions
-from l2p_bullet.learning.views import reflect, viewer_sides
 from l2p_bullet.progress.features import QSRConfig, feature_names, motion_features
 
 ROBOT = np.array(VIEWPOINTS["robot"])
@@ -157,27 +157,27 @@ def test_two_anchor_columns_see_the_segment():
 def test_between_rule():
     b, c = np.array([0.0, 0.0, 0.0]), np.array([0.2, 0.0, 0.0])
     go = lambda end: np.linspace([0.1, 0.15, 0.0], end, 20)  # noqa: E731
-    assert evaluate("between", go([0.1, 0.0, 0.0]), b, 0.05, anchors=[b, c]).success
-    assert not evaluate("between", go([0.1, 0.04, 0.0]), b, 0.05, anchors=[b, c]).success  # off the line
-    assert not evaluate("between", go([0.26, 0.0, 0.0]), b, 0.05, anchors=[b, c]).success  # beyond C
-    near_b = evaluate("between", go([0.05, 0.0, 0.0]), b, 0.05, anchors=[b, c])
+    assert rule_verdict("between", go([0.1, 0.0, 0.0]), b, 0.05, anchors=[b, c]).success
+    assert not rule_verdict("between", go([0.1, 0.04, 0.0]), b, 0.05, anchors=[b, c]).success  # off the line
+    assert not rule_verdict("between", go([0.26, 0.0, 0.0]), b, 0.05, anchors=[b, c]).success  # beyond C
+    near_b = rule_verdict("between", go([0.05, 0.0, 0.0]), b, 0.05, anchors=[b, c])
     assert not near_b.success and "touching" in near_b.reason
     with pytest.raises(ValueError):
-        evaluate("between", go([0.1, 0.0, 0.0]), b, 0.05)
+        rule_verdict("between", go([0.1, 0.0, 0.0]), b, 0.05)
 
 
 def test_viewer_rules_as_the_robot_sees_it():
     b = np.zeros(3)
     to = lambda end: np.linspace([0.15, 0.15, 0.0], end, 20)  # noqa: E731
-    assert evaluate("left-of", to([0.0, 0.08, 0.0]), b, 0.05).success  # +y is the robot's left
-    assert not evaluate("left-of", to([0.0, -0.08, 0.0]), b, 0.05).success
-    assert evaluate("right-of", to([0.0, -0.08, 0.0]), b, 0.05).success
-    assert evaluate("in-front-of", to([-0.08, 0.0, 0.0]), b, 0.05).success  # towards the robot
-    assert evaluate("behind", to([0.08, 0.0, 0.0]), b, 0.05).success
-    assert not evaluate("left-of", to([0.0, 0.3, 0.0]), b, 0.05).success  # 6 blocks: not near it
+    assert rule_verdict("left-of", to([0.0, 0.08, 0.0]), b, 0.05).success  # +y is the robot's left
+    assert not rule_verdict("left-of", to([0.0, -0.08, 0.0]), b, 0.05).success
+    assert rule_verdict("right-of", to([0.0, -0.08, 0.0]), b, 0.05).success
+    assert rule_verdict("in-front-of", to([-0.08, 0.0, 0.0]), b, 0.05).success  # towards the robot
+    assert rule_verdict("behind", to([0.08, 0.0, 0.0]), b, 0.05).success
+    assert not rule_verdict("left-of", to([0.0, 0.3, 0.0]), b, 0.05).success  # 6 blocks: not near it
     # seen from the camera (front right of the table, looking back), left is elsewhere
     cam = np.array(VIEWPOINTS["camera"])
-    assert evaluate("left-of", to([0.0, 0.08, 0.0]), b, 0.05).success != evaluate(
+    assert rule_verdict("left-of", to([0.0, 0.08, 0.0]), b, 0.05).success != rule_verdict(
         "left-of", to([0.0, 0.08, 0.0]), b, 0.05, viewer=cam).success
 
 
@@ -239,8 +239,8 @@ def test_reflections_in_the_viewer_frame():
 
 
 def test_viewer_training_set_has_no_positive_right_of_motions(tmp_path):
+    from l2p_bullet.learning.augment import Context, mirrored_copies
     from l2p_bullet.learning.trainset import DataConfig, build
-    from l2p_bullet.learning.views import Context, views
 
     files = write_sessions(tmp_path, "left-of", sessions=1, events=6)
     own = load_demos("left-of", files)
@@ -250,15 +250,15 @@ def test_viewer_training_set_has_no_positive_right_of_motions(tmp_path):
     pos_ends = [s.x[s.end, col] for s in seqs if s.positive]
     assert min(pos_ends) > 0  # every positive ends on the viewer's left: nothing was mirrored into a positive
     d = own[0]
-    kinds = [p for *_, p in views(d, d.mover, d.anchor, Context((), d.viewer), QSRConfig(frame="viewer"), (1, 0))]
+    kinds = [p for *_, p in mirrored_copies(d, d.mover, d.anchor, Context((), d.viewer), QSRConfig(frame="viewer"), (1, 0))]
     assert kinds == [True, False, True, False]  # itself; left<->right: no; front<->behind: yes; both: no
 
 
 def test_relative_actions_still_mirror(tmp_path):
-    from l2p_bullet.learning.views import views
+    from l2p_bullet.learning.augment import mirrored_copies
 
     d = load_demos("around")[0]
-    kinds = [p for *_, p in views(d, d.mover, d.anchor, None, QSRConfig(), None)]
+    kinds = [p for *_, p in mirrored_copies(d, d.mover, d.anchor, None, QSRConfig(), None)]
     assert kinds == [True, True]
 
 
@@ -310,7 +310,7 @@ def test_two_anchor_planning_leaves_both_anchors_untouched():
         anchors, viewpoint = 2, None
 
         def final_batch(self, movers, anchors, size, *, more_anchors=None, viewer=None):
-            return np.array([evaluate("between", m, anchors, size, anchors=[anchors, more_anchors[0]]).score
+            return np.array([rule_verdict("between", m, anchors, size, anchors=[anchors, more_anchors[0]]).score
                              for m in movers])
 
         def curve(self, mover, anchor, size, *, more_anchors=None, viewer=None):
@@ -327,7 +327,7 @@ def test_two_anchor_planning_leaves_both_anchors_untouched():
     p = plan(scene, "A", ["B", "C"], FakeBundle(), budget=10)
     assert p.anchors == ["B", "C"] and np.allclose(p.more_anchor_poses[0], scene.get("C").pose)
     assert World2D(scene, "A").path_free(np.array(p.extra["waypoints"]))
-    assert evaluate("between", p.path, p.anchor_pose, p.size, anchors=[p.anchor_pose, p.more_anchor_poses[0]]).success
+    assert rule_verdict("between", p.path, p.anchor_pose, p.size, anchors=[p.anchor_pose, p.more_anchor_poses[0]]).success
     with pytest.raises(PlanError):  # the model reads two anchors
         plan(scene, "A", "B", FakeBundle())
 

@@ -34,7 +34,7 @@ def test_grade_every_run_then_a_restarted_server_has_them_all(live, tmp_path):  
         assert status == 200, body
         seen.append(item["key"])
     assert len(set(seen)) == 4
-    unrendered = [i for i in s.session.items if i.run.video is None]
+    unrendered = [i for i in s.queue.items if i.run.video is None]
     assert [i.view for i in unrendered] == ["2d"]  # no video: shown from above instead
     s.stop()
     again = live(db=tmp_path / "reviews.sqlite")  # a new server on the same file
@@ -106,7 +106,7 @@ def test_two_reviewers_at_once_lose_nothing(live):  # noqa: F811
 def test_a_run_that_changed_or_disappeared_is_not_graded(live, run_folder):  # noqa: F811
     s = live()
     item = _next(s, "ann")
-    run = s.session.runs[item["key"]]
+    run = s.queue.runs[item["key"]]
     (run.path / "trajectory.json").write_text(json.dumps({"frames": []}))
     status, body = _answer(s, "ann", item)
     assert status == 409 and body["reason"] == "changed"
@@ -114,7 +114,7 @@ def test_a_run_that_changed_or_disappeared_is_not_graded(live, run_folder):  # n
     _, cfg = s.call("GET", "/api/config")
     assert cfg["problems"] == [{"run": run.run_id, "problem": "changed"}]
     other = _next(s, "ann")
-    shutil.rmtree(s.session.runs[other["key"]].path)
+    shutil.rmtree(s.queue.runs[other["key"]].path)
     status, body = _answer(s, "ann", other)
     assert status == 410 and body["reason"] == "missing"
     assert s.store.grades() == []
@@ -183,7 +183,7 @@ def test_blind_mode_never_tells_the_action(live):  # noqa: F811
 @pytest.mark.parametrize("view", ["2d", "both"])
 def test_views(live, view):  # noqa: F811
     s = live(view=view)
-    views = sorted(i.view for i in s.session.items)
+    views = sorted(i.view for i in s.queue.items)
     assert views == (["2d"] * 4 if view == "2d" else ["2d"] * 4 + ["3d"] * 3)
 
 

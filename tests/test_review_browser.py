@@ -50,7 +50,7 @@ def test_grade_with_the_keyboard_reload_and_change_it(live, chromium, tmp_path):
     _keys(page, "Enter")
     second = _shown(page, first)
     (g,) = s.store.grades()
-    assert (g.reviewer, g.grade, g.mode, f"{s.session.runs[first.split(':')[0]].key}:{g.view}") == (
+    assert (g.reviewer, g.grade, g.mode, f"{s.queue.runs[first.split(':')[0]].key}:{g.view}") == (
         "ann", 7, "graded", first)
 
     page.reload()  # the name is remembered, the grade is in the database

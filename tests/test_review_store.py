@@ -13,9 +13,9 @@ from l2p_bullet.errors import ReviewError, SchemaVersionError
 from l2p_bullet.learning.demos import load_graded_demos
 from l2p_bullet.review import schema
 from l2p_bullet.review.original import import_original
-from l2p_bullet.review.report import build_report, write_report
+from l2p_bullet.review.report import build_report, write_grade_report
 from l2p_bullet.review.runs import find_runs
-from l2p_bullet.review.stats import confusion, disparity, fleiss_kappa
+from l2p_bullet.review.stats import disparity, fleiss_kappa, label_confusion
 from l2p_bullet.review.store import EXPORT_FIELDS, Answer, AnswerConflict, GradeRow, Store, load_grades
 
 
@@ -158,7 +158,7 @@ def test_importing_the_original_study_is_idempotent_and_gives_its_table_1(tmp_pa
         assert row["disparity"] == pytest.approx(np.mean([abs(a - b) for a, b in grades]), abs=1e-4)
         assert -1 <= row["spearman_final_progress"] <= 1 and -1 <= row["spearman_judge"] <= 1
     assert table["SlideToward"]["mean_grade"] == pytest.approx(5.2333, abs=1e-4)  # 15 of the paper's 30 demos
-    files = write_report(rep, tmp_path / "report")
+    files = write_grade_report(rep, tmp_path / "report")
     assert {f.name for f in files} >= {"report.md", "report.json", "table1_original.csv", "table1.png", "agreement.png"}
     assert all(f.stat().st_size > 0 for f in files)
 
@@ -176,7 +176,7 @@ def test_fleiss_kappa_of_the_textbook_example():
 def test_disparity_and_confusion():
     assert disparity([[9, 8], [8, 5], [4]]) == pytest.approx(2.0)  # a single grade carries no disparity
     assert disparity([[1, 4, 7]]) == pytest.approx(4.0)  # pairs 3, 6, 3
-    c = confusion([("a", "a"), ("a", "b"), ("b", "b"), ("x", "a")], ["a", "b"], ["a", "b", "none"])
+    c = label_confusion([("a", "a"), ("a", "b"), ("b", "b"), ("x", "a")], ["a", "b"], ["a", "b", "none"])
     assert c["counts"] == [[1, 1, 0], [0, 1, 0]]
     assert c["shares"] == [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0]]
 
@@ -209,7 +209,7 @@ def test_report_of_blind_labels_and_of_both_views(tmp_path, run_folder):  # noqa
     assert views["past"]["mean_2d"] == 8 and views["past"]["mean_3d"] == 9 and views["next-to"]["mean_3d_minus_2d"] == 3
     (row,) = [r for r in rep["graded"]["app"] if r["action"] == "past"]
     assert row["views"] == "3d+2d" and row["mean_grade"] == 8.5 and row["disparity"] is None  # one grader
-    files = write_report(rep, tmp_path / "rep")
+    files = write_grade_report(rep, tmp_path / "rep")
     assert {"confusion.png", "views.png", "confusion.csv", "table1_app.csv"} <= {f.name for f in files}
 
 

@@ -9,7 +9,7 @@ from teach_fixtures import live  # noqa: F401 - fixture
 
 from l2p_bullet.core.scene import random_between_scene, random_scene
 from l2p_bullet.learning.demos import DEMO_BLOCK_SIZE, load_demos, load_session
-from l2p_bullet.teach.session import CONTEXT
+from l2p_bullet.teach.lesson import CONTEXT
 
 
 def clear_scene(offset=(0.0, 0.075)):

@@ -33,7 +33,7 @@ def test_drag_a_block_and_the_saved_demonstration_matches_the_drag(live, chromiu
     page, errors = _page(chromium, s.url)
     objects = page.evaluate("window.teach.mover()")
     scene = {"A": (objects["x"], objects["y"])}
-    sc = s.session.scene(2)
+    sc = s.lesson.scene(2)
     scene["B"] = sc.get("B").xy
     path = _drag_path(scene)
 

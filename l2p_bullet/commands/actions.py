@@ -48,7 +48,7 @@ def actions_cmd(as_json: bool, check: bool) -> None:
     if check:
         for p in plugins:
             if p.ok:
-                reason = registry.check(p.name, plugins)
+                reason = registry.load_problem(p.name, plugins)
                 if reason:
                     reasons[p.name] = reason
     problems = registry.conflicts(plugins)

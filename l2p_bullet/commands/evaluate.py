@@ -66,7 +66,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
         config = _config(given, folder, resume)
         try:
             summary = evaluate(config, folder, workers=workers, ray=ray_address, resume=resume,
-                               retry_errors=retry_errors, progress=not quiet)
+                               retry_errors=retry_errors, progressbar=not quiet)
         except KeyboardInterrupt:
             n = len(load_rows(folder)) if (folder / "results.sqlite").exists() else 0
             click.echo(f"\ninterrupted: {n} runs recorded in {folder}; continue with: "

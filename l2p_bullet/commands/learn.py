@@ -2,7 +2,7 @@
 bundle, and score a motion with one.
 
 ACTION is an installed action (built-in or plugin; ``next_to`` = ``next-to``) or the path of a bundle
-folder (:func:`l2p_bullet.plugins.registry.resolve`). The commands only parse options: the logic is in
+folder (:func:`l2p_bullet.plugins.registry.locate`). The commands only parse options: the logic is in
 :mod:`l2p_bullet.learning` (torch, imported inside the command bodies) and :mod:`l2p_bullet.progress`.
 """
 
@@ -96,9 +96,9 @@ def train_policy_cmd(action: str, bundle_dir: str | None, iterations: int | None
     import dataclasses
 
     from ..learning.train_policy import PolicyTrainConfig, train_policy_bundle
-    from ..plugins.registry import resolve
+    from ..plugins.registry import locate
 
-    folder = Path(bundle_dir) if bundle_dir else resolve(action)[1]
+    folder = Path(bundle_dir) if bundle_dir else locate(action)[1]
     cfg = PolicyTrainConfig(seed=seed)
     cfg = dataclasses.replace(cfg, iterations=iterations or cfg.iterations, episodes=episodes or cfg.episodes)
     settings = train_policy_bundle(folder, cfg, log=lambda s: click.echo(s, err=True))

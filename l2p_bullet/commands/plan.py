@@ -31,9 +31,9 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     actions) gives its verdict alongside (it judges the path, the planner never sees it).
     """
     from ..core.contracts import dumps_json
-    from ..pipeline import plan
+    from ..pipeline import plan_sentence
 
-    result = plan(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
+    result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
                   budget=budget, threshold=threshold, force=force, plot=not no_plot)
     click.echo(dumps_json(result.to_dict()))
 

@@ -97,8 +97,8 @@ def _schema_version() -> int:
 def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade_changed: bool) -> None:
     from ..plugins import registry
     from ..review.app import create_app
+    from ..review.queue import ReviewQueue
     from ..review.server import bind, serve, url_of
-    from ..review.session import ReviewSession
     from ..review.web import LOOPBACK
 
     reg = store.register_runs(run_infos, accept_changed=regrade_changed)
@@ -109,13 +109,13 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
                    f"old one and are kept): {what}", err=True)
     served = [r for r in run_infos if regrade_changed or r.run_id not in changed]
     labels = [p.name for p in registry.discover() if p.ok]
-    session = ReviewSession(store, served, mode=mode, view=view, labels=labels)
-    session.problems.update({rid: "changed" for rid in changed if not regrade_changed})  # the page says so too
-    app = create_app(session, host=host)
+    queue = ReviewQueue(store, served, mode=mode, view=view, labels=labels)
+    queue.problems.update({rid: "changed" for rid in changed if not regrade_changed})  # the page says so too
+    app = create_app(queue, host=host)
     sock = bind(host, port)
     if host not in LOOPBACK:
         click.echo(f"warning: listening on {host}: anyone who can reach this machine can submit grades", err=True)
-    click.echo(f"reviewing {len(served)} runs ({len(session.items)} items, {mode} mode, view {view}); answers go to "
+    click.echo(f"reviewing {len(served)} runs ({len(queue.items)} items, {mode} mode, view {view}); answers go to "
                f"{store.path}")
     click.echo(f"open {url_of(sock)} in a browser; Ctrl+C stops (every answer is saved as it is submitted)")
     serve(app, sock)
@@ -134,7 +134,7 @@ def report_cmd(db: str, out: str | None, as_json: bool) -> None:
     learned progress and the judges rank runs against people (Spearman), 2-D vs 3-D grades.
     """
     from ..errors import ReviewError
-    from ..review.report import build_report, render_text, write_report
+    from ..review.report import build_report, render_text, write_grade_report
     from ..review.store import load_grades
 
     path = Path(db)
@@ -143,7 +143,7 @@ def report_cmd(db: str, out: str | None, as_json: bool) -> None:
                           "original study with l2p-bullet review --import-original")
     rep = build_report(load_grades(path), source=str(path))
     folder = Path(out) if out else path.with_name(path.stem + "-report")
-    files = write_report(rep, folder)
+    files = write_grade_report(rep, folder)
     if as_json:
         click.echo(json.dumps(rep, indent=1, default=str))
         return

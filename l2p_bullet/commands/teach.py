@@ -41,13 +41,13 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     from pathlib import Path
 
     from ..learning.train_progress import BundleTrainer, ProgressTrainConfig
-    from ..teach.session import TeachSession, find_action
+    from ..teach.lesson import Lesson, find_action
 
     taught = find_action(action, plugin_dir, demos)  # a wrong name fails before anything listens
     cfg = ProgressTrainConfig()
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
-    session = TeachSession(taught, BundleTrainer(cfg), seed=seed)
-    session.count()  # an unreadable demos file is a one-line error now, not on the first save
+    lesson = Lesson(taught, BundleTrainer(cfg), seed=seed)
+    lesson.count()  # an unreadable demos file is a one-line error now, not on the first save
 
     from ..review.server import bind, serve, url_of
     from ..teach.app import create_app
@@ -55,7 +55,7 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     sock = bind(host, port)
     click.echo(f"teaching \"{taught.sentence}\": open {url_of(sock)} (Ctrl+C to stop)", err=True)
     click.echo(f"demonstrations go to {Path(taught.demos)}", err=True)
-    serve(create_app(session, host), sock)
+    serve(create_app(lesson, host), sock)
 
 
 COMMANDS: list[click.Command] = [teach_cmd]

@@ -1,6 +1,6 @@
 """Stage timers: how long each stage of a run took, and telling the user which stage starts.
 
-One clock for ``perform``'s stages (parse, load, plan, execute, evaluate) and the execution's own
+One clock for ``perform``'s stages (parse, load, plan, execute, judge) and the execution's own
 (check, setup, reach, engage, move, disengage, record), so summary.json's ``timings_s`` mean the same
 everywhere: seconds of wall time per stage, a stage entered twice counted once with both times added.
 """

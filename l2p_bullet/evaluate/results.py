@@ -34,7 +34,7 @@ COLUMNS: dict[str, str] = {
 }
 """Column -> SQLite type. ``judged`` (every action's judge: {action: {success, score}}) and ``scored``
 (every action's learned progress: {action: value}) are JSON text: the automatic confusion matrix;
-``timings`` (JSON) has perform's stages (parse, load, plan, execute, evaluate, total) in seconds."""
+``timings`` (JSON) has perform's stages (parse, load, plan, execute, judge, total) in seconds."""
 JSON_COLUMNS = ("judged", "scored", "timings")
 
 

@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 
 from ..errors import EvaluationError
-from .progress import ProgressBar
+from .progressbar import ProgressBar
 from .results import ResultsStore
 from .scenes import SceneSpec, random_scenes, scene_file, study_scenes, with_bystanders
 from .tasks import Task, make_tasks
@@ -80,7 +80,7 @@ class EvaluationSummary:
 
 
 def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: int | None = None,
-             ray: str | None = None, resume: bool = False, retry_errors: bool = False, progress: bool = True,
+             ray: str | None = None, resume: bool = False, retry_errors: bool = False, progressbar: bool = True,
              plugins: list | None = None) -> EvaluationSummary:
     """Run (or continue, ``resume``) the evaluation ``config`` into ``out_dir``; every row committed as it arrives.
 
@@ -125,7 +125,7 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         todo = [t for t in tasks if t.run_id not in done]
         backend = "ray" if ray else ("pool" if workers >= 1 else "inline")
         summary = EvaluationSummary(out, len(tasks), len(tasks) - len(todo), backend=backend, workers=workers)
-        bar = ProgressBar(len(todo), summary.skipped, enabled=progress)
+        bar = ProgressBar(len(todo), summary.skipped, enabled=progressbar)
 
         def on_row(row: dict) -> None:
             store.add(row)

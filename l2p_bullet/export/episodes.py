@@ -33,7 +33,7 @@ class Episode:
     extra: dict = field(default_factory=dict)
 
 
-def find_runs(paths: list[str | Path]) -> list[Path]:
+def run_folders(paths: list[str | Path]) -> list[Path]:
     """Run folders (holding trajectory.json) among ``paths``: a run folder itself, or any folder below
     which run folders lie (an evaluation's folder, ``runs/``), sorted."""
     out: list[Path] = []

@@ -3,7 +3,7 @@
 - :class:`~l2p_bullet.judge.rules.RuleJudge`: rules written from the meaning of the words (the five
   built-in actions ship theirs, ``judge/rules.py``); independent of the learned model the planner
   maximises, which is why the project reports them.
-- :class:`~l2p_bullet.judge.progress.ProgressJudge`: the action's own progress model, the fallback
+- :class:`~l2p_bullet.judge.learned.LearnedJudge`: the action's own progress model, the fallback
   for an action that ships no rules (its verdicts say so).
 - a plugin's own judge, named in its manifest.
 
@@ -25,10 +25,10 @@ from typing import Any
 
 from ..errors import FailedToLoadPlugin, L2PError
 from .base import Judge, Verdict
-from .progress import THRESHOLD, ProgressJudge
-from .rules import RULES, TWO_ANCHOR_RULES, RuleJudge, evaluate
+from .learned import THRESHOLD, LearnedJudge
+from .rules import RULES, TWO_ANCHOR_RULES, RuleJudge, rule_verdict
 
-__all__ = ["Judge", "Verdict", "RuleJudge", "ProgressJudge", "RULES", "evaluate", "judge_for"]
+__all__ = ["Judge", "Verdict", "RuleJudge", "LearnedJudge", "RULES", "rule_verdict", "judge_for"]
 
 
 def judge_for(bundle: Any) -> Judge:
@@ -46,7 +46,7 @@ def judge_for(bundle: Any) -> Judge:
             return judge
         if "entry" in spec:
             return _entry_judge(bundle, str(spec["entry"]))
-        return ProgressJudge(bundle.name, bundle.progress_model(), float(spec.get("threshold", THRESHOLD)))
+        return LearnedJudge(bundle.name, bundle.progress_model(), float(spec.get("threshold", THRESHOLD)))
     except FailedToLoadPlugin:
         raise
     except (L2PError, TypeError, ValueError) as e:

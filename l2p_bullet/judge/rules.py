@@ -206,8 +206,8 @@ TWO_ANCHOR_RULES = ("between",)
 """Rule sets that read two reference objects (``anchors=``)."""
 
 
-def evaluate(action: str, mover: np.ndarray, anchor: np.ndarray, size: float, *,
-             anchors: list[np.ndarray] | None = None, viewer: np.ndarray | None = None) -> Verdict:
+def rule_verdict(action: str, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+                 anchors: list[np.ndarray] | None = None, viewer: np.ndarray | None = None) -> Verdict:
     """Judge a motion by the rules named ``action``: ``mover`` (T,3) and ``anchor`` (T,3) or (3,) poses in
     metres, blocks of side ``size``; ``anchors`` every reference object of a two-anchor rule, ``viewer``
     the viewpoint (2,) of a viewer-frame rule (default: the robot's base, scene frame).
@@ -244,4 +244,4 @@ class RuleJudge:
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
               final_progress: float | None = None, anchors: list[np.ndarray] | None = None,
               viewer: np.ndarray | None = None) -> Verdict:
-        return evaluate(self.rules, mover, anchor, size, anchors=anchors, viewer=viewer)
+        return rule_verdict(self.rules, mover, anchor, size, anchors=anchors, viewer=viewer)

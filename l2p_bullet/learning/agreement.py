@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..core.vocabulary import ACTIONS, GRADED_FOLDERS
-from ..judge.rules import evaluate
+from ..judge.rules import rule_verdict
 from ..planning.world2d import interpolate
 from .demos import load_demos, load_graded_demos
 
@@ -99,7 +99,7 @@ def rule_agreement(motions: list[GradedMotion] | None = None) -> dict[str, float
     motions = motions if motions is not None else graded_motions()
     rows: dict[str, tuple[list[float], list[float]]] = {}
     for m in motions:
-        score = evaluate(m.action, m.mover, m.anchor, m.size).score
+        score = rule_verdict(m.action, m.mover, m.anchor, m.size).score
         for key in (m.action, "all"):
             rows.setdefault(key, ([], []))
             rows[key][0].append(score)
@@ -109,5 +109,5 @@ def rule_agreement(motions: list[GradedMotion] | None = None) -> dict[str, float
 
 def demo_acceptance() -> dict[str, float]:
     """Share of the people's motion-capture demonstrations (the training data) each rule judge accepts."""
-    return {a: float(np.mean([evaluate(a, d.event_mover, d.event_anchor, d.size).success for d in load_demos(a)]))
+    return {a: float(np.mean([rule_verdict(a, d.event_mover, d.event_anchor, d.size).success for d in load_demos(a)]))
             for a in ACTIONS}

@@ -74,11 +74,11 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
             feedback_cfg: FeedbackConfig | None = None,
             log: Callable[[str], None] | None = None) -> list[RoundResult]:
     """Run ``rounds`` rounds of hot feedback for the installed (or given folder's) ``action`` into ``out``."""
-    from ..plugins.registry import resolve
+    from ..plugins.registry import locate
 
     if not 1 <= scenes <= MAX_SCENES or not 1 <= rounds <= MAX_ROUNDS:
         raise DataError(f"improve takes 1-{MAX_SCENES} scenes and 1-{MAX_ROUNDS} rounds")
-    name, current = resolve(action)
+    name, current = locate(action)
     if name not in SENTENCES:
         raise DataError(f'improve performs the built-in actions ({", ".join(SENTENCES)}), not "{name}"')
     if judge != "rules" and not Path(judge).is_file():
@@ -236,7 +236,7 @@ def _metrics(k: int, bundle_dir: Path, seeds: list[int], summaries: list[dict], 
     """The round's runs (success by the bundle's judge, final progress) and the new bundle's agreement with
     the 90 graded demos (in sample when the study's grades were among the feedback)."""
     from ..plugins.bundle import load_bundle
-    from .crossval import folder_agreement, score_items
+    from .agreement_cv import folder_agreement, score_items
     from .feedback import original_items
 
     bundle = load_bundle(bundle_dir)

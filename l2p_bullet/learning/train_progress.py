@@ -3,7 +3,7 @@
 Each ensemble member is a small LSTM trained with Adam on a per-frame, per-sequence-averaged squared
 error plus an extra term on the frame where the event ends (the planner reads the final value). The
 members differ only in their seed; averaging them is cheaper than tuning one model to be stable.
-The honest evaluation (split by capture session) lives in :mod:`l2p_bullet.learning.validation`.
+The held-out tests (split by capture session) live in :mod:`l2p_bullet.learning.heldout`.
 """
 
 from __future__ import annotations
@@ -24,12 +24,12 @@ from ..core.vocabulary import ACTIONS
 from ..errors import BundleError, L2PError
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
+from .augment import viewer_sides
 from .demos import Demo, load_demos
 from .feedback import FeedbackItem
 from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
 from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
 from .trainset import DataConfig, TrainingSequence, build
-from .views import viewer_sides
 
 
 @dataclass(frozen=True)
@@ -248,11 +248,11 @@ def declared(name: str, folder: Path | None) -> tuple[Frame, int]:
     """The frame and number of anchors a plugin action declares: in the manifest in ``folder`` (the one
     being trained), else in the installed plugin's; the defaults without either."""
     from ..plugins.bundle import MANIFEST, read_manifest
-    from ..plugins.registry import resolve
+    from ..plugins.registry import locate
 
     if folder is None or not (folder / MANIFEST).is_file():
         try:
-            folder = resolve(name)[1]
+            folder = locate(name)[1]
         except L2PError:
             return Frame(), 1
     try:
@@ -270,10 +270,10 @@ def training_target(action: str, out: Path | None, demo_files: Sequence[str]) ->
     """
     from ..errors import PluginError
     from ..plugins.bundle import MANIFEST, read_manifest
-    from ..plugins.registry import resolve
+    from ..plugins.registry import locate
 
     try:
-        name = resolve(action)[0]
+        name = locate(action)[0]
     except (BundleError, PluginError):
         if out is None or not (out / MANIFEST).is_file() or str(read_manifest(out).get("name", "")) != action:
             raise

@@ -45,8 +45,7 @@ from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
 from ..progress.features import QSRConfig, features, resample
 from . import augment
-from .demos import Demo
-from .views import (
+from .augment import (
     Context,
     check_demos,
     demo_context,
@@ -54,13 +53,14 @@ from .views import (
     end_bearings,
     end_region,
     mirror,
+    mirrored_copies,
     placed,
     smooth_poses,
     stretched,
     twisted_end,
     viewer_sides,
-    views,
 )
+from .demos import Demo
 
 
 @dataclass(frozen=True)
@@ -253,7 +253,7 @@ def _positives(action: str, d: Demo, qcfg: QSRConfig, dcfg: DataConfig, rng: np.
     out = []
     m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
     ctx = demo_context(d, dcfg.smooth_frames) if sides is not None or qcfg.anchors > 1 else None
-    for mm, aa, cx, positive in views(d, m, a, ctx, qcfg, sides):
+    for mm, aa, cx, positive in mirrored_copies(d, m, a, ctx, qcfg, sides):
         if not positive:
             continue
         out.append(_labelled(mm, aa, d.size, d.start, d.end, qcfg, dcfg, True, turns, ctx=cx))
@@ -327,14 +327,14 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
 
 
 NEAR_MISSES = 2
-"""Near misses per positive view of a two-anchor or viewer-frame demonstration (``views.displaced``, ``views.twisted_end``)."""
+"""Near misses per positive copy of a two-anchor or viewer-frame demonstration (``augment.displaced``, ``augment.twisted_end``)."""
 
 
 def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,
                rng: np.random.Generator, sides: tuple[int, int] | None = None) -> list[TrainingSequence]:
     """The other actions' demonstrations (with context and cropped, both mirror images), random motions
     that :func:`violates` the action, and motions that stand still. A viewer-frame action adds its own
-    demonstrations' reflections that end on the wrong side (:func:`views`)."""
+    demonstrations' reflections that end on the wrong side (:func:`~l2p_bullet.learning.augment.mirrored_copies`)."""
     general = sides is not None or qcfg.anchors > 1
     neg: list[TrainingSequence] = []
     for other in dcfg.negatives.get(action, [o for o in ACTIONS if o != action]):
@@ -349,7 +349,7 @@ def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg:
         region = end_region(demos.get(action, []))
         for d in demos.get(action, []):
             m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
-            for mm, aa, cx, _ in views(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
+            for mm, aa, cx, _ in mirrored_copies(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
                 for _ in range(NEAR_MISSES):
                     miss = displaced(d, mm, aa, cx, region, rng)
                     if miss is not None:
@@ -364,7 +364,7 @@ def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg:
             dcfg.scale_ranges.get(action, dcfg.scale_range))
         for d in own:
             m, a = smooth_poses(d.mover, dcfg.smooth_frames), smooth_poses(d.anchor, dcfg.smooth_frames)
-            for mm, aa, cx, positive in views(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
+            for mm, aa, cx, positive in mirrored_copies(d, m, a, demo_context(d, dcfg.smooth_frames), qcfg, sides):
                 wrong = [(mm, cx)] if not positive else (
                     [(twisted_end(d, mm, aa, cx, bearings, rng), cx) for _ in range(NEAR_MISSES)]
                     + [(stretched(d, mm, aa, farthest, rng), cx)])

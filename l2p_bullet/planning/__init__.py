@@ -13,7 +13,7 @@ docs/planning.md):
 - ``default``   an alias (``DEFAULT``), unless the bundle's ``[policy]`` section names another planner.
 
 Every planner maximises the action's learned progress model: the model alone decides which move is
-better. The 2-D simulator only says which moves are legal; ``evaluate`` judges the result afterwards.
+better. The 2-D simulator only says which moves are legal; the judge (``judge/``) judges the result afterwards.
 """
 
 from __future__ import annotations

@@ -351,7 +351,7 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     return bundle
 
 
-def resolve(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Path]:
+def locate(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Path]:
     """``ACTION`` on the command line -> (action name, bundle folder).
 
     A folder with a manifest is a bundle (its manifest names the action); anything else names an
@@ -377,7 +377,7 @@ def _module_folder(mod: Any) -> Path | None:
     return Path(f).parent if f else None
 
 
-def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
+def load_problem(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
     """Load plugin ``name`` as ``perform`` would (bundle, progress model, judge, policy) and return the
     reason it fails, or None if it loads."""
     from ..errors import L2PError

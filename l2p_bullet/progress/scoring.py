@@ -122,9 +122,9 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
     from ..core.contracts import load_motion
     from ..errors import PathError
     from ..plugins.bundle import load_bundle
-    from ..plugins.registry import resolve
+    from ..plugins.registry import locate
 
-    name, folder = resolve(action)
+    name, folder = locate(action)
     motion = load_motion(path)
     model = load_bundle(folder).progress_model()
     if len(motion.more_anchors) + 1 != model.anchors:

@@ -3,7 +3,7 @@
 - runs.py      run folders: identity, trajectory sha256, what can be shown
 - schema.py    the database's numbered migrations
 - store.py     answers in and out; :func:`~l2p_bullet.review.store.load_grades` (torch- and web-free)
-- session.py   the order runs are shown in, and the checks before an answer is stored
+- queue.py     the order runs are shown in, and the checks before an answer is stored
 - app.py       the FastAPI app (and static/ the page); server.py runs it with uvicorn
 - original.py  the 2018 study's grades, imported
 - stats.py, report.py, plots.py   the evaluation's tables and plots

@@ -1,4 +1,4 @@
-"""The review web app: FastAPI over a :class:`~l2p_bullet.review.session.ReviewSession`.
+"""The review web app: FastAPI over a :class:`~l2p_bullet.review.queue.ReviewQueue`.
 
 FastAPI because requests are validated from type declarations (a bad payload is a 422 that says which
 field is wrong, never a 500), and the OpenAPI schema (``/openapi.json``) documents the API the tests
@@ -24,8 +24,8 @@ from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from .. import __version__
 from ..errors import ReviewError
+from .queue import Item, NotFound, ReviewQueue
 from .runs import motion_for_browser
-from .session import Item, NotFound, ReviewSession
 from .store import AnswerConflict, GradeRow
 from .web import json_errors, new_app, static_pages
 
@@ -56,7 +56,7 @@ class SkipIn(BaseModel):
     view: View
 
 
-def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
+def create_app(queue: ReviewQueue, host: str = "127.0.0.1") -> FastAPI:
     app = new_app("l2p-bullet review", host)
     json_errors(app, log, ReviewError, _status)
 
@@ -71,49 +71,49 @@ def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
 
     @app.get("/api/config")
     def config() -> dict:
-        return {"mode": session.mode, "view": session.view, "version": __version__,
-                "labels": _label_keys(session), "items": len(session.items),
-                "problems": [{"run": rid, "problem": p} for rid, p in sorted(session.problems.items())]}
+        return {"mode": queue.mode, "view": queue.view, "version": __version__,
+                "labels": _label_keys(queue), "items": len(queue.items),
+                "problems": [{"run": rid, "problem": p} for rid, p in sorted(queue.problems.items())]}
 
     @app.get("/api/next")
     def next_item(reviewer: Annotated[str, Query(max_length=200)]) -> dict:
-        it = session.next_item(reviewer)
-        return {"item": None if it is None else _item(session, it, reviewer), "progress": session.progress(reviewer)}
+        it = queue.next_item(reviewer)
+        return {"item": None if it is None else _item(queue, it, reviewer), "progress": queue.progress(reviewer)}
 
     @app.get("/api/item/{key}")
     def item(key: Key, view: View, reviewer: Annotated[str, Query(max_length=200)]) -> dict:
-        return {"item": _item(session, session.item(key, view), reviewer), "progress": session.progress(reviewer)}
+        return {"item": _item(queue, queue.item(key, view), reviewer), "progress": queue.progress(reviewer)}
 
     @app.get("/api/history")
     def history(reviewer: Annotated[str, Query(max_length=200)]) -> dict:
-        by_id = {r.run_id: r for r in session.runs.values()}
-        return {"answers": [_answer(g) | {"key": by_id[g.run_id].key} for g in session.history_rows(reviewer)],
-                "progress": session.progress(reviewer)}
+        by_id = {r.run_id: r for r in queue.runs.values()}
+        return {"answers": [_answer(g) | {"key": by_id[g.run_id].key} for g in queue.history_rows(reviewer)],
+                "progress": queue.progress(reviewer)}
 
     @app.post("/api/answer")
     def answer(body: AnswerIn) -> dict:
-        g = session.answer(body.reviewer, body.key, body.view, body.grade, body.label, body.comment, body.replaces)
-        return {"answer": _answer(g) | {"key": body.key}, "progress": session.progress(body.reviewer)}
+        g = queue.answer(body.reviewer, body.key, body.view, body.grade, body.label, body.comment, body.replaces)
+        return {"answer": _answer(g) | {"key": body.key}, "progress": queue.progress(body.reviewer)}
 
     @app.post("/api/skip")
     def skip(body: SkipIn) -> dict:
-        session.skip(body.reviewer, body.key, body.view)
+        queue.skip(body.reviewer, body.key, body.view)
         return {"skipped": body.key}
 
     @app.get("/api/media/{key}/motion")
     def motion(key: Key) -> dict:
-        return motion_for_browser(_run(session, key), blind=session.mode == "blind")
+        return motion_for_browser(_run(queue, key), blind=queue.mode == "blind")
 
     @app.get("/api/media/{key}/video")
     def video(key: Key) -> FileResponse:
-        run = _run(session, key)
-        if session.mode == "blind" or run.video is None:  # the video's caption names the action
+        run = _run(queue, key)
+        if queue.mode == "blind" or run.video is None:  # the video's caption names the action
             raise NotFound("no video for this run here")
         return FileResponse(run.video, media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif")
 
     @app.get("/api/media/{key}/frames/{index}")
     def frame(key: Key, index: int) -> FileResponse:
-        run = _run(session, key)
+        run = _run(queue, key)
         if not 0 <= index < run.frames:
             raise NotFound(f"run has {run.frames} frames, not {index}")
         return FileResponse(run.path / "frames" / f"{index:04d}.png", media_type="image/png",
@@ -122,25 +122,25 @@ def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
     return app
 
 
-def _label_keys(session: ReviewSession) -> list[dict]:
-    from .session import label_keys
+def _label_keys(queue: ReviewQueue) -> list[dict]:
+    from .queue import label_keys
 
-    return label_keys(session.labels) if session.mode == "blind" else []
+    return label_keys(queue.labels) if queue.mode == "blind" else []
 
 
-def _run(session: ReviewSession, key: str):
-    run = session.runs.get(key)
+def _run(queue: ReviewQueue, key: str):
+    run = queue.runs.get(key)
     if run is None:
         raise NotFound(f'no run "{key}" is served here')
-    if session.check(run) == "missing":
+    if queue.problem_of(run) == "missing":
         raise AnswerConflict(f"the run folder {run.path} disappeared", "missing")
     return run
 
 
-def _item(session: ReviewSession, it: Item, reviewer: str) -> dict:
-    run, blind = it.run, session.mode == "blind"
+def _item(queue: ReviewQueue, it: Item, reviewer: str) -> dict:
+    run, blind = it.run, queue.mode == "blind"
     use_video = it.view == "3d" and not blind and run.video is not None
-    mine = session.answer_of(reviewer, it)
+    mine = queue.answer_of(reviewer, it)
     return {
         "key": run.key, "view": it.view, "duration": run.duration_s,
         "sentence": None if blind else run.sentence,

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..core.vocabulary import ACTIONS, GRADED_FOLDERS
-from .stats import confusion, disparity, fleiss_kappa
+from .stats import disparity, fleiss_kappa, label_confusion
 from .store import NONE_LABEL, GradeRow
 
 MIN_SPEARMAN = 3
@@ -180,7 +180,7 @@ def blind_table(rows: list[GradeRow]) -> dict | None:
         return None
     true = _order({r.action for r in rows})
     given = _order({r.label for r in rows} | set(true) | {NONE_LABEL})
-    conf = confusion([(r.action, r.label) for r in rows], true, given)
+    conf = label_confusion([(r.action, r.label) for r in rows], true, given)
     items: dict[tuple[str, str], list[str]] = defaultdict(list)
     for r in rows:
         items[(r.run_id, r.view)].append(r.label)
@@ -293,7 +293,7 @@ def _public(rep: dict) -> dict:
     return strip(rep)
 
 
-def write_report(rep: dict, folder: Path) -> list[Path]:
+def write_grade_report(rep: dict, folder: Path) -> list[Path]:
     """report.md, report.json, table CSVs and PNG plots into ``folder``; returns the files written."""
     import csv
 

@@ -50,7 +50,7 @@ def fleiss_kappa(counts: np.ndarray) -> dict:
             "p_i": p_i.tolist()}
 
 
-def confusion(pairs: Iterable[tuple[str, str]], rows: Sequence[str], cols: Sequence[str]) -> dict:
+def label_confusion(pairs: Iterable[tuple[str, str]], rows: Sequence[str], cols: Sequence[str]) -> dict:
     """Counts and row-normalised shares of (true, given) pairs; labels outside rows/cols are dropped."""
     m = np.zeros((len(rows), len(cols)))
     r_ix, c_ix = {r: i for i, r in enumerate(rows)}, {c: j for j, c in enumerate(cols)}

@@ -2,5 +2,5 @@
 
 ``l2p-bullet teach ACTION`` serves it the way ``l2p-bullet review`` serves the review app (FastAPI, the
 review app's uvicorn runner ``review/server.py`` on 127.0.0.1, static HTML/JS in ``static/``);
-:mod:`.session` holds everything that is not web (scenes, validation, the demos file, training).
+:mod:`.lesson` holds everything that is not web (scenes, validation, the demos file, training).
 """

@@ -1,4 +1,4 @@
-"""The teach web app: FastAPI over a :class:`~l2p_bullet.teach.session.TeachSession`.
+"""The teach web app: FastAPI over a :class:`~l2p_bullet.teach.lesson.Lesson`.
 
 The same stack and conventions as the review app (``l2p_bullet/review/app.py``; served by its runner,
 ``review/server.py``): requests validated from type declarations (a bad
@@ -21,7 +21,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..errors import L2PError, TeachError
 from ..review.web import json_errors, new_app, static_pages
-from .session import MAX_SAMPLES, Recording, TeachSession
+from .lesson import MAX_SAMPLES, Lesson, Recording
 
 log = logging.getLogger("l2p_bullet.teach")
 
@@ -42,38 +42,38 @@ class Busy(TeachError):
     """A training is already under way."""
 
 
-def create_app(session: TeachSession, host: str = "127.0.0.1") -> FastAPI:
+def create_app(lesson: Lesson, host: str = "127.0.0.1") -> FastAPI:
     app = new_app("l2p-bullet teach", host, extra_hosts=("testserver",))
     json_errors(app, log, L2PError, lambda exc: (409 if isinstance(exc, Busy) else 400, {}))
     static_pages(app, "l2p_bullet.teach")
 
     @app.get("/api/config")
     def config() -> dict:
-        return session.config()
+        return lesson.config()
 
     @app.get("/api/scene")
     def scene(seed: Annotated[int, Query(ge=0, le=10**9)]) -> dict:
-        return session.scene_json(seed)
+        return lesson.scene_json(seed)
 
     @app.post("/api/demos")
     def save(body: RecordingIn) -> dict:
         rec = Recording(body.scene, np.array(body.samples, float), body.start, body.end)
-        return session.save(rec)
+        return lesson.save(rec)
 
     @app.post("/api/train")
     def train() -> dict:
-        if session.job.state in ("training", "performing"):
+        if lesson.job.state in ("training", "performing"):
             raise Busy("training is already under way")
-        return session.train()
+        return lesson.train()
 
     @app.get("/api/train")
     def status() -> dict:
-        return session.status()
+        return lesson.status()
 
     @app.get("/api/runs/{k}/video")
     def video(k: int) -> FileResponse:
         try:
-            path = session.video(k)
+            path = lesson.video(k)
         except TeachError as e:
             raise StarletteHTTPException(404, str(e)) from None
         return FileResponse(path, media_type="video/mp4")

@@ -43,7 +43,7 @@ class ArmSpec:
     # (depth, hx, hy): every collision shape of the hand and fingers lower than ``depth`` above the fingertips
     # lies within +-hx along the tool's x axis and +-hy across it (metres, Bullet's collision margin
     # included); what the arm puts at the height of a block taller than the one it holds. Measured by
-    # Robot.hand_profile; tests/test_reach.py re-measures it.
+    # Robot.hand_profile; tests/test_robustness.py re-measures it.
     hand_profile: tuple[tuple[float, float, float], ...] = ()
 
 

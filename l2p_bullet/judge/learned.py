@@ -16,7 +16,7 @@ THRESHOLD = 0.5
 """Final progress at or above which the progress-model judge calls a motion a success."""
 
 
-class ProgressJudge:
+class LearnedJudge:
     """Success when the action's learned progress at the end of the motion reaches ``threshold``."""
 
     name = "progress-model"

@@ -1,4 +1,4 @@
-"""A review session: which runs are served, in which order each reviewer sees them, and what they answer.
+"""The review queue: which runs are served, in which order each reviewer sees them, and what they answer.
 
 Plain Python over the :class:`~l2p_bullet.review.store.Store` (the web app, app.py, is a thin layer on
 top), so the ordering and the checks are tested without a server.
@@ -9,7 +9,7 @@ and view): reviewers who start together spread over different runs, and a reload
 run. Items the reviewer skipped come last, oldest skip first.
 
 A run whose folder disappeared or whose trajectory.json no longer has the sha256 it was registered
-with is taken out of the queue and reported (:attr:`ReviewSession.problems`); an answer is checked
+with is taken out of the queue and reported (:attr:`ReviewQueue.problems`); an answer is checked
 against the file on disk before it is stored, so nothing is graded against a trajectory nobody saw.
 """
 
@@ -62,7 +62,7 @@ def check_reviewer(name: str) -> str:
     return name
 
 
-class ReviewSession:
+class ReviewQueue:
     """The runs served in one mode, the store they are graded into, and the labels of blind mode."""
 
     def __init__(self, store: Store, runs: list[RunInfo], mode: str = "graded", view: str = "3d",
@@ -83,7 +83,7 @@ class ReviewSession:
         self._stat = {r.run_id: _stat(r) for r in runs}
 
     # --- checks ---------------------------------------------------------------------------------
-    def check(self, run: RunInfo, full: bool = False) -> str | None:
+    def problem_of(self, run: RunInfo, full: bool = False) -> str | None:
         """None if the run's trajectory is the registered one; else "missing" or "changed" (and recorded).
 
         Cheap unless the file's size or time changed (then, or with ``full``, it is hashed).
@@ -113,7 +113,7 @@ class ReviewSession:
             return (k in skipped, skipped.get(k, ""), counts.get(k, 0), _shuffle(reviewer, it))
 
         for it in sorted((it for it in self.items if it.key not in mine), key=order):
-            if self.check(it.run) is None:
+            if self.problem_of(it.run) is None:
                 return it
         return None
 
@@ -142,7 +142,7 @@ class ReviewSession:
                 raise ReviewError(f'blind mode needs a label: one of {", ".join(self.labels)}')
         elif label is not None:
             raise ReviewError("graded mode takes no label (the action is known)")
-        problem = self.check(it.run, full=True)
+        problem = self.problem_of(it.run, full=True)
         if problem == "missing":
             raise AnswerConflict(f"the run folder {it.run.path} disappeared: not graded", "missing")
         if problem == "changed":

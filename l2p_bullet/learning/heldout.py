@@ -1,11 +1,20 @@
-"""Honest evaluation of progress models: session split and discrimination (agreement: ``agreement.py``).
+"""Held-out tests of progress models on demonstrations: session split and discrimination.
+
+The three learning modules that measure a model each answer one question:
+
+- ``heldout`` (here): does a model trained on one person's demonstrations score the other person's
+  right (per-frame error, final progress), and stay low on the other actions'?
+- ``agreement``: does a judge's score or a model's final progress rank the graded motions the way people
+  graded them (Spearman, no training)?
+- ``agreement_cv``: the same agreement for models *trained on grades*, cross-validated over the graded
+  motions so that no motion is scored by a model that saw its grade.
+
+Here:
 
 - **Session split**: models are trained on one person's capture session (all actions) and tested on the
   other person's, never on overlapping windows of the same demonstrations.
 - **Discrimination**: an action's model must stay low on the other actions' held-out demonstrations,
   because the planner maximises it.
-- **Agreement with people** (:mod:`l2p_bullet.learning.agreement`): final progress on the graded 2-D
-  demonstrations, rank-correlated with the people's mean grade.
 """
 
 from __future__ import annotations
@@ -16,9 +25,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.vocabulary import ACTIONS
+from .augment import smooth_poses
 from .demos import Demo
 from .progress_net import ProgressModel
-from .views import smooth_poses
 
 
 def demo_targets(d: Demo, model: ProgressModel, smooth_frames: int = 9) -> tuple[float, float]:

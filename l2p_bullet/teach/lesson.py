@@ -2,7 +2,7 @@
 
 A person teaching "to the left of" sees a random scene from above, drags the mover with the mouse and
 marks where the action starts and ends. The page sends what it sampled (times and the mover's poses,
-scene frame); :meth:`TeachSession.save` turns it into one demonstration of the capture-session format
+scene frame); :meth:`Lesson.save` turns it into one demonstration of the capture-session format
 and appends it to the demos file:
 
 - resampled to the captures' 30 frames per second (a quick drag is sampled on every mouse move, a still
@@ -16,9 +16,9 @@ and appends it to the demos file:
   during the event, never passed through another block and stayed on the table; the file is rewritten
   atomically and read back by ``load_session`` (``save_session``).
 
-Training runs in a thread (:meth:`TeachSession.train`): the trainer the command hands over
+Training runs in a thread (:meth:`Lesson.train`): the trainer the command hands over
 (``train_bundle`` with its settings; this module never imports torch) on every demos file of the plugin folder, then ``perform`` on a new random scene with the freshly trained bundle (the folder, not an
-installed copy), with video. :meth:`TeachSession.status` reports progress for the page to show.
+installed copy), with video. :meth:`Lesson.status` reports progress for the page to show.
 """
 
 from __future__ import annotations
@@ -128,7 +128,7 @@ class Job:
     runs: list[Path] = field(default_factory=list)
 
 
-class TeachSession:
+class Lesson:
     """One teach page: scenes by seed, demonstrations appended to the demos file, one training at a time."""
 
     def __init__(self, action: TaughtAction, trainer: Trainer | None = None, *, seed: int = 0):

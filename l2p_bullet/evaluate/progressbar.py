@@ -15,7 +15,7 @@ def _hms(seconds: float) -> str:
 
 
 class ProgressBar:
-    """``update(row)`` after every finished run; ``close()`` at the end. ``total`` counts this session's runs."""
+    """``update(row)`` after every finished run; ``close()`` at the end. ``total`` counts this call's runs."""
 
     def __init__(self, total: int, done_before: int = 0, stream: TextIO | None = None, enabled: bool = True,
                  width: int = 28):

@@ -1,4 +1,5 @@
-"""Cross-validated agreement with people: is a model trained on some people's grades right about others?
+"""Cross-validated agreement with people (``agreement`` measured for models trained on grades;
+``heldout`` tests models on held-out demonstrations): is a model trained on some grades right about others?
 
 The shipped graded motions are only 15 per folder, so agreement after training on grades is measured
 by k-fold cross-validation: the folds are stratified by folder (each fold holds 15/k motions of every
