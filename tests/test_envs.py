@@ -80,12 +80,15 @@ def test_arm_env_moves_the_simulated_block_and_renders():
     env = gym.make("l2p_bullet/Arm-v0", action="closer", render_mode="rgb_array")
     check_env(env.unwrapped, skip_render_check=True)
     obs, _ = env.reset(seed=3)
-    target = obs[:3] + np.array([0.0, 0.0, 0.0])
     rel = obs[3:5] - obs[0:2]
-    move = np.array([*(rel / np.hypot(*rel) * 1.0), 0.1], np.float32)
+    move = np.array([*(rel / np.hypot(*rel) * 1.0), 0.1], np.float32)  # one block towards B, turning 0.1 rad
     obs2, _, _, _, info = env.step(move)
     assert "illegal" not in info
-    np.testing.assert_allclose(obs2[:2], target[:2] + move[:2], atol=0.02)  # within 1 mm (0.02 block)
+    # observations are in blocks: where the simulated arm left the block, within 1 mm (0.02 block)
+    np.testing.assert_allclose(obs2[:2], obs[:2] + move[:2], atol=0.02)
+    assert obs2[2] == pytest.approx(obs[2] + move[2], abs=0.02)  # the block turned with the hand
+    np.testing.assert_allclose(obs2[3:6], obs[3:6], atol=0.02)  # the anchor was not touched
+    assert np.hypot(*(obs2[3:5] - obs2[0:2])) < np.hypot(*rel)  # closer, as asked
     img = env.render()
     assert img.shape == (240, 320, 3) and img.dtype == np.uint8 and img.std() > 5
     env.close()

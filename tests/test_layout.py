@@ -15,6 +15,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import l2p_bullet
 
 PKG = Path(l2p_bullet.__file__).parent
@@ -90,4 +92,49 @@ def test_every_torch_free_module_imports_without_torch():
             "loaded = sorted(m for m in sys.modules if m == 'torch' or m.startswith('torch.'))\n"
             "assert not loaded, loaded[:5]\n")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-2000:]
+
+
+# The one place that checks the fences at run time: the paths users run that must stay torch-free (and,
+# before the arm, pybullet-free; load_grades also web-free), run in a fresh interpreter in the order a
+# module would be loaded. The static checks above see every import statement; this catches what they
+# cannot (a dynamic import, a dependency that imports torch itself).
+RUNTIME_CHECK = """
+import sys, tempfile
+from pathlib import Path
+
+def loaded(*names):
+    return sorted(m for m in sys.modules if m.split('.')[0] in names)
+
+from l2p_bullet.review.store import Store, load_grades
+from l2p_bullet.review.original import import_original
+db = Path(tempfile.mkdtemp()) / 'r.sqlite'
+import_original(Store(db))
+assert len(load_grades(db)) == 180
+assert not loaded('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet'), 'load_grades: ' + str(loaded('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet')[:5])
+
+from l2p_bullet.plugins import registry
+from l2p_bullet.language import parse
+from l2p_bullet.core.scene import default_scene
+table = registry.phrase_table()
+assert table['around'] == 'around', table
+cmd = parse('move A around B', default_scene(), table)
+bundle = registry.load(cmd.action)
+from l2p_bullet.planning import PLANNERS, plan
+for name in sorted(set(PLANNERS) - {'default'}):
+    plan(default_scene(), 'A', 'B', bundle, planner=name, budget=3)
+assert not loaded('torch', 'pybullet'), 'parse and plan: ' + str(loaded('torch', 'pybullet')[:5])
+
+from l2p_bullet.pipeline import perform
+r = perform('move A next to B', default_scene(), out_dir=Path(tempfile.mkdtemp()) / 'run', render=False)
+assert r.verdict['success'], r.verdict
+assert not loaded('torch'), 'perform: ' + str(loaded('torch')[:5])
+"""
+
+
+@pytest.mark.slow
+def test_the_torch_free_paths_run_without_torch(tmp_path):
+    """load_grades (also without the web stack and pybullet), plugin discovery, parse, every planner (the
+    REINFORCE policy too) without pybullet, and a whole perform, in one fresh interpreter: none loads torch."""
+    r = subprocess.run([sys.executable, "-c", RUNTIME_CHECK], capture_output=True, text=True, cwd=tmp_path)
     assert r.returncode == 0, r.stderr[-2000:]

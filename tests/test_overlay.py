@@ -35,7 +35,9 @@ def test_the_bar_grows_with_progress_and_the_strip_is_deterministic():
     assert np.array_equal(overlay(img, "x", 0.3), overlay(img, "x", 0.3))
     assert _filled(overlay(img, "move A past B", None), h) == 0  # no model: "progress n/a", no bar
     assert not np.array_equal(overlay(img, "move A past B", 0.3), overlay(img, "move A around B", 0.3))
-    overlay(img, "a very long sentence " * 20, 2.0)  # clipped to the width, progress clamped
+    long = overlay(img, "a very long sentence " * 20, 2.0)  # clipped to the width, progress clamped
+    assert long.shape == overlay(img, "move A past B", 1.0).shape  # the strip does not grow with the text
+    assert _filled(long, h) == fills[3]  # a progress of 2.0 draws the full bar, no more
 
 
 def test_progress_shown_is_that_of_the_last_frame_at_or_before_the_image():

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 import time
@@ -13,14 +14,25 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 
+SOURCES = ("pyproject.toml", "README.md", "l2p_bullet")
+"""What a wheel is built from (setuptools writes build/ and *.egg-info/ next to them, so a copy is built)."""
+
+
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("wheel")
+    """A wheel built from a copy of the sources: building in place would leave build/ in the checkout."""
+    before = sorted(p.name for p in ROOT.iterdir())
+    src, out = tmp_path_factory.mktemp("src"), tmp_path_factory.mktemp("wheel")
+    skip = shutil.ignore_patterns("__pycache__", "*.egg-info", "build", "runs")
+    for name in SOURCES:
+        copy = shutil.copytree if (ROOT / name).is_dir() else shutil.copy2
+        copy(ROOT / name, src / name, **({"ignore": skip} if (ROOT / name).is_dir() else {}))
     subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(ROOT)],
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(src)],
         check=True,
     )
     (whl,) = out.glob("l2p_bullet-*.whl")
+    assert sorted(p.name for p in ROOT.iterdir()) == before, "building the wheel wrote into the checkout"
     return whl
 
 

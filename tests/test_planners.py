@@ -142,32 +142,6 @@ def test_a_mover_starting_inside_the_margin_moves_without_closing_the_gap(action
     assert World2D(scene, "A").path_free(p.path)  # every move (frames: waypoints rounded in extra)
 
 
-def test_planning_never_imports_torch(tmp_path):
-    """perform scores in numpy to stay fast; the planners (policy included) must not pull torch in."""
-    import subprocess
-    import sys
-    from pathlib import Path
-
-    code = (
-        "import sys; sys.path.insert(0, sys.argv[1])\n"
-        "import numpy as np\n"
-        "from planning_fakes import FakeBundle\n"
-        "from l2p_bullet.planning import plan\n"
-        "from l2p_bullet.planning.policy import NumpyPolicy\n"
-        "from l2p_bullet.core.scene import default_scene\n"
-        "rng = np.random.default_rng(0)\n"
-        "shapes = {'body.0': (64, 12), 'body.2': (64, 64), 'mean': (3, 64), 'log_std': (3, 64)}\n"
-        "arrays = {f'{k}.weight': rng.normal(0, 0.1, s) for k, s in shapes.items()}\n"
-        "arrays |= {f'{k}.bias': np.zeros(s[0]) for k, s in shapes.items()}\n"
-        "import l2p_bullet.planning.policy as pol\n"
-        "pol.load_policy = lambda bundle: NumpyPolicy(arrays)\n"
-        "for name in ('discrete', 'greedy', 'reinforce'):\n"
-        "    plan(default_scene(), 'A', 'B', FakeBundle('around'), planner=name, budget=3)\n"
-        "assert 'torch' not in sys.modules, 'torch was imported'\n"
-    )
-    subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent)], check=True, cwd=tmp_path)
-
-
 def test_the_policy_sees_mirror_images_alike_and_mirrors_its_moves():
     from l2p_bullet.planning.policy import policy_features, to_poses
 

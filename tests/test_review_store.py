@@ -211,16 +211,3 @@ def test_report_of_blind_labels_and_of_both_views(tmp_path, run_folder):  # noqa
     assert row["views"] == "3d+2d" and row["mean_grade"] == 8.5 and row["disparity"] is None  # one grader
     files = write_grade_report(rep, tmp_path / "rep")
     assert {"confusion.png", "views.png", "confusion.csv", "table1_app.csv"} <= {f.name for f in files}
-
-
-def test_load_grades_needs_neither_torch_nor_the_web_stack(tmp_path):
-    """The feedback learner calls it: no torch, no FastAPI, no matplotlib."""
-    import subprocess
-    import sys
-
-    store = Store(tmp_path / "r.sqlite")
-    import_original(store)
-    code = (f"import sys; from l2p_bullet.review.store import load_grades; assert len(load_grades({str(store.path)!r})) == 180;"
-            "bad = [m for m in ('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet') if m in sys.modules];"
-            "assert not bad, bad")
-    subprocess.run([sys.executable, "-c", code], check=True)
