@@ -35,11 +35,11 @@ def make_bundle(folder: Path, name: str, phrases: list[str], init: str = "", wei
 
 
 def copy_builtin_as_plugin(root: Path, builtin: str, name: str, phrases: list[str], dist: str = "l2p-test-plugin",
-                           **manifest_changes: object) -> Path:
+                           module: str | None = None, **manifest_changes: object) -> Path:
     """A plugin package ``root/<module>`` whose bundle is a copy of a built-in's trained bundle, renamed
     ``name`` with ``phrases`` and no ``[judge]`` (a plugin without rules of its own): real weights, so
     it plans, performs and scores like a third-party action would."""
-    module = "l2p_test_" + name.replace("-", "_")
+    module = module or "l2p_test_" + name.replace("-", "_")
     folder = root / module
     shutil.copytree(builtin_bundle_dir(builtin), folder)
     man = tomllib.loads((folder / MANIFEST).read_text())
