@@ -19,9 +19,9 @@ import pytest
 from plugin_fixtures import copy_builtin_as_plugin, make_bundle, make_dist
 
 TESTS = Path(__file__).resolve().parent
-SUBSET = ["test_registry.py", "test_bundle.py", "test_language.py",
-          "test_hostile_plugins.py::test_an_untrained_plugin_owning_the_phrase_is_named",
-          "test_hostile_plugins.py::test_a_plugin_claiming_a_builtin_phrase_blocks_only_that_phrase"]
+SUBSET = ["plugins/test_registry.py", "plugins/test_bundle.py", "cli/test_language.py",
+          "plugins/test_hostile_plugins.py::test_an_untrained_plugin_owning_the_phrase_is_named",
+          "plugins/test_hostile_plugins.py::test_a_plugin_claiming_a_builtin_phrase_blocks_only_that_phrase"]
 
 
 @pytest.mark.slow

@@ -10,7 +10,7 @@ disk is the workspace: every block centre, and every point of a planned path, mu
 
 A block's footprint is its outline on the table: a cube's is its square, rotated by its yaw, written
 down directly (importing trimesh to derive it from a box mesh cost 0.3-0.5 s of every command's start;
-tests/test_scene.py checks the two agree). A non-cube shape would take its outline from its mesh.
+tests/core/test_scene.py checks the two agree). A non-cube shape would take its outline from its mesh.
 """
 
 from __future__ import annotations

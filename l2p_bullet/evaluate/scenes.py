@@ -129,7 +129,7 @@ def study_scenes(size: float = 0.05, seed: int = 0) -> list[SceneSpec]:
                        SceneObject("B", "green", size, (float(xy[1, 0]), float(xy[1, 1])), float(a["theta"]))])
         try:
             scene.validate()
-        except SceneError as e:  # pragma: no cover - every shipped start fits (tests/test_evaluation_scenes.py)
+        except SceneError as e:  # pragma: no cover - every shipped start fits (tests/evaluate/test_evaluate_scenes.py)
             raise EvaluationError(f"study start {d['id']} does not fit our table: {e}") from None
         out.append(SceneSpec(f"study/{d['id']}", scene, seed + len(out), source="study"))
     return out

@@ -5,7 +5,7 @@ expensive to make: the discovered plugins, the loaded bundles with their numpy p
 (``registry.load`` and ``Bundle.progress_model`` cache them per process), one judge per action, and its
 PyBullet worlds (one without visuals, one with, made on first use). No run sees another's state: a
 planner is made per run, and ``execute_path`` resets the world to the run's scene before it starts
-(``World.reset``: a reused world records byte for byte what a new one would, tests/test_sim_world.py).
+(``World.reset``: a reused world records byte for byte what a new one would, tests/embodiment/test_sim_world.py).
 A run that fails inside the simulator leaves its world behind: the next run gets a new one.
 
 The automatic confusion matrix is computed here, where the executed trajectory is in memory: every

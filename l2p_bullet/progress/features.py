@@ -7,7 +7,7 @@ We compute those, and next to them the few continuous quantities they quantise (
 bearing, the angle swept around the anchor), because an LSTM learns a graded progress far better
 from "how close" than from "which distance bin" (a planner needs the gradient, people grade it).
 
-Invariances (property-tested in ``tests/test_qsr.py``):
+Invariances (property-tested in ``tests/progress/test_features.py``):
 - translating or rotating the whole scene changes nothing: bearings are measured from the first
   frame's anchor->mover direction, alignments in the anchor's own frame;
 - scaling the scene together with the block size changes nothing: every length is divided by the

@@ -4,7 +4,7 @@ Why: ``perform`` is a command a person waits for, and importing torch alone cost
 cores; the models are one small LSTM layer per ensemble member, whose forward pass is a few lines of
 numpy and, at the planner's batch sizes, as fast as torch's. Training stays in torch
 (:mod:`l2p_bullet.learning.progress_net`); this module reads the same safetensors weights and computes
-the same numbers, to float32 rounding. ``tests/test_progress_numpy.py`` checks the two against each
+the same numbers, to float32 rounding. ``tests/progress/test_progress_model.py`` checks the two against each
 other on random motions, so a change to the torch network that is not mirrored here fails loudly.
 Batching and the mapping back to input frames are shared (:mod:`l2p_bullet.progress.scoring`).
 """

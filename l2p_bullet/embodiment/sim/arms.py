@@ -37,13 +37,13 @@ class ArmSpec:
     wrist_offset: float = 0.0
     # Links loaded without collision shapes: they stay far above every block (for the Panda the base, the
     # shoulder, the upper arm and the forearm, at least 11.7 cm above the held block's top anywhere in the
-    # workspace, tests/test_robustness.py) and their meshes cost most of the arm's load time and a tenth
+    # workspace, tests/embodiment/test_robustness.py) and their meshes cost most of the arm's load time and a tenth
     # of every physics step.
     collision_free_links: tuple[str, ...] = ()
     # (depth, hx, hy): every collision shape of the hand and fingers lower than ``depth`` above the fingertips
     # lies within +-hx along the tool's x axis and +-hy across it (metres, Bullet's collision margin
     # included); what the arm puts at the height of a block taller than the one it holds. Measured by
-    # Robot.hand_profile; tests/test_robustness.py re-measures it.
+    # Robot.hand_profile; tests/embodiment/test_robustness.py re-measures it.
     hand_profile: tuple[tuple[float, float, float], ...] = ()
 
 

@@ -34,7 +34,7 @@ FUZZ = settings(max_examples=40, deadline=None, derandomize=True, database=None,
 class Worker:
     def __init__(self, cwd: Path):
         env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-        self.proc = subprocess.Popen([sys.executable, str(Path(__file__).with_name("fuzz_worker.py")), str(MARGIN)],
+        self.proc = subprocess.Popen([sys.executable, str(Path(__file__).parents[1] / "fuzz_worker.py"), str(MARGIN)],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env, cwd=cwd)
         ready = json.loads(self.proc.stdout.readline())
         self.limit = ready["limit"]

@@ -14,7 +14,7 @@ from gymnasium.utils.env_checker import check_env
 
 from l2p_bullet.core.scene import random_scene
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(autouse=True)

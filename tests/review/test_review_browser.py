@@ -13,7 +13,7 @@ import pytest
 from review_fixtures import live, open_page, run_folder  # noqa: F401 - fixtures (chromium: conftest.py)
 
 pytestmark = pytest.mark.slow
-DOCS_IMG = Path(__file__).resolve().parents[1] / "docs" / "img" / "review_app.png"
+DOCS_IMG = Path(__file__).resolve().parents[2] / "docs" / "img" / "review_app.png"
 
 
 def _page(browser, url: str):

@@ -36,7 +36,7 @@ from l2p_bullet.plugins.bundle import load_bundle
 
 pytestmark = pytest.mark.slow
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parents[1]  # tests/: the shared helpers (plugin_runs.py)
 SCENES = 30
 PLUGINS = {  # action: (phrase, new-action options)
     "left-of": ("to the left of", ["--frame", "viewer", "--judge", "left-of"]),
