@@ -10,7 +10,7 @@ scenes), starts the app on 127.0.0.1 with a fresh database, and drives headless 
 run wait until its video has played to the end at the page's default speed (2x), press a digit and
 Enter. It prints the keystrokes, the server's time to store an answer (its Server-Timing header: the
 transaction, the check of the run's file and the JSON, not the network), the time from Enter to the
-next run on the page, and the session's wall time. A person adds their own decision time; the
+next run on the page, and the grading's wall time. A person adds their own decision time; the
 table says how much of the 5-minute goal (issue 11) is left for it.
 """
 
@@ -128,7 +128,7 @@ def main() -> None:
          f"{statistics.median(r['enter_to_next_ms']):.0f} / {max(r['enter_to_next_ms']):.0f}"),
         ("video length per run, s (mean / max, 1x)", f"{statistics.mean(durations):.1f} / {max(durations):.1f}"),
         ("watching every video to its end at 2x, s", f"{watch:.0f}" if not args.no_watch else "not waited for"),
-        ("session wall time, keyboard only, s", f"{r['wall_s']:.0f}"),
+        ("grading wall time, keyboard only, s", f"{r['wall_s']:.0f}"),
         ("left of the 5 minutes for a person's decisions, s per run", f"{(GOAL_S - r['wall_s']) / n:.1f}"),
     ]
     width = max(len(k) for k, _ in rows)

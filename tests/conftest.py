@@ -5,35 +5,37 @@ for the review app's and the teach page's browser tests alike.
 The suite must not depend on what else is installed (issue 26: a user who followed the plugin tutorial
 had ``l2p-left-of`` and ``l2p-between`` in the environment, and two tests failed). Action plugins that
 were installed before the suite started, other than l2p-bullet's own built-ins, are hidden from the
-registry in every test (``pytest_report_header`` names them); the plugins a test installs itself in a
-temporary site folder (tests/plugin_fixtures.py) stay visible. tests/test_isolation.py runs part of the
-suite with such a plugin on the path and from another directory.
+registry in the tests and in every Python they start (tests/hide_plugins.py; ``pytest_report_header``
+names them); the plugins a test installs itself in a temporary site folder (tests/plugin_fixtures.py)
+stay visible. tests/test_isolation.py runs part of the suite with such plugins on the path and from
+another directory.
 """
 
 from __future__ import annotations
 
+import atexit
+import json
 import os
+import shutil
+import tempfile
 from importlib import metadata
+from pathlib import Path
 
+import hide_plugins
 import pytest
 from review_fixtures import CHROMIUM, CHROMIUM_FLAGS
 
-GROUP = "l2p_bullet.actions"
-
-
-def _dist_name(ep: metadata.EntryPoint) -> str:
-    dist = getattr(ep, "dist", None)
-    return "" if dist is None else str(dist.metadata["Name"] or "").lower().replace("_", "-")
-
-
-def _key(ep: metadata.EntryPoint) -> tuple[str, str, str, str]:
-    """An installed entry point: its name, value, distribution and where that distribution lies."""
-    dist = getattr(ep, "dist", None)
-    return ep.name, ep.value, _dist_name(ep), "" if dist is None else str(dist.locate_file(""))
-
-
-FOREIGN = frozenset(_key(ep) for ep in metadata.entry_points(group=GROUP) if _dist_name(ep) != "l2p-bullet")
+FOREIGN = frozenset(hide_plugins.key(ep) for ep in metadata.entry_points(group=hide_plugins.GROUP)
+                    if hide_plugins.dist_name(ep) != "l2p-bullet")
 """Action plugins installed in the environment before the tests started (not l2p-bullet's built-ins)."""
+
+if FOREIGN:
+    _site = Path(tempfile.mkdtemp(prefix="l2p-tests-site-"))
+    atexit.register(shutil.rmtree, _site, True)
+    shutil.copy(hide_plugins.__file__, _site / "sitecustomize.py")
+    os.environ[hide_plugins.VARIABLE] = json.dumps(sorted(FOREIGN | hide_plugins.hidden()))
+    os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (str(_site), os.environ.get("PYTHONPATH")) if p)
+    hide_plugins.install()
 
 
 def pytest_report_header(config) -> str | None:
@@ -41,22 +43,6 @@ def pytest_report_header(config) -> str | None:
         names = ", ".join(sorted(f"{name} ({dist})" for name, _, dist, _ in FOREIGN))
         return f"installed action plugins hidden from the tests: {names}"
     return None
-
-
-@pytest.fixture(autouse=True)
-def _installed_plugins_hidden(monkeypatch):
-    """The registry sees the built-ins and what the test itself installs, never the user's own plugins."""
-    if not FOREIGN:
-        return
-    everything = metadata.entry_points
-
-    def entry_points(**params):
-        found = everything(**params)
-        if params.get("group") != GROUP:
-            return found
-        return metadata.EntryPoints(ep for ep in found if _key(ep) not in FOREIGN)
-
-    monkeypatch.setattr(metadata, "entry_points", entry_points)
 
 
 @pytest.fixture(scope="session")

@@ -4,8 +4,9 @@ A user who followed docs/perform.md's plugin tutorial has ``l2p-left-of`` ("to t
 ``l2p-between`` installed next to l2p-bullet. This runs a representative part of the suite in a fresh
 pytest with two such plugins on the path (installed-looking distributions, tests/plugin_fixtures.py: a
 trained left-of and an untrained between) and from an unrelated working directory: the plugin tests
-(registry, bundles, the hostile-plugin matrix with its own "left-of"), parsing, and scene files. The
-conftest hides the pre-installed plugins from every test and says so in the header.
+(registry, bundles, the hostile-plugin matrix with its own "left-of", a subprocess seeing what the test
+sees) and parsing. The conftest hides the pre-installed plugins from every test and every Python the
+tests start (tests/hide_plugins.py) and says so in the header.
 """
 
 from __future__ import annotations

@@ -7,6 +7,7 @@ Fake plugins are real installed distributions as far as importlib.metadata is co
 from __future__ import annotations
 
 import json
+import subprocess
 import sys
 
 import pytest
@@ -152,3 +153,11 @@ def test_new_action_refuses_an_installed_phrase(plugins_dir, tmp_path):
     r = CliRunner().invoke(main, ["new-action", "lateral", "--phrase", "sideways", "--out", str(tmp_path / "p")])
     assert r.exit_code != 0 and 'already belongs to the installed action "sideways"' in r.output
     assert not (tmp_path / "p").exists()
+
+
+def test_a_python_the_tests_start_sees_the_plugins_the_test_sees():
+    """The CLI in a subprocess, the evaluate pool's spawned workers: they must list the same plugins as
+    the test process (tests/conftest.py hides pre-installed plugins in both, or the rows disagree)."""
+    code = "from l2p_bullet.plugins import registry; print(sorted(p.name for p in registry.discover()))"
+    there = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert there.strip() == str(sorted(p.name for p in registry.discover()))
