@@ -109,6 +109,8 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
     """The recipe's extra sequences for ``action`` (empty for the current recipe)."""
     rng = np.random.default_rng(seed + 25)
     dc = recipe.data
+    if qcfg.viewer or qcfg.anchors > 1:  # mirror images and one-anchor snapping would be wrong there
+        return []
     turns = dc.turn_label.get(action)
     out: list[TrainingSequence] = []
 
@@ -125,11 +127,11 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
                 add(g.domain(e, "rings", int(rng.integers(1, 4))), e, True)
                 if action == "around":
                     add(g.domain(e, "grid", int(rng.integers(2, 5))), e, True)
-            if recipe.planner_negatives:
+            if recipe.planner_negatives and action in ACTIONS:  # wrong motions are per built-in meaning
                 for w in _wrong(e, rng):
                     add(w, e, False)
     if recipe.contrastive:
-        for other in dc.negatives.get(action, []):
+        for other in dc.negatives.get(action, [o for o in demos if o != action]):
             for d in demos.get(other, []):
                 for e in _event_views(d, dc):
                     add(g.domain(e, "straight", int(rng.integers(1, 4))), e, False)
