@@ -1,0 +1,73 @@
+"""Validation without grades (issue 25): the suite of ``l2p_bullet.learning.generalise`` for training recipes.
+
+For each recipe, every action's model is trained on one person's capture session and scored on the
+other person's demonstrations, both ways (10 trainings a recipe, cached under ``--cache``): full and
+partial events, the other actions' events, the same events as planner moves, and exploit probes made
+from them. Prints one Markdown table per recipe and a summary (the suite score, goals met). No grade
+is read.
+
+    nice -n 10 .venv/bin/python benchmarks/bench_generalise.py --recipes current,planner --ensemble 3 --epochs 20
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import torch
+
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.learning import generalise as g
+from l2p_bullet.learning.recipes import recipes, run_suite
+
+
+def table(name: str, reps: dict[str, g.ActionReport]) -> str:
+    head = ("| action | full | 25/50/75 % | partial MAE | monotone | worst other (contained) | "
+            "straight / rings / grid | domain gap | probe / plain | probe below |")
+    lines = [f"### {name}: suite score {g.suite_score(reps):.3f}\n", head, "|" + "---|" * 10]
+    for a in ACTIONS:
+        r = reps[a]
+        worst = max((b for b in r.row if b not in g.CONTAINED.get(a, ())), key=lambda b: r.row[b])
+        cont = "" if a not in g.CONTAINED else f" ({r.contained:.2f})"
+        lines.append(
+            f"| {a} | {r.full:.2f} | {'/'.join(f'{p:.2f}' for p in r.partial)} | {r.partial_mae:.2f} | "
+            f"{r.monotone:.0%} | {r.off:.2f} {worst}{cont} | "
+            f"{' / '.join(f'{r.domains[k]:.2f}' for k in g.DOMAINS)} | {r.domain_gap:.2f} | "
+            f"{r.probe:.2f} / {r.plain:.2f} | {r.probe_below:.0%} |")
+    met = {a: sum(g.goals_met(reps[a]).values()) for a in ACTIONS}
+    lines.append("\ngoals met (full >= 0.8, off <= 0.2, monotone >= 90 %): "
+                 + ", ".join(f"{a} {n}/3" for a, n in met.items()))
+    return "\n".join(lines)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--recipes", default="current", help="comma-separated names (or 'all-recipes')")
+    ap.add_argument("--ensemble", type=int, default=3)
+    ap.add_argument("--epochs", type=int, default=20)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--cache", type=Path, default=Path("runs/generalise"),
+                    help="trained session-split models are kept here (outside git)")
+    args = ap.parse_args()
+    torch.set_num_threads(1)
+    known = recipes(args.ensemble, args.epochs)
+    names = list(known) if args.recipes == "all-recipes" else args.recipes.split(",")
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        sys.exit(f"error: unknown recipe(s) {', '.join(unknown)} (known: {', '.join(known)})")
+    summary = []
+    for n in names:
+        t0 = time.perf_counter()
+        reps = run_suite(known[n], args.cache, log=lambda s: print(s, file=sys.stderr, flush=True), seed=args.seed)
+        print(table(f"{n} ({args.ensemble} LSTMs x {args.epochs} epochs, seed {args.seed})", reps) + "\n", flush=True)
+        summary.append((n, g.suite_score(reps), sum(sum(g.goals_met(r).values()) for r in reps.values()),
+                        time.perf_counter() - t0))
+    print("| recipe | suite score | goals met (of 15) | seconds |\n|---|---:|---:|---:|")
+    for n, s, m, t in summary:
+        print(f"| {n} | {s:.3f} | {m} | {t:.0f} |")
+
+
+if __name__ == "__main__":
+    main()

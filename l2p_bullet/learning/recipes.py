@@ -1,0 +1,211 @@
+"""Training recipes compared on the grade-free suite (:mod:`l2p_bullet.learning.generalise`), and the
+session-split models they give, cached on disk so a table can be re-printed without re-training.
+
+A recipe is the current training set (:func:`trainset.build`, unchanged: its sequences and their hashes
+are those of ``l2p-bullet train``) plus optional extra sequences appended after it, drawn from their own
+generator so the current part stays bit-identical:
+
+- ``planner_positives``: each own event (and its mirror image) as the planners make motions, straight
+  moves through 1-3 of its own poses snapped to the discrete planner's rings (around also snapped to the
+  2-D study's move grid), labelled like the event;
+- ``planner_negatives``: wrong piecewise-straight motions made from each own event, label 0 on their
+  tail like every negative: closer backs off 1.5-4 blocks and returns to its start distance, away goes
+  out and comes back, closer / away / next-to run backwards, past goes to its closest approach and
+  back, around goes half way round and straight back;
+- ``contrastive``: the other actions' demonstrations (those ``DataConfig.negatives`` names) in the
+  planner's domain too, straightened and snapped to the rings, as negatives;
+- ``turn_power``: around's net-turn label raised to this power (2: half a turn earns 0.25, not 0.5).
+
+Nothing here reads a grade.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from ..core.vocabulary import ACTIONS
+from ..progress.config import ModelConfig
+from ..progress.features import QSRConfig
+from . import generalise as g
+from .demos import Demo
+from .progress_net import ProgressModel, ensemble_arrays
+from .train_progress import ProgressTrainConfig, all_demos, train_net
+from .trainset import DataConfig, TrainingSequence, _labelled, build
+from .validation import FOLDS
+from .views import mirror
+
+
+@dataclass(frozen=True)
+class Recipe:
+    name: str
+    data: DataConfig = field(default_factory=DataConfig)
+    train: ProgressTrainConfig = field(default_factory=ProgressTrainConfig)
+    planner_positives: bool = False
+    planner_negatives: bool = False
+    contrastive: bool = False
+    turn_power: float = 1.0
+
+    def describe(self) -> dict:
+        return {"name": self.name, "planner_positives": self.planner_positives,
+                "planner_negatives": self.planner_negatives, "contrastive": self.contrastive,
+                "turn_power": self.turn_power, **self.train.to_dict()}
+
+
+def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
+    """The recipes tried (issue 25), at a given ensemble size and length of training."""
+    t = ProgressTrainConfig(ensemble=ensemble, epochs=epochs)
+    small = dataclasses.replace(t, hidden=16)
+    return {r.name: r for r in [
+        Recipe("current", train=t),
+        Recipe("small", train=small),
+        Recipe("planner", train=t, planner_positives=True, planner_negatives=True),
+        Recipe("contrastive", train=t, contrastive=True),
+        Recipe("planner+contrastive", train=t, planner_positives=True, planner_negatives=True, contrastive=True),
+        Recipe("around-convex", train=t, turn_power=2.0),
+        Recipe("all", train=t, planner_positives=True, planner_negatives=True, contrastive=True, turn_power=2.0),
+    ]}
+
+
+def _event_views(d: Demo, dcfg: DataConfig) -> list[g.Event]:
+    """A demonstration's event and its mirror image, smoothed (metres)."""
+    e = g.events([d], dcfg.smooth_frames)[0]
+    return [e, dataclasses.replace(e, mover=mirror(e.mover), anchor=mirror(e.anchor[None])[0])]
+
+
+def _wrong(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
+    """Wrong piecewise-straight motions made from an own event (module docstring)."""
+    m, c, step = e.mover, e.anchor, 0.25 * e.size
+    p0, p1 = m[0], m[-1]
+    if e.action == "closer":
+        d = p0[:2] - c[:2]
+        r0 = max(float(np.linalg.norm(d)), 1e-9)
+        out, back = p0.copy(), p0.copy()
+        out[:2] = p0[:2] + d / r0 * rng.uniform(1.5, 4.0) * e.size
+        back[:2] = c[:2] + d / r0 * (r0 + rng.uniform(-0.3, 0.3) * e.size)
+        ways = [np.array([p0, out, back]), np.array([p1, p0])]
+    elif e.action == "away":
+        ways = [np.array([p0, p1, p0 + np.r_[rng.normal(0, 0.3 * e.size, 2), 0.0]]), np.array([p1, p0])]
+    elif e.action == "next-to":
+        ways = [np.array([p1, p0])]
+    elif e.action == "past":
+        k = int(np.argmin(np.hypot(*(m[:, :2] - c[:2]).T)))
+        ways = [np.array([p0, m[k], p0])]
+    else:
+        half = g.waypoints(m[: max(2, len(m) // 2)], 2)
+        ways = [np.concatenate([half, half[-2::-1]])]
+    return [g.straight_moves(w, step) for w in ways]
+
+
+def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
+           seed: int) -> list[TrainingSequence]:
+    """The recipe's extra sequences for ``action`` (empty for the current recipe)."""
+    rng = np.random.default_rng(seed + 25)
+    dc = recipe.data
+    if qcfg.viewer or qcfg.anchors > 1:  # mirror images and one-anchor snapping would be wrong there
+        return []
+    turns = dc.turn_label.get(action)
+    out: list[TrainingSequence] = []
+
+    def add(m: np.ndarray, e: g.Event, positive: bool) -> None:
+        a = np.repeat(e.anchor[None], len(m), axis=0)
+        s = _labelled(m, a, e.size, 0, len(m) - 1, qcfg, dc, positive, turns if positive else None)
+        if not positive:
+            s.weight = neg_weight
+        out.append(s)
+
+    for d in demos.get(action, []):
+        for e in _event_views(d, dc):
+            if recipe.planner_positives:
+                add(g.domain(e, "rings", int(rng.integers(1, 4))), e, True)
+                if action == "around":
+                    add(g.domain(e, "grid", int(rng.integers(2, 5))), e, True)
+            if recipe.planner_negatives and action in ACTIONS:  # wrong motions are per built-in meaning
+                for w in _wrong(e, rng):
+                    add(w, e, False)
+    if recipe.contrastive:
+        for other in dc.negatives.get(action, [o for o in demos if o != action]):
+            for d in demos.get(other, []):
+                for e in _event_views(d, dc):
+                    add(g.domain(e, "straight", int(rng.integers(1, 4))), e, False)
+                    add(g.domain(e, "rings", int(rng.integers(1, 4))), e, False)
+    return out
+
+
+def training_set(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig,
+                 seed: int = 0) -> list[TrainingSequence]:
+    """:func:`trainset.build` (the current recipe, bit for bit) plus the recipe's extras."""
+    seqs = build(action, demos, qcfg, recipe.data, seed=seed)
+    neg_w = next((s.weight for s in seqs if not s.positive), 1.0)
+    seqs += extras(recipe, action, demos, qcfg, neg_w, seed)
+    if recipe.turn_power != 1.0 and action in recipe.data.turn_label:
+        for s in seqs:
+            if s.positive:
+                s.y = (s.y ** recipe.turn_power).astype(np.float32)
+    return seqs
+
+
+def train(recipe: Recipe, action: str, demos: dict[str, list[Demo]], seed: int = 0,
+          tick: Callable[[], None] | None = None) -> ProgressModel:
+    """The recipe's ensemble for ``action`` (members seeded ``seed * 1000 + i``, as ``train_action``)."""
+    q = QSRConfig()
+    seqs = training_set(recipe, action, demos, q, seed)
+    nets = [train_net(seqs, q.n_features, recipe.train, seed * 1000 + i, tick)[0] for i in range(recipe.train.ensemble)]
+    return ProgressModel.from_nets(nets, ModelConfig(n_features=q.n_features, hidden=recipe.train.hidden,
+                                                     ensemble=len(nets)), q)
+
+
+def _load(path: Path, recipe: Recipe) -> ProgressModel:
+    from safetensors.numpy import load_file
+
+    q = QSRConfig()
+    arrays = load_file(str(path))
+    return ProgressModel({k: torch.from_numpy(v) for k, v in arrays.items()},
+                         ModelConfig(n_features=q.n_features, hidden=recipe.train.hidden,
+                                     ensemble=recipe.train.ensemble), q)
+
+
+def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
+                 seed: int = 0) -> list[dict[str, ProgressModel]]:
+    """Per fold of :data:`validation.FOLDS`, every action's model trained on the fold's training session
+    (read from ``cache`` when a model of the same recipe is there, else trained and written)."""
+    from safetensors.numpy import save_file
+
+    folds = []
+    tag = json.dumps(recipe.describe(), sort_keys=True)
+    for train_s, _ in FOLDS:
+        demos = all_demos(sessions={train_s})
+        models = {}
+        for a in ACTIONS:
+            path = None if cache is None else cache / recipe.name / f"{train_s}-{a}-s{seed}.safetensors"
+            if path is not None and path.is_file() and path.with_suffix(".json").read_text() == tag:
+                models[a] = _load(path, recipe)
+                continue
+            t0 = time.perf_counter()
+            models[a] = train(recipe, a, demos, seed)
+            if log:
+                log(f"{recipe.name}: {a} on {train_s} trained in {time.perf_counter() - t0:.0f} s")
+            if path is not None:
+                path.parent.mkdir(parents=True, exist_ok=True)
+                save_file(ensemble_arrays(models[a].nets), str(path))
+                path.with_suffix(".json").write_text(tag)
+        folds.append(models)
+    return folds
+
+
+def run_suite(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
+              seed: int = 0) -> dict[str, g.ActionReport]:
+    """The suite for a recipe: its session-split models, scored on the other person's events, both ways."""
+    folds = split_models(recipe, cache, log, seed)
+    reports = []
+    for (_, test_s), models in zip(FOLDS, folds, strict=True):
+        test = {a: g.events(ds) for a, ds in all_demos(sessions={test_s}).items()}
+        reports.append(g.score_fold(models, test))
+    return g.merge(reports)
