@@ -18,7 +18,7 @@ every held-out demonstration of the other person, four ways, for models trained 
    progress could cheat with (:func:`probe`) must score below the plain (straightened) event.
 
 Everything is event-only (cropped to the event, no context: a planner's path has none), scored with
-smoothed poses as in :mod:`l2p_bullet.learning.validation`. The recipes compared on it and the cache
+smoothed poses as in :mod:`l2p_bullet.learning.heldout`. The recipes compared on it and the cache
 of their session-split models live in :mod:`l2p_bullet.learning.recipes`.
 """
 
@@ -31,8 +31,8 @@ import numpy as np
 from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
 from ..planning.proposals import DIRECTIONS, DISTANCES
+from .augment import smooth_poses
 from .demos import Demo
-from .views import smooth_poses
 
 CONTAINED: dict[str, tuple[str, ...]] = {
     "closer": ("next-to",),

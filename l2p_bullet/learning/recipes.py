@@ -35,12 +35,12 @@ from ..core.vocabulary import ACTIONS
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from . import generalise as g
+from .augment import mirror
 from .demos import Demo
+from .heldout import FOLDS
 from .progress_net import ProgressModel, ensemble_arrays
 from .train_progress import ProgressTrainConfig, all_demos, train_net
 from .trainset import DataConfig, TrainingSequence, _labelled, build
-from .validation import FOLDS
-from .views import mirror
 
 
 @dataclass(frozen=True)
@@ -174,7 +174,7 @@ def _load(path: Path, recipe: Recipe) -> ProgressModel:
 
 def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
                  seed: int = 0) -> list[dict[str, ProgressModel]]:
-    """Per fold of :data:`validation.FOLDS`, every action's model trained on the fold's training session
+    """Per fold of :data:`heldout.FOLDS`, every action's model trained on the fold's training session
     (read from ``cache`` when a model of the same recipe is there, else trained and written)."""
     from safetensors.numpy import save_file
 
