@@ -209,3 +209,37 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path):
         assert res.stderr.startswith("error: ") and res.stderr.count("\n") == 1, (args, res.stderr)
         assert message in res.stderr, (args, res.stderr)
         assert "Traceback" not in res.output
+
+
+# --- the benchmark's session models ----------------------------------------------------------------------
+@pytest.mark.slow
+def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, monkeypatch):
+    """``learning.sessions`` keeps a cached session bundle only when it was trained on the same demonstrations
+    with the same seed and recipe; otherwise it trains again (here: a sentinel that says it would)."""
+    import shutil
+
+    from l2p_bullet.learning import sessions
+    from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, data_digest
+    from l2p_bullet.learning.trainset import DataConfig
+    from l2p_bullet.plugins.bundle import builtin_bundle_dir, update_manifest
+
+    class Trains(Exception):
+        pass
+
+    def train_action(*args, **kwargs):
+        raise Trains
+
+    monkeypatch.setattr(sessions, "train_action", train_action)
+    folder = tmp_path / "Session1" / "closer"
+    shutil.copytree(builtin_bundle_dir("closer"), folder)
+    digest = data_digest(all_demos(sessions={"Session1"}))
+    update_manifest(folder, "training", {"data_digest": digest, "seed": 0, "data": DataConfig().to_dict(),
+                                         **ProgressTrainConfig().to_dict()})
+    assert sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",)) == {"closer": folder}
+    with pytest.raises(Trains):  # another seed
+        sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), seed=1)
+    with pytest.raises(Trains):  # the other session's demonstrations
+        sessions.session_bundles("Session2", tmp_path / "Session1", actions=("closer",))
+    update_manifest(folder, "training", {"epochs": 29})
+    with pytest.raises(Trains):  # another recipe
+        sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",))
