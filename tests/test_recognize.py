@@ -182,6 +182,7 @@ def _bad_inputs(tmp_path: Path) -> list[tuple[list[str], str]]:
     (tmp_path / "empty").mkdir()
     (tmp_path / "bad.json").write_text("{not json")
     (tmp_path / "no_anchor.json").write_text(json.dumps({"size": 0.05, "mover": [[0, 0, 0], [0.1, 0, 0]]}))
+    (tmp_path / "km.json").write_text(json.dumps({"size": 0.05, "mover": [[0, 0, 0], [1e5, 0, 0]], "anchor": [0, 0, 0]}))
     nan = _four_block_trajectory(tmp_path / "nan.json")
     nan.write_text(nan.read_text().replace('"D": [0.1, 0.15', '"D": [NaN, 0.15', 1))
     no_size = _four_block_trajectory(tmp_path / "no_size.json")
@@ -191,6 +192,7 @@ def _bad_inputs(tmp_path: Path) -> list[tuple[list[str], str]]:
         ([str(tmp_path / "empty")], "a folder without trajectory.json"),
         ([str(tmp_path / "bad.json")], "is not valid JSON"),
         ([str(tmp_path / "no_anchor.json")], 'missing "anchor"'),
+        ([str(tmp_path / "km.json")], "block sides"),
         ([str(nan)], "not valid JSON"),
         ([str(no_size)], '"D" must be'),
         (["--demo", "past"], "--demo expects ACTION:INDEX"),

@@ -9,17 +9,19 @@ import click
 @click.argument("motion", required=False, type=click.Path())
 @click.option("--demo", metavar="ACTION:INDEX", help="Recognise a shipped human demonstration instead, e.g. past:3.")
 @click.option("--action", "actions", multiple=True, metavar="ACTION|BUNDLE",
-              help="Recognise with this action only (repeatable; an installed action or a bundle folder). "
-                   "Default: every installed action.")
+              help="Recognise with this action (repeatable; an installed action or a bundle folder) "
+                   "instead of every installed action.")
 @click.option("--top", type=click.IntRange(min=1), default=10, show_default=True, help="Readings listed (text output).")
 @click.option("--json", "as_json", is_flag=True, help="Print every reading as JSON on stdout.")
 def recognize(motion: str | None, demo: str | None, actions: tuple[str, ...], top: int, as_json: bool) -> None:
     """Say which action MOTION shows: every installed action's final progress, ranked.
 
     \b
-    MOTION is a run folder, a trajectory.json, a plan.json or a scoring input {"size", "mover",
-    "anchor"}. Each block that moved is read against each other block (a two-anchor action such as
-    "between" against each pair of other blocks); the best reading comes first, as a sentence.
+    MOTION is a run folder, a trajectory.json, a plan.json or a scoring
+    input {"size", "mover", "anchor"}. Each block that moved is read
+    against each other block (a two-anchor action such as "between"
+    against each pair of other blocks); the best reading comes first,
+    as a sentence.
 
     \b
     Examples:
