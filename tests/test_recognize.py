@@ -192,7 +192,7 @@ def test_a_two_anchor_action_reads_every_ordered_pair_of_other_blocks(tmp_path):
 def test_a_two_anchor_action_is_not_read_with_one_other_block(tmp_path):
     folder = _two_anchor_bundle(tmp_path / "between")
     res = _run("--demo", "past:0", "--action", str(folder), ok=False)
-    assert res.exit_code == 2 and "no installed action reads 1 reference block" in res.stderr
+    assert res.exit_code == 2 and "none of the actions reads 1 reference block" in res.stderr
 
 
 # --- bad input -----------------------------------------------------------------------------------------
@@ -205,7 +205,11 @@ def _bad_inputs(tmp_path: Path) -> list[tuple[list[str], str]]:
     nan.write_text(nan.read_text().replace('"D": [0.1, 0.15', '"D": [NaN, 0.15', 1))
     no_size = _four_block_trajectory(tmp_path / "no_size.json")
     no_size.write_text(no_size.read_text().replace('"D": {"size": 0.05}', '"D": {}'))
+    many = {"schema": 1, "mover": "b0", "anchor": "b1", "objects": {f"b{i}": {"size": 0.05} for i in range(40)},
+            "frames": [{"poses": {f"b{i}": [0.1 * i + 0.1 * t, 0.0, 0.025, 0.0] for i in range(40)}} for t in (0, 1)]}
+    (tmp_path / "many.json").write_text(json.dumps(many))  # 40 blocks all moved: 40 x 39 x 5 readings
     return [
+        ([str(tmp_path / "many.json")] + BUILTIN, "7800 readings; at most 5000"),
         ([str(tmp_path / "missing.json")], "does not exist"),
         ([str(tmp_path / "empty")], "a folder without trajectory.json"),
         ([str(tmp_path / "bad.json")], "is not valid JSON"),

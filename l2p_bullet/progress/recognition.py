@@ -19,6 +19,7 @@ Numpy only (no torch): the same models ``perform`` plans with.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from itertools import permutations
 from pathlib import Path
@@ -114,20 +115,18 @@ def recognize(tracks: Tracks, recognisers: list[Recogniser]) -> Recognition:
     if len(names) < 2:
         raise PathError(f"{tracks.source}: recognition needs at least two blocks (a mover and a reference)")
     moved = tracks.moved()
-    jobs = []  # (order, recogniser, mover, anchor tuples)
-    for order, r in enumerate(recognisers):
-        k = getattr(r.model, "anchors", 1)
-        for m in moved:
-            others = [n for n in names if n != m]
-            groups = list(permutations(others, k))
-            if groups:
-                jobs.append((order, r, m, groups))
-    n = sum(len(g) for *_, g in jobs)
-    if n > MAX_READINGS:
+    n = len(moved) * sum(math.perm(len(names) - 1, getattr(r.model, "anchors", 1)) for r in recognisers)
+    if n > MAX_READINGS:  # counted before any list is built: a hostile file must not exhaust memory
         raise PathError(f"{tracks.source}: {len(moved)} moved blocks among {len(names)} give {n} readings; at most "
                         f"{MAX_READINGS} are scored (recognise fewer blocks at a time)")
-    if not jobs:
-        raise PathError(f"{tracks.source}: no installed action reads {len(names) - 1} reference block(s)")
+    if not n:
+        raise PathError(f"{tracks.source}: none of the actions reads {len(names) - 1} reference block(s)")
+    jobs = []  # (order, recogniser, mover, anchor tuples)
+    for order, r in enumerate(recognisers):
+        for m in moved:
+            groups = list(permutations([x for x in names if x != m], getattr(r.model, "anchors", 1)))
+            if groups:
+                jobs.append((order, r, m, groups))
     ranked = []
     for order, r, m, groups in jobs:
         for j, (g, final) in enumerate(zip(groups, _finals(r.model, tracks, m, groups), strict=True)):
