@@ -28,12 +28,18 @@ from typing import Any
 
 import numpy as np
 
+from . import planning
 from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
+from .embodiment import execute
 from .errors import L2PError, LanguageError, PlanError, PluginError
+from .judge import judge_context, judge_for
 from .language import Command, parse
+from .planning import feasibility, resolve_planner
+from .planning.plot import plot_plan
+from .plugins import registry
 
 StageFn = Callable[[str], None]
 
@@ -95,8 +101,6 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
     A sentence whose preposition belongs to a broken plugin, or is claimed by two plugins, gets that
     plugin's error (naming it), not "not a preposition I know"; every other phrase keeps working.
     """
-    from .plugins import registry
-
     plugins = registry.discover() if plugins is None else plugins
     table = registry.phrase_table(plugins)
     blocked = registry.blocked_phrases(plugins)
@@ -121,8 +125,6 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
     """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, and
     the room checks of the rule judge the action's manifest names (``[judge] rules``), if any."""
-    from .planning import feasibility
-
     info = next((p for p in plugins if p.name == cmd.action), None)
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
@@ -144,9 +146,6 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     failed, so a failed run is still explained on disk. ``bundle`` performs with that loaded bundle
     instead of the installed plugin's (``l2p-bullet improve`` tries each round's re-trained bundle).
     """
-    from .judge import judge_for
-    from .plugins import registry
-
     clock = StageClock(on_stage)
     clock.stage("parse")
     check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
@@ -185,8 +184,6 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
 
 def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
     """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched."""
-    from .planning import resolve_planner
-
     resolve_planner(planner)
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**32:
         raise PlanError(f"the seed must be an integer from 0 to {2**32 - 1} (got {str(seed)[:20]})")
@@ -207,8 +204,6 @@ def _summary_or_empty(path: Path) -> dict:
 def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: Path, clock: StageClock, *,
          planner: str, seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
          world: Any = None) -> PerformResult:
-    from . import planning
-    from .embodiment import execute
 
     size = scene.get(cmd.mover).size
     clock.stage("plan", f"planning with the {planner} planner")
@@ -296,9 +291,6 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     The plan maximises the action's learned progress; the judge only reads the result (the planner never
     sees it), exactly as ``perform`` judges its executed trajectory.
     """
-    from . import planning
-    from .judge import judge_for
-    from .plugins import registry
 
     check_options(planner, seed, budget, threshold)  # a bad name fails before anything is loaded
     scene.validate()
@@ -318,22 +310,8 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
         result.save(folder / "plan.json")
         if plot:
-            from .planning.plot import plot_plan
-
             plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
-
-
-def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None) -> dict[str, Any]:
-    """The keywords a judge gets besides mover, anchor and size: ``anchors`` (every reference object's
-    poses) only for a two-anchor action and ``viewer`` only for a viewer-frame one, so a plugin's judge
-    written for one-anchor relative actions keeps working unchanged."""
-    kw: dict[str, Any] = {}
-    if len(anchors) > 1:
-        kw["anchors"] = anchors
-    if viewer is not None:
-        kw["viewer"] = np.asarray(viewer, float)
-    return kw
 
 
 def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int) -> None:

@@ -49,9 +49,9 @@ class Live:
     def __init__(self, db: Path, runs: Path, mode: str = "graded", view: str = "3d"):
         from l2p_bullet.review.app import create_app
         from l2p_bullet.review.runs import find_runs
-        from l2p_bullet.review.server import start
         from l2p_bullet.review.session import ReviewSession
         from l2p_bullet.review.store import Store
+        from l2p_bullet.web.server import start
 
         self.store = Store(db)
         infos = find_runs([runs])

@@ -89,7 +89,7 @@ def review_cmd(runs: tuple[str, ...], db: str | None, host: str, port: int, mode
 
 
 def _schema_version() -> int:
-    from ..review.schema import SCHEMA_VERSION
+    from ..data.review_schema import SCHEMA_VERSION
 
     return SCHEMA_VERSION
 
@@ -97,9 +97,9 @@ def _schema_version() -> int:
 def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade_changed: bool) -> None:
     from ..plugins import registry
     from ..review.app import create_app
-    from ..review.server import bind, serve, url_of
     from ..review.session import ReviewSession
-    from ..review.web import LOOPBACK
+    from ..web.apps import LOOPBACK
+    from ..web.server import bind, serve, url_of
 
     reg = store.register_runs(run_infos, accept_changed=regrade_changed)
     changed = {run.run_id for run, _, _ in reg.changed}

@@ -15,11 +15,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.contracts import trajectory_poses
+from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, PathError, ReachError
 from . import motion, reach
-from .sim.camera import RenderSettings
+from .record import Recorder, versions
+from .sim.camera import Camera, RenderSettings
+from .sim.primitives import Primitives
+from .sim.world import World
 
 if TYPE_CHECKING:  # the simulator loads only when a path is executed
     from .sim.world import World
@@ -101,8 +105,6 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
     it would in a new world) and left open. A world made here is closed here.
     """
-    from ..core.runfolder import write_summary
-    from .sim.world import World
 
     meta = dict(meta or {})
     meta.setdefault("mover", mover)
@@ -147,9 +149,6 @@ def _reuse(world: World, scene: Scene, render: RenderSettings | None) -> None:
 
 def _primitives(world: World, render: RenderSettings | None):
     """The arm's primitives with a recorder (and a camera when rendering) attached to ``world``."""
-    from .record import Recorder
-    from .sim.camera import Camera
-    from .sim.primitives import Primitives
 
     camera = Camera(world, render) if render is not None else None
     return Primitives(world, Recorder(world, camera))
@@ -254,8 +253,6 @@ def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
 
 
 def _summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:
-    from .record import versions
-
     return {
         "schema": 1,
         **{k: meta.get(k) for k in ("sentence", "action", "mover", "anchor")},

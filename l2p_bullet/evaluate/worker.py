@@ -27,6 +27,15 @@ from typing import Any
 
 import numpy as np
 
+from .. import planning
+from ..core.contracts import trajectory_poses
+from ..core.scene import Scene
+from ..embodiment.sim.world import World
+from ..errors import L2PError
+from ..judge import judge_context, judge_for
+from ..judge.rules import square_gap
+from ..pipeline import check_feasible, perform, resolve
+from ..plugins import registry
 from .tasks import Task
 
 TIMING_FIELDS = ("plan_s", "execute_s", "total_s", "wall_s", "timings", "worker", "finished_at")
@@ -57,8 +66,6 @@ class Worker:
     """Runs tasks one after another in one process; see the module docstring for what it keeps."""
 
     def __init__(self) -> None:
-        from ..plugins import registry
-
         self.plugins = registry.discover()
         self.ident = f"{socket.gethostname()}:{os.getpid()}"
         self._judges: dict[str, Any] | None = None
@@ -69,8 +76,6 @@ class Worker:
     def judges(self) -> dict[str, tuple[Any, Any]]:
         """action -> (judge, progress model) for every usable installed action."""
         if self._judges is None:
-            from ..judge import judge_for
-            from ..plugins import registry
 
             self._judges = {}
             for info in self.plugins:
@@ -90,8 +95,6 @@ class Worker:
     def world(self, scene: Any, visuals: bool) -> Any:
         """This process's world (with or without the arm's visuals), made on first use."""
         if visuals not in self._worlds:
-            from ..embodiment.sim.world import World
-
             self._worlds[visuals] = World(scene, visuals=visuals)
         return self._worlds[visuals]
 
@@ -111,8 +114,6 @@ class Worker:
     # --- one task ------------------------------------------------------------------------------
     def run(self, task: Task) -> dict[str, Any]:
         """The task's row; an L2PError (or a bug) in the run becomes the row's error, never an exception."""
-        from ..errors import L2PError
-
         t0 = time.perf_counter()
         row = empty_row(task)
         try:
@@ -129,9 +130,6 @@ class Worker:
         return row
 
     def _perform(self, task: Task, row: dict) -> None:
-        from ..core.contracts import trajectory_poses
-        from ..core.scene import Scene
-        from ..pipeline import perform
 
         keep_always = task.render or task.keep == "all"
         out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
@@ -170,11 +168,6 @@ class Worker:
                 row["run_dir"] = str(out)
 
     def _plan(self, task: Task, row: dict) -> None:
-        from .. import planning
-        from ..core.scene import Scene
-        from ..judge import judge_for
-        from ..pipeline import check_feasible, judge_context, resolve
-        from ..plugins import registry
 
         scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
         cmd = resolve(task.sentence, scene, self.plugins)
@@ -204,8 +197,6 @@ class Worker:
 
     def _confusion(self, row: dict, mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
         """Every installed action's verdict and learned progress on this motion; the final gap to the anchor."""
-        from ..judge.rules import square_gap
-
         judged, scored = {}, {}
         for name, (judge, model) in self.judges().items():
             if getattr(model, "anchors", 1) != 1:  # a two-anchor action cannot judge a one-anchor motion

@@ -41,6 +41,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..core.frames import VIEWPOINTS, viewer_offset
 from ..core.geometry import polygons_overlap, swept_angle
 from ..core.vocabulary import canonical_action
 from ..errors import UnknownActionError
@@ -179,8 +180,6 @@ def _side(name: str) -> Callable[..., Verdict]:
 
     def rule(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float, *,
              viewer: np.ndarray | None = None, **_: object) -> Verdict:
-        from ..core.frames import VIEWPOINTS, viewer_offset
-
         v = np.asarray(VIEWPOINTS["robot"] if viewer is None else viewer, float)
         lat, dep = viewer_offset(mover[-1, :2] / size, anchor[-1, :2] / size, v[:2] / size)
         r = max(float(np.hypot(lat, dep)), 1e-9)

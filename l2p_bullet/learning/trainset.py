@@ -43,9 +43,9 @@ import numpy as np
 
 from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
+from ..data.demos import Demo
 from ..progress.features import QSRConfig, features, resample
 from . import augment
-from .demos import Demo
 from .views import (
     Context,
     check_demos,

@@ -16,10 +16,10 @@ import numpy as np
 
 from ..core.frames import viewer_offset
 from ..core.geometry import moving_average
+from ..data.demos import Demo
 from ..errors import DataError
 from ..progress.features import QSRConfig
 from .augment import scaled, turn_about
-from .demos import Demo
 
 
 def smooth_poses(poses: np.ndarray, window: int) -> np.ndarray:

@@ -30,6 +30,7 @@ from ..core.threads import torch_threads
 from ..embodiment.reach import Wrist
 from ..errors import PlanError, UnknownPlannerError
 from .feasibility import grasp_holds
+from .policy import PolicyProposer, load_policy
 from .problem import Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .search import beam, greedy
@@ -149,8 +150,6 @@ def _search(name: str, problem: Problem, bundle):
 
 
 def _policy_proposer(bundle, required: bool = True):
-    from .policy import PolicyProposer, load_policy
-
     net = load_policy(bundle)
     if net is None and not required:
         return None

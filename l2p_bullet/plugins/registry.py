@@ -34,8 +34,17 @@ from typing import TYPE_CHECKING, Any
 
 from ..core.frames import declaration
 from ..core.vocabulary import normalize_name, normalize_phrase
-from ..errors import BundleError, FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
-from .bundle import MANIFEST, PROGRESS_FILE
+from ..errors import (
+    BundleError,
+    FailedToLoadPlugin,
+    L2PError,
+    PluginConflict,
+    PluginError,
+    UnknownActionError,
+)
+from ..judge import judge_for
+from ..planning.policy import load_policy
+from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
@@ -339,8 +348,6 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
             what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
             raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: {what}"[:500]) from None
         folder = _module_folder(mod) or info.path
-    from ..errors import L2PError
-    from .bundle import load_bundle
 
     try:
         bundle = load_bundle(folder)
@@ -357,8 +364,6 @@ def resolve(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Pa
     A folder with a manifest is a bundle (its manifest names the action); anything else names an
     installed action, built-in or plugin (``UnknownActionError``, ``FailedToLoadPlugin`` otherwise).
     """
-    from .bundle import read_manifest
-
     p = Path(spec)
     if p.is_dir() and (p / MANIFEST).is_file():
         return str(read_manifest(p).get("name", p.name)), p
@@ -380,13 +385,8 @@ def _module_folder(mod: Any) -> Path | None:
 def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
     """Load plugin ``name`` as ``perform`` would (bundle, progress model, judge, policy) and return the
     reason it fails, or None if it loads."""
-    from ..errors import L2PError
-
     try:
         bundle = load(name, plugins)
-        from ..judge import judge_for
-        from ..planning.policy import load_policy
-
         bundle.progress_model()
         judge_for(bundle)
         load_policy(bundle)

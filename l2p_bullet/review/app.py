@@ -24,10 +24,10 @@ from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from .. import __version__
 from ..errors import ReviewError
+from ..web.apps import json_errors, new_app, static_pages
 from .runs import motion_for_browser
-from .session import Item, NotFound, ReviewSession
+from .session import Item, NotFound, ReviewSession, label_keys
 from .store import AnswerConflict, GradeRow
-from .web import json_errors, new_app, static_pages
 
 log = logging.getLogger("l2p_bullet.review")
 
@@ -123,8 +123,6 @@ def create_app(session: ReviewSession, host: str = "127.0.0.1") -> FastAPI:
 
 
 def _label_keys(session: ReviewSession) -> list[dict]:
-    from .session import label_keys
-
     return label_keys(session.labels) if session.mode == "blind" else []
 
 
