@@ -37,7 +37,6 @@ class ArmEnv(Plan2DEnv):
         self._camera = None
 
     def _start_episode(self) -> None:
-
         visuals = self.render_mode == "rgb_array"
         if self._world is None:
             self._world = World(self.scene, visuals=visuals)

@@ -43,7 +43,6 @@ class Plan2DEnv(gym.Env):
     def __init__(self, action: str = "around", render_mode: str | None = None, max_steps: int = 12,
                  max_move: float = 2.0, threshold: float | None = None, size: float = 0.05,
                  illegal_penalty: float = 0.0):
-
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None")
         if not MIN_SIZE <= size:

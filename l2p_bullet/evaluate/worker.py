@@ -27,14 +27,13 @@ from typing import Any
 
 import numpy as np
 
-from .. import planning
 from ..core.contracts import trajectory_poses
 from ..core.scene import Scene
 from ..embodiment.sim.world import World
 from ..errors import L2PError
-from ..judge import judge_context, judge_for
+from ..judge import judge_for
 from ..judge.rules import square_gap
-from ..pipeline import check_feasible, perform, resolve
+from ..pipeline import judged_plan, perform, prepare
 from ..plugins import registry
 from .tasks import Task
 
@@ -130,7 +129,6 @@ class Worker:
         return row
 
     def _perform(self, task: Task, row: dict) -> None:
-
         keep_always = task.render or task.keep == "all"
         out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
         scene = Scene.from_dict(task.scene, source=task.scene_id)
@@ -168,19 +166,13 @@ class Worker:
                 row["run_dir"] = str(out)
 
     def _plan(self, task: Task, row: dict) -> None:
-
-        scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
-        cmd = resolve(task.sentence, scene, self.plugins)
-        check_feasible(cmd, scene, self.plugins)  # refused up front, as perform and plan refuse it
-        bundle = registry.load(cmd.action, self.plugins)
+        scene = Scene.from_dict(task.scene, source=task.scene_id)
+        p = prepare(task.sentence, scene, planner=task.planner, seed=task.seed, budget=task.budget,
+                    threshold=task.threshold, plugins=self.plugins)  # refused up front, as perform and plan refuse it
         t = time.perf_counter()
-        plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=task.planner, seed=task.seed,
-                             budget=task.budget, threshold=task.threshold, time_limit=task.time_limit)
+        plan, v = judged_plan(p, planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
+                              time_limit=task.time_limit)
         plan_s = time.perf_counter() - t
-        poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
-        v = judge_for(bundle).judge(plan.path, plan.anchor_pose, plan.size,
-                                    final_progress=plan.extra.get("final_progress"),
-                                    **judge_context(poses, plan.viewer)).to_dict()
         row.update(planner_used=plan.planner, success=int(bool(v["success"])), score=v.get("score"),
                    reason=v.get("reason"), judge=v.get("judge"), final_progress=plan.extra.get("final_progress"),
                    planned_progress=plan.extra.get("final_progress"), stopped=plan.stopped,

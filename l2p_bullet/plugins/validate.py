@@ -162,7 +162,6 @@ def check_manifest(folder: Path, man: dict) -> None:
 
 
 def _check_policy_section(c: _Checker, policy: dict, weights: dict) -> None:
-
     if "planner" in policy and (not isinstance(policy["planner"], str) or policy["planner"] not in PLANNERS
                                 or policy["planner"] == "default"):
         raise c.fail("[policy] planner", f"must be one of {', '.join(p for p in PLANNERS if p != 'default')}")

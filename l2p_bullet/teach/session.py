@@ -315,7 +315,6 @@ class TeachSession:
         self.trainer(self.action.name, self.action.bundle_dir, [str(f) for f in files], seed=self.seed, tick=tick)
 
     def _perform(self) -> None:
-
         self.job.state, self.job.message = "performing", "performing on a new scene"
         k = len(self.job.runs)
         seed = 100_000 + k  # scenes the page never shows for recording
