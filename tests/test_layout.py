@@ -96,13 +96,13 @@ def test_every_torch_free_module_imports_without_torch():
 # --- floors: which room may import which ------------------------------------------------------------
 FLOORS: tuple[tuple[str, ...], ...] = (
     ("l2p_bullet", "errors"),  # the package (its version) and the error classes every room raises
+    ("actions",),  # what each built-in action is (ActionSpec, next to its bundle): pure declarations
     ("core",),  # scene, geometry, vocabulary, file contracts (incl. a bundle's file names), run folders
     ("data",),  # the shipped demonstrations, people's grades, and their readers
     ("progress", "judge", "language"),  # features + numpy model; verdicts and rule judges; sentence parsing
     ("embodiment",),  # the arm: motion, smoothing, execution, recording, sim/ (pybullet)
     ("planning",),  # 2-D planning; reads the hand's reach from embodiment
     ("plugins",),  # registry, bundles, scaffold, validation: the shape of an action
-    ("actions",),  # the built-in actions' bundles (loaded through the registry, as a plugin is)
     ("pipeline",),  # perform and plan: the stages in order
     ("learning",),  # training (torch), feedback, agreement; improve performs through the pipeline
     ("evaluate", "envs", "web"),  # the batch runner, the Gymnasium environments, the shared web plumbing

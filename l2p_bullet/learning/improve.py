@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..actions import BUILTIN
 from ..core.contracts import load_motion
 from ..core.scene import random_scene
 from ..data.grades import GradeRow, write_grades
@@ -46,8 +47,8 @@ IMPROVE_SEEDS = 1000
 """Scene seed of round 1's first run; round k, run i uses IMPROVE_SEEDS + 100 (k - 1) + i."""
 MAX_SCENES, MAX_ROUNDS = 100, 40
 
-SENTENCES = {"closer": "move A closer to B", "away": "move A away from B", "next-to": "move A next to B",
-             "past": "move A past B", "around": "move A around B"}
+SENTENCES = {a: spec.sentence for a, spec in BUILTIN.items()}
+"""The sentence each built-in action's rounds perform (its ``ActionSpec.sentence``)."""
 
 
 @dataclass

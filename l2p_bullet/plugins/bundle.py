@@ -130,6 +130,9 @@ class Bundle:
     phrases: list[str]
     manifest: dict
     path: Path
+    spec: Any = None
+    """The :class:`~l2p_bullet.actions.spec.ActionSpec` its module declares as ``ACTION`` (the built-ins do;
+    a plugin may), set by the registry; None for a bundle read from a folder."""
 
     def arrays(self, filename: str) -> dict[str, np.ndarray]:
         """A weights file's tensors as numpy arrays (the digest is checked again: the file may have changed)."""

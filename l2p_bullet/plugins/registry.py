@@ -32,6 +32,7 @@ from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..actions.spec import ActionSpec
 from ..core.frames import declaration
 from ..core.vocabulary import normalize_name, normalize_phrase
 from ..errors import (
@@ -354,6 +355,7 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     except L2PError as e:
         raise FailedToLoadPlugin(info.name, info.package, f"invalid bundle: {e}") from None
     if info.module:
+        bundle.spec = _declared_spec(info, mod)
         _LOADED[key] = bundle
     return bundle
 
@@ -393,3 +395,15 @@ def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
     except L2PError as e:
         return str(e)
     return None
+
+
+def _declared_spec(info: PluginInfo, mod: Any) -> ActionSpec | None:
+    """The ``ACTION`` a plugin's module declares (what the action is besides its bundle), checked: an
+    :class:`ActionSpec` of the same name, or nothing."""
+    spec = getattr(mod, "ACTION", None)
+    if spec is None:
+        return None
+    if not isinstance(spec, ActionSpec) or spec.name != info.name:
+        raise FailedToLoadPlugin(info.name, info.package, f"{info.module}.ACTION must be an "
+                                 f'l2p_bullet.actions.spec.ActionSpec named "{info.name}"')
+    return spec
