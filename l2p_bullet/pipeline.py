@@ -38,7 +38,6 @@ from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .embodiment import execute
 from .errors import L2PError, LanguageError, PlanError, PluginError
 from .judge import judge_context, judge_for
 from .language import Command, parse
@@ -254,6 +253,10 @@ def _summary_or_empty(path: Path) -> dict:
 
 def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, render: bool, budget: int | None,
          threshold: float | None, render_settings: Any, world: Any = None) -> PerformResult:
+    # lazy: the arm's modules (execution, recording, the simulator's facade) only when something is performed;
+    # ``plan`` and the up-front refusals never load them
+    from .embodiment import execute
+
     cmd, scene, bundle, model, judge = p.command, p.scene, p.bundle, p.model, p.judge
     size = scene.get(cmd.mover).size
     clock.stage("plan", f"planning with the {planner} planner")

@@ -34,7 +34,6 @@ class Source:
 def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
     """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`."""
     if demo is not None:
-
         action, sep, index = demo.partition(":")
         if not sep or not index.strip().lstrip("-").isdigit():
             raise PathError(f'--demo expects ACTION:INDEX, e.g. around:0 (got "{demo}")')

@@ -75,7 +75,6 @@ class Worker:
     def judges(self) -> dict[str, tuple[Any, Any]]:
         """action -> (judge, progress model) for every usable installed action."""
         if self._judges is None:
-
             self._judges = {}
             for info in self.plugins:
                 if not info.ok:

@@ -322,7 +322,6 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick)
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
-
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
         items += judge_items(name, result.model, range(JUDGE_SEEDS, JUDGE_SEEDS + judge_scenes), RuleJudge(name),

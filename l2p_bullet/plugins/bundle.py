@@ -24,10 +24,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import tomlkit
 from safetensors import SafetensorError
 from safetensors.numpy import load, save_file
-from tomlkit.exceptions import TOMLKitError
 
 from .. import __version__
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
@@ -197,6 +195,9 @@ def _write_manifest(folder: Path, manifest: dict) -> None:
     value that does not change survive a re-train, so a scaffolded plugin's notes and version stay.
     Written to a temporary file and renamed: a reader never sees half a manifest.
     """
+    # lazy: tomlkit only when a manifest is written (training), not when plugins are listed or loaded
+    import tomlkit
+    from tomlkit.exceptions import TOMLKitError
 
     path = folder / MANIFEST
     try:

@@ -43,8 +43,6 @@ from ..errors import (
     PluginError,
     UnknownActionError,
 )
-from ..judge import judge_for
-from ..planning.policy import load_policy
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -387,6 +385,10 @@ def _module_folder(mod: Any) -> Path | None:
 def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
     """Load plugin ``name`` as ``perform`` would (bundle, progress model, judge, policy) and return the
     reason it fails, or None if it loads."""
+    # lazy: discovery (l2p-bullet actions, parsing a sentence) stays light; only a check loads these
+    from ..judge import judge_for
+    from ..planning.policy import load_policy
+
     try:
         bundle = load(name, plugins)
         bundle.progress_model()
