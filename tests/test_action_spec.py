@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from plugin_fixtures import copy_builtin_as_plugin
+from plugin_fixtures import copy_builtin_as_plugin, make_bundle, make_dist
 
 from l2p_bullet.actions import BUILTIN, ActionSpec
 from l2p_bullet.core.vocabulary import ACTIONS, GRADED_FOLDERS, SOURCE_NAMES
@@ -72,3 +72,23 @@ def test_a_plugin_whose_spec_is_not_one_is_refused_with_its_name(tmp_path, monke
     monkeypatch.syspath_prepend(str(root))
     with pytest.raises(FailedToLoadPlugin, match="wobbly.*ActionSpec"):
         registry.load("wobbly", registry.discover())
+
+
+def test_an_untrained_plugin_declares_training_options_its_training_set_takes(tmp_path, monkeypatch):
+    from l2p_bullet.learning.train_progress import declared_spec  # imports torch: only this test needs it
+
+    root = tmp_path / "site"
+    make_bundle(root / "l2p_test_swirl", "swirl", ["swirling"], weights=False, init=(
+        "from l2p_bullet.actions.spec import ActionSpec, Training\n"
+        "ACTION = ActionSpec(name='swirl', source_name='', sentence='move A swirling B',\n"
+        "                    training=Training(negatives=('past',), twist=True, scaled=False, turn_label=0.5))\n"))
+    make_dist(root, "l2p-swirl", {"swirl": "l2p_test_swirl"})
+    monkeypatch.syspath_prepend(str(root))
+    with pytest.raises(FailedToLoadPlugin):  # no weights yet: no bundle to load, but a spec to train by
+        registry.load("swirl", registry.discover())
+    spec = declared_spec("swirl")
+    assert spec is not None and spec.training.turn_label == 0.5
+    d = DataConfig(random_negatives=0).with_action(spec)
+    assert d.negatives["swirl"] == ["past"] and d.turn_label["swirl"] == 0.5
+    assert "swirl" in d.twist_actions and "swirl" in d.unscaled and "swirl" not in d.detour_actions
+    assert DataConfig().with_action(None) == DataConfig() and declared_spec("not-installed") is None

@@ -19,14 +19,15 @@ from pathlib import Path
 import numpy as np
 import torch
 
+from ..actions.spec import ActionSpec
 from ..core.frames import Frame, declaration
 from ..core.threads import torch_threads
 from ..core.vocabulary import ACTIONS
 from ..data.demos import Demo, expand_files, load_demos
-from ..errors import BundleError, DataError, L2PError, PluginError, RunFolderError
+from ..errors import BundleError, DataError, L2PError, PluginError, RunFolderError, UnknownActionError
 from ..judge import RuleJudge
 from ..plugins.bundle import MANIFEST, PROGRESS_FILE, read_manifest, write_progress_bundle
-from ..plugins.registry import resolve
+from ..plugins.registry import action_spec, resolve
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from .feedback import FeedbackItem, load_feedback
@@ -259,6 +260,15 @@ def declared(name: str, folder: Path | None) -> tuple[Frame, int]:
         raise BundleError(f"{folder / MANIFEST}: {e}") from None
 
 
+def declared_spec(name: str) -> ActionSpec | None:
+    """What the plugin action ``name`` declares about itself (its module's ``ACTION``), when it is installed
+    and declares one: its training options shape its training set (``DataConfig.with_action``)."""
+    try:
+        return action_spec(name)
+    except UnknownActionError:  # a plugin still being authored, not installed yet
+        return None
+
+
 def training_target(action: str, out: Path | None, demo_files: Sequence[str]) -> tuple[str, bool]:
     """(action name, is it a plugin action still being authored) for ``l2p-bullet train ACTION``.
 
@@ -311,7 +321,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     qsr_cfg = QSRConfig()
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
-        data_cfg = DataConfig(random_negatives=0)
+        data_cfg = DataConfig(random_negatives=0).with_action(declared_spec(name))
         frame, anchors = declared(name, out)
         qsr_cfg = QSRConfig(frame=frame.name, anchors=anchors)
     else:

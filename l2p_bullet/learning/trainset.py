@@ -37,11 +37,11 @@ declaration (:func:`build`; the five built-in actions take none of these branche
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..actions import BUILTIN
+from ..actions import BUILTIN, ActionSpec
 from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
 from ..data.demos import Demo
@@ -125,6 +125,25 @@ class DataConfig:
     """Actions without stretched copies (next-to: stretched, it would end apart)."""
     detour_actions: tuple[str, ...] = field(default_factory=lambda: _actions_with("detour"))
     """Actions with detour copies (closer, away: the net motion is still the action)."""
+
+    def with_action(self, spec: ActionSpec | None) -> DataConfig:
+        """This configuration with a plugin action's own training options (``ActionSpec.training``) added;
+        the built-ins' are the defaults already. ``spec`` None: unchanged."""
+        if spec is None:
+            return self
+        t, n = spec.training, spec.name
+
+        def add(table: dict, value: object) -> dict:
+            return table if value is None else {**table, n: value}
+
+        return replace(
+            self, negatives=add(self.negatives, list(t.negatives) if t.negatives else None),
+            scale_ranges=add(self.scale_ranges, t.scale_range), approach=add(self.approach, t.approach),
+            shortened=add(self.shortened, t.shortened), turn_label=add(self.turn_label, t.turn_label),
+            net_label=add(self.net_label, t.net_label),
+            twist_actions=self.twist_actions + ((n,) if t.twist and n not in self.twist_actions else ()),
+            detour_actions=self.detour_actions + ((n,) if t.detour and n not in self.detour_actions else ()),
+            unscaled=self.unscaled + ((n,) if not t.scaled and n not in self.unscaled else ()))
 
     def to_dict(self) -> dict:
         keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",

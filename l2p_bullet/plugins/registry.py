@@ -399,6 +399,22 @@ def check(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
     return None
 
 
+def action_spec(name: str, plugins: list[PluginInfo] | None = None) -> ActionSpec | None:
+    """The :class:`ActionSpec` an installed action's module declares as ``ACTION`` (every built-in does; a
+    plugin may), or None. Only the module is imported, not the bundle: an untrained plugin has a spec too."""
+    info = find(name, plugins)
+    if not info.module:
+        return None
+    try:
+        mod = importlib.import_module(info.module)
+    except KeyboardInterrupt:
+        raise
+    except BaseException as e:  # noqa: BLE001 - the plugin's bug, reported with its name (as load does)
+        raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: "
+                                 f"{type(e).__name__}: {e}"[:500]) from None
+    return _declared_spec(info, mod)
+
+
 def _declared_spec(info: PluginInfo, mod: Any) -> ActionSpec | None:
     """The ``ACTION`` a plugin's module declares (what the action is besides its bundle), checked: an
     :class:`ActionSpec` of the same name, or nothing."""
