@@ -84,7 +84,7 @@ def main() -> None:
     ap.add_argument("--ensemble", type=int, default=None)
     ap.add_argument("--epochs", type=int, default=None)
     args = ap.parse_args()
-    from l2p_bullet.learning.demos import load_demos
+    from l2p_bullet.data.demos import load_demos
     from l2p_bullet.learning.synthetic import write_sessions
     from l2p_bullet.plugins.bundle import load_bundle
 

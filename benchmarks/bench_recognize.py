@@ -3,7 +3,7 @@
 Each built-in action's progress model is trained on one capture session (one person; all five actions'
 demonstrations of that session, the shipped recipe unchanged: :mod:`l2p_bullet.learning.sessions`) and
 the other session's demonstrations are recognised with ``l2p-bullet recognize``'s own code
-(:func:`l2p_bullet.progress.recognition.recognize`: every action's final progress for each moved block
+(:func:`l2p_bullet.recognition.recognize`: every action's final progress for each moved block
 against the other, ranked; the demonstration smoothed and cut to its event as ``recognize --demo``
 does). Both ways: Session 1 -> 2 (where the recognition settings were looked at) and Session 2 -> 1
 (held out). SlideToward's extra Session 3 is not used. Prints per split the confusion matrix (rows:
@@ -32,7 +32,7 @@ from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.learning.sessions import bundle_seconds, session_bundles
 from l2p_bullet.learning.train_progress import all_demos
 from l2p_bullet.plugins.bundle import load_bundle
-from l2p_bullet.progress.recognition import Recogniser, demo_event_tracks, recognize
+from l2p_bullet.recognition import Recogniser, demo_event_tracks, recognize
 
 FOLDS = [("Session1", "Session2"), ("Session2", "Session1")]
 MERGED = ("closer", "next-to")

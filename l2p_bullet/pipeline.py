@@ -13,9 +13,14 @@
                simulator did, not what was planned): a plan the arm cannot follow must not count as success,
                and neither does a run in which the anchor or another block moved more than 1 mm
 
-Each stage is timed; the timings, the verdict and the final progress are merged into summary.json.
-The cheap checks (options, sentence, feasibility, plugin, run folder) run before the expensive ones so
-that a typo or an impossible scene costs milliseconds, not a planning run, and never touches the disk.
+Each stage is timed; the timings, the verdict and the final progress go into summary.json, written once
+at the end (execute's own fields first). The cheap checks (options, sentence, feasibility, plugin, run
+folder) run before the expensive ones so that a typo or an impossible scene costs milliseconds, not a
+planning run, and never touches the disk.
+
+One path for every caller: :func:`prepare` (parse, feasibility, load) and :func:`judged_plan` (plan, and
+the judge's verdict on it; an optional time limit) are the stages ``perform``, ``plan`` and the
+evaluation worker (``evaluate/worker.py``) share.
 """
 
 from __future__ import annotations
@@ -28,12 +33,17 @@ from typing import Any
 
 import numpy as np
 
+from . import planning
 from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
 from .errors import L2PError, LanguageError, PlanError, PluginError
+from .judge import judge_context, judge_for
 from .language import Command, parse
+from .planning import feasibility, resolve_planner
+from .planning.plot import plot_plan
+from .plugins import registry
 
 StageFn = Callable[[str], None]
 
@@ -58,6 +68,7 @@ class PerformResult:
     files: dict[str, Path] = field(default_factory=dict)
     displacements_m: dict[str, float] = field(default_factory=dict)  # every block but the mover: how far it moved
     grasp: dict[str, Any] = field(default_factory=dict)  # the grasp's yaw offset and angle (execute.py)
+    planned_verdict: dict[str, Any] = field(default_factory=dict)  # the judge on the plan, before the arm moved
 
     @property
     def success(self) -> bool:
@@ -95,8 +106,6 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
     A sentence whose preposition belongs to a broken plugin, or is claimed by two plugins, gets that
     plugin's error (naming it), not "not a preposition I know"; every other phrase keeps working.
     """
-    from .plugins import registry
-
     plugins = registry.discover() if plugins is None else plugins
     table = registry.phrase_table(plugins)
     blocked = registry.blocked_phrases(plugins)
@@ -121,12 +130,68 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
     """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, and
     the room checks of the rule judge the action's manifest names (``[judge] rules``), if any."""
-    from .planning import feasibility
-
     info = next((p for p in plugins if p.name == cmd.action), None)
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
+
+
+@dataclass
+class Prepared:
+    """What the cheap stages found (options checked, sentence parsed, scene feasible, plugin loaded):
+    everything ``perform``, ``plan`` and an evaluation worker need before the expensive stages."""
+
+    command: Command
+    scene: Scene
+    bundle: Any
+    model: Any  # the bundle's numpy progress model
+    judge: Any  # judge_for(bundle)
+
+
+def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int = 0, budget: int | None = None,
+            threshold: float | None = None, plugins: list | None = None, bundle: Any = None,
+            clock: StageClock | None = None) -> Prepared:
+    """The stages before anything is planned or written: parse, feasibility, load (timed on ``clock``).
+
+    A typo in an option, a sentence that names nothing, a scene the arm cannot do or a broken plugin
+    fails here in milliseconds, before the disk is touched. ``bundle``: use that loaded bundle instead of
+    the installed plugin's (it must be the sentence's action).
+    """
+    clock = clock or StageClock()
+    clock.stage("parse")
+    check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
+    scene.validate()
+    plugins = registry.discover() if plugins is None else plugins
+    cmd = resolve(sentence, scene, plugins)
+    clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
+    check_feasible(cmd, scene, plugins)
+    clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
+    if bundle is None:
+        bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
+    elif bundle.name != cmd.action:
+        raise PluginError(f'the sentence asks for "{cmd.action}" but the bundle given is "{bundle.name}"')
+    model = bundle.progress_model()
+    judge = judge_for(bundle)
+    clock.stop()
+    return Prepared(cmd, scene, bundle, model, judge)
+
+
+def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget: int | None = None,
+                threshold: float | None = None, time_limit: float | None = None) -> tuple[Plan, dict[str, Any]]:
+    """Plan the prepared command in 2-D and judge the plan with the bundle's judge: (plan, verdict).
+
+    The plan maximises the action's learned progress; the judge only reads the result (the planner never
+    sees it). ``time_limit`` (seconds) also ends the search (an evaluation's equal-time comparisons).
+    """
+    cmd = p.command
+    result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
+                           budget=budget, threshold=threshold, time_limit=time_limit)
+    result.extra.setdefault("sentence", cmd.sentence)
+    poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
+    verdict = p.judge.judge(result.path, result.anchor_pose, result.size,
+                            final_progress=result.extra.get("final_progress"),
+                            **judge_context(poses, result.viewer)).to_dict()
+    return result, verdict
 
 
 def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
@@ -144,30 +209,14 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     failed, so a failed run is still explained on disk. ``bundle`` performs with that loaded bundle
     instead of the installed plugin's (``l2p-bullet improve`` tries each round's re-trained bundle).
     """
-    from .judge import judge_for
-    from .plugins import registry
-
     clock = StageClock(on_stage)
-    clock.stage("parse")
-    check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
-    scene.validate()
-    plugins = registry.discover() if plugins is None else plugins
-    cmd = resolve(sentence, scene, plugins)
-    clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
-    check_feasible(cmd, scene, plugins)
-    clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
-    if bundle is None:
-        bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
-    elif bundle.name != cmd.action:
-        raise PluginError(f'the sentence asks for "{cmd.action}" but the bundle given is "{bundle.name}"')
-    model = bundle.progress_model()
-    judge = judge_for(bundle)
-    clock.stop()
-
+    p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins,
+                bundle=bundle, clock=clock)
+    cmd = p.command
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:
-            return _run(cmd, scene, bundle, model, judge, out, clock, planner=planner, seed=seed, render=render,
-                        budget=budget, threshold=threshold, render_settings=render_settings, world=world)
+            return _run(p, out, clock, planner=planner, seed=seed, render=render, budget=budget,
+                        threshold=threshold, render_settings=render_settings, world=world)
         except L2PError as e:
             clock.stop()
             write_summary(out / "summary.json", {
@@ -185,8 +234,6 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
 
 def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
     """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched."""
-    from .planning import resolve_planner
-
     resolve_planner(planner)
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**32:
         raise PlanError(f"the seed must be an integer from 0 to {2**32 - 1} (got {str(seed)[:20]})")
@@ -204,18 +251,17 @@ def _summary_or_empty(path: Path) -> dict:
     return d if isinstance(d, dict) else {"schema": 1}
 
 
-def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: Path, clock: StageClock, *,
-         planner: str, seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
-         world: Any = None) -> PerformResult:
-    from . import planning
+def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, render: bool, budget: int | None,
+         threshold: float | None, render_settings: Any, world: Any = None) -> PerformResult:
+    # lazy: the arm's modules (execution, recording, the simulator's facade) only when something is performed;
+    # ``plan`` and the up-front refusals never load them
     from .embodiment import execute
 
+    cmd, scene, bundle, model, judge = p.command, p.scene, p.bundle, p.model, p.judge
     size = scene.get(cmd.mover).size
     clock.stage("plan", f"planning with the {planner} planner")
-    plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
-                         threshold=threshold)
+    plan, planned_verdict = judged_plan(p, planner=planner, seed=seed, budget=budget, threshold=threshold)
     clock.stop()
-    plan.extra.setdefault("sentence", cmd.sentence)
     plan.save(out / "plan.json")
     viewer = getattr(model, "viewpoint", None)
 
@@ -234,7 +280,7 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, world=world, **kwargs)
+                              meta=meta, on_stage=stage_cb, world=world, summary=False, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -254,8 +300,10 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
         final_error_m=final_error, timings=dict(clock.timings),
         files={"plan": out / "plan.json", **{k: Path(v) for k, v in ex.files.items()}},
         displacements_m=dict(ex.displacements_m), grasp=dict(ex.stats.get("grasp", {})),
+        planned_verdict=planned_verdict,
     )
-    _merge_summary(out / "summary.json", result, bundle, ex, seed)
+    base = execute.execution_summary(ex, meta, seed, kwargs.get("render", execute.DEFAULT_RENDER))
+    write_summary(out / "summary.json", _summary(base, result, bundle, seed))  # written once, here
     return result
 
 
@@ -293,55 +341,23 @@ def plan_sentence(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
          plot: bool = True, plugins: list | None = None) -> PlanResult:
     """Plan ``sentence`` in 2-D only and write plan.json (and plan.png) with the bundle's judge's verdict.
 
-    The plan maximises the action's learned progress; the judge only reads the result (the planner never
-    sees it), exactly as ``perform`` judges its executed trajectory.
+    The same stages as ``perform`` up to the plan (:func:`prepare`, :func:`judged_plan`); the verdict goes
+    into plan.json's ``verdict``.
     """
-    from . import planning
-    from .judge import judge_for
-    from .plugins import registry
-
-    check_options(planner, seed, budget, threshold)  # a bad name fails before anything is loaded
-    scene.validate()
-    plugins = registry.discover() if plugins is None else plugins
-    cmd = resolve(sentence, scene, plugins)
-    check_feasible(cmd, scene, plugins)
-    bundle = registry.load(cmd.action, plugins)
-    judge = judge_for(bundle)
-    result = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
-                           threshold=threshold)
-    result.extra.setdefault("sentence", sentence)
-    poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
-    verdict = judge.judge(result.path, result.anchor_pose, result.size,
-                          final_progress=result.extra.get("final_progress"),
-                          **judge_context(poses, result.viewer)).to_dict()
+    p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins)
+    cmd = p.command
+    result, verdict = judged_plan(p, planner=planner, seed=seed, budget=budget, threshold=threshold)
     result.extra["verdict"] = verdict
     with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
         result.save(folder / "plan.json")
         if plot:
-            from .planning.plot import plot_plan
-
             plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
 
 
-def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None) -> dict[str, Any]:
-    """The keywords a judge gets besides mover, anchor and size: ``anchors`` (every reference object's
-    poses) only for a two-anchor action and ``viewer`` only for a viewer-frame one, so a plugin's judge
-    written for one-anchor relative actions keeps working unchanged."""
-    kw: dict[str, Any] = {}
-    if len(anchors) > 1:
-        kw["anchors"] = anchors
-    if viewer is not None:
-        kw["viewer"] = np.asarray(viewer, float)
-    return kw
-
-
-def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int) -> None:
-    """Add perform's fields to the summary.json the recorder wrote (contracts only grow)."""
-    try:
-        summary = json.loads(path.read_text()) if path.exists() else {}
-    except (OSError, json.JSONDecodeError):
-        summary = {}
+def _summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> dict:
+    """summary.json of a performed run: the execution's summary (``execute.execution_summary``) with
+    perform's fields added (contracts only grow)."""
     d = r.to_dict()
     timings = summary.get("timings_s") if isinstance(summary.get("timings_s"), dict) else {}
     files = summary.get("files") if isinstance(summary.get("files"), dict) else {}
@@ -360,4 +376,4 @@ def _merge_summary(path: Path, r: PerformResult, bundle: Any, ex: Any, seed: int
         "timings_s": {**timings, **d["timings"], **({"evaluate": d["timings"]["judge"]} if "judge" in d["timings"] else {})},
         "files": {**files, "plan": "plan.json"},
     })
-    write_summary(path, summary)
+    return summary

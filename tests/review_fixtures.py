@@ -50,8 +50,8 @@ class Live:
         from l2p_bullet.review.app import create_app
         from l2p_bullet.review.queue import ReviewQueue
         from l2p_bullet.review.runs import find_runs
-        from l2p_bullet.review.server import start
         from l2p_bullet.review.store import Store
+        from l2p_bullet.web.server import start
 
         self.store = Store(db)
         infos = find_runs([runs])

@@ -15,9 +15,9 @@ class Live:
                  ensemble: int = 1, epochs: int = 2, seed: int = 0):
         from l2p_bullet.learning.train_progress import BundleTrainer, ProgressTrainConfig
         from l2p_bullet.plugins.scaffold import scaffold
-        from l2p_bullet.review.server import start
         from l2p_bullet.teach.app import create_app
         from l2p_bullet.teach.lesson import Lesson, find_action
+        from l2p_bullet.web.server import start
 
         self.root = scaffold(name, [phrase], root / f"l2p-{name}", frame=frame, anchors=anchors).root
         self.action = find_action(name, self.root)

@@ -138,3 +138,84 @@ def test_the_torch_free_paths_run_without_torch(tmp_path):
     REINFORCE policy too) without pybullet, and a whole perform, in one fresh interpreter: none loads torch."""
     r = subprocess.run([sys.executable, "-c", RUNTIME_CHECK], capture_output=True, text=True, cwd=tmp_path)
     assert r.returncode == 0, r.stderr[-2000:]
+
+
+# --- floors: which room may import which ------------------------------------------------------------
+FLOORS: tuple[tuple[str, ...], ...] = (
+    ("l2p_bullet", "errors"),  # the package (its version) and the error classes every room raises
+    ("actions",),  # what each built-in action is (ActionSpec, next to its bundle): pure declarations
+    ("core",),  # scene, geometry, vocabulary, file contracts (incl. a bundle's file names), run folders
+    ("data",),  # the shipped demonstrations, people's grades, and their readers
+    ("progress", "judge", "language"),  # features + numpy model; verdicts and rule judges; sentence parsing
+    ("embodiment",),  # the arm: motion, smoothing, execution, recording, sim/ (pybullet)
+    ("planning",),  # 2-D planning; reads the hand's reach from embodiment
+    ("plugins",),  # registry, bundles, scaffold, validation: the shape of an action
+    ("pipeline", "recognition"),  # perform and plan: the stages in order; recognising an action in a motion
+    ("learning",),  # training (torch), feedback, agreement; improve performs through the pipeline
+    ("evaluate", "envs", "web"),  # the batch runner, the Gymnasium environments, the shared web plumbing
+    ("export", "review", "teach"),  # exports of evaluations, the review app, the teach page
+    ("commands",),  # click commands: parse options, call one function
+    ("cli",),  # the front door
+)
+"""The floors, lowest first (docs/DESIGN.md, "Floors"). A module may import its own room and the rooms of
+lower floors only: never a higher floor (a climb) nor another room on its own floor, so no two rooms can
+import each other. A room is a subpackage of l2p_bullet or a top-level module; a new one gets a floor here."""
+
+FLOOR_OF = {room: i for i, rooms in enumerate(FLOORS) for room in rooms}
+
+
+def _room(module: str) -> str:
+    parts = module.split(".")
+    return "l2p_bullet" if len(parts) == 1 else parts[1]
+
+
+def _internal_target(name: str) -> str | None:
+    """The l2p_bullet module an imported name belongs to (``from .. import __version__`` -> l2p_bullet)."""
+    while name and name not in MODULES:
+        name = name.rpartition(".")[0]
+    return name or None
+
+
+def _room_imports() -> list[tuple[str, str, str, str]]:
+    """(importing module, imported module, its room, the imported room) for every cross-room import."""
+    out = set()
+    for n, imps in IMPORTS.items():
+        for i in imps:
+            t = _internal_target(i) if i.startswith("l2p_bullet") else None
+            if t is not None and _room(t) != _room(n):
+                out.add((n, t, _room(n), _room(t)))
+    return sorted(out)
+
+
+def test_every_room_has_a_floor():
+    rooms = {_room(n) for n in MODULES}
+    missing = sorted(rooms - set(FLOOR_OF))
+    assert not missing, f"rooms without a floor in tests/test_layout.py FLOORS (and docs/DESIGN.md): {missing}"
+    assert not set(FLOOR_OF) - rooms, f"FLOORS names rooms that do not exist: {sorted(set(FLOOR_OF) - rooms)}"
+
+
+def test_no_import_climbs_a_floor():
+    bad = [f"{n} imports {t}: {a} (floor {FLOOR_OF[a]}) may not import {b} (floor {FLOOR_OF[b]})"
+           + ("" if FLOOR_OF[b] > FLOOR_OF[a] else ", a room on its own floor")
+           for n, t, a, b in _room_imports() if FLOOR_OF.get(b, -1) >= FLOOR_OF.get(a, -1)]
+    assert not bad, "imports that climb (move the shared code down a floor):\n  " + "\n  ".join(bad)
+
+
+def test_no_import_circle_between_rooms():
+    edges: dict[str, set[str]] = {}
+    for _, _, a, b in _room_imports():
+        edges.setdefault(a, set()).add(b)
+
+    def path(src: str, dst: str, seen: set[str]) -> list[str] | None:
+        for nxt in sorted(edges.get(src, ())):
+            if nxt == dst:
+                return [src, dst]
+            if nxt not in seen:
+                seen.add(nxt)
+                rest = path(nxt, dst, seen)
+                if rest:
+                    return [src, *rest]
+        return None
+
+    circles = {" -> ".join(p) for a in sorted(edges) if (p := path(a, a, set()))}
+    assert not circles, f"import circles between rooms: {sorted(circles)}"

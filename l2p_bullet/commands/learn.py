@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -154,9 +155,31 @@ def score(action: str, file: str) -> None:
     is resampled to the model's frame spacing; the output has one progress value per input frame.
     """
     from ..core.contracts import dumps_json
-    from ..progress.scoring import score_file
 
     click.echo(dumps_json(score_file(action, file)))
+
+
+def score_file(action: str, path: str | Path) -> dict[str, Any]:
+    """``l2p-bullet score``: per-frame progress of the motion in ``path`` under ``action``'s model.
+
+    ``action`` is an installed action (built-in or plugin) or a bundle folder. Returns
+    ``{"action", "progress": [per input frame], "final"}`` rounded to 4 digits (DESIGN.md section 4).
+    """
+    # inside: every command module is imported when the CLI starts, and numpy with the registry is not cheap
+    from ..core.contracts import load_motion
+    from ..errors import PathError
+    from ..plugins.bundle import load_bundle
+    from ..plugins.registry import locate
+
+    name, folder = locate(action)
+    motion = load_motion(path)
+    model = load_bundle(folder).progress_model()
+    if len(motion.more_anchors) + 1 != model.anchors:
+        raise PathError(f'{path}: the action "{name}" reads {model.anchors} reference block(s), the motion gives '
+                        f"{len(motion.more_anchors) + 1}" + (' (add "more_anchors")' if model.anchors > 1 else ""))
+    kw = {"more_anchors": motion.more_anchors} if motion.more_anchors else {}
+    curve = model.curve(motion.mover, motion.anchor, motion.size, viewer=motion.viewer, **kw)
+    return {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}
 
 
 COMMANDS: list[click.Command] = [train, train_policy_cmd, improve, score]

@@ -1,4 +1,4 @@
-"""``l2p-bullet recognize``: which installed action a motion shows (logic in :mod:`l2p_bullet.progress.recognition`)."""
+"""``l2p-bullet recognize``: which installed action a motion shows (logic in :mod:`l2p_bullet.recognition`)."""
 
 from __future__ import annotations
 
@@ -30,8 +30,8 @@ def recognize(motion: str | None, demo: str | None, actions: tuple[str, ...], to
     """
     from ..core.contracts import dumps_json
     from ..errors import PathError
-    from ..progress.recognition import demo_tracks, read_tracks, recognisers
-    from ..progress.recognition import recognize as run
+    from ..recognition import demo_tracks, read_tracks, recognisers
+    from ..recognition import recognize as run
 
     if (motion is None) == (demo is None):
         raise PathError("give either MOTION (a run folder or a motion file) or --demo ACTION:INDEX (one of them)")

@@ -89,7 +89,7 @@ def review_cmd(runs: tuple[str, ...], db: str | None, host: str, port: int, mode
 
 
 def _schema_version() -> int:
-    from ..review.schema import SCHEMA_VERSION
+    from ..data.review_schema import SCHEMA_VERSION
 
     return SCHEMA_VERSION
 
@@ -98,8 +98,8 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
     from ..plugins import registry
     from ..review.app import create_app
     from ..review.queue import ReviewQueue
-    from ..review.server import bind, serve, url_of
-    from ..review.web import LOOPBACK
+    from ..web.apps import LOOPBACK
+    from ..web.server import bind, serve, url_of
 
     reg = store.register_runs(run_infos, accept_changed=regrade_changed)
     changed = {run.run_id for run, _, _ in reg.changed}

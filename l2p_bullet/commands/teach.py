@@ -49,8 +49,8 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     lesson = Lesson(taught, BundleTrainer(cfg), seed=seed)
     lesson.count()  # an unreadable demos file is a one-line error now, not on the first save
 
-    from ..review.server import bind, serve, url_of
     from ..teach.app import create_app
+    from ..web.server import bind, serve, url_of
 
     sock = bind(host, port)
     click.echo(f"teaching \"{taught.sentence}\": open {url_of(sock)} (Ctrl+C to stop)", err=True)

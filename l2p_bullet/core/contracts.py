@@ -286,3 +286,10 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
 
 def load_motion(path: str | Path) -> Motion:
     return motion_from_dict(read_json(path), source=str(path))
+
+
+# --- an action bundle's folder (plugins/bundle.py reads and writes it; progress/ and learning/ read the
+# weights): the file names are part of the contract, kept here so that no reader imports a writer's floor.
+MANIFEST = "manifest.toml"
+PROGRESS_FILE = "progress.safetensors"
+POLICY_FILE = "policy.safetensors"

@@ -23,6 +23,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError, UnknownObjectError, did_you_mean
+from .contracts import load_json_file
+from .geometry import polygons_overlap
 
 # Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
 COLORS: dict[str, tuple[float, float, float, float]] = {
@@ -178,7 +180,6 @@ class Scene:
                     f'object "{o.name}" at ({_m(o.xy[0])}, {_m(o.xy[1])}) is outside the arm\'s workspace '
                     f"(a disk of radius {self.workspace.radius} m around {self.workspace.center})"
                 )
-        from .geometry import polygons_overlap  # local: keeps the module's import graph flat
 
         for i, a in enumerate(self.objects):
             for b in self.objects[i + 1 :]:
@@ -263,8 +264,6 @@ def _m(v: float) -> str:
 
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file; every problem becomes a :class:`SceneError` naming the file."""
-    from .contracts import load_json_file
-
     p = Path(path)
     return Scene.from_dict(load_json_file(p, SceneError, "scene file"), source=str(p)).validate()
 

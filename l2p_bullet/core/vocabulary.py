@@ -7,21 +7,18 @@ from __future__ import annotations
 
 import re
 
+from ..actions import BUILTIN
 from ..errors import UnknownActionError
 
-ACTIONS: tuple[str, ...] = ("closer", "away", "next-to", "past", "around")
-"""Canonical names of the built-in actions, in the order used by every table."""
+ACTIONS: tuple[str, ...] = tuple(BUILTIN)
+"""Canonical names of the built-in actions, in the order used by every table (closer, away, next-to,
+past, around: ``l2p_bullet.actions.BUILTIN``, each declared in its own module)."""
 
-SOURCE_NAMES: dict[str, str] = {
-    "closer": "SlideToward",
-    "away": "SlideAway",
-    "next-to": "SlideNext",
-    "past": "SlidePast",
-    "around": "SlideAround",
-}
+SOURCE_NAMES: dict[str, str] = {a: spec.source_name for a, spec in BUILTIN.items()}
 """What the original study's data calls each built-in action (capture files, graded folders)."""
 
-GRADED_FOLDERS: dict[str, str] = {**{src: a for a, src in SOURCE_NAMES.items()}, "SlideAroundDiscrete": "around"}
+GRADED_FOLDERS: dict[str, str] = {**{src: a for a, src in SOURCE_NAMES.items()},
+                                  **{f: a for a, spec in BUILTIN.items() for f in spec.graded_folders}}
 """Folder of the graded 2-D demonstrations -> the action it shows (the discrete planner's around too)."""
 
 PLUGIN_ACTION = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")

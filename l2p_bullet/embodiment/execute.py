@@ -15,11 +15,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.contracts import trajectory_poses
+from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, PathError, ReachError
 from . import motion, reach
-from .sim.camera import RenderSettings
+from .record import Recorder, versions
+from .sim.camera import Camera, RenderSettings
+from .sim.primitives import Primitives
+from .sim.world import World
 
 if TYPE_CHECKING:  # the simulator loads only when a path is executed
     from .sim.world import World
@@ -92,17 +96,17 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                  render: RenderSettings | None = DEFAULT_RENDER, seed: int = 0,
                  progress_fn: Callable[..., np.ndarray] | None = None,
                  meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
-                 world: World | None = None) -> Execution:
+                 world: World | None = None, summary: bool = True) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
 
     ``out_dir`` None records nothing to disk (frames are still returned); ``render`` None renders
     nothing. ``seed`` is recorded only: the simulation is deterministic. ``on_stage`` is told each
     stage's name as it starts. ``world``: an open :class:`~.sim.world.World` to run in instead of a new
     one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
-    it would in a new world) and left open. A world made here is closed here.
+    it would in a new world) and left open. A world made here is closed here. ``summary`` False leaves
+    summary.json to the caller, who starts from :func:`execution_summary` (``perform`` adds its own fields
+    and writes the file once).
     """
-    from ..core.runfolder import write_summary
-    from .sim.world import World
 
     meta = dict(meta or {})
     meta.setdefault("mover", mover)
@@ -131,7 +135,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                               displacements_m=displaced)
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
-            write_summary(files["summary"], _summary(execution, meta, seed, render))
+            if summary:
+                write_summary(files["summary"], execution_summary(execution, meta, seed, render))
         return execution
     finally:
         if own:
@@ -147,9 +152,6 @@ def _reuse(world: World, scene: Scene, render: RenderSettings | None) -> None:
 
 def _primitives(world: World, render: RenderSettings | None):
     """The arm's primitives with a recorder (and a camera when rendering) attached to ``world``."""
-    from .record import Recorder
-    from .sim.camera import Camera
-    from .sim.primitives import Primitives
 
     camera = Camera(world, render) if render is not None else None
     return Primitives(world, Recorder(world, camera))
@@ -253,9 +255,8 @@ def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
     return deviation, float(lift), displaced
 
 
-def _summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:
-    from .record import versions
-
+def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:
+    """What summary.json says about an execution (a replay's whole summary; the start of perform's)."""
     return {
         "schema": 1,
         **{k: meta.get(k) for k in ("sentence", "action", "mover", "anchor")},

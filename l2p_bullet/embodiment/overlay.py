@@ -26,6 +26,7 @@ BAR_FILL = (80, 190, 110)
 
 @lru_cache(maxsize=8)
 def _font(size: int):
+    # lazy: Pillow only when a frame or plot is drawn
     from PIL import ImageFont
 
     return ImageFont.load_default(size=size)
@@ -52,6 +53,7 @@ def overlay(image: np.ndarray, sentence: str | None, progress: float | None) -> 
     ``progress`` None (no model scored the run) writes "progress n/a" and no bar. Returns a new
     (H + strip_height(H), W, 3) uint8 array; ``image`` is not modified.
     """
+    # lazy: Pillow only when a frame or plot is drawn
     from PIL import Image, ImageDraw
 
     img = np.asarray(image)

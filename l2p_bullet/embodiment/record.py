@@ -10,12 +10,15 @@ from __future__ import annotations
 
 import platform
 import sys
+import time
 from collections.abc import Callable
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 
 from ..core.contracts import dumps_json, trajectory_poses
+from .overlay import overlay, progress_at
 
 TRAJECTORY_FPS = 30.0
 
@@ -43,8 +46,6 @@ class Recorder:
         if n % self.traj_every == 0:
             self.frames.append(self.snapshot())
         if self.render_every and n % self.render_every == 0:
-            import time
-
             t0 = time.perf_counter()
             self.images.append(self.camera.render())
             self.image_times.append(self.world.time)
@@ -96,9 +97,9 @@ class Recorder:
         Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
         the frames and the contact sheet stay the raw renders.
         """
+        # lazy: imageio (and its ffmpeg plugin) only when a video is written
         import imageio.v2 as imageio
 
-        from .overlay import overlay, progress_at
 
         if not self.images:
             return {}
@@ -140,8 +141,6 @@ def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4) -> np.nda
 
 def versions() -> dict[str, str]:
     """Versions of everything that can change a result."""
-    from importlib import metadata
-
     out = {"python": sys.version.split()[0], "platform": _platform()}
     for pkg in ("l2p-bullet", "pybullet", "numpy", "ruckig", "torch"):
         try:

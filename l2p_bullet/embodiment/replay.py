@@ -10,8 +10,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.contracts import Plan, dumps_json, motion_from_dict, read_json
 from ..core.scene import Scene
+from ..core.vocabulary import canonical_action
+from ..data.demos import get_demo
 from ..errors import PathError, SceneError
+from .execute import execute_path
+from .retarget import retarget
 
 
 @dataclass
@@ -28,12 +33,7 @@ class Source:
 
 def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
     """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`."""
-    from .retarget import retarget
-
     if demo is not None:
-        from ..core.vocabulary import canonical_action
-        from ..learning.demos import get_demo
-
         action, sep, index = demo.partition(":")
         if not sep or not index.strip().lstrip("-").isdigit():
             raise PathError(f'--demo expects ACTION:INDEX, e.g. around:0 (got "{demo}")')
@@ -41,7 +41,6 @@ def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: 
         fit = retarget(d.event_mover, d.event_anchor, d.size, scene, mover, anchor)
         return Source(f"demonstration {d.id}", mover, anchor, fit.path, d.action,
                       {"source": {"demo": d.id, "frames": [d.start, d.end]}, "retarget": _fit_info(fit)})
-    from ..core.contracts import Plan, read_json
 
     data = read_json(path_json)
     if "path" in data:  # plan.json: already in the scene frame
@@ -49,7 +48,6 @@ def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: 
         scene.get(plan.mover)
         return Source(f"plan {path_json}", plan.mover, plan.anchor, plan.path, plan.action,
                       {"source": {"plan": str(path_json)}})
-    from ..core.contracts import motion_from_dict
 
     m = motion_from_dict(data, source=str(path_json))
     mover, anchor = m.mover_name or mover, m.anchor_name or anchor
@@ -65,8 +63,6 @@ def _fit_info(fit) -> dict:
 
 def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed: int = 0, on_stage=None):
     """Put the mover at the path's start (the motion defines where it begins) and execute the path."""
-    from .execute import execute_path
-
     start = scene.with_pose(source.mover, source.path[0])
     try:
         start.validate()
@@ -74,8 +70,6 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
         raise PathError(f"the motion's start pose does not fit the scene: {e}") from None
     plan_file = None
     if out_dir is not None:
-        from ..core.contracts import Plan, dumps_json
-
         plan_file = Path(out_dir) / "plan.json"
         plan = Plan(source.action or "replay", source.mover, source.anchor, start.get(source.mover).size,
                     start.get(source.anchor).pose, source.path[0], source.path, np.zeros(len(source.path)),

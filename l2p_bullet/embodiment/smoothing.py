@@ -78,6 +78,7 @@ def curvature(poses: np.ndarray, step: float = 0.002) -> np.ndarray:
 
 
 def _profile(length: float, lim: Limits, v_max: float):
+    # lazy: ruckig only when a path is timed
     from ruckig import InputParameter, Result, Ruckig, Trajectory
 
     otg, inp, traj = Ruckig(1), InputParameter(1), Trajectory(1)

@@ -21,6 +21,7 @@ ENVS: dict[str, str] = {
 
 def register_envs() -> None:
     """Register the environments with Gymnasium (the ``gymnasium.envs`` entry point's target)."""
+    # lazy: gymnasium only for the environments
     import gymnasium
 
     for env_id, entry_point in ENVS.items():

@@ -16,6 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..embodiment.execute import grasp_candidates
+from ..embodiment.record import Recorder
+from ..embodiment.sim.camera import Camera, RenderSettings
+from ..embodiment.sim.primitives import Primitives
+from ..embodiment.sim.world import World
 from ..errors import L2PError
 from .plan2d import Plan2DEnv
 
@@ -32,12 +37,6 @@ class ArmEnv(Plan2DEnv):
         self._camera = None
 
     def _start_episode(self) -> None:
-        from ..embodiment.execute import grasp_candidates
-        from ..embodiment.record import Recorder
-        from ..embodiment.sim.camera import Camera, RenderSettings
-        from ..embodiment.sim.primitives import Primitives
-        from ..embodiment.sim.world import World
-
         visuals = self.render_mode == "rgb_array"
         if self._world is None:
             self._world = World(self.scene, visuals=visuals)

@@ -25,9 +25,11 @@ import numpy as np
 from gymnasium import spaces
 
 from ..core.geometry import wrap_angle
-from ..core.scene import MIN_SIZE, Scene, random_scene
+from ..core.scene import COLORS, MIN_SIZE, Scene, random_scene
+from ..planning import THRESHOLD
 from ..planning.problem import FRAME_STEP, MAX_TURN
 from ..planning.world2d import World2D, segment_frames
+from ..plugins import registry
 
 POSITION_BOUND = 16.0
 """Block units: the workspace's radius (0.25 m) over the smallest block (0.02 m) is 12.5."""
@@ -41,9 +43,6 @@ class Plan2DEnv(gym.Env):
     def __init__(self, action: str = "around", render_mode: str | None = None, max_steps: int = 12,
                  max_move: float = 2.0, threshold: float | None = None, size: float = 0.05,
                  illegal_penalty: float = 0.0):
-        from ..planning import THRESHOLD
-        from ..plugins import registry
-
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None")
         if not MIN_SIZE <= size:
@@ -156,13 +155,13 @@ class Plan2DEnv(gym.Env):
 
 def _draw(scene: Scene, mover: str, path: np.ndarray, pose: np.ndarray, px: int = 240) -> np.ndarray:
     """A top view of the workspace: blocks, the mover where it is now and its path so far (H, W, 3) uint8."""
+    # lazy: matplotlib takes about a second to import; only when a figure is drawn
     import matplotlib
 
     matplotlib.use("Agg")
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    from ..core.scene import COLORS
 
     fig = Figure(figsize=(px / 80, px / 80), dpi=80)
     canvas = FigureCanvasAgg(fig)

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.vocabulary import ACTIONS
+
 TOUCHING_BLOCKS = 0.2
 """Final gap (block sizes) at or under which two blocks read as touching: 1 cm between 5 cm blocks, twice
 the planner's clearance (``GRIPPER_MARGIN``)."""
@@ -65,8 +67,6 @@ def confusion(rows: list[dict], order: list[str] | None = None) -> Confusion:
 
 
 def _ordered(names: set[str], order: list[str] | None) -> list[str]:
-    from ..core.vocabulary import ACTIONS
-
     first = [a for a in (order or list(ACTIONS)) if a in names]
     return first + sorted(names - set(first))
 

@@ -26,7 +26,7 @@ from collections.abc import Callable, Iterable
 from multiprocessing.connection import wait
 
 from .tasks import Task
-from .worker import error_row
+from .worker import Worker, error_row
 
 OnRow = Callable[[dict], None]
 
@@ -50,7 +50,6 @@ def _one_thread_per_worker():
 def _worker_main(conn) -> None:
     """A worker process: receive a task, send its row, until told to stop (None) or the pipe closes."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    from .worker import Worker
 
     worker = Worker()
     try:

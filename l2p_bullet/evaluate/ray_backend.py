@@ -15,17 +15,19 @@ kept run folders are written on the node that ran them.
 from __future__ import annotations
 
 import os
+import signal
 from collections.abc import Callable, Iterable
 
 from ..errors import EvaluationError, MissingExtraError
 from .tasks import Task
-from .worker import error_row
+from .worker import Worker, error_row
 
 
 def _import_ray():
     os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
     os.environ.setdefault("RAY_DEDUP_LOGS", "0")
     try:
+        # lazy: ray is an optional extra (l2p-bullet[ray])
         import ray
     except ImportError:
         raise MissingExtraError("ray", "ray", "--ray") from None
@@ -36,10 +38,7 @@ class _Actor:
     """The body of a Ray actor: one Worker, kept for the actor's life."""
 
     def __init__(self) -> None:
-        import signal
-
         signal.signal(signal.SIGINT, signal.SIG_IGN)
-        from .worker import Worker
 
         self.worker = Worker()
 

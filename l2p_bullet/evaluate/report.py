@@ -11,13 +11,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .confusion import Confusion, confusion, touching_finding
+from .confusion import Confusion, _ordered, confusion, touching_finding
 
 
 def success_table(rows: list[dict], order: list[str] | None = None) -> list[dict]:
     """Per action: runs, success rate, errors, mean final progress, mean dev and max anchor shift, mean time."""
-    from .confusion import _ordered
-
     out = []
     for a in _ordered({r["action"] for r in rows}, order):
         rs = [r for r in rows if r["action"] == a]
@@ -78,6 +76,7 @@ def report_text(rows: list[dict], c: Confusion | None = None) -> str:
 
 def save_plots(c: Confusion, out_dir: str | Path) -> dict[str, Path]:
     """confusion_judges.png and confusion_models.png in ``out_dir``."""
+    # lazy: matplotlib takes about a second to import; only when a figure is drawn
     import matplotlib
 
     matplotlib.use("Agg")

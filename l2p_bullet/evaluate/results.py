@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import EvaluationError
+from .worker import TIMING_FIELDS
 
 DB_NAME = "results.sqlite"
 
@@ -107,6 +108,7 @@ class ResultsStore:
     def to_parquet(self, path: str | Path) -> Path:
         """Write the table as Parquet (JSON columns kept as JSON text); needs pyarrow."""
         try:
+            # lazy: pyarrow is an optional extra (l2p-bullet[export])
             import pyarrow as pa
             import pyarrow.parquet as pq
         except ImportError:
@@ -131,6 +133,4 @@ def _plain(v: Any) -> Any:
 
 def comparable(row: dict[str, Any]) -> dict[str, Any]:
     """A row without the fields that depend on the machine and the moment (timings, worker, folder)."""
-    from .worker import TIMING_FIELDS
-
     return {k: v for k, v in row.items() if k not in TIMING_FIELDS and k != "run_dir"}

@@ -14,10 +14,15 @@ from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 
 from ..errors import EvaluationError
+from ..planning import resolve_planner
+from ..plugins import registry
+from .pool import run_pool
 from .progressbar import ProgressBar
+from .ray_backend import run_ray
 from .results import ResultsStore
 from .scenes import SceneSpec, random_scenes, scene_file, study_scenes, with_bystanders
 from .tasks import Task, make_tasks
+from .worker import run_task
 
 DEFAULT_SCENES = 10
 
@@ -88,8 +93,6 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
     same); recorded runs are skipped, those that ended in an error too unless ``retry_errors``.
     KeyboardInterrupt stops the workers and propagates; every row already recorded stays.
     """
-    from ..plugins import registry
-
     out = Path(out_dir)
     if workers is None:  # the cores here; on a Ray cluster, every CPU it has (0)
         workers = 0 if ray and ray != "local" else (os.cpu_count() or 1)
@@ -112,7 +115,6 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         actions = config.actions or [p.name for p in plugins if p.ok]
         if not actions:
             raise EvaluationError("no usable action plugin is installed (see: l2p-bullet actions)")
-        from ..planning import resolve_planner
 
         resolve_planner(config.planner)  # a typo fails before anything runs
         tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
@@ -146,16 +148,10 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
 def run_tasks(tasks: list[Task], *, workers: int, ray: str | None, on_row) -> None:
     """Dispatch ``tasks`` to the chosen backend (see the module docstring)."""
     if ray:
-        from .ray_backend import run_ray
-
         run_ray(tasks, ray, workers, on_row)
     elif workers >= 1:
-        from .pool import run_pool
-
         run_pool(tasks, workers, on_row)
     else:
-        from .worker import run_task
-
         for t in tasks:
             on_row(run_task(t))
 

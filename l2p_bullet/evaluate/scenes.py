@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.scene import COLORS, Scene, SceneObject, random_scene
+from ..data.demos import load_graded_demos
 from ..errors import EvaluationError, L2PError, SceneError
 
 STUDY_BLOCK = 0.15
@@ -112,8 +113,6 @@ def study_scenes(size: float = 0.05, seed: int = 0) -> list[SceneSpec]:
     towards the centre until both blocks are half a block inside the workspace's edge. Block 0 (the
     study's mover) is A, red; block 1 (its static block) is B, green.
     """
-    from ..learning.demos import load_graded_demos
-
     k = size / STUDY_BLOCK
     out: list[SceneSpec] = []
     seen: set[str] = set()

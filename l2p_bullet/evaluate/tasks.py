@@ -11,6 +11,7 @@ import re
 from dataclasses import asdict, dataclass
 
 from ..errors import EvaluationError
+from ..plugins import registry
 from .scenes import SceneSpec
 
 MODES = ("perform", "plan")
@@ -46,8 +47,6 @@ class Task:
 
 def sentence_for(action: str, mover: str, anchor: str, plugins: list) -> str:
     """``move MOVER <the action's first phrase> ANCHOR``, e.g. "move A closer to B"."""
-    from ..plugins import registry
-
     info = registry.find(action, plugins)
     phrase = info.phrases[0] if info.phrases else action
     return f"move {mover} {phrase} {anchor}"
@@ -60,8 +59,6 @@ def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "d
 
     ``render_every`` K > 0 renders (and keeps) every K-th run of each action: runs 0, K, 2K, ...
     """
-    from ..plugins import registry
-
     if mode not in MODES:
         raise EvaluationError(f'unknown mode "{mode}" (known: {", ".join(MODES)})')
     if keep not in KEEP:

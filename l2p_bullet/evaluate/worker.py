@@ -27,6 +27,14 @@ from typing import Any
 
 import numpy as np
 
+from ..core.contracts import trajectory_poses
+from ..core.scene import Scene
+from ..embodiment.sim.world import World
+from ..errors import L2PError
+from ..judge import judge_for
+from ..judge.rules import square_gap
+from ..pipeline import judged_plan, perform, prepare
+from ..plugins import registry
 from .tasks import Task
 
 TIMING_FIELDS = ("plan_s", "execute_s", "total_s", "wall_s", "timings", "worker", "finished_at")
@@ -57,8 +65,6 @@ class Worker:
     """Runs tasks one after another in one process; see the module docstring for what it keeps."""
 
     def __init__(self) -> None:
-        from ..plugins import registry
-
         self.plugins = registry.discover()
         self.ident = f"{socket.gethostname()}:{os.getpid()}"
         self._judges: dict[str, Any] | None = None
@@ -69,9 +75,6 @@ class Worker:
     def judges(self) -> dict[str, tuple[Any, Any]]:
         """action -> (judge, progress model) for every usable installed action."""
         if self._judges is None:
-            from ..judge import judge_for
-            from ..plugins import registry
-
             self._judges = {}
             for info in self.plugins:
                 if not info.ok:
@@ -90,8 +93,6 @@ class Worker:
     def world(self, scene: Any, visuals: bool) -> Any:
         """This process's world (with or without the arm's visuals), made on first use."""
         if visuals not in self._worlds:
-            from ..embodiment.sim.world import World
-
             self._worlds[visuals] = World(scene, visuals=visuals)
         return self._worlds[visuals]
 
@@ -111,8 +112,6 @@ class Worker:
     # --- one task ------------------------------------------------------------------------------
     def run(self, task: Task) -> dict[str, Any]:
         """The task's row; an L2PError (or a bug) in the run becomes the row's error, never an exception."""
-        from ..errors import L2PError
-
         t0 = time.perf_counter()
         row = empty_row(task)
         try:
@@ -129,10 +128,6 @@ class Worker:
         return row
 
     def _perform(self, task: Task, row: dict) -> None:
-        from ..core.contracts import trajectory_poses
-        from ..core.scene import Scene
-        from ..pipeline import perform
-
         keep_always = task.render or task.keep == "all"
         out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
         scene = Scene.from_dict(task.scene, source=task.scene_id)
@@ -170,24 +165,13 @@ class Worker:
                 row["run_dir"] = str(out)
 
     def _plan(self, task: Task, row: dict) -> None:
-        from .. import planning
-        from ..core.scene import Scene
-        from ..judge import judge_for
-        from ..pipeline import check_feasible, judge_context, resolve
-        from ..plugins import registry
-
-        scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
-        cmd = resolve(task.sentence, scene, self.plugins)
-        check_feasible(cmd, scene, self.plugins)  # refused up front, as perform and plan refuse it
-        bundle = registry.load(cmd.action, self.plugins)
+        scene = Scene.from_dict(task.scene, source=task.scene_id)
+        p = prepare(task.sentence, scene, planner=task.planner, seed=task.seed, budget=task.budget,
+                    threshold=task.threshold, plugins=self.plugins)  # refused up front, as perform and plan refuse it
         t = time.perf_counter()
-        plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=task.planner, seed=task.seed,
-                             budget=task.budget, threshold=task.threshold, time_limit=task.time_limit)
+        plan, v = judged_plan(p, planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
+                              time_limit=task.time_limit)
         plan_s = time.perf_counter() - t
-        poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
-        v = judge_for(bundle).judge(plan.path, plan.anchor_pose, plan.size,
-                                    final_progress=plan.extra.get("final_progress"),
-                                    **judge_context(poses, plan.viewer)).to_dict()
         row.update(planner_used=plan.planner, success=int(bool(v["success"])), score=v.get("score"),
                    reason=v.get("reason"), judge=v.get("judge"), final_progress=plan.extra.get("final_progress"),
                    planned_progress=plan.extra.get("final_progress"), stopped=plan.stopped,
@@ -204,8 +188,6 @@ class Worker:
 
     def _confusion(self, row: dict, mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
         """Every installed action's verdict and learned progress on this motion; the final gap to the anchor."""
-        from ..judge.rules import square_gap
-
         judged, scored = {}, {}
         for name, (judge, model) in self.judges().items():
             if getattr(model, "anchors", 1) != 1:  # a two-anchor action cannot judge a one-anchor motion

@@ -15,7 +15,16 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.contracts import trajectory_poses
+from ..core.scene import default_scene
+from ..core.vocabulary import ACTIONS, canonical_action
+from ..data.demos import load_demos
+from ..embodiment.record import TRAJECTORY_FPS
+from ..embodiment.replay import motion_source, run_replay
+from ..embodiment.sim.camera import RenderSettings
 from ..errors import DataError, PathError
+from ..evaluate.tasks import sentence_for
+from ..plugins import registry
 
 
 @dataclass
@@ -74,6 +83,7 @@ def episode_from_run(run: str | Path) -> Episode:
 def _read_images(folder: Path) -> list[np.ndarray]:
     if not folder.is_dir():
         return []
+    # lazy: imageio (and its ffmpeg plugin) only when a video is written
     import imageio.v2 as imageio
 
     return [np.asarray(imageio.imread(f))[:, :, :3] for f in sorted(folder.glob("*.png"))]
@@ -81,8 +91,6 @@ def _read_images(folder: Path) -> list[np.ndarray]:
 
 def demo_specs(specs: list[str]) -> list[tuple[str, int]]:
     """``all``, ``ACTION`` (all its demonstrations) or ``ACTION:INDEX`` -> (action, index) pairs."""
-    from ..core.vocabulary import ACTIONS, canonical_action
-    from ..learning.demos import load_demos
 
     out: list[tuple[str, int]] = []
     for spec in specs:
@@ -104,13 +112,6 @@ def demo_episodes(specs: list[str], render: bool | object = True, plugins: list 
     (``embodiment.replay``, as ``l2p-bullet replay --demo``), with the action's learned progress per frame.
 
     ``render``: True (the default camera, 320x240 at 10 fps), False, or a ``RenderSettings``."""
-    from ..core.contracts import trajectory_poses
-    from ..core.scene import default_scene
-    from ..embodiment.record import TRAJECTORY_FPS
-    from ..embodiment.replay import motion_source, run_replay
-    from ..embodiment.sim.camera import RenderSettings
-    from ..evaluate.tasks import sentence_for
-    from ..plugins import registry
 
     plugins = registry.discover() if plugins is None else plugins
     scene = default_scene()

@@ -43,6 +43,7 @@ ACTION_NAMES = ["ee_x", "ee_y", "ee_z", "grasp"]
 
 def _pyarrow():
     try:
+        # lazy: pyarrow is an optional extra (l2p-bullet[export])
         import pyarrow as pa
         import pyarrow.parquet as pq
     except ImportError:
@@ -198,6 +199,7 @@ def _stats(arr: dict[str, np.ndarray], n: int, images: list[np.ndarray] | None) 
 
 
 def _write_video(images: list[np.ndarray], path: Path, fps: float) -> None:
+    # lazy: imageio (and its ffmpeg plugin) only when a video is written
     import imageio.v2 as imageio
 
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -24,11 +24,11 @@ import importlib
 from typing import Any
 
 from ..errors import FailedToLoadPlugin, L2PError
-from .base import Judge, Verdict
+from .base import Judge, Verdict, judge_context
 from .learned import THRESHOLD, LearnedJudge
 from .rules import RULES, TWO_ANCHOR_RULES, RuleJudge, rule_verdict
 
-__all__ = ["Judge", "Verdict", "RuleJudge", "LearnedJudge", "RULES", "rule_verdict", "judge_for"]
+__all__ = ["Judge", "Verdict", "RuleJudge", "LearnedJudge", "RULES", "rule_verdict", "judge_for", "judge_context"]
 
 
 def judge_for(bundle: Any) -> Judge:

@@ -47,3 +47,16 @@ class Judge(Protocol):
 
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
               final_progress: float | None = None, **context: Any) -> Verdict: ...
+
+
+def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None) -> dict[str, Any]:
+    """The keywords a judge gets besides mover, anchor and size: ``anchors`` (every reference object's
+    poses) only for a two-anchor action and ``viewer`` only for a viewer-frame one, so a plugin's judge
+    written for one-anchor relative actions keeps working unchanged."""
+    kw: dict[str, Any] = {}
+    if len(anchors) > 1:
+        kw["anchors"] = anchors
+    if viewer is not None:
+        kw["viewer"] = np.asarray(viewer, float)
+    return kw
+

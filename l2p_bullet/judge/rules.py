@@ -29,6 +29,9 @@ For plugin actions (a manifest's ``[judge] rules = "..."``):
                right, towards the viewer, away from it), near it (centre distance at most 4 blocks) and
                not overlapping it. The viewer is the ``viewer`` keyword, the robot's base by default.
 
+The numbers above are declared by each built-in action (``l2p_bullet/actions/<name>/__init__.py``,
+``ActionSpec.thresholds``) and read here once, as the constants below.
+
 "Steadily" allows wobbles of half a block against the running best. Every rule also gives a graded
 ``score`` in [0, 1] (used for the correlation with people's grades; ``success`` is the yes/no verdict).
 Motions are read in the anchor's frame (mover minus anchor), so a moving anchor is handled too.
@@ -41,6 +44,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..actions import BUILTIN
+from ..core.frames import VIEWPOINTS, viewer_offset
 from ..core.geometry import polygons_overlap, swept_angle
 from ..core.vocabulary import canonical_action
 from ..errors import UnknownActionError
@@ -49,6 +54,25 @@ from .base import Verdict
 WOBBLE = 0.5
 """Blocks a 'steady' change may go back against its running best (motion-capture jitter in the human
 demonstrations reaches this: at 0.3 the rule rejected 37 % of people's "closer" demonstrations)."""
+# The built-in actions' thresholds, declared by each action (l2p_bullet/actions/<name>/__init__.py):
+CLOSER_SHARE = BUILTIN["closer"].thresholds["share"]
+"""Share of the room there was (:func:`closer_room`) that "closer" must close."""
+AWAY_GAIN = BUILTIN["away"].thresholds["gain"]
+"""Blocks the centre distance must grow by for "away"."""
+NEXT_TO_GAP = BUILTIN["next-to"].thresholds["gap"]
+"""Largest gap (blocks) between the footprints at the end of "next to"."""
+PAST_MARGIN = BUILTIN["past"].thresholds["margin"]
+"""Blocks "past" must start before the anchor and end beyond it (along its direction of travel)."""
+PAST_NEAR = BUILTIN["past"].thresholds["near"]
+"""Largest closest centre distance (blocks) of "past"."""
+PAST_MAX_TURN_DEG = BUILTIN["past"].thresholds["max_turn_deg"]
+"""Most degrees "past" may turn around the anchor (more is going around)."""
+AROUND_TURNS = BUILTIN["around"].thresholds["turns"]
+"""Share of a full turn around the anchor that "around" must sweep."""
+AROUND_NEAR = BUILTIN["around"].thresholds["near"]
+"""Largest centre distance (blocks) of "around"."""
+NEAR = 4.0
+"""Largest centre distance (blocks) at which the viewer-frame sides (plugins' rule sets) still count as near."""
 
 
 def _unit_square(pose: np.ndarray) -> np.ndarray:
@@ -82,14 +106,20 @@ def _relative(mover: np.ndarray, anchor: np.ndarray, size: float) -> tuple[np.nd
     return rel, np.linalg.norm(rel, axis=1)
 
 
+def closer_room(start: float) -> float:
+    """The room "closer" has, in blocks, from a start distance of ``start`` blocks: the distance to where two
+    squares touch face to face (1 block), at least a quarter block (planning/feasibility.py reads it too)."""
+    return max(start - 1.0, 0.25)
+
+
 def _closer(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
-    room = max(float(d[0]) - 1.0, 0.25)
+    room = closer_room(float(d[0]))
     moved = float(d[0]) - float(d[-1])
     closed = moved / room
     rise = float(np.max(d - np.minimum.accumulate(d)))
     # people also reward how far it came, not only the share of the room ("right, but too short")
     score = float(np.clip(closed, 0, 1) * np.clip(moved / 2.0, 0, 1)) * (1.0 if rise <= WOBBLE else 0.5)
-    ok = closed >= 0.5 and rise <= WOBBLE
+    ok = closed >= CLOSER_SHARE and rise <= WOBBLE
     why = f"closed {closed:.0%} of the gap (start {d[0]:.2f}, end {d[-1]:.2f} blocks), went back {rise:.2f} blocks"
     return Verdict(ok, score, why)
 
@@ -98,7 +128,7 @@ def _away(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     gained = float(d[-1]) - float(d[0])
     drop = float(np.max(np.maximum.accumulate(d) - d))
     score = float(np.clip((gained - drop) / 6.0, 0, 1))
-    ok = gained >= 1.0 and drop <= WOBBLE
+    ok = gained >= AWAY_GAIN and drop <= WOBBLE
     return Verdict(ok, score, f"distance grew by {gained:.2f} blocks (start {d[0]:.2f}), went back {drop:.2f} blocks")
 
 
@@ -109,7 +139,7 @@ def _next_to(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarr
     gap = square_gap(m, a)
     overlap = gap == 0.0 and _overlaps(m, a)
     score = 0.0 if overlap else float(1.0 - min(gap, 3.0) / 3.0)
-    ok = gap <= 0.5 and not overlap
+    ok = gap <= NEXT_TO_GAP and not overlap
     return Verdict(ok, score, f"ends {gap:.2f} blocks from the anchor" + (" (overlapping it)" if overlap else ""))
 
 
@@ -126,11 +156,11 @@ def _past(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     before, beyond = -float(rel[0] @ u), float(rel[-1] @ u)
     near = float(d.min())
     swept = math.degrees(abs(swept_angle(rel)))
-    crossing = min(np.clip(before / 0.5, 0, 1), np.clip(beyond / 0.5, 0, 1))
-    nearness = float(np.clip(1.0 - (near - 4.0) / 8.0, 0.5, 1.0))
+    crossing = min(np.clip(before / PAST_MARGIN, 0, 1), np.clip(beyond / PAST_MARGIN, 0, 1))
+    nearness = float(np.clip(1.0 - (near - PAST_NEAR) / 8.0, 0.5, 1.0))
     straight = float(np.clip((200.0 - swept) / 40.0, 0.3, 1.0))  # more than a half-turn is circling
     score = float(crossing * nearness * straight)
-    ok = before >= 0.5 and beyond >= 0.5 and near <= 4.0 and swept <= 180.0
+    ok = before >= PAST_MARGIN and beyond >= PAST_MARGIN and near <= PAST_NEAR and swept <= PAST_MAX_TURN_DEG
     why = (f"started {before:.2f} blocks before and ended {beyond:.2f} beyond the anchor, "
            f"closest {near:.2f} blocks, turned {swept:.0f} deg around it")
     return Verdict(ok, score, why)
@@ -139,8 +169,8 @@ def _past(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
 def _around(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     turns = abs(swept_angle(rel)) / (2 * math.pi)
     far = float(d.max())
-    score = float(np.clip(turns, 0, 1)) * (1.0 if far <= 4.0 else 0.5)
-    ok = turns >= 0.8 and far <= 4.0
+    score = float(np.clip(turns, 0, 1)) * (1.0 if far <= AROUND_NEAR else 0.5)
+    ok = turns >= AROUND_TURNS and far <= AROUND_NEAR
     return Verdict(ok, score, f"swept {turns:.2f} of a turn around the anchor, at most {far:.2f} blocks away")
 
 
@@ -179,15 +209,13 @@ def _side(name: str) -> Callable[..., Verdict]:
 
     def rule(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float, *,
              viewer: np.ndarray | None = None, **_: object) -> Verdict:
-        from ..core.frames import VIEWPOINTS, viewer_offset
-
         v = np.asarray(VIEWPOINTS["robot"] if viewer is None else viewer, float)
         lat, dep = viewer_offset(mover[-1, :2] / size, anchor[-1, :2] / size, v[:2] / size)
         r = max(float(np.hypot(lat, dep)), 1e-9)
         along = (lat * lat_dir + dep * dep_dir) / r  # cosine of the angle from the side's direction
         overlap = _overlaps(np.r_[rel[-1], mover[-1, 2]], np.r_[0.0, 0.0, anchor[-1, 2]])
-        score = float(np.clip(along, 0, 1)) * (1.0 if r <= 4.0 else 0.5) * (0.0 if overlap else 1.0)
-        ok = along >= math.cos(math.radians(45)) - 1e-9 and r <= 4.0 and not overlap
+        score = float(np.clip(along, 0, 1)) * (1.0 if r <= NEAR else 0.5) * (0.0 if overlap else 1.0)
+        ok = along >= math.cos(math.radians(45)) - 1e-9 and r <= NEAR and not overlap
         why = (f"ends {math.degrees(math.acos(float(np.clip(along, -1, 1)))):.0f} deg from straight {words} the "
                f"anchor as the viewer sees it ({lat:+.2f} blocks to its left, {dep:+.2f} behind), "
                f"{r:.2f} blocks away" + (" (overlapping it)" if overlap else ""))

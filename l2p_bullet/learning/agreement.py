@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 
 from ..core.vocabulary import ACTIONS, GRADED_FOLDERS
+from ..data.demos import load_demos, load_graded_demos
 from ..judge.rules import rule_verdict
 from ..planning.world2d import interpolate
-from .demos import load_demos, load_graded_demos
 
 STEP_BLOCKS = 0.25
 """Frames of a graded motion are this many block sides apart along each move (the models' grid)."""

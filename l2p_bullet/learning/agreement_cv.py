@@ -23,9 +23,12 @@ from typing import Any
 import numpy as np
 
 from ..core.vocabulary import GRADED_FOLDERS
+from ..progress.config import ModelConfig
+from ..progress.features import QSRConfig
 from .agreement import spearman
 from .feedback import FeedbackItem
 from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
+from .trainset import DataConfig, build
 
 Trainer = Callable[[str, list[FeedbackItem], dict], Any]
 """(action, training items of every action, setting) -> a model with ``final_batch``."""
@@ -124,9 +127,8 @@ class FineTuner:
 
     def __init__(self, demos: dict, *, seed: int = 0, cfg=None, base: dict | None = None,
                  fcfg: FeedbackConfig | None = None, log: Callable[[str], None] | None = None):
-        from ..progress.features import QSRConfig
+        # lazy: these modules import torch; only when a network is trained
         from .train_progress import ProgressTrainConfig
-        from .trainset import DataConfig
 
         self.demos, self.seed, self.log = demos, seed, log
         self.cfg = cfg or ProgressTrainConfig()
@@ -138,6 +140,7 @@ class FineTuner:
     def nets(self, action: str) -> list:
         """The ensemble trained on the demonstrations only (trained at the first call)."""
         if action not in self.base:
+            # lazy: these modules import torch; only when a network is trained
             from .train_progress import train_action
 
             if self.log:
@@ -147,13 +150,11 @@ class FineTuner:
 
     def seqs(self, action: str) -> list:
         if action not in self._seqs:
-            from .trainset import build
-
             self._seqs[action] = build(action, self.demos, self.qcfg, self.dcfg, seed=self.seed)
         return self._seqs[action]
 
     def __call__(self, action: str, items: list[FeedbackItem], setting: dict) -> Any:
-        from ..progress.config import ModelConfig
+        # lazy: these modules import torch; only when a network is trained
         from .progress_net import ProgressModel
         from .train_progress import fine_tune
 

@@ -23,9 +23,9 @@ import numpy as np
 
 from ..core.frames import viewer_offset
 from ..core.geometry import moving_average, swept_angle
+from ..data.demos import Demo
 from ..errors import DataError
 from ..progress.features import QSRConfig
-from .demos import Demo
 
 
 def polyline(demo_m: np.ndarray, c: np.ndarray, rng: np.random.Generator,

@@ -8,10 +8,10 @@ mean grade (0-10 -> 0-1), and motions people took for another action in a blind 
 Where grades come from (:func:`load_feedback`), one :class:`FeedbackItem` per graded motion:
 
 - ``original``: the 90 graded 2-D demonstrations of the original study (``learning.agreement``);
-- a review-app export, CSV or JSON lines (``review.store.EXPORT_FIELDS``, one ``GradeRow`` per line); a reviewed
+- a review-app export, CSV or JSON lines (``data.grades.EXPORT_FIELDS``, one ``GradeRow`` per line); a reviewed
   run's motion is read from its run folder's trajectory.json, and a run whose trajectory.json no longer
   has the sha256 that was reviewed is reported, never used;
-- the review app's SQLite database (``.sqlite``/``.db``), through ``l2p_bullet.review.store.load_grades``;
+- the review app's SQLite database (``.sqlite``/``.db``), through ``l2p_bullet.data.grades.load_grades``;
 - the rule judge (:func:`~l2p_bullet.learning.feedback_targets.judge_items`): planner outputs graded 10 x the judge's score, the original
   project's "automatic feedback".
 
@@ -24,15 +24,17 @@ from __future__ import annotations
 import csv
 import json
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from ..core.contracts import load_motion
 from ..core.vocabulary import canonical_action, normalize_name
-from ..errors import DataError, UnknownActionError
+from ..data.grades import EXPORT_FIELDS, GradeRow, load_grades
+from ..errors import DataError, L2PError, ReviewError, UnknownActionError
 from ..plugins.bundle import sha256_file
-from ..review.store import EXPORT_FIELDS, GradeRow
+from .agreement import graded_motions
 
 GRADE_MAX = 10.0
 """Grades run from 0 (bad) to this (good); the training target is grade / GRADE_MAX."""
@@ -75,7 +77,7 @@ def _row(d: dict, path: str, line: int) -> GradeRow:
 
 def read_grades(path: str | Path) -> list[GradeRow]:
     """Every row of a review export: ``.csv`` (header row), ``.jsonl`` (one object a line), or the review
-    app's database (``.sqlite``/``.db``, read by ``l2p_bullet.review.store.load_grades``)."""
+    app's database (``.sqlite``/``.db``, read by ``l2p_bullet.data.grades.load_grades``)."""
     p = Path(path)
     if not p.is_file():
         raise FeedbackError("no such feedback file (expected a .csv or .jsonl export, a review .sqlite/.db, "
@@ -110,11 +112,6 @@ def read_grades(path: str | Path) -> list[GradeRow]:
 
 def _read_store(p: Path) -> list[GradeRow]:
     """The review app's database, through its own reader, each row checked as an export row is."""
-    from dataclasses import asdict
-
-    from ..errors import ReviewError
-    from ..review.store import load_grades
-
     try:
         rows = load_grades(p)
     except ReviewError as e:
@@ -157,8 +154,6 @@ class Skipped:
 
 def original_items() -> list[FeedbackItem]:
     """The original study's 90 graded 2-D demonstrations, one item each (grades of both people)."""
-    from .agreement import graded_motions
-
     return [FeedbackItem(m.id, m.action, m.mover, m.anchor, m.size, list(m.grades.values()), [], ORIGINAL, m.folder)
             for m in graded_motions()]
 
@@ -180,8 +175,6 @@ def items_from_rows(rows: Sequence[GradeRow], base: str | Path | None = None) ->
     ``base``, the export's folder); a run whose folder or trajectory is missing, or whose trajectory.json
     no longer has the reviewed ``trajectory_sha256``, is returned in the second list instead of used.
     """
-    from ..core.contracts import load_motion
-    from ..errors import L2PError
 
     groups: dict[str, list[GradeRow]] = {}
     for r in rows:

@@ -15,6 +15,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.scene import random_scene
+from ..planning import plan
+from ..planning.world2d import interpolate
 from ..progress.features import QSRConfig
 from .feedback import GRADE_MAX, FeedbackItem
 from .trainset import DataConfig, TrainingSequence, _labelled, mirror
@@ -152,9 +155,6 @@ def judge_items(action: str, model, seeds: Sequence[int], judge, budgets: Sequen
     and poor motions (plans that finish are nearly all good; grading only those would teach little).
     Planning with the model being trained, not an installed bundle, keeps ``make bundles`` reproducible.
     """
-    from ..core.scene import random_scene
-    from ..planning import plan
-    from ..planning.world2d import interpolate
 
     holder = _ModelOnly(action, model)
     out = []

@@ -30,9 +30,9 @@ import numpy as np
 
 from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
+from ..data.demos import SMOOTH_FRAMES, Demo
 from ..planning.proposals import DIRECTIONS, DISTANCES
 from .augment import smooth_poses
-from .demos import Demo
 
 CONTAINED: dict[str, tuple[str, ...]] = {
     "closer": ("next-to",),
@@ -72,7 +72,7 @@ class Event:
     """Net turn round the anchor over the event, in full turns (around's full-event label)."""
 
 
-def events(demos: list[Demo], smooth_frames: int = 9) -> list[Event]:
+def events(demos: list[Demo], smooth_frames: int = SMOOTH_FRAMES) -> list[Event]:
     out = []
     for d in demos:
         m = smooth_poses(d.mover, smooth_frames)[d.start : d.end + 1]

@@ -25,9 +25,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.vocabulary import ACTIONS
+from ..data.demos import Demo
+from ..progress.features import QSRConfig
 from .augment import smooth_poses
-from .demos import Demo
 from .progress_net import ProgressModel
+from .trainset import DataConfig, demo_sequence
 
 
 def demo_targets(d: Demo, model: ProgressModel, smooth_frames: int = 9) -> tuple[float, float]:
@@ -61,9 +63,8 @@ FOLDS: list[tuple[str, str]] = [("Session1", "Session2"), ("Session2", "Session1
 def session_split(train_cfg=None, data_cfg=None, qsr_cfg=None, seed: int = 0,
                   on_model: Callable[[str, str, float], None] | None = None) -> SplitReport:
     """Train every action on one session and test on the other, both ways (10 trainings)."""
-    from ..progress.features import QSRConfig
+    # lazy: these modules import torch; only when a network is trained
     from .train_progress import all_demos, train_action
-    from .trainset import DataConfig, demo_sequence
 
     q, dc = qsr_cfg or QSRConfig(), data_cfg or DataConfig()
     rep = SplitReport(folds=list(FOLDS))

@@ -30,18 +30,25 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import DataError, RunFolderError
-from ..plugins.bundle import sha256_file
-from ..review.store import GradeRow
-from .feedback import GRADE_MAX, FeedbackItem, items_from_rows, load_feedback, read_grades
+from ..actions import BUILTIN
+from ..core.contracts import load_motion
+from ..core.scene import random_scene
+from ..data.grades import GradeRow, write_grades
+from ..errors import DataError, L2PError, RunFolderError
+from ..judge import RuleJudge
+from ..pipeline import perform
+from ..plugins.bundle import load_bundle, sha256_file, write_progress_bundle
+from ..plugins.registry import locate
+from .agreement_cv import folder_agreement, score_items
+from .feedback import GRADE_MAX, FeedbackItem, items_from_rows, load_feedback, original_items, read_grades
 from .feedback_targets import FeedbackConfig
 
 IMPROVE_SEEDS = 1000
 """Scene seed of round 1's first run; round k, run i uses IMPROVE_SEEDS + 100 (k - 1) + i."""
 MAX_SCENES, MAX_ROUNDS = 100, 40
 
-SENTENCES = {"closer": "move A closer to B", "away": "move A away from B", "next-to": "move A next to B",
-             "past": "move A past B", "around": "move A around B"}
+SENTENCES = {a: spec.sentence for a, spec in BUILTIN.items()}
+"""The sentence each built-in action's rounds perform (its ``ActionSpec.sentence``)."""
 
 
 @dataclass
@@ -74,8 +81,6 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
             feedback_cfg: FeedbackConfig | None = None,
             log: Callable[[str], None] | None = None) -> list[RoundResult]:
     """Run ``rounds`` rounds of hot feedback for the installed (or given folder's) ``action`` into ``out``."""
-    from ..plugins.registry import locate
-
     if not 1 <= scenes <= MAX_SCENES or not 1 <= rounds <= MAX_ROUNDS:
         raise DataError(f"improve takes 1-{MAX_SCENES} scenes and 1-{MAX_ROUNDS} rounds")
     name, current = locate(action)
@@ -142,10 +147,6 @@ def _claim(out: Path, settings: dict) -> None:
 
 def _perform_round(name: str, bundle_dir: Path, runs: Path, seeds: list[int], say) -> list[dict]:
     """Perform (no rendering) on each seed's scene, reusing run folders a stopped round already finished."""
-    from ..core.scene import random_scene
-    from ..errors import L2PError
-    from ..pipeline import perform
-    from ..plugins.bundle import load_bundle
 
     bundle = load_bundle(bundle_dir)
     out = []
@@ -178,8 +179,6 @@ def _round_items(rd: Path, judge: str, name: str, seeds: list[int], say) -> list
         if not any(r.mode == "graded" and r.grade is not None for r in rows):
             raise DataError(f"{judge} holds no grades of the runs in {rd / 'runs'} yet: review them in the review "
                             "app, then run the same command again to go on from this round")
-    from ..review.store import write_grades
-
     write_grades(rows, rd / "grades.csv", force=True)  # this round's own record, rewritten when it is resumed
     items, skipped = items_from_rows(rows, rd)
     for s in skipped:
@@ -189,8 +188,6 @@ def _round_items(rd: Path, judge: str, name: str, seeds: list[int], say) -> list
 
 def _rule_row(name: str, run: Path) -> GradeRow:
     """The rule judge's grade (10 x score) of a run's executed trajectory, as an export row."""
-    from ..core.contracts import load_motion
-    from ..judge import RuleJudge
 
     traj = run / "trajectory.json"
     m = load_motion(traj)
@@ -205,7 +202,7 @@ def _rule_row(name: str, run: Path) -> GradeRow:
 def _retrain(name: str, current: Path, out: Path, items: list[FeedbackItem], seed: int,
              fcfg: FeedbackConfig | None, k: int, judge: str) -> Path:
     """Fine-tune the current bundle's ensemble on the demonstrations and ``items`` into a copy of it."""
-    from ..plugins.bundle import load_bundle, write_progress_bundle
+    # lazy: these modules import torch; only when a network is trained
     from .progress_net import ProgressModel, ensemble_arrays
     from .train_progress import (
         ProgressTrainConfig,
@@ -235,9 +232,6 @@ def _metrics(k: int, bundle_dir: Path, seeds: list[int], summaries: list[dict], 
              n_total: int, static: list[FeedbackItem]) -> RoundResult:
     """The round's runs (success by the bundle's judge, final progress) and the new bundle's agreement with
     the 90 graded demos (in sample when the study's grades were among the feedback)."""
-    from ..plugins.bundle import load_bundle
-    from .agreement_cv import folder_agreement, score_items
-    from .feedback import original_items
 
     bundle = load_bundle(bundle_dir)
     graded = [it for it in original_items() if it.action == bundle.name]

@@ -19,6 +19,7 @@ import torch
 from torch import nn
 
 from ..core.threads import torch_threads
+from ..plugins.bundle import PROGRESS_FILE
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from ..progress.scoring import ScoringMixin, shared_prefix
@@ -66,8 +67,6 @@ class ProgressModel(ScoringMixin):
     @classmethod
     def from_bundle(cls, bundle) -> ProgressModel:
         """The torch ensemble of a loaded bundle (for training and validation; scoring uses numpy)."""
-        from ..plugins.bundle import PROGRESS_FILE
-
         tensors = {k: torch.from_numpy(v.copy()) for k, v in bundle.arrays(PROGRESS_FILE).items()}
         return cls(tensors, ModelConfig.from_dict(bundle.manifest["model"]),
                    QSRConfig.from_dict(bundle.manifest["features"]))

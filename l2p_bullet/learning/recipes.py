@@ -32,11 +32,11 @@ import numpy as np
 import torch
 
 from ..core.vocabulary import ACTIONS
+from ..data.demos import Demo
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from . import generalise as g
 from .augment import mirror
-from .demos import Demo
 from .heldout import FOLDS
 from .progress_net import ProgressModel, ensemble_arrays
 from .train_progress import ProgressTrainConfig, all_demos, train_net

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..core.frames import viewer_axes
 from ..core.scene import ROBOT_BASE_XY
-from .demos import DEMO_BLOCK_SIZE, save_session
+from ..data.demos import DEMO_BLOCK_SIZE, save_session
 
 SIZE = DEMO_BLOCK_SIZE
 """Block side in the demonstrations' frame (metres), as in the shipped captures."""

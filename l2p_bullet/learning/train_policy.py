@@ -174,8 +174,3 @@ def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig
     write_weights(folder, POLICY_FILE, arrays, "policy", settings)
     return settings
 
-
-if __name__ == "__main__":  # pragma: no cover - the old spelling of ``l2p-bullet train-policy``
-    from ..commands.learn import train_policy_cmd
-
-    train_policy_cmd()

@@ -8,6 +8,7 @@ The held-out tests (split by capture session) live in :mod:`l2p_bullet.learning.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import hashlib
 import time
@@ -18,16 +19,20 @@ from pathlib import Path
 import numpy as np
 import torch
 
+from ..actions.spec import ActionSpec
 from ..core.frames import Frame, declaration
 from ..core.threads import torch_threads
 from ..core.vocabulary import ACTIONS
-from ..errors import BundleError, L2PError
+from ..data.demos import Demo, expand_files, load_demos
+from ..errors import BundleError, DataError, L2PError, PluginError, RunFolderError, UnknownActionError
+from ..judge import RuleJudge
+from ..plugins.bundle import MANIFEST, PROGRESS_FILE, read_manifest, write_progress_bundle
+from ..plugins.registry import action_spec, locate
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from .augment import viewer_sides
-from .demos import Demo, load_demos
-from .feedback import FeedbackItem
-from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
+from .feedback import FeedbackItem, load_feedback
+from .feedback_targets import FeedbackConfig, feedback_sequences, judge_items, weigh
 from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
 from .trainset import DataConfig, TrainingSequence, build
 
@@ -158,8 +163,6 @@ def fine_tune(nets: Sequence[ProgressNet], demo_seqs: list[TrainingSequence], fb
     them), shuffled; fresh Adam at ``fcfg.lr`` with cosine decay over ``fcfg.epochs``. Member ``i`` uses
     seed ``seed * 1000 + i``: deterministic for a seed. The inputs are left unchanged.
     """
-    import copy
-
     with torch_threads(cfg.threads):
         demo_b = _batches(demo_seqs, cfg.batch) if demo_seqs and fcfg.demo_fraction > 0 else []
         fb_b = _batches(fb_seqs, cfg.batch) if fb_seqs else []
@@ -199,8 +202,6 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     skips the training on the demonstrations and fine-tunes these nets instead (cross-validation and
     ``improve`` reuse one such ensemble for many fine-tunings).
     """
-    from ..errors import DataError
-
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
     if not demos.get(action):
         raise DataError(f'no demonstrations of "{action}" to learn from: the session files hold no events '
@@ -247,8 +248,6 @@ def training_section(result: TrainResult, cfg: ProgressTrainConfig, seed: int, c
 def declared(name: str, folder: Path | None) -> tuple[Frame, int]:
     """The frame and number of anchors a plugin action declares: in the manifest in ``folder`` (the one
     being trained), else in the installed plugin's; the defaults without either."""
-    from ..plugins.bundle import MANIFEST, read_manifest
-    from ..plugins.registry import locate
 
     if folder is None or not (folder / MANIFEST).is_file():
         try:
@@ -261,6 +260,15 @@ def declared(name: str, folder: Path | None) -> tuple[Frame, int]:
         raise BundleError(f"{folder / MANIFEST}: {e}") from None
 
 
+def declared_spec(name: str) -> ActionSpec | None:
+    """What the plugin action ``name`` declares about itself (its module's ``ACTION``), when it is installed
+    and declares one: its training options shape its training set (``DataConfig.with_action``)."""
+    try:
+        return action_spec(name)
+    except UnknownActionError:  # a plugin still being authored, not installed yet
+        return None
+
+
 def training_target(action: str, out: Path | None, demo_files: Sequence[str]) -> tuple[str, bool]:
     """(action name, is it a plugin action still being authored) for ``l2p-bullet train ACTION``.
 
@@ -268,9 +276,6 @@ def training_target(action: str, out: Path | None, demo_files: Sequence[str]) ->
     action (``l2p-bullet new-action``) is trained before its package is installed, so it is recognised
     by the manifest the scaffold put in ``out``, which must name it, and it needs the author's demos.
     """
-    from ..errors import PluginError
-    from ..plugins.bundle import MANIFEST, read_manifest
-    from ..plugins.registry import locate
 
     try:
         name = locate(action)[0]
@@ -304,9 +309,6 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     rule judge, :func:`feedback_targets.judge_items`) fine-tune the ensemble after the demonstrations; reviewed
     runs that cannot be used (changed trajectory, missing folder) are reported through ``log``.
     """
-    from ..errors import DataError, RunFolderError
-    from ..plugins.bundle import MANIFEST, PROGRESS_FILE, write_progress_bundle
-    from .demos import expand_files, load_demos
 
     demo_files = [str(f) for f in expand_files(list(demo_files))]
     name, plugin = training_target(action, out, demo_files)
@@ -319,7 +321,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     qsr_cfg = QSRConfig()
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
-        data_cfg = DataConfig(random_negatives=0)
+        data_cfg = DataConfig(random_negatives=0).with_action(declared_spec(name))
         frame, anchors = declared(name, out)
         qsr_cfg = QSRConfig(frame=frame.name, anchors=anchors)
     else:
@@ -330,9 +332,6 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick)
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
-        from ..judge import RuleJudge
-        from .feedback_targets import judge_items
-
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
         items += judge_items(name, result.model, range(JUDGE_SEEDS, JUDGE_SEEDS + judge_scenes), RuleJudge(name),
@@ -369,8 +368,6 @@ JUDGE_SEEDS = 5000
 
 def _feedback_items(name: str, sources: Sequence[str], log: Callable[[str], None] | None) -> tuple[list[FeedbackItem], int]:
     """The graded motions of ``sources`` for ``train_bundle``, and how many reviewed runs were left out."""
-    from .feedback import load_feedback
-
     items, skipped = load_feedback(sources)
     for s in skipped:
         if log:

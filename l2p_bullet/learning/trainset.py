@@ -37,12 +37,14 @@ declaration (:func:`build`; the five built-in actions take none of these branche
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..actions import BUILTIN, ActionSpec
 from ..core.geometry import swept_angle, unwrapped_bearing
 from ..core.vocabulary import ACTIONS
+from ..data.demos import SMOOTH_FRAMES, Demo
 from ..progress.features import QSRConfig, features, resample
 from . import augment
 from .augment import (
@@ -60,7 +62,15 @@ from .augment import (
     twisted_end,
     viewer_sides,
 )
-from .demos import Demo
+
+
+def _per_action(option: str) -> dict:
+    """A built-in training option (``actions.spec.Training``) of every built-in action that sets one."""
+    return {a: getattr(s.training, option) for a, s in BUILTIN.items() if getattr(s.training, option) is not None}
+
+
+def _actions_with(option: str) -> tuple[str, ...]:
+    return tuple(a for a, s in BUILTIN.items() if getattr(s.training, option))
 
 
 @dataclass(frozen=True)
@@ -68,8 +78,8 @@ class DataConfig:
     """How the training set is built (written to the manifest's ``[training]``). Each field says why it
     exists in one line; how each value was arrived at, with the numbers, is in docs/learning.md."""
 
-    smooth_frames: int = 9
-    """Moving-average window (0.3 s at 30 fps) on captured poses: tracking jitter would read as motion."""
+    smooth_frames: int = SMOOTH_FRAMES
+    """Moving-average window on captured poses (data.demos.SMOOTH_FRAMES): jitter would read as motion."""
     post_decay: float = 1.0
     """Blocks of further motion over which progress falls back to 0 after the event (the reset is not it)."""
     polylines_per_demo: int = 2
@@ -78,25 +88,25 @@ class DataConfig:
     """Copies stretched about the anchor (not next-to): people graded starts farther than any capture's."""
     scale_range: tuple[float, float] = (0.75, 1.7)
     """Stretch factors of those copies (blocks keep their size)."""
-    scale_ranges: dict = field(default_factory=lambda: {"around": (0.75, 1.2), "closer": (0.45, 1.7)})
+    scale_ranges: dict = field(default_factory=lambda: _per_action("scale_range"))
     """Per-action stretch ranges: around stays near the anchor; closer must have seen closing in from 2 blocks."""
-    approach: dict = field(default_factory=lambda: {"past": (1.0, 4.0)})
+    approach: dict = field(default_factory=lambda: _per_action("approach"))
     """Actions with copies that start farther back along their first direction (blocks): far starts, near passes."""
-    shortened: dict = field(default_factory=lambda: {"away": (0.75, 0.95)})
+    shortened: dict = field(default_factory=lambda: _per_action("shortened"))
     """Actions with extra copies shrunk about their own start: the same motion stopped sooner is complete."""
     twisted_per_demo: int = 2
     """Copies whose bearing drifts (``augment.twist``): people graded sweeping motions well; captures are radial."""
-    twist_actions: tuple[str, ...] = ("closer", "away", "next-to")
+    twist_actions: tuple[str, ...] = field(default_factory=lambda: _actions_with("twist"))
     """The actions whose meaning a drifting bearing does not change."""
     twist_max_deg: float = 100.0
     """Largest bearing drift of a twisted copy."""
     detour_per_demo: int = 2
     """Copies of closer/away that first move the other way: the net motion is still the action."""
-    turn_label: dict = field(default_factory=lambda: {"around": 1.0})
+    turn_label: dict = field(default_factory=lambda: _per_action("turn_label"))
     """Actions labelled by the net turn swept (in these many turns): an around ends when the circle closes."""
     turn_copies: int = 2
     """Per turn-labelled demo and kind: partial crops, out-and-back copies and closed circles."""
-    net_label: dict = field(default_factory=lambda: {"away": 1.5})
+    net_label: dict = field(default_factory=lambda: _per_action("net_label"))
     """Actions whose dip/back-off copies are labelled by net gain less this times the inward motion."""
     net_copies: int = 2
     """Per net-labelled demo and kind: copies with an inward dip, and copies that back off at the end."""
@@ -108,14 +118,32 @@ class DataConfig:
     """Final fraction of a negative that is penalised: another motion's start can be this one's start."""
     negative_weight: float = 1.0
     """Total weight of the negatives relative to the positives."""
-    negatives: dict = field(default_factory=lambda: {
-        "closer": ["away", "past", "around"],
-        "away": ["closer", "next-to", "around"],
-        "next-to": ["away", "past", "around"],
-        "past": ["closer", "away", "next-to", "around"],
-        "around": ["closer", "away", "next-to"],
-    })
+    negatives: dict = field(default_factory=lambda: {a: list(s.training.negatives) for a, s in BUILTIN.items()})
     """Whose demonstrations are negatives; pairs where one is (a prefix of) the other are left out."""
+    unscaled: tuple[str, ...] = field(default_factory=lambda: tuple(a for a, s in BUILTIN.items()
+                                                                    if not s.training.scaled))
+    """Actions without stretched copies (next-to: stretched, it would end apart)."""
+    detour_actions: tuple[str, ...] = field(default_factory=lambda: _actions_with("detour"))
+    """Actions with detour copies (closer, away: the net motion is still the action)."""
+
+    def with_action(self, spec: ActionSpec | None) -> DataConfig:
+        """This configuration with a plugin action's own training options (``ActionSpec.training``) added;
+        the built-ins' are the defaults already. ``spec`` None: unchanged."""
+        if spec is None:
+            return self
+        t, n = spec.training, spec.name
+
+        def add(table: dict, value: object) -> dict:
+            return table if value is None else {**table, n: value}
+
+        return replace(
+            self, negatives=add(self.negatives, list(t.negatives) if t.negatives else None),
+            scale_ranges=add(self.scale_ranges, t.scale_range), approach=add(self.approach, t.approach),
+            shortened=add(self.shortened, t.shortened), turn_label=add(self.turn_label, t.turn_label),
+            net_label=add(self.net_label, t.net_label),
+            twist_actions=self.twist_actions + ((n,) if t.twist and n not in self.twist_actions else ()),
+            detour_actions=self.detour_actions + ((n,) if t.detour and n not in self.detour_actions else ()),
+            unscaled=self.unscaled + ((n,) if not t.scaled and n not in self.unscaled else ()))
 
     def to_dict(self) -> dict:
         keys = ("smooth_frames", "post_decay", "polylines_per_demo", "scaled_per_demo", "twisted_per_demo",
@@ -123,6 +151,7 @@ class DataConfig:
                 "static_negatives", "negative_tail", "negative_weight")
         d = {k: getattr(self, k) for k in keys}
         return {**d, "scale_range": list(self.scale_range), "twist_actions": list(self.twist_actions),
+                "unscaled": list(self.unscaled), "detour_actions": list(self.detour_actions),
                 "negatives": dict(self.negatives), "turn_label": dict(self.turn_label),
                 "net_label": dict(self.net_label),
                 "scale_ranges": {k: list(v) for k, v in self.scale_ranges.items()},
@@ -283,7 +312,7 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
     adds twisted copies (a viewer-frame action: where the block comes from is not the relation, where
     it ends is)."""
     variants = [augment.polyline(ev_m, c, rng) for _ in range(dcfg.polylines_per_demo)]
-    for _ in range(dcfg.scaled_per_demo if action != "next-to" else 0):
+    for _ in range(dcfg.scaled_per_demo if action not in dcfg.unscaled else 0):
         pm = augment.event_or_polyline(ev_m, c, rng)
         if pm is not None and about_end:
             lo, hi = dcfg.scale_ranges.get(action, dcfg.scale_range)
@@ -305,7 +334,7 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
         pm = augment.event_or_polyline(ev_m, c, rng)
         angle = np.radians(dcfg.twist_max_deg) * rng.uniform(-1, 1)
         variants.append(None if pm is None else augment.twist(pm, c, angle))
-    for _ in range(dcfg.detour_per_demo if action in ("closer", "away") else 0):
+    for _ in range(dcfg.detour_per_demo if action in dcfg.detour_actions else 0):
         variants.append(augment.detour(ev_m, c, rng, size))
     net_variants: list = []
     if action in dcfg.net_label:  # the last detour too: coming closer first is not progress away

@@ -14,8 +14,9 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
   squares' centres are never nearer than the sum of their half sides.
 
-The room checks use the thresholds of the built-in rule judges (``judge/rules.py``) and apply to an
-action judged by those rules; a plugin action judged otherwise gets the arm's checks only.
+The room checks read the thresholds of the built-in rule judges (``judge/rules.py``: ``AROUND_TURNS``,
+``AWAY_GAIN``, ``CLOSER_SHARE``, ``closer_room``) and apply to an action judged by those rules; a plugin
+action judged otherwise gets the arm's checks only.
 """
 
 from __future__ import annotations
@@ -27,11 +28,9 @@ import numpy as np
 from ..core.scene import Scene
 from ..embodiment import reach
 from ..errors import InfeasibleError
+from ..judge.rules import AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
 from .world2d import World2D
 
-AROUND_TURN = 0.8  # judge/rules.py: "around" sweeps at least this share of a turn
-AWAY_GAIN = 1.0  # blocks "away" must gain
-CLOSER_SHARE = 0.5  # share of the room "closer" must close
 CHECKS = ("grasp", "boxed-in", "room-around", "room-away", "room-closer")
 
 
@@ -89,13 +88,13 @@ def _room_around(scene: Scene, mover: str, anchor: str) -> None:
     rho = np.maximum(rho_min, -(u @ rel))  # the nearest point to the disk's centre along each bearing
     ok = np.linalg.norm(rel + rho[:, None] * u, axis=1) <= ws.radius + 1e-9
     arc = _longest_circular_run(ok) * 2 * math.pi / len(theta)
-    if arc < AROUND_TURN * 2 * math.pi - 2 * (2 * math.pi / len(theta)):
+    if arc < AROUND_TURNS * 2 * math.pi - 2 * (2 * math.pi / len(theta)):
         raise InfeasibleError(
             "room-around",
             f'no room to move "{mover}" around "{anchor}": at {np.linalg.norm(rel):.3f} m from the workspace\'s '
             f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
-            f"the workspace (radius {ws.radius} m); around needs {AROUND_TURN * 360:.0f} deg",
-            {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURN * 360})
+            f"the workspace (radius {ws.radius} m); around needs {AROUND_TURNS * 360:.0f} deg",
+            {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURNS * 360})
 
 
 def _room_away(scene: Scene, mover: str, anchor: str) -> None:
@@ -113,7 +112,7 @@ def _room_away(scene: Scene, mover: str, anchor: str) -> None:
 def _room_closer(scene: Scene, mover: str, anchor: str) -> None:
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
-    room = max(d0 - 1.0, 0.25)  # judge/rules.py's closer
+    room = closer_room(d0)
     target = d0 - CLOSER_SHARE * room
     nearest = (m.size + a.size) / 2 / m.size
     if nearest > target + 1e-9:

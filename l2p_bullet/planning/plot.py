@@ -26,6 +26,7 @@ def _rgb(color: str, alpha: float = 1.0) -> tuple[int, int, int, int]:
 
 def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -> Path:
     """Write the plot to ``out`` (PNG) and return its path."""
+    # lazy: Pillow only when a frame or plot is drawn
     from PIL import Image, ImageDraw, ImageFont
 
     w, h = SIZE[0] * SCALE, SIZE[1] * SCALE

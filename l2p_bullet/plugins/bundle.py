@@ -15,25 +15,32 @@ the same arrays (:mod:`l2p_bullet.learning.progress_net`, :mod:`l2p_bullet.learn
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import tomllib
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+from safetensors import SafetensorError
+from safetensors.numpy import load, save_file
+
 from .. import __version__
+from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..errors import BundleError
 from ..progress.config import ModelConfig
+from ..progress.features import feature_names
+from ..progress.model import NumpyProgressModel
+from .validate import check_manifest, check_weights, safe_weight_name
 
 if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
 
     from ..progress.model import NumpyProgressModel
 
-MANIFEST = "manifest.toml"
-PROGRESS_FILE = "progress.safetensors"
-POLICY_FILE = "policy.safetensors"
 SCHEMA = 1
 """Manifest schema this code reads; a bundle with another schema is refused."""
 REQUIRES = ">=0.1,<1.0"
@@ -55,8 +62,6 @@ def read_weights(folder: Path, filename: str, manifest: dict) -> bytes:
     Read once and checked in memory: the file may have changed since the bundle was loaded, and a
     check followed by a second read would leave a window in which it could change again.
     """
-    from .validate import safe_weight_name
-
     weights = manifest.get("weights", {})
     entry = weights.get(filename) if isinstance(weights, dict) else None
     if not isinstance(entry, dict) or "sha256" not in entry:
@@ -76,8 +81,6 @@ def read_weights(folder: Path, filename: str, manifest: dict) -> bytes:
 
 def read_arrays(folder: Path, filename: str, manifest: dict) -> dict[str, np.ndarray]:
     """A weights file's tensors as numpy arrays (digest checked, safetensors only: nothing unpickled)."""
-    from safetensors import SafetensorError
-    from safetensors.numpy import load
 
     data = read_weights(folder, filename, manifest)
     try:
@@ -125,6 +128,9 @@ class Bundle:
     phrases: list[str]
     manifest: dict
     path: Path
+    spec: Any = None
+    """The :class:`~l2p_bullet.actions.spec.ActionSpec` its module declares as ``ACTION`` (the built-ins do;
+    a plugin may), set by the registry; None for a bundle read from a folder."""
 
     def arrays(self, filename: str) -> dict[str, np.ndarray]:
         """A weights file's tensors as numpy arrays (the digest is checked again: the file may have changed)."""
@@ -132,9 +138,6 @@ class Bundle:
 
     def progress_model(self) -> NumpyProgressModel:
         """The progress ensemble for batched scoring, in numpy (no torch), built once per process."""
-        import json
-
-        from ..progress.model import NumpyProgressModel
 
         key = (str(self.path), str(self.manifest["weights"][PROGRESS_FILE].get("sha256", "")),
                json.dumps([self.manifest["features"], self.manifest["model"]], sort_keys=True, default=str))
@@ -168,8 +171,6 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
     tensor's shape, dtype and finiteness (:mod:`l2p_bullet.plugins.validate`): a bundle that loads can
     be planned and scored with, and never yields NaN.
     """
-    from .validate import check_manifest, check_weights
-
     folder = Path(path)
     man = read_manifest(folder)
     missing = [k for k in REQUIRED_KEYS if k not in man]
@@ -194,6 +195,7 @@ def _write_manifest(folder: Path, manifest: dict) -> None:
     value that does not change survive a re-train, so a scaffolded plugin's notes and version stay.
     Written to a temporary file and renamed: a reader never sees half a manifest.
     """
+    # lazy: tomlkit only when a manifest is written (training), not when plugins are listed or loaded
     import tomlkit
     from tomlkit.exceptions import TOMLKitError
 
@@ -242,10 +244,7 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     planner policy that :meth:`Bundle.policy_arrays` then returns. The manifest must already exist.
     Arrays are numpy (a torch tensor's ``.numpy()``): the file is byte-identical to torch's writer.
     """
-    import numpy as np
-    from safetensors.numpy import save_file
 
-    from .validate import safe_weight_name
 
     folder = Path(bundle_dir)
     man = read_manifest(folder)
@@ -280,8 +279,6 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
     The version is ``version``, else the one already in ``out_dir`` (the author's), else 1.0.0; the
     manifest's comments survive (:func:`_write_manifest`).
     """
-    from ..progress.features import feature_names
-
     folder = Path(out_dir)
     folder.mkdir(parents=True, exist_ok=True)
     old: dict = {}
@@ -317,7 +314,5 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
 
 def builtin_bundle_dir(action: str) -> Path:
     """Folder of a built-in action's bundle inside the installed package."""
-    from importlib import resources
-
     canon = canonical_action(action)
     return Path(str(resources.files("l2p_bullet") / "actions" / canon.replace("-", "_")))

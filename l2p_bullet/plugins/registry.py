@@ -32,10 +32,18 @@ from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..actions.spec import ActionSpec
 from ..core.frames import declaration
 from ..core.vocabulary import normalize_name, normalize_phrase
-from ..errors import BundleError, FailedToLoadPlugin, PluginConflict, PluginError, UnknownActionError
-from .bundle import MANIFEST, PROGRESS_FILE
+from ..errors import (
+    BundleError,
+    FailedToLoadPlugin,
+    L2PError,
+    PluginConflict,
+    PluginError,
+    UnknownActionError,
+)
+from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
@@ -339,14 +347,13 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
             what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
             raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: {what}"[:500]) from None
         folder = _module_folder(mod) or info.path
-    from ..errors import L2PError
-    from .bundle import load_bundle
 
     try:
         bundle = load_bundle(folder)
     except L2PError as e:
         raise FailedToLoadPlugin(info.name, info.package, f"invalid bundle: {e}") from None
     if info.module:
+        bundle.spec = _declared_spec(info, mod)
         _LOADED[key] = bundle
     return bundle
 
@@ -357,8 +364,6 @@ def locate(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Pat
     A folder with a manifest is a bundle (its manifest names the action); anything else names an
     installed action, built-in or plugin (``UnknownActionError``, ``FailedToLoadPlugin`` otherwise).
     """
-    from .bundle import read_manifest
-
     p = Path(spec)
     if p.is_dir() and (p / MANIFEST).is_file():
         return str(read_manifest(p).get("name", p.name)), p
@@ -380,16 +385,43 @@ def _module_folder(mod: Any) -> Path | None:
 def load_problem(name: str, plugins: list[PluginInfo] | None = None) -> str | None:
     """Load plugin ``name`` as ``perform`` would (bundle, progress model, judge, policy) and return the
     reason it fails, or None if it loads."""
-    from ..errors import L2PError
+    # lazy: discovery (l2p-bullet actions, parsing a sentence) stays light; only a check loads these
+    from ..judge import judge_for
+    from ..planning.policy import load_policy
 
     try:
         bundle = load(name, plugins)
-        from ..judge import judge_for
-        from ..planning.policy import load_policy
-
         bundle.progress_model()
         judge_for(bundle)
         load_policy(bundle)
     except L2PError as e:
         return str(e)
     return None
+
+
+def action_spec(name: str, plugins: list[PluginInfo] | None = None) -> ActionSpec | None:
+    """The :class:`ActionSpec` an installed action's module declares as ``ACTION`` (every built-in does; a
+    plugin may), or None. Only the module is imported, not the bundle: an untrained plugin has a spec too."""
+    info = find(name, plugins)
+    if not info.module:
+        return None
+    try:
+        mod = importlib.import_module(info.module)
+    except KeyboardInterrupt:
+        raise
+    except BaseException as e:  # noqa: BLE001 - the plugin's bug, reported with its name (as load does)
+        raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: "
+                                 f"{type(e).__name__}: {e}"[:500]) from None
+    return _declared_spec(info, mod)
+
+
+def _declared_spec(info: PluginInfo, mod: Any) -> ActionSpec | None:
+    """The ``ACTION`` a plugin's module declares (what the action is besides its bundle), checked: an
+    :class:`ActionSpec` of the same name, or nothing."""
+    spec = getattr(mod, "ACTION", None)
+    if spec is None:
+        return None
+    if not isinstance(spec, ActionSpec) or spec.name != info.name:
+        raise FailedToLoadPlugin(info.name, info.package, f"{info.module}.ACTION must be an "
+                                 f'l2p_bullet.actions.spec.ActionSpec named "{info.name}"')
+    return spec

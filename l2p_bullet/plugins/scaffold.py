@@ -17,6 +17,7 @@ from .. import __version__
 from ..core.frames import parse_anchors, parse_frame
 from ..core.vocabulary import PLUGIN_ACTION, normalize_phrase
 from ..errors import BundleError, PluginError, UnknownActionError
+from ..judge.rules import RULES, TWO_ANCHOR_RULES
 
 
 @dataclass(frozen=True)
@@ -65,8 +66,6 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     except BundleError as e:
         raise PluginError(str(e)) from None
     if judge is not None:
-        from ..judge.rules import RULES, TWO_ANCHOR_RULES
-
         if judge not in RULES:
             raise UnknownActionError(judge, RULES, "(no rule judge has that name)")
         if (judge in TWO_ANCHOR_RULES) != (anchors == 2):
@@ -233,7 +232,7 @@ Optional: `frame` (T,), `shell_observed`/`stella_observed` (T,) bool, `table_poi
 Frames are about 30 per second; blocks are 0.15 m squares (only relative geometry matters, so any fixed
 frame works). Leave some still frames before and after each event: the progress model learns that
 progress is 0 outside the event and rises to 1 at its end. Files are loaded with `allow_pickle=False`,
-so save plain numeric arrays; `l2p_bullet.learning.demos.save_session` writes them and checks them.
+so save plain numeric arrays; `l2p_bullet.data.demos.save_session` writes them and checks them.
 
 A script that writes them, for a one-anchor relative action (vary start positions, speeds, curved and
 straight paths, both blocks as mover):
@@ -261,7 +260,7 @@ for session in range(2):
              event_mover=np.zeros(len(events), dtype=np.int8))
 ```
 
-Check that they load: `python -c "from l2p_bullet.learning.demos import load_session; load_session('demos/{name}_Session1.npz')"`.
+Check that they load: `python -c "from l2p_bullet.data.demos import load_session; load_session('demos/{name}_Session1.npz')"`.
 
 ## 2. Train
 

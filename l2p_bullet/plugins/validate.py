@@ -20,7 +20,10 @@ import numpy as np
 
 from ..core.frames import declaration
 from ..errors import BundleError
+from ..planning import PLANNERS
+from ..planning.policy import FEATURES
 from ..progress.config import ModelConfig, expected_shapes
+from ..progress.features import QSRConfig, feature_names
 
 SHA256 = re.compile(r"[0-9a-f]{64}")
 NAME = re.compile(r"[a-z][a-z0-9_-]{0,63}")
@@ -88,8 +91,6 @@ def safe_weight_name(folder: Path, name: object) -> Path:
 
 def check_manifest(folder: Path, man: dict) -> None:
     """Every field the code reads, by type and range (module docstring); BundleError on the first problem."""
-    from ..progress.features import QSRConfig, feature_names
-
     c = _Checker(folder)
     if not _is_int(man.get("schema")):
         raise c.fail("schema", "must be an integer")
@@ -161,9 +162,6 @@ def check_manifest(folder: Path, man: dict) -> None:
 
 
 def _check_policy_section(c: _Checker, policy: dict, weights: dict) -> None:
-    from ..planning import PLANNERS
-    from ..planning.policy import FEATURES
-
     if "planner" in policy and (not isinstance(policy["planner"], str) or policy["planner"] not in PLANNERS
                                 or policy["planner"] == "default"):
         raise c.fail("[policy] planner", f"must be one of {', '.join(p for p in PLANNERS if p != 'default')}")
@@ -197,8 +195,6 @@ def check_progress_arrays(where: Path, arrays: dict[str, np.ndarray], model: dic
 def check_policy_arrays(where: Path, arrays: dict[str, np.ndarray]) -> None:
     """The move policy's tensors (``planning/policy.py``'s MLP): their shapes agree with each other and with
     the planner's feature count, and they are finite."""
-    from ..planning.policy import FEATURES
-
     bias = arrays.get("body.0.bias")
     if bias is None or bias.ndim != 1 or not LIMITS["policy_hidden"][0] <= len(bias) <= LIMITS["policy_hidden"][1]:
         raise BundleError(f"{where}: the policy needs a 1-d tensor body.0.bias of its hidden size")

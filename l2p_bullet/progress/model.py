@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.contracts import PROGRESS_FILE
 from ..errors import BundleError
 from .config import ModelConfig
 from .features import QSRConfig
@@ -44,8 +45,6 @@ class NumpyProgressModel(ScoringMixin):
     @classmethod
     def from_bundle(cls, bundle: Any) -> NumpyProgressModel:
         """Read a loaded bundle's progress weights (digest checked again: the file may have changed)."""
-        from ..plugins.bundle import PROGRESS_FILE
-
         return cls(bundle.arrays(PROGRESS_FILE), ModelConfig.from_dict(bundle.manifest["model"]),
                    QSRConfig.from_dict(bundle.manifest["features"]))
 

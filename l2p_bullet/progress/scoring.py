@@ -7,7 +7,6 @@ Torch-free: ``perform`` scores with the numpy model and must never import torch.
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -112,24 +111,3 @@ def _one(more_anchors: list | None) -> list | None:
         return None
     return [x if np.asarray(x).ndim == 1 else [np.asarray(x, float)] for x in (np.asarray(a, float) for a in more_anchors)]
 
-
-def score_file(action: str, path: str | Path) -> dict[str, Any]:
-    """``l2p-bullet score``: per-frame progress of the motion in ``path`` under ``action``'s model.
-
-    ``action`` is an installed action (built-in or plugin) or a bundle folder. Returns
-    ``{"action", "progress": [per input frame], "final"}`` rounded to 4 digits (DESIGN.md section 4).
-    """
-    from ..core.contracts import load_motion
-    from ..errors import PathError
-    from ..plugins.bundle import load_bundle
-    from ..plugins.registry import locate
-
-    name, folder = locate(action)
-    motion = load_motion(path)
-    model = load_bundle(folder).progress_model()
-    if len(motion.more_anchors) + 1 != model.anchors:
-        raise PathError(f'{path}: the action "{name}" reads {model.anchors} reference block(s), the motion gives '
-                        f"{len(motion.more_anchors) + 1}" + (' (add "more_anchors")' if model.anchors > 1 else ""))
-    kw = {"more_anchors": motion.more_anchors} if motion.more_anchors else {}
-    curve = model.curve(motion.mover, motion.anchor, motion.size, viewer=motion.viewer, **kw)
-    return {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}

@@ -24,10 +24,10 @@ from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from .. import __version__
 from ..errors import ReviewError
-from .queue import Item, NotFound, ReviewQueue
+from ..web.apps import json_errors, new_app, static_pages
+from .queue import Item, NotFound, ReviewQueue, label_keys
 from .runs import motion_for_browser
 from .store import AnswerConflict, GradeRow
-from .web import json_errors, new_app, static_pages
 
 log = logging.getLogger("l2p_bullet.review")
 
@@ -123,8 +123,6 @@ def create_app(queue: ReviewQueue, host: str = "127.0.0.1") -> FastAPI:
 
 
 def _label_keys(queue: ReviewQueue) -> list[dict]:
-    from .queue import label_keys
-
     return label_keys(queue.labels) if queue.mode == "blind" else []
 
 

@@ -14,7 +14,7 @@ import json
 from dataclasses import dataclass
 
 from ..core.vocabulary import GRADED_FOLDERS
-from ..learning.demos import load_graded_demos
+from ..data.demos import load_graded_demos
 from .store import Store, now
 
 

@@ -8,6 +8,7 @@ import numpy as np
 
 
 def _plt():
+    # lazy: matplotlib takes about a second to import; only when a figure is drawn
     import matplotlib
 
     matplotlib.use("Agg")

@@ -14,6 +14,7 @@ motion. Torch-free: the models are the bundles' numpy ones.
 
 from __future__ import annotations
 
+import csv
 import json
 from collections import defaultdict
 from pathlib import Path
@@ -21,7 +22,14 @@ from typing import Any
 
 import numpy as np
 
+from ..core.contracts import load_motion
 from ..core.vocabulary import ACTIONS, GRADED_FOLDERS
+from ..errors import L2PError, ReviewError
+from ..judge import judge_context, judge_for
+from ..learning.agreement import graded_motions, spearman
+from ..plugins import registry
+from ..plugins.bundle import sha256_file
+from .plots import plot_all
 from .stats import disparity, fleiss_kappa, label_confusion
 from .store import NONE_LABEL, GradeRow
 
@@ -50,13 +58,9 @@ class _Motions:
     def motion(self, row: GradeRow):
         if row.source == "original":
             if self._graded is None:
-                from ..learning.agreement import graded_motions
-
                 self._graded = {m.id: m for m in graded_motions()}
             m = self._graded.get(row.demo_id or "")
             return None if m is None else (m.mover, m.anchor, m.size)
-        from ..core.contracts import load_motion
-        from ..errors import L2PError
 
         try:
             m = load_motion(Path(row.run_path) / "trajectory.json")
@@ -64,7 +68,6 @@ class _Motions:
             return None
         if not m.more_anchors and m.viewer is None:
             return m.mover, m.anchor, m.size
-        from ..pipeline import judge_context
 
         # a two-anchor or viewer-frame plugin's run: the model and the judge read the rest of it too
         model_kw = {"more_anchors": m.more_anchors} if m.more_anchors else {}
@@ -73,13 +76,8 @@ class _Motions:
 
     def scores(self, action: str, motion) -> tuple[float | None, float | None]:
         """(learned final progress, the judge's score) of the installed action, or None where unavailable."""
-        from ..errors import L2PError
-
         if action not in self._bundles:
             try:
-                from ..judge import judge_for
-                from ..plugins import registry
-
                 bundle = registry.load(action)
                 self._bundles[action] = (bundle.progress_model(), judge_for(bundle))
             except L2PError as e:
@@ -99,8 +97,6 @@ class _Motions:
 
 
 def _spearman(x: list, y: list) -> float | None:
-    from ..learning.agreement import spearman
-
     pairs = [(a, b) for a, b in zip(x, y, strict=True) if a is not None and b is not None]
     if len(pairs) < MIN_SPEARMAN:
         return None
@@ -115,8 +111,6 @@ def _group(row: GradeRow) -> str:
 
 def problems(rows: list[GradeRow]) -> tuple[list[GradeRow], list[dict]]:
     """(rows whose run is still the one graded, problems: runs gone or changed since graded)."""
-    from ..plugins.bundle import sha256_file
-
     status: dict[tuple[str, str], str | None] = {}
     for r in rows:
         k = (r.run_path, r.trajectory_sha256)
@@ -295,10 +289,6 @@ def _public(rep: dict) -> dict:
 
 def write_grade_report(rep: dict, folder: Path) -> list[Path]:
     """report.md, report.json, table CSVs and PNG plots into ``folder``; returns the files written."""
-    import csv
-
-    from ..errors import ReviewError
-    from .plots import plot_all
 
     try:
         folder.mkdir(parents=True, exist_ok=True)

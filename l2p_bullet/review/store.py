@@ -6,22 +6,28 @@ server. An answer is keyed by (run, trajectory sha256, reviewer, mode, view): tw
 a row, and a changed run is graded as a new version, never by overwriting the grades of the old one.
 Every submission is also appended to ``answer_log``; nothing is ever deleted.
 
-:func:`load_grades` reads grades from a database or from an export (CSV or JSON lines) into
-:class:`GradeRow` dataclasses, without torch or the web stack: the feedback learner reads it.
+:class:`GradeRow`, :func:`load_grades` and :func:`write_grades` (the grades as plain rows, read from a
+database or an export) live in :mod:`l2p_bullet.data.grades`, a floor the learners may import too.
 """
 
 from __future__ import annotations
 
-import csv
-import json
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import asdict, dataclass, fields
+from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
+from ..data import review_schema as schema
+from ..data.grades import (  # noqa: F401  (re-exported: the review app's names for the grades contract)
+    EXPORT_FIELDS,
+    GRADES_SQL,
+    GradeRow,
+    grade_row,
+    load_grades,
+    write_grades,
+)
 from ..errors import ReviewError
-from . import schema
 from .runs import RunInfo
 
 MODES = ("graded", "blind")
@@ -32,36 +38,6 @@ NONE_LABEL = "none"
 def now() -> str:
     """UTC time stamp with milliseconds, ISO 8601 (sorts as text)."""
     return datetime.now(UTC).isoformat(timespec="milliseconds").replace("+00:00", "Z")
-
-
-@dataclass(frozen=True)
-class GradeRow:
-    """One answer, as exported (docs/review.md, "The grades export"). Fields are only ever added.
-
-    Also what the feedback learner reads (``learning/feedback.py``): one class for the contract, every
-    field with a default so that a reader of an older export (or a test) fills only what it has.
-    """
-
-    run_id: str = ""
-    run_path: str = ""  # absolute folder of the run; "" for the original study's demos
-    trajectory_sha256: str = ""  # of the trajectory.json the reviewer saw (original: of the demo's JSON line)
-    action: str = ""  # canonical action of the run ("" if the run had none)
-    sentence: str = ""
-    mode: str = "graded"  # "graded" (the sentence was shown) | "blind" (it was not; the reviewer labelled it)
-    reviewer: str = ""
-    grade: float | None = None  # 0-10: people give whole numbers, l2p-bullet improve's rule grades may not be
-    label: str | None = None  # blind mode: the action the reviewer picked, or "none"
-    comment: str = ""
-    view: str = ""  # "3d" (the rendered video) | "2d" (the top-down animation)
-    created_at: str = ""
-    updated_at: str = ""
-    source: str = "app"  # "app" | "original" (the 2018 study's grades) | "rules" (l2p-bullet improve)
-    demo_id: str | None = None  # original: the graded demo's id in data/sim/human_eval_2d_demos.jsonl
-    folder: str | None = None  # original: its folder (SlideToward, ..., SlideAroundDiscrete)
-    stale: bool = False  # the run's trajectory changed after this grade (it was graded again since)
-
-
-EXPORT_FIELDS: tuple[str, ...] = tuple(f.name for f in fields(GradeRow))
 
 
 @dataclass(frozen=True)
@@ -192,9 +168,9 @@ class Store:
             conn.execute("DELETE FROM skips WHERE run_id = ? AND trajectory_sha256 = ? AND reviewer = ? AND mode = ? "
                          "AND view = ?", key)
             self._log(conn, "answer" if old is None else "change", t, key, a)
-            row = conn.execute(_GRADES_SQL + " WHERE a.run_id = ? AND a.trajectory_sha256 = ? AND a.reviewer = ? AND "
+            row = conn.execute(GRADES_SQL + " WHERE a.run_id = ? AND a.trajectory_sha256 = ? AND a.reviewer = ? AND "
                                "a.mode = ? AND a.view = ?", key).fetchone()
-        return _row(row)
+        return grade_row(row)
 
     def skip(self, run_id: str, sha: str, reviewer: str, mode: str, view: str) -> None:
         t = now()
@@ -235,9 +211,9 @@ class Store:
         if mode is not None:
             where.append("a.mode = ?")
             args.append(mode)
-        sql = _GRADES_SQL + (" WHERE " + " AND ".join(where) if where else "") + " ORDER BY a.created_at, a.id"
+        sql = GRADES_SQL + (" WHERE " + " AND ".join(where) if where else "") + " ORDER BY a.created_at, a.id"
         with self.connect() as conn:
-            return [_row(r) for r in conn.execute(sql, args).fetchall()]
+            return [grade_row(r) for r in conn.execute(sql, args).fetchall()]
 
     def log(self) -> list[dict]:
         with self.connect() as conn:
@@ -254,101 +230,3 @@ class Store:
     def export(self, out: str | Path, force: bool = False) -> int:
         """Write every answer to ``out`` (.csv or .jsonl); returns the number of rows."""
         return write_grades(self.grades(), out, force=force)
-
-
-_GRADES_SQL = (
-    "SELECT a.run_id, r.path AS run_path, a.trajectory_sha256, r.action, r.sentence, a.mode, a.reviewer, a.grade, "
-    "a.label, a.comment, a.view, a.created_at, a.updated_at, r.source, r.demo_id, r.folder, "
-    "a.trajectory_sha256 != r.trajectory_sha256 AS stale FROM answers a JOIN runs r ON r.run_id = a.run_id"
-)
-
-
-def _row(r) -> GradeRow:
-    d = dict(r)
-    d["stale"] = bool(d["stale"])
-    return GradeRow(**d)
-
-
-# --- export files ------------------------------------------------------------------------------------
-def write_grades(rows: list[GradeRow], out: str | Path, force: bool = False) -> int:
-    out = Path(out)
-    kind = out.suffix.lower()
-    if kind not in (".csv", ".jsonl"):
-        raise ReviewError(f"cannot export to {out}: the file name must end in .csv or .jsonl")
-    if out.exists() and not force:
-        raise ReviewError(f"{out} already exists; pass --force to overwrite it")
-    tmp = out.with_name(out.name + ".part")
-    try:
-        with open(tmp, "w", newline="", encoding="utf-8") as f:
-            if kind == ".csv":
-                w = csv.DictWriter(f, fieldnames=EXPORT_FIELDS)
-                w.writeheader()
-                for row in rows:
-                    w.writerow({k: ("" if v is None else v) for k, v in asdict(row).items()})
-            else:
-                for row in rows:
-                    f.write(json.dumps(asdict(row), ensure_ascii=False) + "\n")
-        tmp.replace(out)
-    except OSError as e:
-        raise ReviewError(f"cannot write {out}: {e.strerror or e}") from None
-    return len(rows)
-
-
-def load_grades(path: str | Path) -> list[GradeRow]:
-    """Grades from a review database or an export (.csv / .jsonl), as :class:`GradeRow` rows.
-
-    Columns an older export lacks get their defaults; columns a newer one adds are ignored.
-    """
-    p = Path(path)
-    try:
-        head = p.read_bytes()[:16]
-    except OSError as e:
-        raise ReviewError(f"cannot read grades from {p}: {e.strerror or e}") from None
-    if head.startswith(b"SQLite format 3"):
-        return _grades_read_only(p)
-    try:
-        if p.suffix.lower() == ".csv":
-            with open(p, newline="", encoding="utf-8") as f:  # newline="": comments may hold line breaks
-                records = list(csv.DictReader(f))
-        else:
-            records = [json.loads(line) for line in p.read_text(encoding="utf-8").split("\n") if line.strip()]
-        return [_from_record(r) for r in records]
-    except (ValueError, TypeError, KeyError) as e:
-        raise ReviewError(f"{p} is not a grades export ({type(e).__name__}: {e})") from None
-
-
-def _grades_read_only(path: Path) -> list[GradeRow]:
-    """Read a database without writing to it: an older schema is migrated in a copy in memory."""
-    import sqlite3
-
-    try:
-        src = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True)
-        mem = sqlite3.connect(":memory:")
-        src.backup(mem)
-        src.close()
-    except sqlite3.DatabaseError as e:
-        raise ReviewError(f"cannot read review database {path}: {e}") from None
-    mem.row_factory = sqlite3.Row
-    schema.migrate(mem, path)
-    sql = _GRADES_SQL + " ORDER BY a.created_at, a.id"
-    try:
-        return [_row(r) for r in mem.execute(sql).fetchall()]
-    finally:
-        mem.close()
-
-
-def _from_record(r: dict) -> GradeRow:
-    known = {f.name: f for f in fields(GradeRow)}
-    d = {k: v for k, v in r.items() if k in known}
-    if d.get("grade") in (None, ""):
-        d["grade"] = None
-    else:
-        g = float(d["grade"])
-        d["grade"] = int(g) if g.is_integer() else g
-    for k in ("label", "demo_id", "folder"):
-        if d.get(k) == "":
-            d[k] = None
-    if isinstance(d.get("stale"), str):
-        d["stale"] = d["stale"].strip().lower() == "true"
-    d.setdefault("source", "app")
-    return GradeRow(**d)

@@ -1,7 +1,7 @@
 """The teach web app: FastAPI over a :class:`~l2p_bullet.teach.lesson.Lesson`.
 
 The same stack and conventions as the review app (``l2p_bullet/review/app.py``; served by its runner,
-``review/server.py``): requests validated from type declarations (a bad
+``web/server.py``): requests validated from type declarations (a bad
 payload is a 422 naming the field), JSON errors ``{"error": message}`` (400 a recording that cannot be
 saved (any L2PError), 404 an unknown run, 409 a training already under way, 500 a one-line message with the traceback
 in the server's log), static HTML/JS without a build step, no interactive API docs (they load scripts
@@ -20,7 +20,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..errors import L2PError, TeachError
-from ..review.web import json_errors, new_app, static_pages
+from ..web.apps import json_errors, new_app, static_pages
 from .lesson import MAX_SAMPLES, Lesson, Recording
 
 log = logging.getLogger("l2p_bullet.teach")

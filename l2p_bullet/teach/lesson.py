@@ -35,7 +35,11 @@ import numpy as np
 from ..core.frames import VIEWPOINTS, Frame, declaration
 from ..core.geometry import polygons_overlap
 from ..core.scene import COLORS, Scene, random_between_scene, random_scene
+from ..data.demos import DEMO_BLOCK_SIZE, load_session, save_session
 from ..errors import L2PError, TeachError
+from ..pipeline import perform
+from ..plugins import registry
+from ..plugins.bundle import MANIFEST, read_manifest
 
 FPS = 30.0
 """Frames per second of the written demonstrations (the captures')."""
@@ -81,8 +85,6 @@ class TaughtAction:
 
 def find_action(name: str, root: str | Path | None = None, demos: str | Path | None = None) -> TaughtAction:
     """The scaffolded plugin ``name`` in ``root`` (default ``./l2p-<name>``); TeachError when it is not one."""
-    from ..plugins.bundle import MANIFEST, read_manifest
-
     root = Path(root) if root is not None else Path(f"l2p-{name}")
     bundle_dir = root / f"l2p_{name.replace('-', '_')}"
     if not (bundle_dir / MANIFEST).is_file():
@@ -164,8 +166,6 @@ class Lesson:
 
     def count(self) -> int:
         """Demonstrations in the demos file."""
-        from ..learning.demos import load_session
-
         if not self.action.demos.exists():
             return 0
         return len(load_session(self.action.demos)["event_mover"])
@@ -238,8 +238,6 @@ class Lesson:
 
     def _append(self, scene: Scene, tracks: list[np.ndarray], start: int, end: int) -> None:
         """Append the demonstration (scaled to the captures' block size) to the demos file, atomically."""
-        from ..learning.demos import DEMO_BLOCK_SIZE, load_session, save_session
-
         k = DEMO_BLOCK_SIZE / scene.get("A").size
         new = [np.column_stack([t[:, :2] * k, t[:, 2]]) for t in tracks]
         viewer = np.asarray(VIEWPOINTS["robot"] if self.action.frame.relative else self.action.frame.viewpoint_xy()) * k
@@ -317,9 +315,6 @@ class Lesson:
         self.trainer(self.action.name, self.action.bundle_dir, [str(f) for f in files], seed=self.seed, tick=tick)
 
     def _perform(self) -> None:
-        from ..pipeline import perform
-        from ..plugins import registry
-
         self.job.state, self.job.message = "performing", "performing on a new scene"
         k = len(self.job.runs)
         seed = 100_000 + k  # scenes the page never shows for recording

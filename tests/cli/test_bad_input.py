@@ -13,8 +13,8 @@ from click.testing import CliRunner
 
 from l2p_bullet.cli import main
 from l2p_bullet.commands.common import expand_greedy
+from l2p_bullet.data.demos import data_dir, load_session
 from l2p_bullet.errors import DataError, MotionError
-from l2p_bullet.learning.demos import data_dir, load_session
 from l2p_bullet.plugins import registry
 
 SCENE = {"objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.05, -0.1]},
@@ -142,7 +142,7 @@ def test_a_demo_in_the_wrong_units_is_refused_before_training(tmp_path):
     s = _session()
     np.savez(tmp_path / "mm.npz", **_session(shell_pose=s["shell_pose"] * 1e6, stella_pose=s["stella_pose"] * 1e6))
     with pytest.raises(DataError, match="block sides"):
-        from l2p_bullet.learning.demos import demos_from_session
+        from l2p_bullet.data.demos import demos_from_session
 
         demos_from_session(tmp_path / "mm.npz", "past")
     np.savez(tmp_path / "text.npz", **_session(event_mover=np.array(["x"] * len(s["event_mover"]))))

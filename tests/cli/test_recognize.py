@@ -18,7 +18,7 @@ from l2p_bullet.cli import main
 from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.progress.config import ModelConfig
 from l2p_bullet.progress.features import QSRConfig, feature_names
-from l2p_bullet.progress.recognition import MOVED_SIDES, Tracks, read_tracks
+from l2p_bullet.recognition import MOVED_SIDES, Tracks, read_tracks
 
 BUILTIN = [x for a in ACTIONS for x in ("--action", a)]
 
@@ -50,8 +50,8 @@ def test_every_shipped_demonstration_ranks_its_action_in_the_top_two():
     """The shipped models on all 201 shipped demonstrations (their own training data: a regression check of
     the bundles, not a measure of recognition; bench_recognize.py measures that on people held out). When
     written: top two for all 201, best for 199 (two next-to demonstrations read as closer first)."""
-    from l2p_bullet.learning.demos import load_demos
-    from l2p_bullet.progress.recognition import demo_event_tracks, recognisers, recognize
+    from l2p_bullet.data.demos import load_demos
+    from l2p_bullet.recognition import demo_event_tracks, recognisers, recognize
 
     models, _ = recognisers(ACTIONS)
     missed = []

@@ -11,7 +11,7 @@ import pytest
 from click.testing import CliRunner
 
 from l2p_bullet.cli import main
-from l2p_bullet.learning.demos import data_dir
+from l2p_bullet.data.demos import data_dir
 from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle, sha256_file
 
 

@@ -10,9 +10,9 @@ from click.testing import CliRunner
 
 from l2p_bullet.cli import main
 from l2p_bullet.core.scene import default_scene
+from l2p_bullet.data.demos import get_demo
 from l2p_bullet.embodiment import motion
 from l2p_bullet.embodiment.retarget import to_anchor_frame
-from l2p_bullet.learning.demos import get_demo
 
 
 def _replay(*args):

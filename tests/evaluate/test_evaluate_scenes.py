@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from l2p_bullet.core.scene import default_scene, random_scene
+from l2p_bullet.data.demos import load_graded_demos
 from l2p_bullet.errors import EvaluationError, SceneError
 from l2p_bullet.evaluate.scenes import (
     BYSTANDER_CLEARANCE,
@@ -18,7 +19,6 @@ from l2p_bullet.evaluate.scenes import (
     study_scenes,
     with_bystanders,
 )
-from l2p_bullet.learning.demos import load_graded_demos
 
 
 def test_random_scenes_are_the_benchmarks_seeds():

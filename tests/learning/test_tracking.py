@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from l2p_bullet.learning.demos import load_demos, load_session, session_files
-from l2p_bullet.learning.tracking import clean_track, teleporting
+from l2p_bullet.data.demos import load_demos, load_session, session_files
+from l2p_bullet.data.tracking import clean_track, teleporting
 
 
 def _slide(n: int = 120) -> np.ndarray:

@@ -7,7 +7,7 @@ import pytest
 import torch
 
 from l2p_bullet.core.vocabulary import ACTIONS
-from l2p_bullet.learning.demos import load_demos
+from l2p_bullet.data.demos import load_demos
 from l2p_bullet.learning.progress_net import ProgressModel, ProgressNet
 from l2p_bullet.learning.train_progress import ProgressTrainConfig, train_net
 from l2p_bullet.learning.trainset import DataConfig, demo_sequence, violates

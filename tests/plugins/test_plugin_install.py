@@ -30,7 +30,7 @@ import numpy as np
 import pytest
 
 from l2p_bullet.core.scene import random_between_scene, save_scene
-from l2p_bullet.learning.demos import load_demos
+from l2p_bullet.data.demos import load_demos
 from l2p_bullet.learning.synthetic import write_sessions
 from l2p_bullet.plugins.bundle import load_bundle
 

@@ -12,6 +12,7 @@ import pytest
 from l2p_bullet.core.contracts import Plan, load_motion
 from l2p_bullet.core.frames import VIEWPOINTS, declaration, parse_anchors, parse_frame, viewer_offset
 from l2p_bullet.core.scene import Scene, default_scene, random_between_scene
+from l2p_bullet.data.demos import load_demos, load_session, save_session
 from l2p_bullet.errors import (
     BundleError,
     DataError,
@@ -23,7 +24,6 @@ from l2p_bullet.errors import (
 from l2p_bullet.judge.rules import rule_verdict
 from l2p_bullet.language import Command, parse
 from l2p_bullet.learning.augment import reflect, viewer_sides
-from l2p_bullet.learning.demos import load_demos, load_session, save_session
 from l2p_bullet.learning.synthetic import write_sessions
 from l2p_bullet.progress.features import QSRConfig, feature_names, motion_features
 
@@ -334,7 +334,7 @@ def test_two_anchor_planning_leaves_both_anchors_untouched():
 
 
 def test_train_takes_a_folder_of_demonstrations(tmp_path):
-    from l2p_bullet.learning.demos import expand_files
+    from l2p_bullet.data.demos import expand_files
 
     files = write_sessions(tmp_path / "d", "left-of", sessions=2, events=2)
     assert expand_files([tmp_path / "d"]) == sorted(files)

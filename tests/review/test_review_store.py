@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from review_fixtures import run_folder  # noqa: F401 - fixture
 
+from l2p_bullet.data import review_schema as schema
+from l2p_bullet.data.demos import load_graded_demos
 from l2p_bullet.errors import ReviewError, SchemaVersionError
-from l2p_bullet.learning.demos import load_graded_demos
-from l2p_bullet.review import schema
 from l2p_bullet.review.original import import_original
 from l2p_bullet.review.report import build_report, write_grade_report
 from l2p_bullet.review.runs import find_runs

@@ -8,7 +8,7 @@ import pytest
 from teach_fixtures import live  # noqa: F401 - fixture
 
 from l2p_bullet.core.scene import random_between_scene, random_scene
-from l2p_bullet.learning.demos import DEMO_BLOCK_SIZE, load_demos, load_session
+from l2p_bullet.data.demos import DEMO_BLOCK_SIZE, load_demos, load_session
 from l2p_bullet.teach.lesson import CONTEXT
 
 

@@ -8,7 +8,7 @@ import pytest
 from review_fixtures import open_page
 from teach_fixtures import live  # noqa: F401 - fixture (chromium: conftest.py)
 
-from l2p_bullet.learning.demos import DEMO_BLOCK_SIZE, load_demos
+from l2p_bullet.data.demos import DEMO_BLOCK_SIZE, load_demos
 
 pytestmark = pytest.mark.slow
 

@@ -1,1 +1,16 @@
-"""Built-in action bundle: around (manifest.toml and weights live in this folder)."""
+"""Built-in action: around. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
+thresholds of its rule judge: it sweeps at least ``turns`` of a full turn around the anchor, never farther
+than ``near`` blocks; its training-set options; its names) is declared here
+(:class:`~l2p_bullet.actions.spec.ActionSpec`).
+"""
+
+from ..spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="around",
+    source_name="SlideAround",
+    sentence="move A around B",
+    thresholds={"turns": 0.8, "near": 4.0},
+    training=Training(negatives=("closer", "away", "next-to"), scale_range=(0.75, 1.2), turn_label=1.0),
+    graded_folders=("SlideAroundDiscrete",),
+)

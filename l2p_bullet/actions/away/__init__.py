@@ -1,1 +1,14 @@
-"""Built-in action bundle: away (manifest.toml and weights live in this folder)."""
+"""Built-in action: away. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
+thresholds of its rule judge: the centre distance grows steadily, by at least ``gain`` blocks; its training-
+set options; its names) is declared here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+"""
+
+from ..spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="away",
+    source_name="SlideAway",
+    sentence="move A away from B",
+    thresholds={"gain": 1.0},
+    training=Training(negatives=("closer", "next-to", "around"), shortened=(0.75, 0.95), twist=True, detour=True, net_label=1.5),
+)

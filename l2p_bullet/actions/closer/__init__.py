@@ -1,1 +1,15 @@
-"""Built-in action bundle: closer (manifest.toml and weights live in this folder)."""
+"""Built-in action: closer. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
+thresholds of its rule judge: the centre distance shrinks steadily and closes at least ``share`` of the room
+there was; its training-set options; its names) is declared here
+(:class:`~l2p_bullet.actions.spec.ActionSpec`).
+"""
+
+from ..spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="closer",
+    source_name="SlideToward",
+    sentence="move A closer to B",
+    thresholds={"share": 0.5},
+    training=Training(negatives=("away", "past", "around"), scale_range=(0.45, 1.7), twist=True, detour=True),
+)

@@ -1,1 +1,15 @@
-"""Built-in action bundle: next_to (manifest.toml and weights live in this folder)."""
+"""Built-in action: next-to. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
+thresholds of its rule judge: the mover ends with at most ``gap`` blocks between the two footprints, not
+overlapping; its training-set options; its names) is declared here
+(:class:`~l2p_bullet.actions.spec.ActionSpec`).
+"""
+
+from ..spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="next-to",
+    source_name="SlideNext",
+    sentence="move A next to B",
+    thresholds={"gap": 0.5},
+    training=Training(negatives=("away", "past", "around"), scaled=False, twist=True),
+)

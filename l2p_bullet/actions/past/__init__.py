@@ -1,1 +1,15 @@
-"""Built-in action bundle: past (manifest.toml and weights live in this folder)."""
+"""Built-in action: past. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
+thresholds of its rule judge: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
+``near`` blocks, turning at most ``max_turn_deg`` around it; its training-set options; its names) is declared
+here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+"""
+
+from ..spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="past",
+    source_name="SlidePast",
+    sentence="move A past B",
+    thresholds={"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0},
+    training=Training(negatives=("closer", "away", "next-to", "around"), approach=(1.0, 4.0)),
+)

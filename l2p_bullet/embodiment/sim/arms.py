@@ -7,7 +7,12 @@ seed inverse kinematics. The controller, IK and grasp code read only these field
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import re
+import stat
+import tempfile
 from dataclasses import dataclass
 
 
@@ -84,10 +89,8 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     file is only used when its content is exactly the expected text (a stale, corrupt or planted file is
     rewritten), and only from a folder this user owns and nobody else can write (:func:`_cache_dir`).
     """
-    import hashlib
-    import os
-    import re
 
+    # lazy: pybullet loads only when a world is made
     import pybullet_data
 
     src = spec.urdf if os.path.isabs(spec.urdf) else os.path.join(pybullet_data.getDataPath(), spec.urdf)
@@ -120,9 +123,6 @@ _PRIVATE: list[str] = []
 def _cache_dir() -> str:
     """``<tmp>/l2p_bullet-urdf-<uid>``, made with mode 0700; if it exists but is not a folder this user
     owns and alone can write (a link, someone else's), a private folder for this process instead."""
-    import os
-    import stat
-    import tempfile
 
     uid = os.getuid() if hasattr(os, "getuid") else 0
     path = os.path.join(tempfile.gettempdir(), f"l2p_bullet-urdf-{uid}")
@@ -139,8 +139,6 @@ def _cache_dir() -> str:
 
 
 def _private_dir() -> str:
-    import tempfile
-
     if not _PRIVATE:
         _PRIVATE.append(tempfile.mkdtemp(prefix="l2p_bullet-urdf-"))
     return _PRIVATE[0]
@@ -148,8 +146,6 @@ def _private_dir() -> str:
 
 def _holds(path: str, data: bytes) -> bool:
     """True when ``path`` is a regular file (not a link) whose bytes are exactly ``data``."""
-    import os
-    import stat
 
     try:
         st = os.lstat(path)
@@ -163,8 +159,6 @@ def _holds(path: str, data: bytes) -> bool:
 
 def _drop_collisions(text: str, links: tuple[str, ...]) -> str:
     """The URDF ``text`` without the collision elements of the named links."""
-    import re
-
     def strip(m: re.Match) -> str:
         return re.sub(r"<collision>.*?</collision>", "", m.group(0), flags=re.S)
 

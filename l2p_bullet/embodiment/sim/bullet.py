@@ -19,6 +19,7 @@ of a command's output (or a JSON answer) that breaks things, so those calls run 
 from __future__ import annotations
 
 import contextlib
+import importlib.util
 import os
 import signal
 import sys
@@ -28,6 +29,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+
+from ...errors import ExecutionError
 
 Vec3 = Sequence[float]
 Quat = Sequence[float]
@@ -131,6 +134,7 @@ class Bullet:
     def __init__(self) -> None:
         with ctrl_c_deferred():
             with quiet_stdout():
+                # lazy: pybullet loads only when a world is made
                 import pybullet as pb
                 import pybullet_data
                 from pybullet_utils import bullet_client
@@ -170,9 +174,6 @@ class Bullet:
         Load it before any body: bodies loaded earlier never reach it (their images come out empty).
         It is never unloaded explicitly (unloading segfaulted here): disconnecting the client ends it.
         """
-        import importlib.util
-
-        from ...errors import ExecutionError
 
         spec = importlib.util.find_spec("eglRenderer")
         with quiet_stdout():

@@ -15,7 +15,9 @@ person saying "to the left of" stood, required to train a viewer-frame action.
 from __future__ import annotations
 
 import json
+import os
 import re
+import zipfile
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
@@ -29,6 +31,10 @@ from .tracking import clean_track
 
 DEMO_BLOCK_SIZE = 0.15
 """Side of the blocks in the demonstrations' frame (metres)."""
+
+SMOOTH_FRAMES = 9
+"""Moving-average window (0.3 s at 30 fps) on captured poses: tracking jitter would read as motion. The
+training recipe's default (``learning.trainset.DataConfig.smooth_frames``) and recognition read it here."""
 
 _REQUIRED = {
     "shell_pose": (None, 3),
@@ -75,8 +81,6 @@ MAX_SESSION_BYTES = 1 << 30
 def _open_npz(p: Path) -> dict[str, np.ndarray]:
     """The arrays of a ``.npz`` (a zip of ``.npy`` files, as ``numpy.savez`` writes), or a DataError saying
     what the file is instead. Never unpickles; refuses an archive that would inflate past MAX_SESSION_BYTES."""
-    import zipfile
-
     if not p.exists():
         raise DataError(f"demonstration file {p} does not exist")
     if not p.is_file():
@@ -174,8 +178,6 @@ def save_session(path: str | Path, tracks: list[np.ndarray], events: np.ndarray,
     ``viewer`` (2,) where the viewer stood. The file is written next to ``path``, read back with
     :func:`load_session` (a :class:`DataError` if anything is wrong) and only then renamed into place.
     """
-    import os
-
     p = Path(path)
     tracks = [np.asarray(t, float) for t in tracks]
     if len(tracks) < 2:

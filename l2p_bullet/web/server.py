@@ -34,6 +34,7 @@ def url_of(sock: socket.socket) -> str:
 
 
 def _server(app, log_level: str):
+    # lazy: the web stack only when a server runs
     import uvicorn
 
     return uvicorn.Server(uvicorn.Config(app, log_level=log_level, access_log=False, lifespan="off"))

@@ -13,7 +13,7 @@ at on Session 1 -> 2 only, Session 2 -> 1 held out; docs/learning.md, "Recogniti
 - a block "moved" when it got at least :data:`MOVED_SIDES` of its side from where it started; if none
   did, the one that moved most is the mover (a tiny motion still gets readings);
 - motions captured from people (``--demo``) are smoothed as the training recipe smooths them
-  (``DataConfig.smooth_frames``) and cut to the annotated event, as ``replay --demo`` executes it.
+  (``data.demos.SMOOTH_FRAMES``, the training recipe's window) and cut to the annotated event, as ``replay --demo`` executes it.
 Numpy only (no torch): the same models ``perform`` plans with.
 """
 
@@ -27,8 +27,9 @@ from typing import Any
 
 import numpy as np
 
-from ..core.contracts import Plan, block_size, motion_from_dict, read_json, trajectory_poses
-from ..errors import L2PError, PathError
+from .core.contracts import Plan, block_size, motion_from_dict, read_json, trajectory_poses
+from .data.demos import SMOOTH_FRAMES
+from .errors import L2PError, PathError
 
 MOVED_SIDES = 0.5
 """How far (block sides, from its start) a block must get to count as moved. A still block read as a
@@ -179,7 +180,7 @@ def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None) -> Tracks:
     objects = d["objects"]
     if not isinstance(objects, dict):
         raise PathError(f'{src}: not a valid trajectory.json ("objects" must map names to objects)')
-    from ..core.scene import MAX_OBJECTS
+    from .core.scene import MAX_OBJECTS
 
     if len(objects) > MAX_OBJECTS:
         raise PathError(f"{src}: {len(objects)} objects; a scene holds at most {MAX_OBJECTS}")
@@ -200,8 +201,8 @@ def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None) -> Tracks:
 def demo_tracks(spec: str) -> Tracks:
     """``--demo ACTION:INDEX``: a shipped human demonstration (the order of ``replay --demo``), the mover
     called A and the other block B, smoothed as the training recipe smooths captures, cut to the event."""
-    from ..core.vocabulary import canonical_action
-    from ..learning.demos import get_demo
+    from .core.vocabulary import canonical_action
+    from .data.demos import get_demo
 
     action, sep, index = spec.partition(":")
     if not sep or not index.strip().lstrip("-").isdigit():
@@ -210,11 +211,10 @@ def demo_tracks(spec: str) -> Tracks:
 
 
 def demo_event_tracks(demo: Any) -> Tracks:
-    """A :class:`learning.demos.Demo` as recognition reads it (see :func:`demo_tracks`)."""
-    from ..core.geometry import moving_average
-    from ..learning.trainset import DataConfig
+    """A :class:`data.demos.Demo` as recognition reads it (see :func:`demo_tracks`)."""
+    from .core.geometry import moving_average
 
-    w = DataConfig().smooth_frames
+    w = SMOOTH_FRAMES
     ev = slice(demo.start, demo.end + 1)
     m, a = (moving_average(t, w)[ev] if w > 1 and len(t) >= 3 else t[ev] for t in (demo.mover, demo.anchor))
     return Tracks({"A": m, "B": a}, {"A": demo.size, "B": demo.size}, f"demonstration {demo.id}", demo.viewer)
@@ -224,8 +224,8 @@ def demo_event_tracks(demo: Any) -> Tracks:
 def recognisers(specs: list[str] | tuple[str, ...] = ()) -> tuple[list[Recogniser], list[dict]]:
     """The actions to recognise with: ``specs`` (installed names or bundle folders, as ``score`` takes),
     else every usable installed action; and the installed ones left out, each with its reason."""
-    from ..plugins import registry
-    from ..plugins.bundle import load_bundle
+    from .plugins import registry
+    from .plugins.bundle import load_bundle
 
     out, skipped = [], []
     if specs:

@@ -1,0 +1,60 @@
+"""What an action is, in one place: :class:`ActionSpec`, declared by each action's module as ``ACTION``.
+
+A built-in action's module (``l2p_bullet/actions/<name>/__init__.py``, the entry point's target, next to its
+bundle) declares its name in the study's data, an example sentence, the thresholds its rule judge and the
+feasibility room check read, and how its training set differs from the defaults. The stages hold the
+algorithms and read these values: ``core/vocabulary.py`` (names), ``judge/rules.py`` (rule judges),
+``planning/feasibility.py`` (room checks, through the rules' thresholds), ``learning/trainset.py``
+(``DataConfig``'s defaults), ``learning/improve.py`` (sentences). A plugin's module may declare an
+``ACTION`` the same way; the registry hands it over with the bundle (``Bundle.spec``).
+
+Pure declarations on the lowest floor above ``errors`` (docs/DESIGN.md, "Floors"): every stage may read
+them, they import nothing of the package.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Training:
+    """How an action's training set differs from the defaults (``learning.trainset.DataConfig``; why each
+    option exists is said there and in docs/learning.md)."""
+
+    negatives: tuple[str, ...] = ()
+    """Actions whose demonstrations are its negatives (one that is, or begins, this action is left out)."""
+    scaled: bool = True
+    """Copies stretched about the anchor (not for next-to: a stretched next-to ends apart)."""
+    scale_range: tuple[float, float] | None = None
+    """Stretch factors of those copies, when not ``DataConfig.scale_range``."""
+    approach: tuple[float, float] | None = None
+    """Copies that start this many blocks farther back along their first direction."""
+    shortened: tuple[float, float] | None = None
+    """Copies shrunk about their own start by these factors: the same motion stopped sooner is complete."""
+    twist: bool = False
+    """Copies whose bearing drifts: a drifting bearing does not change the action's meaning."""
+    detour: bool = False
+    """Copies that first move the other way: the net motion is still the action."""
+    turn_label: float | None = None
+    """Labelled by the net turn swept, in these many turns, instead of by arc length."""
+    net_label: float | None = None
+    """Dip/back-off copies labelled by net gain less this times the inward motion."""
+
+
+@dataclass(frozen=True)
+class ActionSpec:
+    """One action: what the stages read about it besides its bundle (phrases, features, weights)."""
+
+    name: str
+    """Canonical name ("next-to"); the entry point's and the bundle's name."""
+    source_name: str
+    """What the original study's data calls it (capture files, graded folders): "SlideNext"."""
+    sentence: str
+    """An example sentence that performs it ("move A next to B"): ``l2p-bullet improve`` performs it."""
+    thresholds: dict[str, float] = field(default_factory=dict)
+    """The numbers its rule judge (``judge/rules.py``'s rule set of the same name) and its feasibility room
+    check read, in blocks, turns or degrees as named."""
+    training: Training = field(default_factory=Training)
+    graded_folders: tuple[str, ...] = ()
+    """Further folders of the graded 2-D demonstrations that show it ("SlideAroundDiscrete")."""
