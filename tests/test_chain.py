@@ -1,0 +1,137 @@
+"""Chains of clauses in ``perform`` (l2p_bullet/chain): parsing, up-front refusals, one continuous episode."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from l2p_bullet.chain import MAX_CLAUSES, perform_chain, resolve_clauses, split_clauses
+from l2p_bullet.cli import main
+from l2p_bullet.core.scene import Scene, SceneObject
+from l2p_bullet.errors import InfeasibleError, LanguageError, UnknownObjectError
+from l2p_bullet.plugins import registry
+
+CHAIN = "move A next to B, then slide C past A and then move D around B"
+
+
+def four_blocks(b_xy=(0.0, 0.02)) -> Scene:
+    """Four 4 cm blocks spread over the workspace (the anchor B near the centre unless told)."""
+    return Scene([SceneObject("A", "red", 0.04, (0.10, -0.08), 0.2), SceneObject("B", "green", 0.04, b_xy, 0.0),
+                  SceneObject("C", "blue", 0.04, (-0.12, -0.06), 0.4),
+                  SceneObject("D", "yellow", 0.04, (-0.06, 0.10), 0.1)]).validate()
+
+
+@pytest.mark.parametrize("sentence, texts", [
+    (CHAIN, ["move A next to B", "slide C past A", "move D around B"]),
+    ("move A around B; move C next to D", ["move A around B", "move C next to D"]),
+    ("move A around B after that move C closer to D", ["move A around B", "move C closer to D"]),
+    ("Then move A around B.", ["move A around B"]),
+    ("move A around B", ["move A around B"]),
+])
+def test_split_clauses(sentence, texts):
+    assert split_clauses(sentence) == texts
+
+
+def test_a_missing_verb_repeats_the_previous_one_and_its_mover():
+    clauses = resolve_clauses("slide A around B, then next to C; then the blue block past D", four_blocks(),
+                              registry.discover())
+    got = [(c.index, c.command.verb, c.command.mover, c.command.action, c.command.anchor) for c in clauses]
+    assert got == [(1, "slide", "A", "around", "B"), (2, "slide", "A", "next-to", "C"),
+                   (3, "slide", "C", "past", "D")]
+
+
+def test_unknown_block_in_clause_3_refused_before_anything_moves(tmp_path):
+    out = tmp_path / "run"
+    with pytest.raises(UnknownObjectError, match=r'^clause 3 \("push E past A"\): .*"E"'):
+        perform_chain("move A next to C, then move D around B, then push E past A", four_blocks(), out_dir=out,
+                      render=False)
+    assert not out.exists()
+    with pytest.raises(UnknownObjectError, match=r"^clause 2 .*purple"):
+        resolve_clauses("move A next to C, then push the purple block past A", four_blocks(), registry.discover())
+
+
+def test_too_many_clauses_refused():
+    with pytest.raises(LanguageError, match=f"at most {MAX_CLAUSES}"):
+        resolve_clauses("; ".join(["move A next to B"] * (MAX_CLAUSES + 1)), four_blocks(), registry.discover())
+
+
+def test_impossible_clause_refused_up_front_with_its_index(tmp_path):
+    out = tmp_path / "run"
+    runner = CliRunner()
+    r = runner.invoke(main, ["perform", "move A next to C, then move D around B", "--no-render", "--json", "-q",
+                             "--out", str(out), "--scene", _save(four_blocks(b_xy=(0.0, 0.235)), tmp_path)])
+    assert r.exit_code == 2, r.output
+    d = json.loads(r.stdout)
+    assert d["refused"]["check"] == "room-around" and d["refused"]["details"]["clause"] == 2
+    assert d["error"].startswith('clause 2 ("move D around B") cannot be planned (room-around)')
+    assert not out.exists()  # refused before the arm moved or anything was written
+    with pytest.raises(InfeasibleError):
+        perform_chain("move D around B; move A next to C", four_blocks(b_xy=(0.0, 0.235)), out_dir=out, render=False)
+
+
+def _save(scene: Scene, folder) -> str:
+    p = folder / "scene.json"
+    p.write_text(json.dumps(scene.to_dict()))
+    return str(p)
+
+
+@pytest.fixture(scope="module")
+def chain_runs(tmp_path_factory):
+    """The same 3-clause chain performed twice with one seed (each costs about 5 s unrendered)."""
+    base = tmp_path_factory.mktemp("chain")
+    return [perform_chain(CHAIN, four_blocks(), out_dir=base / f"run{i}", render=False, seed=7) for i in (1, 2)]
+
+
+@pytest.mark.slow
+def test_three_clauses_on_four_blocks(chain_runs):
+    r = chain_runs[0]
+    assert r.success and r.completed == 3, r.verdict()
+    traj = json.loads((r.out_dir / "trajectory.json").read_text())
+    segs = traj["segments"]
+    assert [(s["clause"], s["action"], s["mover"], s["anchors"]) for s in segs] == [
+        (1, "next-to", "A", ["B"]), (2, "past", "C", ["A"]), (3, "around", "D", ["B"])]
+    assert segs[0]["first_frame"] == 0 and segs[-1]["last_frame"] == len(traj["frames"]) - 1
+    for a, b in zip(segs, segs[1:], strict=False):
+        assert b["first_frame"] == a["last_frame"] + 1  # one continuous episode, no gap, no overlap
+    assert all(set(f["poses"]) == {"A", "B", "C", "D"} for f in traj["frames"])
+    summary = json.loads((r.out_dir / "summary.json").read_text())
+    assert summary["chain"]["success"] and summary["chain"]["completed"] == 3
+    assert [c["success"] for c in summary["clauses"]] == [True, True, True]
+    plan = json.loads((r.out_dir / "plan.json").read_text())
+    assert plan["mover"] == "A" and [c["plan"]["mover"] for c in plan["clauses"]] == ["A", "C", "D"]
+    # each clause starts where the previous one really left its mover (re-planned from the world)
+    c_end = traj["frames"][segs[1]["last_frame"]]["poses"]["C"]
+    assert plan["clauses"][2]["plan"]["anchor_pose"][:2] == pytest.approx(
+        traj["frames"][segs[2]["first_frame"]]["poses"]["B"][:2], abs=1e-5)
+    assert c_end[:2] == pytest.approx(traj["frames"][-1]["poses"]["C"][:2], abs=1e-3)
+
+
+@pytest.mark.slow
+def test_bystanders_stay_put(chain_runs):
+    r = chain_runs[0]
+    traj = json.loads((r.out_dir / "trajectory.json").read_text())
+    for seg in traj["segments"]:
+        frames = traj["frames"][seg["first_frame"]:seg["last_frame"] + 1]
+        for name in "ABCD":
+            if name != seg["mover"]:
+                x0, y0 = frames[0]["poses"][name][:2]
+                moved = max(((f["poses"][name][0] - x0) ** 2 + (f["poses"][name][1] - y0) ** 2) ** 0.5
+                            for f in frames)
+                assert moved < 0.001, (seg["clause"], name, moved)
+    summary = json.loads((r.out_dir / "summary.json").read_text())
+    assert set(summary["displacements_m"]) == {"B"} and summary["displacements_m"]["B"] < 0.001
+
+
+@pytest.mark.slow
+def test_chain_is_deterministic_for_a_seed(chain_runs):
+    a, b = ((r.out_dir / "trajectory.json").read_bytes() for r in chain_runs)
+    assert a == b
+    pa, pb = (json.loads((r.out_dir / "plan.json").read_text()) for r in chain_runs)
+    for d in (pa, pb):
+        for c in d["clauses"]:
+            for p in (c["plan"], c["forecast"]):
+                p.pop("seconds", None)
+        d.pop("seconds", None)
+    assert pa == pb
