@@ -135,3 +135,71 @@ def test_chain_is_deterministic_for_a_seed(chain_runs):
                 p.pop("seconds", None)
         d.pop("seconds", None)
     assert pa == pb
+
+
+# --- the other commands read chain runs --------------------------------------------------------------
+
+
+@pytest.mark.slow
+def test_score_scores_each_segment_with_its_own_blocks(chain_runs):
+    from l2p_bullet.progress.scoring import score_file
+
+    traj = chain_runs[0].out_dir / "trajectory.json"
+    d = score_file("around", traj)
+    segs = d["segments"]
+    assert [(s["clause"], s["mover"], s["anchors"]) for s in segs] == [(1, "A", ["B"]), (2, "C", ["A"]), (3, "D", ["B"])]
+    assert len(segs[2]["progress"]) == segs[2]["last_frame"] - segs[2]["first_frame"] + 1
+    recorded = json.loads(traj.read_text())["frames"][-1]["progress"]  # clause 3 is "around": its own model
+    assert segs[2]["final"] == pytest.approx(recorded, abs=1e-4)
+
+
+@pytest.mark.slow
+def test_export_writes_one_episode_per_clause(chain_runs, tmp_path):
+    out = tmp_path / "export"
+    r = CliRunner().invoke(main, ["export", str(chain_runs[0].out_dir), str(out)])
+    assert r.exit_code == 0, r.output
+    eps = [json.loads(line) for line in (out / "episodes.jsonl").read_text().splitlines()]
+    assert [(e["task"], e["mover"], e["anchor"], e["extra"]["chain"]["clause"]) for e in eps] == [
+        ("move A next to B", "A", "B", 1), ("slide C past A", "C", "A", 2), ("move D around B", "D", "B", 3)]
+    assert all(e["extra"]["success"] is True for e in eps)
+    assert sum(len(e["frames"]) for e in eps) == len(json.loads((chain_runs[0].out_dir / "trajectory.json")
+                                                                 .read_text())["frames"])
+
+
+@pytest.mark.slow
+def test_review_follows_the_clause(chain_runs):
+    from l2p_bullet.review.runs import motion_for_browser, read_run
+
+    run = read_run(chain_runs[0].out_dir)
+    seen = motion_for_browser(run, blind=False)
+    assert [(s["clause"], s["mover"], s["anchor"]) for s in seen["segments"]] == [(1, "A", "B"), (2, "C", "A"),
+                                                                                   (3, "D", "B")]
+    blind = motion_for_browser(run, blind=True)
+    assert "text" not in blind["segments"][0] and "action" not in blind["segments"][0]
+
+
+@pytest.mark.slow
+def test_replay_of_a_chain_plan_replays_every_clause(chain_runs, tmp_path):
+    src = chain_runs[0].out_dir
+    out = tmp_path / "replay"
+    r = CliRunner().invoke(main, ["replay", str(src / "plan.json"), "--no-render", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    a, b = (json.loads((d / "trajectory.json").read_text()) for d in (src, out))
+    assert [s["mover"] for s in b["segments"]] == ["A", "C", "D"]
+    last_a, last_b = a["frames"][-1]["poses"], b["frames"][-1]["poses"]
+    for name in "ABCD":  # the plans are stored rounded to 1e-6 m: the replay ends where the run did
+        assert last_b[name][:2] == pytest.approx(last_a[name][:2], abs=2e-4)
+    assert json.loads((out / "summary.json").read_text())["chain"]["completed"] == 3
+
+
+def test_plan_writes_every_clause(tmp_path):
+    out = tmp_path / "plan"
+    r = CliRunner().invoke(main, ["plan", "move A next to B; then slide C past A", "--out", str(out), "--seed", "1",
+                                  "--scene", _save(four_blocks(), tmp_path)])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.output)
+    assert d["chain"] and [c["action"] for c in d["clauses"]] == ["next-to", "past"]
+    doc = json.loads((out / "plan.json").read_text())
+    assert doc["mover"] == "A" and doc["clauses"][1]["forecast"]["mover"] == "C"
+    assert doc["clauses"][1]["forecast"]["anchor_pose"][:2] == pytest.approx(doc["path"][-1][:2], abs=1e-6)
+    assert (out / "plan.png").is_file() and (out / "plan-2.png").is_file()

@@ -33,7 +33,7 @@ def segments(result: Any) -> list[dict[str, Any]]:
     return out
 
 
-def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, seed: int) -> None:
+def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, seed: int, scene: Any) -> None:
     """trajectory.json, plan.json, images (when rendering) and summary.json of a chain run."""
     from ..embodiment.record import versions
 
@@ -48,7 +48,7 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
         meta["viewer"] = [float(v) for v in first.viewer]
     files = {"trajectory": out / "trajectory.json", "plan": out / "plan.json"}
     rec.write_trajectory(files["trajectory"], meta, world.sizes)
-    _write_plans(files["plan"], result, steps)
+    _write_plans(files["plan"], result, steps, scene)
     if rec.camera is not None:
         files |= rec.write_images(out, settings.video, captions(result, rec))
     files["summary"] = out / "summary.json"
@@ -107,13 +107,14 @@ def captions(result: Any, rec: Any) -> list[str]:
     return out
 
 
-def _write_plans(path: Path, result: Any, steps: list) -> None:
-    """plan.json: the first clause's plan as a one-clause run writes it, plus every clause's plan."""
+def _write_plans(path: Path, result: Any, steps: list, scene: Any) -> None:
+    """plan.json: the first clause's plan as a one-clause run writes it, plus every clause's plan and
+    ``chain`` (the sentence and the scene it started from: ``replay`` needs both)."""
     clauses = []
     for s, r in zip(steps, result.results, strict=False):
         executed = r.plan.to_dict() if r.plan is not None else None
         clauses.append({"clause": s.clause.index, "text": s.clause.text, "plan": executed,
                         "forecast": s.forecast.to_dict()})
     head = result.results[0].plan if result.results and result.results[0].plan is not None else steps[0].forecast
-    doc = head.to_dict() | {"clauses": clauses}
+    doc = head.to_dict() | {"clauses": clauses, "chain": {"sentence": result.sentence, "scene": scene.to_dict()}}
     path.write_text(dumps_json(doc, indent=1) + "\n")

@@ -159,7 +159,9 @@ def scene_now(scene: Scene, world: Any) -> Scene:
 def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: StageClock, plugins: list, *,
              planner: str,
              seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
-             world: Any) -> ChainResult:
+             world: Any, replan: bool = True) -> ChainResult:
+    """Execute ``steps`` in one episode in ``world`` (or a new one) and write the run folder into ``out``.
+    ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json)."""
     from ..embodiment import execute as ex
     from ..embodiment.sim.world import World
     from .files import write_run
@@ -179,14 +181,15 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         for k, step in enumerate(steps):
             c = step.clause
             clock.stage(f"clause {c.index}", f"{c.label()}: planning from the blocks' real poses, then executing")
-            r = _clause(step, scene_now(scene, world), prims, rest, plugins, first_step=k == 0, planner=planner,
-                        seed=seed, budget=budget, threshold=threshold)
+            first = 0 if k == 0 else len(prims.recorder.frames)
+            r = _clause(step, scene_now(scene, world), prims, rest, plugins, first=first, replan=replan and k > 0,
+                        planner=planner, seed=seed, budget=budget, threshold=threshold)
             results.append(r)
             if not r.success:
                 break
         clock.stage("record", "writing the run folder")
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
-        write_run(result, steps, prims, world, settings, seed)
+        write_run(result, steps, prims, world, settings, seed, scene)
         clock.stop()
         clock.timings["total"] = clock.elapsed
         result.timings = dict(clock.timings)
@@ -199,19 +202,19 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             world.close()
 
 
-def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, *, first_step: bool, planner: str, seed: int,
+def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, *, first: int, replan: bool, planner: str, seed: int,
             budget: int | None, threshold: float | None) -> ClauseResult:
-    """Plan ``step``'s clause from ``now``, execute it with the arm, judge its frames."""
+    """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
+    planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
     from .. import planning
     from ..embodiment import execute as ex
     from ..pipeline import check_feasible, disturbance_verdict, judge_context
 
     cmd, rec = step.clause.command, prims.recorder
-    first = len(rec.frames) if not first_step else 0
     plan, stage = None, "plan"
     try:
-        if first_step:
-            plan = step.forecast  # planned from the very scene the world was loaded with
+        if not replan:
+            plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
             check_feasible(cmd, now, plugins)
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
