@@ -116,13 +116,15 @@ def _round(v: float | None) -> float | None:
 def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
                   seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
                   threshold: float | None = None, on_stage=None, plugins: list | None = None,
-                  render_settings: Any = None, world: Any = None, bundles: dict | None = None) -> ChainResult:
+                  render_settings: Any = None, world: Any = None, bundles: dict | None = None,
+                  steps: list[Step] | None = None) -> ChainResult:
     """Resolve, forecast, execute and judge a chain of clauses; write one run folder.
 
     Everything a user can get wrong (a clause's words, a block not in the scene, a clause that cannot be
     planned from the predicted state) is an L2PError naming the clause, raised before any folder is made.
     ``world``: an open simulator world to run in (reset to ``scene`` first); ``bundles``: action name ->
-    loaded bundle, to reuse across runs (``evaluate``).
+    loaded bundle, to reuse across runs; ``steps``: the chain already resolved and forecast (``evaluate
+    --chains`` draws it clause by clause): ``sentence`` must be their texts joined.
     """
     from ..core.runfolder import run_folder, write_summary
     from ..pipeline import check_options
@@ -133,10 +135,11 @@ def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
     check_options(planner, seed, budget, threshold)
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
-    clauses = resolve_clauses(sentence, scene, plugins)
-    clock.stage("forecast", f"planning the {len(clauses)} clauses from their predicted states")
-    steps = forecast(clauses, scene, plugins, planner=planner, seed=seed, budget=budget, threshold=threshold,
-                     bundles=bundles)
+    if steps is None:
+        clauses = resolve_clauses(sentence, scene, plugins)
+        clock.stage("forecast", f"planning the {len(clauses)} clauses from their predicted states")
+        steps = forecast(clauses, scene, plugins, planner=planner, seed=seed, budget=budget, threshold=threshold,
+                         bundles=bundles)
     clock.stop()
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:

@@ -38,6 +38,7 @@ class EvaluationConfig:
     keep: str = "none"
     budget: int | None = None
     threshold: float | None = None
+    chains: int = 0  # K > 0: one chain of K clauses per scene of 3-5 blocks (evaluate/chains.py)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -51,6 +52,13 @@ class EvaluationConfig:
         sources = [self.scenes is not None, self.scene_file is not None, self.study]
         if sum(sources) > 1:
             raise EvaluationError("choose one scene set: --scenes N, --scene-file F or --study")
+        if self.chains:
+            if self.scene_file is not None or self.study or self.bystanders:
+                raise EvaluationError("--chains draws its own scenes of 3-5 blocks: no --scene-file, --study or "
+                                      "--bystanders")
+            from .chains import chain_scenes
+
+            return chain_scenes(DEFAULT_SCENES if self.scenes is None else self.scenes, self.seed)
         if self.scene_file is not None:
             specs = scene_file(self.scene_file, self.seed)
         elif self.study:
@@ -115,9 +123,18 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         from ..planning import resolve_planner
 
         resolve_planner(config.planner)  # a typo fails before anything runs
-        tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
-                           render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
-                           budget=config.budget, threshold=config.threshold)
+        if config.chains:
+            from .chains import make_chain_tasks
+
+            if config.mode == "plan":
+                raise EvaluationError("--chains performs its chains: no --plan-only")
+            tasks = make_chain_tasks(config.scene_set(), config.chains, actions, planner=config.planner,
+                                     render_every=config.render_every, keep=config.keep, out_dir=str(out),
+                                     plugins=plugins, budget=config.budget, threshold=config.threshold)
+        else:
+            tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
+                               render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
+                               budget=config.budget, threshold=config.threshold)
         if not resume:
             store.set_meta("config", config.to_dict())
         store.set_meta("tasks_total", len(tasks))
