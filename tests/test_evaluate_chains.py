@@ -78,6 +78,9 @@ def test_cli_reports_success_of_the_first_clauses(pool_rows):
     done = [row["completed"] for row in rows]
     assert rep["success_first"]["1"] == sum(d >= 1 for d in done) / 2
     assert rep["average_completed"] == sum(done) / 2
+    per_clause = [json.loads(line) for line in (out / "clauses.jsonl").read_text().splitlines()]
+    assert len(per_clause) == sum(len(row["clauses"]) for row in rows)
+    assert {c["run_id"] for c in per_clause} == {row["run_id"] for row in rows}
 
 
 @pytest.mark.slow

@@ -98,6 +98,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
         out_json["report"] = json.loads(files["json"].read_text())
         if not as_json:
             click.echo(text)
+            click.echo(f"rows per clause: {files['clauses']}")
     elif report:
         from ..evaluate.report import write_report
 

@@ -205,8 +205,10 @@ def chain_report_text(rep: dict) -> str:
 
 
 def write_chain_report(rows: list[dict], out_dir: str | Path) -> tuple[str, dict[str, Path]]:
-    """The text and ``report.json`` (the numbers) of a chain evaluation."""
+    """The text, ``report.json`` (the numbers) and ``clauses.jsonl`` (one row per clause) of a chain evaluation."""
     rep = chain_report(rows)
     path = Path(out_dir) / "report.json"
     path.write_text(json.dumps({"chains": rep}, indent=1, default=float) + "\n")
-    return chain_report_text(rep), {"json": path}
+    per_clause = Path(out_dir) / "clauses.jsonl"
+    per_clause.write_text("".join(json.dumps(r, sort_keys=True) + "\n" for r in clause_rows(rows)))
+    return chain_report_text(rep), {"json": path, "clauses": per_clause}

@@ -109,6 +109,8 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         stored = store.get_meta("config")
         if resume and stored is None:
             raise EvaluationError(f"{out} holds no evaluation to resume (no results.sqlite with settings)")
+        if stored is not None:  # settings added since the evaluation was stored have their defaults
+            stored = {**EvaluationConfig().to_dict(), **stored}
         if resume:
             if config is not None and config.to_dict() != stored:
                 diff = sorted(k for k, v in config.to_dict().items() if stored.get(k) != v)
