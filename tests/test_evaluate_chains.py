@@ -97,3 +97,16 @@ def test_a_two_node_ray_cluster_gives_the_pool_rows(pool_rows, tmp_path):
     got = load_rows(tmp_path / "ray")
     assert [comparable(r) for r in got] == [comparable(r) for r in rows]
     assert len({r["worker"] for r in got}) == 2  # two actors, one per node (each node has one CPU)
+
+
+def test_an_evaluation_stored_before_chains_existed_resumes(tmp_path):
+    from l2p_bullet.evaluate.results import ResultsStore
+
+    config = EvaluationConfig(actions=["closer"], scenes=0)
+    with ResultsStore(tmp_path) as store:  # the settings as an older l2p-bullet stored them
+        store.set_meta("config", {k: v for k, v in config.to_dict().items() if k != "chains"})
+    s = evaluate(config, tmp_path, workers=0, resume=True, progress=False)
+    assert s.total == 0
+    with pytest.raises(EvaluationError, match="chains"):
+        evaluate(EvaluationConfig(actions=["closer"], scenes=0, chains=2), tmp_path, workers=0, resume=True,
+                 progress=False)
