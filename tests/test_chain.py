@@ -203,3 +203,41 @@ def test_plan_writes_every_clause(tmp_path):
     assert doc["mover"] == "A" and doc["clauses"][1]["forecast"]["mover"] == "C"
     assert doc["clauses"][1]["forecast"]["anchor_pose"][:2] == pytest.approx(doc["path"][-1][:2], abs=1e-6)
     assert (out / "plan.png").is_file() and (out / "plan-2.png").is_file()
+
+
+@pytest.mark.slow
+def test_the_review_page_names_the_clause_being_performed(chain_runs, chromium, tmp_path):
+    import shutil
+
+    from review_fixtures import Live, open_page
+
+    runs = tmp_path / "runs"
+    shutil.copytree(chain_runs[0].out_dir, runs / "chain")
+    s = Live(tmp_path / "reviews.sqlite", runs, view="2d")
+    try:
+        page, errors = open_page(chromium, s.url, 1000, 660)
+        page.wait_for_selector("#name")
+        page.fill("#name", "ann")
+        page.press("#name", "Enter")
+        page.wait_for_function("document.querySelector('#sentence').textContent.includes('now 1/3: move A next to B')")
+        assert page.inner_text("#sentence").startswith(f"“{CHAIN}”")
+        assert not errors, errors
+    finally:
+        s.stop()
+
+
+@pytest.mark.slow
+def test_video_captions_follow_the_clauses(chain_runs):
+    from types import SimpleNamespace
+
+    from l2p_bullet.chain.files import captions
+
+    r = chain_runs[0]
+    frames = json.loads((r.out_dir / "trajectory.json").read_text())["frames"]
+    times = [i / 10 for i in range(int(frames[-1]["t"] * 10) + 1)]  # a 10 fps camera over the episode
+    shown = captions(r, SimpleNamespace(frames=frames, image_times=times))
+    firsts = [frames[c.first_frame]["t"] for c in r.results]
+    expect = [next(f"{c.clause.index}/3: {c.clause.command.sentence}" for c, t0 in reversed(list(zip(r.results, firsts,
+               strict=True))) if t + 1e-6 >= t0) for t in times]
+    assert shown == expect
+    assert shown[0] == "1/3: move A next to B" and shown[-1] == "3/3: move D around B"
