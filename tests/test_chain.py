@@ -241,3 +241,17 @@ def test_video_captions_follow_the_clauses(chain_runs):
                strict=True))) if t + 1e-6 >= t0) for t in times]
     assert shown == expect
     assert shown[0] == "1/3: move A next to B" and shown[-1] == "3/3: move D around B"
+
+
+@pytest.mark.slow
+def test_the_first_clause_is_the_one_clause_run(chain_runs, tmp_path):
+    """Clause 1 starts from the scene itself: its frames and verdict are exactly a one-clause perform's, so a
+    chain's first-clause success is the single action's success on the same scene and seed."""
+    from l2p_bullet.pipeline import perform
+
+    single = perform("move A next to B", four_blocks(), out_dir=tmp_path / "one", render=False, seed=7)
+    traj = json.loads((chain_runs[0].out_dir / "trajectory.json").read_text())
+    seg = traj["segments"][0]
+    alone = json.loads((tmp_path / "one" / "trajectory.json").read_text())["frames"]
+    assert traj["frames"][seg["first_frame"]:seg["last_frame"] + 1] == alone
+    assert chain_runs[0].results[0].verdict == single.verdict
