@@ -255,3 +255,18 @@ def test_the_first_clause_is_the_one_clause_run(chain_runs, tmp_path):
     alone = json.loads((tmp_path / "one" / "trajectory.json").read_text())["frames"]
     assert traj["frames"][seg["first_frame"]:seg["last_frame"] + 1] == alone
     assert chain_runs[0].results[0].verdict == single.verdict
+
+
+@pytest.mark.slow
+def test_eight_blocks(tmp_path):
+    import math
+
+    names, colours = "ABCDEFGH", ["red", "green", "blue", "yellow", "orange", "purple", "cyan", "pink"]
+    ring = [SceneObject(names[i + 1], colours[i + 1], 0.04, (0.15 * math.cos(2 * math.pi * i / 7),
+                                                            0.15 * math.sin(2 * math.pi * i / 7)), 0.1 * i)
+            for i in range(7)]
+    scene = Scene([SceneObject("A", "red", 0.04, (0.0, 0.0)), *ring]).validate()
+    r = perform_chain("move B next to A, then move the orange block closer to A", scene, out_dir=tmp_path / "r",
+                      render=False)
+    assert r.success, r.verdict()
+    assert max(v for c in r.results for k, v in c.displacements_m.items() if k != c.clause.command.mover) < 0.001
