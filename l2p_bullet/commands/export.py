@@ -30,13 +30,13 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     """
     from ..core.runfolder import run_folder
     from ..errors import PathError
-    from ..export.episodes import EXPORT_FILES, demo_episodes, episode_from_run, run_folders, write_jsonl
+    from ..export.episodes import EXPORT_FILES, demo_episodes, episodes_from_run, run_folders, write_jsonl
 
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
     sources = run_folders(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
     with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES) as folder:
-        episodes = [episode_from_run(r) for r in sources]
+        episodes = [e for r in sources for e in episodes_from_run(r)]
         if demos:
             episodes += list(demo_episodes(list(demos), render=not no_video and fmt == "lerobot"))
         if fmt == "lerobot":

@@ -166,6 +166,7 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
     ``{"action", "progress": [per input frame], "final"}`` rounded to 4 digits (DESIGN.md section 4).
     """
     # inside: every command module is imported when the CLI starts, and numpy with the registry is not cheap
+    from ..chain.segments import score_segments
     from ..core.contracts import load_motion
     from ..errors import PathError
     from ..plugins.bundle import load_bundle
@@ -179,7 +180,9 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
                         f"{len(motion.more_anchors) + 1}" + (' (add "more_anchors")' if model.anchors > 1 else ""))
     kw = {"more_anchors": motion.more_anchors} if motion.more_anchors else {}
     curve = model.curve(motion.mover, motion.anchor, motion.size, viewer=motion.viewer, **kw)
-    return {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}
+    out = {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}
+    segments = score_segments(path, model)  # a chain's trajectory.json: each clause's frames, its own blocks
+    return out if segments is None else out | {"segments": segments}
 
 
 COMMANDS: list[click.Command] = [train, train_policy_cmd, improve, score]

@@ -31,6 +31,10 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     Verbs: move, slide, push, shift, put. Prepositions: those of the installed actions
     (l2p-bullet actions). The run folder gets trajectory.json, plan.json, summary.json and,
     unless --no-render, frames and a video.
+
+    \b
+    Chains: clauses joined by ", then", "and then", "then", "after that" or ";" run one
+    after another in one episode, e.g. "move A next to B, then slide C past A".
     """
     from ..core.contracts import dumps_json
     from ..pipeline import perform
@@ -41,8 +45,11 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
         if not quiet:
             click.echo(f"[{time.perf_counter() - t0:5.1f}s] {message}", err=True)
 
+    from ..chain import is_chain
     from ..errors import L2PError
 
+    if is_chain(sentence):
+        return _perform_chain(sentence, scene_path, seed, out, planner, no_render, force, on_stage, as_json)
     try:
         scene = load_scene_or_default(scene_path)
         r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
@@ -61,6 +68,34 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     click.echo(f"final progress {fp} (planned {r.planned_progress:.2f}), "
                f"block within {r.max_deviation_m * 1000:.1f} mm of the plan, "
                f"anchor moved {r.anchor_displacement_m * 1000:.1f} mm, {r.timings.get('total', 0):.1f} s")
+    video = r.files.get("video")
+    click.echo(f"run folder: {r.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
+
+
+def _perform_chain(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
+                   no_render: bool, force: bool, on_stage, as_json: bool) -> None:
+    """``perform`` of a chain (l2p_bullet/chain): one line per clause, then the chain's verdict."""
+    from ..chain import perform_chain
+    from ..core.contracts import dumps_json
+    from ..errors import L2PError
+
+    try:
+        r = perform_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
+                          render=not no_render, force=force, on_stage=on_stage)
+    except L2PError as e:
+        if as_json:
+            click.echo(dumps_json(error_json(sentence, e), indent=1))
+        raise
+    if as_json:
+        click.echo(dumps_json(r.to_dict(), indent=1))
+        return
+    for c in r.results:
+        fp = "n/a" if c.final_progress is None else f"{c.final_progress:.2f}"
+        click.echo(f'{c.clause.index}. {c.clause.command.sentence}: "{c.clause.command.action}", '
+                   f'{"success" if c.success else "FAILED"} ({c.verdict.get("reason", "")}), final progress {fp}')
+    v = r.verdict()
+    click.echo(f'chain: {"success" if r.success else "FAILED"}, {v["completed"]} of {v["clauses"]} clauses done, '
+               f'{r.timings.get("total", 0):.1f} s')
     video = r.files.get("video")
     click.echo(f"run folder: {r.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
 

@@ -30,9 +30,17 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     The plan maximises the action's learned progress model; the action's judge (rules for the built-in
     actions) gives its verdict alongside (it judges the path, the planner never sees it).
     """
+    from ..chain import is_chain
     from ..core.contracts import dumps_json
     from ..pipeline import plan_sentence
 
+    if is_chain(sentence):  # "move A next to B, then ...": every clause planned from the predicted state
+        from ..chain.plan import plan_chain
+
+        chained = plan_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
+                             budget=budget, threshold=threshold, force=force, plot=not no_plot)
+        click.echo(dumps_json(chained.to_dict()))
+        return
     result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
                   budget=budget, threshold=threshold, force=force, plot=not no_plot)
     click.echo(dumps_json(result.to_dict()))

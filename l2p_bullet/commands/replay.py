@@ -47,15 +47,37 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
 
     if (path_json is None) == (demo is None):
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")
+    render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
+    if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed):
+        return
     scene = load_scene_or_default(scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
-    render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
     with run_folder(out, force=force, prefix="replay", command="replay") as folder:
         ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")
     click.echo(f"run folder: {folder}")
+
+
+def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force: bool, render, seed: int) -> bool:
+    """Replay a chain run's plan.json (every clause, one episode; l2p_bullet/chain/replay.py) in the scene
+    it was planned in (or ``--scene``); False when the file is no chain plan."""
+    from ..chain.replay import is_chain_plan, replay_chain
+    from ..core.contracts import read_json
+    from ..core.runfolder import run_folder
+
+    doc = read_json(path_json)
+    if not is_chain_plan(doc):
+        return False
+    scene = load_scene_or_default(scene_path) if scene_path is not None else None
+    with run_folder(out, force=force, prefix="replay", command="replay") as folder:
+        r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=seed,
+                         on_stage=lambda s: click.echo(f"  {s}...", err=True))
+    v = r.verdict()
+    click.echo(f"replayed the chain {path_json}: {v['completed']} of {v['clauses']} clauses done ({v['reason']})")
+    click.echo(f"run folder: {folder}")
+    return True
 
 
 COMMANDS: list[click.Command] = [replay]

@@ -85,17 +85,19 @@ class Recorder:
             "anchor": meta.get("anchor"),
             # a two-anchor action's every reference object, a viewer-frame action's viewpoint (only then)
             **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
+            **({"segments": meta["segments"]} if meta.get("segments") is not None else {}),  # a chain's clauses
             "fps": self.fps,
             "objects": {name: {"size": size} for name, size in sizes.items()},
             "frames": self.frames,
         }
         path.write_text(dumps_json(doc, separators=(",", ":")) + "\n")
 
-    def write_images(self, out: Path, video: str = "mp4", sentence: str | None = None) -> dict[str, Path]:
+    def write_images(self, out: Path, video: str = "mp4", sentence: str | list[str] | None = None) -> dict[str, Path]:
         """frames/NNNN.png, the video and contact_sheet.png; returns name -> path.
 
         Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
-        the frames and the contact sheet stay the raw renders.
+        the frames and the contact sheet stay the raw renders. ``sentence`` may be a list, one caption per
+        image (a chain captions each image with the clause being performed).
         """
         # lazy: imageio (and its ffmpeg plugin) only when a video is written
         import imageio.v2 as imageio
@@ -112,7 +114,8 @@ class Recorder:
         fps = self.camera.settings.fps
         shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
                             [f["progress"] for f in self.frames])
-        captioned = [overlay(img, sentence, p) for img, p in zip(self.images, shown, strict=True)]
+        texts = sentence if isinstance(sentence, list) else [sentence] * len(self.images)
+        captioned = [overlay(img, t, p) for img, t, p in zip(self.images, texts, shown, strict=True)]
         if video == "gif":
             files["video"] = out / "video.gif"
             imageio.mimwrite(files["video"], captioned, duration=1000.0 / fps, loop=0)

@@ -43,6 +43,7 @@ class EvaluationConfig:
     keep: str = "none"
     budget: int | None = None
     threshold: float | None = None
+    chains: int = 0  # K > 0: one chain of K clauses per scene of 3-5 blocks (evaluate/chains.py)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -56,6 +57,13 @@ class EvaluationConfig:
         sources = [self.scenes is not None, self.scene_file is not None, self.study]
         if sum(sources) > 1:
             raise EvaluationError("choose one scene set: --scenes N, --scene-file F or --study")
+        if self.chains:
+            if self.scene_file is not None or self.study or self.bystanders:
+                raise EvaluationError("--chains draws its own scenes of 3-5 blocks: no --scene-file, --study or "
+                                      "--bystanders")
+            from .chains import chain_scenes
+
+            return chain_scenes(DEFAULT_SCENES if self.scenes is None else self.scenes, self.seed)
         if self.scene_file is not None:
             specs = scene_file(self.scene_file, self.seed)
         elif self.study:
@@ -104,6 +112,8 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         stored = store.get_meta("config")
         if resume and stored is None:
             raise EvaluationError(f"{out} holds no evaluation to resume (no results.sqlite with settings)")
+        if stored is not None:  # settings added since the evaluation was stored have their defaults
+            stored = {**EvaluationConfig().to_dict(), **stored}
         if resume:
             if config is not None and config.to_dict() != stored:
                 diff = sorted(k for k, v in config.to_dict().items() if stored.get(k) != v)
@@ -117,9 +127,18 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
             raise EvaluationError("no usable action plugin is installed (see: l2p-bullet actions)")
 
         resolve_planner(config.planner)  # a typo fails before anything runs
-        tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
-                           render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
-                           budget=config.budget, threshold=config.threshold)
+        if config.chains:
+            from .chains import make_chain_tasks
+
+            if config.mode == "plan":
+                raise EvaluationError("--chains performs its chains: no --plan-only")
+            tasks = make_chain_tasks(config.scene_set(), config.chains, actions, planner=config.planner,
+                                     render_every=config.render_every, keep=config.keep, out_dir=str(out),
+                                     plugins=plugins, budget=config.budget, threshold=config.threshold)
+        else:
+            tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
+                               render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
+                               budget=config.budget, threshold=config.threshold)
         if not resume:
             store.set_meta("config", config.to_dict())
         store.set_meta("tasks_total", len(tasks))

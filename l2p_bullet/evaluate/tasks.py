@@ -14,7 +14,7 @@ from ..errors import EvaluationError
 from ..plugins import registry
 from .scenes import SceneSpec
 
-MODES = ("perform", "plan")
+MODES = ("perform", "plan", "chain")
 KEEP = ("none", "failed", "all")
 
 
@@ -40,6 +40,8 @@ class Task:
     budget: int | None = None
     threshold: float | None = None
     time_limit: float | None = None  # seconds of planning (equal-time comparisons); plan mode only
+    chain_length: int = 0  # chain mode: clauses per chain, drawn by the worker over chain_actions (chains.py)
+    chain_actions: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         return asdict(self)

@@ -51,6 +51,7 @@ def empty_row(task: Task) -> dict[str, Any]:
         "final_error_m": None, "final_gap_blocks": None, "stopped": None, "plan_steps": None,
         "judged": None, "scored": None, "timings": None, "plan_s": None, "execute_s": None, "total_s": None, "wall_s": None,
         "worker": None, "run_dir": None, "error": None, "error_type": None, "finished_at": None,
+        "completed": None, "redraws": None, "clauses": None,
     }
 
 
@@ -117,6 +118,10 @@ class Worker:
         try:
             if task.mode == "plan":
                 self._plan(task, row)
+            elif task.mode == "chain":
+                from .chains import run_chain
+
+                run_chain(self, task, row)
             else:
                 self._perform(task, row)
         except L2PError as e:

@@ -80,6 +80,32 @@ def episode_from_run(run: str | Path) -> Episode:
                    {"action": traj.get("action"), "success": summary.get("success")})
 
 
+def episodes_from_run(run: str | Path) -> list[Episode]:
+    """A run folder as episodes: one, or for a chain run one per clause (its frames, blocks, sentence and
+    images; ``extra["chain"]`` names the chain and the clause), so every exported task is one action."""
+    from ..chain.segments import segment_docs
+
+    docs = segment_docs(run) if (Path(run) / "trajectory.json").is_file() else None
+    ep = episode_from_run(run)
+    if docs is None:
+        return [ep]
+    try:
+        verdicts = {c.get("clause"): c.get("success") for c in json.loads((Path(run) / "summary.json").read_text())
+                    .get("clauses", [])}
+    except (OSError, ValueError, AttributeError):
+        verdicts = {}
+    out = []
+    for d in docs:
+        images = None
+        if ep.images and ep.image_fps:
+            t0, t1 = d["frames"][0]["t"], d["frames"][-1]["t"]
+            images = [im for i, im in enumerate(ep.images) if t0 - 1e-6 <= i / ep.image_fps <= t1 + 1e-6] or None
+        out.append(Episode(d["sentence"], d["frames"], ep.fps, d["mover"], d["anchor"], ep.source, images,
+                           ep.image_fps if images else None, ep.extra | {"action": d["action"], "chain": d["chain"],
+                                                                    "success": verdicts.get(d["chain"]["clause"])}))
+    return out
+
+
 def _read_images(folder: Path) -> list[np.ndarray]:
     if not folder.is_dir():
         return []

@@ -137,6 +137,10 @@ def motion_for_browser(run: RunInfo, *, blind: bool) -> dict:
         }
     except (OSError, ValueError, KeyError, TypeError, IndexError) as e:
         raise ReviewError(f"cannot read the motion of {run.path}: {type(e).__name__}: {e}") from None
+    segs = doc.get("segments")
+    if isinstance(segs, list):  # a chain run: the page follows the clause being performed
+        keys = ("first_frame", "last_frame", "mover", "anchor") + (() if blind else ("clause", "text", "action"))
+        out["segments"] = [{k: s.get(k) for k in keys} for s in segs if isinstance(s, dict)]
     if not blind:
         out |= {"sentence": run.sentence, "action": run.action, "progress": [f.get("progress") for f in frames]}
     return out

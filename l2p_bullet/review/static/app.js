@@ -236,8 +236,18 @@ function frameAt(t) {  // index of the last trajectory frame at or before t
   return lo;
 }
 
+function segmentAt(k) {  // a chain run's clause holding frame k (null for a one-clause run)
+  const segs = S.motion.segments;
+  if (!Array.isArray(segs) || !segs.length) return null;
+  return segs.find((s) => k >= s.first_frame && k <= s.last_frame) || segs[segs.length - 1];
+}
+
 function draw(t) {
-  const k = frameAt(t);
+  const k = frameAt(t), seg = segmentAt(k);
+  if (seg && seg.text) {
+    const line = `“${S.item.sentence}” — now ${seg.clause}/${S.motion.segments.length}: ${seg.text}`;
+    if ($("sentence").textContent !== line) $("sentence").textContent = line;
+  }
   if (S.item.view === "2d") drawTop(k);
   else if (!S.item.video && S.frames.length) drawFlip(t);
   if (Array.isArray(S.motion.progress)) drawProgress(k);
@@ -262,13 +272,14 @@ function drawTop(k) {
   g.clearRect(0, 0, c.width, c.height);
   g.setLineDash([4, 4]); g.strokeStyle = "#bbb"; g.beginPath(); g.arc(cx, cy, 0.25 * sc, 0, 2 * Math.PI); g.stroke(); g.setLineDash([]);
   g.fillStyle = "#888"; g.font = "12px sans-serif"; g.textAlign = "center"; g.fillText("robot", cx, c.height - 4);
-  const trail = m.objects[m.mover].poses;
+  const seg = segmentAt(k), mover = seg ? seg.mover : m.mover, anchor = seg ? seg.anchor : m.anchor;
+  const trail = m.objects[mover].poses;
   g.strokeStyle = "rgba(200,40,40,0.5)"; g.lineWidth = 2; g.beginPath();
-  for (let i = 0; i <= k; i++) { const [u, v] = P(trail[i][0], trail[i][1]); if (i) g.lineTo(u, v); else g.moveTo(u, v); }
+  for (let i = seg ? seg.first_frame : 0; i <= k; i++) { const [u, v] = P(trail[i][0], trail[i][1]); if (i) g.lineTo(u, v); else g.moveTo(u, v); }
   g.stroke(); g.lineWidth = 1;
   for (const [name, o] of Object.entries(m.objects)) {
     const [x, y, yaw] = o.poses[k], h = o.size / 2, c0 = Math.cos(yaw), s0 = Math.sin(yaw);
-    g.fillStyle = name === m.mover ? "#d33" : name === m.anchor ? "#2a2" : "#888";
+    g.fillStyle = name === mover ? "#d33" : name === anchor ? "#2a2" : "#888";
     g.beginPath();
     [[h, h], [-h, h], [-h, -h], [h, -h]].forEach(([a, b], i) => {
       const [u, v] = P(x + a * c0 - b * s0, y + a * s0 + b * c0);

@@ -23,7 +23,7 @@ def _task(mode: str, **kw) -> Task:
 
 
 def test_plan_and_the_evaluation_worker_give_one_plan_and_verdict(tmp_path):
-    r = pipeline.plan("move A next to B", default_scene(), out_dir=tmp_path / "plan", seed=3, plot=False)
+    r = pipeline.plan_sentence("move A next to B", default_scene(), out_dir=tmp_path / "plan", seed=3, plot=False)
     worker = Worker()
     try:
         row = worker.run(_task("plan", keep="all", run_dir=str(tmp_path / "worker")))
@@ -40,7 +40,7 @@ def test_a_bad_option_is_refused_by_every_door(tmp_path):
     with pytest.raises(PlanError, match="budget"):
         pipeline.prepare("move A next to B", default_scene(), budget=0)
     with pytest.raises(PlanError, match="budget"):
-        pipeline.plan("move A next to B", default_scene(), out_dir=tmp_path / "p", budget=0)
+        pipeline.plan_sentence("move A next to B", default_scene(), out_dir=tmp_path / "p", budget=0)
     assert not (tmp_path / "p").exists()
     worker = Worker()
     try:  # the worker used to skip check_options: the row now names the same error
@@ -52,7 +52,7 @@ def test_a_bad_option_is_refused_by_every_door(tmp_path):
 
 @pytest.mark.slow
 def test_perform_plans_and_judges_its_plan_as_plan_does_and_writes_one_summary(tmp_path):
-    r = pipeline.plan("move A next to B", default_scene(), out_dir=tmp_path / "plan", seed=3, plot=False)
+    r = pipeline.plan_sentence("move A next to B", default_scene(), out_dir=tmp_path / "plan", seed=3, plot=False)
     p = pipeline.perform("move A next to B", default_scene(), out_dir=tmp_path / "run", seed=3, render=False)
     assert np.array_equal(p.plan.path, r.plan.path) and p.planned_verdict == r.verdict
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())

@@ -1,0 +1,60 @@
+"""``replay`` of a chain run's plan.json: every clause's executed plan, in order, in one episode again.
+
+The chain's plan.json keeps the scene the chain started from and each clause's plan as executed; the
+simulation is deterministic, so replaying them in that scene reproduces the run (each clause's path still
+has to start where its block is: replayed in another scene, it is refused as one-clause replays are).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from ..core.contracts import Plan
+from ..core.scene import Scene
+from ..core.timing import StageClock
+from ..errors import PathError
+from ..language import Command
+from .clauses import Clause
+from .forecast import Step
+
+
+def is_chain_plan(doc: object) -> bool:
+    """A chain run's plan.json (it lists its clauses' plans)."""
+    return isinstance(doc, dict) and isinstance(doc.get("clauses"), list) and isinstance(doc.get("chain"), dict)
+
+
+def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_settings: Any = None, seed: int = 0,
+                 on_stage=None, plugins: list | None = None):
+    """Execute the clauses' plans of ``doc`` (a chain's plan.json) into the run folder ``out``; returns the
+    :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges)."""
+    from ..judge import judge_for
+    from ..plugins import registry
+    from .run import _execute
+
+    source = "plan.json"
+    if scene is None:
+        scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
+    plugins = registry.discover() if plugins is None else plugins
+    steps = []
+    executed = any(isinstance(c, dict) and c.get("plan") for c in doc["clauses"])
+    for i, c in enumerate(doc["clauses"], start=1):
+        # the plan a run executed, else (``l2p-bullet plan`` wrote the file) the up-front forecast
+        raw = (c.get("plan") if executed else c.get("forecast")) if isinstance(c, dict) else None
+        if not isinstance(raw, dict):
+            break  # the run never planned this clause (it stopped before): nothing to replay from here on
+        plan = Plan.from_dict(raw, source=f"{source}: clause {i}")
+        text = str(c.get("text") or f"move {plan.mover} {plan.action} {plan.anchor}")
+        anchors = tuple([plan.anchor, *plan.more_anchors])
+        for name in (plan.mover, *anchors):
+            scene.get(name)
+        bundle = registry.load(plan.action, plugins)
+        cmd = Command("move", plan.mover, plan.action, plan.action, plan.anchor, text, anchors)
+        steps.append(Step(Clause(i, text, cmd), bundle, bundle.progress_model(), judge_for(bundle), plan))
+    if not steps:
+        raise PathError(f"{source}: no clause of the chain has a plan to replay")
+    sentence = str(doc["chain"].get("sentence") or "; ".join(s.clause.text for s in steps))
+    clock = StageClock(on_stage)
+    return _execute(sentence, scene, steps, Path(out), clock, plugins, planner="replay", seed=seed,
+                    render=render_settings is not None, budget=None, threshold=None,
+                    render_settings=render_settings, world=None, replan=False)
