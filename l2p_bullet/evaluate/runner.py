@@ -9,6 +9,7 @@ tasks, so their rows are equal apart from timings.
 from __future__ import annotations
 
 import os
+import sys
 import time
 from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
@@ -17,7 +18,7 @@ from ..errors import EvaluationError
 from .progress import ProgressBar
 from .results import ResultsStore
 from .scenes import SceneSpec, random_scenes, scene_file, study_scenes, with_bystanders
-from .tasks import Task, make_tasks
+from .tasks import Task, make_tasks, skipped
 
 DEFAULT_SCENES = 10
 
@@ -73,6 +74,7 @@ class EvaluationSummary:
     seconds: float = 0.0
     backend: str = "pool"
     workers: int = 1
+    notes: dict[str, str] = field(default_factory=dict)  # action -> why runs of it were left out
 
     @property
     def runs_per_s(self) -> float:
@@ -115,16 +117,24 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         from ..planning import resolve_planner
 
         resolve_planner(config.planner)  # a typo fails before anything runs
-        tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
+        scenes = config.scene_set()
+        notes = skipped(scenes, actions, plugins)
+        tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
                            render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
                            budget=config.budget, threshold=config.threshold)
+        if not tasks and notes:
+            raise EvaluationError("nothing to run: " + "; ".join(notes.values()))
+        if progress:
+            for note in notes.values():
+                sys.stderr.write(f"note: {note}\n")
         if not resume:
             store.set_meta("config", config.to_dict())
         store.set_meta("tasks_total", len(tasks))
         done = store.recorded(with_errors=not retry_errors)
         todo = [t for t in tasks if t.run_id not in done]
         backend = "ray" if ray else ("pool" if workers >= 1 else "inline")
-        summary = EvaluationSummary(out, len(tasks), len(tasks) - len(todo), backend=backend, workers=workers)
+        summary = EvaluationSummary(out, len(tasks), len(tasks) - len(todo), backend=backend, workers=workers,
+                                    notes=notes)
         bar = ProgressBar(len(todo), summary.skipped, enabled=progress)
 
         def on_row(row: dict) -> None:
