@@ -216,6 +216,7 @@ def _run(cmd: Command, scene: Scene, bundle: Any, model: Any, judge: Any, out: P
                          threshold=threshold)
     clock.stop()
     plan.extra.setdefault("sentence", cmd.sentence)
+    plan.extra.update(scene_fields(scene))
     plan.save(out / "plan.json")
     viewer = getattr(model, "viewpoint", None)
 
@@ -310,6 +311,7 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
     result = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed, budget=budget,
                            threshold=threshold)
     result.extra.setdefault("sentence", sentence)
+    result.extra.update(scene_fields(scene))
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
     verdict = judge.judge(result.path, result.anchor_pose, result.size,
                           final_progress=result.extra.get("final_progress"),
@@ -322,6 +324,12 @@ def plan(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, plan
 
             plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
+
+
+def scene_fields(scene: Scene) -> dict[str, Any]:
+    """What plan.json records of the scene it was planned on, so that ``replay PLAN.json`` executes it
+    there (issue 26): the scene itself (a few objects) and its digest."""
+    return {"scene": scene.to_dict(), "scene_sha256": scene.digest()}
 
 
 def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None) -> dict[str, Any]:

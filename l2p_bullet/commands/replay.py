@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .common import force_option, load_scene_or_default, scene_option, seed_option
+from .common import force_option, scene_option, seed_option
 
 
 @click.command()
@@ -32,8 +32,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
 
     \b
     PATH_JSON is a scoring input {"size", "mover", "anchor"} (placed relative to the scene's anchor,
-    scaled to its block size) or a plan.json (in the scene frame). --demo ACTION:INDEX replays a real
-    human demonstration the same way.
+    scaled to its block size) or a plan.json (in the scene frame, replayed on the scene it records;
+    --scene must then be that scene). --demo ACTION:INDEX replays a real human demonstration the same way.
 
     \b
     Examples:
@@ -41,13 +41,14 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
       l2p-bullet replay runs/demo/plan.json --no-render
     """
     from ..core.runfolder import run_folder
-    from ..embodiment.replay import motion_source, run_replay
+    from ..core.scene import load_scene
+    from ..embodiment.replay import motion_source, replay_scene, run_replay
     from ..embodiment.sim.camera import RenderSettings
     from ..errors import PathError
 
     if (path_json is None) == (demo is None):
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")
-    scene = load_scene_or_default(scene_path)
+    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
     render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
     with run_folder(out, force=force, prefix="replay", command="replay") as folder:
