@@ -88,6 +88,9 @@ def test_blind_mode_label_then_grade(live, chromium):  # noqa: F811
     s = live(mode="blind")
     page, errors = _page(chromium, s.url)
     first = _login(page, "bob")
+    help_line = page.inner_text("#label-keys-help")  # the page shows its keys (issue 26)
+    for hint in ("c: closer", "a: away", "n: next-to", "p: past", "r: around", "x: none of these"):
+        assert hint in help_line, help_line
     assert page.inner_text("#sentence") == ""
     assert "move A" not in page.content()
     _keys(page, "5", "Enter")  # no label yet: refused on the page, nothing sent

@@ -83,6 +83,13 @@ function buildButtons() {
   if (S.config.mode !== "blind") return;
   $("labels").hidden = false; $("label-keys-help").hidden = false;
   $("grade-question").textContent = "How well does it do the action you picked? 0 = not at all, 10 = perfectly";
+  const help = $("label-keys-help");  // the served table of keys, so the page says what each letter does
+  help.textContent = "";
+  for (const { label, key } of S.config.labels) {
+    const item = document.createElement("span");
+    item.innerHTML = `<kbd>${key}</kbd>: ${label === "none" ? "none of these" : label}`;
+    help.append(item, " ");
+  }
   for (const { label, key } of S.config.labels) {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.label = label;
