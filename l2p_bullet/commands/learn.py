@@ -8,7 +8,7 @@ folder (:func:`l2p_bullet.plugins.registry.resolve`). The commands only parse op
 
 from __future__ import annotations
 
-import sys
+import time
 from pathlib import Path
 
 import click
@@ -54,6 +54,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     """
     import dataclasses
 
+    from ..evaluate.progress import ProgressBar
     from ..learning.feedback_targets import FeedbackConfig
     from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
@@ -61,20 +62,22 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
     fcfg = FeedbackConfig()
     ticks = cfg.ensemble * (cfg.epochs + (fcfg.epochs if feedback or feedback_judge else 0))
-    bars: list = []
+    # evaluate's bar, in epochs: redrawn on a terminal, a line every few percent in a log (click's bar
+    # printed only its label there, and nothing for 30 s); the ETA counts from the first epoch
+    bar = ProgressBar(ticks, unit="epochs", label=f"training {action}")
+    click.echo(f"training {action}: building the training set", err=True)
 
-    def tick() -> None:  # the bar starts with the first epoch: a file error before it stays one line
-        if not bars:
-            bars.append(click.progressbar(length=ticks, label=f"training {action}", file=sys.stderr).__enter__())
-        bars[0].update(1)
+    def built(n: int) -> None:
+        click.echo(f"training {action}: {n} sequences, {cfg.ensemble} x {cfg.epochs} epochs", err=True)
+        bar.t0 = time.perf_counter()
 
     try:
         out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
-                                   cfg=cfg, force=force, tick=tick, feedback=feedback, feedback_judge=feedback_judge,
-                                   judge_scenes=judge_scenes, feedback_cfg=fcfg, log=lambda m: click.echo(m, err=True))
+                                   cfg=cfg, force=force, tick=bar.advance, feedback=feedback,
+                                   feedback_judge=feedback_judge, judge_scenes=judge_scenes, feedback_cfg=fcfg,
+                                   log=lambda m: click.echo(m, err=True), on_built=built)
     finally:
-        if bars:
-            bars[0].__exit__(None, None, None)
+        bar.close()
     extra = f", {result.n_feedback} feedback sequences" if result.n_feedback else ""
     click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences{extra})")
 
