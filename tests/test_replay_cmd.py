@@ -29,7 +29,8 @@ def demo_run(tmp_path_factory):
 
 def test_demo_replay_writes_the_run_folder(demo_run):
     out, r = demo_run
-    assert f"run folder: {out}" in r.output
+    assert f"run folder: {out}\nvideo: {out / 'video.mp4'}" in r.stdout  # as perform says it (issue 26)
+    assert "[" in r.stderr and "s] execute: " in r.stderr  # stage lines in perform's style
     for name in ("trajectory.json", "plan.json", "summary.json", "video.mp4", "contact_sheet.png"):
         assert (out / name).stat().st_size > 0, name
     frames = sorted((out / "frames").glob("*.png"))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import time
+
 import click
 
 from .common import force_option, scene_option, seed_option
@@ -51,12 +53,18 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
     render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
+    t0 = time.perf_counter()
+
+    def on_stage(message: str) -> None:  # perform's style: elapsed time, then the stage
+        click.echo(f"[{time.perf_counter() - t0:5.1f}s] execute: {message}", err=True)
+
     with run_folder(out, force=force, prefix="replay", command="replay") as folder:
-        ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
+        ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage)
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")
-    click.echo(f"run folder: {folder}")
+    video = ex.files.get("video")
+    click.echo(f"run folder: {folder}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
 
 
 COMMANDS: list[click.Command] = [replay]
