@@ -16,12 +16,21 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("wheel")
-    subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(ROOT)],
-        check=True,
+    r = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-v", "-w", str(out), str(ROOT)],
+        check=True, capture_output=True, text=True,
     )
+    (out / "build.log").write_text(r.stdout + r.stderr)
     (whl,) = out.glob("l2p_bullet-*.whl")
     return whl
+
+
+def test_the_build_has_no_deprecation_warning_and_an_spdx_licence(wheel: Path) -> None:
+    """Issue 26: ``project.license`` as a table made setuptools warn on every install."""
+    log = (wheel.parent / "build.log").read_text()
+    assert "project.license" not in log and "deprecated" not in log.lower(), log[-2000:]
+    meta = next(n for n in zipfile.ZipFile(wheel).namelist() if n.endswith(".dist-info/METADATA"))
+    assert "License-Expression: MIT" in zipfile.ZipFile(wheel).read(meta).decode()
 
 
 def test_wheel_ships_data_urdf_and_bundles_under_the_package(wheel: Path) -> None:
