@@ -61,3 +61,17 @@ def test_help_is_fast_and_imports_neither_torch_nor_pybullet() -> None:
     t = time.perf_counter()
     subprocess.run([sys.executable, "-c", code], check=True)
     assert time.perf_counter() - t < 5.0  # generous: the real target (0.3 s) is measured in benchmarks/
+
+
+def test_every_make_target_the_docs_name_exists_and_the_readme_names_it() -> None:
+    """Issue 26: docs/perform.md said "README: `make install`", which the README never mentioned."""
+    import re
+
+    makefile = (ROOT / "Makefile").read_text()
+    targets = set(re.findall(r"^([a-z][a-z-]*):", makefile, re.M))
+    readme = (ROOT / "README.md").read_text()
+    for doc in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        for target in re.findall(r"`make ([a-z-]+)`|^\s+make ([a-z-]+)", doc.read_text(), re.M):
+            name = target[0] or target[1]
+            assert name in targets, f"{doc.name} names `make {name}`, which the Makefile lacks"
+            assert re.search(rf"make {name}\b", readme), f"{doc.name} names `make {name}`; the README does not"
