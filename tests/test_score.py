@@ -94,6 +94,12 @@ def test_train_is_deterministic_and_writes_a_loadable_bundle(tmp_path):
     r2 = runner.invoke(main, [*args, "--out", str(tmp_path / "b")])
     assert r2.exit_code == 0, r2.output
     assert sha256_file(tmp_path / "a" / "progress.safetensors") == sha256_file(tmp_path / "b" / "progress.safetensors")
+    import os
+
+    umask = os.umask(0o022)
+    os.umask(umask)
+    for name in ("progress.safetensors", "manifest.toml"):  # issue 26: weights were written 0600
+        assert (tmp_path / "a" / name).stat().st_mode & 0o777 == 0o666 & ~umask, name
     b = load_bundle(tmp_path / "a")
     assert b.name == "past" and b.manifest["training"]["seed"] == 3
     assert "--demos" in b.manifest["training"]["command"]

@@ -243,7 +243,7 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     Arrays are numpy (a torch tensor's ``.numpy()``): the file is byte-identical to torch's writer.
     """
     import numpy as np
-    from safetensors.numpy import save_file
+    from safetensors.numpy import save
 
     from .validate import safe_weight_name
 
@@ -252,7 +252,12 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     if not filename.endswith(".safetensors"):
         raise BundleError(f'weights file name "{filename}" must be a plain *.safetensors name')
     path = safe_weight_name(folder, filename)
-    save_file({k: np.ascontiguousarray(v) for k, v in arrays.items()}, str(path))
+    # safetensors' save_file creates the file 0600 (its temporary file's mode): weights to install and
+    # share must follow the umask like every other file (0644 typically, issue 26). Written to a
+    # temporary file and renamed, as the manifest is: a reader never sees half a weights file.
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_bytes(save({k: np.ascontiguousarray(v) for k, v in arrays.items()}))
+    os.replace(tmp, path)
     man.setdefault("weights", {})[filename] = {"sha256": sha256_file(path), "bytes": path.stat().st_size}
     if section is not None:
         man[section] = dict(settings or {})
