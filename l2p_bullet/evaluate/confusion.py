@@ -77,7 +77,7 @@ def confusion(rows: list[dict], order: list[str] | None = None) -> Confusion:
     with np.errstate(invalid="ignore", divide="ignore"):
         return Confusion(asked, recognised, np.where(judged_n > 0, judges / np.maximum(judged_n, 1), np.nan),
                          np.where(scored_n > 0, models / np.maximum(scored_n, 1), np.nan),
-                         np.where(counts[:, None] > 0, argmax / np.maximum(counts, 1)[:, None], np.nan), counts, errors)
+                         np.where(scored_n > 0, argmax / np.maximum(counts, 1)[:, None], np.nan), counts, errors)
 
 
 def _ordered(names: set[str], order: list[str] | None) -> list[str]:
