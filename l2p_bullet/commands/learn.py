@@ -64,18 +64,20 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     ticks = cfg.ensemble * (cfg.epochs + (fcfg.epochs if feedback or feedback_judge else 0))
     # evaluate's bar, in epochs: redrawn on a terminal, a line every few percent in a log (click's bar
     # printed only its label there, and nothing for 30 s); the ETA counts from the first epoch
+    # (printed once the files are read: a bad file stays a one-line error)
     bar = ProgressBar(ticks, unit="epochs", label=f"training {action}")
-    click.echo(f"training {action}: building the training set", err=True)
 
-    def built(n: int) -> None:
-        click.echo(f"training {action}: {n} sequences, {cfg.ensemble} x {cfg.epochs} epochs", err=True)
+    def stage(message: str) -> None:
+        built = not message.startswith("building")
+        click.echo(f"training {action}: {message}" + (f", {cfg.ensemble} x {cfg.epochs} epochs" if built else ""),
+                   err=True)
         bar.t0 = time.perf_counter()
 
     try:
         out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
                                    cfg=cfg, force=force, tick=bar.advance, feedback=feedback,
                                    feedback_judge=feedback_judge, judge_scenes=judge_scenes, feedback_cfg=fcfg,
-                                   log=lambda m: click.echo(m, err=True), on_built=built)
+                                   log=lambda m: click.echo(m, err=True), on_stage=stage)
     finally:
         bar.close()
     extra = f", {result.n_feedback} feedback sequences" if result.n_feedback else ""

@@ -192,9 +192,10 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None,
                  feedback: Sequence[FeedbackItem] = (), feedback_cfg: FeedbackConfig | None = None,
                  base: Sequence[ProgressNet] | None = None,
-                 on_built: Callable[[int], None] | None = None) -> TrainResult:
+                 on_stage: Callable[[str], None] | None = None) -> TrainResult:
     """Build the training set and train the ensemble; ``tick`` is called once per member-epoch,
-    ``on_built`` with the number of sequences once the set is built (the command's progress starts there).
+    ``on_stage`` with a line when the (validated) set starts being built and when it is built (the
+    command prints them; its progress bar's clock starts at the second).
 
     With ``feedback`` (graded motions of any action; those of ``action`` are used), the ensemble trained
     on the demonstrations is then fine-tuned on them (:func:`fine_tune`, ``feedback_cfg``). ``base``
@@ -209,9 +210,11 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                         "(event_start_end is empty)")
     fcfg = feedback_cfg or FeedbackConfig()
     t0 = time.perf_counter()
+    if on_stage:
+        on_stage("building the training set")
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
-    if on_built:
-        on_built(len(seqs))
+    if on_stage:
+        on_stage(f"{len(seqs)} sequences")
     nets, last = list(base or []), []
     for i in range(0 if base else cfg.ensemble):
         net, hist = train_net(seqs, qsr_cfg.n_features, cfg, seed * 1000 + i, tick)
@@ -295,7 +298,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                  feedback_judge: str | None = None, judge_scenes: int = 30,
                  feedback_cfg: FeedbackConfig | None = None,
                  log: Callable[[str], None] | None = None,
-                 on_built: Callable[[int], None] | None = None) -> tuple[Path, TrainResult]:
+                 on_stage: Callable[[str], None] | None = None) -> tuple[Path, TrainResult]:
     """``l2p-bullet train``: train ``action``'s progress ensemble and write it into a bundle folder.
 
     The default folder is ``runs/bundles/<action>``. An existing trained bundle is only replaced with
@@ -334,7 +337,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                          on_built=on_built)
+                          on_stage=on_stage)
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         from ..judge import RuleJudge
         from .feedback_targets import judge_items
