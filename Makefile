@@ -41,5 +41,5 @@ bundles: install
 	  nice -n 10 $(VENV)/bin/l2p-bullet train $$a --seed 0 --force --out l2p_bullet/actions/$$(echo $$a | tr - _) || exit 1; \
 	done
 	for a in closer away next-to past around; do \
-	  nice -n 10 $(VENV)/bin/l2p-bullet train-policy $$a --seed 0 || exit 1; \
+	  nice -n 10 $(VENV)/bin/l2p-bullet train-policy $$a --seed 0 --bundle l2p_bullet/actions/$$(echo $$a | tr - _) --force || exit 1; \
 	done

@@ -187,6 +187,7 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
                            budget=budget, threshold=threshold, time_limit=time_limit)
     result.extra.setdefault("sentence", cmd.sentence)
+    result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
     verdict = p.judge.judge(result.path, result.anchor_pose, result.size,
                             final_progress=result.extra.get("final_progress"),
@@ -353,6 +354,12 @@ def plan_sentence(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
         if plot:
             plot_plan(result, scene, folder / "plan.png")
     return PlanResult(cmd, result, verdict, folder)
+
+
+def scene_fields(scene: Scene) -> dict[str, Any]:
+    """What plan.json records of the scene it was planned on, so that ``replay PLAN.json`` executes it
+    there (issue 26): the scene itself (a few objects) and its digest."""
+    return {"scene": scene.to_dict(), "scene_sha256": scene.digest()}
 
 
 def _summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> dict:

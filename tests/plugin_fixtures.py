@@ -54,3 +54,27 @@ def copy_builtin_as_plugin(root: Path, builtin: str, name: str, phrases: list[st
     (folder / "__init__.py").write_text("")
     make_dist(root, dist, {name: module})
     return folder
+
+
+def trained_plugin(root: Path, name: str, phrase: str, options: list[str], epochs: int = 4) -> Path:
+    """A plugin as docs/perform.md makes one: ``l2p-bullet new-action NAME --phrase PHRASE OPTIONS`` in
+    ``root``, generated demonstrations (``learning.synthetic``), ``l2p-bullet train`` into its package
+    (one small LSTM: this tests the path, not the model), and a ``*.dist-info`` next to the package in
+    ``root/site`` so that, on ``sys.path``, it is an installed distribution. Returns that site folder."""
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.learning.synthetic import write_sessions
+
+    module = f"l2p_{name.replace('-', '_')}"
+    r = CliRunner().invoke(main, ["new-action", name, "--phrase", phrase, *options, "--out", str(root / f"l2p-{name}")])
+    assert r.exit_code == 0, r.output
+    pkg = root / f"l2p-{name}"
+    files = write_sessions(pkg / "demos", name, sessions=1, events=12, seed=0)
+    r = CliRunner().invoke(main, ["train", name, "--demos", *map(str, files), "--out", str(pkg / module),
+                                  "--ensemble", "1", "--epochs", str(epochs)])
+    assert r.exit_code == 0, r.output
+    site = root / "site"
+    shutil.copytree(pkg / module, site / module)
+    make_dist(site, f"l2p-{name}", {name: module})
+    return site

@@ -91,6 +91,10 @@ def actions_cmd(as_json: bool, check: bool) -> None:
             click.echo(f'  {r["name"]} (package {r["package"]} {r["package_version"]}): {r["error"]}')
     for msg in problems:
         click.echo(f"conflict: {msg}", err=True)
+    if check:  # a check ends with its verdict, either way (issue 26)
+        n = len(rows)
+        click.echo(f"all {n} plugins OK (each loaded as perform would)" if not failed else
+                   f"{len(reasons)} of {n} plugins broken, {len(problems)} conflicts")
     if failed:
         sys.exit(1)
 

@@ -86,7 +86,8 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
     if summary is not None:
         out_json.update(total=summary.total, skipped=summary.skipped, ran=summary.ran, failed=summary.failed,
                         errors=summary.errors, seconds=round(summary.seconds, 3),
-                        runs_per_s=round(summary.runs_per_s, 4), backend=summary.backend, workers=summary.workers)
+                        runs_per_s=round(summary.runs_per_s, 4), backend=summary.backend, workers=summary.workers,
+                        skipped_actions=summary.notes)
         if not as_json:
             click.echo(f"{summary.ran} runs in {summary.seconds:.1f} s ({summary.runs_per_s:.2f} runs/s, "
                        f"{summary.backend}, {summary.workers} workers); {summary.skipped} already recorded; "

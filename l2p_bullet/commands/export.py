@@ -30,19 +30,43 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     """
     from ..core.runfolder import run_folder
     from ..errors import PathError
-    from ..export.episodes import EXPORT_FILES, demo_episodes, episodes_from_run, run_folders, write_jsonl
+    from ..evaluate.progressbar import ProgressBar
+    from ..export.episodes import (
+        EXPORT_FILES,
+        demo_episodes,
+        demo_specs,
+        episodes_from_run,
+        run_folders,
+        write_jsonl,
+    )
 
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
     sources = run_folders(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
+    specs = demo_specs(list(demos)) if demos else []
+    # evaluate's progress bar on stderr: a rendered demonstration takes seconds each (issue 26)
+    bar = ProgressBar(len(sources) + len(specs), unit="episodes", label="export: reading")
     with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES) as folder:
-        episodes = [e for r in sources for e in episodes_from_run(r)]
-        if demos:
-            episodes += list(demo_episodes(list(demos), render=not no_video and fmt == "lerobot"))
+        bar.advance(0)  # a first line at once (the folder is claimed): the first rendered demonstration is slow
+        episodes = []
+        try:
+            for r in sources:
+                episodes.extend(episodes_from_run(r))  # a chain run gives one episode per clause
+                bar.advance()
+            for ep in demo_episodes(list(demos), render=not no_video and fmt == "lerobot") if demos else []:
+                episodes.append(ep)
+                bar.advance()
+        finally:
+            bar.close()
         if fmt == "lerobot":
-            from ..export.lerobot import write_lerobot
+            from ..export.lerobot import steps, write_lerobot
 
-            info = write_lerobot(episodes, folder, video=False if no_video else None)
+            video = False if no_video else all(e.images is not None for e in episodes) or None
+            bar = ProgressBar(steps(episodes, bool(video)), unit="steps", label="export: writing")
+            try:
+                info = write_lerobot(episodes, folder, video=video, tick=bar.advance)
+            finally:
+                bar.close()
             click.echo(json.dumps({"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
                                    "tasks": info["total_tasks"], "fps": info["fps"],
                                    "video": info["video_path"] is not None}))

@@ -8,7 +8,7 @@ folder (:func:`l2p_bullet.plugins.registry.locate`). The commands only parse opt
 
 from __future__ import annotations
 
-import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -55,6 +55,7 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     """
     import dataclasses
 
+    from ..evaluate.progressbar import ProgressBar
     from ..learning.feedback_targets import FeedbackConfig
     from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
@@ -62,20 +63,24 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
     fcfg = FeedbackConfig()
     ticks = cfg.ensemble * (cfg.epochs + (fcfg.epochs if feedback or feedback_judge else 0))
-    bars: list = []
+    # evaluate's bar, in epochs: redrawn on a terminal, a line every few percent in a log (click's bar
+    # printed only its label there, and nothing for 30 s); the ETA counts from the first epoch
+    # (printed once the files are read: a bad file stays a one-line error)
+    bar = ProgressBar(ticks, unit="epochs", label=f"training {action}")
 
-    def tick() -> None:  # the bar starts with the first epoch: a file error before it stays one line
-        if not bars:
-            bars.append(click.progressbar(length=ticks, label=f"training {action}", file=sys.stderr).__enter__())
-        bars[0].update(1)
+    def stage(message: str) -> None:
+        built = not message.startswith("building")
+        click.echo(f"training {action}: {message}" + (f", {cfg.ensemble} x {cfg.epochs} epochs" if built else ""),
+                   err=True)
+        bar.t0 = time.perf_counter()
 
     try:
         out, result = train_bundle(action, Path(out_dir) if out_dir else None, demo_files=demo_files, seed=seed,
-                                   cfg=cfg, force=force, tick=tick, feedback=feedback, feedback_judge=feedback_judge,
-                                   judge_scenes=judge_scenes, feedback_cfg=fcfg, log=lambda m: click.echo(m, err=True))
+                                   cfg=cfg, force=force, tick=bar.advance, feedback=feedback,
+                                   feedback_judge=feedback_judge, judge_scenes=judge_scenes, feedback_cfg=fcfg,
+                                   log=lambda m: click.echo(m, err=True), on_stage=stage)
     finally:
-        if bars:
-            bars[0].__exit__(None, None, None)
+        bar.close()
     extra = f", {result.n_feedback} feedback sequences" if result.n_feedback else ""
     click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences{extra})")
 
@@ -83,29 +88,43 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
 @click.command("train-policy")
 @click.argument("action")
 @click.option("--bundle", "bundle_dir", type=click.Path(file_okay=False, exists=True), default=None,
-              help="Bundle folder to train in (default: the installed action's own bundle).")
+              help="Train in this bundle folder, in place (its policy is replaced). Default: a copy of "
+                   "ACTION's bundle in --out; the installed bundle is never changed unless named here.")
+@click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
+              help="New folder for the copy of ACTION's bundle with the trained policy "
+                   "(default: runs/train-policy-<timestamp>; must not exist).")
+@click.option("--force", is_flag=True,
+              help="Allow --bundle to be a bundle of the installed l2p-bullet package or of an installed "
+                   "plugin (what make bundles does to the shipped bundles).")
 @click.option("--iterations", type=click.IntRange(min=1), default=None, help="REINFORCE iterations (default 300).")
 @click.option("--episodes", type=click.IntRange(min=1), default=None, help="Episodes per iteration (default 48).")
 @seed_option
-def train_policy_cmd(action: str, bundle_dir: str | None, iterations: int | None, episodes: int | None,
-                     seed: int) -> None:
-    """Train ACTION's move policy by REINFORCE against its progress model, into its bundle.
+def train_policy_cmd(action: str, bundle_dir: str | None, out_dir: str | None, force: bool, iterations: int | None,
+                     episodes: int | None, seed: int) -> None:
+    """Train ACTION's move policy by REINFORCE against its progress model.
 
     The reward is the rise of the action's learned progress in the 2-D simulator, on random scenes
     the benchmarks never use (docs/planning.md). Minutes on 2 cores; deterministic for a seed.
+
+    \b
+    Examples:
+      l2p-bullet train-policy around                        (a trained copy in runs/train-policy-<time>)
+      l2p-bullet train-policy left-of --bundle l2p-left-of/l2p_left_of
+      l2p-bullet train-policy around --bundle l2p_bullet/actions/around --force   (make bundles)
     """
     import dataclasses
 
-    from ..learning.train_policy import PolicyTrainConfig, train_policy_bundle
-    from ..plugins.registry import locate
+    from ..learning.train_policy import PolicyTrainConfig, policy_folder, train_policy_bundle
 
-    folder = Path(bundle_dir) if bundle_dir else locate(action)[1]
+    folder, copied = policy_folder(action, bundle_dir, out_dir, force)
     cfg = PolicyTrainConfig(seed=seed)
     cfg = dataclasses.replace(cfg, iterations=iterations or cfg.iterations, episodes=episodes or cfg.episodes)
     settings = train_policy_bundle(folder, cfg, log=lambda s: click.echo(s, err=True))
     t = settings["training"]
-    click.echo(f"wrote the {action} policy into {folder} (mean final progress {t['final_progress_first']} -> "
-               f"{t['final_progress_last']}; kept iteration {t['kept_iteration']} at {t['final_progress_kept']}, "
+    where = f"a copy of the {action} bundle in {folder}" if copied else folder
+    click.echo(f"wrote the {action} policy into {where} (final progress, mean of the first / last "
+               f"{t['window']} iterations: {t['final_progress_first']} -> {t['final_progress_last']}; "
+               f"kept iteration {t['kept_iteration']}, its window's mean {t['final_progress_kept']}; "
                f"{t['seconds']} s)")
 
 

@@ -20,10 +20,11 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--threshold", type=click.FloatRange(0.0, 1.0), default=None,
               help="Stop when the learned progress reaches this (default: 0.9 or the bundle's).")
 @click.option("--no-plot", is_flag=True, help="Write plan.json only, no plan.png.")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (for scripts).")
 @seed_option
 @force_option
 def plan_command(sentence: str, scene_path: str | None, planner: str, out: str | None, budget: int | None,
-                 threshold: float | None, no_plot: bool, seed: int, force: bool) -> None:
+                 threshold: float | None, no_plot: bool, as_json: bool, seed: int, force: bool) -> None:
     """Plan SENTENCE (e.g. "move A around B") in 2-D and write plan.json and a plot.
 
     \b
@@ -43,7 +44,17 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
         return
     result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
                   budget=budget, threshold=threshold, force=force, plot=not no_plot)
-    click.echo(dumps_json(result.to_dict()))
+    if as_json:
+        click.echo(dumps_json(result.to_dict()))
+        return
+    # the same text style as perform (issue 26: plan printed JSON where perform prints text)
+    d, cmd = result.to_dict(), result.command
+    click.echo(f'{cmd.mover} {cmd.preposition} {" and ".join(cmd.anchors)}: action "{cmd.action}", '
+               f'{"success" if d["success"] else "FAILED"} on the plan ({d["reason"]})')
+    click.echo(f"final progress {d['final_progress']:.2f}, {d['steps']} steps of the {d['planner']} planner "
+               f"(stopped: {d['stopped']}), {d['seconds']:.2f} s")
+    plot = result.out_dir / "plan.png"
+    click.echo(f"plan folder: {result.out_dir}" + (f"\nplot: {plot}" if plot.exists() else " (no plot: --no-plot)"))
 
 
 COMMANDS: list[click.Command] = [plan_command]

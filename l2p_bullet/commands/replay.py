@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import time
+
 import click
 
 from .common import force_option, load_scene_or_default, scene_option, seed_option
@@ -32,8 +34,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
 
     \b
     PATH_JSON is a scoring input {"size", "mover", "anchor"} (placed relative to the scene's anchor,
-    scaled to its block size) or a plan.json (in the scene frame). --demo ACTION:INDEX replays a real
-    human demonstration the same way.
+    scaled to its block size) or a plan.json (in the scene frame, replayed on the scene it records;
+    --scene must then be that scene). --demo ACTION:INDEX replays a real human demonstration the same way.
 
     \b
     Examples:
@@ -41,7 +43,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
       l2p-bullet replay runs/demo/plan.json --no-render
     """
     from ..core.runfolder import run_folder
-    from ..embodiment.replay import motion_source, run_replay
+    from ..core.scene import load_scene
+    from ..embodiment.replay import motion_source, replay_scene, run_replay
     from ..embodiment.sim.camera import RenderSettings
     from ..errors import PathError
 
@@ -50,14 +53,20 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
     if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed):
         return
-    scene = load_scene_or_default(scene_path)
+    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
+    t0 = time.perf_counter()
+
+    def on_stage(message: str) -> None:  # perform's style: elapsed time, then the stage
+        click.echo(f"[{time.perf_counter() - t0:5.1f}s] execute: {message}", err=True)
+
     with run_folder(out, force=force, prefix="replay", command="replay") as folder:
-        ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
+        ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage)
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")
-    click.echo(f"run folder: {folder}")
+    video = ex.files.get("video")
+    click.echo(f"run folder: {folder}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
 
 
 def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force: bool, render, seed: int) -> bool:

@@ -197,6 +197,13 @@ class Scene:
             ]
         }
 
+    def digest(self) -> str:
+        """sha256 of the scene file's canonical JSON: what plan.json records as ``scene_sha256`` (issue 26)."""
+        import hashlib
+        import json
+
+        return hashlib.sha256(json.dumps(self.to_dict(), sort_keys=True).encode()).hexdigest()
+
     @classmethod
     def from_dict(cls, data: object, source: str = "scene") -> Scene:
         if not isinstance(data, dict) or "objects" not in data:

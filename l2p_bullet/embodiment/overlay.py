@@ -38,6 +38,10 @@ def strip_height(height: int) -> int:
     return h + (-(height + h)) % MACRO_BLOCK
 
 
+MIN_FONT = 8
+"""Smallest caption font (pixels): still legible in a 320-pixel-wide video."""
+
+
 def _fit(draw, text: str, font, width: int) -> str:
     """``text``, shortened with an ellipsis until it fits ``width`` pixels."""
     if draw.textlength(text, font=font) <= width:
@@ -45,6 +49,34 @@ def _fit(draw, text: str, font, width: int) -> str:
     while text and draw.textlength(text + "...", font=font) > width:
         text = text[:-1]
     return text + "..."
+
+
+def _two_lines(draw, text: str, font, width: int) -> list[str] | None:
+    """``text`` broken at a space into two lines that each fit ``width`` pixels, or None."""
+    words = text.split()
+    for k in range(len(words) - 1, 0, -1):  # the longest first line that fits
+        first, second = " ".join(words[:k]), " ".join(words[k:])
+        if draw.textlength(first, font=font) <= width:
+            return [first, second] if draw.textlength(second, font=font) <= width else None
+    return None
+
+
+def caption_lines(draw, text: str, width: int, height: int, size: int) -> tuple[list[str], object]:
+    """The sentence's lines and font, in ``width`` x ``height`` pixels: one line at the strip's ``size``
+    if it fits, else one line at a smaller size (down to :data:`MIN_FONT`), else two lines at the largest
+    size that fits them; an ellipsis only when even two lines of the smallest font cannot hold it.
+    (A polite sentence, "Please slide the red block around the green one.", was cut at 320 px, issue 26.)"""
+    for s in range(size, MIN_FONT - 1, -1):
+        font = _font(s)
+        if draw.textlength(text, font=font) <= width:
+            return [text], font
+    for s in range(min(size, (height - 1) // 2 - 1), MIN_FONT - 1, -1):
+        font = _font(s)
+        lines = _two_lines(draw, text, font, width)
+        if lines:
+            return lines, font
+    font = _font(MIN_FONT)
+    return [_fit(draw, text, font, width)], font
 
 
 def overlay(image: np.ndarray, sentence: str | None, progress: float | None) -> np.ndarray:
@@ -66,8 +98,11 @@ def overlay(image: np.ndarray, sentence: str | None, progress: float | None) -> 
     pad = max(3, sh // 10)
     font = _font(max(9, (sh - 3 * pad) // 2))
     line = int(getattr(font, "size", 11)) + 1
-    draw.text((pad, pad), _fit(draw, sentence or "", font, w - 2 * pad), fill=TEXT, font=font)
     y = pad + line + pad // 2
+    lines, cfont = caption_lines(draw, sentence or "", w - 2 * pad, y - pad, int(getattr(font, "size", 11)))
+    step = int(getattr(cfont, "size", 11)) + 1
+    for i, text in enumerate(lines):
+        draw.text((pad, pad + i * step), text, fill=TEXT, font=cfont)
     if progress is None or not np.isfinite(progress):
         draw.text((pad, y), "progress n/a", fill=TEXT, font=font)
     else:

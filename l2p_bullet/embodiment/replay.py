@@ -31,6 +31,30 @@ class Source:
     info: dict = field(default_factory=dict)
 
 
+def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | None = None) -> Scene:
+    """The scene to replay on: a plan.json's recorded scene (``scene``, written by ``plan`` and
+    ``perform``), checked against ``--scene`` when both are given; else ``--scene`` or the default.
+
+    A plan's path is in its scene's frame and threads between its blocks: replayed on another scene it
+    runs into them, or silently leaves a block out. So a mismatch is refused before any folder is made.
+    """
+    from ..core.scene import default_scene
+
+    recorded = None
+    if path_json is not None:
+        from ..core.contracts import read_json
+
+        data = read_json(path_json)
+        if isinstance(data, dict) and "path" in data and isinstance(data.get("scene"), dict):
+            recorded = Scene.from_dict(data["scene"], source=f"{path_json} (its scene)").validate()
+    if recorded is None:
+        return scene if scene is not None else default_scene()
+    if scene is not None and scene.digest() != recorded.digest():
+        raise PathError(f"{path_json} was planned on another scene than {scene_path or '--scene'} (its blocks "
+                        "differ): leave out --scene to replay it on the scene it records")
+    return recorded
+
+
 def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
     """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`."""
     if demo is not None:
@@ -75,6 +99,7 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
                     start.get(source.anchor).pose, source.path[0], source.path, np.zeros(len(source.path)),
                     "replay", "replay", {"replay": source.info})
         doc = plan.to_dict() | {"progress": [None] * len(source.path)}  # no model scored a replay
+        doc.update(scene=scene.to_dict(), scene_sha256=scene.digest())
         plan_file.write_text(dumps_json(doc, indent=1) + "\n")
     meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info}
     ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,

@@ -36,13 +36,22 @@ POSITION_BOUND = 16.0
 
 
 class Plan2DEnv(gym.Env):
-    """See the module docstring. ``action`` names an installed action (built-in or plugin)."""
+    """See the module docstring. ``action`` names an installed action (built-in or plugin); it is
+    required (issue 26: it defaulted to "around" without a word)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
 
-    def __init__(self, action: str = "around", render_mode: str | None = None, max_steps: int = 12,
+    def __init__(self, action: str | None = None, render_mode: str | None = None, max_steps: int = 12,
                  max_move: float = 2.0, threshold: float | None = None, size: float = 0.05,
                  illegal_penalty: float = 0.0):
+        if action is None:  # no silent default: a policy trained on "around" by omission is a wasted afternoon
+            from ..errors import PluginError
+            from . import ENVS
+
+            env_id = next((k for k, v in ENVS.items() if v.endswith(f":{type(self).__name__}")), "l2p_bullet/Plan2D-v0")
+            names = ", ".join(p.name for p in registry.discover() if p.ok)
+            raise PluginError(f'say which action the environment is for: gym.make("{env_id}", action="around") '
+                              f"(installed: {names})")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None")
         if not MIN_SIZE <= size:

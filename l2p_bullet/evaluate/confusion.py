@@ -39,16 +39,26 @@ class Confusion:
 
     def to_dict(self) -> dict:
         return {"asked": self.asked, "recognised": self.recognised, "counts": self.counts.tolist(),
-                "errors": self.errors.tolist(), "judges": np.round(self.judges, 4).tolist(),
-                "models": np.round(self.models, 4).tolist(), "argmax": np.round(self.argmax, 4).tolist()}
+                "errors": self.errors.tolist(), "judges": _cells(self.judges),
+                "models": _cells(self.models), "argmax": _cells(self.argmax)}
+
+
+def _cells(m: np.ndarray) -> list[list[float | None]]:
+    """A matrix for JSON: rounded, and None (null) for a cell no run informs."""
+    return [[None if np.isnan(v) else round(float(v), 4) for v in row] for row in m]
 
 
 def confusion(rows: list[dict], order: list[str] | None = None) -> Confusion:
-    """The matrices from the results table's rows (see the module docstring)."""
+    """The matrices from the results table's rows (see the module docstring).
+
+    A cell no run informs is NaN, not 0: a row whose runs all ended in an error, or a column whose action
+    could not judge that row's runs (a two-anchor action on one-anchor runs). Reports leave it blank.
+    """
     asked = _ordered({r["action"] for r in rows}, order)
     recognised = _ordered({k for r in rows for k in (r.get("judged") or {})}, order)
     n, m = len(asked), len(recognised)
     judges, models, argmax = np.zeros((n, m)), np.zeros((n, m)), np.zeros((n, m))
+    judged_n, scored_n = np.zeros((n, m), int), np.zeros((n, m), int)
     counts, errors = np.zeros(n, int), np.zeros(n, int)
     for r in rows:
         i = asked.index(r["action"])
@@ -58,12 +68,18 @@ def confusion(rows: list[dict], order: list[str] | None = None) -> Confusion:
         counts[i] += 1
         scores = np.array([float((r.get("scored") or {}).get(a, np.nan)) for a in recognised])
         for j, a in enumerate(recognised):
-            judges[i, j] += bool(r["judged"].get(a, {}).get("success"))
-            models[i, j] += 0.0 if np.isnan(scores[j]) else scores[j]
+            if a in r["judged"]:
+                judged_n[i, j] += 1
+                judges[i, j] += bool(r["judged"][a].get("success"))
+            if not np.isnan(scores[j]):
+                scored_n[i, j] += 1
+                models[i, j] += scores[j]
         if np.isfinite(scores).any():
             argmax[i, int(np.nanargmax(scores))] += 1
-    denom = np.maximum(counts, 1)[:, None]
-    return Confusion(asked, recognised, judges / denom, models / denom, argmax / denom, counts, errors)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return Confusion(asked, recognised, np.where(judged_n > 0, judges / np.maximum(judged_n, 1), np.nan),
+                         np.where(scored_n > 0, models / np.maximum(scored_n, 1), np.nan),
+                         np.where(scored_n > 0, argmax / np.maximum(counts, 1)[:, None], np.nan), counts, errors)
 
 
 def _ordered(names: set[str], order: list[str] | None) -> list[str]:

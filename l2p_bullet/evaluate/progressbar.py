@@ -1,4 +1,8 @@
-"""A progress bar with ETA on stderr: redrawn in place on a terminal, a line every few percent otherwise."""
+"""A progress bar with ETA on stderr: redrawn in place on a terminal, a line every few percent otherwise.
+
+Written for ``evaluate`` (runs, with failures and errors counted); any long command reuses it with its
+own ``unit`` and ``label`` (``train``: epochs, ``export``: episodes) and :meth:`ProgressBar.advance`.
+"""
 
 from __future__ import annotations
 
@@ -15,11 +19,13 @@ def _hms(seconds: float) -> str:
 
 
 class ProgressBar:
-    """``update(row)`` after every finished run; ``close()`` at the end. ``total`` counts this call's runs."""
+    """``update(row)`` after every finished run (or ``advance()`` after any other step); ``close()`` at the
+    end. ``total`` counts this call's steps; ``unit`` names them ("runs" adds failures and errors)."""
 
     def __init__(self, total: int, done_before: int = 0, stream: TextIO | None = None, enabled: bool = True,
-                 width: int = 28):
+                 width: int = 28, unit: str = "runs", label: str = ""):
         self.total, self.before, self.width = total, done_before, width
+        self.unit, self.label = unit, label
         self.stream = stream or sys.stderr
         self.enabled = enabled and total > 0
         self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
@@ -31,6 +37,14 @@ class ProgressBar:
         self.done += 1
         self.errors += row.get("error") is not None
         self.failed += row.get("error") is None and not row.get("success")
+        self._show()
+
+    def advance(self, n: int = 1) -> None:
+        """``n`` more steps done (a step that is not an evaluation run: an epoch, an episode)."""
+        self.done += n
+        self._show()
+
+    def _show(self) -> None:
         if not self.enabled:
             return
         if self.tty:
@@ -47,8 +61,10 @@ class ProgressBar:
         filled = int(round(frac * self.width))
         bar = "#" * filled + "." * (self.width - filled)
         eta_s = _hms(eta) if eta == eta else "?"
-        return (f"[{bar}] {self.done}/{self.total} runs ({frac:4.0%})  {self.failed} failed, {self.errors} errors  "
-                f"{rate:.2f} runs/s  elapsed {_hms(dt)}  ETA {eta_s}")
+        counts = f"{self.failed} failed, {self.errors} errors  " if self.unit == "runs" else ""
+        label = f"{self.label} " if self.label else ""
+        return (f"{label}[{bar}] {self.done}/{self.total} {self.unit} ({frac:4.0%})  {counts}"
+                f"{rate:.2f} {self.unit}/s  elapsed {_hms(dt)}  ETA {eta_s}")
 
     def _draw(self, end: str) -> None:
         self._last_line = time.perf_counter()

@@ -41,8 +41,23 @@ def _matrix_text(title: str, names_r: list[str], names_c: list[str], m: np.ndarr
     corner = "asked \\ recognised"
     lines = [title, f"{corner:<20}" + "".join(f"{n:>{w + 1}}" for n in names_c)]
     for i, r in enumerate(names_r):
-        lines.append(f"{r:<20}" + "".join(f"{format(v, fmt):>{w + 1}}" for v in m[i]))
+        lines.append(f"{r:<20}" + "".join(f"{_cell(v, fmt):>{w + 1}}" for v in m[i]))
     return "\n".join(lines)
+
+
+def _cell(v: float, fmt: str) -> str:
+    """A number, or blank where no run informs it (NaN: all runs errors, or an action that cannot judge them)."""
+    return "" if v != v else format(v, fmt)
+
+
+def error_reasons(rows: list[dict], width: int = 160) -> list[str]:
+    """Per action, each distinct error of its runs with how many runs ended in it, most frequent first."""
+    by: dict[tuple[str, str], int] = {}
+    for r in rows:
+        if r.get("error") is not None:
+            key = (r["action"], str(r["error"]).splitlines()[0][:width])
+            by[key] = by.get(key, 0) + 1
+    return [f"  {a}: {n} x {msg}" for (a, msg), n in sorted(by.items(), key=lambda kv: (kv[0][0], -kv[1]))]
 
 
 def report_text(rows: list[dict], c: Confusion | None = None) -> str:
@@ -55,8 +70,12 @@ def report_text(rows: list[dict], c: Confusion | None = None) -> str:
              f"{'plan s':>8}{'total s':>9}"]
     for s in success_table(rows):
         lines.append(f"{s['action']:<12}{s['runs']:>6}{100 * s['success']:>8.0f}%{s['errors']:>8}"
-                     f"{s['final_progress']:>10.2f}{s['max_deviation_mm']:>8.1f}{s['anchor_moved_mm']:>10.2f}"
-                     f"{s['plan_s']:>8.2f}{s['total_s']:>9.2f}")
+                     f"{_cell(s['final_progress'], '.2f'):>10}{_cell(s['max_deviation_mm'], '.1f'):>8}"
+                     f"{_cell(s['anchor_moved_mm'], '.2f'):>10}{_cell(s['plan_s'], '.2f'):>8}"
+                     f"{_cell(s['total_s'], '.2f'):>9}")
+    reasons = error_reasons(rows)
+    if reasons:
+        lines += ["", "errors (runs x reason; the whole message is in results.sqlite):", *reasons]
     lines += ["", _matrix_text("judge-based confusion: share of runs each action's judge accepts",
                                c.asked, c.recognised, 100 * c.judges, ".0f"),
               "", _matrix_text("model-based confusion: mean final learned progress of each action's model",
@@ -87,7 +106,8 @@ def save_plots(c: Confusion, out_dir: str | Path) -> dict[str, Path]:
     for key, m, title, fmt in (("judges", c.judges, "accepted by the judge of (share of runs)", "{:.0%}"),
                                ("models", c.models, "mean final learned progress of the model of", "{:.2f}")):
         fig, ax = plt.subplots(figsize=(1.3 * len(c.recognised) + 2.5, 1.0 * len(c.asked) + 2))
-        im = ax.imshow(m, vmin=0, vmax=1, cmap="viridis")
+        cmap = matplotlib.colormaps["viridis"].with_extremes(bad="white")  # NaN: no run informs the cell
+        im = ax.imshow(np.ma.masked_invalid(m), vmin=0, vmax=1, cmap=cmap)
         ax.set_xticks(range(len(c.recognised)), c.recognised, rotation=30, ha="right")
         ax.set_yticks(range(len(c.asked)), [f"{a} ({n})" for a, n in zip(c.asked, c.counts, strict=True)])
         ax.set_xlabel("recognised as")
@@ -95,6 +115,8 @@ def save_plots(c: Confusion, out_dir: str | Path) -> dict[str, Path]:
         ax.set_title(title, fontsize=10)
         for i in range(len(c.asked)):
             for j in range(len(c.recognised)):
+                if m[i, j] != m[i, j]:
+                    continue  # left blank, not 0 %
                 ax.text(j, i, fmt.format(m[i, j]), ha="center", va="center",
                         color="black" if m[i, j] > 0.6 else "white", fontsize=9)
         fig.colorbar(im, ax=ax, fraction=0.046, pad=0.04)
@@ -109,7 +131,8 @@ def write_report(rows: list[dict], out_dir: str | Path) -> tuple[str, dict[str, 
     """Print-ready text; also saves the PNGs and ``report.json`` (the numbers) in ``out_dir``."""
     c = confusion(rows)
     files = save_plots(c, out_dir) if c.asked and c.recognised else {}
-    data = {"success": success_table(rows), "confusion": c.to_dict(),
+    data = {"success": [{k: (None if v != v else v) for k, v in s.items()} for s in success_table(rows)],
+            "errors": error_reasons(rows), "confusion": c.to_dict(),
             "closer_touching": touching_finding(rows) if "closer" in c.asked else None}
     files["json"] = Path(out_dir) / "report.json"
     files["json"].write_text(json.dumps(data, indent=1, default=float) + "\n")

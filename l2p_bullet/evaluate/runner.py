@@ -9,6 +9,7 @@ tasks, so their rows are equal apart from timings.
 from __future__ import annotations
 
 import os
+import sys
 import time
 from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
@@ -21,7 +22,7 @@ from .progressbar import ProgressBar
 from .ray_backend import run_ray
 from .results import ResultsStore
 from .scenes import SceneSpec, random_scenes, scene_file, study_scenes, with_bystanders
-from .tasks import Task, make_tasks
+from .tasks import Task, make_tasks, skipped
 from .worker import run_task
 
 DEFAULT_SCENES = 10
@@ -86,6 +87,7 @@ class EvaluationSummary:
     seconds: float = 0.0
     backend: str = "pool"
     workers: int = 1
+    notes: dict[str, str] = field(default_factory=dict)  # action -> why runs of it were left out
 
     @property
     def runs_per_s(self) -> float:
@@ -127,25 +129,34 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
             raise EvaluationError("no usable action plugin is installed (see: l2p-bullet actions)")
 
         resolve_planner(config.planner)  # a typo fails before anything runs
+        scenes = config.scene_set()
+        notes: dict[str, str] = {}
         if config.chains:
             from .chains import make_chain_tasks
 
             if config.mode == "plan":
                 raise EvaluationError("--chains performs its chains: no --plan-only")
-            tasks = make_chain_tasks(config.scene_set(), config.chains, actions, planner=config.planner,
+            tasks = make_chain_tasks(scenes, config.chains, actions, planner=config.planner,
                                      render_every=config.render_every, keep=config.keep, out_dir=str(out),
                                      plugins=plugins, budget=config.budget, threshold=config.threshold)
         else:
-            tasks = make_tasks(config.scene_set(), actions, planner=config.planner, mode=config.mode,
+            notes = skipped(scenes, actions, plugins)
+            tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
                                render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
                                budget=config.budget, threshold=config.threshold)
+            if not tasks and notes:
+                raise EvaluationError("nothing to run: " + "; ".join(notes.values()))
+        if progressbar:
+            for note in notes.values():
+                sys.stderr.write(f"note: {note}\n")
         if not resume:
             store.set_meta("config", config.to_dict())
         store.set_meta("tasks_total", len(tasks))
         done = store.recorded(with_errors=not retry_errors)
         todo = [t for t in tasks if t.run_id not in done]
         backend = "ray" if ray else ("pool" if workers >= 1 else "inline")
-        summary = EvaluationSummary(out, len(tasks), len(tasks) - len(todo), backend=backend, workers=workers)
+        summary = EvaluationSummary(out, len(tasks), len(tasks) - len(todo), backend=backend, workers=workers,
+                                    notes=notes)
         bar = ProgressBar(len(todo), summary.skipped, enabled=progressbar)
 
         def on_row(row: dict) -> None:

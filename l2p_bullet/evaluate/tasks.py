@@ -8,6 +8,7 @@ worker ran before: the reason parallel results equal serial ones, run for run.
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
 from ..errors import EvaluationError
@@ -42,16 +43,48 @@ class Task:
     time_limit: float | None = None  # seconds of planning (equal-time comparisons); plan mode only
     chain_length: int = 0  # chain mode: clauses per chain, drawn by the worker over chain_actions (chains.py)
     chain_actions: tuple[str, ...] = ()
+    more_anchors: tuple[str, ...] = ()  # a two-anchor action's further reference blocks ("between B and C": C)
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def sentence_for(action: str, mover: str, anchor: str, plugins: list) -> str:
-    """``move MOVER <the action's first phrase> ANCHOR``, e.g. "move A closer to B"."""
+def sentence_for(action: str, mover: str, anchor: str | Sequence[str], plugins: list) -> str:
+    """``move MOVER <the action's first phrase> ANCHOR [and ANCHOR]``, e.g. "move A closer to B",
+    "move A between B and C" (one anchor per reference block the action declares)."""
     info = registry.find(action, plugins)
     phrase = info.phrases[0] if info.phrases else action
-    return f"move {mover} {phrase} {anchor}"
+    anchors = [anchor] if isinstance(anchor, str) else list(anchor)
+    return f"move {mover} {phrase} {' and '.join(anchors)}"
+
+
+def anchors_for(spec: SceneSpec, n: int) -> list[str] | None:
+    """The ``n`` reference blocks of a run on ``spec``: its anchor, then the scene's next blocks in order
+    (neither mover nor anchor); None when the scene has too few blocks for an ``n``-anchor action."""
+    others = [name for name in spec.scene.names if name not in (spec.mover, spec.anchor)]
+    return [spec.anchor, *others[: n - 1]] if len(others) >= n - 1 else None
+
+
+def skipped(scenes: list[SceneSpec], actions: list[str], plugins: list) -> dict[str, str]:
+    """action -> why some or all of its runs are left out of the evaluation (printed before it starts).
+
+    A two-anchor action ("between") runs only on scenes with a block besides the mover and the anchor;
+    :func:`make_tasks` leaves the other scenes out for it, rather than asking "move A between B".
+    """
+    from ..plugins import registry
+
+    out: dict[str, str] = {}
+    for a in actions:
+        info = registry.find(a, plugins)
+        if info.anchors < 2:
+            continue
+        short = sum(anchors_for(s, info.anchors) is None for s in scenes)
+        if short:
+            need = info.anchors + 1
+            out[info.name] = (f'"{info.name}" names {info.anchors} reference blocks: skipped on {short} of '
+                              f"{len(scenes)} scenes with fewer than {need} blocks (add blocks with --bystanders "
+                              f"{need - 2}, or give a --scene-file with {need} blocks per scene)")
+    return out
 
 
 def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "default", mode: str = "perform",
@@ -66,16 +99,19 @@ def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "d
     if keep not in KEEP:
         raise EvaluationError(f'unknown --keep "{keep}" (known: {", ".join(KEEP)})')
     plugins = registry.discover() if plugins is None else plugins
-    names = [registry.find(a, plugins).name for a in actions]
+    infos = [registry.find(a, plugins) for a in actions]
     tasks: list[Task] = []
     for i, spec in enumerate(scenes):
-        for action in names:
+        for info in infos:
+            action, anchors = info.name, anchors_for(spec, info.anchors)
+            if anchors is None:  # too few blocks for this action (see skipped)
+                continue
             render = mode == "perform" and render_every > 0 and i % render_every == 0
             run_id = f"{spec.id}|{action}|{planner}|{mode}"
             run_dir = None if out_dir is None else f"{out_dir}/runs/{_safe(spec.id)}--{action}--{planner}--{mode}"
             tasks.append(Task(run_id, len(tasks), spec.id, spec.source, spec.scene.to_dict(), spec.mover, spec.anchor,
-                              action, sentence_for(action, spec.mover, spec.anchor, plugins), planner, spec.seed,
-                              mode, render, keep, run_dir, budget, threshold))
+                              action, sentence_for(action, spec.mover, anchors, plugins), planner, spec.seed,
+                              mode, render, keep, run_dir, budget, threshold, more_anchors=tuple(anchors[1:])))
     return tasks
 
 

@@ -31,7 +31,7 @@ from ..core.contracts import trajectory_poses
 from ..core.scene import Scene
 from ..embodiment.sim.world import World
 from ..errors import L2PError
-from ..judge import judge_for
+from ..judge import judge_context, judge_for
 from ..judge.rules import square_gap
 from ..pipeline import judged_plan, perform, prepare
 from ..plugins import registry
@@ -148,6 +148,7 @@ class Worker:
             traj = json.loads((r.out_dir / "trajectory.json").read_text())
             frames = traj["frames"]
             mover, anchor = trajectory_poses(frames, task.mover), trajectory_poses(frames, task.anchor)
+            more = [trajectory_poses(frames, a) for a in task.more_anchors]
             size = scene.get(task.mover).size
             row.update(
                 planner_used=r.plan.planner, success=int(r.success), score=r.verdict.get("score"),
@@ -158,7 +159,7 @@ class Worker:
                 plan_s=r.timings.get("plan"), execute_s=r.timings.get("execute"), total_s=r.timings.get("total"),
                 timings={k: round(v, 5) for k, v in r.timings.items()},
             )
-            self._confusion(row, mover, anchor, size)
+            self._confusion(row, mover, anchor, size, more)
             kept = keep_always or (task.keep == "failed" and not r.success)
         except BaseException:
             kept = task.keep in ("failed", "all") or task.render
@@ -183,7 +184,9 @@ class Worker:
                    plan_steps=plan.extra.get("steps"), plan_s=plan_s, total_s=plan_s,
                    timings={"plan": round(plan_s, 5), "total": round(plan_s, 5)})
         anchor = np.repeat(np.asarray(plan.anchor_pose, float)[None], len(plan.path), axis=0)
-        self._confusion(row, np.asarray(plan.path, float), anchor, plan.size)
+        more = [np.repeat(np.asarray(q, float)[None], len(plan.path), axis=0)
+                for q in ([] if plan.more_anchor_poses is None else plan.more_anchor_poses)]
+        self._confusion(row, np.asarray(plan.path, float), anchor, plan.size, more)
         if task.keep == "all" and task.run_dir:
             out = Path(task.run_dir)
             out.mkdir(parents=True, exist_ok=True)
@@ -191,14 +194,24 @@ class Worker:
             plan.save(out / "plan.json")
             row["run_dir"] = str(out)
 
-    def _confusion(self, row: dict, mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
-        """Every installed action's verdict and learned progress on this motion; the final gap to the anchor."""
+    def _confusion(self, row: dict, mover: np.ndarray, anchor: np.ndarray, size: float,
+                   more: list[np.ndarray] | None = None) -> None:
+        """Every installed action's verdict and learned progress on this motion; the final gap to the anchor.
+
+        ``more``: the tracks of the run's further reference blocks (a two-anchor run's C). An action
+        judges the run when it reads as many reference blocks as the run has, or one (the first anchor):
+        "between" cannot judge a one-anchor motion, but every one-anchor action can judge a "between" run.
+        """
+        more = more or []
         judged, scored = {}, {}
         for name, (judge, model) in self.judges().items():
-            if getattr(model, "anchors", 1) != 1:  # a two-anchor action cannot judge a one-anchor motion
+            need = getattr(model, "anchors", 1)
+            if need != 1 and need != 1 + len(more):
                 continue
-            progress = float(model.final(mover, anchor, size))
-            v = judge.judge(mover, anchor, size, final_progress=progress)
+            extra = more[: need - 1]
+            kw = {"more_anchors": extra} if extra else {}
+            progress = float(model.final(mover, anchor, size, **kw))
+            v = judge.judge(mover, anchor, size, final_progress=progress, **judge_context([anchor, *extra], None))
             judged[name] = {"success": bool(v.success), "score": round(float(v.score), 6)}
             scored[name] = round(progress, 6)
         rel = np.r_[(mover[-1, :2] - anchor[-1, :2]) / size, mover[-1, 2]]

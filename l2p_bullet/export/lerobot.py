@@ -23,7 +23,7 @@ rate (10 fps: every third 30-fps trajectory frame, each matching one rendered im
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
@@ -66,14 +66,23 @@ def _xyyaw(frame: dict, name: str) -> list[float]:
     return [p[0], p[1], p[3]]
 
 
-def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool | None = None) -> dict:
+def steps(episodes: list[Episode], video: bool) -> int:
+    """How many times :func:`write_lerobot` calls its ``tick``: once per episode, again per episode encoded
+    into the video, and once for the dataset's statistics (over every image: seconds on 2 cores)."""
+    return len(episodes) * (2 if video else 1) + 1
+
+
+def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool | None = None,
+                  tick: Callable[[], None] | None = None) -> dict:
     """Write ``episodes`` into the folder ``out`` as a LeRobot v3.0 dataset; returns info.json's content.
 
     ``out`` is the caller's: ``l2p-bullet export`` claims it with :func:`l2p_bullet.core.runfolder.run_folder`
     (never overwriting anything but a previous export of ours), files already in it are left alone.
 
     ``video`` None: images are written when every episode has them; True: they must; False: never.
+    ``tick`` is called :func:`steps` times (the command's progress bar).
     """
+    tick = tick or (lambda: None)
     pa, pq = _pyarrow()
     eps = list(episodes)
     if not eps:
@@ -122,6 +131,7 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
                  for s, v in st.items()}
         episodes_meta.append(meta)
         total += n
+        tick()
 
     data_file = out / DATA_PATH.format(chunk_index=0, file_index=0)
     data_file.parent.mkdir(parents=True, exist_ok=True)
@@ -135,7 +145,9 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     pq.write_table(table, data_file, compression="snappy")
     features = _features(video, all_images[0].shape if video else None, fps)
     if video:
-        _write_video(all_images, out / VIDEO_PATH.format(video_key=VIDEO_KEY, chunk_index=0, file_index=0), fps)
+        ends = {m["dataset_to_index"] for m in episodes_meta}
+        _write_video(all_images, out / VIDEO_PATH.format(video_key=VIDEO_KEY, chunk_index=0, file_index=0), fps,
+                     lambda done: tick() if done in ends else None)
     ep_file = out / EPISODES_PATH
     ep_file.parent.mkdir(parents=True, exist_ok=True)
     pq.write_table(pa.Table.from_pylist(episodes_meta), ep_file)
@@ -144,6 +156,7 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
                     "progress": np.array(columns["observation.progress"], np.float32)}, total,
                    all_images if video else None)
     (out / "meta" / "stats.json").write_text(json.dumps(stats, indent=1) + "\n")
+    tick()
     info = {
         "codebase_version": CODEBASE_VERSION, "robot_type": "franka_panda_sim", "total_episodes": len(eps),
         "total_frames": total, "total_tasks": len(tasks), "chunks_size": 1000, "data_files_size_in_mb": 100,
@@ -198,15 +211,15 @@ def _stats(arr: dict[str, np.ndarray], n: int, images: list[np.ndarray] | None) 
     return out
 
 
-def _write_video(images: list[np.ndarray], path: Path, fps: float) -> None:
-    # lazy: imageio (and its ffmpeg plugin) only when a video is written
+def _write_video(images: list[np.ndarray], path: Path, fps: float, written: Callable[[int], None]) -> None:
     import imageio.v2 as imageio
 
     path.parent.mkdir(parents=True, exist_ok=True)
     with imageio.get_writer(path, fps=fps, codec="libx264", quality=8, pixelformat="yuv420p",
                             macro_block_size=8, ffmpeg_log_level="error") as writer:
-        for img in images:
+        for i, img in enumerate(images, start=1):
             writer.append_data(img)
+            written(i)
 
 
 def _write_tasks(pa, pq, tasks: list[str], path: Path) -> None:

@@ -7,7 +7,7 @@ penalty), and the reward is the increase of the action's **learned** progress: t
 sum to the final progress gained, which is what the planner maximises. An episode ends early once
 progress passes ``done_at``. All episodes of a step are scored in one forward pass.
 
-    l2p-bullet train-policy around [--iterations 300] [--episodes 48] [--bundle DIR]
+    l2p-bullet train-policy around [--iterations 300] [--episodes 48] [--out DIR | --bundle DIR [--force]]
 """
 
 from __future__ import annotations
@@ -136,18 +136,62 @@ def _train_policy(model, cfg: PolicyTrainConfig, log) -> tuple[GaussianPolicy, l
 
 
 def policy_settings(cfg: PolicyTrainConfig, history: list[float], seconds: float, best_it: int) -> dict:
-    """The manifest's ``[policy]`` section describing the trained policy."""
+    """The manifest's ``[policy]`` section describing the trained policy.
+
+    ``final_progress_first`` / ``_last`` are means over the first and last ``window`` iterations
+    (``BEST_WINDOW``, fewer in a short run so that the two never overlap: with 2 iterations they were the
+    same mean, and disagreed with the last iteration's line, issue 26).
+    """
+    w = max(1, min(BEST_WINDOW, len(history) // 2))
     return {
         "file": "policy.safetensors",
         "kind": "gaussian-mlp",
         "features": FEATURES,
         "training": asdict(cfg) | {"seconds": round(seconds, 1),
-                                   "final_progress_first": round(float(np.mean(history[:10])), 4),
-                                   "final_progress_last": round(float(np.mean(history[-10:])), 4),
+                                   "window": w,
+                                   "final_progress_first": round(float(np.mean(history[:w])), 4),
+                                   "final_progress_last": round(float(np.mean(history[-w:])), 4),
                                    "kept_iteration": best_it,
                                    "final_progress_kept": round(float(np.mean(
                                        history[max(0, best_it + 1 - BEST_WINDOW):best_it + 1])), 4)},
     }
+
+
+def policy_folder(action: str, bundle_dir: str | None, out_dir: str | None, force: bool) -> tuple[Path, bool]:
+    """Where ``train-policy`` writes, and whether that is a fresh copy: ``--bundle DIR`` in place (refused
+    inside the installed l2p-bullet package or an installed plugin's bundle without ``force``), else a
+    copy of ACTION's bundle in ``out_dir`` (default ``runs/train-policy-<timestamp>``), which must not
+    exist. The default never touches an installed bundle: in an editable install that is the
+    repository's committed files (issue 26)."""
+    import shutil
+
+    from ..plugins import registry
+
+    if bundle_dir is not None:
+        if out_dir is not None:
+            raise BundleError("give --bundle (train in place) or --out (a new copy), not both")
+        folder = Path(bundle_dir)
+        if not force and _installed(folder):
+            raise BundleError(f"{folder} is a bundle of an installed package: pass --force to replace its policy, "
+                              "or leave out --bundle to train a copy in a new folder")
+        return folder, False
+    _, source = registry.locate(action)
+    folder = Path(out_dir) if out_dir else Path("runs") / f"train-policy-{time.strftime('%Y%m%d-%H%M%S')}"
+    if folder.exists():
+        raise BundleError(f"{folder} already exists: choose another --out (or train in it with --bundle {folder})")
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copytree(source, folder, ignore=shutil.ignore_patterns("__pycache__"))
+    return folder, True
+
+
+def _installed(folder: Path) -> bool:
+    """Is ``folder`` inside the installed l2p-bullet package, or an installed plugin's bundle folder?"""
+    from .. import __file__ as package_init
+    from ..plugins import registry
+
+    here = folder.resolve()
+    roots = [Path(package_init).resolve().parent] + [p.path.resolve() for p in registry.discover() if p.path]
+    return any(here == r or r in here.parents for r in roots)
 
 
 def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print) -> dict:

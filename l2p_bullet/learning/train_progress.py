@@ -194,8 +194,11 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  qsr_cfg: QSRConfig | None = None, data_cfg: DataConfig | None = None,
                  cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None,
                  feedback: Sequence[FeedbackItem] = (), feedback_cfg: FeedbackConfig | None = None,
-                 base: Sequence[ProgressNet] | None = None) -> TrainResult:
-    """Build the training set and train the ensemble; ``tick`` is called once per member-epoch.
+                 base: Sequence[ProgressNet] | None = None,
+                 on_stage: Callable[[str], None] | None = None) -> TrainResult:
+    """Build the training set and train the ensemble; ``tick`` is called once per member-epoch,
+    ``on_stage`` with a line when the (validated) set starts being built and when it is built (the
+    command prints them; its progress bar's clock starts at the second).
 
     With ``feedback`` (graded motions of any action; those of ``action`` are used), the ensemble trained
     on the demonstrations is then fine-tuned on them (:func:`fine_tune`, ``feedback_cfg``). ``base``
@@ -208,7 +211,11 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                         "(event_start_end is empty)")
     fcfg = feedback_cfg or FeedbackConfig()
     t0 = time.perf_counter()
+    if on_stage:
+        on_stage("building the training set")
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
+    if on_stage:
+        on_stage(f"{len(seqs)} sequences")
     nets, last = list(base or []), []
     for i in range(0 if base else cfg.ensemble):
         net, hist = train_net(seqs, qsr_cfg.n_features, cfg, seed * 1000 + i, tick)
@@ -295,7 +302,8 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                  tick: Callable[[], None] | None = None, feedback: Sequence[str] = (),
                  feedback_judge: str | None = None, judge_scenes: int = 30,
                  feedback_cfg: FeedbackConfig | None = None,
-                 log: Callable[[str], None] | None = None) -> tuple[Path, TrainResult]:
+                 log: Callable[[str], None] | None = None,
+                 on_stage: Callable[[str], None] | None = None) -> tuple[Path, TrainResult]:
     """``l2p-bullet train``: train ``action``'s progress ensemble and write it into a bundle folder.
 
     The default folder is ``runs/bundles/<action>``. An existing trained bundle is only replaced with
@@ -330,7 +338,8 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if demo_files and not demos[name]:
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
-    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick)
+    result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
+                          on_stage=on_stage)
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from safetensors import SafetensorError
-from safetensors.numpy import load, save_file
+from safetensors.numpy import load, save
 
 from .. import __version__
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
@@ -244,14 +244,17 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     planner policy that :meth:`Bundle.policy_arrays` then returns. The manifest must already exist.
     Arrays are numpy (a torch tensor's ``.numpy()``): the file is byte-identical to torch's writer.
     """
-
-
     folder = Path(bundle_dir)
     man = read_manifest(folder)
     if not filename.endswith(".safetensors"):
         raise BundleError(f'weights file name "{filename}" must be a plain *.safetensors name')
     path = safe_weight_name(folder, filename)
-    save_file({k: np.ascontiguousarray(v) for k, v in arrays.items()}, str(path))
+    # safetensors' save_file creates the file 0600 (its temporary file's mode): weights to install and
+    # share must follow the umask like every other file (0644 typically, issue 26). Written to a
+    # temporary file and renamed, as the manifest is: a reader never sees half a weights file.
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_bytes(save({k: np.ascontiguousarray(v) for k, v in arrays.items()}))
+    os.replace(tmp, path)
     man.setdefault("weights", {})[filename] = {"sha256": sha256_file(path), "bytes": path.stat().st_size}
     if section is not None:
         man[section] = dict(settings or {})

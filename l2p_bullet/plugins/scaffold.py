@@ -41,6 +41,20 @@ _KIND = {"left-of": "left-of", "right-of": "right-of", "in-front-of": "in-front-
 """Action names whose generated example demonstrations exist (``l2p_bullet.learning.synthetic``)."""
 
 
+def _viewer_arg(frame: str) -> str:
+    """The example script's ``viewer_xy`` argument for a viewer-frame action ("" for a relative one): the
+    viewpoint in the tracks' frame (the table's centre at the origin, 0.15 m blocks), without which
+    training refuses the files (issue 26: the script wrote none)."""
+    from ..data.demos import DEMO_BLOCK_SIZE
+
+    xy = parse_frame(frame).viewpoint_xy()
+    if xy is None:
+        return ")"
+    x, y = (float(v) for v in xy / 0.05 * DEMO_BLOCK_SIZE)  # scene metres -> blocks of 5 cm -> 0.15 m blocks
+    return (f',\n             viewer_xy=np.array([{x:.2f}, {y:.2f}]))  # frame = "{frame}": where the viewer '
+            "stood, in the tracks' frame")
+
+
 def check_name(name: str) -> str:
     if not PLUGIN_ACTION.match(name):
         raise PluginError(
@@ -103,7 +117,7 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         root / "README.md": _README.format(
             name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
             phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors),
-            kind=_KIND.get(name, "left-of" if anchors == 1 else "between"),
+            kind=_KIND.get(name, "left-of" if anchors == 1 else "between"), viewer=_viewer_arg(frame),
         ),
         root / "demos" / ".gitkeep": "",
     }
@@ -234,7 +248,7 @@ frame works). Leave some still frames before and after each event: the progress 
 progress is 0 outside the event and rises to 1 at its end. Files are loaded with `allow_pickle=False`,
 so save plain numeric arrays; `l2p_bullet.data.demos.save_session` writes them and checks them.
 
-A script that writes them, for a one-anchor relative action (vary start positions, speeds, curved and
+A script that writes them, for a one-anchor action (vary start positions, speeds, curved and
 straight paths, both blocks as mover):
 
 ```python
@@ -257,7 +271,7 @@ for session in range(2):
         t += len(path)
     np.savez(f"demos/{name}_Session{{session + 1}}.npz", shell_pose=np.vstack(shell),
              stella_pose=np.vstack(stella), event_start_end=np.array(events),
-             event_mover=np.zeros(len(events), dtype=np.int8))
+             event_mover=np.zeros(len(events), dtype=np.int8){viewer}
 ```
 
 Check that they load: `python -c "from l2p_bullet.data.demos import load_session; load_session('demos/{name}_Session1.npz')"`.

@@ -42,8 +42,21 @@ class Item:
         return self.run.run_id, self.view
 
 
+def blind_labels(names: list[str]) -> list[str]:
+    """Blind mode's labels in a fixed order, whatever order the plugins were discovered in: the built-in
+    actions in the vocabulary's order (closer, away, next-to, past, around), then plugins by name, then
+    "none". The order decides the keys (:func:`label_keys`), so a grader's keys never change with how
+    packages happen to be installed (issue 26: "a" was around on one machine, away in the docs)."""
+    from ..core.vocabulary import ACTIONS
+
+    names = [n for n in dict.fromkeys(names) if n != NONE_LABEL]
+    return [a for a in ACTIONS if a in names] + sorted(n for n in names if n not in ACTIONS) + [NONE_LABEL]
+
+
 def label_keys(labels: list[str]) -> list[dict]:
-    """A one-letter key per blind-mode label: its first free letter ("none" prefers x)."""
+    """A one-letter key per blind-mode label: its first free letter ("none" prefers x). The one table of
+    blind-mode keys: served to the page (``/api/config``), which shows it, and checked against
+    docs/review.md (tests/test_review_app.py)."""
     used, out = set(RESERVED_KEYS), []
     for label in labels:
         letters = ("x" if label == NONE_LABEL else "") + "".join(ch for ch in label.lower() if ch.isalpha())
@@ -78,7 +91,7 @@ class ReviewQueue:
         for r in runs:
             views = tuple(v for v in wanted if v in r.views(mode)) or ("2d",)
             self.items += [Item(r, v) for v in views]
-        self.labels = list(labels or []) + ([] if NONE_LABEL in (labels or []) else [NONE_LABEL])
+        self.labels = blind_labels(list(labels or []))
         self.problems: dict[str, str] = {}  # run_id -> "missing" | "changed"
         self._stat = {r.run_id: _stat(r) for r in runs}
 

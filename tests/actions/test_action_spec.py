@@ -12,7 +12,7 @@ from plugin_fixtures import copy_builtin_as_plugin, make_bundle, make_dist
 from l2p_bullet.actions import BUILTIN, ActionSpec
 from l2p_bullet.core.vocabulary import ACTIONS, GRADED_FOLDERS, SOURCE_NAMES
 from l2p_bullet.errors import FailedToLoadPlugin
-from l2p_bullet.judge.rules import evaluate
+from l2p_bullet.judge.rules import rule_verdict
 from l2p_bullet.learning.trainset import DataConfig
 from l2p_bullet.plugins import registry
 
@@ -34,12 +34,12 @@ def _arc(turns: float, radius: float = 2.0, n: int = 400) -> np.ndarray:
 def test_the_rule_judge_reads_the_thresholds_its_action_declares():
     need = BUILTIN["around"].thresholds["turns"]
     anchor = np.zeros(3)
-    assert not evaluate("around", _arc(need - 0.03), anchor, 1.0).success
-    assert evaluate("around", _arc(need + 0.03), anchor, 1.0).success
+    assert not rule_verdict("around", _arc(need - 0.03), anchor, 1.0).success
+    assert rule_verdict("around", _arc(need + 0.03), anchor, 1.0).success
     gain = BUILTIN["away"].thresholds["gain"]
     line = lambda d: np.column_stack([np.linspace(2.0, 2.0 + d, 50), np.zeros(50), np.zeros(50)])  # noqa: E731
-    assert not evaluate("away", line(gain - 0.05), anchor, 1.0).success
-    assert evaluate("away", line(gain + 0.05), anchor, 1.0).success
+    assert not rule_verdict("away", line(gain - 0.05), anchor, 1.0).success
+    assert rule_verdict("away", line(gain + 0.05), anchor, 1.0).success
 
 
 def test_the_training_set_options_are_the_actions_own():

@@ -24,7 +24,7 @@ def fake_actions(monkeypatch):
 
 def test_plan_writes_plan_json_and_a_plot(fake_actions, tmp_path):
     out = tmp_path / "run"
-    r = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(out), "--planner", "discrete"])
+    r = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(out), "--planner", "discrete", "--json"])
     assert r.exit_code == 0, r.output
     summary = json.loads(r.output.strip().splitlines()[-1])
     assert summary["action"] == "around" and summary["stopped"] == "threshold"
@@ -38,6 +38,10 @@ def test_plan_writes_plan_json_and_a_plot(fake_actions, tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
     again = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(tmp_path / "bare"), "--no-plot"])
     assert again.exit_code == 0 and sorted(p.name for p in (tmp_path / "bare").iterdir()) == [".l2p-run.json", "plan.json"]
+    # without --json: text in perform's style (issue 26)
+    lines = again.stdout.strip().splitlines()
+    assert lines[0].startswith('A around B: action "around", success on the plan (') and "final progress" in lines[1]
+    assert lines[-1] == f"plan folder: {tmp_path / 'bare'} (no plot: --no-plot)"
 
 
 def test_the_plot_shows_the_objects_and_the_path(tmp_path):

@@ -88,9 +88,18 @@ def test_train_is_deterministic_and_writes_a_loadable_bundle(tmp_path):
     runner = CliRunner()
     r1 = runner.invoke(main, [*args, "--out", str(tmp_path / "a")])
     assert r1.exit_code == 0, r1.output
+    # progress with an ETA on stderr, also when it is not a terminal (issue 26: 30 s of silence)
+    assert "training past: building the training set" in r1.stderr
+    assert "2/2 epochs (100%)" in r1.stderr and "ETA" in r1.stderr and "ETA" not in r1.stdout
     r2 = runner.invoke(main, [*args, "--out", str(tmp_path / "b")])
     assert r2.exit_code == 0, r2.output
     assert sha256_file(tmp_path / "a" / "progress.safetensors") == sha256_file(tmp_path / "b" / "progress.safetensors")
+    import os
+
+    umask = os.umask(0o022)
+    os.umask(umask)
+    for name in ("progress.safetensors", "manifest.toml"):  # issue 26: weights were written 0600
+        assert (tmp_path / "a" / name).stat().st_mode & 0o777 == 0o666 & ~umask, name
     b = load_bundle(tmp_path / "a")
     assert b.name == "past" and b.manifest["training"]["seed"] == 3
     assert "--demos" in b.manifest["training"]["command"]

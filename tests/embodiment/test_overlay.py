@@ -44,3 +44,23 @@ def test_progress_shown_is_that_of_the_last_frame_at_or_before_the_image():
     t = np.array([0.0, 1 / 30, 2 / 30, 3 / 30])
     assert progress_at([0.0, 0.1, 0.05, 5.0], t, [None, 0.1, 0.2, 0.3]) == [None, 0.3, 0.1, 0.3]
     assert progress_at([0.0], np.array([]), []) == [None]
+
+
+@pytest.mark.parametrize("sentence", ["Please slide the red block around the green one.",
+                                      "Please put the red block between the green block and the blue one."])
+def test_a_long_sentence_is_shown_whole(sentence):
+    """Issue 26: the strip cut long sentences ("Please slide the red block around the gre..."): a
+    sentence that differs only in its last word drew the same strip. It shrinks or wraps now."""
+    from PIL import Image, ImageDraw
+
+    from l2p_bullet.embodiment.overlay import MIN_FONT, caption_lines
+
+    img, h = _frame(240, 320), 240
+    other = sentence.rsplit(" ", 1)[0] + " box."
+    assert not np.array_equal(overlay(img, sentence, 0.5)[h:], overlay(img, other, 0.5)[h:])
+    draw = ImageDraw.Draw(Image.new("RGB", (1, 1)))
+    lines, font = caption_lines(draw, sentence, 300, 21, 18)
+    assert " ".join(lines) == sentence and font.size >= MIN_FONT and len(lines) <= 2
+    assert all(draw.textlength(t, font=font) <= 300 for t in lines) and len(lines) * (font.size + 1) <= 21
+    short, font = caption_lines(draw, "move A past B", 300, 21, 18)
+    assert short == ["move A past B"] and font.size == 18  # a short one keeps the strip's size

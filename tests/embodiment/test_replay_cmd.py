@@ -29,7 +29,8 @@ def demo_run(tmp_path_factory):
 
 def test_demo_replay_writes_the_run_folder(demo_run):
     out, r = demo_run
-    assert f"run folder: {out}" in r.output
+    assert f"run folder: {out}\nvideo: {out / 'video.mp4'}" in r.stdout  # as perform says it (issue 26)
+    assert "[" in r.stderr and "s] execute: " in r.stderr  # stage lines in perform's style
     for name in ("trajectory.json", "plan.json", "summary.json", "video.mp4", "contact_sheet.png"):
         assert (out / name).stat().st_size > 0, name
     frames = sorted((out / "frames").glob("*.png"))
@@ -115,3 +116,34 @@ def test_bad_input_is_one_clear_line(tmp_path, args, message):
 def test_missing_path_file(tmp_path):
     r = _replay(str(tmp_path / "nope.json"), "--no-render", "--out", str(tmp_path / "x"))
     assert r.exit_code == 2 and "cannot read" in r.output
+
+
+@pytest.mark.slow
+def test_a_plan_replays_on_the_scene_it_records(tmp_path):
+    """Issue 26: a plan made with --scene replayed on the default scene ran into B and left a failed
+    folder; a plan from a three-block scene replayed without C. plan.json records its scene now."""
+    from l2p_bullet.core.scene import random_between_scene, save_scene
+
+    scene = random_between_scene(2)
+    save_scene(scene, tmp_path / "three.json")
+    r = CliRunner().invoke(main, ["plan", "move A around B", "--scene", str(tmp_path / "three.json"), "--no-plot",
+                                  "--out", str(tmp_path / "p")])
+    assert r.exit_code == 0, r.output
+    doc = json.loads((tmp_path / "p" / "plan.json").read_text())
+    assert doc["scene"] == scene.to_dict() and doc["scene_sha256"] == scene.digest()
+    out = tmp_path / "r"
+    r = _replay(str(tmp_path / "p" / "plan.json"), "--no-render", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    traj = json.loads((out / "trajectory.json").read_text())
+    assert "C" in traj["frames"][0]["poses"]  # replayed with the plan's third block
+    assert json.loads((out / "plan.json").read_text())["scene_sha256"] == scene.digest()
+    # another --scene: refused in one line, before any folder is made
+    save_scene(default_scene(), tmp_path / "default.json")
+    r = _replay(str(tmp_path / "p" / "plan.json"), "--no-render", "--scene", str(tmp_path / "default.json"),
+                "--out", str(tmp_path / "r2"))
+    assert r.exit_code == 2 and "planned on another scene" in r.output and len(r.output.strip().splitlines()) == 1
+    assert not (tmp_path / "r2").exists()
+    # the same scene named again is fine
+    r = _replay(str(tmp_path / "p" / "plan.json"), "--no-render", "--scene", str(tmp_path / "three.json"),
+                "--out", str(tmp_path / "r3"))
+    assert r.exit_code == 0, r.output

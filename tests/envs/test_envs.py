@@ -32,6 +32,16 @@ def test_registered_through_the_module_id_and_the_entry_point():
     assert {"l2p_bullet/Plan2D-v0", "l2p_bullet/Arm-v0"} <= set(gym.registry)
 
 
+def test_the_action_is_required():
+    """Issue 26: gym.make("l2p_bullet/Plan2D-v0") silently made an "around" environment."""
+    import l2p_bullet.envs  # noqa: F401 - registers the ids (Gymnasium 1.x)
+    from l2p_bullet.errors import L2PError
+
+    for env_id in ("l2p_bullet/Plan2D-v0", "l2p_bullet/Arm-v0"):
+        with pytest.raises(L2PError, match=r'say which action .*installed: .*around'):
+            gym.make(env_id)
+
+
 def test_plan2d_passes_gymnasiums_checker():
     check_env(gym.make("l2p_bullet/Plan2D-v0", action="closer").unwrapped, skip_render_check=False)
 

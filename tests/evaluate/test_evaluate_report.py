@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 from click.testing import CliRunner
 
 from l2p_bullet.cli import main
 from l2p_bullet.evaluate.confusion import confusion, touching_finding
+from l2p_bullet.evaluate.report import report_text
 from l2p_bullet.evaluate.results import ResultsStore
 
 
@@ -65,3 +67,22 @@ def test_unknown_settings_are_one_line_errors(tmp_path):
     assert r.exit_code == 2 and "choose one scene set" in r.output
     r = CliRunner().invoke(main, ["evaluate", "--out", str(tmp_path / "c"), "--resume"])
     assert r.exit_code == 2 and "no evaluation to resume" in r.output
+
+
+def test_empty_cells_are_blank_not_zero():
+    rows = [{"run_id": "1", "action": "closer", "error": None, "judged": {"closer": {"success": True}}, "success": 1,
+             "final_gap_blocks": 0.5,
+             "scored": {"closer": 0.9}},
+            {"run_id": "2", "action": "between", "error": "PlanError: no room between B and C", "judged": None},
+            {"run_id": "3", "action": "between", "error": None, "success": 1, "final_gap_blocks": 1.0,
+             "judged": {"closer": {"success": False}, "between": {"success": True}},
+             "scored": {"closer": 0.2, "between": 0.8}}]
+    c = confusion(rows)
+    assert c.asked == ["closer", "between"] and c.recognised == ["closer", "between"] and c.judges[0, 0] == 1.0
+    # between cannot judge nor score closer's one-anchor runs: blank, not 0 %
+    assert math.isnan(c.judges[0, 1]) and math.isnan(c.models[0, 1]) and math.isnan(c.argmax[0, 1])
+    assert c.judges[1].tolist() == [0.0, 1.0] and c.argmax[1].tolist() == [0.0, 1.0]
+    assert c.to_dict()["judges"][0] == [1.0, None]  # null in report.json
+    text = report_text(rows)
+    assert "between: 1 x PlanError: no room between B and C" in text
+    assert "nan" not in text

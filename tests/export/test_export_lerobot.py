@@ -85,6 +85,9 @@ def test_cli_exports_plain_json_by_default_and_lerobot_without_video(runs, tmp_p
     r = CliRunner().invoke(main, ["export", str(runs[0].parent), "--format", "lerobot", "--no-video",
                                   str(tmp_path / "lr")])
     assert r.exit_code == 0, r.output
+    # progress with an ETA on stderr (issue 26: 20 s of silence), the summary alone on stdout
+    assert "export: reading [" in r.stderr and "2/2 episodes (100%)" in r.stderr and "ETA" in r.stderr
+    assert "export: writing [" in r.stderr and json.loads(r.stdout)["episodes"] == 2
     info = json.loads((tmp_path / "lr" / "meta" / "info.json").read_text())
     assert info["fps"] == 30 and info["video_path"] is None and info["total_episodes"] == 2
     assert VIDEO_KEY not in info["features"]

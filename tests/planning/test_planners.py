@@ -196,3 +196,34 @@ def test_train_policy_command_writes_a_policy_tied_to_its_progress_model(tmp_pat
     assert policy["planner"] == before["policy"]["planner"] and policy["training"]["iterations"] == 2
     assert b.manifest["weights"]["policy.safetensors"]["sha256"] != before["weights"]["policy.safetensors"]["sha256"]
     assert set(b.policy_arrays()) >= {"body.0.weight", "mean.weight", "log_std.weight"}
+
+
+def test_train_policy_never_writes_into_the_installed_bundle_by_default(tmp_path, monkeypatch):
+    """Issue 26: ``train-policy ACTION`` replaced the shipped bundle's policy (in an editable install, the
+    repository's files), and its summary ("0.4875 -> 0.4875") disagreed with its iteration lines."""
+    import re
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle, sha256_file
+
+    shipped = builtin_bundle_dir("away")
+    before = {f.name: sha256_file(f) for f in shipped.iterdir() if f.is_file()}
+    monkeypatch.chdir(tmp_path)
+    r = CliRunner().invoke(main, ["train-policy", "away", "--iterations", "2", "--episodes", "4"])
+    assert r.exit_code == 0, r.output
+    (made,) = (tmp_path / "runs").glob("train-policy-*")
+    assert f"a copy of the away bundle in {Path('runs') / made.name}" in r.output
+    assert load_bundle(made).manifest["policy"]["training"]["iterations"] == 2
+    its = [float(x) for x in re.findall(r"iter +\d+  final progress ([0-9.]+)", r.output)]
+    first, last = (float(x) for x in re.search(r"iterations: ([0-9.]+) -> ([0-9.]+)", r.output).groups())
+    assert len(its) == 2 and abs(first - its[0]) < 6e-4 and abs(last - its[1]) < 6e-4, r.output
+    # the shipped bundle, named without --force: refused in one line
+    r = CliRunner().invoke(main, ["train-policy", "away", "--bundle", str(shipped), "--iterations", "1",
+                                  "--episodes", "2"])
+    assert r.exit_code == 2 and "--force" in r.output and len(r.output.strip().splitlines()) == 1, r.output
+    r = CliRunner().invoke(main, ["train-policy", "away", "--out", str(made), "--iterations", "1"])
+    assert r.exit_code == 2 and "already exists" in r.output
+    assert before == {f.name: sha256_file(f) for f in shipped.iterdir() if f.is_file()}

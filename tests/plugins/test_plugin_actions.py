@@ -28,7 +28,7 @@ def plugin(tmp_path, monkeypatch):
 
 def test_plan_works_for_a_plugin_action_and_its_judge_is_its_progress_model(plugin, tmp_path):
     out = tmp_path / "plan"
-    r = CliRunner().invoke(main, ["plan", "move A towards the side of B", "--out", str(out)])
+    r = CliRunner().invoke(main, ["plan", "move A towards the side of B", "--out", str(out), "--json"])
     assert r.exit_code == 0, r.output
     summary = json.loads(r.output)
     assert summary["action"] == plugin

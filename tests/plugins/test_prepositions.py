@@ -277,6 +277,31 @@ def test_scaffold_declares_the_frame_anchors_and_judge(tmp_path):
         scaffold("left2", ["leftish"], tmp_path / "d", frame="sideways")
 
 
+@pytest.mark.parametrize("frame", ["viewer", "viewer:camera", "relative"])
+def test_the_scaffolds_example_script_writes_what_its_frame_needs(tmp_path, monkeypatch, frame):
+    """Issue 26: for a viewer-frame plugin the README's example script wrote no viewer_xy, and training
+    refused its files. The script is run as the README gives it."""
+    import re
+    import runpy
+
+    from l2p_bullet.data.demos import DEMO_BLOCK_SIZE
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    s = scaffold("leftish", ["leftwards of"], tmp_path / "p", frame=frame)
+    script = re.search(r"```python\n(.*?)```", (s.root / "README.md").read_text(), re.S).group(1)
+    (s.root / "write_demos.py").write_text(script)
+    monkeypatch.chdir(s.root)
+    runpy.run_path("write_demos.py")
+    arrays = load_session(s.root / "demos" / "leftish_Session1.npz")
+    want = parse_frame(frame).viewpoint_xy()
+    if want is None:
+        assert "viewer_xy" not in arrays
+    else:
+        assert np.allclose(arrays["viewer_xy"], want / 0.05 * DEMO_BLOCK_SIZE, atol=0.01)
+    demos = load_demos("leftish", sorted((s.root / "demos").glob("*.npz")))
+    assert demos and all((d.viewer is None) == (want is None) for d in demos)
+
+
 def test_a_changed_declaration_needs_retraining(tmp_path):
     import shutil
 

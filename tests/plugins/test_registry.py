@@ -131,6 +131,17 @@ def test_actions_check_loads_each_plugin(plugins_dir):
     checked = CliRunner().invoke(main, ["actions", "--json", "--check"])
     rows = {r["name"]: r for r in json.loads(checked.output)["actions"]}
     assert not rows["upside"]["ok"] and "boom" in rows["upside"]["error"]
+    text = CliRunner().invoke(main, ["actions", "--check"])  # the text ends with its verdict (issue 26)
+    assert text.exit_code == 1 and text.stdout.strip().splitlines()[-1].endswith("plugins broken, 0 conflicts")
+
+
+def test_actions_check_ends_with_all_ok():
+    """With only the built-ins (the project's own environment), --check ends "all N plugins OK"."""
+    from l2p_bullet.plugins import registry as reg
+
+    r = CliRunner().invoke(main, ["actions", "--check"])
+    n = len(reg.discover())
+    assert r.exit_code == 0 and r.stdout.strip().splitlines()[-1].startswith(f"all {n} plugins OK"), r.output
 
 
 def test_new_action_scaffold_never_overwrites(tmp_path):

@@ -237,3 +237,21 @@ def test_import_export_and_report_commands(tmp_path):
                  ["review", str(tmp_path / "no-such-runs")]):
         r = run(main, args)
         assert r.exit_code == 2 and r.output.startswith("error: ") and r.output.count("\n") == 1, (args, r.output)
+
+
+def test_docs_list_the_blind_mode_keys_the_page_uses():
+    """Issue 26: docs/review.md said `a` away, `r` around while the page used `a` for around (the keys
+    followed the plugins' discovery order). The docs' key table is checked against the one table in
+    code (label_keys over blind_labels), in any discovery order."""
+    import re
+    from pathlib import Path
+
+    from l2p_bullet.review.queue import blind_labels, label_keys
+
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "review.md").read_text()
+    row = next(line for line in doc.splitlines() if line.startswith("| letters shown on the buttons"))
+    documented = re.findall(r"`([a-z])` ([a-z-]+)", row)
+    builtins = ["closer", "away", "next-to", "past", "around"]
+    for order in (builtins, sorted(builtins), list(reversed(builtins))):
+        served = [(k["key"], "none" if k["label"] == "none" else k["label"]) for k in label_keys(blind_labels(order))]
+        assert [(k, "none" if label == "none" else label) for k, label in documented] == served

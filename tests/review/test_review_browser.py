@@ -88,11 +88,16 @@ def test_blind_mode_label_then_grade(live, chromium):  # noqa: F811
     s = live(mode="blind")
     page, errors = _page(chromium, s.url)
     first = _login(page, "bob")
+    help_line = page.inner_text("#label-keys-help")  # the page shows its keys (issue 26)
+    for hint in ("c: closer", "a: away", "n: next-to", "p: past", "r: around", "x: none of these"):
+        assert hint in help_line, help_line
     assert page.inner_text("#sentence") == ""
     assert "move A" not in page.content()
     _keys(page, "5", "Enter")  # no label yet: refused on the page, nothing sent
     assert "pick the action" in page.inner_text("#status")
-    _keys(page, "p", "Enter")
+    _keys(page, "p")  # picking it answers the red line: it goes (issue 26: it stayed)
+    assert page.inner_text("#status") == "" and page.get_attribute("#status", "class") == ""
+    _keys(page, "Enter")
     _shown(page, first)
     (g,) = s.store.grades()
     assert (g.mode, g.label, g.grade) == ("blind", "past", 5)
@@ -133,3 +138,26 @@ def test_the_same_reviewer_in_two_windows_never_overwrites_silently(live, chromi
     (g,) = s.store.grades()
     assert g.grade == 6 and [e["grade"] for e in s.store.log()] == [4, 6]
     context.close()
+
+
+def test_a_phone_wide_page_shows_the_whole_grading_panel(live, chromium, tmp_path):  # noqa: F811
+    """Issue 26: at 390 px wide the grading panel was cut off (two columns of at least 300 and 280 px)."""
+    s = live(mode="blind")
+    page, errors = open_page(chromium, s.url, 390, 844)
+    _login(page, "cy")
+    page.wait_for_timeout(500)
+    widths = page.evaluate("""() => ({page: document.documentElement.scrollWidth,
+        panel: document.getElementById('panel').getBoundingClientRect().right,
+        submit: document.getElementById('submit').getBoundingClientRect().right,
+        grade10: document.querySelector('#grades button[data-grade="10"]').getBoundingClientRect().right,
+        none: document.querySelector('#label-buttons button[data-label="none"]').getBoundingClientRect().right,
+        media: document.getElementById('media').getBoundingClientRect().right})""")
+    assert all(v <= 390 for v in widths.values()), widths  # nothing beyond the screen's right edge
+    path = tmp_path / "review_390.png"
+    page.screenshot(path=str(path), full_page=True)
+    if os.environ.get("L2P_SCREENSHOT_DIR"):  # to look at it
+        shutil.copy(path, Path(os.environ["L2P_SCREENSHOT_DIR"]) / path.name)
+    _keys(page, "5", "p", "Enter")  # and it still grades
+    page.wait_for_function("document.getElementById('status').textContent === 'saved'")
+    assert [(g.label, g.grade) for g in s.store.grades()] == [("past", 5)]
+    assert not errors

@@ -81,12 +81,23 @@ def test_train_and_perform_shows_the_video(live, chromium):  # noqa: F811
     s = live(frame="viewer", ensemble=1, epochs=2)
     write_sessions(s.root / "demos", "left-of", sessions=1, events=4, seed=1)
     page, errors = _page(chromium, s.url)
+    page.keyboard.press("s")  # a demonstration that never moved A: refused, in red
+    page.wait_for_timeout(600)
+    page.keyboard.press("e")
+    page.keyboard.press("Enter")
+    page.wait_for_function("document.getElementById('status').classList.contains('error')")
+    assert "block A moved 0.00 blocks" in page.inner_text("#status")
     page.keyboard.press("t")
     page.wait_for_function("document.body.dataset.train === 'training'")
+    assert page.inner_text("#status") == ""  # issue 26: the old refusal stayed through the training
     page.wait_for_function("['done', 'failed'].includes(document.body.dataset.train)", timeout=240_000)
     assert page.get_attribute("body", "data-train") == "done", page.inner_text("#train-status")
     assert "on a new scene" in page.inner_text("#verdict")
     page.wait_for_function("document.getElementById('video').readyState >= 1", timeout=20_000)
     assert page.evaluate("document.getElementById('video').error") is None
+    # the box has the video's own shape (frame and caption strip): no letterbox bars (issue 26)
+    box, media = page.evaluate("""() => { const v = document.getElementById('video');
+        return [v.clientWidth / v.clientHeight, v.videoWidth / v.videoHeight]; }""")
+    assert abs(box / media - 1) < 0.03, (box, media)
     assert (s.action.bundle_dir / "progress.safetensors").is_file()
     assert not errors

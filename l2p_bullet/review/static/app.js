@@ -83,6 +83,13 @@ function buildButtons() {
   if (S.config.mode !== "blind") return;
   $("labels").hidden = false; $("label-keys-help").hidden = false;
   $("grade-question").textContent = "How well does it do the action you picked? 0 = not at all, 10 = perfectly";
+  const help = $("label-keys-help");  // the served table of keys, so the page says what each letter does
+  help.textContent = "";
+  for (const { label, key } of S.config.labels) {
+    const item = document.createElement("span");
+    item.innerHTML = `<kbd>${key}</kbd>: ${label === "none" ? "none of these" : label}`;
+    help.append(item, " ");
+  }
   for (const { label, key } of S.config.labels) {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.label = label;
@@ -117,6 +124,7 @@ async function show(item) {
   $("viewname").textContent = item.view === "3d" ? "the robot (3-D rendering)" : "seen from above (2-D)";
   document.body.classList.toggle("editing", S.pos !== null);
   refreshButtons();
+  S.missing = null;
   status(item.answer ? `your answer from ${item.answer.updated_at.replace("T", " ").slice(0, 19)}: change it and press Enter` : "");
   setState("review");
   S.motion = await api("GET", item.motion);
@@ -129,14 +137,18 @@ function refreshButtons() {
   for (const b of $("label-buttons").children) b.classList.toggle("selected", b.dataset.label === S.label);
 }
 
-function setGrade(g) { S.grade = g; refreshButtons(); }
-function setLabel(l) { S.label = l; refreshButtons(); }
+function setGrade(g) { S.grade = g; refreshButtons(); answered("grade"); }
+function setLabel(l) { S.label = l; refreshButtons(); answered("label"); }
+// "pick the action first" / "give a grade first" is answered by picking it: the red line goes (issue 26)
+function answered(what) { if (S.missing === what) { S.missing = null; status(""); } }
 
 // --- answering ----------------------------------------------------------------------------------
 async function submit() {
   if (!S.item || S.busy) return;
-  if (S.config.mode === "blind" && S.label === null) { status("pick the action first (the letter keys)", "error"); return; }
-  if (S.grade === null) { status("give a grade first: 0-9, or t for 10", "error"); return; }
+  if (S.config.mode === "blind" && S.label === null) {
+    S.missing = "label"; status("pick the action first (the letter keys)", "error"); return;
+  }
+  if (S.grade === null) { S.missing = "grade"; status("give a grade first: 0-9, or t for 10", "error"); return; }
   const body = {
     reviewer: S.reviewer, key: S.item.key, view: S.item.view, grade: S.grade,
     label: S.config.mode === "blind" ? S.label : null, comment: $("comment").value,

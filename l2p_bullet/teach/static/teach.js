@@ -196,6 +196,7 @@ async function train() {
     return;
   }
   $("progress").hidden = false;
+  status("");  // an earlier error ("block A moved 0.00 blocks") is not about the training (issue 26)
   $("video").hidden = true;
   $("verdict").textContent = "";
   document.body.dataset.train = "training";
