@@ -17,7 +17,7 @@ import numpy as np
 from ..core.contracts import trajectory_poses
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import ExecutionError, PathError, ReachError
+from ..errors import PathError, ReachError
 from . import motion, reach
 from .sim.camera import RenderSettings
 
@@ -111,15 +111,18 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     p, angles = _check(scene, mover, path)
     clock.stage("setup", "setup")
     own = world is None
-    if own:
-        world = World(scene, visuals=render is not None, egl=render is not None and render.renderer == "egl")
+    if own:  # the world only simulates: rendering happens in the film's own worlds (embodiment/render.py)
+        world = World(scene, visuals=False)
+    film = None
     try:
         if not own:
-            _reuse(world, scene, render)
-        prims = _primitives(world, render)
+            world.reset(scene)
+        film = _film(scene, render, out_dir)
+        prims = _primitives(world, film)
         slide, removed, grasp = _perform(prims, mover, p, angles, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
+        recorder.finish_images()
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
         deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
         stats = _stats(prims) | {"grasp": grasp}
@@ -131,28 +134,30 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                               displacements_m=displaced)
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
-            write_summary(files["summary"], _summary(execution, meta, seed, render))
+            write_summary(files["summary"], _summary(execution, meta, seed, render, film))
         return execution
     finally:
+        if film is not None:
+            film.close()
         if own:
             world.close()
 
 
-def _reuse(world: World, scene: Scene, render: RenderSettings | None) -> None:
-    """Reset a caller's world to ``scene``, once it is clear that it can render what is asked."""
-    if render is not None and not world.visuals:
-        raise ExecutionError("rendering needs a world loaded with the arm's visuals: World(scene, visuals=True)")
-    world.reset(scene)
+def _film(scene: Scene, render: RenderSettings | None, out_dir: Path | None):
+    """The film that draws the episode's frames (None when rendering nothing); its PNGs go to out_dir/frames."""
+    if render is None:
+        return None
+    from .render import Film
+
+    return Film(scene, render, None if out_dir is None else Path(out_dir) / "frames")
 
 
-def _primitives(world: World, render: RenderSettings | None):
-    """The arm's primitives with a recorder (and a camera when rendering) attached to ``world``."""
+def _primitives(world: World, film):
+    """The arm's primitives with a recorder (and the film, when rendering) attached to ``world``."""
     from .record import Recorder
-    from .sim.camera import Camera
     from .sim.primitives import Primitives
 
-    camera = Camera(world, render) if render is not None else None
-    return Primitives(world, Recorder(world, camera))
+    return Primitives(world, Recorder(world, film))
 
 
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
@@ -231,7 +236,7 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     out_dir = Path(out_dir)
     files = {"trajectory": out_dir / "trajectory.json"}
     recorder.write_trajectory(files["trajectory"], meta, sizes)
-    if recorder.camera is not None:
+    if recorder.film is not None:
         files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
     return files
 
@@ -253,7 +258,7 @@ def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
     return deviation, float(lift), displaced
 
 
-def _summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:
+def _summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None, film=None) -> dict:
     from .record import versions
 
     return {
@@ -271,7 +276,9 @@ def _summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None
             **ex.stats,
         },
         "render": None if render is None else {"width": render.width, "height": render.height,
-                                               "fps": render.fps, "renderer": render.renderer},
+                                               "fps": render.fps, "renderer": film.renderer,
+                                               "camera": render.camera.to_dict(), "workers": film.workers,
+                                               "wait_s": round(film.wall_s, 4)},
         "files": {k: v.name for k, v in ex.files.items()},
         "versions": versions(),
         **{k: v for k, v in meta.items() if k not in ("sentence", "action", "mover", "anchor")},

@@ -1,9 +1,10 @@
 """Recording an episode from the simulated world: trajectory.json, frames, video, contact sheet, summary.
 
 The :class:`Recorder` is called after every physics step and samples the world itself (not the plan) at
-a fixed rate; rendering happens on every k-th step only, because one TinyRenderer frame costs as much
-as hundreds of physics steps. PyBullet's own MP4 logging writes nothing in DIRECT mode, so the video is
-written here with imageio-ffmpeg.
+a fixed rate. For the video it only notes the state on every k-th step and hands it to a
+:class:`~.render.Film`, whose worker processes draw it off the simulation's critical path (one frame
+costs as much as hundreds of physics steps). PyBullet's own MP4 logging writes nothing in DIRECT mode,
+so the video is written here with imageio-ffmpeg.
 """
 
 from __future__ import annotations
@@ -27,10 +28,10 @@ def _r(v: float) -> float:
 class Recorder:
     """Samples trajectory frames every ``1/fps`` s and images every ``1/render_fps`` s of sim time."""
 
-    def __init__(self, world, camera=None, fps: float = TRAJECTORY_FPS):
-        self.world, self.camera, self.fps = world, camera, fps
+    def __init__(self, world, film=None, fps: float = TRAJECTORY_FPS):
+        self.world, self.film, self.fps = world, film, fps
         self.traj_every = max(1, round(1.0 / (fps * world.dt)))
-        self.render_every = max(1, round(1.0 / (camera.settings.fps * world.dt))) if camera else 0
+        self.render_every = max(1, round(1.0 / (film.settings.fps * world.dt))) if film else 0
         self.frames: list[dict] = []
         self.images: list[np.ndarray] = []
         self.image_times: list[float] = []  # sim time of each image (the video's caption strip needs it)
@@ -43,12 +44,16 @@ class Recorder:
         if n % self.traj_every == 0:
             self.frames.append(self.snapshot())
         if self.render_every and n % self.render_every == 0:
-            import time
+            from .render import capture
 
-            t0 = time.perf_counter()
-            self.images.append(self.camera.render())
-            self.image_times.append(self.world.time)
-            self.render_s += time.perf_counter() - t0
+            self.film.add(capture(self.world))
+
+    def finish_images(self) -> None:
+        """Wait for the film's frames (drawn while the episode ran): ``images``, ``image_times``, ``render_s``."""
+        if self.film is not None and not self.images:
+            self.images = self.film.finish()
+            self.image_times = [s.t for s in self.film.states]
+            self.render_s = self.film.render_s
 
     def snapshot(self) -> dict:
         poses = {name: [_r(v) for v in pose] for name, pose in self.world.poses().items()}
@@ -91,7 +96,7 @@ class Recorder:
         path.write_text(dumps_json(doc, separators=(",", ":")) + "\n")
 
     def write_images(self, out: Path, video: str = "mp4", sentence: str | None = None) -> dict[str, Path]:
-        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path.
+        """The video and contact_sheet.png (frames/NNNN.png the film's workers wrote); returns name -> path.
 
         Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
         the frames and the contact sheet stay the raw renders.
@@ -102,13 +107,8 @@ class Recorder:
 
         if not self.images:
             return {}
-        files: dict[str, Path] = {}
-        folder = out / "frames"
-        folder.mkdir(exist_ok=True)
-        for i, img in enumerate(self.images):
-            imageio.imwrite(folder / f"{i:04d}.png", img)
-        files["frames"] = folder
-        fps = self.camera.settings.fps
+        files: dict[str, Path] = {"frames": out / "frames"}
+        fps = self.film.settings.fps
         shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
                             [f["progress"] for f in self.frames])
         captioned = [overlay(img, sentence, p) for img, p in zip(self.images, shown, strict=True)]
