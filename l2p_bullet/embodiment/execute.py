@@ -116,9 +116,9 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     film = None
     try:
         if not own:
-            world.reset(scene)
-        film = _film(scene, render, out_dir)
-        prims = _primitives(world, film)
+            _reuse(world, scene, render)
+        prims = _primitives(world, render, out_dir)
+        film = prims.recorder.film
         slide, removed, grasp = _perform(prims, mover, p, angles, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
@@ -143,20 +143,19 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             world.close()
 
 
-def _film(scene: Scene, render: RenderSettings | None, out_dir: Path | None):
-    """The film that draws the episode's frames (None when rendering nothing); its PNGs go to out_dir/frames."""
-    if render is None:
-        return None
-    from .render import Film
-
-    return Film(scene, render, None if out_dir is None else Path(out_dir) / "frames")
+def _reuse(world: World, scene: Scene, render: RenderSettings | None = None) -> None:
+    """Reset a caller's world to ``scene`` (any world will do: rendering happens in the film's own worlds)."""
+    world.reset(scene)
 
 
-def _primitives(world: World, film):
-    """The arm's primitives with a recorder (and the film, when rendering) attached to ``world``."""
+def _primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
+    """The arm's primitives with a recorder attached to ``world`` and, when rendering, the film that draws
+    its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
     from .record import Recorder
+    from .render import Film
     from .sim.primitives import Primitives
 
+    film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames")
     return Primitives(world, Recorder(world, film))
 
 

@@ -47,19 +47,31 @@ class Recorder:
             from .render import capture
 
             self.film.add(capture(self.world))
+            self.image_times.append(self.world.time)
+
+    @property
+    def camera(self):
+        """The film (None when rendering nothing); the name from before frames were drawn by a film."""
+        return self.film
 
     def finish_images(self) -> None:
-        """Wait for the film's frames (drawn while the episode ran): ``images``, ``image_times``, ``render_s``."""
+        """Wait for the film's frames (drawn while the episode ran): ``images`` and ``render_s``."""
         if self.film is not None and not self.images:
             self.images = self.film.finish()
-            self.image_times = [s.t for s in self.film.states]
             self.render_s = self.film.render_s
 
     def snapshot(self) -> dict:
         poses = {name: [_r(v) for v in pose] for name, pose in self.world.poses().items()}
         ee, _ = self.world.robot.tool_pose()
         return {"t": _r(self.world.time), "poses": poses, "ee": [_r(v) for v in ee],
-                "grasped": self.grasped, "progress": None}
+                "grasped": self.grasped, "progress": None, "arm": [_r(v) for v in self._arm_joints()]}
+
+    def _arm_joints(self) -> np.ndarray:
+        """The arm's movable joints now (trajectory.json's ``arm``: a replay in 3-D needs the whole arm)."""
+        from .render import movable_joints
+        from .sim.robot import ARM
+
+        return self.world.sim.joint_positions(ARM, movable_joints(self.world))
 
     # --- writing ------------------------------------------------------------------------------
     def fill_progress(self, mover: str | None, anchor: str | list[str] | None,
@@ -81,6 +93,8 @@ class Recorder:
             f["progress"] = _r(v)
 
     def write_trajectory(self, path: Path, meta: dict, sizes: dict[str, float]) -> None:
+        from .render import movable_joints
+
         doc = {
             "schema": 1,
             "sentence": meta.get("sentence"),
@@ -90,7 +104,10 @@ class Recorder:
             # a two-anchor action's every reference object, a viewer-frame action's viewpoint (only then)
             **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
             "fps": self.fps,
-            "objects": {name: {"size": size} for name, size in sizes.items()},
+            "objects": {name: {"size": size, **_colour(self.world, name)} for name, size in sizes.items()},
+            # the arm whose movable joints each frame's "arm" lists (in this order), where its base stands
+            "arm": {"name": self.world.robot.spec.name, "joints": movable_joints(self.world),
+                    "base": [_r(v) for v in self.world.robot.base_xyz]},
             "frames": self.frames,
         }
         path.write_text(dumps_json(doc, separators=(",", ":")) + "\n")
@@ -104,10 +121,15 @@ class Recorder:
         import imageio.v2 as imageio
 
         from .overlay import overlay, progress_at
+        from .render import write_pngs
 
+        self.finish_images()
         if not self.images:
             return {}
         files: dict[str, Path] = {"frames": out / "frames"}
+        if self.film.folder is None:  # the film drew them without writing them
+            files["frames"].mkdir(exist_ok=True)
+            write_pngs(files["frames"], 0, self.images)
         fps = self.film.settings.fps
         shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
                             [f["progress"] for f in self.frames])
@@ -124,6 +146,12 @@ class Recorder:
         files["contact_sheet"] = out / "contact_sheet.png"
         imageio.imwrite(files["contact_sheet"], contact_sheet(self.images))
         return files
+
+
+def _colour(world, name: str) -> dict:
+    scene = getattr(world, "scene", None)
+    obj = next((o for o in scene.objects if o.name == name), None) if scene is not None else None
+    return {} if obj is None else {"color": obj.color}
 
 
 def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4) -> np.ndarray:

@@ -34,6 +34,7 @@ from .sim.camera import RenderSettings
 
 CHUNK = 8  # states per task: enough to amortise a task's overhead, few enough to keep both cores busy
 MAX_WORKERS = 4
+SMALL = 320 * 240  # frames with fewer pixels are drawn in-process: starting a worker costs more than they do
 WARM_UP = 3  # frames an EGL painter draws and drops: its first two show a few pixels of an older state
 
 
@@ -51,13 +52,13 @@ def capture(world) -> State:
     from .sim.robot import ARM
 
     sim = world.sim
-    joints = _movable(world)
+    joints = movable_joints(world)
     q = sim.joint_positions(ARM, joints)
     bodies = tuple((tuple(p), tuple(o)) for p, o in (sim.base_pose(n) for n in world.sizes))
     return State(round(world.time, 6), tuple(float(v) for v in q), bodies)
 
 
-def _movable(world) -> list[int]:
+def movable_joints(world) -> list[int]:
     from .sim.robot import ARM
 
     cached = getattr(world, "_movable_joints", None)
@@ -96,7 +97,7 @@ class Painter:
         from .sim.robot import ARM
 
         sim = self.world.sim
-        sim.reset_joints(ARM, _movable(self.world), state.joints)
+        sim.reset_joints(ARM, movable_joints(self.world), state.joints)
         for name, (pos, orn) in zip(self.names, state.bodies, strict=True):
             sim.set_base_pose(name, pos, orn)
         return self.camera.render()
@@ -139,11 +140,11 @@ def write_pngs(folder: Path, first: int, images: list[np.ndarray]) -> None:
 
 # --- the episode's side -----------------------------------------------------------------------------
 def pool_size(settings: RenderSettings) -> int:
-    """Worker processes to use: ``settings.workers``, or as many as cores (at most 4), and none inside a
-    process that is itself a worker (a pool never nests)."""
+    """Worker processes to use: ``settings.workers``, or as many as cores (at most 4); none inside a
+    process that is itself a worker (a pool never nests) or for frames smaller than 320x240."""
     if settings.workers is not None:
         return max(0, int(settings.workers))
-    if multiprocessing.parent_process() is not None:
+    if multiprocessing.parent_process() is not None or settings.width * settings.height < SMALL:
         return 0
     return min(MAX_WORKERS, os.cpu_count() or 1)
 
