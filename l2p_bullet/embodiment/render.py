@@ -140,10 +140,14 @@ def write_pngs(folder: Path, first: int, images: list[np.ndarray]) -> None:
 
 # --- the episode's side -----------------------------------------------------------------------------
 def pool_size(settings: RenderSettings) -> int:
-    """Worker processes to use: ``settings.workers``, or as many as cores (at most 4); none inside a
-    process that is itself a worker (a pool never nests) or for frames smaller than 320x240."""
+    """Worker processes to use: ``settings.workers``, else the environment's ``L2P_RENDER_WORKERS``, else
+    as many as cores (at most 4); none inside a process that is itself a worker (a pool never nests) or
+    for frames smaller than 320x240."""
     if settings.workers is not None:
         return max(0, int(settings.workers))
+    env = os.environ.get("L2P_RENDER_WORKERS", "").strip()
+    if env.isdigit():  # a machine's owner (or a benchmark) may choose; 0 draws in-process
+        return min(int(env), 16)
     if multiprocessing.parent_process() is not None or settings.width * settings.height < SMALL:
         return 0
     return min(MAX_WORKERS, os.cpu_count() or 1)
