@@ -51,6 +51,10 @@ def run_one(options: list[str], workers: int | None, out: Path) -> dict:
             "workers": render.get("workers"), "wait_s": render.get("wait_s")}
 
 
+def _median(values: list[float]) -> float:
+    return sorted(values)[len(values) // 2]
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeats", type=int, default=1)
@@ -73,8 +77,7 @@ def main() -> None:
     print(f"{'setting':<62} {'wall s':>7} {'CPU s':>7} {'sim s':>6} {'wall/sim':>8} {'frames':>6}  renderer")
     table = []
     for name, rs in rows.items():
-        med = lambda k: sorted(r[k] for r in rs)[len(rs) // 2]  # noqa: E731
-        row = {"setting": name, **{k: med(k) for k in ("wall_s", "cpu_s", "simulated_s")},
+        row = {"setting": name, **{k: _median([r[k] for r in rs]) for k in ("wall_s", "cpu_s", "simulated_s")},
                "frames": rs[0]["frames"], "renderer": rs[0]["renderer"], "runs": rs}
         row["wall_per_sim"] = row["wall_s"] / row["simulated_s"]
         table.append(row)
