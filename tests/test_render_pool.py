@@ -135,3 +135,58 @@ def test_video_options_are_checked():
     for fps in (0, 61, float("nan"), True):
         with pytest.raises(ExecutionError, match="frames per second"):
             RenderSettings(fps=fps).check()
+
+
+def test_bad_video_options_are_one_line_errors_before_anything_is_written(tmp_path):
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    for opts, msg in ((["--resolution", "641x480"], "multiple of 8"), (["--fps", "0"], "frames per second"),
+                      (["--camera", "veiwer"], 'Did you mean "viewer"'), (["--resolution", "big"], "WIDTHxHEIGHT")):
+        r = CliRunner().invoke(main, ["perform", "move A closer to B", "--out", str(tmp_path / "run"), *opts])
+        assert r.exit_code == 2 and msg in r.output and r.output.count("\n") == 1, r.output
+        assert not (tmp_path / "run").exists()
+    r = CliRunner().invoke(main, ["replay", "--demo", "past:0", "--width", "161", "--out", str(tmp_path / "r")])
+    assert r.exit_code == 2 and "multiple of 8" in r.output and not (tmp_path / "r").exists()
+
+
+def _marked(mark: str) -> list[int]:
+    """Processes whose environment holds ``mark`` (the command's and any worker it started)."""
+    from pathlib import Path
+
+    out = []
+    for p in Path("/proc").iterdir():
+        try:
+            if p.name.isdigit() and mark.encode() in (p / "environ").read_bytes():
+                out.append(int(p.name))
+        except OSError:
+            continue
+    return out
+
+
+@pytest.mark.slow
+def test_ctrl_c_stops_the_render_workers_at_once(tmp_path):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    import uuid
+
+    from interrupt import ctrl_c_as_at_a_terminal
+
+    mark = f"L2P_TEST_MARK={uuid.uuid4().hex}"
+    env = dict(os.environ, L2P_RENDER_WORKERS="2", L2P_TEST_MARK=mark.split("=", 1)[1])
+    p = subprocess.Popen([sys.executable, "-m", "l2p_bullet.cli", "perform", "move A around B", "--out",
+                          str(tmp_path / "run"), "--resolution", "320x240", "-q"], env=env, text=True,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=ctrl_c_as_at_a_terminal)
+    deadline = time.time() + 60
+    while len(_marked(mark)) < 3 and time.time() < deadline and p.poll() is None:  # the command and 2 workers
+        time.sleep(0.2)
+    assert len(_marked(mark)) >= 3, "the render workers never started"
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=30)
+    assert p.returncode == 130 and "Traceback" not in err, err
+    time.sleep(0.5)
+    assert _marked(mark) == []  # no worker outlives the command

@@ -112,7 +112,10 @@ _PAINTER: Painter | None = None
 
 def _start(scene: Scene, settings: RenderSettings) -> None:
     """Pool initializer: this worker's painter (one world, one EGL context), warmed by one frame."""
+    import signal
+
     global _PAINTER
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the main process's: it stops the pool, quietly
     os.environ.setdefault("LP_NUM_THREADS", "1")  # Mesa's software rasteriser: one thread per worker process
     _PAINTER = Painter(scene, settings)
 
@@ -198,8 +201,10 @@ class Film:
         t0 = time.perf_counter()
         try:
             images = self._collect() if self._pool is not None else None
-        finally:
+        except BaseException:  # Ctrl-C while waiting for the frames: stop the workers at once
             self.close()
+            raise
+        self.close(wait=True)
         if images is None:
             images = self._serial()
         self.wall_s = time.perf_counter() - t0
@@ -244,8 +249,13 @@ class Film:
         self.render_s += time.perf_counter() - t0
         return images
 
-    def close(self) -> None:
-        """Stop the workers (idempotent; on an error or Ctrl-C too, cancelling what they have not begun)."""
-        if self._pool is not None:
-            self._pool.shutdown(wait=True, cancel_futures=True)
-            self._pool = None
+    def close(self, wait: bool = False) -> None:
+        """Stop the workers (idempotent). Without ``wait`` (an error, Ctrl-C: the frames will not be used)
+        they are terminated at once rather than left to finish the frames they are drawing."""
+        pool, self._pool = self._pool, None
+        if pool is None:
+            return
+        if not wait:
+            for proc in list(getattr(pool, "_processes", {}).values()):  # no public way before Python 3.14
+                proc.terminate()
+        pool.shutdown(wait=True, cancel_futures=True)
