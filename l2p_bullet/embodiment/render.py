@@ -179,10 +179,24 @@ class Film:
         if self.folder is not None:
             self.folder.mkdir(parents=True, exist_ok=True)
         if self.workers > 1:
-            ctx = multiprocessing.get_context("spawn")  # no fork of a process holding a simulator
+            self._start_pool(scene)
+
+    def _start_pool(self, scene: Scene) -> None:
+        """Spawn the workers with Ctrl-C blocked: the children inherit the blocked signal (a Ctrl-C at the
+        terminal, sent to them too, never prints a traceback from one still starting up), and a Ctrl-C
+        here waits until every child is launched, then stops them (execute_path closes the film)."""
+        import signal
+
+        ctx = multiprocessing.get_context("spawn")  # no fork of a process holding a simulator
+        blocked = hasattr(signal, "pthread_sigmask")
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if blocked else None
+        try:
             self._pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start,
                                              initargs=(scene, self.settings))
-            self._warm = [self._pool.submit(_ready) for _ in range(self.workers)]
+            self._warm = [self._pool.submit(_ready) for _ in range(self.workers)]  # launches them all
+        finally:
+            if blocked:
+                signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
     def add(self, state: State) -> None:
         self.states.append(state)
