@@ -13,7 +13,7 @@ $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet $(TORCH)
-	$(PY) -m pip install --quiet -e '.[test,ray,export]'  # the extras' tests (evaluate --ray local, export) run in CI
+	$(PY) -m pip install --quiet -e '.[test,ray,export,rerun]'  # the extras' tests (evaluate --ray local, export) run in CI
 	touch $@
 
 install: $(VENV)/.installed

@@ -31,7 +31,7 @@ def make_runs(root: Path) -> Path:
         src = root.parent / "review-runs-original"
         for i, (sentence, seed, render) in enumerate(RUNS):
             perform(sentence, random_scene(seed), out_dir=src / f"run{i}", render=render,
-                    render_settings=RenderSettings(width=160, height=120, fps=5))
+                    render_settings=RenderSettings(width=320, height=240, fps=5, workers=0))
         _made["runs"] = src
     shutil.copytree(_made["runs"], root, dirs_exist_ok=True)
     return root

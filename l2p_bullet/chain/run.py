@@ -172,12 +172,13 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     settings = (ex.DEFAULT_RENDER if render_settings is None else render_settings) if render else None
     own = world is None
     clock.stage("setup", "setting up the simulated world")
-    if own:
-        world = World(scene, visuals=settings is not None, egl=settings is not None and settings.renderer == "egl")
+    if own:  # the world only simulates: the film's own worlds draw the frames (embodiment/render.py)
+        world = World(scene, visuals=False)
+    prims = None
     try:
         if not own:
             ex._reuse(world, scene, settings)
-        prims = ex._primitives(world, settings)
+        prims = ex._primitives(world, settings, out)
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves
         results: list[ClauseResult] = []
@@ -201,6 +202,8 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         merge_timings(out / "summary.json", result.timings)
         return result
     finally:
+        if prims is not None and prims.recorder.film is not None:
+            prims.recorder.film.close()  # its render workers stop, also when a clause failed half-way
         if own:
             world.close()
 

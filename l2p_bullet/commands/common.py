@@ -66,3 +66,26 @@ def expand_greedy(args: list[str], names: tuple[str, ...]) -> list[str]:
         else:
             out.append(a)
     return out
+
+
+def video_options(f):
+    """--resolution, --fps, --camera and --renderer: how the run's video is filmed (perform, replay)."""
+    f = click.option("--renderer", type=click.Choice(["egl", "tiny"]), default="egl", show_default=True,
+                     help="egl: PyBullet's EGL plugin (Mesa's software driver without a GPU; falls back to tiny "
+                          "with a note where it cannot start); tiny: TinyRenderer.")(f)
+    f = click.option("--camera", default="viewer", show_default=True, metavar="NAME|JSON",
+                     help="viewer (behind the robot: its left is the video's left), robot (facing it), side, top, "
+                          'or a JSON camera {"eye": [x, y, z], "target": [x, y, z], "fov": 45}.')(f)
+    f = click.option("--fps", "fps", type=float, default=15.0, show_default=True,
+                     help="Video frames per second of simulated time (1-60).")(f)
+    f = click.option("--resolution", default="640x480", show_default=True, metavar="WxH",
+                     help="Video frame size in pixels (width a multiple of 8).")(f)
+    return f
+
+
+def render_settings(resolution: str, fps: float, camera: str, renderer: str, video: str = "mp4"):
+    """RenderSettings from the video options, checked (one-line errors) before anything runs."""
+    from ..embodiment.sim.camera import RenderSettings, check_fps, parse_camera, parse_resolution
+
+    width, height = parse_resolution(resolution)
+    return RenderSettings(width, height, check_fps(fps), renderer, video, parse_camera(camera)).check()

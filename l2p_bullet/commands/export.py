@@ -11,9 +11,10 @@ from .common import force_option
 
 @click.command("export")
 @click.argument("runs", nargs=-1, type=click.Path(exists=True))
-@click.argument("out", type=click.Path(file_okay=False))
-@click.option("--format", "fmt", type=click.Choice(["json", "lerobot"]), default="json", show_default=True,
-              help="json: OUT/episodes.jsonl; lerobot: a LeRobot v3.0 dataset (needs l2p-bullet[export]).")
+@click.argument("out", type=click.Path())
+@click.option("--format", "fmt", type=click.Choice(["json", "lerobot", "rerun"]), default="json", show_default=True,
+              help="json: OUT/episodes.jsonl; lerobot: a LeRobot v3.0 dataset (needs l2p-bullet[export]); "
+                   "rerun: the file OUT.rrd, a 3-D replay for the Rerun viewer (needs l2p-bullet[rerun]).")
 @click.option("--demos", multiple=True, metavar="SPEC",
               help="Also the shipped human demonstrations, replayed by the arm: all, ACTION or ACTION:INDEX (repeatable).")
 @click.option("--no-video", is_flag=True, help="Leave the camera images out (lerobot), and render no demonstration.")
@@ -43,6 +44,9 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
     sources = run_folders(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
+    if fmt == "rerun":
+        click.echo(json.dumps(_export_rerun(sources, out, demos, force)))
+        return
     specs = demo_specs(list(demos)) if demos else []
     # evaluate's progress bar on stderr: a rendered demonstration takes seconds each (issue 26)
     bar = ProgressBar(len(sources) + len(specs), unit="episodes", label="export: reading")
@@ -73,6 +77,27 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
         else:
             path = write_jsonl(episodes, folder)
             click.echo(json.dumps({"out": str(path), "episodes": len(episodes)}))
+
+
+def _export_rerun(sources: list, out: str, demos: tuple[str, ...], force: bool) -> dict:
+    """``--format rerun``: one .rrd file (never a folder), replaced only with --force."""
+    from pathlib import Path
+
+    from ..errors import PathError
+    from ..export.rerun import write_rerun
+
+    path = Path(out)
+    if demos:
+        raise PathError("--format rerun exports run folders; replay a demonstration first (l2p-bullet replay --demo)")
+    if path.suffix != ".rrd":
+        raise PathError(f"--format rerun writes one file: name it OUT.rrd (got {out})")
+    if path.is_symlink() or (path.exists() and not path.is_file()):
+        raise PathError(f"{out} exists and is not a plain file; choose another name")
+    if path.exists() and not force:
+        raise PathError(f"{out} exists; add --force to replace it")
+    if not path.parent.is_dir():
+        raise PathError(f"no folder {path.parent} to write {path.name} into")
+    return write_rerun(sources, path)
 
 
 COMMANDS: list[click.Command] = [export_cmd]

@@ -6,7 +6,14 @@ import time
 
 import click
 
-from .common import force_option, load_scene_or_default, scene_option, seed_option
+from .common import (
+    force_option,
+    load_scene_or_default,
+    render_settings,
+    scene_option,
+    seed_option,
+    video_options,
+)
 
 
 @click.command("perform")
@@ -18,11 +25,13 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--planner", default="default", show_default=True,
               help="Planner: default (the action's choice), mixed, greedy, beam, discrete or reinforce (docs/planning.md).")
 @click.option("--no-render", is_flag=True, help="Skip frames and video (much faster).")
+@video_options
 @force_option
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
 def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
-                no_render: bool, force: bool, quiet: bool, as_json: bool) -> None:
+                no_render: bool, resolution: str, fps: float, camera: str, renderer: str, force: bool, quiet: bool,
+                as_json: bool) -> None:
     """Make the arm perform SENTENCE, e.g. "move A around B", and record the run.
 
     \b
@@ -51,9 +60,10 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     if is_chain(sentence):
         return _perform_chain(sentence, scene_path, seed, out, planner, no_render, force, on_stage, as_json)
     try:
+        settings = None if no_render else render_settings(resolution, fps, camera, renderer)
         scene = load_scene_or_default(scene_path)
         r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
-                    on_stage=on_stage)
+                    on_stage=on_stage, render_settings=settings)
     except L2PError as e:
         if as_json:  # scripts read why on stdout; the one-line error still goes to stderr (exit 2)
             click.echo(dumps_json(error_json(sentence, e), indent=1))

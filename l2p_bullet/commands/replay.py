@@ -6,7 +6,14 @@ import time
 
 import click
 
-from .common import force_option, load_scene_or_default, scene_option, seed_option
+from .common import (
+    force_option,
+    load_scene_or_default,
+    render_settings,
+    scene_option,
+    seed_option,
+    video_options,
+)
 
 
 @click.command()
@@ -20,16 +27,14 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--mover", default="A", show_default=True, help="Block that moves (demos and scoring inputs).")
 @click.option("--anchor", default="B", show_default=True, help="Block it moves relative to.")
 @click.option("--no-render", is_flag=True, help="Skip images and video (much faster).")
-@click.option("--renderer", type=click.Choice(["tiny", "egl"]), default="tiny", show_default=True,
-              help="tiny: deterministic CPU renderer; egl: faster where the plugin loads.")
-@click.option("--width", type=click.IntRange(16, 4096), default=320, show_default=True, help="Frame width in pixels.")
-@click.option("--height", type=click.IntRange(16, 4096), default=240, show_default=True, help="Frame height in pixels.")
-@click.option("--render-fps", type=click.FloatRange(0.1, 240.0), default=10.0, show_default=True,
-              help="Rendered frames per second of simulated time.")
+@video_options
+@click.option("--width", type=int, default=None, hidden=True, help="Frame width (old spelling of --resolution).")
+@click.option("--height", type=int, default=None, hidden=True, help="Frame height (old spelling of --resolution).")
+@click.option("--render-fps", type=float, default=None, hidden=True, help="Old spelling of --fps.")
 @click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
               help="Video format written next to the frames.")
-def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_render, renderer, width, height,
-           render_fps, video):
+def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_render, resolution, fps, camera, renderer,
+           width, height, render_fps, video):
     """Execute a 2-D motion of a block with the arm in PyBullet.
 
     \b
@@ -45,12 +50,17 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     from ..core.runfolder import run_folder
     from ..core.scene import load_scene
     from ..embodiment.replay import motion_source, replay_scene, run_replay
-    from ..embodiment.sim.camera import RenderSettings
     from ..errors import PathError
 
     if (path_json is None) == (demo is None):
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")
-    render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
+    if width is not None or height is not None:  # the spelling before --resolution still works
+        from ..embodiment.sim.camera import parse_resolution
+
+        w, h = parse_resolution(resolution)
+        resolution = f"{w if width is None else width}x{h if height is None else height}"
+    render = None if no_render else render_settings(resolution, fps if render_fps is None else render_fps, camera,
+                                                    renderer, video)
     if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed):
         return
     scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)

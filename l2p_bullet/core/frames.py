@@ -31,8 +31,10 @@ VIEWPOINTS: dict[str, tuple[float, float]] = {
     "robot": ROBOT_BASE_XY,
     "camera": (0.5, -0.5),
 }
-"""Named viewpoints (scene frame, metres): the arm's base, and the video camera's position on the table
-plane (``embodiment/sim/camera.py``'s ``CameraPose.eye``; a test keeps the two equal)."""
+"""Named viewpoints (scene frame, metres): the arm's base, and the position on the table plane of the
+camera that filmed the runs until issue 24, across the table facing the robot (``embodiment/sim/camera.py``'s
+``robot`` camera, ``--camera robot``; a test keeps the two equal). The default camera, ``viewer``, stands
+behind the robot, so its left is the ``robot`` viewpoint's left."""
 
 MAX_ANCHORS = 2
 """Reference objects a sentence may name: one ("next to B") or two ("between B and C")."""

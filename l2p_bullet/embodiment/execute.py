@@ -18,10 +18,11 @@ from ..core.contracts import trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import ExecutionError, PathError, ReachError
+from ..errors import PathError, ReachError
 from . import motion, reach
 from .record import Recorder, versions
-from .sim.camera import Camera, RenderSettings
+from .render import Film
+from .sim.camera import RenderSettings
 from .sim.primitives import Primitives
 from .sim.world import World
 
@@ -46,6 +47,7 @@ class Execution:
     duration_s: float = 0.0  # simulated time of the episode
     stats: dict = field(default_factory=dict)
     displacements_m: dict[str, float] = field(default_factory=dict)  # per block not held: its largest displacement
+    render: dict | None = None  # how the frames were drawn (renderer used, camera, workers, wait): summary.json
 
 
 def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
@@ -115,15 +117,18 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     p, angles = _check(scene, mover, path)
     clock.stage("setup", "setup")
     own = world is None
-    if own:
-        world = World(scene, visuals=render is not None, egl=render is not None and render.renderer == "egl")
+    if own:  # the world only simulates: rendering happens in the film's own worlds (embodiment/render.py)
+        world = World(scene, visuals=False)
+    film = None
     try:
         if not own:
             _reuse(world, scene, render)
-        prims = _primitives(world, render)
+        prims = _primitives(world, render, out_dir)
+        film = prims.recorder.film
         slide, removed, grasp = _perform(prims, mover, p, angles, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
+        recorder.finish_images()
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
         deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
         stats = _stats(prims) | {"grasp": grasp}
@@ -132,29 +137,30 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         execution = Execution(recorder.frames, {k: round(v, 4) for k, v in clock.timings.items()}, files,
                               max_deviation_m=deviation, anchor_displacement_m=max(displaced.values(), default=0.0),
                               max_lift_m=lift, constraint_removed=removed, duration_s=world.time, stats=stats,
-                              displacements_m=displaced)
+                              displacements_m=displaced, render=_render_info(render, film))
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
             if summary:
                 write_summary(files["summary"], execution_summary(execution, meta, seed, render))
         return execution
     finally:
+        if film is not None:
+            film.close()
         if own:
             world.close()
 
 
-def _reuse(world: World, scene: Scene, render: RenderSettings | None) -> None:
-    """Reset a caller's world to ``scene``, once it is clear that it can render what is asked."""
-    if render is not None and not world.visuals:
-        raise ExecutionError("rendering needs a world loaded with the arm's visuals: World(scene, visuals=True)")
+def _reuse(world: World, scene: Scene, render: RenderSettings | None = None) -> None:
+    """Reset a caller's world to ``scene`` (any world will do: rendering happens in the film's own worlds)."""
     world.reset(scene)
 
 
-def _primitives(world: World, render: RenderSettings | None):
-    """The arm's primitives with a recorder (and a camera when rendering) attached to ``world``."""
+def _primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
+    """The arm's primitives with a recorder attached to ``world`` and, when rendering, the film that draws
+    its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
 
-    camera = Camera(world, render) if render is not None else None
-    return Primitives(world, Recorder(world, camera))
+    film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames")
+    return Primitives(world, Recorder(world, film))
 
 
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
@@ -233,7 +239,7 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     out_dir = Path(out_dir)
     files = {"trajectory": out_dir / "trajectory.json"}
     recorder.write_trajectory(files["trajectory"], meta, sizes)
-    if recorder.camera is not None:
+    if recorder.film is not None:
         files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
     return files
 
@@ -255,6 +261,15 @@ def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
     return deviation, float(lift), displaced
 
 
+def _render_info(render: RenderSettings | None, film) -> dict | None:
+    """summary.json's ``render``: the settings asked for and what the film did (the renderer it could start,
+    EGL or Tiny; its workers; how long the episode waited for its frames)."""
+    if render is None or film is None:
+        return None
+    return {"width": render.width, "height": render.height, "fps": render.fps, "renderer": film.renderer,
+            "camera": render.camera.to_dict(), "workers": film.workers, "wait_s": round(film.wall_s, 4)}
+
+
 def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:
     """What summary.json says about an execution (a replay's whole summary; the start of perform's)."""
     return {
@@ -271,8 +286,7 @@ def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettin
             "constraint_removed": ex.constraint_removed,
             **ex.stats,
         },
-        "render": None if render is None else {"width": render.width, "height": render.height,
-                                               "fps": render.fps, "renderer": render.renderer},
+        "render": ex.render,
         "files": {k: v.name for k, v in ex.files.items()},
         "versions": versions(),
         **{k: v for k, v in meta.items() if k not in ("sentence", "action", "mover", "anchor")},

@@ -1,16 +1,16 @@
 """Recording an episode from the simulated world: trajectory.json, frames, video, contact sheet, summary.
 
 The :class:`Recorder` is called after every physics step and samples the world itself (not the plan) at
-a fixed rate; rendering happens on every k-th step only, because one TinyRenderer frame costs as much
-as hundreds of physics steps. PyBullet's own MP4 logging writes nothing in DIRECT mode, so the video is
-written here with imageio-ffmpeg.
+a fixed rate. For the video it only notes the state on every k-th step and hands it to a
+:class:`~.render.Film`, whose worker processes draw it off the simulation's critical path (one frame
+costs as much as hundreds of physics steps). PyBullet's own MP4 logging writes nothing in DIRECT mode,
+so the video is written here with imageio-ffmpeg.
 """
 
 from __future__ import annotations
 
 import platform
 import sys
-import time
 from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
@@ -19,6 +19,7 @@ import numpy as np
 
 from ..core.contracts import dumps_json, trajectory_poses
 from .overlay import overlay, progress_at
+from .render import capture, movable_joints, write_pngs
 
 TRAJECTORY_FPS = 30.0
 
@@ -30,10 +31,10 @@ def _r(v: float) -> float:
 class Recorder:
     """Samples trajectory frames every ``1/fps`` s and images every ``1/render_fps`` s of sim time."""
 
-    def __init__(self, world, camera=None, fps: float = TRAJECTORY_FPS):
-        self.world, self.camera, self.fps = world, camera, fps
+    def __init__(self, world, film=None, fps: float = TRAJECTORY_FPS):
+        self.world, self.film, self.fps = world, film, fps
         self.traj_every = max(1, round(1.0 / (fps * world.dt)))
-        self.render_every = max(1, round(1.0 / (camera.settings.fps * world.dt))) if camera else 0
+        self.render_every = max(1, round(1.0 / (film.settings.fps * world.dt))) if film else 0
         self.frames: list[dict] = []
         self.images: list[np.ndarray] = []
         self.image_times: list[float] = []  # sim time of each image (the video's caption strip needs it)
@@ -46,16 +47,32 @@ class Recorder:
         if n % self.traj_every == 0:
             self.frames.append(self.snapshot())
         if self.render_every and n % self.render_every == 0:
-            t0 = time.perf_counter()
-            self.images.append(self.camera.render())
+            self.film.add(capture(self.world))
             self.image_times.append(self.world.time)
-            self.render_s += time.perf_counter() - t0
+
+    @property
+    def camera(self):
+        """The film (None when rendering nothing); the name from before frames were drawn by a film."""
+        return self.film
+
+    def finish_images(self) -> None:
+        """Wait for the film's frames (drawn while the episode ran): ``images`` and ``render_s``."""
+        if self.film is not None and not self.images:
+            self.images = self.film.finish()
+            self.render_s = self.film.render_s
 
     def snapshot(self) -> dict:
         poses = {name: [_r(v) for v in pose] for name, pose in self.world.poses().items()}
         ee, _ = self.world.robot.tool_pose()
         return {"t": _r(self.world.time), "poses": poses, "ee": [_r(v) for v in ee],
-                "grasped": self.grasped, "progress": None}
+                "grasped": self.grasped, "progress": None, "arm": [_r(v) for v in self._arm_joints()]}
+
+    def _arm_joints(self) -> np.ndarray:
+        """The arm's movable joints now (trajectory.json's ``arm``: a replay in 3-D needs the whole arm)."""
+        from .render import movable_joints
+        from .sim.robot import ARM
+
+        return self.world.sim.joint_positions(ARM, movable_joints(self.world))
 
     # --- writing ------------------------------------------------------------------------------
     def fill_progress(self, mover: str | None, anchor: str | list[str] | None,
@@ -87,13 +104,16 @@ class Recorder:
             **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
             **({"segments": meta["segments"]} if meta.get("segments") is not None else {}),  # a chain's clauses
             "fps": self.fps,
-            "objects": {name: {"size": size} for name, size in sizes.items()},
+            "objects": {name: {"size": size, **_colour(self.world, name)} for name, size in sizes.items()},
+            # the arm whose movable joints each frame's "arm" lists (in this order), where its base stands
+            "arm": {"name": self.world.robot.spec.name, "joints": movable_joints(self.world),
+                    "base": [_r(v) for v in self.world.robot.base_xyz]},
             "frames": self.frames,
         }
         path.write_text(dumps_json(doc, separators=(",", ":")) + "\n")
 
     def write_images(self, out: Path, video: str = "mp4", sentence: str | list[str] | None = None) -> dict[str, Path]:
-        """frames/NNNN.png, the video and contact_sheet.png; returns name -> path.
+        """The video and contact_sheet.png (frames/NNNN.png the film's workers wrote); returns name -> path.
 
         Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
         the frames and the contact sheet stay the raw renders. ``sentence`` may be a list, one caption per
@@ -103,15 +123,14 @@ class Recorder:
         import imageio.v2 as imageio
 
 
+        self.finish_images()
         if not self.images:
             return {}
-        files: dict[str, Path] = {}
-        folder = out / "frames"
-        folder.mkdir(exist_ok=True)
-        for i, img in enumerate(self.images):
-            imageio.imwrite(folder / f"{i:04d}.png", img)
-        files["frames"] = folder
-        fps = self.camera.settings.fps
+        files: dict[str, Path] = {"frames": out / "frames"}
+        if self.film.folder is None:  # the film drew them without writing them
+            files["frames"].mkdir(exist_ok=True)
+            write_pngs(files["frames"], 0, self.images)
+        fps = self.film.settings.fps
         shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
                             [f["progress"] for f in self.frames])
         texts = sentence if isinstance(sentence, list) else [sentence] * len(self.images)
@@ -128,6 +147,12 @@ class Recorder:
         files["contact_sheet"] = out / "contact_sheet.png"
         imageio.imwrite(files["contact_sheet"], contact_sheet(self.images))
         return files
+
+
+def _colour(world, name: str) -> dict:
+    scene = getattr(world, "scene", None)
+    obj = next((o for o in scene.objects if o.name == name), None) if scene is not None else None
+    return {} if obj is None else {"color": obj.color}
 
 
 def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4) -> np.ndarray:

@@ -42,7 +42,7 @@ class ArmEnv(Plan2DEnv):
             self._world = World(self.scene, visuals=visuals)
         else:
             self._world.reset(self.scene)
-        self._camera = Camera(self._world, RenderSettings()) if visuals else None
+        self._camera = Camera(self._world, RenderSettings(320, 240, renderer="tiny")) if visuals else None
         self._prims = Primitives(self._world, Recorder(self._world))  # trajectory frames at 30 fps: .recorder
         base = tuple(self._prims.robot.base_xyz[:2])
         # the grasp whose wrist sits nearest the middle of its range at the start (the moves are not known yet)

@@ -137,7 +137,8 @@ def demo_episodes(specs: list[str], render: bool | object = True, plugins: list 
     """The shipped human demonstrations, retargeted onto the default scene and performed by the arm
     (``embodiment.replay``, as ``l2p-bullet replay --demo``), with the action's learned progress per frame.
 
-    ``render``: True (the default camera, 320x240 at 10 fps), False, or a ``RenderSettings``."""
+    ``render``: True (the default video settings: 640x480 at 15 fps from the viewer camera), False, or a
+    ``RenderSettings``."""
 
     plugins = registry.discover() if plugins is None else plugins
     scene = default_scene()

@@ -170,7 +170,7 @@ phrases = [{phrases}]
 description = "{description}"
 # Where the relation is seen from: "relative" (it means the same whichever way the table is turned:
 # around, past, closer to), "viewer" (left of, in front of, ... as seen from the robot's base) or
-# "viewer:camera" (as seen from the camera that films the runs).
+# "viewer:camera" (as seen from across the table, where the `--camera robot` video is filmed).
 frame = "{frame}"
 # How many reference objects a sentence names: 1 ("move A <phrase> B") or 2 ("move A between B and C").
 anchors = {anchors}
@@ -200,7 +200,7 @@ Teaches `l2p-bullet perform` the phrases {phrases}, as in `l2p-bullet perform "{
 
 - `frame = "relative"` when the words mean the same whichever way the table is turned (around, past,
   closer to, next to); `frame = "viewer"` when they depend on who looks (left of, right of, in front of,
-  behind as seen from the robot's base; `"viewer:camera"`: as seen from the camera that films the runs).
+  behind as seen from the robot's base; `"viewer:camera"`: as seen from across the table, where `--camera robot` films).
   A viewer-frame action is not trained on mirror images (they would turn left into right): the mirror
   images that end on the wrong side are its negatives;
 - `anchors = 1` for "move A {phrase} B", `anchors = 2` for two reference objects ("move A between B and C").

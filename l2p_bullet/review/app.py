@@ -145,9 +145,20 @@ def _item(queue: ReviewQueue, it: Item, reviewer: str) -> dict:
         "video": f"/api/media/{run.key}/video" if use_video else None,
         "frames": run.frames if (it.view == "3d" and not use_video) else 0,
         "frame_fps": run.render_fps,
+        "viewpoint": viewpoint(it.view, run.camera),
         "motion": f"/api/media/{run.key}/motion",
         "answer": None if mine is None else _answer(mine),
     }
+
+
+def viewpoint(view: str, camera: str | None) -> str:
+    """Where the person watching stands, said on the page: the 2-D view and the default video share the
+    robot's side, so left and right are the words' left and right in both."""
+    from ..embodiment.sim.camera import VIEWER_SIDE
+
+    if view == "2d":
+        return VIEWER_SIDE["top"]
+    return VIEWER_SIDE.get(camera or "", "where the run's own camera stands (summary.json: render.camera)")
 
 
 def _answer(g: GradeRow) -> dict:

@@ -56,7 +56,7 @@ def blind_labels(names: list[str]) -> list[str]:
 def label_keys(labels: list[str]) -> list[dict]:
     """A one-letter key per blind-mode label: its first free letter ("none" prefers x). The one table of
     blind-mode keys: served to the page (``/api/config``), which shows it, and checked against
-    docs/review.md (tests/test_review_app.py)."""
+    docs/review.md (tests/review/test_review_app.py)."""
     used, out = set(RESERVED_KEYS), []
     for label in labels:
         letters = ("x" if label == NONE_LABEL else "") + "".join(ch for ch in label.lower() if ch.isalpha())

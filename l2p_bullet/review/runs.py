@@ -43,6 +43,7 @@ class RunInfo:
     video: Path | None  # the captioned video (names the sentence: never shown in blind mode)
     frames: int  # raw rendered frames in frames/ (0 when rendered without them or not at all)
     render_fps: float | None
+    camera: str | None = None  # the camera preset the video was filmed with ("custom"; None: not rendered)
 
     @property
     def key(self) -> str:
@@ -84,7 +85,20 @@ def read_run(folder: str | Path) -> RunInfo:
     if fps is None and n_frames and duration > 0:
         fps = n_frames / duration
     return RunInfo(run_id_for(folder), folder.resolve(), hashlib.sha256(raw).hexdigest(), action, sentence,
-                   duration, video, n_frames, fps)
+                   duration, video, n_frames, fps, _camera(folder))
+
+
+def _camera(folder: Path) -> str | None:
+    """The name of the camera that filmed the run; runs rendered before cameras were named used the one
+    now called "robot" (across the table, facing the robot)."""
+    try:
+        render = json.loads((folder / "summary.json").read_text()).get("render")
+        if not isinstance(render, dict):
+            return None
+        cam = render.get("camera")
+        return str(cam.get("name") or "custom") if isinstance(cam, dict) else "robot"
+    except (OSError, ValueError, TypeError, AttributeError):
+        return None
 
 
 def _render_fps(folder: Path) -> float | None:

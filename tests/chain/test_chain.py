@@ -142,7 +142,7 @@ def test_chain_is_deterministic_for_a_seed(chain_runs):
 
 @pytest.mark.slow
 def test_score_scores_each_segment_with_its_own_blocks(chain_runs):
-    from l2p_bullet.progress.scoring import score_file
+    from l2p_bullet.commands.learn import score_file
 
     traj = chain_runs[0].out_dir / "trajectory.json"
     d = score_file("around", traj)

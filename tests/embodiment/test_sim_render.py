@@ -39,7 +39,7 @@ SCENE = Scene([SceneObject("A", "red", 0.05, (0.1, -0.12), 0.4), SceneObject("B"
 @pytest.fixture(scope="module")
 def rendered():
     world = World(SCENE.validate())
-    cam = Camera(world, RenderSettings(width=320, height=240))
+    cam = Camera(world, RenderSettings(width=320, height=240, renderer="tiny"))
     img = cam.render()
     yield world, cam, img
     world.close()

@@ -15,7 +15,7 @@ from l2p_bullet.embodiment.record import Recorder
 from l2p_bullet.embodiment.sim.camera import RenderSettings
 from l2p_bullet.embodiment.sim.primitives import Primitives
 from l2p_bullet.embodiment.sim.world import World
-from l2p_bullet.errors import ExecutionError, SceneError
+from l2p_bullet.errors import SceneError
 
 OTHER = Scene([SceneObject("A", "red", 0.05, (0.12, -0.1), 0.3), SceneObject("B", "green", 0.05, (-0.05, 0.08)),
                SceneObject("C", "blue", 0.04, (-0.1, -0.1))])
@@ -87,11 +87,13 @@ def test_a_reused_world_records_what_a_fresh_world_records(tmp_path):
         shared.close()
 
 
-def test_rendering_on_a_world_without_visuals_is_a_clear_error():
+def test_a_world_without_visuals_is_filmed_by_the_films_own_world():
+    """The simulating world never renders (embodiment/render.py draws its recorded states), so a caller's
+    world loaded without the arm's visuals still gives a rendered run."""
     with World(default_scene(), visuals=False) as world:
-        with pytest.raises(ExecutionError, match="visuals"):
-            execute_path(default_scene(), "A", _short_path(default_scene()), out_dir=None,
-                         render=RenderSettings(width=80, height=60), world=world)
+        ex = execute_path(default_scene(), "A", _short_path(default_scene()), out_dir=None,
+                          render=RenderSettings(width=80, height=60, renderer="tiny", workers=0), world=world)
+        assert ex.stats["rendered_frames"] > 3
         world.reset(default_scene())  # still open
 
 

@@ -46,9 +46,9 @@ def test_frame_and_anchor_declarations():
 
 
 def test_the_camera_viewpoint_is_where_the_video_camera_stands():
-    from l2p_bullet.embodiment.sim.camera import CameraPose
+    from l2p_bullet.embodiment.sim.camera import CAMERAS
 
-    assert VIEWPOINTS["camera"] == CameraPose().eye[:2]
+    assert VIEWPOINTS["camera"] == CAMERAS["robot"].eye[:2]
 
 
 def test_viewer_offset_left_is_the_robots_left():

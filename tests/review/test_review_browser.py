@@ -161,3 +161,29 @@ def test_a_phone_wide_page_shows_the_whole_grading_panel(live, chromium, tmp_pat
     page.wait_for_function("document.getElementById('status').textContent === 'saved'")
     assert [(g.label, g.grade) for g in s.store.grades()] == [("past", 5)]
     assert not errors
+
+
+def test_the_default_video_plays_to_its_end_and_the_page_says_where_the_viewer_stands(chromium, tmp_path):  # noqa: F811
+    """A run filmed with the default video (640x480 at 15 fps, lit, from behind the robot) plays to its
+    end in Chromium, at its size, and the page says on which side of the table the viewer stands."""
+    from review_fixtures import Live
+
+    from l2p_bullet.core.scene import default_scene
+    from l2p_bullet.embodiment.sim.camera import RenderSettings
+    from l2p_bullet.pipeline import perform
+
+    runs = tmp_path / "runs"
+    perform("move A closer to B", default_scene(), out_dir=runs / "run0", render_settings=RenderSettings())
+    s = Live(tmp_path / "reviews.sqlite", runs)
+    try:
+        page, errors = _page(chromium, s.url)
+        _login(page, "vic")
+        assert not page.is_hidden("#video")
+        assert "behind the robot: its left is your left" in page.inner_text("#viewname")
+        page.wait_for_function("document.querySelector('#video').ended && document.body.dataset.ended === '1'",
+                               timeout=60_000)
+        size = page.evaluate("[document.querySelector('#video').videoWidth, document.querySelector('#video').videoHeight]")
+        assert size[0] == 640 and size[1] > 480  # the frame and the caption strip under it
+        assert not errors
+    finally:
+        s.stop()

@@ -331,14 +331,51 @@ class Bullet:
         return self._pb.computeProjectionMatrixFOV(fov, aspect, near, far, physicsClientId=self._id)
 
     def camera_image(self, width: int, height: int, view: Sequence[float], projection: Sequence[float],
-                     hardware: bool = False) -> Sequence[int]:
-        """RGBA pixels, row-major, no shadows; TinyRenderer (CPU) or, with ``hardware``, the EGL plugin."""
+                     hardware: bool = False, light: Vec3 | None = None) -> Sequence[int]:
+        """RGBA pixels, row-major; TinyRenderer (CPU) or, with ``hardware``, the EGL plugin.
+
+        ``light`` (a direction towards the light) draws the scene lit from there, with shadows; None: no
+        shadows, the renderer's default light."""
         pb = self._pb
         renderer = pb.ER_BULLET_HARDWARE_OPENGL if hardware else pb.ER_TINY_RENDERER
         quiet = quiet_stdout() if hardware else contextlib.nullcontext()  # the EGL plugin prints every frame
+        lit = {} if light is None else {"shadow": 1, "lightDirection": list(light)}
         with quiet:
-            return pb.getCameraImage(width, height, view, projection, renderer=renderer, shadow=0,
-                                     flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self._id)[2]
+            return pb.getCameraImage(width, height, view, projection, renderer=renderer,
+                                     flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self._id,
+                                     **({"shadow": 0} | lit))[2]
+
+    def set_base_pose(self, name: str, position: Vec3, orientation: Quat) -> None:
+        """Teleport the body's base (no physics: to draw a recorded state)."""
+        self._pb.resetBasePositionAndOrientation(self._bodies[name], list(position), list(orientation),
+                                                 physicsClientId=self._id)
+
+    def visual_shapes(self, name: str) -> list[dict]:
+        """The body's visual shapes: ``link`` (-1 the base), ``geometry`` ("mesh", "box", "sphere",
+        "cylinder", "capsule" or "other"), ``dims``, ``file`` (a mesh's path), ``rgba``, and the shape's
+        pose relative to the link's centre-of-mass frame (``pos``, ``orn``): what an exporter needs to
+        draw the body elsewhere (export/rerun.py)."""
+        pb = self._pb
+        kinds = {pb.GEOM_MESH: "mesh", pb.GEOM_BOX: "box", pb.GEOM_SPHERE: "sphere",
+                 pb.GEOM_CYLINDER: "cylinder", pb.GEOM_CAPSULE: "capsule"}
+        out = []
+        for s in pb.getVisualShapeData(self._bodies[name], physicsClientId=self._id):
+            f = s[4].decode() if isinstance(s[4], bytes) else s[4]
+            out.append({"link": s[1], "geometry": kinds.get(s[2], "other"), "dims": list(s[3]), "file": f,
+                        "pos": list(s[5]), "orn": list(s[6]), "rgba": list(s[7])})
+        return out
+
+    def com_pose(self, name: str, link: int) -> tuple[Vec3, Quat]:
+        """World pose of the link's centre-of-mass frame (-1: the base's), where visual shapes are placed."""
+        if link < 0:
+            pos, orn = self._pb.getBasePositionAndOrientation(self._bodies[name], physicsClientId=self._id)
+            return pos, orn
+        s = self._pb.getLinkState(self._bodies[name], link, computeForwardKinematics=True, physicsClientId=self._id)
+        return s[0], s[1]
+
+    def compose(self, a: tuple[Vec3, Quat], b: tuple[Vec3, Quat]) -> tuple[Vec3, Quat]:
+        """The pose ``b`` given in frame ``a``, in the world."""
+        return self._pb.multiplyTransforms(a[0], a[1], b[0], b[1])
 
     # --- rotations (PyBullet's own, so that results match its internals to the last bit) -----------
     def quaternion(self, roll: float, pitch: float, yaw: float) -> Quat:

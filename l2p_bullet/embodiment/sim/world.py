@@ -63,6 +63,7 @@ class World:
         if reserved:
             raise SceneError(f'"{reserved[0]}" is reserved for the simulator; name the block otherwise')
         sim = self.sim
+        self.scene = scene  # what the world was loaded with (a film's painters load the same)
         self.steps = 0
         sim.load_urdf(TABLE, urdf_path("table.urdf"), (0.0, 0.0, 0.0), fixed=True)
         self.sizes: dict[str, float] = {}

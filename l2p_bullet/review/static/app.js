@@ -121,7 +121,8 @@ async function show(item) {
   S.label = item.answer ? item.answer.label : null;
   $("comment").value = item.answer ? item.answer.comment : "";
   $("sentence").textContent = item.sentence ? `“${item.sentence}”` : "";
-  $("viewname").textContent = item.view === "3d" ? "the robot (3-D rendering)" : "seen from above (2-D)";
+  $("viewname").textContent = (item.view === "3d" ? "the robot (3-D rendering)" : "seen from above (2-D)")
+    + (item.viewpoint ? `; you stand ${item.viewpoint}` : "");
   document.body.classList.toggle("editing", S.pos !== null);
   refreshButtons();
   S.missing = null;
