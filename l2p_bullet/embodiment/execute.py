@@ -160,7 +160,12 @@ def _primitives(world: World, render: RenderSettings | None, out_dir: Path | Non
     its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
 
     film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames")
-    return Primitives(world, Recorder(world, film))
+    try:  # the arm's set-up takes a while: a Ctrl-C there must not leave the film's workers behind
+        return Primitives(world, Recorder(world, film))
+    except BaseException:
+        if film is not None:
+            film.close()
+        raise
 
 
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],

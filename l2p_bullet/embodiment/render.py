@@ -179,7 +179,11 @@ class Film:
         if self.folder is not None:
             self.folder.mkdir(parents=True, exist_ok=True)
         if self.workers > 1:
-            self._start_pool(scene)
+            try:
+                self._start_pool(scene)
+            except BaseException:  # a Ctrl-C held back while the workers were launched lands here: stop them
+                self.close()
+                raise
 
     def _start_pool(self, scene: Scene) -> None:
         """Spawn the workers with Ctrl-C blocked: the children inherit the blocked signal (a Ctrl-C at the
