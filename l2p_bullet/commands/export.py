@@ -35,7 +35,8 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
     sources = find_runs(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
-    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES) as folder:
+    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES,
+                    inputs=tuple(runs)) as folder:
         episodes = [episode_from_run(r) for r in sources]
         if demos:
             episodes += list(demo_episodes(list(demos), render=not no_video and fmt == "lerobot"))

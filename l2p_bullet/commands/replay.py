@@ -50,7 +50,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     scene = load_scene_or_default(scene_path)
     source = motion_source(path_json, demo, scene, mover, anchor)
     render = None if no_render else RenderSettings(width, height, render_fps, renderer, video)
-    with run_folder(out, force=force, prefix="replay", command="replay") as folder:
+    inputs = tuple(p for p in (path_json, scene_path) if p)
+    with run_folder(out, force=force, prefix="replay", command="replay", inputs=inputs) as folder:
         ex = run_replay(scene, source, folder, render, seed, on_stage=lambda s: click.echo(f"  {s}...", err=True))
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
