@@ -178,3 +178,22 @@ def test_any_manifest_loads_or_is_a_one_line_error(worker, bundle_template, targ
     (folder / MANIFEST).write_bytes(text)
     resp = worker.run(["score", str(folder), "motion.json"], folder.parent)
     check(resp, worker)
+
+
+@settings(FUZZ, max_examples=30)
+@given(depth=st.integers(1, 3000), kind=st.sampled_from(["array", "inline", "dotted", "header", "comment"]),
+       where=st.sampled_from(["start", "end"]))
+def test_any_manifest_structure_is_bounded(worker, bundle_template, depth, kind, where):
+    """Manifests by structure (issue 27.2): nesting of every kind and any size load or are one line."""
+    folder, manifest = bundle_template
+    extra = {"array": "deep = " + "[" * depth + "]" * depth,
+             "inline": "deep = " + "{a = " * depth + "1" + "}" * depth,
+             "dotted": ".".join(["d"] * depth) + " = 1",
+             "header": "[" + ".".join(["t"] * depth) + "]\nk = 1",
+             "comment": "# " + "x" * (depth * 400)}[kind]
+    shipped = tomli_w.dumps(manifest)
+    text = extra + "\n" + shipped if where == "start" and kind in ("array", "inline", "dotted", "comment") \
+        else shipped + "\n" + extra + "\n"
+    (folder / MANIFEST).write_text(text)
+    resp = worker.run(["score", str(folder), "motion.json"], folder.parent)
+    check(resp, worker)

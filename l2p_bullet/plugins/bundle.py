@@ -16,12 +16,12 @@ from __future__ import annotations
 
 import hashlib
 import os
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .. import __version__
+from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..errors import BundleError
 from ..progress.config import ModelConfig
@@ -155,10 +155,7 @@ def read_manifest(folder: Path) -> dict:
         raise BundleError(f"bundle folder {folder} does not exist")
     if not p.is_file():
         raise BundleError(f"bundle {folder} has no {MANIFEST}")
-    try:
-        return tomllib.loads(p.read_text())
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
-        raise BundleError(f"{p}: not valid TOML ({e})") from None
+    return loads_toml(read_bounded(p, MAX_TOML_BYTES, BundleError), BundleError, str(p))
 
 
 def load_bundle(path: str | os.PathLike) -> Bundle:
@@ -199,8 +196,9 @@ def _write_manifest(folder: Path, manifest: dict) -> None:
 
     path = folder / MANIFEST
     try:
-        doc = tomlkit.parse(path.read_text(encoding="utf-8")) if path.is_file() else tomlkit.document()
-    except (OSError, UnicodeDecodeError, TOMLKitError):
+        read_manifest(folder)  # bounded size and nesting first: tomlkit recurses like tomllib
+        doc = tomlkit.parse(path.read_text(encoding="utf-8"))
+    except (BundleError, OSError, UnicodeDecodeError, TOMLKitError, RecursionError):
         doc = tomlkit.document()
     _merge_into(doc, _plain(manifest))
     tmp = folder / (MANIFEST + ".tmp")
@@ -287,8 +285,8 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
     old: dict = {}
     if (folder / MANIFEST).is_file():
         try:
-            old = tomllib.loads((folder / MANIFEST).read_text())
-        except tomllib.TOMLDecodeError:
+            old = read_manifest(folder)
+        except BundleError:
             old = {}
     shipped = read_manifest(builtin_bundle_dir(action)) if action in ACTIONS else {}
     keep_weights = {k: v for k, v in old.get("weights", {}).items()
