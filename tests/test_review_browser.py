@@ -124,7 +124,7 @@ def test_the_same_reviewer_in_two_windows_never_overwrites_silently(live, chromi
     _keys(a, "4", "Enter")
     _shown(a, first)
     _keys(b, "6", "Enter")  # refused: b shows ann's stored answer instead
-    b.wait_for_function("document.getElementById('status').textContent.includes('the stored answer now')")
+    b.wait_for_function("() => document.getElementById('status').textContent.includes('the stored answer now')")
     assert b.inner_text("#grades button.selected") == "44"
     (g,) = s.store.grades()
     assert g.grade == 4

@@ -15,7 +15,7 @@ pytestmark = pytest.mark.slow
 
 def _page(browser, url: str):
     page, errors = open_page(browser, url, 1200, 760)
-    page.wait_for_function("document.body.dataset.state === 'ready'")
+    page.wait_for_function("() => document.body.dataset.state === 'ready'")
     return page, errors
 
 
@@ -54,7 +54,7 @@ def test_drag_a_block_and_the_saved_demonstration_matches_the_drag(live, chromiu
     page.wait_for_timeout(300)
     page.keyboard.press("e")
     page.keyboard.press("Enter")
-    page.wait_for_function("document.body.dataset.saved === '1'")
+    page.wait_for_function("() => document.body.dataset.saved === '1'")
     assert not errors
 
     # The page moved A where the mouse went (to within a pixel)...
@@ -82,11 +82,11 @@ def test_train_and_perform_shows_the_video(live, chromium):  # noqa: F811
     write_sessions(s.root / "demos", "left-of", sessions=1, events=4, seed=1)
     page, errors = _page(chromium, s.url)
     page.keyboard.press("t")
-    page.wait_for_function("document.body.dataset.train === 'training'")
-    page.wait_for_function("['done', 'failed'].includes(document.body.dataset.train)", timeout=240_000)
+    page.wait_for_function("() => document.body.dataset.train === 'training'")
+    page.wait_for_function("() => ['done', 'failed'].includes(document.body.dataset.train)", timeout=240_000)
     assert page.get_attribute("body", "data-train") == "done", page.inner_text("#train-status")
     assert "on a new scene" in page.inner_text("#verdict")
-    page.wait_for_function("document.getElementById('video').readyState >= 1", timeout=20_000)
+    page.wait_for_function("() => document.getElementById('video').readyState >= 1", timeout=20_000)
     assert page.evaluate("document.getElementById('video').error") is None
     assert (s.action.bundle_dir / "progress.safetensors").is_file()
     assert not errors

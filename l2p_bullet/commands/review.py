@@ -99,7 +99,7 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
     from ..review.app import create_app
     from ..review.server import bind, serve, url_of
     from ..review.session import ReviewSession
-    from ..review.web import LOOPBACK
+    from ..review.web import is_loopback
 
     reg = store.register_runs(run_infos, accept_changed=regrade_changed)
     changed = {run.run_id for run, _, _ in reg.changed}
@@ -113,7 +113,7 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
     session.problems.update({rid: "changed" for rid in changed if not regrade_changed})  # the page says so too
     app = create_app(session, host=host)
     sock = bind(host, port)
-    if host not in LOOPBACK:
+    if not is_loopback(host):
         click.echo(f"warning: listening on {host}: anyone who can reach this machine can submit grades", err=True)
     click.echo(f"reviewing {len(served)} runs ({len(session.items)} items, {mode} mode, view {view}); answers go to "
                f"{store.path}")
