@@ -197,3 +197,33 @@ def test_any_manifest_structure_is_bounded(worker, bundle_template, depth, kind,
     (folder / MANIFEST).write_text(text)
     resp = worker.run(["score", str(folder), "motion.json"], folder.parent)
     check(resp, worker)
+
+
+_PLAN = {"schema": 1, "action": "past", "mover": "A", "anchor": "B", "size": 0.05, "anchor_pose": [0.0, 0.05, 0.0],
+         "start": [0.05, -0.1, 0.3], "planner": "mixed"}
+far = st.one_of(st.sampled_from([1e5, 1e10, -1e12, 1e300, 3.0, 10**300, -(10**300), 10**20]),
+                st.integers(10**5, 10**400), st.floats(min_value=1.0, max_value=1e308))
+"""A coordinate outside the workspace (a disk of radius 0.25 m): the path must be refused up front."""
+
+
+@settings(FUZZ, max_examples=25)
+@given(n=st.integers(2, 6), k=st.integers(0, 5), axis=st.integers(0, 1), value=far,
+       kind=st.sampled_from(["plan", "motion"]))
+def test_any_far_waypoint_is_refused_up_front_in_bounded_memory(worker, tmp_path_factory, n, k, axis, value, kind):
+    """Issue 27.4: one waypoint at y = 1e5 m took 3.2 GB; a 300-digit coordinate was a traceback; each left
+    a failed run folder. The waypoints are checked before the path is densified or a folder is made."""
+    folder = tmp_path_factory.mktemp("replay")
+    path = [[0.05 + 0.01 * i, -0.1 + 0.01 * i, 0.3] for i in range(n)]
+    path[min(k, n - 1)][axis] = value
+    if kind == "plan":
+        doc = {**_PLAN, "path": path}
+    else:  # a scoring input: fitted into the workspace unless it is farther than 1000 block sides (50 m)
+        if abs(value) < 100:
+            value *= 1e3
+            path[min(k, n - 1)][axis] = value
+        doc = {"size": 0.05, "mover": path, "anchor": [[0.0, 0.05, 0.0]]}
+    (folder / "p.json").write_text(json.dumps(doc))
+    resp = worker.run(["replay", "p.json", "--no-render", "--out", "run"], folder)
+    check(resp, worker)
+    assert resp["exit_code"] == 2, resp["output"]
+    assert not (folder / "run").exists(), "a path refused up front left a run folder"

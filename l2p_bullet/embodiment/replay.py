@@ -27,7 +27,16 @@ class Source:
 
 
 def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
-    """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`."""
+    """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`, its waypoints
+    checked (finite, inside the workspace) before anything is densified or a run folder is made."""
+    from .execute import check_waypoints
+
+    source = _motion_source(path_json, demo, scene, mover, anchor)
+    check_waypoints(scene, source.mover, source.path)
+    return source
+
+
+def _motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
     from .retarget import retarget
 
     if demo is not None:
