@@ -7,6 +7,8 @@ import sqlite3
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from review_fixtures import run_folder  # noqa: F401 - fixture
 
 from l2p_bullet.errors import ReviewError, SchemaVersionError
@@ -224,3 +226,27 @@ def test_load_grades_needs_neither_torch_nor_the_web_stack(tmp_path):
             "bad = [m for m in ('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet') if m in sys.modules];"
             "assert not bad, bad")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+_cell = st.text(alphabet=st.sampled_from(list("=+-@'\t\r\n\",; ab1(")), max_size=12)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(reviewer=_cell, comment=_cell, label=st.none() | _cell)
+def test_a_csv_export_never_holds_a_formula_and_reads_back_exactly(tmp_path, reviewer, comment, label):
+    """Issue 27.7: a reviewer named ``=HYPERLINK(...)`` was exported as a live formula."""
+    import csv
+
+    from l2p_bullet.review.store import write_grades
+
+    rows = [GradeRow(run_id="r1", reviewer=reviewer, comment=comment, label=label, grade=3,
+                     sentence="=HYPERLINK(\"http://evil.example\",\"x\")"),
+            GradeRow(run_id="r2", reviewer="@SUM(1+1)", comment="-2+3", grade=None)]
+    out = tmp_path / "g.csv"
+    write_grades(rows, out, force=True)
+    with open(out, newline="", encoding="utf-8") as f:
+        for record in csv.DictReader(f):
+            for v in record.values():
+                assert not v.startswith(("=", "+", "-", "@", "\t", "\r")), record
+    assert load_grades(out) == [GradeRow(**{**r.__dict__, "label": r.label or None}) for r in rows]
