@@ -158,3 +158,39 @@ def test_a_server_on_127_0_0_2_keeps_the_host_check(tmp_path):
         assert http_client.call(server.url, "GET", "/api/config", headers={"Host": "rebound.evil.example"})[0] == 400
     finally:
         server.stop()
+
+
+def test_a_database_moved_away_while_serving_is_said_never_recreated(tmp_path):
+    """Issue 27.7: the database moved away while serving gave a 500 and a new empty database in its place."""
+    from l2p_bullet.review.app import create_app
+    from l2p_bullet.review.server import start
+    from l2p_bullet.review.session import ReviewSession
+    from l2p_bullet.review.store import Store
+
+    db = tmp_path / "r.sqlite"
+    server = start(create_app(ReviewSession(Store(db), [], labels=["past"])))
+    try:
+        assert http_client.call(server.url, "GET", "/api/next?reviewer=ann")[0] == 200
+        db.rename(tmp_path / "elsewhere.sqlite")
+        status, r = http_client.call(server.url, "GET", "/api/next?reviewer=ann")
+        assert status == 503 and "moved or deleted" in r["error"], r
+        assert not db.exists(), "a fresh empty database was created in its place"
+        (tmp_path / "other.sqlite").write_bytes((tmp_path / "elsewhere.sqlite").read_bytes())
+        (tmp_path / "other.sqlite").rename(db)  # another file under the same name is not ours either
+        status, r = http_client.call(server.url, "GET", "/api/next?reviewer=ann")
+        assert status == 503 and "replaced" in r["error"], r
+    finally:
+        server.stop()
+
+
+def test_a_database_made_read_only_while_serving_is_said(tmp_path):
+    import os
+
+    from l2p_bullet.review.store import DatabaseUnavailable, Store
+
+    if os.geteuid() == 0:
+        pytest.skip("root writes to read-only files")
+    store = Store(tmp_path / "r.sqlite")
+    store.path.chmod(0o444)
+    with pytest.raises(DatabaseUnavailable, match="read-only"), store.transaction() as conn:
+        conn.execute("CREATE TABLE written_after_chmod (x)")
