@@ -76,8 +76,6 @@ MAX_SESSION_BYTES = 1 << 30
 def _open_npz(p: Path) -> dict[str, np.ndarray]:
     """The arrays of a ``.npz`` (a zip of ``.npy`` files, as ``numpy.savez`` writes), or a DataError saying
     what the file is instead. Never unpickles; refuses an archive that would inflate past MAX_SESSION_BYTES."""
-    import zipfile
-
     if not p.exists():
         raise DataError(f"demonstration file {p} does not exist")
     if not p.is_file():
