@@ -91,7 +91,7 @@ def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, m
     """The recorded motion as an executable path of ``mover_name`` around ``anchor_name`` in ``scene``."""
     if len(mover) < 2:
         raise PathError("a motion to replay needs at least two poses")
-    _check_numbers(np.asarray(mover, float), np.asarray(anchor, float), size)
+    _check_numbers(np.asarray(mover, float), np.atleast_2d(np.asarray(anchor, float)), size)
     a_obj, m_obj = scene.get(anchor_name), scene.get(mover_name)
     if a_obj.name == m_obj.name:
         raise PathError(f'the mover and the anchor are the same block ("{mover_name}")')
