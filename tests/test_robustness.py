@@ -50,7 +50,11 @@ def _world(scene: Scene):
 @pytest.mark.slow
 @pytest.mark.parametrize("action", list(SENTENCES))
 def test_a_touching_start_is_performed_and_the_anchor_stays(action, tmp_path):
-    r = perform(SENTENCES[action], TOUCHING, out_dir=tmp_path / action, render=False, seed=0)
+    try:
+        r = perform(SENTENCES[action], TOUCHING, out_dir=tmp_path / action, render=False, seed=0)
+    except InfeasibleError as e:  # issue 27.8: no move gets it closer: refused before the arm moves
+        assert e.check == "no-motion" and action == "closer", e
+        return
     assert r.displacements_m["B"] < 0.001 and not r.to_dict()["disturbed"]
     summary = json.loads((tmp_path / action / "summary.json").read_text())
     assert summary["ok"] and summary["displacements_m"]["B"] < 0.001 and summary["disturbed"] == []

@@ -154,13 +154,15 @@ def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, acti
     if stopped == "threshold" or (len(p) >= 2 and (travel >= MIN_TRAVEL_SIDES * m.size or turn >= MIN_TURN_RAD)):
         return
     sides = float(np.hypot(*(np.asarray(m.xy) - np.asarray(a.xy)))) / m.size
+    ratio = max(m.size, a.size) / min(m.size, a.size)
+    hint = (f"; the {m.size * 100:.0f} cm mover starts {sides:.1f} of its sides from the {a.size * 100:.0f} cm "
+            "anchor, and the built-in actions measure distances in the mover's sides (learned from two blocks "
+            "of one size): try blocks of similar size, nearer each other" if ratio > 1.5 or sides > 4.0
+            else "; another --planner or --seed may find one")
     raise InfeasibleError(
         "no-motion",
-        f'found no way to move "{mover}" {action} "{anchor}" here: no move raised the learned progress '
-        f"(best {progress:.3f} after {steps} search steps), so the plan would leave it where it is; the "
-        f"{m.size * 100:.0f} cm mover starts {sides:.1f} of its sides from the {a.size * 100:.0f} cm anchor "
-        "(the built-in actions measure distances in the mover's sides and were learned from two blocks of "
-        "one size): try blocks of similar size, nearer each other",
+        f'no plan moves "{mover}" for "{action}" relative to "{anchor}": no move raised the learned progress '
+        f"(best {progress:.3f} after {steps} search steps), so it would stay where it is{hint}",
         {"waypoints": len(p), "travel_m": round(travel, 6), "progress": round(float(progress), 6), "steps": steps,
          "mover_size_m": m.size, "anchor_size_m": a.size, "distance_sides": round(sides, 2)})
 
