@@ -4,3 +4,30 @@ Kept import-light on purpose: ``l2p-bullet --help`` must not import torch or pyb
 """
 
 __version__ = "0.1.0"
+
+import os as _os
+import signal as _signal
+import sys as _sys
+
+
+def _is_program() -> bool:
+    """True when this process is the ``l2p-bullet`` command (the console script or ``python -m
+    l2p_bullet.cli``), not a test or a library importing the package."""
+    if _os.path.basename(_sys.argv[0]) == "l2p-bullet":
+        return True
+    argv = list(getattr(_sys, "orig_argv", ()))
+    return any(a == "-m" and b == "l2p_bullet.cli" for a, b in zip(argv, argv[1:], strict=False))
+
+
+def interrupted_while_starting(signum, frame) -> None:  # noqa: ARG001 - a signal handler's signature
+    """Ctrl-C before the command runs (its imports take ~0.3 s): nothing has started, so stop quietly
+    (exit 130) instead of printing a KeyboardInterrupt traceback from inside an import.
+    ``cli.main`` hands SIGINT back to KeyboardInterrupt once the command is about to run."""
+    _os.write(2, b"interrupted\n")
+    _os._exit(130)
+
+
+PROGRAM = _is_program()
+if PROGRAM and _signal.getsignal(_signal.SIGINT) is _signal.default_int_handler:
+    _signal.signal(_signal.SIGINT, interrupted_while_starting)
+

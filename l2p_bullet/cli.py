@@ -9,11 +9,12 @@ anything else is a bug and keeps its traceback.
 from __future__ import annotations
 
 import re
+import signal
 import sys
 
 import click
 
-from . import __version__
+from . import PROGRAM, __version__, interrupted_while_starting
 from .commands import actions, evaluate, export, learn, perform, plan, recognize, replay, review, teach
 from .errors import L2PError
 
@@ -26,6 +27,17 @@ def one_line(message: str, limit: int = 1000) -> str:
 
 
 class _Group(click.Group):
+    def main(self, *args, **kwargs):
+        """From here on Ctrl-C is a KeyboardInterrupt again (commands mark interrupted runs), and the
+        interpreter's shutdown after the command is quiet too."""
+        if signal.getsignal(signal.SIGINT) is interrupted_while_starting:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+        try:
+            return super().main(*args, **kwargs)
+        finally:
+            if PROGRAM and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+                signal.signal(signal.SIGINT, interrupted_while_starting)
+
     def invoke(self, ctx: click.Context):
         try:
             return super().invoke(ctx)

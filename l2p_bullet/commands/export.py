@@ -50,7 +50,8 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     specs = demo_specs(list(demos)) if demos else []
     # evaluate's progress bar on stderr: a rendered demonstration takes seconds each (issue 26)
     bar = ProgressBar(len(sources) + len(specs), unit="episodes", label="export: reading")
-    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES) as folder:
+    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES,
+                    inputs=tuple(runs)) as folder:
         bar.advance(0)  # a first line at once (the folder is claimed): the first rendered demonstration is slow
         episodes = []
         try:

@@ -70,7 +70,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     def on_stage(message: str) -> None:  # perform's style: elapsed time, then the stage
         click.echo(f"[{time.perf_counter() - t0:5.1f}s] execute: {message}", err=True)
 
-    with run_folder(out, force=force, prefix="replay", command="replay") as folder:
+    inputs = tuple(p for p in (path_json, scene_path) if p)  # --force never replaces what it reads
+    with run_folder(out, force=force, prefix="replay", command="replay", inputs=inputs) as folder:
         ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage)
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
@@ -90,7 +91,8 @@ def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force
     if not is_chain_plan(doc):
         return False
     scene = load_scene_or_default(scene_path) if scene_path is not None else None
-    with run_folder(out, force=force, prefix="replay", command="replay") as folder:
+    with run_folder(out, force=force, prefix="replay", command="replay",
+                    inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:
         r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=seed,
                          on_stage=lambda s: click.echo(f"  {s}...", err=True))
     v = r.verdict()

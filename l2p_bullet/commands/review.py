@@ -98,7 +98,7 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
     from ..plugins import registry
     from ..review.app import create_app
     from ..review.queue import ReviewQueue
-    from ..web.apps import LOOPBACK
+    from ..web.apps import is_loopback
     from ..web.server import bind, serve, url_of
 
     reg = store.register_runs(run_infos, accept_changed=regrade_changed)
@@ -113,7 +113,7 @@ def _serve(store, run_infos, host: str, port: int, mode: str, view: str, regrade
     queue.problems.update({rid: "changed" for rid in changed if not regrade_changed})  # the page says so too
     app = create_app(queue, host=host)
     sock = bind(host, port)
-    if host not in LOOPBACK:
+    if not is_loopback(host):
         click.echo(f"warning: listening on {host}: anyone who can reach this machine can submit grades", err=True)
     click.echo(f"reviewing {len(served)} runs ({len(queue.items)} items, {mode} mode, view {view}); answers go to "
                f"{store.path}")

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import L2PError, PathError
+from .bounded import read_bounded
 
 MAX_JSON_BYTES = 64 * 1024 * 1024
 """The largest JSON input read (a scene, a plan, a trajectory, a scoring input): a 20 s run's
@@ -211,9 +212,9 @@ def load_json_file(path: str | Path, error: type[L2PError] = PathError, what: st
     try:
         if p.is_file() and p.stat().st_size > MAX_JSON_BYTES:
             raise error(f"{label} is {p.stat().st_size / 1e6:.0f} MB; the limit is {MAX_JSON_BYTES // 2**20} MiB")
-        raw = p.read_bytes()
     except OSError as e:
         raise error(f"cannot read {label}: {e.strerror or e}") from None
+    raw = read_bounded(p, MAX_JSON_BYTES, error, label)  # /dev/zero or a FIFO: the size is found by reading
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as e:

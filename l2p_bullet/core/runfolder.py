@@ -10,6 +10,8 @@ Every command that writes a run folder (perform, plan, replay, and whatever come
   this tool wrote: it has the marker (or, from before the marker, a summary.json of ours) and nothing
   else than the files a run writes. Never the current directory or one of its parents, never a
   symbolic link, never a folder holding a file of someone else (``thesis.txt``).
+- A finished run folder is only ever replaced by the command that wrote it (``export --force`` never replaces a
+  perform run), and never when it is, holds or lies inside an input of the command (``inputs``).
 - A finished run folder is replaced only with ``force``; an *incomplete* one (its run was interrupted
   or killed: no summary.json, or ``"failed_stage": "interrupted"``) and an empty folder are replaced
   without asking. A folder whose run is still going (its marker is locked) is never touched.
@@ -193,9 +195,49 @@ def _protected(path: Path) -> bool:
     return real == cwd or real in cwd.parents or real == home or real == Path(real.anchor)
 
 
+def run_folder_command(path: Path) -> str | None:
+    """The command that wrote run folder ``path`` (its marker's), ``None`` for a folder from before the marker."""
+    marker = _read_json(path / MARKER)
+    return str(marker.get("command")) if isinstance(marker, dict) and marker.get("tool") == "l2p-bullet" else None
+
+
+LEGACY_COMMANDS = ("perform", "plan", "replay", "run")
+"""The commands that wrote run folders before the marker existed (and "run", a caller naming none): only
+they may replace such a folder."""
+
+
+def _overlap(path: Path, inputs: tuple[str | Path, ...]) -> Path | None:
+    """The input that ``path`` is, holds or lies inside (compared after resolving links), if any."""
+    real = path.resolve()
+    for given in inputs:
+        inp = Path(given).resolve()
+        if real == inp or inp in real.parents or real in inp.parents:
+            return Path(given)
+    return None
+
+
+def _check_replace(path: Path, state: str, command: str, inputs: tuple[str | Path, ...]) -> None:
+    """Refuse to replace a folder of another command, or one that is, holds or lies in an input."""
+    if state == "missing":
+        return
+    inp = _overlap(path, inputs)
+    if inp is not None:
+        raise RunFolderError(f"{path} is, holds or lies inside {inp}, an input of this command; nothing is "
+                             "replaced (not even with --force): choose another folder for the output", path, state)
+    if state != "finished":  # an interrupted run's folder holds nothing finished: replaced as before
+        return
+    owner = run_folder_command(path)
+    if owner != command and not (owner is None and command in LEGACY_COMMANDS):
+        raise RunFolderError(f"{path} holds a run of `l2p-bullet {owner or 'perform'}`, not of `{command}`; "
+                             "--force only replaces a folder written by the same command: choose another folder",
+                             path, state)
+
+
 def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
-                     command: str = "", files: tuple[str, ...] = ()) -> _Claim:
-    """Make the run folder (the rules of the module docstring) and lock it; the caller releases the claim."""
+                     command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = ()) -> _Claim:
+    """Make the run folder (the rules of the module docstring) and lock it; the caller releases the claim.
+
+    ``inputs``: the files and folders the command reads; the run folder never is, holds or lies in one."""
     if out is None:
         base = Path(root) / f"{prefix}-{time.strftime('%Y%m%d-%H%M%S')}"
         _mkdirs(base.parent)
@@ -213,6 +255,7 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
     trash = None
     with _parent_lock(path.parent):
         state = run_folder_state(path)
+        _check_replace(path, state, command or prefix, inputs)
         if state in ("foreign", "running") or (state == "finished" and not force):
             raise RunFolderError(_describe(path, state), path, state)
         if state in ("empty", "incomplete", "finished"):
@@ -270,15 +313,16 @@ def finish_run_folder(path: Path) -> None:
 
 @contextlib.contextmanager
 def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
-               command: str = "", files: tuple[str, ...] = ()) -> Iterator[Path]:
+               command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = ()) -> Iterator[Path]:
     """``with run_folder(out, force=force, prefix="perform") as folder: ...`` -- the one way to get a run folder.
 
     Inside the block the folder is locked (another run cannot take or replace it). If the block ends by
     an exception, summary.json is left with ``"ok": false``: ``"failed_stage": "interrupted"`` for
     Ctrl-C; otherwise a summary the block already wrote with ``ok: false`` is kept, and a missing one is
-    written naming the error. ``files``: patterns of extra files this command writes (see RUN_FILES).
+    written naming the error. ``files``: patterns of extra files this command writes (see RUN_FILES);
+    ``inputs``: what the command reads (never replaced, see :func:`claim_run_folder`).
     """
-    claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files)
+    claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files, inputs=inputs)
     try:
         yield claim.path
         claim.finish()

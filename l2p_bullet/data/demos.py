@@ -93,6 +93,8 @@ def _open_npz(p: Path) -> dict[str, np.ndarray]:
         with zipfile.ZipFile(p) as zf:
             if sum(i.file_size for i in zf.infolist()) > MAX_SESSION_BYTES:
                 raise DataError(f"demonstration file {p} unpacks to more than {MAX_SESSION_BYTES >> 20} MiB")
+            for info in zf.infolist():
+                _check_npy_header(p, zf, info)
         with np.load(p, allow_pickle=False) as z:
             return {k: z[k] for k in z.files}
     except DataError:
@@ -100,6 +102,23 @@ def _open_npz(p: Path) -> dict[str, np.ndarray]:
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as e:
         raise DataError(f"demonstration file {p} cannot be read as a .npz of plain numeric arrays "
                         f"({type(e).__name__}: {str(e)[:100]})") from None
+
+
+def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> None:
+    """Refuse an array whose header declares more data than its member holds, before numpy allocates it:
+    a 1 KB .npz declaring shape (1e11, 3) used to ask for 2.4 TB."""
+    if not info.filename.endswith(".npy"):
+        return
+    with zf.open(info) as f:
+        version = np.lib.format.read_magic(f)
+        read = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+        shape, _fortran, dtype = read(f, max_header_size=10_000)
+    count = 1
+    for d in shape:
+        count *= int(d)
+    if dtype.hasobject or count * dtype.itemsize > info.file_size:
+        raise DataError(f'demonstration file {p}: the array "{info.filename[:-4][:40]}" declares shape {shape} '
+                        f"({count * dtype.itemsize / 1e9:.3g} GB), more than the file holds")
 
 
 def load_session(path: str | Path) -> dict[str, np.ndarray]:

@@ -77,7 +77,7 @@ def write_grades(rows: list[GradeRow], out: str | Path, force: bool = False) -> 
                 w = csv.DictWriter(f, fieldnames=EXPORT_FIELDS)
                 w.writeheader()
                 for row in rows:
-                    w.writerow({k: ("" if v is None else v) for k, v in asdict(row).items()})
+                    w.writerow({k: _csv_cell(v) for k, v in asdict(row).items()})
             else:
                 for row in rows:
                     f.write(json.dumps(asdict(row), ensure_ascii=False) + "\n")
@@ -85,6 +85,22 @@ def write_grades(rows: list[GradeRow], out: str | Path, force: bool = False) -> 
     except OSError as e:
         raise ReviewError(f"cannot write {out}: {e.strerror or e}") from None
     return len(rows)
+
+
+FORMULA_START = ("=", "+", "-", "@", "\t", "\r", "'")
+"""A spreadsheet runs a cell that starts with = + - @ (or a tab/CR before one) as a formula: a reviewer
+named ``=HYPERLINK(...)`` must stay text. Such cells are written with a leading ``'`` (and a cell that
+starts with ``'`` gets a second one), which :func:`load_grades` takes off again: the round trip is exact."""
+
+
+def _csv_cell(v: object) -> object:
+    if v is None:
+        return ""
+    return "'" + v if isinstance(v, str) and v.startswith(FORMULA_START) else v
+
+
+def _csv_text(v: object) -> object:
+    return v[1:] if isinstance(v, str) and v.startswith("'") else v
 
 
 def load_grades(path: str | Path) -> list[GradeRow]:
@@ -102,7 +118,7 @@ def load_grades(path: str | Path) -> list[GradeRow]:
     try:
         if p.suffix.lower() == ".csv":
             with open(p, newline="", encoding="utf-8") as f:  # newline="": comments may hold line breaks
-                records = list(csv.DictReader(f))
+                records = [{k: _csv_text(v) for k, v in r.items()} for r in csv.DictReader(f)]
         else:
             records = [json.loads(line) for line in p.read_text(encoding="utf-8").split("\n") if line.strip()]
         return [_from_record(r) for r in records]

@@ -78,10 +78,13 @@ MIGRATIONS: tuple[str, ...] = (
 SCHEMA_VERSION = len(MIGRATIONS)
 
 
-def connect(path: str | Path) -> sqlite3.Connection:
-    """An autocommit connection (transactions are explicit: ``BEGIN IMMEDIATE`` ... ``COMMIT``)."""
+def connect(path: str | Path, create: bool = True) -> sqlite3.Connection:
+    """An autocommit connection (transactions are explicit: ``BEGIN IMMEDIATE`` ... ``COMMIT``).
+
+    ``create=False``: the file must exist (SQLite would otherwise make a new, empty database in its place)."""
     try:
-        conn = sqlite3.connect(str(path), timeout=30.0, isolation_level=None, check_same_thread=False)
+        target = str(path) if create else f"{Path(path).resolve().as_uri()}?mode=rw"
+        conn = sqlite3.connect(target, timeout=30.0, isolation_level=None, check_same_thread=False, uri=not create)
         conn.row_factory = sqlite3.Row
         conn.execute("PRAGMA busy_timeout = 30000")
         conn.execute("PRAGMA journal_mode = WAL")

@@ -55,11 +55,39 @@ def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
     return _check(scene, mover, path)[0]
 
 
+MAX_YAW_RAD = 1e4
+"""A yaw beyond this many radians (1,600 turns) is a unit mistake or garbage, not a motion."""
+
+
+def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
+    """Finite numbers, sane yaws and every waypoint inside the workspace: checked on the waypoints
+    *before* the path is densified (the workspace is a disk, so a path between waypoints inside it stays
+    inside). A waypoint 1e5 m away used to ask for gigabytes of dense points before being refused."""
+    try:
+        p = np.asarray(path, dtype=float)
+    except (TypeError, ValueError, OverflowError) as e:
+        raise PathError(f'the path of "{mover}" is not a list of [x, y, yaw] numbers ({str(e)[:80]})') from None
+    if p.ndim != 2 or p.shape[1] != 3 or len(p) == 0:
+        raise PathError(f'the path of "{mover}" must be a list of [x, y, yaw] waypoints (got shape {p.shape})')
+    if not np.isfinite(p).all():
+        k = int(np.argmin(np.isfinite(p).all(axis=1)))
+        raise PathError(f'the path of "{mover}" has a number that is not finite at waypoint {k}')
+    if np.abs(p[:, 2]).max() > MAX_YAW_RAD:
+        raise PathError(f'the path of "{mover}" turns the block by more than {MAX_YAW_RAD:g} rad (a unit mistake?)')
+    inside = scene.workspace.contains(p[:, :2])
+    if not inside.all():
+        k = int(np.argmin(inside))
+        r = float(np.hypot(*(p[k, :2] - np.array(scene.workspace.center))))
+        raise PathError(f'the path of "{mover}" leaves the workspace at waypoint {k} ({p[k, 0]:.4g}, {p[k, 1]:.4g}), '
+                        f"{r:.4g} m from its centre (radius {scene.workspace.radius} m)")
+
+
 def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
     """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
     (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
     square angles that do, else those of a 5 degree grid."""
     obj = scene.get(mover)
+    check_waypoints(scene, mover, path)
     p = motion.clean_path(path)
     start_gap = float(np.hypot(*(p[0, :2] - np.array(obj.xy))))
     if start_gap > START_TOLERANCE:

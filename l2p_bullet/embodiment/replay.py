@@ -15,7 +15,7 @@ from ..core.scene import Scene
 from ..core.vocabulary import canonical_action
 from ..data.demos import get_demo
 from ..errors import PathError, SceneError
-from .execute import execute_path
+from .execute import check_waypoints, execute_path
 from .retarget import retarget
 
 
@@ -56,7 +56,14 @@ def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | N
 
 
 def motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
-    """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`."""
+    """Read ``--demo ACTION:INDEX`` or a scoring input / plan.json into a :class:`Source`, its waypoints
+    checked (finite, inside the workspace) before anything is densified or a run folder is made."""
+    source = _motion_source(path_json, demo, scene, mover, anchor)
+    check_waypoints(scene, source.mover, source.path)
+    return source
+
+
+def _motion_source(path_json: str | None, demo: str | None, scene: Scene, mover: str, anchor: str) -> Source:
     if demo is not None:
         action, sep, index = demo.partition(":")
         if not sep or not index.strip().lstrip("-").isdigit():

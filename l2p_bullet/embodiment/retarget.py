@@ -69,11 +69,29 @@ def smooth_path(path: np.ndarray, window: int = SMOOTH_FRAMES) -> np.ndarray:
     return out
 
 
+MAX_MOTION_BLOCKS = 1000.0
+"""How far (block sides) a motion to replay may reach from its anchor: what ``score`` accepts too
+(``progress.features.MAX_BLOCKS``); beyond it the poses are in the wrong unit, and resampling them
+would ask for gigabytes before the fit clamps them into the workspace."""
+
+
+def _check_numbers(mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
+    """Finite poses within :data:`MAX_MOTION_BLOCKS` of the anchor, checked before anything is resampled."""
+    if not (np.isfinite(mover).all() and np.isfinite(anchor).all() and np.isfinite(size) and size > 0):
+        raise PathError("the motion to replay holds a number that is not finite (or a block size that is not positive)")
+    with np.errstate(over="ignore", invalid="ignore"):
+        extent = float(np.max(np.abs(mover[:, :2] - anchor[:1, :2]))) / size
+    if not extent <= MAX_MOTION_BLOCKS:
+        raise PathError(f"the motion to replay reaches {extent:.3g} block sides from its anchor (blocks of {size:.3g} m);"
+                        f" at most {MAX_MOTION_BLOCKS:g}: are the poses in metres and the block size right?")
+
+
 def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, mover_name: str,
              anchor_name: str) -> Retargeted:
     """The recorded motion as an executable path of ``mover_name`` around ``anchor_name`` in ``scene``."""
     if len(mover) < 2:
         raise PathError("a motion to replay needs at least two poses")
+    _check_numbers(np.asarray(mover, float), np.atleast_2d(np.asarray(anchor, float)), size)
     a_obj, m_obj = scene.get(anchor_name), scene.get(mover_name)
     if a_obj.name == m_obj.name:
         raise PathError(f'the mover and the anchor are the same block ("{mover_name}")')

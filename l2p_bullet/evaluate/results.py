@@ -7,14 +7,21 @@ a Parquet file is immutable, its footer is written when it is closed, so appendi
 mean a file per run or rewriting the table. Readers who want Parquet or a data frame get one from
 :meth:`ResultsStore.to_parquet` (pyarrow) or ``pandas.read_sql``.
 
-Only the evaluation's own process writes (workers return rows to it), so there is one writer.
+Only the evaluation's own process writes (workers return rows to it), so there is one writer; and one
+evaluation process per folder: :func:`only_writer` holds a lock on ``.evaluate.lock`` for the whole run,
+so a second ``--resume`` of a folder that is being written is refused instead of running every
+remaining task twice.
 The ``meta`` table keeps the evaluation's settings: ``--resume`` runs the same evaluation again.
 """
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import json
+import os
 import sqlite3
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +29,29 @@ from ..errors import EvaluationError
 from .worker import TIMING_FIELDS
 
 DB_NAME = "results.sqlite"
+LOCK_NAME = ".evaluate.lock"
+
+
+@contextlib.contextmanager
+def only_writer(folder: str | Path) -> Iterator[None]:
+    """Hold the evaluation folder's lock (``flock``: released by the kernel when the process dies, so a
+    killed evaluation never blocks the next); EvaluationError when another process holds it."""
+    folder = Path(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        fd = os.open(folder / LOCK_NAME, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+    except OSError as e:
+        raise EvaluationError(f"cannot use {folder} for an evaluation: {e.strerror or e}") from None
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        raise EvaluationError(f"{folder} is being written by another l2p-bullet evaluate right now; wait for it to "
+                              "end (or stop it) before resuming, or choose another --out") from None
+    try:
+        yield
+    finally:
+        os.close(fd)
 
 COLUMNS: dict[str, str] = {
     "run_id": "TEXT PRIMARY KEY", "idx": "INTEGER", "scene_id": "TEXT", "scene_source": "TEXT", "seed": "INTEGER",

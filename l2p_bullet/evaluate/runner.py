@@ -20,7 +20,7 @@ from ..plugins import registry
 from .pool import run_pool
 from .progressbar import ProgressBar
 from .ray_backend import run_ray
-from .results import ResultsStore
+from .results import ResultsStore, only_writer
 from .scenes import SceneSpec, random_scenes, scene_file, study_scenes, with_bystanders
 from .tasks import Task, make_tasks, skipped
 from .worker import run_task
@@ -110,8 +110,11 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         raise EvaluationError(f"--workers must be 0 or more (got {workers})")
     if not resume and (out / "results.sqlite").exists():
         raise EvaluationError(f"{out} already holds an evaluation: pass --resume to continue it, or choose another --out")
-    with ResultsStore(out) as store:
+    with only_writer(out), ResultsStore(out) as store:
         stored = store.get_meta("config")
+        if not resume and stored is not None:  # another fresh start got here first (we waited for its lock)
+            raise EvaluationError(f"{out} already holds an evaluation: pass --resume to continue it, or choose "
+                                  "another --out")
         if resume and stored is None:
             raise EvaluationError(f"{out} holds no evaluation to resume (no results.sqlite with settings)")
         if stored is not None:  # settings added since the evaluation was stored have their defaults

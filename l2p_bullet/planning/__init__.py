@@ -30,7 +30,7 @@ from ..core.threads import torch_threads
 from ..embodiment.reach import Wrist
 from ..errors import PlanError, UnknownPlannerError
 from . import policy  # called as policy.load_policy: a test stands in a policy there
-from .feasibility import grasp_holds
+from .feasibility import check_moves, grasp_holds
 from .problem import Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .search import beam, greedy
@@ -120,6 +120,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     problem, node, stopped, steps, hold = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
+    check_moves(scene, mover, anchor, result.path, action=str(bundle.name), stopped=stopped,
+                progress=float(node.progress), steps=steps)  # a plan that goes nowhere is never a run
     result.extra["grasp_angle_deg"] = None if hold.angle is None else round(math.degrees(hold.angle), 6)
     if name in ("reinforce", "mixed") and _policy_is_stale(bundle):
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "

@@ -13,6 +13,9 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
   squares' centres are never nearer than the sum of their half sides.
+- ``no-motion`` (after the search, before anything is executed, :func:`check_moves`): the planner found
+  no move that raises the progress, so its best plan leaves the mover where it is (one waypoint). It is
+  refused, never executed and reported as a run ("swept 0.00 of a turn", exit 0, issue 27.8).
 
 The room checks read the thresholds of the built-in rule judges (``judge/rules.py``: ``AROUND_TURNS``,
 ``AWAY_GAIN``, ``CLOSER_SHARE``, ``closer_room``) and apply to an action judged by those rules; a plugin
@@ -31,7 +34,9 @@ from ..errors import InfeasibleError
 from ..judge.rules import AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
 from .world2d import World2D
 
-CHECKS = ("grasp", "boxed-in", "room-around", "room-away", "room-closer")
+CHECKS = ("grasp", "boxed-in", "room-around", "room-away", "room-closer", "no-motion")
+MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
+MIN_TURN_RAD = math.radians(10.0)
 
 
 def grasp_holds(scene: Scene, mover: str) -> list[reach.Hold]:
@@ -135,3 +140,28 @@ def _longest_circular_run(ok: np.ndarray) -> int:
         run = run + 1 if v else 0
         best = max(best, run)
     return best
+
+
+def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, action: str, stopped: str,
+                progress: float, steps: int) -> None:
+    """InfeasibleError ("no-motion") for a plan that does not move the mover, unless the action was
+    already done at the start (the search stopped at its threshold)."""
+    p = np.asarray(path, float).reshape(-1, 3)
+    m, a = scene.get(mover), scene.get(anchor)
+    travel = float(np.max(np.hypot(*(p[:, :2] - p[0, :2]).T))) if len(p) else 0.0
+    turn = float(np.max(np.abs(p[:, 2] - p[0, 2]))) if len(p) else 0.0
+    if stopped == "threshold" or (len(p) >= 2 and (travel >= MIN_TRAVEL_SIDES * m.size or turn >= MIN_TURN_RAD)):
+        return
+    sides = float(np.hypot(*(np.asarray(m.xy) - np.asarray(a.xy)))) / m.size
+    ratio = max(m.size, a.size) / min(m.size, a.size)
+    hint = (f"; the {m.size * 100:.0f} cm mover starts {sides:.1f} of its sides from the {a.size * 100:.0f} cm "
+            "anchor, and the built-in actions measure distances in the mover's sides (learned from two blocks "
+            "of one size): try blocks of similar size, nearer each other" if ratio > 1.5 or sides > 4.0
+            else "; another --planner or --seed may find one")
+    raise InfeasibleError(
+        "no-motion",
+        f'no plan moves "{mover}" for "{action}" relative to "{anchor}": no move raised the learned progress '
+        f"(best {progress:.3f} after {steps} search steps), so it would stay where it is{hint}",
+        {"waypoints": len(p), "travel_m": round(travel, 6), "progress": round(float(progress), 6), "steps": steps,
+         "mover_size_m": m.size, "anchor_size_m": a.size, "distance_sides": round(sides, 2)})
+

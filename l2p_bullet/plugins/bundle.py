@@ -17,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -28,6 +27,7 @@ from safetensors import SafetensorError
 from safetensors.numpy import load, save
 
 from .. import __version__
+from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..errors import BundleError
@@ -68,15 +68,44 @@ def read_weights(folder: Path, filename: str, manifest: dict) -> bytes:
         raise BundleError(f'{folder / MANIFEST}: no [weights."{filename}"] sha256 entry')
     p = safe_weight_name(folder, filename)
     try:
-        data = p.read_bytes()
+        with open(p, "rb") as f:
+            size = _checked_size(folder, filename, os.fstat(f.fileno()), entry, f.read(8))
+            f.seek(0)
+            data = f.read(size + 1)
     except FileNotFoundError:
         raise BundleError(f"bundle {folder}: weights file {filename} is missing") from None
     except OSError as e:
         raise BundleError(f"bundle {folder}: cannot read {filename} ({e.strerror or e})") from None
+    if len(data) != size:
+        raise BundleError(f"bundle {folder}: {filename} changed while it was read")
     if hashlib.sha256(data).hexdigest() != entry["sha256"]:
         raise BundleError(f"bundle {folder}: {filename} does not match the sha256 digest in {MANIFEST} "
                           "(the file was modified or corrupted; re-train or re-install the bundle)")
     return data
+
+
+MAX_WEIGHTS_BYTES = 512 * 2**20
+"""A weights file larger than this is not one of ours (the built-ins are 22 KB and 190 KB)."""
+
+
+def _checked_size(folder: Path, filename: str, st: os.stat_result, entry: dict, head: bytes) -> int:
+    """The file's size, once it is known to be what the manifest and the safetensors header say, so that
+    a 16 GiB sparse file (or a device) is refused before it is read, not after."""
+    import stat
+
+    where = f"bundle {folder}: {filename}"
+    if not stat.S_ISREG(st.st_mode):
+        raise BundleError(f"{where} is not a regular file")
+    declared = entry.get("bytes")
+    if isinstance(declared, int) and not isinstance(declared, bool) and declared != st.st_size:
+        raise BundleError(f"{where} is {st.st_size} bytes but {MANIFEST} says {declared} (modified or corrupted; "
+                          "re-train or re-install the bundle)")
+    if st.st_size > MAX_WEIGHTS_BYTES:
+        raise BundleError(f"{where} is {st.st_size / 2**20:.0f} MiB; weights files are at most "
+                          f"{MAX_WEIGHTS_BYTES // 2**20} MiB")
+    if len(head) < 8 or int.from_bytes(head, "little") > st.st_size - 8:
+        raise BundleError(f"{where}: not a safetensors file (its header does not fit in the file)")
+    return st.st_size
 
 
 def read_arrays(folder: Path, filename: str, manifest: dict) -> dict[str, np.ndarray]:
@@ -158,10 +187,7 @@ def read_manifest(folder: Path) -> dict:
         raise BundleError(f"bundle folder {folder} does not exist")
     if not p.is_file():
         raise BundleError(f"bundle {folder} has no {MANIFEST}")
-    try:
-        return tomllib.loads(p.read_text())
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
-        raise BundleError(f"{p}: not valid TOML ({e})") from None
+    return loads_toml(read_bounded(p, MAX_TOML_BYTES, BundleError), BundleError, str(p))
 
 
 def load_bundle(path: str | os.PathLike) -> Bundle:
@@ -201,8 +227,9 @@ def _write_manifest(folder: Path, manifest: dict) -> None:
 
     path = folder / MANIFEST
     try:
-        doc = tomlkit.parse(path.read_text(encoding="utf-8")) if path.is_file() else tomlkit.document()
-    except (OSError, UnicodeDecodeError, TOMLKitError):
+        read_manifest(folder)  # bounded size and nesting first: tomlkit recurses like tomllib
+        doc = tomlkit.parse(path.read_text(encoding="utf-8"))
+    except (BundleError, OSError, UnicodeDecodeError, TOMLKitError, RecursionError):
         doc = tomlkit.document()
     _merge_into(doc, _plain(manifest))
     tmp = folder / (MANIFEST + ".tmp")
@@ -287,8 +314,8 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
     old: dict = {}
     if (folder / MANIFEST).is_file():
         try:
-            old = tomllib.loads((folder / MANIFEST).read_text())
-        except tomllib.TOMLDecodeError:
+            old = read_manifest(folder)
+        except BundleError:
             old = {}
     shipped = read_manifest(builtin_bundle_dir(action)) if action in ACTIONS else {}
     keep_weights = {k: v for k, v in old.get("weights", {}).items()

@@ -26,13 +26,13 @@ from __future__ import annotations
 
 import importlib
 import sys
-import tomllib
 from dataclasses import dataclass, field
 from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..actions.spec import ActionSpec
+from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.frames import declaration
 from ..core.vocabulary import normalize_name, normalize_phrase
 from ..errors import (
@@ -175,11 +175,9 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     if not path.is_file():
         return {}, f"no {MANIFEST} in {folder} ({train_hint})"
     try:
-        manifest = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as e:
-        return {}, f"cannot read {path}: {e}"
-    except tomllib.TOMLDecodeError as e:
-        return {}, f"{path} is not valid TOML ({e})"
+        manifest = loads_toml(read_bounded(path, MAX_TOML_BYTES, BundleError), BundleError, str(path))
+    except BundleError as e:
+        return {}, str(e)
     phrases = manifest.get("phrases")
     if not (isinstance(phrases, list) and phrases and all(isinstance(p, str) and p.strip() for p in phrases)):
         return manifest, f'{path}: "phrases" must be a non-empty list of phrases such as ["next to", "beside"]'

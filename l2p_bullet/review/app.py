@@ -8,7 +8,8 @@ nothing here may reach outside the machine.
 
 Errors are JSON ``{"error": message}``: 400 a request that makes no sense here, 404 an unknown run,
 409 a conflict (the run changed on disk, or the answer was changed in another window), 410 a run folder
-that disappeared, 422 a malformed payload; anything unexpected is a 500 with a one-line message (the
+that disappeared, 422 a malformed payload, 503 a database moved away or made read-only while serving;
+anything unexpected is a 500 with a one-line message (the
 traceback goes to the server's log, not to the browser).
 """
 
@@ -27,7 +28,7 @@ from ..errors import ReviewError
 from ..web.apps import json_errors, new_app, static_pages
 from .queue import Item, NotFound, ReviewQueue, label_keys
 from .runs import motion_for_browser
-from .store import AnswerConflict, GradeRow
+from .store import AnswerConflict, DatabaseUnavailable, GradeRow
 
 log = logging.getLogger("l2p_bullet.review")
 
@@ -171,6 +172,8 @@ def _status(exc: Exception) -> tuple[int, dict]:
     changed, 400 otherwise."""
     if isinstance(exc, NotFound):
         return 404, {}
+    if isinstance(exc, DatabaseUnavailable):
+        return 503, {"reason": "database"}
     if isinstance(exc, AnswerConflict):
         return (410 if exc.reason == "missing" else 409), {"reason": exc.reason}
     return 400, {}

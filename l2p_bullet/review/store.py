@@ -12,6 +12,8 @@ database or an export) live in :mod:`l2p_bullet.data.grades`, a floor the learne
 
 from __future__ import annotations
 
+import contextlib
+import sqlite3
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -53,6 +55,10 @@ class Answer:
     comment: str = ""
 
 
+class DatabaseUnavailable(ReviewError):
+    """The database file went away, was replaced or became read-only while the app was serving (503)."""
+
+
 class AnswerConflict(ReviewError):
     """The run changed on disk, or this reviewer's answer was changed elsewhere since it was read."""
 
@@ -77,14 +83,33 @@ class Store:
             raise ReviewError(f"--db {self.path} is a folder; give a file name, e.g. {self.path / 'reviews.sqlite'}")
         if not self.path.parent.is_dir():
             raise ReviewError(f"cannot create review database {self.path}: folder {self.path.parent} does not exist")
-        with self.connect() as conn:
+        self._identity: tuple[int, int] | None = None
+        conn = schema.connect(self.path)  # the one place a database is created
+        try:
             self.migrated_from = schema.migrate(conn, self.path)
+        finally:
+            conn.close()
+        st = self.path.stat()
+        self._identity = (st.st_dev, st.st_ino)
 
     @contextmanager
     def connect(self) -> Iterator:
-        conn = schema.connect(self.path)
+        """A connection to *this* database file: if it was moved, deleted or replaced since it was opened,
+        :class:`DatabaseUnavailable` (never a fresh empty database created silently in its place)."""
+        try:
+            st = self.path.stat()
+        except OSError:
+            raise DatabaseUnavailable(f"the review database {self.path} was moved or deleted while the server was "
+                                      "running; nothing can be saved: put it back, or restart l2p-bullet review") from None
+        if self._identity is not None and (st.st_dev, st.st_ino) != self._identity:
+            raise DatabaseUnavailable(f"the review database {self.path} was replaced by another file while the server "
+                                      "was running; nothing is saved to it: restart l2p-bullet review")
+        conn = schema.connect(self.path, create=False)
         try:
             yield conn
+        except sqlite3.DatabaseError as e:  # made read-only, disk full, removed under an open connection
+            raise DatabaseUnavailable(f"the review database {self.path} cannot be used ({e}): was it made read-only "
+                                      "or moved while the server was running? Nothing was saved") from None
         finally:
             conn.close()
 
@@ -96,7 +121,8 @@ class Store:
             try:
                 yield conn
             except BaseException:
-                conn.execute("ROLLBACK")
+                with contextlib.suppress(sqlite3.DatabaseError):
+                    conn.execute("ROLLBACK")
                 raise
             conn.execute("COMMIT")
 

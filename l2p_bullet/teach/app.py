@@ -43,7 +43,7 @@ class Busy(TeachError):
 
 
 def create_app(lesson: Lesson, host: str = "127.0.0.1") -> FastAPI:
-    app = new_app("l2p-bullet teach", host, extra_hosts=("testserver",))
+    app = new_app("l2p-bullet teach", host)
     json_errors(app, log, L2PError, lambda exc: (409 if isinstance(exc, Busy) else 400, {}))
     static_pages(app, "l2p_bullet.teach")
 

@@ -24,6 +24,32 @@ from .. import __version__
 LOOPBACK = ("127.0.0.1", "localhost", "::1")
 """Hosts a server binds to by default; bound there, it answers only requests addressed to them."""
 
+MAX_BODY_BYTES = 4 * 2**20
+"""The largest request body either app reads (413 past it, counted as it arrives, chunked or not): the
+largest legitimate one, a teach recording of 20,000 samples, is about 2 MB."""
+STATE_CHANGING = ("POST", "PUT", "PATCH", "DELETE")
+SECURITY_HEADERS = (
+    (b"x-frame-options", b"DENY"),
+    (b"content-security-policy", b"default-src 'self'; img-src 'self' data: blob:; media-src 'self' blob:; "
+                                 b"frame-ancestors 'none'; base-uri 'none'; form-action 'self'; object-src 'none'"),
+    (b"x-content-type-options", b"nosniff"),
+    (b"referrer-policy", b"no-referrer"),
+)
+"""On every response: no page of another site may frame ours (clickjacking), and ours loads nothing
+from elsewhere."""
+
+
+def is_loopback(host: str) -> bool:
+    """``localhost`` or any loopback address (127.0.0.0/8, ::1): only this machine can connect."""
+    import ipaddress
+
+    if host.strip("[]").lower() == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host.strip("[]")).is_loopback
+    except ValueError:
+        return False
+
 UserError = Callable[[Exception], tuple[int, dict]]
 """An app's own errors -> (status, extra JSON fields)."""
 
@@ -32,9 +58,92 @@ def new_app(title: str, host: str, extra_hosts: tuple[str, ...] = ()) -> FastAPI
     """A FastAPI app without the API docs pages; bound to loopback, it refuses other Host headers so
     a web page elsewhere cannot reach it through a rebound DNS name."""
     app = FastAPI(title=title, version=__version__, docs_url=None, redoc_url=None)
-    if host in LOOPBACK:
-        app.add_middleware(TrustedHostMiddleware, allowed_hosts=["127.0.0.1", "localhost", "[::1]", *extra_hosts])
+    app.add_middleware(RequestGuard)
+    if is_loopback(host):
+        bound = f"[{host.strip('[]')}]" if ":" in host else host
+        allowed = dict.fromkeys(["127.0.0.1", "localhost", "[::1]", bound, *extra_hosts])
+        app.add_middleware(TrustedHostMiddleware, allowed_hosts=list(allowed))
     return app
+
+
+class RequestGuard:
+    """ASGI middleware for both apps: refuses cross-site state-changing requests and bodies over
+    :data:`MAX_BODY_BYTES`, and adds :data:`SECURITY_HEADERS` to every response.
+
+    A web page elsewhere can make the browser send a "simple" request (``text/plain``, no preflight) to
+    a server on this machine: ``POST /api/train`` would retrain a plugin. So every POST/PUT/PATCH/DELETE
+    must be ``application/json`` (which a browser only sends cross-origin after a CORS preflight that
+    these apps never grant) and, when the browser says where it comes from (``Origin``,
+    ``Sec-Fetch-Site``), come from this very server. The body is read here, counting bytes as they
+    arrive (a chunked body has no Content-Length to check), and handed to the app only when it is small.
+    """
+
+    def __init__(self, app, max_body: int = MAX_BODY_BYTES):
+        self.app, self.max_body = app, max_body
+
+    async def __call__(self, scope, receive, send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+
+        async def send_with_headers(message) -> None:
+            if message["type"] == "http.response.start":
+                have = {k.lower() for k, _ in message.get("headers", [])}
+                message["headers"] = [*message.get("headers", []), *(h for h in SECURITY_HEADERS if h[0] not in have)]
+            await send(message)
+
+        headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
+        refusal = _refusal(scope["method"], headers, self.max_body)
+        if refusal is not None:
+            await _reply(send_with_headers, *refusal)
+            return
+        body = bytearray()
+        while True:
+            message = await receive()
+            if message["type"] == "http.disconnect":
+                return
+            body += message.get("body", b"")
+            if len(body) > self.max_body:
+                await _reply(send_with_headers, 413, f"the request body is larger than {self.max_body} bytes")
+                return
+            if not message.get("more_body", False):
+                break
+        given = False
+
+        async def replay():
+            nonlocal given
+            if given:
+                return await receive()
+            given = True
+            return {"type": "http.request", "body": bytes(body), "more_body": False}
+
+        await self.app(scope, replay, send_with_headers)
+
+
+def _refusal(method: str, headers: dict[str, str], max_body: int) -> tuple[int, str] | None:
+    """(status, why) for a request refused before its body is read, else None."""
+    length = headers.get("content-length")
+    if length is not None and (not length.strip().isdigit() or int(length) > max_body):
+        return 413, f"the request body is larger than {max_body} bytes"
+    if method.upper() not in STATE_CHANGING:
+        return None
+    origin, host = headers.get("origin"), headers.get("host", "")
+    if origin is not None and origin.rstrip("/") not in (f"http://{host}", f"https://{host}"):
+        return 403, f"cross-origin request refused (Origin {origin[:100]} is not this server)"
+    if headers.get("sec-fetch-site", "same-origin") not in ("same-origin", "none"):
+        return 403, "cross-site request refused (Sec-Fetch-Site)"
+    if headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
+        return 415, "state-changing requests must be Content-Type: application/json"
+    return None
+
+
+async def _reply(send, status: int, error: str) -> None:
+    import json
+
+    body = json.dumps({"error": error}).encode()
+    await send({"type": "http.response.start", "status": status,
+                "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
+    await send({"type": "http.response.body", "body": body})
 
 
 

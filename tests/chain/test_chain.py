@@ -219,7 +219,7 @@ def test_the_review_page_names_the_clause_being_performed(chain_runs, chromium, 
         page.wait_for_selector("#name")
         page.fill("#name", "ann")
         page.press("#name", "Enter")
-        page.wait_for_function("document.querySelector('#sentence').textContent.includes('now 1/3: move A next to B')")
+        page.wait_for_function("() => document.querySelector('#sentence').textContent.includes('now 1/3: move A next to B')")
         assert page.inner_text("#sentence").startswith(f"“{CHAIN}”")
         assert not errors, errors
     finally:

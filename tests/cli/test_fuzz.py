@@ -178,3 +178,110 @@ def test_any_manifest_loads_or_is_a_one_line_error(worker, bundle_template, targ
     (folder / MANIFEST).write_bytes(text)
     resp = worker.run(["score", str(folder), "motion.json"], folder.parent)
     check(resp, worker)
+
+
+@settings(FUZZ, max_examples=30)
+@given(depth=st.integers(1, 3000), kind=st.sampled_from(["array", "inline", "dotted", "header", "comment"]),
+       where=st.sampled_from(["start", "end"]))
+def test_any_manifest_structure_is_bounded(worker, bundle_template, depth, kind, where):
+    """Manifests by structure (issue 27.2): nesting of every kind and any size load or are one line."""
+    folder, manifest = bundle_template
+    extra = {"array": "deep = " + "[" * depth + "]" * depth,
+             "inline": "deep = " + "{a = " * depth + "1" + "}" * depth,
+             "dotted": ".".join(["d"] * depth) + " = 1",
+             "header": "[" + ".".join(["t"] * depth) + "]\nk = 1",
+             "comment": "# " + "x" * (depth * 400)}[kind]
+    shipped = tomli_w.dumps(manifest)
+    text = extra + "\n" + shipped if where == "start" and kind in ("array", "inline", "dotted", "comment") \
+        else shipped + "\n" + extra + "\n"
+    (folder / MANIFEST).write_text(text)
+    resp = worker.run(["score", str(folder), "motion.json"], folder.parent)
+    check(resp, worker)
+
+
+_PLAN = {"schema": 1, "action": "past", "mover": "A", "anchor": "B", "size": 0.05, "anchor_pose": [0.0, 0.05, 0.0],
+         "start": [0.05, -0.1, 0.3], "planner": "mixed"}
+far = st.one_of(st.sampled_from([1e5, 1e10, -1e12, 1e300, 3.0, 10**300, -(10**300), 10**20]),
+                st.integers(10**5, 10**400), st.floats(min_value=1.0, max_value=1e308))
+"""A coordinate outside the workspace (a disk of radius 0.25 m): the path must be refused up front."""
+
+
+@settings(FUZZ, max_examples=25)
+@given(n=st.integers(2, 6), k=st.integers(0, 5), axis=st.integers(0, 1), value=far,
+       kind=st.sampled_from(["plan", "motion"]))
+def test_any_far_waypoint_is_refused_up_front_in_bounded_memory(worker, tmp_path_factory, n, k, axis, value, kind):
+    """Issue 27.4: one waypoint at y = 1e5 m took 3.2 GB; a 300-digit coordinate was a traceback; each left
+    a failed run folder. The waypoints are checked before the path is densified or a folder is made."""
+    folder = tmp_path_factory.mktemp("replay")
+    path = [[0.05 + 0.01 * i, -0.1 + 0.01 * i, 0.3] for i in range(n)]
+    path[min(k, n - 1)][axis] = value
+    if kind == "plan":
+        doc = {**_PLAN, "path": path}
+    else:  # a scoring input: fitted into the workspace unless it is farther than 1000 block sides (50 m)
+        if abs(value) < 100:
+            value *= 1e3
+            path[min(k, n - 1)][axis] = value
+        doc = {"size": 0.05, "mover": path, "anchor": [[0.0, 0.05, 0.0]]}
+    (folder / "p.json").write_text(json.dumps(doc))
+    resp = worker.run(["replay", "p.json", "--no-render", "--out", "run"], folder)
+    check(resp, worker)
+    assert resp["exit_code"] == 2, resp["output"]
+    assert not (folder / "run").exists(), "a path refused up front left a run folder"
+
+
+# --- unbounded reads (issue 27.6): devices, sparse weights, arrays that declare more than they hold ----
+@pytest.mark.parametrize("args", [["perform", "move A past B", "--scene", "/dev/zero", "--no-render", "--out", "r"],
+                                  ["plan", "move A past B", "--scene", "/dev/zero", "--out", "r"],
+                                  ["score", "around", "/dev/zero"], ["replay", "/dev/zero", "--no-render"]])
+def test_a_device_as_an_input_file_is_read_with_a_bound(worker, tmp_path, args):
+    resp = worker.run(args, tmp_path)
+    check(resp, worker)
+    assert resp["exit_code"] == 2 and "larger than" in resp["output"], resp["output"]
+    assert not (tmp_path / "r").exists()
+
+
+@pytest.mark.parametrize("declared", ["as the file", "16 GiB"])
+def test_a_huge_sparse_weights_file_is_refused_before_it_is_read(worker, tmp_path, declared):
+    """A 16 GiB sparse policy.safetensors used to be read whole before its digest was checked."""
+    folder = tmp_path / "b"
+    shutil.copytree(builtin_bundle_dir("past"), folder)
+    (folder.parent / "motion.json").write_text(json.dumps({"size": 0.05, "mover": [[0.4, 0, 0], [0.2, 0.1, 0.3]],
+                                                           "anchor": [[0, 0, 0]]}))
+    policy = folder / "policy.safetensors"
+    head = policy.read_bytes()[:4096]
+    with policy.open("r+b") as f:
+        f.truncate(16 * 2**30)  # sparse: no disk, but 16 GiB to read
+        f.write(head)
+    if declared == "16 GiB":
+        man = tomllib.loads((folder / MANIFEST).read_text())
+        man["weights"]["policy.safetensors"]["bytes"] = 16 * 2**30
+        (folder / MANIFEST).write_text(tomli_w.dumps(man))
+    resp = worker.run(["score", str(folder), "motion.json"], tmp_path)
+    check(resp, worker)
+    assert resp["exit_code"] == 2 and "policy.safetensors is" in resp["output"], resp["output"]
+
+
+def _npz_declaring(path: Path, shape: tuple[int, ...]) -> None:
+    """A valid-looking session file whose ``shell_pose`` header declares ``shape`` but holds 24 bytes."""
+    import io
+    import zipfile
+
+    import numpy as np
+
+    arrays = {"stella_pose": np.zeros((5, 3)), "event_start_end": np.array([[0, 4]]), "event_mover": np.array([0])}
+    with zipfile.ZipFile(path, "w") as zf:
+        for name, a in arrays.items():
+            buf = io.BytesIO()
+            np.lib.format.write_array(buf, a)
+            zf.writestr(name + ".npy", buf.getvalue())
+        buf = io.BytesIO()
+        np.lib.format.write_array_header_1_0(buf, {"descr": "<f8", "fortran_order": False, "shape": shape})
+        zf.writestr("shell_pose.npy", buf.getvalue() + b"\0" * 24)
+
+
+@pytest.mark.parametrize("shape", [(10**11, 3), (2**62, 3), (10**6, 10**6)])
+def test_an_npz_declaring_a_huge_array_is_refused_before_it_is_loaded(worker, tmp_path, shape):
+    _npz_declaring(tmp_path / "huge.npz", shape)
+    resp = worker.run(["train", "around", "--demos", "huge.npz", "--out", "b"], tmp_path)
+    check(resp, worker)
+    assert resp["exit_code"] == 2 and "declares shape" in resp["output"], resp["output"]

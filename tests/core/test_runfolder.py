@@ -199,3 +199,35 @@ def test_ctrl_c_marks_the_run_interrupted_and_the_next_run_replaces_it(tmp_path)
     r = subprocess.run([*cmd, "--no-render"], capture_output=True, text=True, timeout=300)  # no --force needed
     assert r.returncode == 0, r.stderr
     assert json.loads((out / "summary.json").read_text())["ok"] is True
+
+
+def _perform_like_run(folder: Path) -> Path:
+    """A finished run folder of ``perform`` (the real claim, a minimal trajectory), fast enough for CI."""
+    with run_folder(folder, command="perform") as out:
+        frame = {"t": 0.0, "poses": {"A": [0, 0, 0.025, 0], "B": [0.1, 0, 0.025, 0]}, "ee": [0, 0, 0.3],
+                 "grasped": None}
+        (out / "trajectory.json").write_text(json.dumps({"frames": [frame], "mover": "A", "anchor": "B", "fps": 30,
+                                                         "sentence": "move A past B"}))
+        (out / "summary.json").write_text(json.dumps({"schema": 1, "ok": True, "timings_s": {}}))
+    return folder
+
+
+def test_export_force_never_replaces_another_commands_run_nor_an_input(tmp_path):
+    """Issue 27.1: ``export runA runB --force`` read as "export two runs" replaced the perform run runB;
+    ``export RUNS --format json RUNS/run-b --force`` deleted an input's files."""
+    runs = tmp_path / "runs"
+    a, b = _perform_like_run(runs / "run-a"), _perform_like_run(runs / "run-b")
+    before = {p: p.read_bytes() for p in sorted(runs.rglob("*")) if p.is_file()}
+    for args in ([str(a), str(b), "--force"], [str(runs), "--format", "json", str(b), "--force"],
+                 [str(a), str(runs), "--force"], [str(a), str(a), "--force"]):
+        line = one_line_error(CliRunner().invoke(main, ["export", *args]))
+        assert "--force" in line or "input" in line, line
+    assert {p: p.read_bytes() for p in sorted(runs.rglob("*")) if p.is_file()} == before
+    # the same command may still replace its own previous output
+    out = tmp_path / "ex"
+    assert CliRunner().invoke(main, ["export", str(a), str(out)]).exit_code == 0
+    assert CliRunner().invoke(main, ["export", str(a), str(b), str(out), "--force"]).exit_code == 0
+    assert len((out / "episodes.jsonl").read_text().splitlines()) == 2
+    # and another command's --force never takes an export folder either
+    one_line_error(CliRunner().invoke(main, plan_args(out, "--force")))
+    assert (out / "episodes.jsonl").exists()

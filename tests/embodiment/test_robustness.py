@@ -50,7 +50,11 @@ def _world(scene: Scene):
 @pytest.mark.slow
 @pytest.mark.parametrize("action", list(SENTENCES))
 def test_a_touching_start_is_performed_and_the_anchor_stays(action, tmp_path):
-    r = perform(SENTENCES[action], TOUCHING, out_dir=tmp_path / action, render=False, seed=0)
+    try:
+        r = perform(SENTENCES[action], TOUCHING, out_dir=tmp_path / action, render=False, seed=0)
+    except InfeasibleError as e:  # issue 27.8: no move gets it closer: refused before the arm moves
+        assert e.check == "no-motion" and action == "closer", e
+        return
     assert r.displacements_m["B"] < 0.001 and not r.to_dict()["disturbed"]
     summary = json.loads((tmp_path / action / "summary.json").read_text())
     assert summary["ok"] and summary["displacements_m"]["B"] < 0.001 and summary["disturbed"] == []
@@ -83,7 +87,11 @@ def test_a_hemmed_in_small_block_is_grasped_at_another_angle():
 @pytest.mark.parametrize("scene, action", [(SMALL_BY_TALL, "past"), (SMALL_BY_TALL, "around"),
                                            (SMALL_BY_TALL, "closer"), (SMALL_BY_MIDDLE, "past")])
 def test_a_small_mover_does_not_knock_a_taller_anchor(scene, action, tmp_path):
-    r = perform(SENTENCES[action], scene, out_dir=tmp_path, render=False)
+    try:
+        r = perform(SENTENCES[action], scene, out_dir=tmp_path, render=False)
+    except InfeasibleError as e:  # issue 27.8: a plan that goes nowhere is refused, never executed
+        assert e.check == "no-motion" and action == "around", e
+        return
     assert r.displacements_m["B"] < 0.001, r.displacements_m
     if scene is SMALL_BY_TALL:  # the hand's long side must point away from B: only 90 degrees clears it
         assert r.grasp["angles_allowed_deg"] == [pytest.approx(90.0)] and r.grasp["angle_deg"] == pytest.approx(90.0)
@@ -308,3 +316,37 @@ def test_perform_json_says_which_check_refused_and_writes_nothing(tmp_path):
     answer = json.loads(r.stdout)
     assert answer["ok"] is False and answer["refused"]["check"] == "room-around"
     assert answer["error_type"] == "InfeasibleError" and not out.exists()
+
+
+# --- a plan that goes nowhere (issue 27.8) ------------------------------------------------------------------
+def test_a_one_waypoint_plan_is_refused_with_its_check():
+    start = np.array([[0.06, -0.06, 0.0]])
+    with pytest.raises(InfeasibleError) as e:
+        feasibility.check_moves(SMALL_BY_TALL, "A", "B", start, action="around", stopped="budget", progress=0.0046,
+                                steps=20)
+    assert e.value.check == "no-motion" and "2 cm mover" in str(e.value) and e.value.details["waypoints"] == 1
+    jitter = np.array([[0.06, -0.06, 0.0], [0.0601, -0.0601, 0.01]])  # 0.14 mm and half a degree: no motion
+    with pytest.raises(InfeasibleError):
+        feasibility.check_moves(SMALL_BY_TALL, "A", "B", jitter, action="around", stopped="budget", progress=0.01,
+                                steps=20)
+    # a real move, and an action already done at the start, are plans
+    feasibility.check_moves(SMALL_BY_TALL, "A", "B", np.array([[0.06, -0.06, 0.0], [0.06, -0.1, 0.0]]),
+                            action="around", stopped="budget", progress=0.1, steps=20)
+    feasibility.check_moves(SMALL_BY_TALL, "A", "B", start, action="next-to", stopped="threshold", progress=0.95,
+                            steps=0)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("action", ["around", "past", "next-to"])
+def test_a_small_mover_by_a_big_anchor_is_planned_or_refused_never_a_one_waypoint_run(action):
+    """The issue's case: a 2 cm mover, an 8 cm anchor; "around" made a one-waypoint plan reported as a run."""
+    from l2p_bullet.plugins import registry
+
+    scene = Scene([SceneObject("A", "red", 0.02, (0.05, -0.10)), SceneObject("B", "green", 0.08, (0.0, 0.05))])
+    try:
+        p = plan(scene.validate(), "A", "B", registry.load(action), seed=0)
+    except InfeasibleError as e:
+        assert e.check == "no-motion"
+        return
+    assert len(p.path) >= 2 and np.hypot(*(p.path[-1, :2] - p.path[0, :2])) >= 0.25 * 0.02
+

@@ -155,3 +155,34 @@ def test_pool_workers_start_with_one_blas_thread_unless_the_user_chose(monkeypat
         assert os.environ["OMP_NUM_THREADS"] == "1" and os.environ["MKL_NUM_THREADS"] == "3"
     assert "OMP_NUM_THREADS" not in os.environ and os.environ["MKL_NUM_THREADS"] == "3"
     assert "OPENBLAS_NUM_THREADS" in THREAD_VARIABLES
+
+
+@pytest.mark.slow
+def test_a_second_resume_of_a_folder_being_written_is_refused(tmp_path):
+    """Issue 27.7: two concurrent ``evaluate --out X --resume`` both ran every remaining task."""
+    out = tmp_path / "e"
+    # a fresh evaluation stopped after its first row, then resumed twice at once
+    cmd = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--actions", "closer,past", "--scenes", "30",
+           "--plan-only", "--workers", "0", "--out", str(out), "--quiet"]
+    first = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=ctrl_c_as_at_a_terminal)
+    deadline = time.time() + 120
+    while time.time() < deadline and _count(out) < 1:
+        time.sleep(0.05)
+    first.send_signal(signal.SIGINT)
+    first.communicate(timeout=60)
+    resume = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--out", str(out), "--resume", "--workers", "0",
+              "--quiet"]
+    a = subprocess.Popen(resume, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        while time.time() < deadline and _count(out) <= 1 and a.poll() is None:
+            time.sleep(0.05)
+        assert a.poll() is None, "the first resume ended before the second started"
+        b = subprocess.run(resume, capture_output=True, text=True, timeout=120)
+        assert b.returncode == 2 and "another l2p-bullet evaluate" in b.stderr, b.stderr
+        assert "Traceback" not in b.stderr
+    finally:
+        a.send_signal(signal.SIGINT)
+        a.communicate(timeout=60)
+    with pytest.raises(EvaluationError, match="already holds"):  # and a fresh start still is refused
+        evaluate(EvaluationConfig(actions=["closer"], scenes=1), out, workers=0, progressbar=False)

@@ -129,7 +129,7 @@ def test_the_same_reviewer_in_two_windows_never_overwrites_silently(live, chromi
     _keys(a, "4", "Enter")
     _shown(a, first)
     _keys(b, "6", "Enter")  # refused: b shows ann's stored answer instead
-    b.wait_for_function("document.getElementById('status').textContent.includes('the stored answer now')")
+    b.wait_for_function("() => document.getElementById('status').textContent.includes('the stored answer now')")
     assert b.inner_text("#grades button.selected") == "44"
     (g,) = s.store.grades()
     assert g.grade == 4
@@ -158,7 +158,7 @@ def test_a_phone_wide_page_shows_the_whole_grading_panel(live, chromium, tmp_pat
     if os.environ.get("L2P_SCREENSHOT_DIR"):  # to look at it
         shutil.copy(path, Path(os.environ["L2P_SCREENSHOT_DIR"]) / path.name)
     _keys(page, "5", "p", "Enter")  # and it still grades
-    page.wait_for_function("document.getElementById('status').textContent === 'saved'")
+    page.wait_for_function("() => document.getElementById('status').textContent === 'saved'")
     assert [(g.label, g.grade) for g in s.store.grades()] == [("past", 5)]
     assert not errors
 
@@ -180,7 +180,7 @@ def test_the_default_video_plays_to_its_end_and_the_page_says_where_the_viewer_s
         _login(page, "vic")
         assert not page.is_hidden("#video")
         assert "behind the robot: its left is your left" in page.inner_text("#viewname")
-        page.wait_for_function("document.querySelector('#video').ended && document.body.dataset.ended === '1'",
+        page.wait_for_function("() => document.querySelector('#video').ended && document.body.dataset.ended === '1'",
                                timeout=60_000)
         size = page.evaluate("[document.querySelector('#video').videoWidth, document.querySelector('#video').videoHeight]")
         assert size[0] == 640 and size[1] > 480  # the frame and the caption strip under it

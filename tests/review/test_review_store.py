@@ -7,6 +7,8 @@ import sqlite3
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from review_fixtures import run_folder  # noqa: F401 - fixture
 
 from l2p_bullet.data import review_schema as schema
@@ -211,3 +213,27 @@ def test_report_of_blind_labels_and_of_both_views(tmp_path, run_folder):  # noqa
     assert row["views"] == "3d+2d" and row["mean_grade"] == 8.5 and row["disparity"] is None  # one grader
     files = write_grade_report(rep, tmp_path / "rep")
     assert {"confusion.png", "views.png", "confusion.csv", "table1_app.csv"} <= {f.name for f in files}
+
+
+_cell = st.text(alphabet=st.sampled_from(list("=+-@'\t\r\n\",; ab1(")), max_size=12)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(reviewer=_cell, comment=_cell, label=st.none() | _cell)
+def test_a_csv_export_never_holds_a_formula_and_reads_back_exactly(tmp_path, reviewer, comment, label):
+    """Issue 27.7: a reviewer named ``=HYPERLINK(...)`` was exported as a live formula."""
+    import csv
+
+    from l2p_bullet.data.grades import write_grades
+
+    rows = [GradeRow(run_id="r1", reviewer=reviewer, comment=comment, label=label, grade=3,
+                     sentence="=HYPERLINK(\"http://evil.example\",\"x\")"),
+            GradeRow(run_id="r2", reviewer="@SUM(1+1)", comment="-2+3", grade=None)]
+    out = tmp_path / "g.csv"
+    write_grades(rows, out, force=True)
+    with open(out, newline="", encoding="utf-8") as f:
+        for record in csv.DictReader(f):
+            for v in record.values():
+                assert not v.startswith(("=", "+", "-", "@", "\t", "\r")), record
+    assert load_grades(out) == [GradeRow(**{**r.__dict__, "label": r.label or None}) for r in rows]

@@ -15,7 +15,7 @@ pytestmark = pytest.mark.slow
 
 def _page(browser, url: str):
     page, errors = open_page(browser, url, 1200, 760)
-    page.wait_for_function("document.body.dataset.state === 'ready'")
+    page.wait_for_function("() => document.body.dataset.state === 'ready'")
     return page, errors
 
 
@@ -54,7 +54,7 @@ def test_drag_a_block_and_the_saved_demonstration_matches_the_drag(live, chromiu
     page.wait_for_timeout(300)
     page.keyboard.press("e")
     page.keyboard.press("Enter")
-    page.wait_for_function("document.body.dataset.saved === '1'")
+    page.wait_for_function("() => document.body.dataset.saved === '1'")
     assert not errors
 
     # The page moved A where the mouse went (to within a pixel)...
@@ -85,15 +85,15 @@ def test_train_and_perform_shows_the_video(live, chromium):  # noqa: F811
     page.wait_for_timeout(600)
     page.keyboard.press("e")
     page.keyboard.press("Enter")
-    page.wait_for_function("document.getElementById('status').classList.contains('error')")
+    page.wait_for_function("() => document.getElementById('status').classList.contains('error')")
     assert "block A moved 0.00 blocks" in page.inner_text("#status")
     page.keyboard.press("t")
-    page.wait_for_function("document.body.dataset.train === 'training'")
+    page.wait_for_function("() => document.body.dataset.train === 'training'")
     assert page.inner_text("#status") == ""  # issue 26: the old refusal stayed through the training
-    page.wait_for_function("['done', 'failed'].includes(document.body.dataset.train)", timeout=240_000)
+    page.wait_for_function("() => ['done', 'failed'].includes(document.body.dataset.train)", timeout=240_000)
     assert page.get_attribute("body", "data-train") == "done", page.inner_text("#train-status")
     assert "on a new scene" in page.inner_text("#verdict")
-    page.wait_for_function("document.getElementById('video').readyState >= 1", timeout=20_000)
+    page.wait_for_function("() => document.getElementById('video').readyState >= 1", timeout=20_000)
     assert page.evaluate("document.getElementById('video').error") is None
     # the box has the video's own shape (frame and caption strip): no letterbox bars (issue 26)
     box, media = page.evaluate("""() => { const v = document.getElementById('video');
