@@ -14,7 +14,7 @@ import sys
 import click
 
 from . import __version__
-from .commands import actions, evaluate, export, learn, perform, plan, replay, review, teach
+from .commands import actions, evaluate, export, learn, perform, plan, recognize, replay, review, teach
 from .errors import L2PError
 
 
@@ -54,7 +54,7 @@ def main() -> None:
     """
 
 
-for _module in (perform, plan, replay, learn, actions, review, evaluate, export, teach):
+for _module in (perform, plan, replay, learn, actions, review, evaluate, export, teach, recognize):
     for _cmd in _module.COMMANDS:
         main.add_command(_cmd)
 
