@@ -220,8 +220,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
             check_feasible(cmd, now, plugins)
+            target = step.clause.target
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
-                                 budget=budget, threshold=threshold)
+                                 budget=budget, threshold=threshold, target=None if target is None else target(now))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
         p, angles = ex._check(now, cmd.mover, plan.path)
