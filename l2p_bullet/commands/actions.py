@@ -108,14 +108,17 @@ def actions_cmd(as_json: bool, check: bool) -> None:
               help='Reference objects in a sentence: 1 ("next to B") or 2 ("between B and C").')
 @click.option("--judge", "judge", default=None,
               help="A rule judge of l2p_bullet/judge/rules.py (e.g. between, left-of); default: the model's own.")
+@click.option("--composite", is_flag=True,
+              help='A composite action over a list of objects ("make a row of A, B and C"), taught with teach.')
 def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, description: str, frame: str,
-                   anchors: int, judge: str | None) -> None:
+                   anchors: int, judge: str | None, composite: bool) -> None:
     """Scaffold an installable action plugin package for NAME (e.g. left-of).
 
     \b
     Examples:
       l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
       l2p-bullet new-action between --phrase between --anchors 2 --judge between
+      l2p-bullet new-action row --composite --phrase "make a row of" --phrase "line up"
     \b
     Then: write demonstrations into DIR/demos (see DIR/README.md, or use l2p-bullet teach NAME),
           l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
@@ -126,10 +129,16 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
     from ..plugins import registry
     from ..plugins.scaffold import scaffold
 
-    plugins = registry.discover()
+    plugins = registry.discover() + registry.discover("composite")
     installed = {ph: p.name for p in plugins if p.ok for ph in p.phrases}
     s = scaffold(name, list(phrases), out, installed=installed, description=description, frame=frame,
-                 anchors=anchors, judge=judge)
+                 anchors=anchors, judge=judge, kind="composite" if composite else "action")
+    if composite:
+        click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
+        click.echo(f"  1. l2p-bullet teach {name} --plugin {s.root}   (record rows of 2 and 3 blocks, then train)")
+        click.echo(f"  2. {pip_install_command(s.root)}")
+        click.echo(f'  3. l2p-bullet perform "{registry.normalize_phrase(phrases[0])} A, B, C and D" --scene ...')
+        return
     click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
     click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
     click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")

@@ -184,6 +184,7 @@ def learn(demos: list[Demonstration], recognisers: list) -> Recipe:
     if len(demos) > MAX_DEMOS:
         raise CompositeError(f"at most {MAX_DEMOS} demonstrations (got {len(demos)})")
     readings: list[dict[str, Any]] = []
+    relations = []  # (recognition, mover, previous block, first block) of every 3rd, 4th... drag
     votes: Counter[str] = Counter()
     anchor_votes: Counter[str] = Counter()
     stays: Counter[int] = Counter()
@@ -206,8 +207,7 @@ def learn(demos: list[Demonstration], recognisers: list) -> Recipe:
             readings.append({"demo": d, **best.to_dict()})
             votes[best.action] += 1
             if previous != first and previous is not None:  # only a 3rd block tells the relations apart
-                anchor_votes["previous" if best.anchors[0] == previous else
-                             "first" if best.anchors[0] == first else "other"] += 1
+                relations.append((rec, s.block, previous, first))
             poses[s.block] = track[-1]
             if s.block not in moved:
                 moved.append(s.block)
@@ -223,6 +223,9 @@ def learn(demos: list[Demonstration], recognisers: list) -> Recipe:
         offsets.append(_fold(math.degrees(math.atan2(u[1], u[0]) - base[2])))
         turns += [abs(_fold(math.degrees(poses[n][2] - base[2]))) for n in moved]
     action, n_action = votes.most_common(1)[0]
+    for rec, mover, previous, first in relations:  # under the learned action: relative to which block?
+        finals = {r.anchors[0]: r.final for r in rec.readings if r.action == action and r.mover == mover}
+        anchor_votes["previous" if finals.get(previous, 0) >= finals.get(first, 0) else "first"] += 1
     anchor = "previous" if anchor_votes["previous"] >= anchor_votes["first"] else "first"
     stay, n_stay = stays.most_common(1)[0]
     if stay != 0:

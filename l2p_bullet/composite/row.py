@@ -164,3 +164,26 @@ def row_verdict(scene: Scene, names: list[str], displaced_m: dict[str, float] | 
     return {"success": ok, "reason": reason, "gaps_sides": np.round(gaps, 4).tolist(),
             "offsets_sides": np.round(offsets, 4).tolist(), "max_gap_sides": round(float(gaps.max()), 4),
             "max_offset_sides": round(float(offsets.max()), 4), "knocked": knocked}
+
+
+def judge_row(result: Any, steps: list, final: Scene, summary_path: Any) -> dict[str, Any]:
+    """The row verdict of a composite's chain run (``final``: the world after the last clause), added to
+    its summary.json as ``row`` (and to its verdict: a chain whose clauses all succeeded but whose blocks do
+    not form a row failed). A block knocked (> 1 mm) by a clause that did not move it fails the row."""
+    import json
+
+    from ..core.runfolder import write_summary
+
+    names = [steps[0].clause.target.stay] + [s.clause.command.mover for s in steps]
+    knocked: dict[str, float] = {}
+    for r in result.results:
+        for k, v in r.displacements_m.items():
+            knocked[k] = max(knocked.get(k, 0.0), float(v))
+    row = row_verdict(final, names, knocked)
+    result.row = row
+    summary = json.loads(summary_path.read_text())
+    summary["row"] = row
+    summary["success"] = result.success
+    summary["verdict"] = {"success": result.success, "reason": result.verdict()["reason"]}
+    write_summary(summary_path, summary)
+    return row
