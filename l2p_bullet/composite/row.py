@@ -141,8 +141,10 @@ def choose_axis(scene: Scene, stay: str, movers: list[str], recipe: Recipe) -> n
             for o in scene.objects:
                 if o.name in (m, stay) or not polygons_overlap(foot, o.footprint(), margin=GRIPPER_MARGIN):
                     continue
-                later = o.name in movers and movers.index(o.name) >= k  # it leaves before or as slot k fills
-                conflicts += 0 if later else (1 if o.name in movers else 100)
+                if o.name not in movers:
+                    conflicts += 100  # a block that is not in the row: it never leaves
+                elif movers.index(o.name) + 1 > k:
+                    conflicts += 1  # a row block whose turn comes after slot k is filled: still there
         key = (room < 0.25 * size, conflicts, j >= 4, -room)
         if best_key is None or key < best_key:
             best, best_key = u, key
