@@ -22,10 +22,24 @@ not Gaussian: a mover that cannot reach the target in one move (a block in the w
 step towards it pay; and the threshold (0.9) is only reached within a few millimetres of it."""
 
 
+YAW_SCALE = 0.5
+"""Turn from the target's yaw (radians, modulo a quarter turn) at which the score is multiplied by 1/e."""
+
+AT_TARGET = (0.001, 0.02)
+"""Within this distance (m) and turn (rad) of the target an end *is* the target; any other end's score is
+multiplied by :data:`SHORT` (0.95), so that only a path that really ends there reaches the threshold."""
+SHORT = 0.95
+
+
 def closeness(ends: np.ndarray, target: np.ndarray, size: float) -> np.ndarray:
-    """Per end pose (M, 2+): exp(-d / (SCALE_SIDES * size)), d the centre's distance to the target."""
-    d = np.hypot(*(np.asarray(ends, float)[:, :2] - np.asarray(target, float)[:2]).T)
-    return np.exp(-d / (SCALE_SIDES * size))
+    """Per end pose (M, 3): exp(-d / (SCALE_SIDES * size) - |turn| / YAW_SCALE), d the centre's distance to
+    the target and turn its yaw's difference from the target's modulo a quarter turn, times SHORT unless
+    the end is at the target (:data:`AT_TARGET`)."""
+    e, t = np.asarray(ends, float).reshape(-1, 3), np.asarray(target, float)
+    d = np.hypot(*(e[:, :2] - t[:2]).T)
+    turn = np.abs((e[:, 2] - t[2] + np.pi / 4) % (np.pi / 2) - np.pi / 4)
+    at = (d <= AT_TARGET[0]) & (turn <= AT_TARGET[1])
+    return np.exp(-d / (SCALE_SIDES * size) - turn / YAW_SCALE) * np.where(at, 1.0, SHORT)
 
 
 LOOKAHEAD = 0.85
@@ -55,7 +69,7 @@ class TargetScorer:
             from .world2d import segment_frames
 
             for i, (m, e) in enumerate(zip(movers, ends, strict=True)):
-                if near[i] > 0.999:
+                if near[i] > 0.99:  # at the target already
                     continue
                 t = self.target.copy()
                 t[2] += np.round((e[2] - t[2]) / (np.pi / 2)) * (np.pi / 2)
