@@ -62,9 +62,13 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         }
         for p in plugins
     ]
+    composites = [{"name": p.name, "version": p.version, "package": p.package, "phrases": list(p.phrases),
+                   "path": str(p.path) if p.path else None, "ok": p.ok, "error": p.error}
+                  for p in registry.discover("composite")]
     failed = check and (bool(reasons) or bool(problems))
     if as_json:
-        click.echo(dumps_json({"actions": rows, "conflicts": [str(p) for p in problems]}, indent=1))
+        click.echo(dumps_json({"actions": rows, "composites": composites, "conflicts": [str(p) for p in problems]},
+                              indent=1))
         if failed:
             sys.exit(1)
         return
@@ -85,6 +89,9 @@ def actions_cmd(as_json: bool, check: bool) -> None:
                 pad = " " * (w + 2)
                 click.echo(textwrap.fill(line, width=100, initial_indent=pad, subsequent_indent=pad,
                                          break_on_hyphens=False))
+    for c in composites:  # composite actions: a phrase over a list of objects (docs/perform.md)
+        click.echo(f'{c["name"]}  composite  {c["package"]}  {", ".join(c["phrases"])} A, B, C ...'
+                   + ("" if c["ok"] else f'  (broken: {c["error"]})'))
     if bad:
         click.echo("\nbroken plugins (not usable):")
         for r in bad:
