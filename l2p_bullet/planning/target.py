@@ -42,11 +42,22 @@ def closeness(ends: np.ndarray, target: np.ndarray, size: float) -> np.ndarray:
     return np.exp(-d / (SCALE_SIDES * size) - turn / YAW_SCALE) * np.where(at, 1.0, SHORT)
 
 
-LOOKAHEAD = 0.85
+LOOKAHEAD = (0.85, 0.8)
 """A candidate from which a straight, legal move reaches the target scores the model's final progress of
-its path continued to the target, times this (below the threshold's 0.9: only a path that really ends at
-the target can stop the search). Without it, greedy search stalls one move short of a target hidden
-behind a block: the approach point itself is rated low by the model and by its distance."""
+its path continued to the target, times the first (below the threshold's 0.9: only a path that really
+ends at the target can stop the search); one from which a legal move reaches an approach point that has
+a legal move to the target (a *gate*, :func:`approach_points`), its path continued through the gate,
+times the second. Without it, greedy search stalls short of a target hidden behind blocks: the points on
+the way are rated low by the model and by their distance."""
+
+
+def approach_points(target: np.ndarray, size: float) -> np.ndarray:
+    """(16, 3) points on two rings (:data:`RING_SIDES`) around ``target``, square to its faces and diagonal,
+    turned like it."""
+    t = np.asarray(target, float)
+    a = t[2] + np.arange(8) * np.pi / 4  # square to the target's faces: a slot between two blocks is entered straight
+    return np.vstack([np.column_stack([t[0] + r * size * np.cos(a), t[1] + r * size * np.sin(a), np.full(8, t[2])])
+                      for r in RING_SIDES])
 
 
 class TargetScorer:
@@ -57,6 +68,11 @@ class TargetScorer:
 
     def __init__(self, model: Any, target: np.ndarray, world: Any = None, step: float = 0.0):
         self.model, self.target, self.world, self.step = model, np.asarray(target, float), world, step
+        self.gates = np.zeros((0, 3))
+        if world is not None:
+            pts = approach_points(self.target, world.size)
+            ok = [not world.overlaps(q) and bool(world.moves_free(q, self.target[None])[0]) for q in pts]
+            self.gates = pts[np.array(ok, bool)]
 
     def __getattr__(self, name: str) -> Any:  # anchors, viewpoint... as the model declares them
         return getattr(self.model, name)
@@ -64,21 +80,28 @@ class TargetScorer:
     def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float, **context) -> np.ndarray:
         ends = np.array([np.asarray(m)[-1] for m in movers]).reshape(-1, 3)
         near = closeness(ends, self.target, size)
-        more = []  # (index, the path continued to the target)
+        more = []  # (index, factor, the path continued to the target)
         if self.world is not None and self.step > 0:
             from .world2d import segment_frames
 
             for i, (m, e) in enumerate(zip(movers, ends, strict=True)):
                 if near[i] > 0.99:  # at the target already
                     continue
-                t = self.target.copy()
-                t[2] += np.round((e[2] - t[2]) / (np.pi / 2)) * (np.pi / 2)
+                turn = np.round((e[2] - self.target[2]) / (np.pi / 2)) * (np.pi / 2)
+                t = self.target + [0.0, 0.0, turn]
                 if self.world.moves_free(e, t[None])[0]:
-                    more.append((i, np.vstack([np.asarray(m), segment_frames(e, t, self.step)])))
-        p = np.asarray(self.model.final_batch(list(movers) + [x for _, x in more], anchors, size, **context), float)
+                    more.append((i, LOOKAHEAD[0], np.vstack([np.asarray(m), segment_frames(e, t, self.step)])))
+                elif len(self.gates):
+                    gates = self.gates + [0.0, 0.0, turn]
+                    free = np.flatnonzero(self.world.moves_free(e, gates))
+                    if len(free):
+                        g = gates[free[np.argmin(np.hypot(*(gates[free, :2] - e[:2]).T))]]
+                        more.append((i, LOOKAHEAD[1], np.vstack([np.asarray(m), segment_frames(e, g, self.step),
+                                                                 segment_frames(g, t, self.step)])))
+        p = np.asarray(self.model.final_batch(list(movers) + [x for *_, x in more], anchors, size, **context), float)
         score = p[: len(movers)] * near
-        for (i, _), q in zip(more, p[len(movers):], strict=True):
-            score[i] = max(score[i], LOOKAHEAD * q)
+        for (i, f, _), q in zip(more, p[len(movers):], strict=True):
+            score[i] = max(score[i], f * q)
         return score
 
     def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float, **context) -> np.ndarray:
@@ -86,8 +109,9 @@ class TargetScorer:
 
 
 RING_SIDES = (1.5, 2.5)
-"""Radii (block sides) of the rings of approach points proposed around the target (8 on each): when a
-block stands between the mover and the target, one of them is a way round it."""
+"""Radii (block sides) of the rings of approach points proposed around the target (8 on each, square to
+its faces and diagonal): when a block stands between the mover and the target, one of them is a way round
+it, and a slot between two blocks is entered face-on."""
 
 
 class TargetProposer:
@@ -102,7 +126,5 @@ class TargetProposer:
     def __call__(self, problem: Any, node: Any, n: int) -> np.ndarray:
         t = self.target.copy()
         t[2] += np.round((node.pose[2] - t[2]) / (np.pi / 2)) * (np.pi / 2)
-        a = np.arange(8) * np.pi / 4
-        ring = np.vstack([np.column_stack([t[0] + r * problem.size * np.cos(a), t[1] + r * problem.size * np.sin(a),
-                                           np.full(8, t[2])]) for r in RING_SIDES])
+        ring = approach_points(t, problem.size)
         return np.vstack([np.asarray(self.base(problem, node, n), float).reshape(-1, 3), t[None], ring])
