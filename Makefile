@@ -1,5 +1,6 @@
 # Two set-up commands on a fresh machine with Python 3.11 and pip (see README):
 #   make demo   installs into .venv and performs "move A around B" on the default scene
+#   make demo-row  the same for "make a row of A, B, C and D" (a composite taught by demonstration)
 #   make test   installs into .venv and runs the whole test suite
 # torch is pinned to the 2.13.0 CPU build and installed first, so nothing pulls a CUDA build.
 PYTHON ?= python3
@@ -7,7 +8,7 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 TORCH := torch==2.13.0
 
-.PHONY: install demo test lint bench clean
+.PHONY: install demo demo-row test lint bench clean
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -20,6 +21,9 @@ install: $(VENV)/.installed
 
 demo: install
 	$(VENV)/bin/l2p-bullet perform "move A around B" --force --out runs/demo
+
+demo-row: install  # the composite taught on the teach page: a row of four blocks (docs/perform.md)
+	$(VENV)/bin/l2p-bullet perform "make a row of A, B, C and D" --scene examples/four_blocks.json --force --out runs/demo-row
 
 test: install
 	$(VENV)/bin/ruff check l2p_bullet tests benchmarks

@@ -263,3 +263,54 @@ def resolve_object(text: str, scene: Scene, role: str = "block") -> str:
     raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {_describe(scene)}).'
                              + did_you_mean(text, choices))
 
+
+
+# --- composite actions: a phrase followed by a list of objects ----------------------------------------
+@dataclass(frozen=True)
+class ListCommand:
+    """A composite action's sentence ("make a row of A, B, C and D"): the objects in the order named."""
+
+    action: str
+    phrase: str
+    objects: tuple[str, ...]
+    sentence: str = ""
+
+
+def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCommand | None:
+    """``[polite words] PHRASE OBJECT, OBJECT ... and OBJECT`` for the composite ``phrases`` (phrase ->
+    action); None when the sentence does not start with one of them (it is then a single action's or a
+    chain's). The objects are separated by commas and/or "and"; at least two, all different."""
+    if not isinstance(sentence, str) or not phrases or len(sentence) > MAX_SENTENCE:
+        return None
+    raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]")]
+    words = _tokens(sentence)
+    kept = _strip_polite(list(words))
+    start = next((i for i in range(len(words) - len(kept) + 1) if words[i:i + len(kept)] == kept), 0)
+    low = [w.lower() for w in kept]
+    for toks, phrase, action in _phrase_tokens(phrases):
+        if tuple(low[: len(toks)]) != toks:
+            continue
+        rest = " ".join(raw[start + len(toks): start + len(kept)])
+        items = [i.strip(" .;:!?\"()[]") for part in rest.split(",") for i in _split_and(part)]
+        items = [i for i in items if i]
+        if len(items) < 2:
+            raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'
+                                + (f' (got "{rest}")' if rest else ""))
+        names = tuple(resolve_object(i, scene, role=f'block {k + 1} after "{phrase}"') for k, i in enumerate(items))
+        twice = sorted({n for n in names if names.count(n) > 1})
+        if twice:
+            raise LanguageError(f'the list after "{phrase}" names {", ".join(twice)} more than once')
+        return ListCommand(action, phrase, names, sentence.strip())
+    return None
+
+
+def _split_and(text: str) -> list[str]:
+    words = text.split()
+    out, cur = [], []
+    for w in words:
+        if w.lower() in CONJUNCTIONS:
+            out.append(" ".join(cur))
+            cur = []
+        else:
+            cur.append(w)
+    return [*out, " ".join(cur)]

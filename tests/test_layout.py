@@ -151,8 +151,10 @@ FLOORS: tuple[tuple[str, ...], ...] = (
     ("planning",),  # 2-D planning; reads the hand's reach from embodiment
     ("plugins",),  # registry, bundles, scaffold, validation: the shape of an action
     ("pipeline", "recognition"),  # perform and plan: the stages in order; recognising an action in a motion
-    ("learning", "chain"),  # training (torch), feedback, agreement (improve performs through the pipeline);
-    # chains of clauses performed in one episode (through the pipeline's stages)
+    ("learning", "composite"),  # training (torch), feedback, agreement (improve performs through the pipeline);
+    # composite actions' recipes learned from recognised demonstrations, and their bundles
+    ("chain",),  # chains of clauses performed in one episode (through the pipeline's stages); a composite's
+    # sentence expanded into a chain (chain/composite.py)
     ("evaluate", "envs", "web"),  # the batch runner, the Gymnasium environments, the shared web plumbing
     ("export", "review", "teach"),  # exports of evaluations, the review app, the teach page
     ("commands",),  # click commands: parse options, call one function

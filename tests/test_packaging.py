@@ -61,6 +61,9 @@ def test_wheel_ships_data_urdf_and_bundles_under_the_package(wheel: Path) -> Non
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     text = zipfile.ZipFile(wheel).read(entry_points).decode()
     assert "[l2p_bullet.actions]" in text and "around = l2p_bullet.actions.around" in text
+    for f in ("manifest.toml", "recipe.json", "demos.json"):  # the composite "row" (kind = "composite")
+        assert f"l2p_bullet/actions/row/{f}" in names
+    assert "row = l2p_bullet.actions.row" in text
 
 
 def test_help_is_fast_and_imports_neither_torch_nor_pybullet() -> None:

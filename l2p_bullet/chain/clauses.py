@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import Any
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
@@ -29,6 +30,7 @@ class Clause:
     index: int
     text: str
     command: Command
+    target: Any = None  # a composite's place for the mover: scene -> [x, y, yaw] (chain/composite.py), or None
 
     def label(self) -> str:
         """How errors and captions name the clause: 'clause 2 ("slide C past A")'."""
@@ -42,16 +44,23 @@ def split_clauses(sentence: str) -> list[str]:
     return [p.strip(" ,.") for p in _JOINS.split(sentence) if p.strip(" ,.")]
 
 
-def is_chain(sentence: str) -> bool:
-    """More than one clause: ``perform`` runs it as a chain; one clause keeps today's single run."""
-    return len(split_clauses(sentence)) > 1
+def is_chain(sentence: str, plugins: list | None = None) -> bool:
+    """More than one clause, or a composite action's sentence ("make a row of A, B and C", whose clauses
+    its recipe makes: chain/composite.py): ``perform`` runs it as a chain; one clause keeps today's run."""
+    from .composite import is_composite
+
+    return len(split_clauses(sentence)) > 1 or is_composite(sentence, plugins)
 
 
 def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """Every clause parsed against ``scene`` and the installed phrases; the first problem raised as a
     one-line error of its own type (LanguageError, UnknownObjectError...) that names the clause."""
     from ..pipeline import resolve
+    from .composite import composite_clauses
 
+    made = composite_clauses(sentence, scene, plugins)
+    if made is not None:
+        return made
     texts = split_clauses(sentence)
     if not texts:
         raise LanguageError('the sentence is empty; try for example "move A next to B, then move C around A"')

@@ -60,7 +60,8 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
         try:
             check_feasible(cmd, predicted, plugins)
             plan = planning.plan(predicted, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed,
-                                 budget=budget, threshold=threshold)
+                                 budget=budget, threshold=threshold,
+                                 target=None if c.target is None else c.target(predicted))
             check_path(predicted, cmd.mover, plan.path)
         except InfeasibleError as e:
             e.details["clause"] = c.index

@@ -77,6 +77,7 @@ class ChainResult:
     out_dir: Path
     timings: dict[str, float]
     files: dict[str, Path] = field(default_factory=dict)
+    row: dict[str, Any] | None = None  # a composite's verdict on the whole (chain/composite.py: row_verdict)
 
     @property
     def completed(self) -> int:
@@ -90,12 +91,14 @@ class ChainResult:
 
     @property
     def success(self) -> bool:
-        return self.completed == len(self.clauses)
+        return self.completed == len(self.clauses) and (self.row is None or bool(self.row["success"]))
 
     def verdict(self) -> dict[str, Any]:
         """The chain's verdict: success, how far it got, and the first failed clause's reason."""
         n = len(self.clauses)
         failed = next((r for r in self.results if not r.success), None)
+        if failed is None and self.row is not None and not self.row["success"]:
+            return {"success": False, "completed": n, "clauses": n, "reason": f"all {n} clauses done, but {self.row['reason']}"}
         if failed is None:
             return {"success": True, "completed": n, "clauses": n, "reason": f"all {n} clauses done"}
         return {"success": False, "completed": self.completed, "clauses": n, "failed_clause": failed.clause.index,
@@ -105,6 +108,7 @@ class ChainResult:
     def to_dict(self) -> dict[str, Any]:
         return {"sentence": self.sentence, "chain": True, "out_dir": str(self.out_dir), "verdict": self.verdict(),
                 "success": self.success, "completed": self.completed, "clauses": [r.to_dict() for r in self.results],
+                **({"row": self.row} if self.row is not None else {}),
                 "timings": {k: round(v, 4) for k, v in self.timings.items()},
                 "files": {k: str(v) for k, v in self.files.items()}}
 
@@ -194,6 +198,10 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         clock.stage("record", "writing the run folder")
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
         write_run(result, steps, prims, world, settings, seed, scene)
+        if steps and steps[0].clause.target is not None:  # a composite: is the whole what it should be?
+            from .composite import judge_row
+
+            result.row = judge_row(result, steps, scene_now(scene, world), out / "summary.json")
         clock.stop()
         clock.timings["total"] = clock.elapsed
         result.timings = dict(clock.timings)
@@ -224,8 +232,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
             check_feasible(cmd, now, plugins)
+            target = step.clause.target
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
-                                 budget=budget, threshold=threshold)
+                                 budget=budget, threshold=threshold, target=None if target is None else target(now))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
         p, angles = ex._check(now, cmd.mover, plan.path)

@@ -62,9 +62,13 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         }
         for p in plugins
     ]
+    composites = [{"name": p.name, "version": p.version, "package": p.package, "phrases": list(p.phrases),
+                   "path": str(p.path) if p.path else None, "ok": p.ok, "error": p.error}
+                  for p in registry.discover("composite")]
     failed = check and (bool(reasons) or bool(problems))
     if as_json:
-        click.echo(dumps_json({"actions": rows, "conflicts": [str(p) for p in problems]}, indent=1))
+        click.echo(dumps_json({"actions": rows, "composites": composites, "conflicts": [str(p) for p in problems]},
+                              indent=1))
         if failed:
             sys.exit(1)
         return
@@ -85,6 +89,9 @@ def actions_cmd(as_json: bool, check: bool) -> None:
                 pad = " " * (w + 2)
                 click.echo(textwrap.fill(line, width=100, initial_indent=pad, subsequent_indent=pad,
                                          break_on_hyphens=False))
+    for c in composites:  # composite actions: a phrase over a list of objects (docs/perform.md)
+        click.echo(f'{c["name"]}  composite  {c["package"]}  {", ".join(c["phrases"])} A, B, C ...'
+                   + ("" if c["ok"] else f'  (broken: {c["error"]})'))
     if bad:
         click.echo("\nbroken plugins (not usable):")
         for r in bad:
@@ -112,14 +119,17 @@ def actions_cmd(as_json: bool, check: bool) -> None:
               help='Reference objects in a sentence: 1 ("next to B") or 2 ("between B and C").')
 @click.option("--judge", "judge", default=None,
               help="A rule judge of l2p_bullet/judge/rules.py (e.g. between, left-of); default: the model's own.")
+@click.option("--composite", is_flag=True,
+              help='A composite action over a list of objects ("make a row of A, B and C"), taught with teach.')
 def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, description: str, frame: str,
-                   anchors: int, judge: str | None) -> None:
+                   anchors: int, judge: str | None, composite: bool) -> None:
     """Scaffold an installable action plugin package for NAME (e.g. left-of).
 
     \b
     Examples:
       l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
       l2p-bullet new-action between --phrase between --anchors 2 --judge between
+      l2p-bullet new-action row --composite --phrase "make a row of" --phrase "line up"
     \b
     Then: write demonstrations into DIR/demos (see DIR/README.md, or use l2p-bullet teach NAME),
           l2p-bullet train NAME --demos DIR/demos/*.npz --out DIR/<module>
@@ -130,10 +140,16 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
     from ..plugins import registry
     from ..plugins.scaffold import scaffold
 
-    plugins = registry.discover()
+    plugins = registry.discover() + registry.discover("composite")
     installed = {ph: p.name for p in plugins if p.ok for ph in p.phrases}
     s = scaffold(name, list(phrases), out, installed=installed, description=description, frame=frame,
-                 anchors=anchors, judge=judge)
+                 anchors=anchors, judge=judge, kind="composite" if composite else "action")
+    if composite:
+        click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
+        click.echo(f"  1. l2p-bullet teach {name} --plugin {s.root}   (record rows of 2 and 3 blocks, then train)")
+        click.echo(f"  2. {pip_install_command(s.root)}")
+        click.echo(f'  3. l2p-bullet perform "{registry.normalize_phrase(phrases[0])} A, B, C and D" --scene ...')
+        return
     click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
     click.echo(f"  1. put demonstrations in {s.root}/demos/ (format: {s.root}/README.md)")
     click.echo(f"  2. l2p-bullet train {name} --demos {s.root}/demos/*.npz --out {s.package_dir}")

@@ -104,6 +104,9 @@ def _perform_chain(sentence: str, scene_path: str | None, seed: int, out: str | 
         click.echo(f'{c.clause.index}. {c.clause.command.sentence}: "{c.clause.command.action}", '
                    f'{"success" if c.success else "FAILED"} ({c.verdict.get("reason", "")}), final progress {fp}')
     v = r.verdict()
+    if r.row is not None:  # a composite ("make a row of ..."): the whole judged too
+        click.echo(f'row: {r.row["reason"]} (largest gap {r.row["max_gap_sides"]:.2f} side, farthest from the '
+                   f'line {r.row["max_offset_sides"]:.2f} side)')
     click.echo(f'chain: {"success" if r.success else "FAILED"}, {v["completed"]} of {v["clauses"]} clauses done, '
                f'{r.timings.get("total", 0):.1f} s')
     video = r.files.get("video")

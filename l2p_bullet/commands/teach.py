@@ -32,6 +32,10 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     demonstration is appended to the demos file; "train and perform" trains the plugin on every demos
     file of PLUGIN/demos and performs it on a new scene, with video.
 
+    A composite action (new-action --composite) is taught with whole rows: drag the named blocks one after
+    another (each drag is one step), save (Enter); "train and perform" learns the recipe from the rows and
+    performs a row of four blocks.
+
     \b
     Example:
       l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
@@ -46,7 +50,11 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     taught = find_action(action, plugin_dir, demos)  # a wrong name fails before anything listens
     cfg = ProgressTrainConfig()
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
-    lesson = Lesson(taught, BundleTrainer(cfg), seed=seed)
+    from ..plugins.bundle import read_manifest
+    from ..teach.rows import RowLesson
+
+    composite = read_manifest(taught.bundle_dir).get("kind") == "composite"
+    lesson = (RowLesson if composite else Lesson)(taught, BundleTrainer(cfg), seed=seed)
     lesson.count()  # an unreadable demos file is a one-line error now, not on the first save
 
     from ..teach.app import create_app
@@ -54,7 +62,7 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
 
     sock = bind(host, port)
     click.echo(f"teaching \"{taught.sentence}\": open {url_of(sock)} (Ctrl+C to stop)", err=True)
-    click.echo(f"demonstrations go to {Path(taught.demos)}", err=True)
+    click.echo(f"demonstrations go to {Path(lesson.config()['demos'])}", err=True)
     serve(create_app(lesson, host), sock)
 
 

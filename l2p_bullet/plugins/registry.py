@@ -20,6 +20,11 @@ the same phrase (or the same name) make that phrase ambiguous: it is left out of
 and a sentence using it gets the :class:`PluginConflict` naming both (:func:`blocked_phrases`), since
 silently picking one would make sentences mean different things on different machines; every other
 phrase keeps working. The phrases of a broken plugin are blocked the same way, with its reason.
+
+One group, two kinds: a manifest's ``kind`` is ``"action"`` (the default: a single action with a
+progress model) or ``"composite"`` (an action over a list of objects, "make a row of A, B and C",
+whose bundle holds a learned recipe instead of weights: l2p_bullet/composite). :func:`discover` lists
+one kind at a time (actions unless asked), so nothing that reads single actions ever meets a composite.
 """
 
 from __future__ import annotations
@@ -49,6 +54,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
 
 GROUP = "l2p_bullet.actions"
+KINDS = ("action", "composite")
+"""What a manifest's ``kind`` may say (default "action")."""
 
 
 @dataclass(frozen=True)
@@ -70,6 +77,11 @@ class PluginInfo:
     @property
     def ok(self) -> bool:
         return self.error is None
+
+    @property
+    def kind(self) -> str:
+        """The manifest's ``kind``: "action" (default) or "composite" (:data:`KINDS`)."""
+        return str(self.manifest.get("kind", "action"))
 
     @property
     def version(self) -> str:
@@ -181,6 +193,8 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     phrases = manifest.get("phrases")
     if not (isinstance(phrases, list) and phrases and all(isinstance(p, str) and p.strip() for p in phrases)):
         return manifest, f'{path}: "phrases" must be a non-empty list of phrases such as ["next to", "beside"]'
+    if manifest.get("kind", "action") not in KINDS:
+        return manifest, f'{path}: "kind" must be one of {", ".join(KINDS)} (got {str(manifest.get("kind"))[:40]!r})'
     try:
         declaration(manifest)
     except BundleError as e:
@@ -196,8 +210,9 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     return manifest, None
 
 
-def discover() -> list[PluginInfo]:
-    """Every installed action plugin, usable or not, sorted by name. Imports no plugin code."""
+def discover(kind: str = "action") -> list[PluginInfo]:
+    """Every installed plugin of ``kind`` (:data:`KINDS`), usable or not, sorted by name. Imports no plugin
+    code. A plugin whose manifest cannot be read counts as an action (its error is shown with them)."""
     found: list[PluginInfo] = []
     packages: dict[int, tuple[str, str]] = {}  # parsing a package's METADATA once, not twice per action
     for ep in metadata.entry_points(group=GROUP):
@@ -220,7 +235,15 @@ def discover() -> list[PluginInfo]:
                 continue
         manifest, error = _check_manifest(ep.name, folder)
         found.append(PluginInfo(**base, path=folder, manifest=manifest, error=error))
-    return sorted(found, key=lambda p: (p.name, p.package))
+    return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
+
+
+def composites(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
+    """The usable composite plugins: those in ``plugins`` (a folder being taught, :func:`local`) first, then
+    the installed ones of other names."""
+    given = [p for p in (plugins or []) if p.ok and p.kind == "composite"]
+    names = {normalize_name(p.name) for p in given}
+    return given + [p for p in discover("composite") if p.ok and normalize_name(p.name) not in names]
 
 
 def local(name: str, folder: Path) -> PluginInfo:
@@ -287,13 +310,14 @@ def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
     """Phrase -> action name over the usable plugins, without the :func:`blocked_phrases`."""
     plugins = discover() if plugins is None else plugins
     blocked = blocked_phrases(plugins)
-    return {phrase: p.name for p in plugins if p.ok for phrase in p.phrases if phrase not in blocked}
+    return {phrase: p.name for p in plugins if p.ok and p.kind == "action" for phrase in p.phrases
+            if phrase not in blocked}
 
 
 def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
     """Action name -> how many reference objects its sentences name, over the usable plugins."""
     plugins = discover() if plugins is None else plugins
-    return {p.name: p.anchors for p in plugins if p.ok}
+    return {p.name: p.anchors for p in plugins if p.ok and p.kind == "action"}
 
 
 def broken(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:

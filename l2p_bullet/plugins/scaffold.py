@@ -65,15 +65,19 @@ def check_name(name: str) -> str:
 
 def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
              installed: dict[str, str] | None = None, description: str = "", frame: str = "relative",
-             anchors: int = 1, judge: str | None = None) -> Scaffold:
+             anchors: int = 1, judge: str | None = None, kind: str = "action") -> Scaffold:
     """Write the plugin project for action ``name`` (claiming ``phrases``) into ``out``.
 
     ``installed`` maps phrases already claimed to their action: a new plugin that reuses one would make
     every sentence ambiguous once installed, so that is refused here rather than after ``pip install``.
     ``frame`` and ``anchors`` are the manifest's declarations (:mod:`l2p_bullet.core.frames`), ``judge``
     the name of a rule judge (``judge/rules.py``) for its ``[judge]`` section (default: none, the action's
-    own progress model judges). Never overwrites: an existing ``out`` is an error.
+    own progress model judges). ``kind`` "composite" makes a composite action's plugin (a phrase over a
+    list of objects, taught on the teach page: l2p_bullet/composite). Never overwrites: an existing ``out``
+    is an error.
     """
+    if kind not in ("action", "composite"):
+        raise PluginError(f'the kind of a plugin is "action" or "composite" (got {kind!r})')
     check_name(name)
     try:
         frame, anchors = parse_frame(frame).name, parse_anchors(anchors)
@@ -106,14 +110,16 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     pkg.mkdir(parents=True)
     (root / "demos").mkdir()
     texts = {
-        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__),
+        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__,
+                                                   data=', "*.json"' if kind == "composite" else ""),
         pkg / "__init__.py": _INIT.format(name=name),
         pkg / "manifest.toml": _MANIFEST.format(
             name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
-            description=(description or f'Slide a block {clean[0]} another block'
-                         + (" and a third" if anchors == 2 else "") + ".").replace('"', "'"),
+            description=(description or (f"Put the blocks named in a row ({clean[0]} A, B and C)." if kind == "composite"
+                                         else f'Slide a block {clean[0]} another block'
+                                         + (" and a third" if anchors == 2 else "") + ".")).replace('"', "'"),
             frame=frame, anchors=anchors,
-        ) + (_JUDGE.format(rules=judge) if judge else ""),
+        ) + (_JUDGE.format(rules=judge) if judge else "") + (_COMPOSITE if kind == "composite" else ""),
         root / "README.md": _README.format(
             name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
             phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors),
@@ -148,7 +154,7 @@ dependencies = ["l2p-bullet>={version}"]
 packages = ["{module}"]
 
 [tool.setuptools.package-data]
-"{module}" = ["*.toml", "*.safetensors", "*.md"]
+"{module}" = ["*.toml", "*.safetensors", "*.md"{data}]
 """
 
 _INIT = '''"""Action plugin "{name}" for l2p-bullet: this folder holds the bundle (manifest.toml and weights).
@@ -174,6 +180,12 @@ description = "{description}"
 frame = "{frame}"
 # How many reference objects a sentence names: 1 ("move A <phrase> B") or 2 ("move A between B and C").
 anchors = {anchors}
+"""
+
+_COMPOSITE = """
+# A composite action: its phrase takes a list of objects ("make a row of A, B, C and D"). It has no
+# weights: `l2p-bullet teach` records whole rows and learns recipe.json from them (demos.json keeps them).
+kind = "composite"
 """
 
 _JUDGE = """

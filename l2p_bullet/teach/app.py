@@ -38,6 +38,25 @@ class RecordingIn(BaseModel):
     end: float
 
 
+Drag = Annotated[list[Sample], Field(min_length=2, max_length=MAX_SAMPLES)]
+
+
+class DragIn(BaseModel):
+    """One drag of a composite's demonstration: the block and its samples ``[t, x, y, yaw]``."""
+
+    model_config = ConfigDict(extra="forbid")
+    block: Annotated[str, Field(min_length=1, max_length=64)]
+    samples: Drag
+
+
+class RowIn(BaseModel):
+    """A composite's demonstration: the scene's seed and the drags in the order they were made."""
+
+    model_config = ConfigDict(extra="forbid")
+    scene: Annotated[int, Field(ge=0, le=10**9)]
+    segments: Annotated[list[DragIn], Field(min_length=1, max_length=8)]
+
+
 class Busy(TeachError):
     """A training is already under way."""
 
@@ -59,6 +78,12 @@ def create_app(lesson: Lesson, host: str = "127.0.0.1") -> FastAPI:
     def save(body: RecordingIn) -> dict:
         rec = Recording(body.scene, np.array(body.samples, float), body.start, body.end)
         return lesson.save(rec)
+
+    @app.post("/api/rows")
+    def save_row(body: RowIn) -> dict:
+        if not hasattr(lesson, "save_row"):
+            raise TeachError("this teach page records single actions: save with /api/demos")
+        return lesson.save_row(body.scene, [d.model_dump() for d in body.segments])
 
     @app.post("/api/train")
     def train() -> dict:

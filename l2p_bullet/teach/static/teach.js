@@ -1,6 +1,9 @@
 // The teach page: a top-down view of a random scene; the person drags block A, marks the start and the
 // end of the demonstration, and saves it. Samples [t, x, y, yaw] of A (seconds, scene frame, metres) are
 // taken on every change and by a 30 Hz timer while A rests; the server resamples, validates and writes.
+// A composite action ("make a row of A, B and C"): any named block but the first can be dragged, one
+// after another; each drag (pointer down .. up) is one segment [t, x, y, yaw] of that block, and saving
+// posts the segments in the order they were made.
 "use strict";
 
 const SCALE = 680;          // pixels per metre
@@ -21,6 +24,8 @@ let samples = [];
 let marks = { start: null, end: null };
 let drag = null;          // {dx, dy} while dragging
 let polling = null;
+let segments = [];        // composite: the drags saved so far [{block, samples}]
+let segment = null;       // composite: the drag under way
 
 function now() { return performance.now() / 1000; }
 
@@ -55,6 +60,7 @@ function allowed(x, y, yaw) {
 
 function sample() {
   if (!mover) return;
+  if (scene && scene.composite) { if (segment) segment.samples.push([now(), mover.x, mover.y, mover.yaw]); return; }
   samples.push([now(), mover.x, mover.y, mover.yaw]);
 }
 
@@ -145,8 +151,11 @@ async function loadScene(s) {
   seed = s;
   scene = await api("GET", `/api/scene?seed=${s}`);
   blocks = scene.objects.map((o) => ({ ...o }));
-  mover = blocks.find((b) => b.name === scene.mover);
+  mover = scene.composite ? null : blocks.find((b) => b.name === scene.mover);
   samples = [];
+  segments = [];
+  segment = null;
+  $("sentence").textContent = `“${scene.sentence}”`;
   marks = { start: null, end: null };
   sample();
   document.body.dataset.seed = String(s);
@@ -172,7 +181,23 @@ function markEnd() {
   draw();
 }
 
+async function saveRow() {
+  if (!segments.length) { status("drag the blocks into a row first", true); return; }
+  setState("saving");
+  try {
+    const r = await api("POST", "/api/rows", { scene: seed, segments });
+    $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
+    await loadScene(seed + 1);
+    status(`saved (${r.count} in all); here is another scene`);
+    document.body.dataset.saved = String(r.count);
+  } catch (e) {
+    status(e.message, true);
+    setState("ready");
+  }
+}
+
 async function save() {
+  if (scene && scene.composite) { await saveRow(); return; }
   if (marks.start === null || marks.end === null) { status("mark the start and the end first", true); return; }
   sample();
   setState("saving");
@@ -227,10 +252,23 @@ async function poll() {
   }
 }
 
+function under(b, x, y) {
+  const c = Math.cos(-b.yaw), s = Math.sin(-b.yaw);
+  const u = c * (x - b.x) - s * (y - b.y), v = s * (x - b.x) + c * (y - b.y);
+  return Math.abs(u) <= b.size / 2 && Math.abs(v) <= b.size / 2;
+}
+
 canvas.addEventListener("pointerdown", (ev) => {
-  if (!mover) return;
   const r = canvas.getBoundingClientRect();
   const [x, y] = toScene(ev.clientX - r.left, ev.clientY - r.top);
+  if (scene && scene.composite) {  // pick the named block under the pointer: this drag is its segment
+    mover = blocks.find((b) => scene.movers.includes(b.name) && under(b, x, y)) || null;
+    if (!mover) return;
+    segment = { block: mover.name, samples: [] };
+    sample();
+    document.body.dataset.dragging = mover.name;
+  }
+  if (!mover) return;
   const c = Math.cos(-mover.yaw), s = Math.sin(-mover.yaw);
   const u = c * (x - mover.x) - s * (y - mover.y), v = s * (x - mover.x) + c * (y - mover.y);
   if (Math.abs(u) > mover.size / 2 || Math.abs(v) > mover.size / 2) return;
@@ -245,7 +283,17 @@ canvas.addEventListener("pointermove", (ev) => {
   const [x, y] = toScene(ev.clientX - r.left, ev.clientY - r.top);
   moveTo(x + drag.dx, y + drag.dy, mover.yaw);
 });
-const stopDrag = () => { drag = null; canvas.classList.remove("dragging"); };
+const stopDrag = () => {
+  if (segment) {
+    sample();
+    if (segment.samples.length >= 2) segments.push(segment);
+    segment = null;
+    status(`${segments.length} drag${segments.length === 1 ? "" : "s"}: drag the next block, or save (Enter)`);
+    document.body.dataset.segments = String(segments.length);
+    delete document.body.dataset.dragging;
+  }
+  drag = null; canvas.classList.remove("dragging");
+};
 canvas.addEventListener("pointerup", stopDrag);
 canvas.addEventListener("pointercancel", stopDrag);
 canvas.addEventListener("wheel", (ev) => {
@@ -277,6 +325,8 @@ setInterval(() => { if (!drag) sample(); }, SAMPLE_MS);
 window.teach = {
   toPage(x, y) { const r = canvas.getBoundingClientRect(); const [px, py] = toScreen(x, y); return [r.left + px, r.top + py]; },
   mover() { return mover && { x: mover.x, y: mover.y, yaw: mover.yaw }; },
+  block(name) { const b = blocks.find((o) => o.name === name); return b && { x: b.x, y: b.y, yaw: b.yaw, size: b.size }; },
+  segments() { return segments.length; },
   samples() { return samples.length; },
 };
 
@@ -284,6 +334,12 @@ window.teach = {
   try {
     config = await api("GET", "/api/config");
     $("sentence").textContent = `“${config.sentence}”`;
+    if (config.composite) {  // no start and end marks: each drag is a step of the row
+      $("start").closest("li").hidden = true;
+      $("end").closest("li").hidden = true;
+      document.querySelector(".hint").textContent =
+        "Drag the blocks the sentence names, one after another, into a row (each drag is one step); then save.";
+    }
     $("frame").textContent = config.viewer
       ? `Left, right, in front and behind as seen from the ${config.frame === "viewer" ? "robot (bottom of the view)" : config.frame}.`
       : (config.anchors === 2 ? "Two reference blocks: B and C." : "");

@@ -1,0 +1,77 @@
+"""A composite action's bundle: ``manifest.toml`` (``kind = "composite"``, phrases), ``recipe.json`` (what
+was learned, recipe.py) and ``demos.json`` (the demonstrations it was learned from), both files' digests
+recorded under ``[weights]`` like a single action's weights, so discovery checks they are there and
+loading checks they are the files that were learned."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..errors import BundleError
+from ..plugins.bundle import MANIFEST, _write_manifest, read_manifest, sha256_file
+from .recipe import CompositeError, Demonstration, Recipe
+
+RECIPE_FILE = "recipe.json"
+DEMOS_FILE = "demos.json"
+MAX_BYTES = 20_000_000
+"""Largest recipe or demos file read (a composite's are kilobytes; a larger one is not ours)."""
+
+
+def read_demos(folder: str | Path) -> list[Demonstration]:
+    """The demonstrations in ``folder/demos.json`` (empty when there are none yet)."""
+    path = Path(folder) / DEMOS_FILE
+    if not path.is_file():
+        return []
+    return [Demonstration.from_dict(d) for d in _read(path).get("demos", [])]
+
+
+def write_demos(folder: str | Path, demos: list[Demonstration]) -> Path:
+    """All ``demos`` as ``folder/demos.json``, written to a temporary file and renamed."""
+    path = Path(folder) / DEMOS_FILE
+    tmp = path.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps({"schema": 1, "demos": [d.to_dict() for d in demos]}, separators=(",", ":")) + "\n")
+    tmp.replace(path)
+    return path
+
+
+def write_recipe(folder: str | Path, recipe: Recipe) -> Path:
+    """``recipe.json`` and the digests of it and of ``demos.json`` in the manifest (which must exist)."""
+    folder = Path(folder)
+    man = read_manifest(folder)
+    if man.get("kind") != "composite":
+        raise BundleError(f'{folder / MANIFEST} is not a composite action\'s (kind = "composite")')
+    path = folder / RECIPE_FILE
+    path.write_text(json.dumps(recipe.to_dict(), indent=1) + "\n")
+    weights = {}
+    for f in (RECIPE_FILE, DEMOS_FILE):
+        if (folder / f).is_file():
+            weights[f] = {"sha256": sha256_file(folder / f), "bytes": (folder / f).stat().st_size}
+    man["weights"] = weights
+    _write_manifest(folder, man)
+    return path
+
+
+def read_recipe(folder: str | Path) -> Recipe:
+    """The recipe of the composite bundle in ``folder``, checked against the manifest's digest."""
+    folder = Path(folder)
+    man = read_manifest(folder)
+    want = man.get("weights", {}).get(RECIPE_FILE, {}).get("sha256")
+    path = folder / RECIPE_FILE
+    if not path.is_file():
+        raise CompositeError(f"{folder} has no {RECIPE_FILE}: teach the composite first (l2p-bullet teach ...)")
+    if want and sha256_file(path) != want:
+        raise CompositeError(f"{path} is not the file its manifest records (digest differs): re-train it")
+    return Recipe.from_dict(_read(path))
+
+
+def _read(path: Path) -> dict:
+    if path.stat().st_size > MAX_BYTES:
+        raise CompositeError(f"{path} is larger than {MAX_BYTES} bytes")
+    try:
+        d = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise CompositeError(f"cannot read {path}: {e}") from None
+    if not isinstance(d, dict):
+        raise CompositeError(f"{path} is not a JSON object")
+    return d

@@ -1,0 +1,192 @@
+"""The teach page for a composite action ("make a row of A, B and C"): whole rows, segmented into drags.
+
+A scene has 2 or 3 blocks (even seeds 2, odd seeds 3; 4 cm cubes scattered on the table). The sentence
+names them in order; the person drags the blocks one after another. The page segments the motion the
+simple way: a block is moving while it is dragged, so each drag (pointer down on a block .. pointer up) is
+one segment, sampled on every move. :meth:`RowLesson.save_row` checks the drags (each starts where its
+block then stood, stays on the table, never passes through another block) and appends the demonstration
+to the bundle's ``demos.json``. "Train" learns the recipe from every demonstration there
+(composite/recipe.py: each drag recognised as one of the installed actions) and performs a row of four
+on a new scene, with video.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..core.geometry import polygons_overlap
+from ..core.scene import COLORS, Scene, random_scene
+from ..errors import TeachError
+from .lesson import Job, Lesson
+
+BLOCK = 0.04
+"""Block side of the scenes (m): the rows benchmark's cubes."""
+
+PERFORM_BLOCKS = 4
+"""How many blocks the row performed after training has: more than any demonstration (recursion)."""
+
+
+def row_scene(seed: int, blocks: int, size: float = BLOCK) -> Scene:
+    """``blocks`` cubes scattered on the table, deterministic for ``seed`` (A, B like ``random_scene``,
+    the others placed at random: evaluate.scenes.add_bystanders)."""
+    from ..evaluate.scenes import add_bystanders
+
+    return add_bystanders(random_scene(seed, size), blocks - 2, seed)
+
+
+def row_sentence(phrase: str, names: list[str]) -> str:
+    return f"{phrase} {', '.join(names[:-1])} and {names[-1]}"
+
+
+class RowLesson(Lesson):
+    """:class:`Lesson` for a composite action: scenes of 2-3 blocks, rows of drags, a recipe learned."""
+
+    def scene(self, seed: int) -> Scene:
+        return row_scene(seed, 2 + seed % 2)
+
+    def names(self, seed: int) -> list[str]:
+        return [o.name for o in self.scene(seed).objects]
+
+    def scene_json(self, seed: int) -> dict[str, Any]:
+        scene, names = self.scene(seed), self.names(seed)
+        return {
+            "seed": seed, "sentence": row_sentence(self.action.phrases[0], names), "mover": None,
+            "movers": names[1:], "anchors": [], "composite": True,
+            "objects": [{"name": o.name, "color": o.color, "rgb": [round(255 * c) for c in COLORS[o.color][:3]],
+                         "size": o.size, "x": o.xy[0], "y": o.xy[1], "yaw": o.yaw} for o in scene.objects],
+            "workspace": {"x": scene.workspace.center[0], "y": scene.workspace.center[1], "r": scene.workspace.radius},
+            "table": {"half_x": scene.table.half_x, "half_y": scene.table.half_y},
+        }
+
+    def config(self) -> dict[str, Any]:
+        return {**super().config(), "composite": True, "sentence": row_sentence(self.action.phrases[0], ["A", "B", "C"]),
+                "demos": str(self.action.bundle_dir / "demos.json")}
+
+    def count(self) -> int:
+        from ..composite.bundle import read_demos
+
+        return len(read_demos(self.action.bundle_dir))
+
+    # --- recording ------------------------------------------------------------------------------
+    def save_row(self, seed: int, segments: list[dict[str, Any]]) -> dict[str, Any]:
+        """Check the drags of one row and append it to ``demos.json``; the count and the file."""
+        from ..composite.bundle import read_demos, write_demos
+        from ..composite.recipe import CompositeError, Demonstration, Segment
+
+        scene, names = self.scene(seed), self.names(seed)
+        if not segments:
+            raise TeachError("drag the blocks into a row first (nothing was dragged)")
+        demo = Demonstration(scene.to_dict(), names, [Segment(str(s["block"]), s["samples"]) for s in segments], seed)
+        try:
+            demo.check()
+        except CompositeError as e:
+            raise TeachError(str(e)) from None
+        poses = {o.name: o.pose.copy() for o in scene.objects}
+        for k, s in enumerate(demo.segments, 1):
+            track = s.track()
+            if np.hypot(*(track[0, :2] - poses[s.block][:2])) > 0.002:
+                raise TeachError(f"drag {k} does not start where block {s.block} stood")
+            self._check_drag(scene, s.block, track, poses, k)
+            poses[s.block] = track[-1]
+        moved = {s.block for s in demo.segments}
+        if len(moved) < len(names) - 1:
+            raise TeachError(f"a row of {len(names)} moves {len(names) - 1} blocks; "
+                             f"{', '.join(n for n in names[1:] if n not in moved)} did not move")
+        with self._lock:
+            demos = read_demos(self.action.bundle_dir) + [demo]
+            write_demos(self.action.bundle_dir, demos)
+        return {"demos": str(self.action.bundle_dir / "demos.json"), "count": len(demos),
+                "segments": len(demo.segments)}
+
+    @staticmethod
+    def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int) -> None:
+        obj = scene.get(block)
+        for pose in track:
+            if not scene.table.contains(obj.footprint(pose)):
+                raise TeachError(f"drag {k}: block {block} left the table")
+        for other in scene.objects:
+            if other.name == block:
+                continue
+            foot = other.footprint(poses[other.name])
+            near = np.hypot(*(track[:, :2] - poses[other.name][:2]).T) < (obj.size + other.size) * np.sqrt(0.5)
+            for i in np.flatnonzero(near):
+                if polygons_overlap(obj.footprint(track[i]), foot, margin=-0.001):
+                    raise TeachError(f"drag {k}: block {block} passed through block {other.name}")
+
+    # --- training and performing ----------------------------------------------------------------
+    def train(self) -> dict[str, Any]:
+        with self._lock:
+            if self.job.state in ("training", "performing"):
+                raise TeachError("training is already under way")
+            if not self.count():
+                raise TeachError("no rows recorded yet: drag the blocks into a row and save it first")
+            runs = self.job.runs
+            self.job = Job(state="training", message="recognising the drags", started=time.time(), runs=runs, total=1)
+            import threading
+
+            self._thread = threading.Thread(target=self._work, args=([],), daemon=True, name="teach-rows")
+            self._thread.start()
+        return self.status()
+
+    def _train(self, files: list[Path]) -> None:
+        learn_bundle(self.action.bundle_dir)
+        self.job.done = 1
+
+    def _perform(self) -> None:
+        from ..chain import perform_chain
+        from ..chain.composite import row_verdict
+        from ..plugins import registry
+
+        self.job.state, self.job.message = "performing", f"performing a row of {PERFORM_BLOCKS} on a new scene"
+        k = len(self.job.runs)
+        seed = 100_000 + k
+        scene = row_scene(seed, PERFORM_BLOCKS)
+        names = [o.name for o in scene.objects]
+        sentence = row_sentence(self.action.phrases[0], names)
+        plugins = registry.discover() + [registry.local(self.action.name, self.action.bundle_dir)]
+        out = self.action.root / "runs" / f"teach-{k:03d}"
+        r = perform_chain(sentence, scene, out_dir=out, seed=seed, force=True, plugins=plugins)
+        row = row_verdict(final_scene(out, scene), names, _displaced(r))
+        self.job.runs.append(out)
+        verdict = {"success": r.success and row["success"], "judge": "row", "reason": row["reason"],
+                   "chain": r.verdict(), "row": row}
+        self.job.run = {"id": k, "sentence": sentence, "scene": seed, "folder": str(out), "verdict": verdict,
+                        "final_progress": None, "video": f"/api/runs/{k}/video" if "video" in r.files else None}
+        self.job.state, self.job.message = "done", "done"
+
+
+def learn_bundle(bundle_dir: Path) -> Any:
+    """Learn the recipe from the bundle's ``demos.json`` with the installed actions; write ``recipe.json``."""
+    from ..composite.bundle import read_demos, write_recipe
+    from ..composite.recipe import learn
+    from ..recognition import recognisers
+
+    demos = read_demos(bundle_dir)
+    recipe = learn(demos, recognisers()[0])
+    write_recipe(bundle_dir, recipe)
+    return recipe
+
+
+def final_scene(run: Path, scene: Scene) -> Scene:
+    """``scene`` with every block where the run's last frame has it."""
+    from ..core.contracts import read_json, trajectory_poses
+
+    frames = read_json(run / "trajectory.json")["frames"]
+    out = scene
+    for o in scene.objects:
+        p = trajectory_poses(frames[-1:], o.name)[-1]
+        out = out.with_pose(o.name, p[[0, 1, 3]] if len(p) == 4 else p)
+    return out
+
+
+def _displaced(result: Any) -> dict[str, float]:
+    """Blocks moved > 1 mm by a clause that did not move them (the chain's judge already fails on them)."""
+    out: dict[str, float] = {}
+    for c in result.results:
+        for k, v in c.displacements_m.items():
+            out[k] = max(out.get(k, 0.0), float(v))
+    return out
