@@ -3,7 +3,7 @@
 A built-in action's module (``l2p_bullet/actions/<name>/__init__.py``, the entry point's target, next to its
 bundle) declares its name in the study's data, an example sentence, the thresholds its rule judge and the
 feasibility room check read, and how its training set differs from the defaults. The stages hold the
-algorithms and read these values: ``core/vocabulary.py`` (names), ``judge/rules.py`` (rule judges),
+algorithms and read these values: ``core/vocabulary.py`` (names), ``judge/rulesets/`` (rule judges),
 ``planning/feasibility.py`` (room checks, through the rules' thresholds), ``learning/trainset.py``
 (``DataConfig``'s defaults), ``learning/improve.py`` (sentences). A plugin's module may declare an
 ``ACTION`` the same way; the registry hands it over with the bundle (``Bundle.spec``).
@@ -53,8 +53,11 @@ class ActionSpec:
     sentence: str
     """An example sentence that performs it ("move A next to B"): ``l2p-bullet improve`` performs it."""
     thresholds: dict[str, float] = field(default_factory=dict)
-    """The numbers its rule judge (``judge/rules.py``'s rule set of the same name) and its feasibility room
+    """The numbers its rule judge (the rule set :attr:`rules` names) and its feasibility room
     check read, in blocks, turns or degrees as named."""
     training: Training = field(default_factory=Training)
     graded_folders: tuple[str, ...] = ()
     """Further folders of the graded 2-D demonstrations that show it ("SlideAroundDiscrete")."""
+    rules: str | None = None
+    """The rule set that judges it, by name (``judge/rulesets/``; a built-in's own, a plugin's one of those
+    shipped: "between", "left-of", ...); None: it has none, its learned model judges."""

@@ -92,3 +92,13 @@ def test_an_untrained_plugin_declares_training_options_its_training_set_takes(tm
     assert d.negatives["swirl"] == ["past"] and d.turn_label["swirl"] == 0.5
     assert "swirl" in d.twist_actions and "swirl" in d.unscaled and "swirl" not in d.detour_actions
     assert DataConfig().with_action(None) == DataConfig() and declared_spec("not-installed") is None
+
+
+def test_each_builtin_names_its_own_rule_set_kept_in_its_own_module():
+    from l2p_bullet.judge import rules
+    from l2p_bullet.judge.rulesets import around, away, closer, next_to, past
+
+    for spec, module in zip(BUILTIN.values(), (closer, away, next_to, past, around), strict=True):
+        assert spec.rules == spec.name and set(module.RULES) == {spec.name}, spec.name
+        assert rules.RULES[spec.rules] is module.RULES[spec.name]
+    assert rules.AROUND_TURNS == BUILTIN["around"].thresholds["turns"] and rules.closer_room(5.0) == 4.0

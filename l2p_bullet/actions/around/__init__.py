@@ -1,5 +1,5 @@
 """Built-in action: around. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge: it sweeps at least ``turns`` of a full turn around the anchor, never farther
+thresholds of its rule judge, ``judge/rulesets/around.py``: it sweeps at least ``turns`` of a full turn around the anchor, never farther
 than ``near`` blocks; its training-set options; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 """
@@ -8,6 +8,7 @@ from ..spec import ActionSpec, Training
 
 ACTION = ActionSpec(
     name="around",
+    rules="around",
     source_name="SlideAround",
     sentence="move A around B",
     thresholds={"turns": 0.8, "near": 4.0},

@@ -1,5 +1,5 @@
 """Built-in action: away. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge: the centre distance grows steadily, by at least ``gain`` blocks; its training-
+thresholds of its rule judge, ``judge/rulesets/away.py``: the centre distance grows steadily, by at least ``gain`` blocks; its training-
 set options; its names) is declared here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 """
 
@@ -7,6 +7,7 @@ from ..spec import ActionSpec, Training
 
 ACTION = ActionSpec(
     name="away",
+    rules="away",
     source_name="SlideAway",
     sentence="move A away from B",
     thresholds={"gain": 1.0},

@@ -1,5 +1,5 @@
 """Built-in action: next-to. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge: the mover ends with at most ``gap`` blocks between the two footprints, not
+thresholds of its rule judge, ``judge/rulesets/next_to.py``: the mover ends with at most ``gap`` blocks between the two footprints, not
 overlapping; its training-set options; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 """
@@ -8,6 +8,7 @@ from ..spec import ActionSpec, Training
 
 ACTION = ActionSpec(
     name="next-to",
+    rules="next-to",
     source_name="SlideNext",
     sentence="move A next to B",
     thresholds={"gap": 0.5},

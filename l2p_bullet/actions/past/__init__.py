@@ -1,5 +1,5 @@
 """Built-in action: past. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
+thresholds of its rule judge, ``judge/rulesets/past.py``: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
 ``near`` blocks, turning at most ``max_turn_deg`` around it; its training-set options; its names) is declared
 here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 """
@@ -8,6 +8,7 @@ from ..spec import ActionSpec, Training
 
 ACTION = ActionSpec(
     name="past",
+    rules="past",
     source_name="SlidePast",
     sentence="move A past B",
     thresholds={"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0},
