@@ -18,6 +18,27 @@ from dataclasses import dataclass, field
 
 
 @dataclass(frozen=True)
+class Violation:
+    """When a random straight-line motion (block units) is clearly not even a *partial* instance of an action,
+    so that its training set may label it a negative (``learning.trainset.violates``). Each check that is set
+    is one way to fail; None: not checked. Partial instances keep a partial progress (the planner climbs it),
+    so only motions that went the wrong way fail."""
+
+    ends_farther: float | None = None
+    """It ends at least this many blocks farther from the anchor than it started."""
+    ends_nearer: float | None = None
+    """It ends at least this many blocks nearer than it started."""
+    stays_off: tuple[float, float] | None = None
+    """It ends more than ``[0]`` blocks away having closed less than ``[1]`` blocks."""
+    strays: tuple[float, float] | None = None
+    """It goes more than ``[0]`` blocks away, from a start nearer than ``[1]`` blocks."""
+    no_turn: tuple[float, float] | None = None
+    """It turns less than ``[0]`` degrees around the anchor over more than ``[1]`` blocks of travel."""
+    max_turn_deg: float | None = None
+    """It turns more than this many degrees around the anchor."""
+
+
+@dataclass(frozen=True)
 class Training:
     """How an action's training set differs from the defaults (``learning.trainset.DataConfig``; why each
     option exists is said there and in docs/learning.md)."""
@@ -40,6 +61,11 @@ class Training:
     """Labelled by the net turn swept, in these many turns, instead of by arc length."""
     net_label: float | None = None
     """Dip/back-off copies labelled by net gain less this times the inward motion."""
+    violation: Violation | None = None
+    """Which random motions are its negatives; None: none are (a plugin without one trains without them)."""
+    clear_grades: tuple[float, float] | None = None
+    """The original's cold feedback ("clear" targets) for it: mean grade <= [0] is 0, >= [1] is 1, when not
+    the default of ``learning.feedback_targets.FeedbackConfig.clear``."""
 
 
 @dataclass(frozen=True)

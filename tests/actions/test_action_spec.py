@@ -102,3 +102,20 @@ def test_each_builtin_names_its_own_rule_set_kept_in_its_own_module():
         assert spec.rules == spec.name and set(module.RULES) == {spec.name}, spec.name
         assert rules.RULES[spec.rules] is module.RULES[spec.name]
     assert rules.AROUND_TURNS == BUILTIN["around"].thresholds["turns"] and rules.closer_room(5.0) == 4.0
+
+
+def test_random_negatives_and_clear_feedback_read_the_action_spec():
+    from l2p_bullet.actions import Training, Violation
+    from l2p_bullet.learning.feedback_targets import FeedbackConfig
+    from l2p_bullet.learning.trainset import violates
+
+    anchor = np.zeros((2, 3))
+    toward, off = np.array([[6.0, 0, 0], [2.0, 0, 0]]), np.array([[2.0, 0, 0], [6.0, 0, 0]])
+    # a plugin declaring "closer"'s checks is judged the same way; without any, it has no random negatives
+    mine = ActionSpec("nearer", "Nearer", "move A nearer B", training=Training(violation=Violation(ends_farther=0.5)))
+    assert violates(mine, off, anchor) and not violates(mine, toward, anchor)
+    assert violates("closer", off, anchor) and not violates("closer", toward, anchor)
+    with pytest.raises(ValueError, match="declares no random negatives"):
+        violates(ActionSpec("still", "Still", "keep A still"), off, anchor)
+    clear = FeedbackConfig().clear
+    assert clear["around"] == BUILTIN["around"].training.clear_grades and "closer" not in clear

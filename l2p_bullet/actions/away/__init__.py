@@ -3,7 +3,7 @@ thresholds of its rule judge, ``judge/rulesets/away.py``: the centre distance gr
 set options; its names) is declared here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 """
 
-from ..spec import ActionSpec, Training
+from ..spec import ActionSpec, Training, Violation
 
 ACTION = ActionSpec(
     name="away",
@@ -11,5 +11,6 @@ ACTION = ActionSpec(
     source_name="SlideAway",
     sentence="move A away from B",
     thresholds={"gain": 1.0},
-    training=Training(negatives=("closer", "next-to", "around"), shortened=(0.75, 0.95), twist=True, detour=True, net_label=1.5),
+    training=Training(negatives=("closer", "next-to", "around"), shortened=(0.75, 0.95), twist=True, detour=True, net_label=1.5,
+                      violation=Violation(ends_nearer=0.5), clear_grades=(4.5, 7.0)),
 )

@@ -4,7 +4,9 @@ thresholds of its rule judge, ``judge/rulesets/past.py``: it crosses from ``marg
 here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 """
 
-from ..spec import ActionSpec, Training
+import math
+
+from ..spec import ActionSpec, Training, Violation
 
 ACTION = ActionSpec(
     name="past",
@@ -12,5 +14,6 @@ ACTION = ActionSpec(
     source_name="SlidePast",
     sentence="move A past B",
     thresholds={"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0},
-    training=Training(negatives=("closer", "away", "next-to", "around"), approach=(1.0, 4.0)),
+    training=Training(negatives=("closer", "away", "next-to", "around"), approach=(1.0, 4.0),
+                      violation=Violation(no_turn=(20.0, 2.0), max_turn_deg=270.0, strays=(9.0, math.inf))),
 )
