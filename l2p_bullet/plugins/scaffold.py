@@ -1,7 +1,8 @@
 """``l2p-bullet new-action``: write a ready-to-install action plugin package.
 
 The package is the smallest thing that makes a new preposition work end to end: a pyproject that
-declares the entry point in ``l2p_bullet.actions``, an empty package whose folder will hold the bundle,
+declares the entry point in ``l2p_bullet.actions``, a package whose folder will hold the bundle and whose
+module declares what else the action is (``ACTION``, an ``ActionSpec`` as each built-in declares),
 a manifest template carrying the phrases (so the parser learns them as soon as the package is
 installed and trained) and a README that walks an author through demonstrations, training and
 installation. Everything is plain text written from templates: no network, no build step.
@@ -71,7 +72,7 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     ``installed`` maps phrases already claimed to their action: a new plugin that reuses one would make
     every sentence ambiguous once installed, so that is refused here rather than after ``pip install``.
     ``frame`` and ``anchors`` are the manifest's declarations (:mod:`l2p_bullet.core.frames`), ``judge``
-    the name of a rule judge (``judge/rules.py``) for its ``[judge]`` section (default: none, the action's
+    the name of a rule set (``judge/rulesets/``) for its ``[judge]`` section (default: none, the action's
     own progress model judges). Never overwrites: an existing ``out`` is an error.
     """
     check_name(name)
@@ -107,7 +108,8 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     (root / "demos").mkdir()
     texts = {
         root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__),
-        pkg / "__init__.py": _INIT.format(name=name),
+        pkg / "__init__.py": _INIT.format(name=name, sentence=_example(clean[0], anchors),
+                                          rules=f'"{judge}"' if judge else "None"),
         pkg / "manifest.toml": _MANIFEST.format(
             name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
             description=(description or f'Slide a block {clean[0]} another block'
@@ -153,8 +155,21 @@ packages = ["{module}"]
 
 _INIT = '''"""Action plugin "{name}" for l2p-bullet: this folder holds the bundle (manifest.toml and weights).
 
-Nothing needs to run here; l2p-bullet reads the bundle next to this file.
+What else the action is, ``ACTION``, is declared here the way the built-in actions declare theirs
+(l2p_bullet/actions/<name>/__init__.py): its example sentence, the rule set that judges it, and how its
+training set differs from the defaults (``Training``: which actions' demonstrations are its negatives,
+stretched or twisted copies, ...; see l2p_bullet/actions/spec.py). `l2p-bullet train` reads it.
 """
+
+from l2p_bullet.actions.spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="{name}",
+    source_name="{name}",
+    sentence="{sentence}",
+    rules={rules},
+    training=Training(),
+)
 '''
 
 _MANIFEST = """\
@@ -177,7 +192,7 @@ anchors = {anchors}
 """
 
 _JUDGE = """
-# Who decides whether a run succeeded: a rule judge of l2p_bullet/judge/rules.py (independent of the
+# Who decides whether a run succeeded: a rule set of l2p_bullet/judge/rulesets/ (independent of the
 # learned model the planner maximises). Without this section the action's own progress model judges.
 [judge]
 rules = "{rules}"

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from plugin_fixtures import copy_builtin_as_plugin, make_bundle, make_dist
 
-from l2p_bullet.actions import BUILTIN, ActionSpec
+from l2p_bullet.actions import BUILTIN, ActionSpec, Training
 from l2p_bullet.core.vocabulary import ACTIONS, GRADED_FOLDERS, SOURCE_NAMES
 from l2p_bullet.errors import FailedToLoadPlugin
 from l2p_bullet.judge.rules import rule_verdict
@@ -105,7 +105,7 @@ def test_each_builtin_names_its_own_rule_set_kept_in_its_own_module():
 
 
 def test_random_negatives_and_clear_feedback_read_the_action_spec():
-    from l2p_bullet.actions import Training, Violation
+    from l2p_bullet.actions import Violation
     from l2p_bullet.learning.feedback_targets import FeedbackConfig
     from l2p_bullet.learning.trainset import violates
 
@@ -119,3 +119,15 @@ def test_random_negatives_and_clear_feedback_read_the_action_spec():
         violates(ActionSpec("still", "Still", "keep A still"), off, anchor)
     clear = FeedbackConfig().clear
     assert clear["around"] == BUILTIN["around"].training.clear_grades and "closer" not in clear
+
+
+def test_a_scaffolded_plugin_declares_its_spec_as_the_builtins_do(tmp_path, monkeypatch):
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    s = scaffold("amid", ["amid"], tmp_path / "l2p-amid", anchors=2, judge="between")
+    make_dist(s.root, s.dist_name, {"amid": s.module})
+    monkeypatch.syspath_prepend(str(s.root))
+    spec = registry.action_spec("amid", registry.discover())
+    assert isinstance(spec, ActionSpec) and spec.name == "amid" and spec.rules == "between"
+    assert spec.sentence == "move A amid B and C" and spec.training == Training()
+    assert DataConfig(random_negatives=0).with_action(spec) == DataConfig(random_negatives=0)
