@@ -1,7 +1,8 @@
 """Built-in action: closer. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge, ``judge/rulesets/closer.py``: the centre distance shrinks steadily and closes at least ``share`` of the room
+thresholds of its rule judge: the centre distance shrinks steadily and closes at least ``share`` of the room
 there was; its training-set options; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+The rule itself is ``judge/rulesets/closer.py`` (named by ``rules``).
 """
 
 from ..spec import ActionSpec, Training, Violation

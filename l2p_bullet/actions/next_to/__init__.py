@@ -1,7 +1,8 @@
 """Built-in action: next-to. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge, ``judge/rulesets/next_to.py``: the mover ends with at most ``gap`` blocks between the two footprints, not
+thresholds of its rule judge: the mover ends with at most ``gap`` blocks between the two footprints, not
 overlapping; its training-set options; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+The rule itself is ``judge/rulesets/next_to.py`` (named by ``rules``).
 """
 
 from ..spec import ActionSpec, Training, Violation

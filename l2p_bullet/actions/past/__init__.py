@@ -1,7 +1,8 @@
 """Built-in action: past. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
-thresholds of its rule judge, ``judge/rulesets/past.py``: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
+thresholds of its rule judge: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
 ``near`` blocks, turning at most ``max_turn_deg`` around it; its training-set options; its names) is declared
 here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+The rule itself is ``judge/rulesets/past.py`` (named by ``rules``).
 """
 
 import math
