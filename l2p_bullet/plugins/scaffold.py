@@ -72,7 +72,7 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     ``installed`` maps phrases already claimed to their action: a new plugin that reuses one would make
     every sentence ambiguous once installed, so that is refused here rather than after ``pip install``.
     ``frame`` and ``anchors`` are the manifest's declarations (:mod:`l2p_bullet.core.frames`), ``judge``
-    the name of a rule set (``judge/rulesets/``) for its ``[judge]`` section (default: none, the action's
+    the name of a rule judge (``judge/rules.py``) for its ``[judge]`` section (default: none, the action's
     own progress model judges). Never overwrites: an existing ``out`` is an error.
     """
     check_name(name)
@@ -108,8 +108,7 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     (root / "demos").mkdir()
     texts = {
         root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__),
-        pkg / "__init__.py": _INIT.format(name=name, sentence=_example(clean[0], anchors),
-                                          rules=f'"{judge}"' if judge else "None"),
+        pkg / "__init__.py": _INIT.format(name=name),
         pkg / "manifest.toml": _MANIFEST.format(
             name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
             description=(description or f'Slide a block {clean[0]} another block'
@@ -123,6 +122,9 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         ),
         root / "demos" / ".gitkeep": "",
     }
+    # what else the action is, declared as the built-ins declare theirs (registry.action_spec reads it)
+    texts[pkg / "__init__.py"] += _ACTION.format(name=name, sentence=_example(clean[0], anchors),
+                                                 rules=f'"{judge}"' if judge else "None")
     for path, text in texts.items():
         path.write_text(text, encoding="utf-8")
     return Scaffold(root, pkg, module, dist_name, sorted(texts))
@@ -160,7 +162,9 @@ What else the action is, ``ACTION``, is declared here the way the built-in actio
 training set differs from the defaults (``Training``: which actions' demonstrations are its negatives,
 stretched or twisted copies, ...; see l2p_bullet/actions/spec.py). `l2p-bullet train` reads it.
 """
+'''
 
+_ACTION = '''
 from l2p_bullet.actions.spec import ActionSpec, Training
 
 ACTION = ActionSpec(
@@ -192,7 +196,7 @@ anchors = {anchors}
 """
 
 _JUDGE = """
-# Who decides whether a run succeeded: a rule set of l2p_bullet/judge/rulesets/ (independent of the
+# Who decides whether a run succeeded: a rule judge of l2p_bullet/judge/rules.py (independent of the
 # learned model the planner maximises). Without this section the action's own progress model judges.
 [judge]
 rules = "{rules}"
