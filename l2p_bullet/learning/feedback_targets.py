@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..actions import BUILTIN
 from ..core.scene import random_scene
 from ..planning import plan
 from ..planning.world2d import interpolate
@@ -30,8 +31,10 @@ class FeedbackConfig:
 
     target: str = "grade"
     """"grade": end target = mean grade / 10; "clear": the original's cold feedback (only clear cases, 0 or 1)."""
-    clear: dict = field(default_factory=lambda: {"default": (3.5, 7.0), "away": (4.5, 7.0), "around": (1.5, 5.5)})
-    """"clear" targets: mean grade <= low -> 0, >= high -> 1, the rest unused (the original's thresholds)."""
+    clear: dict = field(default_factory=lambda: {"default": (3.5, 7.0), **{
+        a: s.training.clear_grades for a, s in BUILTIN.items() if s.training.clear_grades is not None}})
+    """"clear" targets: mean grade <= low -> 0, >= high -> 1, the rest unused (the original's thresholds; an
+    action's own, ``ActionSpec.training.clear_grades``, where it declares them: away, around)."""
     weight: float = 0.3
     """Total weight of the feedback sequences relative to the demonstrations' positives."""
     epochs: int = 10

@@ -208,29 +208,29 @@ def _labelled(mover: np.ndarray, anchor: np.ndarray, size: float, start: float, 
     return TrainingSequence(x, y.astype(np.float32), positive=True, end=k_end)
 
 
-def violates(action: str, mover: np.ndarray, anchor: np.ndarray) -> bool:
-    """True when a block-unit motion is clearly not even a *partial* instance of the action.
+def violates(action: str | ActionSpec, mover: np.ndarray, anchor: np.ndarray) -> bool:
+    """True when a block-unit motion is clearly not even a *partial* instance of the action, by the checks the
+    action declares (``ActionSpec.training.violation``; ``action`` a built-in's name or a spec).
 
     Used only to label random motions as negatives; motions that pass are left out, not made positive.
     Partial instances must keep a partial progress (the planner climbs it), so the rules only reject
     motions that went the wrong way: a "closer" that ends farther, an "around" that never turned, ...
     """
+    spec = BUILTIN.get(action) if isinstance(action, str) else action
+    v = spec.training.violation if spec is not None else None
+    if v is None:
+        raise ValueError(f"{action}: the action declares no random negatives (ActionSpec.training.violation)")
     d = mover[:, :2] - anchor[:, :2]
     r = np.linalg.norm(d, axis=1)
     swept = abs(swept_angle(d))
     length = np.linalg.norm(np.diff(mover[:, :2], axis=0), axis=1).sum()
-    far = r.max() > 9.0
-    if action == "closer":
-        return r[-1] >= r[0] + 0.5 or (far and r[0] < 8.0)
-    if action == "away":
-        return r[-1] <= r[0] - 0.5
-    if action == "next-to":
-        return r[-1] >= r[0] + 0.5 or (r[-1] > 2.5 and r[-1] >= r[0] - 0.25) or (far and r[0] < 8.0)
-    if action == "past":
-        return (swept < np.radians(20) and length > 2.0) or swept > np.radians(270) or far
-    if action == "around":
-        return (swept < np.radians(20) and length > 2.0) or far
-    raise ValueError(action)
+    return bool(
+        (v.ends_farther is not None and r[-1] >= r[0] + v.ends_farther)
+        or (v.ends_nearer is not None and r[-1] <= r[0] - v.ends_nearer)
+        or (v.stays_off is not None and r[-1] > v.stays_off[0] and r[-1] >= r[0] - v.stays_off[1])
+        or (v.strays is not None and r.max() > v.strays[0] and r[0] < v.strays[1])
+        or (v.no_turn is not None and swept < np.radians(v.no_turn[0]) and length > v.no_turn[1])
+        or (v.max_turn_deg is not None and swept > np.radians(v.max_turn_deg)))
 
 
 def random_motion(rng: np.random.Generator, n_moves: int | None = None) -> tuple[np.ndarray, np.ndarray]:

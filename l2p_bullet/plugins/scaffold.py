@@ -1,7 +1,8 @@
 """``l2p-bullet new-action``: write a ready-to-install action plugin package.
 
 The package is the smallest thing that makes a new preposition work end to end: a pyproject that
-declares the entry point in ``l2p_bullet.actions``, an empty package whose folder will hold the bundle,
+declares the entry point in ``l2p_bullet.actions``, a package whose folder will hold the bundle and whose
+module declares what else the action is (``ACTION``, an ``ActionSpec`` as each built-in declares),
 a manifest template carrying the phrases (so the parser learns them as soon as the package is
 installed and trained) and a README that walks an author through demonstrations, training and
 installation. Everything is plain text written from templates: no network, no build step.
@@ -127,6 +128,9 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         ),
         root / "demos" / ".gitkeep": "",
     }
+    # what else the action is, declared as the built-ins declare theirs (registry.action_spec reads it)
+    texts[pkg / "__init__.py"] += _ACTION.format(name=name, sentence=_example(clean[0], anchors),
+                                                 rules=f'"{judge}"' if judge else "None")
     for path, text in texts.items():
         path.write_text(text, encoding="utf-8")
     return Scaffold(root, pkg, module, dist_name, sorted(texts))
@@ -159,8 +163,23 @@ packages = ["{module}"]
 
 _INIT = '''"""Action plugin "{name}" for l2p-bullet: this folder holds the bundle (manifest.toml and weights).
 
-Nothing needs to run here; l2p-bullet reads the bundle next to this file.
+What else the action is, ``ACTION``, is declared here the way the built-in actions declare theirs
+(l2p_bullet/actions/<name>/__init__.py): its example sentence, the rule set that judges it, and how its
+training set differs from the defaults (``Training``: which actions' demonstrations are its negatives,
+stretched or twisted copies, ...; see l2p_bullet/actions/spec.py). `l2p-bullet train` reads it.
 """
+'''
+
+_ACTION = '''
+from l2p_bullet.actions.spec import ActionSpec, Training
+
+ACTION = ActionSpec(
+    name="{name}",
+    source_name="{name}",
+    sentence="{sentence}",
+    rules={rules},
+    training=Training(),
+)
 '''
 
 _MANIFEST = """\

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from plugin_fixtures import copy_builtin_as_plugin, make_bundle, make_dist
 
-from l2p_bullet.actions import BUILTIN, ActionSpec
+from l2p_bullet.actions import BUILTIN, ActionSpec, Training
 from l2p_bullet.core.vocabulary import ACTIONS, GRADED_FOLDERS, SOURCE_NAMES
 from l2p_bullet.errors import FailedToLoadPlugin
 from l2p_bullet.judge.rules import rule_verdict
@@ -92,3 +92,42 @@ def test_an_untrained_plugin_declares_training_options_its_training_set_takes(tm
     assert d.negatives["swirl"] == ["past"] and d.turn_label["swirl"] == 0.5
     assert "swirl" in d.twist_actions and "swirl" in d.unscaled and "swirl" not in d.detour_actions
     assert DataConfig().with_action(None) == DataConfig() and declared_spec("not-installed") is None
+
+
+def test_each_builtin_names_its_own_rule_set_kept_in_its_own_module():
+    from l2p_bullet.judge import rules
+    from l2p_bullet.judge.rulesets import around, away, closer, next_to, past
+
+    for spec, module in zip(BUILTIN.values(), (closer, away, next_to, past, around), strict=True):
+        assert spec.rules == spec.name and set(module.RULES) == {spec.name}, spec.name
+        assert rules.RULES[spec.rules] is module.RULES[spec.name]
+    assert rules.AROUND_TURNS == BUILTIN["around"].thresholds["turns"] and rules.closer_room(5.0) == 4.0
+
+
+def test_random_negatives_and_clear_feedback_read_the_action_spec():
+    from l2p_bullet.actions import Violation
+    from l2p_bullet.learning.feedback_targets import FeedbackConfig
+    from l2p_bullet.learning.trainset import violates
+
+    anchor = np.zeros((2, 3))
+    toward, off = np.array([[6.0, 0, 0], [2.0, 0, 0]]), np.array([[2.0, 0, 0], [6.0, 0, 0]])
+    # a plugin declaring "closer"'s checks is judged the same way; without any, it has no random negatives
+    mine = ActionSpec("nearer", "Nearer", "move A nearer B", training=Training(violation=Violation(ends_farther=0.5)))
+    assert violates(mine, off, anchor) and not violates(mine, toward, anchor)
+    assert violates("closer", off, anchor) and not violates("closer", toward, anchor)
+    with pytest.raises(ValueError, match="declares no random negatives"):
+        violates(ActionSpec("still", "Still", "keep A still"), off, anchor)
+    clear = FeedbackConfig().clear
+    assert clear["around"] == BUILTIN["around"].training.clear_grades and "closer" not in clear
+
+
+def test_a_scaffolded_plugin_declares_its_spec_as_the_builtins_do(tmp_path, monkeypatch):
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    s = scaffold("amid", ["amid"], tmp_path / "l2p-amid", anchors=2, judge="between")
+    make_dist(s.root, s.dist_name, {"amid": s.module})
+    monkeypatch.syspath_prepend(str(s.root))
+    spec = registry.action_spec("amid", registry.discover())
+    assert isinstance(spec, ActionSpec) and spec.name == "amid" and spec.rules == "between"
+    assert spec.sentence == "move A amid B and C" and spec.training == Training()
+    assert DataConfig(random_negatives=0).with_action(spec) == DataConfig(random_negatives=0)

@@ -2,14 +2,17 @@
 thresholds of its rule judge: the centre distance shrinks steadily and closes at least ``share`` of the room
 there was; its training-set options; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+The rule itself is ``judge/rulesets/closer.py`` (named by ``rules``).
 """
 
-from ..spec import ActionSpec, Training
+from ..spec import ActionSpec, Training, Violation
 
 ACTION = ActionSpec(
     name="closer",
+    rules="closer",
     source_name="SlideToward",
     sentence="move A closer to B",
     thresholds={"share": 0.5},
-    training=Training(negatives=("away", "past", "around"), scale_range=(0.45, 1.7), twist=True, detour=True),
+    training=Training(negatives=("away", "past", "around"), scale_range=(0.45, 1.7), twist=True, detour=True,
+                      violation=Violation(ends_farther=0.5, strays=(9.0, 8.0))),
 )

@@ -2,14 +2,17 @@
 thresholds of its rule judge: the mover ends with at most ``gap`` blocks between the two footprints, not
 overlapping; its training-set options; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+The rule itself is ``judge/rulesets/next_to.py`` (named by ``rules``).
 """
 
-from ..spec import ActionSpec, Training
+from ..spec import ActionSpec, Training, Violation
 
 ACTION = ActionSpec(
     name="next-to",
+    rules="next-to",
     source_name="SlideNext",
     sentence="move A next to B",
     thresholds={"gap": 0.5},
-    training=Training(negatives=("away", "past", "around"), scaled=False, twist=True),
+    training=Training(negatives=("away", "past", "around"), scaled=False, twist=True,
+                      violation=Violation(ends_farther=0.5, stays_off=(2.5, 0.25), strays=(9.0, 8.0))),
 )

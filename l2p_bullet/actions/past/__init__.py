@@ -2,14 +2,19 @@
 thresholds of its rule judge: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
 ``near`` blocks, turning at most ``max_turn_deg`` around it; its training-set options; its names) is declared
 here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+The rule itself is ``judge/rulesets/past.py`` (named by ``rules``).
 """
 
-from ..spec import ActionSpec, Training
+import math
+
+from ..spec import ActionSpec, Training, Violation
 
 ACTION = ActionSpec(
     name="past",
+    rules="past",
     source_name="SlidePast",
     sentence="move A past B",
     thresholds={"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0},
-    training=Training(negatives=("closer", "away", "next-to", "around"), approach=(1.0, 4.0)),
+    training=Training(negatives=("closer", "away", "next-to", "around"), approach=(1.0, 4.0),
+                      violation=Violation(no_turn=(20.0, 2.0), max_turn_deg=270.0, strays=(9.0, math.inf))),
 )
