@@ -32,8 +32,11 @@ class Scaffold:
     files: list[Path]
 
 
-def _example(phrase: str, anchors: int) -> str:
-    """A sentence for the README: "move A <phrase> B" (and C)."""
+def _example(phrase: str, anchors: int, kind: str = "action") -> str:
+    """A sentence for the README and the ActionSpec: "move A <phrase> B" (and C); a composite's phrase
+    takes the list of objects: "<phrase> A, B and C"."""
+    if kind == "composite":
+        return f"{phrase} A, B and C"
     return f"move A {phrase} B" + (" and C" if anchors == 2 else "")
 
 
@@ -123,13 +126,13 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         ) + (_JUDGE.format(rules=judge) if judge else "") + (_COMPOSITE if kind == "composite" else ""),
         root / "README.md": _README.format(
             name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
-            phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors),
+            phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors, kind),
             kind=_KIND.get(name, "left-of" if anchors == 1 else "between"), viewer=_viewer_arg(frame),
         ),
         root / "demos" / ".gitkeep": "",
     }
     # what else the action is, declared as the built-ins declare theirs (registry.action_spec reads it)
-    texts[pkg / "__init__.py"] += _ACTION.format(name=name, sentence=_example(clean[0], anchors),
+    texts[pkg / "__init__.py"] += _ACTION.format(name=name, sentence=_example(clean[0], anchors, kind),
                                                  rules=f'"{judge}"' if judge else "None")
     for path, text in texts.items():
         path.write_text(text, encoding="utf-8")

@@ -131,3 +131,13 @@ def test_a_scaffolded_plugin_declares_its_spec_as_the_builtins_do(tmp_path, monk
     assert isinstance(spec, ActionSpec) and spec.name == "amid" and spec.rules == "between"
     assert spec.sentence == "move A amid B and C" and spec.training == Training()
     assert DataConfig(random_negatives=0).with_action(spec) == DataConfig(random_negatives=0)
+
+
+def test_a_scaffolded_composite_declares_a_sentence_over_a_list_of_objects(tmp_path):
+    """A composite's phrase takes the objects as a list ("line up A, B and C"), not "move A <phrase> B"."""
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    s = scaffold("tidy", ["line up"], tmp_path / "l2p-tidy", kind="composite")
+    text = (s.package_dir / "__init__.py").read_text()
+    assert 'sentence="line up A, B and C"' in text and "move A line up" not in text
+    assert 'l2p-bullet perform "line up A, B and C"' in (s.root / "README.md").read_text()
