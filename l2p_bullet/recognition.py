@@ -28,8 +28,13 @@ from typing import Any
 import numpy as np
 
 from .core.contracts import Plan, block_size, motion_from_dict, read_json, trajectory_poses
-from .data.demos import SMOOTH_FRAMES
+from .core.geometry import moving_average
+from .core.scene import MAX_OBJECTS
+from .core.vocabulary import canonical_action
+from .data.demos import SMOOTH_FRAMES, get_demo
 from .errors import L2PError, PathError
+from .plugins import registry
+from .plugins.bundle import load_bundle
 
 MOVED_SIDES = 0.5
 """How far (block sides, from its start) a block must get to count as moved. A still block read as a
@@ -180,7 +185,6 @@ def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None) -> Tracks:
     objects = d["objects"]
     if not isinstance(objects, dict):
         raise PathError(f'{src}: not a valid trajectory.json ("objects" must map names to objects)')
-    from .core.scene import MAX_OBJECTS
 
     if len(objects) > MAX_OBJECTS:
         raise PathError(f"{src}: {len(objects)} objects; a scene holds at most {MAX_OBJECTS}")
@@ -201,9 +205,6 @@ def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None) -> Tracks:
 def demo_tracks(spec: str) -> Tracks:
     """``--demo ACTION:INDEX``: a shipped human demonstration (the order of ``replay --demo``), the mover
     called A and the other block B, smoothed as the training recipe smooths captures, cut to the event."""
-    from .core.vocabulary import canonical_action
-    from .data.demos import get_demo
-
     action, sep, index = spec.partition(":")
     if not sep or not index.strip().lstrip("-").isdigit():
         raise PathError(f'--demo expects ACTION:INDEX, e.g. around:0 (got "{spec}")')
@@ -212,8 +213,6 @@ def demo_tracks(spec: str) -> Tracks:
 
 def demo_event_tracks(demo: Any) -> Tracks:
     """A :class:`data.demos.Demo` as recognition reads it (see :func:`demo_tracks`)."""
-    from .core.geometry import moving_average
-
     w = SMOOTH_FRAMES
     ev = slice(demo.start, demo.end + 1)
     m, a = (moving_average(t, w)[ev] if w > 1 and len(t) >= 3 else t[ev] for t in (demo.mover, demo.anchor))
@@ -224,9 +223,6 @@ def demo_event_tracks(demo: Any) -> Tracks:
 def recognisers(specs: list[str] | tuple[str, ...] = ()) -> tuple[list[Recogniser], list[dict]]:
     """The actions to recognise with: ``specs`` (installed names or bundle folders, as ``score`` takes),
     else every usable installed action; and the installed ones left out, each with its reason."""
-    from .plugins import registry
-    from .plugins.bundle import load_bundle
-
     out, skipped = [], []
     if specs:
         for spec in specs:

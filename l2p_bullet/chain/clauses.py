@@ -16,6 +16,8 @@ from typing import Any
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
 from ..language import MAX_SENTENCE, VERBS, Command, _phrase_tokens, _strip_polite, _tokens
+from ..pipeline import resolve
+from ..plugins import registry
 
 MAX_CLAUSES = 10
 """Most clauses in one chain: past a handful of steps errors compound (CALVIN judges chains of five)."""
@@ -47,7 +49,7 @@ def split_clauses(sentence: str) -> list[str]:
 def is_chain(sentence: str, plugins: list | None = None) -> bool:
     """More than one clause, or a composite action's sentence ("make a row of A, B and C", whose clauses
     its recipe makes: chain/composite.py): ``perform`` runs it as a chain; one clause keeps today's run."""
-    from .composite import is_composite
+    from .composite import is_composite  # lazy: chain/composite.py imports this module's Clause
 
     return len(split_clauses(sentence)) > 1 or is_composite(sentence, plugins)
 
@@ -55,8 +57,7 @@ def is_chain(sentence: str, plugins: list | None = None) -> bool:
 def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """Every clause parsed against ``scene`` and the installed phrases; the first problem raised as a
     one-line error of its own type (LanguageError, UnknownObjectError...) that names the clause."""
-    from ..pipeline import resolve
-    from .composite import composite_clauses
+    from .composite import composite_clauses  # lazy: see is_chain
 
     made = composite_clauses(sentence, scene, plugins)
     if made is not None:
@@ -85,7 +86,6 @@ def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) 
     words = _strip_polite(_tokens(text))
     if previous is None or not words or words[0].lower() in VERBS:
         return text
-    from ..plugins import registry
 
     low = tuple(w.lower() for w in words)
     for toks, _phrase, _action in _phrase_tokens(registry.phrase_table(plugins)):

@@ -18,16 +18,22 @@ block that is still waiting for its turn; ties go to the one with most room to t
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from ..composite.bundle import read_recipe
 from ..composite.recipe import Recipe, row_gaps
 from ..core.geometry import polygons_overlap
+from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
-from ..errors import InfeasibleError, LanguageError
+from ..errors import InfeasibleError, L2PError, LanguageError
+from ..language import _phrase_tokens, _strip_polite, _tokens, parse_list
+from ..pipeline import resolve
+from ..plugins import registry
 
 GAP_OK = 0.35
 LINE_OK = 0.25
@@ -55,15 +61,11 @@ class RowSlot:
 
 
 def composite_phrases(plugins: list | None) -> dict[str, str]:
-    from ..plugins import registry
-
     return {ph: p.name for p in registry.composites(plugins) for ph in p.phrases}
 
 
 def is_composite(sentence: str, plugins: list | None = None) -> bool:
     """Whether ``sentence`` starts (after polite words) with an installed composite's phrase."""
-    from ..language import _phrase_tokens, _strip_polite, _tokens
-
     if not isinstance(sentence, str):
         return False
     low = tuple(w.lower() for w in _strip_polite(_tokens(sentence)))
@@ -71,19 +73,13 @@ def is_composite(sentence: str, plugins: list | None = None) -> bool:
 
 
 def load_recipe(action: str, plugins: list | None) -> Recipe:
-    from ..composite.bundle import read_recipe
-    from ..plugins import registry
-
     info = next(p for p in registry.composites(plugins) if p.name == action)
     return read_recipe(info.path)
 
 
 def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list | None:
     """The chain's clauses for a composite sentence, each with its slot; None for any other sentence."""
-    from ..errors import L2PError
-    from ..language import parse_list
-    from ..pipeline import resolve
-    from .clauses import MAX_CLAUSES, Clause, _named
+    from .clauses import MAX_CLAUSES, Clause, _named  # lazy: clauses.py imports this module
 
     phrases = composite_phrases(plugins)
     lc = parse_list(sentence, scene, phrases) if phrases else None
@@ -112,8 +108,6 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
 
 
 def _phrase_of(action: str, plugins: list | None) -> str:
-    from ..plugins import registry
-
     plugins = registry.discover() if plugins is None else plugins
     info = next((p for p in plugins if p.ok and p.kind == "action" and p.name == action and p.phrases), None)
     if info is None:
@@ -172,9 +166,7 @@ def judge_row(result: Any, steps: list, final: Scene, summary_path: Any) -> dict
     """The row verdict of a composite's chain run (``final``: the world after the last clause), added to
     its summary.json as ``row`` (and to its verdict: a chain whose clauses all succeeded but whose blocks do
     not form a row failed). A block knocked (> 1 mm) by a clause that did not move it fails the row."""
-    import json
 
-    from ..core.runfolder import write_summary
 
     names = [steps[0].clause.target.stay] + [s.clause.command.mover for s in steps]
     knocked: dict[str, float] = {}

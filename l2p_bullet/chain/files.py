@@ -20,6 +20,7 @@ import numpy as np
 
 from ..core.contracts import dumps_json
 from ..core.runfolder import write_summary
+from ..embodiment.record import versions
 
 
 def segments(result: Any) -> list[dict[str, Any]]:
@@ -35,8 +36,6 @@ def segments(result: Any) -> list[dict[str, Any]]:
 
 def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, seed: int, scene: Any) -> None:
     """trajectory.json, plan.json, images (when rendering) and summary.json of a chain run."""
-    from ..embodiment.record import versions
-
     out, rec = Path(result.out_dir), prims.recorder
     first = steps[0]
     cmd = first.clause.command

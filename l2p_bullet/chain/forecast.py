@@ -12,9 +12,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from .. import planning
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
+from ..judge import judge_context, judge_for
+from ..pipeline import check_feasible
+from ..plugins import registry
 from .clauses import Clause, _named
 
 
@@ -40,11 +44,8 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
     Raises the failing check's error (InfeasibleError with ``.check`` and ``details["clause"]``, or a
     PlanError / PathError) with the clause named in its message, before anything moves or is written.
     """
-    from .. import planning
+    # lazy: the arm's modules load only when a chain is forecast (plan and parsing stay light)
     from ..embodiment.execute import check_path
-    from ..judge import judge_context, judge_for
-    from ..pipeline import check_feasible
-    from ..plugins import registry
 
     loaded: dict[str, tuple[Any, Any, Any]] = {}
     for c in clauses:

@@ -12,8 +12,12 @@ from pathlib import Path
 from typing import Any
 
 from ..core.contracts import dumps_json
+from ..core.runfolder import run_folder
 from ..core.scene import Scene
-from .forecast import Step
+from ..pipeline import check_options
+from ..plugins import registry
+from .clauses import resolve_clauses
+from .forecast import Step, forecast
 
 
 @dataclass
@@ -41,12 +45,6 @@ def plan_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None
                seed: int = 0, budget: int | None = None, threshold: float | None = None, force: bool = False,
                plot: bool = True, plugins: list | None = None) -> ChainPlan:
     """Resolve and forecast the chain; write plan.json (and the plots). Refusals as in ``perform``."""
-    from ..core.runfolder import run_folder
-    from ..pipeline import check_options
-    from ..plugins import registry
-    from .clauses import resolve_clauses
-    from .forecast import forecast
-
     check_options(planner, seed, budget, threshold)
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins

@@ -14,9 +14,12 @@ from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import PathError
+from ..judge import judge_for
 from ..language import Command
+from ..plugins import registry
 from .clauses import Clause
 from .forecast import Step
+from .run import _execute
 
 
 def is_chain_plan(doc: object) -> bool:
@@ -28,10 +31,6 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
                  on_stage=None, plugins: list | None = None):
     """Execute the clauses' plans of ``doc`` (a chain's plan.json) into the run folder ``out``; returns the
     :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges)."""
-    from ..judge import judge_for
-    from ..plugins import registry
-    from .run import _execute
-
     source = "plan.json"
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()

@@ -24,11 +24,17 @@ from typing import Any
 
 import numpy as np
 
+from .. import planning
 from ..core.contracts import Plan, trajectory_poses
+from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, InfeasibleError, L2PError
+from ..judge import judge_context
+from ..pipeline import check_feasible, check_options, disturbance_verdict
+from ..plugins import registry
 from .clauses import Clause, resolve_clauses
+from .files import merge_timings
 from .forecast import Step, forecast
 
 
@@ -130,10 +136,6 @@ def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
     loaded bundle, to reuse across runs; ``steps``: the chain already resolved and forecast (``evaluate
     --chains`` draws it clause by clause): ``sentence`` must be their texts joined.
     """
-    from ..core.runfolder import run_folder, write_summary
-    from ..pipeline import check_options
-    from ..plugins import registry
-
     clock = StageClock(on_stage)
     clock.stage("parse")
     check_options(planner, seed, budget, threshold)
@@ -169,6 +171,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
              world: Any, replan: bool = True) -> ChainResult:
     """Execute ``steps`` in one episode in ``world`` (or a new one) and write the run folder into ``out``.
     ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json)."""
+    # lazy: the arm's modules (and files.py, which records with them) load only when a chain is performed
     from ..embodiment import execute as ex
     from ..embodiment.sim.world import World
     from .files import write_run
@@ -199,14 +202,12 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
         write_run(result, steps, prims, world, settings, seed, scene)
         if steps and steps[0].clause.target is not None:  # a composite: is the whole what it should be?
-            from .composite import judge_row
+            from .composite import judge_row  # lazy: composite.py imports clauses.py, this module's peer
 
             result.row = judge_row(result, steps, scene_now(scene, world), out / "summary.json")
         clock.stop()
         clock.timings["total"] = clock.elapsed
         result.timings = dict(clock.timings)
-        from .files import merge_timings
-
         merge_timings(out / "summary.json", result.timings)
         return result
     finally:
@@ -220,10 +221,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             budget: int | None, threshold: float | None) -> ClauseResult:
     """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
     planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
-    from .. import planning
     from ..embodiment import execute as ex
-    from ..judge import judge_context
-    from ..pipeline import check_feasible, disturbance_verdict
 
     cmd, rec = step.clause.command, prims.recorder
     plan, stage = None, "plan"

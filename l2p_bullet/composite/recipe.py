@@ -36,7 +36,9 @@ from typing import Any
 
 import numpy as np
 
+from ..core.scene import Scene
 from ..errors import L2PError
+from ..recognition import Tracks, recognize
 
 ALIGNED_DEG = 10.0
 """Median turn between a moved block and the staying block (mod 90 degrees) below which rows are aligned."""
@@ -94,8 +96,6 @@ class Demonstration:
 
     def check(self) -> None:
         """What :func:`learn` relies on: named blocks in the scene, drags of named blocks, 2 samples each."""
-        from ..core.scene import Scene
-
         scene = Scene.from_dict(self.scene)
         if not 2 <= len(self.names) <= MAX_SEGMENTS + 1 or len(set(self.names)) != len(self.names):
             raise CompositeError(f"a demonstration names 2 to {MAX_SEGMENTS + 1} different blocks (got {self.names})")
@@ -176,9 +176,6 @@ def _fold(deg: float) -> float:
 def learn(demos: list[Demonstration], recognisers: list) -> Recipe:
     """The recipe the demonstrations share (module docstring); ``recognisers`` from
     ``recognition.recognisers()`` (the installed single actions)."""
-    from ..core.scene import Scene
-    from ..recognition import Tracks, recognize
-
     if not demos:
         raise CompositeError("no demonstrations to learn from: record some rows on the teach page first")
     if len(demos) > MAX_DEMOS:

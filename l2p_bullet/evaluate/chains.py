@@ -16,14 +16,20 @@ clause. The report: success of the first 1..K clauses and the average number com
 from __future__ import annotations
 
 import json
+import shutil
 import statistics
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ..chain import perform_chain
+from ..chain.clauses import Clause
+from ..chain.forecast import forecast
 from ..core.scene import Scene, random_scene
 from ..errors import EvaluationError, L2PError
+from ..pipeline import resolve
+from ..plugins import registry
 from .scenes import SceneSpec, add_bystanders
 from .tasks import Task, _safe, sentence_for
 
@@ -51,8 +57,6 @@ def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, plan
                      plugins: list | None = None, budget: int | None = None,
                      threshold: float | None = None) -> list[Task]:
     """One chain of ``k`` clauses per scene; the clauses are drawn by the worker (see the module docstring)."""
-    from ..plugins import registry
-
     if not 1 <= k <= MAX_CHAIN:
         raise EvaluationError(f"--chains must be 1 to {MAX_CHAIN} clauses (got {k})")
     plugins = registry.discover() if plugins is None else plugins
@@ -74,10 +78,6 @@ def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generato
                planner: str, seed: int, budget: int | None, threshold: float | None) -> tuple[list, int]:
     """``k`` forecast steps (l2p_bullet/chain/forecast.py), each clause drawn until one can be planned from
     the predicted state; returns the steps and how many draws were refused."""
-    from ..chain.clauses import Clause
-    from ..chain.forecast import forecast
-    from ..pipeline import resolve
-
     names, steps, redraws, predicted = scene.names, [], 0, scene
     for i in range(1, k + 1):
         for _ in range(MAX_DRAWS):
@@ -101,9 +101,7 @@ def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generato
 
 def run_chain(worker: Any, task: Task, row: dict) -> None:
     """Draw and perform ``task``'s chain in ``worker``'s world; fill ``row`` (the chain's row)."""
-    import shutil
 
-    from ..chain import perform_chain
 
     scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
     rng = np.random.default_rng([task.seed, task.chain_length, 2118])

@@ -12,15 +12,24 @@ on a new scene, with video.
 
 from __future__ import annotations
 
+import threading
 import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ..chain import perform_chain
+from ..chain.composite import row_verdict
+from ..composite.bundle import read_demos, write_demos, write_recipe
+from ..composite.recipe import CompositeError, Demonstration, Segment, learn
+from ..core.contracts import read_json, trajectory_poses
 from ..core.geometry import polygons_overlap
 from ..core.scene import COLORS, Scene, random_scene
 from ..errors import TeachError
+from ..evaluate.scenes import add_bystanders
+from ..plugins import registry
+from ..recognition import recognisers
 from .lesson import Job, Lesson
 
 BLOCK = 0.04
@@ -33,8 +42,6 @@ PERFORM_BLOCKS = 4
 def row_scene(seed: int, blocks: int, size: float = BLOCK) -> Scene:
     """``blocks`` cubes scattered on the table, deterministic for ``seed`` (A, B like ``random_scene``,
     the others placed at random: evaluate.scenes.add_bystanders)."""
-    from ..evaluate.scenes import add_bystanders
-
     return add_bystanders(random_scene(seed, size), blocks - 2, seed)
 
 
@@ -67,16 +74,11 @@ class RowLesson(Lesson):
                 "demos": str(self.action.bundle_dir / "demos.json")}
 
     def count(self) -> int:
-        from ..composite.bundle import read_demos
-
         return len(read_demos(self.action.bundle_dir))
 
     # --- recording ------------------------------------------------------------------------------
     def save_row(self, seed: int, segments: list[dict[str, Any]]) -> dict[str, Any]:
         """Check the drags of one row and append it to ``demos.json``; the count and the file."""
-        from ..composite.bundle import read_demos, write_demos
-        from ..composite.recipe import CompositeError, Demonstration, Segment
-
         scene, names = self.scene(seed), self.names(seed)
         if not segments:
             raise TeachError("drag the blocks into a row first (nothing was dragged)")
@@ -126,7 +128,6 @@ class RowLesson(Lesson):
                 raise TeachError("no rows recorded yet: drag the blocks into a row and save it first")
             runs = self.job.runs
             self.job = Job(state="training", message="recognising the drags", started=time.time(), runs=runs, total=1)
-            import threading
 
             self._thread = threading.Thread(target=self._work, args=([],), daemon=True, name="teach-rows")
             self._thread.start()
@@ -137,10 +138,6 @@ class RowLesson(Lesson):
         self.job.done = 1
 
     def _perform(self) -> None:
-        from ..chain import perform_chain
-        from ..chain.composite import row_verdict
-        from ..plugins import registry
-
         self.job.state, self.job.message = "performing", f"performing a row of {PERFORM_BLOCKS} on a new scene"
         k = len(self.job.runs)
         seed = 100_000 + k
@@ -161,10 +158,6 @@ class RowLesson(Lesson):
 
 def learn_bundle(bundle_dir: Path) -> Any:
     """Learn the recipe from the bundle's ``demos.json`` with the installed actions; write ``recipe.json``."""
-    from ..composite.bundle import read_demos, write_recipe
-    from ..composite.recipe import learn
-    from ..recognition import recognisers
-
     demos = read_demos(bundle_dir)
     recipe = learn(demos, recognisers()[0])
     write_recipe(bundle_dir, recipe)
@@ -173,8 +166,6 @@ def learn_bundle(bundle_dir: Path) -> Any:
 
 def final_scene(run: Path, scene: Scene) -> Scene:
     """``scene`` with every block where the run's last frame has it."""
-    from ..core.contracts import read_json, trajectory_poses
-
     frames = read_json(run / "trajectory.json")["frames"]
     out = scene
     for o in scene.objects:
