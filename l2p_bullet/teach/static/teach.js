@@ -181,36 +181,31 @@ function markEnd() {
   draw();
 }
 
-async function saveRow() {
-  if (!segments.length) { status("drag the blocks into a row first", true); return; }
+// One saved demonstration (a single drag marked start to end, or a row of drags), then the next scene.
+async function post(path, body, stateOnError) {
   setState("saving");
   try {
-    const r = await api("POST", "/api/rows", { scene: seed, segments });
+    const r = await api("POST", path, body);
     $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
     await loadScene(seed + 1);
     status(`saved (${r.count} in all); here is another scene`);
     document.body.dataset.saved = String(r.count);
   } catch (e) {
     status(e.message, true);
-    setState("ready");
+    setState(stateOnError);
   }
+}
+
+async function saveRow() {
+  if (!segments.length) { status("drag the blocks into a row first", true); return; }
+  await post("/api/rows", { scene: seed, segments }, "ready");
 }
 
 async function save() {
   if (scene && scene.composite) { await saveRow(); return; }
   if (marks.start === null || marks.end === null) { status("mark the start and the end first", true); return; }
   sample();
-  setState("saving");
-  try {
-    const r = await api("POST", "/api/demos", { scene: seed, samples, start: marks.start, end: marks.end });
-    $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
-    await loadScene(seed + 1);
-    status(`saved (${r.count} in all); here is another scene`);
-    document.body.dataset.saved = String(r.count);
-  } catch (e) {
-    status(e.message, true);
-    setState("marked");
-  }
+  await post("/api/demos", { scene: seed, samples, start: marks.start, end: marks.end }, "marked");
 }
 
 async function train() {
