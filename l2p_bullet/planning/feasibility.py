@@ -10,6 +10,9 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
 - ``room-around``: the mover's centre must stay in the workspace disk, so around an anchor near the
   disk's rim the directions it can take around the anchor cover less than the 0.8 turn "around" needs
   (even passing as close as two blocks' inscribed circles allow).
+- ``far-around``: the mover starts farther from the anchor than "around" may ever be (``near`` blocks:
+  the rule judges every frame of the motion, its first included), so no path from there can be judged
+  "around"; chains drew such pairs among their bystanders often (issue 21).
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
   squares' centres are never nearer than the sum of their half sides.
@@ -31,10 +34,10 @@ import numpy as np
 from ..core.scene import Scene
 from ..embodiment import reach
 from ..errors import InfeasibleError
-from ..judge.rules import AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
+from ..judge.rules import AROUND_NEAR, AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
 from .world2d import World2D
 
-CHECKS = ("grasp", "boxed-in", "room-around", "room-away", "room-closer", "no-motion")
+CHECKS = ("grasp", "boxed-in", "far-around", "room-around", "room-away", "room-closer", "no-motion")
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
 MIN_TURN_RAD = math.radians(10.0)
 
@@ -86,6 +89,13 @@ def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
 
 def _room_around(scene: Scene, mover: str, anchor: str) -> None:
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
+    d0 = float(np.hypot(*(np.asarray(m.xy, float) - a.xy))) / m.size  # in the mover's sides, as the judge measures
+    if d0 > AROUND_NEAR + 1e-9:
+        raise InfeasibleError(
+            "far-around",
+            f'"{mover}" starts {d0:.2f} blocks from "{anchor}": around must stay within {AROUND_NEAR:g} blocks of '
+            "the anchor all the way, its start included, so no path from here is around it; move it closer first",
+            {"start_blocks": round(d0, 3), "near_blocks": AROUND_NEAR})
     rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
     rho_min = (m.size + a.size) / 2  # centres never closer than the half sides' sum
     theta = np.linspace(-math.pi, math.pi, 1440, endpoint=False)
