@@ -26,3 +26,16 @@ def test_around_from_beyond_the_judges_reach_is_refused_up_front():
         forecast([clause], scene, plugins, planner="default", seed=5000, budget=None, threshold=None)
     assert e.value.check == "far-around" and e.value.details["clause"] == 1
     assert str(e.value).startswith('clause 1 ("move C around A") cannot be planned (far-around)')
+
+
+def test_around_walled_off_by_bystanders_and_the_rim_is_refused_but_open_ones_are_not():
+    # chain/5052: D lies 0.2 m from the workspace's centre with three blocks about; within 4 blocks of D, E can
+    # pass only ~250 deg of the way round at any yaw (the planner's best swept 0.40 of a turn and failed)
+    from l2p_bullet.planning import feasibility
+
+    scene = chain_scenes(1, 5052)[0].scene
+    with pytest.raises(InfeasibleError) as e:
+        feasibility.check(scene, "E", "D", "around")
+    assert e.value.check == "blocked-around" and e.value.details["arc_deg"] < 0.8 * 360
+    open_scene = chain_scenes(1, 5007)[0].scene  # "move B around D" there was planned and judged around
+    feasibility.check(open_scene, "B", "D", "around")
