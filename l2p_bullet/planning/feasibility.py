@@ -41,7 +41,7 @@ from ..errors import InfeasibleError
 from ..judge.rules import AROUND_NEAR, AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
 from .world2d import World2D, place_outline
 
-CHECKS = ("grasp", "boxed-in", "far-around", "room-around", "blocked-around", "room-away", "room-closer", "no-motion")
+CHECKS = ("grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer", "no-motion")
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
 MIN_TURN_RAD = math.radians(10.0)
 
@@ -95,13 +95,6 @@ def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
 
 def _room_around(scene: Scene, mover: str, anchor: str) -> None:
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
-    d0 = float(np.hypot(*(np.asarray(m.xy, float) - a.xy))) / m.size  # in the mover's sides, as the judge measures
-    if d0 > AROUND_NEAR + 1e-9:
-        raise InfeasibleError(
-            "far-around",
-            f'"{mover}" starts {d0:.2f} blocks from "{anchor}": around must stay within {AROUND_NEAR:g} blocks of '
-            "the anchor all the way, its start included, so no path from here is around it; move it closer first",
-            {"start_blocks": round(d0, 3), "near_blocks": AROUND_NEAR})
     rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
     rho_min = (m.size + a.size) / 2  # centres never closer than the half sides' sum
     theta = np.linspace(-math.pi, math.pi, 1440, endpoint=False)
@@ -116,6 +109,13 @@ def _room_around(scene: Scene, mover: str, anchor: str) -> None:
             f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
             f"the workspace (radius {ws.radius} m); around needs {AROUND_TURNS * 360:.0f} deg",
             {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURNS * 360})
+    d0 = float(np.hypot(*(np.asarray(m.xy, float) - a.xy))) / m.size  # in the mover's sides, as the judge measures
+    if d0 > AROUND_NEAR + 1e-9:
+        raise InfeasibleError(
+            "far-around",
+            f'"{mover}" starts {d0:.2f} blocks from "{anchor}": around must stay within {AROUND_NEAR:g} blocks of '
+            "the anchor all the way, its start included, so no path from here is around it; move it closer first",
+            {"start_blocks": round(d0, 3), "near_blocks": AROUND_NEAR})
 
 
 SWEEP_GRID = (2.0, 0.05, 5.0)
