@@ -10,6 +10,12 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
 - ``room-around``: the mover's centre must stay in the workspace disk, so around an anchor near the
   disk's rim the directions it can take around the anchor cover less than the 0.8 turn "around" needs
   (even passing as close as two blocks' inscribed circles allow).
+- ``far-around``: the mover starts farther from the anchor than "around" may ever be (``near`` blocks:
+  the rule judges every frame of the motion, its first included), so no path from there can be judged
+  "around"; chains drew such pairs among their bystanders often (issue 21).
+- ``blocked-around``: within ``near`` blocks of the anchor, the other objects and the workspace's rim leave
+  the mover no legal pose (whatever its yaw) along some bearings, so no path sweeps the 0.8 turn: a
+  continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows (issue 21).
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
   squares' centres are never nearer than the sum of their half sides.
@@ -28,13 +34,14 @@ import math
 
 import numpy as np
 
+from ..core.geometry import separation
 from ..core.scene import Scene
 from ..embodiment import reach
 from ..errors import InfeasibleError
-from ..judge.rules import AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
-from .world2d import World2D
+from ..judge.rules import AROUND_NEAR, AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
+from .world2d import World2D, place_outline
 
-CHECKS = ("grasp", "boxed-in", "room-around", "room-away", "room-closer", "no-motion")
+CHECKS = ("grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer", "no-motion")
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
 MIN_TURN_RAD = math.radians(10.0)
 
@@ -68,6 +75,8 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | None = None) -> li
     room = {"around": _room_around, "away": _room_away, "closer": _room_closer}.get(rules or "")
     if room is not None:
         room(scene, mover, anchor)
+    if rules == "around":
+        _blocked_around(scene, mover, anchor)
     return holds
 
 
@@ -100,6 +109,51 @@ def _room_around(scene: Scene, mover: str, anchor: str) -> None:
             f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
             f"the workspace (radius {ws.radius} m); around needs {AROUND_TURNS * 360:.0f} deg",
             {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURNS * 360})
+    d0 = float(np.hypot(*(np.asarray(m.xy, float) - a.xy))) / m.size  # in the mover's sides, as the judge measures
+    if d0 > AROUND_NEAR + 1e-9:
+        raise InfeasibleError(
+            "far-around",
+            f'"{mover}" starts {d0:.2f} blocks from "{anchor}": around must stay within {AROUND_NEAR:g} blocks of '
+            "the anchor all the way, its start included, so no path from here is around it; move it closer first",
+            {"start_blocks": round(d0, 3), "near_blocks": AROUND_NEAR})
+
+
+SWEEP_GRID = (2.0, 0.05, 5.0)
+"""The blocked-around grid: bearings every 2 degrees, centre distances every 0.05 of the mover's side, yaws every
+5 degrees (over a quarter turn for a square); the poses between grid points are accounted for by a slack in the gap (favouring the arm)."""
+
+
+def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
+    m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
+    world = World2D(scene, mover)  # the block's own outline: smaller than a hand-grown one, so it favours the arm
+    bearing_deg, radius_sides, yaw_deg = SWEEP_GRID
+    inner, outer = (m.size + a.size) / 2, AROUND_NEAR * m.size
+    radii = np.linspace(inner, outer, max(2, math.ceil((outer - inner) / (radius_sides * m.size)) + 1))
+    dr = float(radii[1] - radii[0]) / 2  # a legal pose is at most half a step from a grid radius ...
+    dyaw = math.radians(yaw_deg) / 2  # ... and half a step from a grid yaw
+    bearings = np.radians(np.arange(0.0, 360.0, bearing_deg))
+    quarter = np.allclose(np.sort(np.round(world.mover.outline @ np.array([[0.0, 1.0], [-1.0, 0.0]]), 9), axis=0),
+                          np.sort(np.round(world.mover.outline, 9), axis=0))  # a square looks the same a quarter turn on
+    t, r, y = np.meshgrid(bearings, radii, np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg)), indexing="ij")
+    poses = np.column_stack([a.xy[0] + (r * np.cos(t)).ravel(), a.xy[1] + (r * np.sin(t)).ravel(), y.ravel()])
+    ok = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1) <= ws.radius + dr + 1e-9
+    reach_m = float(np.linalg.norm(world.mover.outline, axis=1).max())
+    slack = dr + reach_m * dyaw  # how much the gap can change within half a grid step
+    start_gaps = world.gaps(m.pose)
+    for body, poly, gap0 in zip(world.obstacles, world._obs_polys, start_gaps, strict=True):
+        margin = min(world.margin, max(float(gap0), 0.0))  # the world's rule for a mover starting close
+        reach_o = float(np.linalg.norm(body.outline, axis=1).max())
+        near = ok & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + slack)
+        if near.any():
+            gaps = separation(place_outline(world.mover.outline, poses[near]), poly)
+            ok[np.flatnonzero(near)[gaps < margin - slack]] = False
+    arc = _longest_circular_run(ok.reshape(len(bearings), -1).any(1)) * bearing_deg
+    if arc < AROUND_TURNS * 360 - 2 * bearing_deg:
+        raise InfeasibleError(
+            "blocked-around",
+            f'no way round "{anchor}" for "{mover}": within {AROUND_NEAR:g} blocks of it, the other objects and the '
+            f"workspace's rim leave the mover room to pass only {arc:.0f} deg of the way round (at any yaw); "
+            f"around needs {AROUND_TURNS * 360:.0f} deg", {"arc_deg": round(arc, 1), "needed_deg": AROUND_TURNS * 360})
 
 
 def _room_away(scene: Scene, mover: str, anchor: str) -> None:
