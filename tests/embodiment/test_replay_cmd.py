@@ -126,7 +126,7 @@ def test_a_plan_replays_on_the_scene_it_records(tmp_path):
 
     scene = random_between_scene(2)
     save_scene(scene, tmp_path / "three.json")
-    r = CliRunner().invoke(main, ["plan", "move A around B", "--scene", str(tmp_path / "three.json"), "--no-plot",
+    r = CliRunner().invoke(main, ["plan", "move A closer to B", "--scene", str(tmp_path / "three.json"), "--no-plot",
                                   "--out", str(tmp_path / "p")])
     assert r.exit_code == 0, r.output
     doc = json.loads((tmp_path / "p" / "plan.json").read_text())
