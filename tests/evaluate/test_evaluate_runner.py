@@ -161,8 +161,9 @@ def test_pool_workers_start_with_one_blas_thread_unless_the_user_chose(monkeypat
 def test_a_second_resume_of_a_folder_being_written_is_refused(tmp_path):
     """Issue 27.7: two concurrent ``evaluate --out X --resume`` both ran every remaining task."""
     out = tmp_path / "e"
-    # a fresh evaluation stopped after its first row, then resumed twice at once
-    cmd = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--actions", "closer,past", "--scenes", "30",
+    # a fresh evaluation stopped after its first row, then resumed twice at once (400 tasks: the first resume
+    # must still be running when the second starts, also on a quiet machine where a plan takes ~50 ms)
+    cmd = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--actions", "closer,past", "--scenes", "200",
            "--plan-only", "--workers", "0", "--out", str(out), "--quiet"]
     first = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              preexec_fn=ctrl_c_as_at_a_terminal)
@@ -173,13 +174,14 @@ def test_a_second_resume_of_a_folder_being_written_is_refused(tmp_path):
     first.communicate(timeout=60)
     resume = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--out", str(out), "--resume", "--workers", "0",
               "--quiet"]
+    stopped_at = _count(out)  # the first run may have recorded more than one row before it stopped
     a = subprocess.Popen(resume, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        while time.time() < deadline and _count(out) <= 1 and a.poll() is None:
+    try:  # a new row: the first resume holds the folder's lock (rows are written only under it)
+        while time.time() < deadline and _count(out) <= stopped_at and a.poll() is None:
             time.sleep(0.05)
         assert a.poll() is None, "the first resume ended before the second started"
         b = subprocess.run(resume, capture_output=True, text=True, timeout=120)
-        assert b.returncode == 2 and "another l2p-bullet evaluate" in b.stderr, b.stderr
+        assert b.returncode == 2 and "another l2p-bullet evaluate" in b.stderr, (b.stdout, b.stderr)
         assert "Traceback" not in b.stderr
     finally:
         a.send_signal(signal.SIGINT)
