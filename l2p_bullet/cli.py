@@ -28,10 +28,7 @@ def one_line(message: str, limit: int = 1000) -> str:
 
 class _Group(click.Group):
     def main(self, *args, **kwargs):
-        """From here on Ctrl-C is a KeyboardInterrupt again (commands mark interrupted runs), and the
-        interpreter's shutdown after the command is quiet too."""
-        if signal.getsignal(signal.SIGINT) is interrupted_while_starting:
-            signal.signal(signal.SIGINT, signal.default_int_handler)
+        """The interpreter's shutdown after the command is quiet too (Ctrl-C there: "interrupted", 130)."""
         try:
             return super().main(*args, **kwargs)
         finally:
@@ -40,6 +37,10 @@ class _Group(click.Group):
 
     def invoke(self, ctx: click.Context):
         try:
+            # From here on Ctrl-C is a KeyboardInterrupt again (commands mark interrupted runs). Not sooner:
+            # while click parses the group's options a KeyboardInterrupt would be click's "Aborted!", exit 1.
+            if signal.getsignal(signal.SIGINT) is interrupted_while_starting:
+                signal.signal(signal.SIGINT, signal.default_int_handler)
             return super().invoke(ctx)
         except L2PError as e:
             click.echo(f"error: {one_line(str(e))}", err=True)
