@@ -48,7 +48,7 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
     files = {"trajectory": out / "trajectory.json", "plan": out / "plan.json"}
     rec.write_trajectory(files["trajectory"], meta, world.sizes)
     _write_plans(files["plan"], result, steps, scene)
-    if rec.camera is not None:
+    if rec.film is not None:
         files |= rec.write_images(out, settings.video, captions(result, rec))
     files["summary"] = out / "summary.json"
     result.files = files

@@ -184,7 +184,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     prims = None
     try:
         if not own:
-            ex._reuse(world, scene, settings)
+            world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = ex._primitives(world, settings, out)
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves

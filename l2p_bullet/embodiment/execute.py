@@ -150,7 +150,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     film = None
     try:
         if not own:
-            _reuse(world, scene, render)
+            world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = _primitives(world, render, out_dir)
         film = prims.recorder.film
         slide, removed, grasp = _perform(prims, mover, p, angles, clock)
@@ -176,11 +176,6 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             film.close()
         if own:
             world.close()
-
-
-def _reuse(world: World, scene: Scene, render: RenderSettings | None = None) -> None:
-    """Reset a caller's world to ``scene`` (any world will do: rendering happens in the film's own worlds)."""
-    world.reset(scene)
 
 
 def _primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):

@@ -50,11 +50,6 @@ class Recorder:
             self.film.add(capture(self.world))
             self.image_times.append(self.world.time)
 
-    @property
-    def camera(self):
-        """The film (None when rendering nothing); the name from before frames were drawn by a film."""
-        return self.film
-
     def finish_images(self) -> None:
         """Wait for the film's frames (drawn while the episode ran): ``images`` and ``render_s``."""
         if self.film is not None and not self.images:
