@@ -50,6 +50,10 @@ class ArmSpec:
     # included); what the arm puts at the height of a block taller than the one it holds. Measured by
     # Robot.hand_profile; tests/embodiment/test_robustness.py re-measures it.
     hand_profile: tuple[tuple[float, float, float], ...] = ()
+    # The widest gap the open fingers leave between their inner faces (metres): an object whose narrowest
+    # graspable width (at a yaw the wrist can reach) is wider cannot be grasped by this arm, and a manner
+    # that closes the fingers across an object checks it. Panda: two prismatic fingers of 0-4 cm each.
+    gripper_opening: float = 0.08
 
 
 PANDA = ArmSpec(
