@@ -81,6 +81,16 @@ class FailedToLoadPlugin(PluginError):
         super().__init__(f'action plugin "{name}" (package {package}) cannot be used: {reason}')
 
 
+class UnknownArmError(PluginError):
+    """No installed arm (built-in or plugin, entry-point group ``l2p_bullet.arms``) has this name."""
+
+    def __init__(self, name: str, known: Iterable[str]):
+        self.name, self.known = name, tuple(sorted(known))
+        super().__init__(f'unknown arm "{name}" (known: {", ".join(self.known) or "none"}).'
+                         + did_you_mean(name.strip().lower().replace("_", "-"), self.known)
+                         + " List them with: l2p-bullet arms")
+
+
 class PluginConflict(PluginError):
     """Two usable plugins claim the same action name or phrase (``claim``), so sentences are ambiguous."""
 

@@ -15,6 +15,8 @@ import stat
 import tempfile
 from dataclasses import dataclass
 
+import numpy as np
+
 
 @dataclass(frozen=True)
 class ArmSpec:
@@ -54,6 +56,18 @@ class ArmSpec:
     # graspable width (at a yaw the wrist can reach) is wider cannot be grasped by this arm, and a manner
     # that closes the fingers across an object checks it. Panda: two prismatic fingers of 0-4 cm each.
     gripper_opening: float = 0.08
+    # A tool point the description itself lacks (the xArm's and the KUKA's have no link between their
+    # fingertips): (parent link name, xyz in the parent's frame); :func:`arm_urdf` adds a fixed massless link
+    # "l2p_tool" there, and ``tool_link`` is its index (the last joint).
+    tool_frame: tuple[str, tuple[float, float, float]] | None = None
+    # Joints made fixed in the loaded copy: free joints that are neither the arm's nor the fingers' (the
+    # KUKA's gripper swivel and fingertip hinges would otherwise flop under gravity and pull IK off).
+    fixed_joints: tuple[str, ...] = ()
+    # (near, far): the horizontal distances (m) from the base between which the tool reaches the table pointing
+    # down at every height a run uses (grasp to hover, any yaw the wrist allows); measured by
+    # ``l2p-bullet arms --check`` (embodiment/arms.py). The scene's workspace disk is shrunk to fit this ring.
+    reach: tuple[float, float] = (0.25, 0.78)
+    description: str = ""
 
 
 PANDA = ArmSpec(
@@ -82,6 +96,7 @@ PANDA = ArmSpec(
         (0.060, 0.0241, 0.1048), (0.065, 0.0253, 0.1051), (0.070, 0.0266, 0.1055), (0.075, 0.0278, 0.1058),
         (0.080, 0.0291, 0.1062),
     ),
+    description="Franka Emika Panda with its hand (pybullet_data franka_panda/panda.urdf); the default",
 )
 
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:
@@ -94,31 +109,97 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     rewritten), and only from a folder this user owns and nobody else can write (:func:`_cache_dir`).
     """
 
-    # lazy: pybullet loads only when a world is made
-    import pybullet_data
-
-    src = spec.urdf if os.path.isabs(spec.urdf) else os.path.join(pybullet_data.getDataPath(), spec.urdf)
-    if visuals and collisions and not spec.collision_free_links:
+    src = arm_source(spec)
+    if visuals and collisions and not (spec.collision_free_links or spec.tool_frame or spec.fixed_joints):
         return src
     with open(src) as f:
         text = f.read()
     if not visuals:
-        text = re.sub(r"<visual>.*?</visual>", "", text, flags=re.S)
+        text = re.sub(r"<visual\b[^>]*>.*?</visual>", "", text, flags=re.S)
     if not collisions:
-        text = re.sub(r"<collision>.*?</collision>", "", text, flags=re.S)
+        text = re.sub(r"<collision\b[^>]*>.*?</collision>", "", text, flags=re.S)
     text = _drop_collisions(text, spec.collision_free_links)
     folder = os.path.dirname(src)
-    text = text.replace("package://", folder + "/")
-    text = re.sub(r'filename="(?!/)', f'filename="{folder}/', text)
+    sdf = src.lower().endswith(".sdf")
+    if sdf:
+        text = _sdf_absolute(text, folder)
+        text = _sdf_edits(text, spec)
+    else:
+        text = text.replace("package://", folder + "/")
+        text = re.sub(r'filename="(?!/)', f'filename="{folder}/', text)
+        text = _urdf_edits(text, spec)
     data = text.encode()
     digest = hashlib.sha256(data).hexdigest()[:16]
-    path = os.path.join(_cache_dir(), f"{spec.name}-{digest}.urdf")
+    path = os.path.join(_cache_dir(), f"{spec.name}-{digest}.{'sdf' if sdf else 'urdf'}")
     if not _holds(path, data):
         tmp = f"{path}.{os.getpid()}.tmp"
         with open(tmp, "wb") as f:
             f.write(data)
         os.replace(tmp, path)  # atomic: concurrent processes never read a half-written file
     return path
+
+
+def arm_source(spec: ArmSpec) -> str:
+    """Absolute path of the arm's description as given (relative paths are inside pybullet_data)."""
+    import pybullet_data  # lazy: a small package of data files, imported only when an arm is loaded
+
+    return spec.urdf if os.path.isabs(spec.urdf) else os.path.join(pybullet_data.getDataPath(), spec.urdf)
+
+
+_TOOL = "l2p_tool"
+_INERTIAL = '<inertial><origin rpy="0 0 0" xyz="0 0 0"/><mass value="0.0"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'
+
+
+def _urdf_edits(text: str, spec: ArmSpec) -> str:
+    """``spec.fixed_joints`` made fixed and the ``spec.tool_frame`` link added, in a URDF's text."""
+    for name in spec.fixed_joints:
+        text = re.sub(rf'(<joint\s+name="{re.escape(name)}"\s+type=")\w+"', r'\1fixed"', text)
+    if spec.tool_frame:
+        parent, (x, y, z) = spec.tool_frame
+        text = text.replace("</robot>", f'<link name="{_TOOL}">{_INERTIAL}</link><joint name="{_TOOL}_joint" '
+                            f'type="fixed"><parent link="{parent}"/><child link="{_TOOL}"/><origin rpy="0 0 0" '
+                            f'xyz="{x} {y} {z}"/></joint></robot>')
+    return text
+
+
+def _sdf_absolute(text: str, folder: str) -> str:
+    """Mesh URIs of an SDF made absolute (its own are relative to its folder, some with a leading slash)."""
+    def fix(m: re.Match) -> str:
+        uri = m.group(1).strip()
+        if os.path.isabs(uri) and os.path.exists(uri):
+            return m.group(0)
+        return f"<uri>{os.path.join(folder, uri.lstrip('/'))}</uri>"
+
+    return re.sub(r"<uri>(.*?)</uri>", fix, text, flags=re.S)
+
+
+def _sdf_edits(text: str, spec: ArmSpec) -> str:
+    """``spec.fixed_joints`` made fixed and the ``spec.tool_frame`` link added, in an SDF's text (its link
+    poses are in the model's frame, so the tool's is the parent's pose composed with the offset)."""
+    for name in spec.fixed_joints:
+        text = re.sub(rf"(<joint\s+name=['\"]{re.escape(name)}['\"]\s+type=['\"])\w+(['\"])", r"\1fixed\2", text)
+    if spec.tool_frame:
+        parent, offset = spec.tool_frame
+        m = re.search(rf"<link\s+name=['\"]{re.escape(parent)}['\"]>\s*<pose>(.*?)</pose>", text, flags=re.S)
+        if m is None:
+            raise ValueError(f'{spec.urdf} has no link "{parent}" with a pose (the tool frame\'s parent)')
+        x, y, z, roll, pitch, yaw = (float(v) for v in m.group(1).split())
+        p = _rpy_matrix(roll, pitch, yaw) @ np.asarray(offset, float) + np.array([x, y, z])
+        link = (f"<link name='{_TOOL}'><pose>{p[0]} {p[1]} {p[2]} {roll} {pitch} {yaw}</pose><inertial><mass>0.0"
+                "</mass><inertia><ixx>0.1</ixx><ixy>0</ixy><ixz>0</ixz><iyy>0.1</iyy><iyz>0</iyz><izz>0.1</izz>"
+                f"</inertia></inertial></link><joint name='{_TOOL}_joint' type='fixed'><parent>{parent}</parent>"
+                f"<child>{_TOOL}</child></joint>")
+        i = text.rindex("</model>")
+        text = text[:i] + link + text[i:]
+    return text
+
+
+def _rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch), math.cos(yaw),
+                              math.sin(yaw))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
 
 
 _PRIVATE: list[str] = []
@@ -164,8 +245,59 @@ def _holds(path: str, data: bytes) -> bool:
 def _drop_collisions(text: str, links: tuple[str, ...]) -> str:
     """The URDF ``text`` without the collision elements of the named links."""
     def strip(m: re.Match) -> str:
-        return re.sub(r"<collision>.*?</collision>", "", m.group(0), flags=re.S)
+        return re.sub(r"<collision\b[^>]*>.*?</collision>", "", m.group(0), flags=re.S)
 
     for name in links:
-        text = re.sub(rf'<link name="{re.escape(name)}">.*?</link>', strip, text, flags=re.S)
+        text = re.sub(rf"<link name=['\"]{re.escape(name)}['\"]>.*?</link>", strip, text, flags=re.S)
     return text
+
+
+# UFactory xArm6 with its gripper. Measured on pybullet_data's xarm6_with_gripper.urdf (docs/arms.md): the
+# gripper's six joints are one linkage (URDF mimics, which PyBullet does not enforce, so all six are held at
+# the same value); 0.85 rad closes it, 0 opens it to 8.3 cm between the fingers' collision hulls. The tool
+# point is 16 cm below the gripper base, between the closed fingertips (they reach 1.75 cm lower). Pointing
+# down, wrist (joint 6) = azimuth - tool yaw exactly: the arm has no redundant joint to swivel.
+XARM6 = ArmSpec(
+    name="xarm6",
+    urdf="xarm/xarm6_with_gripper.urdf",
+    arm_joints=(1, 2, 3, 4, 5, 6),
+    tool_link=14,
+    finger_joints=(8, 9, 10, 11, 12, 13),
+    finger_closed=(0.85,) * 6,
+    home=(0.0, -0.25, -0.75, 0.0, 1.0, 0.0),
+    ik_seeds=((0.0, 0.5, -1.2, 0.0, 0.7, 0.0), (0.0, 0.0, -1.4, 0.0, 1.4, 0.0), (0.0, 0.9, -1.9, 0.0, 1.0, 0.0)),
+    wrist_joint=6,
+    fingertip_links=(9, 12),
+    wrist_limit=6.2832,
+    wrist_offset=0.0,
+    tool_frame=("xarm_gripper_base_link", (0.0, 0.0, 0.16)),
+    gripper_opening=0.083,
+    description="UFactory xArm6 with its gripper (pybullet_data xarm/xarm6_with_gripper.urdf)",
+)
+
+# KUKA LBR iiwa 7 with a WSG-50-like parallel gripper, pybullet_data's kuka_with_gripper2.sdf. The SDF's
+# gripper hangs on a free revolute joint and its fingertips on free hinges: made fixed. Its fingers sit
+# 2.4 cm off the gripper's axis (as the file has them), so the tool point is there, 23.2 cm out from the
+# gripper base. The finger joints' limits (+-10 rad) are not physical: the opening is measured at 0.3 rad
+# (pybullet's own kuka.py opens the gripper that far): 10.1 cm between the fingertips' hulls.
+# Pointing down with J2, J4 at zero, wrist (J6) = pi + azimuth - tool yaw.
+KUKA_IIWA = ArmSpec(
+    name="kuka-iiwa",
+    urdf="kuka_iiwa/kuka_with_gripper2.sdf",
+    arm_joints=(0, 1, 2, 3, 4, 5, 6),
+    tool_link=14,
+    finger_joints=(8, 11),
+    finger_closed=(0.0, 0.0),
+    home=(0.0, 0.3, 0.0, -1.6, 0.0, 1.25, math.pi - 0.05),
+    ik_seeds=((0.0, 0.7, 0.0, -1.2, 0.0, 1.2, math.pi - 0.05), (0.0, 1.1, 0.0, -0.9, 0.0, 1.1, math.pi - 0.05),
+              (0.0, 0.2, 0.0, -1.9, 0.0, 1.0, math.pi - 0.05)),
+    wrist_joint=6,
+    fingertip_links=(10, 13),
+    wrist_limit=3.0543,
+    swivel_joints=(2, 4),
+    wrist_offset=math.pi,
+    tool_frame=("base_link", (0.0, 0.024, 0.232)),
+    fixed_joints=("gripper_to_arm", "left_base_tip_joint", "right_base_tip_joint"),
+    gripper_opening=0.101,
+    description="KUKA LBR iiwa with a parallel gripper (pybullet_data kuka_iiwa/kuka_with_gripper2.sdf)",
+)

@@ -75,7 +75,12 @@ def quiet_stdout():
 
 
 def _obj_vertices(path: str) -> np.ndarray:
-    """The vertices (N,3) of a Wavefront .obj mesh (the arm's collision meshes)."""
+    """The vertices (N,3) of an arm's collision mesh: a Wavefront .obj read directly (the Panda's), any other
+    format (.stl: the xArm's and the KUKA's) through trimesh."""
+    if not path.lower().endswith(".obj"):
+        import trimesh  # lazy: only arms with non-.obj collision meshes need it
+
+        return np.asarray(trimesh.load(path, force="mesh").vertices, float)
     with open(path) as f:
         return np.array([[float(v) for v in line.split()[1:4]] for line in f if line.startswith("v ")])
 
@@ -207,6 +212,23 @@ class Bullet:
             raise ValueError(f'a body named "{name}" is already loaded')
         self._bodies[name] = self._pb.loadURDF(path, list(position), list(orientation), useFixedBase=fixed,
                                                globalScaling=scale, physicsClientId=self._id)
+
+    def load_sdf(self, name: str, path: str, position: Vec3) -> None:
+        """Load the one model of an SDF file as body ``name``, its base link's frame at ``position`` (an SDF
+        places its model where the file says; a base of zero mass stays fixed there)."""
+        if name in self._bodies:
+            raise ValueError(f'a body named "{name}" is already loaded')
+        pb = self._pb
+        bodies = pb.loadSDF(path, physicsClientId=self._id)
+        if len(bodies) != 1:
+            for b in bodies:
+                pb.removeBody(b, physicsClientId=self._id)
+            raise ValueError(f"{path} holds {len(bodies)} models; an arm's SDF must hold exactly one")
+        b = bodies[0]
+        inertial = pb.getDynamicsInfo(b, -1, physicsClientId=self._id)[3]  # the base's pose is its inertial frame's
+        pb.resetBasePositionAndOrientation(b, [position[i] + inertial[i] for i in range(3)], [0.0, 0.0, 0.0, 1.0],
+                                           physicsClientId=self._id)
+        self._bodies[name] = b
 
     def set_color(self, name: str, rgba: Sequence[float]) -> None:
         """Colour of the body's base link."""

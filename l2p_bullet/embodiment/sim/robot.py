@@ -32,13 +32,21 @@ def quat_angle(a, b) -> float:
     return 2.0 * math.acos(min(1.0, d))
 
 
+def load_arm(sim: Bullet, path: str, base_xyz) -> None:
+    """Load the arm's description (a URDF, or an SDF like the KUKA's) as body :data:`ARM`, base fixed."""
+    if path.lower().endswith(".sdf"):
+        sim.load_sdf(ARM, path, tuple(base_xyz))
+    else:
+        sim.load_urdf(ARM, path, tuple(base_xyz), fixed=True)
+
+
 class Kinematics:
     """IK and FK on a private copy of the arm. ``solve`` raises :class:`ReachError` on failure."""
 
     def __init__(self, spec: ArmSpec, base_xyz: tuple[float, float, float]):
         self.sim, self.spec = Bullet(), spec
         try:
-            self.sim.load_urdf(ARM, arm_urdf(spec, visuals=False, collisions=False), base_xyz, fixed=True)
+            load_arm(self.sim, arm_urdf(spec, visuals=False, collisions=False), base_xyz)
         except BaseException:
             self.sim.close()
             raise
@@ -138,7 +146,7 @@ class Robot:
     def load(self) -> None:
         """Load the arm at home into the simulator. Without rendering the visual meshes are dead weight
         (most of the load time): physics is the same."""
-        self.sim.load_urdf(ARM, arm_urdf(self.spec, visuals=self.visuals), self.base_xyz.tolist(), fixed=True)
+        load_arm(self.sim, arm_urdf(self.spec, visuals=self.visuals), self.base_xyz.tolist())
         info = self.sim.joints(ARM)
         self.forces = [info[j].max_force for j in self.spec.arm_joints]
         self.reset(np.array(self.spec.home))

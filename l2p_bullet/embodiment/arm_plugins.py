@@ -1,0 +1,140 @@
+"""Arms as plugins: every arm, the built-in Panda included, is an entry point of the group ``l2p_bullet.arms``
+whose value names an :class:`~l2p_bullet.embodiment.sim.arms.ArmSpec` (``module:ATTRIBUTE``).
+
+As with actions (plugins/registry.py), a broken arm plugin is *reported* with its package and reason and the
+others keep working; an unknown name is a one-line :class:`UnknownArmError` with a suggestion. An arm module
+holds data only (numpy at most), so loading every arm to list them costs milliseconds and runs no simulator.
+
+What the arm reaches decides where blocks may stand: its ``reach`` ring (measured by :func:`measure_reach`,
+``l2p-bullet arms --check``) must hold the scene's workspace disk; :func:`fit_scene` shrinks the disk about
+its centre to fit the ring, and refuses a scene with a block outside it, naming the arm.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from importlib import metadata
+
+import numpy as np
+
+from ..core.scene import ROBOT_BASE_XY, Scene, Workspace
+from ..errors import FailedToLoadPlugin, SceneError, UnknownArmError
+from .sim.arms import ArmSpec
+
+GROUP = "l2p_bullet.arms"
+DEFAULT = "panda"
+
+
+@dataclass(frozen=True)
+class ArmInfo:
+    """One found arm plugin; ``error`` says why it cannot be used (None: ``spec`` is usable)."""
+
+    name: str
+    value: str  # the entry point's value, "module:ATTRIBUTE"
+    package: str
+    package_version: str
+    spec: ArmSpec | None = None
+    error: str | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+
+def problems(spec: ArmSpec) -> str | None:
+    """Why ``spec`` cannot drive the simulator (its fields disagree with each other), or None."""
+    n = len(spec.arm_joints)
+    if not n:
+        return "arm_joints is empty"
+    if len(spec.home) != n or any(len(s) != n for s in spec.ik_seeds):
+        return f"home and every IK seed must give {n} joint values (one per arm joint)"
+    if len(spec.finger_closed) != len(spec.finger_joints):
+        return "finger_closed must give one value per finger joint"
+    if spec.wrist_joint not in spec.arm_joints:
+        return f"the wrist joint {spec.wrist_joint} is not one of the arm joints"
+    if any(j not in range(n) for j in spec.swivel_joints):
+        return "swivel_joints are indices into arm_joints"
+    near, far = spec.reach
+    if not (0.0 <= near < far and math.isfinite(far)):
+        return f"reach must be (near, far) metres with 0 <= near < far (got {spec.reach})"
+    if not (0.0 < spec.gripper_opening < 1.0) or not (0.0 < spec.wrist_limit <= 2 * math.pi + 1e-3):
+        return "gripper_opening must be in (0, 1) m and wrist_limit in (0, 2 pi] rad"
+    return None
+
+
+def discover() -> list[ArmInfo]:
+    """Every installed arm plugin, usable or not, sorted by name; each arm's module is imported (data only)."""
+    found = []
+    for ep in metadata.entry_points(group=GROUP):
+        dist = getattr(ep, "dist", None)
+        package, version = (dist.metadata["Name"], dist.metadata["Version"]) if dist is not None else ("unknown package", "")
+        base = dict(name=ep.name, value=ep.value, package=package, package_version=version)
+        try:
+            spec = ep.load()
+        except KeyboardInterrupt:
+            raise
+        except BaseException as e:  # noqa: BLE001 - a plugin's broken import is its bug, reported with its name
+            what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
+            found.append(ArmInfo(**base, error=f"importing {ep.value} failed: {what}"[:500]))
+            continue
+        if not isinstance(spec, ArmSpec) or spec.name != ep.name:
+            found.append(ArmInfo(**base, error=f'{ep.value} must be an l2p_bullet.embodiment.sim.arms.ArmSpec named "{ep.name}"'))
+            continue
+        found.append(ArmInfo(**base, spec=spec, error=problems(spec)))
+    return sorted(found, key=lambda a: (a.name, a.package))
+
+
+def names() -> list[str]:
+    """The usable arms' names."""
+    return [a.name for a in discover() if a.ok]
+
+
+def get(name: str | ArmSpec | None = None) -> ArmSpec:
+    """The arm called ``name`` (None: the default, the Panda); an ArmSpec is returned as it is."""
+    if isinstance(name, ArmSpec):
+        return name
+    name = DEFAULT if name is None else name
+    found = discover()
+    key = name.strip().lower().replace("_", "-")
+    matches = [a for a in found if a.name.lower() == key]
+    if not matches:
+        raise UnknownArmError(name, [a.name for a in found])
+    usable = [a for a in matches if a.ok]
+    if len(usable) > 1:
+        raise FailedToLoadPlugin(name, " and ".join(a.package for a in usable),
+                                 "two arm plugins have this name; uninstall one of the packages")
+    if not usable:
+        a = matches[0]
+        raise FailedToLoadPlugin(a.name, a.package, a.error or "broken")
+    return usable[0].spec
+
+
+# --- where the arm reaches ----------------------------------------------------------------------------
+def fit_workspace(workspace: Workspace, spec: ArmSpec, base_xy: tuple[float, float] = ROBOT_BASE_XY) -> Workspace:
+    """The workspace disk shrunk about its centre until it lies inside the arm's reach ring (unchanged when it
+    already does)."""
+    d = float(math.hypot(workspace.center[0] - base_xy[0], workspace.center[1] - base_xy[1]))
+    near, far = spec.reach
+    radius = min(workspace.radius, far - d, d - near)
+    if radius >= workspace.radius:
+        return workspace
+    return Workspace(workspace.center, round(max(radius, 0.0), 4))
+
+
+def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
+    """``scene`` with its workspace fitted to the arm (:func:`fit_workspace`); SceneError naming the arm when a
+    block stands outside what the arm reaches."""
+    ws = fit_workspace(scene.workspace, spec)
+    if ws == scene.workspace:
+        return scene
+    if ws.radius <= 0.0:
+        raise SceneError(f'the arm "{spec.name}" reaches the table only {spec.reach[0]:.2f}-{spec.reach[1]:.2f} m '
+                         f"from its base, which leaves nothing of the workspace around {scene.workspace.center}")
+    for o in scene.objects:
+        if not ws.contains(np.array(o.xy))[0]:
+            raise SceneError(
+                f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is beyond the reach of the arm "{spec.name}" '
+                f"({spec.reach[0]:.2f}-{spec.reach[1]:.2f} m from its base: a workspace of radius {ws.radius} m "
+                f"around {ws.center}); move it inward or choose another arm (l2p-bullet arms)")
+    return replace(scene, workspace=ws)
