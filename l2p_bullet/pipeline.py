@@ -38,6 +38,8 @@ from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
+from .embodiment import arm_plugins
+from .embodiment.sim.arms import PANDA, ArmSpec
 from .errors import L2PError, LanguageError, PlanError, PluginError
 from .judge import judge_context, judge_for
 from .language import Command, parse
@@ -127,13 +129,13 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
     return cmd
 
 
-def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
+def check_feasible(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA) -> None:
     """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, and
     the room checks of the rule judge the action's manifest names (``[judge] rules``), if any."""
     info = next((p for p in plugins if p.name == cmd.action), None)
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
-    feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
+    feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None, arm)
 
 
 @dataclass
@@ -146,25 +148,29 @@ class Prepared:
     bundle: Any
     model: Any  # the bundle's numpy progress model
     judge: Any  # judge_for(bundle)
+    arm: ArmSpec = PANDA  # the arm that performs it (its reach has fitted the scene's workspace)
 
 
 def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int = 0, budget: int | None = None,
             threshold: float | None = None, plugins: list | None = None, bundle: Any = None,
-            clock: StageClock | None = None) -> Prepared:
+            clock: StageClock | None = None, arm: str | ArmSpec | None = None) -> Prepared:
     """The stages before anything is planned or written: parse, feasibility, load (timed on ``clock``).
 
     A typo in an option, a sentence that names nothing, a scene the arm cannot do or a broken plugin
     fails here in milliseconds, before the disk is touched. ``bundle``: use that loaded bundle instead of
-    the installed plugin's (it must be the sentence's action).
+    the installed plugin's (it must be the sentence's action). ``arm``: an arm's name (``l2p-bullet arms``) or
+    spec, default the Panda; the scene's workspace is fitted to its reach (a block beyond it is refused).
     """
     clock = clock or StageClock()
     clock.stage("parse")
     check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
     scene.validate()
+    arm = arm_plugins.get(arm)
+    scene = arm_plugins.fit_scene(scene, arm)
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
-    check_feasible(cmd, scene, plugins)
+    check_feasible(cmd, scene, plugins, arm)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
@@ -173,7 +179,7 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     model = bundle.progress_model()
     judge = judge_for(bundle)
     clock.stop()
-    return Prepared(cmd, scene, bundle, model, judge)
+    return Prepared(cmd, scene, bundle, model, judge, arm)
 
 
 def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget: int | None = None,
@@ -185,7 +191,7 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     """
     cmd = p.command
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
-                           budget=budget, threshold=threshold, time_limit=time_limit)
+                           budget=budget, threshold=threshold, time_limit=time_limit, arm=p.arm)
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
@@ -199,7 +205,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
             seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
             threshold: float | None = None, on_stage: StageFn | None = None,
             plugins: list | None = None, render_settings: Any = None, world: Any = None,
-            bundle: Any = None) -> PerformResult:
+            bundle: Any = None, arm: str | ArmSpec | None = None) -> PerformResult:
     """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
 
     ``world``: an open simulator world to execute in (``execute_path`` resets it to ``scene`` first, so
@@ -212,7 +218,7 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     """
     clock = StageClock(on_stage)
     p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins,
-                bundle=bundle, clock=clock)
+                bundle=bundle, clock=clock, arm=arm)
     cmd = p.command
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:
@@ -281,7 +287,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, world=world, summary=False, **kwargs)
+                              meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -304,6 +310,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
         planned_verdict=planned_verdict,
     )
     base = execute.execution_summary(ex, meta, seed, kwargs.get("render", execute.DEFAULT_RENDER))
+    base["arm"] = p.arm.name
     write_summary(out / "summary.json", _summary(base, result, bundle, seed))  # written once, here
     return result
 

@@ -18,7 +18,7 @@ from importlib import metadata
 
 import numpy as np
 
-from ..core.scene import ROBOT_BASE_XY, Scene, Workspace
+from ..core.scene import Scene, Workspace
 from ..errors import FailedToLoadPlugin, SceneError, UnknownArmError
 from .sim.arms import ArmSpec
 
@@ -111,9 +111,10 @@ def get(name: str | ArmSpec | None = None) -> ArmSpec:
 
 
 # --- where the arm reaches ----------------------------------------------------------------------------
-def fit_workspace(workspace: Workspace, spec: ArmSpec, base_xy: tuple[float, float] = ROBOT_BASE_XY) -> Workspace:
-    """The workspace disk shrunk about its centre until it lies inside the arm's reach ring (unchanged when it
-    already does)."""
+def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
+    """The workspace disk shrunk about its centre until it lies inside the arm's reach ring around its mount
+    (unchanged when it already does)."""
+    base_xy = spec.mount[:2]
     d = float(math.hypot(workspace.center[0] - base_xy[0], workspace.center[1] - base_xy[1]))
     near, far = spec.reach
     radius = min(workspace.radius, far - d, d - near)
@@ -138,3 +139,80 @@ def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
                 f"({spec.reach[0]:.2f}-{spec.reach[1]:.2f} m from its base: a workspace of radius {ws.radius} m "
                 f"around {ws.center}); move it inward or choose another arm (l2p-bullet arms)")
     return replace(scene, workspace=ws)
+
+
+# --- measuring an arm (l2p-bullet arms --check, new-arm) -------------------------------------------------
+PROFILE_DEPTHS = tuple(round(0.005 * i, 3) for i in range(17))
+"""The depths (m above the fingertips) of a measured hand profile: 0 to 8 cm, the tallest block's side."""
+REACH_HEIGHTS = (0.012, 0.19)
+"""Tool heights the reach test asks for: a 2 cm block's grasp and an 8 cm block's top plus the hover."""
+
+
+def _in_plane(spec: ArmSpec, q: np.ndarray, az: float, wrist: float) -> np.ndarray:
+    """A first guess in the arm's vertical plane at azimuth ``az`` (as Primitives.in_plane)."""
+    out = np.array(q, float)
+    out[0] = az
+    out[list(spec.swivel_joints)] = 0.0
+    out[spec.arm_joints.index(spec.wrist_joint)] = wrist
+    return out
+
+
+def reaches(kin, spec: ArmSpec, r: float, az: float, z: float, wrist: float) -> bool:
+    """Whether the tool reaches the point ``r`` m from the base at azimuth ``az``, height ``z``, pointing down with
+    the wrist at ``wrist`` (rad), from the arm's home and IK seeds put in its plane."""
+    from ..errors import ReachError
+
+    base_xy = spec.mount[:2]
+    x, y = base_xy[0] + r * math.cos(az), base_xy[1] + r * math.sin(az)
+    yaw = spec.wrist_offset + az - wrist
+    seeds = [_in_plane(spec, np.asarray(s, float), az, wrist) for s in (spec.home, *spec.ik_seeds)]
+    try:
+        kin.solve((x, y, z), yaw, seeds[0], seeds=tuple(tuple(s) for s in seeds[1:]))
+    except ReachError:
+        return False
+    return True
+
+
+def measure_reach(spec: ArmSpec, step: float = 0.01) -> tuple[float, float]:
+    """(near, far): the ring of distances from the base (around its distance to the scene's centre) at which the tool
+    reaches every test pose: azimuths 0 and +-0.5 rad (the workspace disk spans +-0.49), heights
+    :data:`REACH_HEIGHTS`, the wrist joint at 0 and 1 rad either side (less for a narrow wrist).
+    (0, 0) when the centre itself is out of reach."""
+    from .sim.robot import Kinematics
+
+    kin = Kinematics(spec, spec.mount)
+    turn = min(1.0, spec.wrist_limit - 0.3)
+    wrists = (0.0, -turn, turn)
+
+    def ok(r: float) -> bool:
+        return all(reaches(kin, spec, r, az, z, w) for az in (0.0, -0.5, 0.5) for z in REACH_HEIGHTS
+                   for w in wrists)
+
+    try:
+        mid = float(math.hypot(*spec.mount[:2]))
+        if not ok(mid):
+            return (0.0, 0.0)
+        near = far = mid
+        while near - step > 0.05 and ok(near - step):
+            near -= step
+        while far + step < 1.5 and ok(far + step):
+            far += step
+        return (round(near, 3), round(far, 3))
+    finally:
+        kin.close()
+
+
+def measure_hand(spec: ArmSpec) -> tuple[float, tuple[tuple[float, float, float], ...]]:
+    """(fingertip drop below the tool point, hand profile) measured on the arm's collision shapes with the tool
+    pointing down above the workspace's centre (Robot.hand_profile), at :data:`PROFILE_DEPTHS`."""
+    from ..core.scene import Scene
+    from .sim.world import World
+
+    with World(Scene([]), arm=spec, visuals=False) as world:
+        robot = world.robot
+        x = spec.mount[0] + math.hypot(*spec.mount[:2])  # straight ahead of the base, the wrist at 0
+        q = robot.kin.solve([x, spec.mount[1], 0.02 + robot.drop], spec.wrist_offset,
+                            _in_plane(spec, np.asarray(spec.home, float), 0.0, 0.0), seeds=spec.ik_seeds)
+        robot.reset(q)
+        prof = robot.hand_profile(PROFILE_DEPTHS)
+        return round(robot.drop, 4), tuple((d, round(hx + 5e-5, 4), round(hy + 5e-5, 4)) for d, hx, hy in prof)

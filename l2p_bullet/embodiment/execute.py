@@ -18,10 +18,11 @@ from ..core.contracts import trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import PathError, ReachError
+from ..errors import ExecutionError, PathError, ReachError
 from . import motion, reach
 from .record import Recorder, versions
 from .render import Film
+from .sim.arms import PANDA, ArmSpec
 from .sim.camera import RenderSettings
 from .sim.primitives import Primitives
 from .sim.world import World
@@ -50,9 +51,9 @@ class Execution:
     render: dict | None = None  # how the frames were drawn (renderer used, camera, workers, wait): summary.json
 
 
-def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
+def check_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> np.ndarray:
     """Validate a mover path against the scene; return it cleaned (yaw unwrapped, repeats merged)."""
-    return _check(scene, mover, path)[0]
+    return _check(scene, mover, path, arm)[0]
 
 
 MAX_YAW_RAD = 1e4
@@ -82,7 +83,7 @@ def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
                         f"{r:.4g} m from its centre (radius {scene.workspace.radius} m)")
 
 
-def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
+def _check(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
     """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
     (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
     square angles that do, else those of a 5 degree grid."""
@@ -104,13 +105,13 @@ def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list
     if hit is not None:
         pose = dense[hit[1]]
         raise PathError(f'the path of "{mover}" runs into "{hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f})')
-    if not reach.hand_matters(scene, mover):
+    if not reach.hand_matters(scene, mover, arm):
         return p, [None]
     first_hit = None
     for angles in (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP)):
         clear = []
         for angle in angles:
-            hit = reach.blocked_by(scene, mover, dense, float(angle))
+            hit = reach.blocked_by(scene, mover, dense, float(angle), arm)
             if hit is None:
                 clear.append(float(angle))
             elif first_hit is None:
@@ -126,7 +127,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                  render: RenderSettings | None = DEFAULT_RENDER, seed: int = 0,
                  progress_fn: Callable[..., np.ndarray] | None = None,
                  meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
-                 world: World | None = None, summary: bool = True) -> Execution:
+                 world: World | None = None, summary: bool = True, arm: ArmSpec | None = None) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
 
     ``out_dir`` None records nothing to disk (frames are still returned); ``render`` None renders
@@ -135,18 +136,21 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
     it would in a new world) and left open. A world made here is closed here. ``summary`` False leaves
     summary.json to the caller, who starts from :func:`execution_summary` (``perform`` adds its own fields
-    and writes the file once).
+    and writes the file once). ``arm``: the arm to use (default: the world's, else the Panda).
     """
 
     meta = dict(meta or {})
     meta.setdefault("mover", mover)
     clock = StageClock(on_stage)
     clock.stage("check", "check")
-    p, angles = _check(scene, mover, path)
+    arm = arm or (world.robot.spec if world is not None else PANDA)
+    if world is not None and world.robot.spec != arm:
+        raise ExecutionError(f'the world given holds the arm "{world.robot.spec.name}", not "{arm.name}"')
+    p, angles = _check(scene, mover, path, arm)
     clock.stage("setup", "setup")
     own = world is None
     if own:  # the world only simulates: rendering happens in the film's own worlds (embodiment/render.py)
-        world = World(scene, visuals=False)
+        world = World(scene, arm=arm, visuals=False)
     film = None
     try:
         if not own:
@@ -182,7 +186,8 @@ def _primitives(world: World, render: RenderSettings | None, out_dir: Path | Non
     """The arm's primitives with a recorder attached to ``world`` and, when rendering, the film that draws
     its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
 
-    film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames")
+    film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames",
+                                            arm=world.robot.spec)
     try:  # the arm's set-up takes a while: a Ctrl-C there must not leave the film's workers behind
         return Primitives(world, Recorder(world, film))
     except BaseException:
@@ -212,13 +217,14 @@ def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
     return slide, prims.world.sim.constraint_count() == 0, grasp
 
 
-def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float]) -> list[float]:
+def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float],
+                     arm: ArmSpec = PANDA) -> list[float]:
     """Grasp offsets (tool yaw minus the path's unwrapped block yaw, for one of the allowed grasp ``angles``)
     that keep the wrist inside its range over the whole slide, best centred first (``reach.wrist_offsets``)."""
     dense = np.concatenate(motion.slide_chunks(path)) if len(path) > 1 else path
-    v = reach.wrist_values(dense[:, :2], dense[:, 2], base_xy)
+    v = reach.wrist_values(dense[:, :2], dense[:, 2], base_xy, arm)
     lo, hi = float(v.min()), float(v.max())
-    found = {round(off, 12) for angle in angles for off in reach.wrist_offsets(lo, hi, angle)}
+    found = {round(off, 12) for angle in angles for off in reach.wrist_offsets(lo, hi, angle, arm)}
     return sorted(found, key=lambda off: (max(hi - off, off - lo), abs(off)))
 
 
@@ -229,7 +235,7 @@ def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | 
     approach, descent, slide, retract and return IK are solved as the arm will run them, before anything
     moves. ReachError (the first candidate's) if none works."""
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
-    candidates = grasp_candidates(path, angles, base)
+    candidates = grasp_candidates(path, angles, base, prims.robot.spec)
     if not candidates:
         raise ReachError(f'no grasp keeps the arm\'s wrist inside its range while "{mover}" turns along this path '
                          f"({np.ptp(path[:, 2]):.1f} rad); turn the block less")

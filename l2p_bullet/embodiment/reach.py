@@ -186,12 +186,14 @@ def blocked_by(scene: Scene, mover: str, poses: np.ndarray, angle: float | None,
 
 
 # --- the wrist ------------------------------------------------------------------------------------------
-def wrist_values(xy: np.ndarray, yaw: np.ndarray, base_xy: tuple[float, float] = ROBOT_BASE_XY) -> np.ndarray:
-    """pi/4 + azimuth - yaw: the wrist angle of a tool at ``xy`` with ``yaw`` (unwrapped), before the grasp's
-    offset is taken off (wrist = value - offset for a tool yaw of block yaw + offset)."""
+def wrist_values(xy: np.ndarray, yaw: np.ndarray, base_xy: tuple[float, float] = ROBOT_BASE_XY,
+                 arm: ArmSpec = PANDA) -> np.ndarray:
+    """wrist offset (the Panda's pi/4) + azimuth - yaw: the wrist angle of a tool at ``xy`` with ``yaw``
+    (unwrapped), before the grasp's offset is taken off (wrist = value - offset for a tool yaw of block yaw +
+    offset)."""
     xy = np.asarray(xy, float).reshape(-1, 2)
     az = np.arctan2(xy[:, 1] - base_xy[1], xy[:, 0] - base_xy[0])
-    return math.pi / 4 + az - np.asarray(yaw, float).reshape(-1)
+    return arm.wrist_offset + az - np.asarray(yaw, float).reshape(-1)
 
 
 def wrist_offsets(lo: float, hi: float, angle: float | None, arm: ArmSpec = PANDA,
@@ -221,7 +223,7 @@ class Wrist:
     arm: ArmSpec = PANDA
 
     def values(self, xy: np.ndarray, yaw: np.ndarray) -> np.ndarray:
-        return wrist_values(xy, yaw, self.base_xy)
+        return wrist_values(xy, yaw, self.base_xy, self.arm)
 
     def fits(self, lo: float, hi: float) -> bool:
         return bool(wrist_offsets(lo, hi, self.angle, self.arm))

@@ -30,6 +30,7 @@ import numpy as np
 
 from ..core.scene import Scene
 from ..errors import ExecutionError
+from .sim.arms import PANDA, ArmSpec
 from .sim.camera import RenderSettings
 
 CHUNK = 8  # states per task: enough to amortise a task's overhead, few enough to keep both cores busy
@@ -73,20 +74,20 @@ class Painter:
 
     ``renderer`` "egl" falls back to "tiny" where the plugin does not load (``note`` says why)."""
 
-    def __init__(self, scene: Scene, settings: RenderSettings):
+    def __init__(self, scene: Scene, settings: RenderSettings, arm: ArmSpec = PANDA):
         from .sim.camera import Camera
         from .sim.world import World
 
         self.note = None
         self.renderer = settings.renderer
         try:
-            self.world = World(scene, visuals=True, egl=settings.renderer == "egl")
+            self.world = World(scene, arm=arm, visuals=True, egl=settings.renderer == "egl")
         except ExecutionError as e:
             if settings.renderer != "egl":
                 raise
             self.note = f"EGL rendering could not start here ({e}); rendering with TinyRenderer"
             self.renderer = "tiny"
-            self.world = World(scene, visuals=True)
+            self.world = World(scene, arm=arm, visuals=True)
         self.camera = Camera(self.world, replace(settings, renderer=self.renderer))
         self.names = list(self.world.sizes)
         if self.renderer == "egl":  # the plugin's first two frames after start differ from later ones (measured)
@@ -110,14 +111,14 @@ class Painter:
 _PAINTER: Painter | None = None
 
 
-def _start(scene: Scene, settings: RenderSettings) -> None:
+def _start(scene: Scene, settings: RenderSettings, arm: ArmSpec = PANDA) -> None:
     """Pool initializer: this worker's painter (one world, one EGL context), warmed by one frame."""
     import signal
 
     global _PAINTER
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the main process's: it stops the pool, quietly
     os.environ.setdefault("LP_NUM_THREADS", "1")  # Mesa's software rasteriser: one thread per worker process
-    _PAINTER = Painter(scene, settings)
+    _PAINTER = Painter(scene, settings, arm)
 
 
 def _ready() -> tuple[str, str | None]:
@@ -164,8 +165,8 @@ class Film:
     """
 
     def __init__(self, scene: Scene, settings: RenderSettings, folder: Path | None = None,
-                 workers: int | None = None):
-        self.scene, self.settings = scene, settings.check()
+                 workers: int | None = None, arm: ArmSpec = PANDA):
+        self.scene, self.settings, self.arm = scene, settings.check(), arm
         self.folder = None if folder is None else Path(folder)
         self.states: list[State] = []
         self.workers = pool_size(settings) if workers is None else workers
@@ -196,7 +197,7 @@ class Film:
         old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if blocked else None
         try:
             self._pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start,
-                                             initargs=(scene, self.settings))
+                                             initargs=(scene, self.settings, self.arm))
             self._warm = [self._pool.submit(_ready) for _ in range(self.workers)]  # launches them all
         finally:
             if blocked:
@@ -256,7 +257,7 @@ class Film:
 
     def _serial(self) -> list[np.ndarray]:
         t0 = time.perf_counter()
-        painter = Painter(self.scene, self.settings)
+        painter = Painter(self.scene, self.settings, self.arm)
         try:
             images = [painter.draw(s) for s in self.states]
         finally:

@@ -28,6 +28,7 @@ from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
 from ..embodiment.reach import Wrist
+from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import PlanError, UnknownPlannerError
 from . import policy  # called as policy.load_policy: a test stands in a policy there
 from .feasibility import check_moves, grasp_holds
@@ -75,7 +76,7 @@ def resolve_planner(name: str, settings: dict | None = None) -> str:
 
 def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, planner: str = "default", seed: int = 0,
          budget: int | None = None, threshold: float | None = None, time_limit: float | None = None,
-         target: np.ndarray | None = None) -> Plan:
+         target: np.ndarray | None = None, arm: ArmSpec = PANDA) -> Plan:
     """Plan ``mover``'s path for the bundle's action relative to ``anchor`` in ``scene``.
 
     ``anchor`` is one object's name, or the names of every reference object of a two-anchor action
@@ -106,7 +107,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '
                         f"not {len(anchors)} ({', '.join(anchors)})")
-    holds = grasp_holds(scene, mover)  # InfeasibleError when no grasp's hand clears the start
+    holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     best = None
     for hold in holds:
@@ -115,7 +116,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             world=world, model=model if target is None else _target_scorer(model, target, world), anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
             budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else 1)),
-            rng=np.random.default_rng(seed), wrist=Wrist(hold.angle), more_anchor_poses=more_poses,
+            rng=np.random.default_rng(seed), wrist=Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm), more_anchor_poses=more_poses,
             viewer=getattr(model, "viewpoint", None),
         )
         problem.deadline = deadline

@@ -37,6 +37,7 @@ import numpy as np
 from ..core.geometry import separation
 from ..core.scene import Scene
 from ..embodiment import reach
+from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError
 from ..judge.rules import AROUND_NEAR, AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
 from .world2d import World2D, place_outline
@@ -46,31 +47,31 @@ MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this
 MIN_TURN_RAD = math.radians(10.0)
 
 
-def grasp_holds(scene: Scene, mover: str) -> list[reach.Hold]:
+def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Hold]:
     """The ways to hold the mover whose hand clears its neighbours (``reach.holds``); InfeasibleError
     ("grasp") naming the object in the way when there is none."""
-    found = reach.holds(scene, mover)
+    found = reach.holds(scene, mover, arm)
     if found:
         return found
     m = scene.get(mover)
     gaps = {}
     for angle in np.arange(0.0, math.pi, reach.ANGLE_STEP):
-        for name, gap in reach.hold_gaps(scene, mover, float(angle)).items():
+        for name, gap in reach.hold_gaps(scene, mover, float(angle), arm).items():
             gaps[name] = max(gaps.get(name, -math.inf), gap)  # each object's best case over the angles
     name = min(gaps, key=gaps.get)
     other = scene.get(name)
     raise InfeasibleError(
         "grasp",
-        f'the arm cannot grasp "{mover}": its hand, coming down on the {m.size * 100:.0f} cm block, would hit '
+        f'the arm "{arm.name}" cannot grasp "{mover}": its hand, coming down on the {m.size * 100:.0f} cm block, would hit '
         f'"{name}" ({other.size * 100:.0f} cm tall) or another taller block beside it whichever way it turns; '
         "move them apart",
         {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}})
 
 
-def check(scene: Scene, mover: str, anchor: str, rules: str | None = None) -> list[reach.Hold]:
+def check(scene: Scene, mover: str, anchor: str, rules: str | None = None, arm: ArmSpec = PANDA) -> list[reach.Hold]:
     """Run every check that applies; return the usable holds. ``rules``: the rule judge the action is
     judged by ("around", "away", "closer", ...), None for an action judged otherwise."""
-    holds = grasp_holds(scene, mover)
+    holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
     room = {"around": _room_around, "away": _room_away, "closer": _room_closer}.get(rules or "")
     if room is not None:

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...core.scene import ROBOT_BASE_XY
+
 
 @dataclass(frozen=True)
 class ArmSpec:
@@ -67,6 +69,10 @@ class ArmSpec:
     # down at every height a run uses (grasp to hover, any yaw the wrist allows); measured by
     # ``l2p-bullet arms --check`` (embodiment/arms.py). The scene's workspace disk is shrunk to fit this ring.
     reach: tuple[float, float] = (0.25, 0.78)
+    # Where the arm's base frame stands in the scene frame (m): off the table's near edge, facing +x. An arm
+    # whose reach ring is narrower or shifted (the xArm6's is 0.17-0.67 m) stands where its ring best holds
+    # the workspace disk, as a lab would mount it; the default is the Panda's (core.scene.ROBOT_BASE_XY).
+    mount: tuple[float, float, float] = (ROBOT_BASE_XY[0], ROBOT_BASE_XY[1], 0.0)
     description: str = ""
 
 
@@ -96,6 +102,7 @@ PANDA = ArmSpec(
         (0.060, 0.0241, 0.1048), (0.065, 0.0253, 0.1051), (0.070, 0.0266, 0.1055), (0.075, 0.0278, 0.1058),
         (0.080, 0.0291, 0.1062),
     ),
+    reach=(0.26, 0.79),  # measured (l2p-bullet arms --check): holds the workspace disk, 0.28-0.78 m from the base
     description="Franka Emika Panda with its hand (pybullet_data franka_panda/panda.urdf); the default",
 )
 
@@ -272,6 +279,15 @@ XARM6 = ArmSpec(
     wrist_offset=0.0,
     tool_frame=("xarm_gripper_base_link", (0.0, 0.0, 0.16)),
     gripper_opening=0.083,
+    hand_profile=(  # measured by embodiment.arm_plugins.measure_hand (tests/embodiment/test_arms.py re-measures it)
+        (0.000, 0.0151, 0.0109), (0.005, 0.0191, 0.0152), (0.010, 0.0191, 0.0186), (0.015, 0.0191, 0.0203),
+        (0.020, 0.0191, 0.0220), (0.025, 0.0191, 0.0237), (0.030, 0.0191, 0.0255), (0.035, 0.0191, 0.0272),
+        (0.040, 0.0204, 0.0289), (0.045, 0.0205, 0.0468), (0.050, 0.0206, 0.0656), (0.055, 0.0207, 0.0677),
+        (0.060, 0.0208, 0.0677), (0.065, 0.0209, 0.0677), (0.070, 0.0209, 0.0677), (0.075, 0.0311, 0.0677),
+        (0.080, 0.0316, 0.0677),
+    ),
+    reach=(0.175, 0.675),
+    mount=(-0.425, 0.0, 0.0),  # the middle of its ring: the workspace disk fits whole (radius 0.25 m)
     description="UFactory xArm6 with its gripper (pybullet_data xarm/xarm6_with_gripper.urdf)",
 )
 
@@ -288,9 +304,9 @@ KUKA_IIWA = ArmSpec(
     tool_link=14,
     finger_joints=(8, 11),
     finger_closed=(0.0, 0.0),
-    home=(0.0, 0.3, 0.0, -1.6, 0.0, 1.25, math.pi - 0.05),
-    ik_seeds=((0.0, 0.7, 0.0, -1.2, 0.0, 1.2, math.pi - 0.05), (0.0, 1.1, 0.0, -0.9, 0.0, 1.1, math.pi - 0.05),
-              (0.0, 0.2, 0.0, -1.9, 0.0, 1.0, math.pi - 0.05)),
+    home=(0.0, 0.3, 0.0, -1.6, 0.0, 1.25, 1.5),
+    ik_seeds=((0.0, 0.7, 0.0, -1.2, 0.0, 1.2, 1.5), (0.0, 1.1, 0.0, -0.9, 0.0, 1.1, 1.5),
+              (0.0, 0.2, 0.0, -1.9, 0.0, 1.0, 1.5)),
     wrist_joint=6,
     fingertip_links=(10, 13),
     wrist_limit=3.0543,
@@ -299,5 +315,14 @@ KUKA_IIWA = ArmSpec(
     tool_frame=("base_link", (0.0, 0.024, 0.232)),
     fixed_joints=("gripper_to_arm", "left_base_tip_joint", "right_base_tip_joint"),
     gripper_opening=0.101,
+    hand_profile=(  # measured by embodiment.arm_plugins.measure_hand (tests/embodiment/test_arms.py re-measures it)
+        (0.000, 0.0001, 0.0001), (0.005, 0.0227, 0.0180), (0.010, 0.0259, 0.0182), (0.015, 0.0290, 0.0184),
+        (0.020, 0.0319, 0.0185), (0.025, 0.0347, 0.0187), (0.030, 0.0375, 0.0189), (0.035, 0.0399, 0.0190),
+        (0.040, 0.0419, 0.0192), (0.045, 0.0438, 0.0200), (0.050, 0.0445, 0.0200), (0.055, 0.0448, 0.0200),
+        (0.060, 0.0451, 0.0200), (0.065, 0.0454, 0.0202), (0.070, 0.0457, 0.0205), (0.075, 0.0457, 0.0207),
+        (0.080, 0.0457, 0.0210),
+    ),
+    reach=(0.43, 0.77),
+    mount=(-0.60, 0.0, 0.0),  # the middle of its ring (a lower or higher mount shifts it, no wider): radius 0.17 m
     description="KUKA LBR iiwa with a parallel gripper (pybullet_data kuka_iiwa/kuka_with_gripper2.sdf)",
 )

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...core.scene import COLORS, ROBOT_BASE_XY, Scene
+from ...core.scene import COLORS, Scene
 from ...errors import SceneError
 from .arms import PANDA, ArmSpec
 from .bullet import Bullet
@@ -50,7 +50,7 @@ class World:
             self.sim.set_physics(self.dt)
             if egl:
                 self.sim.load_egl()
-            self.robot = Robot(self.sim, arm, base_xyz=(ROBOT_BASE_XY[0], ROBOT_BASE_XY[1], 0.0), visuals=visuals)
+            self.robot = Robot(self.sim, arm, base_xyz=arm.mount, visuals=visuals)
             self._load(scene)
         except BaseException:
             self.close()

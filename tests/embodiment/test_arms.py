@@ -1,0 +1,90 @@
+"""Arms as plugins (issue 22): the three built-in arms through the entry-point group, their measured facts,
+and each one performing with the anchor untouched and the block where the plan put it."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from l2p_bullet.core.scene import Scene, SceneObject, Workspace
+from l2p_bullet.embodiment import arm_plugins
+from l2p_bullet.embodiment.sim.arms import KUKA_IIWA, PANDA, XARM6
+from l2p_bullet.errors import SceneError, UnknownArmError
+from l2p_bullet.pipeline import perform
+
+ARMS = ("panda", "xarm6", "kuka-iiwa")
+
+
+def test_the_built_in_arms_register_through_the_entry_point_group():
+    found = {a.name: a for a in arm_plugins.discover()}
+    assert set(ARMS) <= set(found)
+    for name in ARMS:
+        assert found[name].ok and found[name].package == "l2p-bullet", found[name]
+        assert found[name].value.startswith("l2p_bullet.embodiment.sim.arms:")
+    assert arm_plugins.get("xarm6") is XARM6 and arm_plugins.get("KUKA_IIWA") is KUKA_IIWA
+    assert arm_plugins.get(None) is PANDA
+
+
+def test_an_unknown_arm_is_one_line_with_a_suggestion():
+    with pytest.raises(UnknownArmError) as e:
+        arm_plugins.get("xarm")
+    msg = str(e.value)
+    assert "\n" not in msg and 'unknown arm "xarm"' in msg and 'Did you mean "xarm6"?' in msg
+    assert "kuka-iiwa, panda, xarm6" in msg
+
+
+def test_a_spec_whose_fields_disagree_is_reported():
+    from dataclasses import replace
+
+    assert arm_plugins.problems(PANDA) is None
+    assert "home" in arm_plugins.problems(replace(PANDA, home=(0.0,) * 6))
+    assert "wrist joint" in arm_plugins.problems(replace(PANDA, wrist_joint=9))
+    assert "reach" in arm_plugins.problems(replace(PANDA, reach=(0.5, 0.4)))
+
+
+def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refused_naming_the_arm():
+    assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace()  # the default is untouched
+    assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace()
+    kuka = arm_plugins.fit_workspace(Workspace(), KUKA_IIWA)
+    assert kuka.center == (0.0, 0.0) and kuka.radius == pytest.approx(0.17)
+    scene = Scene([SceneObject("A", "red", 0.04, (0.0, 0.2)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
+    assert arm_plugins.fit_scene(scene, PANDA) is scene
+    with pytest.raises(SceneError, match='"A" .* beyond the reach of the arm "kuka-iiwa"'):
+        arm_plugins.fit_scene(scene, KUKA_IIWA)
+
+
+@pytest.mark.slow  # the xArm's STL meshes take 9 s to read
+@pytest.mark.parametrize("spec", [PANDA, XARM6, KUKA_IIWA], ids=lambda s: s.name)
+def test_the_stored_hand_profile_and_drop_are_what_the_simulator_collides_with(spec):
+    _, measured = arm_plugins.measure_hand(spec)
+    for (d, hx, hy), (_, mx, my) in zip(spec.hand_profile, measured, strict=True):
+        assert mx - 1e-4 <= hx <= mx + 1e-3 and my - 1e-4 <= hy <= my + 1e-3, (spec.name, d, hx, hy, mx, my)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("spec", [PANDA, XARM6, KUKA_IIWA], ids=lambda s: s.name)
+def test_the_stored_reach_is_measured(spec):
+    assert arm_plugins.measure_reach(spec) == pytest.approx(spec.reach, abs=0.011)
+
+
+SCENE = Scene([SceneObject("A", "red", 0.04, (0.09, -0.06), 0.4),
+               SceneObject("B", "green", 0.04, (-0.02, 0.03), 0.1)]).validate()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("arm", ["xarm6", "kuka-iiwa"])
+def test_each_arm_performs_with_the_anchor_untouched_and_the_block_where_planned(arm, tmp_path):
+    r = perform("move A around B", SCENE, out_dir=tmp_path / "run", render=False, seed=3, arm=arm)
+    assert r.verdict["success"], r.verdict
+    assert r.anchor_displacement_m < 0.001 and r.final_error_m < 0.005 and r.max_deviation_m < 0.005
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    traj = json.loads((tmp_path / "run" / "trajectory.json").read_text())
+    assert summary["arm"] == arm and traj["arm"]["name"] == arm
+    spec = arm_plugins.get(arm)
+    assert traj["arm"]["base"][:2] == pytest.approx(list(spec.mount[:2]))
+    again = perform("move A around B", SCENE, out_dir=tmp_path / "again", render=False, seed=3, arm=arm)
+    poses = [f["poses"]["A"] for f in traj["frames"]]
+    again_poses = [f["poses"]["A"] for f in json.loads(again.files["trajectory"].read_text())["frames"]]
+    assert np.array_equal(np.array(poses), np.array(again_poses))  # deterministic for a seed
