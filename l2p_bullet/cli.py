@@ -15,7 +15,7 @@ import sys
 import click
 
 from . import PROGRAM, __version__, interrupted_while_starting
-from .commands import actions, evaluate, export, learn, perform, plan, recognize, replay, review, teach
+from .commands import actions, arms, evaluate, export, learn, perform, plan, recognize, replay, review, teach
 from .errors import L2PError
 
 
@@ -67,7 +67,7 @@ def main() -> None:
     """
 
 
-for _module in (perform, plan, replay, learn, actions, review, evaluate, export, teach, recognize):
+for _module in (perform, plan, replay, learn, actions, arms, review, evaluate, export, teach, recognize):
     for _cmd in _module.COMMANDS:
         main.add_command(_cmd)
 

@@ -8,6 +8,9 @@ MAX_SEED = 2**32 - 1
 """Seeds are what numpy's and torch's generators accept alike: 0 to 2**32 - 1."""
 
 seed_option = click.option("--seed", type=click.IntRange(0, MAX_SEED), default=0, show_default=True, help="Random seed (runs are deterministic for a seed).")
+arm_option = click.option(
+    "--arm", default="panda", show_default=True, metavar="NAME",
+    help="The arm that performs (l2p-bullet arms lists them: panda, xarm6, kuka-iiwa and installed plugins).")
 force_option = click.option(
     "--force", is_flag=True,
     help="Replace the output folder if it holds a finished run of l2p-bullet (never a folder with other files).")

@@ -36,11 +36,12 @@ import click
 @click.option("--parquet", type=click.Path(dir_okay=False), default=None, help="Also write the results table as Parquet.")
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary (and the report's numbers) as JSON.")
+@click.option("--arm", default=None, metavar="NAME", help="The arm that performs every run (default panda; l2p-bullet arms).")
 @click.option("--chains", type=int, default=None,
               help="K: one chain of K clauses per scene, scenes of 3-5 blocks (CALVIN-style; docs/evaluate.md).")
 def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, plan_only, render_every, no_render,
                  keep, workers, ray_address, out, resume, retry_errors, report, parquet, quiet, as_json,
-                 chains) -> None:
+                 arm, chains) -> None:
     """Perform (or plan) every scene x action and record one row per run in OUT/results.sqlite.
 
     \b
@@ -61,7 +62,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
     given = {"actions": [a.strip() for a in actions.split(",") if a.strip()] if actions else None,
              "scenes": scenes, "scene_file": scene_file, "study": study, "bystanders": bystanders, "seed": seed,
              "planner": planner, "mode": "plan" if plan_only else None,
-             "render_every": 0 if no_render else render_every, "keep": keep, "chains": chains}
+             "render_every": 0 if no_render else render_every, "keep": keep, "chains": chains, "arm": arm}
     given = {k: v for k, v in given.items() if v is not None}
     folder = Path(out) if out else Path("runs") / f"evaluate-{time.strftime('%Y%m%d-%H%M%S')}"
     report_only = report and not resume and not given and (folder / "results.sqlite").exists()

@@ -7,6 +7,7 @@ import time
 import click
 
 from .common import (
+    arm_option,
     force_option,
     load_scene_or_default,
     render_settings,
@@ -27,11 +28,12 @@ from .common import (
 @click.option("--no-render", is_flag=True, help="Skip frames and video (much faster).")
 @video_options
 @force_option
+@arm_option
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
 def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
-                no_render: bool, resolution: str, fps: float, camera: str, renderer: str, force: bool, quiet: bool,
-                as_json: bool) -> None:
+                no_render: bool, resolution: str, fps: float, camera: str, renderer: str, force: bool, arm: str,
+                quiet: bool, as_json: bool) -> None:
     """Make the arm perform SENTENCE, e.g. "move A around B", and record the run.
 
     \b
@@ -58,12 +60,14 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     from ..errors import L2PError
 
     if is_chain(sentence):
+        if arm != "panda":
+            raise L2PError("chains are performed by the Panda only for now; drop --arm or perform the clauses one by one")
         return _perform_chain(sentence, scene_path, seed, out, planner, no_render, force, on_stage, as_json)
     try:
         settings = None if no_render else render_settings(resolution, fps, camera, renderer)
         scene = load_scene_or_default(scene_path)
         r = perform(sentence, scene, out_dir=out, planner=planner, seed=seed, render=not no_render, force=force,
-                    on_stage=on_stage, render_settings=settings)
+                    on_stage=on_stage, render_settings=settings, arm=arm)
     except L2PError as e:
         if as_json:  # scripts read why on stdout; the one-line error still goes to stderr (exit 2)
             click.echo(dumps_json(error_json(sentence, e), indent=1))

@@ -7,6 +7,7 @@ import time
 import click
 
 from .common import (
+    arm_option,
     force_option,
     load_scene_or_default,
     render_settings,
@@ -24,6 +25,7 @@ from .common import (
               help="Run folder (default: runs/replay-<timestamp>).")
 @seed_option
 @force_option
+@arm_option
 @click.option("--mover", default="A", show_default=True, help="Block that moves (demos and scoring inputs).")
 @click.option("--anchor", default="B", show_default=True, help="Block it moves relative to.")
 @click.option("--no-render", is_flag=True, help="Skip images and video (much faster).")
@@ -33,7 +35,7 @@ from .common import (
 @click.option("--render-fps", type=float, default=None, hidden=True, help="Old spelling of --fps.")
 @click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
               help="Video format written next to the frames.")
-def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_render, resolution, fps, camera, renderer,
+def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no_render, resolution, fps, camera, renderer,
            width, height, render_fps, video):
     """Execute a 2-D motion of a block with the arm in PyBullet.
 
@@ -61,9 +63,13 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
         resolution = f"{w if width is None else width}x{h if height is None else height}"
     render = None if no_render else render_settings(resolution, fps if render_fps is None else render_fps, camera,
                                                     renderer, video)
-    if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed):
+    from ..embodiment import arm_plugins
+
+    spec = arm_plugins.get(arm)  # an unknown arm fails before anything is read or written
+    if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed, spec.name):
         return
     scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)
+    scene = arm_plugins.fit_scene(scene, spec)  # the motion is fitted into what this arm reaches
     source = motion_source(path_json, demo, scene, mover, anchor)
     t0 = time.perf_counter()
 
@@ -72,7 +78,7 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
 
     inputs = tuple(p for p in (path_json, scene_path) if p)  # --force never replaces what it reads
     with run_folder(out, force=force, prefix="replay", command="replay", inputs=inputs) as folder:
-        ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage)
+        ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage, arm=spec)
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")
@@ -80,7 +86,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
     click.echo(f"run folder: {folder}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
 
 
-def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force: bool, render, seed: int) -> bool:
+def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force: bool, render, seed: int,
+                  arm: str = "panda") -> bool:
     """Replay a chain run's plan.json (every clause, one episode; l2p_bullet/chain/replay.py) in the scene
     it was planned in (or ``--scene``); False when the file is no chain plan."""
     from ..chain.replay import is_chain_plan, replay_chain
@@ -90,6 +97,10 @@ def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force
     doc = read_json(path_json)
     if not is_chain_plan(doc):
         return False
+    if arm != "panda":
+        from ..errors import PathError
+
+        raise PathError("chains are replayed by the Panda only for now; drop --arm")
     scene = load_scene_or_default(scene_path) if scene_path is not None else None
     with run_folder(out, force=force, prefix="replay", command="replay",
                     inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:

@@ -216,3 +216,35 @@ def measure_hand(spec: ArmSpec) -> tuple[float, tuple[tuple[float, float, float]
         robot.reset(q)
         prof = robot.hand_profile(PROFILE_DEPTHS)
         return round(robot.drop, 4), tuple((d, round(hx + 5e-5, 4), round(hy + 5e-5, 4)) for d, hx, hy in prof)
+
+
+def check(spec: ArmSpec) -> dict:
+    """``l2p-bullet arms --check`` for one arm: load it with its collision shapes (missing meshes fail here),
+    measure its reach ring and hand profile, and compare them with what its spec declares. ``ok`` False when
+    the measured ring does not hold the workspace the spec promises or the stored profile is narrower than
+    the measured one (the planner would let the hand hit a block)."""
+    from ..core.scene import Workspace
+    from ..errors import L2PError
+
+    out: dict = {"name": spec.name, "declared_reach_m": list(spec.reach)}
+    try:
+        drop, profile = measure_hand(spec)
+        near, far = measure_reach(spec)
+    except (L2PError, OSError, ValueError) as e:
+        return out | {"ok": False, "error": f"cannot load or move the arm: {e}"[:300]}
+    promised = fit_workspace(Workspace(), spec)
+    measured = fit_workspace(Workspace(), replace(spec, reach=(near, far)))
+    stored = dict((d, (hx, hy)) for d, hx, hy in spec.hand_profile)
+    short = max((max(mx - stored[d][0], my - stored[d][1]) for d, mx, my in profile if d in stored), default=0.0)
+    out |= {"measured_reach_m": [near, far], "workspace_radius_m": promised.radius,
+            "measured_workspace_radius_m": measured.radius, "fingertip_drop_m": drop,
+            "profile_short_by_m": round(max(short, 0.0), 4)}
+    problems_found = []
+    if measured.radius + 0.011 < promised.radius:
+        problems_found.append(f"it reaches only {near:.2f}-{far:.2f} m from its base: a workspace of radius "
+                              f"{measured.radius} m, not the {promised.radius} m its reach promises")
+    if not spec.hand_profile:
+        problems_found.append("its spec has no hand profile (the planner would not see the hand beside a block)")
+    elif short > 0.002:
+        problems_found.append(f"its stored hand profile is {short * 1000:.1f} mm narrower than measured")
+    return out | {"ok": not problems_found, "error": "; ".join(problems_found) or None}

@@ -17,6 +17,7 @@ from ..data.demos import get_demo
 from ..errors import PathError, SceneError
 from .execute import check_waypoints, execute_path
 from .retarget import retarget
+from .sim.arms import PANDA, ArmSpec
 
 
 @dataclass
@@ -92,8 +93,9 @@ def _fit_info(fit) -> dict:
             "points": len(fit.path)}
 
 
-def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed: int = 0, on_stage=None):
-    """Put the mover at the path's start (the motion defines where it begins) and execute the path."""
+def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed: int = 0, on_stage=None,
+               arm: ArmSpec = PANDA):
+    """Put the mover at the path's start (the motion defines where it begins) and execute the path with ``arm``."""
     start = scene.with_pose(source.mover, source.path[0])
     try:
         start.validate()
@@ -108,9 +110,10 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
         doc = plan.to_dict() | {"progress": [None] * len(source.path)}  # no model scored a replay
         doc.update(scene=scene.to_dict(), scene_sha256=scene.digest())
         plan_file.write_text(dumps_json(doc, indent=1) + "\n")
-    meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info}
+    meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info,
+            "arm": arm.name}
     ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
-                      on_stage=on_stage)
+                      on_stage=on_stage, arm=arm)
     if plan_file is not None:
         ex.files["plan"] = plan_file
     return ex

@@ -45,6 +45,7 @@ class EvaluationConfig:
     budget: int | None = None
     threshold: float | None = None
     chains: int = 0  # K > 0: one chain of K clauses per scene of 3-5 blocks (evaluate/chains.py)
+    arm: str = "panda"  # the arm that performs every run (l2p-bullet arms)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -59,6 +60,8 @@ class EvaluationConfig:
         if sum(sources) > 1:
             raise EvaluationError("choose one scene set: --scenes N, --scene-file F or --study")
         if self.chains:
+            if self.arm != "panda":
+                raise EvaluationError("chains are performed by the Panda only for now: no --arm with --chains")
             if self.scene_file is not None or self.study or self.bystanders:
                 raise EvaluationError("--chains draws its own scenes of 3-5 blocks: no --scene-file, --study or "
                                       "--bystanders")
@@ -108,6 +111,10 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         workers = 0 if ray and ray != "local" else (os.cpu_count() or 1)
     if workers < 0:
         raise EvaluationError(f"--workers must be 0 or more (got {workers})")
+    if config is not None:
+        from ..embodiment import arm_plugins
+
+        arm_plugins.get(config.arm)  # an unknown arm is refused before the folder is made
     if not resume and (out / "results.sqlite").exists():
         raise EvaluationError(f"{out} already holds an evaluation: pass --resume to continue it, or choose another --out")
     with only_writer(out), ResultsStore(out) as store:
@@ -146,7 +153,7 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
             notes = skipped(scenes, actions, plugins)
             tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
                                render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
-                               budget=config.budget, threshold=config.threshold)
+                               budget=config.budget, threshold=config.threshold, arm=config.arm)
             if not tasks and notes:
                 raise EvaluationError("nothing to run: " + "; ".join(notes.values()))
         if progressbar:

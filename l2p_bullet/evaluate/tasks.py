@@ -43,6 +43,7 @@ class Task:
     time_limit: float | None = None  # seconds of planning (equal-time comparisons); plan mode only
     chain_length: int = 0  # chain mode: clauses per chain, drawn by the worker over chain_actions (chains.py)
     chain_actions: tuple[str, ...] = ()
+    arm: str = "panda"  # the arm that performs it (l2p-bullet arms)
     more_anchors: tuple[str, ...] = ()  # a two-anchor action's further reference blocks ("between B and C": C)
 
     def to_dict(self) -> dict:
@@ -89,7 +90,7 @@ def skipped(scenes: list[SceneSpec], actions: list[str], plugins: list) -> dict[
 
 def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "default", mode: str = "perform",
                render_every: int = 0, keep: str = "none", out_dir: str | None = None, plugins: list | None = None,
-               budget: int | None = None, threshold: float | None = None) -> list[Task]:
+               budget: int | None = None, threshold: float | None = None, arm: str = "panda") -> list[Task]:
     """Every scene x action, scene-major (all actions of scene 0 first), numbered in that order.
 
     ``render_every`` K > 0 renders (and keeps) every K-th run of each action: runs 0, K, 2K, ...
@@ -111,7 +112,7 @@ def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "d
             run_dir = None if out_dir is None else f"{out_dir}/runs/{_safe(spec.id)}--{action}--{planner}--{mode}"
             tasks.append(Task(run_id, len(tasks), spec.id, spec.source, spec.scene.to_dict(), spec.mover, spec.anchor,
                               action, sentence_for(action, spec.mover, anchors, plugins), planner, spec.seed,
-                              mode, render, keep, run_dir, budget, threshold, more_anchors=tuple(anchors[1:])))
+                              mode, render, keep, run_dir, budget, threshold, more_anchors=tuple(anchors[1:]), arm=arm))
     return tasks
 
 

@@ -70,7 +70,7 @@ class Worker:
         self.ident = f"{socket.gethostname()}:{os.getpid()}"
         self._judges: dict[str, Any] | None = None
         self._scratch: Path | None = None
-        self._worlds: dict[bool, Any] = {}  # visuals -> World
+        self._worlds: dict[Any, Any] = {}  # visuals (and the arm's name, for an arm other than the Panda) -> World
 
     # --- per process, built once ---------------------------------------------------------------
     def judges(self) -> dict[str, tuple[Any, Any]]:
@@ -91,21 +91,25 @@ class Worker:
             self._scratch = Path(self._tmp.name)
         return self._scratch
 
-    def world(self, scene: Any, visuals: bool) -> Any:
+    def world(self, scene: Any, visuals: bool, arm: str = "panda") -> Any:
         """This process's world (with or without the arm's visuals), made on first use."""
-        if visuals not in self._worlds:
-            self._worlds[visuals] = World(scene, visuals=visuals)
-        return self._worlds[visuals]
+        key = visuals if arm == "panda" else (visuals, arm)
+        if key not in self._worlds:
+            from ..embodiment import arm_plugins
 
-    def drop_world(self, visuals: bool) -> None:
+            self._worlds[key] = World(scene, arm=arm_plugins.get(arm), visuals=visuals)
+        return self._worlds[key]
+
+    def drop_world(self, visuals: Any, arm: str = "panda") -> None:
         """Close and forget a world a failed run may have left in an unknown state."""
-        w = self._worlds.pop(visuals, None)
+        w = self._worlds.pop(visuals if arm == "panda" else (visuals, arm), None)
         if w is not None:
             w.close()
 
     def close(self) -> None:
-        for v in list(self._worlds):
-            self.drop_world(v)
+        for key in list(self._worlds):
+            w = self._worlds.pop(key)
+            w.close()
         if self._scratch is not None:
             self._tmp.cleanup()
             self._scratch = None
@@ -137,13 +141,13 @@ class Worker:
         out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
         scene = Scene.from_dict(task.scene, source=task.scene_id)
         try:
-            world = self.world(scene.validate(), visuals=task.render)
+            world = self.world(scene.validate(), visuals=task.render, arm=task.arm)
             try:
                 r = perform(task.sentence, scene, out_dir=out, planner=task.planner, seed=task.seed,
                             render=task.render, force=True, budget=task.budget, threshold=task.threshold,
-                            plugins=self.plugins, world=world)
+                            plugins=self.plugins, world=world, arm=task.arm)
             except BaseException:
-                self.drop_world(task.render)
+                self.drop_world(task.render, task.arm)
                 raise
             traj = json.loads((r.out_dir / "trajectory.json").read_text())
             frames = traj["frames"]
@@ -173,7 +177,7 @@ class Worker:
     def _plan(self, task: Task, row: dict) -> None:
         scene = Scene.from_dict(task.scene, source=task.scene_id)
         p = prepare(task.sentence, scene, planner=task.planner, seed=task.seed, budget=task.budget,
-                    threshold=task.threshold, plugins=self.plugins)  # refused up front, as perform and plan refuse it
+                    threshold=task.threshold, plugins=self.plugins, arm=task.arm)  # refused up front, as perform and plan refuse it
         t = time.perf_counter()
         plan, v = judged_plan(p, planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
                               time_limit=task.time_limit)

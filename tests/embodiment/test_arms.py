@@ -88,3 +88,30 @@ def test_each_arm_performs_with_the_anchor_untouched_and_the_block_where_planned
     poses = [f["poses"]["A"] for f in traj["frames"]]
     again_poses = [f["poses"]["A"] for f in json.loads(again.files["trajectory"].read_text())["frames"]]
     assert np.array_equal(np.array(poses), np.array(again_poses))  # deterministic for a seed
+
+
+def test_arms_lists_the_three_arms_as_json():
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    r = CliRunner().invoke(main, ["arms", "--json"])
+    assert r.exit_code == 0, r.output
+    rows = {a["name"]: a for a in json.loads(r.output)["arms"]}
+    assert rows["panda"]["arm_joints"] == 7 and rows["xarm6"]["arm_joints"] == 6
+    assert rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17) and rows["xarm6"]["workspace_radius_m"] == 0.25
+    assert rows["xarm6"]["gripper_opening_m"] == XARM6.gripper_opening
+
+
+@pytest.mark.parametrize("command", [["perform", "move A around B", "--no-render"], ["replay", "--demo", "around:0"],
+                                     ["evaluate", "--scenes", "1", "--workers", "0"]])
+def test_an_unknown_arm_on_the_command_line_is_one_line_exit_2_and_writes_nothing(command, tmp_path):
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    r = CliRunner().invoke(main, [*command, "--arm", "kuka", "--out", str(tmp_path / "out")])
+    assert r.exit_code == 2, r.output
+    lines = [ln for ln in r.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and 'unknown arm "kuka"' in lines[0] and 'Did you mean "kuka-iiwa"?' in lines[0]
+    assert not (tmp_path / "out").exists()

@@ -1,0 +1,69 @@
+"""``l2p-bullet arms``: list the installed arms (built-in and plugins); ``--check`` runs a reach test over the table."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+
+@click.command("arms")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON (for scripts).")
+@click.option("--check", is_flag=True,
+              help="Also load every arm and run a reach test over the table (its reach ring and hand profile, "
+                   "measured); exit 1 if any arm is broken or reaches less than it declares.")
+def arms_cmd(as_json: bool, check: bool) -> None:
+    """List the installed arms: name, package, joints, reach, workspace, gripper opening.
+
+    Arms are entry points of the group "l2p_bullet.arms" (the built-in panda, xarm6 and kuka-iiwa register
+    the same way); broken ones are listed with the reason. Choose one with perform/replay/evaluate --arm NAME.
+    """
+    from ..core.contracts import dumps_json
+    from ..core.scene import Workspace
+    from ..embodiment import arm_plugins
+
+    infos = arm_plugins.discover()
+    rows = []
+    for a in infos:
+        row = {"name": a.name, "package": a.package, "package_version": a.package_version, "value": a.value,
+               "ok": a.ok, "error": a.error}
+        if a.spec is not None:
+            s = a.spec
+            row |= {"description": s.description, "urdf": s.urdf, "arm_joints": len(s.arm_joints),
+                    "finger_joints": len(s.finger_joints), "reach_m": list(s.reach), "mount": list(s.mount),
+                    "workspace_radius_m": arm_plugins.fit_workspace(Workspace(), s).radius,
+                    "gripper_opening_m": s.gripper_opening, "wrist_limit_rad": s.wrist_limit}
+        if check and a.ok:
+            click.echo(f"checking {a.name} ...", err=True)
+            result = arm_plugins.check(a.spec)
+            row["check"] = result
+            row["ok"], row["error"] = result["ok"], result["error"]
+        rows.append(row)
+    failed = check and any(not r["ok"] for r in rows)
+    if as_json:
+        click.echo(dumps_json({"arms": rows}, indent=1))
+        sys.exit(1 if failed else 0)
+    good = [r for r in rows if "arm_joints" in r]
+    w = max((len(r["name"]) for r in rows), default=4)
+    for r in good:
+        click.echo(f'{r["name"]:<{w}}  {r["arm_joints"]} joints  reach {r["reach_m"][0]:.2f}-{r["reach_m"][1]:.2f} m  '
+                   f'workspace r={r["workspace_radius_m"]:.2f} m  opens {r["gripper_opening_m"] * 100:.1f} cm  '
+                   f'{r["package"]} {r["package_version"]}  {r["description"]}')
+        c = r.get("check")
+        if c is not None and "measured_reach_m" in c:
+            click.echo(f'{"":<{w}}  check: reaches {c["measured_reach_m"][0]:.2f}-{c["measured_reach_m"][1]:.2f} m '
+                       f'(workspace r={c["measured_workspace_radius_m"]:.2f} m), fingertips '
+                       f'{c["fingertip_drop_m"] * 1000:.1f} mm below the tool point: ' + ("OK" if r["ok"] else r["error"]))
+    bad = [r for r in rows if not r["ok"]]
+    if bad:
+        click.echo("\nbroken arms (not usable):")
+        for r in bad:
+            click.echo(f'  {r["name"]} (package {r["package"]} {r["package_version"]}): {r["error"]}')
+    if check:
+        click.echo(f"all {len(rows)} arms OK (each loaded and reach-tested)" if not failed else
+                   f"{len(bad)} of {len(rows)} arms failed the check")
+    if failed:
+        sys.exit(1)
+
+
+COMMANDS: list[click.Command] = [arms_cmd]
