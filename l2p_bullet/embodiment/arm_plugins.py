@@ -141,6 +141,25 @@ def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
     return replace(scene, workspace=ws)
 
 
+def joint_names(spec: ArmSpec) -> list[str]:
+    """The names of the arm's movable joints, in index order: what each trajectory frame's ``arm`` lists."""
+    from .sim.robot import ARM, Kinematics
+
+    kin = Kinematics(spec, spec.mount)
+    try:
+        return [j.name for j in kin.sim.joints(ARM) if j.movable]
+    finally:
+        kin.close()
+
+
+def robot_type(spec: ArmSpec) -> str:
+    """A robot type for datasets (LeRobot's ``robot_type``): the folder of the arm's description, "_sim"
+    ("franka_panda_sim", "xarm_sim", "kuka_iiwa_sim")."""
+    import os
+
+    return f"{os.path.basename(os.path.dirname(spec.urdf)) or spec.name}_sim"
+
+
 # --- measuring an arm (l2p-bullet arms --check, new-arm) -------------------------------------------------
 PROFILE_DEPTHS = tuple(round(0.005 * i, 3) for i in range(17))
 """The depths (m above the fingertips) of a measured hand profile: 0 to 8 cm, the tallest block's side."""

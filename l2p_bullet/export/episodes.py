@@ -40,6 +40,7 @@ class Episode:
     images: list[np.ndarray] | None = None
     image_fps: float | None = None
     extra: dict = field(default_factory=dict)
+    arm: str = "panda"  # the arm that performed it (trajectory.json's arm name): its joints are each frame's "arm"
 
 
 def run_folders(paths: list[str | Path]) -> list[Path]:
@@ -77,7 +78,8 @@ def episode_from_run(run: str | Path) -> Episode:
     images, image_fps = _read_images(run / "frames"), (summary.get("render") or {}).get("fps")
     return Episode(task, traj["frames"], float(traj["fps"]), traj["mover"], traj["anchor"], str(run),
                    images or None, float(image_fps) if images and image_fps else None,
-                   {"action": traj.get("action"), "success": summary.get("success")})
+                   {"action": traj.get("action"), "success": summary.get("success")},
+                   str((traj.get("arm") or {}).get("name") or "panda"))
 
 
 def episodes_from_run(run: str | Path) -> list[Episode]:
@@ -102,7 +104,8 @@ def episodes_from_run(run: str | Path) -> list[Episode]:
             images = [im for i, im in enumerate(ep.images) if t0 - 1e-6 <= i / ep.image_fps <= t1 + 1e-6] or None
         out.append(Episode(d["sentence"], d["frames"], ep.fps, d["mover"], d["anchor"], ep.source, images,
                            ep.image_fps if images else None, ep.extra | {"action": d["action"], "chain": d["chain"],
-                                                                    "success": verdicts.get(d["chain"]["clause"])}))
+                                                                    "success": verdicts.get(d["chain"]["clause"])},
+                           ep.arm))
     return out
 
 

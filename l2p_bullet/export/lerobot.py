@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..embodiment import arm_plugins
 from ..errors import MissingExtraError, PathError
 from .episodes import Episode
 
@@ -58,7 +59,8 @@ def episode_arrays(ep: Episode, step: int) -> dict[str, np.ndarray]:
                       for f in frames], np.float32)
     action = np.concatenate([state[1:, 6:10], state[-1:, 6:10]]) if len(state) else np.zeros((0, 4), np.float32)
     progress = np.array([np.nan if f.get("progress") is None else f["progress"] for f in frames], np.float32)
-    return {"state": state, "action": action, "progress": progress}
+    joints = np.array([f.get("arm") or [] for f in frames], np.float32)
+    return {"state": state, "action": action, "progress": progress, "joints": joints}
 
 
 def _xyyaw(frame: dict, name: str) -> list[float]:
@@ -99,9 +101,11 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
         raise PathError(f"the episodes were recorded at different rates ({sorted(fps_values)})")
     fps = float(fps_values.pop())
 
+    arm, names = _arm_joints(eps)
     tasks = list(dict.fromkeys(e.task for e in eps))
     columns: dict[str, list] = {k: [] for k in ("observation.state", "observation.progress", "action", "timestamp",
-                                                "frame_index", "episode_index", "index", "task_index")}
+                                                "frame_index", "episode_index", "index", "task_index",
+                                                "observation.joints")}
     episodes_meta: list[dict] = []
     all_images: list[np.ndarray] = []
     total = 0
@@ -112,7 +116,11 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
         if video:
             n = min(n, len(ep.images))
             all_images += ep.images[:n]
-        for k, v in (("observation.state", arr["state"][:n]), ("action", arr["action"][:n])):
+        if arr["joints"].shape[1:] != (len(names),):
+            raise PathError(f"{ep.source}: its frames record {arr['joints'].shape[1:]} joints, not the {len(names)} "
+                            f'of the arm "{arm.name}"')
+        for k, v in (("observation.state", arr["state"][:n]), ("action", arr["action"][:n]),
+                     ("observation.joints", arr["joints"][:n])):
             columns[k] += list(v)
         columns["observation.progress"] += arr["progress"][:n].tolist()
         columns["timestamp"] += (np.arange(n, dtype=np.float32) / np.float32(fps)).tolist()
@@ -139,11 +147,13 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
         "observation.state": _fixed(pa, columns["observation.state"], len(STATE_NAMES)),
         "observation.progress": pa.array(columns["observation.progress"], pa.float32()),
         "action": _fixed(pa, columns["action"], len(ACTION_NAMES)),
+        "observation.joints": _fixed(pa, columns["observation.joints"], len(names)),
         "timestamp": pa.array(columns["timestamp"], pa.float32()),
         **{k: pa.array(columns[k], pa.int64()) for k in ("frame_index", "episode_index", "index", "task_index")},
     })
     pq.write_table(table, data_file, compression="snappy")
     features = _features(video, all_images[0].shape if video else None, fps)
+    features["observation.joints"] = {"dtype": "float32", "shape": [len(names)], "names": names}
     if video:
         ends = {m["dataset_to_index"] for m in episodes_meta}
         _write_video(all_images, out / VIDEO_PATH.format(video_key=VIDEO_KEY, chunk_index=0, file_index=0), fps,
@@ -153,18 +163,29 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     pq.write_table(pa.Table.from_pylist(episodes_meta), ep_file)
     _write_tasks(pa, pq, tasks, out / "meta" / "tasks.parquet")
     stats = _stats({"state": np.array(columns["observation.state"]), "action": np.array(columns["action"]),
-                    "progress": np.array(columns["observation.progress"], np.float32)}, total,
+                    "progress": np.array(columns["observation.progress"], np.float32),
+                    "joints": np.array(columns["observation.joints"], np.float32).reshape(total, len(names))}, total,
                    all_images if video else None)
     (out / "meta" / "stats.json").write_text(json.dumps(stats, indent=1) + "\n")
     tick()
     info = {
-        "codebase_version": CODEBASE_VERSION, "robot_type": "franka_panda_sim", "total_episodes": len(eps),
+        "codebase_version": CODEBASE_VERSION, "robot_type": arm_plugins.robot_type(arm), "total_episodes": len(eps),
         "total_frames": total, "total_tasks": len(tasks), "chunks_size": 1000, "data_files_size_in_mb": 100,
         "video_files_size_in_mb": 200, "fps": int(round(fps)), "splits": {"train": f"0:{len(eps)}"},
         "data_path": DATA_PATH, "video_path": VIDEO_PATH if video else None, "features": features,
     }
     (out / "meta" / "info.json").write_text(json.dumps(info, indent=4) + "\n")
     return info
+
+
+def _arm_joints(eps: list[Episode]):
+    """The one arm every episode was performed by, and its movable joints' names (each frame's ``arm``)."""
+    arms = sorted({e.arm for e in eps})
+    if len(arms) > 1:
+        raise PathError(f"the episodes were performed by different arms ({', '.join(arms)}): a LeRobot dataset has "
+                        "one robot, export each arm's runs on their own")
+    arm = arm_plugins.get(arms[0])
+    return arm, arm_plugins.joint_names(arm)
 
 
 def _fixed(pa, rows: list[np.ndarray], n: int):
@@ -201,7 +222,7 @@ def _stats(arr: dict[str, np.ndarray], n: int, images: list[np.ndarray] | None) 
                 "std": x.std(0).tolist(), "count": [int(ok.sum())]}
 
     out = {"observation.state": one(arr["state"]), "action": one(arr["action"]),
-           "observation.progress": one(arr["progress"])}
+           "observation.progress": one(arr["progress"]), "observation.joints": one(arr["joints"])}
     if images:
         px = np.stack(images[:: max(1, len(images) // 100)]).astype(np.float64) / 255.0  # (K,H,W,3), sampled
         chan = px.reshape(-1, px.shape[-1])

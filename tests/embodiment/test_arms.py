@@ -88,6 +88,29 @@ def test_each_arm_performs_with_the_anchor_untouched_and_the_block_where_planned
     poses = [f["poses"]["A"] for f in traj["frames"]]
     again_poses = [f["poses"]["A"] for f in json.loads(again.files["trajectory"].read_text())["frames"]]
     assert np.array_equal(np.array(poses), np.array(again_poses))  # deterministic for a seed
+    _lerobot_names_the_arms_joints(tmp_path, arm, len(traj["frames"][0]["arm"]))
+
+
+def _lerobot_names_the_arms_joints(tmp_path, arm: str, count: int) -> None:
+    pytest.importorskip("pyarrow")
+    from l2p_bullet.errors import PathError
+    from l2p_bullet.export.episodes import Episode, episode_from_run
+    from l2p_bullet.export.lerobot import write_lerobot
+
+    ep = episode_from_run(tmp_path / "run")
+    info = write_lerobot([ep], tmp_path / "lerobot", video=False)
+    names = info["features"]["observation.joints"]["names"]
+    assert len(names) == count == info["features"]["observation.joints"]["shape"][0]
+    assert info["robot_type"] == arm_plugins.robot_type(arm_plugins.get(arm)) != "franka_panda_sim"
+    other = Episode(ep.task, ep.frames, ep.fps, ep.mover, ep.anchor, "elsewhere", arm="panda")
+    with pytest.raises(PathError, match="different arms"):
+        write_lerobot([ep, other], tmp_path / "mixed", video=False)
+
+
+def test_the_joint_names_are_the_movable_joints_of_each_arm():
+    assert arm_plugins.joint_names(PANDA)[:2] == ["panda_joint1", "panda_joint2"] and len(arm_plugins.joint_names(PANDA)) == 9
+    assert arm_plugins.joint_names(XARM6)[:6] == [f"joint{i}" for i in range(1, 7)]
+    assert len(arm_plugins.joint_names(KUKA_IIWA)) == 9  # 7 arm joints and 2 fingers (the SDF's free joints made fixed)
 
 
 def test_arms_lists_the_three_arms_as_json():

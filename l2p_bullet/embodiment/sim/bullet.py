@@ -94,6 +94,7 @@ class JointInfo:
     lower: float
     upper: float
     max_force: float
+    name: str = ""  # the joint's name in the arm's description (the LeRobot export's joint names)
 
 
 @contextlib.contextmanager
@@ -276,7 +277,7 @@ class Bullet:
         out = []
         for j in range(pb.getNumJoints(b, physicsClientId=self._id)):
             info = pb.getJointInfo(b, j, physicsClientId=self._id)
-            out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10]))
+            out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10], info[1].decode()))
         return out
 
     def link_name(self, name: str, link: int) -> str:

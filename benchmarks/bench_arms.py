@@ -1,0 +1,196 @@
+"""Arms benchmark (issue 22): every shipped arm performs the five built-in actions on study-like starts.
+
+    .venv/bin/python benchmarks/bench_arms.py                      # 20 scenes per arm, 3 timed per action
+    .venv/bin/python benchmarks/bench_arms.py --scenes 6 --timed 1 # a quick look while developing
+    .venv/bin/python benchmarks/bench_arms.py --arms xarm6 --json rows.json
+
+Scenes: for each arm, seeds ``--seed-base + i`` (default 220000, used by nothing else) draw a study-like
+start (:func:`study_like_scene`): two 4 cm cubes, the mover 1.4-7.7 of its sides from the anchor (the original
+study's range), both turned at random, the pair put at a random place and translated into the arm's workspace
+(``evaluate.scenes._fit_into_disk``; the KUKA's is smaller: ``l2p-bullet arms``). The same scene and seed go
+to every action. Each run is ``pipeline.perform`` without rendering, in one process that keeps the arm's world
+(as ``l2p-bullet evaluate`` does), judged by the action's rule judge on what the arm did.
+
+Per arm and action it prints the success rate (a refusal up front counts as a failure, and is counted by its
+check), failures and crashes. Timing: a fresh ``l2p-bullet perform --no-render --arm NAME`` process (what a
+user waits for) on the first ``--timed`` scenes of each action, each run side by side with the Panda on the
+same scene (the Panda reaches every scene of every arm), median ratio. Goals: >= 95 % per arm and action;
+the fresh median within 1.5x of the Panda's.
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import json
+import math
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from bench_perform import SENTENCES, cli, timed_run
+
+SEED_BASE = 220_000
+SIZE = 0.04
+
+
+def study_like_scene(seed: int, radius: float):
+    """Two 4 cm cubes (A the mover, B the anchor) 1.4-7.7 sides apart, any yaw, inside a workspace of ``radius``."""
+    import numpy as np
+
+    from l2p_bullet.core.scene import Scene, SceneObject
+    from l2p_bullet.errors import SceneError
+    from l2p_bullet.evaluate.scenes import _fit_into_disk
+
+    rng = np.random.default_rng(seed)
+    for _ in range(1000):
+        r, a = radius * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
+        d, b = rng.uniform(1.4, 7.7) * SIZE, rng.uniform(-math.pi, math.pi)
+        anchor = np.array([r * math.cos(a), r * math.sin(a)])
+        xy = _fit_into_disk(np.array([anchor + d * np.array([math.cos(b), math.sin(b)]), anchor]),
+                            radius - SIZE / 2 - 1e-3)
+        ya, yb = rng.uniform(-math.pi, math.pi, size=2)
+        scene = Scene([SceneObject("A", "red", SIZE, (float(xy[0, 0]), float(xy[0, 1])), float(ya)),
+                       SceneObject("B", "green", SIZE, (float(xy[1, 0]), float(xy[1, 1])), float(yb))])
+        try:
+            return scene.validate()
+        except SceneError:
+            continue
+    raise RuntimeError(f"no valid scene for seed {seed}")  # pragma: no cover
+
+
+def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of: str | None = None) -> list[dict]:
+    """Every action on every scene with ``arm``, in this process (one world kept); one row per run. ``scenes_of``:
+    draw the scenes for that arm's workspace instead (the Panda on the KUKA's smaller disk)."""
+    from l2p_bullet.core.scene import Workspace
+    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.embodiment.sim.world import World
+    from l2p_bullet.errors import InfeasibleError, L2PError
+    from l2p_bullet.pipeline import perform
+
+    spec = arm_plugins.get(arm)
+    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(scenes_of or arm)).radius
+    label = arm if scenes_of is None or scenes_of == arm else f"{arm} ({scenes_of}'s scenes)"
+    rows = []
+    world = None
+    try:
+        for seed in seeds:
+            scene = study_like_scene(seed, radius)
+            if world is None:
+                world = World(scene, arm=spec, visuals=False)
+            for action in actions:
+                row = {"arm": label, "seed": seed, "action": action, "outcome": "success"}
+                t = time.perf_counter()
+                try:
+                    r = perform(SENTENCES[action], scene, out_dir=tmp / f"{arm}-{seed}-{action}", render=False,
+                                force=True, seed=seed, world=world, arm=spec)
+                    row.update(success=bool(r.success), reason=r.verdict.get("reason"),
+                               anchor_mm=round(r.anchor_displacement_m * 1000, 2),
+                               final_error_mm=round(r.final_error_m * 1000, 2))
+                    row["outcome"] = "success" if r.success else "unsuccessful"
+                except InfeasibleError as e:
+                    row.update(success=False, outcome=f"refused:{e.check}", reason=str(e))
+                except L2PError as e:
+                    row.update(success=False, outcome="failed", reason=f"{type(e).__name__}: {e}")
+                except Exception as e:  # noqa: BLE001 - a crash is a defect the table must show
+                    row.update(success=False, outcome="crash", reason=f"{type(e).__name__}: {e}")
+                row["wall_s"] = round(time.perf_counter() - t, 3)
+                rows.append(row)
+                print(f"  {label} {seed} {action}: {row['outcome']} ({row['wall_s']} s)", file=sys.stderr, flush=True)
+    finally:
+        if world is not None:
+            world.close()
+    return rows
+
+
+def study_radius(arm: str) -> float:
+    """The radius of the arm's workspace (its scenes are drawn in it)."""
+    from l2p_bullet.core.scene import Workspace
+    from l2p_bullet.embodiment import arm_plugins
+
+    return arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).radius
+
+
+def fresh_times(arm: str, seeds: list[int], actions: list[str], timed: int, tmp: Path) -> list[dict]:
+    """Fresh ``perform --no-render`` with ``arm`` and with the Panda, side by side on the same scenes."""
+    from l2p_bullet.core.scene import Workspace, save_scene
+    from l2p_bullet.embodiment import arm_plugins
+
+    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).radius
+    out = []
+    timed_run([*cli(), "--help"])  # bytecode caches written before anything is measured
+    for action in actions:
+        for seed in seeds[:timed]:
+            scene_file = tmp / f"fresh-{arm}-{seed}.json"
+            save_scene(study_like_scene(seed, radius), scene_file)
+            row = {"arm": arm, "action": action, "seed": seed}
+            for who in (arm, "panda"):
+                dt, r = timed_run([*cli(), "perform", SENTENCES[action], "--scene", str(scene_file), "--no-render",
+                                   "--quiet", "--arm", who, "--seed", str(seed), "--force",
+                                   "--out", str(tmp / f"fresh-{who}-{seed}-{action}")])
+                row[who if who == "panda" else "arm"] = round(dt, 3) if r.returncode == 0 else None
+            out.append(row)
+    return out
+
+
+def table(rows: list[dict], times: list[dict], actions: list[str], arms: list[str]) -> str:
+    lines = ["| arm | " + " | ".join(actions) + " | all | refused (check: n) | failed / crashed | fresh perform "
+             "median s (arm / Panda, same scenes) | ratio |",
+             "|---|" + "---|" * (len(actions) + 5)]
+    for arm in arms:
+        mine = [r for r in rows if r["arm"] == arm]
+        cells = []
+        for a in actions:
+            rs = [r for r in mine if r["action"] == a]
+            cells.append(f"{sum(r['success'] for r in rs) / max(len(rs), 1):.0%} ({len(rs)})")
+        refused = collections.Counter(r["outcome"].split(":", 1)[1] for r in mine if r["outcome"].startswith("refused"))
+        bad = sum(r["outcome"] == "failed" for r in mine), sum(r["outcome"] == "crash" for r in mine)
+        t = [x for x in times if x["arm"] == arm and x["arm"] is not None and x["panda"] is not None]
+        ta = statistics.median(x["arm"] for x in t) if t else float("nan")
+        tp = statistics.median(x["panda"] for x in t) if t else float("nan")
+        ratio = statistics.median(x["arm"] / x["panda"] for x in t) if t else float("nan")
+        lines.append(f"| {arm} | " + " | ".join(cells)
+                     + f" | {sum(r['success'] for r in mine) / max(len(mine), 1):.1%} | "
+                     + (", ".join(f"{k}: {v}" for k, v in sorted(refused.items())) or "0")
+                     + f" | {bad[0]} / {bad[1]} | {ta:.2f} / {tp:.2f} ({len(t)} runs) | {ratio:.2f}x |")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--arms", default="panda,xarm6,kuka-iiwa")
+    ap.add_argument("--actions", default=",".join(SENTENCES))
+    ap.add_argument("--scenes", type=int, default=20, help="scenes per arm (each performed with every action)")
+    ap.add_argument("--timed", type=int, default=3, help="scenes per action timed as fresh processes (0: none)")
+    ap.add_argument("--seed-base", type=int, default=SEED_BASE)
+    ap.add_argument("--json", default=None, help="write every row and timing here")
+    args = ap.parse_args()
+    arms = [a.strip() for a in args.arms.split(",") if a.strip()]
+    actions = [a.strip() for a in args.actions.split(",") if a.strip()]
+    seeds = list(range(args.seed_base, args.seed_base + args.scenes))
+    rows, times = [], []
+    labels = list(arms)
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="bench-arms-") as d:
+        tmp = Path(d)
+        for arm in arms:
+            rows += run_arm(arm, seeds, actions, tmp)
+            if arm != "panda" and "panda" in arms and study_radius(arm) != study_radius("panda"):
+                rows += run_arm("panda", seeds, actions, tmp, scenes_of=arm)  # the same scenes, for comparison
+                labels.insert(labels.index(arm) + 1, f"panda ({arm}'s scenes)")
+            if args.timed and arm != "panda":
+                times += fresh_times(arm, seeds, actions, args.timed, tmp)
+    print(f"{args.scenes} study-like scenes per arm (seeds {seeds[0]}-{seeds[-1]}), {len(rows)} runs, "
+          f"{time.perf_counter() - t0:.0f} s\n")
+    print(table(rows, times, actions, labels))
+    for r in rows:
+        if r["outcome"] in ("failed", "crash", "unsuccessful"):
+            print(f"  {r['arm']} {r['action']} seed {r['seed']}: {r['outcome']}: {r.get('reason')}")
+    if args.json:
+        Path(args.json).write_text(json.dumps({"rows": rows, "times": times}, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()
