@@ -67,3 +67,39 @@ def arms_cmd(as_json: bool, check: bool) -> None:
 
 
 COMMANDS: list[click.Command] = [arms_cmd]
+
+
+@click.command("new-arm")
+@click.argument("name")
+@click.option("--urdf", required=True, type=click.Path(dir_okay=False), help="The arm's URDF (meshes where it says).")
+@click.option("--tool-link", default=None, help="An existing link to use as the tool point (default: one is added "
+              "between the closed fingertips).")
+@click.option("--fingers", default=None, metavar="J,J", help='The finger joints (default: joints named "finger").')
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Folder to create (default: ./l2p-arm-NAME). Never overwritten.")
+def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None, out: str | None) -> None:
+    """Scaffold an installable arm plugin package for NAME from a URDF.
+
+    It reads the joints, guesses the arm's chain, the fingers and the tool point between the fingertips,
+    measures the gripper's opening, the hand profile and the reachable ring on the table, and writes the
+    package. A URDF with meshes missing, without a gripper, or whose chain cannot reach the table is refused.
+
+    \b
+    Example:
+      l2p-bullet new-arm my-xarm --urdf path/to/xarm6_with_gripper.urdf
+      pip install ./l2p-arm-my-xarm && l2p-bullet arms --check
+      l2p-bullet perform "move A around B" --arm my-xarm
+    """
+    from ..plugins.arm_scaffold import scaffold_arm
+
+    click.echo(f"reading and measuring {urdf} (a minute) ...", err=True)
+    names = [f.strip() for f in fingers.split(",") if f.strip()] if fingers else None
+    made = scaffold_arm(name, urdf, out, tool_link=tool_link, fingers=names)
+    s = made.spec
+    click.echo(f'wrote {made.root}/ for the arm "{name}": {len(s.arm_joints)} arm joints, '
+               f"{len(s.finger_joints)} gripper joints, opens {s.gripper_opening * 100:.1f} cm, reaches "
+               f"{s.reach[0]:.2f}-{s.reach[1]:.2f} m (mounted at x={s.mount[0]:.3f} m)")
+    click.echo(f"next: {sys.executable.rsplit('/', 1)[0]}/pip install ./{made.root}   then   l2p-bullet arms --check")
+
+
+COMMANDS.append(new_arm_cmd)

@@ -209,8 +209,10 @@ def measure_reach(spec: ArmSpec, step: float = 0.01) -> tuple[float, float]:
 
     try:
         mid = float(math.hypot(*spec.mount[:2]))
-        if not ok(mid):
-            return (0.0, 0.0)
+        if not ok(mid):  # a smaller or larger arm than the mount expects: start where it reaches, if anywhere
+            mid = next((r for r in (0.4, 0.3, 0.65, 0.25, 0.8) if ok(r)), None)
+            if mid is None:
+                return (0.0, 0.0)
         near = far = mid
         while near - step > 0.05 and ok(near - step):
             near -= step

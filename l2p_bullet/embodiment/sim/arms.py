@@ -153,6 +153,15 @@ def arm_source(spec: ArmSpec) -> str:
     return spec.urdf if os.path.isabs(spec.urdf) else os.path.join(pybullet_data.getDataPath(), spec.urdf)
 
 
+def portable_path(path: str) -> str:
+    """``path`` as ArmSpec.urdf should hold it: relative to pybullet_data when inside it, else absolute."""
+    import pybullet_data
+
+    data = os.path.realpath(pybullet_data.getDataPath())
+    real = os.path.realpath(path)
+    return os.path.relpath(real, data) if real.startswith(data + os.sep) else real
+
+
 _TOOL = "l2p_tool"
 _INERTIAL = '<inertial><origin rpy="0 0 0" xyz="0 0 0"/><mass value="0.0"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'
 

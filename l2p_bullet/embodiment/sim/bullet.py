@@ -95,6 +95,8 @@ class JointInfo:
     upper: float
     max_force: float
     name: str = ""  # the joint's name in the arm's description (the LeRobot export's joint names)
+    parent: int = -1  # the index of the link it hangs from (-1: the base)
+    link: str = ""  # the name of the link it moves
 
 
 @contextlib.contextmanager
@@ -277,7 +279,8 @@ class Bullet:
         out = []
         for j in range(pb.getNumJoints(b, physicsClientId=self._id)):
             info = pb.getJointInfo(b, j, physicsClientId=self._id)
-            out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10], info[1].decode()))
+            out.append(JointInfo(j, info[2] != pb.JOINT_FIXED, info[8], info[9], info[10], info[1].decode(), info[16],
+                                 info[12].decode()))
         return out
 
     def link_name(self, name: str, link: int) -> str:

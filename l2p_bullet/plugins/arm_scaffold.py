@@ -1,0 +1,121 @@
+"""``l2p-bullet new-arm``: write a ready-to-install arm plugin package for a user's URDF.
+
+Like ``new-action`` (plugins/scaffold.py): a pyproject declaring the entry point in ``l2p_bullet.arms``, a module
+whose ``ARM`` is the :class:`~l2p_bullet.embodiment.sim.arms.ArmSpec` that ``embodiment.arm_guess`` read and
+measured from the URDF (every field written out, to be read and corrected by the author), and a README. Plain
+text from templates: no network, no build step. The URDF stays where it is: a path inside pybullet_data is
+written relative to it (portable), any other path absolutely (move the description into the package and point
+``URDF`` at it to ship it).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .. import __version__
+from ..embodiment import arm_guess, arm_plugins
+from ..embodiment.sim.arms import portable_path
+from ..errors import PluginError
+
+ARM_NAME = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
+
+
+@dataclass(frozen=True)
+class ArmScaffold:
+    """What :func:`scaffold_arm` wrote."""
+
+    root: Path
+    module: str
+    dist_name: str
+    spec: object  # the ArmSpec written into the module
+    files: list[Path]
+
+
+def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_link: str | None = None,
+                 fingers: list[str] | None = None) -> ArmScaffold:
+    """Guess and measure the arm in ``urdf`` (``arm_guess.guess``) and write its plugin project into ``out``
+    (default ``./l2p-arm-NAME``). Never overwrites; an installed arm of the same name is refused up front."""
+    if not ARM_NAME.match(name):
+        raise PluginError(f'"{name}" is not a valid arm name: use lower-case letters and digits joined by hyphens, '
+                          'e.g. "my-ur5"')
+    if name in arm_plugins.names():
+        raise PluginError(f'an arm named "{name}" is already installed (l2p-bullet arms); choose another name')
+    module = "l2p_arm_" + name.replace("-", "_")
+    dist = "l2p-arm-" + name
+    root = Path(out) if out is not None else Path(dist)
+    if root.exists():
+        raise PluginError(f"{root} already exists; choose another --out (new-arm never overwrites)")
+    spec = arm_guess.guess(name, urdf, tool_link=tool_link, fingers=fingers)
+    pkg = root / module
+    pkg.mkdir(parents=True)
+    texts = {
+        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist, version=__version__),
+        pkg / "__init__.py": _INIT.format(name=name, src=os.path.basename(urdf), urdf=_urdf_expr(spec.urdf),
+                                          spec=arm_guess.spec_source(spec)),
+        root / "README.md": _README.format(name=name, dist=dist, module=module, root=root.name, urdf=spec.urdf,
+                                           near=spec.reach[0], far=spec.reach[1], mount=spec.mount[0],
+                                           opening=spec.gripper_opening * 100, joints=len(spec.arm_joints)),
+    }
+    for path, text in texts.items():
+        path.write_text(text, encoding="utf-8")
+    return ArmScaffold(root, module, dist, spec, sorted(texts))
+
+
+def _urdf_expr(path: str) -> str:
+    """The Python expression of the URDF's path: relative to pybullet_data when it lies inside it."""
+    return repr(portable_path(path))
+
+
+_PYPROJECT = """\
+[build-system]
+requires = ["setuptools>=68", "wheel"]
+build-backend = "setuptools.build_meta"
+
+[project]
+name = "{dist}"
+version = "0.1.0"
+description = "l2p-bullet arm plugin: {name}"
+requires-python = ">=3.11"
+dependencies = ["l2p-bullet>={version}"]
+
+# This line is the whole plugin mechanism: l2p-bullet finds arms in this entry-point group. The value names
+# the ArmSpec (module:attribute).
+[project.entry-points."l2p_bullet.arms"]
+{name} = "{module}:ARM"
+
+[tool.setuptools]
+packages = ["{module}"]
+"""
+
+_INIT = '''"""Arm plugin "{name}" for l2p-bullet, made by `l2p-bullet new-arm` from {src}.
+
+Every field was read from the URDF or measured on it (l2p_bullet/embodiment/arm_guess.py says how): check them,
+correct what was guessed wrong, and run `l2p-bullet arms --check` after any change.
+"""
+
+from l2p_bullet.embodiment.sim.arms import ArmSpec
+
+URDF = {urdf}
+
+ARM = {spec}
+'''
+
+_README = """\
+# {dist}: the arm "{name}" for l2p-bullet
+
+Made by `l2p-bullet new-arm` from `{urdf}`: {joints} arm joints, a gripper that opens {opening:.1f} cm, reaching
+the table pointing down {near:.2f}-{far:.2f} m from its base (mounted {mount:.3f} m along x, facing +x).
+
+    {root}/
+      pyproject.toml      declares the entry point  [project.entry-points."l2p_bullet.arms"]  {name} = "{module}:ARM"
+      {module}/__init__.py  ARM = ArmSpec(...): every field read or measured; correct what is wrong
+
+Install it (a path: never the bare name, which would fetch a stranger's package), check it, use it:
+
+    pip install ./{root}
+    l2p-bullet arms --check
+    l2p-bullet perform "move A around B" --arm {name}
+"""

@@ -1,0 +1,104 @@
+"""A new arm, end to end, the way an author adds one (issue 22): ``new-arm`` makes a plugin package from a
+shipped URDF (the xArm6 with its gripper), pip installs it into a throw-away environment layered on the
+project's (as tests/plugins/test_plugin_install.py does), and the installed arm performs "move A around B".
+Also the URDFs ``new-arm`` must refuse, each with one line."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+import pytest
+
+from l2p_bullet.errors import PluginError
+
+
+def _data() -> Path:
+    import pybullet_data
+
+    return Path(pybullet_data.getDataPath())
+
+
+def _env() -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    env["PIP_NO_INPUT"] = "1"
+    env["PIP_DISABLE_PIP_VERSION_CHECK"] = "1"
+    return env
+
+
+def run(cmd: list[str], cwd: Path, timeout: float = 300) -> subprocess.CompletedProcess:
+    r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=_env())
+    assert r.returncode == 0, f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stdout}\n{r.stderr}"
+    return r
+
+
+@pytest.mark.slow
+def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
+    env = tmp_path / "env"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env)], check=True)
+    site = next((env / "lib").glob("python3*/site-packages"))
+    (site / "zz_host_env.pth").write_text(f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
+    venv = env / "bin" / "python"
+    cli = [str(venv), "-m", "l2p_bullet.cli"]
+    out = run([*cli, "new-arm", "my-xarm", "--urdf", str(_data() / "xarm" / "xarm6_with_gripper.urdf")], tmp_path)
+    assert "wrote l2p-arm-my-xarm/" in out.stdout and "6 arm joints" in out.stdout
+    module = (tmp_path / "l2p-arm-my-xarm" / "l2p_arm_my_xarm" / "__init__.py").read_text()
+    assert "URDF = 'xarm/xarm6_with_gripper.urdf'" in module  # inside pybullet_data: written portably
+    assert re.search(r"gripper_opening=0\.08\d*", module), module
+    run([sys.executable, "-m", "pip", "--python", str(venv), "install", "--no-deps", "--no-build-isolation",
+         "--no-index", "--quiet", str(tmp_path / "l2p-arm-my-xarm")], tmp_path)
+    try:
+        arms = {a["name"]: a for a in json.loads(run([*cli, "arms", "--json"], tmp_path).stdout)["arms"]}
+        assert arms["my-xarm"]["ok"] and arms["my-xarm"]["package"] == "l2p-arm-my-xarm", arms["my-xarm"]
+        assert arms["my-xarm"]["workspace_radius_m"] == pytest.approx(0.25, abs=0.01)
+        r = json.loads(run([*cli, "perform", "move A around B", "--arm", "my-xarm", "--no-render", "--json", "-q",
+                            "--out", str(tmp_path / "run")], tmp_path).stdout)
+        assert r["verdict"]["success"], r
+        assert r["anchor_displacement_m"] < 0.001 and r["final_error_m"] < 0.005
+        summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+        assert summary["arm"] == "my-xarm"
+        here = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "arms", "--json"], capture_output=True,
+                              text=True, check=True)
+        assert "my-xarm" not in {a["name"] for a in json.loads(here.stdout)["arms"]}  # the project's env is untouched
+    finally:
+        run([sys.executable, "-m", "pip", "--python", str(venv), "uninstall", "--yes", "--quiet", "l2p-arm-my-xarm"],
+            tmp_path)
+    arms = {a["name"] for a in json.loads(run([*cli, "arms", "--json"], tmp_path).stdout)["arms"]}
+    assert "my-xarm" not in arms
+
+
+def test_new_arm_refuses_a_urdf_with_missing_meshes(tmp_path: Path):
+    from l2p_bullet.plugins.arm_scaffold import scaffold_arm
+
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text((_data() / "xarm" / "xarm6_with_gripper.urdf").read_text())  # its meshes stay behind
+    with pytest.raises(PluginError, match=r"names \d+ mesh file\(s\) that do not exist \(first: package://"):
+        scaffold_arm("lost", str(urdf), tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+
+
+def test_new_arm_refuses_an_arm_without_a_gripper_and_a_taken_name(tmp_path: Path):
+    from l2p_bullet.plugins.arm_scaffold import scaffold_arm
+
+    with pytest.raises(PluginError, match="has no gripper this toolkit can use"):
+        scaffold_arm("bare", str(_data() / "xarm" / "xarm6_robot.urdf"), tmp_path / "out")
+    with pytest.raises(PluginError, match='an arm named "xarm6" is already installed'):
+        scaffold_arm("xarm6", str(_data() / "xarm" / "xarm6_with_gripper.urdf"), tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+
+
+def test_new_arm_refuses_a_chain_that_cannot_reach_the_table(tmp_path: Path):
+    from l2p_bullet.plugins.arm_scaffold import scaffold_arm
+
+    folder = _data() / "xarm"
+    text = (folder / "xarm6_with_gripper.urdf").read_text().replace("package://", f"{folder}/")
+    text = re.sub(r'(<joint name="world_joint" type="fixed">.*?<origin[^>]*xyz=")[^"]*', r"\g<1>0 0 1.5", text,
+                  count=1, flags=re.S)  # the base 1.5 m above the table
+    (tmp_path / "high.urdf").write_text(text)
+    with pytest.raises(PluginError, match="cannot reach the table"):
+        scaffold_arm("high", str(tmp_path / "high.urdf"), tmp_path / "out")
