@@ -130,15 +130,15 @@ def fresh_times(arm: str, seeds: list[int], actions: list[str], timed: int, tmp:
                 dt, r = timed_run([*cli(), "perform", SENTENCES[action], "--scene", str(scene_file), "--no-render",
                                    "--quiet", "--arm", who, "--seed", str(seed), "--force",
                                    "--out", str(tmp / f"fresh-{who}-{seed}-{action}")])
-                row[who if who == "panda" else "arm"] = round(dt, 3) if r.returncode == 0 else None
+                row["panda_s" if who == "panda" else "arm_s"] = round(dt, 3) if r.returncode == 0 else None
             out.append(row)
     return out
 
 
 def table(rows: list[dict], times: list[dict], actions: list[str], arms: list[str]) -> str:
-    lines = ["| arm | " + " | ".join(actions) + " | all | refused (check: n) | failed / crashed | fresh perform "
-             "median s (arm / Panda, same scenes) | ratio |",
-             "|---|" + "---|" * (len(actions) + 5)]
+    lines = ["| arm | " + " | ".join(actions) + " | all | refused (check: n) | failed / crashed | anchor moved, max mm | "
+             "fresh perform median s (arm / Panda, same scenes) | ratio |",
+             "|---|" + "---|" * (len(actions) + 6)]
     for arm in arms:
         mine = [r for r in rows if r["arm"] == arm]
         cells = []
@@ -147,14 +147,16 @@ def table(rows: list[dict], times: list[dict], actions: list[str], arms: list[st
             cells.append(f"{sum(r['success'] for r in rs) / max(len(rs), 1):.0%} ({len(rs)})")
         refused = collections.Counter(r["outcome"].split(":", 1)[1] for r in mine if r["outcome"].startswith("refused"))
         bad = sum(r["outcome"] == "failed" for r in mine), sum(r["outcome"] == "crash" for r in mine)
-        t = [x for x in times if x["arm"] == arm and x["arm"] is not None and x["panda"] is not None]
-        ta = statistics.median(x["arm"] for x in t) if t else float("nan")
-        tp = statistics.median(x["panda"] for x in t) if t else float("nan")
-        ratio = statistics.median(x["arm"] / x["panda"] for x in t) if t else float("nan")
+        t = [x for x in times if x["arm"] == arm and x["arm_s"] is not None and x["panda_s"] is not None]
+        ta = statistics.median(x["arm_s"] for x in t) if t else float("nan")
+        tp = statistics.median(x["panda_s"] for x in t) if t else float("nan")
+        ratio = statistics.median(x["arm_s"] / x["panda_s"] for x in t) if t else float("nan")
+        moved = max((r.get("anchor_mm", 0.0) for r in mine), default=0.0)
         lines.append(f"| {arm} | " + " | ".join(cells)
                      + f" | {sum(r['success'] for r in mine) / max(len(mine), 1):.1%} | "
                      + (", ".join(f"{k}: {v}" for k, v in sorted(refused.items())) or "0")
-                     + f" | {bad[0]} / {bad[1]} | {ta:.2f} / {tp:.2f} ({len(t)} runs) | {ratio:.2f}x |")
+                     + f" | {bad[0]} / {bad[1]} | {moved:.1f} | "
+                     + (f"{ta:.2f} / {tp:.2f} ({len(t)} runs) | {ratio:.2f}x |" if t else "- | - |"))
     return "\n".join(lines)
 
 
