@@ -19,7 +19,7 @@ from importlib import metadata
 import numpy as np
 
 from ..core.scene import Scene, Workspace
-from ..errors import FailedToLoadPlugin, SceneError, UnknownArmError
+from ..errors import PluginError, SceneError, UnknownArmError
 from .sim.arms import ArmSpec
 
 GROUP = "l2p_bullet.arms"
@@ -102,11 +102,11 @@ def get(name: str | ArmSpec | None = None) -> ArmSpec:
         raise UnknownArmError(name, [a.name for a in found])
     usable = [a for a in matches if a.ok]
     if len(usable) > 1:
-        raise FailedToLoadPlugin(name, " and ".join(a.package for a in usable),
-                                 "two arm plugins have this name; uninstall one of the packages")
+        raise PluginError(f'two arm plugins are both named "{name}" (packages '
+                          f'{" and ".join(a.package for a in usable)}); uninstall one of the packages')
     if not usable:
         a = matches[0]
-        raise FailedToLoadPlugin(a.name, a.package, a.error or "broken")
+        raise PluginError(f'arm plugin "{a.name}" (package {a.package}) cannot be used: {a.error or "broken"}')
     return usable[0].spec
 
 

@@ -164,3 +164,20 @@ def test_the_wrist_model_holds_along_a_long_turning_slide(spec):
         assert tol < reach.WRIST_MARGIN
         assert np.abs(np.remainder(q[:, w] - model + np.pi, 2 * np.pi) - np.pi).max() < tol
         assert np.abs(q[:, w]).max() <= spec.wrist_limit
+
+
+def test_a_broken_arm_plugin_is_reported_and_the_others_keep_working(monkeypatch):
+    from importlib import metadata
+
+    from l2p_bullet.errors import PluginError
+
+    real = metadata.entry_points(group=arm_plugins.GROUP)
+    fake = [metadata.EntryPoint("gone", "no_such_module_l2p:ARM", arm_plugins.GROUP),
+            metadata.EntryPoint("wrong", "l2p_bullet.embodiment.sim.arms:PANDA", arm_plugins.GROUP)]
+    monkeypatch.setattr(arm_plugins.metadata, "entry_points", lambda group: [*real, *fake])
+    found = {a.name: a for a in arm_plugins.discover()}
+    assert "importing no_such_module_l2p:ARM failed: ModuleNotFoundError" in found["gone"].error
+    assert 'must be an l2p_bullet.embodiment.sim.arms.ArmSpec named "wrong"' in found["wrong"].error
+    assert arm_plugins.get("xarm6") is XARM6
+    with pytest.raises(PluginError, match='arm plugin "gone" .* cannot be used: importing'):
+        arm_plugins.get("gone")
