@@ -6,7 +6,6 @@ Also the URDFs ``new-arm`` must refuse, each with one line."""
 from __future__ import annotations
 
 import json
-import os
 import re
 import subprocess
 import sys
@@ -14,6 +13,7 @@ import sysconfig
 from pathlib import Path
 
 import pytest
+from test_plugin_install import run  # the same subprocess helper (no network, the pip settings)
 
 from l2p_bullet.errors import PluginError
 
@@ -24,19 +24,6 @@ def _data() -> Path:
     return Path(pybullet_data.getDataPath())
 
 
-def _env() -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
-    env["PIP_NO_INPUT"] = "1"
-    env["PIP_DISABLE_PIP_VERSION_CHECK"] = "1"
-    return env
-
-
-def run(cmd: list[str], cwd: Path, timeout: float = 300) -> subprocess.CompletedProcess:
-    r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=_env())
-    assert r.returncode == 0, f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stdout}\n{r.stderr}"
-    return r
-
-
 @pytest.mark.slow
 def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
     env = tmp_path / "env"
@@ -45,7 +32,8 @@ def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
     (site / "zz_host_env.pth").write_text(f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
     venv = env / "bin" / "python"
     cli = [str(venv), "-m", "l2p_bullet.cli"]
-    out = run([*cli, "new-arm", "my-xarm", "--urdf", str(_data() / "xarm" / "xarm6_with_gripper.urdf")], tmp_path)
+    out = run([*cli, "new-arm", "my-xarm", "--urdf", str(_data() / "xarm" / "xarm6_with_gripper.urdf")], tmp_path,
+              timeout=600)
     assert "wrote l2p-arm-my-xarm/" in out.stdout and "6 arm joints" in out.stdout
     module = (tmp_path / "l2p-arm-my-xarm" / "l2p_arm_my_xarm" / "__init__.py").read_text()
     assert "URDF = 'xarm/xarm6_with_gripper.urdf'" in module  # inside pybullet_data: written portably
@@ -57,7 +45,7 @@ def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
         assert arms["my-xarm"]["ok"] and arms["my-xarm"]["package"] == "l2p-arm-my-xarm", arms["my-xarm"]
         assert arms["my-xarm"]["workspace_radius_m"] == pytest.approx(0.25, abs=0.01)
         r = json.loads(run([*cli, "perform", "move A around B", "--arm", "my-xarm", "--no-render", "--json", "-q",
-                            "--out", str(tmp_path / "run")], tmp_path).stdout)
+                            "--out", str(tmp_path / "run")], tmp_path, timeout=300).stdout)
         assert r["verdict"]["success"], r
         assert r["anchor_displacement_m"] < 0.001 and r["final_error_m"] < 0.005
         summary = json.loads((tmp_path / "run" / "summary.json").read_text())
