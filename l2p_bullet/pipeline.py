@@ -346,13 +346,14 @@ class PlanResult:
 
 def plan_sentence(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
          seed: int = 0, budget: int | None = None, threshold: float | None = None, force: bool = False,
-         plot: bool = True, plugins: list | None = None) -> PlanResult:
+         plot: bool = True, plugins: list | None = None, arm: str | ArmSpec | None = None) -> PlanResult:
     """Plan ``sentence`` in 2-D only and write plan.json (and plan.png) with the bundle's judge's verdict.
 
     The same stages as ``perform`` up to the plan (:func:`prepare`, :func:`judged_plan`); the verdict goes
-    into plan.json's ``verdict``.
+    into plan.json's ``verdict``. ``arm``: as :func:`prepare` (its reach and hand shape the plan).
     """
-    p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins)
+    p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins,
+                arm=arm)
     cmd = p.command
     result, verdict = judged_plan(p, planner=planner, seed=seed, budget=budget, threshold=threshold)
     result.extra["verdict"] = verdict

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from .common import force_option, load_scene_or_default, scene_option, seed_option
+from .common import arm_option, force_option, load_scene_or_default, scene_option, seed_option
 
 
 @click.command("plan")
@@ -23,8 +23,9 @@ from .common import force_option, load_scene_or_default, scene_option, seed_opti
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON (for scripts).")
 @seed_option
 @force_option
+@arm_option
 def plan_command(sentence: str, scene_path: str | None, planner: str, out: str | None, budget: int | None,
-                 threshold: float | None, no_plot: bool, as_json: bool, seed: int, force: bool) -> None:
+                 threshold: float | None, no_plot: bool, as_json: bool, seed: int, force: bool, arm: str) -> None:
     """Plan SENTENCE (e.g. "move A around B") in 2-D and write plan.json and a plot.
 
     \b
@@ -37,13 +38,17 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
 
     if is_chain(sentence):  # "move A next to B, then ...": every clause planned from the predicted state
         from ..chain.plan import plan_chain
+        from ..errors import PlanError
+
+        if arm != "panda":
+            raise PlanError("chains are planned for the Panda only for now; drop --arm or plan the clauses one by one")
 
         chained = plan_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
                              budget=budget, threshold=threshold, force=force, plot=not no_plot)
         click.echo(dumps_json(chained.to_dict()))
         return
     result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
-                  budget=budget, threshold=threshold, force=force, plot=not no_plot)
+                  budget=budget, threshold=threshold, force=force, plot=not no_plot, arm=arm)
     if as_json:
         click.echo(dumps_json(result.to_dict()))
         return

@@ -127,6 +127,7 @@ def test_arms_lists_the_three_arms_as_json():
 
 
 @pytest.mark.parametrize("command", [["perform", "move A around B", "--no-render"], ["replay", "--demo", "around:0"],
+                                     ["plan", "move A around B"],
                                      ["evaluate", "--scenes", "1", "--workers", "0"]])
 def test_an_unknown_arm_on_the_command_line_is_one_line_exit_2_and_writes_nothing(command, tmp_path):
     from click.testing import CliRunner
