@@ -87,7 +87,7 @@ def test_rewards_add_up_to_the_learned_progress_and_the_threshold_ends_it():
 
 @pytest.mark.slow
 def test_arm_env_moves_the_simulated_block_and_renders():
-    env = gym.make("l2p_bullet/Arm-v0", action="closer", render_mode="rgb_array")
+    env = gym.make("l2p_bullet.envs:l2p_bullet/Arm-v0", action="closer", render_mode="rgb_array")
     check_env(env.unwrapped, skip_render_check=True)
     obs, _ = env.reset(seed=3)
     rel = obs[3:5] - obs[0:2]
