@@ -38,9 +38,12 @@ from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .errors import L2PError, LanguageError, PlanError, PluginError
+from .embodiment.manners import carry_refusal
+from .errors import InfeasibleError, L2PError, LanguageError, PlanError, PluginError
 from .judge import judge_context, judge_for
+from .judge.manners import signature_verdict, with_signature
 from .language import Command, parse
+from .manners import registry as manners
 from .planning import feasibility, resolve_planner
 from .planning.plot import plot_plan
 from .plugins import registry
@@ -136,6 +139,16 @@ def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
 
 
+def check_manner(cmd: Command, scene: Scene) -> None:
+    """Refuse (InfeasibleError) an object the sentence's manner cannot handle (carry: too wide or too heavy
+    for the gripper), before anything is planned or moved."""
+    spec = manners.get(cmd.manner)
+    if spec.motion == "carry":
+        why = carry_refusal(scene, cmd.mover)
+        if why:
+            raise InfeasibleError("carry", why)
+
+
 @dataclass
 class Prepared:
     """What the cheap stages found (options checked, sentence parsed, scene feasible, plugin loaded):
@@ -165,6 +178,7 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     cmd = resolve(sentence, scene, plugins)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins)
+    check_manner(cmd, scene)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
@@ -185,7 +199,8 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     """
     cmd = p.command
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
-                           budget=budget, threshold=threshold, time_limit=time_limit)
+                           budget=budget, threshold=threshold, time_limit=time_limit,
+                           airborne=manners.get(cmd.manner).airborne)
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
@@ -273,6 +288,8 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
     if cmd.more_anchors:
         meta["anchors"] = list(cmd.anchors)
+    if cmd.manner != manners.DEFAULT:  # a slide's files stay as they were before manners (issue 23)
+        meta["manner"] = cmd.manner
     if viewer is not None:
         meta["viewer"] = [float(v) for v in viewer]
     clock.stage("execute", "executing with the arm" + ("" if render else " (no rendering)"))
@@ -281,7 +298,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, world=world, summary=False, **kwargs)
+                              meta=meta, on_stage=stage_cb, world=world, summary=False, manner=cmd.manner, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -290,6 +307,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
+    verdict = manner_verdict(verdict, cmd, ex.frames, size)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed
@@ -318,6 +336,16 @@ def disturbance_verdict(verdict: dict[str, Any], displacements_m: dict[str, floa
                     for k, v in sorted(moved.items(), key=lambda kv: -kv[1]))
     return verdict | {"success": False, "disturbed_m": moved,
                       "reason": f"{verdict.get('reason', '')}; but the arm moved {who}".lstrip("; ")}
+
+
+def manner_verdict(verdict: dict[str, Any], cmd: Command, frames: list[dict], size: float) -> dict[str, Any]:
+    """The verdict with the manner's physical signature (judge/manners.py) checked on the executed frames. A
+    slide's verdict gains nothing when its block stayed on the table (its files are as before issue 23)."""
+    spec = manners.get(cmd.manner)
+    sig = signature_verdict(spec.signature, frames, cmd.mover, size)
+    if spec.name == "slide" and sig.success:
+        return verdict
+    return with_signature(verdict, spec.name, sig)
 
 
 @dataclass

@@ -81,12 +81,15 @@ class World2D:
 
     ``outlines`` maps an obstacle's name to the mover's outline (block frame) to test against it: the block
     grown by the hand beside it at that obstacle's height. Obstacles not named use the block's footprint.
+    ``airborne`` (a carried block, l2p_bullet/manners): the block passes above the other objects, so a move
+    is tested only where it ends (where the block could be set down), not along the way.
     """
 
     def __init__(self, scene: Scene, mover: str, margin: float = GRIPPER_MARGIN,
-                 outlines: dict[str, np.ndarray] | None = None):
+                 outlines: dict[str, np.ndarray] | None = None, airborne: bool = False):
         obj = scene.get(mover)
         self.scene = scene
+        self.airborne = airborne
         self.mover = Body(mover, obj.footprint(np.zeros(3)), obj.pose)
         self.size = obj.size
         self.margin = margin
@@ -141,6 +144,9 @@ class World2D:
             if close.any():
                 gaps = self.gaps(start)
                 margins = np.where(close, np.minimum(self.margin, np.maximum(gaps, 0.0) - 1e-9), margins)
+        if self.airborne:  # only where each move ends: a zero-length sweep there
+            ok[near] = [bool(self._swept_free(e, e[None], margins)[0]) for e in ends[near]]
+            return ok
         ok[near] = self._swept_free(start, ends[near], margins)
         return ok
 
