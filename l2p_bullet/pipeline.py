@@ -38,7 +38,7 @@ from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .embodiment.manners import carry_refusal
+from .embodiment.manners import carry_refusal, planner_outline
 from .errors import InfeasibleError, L2PError, LanguageError, PlanError, PluginError
 from .judge import judge_context, judge_for
 from .judge.manners import signature_verdict, with_signature
@@ -139,6 +139,21 @@ def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
 
 
+def manner_planning(cmd: Command, scene: Scene) -> dict[str, Any]:
+    """What the planner is told about the sentence's manner (docs/manners.md): a carried block passes above
+    the other objects (``airborne``: only where it is set down is tested); a pushed one has the pusher
+    beside it (``outline``: the block and pusher, tested against every other object). Nothing for a slide,
+    so its plans are as before."""
+    spec = manners.get(cmd.manner)
+    out: dict[str, Any] = {}
+    if spec.airborne:
+        out["airborne"] = True
+    shape = planner_outline(spec, scene.get(cmd.mover).size)
+    if shape is not None:
+        out["outline"] = shape
+    return out
+
+
 def check_manner(cmd: Command, scene: Scene) -> None:
     """Refuse (InfeasibleError) an object the sentence's manner cannot handle (carry: too wide or too heavy
     for the gripper), before anything is planned or moved."""
@@ -200,7 +215,7 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     cmd = p.command
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
                            budget=budget, threshold=threshold, time_limit=time_limit,
-                           airborne=manners.get(cmd.manner).airborne)
+                           **manner_planning(cmd, p.scene))
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]

@@ -68,6 +68,29 @@ def carry_lift(scene: Scene, mover: str, path: np.ndarray) -> float:
     return max(MIN_LIFT, tallest + CLEARANCE if tallest > 0 else 0.0)
 
 
+PUSH_TIP_Z = 0.006
+"""m: the fingertips' height above the table while pushing (embodiment/push.py reads it)."""
+
+
+def push_outline(size: float, arm: ArmSpec = PANDA, n: int = 16) -> np.ndarray:
+    """What a push puts at block height, in the block's frame: the block with the closed fingers pushing it
+    from any side, as a regular ``n``-gon round the block's centre. The pusher is about as wide as the
+    fingers (their long side across the push, up to the block's top), wider than a 4 cm block, and turns
+    with the direction of travel, not with the block: so the planner keeps that much room (radius: the
+    larger of the block's corners and the pusher's half width, 2 mm more) from every other object."""
+    ext = reach.hand_extent(max(size - PUSH_TIP_Z, 1e-3), arm)
+    r = max(size / np.sqrt(2.0), 0.0 if ext is None else ext[1]) + 0.002
+    r /= np.cos(np.pi / n)  # the polygon's edges, not only its corners, outside the circle
+    a = np.arange(n) * 2 * np.pi / n
+    return np.column_stack([r * np.cos(a), r * np.sin(a)])
+
+
+def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
+    """The mover's outline the planner tests against every other object for ``manner`` (None: its own,
+    grown by the hand beside it where that matters, as for a slide)."""
+    return push_outline(size, arm) if manner.motion == "push" else None
+
+
 def check_carry_path(scene: Scene, mover: str, p: np.ndarray) -> None:
     """A carried path may pass over other objects; where it sets the block down (its end) must be clear."""
     hit = reach.blocked_by(scene, mover, p[-1:], None, hand=False)

@@ -26,8 +26,10 @@ import math
 
 import numpy as np
 
+from ..core.geometry import separation
 from ..errors import ReachError
 from . import reach
+from .manners import PUSH_TIP_Z
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
 
@@ -35,13 +37,16 @@ SPEED = 0.05  # m/s: the hand's largest speed while pushing
 TURN_RATE = 1.5  # rad/s: the pusher's largest turn while pushing
 LOOKAHEAD = 0.6  # block sides ahead along the path
 PRESS = 0.004  # m inside the block's face: the push's bite (the arm's position control makes it a force)
-TIP_Z = 0.006  # m: the fingertips' height above the table while pushing (low: the push does not tip the block)
+TIP_Z = PUSH_TIP_Z  # m: the fingertips' height above the table while pushing (low: the push does not tip the block)
+STALL_S = 1.5  # s without 1 mm of progress along the path: the push is stuck (a corner caught): go round
 FACE_TURN = math.radians(55.0)  # a turn beyond this from the pushing side changes face (go round)
 GAP = 0.012  # m between the pusher and the block when the hand comes down on a new side
 CLEAR = 0.012  # m above the block's top when the hand goes round
 STOP = 0.0015  # m from the path's end: done
 ESCAPE = 2.0  # block sides between the hand and the block: it got away
 MAX_REPOSITIONS = 30
+SHIFT = 0.012  # m: how far the pusher may slide along the block's face to keep clear of another object
+CLEARANCE = 0.003  # m kept between the pusher and every other object
 WRIST_MARGIN = 0.25  # rad kept from the wrist's limits
 TIME_PER_M = 40.0  # s of pushing allowed per metre of path (plus SLACK_S): then the push stops where it is
 SLACK_S = 20.0
@@ -66,6 +71,10 @@ class Pusher:
         self.n_steps = max(1, round(self.dt / self.world.dt))
         self.repositions, self.contact_frames, self.ticks = 0, 0, 0
         self.events: list[str] = []
+        ext_top = reach.hand_extent(self.size - TIP_Z + 0.005, self.robot.spec) or (self.half, 0.03)
+        self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
+        self.others = [n for n in self.world.sizes if n != mover]
+        self.shifted = 0
 
     # --- geometry ----------------------------------------------------------------------------------
     def block(self) -> np.ndarray:
@@ -73,7 +82,20 @@ class Pusher:
         return np.array([p[0], p[1], p[3]])
 
     def at(self, s: float) -> np.ndarray:
+        """The path's point at arc length ``s``; beyond the end, on along the path's last direction (so
+        the aim does not swing round the end point as the block closes on it)."""
+        total = float(self.arc[-1])
+        if s > total:
+            return self.xy[-1] + self.tangent() * (s - total)
         return np.array([np.interp(s, self.arc, self.xy[:, 0]), np.interp(s, self.arc, self.xy[:, 1])])
+
+    def tangent(self) -> np.ndarray:
+        """The path's direction at its end (unit), from its last half block."""
+        total = float(self.arc[-1])
+        back = np.array([np.interp(max(0.0, total - self.size / 2), self.arc, self.xy[:, i]) for i in (0, 1)])
+        d = self.xy[-1] - back
+        n = float(np.hypot(*d))
+        return d / n if n > 1e-9 else np.array([1.0, 0.0])
 
     def progress(self, b: np.ndarray) -> float:
         """The block's arc length along the path: the nearest point ahead of the last (within a window)."""
@@ -97,9 +119,39 @@ class Pusher:
         return self.size / 2 * (abs(math.cos(a)) + abs(math.sin(a)))
 
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> np.ndarray:
-        """Tool pose with the pusher's face ``back`` m behind the block's face opposite ``phi``."""
+        """Tool pose with the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
+        that face (up to :data:`SHIFT`) when its middle would touch another object."""
         r = self.support(b, phi) + self.half + back
-        return np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
+        pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
+        if self.clear(pose[:2], phi):
+            return pose
+        across = np.array([-math.sin(phi), math.cos(phi)])
+        for k in range(1, 7):
+            for sign in (1.0, -1.0):
+                xy = pose[:2] + sign * across * SHIFT * k / 6
+                if self.clear(xy, phi):
+                    self.shifted += 1
+                    return np.array([xy[0], xy[1], self.z, yaw])
+        return pose
+
+    def clear(self, xy: np.ndarray, phi: float) -> bool:
+        """Whether the pusher (a rectangle: ``half`` along ``phi``, ``width`` across) centred at ``xy`` keeps
+        :data:`CLEARANCE` from every other object's footprint where it is now."""
+        if not self.others:
+            return True
+        c, s = math.cos(phi), math.sin(phi)
+        hx, hy = self.half + CLEARANCE, self.width + CLEARANCE
+        rect = np.array([[xy[0] + c * dx - s * dy, xy[1] + s * dx + c * dy]
+                         for dx, dy in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))])
+        for name in self.others:
+            p = self.world.pose(name)
+            h = self.world.sizes[name] / 2
+            cy, sy = math.cos(p[3]), math.sin(p[3])
+            foot = np.array([[p[0] + cy * dx - sy * dy, p[1] + sy * dx + cy * dy]
+                             for dx, dy in ((h, h), (-h, h), (-h, -h), (h, -h))])
+            if float(separation(rect[None], foot)[0]) < 0.0:
+                return False
+        return True
 
     def yaw_for(self, phi: float, near: float, pos: np.ndarray) -> float:
         """The tool yaw pushing along ``phi`` (the pusher is symmetric: phi + k pi) nearest ``near`` whose
@@ -167,12 +219,22 @@ class Pusher:
         limit = TIME_PER_M * total + SLACK_S
         t0 = self.world.time
         stopped = "end"
+        best, best_t = 0.0, self.world.time
         while True:
             b = self.block()
             s = self.progress(b)
-            if float(np.hypot(*(b[:2] - end))) < STOP or (total - s < STOP and
-                                                           float(np.hypot(*(b[:2] - end))) < self.size / 4):
-                break
+            to_end = float(np.hypot(*(b[:2] - end)))
+            if to_end < STOP or (total - s < self.size / 2 and float(np.dot(end - b[:2], self.tangent())) < STOP):
+                break  # at the end, or level with it (pushing on would overshoot)
+            if s > best + 0.001:
+                best, best_t = s, self.world.time
+            elif self.world.time - best_t > STALL_S:  # stuck: come at it afresh
+                if self.repositions >= MAX_REPOSITIONS:
+                    stopped = "repositions"
+                    break
+                self.go_round(b, self._aim(b))
+                side, best_t = self._aim(b), self.world.time
+                continue
             if self.world.tilt(self.mover) > math.radians(20.0):
                 stopped = "tipped"
                 break
@@ -208,12 +270,13 @@ class Pusher:
             self.events.append(stopped)
         return {"end_frame": end_frame, "push": {
             "stopped": stopped, "repositions": self.repositions, "control_ticks": self.ticks,
+            "shifted_ticks": self.shifted,
             "contact_ticks": self.contact_frames, "tipped": stopped == "tipped", "escaped": stopped == "escaped",
             "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": TIP_Z}}
 
     def _aim(self, b: np.ndarray) -> float:
         s = self.sigma
-        ahead = self.at(min(s + LOOKAHEAD * self.size, float(self.arc[-1])))
+        ahead = self.at(s + LOOKAHEAD * self.size)
         d = ahead - b[:2]
         if float(np.hypot(*d)) < 1e-6:
             d = self.xy[-1] - self.xy[max(0, len(self.xy) - 2)]
