@@ -131,12 +131,14 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 
 
 def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
-    """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, and
-    the room checks of the rule judge the action's manifest names (``[judge] rules``), if any."""
+    """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, the
+    room checks of the rule judge the action's manifest names (``[judge] rules``), if any, and the manner's
+    (a carry refuses an object too wide or too heavy for the gripper)."""
     info = next((p for p in plugins if p.name == cmd.action), None)
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
+    check_manner(cmd, scene)
 
 
 def manner_planning(cmd: Command, scene: Scene) -> dict[str, Any]:
@@ -193,7 +195,6 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     cmd = resolve(sentence, scene, plugins)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins)
-    check_manner(cmd, scene)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched

@@ -224,34 +224,50 @@ def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
     """The arm's part, stage by stage: reach (choose the grasp yaw, every IK solved before anything
     moves), engage, move, disengage. Returns the frames recorded while sliding, whether the grasp's
     constraint is gone, and the grasp chosen (for the summary)."""
-    recorder = prims.recorder
     rest = prims.pose.copy()
-    if manner is not None and manner.motion == "push":
+    start, end, grasp = act(prims, scene or prims.world.scene, mover, path, angles, rest, manner,
+                            stage=lambda name: clock.stage(name, name), first_frame=True)
+    return slice(start, end), prims.world.sim.constraint_count() == 0, grasp
+
+
+def act(prims, scene: Scene, mover: str, path: np.ndarray, angles: list[float | None], rest: np.ndarray,
+        manner: MannerSpec | None = None, *, stage: Callable[[str], None] = lambda name: None,
+        first_frame: bool = False) -> tuple[int, int, dict]:
+    """Move ``mover`` along the checked ``path`` (from :func:`check_for`) in the manner asked, back to ``rest``:
+    a slide (grasp, slide, release), a carry (grasp, lift, carry, lower, release) or a push (embodiment/push.py).
+    ``stage`` is told each stage as it starts; ``first_frame`` records the world before the arm moves (a
+    chain records it once, before its first clause). Returns the first and end frame of the move and the
+    grasp's summary (a push's: how the push went)."""
+    recorder = prims.recorder
+    how = manner_of(manner)
+    if how.motion == "push":
         from .push import push  # the push controller: only for a push
 
-        clock.stage("reach", "reach")
-        recorder()  # the first frame: the world before the arm moves
-        clock.stage("move", "move")
+        stage("reach")
+        if first_frame:
+            recorder()
+        stage("move")
         start = len(recorder.frames)
         info = push(prims, mover, path, rest)
-        return slice(start, info.pop("end_frame")), prims.world.sim.constraint_count() == 0, info
-    lift = carry_lift(scene or prims.world.scene, mover, path) if manner is not None and manner.motion == "carry" else 0.0
-    clock.stage("reach", "reach")
+        return start, info.pop("end_frame"), info
+    lift = carry_lift(scene, mover, path) if how.motion == "carry" else 0.0
+    stage("reach")
     tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest, lift)
-    recorder()  # the first frame: the world before the arm moves
-    clock.stage("engage", "engage")
+    if first_frame:
+        recorder()  # the first frame: the world before the arm moves
+    stage("engage")
     prims.engage(mover, tool_yaw=tool_yaw)
-    clock.stage("move", "move")
+    stage("move")
     start = len(recorder.frames)
     if lift > 0:
         prims.carry(path, lift)
         grasp = grasp | {"lift_m": round(lift, 6)}
     else:
         prims.move(path)
-    slide = slice(start, len(recorder.frames))
-    clock.stage("disengage", "disengage")
+    end = len(recorder.frames)
+    stage("disengage")
     prims.disengage(rest)
-    return slide, prims.world.sim.constraint_count() == 0, grasp
+    return start, end, grasp
 
 
 def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float]) -> list[float]:
