@@ -79,6 +79,14 @@ def verb_table() -> dict[str, str]:
     return {v: m.name for m in discover() for v in m.verbs}
 
 
+def sentence_verb(name: str) -> str:
+    """The verb a generated sentence uses for manner ``name`` ("move" for the default manner, as sentences
+    were written before manners; else the manner's first one-word verb)."""
+    if name == DEFAULT:
+        return "move"
+    return next((v for v in get(name).verbs if "..." not in v and " " not in v), get(name).verbs[0])
+
+
 def check_names(names: list[str]) -> list[str]:
     """``names`` if every one is a manner (``evaluate --manners``), else a one-line error."""
     for n in names:
