@@ -204,7 +204,7 @@ def _primitives(world: World, render: RenderSettings | None, out_dir: Path | Non
 def check_for(manner: MannerSpec, scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
     """:func:`_check` as the manner needs it: a carried block may pass over other objects (only where it is
     set down must be clear, and the hand is above everything), an object the manner cannot handle is refused."""
-    check_manner(manner, scene, mover)
+    check_manner(manner, scene, mover, path=np.asarray(path, float) if manner.motion == "push" else None)
     if manner.motion != "carry":
         return _check(scene, mover, path)
     check_waypoints(scene, mover, path)

@@ -85,6 +85,30 @@ def push_outline(size: float, arm: ArmSpec = PANDA, n: int = 16) -> np.ndarray:
     return np.column_stack([r * np.cos(a), r * np.sin(a)])
 
 
+def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> str | None:
+    """Why no push can follow ``path`` (one line), or None: another object taller than the pushing hand's
+    clearance (the hand's body, 21 cm wide, starts where the fingers end, about 5 cm above the table while
+    pushing) within the hand's reach of the path would be swept over, as would one the hand passes when it
+    goes round the block."""
+    widen = next((d for d, _, hy in arm.hand_profile if hy > 0.05), None)
+    if widen is None:
+        return None
+    clear = PUSH_TIP_Z + widen - 0.003
+    hand = max(hy for _, _, hy in arm.hand_profile)
+    m = scene.get(mover)
+    p = np.asarray(path, float).reshape(-1, 3)
+    dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
+    reach_m = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max()) + 0.03 + hand
+    for o in scene.objects:
+        if o.name == mover or o.size <= clear:
+            continue
+        r_o = float(np.linalg.norm(o.footprint() - np.asarray(o.xy), axis=1).max())
+        if float(np.hypot(*(dense[:, :2] - np.asarray(o.xy)).T).min()) < reach_m + r_o:
+            return (f'no push can pass "{o.name}" ({o.size * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
+                    f"above the table and {2 * hand * 100:.0f} cm wide; carry or slide \"{mover}\" instead")
+    return None
+
+
 def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
     """The mover's outline the planner tests against every other object for ``manner`` (None: its own,
     grown by the hand beside it where that matters, as for a slide)."""
@@ -98,8 +122,14 @@ def check_carry_path(scene: Scene, mover: str, p: np.ndarray) -> None:
         raise PathError(f'the path of "{mover}" sets it down on "{hit[0]}" at ({p[-1, 0]:.3f}, {p[-1, 1]:.3f})')
 
 
-def check_manner(manner: MannerSpec, scene: Scene, mover: str, arm: ArmSpec = PANDA) -> None:
-    """Refuse, before anything is planned or moved, an object the manner cannot handle."""
+def check_manner(manner: MannerSpec, scene: Scene, mover: str, arm: ArmSpec = PANDA,
+                 path: np.ndarray | None = None) -> None:
+    """Refuse, before anything is moved, an object the manner cannot handle (and, given the ``path``, a
+    path it cannot follow)."""
+    if manner.motion == "push" and path is not None:
+        why = push_refusal(scene, mover, path, arm)
+        if why:
+            raise PathError(why)
     if manner.motion == "carry":
         why = carry_refusal(scene, mover, arm)
         if why:

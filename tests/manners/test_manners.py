@@ -137,3 +137,18 @@ def test_infeasible_carry_is_refused_by_prepare():
             prepare("carry A past B", scene)
     finally:
         pipeline.carry_refusal = real
+
+
+def test_a_push_is_refused_where_the_hand_would_sweep_over_a_tall_block():
+    from l2p_bullet.embodiment.manners import push_refusal
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.10, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.08, (0.0, 0.09), 0.0)])
+    past = np.array([[0.10, -0.06, 0.0], [-0.10, -0.06, 0.0]])
+    scene = scene.with_pose("A", np.array([0.10, -0.06, 0.0]))
+    why = push_refusal(scene, "A", past)
+    assert why is not None and '"C" (8 cm tall)' in why
+    far = Scene([o if o.name != "C" else SceneObject("C", "blue", 0.08, (0.0, 0.22), 0.0) for o in scene.objects])
+    assert push_refusal(far, "A", past) is None
+    low = Scene([o if o.name != "C" else SceneObject("C", "blue", 0.04, (0.0, 0.09), 0.0) for o in scene.objects])
+    assert push_refusal(low, "A", past) is None
