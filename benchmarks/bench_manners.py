@@ -19,7 +19,9 @@ Per action and manner it prints:
 - both: the two together (the push goal: 90 % of runs);
 - anchor moved > 1 mm: runs in which the arm moved the other block;
 - lift (carry): the largest lift of the block (cm, mean); repositions (push): the hand going round (mean);
-- seconds per run (mean).
+- seconds per run (mean);
+- plan passes the rule: the action's rule judge on the 2-D plan, before the arm moved; success where it does:
+  the executed success among those runs (what the manner's execution costs).
 
 Slide is the reference: its failures on the same starts are the planner's (the plan misses the rule), which
 carry and push inherit; a run that ended in an error (the arm could not reach a pose) counts as a failure.
@@ -79,6 +81,7 @@ def one(spec, action: str, manner: str, out: Path, world) -> dict:
     size = spec.scene.get("A").size
     grasp = summary.get("grasp") or {}
     return {"refused": False, "success": r.success, "reason": r.verdict.get("reason", "")[:200],
+            "plan_ok": bool(r.planned_verdict.get("success")),
             "final_m": r.final_error_m, "path_m": path_dev,
             "final_ok": r.final_error_m <= 0.5 * size, "path_ok": path_dev <= 0.5 * size,
             "anchor_m": r.anchor_displacement_m, "lift_m": summary.get("execution", {}).get("max_lift_m", 0.0),
@@ -120,8 +123,9 @@ def main(argv: list[str] | None = None) -> int:
 def table(rows: list[dict], a) -> str:
     lines = [f"{a.source} starts, {a.scenes} scenes from seed {a.seed}, 4 cm cubes",
              "| manner | action | runs | refused | success | final within 0.5 side | path within 0.5 side | both "
-             "| anchor moved > 1 mm | final mm (mean / max) | lift cm / repositions (mean) | s per run |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
+             "| anchor moved > 1 mm | final mm (mean / max) | lift cm / repositions (mean) | s per run "
+             "| plan passes the rule | success where it does |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
     for manner in a.manners.split(","):
         for action in [*a.actions.split(","), "all"]:
             rs = [r for r in rows if r["manner"] == manner and (action == "all" or r["action"] == action)]
@@ -134,6 +138,7 @@ def table(rows: list[dict], a) -> str:
                 return f"{100 * sum(bool(r.get(key)) for r in runs) / count:.0f} %"
 
             both = sum(bool(r.get("final_ok") and r.get("path_ok")) for r in run)
+            planned = [r for r in run if r.get("plan_ok")]
             fin = [r["final_m"] * 1000 for r in run if "final_m" in r]
             lifts = [r["lift_m"] for r in run if r.get("lift_m") is not None]
             extra = (f"{np.mean(lifts) * 100 if lifts else 0:.1f} cm" if manner == "carry"
@@ -142,7 +147,8 @@ def table(rows: list[dict], a) -> str:
                 f"| {manner} | {action} | {len(run)} | {len(rs) - len(run)} | {pct('success')} | {pct('final_ok')} "
                 f"| {pct('path_ok')} | {100 * both / n:.0f} % | {sum(r.get('anchor_m', 0) > 0.001 for r in run)} "
                 f"| {np.mean(fin) if fin else 0:.1f} / {max(fin) if fin else 0:.1f} | {extra} "
-                f"| {np.mean([r.get('seconds', 0) for r in run]):.2f} |")
+                f"| {np.mean([r.get('seconds', 0) for r in run]):.2f} | {pct('plan_ok')} "
+                f"| {pct('success', planned, max(1, len(planned)))} |")
     return "\n".join(lines)
 
 

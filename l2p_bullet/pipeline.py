@@ -92,6 +92,7 @@ class PerformResult:
             "displacements_m": {k: _round(v) for k, v in self.displacements_m.items()},
             "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
             "grasp": self.grasp,
+            **({} if c.manner == "slide" else {"manner": c.manner}),  # issue 23: a slide's output is as before
         }
 
 
