@@ -38,10 +38,10 @@ from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .embodiment.manners import carry_refusal, planner_outline
-from .errors import InfeasibleError, L2PError, LanguageError, PlanError, PluginError
+from .embodiment.manners import check_manner, manner_planning
+from .errors import L2PError, LanguageError, PlanError, PluginError
 from .judge import judge_context, judge_for
-from .judge.manners import signature_verdict, with_signature
+from .judge.manners import manner_verdict
 from .language import Command, parse
 from .manners import registry as manners
 from .planning import feasibility, resolve_planner
@@ -139,32 +139,7 @@ def check_feasible(cmd: Command, scene: Scene, plugins: list) -> None:
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None)
-    check_manner(cmd, scene)
-
-
-def manner_planning(cmd: Command, scene: Scene) -> dict[str, Any]:
-    """What the planner is told about the sentence's manner (docs/manners.md): a carried block passes above
-    the other objects (``airborne``: only where it is set down is tested); a pushed one has the pusher
-    beside it (``outline``: the block and pusher, tested against every other object). Nothing for a slide,
-    so its plans are as before."""
-    spec = manners.get(cmd.manner)
-    out: dict[str, Any] = {}
-    if spec.airborne:
-        out["airborne"] = True
-    shape = planner_outline(spec, scene.get(cmd.mover).size)
-    if shape is not None:
-        out["outline"] = shape
-    return out
-
-
-def check_manner(cmd: Command, scene: Scene) -> None:
-    """Refuse (InfeasibleError) an object the sentence's manner cannot handle (carry: too wide or too heavy
-    for the gripper), before anything is planned or moved."""
-    spec = manners.get(cmd.manner)
-    if spec.motion == "carry":
-        why = carry_refusal(scene, cmd.mover)
-        if why:
-            raise InfeasibleError("carry", why)
+    check_manner(manners.get(cmd.manner), scene, cmd.mover)
 
 
 @dataclass
@@ -217,7 +192,7 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     cmd = p.command
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
                            budget=budget, threshold=threshold, time_limit=time_limit,
-                           **manner_planning(cmd, p.scene))
+                           **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size))
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
@@ -324,7 +299,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
-    verdict = manner_verdict(verdict, cmd, ex.frames, size)
+    verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, size)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed
@@ -353,16 +328,6 @@ def disturbance_verdict(verdict: dict[str, Any], displacements_m: dict[str, floa
                     for k, v in sorted(moved.items(), key=lambda kv: -kv[1]))
     return verdict | {"success": False, "disturbed_m": moved,
                       "reason": f"{verdict.get('reason', '')}; but the arm moved {who}".lstrip("; ")}
-
-
-def manner_verdict(verdict: dict[str, Any], cmd: Command, frames: list[dict], size: float) -> dict[str, Any]:
-    """The verdict with the manner's physical signature (judge/manners.py) checked on the executed frames. A
-    slide's verdict gains nothing when its block stayed on the table (its files are as before issue 23)."""
-    spec = manners.get(cmd.manner)
-    sig = signature_verdict(spec.signature, frames, cmd.mover, size)
-    if spec.name == "slide" and sig.success:
-        return verdict
-    return with_signature(verdict, spec.name, sig)
 
 
 @dataclass

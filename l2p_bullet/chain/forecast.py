@@ -15,10 +15,11 @@ from typing import Any
 from .. import planning
 from ..core.contracts import Plan
 from ..core.scene import Scene
+from ..embodiment.manners import manner_planning
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_context, judge_for
 from ..manners import registry as manners
-from ..pipeline import check_feasible, manner_planning
+from ..pipeline import check_feasible
 from ..plugins import registry
 from .clauses import Clause, _named
 
@@ -64,7 +65,7 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
             plan = planning.plan(predicted, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed,
                                  budget=budget, threshold=threshold,
                                  target=None if c.target is None else c.target(predicted),
-                                 **manner_planning(cmd, predicted))
+                                 **manner_planning(manners.get(cmd.manner), predicted.get(cmd.mover).size))
             check_for(manners.get(cmd.manner), predicted, cmd.mover, plan.path)
         except InfeasibleError as e:
             e.details["clause"] = c.index

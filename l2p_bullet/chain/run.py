@@ -29,9 +29,12 @@ from ..core.contracts import Plan, trajectory_poses
 from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
+from ..embodiment.manners import manner_planning
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
-from ..pipeline import check_feasible, check_options, disturbance_verdict, manner_planning, manner_verdict
+from ..judge.manners import manner_verdict
+from ..manners import registry as manners
+from ..pipeline import check_feasible, check_options, disturbance_verdict
 from ..plugins import registry
 from .clauses import Clause, resolve_clauses
 from .files import merge_timings
@@ -235,7 +238,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             target = step.clause.target
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
                                  budget=budget, threshold=threshold, target=None if target is None else target(now),
-                                 **manner_planning(cmd, now))
+                                 **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
         p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path)
@@ -266,7 +269,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
-    verdict = manner_verdict(verdict, cmd, frames, size)
+    verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, size)
     return ClauseResult(step.clause, plan, verdict, first, last, final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),
                         displacements_m=displaced, grasp=grasp)

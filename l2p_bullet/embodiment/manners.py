@@ -115,6 +115,20 @@ def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np
     return push_outline(size, arm) if manner.motion == "push" else None
 
 
+def manner_planning(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> dict:
+    """What ``planning.plan`` is told about the manner (docs/manners.md): a carried block passes above the
+    other objects (``airborne``: only where it is set down is tested); a pushed one has the pusher beside
+    it (``outline``: block and pusher, tested against every other object). Nothing for a slide, so its plans
+    are as before."""
+    out: dict = {}
+    if manner.airborne:
+        out["airborne"] = True
+    shape = planner_outline(manner, size, arm)
+    if shape is not None:
+        out["outline"] = shape
+    return out
+
+
 def check_carry_path(scene: Scene, mover: str, p: np.ndarray) -> None:
     """A carried path may pass over other objects; where it sets the block down (its end) must be clear."""
     hit = reach.blocked_by(scene, mover, p[-1:], None, hand=False)

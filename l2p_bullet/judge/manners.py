@@ -47,6 +47,16 @@ def signature_verdict(signature: str, frames: list[dict], mover: str, size: floa
     raise ValueError(f"unknown manner signature {signature!r}")
 
 
+def manner_verdict(verdict: dict, manner, frames: list[dict], mover: str, size: float) -> dict:
+    """The action's verdict with ``manner``'s (a MannerSpec) physical signature checked on the executed
+    ``frames``. A slide's verdict gains nothing when its block stayed on the table (its files are as they
+    were before manners)."""
+    sig = signature_verdict(manner.signature, frames, mover, size)
+    if manner.name == "slide" and sig.success:
+        return verdict
+    return with_signature(verdict, manner.name, sig)
+
+
 def with_signature(verdict: dict, manner: str, signature: Verdict) -> dict:
     """The action's verdict with the manner's: failed when the signature fails (``manner`` says which)."""
     out = verdict | {"manner": {"name": manner, **signature.to_dict()}}

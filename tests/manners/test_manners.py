@@ -125,18 +125,15 @@ def test_a_chain_keeps_each_clauses_manner():
         ("carry", "past", "A"), ("carry", "around", "A"), ("push", "next-to", "C")]
 
 
-def test_infeasible_carry_is_refused_by_prepare():
-    scene = default_scene()
-    import l2p_bullet.pipeline as pipeline
+def test_infeasible_carry_is_refused_before_anything_moves():
+    from l2p_bullet.embodiment.manners import check_manner
 
     narrow = replace(PANDA, gripper_opening=0.03)
-    real = pipeline.carry_refusal
-    pipeline.carry_refusal = lambda s, m: real(s, m, narrow)
-    try:
-        with pytest.raises(InfeasibleError, match="cannot carry \"A\": it is 5.0 cm wide"):
-            prepare("carry A past B", scene)
-    finally:
-        pipeline.carry_refusal = real
+    check_manner(registry.get("carry"), default_scene(), "A")
+    check_manner(registry.get("slide"), default_scene(), "A", narrow)  # a slide does not close the fingers on it
+    with pytest.raises(InfeasibleError, match="cannot carry \"A\": it is 5.0 cm wide") as e:
+        check_manner(registry.get("carry"), default_scene(), "A", narrow)
+    assert e.value.check == "carry"
 
 
 def test_a_push_is_refused_where_the_hand_would_sweep_over_a_tall_block():
