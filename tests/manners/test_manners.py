@@ -149,3 +149,19 @@ def test_a_push_is_refused_where_the_hand_would_sweep_over_a_tall_block():
     assert push_refusal(far, "A", past) is None
     low = Scene([o if o.name != "C" else SceneObject("C", "blue", 0.04, (0.0, 0.09), 0.0) for o in scene.objects])
     assert push_refusal(low, "A", past) is None
+
+
+def test_the_planner_lets_a_carried_block_pass_over_bystanders_but_not_over_the_anchor():
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.10, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.04, (0.0, 0.12), 0.0)])
+    start = np.array([0.10, 0.0, 0.0])
+    through_b = np.array([[-0.10, 0.0, 0.0]])
+    start_c = np.array([0.10, 0.12, 0.0])
+    slide = World2D(scene, "A")
+    assert not slide.moves_free(start, through_b)[0] and not slide.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]
+    carry = World2D(scene, "A", over=frozenset({"C"}))  # C a bystander, B the anchor
+    assert not carry.moves_free(start, through_b)[0]
+    assert carry.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]  # over C
+    assert not carry.moves_free(start_c, np.array([[0.0, 0.12, 0.0]]))[0]  # but not set down on it
