@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.geometry import separation
 from ..core.scene import Scene
 from ..errors import InfeasibleError, PathError
 from ..manners import registry as manner_registry
@@ -69,7 +70,11 @@ def carry_lift(scene: Scene, mover: str, path: np.ndarray) -> float:
 
 
 PUSH_TIP_Z = 0.006
-"""m: the fingertips' height above the table while pushing (embodiment/push.py reads it)."""
+"""m: the fingertips' height above the table while pushing (embodiment/push.py reads it, and the next four)."""
+PUSH_LOOKAHEAD = 0.6  # block sides ahead along the path: where a push aims
+PUSH_GAP = 0.012  # m between the pusher and the block when the hand comes down beside it
+PUSH_SHIFT = 0.012  # m the pusher may slide along the block's face to keep clear of another object
+PUSH_CLEARANCE = 0.003  # m kept between the pusher and every other object
 
 
 def push_outline(size: float, arm: ArmSpec = PANDA, n: int = 16) -> np.ndarray:
@@ -98,6 +103,10 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
     m = scene.get(mover)
     p = np.asarray(path, float).reshape(-1, 3)
     dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
+    blocked = _no_room_to_start(scene, m, dense, arm)
+    if blocked is not None:
+        return (f'no room for the pushing hand behind "{mover}": it would come down on "{blocked}"; '
+                f'carry or slide "{mover}" instead')
     reach_m = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max()) + 0.03 + hand
     for o in scene.objects:
         if o.name == mover or o.size <= clear:
@@ -107,6 +116,34 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
             return (f'no push can pass "{o.name}" ({o.size * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
                     f"above the table and {2 * hand * 100:.0f} cm wide; carry or slide \"{mover}\" instead")
     return None
+
+
+def _no_room_to_start(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | None:
+    """The object the pusher would come down on behind the block at the path's start (its middle, or slid
+    along the face by up to PUSH_SHIFT), or None when one of those places is clear."""
+    ahead = np.cumsum(np.r_[0.0, np.hypot(*np.diff(dense[:, :2], axis=0).T)])
+    k = int(np.searchsorted(ahead, PUSH_LOOKAHEAD * m.size))
+    d = dense[min(k, len(dense) - 1), :2] - dense[0, :2]
+    if float(np.hypot(*d)) < 1e-9:
+        return None
+    phi = float(np.arctan2(d[1], d[0]))
+    half = reach.hand_extent(m.size / 2, arm) or (0.0145, 0.03)
+    wide = reach.hand_extent(m.size - PUSH_TIP_Z + 0.005, arm) or half
+    a = phi - m.yaw
+    support = m.size / 2 * (abs(np.cos(a)) + abs(np.sin(a)))
+    u, across = np.array([np.cos(phi), np.sin(phi)]), np.array([-np.sin(phi), np.cos(phi)])
+    centre = dense[0, :2] - u * (support + half[0] + PUSH_GAP)
+    hx, hy = half[0] + PUSH_CLEARANCE, wide[1] + PUSH_CLEARANCE
+    first = None
+    for shift in [0.0] + [s * PUSH_SHIFT * k / 6 for k in range(1, 7) for s in (1.0, -1.0)]:
+        c = centre + across * shift
+        rect = np.array([c + u * dx + across * dy for dx, dy in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))])
+        hit = next((o.name for o in scene.objects if o.name != m.name
+                    and float(separation(rect[None], o.footprint())[0]) < 0.0), None)
+        if hit is None:
+            return None
+        first = first or hit
+    return first
 
 
 def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
@@ -143,7 +180,7 @@ def check_manner(manner: MannerSpec, scene: Scene, mover: str, arm: ArmSpec = PA
     if manner.motion == "push" and path is not None:
         why = push_refusal(scene, mover, path, arm)
         if why:
-            raise PathError(why)
+            raise InfeasibleError("push", why)
     if manner.motion == "carry":
         why = carry_refusal(scene, mover, arm)
         if why:

@@ -29,24 +29,24 @@ import numpy as np
 from ..core.geometry import separation
 from ..errors import ReachError
 from . import reach
-from .manners import PUSH_TIP_Z
+from .manners import PUSH_CLEARANCE, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
 
 SPEED = 0.05  # m/s: the hand's largest speed while pushing
 TURN_RATE = 1.5  # rad/s: the pusher's largest turn while pushing
-LOOKAHEAD = 0.6  # block sides ahead along the path
+LOOKAHEAD = PUSH_LOOKAHEAD  # block sides ahead along the path
 PRESS = 0.008  # m inside the block's face: the push's bite (the arm's position control makes it a force)
 TIP_Z = PUSH_TIP_Z  # m: the fingertips' height above the table while pushing (low: the push does not tip the block)
 STALL_S = 1.5  # s without 1 mm of progress along the path: the push is stuck (a corner caught): go round
 FACE_TURN = math.radians(55.0)  # a turn beyond this from the pushing side changes face (go round)
-GAP = 0.012  # m between the pusher and the block when the hand comes down on a new side
+GAP = PUSH_GAP  # m between the pusher and the block when the hand comes down on a new side
 CLEAR = 0.012  # m above the block's top when the hand goes round
 STOP = 0.0005  # m from the path's end: done
 ESCAPE = 2.0  # block sides between the hand and the block: it got away
 MAX_REPOSITIONS = 30
-SHIFT = 0.012  # m: how far the pusher may slide along the block's face to keep clear of another object
-CLEARANCE = 0.003  # m kept between the pusher and every other object
+SHIFT = PUSH_SHIFT  # m: how far the pusher may slide along the block's face to keep clear of another object
+CLEARANCE = PUSH_CLEARANCE  # m kept between the pusher and every other object
 WRIST_MARGIN = 0.25  # rad kept from the wrist's limits
 TIME_PER_M = 40.0  # s of pushing allowed per metre of path (plus SLACK_S): then the push stops where it is
 SLACK_S = 20.0

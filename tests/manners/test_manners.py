@@ -165,3 +165,13 @@ def test_the_planner_lets_a_carried_block_pass_over_bystanders_but_not_over_the_
     assert not carry.moves_free(start, through_b)[0]
     assert carry.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]  # over C
     assert not carry.moves_free(start_c, np.array([[0.0, 0.12, 0.0]]))[0]  # but not set down on it
+
+
+def test_a_push_with_no_room_for_the_hand_behind_the_block_is_refused():
+    from l2p_bullet.embodiment.manners import check_manner
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.045, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0)])
+    away = np.array([[0.045, 0.0, 0.0], [0.15, 0.0, 0.0]])
+    with pytest.raises(InfeasibleError, match='no room for the pushing hand behind "A": it would come down on "B"'):
+        check_manner(registry.get("push"), scene, "A", path=away)
+    check_manner(registry.get("push"), scene, "A", path=np.array([[0.045, 0.0, 0.0], [0.045, 0.12, 0.0]]))
