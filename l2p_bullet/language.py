@@ -21,8 +21,12 @@ from dataclasses import dataclass
 from .core.scene import COLORS, Scene
 from .core.vocabulary import normalize_phrase
 from .errors import LanguageError, UnknownObjectError, did_you_mean
+from .manners import registry as manners
 
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
+"""The verbs known before manners (issue 23); every installed manner's verbs are known too (:func:`known_verbs`)."""
+OBJECT_PRONOUNS = frozenset({"it", "them"})
+"""What may follow a manner's gap phrase: "lift A and put *it* next to B"."""
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = (
     ("please",), ("kindly",), ("could", "you"), ("can", "you"), ("would", "you"), ("will", "you"),
     ("i", "want", "you", "to"), ("i'd", "like", "you", "to"), ("now",), ("then",), ("and",),
@@ -52,6 +56,7 @@ class Command:
     anchor: str
     sentence: str = ""
     anchors: tuple[str, ...] = ()
+    manner: str = "slide"  # the manner of motion the verb asks for (l2p_bullet/manners)
 
     def __post_init__(self) -> None:
         if not self.anchors:
@@ -111,13 +116,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     words = _strip_polite(_tokens(sentence))
     if not words:
         raise LanguageError(f'"{sentence.strip()}" asks for nothing; {EXAMPLE}')
-    verb = words[0].lower()
-    if verb not in VERBS:
-        raise LanguageError(
-            f'"{words[0]}" is not a verb I know (known: {", ".join(VERBS)}).' + did_you_mean(verb, VERBS)
-            + f" {EXAMPLE[0].upper()}{EXAMPLE[1:]}"
-        )
-    rest = words[1:]
+    verb, manner, rest = split_verb(words)
     if not rest:
         raise LanguageError(f'"{sentence.strip()}" does not say what to {verb}; {EXAMPLE}')
     low = [w.lower() for w in rest]
@@ -140,11 +139,62 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
                     f'the block to move and the reference block are both "{mover}": '
                     f"a block cannot be moved {phrase} itself")
                 continue
-            return Command(verb, mover, phrase, action, refs[0], sentence.strip(), refs)
+            return Command(verb, mover, phrase, action, refs[0], sentence.strip(), refs, manner)
     middle = _unplaced_words(rest, scene)
     if first_error is not None and (middle is None or _contains_phrase(middle, phrases)):
         raise first_error
     raise _unknown_preposition(rest, middle, phrases, verb)
+
+
+def known_verbs() -> list[str]:
+    """Every verb a sentence may start with (its first word): the old ones first, then the manners'."""
+    out = list(VERBS)
+    for v in manners.verb_table():
+        head = v.split("...")[0].strip()
+        if head not in out:
+            out.append(head)
+    return out
+
+
+def _verb_patterns() -> list[tuple[tuple[str, ...], tuple[str, ...], str, str]]:
+    """(head tokens, gap tokens, verb as declared, manner) for every installed manner's verb, longest first;
+    the old verbs no manner claims are the default manner's."""
+    table = dict(manners.verb_table())
+    for v in VERBS:
+        table.setdefault(v, manners.DEFAULT)
+    out = []
+    for v, m in table.items():
+        head, _, gap = v.partition("...")
+        out.append((tuple(head.lower().split()), tuple(gap.lower().split()), v, m))
+    return sorted(out, key=lambda t: -len(t[0]) - len(t[1]))  # stable: a manner's own order among equals
+
+
+def split_verb(words: list[str]) -> tuple[str, str, list[str]]:
+    """(verb, manner, the words after the verb) of a sentence's ``words``: the manner whose verb starts them
+    (a gap verb's phrase, "lift A *and put it* next to B", is taken out of the rest); a one-line error with
+    did-you-mean when no manner's verb does."""
+    low = [w.lower() for w in words]
+    near_miss = None
+    for head, gap, declared, manner in _verb_patterns():
+        if tuple(low[: len(head)]) != head:
+            continue
+        rest = list(words[len(head):])
+        if not gap:
+            return " ".join(head), manner, rest
+        lrest = [w.lower() for w in rest]
+        at = next((i for i in range(1, len(rest) - len(gap) + 1) if tuple(lrest[i: i + len(gap)]) == gap), None)
+        if at is None:
+            near_miss = near_miss or declared
+            continue
+        end = at + len(gap) + (1 if at + len(gap) < len(rest) and lrest[at + len(gap)] in OBJECT_PRONOUNS else 0)
+        return " ".join(head), manner, rest[:at] + rest[end:]
+    if near_miss is not None:
+        head, _, gap = near_miss.partition("...")
+        raise LanguageError(f'"{head.strip()}" asks for "{near_miss}": say what to do with the block, as in '
+                            f'"{head.strip()} A{gap} it next to B"')
+    known = known_verbs()
+    raise LanguageError(f'"{words[0]}" is not a verb I know (known: {", ".join(known)}).'
+                        + did_you_mean(low[0], known) + f" {EXAMPLE[0].upper()}{EXAMPLE[1:]}")
 
 
 CONJUNCTIONS = frozenset({"and", "&"})

@@ -39,10 +39,13 @@ from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
 from .embodiment import arm_plugins
+from .embodiment.manners import check_manner, manner_planning
 from .embodiment.sim.arms import PANDA, ArmSpec
 from .errors import L2PError, LanguageError, PlanError, PluginError
 from .judge import judge_context, judge_for
+from .judge.manners import manner_verdict
 from .language import Command, parse
+from .manners import registry as manners
 from .planning import feasibility, resolve_planner
 from .planning.plot import plot_plan
 from .plugins import registry
@@ -91,6 +94,7 @@ class PerformResult:
             "displacements_m": {k: _round(v) for k, v in self.displacements_m.items()},
             "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
             "grasp": self.grasp,
+            **({} if c.manner == "slide" else {"manner": c.manner}),  # issue 23: a slide's output is as before
         }
 
 
@@ -131,11 +135,13 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
 
 def check_feasible(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA) -> None:
     """Refuse (InfeasibleError, with ``.check``) a scene the arm cannot do for ``cmd``: the arm's checks, and
-    the room checks of the rule judge the action's manifest names (``[judge] rules``), if any."""
+    the room checks of the rule judge the action's manifest names (``[judge] rules``), if any, and the manner's
+    (a carry refuses an object too wide or too heavy for the gripper)."""
     info = next((p for p in plugins if p.name == cmd.action), None)
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None, arm)
+    check_manner(manners.get(cmd.manner), scene, cmd.mover, arm)
 
 
 @dataclass
@@ -191,7 +197,8 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     """
     cmd = p.command
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
-                           budget=budget, threshold=threshold, time_limit=time_limit, arm=p.arm)
+                           budget=budget, threshold=threshold, time_limit=time_limit, arm=p.arm,
+                           **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm))
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
@@ -279,6 +286,8 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
     if cmd.more_anchors:
         meta["anchors"] = list(cmd.anchors)
+    if cmd.manner != manners.DEFAULT:  # a slide's files stay as they were before manners (issue 23)
+        meta["manner"] = cmd.manner
     if viewer is not None:
         meta["viewer"] = [float(v) for v in viewer]
     clock.stage("execute", "executing with the arm" + ("" if render else " (no rendering)"))
@@ -287,7 +296,8 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, **kwargs)
+                              meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, manner=cmd.manner,
+                              **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -296,6 +306,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
+    verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, size)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed

@@ -143,7 +143,8 @@ def test_the_torch_free_paths_run_without_torch(tmp_path):
 # --- floors: which room may import which ------------------------------------------------------------
 FLOORS: tuple[tuple[str, ...], ...] = (
     ("l2p_bullet", "errors"),  # the package (its version) and the error classes every room raises
-    ("actions",),  # what each built-in action is (ActionSpec, next to its bundle): pure declarations
+    ("actions", "manners"),  # what each built-in action is (ActionSpec, next to its bundle) and each manner of
+    # motion (MannerSpec, its verbs, through the entry points l2p_bullet.manners): pure declarations
     ("core",),  # scene, geometry, vocabulary, file contracts (incl. a bundle's file names), run folders
     ("data",),  # the shipped demonstrations, people's grades, and their readers
     ("progress", "judge", "language"),  # features + numpy model; verdicts and rule judges; sentence parsing

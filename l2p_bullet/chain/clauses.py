@@ -15,7 +15,8 @@ from typing import Any
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from ..language import MAX_SENTENCE, VERBS, Command, _phrase_tokens, _strip_polite, _tokens
+from ..language import MAX_SENTENCE, Command, _phrase_tokens, _strip_polite, _tokens, known_verbs
+from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
 
@@ -84,14 +85,21 @@ def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) 
     """The clause as a full sentence: the previous verb prepended when it has none, and the previous mover
     too when it starts with a preposition ("then next to C" after "move A around B": "move A next to C")."""
     words = _strip_polite(_tokens(text))
-    if previous is None or not words or words[0].lower() in VERBS:
+    if previous is None or not words or words[0].lower() in known_verbs():
         return text
+    # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
+    verb = previous.manner if _gapped(previous.verb) else previous.verb
 
     low = tuple(w.lower() for w in words)
     for toks, _phrase, _action in _phrase_tokens(registry.phrase_table(plugins)):
         if low[: len(toks)] == toks:
-            return f"{previous.verb} {previous.mover} {' '.join(words)}"
-    return f"{previous.verb} {' '.join(words)}"
+            return f"{verb} {previous.mover} {' '.join(words)}"
+    return f"{verb} {' '.join(words)}"
+
+
+def _gapped(verb: str) -> bool:
+    """Whether ``verb`` is the head of a manner's gap verb ("lift" of "lift ... and put")."""
+    return any(v.split("...")[0].strip() == verb and "..." in v for v in manners.verb_table())
 
 
 def _named(e: L2PError, where: str) -> L2PError:

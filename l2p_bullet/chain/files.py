@@ -30,7 +30,8 @@ def segments(result: Any) -> list[dict[str, Any]]:
         c = r.clause.command
         out.append({"clause": r.clause.index, "text": r.clause.text, "sentence": c.sentence, "action": c.action,
                     "mover": c.mover, "anchor": c.anchor, "anchors": list(c.anchors),
-                    "first_frame": r.first_frame, "last_frame": r.last_frame})
+                    "first_frame": r.first_frame, "last_frame": r.last_frame,
+                    **({} if c.manner == "slide" else {"manner": c.manner})})  # issue 23: not a slide
     return out
 
 

@@ -15,8 +15,10 @@ from typing import Any
 from .. import planning
 from ..core.contracts import Plan
 from ..core.scene import Scene
+from ..embodiment.manners import manner_planning
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_context, judge_for
+from ..manners import registry as manners
 from ..pipeline import check_feasible
 from ..plugins import registry
 from .clauses import Clause, _named
@@ -45,7 +47,7 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
     PlanError / PathError) with the clause named in its message, before anything moves or is written.
     """
     # lazy: the arm's modules load only when a chain is forecast (plan and parsing stay light)
-    from ..embodiment.execute import check_path
+    from ..embodiment.execute import check_for
 
     loaded: dict[str, tuple[Any, Any, Any]] = {}
     for c in clauses:
@@ -62,8 +64,9 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
             check_feasible(cmd, predicted, plugins)
             plan = planning.plan(predicted, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed,
                                  budget=budget, threshold=threshold,
-                                 target=None if c.target is None else c.target(predicted))
-            check_path(predicted, cmd.mover, plan.path)
+                                 target=None if c.target is None else c.target(predicted),
+                                 **manner_planning(manners.get(cmd.manner), predicted.get(cmd.mover).size))
+            check_for(manners.get(cmd.manner), predicted, cmd.mover, plan.path)
         except InfeasibleError as e:
             e.details["clause"] = c.index
             raise _named(e, f"{c.label()} cannot be planned ({e.check})") from None

@@ -29,8 +29,11 @@ from ..core.contracts import Plan, trajectory_poses
 from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
+from ..embodiment.manners import manner_planning
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
+from ..judge.manners import manner_verdict
+from ..manners import registry as manners
 from ..pipeline import check_feasible, check_options, disturbance_verdict
 from ..plugins import registry
 from .clauses import Clause, resolve_clauses
@@ -70,6 +73,7 @@ class ClauseResult:
             "max_deviation_m": _round(self.max_deviation_m), "final_error_m": _round(self.final_error_m),
             "displacements_m": {k: _round(v) for k, v in self.displacements_m.items()},
             "grasp": self.grasp, **({"failed_stage": self.failed_stage} if self.failed_stage else {}),
+            **({} if c.manner == "slide" else {"manner": c.manner}),
         }
 
 
@@ -186,6 +190,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = ex._primitives(world, settings, out)
+        prims.recorder.gripper = any(s.clause.command.manner != "slide" for s in steps)  # issue 23
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves
         results: list[ClauseResult] = []
@@ -232,18 +237,19 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             check_feasible(cmd, now, plugins)
             target = step.clause.target
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
-                                 budget=budget, threshold=threshold, target=None if target is None else target(now))
+                                 budget=budget, threshold=threshold, target=None if target is None else target(now),
+                                 **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
-        p, angles = ex._check(now, cmd.mover, plan.path)
+        p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path)
         stage = "reach"
-        tool_yaw, grasp = ex._choose_grasp_yaw(prims, cmd.mover, p, angles, rest)
-        stage = "execute"
-        prims.engage(cmd.mover, tool_yaw=tool_yaw)
-        s0 = len(rec.frames)
-        prims.move(p)
-        slide = slice(s0 - first, len(rec.frames) - first)
-        prims.disengage(rest)
+
+        def on(name: str) -> None:
+            nonlocal stage
+            stage = "reach" if name == "reach" else "execute"
+
+        s0, s1, grasp = ex.act(prims, now, cmd.mover, p, angles, rest, ex.manner_of(cmd.manner), stage=on)
+        slide = slice(s0 - first, s1 - first)
     except L2PError as e:
         _let_go(prims, rest)
         check = f" ({e.check})" if isinstance(e, InfeasibleError) else ""
@@ -263,6 +269,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
+    verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, size)
     return ClauseResult(step.clause, plan, verdict, first, last, final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),
                         displacements_m=displaced, grasp=grasp)

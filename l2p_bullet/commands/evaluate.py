@@ -37,11 +37,13 @@ import click
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary (and the report's numbers) as JSON.")
 @click.option("--arm", default=None, metavar="NAME", help="The arm that performs every run (default panda; l2p-bullet arms).")
+@click.option("--manners", default=None,
+              help="Comma-separated manners of motion, every run in each (default: slide): slide,carry,push.")
 @click.option("--chains", type=int, default=None,
               help="K: one chain of K clauses per scene, scenes of 3-5 blocks (CALVIN-style; docs/evaluate.md).")
 def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, plan_only, render_every, no_render,
                  keep, workers, ray_address, out, resume, retry_errors, report, parquet, quiet, as_json,
-                 arm, chains) -> None:
+                 arm, chains, manners) -> None:
     """Perform (or plan) every scene x action and record one row per run in OUT/results.sqlite.
 
     \b
@@ -52,6 +54,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
       l2p-bullet evaluate --out runs/big --resume          (after Ctrl-C)
       l2p-bullet evaluate --out runs/eval --report         (report what is recorded)
       l2p-bullet evaluate --chains 5 --scenes 50 --out runs/chains --report
+      l2p-bullet evaluate --scenes 20 --manners slide,carry,push --report
     Every run is judged by every installed action's judge and scored by every progress model: the
     report's confusion matrices (rows = asked, columns = recognised).
     """
@@ -62,7 +65,8 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
     given = {"actions": [a.strip() for a in actions.split(",") if a.strip()] if actions else None,
              "scenes": scenes, "scene_file": scene_file, "study": study, "bystanders": bystanders, "seed": seed,
              "planner": planner, "mode": "plan" if plan_only else None,
-             "render_every": 0 if no_render else render_every, "keep": keep, "chains": chains, "arm": arm}
+             "render_every": 0 if no_render else render_every, "keep": keep, "chains": chains, "arm": arm,
+             "manners": [m.strip() for m in manners.split(",") if m.strip()] if manners else None}
     given = {k: v for k, v in given.items() if v is not None}
     folder = Path(out) if out else Path("runs") / f"evaluate-{time.strftime('%Y%m%d-%H%M%S')}"
     report_only = report and not resume and not given and (folder / "results.sqlite").exists()

@@ -19,7 +19,9 @@ from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, PathError, ReachError
+from ..manners.spec import MannerSpec
 from . import motion, reach
+from .manners import carry_lift, check_carry_path, check_manner, manner_of
 from .record import Recorder, versions
 from .render import Film
 from .sim.arms import PANDA, ArmSpec
@@ -127,7 +129,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                  render: RenderSettings | None = DEFAULT_RENDER, seed: int = 0,
                  progress_fn: Callable[..., np.ndarray] | None = None,
                  meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
-                 world: World | None = None, summary: bool = True, arm: ArmSpec | None = None) -> Execution:
+                 world: World | None = None, summary: bool = True, arm: ArmSpec | None = None,
+                 manner: MannerSpec | str | None = None) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
 
     ``out_dir`` None records nothing to disk (frames are still returned); ``render`` None renders
@@ -136,17 +139,23 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     one (a batch keeps one per process); it is reset to ``scene`` first (the run records exactly what
     it would in a new world) and left open. A world made here is closed here. ``summary`` False leaves
     summary.json to the caller, who starts from :func:`execution_summary` (``perform`` adds its own fields
-    and writes the file once). ``arm``: the arm to use (default: the world's, else the Panda).
+    and writes the file once). ``arm``: the arm to use (default: the world's, else the Panda). ``manner``
+    (l2p_bullet/manners; None: slide) says how the block follows the
+    path: slid, carried in the air or pushed (embodiment/manners.py); a run of any manner but slide records
+    it (``manner`` in trajectory.json and summary.json, the gripper per frame), a slide's files are unchanged.
     """
 
     meta = dict(meta or {})
     meta.setdefault("mover", mover)
+    how = manner_of(manner)
+    if how.name != "slide":
+        meta["manner"] = how.name
     clock = StageClock(on_stage)
     clock.stage("check", "check")
     arm = arm or (world.robot.spec if world is not None else PANDA)
     if world is not None and world.robot.spec != arm:
         raise ExecutionError(f'the world given holds the arm "{world.robot.spec.name}", not "{arm.name}"')
-    p, angles = _check(scene, mover, path, arm)
+    p, angles = check_for(how, scene, mover, path, arm)
     clock.stage("setup", "setup")
     own = world is None
     if own:  # the world only simulates: rendering happens in the film's own worlds (embodiment/render.py)
@@ -157,7 +166,9 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = _primitives(world, render, out_dir)
         film = prims.recorder.film
-        slide, removed, grasp = _perform(prims, mover, p, angles, clock)
+        if how.name != "slide":
+            prims.recorder.gripper = True
+        slide, removed, grasp = _perform(prims, mover, p, angles, clock, how, scene)
         clock.stage("record", "record")
         recorder = prims.recorder
         recorder.finish_images()
@@ -196,25 +207,74 @@ def _primitives(world: World, render: RenderSettings | None, out_dir: Path | Non
         raise
 
 
+def check_for(manner: MannerSpec, scene: Scene, mover: str, path: np.ndarray,
+              arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
+    """:func:`_check` as the manner needs it: a carried block may pass over other objects (only where it is
+    set down must be clear, and the hand is above everything), an object the manner cannot handle is refused."""
+    check_manner(manner, scene, mover, arm, path=np.asarray(path, float) if manner.motion == "push" else None)
+    if manner.motion != "carry":
+        return _check(scene, mover, path, arm)
+    check_waypoints(scene, mover, path)
+    p = motion.clean_path(path)
+    obj = scene.get(mover)
+    start_gap = float(np.hypot(*(p[0, :2] - np.array(obj.xy))))
+    if start_gap > START_TOLERANCE:
+        raise PathError(f'the path starts at ({p[0, 0]:.3f}, {p[0, 1]:.3f}) but block "{mover}" is at '
+                        f"({obj.xy[0]:.3f}, {obj.xy[1]:.3f}), {start_gap * 1000:.0f} mm away")
+    check_carry_path(scene, mover, p)
+    return p, [None]
+
+
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
-             clock: StageClock) -> tuple[slice, bool, dict]:
+             clock: StageClock, manner: MannerSpec | None = None,
+             scene: Scene | None = None) -> tuple[slice, bool, dict]:
     """The arm's part, stage by stage: reach (choose the grasp yaw, every IK solved before anything
     moves), engage, move, disengage. Returns the frames recorded while sliding, whether the grasp's
     constraint is gone, and the grasp chosen (for the summary)."""
-    recorder = prims.recorder
-    clock.stage("reach", "reach")
     rest = prims.pose.copy()
-    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest)
-    recorder()  # the first frame: the world before the arm moves
-    clock.stage("engage", "engage")
+    start, end, grasp = act(prims, scene or prims.world.scene, mover, path, angles, rest, manner,
+                            stage=lambda name: clock.stage(name, name), first_frame=True)
+    return slice(start, end), prims.world.sim.constraint_count() == 0, grasp
+
+
+def act(prims, scene: Scene, mover: str, path: np.ndarray, angles: list[float | None], rest: np.ndarray,
+        manner: MannerSpec | None = None, *, stage: Callable[[str], None] = lambda name: None,
+        first_frame: bool = False) -> tuple[int, int, dict]:
+    """Move ``mover`` along the checked ``path`` (from :func:`check_for`) in the manner asked, back to ``rest``:
+    a slide (grasp, slide, release), a carry (grasp, lift, carry, lower, release) or a push (embodiment/push.py).
+    ``stage`` is told each stage as it starts; ``first_frame`` records the world before the arm moves (a
+    chain records it once, before its first clause). Returns the first and end frame of the move and the
+    grasp's summary (a push's: how the push went)."""
+    recorder = prims.recorder
+    how = manner_of(manner)
+    if how.motion == "push":
+        from .push import push  # the push controller: only for a push
+
+        stage("reach")
+        if first_frame:
+            recorder()
+        stage("move")
+        start = len(recorder.frames)
+        info = push(prims, mover, path, rest)
+        return start, info.pop("end_frame"), info
+    lift = carry_lift(scene, mover, path) if how.motion == "carry" else 0.0
+    stage("reach")
+    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest, lift)
+    if first_frame:
+        recorder()  # the first frame: the world before the arm moves
+    stage("engage")
     prims.engage(mover, tool_yaw=tool_yaw)
-    clock.stage("move", "move")
+    stage("move")
     start = len(recorder.frames)
-    prims.move(path)
-    slide = slice(start, len(recorder.frames))
-    clock.stage("disengage", "disengage")
+    if lift > 0:
+        prims.carry(path, lift)
+        grasp = grasp | {"lift_m": round(lift, 6)}
+    else:
+        prims.move(path)
+    end = len(recorder.frames)
+    stage("disengage")
     prims.disengage(rest)
-    return slide, prims.world.sim.constraint_count() == 0, grasp
+    return start, end, grasp
 
 
 def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float],
@@ -229,7 +289,7 @@ def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tupl
 
 
 def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
-                      rest: np.ndarray) -> tuple[float, dict]:
+                      rest: np.ndarray, lift: float = 0.0) -> tuple[float, dict]:
     """The tool's yaw at the grasp (unwrapped: it decides the wrist's branch) whose whole episode the arm
     reaches: candidates from the wrist model, best centred first (``grasp_candidates``); for each, the
     approach, descent, slide, retract and return IK are solved as the arm will run them, before anything
@@ -243,7 +303,7 @@ def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | 
     for off in candidates[:3]:
         tool_yaw = float(path[0, 2] + off)
         try:
-            prims.check_engage_and_slide(mover, path, tool_yaw, rest)
+            prims.check_engage_and_slide(mover, path, tool_yaw, rest, lift)
             return tool_yaw, {"yaw_offset_deg": round(float(np.degrees(off)), 3),
                               "angle_deg": round(float(np.degrees(off % np.pi)), 3),
                               "angles_allowed_deg": [None if a is None else round(float(np.degrees(a)), 3)
@@ -274,7 +334,8 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     files = {"trajectory": out_dir / "trajectory.json"}
     recorder.write_trajectory(files["trajectory"], meta, sizes)
     if recorder.film is not None:
-        files |= recorder.write_images(out_dir, render.video, meta.get("sentence"))
+        caption = meta.get("sentence") if meta.get("manner") is None else f'{meta["manner"]}: {meta.get("sentence")}'
+        files |= recorder.write_images(out_dir, render.video, caption)
     return files
 
 

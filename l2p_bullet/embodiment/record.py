@@ -40,6 +40,10 @@ class Recorder:
         self.image_times: list[float] = []  # sim time of each image (the video's caption strip needs it)
         self.render_s = 0.0
         self.grasped: str | None = None
+        # a manner other than slide records the gripper per frame (the fingers' opening, m) and, for a
+        # push, where the hand touches the block (``contact``: [x, y, z] or null; set by the push controller)
+        self.gripper = False
+        self.contact: list[float] | None = None
 
     def __call__(self) -> None:
         """Record after a physics step (also called once before the first step)."""
@@ -59,8 +63,12 @@ class Recorder:
     def snapshot(self) -> dict:
         poses = {name: [_r(v) for v in pose] for name, pose in self.world.poses().items()}
         ee, _ = self.world.robot.tool_pose()
-        return {"t": _r(self.world.time), "poses": poses, "ee": [_r(v) for v in ee],
-                "grasped": self.grasped, "progress": None, "arm": [_r(v) for v in self._arm_joints()]}
+        frame = {"t": _r(self.world.time), "poses": poses, "ee": [_r(v) for v in ee],
+                 "grasped": self.grasped, "progress": None, "arm": [_r(v) for v in self._arm_joints()]}
+        if self.gripper:
+            frame["gripper"] = {"opening_m": _r(self.world.robot.finger_opening()), "holding": self.grasped,
+                                "contact": None if self.contact is None else [_r(v) for v in self.contact]}
+        return frame
 
     def _arm_joints(self) -> np.ndarray:
         """The arm's movable joints now (trajectory.json's ``arm``: a replay in 3-D needs the whole arm)."""
@@ -98,6 +106,7 @@ class Recorder:
             # a two-anchor action's every reference object, a viewer-frame action's viewpoint (only then)
             **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
             **({"segments": meta["segments"]} if meta.get("segments") is not None else {}),  # a chain's clauses
+            **({"manner": meta["manner"]} if meta.get("manner") is not None else {}),  # not slide (issue 23)
             "fps": self.fps,
             "objects": {name: {"size": size, **_colour(self.world, name)} for name, size in sizes.items()},
             # the arm whose movable joints each frame's "arm" lists (in this order), where its base stands

@@ -62,12 +62,14 @@ COLUMNS: dict[str, str] = {
     "judged": "TEXT", "scored": "TEXT", "timings": "TEXT", "plan_s": "REAL", "execute_s": "REAL", "total_s": "REAL",
     "wall_s": "REAL", "worker": "TEXT", "run_dir": "TEXT", "error": "TEXT", "error_type": "TEXT",
     "finished_at": "REAL", "completed": "INTEGER", "redraws": "INTEGER", "clauses": "TEXT",
+    "manner": "TEXT",
 }
 """Column -> SQLite type. ``judged`` (every action's judge: {action: {success, score}}) and ``scored``
 (every action's learned progress: {action: value}) are JSON text: the automatic confusion matrix;
 ``timings`` (JSON) has perform's stages (parse, load, plan, execute, judge, total) in seconds.
 A chain's row (``evaluate --chains``) adds ``completed`` (clauses done in a row), ``redraws`` and
-``clauses`` (JSON: one entry per clause performed, evaluate/chains.py)."""
+``clauses`` (JSON: one entry per clause performed, evaluate/chains.py). ``manner`` (issue 23): slide, carry,
+push (``evaluate --manners``); null in a table written before it."""
 JSON_COLUMNS = ("judged", "scored", "timings", "clauses")
 
 

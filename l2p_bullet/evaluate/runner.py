@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 
 from ..errors import EvaluationError
+from ..manners import registry as manner_registry
 from ..planning import resolve_planner
 from ..plugins import registry
 from .pool import run_pool
@@ -46,6 +47,7 @@ class EvaluationConfig:
     threshold: float | None = None
     chains: int = 0  # K > 0: one chain of K clauses per scene of 3-5 blocks (evaluate/chains.py)
     arm: str = "panda"  # the arm that performs every run (l2p-bullet arms)
+    manners: list[str] = field(default_factory=lambda: ["slide"])  # every run in each manner (l2p_bullet/manners)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -153,7 +155,8 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
             notes = skipped(scenes, actions, plugins)
             tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
                                render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
-                               budget=config.budget, threshold=config.threshold, arm=config.arm)
+                               budget=config.budget, threshold=config.threshold, arm=config.arm,
+                               manners=manner_registry.check_names(list(config.manners or ["slide"])))
             if not tasks and notes:
                 raise EvaluationError("nothing to run: " + "; ".join(notes.values()))
         if progressbar:

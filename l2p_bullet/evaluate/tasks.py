@@ -12,6 +12,7 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
 from ..errors import EvaluationError
+from ..manners import registry as manner_registry
 from ..plugins import registry
 from .scenes import SceneSpec
 
@@ -45,18 +46,20 @@ class Task:
     chain_actions: tuple[str, ...] = ()
     arm: str = "panda"  # the arm that performs it (l2p-bullet arms)
     more_anchors: tuple[str, ...] = ()  # a two-anchor action's further reference blocks ("between B and C": C)
+    manner: str = "slide"  # the manner of motion (l2p_bullet/manners): the sentence's verb says it
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def sentence_for(action: str, mover: str, anchor: str | Sequence[str], plugins: list) -> str:
+def sentence_for(action: str, mover: str, anchor: str | Sequence[str], plugins: list, verb: str = "move") -> str:
     """``move MOVER <the action's first phrase> ANCHOR [and ANCHOR]``, e.g. "move A closer to B",
-    "move A between B and C" (one anchor per reference block the action declares)."""
+    "move A between B and C" (one anchor per reference block the action declares); ``verb`` picks the
+    manner ("carry A past B")."""
     info = registry.find(action, plugins)
     phrase = info.phrases[0] if info.phrases else action
     anchors = [anchor] if isinstance(anchor, str) else list(anchor)
-    return f"move {mover} {phrase} {' and '.join(anchors)}"
+    return f"{verb} {mover} {phrase} {' and '.join(anchors)}"
 
 
 def anchors_for(spec: SceneSpec, n: int) -> list[str] | None:
@@ -90,8 +93,10 @@ def skipped(scenes: list[SceneSpec], actions: list[str], plugins: list) -> dict[
 
 def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "default", mode: str = "perform",
                render_every: int = 0, keep: str = "none", out_dir: str | None = None, plugins: list | None = None,
-               budget: int | None = None, threshold: float | None = None, arm: str = "panda") -> list[Task]:
-    """Every scene x action, scene-major (all actions of scene 0 first), numbered in that order.
+               budget: int | None = None, threshold: float | None = None,
+               arm: str = "panda", manners: Sequence[str] = ("slide",)) -> list[Task]:
+    """Every scene x action x manner, scene-major (all actions of scene 0 first), numbered in that order. A
+    run of a manner other than slide has it in its run id and folder name (a slide's are as before).
 
     ``render_every`` K > 0 renders (and keeps) every K-th run of each action: runs 0, K, 2K, ...
     """
@@ -108,11 +113,16 @@ def make_tasks(scenes: list[SceneSpec], actions: list[str], *, planner: str = "d
             if anchors is None:  # too few blocks for this action (see skipped)
                 continue
             render = mode == "perform" and render_every > 0 and i % render_every == 0
-            run_id = f"{spec.id}|{action}|{planner}|{mode}"
-            run_dir = None if out_dir is None else f"{out_dir}/runs/{_safe(spec.id)}--{action}--{planner}--{mode}"
-            tasks.append(Task(run_id, len(tasks), spec.id, spec.source, spec.scene.to_dict(), spec.mover, spec.anchor,
-                              action, sentence_for(action, spec.mover, anchors, plugins), planner, spec.seed,
-                              mode, render, keep, run_dir, budget, threshold, more_anchors=tuple(anchors[1:]), arm=arm))
+            for manner in manners:
+                tag = "" if manner == "slide" else f"|{manner}"
+                run_id = f"{spec.id}|{action}|{planner}|{mode}{tag}"
+                run_dir = None if out_dir is None else \
+                    f"{out_dir}/runs/{_safe(spec.id)}--{action}--{planner}--{mode}{tag.replace('|', '--')}"
+                verb = manner_registry.sentence_verb(manner)
+                tasks.append(Task(run_id, len(tasks), spec.id, spec.source, spec.scene.to_dict(), spec.mover,
+                                  spec.anchor, action, sentence_for(action, spec.mover, anchors, plugins, verb),
+                                  planner, spec.seed, mode, render, keep, run_dir, budget, threshold,
+                                  more_anchors=tuple(anchors[1:]), arm=arm, manner=manner))
     return tasks
 
 

@@ -46,6 +46,7 @@ def empty_row(task: Task) -> dict[str, Any]:
     return {
         "run_id": task.run_id, "idx": task.index, "scene_id": task.scene_id, "scene_source": task.scene_source,
         "seed": task.seed, "sentence": task.sentence, "action": task.action, "planner": task.planner,
+        "manner": getattr(task, "manner", "slide"),
         "planner_used": None, "mode": task.mode, "success": None, "score": None, "reason": None, "judge": None,
         "final_progress": None, "planned_progress": None, "max_deviation_m": None, "anchor_displacement_m": None,
         "final_error_m": None, "final_gap_blocks": None, "stopped": None, "plan_steps": None,

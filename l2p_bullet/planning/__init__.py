@@ -76,7 +76,8 @@ def resolve_planner(name: str, settings: dict | None = None) -> str:
 
 def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, planner: str = "default", seed: int = 0,
          budget: int | None = None, threshold: float | None = None, time_limit: float | None = None,
-         target: np.ndarray | None = None, arm: ArmSpec = PANDA) -> Plan:
+         target: np.ndarray | None = None, arm: ArmSpec = PANDA, airborne: bool = False,
+         outline: np.ndarray | None = None) -> Plan:
     """Plan ``mover``'s path for the bundle's action relative to ``anchor`` in ``scene``.
 
     ``anchor`` is one object's name, or the names of every reference object of a two-anchor action
@@ -93,6 +94,11 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     A mover that starts closer than the margin to another object may move away from it (world2d.py).
     ``target`` ([x, y, yaw]): where the mover should end (a composite's slot): the model's scores are
     weighted by the end's closeness to it and it is proposed from every node (target.py).
+    ``airborne`` (a manner that carries the block, l2p_bullet/manners): objects other than the anchors are
+    obstacles only where a move ends (the block may be set down there), not along the way (World2D's
+    ``over``); the anchors stay obstacles all the way (the block goes past or around them, not over them). ``outline`` (K,2,
+    block frame): what the manner puts at block height, tested against every other object instead of the
+    block and the hand beside it (a push: the block with the pusher, ``embodiment.manners.push_outline``).
     """
     settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
     name = resolve_planner(planner, settings)
@@ -111,7 +117,9 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     best = None
     for hold in holds:
-        world = World2D(scene, mover, outlines=hold.outlines)
+        outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
+        over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
+        world = World2D(scene, mover, outlines=outlines, over=over)
         problem = Problem(
             world=world, model=model if target is None else _target_scorer(model, target, world), anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),

@@ -81,10 +81,12 @@ class World2D:
 
     ``outlines`` maps an obstacle's name to the mover's outline (block frame) to test against it: the block
     grown by the hand beside it at that obstacle's height. Obstacles not named use the block's footprint.
+    ``over`` (a carried block, l2p_bullet/manners): the objects it passes above, so a move is tested against
+    them only where it ends (where the block could be set down), not along the way.
     """
 
     def __init__(self, scene: Scene, mover: str, margin: float = GRIPPER_MARGIN,
-                 outlines: dict[str, np.ndarray] | None = None):
+                 outlines: dict[str, np.ndarray] | None = None, over: frozenset[str] = frozenset()):
         obj = scene.get(mover)
         self.scene = scene
         self.mover = Body(mover, obj.footprint(np.zeros(3)), obj.pose)
@@ -103,6 +105,7 @@ class World2D:
         for i, o in enumerate(self._outlines):
             groups.setdefault(o.tobytes() + bytes(str(o.shape), "ascii"), []).append(i)
         self._groups = list(groups.values())
+        self._over = np.array([b.name in over for b in self.obstacles], bool)
         ws = scene.workspace
         self.center = np.array(ws.center, float)
         self.radius = float(ws.radius)
@@ -141,6 +144,14 @@ class World2D:
             if close.any():
                 gaps = self.gaps(start)
                 margins = np.where(close, np.minimum(self.margin, np.maximum(gaps, 0.0) - 1e-9), margins)
+        if self._over.any():  # objects passed over: tested only where each move ends (a zero-length sweep)
+            ends_only = np.where(self._over, margins, -np.inf)
+            margins = np.where(self._over, -np.inf, margins)
+            idx = np.flatnonzero(near)
+            ok[idx] = [bool(self._swept_free(e, e[None], ends_only)[0]) for e in ends[idx]]
+            near = near & ok
+            if not near.any():
+                return ok
         ok[near] = self._swept_free(start, ends[near], margins)
         return ok
 

@@ -347,6 +347,12 @@ class Bullet:
     def constraint_count(self) -> int:
         return self._pb.getNumConstraints(physicsClientId=self._id)
 
+    # --- contacts ----------------------------------------------------------------------------
+    def contacts(self, a: str, b: str) -> list[tuple[Vec3, float]]:
+        """Where bodies ``a`` and ``b`` touch after the last step: (point on ``b``, normal force in N) each."""
+        pts = self._pb.getContactPoints(bodyA=self._bodies[a], bodyB=self._bodies[b], physicsClientId=self._id)
+        return [(tuple(p[6]), float(p[9])) for p in pts]
+
     # --- camera ------------------------------------------------------------------------------
     def view_matrix(self, eye: Vec3, target: Vec3, up: Vec3) -> tuple[float, ...]:
         """Column-major 4x4 view matrix, as the renderer takes it."""

@@ -220,11 +220,12 @@ class Primitives:
         return np.split(joints, np.cumsum([len(s) for s in samples])[:-1])
 
     def check_engage_and_slide(self, name: str, path: np.ndarray, tool_yaw: float,
-                               rest: np.ndarray | None = None) -> None:
+                               rest: np.ndarray | None = None, lift: float = 0.0) -> None:
         """Solve the IK of the approach, descent, slide, retract and return to ``rest`` exactly as
         :meth:`engage`, :meth:`move` and :meth:`disengage` will (same chunks, timing and seeds, nominal
         grasp height) without moving anything, so an unreachable pose is a ReachError now rather than
-        halfway through. The arm's state is kept."""
+        halfway through. The arm's state is kept. ``lift`` > 0: the carry's lift, path in the air and
+        lowering (:meth:`carry`) instead of the slide."""
         saved_q, saved_pose = self.q.copy(), self.pose.copy()
         self._preflight = {}
         solved = {}
@@ -233,13 +234,17 @@ class Primitives:
             solved["approach"] = self._check_line(above, APPROACH, short_turn=False)
             solved["descend"] = self._check_line(down, DESCEND)
             offset = tool_yaw - float(self.world.pose(name)[3])
+            if lift > 0:
+                solved["lift"] = self._check_line(down + [0.0, 0.0, lift, 0.0], DESCEND)
             p = self._continued(path, offset)
-            timed = slide_plan(p, offset, float(down[2]))
+            timed = slide_plan(p, offset, float(down[2]) + lift)
             if timed:
                 samples = np.concatenate([self._control_samples(t) for t in timed])
                 joints = self.solve(samples)
                 solved["slide"] = (self.q, samples, joints)
                 self.q, self.pose = joints[-1], timed[-1].poses[-1].copy()
+            if lift > 0:
+                solved["lower"] = self._check_line(self.pose - [0.0, 0.0, lift, 0.0], DESCEND)
             up = self.pose + [0.0, 0.0, HOVER, 0.0]
             solved["retract"] = self._check_line(up, DESCEND)
             if rest is not None:
@@ -273,7 +278,23 @@ class Primitives:
             self.run(t, "slide", joints)
             self.check_grasp()
 
-    def check_grasp(self) -> None:
+    def carry(self, path: np.ndarray, lift: float) -> None:
+        """Lift the held block ``lift`` metres straight up, carry it along ``path`` (N,3) at that height,
+        lower it onto the table at the path's end (the grasp height locked, as a slide's)."""
+        if self.grasp is None:
+            raise ExecutionError("carry() needs a grasped block: engage(obj) first")
+        g = self.grasp
+        self.go(self.pose + [0.0, 0.0, lift, 0.0], DESCEND, "lift")  # the pre-flight check's joints reused
+        self.check_grasp(lift)
+        timed = slide_plan(self._continued(path, g.yaw_offset), g.yaw_offset, g.tool_z + lift, g.offset_xy)
+        for t, joints in zip(timed, self.slide_joints(timed), strict=True):  # all IK before moving
+            self.run(t, "slide", joints)
+            self.check_grasp(lift)
+        down = self.pose - [0.0, 0.0, lift, 0.0]
+        self.go(down, DESCEND, "lower")
+        self.hold(SETTLE_S)
+
+    def check_grasp(self, lift: float = 0.0) -> None:
         g = self.grasp
         if g is None:
             return
@@ -282,7 +303,7 @@ class Primitives:
                 f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name)):.0f} deg while held')
         pos, _ = self.robot.tool_pose()
         block = self.world.pose(g.name)
-        want = self.tool_targets(block[None, [0, 1, 3]])[0]
+        want = self.tool_targets(block[None, [0, 1, 3]])[0] + [0.0, 0.0, lift, 0.0]
         if np.hypot(*(want[:2] - pos[:2])) > MAX_SLIP:
             raise ExecutionError(f'block "{g.name}" slipped out of the grasp')
 

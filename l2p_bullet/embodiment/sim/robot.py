@@ -211,6 +211,10 @@ class Robot:
         """Set the arm's joint targets (the motors track them during the next physics steps)."""
         self.sim.control_joints(ARM, self.joint_ids, q.tolist(), self.forces, self.gains)
 
+    def finger_opening(self) -> float:
+        """The gap between the fingers now (m; 0 closed): each prismatic finger's travel, summed."""
+        return max(0.0, float(np.sum(self.sim.joint_positions(ARM, self.spec.finger_joints)))) + 0.0
+
     def joints(self) -> np.ndarray:
         return self.sim.joint_positions(ARM, self.spec.arm_joints)
 

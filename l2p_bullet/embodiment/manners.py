@@ -1,0 +1,187 @@
+"""The embodiment's side of the manners of motion (l2p_bullet/manners): what each motion checks before the
+arm moves, and how it runs once the path is checked.
+
+- **slide** (today's behaviour): execute.py's own checks and :meth:`Primitives.move`.
+- **carry**: the block goes up, along the path in the air and down, so its path may cross other objects'
+  footprints; only where it is set down (the path's end) must be clear. It is lifted so that its bottom
+  clears every object whose footprint comes near its path by :data:`CLEARANCE` (at least
+  :data:`MIN_LIFT`). Refused before moving: an object wider than the gripper's opening
+  (``ArmSpec.gripper_opening``: a manner that closes the fingers across an object checks it) or heavier
+  than the arm's payload.
+- **push**: no grasp at all (embodiment/push.py).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core.geometry import separation
+from ..core.scene import Scene
+from ..errors import InfeasibleError, PathError
+from ..manners import registry as manner_registry
+from ..manners.spec import MannerSpec
+from . import motion, reach
+from .sim.arms import PANDA, ArmSpec
+
+CLEARANCE = 0.02
+"""m between a carried block's bottom and the top of the tallest object under its path."""
+MIN_LIFT = 0.03
+"""m: a carry lifts the block at least this high (its judge wants 2 cm) even over an empty table."""
+BLOCK_MASS_KG = 0.1
+"""The mass of every block (urdf/block.urdf); a scene object may say otherwise (``mass_kg``)."""
+PAYLOAD_KG = {"panda": 3.0}
+"""What each arm may lift (the maker's rated payload); an arm not listed: 1 kg."""
+
+
+def manner_of(manner: MannerSpec | str | None) -> MannerSpec:
+    """The manner declaration (by name; None: slide)."""
+    return manner if isinstance(manner, MannerSpec) else manner_registry.get(manner)
+
+
+def carry_refusal(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> str | None:
+    """Why the arm cannot carry ``mover`` (one line), or None."""
+    obj = scene.get(mover)
+    width = float(obj.size)  # a cube's narrowest width across the fingers, whichever way the wrist turns
+    if width > arm.gripper_opening + 1e-9:
+        return (f'cannot carry "{mover}": it is {width * 100:.1f} cm wide and the {arm.name}\'s gripper opens '
+                f"{arm.gripper_opening * 100:.1f} cm; slide or push it instead")
+    mass = float(getattr(obj, "mass_kg", None) or BLOCK_MASS_KG)
+    payload = PAYLOAD_KG.get(arm.name, 1.0)
+    if mass > payload:
+        return f'cannot carry "{mover}": it weighs {mass:g} kg and the {arm.name} lifts at most {payload:g} kg'
+    return None
+
+
+def carry_lift(scene: Scene, mover: str, path: np.ndarray) -> float:
+    """How high (m) to lift ``mover`` so that its bottom clears, by :data:`CLEARANCE`, every object whose
+    footprint comes within reach of the block anywhere along ``path`` (the held hand is above the block)."""
+    m = scene.get(mover)
+    p = np.asarray(path, float).reshape(-1, 3)
+    dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
+    r_m = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max())
+    tallest = 0.0
+    for o in scene.objects:
+        if o.name == mover:
+            continue
+        r_o = float(np.linalg.norm(o.footprint() - np.asarray(o.xy), axis=1).max())
+        if float(np.hypot(*(dense[:, :2] - np.asarray(o.xy)).T).min()) < r_m + r_o + CLEARANCE:
+            tallest = max(tallest, float(o.size))
+    return max(MIN_LIFT, tallest + CLEARANCE if tallest > 0 else 0.0)
+
+
+PUSH_TIP_Z = 0.006
+"""m: the fingertips' height above the table while pushing (embodiment/push.py reads it, and the next four)."""
+PUSH_LOOKAHEAD = 0.6  # block sides ahead along the path: where a push aims
+PUSH_GAP = 0.012  # m between the pusher and the block when the hand comes down beside it
+PUSH_SHIFT = 0.012  # m the pusher may slide along the block's face to keep clear of another object
+PUSH_CLEARANCE = 0.003  # m kept between the pusher and every other object
+
+
+def push_outline(size: float, arm: ArmSpec = PANDA, n: int = 16) -> np.ndarray:
+    """What a push puts at block height, in the block's frame: the block with the closed fingers pushing it
+    from any side, as a regular ``n``-gon round the block's centre. The pusher is about as wide as the
+    fingers (their long side across the push, up to the block's top), wider than a 4 cm block, and turns
+    with the direction of travel, not with the block: so the planner keeps that much room (radius: the
+    larger of the block's corners and the pusher's half width, 2 mm more) from every other object."""
+    ext = reach.hand_extent(max(size - PUSH_TIP_Z, 1e-3), arm)
+    r = max(size / np.sqrt(2.0), 0.0 if ext is None else ext[1]) + 0.002
+    r /= np.cos(np.pi / n)  # the polygon's edges, not only its corners, outside the circle
+    a = np.arange(n) * 2 * np.pi / n
+    return np.column_stack([r * np.cos(a), r * np.sin(a)])
+
+
+def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> str | None:
+    """Why no push can follow ``path`` (one line), or None: another object taller than the pushing hand's
+    clearance (the hand's body, 21 cm wide, starts where the fingers end, about 5 cm above the table while
+    pushing) within the hand's reach of the path would be swept over, as would one the hand passes when it
+    goes round the block."""
+    widen = next((d for d, _, hy in arm.hand_profile if hy > 0.05), None)
+    if widen is None:
+        return None
+    clear = PUSH_TIP_Z + widen - 0.003
+    hand = max(hy for _, _, hy in arm.hand_profile)
+    m = scene.get(mover)
+    p = np.asarray(path, float).reshape(-1, 3)
+    dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
+    blocked = _no_room_to_start(scene, m, dense, arm)
+    if blocked is not None:
+        return (f'no room for the pushing hand behind "{mover}": it would come down on "{blocked}"; '
+                f'carry or slide "{mover}" instead')
+    reach_m = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max()) + 0.03 + hand
+    for o in scene.objects:
+        if o.name == mover or o.size <= clear:
+            continue
+        r_o = float(np.linalg.norm(o.footprint() - np.asarray(o.xy), axis=1).max())
+        if float(np.hypot(*(dense[:, :2] - np.asarray(o.xy)).T).min()) < reach_m + r_o:
+            return (f'no push can pass "{o.name}" ({o.size * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
+                    f"above the table and {2 * hand * 100:.0f} cm wide; carry or slide \"{mover}\" instead")
+    return None
+
+
+def _no_room_to_start(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | None:
+    """The object the pusher would come down on behind the block at the path's start (its middle, or slid
+    along the face by up to PUSH_SHIFT), or None when one of those places is clear."""
+    ahead = np.cumsum(np.r_[0.0, np.hypot(*np.diff(dense[:, :2], axis=0).T)])
+    k = int(np.searchsorted(ahead, PUSH_LOOKAHEAD * m.size))
+    d = dense[min(k, len(dense) - 1), :2] - dense[0, :2]
+    if float(np.hypot(*d)) < 1e-9:
+        return None
+    phi = float(np.arctan2(d[1], d[0]))
+    half = reach.hand_extent(m.size / 2, arm) or (0.0145, 0.03)
+    wide = reach.hand_extent(m.size - PUSH_TIP_Z + 0.005, arm) or half
+    a = phi - m.yaw
+    support = m.size / 2 * (abs(np.cos(a)) + abs(np.sin(a)))
+    u, across = np.array([np.cos(phi), np.sin(phi)]), np.array([-np.sin(phi), np.cos(phi)])
+    centre = dense[0, :2] - u * (support + half[0] + PUSH_GAP)
+    hx, hy = half[0] + PUSH_CLEARANCE, wide[1] + PUSH_CLEARANCE
+    first = None
+    for shift in [0.0] + [s * PUSH_SHIFT * k / 6 for k in range(1, 7) for s in (1.0, -1.0)]:
+        c = centre + across * shift
+        rect = np.array([c + u * dx + across * dy for dx, dy in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))])
+        hit = next((o.name for o in scene.objects if o.name != m.name
+                    and float(separation(rect[None], o.footprint())[0]) < 0.0), None)
+        if hit is None:
+            return None
+        first = first or hit
+    return first
+
+
+def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
+    """The mover's outline the planner tests against every other object for ``manner`` (None: its own,
+    grown by the hand beside it where that matters, as for a slide)."""
+    return push_outline(size, arm) if manner.motion == "push" else None
+
+
+def manner_planning(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> dict:
+    """What ``planning.plan`` is told about the manner (docs/manners.md): a carried block passes above the
+    other objects (``airborne``: only where it is set down is tested); a pushed one has the pusher beside
+    it (``outline``: block and pusher, tested against every other object). Nothing for a slide, so its plans
+    are as before."""
+    out: dict = {}
+    if manner.airborne:
+        out["airborne"] = True
+    shape = planner_outline(manner, size, arm)
+    if shape is not None:
+        out["outline"] = shape
+    return out
+
+
+def check_carry_path(scene: Scene, mover: str, p: np.ndarray) -> None:
+    """A carried path may pass over other objects; where it sets the block down (its end) must be clear."""
+    hit = reach.blocked_by(scene, mover, p[-1:], None, hand=False)
+    if hit is not None:
+        raise PathError(f'the path of "{mover}" sets it down on "{hit[0]}" at ({p[-1, 0]:.3f}, {p[-1, 1]:.3f})')
+
+
+def check_manner(manner: MannerSpec, scene: Scene, mover: str, arm: ArmSpec = PANDA,
+                 path: np.ndarray | None = None) -> None:
+    """Refuse, before anything is moved, an object the manner cannot handle (and, given the ``path``, a
+    path it cannot follow)."""
+    if manner.motion == "push" and path is not None:
+        why = push_refusal(scene, mover, path, arm)
+        if why:
+            raise InfeasibleError("push", why)
+    if manner.motion == "carry":
+        why = carry_refusal(scene, mover, arm)
+        if why:
+            raise InfeasibleError("carry", why)

@@ -1,0 +1,313 @@
+"""push: the block follows the learned path pushed by the closed fingers, with no grasp and no constraint.
+
+The fingers, closed, make a flat pusher about 4-6 cm wide (across the tool's x axis) and 2-3 cm thick
+(along it): the tool's x axis points along the push, so the wide side lies on the block's face opposite the
+direction of travel and the block is driven by contact and friction only (PyBullet's contact physics, the
+scene's friction). A push is closed loop, at the control rate (60 Hz):
+
+1. observe the block's pose and find how far along the planned path it is (the nearest point, never
+   going back);
+2. aim at a point :data:`LOOKAHEAD` block sides further along the path (so drift sideways is steered back)
+   and put the pusher on the block's far side from it, :data:`PRESS` inside the block's face (the face's
+   distance from the centre along that direction is the square's support, whatever the block's yaw);
+3. move the hand there at most :data:`SPEED`, its yaw turning at most :data:`TURN_RATE`.
+
+When the direction to push turns by more than :data:`FACE_TURN` from the side the hand is on (a sharp
+corner of the path, or the block turned away), or the wrist would run out of range, the hand goes round:
+up above the block, over to the new side, down, and pushes on. A block that tips over, or escapes the hand
+by more than :data:`ESCAPE` sides (a cylinder that rolls away), ends the push and is *reported* in the run's
+``grasp.push`` (``tipped`` / ``escaped``), not hidden; a push that runs out of time or of repositions stops
+where it is. Every frame records where the hand touches the block (``gripper.contact``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.geometry import separation
+from ..errors import ReachError
+from . import reach
+from .manners import PUSH_CLEARANCE, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
+from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
+from .sim.robot import ARM
+
+SPEED = 0.05  # m/s: the hand's largest speed while pushing
+TURN_RATE = 1.5  # rad/s: the pusher's largest turn while pushing
+LOOKAHEAD = PUSH_LOOKAHEAD  # block sides ahead along the path
+PRESS = 0.008  # m inside the block's face: the push's bite (the arm's position control makes it a force)
+TIP_Z = PUSH_TIP_Z  # m: the fingertips' height above the table while pushing (low: the push does not tip the block)
+STALL_S = 1.5  # s without 1 mm of progress along the path: the push is stuck (a corner caught): go round
+FACE_TURN = math.radians(55.0)  # a turn beyond this from the pushing side changes face (go round)
+GAP = PUSH_GAP  # m between the pusher and the block when the hand comes down on a new side
+CLEAR = 0.012  # m above the block's top when the hand goes round
+STOP = 0.0005  # m from the path's end: done
+ESCAPE = 2.0  # block sides between the hand and the block: it got away
+MAX_REPOSITIONS = 30
+SHIFT = PUSH_SHIFT  # m: how far the pusher may slide along the block's face to keep clear of another object
+CLEARANCE = PUSH_CLEARANCE  # m kept between the pusher and every other object
+WRIST_MARGIN = 0.25  # rad kept from the wrist's limits
+TIME_PER_M = 40.0  # s of pushing allowed per metre of path (plus SLACK_S): then the push stops where it is
+SLACK_S = 20.0
+
+
+class Pusher:
+    """The closed-loop push of one block along one path; :meth:`run` does it and returns what happened."""
+
+    def __init__(self, prims, mover: str, path: np.ndarray):
+        self.prims, self.world, self.robot = prims, prims.world, prims.world.robot
+        self.mover, self.size = mover, float(prims.world.sizes[mover])
+        xy = np.asarray(path, float)[:, :2]
+        keep = np.concatenate([[True], np.hypot(*np.diff(xy, axis=0).T) > 1e-9])
+        self.xy = xy[keep]
+        seg = np.hypot(*np.diff(self.xy, axis=0).T) if len(self.xy) > 1 else np.zeros(0)
+        self.arc = np.concatenate([[0.0], np.cumsum(seg)])
+        self.sigma = 0.0
+        ext = reach.hand_extent(self.size / 2, self.robot.spec) or (0.0145, 0.03)
+        self.half = float(ext[0])  # the pusher's half thickness along the push
+        self.z = TIP_Z + self.robot.drop
+        self.dt = 1.0 / 60.0
+        self.n_steps = max(1, round(self.dt / self.world.dt))
+        self.repositions, self.contact_frames, self.ticks = 0, 0, 0
+        self.events: list[str] = []
+        ext_top = reach.hand_extent(self.size - TIP_Z + 0.005, self.robot.spec) or (self.half, 0.03)
+        self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
+        self.others = [n for n in self.world.sizes if n != mover]
+        self.shifted = 0
+
+    # --- geometry ----------------------------------------------------------------------------------
+    def block(self) -> np.ndarray:
+        p = self.world.pose(self.mover)
+        return np.array([p[0], p[1], p[3]])
+
+    def at(self, s: float) -> np.ndarray:
+        """The path's point at arc length ``s``; beyond the end, on along the path's last direction (so
+        the aim does not swing round the end point as the block closes on it)."""
+        total = float(self.arc[-1])
+        if s > total:
+            return self.xy[-1] + self.tangent() * (s - total)
+        return np.array([np.interp(s, self.arc, self.xy[:, 0]), np.interp(s, self.arc, self.xy[:, 1])])
+
+    def tangent(self) -> np.ndarray:
+        """The path's direction at its end (unit), from its last half block."""
+        total = float(self.arc[-1])
+        back = np.array([np.interp(max(0.0, total - self.size / 2), self.arc, self.xy[:, i]) for i in (0, 1)])
+        d = self.xy[-1] - back
+        n = float(np.hypot(*d))
+        return d / n if n > 1e-9 else np.array([1.0, 0.0])
+
+    def progress(self, b: np.ndarray) -> float:
+        """The block's arc length along the path: the nearest point ahead of the last (within a window)."""
+        hi = self.sigma + 3 * self.size
+        sel = np.flatnonzero((self.arc[1:] >= self.sigma - 1e-9) & (self.arc[:-1] <= hi))
+        best, best_d = self.sigma, math.inf
+        for i in sel:
+            a, c = self.xy[i], self.xy[i + 1]
+            ab = c - a
+            t = float(np.clip(np.dot(b[:2] - a, ab) / max(float(np.dot(ab, ab)), 1e-18), 0.0, 1.0))
+            s = self.arc[i] + t * (self.arc[i + 1] - self.arc[i])
+            d = float(np.hypot(*(a + t * ab - b[:2])))
+            if s >= self.sigma - 1e-9 and d < best_d - 1e-12:
+                best, best_d = s, d
+        self.sigma = max(self.sigma, best)
+        return self.sigma
+
+    def support(self, b: np.ndarray, phi: float) -> float:
+        """The block's face distance from its centre along direction ``phi`` (a square's support)."""
+        a = phi - b[2]
+        return self.size / 2 * (abs(math.cos(a)) + abs(math.sin(a)))
+
+    def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> np.ndarray:
+        """Tool pose with the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
+        that face (up to :data:`SHIFT`) when its middle would touch another object."""
+        r = self.support(b, phi) + self.half + back
+        pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
+        if self.clear(pose[:2], phi):
+            return pose
+        across = np.array([-math.sin(phi), math.cos(phi)])
+        for k in range(1, 7):
+            for sign in (1.0, -1.0):
+                xy = pose[:2] + sign * across * SHIFT * k / 6
+                if self.clear(xy, phi):
+                    self.shifted += 1
+                    return np.array([xy[0], xy[1], self.z, yaw])
+        return pose
+
+    def clear(self, xy: np.ndarray, phi: float) -> bool:
+        """Whether the pusher (a rectangle: ``half`` along ``phi``, ``width`` across) centred at ``xy`` keeps
+        :data:`CLEARANCE` from every other object's footprint where it is now."""
+        if not self.others:
+            return True
+        c, s = math.cos(phi), math.sin(phi)
+        hx, hy = self.half + CLEARANCE, self.width + CLEARANCE
+        rect = np.array([[xy[0] + c * dx - s * dy, xy[1] + s * dx + c * dy]
+                         for dx, dy in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))])
+        for name in self.others:
+            p = self.world.pose(name)
+            h = self.world.sizes[name] / 2
+            cy, sy = math.cos(p[3]), math.sin(p[3])
+            foot = np.array([[p[0] + cy * dx - sy * dy, p[1] + sy * dx + cy * dy]
+                             for dx, dy in ((h, h), (-h, h), (-h, -h), (h, -h))])
+            if float(separation(rect[None], foot)[0]) < 0.0:
+                return False
+        return True
+
+    def yaw_for(self, phi: float, near: float, pos: np.ndarray) -> float:
+        """The tool yaw pushing along ``phi`` (the pusher is symmetric: phi + k pi) nearest ``near`` whose
+        wrist stays inside its range, else the one most inside it."""
+        spec = self.robot.spec
+        cands = [phi + k * math.pi for k in range(-6, 7)]
+        base = tuple(self.robot.base_xyz[:2])
+
+        def wrist(y: float) -> float:
+            return float(reach.wrist_values(pos[:2], np.array([y]), base)[0]) - math.pi / 4 + spec.wrist_offset
+
+        ok = [y for y in cands if abs(wrist(y)) <= spec.wrist_limit - WRIST_MARGIN]
+        if ok:
+            return min(ok, key=lambda y: abs(y - near))
+        return min(cands, key=lambda y: abs(wrist(y)))
+
+    # --- motion ------------------------------------------------------------------------------------
+    def tick(self, pose: np.ndarray) -> None:
+        """One control period towards ``pose``: IK, then the physics steps, recording the contact."""
+        prims = self.prims
+        q = prims.solve(pose[None])[0]
+        prev = prims.q
+        rec = prims.recorder
+        for i in range(1, self.n_steps + 1):
+            self.robot.command(prev + (q - prev) * (i / self.n_steps))
+            self.world.step()
+            pts = self.world.sim.contacts(ARM, self.mover)
+            rec.contact = list(np.mean([p for p, _ in pts], axis=0)) if pts else None
+            rec()
+        self.contact_frames += rec.contact is not None
+        prims.q, prims.pose = q, pose.copy()
+        self.ticks += 1
+
+    def go_round(self, b: np.ndarray, phi: float) -> None:
+        """Up above the block, over to the side opposite ``phi``, down to pushing height (the hand's
+        yaw turns in the air, where the pusher may swap fingers)."""
+        prims = self.prims
+        top = self.size + CLEAR + self.robot.drop
+        up = prims.pose.copy()
+        up[2] = max(up[2], top)
+        prims.go(up, DESCEND, "push-up")
+        target = self.contact_pose(b, phi, 0.0, GAP)
+        target[3] = self.yaw_for(phi, prims.pose[3], target)
+        over = target.copy()
+        over[2] = top
+        prims.go(over, APPROACH, "push-over", short_turn=False)
+        prims.go(target, DESCEND, "push-down")
+        self.repositions += 1
+
+    def run(self) -> dict:
+        prims = self.prims
+        end = self.xy[-1]
+        total = float(self.arc[-1])
+        b = self.block()
+        phi = self._aim(b)
+        # from the rest pose: above the pushing side, then down beside the block
+        start = self.contact_pose(b, phi, 0.0, GAP)
+        start[3] = self.yaw_for(phi, prims.pose[3], start)
+        above = start.copy()
+        above[2] = start[2] + HOVER
+        prims.go(above, APPROACH, "approach", short_turn=False)
+        prims.go(start, DESCEND, "descend")
+        self.repositions = 0
+        side = phi
+        limit = TIME_PER_M * total + SLACK_S
+        t0 = self.world.time
+        stopped = "end"
+        best, best_t = 0.0, self.world.time
+        while True:
+            b = self.block()
+            s = self.progress(b)
+            to_end = float(np.hypot(*(b[:2] - end)))
+            if to_end < STOP or (total - s < self.size / 2 and float(np.dot(end - b[:2], self.tangent())) < STOP):
+                break  # at the end, or level with it (pushing on would overshoot)
+            if s > best + 0.001:
+                best, best_t = s, self.world.time
+            elif self.world.time - best_t > STALL_S:  # stuck: come at it afresh
+                if self.repositions >= MAX_REPOSITIONS:
+                    stopped = "repositions"
+                    break
+                self.go_round(b, self._aim(b))
+                side, best_t = self._aim(b), self.world.time
+                continue
+            if self.world.tilt(self.mover) > math.radians(20.0):
+                stopped = "tipped"
+                break
+            if float(np.hypot(*(prims.pose[:2] - b[:2]))) > ESCAPE * self.size + self.half + self.size:
+                stopped = "escaped"
+                break
+            if self.world.time - t0 > limit:
+                stopped = "time"
+                break
+            phi = self._aim(b)
+            turn = abs((phi - side + math.pi) % (2 * math.pi) - math.pi)
+            want_yaw = self.yaw_for(phi, prims.pose[3], prims.pose)
+            if turn > FACE_TURN or abs(want_yaw - prims.pose[3]) > math.pi / 2:
+                if self.repositions >= MAX_REPOSITIONS:
+                    stopped = "repositions"
+                    break
+                self.go_round(b, phi)
+                side = phi
+                continue
+            side = side + float(np.clip((phi - side + math.pi) % (2 * math.pi) - math.pi,
+                                        -TURN_RATE * self.dt, TURN_RATE * self.dt))
+            target = self.contact_pose(b, side, 0.0, -PRESS)
+            target[3] = prims.pose[3] + float(np.clip(want_yaw - prims.pose[3], -TURN_RATE * self.dt,
+                                                      TURN_RATE * self.dt))
+            step = target[:2] - prims.pose[:2]
+            d = float(np.hypot(*step))
+            if d > SPEED * self.dt:
+                target[:2] = prims.pose[:2] + step * (SPEED * self.dt / d)
+            self.tick(target)
+        end_frame = len(prims.recorder.frames)
+        self.retreat()
+        if stopped != "end":
+            self.events.append(stopped)
+        return {"end_frame": end_frame, "push": {
+            "stopped": stopped, "repositions": self.repositions, "control_ticks": self.ticks,
+            "shifted_ticks": self.shifted,
+            "contact_ticks": self.contact_frames, "tipped": stopped == "tipped", "escaped": stopped == "escaped",
+            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": TIP_Z}}
+
+    def _aim(self, b: np.ndarray) -> float:
+        s = self.sigma
+        ahead = self.at(s + LOOKAHEAD * self.size)
+        d = ahead - b[:2]
+        if float(np.hypot(*d)) < 1e-6:
+            d = self.xy[-1] - self.xy[max(0, len(self.xy) - 2)]
+        return math.atan2(d[1], d[0])
+
+    def retreat(self) -> None:
+        """Back off the block, up, and let the recording show it at rest."""
+        prims = self.prims
+        prims.recorder.contact = None
+        back = prims.pose.copy()
+        back[0] -= GAP * math.cos(prims.pose[3])
+        back[1] -= GAP * math.sin(prims.pose[3])
+        b = self.block()
+        if np.hypot(*(back[:2] - b[:2])) < np.hypot(*(prims.pose[:2] - b[:2])):  # the tool's x may point away
+            back[0] += 2 * GAP * math.cos(prims.pose[3])
+            back[1] += 2 * GAP * math.sin(prims.pose[3])
+        prims.go(back, DESCEND, "push-back")
+        up = prims.pose.copy()
+        up[2] = self.size + CLEAR + self.robot.drop + HOVER
+        prims.go(up, DESCEND, "retract")
+        prims.hold(SETTLE_S)
+
+
+def push(prims, mover: str, path: np.ndarray, rest: np.ndarray) -> dict:
+    """Push ``mover`` along ``path`` (N,3; its yaw is not controlled: a push turns the block as contact
+    makes it), then retreat to ``rest``. Returns the grasp-field summary (``push``: how it went) and the
+    first frame after the push (``end_frame``). ReachError when the arm cannot follow."""
+    pusher = Pusher(prims, mover, path)
+    try:
+        info = pusher.run()
+    except ReachError:
+        raise
+    prims.go(rest, APPROACH, "rest", short_turn=False)
+    return info

@@ -1,0 +1,8 @@
+"""push: no grasp; the closed fingers push the block's face opposite the direction of travel."""
+
+from .spec import MannerSpec
+
+MANNER = MannerSpec(
+    name="push", verbs=("push", "nudge", "shove"), motion="push", signature="no-grasp",
+    description="no grasp: the closed fingers push the face opposite the travel, re-planned from the block's pose",
+)

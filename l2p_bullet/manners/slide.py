@@ -1,0 +1,8 @@
+"""slide: the block is held from above (a constraint, the closed fingers on its top) and slid on the table."""
+
+from .spec import MannerSpec
+
+MANNER = MannerSpec(
+    name="slide", verbs=("slide", "move", "shift", "drag", "put"), motion="slide", signature="on-table",
+    description="grasp from above and slide the block on the table (within 3 mm of it)", default=True,
+)

@@ -1,0 +1,177 @@
+"""Manners of motion (issue 23): the registry, the verb that picks a manner, the physical signatures, and the
+errors for a verb or manner that does not exist. No simulator here (tests/embodiment/test_manners_sim.py)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from l2p_bullet.core.scene import Scene, SceneObject, default_scene
+from l2p_bullet.embodiment.manners import carry_lift, carry_refusal, push_outline
+from l2p_bullet.embodiment.sim.arms import PANDA
+from l2p_bullet.errors import InfeasibleError, LanguageError, PluginError
+from l2p_bullet.judge.manners import signature_verdict
+from l2p_bullet.language import parse
+from l2p_bullet.manners import registry
+from l2p_bullet.manners.spec import MannerSpec
+from l2p_bullet.pipeline import prepare, resolve
+
+PHRASES = {"past": "past", "next to": "next-to", "around": "around", "closer to": "closer"}
+
+
+def test_the_builtins_register_through_the_entry_point_group():
+    from importlib import metadata
+
+    found = {e.name: e.value for e in metadata.entry_points(group=registry.GROUP)}
+    assert found == {"slide": "l2p_bullet.manners.slide", "carry": "l2p_bullet.manners.carry",
+                     "push": "l2p_bullet.manners.push"}
+    names = [m.name for m in registry.discover()]
+    assert names == sorted(names) and set(names) >= {"slide", "carry", "push"}
+    assert registry.broken() == []
+    table = registry.verb_table()
+    assert table["drag"] == "slide" and table["bring"] == "carry" and table["shove"] == "push"
+    assert table["pick up ... and put"] == "carry"
+
+
+@pytest.mark.parametrize("sentence, verb, manner", [
+    ("move A past B", "move", "slide"),
+    ("slide A past B", "slide", "slide"),
+    ("drag the red block next to the green one", "drag", "slide"),
+    ("put A next to B", "put", "slide"),
+    ("carry A around B", "carry", "carry"),
+    ("bring A next to B", "bring", "carry"),
+    ("lift A and put it next to B", "lift", "carry"),
+    ("Please pick up the red block and put it next to the green one.", "pick up", "carry"),
+    ("push A past B", "push", "push"),
+    ("nudge A closer to B", "nudge", "push"),
+    ("shove the red cube past B", "shove", "push"),
+])
+def test_the_verb_picks_the_manner(sentence, verb, manner):
+    cmd = parse(sentence, default_scene(), PHRASES)
+    assert (cmd.verb, cmd.manner, cmd.mover, cmd.anchor) == (verb, manner, "A", "B")
+
+
+def test_an_unknown_verb_is_one_line_with_did_you_mean():
+    with pytest.raises(LanguageError, match=r'"crry" is not a verb I know \(known: move, slide, push, shift, put, '
+                                            r'.*carry.*\)\. Did you mean "carry"\?'):
+        parse("crry A past B", default_scene(), PHRASES)
+    with pytest.raises(LanguageError, match=r'"lift" asks for "lift \.\.\. and put"'):
+        parse("lift A past B", default_scene(), PHRASES)
+
+
+def test_an_unknown_manner_is_one_line_with_did_you_mean():
+    with pytest.raises(PluginError, match=r'no manner called "cary" \(installed: carry, push, slide\)\. '
+                                          r'Did you mean "carry"\?'):
+        registry.get("cary")
+    assert registry.get(None).name == "slide"
+    with pytest.raises(ValueError, match="motion must be one of"):
+        MannerSpec("fly", ("fly",), motion="fly", signature="lifted")
+
+
+def test_a_carry_refuses_an_object_wider_than_the_gripper_before_anything_moves():
+    scene = default_scene()
+    assert carry_refusal(scene, "A") is None
+    narrow = replace(PANDA, gripper_opening=0.03)
+    why = carry_refusal(scene, "A", narrow)
+    assert why is not None and "5.0 cm wide" in why and "opens 3.0 cm" in why
+    big = Scene([SceneObject("A", "red", 0.08, (0.08, -0.08), 0.0), SceneObject("B", "green", 0.05, (0.0, 0.05), 0.0)])
+    cmd = resolve("carry A past B", big)
+    assert cmd.manner == "carry"
+    prepare("carry A past B", big)  # 8 cm: the Panda's fingers open 8 cm, so it is carried
+
+
+def test_carry_lift_clears_the_tallest_object_under_the_path():
+    scene = Scene([SceneObject("A", "red", 0.04, (0.10, 0.0), 0.0), SceneObject("B", "green", 0.06, (0.0, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.08, (0.0, 0.18), 0.0)])
+    over_b = np.array([[0.10, 0.0, 0.0], [-0.10, 0.0, 0.0]])
+    assert carry_lift(scene, "A", over_b) == pytest.approx(0.06 + 0.02)  # C is far from the path
+    away = np.array([[0.10, 0.0, 0.0], [0.10, -0.15, 0.0]])
+    assert carry_lift(scene, "A", away) == pytest.approx(0.03)  # nothing under it: the least lift
+
+
+def test_the_push_outline_holds_the_block_and_the_pusher():
+    r = np.linalg.norm(push_outline(0.04), axis=1)
+    assert np.allclose(r, r[0]) and r[0] > 0.04 / np.sqrt(2) and r[0] < 0.04
+
+
+def _frames(zs, size=0.04, grasped=None, opening=0.0):
+    return [{"poses": {"A": [0.0, 0.0, size / 2 + z, 0.0]}, "grasped": grasped,
+             "gripper": {"opening_m": opening, "holding": grasped, "contact": None}} for z in zs]
+
+
+def test_the_physical_signatures():
+    assert signature_verdict("on-table", _frames([0.0, 0.002, 0.0]), "A", 0.04).success
+    assert not signature_verdict("on-table", _frames([0.0, 0.004, 0.0]), "A", 0.04).success
+    assert signature_verdict("lifted", _frames([0.0, 0.03, 0.0]), "A", 0.04).success
+    low = signature_verdict("lifted", _frames([0.0, 0.015, 0.0]), "A", 0.04)
+    assert not low.success and "at least 2 cm" in low.reason
+    assert not signature_verdict("lifted", _frames([0.0, 0.03, 0.02]), "A", 0.04).success  # never set down
+    assert signature_verdict("no-grasp", _frames([0.0, 0.0]), "A", 0.04).success
+    assert not signature_verdict("no-grasp", _frames([0.0, 0.0], grasped="A"), "A", 0.04).success
+    assert not signature_verdict("no-grasp", _frames([0.0, 0.0], opening=0.01), "A", 0.04).success
+
+
+def test_a_chain_keeps_each_clauses_manner():
+    from l2p_bullet.chain.clauses import resolve_clauses
+    from l2p_bullet.plugins import registry as plugins
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.09, -0.06), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.04, (-0.1, 0.1), 0.0)])
+    clauses = resolve_clauses("lift A and put it past B, then around C, then push C next to A", scene,
+                              plugins.discover())
+    assert [(c.command.manner, c.command.action, c.command.mover) for c in clauses] == [
+        ("carry", "past", "A"), ("carry", "around", "A"), ("push", "next-to", "C")]
+
+
+def test_infeasible_carry_is_refused_before_anything_moves():
+    from l2p_bullet.embodiment.manners import check_manner
+
+    narrow = replace(PANDA, gripper_opening=0.03)
+    check_manner(registry.get("carry"), default_scene(), "A")
+    check_manner(registry.get("slide"), default_scene(), "A", narrow)  # a slide does not close the fingers on it
+    with pytest.raises(InfeasibleError, match="cannot carry \"A\": it is 5.0 cm wide") as e:
+        check_manner(registry.get("carry"), default_scene(), "A", narrow)
+    assert e.value.check == "carry"
+
+
+def test_a_push_is_refused_where_the_hand_would_sweep_over_a_tall_block():
+    from l2p_bullet.embodiment.manners import push_refusal
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.10, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.08, (0.0, 0.09), 0.0)])
+    past = np.array([[0.10, -0.06, 0.0], [-0.10, -0.06, 0.0]])
+    scene = scene.with_pose("A", np.array([0.10, -0.06, 0.0]))
+    why = push_refusal(scene, "A", past)
+    assert why is not None and '"C" (8 cm tall)' in why
+    far = Scene([o if o.name != "C" else SceneObject("C", "blue", 0.08, (0.0, 0.22), 0.0) for o in scene.objects])
+    assert push_refusal(far, "A", past) is None
+    low = Scene([o if o.name != "C" else SceneObject("C", "blue", 0.04, (0.0, 0.09), 0.0) for o in scene.objects])
+    assert push_refusal(low, "A", past) is None
+
+
+def test_the_planner_lets_a_carried_block_pass_over_bystanders_but_not_over_the_anchor():
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.10, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.04, (0.0, 0.12), 0.0)])
+    start = np.array([0.10, 0.0, 0.0])
+    through_b = np.array([[-0.10, 0.0, 0.0]])
+    start_c = np.array([0.10, 0.12, 0.0])
+    slide = World2D(scene, "A")
+    assert not slide.moves_free(start, through_b)[0] and not slide.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]
+    carry = World2D(scene, "A", over=frozenset({"C"}))  # C a bystander, B the anchor
+    assert not carry.moves_free(start, through_b)[0]
+    assert carry.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]  # over C
+    assert not carry.moves_free(start_c, np.array([[0.0, 0.12, 0.0]]))[0]  # but not set down on it
+
+
+def test_a_push_with_no_room_for_the_hand_behind_the_block_is_refused():
+    from l2p_bullet.embodiment.manners import check_manner
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.045, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.0), 0.0)])
+    away = np.array([[0.045, 0.0, 0.0], [0.15, 0.0, 0.0]])
+    with pytest.raises(InfeasibleError, match='no room for the pushing hand behind "A": it would come down on "B"'):
+        check_manner(registry.get("push"), scene, "A", path=away)
+    check_manner(registry.get("push"), scene, "A", path=np.array([[0.045, 0.0, 0.0], [0.045, 0.12, 0.0]]))
