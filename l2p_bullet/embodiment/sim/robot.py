@@ -151,6 +151,7 @@ class Robot:
         self.forces = [info[j].max_force for j in self.spec.arm_joints]
         self.reset(np.array(self.spec.home))
         self.drop = self.fingertip_drop()
+        self.closed_gap = self._fingertip_gap()  # with the fingers closed (reset closes them)
 
     def reset(self, q: np.ndarray) -> None:
         """Teleport the arm to joints ``q`` (fingers closed) and hold it there."""
@@ -212,8 +213,14 @@ class Robot:
         self.sim.control_joints(ARM, self.joint_ids, q.tolist(), self.forces, self.gains)
 
     def finger_opening(self) -> float:
-        """The gap between the fingers now (m; 0 closed): each prismatic finger's travel, summed."""
-        return max(0.0, float(np.sum(self.sim.joint_positions(ARM, self.spec.finger_joints)))) + 0.0
+        """How far the fingers are open now (m; 0 closed): the fingertip links' distance beyond the one they
+        have closed. Measured on the links, not read off the joints, so that it means the same for every arm
+        (the Panda's fingers slide, the xArm's turn on a linkage: a joint value in radians is no width)."""
+        return round(max(0.0, self._fingertip_gap() - self.closed_gap), 9) + 0.0
+
+    def _fingertip_gap(self) -> float:
+        tips = [np.array(self.sim.link_pose(ARM, link)[0]) for link in self.spec.fingertip_links]
+        return float(np.linalg.norm(tips[0] - tips[-1])) if len(tips) > 1 else 0.0
 
     def joints(self) -> np.ndarray:
         return self.sim.joint_positions(ARM, self.spec.arm_joints)
