@@ -208,6 +208,33 @@ class Bullet:
         self._bodies[name] = self._pb.loadURDF(path, list(position), list(orientation), useFixedBase=fixed,
                                                globalScaling=scale, physicsClientId=self._id)
 
+    def load_convex(self, name: str, points: np.ndarray, position: Vec3, orientation: Quat, *, mass: float,
+                    faces: np.ndarray | None = None) -> None:
+        """A rigid body whose collision shape is the convex hull of ``points`` (N,3, body frame, whose origin
+        is the centre of mass), drawn as the triangles ``faces`` of those points (None: as the hull)."""
+        if name in self._bodies:
+            raise ValueError(f'a body named "{name}" is already loaded')
+        pb, cid = self._pb, self._id
+        pts = np.asarray(points, float).tolist()
+        col = pb.createCollisionShape(pb.GEOM_MESH, vertices=pts, physicsClientId=cid)
+        if faces is None:
+            vis = pb.createVisualShape(pb.GEOM_MESH, vertices=pts, physicsClientId=cid)
+        else:
+            vis = pb.createVisualShape(pb.GEOM_MESH, vertices=pts, indices=np.asarray(faces).reshape(-1).tolist(),
+                                       physicsClientId=cid)
+        self._bodies[name] = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col,
+                                                baseVisualShapeIndex=vis, basePosition=list(position),
+                                                baseOrientation=list(orientation), physicsClientId=cid)
+        # a hull's default 1 mm margin grows it outwards: it would stand 1 mm high and the fingertips, sent to
+        # its nominal top, would press 2 mm into it (DESIGN.md section 2: 3 mm gave 400 N)
+        pb.changeDynamics(self._bodies[name], -1, collisionMargin=0.0, physicsClientId=cid)
+
+    def set_dynamics(self, name: str, *, mass: float | None = None, friction: float | None = None) -> None:
+        """The base link's mass (kg) and lateral friction coefficient, where given."""
+        kw = {k: v for k, v in (("mass", mass), ("lateralFriction", friction)) if v is not None}
+        if kw:
+            self._pb.changeDynamics(self._bodies[name], -1, physicsClientId=self._id, **kw)
+
     def set_color(self, name: str, rgba: Sequence[float]) -> None:
         """Colour of the body's base link."""
         self._pb.changeVisualShape(self._bodies[name], -1, rgbaColor=list(rgba), physicsClientId=self._id)

@@ -25,6 +25,7 @@ from .robot import ARM, Robot
 
 PHYSICS_HZ = 240.0
 BLOCK_URDF_SIZE = 0.05  # the side of urdf/block.urdf; other sizes load it with globalScaling
+BLOCK_MASS, BLOCK_FRICTION = 0.1, 0.5  # urdf/block.urdf's: what a box, cylinder or mesh gets unless told
 TABLE = "<table>"  # the table's body name (blocks go by their scene names, the arm is robot.ARM)
 
 
@@ -67,11 +68,25 @@ class World:
         self.steps = 0
         sim.load_urdf(TABLE, urdf_path("table.urdf"), (0.0, 0.0, 0.0), fixed=True)
         self.sizes: dict[str, float] = {}
+        self.heights: dict[str, float] = {}  # each object's top above the table, standing
+        self.rests: dict[str, float] = {}  # each object's centre (of mass) above the table, standing
         for o in scene.objects:
-            sim.load_urdf(o.name, urdf_path("block.urdf"), (o.xy[0], o.xy[1], o.size / 2),
-                          sim.quaternion(0.0, 0.0, o.yaw), scale=o.size / BLOCK_URDF_SIZE)
+            orn = sim.quaternion(0.0, 0.0, o.yaw)
+            if o.shape == "cube":
+                sim.load_urdf(o.name, urdf_path("block.urdf"), (o.xy[0], o.xy[1], o.size / 2), orn,
+                              scale=o.size / BLOCK_URDF_SIZE)
+                rest = o.size / 2
+            else:  # its convex hull, its centre of mass at the body's origin (core/shapes.py)
+                g = o.geometry
+                rest = g.rest
+                sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
+                                mass=BLOCK_MASS if o.mass is None else o.mass, faces=g.faces)
+                sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
+            sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
             self.sizes[o.name] = o.size
+            self.heights[o.name] = o.height
+            self.rests[o.name] = rest
         self.robot.load()
 
     def reset(self, scene: Scene) -> None:
