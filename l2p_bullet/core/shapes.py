@@ -67,6 +67,7 @@ class Geometry:
     com: tuple[float, float, float]
     volume: float
     rest_z: float = math.nan  # nan: height / 2 (a symmetric solid)
+    file_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)  # a mesh file's origin in this frame (drawing)
 
     @property
     def rest(self) -> float:
@@ -233,7 +234,8 @@ def mesh(path: str, scale: float, rpy: tuple[float, float, float], mtime_ns: int
     v = v - com
     outline = convex_hull(v[:, :2])
     return Geometry(v, np.asarray(m.faces, np.int64), outline, float(hi[2] - lo[2]),
-                    tuple(float(c) for c in com - (lo + hi) / 2), volume, float(com[2] - lo[2]))
+                    tuple(float(c) for c in com - (lo + hi) / 2), volume, float(com[2] - lo[2]),
+                    tuple(float(-c) for c in com))
 
 
 def is_number(v: object) -> bool:

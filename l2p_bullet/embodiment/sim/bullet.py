@@ -209,19 +209,25 @@ class Bullet:
                                                globalScaling=scale, physicsClientId=self._id)
 
     def load_convex(self, name: str, points: np.ndarray, position: Vec3, orientation: Quat, *, mass: float,
-                    faces: np.ndarray | None = None) -> None:
+                    visual: tuple) -> None:
         """A rigid body whose collision shape is the convex hull of ``points`` (N,3, body frame, whose origin
-        is the centre of mass), drawn as the triangles ``faces`` of those points (None: as the hull)."""
+        is the centre of mass), drawn as ``visual``: ("box", half extents), ("cylinder", radius, length) or
+        ("mesh", file, scale, frame position, frame roll-pitch-yaw). The EGL renderer draws no mesh given
+        by its vertices (measured: such bodies came out invisible), so a drawing is always a primitive or a
+        file."""
         if name in self._bodies:
             raise ValueError(f'a body named "{name}" is already loaded')
         pb, cid = self._pb, self._id
-        pts = np.asarray(points, float).tolist()
-        col = pb.createCollisionShape(pb.GEOM_MESH, vertices=pts, physicsClientId=cid)
-        if faces is None:
-            vis = pb.createVisualShape(pb.GEOM_MESH, vertices=pts, physicsClientId=cid)
+        col = pb.createCollisionShape(pb.GEOM_MESH, vertices=np.asarray(points, float).tolist(), physicsClientId=cid)
+        if visual[0] == "box":
+            vis = pb.createVisualShape(pb.GEOM_BOX, halfExtents=list(visual[1]), physicsClientId=cid)
+        elif visual[0] == "cylinder":
+            vis = pb.createVisualShape(pb.GEOM_CYLINDER, radius=visual[1], length=visual[2], physicsClientId=cid)
         else:
-            vis = pb.createVisualShape(pb.GEOM_MESH, vertices=pts, indices=np.asarray(faces).reshape(-1).tolist(),
-                                       physicsClientId=cid)
+            _, path, scale, pos, rpy = visual
+            vis = pb.createVisualShape(pb.GEOM_MESH, fileName=str(path), meshScale=[scale] * 3,
+                                       visualFramePosition=list(pos),
+                                       visualFrameOrientation=pb.getQuaternionFromEuler(list(rpy)), physicsClientId=cid)
         self._bodies[name] = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col,
                                                 baseVisualShapeIndex=vis, basePosition=list(position),
                                                 baseOrientation=list(orientation), physicsClientId=cid)

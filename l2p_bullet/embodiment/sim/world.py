@@ -34,6 +34,38 @@ def urdf_path(name: str) -> str:
     return str(Path(str(resources.files("l2p_bullet") / "urdf" / name)))
 
 
+def _visual(o, g) -> tuple:
+    """How the simulator draws a non-cube object (``Bullet.load_convex``): a box or a cylinder as itself, a
+    mesh from its file (an OBJ or STL as given; a GLB, which PyBullet does not read, as an OBJ of its
+    triangles written once to the cache folder)."""
+    if o.shape == "box":
+        return ("box", tuple(d / 2 for d in o.dims))
+    if o.shape == "cylinder":
+        return ("cylinder", o.radius, o.height_m)
+    path = Path(o.mesh)
+    if path.suffix.lower() == ".glb":
+        return ("mesh", _obj_copy(g), 1.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    return ("mesh", path, o.scale, g.file_origin, o.rpy)
+
+
+def _obj_copy(g) -> str:
+    """An OBJ file of ``g``'s triangles (body frame) in the user's cache, named by its content."""
+    import hashlib
+    import os
+    import tempfile
+
+    lines = [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in g.points] + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in g.faces]
+    text = "\n".join(lines) + "\n"
+    folder = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "l2p-bullet" / "meshes"
+    folder.mkdir(parents=True, exist_ok=True)
+    out = folder / f"{hashlib.sha256(text.encode()).hexdigest()[:24]}.obj"
+    if not out.is_file():
+        with tempfile.NamedTemporaryFile("w", dir=folder, suffix=".tmp", delete=False) as f:
+            f.write(text)
+        os.replace(f.name, out)
+    return str(out)
+
+
 class World:
     """Table + blocks + arm in one DIRECT simulator. Close it (or use ``with``) when done.
 
@@ -80,7 +112,7 @@ class World:
                 g = o.geometry
                 rest = g.rest
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
-                                mass=BLOCK_MASS if o.mass is None else o.mass, faces=g.faces)
+                                mass=BLOCK_MASS if o.mass is None else o.mass, visual=_visual(o, g))
                 sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
             sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
