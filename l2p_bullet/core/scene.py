@@ -29,6 +29,7 @@ from ..errors import SceneError, UnknownObjectError, did_you_mean
 from . import shapes
 from .contracts import load_json_file
 from .geometry import polygons_overlap
+from .shapes import MAX_FRICTION, MAX_MASS
 from .shapes import is_number as _is_number
 
 # Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
@@ -297,9 +298,6 @@ def shaped(name: str, color: str, xy: tuple[float, float], yaw: float = 0.0, *, 
     return replace(o, size=o.geometry.size)
 
 
-MAX_MASS, MAX_FRICTION = 5.0, 2.0
-"""Largest ``mass`` (kg) and ``friction`` coefficient an object may have (the arm holds 0.1-kg blocks with a
-100 N constraint; a heavier object or a stickier table is not what it was measured with)."""
 MAX_OBJECTS = 100
 """Most objects a scene file may hold (the workspace fits far fewer blocks; validation is quadratic)."""
 MAX_NAME = 64

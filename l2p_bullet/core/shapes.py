@@ -52,6 +52,9 @@ MAX_MESH_FACES = 200_000
 CYLINDER_SIDES = 24
 """A cylinder's outline is the regular polygon with this many sides drawn around its circle: the
 footprint the planner keeps clear is never smaller than the cylinder (at most 0.9 % larger)."""
+MAX_MASS, MAX_FRICTION = 5.0, 2.0
+"""Largest ``mass`` (kg) and ``friction`` coefficient an object may have (the arm holds 0.1-kg blocks with a
+100 N constraint; a heavier object or a stickier table is not what it was measured with)."""
 PYBULLET_DATA = "pybullet_data:"
 """Prefix of a mesh path inside the installed pybullet_data (ready objects such as the duck)."""
 
@@ -220,6 +223,11 @@ def mesh(path: str, scale: float, rpy: tuple[float, float, float], mtime_ns: int
         raise SceneError(f"mesh {p.name}: the file holds no triangles")
     if len(m.faces) > MAX_MESH_FACES:
         raise SceneError(f"mesh {p.name}: {len(m.faces)} triangles, more than the {MAX_MESH_FACES} a mesh may have")
+    with np.errstate(all="ignore"):  # a flat mesh divides by its zero volume: refused just below
+        return _measure(m, p, scale, rpy)
+
+
+def _measure(m, p: Path, scale: float, rpy: tuple[float, float, float]) -> Geometry:
     m.merge_vertices(merge_tex=True, merge_norm=True)  # texture seams split vertices: not holes
     if not m.is_watertight:
         raise SceneError(f"mesh {p.name}: not watertight (it has holes), so it has no inside to weigh; close it")
@@ -272,10 +280,10 @@ def read_fields(raw: dict, where: str, base: Path | None, mesh_dirs: tuple[Path,
         if key not in raw:
             raise SceneError(f'{where}: a {shape} needs the field "{key}"')
     out: dict = {}
-    for key in ("mass", "friction"):
+    for key, hi in (("mass", MAX_MASS), ("friction", MAX_FRICTION)):
         if key in raw:
-            if not is_number(raw[key]):
-                raise SceneError(f'{where}: "{key}" must be a number')
+            if not (is_number(raw[key]) and 0.0 < raw[key] <= hi):
+                raise SceneError(f'{where}: "{key}" must be a number above 0 and at most {hi}')
             out[key] = float(raw[key])
     if shape == "box":
         d = raw["dims"]
