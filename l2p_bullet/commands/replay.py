@@ -9,6 +9,7 @@ import click
 from .common import (
     force_option,
     load_scene_or_default,
+    mesh_dirs,
     render_settings,
     scene_option,
     seed_option,
@@ -63,7 +64,8 @@ def replay(path_json, demo, scene_path, out, seed, force, mover, anchor, no_rend
                                                     renderer, video)
     if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed):
         return
-    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)
+    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path, mesh_dirs()), scene_path,
+                         mesh_dirs())
     source = motion_source(path_json, demo, scene, mover, anchor)
     t0 = time.perf_counter()
 

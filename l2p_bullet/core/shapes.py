@@ -164,8 +164,8 @@ def resolve_mesh(text: str, base: Path | None, trusted: tuple[Path, ...] = ()) -
             allowed += (root,)
     if not any(path == d or d in path.parents for d in allowed):
         where = "the installed pybullet_data" if text.startswith(PYBULLET_DATA) else "the scene file's folder"
-        raise SceneError(f'mesh "{text[:200]}" is outside {where}; put the mesh next to the scene file '
-                         "(or name its folder as trusted, core.scene.load_scene(mesh_dirs=...))")
+        raise SceneError(f'mesh "{text[:200]}" is outside {where}; put the mesh next to the scene file, '
+                         "or name its folder on the command line (--mesh-dir DIR)")
     if path.suffix.lower() not in MESH_SUFFIXES:
         raise SceneError(f'mesh "{text[:200]}": not a mesh file name (expected {", ".join(MESH_SUFFIXES)})')
     if not path.is_file():

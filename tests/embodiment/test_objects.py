@@ -92,3 +92,27 @@ def test_the_duck_is_performed_in_the_example_scene(tmp_path):
     end = json.loads((out / "trajectory.json").read_text())["frames"][-1]["poses"]["duck"]
     assert math.hypot(end[0] - plan["path"][-1][0], end[1] - plan["path"][-1][1]) < 0.003
     assert max(summary["execution"]["displacements_m"].values()) < 0.001
+
+
+def test_mesh_dir_on_the_command_line_trusts_a_folder(tmp_path):
+    meshes, scenes = tmp_path / "meshes", tmp_path / "scenes"
+    meshes.mkdir()
+    scenes.mkdir()
+    (meshes / "tetra.obj").write_text("v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+    src = scenes / "scene.json"
+    src.write_text(json.dumps({"objects": [
+        {"name": "T", "color": "red", "shape": "mesh", "mesh": str(meshes / "tetra.obj"), "xy": [0.05, -0.1]},
+        ANCHOR]}))
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    refused = CliRunner().invoke(main, ["plan", "move T closer to B", "--scene", str(src), "--no-plot",
+                                        "--out", str(tmp_path / "p1")])
+    assert refused.exit_code == 2 and "outside the scene file's folder" in refused.output
+    assert "--mesh-dir" in refused.output
+    ok = CliRunner().invoke(main, ["plan", "move T closer to B", "--scene", str(src), "--mesh-dir", str(meshes),
+                                   "--no-plot", "--out", str(tmp_path / "p2")])
+    assert ok.exit_code == 0, ok.output
+    plan = json.loads((tmp_path / "p2" / "plan.json").read_text())
+    assert plan["scene"]["objects"][0]["mesh"] == str((meshes / "tetra.obj").resolve())
