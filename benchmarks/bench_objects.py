@@ -206,11 +206,13 @@ def main() -> None:
         if args.jobs > 1:
             import multiprocessing as mp
 
-            chunks = [jobs[i::args.jobs * 8] for i in range(args.jobs * 8)]
+            chunks = [jobs[i::args.jobs * 16] for i in range(args.jobs * 16)]
             with mp.get_context("spawn").Pool(args.jobs) as pool:
                 for part in pool.imap_unordered(_worker, [(c, tmp) for c in chunks if c]):
                     rows.extend(part)
                     print(f"  {len(rows)}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+                    if args.json:  # what is done so far survives an interrupted run
+                        args.json.write_text(json.dumps(rows, indent=1))
         else:
             from l2p_bullet.plugins import registry
 

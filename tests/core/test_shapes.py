@@ -186,3 +186,15 @@ def test_a_wide_box_is_refused_but_a_long_one_is_grasped_across(tmp_path):
     assert e.value.check == "grasp-width" and e.value.details["width_m"] == pytest.approx(0.09)
     long = load_scene(_scene(tmp_path, [_box(dims=(0.2, 0.04, 0.03), xy=(0.08, -0.12), yaw=0.4), CUBE_B]))
     assert [round(reach.grasp_width(long.get("A"), a), 4) for a in reach.width_angles(long.get("A"))][:1] == [0.04]
+
+
+def test_simplified_outlines_contain_the_object():
+    a = np.linspace(0.0, 2 * math.pi, 40, endpoint=False)
+    circle = np.column_stack([np.cos(a), np.sin(a)]) * 0.02
+    outline = shapes.simplify(circle, 12)
+    assert len(outline) == 12
+    edges = np.roll(outline, -1, axis=0) - outline
+    rel = circle[None, :, :] - outline[:, None, :]
+    assert (edges[:, None, 0] * rel[..., 1] - edges[:, None, 1] * rel[..., 0] >= -1e-12).all()  # all inside
+    area = 0.5 * abs(np.dot(outline[:, 0], np.roll(outline[:, 1], -1)) - np.dot(outline[:, 1], np.roll(outline[:, 0], -1)))
+    assert math.pi * 0.02**2 < area < 1.03 * math.pi * 0.02**2
