@@ -150,7 +150,9 @@ def cylinder(radius: float, height: float) -> Geometry:
 def resolve_mesh(text: str, base: Path | None, trusted: tuple[Path, ...] = ()) -> Path:
     """The file a scene's ``"mesh"`` names. A relative path is read from the scene file's folder ``base`` and
     must stay inside it; ``pybullet_data:NAME`` is a ready object of the installed pybullet_data; an
-    absolute path is accepted only inside ``base`` or a folder in ``trusted`` (given by the user)."""
+    absolute path is accepted only inside ``base``, pybullet_data or a folder in ``trusted`` (given by the
+    user), or anywhere when ``base`` is None: a scene that comes from no file (built in Python, or handed
+    to an evaluation worker after its file was checked) is the program's own, not a file's claim."""
     root = pybullet_data_root()
     if text.startswith(PYBULLET_DATA):
         path, allowed = (root / text[len(PYBULLET_DATA):]).resolve(), (root,)
@@ -161,8 +163,8 @@ def resolve_mesh(text: str, base: Path | None, trusted: tuple[Path, ...] = ()) -
         path = (p if p.is_absolute() else base / p).resolve()
         allowed = tuple(d.resolve() for d in ((base,) if base is not None else ()) + tuple(trusted))
         if p.is_absolute():  # a scene written by this program names ready objects by their full path
-            allowed += (root,)
-    if not any(path == d or d in path.parents for d in allowed):
+            allowed = None if base is None else allowed + (root,)
+    if allowed is not None and not any(path == d or d in path.parents for d in allowed):
         where = "the installed pybullet_data" if text.startswith(PYBULLET_DATA) else "the scene file's folder"
         raise SceneError(f'mesh "{text[:200]}" is outside {where}; put the mesh next to the scene file, '
                          "or name its folder on the command line (--mesh-dir DIR)")

@@ -48,6 +48,7 @@ def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | N
         data = read_json(path_json)
         if isinstance(data, dict) and "path" in data and isinstance(data.get("scene"), dict):
             recorded = Scene.from_dict(data["scene"], source=f"{path_json} (its scene)",
+                                       base=Path(path_json).resolve().parent,
                                        mesh_dirs=tuple(Path(d) for d in mesh_dirs)).validate()
     if recorded is None:
         return scene if scene is not None else default_scene()

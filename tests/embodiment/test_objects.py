@@ -116,3 +116,9 @@ def test_mesh_dir_on_the_command_line_trusts_a_folder(tmp_path):
     assert ok.exit_code == 0, ok.output
     plan = json.loads((tmp_path / "p2" / "plan.json").read_text())
     assert plan["scene"]["objects"][0]["mesh"] == str((meshes / "tetra.obj").resolve())
+    # replaying that plan reads its recorded scene: the mesh is outside the run folder, so again --mesh-dir
+    replay = ["replay", str(tmp_path / "p2" / "plan.json"), "--no-render", "--out"]
+    refused = CliRunner().invoke(main, [*replay, str(tmp_path / "r1")])
+    assert refused.exit_code == 2 and "is outside" in refused.output
+    ok = CliRunner().invoke(main, [*replay, str(tmp_path / "r2"), "--mesh-dir", str(meshes)])
+    assert ok.exit_code == 0, ok.output
