@@ -198,3 +198,16 @@ def test_simplified_outlines_contain_the_object():
     assert (edges[:, None, 0] * rel[..., 1] - edges[:, None, 1] * rel[..., 0] >= -1e-12).all()  # all inside
     area = 0.5 * abs(np.dot(outline[:, 0], np.roll(outline[:, 1], -1)) - np.dot(outline[:, 1], np.roll(outline[:, 0], -1)))
     assert math.pi * 0.02**2 < area < 1.03 * math.pi * 0.02**2
+
+
+def test_the_hand_keeps_clear_of_objects_taller_than_the_held_one(tmp_path):
+    # a 2 cm-tall box beside a 7 cm cylinder and a 1.5 cm one: only the tall one meets the fingers and hand
+    scene = load_scene(_scene(tmp_path, [
+        _box(dims=(0.05, 0.025, 0.02), xy=(0.05, -0.1)),
+        {"name": "T", "color": "green", "shape": "cylinder", "radius": 0.02, "height": 0.07, "xy": [0.05, 0.0]},
+        {"name": "L", "color": "blue", "shape": "cylinder", "radius": 0.02, "height": 0.015, "xy": [-0.05, -0.1]}]))
+    angle = reach.width_angles(scene.get("A"))[0]
+    outlines = reach.hold_outlines(scene, "A", angle)
+    assert set(outlines) == {"T"}
+    foot = scene.get("A").footprint(np.zeros(3))
+    assert np.ptp(outlines["T"], axis=0).max() > np.ptp(foot, axis=0).max()  # the hand reaches beyond the box
