@@ -122,3 +122,24 @@ def test_mesh_dir_on_the_command_line_trusts_a_folder(tmp_path):
     assert refused.exit_code == 2 and "is outside" in refused.output
     ok = CliRunner().invoke(main, [*replay, str(tmp_path / "r2"), "--mesh-dir", str(meshes)])
     assert ok.exit_code == 0, ok.output
+
+
+def test_stl_and_glb_meshes_load_and_are_drawn(tmp_path, monkeypatch):
+    import trimesh
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))  # where a GLB's drawing copy goes
+    box = trimesh.creation.box(extents=(0.05, 0.03, 0.04))
+    box.export(tmp_path / "box.glb")
+    box.export(tmp_path / "box.stl")
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        {"name": "G", "color": "red", "shape": "mesh", "mesh": "box.glb", "xy": [0.05, -0.1]},
+        {"name": "S", "color": "blue", "shape": "mesh", "mesh": "box.stl", "xy": [-0.05, -0.1]}, ANCHOR]}))
+    scene = load_scene(tmp_path / "scene.json")
+    for name in ("G", "S"):
+        assert scene.get(name).geometry.narrowest()[0] == pytest.approx(0.03)
+        assert scene.get(name).height == pytest.approx(0.04)
+    with World(scene, visuals=True) as world:
+        assert list((tmp_path / "cache" / "l2p-bullet" / "meshes").glob("*.obj"))  # the GLB's drawing
+        for _ in range(60):
+            world.step()
+        assert world.pose("G")[2] == pytest.approx(0.02, abs=2e-4) and world.tilt("S") < 1e-3
