@@ -264,7 +264,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     values = np.asarray(step.model.curve(mover, anchor, size, **kw), float).reshape(-1)
     for f, v in zip(frames, values, strict=True):
         f["progress"] = round(float(v), 6)
-    deviation, _lift, displaced = ex._honesty(frames, cmd.mover, p, slide, prims.world.sizes)
+    deviation, _lift, displaced = ex._honesty(frames, cmd.mover, p, slide, prims.world.rests)
     final_progress = float(values[-1]) if len(values) else None
     context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,

@@ -14,17 +14,35 @@ arm_option = click.option(
 force_option = click.option(
     "--force", is_flag=True,
     help="Replace the output folder if it holds a finished run of l2p-bullet (never a folder with other files).")
-scene_option = click.option(
-    "--scene", "scene_path", type=click.Path(dir_okay=False), default=None,
-    help="Scene file (JSON, see README); default: blocks A (red) and B (green).",
-)
+def _remember_mesh_dirs(ctx: click.Context, param: click.Parameter, value: tuple[str, ...]) -> tuple[str, ...]:
+    ctx.meta["l2p_bullet.mesh_dirs"] = tuple(value)
+    return value
+
+
+def scene_option(f):
+    """``--scene FILE`` and ``--mesh-dir DIR`` (repeatable: folders whose meshes a scene file may name by
+    absolute path, besides its own folder; kept in the click context, so no command's signature changes)."""
+    f = click.option("--mesh-dir", "mesh_dirs", multiple=True, type=click.Path(file_okay=False, exists=True),
+                     expose_value=False, callback=_remember_mesh_dirs,
+                     help="A folder the scene file's meshes may come from (absolute paths), besides its own.")(f)
+    return click.option(
+        "--scene", "scene_path", type=click.Path(dir_okay=False), default=None,
+        help="Scene file (JSON, see README); default: blocks A (red) and B (green).",
+    )(f)
+
+
+def mesh_dirs() -> tuple[str, ...]:
+    """The ``--mesh-dir`` folders of the command being run (none outside a command)."""
+    ctx = click.get_current_context(silent=True)
+    return () if ctx is None else tuple(ctx.meta.get("l2p_bullet.mesh_dirs", ()))
 
 
 def load_scene_or_default(scene_path: str | None):
-    """The scene from ``--scene``, or the default two-block scene."""
+    """The scene from ``--scene`` (its meshes read from its folder or a ``--mesh-dir``), or the default
+    two-block scene."""
     from ..core.scene import default_scene, load_scene
 
-    return default_scene() if scene_path is None else load_scene(scene_path)
+    return default_scene() if scene_path is None else load_scene(scene_path, mesh_dirs())
 
 
 def greedy_options(*names: str) -> type[click.Command]:

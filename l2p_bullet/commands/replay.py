@@ -10,6 +10,7 @@ from .common import (
     arm_option,
     force_option,
     load_scene_or_default,
+    mesh_dirs,
     render_settings,
     scene_option,
     seed_option,
@@ -68,7 +69,8 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
     spec = arm_plugins.get(arm)  # an unknown arm fails before anything is read or written
     if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed, spec.name):
         return
-    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path), scene_path)
+    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path, mesh_dirs()), scene_path,
+                         mesh_dirs())
     scene = arm_plugins.fit_scene(scene, spec)  # the motion is fitted into what this arm reaches
     source = motion_source(path_json, demo, scene, mover, anchor)
     t0 = time.perf_counter()

@@ -10,7 +10,10 @@ disk is the workspace: every block centre, and every point of a planned path, mu
 
 A block's footprint is its outline on the table: a cube's is its square, rotated by its yaw, written
 down directly (importing trimesh to derive it from a box mesh cost 0.3-0.5 s of every command's start;
-tests/core/test_scene.py checks the two agree). A non-cube shape would take its outline from its mesh.
+tests/core/test_scene.py checks the two agree). A box, a cylinder or a mesh takes its outline, height and
+widths from ``core/shapes.py`` (trimesh for meshes only); its ``size`` is the side in blocks that module
+defines (the square root of the footprint's area), so the planner's and the features' units stay "block
+sides" for every shape.
 """
 
 from __future__ import annotations
@@ -23,8 +26,11 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError, UnknownObjectError, did_you_mean
+from . import shapes
 from .contracts import load_json_file
 from .geometry import polygons_overlap
+from .shapes import MAX_FRICTION, MAX_MASS
+from .shapes import is_number as _is_number
 
 # Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
 COLORS: dict[str, tuple[float, float, float, float]] = {
@@ -87,16 +93,15 @@ _UNIT_SQUARE = np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]])
 """A unit cube's outline on the table, counter-clockwise."""
 
 
-def _unit_footprint(shape: str) -> np.ndarray:
-    """Convex 2-D outline (K,2) of a unit-size object, counter-clockwise."""
-    if shape != "cube":
-        raise SceneError(f'unknown object shape "{shape}" (known: cube)')
-    return _UNIT_SQUARE
-
-
 @dataclass(frozen=True)
 class SceneObject:
-    """One block on the table. ``size`` is the cube's side in metres; ``xy``/``yaw`` its pose."""
+    """One object on the table; ``xy``/``yaw`` its pose (of its reference point, ``core/shapes.py``).
+
+    ``size`` is a cube's side in metres; for any other shape the side in blocks its footprint gives
+    (:func:`shaped` computes it). A ``box`` has ``dims``, a ``cylinder`` ``radius`` and ``height``, a
+    ``mesh`` the resolved file ``mesh``, ``scale`` and ``rpy``; ``mass`` (kg) and ``friction`` are optional
+    for every shape (None: the cube's 0.1 kg and 0.5).
+    """
 
     name: str
     color: str
@@ -104,18 +109,45 @@ class SceneObject:
     xy: tuple[float, float]
     yaw: float = 0.0
     shape: str = "cube"
+    dims: tuple[float, float, float] | None = None
+    radius: float | None = None
+    height_m: float | None = None  # a cylinder's height as given (``height`` is any shape's)
+    mesh: str | None = None
+    scale: float = 1.0
+    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    mass: float | None = None
+    friction: float | None = None
 
     @property
     def pose(self) -> np.ndarray:
         """[x, y, yaw] as an array."""
         return np.array([self.xy[0], self.xy[1], self.yaw], dtype=float)
 
+    @property
+    def geometry(self) -> shapes.Geometry:
+        """Footprint, height, centre of mass and collision points (a cube's too, for uniform callers)."""
+        if self.shape == "cube":
+            return shapes.box((self.size, self.size, self.size))
+        return shapes.geometry(self.shape, self.dims, self.radius, self.height_m, self.mesh, self.scale, self.rpy)
+
+    @property
+    def height(self) -> float:
+        """Height of the object's top above the table (metres)."""
+        return self.size if self.shape == "cube" else self.geometry.height
+
+    @property
+    def inradius(self) -> float:
+        """Distance from the reference point to the footprint's nearest edge: two objects' centres are never
+        nearer than the sum of theirs (a cube: half its side)."""
+        return self.size / 2 if self.shape == "cube" else self.geometry.inradius
+
     def footprint(self, pose: np.ndarray | None = None) -> np.ndarray:
         """The object's outline (K,2) on the table at ``pose`` ([x, y, yaw], default its own)."""
         x, y, yaw = self.pose if pose is None else np.asarray(pose, dtype=float)
         c, s = math.cos(yaw), math.sin(yaw)
         rot = np.array([[c, -s], [s, c]])
-        return (_unit_footprint(self.shape) * self.size) @ rot.T + np.array([x, y])
+        local = _UNIT_SQUARE * self.size if self.shape == "cube" else self.geometry.footprint
+        return local @ rot.T + np.array([x, y])
 
     def moved(self, pose: np.ndarray) -> SceneObject:
         return replace(self, xy=(float(pose[0]), float(pose[1])), yaw=float(pose[2]))
@@ -163,11 +195,17 @@ class Scene:
                     f'object "{o.name}": unknown colour "{o.color}" (known: {", ".join(COLORS)}).'
                     + did_you_mean(o.color, COLORS)
                 )
-            if not (MIN_SIZE <= o.size <= MAX_SIZE):
+            if o.shape == "cube" and not (MIN_SIZE <= o.size <= MAX_SIZE):
                 raise SceneError(
                     f'object "{o.name}": size {o.size:.3g} m is outside what the gripper holds '
                     f"({MIN_SIZE}-{MAX_SIZE} m)"
                 )
+            if o.shape != "cube":
+                shapes.check_extents(o.shape, o.dims, o.radius, o.height_m, o.mesh, o.scale, o.rpy, f'object "{o.name}"')
+            for key, hi in (("mass", MAX_MASS), ("friction", MAX_FRICTION)):
+                v = getattr(o, key)
+                if v is not None and not (_is_number(v) and 0.0 < v <= hi):
+                    raise SceneError(f'object "{o.name}": "{key}" must be a number above 0 and at most {hi}')
             if not all(math.isfinite(v) for v in (*o.xy, o.yaw)):
                 raise SceneError(f'object "{o.name}": pose must be finite numbers')
             if not self.table.contains(o.footprint()):
@@ -192,7 +230,7 @@ class Scene:
         return {
             "objects": [
                 {"name": o.name, "color": o.color, "size": o.size, "xy": [o.xy[0], o.xy[1]], "yaw": o.yaw}
-                | ({} if o.shape == "cube" else {"shape": o.shape})
+                | ({} if o.shape == "cube" else {"shape": o.shape}) | shapes.fields(o)
                 for o in self.objects
             ]
         }
@@ -205,7 +243,10 @@ class Scene:
         return hashlib.sha256(json.dumps(self.to_dict(), sort_keys=True).encode()).hexdigest()
 
     @classmethod
-    def from_dict(cls, data: object, source: str = "scene") -> Scene:
+    def from_dict(cls, data: object, source: str = "scene", base: Path | None = None,
+                  mesh_dirs: tuple[Path, ...] = ()) -> Scene:
+        """The scene a scene file's JSON describes. ``base``: the file's folder (relative mesh paths are read
+        from it and must stay in it); ``mesh_dirs``: other folders whose meshes the user trusts."""
         if not isinstance(data, dict) or "objects" not in data:
             raise SceneError(f'{source}: expected a JSON object with an "objects" list')
         objs = data["objects"]
@@ -218,7 +259,7 @@ class Scene:
             where = f"{source}: object {i}"
             if not isinstance(raw, dict):
                 raise SceneError(f"{where} must be a JSON object")
-            for key in ("name", "color", "size", "xy"):
+            for key in ("name", "color", "size", "xy") if raw.get("shape", "cube") == "cube" else ("name", "color", "xy"):
                 if key not in raw:
                     raise SceneError(f'{where} is missing the field "{key}"')
             if not isinstance(raw["name"], str) or not 0 < len(raw["name"]) <= MAX_NAME:
@@ -230,22 +271,31 @@ class Scene:
             xy = raw["xy"]
             if not (isinstance(xy, list | tuple) and len(xy) == 2 and all(_is_number(v) for v in xy)):
                 raise SceneError(f'{where} ({raw["name"]}): "xy" must be two numbers [x, y] in metres')
-            if not _is_number(raw["size"]):
+            if "size" in raw and not _is_number(raw["size"]):
                 raise SceneError(f'{where} ({raw["name"]}): "size" must be a number (metres)')
             yaw = raw.get("yaw", 0.0)
             if not _is_number(yaw):
                 raise SceneError(f'{where} ({raw["name"]}): "yaw" must be a number (radians)')
-            out.append(
-                SceneObject(
-                    name=str(raw["name"]),
-                    color=str(raw["color"]).lower(),
-                    size=float(raw["size"]),
-                    xy=(float(xy[0]), float(xy[1])),
-                    yaw=float(yaw),
-                    shape=str(raw.get("shape", "cube")),
-                )
+            extra = shapes.read_fields(raw, f'{where} ({raw["name"]})', base, mesh_dirs)
+            obj = SceneObject(
+                name=str(raw["name"]),
+                color=str(raw["color"]).lower(),
+                size=float(raw.get("size", 0.0)),
+                xy=(float(xy[0]), float(xy[1])),
+                yaw=float(yaw),
+                shape=str(raw.get("shape", "cube")),
+                **extra,
             )
+            out.append(obj if obj.shape == "cube" else replace(obj, size=obj.geometry.size))
         return cls(out)
+
+
+def shaped(name: str, color: str, xy: tuple[float, float], yaw: float = 0.0, *, shape: str = "box",
+           **fields) -> SceneObject:
+    """A non-cube object from its shape's fields (``dims``, ``radius`` + ``height_m``, ``mesh`` ...), its
+    ``size`` computed (the side in blocks, ``core/shapes.py``)."""
+    o = SceneObject(name, color, 0.0, (float(xy[0]), float(xy[1])), float(yaw), shape, **fields)
+    return replace(o, size=o.geometry.size)
 
 
 MAX_OBJECTS = 100
@@ -254,25 +304,19 @@ MAX_NAME = 64
 """Longest object name, colour or shape a scene file may give (they are echoed in error messages)."""
 
 
-def _is_number(v: object) -> bool:
-    """A JSON number that is a finite float (a 300-digit integer is not a coordinate)."""
-    if isinstance(v, bool) or not isinstance(v, int | float):
-        return False
-    try:
-        return math.isfinite(float(v))
-    except OverflowError:
-        return False
-
-
 def _m(v: float) -> str:
     """A coordinate in an error message: millimetre precision, or 3 digits when it is absurdly large."""
     return f"{v:.3f}" if abs(v) < 1e4 else f"{v:.3g}"
 
 
-def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file; every problem becomes a :class:`SceneError` naming the file."""
+def load_scene(path: str | Path, mesh_dirs: tuple[str | Path, ...] = ()) -> Scene:
+    """Read and validate a scene file; every problem becomes a :class:`SceneError` naming the file.
+
+    Mesh paths are read relative to the file's folder and must stay inside it, or inside the installed
+    pybullet_data (``pybullet_data:NAME``) or one of ``mesh_dirs`` (folders the user names)."""
     p = Path(path)
-    return Scene.from_dict(load_json_file(p, SceneError, "scene file"), source=str(p)).validate()
+    return Scene.from_dict(load_json_file(p, SceneError, "scene file"), source=str(p), base=p.resolve().parent,
+                           mesh_dirs=tuple(Path(d) for d in mesh_dirs)).validate()
 
 
 def save_scene(scene: Scene, path: str | Path) -> None:

@@ -107,10 +107,12 @@ def _check(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> 
     if hit is not None:
         pose = dense[hit[1]]
         raise PathError(f'the path of "{mover}" runs into "{hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f})')
-    if not reach.hand_matters(scene, mover, arm):
+    shaped = obj.shape != "cube"
+    if not shaped and not reach.hand_matters(scene, mover, arm):
         return p, [None]
     first_hit = None
-    for angles in (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP)):
+    # a box, cylinder or mesh: only the angles its width fits, narrowest first (a cube fits any square one)
+    for angles in ((reach.width_angles(obj, arm),) if shaped else (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP))):
         clear = []
         for angle in angles:
             hit = reach.blocked_by(scene, mover, dense, float(angle), arm)
@@ -120,6 +122,8 @@ def _check(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> 
                 first_hit = hit
         if clear:
             return p, clear
+    if first_hit is None:
+        raise PathError(f'no grasp angle fits "{mover}" between the open fingers (see the "grasp-width" check)')
     pose = dense[first_hit[1]]
     raise PathError(f'the hand holding "{mover}" would knock "{first_hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f}) '
                     "whichever way it turns")
@@ -173,7 +177,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         recorder = prims.recorder
         recorder.finish_images()
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
-        deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
+        deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.rests)
         stats = _stats(prims) | {"grasp": grasp}
         files = _write_files(recorder, out_dir, meta, world.sizes, render)
         clock.stop()
@@ -278,14 +282,17 @@ def act(prims, scene: Scene, mover: str, path: np.ndarray, angles: list[float | 
 
 
 def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tuple[float, float],
-                     arm: ArmSpec = PANDA) -> list[float]:
+                     arm: ArmSpec = PANDA, widths: list[float] | None = None) -> list[float]:
     """Grasp offsets (tool yaw minus the path's unwrapped block yaw, for one of the allowed grasp ``angles``)
-    that keep the wrist inside its range over the whole slide, best centred first (``reach.wrist_offsets``)."""
+    that keep the wrist inside its range over the whole slide, best centred first (``reach.wrist_offsets``);
+    with ``widths`` (per angle, a non-cube mover's), the narrowest width the wrist reaches first."""
     dense = np.concatenate(motion.slide_chunks(path)) if len(path) > 1 else path
     v = reach.wrist_values(dense[:, :2], dense[:, 2], base_xy, arm)
     lo, hi = float(v.min()), float(v.max())
-    found = {round(off, 12) for angle in angles for off in reach.wrist_offsets(lo, hi, angle, arm)}
-    return sorted(found, key=lambda off: (max(hi - off, off - lo), abs(off)))
+    found = {round(off, 12): 0.0 if widths is None else round(w, 4)
+             for angle, w in zip(angles, widths or [0.0] * len(angles), strict=True)
+             for off in reach.wrist_offsets(lo, hi, angle, arm)}
+    return sorted(found, key=lambda off: (found[off], max(hi - off, off - lo), abs(off)))
 
 
 def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
@@ -295,7 +302,9 @@ def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | 
     approach, descent, slide, retract and return IK are solved as the arm will run them, before anything
     moves. ReachError (the first candidate's) if none works."""
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
-    candidates = grasp_candidates(path, angles, base, prims.robot.spec)
+    obj = prims.world.scene.get(mover)
+    widths = None if obj.shape == "cube" else [reach.grasp_width(obj, a) for a in angles]
+    candidates = grasp_candidates(path, angles, base, prims.robot.spec, widths)
     if not candidates:
         raise ReachError(f'no grasp keeps the arm\'s wrist inside its range while "{mover}" turns along this path '
                          f"({np.ptp(path[:, 2]):.1f} rad); turn the block less")
@@ -304,7 +313,8 @@ def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | 
         tool_yaw = float(path[0, 2] + off)
         try:
             prims.check_engage_and_slide(mover, path, tool_yaw, rest, lift)
-            return tool_yaw, {"yaw_offset_deg": round(float(np.degrees(off)), 3),
+            width = {} if widths is None else {"width_m": round(reach.grasp_width(obj, off), 6)}
+            return tool_yaw, width | {"yaw_offset_deg": round(float(np.degrees(off)), 3),
                               "angle_deg": round(float(np.degrees(off % np.pi)), 3),
                               "angles_allowed_deg": [None if a is None else round(float(np.degrees(a)), 3)
                                                      for a in angles]}
@@ -340,16 +350,17 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
 
 
 def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
-             sizes: dict[str, float]) -> tuple[float, float, dict[str, float]]:
-    """Deviation of the held block from the planned path (while sliding), its lift, each other block's
-    largest displacement from where it started."""
+             rests: dict[str, float]) -> tuple[float, float, dict[str, float]]:
+    """Deviation of the held block from the planned path (while sliding), its lift (above ``rests``, each
+    object's centre height standing: a cube's half side), each other block's largest displacement from
+    where it started."""
     deviation = 0.0
     if frames[slide]:
         pts = trajectory_poses(frames[slide], mover)[:, :2]
         deviation = float(motion.polyline_distance(pts, path[:, :2]).max())
-    lift = max(f["poses"][mover][2] for f in frames) - sizes[mover] / 2
+    lift = max(f["poses"][mover][2] for f in frames) - rests[mover]
     displaced = {}
-    for name in sizes:
+    for name in rests:
         if name != mover:
             xy = trajectory_poses(frames, name)[:, :2]
             displaced[name] = float(np.hypot(*(xy - xy[0]).T).max())

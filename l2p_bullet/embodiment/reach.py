@@ -87,21 +87,72 @@ def grasp_outline(size: float, depth: float, angle: float, arm: ArmSpec = PANDA)
     return convex_hull(np.vstack([square, box]))
 
 
+def shaped_outline(footprint: np.ndarray, depth: float, angle: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
+    """:func:`grasp_outline` for any footprint (K,2, block frame): None when the hand adds nothing to it."""
+    ext = hand_extent(depth, arm)
+    if ext is None:
+        return None
+    hx, hy = ext
+    c, s = math.cos(angle), math.sin(angle)
+    box = np.array([[hx, -hy], [hx, hy], [-hx, hy], [-hx, -hy]]) @ np.array([[c, s], [-s, c]])
+    grown = convex_hull(np.vstack([footprint, box]))
+    return None if _area(grown) <= _area(footprint) + 1e-12 else grown
+
+
+def _area(poly: np.ndarray) -> float:
+    x, y = poly[:, 0], poly[:, 1]
+    return float(0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
 def hold_outlines(scene: Scene, mover: str, angle: float | None, arm: ArmSpec = PANDA) -> dict[str, np.ndarray]:
     """Per other object (by name), the mover's outline grown by what the arm puts at that object's height
     for a grasp at ``angle``; objects the hand never reaches are left out (the block's own outline applies).
-    ``angle`` None (any multiple of 90 degrees): the hull over both square angles."""
+    ``angle`` None (any multiple of 90 degrees): the hull over both square angles. Heights are the
+    objects' tops (a box's, a cylinder's or a mesh's height; a cube's side)."""
     m = scene.get(mover)
     out = {}
     for o in scene.objects:
         if o.name == mover:
             continue
-        depth = o.size - m.size + HEIGHT_CLEARANCE
+        depth = o.height - m.height + HEIGHT_CLEARANCE
         angles = SQUARE_ANGLES if angle is None else (angle,)
+        if m.shape != "cube":
+            foot = m.footprint(np.zeros(3))
+            grown = [g for g in (shaped_outline(foot, depth, a, arm) for a in angles) if g is not None]
+            if grown:
+                out[o.name] = convex_hull(np.vstack(grown))
+            continue
         outline = convex_hull(np.vstack([grasp_outline(m.size, depth, a, arm) for a in angles]))
         if len(outline) != 4 or not np.allclose(np.abs(outline), m.size / 2):
             out[o.name] = outline
     return out
+
+
+FINGER_AXIS = QUARTER
+"""The fingers close along the tool's y axis (the Panda's prismatic fingers; an arm whose tool frame differs
+describes its tool link so that this holds): a grasp at angle ``a`` squeezes the object across ``a + 90
+degrees`` of its own frame."""
+MAX_WIDTH_HOLDS = 2
+"""Grasp angles tried for a non-cube mover (narrowest first): each costs the planner one more search."""
+
+
+def grasp_width(obj, angle: float) -> float:
+    """The width (m) the open fingers must span to close across ``obj`` held at grasp ``angle``."""
+    return obj.geometry.width(angle + FINGER_AXIS)
+
+
+def width_angles(obj, arm: ArmSpec = PANDA) -> list[float]:
+    """Grasp angles (in [0, 180) degrees) whose width fits between the arm's open fingers, narrowest first:
+    across the footprint's narrowest squeeze, then the square angles, then a 5 degree grid. Empty: no grasp
+    fits (``planning.feasibility`` refuses it, check "grasp-width")."""
+    _, across = obj.geometry.narrowest()
+    cands = [(across - FINGER_AXIS) % math.pi, *SQUARE_ANGLES, *np.arange(0.0, math.pi, ANGLE_STEP)]
+    seen: list[float] = []
+    for a in cands:
+        if all(abs(a - b) > 1e-9 for b in seen):
+            seen.append(float(a))
+    fits = [a for a in seen if grasp_width(obj, a) <= arm.gripper_opening + 1e-9]
+    return sorted(fits, key=lambda a: round(grasp_width(obj, a), 4))  # stable: ties keep the order above
 
 
 def hand_matters(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> bool:
@@ -134,6 +185,16 @@ def holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[Hold]:
     One ``Hold(None, {}, inf)`` when the hand never reaches beyond the block; an empty list when no angle of
     the hand clears the block's neighbours (the mover cannot be grasped).
     """
+    if scene.get(mover).shape != "cube":  # its width decides the angles first (a cube fits at both square ones)
+        found = []
+        for angle in width_angles(scene.get(mover), arm):
+            outlines = hold_outlines(scene, mover, angle, arm)
+            gap = min(hold_gaps(scene, mover, angle, arm).values(), default=math.inf)
+            if gap >= 0.0:
+                found.append(Hold(angle, outlines, gap))
+            if len(found) == MAX_WIDTH_HOLDS:
+                break
+        return found
     if not hand_matters(scene, mover, arm):
         return [Hold(None, {}, math.inf)]
 

@@ -108,7 +108,8 @@ class Recorder:
             **({"segments": meta["segments"]} if meta.get("segments") is not None else {}),  # a chain's clauses
             **({"manner": meta["manner"]} if meta.get("manner") is not None else {}),  # not slide (issue 23)
             "fps": self.fps,
-            "objects": {name: {"size": size, **_colour(self.world, name)} for name, size in sizes.items()},
+            "objects": {name: {"size": size, **_colour(self.world, name), **_shape(self.world, name)}
+                        for name, size in sizes.items()},
             # the arm whose movable joints each frame's "arm" lists (in this order), where its base stands
             "arm": {"name": self.world.robot.spec.name, "joints": movable_joints(self.world),
                     "base": [_r(v) for v in self.world.robot.base_xyz]},
@@ -157,6 +158,18 @@ def _colour(world, name: str) -> dict:
     scene = getattr(world, "scene", None)
     obj = next((o for o in scene.objects if o.name == name), None) if scene is not None else None
     return {} if obj is None else {"color": obj.color}
+
+
+def _shape(world, name: str) -> dict:
+    """A non-cube object's shape in trajectory.json (fields added, a cube's entry unchanged): its scene-file
+    fields, its height and its centre's height standing (``z`` of the frames is that centre)."""
+    scene = getattr(world, "scene", None)
+    obj = next((o for o in scene.objects if o.name == name), None) if scene is not None else None
+    if obj is None or obj.shape == "cube":
+        return {}
+    from ..core import shapes
+
+    return {"shape": obj.shape, **shapes.fields(obj), "height": obj.height, "rest_z": world.rests[name]}
 
 
 def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4) -> np.ndarray:

@@ -32,7 +32,8 @@ class Source:
     info: dict = field(default_factory=dict)
 
 
-def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | None = None) -> Scene:
+def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | None = None,
+                 mesh_dirs: tuple = ()) -> Scene:
     """The scene to replay on: a plan.json's recorded scene (``scene``, written by ``plan`` and
     ``perform``), checked against ``--scene`` when both are given; else ``--scene`` or the default.
 
@@ -47,7 +48,9 @@ def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | N
 
         data = read_json(path_json)
         if isinstance(data, dict) and "path" in data and isinstance(data.get("scene"), dict):
-            recorded = Scene.from_dict(data["scene"], source=f"{path_json} (its scene)").validate()
+            recorded = Scene.from_dict(data["scene"], source=f"{path_json} (its scene)",
+                                       base=Path(path_json).resolve().parent,
+                                       mesh_dirs=tuple(Path(d) for d in mesh_dirs)).validate()
     if recorded is None:
         return scene if scene is not None else default_scene()
     if scene is not None and scene.digest() != recorded.digest():

@@ -75,7 +75,7 @@ def scene_file(path: str | Path, seed: int = 0) -> list[SceneSpec]:
             raise SceneError(f"{where} is not valid JSON (column {e.colno}: {e.msg})") from None
         if not isinstance(data, dict):
             raise SceneError(f'{where}: expected a JSON object with an "objects" list')
-        scene = Scene.from_dict(data, source=where)
+        scene = Scene.from_dict(data, source=where, base=Path(p).resolve().parent)  # meshes beside the file
         try:
             scene.validate()
         except SceneError as e:

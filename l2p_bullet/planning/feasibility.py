@@ -3,6 +3,9 @@
 Every check is a *necessary* condition, measured with bounds that favour the arm, so a refusal is a
 real impossibility and never a guess (docs/perform.md lists them with examples):
 
+- ``grasp-width``: at no angle does the mover's footprint fit between the arm's open fingers
+  (``ArmSpec.gripper_opening``; the width is measured across the footprint, ``embodiment.reach.grasp_width``):
+  a 10 cm ball, a 9 x 9 cm box. Only the mover must fit; such an object is a fine anchor or bystander.
 - ``grasp``: whichever way it turns (every 5 degrees), the hand coming down on the mover would meet
   another object (taller blocks too close beside a small one: ``embodiment.reach``).
 - ``boxed-in``: no move at all is legal from the start: every short slide (72 directions) and every
@@ -42,14 +45,28 @@ from ..errors import InfeasibleError
 from ..judge.rules import AROUND_NEAR, AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
 from .world2d import World2D, place_outline
 
-CHECKS = ("grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer", "no-motion")
+CHECKS = ("grasp-width", "grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer", "no-motion")
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
 MIN_TURN_RAD = math.radians(10.0)
 
 
+def grasp_width(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> None:
+    """InfeasibleError ("grasp-width") when no grasp angle fits the mover between the arm's open fingers."""
+    m = scene.get(mover)
+    if reach.width_angles(m, arm):
+        return
+    width, _ = m.geometry.narrowest()
+    raise InfeasibleError(
+        "grasp-width",
+        f'the {arm.name} arm cannot grasp "{mover}": its narrowest width is {width * 100:.1f} cm and the '
+        f"gripper opens to {arm.gripper_opening * 100:.1f} cm",
+        {"mover": mover, "width_m": round(width, 6), "opening_m": arm.gripper_opening, "arm": arm.name})
+
+
 def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Hold]:
     """The ways to hold the mover whose hand clears its neighbours (``reach.holds``); InfeasibleError
-    ("grasp") naming the object in the way when there is none."""
+    ("grasp-width") when the mover fits no grasp, ("grasp") naming the object in the way when no hand clears."""
+    grasp_width(scene, mover, arm)
     found = reach.holds(scene, mover, arm)
     if found:
         return found
@@ -62,8 +79,8 @@ def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Ho
     other = scene.get(name)
     raise InfeasibleError(
         "grasp",
-        f'the arm "{arm.name}" cannot grasp "{mover}": its hand, coming down on the {m.size * 100:.0f} cm block, would hit '
-        f'"{name}" ({other.size * 100:.0f} cm tall) or another taller block beside it whichever way it turns; '
+        f'the arm "{arm.name}" cannot grasp "{mover}": its hand, coming down on the {m.height * 100:.0f} cm block, would hit '
+        f'"{name}" ({other.height * 100:.0f} cm tall) or another taller block beside it whichever way it turns; '
         "move them apart",
         {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}})
 
@@ -79,6 +96,14 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | None = None, arm: 
     if rules == "around":
         _blocked_around(scene, mover, anchor)
     return holds
+
+
+def nearest_centres(m, a) -> float:
+    """A bound (m) the two objects' centres are never nearer than: the sum of their footprints' inradii (two
+    cubes: the half sides' sum, written as it always was so a cube scene's numbers stay bit-identical)."""
+    if m.shape == "cube" and a.shape == "cube":
+        return (m.size + a.size) / 2
+    return m.inradius + a.inradius
 
 
 def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
@@ -97,7 +122,7 @@ def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
 def _room_around(scene: Scene, mover: str, anchor: str) -> None:
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
-    rho_min = (m.size + a.size) / 2  # centres never closer than the half sides' sum
+    rho_min = nearest_centres(m, a)  # centres never closer than the half sides' sum
     theta = np.linspace(-math.pi, math.pi, 1440, endpoint=False)
     u = np.column_stack([np.cos(theta), np.sin(theta)])
     rho = np.maximum(rho_min, -(u @ rel))  # the nearest point to the disk's centre along each bearing
@@ -128,7 +153,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     world = World2D(scene, mover)  # the block's own outline: smaller than a hand-grown one, so it favours the arm
     bearing_deg, radius_sides, yaw_deg = SWEEP_GRID
-    inner, outer = (m.size + a.size) / 2, AROUND_NEAR * m.size
+    inner, outer = nearest_centres(m, a), AROUND_NEAR * m.size
     radii = np.linspace(inner, outer, max(2, math.ceil((outer - inner) / (radius_sides * m.size)) + 1))
     dr = float(radii[1] - radii[0]) / 2  # a legal pose is at most half a step from a grid radius ...
     dyaw = math.radians(yaw_deg) / 2  # ... and half a step from a grid yaw
@@ -174,7 +199,7 @@ def _room_closer(scene: Scene, mover: str, anchor: str) -> None:
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
     room = closer_room(d0)
     target = d0 - CLOSER_SHARE * room
-    nearest = (m.size + a.size) / 2 / m.size
+    nearest = nearest_centres(m, a) / m.size
     if nearest > target + 1e-9:
         raise InfeasibleError(
             "room-closer",

@@ -233,6 +233,39 @@ class Bullet:
                                            physicsClientId=self._id)
         self._bodies[name] = b
 
+    def load_convex(self, name: str, points: np.ndarray, position: Vec3, orientation: Quat, *, mass: float,
+                    visual: tuple) -> None:
+        """A rigid body whose collision shape is the convex hull of ``points`` (N,3, body frame, whose origin
+        is the centre of mass), drawn as ``visual``: ("box", half extents), ("cylinder", radius, length) or
+        ("mesh", file, scale, frame position, frame roll-pitch-yaw). The EGL renderer draws no mesh given
+        by its vertices (measured: such bodies came out invisible), so a drawing is always a primitive or a
+        file."""
+        if name in self._bodies:
+            raise ValueError(f'a body named "{name}" is already loaded')
+        pb, cid = self._pb, self._id
+        col = pb.createCollisionShape(pb.GEOM_MESH, vertices=np.asarray(points, float).tolist(), physicsClientId=cid)
+        if visual[0] == "box":
+            vis = pb.createVisualShape(pb.GEOM_BOX, halfExtents=list(visual[1]), physicsClientId=cid)
+        elif visual[0] == "cylinder":
+            vis = pb.createVisualShape(pb.GEOM_CYLINDER, radius=visual[1], length=visual[2], physicsClientId=cid)
+        else:
+            _, path, scale, pos, rpy = visual
+            vis = pb.createVisualShape(pb.GEOM_MESH, fileName=str(path), meshScale=[scale] * 3,
+                                       visualFramePosition=list(pos),
+                                       visualFrameOrientation=pb.getQuaternionFromEuler(list(rpy)), physicsClientId=cid)
+        self._bodies[name] = pb.createMultiBody(baseMass=mass, baseCollisionShapeIndex=col,
+                                                baseVisualShapeIndex=vis, basePosition=list(position),
+                                                baseOrientation=list(orientation), physicsClientId=cid)
+        # a hull's default 1 mm margin grows it outwards: it would stand 1 mm high and the fingertips, sent to
+        # its nominal top, would press 2 mm into it (DESIGN.md section 2: 3 mm gave 400 N)
+        pb.changeDynamics(self._bodies[name], -1, collisionMargin=0.0, physicsClientId=cid)
+
+    def set_dynamics(self, name: str, *, mass: float | None = None, friction: float | None = None) -> None:
+        """The base link's mass (kg) and lateral friction coefficient, where given."""
+        kw = {k: v for k, v in (("mass", mass), ("lateralFriction", friction)) if v is not None}
+        if kw:
+            self._pb.changeDynamics(self._bodies[name], -1, physicsClientId=self._id, **kw)
+
     def set_color(self, name: str, rgba: Sequence[float]) -> None:
         """Colour of the body's base link."""
         self._pb.changeVisualShape(self._bodies[name], -1, rgbaColor=list(rgba), physicsClientId=self._id)

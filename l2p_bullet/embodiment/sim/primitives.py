@@ -176,7 +176,7 @@ class Primitives:
     # --- the primitives ----------------------------------------------------------------------
     def grasp_height(self, name: str) -> float:
         """Tool height with the closed fingertips just touching the block's top."""
-        return self.world.sizes[name] + self.robot.drop
+        return self.world.heights[name] + self.robot.drop
 
     def grasp_poses(self, name: str, yaw_offset: float = 0.0,
                     tool_yaw: float | None = None) -> tuple[np.ndarray, np.ndarray]:

@@ -25,12 +25,45 @@ from .robot import ARM, Robot
 
 PHYSICS_HZ = 240.0
 BLOCK_URDF_SIZE = 0.05  # the side of urdf/block.urdf; other sizes load it with globalScaling
+BLOCK_MASS, BLOCK_FRICTION = 0.1, 0.5  # urdf/block.urdf's: what a box, cylinder or mesh gets unless told
 TABLE = "<table>"  # the table's body name (blocks go by their scene names, the arm is robot.ARM)
 
 
 def urdf_path(name: str) -> str:
     """Absolute path of a URDF the project ships (inside the installed package)."""
     return str(Path(str(resources.files("l2p_bullet") / "urdf" / name)))
+
+
+def _visual(o, g) -> tuple:
+    """How the simulator draws a non-cube object (``Bullet.load_convex``): a box or a cylinder as itself, a
+    mesh from its file (an OBJ or STL as given; a GLB, which PyBullet does not read, as an OBJ of its
+    triangles written once to the cache folder)."""
+    if o.shape == "box":
+        return ("box", tuple(d / 2 for d in o.dims))
+    if o.shape == "cylinder":
+        return ("cylinder", o.radius, o.height_m)
+    path = Path(o.mesh)
+    if path.suffix.lower() == ".glb":
+        return ("mesh", _obj_copy(g), 1.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    return ("mesh", path, o.scale, g.file_origin, o.rpy)
+
+
+def _obj_copy(g) -> str:
+    """An OBJ file of ``g``'s triangles (body frame) in the user's cache, named by its content."""
+    import hashlib
+    import os
+    import tempfile
+
+    lines = [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in g.points] + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in g.faces]
+    text = "\n".join(lines) + "\n"
+    folder = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "l2p-bullet" / "meshes"
+    folder.mkdir(parents=True, exist_ok=True)
+    out = folder / f"{hashlib.sha256(text.encode()).hexdigest()[:24]}.obj"
+    if not out.is_file():
+        with tempfile.NamedTemporaryFile("w", dir=folder, suffix=".tmp", delete=False) as f:
+            f.write(text)
+        os.replace(f.name, out)
+    return str(out)
 
 
 class World:
@@ -67,11 +100,25 @@ class World:
         self.steps = 0
         sim.load_urdf(TABLE, urdf_path("table.urdf"), (0.0, 0.0, 0.0), fixed=True)
         self.sizes: dict[str, float] = {}
+        self.heights: dict[str, float] = {}  # each object's top above the table, standing
+        self.rests: dict[str, float] = {}  # each object's centre (of mass) above the table, standing
         for o in scene.objects:
-            sim.load_urdf(o.name, urdf_path("block.urdf"), (o.xy[0], o.xy[1], o.size / 2),
-                          sim.quaternion(0.0, 0.0, o.yaw), scale=o.size / BLOCK_URDF_SIZE)
+            orn = sim.quaternion(0.0, 0.0, o.yaw)
+            if o.shape == "cube":
+                sim.load_urdf(o.name, urdf_path("block.urdf"), (o.xy[0], o.xy[1], o.size / 2), orn,
+                              scale=o.size / BLOCK_URDF_SIZE)
+                rest = o.size / 2
+            else:  # its convex hull, its centre of mass at the body's origin (core/shapes.py)
+                g = o.geometry
+                rest = g.rest
+                sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
+                                mass=BLOCK_MASS if o.mass is None else o.mass, visual=_visual(o, g))
+                sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
+            sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
             self.sizes[o.name] = o.size
+            self.heights[o.name] = o.height
+            self.rests[o.name] = rest
         self.robot.load()
 
     def reset(self, scene: Scene) -> None:

@@ -1,0 +1,237 @@
+"""Object stress benchmark (issue 22): scenes of mixed shapes perform, or are refused up front with a check.
+
+    .venv/bin/python benchmarks/bench_objects.py                       # 1,000 scenes x 5 actions, no rendering
+    .venv/bin/python benchmarks/bench_objects.py --scenes 40           # a quick look while developing
+    .venv/bin/python benchmarks/bench_objects.py --scenes 200 --jobs 2 --json rows.json
+
+Scenes are drawn from seeds ``--seed-base + i`` (default 950000: no other benchmark or training run uses
+seeds there) by :func:`object_scene`. Every object is a cube (3-6 cm), a 2:1 box (short side 2.5-4 cm,
+2-6 cm tall), a cylinder (radius 1.5-3 cm, 2-7 cm tall) or, exactly once per scene, a mesh: pybullet_data's
+duck (``duck_vhacd.obj`` standing up, scale 0.03-0.045: 5-7 cm long). The mover A and the anchor B are
+placed, in turn (by seed), with each mover shape, touching (a 0-5 mm gap between their footprints), 1.4-7.7 mover sizes apart centre to
+centre (the original study's range; a size is the side in blocks of ``core/shapes.py``), or one of them at
+the workspace's rim; 2-5 bystanders of the same mix lie anywhere in the workspace (the duck among them when
+it is neither A nor B). Every scene is valid (``Scene.validate``). Each is performed with each action by
+``pipeline.perform`` (no rendering) on the default arm (the Panda).
+
+Per action it prints the outcomes of ``bench_robustness.py`` (success, unsuccessful, refused by check,
+plan-failed, exec-failed: an error after the arm started, crashed: any other exception) and how many runs
+moved an object other than the mover more than 1 mm, then the same by the mover's shape. Goals (issue 22):
+zero crashes, zero failures half-way through execution, zero objects disturbed, and every refusal names a
+check of ``planning.feasibility.CHECKS``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import json
+import math
+import shutil
+import sys
+import tempfile
+import time
+import traceback
+from pathlib import Path
+
+from bench_perform import SENTENCES
+from bench_robustness import COLORS, OUTCOMES, _failed_stage, print_table
+
+SEED_BASE = 950_000
+DUCK = "pybullet_data:duck_vhacd.obj"
+SHAPES = ("cube", "box", "cylinder", "mesh")
+
+
+def _object(name: str, color: str, kind: str, xy, yaw: float, rng):
+    """One object of ``kind`` with sizes drawn from ``rng`` (module docstring)."""
+    from l2p_bullet.core import shapes
+    from l2p_bullet.core.scene import SceneObject, shaped
+
+    xy = (float(xy[0]), float(xy[1]))
+    if kind == "cube":
+        return SceneObject(name, color, float(rng.uniform(0.03, 0.06)), xy, float(yaw))
+    if kind == "box":
+        s = float(rng.uniform(0.025, 0.04))
+        return shaped(name, color, xy, yaw, shape="box", dims=(2 * s, s, float(rng.uniform(0.02, 0.06))))
+    if kind == "cylinder":
+        return shaped(name, color, xy, yaw, shape="cylinder", radius=float(rng.uniform(0.015, 0.03)),
+                      height_m=float(rng.uniform(0.02, 0.07)))
+    path = str(shapes.resolve_mesh(DUCK, None))
+    return shaped(name, color, xy, yaw, shape="mesh", mesh=path, scale=float(rng.uniform(0.03, 0.045)),
+                  rpy=(math.pi / 2, 0.0, 0.0))
+
+
+def object_scene(seed: int):
+    """A valid mixed-shape scene drawn from ``seed``: (scene, kind, mover's shape)."""
+    import numpy as np
+
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.errors import SceneError
+
+    rng = np.random.default_rng(seed)
+    kind = ("touching", "study", "rim")[seed % 3]
+    mover = SHAPES[(seed // 3) % 4]  # every pair of scene kind and mover shape in 12 seeds
+    # the duck: the mover, else the anchor in half the scenes, else a bystander
+    mesh_at = 0 if mover == "mesh" else int(rng.integers(1, 3))
+    for _ in range(2000):
+        kinds = [mover, "mesh" if mesh_at == 1 else str(rng.choice(SHAPES[:3]))]
+        ya, yb = rng.uniform(0.0, math.pi, size=2)
+        r = 0.25 * math.sqrt(rng.uniform(0.8**2, 1.0) if kind == "rim" else rng.uniform())
+        a0 = rng.uniform(-math.pi, math.pi)
+        p0 = np.array([r * math.cos(a0), r * math.sin(a0)])
+        direction = rng.uniform(-math.pi, math.pi)
+        u = np.array([math.cos(direction), math.sin(direction)])
+        a = _object("A", "red", kinds[0], (0.0, 0.0), ya, rng)
+        b = _object("B", "green", kinds[1], (0.0, 0.0), yb, rng)
+        dist = _distance_for_gap(a, b, u, rng.uniform(0.0, 0.005)) if kind == "touching" else rng.uniform(1.4, 7.7) * a.size
+        p1 = p0 + dist * u
+        b_xy, a_xy = (p0, p1) if rng.uniform() < 0.5 else (p1, p0)
+        objects = [a.moved(np.array([a_xy[0], a_xy[1], ya])), b.moved(np.array([b_xy[0], b_xy[1], yb]))]
+        try:
+            Scene(objects).validate()
+        except SceneError:
+            continue
+        extra = ["mesh"] if mesh_at == 2 else []
+        extra += [str(rng.choice(("cube", "box", "cylinder"))) for _ in range(int(rng.integers(2, 6)) - len(extra))]
+        objects = _add_bystanders(objects, extra, rng)
+        if objects is None:
+            continue
+        return Scene(objects).validate(), kind, kinds[0]
+    raise RuntimeError(f"no valid object scene for seed {seed}")  # pragma: no cover
+
+
+def _distance_for_gap(a, b, u, gap: float) -> float:
+    """Centre distance along ``u`` at which the two footprints are ``gap`` apart (bisection)."""
+    import numpy as np
+
+    from l2p_bullet.core.geometry import separation
+
+    fa = a.footprint(np.array([0.0, 0.0, a.yaw]))
+    lo, hi = 0.0, 0.5
+    for _ in range(50):
+        mid = (lo + hi) / 2
+        fb = b.footprint(np.array([mid * u[0], mid * u[1], b.yaw]))
+        if float(separation(fa[None], fb)[0]) < gap:
+            lo = mid
+        else:
+            hi = mid
+    return float(np.nextafter(hi, np.inf))
+
+
+def _add_bystanders(objects: list, kinds: list[str], rng) -> list | None:
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.errors import SceneError
+
+    out = list(objects)
+    for k, kind in enumerate(kinds):
+        for _ in range(200):
+            r, a = 0.25 * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
+            o = _object(f"C{k + 1}", COLORS[k % len(COLORS)], kind, (r * math.cos(a), r * math.sin(a)),
+                        float(rng.uniform(0, math.pi)), rng)
+            try:
+                Scene([*out, o]).validate()
+            except SceneError:
+                continue
+            out.append(o)
+            break
+        else:
+            return None
+    return out
+
+
+def run_one(action: str, seed: int, tmp: Path, plugins: list) -> dict:
+    """Perform ``action`` on the object scene of ``seed``; classify what happened."""
+    from l2p_bullet.errors import InfeasibleError, L2PError
+    from l2p_bullet.pipeline import perform
+    from l2p_bullet.planning.feasibility import CHECKS
+
+    scene, kind, shape = object_scene(seed)
+    out = tmp / f"{action}-{seed}"
+    row = {"action": action, "seed": seed, "kind": kind, "shape": shape, "objects": len(scene.objects)}
+    t = time.perf_counter()
+    try:
+        r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins)
+        d = r.to_dict()
+        row |= {"outcome": "success" if r.success else "unsuccessful", "reason": r.verdict.get("reason"),
+                "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0)}
+    except InfeasibleError as e:
+        row |= {"outcome": "refused", "check": e.check, "named": e.check in CHECKS, "error": str(e)}
+    except L2PError as e:
+        stage = _failed_stage(out)
+        row |= {"outcome": "plan-failed" if stage in ("load", "plan") else "exec-failed", "stage": stage,
+                "error": f"{type(e).__name__}: {e}"}
+    except Exception as e:  # noqa: BLE001 - a crash is what this benchmark is looking for
+        row |= {"outcome": "crashed", "error": f"{type(e).__name__}: {e}", "traceback": traceback.format_exc()}
+    row["seconds"] = round(time.perf_counter() - t, 3)
+    shutil.rmtree(out, ignore_errors=True)
+    return row
+
+
+def _worker(args: tuple[list[tuple[str, int]], str]) -> list[dict]:
+    jobs, tmp = args
+    from l2p_bullet.plugins import registry
+
+    plugins = registry.discover()
+    return [run_one(a, s, Path(tmp), plugins) for a, s in jobs]
+
+
+def print_shapes(rows: list[dict]) -> None:
+    """Outcomes by the mover's shape, and the refusals that name no known check (goal: none)."""
+    print("\nby the mover's shape (all actions):")
+    for shape in ("cube", "box", "cylinder", "mesh"):
+        rs = [r for r in rows if r["shape"] == shape]
+        n = collections.Counter(r["outcome"] for r in rs)
+        disturbed = sum(1 for r in rs if r.get("disturbed"))
+        print(f"  {shape:<9} {len(rs):5d} runs: " + ", ".join(f"{o} {n[o]}" for o in OUTCOMES if n[o])
+              + f"; disturbed {disturbed}")
+    unnamed = [r for r in rows if r["outcome"] == "refused" and not r.get("named")]
+    print(f"\nrefusals naming no known check: {len(unnamed)}")
+    for r in unnamed:
+        print(f"  {r['action']} seed {r['seed']}: {r.get('check')!r} {r.get('error', '')[:120]}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scenes", type=int, default=1000, help="random object scenes (seeds seed-base .. +N-1)")
+    ap.add_argument("--seed-base", type=int, default=SEED_BASE)
+    ap.add_argument("--actions", default=",".join(SENTENCES), help="comma-separated actions")
+    ap.add_argument("--jobs", type=int, default=1, help="worker processes")
+    ap.add_argument("--json", type=Path, default=None, help="also write every row here")
+    args = ap.parse_args()
+    actions = [a for a in args.actions.split(",") if a]
+    jobs = [(a, args.seed_base + i) for i in range(args.scenes) for a in actions]
+    t0 = time.perf_counter()
+    rows: list[dict] = []
+    with tempfile.TemporaryDirectory(prefix="bench-objects-") as tmp:
+        if args.jobs > 1:
+            import multiprocessing as mp
+
+            chunks = [jobs[i::args.jobs * 16] for i in range(args.jobs * 16)]
+            with mp.get_context("spawn").Pool(args.jobs) as pool:
+                for part in pool.imap_unordered(_worker, [(c, tmp) for c in chunks if c]):
+                    rows.extend(part)
+                    print(f"  {len(rows)}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+                    if args.json:  # what is done so far survives an interrupted run
+                        args.json.write_text(json.dumps(rows, indent=1))
+        else:
+            from l2p_bullet.plugins import registry
+
+            plugins = registry.discover()
+            for k, (action, seed) in enumerate(jobs):
+                rows.append(run_one(action, seed, Path(tmp), plugins))
+                r = rows[-1]
+                print(f"{action:<8} seed {seed} {r['kind']:<8} {r['shape']:<8} {r['outcome']:<12} {r['seconds']:.2f}s "
+                      f"{r.get('check', '') or r.get('error', '')[:100]}", file=sys.stderr)
+                if (k + 1) % 50 == 0:
+                    print(f"  {k + 1}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    rows.sort(key=lambda r: (r["seed"], actions.index(r["action"])))
+    print(f"\nobjects: {args.scenes} mixed-shape scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
+          f"x {len(actions)} actions, Panda, no rendering, {time.perf_counter() - t0:.0f} s\n")
+    print_table(rows, actions)
+    print_shapes(rows)
+    if args.json:
+        args.json.write_text(json.dumps(rows, indent=1))
+
+
+if __name__ == "__main__":
+    main()
