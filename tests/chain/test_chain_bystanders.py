@@ -74,3 +74,22 @@ def test_the_way_round_among_bystanders_is_legal_near_and_turns_enough():
     bundle = registry.load("around")
     plan = planning.plan(scene, "D", "A", bundle, seed=5012)
     assert judge_for(bundle).judge(plan.path, plan.anchor_pose, plan.size).success
+
+
+def test_two_block_scenes_never_get_the_bystander_proposals(monkeypatch):
+    # the short arcs and the way round are only for scenes with other objects than the mover and its anchor,
+    # so the single-action plans of two-block scenes stay what they were (benchmarks/fingerprint.py)
+    from l2p_bullet import planning
+    from l2p_bullet.core.scene import random_scene
+    from l2p_bullet.planning import proposals
+
+    def boom(*_a, **_k):
+        raise AssertionError("bystander proposals used in a two-block scene")
+
+    monkeypatch.setattr(proposals, "arc_moves", boom)
+    monkeypatch.setattr(planning, "around_route", boom)
+    plan = planning.plan(random_scene(3, 0.05), "A", "B", registry.load("around"), seed=3, budget=3)
+    assert len(plan.path) >= 1
+    scene = chain_scenes(1, 5012)[0].scene  # with bystanders both are asked for
+    with pytest.raises(AssertionError, match="bystander proposals"):
+        planning.plan(scene, "D", "A", registry.load("around"), seed=5012, budget=3)
