@@ -15,7 +15,7 @@ from typing import Any
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from ..language import MAX_SENTENCE, VERBS, Command, phrase_tokens, strip_polite, tokens
+from ..language import MAX_SENTENCE, VERBS, Command, _phrase_tokens, _strip_polite, _tokens
 from ..pipeline import resolve
 from ..plugins import registry
 
@@ -83,12 +83,12 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:
     """The clause as a full sentence: the previous verb prepended when it has none, and the previous mover
     too when it starts with a preposition ("then next to C" after "move A around B": "move A next to C")."""
-    words = strip_polite(tokens(text))
+    words = _strip_polite(_tokens(text))
     if previous is None or not words or words[0].lower() in VERBS:
         return text
 
     low = tuple(w.lower() for w in words)
-    for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
+    for toks, _phrase, _action in _phrase_tokens(registry.phrase_table(plugins)):
         if low[: len(toks)] == toks:
             return f"{previous.verb} {previous.mover} {' '.join(words)}"
     return f"{previous.verb} {' '.join(words)}"

@@ -185,7 +185,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     try:
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
-        prims = ex.arm_primitives(world, settings, out)
+        prims = ex._primitives(world, settings, out)
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves
         results: list[ClauseResult] = []
@@ -235,9 +235,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
                                  budget=budget, threshold=threshold, target=None if target is None else target(now))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
-        p, angles = ex.checked_path(now, cmd.mover, plan.path)
+        p, angles = ex._check(now, cmd.mover, plan.path)
         stage = "reach"
-        tool_yaw, grasp = ex.choose_grasp_yaw(prims, cmd.mover, p, angles, rest)
+        tool_yaw, grasp = ex._choose_grasp_yaw(prims, cmd.mover, p, angles, rest)
         stage = "execute"
         prims.engage(cmd.mover, tool_yaw=tool_yaw)
         s0 = len(rec.frames)
@@ -258,7 +258,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     values = np.asarray(step.model.curve(mover, anchor, size, **kw), float).reshape(-1)
     for f, v in zip(frames, values, strict=True):
         f["progress"] = round(float(v), 6)
-    deviation, _lift, displaced = ex.honesty(frames, cmd.mover, p, slide, prims.world.sizes)
+    deviation, _lift, displaced = ex._honesty(frames, cmd.mover, p, slide, prims.world.sizes)
     final_progress = float(values[-1]) if len(values) else None
     context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,

@@ -52,7 +52,7 @@ class Execution:
 
 def check_path(scene: Scene, mover: str, path: np.ndarray) -> np.ndarray:
     """Validate a mover path against the scene; return it cleaned (yaw unwrapped, repeats merged)."""
-    return checked_path(scene, mover, path)[0]
+    return _check(scene, mover, path)[0]
 
 
 MAX_YAW_RAD = 1e4
@@ -82,7 +82,7 @@ def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
                         f"{r:.4g} m from its centre (radius {scene.workspace.radius} m)")
 
 
-def checked_path(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
+def _check(scene: Scene, mover: str, path: np.ndarray) -> tuple[np.ndarray, list[float | None]]:
     """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
     (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
     square angles that do, else those of a 5 degree grid."""
@@ -142,7 +142,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     meta.setdefault("mover", mover)
     clock = StageClock(on_stage)
     clock.stage("check", "check")
-    p, angles = checked_path(scene, mover, path)
+    p, angles = _check(scene, mover, path)
     clock.stage("setup", "setup")
     own = world is None
     if own:  # the world only simulates: rendering happens in the film's own worlds (embodiment/render.py)
@@ -151,14 +151,14 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     try:
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
-        prims = arm_primitives(world, render, out_dir)
+        prims = _primitives(world, render, out_dir)
         film = prims.recorder.film
         slide, removed, grasp = _perform(prims, mover, p, angles, clock)
         clock.stage("record", "record")
         recorder = prims.recorder
         recorder.finish_images()
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
-        deviation, lift, displaced = honesty(recorder.frames, mover, p, slide, world.sizes)
+        deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.sizes)
         stats = _stats(prims) | {"grasp": grasp}
         files = _write_files(recorder, out_dir, meta, world.sizes, render)
         clock.stop()
@@ -178,7 +178,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             world.close()
 
 
-def arm_primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
+def _primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
     """The arm's primitives with a recorder attached to ``world`` and, when rendering, the film that draws
     its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
 
@@ -199,7 +199,7 @@ def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
     recorder = prims.recorder
     clock.stage("reach", "reach")
     rest = prims.pose.copy()
-    tool_yaw, grasp = choose_grasp_yaw(prims, mover, path, angles, rest)
+    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest)
     recorder()  # the first frame: the world before the arm moves
     clock.stage("engage", "engage")
     prims.engage(mover, tool_yaw=tool_yaw)
@@ -222,7 +222,7 @@ def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tupl
     return sorted(found, key=lambda off: (max(hi - off, off - lo), abs(off)))
 
 
-def choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
+def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
                       rest: np.ndarray) -> tuple[float, dict]:
     """The tool's yaw at the grasp (unwrapped: it decides the wrist's branch) whose whole episode the arm
     reaches: candidates from the wrist model, best centred first (``grasp_candidates``); for each, the
@@ -272,7 +272,7 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     return files
 
 
-def honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
+def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
              sizes: dict[str, float]) -> tuple[float, float, dict[str, float]]:
     """Deviation of the held block from the planned path (while sliding), its lift, each other block's
     largest displacement from where it started."""
