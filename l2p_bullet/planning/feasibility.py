@@ -34,6 +34,7 @@ action judged otherwise gets the arm's checks only.
 from __future__ import annotations
 
 import math
+from collections import deque
 
 import numpy as np
 
@@ -165,21 +166,60 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     ok = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1) <= ws.radius + dr + 1e-9
     reach_m = float(np.linalg.norm(world.mover.outline, axis=1).max())
     slack = dr + reach_m * dyaw  # how much the gap can change within half a grid step
+    wide = slack + outer * math.radians(bearing_deg) / 2  # ... and within half a bearing step, at the outer radius
+    short = np.full(len(poses), np.inf)  # per pose: the least gap minus the margin it needs, over the obstacles
     start_gaps = world.gaps(m.pose)
     for body, poly, gap0 in zip(world.obstacles, world._obs_polys, start_gaps, strict=True):
         margin = min(world.margin, max(float(gap0), 0.0))  # the world's rule for a mover starting close
         reach_o = float(np.linalg.norm(body.outline, axis=1).max())
-        near = ok & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + slack)
+        near = ok & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + wide)
         if near.any():
             gaps = separation(place_outline(world.mover.outline, poses[near]), poly)
-            ok[np.flatnonzero(near)[gaps < margin - slack]] = False
-    arc = _longest_circular_run(ok.reshape(len(bearings), -1).any(1)) * bearing_deg
+            idx = np.flatnonzero(near)
+            short[idx] = np.minimum(short[idx], gaps - margin)
+    arc = _longest_circular_run((ok & (short >= -slack)).reshape(len(bearings), -1).any(1)) * bearing_deg
     if arc < AROUND_TURNS * 360 - 2 * bearing_deg:
         raise InfeasibleError(
             "blocked-around",
             f'no way round "{anchor}" for "{mover}": within {AROUND_NEAR:g} blocks of it, the other objects and the '
             f"workspace's rim leave the mover room to pass only {arc:.0f} deg of the way round (at any yaw); "
             f"around needs {AROUND_TURNS * 360:.0f} deg", {"arc_deg": round(arc, 1), "needed_deg": AROUND_TURNS * 360})
+    # the sweep must also be one connected way from the start: cells (bearing x radius) holding a legal pose
+    # within half a step of each (any yaw), joined to their 8 neighbours (a continuous path's nearest cell
+    # only ever moves to a neighbour)
+    cells = (ok & (short >= -wide)).reshape(len(bearings), len(radii), -1).any(2)
+    rel = np.asarray(m.xy, float) - a.xy
+    k0 = int(round(math.degrees(math.atan2(rel[1], rel[0])) / bearing_deg)) % len(bearings)
+    j0 = int(np.argmin(np.abs(radii - float(np.hypot(*rel)))))
+    if cells[k0, j0]:
+        way = _connected_sweep(cells, k0, j0) * bearing_deg
+        if way < AROUND_TURNS * 360 - 2 * bearing_deg:
+            raise InfeasibleError(
+                "blocked-around",
+                f'no way round "{anchor}" for "{mover}": within {AROUND_NEAR:g} blocks of it, the other objects and '
+                f"the workspace's rim leave the mover a way of only {way:.0f} deg round from where it starts (at any "
+                f"yaw); around needs {AROUND_TURNS * 360:.0f} deg",
+                {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True})
+
+
+def _connected_sweep(cells: np.ndarray, k0: int, j0: int) -> int:
+    """The most bearing steps either way round that a chain of 8-neighbouring True cells of ``cells``
+    (bearings x radii, bearings circular) reaches from cell (k0, j0), counted on the unwrapped bearing axis
+    (at most one full turn)."""
+    n, m = cells.shape
+    seen, queue, best = {(0, j0)}, deque([(0, j0)]), 0
+    while queue:
+        k, j = queue.popleft()
+        best = max(best, abs(k))
+        if best >= n:
+            return n
+        for dk in (-1, 0, 1):
+            for dj in (-1, 0, 1):
+                nk, nj = k + dk, j + dj
+                if (dk or dj) and 0 <= nj < m and (nk, nj) not in seen and cells[(k0 + nk) % n, nj]:
+                    seen.add((nk, nj))
+                    queue.append((nk, nj))
+    return best
 
 
 def _room_away(scene: Scene, mover: str, anchor: str) -> None:

@@ -94,6 +94,42 @@ _discrete_moves.deterministic = True  # type: ignore[attr-defined]
 discrete_moves = _discrete_moves
 
 
+ARC_STEPS_DEG = (20.0, 40.0, 60.0, 90.0)
+"""Bearing steps (degrees, both ways round) of the short arcs proposed among bystanders (:func:`arc_moves`)."""
+
+ARC_RADII = (1.25, 1.5, 1.75, 2.25, 2.75, 3.5)
+"""Centre distances from the anchor (block sizes) the short arcs end at: a polar lattice fine enough to pass
+between two blocks standing two block sizes apart (the closest :mod:`evaluate.scenes` places bystanders)."""
+
+
+def arc_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
+    """Short steps around the anchor: from the mover's bearing, :data:`ARC_STEPS_DEG` either way at each of
+    :data:`ARC_RADII`, keeping the yaw and again turned with the bearing (modulo a quarter turn, so the wrist
+    swings back and forth instead of winding up).
+
+    Why: the discrete rings are 45 degrees apart, so a way round the anchor is a chain of long chords, and
+    a bystander near the anchor blocks some of them; then "around" (or "past") stalls part of the way (issue
+    21: 0.26-0.76 of a turn). Shorter steps at several radii pass between the anchor and a bystander, or
+    outside it, wherever the 2-D world finds room. ``n`` is ignored (the set is fixed for a node).
+    """
+    a = problem.anchor_pose
+    rel = node.pose[:2] - a[:2]
+    b0 = float(np.arctan2(rel[1], rel[0]))
+    steps = np.radians(np.asarray(ARC_STEPS_DEG))
+    delta = np.concatenate([steps, -steps])
+    radii = np.asarray(ARC_RADII) * problem.size
+    d, r = np.meshgrid(delta, radii, indexing="ij")
+    d, r = d.ravel(), r.ravel()
+    xy = a[:2] + r[:, None] * np.column_stack([np.cos(b0 + d), np.sin(b0 + d)])
+    quarter = np.pi / 2
+    turn = (d + quarter / 2) % quarter - quarter / 2
+    out = np.empty((2 * len(d), 3))
+    out[:, :2] = np.vstack([xy, xy])
+    out[: len(d), 2] = node.pose[2]
+    out[len(d):, 2] = node.pose[2] + turn
+    return out
+
+
 class MixedProposer:
     """The discrete cells, the policy's proposals (when the bundle has a policy) and random moves, together.
 
@@ -104,12 +140,18 @@ class MixedProposer:
 
     deterministic = False
 
-    def __init__(self, policy=None, random_share: int = 16):
+    def __init__(self, policy=None, random_share: int = 16, arcs: bool = False, route: np.ndarray | None = None):
         self.policy = policy
         self.random_share = random_share
+        self.arcs = arcs  # also the short arcs around the anchor (planning.plan: where bystanders stand)
+        self.route = route  # also the corners of a way round the anchor (detour.py), from every node
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
         parts = [discrete_moves(problem, node, squared_within=1.75), random_moves(problem, node, self.random_share)]
         if self.policy is not None:
             parts.append(self.policy(problem, node, n))
+        if self.arcs:
+            parts.append(arc_moves(problem, node))
+        if self.route is not None:
+            parts.append(self.route[1:])
         return np.vstack(parts)

@@ -39,3 +39,57 @@ def test_around_walled_off_by_bystanders_and_the_rim_is_refused_but_open_ones_ar
     assert e.value.check == "blocked-around" and e.value.details["arc_deg"] < 0.8 * 360
     open_scene = chain_scenes(1, 5007)[0].scene  # "move B around D" there was planned and judged around
     feasibility.check(open_scene, "B", "D", "around")
+
+
+def test_around_whose_only_room_is_not_one_way_from_the_start_is_refused():
+    # chain/5007: round C there is room at some radius along every bearing but 184 deg of them (the coverage
+    # check passes at 290+ deg for some pairs; here the cells joined to B's start reach 184 deg only), so no
+    # continuous path from B's start sweeps the 0.8 turn
+    from l2p_bullet.planning import feasibility
+
+    scene = chain_scenes(1, 5007)[0].scene
+    with pytest.raises(InfeasibleError) as e:
+        feasibility.check(scene, "B", "C", "around")
+    assert e.value.check == "blocked-around" and e.value.details["connected"] is True
+    assert e.value.details["arc_deg"] < 0.8 * 360 and "from where it starts" in str(e.value)
+
+
+def test_the_way_round_among_bystanders_is_legal_near_and_turns_enough():
+    # chain/5012: D around A with B and C about; the planner alone stalled at 0.71 of a turn (issue 21);
+    # the way round (planning/detour.py) is legal move by move, stays within 4 blocks and sweeps 0.9 turn,
+    # and the planned path is judged around
+    from l2p_bullet import planning
+    from l2p_bullet.core.geometry import swept_angle
+    from l2p_bullet.judge import judge_for
+    from l2p_bullet.planning.detour import around_route
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = chain_scenes(1, 5012)[0].scene
+    world, a = World2D(scene, "D"), scene.get("A").pose
+    route = around_route(world, a, 4.0)
+    assert route is not None and world.path_free(route)
+    frames = planning.world2d.interpolate(route, 0.25 * world.size)
+    assert abs(swept_angle(frames, a)) / (2 * np.pi) >= 0.89
+    assert np.hypot(*(frames[:, :2] - a[:2]).T).max() <= 4.0 * world.size
+    bundle = registry.load("around")
+    plan = planning.plan(scene, "D", "A", bundle, seed=5012)
+    assert judge_for(bundle).judge(plan.path, plan.anchor_pose, plan.size).success
+
+
+def test_two_block_scenes_never_get_the_bystander_proposals(monkeypatch):
+    # the short arcs and the way round are only for scenes with other objects than the mover and its anchor,
+    # so the single-action plans of two-block scenes stay what they were (benchmarks/fingerprint.py)
+    from l2p_bullet import planning
+    from l2p_bullet.core.scene import random_scene
+    from l2p_bullet.planning import proposals
+
+    def boom(*_a, **_k):
+        raise AssertionError("bystander proposals used in a two-block scene")
+
+    monkeypatch.setattr(proposals, "arc_moves", boom)
+    monkeypatch.setattr(planning, "around_route", boom)
+    plan = planning.plan(random_scene(3, 0.05), "A", "B", registry.load("around"), seed=3, budget=3)
+    assert len(plan.path) >= 1
+    scene = chain_scenes(1, 5012)[0].scene  # with bystanders both are asked for
+    with pytest.raises(AssertionError, match="bystander proposals"):
+        planning.plan(scene, "D", "A", registry.load("around"), seed=5012, budget=3)
