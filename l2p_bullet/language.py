@@ -70,13 +70,13 @@ class Command:
         return self.anchors[1:]
 
 
-def _tokens(sentence: str) -> list[str]:
+def tokens(sentence: str) -> list[str]:
     """Words without surrounding punctuation ("one." -> "one"); apostrophes inside words are kept."""
     words = [w.strip(".,;:!?\"()[]") for w in sentence.split()]
     return [w for w in words if w]
 
 
-def _strip_polite(words: list[str]) -> list[str]:
+def strip_polite(words: list[str]) -> list[str]:
     changed = True
     while changed and words:
         changed = False
@@ -93,7 +93,7 @@ def _strip_polite(words: list[str]) -> list[str]:
     return words
 
 
-def _phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str]]:
+def phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str]]:
     """(tokens, phrase, action) sorted longest first, so the longest phrase wins."""
     table = {normalize_phrase(p): a for p, a in phrases.items()}
     items = [(tuple(p.split()), p, a) for p, a in table.items() if p]
@@ -113,7 +113,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
                             f'("{sentence[:30].strip()}..."); {EXAMPLE}')
     if not phrases:
         raise LanguageError("no action plugins are installed, so no preposition is known (see: l2p-bullet actions)")
-    words = _strip_polite(_tokens(sentence))
+    words = strip_polite(tokens(sentence))
     if not words:
         raise LanguageError(f'"{sentence.strip()}" asks for nothing; {EXAMPLE}')
     verb, manner, rest = split_verb(words)
@@ -123,7 +123,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     # The longest phrase wins; among its positions the first that names two objects. If no phrase
     # gives a valid reading, the error of the longest phrase's first reading is the most useful one.
     first_error: Exception | None = None
-    for toks, phrase, action in _phrase_tokens(phrases):
+    for toks, phrase, action in phrase_tokens(phrases):
         n = len(toks)
         for i in range(0, len(low) - n + 1):
             if tuple(low[i : i + n]) != toks:
@@ -236,7 +236,7 @@ def _try_pair(words: list[str], scene: Scene) -> bool:
 
 def _contains_phrase(text: str, phrases: dict[str, str]) -> bool:
     low = tuple(text.lower().split())
-    return any(low[i : i + len(t)] == t for t, _, _ in _phrase_tokens(phrases) for i in range(len(low)))
+    return any(low[i : i + len(t)] == t for t, _, _ in phrase_tokens(phrases) for i in range(len(low)))
 
 
 def _unplaced_words(rest: list[str], scene: Scene) -> str | None:
@@ -333,11 +333,11 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
     if not isinstance(sentence, str) or not phrases or len(sentence) > MAX_SENTENCE:
         return None
     raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]")]
-    words = _tokens(sentence)
-    kept = _strip_polite(list(words))
+    words = tokens(sentence)
+    kept = strip_polite(list(words))
     start = next((i for i in range(len(words) - len(kept) + 1) if words[i:i + len(kept)] == kept), 0)
     low = [w.lower() for w in kept]
-    for toks, phrase, action in _phrase_tokens(phrases):
+    for toks, phrase, action in phrase_tokens(phrases):
         if tuple(low[: len(toks)]) != toks:
             continue
         rest = " ".join(raw[start + len(toks): start + len(kept)])

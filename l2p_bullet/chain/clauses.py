@@ -15,7 +15,7 @@ from typing import Any
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from ..language import MAX_SENTENCE, Command, _phrase_tokens, _strip_polite, _tokens, known_verbs
+from ..language import MAX_SENTENCE, Command, known_verbs, phrase_tokens, strip_polite, tokens
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -84,14 +84,14 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:
     """The clause as a full sentence: the previous verb prepended when it has none, and the previous mover
     too when it starts with a preposition ("then next to C" after "move A around B": "move A next to C")."""
-    words = _strip_polite(_tokens(text))
+    words = strip_polite(tokens(text))
     if previous is None or not words or words[0].lower() in known_verbs():
         return text
     # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
     verb = previous.manner if _gapped(previous.verb) else previous.verb
 
     low = tuple(w.lower() for w in words)
-    for toks, _phrase, _action in _phrase_tokens(registry.phrase_table(plugins)):
+    for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
         if low[: len(toks)] == toks:
             return f"{verb} {previous.mover} {' '.join(words)}"
     return f"{verb} {' '.join(words)}"

@@ -31,7 +31,7 @@ from ..core.geometry import polygons_overlap
 from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..errors import InfeasibleError, L2PError, LanguageError
-from ..language import _phrase_tokens, _strip_polite, _tokens, parse_list
+from ..language import parse_list, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
 from ..plugins import registry
 
@@ -68,8 +68,8 @@ def is_composite(sentence: str, plugins: list | None = None) -> bool:
     """Whether ``sentence`` starts (after polite words) with an installed composite's phrase."""
     if not isinstance(sentence, str):
         return False
-    low = tuple(w.lower() for w in _strip_polite(_tokens(sentence)))
-    return any(low[: len(t)] == t for t, _, _ in _phrase_tokens(composite_phrases(plugins)))
+    low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
+    return any(low[: len(t)] == t for t, _, _ in phrase_tokens(composite_phrases(plugins)))
 
 
 def load_recipe(action: str, plugins: list | None) -> Recipe:

@@ -189,7 +189,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     try:
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
-        prims = ex._primitives(world, settings, out)
+        prims = ex.arm_primitives(world, settings, out)
         prims.recorder.gripper = any(s.clause.command.manner != "slide" for s in steps)  # issue 23
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves
@@ -264,7 +264,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     values = np.asarray(step.model.curve(mover, anchor, size, **kw), float).reshape(-1)
     for f, v in zip(frames, values, strict=True):
         f["progress"] = round(float(v), 6)
-    deviation, _lift, displaced = ex._honesty(frames, cmd.mover, p, slide, prims.world.rests)
+    deviation, _lift, displaced = ex.honesty(frames, cmd.mover, p, slide, prims.world.rests)
     final_progress = float(values[-1]) if len(values) else None
     context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,

@@ -55,7 +55,7 @@ class Execution:
 
 def check_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> np.ndarray:
     """Validate a mover path against the scene; return it cleaned (yaw unwrapped, repeats merged)."""
-    return _check(scene, mover, path, arm)[0]
+    return checked_path(scene, mover, path, arm)[0]
 
 
 MAX_YAW_RAD = 1e4
@@ -85,7 +85,7 @@ def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
                         f"{r:.4g} m from its centre (radius {scene.workspace.radius} m)")
 
 
-def _check(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
+def checked_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
     """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
     (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
     square angles that do, else those of a 5 degree grid."""
@@ -168,7 +168,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     try:
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
-        prims = _primitives(world, render, out_dir)
+        prims = arm_primitives(world, render, out_dir)
         film = prims.recorder.film
         if how.name != "slide":
             prims.recorder.gripper = True
@@ -177,7 +177,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         recorder = prims.recorder
         recorder.finish_images()
         recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
-        deviation, lift, displaced = _honesty(recorder.frames, mover, p, slide, world.rests)
+        deviation, lift, displaced = honesty(recorder.frames, mover, p, slide, world.rests)
         stats = _stats(prims) | {"grasp": grasp}
         files = _write_files(recorder, out_dir, meta, world.sizes, render)
         clock.stop()
@@ -197,7 +197,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             world.close()
 
 
-def _primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
+def arm_primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
     """The arm's primitives with a recorder attached to ``world`` and, when rendering, the film that draws
     its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
 
@@ -213,11 +213,11 @@ def _primitives(world: World, render: RenderSettings | None, out_dir: Path | Non
 
 def check_for(manner: MannerSpec, scene: Scene, mover: str, path: np.ndarray,
               arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
-    """:func:`_check` as the manner needs it: a carried block may pass over other objects (only where it is
+    """:func:`checked_path` as the manner needs it: a carried block may pass over other objects (only where it is
     set down must be clear, and the hand is above everything), an object the manner cannot handle is refused."""
     check_manner(manner, scene, mover, arm, path=np.asarray(path, float) if manner.motion == "push" else None)
     if manner.motion != "carry":
-        return _check(scene, mover, path, arm)
+        return checked_path(scene, mover, path, arm)
     check_waypoints(scene, mover, path)
     p = motion.clean_path(path)
     obj = scene.get(mover)
@@ -263,7 +263,7 @@ def act(prims, scene: Scene, mover: str, path: np.ndarray, angles: list[float | 
         return start, info.pop("end_frame"), info
     lift = carry_lift(scene, mover, path) if how.motion == "carry" else 0.0
     stage("reach")
-    tool_yaw, grasp = _choose_grasp_yaw(prims, mover, path, angles, rest, lift)
+    tool_yaw, grasp = choose_grasp_yaw(prims, mover, path, angles, rest, lift)
     if first_frame:
         recorder()  # the first frame: the world before the arm moves
     stage("engage")
@@ -295,7 +295,7 @@ def grasp_candidates(path: np.ndarray, angles: list[float | None], base_xy: tupl
     return sorted(found, key=lambda off: (found[off], max(hi - off, off - lo), abs(off)))
 
 
-def _choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
+def choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | None],
                       rest: np.ndarray, lift: float = 0.0) -> tuple[float, dict]:
     """The tool's yaw at the grasp (unwrapped: it decides the wrist's branch) whose whole episode the arm
     reaches: candidates from the wrist model, best centred first (``grasp_candidates``); for each, the
@@ -349,7 +349,7 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     return files
 
 
-def _honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
+def honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
              rests: dict[str, float]) -> tuple[float, float, dict[str, float]]:
     """Deviation of the held block from the planned path (while sliding), its lift (above ``rests``, each
     object's centre height standing: a cube's half side), each other block's largest displacement from
