@@ -38,6 +38,7 @@ from ..progress.features import QSRConfig
 from . import generalise as g
 from .augment import mirror
 from .heldout import FOLDS
+from .ordered_probes import ordered
 from .progress_net import ProgressModel, ensemble_arrays
 from .train_progress import ProgressTrainConfig, all_demos, train_net
 from .trainset import DataConfig, TrainingSequence, _labelled, build
@@ -202,10 +203,14 @@ def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] 
 
 def run_suite(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
               seed: int = 0) -> dict[str, g.ActionReport]:
-    """The suite for a recipe: its session-split models, scored on the other person's events, both ways."""
+    """The suite for a recipe: its session-split models, scored on the other person's events, both ways
+    (with the ordered probes of :mod:`.ordered_probes`)."""
     folds = split_models(recipe, cache, log, seed)
     reports = []
     for (_, test_s), models in zip(FOLDS, folds, strict=True):
         test = {a: g.events(ds) for a, ds in all_demos(sessions={test_s}).items()}
-        reports.append(g.score_fold(models, test))
+        fold = g.score_fold(models, test)
+        for a, r in fold.items():
+            r.ordered = ordered(models[a], test[a])
+        reports.append(fold)
     return g.merge(reports)
