@@ -14,7 +14,12 @@ generator so the current part stays bit-identical:
   back, around goes half way round and straight back;
 - ``contrastive``: the other actions' demonstrations (those ``DataConfig.negatives`` names) in the
   planner's domain too, straightened and snapped to the rings, as negatives;
-- ``turn_power``: around's net-turn label raised to this power (2: half a turn earns 0.25, not 0.5).
+- ``turn_power``: around's net-turn label raised to this power (2: half a turn earns 0.25, not 0.5);
+- ``planner_partials``: each own event (and mirror) as straight moves and as ring-snapped moves through
+  1-3 of its poses, stopped at 30 % and 60 % of that motion's length, labelled with the progress the
+  whole motion has there (a planner's motion stopped early: partial credit, not full).
+
+The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
 
 Nothing here reads a grade.
 """
@@ -43,6 +48,9 @@ from .progress_net import ProgressModel, ensemble_arrays
 from .train_progress import ProgressTrainConfig, all_demos, train_net
 from .trainset import DataConfig, TrainingSequence, _labelled, build
 
+PARTIAL_CUTS = (0.3, 0.6)
+"""Where ``planner_partials`` stops a planner-domain copy, as fractions of its length."""
+
 
 @dataclass(frozen=True)
 class Recipe:
@@ -53,11 +61,13 @@ class Recipe:
     planner_negatives: bool = False
     contrastive: bool = False
     turn_power: float = 1.0
+    planner_partials: bool = False
 
     def describe(self) -> dict:
         return {"name": self.name, "planner_positives": self.planner_positives,
                 "planner_negatives": self.planner_negatives, "contrastive": self.contrastive,
-                "turn_power": self.turn_power, **self.train.to_dict()}
+                "turn_power": self.turn_power, **self.train.to_dict(),
+                **({"planner_partials": True} if self.planner_partials else {})}
 
 
 def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
@@ -72,6 +82,11 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         Recipe("planner+contrastive", train=t, planner_positives=True, planner_negatives=True, contrastive=True),
         Recipe("around-convex", train=t, turn_power=2.0),
         Recipe("all", train=t, planner_positives=True, planner_negatives=True, contrastive=True, turn_power=2.0),
+        # the second round (issue 25, docs/learning.md "The strengthened suite"), one setting each
+        Recipe("planner-partial", train=t, planner_positives=True, planner_negatives=True, planner_partials=True),
+        Recipe("decay", train=dataclasses.replace(t, weight_decay=0.01)),
+        Recipe("small-decay", train=dataclasses.replace(small, weight_decay=0.01)),
+        Recipe("ordinal", train=dataclasses.replace(t, levels=4)),
     ]}
 
 
@@ -122,8 +137,17 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
             s.weight = neg_weight
         out.append(s)
 
+    def add_partials(m: np.ndarray, e: g.Event) -> None:
+        whole = _labelled(m, np.repeat(e.anchor[None], len(m), axis=0), e.size, 0, len(m) - 1, qcfg, dc, True, turns)
+        for f in PARTIAL_CUTS:  # the resampled frames are evenly spaced in arc length
+            k = max(1, int(round(f * whole.end)))
+            out.append(TrainingSequence(whole.x[: k + 1], whole.y[: k + 1], positive=True, end=k))
+
     for d in demos.get(action, []):
         for e in _event_views(d, dc):
+            if recipe.planner_partials:
+                add_partials(g.domain(e, "straight", int(rng.integers(1, 4))), e)
+                add_partials(g.domain(e, "rings", int(rng.integers(1, 4))), e)
             if recipe.planner_positives:
                 add(g.domain(e, "rings", int(rng.integers(1, 4))), e, True)
                 if action == "around":
@@ -159,8 +183,11 @@ def train(recipe: Recipe, action: str, demos: dict[str, list[Demo]], seed: int =
     q = QSRConfig()
     seqs = training_set(recipe, action, demos, q, seed)
     nets = [train_net(seqs, q.n_features, recipe.train, seed * 1000 + i, tick)[0] for i in range(recipe.train.ensemble)]
-    return ProgressModel.from_nets(nets, ModelConfig(n_features=q.n_features, hidden=recipe.train.hidden,
-                                                     ensemble=len(nets)), q)
+    return ProgressModel.from_nets(nets, _model_cfg(recipe, q, len(nets)), q)
+
+
+def _model_cfg(recipe: Recipe, q: QSRConfig, n: int) -> ModelConfig:
+    return ModelConfig(n_features=q.n_features, hidden=recipe.train.hidden, ensemble=n, levels=recipe.train.levels)
 
 
 def _load(path: Path, recipe: Recipe) -> ProgressModel:
@@ -169,8 +196,7 @@ def _load(path: Path, recipe: Recipe) -> ProgressModel:
     q = QSRConfig()
     arrays = load_file(str(path))
     return ProgressModel({k: torch.from_numpy(v) for k, v in arrays.items()},
-                         ModelConfig(n_features=q.n_features, hidden=recipe.train.hidden,
-                                     ensemble=recipe.train.ensemble), q)
+                         _model_cfg(recipe, q, recipe.train.ensemble), q)
 
 
 def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,

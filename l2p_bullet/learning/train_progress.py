@@ -51,9 +51,17 @@ class ProgressTrainConfig:
     threads: int = 1
     """Intra-op threads while training: tiny LSTMs gain nothing from more, and spinning threads stall
     badly when the cores are shared."""
+    weight_decay: float = 0.0
+    """Decoupled weight decay (AdamW) when above 0; 0 is plain Adam, the shipped recipe."""
+    levels: int = 1
+    """Thresholds of an ordinal read-out (``ModelConfig.levels``): above 1, each is trained with binary
+    cross-entropy on whether the frame's label is past it (thresholds at (2k + 1) / (2 levels))."""
 
     def to_dict(self) -> dict:
-        return {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
+        out = {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
+        # the issue-25 options only when used: older manifests and caches keep matching
+        return out | {k: getattr(self, k) for k in ("weight_decay", "levels") if getattr(self, k) != getattr(
+            ProgressTrainConfig, k)}
 
 
 @dataclass
@@ -122,7 +130,13 @@ def _step(net: ProgressNet, opt: torch.optim.Optimizer, batch: tuple[torch.Tenso
           times: float, end_weight: float) -> float:
     """One Adam step on a padded batch: its weighted error / ``total_w`` (the epoch's) x ``times``."""
     x, y, mask, endw = batch
-    err = (net(x) - y) ** 2
+    if net.head.levels > 1:  # ordinal: cross-entropy per threshold, averaged over the thresholds
+        k = net.head.levels
+        past = (y[..., None] > (2 * torch.arange(k) + 1) / (2 * k)).float()
+        err = torch.nn.functional.binary_cross_entropy(net.level_probs(x).clamp(1e-6, 1 - 1e-6), past,
+                                                       reduction="none").mean(-1)
+    else:
+        err = (net(x) - y) ** 2
     loss = ((err * mask).sum() + end_weight * (err * endw).sum()) / total_w * times
     opt.zero_grad()
     loss.backward()
@@ -135,8 +149,9 @@ def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrain
                tick: Callable[[], None] | None) -> tuple[ProgressNet, list[float]]:
     torch.manual_seed(seed)
     rng = np.random.default_rng(seed)
-    net = ProgressNet(n_features, cfg.hidden)
-    opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)
+    net = ProgressNet(n_features, cfg.hidden, cfg.levels)
+    opt = (torch.optim.AdamW(net.parameters(), lr=cfg.lr, weight_decay=cfg.weight_decay) if cfg.weight_decay > 0
+           else torch.optim.Adam(net.parameters(), lr=cfg.lr))
     sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=cfg.epochs)
     batches = _batches(seqs, cfg.batch)
     total_w = sum(s.weight for s in seqs)
@@ -225,7 +240,7 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     if fb:
         weigh(seqs, fb, fcfg.weight)
         nets = fine_tune(nets, seqs, fb, fcfg, cfg, seed=seed, tick=tick)
-    mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=len(nets))
+    mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=len(nets), levels=cfg.levels)
     return TrainResult(
         model=ProgressModel.from_nets(nets, mcfg, qsr_cfg),
         seconds=time.perf_counter() - t0,
