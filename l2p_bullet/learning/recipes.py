@@ -17,7 +17,11 @@ generator so the current part stays bit-identical:
 - ``turn_power``: around's net-turn label raised to this power (2: half a turn earns 0.25, not 0.5);
 - ``planner_partials``: each own event (and mirror) as straight moves and as ring-snapped moves through
   1-3 of its poses, stopped at 30 % and 60 % of that motion's length, labelled with the progress the
-  whole motion has there (a planner's motion stopped early: partial credit, not full).
+  whole motion has there (a planner's motion stopped early: partial credit, not full);
+- ``graded_wrongs``: planner motions that undo part of the action, with the credit a rule leaves them:
+  closer / away go on from the end back a random share u (0.2-1) of the way to the start and end with
+  1 - u of the event's label; next-to goes on 1-5 blocks straight out from its place and ends with
+  1 - blocks / 5 of it; the label falls linearly along the extra move.
 
 The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
 
@@ -62,12 +66,14 @@ class Recipe:
     contrastive: bool = False
     turn_power: float = 1.0
     planner_partials: bool = False
+    graded_wrongs: bool = False
 
     def describe(self) -> dict:
         return {"name": self.name, "planner_positives": self.planner_positives,
                 "planner_negatives": self.planner_negatives, "contrastive": self.contrastive,
                 "turn_power": self.turn_power, **self.train.to_dict(),
-                **({"planner_partials": True} if self.planner_partials else {})}
+                **({"planner_partials": True} if self.planner_partials else {}),
+                **({"graded_wrongs": True} if self.graded_wrongs else {})}
 
 
 def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
@@ -87,6 +93,9 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         Recipe("decay", train=dataclasses.replace(t, weight_decay=0.01)),
         Recipe("small-decay", train=dataclasses.replace(small, weight_decay=0.01)),
         Recipe("ordinal", train=dataclasses.replace(t, levels=4)),
+        # the third round: chosen after the second round's table (docs/learning.md)
+        Recipe("planner-graded", train=t, planner_positives=True, planner_negatives=True, planner_partials=True,
+               graded_wrongs=True),
     ]}
 
 
@@ -120,6 +129,27 @@ def _wrong(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
     return [g.straight_moves(w, step) for w in ways]
 
 
+def _graded(e: g.Event, rng: np.random.Generator) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Wrong planner motions that keep part of the credit (``graded_wrongs``): (the event as straight
+    moves' waypoints, what follows it, the share of the event's final label left at the end)."""
+    m, c = e.mover, e.anchor
+    p0, p1 = m[0], m[-1]
+    whole = g.waypoints(m, int(rng.integers(1, 4)))
+    if e.action in ("closer", "away"):  # back a share u of the way to the start: 1 - u of it is left
+        u = rng.uniform(0.2, 1.0)
+        return [(whole, (p1 + u * (p0 - p1))[None], 1.0 - u)]
+    if e.action == "next-to":  # k blocks straight out from its place beside the anchor
+        k = rng.uniform(1.0, 5.0)
+        q = p1.copy()
+        q[:2] = c[:2] + (p1 - c)[:2] * (1 + k * e.size / max(float(np.linalg.norm((p1 - c)[:2])), 1e-9))
+        return [(whole, q[None], max(0.0, 1.0 - k / GRADED_FAR))]
+    return []
+
+
+GRADED_FAR = 5.0
+"""Blocks past its place at which a next-to keeps no credit (the planner's second-widest ring)."""
+
+
 def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
            seed: int) -> list[TrainingSequence]:
     """The recipe's extra sequences for ``action`` (empty for the current recipe)."""
@@ -143,8 +173,21 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
             k = max(1, int(round(f * whole.end)))
             out.append(TrainingSequence(whole.x[: k + 1], whole.y[: k + 1], positive=True, end=k))
 
+    def add_graded(e: g.Event) -> None:
+        a = np.repeat(e.anchor[None], 2, axis=0)
+        for way, tail, left in _graded(e, rng):
+            ev = g.straight_moves(way, 0.25 * e.size)
+            head = _labelled(ev, a[:1].repeat(len(ev), 0), e.size, 0, len(ev) - 1, qcfg, dc, True, turns)
+            full = g.straight_moves(np.vstack([way, tail]), 0.25 * e.size)
+            x = _labelled(full, a[:1].repeat(len(full), 0), e.size, 0, len(full) - 1, qcfg, dc, False).x
+            k, top = len(head.y), float(head.y[-1])
+            y = np.concatenate([head.y, np.linspace(top, top * left, len(x) - k + 1)[1:]]).astype(np.float32)
+            out.append(TrainingSequence(x, y, positive=True, end=len(x) - 1))
+
     for d in demos.get(action, []):
         for e in _event_views(d, dc):
+            if recipe.graded_wrongs:
+                add_graded(e)
             if recipe.planner_partials:
                 add_partials(g.domain(e, "straight", int(rng.integers(1, 4))), e)
                 add_partials(g.domain(e, "rings", int(rng.integers(1, 4))), e)
