@@ -20,7 +20,8 @@ import torch
 
 from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.learning import generalise as g
-from l2p_bullet.learning.recipes import recipes, run_suite
+from l2p_bullet.learning.recipes import recipes
+from l2p_bullet.learning.sessions import run_suite
 
 
 def table(name: str, reps: dict[str, g.ActionReport]) -> str:

@@ -31,25 +31,18 @@ Nothing here reads a grade.
 from __future__ import annotations
 
 import dataclasses
-import json
-import time
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
-import torch
 
 from ..core.vocabulary import ACTIONS
 from ..data.demos import Demo
-from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
 from . import generalise as g
 from .augment import mirror
-from .heldout import FOLDS
-from .ordered_probes import ordered
-from .progress_net import ProgressModel, ensemble_arrays
-from .train_progress import ProgressTrainConfig, all_demos, train_net
+from .train_progress import ProgressTrainConfig, TrainResult, train_action
 from .trainset import DataConfig, TrainingSequence, _labelled, build
 
 PARTIAL_CUTS = (0.3, 0.6)
@@ -67,6 +60,13 @@ class Recipe:
     turn_power: float = 1.0
     planner_partials: bool = False
     graded_wrongs: bool = False
+
+    def extras_dict(self) -> dict:
+        """The options that add to the current training set (empty for the current recipe): what a
+        bundle's manifest records besides the training settings."""
+        keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs")
+        out = {k: True for k in keys if getattr(self, k)}
+        return out | ({"turn_power": self.turn_power} if self.turn_power != 1.0 else {})
 
     def describe(self) -> dict:
         return {"name": self.name, "planner_positives": self.planner_positives,
@@ -207,12 +207,12 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
     return out
 
 
-def training_set(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig,
-                 seed: int = 0) -> list[TrainingSequence]:
-    """:func:`trainset.build` (the current recipe, bit for bit) plus the recipe's extras."""
-    seqs = build(action, demos, qcfg, recipe.data, seed=seed)
+def extend(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, seed: int,
+           seqs: list[TrainingSequence]) -> list[TrainingSequence]:
+    """The current training set ``seqs`` (:func:`trainset.build`'s) plus the recipe's extras and label
+    power: what :func:`train_progress.train_action` trains on when given this as its ``extend``."""
     neg_w = next((s.weight for s in seqs if not s.positive), 1.0)
-    seqs += extras(recipe, action, demos, qcfg, neg_w, seed)
+    seqs = seqs + extras(recipe, action, demos, qcfg, neg_w, seed)
     if recipe.turn_power != 1.0 and action in recipe.data.turn_label:
         for s in seqs:
             if s.positive:
@@ -220,66 +220,16 @@ def training_set(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg
     return seqs
 
 
+def training_set(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig,
+                 seed: int = 0) -> list[TrainingSequence]:
+    """:func:`trainset.build` (the current recipe, bit for bit) plus the recipe's extras."""
+    return extend(recipe, action, demos, qcfg, seed, build(action, demos, qcfg, recipe.data, seed=seed))
+
+
 def train(recipe: Recipe, action: str, demos: dict[str, list[Demo]], seed: int = 0,
-          tick: Callable[[], None] | None = None) -> ProgressModel:
-    """The recipe's ensemble for ``action`` (members seeded ``seed * 1000 + i``, as ``train_action``)."""
+          tick: Callable[[], None] | None = None) -> TrainResult:
+    """The recipe's ensemble for ``action``: :func:`train_progress.train_action` (members seeded
+    ``seed * 1000 + i``) on :func:`training_set`."""
     q = QSRConfig()
-    seqs = training_set(recipe, action, demos, q, seed)
-    nets = [train_net(seqs, q.n_features, recipe.train, seed * 1000 + i, tick)[0] for i in range(recipe.train.ensemble)]
-    return ProgressModel.from_nets(nets, _model_cfg(recipe, q, len(nets)), q)
-
-
-def _model_cfg(recipe: Recipe, q: QSRConfig, n: int) -> ModelConfig:
-    return ModelConfig(n_features=q.n_features, hidden=recipe.train.hidden, ensemble=n, levels=recipe.train.levels)
-
-
-def _load(path: Path, recipe: Recipe) -> ProgressModel:
-    from safetensors.numpy import load_file
-
-    q = QSRConfig()
-    arrays = load_file(str(path))
-    return ProgressModel({k: torch.from_numpy(v) for k, v in arrays.items()},
-                         _model_cfg(recipe, q, recipe.train.ensemble), q)
-
-
-def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
-                 seed: int = 0) -> list[dict[str, ProgressModel]]:
-    """Per fold of :data:`heldout.FOLDS`, every action's model trained on the fold's training session
-    (read from ``cache`` when a model of the same recipe is there, else trained and written)."""
-    from safetensors.numpy import save_file
-
-    folds = []
-    tag = json.dumps(recipe.describe(), sort_keys=True)
-    for train_s, _ in FOLDS:
-        demos = all_demos(sessions={train_s})
-        models = {}
-        for a in ACTIONS:
-            path = None if cache is None else cache / recipe.name / f"{train_s}-{a}-s{seed}.safetensors"
-            if path is not None and path.is_file() and path.with_suffix(".json").read_text() == tag:
-                models[a] = _load(path, recipe)
-                continue
-            t0 = time.perf_counter()
-            models[a] = train(recipe, a, demos, seed)
-            if log:
-                log(f"{recipe.name}: {a} on {train_s} trained in {time.perf_counter() - t0:.0f} s")
-            if path is not None:
-                path.parent.mkdir(parents=True, exist_ok=True)
-                save_file(ensemble_arrays(models[a].nets), str(path))
-                path.with_suffix(".json").write_text(tag)
-        folds.append(models)
-    return folds
-
-
-def run_suite(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
-              seed: int = 0) -> dict[str, g.ActionReport]:
-    """The suite for a recipe: its session-split models, scored on the other person's events, both ways
-    (with the ordered probes of :mod:`.ordered_probes`)."""
-    folds = split_models(recipe, cache, log, seed)
-    reports = []
-    for (_, test_s), models in zip(FOLDS, folds, strict=True):
-        test = {a: g.events(ds) for a, ds in all_demos(sessions={test_s}).items()}
-        fold = g.score_fold(models, test)
-        for a, r in fold.items():
-            r.ordered = ordered(models[a], test[a])
-        reports.append(fold)
-    return g.merge(reports)
+    return train_action(action, demos, seed=seed, qsr_cfg=q, data_cfg=recipe.data, cfg=recipe.train, tick=tick,
+                        extend=functools.partial(extend, recipe, action, demos, q, seed))

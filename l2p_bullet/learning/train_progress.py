@@ -210,7 +210,8 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None,
                  feedback: Sequence[FeedbackItem] = (), feedback_cfg: FeedbackConfig | None = None,
                  base: Sequence[ProgressNet] | None = None,
-                 on_stage: Callable[[str], None] | None = None) -> TrainResult:
+                 on_stage: Callable[[str], None] | None = None,
+                 extend: Callable[[list[TrainingSequence]], list[TrainingSequence]] | None = None) -> TrainResult:
     """Build the training set and train the ensemble; ``tick`` is called once per member-epoch,
     ``on_stage`` with a line when the (validated) set starts being built and when it is built (the
     command prints them; its progress bar's clock starts at the second).
@@ -218,7 +219,8 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     With ``feedback`` (graded motions of any action; those of ``action`` are used), the ensemble trained
     on the demonstrations is then fine-tuned on them (:func:`fine_tune`, ``feedback_cfg``). ``base``
     skips the training on the demonstrations and fine-tunes these nets instead (cross-validation and
-    ``improve`` reuse one such ensemble for many fine-tunings).
+    ``improve`` reuse one such ensemble for many fine-tunings). ``extend`` adds to the built training set
+    (a recipe of :mod:`l2p_bullet.learning.recipes`; the shipped set is unchanged before it).
     """
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
     if not demos.get(action):
@@ -229,6 +231,8 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     if on_stage:
         on_stage("building the training set")
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
+    if extend is not None:
+        seqs = extend(seqs)
     if on_stage:
         on_stage(f"{len(seqs)} sequences")
     nets, last = list(base or []), []
