@@ -76,6 +76,20 @@ class Recipe:
                 **({"graded_wrongs": True} if self.graded_wrongs else {})}
 
 
+SHIPPED = Recipe("planner-graded", planner_positives=True, planner_negatives=True, planner_partials=True,
+                 graded_wrongs=True)
+"""The recipe ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with: chosen on the
+grade-free suite by the rule written before the runs (docs/learning.md, issue 25), training settings
+from the command (5 LSTMs x 30 epochs by default)."""
+
+
+def shipped_extension(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, data_cfg: DataConfig,
+                      seed: int) -> Callable[[list[TrainingSequence]], list[TrainingSequence]]:
+    """:data:`SHIPPED`'s extension of the set :func:`trainset.build` made with ``data_cfg`` (a plugin's
+    own data settings are kept; a viewer-frame or two-anchor plugin gets nothing added)."""
+    return functools.partial(extend, dataclasses.replace(SHIPPED, data=data_cfg), action, demos, qcfg, seed)
+
+
 def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
     """The recipes tried (issue 25), at a given ensemble size and length of training."""
     t = ProgressTrainConfig(ensemble=ensemble, epochs=epochs)

@@ -357,8 +357,10 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if demo_files and not demos[name]:
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
+    from .recipes import SHIPPED, shipped_extension  # recipes builds on this module: the one intra-room pair
+
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                          on_stage=on_stage)
+                          on_stage=on_stage, extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
@@ -366,7 +368,8 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                              log=log)
     if items:
         tuned = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                             feedback=items, feedback_cfg=fcfg, base=result.model.nets)
+                             feedback=items, feedback_cfg=fcfg, base=result.model.nets,
+                             extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
         result = dataclasses.replace(tuned, seconds=result.seconds + tuned.seconds, final_loss=result.final_loss,
                                      history=result.history)
     arrays = ensemble_arrays(result.model.nets)
@@ -379,6 +382,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
            + "".join(f" --feedback {f}" for f in feedback)
            + (f" --feedback-judge {feedback_judge} --judge-scenes {judge_scenes}" if feedback_judge else ""))
     training = training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg)
+    training["recipe"] = {"name": SHIPPED.name, **SHIPPED.extras_dict()}
     if feedback or feedback_judge:
         training["feedback"] = {"sources": list(feedback), "judge": feedback_judge or "",
                                 "judge_scenes": judge_scenes if feedback_judge else 0,
