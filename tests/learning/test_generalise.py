@@ -110,3 +110,20 @@ def test_planner_partials_are_planner_motions_stopped_early_with_partial_labels(
     # frames are ~evenly spaced in arc length: labels end near the cut (a short motion has few frames)
     assert abs(np.median(ends[0::2]) - 0.3) < 0.03 and abs(np.median(ends[1::2]) - 0.6) < 0.03
     assert np.all(ends[0::2] < ends[1::2] + 1e-6) and ends.max() < 0.8
+
+
+@pytest.mark.slow
+def test_train_uses_the_shipped_recipe_and_says_so(tmp_path):
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.learning.recipes import SHIPPED
+    from l2p_bullet.plugins.bundle import read_manifest
+
+    out = tmp_path / "next_to"
+    r = CliRunner().invoke(main, ["train", "next-to", "--ensemble", "1", "--epochs", "1", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    t = read_manifest(out)["training"]
+    assert t["recipe"] == {"name": SHIPPED.name, **SHIPPED.extras_dict()} and t["recipe"]["graded_wrongs"]
+    n_built = len(build("next-to", all_demos(), QSRConfig(), DataConfig()))
+    assert t["n_sequences"] == len(training_set(SHIPPED, "next-to", all_demos(), QSRConfig())) > n_built
