@@ -2,8 +2,8 @@
 
 The two capture sessions of each action were recorded by different people (data README), so a model
 trained on Session 1 of every action and tested on Session 2 is tested on people it never saw. This is
-the shipped training recipe unchanged (:func:`train_progress.train_action` with its default settings,
-the other actions' demonstrations of the same session as negatives); only the demonstrations are
+the shipped training recipe unchanged (:data:`recipes.SHIPPED`, what ``l2p-bullet train`` uses, with its
+default settings, the other actions' demonstrations of the same session as negatives); only the demonstrations are
 restricted, for all five actions at once: training "closer" on Session 1 with the other actions'
 Session 2 demonstrations as negatives would show it the test person. SlideToward's extra Session 3 is
 left out (as in :data:`heldout.FOLDS`). ``benchmarks/bench_recognize.py`` recognises the held-out
@@ -27,7 +27,7 @@ from . import generalise as g
 from .heldout import FOLDS
 from .ordered_probes import ordered
 from .progress_net import ProgressModel, ensemble_arrays
-from .recipes import Recipe, train
+from .recipes import SHIPPED, Recipe, train
 from .train_progress import all_demos, data_digest, training_section
 
 
@@ -35,13 +35,13 @@ def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] =
                     command: str = "", log: Callable[[str], None] | None = None,
                     recipe: Recipe | None = None) -> dict[str, Path]:
     """Train each of ``actions`` on capture ``session`` (e.g. "Session1") into ``out/<action>/``, with
-    ``recipe`` (:mod:`.recipes`; the shipped recipe when None).
+    ``recipe`` (:mod:`.recipes`; when None :data:`recipes.SHIPPED`, what ``l2p-bullet train`` uses).
 
     A folder whose manifest already records the same data digest, seed and recipe is kept as it is
     (training all five takes minutes), so a benchmark can call this every time. Returns action -> folder.
     """
     out = Path(out)
-    recipe = recipe or Recipe("current")
+    recipe = recipe or SHIPPED
     demos = all_demos(sessions={session})
     digest = data_digest(demos)
     folders = {}
@@ -54,8 +54,8 @@ def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] =
             log(f"training {action} on {session} ({len(demos[action])} demonstrations) into {folder}")
         result = train(recipe, action, demos, seed)
         training = training_section(result, recipe.train, seed, command, recipe.data) | {"sessions": [session]}
-        if recipe.extras_dict():  # written only when used: the shipped recipe's manifests stay as they were
-            training["recipe"] = recipe.extras_dict()
+        if recipe.extras_dict():  # as ``l2p-bullet train`` writes it; absent: the recipe before issue 25
+            training["recipe"] = {"name": recipe.name, **recipe.extras_dict()}
         write_progress_bundle(folder, action, ensemble_arrays(result.model.nets), result.model.model_cfg,
                               result.model.qsr_cfg, training=training,
                               metrics={"train_loss": round(result.final_loss, 6)})
@@ -72,7 +72,7 @@ def _current(folder: Path, digest: str, seed: int, recipe: Recipe) -> bool:
     return (t.get("data_digest") == digest and t.get("seed") == seed and t.get("data") == recipe.data.to_dict()
             and all(t.get(k) == v for k, v in recipe.train.to_dict().items())
             and all(t.get(k) is None for k in ("weight_decay", "levels") if k not in recipe.train.to_dict())
-            and t.get("recipe", {}) == recipe.extras_dict())
+            and {k: v for k, v in t.get("recipe", {}).items() if k != "name"} == recipe.extras_dict())
 
 
 def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,

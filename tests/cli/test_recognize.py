@@ -243,6 +243,7 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     import shutil
 
     from l2p_bullet.learning import sessions
+    from l2p_bullet.learning.recipes import SHIPPED, Recipe
     from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, data_digest
     from l2p_bullet.learning.trainset import DataConfig
     from l2p_bullet.plugins.bundle import builtin_bundle_dir, update_manifest
@@ -250,16 +251,19 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     class Trains(Exception):
         pass
 
-    def train_action(*args, **kwargs):
+    def train(*args, **kwargs):
         raise Trains
 
-    monkeypatch.setattr(sessions, "train_action", train_action)
+    monkeypatch.setattr(sessions, "train", train)
     folder = tmp_path / "Session1" / "closer"
     shutil.copytree(builtin_bundle_dir("closer"), folder)
     digest = data_digest(all_demos(sessions={"Session1"}))
     update_manifest(folder, "training", {"data_digest": digest, "seed": 0, "data": DataConfig().to_dict(),
-                                         **ProgressTrainConfig().to_dict()})
+                                         **ProgressTrainConfig().to_dict(),
+                                         "recipe": {"name": SHIPPED.name, **SHIPPED.extras_dict()}})
     assert sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",)) == {"closer": folder}
+    with pytest.raises(Trains):  # the recipe before issue 25's second round
+        sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), recipe=Recipe("current"))
     with pytest.raises(Trains):  # another seed
         sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), seed=1)
     with pytest.raises(Trains):  # the other session's demonstrations
