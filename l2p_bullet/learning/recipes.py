@@ -76,11 +76,10 @@ class Recipe:
                 **({"graded_wrongs": True} if self.graded_wrongs else {})}
 
 
-SHIPPED = Recipe("planner-graded", planner_positives=True, planner_negatives=True, planner_partials=True,
-                 graded_wrongs=True)
-"""The recipe ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with: chosen on the
-grade-free suite by the rule written before the runs (docs/learning.md, issue 25), training settings
-from the command (5 LSTMs x 30 epochs by default)."""
+SHIPPED = Recipe("current")
+"""The recipe ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with, training settings from
+the command (5 LSTMs x 30 epochs by default). Still the current one: planner-graded cleared the suite's
+rule but its around bundle planned 90 % of the 30 scenes, below the rule's 95 % (docs/learning.md)."""
 
 
 def shipped_extension(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, data_cfg: DataConfig,

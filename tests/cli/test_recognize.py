@@ -262,8 +262,9 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
                                          **ProgressTrainConfig().to_dict(),
                                          "recipe": {"name": SHIPPED.name, **SHIPPED.extras_dict()}})
     assert sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",)) == {"closer": folder}
-    with pytest.raises(Trains):  # the recipe before issue 25's second round
-        sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), recipe=Recipe("current"))
+    with pytest.raises(Trains):  # a recipe that adds to the training set
+        sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",),
+                                 recipe=Recipe("x", planner_positives=True))
     with pytest.raises(Trains):  # another seed
         sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), seed=1)
     with pytest.raises(Trains):  # the other session's demonstrations
