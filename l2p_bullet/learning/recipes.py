@@ -60,12 +60,14 @@ class Recipe:
     turn_power: float = 1.0
     planner_partials: bool = False
     graded_wrongs: bool = False
+    grid: bool = True
+    """With ``planner_positives``: around also gets copies snapped to the 2-D study's grid."""
 
     def extras_dict(self) -> dict:
         """The options that add to the current training set (empty for the current recipe): what a
         bundle's manifest records besides the training settings."""
         keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs")
-        out = {k: True for k in keys if getattr(self, k)}
+        out = {k: True for k in keys if getattr(self, k)} | ({"grid": False} if not self.grid else {})
         return out | ({"turn_power": self.turn_power} if self.turn_power != 1.0 else {})
 
     def describe(self) -> dict:
@@ -73,7 +75,7 @@ class Recipe:
                 "planner_negatives": self.planner_negatives, "contrastive": self.contrastive,
                 "turn_power": self.turn_power, **self.train.to_dict(),
                 **({"planner_partials": True} if self.planner_partials else {}),
-                **({"graded_wrongs": True} if self.graded_wrongs else {})}
+                **({"graded_wrongs": True} if self.graded_wrongs else {}), **({"grid": False} if not self.grid else {})}
 
 
 SHIPPED = Recipe("current")
@@ -109,6 +111,9 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         # the third round: chosen after the second round's table (docs/learning.md)
         Recipe("planner-graded", train=t, planner_positives=True, planner_negatives=True, planner_partials=True,
                graded_wrongs=True),
+        # the fourth: planner-graded without around's grid copies (after its around planned 90 %)
+        Recipe("planner-graded-nogrid", train=t, planner_positives=True, planner_negatives=True,
+               planner_partials=True, graded_wrongs=True, grid=False),
     ]}
 
 
@@ -206,7 +211,7 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
                 add_partials(g.domain(e, "rings", int(rng.integers(1, 4))), e)
             if recipe.planner_positives:
                 add(g.domain(e, "rings", int(rng.integers(1, 4))), e, True)
-                if action == "around":
+                if action == "around" and recipe.grid:
                     add(g.domain(e, "grid", int(rng.integers(2, 5))), e, True)
             if recipe.planner_negatives and action in ACTIONS:  # wrong motions are per built-in meaning
                 for w in _wrong(e, rng):
