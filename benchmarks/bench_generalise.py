@@ -20,13 +20,15 @@ import torch
 
 from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.learning import generalise as g
-from l2p_bullet.learning.recipes import recipes, run_suite
+from l2p_bullet.learning.recipes import recipes
+from l2p_bullet.learning.sessions import run_suite
 
 
 def table(name: str, reps: dict[str, g.ActionReport]) -> str:
     head = ("| action | full | 25/50/75 % | partial MAE | monotone | worst other (contained) | "
             "straight / rings / grid | domain gap | probe / plain | probe below |")
-    lines = [f"### {name}: suite score {g.suite_score(reps):.3f}\n", head, "|" + "---|" * 10]
+    lines = [f"### {name}: suite score {g.suite_score(reps):.3f}, strengthened {g.strong_score(reps):.3f}\n",
+             head + " ordered (all: chains) |", "|" + "---|" * 11]
     for a in ACTIONS:
         r = reps[a]
         worst = max((b for b in r.row if b not in g.CONTAINED.get(a, ())), key=lambda b: r.row[b])
@@ -35,10 +37,11 @@ def table(name: str, reps: dict[str, g.ActionReport]) -> str:
             f"| {a} | {r.full:.2f} | {'/'.join(f'{p:.2f}' for p in r.partial)} | {r.partial_mae:.2f} | "
             f"{r.monotone:.0%} | {r.off:.2f} {worst}{cont} | "
             f"{' / '.join(f'{r.domains[k]:.2f}' for k in g.DOMAINS)} | {r.domain_gap:.2f} | "
-            f"{r.probe:.2f} / {r.plain:.2f} | {r.probe_below:.0%} |")
+            f"{r.probe:.2f} / {r.plain:.2f} | {r.probe_below:.0%} | {r.ordered['all']:.0%}: "
+            + ", ".join(f"{k} {v:.0%}" for k, v in r.ordered.items() if k != "all") + " |")
     met = {a: sum(g.goals_met(reps[a]).values()) for a in ACTIONS}
-    lines.append("\ngoals met (full >= 0.8, off <= 0.2, monotone >= 90 %): "
-                 + ", ".join(f"{a} {n}/3" for a, n in met.items()))
+    lines.append("\ngoals met (full >= 0.8, off <= 0.2, monotone >= 90 %, ordered >= 80 %): "
+                 + ", ".join(f"{a} {n}/4" for a, n in met.items()))
     return "\n".join(lines)
 
 
@@ -62,11 +65,11 @@ def main() -> None:
         t0 = time.perf_counter()
         reps = run_suite(known[n], args.cache, log=lambda s: print(s, file=sys.stderr, flush=True), seed=args.seed)
         print(table(f"{n} ({args.ensemble} LSTMs x {args.epochs} epochs, seed {args.seed})", reps) + "\n", flush=True)
-        summary.append((n, g.suite_score(reps), sum(sum(g.goals_met(r).values()) for r in reps.values()),
-                        time.perf_counter() - t0))
-    print("| recipe | suite score | goals met (of 15) | seconds |\n|---|---:|---:|---:|")
-    for n, s, m, t in summary:
-        print(f"| {n} | {s:.3f} | {m} | {t:.0f} |")
+        summary.append((n, g.suite_score(reps), g.strong_score(reps),
+                        sum(sum(g.goals_met(r).values()) for r in reps.values()), time.perf_counter() - t0))
+    print("| recipe | suite score | strengthened | goals met (of 20) | seconds |\n|---|---:|---:|---:|---:|")
+    for n, s, s2, m, t in summary:
+        print(f"| {n} | {s:.3f} | {s2:.3f} | {m} | {t:.0f} |")
 
 
 if __name__ == "__main__":

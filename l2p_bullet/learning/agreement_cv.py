@@ -164,5 +164,6 @@ class FineTuner:
         if fb:
             weigh(self.seqs(action), fb, fcfg.weight)
             nets = fine_tune(nets, self.seqs(action), fb, fcfg, self.cfg, seed=self.seed)
-        mcfg = ModelConfig(n_features=self.qcfg.n_features, hidden=self.cfg.hidden, ensemble=len(nets))
+        mcfg = ModelConfig(n_features=self.qcfg.n_features, hidden=self.cfg.hidden, ensemble=len(nets),
+                           levels=self.cfg.levels)
         return ProgressModel.from_nets(nets, mcfg, self.qcfg)

@@ -25,17 +25,44 @@ from ..progress.features import QSRConfig
 from ..progress.scoring import ScoringMixin, shared_prefix
 
 
-class ProgressNet(nn.Module):
-    """One LSTM layer and a sigmoid read-out per frame."""
+class OrdinalHead(nn.Linear):
+    """A linear read-out with ``levels`` ordered thresholds (a cumulative-link ordinal head): the
+    probability that progress is past threshold k is sigmoid(w.h + b - offset_k), offsets 0 then running
+    sums of softplus(``cuts``), so the thresholds stay ordered. One level is the plain sigmoid read-out
+    (no ``cuts`` parameter: the state dict of the shipped bundles)."""
 
-    def __init__(self, n_features: int, hidden: int):
+    def __init__(self, hidden: int, levels: int = 1):
+        super().__init__(hidden, 1)
+        self.levels = levels
+        if levels > 1:  # offsets start one logit apart
+            self.cuts = nn.Parameter(torch.full((levels - 1,), float(np.log(np.e - 1))))
+
+    def level_probs(self, h: torch.Tensor) -> torch.Tensor:  # (..., H) -> (..., levels)
+        z = super().forward(h)
+        if self.levels == 1:
+            return torch.sigmoid(z)
+        off = torch.cat([torch.zeros(1), torch.cumsum(nn.functional.softplus(self.cuts), 0)])
+        return torch.sigmoid(z - off)
+
+    def progress(self, h: torch.Tensor) -> torch.Tensor:  # (..., H) -> (...)
+        return self.level_probs(h).mean(-1)
+
+
+class ProgressNet(nn.Module):
+    """One LSTM layer and a sigmoid (or ordinal, :class:`OrdinalHead`) read-out per frame."""
+
+    def __init__(self, n_features: int, hidden: int, levels: int = 1):
         super().__init__()
         self.lstm = nn.LSTM(n_features, hidden, batch_first=True)
-        self.head = nn.Linear(hidden, 1)
+        self.head = OrdinalHead(hidden, levels)
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:  # (B, T, F) -> (B, T)
         h, _ = self.lstm(x)
-        return torch.sigmoid(self.head(h)).squeeze(-1)
+        return self.head.progress(h)
+
+    def level_probs(self, x: torch.Tensor) -> torch.Tensor:  # (B, T, F) -> (B, T, levels)
+        h, _ = self.lstm(x)
+        return self.head.level_probs(h)
 
 
 def ensemble_state(nets: Sequence[ProgressNet]) -> dict[str, torch.Tensor]:
@@ -59,7 +86,7 @@ class ProgressModel(ScoringMixin):
         self.model_cfg, self.qsr_cfg = model_cfg, qsr_cfg
         self.nets: list[ProgressNet] = []
         for i in range(model_cfg.ensemble):
-            net = ProgressNet(model_cfg.n_features, model_cfg.hidden)
+            net = ProgressNet(model_cfg.n_features, model_cfg.hidden, model_cfg.levels)
             net.load_state_dict({k.split(".", 1)[1]: v for k, v in tensors.items() if k.startswith(f"m{i}.")})
             net.eval()
             self.nets.append(net)
@@ -98,4 +125,4 @@ class ProgressModel(ScoringMixin):
                     h_all = torch.cat([hp.expand(B, -1, -1), hr], dim=1)
                 else:
                     h_all, _ = net.lstm(x)
-                out += torch.sigmoid(net.head(h_all)).squeeze(-1)
+                out += net.head.progress(h_all)

@@ -51,9 +51,17 @@ class ProgressTrainConfig:
     threads: int = 1
     """Intra-op threads while training: tiny LSTMs gain nothing from more, and spinning threads stall
     badly when the cores are shared."""
+    weight_decay: float = 0.0
+    """Decoupled weight decay (AdamW) when above 0; 0 is plain Adam, the shipped recipe."""
+    levels: int = 1
+    """Thresholds of an ordinal read-out (``ModelConfig.levels``): above 1, each is trained with binary
+    cross-entropy on whether the frame's label is past it (thresholds at (2k + 1) / (2 levels))."""
 
     def to_dict(self) -> dict:
-        return {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
+        out = {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
+        # the issue-25 options only when used: older manifests and caches keep matching
+        return out | {k: getattr(self, k) for k in ("weight_decay", "levels") if getattr(self, k) != getattr(
+            ProgressTrainConfig, k)}
 
 
 @dataclass
@@ -122,7 +130,13 @@ def _step(net: ProgressNet, opt: torch.optim.Optimizer, batch: tuple[torch.Tenso
           times: float, end_weight: float) -> float:
     """One Adam step on a padded batch: its weighted error / ``total_w`` (the epoch's) x ``times``."""
     x, y, mask, endw = batch
-    err = (net(x) - y) ** 2
+    if net.head.levels > 1:  # ordinal: cross-entropy per threshold, averaged over the thresholds
+        k = net.head.levels
+        past = (y[..., None] > (2 * torch.arange(k) + 1) / (2 * k)).float()
+        err = torch.nn.functional.binary_cross_entropy(net.level_probs(x).clamp(1e-6, 1 - 1e-6), past,
+                                                       reduction="none").mean(-1)
+    else:
+        err = (net(x) - y) ** 2
     loss = ((err * mask).sum() + end_weight * (err * endw).sum()) / total_w * times
     opt.zero_grad()
     loss.backward()
@@ -135,8 +149,9 @@ def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrain
                tick: Callable[[], None] | None) -> tuple[ProgressNet, list[float]]:
     torch.manual_seed(seed)
     rng = np.random.default_rng(seed)
-    net = ProgressNet(n_features, cfg.hidden)
-    opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)
+    net = ProgressNet(n_features, cfg.hidden, cfg.levels)
+    opt = (torch.optim.AdamW(net.parameters(), lr=cfg.lr, weight_decay=cfg.weight_decay) if cfg.weight_decay > 0
+           else torch.optim.Adam(net.parameters(), lr=cfg.lr))
     sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=cfg.epochs)
     batches = _batches(seqs, cfg.batch)
     total_w = sum(s.weight for s in seqs)
@@ -195,7 +210,8 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
                  cfg: ProgressTrainConfig | None = None, tick: Callable[[], None] | None = None,
                  feedback: Sequence[FeedbackItem] = (), feedback_cfg: FeedbackConfig | None = None,
                  base: Sequence[ProgressNet] | None = None,
-                 on_stage: Callable[[str], None] | None = None) -> TrainResult:
+                 on_stage: Callable[[str], None] | None = None,
+                 extend: Callable[[list[TrainingSequence]], list[TrainingSequence]] | None = None) -> TrainResult:
     """Build the training set and train the ensemble; ``tick`` is called once per member-epoch,
     ``on_stage`` with a line when the (validated) set starts being built and when it is built (the
     command prints them; its progress bar's clock starts at the second).
@@ -203,7 +219,8 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     With ``feedback`` (graded motions of any action; those of ``action`` are used), the ensemble trained
     on the demonstrations is then fine-tuned on them (:func:`fine_tune`, ``feedback_cfg``). ``base``
     skips the training on the demonstrations and fine-tunes these nets instead (cross-validation and
-    ``improve`` reuse one such ensemble for many fine-tunings).
+    ``improve`` reuse one such ensemble for many fine-tunings). ``extend`` adds to the built training set
+    (a recipe of :mod:`l2p_bullet.learning.recipes`; the shipped set is unchanged before it).
     """
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
     if not demos.get(action):
@@ -214,6 +231,8 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     if on_stage:
         on_stage("building the training set")
     seqs = build(action, demos, qsr_cfg, data_cfg, seed=seed)
+    if extend is not None:
+        seqs = extend(seqs)
     if on_stage:
         on_stage(f"{len(seqs)} sequences")
     nets, last = list(base or []), []
@@ -225,7 +244,7 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     if fb:
         weigh(seqs, fb, fcfg.weight)
         nets = fine_tune(nets, seqs, fb, fcfg, cfg, seed=seed, tick=tick)
-    mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=len(nets))
+    mcfg = ModelConfig(n_features=qsr_cfg.n_features, hidden=cfg.hidden, ensemble=len(nets), levels=cfg.levels)
     return TrainResult(
         model=ProgressModel.from_nets(nets, mcfg, qsr_cfg),
         seconds=time.perf_counter() - t0,
@@ -338,8 +357,10 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if demo_files and not demos[name]:
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
+    from .recipes import SHIPPED, shipped_extension  # recipes builds on this module: the one intra-room pair
+
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                          on_stage=on_stage)
+                          on_stage=on_stage, extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
@@ -347,7 +368,8 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
                              log=log)
     if items:
         tuned = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                             feedback=items, feedback_cfg=fcfg, base=result.model.nets)
+                             feedback=items, feedback_cfg=fcfg, base=result.model.nets,
+                             extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
         result = dataclasses.replace(tuned, seconds=result.seconds + tuned.seconds, final_loss=result.final_loss,
                                      history=result.history)
     arrays = ensemble_arrays(result.model.nets)
@@ -360,6 +382,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
            + "".join(f" --feedback {f}" for f in feedback)
            + (f" --feedback-judge {feedback_judge} --judge-scenes {judge_scenes}" if feedback_judge else ""))
     training = training_section(result, cfg, seed, cmd, data_cfg, demos[name], qsr_cfg)
+    training["recipe"] = {"name": SHIPPED.name, **SHIPPED.extras_dict()}
     if feedback or feedback_judge:
         training["feedback"] = {"sources": list(feedback), "judge": feedback_judge or "",
                                 "judge_scenes": judge_scenes if feedback_judge else 0,

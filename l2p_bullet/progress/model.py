@@ -17,7 +17,7 @@ import numpy as np
 
 from ..core.contracts import PROGRESS_FILE
 from ..errors import BundleError
-from .config import ModelConfig
+from .config import ModelConfig, level_offsets
 from .features import QSRConfig
 from .scoring import ScoringMixin, shared_prefix
 
@@ -39,8 +39,11 @@ class NumpyProgressModel(ScoringMixin):
                 return np.asarray(tensors[f"m{i}.{k}"], np.float32)
 
             # PyTorch's LSTM gate order is input, forget, cell, output; its two biases are added.
+            # the read-out's thresholds: one (the plain sigmoid) unless the head is ordinal
+            cuts = g("head.cuts") if model_cfg.levels > 1 else np.zeros(0, np.float32)
             self.members.append((g("lstm.weight_ih_l0").T.copy(), g("lstm.weight_hh_l0").T.copy(),
-                                 g("lstm.bias_ih_l0") + g("lstm.bias_hh_l0"), g("head.weight")[0], g("head.bias")[0]))
+                                 g("lstm.bias_ih_l0") + g("lstm.bias_hh_l0"), g("head.weight")[0],
+                                 g("head.bias")[0] - level_offsets(cuts)))
 
     @classmethod
     def from_bundle(cls, bundle: Any) -> NumpyProgressModel:
@@ -65,7 +68,7 @@ class NumpyProgressModel(ScoringMixin):
                 hs = np.concatenate([np.repeat(hp, B, 0), hr], axis=1)
             else:
                 hs, _, _ = self._lstm(member, x)
-            out += _sigmoid(hs @ member[3] + member[4])
+            out += _sigmoid((hs @ member[3])[..., None] + member[4]).mean(axis=-1)
         return (out / len(self.members)).astype(float)
 
     @staticmethod

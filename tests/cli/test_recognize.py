@@ -82,7 +82,8 @@ def test_json_schema_lists_every_installed_action_for_the_moved_block():
     assert {r["action"] for r in readings if r["mover"] == "A"} == usable
     for r in readings:
         assert set(r) == {"action", "mover", "anchors", "final", "sentence"}
-        assert 0.0 <= r["final"] <= 1.0 and r["sentence"].endswith(f": {r['final']:.2f}")
+        # the sentence shows the unrounded final to 2 places, "final" is rounded to 4 (0.16498 -> 0.16, 0.165)
+        assert 0.0 <= r["final"] <= 1.0 and abs(float(r["sentence"].rsplit(": ", 1)[1]) - r["final"]) <= 0.0051
     finals = [r["final"] for r in readings]
     assert finals == sorted(finals, reverse=True)
     assert out["best"] == readings[0] and out["sentence"] == readings[0]["sentence"]
@@ -243,6 +244,7 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     import shutil
 
     from l2p_bullet.learning import sessions
+    from l2p_bullet.learning.recipes import SHIPPED, Recipe
     from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, data_digest
     from l2p_bullet.learning.trainset import DataConfig
     from l2p_bullet.plugins.bundle import builtin_bundle_dir, update_manifest
@@ -250,16 +252,20 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     class Trains(Exception):
         pass
 
-    def train_action(*args, **kwargs):
+    def train(*args, **kwargs):
         raise Trains
 
-    monkeypatch.setattr(sessions, "train_action", train_action)
+    monkeypatch.setattr(sessions, "train", train)
     folder = tmp_path / "Session1" / "closer"
     shutil.copytree(builtin_bundle_dir("closer"), folder)
     digest = data_digest(all_demos(sessions={"Session1"}))
     update_manifest(folder, "training", {"data_digest": digest, "seed": 0, "data": DataConfig().to_dict(),
-                                         **ProgressTrainConfig().to_dict()})
+                                         **ProgressTrainConfig().to_dict(),
+                                         "recipe": {"name": SHIPPED.name, **SHIPPED.extras_dict()}})
     assert sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",)) == {"closer": folder}
+    with pytest.raises(Trains):  # a recipe that adds to the training set
+        sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",),
+                                 recipe=Recipe("x", planner_positives=True))
     with pytest.raises(Trains):  # another seed
         sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), seed=1)
     with pytest.raises(Trains):  # the other session's demonstrations

@@ -95,3 +95,34 @@ def test_the_suite_separates_the_shipped_closer_model_from_its_probe(held_out):
     assert r["closer"].full > 0.8 and r["closer"].off < 0.2 and r["closer"].probe < r["closer"].plain - 0.2
     assert r["closer"].partial[0] < r["closer"].partial[1] < r["closer"].partial[2] < r["closer"].full
     assert -1.0 < g.suite_score(r) < 1.0
+
+
+@pytest.mark.slow
+def test_planner_partials_are_planner_motions_stopped_early_with_partial_labels():
+    demos = all_demos(sessions={"Session1"})
+    q = QSRConfig()
+    base = build("next-to", demos, q, DataConfig())
+    more = training_set(Recipe("x", planner_partials=True), "next-to", demos, q)
+    extra = more[len(base):]
+    assert len(extra) == 2 * 2 * 2 * len(demos["next-to"])  # 2 views x (straight, rings) x 2 cuts
+    assert all(s.positive and s.end == len(s.y) - 1 for s in extra)
+    ends = np.array([s.y[-1] for s in extra])
+    # frames are ~evenly spaced in arc length: labels end near the cut (a short motion has few frames)
+    assert abs(np.median(ends[0::2]) - 0.3) < 0.03 and abs(np.median(ends[1::2]) - 0.6) < 0.03
+    assert np.all(ends[0::2] < ends[1::2] + 1e-6) and ends.max() < 0.8
+
+
+@pytest.mark.slow
+def test_train_uses_the_shipped_recipe_and_says_so(tmp_path):
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.learning.recipes import SHIPPED
+    from l2p_bullet.plugins.bundle import read_manifest
+
+    out = tmp_path / "next_to"
+    r = CliRunner().invoke(main, ["train", "next-to", "--ensemble", "1", "--epochs", "1", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    t = read_manifest(out)["training"]
+    assert t["recipe"] == {"name": SHIPPED.name, **SHIPPED.extras_dict()}
+    assert t["n_sequences"] == len(training_set(SHIPPED, "next-to", all_demos(), QSRConfig()))

@@ -63,3 +63,27 @@ def test_shared_prefix_batch_matches(models):
     anchor = np.array([0.0, 0.0, 0.0])
     np.testing.assert_allclose(fast.final_batch(movers, anchor, 0.05), ref.final_batch(movers, anchor, 0.05),
                                atol=2e-5)
+
+
+def test_ordinal_head_same_numbers_as_torch_and_in_the_manifest():
+    """An ordinal read-out (issue 25): the numpy twin reads its thresholds; the manifest names the levels,
+    and a manifest without them is the plain sigmoid head of the shipped bundles."""
+    torch.manual_seed(1)
+    qcfg = QSRConfig()
+    mcfg = ModelConfig(n_features=qcfg.n_features, hidden=8, ensemble=2, levels=4)
+    nets = [ProgressNet(mcfg.n_features, mcfg.hidden, mcfg.levels) for _ in range(2)]
+    with torch.no_grad():
+        for net in nets:
+            net.head.cuts.copy_(torch.tensor([-1.0, 0.5, 2.0]))
+            net.head.bias.fill_(1.5)
+    tensors = ensemble_state(nets)
+    assert tensors["m0.head.cuts"].shape == (3,)
+    ref = ProgressModel(tensors, mcfg, qcfg)
+    fast = NumpyProgressModel({k: v.numpy() for k, v in tensors.items()}, mcfg, qcfg)
+    movers, anchor = motions(7, 10), np.array([0.0, 0.02, 0.4])
+    got, want = fast.final_batch(movers, anchor, 0.05), ref.final_batch(movers, anchor, 0.05)
+    np.testing.assert_allclose(got, want, atol=2e-5)
+    assert np.ptp(got) > 0.01  # the thresholds matter: not a constant
+    assert ModelConfig.from_dict(mcfg.to_dict()) == mcfg
+    plain = ModelConfig(n_features=qcfg.n_features)
+    assert "levels" not in plain.to_dict() and ModelConfig.from_dict(plain.to_dict()).levels == 1
