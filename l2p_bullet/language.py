@@ -169,6 +169,18 @@ def _verb_patterns() -> list[tuple[tuple[str, ...], tuple[str, ...], str, str]]:
     return sorted(out, key=lambda t: -len(t[0]) - len(t[1]))  # stable: a manner's own order among equals
 
 
+def manner_of_sentence(sentence: object) -> str:
+    """The manner a recorded sentence's verb asks for ("carry A past B": carry); slide when there is no
+    sentence or its verb is no installed manner's (a replayed plan does what its sentence said)."""
+    if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE:
+        return "slide"
+    words = strip_polite(tokens(sentence))
+    try:
+        return split_verb(words)[1] if words else "slide"
+    except LanguageError:
+        return "slide"
+
+
 def split_verb(words: list[str]) -> tuple[str, str, list[str]]:
     """(verb, manner, the words after the verb) of a sentence's ``words``: the manner whose verb starts them
     (a gap verb's phrase, "lift A *and put it* next to B", is taken out of the rest); a one-line error with

@@ -61,7 +61,7 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
         "verdict": {"success": chain["success"], "reason": chain["reason"]}, "success": chain["success"],
         "command": {"verb": cmd.verb, "mover": cmd.mover, "preposition": cmd.preposition, "action": cmd.action,
                     "anchor": cmd.anchor, "anchors": list(cmd.anchors)},
-        "seed": seed, "simulated_s": round(world.time, 4),
+        "seed": seed, "arm": world.robot.spec.name, "simulated_s": round(world.time, 4),
         "displacements_m": bystanders(rec.frames, result),
         "execution": {"physics_steps": world.steps, "ik_solves": prims.ik_solves,
                       "rendered_frames": len(rec.images), "frames": len(rec.frames)},

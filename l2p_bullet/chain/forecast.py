@@ -16,6 +16,7 @@ from .. import planning
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..embodiment.manners import manner_planning
+from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_context, judge_for
 from ..manners import registry as manners
@@ -40,8 +41,10 @@ class Step:
 
 
 def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str, seed: int,
-             budget: int | None, threshold: float | None, bundles: dict | None = None) -> list[Step]:
-    """Load each clause's action (once per action) and plan the chain from the predicted states.
+             budget: int | None, threshold: float | None, bundles: dict | None = None,
+             arm: ArmSpec = PANDA) -> list[Step]:
+    """Load each clause's action (once per action) and plan the chain from the predicted states, for ``arm``
+    (its reach, hand and gripper: the same checks a one-clause run makes).
 
     Raises the failing check's error (InfeasibleError with ``.check`` and ``details["clause"]``, or a
     PlanError / PathError) with the clause named in its message, before anything moves or is written.
@@ -61,12 +64,12 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
         cmd = c.command
         bundle, model, judge = loaded[cmd.action]
         try:
-            check_feasible(cmd, predicted, plugins)
+            check_feasible(cmd, predicted, plugins, arm)
             plan = planning.plan(predicted, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed,
                                  budget=budget, threshold=threshold,
-                                 target=None if c.target is None else c.target(predicted),
-                                 **manner_planning(manners.get(cmd.manner), predicted.get(cmd.mover).size))
-            check_for(manners.get(cmd.manner), predicted, cmd.mover, plan.path)
+                                 target=None if c.target is None else c.target(predicted), arm=arm,
+                                 **manner_planning(manners.get(cmd.manner), predicted.get(cmd.mover).size, arm))
+            check_for(manners.get(cmd.manner), predicted, cmd.mover, plan.path, arm)
         except InfeasibleError as e:
             e.details["clause"] = c.index
             raise _named(e, f"{c.label()} cannot be planned ({e.check})") from None

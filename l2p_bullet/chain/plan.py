@@ -43,13 +43,18 @@ class ChainPlan:
 
 def plan_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
                seed: int = 0, budget: int | None = None, threshold: float | None = None, force: bool = False,
-               plot: bool = True, plugins: list | None = None) -> ChainPlan:
-    """Resolve and forecast the chain; write plan.json (and the plots). Refusals as in ``perform``."""
+               plot: bool = True, plugins: list | None = None, arm: str | None = None) -> ChainPlan:
+    """Resolve and forecast the chain for ``arm`` (default the Panda); write plan.json (and the plots).
+    Refusals as in ``perform``."""
+    from ..embodiment import arm_plugins
+
     check_options(planner, seed, budget, threshold)
     scene.validate()
+    spec = arm_plugins.get(arm)
+    scene = arm_plugins.fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins
     steps = forecast(resolve_clauses(sentence, scene, plugins), scene, plugins, planner=planner, seed=seed,
-                     budget=budget, threshold=threshold)
+                     budget=budget, threshold=threshold, arm=spec)
     with run_folder(out_dir, force=force, prefix="plan", command="plan", files=("plan-*.png",)) as folder:
         doc = steps[0].forecast.to_dict() | {
             "clauses": [{"clause": s.clause.index, "text": s.clause.text, "plan": None, "forecast": s.forecast.to_dict()}

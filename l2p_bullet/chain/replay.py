@@ -15,7 +15,7 @@ from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import PathError
 from ..judge import judge_for
-from ..language import Command
+from ..language import Command, manner_of_sentence
 from ..plugins import registry
 from .clauses import Clause
 from .forecast import Step
@@ -28,12 +28,17 @@ def is_chain_plan(doc: object) -> bool:
 
 
 def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_settings: Any = None, seed: int = 0,
-                 on_stage=None, plugins: list | None = None):
+                 on_stage=None, plugins: list | None = None, arm: str | None = None):
     """Execute the clauses' plans of ``doc`` (a chain's plan.json) into the run folder ``out``; returns the
-    :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges)."""
+    :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges). ``arm``: who
+    executes it (default the Panda; the scene's workspace is fitted to its reach)."""
+    from ..embodiment import arm_plugins
+
     source = "plan.json"
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
+    spec = arm_plugins.get(arm)
+    scene = arm_plugins.fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins
     steps = []
     executed = any(isinstance(c, dict) and c.get("plan") for c in doc["clauses"])
@@ -48,7 +53,8 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
         for name in (plan.mover, *anchors):
             scene.get(name)
         bundle = registry.load(plan.action, plugins)
-        cmd = Command("move", plan.mover, plan.action, plan.action, plan.anchor, text, anchors)
+        manner = manner_of_sentence(text)  # "carry A past B": carried again (its path may cross blocks)
+        cmd = Command("move", plan.mover, plan.action, plan.action, plan.anchor, text, anchors, manner)
         steps.append(Step(Clause(i, text, cmd), bundle, bundle.progress_model(), judge_for(bundle), plan))
     if not steps:
         raise PathError(f"{source}: no clause of the chain has a plan to replay")
@@ -56,4 +62,4 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     clock = StageClock(on_stage)
     return _execute(sentence, scene, steps, Path(out), clock, plugins, planner="replay", seed=seed,
                     render=render_settings is not None, budget=None, threshold=None,
-                    render_settings=render_settings, world=None, replan=False)
+                    render_settings=render_settings, world=None, replan=False, arm=spec)

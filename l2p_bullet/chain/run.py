@@ -29,7 +29,9 @@ from ..core.contracts import Plan, trajectory_poses
 from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
+from ..embodiment import arm_plugins
 from ..embodiment.manners import manner_planning
+from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
@@ -131,30 +133,34 @@ def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
                   seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
                   threshold: float | None = None, on_stage=None, plugins: list | None = None,
                   render_settings: Any = None, world: Any = None, bundles: dict | None = None,
-                  steps: list[Step] | None = None) -> ChainResult:
+                  steps: list[Step] | None = None, arm: str | ArmSpec | None = None) -> ChainResult:
     """Resolve, forecast, execute and judge a chain of clauses; write one run folder.
 
     Everything a user can get wrong (a clause's words, a block not in the scene, a clause that cannot be
     planned from the predicted state) is an L2PError naming the clause, raised before any folder is made.
     ``world``: an open simulator world to run in (reset to ``scene`` first); ``bundles``: action name ->
     loaded bundle, to reuse across runs; ``steps``: the chain already resolved and forecast (``evaluate
-    --chains`` draws it clause by clause): ``sentence`` must be their texts joined.
+    --chains`` draws it clause by clause): ``sentence`` must be their texts joined. ``arm``: an arm's name
+    (``l2p-bullet arms``) or spec, default the Panda; the scene's workspace is fitted to its reach first.
     """
     clock = StageClock(on_stage)
     clock.stage("parse")
     check_options(planner, seed, budget, threshold)
     scene.validate()
     plugins = registry.discover() if plugins is None else plugins
+    arm = arm_plugins.get(arm)  # an unknown arm fails before anything is planned or written
+    scene = arm_plugins.fit_scene(scene, arm)
     if steps is None:
         clauses = resolve_clauses(sentence, scene, plugins)
         clock.stage("forecast", f"planning the {len(clauses)} clauses from their predicted states")
         steps = forecast(clauses, scene, plugins, planner=planner, seed=seed, budget=budget, threshold=threshold,
-                         bundles=bundles)
+                         bundles=bundles, arm=arm)
     clock.stop()
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:
             return _execute(sentence, scene, steps, out, clock, plugins, planner=planner, seed=seed, render=render,
-                            budget=budget, threshold=threshold, render_settings=render_settings, world=world)
+                            budget=budget, threshold=threshold, render_settings=render_settings, world=world,
+                            arm=arm)
         except L2PError as e:
             clock.stop()
             write_summary(out / "summary.json", {"schema": 1, "sentence": sentence, "chain": True, "ok": False,
@@ -172,7 +178,7 @@ def scene_now(scene: Scene, world: Any) -> Scene:
 def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: StageClock, plugins: list, *,
              planner: str,
              seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
-             world: Any, replan: bool = True) -> ChainResult:
+             world: Any, replan: bool = True, arm: ArmSpec = PANDA) -> ChainResult:
     """Execute ``steps`` in one episode in ``world`` (or a new one) and write the run folder into ``out``.
     ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json)."""
     # lazy: the arm's modules (and files.py, which records with them) load only when a chain is performed
@@ -184,7 +190,9 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     own = world is None
     clock.stage("setup", "setting up the simulated world")
     if own:  # the world only simulates: the film's own worlds draw the frames (embodiment/render.py)
-        world = World(scene, visuals=False)
+        world = World(scene, arm=arm, visuals=False)
+    elif world.robot.spec != arm:
+        raise L2PError(f'the world given holds the arm "{world.robot.spec.name}", not "{arm.name}"')
     prims = None
     try:
         if not own:
@@ -199,7 +207,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             clock.stage(f"clause {c.index}", f"{c.label()}: planning from the blocks' real poses, then executing")
             first = 0 if k == 0 else len(prims.recorder.frames)
             r = _clause(step, scene_now(scene, world), prims, rest, plugins, first=first, replan=replan and k > 0,
-                        planner=planner, seed=seed, budget=budget, threshold=threshold)
+                        planner=planner, seed=seed, budget=budget, threshold=threshold, arm=arm)
             results.append(r)
             if not r.success:
                 break
@@ -223,7 +231,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
 
 
 def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, *, first: int, replan: bool, planner: str, seed: int,
-            budget: int | None, threshold: float | None) -> ClauseResult:
+            budget: int | None, threshold: float | None, arm: ArmSpec = PANDA) -> ClauseResult:
     """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
     planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
     from ..embodiment import execute as ex
@@ -234,14 +242,14 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         if not replan:
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
-            check_feasible(cmd, now, plugins)
+            check_feasible(cmd, now, plugins, arm)
             target = step.clause.target
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
                                  budget=budget, threshold=threshold, target=None if target is None else target(now),
-                                 **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size))
+                                 arm=arm, **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size, arm))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
-        p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path)
+        p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path, arm)
         stage = "reach"
 
         def on(name: str) -> None:

@@ -60,9 +60,9 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     from ..errors import L2PError
 
     if is_chain(sentence):
-        if arm != "panda":
-            raise L2PError("chains are performed by the Panda only for now; drop --arm or perform the clauses one by one")
-        return _perform_chain(sentence, scene_path, seed, out, planner, no_render, force, on_stage, as_json)
+        settings = None if no_render else render_settings(resolution, fps, camera, renderer)
+        return _perform_chain(sentence, scene_path, seed, out, planner, no_render, force, on_stage, as_json, arm,
+                              settings)
     try:
         settings = None if no_render else render_settings(resolution, fps, camera, renderer)
         scene = load_scene_or_default(scene_path)
@@ -87,7 +87,8 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
 
 
 def _perform_chain(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
-                   no_render: bool, force: bool, on_stage, as_json: bool) -> None:
+                   no_render: bool, force: bool, on_stage, as_json: bool, arm: str = "panda",
+                   settings=None) -> None:
     """``perform`` of a chain (l2p_bullet/chain): one line per clause, then the chain's verdict."""
     from ..chain import perform_chain
     from ..core.contracts import dumps_json
@@ -95,7 +96,7 @@ def _perform_chain(sentence: str, scene_path: str | None, seed: int, out: str | 
 
     try:
         r = perform_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
-                          render=not no_render, force=force, on_stage=on_stage)
+                          render=not no_render, force=force, on_stage=on_stage, arm=arm, render_settings=settings)
     except L2PError as e:
         if as_json:
             click.echo(dumps_json(error_json(sentence, e), indent=1))

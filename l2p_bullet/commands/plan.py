@@ -38,13 +38,9 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
 
     if is_chain(sentence):  # "move A next to B, then ...": every clause planned from the predicted state
         from ..chain.plan import plan_chain
-        from ..errors import PlanError
-
-        if arm != "panda":
-            raise PlanError("chains are planned for the Panda only for now; drop --arm or plan the clauses one by one")
 
         chained = plan_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
-                             budget=budget, threshold=threshold, force=force, plot=not no_plot)
+                             budget=budget, threshold=threshold, force=force, plot=not no_plot, arm=arm)
         click.echo(dumps_json(chained.to_dict()))
         return
     result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,

@@ -99,15 +99,11 @@ def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force
     doc = read_json(path_json)
     if not is_chain_plan(doc):
         return False
-    if arm != "panda":
-        from ..errors import PathError
-
-        raise PathError("chains are replayed by the Panda only for now; drop --arm")
     scene = load_scene_or_default(scene_path) if scene_path is not None else None
     with run_folder(out, force=force, prefix="replay", command="replay",
                     inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:
         r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=seed,
-                         on_stage=lambda s: click.echo(f"  {s}...", err=True))
+                         on_stage=lambda s: click.echo(f"  {s}...", err=True), arm=arm)
     v = r.verdict()
     click.echo(f"replayed the chain {path_json}: {v['completed']} of {v['clauses']} clauses done ({v['reason']})")
     click.echo(f"run folder: {folder}")

@@ -15,6 +15,7 @@ from ..core.scene import Scene
 from ..core.vocabulary import canonical_action
 from ..data.demos import get_demo
 from ..errors import PathError, SceneError
+from ..language import manner_of_sentence
 from .execute import check_waypoints, execute_path
 from .retarget import retarget
 from .sim.arms import PANDA, ArmSpec
@@ -30,6 +31,7 @@ class Source:
     path: np.ndarray  # (N,3), scene frame
     action: str | None = None
     info: dict = field(default_factory=dict)
+    manner: str = "slide"  # a plan's: what its sentence's verb asked for (a carried path crosses blocks)
 
 
 def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | None = None,
@@ -82,7 +84,7 @@ def _motion_source(path_json: str | None, demo: str | None, scene: Scene, mover:
         plan = Plan.from_dict(data, source=str(path_json))
         scene.get(plan.mover)
         return Source(f"plan {path_json}", plan.mover, plan.anchor, plan.path, plan.action,
-                      {"source": {"plan": str(path_json)}})
+                      {"source": {"plan": str(path_json)}}, manner_of_sentence(data.get("sentence")))
 
     m = motion_from_dict(data, source=str(path_json))
     mover, anchor = m.mover_name or mover, m.anchor_name or anchor
@@ -116,7 +118,7 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
     meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info,
             "arm": arm.name}
     ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
-                      on_stage=on_stage, arm=arm)
+                      on_stage=on_stage, arm=arm, manner=source.manner)
     if plan_file is not None:
         ex.files["plan"] = plan_file
     return ex

@@ -55,8 +55,9 @@ def chain_scenes(n: int, seed: int = 0) -> list[SceneSpec]:
 def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, planner: str = "default",
                      render_every: int = 0, keep: str = "none", out_dir: str | None = None,
                      plugins: list | None = None, budget: int | None = None,
-                     threshold: float | None = None) -> list[Task]:
-    """One chain of ``k`` clauses per scene; the clauses are drawn by the worker (see the module docstring)."""
+                     threshold: float | None = None, arm: str = "panda") -> list[Task]:
+    """One chain of ``k`` clauses per scene, performed by ``arm``; the clauses are drawn by the worker (see the
+    module docstring)."""
     if not 1 <= k <= MAX_CHAIN:
         raise EvaluationError(f"--chains must be 1 to {MAX_CHAIN} clauses (got {k})")
     plugins = registry.discover() if plugins is None else plugins
@@ -70,12 +71,13 @@ def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, plan
         tasks.append(Task(f"{spec.id}|chain{k}|{planner}|chain", i, spec.id, spec.source, spec.scene.to_dict(),
                           "", "", "chain", "", planner, spec.seed, "chain",
                           render_every > 0 and i % render_every == 0, keep, run_dir, budget, threshold,
-                          chain_length=k, chain_actions=one_anchor))
+                          chain_length=k, chain_actions=one_anchor, arm=arm))
     return tasks
 
 
 def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generator, plugins: list, *,
-               planner: str, seed: int, budget: int | None, threshold: float | None) -> tuple[list, int]:
+               planner: str, seed: int, budget: int | None, threshold: float | None,
+               arm: Any = None) -> tuple[list, int]:
     """``k`` forecast steps (l2p_bullet/chain/forecast.py), each clause drawn until one can be planned from
     the predicted state; returns the steps and how many draws were refused."""
     names, steps, redraws, predicted = scene.names, [], 0, scene
@@ -87,7 +89,7 @@ def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generato
             clause = Clause(i, text, resolve(text, scene, plugins))
             try:
                 step = forecast([clause], predicted, plugins, planner=planner, seed=seed, budget=budget,
-                                threshold=threshold)[0]
+                                threshold=threshold, **({} if arm is None else {"arm": arm}))[0]
             except L2PError:
                 redraws += 1
                 continue
@@ -103,21 +105,25 @@ def run_chain(worker: Any, task: Task, row: dict) -> None:
     """Draw and perform ``task``'s chain in ``worker``'s world; fill ``row`` (the chain's row)."""
 
 
-    scene = Scene.from_dict(task.scene, source=task.scene_id).validate()
+    from ..embodiment import arm_plugins
+
+    arm = arm_plugins.get(task.arm)
+    scene = arm_plugins.fit_scene(Scene.from_dict(task.scene, source=task.scene_id).validate(), arm)
     rng = np.random.default_rng([task.seed, task.chain_length, 2118])
     steps, redraws = draw_chain(scene, task.chain_length, list(task.chain_actions), rng, worker.plugins,
-                                planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold)
+                                planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
+                                arm=arm)
     sentence = ", then ".join(s.clause.text for s in steps)
     row.update(sentence=sentence, redraws=redraws)
     keep_always = task.render or task.keep == "all"
     out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else worker.scratch() / "run"
-    world = worker.world(scene, visuals=task.render)
+    world = worker.world(scene, visuals=task.render, arm=task.arm)
     try:
         r = perform_chain(sentence, scene, out_dir=out, planner=task.planner, seed=task.seed, render=task.render,
                           force=True, budget=task.budget, threshold=task.threshold, plugins=worker.plugins,
-                          world=world, steps=steps)
+                          world=world, steps=steps, arm=arm)
     except BaseException:
-        worker.drop_world(task.render)
+        worker.drop_world(task.render, task.arm)
         if out.exists() and not (keep_always or task.keep == "failed"):
             shutil.rmtree(out, ignore_errors=True)
         raise

@@ -62,8 +62,6 @@ class EvaluationConfig:
         if sum(sources) > 1:
             raise EvaluationError("choose one scene set: --scenes N, --scene-file F or --study")
         if self.chains:
-            if self.arm != "panda":
-                raise EvaluationError("chains are performed by the Panda only for now: no --arm with --chains")
             if self.scene_file is not None or self.study or self.bystanders:
                 raise EvaluationError("--chains draws its own scenes of 3-5 blocks: no --scene-file, --study or "
                                       "--bystanders")
@@ -150,7 +148,8 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
                 raise EvaluationError("--chains performs its chains: no --plan-only")
             tasks = make_chain_tasks(scenes, config.chains, actions, planner=config.planner,
                                      render_every=config.render_every, keep=config.keep, out_dir=str(out),
-                                     plugins=plugins, budget=config.budget, threshold=config.threshold)
+                                     plugins=plugins, budget=config.budget, threshold=config.threshold,
+                                     arm=config.arm)
         else:
             notes = skipped(scenes, actions, plugins)
             tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,

@@ -110,3 +110,16 @@ def test_an_evaluation_stored_before_chains_existed_resumes(tmp_path):
     with pytest.raises(EvaluationError, match="chains"):
         evaluate(EvaluationConfig(actions=["closer"], scenes=0, chains=2), tmp_path, workers=0, resume=True,
                  progressbar=False)
+
+
+@pytest.mark.slow
+def test_chains_on_another_arm_are_drawn_and_performed_by_it(tmp_path):
+    """``evaluate --chains K --arm xarm6``: the forecast, the world and every clause are the xArm's."""
+    evaluate(EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6"), tmp_path, workers=0, progressbar=False)
+    rows = load_rows(tmp_path)
+    assert len(rows) == 2 and all(r["error"] is None for r in rows)
+    assert sum(r["completed"] for r in rows) >= 2  # the arm did perform clauses (both chains' first at least)
+    kept = EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6", keep="all")
+    evaluate(kept, tmp_path / "kept", workers=0, progressbar=False)
+    summaries = list((tmp_path / "kept" / "runs").glob("*/summary.json"))
+    assert summaries and {json.loads(p.read_text())["arm"] for p in summaries} == {"xarm6"}

@@ -42,3 +42,27 @@ def test_a_push_by_another_arm_never_grasps_and_keeps_its_fingers_closed(tmp_pat
         assert r.anchor_displacement_m < 0.001
         moved = np.hypot(*(np.array(frames[-1]["poses"]["A"][:2]) - frames[0]["poses"]["A"][:2]))
         assert moved > 0.02  # the hand pushed it, by contact alone
+
+
+@pytest.mark.slow
+def test_a_carried_plan_replays_as_a_carry_and_a_chain_keeps_each_clause_manner(tmp_path):
+    """replay PLAN.json does what the plan's sentence said: a carried path (which may cross blocks) is carried
+    again, not slid; a chain's replay keeps each clause's manner."""
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    _run("carry A past B", "panda", tmp_path)
+    res = CliRunner().invoke(main, ["replay", str(tmp_path / "panda" / "plan.json"), "--no-render",
+                                    "--out", str(tmp_path / "again")])
+    assert res.exit_code == 0, res.output
+    summary = json.loads((tmp_path / "again" / "summary.json").read_text())
+    assert summary["manner"] == "carry" and summary["execution"]["grasp"]["lift_m"] >= 0.02
+    res = CliRunner().invoke(main, ["plan", "move A closer to B, then carry A away from B", "--no-plot",
+                                    "--out", str(tmp_path / "chain")])
+    assert res.exit_code == 0, res.output
+    res = CliRunner().invoke(main, ["replay", str(tmp_path / "chain" / "plan.json"), "--no-render",
+                                    "--out", str(tmp_path / "chain-again")])
+    assert res.exit_code == 0, res.output
+    clauses = json.loads((tmp_path / "chain-again" / "summary.json").read_text())["clauses"]
+    assert [c.get("manner", "slide") for c in clauses] == ["slide", "carry"]
