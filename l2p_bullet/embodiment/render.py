@@ -189,19 +189,32 @@ class Film:
     def _start_pool(self, scene: Scene) -> None:
         """Spawn the workers with Ctrl-C blocked: the children inherit the blocked signal (a Ctrl-C at the
         terminal, sent to them too, never prints a traceback from one still starting up), and a Ctrl-C
-        here waits until every child is launched, then stops them (execute_path closes the film)."""
+        here waits until every child is launched, then stops them (execute_path closes the film).
+
+        Blocking is per thread: a Ctrl-C the kernel hands to another thread of this process (one that started
+        earlier, with SIGINT unblocked) still runs Python's handler, and the KeyboardInterrupt surfaced inside
+        the executor's start-up, leaving a half-launched child to print a traceback. So the handler is also
+        swapped for one that only notes the Ctrl-C, which is raised once the pool has started."""
         import signal
+        import threading
 
         ctx = multiprocessing.get_context("spawn")  # no fork of a process holding a simulator
         blocked = hasattr(signal, "pthread_sigmask")
         old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if blocked else None
+        noted: list[int] = []
+        main = threading.current_thread() is threading.main_thread()
+        handler = signal.signal(signal.SIGINT, lambda signum, frame: noted.append(signum)) if main else None
         try:
             self._pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start,
                                              initargs=(scene, self.settings, self.arm))
             self._warm = [self._pool.submit(_ready) for _ in range(self.workers)]  # launches them all
         finally:
+            if main:
+                signal.signal(signal.SIGINT, handler)
             if blocked:
                 signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        if noted:
+            raise KeyboardInterrupt
 
     def add(self, state: State) -> None:
         self.states.append(state)
