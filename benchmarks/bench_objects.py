@@ -61,8 +61,9 @@ def _object(name: str, color: str, kind: str, xy, yaw: float, rng):
                   rpy=(math.pi / 2, 0.0, 0.0))
 
 
-def object_scene(seed: int):
-    """A valid mixed-shape scene drawn from ``seed``: (scene, kind, mover's shape)."""
+def object_scene(seed: int, radius: float = 0.25):
+    """A valid mixed-shape scene drawn from ``seed`` inside a workspace of ``radius`` (an arm's fitted disk;
+    0.25 m, the Panda's, gives the same scenes as before): (scene, kind, mover's shape)."""
     import numpy as np
 
     from l2p_bullet.core.scene import Scene
@@ -76,7 +77,7 @@ def object_scene(seed: int):
     for _ in range(2000):
         kinds = [mover, "mesh" if mesh_at == 1 else str(rng.choice(SHAPES[:3]))]
         ya, yb = rng.uniform(0.0, math.pi, size=2)
-        r = 0.25 * math.sqrt(rng.uniform(0.8**2, 1.0) if kind == "rim" else rng.uniform())
+        r = radius * math.sqrt(rng.uniform(0.8**2, 1.0) if kind == "rim" else rng.uniform())
         a0 = rng.uniform(-math.pi, math.pi)
         p0 = np.array([r * math.cos(a0), r * math.sin(a0)])
         direction = rng.uniform(-math.pi, math.pi)
@@ -93,7 +94,7 @@ def object_scene(seed: int):
             continue
         extra = ["mesh"] if mesh_at == 2 else []
         extra += [str(rng.choice(("cube", "box", "cylinder"))) for _ in range(int(rng.integers(2, 6)) - len(extra))]
-        objects = _add_bystanders(objects, extra, rng)
+        objects = _add_bystanders(objects, extra, rng, radius)
         if objects is None:
             continue
         return Scene(objects).validate(), kind, kinds[0]
@@ -118,14 +119,14 @@ def _distance_for_gap(a, b, u, gap: float) -> float:
     return float(np.nextafter(hi, np.inf))
 
 
-def _add_bystanders(objects: list, kinds: list[str], rng) -> list | None:
+def _add_bystanders(objects: list, kinds: list[str], rng, radius: float = 0.25) -> list | None:
     from l2p_bullet.core.scene import Scene
     from l2p_bullet.errors import SceneError
 
     out = list(objects)
     for k, kind in enumerate(kinds):
         for _ in range(200):
-            r, a = 0.25 * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
+            r, a = radius * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
             o = _object(f"C{k + 1}", COLORS[k % len(COLORS)], kind, (r * math.cos(a), r * math.sin(a)),
                         float(rng.uniform(0, math.pi)), rng)
             try:
@@ -139,18 +140,22 @@ def _add_bystanders(objects: list, kinds: list[str], rng) -> list | None:
     return out
 
 
-def run_one(action: str, seed: int, tmp: Path, plugins: list) -> dict:
-    """Perform ``action`` on the object scene of ``seed``; classify what happened."""
+def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda") -> dict:
+    """Perform ``action`` with ``arm`` on the object scene of ``seed`` (drawn inside that arm's workspace);
+    classify what happened."""
+    from l2p_bullet.core.scene import Workspace
+    from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.errors import InfeasibleError, L2PError
     from l2p_bullet.pipeline import perform
     from l2p_bullet.planning.feasibility import CHECKS
 
-    scene, kind, shape = object_scene(seed)
+    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).radius
+    scene, kind, shape = object_scene(seed, radius)
     out = tmp / f"{action}-{seed}"
     row = {"action": action, "seed": seed, "kind": kind, "shape": shape, "objects": len(scene.objects)}
     t = time.perf_counter()
     try:
-        r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins)
+        r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins, arm=arm)
         d = r.to_dict()
         row |= {"outcome": "success" if r.success else "unsuccessful", "reason": r.verdict.get("reason"),
                 "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0)}
@@ -167,12 +172,12 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list) -> dict:
     return row
 
 
-def _worker(args: tuple[list[tuple[str, int]], str]) -> list[dict]:
-    jobs, tmp = args
+def _worker(args: tuple[list[tuple[str, int]], str, str]) -> list[dict]:
+    jobs, tmp, arm = args
     from l2p_bullet.plugins import registry
 
     plugins = registry.discover()
-    return [run_one(a, s, Path(tmp), plugins) for a, s in jobs]
+    return [run_one(a, s, Path(tmp), plugins, arm) for a, s in jobs]
 
 
 def print_shapes(rows: list[dict]) -> None:
@@ -196,6 +201,7 @@ def main() -> None:
     ap.add_argument("--seed-base", type=int, default=SEED_BASE)
     ap.add_argument("--actions", default=",".join(SENTENCES), help="comma-separated actions")
     ap.add_argument("--jobs", type=int, default=1, help="worker processes")
+    ap.add_argument("--arm", default="panda", help="the arm (l2p-bullet arms); scenes are drawn inside its workspace")
     ap.add_argument("--json", type=Path, default=None, help="also write every row here")
     args = ap.parse_args()
     actions = [a for a in args.actions.split(",") if a]
@@ -208,7 +214,7 @@ def main() -> None:
 
             chunks = [jobs[i::args.jobs * 16] for i in range(args.jobs * 16)]
             with mp.get_context("spawn").Pool(args.jobs) as pool:
-                for part in pool.imap_unordered(_worker, [(c, tmp) for c in chunks if c]):
+                for part in pool.imap_unordered(_worker, [(c, tmp, args.arm) for c in chunks if c]):
                     rows.extend(part)
                     print(f"  {len(rows)}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
                     if args.json:  # what is done so far survives an interrupted run
@@ -218,7 +224,7 @@ def main() -> None:
 
             plugins = registry.discover()
             for k, (action, seed) in enumerate(jobs):
-                rows.append(run_one(action, seed, Path(tmp), plugins))
+                rows.append(run_one(action, seed, Path(tmp), plugins, args.arm))
                 r = rows[-1]
                 print(f"{action:<8} seed {seed} {r['kind']:<8} {r['shape']:<8} {r['outcome']:<12} {r['seconds']:.2f}s "
                       f"{r.get('check', '') or r.get('error', '')[:100]}", file=sys.stderr)
@@ -226,7 +232,7 @@ def main() -> None:
                     print(f"  {k + 1}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     rows.sort(key=lambda r: (r["seed"], actions.index(r["action"])))
     print(f"\nobjects: {args.scenes} mixed-shape scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
-          f"x {len(actions)} actions, Panda, no rendering, {time.perf_counter() - t0:.0f} s\n")
+          f"x {len(actions)} actions, arm {args.arm}, no rendering, {time.perf_counter() - t0:.0f} s\n")
     print_table(rows, actions)
     print_shapes(rows)
     if args.json:
