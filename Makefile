@@ -47,3 +47,7 @@ bundles: install
 	for a in closer away next-to past around; do \
 	  nice -n 10 $(VENV)/bin/l2p-bullet train-policy $$a --seed 0 --bundle l2p_bullet/actions/$$(echo $$a | tr - _) --force || exit 1; \
 	done
+	# the row composite's recipe is learned by recognising its demonstrations with these actions: re-learn it
+	$(VENV)/bin/python -c "from l2p_bullet.composite.bundle import read_demos, write_recipe; \
+	  from l2p_bullet.composite.recipe import learn; from l2p_bullet.recognition import recognisers; \
+	  write_recipe('l2p_bullet/actions/row', learn(read_demos('l2p_bullet/actions/row'), recognisers()[0]))"
