@@ -306,7 +306,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
-    verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, size)
+    verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, scene.get(cmd.mover).rest)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed

@@ -277,7 +277,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
-    verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, size)
+    verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, now.get(cmd.mover).rest)
     return ClauseResult(step.clause, plan, verdict, first, last, final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),
                         displacements_m=displaced, grasp=grasp)

@@ -136,6 +136,12 @@ class SceneObject:
         return self.size if self.shape == "cube" else self.geometry.height
 
     @property
+    def rest(self) -> float:
+        """Height of the object's reference point (its centre of mass) above the table when it stands on it:
+        what trajectory.json's z is measured against (a cube: half its side)."""
+        return self.size / 2 if self.shape == "cube" else self.geometry.rest
+
+    @property
     def inradius(self) -> float:
         """Distance from the reference point to the footprint's nearest edge: two objects' centres are never
         nearer than the sum of theirs (a cube: half its side)."""

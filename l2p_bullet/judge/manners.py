@@ -20,9 +20,11 @@ LIFT_M = 0.02
 CLOSED_M = 0.001  # the fingers' gap (m) above which they count as opened
 
 
-def signature_verdict(signature: str, frames: list[dict], mover: str, size: float) -> Verdict:
-    """Whether ``frames`` show ``signature`` for block ``mover`` of side ``size``."""
-    z = np.array([f["poses"][mover][2] for f in frames], float) - size / 2
+def signature_verdict(signature: str, frames: list[dict], mover: str, rest: float) -> Verdict:
+    """Whether ``frames`` show ``signature`` for object ``mover``, whose reference point stands ``rest`` metres
+    above the table when it rests on it (``SceneObject.rest``: a cube's half side, a box's or cylinder's half
+    height, a mesh's centre of mass; a block's side is no height for a flat box or a tall cylinder)."""
+    z = np.array([f["poses"][mover][2] for f in frames], float) - rest
     if signature == "on-table":
         worst = float(np.abs(z).max()) if len(z) else 0.0
         ok = worst <= ON_TABLE_M
@@ -47,11 +49,11 @@ def signature_verdict(signature: str, frames: list[dict], mover: str, size: floa
     raise ValueError(f"unknown manner signature {signature!r}")
 
 
-def manner_verdict(verdict: dict, manner, frames: list[dict], mover: str, size: float) -> dict:
+def manner_verdict(verdict: dict, manner, frames: list[dict], mover: str, rest: float) -> dict:
     """The action's verdict with ``manner``'s (a MannerSpec) physical signature checked on the executed
     ``frames``. A slide's verdict gains nothing when its block stayed on the table (its files are as they
     were before manners)."""
-    sig = signature_verdict(manner.signature, frames, mover, size)
+    sig = signature_verdict(manner.signature, frames, mover, rest)
     if manner.name == "slide" and sig.success:
         return verdict
     return with_signature(verdict, manner.name, sig)

@@ -102,15 +102,15 @@ def _frames(zs, size=0.04, grasped=None, opening=0.0):
 
 
 def test_the_physical_signatures():
-    assert signature_verdict("on-table", _frames([0.0, 0.002, 0.0]), "A", 0.04).success
-    assert not signature_verdict("on-table", _frames([0.0, 0.004, 0.0]), "A", 0.04).success
-    assert signature_verdict("lifted", _frames([0.0, 0.03, 0.0]), "A", 0.04).success
-    low = signature_verdict("lifted", _frames([0.0, 0.015, 0.0]), "A", 0.04)
+    assert signature_verdict("on-table", _frames([0.0, 0.002, 0.0]), "A", 0.02).success
+    assert not signature_verdict("on-table", _frames([0.0, 0.004, 0.0]), "A", 0.02).success
+    assert signature_verdict("lifted", _frames([0.0, 0.03, 0.0]), "A", 0.02).success
+    low = signature_verdict("lifted", _frames([0.0, 0.015, 0.0]), "A", 0.02)
     assert not low.success and "at least 2 cm" in low.reason
-    assert not signature_verdict("lifted", _frames([0.0, 0.03, 0.02]), "A", 0.04).success  # never set down
-    assert signature_verdict("no-grasp", _frames([0.0, 0.0]), "A", 0.04).success
-    assert not signature_verdict("no-grasp", _frames([0.0, 0.0], grasped="A"), "A", 0.04).success
-    assert not signature_verdict("no-grasp", _frames([0.0, 0.0], opening=0.01), "A", 0.04).success
+    assert not signature_verdict("lifted", _frames([0.0, 0.03, 0.02]), "A", 0.02).success  # never set down
+    assert signature_verdict("no-grasp", _frames([0.0, 0.0]), "A", 0.02).success
+    assert not signature_verdict("no-grasp", _frames([0.0, 0.0], grasped="A"), "A", 0.02).success
+    assert not signature_verdict("no-grasp", _frames([0.0, 0.0], opening=0.01), "A", 0.02).success
 
 
 def test_a_chain_keeps_each_clauses_manner():
