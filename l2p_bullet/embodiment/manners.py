@@ -41,7 +41,8 @@ def manner_of(manner: MannerSpec | str | None) -> MannerSpec:
 def carry_refusal(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> str | None:
     """Why the arm cannot carry ``mover`` (one line), or None."""
     obj = scene.get(mover)
-    width = float(obj.size)  # a cube's narrowest width across the fingers, whichever way the wrist turns
+    # the narrowest width the fingers can close across (a cube's side; a box's, cylinder's or mesh's from its outline)
+    width = float(obj.size) if obj.shape == "cube" else float(obj.geometry.narrowest()[0])
     if width > arm.gripper_opening + 1e-9:
         return (f'cannot carry "{mover}": it is {width * 100:.1f} cm wide and the {arm.name}\'s gripper opens '
                 f"{arm.gripper_opening * 100:.1f} cm; slide or push it instead")
@@ -65,7 +66,7 @@ def carry_lift(scene: Scene, mover: str, path: np.ndarray) -> float:
             continue
         r_o = float(np.linalg.norm(o.footprint() - np.asarray(o.xy), axis=1).max())
         if float(np.hypot(*(dense[:, :2] - np.asarray(o.xy)).T).min()) < r_m + r_o + CLEARANCE:
-            tallest = max(tallest, float(o.size))
+            tallest = max(tallest, float(o.height))  # its top, not its side in blocks (a tall cylinder)
     return max(MIN_LIFT, tallest + CLEARANCE if tallest > 0 else 0.0)
 
 
@@ -109,11 +110,11 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
                 f'carry or slide "{mover}" instead')
     reach_m = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max()) + 0.03 + hand
     for o in scene.objects:
-        if o.name == mover or o.size <= clear:
+        if o.name == mover or o.height <= clear:
             continue
         r_o = float(np.linalg.norm(o.footprint() - np.asarray(o.xy), axis=1).max())
         if float(np.hypot(*(dense[:, :2] - np.asarray(o.xy)).T).min()) < reach_m + r_o:
-            return (f'no push can pass "{o.name}" ({o.size * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
+            return (f'no push can pass "{o.name}" ({o.height * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
                     f"above the table and {2 * hand * 100:.0f} cm wide; carry or slide \"{mover}\" instead")
     return None
 

@@ -145,10 +145,7 @@ class Pusher:
                          for dx, dy in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))])
         for name in self.others:
             p = self.world.pose(name)
-            h = self.world.sizes[name] / 2
-            cy, sy = math.cos(p[3]), math.sin(p[3])
-            foot = np.array([[p[0] + cy * dx - sy * dy, p[1] + sy * dx + cy * dy]
-                             for dx, dy in ((h, h), (-h, h), (-h, -h), (h, -h))])
+            foot = self.world.scene.get(name).footprint(np.array([p[0], p[1], p[3]]))  # its own outline
             if float(separation(rect[None], foot)[0]) < 0.0:
                 return False
         return True
@@ -189,7 +186,7 @@ class Pusher:
         """Up above the block, over to the side opposite ``phi``, down to pushing height (the hand's
         yaw turns in the air, where the pusher may swap fingers)."""
         prims = self.prims
-        top = self.size + CLEAR + self.robot.drop
+        top = float(self.world.heights[self.mover]) + CLEAR + self.robot.drop  # over its top, whatever its shape
         up = prims.pose.copy()
         up[2] = max(up[2], top)
         prims.go(up, DESCEND, "push-up")

@@ -175,3 +175,17 @@ def test_a_push_with_no_room_for_the_hand_behind_the_block_is_refused():
     with pytest.raises(InfeasibleError, match='no room for the pushing hand behind "A": it would come down on "B"'):
         check_manner(registry.get("push"), scene, "A", path=away)
     check_manner(registry.get("push"), scene, "A", path=np.array([[0.045, 0.0, 0.0], [0.045, 0.12, 0.0]]))
+
+
+def test_a_carry_lifts_over_the_top_of_a_tall_object_not_its_side():
+    """carry_lift clears the tallest object near the path by its height: a cylinder 8 cm tall and 4 cm wide
+    (3.5 cm in blocks) beside the path needs the block lifted above 8 cm, not above 3.5 cm."""
+    from l2p_bullet.embodiment.manners import CLEARANCE
+
+    scene = Scene.from_dict({"objects": [
+        {"name": "A", "color": "red", "size": 0.04, "xy": [0.1, 0.0], "yaw": 0.0},
+        {"name": "B", "color": "green", "size": 0.04, "xy": [-0.1, 0.0], "yaw": 0.0},
+        {"name": "C", "color": "blue", "shape": "cylinder", "radius": 0.02, "height": 0.08, "xy": [0.0, 0.05],
+         "yaw": 0.0}]}).validate()
+    path = np.array([[0.1, 0.0, 0.0], [-0.03, 0.0, 0.0]])  # passes 5 cm from the cylinder's axis
+    assert carry_lift(scene, "A", path) >= 0.08 + CLEARANCE - 1e-9
