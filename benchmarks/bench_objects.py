@@ -66,7 +66,7 @@ def object_scene(seed: int, radius: float = 0.25):
     0.25 m, the Panda's, gives the same scenes as before): (scene, kind, mover's shape)."""
     import numpy as np
 
-    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.core.scene import Scene, Workspace
     from l2p_bullet.errors import SceneError
 
     rng = np.random.default_rng(seed)
@@ -89,7 +89,7 @@ def object_scene(seed: int, radius: float = 0.25):
         b_xy, a_xy = (p0, p1) if rng.uniform() < 0.5 else (p1, p0)
         objects = [a.moved(np.array([a_xy[0], a_xy[1], ya])), b.moved(np.array([b_xy[0], b_xy[1], yb]))]
         try:
-            Scene(objects).validate()
+            Scene(objects, workspace=Workspace(radius=radius)).validate()
         except SceneError:
             continue
         extra = ["mesh"] if mesh_at == 2 else []
@@ -97,7 +97,7 @@ def object_scene(seed: int, radius: float = 0.25):
         objects = _add_bystanders(objects, extra, rng, radius)
         if objects is None:
             continue
-        return Scene(objects).validate(), kind, kinds[0]
+        return Scene(objects, workspace=Workspace(radius=radius)).validate(), kind, kinds[0]
     raise RuntimeError(f"no valid object scene for seed {seed}")  # pragma: no cover
 
 
@@ -120,7 +120,7 @@ def _distance_for_gap(a, b, u, gap: float) -> float:
 
 
 def _add_bystanders(objects: list, kinds: list[str], rng, radius: float = 0.25) -> list | None:
-    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.core.scene import Scene, Workspace
     from l2p_bullet.errors import SceneError
 
     out = list(objects)
@@ -130,7 +130,7 @@ def _add_bystanders(objects: list, kinds: list[str], rng, radius: float = 0.25) 
             o = _object(f"C{k + 1}", COLORS[k % len(COLORS)], kind, (r * math.cos(a), r * math.sin(a)),
                         float(rng.uniform(0, math.pi)), rng)
             try:
-                Scene([*out, o]).validate()
+                Scene([*out, o], workspace=Workspace(radius=radius)).validate()
             except SceneError:
                 continue
             out.append(o)
