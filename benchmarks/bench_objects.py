@@ -28,14 +28,12 @@ import collections
 import json
 import math
 import shutil
-import sys
-import tempfile
 import time
 import traceback
 from pathlib import Path
 
 from bench_perform import SENTENCES
-from bench_robustness import COLORS, OUTCOMES, _failed_stage, print_table
+from bench_robustness import COLORS, OUTCOMES, _failed_stage, print_table, run_jobs
 
 SEED_BASE = 950_000
 DUCK = "pybullet_data:duck_vhacd.obj"
@@ -195,6 +193,11 @@ def print_shapes(rows: list[dict]) -> None:
         print(f"  {r['action']} seed {r['seed']}: {r.get('check')!r} {r.get('error', '')[:120]}")
 
 
+def _line(r: dict) -> str:
+    return (f"{r['action']:<8} seed {r['seed']} {r['kind']:<8} {r['shape']:<8} {r['outcome']:<12} {r['seconds']:.2f}s "
+            f"{r.get('check', '') or r.get('error', '')[:100]}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenes", type=int, default=1000, help="random object scenes (seeds seed-base .. +N-1)")
@@ -207,29 +210,9 @@ def main() -> None:
     actions = [a for a in args.actions.split(",") if a]
     jobs = [(a, args.seed_base + i) for i in range(args.scenes) for a in actions]
     t0 = time.perf_counter()
-    rows: list[dict] = []
-    with tempfile.TemporaryDirectory(prefix="bench-objects-") as tmp:
-        if args.jobs > 1:
-            import multiprocessing as mp
-
-            chunks = [jobs[i::args.jobs * 16] for i in range(args.jobs * 16)]
-            with mp.get_context("spawn").Pool(args.jobs) as pool:
-                for part in pool.imap_unordered(_worker, [(c, tmp, args.arm) for c in chunks if c]):
-                    rows.extend(part)
-                    print(f"  {len(rows)}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
-                    if args.json:  # what is done so far survives an interrupted run
-                        args.json.write_text(json.dumps(rows, indent=1))
-        else:
-            from l2p_bullet.plugins import registry
-
-            plugins = registry.discover()
-            for k, (action, seed) in enumerate(jobs):
-                rows.append(run_one(action, seed, Path(tmp), plugins, args.arm))
-                r = rows[-1]
-                print(f"{action:<8} seed {seed} {r['kind']:<8} {r['shape']:<8} {r['outcome']:<12} {r['seconds']:.2f}s "
-                      f"{r.get('check', '') or r.get('error', '')[:100]}", file=sys.stderr)
-                if (k + 1) % 50 == 0:
-                    print(f"  {k + 1}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    save = (lambda rows: args.json.write_text(json.dumps(rows, indent=1))) if args.json else None
+    rows = run_jobs(jobs, args.jobs, _worker, run_one, "bench-objects-", extra=(args.arm,), split=16, line=_line,
+                    save=save)
     rows.sort(key=lambda r: (r["seed"], actions.index(r["action"])))
     print(f"\nobjects: {args.scenes} mixed-shape scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
           f"x {len(actions)} actions, arm {args.arm}, no rendering, {time.perf_counter() - t0:.0f} s\n")

@@ -200,6 +200,44 @@ def print_table(rows: list[dict], actions: list[str]) -> None:
                 print(r["traceback"])
 
 
+def run_jobs(jobs: list[tuple[str, int]], processes: int, worker, run, prefix: str, *, extra: tuple = (),
+             split: int = 8, line=None, save=None) -> list[dict]:
+    """Every (action, seed) job's row, printing progress on stderr: in ``processes`` spawned processes when
+    more than one (``worker`` takes a chunk, the temporary folder and ``extra``; ``split`` chunks per
+    process), else here one by one (``run(action, seed, folder, plugins, *extra)``, one ``line(row)`` each).
+    ``save(rows)`` is called after each chunk, so that what is done survives an interrupted run. The stress
+    benchmarks (this one and bench_objects.py) share it."""
+    t0 = time.perf_counter()
+    rows: list[dict] = []
+    with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
+        if processes > 1:
+            import multiprocessing as mp
+
+            chunks = [jobs[i::processes * split] for i in range(processes * split)]
+            with mp.get_context("spawn").Pool(processes) as pool:
+                for part in pool.imap_unordered(worker, [(c, tmp, *extra) for c in chunks if c]):
+                    rows.extend(part)
+                    print(f"  {len(rows)}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+                    if save is not None:
+                        save(rows)
+        else:
+            from l2p_bullet.plugins import registry
+
+            plugins = registry.discover()
+            for k, (action, seed) in enumerate(jobs):
+                rows.append(run(action, seed, Path(tmp), plugins, *extra))
+                r = rows[-1]
+                print((line or _line)(r), file=sys.stderr)
+                if (k + 1) % 50 == 0:
+                    print(f"  {k + 1}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    return rows
+
+
+def _line(r: dict) -> str:
+    return (f"{r['action']:<8} seed {r['seed']} {r['kind']:<8} {r['outcome']:<12} {r['seconds']:.2f}s "
+            f"{r.get('check', '') or r.get('error', '')[:100]}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenes", type=int, default=1000, help="random stress scenes (seeds seed-base .. +N-1)")
@@ -211,27 +249,7 @@ def main() -> None:
     actions = [a for a in args.actions.split(",") if a]
     jobs = [(a, args.seed_base + i) for i in range(args.scenes) for a in actions]
     t0 = time.perf_counter()
-    rows: list[dict] = []
-    with tempfile.TemporaryDirectory(prefix="bench-robust-") as tmp:
-        if args.jobs > 1:
-            import multiprocessing as mp
-
-            chunks = [jobs[i::args.jobs * 8] for i in range(args.jobs * 8)]
-            with mp.get_context("spawn").Pool(args.jobs) as pool:
-                for part in pool.imap_unordered(_worker, [(c, tmp) for c in chunks if c]):
-                    rows.extend(part)
-                    print(f"  {len(rows)}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
-        else:
-            from l2p_bullet.plugins import registry
-
-            plugins = registry.discover()
-            for k, (action, seed) in enumerate(jobs):
-                rows.append(run_one(action, seed, Path(tmp), plugins))
-                r = rows[-1]
-                print(f"{action:<8} seed {seed} {r['kind']:<8} {r['outcome']:<12} {r['seconds']:.2f}s "
-                      f"{r.get('check', '') or r.get('error', '')[:100]}", file=sys.stderr)
-                if (k + 1) % 50 == 0:
-                    print(f"  {k + 1}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+    rows = run_jobs(jobs, args.jobs, _worker, run_one, "bench-robust-")
     rows.sort(key=lambda r: (r["seed"], actions.index(r["action"])))
     print(f"\nrobustness: {args.scenes} stress scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
           f"x {len(actions)} actions, no rendering, {time.perf_counter() - t0:.0f} s\n")
