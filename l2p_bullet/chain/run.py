@@ -192,7 +192,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     if own:  # the world only simulates: the film's own worlds draw the frames (embodiment/render.py)
         world = World(scene, arm=arm, visuals=False)
     elif world.robot.spec != arm:
-        raise L2PError(f'the world given holds the arm "{world.robot.spec.name}", not "{arm.name}"')
+        raise ExecutionError(f'the world given holds the arm "{world.robot.spec.name}", not "{arm.name}"')
     prims = None
     try:
         if not own:

@@ -27,6 +27,7 @@ from ..chain import perform_chain
 from ..chain.clauses import Clause
 from ..chain.forecast import forecast
 from ..core.scene import Scene, random_scene
+from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import EvaluationError, L2PError
 from ..pipeline import resolve
 from ..plugins import registry
@@ -77,7 +78,7 @@ def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, plan
 
 def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generator, plugins: list, *,
                planner: str, seed: int, budget: int | None, threshold: float | None,
-               arm: Any = None) -> tuple[list, int]:
+               arm: ArmSpec = PANDA) -> tuple[list, int]:
     """``k`` forecast steps (l2p_bullet/chain/forecast.py), each clause drawn until one can be planned from
     the predicted state; returns the steps and how many draws were refused."""
     names, steps, redraws, predicted = scene.names, [], 0, scene
@@ -89,7 +90,7 @@ def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generato
             clause = Clause(i, text, resolve(text, scene, plugins))
             try:
                 step = forecast([clause], predicted, plugins, planner=planner, seed=seed, budget=budget,
-                                threshold=threshold, **({} if arm is None else {"arm": arm}))[0]
+                                threshold=threshold, arm=arm)[0]
             except L2PError:
                 redraws += 1
                 continue
