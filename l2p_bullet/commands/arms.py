@@ -32,7 +32,8 @@ def arms_cmd(as_json: bool, check: bool) -> None:
             row |= {"description": s.description, "urdf": s.urdf, "arm_joints": len(s.arm_joints),
                     "finger_joints": len(s.finger_joints), "reach_m": list(s.reach), "mount": list(s.mount),
                     "workspace_radius_m": arm_plugins.fit_workspace(Workspace(), s).radius,
-                    "gripper_opening_m": s.gripper_opening, "wrist_limit_rad": s.wrist_limit}
+                    "gripper_opening_m": s.gripper_opening, "wrist_limit_rad": s.wrist_limit,
+                    "payload_kg": s.payload}
         if check and a.ok:
             click.echo(f"checking {a.name} ...", err=True)
             result = arm_plugins.check(a.spec)
@@ -48,7 +49,7 @@ def arms_cmd(as_json: bool, check: bool) -> None:
     for r in good:
         click.echo(f'{r["name"]:<{w}}  {r["arm_joints"]} joints  reach {r["reach_m"][0]:.2f}-{r["reach_m"][1]:.2f} m  '
                    f'workspace r={r["workspace_radius_m"]:.2f} m  opens {r["gripper_opening_m"] * 100:.1f} cm  '
-                   f'{r["package"]} {r["package_version"]}  {r["description"]}')
+                   f'carries {r["payload_kg"]:g} kg  {r["package"]} {r["package_version"]}  {r["description"]}')
         c = r.get("check")
         if c is not None and "measured_reach_m" in c:
             click.echo(f'{"":<{w}}  check: reaches {c["measured_reach_m"][0]:.2f}-{c["measured_reach_m"][1]:.2f} m '
@@ -98,7 +99,8 @@ def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None
     s = made.spec
     click.echo(f'wrote {made.root}/ for the arm "{name}": {len(s.arm_joints)} arm joints, '
                f"{len(s.finger_joints)} gripper joints, opens {s.gripper_opening * 100:.1f} cm, reaches "
-               f"{s.reach[0]:.2f}-{s.reach[1]:.2f} m (mounted at x={s.mount[0]:.3f} m)")
+               f"{s.reach[0]:.2f}-{s.reach[1]:.2f} m (mounted at x={s.mount[0]:.3f} m); payload {s.payload:g} kg "
+               "(a URDF does not say: set your arm's rated payload in its ArmSpec)")
     click.echo(f"next: {sys.executable.rsplit('/', 1)[0]}/pip install ./{made.root}   then   l2p-bullet arms --check")
 
 

@@ -115,7 +115,7 @@ class SceneObject:
     mesh: str | None = None
     scale: float = 1.0
     rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    mass: float | None = None
+    mass: float | None = None  # kg; None: shapes.BLOCK_MASS
     friction: float | None = None
 
     @property

@@ -52,6 +52,9 @@ MAX_MESH_FACES = 200_000
 CYLINDER_SIDES = 16
 """A cylinder's outline is the regular polygon with this many sides drawn around its circle: the
 footprint the planner keeps clear is never smaller than the cylinder (at most 2 % wider, 1.3 % larger)."""
+BLOCK_MASS, BLOCK_FRICTION = 0.1, 0.5
+"""urdf/block.urdf's mass (kg) and friction: what any object has unless its scene entry says ``mass`` or
+``friction`` (the simulator spawns it so, and a carry checks this mass against the arm's payload)."""
 MAX_MASS, MAX_FRICTION = 5.0, 2.0
 """Largest ``mass`` (kg) and ``friction`` coefficient an object may have (the arm holds 0.1-kg blocks with a
 100 N constraint; a heavier object or a stickier table is not what it was measured with)."""

@@ -60,6 +60,8 @@ def problems(spec: ArmSpec) -> str | None:
         return f"reach must be (near, far) metres with 0 <= near < far (got {spec.reach})"
     if not (0.0 < spec.gripper_opening < 1.0) or not (0.0 < spec.wrist_limit <= 2 * math.pi + 1e-3):
         return "gripper_opening must be in (0, 1) m and wrist_limit in (0, 2 pi] rad"
+    if not (0.0 < spec.payload < 1000.0):
+        return f"payload must be in (0, 1000) kg (got {spec.payload})"
     return None
 
 

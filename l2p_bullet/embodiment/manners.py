@@ -7,7 +7,7 @@ arm moves, and how it runs once the path is checked.
   clears every object whose footprint comes near its path by :data:`CLEARANCE` (at least
   :data:`MIN_LIFT`). Refused before moving: an object wider than the gripper's opening
   (``ArmSpec.gripper_opening``: a manner that closes the fingers across an object checks it) or heavier
-  than the arm's payload.
+  than the arm's payload (``ArmSpec.payload``; an object's ``mass``, else :data:`core.shapes.BLOCK_MASS`).
 - **push**: no grasp at all (embodiment/push.py).
 """
 
@@ -17,6 +17,7 @@ import numpy as np
 
 from ..core.geometry import separation
 from ..core.scene import Scene
+from ..core.shapes import BLOCK_MASS
 from ..errors import InfeasibleError, PathError
 from ..manners import registry as manner_registry
 from ..manners.spec import MannerSpec
@@ -27,12 +28,6 @@ CLEARANCE = 0.02
 """m between a carried block's bottom and the top of the tallest object under its path."""
 MIN_LIFT = 0.03
 """m: a carry lifts the block at least this high (its judge wants 2 cm) even over an empty table."""
-BLOCK_MASS_KG = 0.1
-"""The mass of every block (urdf/block.urdf); a scene object may say otherwise (``mass_kg``)."""
-PAYLOAD_KG = {"panda": 3.0}
-"""What each arm may lift (the maker's rated payload); an arm not listed: 1 kg."""
-
-
 def manner_of(manner: MannerSpec | str | None) -> MannerSpec:
     """The manner declaration (by name; None: slide)."""
     return manner if isinstance(manner, MannerSpec) else manner_registry.get(manner)
@@ -46,10 +41,10 @@ def carry_refusal(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> str | None:
     if width > arm.gripper_opening + 1e-9:
         return (f'cannot carry "{mover}": it is {width * 100:.1f} cm wide and the {arm.name}\'s gripper opens '
                 f"{arm.gripper_opening * 100:.1f} cm; slide or push it instead")
-    mass = float(getattr(obj, "mass_kg", None) or BLOCK_MASS_KG)
-    payload = PAYLOAD_KG.get(arm.name, 1.0)
-    if mass > payload:
-        return f'cannot carry "{mover}": it weighs {mass:g} kg and the {arm.name} lifts at most {payload:g} kg'
+    mass = BLOCK_MASS if obj.mass is None else float(obj.mass)
+    if mass > arm.payload + 1e-9:
+        return (f'cannot carry "{mover}": it weighs {mass:g} kg and the {arm.name} lifts at most {arm.payload:g} kg '
+                "(ArmSpec.payload); slide or push it instead")
     return None
 
 

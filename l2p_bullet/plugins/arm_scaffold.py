@@ -111,7 +111,8 @@ the table pointing down {near:.2f}-{far:.2f} m from its base (mounted {mount:.3f
 
     {root}/
       pyproject.toml      declares the entry point  [project.entry-points."l2p_bullet.arms"]  {name} = "{module}:ARM"
-      {module}/__init__.py  ARM = ArmSpec(...): every field read or measured; correct what is wrong
+      {module}/__init__.py  ARM = ArmSpec(...): every field read or measured; correct what is wrong, and set
+                          payload (kg) to your arm's rated payload: a URDF does not say it (1 kg until then)
 
 Install it (a path: never the bare name, which would fetch a stranger's package), check it, use it:
 

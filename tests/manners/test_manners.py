@@ -82,6 +82,20 @@ def test_a_carry_refuses_an_object_wider_than_the_gripper_before_anything_moves(
     prepare("carry A past B", big)  # 8 cm: the Panda's fingers open 8 cm, so it is carried
 
 
+def test_a_carry_refuses_an_object_heavier_than_the_arms_payload_by_the_scene_files_mass():
+    """The scene file's "mass" is what counts (a 0.1 kg block unless it says), against the chosen arm's payload."""
+    data = {"objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.08, -0.08], "mass": 4.0},
+                        {"name": "B", "color": "green", "size": 0.05, "xy": [0.0, 0.05]}]}
+    heavy = Scene.from_dict(data)
+    assert heavy.get("A").mass == 4.0
+    with pytest.raises(InfeasibleError) as e:
+        prepare("carry A past B", heavy)
+    assert e.value.check == "carry" and "weighs 4 kg" in str(e.value) and "panda lifts at most 3 kg" in str(e.value)
+    prepare("slide A past B", heavy)  # sliding or pushing it is not lifting it
+    prepare("carry A past B", heavy, arm="xarm6")  # the xArm6's rated payload is 5 kg
+    assert carry_refusal(default_scene(), "A") is None  # a block without "mass" weighs 0.1 kg
+
+
 def test_carry_lift_clears_the_tallest_object_under_the_path():
     scene = Scene([SceneObject("A", "red", 0.04, (0.10, 0.0), 0.0), SceneObject("B", "green", 0.06, (0.0, 0.0), 0.0),
                    SceneObject("C", "blue", 0.08, (0.0, 0.18), 0.0)])

@@ -58,6 +58,9 @@ class ArmSpec:
     # graspable width (at a yaw the wrist can reach) is wider cannot be grasped by this arm, and a manner
     # that closes the fingers across an object checks it. Panda: two prismatic fingers of 0-4 cm each.
     gripper_opening: float = 0.08
+    # What the arm may carry (kg): its maker's rated payload. A carry refuses a heavier object up front
+    # (the grasp is a constraint, which would lift anything). 1 kg when unknown: a user's arm says its own.
+    payload: float = 1.0
     # A tool point the description itself lacks (the xArm's and the KUKA's have no link between their
     # fingertips): (parent link name, xyz in the parent's frame); :func:`arm_urdf` adds a fixed massless link
     # "l2p_tool" there, and ``tool_link`` is its index (the last joint).
@@ -103,6 +106,7 @@ PANDA = ArmSpec(
         (0.080, 0.0291, 0.1062),
     ),
     reach=(0.26, 0.79),  # measured (l2p-bullet arms --check): holds the workspace disk, 0.28-0.78 m from the base
+    payload=3.0,  # Franka's rated payload
     description="Franka Emika Panda with its hand (pybullet_data franka_panda/panda.urdf); the default",
 )
 
@@ -288,6 +292,7 @@ XARM6 = ArmSpec(
     wrist_offset=0.0,
     tool_frame=("xarm_gripper_base_link", (0.0, 0.0, 0.16)),
     gripper_opening=0.083,
+    payload=5.0,  # UFactory's rated payload for the xArm6
     hand_profile=(  # measured by embodiment.arm_plugins.measure_hand (tests/embodiment/test_arms.py re-measures it)
         (0.000, 0.0151, 0.0109), (0.005, 0.0191, 0.0152), (0.010, 0.0191, 0.0186), (0.015, 0.0191, 0.0203),
         (0.020, 0.0191, 0.0220), (0.025, 0.0191, 0.0237), (0.030, 0.0191, 0.0255), (0.035, 0.0191, 0.0272),
@@ -324,6 +329,7 @@ KUKA_IIWA = ArmSpec(
     tool_frame=("base_link", (0.0, 0.024, 0.232)),
     fixed_joints=("gripper_to_arm", "left_base_tip_joint", "right_base_tip_joint"),
     gripper_opening=0.101,
+    payload=7.0,  # the LBR iiwa 7's rated payload (the iiwa 14's is 14 kg; the description does not say which)
     hand_profile=(  # measured by embodiment.arm_plugins.measure_hand (tests/embodiment/test_arms.py re-measures it)
         (0.000, 0.0001, 0.0001), (0.005, 0.0227, 0.0180), (0.010, 0.0259, 0.0182), (0.015, 0.0290, 0.0184),
         (0.020, 0.0319, 0.0185), (0.025, 0.0347, 0.0187), (0.030, 0.0375, 0.0189), (0.035, 0.0399, 0.0190),

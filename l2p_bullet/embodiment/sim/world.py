@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ...core.scene import COLORS, Scene
+from ...core.shapes import BLOCK_FRICTION, BLOCK_MASS
 from ...errors import SceneError
 from .arms import PANDA, ArmSpec
 from .bullet import Bullet
@@ -25,7 +26,6 @@ from .robot import ARM, Robot
 
 PHYSICS_HZ = 240.0
 BLOCK_URDF_SIZE = 0.05  # the side of urdf/block.urdf; other sizes load it with globalScaling
-BLOCK_MASS, BLOCK_FRICTION = 0.1, 0.5  # urdf/block.urdf's: what a box, cylinder or mesh gets unless told
 TABLE = "<table>"  # the table's body name (blocks go by their scene names, the arm is robot.ARM)
 
 
