@@ -20,7 +20,8 @@ thresholds, which broke as soon as the blocks changed size, and its "next to" ru
            passes near it (closest centre distance at most 4 blocks) and does not circle it (turns at
            most half a turn around it: more is going around);
 - around:  the mover sweeps nearly a full turn around the anchor (at least 0.8 turn) while staying near
-           it (centre distance at most 4 blocks).
+           it (centre distance at most 4 blocks), read from the first frame that near on (a mover that
+           starts farther first comes near; the approach is not judged).
 
 For plugin actions (a manifest's ``[judge] rules = "..."``):
 
@@ -51,7 +52,7 @@ from ..errors import UnknownActionError
 from .base import Verdict
 from .footprints import WOBBLE, relative, square_gap
 from .rulesets import around, away, between, closer, next_to, past, sides
-from .rulesets.around import AROUND_NEAR, AROUND_TURNS
+from .rulesets.around import AROUND_APPROACH, AROUND_NEAR, AROUND_TURNS
 from .rulesets.away import AWAY_GAIN
 from .rulesets.closer import CLOSER_SHARE, closer_room
 from .rulesets.next_to import NEXT_TO_GAP
@@ -60,7 +61,7 @@ from .rulesets.sides import NEAR, SIDES
 
 __all__ = ["RULES", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap", "closer_room", "WOBBLE",
            "CLOSER_SHARE", "AWAY_GAIN", "NEXT_TO_GAP", "PAST_MARGIN", "PAST_NEAR", "PAST_MAX_TURN_DEG",
-           "AROUND_TURNS", "AROUND_NEAR", "NEAR", "SIDES"]
+           "AROUND_TURNS", "AROUND_NEAR", "AROUND_APPROACH", "NEAR", "SIDES"]
 
 RULES: dict[str, Callable[..., Verdict]] = {
     **closer.RULES, **away.RULES, **next_to.RULES, **past.RULES, **around.RULES, **between.RULES, **sides.RULES,

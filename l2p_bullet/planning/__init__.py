@@ -29,12 +29,12 @@ from ..core.scene import Scene
 from ..core.threads import torch_threads
 from ..embodiment.reach import Wrist
 from ..embodiment.sim.arms import PANDA, ArmSpec
-from ..errors import PlanError, UnknownPlannerError
-from ..judge.rules import AROUND_NEAR
-from . import policy  # called as policy.load_policy: a test stands in a policy there
+from ..errors import InfeasibleError, PlanError, UnknownPlannerError
+from ..judge.rules import AROUND_APPROACH, AROUND_NEAR
+from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
-from .problem import Problem, finish
+from .problem import FRAME_STEP, Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .refine import refine
 from .search import beam, greedy
@@ -125,21 +125,30 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
                         f"not {len(anchors)} ({', '.join(anchors)})")
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
-    best = None
+    around = target is None and _rules(bundle) == "around"
+    best, refused = None, None
     for hold in holds:
         outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
         over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
         world = World2D(scene, mover, outlines=outlines, over=over)
+        wrist = Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm)
+        try:  # around from afar: first a straight slide to where people start it (approach.py)
+            lead = approach.lead_in(world, anchor_obj.pose, AROUND_NEAR, AROUND_APPROACH, FRAME_STEP * world.size,
+                                    wrist, mover, anchor) if around else None
+        except InfeasibleError as e:
+            refused = e
+            continue
         problem = Problem(
             world=world, model=model if target is None else _target_scorer(model, target, world), anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
             budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)),
-            rng=np.random.default_rng(seed), wrist=Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm), more_anchor_poses=more_poses,
-            viewer=getattr(model, "viewpoint", None),
+            rng=np.random.default_rng(seed), wrist=wrist, more_anchor_poses=more_poses,
+            viewer=getattr(model, "viewpoint", None), lead_in=lead,
         )
         problem.deadline = deadline
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)
-        route = around_route(world, anchor_obj.pose, AROUND_NEAR) if arcs and _rules(bundle) == "around" else None
+        route = (around_route(world, anchor_obj.pose, AROUND_NEAR, start=None if lead is None else lead[-1])
+                 if arcs and around else None)
         with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
             node, stopped, steps = _search(name, problem, bundle, target, arcs=arcs, route=route)
             if route is not None and stopped != "threshold":  # the search stalled: the way round as it is
@@ -152,6 +161,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             best = (problem, node, stopped, steps, hold, refined)
         if stopped == "threshold":
             break  # good enough: the first grasp (the roomier one) reached the threshold
+    if best is None:
+        raise refused  # no grasp has a way to come near ("around" from afar)
     problem, node, stopped, steps, hold, refined = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
@@ -160,6 +171,9 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     if refined:
         result.extra["refine_passes"] = refined
     result.extra["grasp_angle_deg"] = None if hold.angle is None else round(math.degrees(hold.angle), 6)
+    if problem.lead_in is not None:  # a new field, only where there is an approach
+        result.extra["approach"] = {"frames": len(problem.lead_in), "to": problem.lead_in[-1].round(6).tolist(),
+                                    "blocks": AROUND_APPROACH}
     if target is not None:
         result.extra["target"] = np.round(np.asarray(target, float), 6).tolist()
         result.extra["target_error_m"] = round(float(np.hypot(*(result.path[-1, :2] - np.asarray(target)[:2]))), 6)

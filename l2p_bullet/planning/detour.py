@@ -31,11 +31,13 @@ GOAL_TURNS = 0.9
 """How far round the way goes: past the judge's 0.8, as people's demonstrations do (median 0.79 captured)."""
 
 
-def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float) -> np.ndarray | None:
-    """Waypoints (N, 3) of a way round ``anchor_pose`` from the mover's start, every pose legal and every
-    straight move between two of them legal, never farther than ``near_sides`` (block sides) from the
-    anchor; None when the grid holds none (the planner then searches without it)."""
-    start = np.asarray(world.mover.pose, float)
+def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
+                 start: np.ndarray | None = None) -> np.ndarray | None:
+    """Waypoints (N, 3) of a way round ``anchor_pose`` from ``start`` (default: the mover's start; the end
+    of an approach, approach.py), every pose legal and every straight move between two of them legal, never
+    farther than ``near_sides`` (block sides) from the anchor; None when the grid holds none (the planner
+    then searches without it)."""
+    start = np.asarray(world.mover.pose if start is None else start, float)
     a = np.asarray(anchor_pose, float)[:2]
     size = world.size
     rel = start[:2] - a

@@ -13,9 +13,10 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
 - ``room-around``: the mover's centre must stay in the workspace disk, so around an anchor near the
   disk's rim the directions it can take around the anchor cover less than the 0.8 turn "around" needs
   (even passing as close as two blocks' inscribed circles allow).
-- ``far-around``: the mover starts farther from the anchor than "around" may ever be (``near`` blocks:
-  the rule judges every frame of the motion, its first included), so no path from there can be judged
-  "around"; chains drew such pairs among their bystanders often (issue 21).
+- ``far-around`` (raised by the planner, ``planning/approach.py``): the mover starts farther from the anchor
+  than ``near`` blocks and no straight slide (at its yaw, within the wrist's range, clear of every object
+  and inside the workspace) brings it to where "around" is planned from. Before 2026-11-26 every start
+  farther than ``near`` blocks was refused here: the rule then judged the approach too.
 - ``blocked-around``: within ``near`` blocks of the anchor, the other objects and the workspace's rim leave
   the mover no legal pose (whatever its yaw) along some bearings, so no path sweeps the 0.8 turn: a
   continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows (issue 21).
@@ -136,13 +137,6 @@ def _room_around(scene: Scene, mover: str, anchor: str) -> None:
             f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
             f"the workspace (radius {ws.radius} m); around needs {AROUND_TURNS * 360:.0f} deg",
             {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURNS * 360})
-    d0 = float(np.hypot(*(np.asarray(m.xy, float) - a.xy))) / m.size  # in the mover's sides, as the judge measures
-    if d0 > AROUND_NEAR + 1e-9:
-        raise InfeasibleError(
-            "far-around",
-            f'"{mover}" starts {d0:.2f} blocks from "{anchor}": around must stay within {AROUND_NEAR:g} blocks of '
-            "the anchor all the way, its start included, so no path from here is around it; move it closer first",
-            {"start_blocks": round(d0, 3), "near_blocks": AROUND_NEAR})
 
 
 SWEEP_GRID = (2.0, 0.05, 5.0)
@@ -191,7 +185,9 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     rel = np.asarray(m.xy, float) - a.xy
     k0 = int(round(math.degrees(math.atan2(rel[1], rel[0])) / bearing_deg)) % len(bearings)
     j0 = int(np.argmin(np.abs(radii - float(np.hypot(*rel)))))
-    if cells[k0, j0]:
+    # from afar the mover first slides near (approach.py), where that slide ends is the planner's: only
+    # the arc above is a necessary condition then
+    if cells[k0, j0] and float(np.hypot(*rel)) <= outer + 1e-9:
         way = _connected_sweep(cells, k0, j0) * bearing_deg
         if way < AROUND_TURNS * 360 - 2 * bearing_deg:
             raise InfeasibleError(

@@ -84,6 +84,9 @@ class Problem:
     wrist: Wrist | None = None  # the arm's wrist range: paths no grasp yaw can follow are illegal
     more_anchor_poses: list[np.ndarray] = field(default_factory=list)  # a two-anchor action's second anchor
     viewer: np.ndarray | None = None  # (2,) the viewpoint of a viewer-frame action (scene frame, metres)
+    # (T0,3) frames of a straight slide from the mover's start that comes before the action (approach.py:
+    # "around" from afar): every node starts with it, and the model scores only what follows its last frame
+    lead_in: np.ndarray | None = None
 
     @property
     def context(self) -> dict:
@@ -105,19 +108,30 @@ class Problem:
     def step(self) -> float:
         return FRAME_STEP * self.size
 
+    @property
+    def lead(self) -> int:
+        """Frames of a node's path before the part the model scores (0 without a lead-in)."""
+        return 0 if self.lead_in is None else len(self.lead_in) - 1
+
+    @property
+    def lead_moves(self) -> int:
+        """Moves of a node's path before the action's own (the lead-in's one straight slide, or none)."""
+        return 0 if self.lead_in is None else 1
+
     def root(self) -> Node:
         start = self.world.mover.pose.copy()
-        frames = start[None].copy()
-        p = float(self.model.final_batch([frames], self.anchor_pose, self.size, **self.context)[0])
+        frames = start[None].copy() if self.lead_in is None else np.asarray(self.lead_in, float).copy()
+        waypoints = start[None].copy() if self.lead_in is None else np.stack([start, frames[-1]])
+        p = float(self.model.final_batch([frames[self.lead:]], self.anchor_pose, self.size, **self.context)[0])
         self.forward_passes += 1
-        w = float(self.wrist.values(start[None, :2], start[2:3])[0]) if self.wrist is not None else 0.0
-        return Node(start[None].copy(), frames, p, yaw=float(start[2]), wrist=(w, w))
+        w = self.wrist.values(frames[:, :2], frames[:, 2]) if self.wrist is not None else np.zeros(1)
+        return Node(waypoints, frames, p, yaw=float(frames[-1, 2]), wrist=(float(w.min()), float(w.max())))
 
     def children(self, parents: list[Node], ends: list[np.ndarray]) -> list[Node]:
         """Legal children of each parent (ends[i] (Mi,3) proposed for parents[i]), scored in one pass."""
         kids: list[Node] = []
         for node, e in zip(parents, ends, strict=True):
-            if len(e) == 0 or node.moves >= self.max_moves:
+            if len(e) == 0 or node.moves - self.lead_moves >= self.max_moves:
                 continue
             e = np.asarray(e, float).reshape(-1, 3)
             if node.dead:
@@ -136,8 +150,8 @@ class Problem:
                 kids.append(Node(np.vstack([node.waypoints, end]), np.vstack([node.frames, seg]), 0.0, node,
                                  yaw=float(yaws[-1]), wrist=wrist))
         if kids:
-            scores = np.asarray(self.model.final_batch([k.frames for k in kids], self.anchor_pose, self.size,
-                                                       **self.context))
+            scores = np.asarray(self.model.final_batch([k.frames[self.lead:] for k in kids], self.anchor_pose,
+                                                       self.size, **self.context))
             self.forward_passes += 1
             self.evaluations += len(kids)
             for k, s in zip(kids, scores, strict=True):
@@ -153,10 +167,12 @@ def finish(problem: Problem, node: Node, *, action: str, mover: str, anchor: str
            stopped: str, steps: int, more_anchors: list[str] | None = None) -> Plan:
     """The plan.json of the best node: frames as the path, the model's curve as per-point progress."""
     path = node.frames
-    progress = np.asarray(problem.model.curve(path, problem.anchor_pose, problem.size, **problem.context),
+    scored = path[problem.lead:]
+    progress = np.asarray(problem.model.curve(scored, problem.anchor_pose, problem.size, **problem.context),
                           float).reshape(-1)
-    if len(progress) != len(path):  # a model that resamples internally: spread its curve over the frames
-        progress = np.interp(np.linspace(0, 1, len(path)), np.linspace(0, 1, max(len(progress), 1)), progress)
+    if len(progress) != len(scored):  # a model that resamples internally: spread its curve over the frames
+        progress = np.interp(np.linspace(0, 1, len(scored)), np.linspace(0, 1, max(len(progress), 1)), progress)
+    progress = np.r_[np.full(problem.lead, progress[0]), progress]  # the lead-in holds the action's first value
     return Plan(
         action=action, mover=mover, anchor=anchor, size=problem.size,
         anchor_pose=np.asarray(problem.anchor_pose, float), start=path[0].copy(), path=path,

@@ -89,8 +89,8 @@ def test_a_hemmed_in_small_block_is_grasped_at_another_angle():
 def test_a_small_mover_does_not_knock_a_taller_anchor(scene, action, tmp_path):
     try:
         r = perform(SENTENCES[action], scene, out_dir=tmp_path, render=False)
-    except InfeasibleError as e:  # refused up front: "around" is never more than 4 of the mover's sides away
-        assert e.check == "far-around" and action == "around", e  # a 2 cm block 5 of its sides away
+    except InfeasibleError as e:  # refused up front: only where no straight slide brings the mover near
+        assert e.check == "far-around" and action == "around", e
         return
     assert r.displacements_m["B"] < 0.001, r.displacements_m
     if scene is SMALL_BY_TALL:  # the hand's long side must point away from B: only 90 degrees clears it
@@ -282,7 +282,7 @@ def test_a_boxed_in_mover_is_refused():
 
 @pytest.mark.parametrize("rules, a_xy, b_xy, check", [
     ("around", (0.14, 0.0), (0.24, 0.0), "room-around"),  # the anchor at the rim: no way round it
-    ("around", (-0.105, 0.0), (0.1, 0.0), "far-around"),  # 4.1 blocks away: the judge allows at most 4, start included
+    ("around", (-0.105, 0.0), (0.1, 0.0), None),  # 4.1 blocks away: it comes near first (planning/approach.py)
     ("around", (-0.1, 0.0), (0.1, 0.0), None),  # exactly 4 blocks away: possible
     ("away", (0.0, 0.24), (0.0, -0.24), "room-away"),  # already as far apart as the workspace allows
     ("closer", (0.0, 0.0), (0.0, 0.055), "room-closer"),  # 1.1 blocks apart: the judge's room is 0.25 block

@@ -1,0 +1,74 @@
+"""The approach: "around" from afar is planned as people would do it, going there first.
+
+The rule of "around" reads a motion from its first frame within ``near`` blocks of the anchor
+(judge/rulesets/around.py), and people's 40 demonstrations of it all start near (median 2.5 blocks): they
+set the blocks down close. A mover that starts farther (the 2-D study's starts reach 7.7 blocks; chains
+and the arms' benchmark draw such pairs) is first slid straight towards the anchor until its centre is
+``approach`` blocks from the anchor's (``ActionSpec.thresholds["approach"]``, where people start), keeping
+its yaw; the learned model then plans the action from there, scoring only what follows (the lead-in of
+:class:`~l2p_bullet.planning.problem.Problem`). Until 2026-11-26 such a start was refused up front
+(``far-around``); that check now refuses only a start from which no straight slide gets there.
+
+The slide aims at the anchor; where another object or the workspace's rim blocks that line, at points of
+the same circle a little to either side (every 10 degrees, up to a quarter turn), nearest first; where the
+whole circle has no room (a small mover by a big anchor), at circles a quarter block farther out, short of
+``near``. Each
+slide is checked as the search checks its moves: the 2-D world (the mover's outline grown by the hand,
+the workspace) and the wrist's range for the grasp being planned.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..embodiment.reach import Wrist
+from ..errors import InfeasibleError
+from .world2d import World2D, segment_frames
+
+AIM_OFFSETS_DEG = tuple(d * s for d in range(0, 91, 10) for s in ((1,) if d == 0 else (1, -1)))
+"""Where on the approach circle the slide may end, in degrees of bearing from the start's own."""
+RADIUS_STEP = 0.25
+"""Blocks between the circles tried when people's start distance has no room (a big anchor)."""
+
+
+def approach_radii(approach_sides: float, near_sides: float) -> list[float]:
+    """The distances (blocks) the slide may end at, people's start first, then farther out in quarter blocks
+    short of ``near``: a small mover by a big anchor cannot be 2.5 of its own sides from the anchor's centre."""
+    return [approach_sides, *np.arange(approach_sides + RADIUS_STEP, near_sides - 0.05 + 1e-9, RADIUS_STEP).tolist()]
+
+
+def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach_sides: float, step: float,
+            wrist: Wrist | None = None, mover: str = "the mover", anchor: str = "the anchor") -> np.ndarray | None:
+    """Frames (T0,3) of the straight slide from the mover's start to ``approach_sides`` blocks from the
+    anchor, the start included; None when the mover already starts within ``near_sides`` blocks.
+    InfeasibleError ``far-around`` when no such slide is legal."""
+    start = np.asarray(world.mover.pose, float)
+    a = np.asarray(anchor_pose, float)[:2]
+    rel = start[:2] - a
+    d0 = float(np.hypot(*rel))
+    if d0 <= near_sides * world.size + 1e-9:
+        return None
+    b0 = math.atan2(rel[1], rel[0])
+    bearings = b0 + np.radians(AIM_OFFSETS_DEG)
+    for sides in approach_radii(approach_sides, near_sides):
+        r = sides * world.size
+        ends = np.column_stack([a[0] + r * np.cos(bearings), a[1] + r * np.sin(bearings),
+                                np.full(len(bearings), start[2])])
+        for end in ends[world.moves_free(start, ends)]:
+            frames = np.vstack([start[None], segment_frames(start, end, step)])
+            if wrist is not None:
+                v = wrist.values(frames[:, :2], frames[:, 2])
+                if not wrist.fits(float(v.min()), float(v.max())):
+                    continue
+            return frames
+    raise InfeasibleError(
+        "far-around",
+        f'"{mover}" starts {d0 / world.size:.2f} blocks from "{anchor}", and no straight slide brings it to '
+        f"{approach_sides:g}-{near_sides:g} blocks from it (other objects, the workspace's rim or the wrist's range "
+        f"are in the way): around must come within {near_sides:g} blocks first; move it closer first",
+        {"start_blocks": round(d0 / world.size, 3), "near_blocks": near_sides, "approach_blocks": approach_sides})
+
+
+__all__ = ["lead_in", "approach_radii", "AIM_OFFSETS_DEG", "RADIUS_STEP"]

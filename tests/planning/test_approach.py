@@ -1,0 +1,81 @@
+"""'around' from afar (planning/approach.py): a mover that starts farther than the rule's 4 blocks first slides
+straight to where people start "around" (2.5 blocks), then goes round; only where no straight slide gets there
+is it refused up front (far-around)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from l2p_bullet.actions.around import ACTION
+from l2p_bullet.core.scene import Scene
+from l2p_bullet.errors import InfeasibleError
+from l2p_bullet.judge.rules import AROUND_APPROACH, AROUND_NEAR, rule_verdict
+from l2p_bullet.pipeline import judged_plan, prepare
+
+FAR = {"objects": [{"name": "A", "color": "red", "size": 0.04, "xy": [0.02, -0.16], "yaw": 0.3},
+                   {"name": "B", "color": "green", "size": 0.04, "xy": [-0.02, 0.10]}]}
+
+
+def _blocks(path: np.ndarray, anchor: np.ndarray, size: float) -> np.ndarray:
+    return np.hypot(*(np.asarray(path)[:, :2] - np.asarray(anchor)[:2]).T) / size
+
+
+def test_the_approach_distance_is_where_people_start_around():
+    from l2p_bullet.learning.train_progress import all_demos
+
+    starts = [np.hypot(*(d.mover[0, :2] - d.anchor[0, :2])) / d.size for d in all_demos()["around"]]
+    assert len(starts) == 40 and round(float(np.median(starts)), 1) == AROUND_APPROACH == ACTION.thresholds["approach"]
+    assert max(starts) < 4.6  # nobody started an "around" from across the table
+
+
+def test_around_from_afar_slides_straight_near_then_goes_round_and_passes_its_rule():
+    scene = Scene.from_dict(FAR)
+    p = prepare("move A around B", scene)
+    plan, verdict = judged_plan(p, seed=3)
+    size, anchor = plan.size, plan.anchor_pose
+    d = _blocks(plan.path, anchor, size)
+    assert d[0] == pytest.approx(6.58, abs=0.01)
+    approach = plan.extra["approach"]
+    lead = plan.path[: approach["frames"]]
+    assert d[approach["frames"] - 1] == pytest.approx(AROUND_APPROACH, abs=1e-6)  # it stops where people start
+    heading = np.diff(lead[:, :2], axis=0)
+    cross = heading[:, 0] * heading[0, 1] - heading[:, 1] * heading[0, 0]  # one straight line, one yaw
+    assert np.allclose(cross, 0.0, atol=1e-9) and np.allclose(lead[:, 2], lead[0, 2])
+    assert (d[approach["frames"] - 1:] <= AROUND_NEAR).all()  # once near, it stays near
+    assert verdict["success"], verdict["reason"]
+    assert verdict["reason"].startswith("came within 4 blocks from 6.58, then swept")
+    again, _ = judged_plan(prepare("move A around B", Scene.from_dict(FAR)), seed=3)
+    assert np.array_equal(again.path, plan.path)  # deterministic for a seed
+
+
+def test_a_start_that_is_near_already_has_no_approach():
+    near = {"objects": [dict(FAR["objects"][0], xy=[0.02, -0.02]), FAR["objects"][1]]}
+    plan, verdict = judged_plan(prepare("move A around B", Scene.from_dict(near)), seed=3)
+    assert "approach" not in plan.extra and not verdict["reason"].startswith("came within")
+
+
+def test_around_from_afar_is_refused_up_front_when_a_wall_blocks_every_way_near():
+    wall = [{"name": n, "color": c, "shape": "box", "dims": [0.08, 0.02, 0.03], "xy": [x, -0.03]}
+            for n, c, x in (("C", "blue", -0.085), ("D", "yellow", 0.0), ("E", "orange", 0.085))]
+    scene = Scene.from_dict({"objects": [dict(FAR["objects"][0], xy=[0.0, -0.17], yaw=0.0),
+                                         dict(FAR["objects"][1], xy=[0.0, 0.09]), *wall]})
+    with pytest.raises(InfeasibleError) as e:
+        judged_plan(prepare("move A around B", scene), seed=0)
+    assert e.value.check == "far-around" and "\n" not in str(e.value)
+    assert "no straight slide brings it to 2.5-4 blocks" in str(e.value)
+
+
+def test_the_rule_reads_around_from_the_first_frame_near():
+    size, a = 1.0, np.zeros(3)
+    ring = np.linspace(0, 2 * math.pi * 0.9, 200)
+    circle = np.c_[2.5 * np.cos(ring), 2.5 * np.sin(ring), np.zeros_like(ring)]
+    slide = np.c_[np.linspace(7.0, 2.5, 50), np.zeros(50), np.zeros(50)]
+    v = rule_verdict("around", np.vstack([slide, circle[1:]]), a, size)
+    assert v.success and v.reason.startswith("came within 4 blocks from 7.00, then swept 0.90")
+    wide = np.c_[6 * np.cos(ring), 6 * np.sin(ring), np.zeros_like(ring)]
+    assert not rule_verdict("around", wide, a, size).success  # never near: as before
+    out_again = np.vstack([slide, circle[1:], np.c_[np.linspace(2.5, 6, 20), np.zeros(20), np.zeros(20)]])
+    assert not rule_verdict("around", out_again, a, size).success  # near, round, then far again: not around
