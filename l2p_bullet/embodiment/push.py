@@ -30,6 +30,7 @@ from ..core.geometry import separation
 from ..errors import ReachError
 from . import reach
 from .manners import PUSH_CLEARANCE, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
+from .push_path import drop_spurs
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
 
@@ -60,7 +61,7 @@ class Pusher:
         self.mover, self.size = mover, float(prims.world.sizes[mover])
         xy = np.asarray(path, float)[:, :2]
         keep = np.concatenate([[True], np.hypot(*np.diff(xy, axis=0).T) > 1e-9])
-        self.xy = xy[keep]
+        self.xy = drop_spurs(xy[keep], self.size)
         seg = np.hypot(*np.diff(self.xy, axis=0).T) if len(self.xy) > 1 else np.zeros(0)
         self.arc = np.concatenate([[0.0], np.cumsum(seg)])
         self.sigma = 0.0
@@ -75,6 +76,7 @@ class Pusher:
         self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
         self.others = [n for n in self.world.sizes if n != mover]
         self.shifted = 0
+        self.blocked = False  # contact_pose: whether the last place asked for had no room for the hand
 
     # --- geometry ----------------------------------------------------------------------------------
     def block(self) -> np.ndarray:
@@ -120,9 +122,11 @@ class Pusher:
 
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> np.ndarray:
         """Tool pose with the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
-        that face (up to :data:`SHIFT`) when its middle would touch another object."""
+        that face (up to :data:`SHIFT`) when its middle would touch another object (``self.blocked`` says
+        whether no place was clear)."""
         r = self.support(b, phi) + self.half + back
         pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
+        self.blocked = False
         if self.clear(pose[:2], phi):
             return pose
         across = np.array([-math.sin(phi), math.cos(phi)])
@@ -132,6 +136,7 @@ class Pusher:
                 if self.clear(xy, phi):
                     self.shifted += 1
                     return np.array([xy[0], xy[1], self.z, yaw])
+        self.blocked = True
         return pose
 
     def clear(self, xy: np.ndarray, phi: float) -> bool:
@@ -185,21 +190,26 @@ class Pusher:
         prims.q, prims.pose = q, pose.copy()
         self.ticks += 1
 
-    def go_round(self, b: np.ndarray, phi: float) -> None:
+    def go_round(self, b: np.ndarray, phi: float) -> bool:
         """Up above the block, over to the side opposite ``phi``, down to pushing height (the hand's
-        yaw turns in the air, where the pusher may swap fingers)."""
+        yaw turns in the air, where the pusher may swap fingers). False, and the hand stays where it is,
+        when that side has no room for the hand (it would come down on another object: measured once,
+        random_scene(5004) "next to", the anchor thrown 86 cm)."""
         prims = self.prims
+        target = self.contact_pose(b, phi, 0.0, GAP)
+        if self.blocked:
+            return False
         top = float(self.world.heights[self.mover]) + CLEAR + self.robot.drop  # over its top, whatever its shape
         up = prims.pose.copy()
         up[2] = max(up[2], top)
         prims.go(up, DESCEND, "push-up")
-        target = self.contact_pose(b, phi, 0.0, GAP)
         target[3] = self.yaw_for(phi, prims.pose[3], target)
         over = target.copy()
         over[2] = top
         prims.go(over, APPROACH, "push-over", short_turn=False)
         prims.go(target, DESCEND, "push-down")
         self.repositions += 1
+        return True
 
     def run(self) -> dict:
         prims = self.prims
@@ -232,7 +242,9 @@ class Pusher:
                 if self.repositions >= MAX_REPOSITIONS:
                     stopped = "repositions"
                     break
-                self.go_round(b, self._aim(b))
+                if not self.go_round(b, self._aim(b)):
+                    stopped = "blocked"
+                    break
                 side, best_t = self._aim(b), self.world.time
                 continue
             if self.world.tilt(self.mover) > math.radians(20.0):
@@ -251,7 +263,9 @@ class Pusher:
                 if self.repositions >= MAX_REPOSITIONS:
                     stopped = "repositions"
                     break
-                self.go_round(b, phi)
+                if not self.go_round(b, phi):
+                    stopped = "blocked"
+                    break
                 side, best_t = phi, self.world.time  # the time going round is not a stall
                 continue
             side = side + float(np.clip((phi - side + math.pi) % (2 * math.pi) - math.pi,
