@@ -242,18 +242,20 @@ class Pusher:
         # from the rest pose: above the pushing side, then down beside the block
         start = self.contact_pose(b, phi, 0.0, GAP)
         start[3] = self.yaw_for(phi, prims.pose[3], start)
-        above = start.copy()
-        above[2] = start[2] + HOVER
-        prims.go(above, APPROACH, "approach", short_turn=False)
-        prims.go(start, DESCEND, "descend")
+        blocked = self.blocked  # no room to come down (push_refusal says so before anything moves)
+        if not blocked:
+            above = start.copy()
+            above[2] = start[2] + HOVER
+            prims.go(above, APPROACH, "approach", short_turn=False)
+            prims.go(start, DESCEND, "descend")
         self.repositions = 0
         side = phi
         limit = TIME_PER_M * total + SLACK_S
         t0 = self.world.time
-        stopped = "end"
+        stopped = "blocked" if blocked else "end"
         best, best_t = 0.0, self.world.time
         self.bias, self.trail = 0.0, []
-        while True:
+        while stopped == "end":
             b = self.block()
             s = self.progress(b)
             to_end = float(np.hypot(*(b[:2] - end)))
