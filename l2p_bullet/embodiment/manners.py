@@ -22,6 +22,8 @@ from ..errors import InfeasibleError, PathError
 from ..manners import registry as manner_registry
 from ..manners.spec import MannerSpec
 from . import motion, reach
+from .push_path import dense as push_path_dense
+from .push_path import drop_spurs
 from .sim.arms import PANDA, ArmSpec
 
 CLEARANCE = 0.02
@@ -99,7 +101,10 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
     m = scene.get(mover)
     p = np.asarray(path, float).reshape(-1, 3)
     dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
-    blocked = _no_room_to_start(scene, m, dense, arm)
+    # where the push starts: along the path the controller follows (its spurs dropped, embodiment/push_path.py)
+    plan_xy = p[:, :2]
+    xy = drop_spurs(plan_xy, m.size)
+    blocked = _no_room_to_start(scene, m, dense if xy is plan_xy else push_path_dense(xy), arm)
     if blocked is not None:
         return (f'no room for the pushing hand behind "{mover}": it would come down on "{blocked}"; '
                 f'carry or slide "{mover}" instead')
