@@ -79,3 +79,15 @@ def test_the_rule_reads_around_from_the_first_frame_near():
     assert not rule_verdict("around", wide, a, size).success  # never near: as before
     out_again = np.vstack([slide, circle[1:], np.c_[np.linspace(2.5, 6, 20), np.zeros(20), np.zeros(20)]])
     assert not rule_verdict("around", out_again, a, size).success  # near, round, then far again: not around
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("verb", ["move", "carry", "push"])
+def test_the_arm_performs_around_from_afar_in_every_manner(tmp_path, verb):
+    from l2p_bullet.pipeline import perform
+
+    r = perform(f"{verb} A around B", Scene.from_dict(FAR), out_dir=tmp_path / verb, render=False, seed=3)
+    assert r.success, r.verdict["reason"]
+    assert r.verdict["reason"].startswith("came within 4 blocks from 6.58")
+    assert r.displacements_m["B"] < 0.001  # the anchor untouched
+    assert r.plan.extra["approach"]["blocks"] == AROUND_APPROACH
