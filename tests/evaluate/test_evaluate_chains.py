@@ -118,7 +118,13 @@ def test_chains_on_another_arm_are_drawn_and_performed_by_it(tmp_path):
     evaluate(EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6"), tmp_path, workers=0, progressbar=False)
     rows = load_rows(tmp_path)
     assert len(rows) == 2 and all(r["error"] is None for r in rows)
-    assert sum(r["completed"] for r in rows) >= 2  # the arm did perform clauses (both chains' first at least)
+    # the arm performed each chain's first clause (executed and judged, whatever the verdict: the chains drawn
+    # depend on the planner, and since "around" from afar is performed rather than re-drawn one of them fails)
+    for r in rows:
+        clauses = r["clauses"] if isinstance(r["clauses"], list) else json.loads(r["clauses"])
+        first = clauses[0]
+        assert first["failed_stage"] is None and first["final_progress"] is not None and first["reason"], first
+        assert first["frames"][1] > first["frames"][0]
     kept = EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6", keep="all")
     evaluate(kept, tmp_path / "kept", workers=0, progressbar=False)
     summaries = list((tmp_path / "kept" / "runs").glob("*/summary.json"))
