@@ -30,6 +30,8 @@ CLEARANCE = 0.02
 """m between a carried block's bottom and the top of the tallest object under its path."""
 MIN_LIFT = 0.03
 """m: a carry lifts the block at least this high (its judge wants 2 cm) even over an empty table."""
+
+
 def manner_of(manner: MannerSpec | str | None) -> MannerSpec:
     """The manner declaration (by name; None: slide)."""
     return manner if isinstance(manner, MannerSpec) else manner_registry.get(manner)
