@@ -106,7 +106,8 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
     # where the push starts: along the path the controller follows (its spurs dropped, embodiment/push_path.py)
     plan_xy = p[:, :2]
     xy = drop_spurs(plan_xy, m.size)
-    blocked = _no_room_to_start(scene, m, dense if xy is plan_xy else push_path_dense(xy), arm)
+    spurless = np.array_equal(xy, plan_xy)  # drop_spurs keeps a path without spurs as it is
+    blocked = _no_room_to_start(scene, m, dense if spurless else push_path_dense(xy), arm)
     if blocked is not None:
         return (f'no room for the pushing hand behind "{mover}": it would come down on "{blocked}"; '
                 f'carry or slide "{mover}" instead')

@@ -81,7 +81,6 @@ class Pusher:
         self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
         self.others = [n for n in self.world.sizes if n != mover]
         self.shifted = 0
-        self.blocked = False  # contact_pose: whether the last place asked for had no room for the hand
 
     # --- geometry ----------------------------------------------------------------------------------
     def block(self) -> np.ndarray:
@@ -125,24 +124,22 @@ class Pusher:
         a = phi - b[2]
         return self.size / 2 * (abs(math.cos(a)) + abs(math.sin(a)))
 
-    def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> np.ndarray:
-        """Tool pose with the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
-        that face (up to :data:`SHIFT`) when its middle would touch another object (``self.blocked`` says
-        whether no place was clear)."""
+    def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> tuple[np.ndarray, bool]:
+        """(tool pose, clear): the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
+        that face (up to :data:`SHIFT`) when its middle would touch another object; ``clear`` is False when no
+        place was (the unslid pose is given then)."""
         r = self.support(b, phi) + self.half + back
         pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
-        self.blocked = False
         if self.clear(pose[:2], phi):
-            return pose
+            return pose, True
         across = np.array([-math.sin(phi), math.cos(phi)])
         for k in range(1, 7):
             for sign in (1.0, -1.0):
                 xy = pose[:2] + sign * across * SHIFT * k / 6
                 if self.clear(xy, phi):
                     self.shifted += 1
-                    return np.array([xy[0], xy[1], self.z, yaw])
-        self.blocked = True
-        return pose
+                    return np.array([xy[0], xy[1], self.z, yaw]), True
+        return pose, False
 
     def clear(self, xy: np.ndarray, phi: float) -> bool:
         """Whether the pusher (a rectangle: ``half`` along ``phi``, ``width`` across) centred at ``xy`` keeps
@@ -218,8 +215,8 @@ class Pusher:
         when that side has no room for the hand (it would come down on another object: measured once,
         random_scene(5004) "next to", the anchor thrown 86 cm)."""
         prims = self.prims
-        target = self.contact_pose(b, phi, 0.0, GAP)
-        if self.blocked:
+        target, clear = self.contact_pose(b, phi, 0.0, GAP)
+        if not clear:
             return False
         top = float(self.world.heights[self.mover]) + CLEAR + self.robot.drop  # over its top, whatever its shape
         up = prims.pose.copy()
@@ -240,9 +237,9 @@ class Pusher:
         b = self.block()
         phi = self._aim(b)
         # from the rest pose: above the pushing side, then down beside the block
-        start = self.contact_pose(b, phi, 0.0, GAP)
+        start, clear = self.contact_pose(b, phi, 0.0, GAP)
         start[3] = self.yaw_for(phi, prims.pose[3], start)
-        blocked = self.blocked  # no room to come down (push_refusal says so before anything moves)
+        blocked = not clear  # no room to come down (push_refusal says so before anything moves)
         if not blocked:
             above = start.copy()
             above[2] = start[2] + HOVER
@@ -300,7 +297,7 @@ class Pusher:
             dside = float(np.clip((phi - side + math.pi) % (2 * math.pi) - math.pi,
                                   -TURN_RATE * self.dt, TURN_RATE * self.dt))
             side += dside
-            target = self.contact_pose(b, side, 0.0, -PRESS)
+            target, _ = self.contact_pose(b, side, 0.0, -PRESS)
             target[3] = prims.pose[3] + float(np.clip(want_yaw - prims.pose[3], -TURN_RATE * self.dt,
                                                       TURN_RATE * self.dt))
             self.tick(self.limited(b, target, side, abs(dside)))
