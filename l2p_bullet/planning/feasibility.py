@@ -184,10 +184,11 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     cells = (ok & (short >= -wide)).reshape(len(bearings), len(radii), -1).any(2)
     rel = np.asarray(m.xy, float) - a.xy
     k0 = int(round(math.degrees(math.atan2(rel[1], rel[0])) / bearing_deg)) % len(bearings)
-    j0 = int(np.argmin(np.abs(radii - float(np.hypot(*rel)))))
+    d0 = float(np.hypot(*rel))
+    j0 = int(np.argmin(np.abs(radii - d0)))
     # from afar the mover first slides near (approach.py), where that slide ends is the planner's: only
     # the arc above is a necessary condition then
-    if cells[k0, j0] and float(np.hypot(*rel)) <= outer + 1e-9:
+    if cells[k0, j0] and d0 <= outer + 1e-9:
         way = _connected_sweep(cells, k0, j0) * bearing_deg
         if way < AROUND_TURNS * 360 - 2 * bearing_deg:
             raise InfeasibleError(
