@@ -32,6 +32,10 @@ SHORT = (0.3, 0.6)
 ARCS = (90, 180, 270, 360)
 """around's arcs, in degrees round the anchor."""
 
+STRAYS = (6.5, 5.0)
+"""Where around's "strays" chain puts its middle corner, in blocks from the anchor: the discrete planner's
+two outer rings (``planning.proposals.DISTANCES``); the rule judge's ``near`` is 4."""
+
 CHAINS: dict[str, dict[str, str]] = {
     "closer": {
         "shortened": "stopped at 30 % / 60 % of its path / whole: the block ends less near than it could, "
@@ -59,6 +63,10 @@ CHAINS: dict[str, dict[str, str]] = {
         "arcs": "arcs of 90 / 180 / 270 / 360 degrees at the event's start distance, in its direction: "
                 "around means a circle, and a partial arc is a partial circle; the more of it, the more "
                 "of the action",
+        "strays": "its own path through 5 poses with the middle one pushed straight out to 6.5 / 5 blocks "
+                  "from the anchor (the planner's two outer rings) / as it is: around means going round near "
+                  "the anchor, and a corner out on a far ring is a detour away from it, the farther the "
+                  "less of an around",
     },
 }
 """Action -> chain name -> the chain, lowest first, and why people would grade it in that order."""
@@ -99,6 +107,15 @@ def chains(e: g.Event) -> dict[str, list[np.ndarray]]:
                 p[:2] = c[:2] + _rot(d0, sign * np.deg2rad(45 * i))
             arcs.append(np.array(pts))
         out["arcs"] = arcs
+        way = g.waypoints(m, 4)
+        d = way[2, :2] - c[:2]
+        d = d / max(float(np.linalg.norm(d)), 1e-9)
+        strays = []
+        for far in STRAYS:
+            w = way.copy()
+            w[2, :2] = c[:2] + d * far * size
+            strays.append(w)
+        out["strays"] = strays + [way]
     return out
 
 

@@ -23,7 +23,7 @@ from ..actions.spec import ActionSpec
 from ..core.frames import Frame, declaration
 from ..core.threads import torch_threads
 from ..core.vocabulary import ACTIONS
-from ..data.demos import Demo, expand_files, load_demos
+from ..data.demos import UNTRUSTED, Demo, expand_files, load_demos
 from ..errors import BundleError, DataError, L2PError, PluginError, RunFolderError, UnknownActionError
 from ..judge import RuleJudge
 from ..plugins.bundle import MANIFEST, PROGRESS_FILE, read_manifest, write_progress_bundle
@@ -88,12 +88,16 @@ def data_digest(demos: dict[str, list[Demo]]) -> str:
     return h.hexdigest()
 
 
-def all_demos(files: dict[str, list] | None = None, sessions: set[str] | None = None) -> dict[str, list[Demo]]:
-    """Every action's demonstrations (optionally only some capture sessions)."""
+def all_demos(files: dict[str, list] | None = None, sessions: set[str] | None = None,
+              untrusted: bool = False) -> dict[str, list[Demo]]:
+    """Every action's demonstrations (optionally only some capture sessions), without the shipped ones whose
+    tracking is not trusted (:data:`data.demos.UNTRUSTED`) unless ``untrusted`` (the suite's comparison with
+    the bundles trained before they were left out); a user's own files are taken as they are."""
     out = {}
     for a in ACTIONS:
-        ds = load_demos(a, (files or {}).get(a))
-        out[a] = [d for d in ds if sessions is None or d.session in sessions]
+        given = (files or {}).get(a)
+        ds = load_demos(a, given)
+        out[a] = [d for d in ds if (sessions is None or d.session in sessions) and (given or untrusted or d.id not in UNTRUSTED)]
     return out
 
 
