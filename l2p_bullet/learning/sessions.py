@@ -33,10 +33,10 @@ from .train_progress import all_demos, data_digest, training_section
 
 def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] = ACTIONS, seed: int = 0,
                     command: str = "", log: Callable[[str], None] | None = None,
-                    recipe: Recipe | None = None, untrusted: bool = False) -> dict[str, Path]:
+                    recipe: Recipe | None = None, untrusted: bool = True) -> dict[str, Path]:
     """Train each of ``actions`` on capture ``session`` (e.g. "Session1") into ``out/<action>/``, with
     ``recipe`` (:mod:`.recipes`; when None :data:`recipes.SHIPPED`, what ``l2p-bullet train`` uses);
-    ``untrusted``: with the demonstrations training leaves out (``all_demos``), for a comparison.
+    ``untrusted`` False: without the demonstrations whose tracking is not trusted (``all_demos``).
 
     A folder whose manifest already records the same data digest, seed and recipe is kept as it is
     (training all five takes minutes), so a benchmark can call this every time. Returns action -> folder.
@@ -77,7 +77,7 @@ def _current(folder: Path, digest: str, seed: int, recipe: Recipe) -> bool:
 
 
 def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
-                 seed: int = 0, untrusted: bool = False) -> list[dict[str, ProgressModel]]:
+                 seed: int = 0, untrusted: bool = True) -> list[dict[str, ProgressModel]]:
     """Per fold of :data:`heldout.FOLDS`, every action's model trained on the fold's training session:
     :func:`session_bundles` under ``cache/<recipe>/s<seed>/<session>/`` (a temporary folder when None)."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -91,14 +91,14 @@ def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] 
 
 
 def run_suite(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
-              seed: int = 0, untrusted: bool = False) -> dict[str, g.ActionReport]:
+              seed: int = 0, untrusted: bool = True) -> dict[str, g.ActionReport]:
     """The suite for a recipe: its session-split models, scored on the other person's events, both ways
-    (with the ordered probes of :mod:`.ordered_probes`). ``untrusted``: the models are trained with the
-    demonstrations training leaves out too (they are never among the events scored)."""
+    (with the ordered probes of :mod:`.ordered_probes`). The demonstrations whose tracking is not trusted
+    are never scored; ``untrusted`` False also trains without them."""
     folds = split_models(recipe, cache, log, seed, untrusted)
     reports = []
     for (_, test_s), models in zip(FOLDS, folds, strict=True):
-        test = {a: g.events(ds) for a, ds in all_demos(sessions={test_s}).items()}
+        test = {a: g.events(ds) for a, ds in all_demos(sessions={test_s}, untrusted=False).items()}
         fold = g.score_fold(models, test)
         for a, r in fold.items():
             r.ordered = ordered(models[a], test[a])

@@ -78,15 +78,16 @@ def test_the_known_around_glitch_is_gone_from_the_demonstrations():
     assert np.percentile(far, 90) < 4.0 and max(far) < 10.0
 
 
-def test_untrusted_demonstrations_are_left_out_of_training_but_still_shown():
+def test_untrusted_demonstrations_are_never_scored_by_the_suite_but_still_shown():
     """around/Session2/e05's one detection off the table's side makes a 7.8-block excursion that the
-    speed rule keeps: training and the suite leave it out; ``load_demos`` (so ``--demo A:I``) keeps it,
-    so no index a user has written down moves."""
+    speed rule keeps: the suite leaves it out (``untrusted=False``); training (the shipped bundles, by
+    default) and ``load_demos`` (so ``--demo A:I``) keep it, so no index a user has written down moves."""
     from l2p_bullet.data.demos import UNTRUSTED, load_demos
     from l2p_bullet.learning.train_progress import all_demos
 
     shown = [d.id for d in load_demos("around")]
-    trained = [d.id for d in all_demos()["around"]]
+    trained = [d.id for d in all_demos(untrusted=False)["around"]]
+    assert [d.id for d in all_demos()["around"]] == shown
     assert "around/Session2/e05" in UNTRUSTED and "around/Session2/e05" in shown
     assert trained == [i for i in shown if i not in UNTRUSTED] and len(trained) == len(shown) - 1
     e05 = next(d for d in load_demos("around") if d.id == "around/Session2/e05")
