@@ -22,6 +22,11 @@ generator so the current part stays bit-identical:
   closer / away go on from the end back a random share u (0.2-1) of the way to the start and end with
   1 - u of the event's label; next-to goes on 1-5 blocks straight out from its place and ends with
   1 - blocks / 5 of it; the label falls linearly along the extra move.
+- ``strays`` (around): its own path through 4-6 of its poses with one of them after the start (the end
+  included) moved straight out to one of the planner's two outer rings (5 or 6.5 blocks), with the credit
+  a rule leaves it: around means going round near the anchor (its rule's ``near``, 4 blocks), so the label
+  keeps 1 - (ring - near) / (6.5 - near) of itself from that corner on (0.6 at 5 blocks, 0 at 6.5),
+  falling linearly along the move out to it.
 
 The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
 
@@ -37,6 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..actions.around import ACTION as AROUND
 from ..core.vocabulary import ACTIONS
 from ..data.demos import Demo
 from ..progress.features import QSRConfig
@@ -44,6 +50,9 @@ from . import generalise as g
 from .augment import mirror
 from .train_progress import ProgressTrainConfig, TrainResult, train_action
 from .trainset import DataConfig, TrainingSequence, _labelled, build
+
+AROUND_NEAR = AROUND.thresholds["near"]
+"""around's rule: never farther than this many blocks once near (``strays`` gives full credit up to it)."""
 
 PARTIAL_CUTS = (0.3, 0.6)
 """Where ``planner_partials`` stops a planner-domain copy, as fractions of its length."""
@@ -62,11 +71,13 @@ class Recipe:
     graded_wrongs: bool = False
     grid: bool = True
     """With ``planner_positives``: around also gets copies snapped to the 2-D study's grid."""
+    strays: bool = False
 
     def extras_dict(self) -> dict:
         """The options that add to the current training set (empty for the current recipe): what a
         bundle's manifest records besides the training settings."""
-        keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs")
+        keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs",
+                "strays")
         out = {k: True for k in keys if getattr(self, k)} | ({"grid": False} if not self.grid else {})
         return out | ({"turn_power": self.turn_power} if self.turn_power != 1.0 else {})
 
@@ -75,7 +86,8 @@ class Recipe:
                 "planner_negatives": self.planner_negatives, "contrastive": self.contrastive,
                 "turn_power": self.turn_power, **self.train.to_dict(),
                 **({"planner_partials": True} if self.planner_partials else {}),
-                **({"graded_wrongs": True} if self.graded_wrongs else {}), **({"grid": False} if not self.grid else {})}
+                **({"graded_wrongs": True} if self.graded_wrongs else {}), **({"grid": False} if not self.grid else {}),
+                **({"strays": True} if self.strays else {})}
 
 
 SHIPPED = Recipe("planner-graded-nogrid", planner_positives=True, planner_negatives=True, planner_partials=True,
@@ -117,6 +129,9 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         # the fourth: planner-graded without around's grid copies (after its around planned 90 %)
         Recipe("planner-graded-nogrid", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False),
+        # the sixth: around's strays with partial credit (after the fifth round's planning check)
+        Recipe("planner-graded-nogrid-strays", train=t, planner_positives=True, planner_negatives=True,
+               planner_partials=True, graded_wrongs=True, grid=False, strays=True),
     ]}
 
 
@@ -170,11 +185,34 @@ def _graded(e: g.Event, rng: np.random.Generator) -> list[tuple[np.ndarray, np.n
 GRADED_FAR = 5.0
 """Blocks past its place at which a next-to keeps no credit (the planner's second-widest ring)."""
 
+STRAY_RINGS = (5.0, 6.5)
+"""Where ``strays`` moves one of around's corners to (blocks from the anchor): the discrete planner's two
+outer rings (``planning.proposals.DISTANCES``); at the outer one no credit is left."""
+
+
+def _strayed(e: g.Event, rng: np.random.Generator, near: float) -> tuple[np.ndarray, float, float, float] | None:
+    """around's ``strays`` copy of an own event: (waypoints with one moved out, where along the straight
+    moves' length the move out to it starts and ends (fractions), the share of the label left from there);
+    None when the chosen pose is already that far out."""
+    n = int(rng.integers(4, 7))
+    way = g.waypoints(e.mover, n).copy()
+    k = int(rng.integers(1, n + 1))
+    far = float(rng.choice(STRAY_RINGS))
+    d = way[k, :2] - e.anchor[:2]
+    r = float(np.linalg.norm(d))
+    if r >= far * e.size or r < 1e-9:
+        return None
+    way[k, :2] = e.anchor[:2] + d / r * far * e.size
+    seg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(way[:, :2], axis=0).T))])
+    left = max(0.0, 1.0 - (far - near) / (STRAY_RINGS[-1] - near))
+    return way, seg[k - 1] / seg[-1], seg[k] / seg[-1], left
+
 
 def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
            seed: int) -> list[TrainingSequence]:
     """The recipe's extra sequences for ``action`` (empty for the current recipe)."""
     rng = np.random.default_rng(seed + 25)
+    stray_rng = np.random.default_rng(seed + 26)  # its own: the recipe's other extras stay bit-identical
     dc = recipe.data
     if qcfg.viewer or qcfg.anchors > 1:  # mirror images and one-anchor snapping would be wrong there
         return []
@@ -205,6 +243,17 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
             y = np.concatenate([head.y, np.linspace(top, top * left, len(x) - k + 1)[1:]]).astype(np.float32)
             out.append(TrainingSequence(x, y, positive=True, end=len(x) - 1))
 
+    def add_strays(e: g.Event) -> None:
+        got = _strayed(e, stray_rng, AROUND_NEAR)
+        if got is None:
+            return
+        way, f0, f1, left = got
+        m = g.straight_moves(way, 0.25 * e.size)
+        s = _labelled(m, np.repeat(e.anchor[None], len(m), axis=0), e.size, 0, len(m) - 1, qcfg, dc, True, turns)
+        f = np.linspace(0.0, 1.0, len(s.y))  # the resampled frames are evenly spaced in arc length
+        s.y = (s.y * np.interp(f, [f0, f1], [1.0, left])).astype(np.float32)
+        out.append(s)
+
     for d in demos.get(action, []):
         for e in _event_views(d, dc):
             if recipe.graded_wrongs:
@@ -219,6 +268,8 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
             if recipe.planner_negatives and action in ACTIONS:  # wrong motions are per built-in meaning
                 for w in _wrong(e, rng):
                     add(w, e, False)
+            if recipe.strays and action == "around":
+                add_strays(e)
     if recipe.contrastive:
         for other in dc.negatives.get(action, [o for o in demos if o != action]):
             for d in demos.get(other, []):

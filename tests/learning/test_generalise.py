@@ -126,3 +126,29 @@ def test_train_uses_the_shipped_recipe_and_says_so(tmp_path):
     t = read_manifest(out)["training"]
     assert t["recipe"] == {"name": SHIPPED.name, **SHIPPED.extras_dict()}
     assert t["n_sequences"] == len(training_set(SHIPPED, "next-to", all_demos(), QSRConfig()))
+
+
+@pytest.mark.slow
+def test_strays_add_around_corners_out_on_the_far_rings_with_the_credit_near_leaves():
+    """``strays`` (sixth round): around alone gets them, from their own generator (what the recipe had
+    before is bit-identical), each with one corner on the 5- or 6.5-block ring and 0.6 / 0 of its label
+    from there; the other actions' sets are unchanged."""
+    from l2p_bullet.learning.recipes import STRAY_RINGS
+
+    demos = all_demos(sessions={"Session1"})
+    q = QSRConfig()
+    r0 = recipes(1, 1)["planner-graded-nogrid"]
+    r1 = recipes(1, 1)["planner-graded-nogrid-strays"]
+    before, after = training_set(r0, "around", demos, q), training_set(r1, "around", demos, q)
+    same = [a for a, b in zip(after, before, strict=False) if np.array_equal(a.x, b.x) and np.array_equal(a.y, b.y)]
+    assert len(same) < len(before) < len(after)  # strays sit among them, after each event's other extras
+    old = {(a.x.tobytes(), a.y.tobytes()) for a in before}
+    new = [s for s in after if (s.x.tobytes(), s.y.tobytes()) not in old]
+    assert len(after) - len(before) == len(new) and 0.9 * 2 * len(demos["around"]) <= len(new) <= 2 * len(demos["around"])
+    assert all(s.positive and s.end == len(s.y) - 1 for s in new)
+    ends = np.array([s.y[-1] for s in new])
+    assert np.all(ends <= 0.6 + 1e-6) and np.sum(ends < 1e-6) > 0.2 * len(new) and np.sum(ends > 0.3) > 0.2 * len(new)
+    assert STRAY_RINGS == (5.0, 6.5)
+    for a in ("closer", "past"):
+        x, y = training_set(r0, a, demos, q), training_set(r1, a, demos, q)
+        assert len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True))
