@@ -32,7 +32,7 @@ SHORT = (0.3, 0.6)
 ARCS = (90, 180, 270, 360)
 """around's arcs, in degrees round the anchor."""
 
-STRAYS = (6.5, 5.0)
+STRAYS = tuple(reversed(g.DISTANCES[-2:]))
 """Where around's "strays" chain puts its middle corner, in blocks from the anchor: the discrete planner's
 two outer rings (``planning.proposals.DISTANCES``); the rule judge's ``near`` is 4."""
 

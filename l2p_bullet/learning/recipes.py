@@ -185,7 +185,7 @@ def _graded(e: g.Event, rng: np.random.Generator) -> list[tuple[np.ndarray, np.n
 GRADED_FAR = 5.0
 """Blocks past its place at which a next-to keeps no credit (the planner's second-widest ring)."""
 
-STRAY_RINGS = (5.0, 6.5)
+STRAY_RINGS = tuple(g.DISTANCES[-2:])
 """Where ``strays`` moves one of around's corners to (blocks from the anchor): the discrete planner's two
 outer rings (``planning.proposals.DISTANCES``); at the outer one no credit is left."""
 
