@@ -3,9 +3,9 @@
 Run with the Python of the environment the plugin is installed in (the project's own environment does
 not see it)::
 
-    python plugin_runs.py SENTENCE SCENES OUT_DIR [--three] [--score-with ACTION] [--first SEED]
+    python plugin_runs.py SENTENCE SCENES OUT_DIR [--three] [--score-with ACTION]
 
-For seeds FIRST .. FIRST+SCENES-1 (FIRST: 0 unless given; a test splits the seeds over two processes): ``pipeline.perform`` on ``random_scene(seed)`` (``random_between_scene`` with
+For seeds 0 .. SCENES-1: ``pipeline.perform`` on ``random_scene(seed)`` (``random_between_scene`` with
 ``--three``), executed by the arm without rendering, and one JSON line per scene on stdout: the verdict,
 the final progress, where A ended relative to B as seen from the robot (blocks), how far any other block
 moved, the trajectory's ``anchors``, and (``--score-with``) the final progress another installed action's
@@ -35,10 +35,9 @@ def main() -> None:
     ap.add_argument("out", type=Path)
     ap.add_argument("--three", action="store_true")
     ap.add_argument("--score-with", default=None)
-    ap.add_argument("--first", type=int, default=0)
     args = ap.parse_args()
     other = registry.load(args.score_with).progress_model() if args.score_with else None
-    for seed in range(args.first, args.first + args.scenes):
+    for seed in range(args.scenes):
         scene = random_between_scene(seed) if args.three else random_scene(seed)
         out = args.out / f"scene{seed:02d}"
         r = perform(args.sentence, scene, out_dir=out, seed=seed, render=False)
