@@ -8,6 +8,15 @@ import http_client
 import pytest
 
 
+def small_video():
+    """The performance's video for the page's tests: what the page shows does not depend on its size, and
+    the default (640x480 at 15 fps) costs most of a minute on two cores for a row of four blocks. The
+    default video itself is played in Chromium by tests/review/test_review_browser.py."""
+    from l2p_bullet.embodiment.sim.camera import RenderSettings
+
+    return RenderSettings(width=320, height=240, fps=5, workers=0)
+
+
 class Live:
     """The teach app for a fresh plugin ``name`` (scaffolded in ``root``), served on 127.0.0.1 in a thread."""
 
@@ -22,7 +31,7 @@ class Live:
         self.root = scaffold(name, [phrase], root / f"l2p-{name}", frame=frame, anchors=anchors).root
         self.action = find_action(name, self.root)
         trainer = BundleTrainer(ProgressTrainConfig(ensemble=ensemble, epochs=epochs))
-        self.lesson = Lesson(self.action, trainer, seed=seed)
+        self.lesson = Lesson(self.action, trainer, seed=seed, render_settings=small_video())
         self.server = start(create_app(self.lesson), name="teach-server")
         self.url = self.server.url
 

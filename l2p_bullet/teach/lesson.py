@@ -133,8 +133,13 @@ class Job:
 class Lesson:
     """One teach page: scenes by seed, demonstrations appended to the demos file, one training at a time."""
 
-    def __init__(self, action: TaughtAction, trainer: Trainer | None = None, *, seed: int = 0):
+    def __init__(self, action: TaughtAction, trainer: Trainer | None = None, *, seed: int = 0,
+                 render_settings: Any = None):
+        """``render_settings``: the video of the performance (a ``RenderSettings``; None: perform's default,
+        640x480 at 15 fps). A smaller one makes the page's answer come sooner on a slow machine (the video
+        of a row of four blocks takes most of a minute at the default on two cores)."""
         self.action, self.trainer, self.seed = action, trainer, seed
+        self.render_settings = render_settings
         self.job = Job()
         self._lock = threading.Lock()
         self._thread: threading.Thread | None = None
@@ -321,7 +326,8 @@ class Lesson:
         plugins = [p for p in registry.discover() if p.name != self.action.name]
         plugins.append(registry.local(self.action.name, self.action.bundle_dir))
         out = self.action.root / "runs" / f"teach-{k:03d}"
-        r = perform(self.action.sentence, self.scene(seed), out_dir=out, seed=seed, force=True, plugins=plugins)
+        r = perform(self.action.sentence, self.scene(seed), out_dir=out, seed=seed, force=True, plugins=plugins,
+                    render_settings=self.render_settings)
         self.job.runs.append(out)
         self.job.run = {"id": k, "sentence": self.action.sentence, "scene": seed, "folder": str(out),
                         "verdict": r.verdict, "final_progress": r.final_progress,

@@ -146,7 +146,8 @@ class RowLesson(Lesson):
         sentence = row_sentence(self.action.phrases[0], names)
         plugins = registry.discover() + [registry.local(self.action.name, self.action.bundle_dir)]
         out = self.action.root / "runs" / f"teach-{k:03d}"
-        r = perform_chain(sentence, scene, out_dir=out, seed=seed, force=True, plugins=plugins)
+        r = perform_chain(sentence, scene, out_dir=out, seed=seed, force=True, plugins=plugins,
+                          render_settings=self.render_settings)
         row = row_verdict(final_scene(out, scene), names, _displaced(r))
         self.job.runs.append(out)
         verdict = {"success": r.success and row["success"], "judge": "row", "reason": row["reason"],

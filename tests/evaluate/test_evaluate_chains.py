@@ -114,9 +114,11 @@ def test_an_evaluation_stored_before_chains_existed_resumes(tmp_path):
 
 @pytest.mark.slow
 def test_chains_on_another_arm_are_drawn_and_performed_by_it(tmp_path):
-    """``evaluate --chains K --arm xarm6``: the forecast, the world and every clause are the xArm's."""
-    evaluate(EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6"), tmp_path, workers=0, progressbar=False)
-    rows = load_rows(tmp_path)
+    """``evaluate --chains K --arm xarm6``: the forecast, the world and every clause are the xArm's. One
+    evaluation that keeps its run folders answers both (keep only says where a run folder is written)."""
+    kept = EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6", keep="all")
+    evaluate(kept, tmp_path / "kept", workers=0, progressbar=False)
+    rows = load_rows(tmp_path / "kept")
     assert len(rows) == 2 and all(r["error"] is None for r in rows)
     # the arm performed each chain's first clause (executed and judged, whatever the verdict: the chains drawn
     # depend on the planner, and since "around" from afar is performed rather than re-drawn one of them fails)
@@ -125,7 +127,5 @@ def test_chains_on_another_arm_are_drawn_and_performed_by_it(tmp_path):
         first = clauses[0]
         assert first["failed_stage"] is None and first["final_progress"] is not None and first["reason"], first
         assert first["frames"][1] > first["frames"][0]
-    kept = EvaluationConfig(chains=2, scenes=2, seed=5, arm="xarm6", keep="all")
-    evaluate(kept, tmp_path / "kept", workers=0, progressbar=False)
     summaries = list((tmp_path / "kept" / "runs").glob("*/summary.json"))
     assert summaries and {json.loads(p.read_text())["arm"] for p in summaries} == {"xarm6"}

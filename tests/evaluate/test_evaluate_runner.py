@@ -175,7 +175,10 @@ def test_a_second_resume_of_a_folder_being_written_is_refused(tmp_path):
     resume = [sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--out", str(out), "--resume", "--workers", "0",
               "--quiet"]
     stopped_at = _count(out)  # the first run may have recorded more than one row before it stopped
-    a = subprocess.Popen(resume, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # Ctrl-C as at a terminal: with the SIGINT a background test run hands down, the first resume ignored the
+    # interrupt in `finally` and ran all ~400 tasks to their end (~40 s of the suite)
+    a = subprocess.Popen(resume, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         preexec_fn=ctrl_c_as_at_a_terminal)
     try:  # a new row: the first resume holds the folder's lock (rows are written only under it)
         while time.time() < deadline and _count(out) <= stopped_at and a.poll() is None:
             time.sleep(0.05)
@@ -185,6 +188,7 @@ def test_a_second_resume_of_a_folder_being_written_is_refused(tmp_path):
         assert "Traceback" not in b.stderr
     finally:
         a.send_signal(signal.SIGINT)
-        a.communicate(timeout=60)
+        _, err = a.communicate(timeout=60)
+    assert a.returncode == 130 and "--resume" in err, err  # stopped by the Ctrl-C, not run to its end
     with pytest.raises(EvaluationError, match="already holds"):  # and a fresh start still is refused
         evaluate(EvaluationConfig(actions=["closer"], scenes=1), out, workers=0, progressbar=False)

@@ -12,6 +12,7 @@ import shutil
 import numpy as np
 import pytest
 from review_fixtures import open_page
+from teach_fixtures import small_video
 
 pytestmark = pytest.mark.slow
 
@@ -28,7 +29,7 @@ def rows(tmp_path):
     from l2p_bullet.web.server import start
 
     root = scaffold("row", ["make a row of", "line up"], tmp_path / "l2p-row", kind="composite").root
-    lesson = RowLesson(find_action("row", root), None, seed=0)
+    lesson = RowLesson(find_action("row", root), None, seed=0, render_settings=small_video())
     server = start(create_app(lesson), name="teach-rows")
     yield lesson, server.url
     server.stop()
