@@ -288,3 +288,10 @@ class Wrist:
 
     def fits(self, lo: float, hi: float) -> bool:
         return bool(wrist_offsets(lo, hi, self.angle, self.arm))
+
+    def span(self, xy: np.ndarray, yaw: np.ndarray, so_far: tuple[float, float] | None = None) -> tuple[float, float]:
+        """The range of :meth:`values` over a track, merged with the range ``so_far`` of the path before it:
+        what :meth:`fits` is asked about a path that grows move by move (the planner's search, the approach)."""
+        v = self.values(xy, yaw)
+        lo, hi = float(v.min()), float(v.max())
+        return (lo, hi) if so_far is None else (min(so_far[0], lo), max(so_far[1], hi))

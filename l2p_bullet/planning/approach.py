@@ -58,10 +58,8 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
                                 np.full(len(bearings), start[2])])
         for end in ends[world.moves_free(start, ends)]:
             frames = np.vstack([start[None], segment_frames(start, end, step)])
-            if wrist is not None:
-                v = wrist.values(frames[:, :2], frames[:, 2])
-                if not wrist.fits(float(v.min()), float(v.max())):
-                    continue
+            if wrist is not None and not wrist.fits(*wrist.span(frames[:, :2], frames[:, 2])):
+                continue
             return frames
     raise InfeasibleError(
         "far-around",

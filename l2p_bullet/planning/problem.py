@@ -124,8 +124,8 @@ class Problem:
         waypoints = start[None].copy() if self.lead_in is None else np.stack([start, frames[-1]])
         p = float(self.model.final_batch([frames[self.lead:]], self.anchor_pose, self.size, **self.context)[0])
         self.forward_passes += 1
-        w = self.wrist.values(frames[:, :2], frames[:, 2]) if self.wrist is not None else np.zeros(1)
-        return Node(waypoints, frames, p, yaw=float(frames[-1, 2]), wrist=(float(w.min()), float(w.max())))
+        wrist = self.wrist.span(frames[:, :2], frames[:, 2]) if self.wrist is not None else (0.0, 0.0)
+        return Node(waypoints, frames, p, yaw=float(frames[-1, 2]), wrist=wrist)
 
     def children(self, parents: list[Node], ends: list[np.ndarray]) -> list[Node]:
         """Legal children of each parent (ends[i] (Mi,3) proposed for parents[i]), scored in one pass."""
@@ -143,8 +143,7 @@ class Problem:
                 yaws = node.yaw + np.cumsum(wrap_angle(np.diff(np.r_[node.pose[2], seg[:, 2]])))
                 wrist = node.wrist
                 if self.wrist is not None:
-                    v = self.wrist.values(seg[:, :2], yaws)
-                    wrist = (min(wrist[0], float(v.min())), max(wrist[1], float(v.max())))
+                    wrist = self.wrist.span(seg[:, :2], yaws, wrist)
                     if not self.wrist.fits(*wrist):
                         continue  # no grasp yaw keeps the wrist in range over this path
                 kids.append(Node(np.vstack([node.waypoints, end]), np.vstack([node.frames, seg]), 0.0, node,
