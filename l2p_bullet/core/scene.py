@@ -119,6 +119,12 @@ class SceneObject:
     friction: float | None = None
 
     @property
+    def mass_kg(self) -> float:
+        """The object's mass: its own ``mass``, else a block's (``shapes.BLOCK_MASS``, urdf/block.urdf's) - what
+        the simulator spawns and what a carry checks against the arm's payload."""
+        return shapes.BLOCK_MASS if self.mass is None else float(self.mass)
+
+    @property
     def pose(self) -> np.ndarray:
         """[x, y, yaw] as an array."""
         return np.array([self.xy[0], self.xy[1], self.yaw], dtype=float)

@@ -17,7 +17,6 @@ import numpy as np
 
 from ..core.geometry import separation
 from ..core.scene import Scene
-from ..core.shapes import BLOCK_MASS
 from ..errors import InfeasibleError, PathError
 from ..manners import registry as manner_registry
 from ..manners.spec import MannerSpec
@@ -45,7 +44,7 @@ def carry_refusal(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> str | None:
     if width > arm.gripper_opening + 1e-9:
         return (f'cannot carry "{mover}": it is {width * 100:.1f} cm wide and the {arm.name}\'s gripper opens '
                 f"{arm.gripper_opening * 100:.1f} cm; slide or push it instead")
-    mass = BLOCK_MASS if obj.mass is None else float(obj.mass)
+    mass = obj.mass_kg
     if mass > arm.payload + 1e-9:
         return (f'cannot carry "{mover}": it weighs {mass:g} kg and the {arm.name} lifts at most {arm.payload:g} kg '
                 "(ArmSpec.payload); slide or push it instead")

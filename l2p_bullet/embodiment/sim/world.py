@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ...core.scene import COLORS, Scene
-from ...core.shapes import BLOCK_FRICTION, BLOCK_MASS
+from ...core.shapes import BLOCK_FRICTION
 from ...errors import SceneError
 from .arms import PANDA, ArmSpec
 from .bullet import Bullet
@@ -112,7 +112,7 @@ class World:
                 g = o.geometry
                 rest = g.rest
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
-                                mass=BLOCK_MASS if o.mass is None else o.mass, visual=_visual(o, g))
+                                mass=o.mass_kg, visual=_visual(o, g))
                 sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
             sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
