@@ -107,6 +107,15 @@ def waypoints(m: np.ndarray, n_moves: int) -> np.ndarray:
     return m[k]
 
 
+def pushed_out(way: np.ndarray, k: int, anchor: np.ndarray, blocks: float, size: float) -> np.ndarray:
+    """A copy of waypoints ``way`` with the ``k``-th moved along its bearing from the anchor to ``blocks`` blocks
+    from it (around's strays: a corner out on one of the planner's far rings)."""
+    out = way.copy()
+    d = out[k, :2] - anchor[:2]
+    out[k, :2] = anchor[:2] + d / max(float(np.linalg.norm(d)), 1e-9) * blocks * size
+    return out
+
+
 def _snap(way: np.ndarray, cells: np.ndarray) -> np.ndarray:
     """Waypoints after the first moved to their nearest cell, repeats dropped (a planner's moves)."""
     out = [way[0]]

@@ -108,14 +108,7 @@ def chains(e: g.Event) -> dict[str, list[np.ndarray]]:
             arcs.append(np.array(pts))
         out["arcs"] = arcs
         way = g.waypoints(m, 4)
-        d = way[2, :2] - c[:2]
-        d = d / max(float(np.linalg.norm(d)), 1e-9)
-        strays = []
-        for far in STRAYS:
-            w = way.copy()
-            w[2, :2] = c[:2] + d * far * size
-            strays.append(w)
-        out["strays"] = strays + [way]
+        out["strays"] = [g.pushed_out(way, 2, c, far, size) for far in STRAYS] + [way]
     return out
 
 

@@ -195,14 +195,13 @@ def _strayed(e: g.Event, rng: np.random.Generator, near: float) -> tuple[np.ndar
     moves' length the move out to it starts and ends (fractions), the share of the label left from there);
     None when the chosen pose is already that far out."""
     n = int(rng.integers(4, 7))
-    way = g.waypoints(e.mover, n).copy()
+    way = g.waypoints(e.mover, n)
     k = int(rng.integers(1, n + 1))
     far = float(rng.choice(STRAY_RINGS))
-    d = way[k, :2] - e.anchor[:2]
-    r = float(np.linalg.norm(d))
+    r = float(np.linalg.norm(way[k, :2] - e.anchor[:2]))
     if r >= far * e.size or r < 1e-9:
         return None
-    way[k, :2] = e.anchor[:2] + d / r * far * e.size
+    way = g.pushed_out(way, k, e.anchor, far, e.size)
     seg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(way[:, :2], axis=0).T))])
     left = max(0.0, 1.0 - (far - near) / (STRAY_RINGS[-1] - near))
     return way, seg[k - 1] / seg[-1], seg[k] / seg[-1], left
