@@ -276,11 +276,11 @@ def test_improve_waits_for_people_then_resumes_and_never_overwrites(tmp_path):
 
 @pytest.mark.slow
 def test_train_with_the_rule_judge_grades_the_models_own_plans(tmp_path):
-    from l2p_bullet.data.demos import data_dir
+    from l2p_bullet.data.demos import session_files
     from l2p_bullet.plugins.bundle import load_bundle
 
     # one of closer's three sessions: the feedback and the determinism do not depend on how many (~2 s a train)
-    session = data_dir() / "captures" / "SlideToward_Session1.npz"
+    session = session_files("closer")[0]
     args = ["train", "closer", "--demos", str(session), "--ensemble", "1", "--epochs", "1", "--feedback-judge", "rules",
             "--judge-scenes", "1"]
     r = CliRunner().invoke(main, [*args, "--out", str(tmp_path / "a")])
