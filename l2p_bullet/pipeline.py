@@ -297,7 +297,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
                               meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, manner=cmd.manner,
-                              **kwargs)
+                              approach_to=plan.approach_to, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)

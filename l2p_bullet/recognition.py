@@ -168,7 +168,7 @@ def read_tracks(path: str | Path) -> Tracks:
     src = str(p)
     motion = motion_from_dict(d, source=src)  # the contract's own checks first
     if "frames" in d:
-        return _trajectory_tracks(d, src, motion.viewer)
+        return _trajectory_tracks(d, src, motion.viewer, motion.action_from)
     if "path" in d:
         plan = Plan.from_dict(d, source=src)
         names = [plan.mover, *plan.anchors]
@@ -180,8 +180,10 @@ def read_tracks(path: str | Path) -> Tracks:
     return Tracks(poses, {n: motion.size for n in names}, src, motion.viewer)
 
 
-def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None) -> Tracks:
-    """Every object of a trajectory.json (whose mover and anchors the contract reader has checked)."""
+def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None, first: int = 0) -> Tracks:
+    """Every object of a trajectory.json (whose mover and anchors the contract reader has checked), from frame
+    ``first`` on (``action_from``: a run that came near first is read from where its action began, as
+    ``score`` and the planner read it)."""
     objects = d["objects"]
     if not isinstance(objects, dict):
         raise PathError(f'{src}: not a valid trajectory.json ("objects" must map names to objects)')
@@ -198,7 +200,7 @@ def _trajectory_tracks(d: dict, src: str, viewer: np.ndarray | None) -> Tracks:
                             "[x, y, z, yaw] in every frame, and the object needs a size)") from None
         if not np.all(np.isfinite(track)):
             raise PathError(f'{src}: the poses of "{str(name)[:40]}" contain non-finite numbers')
-        poses[name], sizes[name] = track, block_size(size, src, f"objects.{str(name)[:40]}.size")
+        poses[name], sizes[name] = track[first:], block_size(size, src, f"objects.{str(name)[:40]}.size")
     return Tracks(poses, sizes, src, viewer)
 
 

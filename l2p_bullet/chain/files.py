@@ -31,7 +31,8 @@ def segments(result: Any) -> list[dict[str, Any]]:
         out.append({"clause": r.clause.index, "text": r.clause.text, "sentence": c.sentence, "action": c.action,
                     "mover": c.mover, "anchor": c.anchor, "anchors": list(c.anchors),
                     "first_frame": r.first_frame, "last_frame": r.last_frame,
-                    **({} if c.manner == "slide" else {"manner": c.manner})})  # issue 23: not a slide
+                    **({} if c.manner == "slide" else {"manner": c.manner}),  # issue 23: not a slide
+                    **({} if r.action_from is None else {"action_from": r.action_from})})  # came near first
     return out
 
 

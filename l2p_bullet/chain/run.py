@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from .. import planning
-from ..core.contracts import Plan, trajectory_poses
+from ..core.contracts import Plan, approach_end_frame, trajectory_poses
 from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
@@ -38,6 +38,7 @@ from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..pipeline import check_feasible, check_options, disturbance_verdict
 from ..plugins import registry
+from ..progress.scoring import curve_from
 from .clauses import Clause, resolve_clauses
 from .files import merge_timings
 from .forecast import Step, forecast
@@ -58,6 +59,7 @@ class ClauseResult:
     displacements_m: dict[str, float] = field(default_factory=dict)
     grasp: dict[str, Any] = field(default_factory=dict)
     failed_stage: str | None = None  # "plan", "path", "reach", "execute" when the clause broke off
+    action_from: int | None = None  # after an approach slide: the episode's frame where the action proper starts
 
     @property
     def success(self) -> bool:
@@ -75,6 +77,7 @@ class ClauseResult:
             "max_deviation_m": _round(self.max_deviation_m), "final_error_m": _round(self.final_error_m),
             "displacements_m": {k: _round(v) for k, v in self.displacements_m.items()},
             "grasp": self.grasp, **({"failed_stage": self.failed_stage} if self.failed_stage else {}),
+            **({"action_from": self.action_from} if self.action_from is not None else {}),
             **({} if c.manner == "slide" else {"manner": c.manner}),
         }
 
@@ -269,7 +272,8 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     size = now.get(cmd.mover).size
     kw = {"more_anchors": [trajectory_poses(frames, a) for a in cmd.more_anchors]} if cmd.more_anchors else {}
     mover, anchor = trajectory_poses(frames, cmd.mover), trajectory_poses(frames, cmd.anchor)
-    values = np.asarray(step.model.curve(mover, anchor, size, **kw), float).reshape(-1)
+    start = 0 if plan.approach_to is None else approach_end_frame(mover, plan.approach_to, size)
+    values = curve_from(step.model, start, mover, anchor, size, **kw)  # after an approach, as planned
     for f, v in zip(frames, values, strict=True):
         f["progress"] = round(float(v), 6)
     deviation, _lift, displaced = ex.honesty(frames, cmd.mover, p, slide, prims.world.rests)
@@ -278,7 +282,8 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
     verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, now.get(cmd.mover).rest)
-    return ClauseResult(step.clause, plan, verdict, first, last, final_progress=final_progress,
+    return ClauseResult(step.clause, plan, verdict, first, last, action_from=first + start if start else None,
+                        final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),
                         displacements_m=displaced, grasp=grasp)
 

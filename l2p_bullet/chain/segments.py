@@ -14,6 +14,7 @@ from typing import Any
 
 from ..core.contracts import read_json, trajectory_poses
 from ..errors import PathError
+from ..progress.scoring import curve_from
 
 
 def segments_of(doc: dict, source: str = "trajectory.json") -> list[dict] | None:
@@ -28,6 +29,8 @@ def segments_of(doc: dict, source: str = "trajectory.json") -> list[dict] | None
             first, last = int(s["first_frame"]), int(s["last_frame"])
             if not 0 <= first <= last < n:
                 raise ValueError(f"frames {first}..{last} of {n}")
+            if not first <= int(s.get("action_from", first)) <= last:
+                raise ValueError(f"action_from {s['action_from']} outside frames {first}..{last}")
             for name in [s["mover"], *s["anchors"]]:
                 if name not in names:
                     raise ValueError(f'unknown object "{str(name)[:40]}"')
@@ -62,7 +65,8 @@ def score_segments(path: str | Path, model: Any) -> list[dict] | None:
         more = [trajectory_poses(frames, a) for a in anchors[1:]]
         kw = {"more_anchors": more} if more else {}
         size = float(doc["objects"][mover]["size"])
-        curve = model.curve(trajectory_poses(frames, mover), trajectory_poses(frames, anchors[0]), size, **kw)
+        start = int(s.get("action_from", s["first_frame"])) - int(s["first_frame"])  # after an approach slide
+        curve = curve_from(model, start, trajectory_poses(frames, mover), trajectory_poses(frames, anchors[0]), size, **kw)
         out.append(entry | {"progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)})
     return out
 
@@ -77,6 +81,7 @@ def segment_docs(run: str | Path) -> list[dict] | None:
     base = {k: v for k, v in doc.items() if k not in ("frames", "segments")}
     return [base | {"sentence": s.get("sentence") or s.get("text"), "action": s["action"], "mover": s["mover"],
                     "anchor": s["anchors"][0], "anchors": list(s["anchors"]), "frames": segment_frames(doc, s),
+                    **({"action_from": s["action_from"] - s["first_frame"]} if "action_from" in s else {}),
                     "chain": {"sentence": doc.get("sentence"), "clause": s["clause"], "first_frame": s["first_frame"],
                               "last_frame": s["last_frame"]}}
             for s in segs]

@@ -190,6 +190,7 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
     from ..errors import PathError
     from ..plugins.bundle import load_bundle
     from ..plugins.registry import locate
+    from ..progress.scoring import curve_from
 
     name, folder = locate(action)
     motion = load_motion(path)
@@ -198,7 +199,8 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
         raise PathError(f'{path}: the action "{name}" reads {model.anchors} reference block(s), the motion gives '
                         f"{len(motion.more_anchors) + 1}" + (' (add "more_anchors")' if model.anchors > 1 else ""))
     kw = {"more_anchors": motion.more_anchors} if motion.more_anchors else {}
-    curve = model.curve(motion.mover, motion.anchor, motion.size, viewer=motion.viewer, **kw)
+    # a run that came near first (trajectory.json's action_from): the action is read from there, as planned
+    curve = curve_from(model, motion.action_from, motion.mover, motion.anchor, motion.size, viewer=motion.viewer, **kw)
     out = {"action": name, "progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)}
     segments = score_segments(path, model)  # a chain's trajectory.json: each clause's frames, its own blocks
     return out if segments is None else out | {"segments": segments}

@@ -43,6 +43,14 @@ class Plan:
     viewer: np.ndarray | None = None  # (2,) the viewpoint of a viewer-frame action, scene frame
 
     @property
+    def approach_to(self) -> np.ndarray | None:
+        """Where the plan's approach slide ends ([x, y, yaw], "around" from afar: ``extra.approach.to``), the
+        start of the action proper; None for a plan without one."""
+        approach = self.extra.get("approach")
+        to = approach.get("to") if isinstance(approach, dict) else None
+        return None if to is None else np.asarray(to, float)
+
+    @property
     def anchors(self) -> list[str]:
         """Every reference object, the first being ``anchor``."""
         return [self.anchor, *self.more_anchors]
@@ -122,6 +130,7 @@ class Motion:
     action: str | None = None
     more_anchors: list[np.ndarray] = field(default_factory=list)  # (T, 3) per further anchor (two-anchor actions)
     viewer: np.ndarray | None = None  # (2,) viewpoint in the same frame, when the file gives one
+    action_from: int = 0  # a trajectory.json's first frame of the action proper (after an approach slide)
 
 
 MIN_SIZE_M, MAX_SIZE_M = 1e-4, 1e3
@@ -171,6 +180,38 @@ def _viewer(value: object, source: str) -> np.ndarray | None:
 def trajectory_poses(frames: list[dict], name: str) -> np.ndarray:
     """(T,3) ``[x, y, yaw]`` of object ``name`` from trajectory.json frames (their poses are [x, y, z, yaw])."""
     return np.array([[f["poses"][name][0], f["poses"][name][1], f["poses"][name][3]] for f in frames], float)
+
+
+def approach_end_frame(track: np.ndarray, to: np.ndarray, size: float) -> int:
+    """The frame of an executed ``track`` (T,>=2, metres) where a plan's approach slide ends (plan.json's
+    ``extra.approach.to``): the action proper starts there, and its learned progress is read from there on,
+    as the planner scored it (planning/approach.py).
+
+    The slide is straight towards ``to`` and the arm rounds the corner after it by at most
+    ``motion.CORNER_RADIUS`` (2 cm), so the mover's distance to ``to`` falls until it turns: the first local
+    minimum within half a block (at least 2.5 cm) is the end. A full circle comes back to the same point at
+    its end, so the last minimum is not it. Without such a frame (a track that never got there): the
+    nearest frame."""
+    d = np.hypot(*(np.asarray(track, float)[:, :2] - np.asarray(to, float)[:2]).T)
+    if not len(d):
+        return 0
+    near = np.flatnonzero(d <= max(0.5 * size, 0.025))
+    if not len(near):
+        return int(np.argmin(d))
+    k = int(near[0])
+    while k + 1 < len(d) and d[k + 1] <= d[k]:
+        k += 1
+    return k
+
+
+def action_from(doc: dict, source: str = "trajectory.json") -> int:
+    """trajectory.json's ``action_from`` (a run whose plan came near first: the first frame of the action
+    proper), checked against its frames; 0 where there is none (every other run: the whole episode)."""
+    k = doc.get("action_from", 0)
+    n = len(doc.get("frames") or [])
+    if isinstance(k, bool) or not isinstance(k, int) or not 0 <= k < max(n, 1):
+        raise PathError(f'{source}: "action_from" must be a frame index below {n} (got {str(k)[:20]})')
+    return k
 
 
 def dumps_json(value: object, **kwargs) -> str:
@@ -257,7 +298,7 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
         except (TypeError, ValueError, OverflowError) as e:
             raise PathError(f"{source}: not a valid trajectory.json ({type(e).__name__}: {str(e)[:80]})") from None
         return Motion(_poses(m_arr, source, "frames"), _poses(a_arr, source, "frames"), size, mover, anchor,
-                      d.get("action"), x_arr, _viewer(d.get("viewer"), source))
+                      d.get("action"), x_arr, _viewer(d.get("viewer"), source), action_from(d, source))
     if "path" in d:  # plan.json
         plan = Plan.from_dict(d, source)
         anchor = np.repeat(plan.anchor_pose[None], len(plan.path), axis=0)

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.contracts import trajectory_poses
+from ..core.contracts import approach_end_frame, trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
@@ -134,7 +134,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                  progress_fn: Callable[..., np.ndarray] | None = None,
                  meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
                  world: World | None = None, summary: bool = True, arm: ArmSpec | None = None,
-                 manner: MannerSpec | str | None = None) -> Execution:
+                 manner: MannerSpec | str | None = None, approach_to: np.ndarray | None = None) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
 
     ``out_dir`` None records nothing to disk (frames are still returned); ``render`` None renders
@@ -147,6 +147,9 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     (l2p_bullet/manners; None: slide) says how the block follows the
     path: slid, carried in the air or pushed (embodiment/manners.py); a run of any manner but slide records
     it (``manner`` in trajectory.json and summary.json, the gripper per frame), a slide's files are unchanged.
+    ``approach_to``: where the plan's approach slide ends (plan.json's ``extra.approach.to``, "around" from
+    afar): the learned progress is read from the frame the mover got there (trajectory.json's ``action_from``),
+    as the planner scored the plan; None (every other plan): from the first frame.
     """
 
     meta = dict(meta or {})
@@ -176,7 +179,11 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         clock.stage("record", "record")
         recorder = prims.recorder
         recorder.finish_images()
-        recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn)
+        first = 0
+        if approach_to is not None:
+            first = approach_end_frame(trajectory_poses(recorder.frames, mover), approach_to, world.sizes[mover])
+            meta["action_from"] = first
+        recorder.fill_progress(mover, meta.get("anchors") or meta.get("anchor"), progress_fn, first=first)
         deviation, lift, displaced = honesty(recorder.frames, mover, p, slide, world.rests)
         stats = _stats(prims) | {"grasp": grasp}
         files = _write_files(recorder, out_dir, meta, world.sizes, render)

@@ -79,20 +79,23 @@ class Recorder:
 
     # --- writing ------------------------------------------------------------------------------
     def fill_progress(self, mover: str | None, anchor: str | list[str] | None,
-                      progress_fn: Callable[..., np.ndarray] | None) -> None:
+                      progress_fn: Callable[..., np.ndarray] | None, first: int = 0) -> None:
         """Set every frame's ``progress`` from ``progress_fn(mover (T,3), anchor (T,3))``; else null.
 
         ``anchor`` may list several reference objects (a two-anchor action): the further ones' tracks
-        are then passed as a third argument, a list of (T,3) arrays.
+        are then passed as a third argument, a list of (T,3) arrays. ``first`` > 0 (the action begins after
+        an approach slide): the function reads frames ``first`` on only, and the frames before hold the
+        action's first value, as plan.json's lead-in does.
         """
         names = [anchor] if isinstance(anchor, str) else list(anchor or [])
         if progress_fn is None or mover is None or not names or not self.frames:
             return
-        m, a, *more = (trajectory_poses(self.frames, n) for n in [mover, *names])
+        m, a, *more = (trajectory_poses(self.frames[first:], n) for n in [mover, *names])
         args = (m, a) + ((more,) if more else ())
         values = np.asarray(progress_fn(*args), dtype=float).reshape(-1)
-        if len(values) != len(self.frames):
-            raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames)} frames")
+        if len(values) != len(self.frames) - first:
+            raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames) - first} frames")
+        values = np.r_[np.full(first, values[0]), values] if first else values
         for f, v in zip(self.frames, values, strict=True):
             f["progress"] = _r(v)
 
@@ -107,6 +110,8 @@ class Recorder:
             **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
             **({"segments": meta["segments"]} if meta.get("segments") is not None else {}),  # a chain's clauses
             **({"manner": meta["manner"]} if meta.get("manner") is not None else {}),  # not slide (issue 23)
+            # the first frame of the action proper where the plan came near first (only then, issue 21)
+            **({"action_from": meta["action_from"]} if meta.get("action_from") else {}),
             "fps": self.fps,
             "objects": {name: {"size": size, **_colour(self.world, name), **_shape(self.world, name)}
                         for name, size in sizes.items()},

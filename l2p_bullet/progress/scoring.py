@@ -105,6 +105,23 @@ class ScoringMixin:
                                       more_anchors=_one(more_anchors), viewer=viewer)[0])
 
 
+def curve_from(model: Any, first: int, mover: np.ndarray, anchor: np.ndarray, size: float, *,
+               more_anchors: list | None = None, **kw: Any) -> np.ndarray:
+    """Per-frame progress ``(T,)`` of a motion whose action begins at frame ``first`` (after an approach
+    slide, trajectory.json's ``action_from``): the model reads only frames ``first`` on, as the planner
+    scored them, and the frames before hold the action's first value (as plan.json's lead-in does).
+    ``anchor`` and each of ``more_anchors`` are tracks (T,3) or single poses (3,)."""
+
+    def cut(x: Any) -> Any:
+        a = np.asarray(x, float)
+        return a[first:] if a.ndim == 2 else a
+
+    more = {"more_anchors": [cut(a) for a in more_anchors]} if more_anchors else {}
+    values = np.asarray(model.curve(np.asarray(mover, float)[first:], cut(anchor), size, **more, **kw),
+                        float).reshape(-1)
+    return np.r_[np.full(first, values[0] if len(values) else np.nan), values] if first else values
+
+
 def _one(more_anchors: list | None) -> list | None:
     """One motion's further anchors (each a pose or a track) in the batch calls' form."""
     if more_anchors is None:
