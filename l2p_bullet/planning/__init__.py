@@ -24,6 +24,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ..actions.around import ACTION as AROUND
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
@@ -60,6 +61,13 @@ TARGET_BUDGET = 2
 """With a target (a composite's slot) the default budget is doubled: a slot that a block of the row hides
 takes a way round, which costs steps (chosen after two 5-block rows of the benchmark's seeds 50035 and
 50049 stopped one approach point short of their slot; the reported run uses other seeds)."""
+
+AROUND_REACH = AROUND.thresholds["reach"]
+"""Blocks from the anchor that no move of "around" may end beyond: the farthest any of people's 39 trusted
+"around" demonstrations went (4.09; tests/actions). Why: the search's rings reach 5 and 6.5 blocks, and the
+learned model rates a circle with one corner out there done (0.99), a motion no person made (analysis
+starts, seeds 5000-5079: 5 of around's 8 failed plans; docs/planning.md). A planner setting from people's
+data, like the approach: the model is unchanged, and "around" is planned inside the room people used."""
 
 SHORT_REACH = 5
 """Without a target the default budget is this many times ``BUDGETS``. Every search stops as soon as the
@@ -143,7 +151,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
             budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)),
             rng=np.random.default_rng(seed), wrist=wrist, more_anchor_poses=more_poses,
-            viewer=getattr(model, "viewpoint", None), lead_in=lead,
+            viewer=getattr(model, "viewpoint", None), lead_in=lead, reach=AROUND_REACH * world.size if around else None,
         )
         problem.deadline = deadline
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)

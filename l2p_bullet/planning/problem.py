@@ -87,6 +87,8 @@ class Problem:
     # (T0,3) frames of a straight slide from the mover's start that comes before the action (approach.py:
     # "around" from afar): every node starts with it, and the model scores only what follows its last frame
     lead_in: np.ndarray | None = None
+    # metres from the anchor that no move may end beyond ("around": as far as people went round, planning/__init__)
+    reach: float | None = None
 
     @property
     def context(self) -> dict:
@@ -138,6 +140,8 @@ class Problem:
                 dead = np.asarray(node.dead)
                 gap = np.abs(e[:, None, :] - dead[None]).max(-1).min(1)
                 e = e[gap > 1e-6]
+            if self.reach is not None:  # a disk is convex: every straight move between ends inside stays inside
+                e = e[np.hypot(*(e[:, :2] - self.anchor_pose[:2]).T) <= self.reach]
             for end in e[self.world.moves_free(node.pose, e)]:
                 seg = segment_frames(node.pose, end, self.step)
                 yaws = node.yaw + np.cumsum(wrap_angle(np.diff(np.r_[node.pose[2], seg[:, 2]])))

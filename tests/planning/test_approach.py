@@ -31,6 +31,24 @@ def test_the_approach_distance_is_where_people_start_around():
     assert max(starts) < 4.6  # nobody started an "around" from across the table
 
 
+def test_around_is_planned_within_the_room_people_went_round_in():
+    from l2p_bullet.learning.train_progress import all_demos
+    from l2p_bullet.planning import AROUND_REACH
+
+    farthest = [float(np.hypot(*(d.mover[:, :2] - d.anchor[:, :2]).T).max() / d.size)
+                for d in all_demos(untrusted=False)["around"]]
+    assert len(farthest) == 39 and AROUND_REACH == ACTION.thresholds["reach"] == math.ceil(max(farthest) * 10) / 10
+    # an analysis start (study-like, seed 5003) whose circle had one corner on the 5-block ring (the model
+    # rated it done, 0.99): now every corner after the approach stays within people's reach
+    scene = Scene.from_dict({"objects": [
+        {"name": "A", "color": "red", "size": 0.04, "xy": [-0.0482, -0.2239], "yaw": -0.496},
+        {"name": "B", "color": "green", "size": 0.04, "xy": [-0.0932, -0.0465], "yaw": 0.884}]})
+    plan, verdict = judged_plan(prepare("move A around B", scene), seed=5003)
+    lead = plan.extra["approach"]["frames"] - 1
+    assert _blocks(plan.path[lead:], plan.anchor_pose, plan.size).max() <= AROUND_REACH + 1e-9
+    assert verdict["success"], verdict["reason"]
+
+
 def test_around_from_afar_slides_straight_near_then_goes_round_and_passes_its_rule():
     scene = Scene.from_dict(FAR)
     p = prepare("move A around B", scene)
