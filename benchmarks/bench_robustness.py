@@ -205,8 +205,8 @@ def run_jobs(jobs: list[tuple[str, int]], processes: int, worker, run, prefix: s
     """Every (action, seed) job's row, printing progress on stderr: in ``processes`` spawned processes when
     more than one (``worker`` takes a chunk, the temporary folder and ``extra``; ``split`` chunks per
     process), else here one by one (``run(action, seed, folder, plugins, *extra)``, one ``line(row)`` each).
-    ``save(rows)`` is called after each chunk, so that what is done survives an interrupted run. The stress
-    benchmarks (this one and bench_objects.py) share it."""
+    ``save(rows)`` is called after each chunk (each run with one process), so that what is done survives an
+    interrupted run. The stress benchmarks (this one and bench_objects.py) share it."""
     t0 = time.perf_counter()
     rows: list[dict] = []
     with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
@@ -228,6 +228,8 @@ def run_jobs(jobs: list[tuple[str, int]], processes: int, worker, run, prefix: s
                 rows.append(run(action, seed, Path(tmp), plugins, *extra))
                 r = rows[-1]
                 print((line or _line)(r), file=sys.stderr)
+                if save is not None:  # one by one too: a run stopped early keeps the rows it has
+                    save(rows)
                 if (k + 1) % 50 == 0:
                     print(f"  {k + 1}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     return rows

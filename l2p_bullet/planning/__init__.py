@@ -76,6 +76,19 @@ only a search that would have ended short of it goes on. Why: starts close to th
 collide, ended the budget at progress 0.2-0.7 (a "closer" 1.4-2.2 blocks away: 16 of 39 analysis starts,
 seeds 5000+; 12 with 5x the budget, 10 with the final refinement too, ``refine.py``)."""
 
+CHECK_CAP = 20_000
+"""With the default budget, a plan's searches take no step once this many candidate moves have been proposed
+(all its grasp holds together; ``Problem.check_cap``), and a grasp hold is not tried when none are left;
+``extra["bounded"]`` says so. A deterministic bound on a plan's work, unlike a time limit: the same seed gives
+the same plan on any machine and load. Why: a search short of the threshold goes on to ``SHORT_REACH`` x its
+budget, about 19,300 candidates (100 steps of about 190, most blocked near the anchor, each tested for
+legality), and then the second grasp hold did the same again: 20-50 s plans (plan only, 2 busy cores),
+minutes within a benchmark. 20,000 is one grasp's whole long search plus its refinement. Chosen on plans only
+of ``benchmarks/bench_objects.py`` seeds 951000-951038 (panda, 174 plans): every plan that reached the
+threshold with one grasp spent at most 19,414; 16 plans spent 38,500-39,600 with two grasps, all short of the
+threshold but one ("next-to" seed 951037: 32,594, the second grasp reached it after 68 steps), which the cap
+ends short."""
+
 CANDIDATES = {"greedy": 32, "beam": 48, "discrete": 0, "reinforce": 16, "mixed": 16}
 BEAM_WIDTH = 4
 
@@ -134,8 +147,12 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     around = target is None and _rules(bundle) == "around"
-    best, refused = None, None
+    best, refused, bounded, spent = None, None, False, 0
     for hold in holds:
+        cap = None if budget is not None or CHECK_CAP is None else CHECK_CAP - spent
+        if cap is not None and cap <= 0:
+            bounded = True  # the earlier grasps spent the plan's candidates: this one is not tried
+            break
         outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
         over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
         world = World2D(scene, mover, outlines=outlines, over=over)
@@ -151,7 +168,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
             budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)),
             rng=np.random.default_rng(seed), wrist=wrist, more_anchor_poses=more_poses,
-            viewer=getattr(model, "viewpoint", None), lead_in=lead, reach=AROUND_REACH * world.size if around else None,
+            viewer=getattr(model, "viewpoint", None), lead_in=lead, check_cap=cap,
+            reach=AROUND_REACH * world.size if around else None,
         )
         problem.deadline = deadline
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)
@@ -165,6 +183,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             if target is None and stopped != "threshold":  # short of the threshold: polish the last move locally
                 node, refined = refine(problem, node)
                 stopped = "threshold" if node.progress >= problem.threshold else stopped
+        bounded, spent = bounded or problem.bounded, spent + problem.checked
         if best is None or node.progress > best[1].progress + 1e-9:
             best = (problem, node, stopped, steps, hold, refined)
         if stopped == "threshold":
@@ -178,6 +197,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
                 progress=float(node.progress), steps=steps)  # a plan that goes nowhere is never a run
     if refined:
         result.extra["refine_passes"] = refined
+    if bounded:  # a new field, only where CHECK_CAP ended a search that would have gone on
+        result.extra["bounded"] = True
     result.extra["grasp_angle_deg"] = None if hold.angle is None else round(math.degrees(hold.angle), 6)
     if problem.lead_in is not None:  # a new field, only where there is an approach
         result.extra["approach"] = {"frames": len(problem.lead_in), "to": problem.lead_in[-1].round(6).tolist(),

@@ -89,6 +89,11 @@ class Problem:
     lead_in: np.ndarray | None = None
     # metres from the anchor that no move may end beyond ("around": as far as people went round, planning/__init__)
     reach: float | None = None
+    # a deterministic bound on the search's work (planning.CHECK_CAP): it takes no step once ``children`` has
+    # been asked about this many candidate moves (each tested for legality, the legal ones scored)
+    check_cap: int | None = None
+    checked: int = 0  # candidate moves proposed to ``children`` so far
+    bounded: bool = False  # the cap ended the search (it would have gone on)
 
     @property
     def context(self) -> dict:
@@ -103,6 +108,9 @@ class Problem:
     def go_on(self, best: Node, steps: int) -> bool:
         """Whether the search may take another step."""
         if best.progress >= self.threshold or steps >= self.budget:
+            return False
+        if self.check_cap is not None and self.checked >= self.check_cap:
+            self.bounded = True
             return False
         return self.deadline is None or time.perf_counter() < self.deadline
 
@@ -132,6 +140,7 @@ class Problem:
     def children(self, parents: list[Node], ends: list[np.ndarray]) -> list[Node]:
         """Legal children of each parent (ends[i] (Mi,3) proposed for parents[i]), scored in one pass."""
         kids: list[Node] = []
+        self.checked += sum(np.size(e) // 3 for e in ends)
         for node, e in zip(parents, ends, strict=True):
             if len(e) == 0 or node.moves - self.lead_moves >= self.max_moves:
                 continue

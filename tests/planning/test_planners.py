@@ -62,6 +62,24 @@ def test_the_budget_stops_the_search_and_says_so():
     assert p.stopped == "budget" and p.extra["steps"] == 2
 
 
+def test_the_check_cap_bounds_a_long_search_deterministically_with_a_legal_plan(monkeypatch):
+    """planning.CHECK_CAP (the bound on candidate moves per plan, with the default budget): a search it
+    cuts still returns a legal plan, the same one for a seed, and says so in ``extra["bounded"]``; a plan the
+    cap does not reach, or one with an explicit budget, has no such field."""
+    import l2p_bullet.planning as planning
+
+    scene = random_scene(3)
+    free = plan(scene, "A", "B", FakeBundle("around"), planner="mixed", seed=1)
+    assert "bounded" not in free.extra and free.stopped == "threshold"
+    monkeypatch.setattr(planning, "CHECK_CAP", 10)  # tiny: the first step's candidates already exceed it
+    a = plan(scene, "A", "B", FakeBundle("around"), planner="mixed", seed=1)
+    b = plan(scene, "A", "B", FakeBundle("around"), planner="mixed", seed=1)
+    assert a.extra["bounded"] is True and a.extra["steps"] == 1 and a.stopped == "budget"
+    _assert_executable(a, scene)
+    assert np.array_equal(a.path, b.path) and a.extra == {**b.extra, "seconds": a.extra["seconds"]}
+    assert "bounded" not in plan(scene, "A", "B", FakeBundle("around"), planner="mixed", seed=1, budget=3).extra
+
+
 def test_each_step_scores_its_candidates_in_one_forward_pass():
     bundle = FakeBundle("around")
     p = plan(default_scene(), "A", "B", bundle, planner="discrete")
