@@ -22,7 +22,9 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows (issue 21).
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
-  squares' centres are never nearer than the sum of their half sides.
+  squares' centres are never nearer than the sum of their half sides plus the clearance the planner keeps
+  between them (the world's margin, or the gap at the start where that is smaller: world2d.py's touching
+  starts; measured with each hold's outline, the least over the holds, which favours the arm).
 - ``no-motion`` (after the search, before anything is executed, :func:`check_moves`): the planner found
   no move that raises the progress, so its best plan leaves the mover where it is (one waypoint). It is
   refused, never executed and reported as a run ("swept 0.00 of a turn", exit 0, issue 27.8).
@@ -40,7 +42,7 @@ from collections import deque
 import numpy as np
 
 from ..core.geometry import separation
-from ..core.scene import Scene
+from ..core.scene import GRIPPER_MARGIN, Scene
 from ..embodiment import reach
 from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError
@@ -93,7 +95,9 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | None = None, arm: 
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
     room = {"around": _room_around, "away": _room_away, "closer": _room_closer}.get(rules or "")
-    if room is not None:
+    if room is _room_closer:
+        _room_closer(scene, mover, anchor, holds)
+    elif room is not None:
         room(scene, mover, anchor)
     if rules == "around":
         _blocked_around(scene, mover, anchor)
@@ -231,19 +235,35 @@ def _room_away(scene: Scene, mover: str, anchor: str) -> None:
             {"start_blocks": round(d0 / m.size, 3), "farthest_blocks": round(farthest / m.size, 3)})
 
 
-def _room_closer(scene: Scene, mover: str, anchor: str) -> None:
+def clearance(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None = None) -> float:
+    """The least gap (m) the planner ever lets the mover's footprint come to the anchor's: the world's margin, or
+    the gap where the mover starts when that is smaller (world2d.py: a move's margin is the smaller of the
+    margin and the gap at its start, so no move brings it nearer than it started). The start's gap is measured
+    with each hold's outline (the block grown by the hand against a taller anchor; that outline's gap is what
+    the planner keeps, and the footprint's is never smaller), the least over ``holds`` (all: favours the arm)."""
+    m, a = scene.get(mover), scene.get(anchor)
+    own = m.footprint(np.zeros(3))
+    poly = a.footprint(a.pose)
+    outlines = [h.outlines.get(anchor, own) for h in holds] if holds else [own]
+    g0 = min(float(separation(place_outline(np.asarray(o, float), m.pose)[None], poly)[0]) for o in outlines)
+    return max(0.0, min(GRIPPER_MARGIN, max(g0, 0.0) - 1e-9))
+
+
+def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None = None) -> None:
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
     room = closer_room(d0)
     target = d0 - CLOSER_SHARE * room
-    nearest = nearest_centres(m, a) / m.size
+    gap = clearance(scene, mover, anchor, holds)
+    nearest = (nearest_centres(m, a) + gap) / m.size
     if nearest > target + 1e-9:
         raise InfeasibleError(
             "room-closer",
             f'"{mover}" cannot come closer to "{anchor}" by the half of the room that "closer" asks for: their '
-            f"centres are {d0:.2f} blocks apart, closer needs {target:.2f}, and the blocks' sizes keep them at "
-            f"least {nearest:.2f} apart", {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3),
-                                         "nearest_blocks": round(nearest, 3)})
+            f"centres are {d0:.3f} blocks apart, closer needs {target:.3f}, and the blocks' sizes with the "
+            f"{gap * 1000:.1f} mm the planner keeps between them leave them at least {nearest:.3f} apart",
+            {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3), "nearest_blocks": round(nearest, 3),
+             "clearance_m": round(gap, 6)})
 
 
 def _longest_circular_run(ok: np.ndarray) -> int:
