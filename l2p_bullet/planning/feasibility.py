@@ -20,9 +20,14 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
 - ``blocked-around``: within ``near`` blocks of the anchor, the other objects and the workspace's rim leave
   the mover no legal pose (whatever its yaw) along some bearings, so no path sweeps the 0.8 turn: a
   continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows (issue 21).
+  From afar (farther than ``near``), the rule reads "around" from the first frame within ``near`` on, so what
+  counts is the way round, one way, from a legal pose where the mover can first come that near (an anchor
+  near the rim is reachable from its inward side only, and its way round is cut at the rim, 2026-11-27).
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
-  squares' centres are never nearer than the sum of their half sides.
+  squares' centres are never nearer than the sum of their half sides plus the clearance the planner keeps
+  between them (the world's margin, or the gap at the start where that is smaller: world2d.py's touching
+  starts; measured with each hold's outline, the least over the holds, which favours the arm).
 - ``no-motion`` (after the search, before anything is executed, :func:`check_moves`): the planner found
   no move that raises the progress, so its best plan leaves the mover where it is (one waypoint). It is
   refused, never executed and reported as a run ("swept 0.00 of a turn", exit 0, issue 27.8).
@@ -40,11 +45,12 @@ from collections import deque
 import numpy as np
 
 from ..core.geometry import separation
-from ..core.scene import Scene
+from ..core.scene import GRIPPER_MARGIN, Scene
 from ..embodiment import reach
 from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError
 from ..judge.rules import AROUND_NEAR, AROUND_TURNS, AWAY_GAIN, CLOSER_SHARE, closer_room
+from .problem import FRAME_STEP
 from .world2d import World2D, place_outline
 
 CHECKS = ("grasp-width", "grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer", "no-motion")
@@ -93,7 +99,9 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | None = None, arm: 
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
     room = {"around": _room_around, "away": _room_away, "closer": _room_closer}.get(rules or "")
-    if room is not None:
+    if room is _room_closer:
+        _room_closer(scene, mover, anchor, holds)
+    elif room is not None:
         room(scene, mover, anchor)
     if rules == "around":
         _blocked_around(scene, mover, anchor)
@@ -157,7 +165,11 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
                           np.sort(np.round(world.mover.outline, 9), axis=0))  # a square looks the same a quarter turn on
     t, r, y = np.meshgrid(bearings, radii, np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg)), indexing="ij")
     poses = np.column_stack([a.xy[0] + (r * np.cos(t)).ravel(), a.xy[1] + (r * np.sin(t)).ravel(), y.ravel()])
-    ok = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1) <= ws.radius + dr + 1e-9
+    centre_d = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1)
+    ok = centre_d <= ws.radius + dr + 1e-9
+    # from afar (below): a pose is within half a step of radius and half a bearing step *at its radius* of a grid pose
+    along = (r.ravel() + dr) * math.radians(bearing_deg) / 2
+    ok_far = centre_d <= ws.radius + dr + along + 1e-9
     reach_m = float(np.linalg.norm(world.mover.outline, axis=1).max())
     slack = dr + reach_m * dyaw  # how much the gap can change within half a grid step
     wide = slack + outer * math.radians(bearing_deg) / 2  # ... and within half a bearing step, at the outer radius
@@ -166,7 +178,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     for body, poly, gap0 in zip(world.obstacles, world._obs_polys, start_gaps, strict=True):
         margin = min(world.margin, max(float(gap0), 0.0))  # the world's rule for a mover starting close
         reach_o = float(np.linalg.norm(body.outline, axis=1).max())
-        near = ok & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + wide)
+        near = ok_far & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + wide)
         if near.any():
             gaps = separation(place_outline(world.mover.outline, poses[near]), poly)
             idx = np.flatnonzero(near)
@@ -186,8 +198,6 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     k0 = int(round(math.degrees(math.atan2(rel[1], rel[0])) / bearing_deg)) % len(bearings)
     d0 = float(np.hypot(*rel))
     j0 = int(np.argmin(np.abs(radii - d0)))
-    # from afar the mover first slides near (approach.py), where that slide ends is the planner's: only
-    # the arc above is a necessary condition then
     if cells[k0, j0] and d0 <= outer + 1e-9:
         way = _connected_sweep(cells, k0, j0) * bearing_deg
         if way < AROUND_TURNS * 360 - 2 * bearing_deg:
@@ -197,6 +207,22 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
                 f"the workspace's rim leave the mover a way of only {way:.0f} deg round from where it starts (at any "
                 f"yaw); around needs {AROUND_TURNS * 360:.0f} deg",
                 {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True})
+    elif d0 > outer + 1e-9:
+        # from afar the mover first comes near (approach.py, where that slide ends is the planner's); the rule
+        # reads "around" from the first frame within near on, and frames are at most FRAME_STEP of a side apart,
+        # so that frame is a legal pose less than FRAME_STEP inside the near circle (a cell of the outer radii):
+        # what counts is the way round from such an entry, one way (the turn is the bearing's net change)
+        far_cells = (ok_far & (short >= -(slack + along))).reshape(len(bearings), len(radii), -1).any(2)
+        entries = [(int(k), int(j)) for k, j in np.argwhere(far_cells)
+                   if radii[j] >= outer - FRAME_STEP * m.size - 2 * dr]
+        way = _entry_sweep(far_cells, entries) * bearing_deg
+        if way < AROUND_TURNS * 360 - 2 * bearing_deg:
+            raise InfeasibleError(
+                "blocked-around",
+                f'no way round "{anchor}" for "{mover}" from afar: it starts {d0 / m.size:.2f} blocks away, and from '
+                f"wherever it can come within {AROUND_NEAR:g} blocks the other objects and the workspace's rim leave "
+                f"it a way of only {way:.0f} deg round (at any yaw); around needs {AROUND_TURNS * 360:.0f} deg",
+                {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True, "from_afar": True})
 
 
 def _connected_sweep(cells: np.ndarray, k0: int, j0: int) -> int:
@@ -219,6 +245,39 @@ def _connected_sweep(cells: np.ndarray, k0: int, j0: int) -> int:
     return best
 
 
+def _entry_sweep(cells: np.ndarray, entries: list[tuple[int, int]]) -> int:
+    """The most bearing steps one way round that a chain of 8-neighbouring True cells of ``cells`` (bearings x
+    radii, bearings circular) reaches from any of ``entries`` (bearing, radius indices): per component, its
+    cells' bearings unwrapped from one of them; a component that closes round the anchor gives a full turn."""
+    n, m = cells.shape
+    seen: set[tuple[int, int]] = set()
+    best = 0
+    for start in entries:
+        if start in seen:
+            continue
+        where = {start: start[0]}  # cell -> its unwrapped bearing index
+        queue = deque([start])
+        while queue:
+            k, j = queue.popleft()
+            u = where[(k, j)]
+            for dk in (-1, 0, 1):
+                for dj in (-1, 0, 1):
+                    nj, cell = j + dj, ((k + dk) % n, j + dj)
+                    if not (dk or dj) or not 0 <= nj < m or not cells[cell]:
+                        continue
+                    if cell not in where:
+                        where[cell] = u + dk
+                        queue.append(cell)
+                    elif where[cell] != u + dk:
+                        return n  # reached again a turn on: a way all round
+        seen.update(where)
+        lo, hi = min(where.values()), max(where.values())
+        best = max([best] + [max(hi - where[e], where[e] - lo) for e in entries if e in where])
+        if best >= n:
+            return n
+    return best
+
+
 def _room_away(scene: Scene, mover: str, anchor: str) -> None:
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy)))
@@ -231,19 +290,35 @@ def _room_away(scene: Scene, mover: str, anchor: str) -> None:
             {"start_blocks": round(d0 / m.size, 3), "farthest_blocks": round(farthest / m.size, 3)})
 
 
-def _room_closer(scene: Scene, mover: str, anchor: str) -> None:
+def clearance(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None = None) -> float:
+    """The least gap (m) the planner ever lets the mover's footprint come to the anchor's: the world's margin, or
+    the gap where the mover starts when that is smaller (world2d.py: a move's margin is the smaller of the
+    margin and the gap at its start, so no move brings it nearer than it started). The start's gap is measured
+    with each hold's outline (the block grown by the hand against a taller anchor; that outline's gap is what
+    the planner keeps, and the footprint's is never smaller), the least over ``holds`` (all: favours the arm)."""
+    m, a = scene.get(mover), scene.get(anchor)
+    own = m.footprint(np.zeros(3))
+    poly = a.footprint(a.pose)
+    outlines = [h.outlines.get(anchor, own) for h in holds] if holds else [own]
+    g0 = min(float(separation(place_outline(np.asarray(o, float), m.pose)[None], poly)[0]) for o in outlines)
+    return max(0.0, min(GRIPPER_MARGIN, max(g0, 0.0) - 1e-9))
+
+
+def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None = None) -> None:
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
     room = closer_room(d0)
     target = d0 - CLOSER_SHARE * room
-    nearest = nearest_centres(m, a) / m.size
+    gap = clearance(scene, mover, anchor, holds)
+    nearest = (nearest_centres(m, a) + gap) / m.size
     if nearest > target + 1e-9:
         raise InfeasibleError(
             "room-closer",
             f'"{mover}" cannot come closer to "{anchor}" by the half of the room that "closer" asks for: their '
-            f"centres are {d0:.2f} blocks apart, closer needs {target:.2f}, and the blocks' sizes keep them at "
-            f"least {nearest:.2f} apart", {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3),
-                                         "nearest_blocks": round(nearest, 3)})
+            f"centres are {d0:.3f} blocks apart, closer needs {target:.3f}, and the blocks' sizes with the "
+            f"{gap * 1000:.1f} mm the planner keeps between them leave them at least {nearest:.3f} apart",
+            {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3), "nearest_blocks": round(nearest, 3),
+             "clearance_m": round(gap, 6)})
 
 
 def _longest_circular_run(ok: np.ndarray) -> int:

@@ -95,3 +95,35 @@ def test_two_block_scenes_never_get_the_bystander_proposals(monkeypatch):
     scene = chain_scenes(1, 5012)[0].scene  # with bystanders both are asked for
     with pytest.raises(AssertionError, match="bystander proposals"):
         planning.plan(scene, "D", "A", registry.load("around"), seed=5012, budget=3)
+
+
+def test_around_from_afar_whose_way_round_is_cut_wherever_it_comes_near_is_refused():
+    # chain/5015: C lies 0.195 m from the workspace's centre (radius 0.25), A starts 5.4 of its sides away. The
+    # rule reads "around" from the first frame within 4 blocks, and A can come that near only on C's inward
+    # side; from any such entry the rim and E (2.6 blocks from C) leave a way of less than 0.8 turn one way
+    # round (the planner's best, from its approach: 0.57 of a turn, then judged 0.47), so the chain re-draws it
+    from l2p_bullet.planning import feasibility
+
+    scene = chain_scenes(1, 5015)[0].scene
+    with pytest.raises(InfeasibleError) as e:
+        feasibility.check(scene, "A", "C", "around")
+    assert e.value.check == "blocked-around" and e.value.details["from_afar"] is True
+    assert e.value.details["arc_deg"] < 0.8 * 360 and "from afar" in str(e.value) and "\n" not in str(e.value)
+    # from afar with room to go round: chain/5000's C around A (planned and judged around, above) passes
+    feasibility.check(chain_scenes(1, 5000)[0].scene, "C", "A", "around")
+
+
+def test_around_from_afar_to_an_anchor_by_the_rim_with_a_bystander_at_its_side_is_refused():
+    # chain/5000, clause 5 "move B around C", from where the chain left the blocks: C 0.19 m from the centre,
+    # A face to face with it on the inward side, B 6 blocks away. Within 4 blocks B can enter only on C's
+    # inward side, and the rim and A leave it no 0.8 turn from there (a fine grid without slack: 256 deg at best);
+    # it was planned to 0.39 of the learned progress and swept 0.38 of a turn
+    from l2p_bullet.core.scene import Scene, SceneObject
+    from l2p_bullet.planning import feasibility
+
+    scene = Scene([SceneObject("A", "red", 0.05, (0.13297, 0.01922), 0.64146),
+                   SceneObject("B", "green", 0.05, (-0.09566, -0.05213), 0.44082),
+                   SceneObject("C", "blue", 0.05, (0.18314, 0.05657), -0.92936)]).validate()
+    with pytest.raises(InfeasibleError) as e:
+        feasibility.check(scene, "B", "C", "around")
+    assert e.value.check == "blocked-around" and e.value.details["from_afar"] is True
