@@ -156,7 +156,8 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda"
         r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins, arm=arm)
         d = r.to_dict()
         row |= {"outcome": "success" if r.success else "unsuccessful", "reason": r.verdict.get("reason"),
-                "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0)}
+                "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0),
+                "bounded": bool(r.plan.extra.get("bounded"))}  # planning.CHECK_CAP ended its search
     except InfeasibleError as e:
         row |= {"outcome": "refused", "check": e.check, "named": e.check in CHECKS, "error": str(e)}
     except L2PError as e:
@@ -187,6 +188,10 @@ def print_shapes(rows: list[dict]) -> None:
         disturbed = sum(1 for r in rs if r.get("disturbed"))
         print(f"  {shape:<9} {len(rs):5d} runs: " + ", ".join(f"{o} {n[o]}" for o in OUTCOMES if n[o])
               + f"; disturbed {disturbed}")
+    bounded = [r for r in rows if r.get("bounded")]
+    print(f"\nplans whose search the work cap ended (planning.CHECK_CAP): {len(bounded)} of "
+          f"{sum(r['outcome'] in ('success', 'unsuccessful') for r in rows)} performed, "
+          f"{sum(r['outcome'] == 'success' for r in bounded)} of them successes")
     unnamed = [r for r in rows if r["outcome"] == "refused" and not r.get("named")]
     print(f"\nrefusals naming no known check: {len(unnamed)}")
     for r in unnamed:

@@ -137,7 +137,8 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list) -> dict:
         r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins)
         d = r.to_dict()
         row |= {"outcome": "success" if r.success else "unsuccessful", "reason": r.verdict.get("reason"),
-                "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0)}
+                "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0),
+                "bounded": bool(r.plan.extra.get("bounded"))}  # planning.CHECK_CAP ended its search
     except InfeasibleError as e:
         row |= {"outcome": "refused", "check": e.check, "error": str(e)}
     except L2PError as e:
