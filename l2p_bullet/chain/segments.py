@@ -43,6 +43,12 @@ def segment_frames(doc: dict, seg: dict) -> list[dict]:
     return doc["frames"][int(seg["first_frame"]):int(seg["last_frame"]) + 1]
 
 
+def action_start(seg: dict) -> int:
+    """Where the segment's action proper starts, counted from its first frame (``action_from``: a clause that
+    came near first; 0 for every other)."""
+    return int(seg.get("action_from", seg["first_frame"])) - int(seg["first_frame"])
+
+
 def score_segments(path: str | Path, model: Any) -> list[dict] | None:
     """``model``'s progress on each segment of the chain run at ``path`` (None when it is no chain run)."""
     try:
@@ -65,8 +71,8 @@ def score_segments(path: str | Path, model: Any) -> list[dict] | None:
         more = [trajectory_poses(frames, a) for a in anchors[1:]]
         kw = {"more_anchors": more} if more else {}
         size = float(doc["objects"][mover]["size"])
-        start = int(s.get("action_from", s["first_frame"])) - int(s["first_frame"])  # after an approach slide
-        curve = curve_from(model, start, trajectory_poses(frames, mover), trajectory_poses(frames, anchors[0]), size, **kw)
+        curve = curve_from(model, action_start(s), trajectory_poses(frames, mover), trajectory_poses(frames, anchors[0]),
+                           size, **kw)
         out.append(entry | {"progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)})
     return out
 
@@ -81,7 +87,7 @@ def segment_docs(run: str | Path) -> list[dict] | None:
     base = {k: v for k, v in doc.items() if k not in ("frames", "segments")}
     return [base | {"sentence": s.get("sentence") or s.get("text"), "action": s["action"], "mover": s["mover"],
                     "anchor": s["anchors"][0], "anchors": list(s["anchors"]), "frames": segment_frames(doc, s),
-                    **({"action_from": s["action_from"] - s["first_frame"]} if "action_from" in s else {}),
+                    **({"action_from": action_start(s)} if "action_from" in s else {}),
                     "chain": {"sentence": doc.get("sentence"), "clause": s["clause"], "first_frame": s["first_frame"],
                               "last_frame": s["last_frame"]}}
             for s in segs]

@@ -98,12 +98,12 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | None = None, arm: 
     judged by ("around", "away", "closer", ...), None for an action judged otherwise."""
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
-    room = {"around": _room_around, "away": _room_away, "closer": _room_closer}.get(rules or "")
-    if room is _room_closer:
+    if rules == "closer":
         _room_closer(scene, mover, anchor, holds)
-    elif room is not None:
-        room(scene, mover, anchor)
-    if rules == "around":
+    elif rules == "away":
+        _room_away(scene, mover, anchor)
+    elif rules == "around":
+        _room_around(scene, mover, anchor)
         _blocked_around(scene, mover, anchor)
     return holds
 
@@ -199,7 +199,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     d0 = float(np.hypot(*rel))
     j0 = int(np.argmin(np.abs(radii - d0)))
     if cells[k0, j0] and d0 <= outer + 1e-9:
-        way = _connected_sweep(cells, k0, j0) * bearing_deg
+        way = _entry_sweep(cells, [(k0, j0)]) * bearing_deg
         if way < AROUND_TURNS * 360 - 2 * bearing_deg:
             raise InfeasibleError(
                 "blocked-around",
@@ -225,30 +225,12 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
                 {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True, "from_afar": True})
 
 
-def _connected_sweep(cells: np.ndarray, k0: int, j0: int) -> int:
-    """The most bearing steps either way round that a chain of 8-neighbouring True cells of ``cells``
-    (bearings x radii, bearings circular) reaches from cell (k0, j0), counted on the unwrapped bearing axis
-    (at most one full turn)."""
-    n, m = cells.shape
-    seen, queue, best = {(0, j0)}, deque([(0, j0)]), 0
-    while queue:
-        k, j = queue.popleft()
-        best = max(best, abs(k))
-        if best >= n:
-            return n
-        for dk in (-1, 0, 1):
-            for dj in (-1, 0, 1):
-                nk, nj = k + dk, j + dj
-                if (dk or dj) and 0 <= nj < m and (nk, nj) not in seen and cells[(k0 + nk) % n, nj]:
-                    seen.add((nk, nj))
-                    queue.append((nk, nj))
-    return best
-
-
 def _entry_sweep(cells: np.ndarray, entries: list[tuple[int, int]]) -> int:
     """The most bearing steps one way round that a chain of 8-neighbouring True cells of ``cells`` (bearings x
     radii, bearings circular) reaches from any of ``entries`` (bearing, radius indices): per component, its
-    cells' bearings unwrapped from one of them; a component that closes round the anchor gives a full turn."""
+    cells' bearings unwrapped from one of them; a component that closes round the anchor gives a full turn
+    (at most one). One entry: the sweep from where the mover starts; several: from wherever it can come near,
+    one search per component rather than one per entry."""
     n, m = cells.shape
     seen: set[tuple[int, int]] = set()
     best = 0
