@@ -204,6 +204,16 @@ def approach_end_frame(track: np.ndarray, to: np.ndarray, size: float) -> int:
     return k
 
 
+def hold_before(values: np.ndarray, first: int) -> np.ndarray:
+    """Per-frame progress ``values`` of the action proper (frames ``first`` on) padded to the whole episode:
+    the frames of the approach before it hold the action's first value, as plan.json's lead-in does (one
+    rule for the recorder, ``score`` and a chain's clauses)."""
+    values = np.asarray(values, float).reshape(-1)
+    if not first:
+        return values
+    return np.r_[np.full(first, values[0] if len(values) else np.nan), values]
+
+
 def action_from(doc: dict, source: str = "trajectory.json") -> int:
     """trajectory.json's ``action_from`` (a run whose plan came near first: the first frame of the action
     proper), checked against its frames; 0 where there is none (every other run: the whole episode)."""

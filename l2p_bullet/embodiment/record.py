@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.contracts import dumps_json, trajectory_poses
+from ..core.contracts import dumps_json, hold_before, trajectory_poses
 from .overlay import overlay, progress_at
 from .render import capture, movable_joints, write_pngs
 
@@ -95,8 +95,7 @@ class Recorder:
         values = np.asarray(progress_fn(*args), dtype=float).reshape(-1)
         if len(values) != len(self.frames) - first:
             raise ValueError(f"progress_fn returned {len(values)} values for {len(self.frames) - first} frames")
-        values = np.r_[np.full(first, values[0]), values] if first else values
-        for f, v in zip(self.frames, values, strict=True):
+        for f, v in zip(self.frames, hold_before(values, first), strict=True):
             f["progress"] = _r(v)
 
     def write_trajectory(self, path: Path, meta: dict, sizes: dict[str, float]) -> None:

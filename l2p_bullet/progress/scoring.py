@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.contracts import hold_before
 from ..core.frames import parse_frame
 from .features import QSRConfig, batch_features
 
@@ -117,9 +118,7 @@ def curve_from(model: Any, first: int, mover: np.ndarray, anchor: np.ndarray, si
         return a[first:] if a.ndim == 2 else a
 
     more = {"more_anchors": [cut(a) for a in more_anchors]} if more_anchors else {}
-    values = np.asarray(model.curve(np.asarray(mover, float)[first:], cut(anchor), size, **more, **kw),
-                        float).reshape(-1)
-    return np.r_[np.full(first, values[0] if len(values) else np.nan), values] if first else values
+    return hold_before(model.curve(np.asarray(mover, float)[first:], cut(anchor), size, **more, **kw), first)
 
 
 def _one(more_anchors: list | None) -> list | None:
