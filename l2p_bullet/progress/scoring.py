@@ -99,6 +99,18 @@ class ScoringMixin:
         return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size,
                                 more_anchors=_one(more_anchors), viewer=viewer)[0]
 
+    def resampled(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
+                  viewer: Any = None) -> tuple[np.ndarray, np.ndarray]:
+        """Progress on the model's own arc-length resampling of one motion, and each resampled frame's
+        share of the motion's arc length (0 to 1): the ramp the training label follows on an event, so a
+        benchmark can compare the whole curve with it (docs/learning.md, recognition's third pass)."""
+        anchor = np.asarray(anchor, float)
+        out, lengths, rss = self._run([mover], anchor if anchor.ndim == 1 else [anchor], size,
+                                      _one(more_anchors), viewer)
+        arc = np.asarray(rss[0].arc, float)
+        share = arc / arc[-1] if arc[-1] > 0 else np.linspace(0.0, 1.0, len(arc))
+        return out[0, : lengths[0]], share
+
     def final(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
               viewer: Any = None) -> float:
         anchor = np.asarray(anchor, float)

@@ -53,6 +53,18 @@ def test_same_numbers_as_torch(models, seed):
                                atol=2e-5)
 
 
+def test_resampled_curve_ends_at_the_final_and_its_ramp_spans_the_motion(models):
+    """``resampled``: the model's own arc-length frames, their last value the motion's final progress, and
+    each frame's share of the arc length rising from 0 to 1 (what recognition's tried ramp rules compare)."""
+    _, fast = models
+    anchor = np.array([0.0, 0.02, 0.4])
+    for m in motions(2, 6):
+        p, share = fast.resampled(m, anchor, 0.05)
+        assert p.shape == share.shape and len(p) >= 1
+        assert p[-1] == pytest.approx(fast.final(m, anchor, 0.05), abs=1e-9)
+        assert share[0] == 0.0 and share[-1] == pytest.approx(1.0) and np.all(np.diff(share) >= 0)
+
+
 def test_shared_prefix_batch_matches(models):
     """A planner's batch: every candidate extends the same path (the prefix runs once, at batch size 1)."""
     ref, fast = models
