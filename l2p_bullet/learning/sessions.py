@@ -48,10 +48,11 @@ def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] =
     for action in actions:
         folder = out / action
         folders[action] = folder
-        if _current(folder, data_digest(own_trusted(recipe, action, demos)), seed, recipe):
+        used = own_trusted(recipe, action, demos)  # what it trains on (its manifest's digest)
+        if _current(folder, data_digest(used), seed, recipe):
             continue
         if log:
-            log(f"training {action} on {session} ({len(demos[action])} demonstrations) into {folder}")
+            log(f"training {action} on {session} ({len(used[action])} demonstrations) into {folder}")
         result = train(recipe, action, demos, seed)
         training = training_section(result, recipe.train, seed, command, recipe.data) | {"sessions": [session]}
         if recipe.extras_dict():  # as ``l2p-bullet train`` writes it; absent: the recipe before issue 25
