@@ -31,7 +31,8 @@ generator so the current part stays bit-identical:
 ``trusted_own`` changes the data, not what is added: the shipped demonstrations of the action being trained
 whose tracking is not trusted (:data:`data.demos.UNTRUSTED`) are left out of its own set (its positives and
 everything made from its own events), and kept wherever they are another action's negative, so the other
-actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, seventh round).
+actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, seventh round: it passed the suite
+and the planning checks but lowered around's agreement with people in SlideAround, so it is not shipped).
 
 The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
 
