@@ -191,3 +191,27 @@ def test_trusted_own_changes_around_set_alone():
     trusted = training_set(r1, "around", demos, q)
     assert same(trusted, training_set(r0, "around", without, q))
     assert not same(trusted, training_set(r0, "around", demos, q))
+
+
+@pytest.mark.slow
+def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monkeypatch):
+    """``l2p-bullet train around`` (so ``make bundles``) trains on the set without e05 once SHIPPED has
+    ``trusted_own``, records it, and its data digest is that of the demonstrations it used."""
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.learning import recipes as rc
+    from l2p_bullet.learning.train_progress import data_digest
+    from l2p_bullet.plugins.bundle import read_manifest
+
+    trusted = recipes(1, 1)["planner-graded-nogrid-trusted"]
+    monkeypatch.setattr(rc, "SHIPPED", rc.dataclasses.replace(rc.SHIPPED, name=trusted.name, trusted_own=True))
+    out = tmp_path / "around"
+    r = CliRunner().invoke(main, ["train", "around", "--ensemble", "1", "--epochs", "1", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    t = read_manifest(out)["training"]
+    demos = all_demos()
+    assert t["recipe"]["trusted_own"] is True
+    assert t["n_sequences"] == len(training_set(trusted, "around", demos, QSRConfig()))
+    assert t["n_sequences"] < len(training_set(recipes(1, 1)["planner-graded-nogrid"], "around", demos, QSRConfig()))
+    assert t["data_digest"] == data_digest(rc.own_trusted(trusted, "around", demos)) != data_digest(demos)
