@@ -28,6 +28,12 @@ generator so the current part stays bit-identical:
   keeps 1 - (ring - near) / (6.5 - near) of itself from that corner on (0.6 at 5 blocks, 0 at 6.5),
   falling linearly along the move out to it.
 
+``trusted_own`` changes the data, not what is added: the shipped demonstrations of the action being trained
+whose tracking is not trusted (:data:`data.demos.UNTRUSTED`) are left out of its own set (its positives and
+everything made from its own events), and kept wherever they are another action's negative, so the other
+actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, seventh round: it passed the suite
+and the planning checks but lowered around's agreement with people in SlideAround, so it is not shipped).
+
 The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
 
 Nothing here reads a grade.
@@ -44,7 +50,7 @@ import numpy as np
 
 from ..actions.around import ACTION as AROUND
 from ..core.vocabulary import ACTIONS
-from ..data.demos import Demo
+from ..data.demos import UNTRUSTED, Demo
 from ..progress.features import QSRConfig
 from . import generalise as g
 from .augment import mirror
@@ -72,12 +78,14 @@ class Recipe:
     grid: bool = True
     """With ``planner_positives``: around also gets copies snapped to the 2-D study's grid."""
     strays: bool = False
+    trusted_own: bool = False
+    """Leave the action's own untrusted shipped demonstrations out of its own set (:func:`own_trusted`)."""
 
     def extras_dict(self) -> dict:
         """The options that add to the current training set (empty for the current recipe): what a
         bundle's manifest records besides the training settings."""
         keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs",
-                "strays")
+                "strays", "trusted_own")
         out = {k: True for k in keys if getattr(self, k)} | ({"grid": False} if not self.grid else {})
         return out | ({"turn_power": self.turn_power} if self.turn_power != 1.0 else {})
 
@@ -87,7 +95,7 @@ class Recipe:
                 "turn_power": self.turn_power, **self.train.to_dict(),
                 **({"planner_partials": True} if self.planner_partials else {}),
                 **({"graded_wrongs": True} if self.graded_wrongs else {}), **({"grid": False} if not self.grid else {}),
-                **({"strays": True} if self.strays else {})}
+                **({"strays": True} if self.strays else {}), **({"trusted_own": True} if self.trusted_own else {})}
 
 
 SHIPPED = Recipe("planner-graded-nogrid", planner_positives=True, planner_negatives=True, planner_partials=True,
@@ -104,6 +112,15 @@ def shipped_extension(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig
     """:data:`SHIPPED`'s extension of the set :func:`trainset.build` made with ``data_cfg`` (a plugin's
     own data settings are kept; a viewer-frame or two-anchor plugin gets nothing added)."""
     return functools.partial(extend, dataclasses.replace(SHIPPED, data=data_cfg), action, demos, qcfg, seed)
+
+
+def own_trusted(recipe: Recipe, action: str, demos: dict[str, list[Demo]]) -> dict[str, list[Demo]]:
+    """``demos`` as ``action`` trains on them with ``recipe``: with ``trusted_own``, its own list without the
+    ids of :data:`data.demos.UNTRUSTED` (the other actions' lists, its negatives, unchanged). Call it on the
+    shipped demonstrations only: a user's own files are taken as they are (their ids could coincide)."""
+    if not recipe.trusted_own or not any(d.id in UNTRUSTED for d in demos.get(action, [])):
+        return demos
+    return {**demos, action: [d for d in demos[action] if d.id not in UNTRUSTED]}
 
 
 def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
@@ -132,6 +149,9 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         # the sixth: around's strays with partial credit (after the fifth round's planning check)
         Recipe("planner-graded-nogrid-strays", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False, strays=True),
+        # the seventh: the shipped recipe with around's own glitched demonstration left out (not its negatives)
+        Recipe("planner-graded-nogrid-trusted", train=t, planner_positives=True, planner_negatives=True,
+               planner_partials=True, graded_wrongs=True, grid=False, trusted_own=True),
     ]}
 
 
@@ -293,14 +313,17 @@ def extend(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
 
 def training_set(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig,
                  seed: int = 0) -> list[TrainingSequence]:
-    """:func:`trainset.build` (the current recipe, bit for bit) plus the recipe's extras."""
+    """:func:`trainset.build` (the current recipe, bit for bit) plus the recipe's extras (of the shipped
+    ``demos``: :func:`own_trusted` applies)."""
+    demos = own_trusted(recipe, action, demos)
     return extend(recipe, action, demos, qcfg, seed, build(action, demos, qcfg, recipe.data, seed=seed))
 
 
 def train(recipe: Recipe, action: str, demos: dict[str, list[Demo]], seed: int = 0,
           tick: Callable[[], None] | None = None) -> TrainResult:
     """The recipe's ensemble for ``action``: :func:`train_progress.train_action` (members seeded
-    ``seed * 1000 + i``) on :func:`training_set`."""
+    ``seed * 1000 + i``) on :func:`training_set` (of the shipped ``demos``: :func:`own_trusted` applies)."""
     q = QSRConfig()
+    demos = own_trusted(recipe, action, demos)
     return train_action(action, demos, seed=seed, qsr_cfg=q, data_cfg=recipe.data, cfg=recipe.train, tick=tick,
                         extend=functools.partial(extend, recipe, action, demos, q, seed))

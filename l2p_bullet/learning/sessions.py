@@ -27,7 +27,7 @@ from . import generalise as g
 from .heldout import FOLDS
 from .ordered_probes import ordered
 from .progress_net import ProgressModel, ensemble_arrays
-from .recipes import SHIPPED, Recipe, train
+from .recipes import SHIPPED, Recipe, own_trusted, train
 from .train_progress import all_demos, data_digest, training_section
 
 
@@ -44,15 +44,15 @@ def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] =
     out = Path(out)
     recipe = recipe or SHIPPED
     demos = all_demos(sessions={session}, untrusted=untrusted)
-    digest = data_digest(demos)
     folders = {}
     for action in actions:
         folder = out / action
         folders[action] = folder
-        if _current(folder, digest, seed, recipe):
+        used = own_trusted(recipe, action, demos)  # what it trains on (its manifest's digest)
+        if _current(folder, data_digest(used), seed, recipe):
             continue
         if log:
-            log(f"training {action} on {session} ({len(demos[action])} demonstrations) into {folder}")
+            log(f"training {action} on {session} ({len(used[action])} demonstrations) into {folder}")
         result = train(recipe, action, demos, seed)
         training = training_section(result, recipe.train, seed, command, recipe.data) | {"sessions": [session]}
         if recipe.extras_dict():  # as ``l2p-bullet train`` writes it; absent: the recipe before issue 25

@@ -362,8 +362,11 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if demo_files and not demos[name]:
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
-    from .recipes import SHIPPED, shipped_extension  # recipes builds on this module: the one intra-room pair
+    # recipes builds on this module: the one intra-room pair
+    from .recipes import SHIPPED, own_trusted, shipped_extension
 
+    if not plugin and not demo_files:  # the shipped demonstrations: the recipe may leave untrusted ones out
+        demos = own_trusted(SHIPPED, name, demos)
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
                           on_stage=on_stage, extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans

@@ -152,3 +152,66 @@ def test_strays_add_around_corners_out_on_the_far_rings_with_the_credit_near_lea
     for a in ("closer", "past"):
         x, y = training_set(r0, a, demos, q), training_set(r1, a, demos, q)
         assert len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True))
+
+
+def test_trusted_own_leaves_untrusted_demos_out_of_the_own_list_only():
+    """``trusted_own`` (seventh round): around trains without around/Session2/e05; the other actions still
+    see it among their negatives (their lists are the very same), and a recipe without it changes nothing."""
+    from l2p_bullet.data.demos import UNTRUSTED
+    from l2p_bullet.learning.recipes import SHIPPED, own_trusted
+
+    demos = all_demos()
+    r = recipes(1, 1)["planner-graded-nogrid-trusted"]
+    assert r.trusted_own and r.extras_dict() == SHIPPED.extras_dict() | {"trusted_own": True}
+    ids = [d.id for d in own_trusted(r, "around", demos)["around"]]
+    assert "around/Session2/e05" in UNTRUSTED and not set(ids) & set(UNTRUSTED)
+    assert ids == [d.id for d in demos["around"] if d.id not in UNTRUSTED] and len(ids) == len(demos["around"]) - 1
+    for a in ("closer", "away", "next-to", "past"):
+        assert own_trusted(r, a, demos) is demos
+        assert all(x is y for x, y in zip(own_trusted(r, "around", demos)[a], demos[a], strict=True))
+    assert own_trusted(SHIPPED, "around", demos) is demos
+
+
+@pytest.mark.slow
+def test_trusted_own_changes_around_set_alone():
+    """The other four actions' training sets are bit-identical with ``trusted_own`` (e05 stays among their
+    negatives); around's is the one built without e05, and differs from the shipped one."""
+    demos = all_demos(sessions={"Session2"})
+    q = QSRConfig()
+    r0, r1 = recipes(1, 1)["planner-graded-nogrid"], recipes(1, 1)["planner-graded-nogrid-trusted"]
+
+    def same(x: list, y: list) -> bool:
+        return len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) and u.weight == v.weight
+                                        for u, v in zip(x, y, strict=True))
+
+    for a in ("closer", "away", "next-to", "past"):
+        assert same(training_set(r0, a, demos, q), training_set(r1, a, demos, q))
+    without = {**demos, "around": [d for d in demos["around"] if d.id != "around/Session2/e05"]}
+    assert len(without["around"]) == len(demos["around"]) - 1
+    trusted = training_set(r1, "around", demos, q)
+    assert same(trusted, training_set(r0, "around", without, q))
+    assert not same(trusted, training_set(r0, "around", demos, q))
+
+
+@pytest.mark.slow
+def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monkeypatch):
+    """``l2p-bullet train around`` (so ``make bundles``) trains on the set without e05 once SHIPPED has
+    ``trusted_own``, records it, and its data digest is that of the demonstrations it used."""
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.learning import recipes as rc
+    from l2p_bullet.learning.train_progress import data_digest
+    from l2p_bullet.plugins.bundle import read_manifest
+
+    trusted = recipes(1, 1)["planner-graded-nogrid-trusted"]
+    monkeypatch.setattr(rc, "SHIPPED", rc.dataclasses.replace(rc.SHIPPED, name=trusted.name, trusted_own=True))
+    out = tmp_path / "around"
+    r = CliRunner().invoke(main, ["train", "around", "--ensemble", "1", "--epochs", "1", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    t = read_manifest(out)["training"]
+    demos = all_demos()
+    assert t["recipe"]["trusted_own"] is True
+    assert t["n_sequences"] == len(training_set(trusted, "around", demos, QSRConfig()))
+    assert t["n_sequences"] < len(training_set(recipes(1, 1)["planner-graded-nogrid"], "around", demos, QSRConfig()))
+    assert t["data_digest"] == data_digest(rc.own_trusted(trusted, "around", demos)) != data_digest(demos)
