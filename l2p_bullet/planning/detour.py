@@ -123,10 +123,11 @@ def _shortest_way(legal: np.ndarray, j0: int, goal: int,
 
 RETRIES = 8
 """Grid steps banned per yaw before that yaw is given up (:func:`around_route`). Why: the grid's cells are
-legal poses, but a straight move between two neighbouring cells can clip a bystander's corner, and until
-2026-11-27 one such step made the whole way at that yaw count as none (analysis chain/5021: a bystander 2.5
-blocks from a central anchor; a way round held at 15 degrees went round, the search then stalled at 0.55 of a
-turn)."""
+legal poses, but the world's swept test of a straight move between two neighbouring cells is conservative (a
+separating axis with the margin) and can reject it near a bystander's corner, and until 2026-11-27 one such
+step made the whole way at that yaw count as none: the fingerprint's bystander scene (benchmarks/fingerprint.py)
+had no way round for that reason alone and now has one of 10 corners. Not enough for analysis chain/5021 (its
+only way at one yaw, 15 degrees, passes a bystander through exactly such a step; banned, none is left)."""
 
 CHORD_CELLS = 12
 """At most this many cells of the way (60 degrees round at most) are one straight move."""
