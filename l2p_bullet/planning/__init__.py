@@ -18,6 +18,7 @@ better. The 2-D simulator only says which moves are legal; the judge (``judge/``
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Sequence
@@ -157,9 +158,13 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
         world = World2D(scene, mover, outlines=outlines, over=over)
         wrist = Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm)
-        try:  # around from afar: first a straight slide to where people start it (approach.py)
+        arcs = target is None and any(b.name not in anchors for b in world.obstacles)
+        routes: dict[tuple, np.ndarray | None] = {}  # a way round from each approach end asked about
+        way_round = functools.partial(_way_round, world, anchor_obj.pose, routes)
+        try:  # around from afar: first a straight slide to where people start it (approach.py); among
+            # bystanders to an end with a way round the anchor
             lead = approach.lead_in(world, anchor_obj.pose, AROUND_NEAR, AROUND_APPROACH, FRAME_STEP * world.size,
-                                    wrist, mover, anchor) if around else None
+                                    wrist, mover, anchor, way_round=way_round if arcs else None) if around else None
         except InfeasibleError as e:
             refused = e
             continue
@@ -172,9 +177,12 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             reach=AROUND_REACH * world.size if around else None,
         )
         problem.deadline = deadline
-        arcs = target is None and any(b.name not in anchors for b in world.obstacles)
-        route = (around_route(world, anchor_obj.pose, AROUND_NEAR, start=None if lead is None else lead[-1])
-                 if arcs and around else None)
+        if not (arcs and around):
+            route = None
+        elif lead is not None and tuple(lead[-1]) in routes:
+            route = routes[tuple(lead[-1])]
+        else:
+            route = around_route(world, anchor_obj.pose, AROUND_NEAR, start=None if lead is None else lead[-1])
         with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
             node, stopped, steps = _search(name, problem, bundle, target, arcs=arcs, route=route)
             if route is not None and stopped != "threshold":  # the search stalled: the way round as it is
@@ -240,6 +248,13 @@ def _follow(problem: Problem, route: np.ndarray, best, stopped: str):
     if node.progress <= best.progress:
         return best, stopped
     return node, ("threshold" if node.progress >= problem.threshold else stopped)
+
+
+def _way_round(world: World2D, anchor_pose: np.ndarray, routes: dict, end: np.ndarray) -> bool:
+    """Whether the 2-D world has a way round the anchor from ``end`` (detour.py); kept in ``routes``, so the
+    approach end's way is not searched twice."""
+    routes[tuple(end)] = around_route(world, anchor_pose, AROUND_NEAR, start=end)
+    return routes[tuple(end)] is not None
 
 
 def _rules(bundle) -> str | None:

@@ -20,6 +20,7 @@ the workspace) and the wrist's range for the grasp being planned.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -39,11 +40,22 @@ def approach_radii(approach_sides: float, near_sides: float) -> list[float]:
     return [approach_sides, *np.arange(approach_sides + RADIUS_STEP, near_sides - 0.05 + 1e-9, RADIUS_STEP).tolist()]
 
 
+WAY_TRIES = 8
+"""Legal slide ends (in the order above) asked whether a way round starts there, when the planner asks
+(:func:`lead_in`'s ``way_round``); the first legal end is taken when none of them has one."""
+
+
 def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach_sides: float, step: float,
-            wrist: Wrist | None = None, mover: str = "the mover", anchor: str = "the anchor") -> np.ndarray | None:
+            wrist: Wrist | None = None, mover: str = "the mover", anchor: str = "the anchor",
+            way_round: Callable[[np.ndarray], bool] | None = None) -> np.ndarray | None:
     """Frames (T0,3) of the straight slide from the mover's start to ``approach_sides`` blocks from the
     anchor, the start included; None when the mover already starts within ``near_sides`` blocks.
-    InfeasibleError ``far-around`` when no such slide is legal."""
+    InfeasibleError ``far-around`` when no such slide is legal.
+
+    ``way_round`` (end pose -> whether the 2-D world has a way round the anchor from there: detour.py): the
+    first of the first :data:`WAY_TRIES` legal ends from which it has one, else the first legal end. Why:
+    among bystanders the nearest legal end can lie in a pocket between the anchor and another block, from
+    which no move at all is legal (analysis chain/5044: the search ended at its first step, 0.01 of a turn)."""
     start = np.asarray(world.mover.pose, float)
     a = np.asarray(anchor_pose, float)[:2]
     rel = start[:2] - a
@@ -52,6 +64,7 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
         return None
     b0 = math.atan2(rel[1], rel[0])
     bearings = b0 + np.radians(AIM_OFFSETS_DEG)
+    first, tried = None, 0
     for sides in approach_radii(approach_sides, near_sides):
         r = sides * world.size
         ends = np.column_stack([a[0] + r * np.cos(bearings), a[1] + r * np.sin(bearings),
@@ -60,7 +73,14 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
             frames = np.vstack([start[None], segment_frames(start, end, step)])
             if wrist is not None and not wrist.fits(*wrist.span(frames[:, :2], frames[:, 2])):
                 continue
-            return frames
+            if way_round is None or way_round(end):
+                return frames
+            first = frames if first is None else first
+            tried += 1
+            if tried >= WAY_TRIES:
+                return first
+    if first is not None:
+        return first
     raise InfeasibleError(
         "far-around",
         f'"{mover}" starts {d0 / world.size:.2f} blocks from "{anchor}", and no straight slide brings it to '
@@ -69,4 +89,4 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
         {"start_blocks": round(d0 / world.size, 3), "near_blocks": near_sides, "approach_blocks": approach_sides})
 
 
-__all__ = ["lead_in", "approach_radii", "AIM_OFFSETS_DEG", "RADIUS_STEP"]
+__all__ = ["lead_in", "approach_radii", "AIM_OFFSETS_DEG", "RADIUS_STEP", "WAY_TRIES"]

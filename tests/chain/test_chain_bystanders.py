@@ -127,3 +127,45 @@ def test_around_from_afar_to_an_anchor_by_the_rim_with_a_bystander_at_its_side_i
     with pytest.raises(InfeasibleError) as e:
         feasibility.check(scene, "B", "C", "around")
     assert e.value.check == "blocked-around" and e.value.details["from_afar"] is True
+
+
+def test_around_from_afar_slides_to_where_there_is_a_way_round_not_into_a_pocket():
+    # chain/5044 (analysis seeds): A starts 5.3 blocks from C. The first legal end of the approach slide lay 6.7 mm
+    # from B, in a pocket from which no move is legal: the search ended at its first step and the arm swept 0.01 of
+    # a turn. The slide now ends where the 2-D world has a way round C (planning/detour.py), and the plan passes.
+    from l2p_bullet import planning
+    from l2p_bullet.judge import judge_for
+    from l2p_bullet.judge.rules import AROUND_APPROACH, AROUND_NEAR
+    from l2p_bullet.planning import approach
+    from l2p_bullet.planning.detour import around_route
+    from l2p_bullet.planning.problem import FRAME_STEP
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = chain_scenes(1, 5044)[0].scene
+    world, c = World2D(scene, "A"), scene.get("C").pose
+    nearest = approach.lead_in(world, c, AROUND_NEAR, AROUND_APPROACH, FRAME_STEP * world.size)
+    assert around_route(world, c, AROUND_NEAR, start=nearest[-1]) is None
+    bundle = registry.load("around")
+    plan = planning.plan(scene, "A", "C", bundle, seed=5044)
+    end = np.asarray(plan.extra["approach"]["to"])
+    assert not np.allclose(end, nearest[-1], atol=1e-4)
+    assert around_route(world, c, AROUND_NEAR, start=end) is not None
+    verdict = judge_for(bundle).judge(plan.path, plan.anchor_pose, plan.size)
+    assert verdict.success, verdict.reason
+
+
+def test_a_grid_step_the_world_rejects_is_avoided_not_the_end_of_the_way():
+    # detour._shortest_way never takes a banned step (around_route bans one whose straight move clips a corner)
+    from l2p_bullet.planning import detour
+
+    legal = np.zeros((8, 3), bool)
+    legal[:, 0] = legal[:, 2] = True  # two rings, joined only through the middle radius at bearing 4
+    legal[4, 1] = True
+    way = detour._shortest_way(legal, 0, 6)
+    assert way is not None and abs(way[-1][0]) >= 6
+    inner = detour._shortest_way(legal, 0, 6, {detour._edge((-6, 0), (-5, 0), 8)})
+    assert inner is not None and detour._edge((-6, 0), (-5, 0), 8) not in {
+        detour._edge(p, q, 8) for p, q in zip(inner, inner[1:], strict=False)}
+    walled = {detour._edge((k, 0), (k + 1, 0), 8) for k in range(-8, 8)} | {
+        detour._edge((k, 0), (k + 1, 1), 8) for k in range(-8, 8)} | {detour._edge((k + 1, 0), (k, 1), 8) for k in range(-8, 8)}
+    assert detour._shortest_way(legal, 0, 6, walled) is None

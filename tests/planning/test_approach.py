@@ -109,3 +109,29 @@ def test_the_arm_performs_around_from_afar_in_every_manner(tmp_path, verb):
     assert r.verdict["reason"].startswith("came within 4 blocks from 6.58")
     assert r.displacements_m["B"] < 0.001  # the anchor untouched
     assert r.plan.extra["approach"]["blocks"] == AROUND_APPROACH
+
+
+def test_among_bystanders_the_slide_ends_where_a_way_round_starts():
+    # lead_in's way_round: the first of the first WAY_TRIES legal ends it accepts; none accepted: the first legal
+    # end, as without it (so a start with no way round anywhere is planned as before, not refused)
+    from l2p_bullet.planning import approach
+    from l2p_bullet.planning.problem import FRAME_STEP
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = Scene.from_dict(FAR)
+    world, anchor = World2D(scene, "A"), scene.get("B").pose
+    step = FRAME_STEP * world.size
+    first = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step)
+    asked: list[np.ndarray] = []
+
+    def not_the_first(end: np.ndarray) -> bool:
+        asked.append(end)
+        return len(asked) > 2
+
+    chosen = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step, way_round=not_the_first)
+    assert len(asked) == 3 and np.allclose(asked[0], first[-1]) and np.allclose(chosen[-1], asked[2])
+    assert not np.allclose(chosen[-1], first[-1]) and world.path_free(chosen[[0, -1]])
+    asked.clear()
+    never = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step,
+                             way_round=lambda end: asked.append(end) is not None)
+    assert len(asked) == approach.WAY_TRIES and np.array_equal(never, first)
