@@ -66,6 +66,8 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
                 if best is None or len(cells) < best[0]:
                     best = (len(cells), corners)
                 break
+            if clipped < 0:  # the slide from the start to the way's first cell (checked above: not reached)
+                break
             banned.add(_edge(cells[clipped], cells[clipped + 1], per_turn))
     return None if best is None else best[1]
 
