@@ -27,13 +27,11 @@ import argparse
 import collections
 import json
 import math
-import shutil
 import time
-import traceback
 from pathlib import Path
 
 from bench_perform import SENTENCES
-from bench_robustness import COLORS, OUTCOMES, _failed_stage, print_table, run_jobs
+from bench_robustness import COLORS, OUTCOMES, classify, print_table, run_jobs
 
 SEED_BASE = 950_000
 DUCK = "pybullet_data:duck_vhacd.obj"
@@ -140,10 +138,9 @@ def _add_bystanders(objects: list, kinds: list[str], rng, radius: float = 0.25) 
 
 def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda") -> dict:
     """Perform ``action`` with ``arm`` on the object scene of ``seed`` (drawn inside that arm's workspace);
-    classify what happened."""
+    classify what happened (bench_robustness.classify)."""
     from l2p_bullet.core.scene import Workspace
     from l2p_bullet.embodiment import arm_plugins
-    from l2p_bullet.errors import InfeasibleError, L2PError
     from l2p_bullet.pipeline import perform
     from l2p_bullet.planning.feasibility import CHECKS
 
@@ -151,24 +148,8 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda"
     scene, kind, shape = object_scene(seed, radius)
     out = tmp / f"{action}-{seed}"
     row = {"action": action, "seed": seed, "kind": kind, "shape": shape, "objects": len(scene.objects)}
-    t = time.perf_counter()
-    try:
-        r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins, arm=arm)
-        d = r.to_dict()
-        row |= {"outcome": "success" if r.success else "unsuccessful", "reason": r.verdict.get("reason"),
-                "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0),
-                "bounded": bool(r.plan.extra.get("bounded"))}  # planning.CHECK_CAP ended its search
-    except InfeasibleError as e:
-        row |= {"outcome": "refused", "check": e.check, "named": e.check in CHECKS, "error": str(e)}
-    except L2PError as e:
-        stage = _failed_stage(out)
-        row |= {"outcome": "plan-failed" if stage in ("load", "plan") else "exec-failed", "stage": stage,
-                "error": f"{type(e).__name__}: {e}"}
-    except Exception as e:  # noqa: BLE001 - a crash is what this benchmark is looking for
-        row |= {"outcome": "crashed", "error": f"{type(e).__name__}: {e}", "traceback": traceback.format_exc()}
-    row["seconds"] = round(time.perf_counter() - t, 3)
-    shutil.rmtree(out, ignore_errors=True)
-    return row
+    return classify(row, out, lambda: perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False,
+                                              plugins=plugins, arm=arm), checks=CHECKS)
 
 
 def _worker(args: tuple[list[tuple[str, int]], str, str]) -> list[dict]:

@@ -34,7 +34,9 @@ import sys
 import tempfile
 import time
 import traceback
+from collections.abc import Callable, Collection
 from pathlib import Path
+from typing import Any
 
 from bench_perform import SENTENCES  # the same sentence per action as the end-to-end benchmark
 
@@ -126,21 +128,31 @@ def _add_bystanders(objects: list, n: int, rng) -> list | None:
 
 def run_one(action: str, seed: int, tmp: Path, plugins: list) -> dict:
     """Perform ``action`` on the stress scene of ``seed``; classify what happened."""
-    from l2p_bullet.errors import InfeasibleError, L2PError
     from l2p_bullet.pipeline import perform
 
     scene, kind = stress_scene(seed)
     out = tmp / f"{action}-{seed}"
     row = {"action": action, "seed": seed, "kind": kind, "objects": len(scene.objects)}
+    return classify(row, out, lambda: perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False,
+                                              plugins=plugins))
+
+
+def classify(row: dict, out: Path, perform_it: Callable[[], Any], checks: Collection[str] | None = None) -> dict:
+    """Run ``perform_it`` (one ``perform`` writing to ``out``) and add to ``row`` what happened (the
+    outcome, its details, the seconds it took); ``out`` is removed. With ``checks`` a refusal also says
+    whether it named one of them (``named``). Shared by this benchmark and bench_objects.py."""
+    from l2p_bullet.errors import InfeasibleError, L2PError
+
     t = time.perf_counter()
     try:
-        r = perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False, plugins=plugins)
+        r = perform_it()
         d = r.to_dict()
         row |= {"outcome": "success" if r.success else "unsuccessful", "reason": r.verdict.get("reason"),
                 "disturbed": d["disturbed"], "max_displacement_m": max(r.displacements_m.values(), default=0.0),
                 "bounded": bool(r.plan.extra.get("bounded"))}  # planning.CHECK_CAP ended its search
     except InfeasibleError as e:
-        row |= {"outcome": "refused", "check": e.check, "error": str(e)}
+        row |= {"outcome": "refused", "check": e.check,
+                **({"named": e.check in checks} if checks is not None else {}), "error": str(e)}
     except L2PError as e:
         stage = _failed_stage(out)
         row |= {"outcome": "plan-failed" if stage in ("load", "plan") else "exec-failed", "stage": stage,
