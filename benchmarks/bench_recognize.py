@@ -51,16 +51,17 @@ def recognisers(folders: dict[str, Path]) -> list[Recogniser]:
 def ramp_best(tracks: Tracks, models: list[Recogniser], rule: str) -> Reading:
     """The best reading by a tried rule that reads the whole curve (docs/learning.md, recognition's third
     pass; not adopted): ``mse``/``mae``, the lowest mean squared/absolute distance of the resampled curve to
-    the arc-length ramp its training label follows; ``final-mae``, the highest final minus that distance."""
-    scored = []
-    for order, r in enumerate(models):
-        for mi, m in enumerate(tracks.moved()):
-            for j, b in enumerate(n for n in tracks.poses if n != m):
-                p, s = r.model.resampled(tracks.poses[m], tracks.poses[b], tracks.sizes[m], viewer=tracks.viewer)
-                gap = np.abs(p - s)
-                key = {"mse": np.mean(gap ** 2), "mae": np.mean(gap), "final-mae": np.mean(gap) - p[-1]}[rule]
-                scored.append((float(key), order, mi, j, Reading(r.action, r.phrase, m, (b,), float(p[-1]))))
-    return min(scored, key=lambda t: t[:4])[-1]
+    the arc-length ramp its training label follows; ``final-mae``, the highest final minus that distance.
+    The readings are :func:`recognize`'s own (ties keep its order); only their ranking differs."""
+    model = {r.action: r.model for r in models}
+
+    def key(reading: Reading) -> float:
+        p, s = model[reading.action].resampled(tracks.poses[reading.mover], tracks.poses[reading.anchors[0]],
+                                               tracks.sizes[reading.mover], viewer=tracks.viewer)
+        gap = np.abs(p - s)
+        return float({"mse": np.mean(gap ** 2), "mae": np.mean(gap), "final-mae": np.mean(gap) - p[-1]}[rule])
+
+    return min(recognize(tracks, models).readings, key=key)
 
 
 def evaluate_split(models: list[Recogniser], test: str, rule: str = "final") -> dict:
