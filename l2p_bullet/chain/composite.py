@@ -129,7 +129,7 @@ def choose_axis(scene: Scene, stay: str, movers: list[str], recipe: Recipe) -> n
             xy = np.asarray(base.xy) + k * pitch * u
             yaw = base.yaw if recipe.aligned else a
             foot = scene.get(m).footprint(np.array([xy[0], xy[1], yaw]))
-            room = min(room, scene.workspace.radius - float(np.hypot(*(xy - np.asarray(scene.workspace.center)))))
+            room = min(room, float(scene.workspace.clearance(xy)[0]))  # to the disk's rim, or an arm's ring
             if not scene.table.contains(foot):
                 conflicts += 100
             for o in scene.objects:

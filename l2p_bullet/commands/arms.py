@@ -31,7 +31,8 @@ def arms_cmd(as_json: bool, check: bool) -> None:
             s = a.spec
             row |= {"description": s.description, "urdf": s.urdf, "arm_joints": len(s.arm_joints),
                     "finger_joints": len(s.finger_joints), "reach_m": list(s.reach), "mount": list(s.mount),
-                    "workspace_radius_m": arm_plugins.fit_workspace(Workspace(), s).radius,
+                    "workspace_radius_m": round(arm_plugins.fit_workspace(Workspace(), s).inner_radius, 4),
+                    "workspace": arm_plugins.fit_workspace(Workspace(), s).to_dict(),
                     "gripper_opening_m": s.gripper_opening, "wrist_limit_rad": s.wrist_limit,
                     "payload_kg": s.payload}
         if check and a.ok:
@@ -48,12 +49,12 @@ def arms_cmd(as_json: bool, check: bool) -> None:
     w = max((len(r["name"]) for r in rows), default=4)
     for r in good:
         click.echo(f'{r["name"]:<{w}}  {r["arm_joints"]} joints  reach {r["reach_m"][0]:.2f}-{r["reach_m"][1]:.2f} m  '
-                   f'workspace r={r["workspace_radius_m"]:.2f} m  opens {r["gripper_opening_m"] * 100:.1f} cm  '
+                   f'workspace {_words(r["workspace"])}  opens {r["gripper_opening_m"] * 100:.1f} cm  '
                    f'carries {r["payload_kg"]:g} kg  {r["package"]} {r["package_version"]}  {r["description"]}')
         c = r.get("check")
         if c is not None and "measured_reach_m" in c:
             click.echo(f'{"":<{w}}  check: reaches {c["measured_reach_m"][0]:.2f}-{c["measured_reach_m"][1]:.2f} m '
-                       f'(workspace r={c["measured_workspace_radius_m"]:.2f} m), fingertips '
+                       f'(workspace {_words(c["measured_workspace"])}), fingertips '
                        f'{c["fingertip_drop_m"] * 1000:.1f} mm below the tool point: ' + ("OK" if r["ok"] else r["error"]))
     bad = [r for r in rows if not r["ok"]]
     if bad:
@@ -105,3 +106,8 @@ def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None
 
 
 COMMANDS.append(new_arm_cmd)
+
+
+def _words(ws: dict) -> str:
+    """A workspace's JSON (Workspace.to_dict) in a listing: the disk's radius, and the ring cutting it."""
+    return f'r={ws["r"]:.2f} m' + (f' cut to {ws["near"]:.2f}-{ws["far"]:.2f} m from the base' if "near" in ws else "")

@@ -6,7 +6,10 @@ centre, +x pointing away from the robot's base, +y to the robot's left, yaw in r
 The robot base stands off the table's near edge at ``ROBOT_BASE_XY``: a Panda with its gripper pointing
 down reaches grasp points at table height from about 0.25 m to 0.78 m from its base, and a disk of
 0.25 m radius centred 0.53 m in front of the base fits inside that ring (DESIGN.md, reach note). That
-disk is the workspace: every block centre, and every point of a planned path, must lie inside it.
+disk is the workspace: every block centre, and every point of a planned path, must lie inside it. For an
+arm whose reach ring does not hold the disk (the KUKA iiwa's), the workspace is the disk intersected with
+that ring, a region with a bite out of its near side: ``core/workspace.py`` (:class:`Workspace`, imported
+from here) holds its geometry, and ``embodiment/arm_plugins.py: fit_workspace`` sets the ring.
 
 A block's footprint is its outline on the table: a cube's is its square, rotated by its yaw, written
 down directly (importing trimesh to derive it from a box mesh cost 0.3-0.5 s of every command's start;
@@ -31,6 +34,7 @@ from .contracts import load_json_file
 from .geometry import polygons_overlap
 from .shapes import MAX_FRICTION, MAX_MASS
 from .shapes import is_number as _is_number
+from .workspace import Workspace
 
 # Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
 COLORS: dict[str, tuple[float, float, float, float]] = {
@@ -73,20 +77,6 @@ class Table:
     def contains(self, points: np.ndarray) -> bool:
         p = np.asarray(points, dtype=float).reshape(-1, 2)
         return bool(np.all(np.abs(p[:, 0]) <= self.half_x + 1e-9) and np.all(np.abs(p[:, 1]) <= self.half_y + 1e-9))
-
-
-@dataclass(frozen=True)
-class Workspace:
-    """The disk the gripper reaches pointing down at block height (see the module docstring)."""
-
-    center: tuple[float, float] = (0.0, 0.0)
-    radius: float = 0.25
-
-    def contains(self, points: np.ndarray, margin: float = 0.0) -> np.ndarray:
-        """Per point: inside the disk shrunk by ``margin``."""
-        p = np.asarray(points, dtype=float).reshape(-1, 2)
-        d = np.hypot(p[:, 0] - self.center[0], p[:, 1] - self.center[1])
-        return d <= self.radius - margin + 1e-9
 
 
 _UNIT_SQUARE = np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]])
@@ -228,7 +218,7 @@ class Scene:
             if not self.workspace.contains(np.array(o.xy))[0]:
                 raise SceneError(
                     f'object "{o.name}" at ({_m(o.xy[0])}, {_m(o.xy[1])}) is outside the arm\'s workspace '
-                    f"(a disk of radius {self.workspace.radius} m around {self.workspace.center})"
+                    f"({self.workspace.describe()})"
                 )
 
         for i, a in enumerate(self.objects):

@@ -6,8 +6,9 @@ others keep working; an unknown name is a one-line :class:`UnknownArmError` with
 holds data only (numpy at most), so loading every arm to list them costs milliseconds and runs no simulator.
 
 What the arm reaches decides where blocks may stand: its ``reach`` ring (measured by :func:`measure_reach`,
-``l2p-bullet arms --check``) must hold the scene's workspace disk; :func:`fit_scene` shrinks the disk about
-its centre to fit the ring, and refuses a scene with a block outside it, naming the arm.
+``l2p-bullet arms --check``) decides it: where the ring does not hold the scene's workspace disk, the
+workspace is the disk intersected with the ring (:func:`fit_workspace`, ``core/workspace.py``), and
+:func:`fit_scene` refuses a scene with a block outside it, naming the arm and its ring.
 """
 
 from __future__ import annotations
@@ -114,32 +115,39 @@ def get(name: str | ArmSpec | None = None) -> ArmSpec:
 
 # --- where the arm reaches ----------------------------------------------------------------------------
 def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
-    """The workspace disk shrunk about its centre until it lies inside the arm's reach ring around its mount
-    (unchanged when it already does)."""
+    """The workspace an arm gets: unchanged when its reach ring around its mount holds the whole disk (the Panda,
+    the xArm6), else the disk intersected with the ring (``Workspace.ring``; the KUKA iiwa, issue 22). Before
+    2026-11-27 the disk was shrunk about its centre until it fitted the ring (0.17 m for the KUKA)."""
     base_xy = spec.mount[:2]
     d = float(math.hypot(workspace.center[0] - base_xy[0], workspace.center[1] - base_xy[1]))
     near, far = spec.reach
     radius = min(workspace.radius, far - d, d - near)
     if radius >= workspace.radius:
         return workspace
-    return Workspace(workspace.center, round(max(radius, 0.0), 4))
+    return replace(workspace, ring=(float(base_xy[0]), float(base_xy[1]), float(near), float(far)))
 
 
 def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
-    """``scene`` with its workspace fitted to the arm (:func:`fit_workspace`); SceneError naming the arm when a
-    block stands outside what the arm reaches."""
+    """``scene`` with its workspace fitted to the arm (:func:`fit_workspace`); SceneError naming the arm and its ring
+    when a block stands outside what the arm reaches."""
     ws = fit_workspace(scene.workspace, spec)
     if ws == scene.workspace:
         return scene
-    if ws.radius <= 0.0:
+    if ws.empty:
         raise SceneError(f'the arm "{spec.name}" reaches the table only {spec.reach[0]:.2f}-{spec.reach[1]:.2f} m '
                          f"from its base, which leaves nothing of the workspace around {scene.workspace.center}")
+    base = np.array(ws.ring[:2])
     for o in scene.objects:
         if not ws.contains(np.array(o.xy))[0]:
+            r = float(np.hypot(*(np.asarray(o.xy) - base)))
+            if spec.reach[0] <= r <= spec.reach[1]:  # in the ring but off the disk (an unvalidated scene)
+                raise SceneError(f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is outside the workspace of '
+                                 f'the arm "{spec.name}" ({ws.describe()})')
+            way = "outward" if r < spec.reach[0] else "inward"
             raise SceneError(
-                f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is beyond the reach of the arm "{spec.name}" '
-                f"({spec.reach[0]:.2f}-{spec.reach[1]:.2f} m from its base: a workspace of radius {ws.radius} m "
-                f"around {ws.center}); move it inward or choose another arm (l2p-bullet arms)")
+                f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is {r:.2f} m from the base of the arm "{spec.name}", '
+                f"which reaches the table only {spec.reach[0]:.2f}-{spec.reach[1]:.2f} m from its base; move it {way} "
+                f"or choose another arm (l2p-bullet arms)")
     return replace(scene, workspace=ws)
 
 
@@ -241,11 +249,38 @@ def measure_hand(spec: ArmSpec) -> tuple[float, tuple[tuple[float, float, float]
         return round(robot.drop, 4), tuple((d, round(hx + 5e-5, 4), round(hy + 5e-5, 4)) for d, hx, hy in prof)
 
 
+def region_probes(ws: Workspace, margin: float = 0.005, n: int = 24) -> np.ndarray:
+    """Points (K,2) the reach test asks for inside the workspace: ``margin`` in from its boundary, ``n`` along each
+    of its arcs and its corners, and its centre when inside."""
+    pts = [arc[np.linspace(0, len(arc) - 1, max(2, n * len(arc) // 360)).astype(int)] for arc in ws.outline(360)]
+    pts = np.concatenate([*pts, np.array([ws.center])]) if pts else np.array([ws.center])
+    return np.unique(np.round(ws.nearest_inside(pts, margin), 4), axis=0)
+
+
+def region_unreached(spec: ArmSpec, ws: Workspace) -> list[list[float]]:
+    """The points of :func:`region_probes` the tool does not reach pointing down at every :data:`REACH_HEIGHTS`
+    with the wrist at 0 (what ``measure_reach`` walks along three azimuths, here over the region itself)."""
+    from .sim.robot import Kinematics
+
+    kin = Kinematics(spec, spec.mount)
+    base = np.asarray(spec.mount[:2], float)
+    try:
+        out = []
+        for p in region_probes(ws):
+            r, az = float(np.hypot(*(p - base))), float(math.atan2(p[1] - base[1], p[0] - base[0]))
+            if not all(reaches(kin, spec, r, az, z, 0.0) for z in REACH_HEIGHTS):
+                out.append([round(float(p[0]), 4), round(float(p[1]), 4)])
+        return out
+    finally:
+        kin.close()
+
+
 def check(spec: ArmSpec) -> dict:
     """``l2p-bullet arms --check`` for one arm: load it with its collision shapes (missing meshes fail here),
     measure its reach ring and hand profile, and compare them with what its spec declares. ``ok`` False when
-    the measured ring does not hold the workspace the spec promises or the stored profile is narrower than
-    the measured one (the planner would let the hand hit a block)."""
+    the measured ring does not hold the workspace the spec promises (the largest disk about the centre, and
+    for a ring-cut workspace the ring itself and every probe point of the region, :func:`region_unreached`) or
+    the stored profile is narrower than the measured one (the planner would let the hand hit a block)."""
     from ..core.scene import Workspace
     from ..errors import L2PError
 
@@ -257,15 +292,26 @@ def check(spec: ArmSpec) -> dict:
         return out | {"ok": False, "error": f"cannot load or move the arm: {e}"[:300]}
     promised = fit_workspace(Workspace(), spec)
     measured = fit_workspace(Workspace(), replace(spec, reach=(near, far)))
+    unreached = region_unreached(spec, promised) if promised.ring is not None else []
     stored = dict((d, (hx, hy)) for d, hx, hy in spec.hand_profile)
     short = max((max(mx - stored[d][0], my - stored[d][1]) for d, mx, my in profile if d in stored), default=0.0)
-    out |= {"measured_reach_m": [near, far], "workspace_radius_m": promised.radius,
-            "measured_workspace_radius_m": measured.radius, "fingertip_drop_m": drop,
-            "profile_short_by_m": round(max(short, 0.0), 4)}
+    out |= {"measured_reach_m": [near, far], "workspace_radius_m": round(promised.inner_radius, 4),
+            "measured_workspace_radius_m": round(measured.inner_radius, 4), "fingertip_drop_m": drop,
+            "profile_short_by_m": round(max(short, 0.0), 4),
+            "workspace": promised.to_dict(), "workspace_area_m2": round(promised.area(), 4),
+            "measured_workspace": measured.to_dict(), "measured_workspace_area_m2": round(measured.area(), 4),
+            "region_points_unreached": unreached}
     problems_found = []
-    if measured.radius + 0.011 < promised.radius:
+    if measured.inner_radius + 0.011 < promised.inner_radius:
         problems_found.append(f"it reaches only {near:.2f}-{far:.2f} m from its base: a workspace of radius "
-                              f"{measured.radius} m, not the {promised.radius} m its reach promises")
+                              f"{round(measured.inner_radius, 4)} m, not the {round(promised.inner_radius, 4)} m its "
+                              "reach promises")
+    elif promised.ring is not None and (near > spec.reach[0] + 0.011 or far < spec.reach[1] - 0.011):
+        problems_found.append(f"it reaches only {near:.2f}-{far:.2f} m from its base, not the "
+                              f"{spec.reach[0]:.2f}-{spec.reach[1]:.2f} m its spec declares (its workspace is cut to that ring)")
+    if unreached:
+        problems_found.append(f"it does not reach {len(unreached)} point(s) of its workspace, e.g. "
+                              f"({unreached[0][0]:.3f}, {unreached[0][1]:.3f})")
     if not spec.hand_profile:
         problems_found.append("its spec has no hand profile (the planner would not see the hand beside a block)")
     elif short > 0.002:

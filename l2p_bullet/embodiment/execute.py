@@ -64,8 +64,10 @@ MAX_YAW_RAD = 1e4
 
 def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
     """Finite numbers, sane yaws and every waypoint inside the workspace: checked on the waypoints
-    *before* the path is densified (the workspace is a disk, so a path between waypoints inside it stays
-    inside). A waypoint 1e5 m away used to ask for gigabytes of dense points before being refused."""
+    *before* the path is densified (the disk is convex, so a path between waypoints inside it stays inside;
+    with an arm's reach ring each straight move is checked against the ring's hole too,
+    ``Workspace.path_inside``). A waypoint 1e5 m away used to ask for gigabytes of dense points before being
+    refused."""
     try:
         p = np.asarray(path, dtype=float)
     except (TypeError, ValueError, OverflowError) as e:
@@ -77,12 +79,16 @@ def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
         raise PathError(f'the path of "{mover}" has a number that is not finite at waypoint {k}')
     if np.abs(p[:, 2]).max() > MAX_YAW_RAD:
         raise PathError(f'the path of "{mover}" turns the block by more than {MAX_YAW_RAD:g} rad (a unit mistake?)')
-    inside = scene.workspace.contains(p[:, :2])
-    if not inside.all():
-        k = int(np.argmin(inside))
-        r = float(np.hypot(*(p[k, :2] - np.array(scene.workspace.center))))
+    ws = scene.workspace
+    k = ws.path_inside(p)
+    if k is not None and ws.ring is None:
+        r = float(np.hypot(*(p[k, :2] - np.array(ws.center))))
         raise PathError(f'the path of "{mover}" leaves the workspace at waypoint {k} ({p[k, 0]:.4g}, {p[k, 1]:.4g}), '
-                        f"{r:.4g} m from its centre (radius {scene.workspace.radius} m)")
+                        f"{r:.4g} m from its centre (radius {ws.radius} m)")
+    if k is not None:
+        what = f"at waypoint {k}" if k == 0 or not ws.contains(p[k, :2])[0] else f"between waypoints {k - 1} and {k}"
+        raise PathError(f'the path of "{mover}" leaves the workspace {what} ({p[k, 0]:.4g}, {p[k, 1]:.4g}): '
+                        f"it is {ws.describe()}")
 
 
 def checked_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
@@ -102,7 +108,8 @@ def checked_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
         k = int(np.argmin(inside))
         r = float(np.hypot(*(dense[k, :2] - np.array(scene.workspace.center))))
         raise PathError(f'the path of "{mover}" leaves the workspace at ({dense[k, 0]:.3f}, {dense[k, 1]:.3f}), '
-                        f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)")
+                        + (f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)" if scene.workspace.ring is None
+                           else f"outside {scene.workspace.describe()}"))
     hit = reach.blocked_by(scene, mover, dense, None, hand=False)  # the block itself
     if hit is not None:
         pose = dense[hit[1]]

@@ -6,7 +6,8 @@ The demonstrations live in per-session table frames with 0.15 m blocks; only the
 the scene's anchor. The anchor's own drift in the recording (people nudge it) is thereby ignored.
 
 Two documented fix-ups make a real human motion executable on a small table (see docs/embodiment.md):
-- points outside the arm's workspace are pulled radially back onto its edge;
+- points outside the arm's workspace are pulled radially back onto its edge (with an arm's reach ring,
+  ``core/workspace.py``, onto the nearest point of the region, which is the radial pull for the disk);
 - points where the scaled mover would touch the anchor (motion-capture noise, or a person sliding the
   block along its neighbour) are pushed straight away from the anchor until ``GRIPPER_MARGIN`` clears.
 Both are reported in :class:`Retargeted` so a caller can see how much of the motion was changed.
@@ -104,14 +105,18 @@ def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, m
     clamped = pushed = 0
     limit = ws.radius - 1e-4
     for k in range(len(fixed)):
-        d = fixed[k, :2] - centre
-        r = float(np.hypot(*d))
-        if r > limit:
-            fixed[k, :2] = centre + d * (limit / r)
+        if ws.ring is None:  # the disk: the radial pull, as always
+            d = fixed[k, :2] - centre
+            r = float(np.hypot(*d))
+            if r > limit:
+                fixed[k, :2] = centre + d * (limit / r)
+                clamped += 1
+        elif not ws.contains(fixed[k, :2], 1e-4)[0]:
+            fixed[k, :2] = ws.nearest_inside(fixed[k, :2], 1e-4)[0]
             clamped += 1
         pushed += _push_out(fixed[k], m_obj, a_obj)
     fixed, inserted = _clear_segments(fixed, m_obj, a_obj)
-    if not ws.contains(fixed[:, :2]).all():
+    if ws.path_inside(fixed) is not None:  # a point pushed out again, or a move cutting the ring's hole
         raise PathError("the motion cannot be fitted into the workspace around the anchor "
                         f'"{anchor_name}"; move the anchor nearer the table centre')
     orig = motion_resample_like(path, fixed)

@@ -132,8 +132,8 @@ class Plan2DEnv(gym.Env):
 
     # --- helpers -------------------------------------------------------------------------------
     def _illegal(self, target: np.ndarray) -> str | None:
-        if not bool(self.world2d.inside(target[:2])):
-            return "workspace"
+        if not bool(self.world2d.workspace.segments_inside(self.pose[:2], target[None, :2])[0]):
+            return "workspace"  # the end outside, or (an arm's reach ring) the move through the ring's hole
         if not bool(self.world2d.moves_free(self.pose, target[None])[0]):
             return "collision"
         return None
@@ -176,7 +176,10 @@ def _draw(scene: Scene, mover: str, path: np.ndarray, pose: np.ndarray, px: int 
     canvas = FigureCanvasAgg(fig)
     ax = fig.add_axes((0, 0, 1, 1))
     r = scene.workspace.radius
-    ax.add_patch(matplotlib.patches.Circle(scene.workspace.center, r, fill=False, color="0.6"))
+    if scene.workspace.ring is None:
+        ax.add_patch(matplotlib.patches.Circle(scene.workspace.center, r, fill=False, color="0.6"))
+    for arc in scene.workspace.outline() if scene.workspace.ring is not None else []:
+        ax.plot(arc[:, 0], arc[:, 1], color="0.6", lw=1)
     for o in scene.objects:
         fp = o.footprint(pose if o.name == mover else None)
         ax.fill(fp[:, 0], fp[:, 1], color=COLORS[o.color][:3])

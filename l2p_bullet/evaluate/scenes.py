@@ -169,6 +169,8 @@ def add_bystanders(scene: Scene, k: int, seed: int) -> Scene:
         for _ in range(2000):
             r, a = (ws.radius - size / 2) * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
             xy = (ws.center[0] + r * math.cos(a), ws.center[1] + r * math.sin(a))
+            if ws.ring is not None and not ws.contains(np.array(xy), size / 2)[0]:
+                continue  # an arm's reach ring: drawn in the disk, kept when inside the ring too (rejection)
             if all(math.hypot(xy[0] - o.xy[0], xy[1] - o.xy[1]) >= BYSTANDER_CLEARANCE * max(size, o.size)
                    for o in objects):
                 objects.append(SceneObject(names[i], colors[i], size, xy, float(rng.uniform(0, math.pi / 2))))

@@ -10,9 +10,10 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   another object (taller blocks too close beside a small one: ``embodiment.reach``).
 - ``boxed-in``: no move at all is legal from the start: every short slide (72 directions) and every
   turn in place runs into another object or out of the workspace.
-- ``room-around``: the mover's centre must stay in the workspace disk, so around an anchor near the
-  disk's rim the directions it can take around the anchor cover less than the 0.8 turn "around" needs
-  (even passing as close as two blocks' inscribed circles allow).
+- ``room-around``: the mover's centre must stay in the workspace, so around an anchor near the disk's rim
+  (or the edge of an arm's reach ring, ``core/workspace.py``) the directions it can take around the anchor
+  cover less than the 0.8 turn "around" needs (even passing as close as two blocks' inscribed circles allow:
+  along each bearing, whether the ray from that distance on meets the workspace at all, exactly).
 - ``far-around`` (raised by the planner, ``planning/approach.py``): the mover starts farther from the anchor
   than ``near`` blocks and no straight slide (at its yaw, within the wrist's range, clear of every object
   and inside the workspace) brings it to where "around" is planned from. Before 2026-11-26 every start
@@ -23,7 +24,8 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   From afar (farther than ``near``), the rule reads "around" from the first frame within ``near`` on, so what
   counts is the way round, one way, from a legal pose where the mover can first come that near (an anchor
   near the rim is reachable from its inward side only, and its way round is cut at the rim, 2026-11-27).
-- ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now.
+- ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now
+  (the farthest point measured exactly, ``Workspace.farthest_from``).
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
   squares' centres are never nearer than the sum of their half sides plus the clearance the planner keeps
   between them (the world's margin, or the gap at the start where that is smaller: world2d.py's touching
@@ -135,15 +137,19 @@ def _room_around(scene: Scene, mover: str, anchor: str) -> None:
     rho_min = nearest_centres(m, a)  # centres never closer than the half sides' sum
     theta = np.linspace(-math.pi, math.pi, 1440, endpoint=False)
     u = np.column_stack([np.cos(theta), np.sin(theta)])
-    rho = np.maximum(rho_min, -(u @ rel))  # the nearest point to the disk's centre along each bearing
-    ok = np.linalg.norm(rel + rho[:, None] * u, axis=1) <= ws.radius + 1e-9
+    if ws.ring is None:  # the disk's closed form (what the Panda's refusals have always used)
+        rho = np.maximum(rho_min, -(u @ rel))  # the nearest point to the disk's centre along each bearing
+        ok = np.linalg.norm(rel + rho[:, None] * u, axis=1) <= ws.radius + 1e-9
+    else:  # disk and ring: the ray's intervals, the hole cut out (Workspace.rays_meet)
+        ok = ws.rays_meet(a.xy, u, rho_min)
     arc = _longest_circular_run(ok) * 2 * math.pi / len(theta)
     if arc < AROUND_TURNS * 2 * math.pi - 2 * (2 * math.pi / len(theta)):
         raise InfeasibleError(
             "room-around",
             f'no room to move "{mover}" around "{anchor}": at {np.linalg.norm(rel):.3f} m from the workspace\'s '
             f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
-            f"the workspace (radius {ws.radius} m); around needs {AROUND_TURNS * 360:.0f} deg",
+            f"the workspace ({f'radius {ws.radius} m' if ws.ring is None else ws.describe()}); around needs "
+            f"{AROUND_TURNS * 360:.0f} deg",
             {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURNS * 360})
 
 
@@ -165,11 +171,16 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
                           np.sort(np.round(world.mover.outline, 9), axis=0))  # a square looks the same a quarter turn on
     t, r, y = np.meshgrid(bearings, radii, np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg)), indexing="ij")
     poses = np.column_stack([a.xy[0] + (r * np.cos(t)).ravel(), a.xy[1] + (r * np.sin(t)).ravel(), y.ravel()])
-    centre_d = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1)
-    ok = centre_d <= ws.radius + dr + 1e-9
     # from afar (below): a pose is within half a step of radius and half a bearing step *at its radius* of a grid pose
     along = (r.ravel() + dr) * math.radians(bearing_deg) / 2
-    ok_far = centre_d <= ws.radius + dr + along + 1e-9
+    if ws.ring is None:  # the disk's closed form
+        centre_d = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1)
+        ok = centre_d <= ws.radius + dr + 1e-9
+        ok_far = centre_d <= ws.radius + dr + along + 1e-9
+    else:  # a grid pose within the slack of the region (its clearance's size never exceeds its distance to it)
+        clear = ws.clearance(poses[:, :2])
+        ok = clear >= -dr - 1e-9
+        ok_far = clear >= -(dr + along) - 1e-9
     reach_m = float(np.linalg.norm(world.mover.outline, axis=1).max())
     slack = dr + reach_m * dyaw  # how much the gap can change within half a grid step
     wide = slack + outer * math.radians(bearing_deg) / 2  # ... and within half a bearing step, at the outer radius
@@ -263,7 +274,10 @@ def _entry_sweep(cells: np.ndarray, entries: list[tuple[int, int]]) -> int:
 def _room_away(scene: Scene, mover: str, anchor: str) -> None:
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy)))
-    farthest = ws.radius + float(np.hypot(*(np.asarray(a.xy) - ws.center)))
+    if ws.ring is None:  # the disk's closed form
+        farthest = ws.radius + float(np.hypot(*(np.asarray(a.xy) - ws.center)))
+    else:
+        farthest = ws.farthest_from(a.xy)[0]
     if farthest < d0 + AWAY_GAIN * m.size - 1e-9:
         raise InfeasibleError(
             "room-away",

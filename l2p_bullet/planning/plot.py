@@ -50,9 +50,11 @@ def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -
 
     draw.rectangle(box, outline=(0, 0, 0, 255), width=SCALE)
     ang = np.linspace(0, 2 * np.pi, 97)
-    circle = to_px(np.column_stack([ws.center[0] + ws.radius * np.cos(ang), ws.center[1] + ws.radius * np.sin(ang)]))
-    for a, b in zip(circle[0::2], circle[1::2], strict=False):  # dashed
-        draw.line([a, b], fill=(128, 128, 128, 255), width=SCALE)
+    circle = np.column_stack([ws.center[0] + ws.radius * np.cos(ang), ws.center[1] + ws.radius * np.sin(ang)])
+    for arc in [circle] if ws.ring is None else ws.outline(96):  # an arm's reach ring: the region's arcs
+        pts = to_px(arc)
+        for a, b in zip(pts[0::2], pts[1::2], strict=False):  # dashed
+            draw.line([a, b], fill=(128, 128, 128, 255), width=SCALE)
     for o in scene.objects:
         if o.name == plan.mover:
             continue

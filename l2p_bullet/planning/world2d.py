@@ -16,9 +16,11 @@ Rules of the world (the same ones the arm obeys when it executes the path):
 - A mover that starts closer than the margin to an object (blocks placed touching) may still move, as
   long as no move brings it closer to that object than it was where the move began: the margin of a move
   is the smaller of the margin and the gap at its start.
-- A move is rejected when the grasp point (the mover's centre) leaves the workspace disk, the region
-  the arm reaches pointing down (``scene.Workspace``); the disk is convex, so checking a straight move's
-  end points suffices.
+- A move is rejected when the grasp point (the mover's centre) leaves the workspace, the region the arm
+  reaches pointing down (``core/workspace.py``). The disk is convex, so for it checking a straight move's
+  end points suffices; an arm whose reach ring bites into the disk (the KUKA iiwa's, issue 22) makes the
+  region non-convex, and a move must also keep its closest approach to the arm's base outside the ring's
+  hole (``Workspace.segments_inside``).
 - Moves are interpolated at a given speed into frames (one frame every ``step`` metres of travel, or
   every ``rot_step`` radians of turn, whichever needs more), so a path can be scored by a progress
   model that reads pose sequences.
@@ -107,14 +109,15 @@ class World2D:
         self._groups = list(groups.values())
         self._over = np.array([b.name in over for b in self.obstacles], bool)
         ws = scene.workspace
+        self.workspace = ws
         self.center = np.array(ws.center, float)
-        self.radius = float(ws.radius)
+        self.radius = float(ws.radius)  # the disk's (a policy feature, planning/policy.py), ring or not
 
     # --- legality -------------------------------------------------------------------------------
     def inside(self, xy: np.ndarray) -> np.ndarray:
-        """Per point (..., 2): the grasp point lies in the workspace disk."""
-        d = np.linalg.norm(np.asarray(xy, float) - self.center, axis=-1)
-        return d <= self.radius + 1e-9
+        """Per point (..., 2): the grasp point lies in the workspace."""
+        xy = np.asarray(xy, float)
+        return self.workspace.contains(xy).reshape(xy.shape[:-1])
 
     def gaps(self, pose: np.ndarray) -> np.ndarray:
         """The mover's gap (m, separating-axis) to each obstacle at ``pose``, with that obstacle's outline."""
@@ -130,7 +133,7 @@ class World2D:
         """
         ends = np.asarray(ends, float).reshape(-1, 3)
         start = np.asarray(start, float)
-        ok = self.inside(ends[:, :2]) & bool(self.inside(start[:2]))
+        ok = self.workspace.segments_inside(start[:2], ends[:, :2])  # the ring's hole: not just the end points
         if not self.obstacles or not ok.any():
             return ok
         # cheap pre-test: a move whose centre line stays farther from every obstacle than the two bounding

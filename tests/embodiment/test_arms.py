@@ -47,12 +47,20 @@ def test_a_spec_whose_fields_disagree_is_reported():
 def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refused_naming_the_arm():
     assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace()  # the default is untouched
     assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace()
-    kuka = arm_plugins.fit_workspace(Workspace(), KUKA_IIWA)
-    assert kuka.center == (0.0, 0.0) and kuka.radius == pytest.approx(0.17)
+    kuka = arm_plugins.fit_workspace(Workspace(), KUKA_IIWA)  # the disk cut by the KUKA's ring (issue 22)
+    assert kuka.center == (0.0, 0.0) and kuka.radius == 0.25 and kuka.ring == (-0.6, 0.0, 0.43, 0.77)
+    assert kuka.inner_radius == pytest.approx(0.17)  # what it had before: the disk shrunk into the ring
+    # (0.0, 0.2) was outside the old 0.17 m disk; it is 0.63 m from the KUKA's base, inside its ring
     scene = Scene([SceneObject("A", "red", 0.04, (0.0, 0.2)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
     assert arm_plugins.fit_scene(scene, PANDA) is scene
-    with pytest.raises(SceneError, match='"A" .* beyond the reach of the arm "kuka-iiwa"'):
-        arm_plugins.fit_scene(scene, KUKA_IIWA)
+    assert arm_plugins.fit_scene(scene, KUKA_IIWA).workspace == kuka
+    for xy, way in (((-0.22, 0.0), "outward"), ((0.2, 0.0), "inward")):  # in the ring's hole; beyond its far edge
+        near = Scene([SceneObject("A", "red", 0.04, xy), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
+        with pytest.raises(SceneError) as e:
+            arm_plugins.fit_scene(near, KUKA_IIWA)
+        msg = str(e.value)
+        assert "\n" not in msg and '"A"' in msg and 'the arm "kuka-iiwa"' in msg and "0.43-0.77 m from its base" in msg
+        assert f"move it {way}" in msg
 
 
 @pytest.mark.slow  # the xArm's STL meshes take 9 s to read
@@ -123,6 +131,9 @@ def test_arms_lists_the_three_arms_as_json():
     rows = {a["name"]: a for a in json.loads(r.output)["arms"]}
     assert rows["panda"]["arm_joints"] == 7 and rows["xarm6"]["arm_joints"] == 6
     assert rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17) and rows["xarm6"]["workspace_radius_m"] == 0.25
+    assert rows["kuka-iiwa"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.25, "base_x": -0.6, "base_y": 0.0,
+                                              "near": 0.43, "far": 0.77}
+    assert rows["panda"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.25}  # no ring: the disk alone
     assert rows["xarm6"]["gripper_opening_m"] == XARM6.gripper_opening
 
 

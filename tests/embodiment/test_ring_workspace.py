@@ -1,0 +1,72 @@
+"""The KUKA iiwa performs in its whole workspace: the disk cut by its reach ring (issue 22), not the 0.17 m disk it
+had before (core/workspace.py, embodiment/arm_plugins.py: fit_workspace)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from l2p_bullet.core.scene import Scene, SceneObject
+from l2p_bullet.embodiment import arm_plugins
+from l2p_bullet.embodiment.execute import check_waypoints
+from l2p_bullet.embodiment.sim.arms import KUKA_IIWA
+from l2p_bullet.errors import PathError, SceneError
+from l2p_bullet.pipeline import perform
+
+BASE = np.array(KUKA_IIWA.mount[:2])
+
+
+def _scene(a: tuple[float, float], b: tuple[float, float]) -> Scene:
+    return Scene([SceneObject("A", "red", 0.04, a, 0.3), SceneObject("B", "green", 0.04, b, 0.1)]).validate()
+
+
+def _mover_track(run) -> np.ndarray:
+    frames = json.loads((run / "trajectory.json").read_text())["frames"]
+    return np.array([f["poses"]["A"][:2] for f in frames])
+
+
+@pytest.mark.parametrize("sentence, a, b", [
+    ("move A around B", (0.0, 0.21), (0.0, 0.12)),  # A 0.21 m from the centre: outside the old 0.17 m disk
+    ("move A away from B", (-0.03, -0.2), (0.0, -0.13)),
+])
+def test_a_block_outside_the_old_disk_but_inside_the_ring_is_performed(sentence, a, b, tmp_path):
+    scene = _scene(a, b)
+    assert np.hypot(*a) > arm_plugins.fit_workspace(scene.workspace, KUKA_IIWA).inner_radius
+    r = perform(sentence, scene, out_dir=tmp_path / "run", render=False, seed=3, arm="kuka-iiwa")
+    assert r.verdict["success"], r.verdict
+    assert r.anchor_displacement_m < 0.001
+    ws = arm_plugins.fit_workspace(scene.workspace, KUKA_IIWA)
+    assert ws.contains(_mover_track(tmp_path / "run"), margin=-0.002).all()  # the block stayed where the arm reaches
+
+
+def test_blocks_either_side_of_the_rings_hole_are_brought_together_round_it(tmp_path):
+    # A and B 0.44 m from the base, either side of its axis: the straight line between them passes 0.42 m from the
+    # base, inside the ring's hole (0.43 m), so the planner must go round it and the arm must follow
+    a, b = (-0.18, 0.13), (-0.18, -0.13)
+    ws = arm_plugins.fit_workspace(_scene(a, b).workspace, KUKA_IIWA)
+    assert not ws.segments_inside(np.array(a), np.array([b]))[0]
+    r = perform("move A closer to B", _scene(a, b), out_dir=tmp_path / "run", render=False, seed=3, arm="kuka-iiwa")
+    assert r.verdict["success"], r.verdict
+    assert r.anchor_displacement_m < 0.001
+    track = _mover_track(tmp_path / "run")
+    assert np.hypot(*(track - BASE).T).min() >= ws.ring[2] - 0.002  # never into the hole (2 mm of tracking lag)
+    plan = np.array(json.loads((tmp_path / "run" / "plan.json").read_text())["waypoints"])[:, :2]
+    assert ws.path_inside(plan) is None
+
+
+def test_a_block_nearer_the_base_than_the_ring_is_refused_naming_the_arm(tmp_path):
+    with pytest.raises(SceneError) as e:
+        perform("move A around B", _scene((-0.22, 0.02), (0.0, 0.0)), out_dir=tmp_path / "run", render=False,
+                arm="kuka-iiwa")
+    msg = str(e.value)
+    assert "\n" not in msg and 'the arm "kuka-iiwa"' in msg and "0.43-0.77 m from its base" in msg
+    assert not (tmp_path / "run").exists()
+
+
+def test_a_path_through_the_hole_is_refused_before_anything_moves():
+    scene = arm_plugins.fit_scene(_scene((-0.18, 0.13), (0.05, -0.05)), KUKA_IIWA)
+    with pytest.raises(PathError, match="between waypoints 0 and 1"):
+        check_waypoints(scene, "A", np.array([[-0.18, 0.13, 0.3], [-0.18, -0.13, 0.3]]))
+    check_waypoints(scene, "A", np.array([[-0.18, 0.13, 0.3], [0.0, 0.0, 0.3], [-0.18, -0.13, 0.3]]))
