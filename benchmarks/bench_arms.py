@@ -6,8 +6,11 @@
 
 Scenes: for each arm, seeds ``--seed-base + i`` (default 220000, used by nothing else) draw a study-like
 start (:func:`study_like_scene`): two 4 cm cubes, the mover 1.4-7.7 of its sides from the anchor (the original
-study's range), both turned at random, the pair put at a random place and translated into the arm's workspace
-(``evaluate.scenes._fit_into_disk``; the KUKA's is smaller: ``l2p-bullet arms``). The same scene and seed go
+study's range), both turned at random, the pair put at a random place and translated into the workspace's disk
+(``evaluate.scenes._fit_into_disk``). The KUKA's workspace is that disk cut by its reach ring (``l2p-bullet arms``,
+issue 22): a draw with a block outside the ring (half a side and 1 mm in from its edges, as from the disk's rim)
+is rejected and the next one drawn from the same generator; before 2026-11-27 the KUKA's scenes were drawn the
+same way in the 0.17 m disk it then had. The same scene and seed go
 to every action. Each run is ``pipeline.perform`` without rendering, in one process that keeps the arm's world
 (as ``l2p-bullet evaluate`` does), judged by the action's rule judge on what the arm did.
 
@@ -36,14 +39,17 @@ SEED_BASE = 220_000
 SIZE = 0.04
 
 
-def study_like_scene(seed: int, radius: float):
-    """Two 4 cm cubes (A the mover, B the anchor) 1.4-7.7 sides apart, any yaw, inside a workspace of ``radius``."""
+def study_like_scene(seed: int, workspace):
+    """Two 4 cm cubes (A the mover, B the anchor) 1.4-7.7 sides apart, any yaw, inside ``workspace`` (a Workspace, or
+    the radius of a disk about the table's centre): drawn in its disk, rejected when outside its ring."""
     import numpy as np
 
-    from l2p_bullet.core.scene import Scene, SceneObject
+    from l2p_bullet.core.scene import Scene, SceneObject, Workspace
     from l2p_bullet.errors import SceneError
     from l2p_bullet.evaluate.scenes import _fit_into_disk
 
+    ws = workspace if isinstance(workspace, Workspace) else Workspace(radius=float(workspace))
+    radius = ws.radius
     rng = np.random.default_rng(seed)
     for _ in range(1000):
         r, a = radius * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
@@ -52,6 +58,8 @@ def study_like_scene(seed: int, radius: float):
         xy = _fit_into_disk(np.array([anchor + d * np.array([math.cos(b), math.sin(b)]), anchor]),
                             radius - SIZE / 2 - 1e-3)
         ya, yb = rng.uniform(-math.pi, math.pi, size=2)
+        if ws.ring is not None and not ws.contains(xy, SIZE / 2 + 1e-3).all():
+            continue  # the arm's ring cuts the disk: redraw
         scene = Scene([SceneObject("A", "red", SIZE, (float(xy[0, 0]), float(xy[0, 1])), float(ya)),
                        SceneObject("B", "green", SIZE, (float(xy[1, 0]), float(xy[1, 1])), float(yb))])
         try:
@@ -71,13 +79,13 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
     from l2p_bullet.pipeline import perform
 
     spec = arm_plugins.get(arm)
-    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(scenes_of or arm)).radius
+    ws = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(scenes_of or arm))
     label = arm if scenes_of is None or scenes_of == arm else f"{arm} ({scenes_of}'s scenes)"
     rows = []
     world = None
     try:
         for seed in seeds:
-            scene = study_like_scene(seed, radius)
+            scene = study_like_scene(seed, ws)
             if world is None:
                 world = World(scene, arm=spec, visuals=False)
             for action in actions:
@@ -105,12 +113,12 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
     return rows
 
 
-def study_radius(arm: str) -> float:
-    """The radius of the arm's workspace (its scenes are drawn in it)."""
+def study_workspace(arm: str):
+    """The arm's workspace (its scenes are drawn in it)."""
     from l2p_bullet.core.scene import Workspace
     from l2p_bullet.embodiment import arm_plugins
 
-    return arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).radius
+    return arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm))
 
 
 def fresh_times(arm: str, seeds: list[int], actions: list[str], timed: int, tmp: Path) -> list[dict]:
@@ -118,13 +126,13 @@ def fresh_times(arm: str, seeds: list[int], actions: list[str], timed: int, tmp:
     from l2p_bullet.core.scene import Workspace, save_scene
     from l2p_bullet.embodiment import arm_plugins
 
-    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).radius
+    ws = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm))
     out = []
     timed_run([*cli(), "--help"])  # bytecode caches written before anything is measured
     for action in actions:
         for seed in seeds[:timed]:
             scene_file = tmp / f"fresh-{arm}-{seed}.json"
-            save_scene(study_like_scene(seed, radius), scene_file)
+            save_scene(study_like_scene(seed, ws), scene_file)
             row = {"arm": arm, "action": action, "seed": seed}
             for who in (arm, "panda"):
                 dt, r = timed_run([*cli(), "perform", SENTENCES[action], "--scene", str(scene_file), "--no-render",
@@ -179,7 +187,7 @@ def main() -> None:
         tmp = Path(d)
         for arm in arms:
             rows += run_arm(arm, seeds, actions, tmp)
-            if arm != "panda" and "panda" in arms and study_radius(arm) != study_radius("panda"):
+            if arm != "panda" and "panda" in arms and study_workspace(arm) != study_workspace("panda"):
                 rows += run_arm("panda", seeds, actions, tmp, scenes_of=arm)  # the same scenes, for comparison
                 labels.insert(labels.index(arm) + 1, f"panda ({arm}'s scenes)")
             if args.timed and arm != "panda":
