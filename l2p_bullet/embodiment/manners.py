@@ -94,14 +94,17 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
     clearance (the hand's body, 21 cm wide, starts where the fingers end, about 5 cm above the table while
     pushing) within the hand's reach of the path would be swept over, as would one the hand passes when it
     goes round the block."""
+    m = scene.get(mover)
+    p = np.asarray(path, float).reshape(-1, 3)
+    dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
+    hole = _near_the_hole(scene, m, dense, arm)
+    if hole is not None:
+        return hole
     widen = next((d for d, _, hy in arm.hand_profile if hy > 0.05), None)
     if widen is None:
         return None
     clear = PUSH_TIP_Z + widen - 0.003
     hand = max(hy for _, _, hy in arm.hand_profile)
-    m = scene.get(mover)
-    p = np.asarray(path, float).reshape(-1, 3)
-    dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
     # where the push starts: along the path the controller follows (its spurs dropped, embodiment/push_path.py)
     plan_xy = p[:, :2]
     xy = drop_spurs(plan_xy, m.size)
@@ -119,6 +122,25 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
             return (f'no push can pass "{o.name}" ({o.height * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
                     f"above the table and {2 * hand * 100:.0f} cm wide; carry or slide \"{mover}\" instead")
     return None
+
+
+def _near_the_hole(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | None:
+    """Why the pushing hand could need a point the arm does not reach, or None. With an arm's reach ring cutting
+    the workspace (core/workspace.py, the KUKA iiwa's), the hand stands behind the block, on whichever side the
+    push needs (and goes round it), up to the block's farthest corner, the hand's half length and the gap away
+    from its centre: a path that brings the block that near the ring's hole is refused up front (measured on
+    2026-11-27: pushes along the hole's edge stopped half-way with the arm out of reach)."""
+    ws = scene.workspace
+    if ws.ring is None:
+        return None
+    half = reach.hand_extent(m.size / 2, arm) or (0.0145, 0.03)
+    standoff = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max()) + half[0] + PUSH_GAP
+    d = np.hypot(dense[:, 0] - ws.ring[0], dense[:, 1] - ws.ring[1])
+    if float(d.min()) >= ws.ring[2] + standoff:
+        return None
+    return (f'the pushing hand could need a point nearer the base of the arm "{arm.name}" than it reaches '
+            f"({ws.ring[2]:.2f} m): the path brings \"{m.name}\" {float(d.min()):.3f} m from the base and the hand stands "
+            f'up to {standoff * 100:.1f} cm behind it; carry or slide "{m.name}" instead')
 
 
 def _no_room_to_start(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | None:

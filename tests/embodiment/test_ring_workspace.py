@@ -70,3 +70,14 @@ def test_a_path_through_the_hole_is_refused_before_anything_moves():
     with pytest.raises(PathError, match="between waypoints 0 and 1"):
         check_waypoints(scene, "A", np.array([[-0.18, 0.13, 0.3], [-0.18, -0.13, 0.3]]))
     check_waypoints(scene, "A", np.array([[-0.18, 0.13, 0.3], [0.0, 0.0, 0.3], [-0.18, -0.13, 0.3]]))
+
+
+def test_a_push_near_the_rings_hole_is_refused_up_front_not_half_way(tmp_path):
+    # the pushing hand stands behind the block: along the hole's edge it would need a point the arm does not reach
+    # (before this check such pushes stopped half-way with a ReachError)
+    from l2p_bullet.errors import InfeasibleError
+
+    with pytest.raises(InfeasibleError) as e:
+        perform("push A closer to B", _scene((-0.18, 0.13), (-0.18, -0.13)), out_dir=tmp_path / "run", render=False,
+                seed=3, arm="kuka-iiwa")
+    assert e.value.check == "push" and 'the arm "kuka-iiwa"' in str(e.value) and "\n" not in str(e.value)
