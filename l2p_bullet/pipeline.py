@@ -371,7 +371,7 @@ def plan_sentence(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
     with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
         result.save(folder / "plan.json")
         if plot:
-            plot_plan(result, scene, folder / "plan.png")
+            plot_plan(result, p.scene, folder / "plan.png")  # the workspace fitted to the arm
     return PlanResult(cmd, result, verdict, folder)
 
 

@@ -182,7 +182,7 @@ class Workspace:
     # --- describing it ---------------------------------------------------------------------------------
     def outline(self, n: int = 360) -> list[np.ndarray]:
         """The region's boundary for drawing: polylines (k,2), one per arc (the whole circle, closed, with no
-        ring)."""
+        ring); ``n`` points round the disk, as densely spaced on the ring's circles."""
         ang = np.linspace(0.0, 2 * np.pi, n + 1)
         circles = self._circles(0.0)
         if self.ring is None:
@@ -190,7 +190,9 @@ class Workspace:
             return [np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang)])]
         out = []
         for c, r, _ in circles:
-            pts = np.column_stack([c[0] + r * np.cos(ang[:-1]), c[1] + r * np.sin(ang[:-1])])
+            k = max(n, int(round(n * r / max(self.radius, 1e-9))))
+            ang = np.linspace(0.0, 2 * np.pi, k, endpoint=False)
+            pts = np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang)])
             on = self.contains(pts, -1e-7)
             if on.all():
                 out.append(np.vstack([pts, pts[:1]]))

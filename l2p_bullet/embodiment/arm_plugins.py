@@ -249,7 +249,7 @@ def measure_hand(spec: ArmSpec) -> tuple[float, tuple[tuple[float, float, float]
         return round(robot.drop, 4), tuple((d, round(hx + 5e-5, 4), round(hy + 5e-5, 4)) for d, hx, hy in prof)
 
 
-def region_probes(ws: Workspace, margin: float = 0.005, n: int = 24) -> np.ndarray:
+def region_probes(ws: Workspace, margin: float = 0.005, n: int = 72) -> np.ndarray:
     """Points (K,2) the reach test asks for inside the workspace: ``margin`` in from its boundary, ``n`` along each
     of its arcs and its corners, and its centre when inside."""
     pts = [arc[np.linspace(0, len(arc) - 1, max(2, n * len(arc) // 360)).astype(int)] for arc in ws.outline(360)]
