@@ -81,3 +81,14 @@ def test_a_push_near_the_rings_hole_is_refused_up_front_not_half_way(tmp_path):
         perform("push A closer to B", _scene((-0.18, 0.13), (-0.18, -0.13)), out_dir=tmp_path / "run", render=False,
                 seed=3, arm="kuka-iiwa")
     assert e.value.check == "push" and 'the arm "kuka-iiwa"' in str(e.value) and "\n" not in str(e.value)
+
+
+def test_a_replayed_motion_is_pulled_out_of_the_rings_hole():
+    from l2p_bullet.embodiment.retarget import retarget
+
+    scene = arm_plugins.fit_scene(_scene((-0.06, 0.0), (-0.12, 0.0)), KUKA_IIWA)
+    t = np.linspace(0.0, 2 * np.pi, 80)
+    demo = np.column_stack([0.45 * np.cos(t), 0.45 * np.sin(t), t])  # round the anchor at 3 sides (0.15 m blocks)
+    out = retarget(demo, np.zeros(3), 0.15, scene, "A", "B")
+    assert out.clamped > 0  # the circle (0.12 m round B) passes through the hole (x < -0.17 on the axis)
+    assert scene.workspace.path_inside(out.path) is None

@@ -83,6 +83,12 @@ function draw() {
   ctx.setLineDash([6, 6]);
   ctx.strokeStyle = "#9a8a70";
   ctx.beginPath(); ctx.arc(wx, wy, scene.workspace.r * SCALE, 0, 2 * Math.PI); ctx.stroke();
+  if (scene.workspace.near !== undefined) {  // an arm's reach ring cuts the disk (issue 22): its two circles
+    const [bx, by] = toScreen(scene.workspace.base_x, scene.workspace.base_y);
+    for (const r of [scene.workspace.near, scene.workspace.far]) {
+      ctx.beginPath(); ctx.arc(bx, by, r * SCALE, 0, 2 * Math.PI); ctx.stroke();
+    }
+  }
   const anchors = scene.anchors.map((n) => blocks.find((b) => b.name === n));
   if (config.viewer) {  // the line of sight from the viewer to the (first) anchor: left is the viewer's left
     const [vx, vy] = toScreen(...config.viewer);
