@@ -49,6 +49,7 @@ def study_like_scene(seed: int, workspace):
     from l2p_bullet.evaluate.scenes import _fit_into_disk
 
     ws = workspace if isinstance(workspace, Workspace) else Workspace(radius=float(workspace))
+    ws = ws.starts()  # the start disk (0.25 m, cut by the ring where it bites): the same scenes as before 2026-11-27
     radius = ws.radius
     rng = np.random.default_rng(seed)
     for _ in range(1000):

@@ -146,7 +146,7 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda"
 
     # the largest disk about the centre the arm reaches: the KUKA's scenes stay those its stress rows were drawn
     # in (0.17 m, before its workspace became the disk cut by its ring, issue 22): a part of that workspace
-    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).inner_radius
+    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius  # the start disk's
     scene, kind, shape = object_scene(seed, radius)
     out = tmp / f"{action}-{seed}"
     row = {"action": action, "seed": seed, "kind": kind, "shape": shape, "objects": len(scene.objects)}

@@ -29,6 +29,7 @@ SEEDS = range(8000, 8030)
 def study_scene(seed: int, size: float):
     """Anchor B within 0.03 m of the centre, mover A 1.4-7.7 blocks from it, both inside the workspace."""
     from l2p_bullet.core.scene import Scene, SceneObject
+    from l2p_bullet.core.workspace import START_RADIUS
     from l2p_bullet.errors import SceneError
 
     rng = np.random.default_rng(seed)
@@ -37,7 +38,7 @@ def study_scene(seed: int, size: float):
         b = (r * math.cos(a), r * math.sin(a))
         d, a2 = rng.uniform(1.4, 7.7) * size, rng.uniform(-math.pi, math.pi)
         m = (b[0] + d * math.cos(a2), b[1] + d * math.sin(a2))
-        if math.hypot(*m) > 0.25 - size:
+        if math.hypot(*m) > START_RADIUS - size:  # the start disk (the planning disk is larger since 2026-11-27)
             continue
         scene = Scene([SceneObject("A", "red", size, m, float(rng.uniform(0, math.pi / 2))),
                        SceneObject("B", "green", size, b, float(rng.uniform(0, math.pi / 2)))])

@@ -49,11 +49,13 @@ def stress_scene(seed: int):
     import numpy as np
 
     from l2p_bullet.core.scene import Scene, SceneObject
+    from l2p_bullet.core.workspace import START_RADIUS, Workspace
     from l2p_bullet.errors import SceneError
 
     rng = np.random.default_rng(seed)
     kind = ("touching", "study", "rim")[seed % 3]
-    radius = 0.25
+    radius = START_RADIUS  # the start disk: the same stress scenes as before the planning disk grew
+    starts = Workspace(radius=START_RADIUS)
     for _ in range(2000):
         sa, sb = rng.uniform(0.03, 0.06, size=2)
         ya, yb = rng.uniform(0.0, math.pi / 2, size=2)
@@ -75,7 +77,7 @@ def stress_scene(seed: int):
         objects = [SceneObject("A", "red", float(sa), (float(a_xy[0]), float(a_xy[1])), float(ya)),
                    SceneObject("B", "green", float(sb), (float(b_xy[0]), float(b_xy[1])), float(yb))]
         try:
-            Scene(objects).validate()
+            Scene(objects, workspace=starts).validate()
         except SceneError:
             continue
         if rng.uniform() < 0.5:
@@ -107,12 +109,13 @@ def _distance_for_gap(sa: float, ya: float, sb: float, yb: float, u, gap: float)
 
 def _add_bystanders(objects: list, n: int, rng) -> list | None:
     from l2p_bullet.core.scene import Scene, SceneObject
+    from l2p_bullet.core.workspace import START_RADIUS
     from l2p_bullet.errors import SceneError
 
     out = list(objects)
     for k in range(n):
         for _ in range(200):
-            r, a = 0.25 * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
+            r, a = START_RADIUS * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)
             o = SceneObject(f"C{k + 1}", COLORS[k % len(COLORS)], float(rng.uniform(0.03, 0.06)),
                             (r * math.cos(a), r * math.sin(a)), float(rng.uniform(0, math.pi / 2)))
             try:

@@ -4,12 +4,14 @@ Frame (the scene file's frame, DESIGN.md section 4): metres on the table top, or
 centre, +x pointing away from the robot's base, +y to the robot's left, yaw in radians about +z.
 
 The robot base stands off the table's near edge at ``ROBOT_BASE_XY``: a Panda with its gripper pointing
-down reaches grasp points at table height from about 0.25 m to 0.78 m from its base, and a disk of
-0.25 m radius centred 0.53 m in front of the base fits inside that ring (DESIGN.md, reach note). That
-disk is the workspace: every block centre, and every point of a planned path, must lie inside it. For an
-arm whose reach ring does not hold the disk (the KUKA iiwa's), the workspace is the disk intersected with
-that ring, a region with a bite out of its near side: ``core/workspace.py`` (:class:`Workspace`, imported
-from here) holds its geometry, and ``embodiment/arm_plugins.py: fit_workspace`` sets the ring.
+down reaches grasp points at table height from about 0.26 m to 0.79 m from its base (DESIGN.md, reach note).
+A disk about the table's centre (0.35 m; 0.25 m, which fits inside that ring, until 2026-11-27) bounds the
+workspace: every block centre, and every point of a planned path, must lie inside it. For an
+arm whose reach ring does not hold the disk (every shipped arm since the disk grew to 0.35 m, 2026-11-27), the
+workspace is the disk intersected with that ring, a region with a bite out of its near side:
+``core/workspace.py`` (:class:`Workspace`, imported from here) holds its geometry, and
+``embodiment/arm_plugins.py: fit_workspace`` sets the ring. Random scenes are drawn in the old 0.25 m disk
+(``START_RADIUS``), so the same seeds give the same scenes as before.
 
 A block's footprint is its outline on the table: a cube's is its square, rotated by its yaw, written
 down directly (importing trimesh to derive it from a box mesh cost 0.3-0.5 s of every command's start;
@@ -34,7 +36,7 @@ from .contracts import load_json_file
 from .geometry import polygons_overlap
 from .shapes import MAX_FRICTION, MAX_MASS
 from .shapes import is_number as _is_number
-from .workspace import Workspace
+from .workspace import START_RADIUS, Workspace
 
 # Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
 COLORS: dict[str, tuple[float, float, float, float]] = {
@@ -347,16 +349,15 @@ def random_scene(seed: int, size: float = 0.05) -> Scene:
         b_xy = (r * math.cos(a), r * math.sin(a))
         d, a2 = rng.uniform(2.0, 4.0) * size, rng.uniform(-math.pi, math.pi)
         a_xy = (b_xy[0] + d * math.cos(a2), b_xy[1] + d * math.sin(a2))
-        scene = Scene(
-            [
-                SceneObject("A", "red", size, a_xy, float(rng.uniform(0, math.pi / 2))),
-                SceneObject("B", "green", size, b_xy, float(rng.uniform(0, math.pi / 2))),
-            ]
-        )
-        try:
-            return scene.validate()
+        objects = [
+            SceneObject("A", "red", size, a_xy, float(rng.uniform(0, math.pi / 2))),
+            SceneObject("B", "green", size, b_xy, float(rng.uniform(0, math.pi / 2))),
+        ]
+        try:  # drawn in the start disk (the same scenes for the same seeds since before the planning disk grew)
+            Scene(objects, workspace=Workspace(radius=START_RADIUS)).validate()
         except SceneError:
             continue
+        return Scene(objects).validate()
     raise SceneError(f"could not draw a valid random scene for seed {seed}")  # pragma: no cover
 
 
@@ -381,15 +382,16 @@ def random_between_scene(seed: int, size: float = 0.05) -> Scene:
         off = abs(float(rel[0] * e[1] - rel[1] * e[0])) / float(np.linalg.norm(e)) / size
         if 0.0 < t < 1.0 and off < 1.5:
             continue
-        scene = Scene([
+        objects = [
             SceneObject("A", "red", size, (float(a_xy[0]), float(a_xy[1])), float(rng.uniform(0, math.pi / 2))),
             SceneObject("B", "green", size, (float(b_xy[0]), float(b_xy[1])), float(rng.uniform(0, math.pi / 2))),
             SceneObject("C", "blue", size, (float(c_xy[0]), float(c_xy[1])), float(rng.uniform(0, math.pi / 2))),
-        ])
-        try:
-            scene.validate()
+        ]
+        try:  # drawn in the start disk, as random_scene
+            Scene(objects, workspace=Workspace(radius=START_RADIUS)).validate()
         except SceneError:
             continue
+        scene = Scene(objects)
         if min(np.linalg.norm(a_xy - b_xy), np.linalg.norm(a_xy - c_xy)) < 1.6 * size:
             continue  # touching or nearly: the planner refuses a mover that starts touching
         return scene

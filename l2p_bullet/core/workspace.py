@@ -1,10 +1,15 @@
 """The workspace: where every block centre and every planned path point must lie (``core/scene.py``).
 
-It is the scene's disk (``center``, ``radius``: 0.25 m around the table's centre), which the Panda's and the
-xArm6's reach rings hold whole. An arm whose ring does not hold the disk (the KUKA iiwa's, 0.43-0.77 m from
-its base) gets the disk *intersected with its ring* (``ring`` = base x, base y, near, far; issue 22): before
-2026-11-27 the disk was shrunk about its centre until it fitted the ring (0.17 m for the KUKA), which threw
-away most of what the arm reaches.
+It is the scene's disk (``center``, ``radius``: :data:`DISK_RADIUS`, 0.35 m around the table's centre) and, for
+an arm whose reach ring does not hold the disk, the disk *intersected with its ring* (``ring`` = base x, base y,
+near, far; issue 22; ``embodiment/arm_plugins.py: fit_workspace``): since the disk grew from 0.25 m to 0.35 m
+(2026-11-27) no shipped arm's ring holds it, so every arm plans in its ring-cut disk. Before, the Panda and the
+xArm6 planned in the 0.25 m disk (their rings hold it), and before 2026-11-27 the KUKA's disk was shrunk about
+its centre until it fitted its ring (0.17 m), which threw away most of what the arm reaches.
+
+What was drawn, trained or chosen on the 0.25 m disk stays on it: seeded random starts are drawn in
+:meth:`Workspace.starts` (:data:`START_RADIUS`, the same scenes for the same seeds), and the learned policy's
+features divide by ``planning/policy.py: FEATURE_RADIUS``.
 
 The ring's inner hole makes the region non-convex: a straight move between two points inside it may cut
 through the hole, so a segment is inside only when its closest approach to the base is at least ``near``
@@ -23,6 +28,17 @@ import numpy as np
 _TOL = 1e-9
 """Slack (m) every membership test allows, as the disk test always has."""
 
+DISK_RADIUS = 0.35
+"""The planning disk's radius (m) about the table's centre, before an arm's ring cuts it. Measured, not tuned
+(2026-11-27, ``benchmarks/measure_disk.py``, docs/arms.md): every shipped arm reaches every probe of a 0.30,
+0.35 or 0.38 m disk cut by its ring, pointing down, at both reach heights and its wrist range; 0.38 m would put a
+4 cm cube turned 45 degrees at the rim 8 mm over the table's edge (half side 0.4 m), 0.35 m keeps every cube up
+to 6 cm on the table at any yaw. It was 0.25 m while the disk had to fit inside the Panda's ring whole."""
+
+START_RADIUS = 0.25
+"""Where seeded random starts are drawn (m): the disk every benchmark and evaluation scene set was drawn in before
+the planning disk grew, kept so that the same seeds give byte-identical starts (:meth:`Workspace.starts`)."""
+
 
 @dataclass(frozen=True)
 class Workspace:
@@ -30,7 +46,7 @@ class Workspace:
     hold the disk, that ring: ``ring`` = (base x, base y, near, far) metres (see the module docstring)."""
 
     center: tuple[float, float] = (0.0, 0.0)
-    radius: float = 0.25
+    radius: float = DISK_RADIUS
     ring: tuple[float, float, float, float] | None = None
 
     # --- distances ---------------------------------------------------------------------------------
@@ -178,6 +194,20 @@ class Workspace:
                 hole_lo, hole_hi = np.where(disc > 0, -b - root, np.inf), np.where(disc > 0, -b + root, -np.inf)
         some = lo <= hi + _TOL
         return some & ~((hole_lo < lo - _TOL) & (hi + _TOL < hole_hi))
+
+    def holds_disk(self, radius: float) -> bool:
+        """Whether the ring (if any) holds the whole disk of ``radius`` about the centre (no ring: always)."""
+        if self.ring is None:
+            return True
+        d = float(np.hypot(self.center[0] - self.ring[0], self.center[1] - self.ring[1]))
+        return min(radius, self.ring[3] - d, d - self.ring[2]) >= radius
+
+    def starts(self) -> Workspace:
+        """Where random starts are drawn: the disk of :data:`START_RADIUS` (or this one's, if smaller), cut by the
+        ring only where the ring does not hold it (what ``fit_workspace`` gave that disk), so that the scene sets
+        of every seed are the ones drawn before the planning disk grew."""
+        r = min(self.radius, START_RADIUS)
+        return Workspace(self.center, r, None if self.holds_disk(r) else self.ring)
 
     # --- describing it ---------------------------------------------------------------------------------
     def outline(self, n: int = 360) -> list[np.ndarray]:

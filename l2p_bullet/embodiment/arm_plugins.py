@@ -115,9 +115,10 @@ def get(name: str | ArmSpec | None = None) -> ArmSpec:
 
 # --- where the arm reaches ----------------------------------------------------------------------------
 def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
-    """The workspace an arm gets: unchanged when its reach ring around its mount holds the whole disk (the Panda,
-    the xArm6), else the disk intersected with the ring (``Workspace.ring``; the KUKA iiwa, issue 22). Before
-    2026-11-27 the disk was shrunk about its centre until it fitted the ring (0.17 m for the KUKA)."""
+    """The workspace an arm gets: unchanged when its reach ring around its mount holds the whole disk, else the disk
+    intersected with the ring (``Workspace.ring``, issue 22): every shipped arm since the disk grew to 0.35 m
+    (2026-11-27; at 0.25 m the Panda's and the xArm6's rings held it). Before 2026-11-27 the disk was shrunk
+    about its centre until it fitted the ring (0.17 m for the KUKA)."""
     base_xy = spec.mount[:2]
     d = float(math.hypot(workspace.center[0] - base_xy[0], workspace.center[1] - base_xy[1]))
     near, far = spec.reach
@@ -259,16 +260,18 @@ def region_probes(ws: Workspace, margin: float = 0.005, n: int = 72) -> np.ndarr
 
 def region_unreached(spec: ArmSpec, ws: Workspace) -> list[list[float]]:
     """The points of :func:`region_probes` the tool does not reach pointing down at every :data:`REACH_HEIGHTS`
-    with the wrist at 0 (what ``measure_reach`` walks along three azimuths, here over the region itself)."""
+    with the wrist at 0 and turned either way as ``measure_reach`` turns it (what that walks along three
+    azimuths, here over the region itself, whose wider azimuths the three do not cover)."""
     from .sim.robot import Kinematics
 
     kin = Kinematics(spec, spec.mount)
     base = np.asarray(spec.mount[:2], float)
+    turn = min(1.0, spec.wrist_limit - 0.3)
     try:
         out = []
         for p in region_probes(ws):
             r, az = float(np.hypot(*(p - base))), float(math.atan2(p[1] - base[1], p[0] - base[0]))
-            if not all(reaches(kin, spec, r, az, z, 0.0) for z in REACH_HEIGHTS):
+            if not all(reaches(kin, spec, r, az, z, w) for z in REACH_HEIGHTS for w in (0.0, -turn, turn)):
                 out.append([round(float(p[0]), 4), round(float(p[1]), 4)])
         return out
     finally:

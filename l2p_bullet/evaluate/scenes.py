@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.scene import COLORS, Scene, SceneObject, random_scene
+from ..core.workspace import START_RADIUS
 from ..data.demos import load_graded_demos
 from ..errors import EvaluationError, L2PError, SceneError
 
@@ -106,7 +107,7 @@ def study_scenes(size: float = 0.05, seed: int = 0) -> list[SceneSpec]:
     """The distinct start configurations of the graded 2-D demonstrations, on our table.
 
     The study's blocks are 0.15 m squares on a +-1.2 m table; ours are ``size`` (5 cm) in a disk of
-    0.25 m. Everything is expressed in block sizes first: the study's table centre becomes ours and every
+    0.25 m (``START_RADIUS``; the planning disk is larger since 2026-11-27). Everything is expressed in block sizes first: the study's table centre becomes ours and every
     position is multiplied by ``size / 0.15`` (so the distance between the blocks, in block sizes, and
     both yaws are exactly the study's). Where that puts a block outside our workspace (the study's table
     is 16 blocks wide, our workspace 10), the whole configuration is translated, never scaled or turned,
@@ -123,7 +124,7 @@ def study_scenes(size: float = 0.05, seed: int = 0) -> list[SceneSpec]:
         seen.add(key)
         (m, a) = d["start_config"][:2]
         xy = np.array([[m["x"], m["y"]], [a["x"], a["y"]]]) * k
-        xy = _fit_into_disk(xy, 0.25 - size / 2)
+        xy = _fit_into_disk(xy, START_RADIUS - size / 2)
         scene = Scene([SceneObject("A", "red", size, (float(xy[0, 0]), float(xy[0, 1])), float(m["theta"])),
                        SceneObject("B", "green", size, (float(xy[1, 0]), float(xy[1, 1])), float(a["theta"]))])
         try:
@@ -164,7 +165,7 @@ def add_bystanders(scene: Scene, k: int, seed: int) -> Scene:
     colors = [c for c in BYSTANDER_COLORS if c not in used and c in COLORS]
     names = [chr(ord("C") + i) for i in range(26) if chr(ord("C") + i) not in scene.names]
     objects = list(scene.objects)
-    ws = scene.workspace
+    ws = scene.workspace.starts()  # drawn where they were before the planning disk grew (START_RADIUS)
     for i in range(k):
         for _ in range(2000):
             r, a = (ws.radius - size / 2) * math.sqrt(rng.uniform()), rng.uniform(-math.pi, math.pi)

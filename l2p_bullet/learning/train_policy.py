@@ -23,7 +23,7 @@ from ..core.frames import declaration
 from ..core.scene import random_scene
 from ..core.threads import torch_threads
 from ..errors import BundleError
-from ..planning.policy import FEATURES, policy_features, to_poses
+from ..planning.policy import FEATURE_RADIUS, FEATURES, policy_features, to_poses
 from ..planning.problem import FRAME_STEP
 from ..planning.world2d import World2D, segment_frames
 from ..plugins.bundle import POLICY_FILE, PROGRESS_FILE, load_bundle, write_weights
@@ -58,7 +58,7 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: PolicyTrainConfig
     active = np.ones(len(seeds), bool)
     logps, rewards = [], []
     for _ in range(cfg.horizon):
-        feats, hand = policy_features(frames, anchors, cfg.size, progress, moves, centres, worlds[0].radius)
+        feats, hand = policy_features(frames, anchors, cfg.size, progress, moves, centres, FEATURE_RADIUS)
         x = torch.from_numpy(feats)
         dist = net.distribution(x)
         act = dist.sample()

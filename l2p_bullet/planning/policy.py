@@ -25,6 +25,9 @@ from .problem import MAX_TURN, Node, Problem
 FEATURES = 12
 HIDDEN = 64
 LOG_STD_RANGE = (-3.0, 1.0)
+FEATURE_RADIUS = 0.25
+"""The length (m) the policy's "room" features are divided by: the workspace disk's radius the shipped policies
+were trained on. Fixed since the planning disk grew (2026-11-27) so that their inputs do not change."""
 
 
 def policy_features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,
@@ -113,7 +116,7 @@ class PolicyProposer:
         # the policy sees the action's own moves (after a lead-in), as it was trained
         x, hand = policy_features([node.frames[problem.lead:]], problem.anchor_pose, problem.size,
                                   np.array([node.progress]), np.array([node.moves - problem.lead_moves]), problem.world.center,
-                                  problem.world.radius)
+                                  FEATURE_RADIUS)
         mean, log_std = self.net(x.astype(np.float64))
         mean, std = mean[0], np.exp(log_std[0]) * self.spread
         acts = mean + std * problem.rng.normal(size=(max(n, 1), 3))

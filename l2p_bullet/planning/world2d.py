@@ -111,7 +111,7 @@ class World2D:
         ws = scene.workspace
         self.workspace = ws
         self.center = np.array(ws.center, float)
-        self.radius = float(ws.radius)  # the disk's (a policy feature, planning/policy.py), ring or not
+        self.radius = float(ws.radius)  # the disk's, ring or not (the policy's features use FEATURE_RADIUS, policy.py)
 
     # --- legality -------------------------------------------------------------------------------
     def inside(self, xy: np.ndarray) -> np.ndarray:

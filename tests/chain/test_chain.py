@@ -61,14 +61,14 @@ def test_impossible_clause_refused_up_front_with_its_index(tmp_path):
     out = tmp_path / "run"
     runner = CliRunner()
     r = runner.invoke(main, ["perform", "move A next to C, then move D around B", "--no-render", "--json", "-q",
-                             "--out", str(out), "--scene", _save(four_blocks(b_xy=(0.0, 0.235)), tmp_path)])
+                             "--out", str(out), "--scene", _save(four_blocks(b_xy=(0.0, 0.335)), tmp_path)])
     assert r.exit_code == 2, r.output
     d = json.loads(r.stdout)
     assert d["refused"]["check"] == "room-around" and d["refused"]["details"]["clause"] == 2
     assert d["error"].startswith('clause 2 ("move D around B") cannot be planned (room-around)')
     assert not out.exists()  # refused before the arm moved or anything was written
     with pytest.raises(InfeasibleError):
-        perform_chain("move D around B; move A next to C", four_blocks(b_xy=(0.0, 0.235)), out_dir=out, render=False)
+        perform_chain("move D around B; move A next to C", four_blocks(b_xy=(0.0, 0.335)), out_dir=out, render=False)
 
 
 def _save(scene: Scene, folder) -> str:

@@ -74,7 +74,7 @@ def test_block_off_the_table(tmp_path):
 
 
 def test_block_outside_the_workspace(tmp_path):
-    p = _write(tmp_path, [_obj("A", xy=(0.2, 0.2)), _obj("B", "green", xy=(0.0, 0.05))])
+    p = _write(tmp_path, [_obj("A", xy=(0.26, 0.26)), _obj("B", "green", xy=(0.0, 0.05))])  # 0.37 m out, on the table
     with pytest.raises(SceneError, match="outside the arm's workspace"):
         load_scene(p)
 

@@ -8,9 +8,23 @@ import numpy as np
 import pytest
 
 from l2p_bullet.core.scene import Workspace
+from l2p_bullet.core.workspace import DISK_RADIUS, START_RADIUS
 
-DISK = Workspace()
-KUKA = Workspace(ring=(-0.6, 0.0, 0.43, 0.77))  # the KUKA iiwa's: its hole bites the disk's near side (x < -0.17)
+# the geometry's known points were worked out on the 0.25 m disk (the default until 2026-11-27): kept on it
+DISK = Workspace(radius=0.25)
+KUKA = Workspace(radius=0.25, ring=(-0.6, 0.0, 0.43, 0.77))  # the KUKA iiwa's: its hole bites the disk's near side
+PANDA_RING = (-0.53, 0.0, 0.26, 0.79)
+
+
+def test_the_default_disk_is_the_measured_one_and_starts_stay_in_the_old_disk():
+    assert Workspace().radius == DISK_RADIUS == 0.35 and START_RADIUS == 0.25
+    # the Panda's ring holds the 0.25 m start disk, not the 0.35 m one: starts are drawn in the plain old disk
+    panda = Workspace(ring=PANDA_RING)
+    assert not panda.holds_disk(DISK_RADIUS) and panda.holds_disk(START_RADIUS)
+    assert panda.starts() == Workspace(radius=0.25) == DISK.starts()
+    # the KUKA's ring bites the old disk too: its starts keep the ring (as bench_arms drew them before)
+    assert Workspace(ring=KUKA.ring).starts() == KUKA
+    assert Workspace(radius=0.2).starts() == Workspace(radius=0.2)  # a smaller disk is its own start disk
 
 
 def test_the_disk_alone_keeps_its_old_rules():
@@ -29,7 +43,7 @@ def test_the_ring_cuts_the_disk():
     assert KUKA.contains([[0.0, 0.0], [-0.22, 0.0], [0.2, 0.0], [-0.15, 0.2]]).tolist() == [True, False, False, True]
     assert KUKA.inner_radius == pytest.approx(0.17)
     assert math.pi * 0.17 ** 2 < KUKA.area() < math.pi * 0.25 ** 2  # more than the old shrunk disk
-    assert not KUKA.empty and Workspace(ring=(-0.6, 0.0, 0.9, 1.2)).empty
+    assert not KUKA.empty and Workspace(radius=0.25, ring=(-0.6, 0.0, 0.9, 1.2)).empty
     assert "0.43-0.77 m of the arm's base" in KUKA.describe()
 
 
@@ -73,3 +87,16 @@ def test_the_outline_follows_the_region():
     assert len(arcs) == 4  # the rim's two sides, the far circle's arc, the hole's arc
     assert np.abs(KUKA.clearance(pts)).max() < 1e-6
     assert len(DISK.outline(8)) == 1 and len(DISK.outline(8)[0]) == 9
+
+
+def test_random_starts_are_drawn_in_the_old_disk_for_every_seed():
+    # the same seeds give the same scenes as before the disk grew: a draw with a block beyond 0.25 m is redrawn
+    # (random_scene's mover reaches 0.27 m from the centre, so some first draws fall outside and are redrawn)
+    from l2p_bullet.core.scene import random_between_scene, random_scene
+    from l2p_bullet.evaluate.chains import chain_scenes
+
+    scenes = [random_scene(s) for s in range(300)] + [random_between_scene(s) for s in range(100)]
+    scenes += [c.scene for c in chain_scenes(60, 5200)]
+    r = np.array([np.hypot(*o.xy) for s in scenes for o in s.objects])
+    assert r.max() <= START_RADIUS + 1e-9 and r.max() > 0.24
+    assert all(s.workspace == Workspace() for s in scenes)  # planned in the whole (larger) disk

@@ -45,14 +45,23 @@ def test_a_spec_whose_fields_disagree_is_reported():
 
 
 def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refused_naming_the_arm():
-    assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace()  # the default is untouched
-    assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace()
+    old = Workspace(radius=0.25)  # the old disk: the Panda's and the xArm6's rings hold it, it is untouched
+    assert arm_plugins.fit_workspace(old, PANDA) == old and arm_plugins.fit_workspace(old, XARM6) == old
+    # the 0.35 m disk (2026-11-27) is cut by every shipped arm's ring
+    assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.26, 0.79))
+    assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.175, 0.675))
     kuka = arm_plugins.fit_workspace(Workspace(), KUKA_IIWA)  # the disk cut by the KUKA's ring (issue 22)
-    assert kuka.center == (0.0, 0.0) and kuka.radius == 0.25 and kuka.ring == (-0.6, 0.0, 0.43, 0.77)
+    assert kuka.center == (0.0, 0.0) and kuka.radius == 0.35 and kuka.ring == (-0.6, 0.0, 0.43, 0.77)
     assert kuka.inner_radius == pytest.approx(0.17)  # what it had before: the disk shrunk into the ring
     # (0.0, 0.2) was outside the old 0.17 m disk; it is 0.63 m from the KUKA's base, inside its ring
     scene = Scene([SceneObject("A", "red", 0.04, (0.0, 0.2)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
-    assert arm_plugins.fit_scene(scene, PANDA) is scene
+    assert arm_plugins.fit_scene(scene, PANDA).objects == scene.objects
+    # (0, 0.33) is beyond the old disk, 0.62 m from the Panda's base: accepted; the ring's hole is refused
+    far = Scene([SceneObject("A", "red", 0.04, (0.0, 0.33)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
+    assert arm_plugins.fit_scene(far, PANDA).workspace.ring == (-0.53, 0.0, 0.26, 0.79)
+    hole = Scene([SceneObject("A", "red", 0.04, (-0.3, 0.0)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
+    with pytest.raises(SceneError, match=r'^object "A" .* the arm "panda", which reaches the table only 0\.26-0\.79 m'):
+        arm_plugins.fit_scene(hole, PANDA)
     assert arm_plugins.fit_scene(scene, KUKA_IIWA).workspace == kuka
     for xy, way in (((-0.22, 0.0), "outward"), ((0.2, 0.0), "inward")):  # in the ring's hole; beyond its far edge
         near = Scene([SceneObject("A", "red", 0.04, xy), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
@@ -130,10 +139,13 @@ def test_arms_lists_the_three_arms_as_json():
     assert r.exit_code == 0, r.output
     rows = {a["name"]: a for a in json.loads(r.output)["arms"]}
     assert rows["panda"]["arm_joints"] == 7 and rows["xarm6"]["arm_joints"] == 6
+    # workspace_radius_m keeps its meaning: the largest disk about the centre inside the arm's workspace
     assert rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17) and rows["xarm6"]["workspace_radius_m"] == 0.25
-    assert rows["kuka-iiwa"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.25, "base_x": -0.6, "base_y": 0.0,
+    assert rows["panda"]["workspace_radius_m"] == pytest.approx(0.26)
+    assert rows["kuka-iiwa"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.35, "base_x": -0.6, "base_y": 0.0,
                                               "near": 0.43, "far": 0.77}
-    assert rows["panda"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.25}  # no ring: the disk alone
+    assert rows["panda"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.35, "base_x": -0.53, "base_y": 0.0,
+                                          "near": 0.26, "far": 0.79}  # the 0.35 m disk is cut by every arm's ring
     assert rows["xarm6"]["gripper_opening_m"] == XARM6.gripper_opening
 
 

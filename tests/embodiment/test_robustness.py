@@ -281,10 +281,11 @@ def test_a_boxed_in_mover_is_refused():
 
 
 @pytest.mark.parametrize("rules, a_xy, b_xy, check", [
-    ("around", (0.14, 0.0), (0.24, 0.0), "room-around"),  # the anchor at the rim: no way round it
+    ("around", (0.14, 0.0), (0.24, 0.0), None),  # 0.11 m inside the 0.35 m disk's rim: room round it
+    ("around", (0.0, 0.24), (0.0, 0.34), "room-around"),  # the anchor at the rim: no way round it
     ("around", (-0.105, 0.0), (0.1, 0.0), None),  # 4.1 blocks away: it comes near first (planning/approach.py)
     ("around", (-0.1, 0.0), (0.1, 0.0), None),  # exactly 4 blocks away: possible
-    ("away", (0.0, 0.24), (0.0, -0.24), "room-away"),  # already as far apart as the workspace allows
+    ("away", (0.0, 0.34), (0.0, -0.34), "room-away"),  # already as far apart as the workspace allows
     ("closer", (0.0, 0.0), (0.0, 0.055), "room-closer"),  # 1.1 blocks apart: the judge's room is 0.25 block
     ("closer", (0.0, 0.0), (0.0, 0.08), None),  # 1.6 blocks apart: closing half the room is possible
     # 1.2 blocks face to face: closer needs 1.075, the planner keeps its 5 mm (0.1 block) clearance: 1.1 at best

@@ -111,7 +111,7 @@ def test_unknown_object():
 def test_path_leaving_the_workspace():
     scene = default_scene()
     a = scene.get("A")
-    path = np.array([[a.xy[0], a.xy[1], 0.0], [0.3, -0.1, 0.0]])
+    path = np.array([[a.xy[0], a.xy[1], 0.0], [0.3, -0.2, 0.0]])  # 0.36 m from the centre
     with pytest.raises(PathError, match="leaves the workspace"):
         execute_path(scene, "A", path, out_dir=None, render=None)
 

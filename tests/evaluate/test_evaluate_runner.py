@@ -71,8 +71,8 @@ def test_resume_skips_recorded_runs_and_refuses_other_settings(serial, tmp_path)
 def test_a_failing_run_is_a_row_and_the_evaluation_goes_on(tmp_path):
     f = tmp_path / "s.jsonl"
     # A and B at opposite ends of the workspace: no room to go one block farther (refused up front)
-    f.write_text('{"id": "no-room", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [-0.22, 0.0]},'
-                 ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.22, 0.0]}]}\n'
+    f.write_text('{"id": "no-room", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.0, -0.32]},'
+                 ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.0, 0.32]}]}\n'
                  '{"id": "fine", "objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.15, 0.0]},'
                  ' {"name": "B", "color": "green", "size": 0.05, "xy": [0.0, 0.0]}]}\n')
     evaluate(EvaluationConfig(actions=["away"], scene_file=str(f), mode="plan"), tmp_path / "e", workers=0,

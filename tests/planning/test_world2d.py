@@ -36,7 +36,7 @@ def test_obstacles_are_inflated_by_the_gripper_margin_only():
 def test_the_grasp_point_must_stay_in_the_workspace_disk():
     w = World2D(_scene(), "A")
     start = np.array([-0.15, 0.0, 0.0])
-    assert w.moves_free(start, np.array([[-0.24, 0.0, 0.0], [-0.26, 0.0, 0.0]])).tolist() == [True, False]
+    assert w.moves_free(start, np.array([[0.0, 0.34, 0.0], [0.0, 0.36, 0.0]])).tolist() == [True, False]
 
 
 def test_a_rotating_move_sweeps_the_corners():
@@ -54,7 +54,7 @@ def test_a_zero_length_move_agrees_with_the_polygon_overlap_test(x, y, yaw):
     scene = _scene()
     w = World2D(scene, "A")
     pose = np.array([x, y, yaw])
-    inside = bool(np.hypot(x, y) <= 0.25)
+    inside = bool(np.hypot(x, y) <= scene.workspace.radius)
     expected = inside and not polygons_overlap(w.mover.polygon(pose), scene.get("B").footprint(), GRIPPER_MARGIN)
     assert bool(w.moves_free(pose, pose[None], relax=False)[0]) == expected
     assert w.overlaps(pose) == (not expected)
