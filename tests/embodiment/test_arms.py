@@ -50,6 +50,8 @@ def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refu
     # the 0.35 m disk (2026-11-27) is cut by every shipped arm's ring
     assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.26, 0.79))
     assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.175, 0.675))
+    for spec in (PANDA, XARM6, KUKA_IIWA):  # starts are drawn where the old disk's fitted workspace put them
+        assert arm_plugins.fit_workspace(Workspace(), spec).starts() == arm_plugins.fit_workspace(old, spec)
     kuka = arm_plugins.fit_workspace(Workspace(), KUKA_IIWA)  # the disk cut by the KUKA's ring (issue 22)
     assert kuka.center == (0.0, 0.0) and kuka.radius == 0.35 and kuka.ring == (-0.6, 0.0, 0.43, 0.77)
     assert kuka.inner_radius == pytest.approx(0.17)  # what it had before: the disk shrunk into the ring
