@@ -32,7 +32,8 @@ from ..planning.world2d import World2D, segment_frames
 from ..plugins import registry
 
 POSITION_BOUND = 16.0
-"""Block units: the workspace's radius (0.25 m) over the smallest block (0.02 m) is 12.5."""
+"""Block units: the start disk's radius (0.25 m) over the smallest block (0.02 m) is 12.5. The planning disk is
+0.35 m since 2026-11-27 (17.5 smallest blocks): an observation beyond 16 is clipped, the space kept as it was."""
 
 
 class Plan2DEnv(gym.Env):
