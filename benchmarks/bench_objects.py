@@ -12,7 +12,10 @@ placed, in turn (by seed), with each mover shape, touching (a 0-5 mm gap between
 centre (the original study's range; a size is the side in blocks of ``core/shapes.py``), or one of them at
 the workspace's rim; 2-5 bystanders of the same mix lie anywhere in the workspace (the duck among them when
 it is neither A nor B). Every scene is valid (``Scene.validate``). Each is performed with each action by
-``pipeline.perform`` (no rendering) on the default arm (the Panda).
+``pipeline.perform`` (no rendering) on the default arm (the Panda). The objects are drawn in the arm's start
+disk (0.25 m, the KUKA's 0.17 m); since the 0.35 m workspace of 2026-11-27 they are planned in the arm's
+workspace (the 0.35 m disk cut by its ring), as ``perform`` plans a user's scene; ``--old-disk`` plans in the
+start disk, as every row measured before did.
 
 Per action it prints the outcomes of ``bench_robustness.py`` (success, unsuccessful, refused by check,
 plan-failed, exec-failed: an error after the arm started, crashed: any other exception) and how many runs
@@ -57,9 +60,11 @@ def _object(name: str, color: str, kind: str, xy, yaw: float, rng):
                   rpy=(math.pi / 2, 0.0, 0.0))
 
 
-def object_scene(seed: int, radius: float = 0.25):
+def object_scene(seed: int, radius: float = 0.25, plan_in=None):
     """A valid mixed-shape scene drawn from ``seed`` inside a workspace of ``radius`` (an arm's fitted disk;
-    0.25 m, the Panda's, gives the same scenes as before): (scene, kind, mover's shape)."""
+    0.25 m, the Panda's, gives the same scenes as before): (scene, kind, mover's shape). The scene plans in
+    ``plan_in`` (a Workspace; None: the disk the objects were drawn in, as every row before 2026-11-27's
+    0.35 m workspace did)."""
     import numpy as np
 
     from l2p_bullet.core.scene import Scene, Workspace
@@ -93,7 +98,7 @@ def object_scene(seed: int, radius: float = 0.25):
         objects = _add_bystanders(objects, extra, rng, radius)
         if objects is None:
             continue
-        return Scene(objects, workspace=Workspace(radius=radius)).validate(), kind, kinds[0]
+        return Scene(objects, workspace=plan_in or Workspace(radius=radius)).validate(), kind, kinds[0]
     raise RuntimeError(f"no valid object scene for seed {seed}")  # pragma: no cover
 
 
@@ -136,9 +141,11 @@ def _add_bystanders(objects: list, kinds: list[str], rng, radius: float = 0.25) 
     return out
 
 
-def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda") -> dict:
-    """Perform ``action`` with ``arm`` on the object scene of ``seed`` (drawn inside that arm's workspace);
-    classify what happened (bench_robustness.classify)."""
+def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda", old_disk: bool = False) -> dict:
+    """Perform ``action`` with ``arm`` on the object scene of ``seed`` (drawn inside that arm's start disk) in
+    the product's workspace (the 0.35 m disk cut by the arm's ring), or with ``old_disk`` in the start disk
+    itself, as the rows before 2026-11-27's wider workspace were; classify what happened
+    (bench_robustness.classify)."""
     from l2p_bullet.core.scene import Workspace
     from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.pipeline import perform
@@ -147,19 +154,19 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda"
     # the largest disk about the centre the arm reaches: the KUKA's scenes stay those its stress rows were drawn
     # in (0.17 m, before its workspace became the disk cut by its ring, issue 22): a part of that workspace
     radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius  # the start disk's
-    scene, kind, shape = object_scene(seed, radius)
+    scene, kind, shape = object_scene(seed, radius, None if old_disk else Workspace())
     out = tmp / f"{action}-{seed}"
     row = {"action": action, "seed": seed, "kind": kind, "shape": shape, "objects": len(scene.objects)}
     return classify(row, out, lambda: perform(SENTENCES[action], scene, out_dir=out, seed=seed, render=False,
                                               plugins=plugins, arm=arm), checks=CHECKS)
 
 
-def _worker(args: tuple[list[tuple[str, int]], str, str]) -> list[dict]:
-    jobs, tmp, arm = args
+def _worker(args: tuple[list[tuple[str, int]], str, str, bool]) -> list[dict]:
+    jobs, tmp, arm, old_disk = args
     from l2p_bullet.plugins import registry
 
     plugins = registry.discover()
-    return [run_one(a, s, Path(tmp), plugins, arm) for a, s in jobs]
+    return [run_one(a, s, Path(tmp), plugins, arm, old_disk) for a, s in jobs]
 
 
 def print_shapes(rows: list[dict]) -> None:
@@ -194,16 +201,19 @@ def main() -> None:
     ap.add_argument("--jobs", type=int, default=1, help="worker processes")
     ap.add_argument("--arm", default="panda", help="the arm (l2p-bullet arms); scenes are drawn inside its workspace")
     ap.add_argument("--json", type=Path, default=None, help="also write every row here")
+    ap.add_argument("--old-disk", action="store_true",
+                    help="plan in the disk the scene was drawn in (the rows measured before 2026-11-27's 0.35 m "
+                         "workspace), not the product's workspace")
     args = ap.parse_args()
     actions = [a for a in args.actions.split(",") if a]
     jobs = [(a, args.seed_base + i) for i in range(args.scenes) for a in actions]
     t0 = time.perf_counter()
     save = (lambda rows: args.json.write_text(json.dumps(rows, indent=1))) if args.json else None
-    rows = run_jobs(jobs, args.jobs, _worker, run_one, "bench-objects-", extra=(args.arm,), split=16, line=_line,
+    rows = run_jobs(jobs, args.jobs, _worker, run_one, "bench-objects-", extra=(args.arm, args.old_disk), split=16, line=_line,
                     save=save)
     rows.sort(key=lambda r: (r["seed"], actions.index(r["action"])))
     print(f"\nobjects: {args.scenes} mixed-shape scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
-          f"x {len(actions)} actions, arm {args.arm}, no rendering, {time.perf_counter() - t0:.0f} s\n")
+          f"x {len(actions)} actions, arm {args.arm}, planned in {'the start disk' if args.old_disk else 'its workspace'}, no rendering, {time.perf_counter() - t0:.0f} s\n")
     print_table(rows, actions)
     print_shapes(rows)
     if args.json:
