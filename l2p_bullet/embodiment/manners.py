@@ -13,6 +13,8 @@ arm moves, and how it runs once the path is checked.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..core.geometry import separation
@@ -74,6 +76,7 @@ PUSH_LOOKAHEAD = 0.6  # block sides ahead along the path: where a push aims
 PUSH_GAP = 0.012  # m between the pusher and the block when the hand comes down beside it
 PUSH_SHIFT = 0.012  # m the pusher may slide along the block's face to keep clear of another object
 PUSH_CLEARANCE = 0.003  # m kept between the pusher and every other object
+PUSH_FACE_TURN = math.radians(55.0)  # rad: a turn beyond this from the pushing side changes face (go round)
 
 
 def push_outline(size: float, arm: ArmSpec = PANDA, n: int = 16) -> np.ndarray:
@@ -124,23 +127,52 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
     return None
 
 
+def hand_points(dense: np.ndarray, size: float, standoff: float) -> np.ndarray:
+    """Where the pushing hand's tool point goes along a push of the block's centre along ``dense`` (N,>=2), as
+    ``embodiment/push.py`` drives it: ``standoff`` behind the block, opposite the point :data:`PUSH_LOOKAHEAD`
+    sides further along the path it aims at; when that direction turns more than :data:`PUSH_FACE_TURN` from the
+    side the hand is on, the hand goes round over the block, a straight line from the old side to the new."""
+    p = np.asarray(dense, float)[:, :2]
+    if len(p) < 2:
+        return p
+    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(p, axis=0).T))]
+    ahead = np.minimum(np.searchsorted(s, s + PUSH_LOOKAHEAD * size), len(p) - 1)
+    v = p[ahead] - p
+    v[-1] = p[-1] - p[-2]  # at the end: the last step's direction
+    n = np.hypot(v[:, 0], v[:, 1])
+    for i in range(len(p) - 2, -1, -1):  # a standstill keeps the direction that follows it
+        if n[i] < 1e-9:
+            v[i], n[i] = v[i + 1], n[i + 1]
+    u = v / np.maximum(n, 1e-12)[:, None]
+    hands, out, side = p - standoff * u, [], u[0]
+    for i in range(len(p)):
+        if float(np.dot(u[i], side)) < np.cos(PUSH_FACE_TURN):
+            t = np.linspace(0.0, 1.0, 16)[:, None]
+            out.append((p[i] - standoff * side) * (1 - t) + hands[i] * t)
+            side = u[i]
+    return np.vstack([hands, *out])
+
+
 def _near_the_hole(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | None:
     """Why the pushing hand could need a point the arm does not reach, or None. With an arm's reach ring cutting
-    the workspace (core/workspace.py, the KUKA iiwa's), the hand stands behind the block, on whichever side the
-    push needs (and goes round it), up to the block's farthest corner, the hand's half length and the gap away
-    from its centre: a path that brings the block that near the ring's hole is refused up front (measured on
-    2026-11-27: pushes along the hole's edge stopped half-way with the arm out of reach)."""
+    the workspace (core/workspace.py), the hand stands behind the block (:func:`hand_points`): up to the
+    block's farthest corner, the hand's half thickness and the gap from its centre, slid along the face by up to
+    :data:`PUSH_SHIFT`. A push whose hand would come nearer the base than the ring's near edge is refused up front
+    (measured on 2026-11-27: KUKA pushes along the hole's edge stopped half-way with the arm out of reach). The
+    side the hand is on counts: a first bound that put it on every side refused 7 of the Panda's 150 study
+    pushes that had been performed (bench_manners, once the Panda's ring cut its 0.35 m workspace)."""
     ws = scene.workspace
     if ws.ring is None:
         return None
     half = reach.hand_extent(m.size / 2, arm) or (0.0145, 0.03)
     standoff = float(np.linalg.norm(m.footprint(np.zeros(3)), axis=1).max()) + half[0] + PUSH_GAP
-    d = np.hypot(dense[:, 0] - ws.ring[0], dense[:, 1] - ws.ring[1])
-    if float(d.min()) >= ws.ring[2] + standoff:
+    hands = hand_points(dense, m.size, standoff)
+    d = np.hypot(hands[:, 0] - ws.ring[0], hands[:, 1] - ws.ring[1])
+    if float(d.min()) >= ws.ring[2] + PUSH_SHIFT:
         return None
-    return (f'the pushing hand could need a point nearer the base of the arm "{arm.name}" than it reaches '
-            f"({ws.ring[2]:.2f} m): the path brings \"{m.name}\" {float(d.min()):.3f} m from the base and the hand stands "
-            f'up to {standoff * 100:.1f} cm behind it; carry or slide "{m.name}" instead')
+    return (f'the pushing hand would need a point nearer the base of the arm "{arm.name}" than it reaches '
+            f"({ws.ring[2]:.2f} m): behind \"{m.name}\" on this path it comes {float(d.min()):.3f} m from the base; "
+            f'carry or slide "{m.name}" instead')
 
 
 def _no_room_to_start(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | None:

@@ -29,7 +29,7 @@ import numpy as np
 from ..core.geometry import separation
 from ..errors import ReachError
 from . import reach
-from .manners import PUSH_CLEARANCE, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
+from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
 from .push_path import drop_spurs
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
@@ -45,7 +45,7 @@ LOOKAHEAD = PUSH_LOOKAHEAD  # block sides ahead along the path
 PRESS = 0.008  # m inside the block's face: the push's bite (the arm's position control makes it a force)
 TIP_Z = PUSH_TIP_Z  # m: the fingertips' height above the table while pushing (low: the push does not tip the block)
 STALL_S = 1.5  # s without 1 mm of progress along the path: the push is stuck (a corner caught): go round
-FACE_TURN = math.radians(55.0)  # a turn beyond this from the pushing side changes face (go round)
+FACE_TURN = PUSH_FACE_TURN  # a turn beyond this from the pushing side changes face (go round)
 GAP = PUSH_GAP  # m between the pusher and the block when the hand comes down on a new side
 CLEAR = 0.012  # m above the block's top when the hand goes round
 STOP = 0.0005  # m from the path's end: done

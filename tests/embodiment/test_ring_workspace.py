@@ -92,3 +92,33 @@ def test_a_replayed_motion_is_pulled_out_of_the_rings_hole():
     out = retarget(demo, np.zeros(3), 0.15, scene, "A", "B")
     assert out.clamped > 0  # the circle (0.12 m round B) passes through the hole (x < -0.17 on the axis)
     assert scene.workspace.path_inside(out.path) is None
+
+
+def test_the_pushing_hand_stands_behind_the_block_and_goes_round_over_it_at_a_corner():
+    from l2p_bullet.embodiment.manners import hand_points
+
+    leg1 = np.column_stack([np.linspace(0.0, 0.1, 21), np.zeros(21)])
+    leg2 = np.column_stack([np.full(20, 0.1), np.linspace(0.005, 0.1, 20)])
+    hands = hand_points(np.vstack([leg1, leg2]), 0.04, 0.05)
+    np.testing.assert_allclose(hands[0], [-0.05, 0.0], atol=1e-9)  # behind the block, opposite the push
+    np.testing.assert_allclose(hands[40], [0.1, 0.05], atol=1e-9)  # the path's end: behind it along the last step
+    # going round at the corner: a straight line over the block from the -x side to the -y side
+    chord = hands[41:]
+    assert len(chord) == 16 and chord[0][0] < 0.1 and chord[-1][1] < 0.0
+
+
+@pytest.mark.parametrize("ends, refused", [
+    (((-0.24, 0.0), (-0.10, 0.0)), True),  # pushed away from the Panda's base: its hand stands on the base side
+    (((-0.10, 0.0), (-0.24, 0.0)), False),  # pushed towards it: the hand stands on the far side
+])
+def test_a_push_is_refused_only_when_its_hand_would_stand_in_the_rings_hole(ends, refused):
+    # the Panda's ring (0.26 m from its base at x = -0.53) cuts its 0.35 m workspace: a block 0.29 m from the base
+    # can be pushed with the hand beyond it, not with the hand between it and the base (the first bound refused both)
+    from l2p_bullet.embodiment.manners import push_refusal
+    from l2p_bullet.embodiment.sim.arms import PANDA
+
+    scene = arm_plugins.fit_scene(_scene(ends[0], (0.1, 0.2)), PANDA)
+    assert scene.workspace.ring is not None
+    path = np.array([[*ends[0], 0.0], [*ends[1], 0.0]])
+    why = push_refusal(scene, "A", path, PANDA)
+    assert (why is not None and 'the arm "panda"' in why) == refused, why
