@@ -11,7 +11,6 @@ the probes, how many are not reached (and a few of them), the region's area. Abo
 
 from __future__ import annotations
 
-import math
 import sys
 import time
 
@@ -27,7 +26,6 @@ def main(radii: list[float]) -> None:
         spec = ap.get(name)
         kin = Kinematics(spec, spec.mount)
         base = np.asarray(spec.mount[:2], float)
-        turn = min(1.0, spec.wrist_limit - 0.3)
         try:
             for radius in radii:
                 t = time.time()
@@ -36,11 +34,7 @@ def main(radii: list[float]) -> None:
                 gx, gy = np.meshgrid(g, g)
                 grid = np.column_stack([gx.ravel(), gy.ravel()])
                 pts = np.unique(np.round(np.vstack([ap.region_probes(ws), grid[ws.contains(grid, 0.005)]]), 4), axis=0)
-                bad = []
-                for p in pts:
-                    r, az = float(np.hypot(*(p - base))), float(math.atan2(p[1] - base[1], p[0] - base[0]))
-                    if not all(ap.reaches(kin, spec, r, az, z, w) for z in ap.REACH_HEIGHTS for w in (0.0, -turn, turn)):
-                        bad.append((round(float(p[0]), 3), round(float(p[1]), 3)))
+                bad = [(round(x, 3), round(y, 3)) for x, y in ap.unreached(kin, spec, pts)]
                 print(f"{name} R={radius}: ring {spec.reach} from ({base[0]}, {base[1]}); {len(pts)} probes, "
                       f"{len(bad)} unreached {bad[:5]}; area {ws.area():.4f} m^2 ({time.time() - t:.0f} s)", flush=True)
         finally:

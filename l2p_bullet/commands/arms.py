@@ -29,10 +29,10 @@ def arms_cmd(as_json: bool, check: bool) -> None:
                "ok": a.ok, "error": a.error}
         if a.spec is not None:
             s = a.spec
+            ws = arm_plugins.fit_workspace(Workspace(), s)
             row |= {"description": s.description, "urdf": s.urdf, "arm_joints": len(s.arm_joints),
                     "finger_joints": len(s.finger_joints), "reach_m": list(s.reach), "mount": list(s.mount),
-                    "workspace_radius_m": round(arm_plugins.fit_workspace(Workspace(), s).inner_radius, 4),
-                    "workspace": arm_plugins.fit_workspace(Workspace(), s).to_dict(),
+                    "workspace_radius_m": round(ws.inner_radius, 4), "workspace": ws.to_dict(),
                     "gripper_opening_m": s.gripper_opening, "wrist_limit_rad": s.wrist_limit,
                     "payload_kg": s.payload}
         if check and a.ok:

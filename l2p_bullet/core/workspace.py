@@ -197,10 +197,7 @@ class Workspace:
 
     def holds_disk(self, radius: float) -> bool:
         """Whether the ring (if any) holds the whole disk of ``radius`` about the centre (no ring: always)."""
-        if self.ring is None:
-            return True
-        d = float(np.hypot(self.center[0] - self.ring[0], self.center[1] - self.ring[1]))
-        return min(radius, self.ring[3] - d, d - self.ring[2]) >= radius
+        return self.ring is None or self._ring_room(radius) >= radius
 
     def starts(self) -> Workspace:
         """Where random starts are drawn: the disk of :data:`START_RADIUS` (or this one's, if smaller), cut by the
@@ -254,10 +251,12 @@ class Workspace:
     def inner_radius(self) -> float:
         """The largest disk about the centre inside the region (the radius itself with no ring): what an arm
         whose ring bites into the disk got as its whole workspace before 2026-11-27."""
-        if self.ring is None:
-            return self.radius
+        return self.radius if self.ring is None else max(self._ring_room(self.radius), 0.0)
+
+    def _ring_room(self, radius: float) -> float:
+        """The largest disk about the centre, at most ``radius``, that the ring holds (negative: none)."""
         d = float(np.hypot(self.center[0] - self.ring[0], self.center[1] - self.ring[1]))
-        return max(min(self.radius, self.ring[3] - d, d - self.ring[2]), 0.0)
+        return min(radius, self.ring[3] - d, d - self.ring[2])
 
     def area(self, step: float = 0.002) -> float:
         """The region's area (m^2), counted on a grid of ``step`` metres (for reports, not for decisions)."""

@@ -119,13 +119,8 @@ def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
     intersected with the ring (``Workspace.ring``, issue 22): every shipped arm since the disk grew to 0.35 m
     (2026-11-27; at 0.25 m the Panda's and the xArm6's rings held it). Before 2026-11-27 the disk was shrunk
     about its centre until it fitted the ring (0.17 m for the KUKA)."""
-    base_xy = spec.mount[:2]
-    d = float(math.hypot(workspace.center[0] - base_xy[0], workspace.center[1] - base_xy[1]))
-    near, far = spec.reach
-    radius = min(workspace.radius, far - d, d - near)
-    if radius >= workspace.radius:
-        return workspace
-    return replace(workspace, ring=(float(base_xy[0]), float(base_xy[1]), float(near), float(far)))
+    cut = replace(workspace, ring=(float(spec.mount[0]), float(spec.mount[1]), float(spec.reach[0]), float(spec.reach[1])))
+    return workspace if cut.holds_disk(workspace.radius) else cut
 
 
 def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
@@ -203,6 +198,24 @@ def reaches(kin, spec: ArmSpec, r: float, az: float, z: float, wrist: float) -> 
     return True
 
 
+def wrist_turns(spec: ArmSpec) -> tuple[float, float, float]:
+    """The wrist angles every reach test asks for: 0 and 1 rad either side (less for a narrow wrist)."""
+    turn = min(1.0, spec.wrist_limit - 0.3)
+    return (0.0, -turn, turn)
+
+
+def unreached(kin, spec: ArmSpec, points: np.ndarray) -> list[list[float]]:
+    """The points (K,2; scene frame) the tool does not reach pointing down at every :data:`REACH_HEIGHTS` with the
+    wrist at every :func:`wrist_turns` angle, rounded to 0.1 mm."""
+    base = np.asarray(spec.mount[:2], float)
+    out = []
+    for p in np.asarray(points, float).reshape(-1, 2):
+        r, az = float(np.hypot(*(p - base))), float(math.atan2(p[1] - base[1], p[0] - base[0]))
+        if not all(reaches(kin, spec, r, az, z, w) for z in REACH_HEIGHTS for w in wrist_turns(spec)):
+            out.append([round(float(p[0]), 4), round(float(p[1]), 4)])
+    return out
+
+
 def measure_reach(spec: ArmSpec, step: float = 0.01) -> tuple[float, float]:
     """(near, far): the ring of distances from the base (around its distance to the scene's centre) at which the tool
     reaches every test pose: azimuths 0 and +-0.5 rad (the workspace disk spans +-0.49), heights
@@ -211,8 +224,7 @@ def measure_reach(spec: ArmSpec, step: float = 0.01) -> tuple[float, float]:
     from .sim.robot import Kinematics
 
     kin = Kinematics(spec, spec.mount)
-    turn = min(1.0, spec.wrist_limit - 0.3)
-    wrists = (0.0, -turn, turn)
+    wrists = wrist_turns(spec)
 
     def ok(r: float) -> bool:
         return all(reaches(kin, spec, r, az, z, w) for az in (0.0, -0.5, 0.5) for z in REACH_HEIGHTS
@@ -265,15 +277,8 @@ def region_unreached(spec: ArmSpec, ws: Workspace) -> list[list[float]]:
     from .sim.robot import Kinematics
 
     kin = Kinematics(spec, spec.mount)
-    base = np.asarray(spec.mount[:2], float)
-    turn = min(1.0, spec.wrist_limit - 0.3)
     try:
-        out = []
-        for p in region_probes(ws):
-            r, az = float(np.hypot(*(p - base))), float(math.atan2(p[1] - base[1], p[0] - base[0]))
-            if not all(reaches(kin, spec, r, az, z, w) for z in REACH_HEIGHTS for w in (0.0, -turn, turn)):
-                out.append([round(float(p[0]), 4), round(float(p[1]), 4)])
-        return out
+        return unreached(kin, spec, region_probes(ws))
     finally:
         kin.close()
 

@@ -49,9 +49,7 @@ def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -
         return list(zip(x.tolist(), y.tolist(), strict=True))
 
     draw.rectangle(box, outline=(0, 0, 0, 255), width=SCALE)
-    ang = np.linspace(0, 2 * np.pi, 97)
-    circle = np.column_stack([ws.center[0] + ws.radius * np.cos(ang), ws.center[1] + ws.radius * np.sin(ang)])
-    for arc in [circle] if ws.ring is None else ws.outline(96):  # an arm's reach ring: the region's arcs
+    for arc in ws.outline(96):  # the disk's circle (97 points), or with an arm's reach ring the region's arcs
         pts = to_px(arc)
         for a, b in zip(pts[0::2], pts[1::2], strict=False):  # dashed
             draw.line([a, b], fill=(128, 128, 128, 255), width=SCALE)
