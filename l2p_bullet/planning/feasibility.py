@@ -46,7 +46,7 @@ from collections import deque
 
 import numpy as np
 
-from ..core.geometry import separation
+from ..core.geometry import posed_separation, separation
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..embodiment import reach
 from ..embodiment.sim.arms import PANDA, ArmSpec
@@ -191,7 +191,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
         reach_o = float(np.linalg.norm(body.outline, axis=1).max())
         near = ok_far & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + wide)
         if near.any():
-            gaps = separation(place_outline(world.mover.outline, poses[near]), poly)
+            gaps = posed_separation(world.mover.outline, poses[near], poly)
             idx = np.flatnonzero(near)
             short[idx] = np.minimum(short[idx], gaps - margin)
     arc = _longest_circular_run((ok & (short >= -slack)).reshape(len(bearings), -1).any(1)) * bearing_deg
