@@ -18,8 +18,8 @@ from collections import deque
 
 import numpy as np
 
-from ..core.geometry import separation
-from .world2d import World2D, place_outline
+from ..core.geometry import posed_separation
+from .world2d import World2D
 
 GRID = (5.0, 0.125)
 """Bearing step (degrees) and radius step (mover's sides) of the grid the way round is searched on."""
@@ -88,7 +88,7 @@ def _legal(world: World2D, a: np.ndarray, b0: float, step_b: float, per_turn: in
     gaps0 = world.gaps(world.mover.pose)
     for outline, poly, gap0 in zip(world._outlines, world._obs_polys, gaps0, strict=True):
         margin = min(world.margin, max(float(gap0), 0.0) - 1e-9)
-        ok &= separation(place_outline(outline, poses), poly) >= margin
+        ok &= posed_separation(outline, poses, poly) >= margin  # one yaw: projected once (see its docstring)
     return ok.reshape(bb.shape)
 
 
