@@ -5,10 +5,12 @@ from __future__ import annotations
 import numpy as np
 
 
-def _axes(poly: np.ndarray) -> np.ndarray:
-    edges = np.roll(poly, -1, axis=0) - poly
-    normals = np.stack([-edges[:, 1], edges[:, 0]], axis=1)
-    return normals / np.linalg.norm(normals, axis=1, keepdims=True)
+def edge_normals(polys: np.ndarray) -> np.ndarray:
+    """Unit edge normals of polygons (..., K, 2) -> (..., K, 2): the separating axes a polygon contributes. A
+    zero-length edge (``convex_hull`` makes none) gives a zero vector instead of NaN."""
+    e = np.roll(polys, -1, axis=-2) - polys
+    n = np.stack([-e[..., 1], e[..., 0]], axis=-1)
+    return n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-12)
 
 
 def polygons_overlap(a: np.ndarray, b: np.ndarray, margin: float = 0.0) -> bool:
@@ -17,7 +19,7 @@ def polygons_overlap(a: np.ndarray, b: np.ndarray, margin: float = 0.0) -> bool:
     ``margin`` > 0 inflates the test: polygons closer than ``margin`` along some axis overlap.
     """
     a, b = np.asarray(a, float), np.asarray(b, float)
-    for axis in np.concatenate([_axes(a), _axes(b)]):
+    for axis in np.concatenate([edge_normals(a), edge_normals(b)]):
         pa, pb = a @ axis, b @ axis
         if pa.max() + margin <= pb.min() + 1e-12 or pb.max() + margin <= pa.min() + 1e-12:
             return False
@@ -88,10 +90,8 @@ def separation(polys: np.ndarray, other: np.ndarray) -> np.ndarray:
     (L,2): the largest separation along their edge normals, negative when they overlap (metres)."""
     polys = np.asarray(polys, float)
     other = np.asarray(other, float)
-    e = np.roll(polys, -1, axis=-2) - polys
-    n = np.stack([-e[..., 1], e[..., 0]], axis=-1)
-    n = n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-12)
-    axes = np.concatenate([n, np.broadcast_to(_axes(other), (len(polys), len(other), 2))], axis=1)  # (M,A,2)
+    axes = np.concatenate([edge_normals(polys), np.broadcast_to(edge_normals(other), (len(polys), len(other), 2))],
+                          axis=1)  # (M,A,2)
     pm = np.einsum("mad,mkd->mak", axes, polys)
     po = np.einsum("mad,ld->mal", axes, other)
     gap = np.maximum(po.min(-1) - pm.max(-1), pm.min(-1) - po.max(-1))
@@ -115,10 +115,8 @@ def posed_separation(outline: np.ndarray, poses: np.ndarray, other: np.ndarray) 
     c, s = np.cos(yaws)[:, None], np.sin(yaws)[:, None]
     turned = np.stack([outline[None, :, 0] * c - outline[None, :, 1] * s,
                        outline[None, :, 0] * s + outline[None, :, 1] * c], axis=-1)  # (Y,K,2) about the origin
-    e = np.roll(turned, -1, axis=-2) - turned
-    n = np.stack([-e[..., 1], e[..., 0]], axis=-1)
-    n = n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-12)
-    axes = np.concatenate([n, np.broadcast_to(_axes(other), (len(yaws), len(other), 2))], axis=1)  # (Y,A,2)
+    axes = np.concatenate([edge_normals(turned), np.broadcast_to(edge_normals(other), (len(yaws), len(other), 2))],
+                          axis=1)  # (Y,A,2)
     pm = np.einsum("yad,ykd->yak", axes, turned)
     po = np.einsum("yad,ld->yal", axes, other)
     below = (po.min(-1) - pm.max(-1))[which]  # (N,A): other's low end minus the turned outline's high end

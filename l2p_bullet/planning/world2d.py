@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.geometry import separation, wrap_angle
+from ..core.geometry import edge_normals, separation, wrap_angle
 from ..core.scene import GRIPPER_MARGIN, Scene
 
 SUB_ROTATION = 0.1
@@ -71,13 +71,6 @@ def place_outline(outline: np.ndarray, poses: np.ndarray) -> np.ndarray:
     return out[0] if single else out
 
 
-def _normals(polys: np.ndarray) -> np.ndarray:
-    """Unit edge normals of polygons (..., K, 2) -> (..., K, 2)."""
-    e = np.roll(polys, -1, axis=-2) - polys
-    n = np.stack([-e[..., 1], e[..., 0]], axis=-1)
-    return n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-12)
-
-
 class World2D:
     """The mover and its obstacles taken from a scene; answers legality questions in batches.
 
@@ -98,7 +91,7 @@ class World2D:
         outlines = outlines or {}
         self._outlines = [np.asarray(outlines.get(b.name, self.mover.outline), float) for b in self.obstacles]
         self._obs_polys = [b.polygon() for b in self.obstacles]
-        self._obs_normals = [_normals(p) for p in self._obs_polys]
+        self._obs_normals = [edge_normals(p) for p in self._obs_polys]
         self._obs_centres = np.array([b.pose[:2] for b in self.obstacles]).reshape(-1, 2)
         self._obs_radii = np.array([np.linalg.norm(b.outline, axis=1).max() for b in self.obstacles])
         self._mover_radii = np.array([np.linalg.norm(o, axis=1).max() for o in self._outlines])
@@ -201,7 +194,7 @@ class World2D:
             polys = place_outline(outline, sub[idx].reshape(-1, 3)).reshape(len(idx), n_sub + 1, -1, 2)
             hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
             m_axes = np.concatenate(
-                [_normals(polys[:, :-1]), _normals(polys[:, 1:]),
+                [edge_normals(polys[:, :-1]), edge_normals(polys[:, 1:]),
                  np.broadcast_to(perp[idx, None, None, :], (len(idx), n_sub, 1, 2))], axis=2)
             for i in group:
                 j = np.flatnonzero(near[i, idx] & ok[idx])
