@@ -4,7 +4,7 @@ Frame (the scene file's frame, DESIGN.md section 4): metres on the table top, or
 centre, +x pointing away from the robot's base, +y to the robot's left, yaw in radians about +z.
 
 The robot base stands off the table's near edge at ``ROBOT_BASE_XY``: a Panda with its gripper pointing
-down reaches grasp points at table height from about 0.26 m to 0.79 m from its base (DESIGN.md, reach note).
+down reaches grasp points at table height from about 0.27 m to 0.79 m from its base (DESIGN.md, reach note; at every height up to 0.19 m).
 A disk about the table's centre (0.35 m; 0.25 m, which fits inside that ring, until 2026-11-27) bounds the
 workspace: every block centre, and every point of a planned path, must lie inside it. For an
 arm whose reach ring does not hold the disk (every shipped arm since the disk grew to 0.35 m, 2026-11-27), the

@@ -169,8 +169,13 @@ def robot_type(spec: ArmSpec) -> str:
 # --- measuring an arm (l2p-bullet arms --check, new-arm) -------------------------------------------------
 PROFILE_DEPTHS = tuple(round(0.005 * i, 3) for i in range(17))
 """The depths (m above the fingertips) of a measured hand profile: 0 to 8 cm, the tallest block's side."""
-REACH_HEIGHTS = (0.012, 0.19)
-"""Tool heights the reach test asks for: a 2 cm block's grasp and an 8 cm block's top plus the hover."""
+REACH_HEIGHTS = (*(round(0.012 + 0.02 * k, 3) for k in range(9)), 0.19)
+"""Tool heights the reach test asks for: from a 2 cm block's grasp (0.012 m) to an 8 cm block's top plus the hover
+(0.19 m), every 2 cm between. Why the heights between: pointing down near its base, an arm can reach both ends of
+the vertical line it rises along and not its middle. The Panda at 0.26 m from its base reaches 0.012 and 0.19 m
+but not 0.082-0.162 m, at any wrist angle; with only the two ends tested its ring's near edge was 0.26 m, and
+``bench_objects.py`` (seeds 977038 "around" and 977064 "past", 2026-11-27) planned paths there that execution
+could not lift (ReachError before anything moved). With the heights between, it is 0.27 m."""
 
 
 def _in_plane(spec: ArmSpec, q: np.ndarray, az: float, wrist: float) -> np.ndarray:

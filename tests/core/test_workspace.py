@@ -13,7 +13,7 @@ from l2p_bullet.core.workspace import DISK_RADIUS, START_RADIUS
 # the geometry's known points were worked out on the 0.25 m disk (the default until 2026-11-27): kept on it
 DISK = Workspace(radius=0.25)
 KUKA = Workspace(radius=0.25, ring=(-0.6, 0.0, 0.43, 0.77))  # the KUKA iiwa's: its hole bites the disk's near side
-PANDA_RING = (-0.53, 0.0, 0.26, 0.79)
+PANDA_RING = (-0.53, 0.0, 0.27, 0.79)  # the Panda's ring (embodiment/sim/arms.py)
 
 
 def test_the_default_disk_is_the_measured_one_and_starts_stay_in_the_old_disk():

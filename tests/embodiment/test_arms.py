@@ -48,7 +48,7 @@ def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refu
     old = Workspace(radius=0.25)  # the old disk: the Panda's and the xArm6's rings hold it, it is untouched
     assert arm_plugins.fit_workspace(old, PANDA) == old and arm_plugins.fit_workspace(old, XARM6) == old
     # the 0.35 m disk (2026-11-27) is cut by every shipped arm's ring
-    assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.26, 0.79))
+    assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.27, 0.79))
     assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.175, 0.675))
     for spec in (PANDA, XARM6, KUKA_IIWA):  # starts are drawn where the old disk's fitted workspace put them
         assert arm_plugins.fit_workspace(Workspace(), spec).starts() == arm_plugins.fit_workspace(old, spec)
@@ -60,9 +60,9 @@ def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refu
     assert arm_plugins.fit_scene(scene, PANDA).objects == scene.objects
     # (0, 0.33) is beyond the old disk, 0.62 m from the Panda's base: accepted; the ring's hole is refused
     far = Scene([SceneObject("A", "red", 0.04, (0.0, 0.33)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
-    assert arm_plugins.fit_scene(far, PANDA).workspace.ring == (-0.53, 0.0, 0.26, 0.79)
+    assert arm_plugins.fit_scene(far, PANDA).workspace.ring == (-0.53, 0.0, 0.27, 0.79)
     hole = Scene([SceneObject("A", "red", 0.04, (-0.3, 0.0)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
-    with pytest.raises(SceneError, match=r'^object "A" .* the arm "panda", which reaches the table only 0\.26-0\.79 m'):
+    with pytest.raises(SceneError, match=r'^object "A" .* the arm "panda", which reaches the table only 0\.27-0\.79 m'):
         arm_plugins.fit_scene(hole, PANDA)
     assert arm_plugins.fit_scene(scene, KUKA_IIWA).workspace == kuka
     for xy, way in (((-0.22, 0.0), "outward"), ((0.2, 0.0), "inward")):  # in the ring's hole; beyond its far edge
@@ -147,7 +147,7 @@ def test_arms_lists_the_three_arms_as_json():
     assert rows["kuka-iiwa"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.35, "base_x": -0.6, "base_y": 0.0,
                                               "near": 0.43, "far": 0.77}
     assert rows["panda"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.35, "base_x": -0.53, "base_y": 0.0,
-                                          "near": 0.26, "far": 0.79}  # the 0.35 m disk is cut by every arm's ring
+                                          "near": 0.27, "far": 0.79}  # the 0.35 m disk is cut by every arm's ring
     assert rows["xarm6"]["gripper_opening_m"] == XARM6.gripper_opening
 
 

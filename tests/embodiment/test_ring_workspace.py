@@ -112,7 +112,7 @@ def test_the_pushing_hand_stands_behind_the_block_and_goes_round_over_it_at_a_co
     (((-0.10, 0.0), (-0.24, 0.0)), False),  # pushed towards it: the hand stands on the far side
 ])
 def test_a_push_is_refused_only_when_its_hand_would_stand_in_the_rings_hole(ends, refused):
-    # the Panda's ring (0.26 m from its base at x = -0.53) cuts its 0.35 m workspace: a block 0.29 m from the base
+    # the Panda's ring (0.27 m from its base at x = -0.53) cuts its 0.35 m workspace: a block 0.29 m from the base
     # can be pushed with the hand beyond it, not with the hand between it and the base (the first bound refused both)
     from l2p_bullet.embodiment.manners import push_refusal
     from l2p_bullet.embodiment.sim.arms import PANDA
