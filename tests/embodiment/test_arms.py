@@ -88,6 +88,27 @@ def test_the_stored_reach_is_measured(spec):
     assert arm_plugins.measure_reach(spec) == pytest.approx(spec.reach, abs=0.011)
 
 
+def test_the_reach_test_asks_every_height_a_lift_passes_through():
+    """Execution lowers and lifts the tool along the whole vertical line from the grasp (a 2 cm block's: 1.2 cm) to
+    the hover over an 8 cm block (19 cm); the Panda 0.26 m from its base reaches both ends and not 8-16 cm between
+    (stress seeds 977038/977064 failed there after planning). So the test asks heights no more than 2 cm apart, and
+    with them the Panda's ring starts at 0.27 m, where it reaches every one of them."""
+    from l2p_bullet.embodiment.sim.robot import Kinematics
+
+    heights = np.array(arm_plugins.REACH_HEIGHTS)
+    assert heights[0] == 0.012 and heights[-1] == 0.19 and np.diff(heights).max() <= 0.02 + 1e-9
+    kin = Kinematics(PANDA, PANDA.mount)
+    try:
+        near = PANDA.reach[0]
+        assert all(arm_plugins.reaches(kin, PANDA, near, az, z, w) for az in (0.0, -0.5, 0.5) for z in heights
+                   for w in arm_plugins.wrist_turns(PANDA))
+        # the old near edge: both end heights reached, the middle not (what two heights could not see)
+        assert arm_plugins.reaches(kin, PANDA, 0.26, 0.0, 0.012, 0.0) and arm_plugins.reaches(kin, PANDA, 0.26, 0.0, 0.19, 0.0)
+        assert not arm_plugins.reaches(kin, PANDA, 0.26, 0.0, 0.112, 0.0)
+    finally:
+        kin.close()
+
+
 SCENE = Scene([SceneObject("A", "red", 0.04, (0.09, -0.06), 0.4),
                SceneObject("B", "green", 0.04, (-0.02, 0.03), 0.1)]).validate()
 
