@@ -213,10 +213,11 @@ def unreached(kin, spec: ArmSpec, points: np.ndarray) -> list[list[float]]:
     """The points (K,2; scene frame) the tool does not reach pointing down at every :data:`REACH_HEIGHTS` with the
     wrist at every :func:`wrist_turns` angle, rounded to 0.1 mm."""
     base = np.asarray(spec.mount[:2], float)
+    wrists = wrist_turns(spec)
     out = []
     for p in np.asarray(points, float).reshape(-1, 2):
         r, az = float(np.hypot(*(p - base))), float(math.atan2(p[1] - base[1], p[0] - base[0]))
-        if not all(reaches(kin, spec, r, az, z, w) for z in REACH_HEIGHTS for w in wrist_turns(spec)):
+        if not all(reaches(kin, spec, r, az, z, w) for z in REACH_HEIGHTS for w in wrists):
             out.append([round(float(p[0]), 4), round(float(p[1]), 4)])
     return out
 
