@@ -95,6 +95,16 @@ def test_incompatible_manifest(bundle_copy):
         load_bundle(bundle_copy)
 
 
+@pytest.mark.parametrize("value", [[], {"a": 1}, 3])
+def test_a_policy_file_that_is_not_a_name_is_a_clear_error(bundle_copy, value):
+    # found by tests/cli/test_fuzz.py: a list there was looked up in [weights] and raised a TypeError
+    man = tomllib.loads((bundle_copy / MANIFEST).read_text())
+    man["policy"]["file"] = value
+    (bundle_copy / MANIFEST).write_text(tomli_w.dumps(man))
+    with pytest.raises(BundleError, match=r"\[policy\] file.*must be a file name"):
+        load_bundle(bundle_copy)
+
+
 def test_wrong_shape_is_refused(bundle_copy):
     man = tomllib.loads((bundle_copy / MANIFEST).read_text())
     man["model"]["hidden"] = man["model"]["hidden"] + 1
