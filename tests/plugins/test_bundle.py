@@ -169,3 +169,22 @@ def test_update_manifest_merges_a_section_and_keeps_the_bundle_valid(bundle_copy
     assert "train_loss" in b.manifest["metrics"]  # merged, not replaced
     with pytest.raises(BundleError, match="weights"):
         update_manifest(bundle_copy, "weights", {})
+
+
+@pytest.mark.parametrize("action", ["closer", "past"])
+def test_retraining_a_bundle_in_place_keeps_its_planner_threshold(tmp_path, action):
+    """``make bundles`` re-trains each built-in into its own folder; the planner thresholds chosen on chain
+    starts (docs/planning.md) live in the manifest's ``[policy]`` and must survive that."""
+    from l2p_bullet.plugins.bundle import write_progress_bundle
+    from l2p_bullet.progress.config import ModelConfig
+    from l2p_bullet.progress.features import QSRConfig
+
+    folder = tmp_path / action
+    shutil.copytree(builtin_bundle_dir(action), folder)
+    shipped = load_bundle(folder)
+    threshold = shipped.manifest["policy"]["threshold"]
+    assert threshold > 0.9  # closer 0.97, past 0.99: above the planners' default
+    write_progress_bundle(folder, action, shipped.arrays(PROGRESS_FILE), ModelConfig.from_dict(shipped.manifest["model"]),
+                          QSRConfig.from_dict(shipped.manifest["features"]), training={"seed": 0}, metrics={})
+    again = load_bundle(folder)
+    assert again.manifest["policy"]["threshold"] == threshold and again.manifest["policy"]["file"] == POLICY_FILE
