@@ -103,9 +103,11 @@ def test_the_model_refuses_what_it_cannot_resample():
 
 def test_a_long_sentence_is_refused_fast_without_echoing_it():
     sentence = "move A " + "very " * 2000 + "around B"
-    t0 = time.perf_counter()
+    # CPU time of this process, not wall time: the command runs in-process, and on a machine loaded by other
+    # jobs (a benchmark beside CI) wall time passed 1 s while the work did not
+    t0 = time.process_time()
     line = one_line_error(cli("plan", sentence))
-    assert time.perf_counter() - t0 < 1.0 and len(line) < 300 and "characters" in line
+    assert time.process_time() - t0 < 1.0 and len(line) < 300 and "characters" in line
 
 
 # --- train -----------------------------------------------------------------------------------------
