@@ -169,9 +169,8 @@ def _check_policy_section(c: _Checker, policy: dict, weights: dict) -> None:
         c.number(policy, "threshold", "[policy] threshold", 0.0, 1.0)
     if "features" in policy and policy["features"] != FEATURES:
         raise c.fail("[policy] features", f"must be {FEATURES} (what the planner computes)")
-    if "file" in policy and not isinstance(policy["file"], str):
-        raise c.fail("[policy] file", "must be a file name (a string)")
-    if "file" in policy and policy["file"] not in weights:
+    file = c.text(policy, "file", "[policy] file", required=False)
+    if file is not None and file not in weights:
         raise c.fail("[policy] file", "names a file without a [weights] entry")
 
 
