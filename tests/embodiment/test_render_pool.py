@@ -178,7 +178,10 @@ def test_ctrl_c_stops_the_render_workers_at_once(tmp_path):
 
     mark = f"L2P_TEST_MARK={uuid.uuid4().hex}"
     env = dict(os.environ, L2P_RENDER_WORKERS="2", L2P_TEST_MARK=mark.split("=", 1)[1])
-    p = subprocess.Popen([sys.executable, "-m", "l2p_bullet.cli", "perform", "move A around B", "--out",
+    # A four-clause chain renders for many seconds: one clause (about 2 s on a quiet machine) could finish
+    # between the workers' start and the signal, and the test would then see exit 0 instead of 130.
+    chain = "move A around B, then move A away from B, then move A around B, then move A next to B"
+    p = subprocess.Popen([sys.executable, "-m", "l2p_bullet.cli", "perform", chain, "--out",
                           str(tmp_path / "run"), "--resolution", "320x240", "-q"], env=env, text=True,
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=ctrl_c_as_at_a_terminal)
     deadline = time.time() + 60
