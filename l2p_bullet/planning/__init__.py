@@ -26,6 +26,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..actions.around import ACTION as AROUND
+from ..actions.past import ACTION as PAST
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
@@ -36,6 +37,7 @@ from ..judge.rules import AROUND_APPROACH, AROUND_NEAR
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
+from .passing import PassScorer
 from .problem import FRAME_STEP, Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .refine import refine
@@ -69,6 +71,11 @@ AROUND_REACH = AROUND.thresholds["reach"]
 learned model rates a circle with one corner out there done (0.99), a motion no person made (analysis
 starts, seeds 5000-5079: 5 of around's 8 failed plans; docs/planning.md). A planner setting from people's
 data, like the approach: the model is unchanged, and "around" is planned inside the room people used."""
+
+PAST_PASSES_WITHIN = PAST.thresholds["passes_within"]
+"""Blocks from the anchor within which "past" is planned to pass it: the farthest any of people's 43 "past"
+demonstrations passed (3.70, rounded up). Candidates passing farther are scored down (passing.py): the
+model rates a pass 4-5 blocks away done, a motion no person made. Like ``AROUND_REACH``, from people's data."""
 
 SHORT_REACH = 5
 """Without a target the default budget is this many times ``BUDGETS``. Every search stops as soon as the
@@ -168,8 +175,11 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         except InfeasibleError as e:
             refused = e
             continue
+        scorer = model if target is None else _target_scorer(model, target, world)
+        if target is None and _rules(bundle) == "past":
+            scorer = PassScorer(model, PAST_PASSES_WITHIN)
         problem = Problem(
-            world=world, model=model if target is None else _target_scorer(model, target, world), anchor_pose=anchor_obj.pose, size=world.size,
+            world=world, model=scorer, anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
             budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)),
             rng=np.random.default_rng(seed), wrist=wrist, more_anchor_poses=more_poses,
