@@ -155,6 +155,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     around = target is None and _rules(bundle) == "around"
+    passing = target is None and _rules(bundle) == "past"  # within the room people passed in (passing.py)
     best, refused, bounded, spent = None, None, False, 0
     for hold in holds:
         cap = None if budget is not None or CHECK_CAP is None else CHECK_CAP - spent
@@ -175,9 +176,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         except InfeasibleError as e:
             refused = e
             continue
-        scorer = model if target is None else _target_scorer(model, target, world)
-        if target is None and _rules(bundle) == "past":
-            scorer = PassScorer(model, PAST_PASSES_WITHIN)
+        scorer = (_target_scorer(model, target, world) if target is not None
+                  else PassScorer(model, PAST_PASSES_WITHIN) if passing else model)
         problem = Problem(
             world=world, model=scorer, anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),

@@ -7,8 +7,9 @@ motion no person made: people's 43 demonstrations pass it at most 3.70 blocks aw
 away; docs/planning.md). So, like "around"'s reach, a planner setting from people's data: the model is
 unchanged, and its final progress of a candidate path is weighted by how far beyond that room the path's
 closest approach lies, ``exp(-excess / SCALE_SIDES)``; a path that comes within it keeps the model's score.
-The weight is smooth, not a cut, so that a mover starting far away sees every step nearer pay; the plan's
-per-frame ``curve`` (what the plan and the video show) stays the model's own.
+The weight is smooth, not a cut, so that a mover starting far away sees every step nearer pay. The plan's
+per-frame ``curve`` (what the plan and the video show) stays the model's own; its ``extra.final_progress`` is
+the score the search ranked by, the model's own wherever the path passes within the room.
 """
 
 from __future__ import annotations
