@@ -38,17 +38,14 @@ def set_threshold(action: str, threshold: float, plugins: list):
 
 def starts(seed: int, chains: int, clauses: int, actions: list[str], plugins: list, arm) -> list[tuple]:
     """(seed, predicted scene, clause) for every clause of the chains of seeds ``seed`` .. ``seed + chains - 1``."""
-    import numpy as np
-
     from l2p_bullet.embodiment import arm_plugins
-    from l2p_bullet.evaluate.chains import chain_scenes, draw_chain
+    from l2p_bullet.evaluate.chains import chain_rng, chain_scenes, draw_chain
 
     out = []
     for spec in chain_scenes(chains, seed):
         scene = arm_plugins.fit_scene(spec.scene.validate(), arm)
-        rng = np.random.default_rng([spec.seed, clauses, 2118])  # as evaluate/chains.run_chain draws
-        steps, _ = draw_chain(scene, clauses, actions, rng, plugins, planner="default", seed=spec.seed, budget=None,
-                              threshold=None, arm=arm)
+        steps, _ = draw_chain(scene, clauses, actions, chain_rng(spec.seed, clauses), plugins, planner="default",
+                              seed=spec.seed, budget=None, threshold=None, arm=arm)
         for step in steps:
             out.append((spec.seed, scene, step.clause))
             scene = scene.with_pose(step.clause.command.mover, step.forecast.path[-1])

@@ -76,6 +76,12 @@ def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, plan
     return tasks
 
 
+def chain_rng(seed: int, k: int) -> np.random.Generator:
+    """The generator a chain of ``k`` clauses of ``seed`` is drawn with (:func:`draw_chain`), here and wherever
+    the same chains must be drawn again (benchmarks/bench_thresholds.py)."""
+    return np.random.default_rng([seed, k, 2118])
+
+
 def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generator, plugins: list, *,
                planner: str, seed: int, budget: int | None, threshold: float | None,
                arm: ArmSpec = PANDA) -> tuple[list, int]:
@@ -110,8 +116,8 @@ def run_chain(worker: Any, task: Task, row: dict) -> None:
 
     arm = arm_plugins.get(task.arm)
     scene = arm_plugins.fit_scene(Scene.from_dict(task.scene, source=task.scene_id).validate(), arm)
-    rng = np.random.default_rng([task.seed, task.chain_length, 2118])
-    steps, redraws = draw_chain(scene, task.chain_length, list(task.chain_actions), rng, worker.plugins,
+    steps, redraws = draw_chain(scene, task.chain_length, list(task.chain_actions),
+                                chain_rng(task.seed, task.chain_length), worker.plugins,
                                 planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
                                 arm=arm)
     sentence = ", then ".join(s.clause.text for s in steps)
