@@ -28,6 +28,11 @@ generator so the current part stays bit-identical:
   keeps 1 - (ring - near) / (6.5 - near) of itself from that corner on (0.6 at 5 blocks, 0 at 6.5),
   falling linearly along the move out to it.
 
+- ``near_starts`` (closer): each own event shrunk about the anchor to end 1.05-1.2 blocks from it (touching,
+  with the planner's margin), cropped to start where it first comes within 1.25-2.5 blocks, as it is and as one
+  straight move, labelled as full events: people's endings made short, because chains start "closer" 1.25-1.75
+  blocks from the anchor and no person's demonstration started nearer than 3.6 (docs/learning.md, eighth round).
+
 ``trusted_own`` changes the data, not what is added: the shipped demonstrations of the action being trained
 whose tracking is not trusted (:data:`data.demos.UNTRUSTED`) are left out of its own set (its positives and
 everything made from its own events), and kept wherever they are another action's negative, so the other
@@ -80,12 +85,14 @@ class Recipe:
     strays: bool = False
     trusted_own: bool = False
     """Leave the action's own untrusted shipped demonstrations out of its own set (:func:`own_trusted`)."""
+    near_starts: bool = False
+    """closer: people's endings made short, as full events (:func:`_near`)."""
 
     def extras_dict(self) -> dict:
         """The options that add to the current training set (empty for the current recipe): what a
         bundle's manifest records besides the training settings."""
         keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs",
-                "strays", "trusted_own")
+                "strays", "trusted_own", "near_starts")
         out = {k: True for k in keys if getattr(self, k)} | ({"grid": False} if not self.grid else {})
         return out | ({"turn_power": self.turn_power} if self.turn_power != 1.0 else {})
 
@@ -95,7 +102,8 @@ class Recipe:
                 "turn_power": self.turn_power, **self.train.to_dict(),
                 **({"planner_partials": True} if self.planner_partials else {}),
                 **({"graded_wrongs": True} if self.graded_wrongs else {}), **({"grid": False} if not self.grid else {}),
-                **({"strays": True} if self.strays else {}), **({"trusted_own": True} if self.trusted_own else {})}
+                **({"strays": True} if self.strays else {}), **({"trusted_own": True} if self.trusted_own else {}),
+                **({"near_starts": True} if self.near_starts else {})}
 
 
 SHIPPED = Recipe("planner-graded-nogrid", planner_positives=True, planner_negatives=True, planner_partials=True,
@@ -152,6 +160,9 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         # the seventh: the shipped recipe with around's own glitched demonstration left out (not its negatives)
         Recipe("planner-graded-nogrid-trusted", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False, trusted_own=True),
+        # the eighth: the shipped recipe with closer's endings made short (chains start closer from near)
+        Recipe("planner-graded-nogrid-near", train=t, planner_positives=True, planner_negatives=True,
+               planner_partials=True, graded_wrongs=True, grid=False, near_starts=True),
     ]}
 
 
@@ -227,11 +238,36 @@ def _strayed(e: g.Event, rng: np.random.Generator, near: float) -> tuple[np.ndar
     return way, seg[k - 1] / seg[-1], seg[k] / seg[-1], left
 
 
+NEAR_END = (1.05, 1.2)
+"""Blocks (centre to centre) from the anchor at which a ``near_starts`` copy ends: touching, with the margin."""
+NEAR_START = (1.25, 2.5)
+"""Blocks from the anchor within which a ``near_starts`` copy starts (chains' "closer" clauses start 1.25-1.75)."""
+NEAR_MIN_CLOSING = 0.1
+"""Blocks a ``near_starts`` crop must close, or it is not made."""
+
+
+def _near(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
+    """closer's ``near_starts`` copies of an own event: shrunk about the anchor to end :data:`NEAR_END` from it,
+    cropped to start within :data:`NEAR_START`; as it is and as one straight move (none if it closes too little)."""
+    c, size = e.anchor[:2], e.size
+    d = np.hypot(*(e.mover[:, :2] - c).T) / size
+    end, start = rng.uniform(*NEAR_END), rng.uniform(*NEAR_START)
+    k = end / max(float(d[-1]), 1e-9)
+    m = e.mover.copy()
+    m[:, :2] = c + (m[:, :2] - c) * k
+    i0 = int(np.flatnonzero(d * k <= start)[0])  # the last frame is at ``end`` < ``start``
+    crop = m[i0:]
+    if len(crop) < 2 or (d[i0] - d[-1]) * k < NEAR_MIN_CLOSING:
+        return []
+    return [crop, g.straight_moves(crop[[0, -1]], 0.25 * size)]
+
+
 def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
            seed: int) -> list[TrainingSequence]:
     """The recipe's extra sequences for ``action`` (empty for the current recipe)."""
     rng = np.random.default_rng(seed + 25)
     stray_rng = np.random.default_rng(seed + 26)  # its own: the recipe's other extras stay bit-identical
+    near_rng = np.random.default_rng(seed + 27)  # the same
     dc = recipe.data
     if qcfg.viewer or qcfg.anchors > 1:  # mirror images and one-anchor snapping would be wrong there
         return []
@@ -289,6 +325,11 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
                     add(w, e, False)
             if recipe.strays and action == "around":
                 add_strays(e)
+    if recipe.near_starts and action == "closer":  # after the rest, so that it keeps its order
+        for d in demos.get(action, []):
+            for e in _event_views(d, dc):
+                for m in _near(e, near_rng):
+                    add(m, e, True)
     if recipe.contrastive:
         for other in dc.negatives.get(action, [o for o in demos if o != action]):
             for d in demos.get(other, []):

@@ -215,3 +215,28 @@ def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monk
     assert t["n_sequences"] == len(training_set(trusted, "around", demos, QSRConfig()))
     assert t["n_sequences"] < len(training_set(recipes(1, 1)["planner-graded-nogrid"], "around", demos, QSRConfig()))
     assert t["data_digest"] == data_digest(rc.own_trusted(trusted, "around", demos)) != data_digest(demos)
+
+
+def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_out):
+    """``near_starts`` (eighth round): closer's set is the shipped one plus, at its end, people's endings made
+    short (start within 1.25-2.5 blocks, end 1.05-1.2 blocks from the anchor, labelled full); the other actions'
+    sets are the very same."""
+    from l2p_bullet.learning.recipes import NEAR_END, NEAR_START, SHIPPED, _near
+
+    demos = all_demos(sessions={"Session2"})
+    q = QSRConfig()
+    r0, r1 = recipes(1, 1)["planner-graded-nogrid"], recipes(1, 1)["planner-graded-nogrid-near"]
+    assert r1.extras_dict() == SHIPPED.extras_dict() | {"near_starts": True}
+    base, near = training_set(r0, "closer", demos, q), training_set(r1, "closer", demos, q)
+    assert len(near) > len(base)
+    assert all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(base, near[: len(base)], strict=True))
+    assert all(s.positive and s.y[-1] == 1.0 for s in near[len(base):])
+    rng = np.random.default_rng(0)
+    for e in held_out["closer"]:
+        for m in _near(e, rng):
+            d = np.hypot(*(m[:, :2] - e.anchor[:2]).T) / e.size
+            assert NEAR_END[0] - 1e-9 <= d[-1] <= NEAR_END[1] + 1e-9 and d[0] <= NEAR_START[1] + 1e-9
+            assert d[0] - d[-1] >= 0.1 - 1e-9
+    for a in ("away", "next-to"):
+        x, y = training_set(r0, a, demos, q), training_set(r1, a, demos, q)
+        assert len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True))
