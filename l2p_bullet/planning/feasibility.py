@@ -23,7 +23,9 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows (issue 21).
   From afar (farther than ``near``), the rule reads "around" from the first frame within ``near`` on, so what
   counts is the way round, one way, from a legal pose where the mover can first come that near (an anchor
-  near the rim is reachable from its inward side only, and its way round is cut at the rim, 2026-11-27).
+  near the rim is reachable from its inward side only, and its way round is cut at the rim, 2026-11-27). A
+  bearing that the grid lets through only by its slack is looked at again finer (:func:`_crossable`); one with
+  no legal pose is a wall no way round crosses.
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now
   (the farthest point measured exactly, ``Workspace.farthest_from``).
 - ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
@@ -194,7 +196,12 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
             gaps = posed_separation(world.mover.outline, poses[near], poly)
             idx = np.flatnonzero(near)
             short[idx] = np.minimum(short[idx], gaps - margin)
-    arc = _longest_circular_run((ok & (short >= -slack)).reshape(len(bearings), -1).any(1)) * bearing_deg
+    yaws = np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg))
+    legal = (ws.clearance(poses[:, :2]) >= 0.0) & (short >= 0.0)  # grid poses that are legal themselves
+    margins = [min(world.margin, max(float(g), 0.0)) for g in start_gaps]
+    cross = _crossable(world, margins, a.xy, bearings, radii, yaws, (ok & (short >= -slack)).reshape(len(bearings), -1),
+                       legal.reshape(len(bearings), -1), dr, dyaw, reach_m)
+    arc = _longest_circular_run(cross) * bearing_deg
     if arc < AROUND_TURNS * 360 - 2 * bearing_deg:
         raise InfeasibleError(
             "blocked-around",
@@ -204,7 +211,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     # the sweep must also be one connected way from the start: cells (bearing x radius) holding a legal pose
     # within half a step of each (any yaw), joined to their 8 neighbours (a continuous path's nearest cell
     # only ever moves to a neighbour)
-    cells = (ok & (short >= -wide)).reshape(len(bearings), len(radii), -1).any(2)
+    cells = (ok & (short >= -wide)).reshape(len(bearings), len(radii), -1).any(2) & cross[:, None]
     rel = np.asarray(m.xy, float) - a.xy
     k0 = int(round(math.degrees(math.atan2(rel[1], rel[0])) / bearing_deg)) % len(bearings)
     d0 = float(np.hypot(*rel))
@@ -223,7 +230,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
         # reads "around" from the first frame within near on, and frames are at most FRAME_STEP of a side apart,
         # so that frame is a legal pose less than FRAME_STEP inside the near circle (a cell of the outer radii):
         # what counts is the way round from such an entry, one way (the turn is the bearing's net change)
-        far_cells = (ok_far & (short >= -(slack + along))).reshape(len(bearings), len(radii), -1).any(2)
+        far_cells = (ok_far & (short >= -(slack + along))).reshape(len(bearings), len(radii), -1).any(2) & cross[:, None]
         entries = [(int(k), int(j)) for k, j in np.argwhere(far_cells)
                    if radii[j] >= outer - FRAME_STEP * m.size - 2 * dr]
         way = _entry_sweep(far_cells, entries) * bearing_deg
@@ -234,6 +241,50 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
                 f"wherever it can come within {AROUND_NEAR:g} blocks the other objects and the workspace's rim leave "
                 f"it a way of only {way:.0f} deg round (at any yaw); around needs {AROUND_TURNS * 360:.0f} deg",
                 {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True, "from_afar": True})
+
+
+REFINE_LEVELS = 3
+"""Times a bearing's doubtful poses are cut into 3 x 3 (radius x yaw) finer ones by :func:`_crossable`."""
+
+
+def _crossable(world: World2D, margins: list[float], centre: np.ndarray, bearings: np.ndarray, radii: np.ndarray,
+               yaws: np.ndarray, passing: np.ndarray, legal: np.ndarray, dr: float, dyaw: float,
+               reach_m: float) -> np.ndarray:
+    """Per grid bearing, whether the mover can stand on it (a path sweeping round crosses every bearing of its
+    arc). ``passing`` (bearings x poses): a legal pose may lie within half a grid step, by the slack; ``legal``:
+    the grid pose is legal itself. A bearing with a legal grid pose is crossable; one whose poses pass only by
+    the slack is settled by cutting each such pose's half-step box into 3 x 3 finer boxes (radius x yaw), keeping
+    those that still pass with their own, 3 times smaller slack, :data:`REFINE_LEVELS` times: none left, and no
+    legal pose met, means no legal pose on that bearing (its slack sound as the grid's); some left, crossable
+    (favouring the arm). Why (2026-11-27): near the far edge of the arm's reach ring the grid's slack let "around"
+    through where no pose of the block fits within 24 degrees of bearing (analysis chain 5334, clause 2)."""
+    cross = passing.any(1)
+    r_of, y_of = (g.ravel() for g in np.meshgrid(radii, yaws, indexing="ij"))
+    ws = world.workspace
+    for k in np.flatnonzero(cross & ~legal.any(1)):
+        r, y, hr, hy = r_of[passing[k]], y_of[passing[k]], dr, dyaw
+        c, s = math.cos(bearings[k]), math.sin(bearings[k])
+        cross[k] = False
+        for _ in range(REFINE_LEVELS):
+            hr, hy = hr / 3, hy / 3
+            thirds = np.array([-2.0, 0.0, 2.0])
+            r = (r[:, None, None] + hr * thirds[None, :, None] + 0.0 * thirds[None, None, :]).ravel()
+            y = (y[:, None, None] + 0.0 * thirds[None, :, None] + hy * thirds[None, None, :]).ravel()
+            poses = np.column_stack([centre[0] + r * c, centre[1] + r * s, y])
+            clear = ws.clearance(poses[:, :2])
+            short = np.full(len(poses), np.inf)
+            for outline, poly, margin in zip(world._outlines, world._obs_polys, margins, strict=True):
+                short = np.minimum(short, posed_separation(outline, poses, poly) - margin)
+            if ((clear >= 0.0) & (short >= 0.0)).any():
+                cross[k] = True
+                break
+            keep = (clear >= -hr - 1e-12) & (short >= -(hr + reach_m * hy) - 1e-12)
+            r, y = r[keep], y[keep]
+            if not len(r):
+                break
+        else:
+            cross[k] = len(r) > 0
+    return cross
 
 
 def _entry_sweep(cells: np.ndarray, entries: list[tuple[int, int]]) -> int:

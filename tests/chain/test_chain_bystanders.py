@@ -179,3 +179,83 @@ def test_a_grid_step_the_world_rejects_is_avoided_not_the_end_of_the_way():
     walled = {detour._edge((k, 0), (k + 1, 0), 8) for k in range(-8, 8)} | {
         detour._edge((k, 0), (k + 1, 1), 8) for k in range(-8, 8)} | {detour._edge((k + 1, 0), (k, 1), 8) for k in range(-8, 8)}
     assert detour._shortest_way(legal, 0, 6, walled) is None
+
+
+def _panda_scene(objects):
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.embodiment import arm_plugins
+
+    return arm_plugins.fit_scene(Scene(objects).validate(), arm_plugins.get("panda"))
+
+
+def _walls(monkeypatch, scene, mover, anchor):
+    """feasibility.check's verdict, and the bearings (degrees) its refinement of doubtful bearings called walls
+    and crossable."""
+    from l2p_bullet.planning import feasibility
+
+    seen = {}
+    real = feasibility._crossable
+
+    def spy(*args, **kwargs):
+        cross = real(*args, **kwargs)
+        doubt = args[6].any(1) & ~args[7].any(1)
+        seen["walls"] = np.flatnonzero(doubt & ~cross) * feasibility.SWEEP_GRID[0]
+        seen["open"] = np.flatnonzero(doubt & cross) * feasibility.SWEEP_GRID[0]
+        return cross
+
+    monkeypatch.setattr(feasibility, "_crossable", spy)
+    try:
+        feasibility.check(scene, mover, anchor, "around")
+        verdict = None
+    except InfeasibleError as e:
+        verdict = e
+    return verdict, seen
+
+
+def _no_legal_pose(scene, mover, anchor, bearing_deg):
+    """Brute force on one bearing: no pose of the mover (radii 1-4 blocks every 0.005 side, yaws every 0.5 deg)
+    lies inside the workspace and the world's margin from every other object."""
+    from l2p_bullet.core.geometry import posed_separation
+    from l2p_bullet.planning.world2d import World2D
+
+    world, anchor = World2D(scene, mover), scene.get(anchor)
+    r, y = np.meshgrid(np.arange(1.0, 4.0, 0.005) * world.size, np.radians(np.arange(0.0, 90.0, 0.5)), indexing="ij")
+    b = np.radians(bearing_deg)
+    poses = np.column_stack([anchor.xy[0] + (r * np.cos(b)).ravel(), anchor.xy[1] + (r * np.sin(b)).ravel(), y.ravel()])
+    ok = world.inside(poses[:, :2])
+    for outline, poly, gap0 in zip(world._outlines, world._obs_polys, world.gaps(world.mover.pose), strict=True):
+        ok &= posed_separation(outline, poses, poly) >= min(world.margin, max(float(gap0), 0.0))
+    return not ok.any()
+
+
+def test_around_hugging_an_anchor_at_the_far_edge_of_the_arms_reach_is_refused(monkeypatch):
+    # analysis chain 5334, clause 2 "move A around E", from the state the chain predicts: E stands where the
+    # Panda's reach ring cuts the workspace, and over 23 degrees of bearing (0.5-23.5) no pose of A fits at all.
+    # The grid's slack let it through (the plan stalled at 0.56 of a turn); the doubtful bearings are now settled
+    # by finer looks (feasibility._crossable), and the way from A's start is cut by that wall
+    from l2p_bullet.core.scene import SceneObject
+
+    scene = _panda_scene([
+        SceneObject("A", "red", 0.05, (0.16030310672906678, 0.04057726793534812), -0.5225861795788287),
+        SceneObject("B", "green", 0.05, (0.05784083032492871, 0.014558858276145416), 1.4097176918859229),
+        SceneObject("C", "blue", 0.05, (-0.20602384760427953, 0.08754525554500694), 1.3466117031171256),
+        SceneObject("D", "yellow", 0.05, (0.007275259625150995, -0.19167163516898114), 1.5588098542703892),
+        SceneObject("E", "orange", 0.05, (0.1914982823500403, 0.09473547154271143), 1.0482101472160679)])
+    verdict, seen = _walls(monkeypatch, scene, "A", "E")
+    assert verdict is not None and verdict.check == "blocked-around" and verdict.details["connected"] is True
+    assert verdict.details["arc_deg"] < 0.8 * 360 and len(seen["walls"]) >= 5
+    for bearing in seen["walls"][:: max(1, len(seen["walls"]) // 3)]:  # a sound wall: a brute force agrees
+        assert _no_legal_pose(scene, "A", "E", float(bearing)), bearing
+
+
+def test_a_doubtful_bearing_with_room_on_a_finer_look_stays_open(monkeypatch):
+    # analysis chain 5331, clause 3 "move B around A" (planned and judged around): one bearing's grid poses pass
+    # only by the slack; the finer look finds room on it, and the start is not refused
+    from l2p_bullet.core.scene import SceneObject
+
+    scene = _panda_scene([
+        SceneObject("A", "red", 0.05, (0.18689289263157766, -0.14801654324477692), -0.18684907473543655),
+        SceneObject("B", "green", 0.05, (0.2311225492022847, -0.2085866470884828), 0.2538447051390236),
+        SceneObject("C", "blue", 0.05, (0.2068242304591264, 0.05248797621140335), 1.3971883130087106)])
+    verdict, seen = _walls(monkeypatch, scene, "B", "A")
+    assert verdict is None and len(seen["open"]) >= 1 and len(seen["walls"]) == 0
