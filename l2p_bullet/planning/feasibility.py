@@ -171,7 +171,8 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     bearings = np.radians(np.arange(0.0, 360.0, bearing_deg))
     quarter = np.allclose(np.sort(np.round(world.mover.outline @ np.array([[0.0, 1.0], [-1.0, 0.0]]), 9), axis=0),
                           np.sort(np.round(world.mover.outline, 9), axis=0))  # a square looks the same a quarter turn on
-    t, r, y = np.meshgrid(bearings, radii, np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg)), indexing="ij")
+    yaws = np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg))
+    t, r, y = np.meshgrid(bearings, radii, yaws, indexing="ij")
     poses = np.column_stack([a.xy[0] + (r * np.cos(t)).ravel(), a.xy[1] + (r * np.sin(t)).ravel(), y.ravel()])
     # from afar (below): a pose is within half a step of radius and half a bearing step *at its radius* of a grid pose
     along = (r.ravel() + dr) * math.radians(bearing_deg) / 2
@@ -196,7 +197,6 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
             gaps = posed_separation(world.mover.outline, poses[near], poly)
             idx = np.flatnonzero(near)
             short[idx] = np.minimum(short[idx], gaps - margin)
-    yaws = np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg))
     legal = (ws.clearance(poses[:, :2]) >= 0.0) & (short >= 0.0)  # grid poses that are legal themselves
     margins = [min(world.margin, max(float(g), 0.0)) for g in start_gaps]
     cross = _crossable(world, margins, a.xy, bearings, radii, yaws, (ok & (short >= -slack)).reshape(len(bearings), -1),
@@ -245,6 +245,7 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
 
 REFINE_LEVELS = 3
 """Times a bearing's doubtful poses are cut into 3 x 3 (radius x yaw) finer ones by :func:`_crossable`."""
+THIRDS = np.array([-2.0, 0.0, 2.0])
 
 
 def _crossable(world: World2D, margins: list[float], centre: np.ndarray, bearings: np.ndarray, radii: np.ndarray,
@@ -266,10 +267,9 @@ def _crossable(world: World2D, margins: list[float], centre: np.ndarray, bearing
         c, s = math.cos(bearings[k]), math.sin(bearings[k])
         cross[k] = False
         for _ in range(REFINE_LEVELS):
-            hr, hy = hr / 3, hy / 3
-            thirds = np.array([-2.0, 0.0, 2.0])
-            r = (r[:, None, None] + hr * thirds[None, :, None] + 0.0 * thirds[None, None, :]).ravel()
-            y = (y[:, None, None] + 0.0 * thirds[None, :, None] + hy * thirds[None, None, :]).ravel()
+            hr, hy = hr / 3, hy / 3  # each box's 9 boxes: centres 2/3 of the half-width either side, and its own
+            dr9, dy9 = (g.ravel() for g in np.meshgrid(THIRDS * hr, THIRDS * hy, indexing="ij"))
+            r, y = (r[:, None] + dr9).ravel(), (y[:, None] + dy9).ravel()
             poses = np.column_stack([centre[0] + r * c, centre[1] + r * s, y])
             clear = ws.clearance(poses[:, :2])
             short = np.full(len(poses), np.inf)
