@@ -176,29 +176,27 @@ def _blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     poses = np.column_stack([a.xy[0] + (r * np.cos(t)).ravel(), a.xy[1] + (r * np.sin(t)).ravel(), y.ravel()])
     # from afar (below): a pose is within half a step of radius and half a bearing step *at its radius* of a grid pose
     along = (r.ravel() + dr) * math.radians(bearing_deg) / 2
+    clear = ws.clearance(poses[:, :2])
     if ws.ring is None:  # the disk's closed form
         centre_d = np.linalg.norm(poses[:, :2] - np.asarray(ws.center, float), axis=1)
         ok = centre_d <= ws.radius + dr + 1e-9
         ok_far = centre_d <= ws.radius + dr + along + 1e-9
     else:  # a grid pose within the slack of the region (its clearance's size never exceeds its distance to it)
-        clear = ws.clearance(poses[:, :2])
         ok = clear >= -dr - 1e-9
         ok_far = clear >= -(dr + along) - 1e-9
     reach_m = float(np.linalg.norm(world.mover.outline, axis=1).max())
     slack = dr + reach_m * dyaw  # how much the gap can change within half a grid step
     wide = slack + outer * math.radians(bearing_deg) / 2  # ... and within half a bearing step, at the outer radius
     short = np.full(len(poses), np.inf)  # per pose: the least gap minus the margin it needs, over the obstacles
-    start_gaps = world.gaps(m.pose)
-    for body, poly, gap0 in zip(world.obstacles, world._obs_polys, start_gaps, strict=True):
-        margin = min(world.margin, max(float(gap0), 0.0))  # the world's rule for a mover starting close
+    margins = [min(world.margin, max(float(g), 0.0)) for g in world.gaps(m.pose)]  # the world's rule for a close start
+    for body, poly, margin in zip(world.obstacles, world._obs_polys, margins, strict=True):
         reach_o = float(np.linalg.norm(body.outline, axis=1).max())
         near = ok_far & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + wide)
         if near.any():
             gaps = posed_separation(world.mover.outline, poses[near], poly)
             idx = np.flatnonzero(near)
             short[idx] = np.minimum(short[idx], gaps - margin)
-    legal = (ws.clearance(poses[:, :2]) >= 0.0) & (short >= 0.0)  # grid poses that are legal themselves
-    margins = [min(world.margin, max(float(g), 0.0)) for g in start_gaps]
+    legal = (clear >= 0.0) & (short >= 0.0)  # grid poses that are legal themselves
     cross = _crossable(world, margins, a.xy, bearings, radii, yaws, (ok & (short >= -slack)).reshape(len(bearings), -1),
                        legal.reshape(len(bearings), -1), dr, dyaw, reach_m)
     arc = _longest_circular_run(cross) * bearing_deg
