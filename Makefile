@@ -3,6 +3,8 @@
 #   make demo-row  the same for "make a row of A, B, C and D" (a composite taught by demonstration)
 #   make test   installs into .venv and runs the whole test suite
 # torch is pinned to the 2.13.0 CPU build and installed first, so nothing pulls a CUDA build.
+# --no-cache-dir: the environment is 2.5 GB installed; pip's wheel cache would hold another copy of the wheels
+# (a CI run ran out of disk during the install).
 PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
@@ -12,9 +14,9 @@ TORCH := torch==2.13.0
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet $(TORCH)
-	$(PY) -m pip install --quiet -e '.[test,ray,export,rerun]'  # the extras' tests (evaluate --ray local, export) run in CI
+	$(PY) -m pip install --quiet --no-cache-dir --upgrade pip
+	$(PY) -m pip install --quiet --no-cache-dir $(TORCH)
+	$(PY) -m pip install --quiet --no-cache-dir -e '.[test,ray,export,rerun]'  # the extras' tests (evaluate --ray local, export) run in CI
 	touch $@
 
 install: $(VENV)/.installed
