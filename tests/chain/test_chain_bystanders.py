@@ -191,19 +191,19 @@ def _panda_scene(objects):
 def _walls(monkeypatch, scene, mover, anchor):
     """feasibility.check's verdict, and the bearings (degrees) its refinement of doubtful bearings called walls
     and crossable."""
-    from l2p_bullet.planning import feasibility
+    from l2p_bullet.planning import feasibility, sweep
 
     seen = {}
-    real = feasibility._crossable
+    real = sweep.crossable
 
     def spy(*args, **kwargs):
         cross = real(*args, **kwargs)
         doubt = args[6].any(1) & ~args[7].any(1)
-        seen["walls"] = np.flatnonzero(doubt & ~cross) * feasibility.SWEEP_GRID[0]
-        seen["open"] = np.flatnonzero(doubt & cross) * feasibility.SWEEP_GRID[0]
+        seen["walls"] = np.flatnonzero(doubt & ~cross) * sweep.SWEEP_GRID[0]
+        seen["open"] = np.flatnonzero(doubt & cross) * sweep.SWEEP_GRID[0]
         return cross
 
-    monkeypatch.setattr(feasibility, "_crossable", spy)
+    monkeypatch.setattr(sweep, "crossable", spy)
     try:
         feasibility.check(scene, mover, anchor, "around")
         verdict = None
@@ -232,7 +232,7 @@ def test_around_hugging_an_anchor_at_the_far_edge_of_the_arms_reach_is_refused(m
     # analysis chain 5334, clause 2 "move A around E", from the state the chain predicts: E stands where the
     # Panda's reach ring cuts the workspace, and over 23 degrees of bearing (0.5-23.5) no pose of A fits at all.
     # The grid's slack let it through (the plan stalled at 0.56 of a turn); the doubtful bearings are now settled
-    # by finer looks (feasibility._crossable), and the way from A's start is cut by that wall
+    # by finer looks (sweep.crossable), and the way from A's start is cut by that wall
     from l2p_bullet.core.scene import SceneObject
 
     scene = _panda_scene([
