@@ -26,6 +26,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..actions.around import ACTION as AROUND
+from ..actions.closer import ACTION as CLOSER
 from ..actions.past import ACTION as PAST
 from ..core.contracts import Plan
 from ..core.scene import Scene
@@ -35,9 +36,9 @@ from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.rules import AROUND_APPROACH, AROUND_NEAR
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
+from .bounds import BoundScorer, back_weight, pass_weight
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
-from .passing import PassScorer
 from .problem import FRAME_STEP, Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .refine import refine
@@ -74,8 +75,14 @@ data, like the approach: the model is unchanged, and "around" is planned inside 
 
 PAST_PASSES_WITHIN = PAST.thresholds["passes_within"]
 """Blocks from the anchor within which "past" is planned to pass it: the farthest any of people's 43 "past"
-demonstrations passed (3.70, rounded up). Candidates passing farther are scored down (passing.py): the
+demonstrations passed (3.70, rounded up). Candidates passing farther are scored down (bounds.py): the
 model rates a pass 4-5 blocks away done, a motion no person made. Like ``AROUND_REACH``, from people's data."""
+
+CLOSER_GOES_BACK_WITHIN = CLOSER.thresholds["goes_back_within"]
+"""Share of its room (start distance - 1 block) within which "closer" is planned to go back: the most any of
+people's 41 "closer" demonstrations went back (0.176, rounded up). Candidates going back farther are scored down
+(bounds.py): from within 1.8 blocks the model rates a back-and-forth wiggle above a straight slide to touching,
+a motion no person made. Like ``PAST_PASSES_WITHIN``, from people's data."""
 
 SHORT_REACH = 5
 """Without a target the default budget is this many times ``BUDGETS``. Every search stops as soon as the
@@ -155,7 +162,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     around = target is None and _rules(bundle) == "around"
-    passing = target is None and _rules(bundle) == "past"  # within the room people passed in (passing.py)
+    bound = None if target is not None else _people_bound(_rules(bundle))  # bounds.py
     best, refused, bounded, spent = None, None, False, 0
     for hold in holds:
         cap = None if budget is not None or CHECK_CAP is None else CHECK_CAP - spent
@@ -177,7 +184,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             refused = e
             continue
         scorer = (_target_scorer(model, target, world) if target is not None
-                  else PassScorer(model, PAST_PASSES_WITHIN) if passing else model)
+                  else BoundScorer(model, bound) if bound is not None else model)
         problem = Problem(
             world=world, model=scorer, anchor_pose=anchor_obj.pose, size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
@@ -228,6 +235,16 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         result.extra["note"] = ("the bundle's policy was trained against another progress model: "
                                 "re-train it: l2p-bullet train-policy")
     return result
+
+
+def _people_bound(rules: str):
+    """The weight that keeps an action's candidates within people's bound (bounds.py), or None: "past" passes
+    within the room people passed in, "closer" goes back no more than people did."""
+    if rules == "past":
+        return functools.partial(pass_weight, within=PAST_PASSES_WITHIN)
+    if rules == "closer":
+        return functools.partial(back_weight, share=CLOSER_GOES_BACK_WITHIN)
+    return None
 
 
 def _target_scorer(model, target: np.ndarray, world: World2D):

@@ -1,0 +1,75 @@
+"""Bounds from people's demonstrations on the candidates the search ranks: where "past" passes, how far
+"closer" goes back.
+
+The learned models rate some motions done that no person made, and chains meet them where the 2-D study never
+started a motion:
+
+- "past" slid by the anchor 4-5 blocks away at 0.98-0.997, while people's 43 demonstrations pass it at most 3.70
+  blocks away (``ActionSpec.thresholds["passes_within"]`` of past, rounded up to 3.8; analysis seeds 5300-5399:
+  10 of past's 19 failed plans passed 4.0-4.9 blocks away; docs/planning.md);
+- "closer" from within 1.8 blocks wiggles: the model rates a back-and-forth higher than a straight slide to
+  touching, while people's 41 demonstrations went back at most 0.176 of the room they had (start distance - 1
+  block; ``thresholds["goes_back_within"]`` of closer, rounded up to 0.18).
+
+So, like "around"'s reach, planner settings from people's data: the model is unchanged, and its final progress
+of a candidate path is weighted down by how far beyond people's bound the path goes. The weights are smooth, not
+cuts, so that every step back within the bound pays. The plan's per-frame ``curve`` (what the plan and the video
+show) stays the model's own; its ``extra.final_progress`` is the score the search ranked by, the model's own
+wherever the path keeps within the bound.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from ..judge.rules import closer_room
+
+SCALE_SIDES = 1.0
+"""Blocks of closest approach beyond the room at which a candidate's score is multiplied by 1/e (as
+``target.SCALE_SIDES``; not tuned)."""
+
+
+def _distances(mover: np.ndarray, anchor_pose: np.ndarray, size: float) -> np.ndarray:
+    """Centre distance to the anchor per frame of a (T,3) path, in blocks."""
+    return np.hypot(*(np.asarray(mover, float)[:, :2] - np.asarray(anchor_pose, float)[:2]).T) / size
+
+
+def pass_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, within: float) -> np.ndarray:
+    """Per path (T,3 centres): 1 where its closest centre distance to the anchor is at most ``within`` blocks,
+    else exp(-(closest - within) / SCALE_SIDES)."""
+    closest = np.array([_distances(m, anchor_pose, size).min() for m in movers])
+    return np.exp(-np.clip(closest - within, 0.0, None) / SCALE_SIDES)
+
+
+def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, share: float) -> np.ndarray:
+    """Per path: 1 where the most its centre distance went back above its least so far (the rule's "went back")
+    is at most ``share`` of its room, else exp(-(rise - share room) / (share room)): the share is its own scale."""
+    out = np.empty(len(movers))
+    for i, m in enumerate(movers):
+        d = _distances(m, anchor_pose, size)
+        allowed = share * closer_room(float(d[0]))
+        out[i] = np.exp(-max(float(np.max(d - np.minimum.accumulate(d))) - allowed, 0.0) / allowed)
+    return out
+
+
+class BoundScorer:
+    """The action's progress model with its final progress multiplied by ``weight(movers, anchors, size)``."""
+
+    def __init__(self, model: Any, weight: Callable[[list[np.ndarray], Any, float], np.ndarray]):
+        self.model, self.weight = model, weight
+
+    def __getattr__(self, name: str) -> Any:  # anchors, viewpoint... as the model declares them
+        return getattr(self.model, name)
+
+    def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float, **context) -> np.ndarray:
+        return np.asarray(self.model.final_batch(movers, anchors, size, **context), float) * self.weight(
+            movers, anchors, size)
+
+    def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float, **context) -> np.ndarray:
+        return self.model.curve(mover, anchor, size, **context)
+
+
+__all__ = ["BoundScorer", "back_weight", "pass_weight", "SCALE_SIDES"]
