@@ -37,7 +37,7 @@ def main() -> None:
     from l2p_bullet.core.geometry import posed_separation, separation
     from l2p_bullet.core.workspace import Workspace
     from l2p_bullet.embodiment import arm_plugins
-    from l2p_bullet.planning import sweep
+    from l2p_bullet.planning import sweep, world2d
     from l2p_bullet.planning.world2d import place_outline
 
     ways = {"placed": lambda o, p, q: separation(place_outline(o, p), q), "per yaw": posed_separation}
@@ -49,7 +49,7 @@ def main() -> None:
             for i in range(args.scenes):
                 scene = arm_plugins.fit_scene(object_scene(base + i, radius, Workspace())[0], arm_plugins.get(arm))
                 for way, fn in ways.items():
-                    sweep.posed_separation = fn
+                    world2d.posed_separation = fn  # World2D.shortfall's, which the sweep calls
                     t = time.perf_counter()
                     verdicts[way].append(_verdict(sweep.blocked_around, scene))
                     seconds[way] += time.perf_counter() - t
@@ -58,7 +58,7 @@ def main() -> None:
             print(f"| {arm} | {args.scenes} | {refused} | {seconds['placed']:.1f} | {seconds['per yaw']:.1f} | "
                   f"{seconds['placed'] / seconds['per yaw']:.1f}x | {differ} |", flush=True)
     finally:
-        sweep.posed_separation = posed_separation
+        world2d.posed_separation = posed_separation
 
 
 if __name__ == "__main__":

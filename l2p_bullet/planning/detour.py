@@ -18,7 +18,6 @@ from collections import deque
 
 import numpy as np
 
-from ..core.geometry import posed_separation
 from .world2d import World2D
 
 GRID = (5.0, 0.125)
@@ -84,12 +83,8 @@ def _legal(world: World2D, a: np.ndarray, b0: float, step_b: float, per_turn: in
     bb, rr = np.meshgrid(b, radii, indexing="ij")
     poses = np.column_stack([a[0] + (rr * np.cos(bb)).ravel(), a[1] + (rr * np.sin(bb)).ravel(),
                              np.full(bb.size, yaw)])
-    ok = world.inside(poses[:, :2])
-    gaps0 = world.gaps(world.mover.pose)
-    for outline, poly, gap0 in zip(world._outlines, world._obs_polys, gaps0, strict=True):
-        margin = min(world.margin, max(float(gap0), 0.0) - 1e-9)
-        ok &= posed_separation(outline, poses, poly) >= margin  # one yaw: projected once (see its docstring)
-    return ok.reshape(bb.shape)
+    ok = world.inside(poses[:, :2]) & (world.shortfall(poses, world.start_margins(less=1e-9)) >= 0.0)
+    return ok.reshape(bb.shape)  # one yaw: posed_separation projects it once (see its docstring)
 
 
 def _edge(c0: tuple[int, int], c1: tuple[int, int], per_turn: int) -> tuple[tuple[int, int], tuple[int, int]]:

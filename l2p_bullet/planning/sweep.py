@@ -20,7 +20,7 @@ from collections import deque
 
 import numpy as np
 
-from ..core.geometry import nearest_centres, posed_separation
+from ..core.geometry import nearest_centres
 from ..core.scene import Scene
 from ..errors import InfeasibleError
 from ..judge.rules import AROUND_NEAR, AROUND_TURNS
@@ -82,15 +82,8 @@ def blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     reach_m = float(np.linalg.norm(world.mover.outline, axis=1).max())
     slack = dr + reach_m * dyaw  # how much the gap can change within half a grid step
     wide = slack + outer * math.radians(bearing_deg) / 2  # ... and within half a bearing step, at the outer radius
-    short = np.full(len(poses), np.inf)  # per pose: the least gap minus the margin it needs, over the obstacles
-    margins = [min(world.margin, max(float(g), 0.0)) for g in world.gaps(m.pose)]  # the world's rule for a close start
-    for body, poly, margin in zip(world.obstacles, world._obs_polys, margins, strict=True):
-        reach_o = float(np.linalg.norm(body.outline, axis=1).max())
-        near = ok_far & (np.linalg.norm(poses[:, :2] - body.pose[:2], axis=1) <= reach_m + reach_o + margin + wide)
-        if near.any():
-            gaps = posed_separation(world.mover.outline, poses[near], poly)
-            idx = np.flatnonzero(near)
-            short[idx] = np.minimum(short[idx], gaps - margin)
+    margins = world.start_margins()  # the world's rule for a close start
+    short = world.shortfall(poses, margins, mask=ok_far, within=wide)  # per pose: the least gap less its margin
     legal = (clear >= 0.0) & (short >= 0.0)  # grid poses that are legal themselves
     cross = crossable(world, margins, a.xy, bearings, radii, yaws, (ok & (short >= -slack)).reshape(len(bearings), -1),
                        legal.reshape(len(bearings), -1), dr, dyaw, reach_m)
@@ -141,7 +134,7 @@ REFINE_LEVELS = 3
 THIRDS = np.array([-2.0, 0.0, 2.0])
 
 
-def crossable(world: World2D, margins: list[float], centre: np.ndarray, bearings: np.ndarray, radii: np.ndarray,
+def crossable(world: World2D, margins: np.ndarray, centre: np.ndarray, bearings: np.ndarray, radii: np.ndarray,
                yaws: np.ndarray, passing: np.ndarray, legal: np.ndarray, dr: float, dyaw: float,
                reach_m: float) -> np.ndarray:
     """Per grid bearing, whether the mover can stand on it (a path sweeping round crosses every bearing of its
@@ -165,9 +158,7 @@ def crossable(world: World2D, margins: list[float], centre: np.ndarray, bearings
             r, y = (r[:, None] + dr9).ravel(), (y[:, None] + dy9).ravel()
             poses = np.column_stack([centre[0] + r * c, centre[1] + r * s, y])
             clear = ws.clearance(poses[:, :2])
-            short = np.full(len(poses), np.inf)
-            for outline, poly, margin in zip(world._outlines, world._obs_polys, margins, strict=True):
-                short = np.minimum(short, posed_separation(outline, poses, poly) - margin)
+            short = world.shortfall(poses, margins)
             if ((clear >= 0.0) & (short >= 0.0)).any():
                 cross[k] = True
                 break

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.geometry import edge_normals, separation, wrap_angle
+from ..core.geometry import edge_normals, posed_separation, separation, wrap_angle
 from ..core.scene import GRIPPER_MARGIN, Scene
 
 SUB_ROTATION = 0.1
@@ -117,6 +117,36 @@ class World2D:
         pose = np.asarray(pose, float)
         return np.array([float(separation(place_outline(o, pose)[None], p)[0])
                          for o, p in zip(self._outlines, self._obs_polys, strict=True)])
+
+    def start_margins(self, less: float = 0.0) -> np.ndarray:
+        """Per obstacle, the margin a pose of the mover must keep from it: the world's, or the gap where the mover
+        starts when that is smaller (a close start may stay as close, never come closer), ``less`` taken off
+        that gap (the way round takes 1e-9 off, so that its start cell passes)."""
+        return np.minimum(self.margin, np.maximum(self.gaps(self.mover.pose), 0.0) - less)
+
+    def shortfall(self, poses: np.ndarray, margins: np.ndarray, mask: np.ndarray | None = None,
+                  within: float | None = None) -> np.ndarray:
+        """Per pose (N,3, each at its own yaw): the least, over the obstacles, of the mover's gap (with that
+        obstacle's outline) minus the margin it must keep there (``margins``: :meth:`start_margins`); >= 0 is
+        legal among the obstacles, +inf where none was tested. ``mask`` and ``within`` (m) spare the work: only
+        the poses in ``mask`` whose centre lies within the two outlines' reaches plus the margin plus ``within``
+        of an obstacle's centre are tested against it (a pose farther away is farther than ``within`` from it).
+        One place for what the up-front sweep, its refinement and the way round each wrote out (sweep.py,
+        detour.py)."""
+        poses = np.asarray(poses, float).reshape(-1, 3)
+        short = np.full(len(poses), np.inf)
+        for i, (outline, poly, margin) in enumerate(zip(self._outlines, self._obs_polys, margins, strict=True)):
+            if within is None and mask is None:
+                short = np.minimum(short, posed_separation(outline, poses, poly) - margin)
+                continue
+            near = np.ones(len(poses), bool) if mask is None else np.asarray(mask, bool)
+            if within is not None:
+                near = near & (np.linalg.norm(poses[:, :2] - self.obstacles[i].pose[:2], axis=1)
+                               <= self._mover_radii[i] + self._obs_radii[i] + margin + within)
+            if near.any():
+                idx = np.flatnonzero(near)
+                short[idx] = np.minimum(short[idx], posed_separation(outline, poses[near], poly) - margin)
+        return short
 
     def moves_free(self, start: np.ndarray, ends: np.ndarray, relax: bool = True) -> np.ndarray:
         """For straight moves from ``start`` (3,) to each of ``ends`` (M,3): legal or not, (M,) bool.

@@ -128,3 +128,18 @@ def _distance(a: np.ndarray, b: np.ndarray) -> float:
         return float(np.min(np.linalg.norm(q0 + t[:, None] * d - p, axis=1)))
 
     return min(min(point_to_edges(p, b) for p in a), min(point_to_edges(p, a) for p in b))
+
+
+def test_shortfall_is_the_least_gap_less_the_margin_and_a_close_start_keeps_its_own_gap():
+    # A starts 3 mm from B (closer than the 5 mm margin): B asks only those 3 mm, C (far) the full margin
+    scene = Scene([SceneObject("A", "red", 0.05, (0.0, 0.0), 0.0), SceneObject("B", "green", 0.05, (0.053, 0.0), 0.0),
+                   SceneObject("C", "blue", 0.05, (0.0, 0.2), 0.0)]).validate()
+    w = World2D(scene, "A")
+    margins = w.start_margins()
+    assert np.allclose(margins, [0.003, GRIPPER_MARGIN])
+    poses = np.array([[0.0, 0.0, 0.0], [-0.001, 0.0, 0.0], [0.001, 0.0, 0.0], [0.0, 0.147, 0.0], [-0.3, -0.3, 0.0]])
+    short = w.shortfall(poses, margins)
+    assert np.allclose(short[:4], [0.0, 0.001, -0.001, -0.002])  # the start itself just passes; C: 3 mm short
+    # sparing the work changes nothing a comparison with a slack of up to ``within`` can see
+    spared = w.shortfall(poses, margins, mask=np.array([True, True, True, True, False]), within=0.01)
+    assert np.array_equal(spared[:4], short[:4]) and spared[4] == np.inf and short[4] > 0.01
