@@ -10,7 +10,8 @@
   (:func:`crossable`).
 
 Both are necessary conditions, measured with bounds that favour the arm, like every check of feasibility.py:
-a refusal is a real impossibility. Moved here from feasibility.py (2026-11-27, twelfth session), unchanged.
+a refusal is a real impossibility. Moved here from feasibility.py (2026-11-27, twelfth session); the gap test
+is ``World2D.shortfall``, which the way round (detour.py) uses too.
 """
 
 from __future__ import annotations
@@ -29,6 +30,8 @@ from .world2d import World2D
 
 
 def room_around(scene: Scene, mover: str, anchor: str) -> None:
+    """InfeasibleError("room-around") when the workspace leaves the mover's centre less than the 0.8 turn round
+    the anchor (the bystanders aside: that is :func:`blocked_around`'s)."""
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
     rho_min = nearest_centres(m, a)  # centres never closer than the half sides' sum
@@ -56,6 +59,9 @@ SWEEP_GRID = (2.0, 0.05, 5.0)
 
 
 def blocked_around(scene: Scene, mover: str, anchor: str) -> None:
+    """InfeasibleError("blocked-around") when, within ``near`` blocks, the bystanders and the workspace leave no
+    legal pose along enough bearings, or no connected way of 0.8 turn from the start (or, from afar, from where
+    the mover can first come near)."""
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     world = World2D(scene, mover)  # the block's own outline: smaller than a hand-grown one, so it favours the arm
     bearing_deg, radius_sides, yaw_deg = SWEEP_GRID
