@@ -7,6 +7,9 @@
     with OLD="closer=0.95 away=0.97 next-to=0.9 past=0.9 around=0.9", the thresholds before the choice
     (docs/planning.md, "Thresholds on chain starts")
 
+    .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds closer=0.97 \
+        --bounds-off closer       # closer's going-back bound (planning/bounds.py), off and on: 97 / 98 of 103
+
 The clause starts are the states ``evaluate --chains 5`` draws over the five built-in actions
 (``evaluate/chains.draw_chain``: each clause from the end state the earlier clauses' plans predict, in the
 Panda's workspace), which depend on the thresholds in force while they are drawn: the bundles' own, or
@@ -15,11 +18,17 @@ is planned again with A's ``[policy] threshold`` set to each value asked, and th
 judge, as the chain's forecast judges it; a refusal counts as a failure. Printed: successes per action and
 threshold, and the seconds spent planning. The models are not touched; the rule judges are read only here, to
 report, never by the planner.
+
+``--bounds-off A ...``: the bounds from people's data of those actions (``planning/bounds.py``: past's room,
+closer's going back; a built-in action's name is its rule judge's) are off while the chains are drawn, as before
+they were in, and each of their rows is planned twice, with the bound off and on: how a bound was chosen and
+confirmed (docs/planning.md).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import time
 
@@ -52,6 +61,19 @@ def starts(seed: int, chains: int, clauses: int, actions: list[str], plugins: li
     return out
 
 
+@contextlib.contextmanager
+def bounds_off(rules: set[str]):
+    """The planner without the bounds from people's data of the rule judges named (``planning._people_bound``)."""
+    import l2p_bullet.planning as planning
+
+    real = planning._people_bound
+    planning._people_bound = lambda name: None if name in rules else real(name)
+    try:
+        yield
+    finally:
+        planning._people_bound = real
+
+
 def judged(pairs: list[tuple], action: str, threshold: float, plugins: list, arm) -> tuple[int, int, float]:
     """Successes, starts and seconds for ``action``'s starts planned with ``threshold``."""
     from l2p_bullet.chain.forecast import forecast
@@ -80,6 +102,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clauses", type=int, default=5)
     ap.add_argument("--thresholds", nargs="+", default=list(DEFAULT), help="ACTION=T,T,... (default: the sweep)")
     ap.add_argument("--draw-with", nargs="*", default=[], help="ACTION=T: thresholds while the chains are drawn")
+    ap.add_argument("--bounds-off", nargs="*", default=[], metavar="ACTION",
+                    help="these actions' bounds from people's data off while drawn; their rows planned off and on")
     args = ap.parse_args(argv)
 
     from l2p_bullet.embodiment import arm_plugins
@@ -91,15 +115,21 @@ def main(argv: list[str] | None = None) -> int:
     actions = ["around", "away", "closer", "next-to", "past"]
     for a, t in (d.split("=", 1) for d in args.draw_with):
         set_threshold(a, float(t), plugins)
+    off = set(args.bounds_off)
+    if off - set(actions):
+        ap.error(f"--bounds-off: not a built-in action: {', '.join(sorted(off - set(actions)))}")
     t0 = time.perf_counter()
-    pairs = starts(args.seed, args.chains, args.clauses, actions, plugins, arm)
+    with bounds_off(off):
+        pairs = starts(args.seed, args.chains, args.clauses, actions, plugins, arm)
     print(f"{len(pairs)} clause starts of chain seeds {args.seed}-{args.seed + args.chains - 1} "
           f"({time.perf_counter() - t0:.0f} s)\n")
-    print("| action | threshold | successes | starts | s |\n|---|---:|---:|---:|---:|")
+    print("| action | threshold | bound | successes | starts | s |\n|---|---:|---|---:|---:|---:|")
     for action, thresholds in grid.items():
         for t in thresholds:
-            ok, n, s = judged(pairs, action, t, plugins, arm)
-            print(f"| {action} | {t:g} | {ok} | {n} | {s:.0f} |", flush=True)
+            for bound in (("off", "on") if action in off else ("on",)):
+                with bounds_off(off if bound == "off" else set()):
+                    ok, n, s = judged(pairs, action, t, plugins, arm)
+                print(f"| {action} | {t:g} | {bound} | {ok} | {n} | {s:.0f} |", flush=True)
     return 0
 
 
