@@ -10,7 +10,7 @@
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds closer=0.97 \
         --bounds-off closer       # closer's going-back bound (planning/bounds.py), off and on: 97 / 98 of 103
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds past=0.99 \
-        --bounds-off past:ends_beyond                                  # past's end beyond the anchor, off and on
+        --bounds-off past:ends_beyond   # at bd00abd (not adopted, docs/planning.md): past's end beyond, off and on
 
 The clause starts are the states ``evaluate --chains 5`` draws over the five built-in actions
 (``evaluate/chains.draw_chain``: each clause from the end state the earlier clauses' plans predict, in the
@@ -21,8 +21,8 @@ judge, as the chain's forecast judges it; a refusal counts as a failure. Printed
 threshold, and the seconds spent planning. The models are not touched; the rule judges are read only here, to
 report, never by the planner.
 
-``--bounds-off A[:T] ...``: those bounds from people's data (``planning.PEOPLE_BOUNDS``: past's room and its end,
-closer's going back; ``A`` all of an action's, ``A:T`` the one reading threshold ``T``; a built-in action's name is
+``--bounds-off A[:T] ...``: those bounds from people's data (``planning.PEOPLE_BOUNDS``: past's room, closer's going
+back; ``A`` all of an action's, ``A:T`` the one reading threshold ``T``; a built-in action's name is
 its rule judge's) are off while the chains are drawn, as before they were in, and each of their actions' rows is
 planned twice, with them off and on: how a bound was chosen and confirmed (docs/planning.md).
 """

@@ -36,7 +36,7 @@ from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.rules import AROUND_APPROACH, AROUND_NEAR
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
-from .bounds import BoundScorer, back_weight, beyond_weight, combined, pass_weight
+from .bounds import BoundScorer, back_weight, combined, pass_weight
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
 from .problem import FRAME_STEP, Problem, finish
@@ -77,12 +77,6 @@ PAST_PASSES_WITHIN = PAST.thresholds["passes_within"]
 """Blocks from the anchor within which "past" is planned to pass it: the farthest any of people's 43 "past"
 demonstrations passed (3.70, rounded up). Candidates passing farther are scored down (bounds.py): the
 model rates a pass 4-5 blocks away done, a motion no person made. Like ``AROUND_REACH``, from people's data."""
-
-PAST_ENDS_BEYOND = PAST.thresholds["ends_beyond"]
-"""Blocks beyond the anchor at which "past" is planned to end, at least: the least any of people's 43 "past"
-demonstrations ended beyond it (0.99, rounded down), measured as the rule measures it. Candidates ending short of
-it are scored down (bounds.py): from 6-10 blocks before the anchor the model rated a path ending level with it
-done, a motion no person made. Like ``PAST_PASSES_WITHIN``, from people's data."""
 
 CLOSER_GOES_BACK_WITHIN = CLOSER.thresholds["goes_back_within"]
 """Share of its room (start distance - 1 block) within which "closer" is planned to go back: the most any of
@@ -244,8 +238,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
 
 
 PEOPLE_BOUNDS: dict[str, dict[str, functools.partial]] = {
-    "past": {"passes_within": functools.partial(pass_weight, within=PAST_PASSES_WITHIN),
-             "ends_beyond": functools.partial(beyond_weight, least=PAST_ENDS_BEYOND)},
+    "past": {"passes_within": functools.partial(pass_weight, within=PAST_PASSES_WITHIN)},
     "closer": {"goes_back_within": functools.partial(back_weight, share=CLOSER_GOES_BACK_WITHIN)},
 }
 """Per rule judge, the bounds from people's data its candidates are weighted by (bounds.py), by the name of the

@@ -7,9 +7,6 @@ started a motion:
 - "past" slid by the anchor 4-5 blocks away at 0.98-0.997, while people's 43 demonstrations pass it at most 3.70
   blocks away (``ActionSpec.thresholds["passes_within"]`` of past, rounded up to 3.8; analysis seeds 5300-5399:
   10 of past's 19 failed plans passed 4.0-4.9 blocks away; docs/planning.md);
-- "past" from 6-10 blocks before the anchor ended level with it (-1.7 to 0.49 blocks beyond) at learned progress
-  above the threshold, while people's 43 demonstrations end at least 0.99 block beyond it (``thresholds
-  ["ends_beyond"]`` of past, rounded down to 0.9);
 - "closer" from within 1.8 blocks wiggles: the model rates a back-and-forth higher than a straight slide to
   touching, while people's 41 demonstrations went back at most 0.176 of the room they had (start distance - 1
   block; ``thresholds["goes_back_within"]`` of closer, rounded up to 0.18).
@@ -47,22 +44,8 @@ def pass_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
     return np.exp(-np.clip(closest - within, 0.0, None) / SCALE_SIDES)
 
 
-def beyond_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, least: float) -> np.ndarray:
-    """Per path: 1 where it ends at least ``least`` blocks beyond the anchor, measured as the rule of "past" measures
-    it (along the path's overall direction, start to end), else exp(-(least - beyond) / SCALE_SIDES)."""
-    a = np.asarray(anchor_pose, float)[:2]
-    out = np.empty(len(movers))
-    for i, m in enumerate(movers):
-        xy = np.asarray(m, float)[:, :2]
-        travel = xy[-1] - xy[0]
-        length = float(np.hypot(*travel))
-        beyond = float((xy[-1] - a) @ travel) / length / size if length > 0 else -np.inf  # no motion: not beyond
-        out[i] = np.exp(-max(least - beyond, 0.0) / SCALE_SIDES)
-    return out
-
-
 def combined(weights: list[Callable[[list[np.ndarray], Any, float], np.ndarray]]):
-    """One weight, the product of ``weights`` (an action with more than one bound: past's room and its end)."""
+    """One weight, the product of ``weights`` (an action with more than one bound in ``planning.PEOPLE_BOUNDS``)."""
     if len(weights) == 1:
         return weights[0]
 
@@ -100,4 +83,4 @@ class BoundScorer:
         return self.model.curve(mover, anchor, size, **context)
 
 
-__all__ = ["BoundScorer", "back_weight", "beyond_weight", "combined", "pass_weight", "SCALE_SIDES"]
+__all__ = ["BoundScorer", "back_weight", "combined", "pass_weight", "SCALE_SIDES"]

@@ -13,8 +13,8 @@ from l2p_bullet.actions.closer import ACTION as CLOSER
 from l2p_bullet.actions.past import ACTION
 from l2p_bullet.core.scene import Scene
 from l2p_bullet.pipeline import judged_plan, prepare
-from l2p_bullet.planning import CLOSER_GOES_BACK_WITHIN, PAST_ENDS_BEYOND, PAST_PASSES_WITHIN
-from l2p_bullet.planning.bounds import BoundScorer, back_weight, beyond_weight, combined, pass_weight
+from l2p_bullet.planning import CLOSER_GOES_BACK_WITHIN, PAST_PASSES_WITHIN
+from l2p_bullet.planning.bounds import BoundScorer, back_weight, combined, pass_weight
 
 
 def test_the_room_is_the_farthest_any_person_passed_the_anchor():
@@ -98,23 +98,9 @@ def test_closer_from_near_slides_in_instead_of_wiggling():
     assert verdict["success"], verdict["reason"]
 
 
-def test_pasts_end_is_the_least_any_person_ended_beyond_the_anchor():
-    from l2p_bullet.learning.train_progress import all_demos
-
-    beyond = []
-    for d in all_demos()["past"]:
-        xy, a = d.event_mover[:, :2], d.event_anchor[:, :2]
-        travel = xy[-1] - xy[0]
-        beyond.append(float((xy[-1] - a[-1]) @ travel) / float(np.hypot(*travel)) / d.size)
-    assert len(beyond) == 43
-    assert PAST_ENDS_BEYOND == ACTION.thresholds["ends_beyond"] == math.floor(min(beyond) * 10) / 10
-
-
-def test_a_path_ending_beyond_keeps_the_models_score_and_one_short_loses_a_share_per_block():
-    line = lambda x1: np.column_stack([np.linspace(-6, x1, 41), np.full(41, 1.0), np.zeros(41)])  # noqa: E731
-    w = beyond_weight([line(2.0), line(0.9), line(-0.1), line(-1.1), np.zeros((3, 3))], np.zeros(3), 1.0, 0.9)
-    assert w[:2].tolist() == [1.0, 1.0]
-    assert np.allclose(w[2:4], [math.exp(-1.0), math.exp(-2.0)])
-    assert w[4] == 0.0  # no motion is not beyond
-    both = combined([functools.partial(pass_weight, within=3.8), functools.partial(beyond_weight, least=0.9)])
-    assert np.allclose(both([line(-0.1)], np.array([-0.1, -3.8, 0.0]), 1.0), math.exp(-1.0) * math.exp(-0.9))
+def test_an_actions_bounds_multiply():
+    line = lambda y: np.column_stack([np.linspace(-6, 6, 41), np.full(41, y), np.zeros(41)])  # noqa: E731
+    room = functools.partial(pass_weight, within=3.8)
+    both = combined([room, room])
+    assert combined([room]) is room
+    assert np.allclose(both([line(4.8)], np.zeros(3), 1.0), math.exp(-2.0))

@@ -1,7 +1,6 @@
 """Built-in action: past. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
 thresholds of its rule judge: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
-``near`` blocks, turning at most ``max_turn_deg`` around it; the ``passes_within`` its planned paths keep to and the
-``ends_beyond`` they end at least;
+``near`` blocks, turning at most ``max_turn_deg`` around it; the ``passes_within`` its planned paths keep to;
 its training-set options; its names) is declared here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 The rule itself is ``judge/rulesets/past.py`` (named by ``rules``).
 """
@@ -16,8 +15,7 @@ ACTION = ActionSpec(
     source_name="SlidePast",
     sentence="move A past B",
     thresholds={"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0,
-                "passes_within": 3.8,  # blocks: the farthest any of people's 43 passed the anchor (3.70, rounded up)
-                "ends_beyond": 0.9},  # blocks: the least any of people's 43 ended beyond it (0.99, rounded down)
+                "passes_within": 3.8},  # blocks: the farthest any of people's 43 passed the anchor (3.70, rounded up)
     training=Training(negatives=("closer", "away", "next-to", "around"), approach=(1.0, 4.0),
                       violation=Violation(no_turn=(20.0, 2.0), max_turn_deg=270.0, strays=(9.0, math.inf))),
 )
