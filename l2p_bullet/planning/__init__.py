@@ -245,7 +245,7 @@ PEOPLE_BOUNDS: dict[str, dict[str, functools.partial]] = {
 threshold each reads; an action judged by that rule judge (a plugin's too) is planned within them."""
 
 
-def _people_bound(rules: str):
+def _people_bound(rules: str | None):
     """The weight that keeps an action's candidates within people's bounds (:data:`PEOPLE_BOUNDS`), or None."""
     weights = list(PEOPLE_BOUNDS.get(rules, {}).values())
     return combined(weights) if weights else None
