@@ -54,12 +54,12 @@ from .footprints import WOBBLE, relative, square_gap
 from .rulesets import around, away, between, closer, next_to, past, sides
 from .rulesets.around import AROUND_APPROACH, AROUND_NEAR, AROUND_TURNS
 from .rulesets.away import AWAY_GAIN
-from .rulesets.closer import CLOSER_SHARE, closer_room
+from .rulesets.closer import CLOSER_SHARE, closer_room, went_back
 from .rulesets.next_to import NEXT_TO_GAP
 from .rulesets.past import PAST_MARGIN, PAST_MAX_TURN_DEG, PAST_NEAR
 from .rulesets.sides import NEAR, SIDES
 
-__all__ = ["RULES", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap", "closer_room", "WOBBLE",
+__all__ = ["RULES", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap", "closer_room", "went_back", "WOBBLE",
            "CLOSER_SHARE", "AWAY_GAIN", "NEXT_TO_GAP", "PAST_MARGIN", "PAST_NEAR", "PAST_MAX_TURN_DEG",
            "AROUND_TURNS", "AROUND_NEAR", "AROUND_APPROACH", "NEAR", "SIDES"]
 

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from ..judge.rules import closer_room
+from ..judge.rules import closer_room, went_back
 
 SCALE_SIDES = 1.0
 """Blocks of closest approach beyond the room at which a candidate's score is multiplied by 1/e (as
@@ -62,7 +62,7 @@ def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
     for i, m in enumerate(movers):
         d = _distances(m, anchor_pose, size)
         allowed = share * closer_room(float(d[0]))
-        out[i] = np.exp(-max(float(np.max(d - np.minimum.accumulate(d))) - allowed, 0.0) / allowed)
+        out[i] = np.exp(-max(went_back(d) - allowed, 0.0) / allowed)
     return out
 
 

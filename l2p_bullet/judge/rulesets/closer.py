@@ -20,11 +20,17 @@ def closer_room(start: float) -> float:
     return max(start - 1.0, 0.25)
 
 
+def went_back(d: np.ndarray) -> float:
+    """The most the centre distance ``d`` (blocks per frame) rose above its least so far: how far "closer" went
+    back (planning/bounds.py bounds the planner's candidates by it, so both measure it the same way)."""
+    return float(np.max(d - np.minimum.accumulate(d)))
+
+
 def closer(rel: np.ndarray, d: np.ndarray, *_: object, **__: object) -> Verdict:
     room = closer_room(float(d[0]))
     moved = float(d[0]) - float(d[-1])
     closed = moved / room
-    rise = float(np.max(d - np.minimum.accumulate(d)))
+    rise = went_back(d)
     # people also reward how far it came, not only the share of the room ("right, but too short")
     score = float(np.clip(closed, 0, 1) * np.clip(moved / 2.0, 0, 1)) * (1.0 if rise <= WOBBLE else 0.5)
     ok = closed >= CLOSER_SHARE and rise <= WOBBLE
