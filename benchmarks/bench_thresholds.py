@@ -10,7 +10,7 @@
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds closer=0.97 \
         --bounds-off closer       # closer's going-back bound (planning/bounds.py), off and on: 97 / 98 of 103
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds past=0.99 \
-        --bounds-off past:ends_beyond   # at bd00abd (not adopted, docs/planning.md): past's end beyond, off and on
+        --bounds-off past:ends_beyond   # at bd00abd only (not adopted, docs/planning.md): past's end, off and on
 
 The clause starts are the states ``evaluate --chains 5`` draws over the five built-in actions
 (``evaluate/chains.draw_chain``: each clause from the end state the earlier clauses' plans predict, in the
@@ -21,10 +21,10 @@ judge, as the chain's forecast judges it; a refusal counts as a failure. Printed
 threshold, and the seconds spent planning. The models are not touched; the rule judges are read only here, to
 report, never by the planner.
 
-``--bounds-off A[:T] ...``: those bounds from people's data (``planning.PEOPLE_BOUNDS``: past's room, closer's going
-back; ``A`` all of an action's, ``A:T`` the one reading threshold ``T``; a built-in action's name is
-its rule judge's) are off while the chains are drawn, as before they were in, and each of their actions' rows is
-planned twice, with them off and on: how a bound was chosen and confirmed (docs/planning.md).
+``--bounds-off A ...``: the bounds from people's data of those actions (``planning.PEOPLE_BOUNDS``: past's room,
+closer's going back; a built-in action's name is its rule judge's) are off while the chains are drawn, as before
+they were in, and each of their rows is planned twice, with the bound off and on: how a bound was chosen and
+confirmed (docs/planning.md).
 """
 
 from __future__ import annotations
@@ -64,14 +64,12 @@ def starts(seed: int, chains: int, clauses: int, actions: list[str], plugins: li
 
 
 @contextlib.contextmanager
-def bounds_off(names: set[str]):
-    """The planner without the bounds from people's data named: ``ACTION`` (all of its rule judge's) or
-    ``ACTION:THRESHOLD`` (one; ``planning.PEOPLE_BOUNDS``)."""
+def bounds_off(rules: set[str]):
+    """The planner without the bounds from people's data of the rule judges named (``planning.PEOPLE_BOUNDS``)."""
     import l2p_bullet.planning as planning
 
     real = planning.PEOPLE_BOUNDS
-    planning.PEOPLE_BOUNDS = {rules: {k: w for k, w in bounds.items() if rules not in names and f"{rules}:{k}" not in names}
-                              for rules, bounds in real.items()}
+    planning.PEOPLE_BOUNDS = {name: weight for name, weight in real.items() if name not in rules}
     try:
         yield
     finally:
@@ -106,8 +104,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clauses", type=int, default=5)
     ap.add_argument("--thresholds", nargs="+", default=list(DEFAULT), help="ACTION=T,T,... (default: the sweep)")
     ap.add_argument("--draw-with", nargs="*", default=[], help="ACTION=T: thresholds while the chains are drawn")
-    ap.add_argument("--bounds-off", nargs="*", default=[], metavar="ACTION[:THRESHOLD]",
-                    help="these bounds from people's data off while drawn; their actions' rows planned off and on")
+    ap.add_argument("--bounds-off", nargs="*", default=[], metavar="ACTION",
+                    help="these actions' bounds from people's data off while drawn; their rows planned off and on")
     args = ap.parse_args(argv)
 
     from l2p_bullet.embodiment import arm_plugins
@@ -122,10 +120,9 @@ def main(argv: list[str] | None = None) -> int:
     import l2p_bullet.planning as planning
 
     off = set(args.bounds_off)
-    known = set(planning.PEOPLE_BOUNDS) | {f"{r}:{k}" for r, b in planning.PEOPLE_BOUNDS.items() for k in b}
-    if off - known:
-        ap.error(f"--bounds-off: no such bound: {', '.join(sorted(off - known))} (known: {', '.join(sorted(known))})")
-    off_actions = {name.split(":")[0] for name in off}
+    if off - set(planning.PEOPLE_BOUNDS):
+        ap.error(f"--bounds-off: no bound from people's data: {', '.join(sorted(off - set(planning.PEOPLE_BOUNDS)))} "
+                 f"(those with one: {', '.join(sorted(planning.PEOPLE_BOUNDS))})")
     t0 = time.perf_counter()
     with bounds_off(off):
         pairs = starts(args.seed, args.chains, args.clauses, actions, plugins, arm)
@@ -134,7 +131,7 @@ def main(argv: list[str] | None = None) -> int:
     print("| action | threshold | bound | successes | starts | s |\n|---|---:|---|---:|---:|---:|")
     for action, thresholds in grid.items():
         for t in thresholds:
-            for bound in (("off", "on") if action in off_actions else ("on",)):
+            for bound in (("off", "on") if action in off else ("on",)):
                 with bounds_off(off if bound == "off" else set()):
                     ok, n, s = judged(pairs, action, t, plugins, arm)
                 print(f"| {action} | {t:g} | {bound} | {ok} | {n} | {s:.0f} |", flush=True)

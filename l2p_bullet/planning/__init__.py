@@ -36,7 +36,7 @@ from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.rules import AROUND_APPROACH, AROUND_NEAR
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
-from .bounds import BoundScorer, back_weight, combined, pass_weight
+from .bounds import BoundScorer, back_weight, pass_weight
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
 from .problem import FRAME_STEP, Problem, finish
@@ -162,7 +162,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     around = target is None and _rules(bundle) == "around"
-    bound = None if target is not None else _people_bound(_rules(bundle))  # bounds.py
+    bound = None if target is not None else PEOPLE_BOUNDS.get(_rules(bundle))  # bounds.py
     best, refused, bounded, spent = None, None, False, 0
     for hold in holds:
         cap = None if budget is not None or CHECK_CAP is None else CHECK_CAP - spent
@@ -237,18 +237,12 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     return result
 
 
-PEOPLE_BOUNDS: dict[str, dict[str, functools.partial]] = {
-    "past": {"passes_within": functools.partial(pass_weight, within=PAST_PASSES_WITHIN)},
-    "closer": {"goes_back_within": functools.partial(back_weight, share=CLOSER_GOES_BACK_WITHIN)},
+PEOPLE_BOUNDS: dict[str, functools.partial] = {
+    "past": functools.partial(pass_weight, within=PAST_PASSES_WITHIN),
+    "closer": functools.partial(back_weight, share=CLOSER_GOES_BACK_WITHIN),
 }
-"""Per rule judge, the bounds from people's data its candidates are weighted by (bounds.py), by the name of the
-threshold each reads; an action judged by that rule judge (a plugin's too) is planned within them."""
-
-
-def _people_bound(rules: str | None):
-    """The weight that keeps an action's candidates within people's bounds (:data:`PEOPLE_BOUNDS`), or None."""
-    weights = list(PEOPLE_BOUNDS.get(rules, {}).values())
-    return combined(weights) if weights else None
+"""Per rule judge, the bound from people's data its candidates are weighted by (bounds.py); an action judged by
+that rule judge (a plugin's too) is planned within it. benchmarks/bench_thresholds.py turns one off to measure it."""
 
 
 def _target_scorer(model, target: np.ndarray, world: World2D):

@@ -44,17 +44,6 @@ def pass_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
     return np.exp(-np.clip(closest - within, 0.0, None) / SCALE_SIDES)
 
 
-def combined(weights: list[Callable[[list[np.ndarray], Any, float], np.ndarray]]):
-    """One weight, the product of ``weights`` (an action with more than one bound in ``planning.PEOPLE_BOUNDS``)."""
-    if len(weights) == 1:
-        return weights[0]
-
-    def weight(movers: list[np.ndarray], anchors: Any, size: float) -> np.ndarray:
-        return np.prod([w(movers, anchors, size) for w in weights], axis=0)
-
-    return weight
-
-
 def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, share: float) -> np.ndarray:
     """Per path: 1 where the most its centre distance went back above its least so far (the rule's "went back")
     is at most ``share`` of its room, else exp(-(rise - share room) / (share room)): the share is its own scale."""
@@ -83,4 +72,4 @@ class BoundScorer:
         return self.model.curve(mover, anchor, size, **context)
 
 
-__all__ = ["BoundScorer", "back_weight", "combined", "pass_weight", "SCALE_SIDES"]
+__all__ = ["BoundScorer", "back_weight", "pass_weight", "SCALE_SIDES"]

@@ -14,7 +14,7 @@ from l2p_bullet.actions.past import ACTION
 from l2p_bullet.core.scene import Scene
 from l2p_bullet.pipeline import judged_plan, prepare
 from l2p_bullet.planning import CLOSER_GOES_BACK_WITHIN, PAST_PASSES_WITHIN
-from l2p_bullet.planning.bounds import BoundScorer, back_weight, combined, pass_weight
+from l2p_bullet.planning.bounds import BoundScorer, back_weight, pass_weight
 
 
 def test_the_room_is_the_farthest_any_person_passed_the_anchor():
@@ -96,11 +96,3 @@ def test_closer_from_near_slides_in_instead_of_wiggling():
     rise = float(np.max(d - np.minimum.accumulate(d)))
     assert rise <= CLOSER_GOES_BACK_WITHIN * (d[0] - 1.0)  # within people's share of the room
     assert verdict["success"], verdict["reason"]
-
-
-def test_an_actions_bounds_multiply():
-    line = lambda y: np.column_stack([np.linspace(-6, 6, 41), np.full(41, y), np.zeros(41)])  # noqa: E731
-    room = functools.partial(pass_weight, within=3.8)
-    both = combined([room, room])
-    assert combined([room]) is room
-    assert np.allclose(both([line(4.8)], np.zeros(3), 1.0), math.exp(-2.0))
