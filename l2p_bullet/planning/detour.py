@@ -13,8 +13,9 @@ decides which move to make, as with every other proposal.
 
 from __future__ import annotations
 
+import heapq
+import itertools
 import math
-from collections import deque
 
 import numpy as np
 
@@ -35,7 +36,8 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
     """Waypoints (N, 3) of a way round ``anchor_pose`` from ``start`` (default: the mover's start; the end
     of an approach, approach.py), every pose legal and every straight move between two of them legal, never
     farther than ``near_sides`` (block sides) from the anchor; None when the grid holds none (the planner
-    then searches without it)."""
+    then searches without it). The shortest way at one yaw of :data:`YAWS_DEG`; where none has one, a way that
+    turns the block between neighbouring yaws (:data:`TURN_COST`)."""
     start = np.asarray(world.mover.pose if start is None else start, float)
     a = np.asarray(anchor_pose, float)[:2]
     size = world.size
@@ -48,27 +50,55 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
     j0 = int(np.argmin(np.abs(radii - d0)))
     per_turn = round(360.0 / GRID[0])
     goal = math.ceil(GOAL_TURNS * per_turn)
-    best = None
+    grid = (a, b0, step_b, radii, goal)
+    best, layers = None, []
     for dyaw in YAWS_DEG:
         yaw = start[2] + math.radians(dyaw)
         legal = _legal(world, a, b0, step_b, per_turn, radii, yaw)  # (per_turn, R)
-        if not legal[0, j0] or not world.moves_free(start, np.array([[*_xy(a, b0, radii[j0]), yaw]]))[0]:
-            continue
-        banned: set[tuple[tuple[int, int], tuple[int, int]]] = set()
-        for _ in range(RETRIES + 1):  # a grid step that clips an obstacle is banned and the way searched again
-            cells = _shortest_way(legal, j0, goal, banned)
-            if cells is None:
-                break
-            poses = np.array([[*_xy(a, b0 + k * step_b, radii[j]), yaw] for k, j in cells])
-            corners, clipped = _corners(world, start, poses)
-            if corners is not None:
-                if best is None or len(cells) < best[0]:
-                    best = (len(cells), corners)
-                break
-            if clipped < 0:  # the slide from the start to the way's first cell (checked above: not reached)
-                break
-            banned.add(_edge(cells[clipped], cells[clipped + 1], per_turn))
+        enters = bool(legal[0, j0]) and bool(world.moves_free(start, np.array([[*_xy(a, b0, radii[j0]), yaw]]))[0])
+        layers.append((dyaw, yaw, legal, enters))
+        if enters:
+            found = _way(world, start, grid, legal[None], [yaw], [(0, j0, 0)])
+            if found is not None and (best is None or found[0] < best[0]):
+                best = found
+    if best is None and TURN_COST is not None:  # no way at one yaw: one that turns the block on the way
+        layers.sort(key=lambda layer: layer[0])
+        entries = [(0, j0, y) for y, layer in enumerate(layers) if layer[3]]
+        if entries:
+            best = _way(world, start, grid, np.stack([layer[2] for layer in layers]),
+                        [layer[1] for layer in layers], entries, TURN_COST)
     return None if best is None else best[1]
+
+
+TURN_COST = 4.0
+"""Grid steps that turning the block by one yaw of :data:`YAWS_DEG` (15 degrees) costs on a way round that turns
+(``around_route``'s fallback; None: no such way). Why: among bystanders some anchors have no way round at any
+one yaw but one that turns the block where it passes between two blocks (chain starts of seeds 5300-5399: 5320,
+5387; docs/planning.md). The cost makes the block turn only where it must: a way that turned at no cost (tried
+on analysis chain/5021 before) swung it back and forth by up to 60 degrees between corners. Set once, not tuned."""
+
+
+def _way(world: World2D, start: np.ndarray, grid: tuple, legal: np.ndarray, yaws: list[float],
+         entries: list[tuple[int, int, int]], turn_cost: float = 0.0) -> tuple[float, np.ndarray] | None:
+    """The shortest way on ``legal`` (yaws x bearings x radii) from ``entries`` (bearing, radius, yaw indices),
+    as corners of straight legal moves; a grid step that clips an obstacle is banned and the way searched again,
+    :data:`RETRIES` times. (cost, corners) or None."""
+    a, b0, step_b, radii, goal = grid
+    per_turn = legal.shape[1]
+    banned: set = set()
+    for _ in range(RETRIES + 1):
+        found = _shortest_way(legal, entries, goal, banned, turn_cost)
+        if found is None:
+            return None
+        cost, cells = found
+        poses = np.array([[*_xy(a, b0 + k * step_b, radii[j]), yaws[y]] for k, j, y in cells])
+        corners, clipped = _corners(world, start, poses)
+        if corners is not None:
+            return cost, corners
+        if clipped < 0:  # the slide from the start to the way's first cell (checked by the caller: not reached)
+            return None
+        banned.add(_edge(cells[clipped], cells[clipped + 1], per_turn))
+    return None
 
 
 def _xy(a: np.ndarray, bearing: float, r: float) -> tuple[float, float]:
@@ -87,34 +117,53 @@ def _legal(world: World2D, a: np.ndarray, b0: float, step_b: float, per_turn: in
     return ok.reshape(bb.shape)  # one yaw: posed_separation projects it once (see its docstring)
 
 
-def _edge(c0: tuple[int, int], c1: tuple[int, int], per_turn: int) -> tuple[tuple[int, int], tuple[int, int]]:
-    """A grid step as a key that does not depend on its direction or on the bearing's unwrapping."""
-    a, b = (c0[0] % per_turn, c0[1]), (c1[0] % per_turn, c1[1])
+def _edge(c0: tuple[int, ...], c1: tuple[int, ...], per_turn: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """A grid step (cells as (bearing, radius[, yaw]) indices) as a key that does not depend on its direction or
+    on the bearing's unwrapping."""
+    a, b = (c0[0] % per_turn, *c0[1:]), (c1[0] % per_turn, *c1[1:])
     return (a, b) if a <= b else (b, a)
 
 
-def _shortest_way(legal: np.ndarray, j0: int, goal: int,
-                  banned: set | frozenset = frozenset()) -> list[tuple[int, int]] | None:
-    """Breadth-first search over legal cells (8 neighbours) from bearing step 0, radius ``j0``, on the
-    unwrapped bearing axis, to any cell ``goal`` steps round either way, never taking a ``banned`` step
-    (:func:`_edge`); the cells of the way, or None."""
-    n, m = legal.shape
-    prev: dict[tuple[int, int], tuple[int, int] | None] = {(0, j0): None}
-    queue = deque([(0, j0)])
-    while queue:
-        k, j = queue.popleft()
+def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: int,
+                  banned: set | frozenset = frozenset(), turn_cost: float = 0.0) -> tuple[float, list] | None:
+    """The cheapest chain of legal cells of ``legal`` (yaws x bearings x radii) from any of ``entries`` (bearing,
+    radius, yaw indices; bearing 0 is the start's) to a cell ``goal`` bearing steps round either way, on the
+    unwrapped bearing axis, never taking a ``banned`` step (:func:`_edge`): (cost, cells). A step goes to any
+    of the 8 neighbours in bearing x radius, and to the neighbouring yaw as well, at one more ``turn_cost`` per
+    yaw; with one yaw every step costs 1, and cells come off the queue in the order of a breadth-first search.
+    None if there is no such chain."""
+    ny, n, m = legal.shape
+    dist: dict[tuple[int, int, int], float] = {}
+    prev: dict[tuple[int, int, int], tuple[int, int, int] | None] = {}
+    heap: list = []
+    count = itertools.count()  # ties leave in the order they came: breadth-first order with one yaw
+    for k, j, y in entries:
+        dist[(k, j, y)], prev[(k, j, y)] = 0.0, None
+        heapq.heappush(heap, (0.0, next(count), (k, j, y)))
+    turns = (-1, 0, 1) if ny > 1 else (0,)
+    while heap:
+        c, _, cell = heapq.heappop(heap)
+        if c > dist[cell]:
+            continue  # reached again more cheaply since
+        k, j, y = cell
         if abs(k) >= goal:
-            way = [(k, j)]
+            way = [cell]
             while prev[way[-1]] is not None:
                 way.append(prev[way[-1]])
-            return way[::-1]
+            return c, way[::-1]
         for dk in (-1, 0, 1):
             for dj in (-1, 0, 1):
-                nk, nj = k + dk, j + dj
-                if ((dk or dj) and 0 <= nj < m and abs(nk) <= goal and (nk, nj) not in prev and legal[nk % n, nj]
-                        and (not banned or _edge((k, j), (nk, nj), n) not in banned)):
-                    prev[(nk, nj)] = (k, j)
-                    queue.append((nk, nj))
+                for dy in turns:
+                    nk, nj, ny_ = k + dk, j + dj, y + dy
+                    nxt = (nk, nj, ny_)
+                    if (not (dk or dj or dy) or not 0 <= nj < m or not 0 <= ny_ < ny or abs(nk) > goal
+                            or not legal[ny_, nk % n, nj]
+                            or (banned and _edge(cell, nxt, n) in banned)):
+                        continue
+                    nc = c + 1.0 + turn_cost * abs(dy)
+                    if nc < dist.get(nxt, math.inf):
+                        dist[nxt], prev[nxt] = nc, cell
+                        heapq.heappush(heap, (nc, next(count), nxt))
     return None
 
 

@@ -168,18 +168,39 @@ def test_a_grid_step_the_world_rejects_is_avoided_not_the_end_of_the_way():
     # detour._shortest_way never takes a banned step (around_route bans one whose straight move clips a corner)
     from l2p_bullet.planning import detour
 
-    legal = np.zeros((8, 3), bool)
-    legal[:, 0] = legal[:, 2] = True  # two rings, joined only through the middle radius at bearing 4
-    legal[4, 1] = True
-    way = detour._shortest_way(legal, 0, 6)
-    assert way is not None and abs(way[-1][0]) >= 6
-    inner = detour._shortest_way(legal, 0, 6, {detour._edge((-6, 0), (-5, 0), 8)})
-    assert inner is not None and detour._edge((-6, 0), (-5, 0), 8) not in {
-        detour._edge(p, q, 8) for p, q in zip(inner, inner[1:], strict=False)}
-    walled = {detour._edge((k, 0), (k + 1, 0), 8) for k in range(-8, 8)} | {
-        detour._edge((k, 0), (k + 1, 1), 8) for k in range(-8, 8)} | {detour._edge((k + 1, 0), (k, 1), 8) for k in range(-8, 8)}
-    assert detour._shortest_way(legal, 0, 6, walled) is None
+    legal = np.zeros((1, 8, 3), bool)  # one yaw
+    legal[0, :, 0] = legal[0, :, 2] = True  # two rings, joined only through the middle radius at bearing 4
+    legal[0, 4, 1] = True
+    start = [(0, 0, 0)]
+    _, way = detour._shortest_way(legal, start, 6)
+    assert abs(way[-1][0]) >= 6
+    step = detour._edge((-6, 0, 0), (-5, 0, 0), 8)
+    _, inner = detour._shortest_way(legal, start, 6, {step})
+    assert step not in {detour._edge(p, q, 8) for p, q in zip(inner, inner[1:], strict=False)}
+    walled = {detour._edge((k, 0, 0), (k + 1, 0, 0), 8) for k in range(-8, 8)} | {
+        detour._edge((k, 0, 0), (k + 1, 1, 0), 8) for k in range(-8, 8)} | {
+        detour._edge((k + 1, 0, 0), (k, 1, 0), 8) for k in range(-8, 8)}
+    assert detour._shortest_way(legal, start, 6, walled) is None
 
+
+
+def test_where_no_one_yaw_goes_round_the_way_turns_the_block_once_where_it_must():
+    # detour._shortest_way over yaws x bearings x radii: yaw 0 is blocked from bearing 4 on, yaw 1 (the next
+    # yaw) before bearing 3; the way goes round at yaw 0, turns once between bearings 3 and 4, and goes on at
+    # yaw 1 (TURN_COST keeps it from turning back and forth)
+    from l2p_bullet.planning import detour
+
+    legal = np.zeros((2, 8, 1), bool)
+    legal[0, [0, 1, 2, 3], 0] = True
+    legal[1, [3, 4, 5, 6], 0] = True
+    assert detour._shortest_way(legal[:1], [(0, 0, 0)], 6) is None  # neither yaw alone goes round
+    assert detour._shortest_way(legal[1:], [(0, 0, 0)], 6) is None
+    cost, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turn_cost=detour.TURN_COST)
+    assert [k for k, _, _ in way] == list(range(7)) and [y for _, _, y in way] == [0, 0, 0, 0, 1, 1, 1]
+    assert cost == 6 + detour.TURN_COST
+    legal[1] = True  # yaw 1 legal everywhere: the way turns at once, and only once
+    _, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turn_cost=detour.TURN_COST)
+    assert sum(abs(q[2] - p[2]) for p, q in zip(way, way[1:], strict=False)) == 1
 
 def _panda_scene(objects):
     from l2p_bullet.core.scene import Scene
