@@ -5,8 +5,9 @@ anchor in long chords. With other blocks near the anchor some chords are blocked
 up until its budget is spent, and the mover stops part of the way (issue 21: 0.26-0.76 of a turn). Here the
 2-D world itself is asked where the mover fits: on a polar grid around the anchor (bearings from the
 mover's own, radii up to the judge's ``near``, a few fixed yaws near the mover's), the legal poses are
-found, and a breadth-first search finds the shortest chain of neighbouring legal poses that sweeps
-:data:`GOAL_TURNS` of a turn either way. Its corners (the poses a straight legal move can reach from the
+found, and a breadth-first search finds the shortest chain of neighbouring legal poses at one yaw that sweeps
+:data:`GOAL_TURNS` of a turn either way (where no yaw has one, the cheapest chain that turns the block between
+neighbouring yaws on the way, :data:`TURN_COST`). Its corners (the poses a straight legal move can reach from the
 previous one, farthest first) are proposed from every node of the search; the progress model still
 decides which move to make, as with every other proposal.
 """

@@ -202,6 +202,34 @@ def test_where_no_one_yaw_goes_round_the_way_turns_the_block_once_where_it_must(
     _, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turn_cost=detour.TURN_COST)
     assert sum(abs(q[2] - p[2]) for p, q in zip(way, way[1:], strict=False)) == 1
 
+
+def test_around_between_two_close_blocks_turns_the_block_and_goes_round(monkeypatch):
+    # a chain clause start (seed 5387, clause "move D around B"): C stands 1.2 blocks from B, A 2.6 blocks off.
+    # At none of the seven yaws does the 2-D world hold a way round B (the planner stalled at 0.70 of a turn);
+    # turning the block from one yaw to the next on the way, it has one, and the plan goes round
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.judge.rules import AROUND_NEAR
+    from l2p_bullet.pipeline import judged_plan, prepare
+    from l2p_bullet.planning import detour
+    from l2p_bullet.planning.feasibility import grasp_holds
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = Scene.from_dict({"objects": [
+        {"name": "A", "color": "red", "size": 0.05, "xy": [0.16015, 0.03675], "yaw": 1.10905},
+        {"name": "B", "color": "green", "size": 0.05, "xy": [0.07359, 0.13150], "yaw": 1.00483},
+        {"name": "C", "color": "blue", "size": 0.05, "xy": [0.13232, 0.11971], "yaw": -0.46175},
+        {"name": "D", "color": "yellow", "size": 0.05, "xy": [0.02523, 0.07093], "yaw": 1.05483}]})
+    fitted = arm_plugins.fit_scene(scene, arm_plugins.get("panda"))
+    world = World2D(fitted, "D", outlines=grasp_holds(fitted, "D")[0].outlines)
+    route = detour.around_route(world, fitted.get("B").pose, AROUND_NEAR)
+    assert route is not None and len(np.unique(np.round(route[1:, 2], 6))) >= 2  # the block turns on the way
+    monkeypatch.setattr(detour, "TURN_COST", None)
+    assert detour.around_route(world, fitted.get("B").pose, AROUND_NEAR) is None  # at one yaw: none
+    monkeypatch.undo()
+    plan, verdict = judged_plan(prepare("move D around B", scene), seed=5387)
+    assert verdict["success"], verdict["reason"]
+
 def _panda_scene(objects):
     from l2p_bullet.core.scene import Scene
     from l2p_bullet.embodiment import arm_plugins
