@@ -52,35 +52,62 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
     per_turn = round(360.0 / GRID[0])
     goal = math.ceil(GOAL_TURNS * per_turn)
     grid = (a, b0, step_b, radii, goal)
-    best, layers = None, []
+    best, layers = None, {}
     for dyaw in YAWS_DEG:
-        yaw = start[2] + math.radians(dyaw)
-        legal = _legal(world, a, b0, step_b, per_turn, radii, yaw)  # (per_turn, R)
-        enters = bool(legal[0, j0]) and bool(world.moves_free(start, np.array([[*_xy(a, b0, radii[j0]), yaw]]))[0])
-        layers.append((dyaw, yaw, legal, enters))
-        if enters:
-            found = _way(world, start, grid, legal[None], [yaw], [(0, j0, 0)])
+        layers[dyaw] = _layer(world, start, grid, j0, dyaw)
+        if layers[dyaw][2]:
+            found = _way(world, start, grid, layers[dyaw][1][None], [layers[dyaw][0]], [(0, j0, 0)])
             if found is not None and (best is None or found[0] < best[0]):
                 best = found
     if best is None and TURN_COST is not None:  # no way at one yaw: one that turns the block on the way
-        layers.sort(key=lambda layer: layer[0])
-        entries = [(0, j0, y) for y, layer in enumerate(layers) if layer[3]]
+        for dyaw in _squared_offsets(world, a, start[2], near_sides):
+            layers.setdefault(dyaw, _layer(world, start, grid, j0, dyaw))
+        offsets = sorted(layers)
+        entries = [(0, j0, y) for y, dyaw in enumerate(offsets) if layers[dyaw][2]]
         if entries:
-            best = _way(world, start, grid, np.stack([layer[2] for layer in layers]),
-                        [layer[1] for layer in layers], entries, TURN_COST)
+            turns = [TURN_COST * (q - p) / 15.0 for p, q in zip(offsets, offsets[1:], strict=False)]
+            best = _way(world, start, grid, np.stack([layers[d][1] for d in offsets]),
+                        [layers[d][0] for d in offsets], entries, turns)
     return None if best is None else best[1]
 
 
 TURN_COST = 4.0
-"""Grid steps that turning the block by one yaw of :data:`YAWS_DEG` (15 degrees) costs on a way round that turns
-(``around_route``'s fallback; None: no such way). Why: among bystanders some anchors have no way round at any
-one yaw but one that turns the block where it passes between two blocks (chain starts of seeds 5300-5399: 5320,
-5387; docs/planning.md). The cost makes the block turn only where it must: a way that turned at no cost (tried
-on analysis chain/5021 before) swung it back and forth by up to 60 degrees between corners. Set once, not tuned."""
+"""Grid steps that turning the block by 15 degrees costs on a way round that turns (``around_route``'s fallback,
+in proportion for other turns; None: no such way). Why: among bystanders some anchors have no way round at any
+one yaw but one that turns the block where it passes between two blocks (chain start 5387, "move D around B",
+seeds 5300-5399; docs/planning.md). The cost makes the block turn only where it must: a way that turned at no
+cost (tried on analysis chain/5021 before) swung it back and forth by up to 60 degrees between corners. Set
+once, not tuned."""
+
+SQUARE_NEAR = 6.0
+"""Blocks from the anchor within which an object's squared yaw (:func:`_squared_offsets`) joins the turning way's."""
+
+
+def _layer(world: World2D, start: np.ndarray, grid: tuple, j0: int, dyaw: float) -> tuple[float, np.ndarray, bool]:
+    """The grid at the mover's yaw turned by ``dyaw`` degrees: (yaw, legal (bearings x radii), whether the
+    start's own cell is legal and a straight move from the start reaches it)."""
+    a, b0, step_b, radii, _ = grid
+    yaw = start[2] + math.radians(dyaw)
+    legal = _legal(world, a, b0, step_b, round(2 * math.pi / step_b), radii, yaw)
+    enters = bool(legal[0, j0]) and bool(world.moves_free(start, np.array([[*_xy(a, b0, radii[j0]), yaw]]))[0])
+    return yaw, legal, enters
+
+
+def _squared_offsets(world: World2D, a: np.ndarray, yaw: float, near_sides: float) -> list[float]:
+    """Turns (degrees, within 45 of ``yaw``) that square the mover to each obstacle within :data:`SQUARE_NEAR`
+    blocks of the anchor at ``a`` (the obstacle's yaw modulo a quarter turn). Why: a way between two blocks, or
+    between a block and the workspace's rim, can be only a few millimetres wider than the block squared to its
+    neighbour, and the 15-degree yaws miss that by up to 7.5 degrees (chain start 5320, seeds 5300-5399)."""
+    out = []
+    for body in world.obstacles:
+        if np.hypot(*(body.pose[:2] - a)) <= SQUARE_NEAR * world.size:
+            off = (body.pose[2] - yaw + math.pi / 4) % (math.pi / 2) - math.pi / 4
+            out.append(round(math.degrees(off), 6))
+    return out
 
 
 def _way(world: World2D, start: np.ndarray, grid: tuple, legal: np.ndarray, yaws: list[float],
-         entries: list[tuple[int, int, int]], turn_cost: float = 0.0) -> tuple[float, np.ndarray] | None:
+         entries: list[tuple[int, int, int]], turns: list[float] = ()) -> tuple[float, np.ndarray] | None:
     """The shortest way on ``legal`` (yaws x bearings x radii) from ``entries`` (bearing, radius, yaw indices),
     as corners of straight legal moves; a grid step that clips an obstacle is banned and the way searched again,
     :data:`RETRIES` times. (cost, corners) or None."""
@@ -88,7 +115,7 @@ def _way(world: World2D, start: np.ndarray, grid: tuple, legal: np.ndarray, yaws
     per_turn = legal.shape[1]
     banned: set = set()
     for _ in range(RETRIES + 1):
-        found = _shortest_way(legal, entries, goal, banned, turn_cost)
+        found = _shortest_way(legal, entries, goal, banned, turns)
         if found is None:
             return None
         cost, cells = found
@@ -126,12 +153,12 @@ def _edge(c0: tuple[int, ...], c1: tuple[int, ...], per_turn: int) -> tuple[tupl
 
 
 def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: int,
-                  banned: set | frozenset = frozenset(), turn_cost: float = 0.0) -> tuple[float, list] | None:
+                  banned: set | frozenset = frozenset(), turns: list[float] = ()) -> tuple[float, list] | None:
     """The cheapest chain of legal cells of ``legal`` (yaws x bearings x radii) from any of ``entries`` (bearing,
     radius, yaw indices; bearing 0 is the start's) to a cell ``goal`` bearing steps round either way, on the
     unwrapped bearing axis, never taking a ``banned`` step (:func:`_edge`): (cost, cells). A step goes to any
-    of the 8 neighbours in bearing x radius, and to the neighbouring yaw as well, at one more ``turn_cost`` per
-    yaw; with one yaw every step costs 1, and cells come off the queue in the order of a breadth-first search.
+    of the 8 neighbours in bearing x radius, and to a neighbouring yaw as well, at ``turns[y]`` more between
+    yaws ``y`` and ``y + 1``; with one yaw every step costs 1, and cells come off the queue in the order of a breadth-first search.
     None if there is no such chain."""
     ny, n, m = legal.shape
     dist: dict[tuple[int, int, int], float] = {}
@@ -141,7 +168,7 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
     for k, j, y in entries:
         dist[(k, j, y)], prev[(k, j, y)] = 0.0, None
         heapq.heappush(heap, (0.0, next(count), (k, j, y)))
-    turns = (-1, 0, 1) if ny > 1 else (0,)
+    yaw_steps = (-1, 0, 1) if ny > 1 else (0,)
     while heap:
         c, _, cell = heapq.heappop(heap)
         if c > dist[cell]:
@@ -154,14 +181,14 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
             return c, way[::-1]
         for dk in (-1, 0, 1):
             for dj in (-1, 0, 1):
-                for dy in turns:
+                for dy in yaw_steps:
                     nk, nj, ny_ = k + dk, j + dj, y + dy
                     nxt = (nk, nj, ny_)
                     if (not (dk or dj or dy) or not 0 <= nj < m or not 0 <= ny_ < ny or abs(nk) > goal
                             or not legal[ny_, nk % n, nj]
                             or (banned and _edge(cell, nxt, n) in banned)):
                         continue
-                    nc = c + 1.0 + turn_cost * abs(dy)
+                    nc = c + 1.0 + (turns[min(y, ny_)] if dy else 0.0)
                     if nc < dist.get(nxt, math.inf):
                         dist[nxt], prev[nxt] = nc, cell
                         heapq.heappush(heap, (nc, next(count), nxt))

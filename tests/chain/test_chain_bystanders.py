@@ -195,11 +195,11 @@ def test_where_no_one_yaw_goes_round_the_way_turns_the_block_once_where_it_must(
     legal[1, [3, 4, 5, 6], 0] = True
     assert detour._shortest_way(legal[:1], [(0, 0, 0)], 6) is None  # neither yaw alone goes round
     assert detour._shortest_way(legal[1:], [(0, 0, 0)], 6) is None
-    cost, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turn_cost=detour.TURN_COST)
+    cost, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turns=[detour.TURN_COST])
     assert [k for k, _, _ in way] == list(range(7)) and [y for _, _, y in way] == [0, 0, 0, 0, 1, 1, 1]
     assert cost == 6 + detour.TURN_COST
     legal[1] = True  # yaw 1 legal everywhere: the way turns at once, and only once
-    _, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turn_cost=detour.TURN_COST)
+    _, way = detour._shortest_way(legal, [(0, 0, 0)], 6, turns=[detour.TURN_COST])
     assert sum(abs(q[2] - p[2]) for p, q in zip(way, way[1:], strict=False)) == 1
 
 
