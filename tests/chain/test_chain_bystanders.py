@@ -230,6 +230,33 @@ def test_around_between_two_close_blocks_turns_the_block_and_goes_round(monkeypa
     plan, verdict = judged_plan(prepare("move D around B", scene), seed=5387)
     assert verdict["success"], verdict["reason"]
 
+
+def test_a_way_that_fits_only_square_to_a_neighbour_is_found(monkeypatch):
+    # a chain clause start (seed 5320, "move B around C"): the 2-D world holds no way round C at the mover's seven
+    # yaws, nor turning between them (the plan stalled at 0.67 of a turn); with the yaws that square B to the
+    # blocks near C (detour._squared_offsets) it has one, and the plan goes round
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.judge.rules import AROUND_NEAR
+    from l2p_bullet.pipeline import judged_plan, prepare
+    from l2p_bullet.planning import detour
+    from l2p_bullet.planning.feasibility import grasp_holds
+    from l2p_bullet.planning.world2d import World2D
+
+    scene = Scene.from_dict({"objects": [
+        {"name": "A", "color": "red", "size": 0.05, "xy": [-0.19199, -0.11559], "yaw": 0.58976},
+        {"name": "B", "color": "green", "size": 0.05, "xy": [-0.03941, -0.0246], "yaw": 1.44382},
+        {"name": "C", "color": "blue", "size": 0.05, "xy": [0.02196, 0.08651], "yaw": 1.52396},
+        {"name": "D", "color": "yellow", "size": 0.05, "xy": [0.14276, 0.04181], "yaw": 0.40797}]})
+    fitted = arm_plugins.fit_scene(scene, arm_plugins.get("panda"))
+    world = World2D(fitted, "B", outlines=grasp_holds(fitted, "B")[0].outlines)
+    assert detour.around_route(world, fitted.get("C").pose, AROUND_NEAR) is not None
+    monkeypatch.setattr(detour, "_squared_offsets", lambda *_a: [])
+    assert detour.around_route(world, fitted.get("C").pose, AROUND_NEAR) is None
+    monkeypatch.undo()
+    plan, verdict = judged_plan(prepare("move B around C", scene), seed=5320)
+    assert verdict["success"], verdict["reason"]
+
 def _panda_scene(objects):
     from l2p_bullet.core.scene import Scene
     from l2p_bullet.embodiment import arm_plugins
