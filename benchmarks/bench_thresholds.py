@@ -11,6 +11,8 @@
         --bounds-off closer       # closer's going-back bound (planning/bounds.py), off and on: 97 / 98 of 103
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds past=0.99 \
         --bounds-off past:ends_beyond   # at bd00abd only (not adopted, docs/planning.md): past's end, off and on
+    .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds around=0.9 \
+        --turning-off             # around's turning way round (planning/detour.py), off and on
 
 The clause starts are the states ``evaluate --chains 5`` draws over the five built-in actions
 (``evaluate/chains.draw_chain``: each clause from the end state the earlier clauses' plans predict, in the
@@ -24,7 +26,8 @@ report, never by the planner.
 ``--bounds-off A ...``: the bounds from people's data of those actions (``planning.PEOPLE_BOUNDS``: past's room,
 closer's going back; a built-in action's name is its rule judge's) are off while the chains are drawn, as before
 they were in, and each of their rows is planned twice, with the bound off and on: how a bound was chosen and
-confirmed (docs/planning.md).
+confirmed (docs/planning.md). ``--turning-off``: the same for the way round that turns the block
+(``detour.TURN_COST``, with the squared yaws; around's rows).
 """
 
 from __future__ import annotations
@@ -76,6 +79,19 @@ def bounds_off(rules: set[str]):
         planning.PEOPLE_BOUNDS = real
 
 
+@contextlib.contextmanager
+def turning_off(off: bool = True):
+    """The planner without the way round that turns the block (``planning.detour.TURN_COST`` None), if ``off``."""
+    from l2p_bullet.planning import detour
+
+    real = detour.TURN_COST
+    detour.TURN_COST = None if off else real
+    try:
+        yield
+    finally:
+        detour.TURN_COST = real
+
+
 def judged(pairs: list[tuple], action: str, threshold: float, plugins: list, arm) -> tuple[int, int, float]:
     """Successes, starts and seconds for ``action``'s starts planned with ``threshold``."""
     from l2p_bullet.chain.forecast import forecast
@@ -106,6 +122,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--draw-with", nargs="*", default=[], help="ACTION=T: thresholds while the chains are drawn")
     ap.add_argument("--bounds-off", nargs="*", default=[], metavar="ACTION",
                     help="these actions' bounds from people's data off while drawn; their rows planned off and on")
+    ap.add_argument("--turning-off", action="store_true",
+                    help="around's turning way round off while drawn; around's rows planned off and on")
     args = ap.parse_args(argv)
 
     from l2p_bullet.embodiment import arm_plugins
@@ -124,15 +142,16 @@ def main(argv: list[str] | None = None) -> int:
         ap.error(f"--bounds-off: no bound from people's data: {', '.join(sorted(off - set(planning.PEOPLE_BOUNDS)))} "
                  f"(those with one: {', '.join(sorted(planning.PEOPLE_BOUNDS))})")
     t0 = time.perf_counter()
-    with bounds_off(off):
+    turning = {"around"} if args.turning_off else set()
+    with bounds_off(off), turning_off(bool(turning)):
         pairs = starts(args.seed, args.chains, args.clauses, actions, plugins, arm)
     print(f"{len(pairs)} clause starts of chain seeds {args.seed}-{args.seed + args.chains - 1} "
           f"({time.perf_counter() - t0:.0f} s)\n")
     print("| action | threshold | bound | successes | starts | s |\n|---|---:|---|---:|---:|---:|")
     for action, thresholds in grid.items():
         for t in thresholds:
-            for bound in (("off", "on") if action in off else ("on",)):
-                with bounds_off(off if bound == "off" else set()):
+            for bound in (("off", "on") if action in off | turning else ("on",)):
+                with bounds_off(off if bound == "off" else set()), turning_off(bound == "off" and action in turning):
                     ok, n, s = judged(pairs, action, t, plugins, arm)
                 print(f"| {action} | {t:g} | {bound} | {ok} | {n} | {s:.0f} |", flush=True)
     return 0
