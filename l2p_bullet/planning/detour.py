@@ -7,7 +7,7 @@ up until its budget is spent, and the mover stops part of the way (issue 21: 0.2
 mover's own, radii up to the judge's ``near``, a few fixed yaws near the mover's), the legal poses are
 found, and a breadth-first search finds the shortest chain of neighbouring legal poses at one yaw that sweeps
 :data:`GOAL_TURNS` of a turn either way (where no yaw has one, the cheapest chain that turns the block between
-neighbouring yaws on the way, :data:`TURN_COST`). Its corners (the poses a straight legal move can reach from the
+neighbouring yaws on the way, those and the yaws square to the blocks near the anchor: :data:`TURN_COST`). Its corners (the poses a straight legal move can reach from the
 previous one, farthest first) are proposed from every node of the search; the progress model still
 decides which move to make, as with every other proposal.
 """
@@ -37,8 +37,9 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
     """Waypoints (N, 3) of a way round ``anchor_pose`` from ``start`` (default: the mover's start; the end
     of an approach, approach.py), every pose legal and every straight move between two of them legal, never
     farther than ``near_sides`` (block sides) from the anchor; None when the grid holds none (the planner
-    then searches without it). The shortest way at one yaw of :data:`YAWS_DEG`; where none has one, a way that
-    turns the block between neighbouring yaws (:data:`TURN_COST`)."""
+    then searches without it). The shortest way at one yaw of :data:`YAWS_DEG`; where none has one, the cheapest
+    way that turns the block between neighbouring yaws, those and the ones square to the blocks near the anchor
+    (:data:`TURN_COST`, :func:`_squared_offsets`)."""
     start = np.asarray(world.mover.pose if start is None else start, float)
     a = np.asarray(anchor_pose, float)[:2]
     size = world.size
@@ -60,7 +61,7 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
             if found is not None and (best is None or found[0] < best[0]):
                 best = found
     if best is None and TURN_COST is not None:  # no way at one yaw: one that turns the block on the way
-        for dyaw in _squared_offsets(world, a, start[2], near_sides):
+        for dyaw in _squared_offsets(world, a, start[2]):
             layers.setdefault(dyaw, _layer(world, start, grid, j0, dyaw))
         offsets = sorted(layers)
         entries = [(0, j0, y) for y, dyaw in enumerate(offsets) if layers[dyaw][2]]
@@ -93,7 +94,7 @@ def _layer(world: World2D, start: np.ndarray, grid: tuple, j0: int, dyaw: float)
     return yaw, legal, enters
 
 
-def _squared_offsets(world: World2D, a: np.ndarray, yaw: float, near_sides: float) -> list[float]:
+def _squared_offsets(world: World2D, a: np.ndarray, yaw: float) -> list[float]:
     """Turns (degrees, within 45 of ``yaw``) that square the mover to each obstacle within :data:`SQUARE_NEAR`
     blocks of the anchor at ``a`` (the obstacle's yaw modulo a quarter turn). Why: a way between two blocks, or
     between a block and the workspace's rim, can be only a few millimetres wider than the block squared to its
@@ -158,8 +159,8 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
     radius, yaw indices; bearing 0 is the start's) to a cell ``goal`` bearing steps round either way, on the
     unwrapped bearing axis, never taking a ``banned`` step (:func:`_edge`): (cost, cells). A step goes to any
     of the 8 neighbours in bearing x radius, and to a neighbouring yaw as well, at ``turns[y]`` more between
-    yaws ``y`` and ``y + 1``; with one yaw every step costs 1, and cells come off the queue in the order of a breadth-first search.
-    None if there is no such chain."""
+    yaws ``y`` and ``y + 1``; with one yaw every step costs 1, and cells come off the queue in the order of a
+    breadth-first search. None if there is no such chain."""
     ny, n, m = legal.shape
     dist: dict[tuple[int, int, int], float] = {}
     prev: dict[tuple[int, int, int], tuple[int, int, int] | None] = {}
