@@ -26,7 +26,8 @@ GRID = (5.0, 0.125)
 """Bearing step (degrees) and radius step (mover's sides) of the grid the way round is searched on."""
 
 YAWS_DEG = (0.0, 15.0, -15.0, 30.0, -30.0, 45.0, -45.0)
-"""The mover's yaws (relative to its start) tried; one yaw is held along the way (the wrist stays put)."""
+"""The mover's yaws (relative to its start) tried; one yaw is held along the way (the wrist stays put), unless
+no yaw has a way and the way turns the block (:data:`TURN_COST`)."""
 
 GOAL_TURNS = 0.9
 """How far round the way goes: past the judge's 0.8, as people's demonstrations do (median 0.79 captured)."""
