@@ -12,7 +12,7 @@
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds past=0.99 \
         --bounds-off past:ends_beyond   # at bd00abd only (not adopted, docs/planning.md): past's end, off and on
     .venv/bin/python benchmarks/bench_thresholds.py --seed 5300 --chains 100 --thresholds around=0.9 \
-        --turning-off             # around's turning way round (planning/detour.py), off and on
+        --turning-off             # around's turning way round (planning/detour.py), off and on: 70 / 72 of 77
 
 The clause starts are the states ``evaluate --chains 5`` draws over the five built-in actions
 (``evaluate/chains.draw_chain``: each clause from the end state the earlier clauses' plans predict, in the
