@@ -17,6 +17,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -52,13 +53,12 @@ def around_route(world: World2D, anchor_pose: np.ndarray, near_sides: float,
         return None
     j0 = int(np.argmin(np.abs(radii - d0)))
     per_turn = round(360.0 / GRID[0])
-    goal = math.ceil(GOAL_TURNS * per_turn)
-    grid = (a, b0, step_b, radii, goal)
+    grid = _Grid(a, b0, step_b, per_turn, radii, math.ceil(GOAL_TURNS * per_turn), world.start_margins(less=1e-9))
     best, layers = None, {}
     for dyaw in YAWS_DEG:
-        layers[dyaw] = _layer(world, start, grid, j0, dyaw)
-        if layers[dyaw][2]:
-            found = _way(world, start, grid, layers[dyaw][1][None], [layers[dyaw][0]], [(0, j0, 0)])
+        yaw, legal, enters = layers[dyaw] = _layer(world, start, grid, j0, dyaw)
+        if enters:
+            found = _way(world, start, grid, legal[None], [yaw], [(0, j0, 0)])
             if found is not None and (best is None or found[0] < best[0]):
                 best = found
     if best is None and TURN_COST is not None:  # no way at one yaw: one that turns the block on the way
@@ -85,13 +85,27 @@ SQUARE_NEAR = 6.0
 """Blocks from the anchor within which an object's squared yaw (:func:`_squared_offsets`) joins the turning way's."""
 
 
-def _layer(world: World2D, start: np.ndarray, grid: tuple, j0: int, dyaw: float) -> tuple[float, np.ndarray, bool]:
+class _Grid(NamedTuple):
+    """The polar grid a way round is searched on: anchor centre, the start's bearing, the bearing step (rad) and
+    steps per turn, the radii (m), the bearing steps to go round, and the margins each obstacle asks
+    (``World2D.start_margins``, the same at every yaw)."""
+
+    a: np.ndarray
+    b0: float
+    step_b: float
+    per_turn: int
+    radii: np.ndarray
+    goal: int
+    margins: np.ndarray
+
+
+def _layer(world: World2D, start: np.ndarray, grid: _Grid, j0: int, dyaw: float) -> tuple[float, np.ndarray, bool]:
     """The grid at the mover's yaw turned by ``dyaw`` degrees: (yaw, legal (bearings x radii), whether the
     start's own cell is legal and a straight move from the start reaches it)."""
-    a, b0, step_b, radii, _ = grid
     yaw = start[2] + math.radians(dyaw)
-    legal = _legal(world, a, b0, step_b, round(2 * math.pi / step_b), radii, yaw)
-    enters = bool(legal[0, j0]) and bool(world.moves_free(start, np.array([[*_xy(a, b0, radii[j0]), yaw]]))[0])
+    legal = _legal(world, grid, yaw)
+    enters = bool(legal[0, j0]) and bool(
+        world.moves_free(start, np.array([[*_xy(grid.a, grid.b0, grid.radii[j0]), yaw]]))[0])
     return yaw, legal, enters
 
 
@@ -108,16 +122,15 @@ def _squared_offsets(world: World2D, a: np.ndarray, yaw: float) -> list[float]:
     return out
 
 
-def _way(world: World2D, start: np.ndarray, grid: tuple, legal: np.ndarray, yaws: list[float],
+def _way(world: World2D, start: np.ndarray, grid: _Grid, legal: np.ndarray, yaws: list[float],
          entries: list[tuple[int, int, int]], turns: list[float] = ()) -> tuple[float, np.ndarray] | None:
     """The shortest way on ``legal`` (yaws x bearings x radii) from ``entries`` (bearing, radius, yaw indices),
     as corners of straight legal moves; a grid step that clips an obstacle is banned and the way searched again,
     :data:`RETRIES` times. (cost, corners) or None."""
-    a, b0, step_b, radii, goal = grid
-    per_turn = legal.shape[1]
+    a, b0, step_b, radii = grid.a, grid.b0, grid.step_b, grid.radii
     banned: set = set()
     for _ in range(RETRIES + 1):
-        found = _shortest_way(legal, entries, goal, banned, turns)
+        found = _shortest_way(legal, entries, grid.goal, banned, turns)
         if found is None:
             return None
         cost, cells = found
@@ -127,7 +140,7 @@ def _way(world: World2D, start: np.ndarray, grid: tuple, legal: np.ndarray, yaws
             return cost, corners
         if clipped < 0:  # the slide from the start to the way's first cell (checked by the caller: not reached)
             return None
-        banned.add(_edge(cells[clipped], cells[clipped + 1], per_turn))
+        banned.add(_edge(cells[clipped], cells[clipped + 1], grid.per_turn))
     return None
 
 
@@ -135,15 +148,14 @@ def _xy(a: np.ndarray, bearing: float, r: float) -> tuple[float, float]:
     return float(a[0] + r * math.cos(bearing)), float(a[1] + r * math.sin(bearing))
 
 
-def _legal(world: World2D, a: np.ndarray, b0: float, step_b: float, per_turn: int, radii: np.ndarray,
-           yaw: float) -> np.ndarray:
+def _legal(world: World2D, grid: _Grid, yaw: float) -> np.ndarray:
     """(per_turn, R) bool: the mover at yaw ``yaw`` on each grid point is inside the workspace and at least
     the world's margin from every obstacle (less for one it starts closer to, as the world allows)."""
-    b = b0 + step_b * np.arange(per_turn)
-    bb, rr = np.meshgrid(b, radii, indexing="ij")
-    poses = np.column_stack([a[0] + (rr * np.cos(bb)).ravel(), a[1] + (rr * np.sin(bb)).ravel(),
+    b = grid.b0 + grid.step_b * np.arange(grid.per_turn)
+    bb, rr = np.meshgrid(b, grid.radii, indexing="ij")
+    poses = np.column_stack([grid.a[0] + (rr * np.cos(bb)).ravel(), grid.a[1] + (rr * np.sin(bb)).ravel(),
                              np.full(bb.size, yaw)])
-    ok = world.inside(poses[:, :2]) & (world.shortfall(poses, world.start_margins(less=1e-9)) >= 0.0)
+    ok = world.inside(poses[:, :2]) & (world.shortfall(poses, grid.margins) >= 0.0)
     return ok.reshape(bb.shape)  # one yaw: posed_separation projects it once (see its docstring)
 
 
