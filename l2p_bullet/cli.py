@@ -49,8 +49,8 @@ class _Group(click.Group):
             where = f" (see: {e.ctx.command_path} --help)" if e.ctx is not None else ""
             click.echo(f"error: {one_line(e.format_message())}{where}", err=True)
             sys.exit(e.exit_code)
-        except KeyboardInterrupt:
-            click.echo("interrupted", err=True)
+        except KeyboardInterrupt as e:
+            click.echo("; ".join(["interrupted", *getattr(e, "__notes__", ())]), err=True)
             sys.exit(130)
 
 

@@ -16,7 +16,9 @@ Every command that writes a run folder (perform, plan, replay, and whatever come
   or killed: no summary.json, or ``"failed_stage": "interrupted"``) and an empty folder are replaced
   without asking. A folder whose run is still going (its marker is locked) is never touched.
 - The old folder is renamed to a hidden sibling first and deleted after the new one exists: a crash in
-  between loses nothing that was not going to be replaced anyway.
+  between loses nothing that was not going to be replaced anyway. Under :func:`run_folder`, a *finished*
+  run replaced with ``force`` is kept aside until the new run ends, and put back if the new one is
+  interrupted (Ctrl-C): stopping a ``--force`` run half-way must not cost the run it was replacing.
 - A run that ends by an exception leaves a summary.json with ``"ok": false``: ``failed_stage`` is
   ``"interrupted"`` for Ctrl-C (KeyboardInterrupt) and the stage the caller recorded otherwise.
 
@@ -137,6 +139,7 @@ class _Claim:
     def __init__(self, path: Path, command: str, files: tuple[str, ...]):
         self.path = path
         self.fd = -1
+        self.replaced: Path | None = None  # a finished run kept aside until this one ends (run_folder)
         marker = {"tool": "l2p-bullet", "command": command, "id": uuid.uuid4().hex, "pid": os.getpid(),
                   "started": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "files": list(files)}
         fd = os.open(path / MARKER, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o644)
@@ -162,6 +165,29 @@ class _Claim:
         if self.fd >= 0:
             os.close(self.fd)
             self.fd = -1
+
+    def restore_replaced(self) -> bool:
+        """Put back the finished run this one replaced (the new folder, incomplete, is deleted); whether it is
+        back. Called when the new run was interrupted."""
+        old, self.replaced = self.replaced, None
+        if old is None or not old.is_dir():
+            return False
+        with _parent_lock(self.path.parent):
+            shutil.rmtree(self.path, ignore_errors=True)
+            if self.path.exists() or self.path.is_symlink():
+                self.replaced = old  # could not clear the new folder: the old one stays aside, then goes
+                return False
+            try:
+                old.rename(self.path)
+            except OSError:
+                return False
+        return True
+
+    def drop_replaced(self) -> None:
+        """The new run ended: the run it replaced goes."""
+        if self.replaced is not None:
+            shutil.rmtree(self.replaced, ignore_errors=True)
+            self.replaced = None
 
 
 _HELD: list[_Claim] = []
@@ -234,10 +260,13 @@ def _check_replace(path: Path, state: str, command: str, inputs: tuple[str | Pat
 
 
 def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
-                     command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = ()) -> _Claim:
+                     command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = (),
+                     keep_replaced: bool = False) -> _Claim:
     """Make the run folder (the rules of the module docstring) and lock it; the caller releases the claim.
 
-    ``inputs``: the files and folders the command reads; the run folder never is, holds or lies in one."""
+    ``inputs``: the files and folders the command reads; the run folder never is, holds or lies in one.
+    ``keep_replaced``: a finished run replaced with ``force`` stays aside as the claim's ``replaced`` (the
+    caller then restores or drops it) instead of being deleted at once."""
     if out is None:
         base = Path(root) / f"{prefix}-{time.strftime('%Y%m%d-%H%M%S')}"
         _mkdirs(base.parent)
@@ -265,7 +294,9 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
             except OSError as e:
                 raise RunFolderError(f"cannot replace run folder {path}: {e.strerror or e}") from None
         claim = _make(path, command or prefix, files)
-    if trash is not None:
+    if trash is not None and keep_replaced and state == "finished":
+        claim.replaced = trash
+    elif trash is not None:
         shutil.rmtree(trash, ignore_errors=True)
     return claim
 
@@ -320,13 +351,20 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
     an exception, summary.json is left with ``"ok": false``: ``"failed_stage": "interrupted"`` for
     Ctrl-C; otherwise a summary the block already wrote with ``ok: false`` is kept, and a missing one is
     written naming the error. ``files``: patterns of extra files this command writes (see RUN_FILES);
-    ``inputs``: what the command reads (never replaced, see :func:`claim_run_folder`).
+    ``inputs``: what the command reads (never replaced, see :func:`claim_run_folder`). A finished run that
+    ``force`` replaces is put back if the block is interrupted (the KeyboardInterrupt then carries a note
+    saying so, which the command line prints).
     """
-    claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files, inputs=inputs)
+    claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files, inputs=inputs,
+                             keep_replaced=True)
     try:
         yield claim.path
         claim.finish()
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as e:
+        claim.release()
+        if claim.restore_replaced():
+            e.add_note(f"{claim.path} holds the earlier run again (nothing was replaced)")
+            raise
         mark_failed(claim.path, INTERRUPTED, "interrupted (Ctrl-C) before the run finished")
         raise
     except BaseException as e:
@@ -335,6 +373,7 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
         raise
     finally:
         claim.release()
+        claim.drop_replaced()
 
 
 def mark_failed(folder: Path, stage: str | None, error: str) -> None:

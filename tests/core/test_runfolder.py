@@ -4,6 +4,7 @@ two runs into one --out give one run and one clear error; an interrupted run is 
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
@@ -231,3 +232,60 @@ def test_export_force_never_replaces_another_commands_run_nor_an_input(tmp_path)
     # and another command's --force never takes an export folder either
     one_line_error(CliRunner().invoke(main, plan_args(out, "--force")))
     assert (out / "episodes.jsonl").exists()
+
+
+def test_ctrl_c_in_a_force_run_puts_the_replaced_run_back(tmp_path):
+    """Stopping a --force run half-way must not cost the finished run it was replacing (audit, 2026-11-27):
+    the old folder waits aside until the new run ends, and comes back if the new one is interrupted."""
+    out = _perform_like_run(tmp_path / "run")
+    before = (out / "trajectory.json").read_text()
+    with pytest.raises(KeyboardInterrupt) as info, run_folder(out, force=True, command="perform") as folder:
+        (folder / "plan.json").write_text("{}")  # the new run got as far as its plan
+        raise KeyboardInterrupt
+    assert "holds the earlier run again" in " ".join(getattr(info.value, "__notes__", ()))
+    assert (out / "trajectory.json").read_text() == before and not (out / "plan.json").exists()
+    assert run_folder_state(out) == "finished"
+    assert [p.name for p in tmp_path.iterdir()] == ["run"]  # nothing left aside
+
+
+@pytest.mark.parametrize("ending", ["finished", "failed"])
+def test_a_force_run_that_ends_replaces_the_old_run_and_leaves_nothing_aside(tmp_path, ending):
+    out = _perform_like_run(tmp_path / "run")
+    with pytest.raises(ValueError) if ending == "failed" else contextlib.nullcontext():
+        with run_folder(out, force=True, command="perform") as folder:
+            (folder / "summary.json").write_text(json.dumps({"schema": 1, "ok": True}))
+            if ending == "failed":
+                raise ValueError("the new run failed")
+    assert not (out / "trajectory.json").exists()  # the new run's folder, not the old one's
+    assert json.loads((out / "summary.json").read_text())["ok"] is (ending == "finished")
+    assert [p.name for p in tmp_path.iterdir()] == ["run"]
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_perform_force_keeps_the_earlier_run(tmp_path):
+    out = tmp_path / "run"
+    first = subprocess.run([*CLI, "perform", "move A past B", "--quiet", "--no-render", "--out", str(out)],
+                           capture_output=True, text=True, timeout=300)
+    assert first.returncode == 0, first.stderr
+    before = (out / "trajectory.json").read_text()
+    cmd = [*CLI, "perform", "move A around B", "--quiet", "--force", "--out", str(out)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=ctrl_c_as_at_a_terminal)
+    _wait_for_new_plan(out, proc)
+    os.kill(proc.pid, signal.SIGINT)
+    code = proc.wait(timeout=120)
+    _, err = proc.communicate()
+    assert code == 130 and "Traceback" not in err and "holds the earlier run again" in err, err
+    assert (out / "trajectory.json").read_text() == before and run_folder_state(out) == "finished"
+    assert [p.name for p in tmp_path.iterdir()] == ["run"]
+
+
+def _wait_for_new_plan(out: Path, proc: subprocess.Popen, timeout: float = 120.0) -> None:
+    """Wait until the new run's folder holds its plan.json (the old run's folder has a trajectory.json)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if (out / "plan.json").exists() and not (out / "trajectory.json").exists():
+            return
+        assert proc.poll() is None, proc.communicate()
+        time.sleep(0.05)
+    raise AssertionError("the new run never planned")
