@@ -217,6 +217,7 @@ def _references(words: list[str], scene: Scene, phrase: str, count: int) -> tupl
     """The ``count`` reference objects named by ``words`` (after the preposition)."""
     role = f'reference block after "{phrase}"'
     if count == 1:
+        _one_reference(words, scene, phrase)
         return (resolve_object(" ".join(words), scene, role=role),)
     joins = [k for k, w in enumerate(words) if w.lower() in CONJUNCTIONS and 0 < k < len(words) - 1]
     if not joins:
@@ -235,6 +236,26 @@ def _references(words: list[str], scene: Scene, phrase: str, count: int) -> tupl
         return (b, c)
     assert first_error is not None
     raise first_error
+
+
+TRAILING_JOINS = (("and", "then"), ("after", "that"), ("then",), ("and",))
+"""Words that join a next clause (chain/clauses.py), left at a sentence's end with no clause after them."""
+
+
+def _one_reference(words: list[str], scene: Scene, phrase: str) -> None:
+    """Two slips that would otherwise read as 'no block called "B then"': a sentence that ends with a
+    joining word and no clause after it ("move A around B, then"), and two blocks after a one-block
+    preposition ("move A around B and C")."""
+    low = tuple(w.lower() for w in words)
+    for join in TRAILING_JOINS:
+        n = len(join)
+        if len(low) > n and low[-n:] == join and _try_object(" ".join(words[:-n]), scene) is not None:
+            said = " ".join(words[-n:])
+            raise LanguageError(f'the sentence ends with "{said}" but no clause follows it; add the next clause '
+                                f'("..., {said} move C past A") or drop "{said}"')
+    if _try_pair(words, scene):
+        raise LanguageError(f'"{phrase}" takes one reference block, but "{" ".join(words)}" names two; name one, '
+                            f'as in "move A {phrase} B"')
 
 
 def _try_pair(words: list[str], scene: Scene) -> bool:

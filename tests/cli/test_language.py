@@ -117,3 +117,21 @@ def test_exact_name_beats_determiner(scene):
     odd = Scene([SceneObject("a", "red", 0.05, (0.1, 0.0)), SceneObject("the cube", "blue", 0.05, (-0.1, 0.0))])
     cmd = parse("move a around the cube", odd.validate(), PHRASES)
     assert (cmd.mover, cmd.anchor) == ("a", "the cube")
+
+
+@pytest.mark.parametrize("sentence, said", [
+    ("move A around B, then", '"then"'), ("move A past B and then", '"and then"'),
+    ("move the red block next to B after that", '"after that"'),
+])
+def test_a_sentence_ending_with_a_joining_word_says_no_clause_follows(scene, sentence, said):
+    """Not 'no block called "B then"' (audit, 2026-11-27): the slip is the dangling join, not the block."""
+    with pytest.raises(LanguageError, match=f"ends with {said} but no clause follows"):
+        parse(sentence, scene, PHRASES)
+
+
+def test_two_blocks_after_a_one_block_preposition_say_so(crowded):
+    with pytest.raises(LanguageError, match='"around" takes one reference block, but "B and C" names two'):
+        parse("move A around B and C", crowded, PHRASES)
+    assert parse("move A around B", crowded, PHRASES).anchor == "B"  # and a block named like a join still parses
+    named = Scene([SceneObject("A", "red", 0.05, (0.1, 0.0)), SceneObject("then", "green", 0.05, (0.0, 0.1))]).validate()
+    assert parse("move A around then", named, PHRASES).anchor == "then"
