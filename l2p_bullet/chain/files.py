@@ -6,7 +6,8 @@
 - plan.json: the first clause's plan in the one-clause layout, and ``clauses``: every clause's plan as
   executed (re-planned from the real state) with the up-front ``forecast`` beside it.
 - summary.json: ``chain`` (the chain's verdict: success, clauses completed, the first failure's reason),
-  ``clauses`` (a verdict per clause), ``verdict``/``success`` the chain's.
+  ``clauses`` (a verdict per clause), ``verdict``/``success`` the chain's; the one-clause fields that have a
+  meaning for the whole chain (:func:`whole_chain`), and ``render`` as a one-clause run writes it.
 - video: each image captioned with the clause being performed and its learned progress.
 """
 
@@ -20,7 +21,9 @@ import numpy as np
 
 from ..core.contracts import dumps_json
 from ..core.runfolder import write_summary
+from ..embodiment.execute import render_info
 from ..embodiment.record import versions
+from ..pipeline import DISTURBED_M
 
 
 def segments(result: Any) -> list[dict[str, Any]]:
@@ -66,13 +69,38 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
         "displacements_m": bystanders(rec.frames, result),
         "execution": {"physics_steps": world.steps, "ik_solves": prims.ik_solves,
                       "rendered_frames": len(rec.images), "frames": len(rec.frames)},
-        "render": None if settings is None else {"width": settings.width, "height": settings.height,
-                                                 "fps": settings.fps, "renderer": settings.renderer},
+        **whole_chain(result),
+        "render": _render(settings, rec.film),
         "plugins": {s.bundle.name: {"version": s.bundle.version, "path": str(s.bundle.path)} for s in steps},
         "files": {k: v.name for k, v in files.items()},
         "versions": versions(),
     }
     write_summary(files["summary"], summary)
+
+
+def whole_chain(result: Any) -> dict[str, Any]:
+    """summary.json's one-clause fields that mean something for a whole chain (readers that know no
+    ``clauses`` find them where a one-clause run has them; audit, 2026-11-27): ``action``/``mover``/
+    ``anchor`` the first clause's (as trajectory.json's), ``max_deviation_m`` the largest of the clauses',
+    ``anchor_displacement_m`` the largest displacement of a block by a clause that did not move it, and
+    ``disturbed`` the blocks a clause that did not move them moved more than 1 mm. Per-clause values (progress,
+    final error, grasp) stay in ``clauses`` only: one number for the chain would mislead."""
+    first = result.clauses[0].command
+    moved = [(k, v) for r in result.results for k, v in r.displacements_m.items() if v is not None]
+    deviations = [r.max_deviation_m for r in result.results if r.max_deviation_m is not None]
+    return {"action": first.action, "mover": first.mover, "anchor": first.anchor,
+            "max_deviation_m": round(float(max(deviations)), 6) if deviations else None,
+            "anchor_displacement_m": round(float(max(v for _, v in moved)), 6) if moved else None,
+            "disturbed": sorted({k for k, v in moved if v > DISTURBED_M})}
+
+
+def _render(settings: Any, film: Any) -> dict[str, Any] | None:
+    """summary.json's ``render``: a one-clause run's (the renderer the film could start, its camera and
+    workers) when frames were drawn; the settings asked for otherwise."""
+    if film is not None:
+        return render_info(settings, film)
+    return None if settings is None else {"width": settings.width, "height": settings.height, "fps": settings.fps,
+                                          "renderer": settings.renderer}
 
 
 def merge_timings(path: Path, timings: dict[str, float]) -> None:

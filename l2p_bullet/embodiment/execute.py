@@ -198,7 +198,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         execution = Execution(recorder.frames, {k: round(v, 4) for k, v in clock.timings.items()}, files,
                               max_deviation_m=deviation, anchor_displacement_m=max(displaced.values(), default=0.0),
                               max_lift_m=lift, constraint_removed=removed, duration_s=world.time, stats=stats,
-                              displacements_m=displaced, render=_render_info(render, film))
+                              displacements_m=displaced, render=render_info(render, film))
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
             if summary:
@@ -381,7 +381,7 @@ def honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
     return deviation, float(lift), displaced
 
 
-def _render_info(render: RenderSettings | None, film) -> dict | None:
+def render_info(render: RenderSettings | None, film) -> dict | None:
     """summary.json's ``render``: the settings asked for and what the film did (the renderer it could start,
     EGL or Tiny; its workers; how long the episode waited for its frames)."""
     if render is None or film is None:

@@ -122,6 +122,11 @@ def test_bystanders_stay_put(chain_runs):
                 assert moved < 0.001, (seg["clause"], name, moved)
     summary = json.loads((r.out_dir / "summary.json").read_text())
     assert set(summary["displacements_m"]) == {"B"} and summary["displacements_m"]["B"] < 0.001
+    # the one-clause fields with a chain-wide meaning (a reader that knows no clauses finds them)
+    moved = [v for c in summary["clauses"] for v in c["displacements_m"].values()]
+    assert summary["anchor_displacement_m"] == pytest.approx(max(moved)) and summary["disturbed"] == []
+    assert summary["max_deviation_m"] == pytest.approx(max(c["max_deviation_m"] for c in summary["clauses"]))
+    assert (summary["action"], summary["mover"], summary["anchor"]) == ("next-to", "A", "B")
 
 
 @pytest.mark.slow
