@@ -39,9 +39,10 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     \b
     Sentences: VERB MOVER PREPOSITION ANCHOR, e.g.
       "move A around B"   "Please slide the red block next to the green one."
-    Verbs: move, slide, push, shift, put. Prepositions: those of the installed actions
-    (l2p-bullet actions). The run folder gets trajectory.json, plan.json, summary.json and,
-    unless --no-render, frames and a video.
+    Verbs: move, slide, shift, drag, put (a slide); carry, bring, "lift / pick up A and
+    put / place it ..." (a carry); push, nudge, shove (a push). Prepositions: those of the
+    installed actions (l2p-bullet actions). The run folder gets trajectory.json,
+    plan.json, summary.json and, unless --no-render, frames and a video.
 
     \b
     Chains: clauses joined by ", then", "and then", "then", "after that" or ";" run one

@@ -12,7 +12,7 @@ from .common import arm_option, force_option, load_scene_or_default, scene_optio
 @click.argument("sentence")
 @scene_option
 @click.option("--planner", default="default", show_default=True,
-              help="greedy, beam, discrete, reinforce or default (the action's preferred one).")
+              help="mixed, greedy, beam, discrete, reinforce or default (the action's preferred one).")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: runs/plan-<time>).")
 @click.option("--budget", type=click.IntRange(min=1), default=None,

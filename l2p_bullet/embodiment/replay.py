@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.contracts import Plan, dumps_json, motion_from_dict, read_json
+from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.vocabulary import canonical_action
 from ..data.demos import get_demo
@@ -121,4 +122,9 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
                       on_stage=on_stage, arm=arm, manner=source.manner)
     if plan_file is not None:
         ex.files["plan"] = plan_file
+        summary_file = ex.files.get("summary")
+        if summary_file is not None and summary_file.exists():  # summary.json lists every file of the folder
+            summary = read_json(summary_file)
+            summary.setdefault("files", {})["plan"] = plan_file.name
+            write_summary(summary_file, summary)
     return ex

@@ -14,7 +14,7 @@ Per frame: ``observation.state`` (mover x, y, yaw; anchor x, y, yaw; end effecto
 grasp at the next frame: where the arm was sent; the last frame repeats itself), the camera image when
 the runs were rendered, and LeRobot's ``timestamp``, ``frame_index``, ``episode_index``, ``index``,
 ``task_index``. Metres and radians in the scene frame. With images the data is sampled at the video's
-rate (10 fps: every third 30-fps trajectory frame, each matching one rendered image); without, at 30 fps.
+rate (15 fps by default: every second 30-fps trajectory frame, each matching one rendered image); without, at 30 fps.
 
 ``tasks.parquet`` carries pandas' metadata so that ``pandas.read_parquet`` gives LeRobot's table
 (index ``task``, column ``task_index``); it is written by pyarrow alone.

@@ -33,6 +33,10 @@ def test_demo_replay_writes_the_run_folder(demo_run):
     assert "[" in r.stderr and "s] execute: " in r.stderr  # stage lines in perform's style
     for name in ("trajectory.json", "plan.json", "summary.json", "video.mp4", "contact_sheet.png"):
         assert (out / name).stat().st_size > 0, name
+    import json
+
+    listed = json.loads((out / "summary.json").read_text())["files"]  # every file, plan.json included
+    assert {"trajectory", "plan", "summary"} <= set(listed) and listed["plan"] == "plan.json"
     frames = sorted((out / "frames").glob("*.png"))
     assert len(frames) > 10
     import imageio.v2 as imageio
