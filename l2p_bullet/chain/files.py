@@ -23,7 +23,7 @@ from ..core.contracts import dumps_json
 from ..core.runfolder import write_summary
 from ..embodiment.execute import render_info
 from ..embodiment.record import versions
-from ..pipeline import DISTURBED_M
+from ..pipeline import DISTURBED_M, scene_fields
 
 
 def segments(result: Any) -> list[dict[str, Any]]:
@@ -145,5 +145,6 @@ def _write_plans(path: Path, result: Any, steps: list, scene: Any) -> None:
         clauses.append({"clause": s.clause.index, "text": s.clause.text, "plan": executed,
                         "forecast": s.forecast.to_dict()})
     head = result.results[0].plan if result.results and result.results[0].plan is not None else steps[0].forecast
-    doc = head.to_dict() | {"clauses": clauses, "chain": {"sentence": result.sentence, "scene": scene.to_dict()}}
+    doc = head.to_dict() | scene_fields(scene) | {  # scene, scene_sha256: the first clause's, as a one-clause run's
+        "clauses": clauses, "chain": {"sentence": result.sentence, "scene": scene.to_dict()}}
     path.write_text(dumps_json(doc, indent=1) + "\n")

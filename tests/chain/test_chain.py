@@ -101,6 +101,8 @@ def test_three_clauses_on_four_blocks(chain_runs):
     assert [c["success"] for c in summary["clauses"]] == [True, True, True]
     plan = json.loads((r.out_dir / "plan.json").read_text())
     assert plan["mover"] == "A" and [c["plan"]["mover"] for c in plan["clauses"]] == ["A", "C", "D"]
+    assert plan["scene"] == plan["chain"]["scene"] == four_blocks().to_dict()  # the one-clause layout's scene too
+    assert plan["scene_sha256"] == four_blocks().digest()
     # each clause starts where the previous one really left its mover (re-planned from the world)
     c_end = traj["frames"][segs[1]["last_frame"]]["poses"]["C"]
     assert plan["clauses"][2]["plan"]["anchor_pose"][:2] == pytest.approx(
