@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from . import planning
-from .core.contracts import Plan, trajectory_poses
+from .core.contracts import MAX_SEED, Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
@@ -249,8 +249,8 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
 def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
     """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched."""
     resolve_planner(planner)
-    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**32:
-        raise PlanError(f"the seed must be an integer from 0 to {2**32 - 1} (got {str(seed)[:20]})")
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed <= MAX_SEED:
+        raise PlanError(f"the seed must be an integer from 0 to {MAX_SEED} (got {str(seed)[:20]})")
     if budget is not None and (isinstance(budget, bool) or not isinstance(budget, int) or budget < 1):
         raise PlanError(f"the budget must be a positive number of search steps (got {str(budget)[:20]})")
     if threshold is not None and not (isinstance(threshold, int | float) and 0.0 <= threshold <= 1.0):

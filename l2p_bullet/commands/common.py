@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import click
 
-MAX_SEED = 2**32 - 1
-"""Seeds are what numpy's and torch's generators accept alike: 0 to 2**32 - 1."""
+from ..core.contracts import MAX_SEED
 
 seed_option = click.option("--seed", type=click.IntRange(0, MAX_SEED), default=0, show_default=True, help="Random seed (runs are deterministic for a seed).")
 arm_option = click.option(

@@ -8,6 +8,8 @@ import time
 
 import click
 
+from .common import MAX_SEED
+
 
 @click.command("evaluate")
 @click.option("--actions", default=None, help="Comma-separated actions (default: every installed one).")
@@ -15,25 +17,29 @@ import click
 @click.option("--scene-file", type=click.Path(dir_okay=False), default=None,
               help="A JSON-lines file, one scene per line (optional id, mover, anchor, seed per line).")
 @click.option("--study", is_flag=True, default=None, help="The original study's start configurations (75 scenes).")
-@click.option("--bystanders", type=int, default=None, help="Add K bystander blocks to every scene.")
-@click.option("--seed", type=int, default=None, help="First random scene seed (default 0).")
+@click.option("--bystanders", type=int, default=None, help="Add K bystander blocks to every scene (0-10).")
+@click.option("--seed", type=click.IntRange(0, MAX_SEED), default=None,
+              help=f"First random scene seed, 0 to {MAX_SEED} (default 0).")
 @click.option("--planner", default=None, help="Planner for every run (default: each action's own).")
 @click.option("--plan-only", "plan_only", is_flag=True, default=None, help="Plan in 2-D only; no arm, no physics.")
 @click.option("--render-every", type=int, default=None, help="Render (and keep) every K-th run of each action (default 0: none).")
 @click.option("--no-render", is_flag=True, help="Render nothing (the same as --render-every 0).")
 @click.option("--keep", type=click.Choice(["none", "failed", "all"]), default=None,
               help="Run folders to keep besides the rendered ones (default: none).")
-@click.option("--workers", type=int, default=None, help="Worker processes (default: the cores; 0: in this process).")
+@click.option("--workers", type=int, default=None,
+              help="Worker processes, at most 256 (default: the cores; 0: in this process).")
 @click.option("--ray", "ray_address", default=None,
               help="Run on Ray: a cluster ADDRESS, auto, or local (an embedded Ray). Needs l2p-bullet[ray].")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Evaluation folder (default runs/evaluate-<timestamp>): results.sqlite, kept runs, report.")
+              help="Evaluation folder (default runs/evaluate-<timestamp>): results.sqlite, kept runs, report. "
+                   "A new evaluation needs a new or empty folder.")
 @click.option("--resume", is_flag=True, help="Continue the evaluation in --out: skip the runs already recorded.")
 @click.option("--retry-errors", is_flag=True, help="With --resume: run again the runs that ended in an error.")
 @click.option("--report", is_flag=True,
-              help="Print success per action and the confusion matrices, save them as PNG. Alone with an "
-                   "existing --out: report what is recorded and run nothing.")
-@click.option("--parquet", type=click.Path(dir_okay=False), default=None, help="Also write the results table as Parquet.")
+              help="Print success per action and the confusion matrices, save them as PNG. Alone with --out: "
+                   "report what is recorded there and run nothing.")
+@click.option("--parquet", type=click.Path(dir_okay=False), default=None,
+              help="Also write the results table as Parquet, to a new file (never overwritten).")
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary (and the report's numbers) as JSON.")
 @click.option("--arm", default=None, metavar="NAME", help="The arm that performs every run (default panda; l2p-bullet arms).")
@@ -62,6 +68,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
 
     from ..evaluate.runner import evaluate, load_rows
 
+    _check_lists(actions=actions, manners=manners)
     given = {"actions": [a.strip() for a in actions.split(",") if a.strip()] if actions else None,
              "scenes": scenes, "scene_file": scene_file, "study": study, "bystanders": bystanders, "seed": seed,
              "planner": planner, "mode": "plan" if plan_only else None,
@@ -69,7 +76,9 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
              "manners": [m.strip() for m in manners.split(",") if m.strip()] if manners else None}
     given = {k: v for k, v in given.items() if v is not None}
     folder = Path(out) if out else Path("runs") / f"evaluate-{time.strftime('%Y%m%d-%H%M%S')}"
-    report_only = report and not resume and not given and (folder / "results.sqlite").exists()
+    report_only = report and not resume and not given and out is not None
+    _check_options(given, out, folder, resume=resume, retry_errors=retry_errors, report_only=report_only,
+                   parquet=parquet)
     summary = None
     if not report_only:
         config = _config(given, folder, resume)
@@ -86,7 +95,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
         from ..evaluate.results import ResultsStore
 
         with ResultsStore(folder) as store:
-            store.to_parquet(parquet)
+            store.to_parquet(parquet, exclusive=True)
     out_json: dict = {"out": str(folder), "rows": len(rows)}
     if summary is not None:
         out_json.update(total=summary.total, skipped=summary.skipped, ran=summary.ran, failed=summary.failed,
@@ -117,19 +126,50 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
         click.echo(json.dumps(out_json, indent=1, default=str))
 
 
+def _check_lists(**lists: str | None) -> None:
+    """``--actions ""`` must not quietly mean every action (nor ``--manners ""`` the default one)."""
+    from ..errors import EvaluationError
+
+    for name, text in lists.items():
+        if text is not None and not [v for v in text.split(",") if v.strip()]:
+            raise EvaluationError(f"--{name} needs at least one name (leave --{name} out for the default)")
+
+
+def _check_options(given: dict, out: str | None, folder, *, resume: bool, retry_errors: bool, report_only: bool,
+                   parquet: str | None) -> None:
+    """The options that only make sense together, checked before anything is made or run."""
+    from ..errors import EvaluationError
+    from ..evaluate.folder import check_parquet_path, stored_settings
+    from ..evaluate.runner import EvaluationConfig, check_chains
+
+    if resume and out is None:
+        raise EvaluationError("--resume needs --out FOLDER: the evaluation to continue")
+    if retry_errors and not resume:
+        raise EvaluationError("--retry-errors needs --resume: it runs again the recorded runs that ended in an "
+                              "error")
+    if "chains" in given:
+        check_chains(given["chains"])
+    if not resume:
+        EvaluationConfig(**given).check()
+    if report_only and stored_settings(folder) is None:
+        raise EvaluationError(f"nothing to report in {folder}: it holds no evaluation (no results.sqlite with "
+                              "settings); to run a new one and report it, give its settings too (e.g. --scenes 10)")
+    if parquet:
+        check_parquet_path(parquet, folder)
+
+
 def _config(given: dict, folder, resume: bool):
     """The evaluation's settings: the options given over the defaults, or (``--resume``) over the stored ones."""
-    from ..evaluate.results import ResultsStore
+    from ..evaluate.folder import stored_settings
     from ..evaluate.runner import EvaluationConfig
 
     if not resume:
         return EvaluationConfig(**given)
     if not given:
         return None
-    if not (folder / "results.sqlite").exists():
+    stored = stored_settings(folder)
+    if stored is None:
         return EvaluationConfig(**given)  # evaluate() says there is nothing to resume
-    with ResultsStore(folder) as store:
-        stored = store.get_meta("config") or {}
     return EvaluationConfig.from_dict({**stored, **given})
 
 

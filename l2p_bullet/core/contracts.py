@@ -18,6 +18,10 @@ import numpy as np
 from ..errors import L2PError, PathError
 from .bounded import read_bounded
 
+MAX_SEED = 2**32 - 1
+"""Seeds are what numpy's and torch's generators accept alike: 0 to 2**32 - 1 (summary.json's ``seed``,
+every command's ``--seed``, a scene file's per-line seed)."""
+
 MAX_JSON_BYTES = 64 * 1024 * 1024
 """The largest JSON input read (a scene, a plan, a trajectory, a scoring input): a 20 s run's
 trajectory.json is about 150 kB, so this only stops a file that would exhaust memory."""

@@ -6,6 +6,7 @@
     pool     the local backend: W processes kept for the whole evaluation, crash-tolerant
     ray_backend  the same tasks on Ray actors (optional extra l2p-bullet[ray])
     results  the results table (SQLite, one committed row per run)
+    folder   the evaluation folder: what evaluate writes there, and the checks made before it writes
     runner   evaluate(config, out): build, skip what is recorded, run, record
     confusion, report   success per action, the judge- and model-based confusion matrices, PNGs
 

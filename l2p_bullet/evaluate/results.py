@@ -139,8 +139,9 @@ class ResultsStore:
             out.append(row)
         return out
 
-    def to_parquet(self, path: str | Path) -> Path:
-        """Write the table as Parquet (JSON columns kept as JSON text); needs pyarrow."""
+    def to_parquet(self, path: str | Path, exclusive: bool = False) -> Path:
+        """Write the table as Parquet (JSON columns kept as JSON text); needs pyarrow. ``exclusive``: never
+        overwrite a file (``evaluate --parquet``: EvaluationError if ``path`` exists)."""
         try:
             # lazy: pyarrow is an optional extra (l2p-bullet[export])
             import pyarrow as pa
@@ -152,7 +153,22 @@ class ResultsStore:
         rows = self.rows()
         data = {k: [json.dumps(r[k], sort_keys=True) if k in JSON_COLUMNS and r[k] is not None else r[k]
                     for r in rows] for k in COLUMNS}
-        pq.write_table(pa.table(data), Path(path))
+        if not exclusive:
+            pq.write_table(pa.table(data), Path(path))
+            return Path(path)
+        try:
+            with open(path, "xb") as f:  # made here, so ours to remove if writing it fails
+                try:
+                    pq.write_table(pa.table(data), f)
+                except BaseException:
+                    os.unlink(path)
+                    raise
+        except FileExistsError:
+            raise EvaluationError(f"--parquet {path} already exists (it is never overwritten): remove it or "
+                                  "choose another --parquet path") from None
+        except OSError as e:
+            raise EvaluationError(f"cannot write --parquet {path}: {e.strerror or e} (the results are in "
+                                  f"{self.path})") from None
         return Path(path)
 
 

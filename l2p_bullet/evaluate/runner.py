@@ -18,15 +18,27 @@ from ..errors import EvaluationError
 from ..manners import registry as manner_registry
 from ..planning import resolve_planner
 from ..plugins import registry
+from .folder import check_out_folder
 from .pool import run_pool
 from .progressbar import ProgressBar
 from .ray_backend import run_ray
 from .results import ResultsStore, only_writer
-from .scenes import SceneSpec, random_scenes, scene_file, study_scenes, with_bystanders
-from .tasks import Task, make_tasks, skipped
+from .scenes import (
+    BYSTANDER_COLORS,
+    MAX_SEED,
+    SceneSpec,
+    random_scenes,
+    scene_file,
+    study_scenes,
+    with_bystanders,
+)
+from .tasks import KEEP, MODES, Task, make_tasks, skipped
 from .worker import run_task
 
 DEFAULT_SCENES = 10
+MAX_WORKERS = 256
+"""The most local worker processes (``--workers``): each holds its own PyBullet worlds and bundles, so far
+more than the cores only costs memory. A Ray cluster's actors (``--ray ADDRESS``) are not limited here."""
 
 
 @dataclass
@@ -57,6 +69,29 @@ class EvaluationConfig:
         known = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in d.items() if k in known})
 
+    def check(self) -> EvaluationConfig:
+        """Refuse a setting out of range (one-line errors) before any folder is made: a typo must cost nothing."""
+        for name, value in (("actions", self.actions), ("manners", self.manners)):
+            if not isinstance(value, list) or not all(isinstance(v, str) and v.strip() for v in value):
+                raise EvaluationError(f"--{name} must be a comma-separated list of names (got {value!r})")
+        if self.scenes is not None and self.scenes < 0:
+            raise EvaluationError(f"--scenes must be 0 or more (got {self.scenes})")
+        if not 0 <= self.bystanders <= len(BYSTANDER_COLORS):
+            raise EvaluationError(f"--bystanders must be 0 to {len(BYSTANDER_COLORS)} (got {self.bystanders})")
+        last = self.seed + (DEFAULT_SCENES if self.scenes is None else max(self.scenes, 1)) - 1
+        if not 0 <= self.seed <= MAX_SEED or (self.scene_file is None and not self.study and last > MAX_SEED):
+            raise EvaluationError(f"--seed must be 0 to {MAX_SEED}, and so must the last scene's seed "
+                                  f"(--seed + --scenes - 1; got --seed {self.seed})")
+        if self.render_every < 0:
+            raise EvaluationError(f"--render-every must be 0 (none) or more (got {self.render_every})")
+        if self.mode not in MODES:
+            raise EvaluationError(f'unknown mode "{self.mode}" (known: {", ".join(MODES)})')
+        if self.keep not in KEEP:
+            raise EvaluationError(f'unknown --keep "{self.keep}" (known: {", ".join(KEEP)})')
+        if self.chains:
+            check_chains(self.chains)
+        return self
+
     def scene_set(self) -> list[SceneSpec]:
         sources = [self.scenes is not None, self.scene_file is not None, self.study]
         if sum(sources) > 1:
@@ -74,7 +109,31 @@ class EvaluationConfig:
             specs = study_scenes(seed=self.seed)
         else:
             specs = random_scenes(DEFAULT_SCENES if self.scenes is None else self.scenes, self.seed)
+        bad = next((s for s in specs if not 0 <= s.seed <= MAX_SEED), None)
+        if bad is not None:  # a scene file's line numbers from --seed on, or the study's 75 starts
+            raise EvaluationError(f"scene {bad.id} would plan with seed {bad.seed}: seeds are 0 to {MAX_SEED} "
+                                  "(choose a smaller --seed)")
         return with_bystanders(specs, self.bystanders)
+
+
+def check_chains(k: int) -> None:
+    """``--chains K``: 1 to MAX_CHAIN clauses (0 is no option: leave --chains out for single runs)."""
+    from .chains import MAX_CHAIN
+
+    if not 1 <= k <= MAX_CHAIN:
+        raise EvaluationError(f"--chains must be 1 to {MAX_CHAIN} clauses (got {k})")
+
+
+def check_workers(workers: int | None, ray: str | None) -> int:
+    """The number of workers to start (None: the cores here; on a Ray cluster, every CPU it has: 0)."""
+    if workers is None:
+        return 0 if ray and ray != "local" else (os.cpu_count() or 1)
+    if workers < 0:
+        raise EvaluationError(f"--workers must be 0 or more (got {workers})")
+    if workers > MAX_WORKERS and not (ray and ray != "local"):
+        raise EvaluationError(f"--workers must be at most {MAX_WORKERS} on this machine (got {workers}); "
+                              "each worker holds its own simulator")
+    return workers
 
 
 @dataclass
@@ -107,57 +166,27 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
     KeyboardInterrupt stops the workers and propagates; every row already recorded stays.
     """
     out = Path(out_dir)
-    if workers is None:  # the cores here; on a Ray cluster, every CPU it has (0)
-        workers = 0 if ray and ray != "local" else (os.cpu_count() or 1)
-    if workers < 0:
-        raise EvaluationError(f"--workers must be 0 or more (got {workers})")
+    workers = check_workers(workers, ray)
     if config is not None:
+        config.check()
         from ..embodiment import arm_plugins
 
         arm_plugins.get(config.arm)  # an unknown arm is refused before the folder is made
-    if not resume and (out / "results.sqlite").exists():
-        raise EvaluationError(f"{out} already holds an evaluation: pass --resume to continue it, or choose another --out")
+    # Everything that can fail on the settings fails here, before the folder or its table is made
+    # (a failed start must not leave a folder that neither a new start nor --resume accepts).
+    stored = check_out_folder(out, resume=resume)
+    if resume:
+        config = _resumed(config, stored)
+    config = (config or EvaluationConfig()).check()
+    plugins = registry.discover() if plugins is None else plugins
+    tasks, notes = _tasks(config, out, plugins)
     with only_writer(out), ResultsStore(out) as store:
-        stored = store.get_meta("config")
-        if not resume and stored is not None:  # another fresh start got here first (we waited for its lock)
+        now = store.get_meta("config")
+        if not resume and now is not None:  # another fresh start got here first (we waited for its lock)
             raise EvaluationError(f"{out} already holds an evaluation: pass --resume to continue it, or choose "
                                   "another --out")
-        if resume and stored is None:
-            raise EvaluationError(f"{out} holds no evaluation to resume (no results.sqlite with settings)")
-        if stored is not None:  # settings added since the evaluation was stored have their defaults
-            stored = {**EvaluationConfig().to_dict(), **stored}
-        if resume:
-            if config is not None and config.to_dict() != stored:
-                diff = sorted(k for k, v in config.to_dict().items() if stored.get(k) != v)
-                raise EvaluationError(f"--resume runs the stored evaluation again, but these settings differ: "
-                                      f"{', '.join(diff)} (choose another --out for a new evaluation)")
-            config = EvaluationConfig.from_dict(stored)
-        config = config or EvaluationConfig()
-        plugins = registry.discover() if plugins is None else plugins
-        actions = config.actions or [p.name for p in plugins if p.ok]
-        if not actions:
-            raise EvaluationError("no usable action plugin is installed (see: l2p-bullet actions)")
-
-        resolve_planner(config.planner)  # a typo fails before anything runs
-        scenes = config.scene_set()
-        notes: dict[str, str] = {}
-        if config.chains:
-            from .chains import make_chain_tasks
-
-            if config.mode == "plan":
-                raise EvaluationError("--chains performs its chains: no --plan-only")
-            tasks = make_chain_tasks(scenes, config.chains, actions, planner=config.planner,
-                                     render_every=config.render_every, keep=config.keep, out_dir=str(out),
-                                     plugins=plugins, budget=config.budget, threshold=config.threshold,
-                                     arm=config.arm)
-        else:
-            notes = skipped(scenes, actions, plugins)
-            tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
-                               render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
-                               budget=config.budget, threshold=config.threshold, arm=config.arm,
-                               manners=manner_registry.check_names(list(config.manners or ["slide"])))
-            if not tasks and notes:
-                raise EvaluationError("nothing to run: " + "; ".join(notes.values()))
+        if resume and now != stored:
+            raise EvaluationError(f"the evaluation in {out} changed while this --resume started; run it again")
         if progressbar:
             for note in notes.values():
                 sys.stderr.write(f"note: {note}\n")
@@ -185,6 +214,42 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
             summary.seconds = time.perf_counter() - t0
             bar.close()
     return summary
+
+
+def _resumed(config: EvaluationConfig | None, stored: dict | None) -> EvaluationConfig:
+    """The stored settings (those added since it was stored at their defaults); ``config``, if given, must match."""
+    stored = {**EvaluationConfig().to_dict(), **(stored or {})}
+    if config is not None and config.to_dict() != stored:
+        diff = sorted(k for k, v in config.to_dict().items() if stored.get(k) != v)
+        raise EvaluationError(f"--resume runs the stored evaluation again, but these settings differ: "
+                              f"{', '.join(diff)} (choose another --out for a new evaluation)")
+    return EvaluationConfig.from_dict(stored)
+
+
+def _tasks(config: EvaluationConfig, out: Path, plugins: list) -> tuple[list[Task], dict[str, str]]:
+    """The evaluation's tasks, and why runs of some actions are left out (action -> note)."""
+    actions = config.actions or [p.name for p in plugins if p.ok]
+    if not actions:
+        raise EvaluationError("no usable action plugin is installed (see: l2p-bullet actions)")
+    resolve_planner(config.planner)  # a typo fails before anything runs
+    scenes = config.scene_set()
+    if config.chains:
+        from .chains import make_chain_tasks
+
+        if config.mode == "plan":
+            raise EvaluationError("--chains performs its chains: no --plan-only")
+        return make_chain_tasks(scenes, config.chains, actions, planner=config.planner,
+                                render_every=config.render_every, keep=config.keep, out_dir=str(out),
+                                plugins=plugins, budget=config.budget, threshold=config.threshold,
+                                arm=config.arm), {}
+    notes = skipped(scenes, actions, plugins)
+    tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
+                       render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
+                       budget=config.budget, threshold=config.threshold, arm=config.arm,
+                       manners=manner_registry.check_names(list(config.manners or ["slide"])))
+    if not tasks and notes:
+        raise EvaluationError("nothing to run: " + "; ".join(notes.values()))
+    return tasks, notes
 
 
 def run_tasks(tasks: list[Task], *, workers: int, ray: str | None, on_row) -> None:

@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.contracts import MAX_SEED
 from ..core.scene import COLORS, Scene, SceneObject, random_scene
 from ..core.workspace import START_RADIUS
 from ..data.demos import load_graded_demos
@@ -90,10 +91,15 @@ def scene_file(path: str | Path, seed: int = 0) -> list[SceneSpec]:
                 raise SceneError(f'{where}: the {role} "{name}" is not one of the objects ({", ".join(names)})')
         if mover == anchor:
             raise SceneError(f'{where}: the mover and the anchor are the same object "{mover}"')
-        run_seed = data.get("seed", seed + len(out))
-        if not isinstance(run_seed, int) or isinstance(run_seed, bool):
-            raise SceneError(f'{where}: "seed" must be an integer')
-        sid = str(data.get("id", f"{p.name}/{len(out)}"))
+        run_seed = data.get("seed", seed + len(out))  # a default past MAX_SEED: EvaluationConfig.scene_set
+        if "seed" in data and (not isinstance(run_seed, int) or isinstance(run_seed, bool)
+                               or not 0 <= run_seed <= MAX_SEED):
+            raise SceneError(f'{where}: "seed" must be an integer from 0 to {MAX_SEED} (got {run_seed!r})')
+        sid = data.get("id", f"{p.name}/{len(out)}")
+        if isinstance(sid, bool) or not isinstance(sid, str | int) or not str(sid).strip():
+            raise SceneError(f'{where}: "id" must be a non-empty string (got {json.dumps(sid)}); it names the '
+                             "scene in the results table")
+        sid = str(sid)
         if sid in seen:
             raise SceneError(f'{where}: the id "{sid}" was already used on line {seen[sid]}')
         seen[sid] = n
