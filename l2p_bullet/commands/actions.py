@@ -137,13 +137,15 @@ def new_action_cmd(name: str, phrases: tuple[str, ...], out: str | None, descrip
                                                       would fetch a stranger's package)
           l2p-bullet perform "move A <phrase> B"
     """
+    from ..core.vocabulary import ACTIONS
     from ..plugins import registry
     from ..plugins.scaffold import scaffold
 
     plugins = registry.discover() + registry.discover("composite")
     installed = {ph: p.name for p in plugins if p.ok for ph in p.phrases}
+    names = {p.name for p in plugins} | set(ACTIONS)  # broken plugins too: the name would still clash
     s = scaffold(name, list(phrases), out, installed=installed, description=description, frame=frame,
-                 anchors=anchors, judge=judge, kind="composite" if composite else "action")
+                 anchors=anchors, judge=judge, kind="composite" if composite else "action", installed_names=names)
     if composite:
         click.echo(f"created {s.root}/ (package {s.dist_name}, module {s.module}); next steps:")
         click.echo(f"  1. l2p-bullet teach {name} --plugin {s.root}   (record rows of 2 and 3 blocks, then train)")

@@ -26,8 +26,9 @@ from .common import force_option, greedy_options, seed_option
               help="Bundle folder to write (default: runs/bundles/<action>).")
 @seed_option
 @click.option("--force", is_flag=True,
-              help="Overwrite the manifest and progress weights if --out already holds a trained bundle "
-                   "(other files in it, e.g. policy.safetensors, are kept).")
+              help="Overwrite the manifest and progress weights if --out already holds a trained bundle of "
+                   "ACTION (other files in it, e.g. policy.safetensors, are kept; a folder that is not a bundle "
+                   "is never written to).")
 @click.option("--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer).")
 @click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer).")
 @click.option("--feedback", "feedback", multiple=True, metavar="SOURCE",
@@ -147,7 +148,8 @@ def improve(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[s
 
     Each round's runs, grades (grades.csv), re-trained bundle and metrics are kept in
     OUT/round-<k>/. With a review file as --judge, a round stops until its runs are graded there; run
-    the same command again to go on (finished rounds are kept). Nothing is overwritten without --force.
+    the same command again to go on (finished rounds are kept). Nothing is overwritten without --force,
+    which replaces only improve's own files (improve.json, round-<k>/), never a folder holding others.
 
     \b
     Examples:

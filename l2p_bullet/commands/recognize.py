@@ -35,6 +35,8 @@ def recognize(motion: str | None, demo: str | None, actions: tuple[str, ...], to
 
     if (motion is None) == (demo is None):
         raise PathError("give either MOTION (a run folder or a motion file) or --demo ACTION:INDEX (one of them)")
+    for spec in actions:
+        check_bundle_path(spec)
     tracks = demo_tracks(demo) if demo is not None else read_tracks(motion)
     models, skipped = recognisers(actions)
     result = run(tracks, models)
@@ -50,6 +52,33 @@ def recognize(motion: str | None, demo: str | None, actions: tuple[str, ...], to
         click.echo(f"  ... {len(result.readings) - top} more (--top N, --json)")
     for s in skipped:
         click.echo(f'warning: action "{s["action"]}" left out: {s["reason"]}', err=True)
+
+
+def check_bundle_path(spec: str) -> None:
+    """An ``--action`` value that looks like a path (it holds a path separator, or names something that
+    exists) must be a bundle folder: say so, rather than "unknown action" (no installed action is ``./x``)."""
+    import os
+    from pathlib import Path
+
+    from ..core.contracts import MANIFEST
+    from ..errors import BundleError
+
+    p = Path(spec)
+    seps = {os.sep} | ({os.altsep} if os.altsep else set())
+    if not any(c in spec for c in seps):
+        if not (p.exists() or p.is_symlink()):
+            return  # an action's name: the registry says whether it is installed
+        from ..core.vocabulary import ACTIONS, normalize_name
+        from ..plugins import registry
+
+        if normalize_name(spec) in {normalize_name(n) for n in [*ACTIONS, *(i.name for i in registry.discover())]}:
+            return  # "around" names the action, even where a folder around/ lies in the current one
+    if not p.exists():
+        raise BundleError(f"--action {spec}: no such folder (give an installed action's name or a bundle folder)")
+    if not p.is_dir():
+        raise BundleError(f"--action {spec}: not a folder (a bundle is a folder with {MANIFEST})")
+    if not (p / MANIFEST).is_file():
+        raise BundleError(f"--action {spec}: not a bundle folder (no {MANIFEST})")
 
 
 COMMANDS: list[click.Command] = [recognize]

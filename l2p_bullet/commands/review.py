@@ -131,19 +131,30 @@ def report_cmd(db: str, out: str | None, as_json: bool) -> None:
     """The evaluation's tables from the grades.
 
     Table 1 (mean grade, evaluator disparity), the blind confusion matrix and Fleiss' kappa, how the
-    learned progress and the judges rank runs against people (Spearman), 2-D vs 3-D grades.
+    learned progress and the judges rank runs against people (Spearman), 2-D vs 3-D grades. The tables
+    and plots go to a new folder, or replace an earlier report of this command there (never other files).
     """
     from ..errors import ReviewError
-    from ..review.report import build_report, render_text, write_grade_report
-    from ..review.store import load_grades
+    from ..review.report import (
+        build_report,
+        claim_report_folder,
+        read_report_grades,
+        render_text,
+        write_grade_report,
+    )
 
     path = Path(db)
     if not path.exists():
         raise ReviewError(f"no review database at {path}: grade some runs with l2p-bullet review, or import the "
                           "original study with l2p-bullet review --import-original")
-    rep = build_report(load_grades(path), source=str(path))
+    rep = build_report(read_report_grades(path), source=str(path))
     folder = Path(out) if out else path.with_name(path.stem + "-report")
-    files = write_grade_report(rep, folder)
+    claim = claim_report_folder(folder, path)  # after the grades are read: a bad file costs no folder
+    try:
+        files = write_grade_report(rep, folder)
+        claim.finish()
+    finally:
+        claim.release()
     if as_json:
         click.echo(json.dumps(rep, indent=1, default=str))
         return

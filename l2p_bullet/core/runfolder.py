@@ -40,7 +40,7 @@ import uuid
 from collections.abc import Iterator
 from pathlib import Path
 
-from ..errors import RunFolderError
+from ..errors import L2PError, RunFolderError
 from .contracts import dumps_json
 
 MARKER = ".l2p-run.json"
@@ -299,6 +299,18 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
     elif trash is not None:
         shutil.rmtree(trash, ignore_errors=True)
     return claim
+
+
+def check_writable(path: str | os.PathLike, option: str = "--out", error: type[L2PError] = RunFolderError) -> None:
+    """Refuse a folder this process cannot write into (or, not made yet, whose nearest existing parent it
+    cannot), before any long work starts: a PermissionError after minutes of training loses them."""
+    probe = Path(path)
+    while not probe.exists() and not probe.is_symlink() and probe.parent != probe:
+        probe = probe.parent
+    if probe.exists() and not probe.is_dir():
+        raise error(f"{option} {path}: {probe} exists and is not a folder; choose another {option}")
+    if not os.access(probe, os.W_OK | os.X_OK):
+        raise error(f"{option} {path}: cannot write into {probe} (permission denied); choose another {option}")
 
 
 def _mkdirs(folder: Path) -> None:

@@ -13,7 +13,8 @@ Grades come from the rule judge (``judge="rules"``: 10 x its score on the execut
 original's automatic feedback) or from people: a review database or export (``judge=FILE``) holding
 grades of this round's runs. People need time to grade, so a round whose runs have no grades in the
 file yet stops with a message; re-running the same command resumes there (finished rounds are kept,
-run folders already performed are reused). Nothing is overwritten without ``force``.
+run folders already performed are reused). Nothing is overwritten without ``force``, which replaces only
+what improve wrote (``improve.json``, ``round-<k>/``): a folder holding anything else is refused.
 
 Scenes are ``random_scene(seed)`` with seeds 1000 + 100 (k - 1) + i: the benchmarks use 0-99,
 automatic feedback 5000 on, REINFORCE 10 000 and up.
@@ -22,6 +23,7 @@ automatic feedback 5000 on, REINFORCE 10 000 and up.
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import time
 from collections.abc import Callable, Sequence
@@ -32,6 +34,7 @@ import numpy as np
 
 from ..actions import BUILTIN
 from ..core.contracts import load_motion
+from ..core.runfolder import check_writable
 from ..core.scene import random_scene
 from ..data.grades import GradeRow, write_grades
 from ..errors import DataError, L2PError, RunFolderError
@@ -86,16 +89,14 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
     name, current = locate(action)
     if name not in SENTENCES:
         raise DataError(f'improve performs the built-in actions ({", ".join(SENTENCES)}), not "{name}"')
-    if judge != "rules" and not Path(judge).is_file():
-        raise DataError(f'--judge must be "rules" or a review database/export file; {judge} does not exist')
+    _check_judge(judge)
+    static, skipped = load_feedback(feedback)  # a typo in --feedback fails here, before anything is written
     out = Path(out)
-    if force and out.exists():
-        shutil.rmtree(out)
+    check_writable(out, "--out", DataError)
     settings = {"action": name, "scenes": scenes, "judge": judge, "feedback": list(feedback), "seed": seed,
                 "started_from": str(current)}
-    _claim(out, settings)
+    _claim(out, settings, force)
     say = log or (lambda _m: None)
-    static, skipped = load_feedback(feedback)
     for s in skipped:
         say(f"warning: left out reviewed run {s.id}: {s.reason}")
     collected: list[FeedbackItem] = []
@@ -129,18 +130,63 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
     return results
 
 
-def _claim(out: Path, settings: dict) -> None:
-    """Create ``out`` for these settings, or resume it if it holds rounds of the very same ones."""
-    f = out / "improve.json"
-    if out.exists() and any(out.iterdir()):
-        try:
-            same = json.loads(f.read_text()) == settings
-        except (OSError, json.JSONDecodeError):
-            same = False
-        if not same:
-            raise RunFolderError(f"{out} already holds something else than rounds of these settings; "
-                                 "pass --force to overwrite it, or choose another --out")
+def _check_judge(judge: str) -> None:
+    """``--judge`` is "rules" or a review database/export that reads as one (a scene file or a folder is
+    refused here, before a round is performed, not after)."""
+    if judge == "rules":
         return
+    p = Path(judge)
+    if p.is_dir():
+        raise DataError(f'--judge must be "rules" or a review database/export file; {judge} is a folder')
+    if not p.is_file():
+        raise DataError(f'--judge must be "rules" or a review database/export file; {judge} does not exist')
+    try:
+        read_grades(p)
+    except L2PError as e:  # a scene file, a CSV of something else ...
+        raise DataError(f'--judge must be "rules" or a review database/export file: {e}') from None
+
+
+ROUND = re.compile(r"round-[1-9][0-9]*")
+ROUND_FILES = ("runs", "grades.csv", "grades.csv.part", "bundle", "metrics.json")
+"""What improve writes: OUT/improve.json and OUT/round-<k>/ holding these (and nothing else of anyone's)."""
+
+
+def _foreign(out: Path) -> list[str]:
+    """The entries of ``out`` improve did not write (relative names, sorted); symbolic links always count."""
+    found = []
+    for p in sorted(out.iterdir()):
+        if p.is_symlink() or not (p.name == "improve.json" and p.is_file() or ROUND.fullmatch(p.name) and p.is_dir()):
+            found.append(p.name)
+        elif p.is_dir():
+            found += [f"{p.name}/{q.name}" for q in sorted(p.iterdir()) if q.is_symlink() or q.name not in ROUND_FILES]
+    return found
+
+
+def _claim(out: Path, settings: dict, force: bool) -> None:
+    """Create ``out`` for these settings, or resume it if it holds rounds of the very same ones.
+
+    ``force`` replaces only what improve wrote (improve.json and the round-<k> folders): a folder holding
+    anything else is refused, with or without it (nothing a person wrote is deleted)."""
+    f = out / "improve.json"
+    if out.is_symlink() or (out.exists() and not out.is_dir()):
+        raise RunFolderError(f"{out} is not a folder (or is a symbolic link); choose another --out")
+    if out.exists() and any(out.iterdir()):
+        foreign = _foreign(out)
+        try:
+            old = json.loads(f.read_text())
+        except (OSError, ValueError):
+            old = None
+        if foreign or not isinstance(old, dict):
+            shown = ", ".join(foreign[:3]) + (" ..." if len(foreign) > 3 else "") or "no improve.json"
+            raise RunFolderError(f"{out} already exists and holds files l2p-bullet did not write ({shown}); choose "
+                                 "another --out (--force never deletes them)")
+        if old == settings:
+            return
+        if not force:
+            raise RunFolderError(f"{out} holds rounds of other improve settings (its improve.json); choose another "
+                                 "--out, or pass --force to replace those rounds")
+        for p in out.iterdir():  # only improve.json and round-<k>/, checked above
+            shutil.rmtree(p) if p.is_dir() else p.unlink()
     out.mkdir(parents=True, exist_ok=True)
     f.write_text(json.dumps(settings, indent=1) + "\n")
 

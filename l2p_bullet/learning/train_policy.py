@@ -20,13 +20,20 @@ import numpy as np
 import torch
 
 from ..core.frames import declaration
+from ..core.runfolder import check_writable
 from ..core.scene import random_scene
 from ..core.threads import torch_threads
-from ..errors import BundleError
+from ..errors import BundleError, L2PError
 from ..planning.policy import FEATURE_RADIUS, FEATURES, policy_features, to_poses
 from ..planning.problem import FRAME_STEP
 from ..planning.world2d import World2D, segment_frames
-from ..plugins.bundle import POLICY_FILE, PROGRESS_FILE, load_bundle, write_weights
+from ..plugins.bundle import (
+    POLICY_FILE,
+    PROGRESS_FILE,
+    load_bundle,
+    read_manifest,
+    write_weights,
+)
 from .policy_net import GaussianPolicy
 from .progress_net import ProgressModel
 
@@ -174,14 +181,32 @@ def policy_folder(action: str, bundle_dir: str | None, out_dir: str | None, forc
         if not force and _installed(folder):
             raise BundleError(f"{folder} is a bundle of an installed package: pass --force to replace its policy, "
                               "or leave out --bundle to train a copy in a new folder")
+        _check_bundle_action(folder, action)  # a past policy in the around bundle would plan "around" wrong
+        check_writable(folder, "--bundle", BundleError)  # before minutes of training, not after
         return folder, False
     _, source = registry.locate(action)
     folder = Path(out_dir) if out_dir else Path("runs") / f"train-policy-{time.strftime('%Y%m%d-%H%M%S')}"
-    if folder.exists():
+    if folder.exists() or folder.is_symlink():
         raise BundleError(f"{folder} already exists: choose another --out (or train in it with --bundle {folder})")
+    check_writable(folder, "--out", BundleError)
     folder.parent.mkdir(parents=True, exist_ok=True)
     shutil.copytree(source, folder, ignore=shutil.ignore_patterns("__pycache__"))
     return folder, True
+
+
+def _check_bundle_action(folder: Path, action: str) -> None:
+    """Refuse a ``--bundle`` whose manifest names another action than ACTION (``BundleError``)."""
+    from ..core.vocabulary import normalize_name
+    from ..plugins import registry
+
+    try:
+        name = registry.locate(action)[0]
+    except L2PError:  # a plugin action still being authored (not installed): its own name
+        name = action
+    found = str(read_manifest(folder).get("name", ""))
+    if normalize_name(found) != normalize_name(name):
+        raise BundleError(f'{folder} is the bundle of the action "{found}", not of "{name}": give the bundle '
+                          f'folder of "{name}" as --bundle (or "{found}" as ACTION)')
 
 
 def _installed(folder: Path) -> bool:

@@ -24,9 +24,9 @@ from ..core.frames import Frame, declaration
 from ..core.threads import torch_threads
 from ..core.vocabulary import ACTIONS
 from ..data.demos import UNTRUSTED, Demo, expand_files, load_demos
-from ..errors import BundleError, DataError, L2PError, PluginError, RunFolderError, UnknownActionError
+from ..errors import BundleError, DataError, L2PError, PluginError, UnknownActionError
 from ..judge import RuleJudge
-from ..plugins.bundle import MANIFEST, PROGRESS_FILE, read_manifest, write_progress_bundle
+from ..plugins.bundle import MANIFEST, check_bundle_target, read_manifest, write_progress_bundle
 from ..plugins.registry import action_spec, locate
 from ..progress.config import ModelConfig
 from ..progress.features import QSRConfig
@@ -345,8 +345,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     demo_files = [str(f) for f in expand_files(list(demo_files))]
     name, plugin = training_target(action, out, demo_files)
     out = out if out is not None else Path("runs") / "bundles" / name
-    if (out / MANIFEST).exists() and (out / PROGRESS_FILE).exists() and not force:
-        raise RunFolderError(f"{out} already holds a bundle; pass --force to overwrite it")
+    check_bundle_target(out, name, force)  # someone's folder, another action's bundle, unwritable: before training
     cfg = cfg or ProgressTrainConfig()
     fcfg = feedback_cfg or FeedbackConfig()
     items, n_skipped = _feedback_items(name, feedback, log)

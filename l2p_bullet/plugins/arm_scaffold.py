@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
+from ..core.runfolder import check_writable
 from ..embodiment import arm_guess, arm_plugins
 from ..embodiment.sim.arms import portable_path
 from ..errors import PluginError
@@ -46,9 +47,17 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     module = "l2p_arm_" + name.replace("-", "_")
     dist = "l2p-arm-" + name
     root = Path(out) if out is not None else Path(dist)
-    if root.exists():
+    if root.exists() or root.is_symlink():
         raise PluginError(f"{root} already exists; choose another --out (new-arm never overwrites)")
-    spec = arm_guess.guess(name, urdf, tool_link=tool_link, fingers=fingers)
+    check_writable(root, "--out", PluginError)
+    check_urdf(urdf)
+    try:
+        spec = arm_guess.guess(name, urdf, tool_link=tool_link, fingers=fingers)
+    except Exception as e:  # pybullet.error (imported only in embodiment/sim/): XML it still cannot load
+        if type(e).__module__ != "pybullet":
+            raise
+        raise PluginError(f"{urdf}: pybullet cannot load this URDF ({e}); its own message, printed above, "
+                          "says why") from None
     pkg = root / module
     pkg.mkdir(parents=True)
     texts = {
@@ -62,6 +71,28 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     for path, text in texts.items():
         path.write_text(text, encoding="utf-8")
     return ArmScaffold(root, module, dist, spec, sorted(texts))
+
+
+MAX_URDF_BYTES = 64 * 2**20
+
+
+def check_urdf(urdf: str) -> None:
+    """A one-line ``PluginError`` for a file that is not a URDF (not XML, or its root is not ``<robot>``),
+    said before pybullet tries it: pybullet only prints "Cannot load URDF file" and raises its own error."""
+    import xml.etree.ElementTree as ET
+
+    if not urdf.lower().endswith(".urdf") or not os.path.isfile(urdf):
+        return  # arm_guess.guess says what is wrong with the name or a missing file
+    try:
+        if os.path.getsize(urdf) > MAX_URDF_BYTES:
+            raise PluginError(f"{urdf} is larger than {MAX_URDF_BYTES >> 20} MiB: not a URDF new-arm reads")
+        root = ET.parse(urdf).getroot()
+    except ET.ParseError as e:
+        raise PluginError(f"{urdf} is not a URDF: it is not valid XML ({e})") from None
+    except OSError as e:
+        raise PluginError(f"cannot read {urdf}: {e.strerror or e}") from None
+    if root.tag != "robot":
+        raise PluginError(f"{urdf} is not a URDF: its root element is <{root.tag}>, not <robot>")
 
 
 def _urdf_expr(path: str) -> str:

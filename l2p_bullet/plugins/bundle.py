@@ -29,8 +29,9 @@ from safetensors.numpy import load, save
 from .. import __version__
 from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
-from ..core.vocabulary import ACTIONS, canonical_action
-from ..errors import BundleError
+from ..core.runfolder import check_writable
+from ..core.vocabulary import ACTIONS, canonical_action, normalize_name
+from ..errors import BundleError, RunFolderError
 from ..progress.config import ModelConfig
 from ..progress.features import feature_names
 from ..progress.model import NumpyProgressModel
@@ -340,6 +341,33 @@ def write_progress_bundle(out_dir: str | os.PathLike, action: str, arrays: dict[
     _write_manifest(folder, man)
     write_weights(folder, PROGRESS_FILE, arrays)
     return folder
+
+
+def check_bundle_target(out: Path, name: str, force: bool) -> None:
+    """Where ``l2p-bullet train`` may write ``name``'s bundle: a new or empty folder, or a folder whose
+    manifest.toml is a bundle manifest of ``name`` (a scaffolded plugin's template, or a bundle trained
+    before: replaced only with ``force``). Anything else is someone's folder (notes, a run folder, another
+    project's manifest.toml): refused even with ``force``, before training, so nothing of theirs is touched."""
+    if out.is_symlink() or (out.exists() and not out.is_dir()):
+        raise RunFolderError(f"{out} is not a folder (or is a symbolic link); choose another --out")
+    check_writable(out)
+    entries = sorted(p.name for p in out.iterdir()) if out.is_dir() else []
+    if not entries:
+        return
+    try:
+        man: dict | None = read_manifest(out)
+    except BundleError:
+        man = None
+    if not (man and man.get("schema") == SCHEMA and isinstance(man.get("name"), str) and "phrases" in man):
+        shown = ", ".join(entries[:3]) + (" ..." if len(entries) > 3 else "")
+        raise RunFolderError(f"{out} already exists and holds files that are not an action bundle's ({shown}); "
+                             "choose another --out (--force only replaces a bundle l2p-bullet wrote)")
+    if normalize_name(str(man["name"])) != normalize_name(name):
+        raise RunFolderError(f'{out} holds the bundle of the action "{man["name"]}", not of "{name}"; '
+                             "choose another --out")
+    if (out / PROGRESS_FILE).exists() and not force:
+        raise RunFolderError(f"{out} already holds a trained bundle of {name}; pass --force to replace its "
+                             "manifest and progress weights (its other files are kept)")
 
 
 def builtin_bundle_dir(action: str) -> Path:

@@ -11,12 +11,14 @@ installation. Everything is plain text written from templates: no network, no bu
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
 from ..core.frames import parse_anchors, parse_frame
-from ..core.vocabulary import PLUGIN_ACTION, normalize_phrase
+from ..core.runfolder import check_writable
+from ..core.vocabulary import PLUGIN_ACTION, normalize_name, normalize_phrase
 from ..errors import BundleError, PluginError, UnknownActionError
 from ..judge.rules import RULES, TWO_ANCHOR_RULES
 
@@ -69,11 +71,14 @@ def check_name(name: str) -> str:
 
 def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
              installed: dict[str, str] | None = None, description: str = "", frame: str = "relative",
-             anchors: int = 1, judge: str | None = None, kind: str = "action") -> Scaffold:
+             anchors: int = 1, judge: str | None = None, kind: str = "action",
+             installed_names: Iterable[str] = ()) -> Scaffold:
     """Write the plugin project for action ``name`` (claiming ``phrases``) into ``out``.
 
     ``installed`` maps phrases already claimed to their action: a new plugin that reuses one would make
     every sentence ambiguous once installed, so that is refused here rather than after ``pip install``.
+    ``installed_names`` are the installed actions' names (built-in and plugins): a plugin named like one
+    would be refused as a conflict once installed, so the name is refused here too.
     ``frame`` and ``anchors`` are the manifest's declarations (:mod:`l2p_bullet.core.frames`), ``judge``
     the name of a rule judge (``judge/rules.py``) for its ``[judge]`` section (default: none, the action's
     own progress model judges). ``kind`` "composite" makes a composite action's plugin (a phrase over a
@@ -83,6 +88,9 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     if kind not in ("action", "composite"):
         raise PluginError(f'the kind of a plugin is "action" or "composite" (got {kind!r})')
     check_name(name)
+    if name in {normalize_name(n) for n in installed_names}:
+        raise PluginError(f'an action named "{name}" is already installed (l2p-bullet actions lists them); '
+                          "choose another name for the new action")
     try:
         frame, anchors = parse_frame(frame).name, parse_anchors(anchors)
     except BundleError as e:
@@ -108,8 +116,9 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     module = "l2p_" + name.replace("-", "_")
     dist_name = "l2p-" + name
     root = Path(out) if out is not None else Path(dist_name)
-    if root.exists():
+    if root.exists() or root.is_symlink():
         raise PluginError(f"{root} already exists; choose another --out (new-action never overwrites)")
+    check_writable(root, "--out", PluginError)
     pkg = root / module
     pkg.mkdir(parents=True)
     (root / "demos").mkdir()

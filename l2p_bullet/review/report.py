@@ -287,6 +287,73 @@ def _public(rep: dict) -> dict:
     return strip(rep)
 
 
+REPORT_FILES: tuple[str, ...] = ("report.md", "report.json", "table1_original.csv", "table1_app.csv", "confusion.csv",
+                                 "table1.png", "agreement.png", "confusion.png", "views.png")
+"""What :func:`write_grade_report` writes: recorded in the report folder's marker, so that ``--force``
+recognises them (and only them) later."""
+SQLITE_SUFFIXES = (".sqlite", ".db", ".sqlite3")
+NEEDED_COLUMNS = ("action", "mode", "grade")
+"""Columns without which a file is not a grades export (``l2p-bullet review --export`` writes them all)."""
+
+
+def read_report_grades(path: Path) -> list[GradeRow]:
+    """The answers ``l2p-bullet report`` tabulates, refusing (one line, ``ReviewError``) a file that is not a
+    review database or grades export, and one with no answers: a report of 0 answers, or of a CSV of
+    something else read with every column defaulted, would be nonsense printed with exit status 0."""
+    from .store import load_grades
+
+    try:
+        head = path.read_bytes()[:16]
+    except OSError as e:
+        raise ReviewError(f"cannot read grades from {path}: {e.strerror or e}") from None
+    sqlite = head.startswith(b"SQLite format 3")
+    if not sqlite and path.suffix.lower() in SQLITE_SUFFIXES:
+        raise ReviewError(f"{path} is not a review database SQLite can open (file is not a database)")
+    if not sqlite:
+        _check_export(path)
+    rows = load_grades(path)
+    if not rows:
+        raise ReviewError(f"{path} holds no answers: grade runs with l2p-bullet review RUNS, or import the original "
+                          "study with l2p-bullet review --import-original")
+    return rows
+
+
+def _check_export(path: Path) -> None:
+    """A grades export (.csv with a header row, else JSON lines) names the columns that reviews have."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise ReviewError(f"{path} is not a grades export ({e})") from None
+    if path.suffix.lower() == ".csv":
+        header = next(csv.reader(text.splitlines()[:1]), [])
+        records = [dict.fromkeys(header)] if header else []
+    else:
+        try:
+            records = [json.loads(line) for line in text.splitlines() if line.strip()]
+        except ValueError as e:
+            raise ReviewError(f"{path} is not a grades export (not JSON lines: {e})") from None
+    if not records:
+        raise ReviewError(f"{path} holds no answers (an empty file): export the grades with l2p-bullet review --export")
+    for r in records:
+        missing = [c for c in NEEDED_COLUMNS if not isinstance(r, dict) or c not in r]
+        if missing:
+            raise ReviewError(f"{path} is not a grades export: no {', '.join(missing)} "
+                              f"{'column' if len(missing) == 1 else 'columns'} (l2p-bullet review --export writes "
+                              "them; see docs/review.md)")
+
+
+def claim_report_folder(folder: Path, db: Path):
+    """Lock ``folder`` for a report (:func:`~l2p_bullet.core.runfolder.claim_run_folder`, its rules): a new or
+    empty folder, or one holding an earlier report of this command and nothing else, which is replaced (a
+    report is regenerated after every grading session: asking for ``--force`` each time would only teach
+    people to type it); never a folder with a person's files (their own ``report.md``), a run folder of
+    another command, or one that is or holds the grades file. A report folder from before the marker
+    (2026-11-27) cannot be told from a person's and is refused: choose another ``--out`` or remove it."""
+    from ..core.runfolder import claim_run_folder
+
+    return claim_run_folder(folder, force=True, command="report", files=REPORT_FILES, inputs=(db,))
+
+
 def write_grade_report(rep: dict, folder: Path) -> list[Path]:
     """report.md, report.json, table CSVs and PNG plots into ``folder``; returns the files written."""
 

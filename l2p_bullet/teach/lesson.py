@@ -35,6 +35,7 @@ import numpy as np
 from ..core.frames import VIEWPOINTS, Frame, declaration
 from ..core.geometry import polygons_overlap
 from ..core.scene import COLORS, Scene, random_between_scene, random_scene
+from ..core.vocabulary import ACTIONS, normalize_name
 from ..data.demos import DEMO_BLOCK_SIZE, load_session, save_session
 from ..errors import L2PError, TeachError
 from ..pipeline import perform
@@ -88,6 +89,10 @@ def find_action(name: str, root: str | Path | None = None, demos: str | Path | N
     root = Path(root) if root is not None else Path(f"l2p-{name}")
     bundle_dir = root / f"l2p_{name.replace('-', '_')}"
     if not (bundle_dir / MANIFEST).is_file():
+        if normalize_name(name) in ACTIONS:  # new-action refuses an installed action's name
+            raise TeachError(f'"{name}" is a built-in action, taught from the shipped demonstrations; teach a new '
+                             f'one under a name of its own, e.g. l2p-bullet new-action my-{name} --phrase "..." '
+                             "(see docs/perform.md), then l2p-bullet teach my-" + name)
         raise TeachError(f"{bundle_dir / MANIFEST} does not exist: create the plugin first, e.g. "
                          f'l2p-bullet new-action {name} --phrase "..." (see docs/perform.md), or give --plugin DIR')
     try:
