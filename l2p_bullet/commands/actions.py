@@ -100,8 +100,8 @@ def actions_cmd(as_json: bool, check: bool) -> None:
         click.echo(f"conflict: {msg}", err=True)
     if check:  # a check ends with its verdict, either way (issue 26)
         n = len(rows)
-        click.echo(f"all {n} plugins OK (each loaded as perform would)" if not failed else
-                   f"{len(reasons)} of {n} plugins broken, {len(problems)} conflicts")
+        click.echo(f"all {n} action plugins OK (each loaded as perform would)" if not failed else
+                   f"{len(reasons)} of {n} action plugins broken, {len(problems)} conflicts")
     if failed:
         sys.exit(1)
 

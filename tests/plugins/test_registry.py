@@ -136,12 +136,12 @@ def test_actions_check_loads_each_plugin(plugins_dir):
 
 
 def test_actions_check_ends_with_all_ok():
-    """With only the built-ins (the project's own environment), --check ends "all N plugins OK"."""
+    """With only the built-ins (the project's own environment), --check ends "all N action plugins OK" (N counts the actions, not the composites listed under them)."""
     from l2p_bullet.plugins import registry as reg
 
     r = CliRunner().invoke(main, ["actions", "--check"])
     n = len(reg.discover())
-    assert r.exit_code == 0 and r.stdout.strip().splitlines()[-1].startswith(f"all {n} plugins OK"), r.output
+    assert r.exit_code == 0 and r.stdout.strip().splitlines()[-1].startswith(f"all {n} action plugins OK"), r.output
 
 
 def test_new_action_scaffold_never_overwrites(tmp_path):
