@@ -2,20 +2,24 @@
 #   make demo   installs into .venv and performs "move A around B" on the default scene
 #   make demo-row  the same for "make a row of A, B, C and D" (a composite taught by demonstration)
 #   make test   installs into .venv and runs the whole test suite
-# torch is pinned to the 2.13.0 CPU build and installed first, so nothing pulls a CUDA build.
+# torch is pinned to 2.13.0 and installed first, so nothing pulls another build. Where pip resolves torch from
+# plain PyPI on Linux x86_64 (whose default wheel is the CUDA build, several GB), name PyTorch's CPU index:
+#   make install TORCH_INDEX=https://download.pytorch.org/whl/cpu
+# (empty by default: the machines this project is built on get the CPU wheel from their pip configuration).
 # --no-cache-dir: the environment is 2.5 GB installed; pip's wheel cache would hold another copy of the wheels
 # (a CI run ran out of disk during the install).
 PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 TORCH := torch==2.13.0
+TORCH_INDEX ?=
 
 .PHONY: install demo demo-row test lint bench clean
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --no-cache-dir --upgrade pip
-	$(PY) -m pip install --quiet --no-cache-dir $(TORCH)
+	$(PY) -m pip install --quiet --no-cache-dir $(TORCH) $(if $(TORCH_INDEX),--index-url $(TORCH_INDEX))
 	$(PY) -m pip install --quiet --no-cache-dir -e '.[test,ray,export,rerun]'  # the extras' tests (evaluate --ray local, export) run in CI
 	touch $@
 
@@ -31,7 +35,7 @@ test: install
 	$(VENV)/bin/ruff check l2p_bullet tests benchmarks
 	$(PY) -m pytest -q
 
-bench: install
+bench: install  # every benchmark at its default size: hours on 2 cores (README, "Benchmarks")
 	for b in benchmarks/bench_*.py; do $(PY) $$b || exit 1; done
 
 clean:
