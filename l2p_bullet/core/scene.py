@@ -263,6 +263,13 @@ class Scene:
             where = f"{source}: object {i}"
             if not isinstance(raw, dict):
                 raise SceneError(f"{where} must be a JSON object")
+            unknown = [k for k in raw if k not in OBJECT_FIELDS]
+            if unknown:  # a misspelt "yaw" would otherwise put the block at yaw 0 without a word
+                name = raw.get("name")
+                who = f" ({name[:MAX_NAME]})" if isinstance(name, str) else ""
+                key = str(unknown[0])[:MAX_NAME]
+                raise SceneError(f'{where}{who}: unknown field "{key}" (known: {", ".join(OBJECT_FIELDS)}).'
+                                 + did_you_mean(key, list(OBJECT_FIELDS)))
             for key in ("name", "color", "size", "xy") if raw.get("shape", "cube") == "cube" else ("name", "color", "xy"):
                 if key not in raw:
                     raise SceneError(f'{where} is missing the field "{key}"')
@@ -302,6 +309,9 @@ def shaped(name: str, color: str, xy: tuple[float, float], yaw: float = 0.0, *, 
     return replace(o, size=o.geometry.size)
 
 
+OBJECT_FIELDS = ("name", "color", "size", "xy", "yaw", "shape", "dims", "radius", "height", "mesh", "scale", "rpy",
+                 "mass", "friction")
+"""Every field a scene file's object may have (docs/DESIGN.md section 4, core/shapes.py); any other is refused."""
 MAX_OBJECTS = 100
 """Most objects a scene file may hold (the workspace fits far fewer blocks; validation is quadratic)."""
 MAX_NAME = 64

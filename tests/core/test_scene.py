@@ -99,3 +99,21 @@ def test_a_cubes_footprint_is_the_outline_of_its_mesh():
     pts = np.unique(np.round(mesh.vertices[:, :2], 9), axis=0)
     order = np.argsort(np.arctan2(pts[:, 1], pts[:, 0]))
     assert np.allclose(SceneObject("A", "red", 0.05, (0.0, 0.0)).footprint(), pts[order])
+
+
+def test_an_unknown_object_field_is_refused_with_a_suggestion():
+    """A misspelt "yaw" used to be ignored, leaving the block at yaw 0 without a word (CLI audit, 2026-11-27)."""
+    from l2p_bullet.core.scene import OBJECT_FIELDS, Scene, default_scene
+
+    doc = default_scene().to_dict()
+    doc["objects"][0]["yaww"] = 0.3
+    with pytest.raises(SceneError, match=r'object 0 \(A\): unknown field "yaww" .*Did you mean "yaw"'):
+        Scene.from_dict(doc)
+    from pathlib import Path
+
+    from l2p_bullet.core.scene import load_scene
+
+    shaped = load_scene(Path(__file__).resolve().parents[2] / "examples" / "objects" / "objects.json")
+    for scene in (default_scene(), shaped):  # what the project writes (boxes, cylinders, meshes) it reads back
+        assert all(k in OBJECT_FIELDS for o in scene.to_dict()["objects"] for k in o)
+        assert Scene.from_dict(scene.to_dict()).to_dict() == scene.to_dict()
