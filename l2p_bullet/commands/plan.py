@@ -34,17 +34,23 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     """
     from ..chain import is_chain
     from ..core.contracts import dumps_json
+    from ..errors import L2PError
     from ..pipeline import plan_sentence
+    from .perform import error_json
 
-    if is_chain(sentence):  # "move A next to B, then ...": every clause planned from the predicted state
-        from ..chain.plan import plan_chain
+    try:
+        if is_chain(sentence):  # "move A next to B, then ...": every clause planned from the predicted state
+            from ..chain.plan import plan_chain
 
-        chained = plan_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
-                             budget=budget, threshold=threshold, force=force, plot=not no_plot, arm=arm)
-        click.echo(dumps_json(chained.to_dict()))
-        return
-    result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
-                  budget=budget, threshold=threshold, force=force, plot=not no_plot, arm=arm)
+            chained = plan_chain(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner,
+                                 seed=seed, budget=budget, threshold=threshold, force=force, plot=not no_plot, arm=arm)
+            return _say_chain(chained, as_json)
+        result = plan_sentence(sentence, load_scene_or_default(scene_path), out_dir=out, planner=planner, seed=seed,
+                               budget=budget, threshold=threshold, force=force, plot=not no_plot, arm=arm)
+    except L2PError as e:
+        if as_json:  # as perform --json: scripts read why on stdout; the one-line error still goes to stderr
+            click.echo(dumps_json(error_json(sentence, e), indent=1))
+        raise
     if as_json:
         click.echo(dumps_json(result.to_dict()))
         return
@@ -56,6 +62,22 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
                f"(stopped: {d['stopped']}), {d['seconds']:.2f} s")
     plot = result.out_dir / "plan.png"
     click.echo(f"plan folder: {result.out_dir}" + (f"\nplot: {plot}" if plot.exists() else " (no plot: --no-plot)"))
+
+
+def _say_chain(chained, as_json: bool) -> None:
+    """A chain's plan: JSON with ``--json``, else a line per clause in perform's style (it printed JSON always)."""
+    from ..core.contracts import dumps_json
+
+    d = chained.to_dict()
+    if as_json:
+        click.echo(dumps_json(d))
+        return
+    for c in d["clauses"]:
+        fp = "n/a" if c["final_progress"] is None else f"{c['final_progress']:.2f}"
+        click.echo(f'{c["clause"]}. {c["text"]}: "{c["action"]}", {"success" if c["success"] else "FAILED"} on the '
+                   f'plan ({c["reason"]}), final progress {fp}, {c["steps"]} steps of the {c["planner"]} planner')
+    click.echo(f'chain: {"success" if d["success"] else "FAILED"} on the plan, {len(d["clauses"])} clauses')
+    click.echo(f"plan folder: {d['out']}")
 
 
 COMMANDS: list[click.Command] = [plan_command]

@@ -202,12 +202,17 @@ def test_replay_of_a_chain_plan_replays_every_clause(chain_runs, tmp_path):
 def test_plan_writes_every_clause(tmp_path):
     out = tmp_path / "plan"
     r = CliRunner().invoke(main, ["plan", "move A next to B; then slide C past A", "--out", str(out), "--seed", "1",
-                                  "--scene", _save(four_blocks(), tmp_path)])
+                                  "--scene", _save(four_blocks(), tmp_path), "--json"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.output)
     assert d["chain"] and [c["action"] for c in d["clauses"]] == ["next-to", "past"]
     doc = json.loads((out / "plan.json").read_text())
     assert doc["mover"] == "A" and doc["clauses"][1]["forecast"]["mover"] == "C"
+    text = CliRunner().invoke(main, ["plan", "move A next to B; then slide C past A", "--out", str(out), "--seed", "1",
+                                     "--scene", _save(four_blocks(), tmp_path), "--force"])  # without --json: text
+    lines = text.output.strip().splitlines()
+    assert text.exit_code == 0 and lines[0].startswith('1. move A next to B: "next-to"'), text.output
+    assert lines[-1] == f"plan folder: {out}"
     assert doc["clauses"][1]["forecast"]["anchor_pose"][:2] == pytest.approx(doc["path"][-1][:2], abs=1e-6)
     assert (out / "plan.png").is_file() and (out / "plan-2.png").is_file()
 

@@ -92,3 +92,11 @@ def test_budget_and_threshold_reach_the_planner(fake_actions, tmp_path):
     assert plan["stopped"] == "budget" and plan["steps"] == 2 and plan["threshold"] == 0.999
     bad = CliRunner().invoke(main, ["plan", "move A around B", "--threshold", "2"])
     assert bad.exit_code == 2 and "threshold" in bad.output
+
+
+def test_plan_json_says_why_it_failed_as_json(tmp_path):
+    """As perform --json: a script reads the failure on stdout (exit 2; the one-line error on stderr)."""
+    r = CliRunner().invoke(main, ["plan", "move Z past A", "--json", "--out", str(tmp_path / "p")])
+    assert r.exit_code == 2
+    d = json.loads(r.stdout[: r.stdout.rindex("}") + 1])
+    assert d["ok"] is False and d["error_type"] == "UnknownObjectError" and not (tmp_path / "p").exists()
