@@ -109,3 +109,18 @@ def render_settings(resolution: str, fps: float, camera: str, renderer: str, vid
 
     width, height = parse_resolution(resolution)
     return RenderSettings(width, height, check_fps(fps), renderer, video, parse_camera(camera)).check()
+
+
+def file_of_run_folder(path: str, name: str) -> str:
+    """A run folder given where a file is expected stands for its ``name`` (``score`` reads trajectory.json,
+    ``replay`` plan.json), as ``recognize`` takes a run folder; a folder without it is a one-line error."""
+    from pathlib import Path
+
+    from ..errors import PathError
+
+    p = Path(path)
+    if not p.is_dir():
+        return path
+    if not (p / name).is_file():
+        raise PathError(f"{p} is a folder without {name}: give a run folder or the file itself")
+    return str(p / name)

@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from .common import force_option, greedy_options, seed_option
+from .common import file_of_run_folder, force_option, greedy_options, seed_option
 
 
 @click.command(cls=greedy_options("--demos"))
@@ -168,16 +168,17 @@ def improve(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[s
 
 @click.command()
 @click.argument("action")
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 def score(action: str, file: str) -> None:
     """Score a motion FILE with ACTION's progress model and print JSON.
 
-    FILE is a scoring input {"size", "mover", "anchor"}, a plan.json or a trajectory.json. The motion
-    is resampled to the model's frame spacing; the output has one progress value per input frame.
+    FILE is a scoring input {"size", "mover", "anchor"}, a plan.json, a trajectory.json or a run folder
+    (its trajectory.json). The motion is resampled to the model's frame spacing; the output has one
+    progress value per input frame.
     """
     from ..core.contracts import dumps_json
 
-    click.echo(dumps_json(score_file(action, file)))
+    click.echo(dumps_json(score_file(action, file_of_run_folder(file, "trajectory.json"))))
 
 
 def score_file(action: str, path: str | Path) -> dict[str, Any]:

@@ -8,6 +8,7 @@ import click
 
 from .common import (
     arm_option,
+    file_of_run_folder,
     force_option,
     load_scene_or_default,
     mesh_dirs,
@@ -19,7 +20,7 @@ from .common import (
 
 
 @click.command()
-@click.argument("path_json", required=False, type=click.Path(dir_okay=False))
+@click.argument("path_json", required=False, type=click.Path())
 @click.option("--demo", metavar="ACTION:INDEX", help="Replay a shipped human demonstration, e.g. around:0.")
 @scene_option
 @click.option("--out", type=click.Path(file_okay=False), default=None,
@@ -42,8 +43,8 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
 
     \b
     PATH_JSON is a scoring input {"size", "mover", "anchor"} (placed relative to the scene's anchor,
-    scaled to its block size) or a plan.json (in the scene frame, replayed on the scene it records;
-    --scene must then be that scene). --demo ACTION:INDEX replays a real human demonstration the same way.
+    scaled to its block size), a plan.json (in the scene frame, replayed on the scene it records;
+    --scene must then be that scene) or a run folder (its plan.json). --demo ACTION:INDEX replays a real human demonstration the same way.
 
     \b
     Examples:
@@ -57,6 +58,8 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
 
     if (path_json is None) == (demo is None):
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")
+    if path_json is not None:
+        path_json = file_of_run_folder(path_json, "plan.json")
     if width is not None or height is not None:  # the spelling before --resolution still works
         from ..embodiment.sim.camera import parse_resolution
 

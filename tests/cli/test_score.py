@@ -69,6 +69,12 @@ def test_score_reads_trajectory_json(tmp_path):
     res = CliRunner().invoke(main, ["score", "around", str(p)])
     assert res.exit_code == 0, res.output
     assert len(json.loads(res.output)["progress"]) == 40
+    folder = CliRunner().invoke(main, ["score", "around", str(tmp_path)])  # a run folder: its trajectory.json
+    assert folder.exit_code == 0 and json.loads(folder.output) == json.loads(res.output), folder.output
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    res = CliRunner().invoke(main, ["score", "around", str(empty)])
+    assert res.exit_code == 2 and "is a folder without trajectory.json" in res.output
 
 
 def test_score_errors_are_one_line(tmp_path):

@@ -141,6 +141,9 @@ def test_a_plan_replays_on_the_scene_it_records(tmp_path):
     traj = json.loads((out / "trajectory.json").read_text())
     assert "C" in traj["frames"][0]["poses"]  # replayed with the plan's third block
     assert json.loads((out / "plan.json").read_text())["scene_sha256"] == scene.digest()
+    r = _replay(str(tmp_path / "p"), "--no-render", "--out", str(tmp_path / "r-folder"))  # a run folder: its plan
+    assert r.exit_code == 0, r.output
+    assert json.loads((tmp_path / "r-folder" / "trajectory.json").read_text())["frames"][-1] == traj["frames"][-1]
     # another --scene: refused in one line, before any folder is made
     save_scene(default_scene(), tmp_path / "default.json")
     r = _replay(str(tmp_path / "p" / "plan.json"), "--no-render", "--scene", str(tmp_path / "default.json"),
