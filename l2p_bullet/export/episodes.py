@@ -45,7 +45,8 @@ class Episode:
 
 def run_folders(paths: list[str | Path]) -> list[Path]:
     """Run folders (holding trajectory.json) among ``paths``: a run folder itself, or any folder below
-    which run folders lie (an evaluation's folder, ``runs/``), sorted."""
+    which run folders lie (an evaluation's folder, ``runs/``), sorted; a folder named twice (or found again
+    under another one named) is exported once."""
     out: list[Path] = []
     for p in map(Path, paths):
         if (p / "trajectory.json").is_file():
@@ -57,7 +58,8 @@ def run_folders(paths: list[str | Path]) -> list[Path]:
             out += found
         else:
             raise PathError(f"{p} is not a run folder")
-    return out
+    seen: set[Path] = set()
+    return [p for p in out if not (p.resolve() in seen or seen.add(p.resolve()))]
 
 
 def episode_from_run(run: str | Path) -> Episode:

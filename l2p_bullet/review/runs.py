@@ -117,6 +117,9 @@ def find_runs(paths: list[str | Path]) -> list[RunInfo]:
             raise ReviewError(f"{p} does not exist")
         if (p / "trajectory.json").is_file():
             found = [p]
+        elif not p.is_dir():
+            raise ReviewError(f"{p} is a file, not a run folder (a run folder holds a trajectory.json: give the "
+                              "folder, or a folder of run folders)")
         else:
             found = sorted({t.parent for t in p.rglob("trajectory.json")
                             if not any(part.startswith(".") for part in t.relative_to(p).parts)})

@@ -119,7 +119,7 @@ def test_egl_that_cannot_start_falls_back_to_tiny_with_a_note(monkeypatch, capsy
 def test_video_options_are_checked():
     assert parse_resolution("640x480") == (640, 480) and parse_resolution(" 320 X 240 ") == (320, 240)
     for bad, msg in (("640", "WIDTHxHEIGHT"), ("641x480", "multiple of 8"), ("8x8", "from 32"),
-                     ("99999x480", "from 32 to 3840")):
+                     ("99999x480", "from 32 to 3840"), ("100000x100000", "from 32 to 3840")):
         with pytest.raises(ExecutionError, match=msg):
             parse_resolution(bad)
     assert parse_camera("Top") is CAMERAS["top"]

@@ -82,6 +82,9 @@ def test_cli_exports_plain_json_by_default_and_lerobot_without_video(runs, tmp_p
     assert r.exit_code == 0, r.output
     line = json.loads((tmp_path / "plain" / "episodes.jsonl").read_text().splitlines()[0])
     assert line["task"] == "move A closer to B" and len(line["frames"]) > 10
+    twice = CliRunner().invoke(main, ["export", str(runs[0]), str(runs[0]) + "/", str(runs[0].parent),
+                                      str(tmp_path / "once")])  # named twice, and found again under its parent
+    assert twice.exit_code == 0 and json.loads(twice.stdout)["episodes"] == 2, twice.output
     r = CliRunner().invoke(main, ["export", str(runs[0].parent), "--format", "lerobot", "--no-video",
                                   str(tmp_path / "lr")])
     assert r.exit_code == 0, r.output

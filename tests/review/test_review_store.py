@@ -68,6 +68,8 @@ def test_a_foreign_sqlite_file_or_a_folder_is_refused(tmp_path):
         Store(tmp_path)
     with pytest.raises(ReviewError):
         Store(tmp_path / "missing-folder" / "r.sqlite")
+    with pytest.raises(ReviewError, match="is a file, not a run folder"):  # review SCENE.json by mistake
+        find_runs([other])
 
 
 def test_answers_are_never_overwritten_silently(tmp_path, run_folder):  # noqa: F811

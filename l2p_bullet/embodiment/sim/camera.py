@@ -107,7 +107,7 @@ def check_resolution(width: object, height: object) -> tuple[int, int]:
 
 def parse_resolution(text: str) -> tuple[int, int]:
     """``"640x480"`` -> (640, 480); ExecutionError with the expected form otherwise."""
-    m = re.fullmatch(r"\s*(\d{1,5})\s*[xX*]\s*(\d{1,5})\s*", str(text))
+    m = re.fullmatch(r"\s*(\d{1,9})\s*[xX*]\s*(\d{1,9})\s*", str(text))  # the range: check_resolution
     if not m:
         raise ExecutionError(f'a resolution is WIDTHxHEIGHT in pixels, e.g. 640x480 (got "{str(text)[:40]}")')
     return check_resolution(int(m.group(1)), int(m.group(2)))
