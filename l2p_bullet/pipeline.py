@@ -26,6 +26,7 @@ evaluation worker (``evaluate/worker.py``) share.
 from __future__ import annotations
 
 import json
+import numbers
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,7 +42,7 @@ from .core.timing import StageClock
 from .embodiment import arm_plugins
 from .embodiment.manners import check_manner, manner_planning
 from .embodiment.sim.arms import PANDA, ArmSpec
-from .errors import L2PError, LanguageError, PlanError, PluginError
+from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
 from .language import Command, parse
@@ -170,7 +171,7 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     clock = clock or StageClock()
     clock.stage("parse")
     check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
-    scene.validate()
+    check_scene(scene)
     arm = arm_plugins.get(arm)
     scene = arm_plugins.fit_scene(scene, arm)
     plugins = registry.discover() if plugins is None else plugins
@@ -227,6 +228,8 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins,
                 bundle=bundle, clock=clock, arm=arm)
     cmd = p.command
+    if render:  # bad settings fail here, before the run folder exists (they were found only at execute)
+        check_render_settings(render_settings)
     with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
         try:
             return _run(p, out, clock, planner=planner, seed=seed, render=render, budget=budget,
@@ -247,14 +250,39 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
 
 
 def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
-    """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched."""
+    """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched.
+    numpy's integers and floats count as numbers (a seed drawn from a generator is an ``np.int64``)."""
     resolve_planner(planner)
-    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed <= MAX_SEED:
+    if not _integer(seed) or not 0 <= seed <= MAX_SEED:
         raise PlanError(f"the seed must be an integer from 0 to {MAX_SEED} (got {str(seed)[:20]})")
-    if budget is not None and (isinstance(budget, bool) or not isinstance(budget, int) or budget < 1):
+    if budget is not None and (not _integer(budget) or budget < 1):
         raise PlanError(f"the budget must be a positive number of search steps (got {str(budget)[:20]})")
-    if threshold is not None and not (isinstance(threshold, int | float) and 0.0 <= threshold <= 1.0):
+    if threshold is not None and not (isinstance(threshold, numbers.Real) and not isinstance(threshold, bool)
+                                      and 0.0 <= threshold <= 1.0):
         raise PlanError(f"the threshold must be a progress between 0 and 1 (got {str(threshold)[:20]})")
+
+
+def check_scene(scene: object) -> Scene:
+    """``scene`` as the front door takes it: a :class:`Scene` (``core.scene.load_scene`` reads a file), checked."""
+    if not isinstance(scene, Scene):
+        raise SceneError(f"the scene must be a l2p_bullet.core.scene.Scene (got {type(scene).__name__}); read a "
+                         "scene file with load_scene(path), or build one with Scene.from_dict(...)")
+    return scene.validate()
+
+
+def check_render_settings(settings: object) -> None:
+    """None (the defaults) or valid :class:`~l2p_bullet.embodiment.sim.camera.RenderSettings`."""
+    from .embodiment.sim.camera import RenderSettings
+
+    if settings is None:
+        return
+    if not isinstance(settings, RenderSettings):
+        raise ExecutionError(f"render_settings must be a RenderSettings (got {type(settings).__name__})")
+    settings.check()
+
+
+def _integer(v: object) -> bool:
+    return isinstance(v, numbers.Integral) and not isinstance(v, bool)
 
 
 def _summary_or_empty(path: Path) -> dict:

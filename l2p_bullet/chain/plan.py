@@ -14,7 +14,7 @@ from typing import Any
 from ..core.contracts import dumps_json
 from ..core.runfolder import run_folder
 from ..core.scene import Scene
-from ..pipeline import check_options
+from ..pipeline import check_options, check_scene
 from ..plugins import registry
 from .clauses import resolve_clauses
 from .forecast import Step, forecast
@@ -49,7 +49,7 @@ def plan_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None
     from ..embodiment import arm_plugins
 
     check_options(planner, seed, budget, threshold)
-    scene.validate()
+    check_scene(scene)
     spec = arm_plugins.get(arm)
     scene = arm_plugins.fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins

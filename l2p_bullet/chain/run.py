@@ -36,7 +36,7 @@ from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
-from ..pipeline import check_feasible, check_options, disturbance_verdict
+from ..pipeline import check_feasible, check_options, check_render_settings, check_scene, disturbance_verdict
 from ..plugins import registry
 from ..progress.scoring import curve_from
 from .clauses import Clause, resolve_clauses
@@ -149,7 +149,9 @@ def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
     clock = StageClock(on_stage)
     clock.stage("parse")
     check_options(planner, seed, budget, threshold)
-    scene.validate()
+    check_scene(scene)
+    if render:
+        check_render_settings(render_settings)
     plugins = registry.discover() if plugins is None else plugins
     arm = arm_plugins.get(arm)  # an unknown arm fails before anything is planned or written
     scene = arm_plugins.fit_scene(scene, arm)

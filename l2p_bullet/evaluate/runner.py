@@ -8,14 +8,16 @@ tasks, so their rows are equal apart from timings.
 
 from __future__ import annotations
 
+import numbers
 import os
 import sys
 import time
 from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 
-from ..errors import EvaluationError
+from ..errors import EvaluationError, PlanError
 from ..manners import registry as manner_registry
+from ..pipeline import check_options
 from ..planning import resolve_planner
 from ..plugins import registry
 from .folder import check_out_folder
@@ -74,8 +76,16 @@ class EvaluationConfig:
         for name, value in (("actions", self.actions), ("manners", self.manners)):
             if not isinstance(value, list) or not all(isinstance(v, str) and v.strip() for v in value):
                 raise EvaluationError(f"--{name} must be a comma-separated list of names (got {value!r})")
+        for name in ("scenes", "bystanders", "seed", "render_every", "budget", "chains"):
+            value = getattr(self, name)
+            if value is not None and (not isinstance(value, numbers.Integral) or isinstance(value, bool)):
+                raise EvaluationError(f"--{name.replace('_', '-')} must be a whole number (got {str(value)[:20]!r})")
         if self.scenes is not None and self.scenes < 0:
             raise EvaluationError(f"--scenes must be 0 or more (got {self.scenes})")
+        try:  # the same checks perform and plan make up front (an error row per task before)
+            check_options(self.planner, self.seed, self.budget, self.threshold)
+        except PlanError as e:
+            raise EvaluationError(str(e)) from None
         if not 0 <= self.bystanders <= len(BYSTANDER_COLORS):
             raise EvaluationError(f"--bystanders must be 0 to {len(BYSTANDER_COLORS)} (got {self.bystanders})")
         last = self.seed + (DEFAULT_SCENES if self.scenes is None else max(self.scenes, 1)) - 1
@@ -166,6 +176,9 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
     KeyboardInterrupt stops the workers and propagates; every row already recorded stays.
     """
     out = Path(out_dir)
+    if config is not None and not isinstance(config, EvaluationConfig):
+        raise EvaluationError(f"the settings must be an EvaluationConfig (got {type(config).__name__}); from a "
+                              "dict: EvaluationConfig.from_dict(d)")
     workers = check_workers(workers, ray)
     if config is not None:
         config.check()

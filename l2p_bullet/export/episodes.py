@@ -144,7 +144,8 @@ def demo_episodes(specs: list[str], render: bool | object = True, plugins: list 
 
     ``render``: True (the default video settings: 640x480 at 15 fps from the viewer camera), False, or a
     ``RenderSettings``."""
-
+    if isinstance(specs, str):  # "past:3" would be read letter by letter ('unknown action "p"')
+        specs = [specs]
     plugins = registry.discover() if plugins is None else plugins
     scene = default_scene()
     settings = RenderSettings() if render is True else (render or None)

@@ -48,7 +48,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..core.vocabulary import canonical_action
-from ..errors import UnknownActionError
+from ..errors import PathError, UnknownActionError
 from .base import Verdict
 from .footprints import WOBBLE, relative, square_gap
 from .rulesets import around, away, between, closer, next_to, past, sides
@@ -90,11 +90,26 @@ def rule_verdict(action: str, mover: np.ndarray, anchor: np.ndarray, size: float
             raise UnknownActionError(action, RULES, "(no rule judge has that name)") from None
     mover = np.asarray(mover, float).reshape(-1, 3)
     anchor_arr = np.asarray(anchor, float).reshape(-1, 3)
+    _check_motion(mover, anchor_arr, size)
     if len(anchor_arr) == 1:
         anchor_arr = np.repeat(anchor_arr, len(mover), axis=0)
     rel, d = relative(mover, anchor_arr, size)
     context = {k: v for k, v in (("anchors", anchors), ("viewer", viewer)) if v is not None}
     return RULES[name](rel, d, mover, anchor_arr, size, **context)
+
+
+def _check_motion(mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
+    """A PathError (one line) for what no rule can read: an empty motion, poses that are not finite, an
+    anchor track of another length, a block side that is not a positive length (an IndexError or a NaN
+    verdict from deep inside before)."""
+    if not len(mover):
+        raise PathError("the motion has no frames: a rule judges at least one pose of the mover")
+    if not len(anchor) or (len(anchor) != 1 and len(anchor) != len(mover)):
+        raise PathError(f"the anchor has {len(anchor)} poses for the mover's {len(mover)}: give one pose, or one per frame")
+    if not (np.isfinite(mover).all() and np.isfinite(anchor).all()):
+        raise PathError("the motion holds a pose that is not a finite number (NaN or infinity)")
+    if isinstance(size, bool) or not isinstance(size, int | float | np.floating) or not 0 < size < np.inf:
+        raise PathError(f"the block side must be a positive length in metres (got {str(size)[:20]})")
 
 
 class RuleJudge:

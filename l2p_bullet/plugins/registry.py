@@ -389,6 +389,8 @@ def locate(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Pat
     p = Path(spec)
     if p.is_dir() and (p / MANIFEST).is_file():
         return str(read_manifest(p).get("name", p.name)), p
+    if p.is_dir() and ("/" in spec or spec.startswith(".")):  # a path, not an action's name
+        raise BundleError(f"{spec} is not a bundle folder (no {MANIFEST} in it)")
     info = find(spec, plugins)
     if info.error is not None or info.path is None:
         raise FailedToLoadPlugin(info.name, info.package, info.error or "its bundle folder cannot be found")

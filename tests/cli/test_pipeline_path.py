@@ -60,3 +60,20 @@ def test_perform_plans_and_judges_its_plan_as_plan_does_and_writes_one_summary(t
     assert summary["execution"]["max_deviation_m"] >= 0 and summary["verdict"] == p.verdict
     assert {"check", "move", "record", "parse", "feasibility", "load", "plan", "execute", "total"} <= set(summary["timings_s"])
     assert summary["files"]["summary"] == "summary.json" and summary["files"]["plan"] == "plan.json"
+
+
+def test_the_python_front_door_checks_its_arguments_before_the_disk(tmp_path):
+    """A library user's mistakes (API audit, 2026-11-27): a scene that is not a Scene, bad render settings, are
+    one-line L2PErrors before any folder exists; a seed drawn from numpy (np.int64) is a seed."""
+    from l2p_bullet.embodiment.sim.camera import RenderSettings
+    from l2p_bullet.errors import ExecutionError, SceneError
+
+    with pytest.raises(SceneError, match="must be a l2p_bullet.core.scene.Scene"):
+        pipeline.plan_sentence("move A past B", default_scene().to_dict(), out_dir=tmp_path / "p")
+    for bad in (RenderSettings(width=-1), "big"):
+        with pytest.raises(ExecutionError):
+            pipeline.perform("move A past B", default_scene(), out_dir=tmp_path / "r", render_settings=bad)
+    assert not (tmp_path / "p").exists() and not (tmp_path / "r").exists()
+    a = pipeline.plan_sentence("move A past B", default_scene(), out_dir=tmp_path / "a", seed=np.int64(3), plot=False)
+    b = pipeline.plan_sentence("move A past B", default_scene(), out_dir=tmp_path / "b", seed=3, plot=False)
+    assert np.array_equal(a.plan.path, b.plan.path)

@@ -118,3 +118,20 @@ def test_resume_refuses_another_mode(tmp_path):
 def test_report_alone_on_a_missing_folder_runs_nothing(tmp_path):
     _refused(_run("evaluate", "--out", "o/typo", "--report"), "nothing to report in o/typo")
     assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("setting, message", [
+    ({"budget": 0}, "budget must be a positive"), ({"threshold": 5}, "threshold must be a progress"),
+    ({"scenes": "2"}, "whole number"), ({"bystanders": 1.5}, "whole number"), ({"planner": "astar"}, "astar"),
+])
+def test_the_python_config_is_checked_before_the_folder_exists(tmp_path, setting, message):
+    """As perform checks them: an error row per task before (API audit, 2026-11-27)."""
+    from l2p_bullet.errors import L2PError
+    from l2p_bullet.evaluate.runner import evaluate
+
+    config = EvaluationConfig(**({"actions": ["around"], "scenes": 1, "mode": "plan"} | setting))
+    with pytest.raises(L2PError, match=message):
+        evaluate(config, tmp_path / "e", workers=0, progressbar=False)
+    with pytest.raises(L2PError, match="EvaluationConfig"):
+        evaluate({"actions": ["around"]}, tmp_path / "e", workers=0, progressbar=False)
+    assert not (tmp_path / "e").exists()

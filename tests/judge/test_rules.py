@@ -96,3 +96,19 @@ def test_agreement_with_people_is_measured_per_action_and_pooled():
     # measured when the rules were written (docs/planning.md): keep them from silently getting worse
     assert r["all"] >= 0.55
     assert all(v >= 0.45 for v in r.values())
+
+
+@pytest.mark.parametrize("mover, anchor, size, message", [
+    (np.zeros((0, 3)), np.zeros(3), 0.05, "no frames"),
+    (np.full((3, 3), np.nan), np.zeros(3), 0.05, "not a finite number"),
+    (np.zeros((3, 3)), np.zeros((2, 3)), 0.05, "2 poses for the mover's 3"),
+    (np.zeros((3, 3)), np.zeros(3), 0.0, "positive length"),
+])
+def test_a_motion_no_rule_can_read_is_a_clear_error(mover, anchor, size, message):
+    """Not an IndexError from deep inside, nor a NaN verdict 'ends 0.00 blocks away' (API audit, 2026-11-27)."""
+    from l2p_bullet.errors import PathError
+    from l2p_bullet.judge.rules import RULES, rule_verdict
+
+    for rules in RULES:
+        with pytest.raises(PathError, match=message):
+            rule_verdict(rules, mover, anchor, size)
