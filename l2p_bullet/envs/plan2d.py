@@ -10,9 +10,17 @@ torch at step time), exactly what the project's planners maximise. The episode i
   leaves the arm's workspace (the block then stays where it was; ``info["illegal"]`` says which);
 - truncated after ``max_steps`` moves (12, the planners' ``max_moves``).
 
+An action is 3 numbers (any array shape holding 3) clipped to the action space (+-inf to its bounds);
+NaN, another count or a non-number is a one-line :class:`~.checks.EnvError`. ``step`` with no episode
+running (before the first ``reset``, after a failed one, or once the episode has terminated or been
+truncated) raises :class:`~.checks.EnvResetNeeded`, Gymnasium's ``ResetNeeded``: Gymnasium leaves a step
+after the end undefined, and here it would go on scoring a motion that has already been judged (or, in
+Arm-v0, move an arm whose last move failed), so a loop that forgets to reset fails at once instead.
+
 Observation (float32, 7): mover x, y (block units from the workspace centre), yaw; anchor x, y, yaw;
 the progress so far. Scenes come from ``core.scene.random_scene`` seeded by the environment's RNG, so
 ``reset(seed=s)`` is deterministic; ``reset(options={"scene": scene_or_dict})`` poses a given one.
+Positions in the observation are clipped to +-``POSITION_BOUND`` blocks (see there).
 """
 
 from __future__ import annotations
@@ -25,15 +33,18 @@ import numpy as np
 from gymnasium import spaces
 
 from ..core.geometry import wrap_angle
-from ..core.scene import COLORS, MIN_SIZE, Scene, random_scene
+from ..core.scene import COLORS, Scene, random_scene
 from ..planning import THRESHOLD
 from ..planning.problem import FRAME_STEP, MAX_TURN
 from ..planning.world2d import World2D, segment_frames
 from ..plugins import registry
+from .checks import EnvResetNeeded, check_action, check_args, check_names, check_options
 
 POSITION_BOUND = 16.0
 """Block units: the start disk's radius (0.25 m) over the smallest block (0.02 m) is 12.5. The planning disk is
-0.35 m since 2026-11-27 (17.5 smallest blocks): an observation beyond 16 is clipped, the space kept as it was."""
+0.35 m since 2026-11-27 (17.5 smallest blocks): an observation beyond 16 is clipped, the space kept as it was.
+So with blocks under 0.35 / 16 = 0.022 m a mover near the disk's edge reads as at 16 (``pose`` has the truth);
+the episode does not end there, as the workspace test, not the observation, decides what is legal."""
 
 
 class Plan2DEnv(gym.Env):
@@ -53,17 +64,16 @@ class Plan2DEnv(gym.Env):
             names = ", ".join(p.name for p in registry.discover() if p.ok)
             raise PluginError(f'say which action the environment is for: gym.make("{env_id}", action="around") '
                               f"(installed: {names})")
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None")
-        if not MIN_SIZE <= size:
-            raise ValueError(f"size must be at least {MIN_SIZE} m")
+        args = check_args(render_mode=render_mode, render_modes=self.metadata["render_modes"], max_steps=max_steps,
+                          max_move=max_move, threshold=threshold, size=size, illegal_penalty=illegal_penalty)
         self.bundle = registry.load(action)
         self.action_name = self.bundle.name
         self.model = self.bundle.progress_model()
         settings = self.bundle.manifest.get("policy", {})
+        threshold = args["threshold"]
         self.threshold = float(threshold if threshold is not None else settings.get("threshold", THRESHOLD))
-        self.render_mode, self.max_steps, self.max_move = render_mode, int(max_steps), float(max_move)
-        self.size, self.illegal_penalty = float(size), float(illegal_penalty)
+        self.render_mode, self.max_steps, self.max_move = render_mode, args["max_steps"], args["max_move"]
+        self.size, self.illegal_penalty = args["size"], args["illegal_penalty"]
         b = POSITION_BOUND
         self.observation_space = spaces.Box(np.array([-b, -b, -math.pi, -b, -b, -math.pi, 0.0], np.float32),
                                             np.array([b, b, math.pi, b, b, math.pi, 1.0], np.float32),
@@ -73,19 +83,20 @@ class Plan2DEnv(gym.Env):
                                        np.array([m, m, MAX_TURN], np.float32), dtype=np.float32)
         self.scene: Scene | None = None
         self.mover, self.anchor = "A", "B"
+        self._no_episode: str | None = "no episode has started"  # why step() must wait for a reset; None: it may go
 
     # --- the episode ---------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        """Start an episode. The options are checked before anything changes (a bad one used to leave the old
+        pose in the new scene); whatever fails, the old episode is over: step() then asks for a reset."""
+        self._no_episode = "the last reset() failed"
+        scene, mover, anchor = check_options(options)  # nothing else has changed yet, the RNG included
         super().reset(seed=seed)
-        options = options or {}
-        scene = options.get("scene")
         if scene is None:
             scene = random_scene(int(self.np_random.integers(0, 2**31 - 1)), self.size)
-        elif isinstance(scene, dict):
-            scene = Scene.from_dict(scene, source="options['scene']")
-        self.scene = scene.validate()
-        self.mover, self.anchor = str(options.get("mover", "A")), str(options.get("anchor", "B"))
-        self.world2d = World2D(self.scene, self.mover)
+            check_names(scene, mover, anchor)
+        world2d = World2D(scene, mover)
+        self.scene, self.mover, self.anchor, self.world2d = scene, mover, anchor, world2d
         self.block = self.world2d.size
         self.anchor_pose = self.scene.get(self.anchor).pose
         self.pose = self.scene.get(self.mover).pose.copy()
@@ -94,10 +105,13 @@ class Plan2DEnv(gym.Env):
         self.steps = 0
         self._start_episode()
         self.progress = self._score()
+        self._no_episode = None
         return self._obs(), self._info()
 
     def step(self, action):
-        a = np.clip(np.asarray(action, np.float64).reshape(3), self.action_space.low, self.action_space.high)
+        if self._no_episode is not None:
+            raise EnvResetNeeded(f"Cannot call env.step() before calling env.reset(): {self._no_episode}")
+        a = check_action(action, self.action_space)
         target = self.pose + np.array([a[0] * self.block, a[1] * self.block, a[2]])
         self.steps += 1
         illegal = self._illegal(target)
@@ -117,6 +131,8 @@ class Plan2DEnv(gym.Env):
                 reward = self.progress - before
         terminated = bool(illegal) or self.progress >= self.threshold
         truncated = not terminated and self.steps >= self.max_steps
+        if terminated or truncated:
+            self._no_episode = "the episode has ended (terminated or truncated)"
         info = self._info() | info_extra | ({"illegal": illegal} if illegal else {})
         return self._obs(), float(reward), terminated, truncated, info
 
