@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import logging
 import time
+from pathlib import Path
 from typing import Annotated, Literal
 
 from fastapi import FastAPI, Query, Request
@@ -105,19 +106,19 @@ def create_app(queue: ReviewQueue, host: str = "127.0.0.1") -> FastAPI:
     def motion(key: Key) -> dict:
         return motion_for_browser(_run(queue, key), blind=queue.mode == "blind")
 
-    @app.get("/api/media/{key}/video")
+    @app.api_route("/api/media/{key}/video", methods=["GET", "HEAD"])
     def video(key: Key) -> FileResponse:
         run = _run(queue, key)
         if queue.mode == "blind" or run.video is None:  # the video's caption names the action
             raise NotFound("no video for this run here")
-        return FileResponse(run.video, media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif")
+        return FileResponse(_present(run.video, "video"), media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif")
 
     @app.get("/api/media/{key}/frames/{index}")
     def frame(key: Key, index: int) -> FileResponse:
         run = _run(queue, key)
         if not 0 <= index < run.frames:
             raise NotFound(f"run has {run.frames} frames, not {index}")
-        return FileResponse(run.path / "frames" / f"{index:04d}.png", media_type="image/png",
+        return FileResponse(_present(run.path / "frames" / f"{index:04d}.png", f"frame {index}"), media_type="image/png",
                             headers={"Cache-Control": "max-age=3600"})
 
     return app
@@ -134,6 +135,14 @@ def _run(queue: ReviewQueue, key: str):
     if queue.problem_of(run) == "missing":
         raise AnswerConflict(f"the run folder {run.path} disappeared", "missing")
     return run
+
+
+def _present(path: Path, what: str) -> Path:
+    """``path`` if it is still a file: one removed while the server runs is a 410 (the run folder is
+    there, this file of it no longer is), not a 500 from FileResponse."""
+    if not path.is_file():
+        raise AnswerConflict(f"the run's {what} ({path.name}) is missing from {path.parent}", "missing")
+    return path
 
 
 def _item(queue: ReviewQueue, it: Item, reviewer: str) -> dict:

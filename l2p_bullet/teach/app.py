@@ -3,7 +3,7 @@
 The same stack and conventions as the review app (``l2p_bullet/review/app.py``; served by its runner,
 ``web/server.py``): requests validated from type declarations (a bad
 payload is a 422 naming the field), JSON errors ``{"error": message}`` (400 a recording that cannot be
-saved (any L2PError), 404 an unknown run, 409 a training already under way, 500 a one-line message with the traceback
+saved (any L2PError), 404 an unknown run, 409 a training already under way or a recording saved already, 500 a one-line message with the traceback
 in the server's log), static HTML/JS without a build step, no interactive API docs (they load scripts
 from a CDN; nothing here may reach outside the machine), bound to 127.0.0.1 unless told otherwise.
 """
@@ -11,21 +11,24 @@ from a CDN; nothing here may reach outside the machine), bound to 127.0.0.1 unle
 from __future__ import annotations
 
 import logging
-from typing import Annotated
+from typing import Annotated, Any
 
 import numpy as np
-from fastapi import FastAPI, Query
+from fastapi import Body, FastAPI, Query
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..errors import L2PError, TeachError
 from ..web.apps import json_errors, new_app, static_pages
-from .lesson import MAX_SAMPLES, Lesson, Recording
+from .checks import MAX_SAMPLES, Duplicate
+from .lesson import Lesson, Recording
 
 log = logging.getLogger("l2p_bullet.teach")
 
-Sample = Annotated[list[float], Field(min_length=4, max_length=4)]
+Number = Annotated[float, Field(strict=True, allow_inf_nan=False)]
+"""A JSON number, finite: "0" (a string) is refused, not read as 0; NaN / Infinity are "not a finite number"."""
+Sample = Annotated[list[Number], Field(min_length=4, max_length=4)]
 
 
 class RecordingIn(BaseModel):
@@ -34,8 +37,8 @@ class RecordingIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
     scene: Annotated[int, Field(ge=0, le=10**9)]
     samples: Annotated[list[Sample], Field(min_length=2, max_length=MAX_SAMPLES)]
-    start: float
-    end: float
+    start: Number
+    end: Number
 
 
 Drag = Annotated[list[Sample], Field(min_length=2, max_length=MAX_SAMPLES)]
@@ -63,7 +66,7 @@ class Busy(TeachError):
 
 def create_app(lesson: Lesson, host: str = "127.0.0.1") -> FastAPI:
     app = new_app("l2p-bullet teach", host)
-    json_errors(app, log, L2PError, lambda exc: (409 if isinstance(exc, Busy) else 400, {}))
+    json_errors(app, log, L2PError, lambda exc: (409 if isinstance(exc, (Busy, Duplicate)) else 400, {}))
     static_pages(app, "l2p_bullet.teach")
 
     @app.get("/api/config")
@@ -86,7 +89,8 @@ def create_app(lesson: Lesson, host: str = "127.0.0.1") -> FastAPI:
         return lesson.save_row(body.scene, [d.model_dump() for d in body.segments])
 
     @app.post("/api/train")
-    def train() -> dict:
+    def train(body: Annotated[dict[str, Any] | None, Body()] = None) -> dict:
+        """Start training; the body is empty or a JSON object (anything else is a 422, not a training)."""
         if lesson.job.state in ("training", "performing"):
             raise Busy("training is already under way")
         return lesson.train()

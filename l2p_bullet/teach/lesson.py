@@ -12,7 +12,8 @@ and appends it to the demos file:
 - scaled to the captures' 15 cm blocks (``DEMO_BLOCK_SIZE``: the loader takes every block to be that
   size), the viewer (the robot's base) written as ``viewer_xy``, a second anchor as ``more_poses`` and
   ``event_anchors``;
-- validated before anything is written: the recording starts where the block stands, the block moved
+- validated before anything is written (the limits on samples, the swept-path check and duplicates:
+  ``checks.py``): the recording starts where the block stands, the block moved
   during the event, never passed through another block and stayed on the table; the file is rewritten
   atomically and read back by ``load_session`` (``save_session``).
 
@@ -23,6 +24,7 @@ installed copy), with video. :meth:`Lesson.status` reports progress for the page
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 import traceback
@@ -33,7 +35,6 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..core.frames import VIEWPOINTS, Frame, declaration
-from ..core.geometry import polygons_overlap
 from ..core.scene import COLORS, Scene, random_between_scene, random_scene
 from ..core.vocabulary import ACTIONS, normalize_name
 from ..data.demos import DEMO_BLOCK_SIZE, load_session, save_session
@@ -41,6 +42,16 @@ from ..errors import L2PError, TeachError
 from ..pipeline import perform
 from ..plugins import registry
 from ..plugins.bundle import MANIFEST, read_manifest
+from .checks import (
+    MIN_FRAMES,
+    MIN_TRAVEL,
+    Duplicate,
+    checked_samples,
+    first_collision,
+    fmt,
+    same_demonstration,
+    travel,
+)
 
 FPS = 30.0
 """Frames per second of the written demonstrations (the captures')."""
@@ -50,11 +61,6 @@ CONTEXT = 45
 
 BEFORE = 90
 """Frames of the recording before the start that are kept (older ones are dropped)."""
-
-MAX_SECONDS = 600.0
-MAX_SAMPLES = 20000
-MIN_TRAVEL = 0.5
-"""Blocks the mover must travel during the event."""
 
 
 class Trainer(Protocol):
@@ -78,9 +84,13 @@ class TaughtAction:
     root: Path  # the plugin project (pyproject.toml, demos/)
     bundle_dir: Path  # its package folder: manifest.toml, the weights once trained
     demos: Path  # the demos file recorded demonstrations are appended to
+    composite: bool = False  # a composite action (manifest kind "composite"): taught with rows of drags
 
     @property
     def sentence(self) -> str:
+        """What the page asks for: a composite's is its row of three (the scenes have 2 or 3 blocks)."""
+        if self.composite:
+            return f"{self.phrases[0]} A, B and C"
         return f"move A {self.phrases[0]} B" + (" and C" if self.anchors == 2 else "")
 
 
@@ -108,7 +118,8 @@ def find_action(name: str, root: str | Path | None = None, demos: str | Path | N
     demos_file = Path(demos) if demos is not None else root / "demos" / f"{name}_taught.npz"
     if demos_file.suffix != ".npz":
         raise TeachError(f"the demos file must end in .npz, not {demos_file.name}")
-    return TaughtAction(name, phrases, frame, anchors, root, bundle_dir, demos_file)
+    return TaughtAction(name, phrases, frame, anchors, root, bundle_dir, demos_file,
+                        composite=manifest.get("kind") == "composite")
 
 
 @dataclass
@@ -186,19 +197,21 @@ class Lesson:
         tracks, start, end = self._tracks(scene, rec)
         self._append(scene, tracks, start, end)
         return {"demos": str(self.action.demos), "count": self.count(), "frames": len(tracks[0]),
-                "start": start, "end": end}
+                "start": start, "end": end, **self.training_note()}
+
+    def training_note(self) -> dict[str, str]:
+        """A save during training is kept, but the model being trained read its demonstrations already:
+        the page says so (``note``) rather than let the person believe the next performance uses it."""
+        if self.job.state not in ("training", "performing"):
+            return {}
+        return {"note": "saved; training is under way with the demonstrations saved before it started, "
+                        "so this one is not in the model being trained: train again to use it"}
 
     def _tracks(self, scene: Scene, rec: Recording) -> tuple[list[np.ndarray], int, int]:
-        s = np.asarray(rec.samples, float)
-        if s.ndim != 2 or s.shape[1] != 4 or len(s) < 2:
-            raise TeachError("a recording needs at least two samples [t, x, y, yaw]")
-        if len(s) > MAX_SAMPLES or not np.all(np.isfinite(s)):
-            raise TeachError(f"a recording has at most {MAX_SAMPLES} finite samples")
+        s = checked_samples(rec.samples)
         t = s[:, 0] - s[0, 0]
-        if np.any(np.diff(t) < 0) or t[-1] > MAX_SECONDS:
-            raise TeachError(f"sample times must not decrease and span at most {MAX_SECONDS:.0f} s")
         start, end = rec.start - s[0, 0], rec.end - s[0, 0]
-        if not 0 <= start < end <= t[-1] + 1e-6:
+        if not (math.isfinite(start) and math.isfinite(end) and 0 <= start < end <= t[-1] + 1e-6):
             raise TeachError("mark the start, move the block, then mark the end (start before end, both while recording)")
         mover = scene.get("A")
         if np.hypot(*(s[0, 1:3] - mover.xy)) > 0.002:
@@ -213,11 +226,11 @@ class Lesson:
                                  np.interp(grid, tk, yaw[keep])])
         # the event covers the marked interval: the frame at or before the start, at or after the end
         i0, i1 = int(np.floor(start * FPS + 1e-9)), min(int(np.ceil(end * FPS - 1e-9)), n - 1)
-        if i1 - i0 < 5:
+        if i1 - i0 < MIN_FRAMES:
             raise TeachError("the demonstration is too short: mark the start, slide the block, then mark the end")
-        travel = float(np.linalg.norm(np.diff(track[i0:i1 + 1, :2], axis=0), axis=1).sum()) / mover.size
-        if travel < MIN_TRAVEL:
-            raise TeachError(f"block A moved {travel:.2f} blocks between start and end; slide it to where "
+        moved = travel(track[i0:i1 + 1], mover.size)
+        if moved < MIN_TRAVEL:
+            raise TeachError(f"block A moved {moved:.2f} blocks between start and end; slide it to where "
                              f'"{self.action.phrases[0]}" ends')
         self._check_track(scene, track)
         lo = max(0, i0 - BEFORE)
@@ -232,18 +245,14 @@ class Lesson:
 
     @staticmethod
     def _check_track(scene: Scene, track: np.ndarray) -> None:
-        """The block stays on the table and never overlaps another block."""
+        """The block stays on the table and never overlaps another block, between frames too (swept)."""
         mover = scene.get("A")
         for k, pose in enumerate(track):
             if not scene.table.contains(mover.footprint(pose)):
-                raise TeachError(f"block A left the table at frame {k} ({pose[0]:.3f}, {pose[1]:.3f})")
-        for other in scene.objects:
-            if other.name == "A":
-                continue
-            near = np.hypot(*(track[:, :2] - np.array(other.xy)).T) < (mover.size + other.size) * np.sqrt(0.5)
-            for k in np.flatnonzero(near):
-                if polygons_overlap(mover.footprint(track[k]), other.footprint(), margin=-0.001):
-                    raise TeachError(f"block A passed through block {other.name} at frame {k}: slide it around")
+                raise TeachError(f"block A left the table at frame {k} ({fmt(pose[0])}, {fmt(pose[1])})")
+        hit = first_collision(mover, track, [(o, o.pose) for o in scene.objects if o.name != "A"])
+        if hit is not None:
+            raise TeachError(f"block A passed through block {hit[1]} at frame {hit[0]}: slide it around")
 
     def _append(self, scene: Scene, tracks: list[np.ndarray], start: int, end: int) -> None:
         """Append the demonstration (scaled to the captures' block size) to the demos file, atomically."""
@@ -261,6 +270,10 @@ class Lesson:
                                      f"have {len(new)}: give another --demos file")
                 if "viewer_xy" in old and not np.allclose(old["viewer_xy"], viewer):
                     raise TeachError(f"{path} was recorded from another viewpoint; give another --demos file")
+                same = same_demonstration(old_tracks, old["event_start_end"], new, start, end)
+                if same is not None:
+                    raise Duplicate(f"this recording is demonstration {same + 1} of {path} already (the same scene "
+                                    "and motion): record a new one")
                 n0 = len(old_tracks[0])
                 tracks_out = [np.vstack([o, t]) for o, t in zip(old_tracks, new, strict=True)]
                 events = np.vstack([old["event_start_end"], [[start + n0, end + n0]]])

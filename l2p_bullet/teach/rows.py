@@ -24,13 +24,13 @@ from ..chain.composite import row_verdict
 from ..composite.bundle import read_demos, write_demos, write_recipe
 from ..composite.recipe import CompositeError, Demonstration, Segment, learn
 from ..core.contracts import read_json, trajectory_poses
-from ..core.geometry import polygons_overlap
 from ..core.scene import COLORS, Scene, random_scene
 from ..errors import TeachError
 from ..evaluate.scenes import add_bystanders
 from ..plugins import registry
 from ..recognition import recognisers
-from .lesson import Job, Lesson
+from .checks import MIN_FRAMES, MIN_TRAVEL, Duplicate, checked_samples, first_collision, fmt, travel
+from .lesson import FPS, Job, Lesson
 
 BLOCK = 0.04
 """Block side of the scenes (m): the rows benchmark's cubes."""
@@ -47,6 +47,22 @@ def row_scene(seed: int, blocks: int, size: float = BLOCK) -> Scene:
 
 def row_sentence(phrase: str, names: list[str]) -> str:
     return f"{phrase} {', '.join(names[:-1])} and {names[-1]}"
+
+
+def same_row(a: Demonstration, b: Demonstration) -> bool:
+    """Whether ``b`` is ``a`` posted again: the same scene and drags, the samples equal once each drag's
+    times start at 0 (a page that sends absolute times sends a re-post shifted)."""
+    if a.scene != b.scene or [s.block for s in a.segments] != [s.block for s in b.segments]:
+        return False
+    for sa, sb in zip(a.segments, b.segments, strict=True):
+        x, y = np.asarray(sa.samples, float), np.asarray(sb.samples, float)
+        if x.shape != y.shape:
+            return False
+        x[:, 0] -= x[0, 0]
+        y[:, 0] -= y[0, 0]
+        if not np.allclose(x, y, rtol=0, atol=1e-6):
+            return False
+    return True
 
 
 class RowLesson(Lesson):
@@ -77,21 +93,40 @@ class RowLesson(Lesson):
         return len(read_demos(self.action.bundle_dir))
 
     # --- recording ------------------------------------------------------------------------------
+    def save(self, rec: Any) -> dict[str, Any]:
+        """A single action's recording (``/api/demos``) has no place in a composite's rows."""
+        raise TeachError("this teach page records composite rows: drag the blocks one after another and "
+                         "save the row with /api/rows")
+
     def save_row(self, seed: int, segments: list[dict[str, Any]]) -> dict[str, Any]:
-        """Check the drags of one row and append it to ``demos.json``; the count and the file."""
+        """Check the drags of one row and append it to ``demos.json``; the count and the file.
+
+        Each drag meets the single action's limits (``teach/checks.py``) before it is resampled: at most
+        :data:`~.checks.MAX_SAMPLES` finite samples over :data:`~.checks.MAX_SECONDS`, at least
+        :data:`~.checks.MIN_FRAMES` frames long and :data:`~.checks.MIN_TRAVEL` blocks of travel."""
         scene, names = self.scene(seed), self.names(seed)
         if not segments:
             raise TeachError("drag the blocks into a row first (nothing was dragged)")
-        demo = Demonstration(scene.to_dict(), names, [Segment(str(s["block"]), s["samples"]) for s in segments], seed)
+        drags = [Segment(str(s["block"]), s["samples"]) for s in segments]
+        demo = Demonstration(scene.to_dict(), names, drags, seed)
         try:
             demo.check()
         except CompositeError as e:
             raise TeachError(str(e)) from None
+        for k, s in enumerate(demo.segments, 1):
+            s.samples = checked_samples(s.samples, f"drag {k}").tolist()
+            if s.samples[-1][0] - s.samples[0][0] < MIN_FRAMES / FPS:
+                raise TeachError(f"drag {k} is too short ({fmt(s.samples[-1][0] - s.samples[0][0])} s): "
+                                 f"slide block {s.block} to its place")
         poses = {o.name: o.pose.copy() for o in scene.objects}
         for k, s in enumerate(demo.segments, 1):
             track = s.track()
             if np.hypot(*(track[0, :2] - poses[s.block][:2])) > 0.002:
                 raise TeachError(f"drag {k} does not start where block {s.block} stood")
+            moved = travel(track, scene.get(s.block).size)
+            if moved < MIN_TRAVEL:
+                raise TeachError(f"drag {k} moved block {s.block} {moved:.2f} blocks; a drag moves its block at "
+                                 f"least {MIN_TRAVEL} blocks")
             self._check_drag(scene, s.block, track, poses, k)
             poses[s.block] = track[-1]
         moved = {s.block for s in demo.segments}
@@ -99,25 +134,30 @@ class RowLesson(Lesson):
             raise TeachError(f"a row of {len(names)} moves {len(names) - 1} blocks; "
                              f"{', '.join(n for n in names[1:] if n not in moved)} did not move")
         with self._lock:
-            demos = read_demos(self.action.bundle_dir) + [demo]
+            old = read_demos(self.action.bundle_dir)
+            same = next((i for i, d in enumerate(old, 1) if same_row(d, demo)), None)
+            if same is not None:
+                raise Duplicate(f"this row is demonstration {same} of {self.action.bundle_dir / 'demos.json'} "
+                                "already (the same scene and drags): record a new one")
+            demos = old + [demo]
             write_demos(self.action.bundle_dir, demos)
         return {"demos": str(self.action.bundle_dir / "demos.json"), "count": len(demos),
-                "segments": len(demo.segments)}
+                "segments": len(demo.segments), **self.training_note()}
 
     @staticmethod
     def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int) -> None:
+        """The block stays on the table and never overlaps another (where it then stood), between frames
+        too: the swept path is checked, so a jump between two samples cannot cross a block unseen."""
         obj = scene.get(block)
         for pose in track:
             if not scene.table.contains(obj.footprint(pose)):
                 raise TeachError(f"drag {k}: block {block} left the table")
-        for other in scene.objects:
-            if other.name == block:
-                continue
-            foot = other.footprint(poses[other.name])
-            near = np.hypot(*(track[:, :2] - poses[other.name][:2]).T) < (obj.size + other.size) * np.sqrt(0.5)
-            for i in np.flatnonzero(near):
-                if polygons_overlap(obj.footprint(track[i]), foot, margin=-0.001):
-                    raise TeachError(f"drag {k}: block {block} passed through block {other.name}")
+        try:
+            hit = first_collision(obj, track, [(o, poses[o.name]) for o in scene.objects if o.name != block])
+        except TeachError as e:
+            raise TeachError(f"drag {k}: {e}") from None
+        if hit is not None:
+            raise TeachError(f"drag {k}: block {block} passed through block {hit[1]}")
 
     # --- training and performing ----------------------------------------------------------------
     def train(self) -> dict[str, Any]:

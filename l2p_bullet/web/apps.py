@@ -17,7 +17,6 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
-from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from .. import __version__
 
@@ -56,19 +55,31 @@ UserError = Callable[[Exception], tuple[int, dict]]
 
 def new_app(title: str, host: str, extra_hosts: tuple[str, ...] = ()) -> FastAPI:
     """A FastAPI app without the API docs pages; bound to loopback, it refuses other Host headers so
-    a web page elsewhere cannot reach it through a rebound DNS name."""
+    a web page elsewhere cannot reach it through a rebound DNS name (in :class:`RequestGuard`, so the
+    refusal is JSON and carries the security headers like every other answer)."""
     app = FastAPI(title=title, version=__version__, docs_url=None, redoc_url=None)
-    app.add_middleware(RequestGuard)
+    hosts = None
     if is_loopback(host):
         bound = f"[{host.strip('[]')}]" if ":" in host else host
-        allowed = dict.fromkeys(["127.0.0.1", "localhost", "[::1]", bound, *extra_hosts])
-        app.add_middleware(TrustedHostMiddleware, allowed_hosts=list(allowed))
+        hosts = tuple(dict.fromkeys(h.lower() for h in ["127.0.0.1", "localhost", "[::1]", bound, *extra_hosts]))
+    app.add_middleware(RequestGuard, allowed_hosts=hosts)
     return app
+
+
+def host_name(header: str) -> str:
+    """The host of a Host header, without its port: ``[::1]:8765`` -> ``[::1]``, ``localhost:80`` -> ``localhost``."""
+    header = header.strip().lower()
+    if header.startswith("["):
+        return header[:header.find("]") + 1] if "]" in header else header
+    return header.split(":")[0]
 
 
 class RequestGuard:
     """ASGI middleware for both apps: refuses cross-site state-changing requests and bodies over
     :data:`MAX_BODY_BYTES`, and adds :data:`SECURITY_HEADERS` to every response.
+
+    With ``allowed_hosts`` (a server bound to loopback), a request whose Host header names another host
+    is refused (400) first: a rebound DNS name must not reach the app.
 
     A web page elsewhere can make the browser send a "simple" request (``text/plain``, no preflight) to
     a server on this machine: ``POST /api/train`` would retrain a plugin. So every POST/PUT/PATCH/DELETE
@@ -78,22 +89,36 @@ class RequestGuard:
     arrive (a chunked body has no Content-Length to check), and handed to the app only when it is small.
     """
 
-    def __init__(self, app, max_body: int = MAX_BODY_BYTES):
-        self.app, self.max_body = app, max_body
+    def __init__(self, app, max_body: int = MAX_BODY_BYTES, allowed_hosts: tuple[str, ...] | None = None):
+        self.app, self.max_body, self.allowed_hosts = app, max_body, allowed_hosts
 
     async def __call__(self, scope, receive, send) -> None:
         if scope["type"] != "http":
             await self.app(scope, receive, send)
             return
 
+        held: list = []  # a text/plain error's start and body so far, turned into JSON once whole
+
         async def send_with_headers(message) -> None:
             if message["type"] == "http.response.start":
                 have = {k.lower() for k, _ in message.get("headers", [])}
                 message["headers"] = [*message.get("headers", []), *(h for h in SECURITY_HEADERS if h[0] not in have)]
+                if message["status"] >= 400 and dict(message["headers"]).get(b"content-type", b"").startswith(b"text/plain"):
+                    held.append(message)  # starlette's own (a malformed Range header): JSON like ours
+                    return
+            elif held and message["type"] == "http.response.body":
+                held.append(message)
+                if message.get("more_body", False):
+                    return
+                await send_json_error(send, held)
+                return
             await send(message)
 
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
-        refusal = _refusal(scope["method"], headers, self.max_body)
+        if self.allowed_hosts is not None and host_name(headers.get("host", "")) not in self.allowed_hosts:
+            refusal = 400, "invalid host header (this server answers only requests addressed to this machine)"
+        else:
+            refusal = _refusal(scope["method"], headers, self.max_body)
         if refusal is not None:
             await _reply(send_with_headers, *refusal)
             return
@@ -137,13 +162,29 @@ def _refusal(method: str, headers: dict[str, str], max_body: int) -> tuple[int, 
     return None
 
 
-async def _reply(send, status: int, error: str) -> None:
+async def _reply(send, status: int, error: str, headers: tuple = ()) -> None:
     import json
 
     body = json.dumps({"error": error}).encode()
     await send({"type": "http.response.start", "status": status,
-                "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
+                "headers": [*headers, (b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
     await send({"type": "http.response.body", "body": body})
+
+
+async def send_json_error(send, held: list) -> None:
+    """Send a held text/plain error response (start, body messages) as ``{"error": text}``, its status
+    and other headers kept (a 416's Content-Range)."""
+    from http import HTTPStatus
+
+    start = held[0]
+    text = b"".join(m.get("body", b"") for m in held[1:]).decode("utf-8", "replace").strip()
+    if not text:
+        try:
+            text = HTTPStatus(start["status"]).phrase.lower()
+        except ValueError:
+            text = "error"
+    keep = tuple((k, v) for k, v in start["headers"] if k.lower() not in (b"content-type", b"content-length"))
+    await _reply(send, start["status"], text, keep)
 
 
 
@@ -153,7 +194,7 @@ def static_pages(app: FastAPI, package: str) -> None:
     folder = Path(str(resources.files(package) / "static"))
     app.mount("/static", StaticFiles(directory=folder), name="static")
 
-    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
+    @app.api_route("/", methods=["GET", "HEAD"], response_class=HTMLResponse, include_in_schema=False)
     def index() -> HTMLResponse:
         return HTMLResponse((folder / "index.html").read_text(encoding="utf-8"), headers={"Cache-Control": "no-store"})
 
@@ -175,6 +216,10 @@ def json_errors(app: FastAPI, log: logging.Logger, error_type: type[Exception], 
 
     @app.exception_handler(StarletteHTTPException)
     async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+        if exc.status_code == 400 and isinstance(exc.__cause__, (ValueError, RecursionError)):
+            # FastAPI's "There was an error parsing the body": a JSON body its decoder could not take
+            # (invalid UTF-8, nesting past the recursion limit, an integer of thousands of digits)
+            return JSONResponse({"error": "the request body is not valid JSON"}, status_code=422)
         return JSONResponse({"error": str(exc.detail)}, status_code=exc.status_code)
 
     @app.exception_handler(error_type)

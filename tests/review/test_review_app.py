@@ -255,3 +255,31 @@ def test_docs_list_the_blind_mode_keys_the_page_uses():
     for order in (builtins, sorted(builtins), list(reversed(builtins))):
         served = [(k["key"], "none" if k["label"] == "none" else k["label"]) for k in label_keys(blind_labels(order))]
         assert [(k, "none" if label == "none" else label) for k, label in documented] == served
+
+
+def test_media_files_removed_while_serving_are_json_not_500(live):  # noqa: F811
+    """A frame or the video removed while the server ran was a 500 (FileNotFoundError in FileResponse)."""
+    import http.client
+
+    s = live()
+    run = next(r for r in s.queue.runs.values() if r.video is not None and r.frames)
+    host, port = s.url.split("//")[1].rstrip("/").rsplit(":", 1)
+
+    def raw(method: str, path: str, headers: dict | None = None) -> tuple[int, str, bytes]:
+        conn = http.client.HTTPConnection(host, int(port), timeout=30)
+        conn.request(method, path, headers=headers or {})
+        r = conn.getresponse()
+        out = r.status, r.getheader("content-type"), r.read()
+        conn.close()
+        return out
+
+    video = f"/api/media/{run.key}/video"
+    assert raw("HEAD", video)[:2] == (200, "video/mp4")  # HEAD where GET is (was a 405)
+    status, ctype, body = raw("GET", video, {"Range": "bytes=abc"})  # was 400 text/plain
+    assert 400 <= status < 500 and ctype == "application/json" and json.loads(body)["error"], (status, body)
+    (run.path / "frames" / "0000.png").unlink()
+    status, body = s.call("GET", f"/api/media/{run.key}/frames/0")
+    assert status == 410 and body["reason"] == "missing" and "0000.png" in body["error"], body
+    run.video.unlink()
+    status, body = s.call("GET", video)
+    assert status == 410 and body["reason"] == "missing" and run.video.name in body["error"], body

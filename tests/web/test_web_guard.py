@@ -194,3 +194,49 @@ def test_a_database_made_read_only_while_serving_is_said(tmp_path):
     store.path.chmod(0o444)
     with pytest.raises(DatabaseUnavailable, match="read-only"), store.transaction() as conn:
         conn.execute("CREATE TABLE written_after_chmod (x)")
+
+
+def _head(url: str, path: str, headers: dict | None = None) -> tuple[int, dict, bytes]:
+    """(status, headers (lower-case names), body) of a raw request, whatever its content type."""
+    import http.client
+
+    host, port = url.split("//")[1].rstrip("/").rsplit(":", 1)
+    method = "GET"
+    if path.startswith("HEAD "):
+        method, path = "HEAD", path[5:]
+    conn = http.client.HTTPConnection(host, int(port), timeout=30)
+    try:
+        conn.request(method, path, headers=headers or {})
+        r = conn.getresponse()
+        return r.status, {k.lower(): v for k, v in r.getheaders()}, r.read()
+    finally:
+        conn.close()
+
+
+def test_a_foreign_host_is_refused_in_json_with_the_security_headers(review, live):  # noqa: F811
+    """The refusal was ``400 text/plain "Invalid host header"`` without the headers every response carries."""
+    import json
+
+    for url in (review, live().url):
+        for path in ("/api/config", "/"):
+            status, headers, body = _head(url, path, {"Host": "evil.example"})
+            assert status == 400 and headers["content-type"] == "application/json", (url, path, headers)
+            assert "host" in json.loads(body)["error"]
+            assert headers["x-frame-options"] == "DENY" and "frame-ancestors" in headers["content-security-policy"]
+        assert _head(url, "/api/config", {"Host": "localhost:1"})[0] == 200
+
+
+@pytest.mark.parametrize("raw", [b'{"reviewer": "m\xff"}', b"[" * 100_000 + b"]" * 100_000, b'{"grade": ' + b"9" * 5000 + b"}"],
+                         ids=["invalid-utf8", "deep-nesting", "5000-digit-int"])
+def test_bodies_json_cannot_parse_are_the_documented_422(review, live, raw):  # noqa: F811
+    """They were ``400 "There was an error parsing the body"``."""
+    teach = live().url
+    for url, path in ((review, "/api/answer"), (teach, "/api/demos"), (teach, "/api/rows"), (teach, "/api/train")):
+        status, r = http_client.call(url, "POST", path, raw=raw)
+        assert status == 422 and r == {"error": "the request body is not valid JSON"}, (path, status, r)
+
+
+def test_head_is_answered_where_get_is(review):
+    status, headers, body = _head(review, "HEAD /")
+    assert status == 200 and body == b"" and headers["content-type"].startswith("text/html")
+    assert headers["x-frame-options"] == "DENY"

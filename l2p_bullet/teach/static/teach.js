@@ -194,7 +194,7 @@ async function post(path, body, stateOnError) {
     const r = await api("POST", path, body);
     $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
     await loadScene(seed + 1);
-    status(`saved (${r.count} in all); here is another scene`);
+    status(`saved (${r.count} in all); here is another scene` + (r.note ? ` (${r.note})` : ""));
     document.body.dataset.saved = String(r.count);
   } catch (e) {
     status(e.message, true);

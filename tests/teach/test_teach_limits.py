@@ -1,0 +1,171 @@
+"""What a hostile or broken page may post to the teach app (single action and composite rows): refused
+with a 4xx and a readable message before anything is resampled or written, never a duplicate, never a
+block passing through another between two frames."""
+
+from __future__ import annotations
+
+import json
+import time
+
+import numpy as np
+import pytest
+from teach_fixtures import live  # noqa: F401 - fixture
+from test_teach import clear_scene, slide
+
+from l2p_bullet.core.scene import random_scene
+
+
+class Rows:
+    """The teach app of a composite plugin ("make a blorp of"), served on 127.0.0.1 in a thread."""
+
+    def __init__(self, root):
+        import http_client
+
+        from l2p_bullet.plugins.scaffold import scaffold
+        from l2p_bullet.teach.app import create_app
+        from l2p_bullet.teach.lesson import find_action
+        from l2p_bullet.teach.rows import RowLesson
+        from l2p_bullet.web.server import start
+
+        self.action = find_action("blorp", scaffold("blorp", ["make a blorp of"], root / "l2p-blorp", kind="composite").root)
+        self.lesson = RowLesson(self.action, None)
+        self.server = start(create_app(self.lesson), name="teach-rows")
+        self.call = lambda method, path, body=None, raw=None: http_client.call(self.server.url, method, path, body, raw)
+        self.scene = self.lesson.scene(1)  # three blocks: A, B, C
+
+    def drag(self, block: str, dx: float = 0.0, dy: float = 0.12, n: int = 31, seconds: float = 1.0,
+             t0: float = 0.0) -> dict:
+        o = self.scene.get(block)
+        return {"block": block, "samples": [[t0 + seconds * i / (n - 1), o.xy[0] + dx * i / (n - 1),
+                                             o.xy[1] + dy * i / (n - 1), o.yaw] for i in range(n)]}
+
+    def post(self, *segments) -> tuple[int, dict]:
+        return self.call("POST", "/api/rows", {"scene": 1, "segments": list(segments)})
+
+
+@pytest.fixture
+def rows(tmp_path):
+    r = Rows(tmp_path)
+    yield r
+    r.server.stop()
+
+
+def test_a_valid_row_is_saved_once(rows):
+    status, r = rows.post(rows.drag("B"), rows.drag("C"))
+    assert status == 200 and r["count"] == 1, r
+    status, r = rows.post(rows.drag("B", t0=500.0), rows.drag("C", t0=501.0))  # the same row, times shifted
+    assert status == 409 and "already" in r["error"], r
+    assert rows.lesson.count() == 1
+
+
+@pytest.mark.parametrize("seconds", [1e6, 1e300])
+def test_a_drag_over_the_duration_limit_is_refused_at_once(rows, seconds):
+    """A span of 1e6 s used to resample to 3e7 frames (minutes, ~1 GB); 1e300 s was a 500."""
+    t = time.monotonic()
+    status, r = rows.post(rows.drag("B", seconds=seconds), rows.drag("C"))
+    assert status == 400 and "at most 600 s" in r["error"] and len(r["error"]) < 200, r
+    assert time.monotonic() - t < 5
+    assert rows.lesson.count() == 0
+
+
+def test_a_jump_through_a_block_is_refused_however_fast(rows):
+    """A drag whose samples share one instant (or 10 ms apart) skipped the collision check."""
+    a, b = np.array(rows.scene.get("A").xy), np.array(rows.scene.get("B").xy)
+    far = a + (a - b) / np.linalg.norm(a - b) * 0.08  # the far side of A from B
+    c = rows.drag("C")
+    for dt, words in ((0.0, "too short"), (0.01, "too short"), (1.0, "passed through block A")):
+        jump = {"block": "B", "samples": [[0.0, *b, 0.0], [dt, *far, 0.0]]}
+        jump["samples"] = [[t, x, y, rows.scene.get("B").yaw] for t, x, y, _ in jump["samples"]]
+        status, r = rows.post(jump, c)
+        assert status == 400 and words in r["error"], (dt, r)
+    # the same jump in one frame of a longer drag: the swept path between the two frames is checked
+    o = rows.scene.get("B")
+    samples = [[0.0, *b, o.yaw], [1 / 30, *far, o.yaw], [1.0, *far, o.yaw]]
+    status, r = rows.post({"block": "B", "samples": samples}, c)
+    assert status == 400 and "passed through block A" in r["error"], r
+    assert rows.lesson.count() == 0
+
+
+def test_drags_that_move_nothing_are_refused(rows):
+    status, r = rows.post(rows.drag("B", dy=0.0), rows.drag("C", dy=0.0))
+    assert status == 400 and "moved block B 0.00 blocks" in r["error"], r
+    assert rows.lesson.count() == 0
+
+
+def test_the_composite_page_points_single_recordings_to_rows(rows):
+    status, r = rows.call("POST", "/api/demos", {"scene": 1, "samples": [[0, 0, 0, 0], [1, 0, 0, 0]], "start": 0, "end": 1})
+    assert status == 400 and "/api/rows" in r["error"], r
+    assert rows.action.sentence == rows.call("GET", "/api/config")[1]["sentence"] == "make a blorp of A, B and C"
+
+
+BAD_SAMPLES = [
+    ("strings", lambda rec: rec["samples"].__setitem__(3, ["0", "1", "2", "3"]), 422, "number"),
+    ("NaN", lambda rec: rec["samples"][3].__setitem__(1, float("nan")), 422, "finite number"),
+    ("Infinity", lambda rec: rec["samples"][3].__setitem__(3, float("inf")), 422, "finite number"),
+    ("far off", lambda rec: [r.__setitem__(2, 1e300) for r in rec["samples"][40:]], 400, "1e+300 m"),
+    ("huge yaw", lambda rec: (rec["samples"][5].__setitem__(3, 1e308), rec["samples"][6].__setitem__(3, -1e308)),
+     400, "a yaw of 1e+308 rad"),
+]
+
+
+@pytest.mark.parametrize("name, change, status, words", BAD_SAMPLES, ids=[b[0] for b in BAD_SAMPLES])
+def test_samples_are_finite_numbers_of_a_sane_size(live, name, change, status, words):  # noqa: F811
+    s = live()
+    seed, scene, goal = clear_scene()
+    rec = slide(scene, goal, seed=seed)
+    change(rec)
+    code, r = s.call("POST", "/api/demos", raw=json.dumps(rec).encode())
+    assert code == status and words in r["error"] and len(r["error"]) < 200, r
+    assert not s.action.demos.exists()
+
+
+def test_a_huge_yaw_is_refused_before_any_arithmetic(live):  # noqa: F811
+    """A yaw of +-1e308 went through np.unwrap (overflow warnings) and was said to leave the table."""
+    from l2p_bullet.errors import TeachError
+    from l2p_bullet.teach.lesson import Recording
+
+    s = live()
+    seed, scene, goal = clear_scene()
+    rec = slide(scene, goal, seed=seed)
+    samples = np.array(rec["samples"])
+    samples[5, 3], samples[6, 3] = 1e308, -1e308
+    with np.errstate(all="raise"), pytest.raises(TeachError, match="a yaw of 1e"):
+        s.lesson.save(Recording(seed, samples, rec["start"], rec["end"]))
+
+
+def test_a_jump_through_the_anchor_between_two_frames_is_refused(live):  # noqa: F811
+    """A sample 1/30 s after the start on the far side of B used to be saved: only the frames were checked."""
+    s = live()
+    scene = random_scene(1)
+    a, b = scene.get("A"), np.array(scene.get("B").xy)
+    far = b + (b - a.xy) / np.linalg.norm(b - a.xy) * 0.12
+    rows = [[0.0, *a.xy, a.yaw], [1 / 30, *far, a.yaw], [2.0, *far, a.yaw]]
+    status, r = s.call("POST", "/api/demos", {"scene": 1, "samples": rows, "start": 0.0, "end": 1.0})
+    assert status == 400 and "passed through block B" in r["error"], r
+    assert not s.action.demos.exists()
+
+
+def test_the_same_recording_twice_is_a_409_and_a_save_during_training_says_so(live):  # noqa: F811
+    s = live()
+    seed, scene, goal = clear_scene()
+    rec = slide(scene, goal, seed=seed)
+    assert s.call("POST", "/api/demos", rec)[0] == 200
+    status, r = s.call("POST", "/api/demos", rec)
+    assert status == 409 and "demonstration 1" in r["error"], r
+    shifted = dict(rec, samples=[[t + 1234.5, *rest] for t, *rest in rec["samples"]], start=rec["start"] + 1234.5,
+                   end=rec["end"] + 1234.5)
+    assert s.call("POST", "/api/demos", shifted)[0] == 409
+    assert s.lesson.count() == 1
+    s.lesson.job.state = "training"  # as while the trainer runs (it read the demos file when it started)
+    status, r = s.call("POST", "/api/demos", slide(scene, goal, seconds=1.0, seed=seed))
+    assert status == 200 and r["count"] == 2 and "not in the model being trained" in r["note"], r
+    s.lesson.job.state = "idle"
+
+
+def test_train_takes_an_empty_body_or_a_json_object(live):  # noqa: F811
+    s = live()
+    for raw in (b"{{{ not json", b"[1, 2]", b'"train"'):
+        status, r = s.call("POST", "/api/train", raw=raw)
+        assert status == 422, (raw, status, r)
+    assert s.lesson.job.state == "idle"
+    assert s.call("POST", "/api/train", raw=b"{}")[1]["error"].startswith("no demonstrations")
