@@ -216,7 +216,9 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             results.append(r)
             if not r.success:
                 break
-        clock.stage("record", "writing the run folder")
+        film = prims.recorder.film
+        clock.stage("record", "writing the run folder" + ("" if film is None else
+                    f" and the video's {len(film.states)} frames ({film.settings.renderer})"))
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
         write_run(result, steps, prims, world, settings, seed, scene)
         if steps and steps[0].clause.target is not None:  # a composite: is the whole what it should be?

@@ -183,7 +183,9 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         if how.name != "slide":
             prims.recorder.gripper = True
         slide, removed, grasp = _perform(prims, mover, p, angles, clock, how, scene)
-        clock.stage("record", "record")
+        # the video's frames are drawn while the arm moves; waiting for the last ones takes seconds: say so
+        clock.stage("record", "record" if film is None else
+                    f"record: the video's {len(film.states)} frames ({film.settings.renderer})")
         recorder = prims.recorder
         recorder.finish_images()
         first = 0

@@ -212,6 +212,7 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
         summary = EvaluationSummary(out, len(tasks), len(tasks) - len(todo), backend=backend, workers=workers,
                                     notes=notes)
         bar = ProgressBar(len(todo), summary.skipped, enabled=progressbar)
+        bar.advance(0)  # a first "0/N runs" line at once: the first run (workers starting, rendering) takes seconds
 
         def on_row(row: dict) -> None:
             store.add(row)

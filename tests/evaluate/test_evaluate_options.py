@@ -135,3 +135,11 @@ def test_the_python_config_is_checked_before_the_folder_exists(tmp_path, setting
     with pytest.raises(L2PError, match="EvaluationConfig"):
         evaluate({"actions": ["around"]}, tmp_path / "e", workers=0, progressbar=False)
     assert not (tmp_path / "e").exists()
+
+
+def test_the_progress_bar_starts_before_the_first_run_ends(tmp_path):
+    """A '0/N runs' line at once: the first run (workers starting, a render) takes seconds (audit, 2026-11-27)."""
+    r = CliRunner().invoke(main, [*[a for a in TINY if a != "--quiet"], "--out", str(tmp_path / "e")])
+    assert r.exit_code == 0, r.output
+    lines = [ln for ln in r.stderr.splitlines() if "runs (" in ln]
+    assert lines and "] 0/1 runs" in lines[0] and "] 1/1 runs" in lines[-1], r.stderr
