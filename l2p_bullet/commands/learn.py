@@ -8,6 +8,7 @@ folder (:func:`l2p_bullet.plugins.registry.locate`). The commands only parse opt
 
 from __future__ import annotations
 
+import shlex
 import time
 from pathlib import Path
 from typing import Any
@@ -58,6 +59,8 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
 
     from ..evaluate.progressbar import ProgressBar
     from ..learning.feedback_targets import FeedbackConfig
+    from ..learning.improve import plural
+    from ..learning.train_policy import policy_command
     from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
     cfg = ProgressTrainConfig()
@@ -82,8 +85,13 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
                                    log=lambda m: click.echo(m, err=True), on_stage=stage)
     finally:
         bar.close()
-    extra = f", {result.n_feedback} feedback sequences" if result.n_feedback else ""
-    click.echo(f"wrote {out} ({result.seconds:.1f} s, {result.n_sequences} sequences{extra})")
+    extra = f", {plural(result.n_feedback, 'feedback sequence')}" if result.n_feedback else ""
+    click.echo(f"wrote {out} ({result.seconds:.1f} s, {plural(result.n_sequences, 'sequence')}{extra})")
+    # the bundle's policy, if any, was trained for the old progress model: what to run next
+    policy = policy_command(action, out)
+    click.echo("next: " + (f"{policy} (its move policy), then " if policy else "")
+               + f"l2p-bullet score {shlex.quote(str(out))} MOTION or l2p-bullet recognize MOTION --action "
+               f"{shlex.quote(str(out))}")
 
 
 @click.command("train-policy")
@@ -115,18 +123,51 @@ def train_policy_cmd(action: str, bundle_dir: str | None, out_dir: str | None, f
     """
     import dataclasses
 
-    from ..learning.train_policy import PolicyTrainConfig, policy_folder, train_policy_bundle
+    from ..evaluate.progressbar import ProgressBar
+    from ..learning.train_policy import PolicyTrainConfig, train_policy_into
 
-    folder, copied = policy_folder(action, bundle_dir, out_dir, force)
     cfg = PolicyTrainConfig(seed=seed)
     cfg = dataclasses.replace(cfg, iterations=iterations or cfg.iterations, episodes=episodes or cfg.episodes)
-    settings = train_policy_bundle(folder, cfg, log=lambda s: click.echo(s, err=True))
+    # evaluate's bar, in iterations, after the last one's number (from 0, as the summary's kept iteration)
+    # and final progress: the "iter 10" lines every ten iterations gave neither the total nor an ETA
+    # (in a log, a line every 5 % or 10 s)
+    bar = ProgressBar(cfg.iterations, unit="iterations", label=f"{action} policy:")
+
+    def tick(progress: float) -> None:
+        bar.label = f"{action} policy: iter {bar.done:4d}  final progress {progress:.3f}"
+        bar.advance()
+
+    try:
+        # a Ctrl-C or failure removes the copy this run made, and its note says what was kept
+        folder, copied, settings = train_policy_into(action, bundle_dir, out_dir, force, cfg, log=None, tick=tick)
+    finally:
+        if bar.done:  # a refused folder is one line, with no empty line before it on a terminal
+            bar.close()
     t = settings["training"]
     where = f"a copy of the {action} bundle in {folder}" if copied else folder
     click.echo(f"wrote the {action} policy into {where} (final progress, mean of the first / last "
                f"{t['window']} iterations: {t['final_progress_first']} -> {t['final_progress_last']}; "
                f"kept iteration {t['kept_iteration']}, its window's mean {t['final_progress_kept']}; "
                f"{t['seconds']} s)")
+    click.echo(f"next: {_policy_next_step(action, folder, copied)}")
+
+
+def _policy_next_step(action: str, folder: Path, copied: bool) -> str:
+    """What to do with a trained policy: perform plans with the installed bundle only, so a copy (or an
+    uninstalled plugin's bundle) is used by copying it there (or installing the plugin)."""
+    from ..learning.train_policy import installed
+    from ..plugins.registry import locate
+
+    if installed(folder):
+        return (f"perform and plan use it now; measure it with l2p-bullet evaluate --actions "
+                f"{shlex.quote(action)} --scenes 10 --report")
+    q = shlex.quote(str(folder))
+    use = f"l2p-bullet score {q} MOTION or l2p-bullet recognize MOTION --action {q}"
+    if not copied:
+        return f"{use}; to perform with it, install the plugin this bundle belongs to (pip install -e ...)"
+    source = locate(action)[1]
+    return (f"{use}; to perform with it, copy its files into {shlex.quote(str(source))} (or train there: "
+            f"l2p-bullet train-policy {shlex.quote(action)} --bundle {shlex.quote(str(source))} --force)")
 
 
 @click.command()
@@ -157,13 +198,41 @@ def improve(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[s
       l2p-bullet improve away --judge reviews.sqlite --out runs/improve/away
     """
     from ..learning.improve import improve as run_improve
+    from ..learning.improve import plural
 
     out = Path(out_dir) if out_dir else Path("runs") / "improve" / action.replace("_", "-")
-    results = run_improve(action, rounds, out, scenes=scenes, judge=judge, feedback=feedback, seed=seed,
-                          force=force, log=lambda m: click.echo(m, err=True))
+    try:
+        results = run_improve(action, rounds, out, scenes=scenes, judge=judge, feedback=feedback, seed=seed,
+                              force=force, log=lambda m: click.echo(m, err=True))
+    except KeyboardInterrupt as e:
+        # the same command resumes (finished rounds and performed runs are kept): say which, in full
+        e.add_note(f"finished rounds are kept in {out}")
+        e.add_note("continue with: " + _improve_command(action, rounds, scenes, judge, feedback, out, seed, force))
+        raise
     for r in results:
         click.echo(f"round {r.round}: success {100 * r.success_rate:.0f} %, final progress {r.mean_final_progress:.2f}, "
-                   f"{r.n_grades} grades (mean {r.mean_grade:.1f}), agreement {r.agreement_mean:.2f} -> {r.bundle}")
+                   f"{plural(r.n_grades, 'grade')} (mean {r.mean_grade:.1f}), agreement {r.agreement_mean:.2f} "
+                   f"-> {r.bundle}")
+    last = shlex.quote(results[-1].bundle)
+    click.echo(f"next: l2p-bullet score {last} MOTION or l2p-bullet recognize MOTION --action {last}; its move "
+               f"policy is the first bundle's: l2p-bullet train-policy {shlex.quote(action)} --bundle {last}")
+
+
+def _improve_command(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[str, ...], out: Path,
+                     seed: int, force: bool) -> str:
+    """The command line that continues an interrupted ``improve``: the settings it was given (improve.json
+    must match them to resume), defaults left out, --out always (a default folder is named in full)."""
+    args = ["l2p-bullet", "improve", action, "--rounds", str(rounds), "--scenes", str(scenes)]
+    if judge != "rules":
+        args += ["--judge", judge]
+    for f in feedback:
+        args += ["--feedback", f]
+    args += ["--out", str(out)]
+    if seed:
+        args += ["--seed", str(seed)]
+    if force:  # with the same settings --force resumes too; without it, stale rounds would be refused
+        args.append("--force")
+    return shlex.join(args)
 
 
 @click.command()

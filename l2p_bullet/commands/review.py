@@ -7,6 +7,7 @@ The web stack (FastAPI, uvicorn) and matplotlib are imported inside the commands
 from __future__ import annotations
 
 import json
+import shlex
 from pathlib import Path
 
 import click
@@ -80,6 +81,8 @@ def review_cmd(runs: tuple[str, ...], db: str | None, host: str, port: int, mode
         r = do_import(store)
         click.echo(f"imported the original study into {store.path}: {r.demos} graded demos, {r.grades} grades "
                    f"({r.added} new)")
+        # what the grades are for: the report's tables (its --db is named even where it is the default)
+        click.echo(f"next: l2p-bullet report --db {shlex.quote(str(store.path))}")
     if export:
         n = store.export(export, force=force)
         click.echo(f"wrote {n} answers to {export}")

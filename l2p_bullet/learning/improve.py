@@ -6,15 +6,17 @@ grade collected so far (and any static ``--feedback``), and keeps the result::
 
     DIR/round-<k>/runs/seed-<s>/   the run folders (trajectory.json, plan.json, summary.json)
     DIR/round-<k>/grades.csv       the round's grades, in the review export's columns
-    DIR/round-<k>/bundle/          the re-trained bundle (its [policy] and [judge] kept)
+    DIR/round-<k>/bundle/          the re-trained bundle (its [policy] and [judge] kept), written as
+                                   bundle.part/ and renamed once fine-tuning finished
     DIR/round-<k>/metrics.json     success and final progress of the round's runs, agreement with people
 
 Grades come from the rule judge (``judge="rules"``: 10 x its score on the executed trajectory, the
 original's automatic feedback) or from people: a review database or export (``judge=FILE``) holding
 grades of this round's runs. People need time to grade, so a round whose runs have no grades in the
 file yet stops with a message; re-running the same command resumes there (finished rounds are kept,
-run folders already performed are reused). Nothing is overwritten without ``force``, which replaces only
-what improve wrote (``improve.json``, ``round-<k>/``): a folder holding anything else is refused.
+run folders already performed are reused), as it does after a Ctrl-C. Nothing is overwritten without
+``force``, which replaces only what improve wrote (``improve.json``, ``round-<k>/``): a folder holding
+anything else is refused.
 
 Scenes are ``random_scene(seed)`` with seeds 1000 + 100 (k - 1) + i: the benchmarks use 0-99,
 automatic feedback 5000 on, REINFORCE 10 000 and up.
@@ -75,6 +77,24 @@ class RoundResult:
         return {k: (round(v, 4) if isinstance(v, float) else v) for k, v in self.__dict__.items()}
 
 
+def plural(n: int, noun: str) -> str:
+    """``1 graded run``, ``2 graded runs``: the messages said "1 graded runs" and "on 1 scenes"."""
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
+def _eta(done: int, total: int, t0: float) -> str:
+    """``(12s, ETA 48s)``: the time since ``t0`` and what the rest should take at that pace (evaluate's
+    ProgressBar is a floor up: learning may not import evaluate)."""
+    dt = time.perf_counter() - t0
+    left = dt / done * (total - done) if done else 0.0
+    return f"({_duration(dt)}, ETA {_duration(left)})"
+
+
+def _duration(seconds: float) -> str:
+    m, s = divmod(int(round(seconds)), 60)
+    return f"{m}m{s:02d}s" if m else f"{s}s"
+
+
 def round_seeds(k: int, scenes: int) -> list[int]:
     return [IMPROVE_SEEDS + 100 * (k - 1) + i for i in range(scenes)]
 
@@ -112,15 +132,23 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
             continue
         t0 = time.perf_counter()
         seeds = round_seeds(k, scenes)
-        say(f"round {k}/{rounds}: performing {name} on {scenes} scenes with {current}")
+        say(f"round {k}/{rounds}: performing {name} on {plural(scenes, 'scene')} with {current}")
         summaries = _perform_round(name, current, rd / "runs", seeds, say)
         items = _round_items(rd, judge, name, seeds, say)
         collected += items
-        say(f"round {k}/{rounds}: {len(items)} graded runs (mean grade "
-            f"{np.mean([it.grade for it in items]):.1f}); fine-tuning on {len(collected)} + {len(static)} graded motions")
-        bundle_dir = _retrain(name, current, rd / "bundle", static + collected, seed, feedback_cfg, k, judge)
-        res = _metrics(k, bundle_dir, seeds, summaries, items, len(collected), static)
+        say(f"round {k}/{rounds}: {plural(len(items), 'graded run')} (mean grade "
+            f"{np.mean([it.grade for it in items]):.1f}); fine-tuning the progress model on "
+            f"{plural(len(collected) + len(static), 'graded motion')} ({len(collected)} from the rounds, "
+            f"{len(static)} from --feedback)")
+        bundle_dir = rd / "bundle"
+        if bundle_dir.exists():  # a bundle with no metrics.json: an unfinished round's, fine-tuned again
+            shutil.rmtree(bundle_dir)
+        part = _retrain(name, current, rd / "bundle.part", static + collected, seed, feedback_cfg, k, judge, say)
+        # read from bundle.part, recorded as bundle/: renamed only once fine-tuned and measured, so that a
+        # round stopped (Ctrl-C) before leaves no bundle/ that looks re-trained
+        res = _metrics(k, part, bundle_dir, seeds, summaries, items, len(collected), static)
         res.seconds = round(time.perf_counter() - t0, 1)
+        part.rename(bundle_dir)
         done.write_text(json.dumps(res.to_dict(), indent=1) + "\n")
         say(f"round {k}/{rounds}: success {100 * res.success_rate:.0f} %, mean final progress "
             f"{res.mean_final_progress:.2f}, agreement with people {res.agreement_mean:.2f}"
@@ -147,7 +175,7 @@ def _check_judge(judge: str) -> None:
 
 
 ROUND = re.compile(r"round-[1-9][0-9]*")
-ROUND_FILES = ("runs", "grades.csv", "grades.csv.part", "bundle", "metrics.json")
+ROUND_FILES = ("runs", "grades.csv", "grades.csv.part", "bundle", "bundle.part", "metrics.json")
 """What improve writes: OUT/improve.json and OUT/round-<k>/ holding these (and nothing else of anyone's)."""
 
 
@@ -192,14 +220,21 @@ def _claim(out: Path, settings: dict, force: bool) -> None:
 
 
 def _perform_round(name: str, bundle_dir: Path, runs: Path, seeds: list[int], say) -> list[dict]:
-    """Perform (no rendering) on each seed's scene, reusing run folders a stopped round already finished."""
+    """Perform (no rendering) on each seed's scene, reusing run folders a stopped round already finished.
+
+    Every 5 runs a line with the count and an ETA (the runs reused are left out of it, so that they do
+    not make the ETA too short)."""
 
     bundle = load_bundle(bundle_dir)
+    todo = [s for s in seeds if not _performed(runs / f"seed-{s}")]
+    if len(todo) < len(seeds):
+        say(f"  reusing {plural(len(seeds) - len(todo), 'run')} performed before")
+    t0, done = time.perf_counter(), 0
     out = []
-    for i, s in enumerate(seeds):
+    for s in seeds:
         folder = runs / f"seed-{s}"
         summary = folder / "summary.json"
-        if not (summary.is_file() and json.loads(summary.read_text()).get("ok")):
+        if s in todo:
             try:
                 perform(SENTENCES[name], random_scene(s), out_dir=folder, seed=s, render=False, force=True,
                         bundle=bundle)
@@ -207,9 +242,17 @@ def _perform_round(name: str, bundle_dir: Path, runs: Path, seeds: list[int], sa
                 say(f"  seed {s}: failed ({e})")
         d = json.loads(summary.read_text()) if summary.is_file() else {"ok": False}
         out.append(d)
-        if (i + 1) % 5 == 0 or i + 1 == len(seeds):
-            say(f"  performed {i + 1}/{len(seeds)}")
+        if s in todo:
+            done += 1
+            if done % 5 == 0 or done == len(todo):
+                say(f"  performed {done}/{plural(len(todo), 'run')} {_eta(done, len(todo), t0)}")
     return out
+
+
+def _performed(folder: Path) -> bool:
+    """Did a stopped round already perform this run (its summary says ok)?"""
+    summary = folder / "summary.json"
+    return summary.is_file() and bool(json.loads(summary.read_text()).get("ok"))
 
 
 def _round_items(rd: Path, judge: str, name: str, seeds: list[int], say) -> list[FeedbackItem]:
@@ -246,8 +289,13 @@ def _rule_row(name: str, run: Path) -> GradeRow:
 
 
 def _retrain(name: str, current: Path, out: Path, items: list[FeedbackItem], seed: int,
-             fcfg: FeedbackConfig | None, k: int, judge: str) -> Path:
-    """Fine-tune the current bundle's ensemble on the demonstrations and ``items`` into a copy of it."""
+             fcfg: FeedbackConfig | None, k: int, judge: str, say: Callable[[str], None]) -> Path:
+    """Fine-tune the current bundle's ensemble on the demonstrations and ``items`` into a copy of it.
+
+    ``out`` is the round's temporary bundle.part/: a copy of the current bundle until the fine-tuned
+    weights are written. It is removed if the fine-tuning fails or is interrupted (a round stopped there
+    left bundle/ holding the untouched copy, which looked like a re-trained bundle). A line after each
+    ensemble member gives the ETA (the fine-tuning took seconds with no output)."""
     # lazy: these modules import torch; only when a network is trained
     from .progress_net import ProgressModel, ensemble_arrays
     from .train_progress import (
@@ -260,30 +308,48 @@ def _retrain(name: str, current: Path, out: Path, items: list[FeedbackItem], see
 
     if out.exists():
         shutil.rmtree(out)
-    shutil.copytree(current, out)
-    bundle = load_bundle(out)
-    base = ProgressModel.from_bundle(bundle)
-    fcfg = fcfg or FeedbackConfig()
-    cfg = ProgressTrainConfig(hidden=base.model_cfg.hidden, ensemble=base.model_cfg.ensemble)
-    result = train_action(name, all_demos(), seed=seed, cfg=cfg, feedback=items, feedback_cfg=fcfg, base=base.nets)
-    training = training_section(result, cfg, seed, f"l2p-bullet improve {name} (round {k}, judge {judge})")
-    training["feedback"] = {"round": k, "judge": judge, "started_from": str(current), "n_items": len(items),
-                            "n_sequences": result.n_feedback, "digest": feedback_digest(items), **fcfg.to_dict()}
-    write_progress_bundle(out, name, ensemble_arrays(result.model.nets), result.model.model_cfg,
-                          result.model.qsr_cfg, training=training, metrics={})
+    try:
+        shutil.copytree(current, out)
+        bundle = load_bundle(out)
+        base = ProgressModel.from_bundle(bundle)
+        fcfg = fcfg or FeedbackConfig()
+        cfg = ProgressTrainConfig(hidden=base.model_cfg.hidden, ensemble=base.model_cfg.ensemble)
+        epochs, t0 = [0], [time.perf_counter()]
+
+        def tick() -> None:  # once per member-epoch; a line per ensemble member
+            epochs[0] += 1
+            if epochs[0] % fcfg.epochs == 0:
+                n = epochs[0] // fcfg.epochs
+                say(f"  fine-tuned {n}/{plural(cfg.ensemble, 'ensemble member')} "
+                    f"{_eta(n, cfg.ensemble, t0[0])}")
+
+        def stage(message: str) -> None:  # the ETA counts from the built training set, as train's does
+            t0[0] = time.perf_counter()
+
+        result = train_action(name, all_demos(), seed=seed, cfg=cfg, feedback=items, feedback_cfg=fcfg,
+                              base=base.nets, tick=tick, on_stage=stage)
+        training = training_section(result, cfg, seed, f"l2p-bullet improve {name} (round {k}, judge {judge})")
+        training["feedback"] = {"round": k, "judge": judge, "started_from": str(current), "n_items": len(items),
+                                "n_sequences": result.n_feedback, "digest": feedback_digest(items), **fcfg.to_dict()}
+        write_progress_bundle(out, name, ensemble_arrays(result.model.nets), result.model.model_cfg,
+                              result.model.qsr_cfg, training=training, metrics={})
+    except BaseException:
+        shutil.rmtree(out, ignore_errors=True)
+        raise
     return out
 
 
-def _metrics(k: int, bundle_dir: Path, seeds: list[int], summaries: list[dict], items: list[FeedbackItem],
-             n_total: int, static: list[FeedbackItem]) -> RoundResult:
+def _metrics(k: int, bundle_dir: Path, final_dir: Path, seeds: list[int], summaries: list[dict],
+             items: list[FeedbackItem], n_total: int, static: list[FeedbackItem]) -> RoundResult:
     """The round's runs (success by the bundle's judge, final progress) and the new bundle's agreement with
-    the 90 graded demos (in sample when the study's grades were among the feedback)."""
+    the 90 graded demos (in sample when the study's grades were among the feedback). The bundle is read
+    from ``bundle_dir`` and recorded as ``final_dir``, where it is renamed to once these are known."""
 
     bundle = load_bundle(bundle_dir)
     graded = [it for it in original_items() if it.action == bundle.name]
     agree = folder_agreement(graded, score_items(bundle.progress_model(), graded))
     return RoundResult(
-        round=k, bundle=str(bundle_dir), seeds=seeds,
+        round=k, bundle=str(final_dir), seeds=seeds,
         success_rate=float(np.mean([bool(s.get("success")) for s in summaries])),
         mean_final_progress=float(np.mean([s.get("final_progress") or 0.0 for s in summaries])),
         n_grades=len(items), n_grades_total=n_total,

@@ -12,7 +12,10 @@ progress passes ``done_at``. All episodes of a step are scored in one forward pa
 
 from __future__ import annotations
 
+import shlex
+import shutil
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -96,7 +99,12 @@ def rollout(net: GaussianPolicy, model, seeds: list[int], cfg: PolicyTrainConfig
     return torch.stack(logps), torch.stack(rewards), progress
 
 
-def train_policy(model, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print) -> tuple[GaussianPolicy, list[float], int]:
+Tick = Callable[[float], None]
+"""Called after every iteration with its mean final progress (the command's progress bar)."""
+
+
+def train_policy(model, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print,
+                 tick: Tick | None = None) -> tuple[GaussianPolicy, list[float], int]:
     """REINFORCE with a per-step mean baseline.
 
     Returns the policy, the mean final progress per iteration and the iteration whose weights are
@@ -106,10 +114,10 @@ def train_policy(model, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print)
     iterations reached 0.42 after 0.8 earlier on, and the planner's success fell from 100 % to 42 %.
     """
     with torch_threads(1):  # small batches: a second thread only adds contention on a shared machine
-        return _train_policy(model, cfg, log)
+        return _train_policy(model, cfg, log, tick)
 
 
-def _train_policy(model, cfg: PolicyTrainConfig, log) -> tuple[GaussianPolicy, list[float], int]:
+def _train_policy(model, cfg: PolicyTrainConfig, log, tick: Tick | None) -> tuple[GaussianPolicy, list[float], int]:
     torch.manual_seed(cfg.seed)
     rng = np.random.default_rng(cfg.seed)
     net = GaussianPolicy()
@@ -134,6 +142,8 @@ def _train_policy(model, cfg: PolicyTrainConfig, log) -> tuple[GaussianPolicy, l
         if len(history) >= BEST_WINDOW and np.mean(history[-BEST_WINDOW:]) > best:
             best, best_it = float(np.mean(history[-BEST_WINDOW:])), it
             best_state = {k: v.detach().clone() for k, v in net.state_dict().items()}
+        if tick:
+            tick(history[-1])
         if log and (it % 10 == 0 or it == cfg.iterations - 1):
             log(f"iter {it:4d}  final progress {history[-1]:.3f}  ({time.perf_counter() - t0:.0f} s)")
     if best_state is not None:
@@ -169,16 +179,15 @@ def policy_folder(action: str, bundle_dir: str | None, out_dir: str | None, forc
     inside the installed l2p-bullet package or an installed plugin's bundle without ``force``), else a
     copy of ACTION's bundle in ``out_dir`` (default ``runs/train-policy-<timestamp>``), which must not
     exist. The default never touches an installed bundle: in an editable install that is the
-    repository's committed files (issue 26)."""
-    import shutil
-
+    repository's committed files (issue 26). A copy interrupted half-way is removed: a partial bundle
+    would block the same ``--out`` next time."""
     from ..plugins import registry
 
     if bundle_dir is not None:
         if out_dir is not None:
             raise BundleError("give --bundle (train in place) or --out (a new copy), not both")
         folder = Path(bundle_dir)
-        if not force and _installed(folder):
+        if not force and installed(folder):
             raise BundleError(f"{folder} is a bundle of an installed package: pass --force to replace its policy, "
                               "or leave out --bundle to train a copy in a new folder")
         _check_bundle_action(folder, action)  # a past policy in the around bundle would plan "around" wrong
@@ -190,8 +199,47 @@ def policy_folder(action: str, bundle_dir: str | None, out_dir: str | None, forc
         raise BundleError(f"{folder} already exists: choose another --out (or train in it with --bundle {folder})")
     check_writable(folder, "--out", BundleError)
     folder.parent.mkdir(parents=True, exist_ok=True)
-    shutil.copytree(source, folder, ignore=shutil.ignore_patterns("__pycache__"))
+    try:
+        shutil.copytree(source, folder, ignore=shutil.ignore_patterns("__pycache__"))
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
     return folder, True
+
+
+def train_policy_into(action: str, bundle_dir: str | None, out_dir: str | None, force: bool,
+                      cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print,
+                      tick: Tick | None = None) -> tuple[Path, bool, dict]:
+    """``train-policy``: train in :func:`policy_folder`'s folder; returns it, whether it is a fresh copy,
+    and the new ``[policy]`` section.
+
+    The copy is made before the minutes of training. If training fails or is interrupted (Ctrl-C) before
+    the policy is written, the copy this run made is removed: left behind, it held the untrained bundle,
+    byte for byte, looked finished, and made the same command fail ("already exists"). In place
+    (``--bundle``) nothing is written before the end, so the bundle is left as it was. A Ctrl-C gets a
+    note saying so (the CLI prints it after "interrupted").
+    """
+    folder, copied = policy_folder(action, bundle_dir, out_dir, force)
+    try:
+        settings = train_policy_bundle(folder, cfg, log, tick)
+    except BaseException as e:
+        if copied:
+            shutil.rmtree(folder, ignore_errors=True)
+        if isinstance(e, KeyboardInterrupt):
+            e.add_note("nothing was written" if copied else f"the bundle in {folder} is unchanged")
+        raise
+    return folder, copied, settings
+
+
+def policy_command(action: str, folder: Path) -> str | None:
+    """The ``train-policy`` command that trains the policy of the bundle in ``folder`` in place (with
+    ``--force`` where that bundle is installed), or None for an action no policy is trained for (a
+    viewer-frame or two-anchor one plans without one): the next step after ``train``."""
+    frame, anchors = declaration(read_manifest(folder))
+    if not frame.relative or anchors != 1:
+        return None
+    return shlex.join(["l2p-bullet", "train-policy", action, "--bundle", str(folder)]
+                      + (["--force"] if installed(folder) else []))
 
 
 def _check_bundle_action(folder: Path, action: str) -> None:
@@ -209,7 +257,7 @@ def _check_bundle_action(folder: Path, action: str) -> None:
                           f'folder of "{name}" as --bundle (or "{found}" as ACTION)')
 
 
-def _installed(folder: Path) -> bool:
+def installed(folder: Path) -> bool:
     """Is ``folder`` inside the installed l2p-bullet package, or an installed plugin's bundle folder?"""
     from .. import __file__ as package_init
     from ..plugins import registry
@@ -219,7 +267,8 @@ def _installed(folder: Path) -> bool:
     return any(here == r or r in here.parents for r in roots)
 
 
-def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print) -> dict:
+def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig(), log=print,
+                        tick: Tick | None = None) -> dict:
     """Train the move policy of the bundle in ``folder`` against its progress model and store it there.
 
     Returns the manifest's new ``[policy]`` section. The bundle's own planner choices (``planner``,
@@ -235,7 +284,7 @@ def train_policy_bundle(folder: Path, cfg: PolicyTrainConfig = PolicyTrainConfig
                           "trained for relative one-anchor actions only; the default planner plans this action "
                           "without one")
     t0 = time.perf_counter()
-    net, history, best_it = train_policy(ProgressModel.from_bundle(bundle), cfg, log)
+    net, history, best_it = train_policy(ProgressModel.from_bundle(bundle), cfg, log, tick)
     settings = policy_settings(cfg, history, time.perf_counter() - t0, best_it)
     settings |= {k: v for k, v in bundle.manifest.get("policy", {}).items() if k in ("planner", "threshold")}
     settings["progress_sha256"] = bundle.manifest["weights"][PROGRESS_FILE]["sha256"]
