@@ -18,8 +18,11 @@ from .common import force_option
 @click.option("--demos", multiple=True, metavar="SPEC",
               help="Also the shipped human demonstrations, replayed by the arm: all, ACTION or ACTION:INDEX (repeatable).")
 @click.option("--no-video", is_flag=True, help="Leave the camera images out (lerobot), and render no demonstration.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print what was written as one JSON object (for scripts; export printed it always before).")
 @force_option
-def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...], no_video: bool, force: bool) -> None:
+def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...], no_video: bool, as_json: bool,
+               force: bool) -> None:
     """Write RUNS (run folders, or folders holding them, e.g. an evaluation's) to OUT.
 
     \b
@@ -27,9 +30,10 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
       l2p-bullet export runs/eval --format lerobot datasets/eval
       l2p-bullet export --demos around --demos closer:0 --format lerobot datasets/demos
     Every episode's task is its sentence ("move A around B"). Render the runs (perform without
-    --no-render, evaluate --render-every 1) to have videos.
+    --no-render, evaluate --render-every 1) to have videos. A run that did not finish (interrupted,
+    broken off) is skipped with a note on stderr; one whose action failed is exported.
     """
-    from ..core.runfolder import run_folder
+    from ..core.runfolder import run_folder, unfinished
     from ..errors import PathError
     from ..evaluate.progressbar import ProgressBar
     from ..export.episodes import (
@@ -43,15 +47,25 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
 
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
-    sources = run_folders(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
+    found = run_folders(list(runs)) if runs else []  # bad inputs fail before the output folder is claimed
+    sources = []
+    for r in found:
+        note = unfinished(r)  # an interrupted run's folder may hold a 0-byte frame: never an episode
+        if note:
+            click.echo(note, err=True)
+        else:
+            sources.append(r)
+    if found and not sources and not demos:
+        raise PathError(f"nothing to export: none of the {len(found)} run folders given finished (see the notes above)")
     if fmt == "rerun":
-        click.echo(json.dumps(_export_rerun(sources, out, demos, force)))
+        info = _export_rerun(sources, out, demos, force)
+        click.echo(json.dumps(info) if as_json else f"wrote {_n(info['runs'], 'run')} to {out} (view it: rerun {out})")
         return
     specs = demo_specs(list(demos)) if demos else []
     # evaluate's progress bar on stderr: a rendered demonstration takes seconds each (issue 26)
     bar = ProgressBar(len(sources) + len(specs), unit="episodes", label="export: reading")
-    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES,
-                    inputs=tuple(runs)) as folder:
+    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES, inputs=tuple(runs),
+                    option="OUT") as folder:  # export's folder is its argument OUT, not an --out option
         bar.advance(0)  # a first line at once (the folder is claimed): the first rendered demonstration is slow
         episodes = []
         try:
@@ -72,12 +86,22 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
                 info = write_lerobot(episodes, folder, video=video, tick=bar.advance)
             finally:
                 bar.close()
-            click.echo(json.dumps({"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
-                                   "tasks": info["total_tasks"], "fps": info["fps"],
-                                   "video": info["video_path"] is not None}))
+            has_video = info["video_path"] is not None
+            result = {"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
+                      "tasks": info["total_tasks"], "fps": info["fps"], "video": has_video}
+            said = (f"wrote {_n(info['total_episodes'], 'episode')} ({info['total_frames']} frames at {info['fps']} "
+                    f"fps, {_n(info['total_tasks'], 'task')}, {'with' if has_video else 'without'} video) to {out}, "
+                    "a LeRobot v3.0 dataset")
         else:
             path = write_jsonl(episodes, folder)
-            click.echo(json.dumps({"out": str(path), "episodes": len(episodes)}))
+            result = {"out": str(path), "episodes": len(episodes)}
+            said = f"wrote {_n(len(episodes), 'episode')} ({sum(len(e.frames) for e in episodes)} frames) to {path}"
+        click.echo(json.dumps(result) if as_json else said)  # the JSON as export printed it always before --json
+
+
+def _n(count: int, noun: str) -> str:
+    """"1 episode", "2 episodes": the sentence export prints is read by people."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
 def _export_rerun(sources: list, out: str, demos: tuple[str, ...], force: bool) -> dict:

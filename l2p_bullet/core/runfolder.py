@@ -194,19 +194,19 @@ _HELD: list[_Claim] = []
 """Claims made by :func:`prepare_run_folder`: held until the process ends."""
 
 
-def _describe(path: Path, state: str) -> str:
+def _describe(path: Path, state: str, option: str = "--out") -> str:
     if state == "running":
-        return f"run folder {path} is being written by another l2p-bullet run right now; choose another --out"
+        return f"run folder {path} is being written by another l2p-bullet run right now; choose another {option}"
     if state == "finished":
-        return (f"run folder {path} already holds a finished run; choose another --out, or pass --force to "
+        return (f"run folder {path} already holds a finished run; choose another {option}, or pass --force to "
                 "replace that run (--force only ever replaces a run folder l2p-bullet wrote)")
     if path.is_symlink():
-        return f"{path} is a symbolic link; give the folder itself as --out (links are never replaced)"
+        return f"{path} is a symbolic link; give the folder itself as {option} (links are never replaced)"
     if not path.is_dir():
-        return f"{path} exists and is not a folder; choose another --out"
+        return f"{path} exists and is not a folder; choose another {option}"
     names = _unknown_files(path, RUN_FILES)
     shown = ", ".join(names[:3]) + (" ..." if len(names) > 3 else "")
-    return (f"{path} already exists and holds files l2p-bullet did not write ({shown}); choose another --out "
+    return (f"{path} already exists and holds files l2p-bullet did not write ({shown}); choose another {option} "
             "(--force never deletes them)")
 
 
@@ -261,12 +261,13 @@ def _check_replace(path: Path, state: str, command: str, inputs: tuple[str | Pat
 
 def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
                      command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = (),
-                     keep_replaced: bool = False) -> _Claim:
+                     keep_replaced: bool = False, option: str = "--out") -> _Claim:
     """Make the run folder (the rules of the module docstring) and lock it; the caller releases the claim.
 
     ``inputs``: the files and folders the command reads; the run folder never is, holds or lies in one.
     ``keep_replaced``: a finished run replaced with ``force`` stays aside as the claim's ``replaced`` (the
-    caller then restores or drops it) instead of being deleted at once."""
+    caller then restores or drops it) instead of being deleted at once. ``option``: how the command names
+    the folder in its messages (``--out``; ``OUT`` for export's argument)."""
     if out is None:
         base = Path(root) / f"{prefix}-{time.strftime('%Y%m%d-%H%M%S')}"
         _mkdirs(base.parent)
@@ -275,30 +276,56 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
             while path.exists() or path.is_symlink():
                 n += 1
                 path = base.with_name(f"{base.name}-{n}")
-            return _make(path, command or prefix, files)
+            return _make(path, command or prefix, files, option)
     path = Path(out)
     if str(out).strip() == "" or path.name in ("", ".", "..") or _protected(path):
         raise RunFolderError(f'"{out}" cannot be a run folder (it is the current folder, one of its parents, '
-                             "the home folder or the root); choose a new folder name for --out")
+                             f"the home folder or the root); choose a new folder name for {option}")
     _mkdirs(path.parent)
     trash = None
     with _parent_lock(path.parent):
         state = run_folder_state(path)
         _check_replace(path, state, command or prefix, inputs)
         if state in ("foreign", "running") or (state == "finished" and not force):
-            raise RunFolderError(_describe(path, state), path, state)
+            raise RunFolderError(_describe(path, state, option), path, state)
         if state in ("empty", "incomplete", "finished"):
             trash = path.with_name(f".{path.name}.replaced-{uuid.uuid4().hex[:8]}")
             try:
                 path.rename(trash)
             except OSError as e:
                 raise RunFolderError(f"cannot replace run folder {path}: {e.strerror or e}") from None
-        claim = _make(path, command or prefix, files)
+        claim = _make(path, command or prefix, files, option)
     if trash is not None and keep_replaced and state == "finished":
         claim.replaced = trash
     elif trash is not None:
         shutil.rmtree(trash, ignore_errors=True)
     return claim
+
+
+def unfinished(folder: Path) -> str | None:
+    """Why run folder ``folder`` is no run to read (review, export), as the note that skips it; None when
+    its run finished writing.
+
+    Only a run that did not finish writing is skipped: one interrupted (Ctrl-C), one that broke off with an
+    error (summary.json ``"ok": false``), one killed before it was marked finished, or one still being
+    written; it may lack frames or hold a half-written image, and people would grade half a motion. A
+    finished run whose verdict failed (``"success": false``) is kept: a failed attempt is still an episode
+    to grade or learn from. A folder this tool did not write (no marker, no summary) is read as before."""
+    state = run_folder_state(folder)
+    if state == "running":
+        return f"skipped {folder}: its run is still being written; wait for it to finish"
+    summary = _read_json(folder / "summary.json")
+    failed = isinstance(summary, dict) and summary.get("ok") is False
+    if not failed and state != "incomplete":
+        return None
+    command = run_folder_command(folder) or "perform"
+    again = "perform it again" if command == "perform" else f"run `l2p-bullet {command}` again"
+    stage = summary.get("failed_stage") if failed else None
+    if stage == INTERRUPTED:
+        return f"skipped {folder}: its run was interrupted; {again}"
+    if failed:
+        return f"skipped {folder}: its run failed (stage {stage or 'unknown'}); {again}"
+    return f"skipped {folder}: its run did not finish; {again}"
 
 
 def check_writable(path: str | os.PathLike, option: str = "--out", error: type[L2PError] = RunFolderError) -> None:
@@ -322,13 +349,13 @@ def _mkdirs(folder: Path) -> None:
         raise RunFolderError(f"{folder} is not a folder")
 
 
-def _make(path: Path, command: str, files: tuple[str, ...]) -> _Claim:
+def _make(path: Path, command: str, files: tuple[str, ...], option: str = "--out") -> _Claim:
     try:
         path.mkdir()
         return _Claim(path, command, files)
     except FileExistsError:
         state = run_folder_state(path)
-        raise RunFolderError(_describe(path, state), path, state) from None
+        raise RunFolderError(_describe(path, state, option), path, state) from None
     except OSError as e:
         raise RunFolderError(f"cannot create run folder {path}: {e.strerror or e}") from None
 
@@ -356,7 +383,8 @@ def finish_run_folder(path: Path) -> None:
 
 @contextlib.contextmanager
 def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
-               command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = ()) -> Iterator[Path]:
+               command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = (),
+               option: str = "--out") -> Iterator[Path]:
     """``with run_folder(out, force=force, prefix="perform") as folder: ...`` -- the one way to get a run folder.
 
     Inside the block the folder is locked (another run cannot take or replace it). If the block ends by
@@ -368,7 +396,7 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
     saying so, which the command line prints).
     """
     claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files, inputs=inputs,
-                             keep_replaced=True)
+                             keep_replaced=True, option=option)
     try:
         yield claim.path
         claim.finish()

@@ -112,12 +112,22 @@ def episodes_from_run(run: str | Path) -> list[Episode]:
 
 
 def _read_images(folder: Path) -> list[np.ndarray]:
+    """The run's frames/*.png as RGB arrays; a frame that cannot be read (empty, cut short: an interrupted
+    render) is a one-line PathError naming it. Read with Pillow, the PNG reader imageio would use: imageio
+    tries every plugin on a broken file and ends with advice to install another one."""
     if not folder.is_dir():
         return []
-    # lazy: imageio (and its ffmpeg plugin) only when a video is written
-    import imageio.v2 as imageio
+    from PIL import Image, UnidentifiedImageError  # lazy: only when a run's frames are exported
 
-    return [np.asarray(imageio.imread(f))[:, :, :3] for f in sorted(folder.glob("*.png"))]
+    images = []
+    for f in sorted(folder.glob("*.png")):
+        try:
+            with Image.open(f) as im:
+                images.append(np.asarray(im.convert("RGB")))
+        except (OSError, ValueError, SyntaxError, UnidentifiedImageError) as e:
+            why = "an empty file" if f.stat().st_size == 0 else (str(e).splitlines() or [type(e).__name__])[0]
+            raise PathError(f"cannot read the frame image {f} ({why}); render the run again") from None
+    return images
 
 
 def demo_specs(specs: list[str]) -> list[tuple[str, int]]:

@@ -9,9 +9,12 @@ from __future__ import annotations
 
 import hashlib
 import json
+import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..core.runfolder import unfinished
 from ..errors import ReviewError
 from ..plugins.bundle import sha256_file
 
@@ -109,9 +112,16 @@ def _render_fps(folder: Path) -> float | None:
         return None
 
 
-def find_runs(paths: list[str | Path]) -> list[RunInfo]:
-    """The run folders named, or found (recursively, sorted) under the folders named."""
+def _stderr(note: str) -> None:
+    print(note, file=sys.stderr)
+
+
+def find_runs(paths: list[str | Path], note: Callable[[str], None] = _stderr) -> list[RunInfo]:
+    """The finished run folders named, or found (recursively, sorted) under the folders named.
+
+    An unfinished one is skipped with ``note`` (a line on stderr); none left is a ReviewError."""
     runs: dict[str, RunInfo] = {}
+    skipped: set[Path] = set()  # a folder named twice is noted once
     for p in map(Path, paths):
         if not p.exists():
             raise ReviewError(f"{p} does not exist")
@@ -127,8 +137,17 @@ def find_runs(paths: list[str | Path]) -> list[RunInfo]:
                 raise ReviewError(f"no run folders under {p} (a run folder holds a trajectory.json: "
                                   "make some with l2p-bullet perform or replay)")
         for folder in found:
+            why = unfinished(folder)
+            if why:
+                if folder.resolve() not in skipped:
+                    note(why)
+                skipped.add(folder.resolve())
+                continue
             run = read_run(folder)
             runs.setdefault(run.run_id, run)
+    if skipped and not runs:
+        raise ReviewError(f"nothing to review: none of the {len(skipped)} run folders given finished "
+                          "(see the notes above)")
     return list(runs.values())
 
 

@@ -82,13 +82,14 @@ def test_cli_exports_plain_json_by_default_and_lerobot_without_video(runs, tmp_p
     assert r.exit_code == 0, r.output
     line = json.loads((tmp_path / "plain" / "episodes.jsonl").read_text().splitlines()[0])
     assert line["task"] == "move A closer to B" and len(line["frames"]) > 10
+    # named twice, and found again under its parent
     twice = CliRunner().invoke(main, ["export", str(runs[0]), str(runs[0]) + "/", str(runs[0].parent),
-                                      str(tmp_path / "once")])  # named twice, and found again under its parent
+                                      str(tmp_path / "once"), "--json"])
     assert twice.exit_code == 0 and json.loads(twice.stdout)["episodes"] == 2, twice.output
     r = CliRunner().invoke(main, ["export", str(runs[0].parent), "--format", "lerobot", "--no-video",
-                                  str(tmp_path / "lr")])
+                                  str(tmp_path / "lr"), "--json"])
     assert r.exit_code == 0, r.output
-    # progress with an ETA on stderr (issue 26: 20 s of silence), the summary alone on stdout
+    # progress with an ETA on stderr (issue 26: 20 s of silence), the summary alone on stdout (JSON with --json)
     assert "export: reading [" in r.stderr and "2/2 episodes (100%)" in r.stderr and "ETA" in r.stderr
     assert "export: writing [" in r.stderr and json.loads(r.stdout)["episodes"] == 2
     info = json.loads((tmp_path / "lr" / "meta" / "info.json").read_text())

@@ -36,7 +36,7 @@ def _column(recording, entity: str, component: str) -> tuple[np.ndarray, list]:
 @pytest.mark.slow
 def test_poses_and_progress_read_back_as_trajectory_json_has_them(run, tmp_path):
     out = tmp_path / "out.rrd"
-    r = CliRunner().invoke(main, ["export", str(run), "--format", "rerun", str(out)])
+    r = CliRunner().invoke(main, ["export", str(run), "--format", "rerun", str(out), "--json"])
     assert r.exit_code == 0, r.output
     assert json.loads(r.output)["entities"] == ["/run-1"]
     traj = json.loads((run / "trajectory.json").read_text())
