@@ -230,9 +230,7 @@ def _improve_command(action: str, rounds: int, scenes: int, judge: str, feedback
     args += ["--out", str(out)]
     if seed:
         args += ["--seed", str(seed)]
-    if force:  # with the same settings --force resumes too; without it, stale rounds would be refused
-        args.append("--force")
-    return shlex.join(args)
+    return shlex.join(args)  # never --force: it starts over (improve.json already holds these settings)
 
 
 @click.command()

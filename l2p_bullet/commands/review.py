@@ -140,9 +140,9 @@ def report_cmd(db: str, out: str | None, as_json: bool) -> None:
     from ..errors import ReviewError
     from ..review.report import (
         build_report,
-        claim_report_folder,
         read_report_grades,
         render_text,
+        report_folder,
         write_grade_report,
     )
 
@@ -152,12 +152,8 @@ def report_cmd(db: str, out: str | None, as_json: bool) -> None:
                           "original study with l2p-bullet review --import-original")
     rep = build_report(read_report_grades(path), source=str(path))
     folder = Path(out) if out else path.with_name(path.stem + "-report")
-    claim = claim_report_folder(folder, path)  # after the grades are read: a bad file costs no folder
-    try:
+    with report_folder(folder, path):  # after the grades are read: a bad file costs no folder
         files = write_grade_report(rep, folder)
-        claim.finish()
-    finally:
-        claim.release()
     if as_json:
         click.echo(json.dumps(rep, indent=1, default=str))
         return

@@ -32,6 +32,7 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import fnmatch
+import glob
 import json
 import os
 import shutil
@@ -166,22 +167,23 @@ class _Claim:
             os.close(self.fd)
             self.fd = -1
 
-    def restore_replaced(self) -> bool:
-        """Put back the finished run this one replaced (the new folder, incomplete, is deleted); whether it is
-        back. Called when the new run was interrupted."""
+    def restore_replaced(self) -> str | None:
+        """Put back the finished run this one replaced (the new folder, incomplete, is deleted): a note for the
+        user, None when there was none to put back. Called when the new run was interrupted, while this run
+        still holds its marker's lock and under the parent's lock, so no other run can take the folder in
+        between (a claim checks both)."""
         old, self.replaced = self.replaced, None
         if old is None or not old.is_dir():
-            return False
+            return None
         with _parent_lock(self.path.parent):
             shutil.rmtree(self.path, ignore_errors=True)
-            if self.path.exists() or self.path.is_symlink():
-                self.replaced = old  # could not clear the new folder: the old one stays aside, then goes
-                return False
             try:
+                if self.path.exists() or self.path.is_symlink():
+                    raise OSError("the new run's folder could not be removed")
                 old.rename(self.path)
-            except OSError:
-                return False
-        return True
+            except OSError:  # the earlier run stays where it was put aside: say where, never delete it
+                return f"the earlier run could not be put back: it is kept in {old}"
+        return f"{self.path} holds the earlier run again (nothing was replaced)"
 
     def drop_replaced(self) -> None:
         """The new run ended: the run it replaced goes."""
@@ -289,6 +291,7 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
         if state in ("foreign", "running") or (state == "finished" and not force):
             raise RunFolderError(_describe(path, state, option), path, state)
         if state in ("empty", "incomplete", "finished"):
+            _drop_stale(path)
             trash = path.with_name(f".{path.name}.replaced-{uuid.uuid4().hex[:8]}")
             try:
                 path.rename(trash)
@@ -300,6 +303,15 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
     elif trash is not None:
         shutil.rmtree(trash, ignore_errors=True)
     return claim
+
+
+def _drop_stale(path: Path) -> None:
+    """Remove the runs a killed ``--force`` run left aside (``.NAME.replaced-*``: a run ended by SIGTERM or
+    SIGKILL never drops or restores them). Called under the parent's lock when ``path`` is about to be
+    replaced, so its own run is not going on (it would hold the lock): what lies aside for it is left over."""
+    for old in path.parent.glob(f".{glob.escape(path.name)}.replaced-*"):
+        if old.is_dir() and not old.is_symlink():
+            shutil.rmtree(old, ignore_errors=True)
 
 
 def unfinished(folder: Path) -> str | None:
@@ -384,7 +396,7 @@ def finish_run_folder(path: Path) -> None:
 @contextlib.contextmanager
 def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "run", root: str | Path = "runs",
                command: str = "", files: tuple[str, ...] = (), inputs: tuple[str | Path, ...] = (),
-               option: str = "--out") -> Iterator[Path]:
+               option: str = "--out", restore_on_error: bool = False) -> Iterator[Path]:
     """``with run_folder(out, force=force, prefix="perform") as folder: ...`` -- the one way to get a run folder.
 
     Inside the block the folder is locked (another run cannot take or replace it). If the block ends by
@@ -393,7 +405,8 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
     written naming the error. ``files``: patterns of extra files this command writes (see RUN_FILES);
     ``inputs``: what the command reads (never replaced, see :func:`claim_run_folder`). A finished run that
     ``force`` replaces is put back if the block is interrupted (the KeyboardInterrupt then carries a note
-    saying so, which the command line prints).
+    saying so, which the command line prints); with ``restore_on_error`` also when it ends by any other
+    error (a report: its earlier version rather than a failed one).
     """
     claim = claim_run_folder(out, force=force, prefix=prefix, root=root, command=command, files=files, inputs=inputs,
                              keep_replaced=True, option=option)
@@ -401,13 +414,19 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
         yield claim.path
         claim.finish()
     except KeyboardInterrupt as e:
-        claim.release()
-        if claim.restore_replaced():
-            e.add_note(f"{claim.path} holds the earlier run again (nothing was replaced)")
-            raise
+        note = claim.restore_replaced()  # before the lock is released: see restore_replaced
+        if note is not None:
+            e.add_note(note)
+            if "holds the earlier run again" in note:
+                raise
         mark_failed(claim.path, INTERRUPTED, "interrupted (Ctrl-C) before the run finished")
         raise
     except BaseException as e:
+        note = claim.restore_replaced() if restore_on_error else None  # a report: the old one rather than none
+        if note is not None:
+            e.add_note(note)
+            if "holds the earlier run again" in note:
+                raise
         mark_failed(claim.path, None, str(e) or type(e).__name__)
         claim.finish()
         raise

@@ -52,7 +52,8 @@ def run_folders(paths: list[str | Path]) -> list[Path]:
         if (p / "trajectory.json").is_file():
             out.append(p)
         elif p.is_dir():
-            found = sorted(t.parent for t in p.rglob("trajectory.json"))
+            found = sorted(t.parent for t in p.rglob("trajectory.json")  # not hidden ones (a run put aside
+                           if not any(part.startswith(".") for part in t.relative_to(p).parts))  # by --force), as review
             if not found:
                 raise PathError(f"{p} holds no run folder (no trajectory.json in it or below it)")
             out += found

@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..actions import BUILTIN
-from ..core.contracts import load_motion
+from ..core.contracts import PROGRESS_FILE, load_motion
 from ..core.runfolder import check_writable
 from ..core.scene import random_scene
 from ..data.grades import GradeRow, write_grades
@@ -114,7 +114,8 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
     out = Path(out)
     check_writable(out, "--out", DataError)
     settings = {"action": name, "scenes": scenes, "judge": judge, "feedback": list(feedback), "seed": seed,
-                "started_from": str(current)}
+                "started_from": str(current),  # and what it held: a bundle re-trained since is another start
+                "started_from_sha256": sha256_file(current / PROGRESS_FILE)}
     _claim(out, settings, force)
     say = log or (lambda _m: None)
     for s in skipped:
@@ -208,7 +209,7 @@ def _claim(out: Path, settings: dict, force: bool) -> None:
             shown = ", ".join(foreign[:3]) + (" ..." if len(foreign) > 3 else "") or "no improve.json"
             raise RunFolderError(f"{out} already exists and holds files l2p-bullet did not write ({shown}); choose "
                                  "another --out (--force never deletes them)")
-        if old == settings:
+        if old == settings and not force:  # the same command again: go on where it stopped
             return
         if not force:
             raise RunFolderError(f"{out} holds rounds of other improve settings (its improve.json); choose another "

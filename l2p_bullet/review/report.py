@@ -14,9 +14,11 @@ motion. Torch-free: the models are the bundles' numpy ones.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import json
 from collections import defaultdict
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -342,16 +344,37 @@ def _check_export(path: Path) -> None:
                               "them; see docs/review.md)")
 
 
-def claim_report_folder(folder: Path, db: Path):
-    """Lock ``folder`` for a report (:func:`~l2p_bullet.core.runfolder.claim_run_folder`, its rules): a new or
-    empty folder, or one holding an earlier report of this command and nothing else, which is replaced (a
-    report is regenerated after every grading session: asking for ``--force`` each time would only teach
-    people to type it); never a folder with a person's files (their own ``report.md``), a run folder of
-    another command, or one that is or holds the grades file. A report folder from before the marker
-    (2026-11-27) cannot be told from a person's and is refused: choose another ``--out`` or remove it."""
-    from ..core.runfolder import claim_run_folder
+@contextlib.contextmanager
+def report_folder(folder: Path, db: Path) -> Iterator[Path]:
+    """``with report_folder(out, db) as folder:`` the folder for a report, by the run-folder rules
+    (:func:`~l2p_bullet.core.runfolder.run_folder`): a new or empty folder, or one holding an earlier report of
+    this command and nothing else, which is replaced (a report is made again after every grading session:
+    asking for ``--force`` each time would only teach people to type it); never a folder with a person's
+    files (their own ``report.md``), a run folder of another command, or one that is or holds the grades file.
+    The earlier report stays aside until the new one is written, and comes back if writing it fails. A
+    folder from before the marker (2026-11-27) that holds only report files is taken as an earlier report."""
+    from ..core.runfolder import run_folder
 
-    return claim_run_folder(folder, force=True, command="report", files=REPORT_FILES, inputs=(db,))
+    _adopt_old_report(folder)
+    with run_folder(folder, force=True, command="report", files=REPORT_FILES, inputs=(db,),
+                    restore_on_error=True) as out:
+        yield out
+
+
+def _adopt_old_report(folder: Path) -> None:
+    """Mark a report folder written before the marker existed as report's (it holds report files only), so the
+    rules above replace it; any other folder is left as it is (and refused there if it is not ours)."""
+    from ..core.runfolder import MARKER
+
+    if not folder.is_dir() or folder.is_symlink() or (folder / MARKER).exists():
+        return
+    entries = list(folder.iterdir())
+    names = {p.name for p in entries}
+    # report.md and report.json are always written together: a person's own report.md alone is not a report
+    if {"report.md", "report.json"} <= names and all(p.is_file() and not p.is_symlink() and p.name in REPORT_FILES
+                                                     for p in entries):
+        (folder / MARKER).write_text(json.dumps({"tool": "l2p-bullet", "command": "report", "files": list(REPORT_FILES),
+                                                 "finished": "before the marker"}) + "\n")
 
 
 def write_grade_report(rep: dict, folder: Path) -> list[Path]:

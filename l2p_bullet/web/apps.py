@@ -7,7 +7,9 @@ exception's type only, its traceback in the server's log.
 
 from __future__ import annotations
 
+import ipaddress
 import logging
+import re
 from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
@@ -40,8 +42,6 @@ from elsewhere."""
 
 def is_loopback(host: str) -> bool:
     """``localhost`` or any loopback address (127.0.0.0/8, ::1): only this machine can connect."""
-    import ipaddress
-
     if host.strip("[]").lower() == "localhost":
         return True
     try:
@@ -66,20 +66,38 @@ def new_app(title: str, host: str, extra_hosts: tuple[str, ...] = ()) -> FastAPI
     return app
 
 
-def host_name(header: str) -> str:
-    """The host of a Host header, without its port: ``[::1]:8765`` -> ``[::1]``, ``localhost:80`` -> ``localhost``."""
-    header = header.strip().lower()
-    if header.startswith("["):
-        return header[:header.find("]") + 1] if "]" in header else header
-    return header.split(":")[0]
+_HOST_RE = re.compile(
+    r"^(?P<host>[a-z0-9._~%!$&'()*+,;=-]+|\[(?:(?P<ipv6>[a-f0-9]*:[a-f0-9.:]+)|"
+    r"(?-i:v)[a-f0-9]+\.[a-z0-9._~!$&'()*+,;=:-]+)\])(?::(?P<port>[0-9]+))?$",
+    re.IGNORECASE,
+)
+"""Starlette's own Host rule (``starlette._utils.parse_host_header``, private, so copied exactly from
+Starlette 1.10): a reg-name, or an IP literal in brackets, then an optional numeric port; nothing else."""
+
+
+def host_name(header: str | None) -> str | None:
+    """The host of a Host header, lower case and without its port (``[::1]:8765`` -> ``[::1]``), or None
+    when the header is missing or not a host[:port] by Starlette's rule: ``[::1]evil.com``,
+    ``localhost:80@evil.com`` and ``127.0.0.1:abc`` are refused as TrustedHostMiddleware refused them, not
+    read as a loopback host."""
+    match = None if header is None else _HOST_RE.fullmatch(header)
+    if match is None:
+        return None
+    if match["ipv6"] is not None:
+        try:
+            ipaddress.IPv6Address(match["ipv6"])
+        except ipaddress.AddressValueError:
+            return None
+    return match["host"].lower()
 
 
 class RequestGuard:
     """ASGI middleware for both apps: refuses cross-site state-changing requests and bodies over
     :data:`MAX_BODY_BYTES`, and adds :data:`SECURITY_HEADERS` to every response.
 
-    With ``allowed_hosts`` (a server bound to loopback), a request whose Host header names another host
-    is refused (400) first: a rebound DNS name must not reach the app.
+    With ``allowed_hosts`` (a server bound to loopback), a request whose Host header names another host,
+    or is missing or malformed, is refused (400) first, and a websocket handshake closed (403): a rebound
+    DNS name must not reach the app, over HTTP or a websocket.
 
     A web page elsewhere can make the browser send a "simple" request (``text/plain``, no preflight) to
     a server on this machine: ``POST /api/train`` would retrain a plugin. So every POST/PUT/PATCH/DELETE
@@ -93,6 +111,10 @@ class RequestGuard:
         self.app, self.max_body, self.allowed_hosts = app, max_body, allowed_hosts
 
     async def __call__(self, scope, receive, send) -> None:
+        if scope["type"] == "websocket" and not self.host_allowed(scope):
+            # before accepting: the server answers the handshake 403 (TrustedHostMiddleware refused here too)
+            await send({"type": "websocket.close", "code": 1008, "reason": "invalid host header"})
+            return
         if scope["type"] != "http":
             await self.app(scope, receive, send)
             return
@@ -115,7 +137,7 @@ class RequestGuard:
             await send(message)
 
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
-        if self.allowed_hosts is not None and host_name(headers.get("host", "")) not in self.allowed_hosts:
+        if not self.host_allowed(scope):
             refusal = 400, "invalid host header (this server answers only requests addressed to this machine)"
         else:
             refusal = _refusal(scope["method"], headers, self.max_body)
@@ -143,6 +165,15 @@ class RequestGuard:
             return {"type": "http.request", "body": bytes(body), "more_body": False}
 
         await self.app(scope, replay, send_with_headers)
+
+    def host_allowed(self, scope) -> bool:
+        """Whether the request (HTTP or websocket) may reach the app: any Host without ``allowed_hosts``,
+        else a Host header that parses (:func:`host_name`) to one of them. Starlette reads the headers
+        as latin-1 and its ``Headers.get`` returns the first of repeated ones; so does this."""
+        if self.allowed_hosts is None:
+            return True
+        host = next((v.decode("latin-1") for k, v in scope.get("headers", []) if k.lower() == b"host"), None)
+        return host_name(host) in self.allowed_hosts
 
 
 def _refusal(method: str, headers: dict[str, str], max_body: int) -> tuple[int, str] | None:

@@ -149,7 +149,7 @@ def test_improve_refits_a_round_whose_bundle_has_no_metrics(tmp_path, monkeypatc
     ({}, "l2p-bullet improve past --rounds 2 --scenes 10 --out runs/improve/past"),
     ({"judge": "my reviews.sqlite", "feedback": ("original", "a.csv"), "seed": 3, "force": True},
      "l2p-bullet improve past --rounds 2 --scenes 10 --judge 'my reviews.sqlite' --feedback original "
-     "--feedback a.csv --out runs/improve/past --seed 3 --force"),
+     "--feedback a.csv --out runs/improve/past --seed 3"),  # never --force: it would start over
 ])
 def test_improve_continue_command_repeats_the_settings(kw, expect):
     args = {"judge": "rules", "feedback": (), "seed": 0, "force": False} | kw

@@ -80,6 +80,11 @@ def test_improve_force_replaces_only_its_own_rounds(tmp_path):
     _claim(out, {"seed": 2}, force=True)
     assert [p.name for p in out.iterdir()] == ["improve.json"]
     assert json.loads((out / "improve.json").read_text()) == {"seed": 2}
+    (out / "round-1").mkdir()  # the same settings: resumed without --force, started over with it
+    _claim(out, {"seed": 2}, force=False)
+    assert (out / "round-1").is_dir()
+    _claim(out, {"seed": 2}, force=True)
+    assert [p.name for p in out.iterdir()] == ["improve.json"]
 
 
 @pytest.mark.parametrize("option, expect", [
@@ -209,6 +214,31 @@ def test_report_never_overwrites_a_persons_files(tmp_path, grades):
     run.release()
     msg = one_line_error(cli("report", "--db", str(grades), "--out", str(tmp_path / "run")))
     assert "l2p-bullet perform" in msg and not (tmp_path / "run" / "report.md").exists()
+
+
+def test_report_replaces_a_report_from_before_the_marker_and_keeps_the_old_one_if_writing_fails(tmp_path, grades,
+                                                                                                  monkeypatch):
+    """Review finding (2026-11-27): every existing runs/reviews-report (no marker) was refused as someone else's,
+    and an error while writing lost the earlier report."""
+    from l2p_bullet.review import report as report_mod
+
+    old = tmp_path / "old"
+    old.mkdir()
+    for name in ("report.md", "report.json", "table1_original.csv"):
+        (old / name).write_text("earlier")
+    assert cli("report", "--db", str(grades), "--out", str(old)).exit_code == 0
+    assert (old / "report.md").read_text() != "earlier"
+    before = (old / "report.md").read_text()
+
+    def broken(rep, folder):
+        (folder / "report.md").write_text("half")
+        raise report_mod.ReviewError("cannot write the report: disk full")
+
+    monkeypatch.setattr(report_mod, "write_grade_report", broken)
+    r = cli("report", "--db", str(grades), "--out", str(old))
+    assert r.exit_code == 2 and "disk full" in r.output
+    assert (old / "report.md").read_text() == before  # the earlier report is back, nothing left aside
+    assert not [p.name for p in tmp_path.iterdir() if p.name.startswith(".")]
 
 
 def test_report_regenerates_its_own_report(tmp_path, grades):

@@ -289,3 +289,36 @@ def _wait_for_new_plan(out: Path, proc: subprocess.Popen, timeout: float = 120.0
         assert proc.poll() is None, proc.communicate()
         time.sleep(0.05)
     raise AssertionError("the new run never planned")
+
+
+def test_no_other_run_can_take_the_folder_while_an_interrupted_one_puts_the_old_run_back(tmp_path, monkeypatch):
+    """Review finding (2026-11-27): the restore ran after the new run's lock was released, so a second run could
+    claim the folder in between and have it deleted under it. The lock is held until the old run is back."""
+    from l2p_bullet.core import runfolder
+
+    out = _perform_like_run(tmp_path / "run")
+    taken = []
+    restore = runfolder._Claim.restore_replaced
+
+    def meanwhile(self):
+        with pytest.raises(RunFolderError, match="being written by another"):
+            claim_run_folder(out, command="perform")  # a second run started in that moment
+        taken.append(True)
+        return restore(self)
+
+    monkeypatch.setattr(runfolder._Claim, "restore_replaced", meanwhile)
+    with pytest.raises(KeyboardInterrupt), run_folder(out, force=True, command="perform"):
+        raise KeyboardInterrupt
+    assert taken and run_folder_state(out) == "finished" and (out / "trajectory.json").exists()
+
+
+def test_a_run_put_aside_by_a_killed_force_run_is_dropped_by_the_next_claim(tmp_path):
+    """A run ended by SIGTERM/SIGKILL never drops what it put aside; the next run into the folder does."""
+    out = _perform_like_run(tmp_path / "run")
+    aside = tmp_path / ".run.replaced-0badc0de"
+    aside.mkdir()
+    (aside / "trajectory.json").write_text("{}")
+    (tmp_path / ".other.replaced-1").mkdir()  # another folder's: left alone
+    with run_folder(out, force=True, command="perform") as folder:
+        (folder / "summary.json").write_text(json.dumps({"schema": 1, "ok": True}))
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".other.replaced-1", "run"]

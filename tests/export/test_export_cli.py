@@ -107,3 +107,14 @@ def test_an_existing_out_is_named_as_the_argument_it_is(finished, tmp_path):
     assert CliRunner().invoke(main, ["export", str(finished), str(out)]).exit_code == 0
     line = one_line_error(CliRunner().invoke(main, ["export", str(finished), str(out)]))
     assert "already holds a finished run; choose another OUT, or pass --force" in line and "--out" not in line
+
+
+def test_runs_put_aside_in_hidden_folders_are_not_exported(tmp_path):
+    """A run a killed --force left aside (.NAME.replaced-*) is no episode (review finding, 2026-11-27)."""
+    from l2p_bullet.export.episodes import run_folders
+
+    (tmp_path / "runs" / "a").mkdir(parents=True)
+    (tmp_path / "runs" / "a" / "trajectory.json").write_text("{}")
+    (tmp_path / "runs" / ".a.replaced-1").mkdir()
+    (tmp_path / "runs" / ".a.replaced-1" / "trajectory.json").write_text("{}")
+    assert run_folders([tmp_path / "runs"]) == [tmp_path / "runs" / "a"]

@@ -240,3 +240,48 @@ def test_head_is_answered_where_get_is(review):
     status, headers, body = _head(review, "HEAD /")
     assert status == 200 and body == b"" and headers["content-type"].startswith("text/html")
     assert headers["x-frame-options"] == "DENY"
+
+
+@pytest.mark.parametrize("host", ["[::1]evil.com", "localhost:80@evil.com", "127.0.0.1:abc", "localhost.", ""])
+def test_a_host_header_starlette_cannot_parse_is_refused(review, host):
+    """The guard that replaced TrustedHostMiddleware read ``[::1]evil.com`` as ``[::1]``, ``localhost:80@evil.com``
+    and ``127.0.0.1:abc`` as loopback hosts; Starlette's own rule refuses them (and an empty Host)."""
+    import json
+
+    status, headers, body = _head(review, "/api/config", {"Host": host})
+    assert status == 400 and "host" in json.loads(body)["error"], (host, status, body)
+    assert headers["x-frame-options"] == "DENY"
+    for good in ("127.0.0.1", "LOCALHOST:1", "[::1]:8765"):
+        assert _head(review, "/api/config", {"Host": good})[0] == 200, good
+
+
+def test_a_websocket_to_a_foreign_host_is_closed_before_the_app_sees_it():
+    """Websocket scopes went past the Host check; TrustedHostMiddleware refused them too."""
+    import asyncio
+
+    from l2p_bullet.web.apps import RequestGuard
+
+    reached = []
+
+    async def app(scope, receive, send):
+        reached.append(scope["type"])
+
+    guard = RequestGuard(app, allowed_hosts=("127.0.0.1", "localhost", "[::1]"))
+
+    async def handshake(host: str | None) -> list[dict]:
+        sent: list[dict] = []
+
+        async def receive():
+            return {"type": "websocket.connect"}
+
+        async def send(message):
+            sent.append(message)
+
+        headers = [] if host is None else [(b"host", host.encode("latin-1"))]
+        await guard({"type": "websocket", "path": "/ws", "headers": headers}, receive, send)
+        return sent
+
+    for host in ("evil.example", "[::1]evil.com", "localhost:80@evil.com", "127.0.0.1:abc", None):
+        sent = asyncio.run(handshake(host))
+        assert [m["type"] for m in sent] == ["websocket.close"] and not reached, (host, sent)
+    assert asyncio.run(handshake("localhost:8765")) == [] and reached == ["websocket"]
