@@ -33,7 +33,8 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     --no-render, evaluate --render-every 1) to have videos. A run that did not finish (interrupted,
     broken off) is skipped with a note on stderr; one whose action failed is exported.
     """
-    from ..core.runfolder import run_folder, unfinished
+    from ..core.folders import unfinished
+    from ..core.runfolder import run_folder
     from ..errors import PathError
     from ..evaluate.progressbar import ProgressBar
     from ..export.episodes import (

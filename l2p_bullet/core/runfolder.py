@@ -41,7 +41,7 @@ import uuid
 from collections.abc import Iterator
 from pathlib import Path
 
-from ..errors import L2PError, RunFolderError
+from ..errors import RunFolderError
 from .contracts import dumps_json
 
 MARKER = ".l2p-run.json"
@@ -312,44 +312,6 @@ def _drop_stale(path: Path) -> None:
     for old in path.parent.glob(f".{glob.escape(path.name)}.replaced-*"):
         if old.is_dir() and not old.is_symlink():
             shutil.rmtree(old, ignore_errors=True)
-
-
-def unfinished(folder: Path) -> str | None:
-    """Why run folder ``folder`` is no run to read (review, export), as the note that skips it; None when
-    its run finished writing.
-
-    Only a run that did not finish writing is skipped: one interrupted (Ctrl-C), one that broke off with an
-    error (summary.json ``"ok": false``), one killed before it was marked finished, or one still being
-    written; it may lack frames or hold a half-written image, and people would grade half a motion. A
-    finished run whose verdict failed (``"success": false``) is kept: a failed attempt is still an episode
-    to grade or learn from. A folder this tool did not write (no marker, no summary) is read as before."""
-    state = run_folder_state(folder)
-    if state == "running":
-        return f"skipped {folder}: its run is still being written; wait for it to finish"
-    summary = _read_json(folder / "summary.json")
-    failed = isinstance(summary, dict) and summary.get("ok") is False
-    if not failed and state != "incomplete":
-        return None
-    command = run_folder_command(folder) or "perform"
-    again = "perform it again" if command == "perform" else f"run `l2p-bullet {command}` again"
-    stage = summary.get("failed_stage") if failed else None
-    if stage == INTERRUPTED:
-        return f"skipped {folder}: its run was interrupted; {again}"
-    if failed:
-        return f"skipped {folder}: its run failed (stage {stage or 'unknown'}); {again}"
-    return f"skipped {folder}: its run did not finish; {again}"
-
-
-def check_writable(path: str | os.PathLike, option: str = "--out", error: type[L2PError] = RunFolderError) -> None:
-    """Refuse a folder this process cannot write into (or, not made yet, whose nearest existing parent it
-    cannot), before any long work starts: a PermissionError after minutes of training loses them."""
-    probe = Path(path)
-    while not probe.exists() and not probe.is_symlink() and probe.parent != probe:
-        probe = probe.parent
-    if probe.exists() and not probe.is_dir():
-        raise error(f"{option} {path}: {probe} exists and is not a folder; choose another {option}")
-    if not os.access(probe, os.W_OK | os.X_OK):
-        raise error(f"{option} {path}: cannot write into {probe} (permission denied); choose another {option}")
 
 
 def _mkdirs(folder: Path) -> None:

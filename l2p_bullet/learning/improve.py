@@ -36,7 +36,7 @@ import numpy as np
 
 from ..actions import BUILTIN
 from ..core.contracts import PROGRESS_FILE, load_motion
-from ..core.runfolder import check_writable
+from ..core.folders import check_writable
 from ..core.scene import random_scene
 from ..data.grades import GradeRow, write_grades
 from ..errors import DataError, L2PError, RunFolderError

@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 import torch
 
+from ..core.folders import check_writable
 from ..core.frames import declaration
-from ..core.runfolder import check_writable
 from ..core.scene import random_scene
 from ..core.threads import torch_threads
 from ..errors import BundleError, L2PError

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
-from ..core.runfolder import check_writable
+from ..core.folders import check_writable
 from ..embodiment import arm_guess, arm_plugins
 from ..embodiment.sim.arms import portable_path
 from ..errors import PluginError

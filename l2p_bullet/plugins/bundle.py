@@ -29,7 +29,7 @@ from safetensors.numpy import load, save
 from .. import __version__
 from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
-from ..core.runfolder import check_writable
+from ..core.folders import check_writable
 from ..core.vocabulary import ACTIONS, canonical_action, normalize_name
 from ..errors import BundleError, RunFolderError
 from ..progress.config import ModelConfig

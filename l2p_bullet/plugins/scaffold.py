@@ -16,8 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
+from ..core.folders import check_writable
 from ..core.frames import parse_anchors, parse_frame
-from ..core.runfolder import check_writable
 from ..core.vocabulary import PLUGIN_ACTION, normalize_name, normalize_phrase
 from ..errors import BundleError, PluginError, UnknownActionError
 from ..judge.rules import RULES, TWO_ANCHOR_RULES

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..core.runfolder import unfinished
+from ..core.folders import unfinished
 from ..errors import ReviewError
 from ..plugins.bundle import sha256_file
 
