@@ -60,7 +60,10 @@ def stored_settings(folder: Path) -> dict | None:
         raise EvaluationError(f"cannot read the results table {path}: {e}") from None
     except sqlite3.DatabaseError as e:
         raise EvaluationError(f"cannot read the results table {path}: {e}") from None
-    value = None if row is None else json.loads(row[0])
+    try:
+        value = None if row is None else json.loads(row[0])
+    except (TypeError, ValueError):
+        raise EvaluationError(f"cannot read the results table {path}: its stored settings are not JSON") from None
     return value if isinstance(value, dict) else None
 
 

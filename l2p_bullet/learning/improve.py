@@ -252,8 +252,11 @@ def _perform_round(name: str, bundle_dir: Path, runs: Path, seeds: list[int], sa
 
 def _performed(folder: Path) -> bool:
     """Did a stopped round already perform this run (its summary says ok)?"""
-    summary = folder / "summary.json"
-    return summary.is_file() and bool(json.loads(summary.read_text()).get("ok"))
+    try:
+        summary = json.loads((folder / "summary.json").read_text())
+    except (OSError, ValueError):  # missing, or cut short by a kill: performed again
+        return False
+    return isinstance(summary, dict) and bool(summary.get("ok"))
 
 
 def _round_items(rd: Path, judge: str, name: str, seeds: list[int], say) -> list[FeedbackItem]:
