@@ -4,9 +4,12 @@
 A recording comes from a browser, so it may be anything: the limits here (sample count, duration,
 finite numbers, positions and yaw of a sane size) are checked on the raw samples first, because
 resampling to 30 fps allocates one pose per frame (a span of a million seconds is 30 million frames) and
-``np.unwrap`` overflows on yaws near the float limit. The collision check then follows the swept path,
-not only the 30-fps poses: a block may jump several block sides between two frames (a sample 1/30 s
-after the start, far away), and a pose check alone would let it pass through another block.
+``np.unwrap`` overflows on yaws near the float limit. The collision check then follows the path the page
+recorded, not only its poses: a block may jump several block sides between two samples (a sample 1/30 s
+after the start, far away), and a pose check alone would let it pass through another block. The page
+itself only refuses a pose that overlaps, so a block dragged against another sticks and, once the pointer
+clears the corner, jumps across it: that straight jump cuts the corner by a few millimetres, and is
+allowed (:data:`TOLERANCE`).
 """
 
 from __future__ import annotations
@@ -28,15 +31,24 @@ MAX_COORD = 100.0
 MAX_YAW = 1000.0
 """Largest |yaw| of a sample (rad): ~160 turns, more than any hand makes; bounds ``np.unwrap``'s input."""
 MIN_FRAMES = 5
-"""Frames (at 30 fps) a demonstrated motion lasts at least: shorter is a click, not a demonstration."""
+"""Frames (at 30 fps) a demonstrated motion lasts at least (a single action's event, a whole row): shorter
+is a click, not a demonstration."""
 MIN_TRAVEL = 0.5
-"""Blocks the mover must travel during the event (or a drag)."""
+"""Blocks the mover must travel during the event (a single action), or each moved block over its drags
+(a row: a small corrective drag is welcome, a block that barely moved is not part of the row)."""
 STEP = 0.25
-"""Largest move of a block's corner between two checked poses, in block sides: the swept path is
-checked, so that no jump between frames can cross another block unseen."""
+"""Largest move of a block's corner between two checked poses, in block sides: the path between two
+samples is checked, so that no jump between samples can cross another block unseen."""
+TOLERANCE = 0.25
+"""How deep, in block sides, the straight path between two samples may cut into another block (1 cm for
+4 cm cubes): the samples themselves may not overlap one (by more than 1 mm, as the page placed them). A
+block dragged against another sticks where the page refused the next pose and jumps when the pointer
+clears the corner; that jump's chord cuts the corner by 2-8 mm at 0.6-1 m/s, and hugging the anchor is
+what people do for "around". A jump through a block cuts it by half a side or more. ``teach.js`` refuses
+the same chords live (``TOLERANCE`` there)."""
 MAX_CHECKED = 100_000
-"""Most poses one collision check looks at, so that a hostile recording costs seconds, not minutes: ten
-minutes at 30 fps are 18,000 frames, and a hand's drag needs one or two poses per frame."""
+"""Most poses one collision check looks at, so that a hostile recording costs seconds, not minutes: a
+recording has at most :data:`MAX_SAMPLES` samples, and a hand's drag needs one or two poses per sample."""
 
 
 class Duplicate(TeachError):
@@ -81,15 +93,15 @@ def travel(track: np.ndarray, size: float) -> float:
 
 
 def swept(track: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
-    """(poses (m, 3), frame (m,)): ``track`` with each step from frame k-1 to k subdivided so that no
+    """(poses (m, 3), index (m,)): ``track`` with each step from pose k-1 to k subdivided so that no
     corner of a block of side ``size`` moves more than :data:`STEP` sides between two poses (each pose
-    labelled with the frame k it leads to). TeachError when that would be more than :data:`MAX_CHECKED`."""
+    labelled with the index k it leads to). TeachError when that would be more than :data:`MAX_CHECKED`."""
     d = np.diff(track, axis=0)
     corner = np.hypot(d[:, 0], d[:, 1]) + np.abs(d[:, 2]) * size * math.sqrt(0.5)
     parts = np.maximum(1, np.ceil(corner / (STEP * size))).astype(np.int64)
     if parts.sum() > MAX_CHECKED:
         raise TeachError(f"the block moves too fast to be checked ({fmt(travel(track, size))} blocks in "
-                         f"{len(track)} frames): slide it more slowly")
+                         f"{len(track)} samples): slide it more slowly")
     step = np.repeat(np.arange(len(d)), parts)  # the step each pose is on
     first = np.repeat(np.cumsum(parts) - parts, parts)
     f = (np.arange(len(step)) - first + 1) / parts[step]
@@ -97,18 +109,28 @@ def swept(track: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
     return poses, np.r_[0, step + 1]
 
 
-def first_collision(mover: SceneObject, track: np.ndarray, others: list[tuple[SceneObject, np.ndarray]]
+def first_collision(mover: SceneObject, path: np.ndarray, others: list[tuple[SceneObject, np.ndarray]]
                     ) -> tuple[int, str] | None:
-    """(frame, name) where ``mover`` following ``track`` (its swept path, :func:`swept`) first overlaps one
-    of ``others`` (each an object and its pose then), or None."""
-    poses, frames = swept(track, mover.size)
+    """(index, name) where ``mover`` following ``path`` (n, 3 poses as the page placed the block, yaw
+    unwrapped) first passes through one of ``others`` (each an object and its pose then), or None: a pose
+    of ``path`` that overlaps one by more than 1 mm (index: that pose), or a straight move between two
+    poses (:func:`swept`) that cuts deeper than :data:`TOLERANCE` into one (index: the pose it leads to).
+
+    Only the samples get the full footprint: the 30-fps frames, and the swept moves, lie between them,
+    where a jump across a corner the page allowed cuts it by millimetres (:data:`TOLERANCE`)."""
+    poses, steps = swept(path, mover.size)
+    first: tuple[int, str] | None = None
     for other, pose in others:
-        near = np.hypot(*(poses[:, :2] - pose[:2]).T) < (mover.size + other.size) * math.sqrt(0.5)
         foot = other.footprint(pose)
-        for i in np.flatnonzero(near):
-            if polygons_overlap(mover.footprint(poses[i]), foot, margin=-0.001):
-                return int(frames[i]), other.name
-    return None
+        reach = (mover.size + other.size) * math.sqrt(0.5)
+        tol = TOLERANCE * min(mover.size, other.size)
+        for at, label, margin in ((path, np.arange(len(path)), -0.001), (poses, steps, -tol)):
+            near = np.flatnonzero(np.hypot(*(at[:, :2] - pose[:2]).T) < reach)
+            for i in near[label[near] < (first[0] if first else len(path))]:
+                if polygons_overlap(mover.footprint(at[i]), foot, margin=margin):
+                    first = int(label[i]), other.name
+                    break
+    return first
 
 
 def same_demonstration(old: list[np.ndarray], events: np.ndarray, new: list[np.ndarray], start: int,

@@ -232,7 +232,7 @@ class Lesson:
         if moved < MIN_TRAVEL:
             raise TeachError(f"block A moved {moved:.2f} blocks between start and end; slide it to where "
                              f'"{self.action.phrases[0]}" ends')
-        self._check_track(scene, track)
+        self._check_track(scene, track, np.column_stack([t, s[:, 1:3], yaw]))
         lo = max(0, i0 - BEFORE)
         track = track[lo:i1 + CONTEXT + 1]
         i0, i1 = i0 - lo, i1 - lo
@@ -244,15 +244,19 @@ class Lesson:
         return [track, *others], i0, i1
 
     @staticmethod
-    def _check_track(scene: Scene, track: np.ndarray) -> None:
-        """The block stays on the table and never overlaps another block, between frames too (swept)."""
+    def _check_track(scene: Scene, track: np.ndarray, samples: np.ndarray) -> None:
+        """The block's frames (``track``) stay on the table, and its path never passes through another
+        block: ``samples`` ``[t, x, y, yaw]`` (t from 0, yaw unwrapped), the poses the page placed it at
+        and the jumps between them (:func:`~.checks.first_collision`, which allows a jump across a
+        corner the page allowed; the frames lie on those jumps)."""
         mover = scene.get("A")
         for k, pose in enumerate(track):
             if not scene.table.contains(mover.footprint(pose)):
                 raise TeachError(f"block A left the table at frame {k} ({fmt(pose[0])}, {fmt(pose[1])})")
-        hit = first_collision(mover, track, [(o, o.pose) for o in scene.objects if o.name != "A"])
+        hit = first_collision(mover, samples[:, 1:], [(o, o.pose) for o in scene.objects if o.name != "A"])
         if hit is not None:
-            raise TeachError(f"block A passed through block {hit[1]} at frame {hit[0]}: slide it around")
+            frame = int(np.floor(samples[hit[0], 0] * FPS + 1e-9))
+            raise TeachError(f"block A passed through block {hit[1]} at frame {frame}: slide it around")
 
     def _append(self, scene: Scene, tracks: list[np.ndarray], start: int, end: int) -> None:
         """Append the demonstration (scaled to the captures' block size) to the demos file, atomically."""

@@ -4,7 +4,8 @@ A scene has 2 or 3 blocks (even seeds 2, odd seeds 3; 4 cm cubes scattered on th
 names them in order; the person drags the blocks one after another. The page segments the motion the
 simple way: a block is moving while it is dragged, so each drag (pointer down on a block .. pointer up) is
 one segment, sampled on every move. :meth:`RowLesson.save_row` checks the drags (each starts where its
-block then stood, stays on the table, never passes through another block) and appends the demonstration
+block then stood, stays on the table, never passes through another block; the row lasts 5 frames and
+moves each of its blocks half a side) and appends the demonstration
 to the bundle's ``demos.json``. "Train" learns the recipe from every demonstration there
 (composite/recipe.py: each drag recognised as one of the installed actions) and performs a row of four
 on a new scene, with video.
@@ -102,8 +103,12 @@ class RowLesson(Lesson):
         """Check the drags of one row and append it to ``demos.json``; the count and the file.
 
         Each drag meets the single action's limits (``teach/checks.py``) before it is resampled: at most
-        :data:`~.checks.MAX_SAMPLES` finite samples over :data:`~.checks.MAX_SECONDS`, at least
-        :data:`~.checks.MIN_FRAMES` frames long and :data:`~.checks.MIN_TRAVEL` blocks of travel."""
+        :data:`~.checks.MAX_SAMPLES` finite samples over :data:`~.checks.MAX_SECONDS`. The minimums are
+        the row's, not each drag's, because the page cannot drop one drag (the person would record the
+        whole row again for a small corrective nudge or a quick flick): the drags last
+        :data:`~.checks.MIN_FRAMES` frames in all, and each block they move travels
+        :data:`~.checks.MIN_TRAVEL` blocks over its drags. A drag that moves its block in no time (its
+        samples at one instant) is a teleport, refused; a fast one is checked on its path like any other."""
         scene, names = self.scene(seed), self.names(seed)
         if not segments:
             raise TeachError("drag the blocks into a row first (nothing was dragged)")
@@ -115,20 +120,27 @@ class RowLesson(Lesson):
             raise TeachError(str(e)) from None
         for k, s in enumerate(demo.segments, 1):
             s.samples = checked_samples(s.samples, f"drag {k}").tolist()
-            if s.samples[-1][0] - s.samples[0][0] < MIN_FRAMES / FPS:
-                raise TeachError(f"drag {k} is too short ({fmt(s.samples[-1][0] - s.samples[0][0])} s): "
-                                 f"slide block {s.block} to its place")
         poses = {o.name: o.pose.copy() for o in scene.objects}
+        travelled: dict[str, float] = {}
+        seconds = 0.0
         for k, s in enumerate(demo.segments, 1):
-            track = s.track()
+            samples, track = np.asarray(s.samples, float), s.track()
             if np.hypot(*(track[0, :2] - poses[s.block][:2])) > 0.002:
                 raise TeachError(f"drag {k} does not start where block {s.block} stood")
-            moved = travel(track, scene.get(s.block).size)
+            span = samples[-1, 0] - samples[0, 0]
+            if span <= 0 and np.abs(samples[:, 1:] - samples[0, 1:]).max() > 0.002:
+                raise TeachError(f"drag {k} moves block {s.block} in no time (all its samples at one instant): "
+                                 "slide it")
+            seconds += span
+            travelled[s.block] = travelled.get(s.block, 0.0) + travel(samples[:, 1:], scene.get(s.block).size)
+            self._check_drag(scene, s.block, track, poses, k, samples)
+            poses[s.block] = samples[-1, 1:]  # where the page left it (the 30-fps track may stop a frame short)
+        if seconds < MIN_FRAMES / FPS:
+            raise TeachError(f"the drags last {fmt(seconds)} s in all: slide the blocks into a row")
+        for block, moved in travelled.items():
             if moved < MIN_TRAVEL:
-                raise TeachError(f"drag {k} moved block {s.block} {moved:.2f} blocks; a drag moves its block at "
-                                 f"least {MIN_TRAVEL} blocks")
-            self._check_drag(scene, s.block, track, poses, k)
-            poses[s.block] = track[-1]
+                raise TeachError(f"the drags moved block {block} {moved:.2f} blocks in all; a block the row moves "
+                                 f"travels at least {MIN_TRAVEL} blocks")
         moved = {s.block for s in demo.segments}
         if len(moved) < len(names) - 1:
             raise TeachError(f"a row of {len(names)} moves {len(names) - 1} blocks; "
@@ -145,15 +157,19 @@ class RowLesson(Lesson):
                 "segments": len(demo.segments), **self.training_note()}
 
     @staticmethod
-    def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int) -> None:
-        """The block stays on the table and never overlaps another (where it then stood), between frames
-        too: the swept path is checked, so a jump between two samples cannot cross a block unseen."""
+    def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int,
+                    samples: np.ndarray | None = None) -> None:
+        """The block's frames (``track``) stay on the table, and its path (``samples`` ``[t, x, y, yaw]``,
+        the poses the page placed it at and the jumps between them; ``track`` without them) never passes
+        through another block where it then stood: :func:`~.checks.first_collision`, which allows a jump
+        across a corner that the page allowed, not one through a block."""
         obj = scene.get(block)
-        for pose in track:
+        path = track if samples is None else np.column_stack([samples[:, 1:3], np.unwrap(samples[:, 3])])
+        for pose in np.vstack([track, path[-1:]]):
             if not scene.table.contains(obj.footprint(pose)):
                 raise TeachError(f"drag {k}: block {block} left the table")
         try:
-            hit = first_collision(obj, track, [(o, poses[o.name]) for o in scene.objects if o.name != block])
+            hit = first_collision(obj, path, [(o, poses[o.name]) for o in scene.objects if o.name != block])
         except TeachError as e:
             raise TeachError(f"drag {k}: {e}") from None
         if hit is not None:

@@ -10,6 +10,8 @@ const SCALE = 680;          // pixels per metre
 const TOP_X = 0.3;          // scene x at the top edge of the canvas (the robot is at the bottom)
 const ROTATE = Math.PI / 36; // 5 degrees per wheel notch or key press
 const SAMPLE_MS = 1000 / 30;
+const STEP = 0.25;          // largest move of a block's corner between two checked poses of a jump, in sides
+const TOLERANCE = 0.25;     // how deep a jump's straight path may cut into another block, in sides (teach/checks.py)
 
 const canvas = document.getElementById("view");
 const ctx = canvas.getContext("2d");
@@ -38,14 +40,16 @@ function corners(b, x = b.x, y = b.y, yaw = b.yaw) {
   return [[h, h], [-h, h], [-h, -h], [h, -h]].map(([u, v]) => [x + c * u - s * v, y + s * u + c * v]);
 }
 
-function overlap(p, q) {  // separating-axis test for two convex polygons (touching is not overlapping)
+// separating-axis test for two convex polygons (touching is not overlapping); margin < 0: overlapping by
+// more than -margin along every axis (as if q were shrunk by -margin on each side), as in core/geometry.py
+function overlap(p, q, margin = 0) {
   for (const poly of [p, q]) {
     for (let i = 0; i < poly.length; i++) {
       const [x1, y1] = poly[i], [x2, y2] = poly[(i + 1) % poly.length];
-      const ax = -(y2 - y1), ay = x2 - x1;
+      const n = Math.hypot(x2 - x1, y2 - y1) || 1, ax = -(y2 - y1) / n, ay = (x2 - x1) / n;  // unit: margin in metres
       const proj = (pts) => pts.map(([x, y]) => x * ax + y * ay);
       const a = proj(p), b = proj(q);
-      if (Math.max(...a) <= Math.min(...b) + 1e-12 || Math.max(...b) <= Math.min(...a) + 1e-12) return false;
+      if (Math.max(...a) + margin <= Math.min(...b) + 1e-12 || Math.max(...b) + margin <= Math.min(...a) + 1e-12) return false;
     }
   }
   return true;
@@ -55,7 +59,18 @@ function allowed(x, y, yaw) {
   const mine = corners(mover, x, y, yaw);
   const t = scene.table;
   if (!mine.every(([cx, cy]) => Math.abs(cx) <= t.half_x && Math.abs(cy) <= t.half_y)) return false;
-  return blocks.every((b) => b === mover || !overlap(mine, corners(b)));
+  if (!blocks.every((b) => b === mover || !overlap(mine, corners(b)))) return false;
+  // The jump from where the block stands, as the server checks it when saving (teach/checks.py): refused
+  // here, live, when its straight path passes through a block; not when it only cuts a corner the block
+  // was dragged against (it stuck there, then jumps once the pointer clears the corner).
+  const dx = x - mover.x, dy = y - mover.y, dyaw = yaw - mover.yaw;
+  const corner = Math.hypot(dx, dy) + Math.abs(dyaw) * mover.size * Math.SQRT1_2;
+  const parts = Math.max(1, Math.ceil(corner / (STEP * mover.size)));
+  for (let i = 1; i < parts; i++) {
+    const f = i / parts, path = corners(mover, mover.x + f * dx, mover.y + f * dy, mover.yaw + f * dyaw);
+    if (blocks.some((b) => b !== mover && overlap(path, corners(b), -TOLERANCE * Math.min(mover.size, b.size)))) return false;
+  }
+  return true;
 }
 
 function sample() {
