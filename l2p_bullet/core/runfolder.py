@@ -167,14 +167,14 @@ class _Claim:
             os.close(self.fd)
             self.fd = -1
 
-    def restore_replaced(self) -> str | None:
-        """Put back the finished run this one replaced (the new folder, incomplete, is deleted): a note for the
-        user, None when there was none to put back. Called when the new run was interrupted, while this run
+    def restore_replaced(self) -> tuple[bool, str | None]:
+        """Put back the finished run this one replaced (the new folder, incomplete, is deleted): (whether it is
+        back, a note for the user; None when there was none to put back). Called when the new run was interrupted, while this run
         still holds its marker's lock and under the parent's lock, so no other run can take the folder in
         between (a claim checks both)."""
         old, self.replaced = self.replaced, None
         if old is None or not old.is_dir():
-            return None
+            return False, None
         with _parent_lock(self.path.parent):
             shutil.rmtree(self.path, ignore_errors=True)
             try:
@@ -182,8 +182,8 @@ class _Claim:
                     raise OSError("the new run's folder could not be removed")
                 old.rename(self.path)
             except OSError:  # the earlier run stays where it was put aside: say where, never delete it
-                return f"the earlier run could not be put back: it is kept in {old}"
-        return f"{self.path} holds the earlier run again (nothing was replaced)"
+                return False, f"the earlier run could not be put back: it is kept in {old}"
+        return True, f"{self.path} holds the earlier run again (nothing was replaced)"
 
     def drop_replaced(self) -> None:
         """The new run ended: the run it replaced goes."""
@@ -376,19 +376,19 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
         yield claim.path
         claim.finish()
     except KeyboardInterrupt as e:
-        note = claim.restore_replaced()  # before the lock is released: see restore_replaced
+        back, note = claim.restore_replaced()  # before the lock is released: see restore_replaced
         if note is not None:
             e.add_note(note)
-            if "holds the earlier run again" in note:
-                raise
+        if back:
+            raise
         mark_failed(claim.path, INTERRUPTED, "interrupted (Ctrl-C) before the run finished")
         raise
     except BaseException as e:
-        note = claim.restore_replaced() if restore_on_error else None  # a report: the old one rather than none
+        back, note = claim.restore_replaced() if restore_on_error else (False, None)  # a report: its old one
         if note is not None:
             e.add_note(note)
-            if "holds the earlier run again" in note:
-                raise
+        if back:
+            raise
         mark_failed(claim.path, None, str(e) or type(e).__name__)
         claim.finish()
         raise
