@@ -258,6 +258,7 @@ def test_a_host_header_starlette_cannot_parse_is_refused(review, host):
 def test_a_websocket_to_a_foreign_host_is_closed_before_the_app_sees_it():
     """Websocket scopes went past the Host check; TrustedHostMiddleware refused them too."""
     import asyncio
+    from concurrent.futures import ThreadPoolExecutor
 
     from l2p_bullet.web.apps import RequestGuard
 
@@ -281,7 +282,11 @@ def test_a_websocket_to_a_foreign_host_is_closed_before_the_app_sees_it():
         await guard({"type": "websocket", "path": "/ws", "headers": headers}, receive, send)
         return sent
 
+    def run(coro):  # in a thread of its own: a browser test before this one may leave this thread's loop running
+        with ThreadPoolExecutor(1) as pool:
+            return pool.submit(asyncio.run, coro).result()
+
     for host in ("evil.example", "[::1]evil.com", "localhost:80@evil.com", "127.0.0.1:abc", None):
-        sent = asyncio.run(handshake(host))
+        sent = run(handshake(host))
         assert [m["type"] for m in sent] == ["websocket.close"] and not reached, (host, sent)
-    assert asyncio.run(handshake("localhost:8765")) == [] and reached == ["websocket"]
+    assert run(handshake("localhost:8765")) == [] and reached == ["websocket"]
