@@ -42,8 +42,8 @@ class _Group(click.Group):
             if signal.getsignal(signal.SIGINT) is interrupted_while_starting:
                 signal.signal(signal.SIGINT, signal.default_int_handler)
             return super().invoke(ctx)
-        except L2PError as e:
-            click.echo(f"error: {one_line(str(e))}", err=True)
+        except L2PError as e:  # notes (a report put back after a failed rewrite) follow on the same line
+            click.echo(f"error: {one_line('; '.join([str(e), *getattr(e, '__notes__', ())]))}", err=True)
             sys.exit(e.exit_code)
         except click.UsageError as e:  # a bad option of a command: one line too, like every other error
             where = f" (see: {e.ctx.command_path} --help)" if e.ctx is not None else ""

@@ -35,6 +35,7 @@ import fnmatch
 import glob
 import json
 import os
+import re
 import shutil
 import time
 import uuid
@@ -181,7 +182,11 @@ class _Claim:
                 if self.path.exists() or self.path.is_symlink():
                     raise OSError("the new run's folder could not be removed")
                 old.rename(self.path)
-            except OSError:  # the earlier run stays where it was put aside: say where, never delete it
+            except OSError:  # the earlier run stays aside under a name no later claim drops: say where
+                kept = old.with_name(old.name.replace(".replaced-", ".kept-", 1))
+                with contextlib.suppress(OSError):
+                    old.rename(kept)
+                    old = kept
                 return False, f"the earlier run could not be put back: it is kept in {old}"
         return True, f"{self.path} holds the earlier run again (nothing was replaced)"
 
@@ -309,8 +314,9 @@ def _drop_stale(path: Path) -> None:
     """Remove the runs a killed ``--force`` run left aside (``.NAME.replaced-*``: a run ended by SIGTERM or
     SIGKILL never drops or restores them). Called under the parent's lock when ``path`` is about to be
     replaced, so its own run is not going on (it would hold the lock): what lies aside for it is left over."""
-    for old in path.parent.glob(f".{glob.escape(path.name)}.replaced-*"):
-        if old.is_dir() and not old.is_symlink():
+    pattern = re.compile(rf"\.{re.escape(path.name)}\.replaced-[0-9a-f]{{8}}")  # exactly this folder's, not
+    for old in path.parent.glob(f".{glob.escape(path.name)}.replaced-*"):  # ".a.replaced-x.replaced-..." of "a.replaced-x"
+        if pattern.fullmatch(old.name) and old.is_dir() and not old.is_symlink():
             shutil.rmtree(old, ignore_errors=True)
 
 

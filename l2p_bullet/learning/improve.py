@@ -113,6 +113,8 @@ def improve(action: str, rounds: int, out: Path, *, scenes: int = 10, judge: str
     static, skipped = load_feedback(feedback)  # a typo in --feedback fails here, before anything is written
     out = Path(out)
     check_writable(out, "--out", DataError)
+    if not (current / PROGRESS_FILE).is_file():
+        raise DataError(f"{current} holds no {PROGRESS_FILE}: train the action first (l2p-bullet train {name})")
     settings = {"action": name, "scenes": scenes, "judge": judge, "feedback": list(feedback), "seed": seed,
                 "started_from": str(current),  # and what it held: a bundle re-trained since is another start
                 "started_from_sha256": sha256_file(current / PROGRESS_FILE)}
@@ -209,12 +211,16 @@ def _claim(out: Path, settings: dict, force: bool) -> None:
             shown = ", ".join(foreign[:3]) + (" ..." if len(foreign) > 3 else "") or "no improve.json"
             raise RunFolderError(f"{out} already exists and holds files l2p-bullet did not write ({shown}); choose "
                                  "another --out (--force never deletes them)")
+        if "started_from_sha256" not in old and "started_from_sha256" in settings:  # from before the digest
+            old = old | {"started_from_sha256": settings["started_from_sha256"]}
         if old == settings and not force:  # the same command again: go on where it stopped
             return
         if not force:
             raise RunFolderError(f"{out} holds rounds of other improve settings (its improve.json); choose another "
                                  "--out, or pass --force to replace those rounds")
-        for p in out.iterdir():  # only improve.json and round-<k>/, checked above
+        # only improve.json and round-<k>/, checked above; improve.json last, so that a run stopped half-way
+        # leaves a folder that is still improve's (and --force replaces it again)
+        for p in sorted(out.iterdir(), key=lambda p: p.name == "improve.json"):
             shutil.rmtree(p) if p.is_dir() else p.unlink()
     out.mkdir(parents=True, exist_ok=True)
     f.write_text(json.dumps(settings, indent=1) + "\n")

@@ -362,19 +362,33 @@ def report_folder(folder: Path, db: Path) -> Iterator[Path]:
 
 
 def _adopt_old_report(folder: Path) -> None:
-    """Mark a report folder written before the marker existed as report's (it holds report files only), so the
-    rules above replace it; any other folder is left as it is (and refused there if it is not ours)."""
+    """Mark a report folder written before the marker existed as report's, so the rules above replace it (the
+    earlier report is kept aside until the new one is written). Only a folder of report files whose
+    report.json is a report's (the keys :func:`build_report` always writes): a person's own report.md and
+    report.json are never taken for one. Any other folder is left as it is, and refused there if not ours."""
     from ..core.runfolder import MARKER
 
     if not folder.is_dir() or folder.is_symlink() or (folder / MARKER).exists():
         return
     entries = list(folder.iterdir())
-    names = {p.name for p in entries}
-    # report.md and report.json are always written together: a person's own report.md alone is not a report
-    if {"report.md", "report.json"} <= names and all(p.is_file() and not p.is_symlink() and p.name in REPORT_FILES
-                                                     for p in entries):
-        (folder / MARKER).write_text(json.dumps({"tool": "l2p-bullet", "command": "report", "files": list(REPORT_FILES),
-                                                 "finished": "before the marker"}) + "\n")
+    if not ({"report.md", "report.json"} <= {p.name for p in entries}
+            and all(p.is_file() and not p.is_symlink() and p.name in REPORT_FILES for p in entries)):
+        return
+    try:
+        written = json.loads((folder / "report.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return
+    if not (isinstance(written, dict) and REPORT_KEYS <= set(written)):
+        return
+    try:
+        (folder / MARKER).write_text(json.dumps({"tool": "l2p-bullet", "command": "report",
+                                                 "files": list(REPORT_FILES), "finished": "before the marker"}) + "\n")
+    except OSError as e:
+        raise ReviewError(f"cannot write the report into {folder}: {e.strerror or e}") from None
+
+
+REPORT_KEYS = frozenset({"source", "answers", "reviewers", "graded", "blind", "views", "problems"})
+"""Keys every report.json that ``report`` wrote has (:func:`build_report`): how an earlier report is told apart."""
 
 
 def write_grade_report(rep: dict, folder: Path) -> list[Path]:

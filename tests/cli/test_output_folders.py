@@ -222,10 +222,19 @@ def test_report_replaces_a_report_from_before_the_marker_and_keeps_the_old_one_i
     and an error while writing lost the earlier report."""
     from l2p_bullet.review import report as report_mod
 
-    old = tmp_path / "old"
+    mine = tmp_path / "mine"  # a person's own report.md and report.json: never taken for an earlier report
+    mine.mkdir()
+    (mine / "report.md").write_text("my notes")
+    (mine / "report.json").write_text('{"title": "my own"}')
+    assert "did not write" in one_line_error(cli("report", "--db", str(grades), "--out", str(mine)))
+    assert (mine / "report.md").read_text() == "my notes" and sorted(p.name for p in mine.iterdir()) == [
+        "report.json", "report.md"]
+    old = tmp_path / "old"  # what report wrote before the marker: its report.json has the report's keys
     old.mkdir()
-    for name in ("report.md", "report.json", "table1_original.csv"):
+    for name in ("report.md", "table1_original.csv"):
         (old / name).write_text("earlier")
+    (old / "report.json").write_text(json.dumps(dict.fromkeys(
+        ("source", "answers", "reviewers", "graded", "blind", "views", "problems"), None)))
     assert cli("report", "--db", str(grades), "--out", str(old)).exit_code == 0
     assert (old / "report.md").read_text() != "earlier"
     before = (old / "report.md").read_text()
@@ -236,7 +245,7 @@ def test_report_replaces_a_report_from_before_the_marker_and_keeps_the_old_one_i
 
     monkeypatch.setattr(report_mod, "write_grade_report", broken)
     r = cli("report", "--db", str(grades), "--out", str(old))
-    assert r.exit_code == 2 and "disk full" in r.output
+    assert r.exit_code == 2 and "disk full" in r.output and "holds the earlier run again" in r.output
     assert (old / "report.md").read_text() == before  # the earlier report is back, nothing left aside
     assert not [p.name for p in tmp_path.iterdir() if p.name.startswith(".")]
 
@@ -273,3 +282,34 @@ def test_recognize_action_that_looks_like_a_path(tmp_path, monkeypatch):
                          ("./nosuchdir", "no such folder")):
         msg = one_line_error(cli("recognize", "--demo", "past:3", "--action", spec))
         assert expect in msg and "unknown action" not in msg
+
+
+def test_improve_force_stopped_half_way_leaves_a_folder_force_replaces_again(tmp_path):
+    """Review finding: --force removed improve.json first; a kill after that left rounds without it, refused even
+    with --force. It goes last now; an improve.json without the weights' digest (older) still resumes."""
+    from l2p_bullet.learning.improve import _claim
+
+    out = tmp_path / "imp"
+    for k in (1, 2):
+        (out / f"round-{k}" / "runs").mkdir(parents=True)
+    (out / "improve.json").write_text(json.dumps({"seed": 1}))
+    order = []
+    real_unlink, real_rmtree = Path.unlink, shutil.rmtree
+
+    def unlink(self, *a, **k):
+        order.append(self.name)
+        return real_unlink(self, *a, **k)
+
+    def rmtree(path, *a, **k):
+        order.append(Path(path).name)
+        return real_rmtree(path, *a, **k)
+
+    import unittest.mock
+
+    with unittest.mock.patch.object(Path, "unlink", unlink), unittest.mock.patch("shutil.rmtree", rmtree):
+        _claim(out, {"seed": 1}, force=True)
+    assert sorted(order[:-1]) == ["round-1", "round-2"] and order[-1] == "improve.json", order
+    assert [p.name for p in out.iterdir()] == ["improve.json"]
+    (out / "round-1").mkdir()
+    _claim(out, {"seed": 1, "started_from_sha256": "abc"}, force=False)  # the older file: resumed
+    assert (out / "round-1").is_dir()

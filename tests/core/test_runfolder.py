@@ -322,3 +322,35 @@ def test_a_run_put_aside_by_a_killed_force_run_is_dropped_by_the_next_claim(tmp_
     with run_folder(out, force=True, command="perform") as folder:
         (folder / "summary.json").write_text(json.dumps({"schema": 1, "ok": True}))
     assert sorted(p.name for p in tmp_path.iterdir()) == [".other.replaced-1", "run"]
+
+
+def test_an_earlier_run_that_could_not_be_put_back_is_never_dropped_later(tmp_path, monkeypatch):
+    """Review finding: the note said 'kept in .run.replaced-...', and the next claim dropped it as stale. It is
+    renamed .run.kept-... (no claim drops that), and the note names it."""
+    out = _perform_like_run(tmp_path / "run")
+    real_rename = Path.rename
+
+    def failing(self, target):
+        if ".replaced-" in self.name and Path(target).name == "run":
+            raise OSError("simulated")
+        return real_rename(self, target)
+
+    monkeypatch.setattr(Path, "rename", failing)
+    with pytest.raises(KeyboardInterrupt) as info, run_folder(out, force=True, command="perform"):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(Path, "rename", real_rename)
+    kept = [p for p in tmp_path.iterdir() if ".kept-" in p.name]
+    assert len(kept) == 1 and str(kept[0]) in " ".join(info.value.__notes__)
+    with run_folder(out, force=True, command="perform") as folder:
+        (folder / "summary.json").write_text(json.dumps({"schema": 1, "ok": True}))
+    assert kept[0].is_dir() and (kept[0] / "trajectory.json").exists()
+
+
+def test_the_stale_runs_dropped_are_exactly_this_folders(tmp_path):
+    """'.a.replaced-x.replaced-<hex>' belongs to a folder named 'a.replaced-x', not to 'a' (review finding)."""
+    out = _perform_like_run(tmp_path / "a")
+    other = tmp_path / ".a.replaced-x.replaced-0123abcd"
+    other.mkdir()
+    with run_folder(out, force=True, command="perform") as folder:
+        (folder / "summary.json").write_text(json.dumps({"schema": 1, "ok": True}))
+    assert other.is_dir()
