@@ -8,8 +8,8 @@ resampling to 30 fps allocates one pose per frame (a span of a million seconds i
 recorded, not only its poses: a block may jump several block sides between two samples (a sample 1/30 s
 after the start, far away), and a pose check alone would let it pass through another block. The page
 itself only refuses a pose that overlaps, so a block dragged against another sticks and, once the pointer
-clears the corner, jumps across it: that straight jump cuts the corner by a few millimetres, and is
-allowed (:data:`TOLERANCE`).
+clears the corner, jumps across it: that straight jump cuts the corner by a few millimetres. So one jump
+between two recorded samples may overlap another block by less than a quarter side (:data:`TOLERANCE`).
 """
 
 from __future__ import annotations
@@ -40,12 +40,18 @@ STEP = 0.25
 """Largest move of a block's corner between two checked poses, in block sides: the path between two
 samples is checked, so that no jump between samples can cross another block unseen."""
 TOLERANCE = 0.25
-"""How deep, in block sides, the straight path between two samples may cut into another block (1 cm for
-4 cm cubes): the samples themselves may not overlap one (by more than 1 mm, as the page placed them). A
-block dragged against another sticks where the page refused the next pose and jumps when the pointer
-clears the corner; that jump's chord cuts the corner by 2-8 mm at 0.6-1 m/s, and hugging the anchor is
-what people do for "around". A jump through a block cuts it by half a side or more. ``teach.js`` refuses
+"""How far, in block sides, one jump between two recorded samples (its straight path) may overlap another
+block (1 cm for 4 cm cubes); the samples themselves may not overlap one (by more than 1 mm, as the page
+placed them). The rule is the overlap's depth, not where it is: a corner cut, but also one long jump
+sliding along a block's whole face less than a quarter side inside it, passes. Why so much: a block
+dragged against another sticks where the page refused the next pose and jumps when the pointer clears
+the corner; that jump's chord cuts the corner by 2-8 mm at 0.6-1 m/s, and hugging the anchor is what
+people do for "around". A jump through a block overlaps it by half a side or more. ``teach.js`` refuses
 the same chords live (``TOLERANCE`` there)."""
+MAX_SPEED = 3.0
+"""Fastest a drag may move its block on average, path length over time span (m/s): a real quick flick
+across the table is 1-2 m/s; faster is not a hand but a teleport with a token duration (0.12 m in a
+microsecond), which the 30-fps track would learn as a jump."""
 MAX_CHECKED = 100_000
 """Most poses one collision check looks at, so that a hostile recording costs seconds, not minutes: a
 recording has at most :data:`MAX_SAMPLES` samples, and a hand's drag needs one or two poses per sample."""
@@ -87,6 +93,16 @@ def checked_samples(samples: np.ndarray, what: str = "a recording") -> np.ndarra
     return s
 
 
+def track_samples(samples: np.ndarray) -> np.ndarray:
+    """The rows of ``samples`` (n, 4 ``[t, x, y, yaw]``, times not decreasing) that the 30-fps track is
+    resampled from (``Segment.track``, ``Lesson._tracks``): of several samples at one instant (a mouse
+    event and the timer) only the last holds. The collision check must follow exactly these: a detour
+    of samples that share an instant would pass the check while the saved track cuts straight through.
+    A recording at a single instant keeps its first and last sample (the track ``Segment.track`` makes)."""
+    keep = np.r_[np.diff(samples[:, 0]) > 0, True]
+    return samples[keep] if keep.sum() >= 2 else samples[[0, -1]]
+
+
 def travel(track: np.ndarray, size: float) -> float:
     """Path length of ``track`` (n, 3 poses) in block sides."""
     return float(np.linalg.norm(np.diff(track[:, :2], axis=0), axis=1).sum()) / size
@@ -114,10 +130,12 @@ def first_collision(mover: SceneObject, path: np.ndarray, others: list[tuple[Sce
     """(index, name) where ``mover`` following ``path`` (n, 3 poses as the page placed the block, yaw
     unwrapped) first passes through one of ``others`` (each an object and its pose then), or None: a pose
     of ``path`` that overlaps one by more than 1 mm (index: that pose), or a straight move between two
-    poses (:func:`swept`) that cuts deeper than :data:`TOLERANCE` into one (index: the pose it leads to).
+    poses (:func:`swept`) that overlaps one deeper than :data:`TOLERANCE` (index: the pose it leads to).
 
     Only the samples get the full footprint: the 30-fps frames, and the swept moves, lie between them,
-    where a jump across a corner the page allowed cuts it by millimetres (:data:`TOLERANCE`)."""
+    where a jump across a corner the page allowed cuts it by millimetres (:data:`TOLERANCE`). ``path``
+    must be the samples the track is built from (:func:`track_samples`), else a detour among samples
+    the track drops is checked instead of the path saved."""
     poses, steps = swept(path, mover.size)
     first: tuple[int, str] | None = None
     for other, pose in others:

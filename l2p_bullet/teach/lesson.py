@@ -232,7 +232,8 @@ class Lesson:
         if moved < MIN_TRAVEL:
             raise TeachError(f"block A moved {moved:.2f} blocks between start and end; slide it to where "
                              f'"{self.action.phrases[0]}" ends')
-        self._check_track(scene, track, np.column_stack([t, s[:, 1:3], yaw]))
+        # the samples the track was built from (keep), not every sample: a detour at one instant is not saved
+        self._check_track(scene, track, np.column_stack([t, s[:, 1:3], yaw])[keep])
         lo = max(0, i0 - BEFORE)
         track = track[lo:i1 + CONTEXT + 1]
         i0, i1 = i0 - lo, i1 - lo
@@ -247,7 +248,9 @@ class Lesson:
     def _check_track(scene: Scene, track: np.ndarray, samples: np.ndarray) -> None:
         """The block's frames (``track``) stay on the table, and its path never passes through another
         block: ``samples`` ``[t, x, y, yaw]`` (t from 0, yaw unwrapped), the poses the page placed it at
-        and the jumps between them (:func:`~.checks.first_collision`, which allows a jump across a
+        that the track is built from (the last at each instant, :func:`~.checks.track_samples`: the
+        others are not in the track, so a detour among them must not pass for the saved path) and the
+        jumps between them (:func:`~.checks.first_collision`, which allows a jump across a
         corner the page allowed; the frames lie on those jumps)."""
         mover = scene.get("A")
         for k, pose in enumerate(track):

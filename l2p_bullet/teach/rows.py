@@ -30,7 +30,17 @@ from ..errors import TeachError
 from ..evaluate.scenes import add_bystanders
 from ..plugins import registry
 from ..recognition import recognisers
-from .checks import MIN_FRAMES, MIN_TRAVEL, Duplicate, checked_samples, first_collision, fmt, travel
+from .checks import (
+    MAX_SPEED,
+    MIN_FRAMES,
+    MIN_TRAVEL,
+    Duplicate,
+    checked_samples,
+    first_collision,
+    fmt,
+    track_samples,
+    travel,
+)
 from .lesson import FPS, Job, Lesson
 
 BLOCK = 0.04
@@ -108,7 +118,10 @@ class RowLesson(Lesson):
         whole row again for a small corrective nudge or a quick flick): the drags last
         :data:`~.checks.MIN_FRAMES` frames in all, and each block they move travels
         :data:`~.checks.MIN_TRAVEL` blocks over its drags. A drag that moves its block in no time (its
-        samples at one instant) is a teleport, refused; a fast one is checked on its path like any other."""
+        samples at one instant), or faster than a hand drags a block (:data:`~.checks.MAX_SPEED` on
+        average: a token span of a microsecond is a teleport too), is refused; a fast one is checked on its
+        path like any other. The path checked, and the travel counted, are those of the samples the
+        saved track is built from (:func:`~.checks.track_samples`), not of samples it drops."""
         scene, names = self.scene(seed), self.names(seed)
         if not segments:
             raise TeachError("drag the blocks into a row first (nothing was dragged)")
@@ -131,9 +144,15 @@ class RowLesson(Lesson):
             if span <= 0 and np.abs(samples[:, 1:] - samples[0, 1:]).max() > 0.002:
                 raise TeachError(f"drag {k} moves block {s.block} in no time (all its samples at one instant): "
                                  "slide it")
+            kept = track_samples(samples)
             seconds += span
-            travelled[s.block] = travelled.get(s.block, 0.0) + travel(samples[:, 1:], scene.get(s.block).size)
-            self._check_drag(scene, s.block, track, poses, k, samples)
+            size = scene.get(s.block).size
+            moved = travel(kept[:, 1:], size)
+            travelled[s.block] = travelled.get(s.block, 0.0) + moved
+            self._check_drag(scene, s.block, track, poses, k, kept)
+            if span > 0 and moved * size / span > MAX_SPEED:
+                raise TeachError(f"drag {k} moves block {s.block} at {fmt(moved * size / span)} m/s; a hand drags "
+                                 f"a block at most {MAX_SPEED:g} m/s: slide it")
             poses[s.block] = samples[-1, 1:]  # where the page left it (the 30-fps track may stop a frame short)
         if seconds < MIN_FRAMES / FPS:
             raise TeachError(f"the drags last {fmt(seconds)} s in all: slide the blocks into a row")
@@ -160,7 +179,8 @@ class RowLesson(Lesson):
     def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int,
                     samples: np.ndarray | None = None) -> None:
         """The block's frames (``track``) stay on the table, and its path (``samples`` ``[t, x, y, yaw]``,
-        the poses the page placed it at and the jumps between them; ``track`` without them) never passes
+        the poses the page placed it at that ``track`` is built from, :func:`~.checks.track_samples`, and
+        the jumps between them; ``track`` without them) never passes
         through another block where it then stood: :func:`~.checks.first_collision`, which allows a jump
         across a corner that the page allowed, not one through a block."""
         obj = scene.get(block)

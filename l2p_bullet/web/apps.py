@@ -137,10 +137,11 @@ class RequestGuard:
             await send(message)
 
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
+        host = first_host(scope)  # not headers["host"]: that dict keeps the last of repeated Host headers
         if not self.host_allowed(scope):
             refusal = 400, "invalid host header (this server answers only requests addressed to this machine)"
         else:
-            refusal = _refusal(scope["method"], headers, self.max_body)
+            refusal = _refusal(scope["method"], headers, host or "", self.max_body)
         if refusal is not None:
             await _reply(send_with_headers, *refusal)
             return
@@ -172,18 +173,25 @@ class RequestGuard:
         as latin-1 and its ``Headers.get`` returns the first of repeated ones; so does this."""
         if self.allowed_hosts is None:
             return True
-        host = next((v.decode("latin-1") for k, v in scope.get("headers", []) if k.lower() == b"host"), None)
-        return host_name(host) in self.allowed_hosts
+        return host_name(first_host(scope)) in self.allowed_hosts
 
 
-def _refusal(method: str, headers: dict[str, str], max_body: int) -> tuple[int, str] | None:
-    """(status, why) for a request refused before its body is read, else None."""
+def first_host(scope) -> str | None:
+    """The request's first Host header (latin-1), or None. Both the Host check and the Origin check use
+    this one: with two Host headers, checking one and comparing the Origin with the other would let a
+    foreign page pass the Origin check by adding a second Host that names itself."""
+    return next((v.decode("latin-1") for k, v in scope.get("headers", []) if k.lower() == b"host"), None)
+
+
+def _refusal(method: str, headers: dict[str, str], host: str, max_body: int) -> tuple[int, str] | None:
+    """(status, why) for a request refused before its body is read, else None. ``host`` is
+    :func:`first_host`, the one the Host check passed, not ``headers["host"]`` (the last one)."""
     length = headers.get("content-length")
     if length is not None and (not length.strip().isdigit() or int(length) > max_body):
         return 413, f"the request body is larger than {max_body} bytes"
     if method.upper() not in STATE_CHANGING:
         return None
-    origin, host = headers.get("origin"), headers.get("host", "")
+    origin = headers.get("origin")
     if origin is not None and origin.rstrip("/") not in (f"http://{host}", f"https://{host}"):
         return 403, f"cross-origin request refused (Origin {origin[:100]} is not this server)"
     if headers.get("sec-fetch-site", "same-origin") not in ("same-origin", "none"):

@@ -97,13 +97,53 @@ def test_drags_that_move_nothing_are_refused(rows):
     assert rows.lesson.count() == 0
 
 
-def test_a_teleport_to_a_free_spot_is_refused(rows):
-    """Without a duration minimum per drag, a drag whose samples share one instant is refused for that."""
+@pytest.mark.parametrize("span, words", [(0.0, "moves block B in no time"), (1e-6, "moves block B at 1.2e+05 m/s")])
+def test_a_teleport_to_a_free_spot_is_refused(rows, span, words):
+    """A drag whose samples share one instant was refused, but any positive span passed: 0.12 m in a
+    microsecond was saved. A drag faster than a hand (3 m/s on average) is refused, naming the speed."""
     b = rows.scene.get("B")
-    jump = {"block": "B", "samples": [[0.0, *b.xy, b.yaw], [0.0, b.xy[0], b.xy[1] + 0.12, b.yaw]]}
+    jump = {"block": "B", "samples": [[0.0, *b.xy, b.yaw], [span, b.xy[0], b.xy[1] + 0.12, b.yaw]]}
     status, r = rows.post(jump, rows.drag("C"))
-    assert status == 400 and "drag 1 moves block B in no time" in r["error"], r
+    assert status == 400 and f"drag 1 {words}" in r["error"] and "\n" not in r["error"], r
     assert rows.lesson.count() == 0
+
+
+def _a_between_b_and_c(scene):
+    """``scene`` with A at the origin, B 2 sides below it, C out of the way (a free path around A)."""
+    return (scene.with_pose("A", np.zeros(3)).with_pose("B", np.array([0.0, -0.08, 0.0]))
+            .with_pose("C", np.array([0.2, 0.2, 0.0])))
+
+
+def test_a_detour_at_one_instant_does_not_hide_a_drag_through_a_block(rows):
+    """Every sample was checked, but the saved 30-fps track keeps only the last sample at each instant:
+    B going around A in samples that all share t = 1 passed, while the track went straight through A."""
+    scene = _a_between_b_and_c(rows.scene)
+    rows.lesson.scene = lambda seed: scene
+    c = {"block": "C", "samples": [[0.0, 0.2, 0.2, 0.0], [1.0, 0.2, 0.26, 0.0]]}
+    around = [[0, 0, -0.08, 0], [1, 0.1, -0.08, 0], [1, 0.1, 0.08, 0], [1, 0, 0.08, 0]]
+    status, r = rows.post({"block": "B", "samples": around}, c)
+    assert status == 400 and "block B passed through block A" in r["error"], r
+    assert rows.lesson.count() == 0
+    # the same detour in time is a path around A, and saved
+    timed = [[0, 0, -0.08, 0], [1, 0.1, -0.08, 0], [2, 0.1, 0.08, 0], [3, 0, 0.08, 0]]
+    status, r = rows.post({"block": "B", "samples": timed}, c)
+    assert status == 200 and r["count"] == 1, r
+
+
+def test_a_detour_at_one_instant_does_not_hide_a_slide_through_the_anchor(live):  # noqa: F811
+    """The single action's route (``/api/demos``) had the same hole: the check saw A go around B, the
+    saved track went through it."""
+    s = live()
+    scene = random_scene(1).with_pose("B", np.zeros(3)).with_pose("A", np.array([0.0, -0.08, 0.0]))
+    scene = scene.with_pose("C", np.array([0.25, 0.25, 0.0])) if "C" in scene.names else scene
+    s.lesson.scene = lambda seed: scene
+    around = [[0, 0, -0.08, 0], [1, 0.1, -0.08, 0], [1, 0.1, 0.08, 0], [1, 0, 0.08, 0], [1.5, 0, 0.08, 0]]
+    status, r = s.call("POST", "/api/demos", {"scene": 1, "samples": around, "start": 0.0, "end": 1.5})
+    assert status == 400 and "passed through block B" in r["error"], r
+    assert not s.action.demos.exists()
+    timed = [[0, 0, -0.08, 0], [1, 0.1, -0.08, 0], [2, 0.1, 0.08, 0], [3, 0, 0.08, 0], [3.5, 0, 0.08, 0]]
+    status, r = s.call("POST", "/api/demos", {"scene": 1, "samples": timed, "start": 0.0, "end": 3.5})
+    assert status == 200, r
 
 
 def test_a_nudge_and_a_flick_are_part_of_the_row(rows):

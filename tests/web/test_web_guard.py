@@ -122,6 +122,53 @@ def test_request_bodies_are_bounded_before_they_are_read(review, live, app):  # 
     assert status == 422, r
 
 
+def test_two_host_headers_and_a_foreign_origin_are_refused(review):
+    """The Host check read the first Host header and the Origin check the last: a page at evil.example
+    whose request carried ``Host: 127.0.0.1`` then ``Host: evil.example`` passed both. Uvicorn's h11
+    refuses a request with two Host headers (400) before the guard sees it, so the guard is tested on its
+    own, as another ASGI server would call it; through this server, such a request is refused too."""
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    from l2p_bullet.web.apps import RequestGuard
+
+    reached = []
+
+    async def app(scope, receive, send):
+        reached.append(scope["path"])
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await send({"type": "http.response.body", "body": b"{}"})
+
+    guard = RequestGuard(app, allowed_hosts=("127.0.0.1", "localhost", "[::1]"))
+
+    async def post(hosts: tuple[str, ...], origin: str) -> int:
+        sent: list[dict] = []
+
+        async def receive():
+            return {"type": "http.request", "body": b"{}", "more_body": False}
+
+        async def send(message):
+            sent.append(message)
+
+        headers = [*((b"host", h.encode()) for h in hosts), (b"origin", origin.encode()),
+                   (b"content-type", b"application/json"), (b"content-length", b"2")]
+        await guard({"type": "http", "method": "POST", "path": "/api/train", "headers": headers}, receive, send)
+        return sent[0]["status"]
+
+    def run(coro):  # in a thread of its own, as in the websocket test below
+        with ThreadPoolExecutor(1) as pool:
+            return pool.submit(asyncio.run, coro).result()
+
+    assert run(post(("127.0.0.1:8765", "evil.example"), "http://evil.example")) == 403
+    assert run(post(("evil.example", "127.0.0.1:8765"), "http://127.0.0.1:8765")) == 400
+    assert reached == []
+    assert run(post(("127.0.0.1:8765",), "http://127.0.0.1:8765")) == 200 and reached == ["/api/train"]
+    hostport = review.split("//")[1].rstrip("/")
+    head = (f"POST /api/answer HTTP/1.1\r\nHost: {hostport}\r\nHost: evil.example\r\n"
+            "Origin: http://evil.example\r\nContent-Type: application/json\r\nContent-Length: 2\r\n\r\n{}")
+    assert _raw(review, head, [])[0] in (400, 403)
+
+
 def test_pages_cannot_be_framed(review, live):  # noqa: F811
     import urllib.request
 
