@@ -168,6 +168,17 @@ class MissingExtraError(L2PError):
         super().__init__(f"{purpose} needs {package}, which is not installed: pip install 'l2p-bullet[{extra}]'")
 
 
+def listed(names: list[str], most: int = 3) -> str:
+    """The first ``most`` names, comma-separated, and " ..." when there are more: how a message names the
+    files (or plugins) it is about without printing hundreds."""
+    return ", ".join(names[:most]) + (" ..." if len(names) > most else "")
+
+
+def plural(n: int, noun: str) -> str:
+    """``1 episode``, ``2 episodes``: counts in messages people read ("1 graded runs" before)."""
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
     """Return ' Did you mean "x"?' for the closest choice, or '' when nothing is close.
 

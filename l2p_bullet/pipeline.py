@@ -42,7 +42,7 @@ from .core.timing import StageClock
 from .embodiment import arm_plugins
 from .embodiment.manners import check_manner, manner_planning
 from .embodiment.sim.arms import PANDA, ArmSpec
-from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError
+from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
 from .language import Command, parse
@@ -126,7 +126,7 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
         unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
         if not unknown or "preposition" not in str(e):
             raise
-        names = ", ".join(p.label() for p in unknown[:3]) + (" ..." if len(unknown) > 3 else "")
+        names = listed([p.label() for p in unknown])
         raise LanguageError(f"{e} Broken plugins whose phrases cannot be read, one may own it: {names} "
                             "(see: l2p-bullet actions --check)") from None
     if cmd.action.startswith(BLOCKED):

@@ -35,7 +35,7 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     """
     from ..core.folders import unfinished
     from ..core.runfolder import run_folder
-    from ..errors import PathError
+    from ..errors import PathError, plural
     from ..evaluate.progressbar import ProgressBar
     from ..export.episodes import (
         EXPORT_FILES,
@@ -60,7 +60,7 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
         raise PathError(f"nothing to export: none of the {len(found)} run folders given finished (see the notes above)")
     if fmt == "rerun":
         info = _export_rerun(sources, out, demos, force)
-        click.echo(json.dumps(info) if as_json else f"wrote {_n(info['runs'], 'run')} to {out} (view it: rerun {out})")
+        click.echo(json.dumps(info) if as_json else f"wrote {plural(info['runs'], 'run')} to {out} (view it: rerun {out})")
         return
     specs = demo_specs(list(demos)) if demos else []
     # evaluate's progress bar on stderr: a rendered demonstration takes seconds each (issue 26)
@@ -90,19 +90,14 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
             has_video = info["video_path"] is not None
             result = {"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
                       "tasks": info["total_tasks"], "fps": info["fps"], "video": has_video}
-            said = (f"wrote {_n(info['total_episodes'], 'episode')} ({info['total_frames']} frames at {info['fps']} "
-                    f"fps, {_n(info['total_tasks'], 'task')}, {'with' if has_video else 'without'} video) to {out}, "
+            said = (f"wrote {plural(info['total_episodes'], 'episode')} ({info['total_frames']} frames at {info['fps']} "
+                    f"fps, {plural(info['total_tasks'], 'task')}, {'with' if has_video else 'without'} video) to {out}, "
                     "a LeRobot v3.0 dataset")
         else:
             path = write_jsonl(episodes, folder)
             result = {"out": str(path), "episodes": len(episodes)}
-            said = f"wrote {_n(len(episodes), 'episode')} ({sum(len(e.frames) for e in episodes)} frames) to {path}"
+            said = f"wrote {plural(len(episodes), 'episode')} ({sum(len(e.frames) for e in episodes)} frames) to {path}"
         click.echo(json.dumps(result) if as_json else said)  # the JSON as export printed it always before --json
-
-
-def _n(count: int, noun: str) -> str:
-    """"1 episode", "2 episodes": the sentence export prints is read by people."""
-    return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
 def _export_rerun(sources: list, out: str, demos: tuple[str, ...], force: bool) -> dict:

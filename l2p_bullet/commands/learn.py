@@ -57,9 +57,9 @@ def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: i
     """
     import dataclasses
 
+    from ..errors import plural
     from ..evaluate.progressbar import ProgressBar
     from ..learning.feedback_targets import FeedbackConfig
-    from ..learning.improve import plural
     from ..learning.train_policy import policy_command
     from ..learning.train_progress import ProgressTrainConfig, train_bundle
 
@@ -197,8 +197,8 @@ def improve(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[s
       l2p-bullet improve past --rounds 3 --scenes 10
       l2p-bullet improve away --judge reviews.sqlite --out runs/improve/away
     """
+    from ..errors import plural
     from ..learning.improve import improve as run_improve
-    from ..learning.improve import plural
 
     out = Path(out_dir) if out_dir else Path("runs") / "improve" / action.replace("_", "-")
     try:

@@ -42,7 +42,7 @@ import uuid
 from collections.abc import Iterator
 from pathlib import Path
 
-from ..errors import RunFolderError
+from ..errors import RunFolderError, listed
 from .contracts import dumps_json
 
 MARKER = ".l2p-run.json"
@@ -212,8 +212,7 @@ def _describe(path: Path, state: str, option: str = "--out") -> str:
     if not path.is_dir():
         return f"{path} exists and is not a folder; choose another {option}"
     names = _unknown_files(path, RUN_FILES)
-    shown = ", ".join(names[:3]) + (" ..." if len(names) > 3 else "")
-    return (f"{path} already exists and holds files l2p-bullet did not write ({shown}); choose another {option} "
+    return (f"{path} already exists and holds files l2p-bullet did not write ({listed(names)}); choose another {option} "
             "(--force never deletes them)")
 
 

@@ -22,7 +22,7 @@ import sqlite3
 import tempfile
 from pathlib import Path
 
-from ..errors import EvaluationError, MissingExtraError
+from ..errors import EvaluationError, MissingExtraError, listed
 from .results import DB_NAME, LOCK_NAME
 
 EVALUATION_FILES: tuple[str, ...] = (
@@ -84,8 +84,7 @@ def check_out_folder(folder: Path, *, resume: bool) -> dict | None:
     if folder.is_dir():
         names = foreign_files(folder)
         if names:
-            shown = ", ".join(names[:3]) + (" ..." if len(names) > 3 else "")
-            raise EvaluationError(f"{folder} already exists and holds files l2p-bullet did not write ({shown}); "
+            raise EvaluationError(f"{folder} already exists and holds files l2p-bullet did not write ({listed(names)}); "
                                   "choose another --out")
     return None
 

@@ -39,7 +39,7 @@ from ..core.contracts import PROGRESS_FILE, load_motion
 from ..core.folders import check_writable
 from ..core.scene import random_scene
 from ..data.grades import GradeRow, write_grades
-from ..errors import DataError, L2PError, RunFolderError
+from ..errors import DataError, L2PError, RunFolderError, listed, plural
 from ..judge import RuleJudge
 from ..pipeline import perform
 from ..plugins.bundle import load_bundle, sha256_file, write_progress_bundle
@@ -75,11 +75,6 @@ class RoundResult:
 
     def to_dict(self) -> dict:
         return {k: (round(v, 4) if isinstance(v, float) else v) for k, v in self.__dict__.items()}
-
-
-def plural(n: int, noun: str) -> str:
-    """``1 graded run``, ``2 graded runs``: the messages said "1 graded runs" and "on 1 scenes"."""
-    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def _eta(done: int, total: int, t0: float) -> str:
@@ -208,7 +203,7 @@ def _claim(out: Path, settings: dict, force: bool) -> None:
         except (OSError, ValueError):
             old = None
         if foreign or not isinstance(old, dict):
-            shown = ", ".join(foreign[:3]) + (" ..." if len(foreign) > 3 else "") or "no improve.json"
+            shown = listed(foreign) or "no improve.json"
             raise RunFolderError(f"{out} already exists and holds files l2p-bullet did not write ({shown}); choose "
                                  "another --out (--force never deletes them)")
         if "started_from_sha256" not in old and "started_from_sha256" in settings:  # from before the digest

@@ -31,7 +31,7 @@ from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
 from ..core.folders import check_writable
 from ..core.vocabulary import ACTIONS, canonical_action, normalize_name
-from ..errors import BundleError, RunFolderError
+from ..errors import BundleError, RunFolderError, listed
 from ..progress.config import ModelConfig
 from ..progress.features import feature_names
 from ..progress.model import NumpyProgressModel
@@ -359,8 +359,7 @@ def check_bundle_target(out: Path, name: str, force: bool) -> None:
     except BundleError:
         man = None
     if not (man and man.get("schema") == SCHEMA and isinstance(man.get("name"), str) and "phrases" in man):
-        shown = ", ".join(entries[:3]) + (" ..." if len(entries) > 3 else "")
-        raise RunFolderError(f"{out} already exists and holds files that are not an action bundle's ({shown}); "
+        raise RunFolderError(f"{out} already exists and holds files that are not an action bundle's ({listed(entries)}); "
                              "choose another --out (--force only replaces a bundle l2p-bullet wrote)")
     if normalize_name(str(man["name"])) != normalize_name(name):
         raise RunFolderError(f'{out} holds the bundle of the action "{man["name"]}", not of "{name}"; '
