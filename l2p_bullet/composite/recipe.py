@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from ..core.scene import Scene
+from ..data.tracking import page_track
 from ..errors import L2PError
 from ..recognition import Tracks, recognize
 
@@ -62,14 +63,9 @@ class Segment:
     samples: list[list[float]]
 
     def track(self) -> np.ndarray:
-        """The drag resampled to :data:`FPS` as poses (n, 3), yaw unwrapped."""
-        s = np.asarray(self.samples, float)
-        t = s[:, 0] - s[0, 0]
-        keep = np.r_[np.diff(t) > 0, True]  # several samples at one instant: the last one holds
-        grid = np.arange(int(np.floor(t[-1] * FPS)) + 1) / FPS
-        yaw = np.unwrap(s[:, 3])
-        out = np.column_stack([np.interp(grid, t[keep], s[keep, i]) for i in (1, 2)] + [np.interp(grid, t[keep], yaw[keep])])
-        return out if len(out) >= 2 else np.vstack([s[0, 1:], s[-1, 1:]])
+        """The drag resampled to :data:`FPS` as poses (n, 3), yaw unwrapped, ending where the drag left
+        the block (:func:`~l2p_bullet.data.tracking.page_track`)."""
+        return page_track(np.asarray(self.samples, float), FPS)
 
 
 @dataclass

@@ -13,11 +13,42 @@ split the track into runs; a run shorter than ``min_run`` frames lies between tw
 it is the glitch, not the long runs either side. Its detections are dropped and every frame that is
 not a kept detection is interpolated linearly between the kept ones, as the original pipeline did
 (frames before the first or after the last kept detection copy the nearest one).
+
+The teach page's samples are the other kind of track: poses at irregular instants (a mouse event and a
+timer), turned into the captures' 30 fps by :func:`page_track`, for single actions and rows alike.
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+
+def page_samples(samples: np.ndarray) -> np.ndarray:
+    """The rows of ``samples`` (n, 4 ``[t, x, y, yaw]``, times not decreasing) that :func:`page_track`
+    is resampled from: of several samples at one instant (a mouse event and the timer) only the last
+    holds. A check of the saved path must follow exactly these: a detour among samples that share an
+    instant would pass it while the saved track cuts straight through. A recording at a single instant
+    keeps its first and last sample."""
+    keep = np.r_[np.diff(samples[:, 0]) > 0, True]
+    return samples[keep] if keep.sum() >= 2 else samples[[0, -1]]
+
+
+def page_track(samples: np.ndarray, fps: float = 30.0) -> np.ndarray:
+    """The page's ``samples`` (n, 4 ``[t, x, y, yaw]``, times not decreasing) as poses (m, 3) at ``fps``
+    from the first sample's instant, yaw unwrapped, at least two.
+
+    The frames run to the first at or after the last sample, which holds the last sample's pose: the
+    track ends where the page left the block. (Frames only up to the last sample, as before 2026-11-28,
+    dropped up to 1/fps s of a drag's end, so a fast drag's last frame fell short of where it was put.)"""
+    s = np.asarray(samples, float)
+    yaw = np.unwrap(s[:, 3])
+    keep = np.r_[np.diff(s[:, 0]) > 0, True]
+    t = s[:, 0] - s[0, 0]
+    if keep.sum() < 2:
+        return np.column_stack([s[[0, -1], 1:3], yaw[[0, -1]]])
+    grid = np.arange(int(np.ceil(t[-1] * fps - 1e-9)) + 1) / fps
+    return np.column_stack([np.interp(grid, t[keep], s[keep, 1]), np.interp(grid, t[keep], s[keep, 2]),
+                            np.interp(grid, t[keep], yaw[keep])])
 
 
 def teleporting(pose: np.ndarray, observed: np.ndarray, fps: float = 30.0, max_speed: float = 2.0,

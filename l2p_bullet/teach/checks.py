@@ -93,16 +93,6 @@ def checked_samples(samples: np.ndarray, what: str = "a recording") -> np.ndarra
     return s
 
 
-def track_samples(samples: np.ndarray) -> np.ndarray:
-    """The rows of ``samples`` (n, 4 ``[t, x, y, yaw]``, times not decreasing) that the 30-fps track is
-    resampled from (``Segment.track``, ``Lesson._tracks``): of several samples at one instant (a mouse
-    event and the timer) only the last holds. The collision check must follow exactly these: a detour
-    of samples that share an instant would pass the check while the saved track cuts straight through.
-    A recording at a single instant keeps its first and last sample (the track ``Segment.track`` makes)."""
-    keep = np.r_[np.diff(samples[:, 0]) > 0, True]
-    return samples[keep] if keep.sum() >= 2 else samples[[0, -1]]
-
-
 def travel(track: np.ndarray, size: float) -> float:
     """Path length of ``track`` (n, 3 poses) in block sides."""
     return float(np.linalg.norm(np.diff(track[:, :2], axis=0), axis=1).sum()) / size
@@ -134,7 +124,7 @@ def first_collision(mover: SceneObject, path: np.ndarray, others: list[tuple[Sce
 
     Only the samples get the full footprint: the 30-fps frames, and the swept moves, lie between them,
     where a jump across a corner the page allowed cuts it by millimetres (:data:`TOLERANCE`). ``path``
-    must be the samples the track is built from (:func:`track_samples`), else a detour among samples
+    must be the samples the track is built from (:func:`~l2p_bullet.data.tracking.page_samples`), else a detour among samples
     the track drops is checked instead of the path saved."""
     poses, steps = swept(path, mover.size)
     first: tuple[int, str] | None = None

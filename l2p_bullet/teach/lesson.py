@@ -38,6 +38,7 @@ from ..core.frames import VIEWPOINTS, Frame, declaration
 from ..core.scene import COLORS, Scene, random_between_scene, random_scene
 from ..core.vocabulary import ACTIONS, normalize_name
 from ..data.demos import DEMO_BLOCK_SIZE, load_session, save_session
+from ..data.tracking import page_samples, page_track
 from ..errors import L2PError, TeachError
 from ..pipeline import perform
 from ..plugins import registry
@@ -216,14 +217,8 @@ class Lesson:
         mover = scene.get("A")
         if np.hypot(*(s[0, 1:3] - mover.xy)) > 0.002:
             raise TeachError("the recording does not start where block A stands in this scene")
-        n = int(np.floor(t[-1] * FPS)) + 1
-        grid = np.arange(n) / FPS
-        yaw = np.unwrap(s[:, 3])
-        # several samples at one instant (a mouse event and the timer): the last one holds
-        keep = np.r_[np.diff(t) > 0, True]
-        tk = t[keep]
-        track = np.column_stack([np.interp(grid, tk, s[keep, 1]), np.interp(grid, tk, s[keep, 2]),
-                                 np.interp(grid, tk, yaw[keep])])
+        track = page_track(s, FPS)  # to the frame at or after the last sample, which holds it
+        n = len(track)
         # the event covers the marked interval: the frame at or before the start, at or after the end
         i0, i1 = int(np.floor(start * FPS + 1e-9)), min(int(np.ceil(end * FPS - 1e-9)), n - 1)
         if i1 - i0 < MIN_FRAMES:
@@ -232,8 +227,8 @@ class Lesson:
         if moved < MIN_TRAVEL:
             raise TeachError(f"block A moved {moved:.2f} blocks between start and end; slide it to where "
                              f'"{self.action.phrases[0]}" ends')
-        # the samples the track was built from (keep), not every sample: a detour at one instant is not saved
-        self._check_track(scene, track, np.column_stack([t, s[:, 1:3], yaw])[keep])
+        # the samples the track was built from, not every sample: a detour at one instant is not saved
+        self._check_track(scene, track, page_samples(np.column_stack([t, s[:, 1:3], np.unwrap(s[:, 3])])))
         lo = max(0, i0 - BEFORE)
         track = track[lo:i1 + CONTEXT + 1]
         i0, i1 = i0 - lo, i1 - lo
@@ -248,7 +243,7 @@ class Lesson:
     def _check_track(scene: Scene, track: np.ndarray, samples: np.ndarray) -> None:
         """The block's frames (``track``) stay on the table, and its path never passes through another
         block: ``samples`` ``[t, x, y, yaw]`` (t from 0, yaw unwrapped), the poses the page placed it at
-        that the track is built from (the last at each instant, :func:`~.checks.track_samples`: the
+        that the track is built from (the last at each instant, :func:`~l2p_bullet.data.tracking.page_samples`: the
         others are not in the track, so a detour among them must not pass for the saved path) and the
         jumps between them (:func:`~.checks.first_collision`, which allows a jump across a
         corner the page allowed; the frames lie on those jumps)."""

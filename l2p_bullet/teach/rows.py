@@ -26,6 +26,7 @@ from ..composite.bundle import read_demos, write_demos, write_recipe
 from ..composite.recipe import CompositeError, Demonstration, Segment, learn
 from ..core.contracts import read_json, trajectory_poses
 from ..core.scene import COLORS, Scene, random_scene
+from ..data.tracking import page_samples
 from ..errors import TeachError
 from ..evaluate.scenes import add_bystanders
 from ..plugins import registry
@@ -38,7 +39,6 @@ from .checks import (
     checked_samples,
     first_collision,
     fmt,
-    track_samples,
     travel,
 )
 from .lesson import FPS, Job, Lesson
@@ -121,7 +121,7 @@ class RowLesson(Lesson):
         samples at one instant), or faster than a hand drags a block (:data:`~.checks.MAX_SPEED` on
         average: a token span of a microsecond is a teleport too), is refused; a fast one is checked on its
         path like any other. The path checked, and the travel counted, are those of the samples the
-        saved track is built from (:func:`~.checks.track_samples`), not of samples it drops."""
+        saved track is built from (:func:`~l2p_bullet.data.tracking.page_samples`), not of samples it drops."""
         scene, names = self.scene(seed), self.names(seed)
         if not segments:
             raise TeachError("drag the blocks into a row first (nothing was dragged)")
@@ -144,7 +144,7 @@ class RowLesson(Lesson):
             if span <= 0 and np.abs(samples[:, 1:] - samples[0, 1:]).max() > 0.002:
                 raise TeachError(f"drag {k} moves block {s.block} in no time (all its samples at one instant): "
                                  "slide it")
-            kept = track_samples(samples)
+            kept = page_samples(samples)
             seconds += span
             size = scene.get(s.block).size
             moved = travel(kept[:, 1:], size)
@@ -179,7 +179,7 @@ class RowLesson(Lesson):
     def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int,
                     samples: np.ndarray | None = None) -> None:
         """The block's frames (``track``) stay on the table, and its path (``samples`` ``[t, x, y, yaw]``,
-        the poses the page placed it at that ``track`` is built from, :func:`~.checks.track_samples`, and
+        the poses the page placed it at that ``track`` is built from, :func:`~l2p_bullet.data.tracking.page_samples`, and
         the jumps between them; ``track`` without them) never passes
         through another block where it then stood: :func:`~.checks.first_collision`, which allows a jump
         across a corner that the page allowed, not one through a block."""

@@ -63,6 +63,27 @@ def test_the_shipped_recipe_is_what_its_demonstrations_teach():
     assert read_recipe(ROW).to_dict() == recipe.to_dict()
 
 
+def test_the_learned_gaps_are_where_the_drags_left_the_blocks():
+    """The spacing is learned from where each drag put its block (its last sample), not from a frame
+    short of it: until 2026-11-28 one gap of the shipped demonstrations read 0.2141 sides for 0.202."""
+    from l2p_bullet.composite.bundle import read_demos
+    from l2p_bullet.composite.recipe import learn, row_gaps
+    from l2p_bullet.recognition import recognisers
+
+    demos = read_demos(ROW)
+    dropped, expected = [], []
+    for d in demos:
+        scene = Scene.from_dict(d.scene)
+        xy = {o.name: np.asarray(o.xy, float) for o in scene.objects}
+        for s in d.segments:
+            xy[s.block] = np.asarray(s.samples[-1][1:3], float)
+            dropped.append(float(np.hypot(*(s.track()[-1, :2] - xy[s.block]))))
+        gaps, _, _ = row_gaps(np.array([xy[n] for n in d.names]), np.array([scene.get(n).size for n in d.names]))
+        expected += [round(float(g), 4) for g in gaps]
+    assert max(dropped) < 1e-9
+    assert learn(demos, recognisers()[0]).evidence["gaps_sides"] == expected
+
+
 def test_a_recipe_says_what_it_learned_and_refuses_what_it_cannot_perform():
     from l2p_bullet.composite.recipe import CompositeError, Recipe
 

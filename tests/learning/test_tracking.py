@@ -1,11 +1,12 @@
-"""Cleaning capture tracks: glitch detections are dropped, real motion is kept."""
+"""Cleaning capture tracks: glitch detections are dropped, real motion is kept. The teach page's samples
+become 30-fps tracks that end where the page left the block."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from l2p_bullet.data.demos import load_demos, load_session, session_files
-from l2p_bullet.data.tracking import clean_track, teleporting
+from l2p_bullet.data.tracking import clean_track, page_samples, page_track, teleporting
 
 
 def _slide(n: int = 120) -> np.ndarray:
@@ -96,3 +97,26 @@ def test_untrusted_demonstrations_are_never_scored_by_the_suite_but_still_shown(
     others = [d for d in load_demos("around") if d.id not in UNTRUSTED]
     assert max(float((np.hypot(*(d.mover[d.start:d.end + 1, :2] - d.anchor[d.start:d.end + 1, :2]).T)
                       / d.size).max()) for d in others) < 5.0
+
+
+def test_a_page_track_ends_where_the_page_left_the_block():
+    """A drag whose last sample falls between two 30-fps frames: the track's last frame is that sample
+    (before 2026-11-28 the frames stopped at the one before it, 1/30 s short: 6 mm at 0.2 m/s)."""
+    t = np.array([0.0, 0.05, 0.11, 0.2, 0.31])
+    samples = np.column_stack([t, 0.2 * t, np.zeros_like(t), np.zeros_like(t)])
+    track = page_track(samples)
+    assert len(track) == 11  # frames at 0, 1/30, ..., 10/30 >= 0.31 s
+    np.testing.assert_allclose(track[-1], samples[-1, 1:])
+    np.testing.assert_allclose(track[:-1, 0], 0.2 * np.arange(10) / 30.0, atol=1e-12)  # the slide, at 30 fps
+    # a drag ending on a frame's instant gets no extra frame
+    assert len(page_track(samples[:4] * [1.5, 1, 1, 1])) == 10  # 0.3 s: frames 0..9
+
+
+def test_a_page_track_keeps_the_last_sample_of_an_instant_and_unwraps_yaw():
+    samples = np.array([[0.0, 0.0, 0.0, 3.1], [0.1, 0.05, 0.0, -3.1], [0.1, 0.02, 0.0, -3.1], [0.2, 0.04, 0.0, -3.0]])
+    assert page_samples(samples)[:, 1].tolist() == [0.0, 0.02, 0.04]  # the mouse event and the timer: the last holds
+    track = page_track(samples)
+    np.testing.assert_allclose(track[3], [0.02, 0.0, 2 * np.pi - 3.1])  # at 0.1 s
+    assert np.all(np.abs(np.diff(track[:, 2])) < 0.1)  # no jump of 2 pi
+    one = page_track(np.array([[1.0, 0.1, 0.2, 0.0], [1.0, 0.3, 0.2, 0.5]]))  # a single instant: first and last
+    np.testing.assert_allclose(one, [[0.1, 0.2, 0.0], [0.3, 0.2, 0.5]])
