@@ -15,7 +15,20 @@ import sys
 import click
 
 from . import PROGRAM, __version__, interrupted_while_starting
-from .commands import actions, arms, evaluate, export, learn, perform, plan, recognize, replay, review, teach
+from .commands import (
+    actions,
+    arms,
+    evaluate,
+    export,
+    learn,
+    manners,
+    perform,
+    plan,
+    recognize,
+    replay,
+    review,
+    teach,
+)
 from .errors import L2PError
 
 
@@ -67,7 +80,7 @@ def main() -> None:
     """
 
 
-for _module in (perform, plan, replay, learn, actions, arms, review, evaluate, export, teach, recognize):
+for _module in (perform, plan, replay, learn, actions, arms, manners, review, evaluate, export, teach, recognize):
     for _cmd in _module.COMMANDS:
         main.add_command(_cmd)
 

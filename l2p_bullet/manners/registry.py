@@ -19,11 +19,18 @@ GROUP = "l2p_bullet.manners"
 DEFAULT = "slide"
 
 
+def _package(ep: metadata.EntryPoint) -> str:
+    """"name version" of the distribution that registers ``ep`` (what ``pip uninstall`` needs)."""
+    dist = getattr(ep, "dist", None)
+    return f'{dist.metadata["Name"]} {dist.metadata["Version"]}' if dist is not None else "unknown package"
+
+
 @lru_cache(maxsize=1)
-def _found() -> tuple[tuple[MannerSpec, ...], tuple[tuple[str, str], ...]]:
+def _found() -> tuple[tuple[MannerSpec, ...], tuple[tuple[str, str], ...], dict[str, str]]:
     good: dict[str, MannerSpec] = {}
     bad: list[tuple[str, str]] = []
     claimed: dict[str, str] = {}
+    packages: dict[str, str] = {}
     for ep in sorted(metadata.entry_points(group=GROUP), key=lambda e: (e.name, e.value)):
         try:
             module, _, attr = ep.value.partition(":")
@@ -31,26 +38,29 @@ def _found() -> tuple[tuple[MannerSpec, ...], tuple[tuple[str, str], ...]]:
         except BaseException as e:  # noqa: BLE001 - a broken plugin (even sys.exit) is reported, not fatal
             if isinstance(e, KeyboardInterrupt):
                 raise
-            bad.append((ep.name, f"{type(e).__name__}: {str(e)[:120]}"))
+            bad.append((ep.name, f"{type(e).__name__}: {str(e)[:120]} (package {_package(ep)})"))
             continue
         if not isinstance(obj, MannerSpec):
-            bad.append((ep.name, "its MANNER is not a MannerSpec"))
+            bad.append((ep.name, f"its MANNER is not a MannerSpec (package {_package(ep)})"))
             continue
         if obj.name in good:
-            bad.append((ep.name, f'a second manner called "{obj.name}"'))
+            bad.append((ep.name, f'a second manner called "{obj.name}" (package {_package(ep)})'))
             continue
         twice = [v for v in obj.verbs if v in claimed]
         if twice:
-            bad.append((ep.name, f'the verb "{twice[0]}" is already the manner "{claimed[twice[0]]}"\'s'))
+            bad.append((ep.name, f'the verb "{twice[0]}" is already the manner "{claimed[twice[0]]}"\'s '
+                                 f"(package {_package(ep)})"))
             continue
         good[obj.name] = obj
+        packages[obj.name] = _package(ep)
         claimed.update({v: obj.name for v in obj.verbs})
     if DEFAULT not in good:  # the project itself is broken or not installed: the built-ins still work
         from . import carry, push, slide
 
         for m in (slide.MANNER, carry.MANNER, push.MANNER):
             good.setdefault(m.name, m)
-    return tuple(good.values()), tuple(bad)
+            packages.setdefault(m.name, "l2p-bullet (built in, not installed)")
+    return tuple(good.values()), tuple(bad), packages
 
 
 def discover() -> list[MannerSpec]:
@@ -61,6 +71,11 @@ def discover() -> list[MannerSpec]:
 def broken() -> list[tuple[str, str]]:
     """(entry-point name, reason) of every manner that could not be used."""
     return list(_found()[1])
+
+
+def package(name: str) -> str:
+    """"name version" of the package that installed the working manner ``name``."""
+    return _found()[2][get(name).name]
 
 
 def get(name: str | None) -> MannerSpec:

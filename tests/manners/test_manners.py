@@ -203,3 +203,59 @@ def test_a_carry_lifts_over_the_top_of_a_tall_object_not_its_side():
          "yaw": 0.0}]}).validate()
     path = np.array([[0.1, 0.0, 0.0], [-0.03, 0.0, 0.0]])  # passes 5 cm from the cylinder's axis
     assert carry_lift(scene, "A", path) >= 0.08 + CLEARANCE - 1e-9
+
+
+def _manners_cli(*args: str, site=None) -> tuple[int, str]:
+    """``l2p-bullet manners ARGS`` in a fresh Python (the registry is read once per process), with ``site``
+    (a folder of installed-looking distributions) first on the path."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ)
+    if site is not None:
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(site), env.get("PYTHONPATH")) if p)
+    p = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "manners", *args], capture_output=True, text=True,
+                       env=env, timeout=120)
+    return p.returncode, p.stdout + p.stderr
+
+
+def test_manners_lists_every_manner_with_its_verbs_and_package():
+    import json
+
+    rc, out = _manners_cli()
+    assert rc == 0, out
+    lines = out.splitlines()
+    assert lines[0].startswith("carry  carry, bring, lift ... and put") and "[l2p-bullet " in lines[0]
+    assert any(line.startswith("slide  slide, move") and "(and any verb no manner claims)" in line for line in lines)
+    assert "(above the other objects)" in lines[1]  # carry is airborne
+    rc, out = _manners_cli("--json")
+    got = {m["name"]: m for m in json.loads(out)["manners"]}
+    assert rc == 0 and set(got) == {"slide", "carry", "push"} and json.loads(out)["broken"] == []
+    assert got["push"]["verbs"] == ["push", "nudge", "shove"] and got["push"]["signature"] == "no-grasp"
+    assert got["carry"]["airborne"] and got["slide"]["default"]
+
+
+def test_a_third_party_manner_is_listed_and_a_broken_one_named_with_its_package(tmp_path):
+    """A manner plugin installs like an action: an entry point in "l2p_bullet.manners". One that claims a
+    built-in's verb is left out, named with its package (what to uninstall), and the listing exits 1."""
+    import json
+
+    site = tmp_path / "site"
+    (site / "l2p_roll").mkdir(parents=True)
+    (site / "l2p_roll" / "__init__.py").write_text(
+        "from l2p_bullet.manners.spec import MannerSpec\n"
+        "MANNER = MannerSpec(name='roll', verbs=('roll',), motion='slide', signature='on-table', description='rolls')\n"
+        "SHOVE = MannerSpec(name='shove2', verbs=('shove',), motion='push', signature='no-grasp')\n")
+    info = site / "l2p_roll-0.3.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: l2p-roll\nVersion: 0.3\n")
+    (info / "entry_points.txt").write_text("[l2p_bullet.manners]\nroll = l2p_roll\nshove2 = l2p_roll:SHOVE\n")
+    rc, out = _manners_cli(site=site)
+    assert rc == 1, out
+    assert "roll   roll  [l2p-roll 0.3]" in out
+    assert 'shove2: the verb "shove" is already the manner "push"\'s (package l2p-roll 0.3)' in out
+    rc, out = _manners_cli("--json", site=site)
+    d = json.loads(out)
+    assert rc == 1 and {m["name"] for m in d["manners"]} == {"slide", "carry", "push", "roll"}
+    assert [b["name"] for b in d["broken"]] == ["shove2"]
