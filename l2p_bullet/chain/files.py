@@ -39,8 +39,11 @@ def segments(result: Any) -> list[dict[str, Any]]:
     return out
 
 
-def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, seed: int, scene: Any) -> None:
-    """trajectory.json, plan.json, images (when rendering) and summary.json of a chain run."""
+def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, seed: int, scene: Any,
+              replay: dict | None = None) -> None:
+    """trajectory.json, plan.json, images (when rendering) and summary.json of a chain run. ``replay`` (a
+    replay of a chain's plan.json: where it came from): plan.json records the motions replayed, not plans, and
+    both files get ``replay``, as a one-clause replay's (DESIGN.md section 4)."""
     out, rec = Path(result.out_dir), prims.recorder
     first = steps[0]
     cmd = first.clause.command
@@ -52,7 +55,7 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
         meta["viewer"] = [float(v) for v in first.viewer]
     files = {"trajectory": out / "trajectory.json", "plan": out / "plan.json"}
     rec.write_trajectory(files["trajectory"], meta, world.sizes)
-    _write_plans(files["plan"], result, steps, scene)
+    _write_plans(files["plan"], result, steps, scene, replay)
     if rec.film is not None:
         files |= rec.write_images(out, settings.video, captions(result, rec))
     files["summary"] = out / "summary.json"
@@ -72,6 +75,7 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
         **whole_chain(result),
         "render": _render(settings, rec.film),
         "plugins": {s.bundle.name: {"version": s.bundle.version, "path": str(s.bundle.path)} for s in steps},
+        **({} if replay is None else {"replay": replay}),
         "files": {k: v.name for k, v in files.items()},
         "versions": versions(),
     }
@@ -136,15 +140,25 @@ def captions(result: Any, rec: Any) -> list[str]:
     return out
 
 
-def _write_plans(path: Path, result: Any, steps: list, scene: Any) -> None:
+def _write_plans(path: Path, result: Any, steps: list, scene: Any, replay: dict | None = None) -> None:
     """plan.json: the first clause's plan as a one-clause run writes it, plus every clause's plan and
-    ``chain`` (the sentence and the scene it started from: ``replay`` needs both)."""
+    ``chain`` (the sentence and the scene it started from: ``replay`` needs both). A replay's (``replay`` given)
+    records the motions it replayed: ``planner`` and ``stopped`` "replay", ``progress`` null, as a one-clause
+    replay's plan.json."""
+    mark = (lambda d: d) if replay is None else _replayed
     clauses = []
     for s, r in zip(steps, result.results, strict=False):
-        executed = r.plan.to_dict() if r.plan is not None else None
+        executed = mark(r.plan.to_dict()) if r.plan is not None else None
         clauses.append({"clause": s.clause.index, "text": s.clause.text, "plan": executed,
-                        "forecast": s.forecast.to_dict()})
+                        "forecast": mark(s.forecast.to_dict())})
     head = result.results[0].plan if result.results and result.results[0].plan is not None else steps[0].forecast
-    doc = head.to_dict() | scene_fields(scene) | {  # scene, scene_sha256: the first clause's, as a one-clause run's
-        "clauses": clauses, "chain": {"sentence": result.sentence, "scene": scene.to_dict()}}
+    doc = mark(head.to_dict()) | scene_fields(scene) | {  # scene, scene_sha256: the first clause's, as a one-clause run's
+        "clauses": clauses, "chain": {"sentence": result.sentence, "scene": scene.to_dict()},
+        **({} if replay is None else {"replay": replay})}
     path.write_text(dumps_json(doc, indent=1) + "\n")
+
+
+def _replayed(plan: dict) -> dict:
+    """A plan's dict as a replay records it (embodiment/replay.py does the same for one clause): the motion,
+    not a plan, so no planner stopped it and no model scored it here."""
+    return plan | {"planner": "replay", "stopped": "replay", "progress": [None] * len(plan.get("path") or [])}

@@ -14,7 +14,7 @@ from typing import Any
 from ..core.contracts import dumps_json
 from ..core.runfolder import run_folder
 from ..core.scene import Scene
-from ..pipeline import check_options, check_scene
+from ..pipeline import check_options, check_scene, scene_fields
 from ..plugins import registry
 from .clauses import resolve_clauses
 from .forecast import Step, forecast
@@ -56,7 +56,7 @@ def plan_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None
     steps = forecast(resolve_clauses(sentence, scene, plugins), scene, plugins, planner=planner, seed=seed,
                      budget=budget, threshold=threshold, arm=spec)
     with run_folder(out_dir, force=force, prefix="plan", command="plan", files=("plan-*.png",)) as folder:
-        doc = steps[0].forecast.to_dict() | {
+        doc = steps[0].forecast.to_dict() | scene_fields(scene) | {  # scene, scene_sha256: as a one-clause plan.json
             "clauses": [{"clause": s.clause.index, "text": s.clause.text, "plan": None, "forecast": s.forecast.to_dict()}
                         for s in steps],
             "chain": {"sentence": sentence, "scene": scene.to_dict()}}

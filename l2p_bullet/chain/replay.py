@@ -28,10 +28,11 @@ def is_chain_plan(doc: object) -> bool:
 
 
 def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_settings: Any = None, seed: int = 0,
-                 on_stage=None, plugins: list | None = None, arm: str | None = None):
+                 on_stage=None, plugins: list | None = None, arm: str | None = None, path: str | None = None):
     """Execute the clauses' plans of ``doc`` (a chain's plan.json) into the run folder ``out``; returns the
     :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges). ``arm``: who
-    executes it (default the Panda; the scene's workspace is fitted to its reach)."""
+    executes it (default the Panda; the scene's workspace is fitted to its reach). ``path``: the file ``doc`` was
+    read from, recorded as a one-clause replay records its source (plan.json's and summary.json's ``replay``)."""
     from ..embodiment import arm_plugins
 
     source = "plan.json"
@@ -62,4 +63,5 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     clock = StageClock(on_stage)
     return _execute(sentence, scene, steps, Path(out), clock, plugins, planner="replay", seed=seed,
                     render=render_settings is not None, budget=None, threshold=None,
-                    render_settings=render_settings, world=None, replan=False, arm=spec)
+                    render_settings=render_settings, world=None, replan=False, arm=spec,
+                    replay={"source": {"plan": None if path is None else str(path)}})

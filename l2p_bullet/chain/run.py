@@ -183,9 +183,10 @@ def scene_now(scene: Scene, world: Any) -> Scene:
 def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: StageClock, plugins: list, *,
              planner: str,
              seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
-             world: Any, replan: bool = True, arm: ArmSpec = PANDA) -> ChainResult:
+             world: Any, replan: bool = True, arm: ArmSpec = PANDA, replay: dict | None = None) -> ChainResult:
     """Execute ``steps`` in one episode in ``world`` (or a new one) and write the run folder into ``out``.
-    ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json)."""
+    ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json; ``replay``:
+    where the plans came from, recorded as a one-clause replay records it)."""
     # lazy: the arm's modules (and files.py, which records with them) load only when a chain is performed
     from ..embodiment import execute as ex
     from ..embodiment.sim.world import World
@@ -220,7 +221,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         clock.stage("record", "writing the run folder" + ("" if film is None else
                     f" and the video's {len(film.states)} frames ({film.settings.renderer})"))
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
-        write_run(result, steps, prims, world, settings, seed, scene)
+        write_run(result, steps, prims, world, settings, seed, scene, replay=replay)
         if steps and steps[0].clause.target is not None:  # a composite: is the whole what it should be?
             from .composite import judge_row  # lazy: composite.py imports clauses.py, this module's peer
 
@@ -267,6 +268,10 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         slide = slice(s0 - first, s1 - first)
     except L2PError as e:
         _let_go(prims, rest)
+        if len(rec.frames) <= first:
+            # broke off before the arm moved (plan, path, reach): the world stands still for one frame, so the
+            # clause's segment names a frame the trajectory has (it named frame N of N: readers refused the run)
+            prims.hold(rec.traj_every * prims.world.dt)  # exactly one trajectory frame
         check = f" ({e.check})" if isinstance(e, InfeasibleError) else ""
         last = max(first, len(rec.frames) - 1)
         return ClauseResult(step.clause, plan, {"success": False, "reason": f"{stage}{check}: {e}"}, first, last,

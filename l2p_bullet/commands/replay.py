@@ -106,7 +106,7 @@ def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force
     with run_folder(out, force=force, prefix="replay", command="replay",
                     inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:
         r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=seed,
-                         on_stage=lambda s: click.echo(f"  {s}...", err=True), arm=arm)
+                         on_stage=lambda s: click.echo(f"  {s}...", err=True), arm=arm, path=path_json)
     v = r.verdict()
     click.echo(f"replayed the chain {path_json}: {v['completed']} of {v['clauses']} clauses done ({v['reason']})")
     click.echo(f"run folder: {folder}")

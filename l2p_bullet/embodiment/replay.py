@@ -33,6 +33,7 @@ class Source:
     action: str | None = None
     info: dict = field(default_factory=dict)
     manner: str = "slide"  # a plan's: what its sentence's verb asked for (a carried path crosses blocks)
+    sentence: str | None = None  # a plan's sentence (trajectory.json's and summary.json's); None for a motion
 
 
 def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | None = None,
@@ -50,6 +51,11 @@ def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | N
         from ..core.contracts import read_json
 
         data = read_json(path_json)
+        if (scene is not None and isinstance(data, dict) and "path" in data
+                and data.get("scene_sha256") == scene.digest()):
+            # --scene is the very scene it records: replayed there, its meshes read from that file's folder (the
+            # recorded scene names them by absolute path, outside the run folder: docs/perform.md, "Paths")
+            return scene
         if isinstance(data, dict) and "path" in data and isinstance(data.get("scene"), dict):
             recorded = Scene.from_dict(data["scene"], source=f"{path_json} (its scene)",
                                        base=Path(path_json).resolve().parent,
@@ -84,8 +90,9 @@ def _motion_source(path_json: str | None, demo: str | None, scene: Scene, mover:
     if "path" in data:  # plan.json: already in the scene frame
         plan = Plan.from_dict(data, source=str(path_json))
         scene.get(plan.mover)
+        sentence = data.get("sentence") if isinstance(data.get("sentence"), str) else None
         return Source(f"plan {path_json}", plan.mover, plan.anchor, plan.path, plan.action,
-                      {"source": {"plan": str(path_json)}}, manner_of_sentence(data.get("sentence")))
+                      {"source": {"plan": str(path_json)}}, manner_of_sentence(sentence), sentence)
 
     m = motion_from_dict(data, source=str(path_json))
     mover, anchor = m.mover_name or mover, m.anchor_name or anchor
@@ -115,9 +122,13 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
                     "replay", "replay", {"replay": source.info})
         doc = plan.to_dict() | {"progress": [None] * len(source.path)}  # no model scored a replay
         doc.update(scene=scene.to_dict(), scene_sha256=scene.digest())
+        if source.sentence is not None:  # replayed again, it is still that sentence's motion (and manner)
+            doc["sentence"] = source.sentence
         plan_file.write_text(dumps_json(doc, indent=1) + "\n")
     meta = {"action": source.action, "mover": source.mover, "anchor": source.anchor, "replay": source.info,
             "arm": arm.name}
+    if source.sentence is not None:  # a plan's: the sentence it was planned for, as a chain's replay keeps its own
+        meta["sentence"] = source.sentence
     ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
                       on_stage=on_stage, arm=arm, manner=source.manner)
     if plan_file is not None:
@@ -126,5 +137,6 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
         if summary_file is not None and summary_file.exists():  # summary.json lists every file of the folder
             summary = read_json(summary_file)
             summary.setdefault("files", {})["plan"] = plan_file.name
+            summary.setdefault("ok", True)  # a finished run says so, as perform's and a chain replay's do
             write_summary(summary_file, summary)
     return ex
