@@ -87,6 +87,9 @@ def connect(path: str | Path, create: bool = True) -> sqlite3.Connection:
         conn = sqlite3.connect(target, timeout=30.0, isolation_level=None, check_same_thread=False, uri=not create)
         conn.row_factory = sqlite3.Row
         conn.execute("PRAGMA busy_timeout = 30000")
+        if version(conn) == 0 and _has_foreign_tables(conn):  # before WAL, which would rewrite someone's file
+            conn.close()
+            raise _foreign(path)
         conn.execute("PRAGMA journal_mode = WAL")
         conn.execute("PRAGMA synchronous = FULL")
         conn.execute("PRAGMA foreign_keys = ON")
@@ -108,8 +111,7 @@ def migrate(conn: sqlite3.Connection, path: str | Path, target: int = SCHEMA_VER
     if found > SCHEMA_VERSION:
         raise SchemaVersionError(str(path), found, SCHEMA_VERSION)
     if found == 0 and _has_foreign_tables(conn):
-        raise ReviewError(f"{path} is an SQLite file of something else (it has tables but no review schema); "
-                          "give another --db")
+        raise _foreign(path)
     for n in range(found + 1, target + 1):
         try:
             conn.execute("BEGIN IMMEDIATE")
@@ -129,6 +131,11 @@ def migrate(conn: sqlite3.Connection, path: str | Path, target: int = SCHEMA_VER
 
 def _statements(script: str) -> list[str]:
     return [s.strip() for s in script.split(";") if s.strip()]
+
+
+def _foreign(path: str | Path) -> ReviewError:
+    return ReviewError(f"{path} is an SQLite file of something else (it has tables but no review schema); "
+                       "give another --db")
 
 
 def _has_foreign_tables(conn: sqlite3.Connection) -> bool:

@@ -67,8 +67,9 @@ def test_impossible_clause_refused_up_front_with_its_index(tmp_path):
     assert d["refused"]["check"] == "room-around" and d["refused"]["details"]["clause"] == 2
     assert d["error"].startswith('clause 2 ("move D around B") cannot be planned (room-around)')
     assert not out.exists()  # refused before the arm moved or anything was written
-    with pytest.raises(InfeasibleError):
+    with pytest.raises(InfeasibleError, match=r'^clause 1 \("move D around B"\) cannot be planned \(room-around\)') as e:
         perform_chain("move D around B; move A next to C", four_blocks(b_xy=(0.0, 0.335)), out_dir=out, render=False)
+    assert e.value.check == "room-around" and e.value.details["clause"] == 1 and not out.exists()
 
 
 def _save(scene: Scene, folder) -> str:

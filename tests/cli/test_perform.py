@@ -99,9 +99,13 @@ def test_bad_sentence_is_one_line_error_and_no_folder(tmp_path):
 
 
 def test_unknown_object_and_empty_sentence(tmp_path):
-    for sentence in ("move Z next to B", ""):
+    for sentence, said in (("move Z next to B", 'no block called "Z" in the scene (blocks: A (red), B (green))'),
+                           ("", 'the sentence is empty; try for example "move A around B"')):
         result = CliRunner().invoke(main, ["perform", sentence, "--no-render", "--out", str(tmp_path / "x")])
-        assert result.exit_code == 2 and result.output.startswith("error: ")
+        lines = result.output.strip().splitlines()
+        assert result.exit_code == 2 and len(lines) == 1 and lines[0].startswith("error: "), result.output
+        assert said in lines[0], lines[0]
+        assert not (tmp_path / "x").exists()  # refused before the run folder is made
 
 
 def test_existing_folder_needs_force(tmp_path):
@@ -120,7 +124,7 @@ def test_existing_folder_needs_force(tmp_path):
 
 
 def test_language_error_is_raised_before_any_work(tmp_path):
-    with pytest.raises(LanguageError):
+    with pytest.raises(LanguageError, match="^the sentence is empty"):
         perform("", default_scene(), out_dir=tmp_path / "x", render=False)
     assert not (tmp_path / "x").exists()
 

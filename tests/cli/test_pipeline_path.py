@@ -70,8 +70,9 @@ def test_the_python_front_door_checks_its_arguments_before_the_disk(tmp_path):
 
     with pytest.raises(SceneError, match="must be a l2p_bullet.core.scene.Scene"):
         pipeline.plan_sentence("move A past B", default_scene().to_dict(), out_dir=tmp_path / "p")
-    for bad in (RenderSettings(width=-1), "big"):
-        with pytest.raises(ExecutionError):
+    for bad, said in ((RenderSettings(width=-1), r"video width must be a whole number of pixels .*\(got -1\)"),
+                      ("big", r"render_settings must be a RenderSettings \(got str\)")):
+        with pytest.raises(ExecutionError, match=said):
             pipeline.perform("move A past B", default_scene(), out_dir=tmp_path / "r", render_settings=bad)
     assert not (tmp_path / "p").exists() and not (tmp_path / "r").exists()
     a = pipeline.plan_sentence("move A past B", default_scene(), out_dir=tmp_path / "a", seed=np.int64(3), plot=False)

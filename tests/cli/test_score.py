@@ -78,13 +78,19 @@ def test_score_reads_trajectory_json(tmp_path):
 
 
 def test_score_errors_are_one_line(tmp_path):
+    def one_line(res) -> str:
+        lines = res.output.strip().splitlines()
+        assert res.exit_code == 2 and len(lines) == 1 and lines[0].startswith("error: "), res.output
+        assert res.exception is None or isinstance(res.exception, SystemExit), res.exception
+        return lines[0]
+
     runner = CliRunner()
-    res = runner.invoke(main, ["score", "arround", str(_scoring_input(tmp_path, _circle()))])
-    assert res.exit_code == 2 and 'Did you mean "around"' in res.output
+    line = one_line(runner.invoke(main, ["score", "arround", str(_scoring_input(tmp_path, _circle()))]))
+    assert 'unknown action "arround"' in line and 'Did you mean "around"' in line
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps({"size": 0.05, "mover": [[0, 0, 0]], "anchor": [[0, 0, 0], [1, 1, 1]]}))
-    res = runner.invoke(main, ["score", "around", str(bad)])
-    assert res.exit_code == 2 and "anchor" in res.output
+    line = one_line(runner.invoke(main, ["score", "around", str(bad)]))
+    assert f'{bad}: "mover" has 1 poses but "anchor" has 2' in line
 
 
 @pytest.mark.slow

@@ -47,7 +47,13 @@ def test_workers_draw_the_frames_a_serial_render_draws(renderer, tmp_path):
             film.add(s)
         films[workers] = (film.finish(), film)
     (serial, f0), (parallel, f2) = films[0], films[2]
-    assert f0.renderer == f2.renderer and len(serial) == len(parallel) == 11
+    if renderer == "egl" and f0.renderer != "egl":  # EGL fell back to Tiny: the "egl" case compared Tiny twice
+        import os
+
+        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):  # CI installs EGL (as tests/conftest.py)
+            pytest.fail("EGL is installed in CI but the film fell back to TinyRenderer")
+        pytest.skip("EGL does not load here: the film fell back to TinyRenderer")
+    assert f0.renderer == f2.renderer == renderer and len(serial) == len(parallel) == 11
     assert all(np.array_equal(a, b) for a, b in zip(serial, parallel, strict=True))
     assert not np.array_equal(serial[0], serial[5])  # the states differ, and so do their frames
     assert sorted(p.name for p in (tmp_path / "w2").iterdir()) == [f"{i:04d}.png" for i in range(11)]

@@ -112,14 +112,16 @@ def test_replay_a_scoring_input_and_its_plan(tmp_path):
 )
 def test_bad_input_is_one_clear_line(tmp_path, args, message):
     r = _replay(*args, "--out", str(tmp_path / "x"), "--no-render")
-    assert r.exit_code == 2
-    assert message in r.output and "Traceback" not in r.output
-    assert not (tmp_path / "x" / "trajectory.json").exists()
+    lines = r.output.strip().splitlines()
+    assert r.exit_code == 2 and len(lines) == 1 and lines[0].startswith("error: "), r.output
+    assert message in lines[0] and "Traceback" not in r.output
+    assert not (tmp_path / "x").exists()  # refused before the run folder is made, not a failed run left in it
 
 
 def test_missing_path_file(tmp_path):
     r = _replay(str(tmp_path / "nope.json"), "--no-render", "--out", str(tmp_path / "x"))
-    assert r.exit_code == 2 and "cannot read" in r.output
+    assert r.exit_code == 2 and r.output == f"error: cannot read {tmp_path / 'nope.json'}: No such file or directory\n"
+    assert not (tmp_path / "x").exists()
 
 
 @pytest.mark.slow

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 
@@ -89,8 +91,12 @@ def test_egl_renders_the_same_scene_or_says_why(capfd):
     try:
         world = World(SCENE, visuals=True, egl=True)
     except ExecutionError as e:  # where the plugin does not load, a clear message
-        assert "EGL" in str(e)
-        return
+        assert str(e) == "the EGL renderer plugin does not load here; use --renderer tiny", e
+        # CI (CI=true) installs EGL: there a plugin that does not load is a failure, never a quiet pass
+        # (as tests/conftest.py does for Chromium); elsewhere the rendering half is reported as skipped
+        if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+            pytest.fail(f"EGL is installed in CI but did not load: {e}")
+        pytest.skip(f"EGL does not load here: {e}")
     try:
         cam = Camera(world, RenderSettings(width=320, height=240, renderer="egl"))
         img = cam.render()

@@ -84,6 +84,11 @@ def test_a_scene_object_or_dict_is_accepted(env):
     obs_obj, _ = env.reset(options={"scene": scene})
     obs_dict, _ = env.reset(options={"scene": scene.to_dict()})
     np.testing.assert_array_equal(obs_obj, obs_dict)
+    # ... and the episode starts in that scene: A and B where it puts them (block units about the centre)
+    a, b = scene.get("A"), scene.get("B")
+    np.testing.assert_allclose(obs_dict[:6], [a.xy[0] / a.size, a.xy[1] / a.size, a.yaw,
+                                              b.xy[0] / a.size, b.xy[1] / a.size, b.yaw], atol=1e-6)
+    assert env.unwrapped.scene.to_dict() == scene.to_dict()
 
 
 @pytest.mark.parametrize(("kwargs", "match"), [

@@ -59,9 +59,9 @@ def test_scene_file_errors_name_the_line(tmp_path, bad, words):
 
 def test_empty_or_missing_scene_file_is_an_error(tmp_path):
     (tmp_path / "empty.jsonl").write_text("\n# nothing\n")
-    with pytest.raises(SceneError):
+    with pytest.raises(SceneError, match=r"empty\.jsonl has no scenes$"):
         scene_file(tmp_path / "empty.jsonl")
-    with pytest.raises(SceneError):
+    with pytest.raises(SceneError, match=r"cannot read scene file .*missing\.jsonl"):
         scene_file(tmp_path / "missing.jsonl")
 
 
@@ -89,5 +89,5 @@ def test_bystanders_are_deterministic_and_keep_their_distance():
         for i, o in enumerate(objs[2:], start=2):
             d = min(np.hypot(o.xy[0] - p.xy[0], o.xy[1] - p.xy[1]) for j, p in enumerate(objs) if j != i)
             assert d >= BYSTANDER_CLEARANCE * o.size - 1e-9
-    with pytest.raises(EvaluationError):
+    with pytest.raises(EvaluationError, match=r"at most 10 bystanders \(got 99\)"):
         with_bystanders(random_scenes(1), 99)

@@ -70,10 +70,12 @@ def test_bad_rows_name_the_line(tmp_path, content, line):
 
 def test_unknown_or_missing_files_are_clear_errors(tmp_path):
     (tmp_path / "g.txt").write_text("x")
-    with pytest.raises(FeedbackError):
-        read_grades(tmp_path / "g.txt")
-    with pytest.raises(FeedbackError):
+    with pytest.raises(FeedbackError, match=r'unknown feedback format "\.txt" \(expected \.csv, \.jsonl') as e:
+        read_grades(tmp_path / "g.txt")  # not read as some other format (a CSV without a header, say)
+    assert e.value.path == str(tmp_path / "g.txt") and e.value.line is None and "\n" not in str(e.value)
+    with pytest.raises(FeedbackError, match="no such feedback file") as e:
         read_grades(tmp_path / "missing.csv")
+    assert e.value.path == str(tmp_path / "missing.csv") and not (tmp_path / "missing.csv").exists()
 
 
 def test_a_review_database_is_read_through_the_review_store(tmp_path):
@@ -89,9 +91,11 @@ def test_a_review_database_is_read_through_the_review_store(tmp_path):
 
     assert [key(r) for r in rows] == [key(r) for r in load_grades(db)] and len(rows) == 180  # 90 demos x 2 graders
     assert {r.source for r in rows} == {"original"} and all(r.demo_id and 0 <= r.grade <= 10 for r in rows)
-    (db.parent / "broken.sqlite").write_bytes(b"SQLite format 3\x00" + b"\x00" * 100)
-    with pytest.raises(FeedbackError):
-        read_grades(db.parent / "broken.sqlite")
+    broken = db.parent / "broken.sqlite"
+    broken.write_bytes(b"SQLite format 3\x00" + b"\x00" * 100)
+    with pytest.raises(FeedbackError, match="cannot read review database .*: file is not a database") as e:
+        read_grades(broken)
+    assert e.value.path == str(broken) and broken.read_bytes() == b"SQLite format 3\x00" + b"\x00" * 100  # untouched
 
 
 def test_runs_are_grouped_averaged_and_changed_runs_reported(tmp_path):
@@ -205,8 +209,9 @@ def test_cross_validation_never_scores_a_motion_with_its_own_grades():
     rep = cross_validate(trainer, items, k=3, seed=0)
     folds = stratified_folds(items, 3, 0)
     assert len(rep.finals) == len(items)
-    for i, seen in enumerate(trainer.seen):  # 3 folds x 2 actions, in order
-        assert not any(folds[x] == i // 2 for x in seen)
+    assert len(trainer.seen) == 3 * 2  # 3 folds x 2 actions, in order: the loop below checks every training
+    for i, seen in enumerate(trainer.seen):
+        assert seen and not any(folds[x] == i // 2 for x in seen)
     assert set(rep.spearman) == {"SlideToward", "SlidePast"}
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import example, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from l2p_bullet.core.geometry import polygons_overlap
@@ -97,15 +97,16 @@ def test_moves_free_handles_batches_of_mixed_moves(seed):
     assert batch.tolist() == single
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=60, deadline=None)  # 60 free moves checked (about 100 drawn: 60 % of them are free)
 @given(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(-0.8, 0.8))
 def test_a_move_said_free_never_touches_the_anchor_on_the_way(x, y, turn):
     scene = _scene()
     w = World2D(scene, "A")
     start = np.array([-0.15, 0.0, 0.0])
     end = np.array([x, y, turn])
-    if not w.moves_free(start, end[None])[0]:
-        return
+    # only the moves said free are checked: assume() (not a bare return) makes hypothesis give up, failing the
+    # test, when too few are, so a moves_free that calls every move blocked cannot pass it vacuously
+    assume(bool(w.moves_free(start, end[None])[0]))
     anchor = scene.get("B").footprint()
     for t in np.linspace(0, 1, 201):
         pose = start + t * (end - start)

@@ -156,7 +156,7 @@ def test_version_ranges():
     assert version_satisfies("0.1.0", ">=0.1,<1.0")
     assert not version_satisfies("1.0.0", ">=0.1,<1.0")
     assert version_satisfies("0.1.0", "==0.1")
-    with pytest.raises(BundleError):
+    with pytest.raises(BundleError, match=r'cannot read the version range "~0\.1" \(use e\.g\. ">=0\.1,<1\.0"\)'):
         version_satisfies("0.1.0", "~0.1")
 
 

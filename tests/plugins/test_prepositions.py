@@ -149,8 +149,8 @@ def test_two_anchor_columns_see_the_segment():
     assert f[-1, names.index("seg_t")] == pytest.approx(0.5, abs=1e-6)
     assert f[-1, names.index("seg_dist")] == pytest.approx(0.0, abs=1e-6)
     assert f[0, names.index("seg_dist")] > 0.2
-    with pytest.raises(ValueError):
-        motion_features(path, b, size, cfg)  # the second anchor is required
+    with pytest.raises(ValueError, match="two-anchor features need the second anchor's poses"):
+        motion_features(path, b, size, cfg)  # the second anchor is required (not numpy's broadcasting error)
 
 
 # --- judges ---------------------------------------------------------------------------------------
@@ -162,7 +162,7 @@ def test_between_rule():
     assert not rule_verdict("between", go([0.26, 0.0, 0.0]), b, 0.05, anchors=[b, c]).success  # beyond C
     near_b = rule_verdict("between", go([0.05, 0.0, 0.0]), b, 0.05, anchors=[b, c])
     assert not near_b.success and "touching" in near_b.reason
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r'the rule "between" needs the two reference objects \(anchors=\[B, C\]\)'):
         rule_verdict("between", go([0.1, 0.0, 0.0]), b, 0.05)
 
 
@@ -218,12 +218,13 @@ def test_synthetic_sessions_load_with_their_viewer_and_anchors(tmp_path):
 
 def test_bad_optional_arrays_are_refused(tmp_path):
     tracks = [np.zeros((10, 3)), np.ones((10, 3)), np.full((10, 3), 2.0)]
-    with pytest.raises(DataError):  # three blocks need event_anchors
+    with pytest.raises(DataError, match=r'a\.npz: with "more_poses", each event\'s reference blocks must be given in '
+                                        '"event_anchors"'):  # three blocks need event_anchors
         save_session(tmp_path / "a.npz", tracks, [[1, 5]], [0])
-    with pytest.raises(DataError):  # the mover as its own anchor
-        save_session(tmp_path / "b.npz", tracks, [[1, 5]], [0], anchors=[[0, 2]])
-    with pytest.raises(DataError):  # a block that does not exist
-        save_session(tmp_path / "c.npz", tracks[:2], [[1, 5]], [0], anchors=[[2]])
+    with pytest.raises(DataError, match=r"b\.npz: event 0 names block 0 as mover and anchors \[0, 2\]"):  # the mover
+        save_session(tmp_path / "b.npz", tracks, [[1, 5]], [0], anchors=[[0, 2]])  # as its own anchor
+    with pytest.raises(DataError, match=r'c\.npz: "event_anchors" names a block beyond the two tracks'):
+        save_session(tmp_path / "c.npz", tracks[:2], [[1, 5]], [0], anchors=[[2]])  # a block that does not exist
     assert not list(tmp_path.iterdir())  # nothing invalid is left on disk
     ok = save_session(tmp_path / "d.npz", tracks, [[1, 5]], [2], anchors=[[0, 1]], viewer=[1.0, 2.0])
     arrays = load_session(ok)
@@ -271,10 +272,11 @@ def test_scaffold_declares_the_frame_anchors_and_judge(tmp_path):
     man = tomllib.loads((s.package_dir / "manifest.toml").read_text())
     assert (man["frame"], man["anchors"], man["judge"]["rules"]) == ("relative", 2, "between")
     assert "move A between B and C" in (s.root / "README.md").read_text()
-    with pytest.raises(PluginError):  # a one-anchor rule for a two-anchor action
-        scaffold("beside2", ["aside"], tmp_path / "c", anchors=2, judge="next-to")
-    with pytest.raises(PluginError):
+    with pytest.raises(PluginError, match=r'the rules "next-to" read 1 reference object\(s\); this action takes 2'):
+        scaffold("beside2", ["aside"], tmp_path / "c", anchors=2, judge="next-to")  # a one-anchor rule, two anchors
+    with pytest.raises(PluginError, match=r'unknown frame "sideways" \(known: relative, viewer'):
         scaffold("left2", ["leftish"], tmp_path / "d", frame="sideways")
+    assert not (tmp_path / "c").exists() and not (tmp_path / "d").exists()  # refused before anything is written
 
 
 @pytest.mark.parametrize("frame", ["viewer", "viewer:camera", "relative"])
@@ -353,8 +355,8 @@ def test_two_anchor_planning_leaves_both_anchors_untouched():
     assert p.anchors == ["B", "C"] and np.allclose(p.more_anchor_poses[0], scene.get("C").pose)
     assert World2D(scene, "A").path_free(np.array(p.extra["waypoints"]))
     assert rule_verdict("between", p.path, p.anchor_pose, p.size, anchors=[p.anchor_pose, p.more_anchor_poses[0]]).success
-    with pytest.raises(PlanError):  # the model reads two anchors
-        plan(scene, "A", "B", FakeBundle())
+    with pytest.raises(PlanError, match=r'the action "between" takes 2 reference object\(s\), not 1 \(B\)'):
+        plan(scene, "A", "B", FakeBundle())  # the model reads two anchors
 
 
 
@@ -365,7 +367,7 @@ def test_train_takes_a_folder_of_demonstrations(tmp_path):
     assert expand_files([tmp_path / "d"]) == sorted(files)
     assert expand_files([files[0]]) == [files[0]]
     (tmp_path / "empty").mkdir()
-    with pytest.raises(DataError):
+    with pytest.raises(DataError, match=r"no demonstration files \(\.npz\) in the folder .*empty"):
         expand_files([tmp_path / "empty"])
 
 

@@ -62,14 +62,32 @@ def test_a_foreign_sqlite_file_or_a_folder_is_refused(tmp_path):
     conn = sqlite3.connect(other)
     conn.execute("CREATE TABLE photos (id INTEGER)")
     conn.close()
-    with pytest.raises(ReviewError):
+    with pytest.raises(ReviewError, match=r"is an SQLite file of something else .*; give another --db"):
         Store(other)
-    with pytest.raises(ReviewError):
+    with sqlite3.connect(f"{other.as_uri()}?mode=ro", uri=True) as conn:  # someone else's database: not migrated
+        tables = [r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
+        assert tables == ["photos"] and conn.execute("PRAGMA user_version").fetchone()[0] == 0
+    conn.close()
+    with pytest.raises(ReviewError, match=r"^--db .* is a folder; give a file name"):
         Store(tmp_path)
-    with pytest.raises(ReviewError):
+    with pytest.raises(ReviewError, match=r"folder .*missing-folder does not exist"):
         Store(tmp_path / "missing-folder" / "r.sqlite")
+    assert not (tmp_path / "missing-folder").exists()  # refused, not made
     with pytest.raises(ReviewError, match="is a file, not a run folder"):  # review SCENE.json by mistake
         find_runs([other])
+
+
+def test_a_refused_foreign_sqlite_file_is_left_byte_for_byte(tmp_path):
+    """Refused before anything is written: opening it used to switch it to WAL (its header changed, -wal and
+    -shm files appeared beside it) before the check said it was not ours."""
+    other = tmp_path / "photos.sqlite"
+    with sqlite3.connect(other) as conn:
+        conn.execute("CREATE TABLE photos (id INTEGER)")
+    conn.close()
+    before = other.read_bytes()
+    with pytest.raises(ReviewError, match="is an SQLite file of something else"):
+        Store(other)
+    assert other.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["photos.sqlite"]
 
 
 def test_answers_are_never_overwritten_silently(tmp_path, run_folder):  # noqa: F811
@@ -125,16 +143,19 @@ def test_export_and_load_grades_round_trip(tmp_path, run_folder):  # noqa: F811
     for name in ("g.csv", "g.jsonl"):
         assert store.export(tmp_path / name) == len(rows) == 182
         assert load_grades(tmp_path / name) == rows
-        with pytest.raises(ReviewError):
+        exported = (tmp_path / name).read_bytes()
+        with pytest.raises(ReviewError, match="already exists; pass --force"):
             store.export(tmp_path / name)  # never overwritten without --force
+        assert (tmp_path / name).read_bytes() == exported
     assert load_grades(store.path) == rows
     header = (tmp_path / "g.csv").read_text().splitlines()[0].split(",")
     assert tuple(header) == EXPORT_FIELDS
     for f in ("run_id", "run_path", "trajectory_sha256", "action", "sentence", "mode", "reviewer", "grade", "label",
               "comment", "view", "created_at", "updated_at", "source", "demo_id", "folder"):
         assert f in EXPORT_FIELDS
-    with pytest.raises(ReviewError):
+    with pytest.raises(ReviewError, match=r"must end in \.csv or \.jsonl"):
         store.export(tmp_path / "g.xlsx")
+    assert not (tmp_path / "g.xlsx").exists()
 
 
 def test_load_grades_never_writes_to_a_database(tmp_path):
