@@ -8,7 +8,6 @@ clause's blocks.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -80,7 +79,7 @@ def score_segments(path: str | Path, model: Any) -> list[dict] | None:
 def segment_docs(run: str | Path) -> list[dict] | None:
     """A chain run's trajectory.json cut into one trajectory.json-like document per segment (its frames,
     mover, anchor and sentence), or None for a one-clause run."""
-    doc = json.loads((Path(run) / "trajectory.json").read_text())
+    doc = read_json(Path(run) / "trajectory.json")  # bounded: a run folder from elsewhere may hold anything
     segs = segments_of(doc, f"{run}/trajectory.json")
     if segs is None:
         return None

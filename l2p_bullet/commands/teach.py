@@ -58,9 +58,13 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     lesson.count()  # an unreadable demos file is a one-line error now, not on the first save
 
     from ..teach.app import create_app
+    from ..web.apps import is_loopback
     from ..web.server import bind, serve, url_of
 
     sock = bind(host, port)
+    if not is_loopback(host):  # as review says it: off loopback the Host check is off too
+        click.echo(f"warning: listening on {host}: anyone who can reach this machine can write demonstrations "
+                   "and start training", err=True)
     click.echo(f"teaching \"{taught.sentence}\": open {url_of(sock)} (Ctrl+C to stop)", err=True)
     click.echo(f"demonstrations go to {Path(lesson.config()['demos'])}", err=True)
     serve(create_app(lesson, host), sock)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from ..core.bounded import read_bounded
 from ..errors import BundleError
 from ..plugins.bundle import MANIFEST, _write_manifest, read_manifest, sha256_file
 from .recipe import CompositeError, Demonstration, Recipe
@@ -66,12 +67,12 @@ def read_recipe(folder: str | Path) -> Recipe:
 
 
 def _read(path: Path) -> dict:
-    if path.stat().st_size > MAX_BYTES:
-        raise CompositeError(f"{path} is larger than {MAX_BYTES} bytes")
+    # bounded as read, not by st_size: a link to /dev/zero has size 0 and never ends
+    raw = read_bounded(path, MAX_BYTES, CompositeError, str(path))
     try:
-        d = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise CompositeError(f"cannot read {path}: {e}") from None
+        d = json.loads(raw.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError, ValueError) as e:
+        raise CompositeError(f"cannot read {path}: {type(e).__name__}: {str(e)[:120]}") from None
     if not isinstance(d, dict):
         raise CompositeError(f"{path} is not a JSON object")
     return d

@@ -106,10 +106,13 @@ def _open_npz(p: Path) -> dict[str, np.ndarray]:
 
 def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> None:
     """Refuse an array whose header declares more data than its member holds, before numpy allocates it:
-    a 1 KB .npz declaring shape (1e11, 3) used to ask for 2.4 TB."""
-    if not info.filename.endswith(".npy"):
-        return
+    a 1 KB .npz declaring shape (1e11, 3) used to ask for 2.4 TB. Every member, not only ``*.npy``: numpy
+    loads any member that starts like an array under its own name (and hands back the bytes of one that
+    does not), so a member named ``shell_pose`` bypassed this check."""
     with zf.open(info) as f:
+        if f.read(len(np.lib.format.MAGIC_PREFIX)) != np.lib.format.MAGIC_PREFIX:
+            raise DataError(f'demonstration file {p}: "{info.filename[:40]}" is not a numpy array')
+        f.seek(0)
         version = np.lib.format.read_magic(f)
         read = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
         shape, _fortran, dtype = read(f, max_header_size=10_000)
@@ -117,7 +120,7 @@ def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> No
     for d in shape:
         count *= int(d)
     if dtype.hasobject or count * dtype.itemsize > info.file_size:
-        raise DataError(f'demonstration file {p}: the array "{info.filename[:-4][:40]}" declares shape {shape} '
+        raise DataError(f'demonstration file {p}: the array "{info.filename.removesuffix(".npy")[:40]}" declares shape {shape} '
                         f"({count * dtype.itemsize / 1e9:.3g} GB), more than the file holds")
 
 

@@ -9,12 +9,14 @@ docs/review.md, "The grades export" (fields are only ever added).
 from __future__ import annotations
 
 import csv
+import io
 import json
 import sqlite3
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
-from ..errors import ReviewError
+from ..core.bounded import read_bounded
+from ..errors import L2PError, ReviewError
 from . import review_schema
 
 
@@ -103,27 +105,47 @@ def _csv_text(v: object) -> object:
     return v[1:] if isinstance(v, str) and v.startswith("'") else v
 
 
+MAX_GRADES_BYTES = 64 * 2**20
+"""The largest grades export read (about 100,000 answers): a file linked to /dev/zero was read until
+memory ran out."""
+
+
+def grades_head(path: Path, error: type[L2PError] = ReviewError) -> bytes:
+    """The first 16 bytes of ``path`` (enough to tell a SQLite database), read without reading the rest."""
+    try:
+        with open(path, "rb") as f:
+            return f.read(16)
+    except OSError as e:
+        raise error(f"cannot read grades from {path}: {e.strerror or e}") from None
+
+
+def grades_text(path: Path, error: type[L2PError] = ReviewError) -> str:
+    """A grades export's text, bounded by :data:`MAX_GRADES_BYTES`; ``error`` when it is larger or not UTF-8."""
+    raw = read_bounded(path, MAX_GRADES_BYTES, error, str(path))
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise error(f"{path} is not a grades export (not UTF-8 text: byte {e.start})") from None
+
+
 def load_grades(path: str | Path) -> list[GradeRow]:
     """Grades from a review database or an export (.csv / .jsonl), as :class:`GradeRow` rows.
 
     Columns an older export lacks get their defaults; columns a newer one adds are ignored.
     """
     p = Path(path)
-    try:
-        head = p.read_bytes()[:16]
-    except OSError as e:
-        raise ReviewError(f"cannot read grades from {p}: {e.strerror or e}") from None
-    if head.startswith(b"SQLite format 3"):
+    if grades_head(p).startswith(b"SQLite format 3"):
         return _grades_read_only(p)
+    text = grades_text(p)
     try:
-        if p.suffix.lower() == ".csv":
-            with open(p, newline="", encoding="utf-8") as f:  # newline="": comments may hold line breaks
-                records = [{k: _csv_text(v) for k, v in r.items()} for r in csv.DictReader(f)]
+        if p.suffix.lower() == ".csv":  # newline="": comments may hold line breaks
+            records = [{k: _csv_text(v) for k, v in r.items()} for r in csv.DictReader(io.StringIO(text, newline=""))]
         else:
-            records = [json.loads(line) for line in p.read_text(encoding="utf-8").split("\n") if line.strip()]
+            records = [json.loads(line) for line in text.split("\n") if line.strip()]
         return [_from_record(r) for r in records]
-    except (ValueError, TypeError, KeyError) as e:
-        raise ReviewError(f"{p} is not a grades export ({type(e).__name__}: {e})") from None
+    except (ValueError, TypeError, KeyError, csv.Error, RecursionError) as e:  # a field over csv's 128 KiB limit,
+        what = "CSV" if isinstance(e, csv.Error) else type(e).__name__  # JSON nested past the recursion limit
+        raise ReviewError(f"{p} is not a grades export ({what}: {str(e)[:120]})") from None
 
 
 def _grades_read_only(path: Path) -> list[GradeRow]:

@@ -23,7 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.contracts import MAX_SEED
+from ..core.bounded import read_bounded
+from ..core.contracts import MAX_JSON_BYTES, MAX_SEED
 from ..core.scene import COLORS, Scene, SceneObject, random_scene
 from ..core.workspace import START_RADIUS
 from ..data.demos import load_graded_demos
@@ -60,10 +61,11 @@ def random_scenes(n: int, seed: int = 0, size: float = 0.05) -> list[SceneSpec]:
 def scene_file(path: str | Path, seed: int = 0) -> list[SceneSpec]:
     """Scenes from a JSON-lines file (blank lines and lines starting with # are skipped)."""
     p = Path(path)
+    raw = read_bounded(p, MAX_JSON_BYTES, SceneError, f"scene file {p}")  # bounded: a link to /dev/zero never ends
     try:
-        lines = p.read_text().splitlines()
-    except OSError as e:
-        raise SceneError(f"cannot read scene file {p}: {e.strerror or e}") from None
+        lines = raw.decode("utf-8").splitlines()
+    except UnicodeDecodeError as e:
+        raise SceneError(f"scene file {p} is not UTF-8 text (byte {e.start})") from None
     out: list[SceneSpec] = []
     seen: dict[str, int] = {}
     for n, line in enumerate(lines, start=1):
@@ -75,6 +77,8 @@ def scene_file(path: str | Path, seed: int = 0) -> list[SceneSpec]:
             data = json.loads(text)
         except json.JSONDecodeError as e:
             raise SceneError(f"{where} is not valid JSON (column {e.colno}: {e.msg})") from None
+        except (ValueError, RecursionError) as e:  # nested past the recursion limit, an integer of 5,000 digits
+            raise SceneError(f"{where} is not valid JSON ({type(e).__name__}: {str(e)[:80]})") from None
         if not isinstance(data, dict):
             raise SceneError(f'{where}: expected a JSON object with an "objects" list')
         scene = Scene.from_dict(data, source=where, base=Path(p).resolve().parent)  # meshes beside the file

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.contracts import trajectory_poses
+from ..core.contracts import load_json_file, trajectory_poses
 from ..core.scene import default_scene
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..data.demos import load_demos
@@ -66,11 +66,13 @@ def run_folders(paths: list[str | Path]) -> list[Path]:
 def episode_from_run(run: str | Path) -> Episode:
     """A run folder as an episode: trajectory.json, the sentence, and frames/*.png when it was rendered."""
     run = Path(run)
-    try:
-        traj = json.loads((run / "trajectory.json").read_text())
-        summary = json.loads((run / "summary.json").read_text()) if (run / "summary.json").exists() else {}
-    except (OSError, json.JSONDecodeError) as e:
-        raise PathError(f"{run}: cannot read the run ({e})") from None
+    # load_json_file, not json.loads: a run folder from elsewhere may hold a trajectory.json nested past the
+    # recursion limit, or linked to /dev/zero (read until memory ran out): one-line errors instead
+    traj = load_json_file(run / "trajectory.json", PathError)
+    summary = load_json_file(run / "summary.json", PathError) if (run / "summary.json").exists() else {}
+    for doc, name in ((traj, "trajectory.json"), (summary, "summary.json")):
+        if not isinstance(doc, dict):
+            raise PathError(f"{run}/{name} is not a JSON object")
     for key in ("frames", "mover", "anchor", "fps"):
         if key not in traj:
             raise PathError(f'{run}/trajectory.json lacks "{key}"')
@@ -90,8 +92,8 @@ def episodes_from_run(run: str | Path) -> list[Episode]:
     images; ``extra["chain"]`` names the chain and the clause), so every exported task is one action."""
     from ..chain.segments import segment_docs
 
+    ep = episode_from_run(run)  # first: it reads trajectory.json bounded, segment_docs then reads a checked file
     docs = segment_docs(run) if (Path(run) / "trajectory.json").is_file() else None
-    ep = episode_from_run(run)
     if docs is None:
         return [ep]
     try:

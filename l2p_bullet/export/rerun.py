@@ -20,13 +20,13 @@ posed by the facade; nothing is simulated). ``rerun-sdk`` is the optional extra 
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from pathlib import Path
 
 import numpy as np
 
+from ..core.contracts import load_json_file
 from ..errors import DataError, PathError
 
 TIMELINE = "time"
@@ -66,10 +66,8 @@ def write_rerun(runs: list[Path], out: Path) -> dict:
 
 
 def _read(path: Path) -> dict:
-    try:
-        doc = json.loads(path.read_text())
-    except (OSError, ValueError) as e:
-        raise DataError(f"{path}: not readable as JSON ({e})") from None
+    # load_json_file: bounded (a file linked to /dev/zero) and one line for JSON nested past the recursion limit
+    doc = load_json_file(path, DataError)
     if not isinstance(doc, dict):
         raise DataError(f"{path}: not a JSON object")
     return doc

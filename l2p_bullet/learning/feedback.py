@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.contracts import load_motion
 from ..core.vocabulary import canonical_action, normalize_name
-from ..data.grades import EXPORT_FIELDS, GradeRow, load_grades
+from ..data.grades import EXPORT_FIELDS, GradeRow, grades_text, load_grades
 from ..errors import DataError, L2PError, ReviewError, UnknownActionError
 from ..plugins.bundle import sha256_file
 from .agreement import graded_motions
@@ -85,15 +85,16 @@ def read_grades(path: str | Path) -> list[GradeRow]:
     suffix = p.suffix.lower()
     if suffix in (".sqlite", ".db", ".sqlite3"):
         return _read_store(p)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        raise FeedbackError(f"cannot read it ({e})", str(p)) from None
+    text = grades_text(p, FeedbackError)  # bounded: a file linked to /dev/zero was read until memory ran out
     if suffix == ".csv":
         reader = csv.DictReader(text.splitlines())
-        if not reader.fieldnames or "action" not in reader.fieldnames:
-            raise FeedbackError(f"a CSV export needs a header row with the columns {', '.join(EXPORT_FIELDS)}", str(p))
-        return [_row(d, str(p), i) for i, d in enumerate(reader, start=2)]
+        try:
+            if not reader.fieldnames or "action" not in reader.fieldnames:
+                raise FeedbackError(f"a CSV export needs a header row with the columns {', '.join(EXPORT_FIELDS)}",
+                                    str(p))
+            return [_row(d, str(p), i) for i, d in enumerate(reader, start=2)]
+        except csv.Error as e:  # a field over csv's 128 KiB limit
+            raise FeedbackError(f"not a CSV export ({e})", str(p)) from None
     if suffix in (".jsonl", ".ndjson"):
         rows = []
         for i, line in enumerate(text.splitlines(), start=1):
@@ -103,6 +104,8 @@ def read_grades(path: str | Path) -> list[GradeRow]:
                 d = json.loads(line)
             except json.JSONDecodeError as e:
                 raise FeedbackError(f"not valid JSON ({e.msg})", str(p), i) from None
+            except (ValueError, RecursionError) as e:  # nested past the recursion limit, an integer of 5,000 digits
+                raise FeedbackError(f"not valid JSON ({type(e).__name__}: {str(e)[:80]})", str(p), i) from None
             if not isinstance(d, dict):
                 raise FeedbackError("each line must be a JSON object", str(p), i)
             rows.append(_row(d, str(p), i))

@@ -62,7 +62,7 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     pkg.mkdir(parents=True)
     texts = {
         root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist, version=__version__),
-        pkg / "__init__.py": _INIT.format(name=name, src=os.path.basename(urdf), urdf=_urdf_expr(spec.urdf),
+        pkg / "__init__.py": _INIT.format(name=name, src=_docstring_text(os.path.basename(urdf)), urdf=_urdf_expr(spec.urdf),
                                           spec=arm_guess.spec_source(spec)),
         root / "README.md": _README.format(name=name, dist=dist, module=module, root=root.name, urdf=spec.urdf,
                                            near=spec.reach[0], far=spec.reach[1], mount=spec.mount[0],
@@ -93,6 +93,13 @@ def check_urdf(urdf: str) -> None:
         raise PluginError(f"cannot read {urdf}: {e.strerror or e}") from None
     if root.tag != "robot":
         raise PluginError(f"{urdf} is not a URDF: its root element is <{root.tag}>, not <robot>")
+
+
+def _docstring_text(text: str) -> str:
+    """``text`` (the URDF's file name) as it may stand in the module's docstring: a name holding ``\"\"\"``
+    would close the docstring and make the rest of the name code that runs when the plugin is imported,
+    and a backslash could make the module a SyntaxError; such characters become ``_``."""
+    return re.sub(r"[^\w .,+()-]", "_", text)
 
 
 def _urdf_expr(path: str) -> str:

@@ -302,13 +302,10 @@ def read_report_grades(path: Path) -> list[GradeRow]:
     """The answers ``l2p-bullet report`` tabulates, refusing (one line, ``ReviewError``) a file that is not a
     review database or grades export, and one with no answers: a report of 0 answers, or of a CSV of
     something else read with every column defaulted, would be nonsense printed with exit status 0."""
+    from ..data.grades import grades_head
     from .store import load_grades
 
-    try:
-        head = path.read_bytes()[:16]
-    except OSError as e:
-        raise ReviewError(f"cannot read grades from {path}: {e.strerror or e}") from None
-    sqlite = head.startswith(b"SQLite format 3")
+    sqlite = grades_head(path).startswith(b"SQLite format 3")  # not read_bytes: a link to /dev/zero never ends
     if not sqlite and path.suffix.lower() in SQLITE_SUFFIXES:
         raise ReviewError(f"{path} is not a review database SQLite can open (file is not a database)")
     if not sqlite:
@@ -322,18 +319,20 @@ def read_report_grades(path: Path) -> list[GradeRow]:
 
 def _check_export(path: Path) -> None:
     """A grades export (.csv with a header row, else JSON lines) names the columns that reviews have."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        raise ReviewError(f"{path} is not a grades export ({e})") from None
+    from ..data.grades import grades_text
+
+    text = grades_text(path)
     if path.suffix.lower() == ".csv":
-        header = next(csv.reader(text.splitlines()[:1]), [])
+        try:
+            header = next(csv.reader(text.splitlines()[:1]), [])
+        except csv.Error as e:  # a header cell over csv's 128 KiB field limit
+            raise ReviewError(f"{path} is not a grades export (CSV: {e})") from None
         records = [dict.fromkeys(header)] if header else []
     else:
         try:
             records = [json.loads(line) for line in text.splitlines() if line.strip()]
-        except ValueError as e:
-            raise ReviewError(f"{path} is not a grades export (not JSON lines: {e})") from None
+        except (ValueError, RecursionError) as e:
+            raise ReviewError(f"{path} is not a grades export (not JSON lines: {type(e).__name__}: {str(e)[:120]})") from None
     if not records:
         raise ReviewError(f"{path} holds no answers (an empty file): export the grades with l2p-bullet review --export")
     for r in records:

@@ -14,6 +14,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..core.bounded import read_bounded
+from ..core.contracts import MAX_JSON_BYTES
 from ..core.folders import unfinished
 from ..errors import ReviewError
 from ..plugins.bundle import sha256_file
@@ -69,8 +71,11 @@ def read_run(folder: str | Path) -> RunInfo:
     """Read a run folder written by ``perform`` or ``replay``; ReviewError says what is wrong with it."""
     folder = Path(folder)
     traj = folder / "trajectory.json"
+    if not traj.exists():
+        raise ReviewError(f"{folder} is not a run folder (it has no trajectory.json)")
     try:
-        raw = traj.read_bytes()
+        # bounded: a trajectory.json linked to /dev/zero was read until memory ran out
+        raw = read_bounded(traj, MAX_JSON_BYTES, ReviewError, str(traj))
         doc = json.loads(raw)
         frames = doc["frames"]
         duration = float(frames[-1]["t"]) if frames else 0.0
@@ -80,8 +85,8 @@ def read_run(folder: str | Path) -> RunInfo:
         raise ReviewError(f"{folder} is not a run folder (it has no trajectory.json)") from None
     except OSError as e:
         raise ReviewError(f"cannot read {traj}: {e.strerror or e}") from None
-    except (ValueError, KeyError, TypeError, IndexError) as e:
-        raise ReviewError(f"{traj} is not a valid trajectory.json ({type(e).__name__}: {e})") from None
+    except (ValueError, KeyError, TypeError, IndexError, RecursionError) as e:  # RecursionError: nested too deep
+        raise ReviewError(f"{traj} is not a valid trajectory.json ({type(e).__name__}: {str(e)[:120]})") from None
     video = next((folder / n for n in ("video.mp4", "video.gif") if (folder / n).is_file()), None)
     n_frames = len(list((folder / "frames").glob("[0-9][0-9][0-9][0-9].png"))) if (folder / "frames").is_dir() else 0
     fps = _render_fps(folder)

@@ -23,6 +23,8 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from l2p_bullet.data.demos import load_session
+from l2p_bullet.errors import DataError
 from l2p_bullet.plugins.bundle import MANIFEST, builtin_bundle_dir
 
 MARGIN = 1 << 30
@@ -261,8 +263,9 @@ def test_a_huge_sparse_weights_file_is_refused_before_it_is_read(worker, tmp_pat
     assert resp["exit_code"] == 2 and "policy.safetensors is" in resp["output"], resp["output"]
 
 
-def _npz_declaring(path: Path, shape: tuple[int, ...]) -> None:
-    """A valid-looking session file whose ``shell_pose`` header declares ``shape`` but holds 24 bytes."""
+def _npz_declaring(path: Path, shape: tuple[int, ...], member: str = "shell_pose.npy") -> None:
+    """A valid-looking session file whose ``shell_pose`` header declares ``shape`` but holds 24 bytes
+    (in the zip member ``member``: numpy reads ``shell_pose`` as the array ``shell_pose`` too)."""
     import io
     import zipfile
 
@@ -276,7 +279,7 @@ def _npz_declaring(path: Path, shape: tuple[int, ...]) -> None:
             zf.writestr(name + ".npy", buf.getvalue())
         buf = io.BytesIO()
         np.lib.format.write_array_header_1_0(buf, {"descr": "<f8", "fortran_order": False, "shape": shape})
-        zf.writestr("shell_pose.npy", buf.getvalue() + b"\0" * 24)
+        zf.writestr(member, buf.getvalue() + b"\0" * 24)
 
 
 @pytest.mark.parametrize("shape", [(10**11, 3), (2**62, 3), (10**6, 10**6)])
@@ -285,3 +288,113 @@ def test_an_npz_declaring_a_huge_array_is_refused_before_it_is_loaded(worker, tm
     resp = worker.run(["train", "around", "--demos", "huge.npz", "--out", "b"], tmp_path)
     check(resp, worker)
     assert resp["exit_code"] == 2 and "declares shape" in resp["output"], resp["output"]
+
+
+RUN_READERS = {
+    "review": ["review", "run", "--db", "r.sqlite", "--port", "0"],
+    "export": ["export", "run", "out"],
+    "export rerun": ["export", "run", "--format", "rerun", "out.rrd"],
+}
+
+
+@pytest.mark.parametrize("command", list(RUN_READERS))
+@pytest.mark.parametrize("trajectory", ["linked to /dev/zero", "nested 100,000 deep"])
+def test_a_run_folder_from_elsewhere_is_read_bounded(tmp_path, command, trajectory):
+    """A run folder someone hands over (a tarball keeps links) whose trajectory.json never ends or nests past
+    the recursion limit: review and export used to read /dev/zero until memory ran out, and print a
+    RecursionError traceback. A worker of its own: the Rerun SDK's threads take much of a shared worker's
+    address space, and the 64 MiB bounded read must fit in what is left."""
+    run = tmp_path / "run"
+    run.mkdir()
+    if trajectory == "linked to /dev/zero":
+        (run / "trajectory.json").symlink_to("/dev/zero")
+    else:
+        (run / "trajectory.json").write_text("[" * 100_000 + "]" * 100_000)
+    worker = Worker(tmp_path)
+    try:
+        resp = worker.run(RUN_READERS[command], tmp_path)
+    finally:
+        worker.close()
+    assert resp["exception"] is None, resp["exception"]
+    last = resp["output"].strip().splitlines()[-1]  # export's progress line may come first
+    assert resp["exit_code"] == 2 and last.startswith("error: ") and "trajectory.json" in last, resp["output"][-3000:]
+    assert resp["peak_rss"] < worker.limit
+
+
+def _grades_file(folder: Path, kind: str) -> str:
+    """A grades file as a stranger might hand it over (docs/review.md's export, damaged)."""
+    from l2p_bullet.data.grades import EXPORT_FIELDS
+
+    if kind == "a CSV cell of 200,000 characters":
+        row = dict.fromkeys(EXPORT_FIELDS, "") | {"action": "past", "mode": "graded", "grade": "5", "run_id": "r",
+                                                  "comment": "x" * 200_000}
+        (folder / "g.csv").write_text(",".join(EXPORT_FIELDS) + "\n" + ",".join(row[k] for k in EXPORT_FIELDS) + "\n")
+        return "g.csv"
+    if kind == "JSON lines nested 100,000 deep":
+        (folder / "g.jsonl").write_text("[" * 100_000 + "]" * 100_000 + "\n")
+        return "g.jsonl"
+    (folder / "g.jsonl").symlink_to("/dev/zero")
+    return "g.jsonl"
+
+
+GRADE_READERS = {"report": lambda f: ["report", "--db", f, "--out", "rep"],
+                 "train --feedback": lambda f: ["train", "past", "--feedback", f, "--out", "b"]}
+
+
+@pytest.mark.parametrize("command", list(GRADE_READERS))
+@pytest.mark.parametrize("kind", ["a CSV cell of 200,000 characters", "JSON lines nested 100,000 deep",
+                                  "linked to /dev/zero"])
+def test_a_grades_file_from_elsewhere_is_a_one_line_error(tmp_path, command, kind):
+    """``report --db`` and ``train --feedback`` read grades files people hand over: csv's field limit and
+    JSON's recursion limit were tracebacks, and report read a link to /dev/zero until memory ran out.
+    (train --feedback refuses a link to a device before reading it: no file.)"""
+    name = _grades_file(tmp_path, kind)
+    worker = Worker(tmp_path)
+    try:
+        resp = worker.run(GRADE_READERS[command](name), tmp_path)
+    finally:
+        worker.close()
+    assert resp["exception"] is None, resp["exception"]
+    last = resp["output"].strip().splitlines()[-1]
+    assert resp["exit_code"] == 2 and last.startswith("error: ") and name in last, resp["output"][-3000:]
+    assert resp["peak_rss"] < worker.limit
+
+
+@pytest.mark.parametrize("content", ["linked to /dev/zero", "nested 100,000 deep"])
+def test_an_evaluation_scene_file_is_read_bounded(tmp_path, content):
+    """``evaluate --scene-file``'s JSON lines: a line nested past the recursion limit was a RecursionError
+    traceback, and a file linked to /dev/zero was read until memory ran out."""
+    if content == "linked to /dev/zero":
+        (tmp_path / "scenes.jsonl").symlink_to("/dev/zero")
+    else:
+        (tmp_path / "scenes.jsonl").write_text("[" * 100_000 + "]" * 100_000 + "\n")
+    worker = Worker(tmp_path)
+    try:
+        resp = worker.run(["evaluate", "--scene-file", "scenes.jsonl", "--out", "ev"], tmp_path)
+    finally:
+        worker.close()
+    check(resp, worker)
+    assert resp["exit_code"] == 2 and "scenes.jsonl" in resp["output"], resp["output"][-3000:]
+
+
+@pytest.mark.parametrize("member", ["shell_pose", "shell_pose.NPY"])
+def test_an_npz_member_not_named_npy_is_checked_too(worker, tmp_path, member):
+    """numpy loads a member without the .npy suffix under its own name: its header is checked the same."""
+    _npz_declaring(tmp_path / "huge.npz", (10**11, 3), member)
+    resp = worker.run(["train", "around", "--demos", "huge.npz", "--out", "b"], tmp_path)
+    check(resp, worker)
+    assert resp["exit_code"] == 2 and "declares shape" in resp["output"], resp["output"]
+
+
+def test_an_npz_member_that_is_not_an_array_is_refused(tmp_path):
+    """numpy hands back a member that is not an array as bytes: refused, not an AttributeError traceback."""
+    import zipfile
+
+    import numpy as np
+
+    np.savez(tmp_path / "bytes.npz", shell_pose=np.zeros((5, 3)), stella_pose=np.ones((5, 3)),
+             event_start_end=np.array([[0, 4]]), event_mover=np.array([0]))
+    with zipfile.ZipFile(tmp_path / "bytes.npz", "a") as zf:
+        zf.writestr("more_poses", b"hello, not an array")
+    with pytest.raises(DataError, match='"more_poses" is not a numpy array'):
+        load_session(tmp_path / "bytes.npz")

@@ -225,3 +225,16 @@ def test_perform_a_row_of_four_from_the_command_line(tmp_path):
     bad = CliRunner().invoke(main, ["perform", "line up A, B and Z", "--scene", str(ROOT / "examples" / "four_blocks.json"),
                                     "--no-render", "--out", str(tmp_path / "bad")])
     assert bad.exit_code == 2 and 'no block called "Z"' in bad.output and not (tmp_path / "bad").exists()
+
+
+def test_a_demos_file_too_large_or_nested_too_deep_is_a_one_line_error(tmp_path):
+    """Read bounded, parsed with one-line errors: nesting past the recursion limit was a RecursionError traceback."""
+    from l2p_bullet.composite.bundle import MAX_BYTES, read_demos
+    from l2p_bullet.composite.recipe import CompositeError
+
+    (tmp_path / "demos.json").write_text("[" * 100_000 + "]" * 100_000)
+    with pytest.raises(CompositeError, match="cannot read .*RecursionError"):
+        read_demos(tmp_path)
+    (tmp_path / "demos.json").write_bytes(b" " * (MAX_BYTES + 1))
+    with pytest.raises(CompositeError, match="larger than"):
+        read_demos(tmp_path)

@@ -90,3 +90,23 @@ def test_new_arm_refuses_a_chain_that_cannot_reach_the_table(tmp_path: Path):
     (tmp_path / "high.urdf").write_text(text)
     with pytest.raises(PluginError, match="cannot reach the table"):
         scaffold_arm("high", str(tmp_path / "high.urdf"), tmp_path / "out")
+
+
+@pytest.mark.parametrize("filename", ['x""";import os;os.system("echo owned");"""y.urdf', "back\\Nslash.urdf"])
+def test_new_arm_writes_a_urdf_named_like_code_into_a_module_that_runs_none(tmp_path: Path, monkeypatch, filename):
+    """The URDF's file name stands in the module's docstring: a name that closes the docstring must not
+    become code the plugin runs when imported (nor a backslash a SyntaxError)."""
+    import ast
+    import dataclasses
+
+    from l2p_bullet.embodiment import arm_guess
+    from l2p_bullet.embodiment.sim.arms import PANDA
+    from l2p_bullet.plugins.arm_scaffold import scaffold_arm
+
+    urdf = tmp_path / filename
+    urdf.write_text('<robot name="r"/>\n')
+    monkeypatch.setattr(arm_guess, "guess", lambda name, path, **kw: dataclasses.replace(PANDA, name=name, urdf=path))
+    made = scaffold_arm("named", str(urdf), tmp_path / "out")
+    tree = ast.parse((made.root / made.module / "__init__.py").read_text())
+    assert [type(s).__name__ for s in tree.body] == ["Expr", "ImportFrom", "Assign", "Assign"], ast.dump(tree)[:400]
+    assert "made by `l2p-bullet new-arm` from " in ast.get_docstring(tree)

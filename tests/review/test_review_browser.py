@@ -104,6 +104,21 @@ def test_blind_mode_label_then_grade(live, chromium):  # noqa: F811
     assert not errors
 
 
+def test_a_plugin_named_like_html_is_shown_as_text(live, chromium):  # noqa: F811
+    """Blind mode's labels are installed plugins' entry-point names, any text: the page put them in with
+    innerHTML, so a plugin named ``<img src=x>`` added an element to the page."""
+    from l2p_bullet.review.queue import blind_labels
+
+    s = live(mode="blind")
+    s.queue.labels = blind_labels(["<img src=x id=planted>", *s.queue.labels])
+    page, errors = _page(chromium, s.url)
+    _login(page, "eve")
+    assert page.query_selector("#planted") is None
+    assert "<img src=x id=planted>" in page.inner_text("#label-buttons")
+    assert "<img src=x id=planted>" in page.inner_text("#label-keys-help")
+    assert not errors
+
+
 def test_two_reviewers_at_once(live, chromium):  # noqa: F811
     s = live()
     (a, ea), (b, eb) = _page(chromium, s.url), _page(chromium, s.url)

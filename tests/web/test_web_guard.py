@@ -207,6 +207,24 @@ def test_a_server_on_127_0_0_2_keeps_the_host_check(tmp_path):
         server.stop()
 
 
+@pytest.mark.parametrize("host, warned", [("0.0.0.0", True), ("127.0.0.1", False)])
+def test_teach_off_loopback_says_anyone_can_write_demonstrations(tmp_path, monkeypatch, host, warned):
+    """Off loopback the teach page answers any Host (and so any machine that can reach it): it says so
+    before serving, as review does. It used to print only the address to open."""
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.plugins.scaffold import scaffold
+    from l2p_bullet.web import server
+
+    root = scaffold("zorp-near", ["zorpily near"], tmp_path / "l2p-zorp-near").root
+    monkeypatch.setattr(server, "serve", lambda app, sock, log_level="warning": sock.close())
+    r = CliRunner().invoke(main, ["teach", "zorp-near", "--plugin", str(root), "--host", host, "--port", "0"])
+    assert r.exit_code == 0, r.output
+    assert (f"warning: listening on {host}: anyone who can reach this machine can write demonstrations"
+            in r.stderr) == warned, r.stderr
+
+
 def test_a_database_moved_away_while_serving_is_said_never_recreated(tmp_path):
     """Issue 27.7: the database moved away while serving gave a 500 and a new empty database in its place."""
     from l2p_bullet.review.app import create_app

@@ -71,6 +71,13 @@ async function loadHistory() {
 
 function showCount(p) { if (p) $("count").textContent = `${p.answered} / ${p.total} answered`; }
 
+// a label is an installed plugin's entry-point name, any text: put in as text, never parsed as HTML
+function kbd(key) {
+  const k = document.createElement("kbd");
+  k.textContent = key;
+  return k;
+}
+
 function buildButtons() {
   const grades = $("grades");
   for (let g = 0; g <= 10; g++) {
@@ -87,13 +94,13 @@ function buildButtons() {
   help.textContent = "";
   for (const { label, key } of S.config.labels) {
     const item = document.createElement("span");
-    item.innerHTML = `<kbd>${key}</kbd>: ${label === "none" ? "none of these" : label}`;
+    item.append(kbd(key), `: ${label === "none" ? "none of these" : label}`);
     help.append(item, " ");
   }
   for (const { label, key } of S.config.labels) {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.label = label;
-    b.innerHTML = `<kbd>${key}</kbd>${label === "none" ? "none of these" : label}`;
+    b.append(kbd(key), label === "none" ? "none of these" : label);
     b.onclick = () => setLabel(label);
     $("label-buttons").append(b);
   }
