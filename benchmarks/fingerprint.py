@@ -143,7 +143,9 @@ def plans(tmp: Path, sc: list[tuple[str, dict]]) -> None:
                 continue
             p = json.loads((d / "plan.json").read_text())
             keep = {k2: p.get(k2) for k2 in ("action", "planner", "stopped", "start", "anchor_pose", "grasp_angle_deg")}
-            keep["path"] = p["path"]
+            # to 1e-6 m, as plan.json rounded it until 2026-11-28 (it now holds the path as executed), so that the
+            # fingerprint compares with earlier ones
+            keep["path"] = np.asarray(p["path"], float).round(6).tolist()
             keep["progress"] = p["progress"]
             keep["verdict"] = p.get("verdict")
             out(f"plan {name} {a} seed={seed}: " + json.dumps(r9(keep), sort_keys=True))

@@ -13,11 +13,11 @@ from typing import Any
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import PathError
+from ..errors import L2PError, PathError
 from ..judge import judge_for
 from ..language import Command, manner_of_sentence
 from ..plugins import registry
-from .clauses import Clause
+from .clauses import Clause, resolve_clauses
 from .forecast import Step
 from .run import _execute
 
@@ -41,6 +41,10 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     spec = arm_plugins.get(arm)
     scene = arm_plugins.fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins
+    try:  # the clauses' own words (verb, preposition) as the run recorded them; another --scene may lack a name
+        said = {c.index: c.command for c in resolve_clauses(str(doc["chain"].get("sentence") or ""), scene, plugins)}
+    except L2PError:
+        said = {}
     steps = []
     executed = any(isinstance(c, dict) and c.get("plan") for c in doc["clauses"])
     for i, c in enumerate(doc["clauses"], start=1):
@@ -55,7 +59,9 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
             scene.get(name)
         bundle = registry.load(plan.action, plugins)
         manner = manner_of_sentence(text)  # "carry A past B": carried again (its path may cross blocks)
-        cmd = Command("move", plan.mover, plan.action, plan.action, plan.anchor, text, anchors, manner)
+        cmd = said.get(i)
+        if cmd is None or (cmd.mover, cmd.action, cmd.anchors, cmd.manner) != (plan.mover, plan.action, anchors, manner):
+            cmd = Command("move", plan.mover, plan.action, plan.action, plan.anchor, text, anchors, manner)
         steps.append(Step(Clause(i, text, cmd), bundle, bundle.progress_model(), judge_for(bundle), plan))
     if not steps:
         raise PathError(f"{source}: no clause of the chain has a plan to replay")

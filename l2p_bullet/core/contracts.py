@@ -75,7 +75,9 @@ class Plan:
             "size": float(self.size),
             "anchor_pose": [float(v) for v in self.anchor_pose],
             "start": [float(v) for v in self.start],
-            "path": np.asarray(self.path, float).round(6).tolist(),
+            # the path exactly as executed: replay reads it back and must move the block the same way (a push is
+            # chaotic enough that a path rounded to 1e-6 m ended 1 mm and 6 degrees elsewhere)
+            "path": np.asarray(self.path, float).tolist(),
             "progress": np.asarray(self.progress, float).round(6).tolist(),
             "planner": self.planner,
             "stopped": self.stopped,
