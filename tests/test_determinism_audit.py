@@ -8,7 +8,7 @@ Found and fixed with it: ``replay`` of a run's plan.json did not reproduce a pus
 1e-6 m, and contact made the block end 1 mm and 6 degrees elsewhere: plan.json now holds the path as executed), and
 a chain's replay recorded its clauses as "move ... next-to" (it now records the run's own words).
 
-Kept as a strict xfail (it turns into a failure the day it holds): a push is reproduced on one machine, not
+Kept as an xfail (not strict: a numpy whose kernels agree would pass it): a push is reproduced on one machine, not
 across CPUs. numpy's BLAS kernel is chosen per CPU, so the planner's path differs in its last bit between kernels
 (5.6e-17 m on random_scene(11)), and a push, which contact makes chaotic, then ends elsewhere. Slides and carries
 do not change. docs/manners.md says so.
@@ -160,7 +160,7 @@ def _poses(folder: Path) -> np.ndarray:
 
 @pytest.mark.slow
 def test_a_replay_of_a_replay_is_byte_identical(tmp_path):
-    """A replay's plan.json holds exactly the (rounded) path it executed, so replaying it again repeats it."""
+    """A replay's plan.json holds exactly the path it executed, so replaying it again repeats it."""
     perform("push A past B", random_scene(11), out_dir=tmp_path / "run", render=False, seed=2)
     _replay(tmp_path / "run" / "plan.json", tmp_path / "once")
     _replay(tmp_path / "once" / "plan.json", tmp_path / "twice")
@@ -201,7 +201,7 @@ def _openblas() -> bool:
 @pytest.mark.slow
 @pytest.mark.skipif(platform.machine() not in ("x86_64", "AMD64") or not _openblas(),
                     reason="OPENBLAS_CORETYPE names x86 kernels of numpy's OpenBLAS")
-@pytest.mark.xfail(strict=True, reason="numpy's BLAS kernel is chosen per CPU (SSE3 Prescott vs AVX2 Haswell round "
+@pytest.mark.xfail(strict=False, reason="numpy's BLAS kernel is chosen per CPU (SSE3 Prescott vs AVX2 Haswell round "
                    "differently): the planner's path differs in its last bit, and a push, chaotic by contact, ends "
                    "elsewhere on another machine (tenths of a radian in the arm, its progress, its verdict's wording)")
 def test_a_push_does_not_depend_on_the_cpus_blas_kernel(tmp_path):
@@ -209,8 +209,12 @@ def test_a_push_does_not_depend_on_the_cpus_blas_kernel(tmp_path):
     scene = random_scene(11)
     save_scene(scene, tmp_path / "scene.json")
     for core in ("Haswell", "Prescott"):
-        _cli(["perform", "push A past B", "--scene", str(tmp_path / "scene.json"), "--seed", "2", "--no-render", "-q",
-              "--out", str(tmp_path / core)], cwd=tmp_path, OPENBLAS_CORETYPE=core)
+        r = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "perform", "push A past B", "--scene",
+                            str(tmp_path / "scene.json"), "--seed", "2", "--no-render", "-q", "--out", str(tmp_path / core)],
+                           cwd=tmp_path, env={**os.environ, "OPENBLAS_CORETYPE": core}, capture_output=True, text=True,
+                           timeout=120)
+        if r.returncode != 0:  # a CPU without that kernel: not the difference this test is about
+            pytest.skip(f"the {core} kernel does not run here: {r.stderr[-300:]}")
     assert (tmp_path / "Haswell" / "trajectory.json").read_bytes() == (tmp_path / "Prescott" / "trajectory.json").read_bytes()
 
 

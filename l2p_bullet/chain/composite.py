@@ -18,7 +18,6 @@ block that is still waiting for its turn; ties go to the one with most room to t
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -27,6 +26,7 @@ import numpy as np
 
 from ..composite.bundle import read_recipe
 from ..composite.recipe import Recipe, row_gaps
+from ..core.contracts import read_json
 from ..core.geometry import polygons_overlap
 from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
@@ -175,7 +175,7 @@ def judge_row(result: Any, steps: list, final: Scene, summary_path: Any) -> dict
             knocked[k] = max(knocked.get(k, 0.0), float(v))
     row = row_verdict(final, names, knocked)
     result.row = row
-    summary = json.loads(summary_path.read_text())
+    summary = read_json(summary_path)
     summary["row"] = row
     summary["success"] = result.success
     summary["chain"] = result.verdict()  # the chain's verdict with the row's (it kept "all N clauses done", success)

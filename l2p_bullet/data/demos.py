@@ -42,6 +42,8 @@ _REQUIRED = {
     "event_start_end": (None, 2),
     "event_mover": (None,),
 }
+READ_KEYS = frozenset(_REQUIRED) | {"shell_observed", "stella_observed", "more_poses", "event_anchors", "viewer_xy"}
+"""Every array a session file may hold that the loader reads; other members (a notes.txt) are left unread."""
 
 
 @dataclass(frozen=True)
@@ -93,10 +95,15 @@ def _open_npz(p: Path) -> dict[str, np.ndarray]:
         with zipfile.ZipFile(p) as zf:
             if sum(i.file_size for i in zf.infolist()) > MAX_SESSION_BYTES:
                 raise DataError(f"demonstration file {p} unpacks to more than {MAX_SESSION_BYTES >> 20} MiB")
+            arrays = set()
             for info in zf.infolist():
-                _check_npy_header(p, zf, info)
-        with np.load(p, allow_pickle=False) as z:
-            return {k: z[k] for k in z.files}
+                key = info.filename.removesuffix(".npy")
+                if _check_npy_header(p, zf, info):
+                    arrays.add(key)
+                elif key in READ_KEYS:  # what the loader reads must be an array; anything else is left unread
+                    raise DataError(f'demonstration file {p}: "{key}" is not a numpy array')
+        with np.load(p, allow_pickle=False) as z:  # other members (a notes.txt) are left unread, as they always were
+            return {k: z[k] for k in z.files if k in arrays}
     except DataError:
         raise
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as e:
@@ -104,14 +111,14 @@ def _open_npz(p: Path) -> dict[str, np.ndarray]:
                         f"({type(e).__name__}: {str(e)[:100]})") from None
 
 
-def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> None:
-    """Refuse an array whose header declares more data than its member holds, before numpy allocates it:
-    a 1 KB .npz declaring shape (1e11, 3) used to ask for 2.4 TB. Every member, not only ``*.npy``: numpy
-    loads any member that starts like an array under its own name (and hands back the bytes of one that
-    does not), so a member named ``shell_pose`` bypassed this check."""
+def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> bool:
+    """Whether the member ``info`` is a numpy array; refuse one whose header declares more data than the member
+    holds, before numpy allocates it: a 1 KB .npz declaring shape (1e11, 3) used to ask for 2.4 TB. Every
+    member, not only ``*.npy``: numpy loads any member that starts like an array under its own name, so a
+    member named ``shell_pose`` bypassed this check."""
     with zf.open(info) as f:
         if f.read(len(np.lib.format.MAGIC_PREFIX)) != np.lib.format.MAGIC_PREFIX:
-            raise DataError(f'demonstration file {p}: "{info.filename[:40]}" is not a numpy array')
+            return False
         f.seek(0)
         version = np.lib.format.read_magic(f)
         read = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
@@ -122,6 +129,7 @@ def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> No
     if dtype.hasobject or count * dtype.itemsize > info.file_size:
         raise DataError(f'demonstration file {p}: the array "{info.filename.removesuffix(".npy")[:40]}" declares shape {shape} '
                         f"({count * dtype.itemsize / 1e9:.3g} GB), more than the file holds")
+    return True
 
 
 def load_session(path: str | Path) -> dict[str, np.ndarray]:

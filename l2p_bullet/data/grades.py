@@ -106,8 +106,8 @@ def _csv_text(v: object) -> object:
 
 
 MAX_GRADES_BYTES = 64 * 2**20
-"""The largest grades export read (about 100,000 answers): a file linked to /dev/zero was read until
-memory ran out."""
+"""The largest grades export read (about 100,000 answers, some hundred times the original study's): a bound,
+because a file linked to /dev/zero was read until memory ran out (docs/perform.md, "Limits on what is read")."""
 
 
 def grades_head(path: Path, error: type[L2PError] = ReviewError) -> bytes:

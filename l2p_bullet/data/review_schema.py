@@ -87,7 +87,7 @@ def connect(path: str | Path, create: bool = True) -> sqlite3.Connection:
         conn = sqlite3.connect(target, timeout=30.0, isolation_level=None, check_same_thread=False, uri=not create)
         conn.row_factory = sqlite3.Row
         conn.execute("PRAGMA busy_timeout = 30000")
-        if version(conn) == 0 and _has_foreign_tables(conn):  # before WAL, which would rewrite someone's file
+        if _is_foreign(conn):  # before WAL, which would rewrite someone's file
             conn.close()
             raise _foreign(path)
         conn.execute("PRAGMA journal_mode = WAL")
@@ -108,10 +108,10 @@ def migrate(conn: sqlite3.Connection, path: str | Path, target: int = SCHEMA_VER
         found = version(conn)
     except sqlite3.DatabaseError as e:
         raise ReviewError(f"{path} is not a review database ({e})") from None
+    if _is_foreign(conn):  # first: someone else's user_version is not a newer review schema
+        raise _foreign(path)
     if found > SCHEMA_VERSION:
         raise SchemaVersionError(str(path), found, SCHEMA_VERSION)
-    if found == 0 and _has_foreign_tables(conn):
-        raise _foreign(path)
     for n in range(found + 1, target + 1):
         try:
             conn.execute("BEGIN IMMEDIATE")
@@ -138,5 +138,10 @@ def _foreign(path: str | Path) -> ReviewError:
                        "give another --db")
 
 
-def _has_foreign_tables(conn: sqlite3.Connection) -> bool:
-    return conn.execute("SELECT count(*) FROM sqlite_master WHERE type = 'table'").fetchone()[0] > 0
+def _is_foreign(conn: sqlite3.Connection) -> bool:
+    """Someone else's SQLite file: tables at version 0 (a new database has none), or a ``user_version``
+    without the review schema's ``runs`` table (migration 1 makes both in one transaction). Many programs set
+    ``user_version`` themselves, so a version alone does not make a file ours: at 1 it would be migrated, above
+    :data:`SCHEMA_VERSION` refused as a newer l2p-bullet's, and switched to WAL before either."""
+    tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+    return bool(tables) if version(conn) == 0 else "runs" not in tables

@@ -46,7 +46,9 @@ def page_track(samples: np.ndarray, fps: float = 30.0) -> np.ndarray:
     t = s[:, 0] - s[0, 0]
     if keep.sum() < 2:
         return np.column_stack([s[[0, -1], 1:3], yaw[[0, -1]]])
-    grid = np.arange(int(np.ceil(t[-1] * fps - 1e-9)) + 1) / fps
+    # at least one frame after the first: a span under 1e-9 frame periods (two instants 1e-12 s apart) rounds
+    # to 0 frames, and the track would be the first sample alone
+    grid = np.arange(max(1, int(np.ceil(t[-1] * fps - 1e-9))) + 1) / fps
     return np.column_stack([np.interp(grid, t[keep], s[keep, 1]), np.interp(grid, t[keep], s[keep, 2]),
                             np.interp(grid, t[keep], yaw[keep])])
 

@@ -79,6 +79,8 @@ def read_grades(path: str | Path) -> list[GradeRow]:
     """Every row of a review export: ``.csv`` (header row), ``.jsonl`` (one object a line), or the review
     app's database (``.sqlite``/``.db``, read by ``l2p_bullet.data.grades.load_grades``)."""
     p = Path(path)
+    if p.exists() and not p.is_file():  # a folder, a device (a link to /dev/zero), a pipe
+        raise FeedbackError("not a regular file (expected a .csv or .jsonl export, a review .sqlite/.db)", str(p))
     if not p.is_file():
         raise FeedbackError("no such feedback file (expected a .csv or .jsonl export, a review .sqlite/.db, "
                             f'or "{ORIGINAL}")', str(p))

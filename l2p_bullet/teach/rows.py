@@ -153,7 +153,7 @@ class RowLesson(Lesson):
             if span > 0 and moved * size / span > MAX_SPEED:
                 raise TeachError(f"drag {k} moves block {s.block} at {fmt(moved * size / span)} m/s; a hand drags "
                                  f"a block at most {MAX_SPEED:g} m/s: slide it")
-            poses[s.block] = samples[-1, 1:]  # where the page left it (the 30-fps track may stop a frame short)
+            poses[s.block] = samples[-1, 1:]  # where the page left it (the track's last frame, page_track)
         if seconds < MIN_FRAMES / FPS:
             raise TeachError(f"the drags last {fmt(seconds)} s in all: slide the blocks into a row")
         for block, moved in travelled.items():

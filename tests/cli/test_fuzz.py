@@ -398,3 +398,18 @@ def test_an_npz_member_that_is_not_an_array_is_refused(tmp_path):
         zf.writestr("more_poses", b"hello, not an array")
     with pytest.raises(DataError, match='"more_poses" is not a numpy array'):
         load_session(tmp_path / "bytes.npz")
+
+
+def test_an_npz_member_the_loader_does_not_read_is_left_alone(tmp_path):
+    """A session with a member of its own (notes) loads as before the member check: only what is read must be
+    an array."""
+    import zipfile
+
+    import numpy as np
+
+    np.savez(tmp_path / "notes.npz", shell_pose=np.zeros((5, 3)), stella_pose=np.ones((5, 3)),
+             event_start_end=np.array([[0, 4]]), event_mover=np.array([0]))
+    with zipfile.ZipFile(tmp_path / "notes.npz", "a") as zf:
+        zf.writestr("notes.txt", b"captured on Tuesday")
+    arrays = load_session(tmp_path / "notes.npz")
+    assert sorted(arrays) == ["event_mover", "event_start_end", "shell_pose", "stella_pose"]

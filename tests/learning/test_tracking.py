@@ -120,3 +120,11 @@ def test_a_page_track_keeps_the_last_sample_of_an_instant_and_unwraps_yaw():
     assert np.all(np.abs(np.diff(track[:, 2])) < 0.1)  # no jump of 2 pi
     one = page_track(np.array([[1.0, 0.1, 0.2, 0.0], [1.0, 0.3, 0.2, 0.5]]))  # a single instant: first and last
     np.testing.assert_allclose(one, [[0.1, 0.2, 0.0], [0.3, 0.2, 0.5]])
+
+
+def test_a_page_track_of_two_instants_a_hair_apart_still_ends_at_the_last_sample():
+    """Two distinct instants closer than 1e-9 frame periods (a crafted recording): the 1e-9 tolerance for a
+    drag ending on a frame's instant made it 0 frames long, a track of the first sample alone (the block
+    never put down); it holds the first and the last sample, as a recording at one instant does."""
+    samples = np.array([[5.0, 0.1, 0.2, 0.0], [5.0 + 1e-12, 0.3, 0.2, 0.5]])
+    np.testing.assert_allclose(page_track(samples), [[0.1, 0.2, 0.0], [0.3, 0.2, 0.5]])

@@ -90,6 +90,23 @@ def test_a_refused_foreign_sqlite_file_is_left_byte_for_byte(tmp_path):
     assert other.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["photos.sqlite"]
 
 
+@pytest.mark.parametrize("user_version", [1, schema.SCHEMA_VERSION + 5])
+def test_a_foreign_sqlite_file_with_its_own_user_version_is_refused_untouched(tmp_path, user_version):
+    """Many programs set ``PRAGMA user_version`` themselves: at 1 the file was taken for a review database
+    and migrated, above the schema refused as a newer l2p-bullet's, and switched to WAL before either."""
+    other = tmp_path / "photos.sqlite"
+    with sqlite3.connect(other) as conn:
+        conn.execute("CREATE TABLE photos (id INTEGER)")
+        conn.execute(f"PRAGMA user_version = {user_version}")
+    conn.close()
+    before = other.read_bytes()
+    with pytest.raises(ReviewError, match="is an SQLite file of something else"):
+        Store(other)
+    with pytest.raises(ReviewError, match="is an SQLite file of something else"):
+        load_grades(other)
+    assert other.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["photos.sqlite"]
+
+
 def test_answers_are_never_overwritten_silently(tmp_path, run_folder):  # noqa: F811
     store = Store(tmp_path / "r.sqlite")
     run = find_runs([run_folder])[0]
