@@ -3,9 +3,9 @@ headless Chromium is started once per test session (Playwright's sync API runs o
 for the review app's and the teach page's browser tests alike.
 
 The suite must not depend on what else is installed (issue 26: a user who followed the plugin tutorial
-had ``l2p-left-of`` and ``l2p-between`` in the environment, and two tests failed). Action plugins that
-were installed before the suite started, other than l2p-bullet's own built-ins, are hidden from the
-registry in the tests and in every Python they start (tests/hide_plugins.py; ``pytest_report_header``
+had ``l2p-left-of`` and ``l2p-between`` in the environment, and two tests failed). Plugins (actions, arms,
+manners) that were installed before the suite started, other than l2p-bullet's own built-ins, are hidden
+from the registries in the tests and in every Python they start (tests/hide_plugins.py; ``pytest_report_header``
 names them); the plugins a test installs itself in a temporary site folder (tests/plugin_fixtures.py)
 stay visible. tests/test_isolation.py runs part of the suite with such plugins on the path and from
 another directory.
@@ -25,9 +25,10 @@ import hide_plugins
 import pytest
 from review_fixtures import CHROMIUM, CHROMIUM_FLAGS
 
-FOREIGN = frozenset(hide_plugins.key(ep) for ep in metadata.entry_points(group=hide_plugins.GROUP)
+FOREIGN = frozenset(hide_plugins.key(ep) for group in hide_plugins.GROUPS for ep in metadata.entry_points(group=group)
                     if hide_plugins.dist_name(ep) != "l2p-bullet")
-"""Action plugins installed in the environment before the tests started (not l2p-bullet's built-ins)."""
+"""Plugins (actions, arms, manners) installed in the environment before the tests started (not l2p-bullet's
+built-ins)."""
 
 if FOREIGN:
     _site = Path(tempfile.mkdtemp(prefix="l2p-tests-site-"))
@@ -40,8 +41,8 @@ if FOREIGN:
 
 def pytest_report_header(config) -> str | None:
     if FOREIGN:
-        names = ", ".join(sorted(f"{name} ({dist})" for name, _, dist, _ in FOREIGN))
-        return f"installed action plugins hidden from the tests: {names}"
+        names = ", ".join(sorted(f"{name} ({dist})" for name, _, dist, _, _ in FOREIGN))
+        return f"installed plugins hidden from the tests: {names}"
     return None
 
 

@@ -1,4 +1,4 @@
-"""Hide the action plugins that were installed before the tests started (tests/conftest.py).
+"""Hide the plugins (actions, arms, manners) that were installed before the tests started (tests/conftest.py).
 
 The conftest lists them (entry point, distribution and where it lies) in ``L2P_TESTS_HIDDEN_PLUGINS``
 and copies this file as ``sitecustomize.py`` into a folder it puts first on ``PYTHONPATH``, so every
@@ -13,7 +13,9 @@ import json
 import os
 from importlib import metadata
 
-GROUP = "l2p_bullet.actions"
+GROUPS = ("l2p_bullet.actions", "l2p_bullet.arms", "l2p_bullet.manners")
+"""Every entry-point group l2p-bullet discovers plugins in: a user's arm or manner plugin changes what the
+tests' listings see as much as an action plugin does."""
 VARIABLE = "L2P_TESTS_HIDDEN_PLUGINS"
 
 
@@ -22,10 +24,10 @@ def dist_name(ep: metadata.EntryPoint) -> str:
     return "" if dist is None else str(dist.metadata["Name"] or "").lower().replace("_", "-")
 
 
-def key(ep: metadata.EntryPoint) -> tuple[str, str, str, str]:
-    """An installed entry point: its name, value, distribution and where that distribution lies."""
+def key(ep: metadata.EntryPoint) -> tuple[str, str, str, str, str]:
+    """An installed entry point: its name, value, distribution, where that distribution lies, and its group."""
     dist = getattr(ep, "dist", None)
-    return ep.name, ep.value, dist_name(ep), "" if dist is None else str(dist.locate_file(""))
+    return ep.name, ep.value, dist_name(ep), "" if dist is None else str(dist.locate_file("")), ep.group
 
 
 def hidden() -> set[tuple[str, ...]]:
@@ -41,7 +43,7 @@ def install() -> None:
 
     def entry_points(**params):
         found = everything(**params)
-        if params.get("group") != GROUP:
+        if params.get("group") not in GROUPS:
             return found
         keys = hidden()
         return metadata.EntryPoints(ep for ep in found if key(ep) not in keys)
