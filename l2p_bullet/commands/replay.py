@@ -37,8 +37,9 @@ from .common import (
 @click.option("--render-fps", type=float, default=None, hidden=True, help="Old spelling of --fps.")
 @click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
               help="Video format written next to the frames.")
+@click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr (as perform's).")
 def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no_render, resolution, fps, camera, renderer,
-           width, height, render_fps, video):
+           width, height, render_fps, video, quiet):
     """Execute a 2-D motion of a block with the arm in PyBullet.
 
     \b
@@ -70,7 +71,7 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
     from ..embodiment import arm_plugins
 
     spec = arm_plugins.get(arm)  # an unknown arm fails before anything is read or written
-    if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed, spec.name):
+    if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed, spec.name, quiet):
         return
     scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path, mesh_dirs()), scene_path,
                          mesh_dirs())
@@ -79,7 +80,8 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
     t0 = time.perf_counter()
 
     def on_stage(message: str) -> None:  # perform's style: elapsed time, then the stage
-        click.echo(f"[{time.perf_counter() - t0:5.1f}s] execute: {message}", err=True)
+        if not quiet:
+            click.echo(f"[{time.perf_counter() - t0:5.1f}s] execute: {message}", err=True)
 
     inputs = tuple(p for p in (path_json, scene_path) if p)  # --force never replaces what it reads
     with run_folder(out, force=force, prefix="replay", command="replay", inputs=inputs) as folder:
@@ -92,7 +94,7 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
 
 
 def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force: bool, render, seed: int,
-                  arm: str = "panda") -> bool:
+                  arm: str = "panda", quiet: bool = False) -> bool:
     """Replay a chain run's plan.json (every clause, one episode; l2p_bullet/chain/replay.py) in the scene
     it was planned in (or ``--scene``); False when the file is no chain plan."""
     from ..chain.replay import is_chain_plan, replay_chain
@@ -106,7 +108,8 @@ def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force
     with run_folder(out, force=force, prefix="replay", command="replay",
                     inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:
         r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=seed,
-                         on_stage=lambda s: click.echo(f"  {s}...", err=True), arm=arm, path=path_json)
+                         on_stage=None if quiet else lambda s: click.echo(f"  {s}...", err=True), arm=arm,
+                         path=path_json)
     v = r.verdict()
     click.echo(f"replayed the chain {path_json}: {v['completed']} of {v['clauses']} clauses done ({v['reason']})")
     click.echo(f"run folder: {folder}")

@@ -158,3 +158,12 @@ def test_a_plan_replays_on_the_scene_it_records(tmp_path):
     r = _replay(str(tmp_path / "p" / "plan.json"), "--no-render", "--scene", str(tmp_path / "three.json"),
                 "--out", str(tmp_path / "r3"))
     assert r.exit_code == 0, r.output
+
+
+def test_quiet_replay_prints_only_its_result(tmp_path):
+    """-q as perform's: no progress lines on stderr, the result on stdout."""
+    r = CliRunner().invoke(main, ["replay", "--demo", "next-to:0", "--no-render", "-q", "--out", str(tmp_path / "q")])
+    assert r.exit_code == 0, r.output
+    assert r.stderr == "" and r.stdout.startswith("replayed demonstration") and "run folder: " in r.stdout
+    loud = CliRunner().invoke(main, ["replay", "--demo", "next-to:0", "--no-render", "--out", str(tmp_path / "l")])
+    assert "execute: " in loud.stderr
