@@ -111,14 +111,15 @@ def create_app(queue: ReviewQueue, host: str = "127.0.0.1") -> FastAPI:
         run = _run(queue, key)
         if queue.mode == "blind" or run.video is None:  # the video's caption names the action
             raise NotFound("no video for this run here")
-        return FileResponse(_present(run.video, "video"), media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif")
+        return FileResponse(_present(run.video, "video", run.path), media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif")
 
     @app.get("/api/media/{key}/frames/{index}")
     def frame(key: Key, index: int) -> FileResponse:
         run = _run(queue, key)
         if not 0 <= index < run.frames:
             raise NotFound(f"run has {run.frames} frames, not {index}")
-        return FileResponse(_present(run.path / "frames" / f"{index:04d}.png", f"frame {index}"), media_type="image/png",
+        return FileResponse(_present(run.path / "frames" / f"{index:04d}.png", f"frame {index}", run.path),
+                            media_type="image/png",
                             headers={"Cache-Control": "max-age=3600"})
 
     return app
@@ -137,11 +138,15 @@ def _run(queue: ReviewQueue, key: str):
     return run
 
 
-def _present(path: Path, what: str) -> Path:
-    """``path`` if it is still a file: one removed while the server runs is a 410 (the run folder is
-    there, this file of it no longer is), not a 500 from FileResponse."""
+def _present(path: Path, what: str, run_dir: Path) -> Path:
+    """``path`` if it is still a file of the run folder ``run_dir``: one removed while the server runs is a 410
+    (the run folder is there, this file of it no longer is), not a 500 from FileResponse. One that leads out
+    of the folder (a link in a run folder from elsewhere, say to a key file) is not served: with ``--host``
+    off loopback, anyone who reaches the page could read it."""
     if not path.is_file():
         raise AnswerConflict(f"the run's {what} ({path.name}) is missing from {path.parent}", "missing")
+    if not path.resolve().is_relative_to(run_dir.resolve()):
+        raise NotFound(f"the run's {what} ({path.name}) links outside its run folder: not served")
     return path
 
 

@@ -258,7 +258,8 @@ def test_docs_list_the_blind_mode_keys_the_page_uses():
 
 
 def test_media_files_removed_while_serving_are_json_not_500(live):  # noqa: F811
-    """A frame or the video removed while the server ran was a 500 (FileNotFoundError in FileResponse)."""
+    """A frame or the video removed while the server ran was a 500 (FileNotFoundError in FileResponse); a frame
+    linking out of its run folder was served."""
     import http.client
 
     s = live()
@@ -277,6 +278,12 @@ def test_media_files_removed_while_serving_are_json_not_500(live):  # noqa: F811
     assert raw("HEAD", video)[:2] == (200, "video/mp4")  # HEAD where GET is (was a 405)
     status, ctype, body = raw("GET", video, {"Range": "bytes=abc"})  # was 400 text/plain
     assert 400 <= status < 500 and ctype == "application/json" and json.loads(body)["error"], (status, body)
+    secret = run.path.parent / "secret.png"  # a run folder from elsewhere whose frame links out of it
+    secret.write_bytes(b"not the reviewer's to see")
+    (run.path / "frames" / "0001.png").unlink()
+    (run.path / "frames" / "0001.png").symlink_to(secret)
+    status, body = s.call("GET", f"/api/media/{run.key}/frames/1")
+    assert status == 404 and "links outside its run folder" in body["error"], body
     (run.path / "frames" / "0000.png").unlink()
     status, body = s.call("GET", f"/api/media/{run.key}/frames/0")
     assert status == 410 and body["reason"] == "missing" and "0000.png" in body["error"], body
