@@ -10,6 +10,7 @@ installation. Everything is plain text written from templates: no network, no bu
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -128,9 +129,11 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         pkg / "__init__.py": _INIT.format(name=name),
         pkg / "manifest.toml": _MANIFEST.format(
             name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
-            description=(description or (f"Put the blocks named in a row ({clean[0]} A, B and C)." if kind == "composite"
-                                         else f'Slide a block {clean[0]} another block'
-                                         + (" and a third" if anchors == 2 else "") + ".")).replace('"', "'"),
+            # a TOML basic string, escaped as JSON escapes it: a quote, a backslash or a newline in the author's
+            # description broke the manifest
+            description=json.dumps(description or (f"Put the blocks named in a row ({clean[0]} A, B and C)."
+                                                   if kind == "composite" else f"Slide a block {clean[0]} another block"
+                                                   + (" and a third" if anchors == 2 else "") + "."), ensure_ascii=False),
             frame=frame, anchors=anchors,
         ) + (_JUDGE.format(rules=judge) if judge else "") + (_COMPOSITE if kind == "composite" else ""),
         root / "README.md": _README.format(
@@ -204,7 +207,7 @@ name = "{name}"
 version = "0.1.0"
 requires = ">={version}"
 phrases = [{phrases}]
-description = "{description}"
+description = {description}
 # Where the relation is seen from: "relative" (it means the same whichever way the table is turned:
 # around, past, closer to), "viewer" (left of, in front of, ... as seen from the robot's base) or
 # "viewer:camera" (as seen from across the table, where the `--camera robot` video is filmed).

@@ -279,6 +279,20 @@ def test_scaffold_declares_the_frame_anchors_and_judge(tmp_path):
     assert not (tmp_path / "c").exists() and not (tmp_path / "d").exists()  # refused before anything is written
 
 
+def test_a_description_with_quotes_backslashes_and_lines_is_kept_in_a_valid_manifest(tmp_path):
+    """new-action --description wrote the text between quotes as it was: a backslash or a newline broke the
+    manifest (and a double quote became a single one)."""
+    import tomllib
+
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    text = 'Put it "under" C:\\tables\nsecond line, café'
+    s = scaffold("under", ["under"], tmp_path / "u", description=text)
+    assert tomllib.loads((s.package_dir / "manifest.toml").read_text())["description"] == text
+    plain = scaffold("over", ["over"], tmp_path / "o")  # the default reads as before
+    assert 'description = "Slide a block over another block."' in (plain.package_dir / "manifest.toml").read_text()
+
+
 @pytest.mark.parametrize("frame", ["viewer", "viewer:camera", "relative"])
 def test_the_scaffolds_example_script_writes_what_its_frame_needs(tmp_path, monkeypatch, frame):
     """Issue 26: for a viewer-frame plugin the README's example script wrote no viewer_xy, and training
