@@ -7,7 +7,7 @@
   gripper (knuckles, mimics: PyBullet does not enforce URDF mimics, so all are held at their closed value).
 - **Closed**: all gripper joints at their lower or at their upper limit, whichever brings the fingertips (the
   finger joints' deepest links) closer; the other gives the gripper's opening (the gap between the fingertips'
-  collision boxes).
+  collision boxes, along the hand's own axes).
 - **Tool point**: a link ``l2p_tool`` added to the hand between the closed fingertips (``--tool-link`` names an
   existing one instead); the hand's +z must point from the hand towards the fingertips (the usual convention).
 - **Home, wrist model, reach, hand profile**: the home poses the tool 0.3 m above the table pointing down; the
@@ -104,7 +104,7 @@ def guess(name: str, urdf: str, tool_link: str | None = None, fingers: list[str]
                               "5 to put it anywhere on the table pointing down")
         below = [j.index for j in movable if j.index not in arm and hand in ancestors(j.index)]
         tips = [_deepest(joints, f.index) for f in finger]
-        closed, opening = _closing(sim, ARM, joints, below, tips)
+        closed, opening = _closing(sim, ARM, joints, below, tips, hand)
         tool, frame = _tool(sim, ARM, joints, hand, tips, below, closed, tool_link)
         wrist = arm[-1]
         lo, hi = joints[wrist].lower, joints[wrist].upper
@@ -131,9 +131,13 @@ def _deepest(joints, j: int) -> int:
         j = children[0]
 
 
-def _closing(sim, body: str, joints, gripper: list[int], tips: list[int]) -> tuple[list[float], float]:
+def _closing(sim, body: str, joints, gripper: list[int], tips: list[int], hand: int) -> tuple[list[float], float]:
     """(closed positions of the gripper joints, the opening in metres): all at the limit that brings the
-    fingertips closer is closed; the gap between the fingertips' boxes at the other is the opening."""
+    fingertips closer is closed; the gap between the fingertips' boxes at the other is the opening.
+
+    The boxes are measured along the hand's own axes: the body is turned so that the hand's frame is the
+    world's while they are read (a hand turned on its flange, as the Panda's is by 45 degrees, would open
+    along a diagonal of world-aligned boxes, which overlap there), then turned back."""
     def gap(values: list[float]) -> tuple[float, float]:
         sim.reset_joints(body, gripper, values)
         boxes = [np.array(sim.aabb(body, t)) for t in tips[:2]]
@@ -147,7 +151,14 @@ def _closing(sim, body: str, joints, gripper: list[int], tips: list[int]) -> tup
     if any(hi <= lo or not math.isfinite(hi - lo) or hi - lo > 2 * math.pi for lo, hi in zip(lower, upper, strict=True)):
         raise PluginError("a gripper joint has no usable limits (lower < upper, less than a turn apart): the closed "
                           "and the open positions cannot be read")
-    (d_lo, gap_lo), (d_hi, gap_hi) = gap(lower), gap(upper)
+    base = sim.base_pose(body)
+    hand_orn = sim.link_pose(body, hand)[1]
+    inverse = (-hand_orn[0], -hand_orn[1], -hand_orn[2], hand_orn[3])
+    sim.set_base_pose(body, base[0], sim.compose(((0.0, 0.0, 0.0), inverse), ((0.0, 0.0, 0.0), base[1]))[1])
+    try:
+        (d_lo, gap_lo), (d_hi, gap_hi) = gap(lower), gap(upper)
+    finally:
+        sim.set_base_pose(body, *base)
     closed, opening = (lower, gap_hi) if d_lo < d_hi else (upper, gap_lo)
     if opening <= 0.005:
         raise PluginError(f"the fingers open only {opening * 1000:.0f} mm: no gripper this toolkit can use")

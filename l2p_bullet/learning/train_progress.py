@@ -314,6 +314,13 @@ def training_target(action: str, out: Path | None, demo_files: Sequence[str]) ->
         if out is None or not (out / MANIFEST).is_file() or str(read_manifest(out).get("name", "")) != action:
             raise
         name = action
+    manifest = read_manifest(out) if out is not None and (out / MANIFEST).is_file() else {}
+    if manifest.get("kind") == "composite":
+        # a composite's bundle holds a recipe learned from whole rows, never a progress model: training one
+        # into it left a plugin that `actions` listed as usable and whose every sentence was refused
+        project = out.parent if (out.parent / "pyproject.toml").is_file() else "<its project folder>"
+        raise BundleError(f'{out} holds the composite action "{name}", which is not trained on demonstration '
+                          f"files: record rows and learn its recipe with l2p-bullet teach {name} --plugin {project}")
     plugin = name not in ACTIONS
     if plugin and not demo_files:
         raise BundleError(f'the plugin action "{name}" has no shipped demonstrations: give yours with '

@@ -2,8 +2,9 @@
 
 Each entry point names a module (or ``module:attribute``) whose ``MANNER`` is a :class:`MannerSpec`. Loading
 one is cheap (a declaration, no simulator), so :func:`discover` loads them all, once per process. A broken
-manner (fails to import, no ``MANNER``, a verb another manner already claims) is reported by
-:func:`broken` and left out; the others keep working, as the action registry does with its plugins.
+manner (fails to import, no ``MANNER``, a verb or a name another manner already claims) is reported by
+:func:`broken` and left out; the others keep working, as the action registry does with its plugins. The
+built-ins are read first, so of a plugin and a built-in claiming one verb or name the plugin is left out.
 """
 
 from __future__ import annotations
@@ -25,13 +26,21 @@ def _package(ep: metadata.EntryPoint) -> str:
     return f'{dist.metadata["Name"]} {dist.metadata["Version"]}' if dist is not None else "unknown package"
 
 
+def _builtin(ep: metadata.EntryPoint) -> bool:
+    """Whether ``ep`` is registered by the l2p-bullet distribution itself."""
+    dist = getattr(ep, "dist", None)
+    return dist is not None and str(dist.metadata["Name"] or "").lower().replace("_", "-") == "l2p-bullet"
+
+
 @lru_cache(maxsize=1)
 def _found() -> tuple[tuple[MannerSpec, ...], tuple[tuple[str, str], ...], dict[str, str]]:
     good: dict[str, MannerSpec] = {}
     bad: list[tuple[str, str]] = []
     claimed: dict[str, str] = {}
     packages: dict[str, str] = {}
-    for ep in sorted(metadata.entry_points(group=GROUP), key=lambda e: (e.name, e.value)):
+    # the project's own manners first: a plugin that claims a built-in's verb or name is the one left out, and
+    # named with its own package (never "l2p-bullet" as the package to uninstall), whatever its name sorts as
+    for ep in sorted(metadata.entry_points(group=GROUP), key=lambda e: (not _builtin(e), e.name, e.value)):
         try:
             module, _, attr = ep.value.partition(":")
             obj = getattr(importlib.import_module(module), attr or "MANNER")
@@ -60,7 +69,7 @@ def _found() -> tuple[tuple[MannerSpec, ...], tuple[tuple[str, str], ...], dict[
         for m in (slide.MANNER, carry.MANNER, push.MANNER):
             good.setdefault(m.name, m)
             packages.setdefault(m.name, "l2p-bullet (built in, not installed)")
-    return tuple(good.values()), tuple(bad), packages
+    return tuple(sorted(good.values(), key=lambda m: m.name)), tuple(bad), packages
 
 
 def discover() -> list[MannerSpec]:

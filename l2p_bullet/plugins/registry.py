@@ -203,9 +203,13 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     if declared is not None and normalize_name(str(declared)) != normalize_name(name):
         return manifest, f'{path} describes the action "{declared}" but the entry point is named "{name}"'
     weights = manifest.get("weights", {})
-    files = list(weights) if isinstance(weights, dict) and weights else [PROGRESS_FILE]
+    composite = manifest.get("kind") == "composite"
+    files = list(weights) if isinstance(weights, dict) and weights else ["recipe.json" if composite else PROGRESS_FILE]
     missing = [f for f in files if not (folder / f).is_file()]
     if missing:
+        if composite:  # learned on the teach page, never by `train`
+            train_hint = (f"teach it with: l2p-bullet teach {name} --plugin <its project folder>, then install it "
+                          "again")
         return manifest, f"no trained weights ({', '.join(missing)} missing in {folder}; {train_hint})"
     return manifest, None
 

@@ -127,7 +127,7 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
         root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__,
                                                    data=', "*.json"' if kind == "composite" else ""),
         pkg / "__init__.py": _INIT.format(name=name),
-        pkg / "manifest.toml": _MANIFEST.format(
+        pkg / "manifest.toml": (_COMPOSITE_HEADER if kind == "composite" else _HEADER).format(name=name) + _MANIFEST.format(
             name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
             # a TOML basic string, escaped as JSON escapes it: a quote, a backslash or a newline in the author's
             # description broke the manifest
@@ -136,7 +136,7 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
                                                    + (" and a third" if anchors == 2 else "") + "."), ensure_ascii=False),
             frame=frame, anchors=anchors,
         ) + (_JUDGE.format(rules=judge) if judge else "") + (_COMPOSITE if kind == "composite" else ""),
-        root / "README.md": _README.format(
+        root / "README.md": (_COMPOSITE_README if kind == "composite" else _README).format(
             name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
             phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors, kind),
             kind=_KIND.get(name, "left-of" if anchors == 1 else "between"), viewer=_viewer_arg(frame),
@@ -197,11 +197,21 @@ ACTION = ActionSpec(
 )
 '''
 
-_MANIFEST = """\
+_HEADER = """\
 # Bundle manifest of the action "{name}".
 # "phrases" are the prepositions this action answers to in sentences ("move A <phrase> B").
 # `l2p-bullet train {name} ... --out <this folder>` fills in the model, training and metrics sections and
 # writes progress.safetensors next to this file; until then the action is listed as "not trained".
+"""
+
+_COMPOSITE_HEADER = """\
+# Bundle manifest of the composite action "{name}".
+# "phrases" take a list of objects in sentences ("<phrase> A, B and C").
+# `l2p-bullet teach {name}` records rows into demos.json next to this file and learns recipe.json from them
+# (both listed under [weights] below); until then the action is listed as broken ("no trained weights").
+"""
+
+_MANIFEST = """\
 schema = 1
 name = "{name}"
 version = "0.1.0"
@@ -344,4 +354,40 @@ it searches without it):
     l2p-bullet perform "{example}"
 
 To share the action, build a wheel (`pip wheel . --no-deps`) and publish it like any Python package.
+"""
+
+_COMPOSITE_README = """\
+# {dist}: the composite action "{name}" for l2p-bullet
+
+Teaches `l2p-bullet perform` the phrases {phrases}, followed by a list of blocks, as in
+`l2p-bullet perform "{example}" --scene SCENE` (a scene file with blocks A, B and C; docs/perform.md).
+
+    {root}/
+      pyproject.toml        declares the entry point  [project.entry-points."l2p_bullet.actions"]  {name} = "{module}"
+      {module}/manifest.toml  the phrases and `kind = "composite"`; teaching adds the digests of the files below
+      {module}/demos.json     the rows you demonstrated (written by the teach page)
+      {module}/recipe.json    what was learned from them (the single action each step is, the spacing, the axis)
+
+A composite has no progress model of its own: `l2p-bullet train` does not make one. It is performed as a
+chain of an installed single action ("move B next to A, then move C next to B, ..."), learned from rows you
+drag on the teach page (docs/perform.md, "Composite actions").
+
+## 1. Teach it
+
+    l2p-bullet teach {name} --plugin {root}      # then open http://127.0.0.1:8766/ (Ctrl+C stops it)
+
+The page shows scenes of 2 or 3 cubes and the sentence "{example}". Drag the named blocks one after
+another (each drag is one step; Q / W turn the dragged block), Enter saves the row, T learns the recipe
+from every saved row and performs a row of four on a new scene, with video.
+
+## 2. Install and use
+
+    <env>/bin/pip install ./{root}   # the pip of the environment l2p-bullet runs in (or: install -e ./{root})
+                                     # always a path: `pip install {dist}` would fetch a stranger's package;
+                                     # a plain install copies the recipe: install again after teaching more rows
+    l2p-bullet actions               # "{name}" is listed as a composite with its phrases
+    l2p-bullet perform "{phrase} A, B, C and D" --scene SCENE   # blocks A-D (an l2p-bullet checkout has
+                                                                 # examples/four_blocks.json)
+
+To share the action, build a wheel (`pip wheel ./{root} --no-deps`) and publish it like any Python package.
 """

@@ -238,3 +238,34 @@ def test_a_demos_file_too_large_or_nested_too_deep_is_a_one_line_error(tmp_path)
     (tmp_path / "demos.json").write_bytes(b" " * (MAX_BYTES + 1))
     with pytest.raises(CompositeError, match="larger than"):
         read_demos(tmp_path)
+
+
+def test_a_composite_scaffold_says_how_it_is_taught_and_train_refuses_it(tmp_path, monkeypatch):
+    """`new-action --composite` wrote the single action's README (train on .npz files, progress.safetensors,
+    "move A <phrase> B"), and `train` followed it: a progress model went into the composite's bundle, which
+    `actions` then listed as usable and every sentence of it refused ("has no recipe.json"). The README says
+    how a composite is taught; `train` refuses its folder, naming teach; an untaught one, installed, is
+    listed with recipe.json missing and the teach command."""
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.learning.synthetic import write_sessions
+    from l2p_bullet.plugins import registry
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    made = scaffold("row2", ["put in a line"], tmp_path / "l2p-row2", kind="composite")
+    readme = (made.root / "README.md").read_text()
+    assert "l2p-bullet teach row2 --plugin l2p-row2" in readme and 'perform "put in a line A, B, C and D"' in readme
+    assert "l2p-bullet train row2" not in readme and "progress.safetensors" not in readme, readme
+    manifest = (made.package_dir / "manifest.toml").read_text()
+    assert "l2p-bullet teach row2" in manifest and "l2p-bullet train" not in manifest, manifest
+    write_sessions(str(tmp_path / "demos"), "left-of")
+    monkeypatch.chdir(tmp_path)
+    r = CliRunner().invoke(main, ["train", "row2", "--demos", "demos", "--out", "l2p-row2/l2p_row2",
+                                  "--ensemble", "1", "--epochs", "1"])
+    assert r.exit_code == 2, r.output
+    assert "composite" in r.output and "l2p-bullet teach row2 --plugin l2p-row2" in r.output, r.output
+    assert sorted(p.name for p in made.package_dir.iterdir()) == ["__init__.py", "manifest.toml"]
+    info = registry.local("row2", made.package_dir)
+    assert info.kind == "composite" and "recipe.json missing" in info.error and "l2p-bullet teach row2" in info.error
+    assert "l2p-bullet train" not in info.error, info.error

@@ -259,3 +259,29 @@ def test_a_third_party_manner_is_listed_and_a_broken_one_named_with_its_package(
     d = json.loads(out)
     assert rc == 1 and {m["name"] for m in d["manners"]} == {"slide", "carry", "push", "roll"}
     assert [b["name"] for b in d["broken"]] == ["shove2"]
+
+
+def test_a_plugin_that_sorts_first_cannot_take_a_builtins_verb_or_name(tmp_path):
+    """Entry points were read in name order, so a plugin whose entry point sorts before a built-in's ("poke"
+    before "push", "aaa" before "carry") kept the verb or the name, and the built-in was listed as broken
+    "(package l2p-bullet ...)": what to uninstall was the project itself. The built-ins are read first."""
+    import json
+
+    site = tmp_path / "site"
+    (site / "l2p_poke").mkdir(parents=True)
+    (site / "l2p_poke" / "__init__.py").write_text(
+        "from l2p_bullet.manners.spec import MannerSpec\n"
+        "MANNER = MannerSpec(name='poke', verbs=('poke', 'push'), motion='push', signature='no-grasp')\n"
+        "CARRY = MannerSpec(name='carry', verbs=('tote',), motion='carry', signature='lifted', airborne=True)\n")
+    info = site / "l2p_poke-0.1.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: l2p-poke\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text("[l2p_bullet.manners]\npoke = l2p_poke\naaa = l2p_poke:CARRY\n")
+    rc, out = _manners_cli("--json", site=site)
+    d = json.loads(out)
+    assert rc == 1, out
+    assert [m["name"] for m in d["manners"]] == ["carry", "push", "slide"], out
+    assert {m["name"]: m["package"] for m in d["manners"]}["push"].startswith("l2p-bullet "), out
+    broken = {b["name"]: b["error"] for b in d["broken"]}
+    assert set(broken) == {"poke", "aaa"}, out
+    assert all(r.endswith("(package l2p-poke 0.1)") for r in broken.values()), out
