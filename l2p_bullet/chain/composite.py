@@ -30,7 +30,8 @@ from ..core.contracts import read_json
 from ..core.geometry import polygons_overlap
 from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
-from ..errors import InfeasibleError, L2PError, LanguageError
+from ..core.vocabulary import normalize_name, normalize_phrase
+from ..errors import FailedToLoadPlugin, InfeasibleError, L2PError, LanguageError
 from ..language import parse_list, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
 from ..plugins import registry
@@ -65,11 +66,15 @@ def composite_phrases(plugins: list | None) -> dict[str, str]:
 
 
 def is_composite(sentence: str, plugins: list | None = None) -> bool:
-    """Whether ``sentence`` starts (after polite words) with an installed composite's phrase."""
+    """Whether ``sentence`` starts (after polite words) with an installed composite's phrase (one that cannot be
+    used too: the chain's path then says why, :func:`composite_clauses`)."""
     if not isinstance(sentence, str):
         return False
     low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
-    return any(low[: len(t)] == t for t, _, _ in phrase_tokens(composite_phrases(plugins)))
+    usable = composite_phrases(plugins)
+    if any(low[: len(t)] == t for t, _, _ in phrase_tokens(usable)):
+        return True
+    return _broken_composite(sentence, plugins, usable) is not None  # composite_clauses then names it
 
 
 def load_recipe(action: str, plugins: list | None) -> Recipe:
@@ -84,6 +89,9 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
     phrases = composite_phrases(plugins)
     lc = parse_list(sentence, scene, phrases) if phrases else None
     if lc is None:
+        untaught = _broken_composite(sentence, plugins, phrases)
+        if untaught is not None:
+            raise untaught
         return None
     if len(lc.objects) - 1 > MAX_CLAUSES:
         raise LanguageError(f'a row of {len(lc.objects)} blocks is {len(lc.objects) - 1} moves; a chain has at most '
@@ -105,6 +113,24 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
                        size * (1 + recipe.spacing), recipe.aligned)
         clauses.append(Clause(k, text, cmd, slot))
     return clauses
+
+
+def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str]) -> FailedToLoadPlugin | None:
+    """The error naming a composite that cannot be used (not taught yet, say) when ``sentence`` starts with one
+    of its phrases that no usable plugin owns: as a broken single action's phrase is named, not "cannot find a
+    preposition"."""
+    given = [p for p in (plugins or []) if p.kind == "composite"]
+    names = {normalize_name(p.name) for p in given}
+    found = given + [p for p in registry.discover("composite") if normalize_name(p.name) not in names]
+    bad = {ph: p for p in found if not p.ok for ph in p.phrases if ph not in usable}
+    if not bad or not isinstance(sentence, str):
+        return None
+    low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
+    for t, phrase, _ in phrase_tokens({ph: p.name for ph, p in bad.items()}):
+        if low[: len(t)] == t:
+            p = next(p for ph, p in bad.items() if normalize_phrase(ph) == phrase)
+            return FailedToLoadPlugin(p.name, p.package, p.error or "broken")
+    return None
 
 
 def _phrase_of(action: str, plugins: list | None) -> str:

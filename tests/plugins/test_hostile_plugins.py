@@ -212,6 +212,29 @@ def test_an_untrained_plugin_owning_the_phrase_is_named(site):
     assert e.value.name == "left-of" and e.value.package == "l2p-left-of" and "no trained weights" in e.value.reason
 
 
+def test_an_untaught_composite_owning_the_phrase_is_named(site, tmp_path):
+    """A composite installed before it was taught: its phrase was "cannot find a preposition in ..."."""
+    import shutil
+
+    from l2p_bullet.chain.clauses import resolve_clauses
+    from l2p_bullet.core.scene import load_scene
+    from l2p_bullet.plugins.scaffold import scaffold
+
+    made = scaffold("row2", ["put in a line"], tmp_path / "l2p-row2", kind="composite")
+    shutil.copytree(made.package_dir, site / made.package_dir.name)
+    make_dist(site, "l2p-row2", {"row2": made.package_dir.name})
+    scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "four_blocks.json")
+    with pytest.raises(FailedToLoadPlugin) as e:
+        resolve_clauses("Please put in a line A, B and C", scene, registry.discover())
+    assert e.value.name == "row2" and e.value.package == "l2p-row2" and "recipe.json missing" in e.value.reason
+    assert [c.command.action for c in resolve_clauses("make a row of A, B and C", scene, registry.discover())] == [
+        "next-to", "next-to"]  # the built-in composite is untouched
+    r = CliRunner().invoke(main, ["plan", "put in a line A, B and C", "--scene",
+                                  str(Path(__file__).resolve().parents[2] / "examples" / "four_blocks.json"),
+                                  "--no-plot", "--out", str(tmp_path / "p")])
+    assert 'action plugin "row2" (package l2p-row2) cannot be used' in one_line_error(r)
+
+
 def test_ctrl_c_during_a_plugin_import_still_stops_the_program(site):
     folder = copy_builtin_as_plugin(site, "past", "stopper", ["stopping at"], dist="l2p-stopper")
     (folder / "__init__.py").write_text("raise KeyboardInterrupt\n")
