@@ -202,3 +202,79 @@ def test_the_default_video_plays_to_its_end_and_the_page_says_where_the_viewer_s
         assert not errors
     finally:
         s.stop()
+
+
+def test_buttons_reached_with_tab_do_what_they_say_and_are_named_by_their_grade(live, chromium):  # noqa: F811
+    """A keyboard user who tabs to a button and presses Enter or Space gets that button: Enter on a focused
+    "skip" submitted the grade picked instead (Space replayed the run). A screen reader heard "77" for the
+    grade 7 (the key hint in the name) and never which grade was picked. Enter still submits after a grade
+    picked with the mouse (the clicked button gives its focus back)."""
+    s = live()
+    page, errors = _page(chromium, s.url)
+    first = _login(page, "ann")
+    seven = page.get_by_role("button", name="7", exact=True)
+    assert page.get_by_role("button", name="10", exact=True).count() == 1
+    _keys(page, "7")
+    assert seven.get_attribute("aria-pressed") == "true"
+    assert page.get_by_role("button", name="6", exact=True).get_attribute("aria-pressed") == "false"
+    page.focus("#skip")
+    _keys(page, "Enter")  # skips: the grade 7 is not sent
+    second = _shown(page, first)
+    page.focus("#skip")
+    _keys(page, " ")
+    third = _shown(page, second)
+    assert s.store.grades() == []
+    page.get_by_role("button", name="4", exact=True).click()
+    _keys(page, "Enter")
+    _shown(page, third)
+    assert [g.grade for g in s.store.grades()] == [4]
+    assert not errors
+
+
+def test_a_server_that_does_not_answer_is_said_and_the_answer_stays_to_send_again(live, chromium):  # noqa: F811
+    """The server stopped (or the network dropped) mid-session: the page said "not saved: Failed to fetch".
+    It says the server does not answer and keeps the grade and the comment, sent with Enter once it is back."""
+    s = live()
+    page, errors = _page(chromium, s.url)
+    first = _login(page, "ann")
+    _keys(page, "7", "/")
+    page.wait_for_function("() => document.activeElement.id === 'comment'")
+    page.keyboard.type("it hesitated")
+    _keys(page, "Escape")
+    page.route("**/api/answer", lambda route: route.abort())
+    _keys(page, "Enter")
+    page.wait_for_function("() => document.getElementById('status').textContent.startsWith('not saved')", polling=100)
+    text = page.inner_text("#status")
+    assert "server does not answer" in text and "stays on this page" in text, text
+    assert page.get_attribute("#status", "class") == "error"
+    assert page.input_value("#comment") == "it hesitated" and page.inner_text("#grades button.selected") == "77"
+    page.unroute("**/api/answer")
+    _keys(page, "Enter")
+    _shown(page, first)
+    assert [(g.grade, g.comment) for g in s.store.grades()] == [(7, "it hesitated")]
+    assert not errors
+
+
+def test_a_reload_mid_answer_keeps_the_grade_and_the_comment_not_yet_sent(live, chromium):  # noqa: F811
+    """A reload (F5, a slip of the finger) threw away the grade and the comment typed but not yet sent; they
+    come back, said to be unsaved, and Enter sends them. Another run shown drops them, as before."""
+    s = live()
+    page, errors = _page(chromium, s.url)
+    first = _login(page, "ann")
+    _keys(page, "7", "/")
+    page.wait_for_function("() => document.activeElement.id === 'comment'")
+    page.keyboard.type("it hesitated")
+    _keys(page, "Escape")
+    page.reload()
+    assert _shown(page) == first
+    assert page.inner_text("#grades button.selected") == "77" and page.input_value("#comment") == "it hesitated"
+    assert "not saved yet" in page.inner_text("#status")
+    _keys(page, "Enter")
+    second = _shown(page, first)
+    assert [(g.grade, g.comment) for g in s.store.grades()] == [(7, "it hesitated")]
+    _keys(page, "3", "s")  # a grade picked, then skipped: gone after a reload
+    third = _shown(page, second)
+    page.reload()
+    assert _shown(page) == third and page.query_selector("#grades button.selected") is None
+    assert page.input_value("#comment") == ""
+    assert not errors

@@ -101,3 +101,42 @@ def test_train_and_perform_shows_the_video(live, chromium):  # noqa: F811
     assert abs(box / media - 1) < 0.03, (box, media)
     assert (s.action.bundle_dir / "progress.safetensors").is_file()
     assert not errors
+
+
+def test_a_scene_that_fails_to_load_keeps_the_recording_and_enter_twice_saves_once(live, chromium):  # noqa: F811
+    """The server did not answer when N was pressed: the page kept the scene but took the next seed, said
+    nothing, and the recording was then refused ("does not start where block A stands"). Now it says the
+    server does not answer, and the recording is saved once it is back; Enter pressed twice posts it once
+    (the second was a 409 after it). Keyboard: Enter on a focused button presses it (on "mark the start"
+    it tried to save), and Ctrl+N is the browser's, not "another scene"."""
+    s = live(seed=2)
+    page, errors = _page(chromium, s.url)
+    posts = []
+    page.on("request", lambda r: posts.append(r.url) if r.method == "POST" and "/api/demos" in r.url else None)
+    page.focus("#start")
+    page.keyboard.press("Enter")
+    assert page.get_attribute("body", "data-state") == "recording", page.inner_text("#status")
+    page.keyboard.press("Control+n")
+    assert page.get_attribute("body", "data-seed") == "2"
+    a, b = np.array(page.evaluate("[window.teach.mover().x, window.teach.mover().y]")), np.array(s.lesson.scene(2).get("B").xy)
+    to_page = "([x, y]) => window.teach.toPage(x, y)"
+    page.mouse.move(*page.evaluate(to_page, a.tolist()))
+    page.mouse.down()
+    for f in np.linspace(0, 1, 13)[1:]:  # 4 cm straight away from B
+        page.mouse.move(*page.evaluate(to_page, (a + f * 0.04 * (a - b) / np.linalg.norm(a - b)).tolist()))
+        page.wait_for_timeout(25)
+    page.mouse.up()
+    page.keyboard.press("e")
+    page.route("**/api/scene*", lambda route: route.abort())
+    page.keyboard.press("n")
+    page.wait_for_function("() => document.getElementById('status').textContent.includes('does not answer')",
+                           timeout=10_000)
+    assert page.get_attribute("body", "data-seed") == "2" and "cannot show the scene" in page.inner_text("#status")
+    page.unroute("**/api/scene*")
+    page.keyboard.press("Enter")
+    page.keyboard.press("Enter")
+    page.wait_for_function("() => document.body.dataset.saved === '1' && document.body.dataset.state === 'ready'")
+    page.wait_for_timeout(300)
+    assert len(posts) == 1 and page.inner_text("#status").startswith("saved (1 in all)"), (posts, page.inner_text("#status"))
+    assert page.get_attribute("body", "data-seed") == "3"
+    assert not errors

@@ -12,11 +12,16 @@ const S = {
 };
 const SPEEDS = [0.5, 1, 2, 4];
 const NAME_KEY = "l2p-review-name";
+const DRAFT_KEY = "l2p-review-draft";  // the answer being given, not yet sent: a reload (F5) keeps it (this tab only)
+
+// fetch's own "Failed to fetch" says nothing to a reviewer: what happened, and what to do
+const OFFLINE = "the review server does not answer (was it stopped? start it again, then retry)";
 
 async function api(method, path, body) {
   const opts = { method, headers: {} };
   if (body !== undefined) { opts.headers["Content-Type"] = "application/json"; opts.body = JSON.stringify(body); }
-  const r = await fetch(path, opts);
+  let r;
+  try { r = await fetch(path, opts); } catch (e) { const err = new Error(OFFLINE); err.offline = true; throw err; }
   let data = null;
   try { data = await r.json(); } catch (e) { data = { error: `HTTP ${r.status}` }; }
   if (!r.ok) { const err = new Error(data.error || `HTTP ${r.status}`); err.status = r.status; err.reason = data.reason; throw err; }
@@ -72,9 +77,10 @@ async function loadHistory() {
 function showCount(p) { if (p) $("count").textContent = `${p.answered} / ${p.total} answered`; }
 
 // a label is an installed plugin's entry-point name, any text: put in as text, never parsed as HTML
-function kbd(key) {
+function kbd(key, hidden = false) {
   const k = document.createElement("kbd");
   k.textContent = key;
+  if (hidden) k.setAttribute("aria-hidden", "true");  // a button's key hint: not part of its name
   return k;
 }
 
@@ -83,7 +89,7 @@ function buildButtons() {
   for (let g = 0; g <= 10; g++) {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.grade = g;
-    b.innerHTML = `<kbd>${g === 10 ? "t" : g}</kbd>${g}`;
+    b.innerHTML = `<kbd aria-hidden="true">${g === 10 ? "t" : g}</kbd>${g}`;  // its name is "7", not "77"
     b.onclick = () => setGrade(g);
     grades.append(b);
   }
@@ -100,7 +106,7 @@ function buildButtons() {
   for (const { label, key } of S.config.labels) {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.label = label;
-    b.append(kbd(key), label === "none" ? "none of these" : label);
+    b.append(kbd(key, true), label === "none" ? "none of these" : label);
     b.onclick = () => setLabel(label);
     $("label-buttons").append(b);
   }
@@ -127,6 +133,7 @@ async function show(item) {
   S.grade = item.answer ? item.answer.grade : null;
   S.label = item.answer ? item.answer.label : null;
   $("comment").value = item.answer ? item.answer.comment : "";
+  const draft = takeDraft(item);
   $("sentence").textContent = item.sentence ? `“${item.sentence}”` : "";
   $("viewname").textContent = (item.view === "3d" ? "the robot (3-D rendering)" : "seen from above (2-D)")
     + (item.viewpoint ? `; you stand ${item.viewpoint}` : "");
@@ -134,19 +141,43 @@ async function show(item) {
   refreshButtons();
   S.missing = null;
   status(item.answer ? `your answer from ${item.answer.updated_at.replace("T", " ").slice(0, 19)}: change it and press Enter` : "");
+  if (draft) {
+    S.grade = draft.grade; S.label = draft.label; $("comment").value = draft.comment;
+    refreshButtons(); keepDraft();
+    status("your answer from before the page was reloaded, not saved yet: press Enter to submit it");
+  }
   setState("review");
   S.motion = await api("GET", item.motion);
   document.body.dataset.key = `${item.key}:${item.view}`;
   play();
 }
 
-function refreshButtons() {
-  for (const b of $("grades").children) b.classList.toggle("selected", Number(b.dataset.grade) === S.grade);
-  for (const b of $("label-buttons").children) b.classList.toggle("selected", b.dataset.label === S.label);
+function refreshButtons() {  // aria-pressed: a screen reader says which one is picked
+  for (const b of $("grades").children) pressed(b, Number(b.dataset.grade) === S.grade);
+  for (const b of $("label-buttons").children) pressed(b, b.dataset.label === S.label);
 }
 
-function setGrade(g) { S.grade = g; refreshButtons(); answered("grade"); }
-function setLabel(l) { S.label = l; refreshButtons(); answered("label"); }
+function pressed(b, on) { b.classList.toggle("selected", on); b.setAttribute("aria-pressed", String(on)); }
+
+function setGrade(g) { S.grade = g; refreshButtons(); answered("grade"); keepDraft(); }
+function setLabel(l) { S.label = l; refreshButtons(); answered("label"); keepDraft(); }
+
+function keepDraft() {
+  if (!S.item) return;
+  const base = S.item.answer ? S.item.answer.updated_at : null;
+  sessionStorage.setItem(DRAFT_KEY, JSON.stringify({ reviewer: S.reviewer, key: S.item.key, view: S.item.view, base,
+    grade: S.grade, label: S.label, comment: $("comment").value }));
+}
+
+// the draft kept for this run (same reviewer, and the stored answer it changes unchanged since), else none;
+// any other draft is dropped: moving on to another run leaves it, as before
+function takeDraft(item) {
+  let d = null;
+  try { d = JSON.parse(sessionStorage.getItem(DRAFT_KEY)); } catch (e) { d = null; }
+  sessionStorage.removeItem(DRAFT_KEY);
+  const base = item.answer ? item.answer.updated_at : null;
+  return d && d.reviewer === S.reviewer && d.key === item.key && d.view === item.view && d.base === base ? d : null;
+}
 // "pick the action first" / "give a grade first" is answered by picking it: the red line goes (issue 26)
 function answered(what) { if (S.missing === what) { S.missing = null; status(""); } }
 
@@ -163,14 +194,15 @@ async function submit() {
     replaces: S.item.answer ? S.item.answer.updated_at : null,
   };
   S.busy = true;
+  try { await send(body); } finally { S.busy = false; }
+}
+
+async function send(body) {
+  let r;
   try {
-    const r = await api("POST", "/api/answer", body);
-    const i = S.history.findIndex((a) => a.key === body.key && a.view === body.view);
-    if (i >= 0) S.history[i] = r.answer; else S.history.push(r.answer);
-    showCount(r.progress);
-    status("saved", "ok");
-    await loadNext();
+    r = await api("POST", "/api/answer", body);
   } catch (e) {
+    if (e.offline) { status(`not saved: ${e.message}; your answer stays on this page until then`, "error"); return; }
     status(`not saved: ${e.message}`, "error");
     if (e.status === 409 || e.status === 410) {
       S.config = await api("GET", "/api/config");
@@ -185,7 +217,18 @@ async function submit() {
         status(`not saved: ${e.message}; this is the stored answer now`, "error");
       }
     }
-  } finally { S.busy = false; }
+    return;
+  }
+  sessionStorage.removeItem(DRAFT_KEY);
+  try {  // saved: a failure from here on is about showing the next run, not about the answer
+    const i = S.history.findIndex((a) => a.key === body.key && a.view === body.view);
+    if (i >= 0) S.history[i] = r.answer; else S.history.push(r.answer);
+    showCount(r.progress);
+    status("saved", "ok");
+    await loadNext();
+  } catch (e) {
+    status(`saved, but the next run cannot be shown: ${e.message}`, "error");
+  }
 }
 
 async function skip() {
@@ -205,7 +248,8 @@ async function back() {
 
 async function forward() {
   if (S.busy || S.pos === null) return;
-  if (S.pos + 1 < S.history.length) await loadHistoryItem(S.pos + 1); else await loadNext();
+  try { if (S.pos + 1 < S.history.length) await loadHistoryItem(S.pos + 1); else await loadNext(); }
+  catch (e) { status(`cannot go forward: ${e.message}`, "error"); }
 }
 
 // --- playback -----------------------------------------------------------------------------------
@@ -342,7 +386,11 @@ function onKey(e) {
     else if (e.key === "Escape") comment.blur();
     return;
   }
-  if (document.activeElement && document.activeElement.tagName === "BUTTON" && e.key === "Enter") e.preventDefault();
+  // A button or link reached with Tab does what it says on Enter or Space (Enter on a focused "skip" submitted
+  // the grade; Space replayed the run). A button clicked with the mouse gives its focus back (below), so
+  // Enter still submits after a grade picked with the mouse.
+  const focused = document.activeElement;
+  if (focused && (focused.tagName === "BUTTON" || focused.tagName === "A") && (e.key === "Enter" || e.key === " ")) return;
   const key = e.key;
   if (document.body.dataset.state === "done") {
     if (key === "ArrowLeft" || key === "Backspace") { e.preventDefault(); back(); }
@@ -367,11 +415,17 @@ function onKey(e) {
 }
 
 document.addEventListener("keydown", onKey);
+document.addEventListener("click", (e) => {  // a mouse click (detail > 0) leaves no focus behind: the keys go on working
+  const b = e.target instanceof Element && e.target.closest("button");
+  if (b && e.detail > 0) b.blur();
+});
 $("login-form").addEventListener("submit", (e) => {
   e.preventDefault();
   const name = $("name").value.trim();
-  if (name) start(name).catch((err) => alert(err.message));
+  if (!name) { $("name").value = ""; $("name").reportValidity(); return; }  // spaces only: say so, do not ignore it
+  start(name).catch((err) => alert(`cannot start: ${err.message}`));
 });
+$("comment").addEventListener("input", keepDraft);
 $("submit").onclick = submit;
 $("skip").onclick = skip;
 $("back").onclick = back;

@@ -160,17 +160,24 @@ function setState(state) {
   $("end").classList.toggle("done", marks.end !== null);
 }
 
+// fetch's own "Failed to fetch" says nothing to a person: what happened, and what to do
+const OFFLINE = "the teach server does not answer (was it stopped? start it again, then retry)";
+
 async function api(method, path, body) {
-  const r = await fetch(path, { method, headers: { "Content-Type": "application/json" },
-                                body: body === undefined ? undefined : JSON.stringify(body) });
+  let r;
+  try {
+    r = await fetch(path, { method, headers: { "Content-Type": "application/json" },
+                            body: body === undefined ? undefined : JSON.stringify(body) });
+  } catch (e) { throw new Error(OFFLINE); }
   const data = await r.json().catch(() => ({ error: `HTTP ${r.status}` }));
   if (!r.ok) throw new Error(data.error || `HTTP ${r.status}`);
   return data;
 }
 
 async function loadScene(s) {
-  seed = s;
-  scene = await api("GET", `/api/scene?seed=${s}`);
+  const next = await api("GET", `/api/scene?seed=${s}`);  // the seed changes with the scene, never before it:
+  seed = s;  // a scene that failed to load left the old one on the page under the new seed, and saving it was refused
+  scene = next;
   blocks = scene.objects.map((o) => ({ ...o }));
   mover = scene.composite ? null : blocks.find((b) => b.name === scene.mover);
   samples = [];
@@ -204,17 +211,25 @@ function markEnd() {
 
 // One saved demonstration (a single drag marked start to end, or a row of drags), then the next scene.
 async function post(path, body, stateOnError) {
+  if (document.body.dataset.state === "saving") return;  // Enter pressed twice: one request, not a 409 after it
   setState("saving");
+  let r;
   try {
-    const r = await api("POST", path, body);
-    $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
-    await loadScene(seed + 1);
-    status(`saved (${r.count} in all); here is another scene` + (r.note ? ` (${r.note})` : ""));
-    document.body.dataset.saved = String(r.count);
+    r = await api("POST", path, body);
   } catch (e) {
     status(e.message, true);
     setState(stateOnError);
+    return;
   }
+  $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
+  try {  // saved: a failure from here on is about the next scene, not about the demonstration
+    await loadScene(seed + 1);
+    status(`saved (${r.count} in all); here is another scene` + (r.note ? ` (${r.note})` : ""));
+  } catch (e) {
+    status(`saved (${r.count} in all), but the next scene cannot be shown: ${e.message}`, true);
+    setState("ready");
+  }
+  document.body.dataset.saved = String(r.count);
 }
 
 async function saveRow() {
@@ -233,7 +248,7 @@ async function train() {
   try {
     await api("POST", "/api/train");
   } catch (e) {
-    $("train-status").textContent = e.message;
+    trainStatus(e.message, true);
     return;
   }
   $("progress").hidden = false;
@@ -245,12 +260,22 @@ async function train() {
   polling = setInterval(poll, 500);
 }
 
+function trainStatus(text, error) {
+  $("train-status").textContent = text;
+  $("train-status").classList.toggle("error", error);
+}
+
+// R and N: a scene that cannot be loaded says so (it was an unhandled rejection, nothing on the page)
+async function changeScene(s) {
+  try { await loadScene(s); } catch (e) { status(`cannot show the scene: ${e.message}`, true); }
+}
+
 async function poll() {
   let s;
-  try { s = await api("GET", "/api/train"); } catch (e) { $("train-status").textContent = e.message; return; }
+  try { s = await api("GET", "/api/train"); } catch (e) { trainStatus(e.message, true); return; }
   $("progress").max = Math.max(s.total, 1);
   $("progress").value = s.done;
-  $("train-status").textContent = `${s.message} (${s.seconds.toFixed(0)} s)`;
+  trainStatus(`${s.message} (${s.seconds.toFixed(0)} s)`, s.state === "failed");
   document.body.dataset.train = s.state;
   if (s.state === "done" || s.state === "failed") {
     clearInterval(polling);
@@ -318,13 +343,17 @@ canvas.addEventListener("wheel", (ev) => {
 }, { passive: false });
 
 document.addEventListener("keydown", (ev) => {
-  if (ev.target instanceof HTMLInputElement) return;
+  if (ev.target instanceof HTMLInputElement || ev.ctrlKey || ev.metaKey || ev.altKey) return;  // Ctrl+R reloads, no more
+  // a button or the video reached with Tab does what it says on Enter or Space (Enter on a focused "train"
+  // saved instead); the canvas keeps Enter for save
+  const focused = document.activeElement;
+  if (focused && focused !== canvas && focused !== document.body && (ev.key === "Enter" || ev.key === " ")) return;
   const k = ev.key.toLowerCase();
   if (k === "s") markStart();
   else if (k === "e") markEnd();
   else if (k === "enter") { ev.preventDefault(); save(); }
-  else if (k === "r") loadScene(seed);
-  else if (k === "n") loadScene(seed + 1);
+  else if (k === "r") changeScene(seed);
+  else if (k === "n") changeScene(seed + 1);
   else if (k === "t") train();
   else if (k === "q" && mover) moveTo(mover.x, mover.y, mover.yaw + ROTATE);
   else if (k === "w" && mover) moveTo(mover.x, mover.y, mover.yaw - ROTATE);
@@ -332,8 +361,12 @@ document.addEventListener("keydown", (ev) => {
 $("start").addEventListener("click", markStart);
 $("end").addEventListener("click", markEnd);
 $("save").addEventListener("click", save);
-$("reset").addEventListener("click", () => loadScene(seed));
-$("next").addEventListener("click", () => loadScene(seed + 1));
+$("reset").addEventListener("click", () => changeScene(seed));
+$("next").addEventListener("click", () => changeScene(seed + 1));
+document.addEventListener("click", (ev) => {  // a mouse click (detail > 0) leaves no focus behind: Enter saves
+  const b = ev.target instanceof Element && ev.target.closest("button");
+  if (b && ev.detail > 0) b.blur();
+});
 $("train").addEventListener("click", train);
 setInterval(() => { if (!drag) sample(); }, SAMPLE_MS);
 
