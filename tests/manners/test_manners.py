@@ -220,6 +220,19 @@ def _manners_cli(*args: str, site=None) -> tuple[int, str]:
     return p.returncode, p.stdout + p.stderr
 
 
+def _manner_package(site, dist: str, version: str, specs: str, entry_points: str):
+    """An installed-looking manner plugin in ``site``: the module ``dist`` with dashes as underscores holding
+    ``specs`` (MannerSpec lines), and its distribution declaring ``entry_points`` in "l2p_bullet.manners"."""
+    module = dist.replace("-", "_")
+    (site / module).mkdir(parents=True)
+    (site / module / "__init__.py").write_text("from l2p_bullet.manners.spec import MannerSpec\n" + specs)
+    info = site / f"{module}-{version}.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {dist}\nVersion: {version}\n")
+    (info / "entry_points.txt").write_text("[l2p_bullet.manners]\n" + entry_points)
+    return site
+
+
 def test_manners_lists_every_manner_with_its_verbs_and_package():
     import json
 
@@ -241,16 +254,11 @@ def test_a_third_party_manner_is_listed_and_a_broken_one_named_with_its_package(
     built-in's verb is left out, named with its package (what to uninstall), and the listing exits 1."""
     import json
 
-    site = tmp_path / "site"
-    (site / "l2p_roll").mkdir(parents=True)
-    (site / "l2p_roll" / "__init__.py").write_text(
-        "from l2p_bullet.manners.spec import MannerSpec\n"
-        "MANNER = MannerSpec(name='roll', verbs=('roll',), motion='slide', signature='on-table', description='rolls')\n"
-        "SHOVE = MannerSpec(name='shove2', verbs=('shove',), motion='push', signature='no-grasp')\n")
-    info = site / "l2p_roll-0.3.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: l2p-roll\nVersion: 0.3\n")
-    (info / "entry_points.txt").write_text("[l2p_bullet.manners]\nroll = l2p_roll\nshove2 = l2p_roll:SHOVE\n")
+    site = _manner_package(tmp_path / "site", "l2p-roll", "0.3",
+                           "MANNER = MannerSpec(name='roll', verbs=('roll',), motion='slide', signature='on-table', "
+                           "description='rolls')\n"
+                           "SHOVE = MannerSpec(name='shove2', verbs=('shove',), motion='push', signature='no-grasp')\n",
+                           "roll = l2p_roll\nshove2 = l2p_roll:SHOVE\n")
     rc, out = _manners_cli(site=site)
     assert rc == 1, out
     assert "roll   roll  [l2p-roll 0.3]" in out
@@ -267,16 +275,11 @@ def test_a_plugin_that_sorts_first_cannot_take_a_builtins_verb_or_name(tmp_path)
     "(package l2p-bullet ...)": what to uninstall was the project itself. The built-ins are read first."""
     import json
 
-    site = tmp_path / "site"
-    (site / "l2p_poke").mkdir(parents=True)
-    (site / "l2p_poke" / "__init__.py").write_text(
-        "from l2p_bullet.manners.spec import MannerSpec\n"
-        "MANNER = MannerSpec(name='poke', verbs=('poke', 'push'), motion='push', signature='no-grasp')\n"
-        "CARRY = MannerSpec(name='carry', verbs=('tote',), motion='carry', signature='lifted', airborne=True)\n")
-    info = site / "l2p_poke-0.1.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: l2p-poke\nVersion: 0.1\n")
-    (info / "entry_points.txt").write_text("[l2p_bullet.manners]\npoke = l2p_poke\naaa = l2p_poke:CARRY\n")
+    site = _manner_package(tmp_path / "site", "l2p-poke", "0.1",
+                           "MANNER = MannerSpec(name='poke', verbs=('poke', 'push'), motion='push', signature='no-grasp')\n"
+                           "CARRY = MannerSpec(name='carry', verbs=('tote',), motion='carry', signature='lifted', "
+                           "airborne=True)\n",
+                           "poke = l2p_poke\naaa = l2p_poke:CARRY\n")
     rc, out = _manners_cli("--json", site=site)
     d = json.loads(out)
     assert rc == 1, out

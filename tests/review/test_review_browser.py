@@ -231,16 +231,22 @@ def test_buttons_reached_with_tab_do_what_they_say_and_are_named_by_their_grade(
     assert not errors
 
 
-def test_a_server_that_does_not_answer_is_said_and_the_answer_stays_to_send_again(live, chromium):  # noqa: F811
-    """The server stopped (or the network dropped) mid-session: the page said "not saved: Failed to fetch".
-    It says the server does not answer and keeps the grade and the comment, sent with Enter once it is back."""
-    s = live()
-    page, errors = _page(chromium, s.url)
+def _graded_with_a_comment(chromium, url: str):
+    """(page, errors, the run shown): "ann" logged in, grade 7 picked and "it hesitated" typed, nothing sent."""
+    page, errors = _page(chromium, url)
     first = _login(page, "ann")
     _keys(page, "7", "/")
     page.wait_for_function("() => document.activeElement.id === 'comment'")
     page.keyboard.type("it hesitated")
     _keys(page, "Escape")
+    return page, errors, first
+
+
+def test_a_server_that_does_not_answer_is_said_and_the_answer_stays_to_send_again(live, chromium):  # noqa: F811
+    """The server stopped (or the network dropped) mid-session: the page said "not saved: Failed to fetch".
+    It says the server does not answer and keeps the grade and the comment, sent with Enter once it is back."""
+    s = live()
+    page, errors, first = _graded_with_a_comment(chromium, s.url)
     page.route("**/api/answer", lambda route: route.abort())
     _keys(page, "Enter")
     page.wait_for_function("() => document.getElementById('status').textContent.startsWith('not saved')", polling=100)
@@ -259,12 +265,7 @@ def test_a_reload_mid_answer_keeps_the_grade_and_the_comment_not_yet_sent(live, 
     """A reload (F5, a slip of the finger) threw away the grade and the comment typed but not yet sent; they
     come back, said to be unsaved, and Enter sends them. Another run shown drops them, as before."""
     s = live()
-    page, errors = _page(chromium, s.url)
-    first = _login(page, "ann")
-    _keys(page, "7", "/")
-    page.wait_for_function("() => document.activeElement.id === 'comment'")
-    page.keyboard.type("it hesitated")
-    _keys(page, "Escape")
+    page, errors, first = _graded_with_a_comment(chromium, s.url)
     page.reload()
     assert _shown(page) == first
     assert page.inner_text("#grades button.selected") == "77" and page.input_value("#comment") == "it hesitated"
