@@ -140,3 +140,29 @@ def test_a_scene_that_fails_to_load_keeps_the_recording_and_enter_twice_saves_on
     assert len(posts) == 1 and page.inner_text("#status").startswith("saved (1 in all)"), (posts, page.inner_text("#status"))
     assert page.get_attribute("body", "data-seed") == "3"
     assert not errors
+
+
+def test_a_demonstration_can_be_made_with_the_keyboard_alone(live, chromium):  # noqa: F811
+    """No pointer needed: the arrow keys slide A (2 mm a press, each step checked and sampled as a drag's),
+    S and E mark, Enter saves; the saved demonstration is that slide."""
+    s = live(frame="viewer", seed=4)
+    page, errors = _page(chromium, s.url)
+    sc = s.lesson.scene(4)
+    a, b = np.array(sc.get("A").xy), np.array(sc.get("B").xy)
+    arrows = {"ArrowUp": (1, 0), "ArrowDown": (-1, 0), "ArrowLeft": (0, 1), "ArrowRight": (0, -1)}
+    key = max(arrows, key=lambda k: float(np.dot(a - b, arrows[k])))  # away from B: nothing in the way
+    page.keyboard.press("s")
+    for _ in range(40):
+        page.keyboard.press(key)
+        page.wait_for_timeout(20)  # held keys repeat about 30 times a second
+    m = page.evaluate("window.teach.mover()")
+    moved = np.array([m["x"], m["y"]]) - a
+    assert np.allclose(moved, 0.08 * np.array(arrows[key]), atol=1e-9), moved
+    page.keyboard.press("e")
+    page.keyboard.press("Enter")
+    page.wait_for_function("() => document.body.dataset.saved === '1'")
+    (d,) = load_demos("left-of", [s.action.demos])
+    k = DEMO_BLOCK_SIZE / sc.get("A").size
+    event = d.mover[d.start : d.end + 1, :2] / k
+    assert np.linalg.norm(event[0] - a) < 0.002 and np.linalg.norm(event[-1] - (a + moved)) < 0.002
+    assert not errors

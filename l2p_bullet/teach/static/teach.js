@@ -9,6 +9,9 @@
 const SCALE = 680;          // pixels per metre
 const TOP_X = 0.3;          // scene x at the top edge of the canvas (the robot is at the bottom)
 const ROTATE = Math.PI / 36; // 5 degrees per wheel notch or key press
+const NUDGE = 0.002;        // m per arrow key press (held: the key's repeat slides A at about 6 cm/s); Shift: 5x
+// arrow key -> (dx, dy) in the scene frame as the view shows it (+x up, away from the robot; +y to the left)
+const ARROWS = { ArrowUp: [1, 0], ArrowDown: [-1, 0], ArrowLeft: [0, 1], ArrowRight: [0, -1] };
 const SAMPLE_MS = 1000 / 30;
 const STEP = 0.25;          // largest move of a block's corner between two checked poses of a jump, in sides
 const TOLERANCE = 0.25;     // how deep a jump's straight path may cut into another block, in sides (teach/checks.py)
@@ -357,6 +360,12 @@ document.addEventListener("keydown", (ev) => {
   else if (k === "t") train();
   else if (k === "q" && mover) moveTo(mover.x, mover.y, mover.yaw + ROTATE);
   else if (k === "w" && mover) moveTo(mover.x, mover.y, mover.yaw - ROTATE);
+  else if (ARROWS[ev.key] && mover && !(scene && scene.composite)) {
+    // a demonstration without a pointer: the arrows slide A as a drag does (each step checked and sampled)
+    ev.preventDefault();
+    const [dx, dy] = ARROWS[ev.key], step = ev.shiftKey ? 5 * NUDGE : NUDGE;
+    moveTo(mover.x + dx * step, mover.y + dy * step, mover.yaw);
+  }
 });
 $("start").addEventListener("click", markStart);
 $("end").addEventListener("click", markEnd);
