@@ -101,6 +101,10 @@ def test_blind_mode_label_then_grade(live, chromium):  # noqa: F811
     _shown(page, first)
     (g,) = s.store.grades()
     assert (g.mode, g.label, g.grade) == ("blind", "past", 5)
+    # the views have accessible names (a screen reader said "video", "canvas"), and none names an action
+    names = {i: page.get_attribute(f"#{i}", "aria-label") for i in ("video", "flip", "top", "progress")}
+    assert all(names.values()), names
+    assert not any(a in n.lower() for n in names.values() for a in ("closer", "away", "next", "past", "around"))
     assert not errors
 
 
