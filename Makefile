@@ -31,15 +31,19 @@ demo: install
 demo-row: install  # the composite taught on the teach page: a row of four blocks (docs/perform.md)
 	$(VENV)/bin/l2p-bullet perform "make a row of A, B, C and D" --scene examples/four_blocks.json --force --out runs/demo-row
 
-test: install
-	$(VENV)/bin/ruff check l2p_bullet tests benchmarks
+test: lint
 	$(PY) -m pytest -q
+
+lint: install
+	$(VENV)/bin/ruff check l2p_bullet tests benchmarks
 
 bench: install  # every benchmark at its default size: hours on 2 cores (README, "Benchmarks")
 	for b in benchmarks/bench_*.py; do $(PY) $$b || exit 1; done
 
+# Build outputs only. runs/ is not touched: it holds what people made (review answers in runs/reviews.sqlite,
+# trained bundles in runs/bundles/, evaluations, recorded runs); delete what you no longer want by hand.
 clean:
-	rm -rf $(VENV) build dist *.egg-info runs
+	rm -rf $(VENV) build dist *.egg-info
 
 # Re-train the five built-in action bundles into l2p_bullet/actions/ (minutes on 2 cores): each progress
 # model on the demonstrations, then each action's REINFORCE move policy against it (issue 4). Feedback
