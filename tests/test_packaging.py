@@ -92,6 +92,49 @@ def test_every_make_target_the_docs_name_exists_and_the_readme_names_it() -> Non
             assert re.search(rf"make {name}\b", readme), f"{doc.name} names `make {name}`; the README does not"
 
 
+def test_every_option_the_readme_command_table_names_exists() -> None:
+    """The README's command table is written by hand: every ``--option`` a row names must be one of that
+    command's options, and every choice it lists one the option accepts (a maintainer's onboarding read,
+    2026-11-28, found the table drifting from ``--help``)."""
+    import re
+
+    import click
+
+    from l2p_bullet.cli import main
+
+    readme = (ROOT / "README.md").read_text()
+    table = readme.split("## Commands", 1)[1].split("\n\n", 2)[1]
+    checked = 0
+    for row in table.splitlines()[2:]:
+        code = re.match(r"\| `l2p-bullet ([a-z-]+)([^`]*)`", row)
+        assert code, row
+        command = main.commands[code.group(1)]
+        params = {o: p for p in command.params for o in (*p.opts, *p.secondary_opts)}
+        for option, choices in re.findall(r"(--[a-z][a-z-]*)(?: ([a-z:0-9]+(?:\\\|[a-z:0-9]+)+))?", code.group(2)):
+            assert option in params, f"README: `{code.group(1)} {option}` is no option of {code.group(1)}"
+            listed = set(choices.split("\\|")) if choices else set()
+            if listed and isinstance(params[option].type, click.Choice):
+                assert listed == set(params[option].type.choices), (code.group(1), option, listed)
+            elif listed:  # a free-form option: its help names every value the README lists
+                words = set(re.findall(r"[a-z0-9][a-z0-9:]*", params[option].help or ""))
+                assert listed <= words, (code.group(1), option, listed - words, params[option].help)
+            checked += 1
+    assert checked > 60
+
+
+def test_the_planner_option_names_every_planner() -> None:
+    """``--planner``'s help is written by hand (commands import only click, so that --help starts fast): it
+    must name every planner ``planning.PLANNERS`` has."""
+    import re
+
+    from l2p_bullet.cli import main
+    from l2p_bullet.planning import PLANNERS
+
+    for name in ("perform", "plan"):
+        (option,) = [p for p in main.commands[name].params if "--planner" in p.opts]
+        assert set(PLANNERS) <= set(re.findall(r"[a-z]+", option.help)), (name, option.help)
+
+
 def test_the_readme_and_docs_give_one_worker_scaling_figure() -> None:
     """Issue 26: the README said 1.98x for 1 -> 2 workers, docs/evaluate.md "not shown on this machine"."""
     import re

@@ -1,5 +1,7 @@
-"""Training recipes compared on the grade-free suite (:mod:`l2p_bullet.learning.generalise`), and the
-session-split models they give, cached on disk so a table can be re-printed without re-training.
+"""Training recipes, the shipped one among them: :data:`SHIPPED` is what ``l2p-bullet train``, ``teach`` and
+``make bundles`` use (recorded in each manifest's ``[training.recipe]``). The others were compared with it on the
+grade-free suite (:mod:`l2p_bullet.learning.generalise`); the session-split models they give are cached on
+disk so a table can be re-printed without re-training.
 
 A recipe is the current training set (:func:`trainset.build`, unchanged: its sequences and their hashes
 are those of ``l2p-bullet train``) plus optional extra sequences appended after it, drawn from their own
