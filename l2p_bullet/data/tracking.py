@@ -41,16 +41,14 @@ def page_track(samples: np.ndarray, fps: float = 30.0) -> np.ndarray:
     track ends where the page left the block. (Frames only up to the last sample, as before 2026-11-28,
     dropped up to 1/fps s of a drag's end, so a fast drag's last frame fell short of where it was put.)"""
     s = np.asarray(samples, float)
-    yaw = np.unwrap(s[:, 3])
-    keep = np.r_[np.diff(s[:, 0]) > 0, True]
-    t = s[:, 0] - s[0, 0]
-    if keep.sum() < 2:
-        return np.column_stack([s[[0, -1], 1:3], yaw[[0, -1]]])
+    kept = page_samples(np.column_stack([s[:, 0] - s[0, 0], s[:, 1:3], np.unwrap(s[:, 3])]))  # yaw over them all
+    t = kept[:, 0]
+    if t[-1] <= 0:  # a recording at a single instant: its first and last pose
+        return kept[:, 1:]
     # at least one frame after the first: a span under 1e-9 frame periods (two instants 1e-12 s apart) rounds
     # to 0 frames, and the track would be the first sample alone
     grid = np.arange(max(1, int(np.ceil(t[-1] * fps - 1e-9))) + 1) / fps
-    return np.column_stack([np.interp(grid, t[keep], s[keep, 1]), np.interp(grid, t[keep], s[keep, 2]),
-                            np.interp(grid, t[keep], yaw[keep])])
+    return np.column_stack([np.interp(grid, t, kept[:, i]) for i in (1, 2, 3)])
 
 
 def teleporting(pose: np.ndarray, observed: np.ndarray, fps: float = 30.0, max_speed: float = 2.0,
