@@ -30,8 +30,8 @@ from ..core.contracts import read_json
 from ..core.geometry import polygons_overlap
 from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
-from ..core.vocabulary import normalize_name, normalize_phrase
-from ..errors import FailedToLoadPlugin, InfeasibleError, L2PError, LanguageError
+from ..core.vocabulary import normalize_name
+from ..errors import InfeasibleError, L2PError, LanguageError, PluginError
 from ..language import parse_list, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
 from ..plugins import registry
@@ -115,22 +115,18 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
     return clauses
 
 
-def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str]) -> FailedToLoadPlugin | None:
+def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str]) -> PluginError | None:
     """The error naming a composite that cannot be used (not taught yet, say) when ``sentence`` starts with one
-    of its phrases that no usable plugin owns: as a broken single action's phrase is named, not "cannot find a
-    preposition"."""
+    of its phrases that no usable plugin owns: as a broken single action's phrase is named
+    (:func:`~l2p_bullet.plugins.registry.blocked_phrases`, the same rule), not "cannot find a preposition"."""
     given = [p for p in (plugins or []) if p.kind == "composite"]
     names = {normalize_name(p.name) for p in given}
-    found = given + [p for p in registry.discover("composite") if normalize_name(p.name) not in names]
-    bad = {ph: p for p in found if not p.ok for ph in p.phrases if ph not in usable}
-    if not bad or not isinstance(sentence, str):
+    pool = given + [p for p in registry.discover("composite") if normalize_name(p.name) not in names]
+    blocked = {ph: e for ph, e in registry.blocked_phrases(pool).items() if ph not in usable}
+    if not blocked or not isinstance(sentence, str):
         return None
     low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
-    for t, phrase, _ in phrase_tokens({ph: p.name for ph, p in bad.items()}):
-        if low[: len(t)] == t:
-            p = next(p for ph, p in bad.items() if normalize_phrase(ph) == phrase)
-            return FailedToLoadPlugin(p.name, p.package, p.error or "broken")
-    return None
+    return next((blocked[ph] for t, _, ph in phrase_tokens({ph: ph for ph in blocked}) if low[: len(t)] == t), None)
 
 
 def _phrase_of(action: str, plugins: list | None) -> str:
