@@ -65,19 +65,14 @@ def main() -> None:
     args = ap.parse_args()
     torch.set_num_threads(1)
 
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # research/ sits beside the package, not in it
     from l2p_bullet.core.vocabulary import ACTIONS, GRADED_FOLDERS
     from l2p_bullet.judge import RuleJudge
-    from l2p_bullet.learning.agreement_cv import (
-        FineTuner,
-        cross_validate,
-        folder_agreement,
-        score_items,
-        select,
-    )
-    from l2p_bullet.learning.feedback import original_items
+    from l2p_bullet.learning.feedback import folder_agreement, original_items, score_items
     from l2p_bullet.learning.feedback_targets import judge_items
     from l2p_bullet.learning.train_progress import JUDGE_SEEDS, ProgressTrainConfig, all_demos
     from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
+    from research.agreement_cv import FineTuner, cross_validate, select
 
     cfg = ProgressTrainConfig()
     k, weights = args.folds, [float(w) for w in args.weights.split(",")]

@@ -1,4 +1,4 @@
-"""Validation without grades (issue 25): the suite of ``l2p_bullet.learning.generalise`` for training recipes.
+"""Validation without grades (issue 25): the suite of ``research/generalise.py`` for training recipes.
 
 For each recipe, every action's model is trained on one person's capture session and scored on the
 other person's demonstrations, both ways (10 trainings a recipe, cached under ``--cache``): full and
@@ -18,10 +18,12 @@ from pathlib import Path
 
 import torch
 
-from l2p_bullet.core.vocabulary import ACTIONS
-from l2p_bullet.learning import generalise as g
-from l2p_bullet.learning.recipes import recipes
-from l2p_bullet.learning.sessions import run_suite
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # research/ sits beside the package, not in it
+
+from l2p_bullet.core.vocabulary import ACTIONS  # noqa: E402
+from l2p_bullet.learning.recipes import recipes  # noqa: E402
+from research import generalise as g  # noqa: E402
+from research.sessions import run_suite  # noqa: E402
 
 
 def table(name: str, reps: dict[str, g.ActionReport]) -> str:

@@ -17,17 +17,21 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import torch
 
-from l2p_bullet.core.vocabulary import ACTIONS
-from l2p_bullet.learning.agreement import graded_motions, model_agreement
-from l2p_bullet.learning.heldout import session_split
-from l2p_bullet.learning.progress_net import ProgressModel
-from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, train_action
-from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # research/ sits beside the package, not in it
+
+from l2p_bullet.core.vocabulary import ACTIONS  # noqa: E402
+from l2p_bullet.learning.agreement import graded_motions, model_agreement  # noqa: E402
+from l2p_bullet.learning.progress_net import ProgressModel  # noqa: E402
+from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, train_action  # noqa: E402
+from l2p_bullet.plugins.bundle import builtin_bundle_dir, load_bundle  # noqa: E402
+from research.heldout import session_split  # noqa: E402
 
 
 def throughput(model, batch: int, shared_prefix: bool, repeats: int = 5) -> float:

@@ -1,7 +1,7 @@
 """Recognition benchmark: which action is this motion, on people the models never saw.
 
 Each built-in action's progress model is trained on one capture session (one person; all five actions'
-demonstrations of that session, the shipped recipe unchanged: :mod:`l2p_bullet.learning.sessions`) and
+demonstrations of that session, the shipped recipe unchanged: ``research/sessions.py``) and
 the other session's demonstrations are recognised with ``l2p-bullet recognize``'s own code
 (:func:`l2p_bullet.recognition.recognize`: every action's final progress for each moved block
 against the other, ranked; the demonstration smoothed and cut to its event as ``recognize --demo``
@@ -29,11 +29,13 @@ from pathlib import Path
 
 import numpy as np
 
-from l2p_bullet.core.vocabulary import ACTIONS
-from l2p_bullet.learning.sessions import bundle_seconds, session_bundles
-from l2p_bullet.learning.train_progress import all_demos
-from l2p_bullet.plugins.bundle import load_bundle
-from l2p_bullet.recognition import Reading, Recogniser, Tracks, demo_event_tracks, recognize
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # research/ sits beside the package, not in it
+
+from l2p_bullet.core.vocabulary import ACTIONS  # noqa: E402
+from l2p_bullet.learning.train_progress import all_demos  # noqa: E402
+from l2p_bullet.plugins.bundle import load_bundle  # noqa: E402
+from l2p_bullet.recognition import Reading, Recogniser, Tracks, demo_event_tracks, recognize  # noqa: E402
+from research.sessions import bundle_seconds, session_bundles  # noqa: E402
 
 FOLDS = [("Session1", "Session2"), ("Session2", "Session1")]
 MERGED = ("closer", "next-to")

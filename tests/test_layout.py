@@ -223,3 +223,10 @@ def test_no_import_circle_between_rooms():
 
     circles = {" -> ".join(p) for a in sorted(edges) if (p := path(a, a, set()))}
     assert not circles, f"import circles between rooms: {sorted(circles)}"
+
+
+def test_nothing_in_the_package_imports_research():
+    """research/ holds the experiments that did not ship (docs/learning.md, "What moved where"): the product
+    never depends on them, so they can change or go without touching a command."""
+    bad = sorted((n, i) for n, imps in IMPORTS.items() for i in imps if i == "research" or i.startswith("research."))
+    assert not bad, f"modules of l2p_bullet importing research/: {bad}"

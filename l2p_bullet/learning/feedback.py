@@ -16,7 +16,8 @@ Where grades come from (:func:`load_feedback`), one :class:`FeedbackItem` per gr
   project's "automatic feedback".
 
 How items become training sequences is :mod:`l2p_bullet.learning.feedback_targets`; the fine-tuning
-:func:`l2p_bullet.learning.train_progress.fine_tune`. Torch-free.
+:func:`l2p_bullet.learning.train_progress.fine_tune`. How well a model agrees with the grades, per folder
+(:func:`folder_agreement`, :func:`score_items`), is what ``improve`` reports each round. Torch-free.
 """
 
 from __future__ import annotations
@@ -26,15 +27,16 @@ import json
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..core.contracts import load_motion
-from ..core.vocabulary import canonical_action, normalize_name
+from ..core.vocabulary import GRADED_FOLDERS, canonical_action, normalize_name
 from ..data.grades import EXPORT_FIELDS, GradeRow, grades_text, load_grades
 from ..errors import DataError, L2PError, ReviewError, UnknownActionError
 from ..plugins.bundle import sha256_file
-from .agreement import graded_motions
+from .agreement import graded_motions, spearman
 
 GRADE_MAX = 10.0
 """Grades run from 0 (bad) to this (good); the training target is grade / GRADE_MAX."""
@@ -253,3 +255,24 @@ def load_feedback(sources: Sequence[str]) -> tuple[list[FeedbackItem], list[Skip
         items += got
         skipped += skip
     return items, skipped
+
+
+def folder_agreement(items: Sequence[FeedbackItem], finals: dict[str, float]) -> dict[str, float]:
+    """Spearman(prediction, mean grade) per folder, in the order of ``GRADED_FOLDERS`` where present."""
+    order = [f for f in GRADED_FOLDERS if any(it.folder == f for it in items)]
+    order += sorted({it.folder for it in items} - set(order))
+    out = {}
+    for folder in order:
+        its = [it for it in items if it.folder == folder and it.id in finals]
+        out[folder] = spearman(np.array([finals[it.id] for it in its]), np.array([it.grade for it in its]))
+    return out
+
+
+def score_items(model: Any, items: Sequence[FeedbackItem]) -> dict[str, float]:
+    """Final progress of ``model`` on each item (batched per block size)."""
+    out: dict[str, float] = {}
+    for size in sorted({it.size for it in items}):
+        its = [it for it in items if it.size == size]
+        finals = model.final_batch([it.mover for it in its], [it.anchor for it in its], size)
+        out.update({it.id: float(v) for it, v in zip(its, finals, strict=True)})
+    return out

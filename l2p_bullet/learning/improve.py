@@ -44,8 +44,16 @@ from ..judge import RuleJudge
 from ..pipeline import perform
 from ..plugins.bundle import load_bundle, sha256_file, write_progress_bundle
 from ..plugins.registry import locate
-from .agreement_cv import folder_agreement, score_items
-from .feedback import GRADE_MAX, FeedbackItem, items_from_rows, load_feedback, original_items, read_grades
+from .feedback import (
+    GRADE_MAX,
+    FeedbackItem,
+    folder_agreement,
+    items_from_rows,
+    load_feedback,
+    original_items,
+    read_grades,
+    score_items,
+)
 from .feedback_targets import FeedbackConfig
 
 IMPROVE_SEEDS = 1000

@@ -1,6 +1,6 @@
 """Training recipes, the shipped one among them: :data:`SHIPPED` is what ``l2p-bullet train``, ``teach`` and
 ``make bundles`` use (recorded in each manifest's ``[training.recipe]``). The others were compared with it on the
-grade-free suite (:mod:`l2p_bullet.learning.generalise`); the session-split models they give are cached on
+grade-free suite (``research/generalise.py``); the session-split models they give are cached on
 disk so a table can be re-printed without re-training.
 
 A recipe is the current training set (:func:`trainset.build`, unchanged: its sequences and their hashes
@@ -60,7 +60,7 @@ from ..actions.around import ACTION as AROUND
 from ..core.vocabulary import ACTIONS
 from ..data.demos import UNTRUSTED, Demo
 from ..progress.features import QSRConfig
-from . import generalise as g
+from . import motions as g
 from .augment import mirror
 from .train_progress import ProgressTrainConfig, TrainResult, train_action
 from .trainset import DataConfig, TrainingSequence, _labelled, build

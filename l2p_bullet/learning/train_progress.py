@@ -3,7 +3,7 @@
 Each ensemble member is a small LSTM trained with Adam on a per-frame, per-sequence-averaged squared
 error plus an extra term on the frame where the event ends (the planner reads the final value). The
 members differ only in their seed; averaging them is cheaper than tuning one model to be stable.
-The held-out tests (split by capture session) live in :mod:`l2p_bullet.learning.heldout`.
+The held-out tests (split by capture session) live in ``research/heldout.py``.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
-"""Feedback from grades: reading review exports, turning grades into training targets, fine-tuning,
-and cross-validation that never lets a model see the grades it is scored on."""
+"""Feedback from grades: reading review exports, turning grades into training targets, fine-tuning
+(cross-validation over the grades: tests/research/test_agreement_cv.py)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ import pytest
 from click.testing import CliRunner
 
 from l2p_bullet.cli import main
-from l2p_bullet.learning.agreement_cv import cross_validate, folder_agreement, select, stratified_folds
 from l2p_bullet.learning.feedback import (
     FeedbackError,
     FeedbackItem,
@@ -175,61 +174,6 @@ def test_fine_tuning_is_deterministic_and_learns_the_grades():
         ends = [float(a[0](torch.from_numpy(s.x[None]))[0, s.end]) for s in seqs]
     assert ends[0] < 0.3 and ends[2] > 0.7  # seqs: item 1.0, its mirror, item 9.0, its mirror
     assert not torch.equal(base[0].head.weight, a[0].head.weight)  # the base is left untouched, a copy learned
-
-
-def test_folds_are_stratified_by_folder_and_seeded():
-    items = original_items()
-    f = stratified_folds(items, 5, seed=0)
-    for folder in {it.folder for it in items}:
-        counts = np.bincount([f[it.id] for it in items if it.folder == folder], minlength=5)
-        assert counts.tolist() == [3] * 5
-    assert f == stratified_folds(items, 5, seed=0) and f != stratified_folds(items, 5, seed=1)
-
-
-class _Peeking:
-    """A trainer that records which items it was given: cross-validation must never give it the motions
-    it is then scored on."""
-
-    def __init__(self):
-        self.seen: list[set[str]] = []
-
-    def __call__(self, action, items, setting):
-        self.seen.append({it.id for it in items})
-
-        class Model:
-            def final_batch(self, movers, anchors, size):
-                return np.arange(len(movers), dtype=float)
-
-        return Model()
-
-
-def test_cross_validation_never_scores_a_motion_with_its_own_grades():
-    items = [it for it in original_items() if it.action in ("past", "closer")]
-    trainer = _Peeking()
-    rep = cross_validate(trainer, items, k=3, seed=0)
-    folds = stratified_folds(items, 3, 0)
-    assert len(rep.finals) == len(items)
-    assert len(trainer.seen) == 3 * 2  # 3 folds x 2 actions, in order: the loop below checks every training
-    for i, seen in enumerate(trainer.seen):
-        assert seen and not any(folds[x] == i // 2 for x in seen)
-    assert set(rep.spearman) == {"SlideToward", "SlidePast"}
-
-
-def test_select_chooses_by_the_inner_folds_only():
-    items = [it for it in original_items() if it.folder == "SlidePast"]
-
-    def trainer(action, train, setting):
-        class Model:  # setting "good" ranks by the true grade, "bad" against it
-            def final_batch(self, movers, anchors, size):
-                g = [next(it.grade for it in items if it.mover is m) for m in movers]
-                return np.asarray(g) * (1 if setting["kind"] == "good" else -1)
-        return Model()
-
-    best, scores = select(trainer, items, [{"kind": "bad"}, {"kind": "good"}], k=3, seed=0)
-    assert best == {"kind": "good"} and scores[1] > scores[0]
-    rep = cross_validate(trainer, items, k=3, grid=[{"kind": "bad"}, {"kind": "good"}])
-    assert all(c["setting"] == {"kind": "good"} for c in rep.choices) and rep.spearman["SlidePast"] == pytest.approx(1.0)
-    assert folder_agreement(items, {it.id: it.grade for it in items}) == {"SlidePast": pytest.approx(1.0)}
 
 
 def test_train_cli_rejects_a_bad_feedback_file_in_one_line(tmp_path):

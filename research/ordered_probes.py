@@ -1,6 +1,6 @@
 """Ordered probes: variants of each held-out event whose order is fixed by a rule, not by a grade.
 
-The grade-free suite (:mod:`l2p_bullet.learning.generalise`) holds complete, good demonstrations, and
+The grade-free suite (``research/generalise.py``) holds complete, good demonstrations, and
 the shipped recipe passes most of it while agreeing with people at 0.02 (away) and 0.17 (next-to) on
 the study's graded motions nobody chose a setting on (issue 25). Those graded motions are planner
 output that went too short, too far, or undid part of the action. This module makes such motions from

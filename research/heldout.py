@@ -24,12 +24,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.vocabulary import ACTIONS
-from ..data.demos import Demo
-from ..progress.features import QSRConfig
-from .augment import smooth_poses
-from .progress_net import ProgressModel
-from .trainset import DataConfig, demo_sequence
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.data.demos import Demo
+from l2p_bullet.learning.augment import smooth_poses
+from l2p_bullet.learning.progress_net import ProgressModel
+from l2p_bullet.learning.trainset import DataConfig, demo_sequence
+from l2p_bullet.progress.features import QSRConfig
 
 
 def demo_targets(d: Demo, model: ProgressModel, smooth_frames: int = 9) -> tuple[float, float]:
@@ -64,7 +64,7 @@ def session_split(train_cfg=None, data_cfg=None, qsr_cfg=None, seed: int = 0,
                   on_model: Callable[[str, str, float], None] | None = None) -> SplitReport:
     """Train every action on one session and test on the other, both ways (10 trainings)."""
     # lazy: these modules import torch; only when a network is trained
-    from .train_progress import all_demos, train_action
+    from l2p_bullet.learning.train_progress import all_demos, train_action
 
     q, dc = qsr_cfg or QSRConfig(), data_cfg or DataConfig()
     rep = SplitReport(folds=list(FOLDS))

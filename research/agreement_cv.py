@@ -22,13 +22,11 @@ from typing import Any
 
 import numpy as np
 
-from ..core.vocabulary import GRADED_FOLDERS
-from ..progress.config import ModelConfig
-from ..progress.features import QSRConfig
-from .agreement import spearman
-from .feedback import FeedbackItem
-from .feedback_targets import FeedbackConfig, feedback_sequences, weigh
-from .trainset import DataConfig, build
+from l2p_bullet.learning.feedback import FeedbackItem, folder_agreement, score_items
+from l2p_bullet.learning.feedback_targets import FeedbackConfig, feedback_sequences, weigh
+from l2p_bullet.learning.trainset import DataConfig, build
+from l2p_bullet.progress.config import ModelConfig
+from l2p_bullet.progress.features import QSRConfig
 
 Trainer = Callable[[str, list[FeedbackItem], dict], Any]
 """(action, training items of every action, setting) -> a model with ``final_batch``."""
@@ -45,17 +43,6 @@ def stratified_folds(items: Sequence[FeedbackItem], k: int, seed: int) -> dict[s
     return out
 
 
-def folder_agreement(items: Sequence[FeedbackItem], finals: dict[str, float]) -> dict[str, float]:
-    """Spearman(prediction, mean grade) per folder, in the order of ``GRADED_FOLDERS`` where present."""
-    order = [f for f in GRADED_FOLDERS if any(it.folder == f for it in items)]
-    order += sorted({it.folder for it in items} - set(order))
-    out = {}
-    for folder in order:
-        its = [it for it in items if it.folder == folder and it.id in finals]
-        out[folder] = spearman(np.array([finals[it.id] for it in its]), np.array([it.grade for it in its]))
-    return out
-
-
 @dataclass
 class CVReport:
     """Held-out predictions, agreement per folder, and what each outer fold chose (with its inner scores)."""
@@ -67,16 +54,6 @@ class CVReport:
     @property
     def mean(self) -> float:
         return float(np.mean(list(self.spearman.values()))) if self.spearman else float("nan")
-
-
-def score_items(model: Any, items: Sequence[FeedbackItem]) -> dict[str, float]:
-    """Final progress of ``model`` on each item (batched per block size)."""
-    out: dict[str, float] = {}
-    for size in sorted({it.size for it in items}):
-        its = [it for it in items if it.size == size]
-        finals = model.final_batch([it.mover for it in its], [it.anchor for it in its], size)
-        out.update({it.id: float(v) for it, v in zip(its, finals, strict=True)})
-    return out
 
 
 def cross_validate(trainer: Trainer, items: Sequence[FeedbackItem], *, k: int = 5, seed: int = 0,
@@ -128,7 +105,7 @@ class FineTuner:
     def __init__(self, demos: dict, *, seed: int = 0, cfg=None, base: dict | None = None,
                  fcfg: FeedbackConfig | None = None, log: Callable[[str], None] | None = None):
         # lazy: these modules import torch; only when a network is trained
-        from .train_progress import ProgressTrainConfig
+        from l2p_bullet.learning.train_progress import ProgressTrainConfig
 
         self.demos, self.seed, self.log = demos, seed, log
         self.cfg = cfg or ProgressTrainConfig()
@@ -141,7 +118,7 @@ class FineTuner:
         """The ensemble trained on the demonstrations only (trained at the first call)."""
         if action not in self.base:
             # lazy: these modules import torch; only when a network is trained
-            from .train_progress import train_action
+            from l2p_bullet.learning.train_progress import train_action
 
             if self.log:
                 self.log(f"  training {action} on the demonstrations ({self.cfg.ensemble} x {self.cfg.epochs} epochs)")
@@ -155,8 +132,8 @@ class FineTuner:
 
     def __call__(self, action: str, items: list[FeedbackItem], setting: dict) -> Any:
         # lazy: these modules import torch; only when a network is trained
-        from .progress_net import ProgressModel
-        from .train_progress import fine_tune
+        from l2p_bullet.learning.progress_net import ProgressModel
+        from l2p_bullet.learning.train_progress import fine_tune
 
         fcfg = dataclasses.replace(self.fcfg, **setting)
         nets = self.nets(action)

@@ -21,14 +21,21 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
-from ..core.vocabulary import ACTIONS
-from ..plugins.bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest, write_progress_bundle
+from l2p_bullet.core.vocabulary import ACTIONS
+from l2p_bullet.learning.progress_net import ProgressModel, ensemble_arrays
+from l2p_bullet.learning.recipes import SHIPPED, Recipe, own_trusted, train
+from l2p_bullet.learning.train_progress import all_demos, data_digest, training_section
+from l2p_bullet.plugins.bundle import (
+    MANIFEST,
+    PROGRESS_FILE,
+    load_bundle,
+    read_manifest,
+    write_progress_bundle,
+)
+
 from . import generalise as g
 from .heldout import FOLDS
 from .ordered_probes import ordered
-from .progress_net import ProgressModel, ensemble_arrays
-from .recipes import SHIPPED, Recipe, own_trusted, train
-from .train_progress import all_demos, data_digest, training_section
 
 
 def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] = ACTIONS, seed: int = 0,

@@ -1,4 +1,4 @@
-"""Ordered probes (learning/ordered_probes.py): variants whose order a rule fixes, not a grade."""
+"""Ordered probes (research/ordered_probes.py): variants whose order a rule fixes, not a grade."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import pytest
 
 from l2p_bullet.core.geometry import swept_angle
 from l2p_bullet.core.vocabulary import ACTIONS
-from l2p_bullet.learning import generalise as g
-from l2p_bullet.learning import ordered_probes as op
 from l2p_bullet.learning.train_progress import all_demos
+from research import generalise as g
+from research import ordered_probes as op
 
 
 @pytest.fixture(scope="module")
