@@ -4,8 +4,7 @@ Kept import-light on purpose: ``l2p-bullet --help`` must not import torch or pyb
 
 The first lines install the start-up Ctrl-C handler, before anything else runs: ``_signal`` is CPython's
 built-in C module (no Python code runs to import it), while ``import signal`` executes ``signal.py`` and
-its enum conversion, several milliseconds in which a Ctrl-C raised a KeyboardInterrupt traceback (CI, stop
-29). ``os`` and ``sys`` are already imported by CPython's start-up, so importing them runs no code either.
+its enum conversion, several milliseconds in which a Ctrl-C would raise a KeyboardInterrupt traceback. ``os`` and ``sys`` are already imported by CPython's start-up, so importing them runs no code either.
 """
 
 import _signal

@@ -24,7 +24,7 @@ from .errors import LanguageError, UnknownObjectError, did_you_mean
 from .manners import registry as manners
 
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
-"""The verbs known before manners (issue 23); every installed manner's verbs are known too (:func:`known_verbs`)."""
+"""The plain verbs of a slide; every installed manner's verbs are known too (:func:`known_verbs`)."""
 OBJECT_PRONOUNS = frozenset({"it", "them"})
 """What may follow a manner's gap phrase: "lift A and put *it* next to B"."""
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = (

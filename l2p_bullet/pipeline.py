@@ -95,7 +95,7 @@ class PerformResult:
             "displacements_m": {k: _round(v) for k, v in self.displacements_m.items()},
             "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
             "grasp": self.grasp,
-            **({} if c.manner == "slide" else {"manner": c.manner}),  # issue 23: a slide's output is as before
+            **({} if c.manner == "slide" else {"manner": c.manner}),  # a slide's output names no manner
         }
 
 
@@ -314,7 +314,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
     if cmd.more_anchors:
         meta["anchors"] = list(cmd.anchors)
-    if cmd.manner != manners.DEFAULT:  # a slide's files stay as they were before manners (issue 23)
+    if cmd.manner != manners.DEFAULT:  # a slide's files name no manner
         meta["manner"] = cmd.manner
     if viewer is not None:
         meta["viewer"] = [float(v) for v in viewer]
@@ -405,7 +405,7 @@ def plan_sentence(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
 
 def scene_fields(scene: Scene) -> dict[str, Any]:
     """What plan.json records of the scene it was planned on, so that ``replay PLAN.json`` executes it
-    there (issue 26): the scene itself (a few objects) and its digest."""
+    there: the scene itself (a few objects) and its digest."""
     return {"scene": scene.to_dict(), "scene_sha256": scene.digest()}
 
 
@@ -426,7 +426,7 @@ def _summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> dict:
         "grasp_angle_deg": r.plan.extra.get("grasp_angle_deg"),
         "plugin": {"name": bundle.name, "version": bundle.version, "path": str(bundle.path)},
         # execute's sub-stages (check, setup, reach, engage, move, disengage, record) and perform's stages
-        # "evaluate": the judge stage's name before issue 20, still written for readers (contracts only grow)
+        # "evaluate": the judge stage's older name, still written for readers (contracts only grow)
         "timings_s": {**timings, **d["timings"], **({"evaluate": d["timings"]["judge"]} if "judge" in d["timings"] else {})},
         "files": {**files, "plan": "plan.json"},
     })

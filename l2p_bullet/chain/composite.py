@@ -39,7 +39,7 @@ from ..plugins import registry
 GAP_OK = 0.35
 LINE_OK = 0.25
 """A row: every consecutive gap at most GAP_OK sides, every centre within LINE_OK sides of the fitted line
-(issue 21's criteria; ``row_verdict``)."""
+(the row judge's criteria; ``row_verdict``)."""
 
 
 @dataclass(frozen=True)

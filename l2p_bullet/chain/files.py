@@ -34,7 +34,7 @@ def segments(result: Any) -> list[dict[str, Any]]:
         out.append({"clause": r.clause.index, "text": r.clause.text, "sentence": c.sentence, "action": c.action,
                     "mover": c.mover, "anchor": c.anchor, "anchors": list(c.anchors),
                     "first_frame": r.first_frame, "last_frame": r.last_frame,
-                    **({} if c.manner == "slide" else {"manner": c.manner}),  # issue 23: not a slide
+                    **({} if c.manner == "slide" else {"manner": c.manner}),  # only when not a slide
                     **({} if r.action_from is None else {"action_from": r.action_from})})  # came near first
     return out
 
@@ -84,7 +84,7 @@ def write_run(result: Any, steps: list, prims: Any, world: Any, settings: Any, s
 
 def whole_chain(result: Any) -> dict[str, Any]:
     """summary.json's one-clause fields that mean something for a whole chain (readers that know no
-    ``clauses`` find them where a one-clause run has them; audit, 2026-11-27): ``action``/``mover``/
+    ``clauses`` find them where a one-clause run has them): ``action``/``mover``/
     ``anchor`` the first clause's (as trajectory.json's), ``max_deviation_m`` the largest of the clauses',
     ``anchor_displacement_m`` the largest displacement of a block by a clause that did not move it, and
     ``disturbed`` the blocks a clause that did not move them moved more than 1 mm. Per-clause values (progress,

@@ -204,7 +204,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = ex.arm_primitives(world, settings, out)
-        prims.recorder.gripper = any(s.clause.command.manner != "slide" for s in steps)  # issue 23
+        prims.recorder.gripper = any(s.clause.command.manner != "slide" for s in steps)  # a carry grips
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves
         results: list[ClauseResult] = []

@@ -98,7 +98,7 @@ def actions_cmd(as_json: bool, check: bool) -> None:
             click.echo(f'  {r["name"]} (package {r["package"]} {r["package_version"]}): {r["error"]}')
     for msg in problems:
         click.echo(f"conflict: {msg}", err=True)
-    if check:  # a check ends with its verdict, either way (issue 26)
+    if check:  # a check ends with its verdict, either way
         n = len(rows)
         click.echo(f"all {n} action plugins OK (each loaded as perform would)" if not failed else
                    f"{len(reasons)} of {n} action plugins broken, {len(problems)} conflicts")

@@ -63,7 +63,7 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
         click.echo(json.dumps(info) if as_json else f"wrote {plural(info['runs'], 'run')} to {out} (view it: rerun {out})")
         return
     specs = demo_specs(list(demos)) if demos else []
-    # evaluate's progress bar on stderr: a rendered demonstration takes seconds each (issue 26)
+    # evaluate's progress bar on stderr: a rendered demonstration takes seconds each
     bar = ProgressBar(len(sources) + len(specs), unit="episodes", label="export: reading")
     with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES, inputs=tuple(runs),
                     option="OUT") as folder:  # export's folder is its argument OUT, not an --out option

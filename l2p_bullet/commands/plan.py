@@ -54,7 +54,7 @@ def plan_command(sentence: str, scene_path: str | None, planner: str, out: str |
     if as_json:
         click.echo(dumps_json(result.to_dict()))
         return
-    # the same text style as perform (issue 26: plan printed JSON where perform prints text)
+    # the same text style as perform; JSON only when asked for
     d, cmd = result.to_dict(), result.command
     click.echo(f'{cmd.mover} {cmd.preposition} {" and ".join(cmd.anchors)}: action "{cmd.action}", '
                f'{"success" if d["success"] else "FAILED"} on the plan ({d["reason"]})')

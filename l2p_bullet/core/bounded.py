@@ -1,4 +1,4 @@
-"""Reading files a user hands us in bounded memory and bounded recursion (issue 27).
+"""Reading files a user hands us in bounded memory and bounded recursion.
 
 A size check on ``stat()`` only holds for regular files: ``/dev/zero``, a FIFO or ``/proc`` files report
 0 bytes and never end. :func:`read_bounded` reads at most ``limit + 1`` bytes from whatever the path is,

@@ -5,7 +5,7 @@
 - :func:`unfinished`: did the run in a run folder finish writing? ``export`` and ``review`` skip one that did
   not (an interrupted render leaves a 0-byte frame, and people would grade half a motion).
 
-Split from runfolder.py (2026-11-27), which makes and replaces run folders; this module only reads them.
+runfolder.py makes and replaces run folders; this module only reads them.
 """
 
 from __future__ import annotations

@@ -32,7 +32,7 @@ VIEWPOINTS: dict[str, tuple[float, float]] = {
     "camera": (0.5, -0.5),
 }
 """Named viewpoints (scene frame, metres): the arm's base, and the position on the table plane of the
-camera that filmed the runs until issue 24, across the table facing the robot (``embodiment/sim/camera.py``'s
+camera across the table facing the robot (``embodiment/sim/camera.py``'s
 ``robot`` camera, ``--camera robot``; a test keeps the two equal). The default camera, ``viewer``, stands
 behind the robot, so its left is the ``robot`` viewpoint's left."""
 

@@ -5,9 +5,9 @@ centre, +x pointing away from the robot's base, +y to the robot's left, yaw in r
 
 The robot base stands off the table's near edge at ``ROBOT_BASE_XY``: a Panda with its gripper pointing
 down reaches grasp points at table height from about 0.27 m to 0.79 m from its base (DESIGN.md, reach note; at every height up to 0.19 m).
-A disk about the table's centre (0.35 m; 0.25 m, which fits inside that ring, until 2026-11-27) bounds the
+A disk about the table's centre (0.35 m) bounds the
 workspace: every block centre, and every point of a planned path, must lie inside it. For an
-arm whose reach ring does not hold the disk (every shipped arm since the disk grew to 0.35 m, 2026-11-27), the
+arm whose reach ring does not hold the disk (every shipped arm's), the
 workspace is the disk intersected with that ring, a region with a bite out of its near side:
 ``core/workspace.py`` (:class:`Workspace`, imported from here) holds its geometry, and
 ``embodiment/arm_plugins.py: fit_workspace`` sets the ring. Random scenes are drawn in the old 0.25 m disk
@@ -240,7 +240,7 @@ class Scene:
         }
 
     def digest(self) -> str:
-        """sha256 of the scene file's canonical JSON: what plan.json records as ``scene_sha256`` (issue 26)."""
+        """sha256 of the scene file's canonical JSON: what plan.json records as ``scene_sha256``."""
         import hashlib
         import json
 

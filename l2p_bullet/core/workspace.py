@@ -2,10 +2,9 @@
 
 It is the scene's disk (``center``, ``radius``: :data:`DISK_RADIUS`, 0.35 m around the table's centre) and, for
 an arm whose reach ring does not hold the disk, the disk *intersected with its ring* (``ring`` = base x, base y,
-near, far; issue 22; ``embodiment/arm_plugins.py: fit_workspace``): since the disk grew from 0.25 m to 0.35 m
-(2026-11-27) no shipped arm's ring holds it, so every arm plans in its ring-cut disk. Before, the Panda and the
-xArm6 planned in the 0.25 m disk (their rings hold it), and before 2026-11-27 the KUKA's disk was shrunk about
-its centre until it fitted its ring (0.17 m), which threw away most of what the arm reaches.
+near, far; ``embodiment/arm_plugins.py: fit_workspace``): no shipped arm's ring holds the 0.35 m disk, so
+every arm plans in its ring-cut disk. Cutting, rather than shrinking the disk about its centre until the ring
+holds it (0.17 m for the KUKA), keeps what the arm reaches.
 
 What was drawn, trained or chosen on the 0.25 m disk stays on it: seeded random starts are drawn in
 :meth:`Workspace.starts` (:data:`START_RADIUS`, the same scenes for the same seeds), and the learned policy's
@@ -30,10 +29,10 @@ _TOL = 1e-9
 
 DISK_RADIUS = 0.35
 """The planning disk's radius (m) about the table's centre, before an arm's ring cuts it. Measured, not tuned
-(2026-11-27, ``benchmarks/measure_disk.py``, docs/arms.md): every shipped arm reaches every probe of a 0.30,
+(``benchmarks/measure_disk.py``, docs/arms.md): every shipped arm reaches every probe of a 0.30,
 0.35 or 0.38 m disk cut by its ring, pointing down, at both reach heights and its wrist range; 0.38 m would put a
 4 cm cube turned 45 degrees at the rim 8 mm over the table's edge (half side 0.4 m), 0.35 m keeps every cube up
-to 6 cm on the table at any yaw. It was 0.25 m while the disk had to fit inside the Panda's ring whole."""
+to 6 cm on the table at any yaw."""
 
 START_RADIUS = 0.25
 """Where seeded random starts are drawn (m): the disk every benchmark and evaluation scene set was drawn in before
@@ -250,7 +249,7 @@ class Workspace:
     @property
     def inner_radius(self) -> float:
         """The largest disk about the centre inside the region (the radius itself with no ring): what an arm
-        whose ring bites into the disk got as its whole workspace before 2026-11-27."""
+        whose ring bites into the disk would get if the disk were shrunk to fit the ring."""
         return self.radius if self.ring is None else max(self._ring_room(self.radius), 0.0)
 
     def _ring_room(self, radius: float) -> float:

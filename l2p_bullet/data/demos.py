@@ -333,10 +333,10 @@ UNTRUSTED: dict[str, str] = {
 """Shipped demonstrations whose tracking is not trusted, with why. The grade-free suite never scores them
 (``learning.train_progress.all_demos(untrusted=False)``); ``load_demos`` and ``--demo A:I`` show them, with
 their indices unchanged. The shipped bundles are still trained with them: found by analysis (docs/learning.md,
-fifth round), this one teaches the around model to take a corner out on the 5-block ring for a full around
+"around's far corner"), this one teaches the around model to take a corner out on the 5-block ring for a full around
 (0.68 of 0.75 on people's events; trained without it, 0.28), but the bundles trained without it failed the
 planning check (closer and around 93 % of 30 scenes, the rule asks 95 %), and around trained without it among
-its own positives only (``recipes.Recipe.trusted_own``, seventh round) lowered around's agreement with people
+its own positives only (``recipes.Recipe.trusted_own``) lowered around's agreement with people
 in SlideAround (0.53 -> 0.49)."""
 
 

@@ -38,8 +38,8 @@ def page_track(samples: np.ndarray, fps: float = 30.0) -> np.ndarray:
     from the first sample's instant, yaw unwrapped, at least two.
 
     The frames run to the first at or after the last sample, which holds the last sample's pose: the
-    track ends where the page left the block. (Frames only up to the last sample, as before 2026-11-28,
-    dropped up to 1/fps s of a drag's end, so a fast drag's last frame fell short of where it was put.)"""
+    track ends where the page left the block. (Frames only up to the last sample would
+    drop up to 1/fps s of a drag's end, so a fast drag's last frame would fall short of where it was put.)"""
     s = np.asarray(samples, float)
     kept = page_samples(np.column_stack([s[:, 0] - s[0, 0], s[:, 1:3], np.unwrap(s[:, 3])]))  # yaw over them all
     t = kept[:, 0]

@@ -116,9 +116,8 @@ def get(name: str | ArmSpec | None = None) -> ArmSpec:
 # --- where the arm reaches ----------------------------------------------------------------------------
 def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
     """The workspace an arm gets: unchanged when its reach ring around its mount holds the whole disk, else the disk
-    intersected with the ring (``Workspace.ring``, issue 22): every shipped arm since the disk grew to 0.35 m
-    (2026-11-27; at 0.25 m the Panda's and the xArm6's rings held it). Before 2026-11-27 the disk was shrunk
-    about its centre until it fitted the ring (0.17 m for the KUKA)."""
+    intersected with the ring (``Workspace.ring``): every shipped arm at the 0.35 m disk. Cutting keeps what
+    the arm reaches; shrinking the disk about its centre until the ring held it would leave the KUKA 0.17 m."""
     cut = replace(workspace, ring=(float(spec.mount[0]), float(spec.mount[1]), float(spec.reach[0]), float(spec.reach[1])))
     return workspace if cut.holds_disk(workspace.radius) else cut
 
@@ -174,7 +173,7 @@ REACH_HEIGHTS = (*(round(0.012 + 0.02 * k, 3) for k in range(9)), 0.19)
 (0.19 m), every 2 cm between. Why the heights between: pointing down near its base, an arm can reach both ends of
 the vertical line it rises along and not its middle. The Panda at 0.26 m from its base reaches 0.012 and 0.19 m
 but not 0.082-0.162 m, at any wrist angle; with only the two ends tested its ring's near edge was 0.26 m, and
-``bench_objects.py`` (seeds 977038 "around" and 977064 "past", 2026-11-27) planned paths there that execution
+``bench_objects.py`` (seeds 977038 "around" and 977064 "past") planned paths there that execution
 could not lift (ReachError before anything moved). With the heights between, it is 0.27 m."""
 
 

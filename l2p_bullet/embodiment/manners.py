@@ -158,7 +158,7 @@ def _near_the_hole(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str | No
     the workspace (core/workspace.py), the hand stands behind the block (:func:`hand_points`): up to the
     block's farthest corner, the hand's half thickness and the gap from its centre, slid along the face by up to
     :data:`PUSH_SHIFT`. A push whose hand would come nearer the base than the ring's near edge is refused up front
-    (measured on 2026-11-27: KUKA pushes along the hole's edge stopped half-way with the arm out of reach). The
+    (measured: KUKA pushes along the hole's edge stop half-way with the arm out of reach). The
     side the hand is on counts: a first bound that put it on every side refused 7 of the Panda's 150 study
     pushes that had been performed (bench_manners, once the Panda's ring cut its 0.35 m workspace)."""
     ws = scene.workspace

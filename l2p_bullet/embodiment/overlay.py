@@ -65,7 +65,7 @@ def caption_lines(draw, text: str, width: int, height: int, size: int) -> tuple[
     """The sentence's lines and font, in ``width`` x ``height`` pixels: one line at the strip's ``size``
     if it fits, else one line at a smaller size (down to :data:`MIN_FONT`), else two lines at the largest
     size that fits them; an ellipsis only when even two lines of the smallest font cannot hold it.
-    (A polite sentence, "Please slide the red block around the green one.", was cut at 320 px, issue 26.)"""
+    (A polite sentence, "Please slide the red block around the green one.", needs two lines at 320 px.)"""
     for s in range(size, MIN_FONT - 1, -1):
         font = _font(s)
         if draw.textlength(text, font=font) <= width:

@@ -108,8 +108,8 @@ class Recorder:
             # a two-anchor action's every reference object, a viewer-frame action's viewpoint (only then)
             **{k: meta[k] for k in ("anchors", "viewer") if meta.get(k) is not None},
             **({"segments": meta["segments"]} if meta.get("segments") is not None else {}),  # a chain's clauses
-            **({"manner": meta["manner"]} if meta.get("manner") is not None else {}),  # not slide (issue 23)
-            # the first frame of the action proper where the plan came near first (only then, issue 21)
+            **({"manner": meta["manner"]} if meta.get("manner") is not None else {}),  # not slide
+            # the first frame of the action proper where the plan came near first (only then)
             **({"action_from": meta["action_from"]} if meta.get("action_from") else {}),
             "fps": self.fps,
             "objects": {name: {"size": size, **_colour(self.world, name), **_shape(self.world, name)}

@@ -42,14 +42,15 @@ from .checks import EnvResetNeeded, check_action, check_args, check_names, check
 
 POSITION_BOUND = 16.0
 """Block units: the start disk's radius (0.25 m) over the smallest block (0.02 m) is 12.5. The planning disk is
-0.35 m since 2026-11-27 (17.5 smallest blocks): an observation beyond 16 is clipped, the space kept as it was.
+0.35 m (17.5 smallest blocks): an observation beyond 16 is clipped, so the observation space stays what agents
+were trained on.
 So with blocks under 0.35 / 16 = 0.022 m a mover near the disk's edge reads as at 16 (``pose`` has the truth);
 the episode does not end there, as the workspace test, not the observation, decides what is legal."""
 
 
 class Plan2DEnv(gym.Env):
     """See the module docstring. ``action`` names an installed action (built-in or plugin); it is
-    required (issue 26: it defaulted to "around" without a word)."""
+    required, so that no action is chosen without a word."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
 

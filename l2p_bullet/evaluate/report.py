@@ -74,7 +74,7 @@ def report_text(rows: list[dict], c: Confusion | None = None) -> str:
                      f"{_cell(s['anchor_moved_mm'], '.2f'):>10}{_cell(s['plan_s'], '.2f'):>8}"
                      f"{_cell(s['total_s'], '.2f'):>9}")
     manners = sorted({r.get("manner") or "slide" for r in rows})
-    if manners != ["slide"]:  # evaluate --manners: the same table per manner of motion (issue 23)
+    if manners != ["slide"]:  # evaluate --manners: the same table per manner of motion
         lines += ["", "success per manner and action (the manner's physical signature checked too)",
                   f"{'manner':<8}{'action':<12}{'runs':>6}{'success':>9}{'errors':>8}{'dev mm':>8}{'anchor mm':>10}"]
         for m in manners:

@@ -68,7 +68,7 @@ COLUMNS: dict[str, str] = {
 (every action's learned progress: {action: value}) are JSON text: the automatic confusion matrix;
 ``timings`` (JSON) has perform's stages (parse, load, plan, execute, judge, total) in seconds.
 A chain's row (``evaluate --chains``) adds ``completed`` (clauses done in a row), ``redraws`` and
-``clauses`` (JSON: one entry per clause performed, evaluate/chains.py). ``manner`` (issue 23): slide, carry,
+``clauses`` (JSON: one entry per clause performed, evaluate/chains.py). ``manner``: slide, carry,
 push (``evaluate --manners``); null in a table written before it."""
 JSON_COLUMNS = ("judged", "scored", "timings", "clauses")
 

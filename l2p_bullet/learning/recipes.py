@@ -33,13 +33,13 @@ generator so the current part stays bit-identical:
 - ``near_starts`` (closer): each own event shrunk about the anchor to end 1.05-1.2 blocks from it (touching,
   with the planner's margin), cropped to start where it first comes within 1.25-2.5 blocks, as it is and as one
   straight move, labelled as full events: people's endings made short, because chains start "closer" 1.25-1.75
-  blocks from the anchor and no person's demonstration started nearer than 3.6 (docs/learning.md, eighth round:
+  blocks from the anchor and no person's demonstration started nearer than 3.6 (docs/learning.md, "closer from near":
   the suite's strengthened score fell, 0.4255 -> 0.4225, so it is not shipped).
 
 ``trusted_own`` changes the data, not what is added: the shipped demonstrations of the action being trained
 whose tracking is not trusted (:data:`data.demos.UNTRUSTED`) are left out of its own set (its positives and
 everything made from its own events), and kept wherever they are another action's negative, so the other
-actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, seventh round: it passed the suite
+actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, "untrusted demonstrations": it passed the suite
 and the planning checks but lowered around's agreement with people in SlideAround, so it is not shipped).
 
 The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
@@ -113,7 +113,7 @@ SHIPPED = Recipe("planner-graded-nogrid", planner_positives=True, planner_negati
                  graded_wrongs=True, grid=False)
 """The recipe ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with, training settings from
 the command (5 LSTMs x 30 epochs by default): planner-graded-nogrid, the one that cleared the rule committed
-before the fourth round (docs/learning.md: strengthened suite 0.438 against the current recipe's 0.321, 33 goals
+before the recipes were compared (docs/learning.md: strengthened suite 0.438 against the current recipe's 0.321, 33 goals
 against 26; planning and perform 100 % on the 30-scene benchmarks). Its extras are written into every bundle's
 manifest (``[training.recipe]``)."""
 
@@ -135,7 +135,7 @@ def own_trusted(recipe: Recipe, action: str, demos: dict[str, list[Demo]]) -> di
 
 
 def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
-    """The recipes tried (issue 25), at a given ensemble size and length of training."""
+    """The recipes compared on the grade-free suite, at a given ensemble size and length of training."""
     t = ProgressTrainConfig(ensemble=ensemble, epochs=epochs)
     small = dataclasses.replace(t, hidden=16)
     return {r.name: r for r in [
@@ -146,24 +146,24 @@ def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
         Recipe("planner+contrastive", train=t, planner_positives=True, planner_negatives=True, contrastive=True),
         Recipe("around-convex", train=t, turn_power=2.0),
         Recipe("all", train=t, planner_positives=True, planner_negatives=True, contrastive=True, turn_power=2.0),
-        # the second round (issue 25, docs/learning.md "The strengthened suite"), one setting each
+        # tried against the strengthened suite (docs/learning.md), one setting each
         Recipe("planner-partial", train=t, planner_positives=True, planner_negatives=True, planner_partials=True),
         Recipe("decay", train=dataclasses.replace(t, weight_decay=0.01)),
         Recipe("small-decay", train=dataclasses.replace(small, weight_decay=0.01)),
         Recipe("ordinal", train=dataclasses.replace(t, levels=4)),
-        # the third round: chosen after the second round's table (docs/learning.md)
+        # chosen after the strengthened suite's table (docs/learning.md)
         Recipe("planner-graded", train=t, planner_positives=True, planner_negatives=True, planner_partials=True,
                graded_wrongs=True),
-        # the fourth: planner-graded without around's grid copies (after its around planned 90 %)
+        # planner-graded without around's grid copies (with them its around planned 90 %)
         Recipe("planner-graded-nogrid", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False),
-        # the sixth: around's strays with partial credit (after the fifth round's planning check)
+        # around's strays with partial credit (for the far corner the planning check found)
         Recipe("planner-graded-nogrid-strays", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False, strays=True),
-        # the seventh: the shipped recipe with around's own glitched demonstration left out (not its negatives)
+        # the shipped recipe with around's own glitched demonstration left out (not its negatives)
         Recipe("planner-graded-nogrid-trusted", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False, trusted_own=True),
-        # the eighth: the shipped recipe with closer's endings made short (chains start closer from near)
+        # the shipped recipe with closer's endings made short (chains start closer from near)
         Recipe("planner-graded-nogrid-near", train=t, planner_positives=True, planner_negatives=True,
                planner_partials=True, graded_wrongs=True, grid=False, near_starts=True),
     ]}

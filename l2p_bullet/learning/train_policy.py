@@ -156,8 +156,8 @@ def policy_settings(cfg: PolicyTrainConfig, history: list[float], seconds: float
     """The manifest's ``[policy]`` section describing the trained policy.
 
     ``final_progress_first`` / ``_last`` are means over the first and last ``window`` iterations
-    (``BEST_WINDOW``, fewer in a short run so that the two never overlap: with 2 iterations they were the
-    same mean, and disagreed with the last iteration's line, issue 26).
+    (``BEST_WINDOW``, fewer in a short run so that the two never overlap: with 2 iterations
+    overlapping windows would give the same mean, which would disagree with the last iteration's line).
     """
     w = max(1, min(BEST_WINDOW, len(history) // 2))
     return {
@@ -179,7 +179,7 @@ def policy_folder(action: str, bundle_dir: str | None, out_dir: str | None, forc
     inside the installed l2p-bullet package or an installed plugin's bundle without ``force``), else a
     copy of ACTION's bundle in ``out_dir`` (default ``runs/train-policy-<timestamp>``), which must not
     exist. The default never touches an installed bundle: in an editable install that is the
-    repository's committed files (issue 26). A copy interrupted half-way is removed: a partial bundle
+    repository's committed files. A copy interrupted half-way is removed: a partial bundle
     would block the same ``--out`` next time."""
     from ..plugins import registry
 

@@ -59,7 +59,7 @@ class ProgressTrainConfig:
 
     def to_dict(self) -> dict:
         out = {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
-        # the issue-25 options only when used: older manifests and caches keep matching
+        # the newer options only when used: older manifests and caches keep matching
         return out | {k: getattr(self, k) for k in ("weight_decay", "levels") if getattr(self, k) != getattr(
             ProgressTrainConfig, k)}
 
@@ -93,7 +93,7 @@ def all_demos(files: dict[str, list] | None = None, sessions: set[str] | None = 
     """Every action's demonstrations (optionally only some capture sessions). ``untrusted`` False leaves out
     the shipped ones whose tracking is not trusted (:data:`data.demos.UNTRUSTED`): the grade-free suite never
     scores them; the shipped bundles are trained with them (leaving them out failed the planning check,
-    docs/learning.md, fifth round). A user's own files are taken as they are."""
+    docs/learning.md, "around's far corner"). A user's own files are taken as they are."""
     out = {}
     for a in ACTIONS:
         given = (files or {}).get(a)

@@ -6,8 +6,8 @@ set the blocks down close. A mover that starts farther (the 2-D study's starts r
 and the arms' benchmark draw such pairs) is first slid straight towards the anchor until its centre is
 ``approach`` blocks from the anchor's (``ActionSpec.thresholds["approach"]``, where people start), keeping
 its yaw; the learned model then plans the action from there, scoring only what follows (the lead-in of
-:class:`~l2p_bullet.planning.problem.Problem`). Until 2026-11-26 such a start was refused up front
-(``far-around``); that check now refuses only a start from which no straight slide gets there.
+:class:`~l2p_bullet.planning.problem.Problem`). The up-front check (``far-around``) refuses only a
+start from which no straight slide gets there.
 
 The slide aims at the anchor; where another object or the workspace's rim blocks that line, at points of
 the same circle a little to either side (every 10 degrees, up to a quarter turn), nearest first; where the

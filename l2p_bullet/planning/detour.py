@@ -2,7 +2,7 @@
 
 Why: the planner's proposals (discrete rings 45 degrees apart, random moves, the policy) reach round an
 anchor in long chords. With other blocks near the anchor some chords are blocked, the greedy search backs
-up until its budget is spent, and the mover stops part of the way (issue 21: 0.26-0.76 of a turn). Here the
+up until its budget is spent, and the mover stops part of the way (0.26-0.76 of a turn). Here the
 2-D world itself is asked where the mover fits: on a polar grid around the anchor (bearings from the
 mover's own, radii up to the judge's ``near``, a few fixed yaws near the mover's), the legal poses are
 found, and a breadth-first search finds the shortest chain of neighbouring legal poses at one yaw that sweeps
@@ -212,9 +212,9 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
 RETRIES = 8
 """Grid steps banned per yaw before that yaw is given up (:func:`around_route`). Why: the grid's cells are
 legal poses, but the world's swept test of a straight move between two neighbouring cells is conservative (a
-separating axis with the margin) and can reject it near a bystander's corner, and until 2026-11-27 one such
-step made the whole way at that yaw count as none: the fingerprint's bystander scene (benchmarks/fingerprint.py)
-had no way round for that reason alone and now has one of 10 corners. Not enough for analysis chain/5021 (its
+separating axis with the margin) and can reject it near a bystander's corner; were one such
+step to make the whole way at that yaw count as none, the fingerprint's bystander scene (benchmarks/fingerprint.py)
+would have no way round for that reason alone (it has one of 10 corners). Not enough for analysis chain/5021 (its
 only way at one yaw, 15 degrees, passes a bystander through exactly such a step; banned, none is left)."""
 
 CHORD_CELLS = 12

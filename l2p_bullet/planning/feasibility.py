@@ -16,14 +16,14 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   along each bearing, whether the ray from that distance on meets the workspace at all, exactly).
 - ``far-around`` (raised by the planner, ``planning/approach.py``): the mover starts farther from the anchor
   than ``near`` blocks and no straight slide (at its yaw, within the wrist's range, clear of every object
-  and inside the workspace) brings it to where "around" is planned from. Before 2026-11-26 every start
-  farther than ``near`` blocks was refused here: the rule then judged the approach too.
+  and inside the workspace) brings it to where "around" is planned from. A start farther than ``near`` blocks is not refused as such:
+  the rule does not judge the approach.
 - ``blocked-around``: within ``near`` blocks of the anchor, the other objects and the workspace's rim leave
   the mover no legal pose (whatever its yaw) along some bearings, so no path sweeps the 0.8 turn: a
-  continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows (issue 21).
+  continuous sweep passes every bearing of its arc, each frame a pose the 2-D world allows.
   From afar (farther than ``near``), the rule reads "around" from the first frame within ``near`` on, so what
   counts is the way round, one way, from a legal pose where the mover can first come that near (an anchor
-  near the rim is reachable from its inward side only, and its way round is cut at the rim, 2026-11-27). A
+  near the rim is reachable from its inward side only, and its way round is cut at the rim). A
   bearing that the grid lets through only by its slack is looked at again finer; one with no legal pose is a
   wall no way round crosses. Both "around" checks live in ``sweep.py``.
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now
@@ -34,7 +34,7 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   starts; measured with each hold's outline, the least over the holds, which favours the arm).
 - ``no-motion`` (after the search, before anything is executed, :func:`check_moves`): the planner found
   no move that raises the progress, so its best plan leaves the mover where it is (one waypoint). It is
-  refused, never executed and reported as a run ("swept 0.00 of a turn", exit 0, issue 27.8).
+  refused, never executed and reported as a run ("swept 0.00 of a turn", exit 0).
 
 The room checks read the thresholds of the built-in rule judges (``judge/rules.py``: ``AROUND_TURNS``,
 ``AWAY_GAIN``, ``CLOSER_SHARE``, ``closer_room``) and apply to an action judged by those rules; a plugin

@@ -27,7 +27,7 @@ HIDDEN = 64
 LOG_STD_RANGE = (-3.0, 1.0)
 FEATURE_RADIUS = 0.25
 """The length (m) the policy's "room" features are divided by: the workspace disk's radius the shipped policies
-were trained on. Fixed since the planning disk grew (2026-11-27) so that their inputs do not change."""
+were trained on, not the current 0.35 m one: fixed, so that their inputs do not change."""
 
 
 def policy_features(frames: list[np.ndarray], anchor_poses: np.ndarray, size: float, progress: np.ndarray,

@@ -108,8 +108,8 @@ def arc_moves(problem: Problem, node: Node, n: int = 0) -> np.ndarray:
     swings back and forth instead of winding up).
 
     Why: the discrete rings are 45 degrees apart, so a way round the anchor is a chain of long chords, and
-    a bystander near the anchor blocks some of them; then "around" (or "past") stalls part of the way (issue
-    21: 0.26-0.76 of a turn). Shorter steps at several radii pass between the anchor and a bystander, or
+    a bystander near the anchor blocks some of them; then "around" (or "past") stalls part of the way
+    (0.26-0.76 of a turn). Shorter steps at several radii pass between the anchor and a bystander, or
     outside it, wherever the 2-D world finds room. ``n`` is ignored (the set is fixed for a node).
     """
     a = problem.anchor_pose

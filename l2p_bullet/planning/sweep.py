@@ -10,7 +10,7 @@
   (:func:`crossable`).
 
 Both are necessary conditions, measured with bounds that favour the arm, like every check of feasibility.py:
-a refusal is a real impossibility. Moved here from feasibility.py (2026-11-27, twelfth session); the gap test
+a refusal is a real impossibility. feasibility.py raises the refusals; the gap test
 is ``World2D.shortfall``, which the way round (detour.py) uses too.
 """
 
@@ -149,7 +149,7 @@ def crossable(world: World2D, margins: np.ndarray, centre: np.ndarray, bearings:
     the slack is settled by cutting each such pose's half-step box into 3 x 3 finer boxes (radius x yaw), keeping
     those that still pass with their own, 3 times smaller slack, :data:`REFINE_LEVELS` times: none left, and no
     legal pose met, means no legal pose on that bearing (its slack sound as the grid's); some left, crossable
-    (favouring the arm). Why (2026-11-27): near the far edge of the arm's reach ring the grid's slack let "around"
+    (favouring the arm). Why: near the far edge of the arm's reach ring the grid's slack let "around"
     through where no pose of the block fits within 24 degrees of bearing (analysis chain 5334, clause 2)."""
     cross = passing.any(1)
     r_of, y_of = (g.ravel() for g in np.meshgrid(radii, yaws, indexing="ij"))

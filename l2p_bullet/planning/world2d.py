@@ -18,7 +18,7 @@ Rules of the world (the same ones the arm obeys when it executes the path):
   is the smaller of the margin and the gap at its start.
 - A move is rejected when the grasp point (the mover's centre) leaves the workspace, the region the arm
   reaches pointing down (``core/workspace.py``). The disk is convex, so for it checking a straight move's
-  end points suffices; an arm whose reach ring bites into the disk (the KUKA iiwa's, issue 22) makes the
+  end points suffices; an arm whose reach ring bites into the disk (the KUKA iiwa's) makes the
   region non-convex, and a move must also keep its closest approach to the arm's base outside the ring's
   hole (``Workspace.segments_inside``).
 - Moves are interpolated at a given speed into frames (one frame every ``step`` metres of travel, or

@@ -278,7 +278,7 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
         raise BundleError(f'weights file name "{filename}" must be a plain *.safetensors name')
     path = safe_weight_name(folder, filename)
     # safetensors' save_file creates the file 0600 (its temporary file's mode): weights to install and
-    # share must follow the umask like every other file (0644 typically, issue 26). Written to a
+    # share must follow the umask like every other file (0644 typically). Written to a
     # temporary file and renamed, as the manifest is: a reader never sees half a weights file.
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_bytes(save({k: np.ascontiguousarray(v) for k, v in arrays.items()}))

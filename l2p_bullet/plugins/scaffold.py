@@ -51,7 +51,7 @@ _KIND = {"left-of": "left-of", "right-of": "right-of", "in-front-of": "in-front-
 def _viewer_arg(frame: str) -> str:
     """The example script's ``viewer_xy`` argument for a viewer-frame action ("" for a relative one): the
     viewpoint in the tracks' frame (the table's centre at the origin, 0.15 m blocks), without which
-    training refuses the files (issue 26: the script wrote none)."""
+    training refuses the files."""
     from ..data.demos import DEMO_BLOCK_SIZE
 
     xy = parse_frame(frame).viewpoint_xy()

@@ -46,7 +46,7 @@ def blind_labels(names: list[str]) -> list[str]:
     """Blind mode's labels in a fixed order, whatever order the plugins were discovered in: the built-in
     actions in the vocabulary's order (closer, away, next-to, past, around), then plugins by name, then
     "none". The order decides the keys (:func:`label_keys`), so a grader's keys never change with how
-    packages happen to be installed (issue 26: "a" was around on one machine, away in the docs)."""
+    packages happen to be installed (or "a" could be around on one machine and away in the docs)."""
     from ..core.vocabulary import ACTIONS
 
     names = [n for n in dict.fromkeys(names) if n != NONE_LABEL]

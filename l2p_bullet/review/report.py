@@ -351,7 +351,7 @@ def report_folder(folder: Path, db: Path) -> Iterator[Path]:
     asking for ``--force`` each time would only teach people to type it); never a folder with a person's
     files (their own ``report.md``), a run folder of another command, or one that is or holds the grades file.
     The earlier report stays aside until the new one is written, and comes back if writing it fails. A
-    folder from before the marker (2026-11-27) that holds only report files is taken as an earlier report."""
+    folder without the marker (an older version's) that holds only report files is taken as an earlier report."""
     from ..core.runfolder import run_folder
 
     _adopt_old_report(folder)

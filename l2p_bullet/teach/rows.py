@@ -92,7 +92,7 @@ class RowLesson(Lesson):
             "movers": names[1:], "anchors": [], "composite": True,
             "objects": [{"name": o.name, "color": o.color, "rgb": [round(255 * c) for c in COLORS[o.color][:3]],
                          "size": o.size, "x": o.xy[0], "y": o.xy[1], "yaw": o.yaw} for o in scene.objects],
-            "workspace": scene.workspace.to_dict(),  # x, y, r; and the ring's fields for a ring (issue 22)
+            "workspace": scene.workspace.to_dict(),  # x, y, r; and the ring's fields for a ring
             "table": {"half_x": scene.table.half_x, "half_y": scene.table.half_y},
         }
 

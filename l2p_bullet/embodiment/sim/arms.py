@@ -71,7 +71,7 @@ class ArmSpec:
     # (near, far): the horizontal distances (m) from the base between which the tool reaches the table pointing
     # down at every height a run uses (grasp to hover, any yaw the wrist allows); measured by
     # ``l2p-bullet arms --check`` (embodiment/arm_plugins.py). Where this ring does not hold the scene's workspace disk,
-    # the workspace is the disk cut by the ring (core/workspace.py; before 2026-11-27 the disk was shrunk to fit).
+    # the workspace is the disk cut by the ring (core/workspace.py), not shrunk to fit.
     reach: tuple[float, float] = (0.25, 0.78)
     # Where the arm's base frame stands in the scene frame (m): off the table's near edge, facing +x. An arm
     # whose reach ring is narrower or shifted (the xArm6's is 0.17-0.67 m) stands where its ring best holds

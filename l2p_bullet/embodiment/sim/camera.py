@@ -3,8 +3,8 @@
 The default camera, ``viewer``, stands behind the robot's right shoulder, on the side of the table that
 the viewer-frame prepositions are defined from (core/frames.py: the robot's base): the robot's left is
 the left of the image, so "move A to the left of B" ends with A on the left in the video, as in the
-2-D view, the teach page and the rule judge. ``robot`` faces the robot from across the table (the
-camera before issue 24: left and right are mirrored there), ``side`` looks from the robot's right,
+2-D view, the teach page and the rule judge. ``robot`` faces the robot from across the table (left
+and right are mirrored there), ``side`` looks from the robot's right,
 ``top`` straight down with the robot at the bottom (the 2-D view's orientation).
 
 Renderers: ``egl`` (the default) is PyBullet's EGL plugin, over Mesa's software driver where there is
@@ -47,8 +47,8 @@ class CameraPose:
 
 CAMERAS: dict[str, CameraPose] = {
     "viewer": CameraPose(),
-    "robot": CameraPose(eye=(0.5, -0.5, 0.6), target=(-0.15, 0.0, 0.1), fov=60.0, far=3.0, name="robot"),  # fov 50 until
-    # 2026-11-27: a 2 cm block at the 0.35 m workspace's rim near the camera fell below the frame
+    "robot": CameraPose(eye=(0.5, -0.5, 0.6), target=(-0.15, 0.0, 0.1), fov=60.0, far=3.0, name="robot"),  # fov 60, not 50:
+    # at 50 a 2 cm block at the 0.35 m workspace's rim near the camera falls below the frame
     "side": CameraPose(eye=(0.0, -1.0, 0.6), target=(0.0, 0.0, 0.05), fov=45.0, name="side"),
     "top": CameraPose(eye=(0.0, 0.0, 1.3), target=(0.0, 0.0, 0.0), up=(1.0, 0.0, 0.0), fov=30.0, name="top"),
 }

@@ -4,9 +4,9 @@ while staying near it (centre distance at most ``near`` blocks).
 A mover that starts farther than ``near`` blocks must first come near: the rule reads the motion from the
 first frame within ``near`` blocks on (the approach is not judged, what follows is, to its last frame).
 People's own "around" demonstrations all start near (1.4-4.5 blocks, median 2.5: they set the blocks
-down); a sentence like "move A around B" with A across the table means going there and round it, and
-before 2026-11-26 such a start could never pass, so the planner refused it up front (``far-around``).
-A motion that starts near is judged exactly as before.
+down); a sentence like "move A around B" with A across the table means going there and round it, which a
+rule that judged the whole motion could never pass (the planner would have to refuse such a start up front).
+A motion that starts near is judged from its first frame.
 """
 
 from __future__ import annotations
