@@ -37,7 +37,7 @@ test: lint
 lint: install
 	$(VENV)/bin/ruff check l2p_bullet tests benchmarks
 
-bench: install  # every benchmark at its default size: hours on 2 cores (README, "Benchmarks")
+bench: install  # every benchmark at its default size: hours on 2 cores (docs/benchmarks.md)
 	for b in benchmarks/bench_*.py; do $(PY) $$b || exit 1; done
 
 # Build outputs only. runs/ is not touched: it holds what people made (review answers in runs/reviews.sqlite,
