@@ -30,7 +30,7 @@ HISTORY = {
     "an issue number": re.compile(r"\bissues?[ -]?#?\d+", re.IGNORECASE),
     "an issue reference (#N)": re.compile(r"(?<![\w&\"'#/])#\d+\b(?![\"'\w])"),
     "a session or stop of the project's making": re.compile(
-        rf"\b{_ORDINAL}[ -](?:session|stop)\b|\bstops? \d+\b|(?-i:\bsession \d+\b)"
+        rf"\b{_ORDINAL}[ -](?:session|stop)\b|\bstops? \d+\b(?![.,]?\d*\s*(?:cm|mm|m|s|ms|blocks?|sides?|%|deg|degrees?|turns?)\b)|(?-i:\bsession \d+\b)"
         r"|\b(?:this|last|previous|earlier|next) session\b", re.IGNORECASE),
     "a round of an experiment": re.compile(rf"\b{_ORDINAL} round\b", re.IGNORECASE),
     "a date": re.compile(rf"\b20\d\d-\d\d-\d\d\b|\b{_MONTH}\.? (?:\d{{1,2}},? )?20\d\d\b"),
@@ -99,7 +99,8 @@ def test_the_scan_sees_history(tmp_path, text):
 @pytest.mark.parametrize("text", [
     'color = "#999"', "# one capture session per person: Session1, Session2", "# a grading session of people",
     "# round 1's first run uses IMPROVE_SEEDS", "def load_session(path): ...", "# the mover stops part of the way",
-    "# a stop sign", "# the 0.35 m disk", "# version 2026.1",
+    "# a stop sign", "# the 0.35 m disk", "# version 2026.1", "# the block stops 2 cm short",
+    "# the search stops 3 blocks out",
 ])
 def test_the_scan_leaves_the_products_words_alone(tmp_path, text):
     f = tmp_path / "probe.py"
