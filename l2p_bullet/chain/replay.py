@@ -16,8 +16,10 @@ from ..core.timing import StageClock
 from ..errors import L2PError, PathError
 from ..judge import judge_for
 from ..language import Command, manner_of_sentence
+from ..options import RunOptions
 from ..plugins import registry
-from .clauses import Clause, resolve_clauses
+from .clause import Clause
+from .clauses import resolve_clauses
 from .forecast import Step
 from .run import _execute
 
@@ -67,7 +69,6 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
         raise PathError(f"{source}: no clause of the chain has a plan to replay")
     sentence = str(doc["chain"].get("sentence") or "; ".join(s.clause.text for s in steps))
     clock = StageClock(on_stage)
-    return _execute(sentence, scene, steps, Path(out), clock, plugins, planner="replay", seed=seed,
-                    render=render_settings is not None, budget=None, threshold=None,
-                    render_settings=render_settings, world=None, replan=False, arm=spec,
+    options = RunOptions(seed=seed, render=render_settings is not None, render_settings=render_settings)
+    return _execute(sentence, scene, steps, Path(out), clock, plugins, options, spec, replan=False,
                     replay={"source": {"plan": None if path is None else str(path)}})
