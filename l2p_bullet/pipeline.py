@@ -190,8 +190,9 @@ def prepare(sentence: str, scene: Scene, options: RunOptions | None = None, *, p
 
 def prepare_command(cmd: Command, scene: Scene, arm: ArmSpec, plugins: list, options: RunOptions, *,
                     bundle: Any = None, clock: StageClock | None = None) -> Prepared:
-    """:func:`prepare`'s stages after the parse, for ``cmd`` resolved in ``scene`` (admitted: checked and fitted
-    to ``arm`` by :func:`~l2p_bullet.options.admit`): feasibility, then the plugin and its progress model."""
+    """:func:`prepare`'s stages after the parse, for ``cmd`` resolved in ``scene`` (admitted: checked and
+    fitted to ``arm`` by :func:`~l2p_bullet.options.admit`): feasibility, then the plugin and its progress
+    model."""
     clock = clock or StageClock(options.on_stage)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins, arm)
@@ -215,8 +216,8 @@ def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: f
     ``time_limit`` (seconds) also ends the search (an evaluation's equal-time comparisons).
     """
     cmd, opts = p.command, RunOptions.of(options or p.options, **changes)
-    result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=opts.planner, seed=opts.seed,
-                           budget=opts.budget, threshold=opts.threshold, time_limit=time_limit, arm=p.arm,
+    result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=opts.planner,
+                           seed=opts.seed, budget=opts.budget, threshold=opts.threshold, time_limit=time_limit, arm=p.arm,
                            **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm))
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
@@ -243,8 +244,8 @@ def perform(sentence: str, scene: Scene, options: RunOptions | None = None, *, p
     """
     opts = RunOptions.of(options, **changes)
     clock = StageClock(opts.on_stage)
-    return perform_prepared(prepare(sentence, scene, opts, plugins=plugins, bundle=bundle, clock=clock), clock,
-                            world=world)
+    p = prepare(sentence, scene, opts, plugins=plugins, bundle=bundle, clock=clock)
+    return perform_prepared(p, clock, world=world)
 
 
 def perform_prepared(p: Prepared, clock: StageClock, *, world: Any = None) -> PerformResult:
@@ -377,8 +378,8 @@ class PlanResult:
                 f"plan folder: {self.out_dir}" + (f"\nplot: {plot}" if plot.exists() else " (no plot: --no-plot)")]
 
 
-def plan_sentence(sentence: str, scene: Scene, options: RunOptions | None = None, *, plugins: list | None = None,
-                  **changes: Any) -> PlanResult:
+def plan_sentence(sentence: str, scene: Scene, options: RunOptions | None = None, *,
+                  plugins: list | None = None, **changes: Any) -> PlanResult:
     """Plan the one action ``sentence`` asks for in 2-D only and write plan.json (and plan.png unless
     ``plot`` is off) with the bundle's judge's verdict; ``options`` as :func:`perform`'s (the arm's reach and
     hand shape the plan). A chain's sentence goes through :func:`l2p_bullet.chain.plan.plan_chain`.

@@ -32,7 +32,8 @@ def split_clauses(sentence: str) -> list[str]:
 
 def is_chain(sentence: str, plugins: list | None = None) -> bool:
     """More than one clause, or a composite action's sentence ("make a row of A, B and C", whose clauses
-    its recipe makes: chain/composite.py): ``perform`` runs it as a chain; one clause keeps today's run."""
+    its recipe makes: chain/composite.py): performed as a chain of its clauses, where a lone clause is
+    performed and written as a one-clause run (:func:`one_clause`)."""
     return len(split_clauses(sentence)) > 1 or is_composite(sentence, plugins)
 
 

@@ -68,7 +68,8 @@ def plan_chain(sentence: str, scene: Scene, options: RunOptions | None = None, *
     if one_clause(clauses):
         return plan_prepared(prepare_command(clauses[0].command, scene, arm, plugins, opts))
     steps = forecast(clauses, scene, plugins, replace(opts, arm=arm))
-    with run_folder(opts.out_dir, force=opts.force, prefix="plan", command="plan", files=("plan-*.png",)) as folder:
+    with run_folder(opts.out_dir, force=opts.force, prefix="plan", command="plan",
+                    files=("plan-*.png",)) as folder:
         doc = steps[0].forecast.to_dict() | scene_fields(scene) | {  # scene, scene_sha256: as a one-clause plan.json
             "clauses": [{"clause": s.clause.index, "text": s.clause.text, "plan": None, "forecast": s.forecast.to_dict()}
                         for s in steps],

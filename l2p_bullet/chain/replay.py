@@ -67,8 +67,8 @@ def replay(path: str | None, demo: str | None, options: RunOptions, *, scene_pat
     ("around:0") with the options' arm, seed and rendering into their run folder.
 
     ``scene_path`` (its meshes from its folder or ``mesh_dirs``): where to replay it; a plan.json's recorded
-    scene otherwise (a mismatch is refused). ``mover``/``anchor``: the blocks of a demonstration or a scoring input. The run
-    folder never replaces what it reads (``path``, ``scene_path``)."""
+    scene otherwise (a mismatch is refused). ``mover``/``anchor``: the blocks of a demonstration or a scoring
+    input. The run folder never replaces what it reads (``path``, ``scene_path``)."""
     arm = options.arm_spec()  # an unknown arm fails before anything is read or written
     render = options.render_settings if options.render else None
     inputs = tuple(p for p in (path, scene_path) if p)
@@ -80,9 +80,10 @@ def replay(path: str | None, demo: str | None, options: RunOptions, *, scene_pat
             r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=options.seed,
                              on_stage=options.on_stage, arm=arm, path=path)
         return ChainReplay(str(path), r, folder)
-    scene = arm_plugins.fit_scene(replay_scene(path, scene, scene_path, mesh_dirs), arm)  # fitted to what it reaches
+    scene = arm_plugins.fit_scene(replay_scene(path, scene, scene_path, mesh_dirs), arm)  # what the arm reaches
     source = motion_source(path, demo, scene, mover, anchor)
-    with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay", inputs=inputs) as folder:
+    with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay",
+                    inputs=inputs) as folder:
         ex = run_replay(scene, source, folder, render, options.seed, on_stage=options.on_stage, arm=arm)
     return MotionReplay(source.label, ex, folder)
 

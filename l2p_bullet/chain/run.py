@@ -1,6 +1,6 @@
-"""``perform`` of any sentence: a chain of clauses, every clause resolved and forecast up front, then executed by
-the same arm in one continuous PyBullet episode, each clause re-planned from where the world really left the
-blocks.
+"""``perform`` of any sentence: a chain of clauses, every clause resolved and forecast up front, then
+executed by the same arm in one continuous PyBullet episode, each clause re-planned from where the world
+really left the blocks.
 
     resolve    every clause against the scene (clauses.py): names, colours, did-you-mean, per clause
     forecast   the whole chain planned in 2-D from the predicted end states (forecast.py): a clause that
@@ -153,8 +153,8 @@ def _round(v: float | None) -> float | None:
     return None if v is None else round(float(v), 6)
 
 
-def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None, *, plugins: list | None = None,
-                  world: Any = None, bundles: dict | None = None, steps: list[Step] | None = None,
+def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None, *,
+                  plugins: list | None = None, world: Any = None, bundles: dict | None = None, steps: list[Step] | None = None,
                   **changes: Any) -> ChainResult | PerformResult:
     """Perform any sentence (the front door of ``perform``): resolve its clauses, forecast and execute them,
     judge each; write one run folder. ``options`` (with ``changes`` by name: ``RunOptions.of``) are checked
@@ -164,9 +164,9 @@ def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None
     one-clause layout: its :class:`~l2p_bullet.pipeline.PerformResult` is returned. Everything a user can get
     wrong (a clause's words, a block not in the scene, a clause that cannot be planned from the predicted
     state) is an L2PError naming the clause, raised before any folder is made. ``world``: an open simulator
-    world to run in (reset to ``scene`` first); ``bundles``: action name -> loaded bundle, to reuse across runs;
-    ``steps``: the chain already resolved and forecast (``evaluate --chains`` draws it clause by clause):
-    ``sentence`` must be their texts joined.
+    world to run in (reset to ``scene`` first); ``bundles``: action name -> loaded bundle, to reuse across
+    runs; ``steps``: the chain already resolved and forecast (``evaluate --chains`` draws it clause by
+    clause): ``sentence`` must be their texts joined.
     """
     opts = RunOptions.of(options, **changes)
     clock = StageClock(opts.on_stage)
@@ -177,8 +177,9 @@ def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None
         clauses = resolve_clauses(sentence, scene, plugins)
         if one_clause(clauses):
             cmd = clauses[0].command
-            p = prepare_command(cmd, scene, arm, plugins, opts, bundle=(bundles or {}).get(cmd.action), clock=clock)
-            return perform_prepared(p, clock, world=world)
+            bundle = (bundles or {}).get(cmd.action)
+            return perform_prepared(prepare_command(cmd, scene, arm, plugins, opts, bundle=bundle, clock=clock), clock,
+                                    world=world)
         clock.stage("forecast", f"planning the {len(clauses)} clauses from their predicted states")
         steps = forecast(clauses, scene, plugins, replace(opts, arm=arm), bundles=bundles)
     clock.stop()
@@ -255,8 +256,8 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             world.close()
 
 
-def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, options: RunOptions, arm: ArmSpec, *,
-            first: int, replan: bool) -> ClauseResult:
+def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, options: RunOptions,
+            arm: ArmSpec, *, first: int, replan: bool) -> ClauseResult:
     """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
     planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
     from ..embodiment import execute as ex
@@ -270,7 +271,8 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             check_feasible(cmd, now, plugins, arm)
             target = step.clause.target
             plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=options.planner,
-                                 seed=options.seed, budget=options.budget, threshold=options.threshold, target=None if target is None else target(now),
+                                 seed=options.seed, budget=options.budget, threshold=options.threshold,
+                                 target=None if target is None else target(now),
                                  arm=arm, **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size, arm))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"

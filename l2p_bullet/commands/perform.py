@@ -54,8 +54,8 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
 
     with reporting(sentence, as_json):
         settings = None if no_render else render_settings(resolution, fps, camera, renderer)
-        options = RunOptions(planner=planner, seed=seed, arm=arm, render=not no_render, render_settings=settings,
-                             out_dir=out, force=force, on_stage=stage_printer(quiet))
+        options = RunOptions(planner=planner, seed=seed, arm=arm, render=not no_render,
+                             render_settings=settings, out_dir=out, force=force, on_stage=stage_printer(quiet))
         r = perform_chain(sentence, load_scene_or_default(scene_path), options)
     say(r, as_json, indent=1)
 

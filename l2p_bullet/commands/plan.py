@@ -36,8 +36,8 @@ def plan_cmd(sentence: str, scene_path: str | None, planner: str, out: str | Non
     from ..options import RunOptions
 
     with reporting(sentence, as_json):
-        options = RunOptions(planner=planner, seed=seed, budget=budget, threshold=threshold, arm=arm, out_dir=out,
-                             force=force, plot=not no_plot)
+        options = RunOptions(planner=planner, seed=seed, budget=budget, threshold=threshold, arm=arm,
+                             out_dir=out, force=force, plot=not no_plot)
         result = plan_chain(sentence, load_scene_or_default(scene_path), options)
     say(result, as_json)
 

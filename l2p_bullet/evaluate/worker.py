@@ -176,7 +176,7 @@ class Worker:
 
     def _plan(self, task: Task, row: dict) -> None:
         scene = Scene.from_dict(task.scene, source=task.scene_id)
-        p = prepare(task.sentence, scene, task.options(), plugins=self.plugins)  # refused up front, as plan refuses it
+        p = prepare(task.sentence, scene, task.options(), plugins=self.plugins)  # refused up front, as by plan
         t = time.perf_counter()
         plan, v = judged_plan(p, time_limit=task.time_limit)
         plan_s = time.perf_counter() - t
