@@ -20,14 +20,15 @@ planning run, and never touches the disk.
 
 One path for every caller: :func:`prepare` (parse, feasibility, load) and :func:`judged_plan` (plan, and
 the judge's verdict on it; an optional time limit) are the stages ``perform``, ``plan`` and the
-evaluation worker (``evaluate/worker.py``) share.
+evaluation worker (``evaluate/worker.py``) share. The options travel as one checked
+:class:`~l2p_bullet.options.RunOptions`; :func:`prepare_command`, :func:`perform_prepared` and
+:func:`plan_prepared` are the same stages for a command already resolved (l2p_bullet/chain's front door
+resolves every sentence as a chain, and performs a lone clause through them).
 """
 
 from __future__ import annotations
 
 import json
-import numbers
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -35,23 +36,21 @@ from typing import Any
 import numpy as np
 
 from . import planning
-from .core.contracts import MAX_SEED, Plan, trajectory_poses
+from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .embodiment import arm_plugins
 from .embodiment.manners import check_manner, manner_planning
 from .embodiment.sim.arms import PANDA, ArmSpec
-from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError, listed
+from .errors import L2PError, LanguageError, PluginError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
 from .language import Command, parse
 from .manners import registry as manners
-from .planning import feasibility, resolve_planner
+from .options import RunOptions, admit
+from .planning import feasibility
 from .planning.plot import plot_plan
 from .plugins import registry
-
-StageFn = Callable[[str], None]
 
 DISTURBED_M = 0.001
 """A block other than the mover that moved more than this (m) during the run makes the verdict a failure."""
@@ -97,6 +96,18 @@ class PerformResult:
             "grasp": self.grasp,
             **({} if c.manner == "slide" else {"manner": c.manner}),  # a slide's output names no manner
         }
+
+    def text(self) -> list[str]:
+        """What ``perform`` prints: the verdict, the numbers that explain it, where the run went."""
+        c, v = self.command, self.verdict
+        fp = "n/a" if self.final_progress is None else f"{self.final_progress:.2f}"
+        video = self.files.get("video")
+        return [f'{c.mover} {c.preposition} {" and ".join(c.anchors)}: action "{c.action}", '
+                f'{"success" if self.success else "FAILED"} ({v.get("reason", "")})',
+                f"final progress {fp} (planned {self.planned_progress:.2f}), "
+                f"block within {self.max_deviation_m * 1000:.1f} mm of the plan, "
+                f"anchor moved {self.anchor_displacement_m * 1000:.1f} mm, {self.timings.get('total', 0):.1f} s",
+                f"run folder: {self.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)")]
 
 
 def _round(v: float | None) -> float | None:
@@ -156,26 +167,33 @@ class Prepared:
     model: Any  # the bundle's numpy progress model
     judge: Any  # judge_for(bundle)
     arm: ArmSpec = PANDA  # the arm that performs it (its reach has fitted the scene's workspace)
+    options: RunOptions = field(default_factory=RunOptions)  # checked; the stages after read them here
 
 
-def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int = 0, budget: int | None = None,
-            threshold: float | None = None, plugins: list | None = None, bundle: Any = None,
-            clock: StageClock | None = None, arm: str | ArmSpec | None = None) -> Prepared:
+def prepare(sentence: str, scene: Scene, options: RunOptions | None = None, *, plugins: list | None = None,
+            bundle: Any = None, clock: StageClock | None = None, **changes: Any) -> Prepared:
     """The stages before anything is planned or written: parse, feasibility, load (timed on ``clock``).
 
     A typo in an option, a sentence that names nothing, a scene the arm cannot do or a broken plugin
-    fails here in milliseconds, before the disk is touched. ``bundle``: use that loaded bundle instead of
-    the installed plugin's (it must be the sentence's action). ``arm``: an arm's name (``l2p-bullet arms``) or
-    spec, default the Panda; the scene's workspace is fitted to its reach (a block beyond it is refused).
+    fails here in milliseconds, before the disk is touched. ``options`` (with ``changes`` by name, e.g.
+    ``seed=3``: ``RunOptions.of``): the arm's reach fits the scene's workspace (a block beyond it is refused).
+    ``bundle``: use that loaded bundle instead of the installed plugin's (it must be the sentence's action).
     """
-    clock = clock or StageClock()
+    opts = RunOptions.of(options, **changes)
+    clock = clock or StageClock(opts.on_stage)
     clock.stage("parse")
-    check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
-    check_scene(scene)
-    arm = arm_plugins.get(arm)
-    scene = arm_plugins.fit_scene(scene, arm)
+    scene, arm = admit(scene, opts)  # a typo must fail before anything is loaded or written
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
+    return prepare_command(cmd, scene, arm, plugins, opts, bundle=bundle, clock=clock)
+
+
+def prepare_command(cmd: Command, scene: Scene, arm: ArmSpec, plugins: list, options: RunOptions, *,
+                    bundle: Any = None, clock: StageClock | None = None) -> Prepared:
+    """:func:`prepare`'s stages after the parse, for ``cmd`` resolved in ``scene`` (admitted: checked and
+    fitted to ``arm`` by :func:`~l2p_bullet.options.admit`): feasibility, then the plugin and its progress
+    model."""
+    clock = clock or StageClock(options.on_stage)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins, arm)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
@@ -186,19 +204,20 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     model = bundle.progress_model()
     judge = judge_for(bundle)
     clock.stop()
-    return Prepared(cmd, scene, bundle, model, judge, arm)
+    return Prepared(cmd, scene, bundle, model, judge, arm, options)
 
 
-def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget: int | None = None,
-                threshold: float | None = None, time_limit: float | None = None) -> tuple[Plan, dict[str, Any]]:
+def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: float | None = None,
+                **changes: Any) -> tuple[Plan, dict[str, Any]]:
     """Plan the prepared command in 2-D and judge the plan with the bundle's judge: (plan, verdict).
 
     The plan maximises the action's learned progress; the judge only reads the result (the planner never
-    sees it). ``time_limit`` (seconds) also ends the search (an evaluation's equal-time comparisons).
+    sees it). The options are the prepared ones unless ``options`` or ``changes`` (by name) say otherwise.
+    ``time_limit`` (seconds) also ends the search (an evaluation's equal-time comparisons).
     """
-    cmd = p.command
-    result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
-                           budget=budget, threshold=threshold, time_limit=time_limit, arm=p.arm,
+    cmd, opts = p.command, RunOptions.of(options or p.options, **changes)
+    result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=opts.planner,
+                           seed=opts.seed, budget=opts.budget, threshold=opts.threshold, time_limit=time_limit, arm=p.arm,
                            **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm))
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
@@ -209,12 +228,11 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     return result, verdict
 
 
-def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
-            seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
-            threshold: float | None = None, on_stage: StageFn | None = None,
-            plugins: list | None = None, render_settings: Any = None, world: Any = None,
-            bundle: Any = None, arm: str | ArmSpec | None = None) -> PerformResult:
-    """Parse, plan, execute, record and judge ``sentence`` in ``scene``; write the run folder.
+def perform(sentence: str, scene: Scene, options: RunOptions | None = None, *, plugins: list | None = None,
+            world: Any = None, bundle: Any = None, **changes: Any) -> PerformResult:
+    """Parse, plan, execute, record and judge the one action ``sentence`` asks for in ``scene``; write the run
+    folder (``options``, with ``changes`` by name: ``RunOptions.of``). A chain's sentence goes through
+    :func:`l2p_bullet.chain.perform_chain`, the front door for every sentence.
 
     ``world``: an open simulator world to execute in (``execute_path`` resets it to ``scene`` first, so
     the run records what a new world would); a batch (``l2p-bullet evaluate``) keeps one per process.
@@ -224,16 +242,18 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
     failed, so a failed run is still explained on disk. ``bundle`` performs with that loaded bundle
     instead of the installed plugin's (``l2p-bullet improve`` tries each round's re-trained bundle).
     """
-    clock = StageClock(on_stage)
-    p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins,
-                bundle=bundle, clock=clock, arm=arm)
-    cmd = p.command
-    if render:  # bad settings fail here, before the run folder exists (they were found only at execute)
-        check_render_settings(render_settings)
-    with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
+    opts = RunOptions.of(options, **changes)
+    clock = StageClock(opts.on_stage)
+    p = prepare(sentence, scene, opts, plugins=plugins, bundle=bundle, clock=clock)
+    return perform_prepared(p, clock, world=world)
+
+
+def perform_prepared(p: Prepared, clock: StageClock, *, world: Any = None) -> PerformResult:
+    """:func:`perform`'s stages after :func:`prepare`: plan, execute, judge, written into the run folder."""
+    cmd, opts = p.command, p.options
+    with run_folder(opts.out_dir, force=opts.force, prefix="perform", command="perform") as out:
         try:
-            return _run(p, out, clock, planner=planner, seed=seed, render=render, budget=budget,
-                        threshold=threshold, render_settings=render_settings, world=world)
+            return _run(p, out, clock, world)
         except L2PError as e:
             clock.stop()
             write_summary(out / "summary.json", {
@@ -249,42 +269,6 @@ def perform(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, p
             raise
 
 
-def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:
-    """Every option of ``perform``/``plan`` that can be checked without work: before any folder is touched.
-    numpy's integers and floats count as numbers (a seed drawn from a generator is an ``np.int64``)."""
-    resolve_planner(planner)
-    if not _integer(seed) or not 0 <= seed <= MAX_SEED:
-        raise PlanError(f"the seed must be an integer from 0 to {MAX_SEED} (got {str(seed)[:20]})")
-    if budget is not None and (not _integer(budget) or budget < 1):
-        raise PlanError(f"the budget must be a positive number of search steps (got {str(budget)[:20]})")
-    if threshold is not None and not (isinstance(threshold, numbers.Real) and not isinstance(threshold, bool)
-                                      and 0.0 <= threshold <= 1.0):
-        raise PlanError(f"the threshold must be a progress between 0 and 1 (got {str(threshold)[:20]})")
-
-
-def check_scene(scene: object) -> Scene:
-    """``scene`` as the front door takes it: a :class:`Scene` (``core.scene.load_scene`` reads a file), checked."""
-    if not isinstance(scene, Scene):
-        raise SceneError(f"the scene must be a l2p_bullet.core.scene.Scene (got {type(scene).__name__}); read a "
-                         "scene file with load_scene(path), or build one with Scene.from_dict(...)")
-    return scene.validate()
-
-
-def check_render_settings(settings: object) -> None:
-    """None (the defaults) or valid :class:`~l2p_bullet.embodiment.sim.camera.RenderSettings`."""
-    from .embodiment.sim.camera import RenderSettings
-
-    if settings is None:
-        return
-    if not isinstance(settings, RenderSettings):
-        raise ExecutionError(f"render_settings must be a RenderSettings (got {type(settings).__name__})")
-    settings.check()
-
-
-def _integer(v: object) -> bool:
-    return isinstance(v, numbers.Integral) and not isinstance(v, bool)
-
-
 def _summary_or_empty(path: Path) -> dict:
     try:
         d = json.loads(path.read_text())
@@ -293,16 +277,17 @@ def _summary_or_empty(path: Path) -> dict:
     return d if isinstance(d, dict) else {"schema": 1}
 
 
-def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, render: bool, budget: int | None,
-         threshold: float | None, render_settings: Any, world: Any = None) -> PerformResult:
+def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> PerformResult:
     # lazy: the arm's modules (execution, recording, the simulator's facade) only when something is performed;
     # ``plan`` and the up-front refusals never load them
     from .embodiment import execute
 
     cmd, scene, bundle, model, judge = p.command, p.scene, p.bundle, p.model, p.judge
+    opts = p.options
+    render, render_settings, seed = opts.render, opts.render_settings, opts.seed
     size = scene.get(cmd.mover).size
-    clock.stage("plan", f"planning with the {planner} planner")
-    plan, planned_verdict = judged_plan(p, planner=planner, seed=seed, budget=budget, threshold=threshold)
+    clock.stage("plan", f"planning with the {opts.planner} planner")
+    plan, planned_verdict = judged_plan(p)
     clock.stop()
     plan.save(out / "plan.json")
     viewer = getattr(model, "viewpoint", None)
@@ -382,23 +367,35 @@ class PlanResult:
                 "stopped": self.plan.stopped, "final_progress": x["final_progress"], "steps": x["steps"],
                 "seconds": x["seconds"], "success": self.verdict["success"], "reason": self.verdict["reason"]}
 
+    def text(self) -> list[str]:
+        """What ``plan`` prints, in ``perform``'s style."""
+        d, cmd = self.to_dict(), self.command
+        plot = self.out_dir / "plan.png"
+        return [f'{cmd.mover} {cmd.preposition} {" and ".join(cmd.anchors)}: action "{cmd.action}", '
+                f'{"success" if d["success"] else "FAILED"} on the plan ({d["reason"]})',
+                f"final progress {d['final_progress']:.2f}, {d['steps']} steps of the {d['planner']} planner "
+                f"(stopped: {d['stopped']}), {d['seconds']:.2f} s",
+                f"plan folder: {self.out_dir}" + (f"\nplot: {plot}" if plot.exists() else " (no plot: --no-plot)")]
 
-def plan_sentence(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
-         seed: int = 0, budget: int | None = None, threshold: float | None = None, force: bool = False,
-         plot: bool = True, plugins: list | None = None, arm: str | ArmSpec | None = None) -> PlanResult:
-    """Plan ``sentence`` in 2-D only and write plan.json (and plan.png) with the bundle's judge's verdict.
 
-    The same stages as ``perform`` up to the plan (:func:`prepare`, :func:`judged_plan`); the verdict goes
-    into plan.json's ``verdict``. ``arm``: as :func:`prepare` (its reach and hand shape the plan).
+def plan_sentence(sentence: str, scene: Scene, options: RunOptions | None = None, *,
+                  plugins: list | None = None, **changes: Any) -> PlanResult:
+    """Plan the one action ``sentence`` asks for in 2-D only and write plan.json (and plan.png unless
+    ``plot`` is off) with the bundle's judge's verdict; ``options`` as :func:`perform`'s (the arm's reach and
+    hand shape the plan). A chain's sentence goes through :func:`l2p_bullet.chain.plan.plan_chain`.
     """
-    p = prepare(sentence, scene, planner=planner, seed=seed, budget=budget, threshold=threshold, plugins=plugins,
-                arm=arm)
-    cmd = p.command
-    result, verdict = judged_plan(p, planner=planner, seed=seed, budget=budget, threshold=threshold)
+    return plan_prepared(prepare(sentence, scene, RunOptions.of(options, **changes), plugins=plugins))
+
+
+def plan_prepared(p: Prepared) -> PlanResult:
+    """:func:`plan_sentence`'s stages after :func:`prepare` (:func:`judged_plan`); the verdict goes into
+    plan.json's ``verdict``."""
+    cmd, opts = p.command, p.options
+    result, verdict = judged_plan(p)
     result.extra["verdict"] = verdict
-    with run_folder(out_dir, force=force, prefix="plan", command="plan") as folder:
+    with run_folder(opts.out_dir, force=opts.force, prefix="plan", command="plan") as folder:
         result.save(folder / "plan.json")
-        if plot:
+        if opts.plot:
             plot_plan(result, p.scene, folder / "plan.png")  # the workspace fitted to the arm
     return PlanResult(cmd, result, verdict, folder)
 

@@ -151,6 +151,7 @@ FLOORS: tuple[tuple[str, ...], ...] = (
     ("embodiment",),  # the arm: motion, smoothing, execution, recording, sim/ (pybullet)
     ("planning",),  # 2-D planning; reads the hand's reach from embodiment
     ("plugins",),  # registry, bundles, scaffold, validation: the shape of an action
+    ("options",),  # RunOptions: what a run is asked to do, checked once at the front door, handed down whole
     ("pipeline", "recognition"),  # perform and plan: the stages in order; recognising an action in a motion
     ("learning", "composite"),  # training (torch), feedback, agreement (improve performs through the pipeline);
     # composite actions' recipes learned from recognised demonstrations, and their bundles

@@ -1,11 +1,14 @@
 """Chains of instructions: "move A next to B, then slide C past A and then move D around B" as one run.
 
-clauses.py splits and resolves the sentence, forecast.py plans the whole chain in 2-D up front, run.py
-executes it clause by clause in one PyBullet episode, files.py writes the run folder (docs/perform.md,
-"Chains").
+The front door of ``perform`` and ``plan`` for every sentence: a single sentence is a chain of one clause
+(performed and written as one-clause runs are). clause.py is the clause record, clauses.py splits and
+resolves the sentence (composite.py makes a composite's clauses), forecast.py plans the whole chain in 2-D
+up front, run.py executes it clause by clause in one PyBullet episode, files.py writes the run folder
+(docs/perform.md, "Chains").
 """
 
-from .clauses import MAX_CLAUSES, Clause, is_chain, resolve_clauses, split_clauses
+from .clause import MAX_CLAUSES, Clause
+from .clauses import is_chain, resolve_clauses, split_clauses
 from .run import ChainResult, ClauseResult, perform_chain
 
 __all__ = ["MAX_CLAUSES", "ChainResult", "Clause", "ClauseResult", "is_chain", "perform_chain", "resolve_clauses",

@@ -10,8 +10,6 @@ colour or a block that is not in the scene in clause 3 costs milliseconds and na
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
-from typing import Any
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
@@ -19,25 +17,10 @@ from ..language import MAX_SENTENCE, Command, known_verbs, phrase_tokens, strip_
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
-
-MAX_CLAUSES = 10
-"""Most clauses in one chain: past a handful of steps errors compound (CALVIN judges chains of five)."""
+from .clause import MAX_CLAUSES, Clause, named
+from .composite import composite_clauses, is_composite
 
 _JOINS = re.compile(r"\s*(?:;|,?\s*\band\s+then\b|,?\s*\bthen\b|,?\s*\bafter\s+that\b)\s*,?\s*", re.IGNORECASE)
-
-
-@dataclass(frozen=True)
-class Clause:
-    """One step of a chain: its 1-based ``index``, its own ``text`` and what it asks for."""
-
-    index: int
-    text: str
-    command: Command
-    target: Any = None  # a composite's place for the mover: scene -> [x, y, yaw] (chain/composite.py), or None
-
-    def label(self) -> str:
-        """How errors and captions name the clause: 'clause 2 ("slide C past A")'."""
-        return f'clause {self.index} ("{self.text}")'
 
 
 def split_clauses(sentence: str) -> list[str]:
@@ -49,23 +32,23 @@ def split_clauses(sentence: str) -> list[str]:
 
 def is_chain(sentence: str, plugins: list | None = None) -> bool:
     """More than one clause, or a composite action's sentence ("make a row of A, B and C", whose clauses
-    its recipe makes: chain/composite.py): ``perform`` runs it as a chain; one clause keeps today's run."""
-    from .composite import is_composite  # lazy: chain/composite.py imports this module's Clause
-
+    its recipe makes: chain/composite.py): performed as a chain of its clauses, where a lone clause is
+    performed and written as a one-clause run (:func:`one_clause`)."""
     return len(split_clauses(sentence)) > 1 or is_composite(sentence, plugins)
 
 
 def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """Every clause parsed against ``scene`` and the installed phrases; the first problem raised as a
-    one-line error of its own type (LanguageError, UnknownObjectError...) that names the clause."""
-    from .composite import composite_clauses  # lazy: see is_chain
+    one-line error of its own type (LanguageError, UnknownObjectError...) that names the clause.
 
+    A sentence of one clause is the chain of that one clause, resolved whole as ``perform`` always resolved
+    it (its own words, its own errors: nothing to name a clause by)."""
     made = composite_clauses(sentence, scene, plugins)
     if made is not None:
         return made
     texts = split_clauses(sentence)
-    if not texts:
-        raise LanguageError('the sentence is empty; try for example "move A next to B, then move C around A"')
+    if len(texts) <= 1:
+        return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
     if len(texts) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(texts)} clauses; a chain has at most {MAX_CLAUSES}")
     clauses: list[Clause] = []
@@ -76,7 +59,7 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         try:
             cmd = resolve(full, scene, plugins)
         except L2PError as e:
-            raise _named(e, f'clause {i} ("{text}")') from None
+            raise named(e, f'clause {i} ("{text}")') from None
         clauses.append(Clause(i, text, cmd))
     return clauses
 
@@ -102,7 +85,8 @@ def _gapped(verb: str) -> bool:
     return any(v.split("...")[0].strip() == verb and "..." in v for v in manners.verb_table())
 
 
-def _named(e: L2PError, where: str) -> L2PError:
-    """``e`` (same type and attributes: an InfeasibleError keeps its ``check``) with its message prefixed."""
-    e.args = (f"{where}: {e}",) + e.args[1:]
-    return e
+
+def one_clause(clauses: list[Clause]) -> bool:
+    """Whether ``clauses`` is a lone clause of a plain sentence (no composite's target): it is performed,
+    planned and written as a one-clause run (the run folder's one-clause layout, DESIGN.md section 4)."""
+    return len(clauses) == 1 and clauses[0].target is None

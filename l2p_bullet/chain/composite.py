@@ -35,6 +35,7 @@ from ..errors import InfeasibleError, L2PError, LanguageError, PluginError
 from ..language import parse_list, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
 from ..plugins import registry
+from .clause import MAX_CLAUSES, Clause, named
 
 GAP_OK = 0.35
 LINE_OK = 0.25
@@ -84,8 +85,6 @@ def load_recipe(action: str, plugins: list | None) -> Recipe:
 
 def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list | None:
     """The chain's clauses for a composite sentence, each with its slot; None for any other sentence."""
-    from .clauses import MAX_CLAUSES, Clause, _named  # lazy: clauses.py imports this module
-
     phrases = composite_phrases(plugins)
     lc = parse_list(sentence, scene, phrases) if phrases else None
     if lc is None:
@@ -108,7 +107,7 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
         try:
             cmd = resolve(text, scene, plugins)
         except L2PError as e:
-            raise _named(e, f'clause {k} ("{text}") of "{lc.sentence}"') from None
+            raise named(e, f'clause {k} ("{text}") of "{lc.sentence}"') from None
         slot = RowSlot(stay, stay if k == 1 else movers[k - 2], (float(direction[0]), float(direction[1])),
                        size * (1 + recipe.spacing), recipe.aligned)
         clauses.append(Clause(k, text, cmd, slot))

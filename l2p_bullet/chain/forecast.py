@@ -16,13 +16,13 @@ from .. import planning
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..embodiment.manners import manner_planning
-from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_context, judge_for
 from ..manners import registry as manners
+from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
-from .clauses import Clause, _named
+from .clause import Clause, named
 
 
 @dataclass
@@ -40,11 +40,11 @@ class Step:
         return getattr(self.model, "viewpoint", None)
 
 
-def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str, seed: int,
-             budget: int | None, threshold: float | None, bundles: dict | None = None,
-             arm: ArmSpec = PANDA) -> list[Step]:
-    """Load each clause's action (once per action) and plan the chain from the predicted states, for ``arm``
-    (its reach, hand and gripper: the same checks a one-clause run makes).
+def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOptions | None = None, *,
+             bundles: dict | None = None, **changes: Any) -> list[Step]:
+    """Load each clause's action (once per action) and plan the chain from the predicted states with the
+    options' planner, seed, budget and threshold, for their arm (its reach, hand and gripper: the same checks
+    a one-clause run makes). ``changes``: options by name (``RunOptions.of``).
 
     Raises the failing check's error (InfeasibleError with ``.check`` and ``details["clause"]``, or a
     PlanError / PathError) with the clause named in its message, before anything moves or is written.
@@ -52,6 +52,8 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
     # lazy: the arm's modules load only when a chain is forecast (plan and parsing stay light)
     from ..embodiment.execute import check_for
 
+    opts = RunOptions.of(options, **changes)
+    arm = opts.arm_spec()
     loaded: dict[str, tuple[Any, Any, Any]] = {}
     for c in clauses:
         name = c.command.action
@@ -65,20 +67,20 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, *, planner: str
         bundle, model, judge = loaded[cmd.action]
         try:
             check_feasible(cmd, predicted, plugins, arm)
-            plan = planning.plan(predicted, cmd.mover, list(cmd.anchors), bundle, planner=planner, seed=seed,
-                                 budget=budget, threshold=threshold,
+            plan = planning.plan(predicted, cmd.mover, list(cmd.anchors), bundle, planner=opts.planner,
+                                 seed=opts.seed, budget=opts.budget, threshold=opts.threshold,
                                  target=None if c.target is None else c.target(predicted), arm=arm,
                                  **manner_planning(manners.get(cmd.manner), predicted.get(cmd.mover).size, arm))
             check_for(manners.get(cmd.manner), predicted, cmd.mover, plan.path, arm)
         except InfeasibleError as e:
             e.details["clause"] = c.index
-            raise _named(e, f"{c.label()} cannot be planned ({e.check})") from None
+            raise named(e, f"{c.label()} cannot be planned ({e.check})") from None
         except PlanError as e:
-            raise _named(PlanError(str(e)), f"{c.label()} cannot be planned (plan)") from None
+            raise named(PlanError(str(e)), f"{c.label()} cannot be planned (plan)") from None
         except PathError as e:
-            raise _named(PathError(str(e)), f"{c.label()} cannot be planned (path)") from None
+            raise named(PathError(str(e)), f"{c.label()} cannot be planned (path)") from None
         except L2PError as e:
-            raise _named(e, c.label()) from None
+            raise named(e, c.label()) from None
         poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
         plan.extra["verdict"] = judge.judge(plan.path, plan.anchor_pose, plan.size,
                                             final_progress=plan.extra.get("final_progress"),

@@ -1,4 +1,7 @@
-"""``replay`` of a chain run's plan.json: every clause's executed plan, in order, in one episode again.
+"""``replay``: a motion (a plan.json, a scoring input, a demonstration) or a chain run's plan.json executed by
+the arm again, through one door (:func:`replay`) that reads the file once and picks the replayer.
+
+A chain's plan.json: every clause's executed plan, in order, in one episode again.
 
 The chain's plan.json keeps the scene the chain started from and each clause's plan as executed; the
 simulation is deterministic, so replaying them in that scene reproduces the run (each clause's path still
@@ -7,19 +10,82 @@ has to start where its block is: replayed in another scene, it is refused as one
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..core.contracts import Plan
-from ..core.scene import Scene
+from ..core.contracts import Plan, read_json
+from ..core.runfolder import run_folder
+from ..core.scene import Scene, load_scene
 from ..core.timing import StageClock
+from ..embodiment import arm_plugins
+from ..embodiment.replay import motion_source, replay_scene, run_replay
 from ..errors import L2PError, PathError
 from ..judge import judge_for
 from ..language import Command, manner_of_sentence
+from ..options import RunOptions
 from ..plugins import registry
-from .clauses import Clause, resolve_clauses
+from .clause import Clause
+from .clauses import resolve_clauses
 from .forecast import Step
-from .run import _execute
+from .run import ChainResult, _execute
+
+
+@dataclass
+class MotionReplay:
+    """What ``replay`` did with one motion: what was replayed, the execution's result, the run folder."""
+
+    label: str
+    execution: Any  # embodiment.execute's result: duration, deviation, files
+    out_dir: Path
+
+    def text(self) -> list[str]:
+        ex, video = self.execution, self.execution.files.get("video")
+        return [f"replayed {self.label}: {ex.duration_s:.1f} s simulated, "
+                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
+                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm",
+                f"run folder: {self.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)")]
+
+
+@dataclass
+class ChainReplay:
+    """What ``replay`` did with a chain run's plan.json: the file, the chain's result, the run folder."""
+
+    source: str
+    result: ChainResult
+    out_dir: Path
+
+    def text(self) -> list[str]:
+        v = self.result.verdict()
+        return [f"replayed the chain {self.source}: {v['completed']} of {v['clauses']} clauses done ({v['reason']})",
+                f"run folder: {self.out_dir}"]
+
+
+def replay(path: str | None, demo: str | None, options: RunOptions, *, scene_path: str | None = None,
+           mesh_dirs: tuple = (), mover: str = "A", anchor: str = "B") -> MotionReplay | ChainReplay:
+    """Replay ``path`` (a plan.json, a chain run's plan.json or a scoring input) or the demonstration ``demo``
+    ("around:0") with the options' arm, seed and rendering into their run folder.
+
+    ``scene_path`` (its meshes from its folder or ``mesh_dirs``): where to replay it; a plan.json's recorded
+    scene otherwise (a mismatch is refused). ``mover``/``anchor``: the blocks of a demonstration or a scoring
+    input. The run folder never replaces what it reads (``path``, ``scene_path``)."""
+    arm = options.arm_spec()  # an unknown arm fails before anything is read or written
+    render = options.render_settings if options.render else None
+    inputs = tuple(p for p in (path, scene_path) if p)
+    doc = read_json(path) if path is not None else None
+    scene = None if scene_path is None else load_scene(scene_path, mesh_dirs)
+    if is_chain_plan(doc):
+        with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay",
+                        inputs=inputs) as folder:
+            r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=options.seed,
+                             on_stage=options.on_stage, arm=arm, path=path)
+        return ChainReplay(str(path), r, folder)
+    scene = arm_plugins.fit_scene(replay_scene(path, scene, scene_path, mesh_dirs), arm)  # what the arm reaches
+    source = motion_source(path, demo, scene, mover, anchor)
+    with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay",
+                    inputs=inputs) as folder:
+        ex = run_replay(scene, source, folder, render, options.seed, on_stage=options.on_stage, arm=arm)
+    return MotionReplay(source.label, ex, folder)
 
 
 def is_chain_plan(doc: object) -> bool:
@@ -28,13 +94,12 @@ def is_chain_plan(doc: object) -> bool:
 
 
 def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_settings: Any = None, seed: int = 0,
-                 on_stage=None, plugins: list | None = None, arm: str | None = None, path: str | None = None):
+                 on_stage=None, plugins: list | None = None, arm: str | None = None,
+                 path: str | None = None) -> ChainResult:
     """Execute the clauses' plans of ``doc`` (a chain's plan.json) into the run folder ``out``; returns the
     :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges). ``arm``: who
     executes it (default the Panda; the scene's workspace is fitted to its reach). ``path``: the file ``doc`` was
     read from, recorded as a one-clause replay records its source (plan.json's and summary.json's ``replay``)."""
-    from ..embodiment import arm_plugins
-
     source = "plan.json"
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
@@ -67,7 +132,6 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
         raise PathError(f"{source}: no clause of the chain has a plan to replay")
     sentence = str(doc["chain"].get("sentence") or "; ".join(s.clause.text for s in steps))
     clock = StageClock(on_stage)
-    return _execute(sentence, scene, steps, Path(out), clock, plugins, planner="replay", seed=seed,
-                    render=render_settings is not None, budget=None, threshold=None,
-                    render_settings=render_settings, world=None, replan=False, arm=spec,
+    options = RunOptions(seed=seed, render=render_settings is not None, render_settings=render_settings)
+    return _execute(sentence, scene, steps, Path(out), clock, plugins, options, spec, replan=False,
                     replay={"source": {"plan": None if path is None else str(path)}})

@@ -1,5 +1,6 @@
-"""``perform`` for a chain: every clause resolved and forecast up front, then executed by the same arm in
-one continuous PyBullet episode, each clause re-planned from where the world really left the blocks.
+"""``perform`` of any sentence: a chain of clauses, every clause resolved and forecast up front, then
+executed by the same arm in one continuous PyBullet episode, each clause re-planned from where the world
+really left the blocks.
 
     resolve    every clause against the scene (clauses.py): names, colours, did-you-mean, per clause
     forecast   the whole chain planned in 2-D from the predicted end states (forecast.py): a clause that
@@ -13,12 +14,14 @@ one continuous PyBullet episode, each clause re-planned from where the world rea
 
 One run folder (files.py writes it): trajectory.json with ``segments``, plan.json with one plan per clause,
 summary.json with a verdict per clause and for the chain, and a video captioned with the current clause.
-A one-clause sentence never comes here: ``perform`` runs it as it always has (byte-identical files).
+A sentence of one clause is a chain of one: it is resolved here too, then performed by the pipeline's stages
+after the parse (``pipeline.prepare_command``, ``perform_prepared``), whose run folder is the one-clause
+layout (DESIGN.md section 4), so ``perform`` and every caller take one path for every sentence.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -29,17 +32,19 @@ from ..core.contracts import Plan, approach_end_frame, trajectory_poses
 from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..embodiment import arm_plugins
 from ..embodiment.manners import manner_planning
-from ..embodiment.sim.arms import PANDA, ArmSpec
+from ..embodiment.sim.arms import ArmSpec
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
-from ..pipeline import check_feasible, check_options, check_render_settings, check_scene, disturbance_verdict
+from ..options import RunOptions, admit
+from ..pipeline import PerformResult, check_feasible, disturbance_verdict, perform_prepared, prepare_command
 from ..plugins import registry
 from ..progress.scoring import curve_from
-from .clauses import Clause, resolve_clauses
+from .clause import Clause
+from .clauses import one_clause, resolve_clauses
+from .composite import judge_row
 from .files import merge_timings
 from .forecast import Step, forecast
 
@@ -127,45 +132,60 @@ class ChainResult:
                 "timings": {k: round(v, 4) for k, v in self.timings.items()},
                 "files": {k: str(v) for k, v in self.files.items()}}
 
+    def text(self) -> list[str]:
+        """What ``perform`` prints for a chain: one line per clause, the row's (a composite), the chain's."""
+        out = []
+        for c in self.results:
+            fp = "n/a" if c.final_progress is None else f"{c.final_progress:.2f}"
+            out.append(f'{c.clause.index}. {c.clause.command.sentence}: "{c.clause.command.action}", '
+                       f'{"success" if c.success else "FAILED"} ({c.verdict.get("reason", "")}), final progress {fp}')
+        v, row = self.verdict(), self.row
+        if row is not None:  # a composite ("make a row of ..."): the whole judged too
+            out.append(f'row: {row["reason"]} (largest gap {row["max_gap_sides"]:.2f} side, farthest from the '
+                       f'line {row["max_offset_sides"]:.2f} side)')
+        video = self.files.get("video")
+        return out + [f'chain: {"success" if self.success else "FAILED"}, {v["completed"]} of {v["clauses"]} clauses '
+                      f'done, {self.timings.get("total", 0):.1f} s',
+                      f"run folder: {self.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)")]
+
 
 def _round(v: float | None) -> float | None:
     return None if v is None else round(float(v), 6)
 
 
-def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None, planner: str = "default",
-                  seed: int = 0, render: bool = True, force: bool = False, budget: int | None = None,
-                  threshold: float | None = None, on_stage=None, plugins: list | None = None,
-                  render_settings: Any = None, world: Any = None, bundles: dict | None = None,
-                  steps: list[Step] | None = None, arm: str | ArmSpec | None = None) -> ChainResult:
-    """Resolve, forecast, execute and judge a chain of clauses; write one run folder.
+def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None, *,
+                  plugins: list | None = None, world: Any = None, bundles: dict | None = None, steps: list[Step] | None = None,
+                  **changes: Any) -> ChainResult | PerformResult:
+    """Perform any sentence (the front door of ``perform``): resolve its clauses, forecast and execute them,
+    judge each; write one run folder. ``options`` (with ``changes`` by name: ``RunOptions.of``) are checked
+    once, up front, with the scene and the arm (its reach fits the scene's workspace first).
 
-    Everything a user can get wrong (a clause's words, a block not in the scene, a clause that cannot be
-    planned from the predicted state) is an L2PError naming the clause, raised before any folder is made.
-    ``world``: an open simulator world to run in (reset to ``scene`` first); ``bundles``: action name ->
-    loaded bundle, to reuse across runs; ``steps``: the chain already resolved and forecast (``evaluate
-    --chains`` draws it clause by clause): ``sentence`` must be their texts joined. ``arm``: an arm's name
-    (``l2p-bullet arms``) or spec, default the Panda; the scene's workspace is fitted to its reach first.
+    A lone clause (no composite) is a chain of one, performed by the pipeline's stages and written in the
+    one-clause layout: its :class:`~l2p_bullet.pipeline.PerformResult` is returned. Everything a user can get
+    wrong (a clause's words, a block not in the scene, a clause that cannot be planned from the predicted
+    state) is an L2PError naming the clause, raised before any folder is made. ``world``: an open simulator
+    world to run in (reset to ``scene`` first); ``bundles``: action name -> loaded bundle, to reuse across
+    runs; ``steps``: the chain already resolved and forecast (``evaluate --chains`` draws it clause by
+    clause): ``sentence`` must be their texts joined.
     """
-    clock = StageClock(on_stage)
+    opts = RunOptions.of(options, **changes)
+    clock = StageClock(opts.on_stage)
     clock.stage("parse")
-    check_options(planner, seed, budget, threshold)
-    check_scene(scene)
-    if render:
-        check_render_settings(render_settings)
+    scene, arm = admit(scene, opts)  # a typo, a bad scene or an unknown arm fails before anything is written
     plugins = registry.discover() if plugins is None else plugins
-    arm = arm_plugins.get(arm)  # an unknown arm fails before anything is planned or written
-    scene = arm_plugins.fit_scene(scene, arm)
     if steps is None:
         clauses = resolve_clauses(sentence, scene, plugins)
+        if one_clause(clauses):
+            cmd = clauses[0].command
+            bundle = (bundles or {}).get(cmd.action)
+            return perform_prepared(prepare_command(cmd, scene, arm, plugins, opts, bundle=bundle, clock=clock), clock,
+                                    world=world)
         clock.stage("forecast", f"planning the {len(clauses)} clauses from their predicted states")
-        steps = forecast(clauses, scene, plugins, planner=planner, seed=seed, budget=budget, threshold=threshold,
-                         bundles=bundles, arm=arm)
+        steps = forecast(clauses, scene, plugins, replace(opts, arm=arm), bundles=bundles)
     clock.stop()
-    with run_folder(out_dir, force=force, prefix="perform", command="perform") as out:
+    with run_folder(opts.out_dir, force=opts.force, prefix="perform", command="perform") as out:
         try:
-            return _execute(sentence, scene, steps, out, clock, plugins, planner=planner, seed=seed, render=render,
-                            budget=budget, threshold=threshold, render_settings=render_settings, world=world,
-                            arm=arm)
+            return _execute(sentence, scene, steps, out, clock, plugins, opts, arm, world=world)
         except L2PError as e:
             clock.stop()
             write_summary(out / "summary.json", {"schema": 1, "sentence": sentence, "chain": True, "ok": False,
@@ -180,19 +200,19 @@ def scene_now(scene: Scene, world: Any) -> Scene:
     return Scene([o.moved(poses[o.name][[0, 1, 3]]) for o in scene.objects], scene.table, scene.workspace)
 
 
-def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: StageClock, plugins: list, *,
-             planner: str,
-             seed: int, render: bool, budget: int | None, threshold: float | None, render_settings: Any,
-             world: Any, replan: bool = True, arm: ArmSpec = PANDA, replay: dict | None = None) -> ChainResult:
-    """Execute ``steps`` in one episode in ``world`` (or a new one) and write the run folder into ``out``.
-    ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json; ``replay``:
-    where the plans came from, recorded as a one-clause replay records it)."""
+def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: StageClock, plugins: list,
+             options: RunOptions, arm: ArmSpec, *, world: Any = None, replan: bool = True,
+             replay: dict | None = None) -> ChainResult:
+    """Execute ``steps`` by ``arm`` in one episode in ``world`` (or a new one) and write the run folder into
+    ``out``. ``replan`` False executes each step's ``forecast`` as it is (``replay`` of a chain's plan.json;
+    ``replay``: where the plans came from, recorded as a one-clause replay records it)."""
     # lazy: the arm's modules (and files.py, which records with them) load only when a chain is performed
     from ..embodiment import execute as ex
     from ..embodiment.sim.world import World
     from .files import write_run
 
-    settings = (ex.DEFAULT_RENDER if render_settings is None else render_settings) if render else None
+    render_settings = options.render_settings
+    settings = (ex.DEFAULT_RENDER if render_settings is None else render_settings) if options.render else None
     own = world is None
     clock.stage("setup", "setting up the simulated world")
     if own:  # the world only simulates: the film's own worlds draw the frames (embodiment/render.py)
@@ -212,8 +232,8 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             c = step.clause
             clock.stage(f"clause {c.index}", f"{c.label()}: planning from the blocks' real poses, then executing")
             first = 0 if k == 0 else len(prims.recorder.frames)
-            r = _clause(step, scene_now(scene, world), prims, rest, plugins, first=first, replan=replan and k > 0,
-                        planner=planner, seed=seed, budget=budget, threshold=threshold, arm=arm)
+            r = _clause(step, scene_now(scene, world), prims, rest, plugins, options, arm, first=first,
+                        replan=replan and k > 0)
             results.append(r)
             if not r.success:
                 break
@@ -221,10 +241,8 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
         clock.stage("record", "writing the run folder" + ("" if film is None else
                     f" and the video's {len(film.states)} frames ({film.settings.renderer})"))
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
-        write_run(result, steps, prims, world, settings, seed, scene, replay=replay)
+        write_run(result, steps, prims, world, settings, options.seed, scene, replay=replay)
         if steps and steps[0].clause.target is not None:  # a composite: is the whole what it should be?
-            from .composite import judge_row  # lazy: composite.py imports clauses.py, this module's peer
-
             result.row = judge_row(result, steps, scene_now(scene, world), out / "summary.json")
         clock.stop()
         clock.timings["total"] = clock.elapsed
@@ -238,8 +256,8 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             world.close()
 
 
-def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, *, first: int, replan: bool, planner: str, seed: int,
-            budget: int | None, threshold: float | None, arm: ArmSpec = PANDA) -> ClauseResult:
+def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, options: RunOptions,
+            arm: ArmSpec, *, first: int, replan: bool) -> ClauseResult:
     """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
     planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
     from ..embodiment import execute as ex
@@ -252,8 +270,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         else:
             check_feasible(cmd, now, plugins, arm)
             target = step.clause.target
-            plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=planner, seed=seed,
-                                 budget=budget, threshold=threshold, target=None if target is None else target(now),
+            plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=options.planner,
+                                 seed=options.seed, budget=options.budget, threshold=options.threshold,
+                                 target=None if target is None else target(now),
                                  arm=arm, **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size, arm))
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"

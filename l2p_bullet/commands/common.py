@@ -1,6 +1,11 @@
-"""Options and helpers the commands share."""
+"""Options and helpers the commands share, and the one printer of what a command did (:func:`say`)."""
 
 from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any
 
 import click
 
@@ -124,3 +129,45 @@ def file_of_run_folder(path: str, name: str) -> str:
     if not (p / name).is_file():
         raise PathError(f"{p} is a folder without {name}: give a run folder or the file itself")
     return str(p / name)
+
+
+def stage_printer(quiet: bool, prefix: str = "") -> Callable[[str], None] | None:
+    """The progress messages of a run on stderr (elapsed time, then the stage), or None with ``--quiet``."""
+    if quiet:
+        return None
+    t0 = time.perf_counter()
+    return lambda message: click.echo(f"[{time.perf_counter() - t0:5.1f}s] {prefix}{message}", err=True)
+
+
+def say(result: Any, as_json: bool, indent: int | None = None) -> None:
+    """Print what a command did, one way for every result (a run, a chain, a plan): its ``to_dict()`` as JSON
+    with ``--json`` (for scripts), else its ``text()`` lines."""
+    from ..core.contracts import dumps_json
+
+    click.echo(dumps_json(result.to_dict(), indent=indent) if as_json else "\n".join(result.text()))
+
+
+def error_json(sentence: str, e: Exception) -> dict:
+    """What ``perform --json`` and ``plan --json`` print when they fail: the error, its type and, for a refusal,
+    which check."""
+    out = {"sentence": sentence, "ok": False, "error": str(e), "error_type": type(e).__name__}
+    check = getattr(e, "check", None)
+    if check is not None:
+        out["refused"] = {"check": check, "details": getattr(e, "details", {})}
+    return out
+
+
+@contextmanager
+def reporting(sentence: str, as_json: bool) -> Iterator[None]:
+    """With ``--json``, an error (L2PError) is also printed as JSON on stdout, where scripts read why; the
+    one-line error still goes to stderr (exit 2)."""
+    from ..errors import L2PError
+
+    try:
+        yield
+    except L2PError as e:
+        if as_json:
+            from ..core.contracts import dumps_json
+
+            click.echo(dumps_json(error_json(sentence, e), indent=1))
+        raise

@@ -18,7 +18,7 @@ import click
 from .common import file_of_run_folder, force_option, greedy_options, seed_option
 
 
-@click.command(cls=greedy_options("--demos"))
+@click.command("train", cls=greedy_options("--demos"))
 @click.argument("action")
 @click.option("--demos", "demo_files", multiple=True, type=click.Path(),
               help="Capture session files (.npz) of ACTION to train on instead of the shipped ones: one or "
@@ -39,7 +39,7 @@ from .common import file_of_run_folder, force_option, greedy_options, seed_optio
               help="Also fine-tune on the installed bundle's plans graded by the rule judge (automatic feedback).")
 @click.option("--judge-scenes", type=click.IntRange(min=1), default=30, show_default=True,
               help="Scenes planned for --feedback-judge (seeds 5000 on).")
-def train(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: int, force: bool,
+def train_cmd(action: str, demo_files: tuple[str, ...], out_dir: str | None, seed: int, force: bool,
           ensemble: int | None, epochs: int | None, feedback: tuple[str, ...], feedback_judge: str | None,
           judge_scenes: int) -> None:
     """Train ACTION's progress model on the human demonstrations and write a bundle.
@@ -170,7 +170,7 @@ def _policy_next_step(action: str, folder: Path, copied: bool) -> str:
             f"l2p-bullet train-policy {shlex.quote(action)} --bundle {shlex.quote(str(source))} --force)")
 
 
-@click.command()
+@click.command("improve")
 @click.argument("action")
 @click.option("--rounds", type=click.IntRange(1, 40), default=2, show_default=True, help="Rounds of perform, grade, re-train.")
 @click.option("--scenes", type=click.IntRange(1, 100), default=10, show_default=True,
@@ -183,7 +183,7 @@ def _policy_next_step(action: str, folder: Path, copied: bool) -> str:
               help="Folder for the rounds (default: runs/improve/<action>).")
 @seed_option
 @force_option
-def improve(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[str, ...], out_dir: str | None,
+def improve_cmd(action: str, rounds: int, scenes: int, judge: str, feedback: tuple[str, ...], out_dir: str | None,
             seed: int, force: bool) -> None:
     """Hot feedback: perform ACTION on seeded scenes, grade the runs, re-train, repeat.
 
@@ -233,10 +233,10 @@ def _improve_command(action: str, rounds: int, scenes: int, judge: str, feedback
     return shlex.join(args)  # never --force: it starts over (improve.json already holds these settings)
 
 
-@click.command()
+@click.command("score")
 @click.argument("action")
 @click.argument("file", type=click.Path())
-def score(action: str, file: str) -> None:
+def score_cmd(action: str, file: str) -> None:
     """Score a motion FILE with ACTION's progress model and print JSON.
 
     FILE is a scoring input {"size", "mover", "anchor"}, a plan.json, a trajectory.json or a run folder
@@ -276,4 +276,4 @@ def score_file(action: str, path: str | Path) -> dict[str, Any]:
     return out if segments is None else out | {"segments": segments}
 
 
-COMMANDS: list[click.Command] = [train, train_policy_cmd, improve, score]
+COMMANDS: list[click.Command] = [train_cmd, train_policy_cmd, improve_cmd, score_cmd]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 
-@click.command()
+@click.command("recognize")
 @click.argument("motion", required=False, type=click.Path())
 @click.option("--demo", metavar="ACTION:INDEX", help="Recognise a shipped human demonstration instead, e.g. past:3.")
 @click.option("--action", "actions", multiple=True, metavar="ACTION|BUNDLE",
@@ -13,7 +13,7 @@ import click
                    "instead of every installed action.")
 @click.option("--top", type=click.IntRange(min=1), default=10, show_default=True, help="Readings listed (text output).")
 @click.option("--json", "as_json", is_flag=True, help="Print every reading as JSON on stdout.")
-def recognize(motion: str | None, demo: str | None, actions: tuple[str, ...], top: int, as_json: bool) -> None:
+def recognize_cmd(motion: str | None, demo: str | None, actions: tuple[str, ...], top: int, as_json: bool) -> None:
     """Say which action MOTION shows: every installed action's final progress, ranked.
 
     \b
@@ -81,4 +81,4 @@ def check_bundle_path(spec: str) -> None:
         raise BundleError(f"--action {spec}: not a bundle folder (no {MANIFEST})")
 
 
-COMMANDS: list[click.Command] = [recognize]
+COMMANDS: list[click.Command] = [recognize_cmd]

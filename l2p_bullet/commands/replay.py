@@ -2,24 +2,23 @@
 
 from __future__ import annotations
 
-import time
-
 import click
 
 from .common import (
     arm_option,
     file_of_run_folder,
     force_option,
-    load_scene_or_default,
     mesh_dirs,
     render_settings,
+    say,
     scene_option,
     seed_option,
+    stage_printer,
     video_options,
 )
 
 
-@click.command()
+@click.command("replay")
 @click.argument("path_json", required=False, type=click.Path())
 @click.option("--demo", metavar="ACTION:INDEX", help="Replay a shipped human demonstration, e.g. around:0.")
 @scene_option
@@ -38,7 +37,7 @@ from .common import (
 @click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
               help="Video format written next to the frames.")
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr (as perform's).")
-def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no_render, resolution, fps, camera, renderer,
+def replay_cmd(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no_render, resolution, fps, camera, renderer,
            width, height, render_fps, video, quiet):
     """Execute a 2-D motion of a block with the arm in PyBullet.
 
@@ -52,10 +51,9 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
       l2p-bullet replay --demo around:0
       l2p-bullet replay runs/demo/plan.json --no-render
     """
-    from ..core.runfolder import run_folder
-    from ..core.scene import load_scene
-    from ..embodiment.replay import motion_source, replay_scene, run_replay
+    from ..chain.replay import replay
     from ..errors import PathError
+    from ..options import RunOptions
 
     if (path_json is None) == (demo is None):
         raise PathError("give either PATH_JSON or --demo ACTION:INDEX (one of them)")
@@ -68,52 +66,10 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
         resolution = f"{w if width is None else width}x{h if height is None else height}"
     render = None if no_render else render_settings(resolution, fps if render_fps is None else render_fps, camera,
                                                     renderer, video)
-    from ..embodiment import arm_plugins
-
-    spec = arm_plugins.get(arm)  # an unknown arm fails before anything is read or written
-    if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed, spec.name, quiet):
-        return
-    scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path, mesh_dirs()), scene_path,
-                         mesh_dirs())
-    scene = arm_plugins.fit_scene(scene, spec)  # the motion is fitted into what this arm reaches
-    source = motion_source(path_json, demo, scene, mover, anchor)
-    t0 = time.perf_counter()
-
-    def on_stage(message: str) -> None:  # perform's style: elapsed time, then the stage
-        if not quiet:
-            click.echo(f"[{time.perf_counter() - t0:5.1f}s] execute: {message}", err=True)
-
-    inputs = tuple(p for p in (path_json, scene_path) if p)  # --force never replaces what it reads
-    with run_folder(out, force=force, prefix="replay", command="replay", inputs=inputs) as folder:
-        ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage, arm=spec)
-    click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
-               f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
-               f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")
-    video = ex.files.get("video")
-    click.echo(f"run folder: {folder}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
+    options = RunOptions(seed=seed, arm=arm, render=render is not None, render_settings=render, out_dir=out,
+                         force=force, on_stage=stage_printer(quiet, "execute: "))
+    say(replay(path_json, demo, options, scene_path=scene_path, mesh_dirs=mesh_dirs(), mover=mover, anchor=anchor),
+        as_json=False)
 
 
-def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force: bool, render, seed: int,
-                  arm: str = "panda", quiet: bool = False) -> bool:
-    """Replay a chain run's plan.json (every clause, one episode; l2p_bullet/chain/replay.py) in the scene
-    it was planned in (or ``--scene``); False when the file is no chain plan."""
-    from ..chain.replay import is_chain_plan, replay_chain
-    from ..core.contracts import read_json
-    from ..core.runfolder import run_folder
-
-    doc = read_json(path_json)
-    if not is_chain_plan(doc):
-        return False
-    scene = load_scene_or_default(scene_path) if scene_path is not None else None
-    with run_folder(out, force=force, prefix="replay", command="replay",
-                    inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:
-        r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=seed,
-                         on_stage=None if quiet else lambda s: click.echo(f"  {s}...", err=True), arm=arm,
-                         path=path_json)
-    v = r.verdict()
-    click.echo(f"replayed the chain {path_json}: {v['completed']} of {v['clauses']} clauses done ({v['reason']})")
-    click.echo(f"run folder: {folder}")
-    return True
-
-
-COMMANDS: list[click.Command] = [replay]
+COMMANDS: list[click.Command] = [replay_cmd]

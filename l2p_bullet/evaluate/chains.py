@@ -18,6 +18,7 @@ from __future__ import annotations
 import json
 import shutil
 import statistics
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -126,9 +127,8 @@ def run_chain(worker: Any, task: Task, row: dict) -> None:
     out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else worker.scratch() / "run"
     world = worker.world(scene, visuals=task.render, arm=task.arm)
     try:
-        r = perform_chain(sentence, scene, out_dir=out, planner=task.planner, seed=task.seed, render=task.render,
-                          force=True, budget=task.budget, threshold=task.threshold, plugins=worker.plugins,
-                          world=world, steps=steps, arm=arm)
+        r = perform_chain(sentence, scene, replace(task.options(out), arm=arm), plugins=worker.plugins,
+                          world=world, steps=steps)
     except BaseException:
         worker.drop_world(task.render, task.arm)
         if out.exists() and not (keep_always or task.keep == "failed"):

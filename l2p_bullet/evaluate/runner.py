@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ..errors import EvaluationError, PlanError
 from ..manners import registry as manner_registry
-from ..pipeline import check_options
+from ..options import check_options
 from ..planning import resolve_planner
 from ..plugins import registry
 from .folder import check_out_folder

@@ -10,9 +10,11 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
+from pathlib import Path
 
 from ..errors import EvaluationError
 from ..manners import registry as manner_registry
+from ..options import RunOptions
 from ..plugins import registry
 from .scenes import SceneSpec
 
@@ -50,6 +52,11 @@ class Task:
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+    def options(self, out: str | Path | None = None) -> RunOptions:
+        """What the task asks of its run (planner, seed, budget, threshold, arm, rendering), into ``out``."""
+        return RunOptions(planner=self.planner, seed=self.seed, budget=self.budget, threshold=self.threshold,
+                          arm=self.arm, render=self.render, out_dir=out, force=True)
 
 
 def sentence_for(action: str, mover: str, anchor: str | Sequence[str], plugins: list, verb: str = "move") -> str:

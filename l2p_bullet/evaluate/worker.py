@@ -27,13 +27,14 @@ from typing import Any
 
 import numpy as np
 
+from ..chain import perform_chain
 from ..core.contracts import trajectory_poses
 from ..core.scene import Scene
 from ..embodiment.sim.world import World
 from ..errors import L2PError
 from ..judge import judge_context, judge_for
 from ..judge.rules import square_gap
-from ..pipeline import judged_plan, perform, prepare
+from ..pipeline import judged_plan, prepare
 from ..plugins import registry
 from .tasks import Task
 
@@ -144,9 +145,7 @@ class Worker:
         try:
             world = self.world(scene.validate(), visuals=task.render, arm=task.arm)
             try:
-                r = perform(task.sentence, scene, out_dir=out, planner=task.planner, seed=task.seed,
-                            render=task.render, force=True, budget=task.budget, threshold=task.threshold,
-                            plugins=self.plugins, world=world, arm=task.arm)
+                r = perform_chain(task.sentence, scene, task.options(out), plugins=self.plugins, world=world)
             except BaseException:
                 self.drop_world(task.render, task.arm)
                 raise
@@ -177,11 +176,9 @@ class Worker:
 
     def _plan(self, task: Task, row: dict) -> None:
         scene = Scene.from_dict(task.scene, source=task.scene_id)
-        p = prepare(task.sentence, scene, planner=task.planner, seed=task.seed, budget=task.budget,
-                    threshold=task.threshold, plugins=self.plugins, arm=task.arm)  # refused up front, as perform and plan refuse it
+        p = prepare(task.sentence, scene, task.options(), plugins=self.plugins)  # refused up front, as by plan
         t = time.perf_counter()
-        plan, v = judged_plan(p, planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
-                              time_limit=task.time_limit)
+        plan, v = judged_plan(p, time_limit=task.time_limit)
         plan_s = time.perf_counter() - t
         row.update(planner_used=plan.planner, success=int(bool(v["success"])), score=v.get("score"),
                    reason=v.get("reason"), judge=v.get("judge"), final_progress=plan.extra.get("final_progress"),
