@@ -45,7 +45,7 @@ from .embodiment.sim.arms import PANDA, ArmSpec
 from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
-from .language import Command, parse
+from .language import Command, Context, extent_table, parse
 from .manners import registry as manners
 from .planning import feasibility, resolve_planner
 from .planning.plot import plot_plan
@@ -107,7 +107,7 @@ BLOCKED = "\0blocked:"
 """Action name given to a blocked phrase while parsing, so that the sentence's own phrase is found."""
 
 
-def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
+def resolve(sentence: str, scene: Scene, plugins: list | None = None, context: Context | None = None) -> Command:
     """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported).
 
     A sentence whose preposition belongs to a broken plugin, or is claimed by two plugins, gets that
@@ -121,7 +121,8 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
         raise PluginError(f"none of the {len(plugins)} installed action plugins can be used (first: "
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
     try:
-        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins))
+        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins),
+                    extents=extent_table(plugins), context=context)
     except LanguageError as e:
         unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
         if not unknown or "preposition" not in str(e):

@@ -84,7 +84,7 @@ def load_recipe(action: str, plugins: list | None) -> Recipe:
 
 def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list | None:
     """The chain's clauses for a composite sentence, each with its slot; None for any other sentence."""
-    from .clauses import MAX_CLAUSES, Clause, _named  # lazy: clauses.py imports this module
+    from .clauses import MAX_CLAUSES, Clause, Group, _named  # lazy: clauses.py imports this module
 
     phrases = composite_phrases(plugins)
     lc = parse_list(sentence, scene, phrases) if phrases else None
@@ -102,6 +102,7 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
     size = scene.get(stay).size
     direction = choose_axis(scene, stay, movers, recipe)
     clauses = []
+    group = Group(lc.action, lc.objects, lc.sentence)
     for k, m in enumerate(movers, start=1):
         anchor = stay if recipe.anchor == "first" or k == 1 else movers[k - 2]
         text = f"move {m} {action_phrase} {anchor}"
@@ -111,7 +112,7 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
             raise _named(e, f'clause {k} ("{text}") of "{lc.sentence}"') from None
         slot = RowSlot(stay, stay if k == 1 else movers[k - 2], (float(direction[0]), float(direction[1])),
                        size * (1 + recipe.spacing), recipe.aligned)
-        clauses.append(Clause(k, text, cmd, slot))
+        clauses.append(Clause(k, text, cmd, slot, group))
     return clauses
 
 
