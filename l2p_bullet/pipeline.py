@@ -96,6 +96,8 @@ class PerformResult:
             "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
             "grasp": self.grasp,
             **({} if c.manner == "slide" else {"manner": c.manner}),  # issue 23: a slide's output is as before
+            **({} if c.pace is None else {"pace": c.pace}),  # the sentence's "slowly", "gently"
+            **({} if c.extent is None else {"extent": c.extent}),  # "far away", "a bit closer"
         }
 
 
@@ -326,7 +328,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, *, planner: str, seed: int, 
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
                               meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, manner=cmd.manner,
-                              approach_to=plan.approach_to, **kwargs)
+                              approach_to=plan.approach_to, pace=cmd.pace, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -418,7 +420,8 @@ def _summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> dict:
     files = summary.get("files") if isinstance(summary.get("files"), dict) else {}
     summary.update({
         "schema": summary.get("schema", 1), "ok": True, "sentence": d["sentence"],
-        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor", "anchors")},
+        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor", "anchors", "pace", "extent")
+                    if k in d},
         "verdict": d["verdict"], "success": r.success, "final_progress": d["final_progress"],
         "planned_progress": d["planned_progress"], "planner": d["planner"], "stopped": d["stopped"],
         "seed": seed, "final_error_m": d["final_error_m"],

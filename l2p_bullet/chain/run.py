@@ -32,6 +32,7 @@ from ..core.timing import StageClock
 from ..embodiment import arm_plugins
 from ..embodiment.manners import manner_planning
 from ..embodiment.sim.arms import PANDA, ArmSpec
+from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
@@ -264,6 +265,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             nonlocal stage
             stage = "reach" if name == "reach" else "execute"
 
+        prims.pace = pace_of(cmd.pace)  # this clause's "slowly", "gently" (the next clause may differ)
         s0, s1, grasp = ex.act(prims, now, cmd.mover, p, angles, rest, ex.manner_of(cmd.manner), stage=on)
         slide = slice(s0 - first, s1 - first)
     except L2PError as e:
