@@ -48,6 +48,7 @@ from .judge.manners import manner_verdict
 from .language import Command, Context, extent_table, parse
 from .manners import registry as manners
 from .planning import feasibility, resolve_planner
+from .planning.extent import apply_extent
 from .planning.plot import plot_plan
 from .plugins import registry
 
@@ -203,6 +204,7 @@ def judged_plan(p: Prepared, *, planner: str = "default", seed: int = 0, budget:
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=planner, seed=seed,
                            budget=budget, threshold=threshold, time_limit=time_limit, arm=p.arm,
                            **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm))
+    result = apply_extent(result, cmd.extent, p.judge, p.scene)  # "far away from", "a bit closer to"
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
