@@ -42,7 +42,8 @@ def test_little_is_shorter_and_far_longer_and_each_is_still_the_action(tmp_path,
 def test_right_next_to_ends_closer_than_next_to(tmp_path):
     p, r = _plan(tmp_path, "move A next to B"), _plan(tmp_path, "move A right next to B")
     assert p["success"] and r["success"]
-    gap = (lambda d: float(d["reason"].split("ends ")[1].split(" blocks")[0]))
+    def gap(d):
+        return (float(d["reason"].split("ends ")[1].split(" blocks")[0]))
     assert gap(r) < gap(p)
 
 
@@ -54,5 +55,6 @@ def test_far_away_runs_and_ends_farther(tmp_path):
         assert r.exit_code == 0, r.output
         runs[name] = json.loads((tmp_path / name / "summary.json").read_text())
     assert runs["far"]["success"] and runs["far"]["command"]["extent"] == "far"
-    grew = (lambda d: float(d["verdict"]["reason"].split("grew by ")[1].split(" blocks")[0]))
+    def grew(d):
+        return (float(d["verdict"]["reason"].split("grew by ")[1].split(" blocks")[0]))
     assert grew(runs["far"]) > grew(runs["plain"]) + 0.5
