@@ -45,10 +45,11 @@ from .embodiment.sim.arms import PANDA, ArmSpec
 from .errors import L2PError, LanguageError, PluginError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
-from .language import Command, parse
+from .language import Command, Context, extent_table, parse
 from .manners import registry as manners
 from .options import RunOptions, admit
 from .planning import feasibility
+from .planning.extent import apply_extent
 from .planning.plot import plot_plan
 from .plugins import registry
 
@@ -95,6 +96,8 @@ class PerformResult:
             "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
             "grasp": self.grasp,
             **({} if c.manner == "slide" else {"manner": c.manner}),  # a slide's output names no manner
+            **({} if c.pace is None else {"pace": c.pace}),  # the sentence's "slowly", "gently"
+            **({} if c.extent is None else {"extent": c.extent}),  # "far away", "a bit closer"
         }
 
     def text(self) -> list[str]:
@@ -118,7 +121,7 @@ BLOCKED = "\0blocked:"
 """Action name given to a blocked phrase while parsing, so that the sentence's own phrase is found."""
 
 
-def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command:
+def resolve(sentence: str, scene: Scene, plugins: list | None = None, context: Context | None = None) -> Command:
     """Parse ``sentence`` against the installed plugins' phrases (no plugin is imported).
 
     A sentence whose preposition belongs to a broken plugin, or is claimed by two plugins, gets that
@@ -132,7 +135,8 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None) -> Command
         raise PluginError(f"none of the {len(plugins)} installed action plugins can be used (first: "
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
     try:
-        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins))
+        cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins),
+                    extents=extent_table(plugins), context=context)
     except LanguageError as e:
         unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
         if not unknown or "preposition" not in str(e):
@@ -219,6 +223,7 @@ def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: f
     result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=opts.planner,
                            seed=opts.seed, budget=opts.budget, threshold=opts.threshold, time_limit=time_limit, arm=p.arm,
                            **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm))
+    result = apply_extent(result, cmd.extent, p.judge, p.scene)  # "far away from", "a bit closer to"
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
@@ -310,7 +315,7 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
     ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
                               meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, manner=cmd.manner,
-                              approach_to=plan.approach_to, **kwargs)
+                              approach_to=plan.approach_to, pace=cmd.pace, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -414,7 +419,8 @@ def _summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> dict:
     files = summary.get("files") if isinstance(summary.get("files"), dict) else {}
     summary.update({
         "schema": summary.get("schema", 1), "ok": True, "sentence": d["sentence"],
-        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor", "anchors")},
+        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor", "anchors", "pace", "extent")
+                    if k in d},
         "verdict": d["verdict"], "success": r.success, "final_progress": d["final_progress"],
         "planned_progress": d["planned_progress"], "planner": d["planner"], "stopped": d["stopped"],
         "seed": seed, "final_error_m": d["final_error_m"],

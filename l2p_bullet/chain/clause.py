@@ -18,6 +18,16 @@ MAX_CLAUSES = 10
 
 
 @dataclass(frozen=True)
+class Group:
+    """A composite's place in a chain ("make a row of A, B and C, then ..."): its action and objects in the
+    order named; the clauses it expands to carry it, so the whole is judged as a row."""
+
+    action: str
+    objects: tuple[str, ...]
+    text: str
+
+
+@dataclass(frozen=True)
 class Clause:
     """One step of a chain: its 1-based ``index``, its own ``text`` and what it asks for."""
 
@@ -25,6 +35,7 @@ class Clause:
     text: str
     command: Command
     target: Any = None  # a composite's place for the mover: scene -> [x, y, yaw] (chain/composite.py), or None
+    group: Group | None = None  # the composite this clause is a step of, or None
 
     def label(self) -> str:
         """How errors and captions name the clause: 'clause 2 ("slide C past A")'."""

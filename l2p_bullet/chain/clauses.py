@@ -10,10 +10,19 @@ colour or a block that is not in the scene in clause 3 costs milliseconds and na
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from ..language import MAX_SENTENCE, Command, known_verbs, phrase_tokens, strip_polite, tokens
+from ..language import (
+    MAX_SENTENCE,
+    TRAILING_JOINS,
+    Command,
+    Context,
+    command_words,
+    known_verbs,
+    phrase_tokens,
+)
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -42,32 +51,54 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     one-line error of its own type (LanguageError, UnknownObjectError...) that names the clause.
 
     A sentence of one clause is the chain of that one clause, resolved whole as ``perform`` always resolved
-    it (its own words, its own errors: nothing to name a clause by)."""
-    made = composite_clauses(sentence, scene, plugins)
-    if made is not None:
-        return made
+    it (its own words, its own errors: nothing to name a clause by); a composite's sentence is its steps. In a
+    longer chain a composite may stand anywhere ("make a row of A, B and C, then move D next to C")."""
     texts = split_clauses(sentence)
     if len(texts) <= 1:
+        made = composite_clauses(sentence, scene, plugins)
+        if made is not None:
+            return made
         return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
+    dangling = _dangling(sentence)
+    if dangling:
+        raise LanguageError(f'the sentence ends with "{dangling}" but no clause follows it; add the next clause '
+                            f'("..., {dangling} move C past A") or drop "{dangling}"')
     if len(texts) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(texts)} clauses; a chain has at most {MAX_CLAUSES}")
     clauses: list[Clause] = []
     for i, text in enumerate(texts, start=1):
         if len(text) > MAX_SENTENCE:
             raise LanguageError(f'clause {i} is {len(text)} characters long; a clause has at most {MAX_SENTENCE}')
+        made = composite_clauses(text, scene, plugins)
+        if made is not None:  # a composite's steps, numbered on from the clauses before it
+            clauses.extend(replace(c, index=len(clauses) + 1) for c in made)
+            continue
         full = _complete(text, clauses[-1].command if clauses else None, scene, plugins)
+        previous = clauses[-1].command if clauses else None
+        context = Context(previous.mover, previous.anchor) if previous is not None else None
         try:
-            cmd = resolve(full, scene, plugins)
+            cmd = resolve(full, scene, plugins, context)
         except L2PError as e:
             raise named(e, f'clause {i} ("{text}")') from None
-        clauses.append(Clause(i, text, cmd))
+        clauses.append(Clause(len(clauses) + 1, text, cmd))
+    if len(clauses) > MAX_CLAUSES:
+        raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+def _dangling(sentence: str) -> str | None:
+    """The joining words a sentence ends with when no clause follows them ("move A around B, then")."""
+    words = sentence.rstrip(" .!?,").split()
+    for join in TRAILING_JOINS:
+        if len(words) > len(join) and tuple(w.lower() for w in words[-len(join):]) == join:
+            return " ".join(words[-len(join):])
+    return None
 
 
 def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:
     """The clause as a full sentence: the previous verb prepended when it has none, and the previous mover
     too when it starts with a preposition ("then next to C" after "move A around B": "move A next to C")."""
-    words = strip_polite(tokens(text))
+    words = command_words(text, scene)[0]
     if previous is None or not words or words[0].lower() in known_verbs():
         return text
     # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
@@ -76,8 +107,8 @@ def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) 
     low = tuple(w.lower() for w in words)
     for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
         if low[: len(toks)] == toks:
-            return f"{verb} {previous.mover} {' '.join(words)}"
-    return f"{verb} {' '.join(words)}"
+            return f"{verb} {previous.mover} {text}" if text.split()[0].lower() == low[0] else f"{verb} {text}"
+    return f"{verb} {text}"
 
 
 def _gapped(verb: str) -> bool:

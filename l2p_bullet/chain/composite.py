@@ -35,7 +35,7 @@ from ..errors import InfeasibleError, L2PError, LanguageError, PluginError
 from ..language import parse_list, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
 from ..plugins import registry
-from .clause import MAX_CLAUSES, Clause, named
+from .clause import MAX_CLAUSES, Clause, Group, named
 
 GAP_OK = 0.35
 LINE_OK = 0.25
@@ -101,6 +101,7 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
     size = scene.get(stay).size
     direction = choose_axis(scene, stay, movers, recipe)
     clauses = []
+    group = Group(lc.action, lc.objects, lc.sentence)
     for k, m in enumerate(movers, start=1):
         anchor = stay if recipe.anchor == "first" or k == 1 else movers[k - 2]
         text = f"move {m} {action_phrase} {anchor}"
@@ -110,7 +111,7 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
             raise named(e, f'clause {k} ("{text}") of "{lc.sentence}"') from None
         slot = RowSlot(stay, stay if k == 1 else movers[k - 2], (float(direction[0]), float(direction[1])),
                        size * (1 + recipe.spacing), recipe.aligned)
-        clauses.append(Clause(k, text, cmd, slot))
+        clauses.append(Clause(k, text, cmd, slot, group))
     return clauses
 
 

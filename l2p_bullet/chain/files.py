@@ -35,6 +35,8 @@ def segments(result: Any) -> list[dict[str, Any]]:
                     "mover": c.mover, "anchor": c.anchor, "anchors": list(c.anchors),
                     "first_frame": r.first_frame, "last_frame": r.last_frame,
                     **({} if c.manner == "slide" else {"manner": c.manner}),  # only when not a slide
+                    **({} if c.pace is None else {"pace": c.pace}),  # "slowly": its motions' limits scaled
+                    **({} if c.extent is None else {"extent": c.extent}),
                     **({} if r.action_from is None else {"action_from": r.action_from})})  # came near first
     return out
 

@@ -21,6 +21,7 @@ from ..judge import judge_context, judge_for
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
+from ..planning.extent import apply_extent
 from ..plugins import registry
 from .clause import Clause, named
 
@@ -71,6 +72,7 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
                                  seed=opts.seed, budget=opts.budget, threshold=opts.threshold,
                                  target=None if c.target is None else c.target(predicted), arm=arm,
                                  **manner_planning(manners.get(cmd.manner), predicted.get(cmd.mover).size, arm))
+            plan = apply_extent(plan, cmd.extent, judge, predicted)  # "far away from", "a bit closer to"
             check_for(manners.get(cmd.manner), predicted, cmd.mover, plan.path, arm)
         except InfeasibleError as e:
             e.details["clause"] = c.index

@@ -34,12 +34,14 @@ from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..embodiment.manners import manner_planning
 from ..embodiment.sim.arms import ArmSpec
+from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..options import RunOptions, admit
 from ..pipeline import PerformResult, check_feasible, disturbance_verdict, perform_prepared, prepare_command
+from ..planning.extent import apply_extent
 from ..plugins import registry
 from ..progress.scoring import curve_from
 from .clause import Clause
@@ -242,8 +244,15 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
                     f" and the video's {len(film.states)} frames ({film.settings.renderer})"))
         result = ChainResult(sentence, [s.clause for s in steps], results, out, {})
         write_run(result, steps, prims, world, settings, options.seed, scene, replay=replay)
-        if steps and steps[0].clause.target is not None:  # a composite: is the whole what it should be?
-            result.row = judge_row(result, steps, scene_now(scene, world), out / "summary.json")
+        # each composite in the chain ("make a row of A, B and C, then ..."): is the whole what it should be?
+        # Judged once its steps have all run; the first that is not a row is the chain's row verdict.
+        for group in dict.fromkeys(s.clause.group for s in steps if s.clause.group is not None):
+            members = [s for s in steps if s.clause.group == group]
+            if members[-1].clause.index > len(results):
+                break
+            result.row = judge_row(result, members, scene_now(scene, world), out / "summary.json")
+            if not result.row["success"]:
+                break
         clock.stop()
         clock.timings["total"] = clock.elapsed
         result.timings = dict(clock.timings)
@@ -274,6 +283,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
                                  seed=options.seed, budget=options.budget, threshold=options.threshold,
                                  target=None if target is None else target(now),
                                  arm=arm, **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size, arm))
+            plan = apply_extent(plan, cmd.extent, step.judge, now)
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
         p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path, arm)
@@ -283,6 +293,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             nonlocal stage
             stage = "reach" if name == "reach" else "execute"
 
+        prims.pace = pace_of(cmd.pace)  # this clause's "slowly", "gently" (the next clause may differ)
         s0, s1, grasp = ex.act(prims, now, cmd.mover, p, angles, rest, ex.manner_of(cmd.manner), stage=on)
         slide = slice(s0 - first, s1 - first)
     except L2PError as e:

@@ -20,7 +20,7 @@ from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, PathError, ReachError
 from ..manners.spec import MannerSpec
-from . import motion, reach
+from . import motion, reach, smoothing
 from .manners import carry_lift, check_carry_path, check_manner, manner_of
 from .record import Recorder, versions
 from .render import Film
@@ -141,7 +141,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                  progress_fn: Callable[..., np.ndarray] | None = None,
                  meta: dict | None = None, on_stage: Callable[[str], None] | None = None,
                  world: World | None = None, summary: bool = True, arm: ArmSpec | None = None,
-                 manner: MannerSpec | str | None = None, approach_to: np.ndarray | None = None) -> Execution:
+                 manner: MannerSpec | str | None = None, approach_to: np.ndarray | None = None,
+                 pace: str | None = None) -> Execution:
     """Engage ``mover``, slide it along ``path`` (N,3, scene frame), disengage, and record it all.
 
     ``out_dir`` None records nothing to disk (frames are still returned); ``render`` None renders
@@ -156,10 +157,13 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     it (``manner`` in trajectory.json and summary.json, the gripper per frame), a slide's files are unchanged.
     ``approach_to``: where the plan's approach slide ends (plan.json's ``extra.approach.to``, "around" from
     afar): the learned progress is read from the frame the mover got there (trajectory.json's ``action_from``),
-    as the planner scored the plan; None (every other plan): from the first frame.
+    as the planner scored the plan; None (every other plan): from the first frame. ``pace`` (the sentence's
+    "slowly", "gently": smoothing.PACES; None: normal) scales every motion's limits and is recorded.
     """
 
     meta = dict(meta or {})
+    if pace is not None:
+        meta["pace"] = pace
     meta.setdefault("mover", mover)
     how = manner_of(manner)
     if how.name != "slide":
@@ -179,6 +183,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = arm_primitives(world, render, out_dir)
+        prims.pace = smoothing.pace(pace)
         film = prims.recorder.film
         if how.name != "slide":
             prims.recorder.gripper = True

@@ -203,7 +203,8 @@ class Pusher:
         u = np.array([math.cos(side), math.sin(side)])
         n = np.array([-u[1], u[0]])
         step = target[:2] - self.prims.pose[:2]
-        along = float(np.clip(np.dot(step, u), -SPEED * self.dt, SPEED * self.dt))
+        speed = SPEED * self.prims.pace.velocity  # "push A slowly past B": the clause's pace
+        along = float(np.clip(np.dot(step, u), -speed * self.dt, speed * self.dt))
         lim = SIDE_SPEED * self.dt + float(np.hypot(*(target[:2] - b[:2]))) * dside
         out = target.copy()
         out[:2] = self.prims.pose[:2] + along * u + float(np.clip(np.dot(step, n), -lim, lim)) * n
@@ -247,7 +248,7 @@ class Pusher:
             prims.go(start, DESCEND, "descend")
         self.repositions = 0
         side = phi
-        limit = TIME_PER_M * total + SLACK_S
+        limit = TIME_PER_M * total / min(1.0, self.prims.pace.velocity) + SLACK_S
         t0 = self.world.time
         stopped = "blocked" if blocked else "end"
         best, best_t = 0.0, self.world.time

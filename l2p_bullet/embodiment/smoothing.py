@@ -33,6 +33,39 @@ class Limits:
     lateral: float = 0.5
 
 
+@dataclass(frozen=True)
+class Pace:
+    """How a sentence's manner adverb ("slowly", "gently") changes every motion of its clause: factors on
+    the ruckig limits. A gentle or careful motion lowers acceleration and jerk more than speed, so the
+    block starts and stops softly; a fast one raises all three within what the arms track (docs/manners.md)."""
+
+    name: str
+    velocity: float = 1.0
+    acceleration: float = 1.0
+    jerk: float = 1.0
+
+    def apply(self, lim: Limits) -> Limits:
+        if (self.velocity, self.acceleration, self.jerk) == (1.0, 1.0, 1.0):
+            return lim
+        return Limits(lim.velocity * self.velocity, lim.acceleration * self.acceleration, lim.jerk * self.jerk,
+                      lim.lateral * self.acceleration)
+
+
+NORMAL_PACE = Pace("normal")
+PACES: dict[str, Pace] = {p.name: p for p in (
+    Pace("slow", velocity=0.5, acceleration=0.5, jerk=0.5),
+    Pace("fast", velocity=1.5, acceleration=1.5, jerk=1.5),
+    Pace("gentle", velocity=0.6, acceleration=0.3, jerk=0.3),
+    Pace("careful", velocity=0.5, acceleration=0.35, jerk=0.35),
+)}
+"""The paces a sentence may ask for (language/words.PACES maps the adverbs to these names)."""
+
+
+def pace(name: str | None) -> Pace:
+    """The pace called ``name``; the normal one for None."""
+    return NORMAL_PACE if name is None else PACES[name]
+
+
 @dataclass
 class Timed:
     """A chunk sampled at a fixed period: ``poses[k]`` ([x, y, z, yaw]) is the target at ``t[k]``."""

@@ -106,8 +106,9 @@ def check_names(scene: Scene, mover: str, anchor: str) -> None:
     scene.get(anchor)
 
 
-def check_action(action: object, space: spaces.Box) -> np.ndarray:
-    """``action`` as 3 float64 numbers (any shape holding 3: (3,), (1, 3), (3, 1)), clipped to ``space``.
+def check_action(action: object, space: spaces.Box, what: str | None = None) -> np.ndarray:
+    """``action`` as the space's count of float64 numbers (any shape holding them: (3,), (1, 3), (3, 1)),
+    clipped to ``space``; ``what`` names the numbers in errors (default: a block move's dx, dy, dyaw).
 
     +-inf is clipped to the bound like any large number; NaN has no bound to clip to (``np.clip`` passes
     it through, and the move then failed the workspace test as if it were illegal), so it is an error.
@@ -116,12 +117,13 @@ def check_action(action: object, space: spaces.Box) -> np.ndarray:
         arr = np.asarray(action)
     except Exception:  # an object numpy cannot make an array of
         arr = np.asarray(None)
+    n = int(np.prod(space.shape))
     want = (f"3 numbers (dx, dy, dyaw) in the action space Box(3,): |dx|, |dy| <= {float(space.high[0]):g}, "
-            f"|dyaw| <= {float(space.high[2]):.4g}")
+            f"|dyaw| <= {float(space.high[2]):.4g}") if what is None else f"{n} numbers ({what}) in [-1, 1]"
     if arr.dtype.kind not in "iuf":
         raise EnvError(f"an action must be {want}, got {_short(action)}")
     a = arr.astype(np.float64).reshape(-1)
-    if a.size != 3:
+    if a.size != n:
         got = f"an array of shape {arr.shape}" if isinstance(action, np.ndarray) else _short(action)
         raise EnvError(f"an action must be {want}, got {got}")
     if np.isnan(a).any():

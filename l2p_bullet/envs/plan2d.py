@@ -76,9 +76,9 @@ class Plan2DEnv(gym.Env):
         self.render_mode, self.max_steps, self.max_move = render_mode, args["max_steps"], args["max_move"]
         self.size, self.illegal_penalty = args["size"], args["illegal_penalty"]
         b = POSITION_BOUND
-        self.observation_space = spaces.Box(np.array([-b, -b, -math.pi, -b, -b, -math.pi, 0.0], np.float32),
-                                            np.array([b, b, math.pi, b, b, math.pi, 1.0], np.float32),
-                                            dtype=np.float32)
+        self.state_space = spaces.Box(np.array([-b, -b, -math.pi, -b, -b, -math.pi, 0.0], np.float32),
+                                      np.array([b, b, math.pi, b, b, math.pi, 1.0], np.float32), dtype=np.float32)
+        self.observation_space = self.state_space  # Arm-v0's image modes wrap it in a Dict
         m = self.max_move
         self.action_space = spaces.Box(np.array([-m, -m, -MAX_TURN], np.float32),
                                        np.array([m, m, MAX_TURN], np.float32), dtype=np.float32)
@@ -164,7 +164,8 @@ class Plan2DEnv(gym.Env):
         m, an = self.pose, self._anchor_now()
         obs = [(m[0] - c[0]) / s, (m[1] - c[1]) / s, wrap_angle(m[2]), (an[0] - c[0]) / s, (an[1] - c[1]) / s,
                wrap_angle(an[2]), self.progress]
-        return np.clip(np.array(obs, np.float32), self.observation_space.low, self.observation_space.high)
+        box = self.state_space
+        return np.clip(np.array(obs, np.float32), box.low, box.high)
 
     def _info(self) -> dict[str, Any]:
         return {"progress": self.progress, "steps": self.steps, "action": self.action_name}

@@ -27,6 +27,7 @@ import threading
 import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -396,8 +397,9 @@ class Bullet:
         return self._pb.computeProjectionMatrixFOV(fov, aspect, near, far, physicsClientId=self._id)
 
     def camera_image(self, width: int, height: int, view: Sequence[float], projection: Sequence[float],
-                     hardware: bool = False, light: Vec3 | None = None) -> Sequence[int]:
-        """RGBA pixels, row-major; TinyRenderer (CPU) or, with ``hardware``, the EGL plugin.
+                     hardware: bool = False, light: Vec3 | None = None, depth: bool = False) -> Any:
+        """RGBA pixels, row-major; TinyRenderer (CPU) or, with ``hardware``, the EGL plugin. With ``depth``:
+        (pixels, the depth buffer in 0..1, non-linear as OpenGL writes it).
 
         ``light`` (a direction towards the light) draws the scene lit from there, with shadows; None: no
         shadows, the renderer's default light."""
@@ -406,9 +408,10 @@ class Bullet:
         quiet = quiet_stdout() if hardware else contextlib.nullcontext()  # the EGL plugin prints every frame
         lit = {} if light is None else {"shadow": 1, "lightDirection": list(light)}
         with quiet:
-            return pb.getCameraImage(width, height, view, projection, renderer=renderer,
-                                     flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self._id,
-                                     **({"shadow": 0} | lit))[2]
+            image = pb.getCameraImage(width, height, view, projection, renderer=renderer,
+                                      flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self._id,
+                                      **({"shadow": 0} | lit))
+        return (image[2], image[3]) if depth else image[2]
 
     def set_base_pose(self, name: str, position: Vec3, orientation: Quat) -> None:
         """Teleport the body's base (no physics: to draw a recorded state)."""

@@ -13,7 +13,7 @@ import numpy as np
 
 from ...errors import ExecutionError, ReachError
 from .. import motion
-from ..smoothing import Limits, Timed, time_parameterise
+from ..smoothing import NORMAL_PACE, Limits, Pace, Timed, time_parameterise
 from .grasp import Grasp, attach, detach
 
 CONTROL_HZ = 60.0
@@ -47,9 +47,9 @@ def line_plan(start: np.ndarray, target: np.ndarray, limits: Limits, short_turn:
 
 
 def slide_plan(path: np.ndarray, yaw_offset: float, z: float,
-               offset_xy: np.ndarray = (0.0, 0.0)) -> list[Timed]:
+               offset_xy: np.ndarray = (0.0, 0.0), limits: Limits = SLIDE) -> list[Timed]:
     """The timed tool chunks of a slide: corners rounded or stopped at (motion.py), ruckig timing."""
-    return [time_parameterise(tool_targets(ch, yaw_offset, z, offset_xy), SLIDE, 1.0 / CONTROL_HZ)
+    return [time_parameterise(tool_targets(ch, yaw_offset, z, offset_xy), limits, 1.0 / CONTROL_HZ)
             for ch in motion.slide_chunks(path)]
 
 
@@ -63,6 +63,7 @@ class Primitives:
         pos, _ = self.robot.tool_pose()
         self.pose = np.array([pos[0], pos[1], pos[2], self.robot.tool_yaw()])  # last commanded tool pose
         self.grasp: Grasp | None = None
+        self.pace: Pace = NORMAL_PACE  # the clause's manner adverb ("slowly"): scales every motion's limits
         self.steps_per_control = max(1, round(1.0 / (CONTROL_HZ * world.dt)))
         self.timed: list[tuple[str, Timed]] = []  # every timed chunk, for the summary
         self.ik_solves = 0
@@ -171,7 +172,7 @@ class Primitives:
 
     def go(self, target: np.ndarray, limits: Limits, stage: str, short_turn: bool = True) -> None:
         """Straight tool move from the last commanded pose to ``target`` ([x, y, z, yaw])."""
-        self.run(line_plan(self.pose, target, limits, short_turn), stage)
+        self.run(line_plan(self.pose, target, self.pace.apply(limits), short_turn), stage)
 
     # --- the primitives ----------------------------------------------------------------------
     def grasp_height(self, name: str) -> float:
@@ -237,7 +238,7 @@ class Primitives:
             if lift > 0:
                 solved["lift"] = self._check_line(down + [0.0, 0.0, lift, 0.0], DESCEND)
             p = self._continued(path, offset)
-            timed = slide_plan(p, offset, float(down[2]) + lift)
+            timed = slide_plan(p, offset, float(down[2]) + lift, limits=self.pace.apply(SLIDE))
             if timed:
                 samples = np.concatenate([self._control_samples(t) for t in timed])
                 joints = self.solve(samples)
@@ -255,7 +256,7 @@ class Primitives:
 
     def _check_line(self, target: np.ndarray, limits: Limits,
                     short_turn: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        timed = line_plan(self.pose, target, limits, short_turn)
+        timed = line_plan(self.pose, target, self.pace.apply(limits), short_turn)
         start, samples = self.q, self._control_samples(timed)
         joints = self.solve(samples)
         self.q, self.pose = joints[-1], timed.poses[-1].copy()
@@ -273,7 +274,8 @@ class Primitives:
         if self.grasp is None:
             raise ExecutionError("move() needs a grasped block: engage(obj) first")
         g = self.grasp
-        timed = slide_plan(self._continued(path, g.yaw_offset), g.yaw_offset, g.tool_z, g.offset_xy)
+        timed = slide_plan(self._continued(path, g.yaw_offset), g.yaw_offset, g.tool_z, g.offset_xy,
+                           self.pace.apply(SLIDE))
         for t, joints in zip(timed, self.slide_joints(timed), strict=True):  # all IK before moving
             self.run(t, "slide", joints)
             self.check_grasp()
@@ -286,7 +288,8 @@ class Primitives:
         g = self.grasp
         self.go(self.pose + [0.0, 0.0, lift, 0.0], DESCEND, "lift")  # the pre-flight check's joints reused
         self.check_grasp(lift)
-        timed = slide_plan(self._continued(path, g.yaw_offset), g.yaw_offset, g.tool_z + lift, g.offset_xy)
+        timed = slide_plan(self._continued(path, g.yaw_offset), g.yaw_offset, g.tool_z + lift, g.offset_xy,
+                           self.pace.apply(SLIDE))
         for t, joints in zip(timed, self.slide_joints(timed), strict=True):  # all IK before moving
             self.run(t, "slide", joints)
             self.check_grasp(lift)

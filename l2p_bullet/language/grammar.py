@@ -8,8 +8,10 @@ are not hard-coded: they are the phrases of the installed manifests (``phrases``
 its action), so installing a plugin teaches the parser a new preposition. When several phrases match,
 the longest wins ("to the left of" over "left of", "closer to" over "to").
 
-Objects are named ("A", "block A") or described by colour ("the red block", "red cube", "the green
-one"). Every failure is a :class:`LanguageError` (or :class:`UnknownObjectError`) that says which
+Around that core people add words: politeness and framing ("could you ...", "so that it is"), which
+are dropped, and qualifiers of the manner ("slowly") and of the preposition ("far away from"), which
+the command records (``pace``, ``extent``: language/words.py). Objects are named, described or pointed
+back to (language/references.py). Every failure is a :class:`LanguageError` (or :class:`UnknownObjectError`) that says which
 words were not understood and suggests the closest known ones, because the person typing the sentence
 cannot see the grammar.
 """
@@ -18,23 +20,25 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .core.scene import COLORS, Scene
-from .core.vocabulary import normalize_phrase
-from .errors import LanguageError, UnknownObjectError, did_you_mean
-from .manners import registry as manners
+from ..core.scene import Scene
+from ..core.vocabulary import normalize_phrase
+from ..errors import LanguageError, UnknownObjectError, did_you_mean
+from ..manners import registry as manners
+from .references import Context, resolve_object
+from .words import (
+    COMPARATIVES,
+    drop_frames,
+    gerund_to_verb,
+    goal_to_verb,
+    strip_polite,
+    take_extent,
+    take_pace,
+)
 
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
 """The plain verbs of a slide; every installed manner's verbs are known too (:func:`known_verbs`)."""
 OBJECT_PRONOUNS = frozenset({"it", "them"})
 """What may follow a manner's gap phrase: "lift A and put *it* next to B"."""
-POLITE_PREFIXES: tuple[tuple[str, ...], ...] = (
-    ("please",), ("kindly",), ("could", "you"), ("can", "you"), ("would", "you"), ("will", "you"),
-    ("i", "want", "you", "to"), ("i'd", "like", "you", "to"), ("now",), ("then",), ("and",),
-)
-POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = (("please",), ("thanks",), ("thank", "you"), ("for", "me"))
-DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
-NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object"})
-COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
 EXAMPLE = 'try for example "move A around B" or "slide the red block next to the green one"'
 MAX_SENTENCE = 200
 """Longest sentence read, in characters: a command is a few words; a longer text is refused at once
@@ -57,6 +61,8 @@ class Command:
     sentence: str = ""
     anchors: tuple[str, ...] = ()
     manner: str = "slide"  # the manner of motion the verb asks for (l2p_bullet/manners)
+    pace: str | None = None  # "slowly", "gently"...: language/words.PACES (None: the manner's own pace)
+    extent: str | None = None  # "far away", "a bit closer", "right next to": language/words.EXTENTS
 
     def __post_init__(self) -> None:
         if not self.anchors:
@@ -76,23 +82,6 @@ def tokens(sentence: str) -> list[str]:
     return [w for w in words if w]
 
 
-def strip_polite(words: list[str]) -> list[str]:
-    changed = True
-    while changed and words:
-        changed = False
-        low = [w.lower() for w in words]
-        for pre in POLITE_PREFIXES:
-            if tuple(low[: len(pre)]) == pre:
-                words, changed = words[len(pre):], True
-                break
-        low = [w.lower() for w in words]
-        for suf in POLITE_SUFFIXES:
-            if len(low) > len(suf) and tuple(low[-len(suf):]) == suf:
-                words, changed = words[: -len(suf)], True
-                break
-    return words
-
-
 def phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str]]:
     """(tokens, phrase, action) sorted longest first, so the longest phrase wins."""
     table = {normalize_phrase(p): a for p, a in phrases.items()}
@@ -100,11 +89,14 @@ def phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, s
     return sorted(items, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
 
 
-def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None) -> Command:
+def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None, *,
+          extents: dict[str, frozenset[str]] | None = None, context: Context | None = None) -> Command:
     """Parse ``sentence`` against the objects of ``scene`` and the installed ``phrases`` (phrase -> action).
 
     ``anchors`` says how many reference objects each action's sentences name (action -> 1 or 2; 1 when
-    not listed): a two-anchor action reads "B and C" after its phrase.
+    not listed): a two-anchor action reads "B and C" after its phrase. ``extents`` says which qualifiers
+    ("far", "a bit", "right": language/words.EXTENTS) each action accepts (none when not listed);
+    ``context`` is what pronouns ("it", "the other one") point back to: the previous clause.
     """
     if not isinstance(sentence, str) or not sentence.strip():
         raise LanguageError(f"the sentence is empty; {EXAMPLE}")
@@ -113,7 +105,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
                             f'("{sentence[:30].strip()}..."); {EXAMPLE}')
     if not phrases:
         raise LanguageError("no action plugins are installed, so no preposition is known (see: l2p-bullet actions)")
-    words = strip_polite(tokens(sentence))
+    words, pace = command_words(sentence, scene)
     if not words:
         raise LanguageError(f'"{sentence.strip()}" asks for nothing; {EXAMPLE}')
     verb, manner, rest = split_verb(words)
@@ -123,14 +115,16 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     # The longest phrase wins; among its positions the first that names two objects. If no phrase
     # gives a valid reading, the error of the longest phrase's first reading is the most useful one.
     first_error: Exception | None = None
-    for toks, phrase, action in phrase_tokens(phrases):
+    for toks, phrase, action, implied in _readings(phrases):
         n = len(toks)
         for i in range(0, len(low) - n + 1):
             if tuple(low[i : i + n]) != toks:
                 continue
             try:
-                mover = resolve_object(" ".join(rest[:i]), scene, role="block to move")
-                refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1))
+                before, extent = take_extent(rest[:i])
+                extent = extent or implied
+                mover = resolve_object(" ".join(drop_frames(before)), scene, "block to move", context)
+                refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1), context)
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
@@ -139,11 +133,46 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
                     f'the block to move and the reference block are both "{mover}": '
                     f"a block cannot be moved {phrase} itself")
                 continue
-            return Command(verb, mover, phrase, action, refs[0], sentence.strip(), refs, manner)
+            accepted = (extents or {}).get(action, frozenset())
+            if extent is not None and extent not in accepted:
+                said = " ".join(rest[len(before):i]) or phrase
+                raise LanguageError(f'"{said} {phrase}" asks for a {extent} extent, which "{phrase}" does not have '
+                                    f"(it takes: {', '.join(sorted(accepted)) or 'none'}); drop \"{said}\"")
+            return Command(verb, mover, phrase, action, refs[0], sentence.strip(), refs, manner, pace, extent)
     middle = _unplaced_words(rest, scene)
     if first_error is not None and (middle is None or _contains_phrase(middle, phrases)):
         raise first_error
     raise _unknown_preposition(rest, middle, phrases, verb)
+
+
+def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
+    """The words of the command itself (politeness, a goal's or a gerund's opening and manner adverbs
+    taken out) and the pace the adverbs ask for; a word that names an object always stays."""
+    keep = frozenset(scene.names)
+    verbs = known_verbs()
+    words = gerund_to_verb(tokens(text), verbs)
+    words = strip_polite(goal_to_verb(gerund_to_verb(strip_polite(words, keep), verbs), verbs), keep)
+    return take_pace(words, keep)
+
+
+def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:
+    """(tokens, phrase, action, implied extent) for every phrase, longest first; the comparatives people
+    use for "away from" ("farther from", "far from") read as its phrase when it is installed."""
+    out = [(t, p, a, None) for t, p, a in phrase_tokens(phrases)]
+    table = {normalize_phrase(p): a for p, a in phrases.items()}
+    for toks, (phrase, extent) in COMPARATIVES.items():
+        if phrase in table and " ".join(toks) not in table:
+            out.append((toks, phrase, table[phrase], extent))
+    return sorted(out, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
+
+
+def extent_table(plugins: list) -> dict[str, frozenset[str]]:
+    """Action name -> the extents its manifest declares (``extents = ["far", "little"]``)."""
+    out = {}
+    for p in plugins:
+        raw = p.manifest.get("extents", []) if isinstance(getattr(p, "manifest", None), dict) else []
+        out[p.name] = frozenset(e for e in raw if isinstance(e, str)) if isinstance(raw, list) else frozenset()
+    return out
 
 
 def known_verbs() -> list[str]:
@@ -213,12 +242,13 @@ CONJUNCTIONS = frozenset({"and", "&"})
 """Words that join a two-anchor action's reference objects ("between B and C")."""
 
 
-def _references(words: list[str], scene: Scene, phrase: str, count: int) -> tuple[str, ...]:
+def _references(words: list[str], scene: Scene, phrase: str, count: int,
+                context: Context | None = None) -> tuple[str, ...]:
     """The ``count`` reference objects named by ``words`` (after the preposition)."""
     role = f'reference block after "{phrase}"'
     if count == 1:
         _one_reference(words, scene, phrase)
-        return (resolve_object(" ".join(words), scene, role=role),)
+        return (resolve_object(" ".join(words), scene, role, context),)
     joins = [k for k, w in enumerate(words) if w.lower() in CONJUNCTIONS and 0 < k < len(words) - 1]
     if not joins:
         raise LanguageError(f'"{phrase}" needs two reference blocks, as in "move A {phrase} B and C"'
@@ -299,53 +329,6 @@ def _try_object(text: str, scene: Scene) -> str | None:
         return resolve_object(text, scene)
     except (LanguageError, UnknownObjectError):
         return None
-
-
-def _describe(scene: Scene) -> str:
-    return ", ".join(f"{o.name} ({o.color})" for o in scene.objects)
-
-
-def resolve_object(text: str, scene: Scene, role: str = "block") -> str:
-    """The name of the object ``text`` refers to: a name ("A", "block A") or a colour ("the red one")."""
-    words = text.split()
-    if not words:
-        raise LanguageError(f"the sentence does not name the {role}")
-    names = scene.names
-    if text in names:  # exact name first: a block may well be called "a" or "the cube"
-        return text
-    low = [w.lower() for w in words]
-    while len(low) > 1 and low[0] in DETERMINERS:
-        words, low = words[1:], low[1:]
-    if len(words) == 2 and low[0] in NOUNS and low[0] != "one":  # "block A"
-        words, low = words[1:], low[1:]
-    if len(words) == 2 and low[1] in NOUNS and low[1] != "one" and words[0] in names:  # "A block"
-        words, low = words[:1], low[:1]
-    candidate = " ".join(words)
-    if candidate in names:
-        return candidate
-    colour_words = [COLOR_SYNONYMS.get(w, w) for w in low]
-    if colour_words and colour_words[0] in COLORS and (len(low) == 1 or (len(low) == 2 and low[1] in NOUNS)):
-        colour = colour_words[0]
-        matching = [o.name for o in scene.objects if o.color == colour]
-        if len(matching) == 1:
-            return matching[0]
-        if not matching:
-            raise UnknownObjectError(
-                f'there is no {colour} block in the scene (blocks: {_describe(scene)}).'
-                + did_you_mean(colour, sorted({o.color for o in scene.objects}))
-            )
-        raise LanguageError(f'"{text}" is ambiguous: {len(matching)} {colour} blocks ({", ".join(matching)}); '
-                            "name the one you mean")
-    folded = [n for n in names if n.lower() == candidate.lower()]
-    if len(folded) == 1:
-        return folded[0]
-    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:
-        raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {_describe(scene)}).'
-                                 + did_you_mean(low[0], COLORS))
-    choices = names + [f"the {o.color} block" for o in scene.objects]
-    raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {_describe(scene)}).'
-                             + did_you_mean(text, choices))
-
 
 
 # --- composite actions: a phrase followed by a list of objects ----------------------------------------

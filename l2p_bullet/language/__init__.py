@@ -1,0 +1,26 @@
+"""Sentence -> what to do: the grammar (grammar.py), the words around a command (words.py) and the
+objects a sentence names (references.py). One grammar, documented in docs/perform.md ("Sentences")."""
+
+from .grammar import (
+    EXAMPLE,
+    MAX_SENTENCE,
+    TRAILING_JOINS,
+    VERBS,
+    Command,
+    ListCommand,
+    command_words,
+    extent_table,
+    known_verbs,
+    manner_of_sentence,
+    parse,
+    parse_list,
+    phrase_tokens,
+    split_verb,
+    tokens,
+)
+from .references import Context, resolve_object
+from .words import strip_polite
+
+__all__ = ["EXAMPLE", "MAX_SENTENCE", "TRAILING_JOINS", "VERBS", "Command", "command_words", "Context", "ListCommand", "extent_table", "known_verbs",
+           "manner_of_sentence", "parse", "parse_list", "phrase_tokens", "resolve_object", "split_verb",
+           "strip_polite", "tokens"]

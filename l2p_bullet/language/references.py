@@ -1,0 +1,264 @@
+"""Words that name an object -> the object's name, resolved against the scene before anything moves.
+
+People name objects many ways: by name ("A", "block A", "the duck"), colour ("the red one"), shape
+("the box", "the cylinder", "the tall one"), a superlative ("the biggest one", "the block nearest the
+robot", "the leftmost block"), a relation to another object ("the one left of B") or a pronoun that
+points back to the previous clause ("it", "that one": its mover; "the other one": its anchor).
+
+Every reading is checked against the scene: a description that fits several objects is a one-line
+error that lists them (a refusal beats a wrong block), and so is one that fits none. Left and right are
+the robot's (the scene's +y is its left, DESIGN.md section 4), the view of a person behind it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
+from ..errors import LanguageError, UnknownObjectError, did_you_mean
+
+DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
+NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
+SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "cylinder": "cylinder", "can": "cylinder"}
+"""Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour
+("the red box") the colour decides, since people call any block a box."""
+COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
+FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
+                            "and", "or", "then", "so", "it", "not", "no"})
+NAMED_AS = (("called",), ("named",))
+PRONOUNS_MOVER = ((("it",)), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
+                  ("the", "same", "one"), ("the", "same", "object"), ("that",))
+PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
+ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"))
+NEAREST = frozenset({"nearest", "closest"})
+FARTHEST = frozenset({"farthest", "furthest"})
+SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smallest": ("area", min),
+                     "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
+                     "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min)}
+TALL_RATIO = 1.5
+"""An object is "tall" when its height is at least this many times its footprint's side."""
+TIE = 0.02
+TIE_M = 0.002
+"""Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:
+the description is ambiguous."""
+SIDE_CONE = math.radians(45)
+""""Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
+
+
+@dataclass(frozen=True)
+class Context:
+    """What pronouns point back to: the previous clause's mover and anchor (None: there is none)."""
+
+    mover: str | None = None
+    anchor: str | None = None
+
+
+def describe(scene: Scene) -> str:
+    return ", ".join(f"{o.name} ({o.color})" for o in scene.objects)
+
+
+def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
+    """The name of the object ``text`` refers to; a one-line error when none or several fit."""
+    words = text.split()
+    if not words:
+        raise LanguageError(f"the sentence does not name the {role}")
+    names = scene.names
+    if text in names:  # an exact name first: a block may well be called "a" or "the cube"
+        return text
+    low = tuple(w.lower() for w in words)
+    pointed = _pronoun(low, context, role)
+    if pointed is not None:
+        return pointed
+    for i in range(1, len(low) - 1):
+        if low[i - 1] in NOUNS and low[i:i + 1] in NAMED_AS:  # "the block called A"
+            return resolve_object(" ".join(words[i + 1:]), scene, role, context)
+    determined = False
+    while len(low) > 1 and low[0] in DETERMINERS and words[0] not in names:
+        words, low, determined = words[1:], low[1:], True
+    candidate = " ".join(words)
+    if candidate in names:
+        return candidate
+    folded = [n for n in names if n.lower() == candidate.lower()]
+    if len(folded) == 1:
+        return folded[0]
+    relational = _relational(words, low, scene, role, context)
+    if relational is not None:
+        return relational
+    return _described(text, words, low, scene, determined)
+
+
+def _pronoun(low: tuple[str, ...], context: Context | None, role: str) -> str | None:
+    if low in PRONOUNS_MOVER or low in PRONOUNS_ANCHOR:
+        if context is None or context.mover is None:
+            raise LanguageError(f'"{" ".join(low)}" ({role}) points back to an earlier clause, and there is none; '
+                                "name the block")
+        return context.mover if low in PRONOUNS_MOVER else context.anchor
+    return None
+
+
+def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
+    """Colour, shape and name words ("the red block", "red A", "the orange duck", "the tall one")."""
+    names = {n.lower(): n for n in scene.names}
+    colours = {COLOR_SYNONYMS.get(w, w) for w in low if COLOR_SYNONYMS.get(w, w) in COLORS}
+    named = [names[w] for w in low if w in names and w not in NOUNS]
+    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
+    tall = "tall" in low
+    short = "short" in low
+    known = set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | {"tall", "short"} | set(names)
+    unknown = [w for w in low if w not in known]
+    if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
+            and low[0] not in FUNCTION_WORDS:
+        unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
+    if unknown or not (colours or named or shapes or tall or short or set(low) & NOUNS):
+        _unknown(text, words, low, scene)
+    fits = list(scene.objects)
+    if named:
+        fits = [o for o in fits if o.name in named]
+    if colours:
+        fits = [o for o in fits if o.color in colours]
+    elif shapes and not named:
+        fits = [o for o in fits if o.shape in shapes]
+    if tall or short:
+        fits = [o for o in fits if _is_tall(o) == tall]
+    return _one(text, fits, scene, colours)
+
+
+def _unknown(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:
+    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:
+        raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {describe(scene)}).'
+                                 + did_you_mean(low[0], COLORS))
+    choices = scene.names + [f"the {o.color} block" for o in scene.objects]
+    raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {describe(scene)}).'
+                             + did_you_mean(text, choices))
+
+
+def _one(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) -> str:
+    if len(fits) == 1:
+        return fits[0].name
+    if not fits:
+        if colours and not any(o.color in colours for o in scene.objects):
+            colour = sorted(colours)[0]
+            raise UnknownObjectError(f"there is no {colour} block in the scene (blocks: {describe(scene)})."
+                                     + did_you_mean(colour, sorted({o.color for o in scene.objects})))
+        raise UnknownObjectError(f'nothing in the scene is "{text}" (blocks: {describe(scene)})')
+    listed = ", ".join(o.name for o in fits)
+    if colours and len(colours) == 1 and all(o.color in colours for o in fits):
+        raise LanguageError(f'"{text}" is ambiguous: {len(fits)} {next(iter(colours))} blocks ({listed}); '
+                            "name the one you mean")
+    raise LanguageError(f'"{text}" is ambiguous: it fits {len(fits)} objects ({listed}); name the one you mean')
+
+
+def _is_tall(o: SceneObject) -> bool:
+    return o.geometry.height >= TALL_RATIO * o.size
+
+
+def _measure(o: SceneObject, what: str) -> float:
+    """A length in metres: the footprint's side (its area's square root), the height, or y (leftness)."""
+    if what == "area":
+        return float(o.size)
+    if what == "height":
+        return float(o.geometry.height)
+    return float(o.xy[1])
+
+
+def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
+                context: Context | None) -> str | None:
+    """Superlatives and relations: None when ``words`` hold none (then colours and names are tried)."""
+    head = _head_end(low)
+    if head is None:
+        return None
+    kind, at, end = head
+    rest_words = words[end:]
+    if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
+        if any(w.lower() not in NOUNS | set(COLORS) | set(SHAPE_NOUNS) for w in rest_words):
+            return None
+        pool = _pool(" ".join(words[:at] + rest_words), scene)
+        what, pick = SIZE_SUPERLATIVES[kind]
+        return _superlative(pool, lambda o: _measure(o, what), pick, kind)
+    pool = _pool(" ".join(words[:at]), scene)  # "the red block nearest B": the red ones only
+    ref = _reference_point(rest_words, scene, role, context)
+    if ref is None:
+        return None
+    ref_name, ref_xy = ref
+    pool = [o for o in pool if o.name != ref_name]
+    if kind in ("left", "right"):
+        side = 1.0 if kind == "left" else -1.0
+        beside = [o for o in pool if _bearing_off(np.subtract(o.xy, ref_xy), side) <= SIDE_CONE]
+        if not beside:
+            raise UnknownObjectError(f'nothing in the scene is {kind} of {ref_name or "the robot"} as the robot sees '
+                                     f"it (blocks: {describe(scene)})")
+        return _superlative(beside, lambda o: _distance(o, ref_xy), min, f"{kind} of")
+    return _superlative(pool, lambda o: _distance(o, ref_xy), min if kind in NEAREST else max, kind)
+
+
+def _distance(o: SceneObject, xy: tuple[float, float]) -> float:
+    """Centre to ``xy`` in metres: what "nearest" and "farthest" compare."""
+    return float(np.hypot(o.xy[0] - xy[0], o.xy[1] - xy[1]))
+
+
+def _head_end(low: tuple[str, ...]) -> tuple[str, int, int] | None:
+    """(the relation's word, where its phrase starts, where its reference starts) or None."""
+    for i, w in enumerate(low):
+        if w in SIZE_SUPERLATIVES:
+            return w, i, i + 1
+        if w in NEAREST | FARTHEST:
+            j = i + 1
+            if j < len(low) and low[j] in NOUNS:  # "the closest block to the duck"
+                j += 1
+            if j < len(low) and low[j] in ("to", "from"):
+                j += 1
+            return w, i, j
+        if w in ("left", "right") and i + 1 < len(low) and low[i + 1] == "of":
+            start = i
+            while start > 0 and low[start - 1] in ("to", "on", "the"):
+                start -= 1
+            return w, start, i + 2
+    return None
+
+
+def _pool(restrict: str, scene: Scene) -> list[SceneObject]:
+    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows."""
+    low = [w.lower() for w in restrict.split()]
+    low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
+    colours = {COLOR_SYNONYMS.get(w, w) for w in low if COLOR_SYNONYMS.get(w, w) in COLORS}
+    fits = list(scene.objects)
+    if colours:
+        fits = [o for o in fits if o.color in colours]
+    shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
+    if shapes:
+        fits = [o for o in fits if o.shape in shapes]
+    return fits
+
+
+def _reference_point(words: list[str], scene: Scene, role: str,
+                     context: Context | None) -> tuple[str | None, tuple[float, float]] | None:
+    low = tuple(w.lower() for w in words)
+    if not low:
+        return None
+    if low in ROBOT_WORDS:
+        return None, (float(ROBOT_BASE_XY[0]), float(ROBOT_BASE_XY[1]))
+    try:
+        name = resolve_object(" ".join(words), scene, role, context)
+    except (LanguageError, UnknownObjectError):
+        return None
+    return name, tuple(scene.get(name).xy)
+
+
+def _bearing_off(v: np.ndarray, side: float) -> float:
+    """The angle between ``v`` and the robot's left (side 1) or right (side -1)."""
+    ang = math.atan2(float(v[1]), float(v[0]))
+    return abs(math.remainder(ang - side * math.pi / 2, 2 * math.pi))
+
+
+def _superlative(pool: list[SceneObject], measure, pick, word: str) -> str:
+    if not pool:
+        raise UnknownObjectError(f'no object in the scene is the "{word}" one')
+    values = {o.name: measure(o) for o in pool}
+    best = pick(values.values())
+    tied = [n for n, v in values.items() if abs(v - best) <= max(TIE * abs(best), TIE_M)]
+    if len(tied) > 1:
+        raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
+    return tied[0]

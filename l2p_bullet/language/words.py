@@ -1,0 +1,172 @@
+"""The words around a command that people add and the parser must read past or record.
+
+People frame a command politely ("could you ...", "..., please"), say where the block should end up
+instead of how to move it ("so that it is next to B", "until it is past A"), qualify the preposition
+("far away from", "a bit closer to", "right next to") and the manner ("slowly", "gently"). Politeness
+and framing carry no meaning for the robot and are dropped; the qualifiers are recorded on the command:
+
+- ``pace`` (how the arm moves): slow, fast, gentle or careful; the executor turns it into ruckig's
+  velocity and acceleration limits (``embodiment/smoothing.PACES``).
+- ``extent`` (how far the relation goes): far, little or right; each action declares which it accepts
+  (``[language] extents`` in its manifest), so "far around B" is refused rather than ignored.
+
+A word that is the name of an object in the scene is never dropped ("move Now next to B" moves "Now").
+"""
+
+from __future__ import annotations
+
+from ..errors import LanguageError
+
+POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
+    "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
+    "can you please", "i would like you to", "i'd like you to", "i want you to", "i need you to",
+    "go ahead and", "please could you", "please can you", "please", "kindly", "could you", "can you",
+    "would you", "will you", "could u", "can u", "pls", "plz", "let's", "lets", "try to", "now", "then", "and",
+    "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot",
+))
+"""Words that may open a command and ask for nothing (longest first where one starts another)."""
+POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
+    "please thanks", "please thank you", "thank you", "thanks", "please", "for me", "now", "would you",
+    "could you", "will you", "can you", "ok", "okay",
+))
+GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("would", "you", "mind"), ("do", "you", "mind"))
+"""Openings followed by the verb's -ing form: "would you mind moving A past B"."""
+
+GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"))
+"""Openings that state the end instead of the motion: "I want the red block next to the green one" is
+"put the red block next to the green one"."""
+
+FRAMES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
+    "so that it ends up", "so that it is", "so that it's", "so that it goes", "so that it sits",
+    "so that it lands", "so that it ends", "so it ends up", "so it is", "so it's", "so it goes", "so it sits",
+    "so it lands", "so it ends", "such that it is", "such that it's", "until it is", "until it's",
+    "until it ends up", "so that", "so", "over so it's", "over so it is", "over", "back",
+))
+"""Words between the mover and the preposition that say where the mover ends, not how: dropped."""
+
+PACES: dict[str, str] = {
+    "slowly": "slow", "slow": "slow", "quickly": "fast", "fast": "fast", "rapidly": "fast", "swiftly": "fast",
+    "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful",
+}
+"""Manner adverbs -> the pace they ask for."""
+PACE_INTENSIFIERS = frozenset({"very", "really", "quite", "extra", "super"})
+"""Words that may stand before a manner adverb and add nothing the pace can express."""
+NICE_AND = ("nice", "and")
+
+EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
+    "very far": "far", "quite far": "far", "really far": "far", "far far": "far", "far": "far",
+    "farther": "far", "further": "far", "a lot": "far", "much": "far", "way": "far", "well": "far",
+    "a tiny bit": "little", "a little bit": "little", "a little": "little", "a bit": "little",
+    "only slightly": "little", "slightly": "little", "somewhat": "little", "just": "little",
+    "right": "right", "directly": "right", "immediately": "right",
+}.items()}
+"""Qualifiers that stand right before the preposition -> the extent they ask for."""
+COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
+    ("far", "from"): ("away from", "far"),
+    ("farther", "from"): ("away from", None),
+    ("further", "from"): ("away from", None),
+}
+"""Phrases people use for "away from" that the away action does not list: (its phrase, the extent)."""
+
+
+def _starts(low: list[str], words: tuple[str, ...]) -> bool:
+    return tuple(low[: len(words)]) == words
+
+
+def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[str]:
+    """``words`` without the politeness around the command; a word in ``keep`` (an object's name) stays."""
+    changed = True
+    while changed and words:
+        changed = False
+        low = [w.lower() for w in words]
+        for pre in POLITE_PREFIXES:
+            if _starts(low, pre) and not set(words[: len(pre)]) & keep:
+                words, changed = words[len(pre):], True
+                break
+        low = [w.lower() for w in words]
+        for suf in POLITE_SUFFIXES:
+            if len(low) > len(suf) and tuple(low[-len(suf):]) == suf and not set(words[-len(suf):]) & keep:
+                words, changed = words[: -len(suf)], True
+                break
+    return words
+
+
+def gerund_to_verb(words: list[str], verbs: list[str]) -> list[str]:
+    """"would you mind moving A past B" -> "move A past B" (the -ing form of a known verb)."""
+    low = [w.lower() for w in words]
+    for pre in GERUND_PREFIXES:
+        if _starts(low, pre) and len(words) > len(pre):
+            ing = low[len(pre)]
+            for v in verbs:
+                if ing in (v + "ing", v[:-1] + "ing", v + v[-1] + "ing"):
+                    return [v, *words[len(pre) + 1:]]
+    return words
+
+
+def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
+    """"I want the red block next to B" -> "put the red block next to B"; a known verb after the opening
+    ("I want to move ...") is kept as it is."""
+    low = [w.lower() for w in words]
+    for pre in GOAL_PREFIXES:
+        if _starts(low, pre) and len(words) > len(pre):
+            rest = words[len(pre):]
+            if rest[0].lower() == "to" and len(rest) > 1:
+                return rest[1:]
+            if rest[0].lower() in verbs:
+                return rest
+            return ["put", *rest]
+    if low[:1] == ["make"] and "go" in low[2:]:  # "make A go around B"
+        at = low.index("go", 2)
+        return ["move", *words[1:at], *words[at + 1:]]
+    return words
+
+
+def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[list[str], str | None]:
+    """``words`` without their manner adverbs, and the one pace they ask for (None: none asked).
+    Two different paces ("slowly and quickly") are a one-line error: the arm cannot do both."""
+    out: list[str] = []
+    paces: list[str] = []
+    i = 0
+    low = [w.lower() for w in words]
+    while i < len(words):
+        w = low[i]
+        if words[i] not in keep and w in PACES:
+            paces.append(PACES[w])
+            while out and out[-1].lower() in PACE_INTENSIFIERS:
+                out.pop()
+            if tuple(x.lower() for x in out[-2:]) == NICE_AND:
+                del out[-2:]
+            if out and out[-1].lower() == "and" and paces[:-1]:
+                out.pop()
+            i += 1
+            continue
+        out.append(words[i])
+        i += 1
+    distinct = sorted(set(paces))
+    if len(distinct) > 1:
+        said = " and ".join(w for w in low if w in PACES)
+        raise LanguageError(f'"{said}" asks for {len(distinct)} different paces ({", ".join(distinct)}); '
+                            "say one of them")
+    return out, (distinct[0] if distinct else None)
+
+
+def take_extent(before: list[str]) -> tuple[list[str], str | None]:
+    """The words before a preposition without a qualifier at their end, and the extent it asks for."""
+    low = [w.lower() for w in before]
+    for k in sorted(EXTENTS, key=len, reverse=True):
+        if len(low) > len(k) and tuple(low[-len(k):]) == k:
+            rest, extent = before[: -len(k)], EXTENTS[k]
+            if extent == "far" and rest and rest[-1].lower() in ("far",):  # "far, far away from"
+                rest = rest[:-1]
+            return rest, extent
+    return before, None
+
+
+def drop_frames(before: list[str]) -> list[str]:
+    """The mover's words without the framing that follows them ("A so that it is" -> "A")."""
+    low = [w.lower() for w in before]
+    for f in FRAMES:
+        n = len(f)
+        if len(low) > n and tuple(low[-n:]) == f:
+            return drop_frames(before[:-n])
+    return before
