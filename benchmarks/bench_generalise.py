@@ -20,8 +20,8 @@ import torch
 
 from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.learning import generalise as g
-from l2p_bullet.learning.recipes import recipes
 from l2p_bullet.learning.sessions import run_suite
+from l2p_bullet.learning.training_plan import plans
 
 
 def table(name: str, reps: dict[str, g.ActionReport]) -> str:
@@ -58,7 +58,7 @@ def main() -> None:
                          "they are never scored): the fifth round's variant (use its own --cache)")
     args = ap.parse_args()
     torch.set_num_threads(1)
-    known = recipes(args.ensemble, args.epochs)
+    known = plans(args.ensemble, args.epochs)
     names = list(known) if args.recipes == "all-recipes" else args.recipes.split(",")
     unknown = [n for n in names if n not in known]
     if unknown:

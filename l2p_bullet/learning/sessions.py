@@ -27,8 +27,10 @@ from . import generalise as g
 from .heldout import FOLDS
 from .ordered_probes import ordered
 from .progress_net import ProgressModel, ensemble_arrays
-from .recipes import SHIPPED, Recipe, own_trusted, train
 from .train_progress import all_demos, data_digest, training_section
+from .train_progress import train_plan as train
+from .training_plan import SHIPPED, own_trusted
+from .training_plan import TrainingPlan as Recipe
 
 
 def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] = ACTIONS, seed: int = 0,

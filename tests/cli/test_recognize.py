@@ -244,8 +244,8 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     import shutil
 
     from l2p_bullet.learning import sessions
-    from l2p_bullet.learning.recipes import SHIPPED, Recipe
     from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, data_digest
+    from l2p_bullet.learning.training_plan import SHIPPED, TrainingPlan
     from l2p_bullet.learning.trainset import DataConfig
     from l2p_bullet.plugins.bundle import builtin_bundle_dir, update_manifest
 
@@ -265,7 +265,7 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     assert sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",)) == {"closer": folder}
     with pytest.raises(Trains):  # a recipe that adds to the training set
         sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",),
-                                 recipe=Recipe("x", planner_positives=True))
+                                 recipe=TrainingPlan("x", planner_positives=True))
     with pytest.raises(Trains):  # another seed
         sessions.session_bundles("Session1", tmp_path / "Session1", actions=("closer",), seed=1)
     with pytest.raises(Trains):  # the other session's demonstrations
