@@ -71,27 +71,29 @@ class Training:
     """The original's cold feedback ("clear" targets) for it: mean grade <= [0] is 0, >= [1] is 1, when not
     the default of ``learning.feedback_targets.FeedbackConfig.clear``."""
     wrong_motions: tuple[str, ...] = ()
-    """The wrong planner motions a training plan's ``planner_negatives`` makes from each of its events, by kind
-    (``learning.training_plan.WRONG_MOTIONS``): "backs-off" (out 1.5-4 blocks and back to its start distance),
-    "out-and-back" (to the end and back near the start), "reversed" (end to start), "to-closest-and-back"
-    (to its closest approach and back), "half-round-and-back" (half of it and straight back)."""
+    """The wrong planner motions a training plan's ``planner_negatives`` makes from each of its events, by
+    kind (``learning.training_plan.WRONG_MOTIONS``): "backs-off" (out 1.5-4 blocks and back to its start
+    distance), "out-and-back" (to the end and back near the start), "reversed" (end to start),
+    "to-closest-and-back" (to its closest approach and back), "half-round-and-back" (half of it and straight
+    back)."""
     graded_wrong: str | None = None
     """The planner motion that undoes part of it and keeps the credit a rule leaves it (a plan's
     ``graded_wrongs``, ``learning.training_plan.GRADED_WRONGS``): "goes-back" (back a share of the way to the
     start), "moves-out" (1-5 blocks straight out from where it ends); None: none."""
     grid_copies: bool = False
-    """A plan's planner positives also snapped to the 2-D study's move grid (its demonstrations were graded there)."""
+    """A plan's planner positives also snapped to the 2-D study's move grid (its demonstrations were graded
+    there)."""
     strays: bool = False
-    """A plan's ``strays``: copies with one corner moved out to the planner's outer rings, with the credit its rule's
-    ``near`` threshold leaves them."""
+    """A plan's ``strays``: copies with one corner moved out to the planner's outer rings, with the credit its
+    rule's ``near`` threshold leaves them."""
     near_starts: bool = False
     """A plan's ``near_starts``: its events made short near the anchor, as full events."""
 
 
 @dataclass(frozen=True)
 class LeadIn:
-    """How a rule that reads a motion from its first frame within ``near`` blocks of the anchor (and sweeps round
-    it from there) is planned: a mover starting farther is first slid straight to ``approach`` blocks
+    """How a rule that reads a motion from its first frame within ``near`` blocks of the anchor (and sweeps
+    round it from there) is planned: a mover starting farther is first slid straight to ``approach`` blocks
     (``planning/approach.py``), no move of the search ends beyond ``reach`` blocks, and among bystanders a way
     round within ``near`` is offered (``planning/detour.py``). All in blocks, from people's demonstrations."""
 
@@ -104,8 +106,8 @@ class LeadIn:
 class Bound:
     """A bound from people's demonstrations on the candidates the planner ranks (``planning/bounds.py``): a
     candidate beyond it is scored down. ``kind`` names the measure (``planning.bounds.WEIGHTS``):
-    "passes-within" (its closest centre distance to the anchor, blocks), "goes-back-within" (how far its centre
-    distance went back, as a share of its room); ``within``: the most people's demonstrations went."""
+    "passes-within" (its closest centre distance to the anchor, blocks), "goes-back-within" (how far its
+    centre distance went back, as a share of its room); ``within``: the most people's demonstrations went."""
 
     kind: str
     within: float
@@ -117,8 +119,8 @@ class Planning:
 
     checks: tuple[str, ...] = ()
     """The up-front room checks that apply to it, by the name their refusal carries
-    (``planning.feasibility.ROOM_CHECKS``: "room-closer", "room-away", "room-around", "blocked-around"), run in
-    this order with its thresholds."""
+    (``planning.feasibility.ROOM_CHECKS``: "room-closer", "room-away", "room-around", "blocked-around"), run
+    in this order with its thresholds."""
     bound: Bound | None = None
     lead_in: LeadIn | None = None
 
@@ -126,8 +128,8 @@ class Planning:
 @dataclass(frozen=True)
 class Touching:
     """An evaluation report's finding for an action whose runs may end touching the anchor
-    (``evaluate/report.py``): how many do, and how many ``also``'s judge accepts (``also_words``: how the report
-    names that action); ``note`` says why it matters."""
+    (``evaluate/report.py``): how many do, and how many ``also``'s judge accepts (``also_words``: how the
+    report names that action); ``note`` says why it matters."""
 
     also: str
     also_words: str

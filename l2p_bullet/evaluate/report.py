@@ -97,10 +97,11 @@ def report_text(rows: list[dict], c: Confusion | None = None) -> str:
     for name, t in TOUCHING.items():
         f = touching_finding(rows, name, t.also) if name in c.asked else {"runs": 0}
         if f["runs"]:
-            w = f["share_within"]
-            lines += ["", f'"{name}" runs: final gap to the anchor within 0.2 / 0.3 / 0.5 block: {100 * w["0.2"]:.0f} / '
-                          f'{100 * w["0.3"]:.0f} / {100 * w["0.5"]:.0f} % of {f["runs"]} (median {f["median_gap_blocks"]:.2f} '
-                          f'block); read as "{t.also_words}" by its judge: {f["read_as_also"]} of {f["runs"]}. {t.note}']
+            w, n = f["share_within"], f["runs"]
+            lines += ["", f'"{name}" runs: final gap to the anchor within 0.2 / 0.3 / 0.5 block: '
+                          f'{100 * w["0.2"]:.0f} / {100 * w["0.3"]:.0f} / {100 * w["0.5"]:.0f} % of {n} '
+                          f'(median {f["median_gap_blocks"]:.2f} block); read as "{t.also_words}" by its '
+                          f'judge: {f["read_as_also"]} of {n}. {t.note}']
     return "\n".join(lines)
 
 

@@ -60,8 +60,8 @@ from .rulesets.next_to import NEXT_TO_GAP
 from .rulesets.past import PAST_MARGIN, PAST_MAX_TURN_DEG, PAST_NEAR
 from .rulesets.sides import NEAR, SIDES
 
-__all__ = ["RULES", "RULE_SPECS", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap", "closer_room",
-           "went_back", "WOBBLE",
+__all__ = ["RULES", "RULE_SPECS", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap",
+           "closer_room", "went_back", "WOBBLE",
            "CLOSER_SHARE", "AWAY_GAIN", "NEXT_TO_GAP", "PAST_MARGIN", "PAST_NEAR", "PAST_MAX_TURN_DEG",
            "AROUND_TURNS", "AROUND_NEAR", "AROUND_APPROACH", "NEAR", "SIDES"]
 

@@ -334,7 +334,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     qsr_cfg = QSRConfig()
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
-        spec = declared_spec(name)  # its training options and the extras it declares (a built-in's are looked up)
+        spec = declared_spec(name)  # its training options and extras (a built-in's are looked up)
         data_cfg = DataConfig(random_negatives=0).with_action(spec)
         frame, anchors = declared(name, out)
         qsr_cfg = QSRConfig(frame=frame.name, anchors=anchors)
@@ -347,7 +347,8 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if not plugin and not demo_files:  # the shipped demonstrations: the plan may leave untrusted ones out
         demos = own_trusted(SHIPPED, name, demos)
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                          on_stage=on_stage, extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed, spec))
+                          on_stage=on_stage,
+                          extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed, spec))
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')

@@ -1,8 +1,9 @@
 """Training plans, the shipped one among them: :data:`SHIPPED` is what ``l2p-bullet train``, ``teach`` and
-``make bundles`` use (recorded in each manifest's ``[training.recipe]``, the name that file contract keeps). The
-others were compared with it on the grade-free suite (:mod:`l2p_bullet.learning.generalise`); the session-split
-models they give are cached on disk so a table can be re-printed without re-training. ("Recipe" is a composite's
-learned row, ``composite/recipe.py``; a training plan is how a progress model's set is made and trained.)
+``make bundles`` use (recorded in each manifest's ``[training.recipe]``, the name that file contract keeps).
+The others were compared with it on the grade-free suite (:mod:`l2p_bullet.learning.generalise`); the
+session-split models they give are cached on disk so a table can be re-printed without re-training. ("Recipe"
+is a composite's learned row, ``composite/recipe.py``; a training plan is how a progress model's set is made
+and trained.)
 
 A training plan is the current training set (:func:`trainset.build`, unchanged: its sequences and their hashes
 are those of ``l2p-bullet train``) plus optional extra sequences appended after it, drawn from their own
@@ -101,8 +102,8 @@ PARTIAL_CUTS = (0.3, 0.6)
 
 @dataclass(frozen=True)
 class TrainingPlan:
-    """How one progress model's training set is made (the current set plus the extras switched on here, for the
-    actions that declare them) and trained (:attr:`train`)."""
+    """How one progress model's training set is made (the current set plus the extras switched on here, for
+    the actions that declare them) and trained (:attr:`train`)."""
 
     name: str
     data: DataConfig = field(default_factory=DataConfig)
@@ -114,13 +115,14 @@ class TrainingPlan:
     planner_partials: bool = False
     graded_wrongs: bool = False
     grid: bool = True
-    """With ``planner_positives``: actions that declare ``grid_copies`` (around) also get copies snapped to the 2-D
-    study's grid."""
+    """With ``planner_positives``: actions that declare ``grid_copies`` (around) also get copies snapped to
+    the 2-D study's grid."""
     strays: bool = False
     trusted_own: bool = False
     """Leave the action's own untrusted shipped demonstrations out of its own set (:func:`own_trusted`)."""
     near_starts: bool = False
-    """Actions that declare ``near_starts`` (closer): people's endings made short, as full events (:func:`_near`)."""
+    """Actions that declare ``near_starts`` (closer): people's endings made short, as full events
+    (:func:`_near`)."""
 
     def extras_dict(self) -> dict:
         """The options that add to the current training set (empty for the current plan): what a
@@ -140,8 +142,8 @@ class TrainingPlan:
                 **({"near_starts": True} if self.near_starts else {})}
 
 
-SHIPPED = TrainingPlan("planner-graded-nogrid", planner_positives=True, planner_negatives=True, planner_partials=True,
-                 graded_wrongs=True, grid=False)
+SHIPPED = TrainingPlan("planner-graded-nogrid", planner_positives=True, planner_negatives=True,
+                       planner_partials=True, graded_wrongs=True, grid=False)
 """The plan ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with, training settings from
 the command (5 LSTMs x 30 epochs by default): planner-graded-nogrid, the one that cleared the rule committed
 before the fourth round (docs/learning.md: strengthened suite 0.438 against the current plan's 0.321, 33 goals
@@ -152,8 +154,8 @@ manifest (``[training.recipe]``)."""
 def shipped_extension(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, data_cfg: DataConfig,
                       seed: int, spec: ActionSpec | None = None
                       ) -> Callable[[list[TrainingSequence]], list[TrainingSequence]]:
-    """:data:`SHIPPED`'s extension of the set :func:`trainset.build` made with ``data_cfg`` (a plugin's
-    own data settings are kept, and the extras its ``spec`` declares added; a viewer-frame or two-anchor plugin
+    """:data:`SHIPPED`'s extension of the set :func:`trainset.build` made with ``data_cfg`` (a plugin's own
+    data settings are kept, and the extras its ``spec`` declares added; a viewer-frame or two-anchor plugin
     gets nothing added)."""
     return functools.partial(extend, dataclasses.replace(SHIPPED, data=data_cfg), action, demos, qcfg, seed,
                              spec=spec)
@@ -172,7 +174,7 @@ def plans(ensemble: int, epochs: int) -> dict[str, TrainingPlan]:
     """The training plans tried (issue 25), at a given ensemble size and length of training."""
     t = ProgressTrainConfig(ensemble=ensemble, epochs=epochs)
     small = dataclasses.replace(t, hidden=16)
-    on = {"planner_positives": True, "planner_negatives": True}  # the planner-domain plans all start from these
+    on = {"planner_positives": True, "planner_negatives": True}  # every planner-domain plan has these
     graded = {**on, "planner_partials": True, "graded_wrongs": True}
     return {r.name: r for r in [
         TrainingPlan("current", train=t),
@@ -245,11 +247,13 @@ WRONG_MOTIONS: dict[str, Callable[[g.Event, np.random.Generator], np.ndarray]] =
     "backs-off": _backs_off, "out-and-back": _out_and_back, "reversed": _reversed,
     "to-closest-and-back": _to_closest_and_back, "half-round-and-back": _half_round_and_back,
 }
-"""The wrong motions by kind (``Training.wrong_motions``): each makes the waypoints of one from an own event."""
+"""The wrong motions by kind (``Training.wrong_motions``): each makes the waypoints of one from an own
+event."""
 
 
 def _wrong(e: g.Event, rng: np.random.Generator, kinds: tuple[str, ...]) -> list[np.ndarray]:
-    """Wrong piecewise-straight motions made from an own event (module docstring), of the kinds its action declares."""
+    """Wrong piecewise-straight motions made from an own event (module docstring), of the kinds its action
+    declares."""
     return [g.straight_moves(WRONG_MOTIONS[k](e, rng), 0.25 * e.size) for k in kinds]
 
 
@@ -275,10 +279,11 @@ GRADED_WRONGS: dict[str, Callable[[g.Event, np.random.Generator], tuple[np.ndarr
 final label left at the end."""
 
 
-def _graded(e: g.Event, rng: np.random.Generator, kind: str | None) -> list[tuple[np.ndarray, np.ndarray, float]]:
-    """Wrong planner motions that keep part of the credit (``graded_wrongs``): (the event as straight
-    moves' waypoints, what follows it, the share of the event's final label left at the end); none for an action
-    that declares no kind (the waypoints are drawn all the same, so every action's extras stay as they were)."""
+def _graded(e: g.Event, rng: np.random.Generator,
+            kind: str | None) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Wrong planner motions that keep part of the credit (``graded_wrongs``): (the event as straight moves'
+    waypoints, what follows it, the share of the event's final label left at the end); none for an action that
+    declares no kind (the waypoints are drawn all the same, so every action's extras stay as they were)."""
     whole = g.waypoints(e.mover, int(rng.integers(1, 4)))
     if kind is None:
         return []
@@ -336,16 +341,16 @@ def _near(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
 
 
 def declared(action: str, spec: ActionSpec | None = None) -> Training:
-    """What ``action`` declares about its training (``ActionSpec.training``): ``spec``'s when given (a plugin's),
-    else the built-in's; a plugin that declares nothing gets no per-action extras."""
+    """What ``action`` declares about its training (``ActionSpec.training``): ``spec``'s when given (a
+    plugin's), else the built-in's; a plugin that declares nothing gets no per-action extras."""
     found = spec if spec is not None else BUILTIN.get(action)
     return found.training if found is not None else Training()
 
 
 def extras(plan: TrainingPlan, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
            seed: int, spec: ActionSpec | None = None) -> list[TrainingSequence]:
-    """The plan's extra sequences for ``action`` (empty for the current plan); the per-action ones of the kinds
-    its spec declares (:func:`declared`)."""
+    """The plan's extra sequences for ``action`` (empty for the current plan); the per-action ones of the
+    kinds its spec declares (:func:`declared`)."""
     rng = np.random.default_rng(seed + 25)
     stray_rng = np.random.default_rng(seed + 26)  # its own: the plan's other extras stay bit-identical
     near_rng = np.random.default_rng(seed + 27)  # the same

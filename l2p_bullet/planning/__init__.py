@@ -158,10 +158,11 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)
         routes: dict[tuple, np.ndarray | None] = {}  # a way round from each approach end asked about
         way_round = functools.partial(_way_round, world, anchor_obj.pose, routes, lead_in)
-        try:  # from afar: first a straight slide to where people start it (approach.py); among bystanders to an
-            # end with a way round the anchor
-            lead = approach.lead_in(world, anchor_obj.pose, lead_in.near, lead_in.approach, FRAME_STEP * world.size,
-                                    wrist, mover, anchor, way_round=way_round if arcs else None) if lead_in else None
+        try:  # from afar: first a straight slide to where people start it (approach.py); among bystanders to
+            # an end with a way round the anchor
+            lead = approach.lead_in(world, anchor_obj.pose, lead_in.near, lead_in.approach,
+                                    FRAME_STEP * world.size, wrist, mover, anchor,
+                                    way_round=way_round if arcs else None) if lead_in else None
         except InfeasibleError as e:
             refused = e
             continue
@@ -181,7 +182,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         elif lead is not None and tuple(lead[-1]) in routes:
             route = routes[tuple(lead[-1])]
         else:
-            route = around_route(world, anchor_obj.pose, lead_in.near, start=None if lead is None else lead[-1])
+            route = around_route(world, anchor_obj.pose, lead_in.near,
+                                 start=None if lead is None else lead[-1])
         with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
             node, stopped, steps = _search(name, problem, bundle, target, arcs=arcs, route=route)
             if route is not None and stopped != "threshold":  # the search stalled: the way round as it is
@@ -220,10 +222,11 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
 
 
 PEOPLE_BOUNDS: dict[str, functools.partial] = {
-    name: people_weight(spec.planning.bound) for name, spec in RULE_SPECS.items() if spec.planning.bound is not None}
-"""Per rule judge, the bound from people's data its candidates are weighted by (bounds.py, declared by the action
-that declares the rule set: ``ActionSpec.planning.bound``); an action judged by that rule judge (a plugin's too) is
-planned within it. benchmarks/bench_thresholds.py turns one off to measure it."""
+    name: people_weight(spec.planning.bound) for name, spec in RULE_SPECS.items()
+    if spec.planning.bound is not None}
+"""Per rule judge, the bound from people's data its candidates are weighted by (bounds.py, declared by the
+action that declares the rule set: ``ActionSpec.planning.bound``); an action judged by that rule judge (a
+plugin's too) is planned within it. benchmarks/bench_thresholds.py turns one off to measure it."""
 
 
 def rule_spec(bundle) -> ActionSpec | None:
@@ -237,8 +240,8 @@ def rule_spec(bundle) -> ActionSpec | None:
 
 
 def _people_bound(bundle, spec: ActionSpec | None) -> functools.partial | None:
-    """The bound from people's data the bundle's candidates are weighted by: its rule set's (:data:`PEOPLE_BOUNDS`),
-    or the one a plugin's own spec declares."""
+    """The bound from people's data the bundle's candidates are weighted by: its rule set's
+    (:data:`PEOPLE_BOUNDS`), or the one a plugin's own spec declares."""
     if spec is None or spec is RULE_SPECS.get(_rules(bundle)):
         return PEOPLE_BOUNDS.get(_rules(bundle))
     return None if spec.planning.bound is None else people_weight(spec.planning.bound)
@@ -275,8 +278,8 @@ def _follow(problem: Problem, route: np.ndarray, best, stopped: str):
 
 
 def _way_round(world: World2D, anchor_pose: np.ndarray, routes: dict, lead_in, end: np.ndarray) -> bool:
-    """Whether the 2-D world has a way round the anchor within ``lead_in.near`` from ``end`` (detour.py); kept in
-    ``routes``, so the approach end's way is not searched twice."""
+    """Whether the 2-D world has a way round the anchor within ``lead_in.near`` from ``end`` (detour.py); kept
+    in ``routes``, so the approach end's way is not searched twice."""
     routes[tuple(end)] = around_route(world, anchor_pose, lead_in.near, start=end)
     return routes[tuple(end)] is not None
 

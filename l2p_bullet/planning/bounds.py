@@ -48,9 +48,9 @@ def pass_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
 
 
 def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, within: float) -> np.ndarray:
-    """Per path: 1 where the most its centre distance went back above its least so far (the rule's "went back")
-    is at most the share ``within`` of its room, else exp(-(rise - share room) / (share room)): the share is its
-    own scale."""
+    """Per path: 1 where the most its centre distance went back above its least so far (the rule's "went
+    back") is at most the share ``within`` of its room, else exp(-(rise - share room) / (share room)): the
+    share is its own scale."""
     out = np.empty(len(movers))
     for i, m in enumerate(movers):
         d = _distances(m, anchor_pose, size)
@@ -59,7 +59,8 @@ def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
     return out
 
 
-WEIGHTS: dict[str, Callable[..., np.ndarray]] = {"passes-within": pass_weight, "goes-back-within": back_weight}
+WEIGHTS: dict[str, Callable[..., np.ndarray]] = {"passes-within": pass_weight,
+                                                  "goes-back-within": back_weight}
 """The bounds by kind (``actions.spec.Bound.kind``): each weighs a batch of candidate paths by its measure."""
 
 

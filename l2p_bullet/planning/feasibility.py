@@ -125,7 +125,8 @@ def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
                           "another object or out of the workspace", {"mover": mover})
 
 
-def _room_away(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold], thresholds: Mapping[str, float]) -> None:
+def _room_away(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold],
+               thresholds: Mapping[str, float]) -> None:
     gain = thresholds["gain"]
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy)))

@@ -30,9 +30,9 @@ from .world2d import World2D
 
 
 def room_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROUND_TURNS) -> None:
-    """InfeasibleError("room-around") when the workspace leaves the mover's centre less than the 0.8 turn round
-    the anchor (the bystanders aside: that is :func:`blocked_around`'s); ``turns``: the share of a turn the rule
-    asks for (the around rule's by default)."""
+    """InfeasibleError("room-around") when the workspace leaves the mover's centre less than the 0.8 turn
+    round the anchor (the bystanders aside: that is :func:`blocked_around`'s); ``turns``: the share of a turn
+    the rule asks for (the around rule's by default)."""
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
     rho_min = nearest_centres(m, a)  # centres never closer than the half sides' sum

@@ -1,6 +1,6 @@
-"""One place per rule: each action's judge, room checks, bound, lead-in, training extras and report finding are
-declared by its spec (``l2p_bullet/actions/<name>/__init__.py``), and the stages look them up; no stage names an
-action. A plugin's spec supplies the same and is planned and trained by it."""
+"""One place per rule: each action's judge, room checks, bound, lead-in, training extras and report finding
+are declared by its spec (``l2p_bullet/actions/<name>/__init__.py``), and the stages look them up; no stage
+names an action. A plugin's spec supplies the same and is planned and trained by it."""
 
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ NAMES = ({s.name for s in BUILTIN.values()} | {s.name.replace("-", "_") for s in
 
 
 def _docstrings(tree: ast.AST) -> set[int]:
-    """The string constants that stand alone as statements (module, class, function and attribute docstrings)."""
+    """The string constants that stand alone as statements (module, class, function, attribute docstrings)."""
     out = set()
     for node in ast.walk(tree):
         for stmt in getattr(node, "body", []) if isinstance(getattr(node, "body", None), list) else []:
@@ -43,7 +43,8 @@ def _where(parents: dict[int, ast.AST], node: ast.AST) -> str:
     while isinstance(up, ast.Tuple | ast.List | ast.Set):
         up = parents.get(id(up))
     if isinstance(up, ast.Compare):
-        return "a comparison" if not any(isinstance(o, ast.In | ast.NotIn) for o in up.ops) else "a membership test"
+        membership = any(isinstance(o, ast.In | ast.NotIn) for o in up.ops)
+        return "a membership test" if membership else "a comparison"
     if isinstance(up, ast.Dict):
         return "a dict key" if any(k is node for k in up.keys) else "a dict value"
     if isinstance(up, ast.Subscript):
@@ -69,16 +70,17 @@ def named_actions(root: Path = PKG) -> list[str]:
 
 
 def test_no_stage_names_an_action():
-    """A name written in a stage is a branch on it (a comparison, a membership test, a dict keyed by it, a default
-    argument that picks it): the stage then knows the action, and a plugin cannot be what it knows."""
+    """A name written in a stage is a branch on it (a comparison, a membership test, a dict keyed by it, a
+    default argument that picks it): the stage then knows the action, and a plugin cannot be what it knows."""
     found = named_actions()
-    assert not found, ("stages name actions; declare it in the action's spec (l2p_bullet/actions/<name>/) and look "
-                       "it up instead:\n  " + "\n  ".join(found))
+    assert not found, ("stages name actions; declare it in the action's spec (l2p_bullet/actions/<name>/) "
+                       "and look it up instead:\n  " + "\n  ".join(found))
 
 
 def test_the_scan_sees_a_branch_on_a_name(tmp_path):
     (tmp_path / "stage.py").write_text('"""around is fine in a docstring."""\n'
-                                       'def f(rules):\n    if rules == "around":\n        return {"past": 1}\n'
+                                       'def f(rules):\n'
+                                       '    if rules == "around":\n        return {"past": 1}\n'
                                        '    return rules in ("closer", "x")\n')
     found = named_actions(tmp_path)
     assert [f.split(": ", 1)[1] for f in found] == ["'around' in a comparison", "'past' in a dict key",
@@ -87,7 +89,8 @@ def test_the_scan_sees_a_branch_on_a_name(tmp_path):
 
 def test_each_rule_set_is_planned_by_the_spec_that_declares_it():
     assert RULE_SPECS == {s.rules: s for s in BUILTIN.values()}
-    assert set(PEOPLE_BOUNDS) == {n for n, s in RULE_SPECS.items() if s.planning.bound is not None} == {"past", "closer"}
+    bounded = {n for n, s in RULE_SPECS.items() if s.planning.bound is not None}
+    assert set(PEOPLE_BOUNDS) == bounded == {"past", "closer"}
     assert [n for n, s in RULE_SPECS.items() if s.planning.lead_in is not None] == ["around"]
     for spec in BUILTIN.values():
         assert set(spec.planning.checks) <= set(feasibility.ROOM_CHECKS) <= set(feasibility.CHECKS)
@@ -101,10 +104,12 @@ def test_each_rule_set_is_planned_by_the_spec_that_declares_it():
 
 
 def test_a_plugins_own_spec_declares_its_room_checks_with_its_thresholds():
-    """A plugin "afar" (judged by its own code) that must end ``gain`` blocks farther declares the away room check:
-    refused where no point of the workspace is that much farther, with its own number; declaring none, never."""
+    """A plugin "afar" (judged by its own code) that must end ``gain`` blocks farther declares the away room
+    check: refused where no point of the workspace is that much farther, with its own number; declaring none,
+    never."""
     scene = default_scene()
-    afar = ActionSpec("afar", "", "move A afar from B", thresholds={"gain": 1.0}, planning=Planning(checks=("room-away",)))
+    afar = ActionSpec("afar", "", "move A afar from B", thresholds={"gain": 1.0},
+                      planning=Planning(checks=("room-away",)))
     feasibility.check(scene, "A", "B", afar)  # room enough for 1 block more
     much = dataclasses.replace(afar, thresholds={"gain": 50.0})
     with pytest.raises(InfeasibleError, match="away needs 50 block more") as e:
@@ -114,7 +119,7 @@ def test_a_plugins_own_spec_declares_its_room_checks_with_its_thresholds():
 
 
 def test_a_plugins_own_spec_declares_how_it_is_planned():
-    class Own:  # a plugin bundle whose module declares how it is planned: its own spec wins over its rule set's
+    class Own:  # a plugin bundle whose module declares how it is planned: its spec wins over its rule set's
         manifest = {"judge": {"rules": "closer"}}
         spec = ActionSpec("ring", "", "move A ring B", planning=Planning(
             bound=Bound("passes-within", 2.0), lead_in=LeadIn(near=3.0, approach=2.0, reach=3.5)))

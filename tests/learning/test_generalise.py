@@ -1,4 +1,5 @@
-"""The grade-free validation suite (learning/generalise.py) and the recipes compared on it (learning/training_plan.py)."""
+"""The grade-free validation suite (learning/generalise.py) and the training plans compared on it
+(learning/training_plan.py)."""
 
 from __future__ import annotations
 
@@ -74,7 +75,8 @@ def test_recipe_extras_append_planner_domain_sequences():
     demos = all_demos(sessions={"Session1"})
     q = QSRConfig()
     base = build("closer", demos, q, DataConfig())
-    more = training_set(TrainingPlan("x", planner_positives=True, planner_negatives=True, contrastive=True), "closer", demos, q)
+    plan = TrainingPlan("x", planner_positives=True, planner_negatives=True, contrastive=True)
+    more = training_set(plan, "closer", demos, q)
     extra = more[len(base):]
     n_own = 2 * len(demos["closer"])
     assert sum(s.positive for s in extra) == n_own  # one ring-snapped copy per event and mirror image
@@ -216,7 +218,8 @@ def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monk
     demos = all_demos()
     assert t["recipe"]["trusted_own"] is True
     assert t["n_sequences"] == len(training_set(trusted, "around", demos, QSRConfig()))
-    assert t["n_sequences"] < len(training_set(plans(1, 1)["planner-graded-nogrid"], "around", demos, QSRConfig()))
+    nogrid = plans(1, 1)["planner-graded-nogrid"]
+    assert t["n_sequences"] < len(training_set(nogrid, "around", demos, QSRConfig()))
     assert t["data_digest"] == data_digest(rc.own_trusted(trusted, "around", demos)) != data_digest(demos)
 
 

@@ -29,7 +29,7 @@ def test_the_room_is_the_farthest_any_person_passed_the_anchor():
     assert PAST_PASSES_WITHIN == ACTION.thresholds["passes_within"] == math.ceil(max(closest) * 10) / 10
     assert PAST_PASSES_WITHIN < ACTION.thresholds["near"]  # inside what the rule allows: room for execution
     assert ACTION.planning.bound.kind == "passes-within" and PEOPLE_BOUNDS[ACTION.rules].func is pass_weight
-    assert PEOPLE_BOUNDS[ACTION.rules].keywords == {"within": PAST_PASSES_WITHIN}  # the planner reads the spec's
+    assert PEOPLE_BOUNDS[ACTION.rules].keywords == {"within": PAST_PASSES_WITHIN}  # the spec's, planned by
 
 
 def test_a_path_within_the_room_keeps_the_models_score_and_one_beyond_it_loses_a_share_per_block():

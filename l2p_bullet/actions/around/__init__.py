@@ -10,12 +10,12 @@ import math
 
 from ..spec import ActionSpec, LeadIn, Planning, Training, Violation
 
-# reach: the search's rings reach 5 and 6.5 blocks, and the learned model rates a circle with one corner out there
-# done (0.99), a motion no person made (analysis starts, seeds 5000-5079: 5 of around's 8 failed plans;
+# reach: the search's rings reach 5 and 6.5 blocks, and the learned model rates a circle with one corner out
+# there done (0.99), a motion no person made (analysis starts, seeds 5000-5079: 5 of around's 8 failed plans;
 # docs/planning.md); so around is planned inside the room people used, the model unchanged
 THRESHOLDS = {"turns": 0.8, "near": 4.0,
               "approach": 2.5,  # blocks: the median start of people's 40 demonstrations (tests/planning)
-              "reach": 4.1}  # blocks: the farthest from the anchor any of people's 39 trusted ones went (4.09)
+              "reach": 4.1}  # blocks: the farthest any of people's 39 trusted ones went from it (4.09)
 
 ACTION = ActionSpec(
     name="around",

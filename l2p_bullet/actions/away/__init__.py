@@ -1,6 +1,7 @@
 """Built-in action: away. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
 thresholds of its rule judge: the centre distance grows steadily, by at least ``gain`` blocks; its training-
-set options and planner-domain extras; its room check; its names) is declared here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+set options and planner-domain extras; its room check; its names) is declared here
+(:class:`~l2p_bullet.actions.spec.ActionSpec`).
 The rule itself is ``judge/rulesets/away.py`` (named by ``rules``).
 """
 

@@ -1,7 +1,7 @@
 """Built-in action: past. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
 thresholds of its rule judge: it crosses from ``margin`` blocks before the anchor to ``margin`` beyond, within
-``near`` blocks, turning at most ``max_turn_deg`` around it; the bound ``passes_within`` its planned paths keep
-to; its training-set options and planner-domain extras; its names) is declared here
+``near`` blocks, turning at most ``max_turn_deg`` around it; the bound ``passes_within`` its planned paths
+keep to; its training-set options and planner-domain extras; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 The rule itself is ``judge/rulesets/past.py`` (named by ``rules``).
 """
@@ -11,7 +11,7 @@ import math
 from ..spec import ActionSpec, Bound, Planning, Training, Violation
 
 THRESHOLDS = {"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0,
-              "passes_within": 3.8}  # blocks: the farthest any of people's 43 passed the anchor (3.70, rounded up)
+              "passes_within": 3.8}  # blocks: the farthest any of people's 43 passed the anchor (3.70)
 
 ACTION = ActionSpec(
     name="past",
