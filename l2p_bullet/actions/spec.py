@@ -20,6 +20,23 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+ROOM_CHECKS = ("room-closer", "room-away", "room-around", "blocked-around")
+"""The room checks an action may declare (``Planning.checks``; ``planning.feasibility.ROOM_CHECKS``)."""
+BOUND_KINDS = ("passes-within", "goes-back-within")
+"""The kinds of bound from people's data (``Bound.kind``; ``planning.bounds.WEIGHTS`` weighs by them)."""
+WRONG_MOTIONS = ("backs-off", "out-and-back", "reversed", "to-closest-and-back", "half-round-and-back")
+"""The kinds of wrong planner motion (``Training.wrong_motions``; ``training_plan.WRONG_MOTIONS``)."""
+GRADED_WRONGS = ("goes-back", "moves-out")
+"""The kinds of graded wrong motion (``Training.graded_wrong``; ``learning.training_plan.GRADED_WRONGS``)."""
+
+
+def _known(what: str, given: tuple[str, ...], known: tuple[str, ...]) -> None:
+    """ValueError (one line, naming the known ones) for a declared kind no stage makes: a plugin's typo is
+    reported when its module is imported, not as a KeyError deep in planning or training."""
+    unknown = [g for g in given if g not in known]
+    if unknown:
+        raise ValueError(f"unknown {what} {', '.join(map(repr, unknown))} (known: {', '.join(known)})")
+
 
 @dataclass(frozen=True)
 class Violation:
@@ -89,6 +106,11 @@ class Training:
     near_starts: bool = False
     """A plan's ``near_starts``: its events made short near the anchor, as full events."""
 
+    def __post_init__(self) -> None:
+        _known("wrong motion", tuple(self.wrong_motions), WRONG_MOTIONS)
+        graded = () if self.graded_wrong is None else (self.graded_wrong,)
+        _known("graded wrong motion", graded, GRADED_WRONGS)
+
 
 @dataclass(frozen=True)
 class LeadIn:
@@ -112,6 +134,9 @@ class Bound:
     kind: str
     within: float
 
+    def __post_init__(self) -> None:
+        _known("bound", (self.kind,), BOUND_KINDS)
+
 
 @dataclass(frozen=True)
 class Planning:
@@ -123,6 +148,9 @@ class Planning:
     in this order with its thresholds."""
     bound: Bound | None = None
     lead_in: LeadIn | None = None
+
+    def __post_init__(self) -> None:
+        _known("room check", tuple(self.checks), ROOM_CHECKS)
 
 
 @dataclass(frozen=True)

@@ -54,7 +54,7 @@ from ..core.geometry import nearest_centres, separation
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..embodiment import reach
 from ..embodiment.sim.arms import PANDA, ArmSpec
-from ..errors import InfeasibleError
+from ..errors import InfeasibleError, PluginError
 from ..judge.rules import RULE_SPECS, closer_room
 from . import sweep
 from .world2d import World2D, place_outline
@@ -108,6 +108,11 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None 
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
     for name in spec.planning.checks if spec is not None else ():
+        missing = [k for k in READS[name] if k not in spec.thresholds]
+        if missing:  # a plugin's spec declares the check but not the numbers it reads
+            raise PluginError(f'the action "{spec.name}" declares the room check "{name}", which reads the '
+                              f"thresholds {', '.join(READS[name])}: add {', '.join(missing)} to its "
+                              "ActionSpec")
         ROOM_CHECKS[name](scene, mover, anchor, holds, spec.thresholds)
     return holds
 
@@ -189,7 +194,11 @@ ROOM_CHECKS: dict[str, Callable[[Scene, str, str, list[reach.Hold], Mapping[str,
     "blocked-around": _blocked_around,
 }
 """The room checks by the name their refusal carries; each reads the thresholds of the action it checks for
-(``ActionSpec.planning.checks`` names them)."""
+(``ActionSpec.planning.checks`` names them), those :data:`READS` names."""
+
+READS: dict[str, tuple[str, ...]] = {"room-closer": ("share",), "room-away": ("gain",),
+                                     "room-around": ("turns",), "blocked-around": ("turns", "near")}
+"""The thresholds (blocks, turns) each room check reads from the action's spec."""
 
 
 def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, action: str, stopped: str,

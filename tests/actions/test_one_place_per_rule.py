@@ -142,3 +142,29 @@ def test_a_plugins_spec_declares_the_training_extras_it_gets():
     negatives = [s for s in more if not s.positive and s.weight == 1.0]
     assert len(more) - len(plain) == len(negatives) == 2 * 2 * 2  # 2 demonstrations x mirror x 2 kinds
     assert all(np.all(s.y == 0) for s in negatives)
+
+
+def test_a_declared_kind_no_stage_makes_is_refused_in_one_line_naming_the_known_ones():
+    """Each kind an action may declare is one a stage makes, and a typo in a plugin's spec is a ValueError
+    when its module is imported (the registry reports it with the plugin's name), not a KeyError while
+    planning."""
+    from l2p_bullet.actions import spec as s
+    from l2p_bullet.errors import PluginError
+    from l2p_bullet.learning import training_plan
+    from l2p_bullet.planning import bounds
+
+    assert set(s.ROOM_CHECKS) == set(feasibility.ROOM_CHECKS) == set(feasibility.READS)
+    assert set(s.BOUND_KINDS) == set(bounds.WEIGHTS)
+    assert set(s.WRONG_MOTIONS) == set(training_plan.WRONG_MOTIONS)
+    assert set(s.GRADED_WRONGS) == set(training_plan.GRADED_WRONGS)
+    with pytest.raises(ValueError, match="unknown room check 'room-closr' .known: room-closer, room-away"):
+        Planning(checks=("room-closr",))
+    with pytest.raises(ValueError, match="unknown bound 'passes'"):
+        Bound("passes", 3.0)
+    with pytest.raises(ValueError, match="unknown wrong motion 'back'"):
+        Training(wrong_motions=("reversed", "back"))
+    with pytest.raises(ValueError, match="unknown graded wrong motion"):
+        Training(graded_wrong="out")
+    bare = ActionSpec("bare", "", "move A bare B", planning=Planning(checks=("room-closer",)))
+    with pytest.raises(PluginError, match='"bare" declares the room check "room-closer".*add share'):
+        feasibility.check(default_scene(), "A", "B", bare)
