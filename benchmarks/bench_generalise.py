@@ -21,7 +21,7 @@ import torch
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # research/ sits beside the package, not in it
 
 from l2p_bullet.core.vocabulary import ACTIONS  # noqa: E402
-from l2p_bullet.learning.recipes import recipes  # noqa: E402
+from l2p_bullet.learning.training_plan import plans  # noqa: E402
 from research import generalise as g  # noqa: E402
 from research.sessions import run_suite  # noqa: E402
 
@@ -60,7 +60,7 @@ def main() -> None:
                          "they are never scored): the fifth round's variant (use its own --cache)")
     args = ap.parse_args()
     torch.set_num_threads(1)
-    known = recipes(args.ensemble, args.epochs)
+    known = plans(args.ensemble, args.epochs)
     names = list(known) if args.recipes == "all-recipes" else args.recipes.split(",")
     unknown = [n for n in names if n not in known]
     if unknown:

@@ -19,7 +19,7 @@ every held-out demonstration of the other person, four ways, for models trained 
 
 Everything is event-only (cropped to the event, no context: a planner's path has none), scored with
 smoothed poses as in ``research/heldout.py``. The recipes compared on it and the cache
-of their session-split models live in :mod:`l2p_bullet.learning.recipes`.
+of their session-split models live in :mod:`l2p_bullet.learning.training_plan`.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 The two capture sessions of each action were recorded by different people (data README), so a model
 trained on Session 1 of every action and tested on Session 2 is tested on people it never saw. This is
-the shipped training recipe unchanged (:data:`recipes.SHIPPED`, what ``l2p-bullet train`` uses, with its
+the shipped training recipe unchanged (:data:`training_plan.SHIPPED`, what ``l2p-bullet train`` uses, with its
 default settings, the other actions' demonstrations of the same session as negatives); only the demonstrations are
 restricted, for all five actions at once: training "closer" on Session 1 with the other actions'
 Session 2 demonstrations as negatives would show it the test person. SlideToward's extra Session 3 is
@@ -12,7 +12,7 @@ session with these bundles; they are written as ordinary bundle folders (``l2p-b
 
 The grade-free suite's session-split models (:func:`split_models`, :func:`run_suite`,
 ``benchmarks/bench_generalise.py``) are the same bundles, trained with the recipe compared
-(:mod:`l2p_bullet.learning.recipes`; the shipped one by default): one function trains on one session.
+(:mod:`l2p_bullet.learning.training_plan`; the shipped one by default): one function trains on one session.
 """
 
 from __future__ import annotations
@@ -23,8 +23,10 @@ from pathlib import Path
 
 from l2p_bullet.core.vocabulary import ACTIONS
 from l2p_bullet.learning.progress_net import ProgressModel, ensemble_arrays
-from l2p_bullet.learning.recipes import SHIPPED, Recipe, own_trusted, train
 from l2p_bullet.learning.train_progress import all_demos, data_digest, training_section
+from l2p_bullet.learning.train_progress import train_plan as train
+from l2p_bullet.learning.training_plan import SHIPPED, own_trusted
+from l2p_bullet.learning.training_plan import TrainingPlan as Recipe
 from l2p_bullet.plugins.bundle import (
     MANIFEST,
     PROGRESS_FILE,
@@ -42,7 +44,7 @@ def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] =
                     command: str = "", log: Callable[[str], None] | None = None,
                     recipe: Recipe | None = None, untrusted: bool = True) -> dict[str, Path]:
     """Train each of ``actions`` on capture ``session`` (e.g. "Session1") into ``out/<action>/``, with
-    ``recipe`` (:mod:`.recipes`; when None :data:`recipes.SHIPPED`, what ``l2p-bullet train`` uses);
+    ``recipe`` (:mod:`l2p_bullet.learning.training_plan`; when None its :data:`SHIPPED`, what ``l2p-bullet train`` uses);
     ``untrusted`` False: without the demonstrations whose tracking is not trusted (``all_demos``).
 
     A folder whose manifest already records the same data digest, seed and recipe is kept as it is

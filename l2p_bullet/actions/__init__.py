@@ -11,9 +11,9 @@ from .away import ACTION as AWAY
 from .closer import ACTION as CLOSER
 from .next_to import ACTION as NEXT_TO
 from .past import ACTION as PAST
-from .spec import ActionSpec, Training, Violation
+from .spec import ActionSpec, Bound, LeadIn, Planning, Touching, Training, Violation
 
 BUILTIN: dict[str, ActionSpec] = {a.name: a for a in (CLOSER, AWAY, NEXT_TO, PAST, AROUND)}
 """Canonical name -> spec of every built-in action."""
 
-__all__ = ["BUILTIN", "ActionSpec", "Training", "Violation"]
+__all__ = ["BUILTIN", "ActionSpec", "Bound", "LeadIn", "Planning", "Touching", "Training", "Violation"]

@@ -1,12 +1,16 @@
 """What an action is, in one place: :class:`ActionSpec`, declared by each action's module as ``ACTION``.
 
 A built-in action's module (``l2p_bullet/actions/<name>/__init__.py``, the entry point's target, next to its
-bundle) declares its name in the study's data, an example sentence, the thresholds its rule judge and the
-feasibility room check read, and how its training set differs from the defaults. The stages hold the
-algorithms and read these values: ``core/vocabulary.py`` (names), ``judge/rulesets/`` (rule judges),
-``planning/feasibility.py`` (room checks, through the rules' thresholds), ``learning/trainset.py``
-(``DataConfig``'s defaults), ``learning/improve.py`` (sentences). A plugin's module may declare an
-``ACTION`` the same way; the registry hands it over with the bundle (``Bundle.spec``).
+bundle) declares its name in the study's data, an example sentence, the rule set that judges it and the
+thresholds that rule reads, how it is planned (:class:`Planning`: its up-front room checks, the bound from
+people's data on the planner's candidates, the lead-in from afar), how its training set differs from the
+defaults and what its training plan adds (:class:`Training`), and the finding its evaluation report adds.
+The stages hold the algorithms, keyed by what they do, and look these declarations up; none of them
+branches on an action's name (``tests/test_layout.py`` checks): ``core/vocabulary.py`` (names),
+``judge/rulesets/`` (rule judges), ``planning/`` (room checks, bounds, lead-in), ``learning/trainset.py``
+(``DataConfig``'s defaults), ``learning/training_plan.py`` (planner-domain extras), ``learning/improve.py``
+(sentences), ``evaluate/report.py`` (findings). A plugin's module may declare an ``ACTION`` the same way; the
+registry hands it over with the bundle (``Bundle.spec``).
 
 Pure declarations on the lowest floor above ``errors`` (docs/DESIGN.md, "Floors"): every stage may read
 them, they import nothing of the package.
@@ -15,6 +19,23 @@ them, they import nothing of the package.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+
+ROOM_CHECKS = ("room-closer", "room-away", "room-around", "blocked-around")
+"""The room checks an action may declare (``Planning.checks``; ``planning.feasibility.ROOM_CHECKS``)."""
+BOUND_KINDS = ("passes-within", "goes-back-within")
+"""The kinds of bound from people's data (``Bound.kind``; ``planning.bounds.WEIGHTS`` weighs by them)."""
+WRONG_MOTIONS = ("backs-off", "out-and-back", "reversed", "to-closest-and-back", "half-round-and-back")
+"""The kinds of wrong planner motion (``Training.wrong_motions``; ``training_plan.WRONG_MOTIONS``)."""
+GRADED_WRONGS = ("goes-back", "moves-out")
+"""The kinds of graded wrong motion (``Training.graded_wrong``; ``learning.training_plan.GRADED_WRONGS``)."""
+
+
+def _known(what: str, given: tuple[str, ...], known: tuple[str, ...]) -> None:
+    """ValueError (one line, naming the known ones) for a declared kind no stage makes: a plugin's typo is
+    reported when its module is imported, not as a KeyError deep in planning or training."""
+    unknown = [g for g in given if g not in known]
+    if unknown:
+        raise ValueError(f"unknown {what} {', '.join(map(repr, unknown))} (known: {', '.join(known)})")
 
 
 @dataclass(frozen=True)
@@ -66,6 +87,81 @@ class Training:
     clear_grades: tuple[float, float] | None = None
     """The original's cold feedback ("clear" targets) for it: mean grade <= [0] is 0, >= [1] is 1, when not
     the default of ``learning.feedback_targets.FeedbackConfig.clear``."""
+    wrong_motions: tuple[str, ...] = ()
+    """The wrong planner motions a training plan's ``planner_negatives`` makes from each of its events, by
+    kind (``learning.training_plan.WRONG_MOTIONS``): "backs-off" (out 1.5-4 blocks and back to its start
+    distance), "out-and-back" (to the end and back near the start), "reversed" (end to start),
+    "to-closest-and-back" (to its closest approach and back), "half-round-and-back" (half of it and straight
+    back)."""
+    graded_wrong: str | None = None
+    """The planner motion that undoes part of it and keeps the credit a rule leaves it (a plan's
+    ``graded_wrongs``, ``learning.training_plan.GRADED_WRONGS``): "goes-back" (back a share of the way to the
+    start), "moves-out" (1-5 blocks straight out from where it ends); None: none."""
+    grid_copies: bool = False
+    """A plan's planner positives also snapped to the 2-D study's move grid (its demonstrations were graded
+    there)."""
+    strays: bool = False
+    """A plan's ``strays``: copies with one corner moved out to the planner's outer rings, with the credit its
+    rule's ``near`` threshold leaves them."""
+    near_starts: bool = False
+    """A plan's ``near_starts``: its events made short near the anchor, as full events."""
+
+    def __post_init__(self) -> None:
+        _known("wrong motion", tuple(self.wrong_motions), WRONG_MOTIONS)
+        graded = () if self.graded_wrong is None else (self.graded_wrong,)
+        _known("graded wrong motion", graded, GRADED_WRONGS)
+
+
+@dataclass(frozen=True)
+class LeadIn:
+    """How a rule that reads a motion from its first frame within ``near`` blocks of the anchor (and sweeps
+    round it from there) is planned: a mover starting farther is first slid straight to ``approach`` blocks
+    (``planning/approach.py``), no move of the search ends beyond ``reach`` blocks, and among bystanders a way
+    round within ``near`` is offered (``planning/detour.py``). All in blocks, from people's demonstrations."""
+
+    near: float
+    approach: float
+    reach: float
+
+
+@dataclass(frozen=True)
+class Bound:
+    """A bound from people's demonstrations on the candidates the planner ranks (``planning/bounds.py``): a
+    candidate beyond it is scored down. ``kind`` names the measure (``planning.bounds.WEIGHTS``):
+    "passes-within" (its closest centre distance to the anchor, blocks), "goes-back-within" (how far its
+    centre distance went back, as a share of its room); ``within``: the most people's demonstrations went."""
+
+    kind: str
+    within: float
+
+    def __post_init__(self) -> None:
+        _known("bound", (self.kind,), BOUND_KINDS)
+
+
+@dataclass(frozen=True)
+class Planning:
+    """How an action is planned besides maximising its progress model (``planning/``)."""
+
+    checks: tuple[str, ...] = ()
+    """The up-front room checks that apply to it, by the name their refusal carries
+    (``planning.feasibility.ROOM_CHECKS``: "room-closer", "room-away", "room-around", "blocked-around"), run
+    in this order with its thresholds."""
+    bound: Bound | None = None
+    lead_in: LeadIn | None = None
+
+    def __post_init__(self) -> None:
+        _known("room check", tuple(self.checks), ROOM_CHECKS)
+
+
+@dataclass(frozen=True)
+class Touching:
+    """An evaluation report's finding for an action whose runs may end touching the anchor
+    (``evaluate/report.py``): how many do, and how many ``also``'s judge accepts (``also_words``: how the
+    report names that action); ``note`` says why it matters."""
+
+    also: str
+    also_words: str
+    note: str
 
 
 @dataclass(frozen=True)
@@ -87,3 +183,8 @@ class ActionSpec:
     rules: str | None = None
     """The rule set that judges it, by name (``judge/rulesets/``; a built-in's own, a plugin's one of those
     shipped: "between", "left-of", ...); None: it has none, its learned model judges."""
+    planning: Planning = field(default_factory=Planning)
+    """How it is planned; a plugin that declares none is planned as the rule set its manifest names
+    (``planning.rule_spec``)."""
+    touching: Touching | None = None
+    """The evaluation report's touching finding for it; None: none."""

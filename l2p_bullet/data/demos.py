@@ -336,7 +336,7 @@ their indices unchanged. The shipped bundles are still trained with them: found 
 "around's far corner"), this one teaches the around model to take a corner out on the 5-block ring for a full around
 (0.68 of 0.75 on people's events; trained without it, 0.28), but the bundles trained without it failed the
 planning check (closer and around 93 % of 30 scenes, the rule asks 95 %), and around trained without it among
-its own positives only (``recipes.Recipe.trusted_own``) lowered around's agreement with people
+its own positives only (``training_plan.TrainingPlan.trusted_own``) lowered around's agreement with people
 in SlideAround (0.53 -> 0.49)."""
 
 

@@ -87,8 +87,9 @@ def _ordered(names: set[str], order: list[str] | None) -> list[str]:
     return first + sorted(names - set(first))
 
 
-def touching_finding(rows: list[dict], asked: str = "closer", also: str = "next-to") -> dict:
-    """How many ``asked`` runs end touching the anchor and how many ``also``'s judge accepts.
+def touching_finding(rows: list[dict], asked: str, also: str) -> dict:
+    """How many ``asked`` runs end touching the anchor and how many ``also``'s judge accepts (the actions that
+    declare such a finding: ``ActionSpec.touching``).
 
     People graded a "closer" that ends with the blocks touching as wrong ("the blocks touched"), while
     our closer judge accepts it and the next-to judge reads it as "next to".

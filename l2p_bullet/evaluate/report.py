@@ -11,7 +11,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..actions import BUILTIN
 from .confusion import Confusion, _ordered, confusion, touching_finding
+
+TOUCHING = {name: spec.touching for name, spec in BUILTIN.items() if spec.touching is not None}
+"""The actions whose report adds a touching finding (``ActionSpec.touching``), by name."""
 
 
 def success_table(rows: list[dict], order: list[str] | None = None) -> list[dict]:
@@ -90,14 +94,14 @@ def report_text(rows: list[dict], c: Confusion | None = None) -> str:
                                c.asked, c.recognised, c.models, ".2f"),
               "", _matrix_text("model-based, recognised as the highest-scoring model: share of runs",
                                c.asked, c.recognised, 100 * c.argmax, ".0f")]
-    if "closer" in c.asked:
-        f = touching_finding(rows)
+    for name, t in TOUCHING.items():
+        f = touching_finding(rows, name, t.also) if name in c.asked else {"runs": 0}
         if f["runs"]:
-            w = f["share_within"]
-            lines += ["", f'"closer" runs: final gap to the anchor within 0.2 / 0.3 / 0.5 block: {100 * w["0.2"]:.0f} / '
-                          f'{100 * w["0.3"]:.0f} / {100 * w["0.5"]:.0f} % of {f["runs"]} (median {f["median_gap_blocks"]:.2f} '
-                          f'block); read as "next to" by its judge: {f["read_as_also"]} of {f["runs"]}. People graded '
-                          'closer motions ending with the blocks touching as wrong ("the blocks touched").']
+            w, n = f["share_within"], f["runs"]
+            lines += ["", f'"{name}" runs: final gap to the anchor within 0.2 / 0.3 / 0.5 block: '
+                          f'{100 * w["0.2"]:.0f} / {100 * w["0.3"]:.0f} / {100 * w["0.5"]:.0f} % of {n} '
+                          f'(median {f["median_gap_blocks"]:.2f} block); read as "{t.also_words}" by its '
+                          f'judge: {f["read_as_also"]} of {n}. {t.note}']
     return "\n".join(lines)
 
 
@@ -141,7 +145,8 @@ def write_report(rows: list[dict], out_dir: str | Path) -> tuple[str, dict[str, 
     files = save_plots(c, out_dir) if c.asked and c.recognised else {}
     data = {"success": [{k: (None if v != v else v) for k, v in s.items()} for s in success_table(rows)],
             "errors": error_reasons(rows), "confusion": c.to_dict(),
-            "closer_touching": touching_finding(rows) if "closer" in c.asked else None}
+            **{f"{name}_touching": touching_finding(rows, name, t.also) if name in c.asked else None
+               for name, t in TOUCHING.items()}}
     files["json"] = Path(out_dir) / "report.json"
     files["json"].write_text(json.dumps(data, indent=1, default=float) + "\n")
     return report_text(rows, c), files

@@ -47,6 +47,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..actions import BUILTIN, ActionSpec
 from ..core.vocabulary import canonical_action
 from ..errors import PathError, UnknownActionError
 from .base import Verdict
@@ -59,7 +60,8 @@ from .rulesets.next_to import NEXT_TO_GAP
 from .rulesets.past import PAST_MARGIN, PAST_MAX_TURN_DEG, PAST_NEAR
 from .rulesets.sides import NEAR, SIDES
 
-__all__ = ["RULES", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap", "closer_room", "went_back", "WOBBLE",
+__all__ = ["RULES", "RULE_SPECS", "TWO_ANCHOR_RULES", "RuleJudge", "rule_verdict", "square_gap",
+           "closer_room", "went_back", "WOBBLE",
            "CLOSER_SHARE", "AWAY_GAIN", "NEXT_TO_GAP", "PAST_MARGIN", "PAST_NEAR", "PAST_MAX_TURN_DEG",
            "AROUND_TURNS", "AROUND_NEAR", "AROUND_APPROACH", "NEAR", "SIDES"]
 
@@ -70,6 +72,10 @@ RULES: dict[str, Callable[..., Verdict]] = {
 
 TWO_ANCHOR_RULES = between.TWO_ANCHOR
 """Rule sets that read two reference objects (``anchors=``)."""
+
+RULE_SPECS: dict[str, ActionSpec] = {s.rules: s for s in BUILTIN.values() if s.rules}
+"""Rule set name -> the built-in action that declares it: its thresholds and how it is planned (room checks,
+bound, lead-in), which the stages look up for any action judged by that rule set (a plugin's too)."""
 
 
 def rule_verdict(action: str, mover: np.ndarray, anchor: np.ndarray, size: float, *,

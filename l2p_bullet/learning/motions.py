@@ -1,7 +1,7 @@
 """A demonstration's event as the motions a planner makes of it: straight moves through its own poses,
 snapped to the discrete planner's rings or to the 2-D study's move grid.
 
-The shipped recipe's planner-domain positives, partials and strays (:mod:`l2p_bullet.learning.recipes`) are made
+The shipped recipe's planner-domain positives, partials and strays (:mod:`l2p_bullet.learning.training_plan`) are made
 with these, from each event cropped and smoothed (:func:`events`); ``research/generalise.py`` scores models
 on the same motions.
 """

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import functools
 import hashlib
 import time
 from collections.abc import Callable, Sequence
@@ -34,34 +35,8 @@ from .augment import viewer_sides
 from .feedback import FeedbackItem, load_feedback
 from .feedback_targets import FeedbackConfig, feedback_sequences, judge_items, weigh
 from .progress_net import ProgressModel, ProgressNet, ensemble_arrays
+from .training_plan import SHIPPED, ProgressTrainConfig, TrainingPlan, extend, own_trusted, shipped_extension
 from .trainset import DataConfig, TrainingSequence, build
-
-
-@dataclass(frozen=True)
-class ProgressTrainConfig:
-    """Optimisation settings (written to the manifest's ``[training]``)."""
-
-    hidden: int = 32
-    ensemble: int = 5
-    epochs: int = 30
-    batch: int = 32
-    lr: float = 0.01
-    end_weight: float = 2.0
-    """Extra weight of the squared error at the event's end frame (or a negative's last frame)."""
-    threads: int = 1
-    """Intra-op threads while training: tiny LSTMs gain nothing from more, and spinning threads stall
-    badly when the cores are shared."""
-    weight_decay: float = 0.0
-    """Decoupled weight decay (AdamW) when above 0; 0 is plain Adam, the shipped recipe."""
-    levels: int = 1
-    """Thresholds of an ordinal read-out (``ModelConfig.levels``): above 1, each is trained with binary
-    cross-entropy on whether the frame's label is past it (thresholds at (2k + 1) / (2 levels))."""
-
-    def to_dict(self) -> dict:
-        out = {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
-        # the newer options only when used: older manifests and caches keep matching
-        return out | {k: getattr(self, k) for k in ("weight_decay", "levels") if getattr(self, k) != getattr(
-            ProgressTrainConfig, k)}
 
 
 @dataclass
@@ -225,7 +200,7 @@ def train_action(action: str, demos: dict[str, list[Demo]], *, seed: int = 0,
     on the demonstrations is then fine-tuned on them (:func:`fine_tune`, ``feedback_cfg``). ``base``
     skips the training on the demonstrations and fine-tunes these nets instead (cross-validation and
     ``improve`` reuse one such ensemble for many fine-tunings). ``extend`` adds to the built training set
-    (a recipe of :mod:`l2p_bullet.learning.recipes`; the shipped set is unchanged before it).
+    (a plan of :mod:`l2p_bullet.learning.training_plan`; the shipped set is unchanged before it).
     """
     qsr_cfg, data_cfg, cfg = qsr_cfg or QSRConfig(), data_cfg or DataConfig(), cfg or ProgressTrainConfig()
     if not demos.get(action):
@@ -359,22 +334,21 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     qsr_cfg = QSRConfig()
     if plugin:
         demos = {**all_demos(), name: load_demos(name, list(demo_files))}
-        data_cfg = DataConfig(random_negatives=0).with_action(declared_spec(name))
+        spec = declared_spec(name)  # its training options and extras (a built-in's are looked up)
+        data_cfg = DataConfig(random_negatives=0).with_action(spec)
         frame, anchors = declared(name, out)
         qsr_cfg = QSRConfig(frame=frame.name, anchors=anchors)
     else:
         demos = all_demos({name: list(demo_files)} if demo_files else None)
-        data_cfg = DataConfig()
+        data_cfg, spec = DataConfig(), None
     if demo_files and not demos[name]:
         raise DataError(f"the demonstration files ({', '.join(str(f) for f in demo_files)[:200]}) hold no events "
                         f'of "{name}" (event_start_end is empty): nothing to learn, no bundle written')
-    # recipes builds on this module: the one intra-room pair
-    from .recipes import SHIPPED, own_trusted, shipped_extension
-
-    if not plugin and not demo_files:  # the shipped demonstrations: the recipe may leave untrusted ones out
+    if not plugin and not demo_files:  # the shipped demonstrations: the plan may leave untrusted ones out
         demos = own_trusted(SHIPPED, name, demos)
     result = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
-                          on_stage=on_stage, extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
+                          on_stage=on_stage,
+                          extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed, spec))
     if feedback_judge:  # the demonstration-trained model plans, the judge grades its plans
         if feedback_judge != "rules":
             raise DataError(f'unknown feedback judge "{feedback_judge}" (known: rules)')
@@ -383,7 +357,7 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     if items:
         tuned = train_action(name, demos, seed=seed, cfg=cfg, data_cfg=data_cfg, qsr_cfg=qsr_cfg, tick=tick,
                              feedback=items, feedback_cfg=fcfg, base=result.model.nets,
-                             extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed))
+                             extend=shipped_extension(name, demos, qsr_cfg, data_cfg, seed, spec))
         result = dataclasses.replace(tuned, seconds=result.seconds + tuned.seconds, final_loss=result.final_loss,
                                      history=result.history)
     arrays = ensemble_arrays(result.model.nets)
@@ -405,6 +379,16 @@ def train_bundle(action: str, out: Path | None, *, demo_files: Sequence[str] = (
     write_progress_bundle(out, name, arrays, result.model.model_cfg, result.model.qsr_cfg, training=training,
                           metrics={"train_loss": round(result.final_loss, 6)})
     return out, result
+
+
+def train_plan(plan: TrainingPlan, action: str, demos: dict[str, list[Demo]], seed: int = 0,
+               tick: Callable[[], None] | None = None) -> TrainResult:
+    """``plan``'s ensemble for ``action``: :func:`train_action` (members seeded ``seed * 1000 + i``) on
+    ``training_plan.training_set`` (of the shipped ``demos``: ``own_trusted`` applies)."""
+    q = QSRConfig()
+    demos = own_trusted(plan, action, demos)
+    return train_action(action, demos, seed=seed, qsr_cfg=q, data_cfg=plan.data, cfg=plan.train, tick=tick,
+                        extend=functools.partial(extend, plan, action, demos, q, seed))
 
 
 JUDGE_SEEDS = 5000

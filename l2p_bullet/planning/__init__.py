@@ -25,18 +25,16 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..actions.around import ACTION as AROUND
-from ..actions.closer import ACTION as CLOSER
-from ..actions.past import ACTION as PAST
+from ..actions import ActionSpec, Planning
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
 from ..embodiment.reach import Wrist
 from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
-from ..judge.rules import AROUND_APPROACH, AROUND_NEAR
+from ..judge.rules import RULE_SPECS
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
-from .bounds import BoundScorer, back_weight, pass_weight
+from .bounds import BoundScorer, people_weight
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
 from .problem import FRAME_STEP, Problem, finish
@@ -65,24 +63,6 @@ TARGET_BUDGET = 2
 """With a target (a composite's slot) the default budget is doubled: a slot that a block of the row hides
 takes a way round, which costs steps (chosen after two 5-block rows of the benchmark's seeds 50035 and
 50049 stopped one approach point short of their slot; the reported run uses other seeds)."""
-
-AROUND_REACH = AROUND.thresholds["reach"]
-"""Blocks from the anchor that no move of "around" may end beyond: the farthest any of people's 39 trusted
-"around" demonstrations went (4.09; tests/actions). Why: the search's rings reach 5 and 6.5 blocks, and the
-learned model rates a circle with one corner out there done (0.99), a motion no person made (analysis
-starts, seeds 5000-5079: 5 of around's 8 failed plans; docs/planning.md). A planner setting from people's
-data, like the approach: the model is unchanged, and "around" is planned inside the room people used."""
-
-PAST_PASSES_WITHIN = PAST.thresholds["passes_within"]
-"""Blocks from the anchor within which "past" is planned to pass it: the farthest any of people's 43 "past"
-demonstrations passed (3.70, rounded up). Candidates passing farther are scored down (bounds.py): the
-model rates a pass 4-5 blocks away done, a motion no person made. Like ``AROUND_REACH``, from people's data."""
-
-CLOSER_GOES_BACK_WITHIN = CLOSER.thresholds["goes_back_within"]
-"""Share of its room (start distance - 1 block) within which "closer" is planned to go back: the most any of
-people's 41 "closer" demonstrations went back (0.176, rounded up). Candidates going back farther are scored down
-(bounds.py): from within 1.8 blocks the model rates a back-and-forth wiggle above a straight slide to touching,
-a motion no person made. Like ``PAST_PASSES_WITHIN``, from people's data."""
 
 SHORT_REACH = 5
 """Without a target the default budget is this many times ``BUDGETS``. Every search stops as soon as the
@@ -161,8 +141,10 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
                         f"not {len(anchors)} ({', '.join(anchors)})")
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
-    around = target is None and _rules(bundle) == "around"
-    bound = None if target is not None else PEOPLE_BOUNDS.get(_rules(bundle))  # bounds.py
+    spec = rule_spec(bundle)
+    # a composite's slot (target) is planned to the slot alone: no lead-in and no bound from people's data
+    lead_in = spec.planning.lead_in if target is None and spec is not None else None
+    bound = None if target is not None else _people_bound(bundle, spec)  # bounds.py
     best, refused, bounded, spent = None, None, False, 0
     for hold in holds:
         cap = None if budget is not None or CHECK_CAP is None else CHECK_CAP - spent
@@ -175,11 +157,12 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         wrist = Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm)
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)
         routes: dict[tuple, np.ndarray | None] = {}  # a way round from each approach end asked about
-        way_round = functools.partial(_way_round, world, anchor_obj.pose, routes)
-        try:  # around from afar: first a straight slide to where people start it (approach.py); among
-            # bystanders to an end with a way round the anchor
-            lead = approach.lead_in(world, anchor_obj.pose, AROUND_NEAR, AROUND_APPROACH, FRAME_STEP * world.size,
-                                    wrist, mover, anchor, way_round=way_round if arcs else None) if around else None
+        way_round = functools.partial(_way_round, world, anchor_obj.pose, routes, lead_in)
+        try:  # from afar: first a straight slide to where people start it (approach.py); among bystanders to
+            # an end with a way round the anchor
+            lead = approach.lead_in(world, anchor_obj.pose, lead_in.near, lead_in.approach,
+                                    FRAME_STEP * world.size, wrist, mover, anchor,
+                                    way_round=way_round if arcs else None) if lead_in else None
         except InfeasibleError as e:
             refused = e
             continue
@@ -191,15 +174,16 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)),
             rng=np.random.default_rng(seed), wrist=wrist, more_anchor_poses=more_poses,
             viewer=getattr(model, "viewpoint", None), lead_in=lead, check_cap=cap,
-            reach=AROUND_REACH * world.size if around else None,
+            reach=lead_in.reach * world.size if lead_in else None,
         )
         problem.deadline = deadline
-        if not (arcs and around):
+        if not (arcs and lead_in):
             route = None
         elif lead is not None and tuple(lead[-1]) in routes:
             route = routes[tuple(lead[-1])]
         else:
-            route = around_route(world, anchor_obj.pose, AROUND_NEAR, start=None if lead is None else lead[-1])
+            route = around_route(world, anchor_obj.pose, lead_in.near,
+                                 start=None if lead is None else lead[-1])
         with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
             node, stopped, steps = _search(name, problem, bundle, target, arcs=arcs, route=route)
             if route is not None and stopped != "threshold":  # the search stalled: the way round as it is
@@ -214,7 +198,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         if stopped == "threshold":
             break  # good enough: the first grasp (the roomier one) reached the threshold
     if best is None:
-        raise refused  # no grasp has a way to come near ("around" from afar)
+        raise refused  # no grasp has a way to come near (a lead-in from afar)
     problem, node, stopped, steps, hold, refined = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
@@ -227,7 +211,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     result.extra["grasp_angle_deg"] = None if hold.angle is None else round(math.degrees(hold.angle), 6)
     if problem.lead_in is not None:  # a new field, only where there is an approach
         result.extra["approach"] = {"frames": len(problem.lead_in), "to": problem.lead_in[-1].round(6).tolist(),
-                                    "blocks": AROUND_APPROACH}
+                                    "blocks": lead_in.approach}
     if target is not None:
         result.extra["target"] = np.round(np.asarray(target, float), 6).tolist()
         result.extra["target_error_m"] = round(float(np.hypot(*(result.path[-1, :2] - np.asarray(target)[:2]))), 6)
@@ -238,11 +222,29 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
 
 
 PEOPLE_BOUNDS: dict[str, functools.partial] = {
-    "past": functools.partial(pass_weight, within=PAST_PASSES_WITHIN),
-    "closer": functools.partial(back_weight, share=CLOSER_GOES_BACK_WITHIN),
-}
-"""Per rule judge, the bound from people's data its candidates are weighted by (bounds.py); an action judged by
-that rule judge (a plugin's too) is planned within it. benchmarks/bench_thresholds.py turns one off to measure it."""
+    name: people_weight(spec.planning.bound) for name, spec in RULE_SPECS.items()
+    if spec.planning.bound is not None}
+"""Per rule judge, the bound from people's data its candidates are weighted by (bounds.py, declared by the
+action that declares the rule set: ``ActionSpec.planning.bound``); an action judged by that rule judge (a
+plugin's too) is planned within it. benchmarks/bench_thresholds.py turns one off to measure it."""
+
+
+def rule_spec(bundle) -> ActionSpec | None:
+    """The spec whose planning declarations (room checks, bound, lead-in) and thresholds plan the bundle's
+    action: its own when its module declares how it is planned, else that of the action declaring the rule set
+    its manifest names (``[judge] rules``: a plugin judged by "closer" is planned as closer), else None."""
+    own = getattr(bundle, "spec", None)
+    if isinstance(own, ActionSpec) and own.planning != Planning():
+        return own
+    return RULE_SPECS.get(_rules(bundle))
+
+
+def _people_bound(bundle, spec: ActionSpec | None) -> functools.partial | None:
+    """The bound from people's data the bundle's candidates are weighted by: its rule set's
+    (:data:`PEOPLE_BOUNDS`), or the one a plugin's own spec declares."""
+    if spec is None or spec is RULE_SPECS.get(_rules(bundle)):
+        return PEOPLE_BOUNDS.get(_rules(bundle))
+    return None if spec.planning.bound is None else people_weight(spec.planning.bound)
 
 
 def _target_scorer(model, target: np.ndarray, world: World2D):
@@ -275,10 +277,10 @@ def _follow(problem: Problem, route: np.ndarray, best, stopped: str):
     return node, ("threshold" if node.progress >= problem.threshold else stopped)
 
 
-def _way_round(world: World2D, anchor_pose: np.ndarray, routes: dict, end: np.ndarray) -> bool:
-    """Whether the 2-D world has a way round the anchor from ``end`` (detour.py); kept in ``routes``, so the
-    approach end's way is not searched twice."""
-    routes[tuple(end)] = around_route(world, anchor_pose, AROUND_NEAR, start=end)
+def _way_round(world: World2D, anchor_pose: np.ndarray, routes: dict, lead_in, end: np.ndarray) -> bool:
+    """Whether the 2-D world has a way round the anchor within ``lead_in.near`` from ``end`` (detour.py); kept
+    in ``routes``, so the approach end's way is not searched twice."""
+    routes[tuple(end)] = around_route(world, anchor_pose, lead_in.near, start=end)
     return routes[tuple(end)] is not None
 
 

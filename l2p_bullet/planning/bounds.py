@@ -1,5 +1,6 @@
-"""Bounds from people's demonstrations on the candidates the search ranks: where "past" passes, how far
-"closer" goes back.
+"""Bounds from people's demonstrations on the candidates the search ranks (an action declares its own,
+``ActionSpec.planning.bound``, by one of the kinds of :data:`WEIGHTS`): where "past" passes, how far "closer"
+goes back.
 
 The learned models rate some motions done that no person made, and chains meet them where the 2-D study never
 started a motion:
@@ -20,11 +21,13 @@ wherever the path keeps within the bound.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
+from ..actions import Bound
 from ..judge.rules import closer_room, went_back
 
 SCALE_SIDES = 1.0
@@ -44,15 +47,26 @@ def pass_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
     return np.exp(-np.clip(closest - within, 0.0, None) / SCALE_SIDES)
 
 
-def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, share: float) -> np.ndarray:
-    """Per path: 1 where the most its centre distance went back above its least so far (the rule's "went back")
-    is at most ``share`` of its room, else exp(-(rise - share room) / (share room)): the share is its own scale."""
+def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, within: float) -> np.ndarray:
+    """Per path: 1 where the most its centre distance went back above its least so far (the rule's "went
+    back") is at most the share ``within`` of its room, else exp(-(rise - share room) / (share room)): the
+    share is its own scale."""
     out = np.empty(len(movers))
     for i, m in enumerate(movers):
         d = _distances(m, anchor_pose, size)
-        allowed = share * closer_room(float(d[0]))
+        allowed = within * closer_room(float(d[0]))
         out[i] = np.exp(-max(went_back(d) - allowed, 0.0) / allowed)
     return out
+
+
+WEIGHTS: dict[str, Callable[..., np.ndarray]] = {"passes-within": pass_weight,
+                                                  "goes-back-within": back_weight}
+"""The bounds by kind (``actions.spec.Bound.kind``): each weighs a batch of candidate paths by its measure."""
+
+
+def people_weight(bound: Bound) -> functools.partial:
+    """The weight ``(movers, anchor_pose, size) -> per path`` of a declared bound."""
+    return functools.partial(WEIGHTS[bound.kind], within=bound.within)
 
 
 class BoundScorer:
@@ -72,4 +86,4 @@ class BoundScorer:
         return self.model.curve(mover, anchor, size, **context)
 
 
-__all__ = ["BoundScorer", "back_weight", "pass_weight", "SCALE_SIDES"]
+__all__ = ["BoundScorer", "back_weight", "pass_weight", "people_weight", "SCALE_SIDES", "WEIGHTS"]

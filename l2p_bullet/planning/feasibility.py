@@ -36,23 +36,26 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   no move that raises the progress, so its best plan leaves the mover where it is (one waypoint). It is
   refused, never executed and reported as a run ("swept 0.00 of a turn", exit 0).
 
-The room checks read the thresholds of the built-in rule judges (``judge/rules.py``: ``AROUND_TURNS``,
-``AWAY_GAIN``, ``CLOSER_SHARE``, ``closer_room``) and apply to an action judged by those rules; a plugin
-action judged otherwise gets the arm's checks only.
+The room checks (:data:`ROOM_CHECKS`) that apply to an action are those its spec declares
+(``ActionSpec.planning.checks``), with the thresholds its rule reads (``ActionSpec.thresholds``): a built-in's
+own, and for a plugin action those of the rule set its manifest names (``judge.rules.RULE_SPECS``); an action
+that declares none gets the arm's checks only.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
+from ..actions import ActionSpec
 from ..core.geometry import nearest_centres, separation
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..embodiment import reach
 from ..embodiment.sim.arms import PANDA, ArmSpec
-from ..errors import InfeasibleError
-from ..judge.rules import AWAY_GAIN, CLOSER_SHARE, closer_room
+from ..errors import InfeasibleError, PluginError
+from ..judge.rules import RULE_SPECS, closer_room
 from . import sweep
 from .world2d import World2D, place_outline
 
@@ -96,18 +99,21 @@ def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Ho
         {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}})
 
 
-def check(scene: Scene, mover: str, anchor: str, rules: str | None = None, arm: ArmSpec = PANDA) -> list[reach.Hold]:
-    """Run every check that applies; return the usable holds. ``rules``: the rule judge the action is
-    judged by ("around", "away", "closer", ...), None for an action judged otherwise."""
+def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None = None,
+          arm: ArmSpec = PANDA) -> list[reach.Hold]:
+    """Run every check that applies; return the usable holds. ``rules``: the action's spec, or the name of the
+    rule set it is judged by (its manifest's ``[judge] rules``: the checks of the action that declares that
+    rule set), None (or a rule set no action declares) for the arm's checks only."""
+    spec = RULE_SPECS.get(rules) if isinstance(rules, str) else rules
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
-    if rules == "closer":
-        _room_closer(scene, mover, anchor, holds)
-    elif rules == "away":
-        _room_away(scene, mover, anchor)
-    elif rules == "around":
-        sweep.room_around(scene, mover, anchor)
-        sweep.blocked_around(scene, mover, anchor)
+    for name in spec.planning.checks if spec is not None else ():
+        missing = [k for k in READS[name] if k not in spec.thresholds]
+        if missing:  # a plugin's spec declares the check but not the numbers it reads
+            raise PluginError(f'the action "{spec.name}" declares the room check "{name}", which reads the '
+                              f"thresholds {', '.join(READS[name])}: add {', '.join(missing)} to its "
+                              "ActionSpec")
+        ROOM_CHECKS[name](scene, mover, anchor, holds, spec.thresholds)
     return holds
 
 
@@ -124,18 +130,20 @@ def _boxed_in(scene: Scene, mover: str, holds: list[reach.Hold]) -> None:
                           "another object or out of the workspace", {"mover": mover})
 
 
-def _room_away(scene: Scene, mover: str, anchor: str) -> None:
+def _room_away(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold],
+               thresholds: Mapping[str, float]) -> None:
+    gain = thresholds["gain"]
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy)))
     if ws.ring is None:  # the disk's closed form
         farthest = ws.radius + float(np.hypot(*(np.asarray(a.xy) - ws.center)))
     else:
         farthest = ws.farthest_from(a.xy)[0]
-    if farthest < d0 + AWAY_GAIN * m.size - 1e-9:
+    if farthest < d0 + gain * m.size - 1e-9:
         raise InfeasibleError(
             "room-away",
             f'no room to move "{mover}" away from "{anchor}": it is {d0 / m.size:.2f} blocks away and no point of '
-            f"the workspace is more than {farthest / m.size:.2f}; away needs {AWAY_GAIN:.0f} block more",
+            f"the workspace is more than {farthest / m.size:.2f}; away needs {gain:.0f} block more",
             {"start_blocks": round(d0 / m.size, 3), "farthest_blocks": round(farthest / m.size, 3)})
 
 
@@ -153,11 +161,12 @@ def clearance(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | N
     return max(0.0, min(GRIPPER_MARGIN, max(g0, 0.0) - 1e-9))
 
 
-def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None = None) -> None:
+def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None,
+                 thresholds: Mapping[str, float]) -> None:
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
     room = closer_room(d0)
-    target = d0 - CLOSER_SHARE * room
+    target = d0 - thresholds["share"] * room
     gap = clearance(scene, mover, anchor, holds)
     nearest = (nearest_centres(m, a) + gap) / m.size
     if nearest > target + 1e-9:
@@ -168,6 +177,28 @@ def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] 
             f"{gap * 1000:.1f} mm the planner keeps between them leave them at least {nearest:.3f} apart",
             {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3), "nearest_blocks": round(nearest, 3),
              "clearance_m": round(gap, 6)})
+
+
+def _room_around(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold],
+                 thresholds: Mapping[str, float]) -> None:
+    sweep.room_around(scene, mover, anchor, turns=thresholds["turns"])
+
+
+def _blocked_around(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold],
+                    thresholds: Mapping[str, float]) -> None:
+    sweep.blocked_around(scene, mover, anchor, turns=thresholds["turns"], near=thresholds["near"])
+
+
+ROOM_CHECKS: dict[str, Callable[[Scene, str, str, list[reach.Hold], Mapping[str, float]], None]] = {
+    "room-closer": _room_closer, "room-away": _room_away, "room-around": _room_around,
+    "blocked-around": _blocked_around,
+}
+"""The room checks by the name their refusal carries; each reads the thresholds of the action it checks for
+(``ActionSpec.planning.checks`` names them), those :data:`READS` names."""
+
+READS: dict[str, tuple[str, ...]] = {"room-closer": ("share",), "room-away": ("gain",),
+                                     "room-around": ("turns",), "blocked-around": ("turns", "near")}
+"""The thresholds (blocks, turns) each room check reads from the action's spec."""
 
 
 def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, action: str, stopped: str,

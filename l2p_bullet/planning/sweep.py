@@ -29,9 +29,10 @@ from .problem import FRAME_STEP
 from .world2d import World2D
 
 
-def room_around(scene: Scene, mover: str, anchor: str) -> None:
-    """InfeasibleError("room-around") when the workspace leaves the mover's centre less than the 0.8 turn round
-    the anchor (the bystanders aside: that is :func:`blocked_around`'s)."""
+def room_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROUND_TURNS) -> None:
+    """InfeasibleError("room-around") when the workspace leaves the mover's centre less than the 0.8 turn
+    round the anchor (the bystanders aside: that is :func:`blocked_around`'s); ``turns``: the share of a turn
+    the rule asks for (the around rule's by default)."""
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     rel = np.asarray(a.xy, float) - np.asarray(ws.center, float)
     rho_min = nearest_centres(m, a)  # centres never closer than the half sides' sum
@@ -43,14 +44,14 @@ def room_around(scene: Scene, mover: str, anchor: str) -> None:
     else:  # disk and ring: the ray's intervals, the hole cut out (Workspace.rays_meet)
         ok = ws.rays_meet(a.xy, u, rho_min)
     arc = longest_circular_run(ok) * 2 * math.pi / len(theta)
-    if arc < AROUND_TURNS * 2 * math.pi - 2 * (2 * math.pi / len(theta)):
+    if arc < turns * 2 * math.pi - 2 * (2 * math.pi / len(theta)):
         raise InfeasibleError(
             "room-around",
             f'no room to move "{mover}" around "{anchor}": at {np.linalg.norm(rel):.3f} m from the workspace\'s '
             f"centre, the mover's centre can pass only {math.degrees(arc):.0f} deg of the way around it inside "
             f"the workspace ({f'radius {ws.radius} m' if ws.ring is None else ws.describe()}); around needs "
-            f"{AROUND_TURNS * 360:.0f} deg",
-            {"arc_deg": round(math.degrees(arc), 1), "needed_deg": AROUND_TURNS * 360})
+            f"{turns * 360:.0f} deg",
+            {"arc_deg": round(math.degrees(arc), 1), "needed_deg": turns * 360})
 
 
 SWEEP_GRID = (2.0, 0.05, 5.0)
@@ -58,14 +59,15 @@ SWEEP_GRID = (2.0, 0.05, 5.0)
 5 degrees (over a quarter turn for a square); the poses between grid points are accounted for by a slack in the gap (favouring the arm)."""
 
 
-def blocked_around(scene: Scene, mover: str, anchor: str) -> None:
+def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROUND_TURNS,
+                   near: float = AROUND_NEAR) -> None:
     """InfeasibleError("blocked-around") when, within ``near`` blocks, the bystanders and the workspace leave no
     legal pose along enough bearings, or no connected way of 0.8 turn from the start (or, from afar, from where
-    the mover can first come near)."""
+    the mover can first come near). ``turns`` and ``near``: the rule's (the around rule's by default)."""
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
     world = World2D(scene, mover)  # the block's own outline: smaller than a hand-grown one, so it favours the arm
     bearing_deg, radius_sides, yaw_deg = SWEEP_GRID
-    inner, outer = nearest_centres(m, a), AROUND_NEAR * m.size
+    inner, outer = nearest_centres(m, a), near * m.size
     radii = np.linspace(inner, outer, max(2, math.ceil((outer - inner) / (radius_sides * m.size)) + 1))
     dr = float(radii[1] - radii[0]) / 2  # a legal pose is at most half a step from a grid radius ...
     dyaw = math.radians(yaw_deg) / 2  # ... and half a step from a grid yaw
@@ -94,12 +96,12 @@ def blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     cross = crossable(world, margins, a.xy, bearings, radii, yaws, (ok & (short >= -slack)).reshape(len(bearings), -1),
                        legal.reshape(len(bearings), -1), dr, dyaw, reach_m)
     arc = longest_circular_run(cross) * bearing_deg
-    if arc < AROUND_TURNS * 360 - 2 * bearing_deg:
+    if arc < turns * 360 - 2 * bearing_deg:
         raise InfeasibleError(
             "blocked-around",
-            f'no way round "{anchor}" for "{mover}": within {AROUND_NEAR:g} blocks of it, the other objects and the '
+            f'no way round "{anchor}" for "{mover}": within {near:g} blocks of it, the other objects and the '
             f"workspace's rim leave the mover room to pass only {arc:.0f} deg of the way round (at any yaw); "
-            f"around needs {AROUND_TURNS * 360:.0f} deg", {"arc_deg": round(arc, 1), "needed_deg": AROUND_TURNS * 360})
+            f"around needs {turns * 360:.0f} deg", {"arc_deg": round(arc, 1), "needed_deg": turns * 360})
     # the sweep must also be one connected way from the start: cells (bearing x radius) holding a legal pose
     # within half a step of each (any yaw), joined to their 8 neighbours (a continuous path's nearest cell
     # only ever moves to a neighbour)
@@ -110,13 +112,13 @@ def blocked_around(scene: Scene, mover: str, anchor: str) -> None:
     j0 = int(np.argmin(np.abs(radii - d0)))
     if cells[k0, j0] and d0 <= outer + 1e-9:
         way = entry_sweep(cells, [(k0, j0)]) * bearing_deg
-        if way < AROUND_TURNS * 360 - 2 * bearing_deg:
+        if way < turns * 360 - 2 * bearing_deg:
             raise InfeasibleError(
                 "blocked-around",
-                f'no way round "{anchor}" for "{mover}": within {AROUND_NEAR:g} blocks of it, the other objects and '
+                f'no way round "{anchor}" for "{mover}": within {near:g} blocks of it, the other objects and '
                 f"the workspace's rim leave the mover a way of only {way:.0f} deg round from where it starts (at any "
-                f"yaw); around needs {AROUND_TURNS * 360:.0f} deg",
-                {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True})
+                f"yaw); around needs {turns * 360:.0f} deg",
+                {"arc_deg": round(way, 1), "needed_deg": turns * 360, "connected": True})
     elif d0 > outer + 1e-9:
         # from afar the mover first comes near (approach.py, where that slide ends is the planner's); the rule
         # reads "around" from the first frame within near on, and frames are at most FRAME_STEP of a side apart,
@@ -126,13 +128,13 @@ def blocked_around(scene: Scene, mover: str, anchor: str) -> None:
         entries = [(int(k), int(j)) for k, j in np.argwhere(far_cells)
                    if radii[j] >= outer - FRAME_STEP * m.size - 2 * dr]
         way = entry_sweep(far_cells, entries) * bearing_deg
-        if way < AROUND_TURNS * 360 - 2 * bearing_deg:
+        if way < turns * 360 - 2 * bearing_deg:
             raise InfeasibleError(
                 "blocked-around",
                 f'no way round "{anchor}" for "{mover}" from afar: it starts {d0 / m.size:.2f} blocks away, and from '
-                f"wherever it can come within {AROUND_NEAR:g} blocks the other objects and the workspace's rim leave "
-                f"it a way of only {way:.0f} deg round (at any yaw); around needs {AROUND_TURNS * 360:.0f} deg",
-                {"arc_deg": round(way, 1), "needed_deg": AROUND_TURNS * 360, "connected": True, "from_afar": True})
+                f"wherever it can come within {near:g} blocks the other objects and the workspace's rim leave "
+                f"it a way of only {way:.0f} deg round (at any yaw); around needs {turns * 360:.0f} deg",
+                {"arc_deg": round(way, 1), "needed_deg": turns * 360, "connected": True, "from_afar": True})
 
 
 REFINE_LEVELS = 3

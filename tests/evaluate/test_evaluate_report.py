@@ -38,7 +38,7 @@ def test_matrices_read_rows_as_asked_and_columns_as_recognised():
     np.testing.assert_allclose(c.models[0], [0.9, 0.0, 0.725, 0.0, 0.0])
     np.testing.assert_allclose(c.argmax[0], [0.5, 0.0, 0.5, 0.0, 0.0])  # rows of the argmax matrix sum to one
     np.testing.assert_allclose(c.argmax[1], [0, 0, 0, 0, 1.0])
-    f = touching_finding(ROWS)
+    f = touching_finding(ROWS, "closer", "next-to")
     assert (f["runs"], f["touching"], f["read_as_also"]) == (2, 1, 1)
     assert f["share_within"]["0.2"] == 0.5
 

@@ -1,4 +1,4 @@
-"""The training recipes (learning/recipes.py) and the planner-domain motions they add (learning/motions.py)."""
+"""The training plans (learning/training_plan.py) and the planner-domain motions they add (learning/motions.py)."""
 
 from __future__ import annotations
 
@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from l2p_bullet.learning import motions as g
-from l2p_bullet.learning.recipes import Recipe, recipes, training_set
+from l2p_bullet.learning.training_plan import TrainingPlan, plans, training_set
 from l2p_bullet.learning.train_progress import all_demos
+from l2p_bullet.learning.training_plan import TrainingPlan, plans, training_set
 from l2p_bullet.learning.trainset import DataConfig, build
 from l2p_bullet.progress.features import QSRConfig
 
@@ -42,7 +43,7 @@ def test_snapped_moves_end_on_the_planner_rings_and_the_study_grid(held_out):
 def test_the_current_recipe_is_the_shipped_training_set_bit_for_bit():
     demos = all_demos(sessions={"Session1"})
     q = QSRConfig()
-    cur = training_set(recipes(1, 1)["current"], "past", demos, q)
+    cur = training_set(plans(1, 1)["current"], "past", demos, q)
     ref = build("past", demos, q, DataConfig())
     assert len(cur) == len(ref)
     assert all(np.array_equal(a.x, b.x) and np.array_equal(a.y, b.y) and a.weight == b.weight for a, b in zip(cur, ref, strict=True))
@@ -53,7 +54,8 @@ def test_recipe_extras_append_planner_domain_sequences():
     demos = all_demos(sessions={"Session1"})
     q = QSRConfig()
     base = build("closer", demos, q, DataConfig())
-    more = training_set(Recipe("x", planner_positives=True, planner_negatives=True, contrastive=True), "closer", demos, q)
+    plan = TrainingPlan("x", planner_positives=True, planner_negatives=True, contrastive=True)
+    more = training_set(plan, "closer", demos, q)
     extra = more[len(base):]
     n_own = 2 * len(demos["closer"])
     assert sum(s.positive for s in extra) == n_own  # one ring-snapped copy per event and mirror image
@@ -68,7 +70,7 @@ def test_planner_partials_are_planner_motions_stopped_early_with_partial_labels(
     demos = all_demos(sessions={"Session1"})
     q = QSRConfig()
     base = build("next-to", demos, q, DataConfig())
-    more = training_set(Recipe("x", planner_partials=True), "next-to", demos, q)
+    more = training_set(TrainingPlan("x", planner_partials=True), "next-to", demos, q)
     extra = more[len(base):]
     assert len(extra) == 2 * 2 * 2 * len(demos["next-to"])  # 2 views x (straight, rings) x 2 cuts
     assert all(s.positive and s.end == len(s.y) - 1 for s in extra)
@@ -83,7 +85,7 @@ def test_train_uses_the_shipped_recipe_and_says_so(tmp_path):
     from click.testing import CliRunner
 
     from l2p_bullet.cli import main
-    from l2p_bullet.learning.recipes import SHIPPED
+    from l2p_bullet.learning.training_plan import SHIPPED
     from l2p_bullet.plugins.bundle import read_manifest
 
     out = tmp_path / "next_to"
@@ -99,12 +101,12 @@ def test_strays_add_around_corners_out_on_the_far_rings_with_the_credit_near_lea
     """``strays`` (sixth round): around alone gets them, from their own generator (what the recipe had
     before is bit-identical), each with one corner on the 5- or 6.5-block ring and 0.6 / 0 of its label
     from there; the other actions' sets are unchanged."""
-    from l2p_bullet.learning.recipes import STRAY_RINGS
+    from l2p_bullet.learning.training_plan import STRAY_RINGS
 
     demos = all_demos(sessions={"Session1"})
     q = QSRConfig()
-    r0 = recipes(1, 1)["planner-graded-nogrid"]
-    r1 = recipes(1, 1)["planner-graded-nogrid-strays"]
+    r0 = plans(1, 1)["planner-graded-nogrid"]
+    r1 = plans(1, 1)["planner-graded-nogrid-strays"]
     before, after = training_set(r0, "around", demos, q), training_set(r1, "around", demos, q)
     same = [a for a, b in zip(after, before, strict=False) if np.array_equal(a.x, b.x) and np.array_equal(a.y, b.y)]
     assert len(same) < len(before) < len(after)  # strays sit among them, after each event's other extras
@@ -124,10 +126,10 @@ def test_trusted_own_leaves_untrusted_demos_out_of_the_own_list_only():
     """``trusted_own`` (seventh round): around trains without around/Session2/e05; the other actions still
     see it among their negatives (their lists are the very same), and a recipe without it changes nothing."""
     from l2p_bullet.data.demos import UNTRUSTED
-    from l2p_bullet.learning.recipes import SHIPPED, own_trusted
+    from l2p_bullet.learning.training_plan import SHIPPED, own_trusted
 
     demos = all_demos()
-    r = recipes(1, 1)["planner-graded-nogrid-trusted"]
+    r = plans(1, 1)["planner-graded-nogrid-trusted"]
     assert r.trusted_own and r.extras_dict() == SHIPPED.extras_dict() | {"trusted_own": True}
     ids = [d.id for d in own_trusted(r, "around", demos)["around"]]
     assert "around/Session2/e05" in UNTRUSTED and not set(ids) & set(UNTRUSTED)
@@ -144,7 +146,7 @@ def test_trusted_own_changes_around_set_alone():
     negatives); around's is the one built without e05, and differs from the shipped one."""
     demos = all_demos(sessions={"Session2"})
     q = QSRConfig()
-    r0, r1 = recipes(1, 1)["planner-graded-nogrid"], recipes(1, 1)["planner-graded-nogrid-trusted"]
+    r0, r1 = plans(1, 1)["planner-graded-nogrid"], plans(1, 1)["planner-graded-nogrid-trusted"]
 
     def same(x: list, y: list) -> bool:
         return len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) and u.weight == v.weight
@@ -166,12 +168,15 @@ def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monk
     from click.testing import CliRunner
 
     from l2p_bullet.cli import main
-    from l2p_bullet.learning import recipes as rc
+    from l2p_bullet.learning import train_progress as tp
+    from l2p_bullet.learning import training_plan as rc
     from l2p_bullet.learning.train_progress import data_digest
     from l2p_bullet.plugins.bundle import read_manifest
 
-    trusted = recipes(1, 1)["planner-graded-nogrid-trusted"]
-    monkeypatch.setattr(rc, "SHIPPED", rc.dataclasses.replace(rc.SHIPPED, name=trusted.name, trusted_own=True))
+    trusted = plans(1, 1)["planner-graded-nogrid-trusted"]
+    shipped = rc.dataclasses.replace(rc.SHIPPED, name=trusted.name, trusted_own=True)
+    monkeypatch.setattr(rc, "SHIPPED", shipped)  # the plan the extras extend
+    monkeypatch.setattr(tp, "SHIPPED", shipped)  # the plan the trainer reads
     out = tmp_path / "around"
     r = CliRunner().invoke(main, ["train", "around", "--ensemble", "1", "--epochs", "1", "--out", str(out)])
     assert r.exit_code == 0, r.output
@@ -179,7 +184,8 @@ def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monk
     demos = all_demos()
     assert t["recipe"]["trusted_own"] is True
     assert t["n_sequences"] == len(training_set(trusted, "around", demos, QSRConfig()))
-    assert t["n_sequences"] < len(training_set(recipes(1, 1)["planner-graded-nogrid"], "around", demos, QSRConfig()))
+    nogrid = plans(1, 1)["planner-graded-nogrid"]
+    assert t["n_sequences"] < len(training_set(nogrid, "around", demos, QSRConfig()))
     assert t["data_digest"] == data_digest(rc.own_trusted(trusted, "around", demos)) != data_digest(demos)
 
 
@@ -187,11 +193,11 @@ def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_o
     """``near_starts`` (eighth round): closer's set is the shipped one plus, at its end, people's endings made
     short (start within 1.25-2.5 blocks, end 1.05-1.2 blocks from the anchor, labelled full); the other actions'
     sets are the very same."""
-    from l2p_bullet.learning.recipes import NEAR_END, NEAR_START, SHIPPED, _near
+    from l2p_bullet.learning.training_plan import NEAR_END, NEAR_START, SHIPPED, _near
 
     demos = all_demos(sessions={"Session2"})
     q = QSRConfig()
-    r0, r1 = recipes(1, 1)["planner-graded-nogrid"], recipes(1, 1)["planner-graded-nogrid-near"]
+    r0, r1 = plans(1, 1)["planner-graded-nogrid"], plans(1, 1)["planner-graded-nogrid-near"]
     assert r1.extras_dict() == SHIPPED.extras_dict() | {"near_starts": True}
     base, near = training_set(r0, "closer", demos, q), training_set(r1, "closer", demos, q)
     assert len(near) > len(base)

@@ -15,6 +15,8 @@ from l2p_bullet.errors import InfeasibleError
 from l2p_bullet.judge.rules import AROUND_APPROACH, AROUND_NEAR, rule_verdict
 from l2p_bullet.pipeline import judged_plan, prepare
 
+AROUND_REACH = ACTION.planning.lead_in.reach
+
 FAR = {"objects": [{"name": "A", "color": "red", "size": 0.04, "xy": [0.02, -0.16], "yaw": 0.3},
                    {"name": "B", "color": "green", "size": 0.04, "xy": [-0.02, 0.10]}]}
 
@@ -28,12 +30,12 @@ def test_the_approach_distance_is_where_people_start_around():
 
     starts = [np.hypot(*(d.mover[0, :2] - d.anchor[0, :2])) / d.size for d in all_demos()["around"]]
     assert len(starts) == 40 and round(float(np.median(starts)), 1) == AROUND_APPROACH == ACTION.thresholds["approach"]
+    assert ACTION.planning.lead_in.approach == AROUND_APPROACH and ACTION.planning.lead_in.near == AROUND_NEAR
     assert max(starts) < 4.6  # nobody started an "around" from across the table
 
 
 def test_around_is_planned_within_the_room_people_went_round_in():
     from l2p_bullet.learning.train_progress import all_demos
-    from l2p_bullet.planning import AROUND_REACH
 
     farthest = [float(np.hypot(*(d.mover[:, :2] - d.anchor[:, :2]).T).max() / d.size)
                 for d in all_demos(untrusted=False)["around"]]

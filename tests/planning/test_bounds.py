@@ -13,8 +13,11 @@ from l2p_bullet.actions.closer import ACTION as CLOSER
 from l2p_bullet.actions.past import ACTION
 from l2p_bullet.core.scene import Scene
 from l2p_bullet.pipeline import judged_plan, prepare
-from l2p_bullet.planning import CLOSER_GOES_BACK_WITHIN, PAST_PASSES_WITHIN
+from l2p_bullet.planning import PEOPLE_BOUNDS
 from l2p_bullet.planning.bounds import BoundScorer, back_weight, pass_weight
+
+PAST_PASSES_WITHIN = ACTION.planning.bound.within
+CLOSER_GOES_BACK_WITHIN = CLOSER.planning.bound.within
 
 
 def test_the_room_is_the_farthest_any_person_passed_the_anchor():
@@ -25,6 +28,8 @@ def test_the_room_is_the_farthest_any_person_passed_the_anchor():
     assert len(closest) == 43
     assert PAST_PASSES_WITHIN == ACTION.thresholds["passes_within"] == math.ceil(max(closest) * 10) / 10
     assert PAST_PASSES_WITHIN < ACTION.thresholds["near"]  # inside what the rule allows: room for execution
+    assert ACTION.planning.bound.kind == "passes-within" and PEOPLE_BOUNDS[ACTION.rules].func is pass_weight
+    assert PEOPLE_BOUNDS[ACTION.rules].keywords == {"within": PAST_PASSES_WITHIN}  # the spec's, planned by
 
 
 def test_a_path_within_the_room_keeps_the_models_score_and_one_beyond_it_loses_a_share_per_block():
@@ -71,6 +76,8 @@ def test_closers_share_is_the_most_of_its_room_any_person_went_back():
         shares.append(float(np.max(dist - np.minimum.accumulate(dist))) / closer_room(float(dist[0])))
     assert len(shares) == 41
     assert CLOSER_GOES_BACK_WITHIN == CLOSER.thresholds["goes_back_within"] == math.ceil(max(shares) * 100) / 100
+    assert PEOPLE_BOUNDS[CLOSER.rules].func is back_weight
+    assert PEOPLE_BOUNDS[CLOSER.rules].keywords == {"within": CLOSER_GOES_BACK_WITHIN}
 
 
 def test_a_path_going_back_within_the_share_keeps_the_models_score_and_one_beyond_loses_a_share_per_share():

@@ -1,10 +1,11 @@
 """Built-in action: away. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
 thresholds of its rule judge: the centre distance grows steadily, by at least ``gain`` blocks; its training-
-set options; its names) is declared here (:class:`~l2p_bullet.actions.spec.ActionSpec`).
+set options and planner-domain extras; its room check; its names) is declared here
+(:class:`~l2p_bullet.actions.spec.ActionSpec`).
 The rule itself is ``judge/rulesets/away.py`` (named by ``rules``).
 """
 
-from ..spec import ActionSpec, Training, Violation
+from ..spec import ActionSpec, Planning, Training, Violation
 
 ACTION = ActionSpec(
     name="away",
@@ -12,7 +13,9 @@ ACTION = ActionSpec(
     source_name="SlideAway",
     sentence="move A away from B",
     thresholds={"gain": 1.0},
+    planning=Planning(checks=("room-away",)),
     training=Training(negatives=("closer", "next-to", "around"), shortened=(0.75, 0.95),
                       twist=True, detour=True, net_label=1.5,
-                      violation=Violation(ends_nearer=0.5), clear_grades=(4.5, 7.0)),
+                      violation=Violation(ends_nearer=0.5), clear_grades=(4.5, 7.0),
+                      wrong_motions=("out-and-back", "reversed"), graded_wrong="goes-back"),
 )

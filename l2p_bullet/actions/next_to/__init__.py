@@ -1,6 +1,6 @@
 """Built-in action: next-to. Its bundle (manifest.toml and weights) lives in this folder; what else it is (the
 thresholds of its rule judge: the mover ends with at most ``gap`` blocks between the two footprints, not
-overlapping; its training-set options; its names) is declared here
+overlapping; its training-set options and planner-domain extras; its names) is declared here
 (:class:`~l2p_bullet.actions.spec.ActionSpec`).
 The rule itself is ``judge/rulesets/next_to.py`` (named by ``rules``).
 """
@@ -14,5 +14,6 @@ ACTION = ActionSpec(
     sentence="move A next to B",
     thresholds={"gap": 0.5},
     training=Training(negatives=("away", "past", "around"), scaled=False, twist=True,
-                      violation=Violation(ends_farther=0.5, stays_off=(2.5, 0.25), strays=(9.0, 8.0))),
+                      violation=Violation(ends_farther=0.5, stays_off=(2.5, 0.25), strays=(9.0, 8.0)),
+                      wrong_motions=("reversed",), graded_wrong="moves-out"),
 )

@@ -1,11 +1,15 @@
-"""Training recipes, the shipped one among them: :data:`SHIPPED` is what ``l2p-bullet train``, ``teach`` and
-``make bundles`` use (recorded in each manifest's ``[training.recipe]``). The others were compared with it on the
-grade-free suite (``research/generalise.py``); the session-split models they give are cached on
-disk so a table can be re-printed without re-training.
+"""Training plans, the shipped one among them: :data:`SHIPPED` is what ``l2p-bullet train``, ``teach`` and
+``make bundles`` use (recorded in each manifest's ``[training.recipe]``, the name that file contract keeps).
+The others were compared with it on the grade-free suite (``research/generalise.py``); the
+session-split models they give are cached on disk so a table can be re-printed without re-training. ("Recipe"
+is a composite's learned row, ``composite/recipe.py``; a training plan is how a progress model's set is made
+and trained.)
 
-A recipe is the current training set (:func:`trainset.build`, unchanged: its sequences and their hashes
+A training plan is the current training set (:func:`trainset.build`, unchanged: its sequences and their hashes
 are those of ``l2p-bullet train``) plus optional extra sequences appended after it, drawn from their own
-generator so the current part stays bit-identical:
+generator so the current part stays bit-identical. Which extras an action gets, and of which kind, its spec
+declares (``ActionSpec.training``: ``wrong_motions``, ``graded_wrong``, ``grid_copies``, ``strays``,
+``near_starts``); the kinds are made here (:data:`WRONG_MOTIONS`, :data:`GRADED_WRONGS`):
 
 - ``planner_positives``: each own event (and its mirror image) as the planners make motions, straight
   moves through 1-3 of its own poses snapped to the discrete planner's rings (around also snapped to the
@@ -42,7 +46,8 @@ everything made from its own events), and kept wherever they are another action'
 actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, "untrusted demonstrations": it passed the suite
 and the planning checks but lowered around's agreement with people in SlideAround, so it is not shipped).
 
-The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest.
+The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest. The trainer
+(:mod:`l2p_bullet.learning.train_progress`) reads a plan; a plan never calls the trainer.
 
 Nothing here reads a grade.
 """
@@ -56,24 +61,50 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..actions.around import ACTION as AROUND
-from ..core.vocabulary import ACTIONS
+from ..actions import BUILTIN, ActionSpec, Training
 from ..data.demos import UNTRUSTED, Demo
 from ..progress.features import QSRConfig
 from . import motions as g
 from .augment import mirror
-from .train_progress import ProgressTrainConfig, TrainResult, train_action
 from .trainset import DataConfig, TrainingSequence, _labelled, build
 
-AROUND_NEAR = AROUND.thresholds["near"]
-"""around's rule: never farther than this many blocks once near (``strays`` gives full credit up to it)."""
+
+@dataclass(frozen=True)
+class ProgressTrainConfig:
+    """Optimisation settings (written to the manifest's ``[training]``)."""
+
+    hidden: int = 32
+    ensemble: int = 5
+    epochs: int = 30
+    batch: int = 32
+    lr: float = 0.01
+    end_weight: float = 2.0
+    """Extra weight of the squared error at the event's end frame (or a negative's last frame)."""
+    threads: int = 1
+    """Intra-op threads while training: tiny LSTMs gain nothing from more, and spinning threads stall
+    badly when the cores are shared."""
+    weight_decay: float = 0.0
+    """Decoupled weight decay (AdamW) when above 0; 0 is plain Adam, the shipped plan."""
+    levels: int = 1
+    """Thresholds of an ordinal read-out (``ModelConfig.levels``): above 1, each is trained with binary
+    cross-entropy on whether the frame's label is past it (thresholds at (2k + 1) / (2 levels))."""
+
+    def to_dict(self) -> dict:
+        out = {k: getattr(self, k) for k in ("hidden", "ensemble", "epochs", "batch", "lr", "end_weight")}
+        # the later options only when used: older manifests and caches keep matching
+        return out | {k: getattr(self, k) for k in ("weight_decay", "levels") if getattr(self, k) != getattr(
+            ProgressTrainConfig, k)}
+
 
 PARTIAL_CUTS = (0.3, 0.6)
 """Where ``planner_partials`` stops a planner-domain copy, as fractions of its length."""
 
 
 @dataclass(frozen=True)
-class Recipe:
+class TrainingPlan:
+    """How one progress model's training set is made (the current set plus the extras switched on here, for
+    the actions that declare them) and trained (:attr:`train`)."""
+
     name: str
     data: DataConfig = field(default_factory=DataConfig)
     train: ProgressTrainConfig = field(default_factory=ProgressTrainConfig)
@@ -84,15 +115,17 @@ class Recipe:
     planner_partials: bool = False
     graded_wrongs: bool = False
     grid: bool = True
-    """With ``planner_positives``: around also gets copies snapped to the 2-D study's grid."""
+    """With ``planner_positives``: actions that declare ``grid_copies`` (around) also get copies snapped to
+    the 2-D study's grid."""
     strays: bool = False
     trusted_own: bool = False
     """Leave the action's own untrusted shipped demonstrations out of its own set (:func:`own_trusted`)."""
     near_starts: bool = False
-    """closer: people's endings made short, as full events (:func:`_near`)."""
+    """Actions that declare ``near_starts`` (closer): people's endings made short, as full events
+    (:func:`_near`)."""
 
     def extras_dict(self) -> dict:
-        """The options that add to the current training set (empty for the current recipe): what a
+        """The options that add to the current training set (empty for the current plan): what a
         bundle's manifest records besides the training settings."""
         keys = ("planner_positives", "planner_negatives", "contrastive", "planner_partials", "graded_wrongs",
                 "strays", "trusted_own", "near_starts")
@@ -109,63 +142,63 @@ class Recipe:
                 **({"near_starts": True} if self.near_starts else {})}
 
 
-SHIPPED = Recipe("planner-graded-nogrid", planner_positives=True, planner_negatives=True, planner_partials=True,
-                 graded_wrongs=True, grid=False)
-"""The recipe ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with, training settings from
+SHIPPED = TrainingPlan("planner-graded-nogrid", planner_positives=True, planner_negatives=True,
+                       planner_partials=True, graded_wrongs=True, grid=False)
+"""The plan ``l2p-bullet train`` (so ``make bundles`` and ``teach``) trains with, training settings from
 the command (5 LSTMs x 30 epochs by default): planner-graded-nogrid, the one that cleared the rule committed
-before the recipes were compared (docs/learning.md: strengthened suite 0.438 against the current recipe's 0.321, 33 goals
+before the plans were compared (docs/learning.md: strengthened suite 0.438 against the current plan's 0.321, 33 goals
 against 26; planning and perform 100 % on the 30-scene benchmarks). Its extras are written into every bundle's
 manifest (``[training.recipe]``)."""
 
 
 def shipped_extension(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, data_cfg: DataConfig,
-                      seed: int) -> Callable[[list[TrainingSequence]], list[TrainingSequence]]:
-    """:data:`SHIPPED`'s extension of the set :func:`trainset.build` made with ``data_cfg`` (a plugin's
-    own data settings are kept; a viewer-frame or two-anchor plugin gets nothing added)."""
-    return functools.partial(extend, dataclasses.replace(SHIPPED, data=data_cfg), action, demos, qcfg, seed)
+                      seed: int, spec: ActionSpec | None = None
+                      ) -> Callable[[list[TrainingSequence]], list[TrainingSequence]]:
+    """:data:`SHIPPED`'s extension of the set :func:`trainset.build` made with ``data_cfg`` (a plugin's own
+    data settings are kept, and the extras its ``spec`` declares added; a viewer-frame or two-anchor plugin
+    gets nothing added)."""
+    return functools.partial(extend, dataclasses.replace(SHIPPED, data=data_cfg), action, demos, qcfg, seed,
+                             spec=spec)
 
 
-def own_trusted(recipe: Recipe, action: str, demos: dict[str, list[Demo]]) -> dict[str, list[Demo]]:
-    """``demos`` as ``action`` trains on them with ``recipe``: with ``trusted_own``, its own list without the
+def own_trusted(plan: TrainingPlan, action: str, demos: dict[str, list[Demo]]) -> dict[str, list[Demo]]:
+    """``demos`` as ``action`` trains on them with ``plan``: with ``trusted_own``, its own list without the
     ids of :data:`data.demos.UNTRUSTED` (the other actions' lists, its negatives, unchanged). Call it on the
     shipped demonstrations only: a user's own files are taken as they are (their ids could coincide)."""
-    if not recipe.trusted_own or not any(d.id in UNTRUSTED for d in demos.get(action, [])):
+    if not plan.trusted_own or not any(d.id in UNTRUSTED for d in demos.get(action, [])):
         return demos
     return {**demos, action: [d for d in demos[action] if d.id not in UNTRUSTED]}
 
 
-def recipes(ensemble: int, epochs: int) -> dict[str, Recipe]:
-    """The recipes compared on the grade-free suite, at a given ensemble size and length of training."""
+def plans(ensemble: int, epochs: int) -> dict[str, TrainingPlan]:
+    """The training plans compared on the grade-free suite, at a given ensemble size and length of training."""
     t = ProgressTrainConfig(ensemble=ensemble, epochs=epochs)
     small = dataclasses.replace(t, hidden=16)
+    on = {"planner_positives": True, "planner_negatives": True}  # every planner-domain plan has these
+    graded = {**on, "planner_partials": True, "graded_wrongs": True}
     return {r.name: r for r in [
-        Recipe("current", train=t),
-        Recipe("small", train=small),
-        Recipe("planner", train=t, planner_positives=True, planner_negatives=True),
-        Recipe("contrastive", train=t, contrastive=True),
-        Recipe("planner+contrastive", train=t, planner_positives=True, planner_negatives=True, contrastive=True),
-        Recipe("around-convex", train=t, turn_power=2.0),
-        Recipe("all", train=t, planner_positives=True, planner_negatives=True, contrastive=True, turn_power=2.0),
-        # tried against the strengthened suite (docs/learning.md), one setting each
-        Recipe("planner-partial", train=t, planner_positives=True, planner_negatives=True, planner_partials=True),
-        Recipe("decay", train=dataclasses.replace(t, weight_decay=0.01)),
-        Recipe("small-decay", train=dataclasses.replace(small, weight_decay=0.01)),
-        Recipe("ordinal", train=dataclasses.replace(t, levels=4)),
-        # chosen after the strengthened suite's table (docs/learning.md)
-        Recipe("planner-graded", train=t, planner_positives=True, planner_negatives=True, planner_partials=True,
-               graded_wrongs=True),
-        # planner-graded without around's grid copies (with them its around planned 90 %)
-        Recipe("planner-graded-nogrid", train=t, planner_positives=True, planner_negatives=True,
-               planner_partials=True, graded_wrongs=True, grid=False),
-        # around's strays with partial credit (for the far corner the planning check found)
-        Recipe("planner-graded-nogrid-strays", train=t, planner_positives=True, planner_negatives=True,
-               planner_partials=True, graded_wrongs=True, grid=False, strays=True),
-        # the shipped recipe with around's own glitched demonstration left out (not its negatives)
-        Recipe("planner-graded-nogrid-trusted", train=t, planner_positives=True, planner_negatives=True,
-               planner_partials=True, graded_wrongs=True, grid=False, trusted_own=True),
-        # the shipped recipe with closer's endings made short (chains start closer from near)
-        Recipe("planner-graded-nogrid-near", train=t, planner_positives=True, planner_negatives=True,
-               planner_partials=True, graded_wrongs=True, grid=False, near_starts=True),
+        TrainingPlan("current", train=t),
+        TrainingPlan("small", train=small),
+        TrainingPlan("planner", train=t, **on),
+        TrainingPlan("contrastive", train=t, contrastive=True),
+        TrainingPlan("planner+contrastive", train=t, **on, contrastive=True),
+        TrainingPlan("around-convex", train=t, turn_power=2.0),
+        TrainingPlan("all", train=t, **on, contrastive=True, turn_power=2.0),
+        # the second round (issue 25, docs/learning.md "The strengthened suite"), one setting each
+        TrainingPlan("planner-partial", train=t, **on, planner_partials=True),
+        TrainingPlan("decay", train=dataclasses.replace(t, weight_decay=0.01)),
+        TrainingPlan("small-decay", train=dataclasses.replace(small, weight_decay=0.01)),
+        TrainingPlan("ordinal", train=dataclasses.replace(t, levels=4)),
+        # the third round: chosen after the second round's table (docs/learning.md)
+        TrainingPlan("planner-graded", train=t, **graded),
+        # the fourth: planner-graded without around's grid copies (after its around planned 90 %)
+        TrainingPlan("planner-graded-nogrid", train=t, **graded, grid=False),
+        # the sixth: around's strays with partial credit (after the fifth round's planning check)
+        TrainingPlan("planner-graded-nogrid-strays", train=t, **graded, grid=False, strays=True),
+        # the seventh: the shipped plan with around's own glitched demonstration left out (not its negatives)
+        TrainingPlan("planner-graded-nogrid-trusted", train=t, **graded, grid=False, trusted_own=True),
+        # the eighth: the shipped plan with closer's endings made short (chains start closer from near)
+        TrainingPlan("planner-graded-nogrid-near", train=t, **graded, grid=False, near_starts=True),
     ]}
 
 
@@ -175,45 +208,87 @@ def _event_views(d: Demo, dcfg: DataConfig) -> list[g.Event]:
     return [e, dataclasses.replace(e, mover=mirror(e.mover), anchor=mirror(e.anchor[None])[0])]
 
 
-def _wrong(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
-    """Wrong piecewise-straight motions made from an own event (module docstring)."""
-    m, c, step = e.mover, e.anchor, 0.25 * e.size
-    p0, p1 = m[0], m[-1]
-    if e.action == "closer":
-        d = p0[:2] - c[:2]
-        r0 = max(float(np.linalg.norm(d)), 1e-9)
-        out, back = p0.copy(), p0.copy()
-        out[:2] = p0[:2] + d / r0 * rng.uniform(1.5, 4.0) * e.size
-        back[:2] = c[:2] + d / r0 * (r0 + rng.uniform(-0.3, 0.3) * e.size)
-        ways = [np.array([p0, out, back]), np.array([p1, p0])]
-    elif e.action == "away":
-        ways = [np.array([p0, p1, p0 + np.r_[rng.normal(0, 0.3 * e.size, 2), 0.0]]), np.array([p1, p0])]
-    elif e.action == "next-to":
-        ways = [np.array([p1, p0])]
-    elif e.action == "past":
-        k = int(np.argmin(np.hypot(*(m[:, :2] - c[:2]).T)))
-        ways = [np.array([p0, m[k], p0])]
-    else:
-        half = g.waypoints(m[: max(2, len(m) // 2)], 2)
-        ways = [np.concatenate([half, half[-2::-1]])]
-    return [g.straight_moves(w, step) for w in ways]
+def _backs_off(e: g.Event, rng: np.random.Generator) -> np.ndarray:
+    """Out 1.5-4 blocks from its start, away from the anchor, and back to about its start distance."""
+    p0, c = e.mover[0], e.anchor
+    d = p0[:2] - c[:2]
+    r0 = max(float(np.linalg.norm(d)), 1e-9)
+    out, back = p0.copy(), p0.copy()
+    out[:2] = p0[:2] + d / r0 * rng.uniform(1.5, 4.0) * e.size
+    back[:2] = c[:2] + d / r0 * (r0 + rng.uniform(-0.3, 0.3) * e.size)
+    return np.array([p0, out, back])
 
 
-def _graded(e: g.Event, rng: np.random.Generator) -> list[tuple[np.ndarray, np.ndarray, float]]:
-    """Wrong planner motions that keep part of the credit (``graded_wrongs``): (the event as straight
-    moves' waypoints, what follows it, the share of the event's final label left at the end)."""
+def _out_and_back(e: g.Event, rng: np.random.Generator) -> np.ndarray:
+    """To its end and back to near its start."""
+    p0, p1 = e.mover[0], e.mover[-1]
+    return np.array([p0, p1, p0 + np.r_[rng.normal(0, 0.3 * e.size, 2), 0.0]])
+
+
+def _reversed(e: g.Event, rng: np.random.Generator) -> np.ndarray:
+    """From its end straight back to its start."""
+    return np.array([e.mover[-1], e.mover[0]])
+
+
+def _to_closest_and_back(e: g.Event, rng: np.random.Generator) -> np.ndarray:
+    """To its closest approach to the anchor and straight back."""
     m, c = e.mover, e.anchor
-    p0, p1 = m[0], m[-1]
-    whole = g.waypoints(m, int(rng.integers(1, 4)))
-    if e.action in ("closer", "away"):  # back a share u of the way to the start: 1 - u of it is left
-        u = rng.uniform(0.2, 1.0)
-        return [(whole, (p1 + u * (p0 - p1))[None], 1.0 - u)]
-    if e.action == "next-to":  # k blocks straight out from its place beside the anchor
-        k = rng.uniform(1.0, 5.0)
-        q = p1.copy()
-        q[:2] = c[:2] + (p1 - c)[:2] * (1 + k * e.size / max(float(np.linalg.norm((p1 - c)[:2])), 1e-9))
-        return [(whole, q[None], max(0.0, 1.0 - k / GRADED_FAR))]
-    return []
+    k = int(np.argmin(np.hypot(*(m[:, :2] - c[:2]).T)))
+    return np.array([m[0], m[k], m[0]])
+
+
+def _half_round_and_back(e: g.Event, rng: np.random.Generator) -> np.ndarray:
+    """Half of it (two straight moves) and straight back."""
+    half = g.waypoints(e.mover[: max(2, len(e.mover) // 2)], 2)
+    return np.concatenate([half, half[-2::-1]])
+
+
+WRONG_MOTIONS: dict[str, Callable[[g.Event, np.random.Generator], np.ndarray]] = {
+    "backs-off": _backs_off, "out-and-back": _out_and_back, "reversed": _reversed,
+    "to-closest-and-back": _to_closest_and_back, "half-round-and-back": _half_round_and_back,
+}
+"""The wrong motions by kind (``Training.wrong_motions``): each makes the waypoints of one from an own
+event."""
+
+
+def _wrong(e: g.Event, rng: np.random.Generator, kinds: tuple[str, ...]) -> list[np.ndarray]:
+    """Wrong piecewise-straight motions made from an own event (module docstring), of the kinds its action
+    declares."""
+    return [g.straight_moves(WRONG_MOTIONS[k](e, rng), 0.25 * e.size) for k in kinds]
+
+
+def _goes_back(e: g.Event, rng: np.random.Generator) -> tuple[np.ndarray, float]:
+    """Back a share u of the way to the start: 1 - u of it is left."""
+    p0, p1 = e.mover[0], e.mover[-1]
+    u = rng.uniform(0.2, 1.0)
+    return (p1 + u * (p0 - p1))[None], 1.0 - u
+
+
+def _moves_out(e: g.Event, rng: np.random.Generator) -> tuple[np.ndarray, float]:
+    """k blocks straight out from its place beside the anchor: 1 - k / :data:`GRADED_FAR` of it is left."""
+    p1, c = e.mover[-1], e.anchor
+    k = rng.uniform(1.0, 5.0)
+    q = p1.copy()
+    q[:2] = c[:2] + (p1 - c)[:2] * (1 + k * e.size / max(float(np.linalg.norm((p1 - c)[:2])), 1e-9))
+    return q[None], max(0.0, 1.0 - k / GRADED_FAR)
+
+
+GRADED_WRONGS: dict[str, Callable[[g.Event, np.random.Generator], tuple[np.ndarray, float]]] = {
+    "goes-back": _goes_back, "moves-out": _moves_out}
+"""The graded wrong motions by kind (``Training.graded_wrong``): what follows the event, and the share of its
+final label left at the end."""
+
+
+def _graded(e: g.Event, rng: np.random.Generator,
+            kind: str | None) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Wrong planner motions that keep part of the credit (``graded_wrongs``): (the event as straight moves'
+    waypoints, what follows it, the share of the event's final label left at the end); none for an action that
+    declares no kind (the waypoints are drawn all the same, so every action's extras stay as they were)."""
+    whole = g.waypoints(e.mover, int(rng.integers(1, 4)))
+    if kind is None:
+        return []
+    tail, left = GRADED_WRONGS[kind](e, rng)
+    return [(whole, tail, left)]
 
 
 GRADED_FAR = 5.0
@@ -265,15 +340,24 @@ def _near(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
     return [crop, g.straight_moves(crop[[0, -1]], 0.25 * size)]
 
 
-def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
-           seed: int) -> list[TrainingSequence]:
-    """The recipe's extra sequences for ``action`` (empty for the current recipe)."""
+def declared(action: str, spec: ActionSpec | None = None) -> Training:
+    """What ``action`` declares about its training (``ActionSpec.training``): ``spec``'s when given (a
+    plugin's), else the built-in's; a plugin that declares nothing gets no per-action extras."""
+    found = spec if spec is not None else BUILTIN.get(action)
+    return found.training if found is not None else Training()
+
+
+def extras(plan: TrainingPlan, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, neg_weight: float,
+           seed: int, spec: ActionSpec | None = None) -> list[TrainingSequence]:
+    """The plan's extra sequences for ``action`` (empty for the current plan); the per-action ones of the
+    kinds its spec declares (:func:`declared`)."""
     rng = np.random.default_rng(seed + 25)
-    stray_rng = np.random.default_rng(seed + 26)  # its own: the recipe's other extras stay bit-identical
+    stray_rng = np.random.default_rng(seed + 26)  # its own: the plan's other extras stay bit-identical
     near_rng = np.random.default_rng(seed + 27)  # the same
-    dc = recipe.data
+    dc = plan.data
     if qcfg.viewer or qcfg.anchors > 1:  # mirror images and one-anchor snapping would be wrong there
         return []
+    own = declared(action, spec)
     turns = dc.turn_label.get(action)
     out: list[TrainingSequence] = []
 
@@ -292,7 +376,7 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
 
     def add_graded(e: g.Event) -> None:
         a = np.repeat(e.anchor[None], 2, axis=0)
-        for way, tail, left in _graded(e, rng):
+        for way, tail, left in _graded(e, rng, own.graded_wrong):
             ev = g.straight_moves(way, 0.25 * e.size)
             head = _labelled(ev, a[:1].repeat(len(ev), 0), e.size, 0, len(ev) - 1, qcfg, dc, True, turns)
             full = g.straight_moves(np.vstack([way, tail]), 0.25 * e.size)
@@ -302,7 +386,7 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
             out.append(TrainingSequence(x, y, positive=True, end=len(x) - 1))
 
     def add_strays(e: g.Event) -> None:
-        got = _strayed(e, stray_rng, AROUND_NEAR)
+        got = _strayed(e, stray_rng, near)
         if got is None:
             return
         way, f0, f1, left = got
@@ -312,28 +396,29 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
         s.y = (s.y * np.interp(f, [f0, f1], [1.0, left])).astype(np.float32)
         out.append(s)
 
+    near = (spec or BUILTIN[action]).thresholds["near"] if plan.strays and own.strays else None  # its rule's
     for d in demos.get(action, []):
         for e in _event_views(d, dc):
-            if recipe.graded_wrongs:
+            if plan.graded_wrongs:
                 add_graded(e)
-            if recipe.planner_partials:
+            if plan.planner_partials:
                 add_partials(g.domain(e, "straight", int(rng.integers(1, 4))), e)
                 add_partials(g.domain(e, "rings", int(rng.integers(1, 4))), e)
-            if recipe.planner_positives:
+            if plan.planner_positives:
                 add(g.domain(e, "rings", int(rng.integers(1, 4))), e, True)
-                if action == "around" and recipe.grid:
+                if own.grid_copies and plan.grid:
                     add(g.domain(e, "grid", int(rng.integers(2, 5))), e, True)
-            if recipe.planner_negatives and action in ACTIONS:  # wrong motions are per built-in meaning
-                for w in _wrong(e, rng):
+            if plan.planner_negatives:  # wrong motions are per meaning: those its action declares
+                for w in _wrong(e, rng, own.wrong_motions):
                     add(w, e, False)
-            if recipe.strays and action == "around":
+            if plan.strays and own.strays:
                 add_strays(e)
-    if recipe.near_starts and action == "closer":  # after the rest, so that it keeps its order
+    if plan.near_starts and own.near_starts:  # after the rest, so that it keeps its order
         for d in demos.get(action, []):
             for e in _event_views(d, dc):
                 for m in _near(e, near_rng):
                     add(m, e, True)
-    if recipe.contrastive:
+    if plan.contrastive:
         for other in dc.negatives.get(action, [o for o in demos if o != action]):
             for d in demos.get(other, []):
                 for e in _event_views(d, dc):
@@ -342,32 +427,22 @@ def extras(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRC
     return out
 
 
-def extend(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, seed: int,
-           seqs: list[TrainingSequence]) -> list[TrainingSequence]:
-    """The current training set ``seqs`` (:func:`trainset.build`'s) plus the recipe's extras and label
+def extend(plan: TrainingPlan, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, seed: int,
+           seqs: list[TrainingSequence], spec: ActionSpec | None = None) -> list[TrainingSequence]:
+    """The current training set ``seqs`` (:func:`trainset.build`'s) plus the plan's extras and label
     power: what :func:`train_progress.train_action` trains on when given this as its ``extend``."""
     neg_w = next((s.weight for s in seqs if not s.positive), 1.0)
-    seqs = seqs + extras(recipe, action, demos, qcfg, neg_w, seed)
-    if recipe.turn_power != 1.0 and action in recipe.data.turn_label:
+    seqs = seqs + extras(plan, action, demos, qcfg, neg_w, seed, spec)
+    if plan.turn_power != 1.0 and action in plan.data.turn_label:
         for s in seqs:
             if s.positive:
-                s.y = (s.y ** recipe.turn_power).astype(np.float32)
+                s.y = (s.y ** plan.turn_power).astype(np.float32)
     return seqs
 
 
-def training_set(recipe: Recipe, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig,
+def training_set(plan: TrainingPlan, action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig,
                  seed: int = 0) -> list[TrainingSequence]:
-    """:func:`trainset.build` (the current recipe, bit for bit) plus the recipe's extras (of the shipped
+    """:func:`trainset.build` (the current plan, bit for bit) plus the plan's extras (of the shipped
     ``demos``: :func:`own_trusted` applies)."""
-    demos = own_trusted(recipe, action, demos)
-    return extend(recipe, action, demos, qcfg, seed, build(action, demos, qcfg, recipe.data, seed=seed))
-
-
-def train(recipe: Recipe, action: str, demos: dict[str, list[Demo]], seed: int = 0,
-          tick: Callable[[], None] | None = None) -> TrainResult:
-    """The recipe's ensemble for ``action``: :func:`train_progress.train_action` (members seeded
-    ``seed * 1000 + i``) on :func:`training_set` (of the shipped ``demos``: :func:`own_trusted` applies)."""
-    q = QSRConfig()
-    demos = own_trusted(recipe, action, demos)
-    return train_action(action, demos, seed=seed, qsr_cfg=q, data_cfg=recipe.data, cfg=recipe.train, tick=tick,
-                        extend=functools.partial(extend, recipe, action, demos, q, seed))
+    demos = own_trusted(plan, action, demos)
+    return extend(plan, action, demos, qcfg, seed, build(action, demos, qcfg, plan.data, seed=seed))
