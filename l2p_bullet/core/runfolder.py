@@ -456,6 +456,14 @@ def mark_failed(folder: Path, stage: str | None, error: str) -> None:
         write_summary(path, summary)
 
 
+def add_to_summary(folder: Path, fields: dict) -> None:
+    """Add ``fields`` to ``folder/summary.json`` (made when missing), keeping what it holds."""
+    summary = _read_json(folder / "summary.json")
+    summary = summary if isinstance(summary, dict) else {"schema": 1}
+    with contextlib.suppress(OSError):
+        write_summary(folder / "summary.json", {**summary, **fields})
+
+
 def write_summary(path: Path, summary: dict) -> None:
     """Write a run folder's summary.json (numpy numbers and paths become plain JSON, NaN becomes null)."""
     path.write_text(dumps_json(summary, indent=1) + "\n")
