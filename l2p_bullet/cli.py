@@ -22,7 +22,7 @@ from collections.abc import Iterator
 
 import click
 
-from . import __version__
+from . import __version__, interrupted_while_starting
 from .commands import (
     actions,
     arms,
@@ -38,7 +38,6 @@ from .commands import (
     teach,
 )
 from .errors import L2PError
-from .launch import interrupted_while_starting
 
 STOPPING_SIGNALS = (signal.SIGTERM, signal.SIGHUP)
 """Signals that stop a command as Ctrl-C does (the run is marked interrupted, a replaced run put back)."""

@@ -4,22 +4,15 @@ Ctrl-C in the first ~0.3 s (click and the commands being imported) must stop qui
 exit 130), not print a KeyboardInterrupt traceback from inside an import. So :func:`main` installs that
 handler before it imports anything heavy, and this module imports only ``_signal`` (CPython's built-in C
 module: no Python code runs to import it, while ``import signal`` executes ``signal.py`` and its enum
-conversion, several milliseconds in which a Ctrl-C raised a traceback), ``os`` and ``sys`` (already
-imported by CPython's start-up). Importing it, or the package, installs nothing: only running the program
+conversion, several milliseconds in which a Ctrl-C raised a traceback), ``sys`` (already imported by
+CPython's start-up) and the package (import-light: the handler itself is defined there). Importing it, or the package, installs nothing: only running the program
 does, so a test or a library that imports ``l2p_bullet`` keeps its own Ctrl-C.
 """
 
 import _signal
-import os as _os
 import sys as _sys
 
-
-def interrupted_while_starting(signum, frame) -> None:  # noqa: ARG001 - a signal handler's signature
-    """Ctrl-C before the command runs: nothing has started, so stop quietly (exit 130) instead of printing
-    a KeyboardInterrupt traceback from inside an import. ``cli.main`` hands SIGINT back to
-    KeyboardInterrupt once the command is about to run."""
-    _os.write(2, b"interrupted\n")
-    _os._exit(130)
+from . import interrupted_while_starting
 
 
 def main() -> object:
