@@ -92,7 +92,8 @@ def test_the_watch_leaves_a_living_parent_alone():
 
 
 @pytest.mark.slow
-def test_killing_a_rendering_perform_leaves_no_process_behind(tmp_path):
+@pytest.mark.parametrize("signum", [signal.SIGKILL, signal.SIGTERM])
+def test_killing_a_rendering_perform_leaves_no_process_behind(tmp_path, signum):
     out = tmp_path / "run"
     env = {**os.environ, "L2P_RENDER_WORKERS": "2"}
     proc = subprocess.Popen([sys.executable, "-m", "l2p_bullet.cli", "perform", "move A around B", "--quiet",
@@ -105,8 +106,9 @@ def test_killing_a_rendering_perform_leaves_no_process_behind(tmp_path):
         kids = _descendants(proc.pid)
     time.sleep(1.0)  # the workers are drawing
     kids = _descendants(proc.pid)
-    proc.kill()
-    proc.wait(timeout=30)
+    proc.send_signal(signum)
+    code = proc.wait(timeout=30)
+    assert code == (-signal.SIGKILL if signum == signal.SIGKILL else 128 + signum)
     left = _wait_gone(kids, 5.0)
     for p in left:  # leave nothing behind on a failure either
         os.kill(p, signal.SIGKILL)
