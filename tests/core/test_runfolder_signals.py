@@ -49,6 +49,15 @@ def test_a_plain_run_after_a_killed_force_run_refuses_the_earlier_run_instead_of
     assert [p.name for p in tmp_path.iterdir()] == ["keep"]  # put back, nothing left aside
 
 
+def test_a_reader_skipping_the_killed_run_says_where_the_earlier_one_is(tmp_path):
+    from l2p_bullet.core.folders import unfinished
+
+    out = _finished_run(tmp_path / "keep")
+    _killed_force_run(out)
+    note = unfinished(out)
+    assert note is not None and ".keep.replaced-" in note and "puts it back" in note
+
+
 def test_a_force_run_after_a_killed_one_sets_the_earlier_run_aside_again_and_ctrl_c_still_restores_it(tmp_path):
     out = _finished_run(tmp_path / "keep")
     _killed_force_run(out)
