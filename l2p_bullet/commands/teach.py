@@ -36,6 +36,9 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     another (each drag is one step), save (Enter); "train and perform" learns the recipe from the rows and
     performs a row of four blocks.
 
+    "Remove the last demonstration" (two clicks) takes back a mistaken one. One teach page per plugin:
+    a second teach on the same plugin is refused, naming the first one's process and address.
+
     \b
     Example:
       l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
