@@ -427,7 +427,7 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
             e.add_note(note)
         if back:
             raise
-        mark_failed(claim.path, INTERRUPTED, f"interrupted ({e or 'Ctrl-C'}) before the run finished")
+        mark_failed(claim.path, INTERRUPTED, f"interrupted ({str(e) or 'Ctrl-C'}) before the run finished")
         raise
     except BaseException as e:
         back, note = claim.restore_replaced() if restore_on_error else (False, None)  # a report: its old one

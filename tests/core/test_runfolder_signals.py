@@ -119,3 +119,15 @@ def test_sigterm_and_sighup_stop_a_force_run_as_ctrl_c_does(tmp_path, signum):
     assert "holds the earlier run again" in err, err
     assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before
     assert [p.name for p in tmp_path.iterdir()] == ["keep"]
+
+
+@pytest.mark.parametrize("stop", ["ctrl-c", "sigterm"])
+def test_an_interrupted_run_says_what_stopped_it(tmp_path, stop):
+    from l2p_bullet.cli import Stopped
+
+    exc = KeyboardInterrupt() if stop == "ctrl-c" else Stopped(signal.SIGTERM)
+    with pytest.raises(KeyboardInterrupt), run_folder(tmp_path / "run", command="perform"):
+        raise exc
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["failed_stage"] == "interrupted"
+    assert summary["error"] == f"interrupted ({'Ctrl-C' if stop == 'ctrl-c' else 'SIGTERM'}) before the run finished"
