@@ -116,6 +116,10 @@ def test_removing_a_row_keeps_the_others_in_order(rows):
     for k in (0, 3, "x"):
         status, r = rows.call("DELETE", f"/api/demos/{k}")
         assert status in (400, 422) and "error" in r, (k, r)
+    import http_client
+
+    status, r = http_client.call(rows.server.url, "DELETE", "/api/demos/1", headers={"Origin": "http://evil.example"})
+    assert status == 403, r  # a page of another site cannot remove a demonstration
     assert len(read_demos(rows.action.bundle_dir)) == 2
 
 
