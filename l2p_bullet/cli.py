@@ -3,18 +3,26 @@
 Every command lives in ``l2p_bullet/commands/`` and imports only click at module level: torch and
 pybullet are imported inside the command bodies, so ``l2p-bullet --help`` starts fast.
 User errors (:class:`L2PError`, and a command's bad options) become a one-line message and exit code 2;
-anything else is a bug and keeps its traceback.
+anything else is a bug and keeps its traceback. The program's start-up (a quiet Ctrl-C while this module
+is imported) is :mod:`.launch`'s, the console script's entry point.
+
+SIGTERM and SIGHUP (``kill``, a closed terminal or ssh session) stop a command the way Ctrl-C does: the
+command unwinds as from a KeyboardInterrupt, so a run is marked interrupted and a ``--force`` run puts
+back the run it was replacing, instead of the process vanishing half-way (exit status 128 + the signal).
 """
 
 from __future__ import annotations
 
+import contextlib
 import re
 import signal
 import sys
+import threading
+from collections.abc import Iterator
 
 import click
 
-from . import PROGRAM, __version__, interrupted_while_starting
+from . import __version__, interrupted_while_starting
 from .commands import (
     actions,
     arms,
@@ -31,6 +39,41 @@ from .commands import (
 )
 from .errors import L2PError
 
+STOPPING_SIGNALS = (signal.SIGTERM, signal.SIGHUP)
+"""Signals that stop a command as Ctrl-C does (the run is marked interrupted, a replaced run put back)."""
+
+
+class Stopped(KeyboardInterrupt):
+    """A command stopped by SIGTERM or SIGHUP: unwinds as Ctrl-C does (every ``except KeyboardInterrupt``
+    that marks a run interrupted or restores a replaced one runs), exits 128 + the signal's number."""
+
+    def __init__(self, signum: int):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def _stop(signum, frame) -> None:  # noqa: ARG001 - a signal handler's signature
+    raise Stopped(signum)
+
+
+@contextlib.contextmanager
+def _stopping_signals_interrupt() -> Iterator[None]:
+    """While the command runs, SIGTERM and SIGHUP raise :class:`Stopped` (where they kill the process
+    by default); the handlers the caller had come back after it. Only the main thread can set them."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = {s: signal.getsignal(s) for s in STOPPING_SIGNALS}
+    for s, h in old.items():
+        if h is signal.SIG_DFL:  # a caller that chose to ignore them (nohup) keeps its choice
+            signal.signal(s, _stop)
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            if h is signal.SIG_DFL:
+                signal.signal(s, h)
+
 
 def one_line(message: str, limit: int = 1000) -> str:
     """An error message as one printable line: file contents it quotes may hold newlines or control
@@ -40,21 +83,14 @@ def one_line(message: str, limit: int = 1000) -> str:
 
 
 class _Group(click.Group):
-    def main(self, *args, **kwargs):
-        """The interpreter's shutdown after the command is quiet too (Ctrl-C there: "interrupted", 130)."""
-        try:
-            return super().main(*args, **kwargs)
-        finally:
-            if PROGRAM and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-                signal.signal(signal.SIGINT, interrupted_while_starting)
-
     def invoke(self, ctx: click.Context):
         try:
             # From here on Ctrl-C is a KeyboardInterrupt again (commands mark interrupted runs). Not sooner:
             # while click parses the group's options a KeyboardInterrupt would be click's "Aborted!", exit 1.
             if signal.getsignal(signal.SIGINT) is interrupted_while_starting:
                 signal.signal(signal.SIGINT, signal.default_int_handler)
-            return super().invoke(ctx)
+            with _stopping_signals_interrupt():
+                return super().invoke(ctx)
         except L2PError as e:  # notes (a report put back after a failed rewrite) follow on the same line
             click.echo(f"error: {one_line('; '.join([str(e), *getattr(e, '__notes__', ())]))}", err=True)
             sys.exit(e.exit_code)
@@ -63,8 +99,9 @@ class _Group(click.Group):
             click.echo(f"error: {one_line(e.format_message())}{where}", err=True)
             sys.exit(e.exit_code)
         except KeyboardInterrupt as e:
-            click.echo("; ".join(["interrupted", *getattr(e, "__notes__", ())]), err=True)
-            sys.exit(130)
+            how = f"interrupted ({e})" if isinstance(e, Stopped) else "interrupted"
+            click.echo("; ".join([how, *getattr(e, "__notes__", ())]), err=True)
+            sys.exit(128 + e.signum if isinstance(e, Stopped) else 130)
 
 
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})

@@ -161,6 +161,8 @@ FLOORS: tuple[tuple[str, ...], ...] = (
     ("export", "review", "teach"),  # exports of evaluations, the review app, the teach page
     ("commands",),  # click commands: parse options, call one function
     ("cli",),  # the front door
+    ("launch",),  # the l2p-bullet program's start-up (a quiet early Ctrl-C), then the front door
+    ("__main__",),  # python -m l2p_bullet: the program
 )
 """The floors, lowest first (docs/DESIGN.md, "Floors"). A module may import its own room and the rooms of
 lower floors only: never a higher floor (a climb) nor another room on its own floor, so no two rooms can

@@ -29,7 +29,7 @@ import numpy as np
 
 from .. import planning
 from ..core.contracts import Plan, approach_end_frame, trajectory_poses
-from ..core.runfolder import run_folder, write_summary
+from ..core.runfolder import add_to_summary, run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..embodiment.manners import manner_planning
@@ -193,6 +193,12 @@ def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None
             write_summary(out / "summary.json", {"schema": 1, "sentence": sentence, "chain": True, "ok": False,
                                                  "failed_stage": clock.last, "error": str(e),
                                                  "timings_s": clock.timings})
+            raise
+        except KeyboardInterrupt:  # run_folder marks the run interrupted; where it was is worth keeping
+            clock.stop()
+            stage, _, clause = clock.last.partition(" ")  # "setup", "clause 2", "record"
+            add_to_summary(out, {"sentence": sentence, "chain": True, "interrupted_stage": stage,
+                                 **({"interrupted_clause": int(clause)} if clause else {}), "timings_s": clock.timings})
             raise
 
 

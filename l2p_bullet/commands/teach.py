@@ -36,6 +36,9 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     another (each drag is one step), save (Enter); "train and perform" learns the recipe from the rows and
     performs a row of four blocks.
 
+    "Remove the last demonstration" (two clicks) takes back a mistaken one. One teach page per plugin:
+    a second teach on the same plugin is refused, naming the first one's process and address.
+
     \b
     Example:
       l2p-bullet new-action left-of --phrase "to the left of" --frame viewer --judge left-of
@@ -62,6 +65,13 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     from ..web.server import bind, serve, url_of
 
     sock = bind(host, port)
+    from ..teach.lock import claim_plugin
+
+    try:  # one page per plugin folder: two would overwrite each other's demonstrations
+        claim_plugin(taught.root, url_of(sock))  # held until the process ends
+    except BaseException:
+        sock.close()
+        raise
     if not is_loopback(host):  # as review says it: off loopback the Host check is off too
         click.echo(f"warning: listening on {host}: anyone who can reach this machine can write demonstrations "
                    "and start training", err=True)

@@ -8,15 +8,17 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from ..core.atomic import write_atomic
 from ..core.bounded import read_bounded
 from ..errors import BundleError
 from ..plugins.bundle import MANIFEST, _write_manifest, read_manifest, sha256_file
-from .recipe import CompositeError, Demonstration, Recipe
+from .recipe import MAX_DEMOS, CompositeError, Demonstration, Recipe
 
 RECIPE_FILE = "recipe.json"
 DEMOS_FILE = "demos.json"
 MAX_BYTES = 20_000_000
-"""Largest recipe or demos file read (a composite's are kilobytes; a larger one is not ours)."""
+"""Largest recipe or demos file read (a composite's are kilobytes; a larger one is not ours), and so the
+largest written: a file saved past it could never be read again, and every demonstration in it is lost."""
 
 
 def read_demos(folder: str | Path) -> list[Demonstration]:
@@ -28,11 +30,18 @@ def read_demos(folder: str | Path) -> list[Demonstration]:
 
 
 def write_demos(folder: str | Path, demos: list[Demonstration]) -> Path:
-    """All ``demos`` as ``folder/demos.json``, written to a temporary file and renamed."""
+    """All ``demos`` as ``folder/demos.json``, replaced atomically (``core/atomic.py``); refused
+    (:class:`CompositeError`, nothing written) when the file would hold more than :func:`read_demos` and
+    :func:`~.recipe.learn` accept: :data:`~.recipe.MAX_DEMOS` demonstrations, :data:`MAX_BYTES` bytes."""
     path = Path(folder) / DEMOS_FILE
-    tmp = path.with_suffix(".json.tmp")
-    tmp.write_text(json.dumps({"schema": 1, "demos": [d.to_dict() for d in demos]}, separators=(",", ":")) + "\n")
-    tmp.replace(path)
+    if len(demos) > MAX_DEMOS:
+        raise CompositeError(f"{path} would hold {len(demos)} demonstrations; training reads at most {MAX_DEMOS}: "
+                             "remove one before recording more")
+    data = (json.dumps({"schema": 1, "demos": [d.to_dict() for d in demos]}, separators=(",", ":")) + "\n").encode()
+    if len(data) > MAX_BYTES:
+        raise CompositeError(f"{path} would be {len(data) / 2**20:.1f} MiB; it is read up to "
+                             f"{MAX_BYTES / 2**20:.1f} MiB: record shorter drags, or remove a demonstration")
+    write_atomic(path, data)
     return path
 
 
@@ -43,7 +52,7 @@ def write_recipe(folder: str | Path, recipe: Recipe) -> Path:
     if man.get("kind") != "composite":
         raise BundleError(f'{folder / MANIFEST} is not a composite action\'s (kind = "composite")')
     path = folder / RECIPE_FILE
-    path.write_text(json.dumps(recipe.to_dict(), indent=1) + "\n")
+    write_atomic(path, json.dumps(recipe.to_dict(), indent=1) + "\n")
     weights = {}
     for f in (RECIPE_FILE, DEMOS_FILE):
         if (folder / f).is_file():

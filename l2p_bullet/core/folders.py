@@ -14,7 +14,7 @@ import os
 from pathlib import Path
 
 from ..errors import L2PError, RunFolderError
-from .runfolder import INTERRUPTED, _read_json, run_folder_command, run_folder_state
+from .runfolder import INTERRUPTED, _parked, _read_json, run_folder_command, run_folder_state
 
 
 def unfinished(folder: Path) -> str | None:
@@ -40,6 +40,10 @@ def unfinished(folder: Path) -> str | None:
         return f"skipped {folder}: its run was interrupted; {again}"
     if failed:
         return f"skipped {folder}: its run failed (stage {stage or 'unknown'}); {again}"
+    parked = _parked(folder)
+    if parked:  # a --force run killed outright: the run it replaced waits aside, the next claim restores it
+        return (f"skipped {folder}: its run did not finish; the earlier run it was replacing is in {parked[0]} "
+                f"(the next l2p-bullet command into {folder} puts it back)")
     return f"skipped {folder}: its run did not finish; {again}"
 
 

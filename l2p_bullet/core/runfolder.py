@@ -18,7 +18,11 @@ Every command that writes a run folder (perform, plan, replay, and whatever come
 - The old folder is renamed to a hidden sibling first and deleted after the new one exists: a crash in
   between loses nothing that was not going to be replaced anyway. Under :func:`run_folder`, a *finished*
   run replaced with ``force`` is kept aside until the new run ends, and put back if the new one is
-  interrupted (Ctrl-C): stopping a ``--force`` run half-way must not cost the run it was replacing.
+  interrupted (Ctrl-C, or SIGTERM / SIGHUP, which the command line turns into the same interruption):
+  stopping a ``--force`` run half-way must not cost the run it was replacing. A run killed outright
+  (SIGKILL, a power cut) cannot put it back: the next claim of the folder does, before anything else
+  touches it (:func:`_restore_parked`); a run set aside is never deleted unless the run that replaced it
+  finished.
 - A run that ends by an exception leaves a summary.json with ``"ok": false``: ``failed_stage`` is
   ``"interrupted"`` for Ctrl-C (KeyboardInterrupt) and the stage the caller recorded otherwise.
 
@@ -290,12 +294,12 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
     _mkdirs(path.parent)
     trash = None
     with _parent_lock(path.parent):
+        back = _restore_parked(path, option)
         state = run_folder_state(path)
         _check_replace(path, state, command or prefix, inputs)
         if state in ("foreign", "running") or (state == "finished" and not force):
-            raise RunFolderError(_describe(path, state, option), path, state)
+            raise RunFolderError(_describe(path, state, option) + (f" ({back})" if back else ""), path, state)
         if state in ("empty", "incomplete", "finished"):
-            _drop_stale(path)
             trash = path.with_name(f".{path.name}.replaced-{uuid.uuid4().hex[:8]}")
             try:
                 path.rename(trash)
@@ -309,14 +313,51 @@ def claim_run_folder(out: str | Path | None, *, force: bool = False, prefix: str
     return claim
 
 
-def _drop_stale(path: Path) -> None:
-    """Remove the runs a killed ``--force`` run left aside (``.NAME.replaced-*``: a run ended by SIGTERM or
-    SIGKILL never drops or restores them). Called under the parent's lock when ``path`` is about to be
-    replaced, so its own run is not going on (it would hold the lock): what lies aside for it is left over."""
+def _parked(path: Path) -> list[Path]:
+    """The runs set aside for ``path`` by a ``--force`` run (``.NAME.replaced-XXXXXXXX``)."""
     pattern = re.compile(rf"\.{re.escape(path.name)}\.replaced-[0-9a-f]{{8}}")  # exactly this folder's, not
-    for old in path.parent.glob(f".{glob.escape(path.name)}.replaced-*"):  # ".a.replaced-x.replaced-..." of "a.replaced-x"
-        if pattern.fullmatch(old.name) and old.is_dir() and not old.is_symlink():
-            shutil.rmtree(old, ignore_errors=True)
+    return sorted(old for old in path.parent.glob(f".{glob.escape(path.name)}.replaced-*")  # ".a.replaced-x.
+                  if pattern.fullmatch(old.name) and old.is_dir() and not old.is_symlink())  # replaced-..."
+
+
+def _restore_parked(path: Path, option: str = "--out") -> str | None:
+    """Put back the finished run that a killed ``--force`` run set aside for ``path`` (SIGKILL gives no
+    chance to do it then); a note saying so, None when nothing lay aside. Called under the parent's lock,
+    before the folder's state is read: what is restored is then judged like any finished run (a plain run
+    refuses it, ``--force`` sets it aside again), so it is never lost to the next command.
+
+    The killed run's own folder holds nothing finished (it is incomplete, empty or missing) and goes. A
+    folder whose run is still going keeps what lies aside (its run restores or drops it). When the run
+    that replaced it finished (killed between finishing and dropping it), the replacement happened as
+    asked and what lies aside goes. Anything else (a folder of someone else's, two runs aside) is refused:
+    a person decides which run is the one to keep."""
+    parked = _parked(path)
+    if not parked:
+        return None
+    state = run_folder_state(path)
+    if state == "running":
+        return None
+    if state == "finished" and len(parked) == 1:
+        shutil.rmtree(parked[0], ignore_errors=True)
+        return None
+    if state not in ("missing", "empty", "incomplete") or len(parked) > 1:
+        raise RunFolderError(f"{path} has an earlier run set aside beside it ({listed([p.name for p in parked])}) by a "
+                             f"--force run that was killed, and {path} holds {_what(state)}: nothing is replaced; "
+                             f"move the run to keep to {path} (or elsewhere) and the other away, or choose another "
+                             f"{option}", path, state)
+    try:
+        if state != "missing":
+            shutil.rmtree(path)
+        parked[0].rename(path)
+    except OSError as e:
+        raise RunFolderError(f"cannot put back the earlier run {parked[0]} that a killed --force run set aside: "
+                             f"{e.strerror or e}; move it to {path} yourself", path, state) from None
+    return f"the earlier run, set aside by a --force run that was killed, is back in {path}"
+
+
+def _what(state: str) -> str:
+    return {"finished": "a finished run", "foreign": "files l2p-bullet did not write",
+            "incomplete": "an unfinished run", "empty": "nothing"}.get(state, "a run")
 
 
 def _mkdirs(folder: Path) -> None:
@@ -386,7 +427,7 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
             e.add_note(note)
         if back:
             raise
-        mark_failed(claim.path, INTERRUPTED, "interrupted (Ctrl-C) before the run finished")
+        mark_failed(claim.path, INTERRUPTED, f"interrupted ({str(e) or 'Ctrl-C'}) before the run finished")
         raise
     except BaseException as e:
         back, note = claim.restore_replaced() if restore_on_error else (False, None)  # a report: its old one
@@ -413,6 +454,14 @@ def mark_failed(folder: Path, stage: str | None, error: str) -> None:
                     "error": error[:2000]})
     with contextlib.suppress(OSError):
         write_summary(path, summary)
+
+
+def add_to_summary(folder: Path, fields: dict) -> None:
+    """Add ``fields`` to ``folder/summary.json`` (made when missing), keeping what it holds."""
+    summary = _read_json(folder / "summary.json")
+    summary = summary if isinstance(summary, dict) else {"schema": 1}
+    with contextlib.suppress(OSError):
+        write_summary(folder / "summary.json", {**summary, **fields})
 
 
 def write_summary(path: Path, summary: dict) -> None:

@@ -15,7 +15,6 @@ person saying "to the left of" stood, required to train a viewer-frame action.
 from __future__ import annotations
 
 import json
-import os
 import re
 import zipfile
 from dataclasses import dataclass
@@ -25,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.atomic import atomic_file
 from ..core.vocabulary import SOURCE_NAMES, action_for_files, canonical_action
 from ..errors import DataError
 from .tracking import clean_track
@@ -225,16 +225,13 @@ def save_session(path: str | Path, tracks: list[np.ndarray], events: np.ndarray,
         arrays["event_anchors"] = np.asarray(anchors, np.int8).reshape(len(arrays["event_mover"]), -1)
     if viewer is not None:
         arrays["viewer_xy"] = np.asarray(viewer, float).reshape(2)
-    tmp = p.with_name(f".{p.stem}.tmp.npz")
-    try:
-        np.savez(tmp, **arrays)
+    with atomic_file(p, suffix=".npz") as f:  # a temporary file of its own: two writers never share one
+        np.savez(f, **arrays)
+        f.flush()
         try:
-            load_session(tmp)
+            load_session(f.name)
         except DataError as e:
-            raise DataError(str(e).replace(str(tmp), str(p))) from None
-        os.replace(tmp, p)
-    finally:
-        tmp.unlink(missing_ok=True)
+            raise DataError(str(e).replace(str(f.name), str(p))) from None
     return p
 
 

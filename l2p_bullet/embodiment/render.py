@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.lifeline import exit_with_parent
 from ..core.scene import Scene
 from ..errors import ExecutionError
 from .sim.arms import PANDA, ArmSpec
@@ -111,11 +112,14 @@ class Painter:
 _PAINTER: Painter | None = None
 
 
-def _start(scene: Scene, settings: RenderSettings, arm: ArmSpec = PANDA) -> None:
-    """Pool initializer: this worker's painter (one world, one EGL context), warmed by one frame."""
+def _start(scene: Scene, settings: RenderSettings, arm: ArmSpec = PANDA, parent: int | None = None) -> None:
+    """Pool initializer: this worker's painter (one world, one EGL context), warmed by one frame; the
+    worker ends when ``parent`` (the process that started the pool) dies (``core/lifeline.py``)."""
     import signal
 
     global _PAINTER
+    if parent is not None:
+        exit_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the main process's: it stops the pool, quietly
     os.environ.setdefault("LP_NUM_THREADS", "1")  # Mesa's software rasteriser: one thread per worker process
     _PAINTER = Painter(scene, settings, arm)
@@ -206,7 +210,7 @@ class Film:
         handler = signal.signal(signal.SIGINT, lambda signum, frame: noted.append(signum)) if main else None
         try:
             self._pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start,
-                                             initargs=(scene, self.settings, self.arm))
+                                             initargs=(scene, self.settings, self.arm, os.getpid()))
             self._warm = [self._pool.submit(_ready) for _ in range(self.workers)]  # launches them all
         finally:
             if main:

@@ -25,6 +25,7 @@ from collections import deque
 from collections.abc import Callable, Iterable
 from multiprocessing.connection import wait
 
+from ..core.lifeline import exit_with_parent
 from .tasks import Task
 from .worker import Worker, error_row
 
@@ -47,9 +48,12 @@ def _one_thread_per_worker():
             os.environ.pop(k, None)
 
 
-def _worker_main(conn) -> None:
-    """A worker process: receive a task, send its row, until told to stop (None) or the pipe closes."""
+def _worker_main(conn, parent: int | None = None) -> None:
+    """A worker process: receive a task, send its row, until told to stop (None) or the pipe closes, or
+    until ``parent`` dies (in the middle of a task too: ``core/lifeline.py``)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if parent is not None:
+        exit_with_parent(parent)
 
     worker = Worker()
     try:
@@ -68,7 +72,7 @@ def _worker_main(conn) -> None:
 class _Slot:
     def __init__(self, ctx) -> None:
         self.conn, child = ctx.Pipe()
-        self.proc = ctx.Process(target=_worker_main, args=(child,), daemon=True)
+        self.proc = ctx.Process(target=_worker_main, args=(child, os.getpid()), daemon=True)
         with _one_thread_per_worker():  # spawn copies the environment at start
             self.proc.start()
         child.close()

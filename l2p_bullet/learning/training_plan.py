@@ -184,20 +184,20 @@ def plans(ensemble: int, epochs: int) -> dict[str, TrainingPlan]:
         TrainingPlan("planner+contrastive", train=t, **on, contrastive=True),
         TrainingPlan("around-convex", train=t, turn_power=2.0),
         TrainingPlan("all", train=t, **on, contrastive=True, turn_power=2.0),
-        # the second round (issue 25, docs/learning.md "The strengthened suite"), one setting each
+        # tried against the strengthened suite (docs/learning.md), one setting each
         TrainingPlan("planner-partial", train=t, **on, planner_partials=True),
         TrainingPlan("decay", train=dataclasses.replace(t, weight_decay=0.01)),
         TrainingPlan("small-decay", train=dataclasses.replace(small, weight_decay=0.01)),
         TrainingPlan("ordinal", train=dataclasses.replace(t, levels=4)),
-        # the third round: chosen after the second round's table (docs/learning.md)
+        # chosen after the strengthened suite's table (docs/learning.md)
         TrainingPlan("planner-graded", train=t, **graded),
-        # the fourth: planner-graded without around's grid copies (after its around planned 90 %)
+        # planner-graded without around's grid copies (with them its around planned 90 %)
         TrainingPlan("planner-graded-nogrid", train=t, **graded, grid=False),
-        # the sixth: around's strays with partial credit (after the fifth round's planning check)
+        # around's strays with partial credit (for the far corner the planning check found)
         TrainingPlan("planner-graded-nogrid-strays", train=t, **graded, grid=False, strays=True),
-        # the seventh: the shipped plan with around's own glitched demonstration left out (not its negatives)
+        # the shipped plan with around's own glitched demonstration left out (not its negatives)
         TrainingPlan("planner-graded-nogrid-trusted", train=t, **graded, grid=False, trusted_own=True),
-        # the eighth: the shipped plan with closer's endings made short (chains start closer from near)
+        # the shipped plan with closer's endings made short (chains start closer from near)
         TrainingPlan("planner-graded-nogrid-near", train=t, **graded, grid=False, near_starts=True),
     ]}
 

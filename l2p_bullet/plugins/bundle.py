@@ -27,6 +27,7 @@ from safetensors import SafetensorError
 from safetensors.numpy import load, save
 
 from .. import __version__
+from ..core.atomic import write_atomic
 from ..core.bounded import MAX_TOML_BYTES, loads_toml, read_bounded
 from ..core.contracts import MANIFEST, POLICY_FILE, PROGRESS_FILE
 from ..core.folders import check_writable
@@ -233,9 +234,7 @@ def _write_manifest(folder: Path, manifest: dict) -> None:
     except (BundleError, OSError, UnicodeDecodeError, TOMLKitError, RecursionError):
         doc = tomlkit.document()
     _merge_into(doc, _plain(manifest))
-    tmp = folder / (MANIFEST + ".tmp")
-    tmp.write_text(tomlkit.dumps(doc), encoding="utf-8")
-    os.replace(tmp, path)
+    write_atomic(path, tomlkit.dumps(doc))
 
 
 def _merge_into(table: Any, values: dict) -> None:
@@ -280,9 +279,7 @@ def write_weights(bundle_dir: str | os.PathLike, filename: str, arrays: dict[str
     # safetensors' save_file creates the file 0600 (its temporary file's mode): weights to install and
     # share must follow the umask like every other file (0644 typically). Written to a
     # temporary file and renamed, as the manifest is: a reader never sees half a weights file.
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_bytes(save({k: np.ascontiguousarray(v) for k, v in arrays.items()}))
-    os.replace(tmp, path)
+    write_atomic(path, save({k: np.ascontiguousarray(v) for k, v in arrays.items()}))
     man.setdefault("weights", {})[filename] = {"sha256": sha256_file(path), "bytes": path.stat().st_size}
     if section is not None:
         man[section] = dict(settings or {})

@@ -3,7 +3,7 @@
 The same stack and conventions as the review app (``l2p_bullet/review/app.py``; served by its runner,
 ``web/server.py``): requests validated from type declarations (a bad
 payload is a 422 naming the field), JSON errors ``{"error": message}`` (400 a recording that cannot be
-saved (any L2PError), 404 an unknown run, 409 a training already under way or a recording saved already, 500 a one-line message with the traceback
+saved (any L2PError), 404 an unknown run, 400 a demonstration to remove that is not there, 409 a training already under way or a recording saved already, 500 a one-line message with the traceback
 in the server's log), static HTML/JS without a build step, no interactive API docs (they load scripts
 from a CDN; nothing here may reach outside the machine), bound to 127.0.0.1 unless told otherwise.
 """
@@ -14,7 +14,7 @@ import logging
 from typing import Annotated, Any
 
 import numpy as np
-from fastapi import Body, FastAPI, Query
+from fastapi import Body, FastAPI, Path, Query
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
@@ -87,6 +87,11 @@ def create_app(lesson: Lesson, host: str = "127.0.0.1") -> FastAPI:
         if not hasattr(lesson, "save_row"):
             raise TeachError("this teach page records single actions: save with /api/demos")
         return lesson.save_row(body.scene, [d.model_dump() for d in body.segments])
+
+    @app.delete("/api/demos/{k}")
+    def remove(k: Annotated[int, Path(ge=1, le=10**6)]) -> dict:
+        """Remove demonstration ``k`` (1 = the first saved): a mistaken one, or room under the limit."""
+        return lesson.remove(k)
 
     @app.post("/api/train")
     def train(body: Annotated[dict[str, Any] | None, Body()] = None) -> dict:

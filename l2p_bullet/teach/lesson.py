@@ -123,6 +123,20 @@ def find_action(name: str, root: str | Path | None = None, demos: str | Path | N
                         composite=manifest.get("kind") == "composite")
 
 
+def demo_spans(events: np.ndarray, frames: int) -> list[tuple[int, int]] | None:
+    """The frames ``[a, b)`` of each demonstration in a demos file the page wrote (:meth:`Lesson._append`:
+    one after another, each with at least :data:`CONTEXT` frames before its event and exactly that many
+    after it); None for a file not written that way (a capture session), whose frames cannot be told apart."""
+    spans, a = [], 0
+    for start, end in np.asarray(events, int):
+        b = int(end) + CONTEXT + 1
+        if start - a < CONTEXT or b > frames:
+            return None
+        spans.append((a, b))
+        a = b
+    return spans if a == frames else None
+
+
 @dataclass
 class Recording:
     """What the page sampled: ``samples`` (n, 4) rows ``[t, x, y, yaw]`` of the mover (seconds, scene
@@ -289,6 +303,35 @@ class Lesson:
                 path.parent.mkdir(parents=True, exist_ok=True)
                 tracks_out, events, movers, keep_viewer = new, np.array([[start, end]]), np.array([0]), viewer
             save_session(path, tracks_out, events, movers, anchors=anchors, viewer=keep_viewer)
+
+    def remove(self, k: int) -> dict[str, Any]:
+        """Remove demonstration ``k`` (1 = the first) from the demos file: its event and its frames (each
+        demonstration the page saved is its own run of frames, :func:`demo_spans`); the file goes with
+        the last one. The file's path and the demonstrations left."""
+        path = self.action.demos
+        with self._lock:
+            if not path.exists():
+                raise TeachError(f"there is no demonstration {k}: {path} holds none yet")
+            old = load_session(path)
+            events, frames = old["event_start_end"], len(old["shell_pose"])
+            if not 1 <= k <= len(events):
+                raise TeachError(f"there is no demonstration {k}: {path} holds {len(events)}")
+            spans = demo_spans(events, frames)
+            if spans is None:
+                raise TeachError(f"{path} was not recorded on the teach page (its demonstrations are not one run of "
+                                 "frames each): edit it with numpy, or record into another --demos file")
+            if len(events) == 1:
+                path.unlink()
+                return {"demos": str(path), "count": 0, "removed": k}
+            a, b = spans[k - 1]
+            keep = np.r_[0:a, b:frames]
+            tracks = [old["shell_pose"][keep], old["stella_pose"][keep], *[m[keep] for m in old.get("more_poses", [])]]
+            ev = np.delete(events, k - 1, 0)
+            ev[k - 1:] -= b - a
+            anchors = np.delete(old["event_anchors"], k - 1, 0) if "event_anchors" in old else None
+            save_session(path, tracks, ev, np.delete(old["event_mover"], k - 1), anchors=anchors,
+                         viewer=old.get("viewer_xy"))
+        return {"demos": str(path), "count": len(ev), "removed": k}
 
     # --- training and performing ----------------------------------------------------------------
     def train(self) -> dict[str, Any]:

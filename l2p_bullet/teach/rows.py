@@ -171,9 +171,23 @@ class RowLesson(Lesson):
                 raise Duplicate(f"this row is demonstration {same} of {self.action.bundle_dir / 'demos.json'} "
                                 "already (the same scene and drags): record a new one")
             demos = old + [demo]
-            write_demos(self.action.bundle_dir, demos)
+            try:  # refused past what reading and training accept: a file saved past it is lost for good
+                write_demos(self.action.bundle_dir, demos)
+            except CompositeError as e:
+                raise TeachError(str(e)) from None
         return {"demos": str(self.action.bundle_dir / "demos.json"), "count": len(demos),
                 "segments": len(demo.segments), **self.training_note()}
+
+    def remove(self, k: int) -> dict[str, Any]:
+        """Remove row ``k`` (1 = the first) from ``demos.json``; the file and the rows left."""
+        with self._lock:
+            demos = read_demos(self.action.bundle_dir)
+            if not 1 <= k <= len(demos):
+                raise TeachError(f"there is no demonstration {k}: {self.action.bundle_dir / 'demos.json'} holds "
+                                 f"{len(demos)}")
+            del demos[k - 1]
+            write_demos(self.action.bundle_dir, demos)
+        return {"demos": str(self.action.bundle_dir / "demos.json"), "count": len(demos), "removed": k}
 
     @staticmethod
     def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int,

@@ -6,7 +6,11 @@ CPython itself initialises and imports ``site`` (an editable install's ``.pth`` 
 CPython's "Fatal Python error: init_import_site", before any line of l2p-bullet runs, which no package
 can catch; so is one while the console script looks the package up (importlib's and the editable install's
 finders: a traceback none of whose frames is in the package). From the package's first line on, the window
-is ours: its first statements install the handler (``l2p_bullet/__init__.py``).
+is ours: the entry point's first statements install the handler (``l2p_bullet/launch.py``).
+
+The program is run as pip's console script runs it, from the entry point ``pyproject.toml`` declares (a
+console script installed before that entry point changed would test the old one). Importing the package,
+or its command line module, installs nothing: only the program does.
 """
 
 from __future__ import annotations
@@ -15,7 +19,9 @@ import re
 import signal
 import subprocess
 import sys
+import textwrap
 import time
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -23,8 +29,36 @@ from interrupt import ctrl_c_as_at_a_terminal
 
 import l2p_bullet
 
-PROGRAM = Path(sys.executable).with_name("l2p-bullet")
 PACKAGE = str(Path(l2p_bullet.__file__).resolve().parent)
+PYPROJECT = Path(PACKAGE).parent / "pyproject.toml"
+
+
+@pytest.fixture(scope="module")
+def program(tmp_path_factory) -> Path:
+    """``l2p-bullet`` as pip writes it (its console-script template) from the declared entry point."""
+    if not PYPROJECT.is_file():
+        pytest.skip("no pyproject.toml next to the package (an installed copy)")
+    module, func = tomllib.loads(PYPROJECT.read_text())["project"]["scripts"]["l2p-bullet"].split(":")
+    path = tmp_path_factory.mktemp("bin") / "l2p-bullet"
+    path.write_text(textwrap.dedent(f"""\
+        import re
+        import sys
+        from {module} import {func}
+        if __name__ == "__main__":
+            sys.argv[0] = re.sub(r"(-script\\.pyw|\\.exe)?$", "", sys.argv[0])
+            sys.exit({func}())
+        """))
+    return path
+
+
+@pytest.mark.parametrize("module", ["l2p_bullet", "l2p_bullet.cli"])
+def test_importing_the_package_installs_no_signal_handler(module):
+    """Even in a process named like the program: only running the entry point sets Ctrl-C's handler."""
+    code = (f"import sys; sys.argv[0] = '/usr/bin/l2p-bullet'; import signal, {module}; "
+            "print(signal.getsignal(signal.SIGINT) is signal.default_int_handler, "
+            "signal.getsignal(signal.SIGTERM) is signal.SIG_DFL)")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and r.stdout.split() == ["True", "True"], (r.stdout, r.stderr)
 
 
 def landed_before_the_package(err: str) -> bool:
@@ -53,12 +87,11 @@ def python_start_s() -> float:
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not PROGRAM.exists(), reason="the l2p-bullet console script is not installed next to python")
 @pytest.mark.parametrize("delay_ms", [0, 5, 15, 30, 50, 80, 150, 300])
-def test_ctrl_c_while_the_command_starts_prints_no_traceback(tmp_path, python_start_s, delay_ms):
+def test_ctrl_c_while_the_command_starts_prints_no_traceback(tmp_path, program, python_start_s, delay_ms):
     late = 0.0
     for attempt in range(6):
-        p = subprocess.Popen([str(PROGRAM), "plan", "move A past B", "--out", str(tmp_path / f"p{attempt}")],
+        p = subprocess.Popen([sys.executable, str(program), "plan", "move A past B", "--out", str(tmp_path / f"p{attempt}")],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              preexec_fn=ctrl_c_as_at_a_terminal)
         time.sleep(python_start_s + late + delay_ms / 1000)

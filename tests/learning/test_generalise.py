@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from l2p_bullet.learning import motions as g
-from l2p_bullet.learning.training_plan import TrainingPlan, plans, training_set
 from l2p_bullet.learning.train_progress import all_demos
 from l2p_bullet.learning.training_plan import TrainingPlan, plans, training_set
 from l2p_bullet.learning.trainset import DataConfig, build

@@ -13,9 +13,9 @@ def test_session_models_are_reused_only_while_data_and_recipe_match(tmp_path, mo
     with the same seed and recipe; otherwise it trains again (here: a sentinel that says it would)."""
     import shutil
 
+    from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, data_digest
     from l2p_bullet.learning.training_plan import SHIPPED
     from l2p_bullet.learning.training_plan import TrainingPlan as Recipe
-    from l2p_bullet.learning.train_progress import ProgressTrainConfig, all_demos, data_digest
     from l2p_bullet.learning.trainset import DataConfig
     from l2p_bullet.plugins.bundle import builtin_bundle_dir, update_manifest
 

@@ -224,7 +224,7 @@ async function post(path, body, stateOnError) {
     setState(stateOnError);
     return;
   }
-  $("count").textContent = `${r.count} demonstration${r.count === 1 ? "" : "s"} in ${r.demos}`;
+  showCount(r.count, r.demos);
   try {  // saved: a failure from here on is about the next scene, not about the demonstration
     await loadScene(seed + 1);
     status(`saved (${r.count} in all); here is another scene` + (r.note ? ` (${r.note})` : ""));
@@ -233,6 +233,42 @@ async function post(path, body, stateOnError) {
     setState("ready");
   }
   document.body.dataset.saved = String(r.count);
+}
+
+let count = 0;  // demonstrations in the demos file, as the server last said
+
+function showCount(n, demos) {
+  count = n;
+  $("count").textContent = `${n} demonstration${n === 1 ? "" : "s"} in ${demos}`;
+  $("remove").hidden = n === 0;
+  document.body.dataset.count = String(n);
+}
+
+// The first click only asks (a click by mistake must not cost a demonstration); the second, within a few
+// seconds, removes the last one saved: a mistaken save, or room under the number training reads.
+let armed = null;
+
+function disarm() {
+  clearTimeout(armed);
+  armed = null;
+  $("remove").textContent = "remove the last demonstration";
+}
+
+async function removeLast() {
+  if (count === 0) return;
+  if (armed === null) {
+    $("remove").textContent = `click again to remove demonstration ${count}`;
+    armed = setTimeout(disarm, 4000);
+    return;
+  }
+  disarm();
+  try {
+    const r = await api("DELETE", `/api/demos/${count}`);
+    showCount(r.count, r.demos);
+    status(`removed demonstration ${r.removed} (${r.count} left)`);
+  } catch (e) {
+    status(e.message, true);
+  }
 }
 
 async function saveRow() {
@@ -377,6 +413,7 @@ document.addEventListener("click", (ev) => {  // a mouse click (detail > 0) leav
   if (b && ev.detail > 0) b.blur();
 });
 $("train").addEventListener("click", train);
+$("remove").addEventListener("click", removeLast);
 setInterval(() => { if (!drag) sample(); }, SAMPLE_MS);
 
 // for tests and scripts: where a scene point is on the page, and what is being recorded
@@ -401,7 +438,7 @@ window.teach = {
     $("frame").textContent = config.viewer
       ? `Left, right, in front and behind as seen from the ${config.frame === "viewer" ? "robot (bottom of the view)" : config.frame}.`
       : (config.anchors === 2 ? "Two reference blocks: B and C." : "");
-    $("count").textContent = `${config.count} demonstration${config.count === 1 ? "" : "s"} in ${config.demos}`;
+    showCount(config.count, config.demos);
     const first = Number(new URLSearchParams(location.search).get("seed") || config.seed || 0);
     await loadScene(first);
   } catch (e) {
