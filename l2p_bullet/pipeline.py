@@ -35,13 +35,12 @@ from typing import Any
 import numpy as np
 
 from . import planning
+from .arms import PANDA, ArmSpec, fit_scene
 from .core.contracts import MAX_SEED, Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
-from .embodiment import arm_plugins
 from .embodiment.manners import check_manner, manner_planning
-from .embodiment.sim.arms import PANDA, ArmSpec
 from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
@@ -49,6 +48,7 @@ from .language import Command, parse
 from .manners import registry as manners
 from .planning import feasibility, resolve_planner
 from .planning.plot import plot_plan
+from .plugins import arms as arm_plugins
 from .plugins import registry
 
 StageFn = Callable[[str], None]
@@ -173,7 +173,7 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
     check_scene(scene)
     arm = arm_plugins.get(arm)
-    scene = arm_plugins.fit_scene(scene, arm)
+    scene = fit_scene(scene, arm)
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from .. import planning
+from ..arms import PANDA, ArmSpec
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..embodiment.manners import manner_planning
-from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_context, judge_for
 from ..manners import registry as manners

@@ -46,12 +46,13 @@ def plan_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = None
                plot: bool = True, plugins: list | None = None, arm: str | None = None) -> ChainPlan:
     """Resolve and forecast the chain for ``arm`` (default the Panda); write plan.json (and the plots).
     Refusals as in ``perform``."""
-    from ..embodiment import arm_plugins
+    from ..arms import fit_scene
+    from ..plugins import arms as arm_plugins
 
     check_options(planner, seed, budget, threshold)
     check_scene(scene)
     spec = arm_plugins.get(arm)
-    scene = arm_plugins.fit_scene(scene, spec)
+    scene = fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins
     steps = forecast(resolve_clauses(sentence, scene, plugins), scene, plugins, planner=planner, seed=seed,
                      budget=budget, threshold=threshold, arm=spec)

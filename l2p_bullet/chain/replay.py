@@ -33,13 +33,14 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     :class:`~l2p_bullet.chain.run.ChainResult` (verdicts by the installed actions' judges). ``arm``: who
     executes it (default the Panda; the scene's workspace is fitted to its reach). ``path``: the file ``doc`` was
     read from, recorded as a one-clause replay records its source (plan.json's and summary.json's ``replay``)."""
-    from ..embodiment import arm_plugins
+    from ..arms import fit_scene
+    from ..plugins import arms as arm_plugins
 
     source = "plan.json"
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
     spec = arm_plugins.get(arm)
-    scene = arm_plugins.fit_scene(scene, spec)
+    scene = fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins
     try:  # the clauses' own words (verb, preposition) as the run recorded them; another --scene may lack a name
         said = {c.index: c.command for c in resolve_clauses(str(doc["chain"].get("sentence") or ""), scene, plugins)}

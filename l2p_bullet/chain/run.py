@@ -25,18 +25,18 @@ from typing import Any
 import numpy as np
 
 from .. import planning
+from ..arms import PANDA, ArmSpec, fit_scene
 from ..core.contracts import Plan, approach_end_frame, trajectory_poses
 from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..embodiment import arm_plugins
 from ..embodiment.manners import manner_planning
-from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..pipeline import check_feasible, check_options, check_render_settings, check_scene, disturbance_verdict
+from ..plugins import arms as arm_plugins
 from ..plugins import registry
 from ..progress.scoring import curve_from
 from .clauses import Clause, resolve_clauses
@@ -154,7 +154,7 @@ def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
         check_render_settings(render_settings)
     plugins = registry.discover() if plugins is None else plugins
     arm = arm_plugins.get(arm)  # an unknown arm fails before anything is planned or written
-    scene = arm_plugins.fit_scene(scene, arm)
+    scene = fit_scene(scene, arm)
     if steps is None:
         clauses = resolve_clauses(sentence, scene, plugins)
         clock.stage("forecast", f"planning the {len(clauses)} clauses from their predicted states")

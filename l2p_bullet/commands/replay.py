@@ -68,14 +68,15 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
         resolution = f"{w if width is None else width}x{h if height is None else height}"
     render = None if no_render else render_settings(resolution, fps if render_fps is None else render_fps, camera,
                                                     renderer, video)
-    from ..embodiment import arm_plugins
+    from ..arms import fit_scene
+    from ..plugins import arms as arm_plugins
 
     spec = arm_plugins.get(arm)  # an unknown arm fails before anything is read or written
     if path_json is not None and _replay_chain(path_json, scene_path, out, force, render, seed, spec.name, quiet):
         return
     scene = replay_scene(path_json, None if scene_path is None else load_scene(scene_path, mesh_dirs()), scene_path,
                          mesh_dirs())
-    scene = arm_plugins.fit_scene(scene, spec)  # the motion is fitted into what this arm reaches
+    scene = fit_scene(scene, spec)  # the motion is fitted into what this arm reaches
     source = motion_source(path_json, demo, scene, mover, anchor)
     t0 = time.perf_counter()
 

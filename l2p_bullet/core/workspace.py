@@ -2,7 +2,7 @@
 
 It is the scene's disk (``center``, ``radius``: :data:`DISK_RADIUS`, 0.35 m around the table's centre) and, for
 an arm whose reach ring does not hold the disk, the disk *intersected with its ring* (``ring`` = base x, base y,
-near, far; issue 22; ``embodiment/arm_plugins.py: fit_workspace``): since the disk grew from 0.25 m to 0.35 m
+near, far; issue 22; ``arms/fit.py: fit_workspace``): since the disk grew from 0.25 m to 0.35 m
 (2026-11-27) no shipped arm's ring holds it, so every arm plans in its ring-cut disk. Before, the Panda and the
 xArm6 planned in the 0.25 m disk (their rings hold it), and before 2026-11-27 the KUKA's disk was shrunk about
 its centre until it fitted its ring (0.17 m), which threw away most of what the arm reaches.

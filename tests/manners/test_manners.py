@@ -8,9 +8,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import PANDA
 from l2p_bullet.core.scene import Scene, SceneObject, default_scene
 from l2p_bullet.embodiment.manners import carry_lift, carry_refusal, push_outline
-from l2p_bullet.embodiment.sim.arms import PANDA
 from l2p_bullet.errors import InfeasibleError, LanguageError, PluginError
 from l2p_bullet.judge.manners import signature_verdict
 from l2p_bullet.language import parse
