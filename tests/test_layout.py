@@ -235,3 +235,18 @@ def test_no_import_circle_between_rooms():
 
     circles = {" -> ".join(p) for a in sorted(edges) if (p := path(a, a, set()))}
     assert not circles, f"import circles between rooms: {sorted(circles)}"
+
+
+def test_planning_reads_the_arm_from_arms_never_from_the_simulator():
+    """Planning and the up-front checks read the arm's model (ArmSpec, hand, wrist) from ``arms/``; the arm in
+    PyBullet (``embodiment/``) sits on planning's floor, so an import of it from planning is a failure here."""
+    assert FLOOR_OF["planning"] == FLOOR_OF["embodiment"] > FLOOR_OF["arms"]
+    bad = sorted((n, t) for n, t, a, b in _room_imports() if a == "planning" and b == "embodiment")
+    assert not bad, f"planning imports the simulator's room: {bad}"
+
+
+def test_plugins_are_found_in_one_module():
+    """Every kind of plugin (actions, composites, arms, manners) is found by one finder: one record, one
+    error, one rule for names."""
+    found = sorted(n for n, p in MODULES.items() if "metadata.entry_points(" in p.read_text())
+    assert found == ["l2p_bullet.plugins.finder"], found
