@@ -11,7 +11,7 @@ import pytest
 from l2p_bullet.arms import PANDA
 from l2p_bullet.core.scene import Scene, SceneObject, default_scene
 from l2p_bullet.embodiment.manners import carry_lift, carry_refusal, push_outline
-from l2p_bullet.errors import InfeasibleError, LanguageError, PluginError
+from l2p_bullet.errors import InfeasibleError, LanguageError
 from l2p_bullet.judge.manners import signature_verdict
 from l2p_bullet.language import parse
 from l2p_bullet.manners import registry
