@@ -222,7 +222,7 @@ def test_a_broken_arm_plugin_is_reported_and_the_others_keep_working(monkeypatch
     real = metadata.entry_points(group=arm_plugins.GROUP)
     fake = [metadata.EntryPoint("gone", "no_such_module_l2p:ARM", arm_plugins.GROUP),
             metadata.EntryPoint("wrong", "l2p_bullet.arms.builtin:PANDA", arm_plugins.GROUP)]
-    monkeypatch.setattr(arm_plugins.metadata, "entry_points", lambda group: [*real, *fake])
+    monkeypatch.setattr(metadata, "entry_points", lambda group: [*real, *fake])
     found = {a.name: a for a in arm_plugins.discover()}
     assert "importing no_such_module_l2p:ARM failed: ModuleNotFoundError" in found["gone"].error
     assert 'must be an l2p_bullet.arms.ArmSpec named "wrong"' in found["wrong"].error
