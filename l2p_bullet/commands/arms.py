@@ -110,8 +110,8 @@ def check_apart(name: str, spec) -> dict:
         except ValueError:
             how = f"killed by signal {-p.returncode}"
         return out | {"ok": False, "error": f"loading or moving the arm crashed the simulator ({how})"}
-    tail = p.stderr.decode(errors="replace").strip().splitlines()
-    return out | {"ok": False, "error": f"its check failed (exit {p.returncode}): {tail[-1] if tail else 'no message'}"[:300]}
+    last = (p.stderr.decode(errors="replace").strip().splitlines() or ["no message"])[-1]
+    return out | {"ok": False, "error": f"its check failed (exit {p.returncode}): {last}"[:300]}
 
 
 def check_here(name: str, result: str) -> None:

@@ -12,7 +12,7 @@
   existing one instead); the hand's +z must point from the hand towards the fingertips (the usual convention).
 - **Home, wrist model, reach, hand profile**: the home poses the tool 0.3 m above the table pointing down; the
   wrist model (wrist = offset + azimuth - yaw) is measured and checked on a few poses; the reach ring and the
-  hand profile are measured as for the shipped arms (``arm_plugins``); the arm is mounted where its ring best
+  hand profile are measured as for the shipped arms (``arm_measure``); the arm is mounted where its ring best
   holds the workspace. A chain that cannot reach the table pointing down is an error.
 """
 

@@ -28,7 +28,9 @@ def _checked(plugin: Plugin) -> Plugin:
     except FailedToLoadPlugin as e:
         return replace(plugin, error=e.reason)
     if not isinstance(spec, ArmSpec) or spec.name != plugin.name:
-        return replace(plugin, error=f'{plugin.entry_point} must be an l2p_bullet.arms.ArmSpec named "{plugin.name}"')
+        return replace(
+            plugin, error=f'{plugin.entry_point} must be an l2p_bullet.arms.ArmSpec named "{plugin.name}"'
+        )
     return replace(plugin, obj=spec, error=problems(spec))
 
 

@@ -55,7 +55,7 @@ class Plugin:
     entry_point: str  # the entry point's value, "module" or "module:ATTRIBUTE"
     error: str | None = None
     obj: Any = field(default=None, compare=False, repr=False)
-    dist: Any = field(default=None, compare=False, repr=False)  # its importlib.metadata Distribution, if known
+    dist: Any = field(default=None, compare=False, repr=False)  # its importlib.metadata Distribution
 
     @property
     def ok(self) -> bool:
@@ -92,8 +92,10 @@ def entry_points(kind: str) -> list[tuple[metadata.EntryPoint, str, str]]:
 def find(kind: str) -> list[Plugin]:
     """Every installed plugin of ``kind`` (a key of :data:`GROUPS`), usable or not, importing nothing: the
     built-ins first, then by name, package and entry point."""
-    found = [Plugin(kind, ep.name, package, version, ep.value, dist=getattr(ep, "dist", None))
-             for ep, package, version in entry_points(kind)]
+    found = [
+        Plugin(kind, ep.name, package, version, ep.value, dist=getattr(ep, "dist", None))
+        for ep, package, version in entry_points(kind)
+    ]
     return sorted(found, key=lambda p: (not p.builtin, name_key(p.name), p.package, p.entry_point))
 
 
@@ -112,8 +114,8 @@ def load(plugin: Plugin, attribute: str | None = None) -> Any:
     except BaseException as e:  # noqa: BLE001 - sys.exit(7) or a BaseException in a plugin's import must not
         # end the program: it is the plugin's bug, reported with its name like any other
         what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
-        raise FailedToLoadPlugin(plugin.name, plugin.package, f"importing {plugin.entry_point} failed: {what}"[:500],
-                                 kind=plugin.kind) from None
+        reason = f"importing {plugin.entry_point} failed: {what}"[:500]
+        raise FailedToLoadPlugin(plugin.name, plugin.package, reason, kind=plugin.kind) from None
     return obj
 
 
@@ -127,8 +129,11 @@ def settle(plugins: Iterable[Plugin]) -> list[Plugin]:
     for p in plugins:
         first = builtin.get(name_key(p.name))
         if p.ok and not p.builtin and first is not None:
-            p = replace(p, error=f'the name "{p.name}" is the built-in {first.kind}\'s (package {BUILTIN}), which a '
-                                 f"plugin cannot replace; rename its entry point or uninstall {p.package}")
+            p = replace(
+                p,
+                error=f'the name "{p.name}" is the built-in {first.kind}\'s (package {BUILTIN}), '
+                f"which a plugin cannot replace; rename its entry point or uninstall {p.package}",
+            )
         out.append(p)
     by_name: dict[str, list[Plugin]] = {}
     for p in out:
@@ -137,10 +142,12 @@ def settle(plugins: Iterable[Plugin]) -> list[Plugin]:
     twins = {k: g for k, g in by_name.items() if len(g) > 1}
     if not twins:
         return out
-    return [replace(p, error=f'two {p.kind} plugins are both named "{p.name}" (packages '
-                             + " and ".join(f"{t.package} {t.package_version}" for t in twins[name_key(p.name)])
-                             + "); uninstall one of them")
-            if p.ok and name_key(p.name) in twins else p for p in out]
+
+    def both(p: Plugin) -> str:
+        packages = " and ".join(f"{t.package} {t.package_version}" for t in twins[name_key(p.name)])
+        return f'two {p.kind} plugins are both named "{p.name}" (packages {packages}); uninstall one of them'
+
+    return [replace(p, error=both(p)) if p.ok and name_key(p.name) in twins else p for p in out]
 
 
 def unknown(kind: str, name: str, plugins: Iterable[Plugin], context: str = "") -> UnknownPluginError:

@@ -32,8 +32,8 @@ def _arm_package(site: Path, dist: str, module: str, source: str, entry_points: 
 
 
 def test_one_rule_for_names_of_every_kind():
-    """A plugin with a built-in's name is broken and the built-in kept; two usable plugins of one name are both
-    broken; a broken plugin blocks no usable one of its name."""
+    """A plugin with a built-in's name is broken and the built-in kept; two usable plugins of one name are
+    both broken; a broken plugin blocks no usable one of its name."""
     found = [Plugin("arm", "panda", "l2p-bullet", "0.1.0", "l2p_bullet.arms.builtin:PANDA"),
              Plugin("arm", "Panda", "l2p-impostor", "1.0", "imp:ARM"),
              Plugin("manner", "roll", "l2p-a", "1.0", "a"), Plugin("manner", "roll", "l2p-b", "2.0", "b"),
@@ -41,7 +41,8 @@ def test_one_rule_for_names_of_every_kind():
              Plugin("action", "left_of", "l2p-new", "0.2", "new")]
     got = {(p.name, p.package): p.error for p in settle(found)}
     assert got["panda", "l2p-bullet"] is None
-    assert got["Panda", "l2p-impostor"].startswith('the name "Panda" is the built-in arm\'s (package l2p-bullet)')
+    impostor = got["Panda", "l2p-impostor"]
+    assert impostor.startswith('the name "Panda" is the built-in arm\'s (package l2p-bullet)')
     assert "uninstall l2p-impostor" in got["Panda", "l2p-impostor"]
     assert got["roll", "l2p-a"] == got["roll", "l2p-b"] == (
         'two manner plugins are both named "roll" (packages l2p-a 1.0 and l2p-b 2.0); uninstall one of them')
@@ -61,7 +62,8 @@ def test_an_arm_plugin_named_panda_is_broken_and_the_builtin_panda_kept(tmp_path
     rows = [a for a in json.loads(r.output)["arms"] if a["name"] == "panda"]
     assert [(a["package"], a["ok"], a["builtin"]) for a in rows] == [("l2p-bullet", True, True),
                                                                      ("l2p-impostor", False, False)], rows
-    assert 'the name "panda" is the built-in arm\'s' in rows[1]["error"] and "uninstall l2p-impostor" in rows[1]["error"]
+    why = rows[1]["error"]
+    assert 'the name "panda" is the built-in arm\'s' in why and "uninstall l2p-impostor" in why
     text = CliRunner().invoke(main, ["arms"]).output
     assert "panda (package l2p-impostor 0.3): the name" in text
     r = CliRunner().invoke(main, ["plan", "move A next to B", "--out", str(tmp_path / "plan")])
@@ -97,13 +99,15 @@ def test_arms_check_survives_an_arm_that_crashes_the_simulator(tmp_path):
     never checked: each arm is checked in a process of its own and a crash is that arm's failure."""
     site = _arm_package(tmp_path / "site", "l2p-crashy", "l2p_crashy", CRASHING,
                         {"aaa-crash": "l2p_crashy:CRASH", "aab-missing": "l2p_crashy:MISSING"})
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (str(site), os.environ.get("PYTHONPATH")) if p))
-    p = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "arms", "--check", "--json", "aaa-crash", "aab-missing"],
-                       capture_output=True, text=True, env=env, timeout=600, cwd=tmp_path)
+    path = os.pathsep.join(p for p in (str(site), os.environ.get("PYTHONPATH")) if p)
+    cmd = [sys.executable, "-m", "l2p_bullet.cli", "arms", "--check", "--json", "aaa-crash", "aab-missing"]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=path), timeout=600,
+                       cwd=tmp_path)
     assert p.returncode == 1, p.stdout + p.stderr
     rows = {a["name"]: a for a in json.loads(p.stdout)["arms"]}
     assert set(rows) == {"aaa-crash", "aab-missing"}
-    assert not rows["aaa-crash"]["ok"] and "crashed the simulator (killed by SIGSEGV)" in rows["aaa-crash"]["error"]
+    assert not rows["aaa-crash"]["ok"]
+    assert "crashed the simulator (killed by SIGSEGV)" in rows["aaa-crash"]["error"]
     assert not rows["aab-missing"]["ok"] and "cannot load or move the arm" in rows["aab-missing"]["error"]
     assert "checking aaa-crash ...\nchecking aab-missing ..." in p.stderr
 
