@@ -101,8 +101,8 @@ def test_arms_check_survives_an_arm_that_crashes_the_simulator(tmp_path):
                         {"aaa-crash": "l2p_crashy:CRASH", "aab-missing": "l2p_crashy:MISSING"})
     path = os.pathsep.join(p for p in (str(site), os.environ.get("PYTHONPATH")) if p)
     cmd = [sys.executable, "-m", "l2p_bullet.cli", "arms", "--check", "--json", "aaa-crash", "aab-missing"]
-    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=path), timeout=600,
-                       cwd=tmp_path)
+    env = dict(os.environ, PYTHONPATH=path)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600, cwd=tmp_path)
     assert p.returncode == 1, p.stdout + p.stderr
     rows = {a["name"]: a for a in json.loads(p.stdout)["arms"]}
     assert set(rows) == {"aaa-crash", "aab-missing"}
