@@ -15,6 +15,9 @@ third-party plugin is a first-class citizen. As flake8's plugin finder, in three
   two usable plugins of one name are both broken (picking either would make one command do different
   things on different machines). A broken plugin is listed with its reason and package; the others work.
 
+A name no plugin of a kind has is one :class:`~l2p_bullet.errors.UnknownPluginError` (kind, name, the
+names known, a did-you-mean) for every kind; ``UnknownActionError`` and ``UnknownArmError`` are its own.
+
 What an entry point names is each kind's business: an action's bundle folder is located, not imported
 (``plugins/registry.py``); an arm (``plugins/arms.py``) or a manner (``manners/registry.py``) is a small
 declaration, loaded. This module imports nothing of l2p_bullet but its errors, so the lowest floor that
@@ -29,7 +32,7 @@ from dataclasses import dataclass, field, replace
 from importlib import metadata
 from typing import Any
 
-from ..errors import FailedToLoadPlugin, UnknownPluginError
+from ..errors import FailedToLoadPlugin
 
 GROUPS = {"action": "l2p_bullet.actions", "arm": "l2p_bullet.arms", "manner": "l2p_bullet.manners"}
 """Entry-point group of each kind (a composite action is an action whose manifest says so)."""
@@ -149,7 +152,3 @@ def settle(plugins: Iterable[Plugin]) -> list[Plugin]:
 
     return [replace(p, error=both(p)) if p.ok and name_key(p.name) in twins else p for p in out]
 
-
-def unknown(kind: str, name: str, plugins: Iterable[Plugin], context: str = "") -> UnknownPluginError:
-    """The error for a name no plugin of ``kind`` has, listing the names that exist, with did-you-mean."""
-    return UnknownPluginError(kind, name, {p.name for p in plugins}, context)
