@@ -73,14 +73,15 @@ def study_like_scene(seed: int, workspace):
 def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of: str | None = None) -> list[dict]:
     """Every action on every scene with ``arm``, in this process (one world kept); one row per run. ``scenes_of``:
     draw the scenes for that arm's workspace instead (the Panda on the KUKA's smaller disk)."""
+    from l2p_bullet.arms import fit_workspace
     from l2p_bullet.core.scene import Workspace
-    from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.embodiment.sim.world import World
     from l2p_bullet.errors import InfeasibleError, L2PError
     from l2p_bullet.pipeline import perform
+    from l2p_bullet.plugins import arms as arm_plugins
 
     spec = arm_plugins.get(arm)
-    ws = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(scenes_of or arm))
+    ws = fit_workspace(Workspace(), arm_plugins.get(scenes_of or arm))
     label = arm if scenes_of is None or scenes_of == arm else f"{arm} ({scenes_of}'s scenes)"
     rows = []
     world = None
@@ -116,18 +117,20 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
 
 def study_workspace(arm: str):
     """The arm's workspace (its scenes are drawn in it)."""
+    from l2p_bullet.arms import fit_workspace
     from l2p_bullet.core.scene import Workspace
-    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.plugins import arms as arm_plugins
 
-    return arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm))
+    return fit_workspace(Workspace(), arm_plugins.get(arm))
 
 
 def fresh_times(arm: str, seeds: list[int], actions: list[str], timed: int, tmp: Path) -> list[dict]:
     """Fresh ``perform --no-render`` with ``arm`` and with the Panda, side by side on the same scenes."""
+    from l2p_bullet.arms import fit_workspace
     from l2p_bullet.core.scene import Workspace, save_scene
-    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.plugins import arms as arm_plugins
 
-    ws = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm))
+    ws = fit_workspace(Workspace(), arm_plugins.get(arm))
     out = []
     timed_run([*cli(), "--help"])  # bytecode caches written before anything is measured
     for action in actions:

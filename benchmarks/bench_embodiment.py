@@ -63,7 +63,8 @@ def bare_run(captured, render):
     import pybullet as pb
     import pybullet_data
 
-    from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+    from l2p_bullet.arms import PANDA
+    from l2p_bullet.embodiment.sim.arms import arm_urdf
     from l2p_bullet.embodiment.sim.world import urdf_path
 
     t0 = time.perf_counter()
@@ -173,7 +174,8 @@ def bare_ik(targets) -> float:
     """Seconds for PyBullet's own IK (10 iterations, no checks) on a bare copy of the IK twin."""
     import pybullet as pb
 
-    from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+    from l2p_bullet.arms import PANDA
+    from l2p_bullet.embodiment.sim.arms import arm_urdf
 
     cid = pb.connect(pb.DIRECT)
     body = pb.loadURDF(arm_urdf(PANDA, visuals=False, collisions=False), [-0.53, 0, 0], useFixedBase=True,

@@ -146,14 +146,15 @@ def run_one(action: str, seed: int, tmp: Path, plugins: list, arm: str = "panda"
     the product's workspace (the 0.35 m disk cut by the arm's ring), or with ``old_disk`` in the start disk
     itself, as the rows before 2026-11-27's wider workspace were; classify what happened
     (bench_robustness.classify)."""
+    from l2p_bullet.arms import fit_workspace
     from l2p_bullet.core.scene import Workspace
-    from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.pipeline import perform
     from l2p_bullet.planning.feasibility import CHECKS
+    from l2p_bullet.plugins import arms as arm_plugins
 
     # the largest disk about the centre the arm reaches: the KUKA's scenes stay those its stress rows were drawn
     # in (0.17 m, before its workspace became the disk cut by its ring, issue 22): a part of that workspace
-    radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius  # the start disk's
+    radius = fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius  # the start disk's
     scene, kind, shape = object_scene(seed, radius, None if old_disk else Workspace())
     out = tmp / f"{action}-{seed}"
     row = {"action": action, "seed": seed, "kind": kind, "shape": shape, "objects": len(scene.objects)}

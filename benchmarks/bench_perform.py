@@ -92,8 +92,9 @@ def cold_perform_times(seeds: list[int], tmp: Path, actions: list[str]) -> list[
     """``l2p-bullet perform --no-render`` as fresh processes (what a user waits for), each followed by the
     floor (FLOOR) stepping as many physics steps in the same scene: side by side, so that the machine's
     load hits both alike. One unmeasured run first writes the bytecode caches."""
+    from l2p_bullet.arms import PANDA
     from l2p_bullet.core.scene import random_scene, save_scene
-    from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+    from l2p_bullet.embodiment.sim.arms import arm_urdf
     from l2p_bullet.embodiment.sim.world import urdf_path
 
     arm = arm_urdf(PANDA, visuals=False)

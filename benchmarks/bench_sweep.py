@@ -34,20 +34,21 @@ def main() -> None:
     ap.add_argument("--scenes", type=int, default=40, help="scenes per arm (seeds 974000.. panda, 975000.. xarm6, "
                                                               "976000.. kuka-iiwa)")
     args = ap.parse_args()
+    from l2p_bullet.arms import fit_scene, fit_workspace
     from l2p_bullet.core.geometry import posed_separation, separation
     from l2p_bullet.core.workspace import Workspace
-    from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.planning import sweep, world2d
     from l2p_bullet.planning.world2d import place_outline
+    from l2p_bullet.plugins import arms as arm_plugins
 
     ways = {"placed": lambda o, p, q: separation(place_outline(o, p), q), "per yaw": posed_separation}
     print("| arm | scenes | refused | placed s | per-yaw s | ratio | verdicts differing |\n|---|---:|---:|---:|---:|---:|---:|")
     try:
         for arm, base in ARMS:
-            radius = arm_plugins.fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius
+            radius = fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius
             seconds, verdicts = {w: 0.0 for w in ways}, {w: [] for w in ways}
             for i in range(args.scenes):
-                scene = arm_plugins.fit_scene(object_scene(base + i, radius, Workspace())[0], arm_plugins.get(arm))
+                scene = fit_scene(object_scene(base + i, radius, Workspace())[0], arm_plugins.get(arm))
                 for way, fn in ways.items():
                     world2d.posed_separation = fn  # World2D.shortfall's, which the sweep calls
                     t = time.perf_counter()

@@ -52,12 +52,12 @@ def set_threshold(action: str, threshold: float, plugins: list):
 
 def starts(seed: int, chains: int, clauses: int, actions: list[str], plugins: list, arm) -> list[tuple]:
     """(seed, predicted scene, clause) for every clause of the chains of seeds ``seed`` .. ``seed + chains - 1``."""
-    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.arms import fit_scene
     from l2p_bullet.evaluate.chains import chain_rng, chain_scenes, draw_chain
 
     out = []
     for spec in chain_scenes(chains, seed):
-        scene = arm_plugins.fit_scene(spec.scene.validate(), arm)
+        scene = fit_scene(spec.scene.validate(), arm)
         steps, _ = draw_chain(scene, clauses, actions, chain_rng(spec.seed, clauses), plugins, planner="default",
                               seed=spec.seed, budget=None, threshold=None, arm=arm)
         for step in steps:
@@ -126,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="around's turning way round off while drawn; around's rows planned off and on")
     args = ap.parse_args(argv)
 
-    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.plugins import arms as arm_plugins
     from l2p_bullet.plugins import registry
 
     plugins = registry.discover()

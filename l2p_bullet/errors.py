@@ -60,35 +60,41 @@ class BundleError(L2PError):
 
 
 class PluginError(L2PError):
-    """An action plugin cannot be found or loaded, or two plugins claim the same phrase."""
+    """A plugin (an action, arm or manner) cannot be found or loaded, or two plugins claim the same phrase."""
 
 
-class UnknownActionError(PluginError):
-    """No installed action (built-in or plugin) has this name."""
+class UnknownPluginError(PluginError):
+    """No installed plugin of ``kind`` (action, arm, manner; built-in or not) has this name; ``known`` lists the
+    names that do, and the message suggests the closest one."""
 
-    def __init__(self, name: str, known: Iterable[str], context: str = ""):
-        self.name, self.known = name, tuple(sorted(known))
+    def __init__(self, kind: str, name: str, known: Iterable[str], context: str = ""):
+        self.kind, self.name, self.known = kind, name, tuple(sorted(known))
         key = name.strip().lower().replace("_", "-")
-        super().__init__(f'unknown action "{name}" (known: {", ".join(self.known) or "none"}).'
+        super().__init__(f'unknown {kind} "{name}" (known: {", ".join(self.known) or "none"}).'
                          + did_you_mean(key, self.known) + (f" {context}" if context else ""))
 
 
+class UnknownActionError(UnknownPluginError):
+    """No installed action (built-in or plugin) has this name."""
+
+    def __init__(self, name: str, known: Iterable[str], context: str = ""):
+        super().__init__("action", name, known, context)
+
+
 class FailedToLoadPlugin(PluginError):
-    """A found plugin cannot be used: its bundle is broken, its import failed, it is not trained..."""
+    """A found plugin cannot be used: its bundle is broken, its import failed, it is not trained, it takes a
+    built-in's name..."""
 
-    def __init__(self, name: str, package: str, reason: str):
-        self.name, self.package, self.reason = name, package, reason
-        super().__init__(f'action plugin "{name}" (package {package}) cannot be used: {reason}')
+    def __init__(self, name: str, package: str, reason: str, kind: str = "action"):
+        self.name, self.package, self.reason, self.kind = name, package, reason, kind
+        super().__init__(f'{kind} plugin "{name}" (package {package}) cannot be used: {reason}')
 
 
-class UnknownArmError(PluginError):
+class UnknownArmError(UnknownPluginError):
     """No installed arm (built-in or plugin, entry-point group ``l2p_bullet.arms``) has this name."""
 
     def __init__(self, name: str, known: Iterable[str]):
-        self.name, self.known = name, tuple(sorted(known))
-        super().__init__(f'unknown arm "{name}" (known: {", ".join(self.known) or "none"}).'
-                         + did_you_mean(name.strip().lower().replace("_", "-"), self.known)
-                         + " List them with: l2p-bullet arms")
+        super().__init__("arm", name, known, "List them with: l2p-bullet arms")
 
 
 class PluginConflict(PluginError):

@@ -15,13 +15,13 @@ from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Any
 
+from .arms import ArmSpec, fit_scene
 from .core.contracts import MAX_SEED
 from .core.scene import Scene
-from .embodiment import arm_plugins
-from .embodiment.sim.arms import ArmSpec
 from .embodiment.sim.camera import RenderSettings
 from .errors import ExecutionError, PlanError, SceneError
 from .planning import resolve_planner
+from .plugins import arms as arm_plugins
 
 StageFn = Callable[[str], None]
 
@@ -71,7 +71,7 @@ def admit(scene: object, options: RunOptions) -> tuple[Scene, ArmSpec]:
     options.check()
     scene = check_scene(scene)
     arm = options.arm_spec()
-    return arm_plugins.fit_scene(scene, arm), arm
+    return fit_scene(scene, arm), arm
 
 
 def check_options(planner: str, seed: int, budget: int | None = None, threshold: float | None = None) -> None:

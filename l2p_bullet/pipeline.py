@@ -36,12 +36,12 @@ from typing import Any
 import numpy as np
 
 from . import planning
+from .arms import PANDA, ArmSpec
 from .core.contracts import Plan, trajectory_poses
 from .core.runfolder import run_folder, write_summary
 from .core.scene import Scene
 from .core.timing import StageClock
 from .embodiment.manners import check_manner, manner_planning
-from .embodiment.sim.arms import PANDA, ArmSpec
 from .errors import L2PError, LanguageError, PluginError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict

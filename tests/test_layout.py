@@ -143,14 +143,16 @@ def test_the_torch_free_paths_run_without_torch(tmp_path):
 # --- floors: which room may import which ------------------------------------------------------------
 FLOORS: tuple[tuple[str, ...], ...] = (
     ("l2p_bullet", "errors"),  # the package (its version) and the error classes every room raises
+    ("plugins.finder",),  # the one plugin finder: every kind's entry points, one record, one rule for names
     ("actions", "manners"),  # what each built-in action is (ActionSpec, next to its bundle) and each manner of
     # motion (MannerSpec, its verbs, through the entry points l2p_bullet.manners): pure declarations
     ("core",),  # scene, geometry, vocabulary, file contracts (incl. a bundle's file names), run folders
     ("data",),  # the shipped demonstrations, people's grades, and their readers
+    ("arms",),  # arms as data (ArmSpec, the built-in specs), the hand and wrist model, the workspace an arm gets
     ("progress", "judge", "language"),  # features + numpy model; verdicts and rule judges; sentence parsing
-    ("embodiment",),  # the arm: motion, smoothing, execution, recording, sim/ (pybullet)
-    ("planning",),  # 2-D planning; reads the hand's reach from embodiment
-    ("plugins",),  # registry, bundles, scaffold, validation: the shape of an action
+    ("embodiment", "planning"),  # the arm in the simulator (motion, execution, recording, sim/: pybullet) and
+    # 2-D planning beside it: planning reads the arm's model from arms/, never the simulator
+    ("plugins",),  # registries of every plugin kind, bundles, scaffolds, validation: the shape of a plugin
     ("options",),  # RunOptions: what a run is asked to do, checked once at the front door, handed down whole
     ("pipeline", "recognition"),  # perform and plan: the stages in order; recognising an action in a motion
     ("learning", "composite"),  # training (torch), feedback, agreement (improve performs through the pipeline);
@@ -166,12 +168,22 @@ FLOORS: tuple[tuple[str, ...], ...] = (
 )
 """The floors, lowest first (docs/DESIGN.md, "Floors"). A module may import its own room and the rooms of
 lower floors only: never a higher floor (a climb) nor another room on its own floor, so no two rooms can
-import each other. A room is a subpackage of l2p_bullet or a top-level module; a new one gets a floor here."""
+import each other. A room is a subpackage of l2p_bullet or a top-level module, or a module named in
+:data:`SUBROOMS`; a new one gets a floor here."""
+
+SUBROOMS = ("plugins.finder",)
+"""Modules that are rooms of their own inside a subpackage: the plugin finder lives with the plugin registries
+(plugins/), but every floor that finds plugins (the manners' verbs, read when parsing) must reach it; its
+package's ``__init__`` imports nothing."""
 
 FLOOR_OF = {room: i for i, rooms in enumerate(FLOORS) for room in rooms}
 
 
 def _room(module: str) -> str:
+    inner = module.split(".", 1)[1] if "." in module else ""
+    for sub in SUBROOMS:
+        if inner == sub or inner.startswith(sub + "."):
+            return sub
     parts = module.split(".")
     return "l2p_bullet" if len(parts) == 1 else parts[1]
 
@@ -233,3 +245,18 @@ def test_nothing_in_the_package_imports_research():
     never depends on them, so they can change or go without touching a command."""
     bad = sorted((n, i) for n, imps in IMPORTS.items() for i in imps if i == "research" or i.startswith("research."))
     assert not bad, f"modules of l2p_bullet importing research/: {bad}"
+
+
+def test_planning_reads_the_arm_from_arms_never_from_the_simulator():
+    """Planning and the up-front checks read the arm's model (ArmSpec, hand, wrist) from ``arms/``; the arm in
+    PyBullet (``embodiment/``) sits on planning's floor, so an import of it from planning is a failure here."""
+    assert FLOOR_OF["planning"] == FLOOR_OF["embodiment"] > FLOOR_OF["arms"]
+    bad = sorted((n, t) for n, t, a, b in _room_imports() if a == "planning" and b == "embodiment")
+    assert not bad, f"planning imports the simulator's room: {bad}"
+
+
+def test_plugins_are_found_in_one_module():
+    """Every kind of plugin (actions, composites, arms, manners) is found by one finder: one record, one
+    error, one rule for names."""
+    found = sorted(n for n, p in MODULES.items() if "metadata.entry_points(" in p.read_text())
+    assert found == ["l2p_bullet.plugins.finder"], found

@@ -14,16 +14,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..arms import fit_scene
 from ..core.contracts import Plan, read_json
 from ..core.runfolder import run_folder
 from ..core.scene import Scene, load_scene
 from ..core.timing import StageClock
-from ..embodiment import arm_plugins
 from ..embodiment.replay import motion_source, replay_scene, run_replay
 from ..errors import L2PError, PathError
 from ..judge import judge_for
 from ..language import Command, manner_of_sentence
 from ..options import RunOptions
+from ..plugins import arms as arm_plugins
 from ..plugins import registry
 from .clause import Clause
 from .clauses import resolve_clauses
@@ -80,7 +81,7 @@ def replay(path: str | None, demo: str | None, options: RunOptions, *, scene_pat
             r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=options.seed,
                              on_stage=options.on_stage, arm=arm, path=path)
         return ChainReplay(str(path), r, folder)
-    scene = arm_plugins.fit_scene(replay_scene(path, scene, scene_path, mesh_dirs), arm)  # what the arm reaches
+    scene = fit_scene(replay_scene(path, scene, scene_path, mesh_dirs), arm)  # what the arm reaches
     source = motion_source(path, demo, scene, mover, anchor)
     with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay",
                     inputs=inputs) as folder:
@@ -104,7 +105,7 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
     spec = arm_plugins.get(arm)
-    scene = arm_plugins.fit_scene(scene, spec)
+    scene = fit_scene(scene, spec)
     plugins = registry.discover() if plugins is None else plugins
     try:  # the clauses' own words (verb, preposition) as the run recorded them; another --scene may lack a name
         said = {c.index: c.command for c in resolve_clauses(str(doc["chain"].get("sentence") or ""), scene, plugins)}

@@ -28,12 +28,12 @@ from typing import Any
 import numpy as np
 
 from .. import planning
+from ..arms import ArmSpec
 from ..core.contracts import Plan, approach_end_frame, trajectory_poses
 from ..core.runfolder import add_to_summary, run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..embodiment.manners import manner_planning
-from ..embodiment.sim.arms import ArmSpec
 from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context

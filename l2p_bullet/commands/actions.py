@@ -44,26 +44,28 @@ def actions_cmd(as_json: bool, check: bool) -> None:
     from ..plugins import registry
 
     plugins = registry.discover()
-    reasons = {p.name: p.error for p in plugins if not p.ok}
+    reasons = {(p.name, p.package): p.error for p in plugins if not p.ok}  # a built-in and a plugin may share a name
     if check:
         for p in plugins:
             if p.ok:
                 reason = registry.load_problem(p.name, plugins)
                 if reason:
-                    reasons[p.name] = reason
+                    reasons[p.name, p.package] = reason
     problems = registry.conflicts(plugins)
     rows = [
         {
             "name": p.name, "version": p.version, "package": p.package, "package_version": p.package_version,
             "module": p.module, "path": str(p.path) if p.path else None, "phrases": list(p.phrases),
             "description": p.description, "frame": p.frame, "anchors": p.anchors,
-            "metrics": p.metrics, "ok": p.name not in reasons,
-            "error": reasons.get(p.name),
+            "metrics": p.metrics, "ok": (p.name, p.package) not in reasons,
+            "error": reasons.get((p.name, p.package)), "kind": p.kind, "entry_point": p.entry_point,
+            "builtin": p.builtin,
         }
         for p in plugins
     ]
     composites = [{"name": p.name, "version": p.version, "package": p.package, "phrases": list(p.phrases),
-                   "path": str(p.path) if p.path else None, "ok": p.ok, "error": p.error}
+                   "path": str(p.path) if p.path else None, "ok": p.ok, "error": p.error, "kind": p.kind,
+                   "entry_point": p.entry_point, "builtin": p.builtin}
                   for p in registry.discover("composite")]
     failed = check and (bool(reasons) or bool(problems))
     if as_json:

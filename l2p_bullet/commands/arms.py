@@ -2,34 +2,49 @@
 
 from __future__ import annotations
 
+import json
 import sys
 
 import click
 
+CHECK_TIMEOUT_S = 900
+"""Seconds one arm's check may take in its own process (a shipped arm takes about a minute on two cores)."""
+
 
 @click.command("arms")
+@click.argument("names", nargs=-1)
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (for scripts).")
 @click.option("--check", is_flag=True,
               help="Also load every arm and run a reach test over the table (its reach ring and hand profile, "
                    "measured); exit 1 if any arm is broken or reaches less than it declares.")
-def arms_cmd(as_json: bool, check: bool) -> None:
-    """List the installed arms: name, package, joints, reach, workspace, gripper opening.
+def arms_cmd(names: tuple[str, ...], as_json: bool, check: bool) -> None:
+    """List the installed arms: name, package, joints, reach, workspace, gripper opening (NAMES: only these).
 
     Arms are entry points of the group "l2p_bullet.arms" (the built-in panda, xarm6 and kuka-iiwa register
     the same way); broken ones are listed with the reason. Choose one with perform/replay/evaluate --arm NAME.
+    --check measures each arm in a process of its own, so an arm whose description crashes the simulator is
+    reported broken and the arms after it are still checked.
     """
+    from ..arms import fit_workspace
     from ..core.contracts import dumps_json
     from ..core.scene import Workspace
-    from ..embodiment import arm_plugins
+    from ..errors import UnknownArmError
+    from ..plugins import arms as arm_plugins
+    from ..plugins.finder import name_key
 
     infos = arm_plugins.discover()
+    for n in names:
+        if not any(name_key(a.name) == name_key(n) for a in infos):
+            raise UnknownArmError(n, [a.name for a in infos])
+    if names:
+        infos = [a for a in infos if any(name_key(a.name) == name_key(n) for n in names)]
     rows = []
     for a in infos:
-        row = {"name": a.name, "package": a.package, "package_version": a.package_version, "value": a.value,
-               "ok": a.ok, "error": a.error}
-        if a.spec is not None:
-            s = a.spec
-            ws = arm_plugins.fit_workspace(Workspace(), s)
+        row = {"name": a.name, "package": a.package, "package_version": a.package_version, "value": a.entry_point,
+               "entry_point": a.entry_point, "builtin": a.builtin, "ok": a.ok, "error": a.error}
+        if a.obj is not None:
+            s = a.obj
+            ws = fit_workspace(Workspace(), s)
             row |= {"description": s.description, "urdf": s.urdf, "arm_joints": len(s.arm_joints),
                     "finger_joints": len(s.finger_joints), "reach_m": list(s.reach), "mount": list(s.mount),
                     "workspace_radius_m": round(ws.inner_radius, 4), "workspace": ws.to_dict(),
@@ -37,7 +52,7 @@ def arms_cmd(as_json: bool, check: bool) -> None:
                     "payload_kg": s.payload}
         if check and a.ok:
             click.echo(f"checking {a.name} ...", err=True)
-            result = arm_plugins.check(a.spec)
+            result = check_apart(a.name, a.obj)
             row["check"] = result
             row["ok"], row["error"] = result["ok"], result["error"]
         rows.append(row)
@@ -66,6 +81,48 @@ def arms_cmd(as_json: bool, check: bool) -> None:
                    f"{len(bad)} of {len(rows)} arms failed the check")
     if failed:
         sys.exit(1)
+
+
+def check_apart(name: str, spec) -> dict:
+    """``embodiment.arm_measure.check`` of the installed arm ``name`` (whose spec is ``spec``) in a fresh
+    interpreter: a description that crashes the simulator ends that process only (PyBullet can segfault on
+    a malformed URDF), and the arm is reported broken with how its check ended."""
+    import signal
+    import subprocess
+    import tempfile
+    from pathlib import Path
+
+
+    out: dict = {"name": name, "declared_reach_m": list(spec.reach)}
+    code = "import sys; from l2p_bullet.commands.arms import check_here; check_here(sys.argv[1], sys.argv[2])"
+    with tempfile.TemporaryDirectory(prefix="l2p-arm-check-") as tmp:
+        result = Path(tmp) / "check.json"
+        try:
+            p = subprocess.run([sys.executable, "-c", code, name, str(result)], stdin=subprocess.DEVNULL,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=CHECK_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            return out | {"ok": False, "error": f"its check did not finish in {CHECK_TIMEOUT_S} s"}
+        if p.returncode == 0 and result.is_file():
+            return json.loads(result.read_text())
+    if p.returncode < 0:
+        try:
+            how = f"killed by {signal.Signals(-p.returncode).name}"
+        except ValueError:
+            how = f"killed by signal {-p.returncode}"
+        return out | {"ok": False, "error": f"loading or moving the arm crashed the simulator ({how})"}
+    last = (p.stderr.decode(errors="replace").strip().splitlines() or ["no message"])[-1]
+    return out | {"ok": False, "error": f"its check failed (exit {p.returncode}): {last}"[:300]}
+
+
+def check_here(name: str, result: str) -> None:
+    """The child's side of :func:`check_apart`: check the arm ``name`` and write the result to ``result``."""
+    from pathlib import Path
+
+    from ..core.contracts import dumps_json
+    from ..embodiment.arm_measure import check
+    from ..plugins import arms as arm_plugins
+
+    Path(result).write_text(dumps_json(check(arm_plugins.get(name))))
 
 
 COMMANDS: list[click.Command] = [arms_cmd]

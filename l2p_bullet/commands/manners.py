@@ -22,7 +22,8 @@ def manners_cmd(as_json: bool) -> None:
     rows = [{"name": m.name, "verbs": list(m.verbs), "motion": m.motion, "signature": m.signature,
              "airborne": m.airborne, "default": m.default, "description": m.description,
              "package": registry.package(m.name)} for m in registry.discover()]
-    bad = [{"name": name, "error": why} for name, why in registry.broken()]
+    bad = [{"name": b.name, "error": f"{b.error} (package {b.package} {b.package_version})", "package": b.package,
+            "package_version": b.package_version, "entry_point": b.entry_point} for b in registry.broken()]
     if as_json:
         click.echo(dumps_json({"manners": rows, "broken": bad}, indent=1))
         sys.exit(1 if bad else 0)

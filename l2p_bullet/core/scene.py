@@ -10,7 +10,7 @@ workspace: every block centre, and every point of a planned path, must lie insid
 arm whose reach ring does not hold the disk (every shipped arm's), the
 workspace is the disk intersected with that ring, a region with a bite out of its near side:
 ``core/workspace.py`` (:class:`Workspace`, imported from here) holds its geometry, and
-``embodiment/arm_plugins.py: fit_workspace`` sets the ring. Random scenes are drawn in the old 0.25 m disk
+``arms/fit.py: fit_workspace`` sets the ring. Random scenes are drawn in the old 0.25 m disk
 (``START_RADIUS``), so the same seeds give the same scenes as before.
 
 A block's footprint is its outline on the table: a cube's is its square, rotated by its yaw, written

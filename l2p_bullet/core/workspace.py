@@ -2,7 +2,7 @@
 
 It is the scene's disk (``center``, ``radius``: :data:`DISK_RADIUS`, 0.35 m around the table's centre) and, for
 an arm whose reach ring does not hold the disk, the disk *intersected with its ring* (``ring`` = base x, base y,
-near, far; ``embodiment/arm_plugins.py: fit_workspace``): no shipped arm's ring holds the 0.35 m disk, so
+near, far; ``arms/fit.py: fit_workspace``): no shipped arm's ring holds the 0.35 m disk, so
 every arm plans in its ring-cut disk. Cutting, rather than shrinking the disk about its centre until the ring
 holds it (0.17 m for the KUKA), keeps what the arm reaches.
 

@@ -12,7 +12,7 @@
   existing one instead); the hand's +z must point from the hand towards the fingertips (the usual convention).
 - **Home, wrist model, reach, hand profile**: the home poses the tool 0.3 m above the table pointing down; the
   wrist model (wrist = offset + azimuth - yaw) is measured and checked on a few poses; the reach ring and the
-  hand profile are measured as for the shipped arms (``arm_plugins``); the arm is mounted where its ring best
+  hand profile are measured as for the shipped arms (``arm_measure``); the arm is mounted where its ring best
   holds the workspace. A chain that cannot reach the table pointing down is an error.
 """
 
@@ -25,10 +25,11 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..arms import ArmSpec
 from ..core.scene import ROBOT_BASE_XY
 from ..errors import PluginError, ReachError
-from . import arm_plugins
-from .sim.arms import ArmSpec, arm_source
+from . import arm_measure
+from .sim.arms import arm_source
 
 MIN_WORKSPACE = 0.08
 """The smallest workspace radius (m) an arm must reach to be of use: two 4 cm blocks 1.4 sides apart."""
@@ -57,7 +58,7 @@ def guess(name: str, urdf: str, tool_link: str | None = None, fingers: list[str]
 
     if not urdf.lower().endswith(".urdf"):
         raise PluginError(f"new-arm reads URDF files (got {urdf}); describe an SDF arm by hand (an ArmSpec, see "
-                          "l2p_bullet/embodiment/sim/arms.py)")
+                          "l2p_bullet/arms/builtin.py)")
     src = os.path.abspath(urdf)
     if not os.path.isfile(src):
         raise PluginError(f"{urdf}: no such file")
@@ -118,7 +119,7 @@ def guess(name: str, urdf: str, tool_link: str | None = None, fingers: list[str]
                    description=f"{name}: made by l2p-bullet new-arm from {os.path.basename(src)}")
     spec = _home_and_wrist(spec)
     spec = _mount(spec)
-    _, profile = arm_plugins.measure_hand(spec)
+    _, profile = arm_measure.measure_hand(spec)
     return replace(spec, hand_profile=profile)
 
 
@@ -186,7 +187,7 @@ def _tool(sim, body: str, joints, hand: int, tips: list[int], gripper: list[int]
 
 
 def _in_plane(spec: ArmSpec, q, az: float, wrist: float) -> np.ndarray:
-    return arm_plugins._in_plane(spec, np.asarray(q, float), az, wrist)
+    return arm_measure._in_plane(spec, np.asarray(q, float), az, wrist)
 
 
 def _home_and_wrist(spec: ArmSpec) -> ArmSpec:
@@ -243,7 +244,7 @@ def _home_and_wrist(spec: ArmSpec) -> ArmSpec:
 def _mount(spec: ArmSpec) -> ArmSpec:
     """Measure the reach ring and stand the arm where it best holds the workspace disk; an error when the
     workspace left is smaller than :data:`MIN_WORKSPACE`."""
-    near, far = arm_plugins.measure_reach(spec)
+    near, far = arm_measure.measure_reach(spec)
     if far <= near:
         raise PluginError(f"the arm cannot reach the table pointing down {math.hypot(*spec.mount[:2]):.2f} m from its "
                           "base at every height and yaw a run uses: its chain cannot reach the table")

@@ -14,17 +14,17 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..arms import PANDA, ArmSpec, reach
 from ..core.contracts import approach_end_frame, trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..errors import ExecutionError, PathError, ReachError
 from ..manners.spec import MannerSpec
-from . import motion, reach, smoothing
+from . import motion, smoothing
 from .manners import carry_lift, check_carry_path, check_manner, manner_of
 from .record import Recorder, versions
 from .render import Film
-from .sim.arms import PANDA, ArmSpec
 from .sim.camera import RenderSettings
 from .sim.primitives import Primitives
 from .sim.world import World

@@ -17,15 +17,15 @@ import math
 
 import numpy as np
 
+from ..arms import PANDA, ArmSpec, reach
 from ..core.geometry import separation
 from ..core.scene import Scene
 from ..errors import InfeasibleError, PathError
 from ..manners import registry as manner_registry
 from ..manners.spec import MannerSpec
-from . import motion, reach
+from . import motion
 from .push_path import dense as push_path_dense
 from .push_path import drop_spurs
-from .sim.arms import PANDA, ArmSpec
 
 CLEARANCE = 0.02
 """m between a carried block's bottom and the top of the tallest object under its path."""

@@ -26,9 +26,9 @@ import math
 
 import numpy as np
 
+from ..arms import reach
 from ..core.geometry import separation
 from ..errors import ReachError
-from . import reach
 from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
 from .push_path import drop_spurs
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S

@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arms import PANDA, ArmSpec
 from ..core.lifeline import exit_with_parent
 from ..core.scene import Scene
 from ..errors import ExecutionError
-from .sim.arms import PANDA, ArmSpec
 from .sim.camera import RenderSettings
 
 CHUNK = 8  # states per task: enough to amortise a task's overhead, few enough to keep both cores busy

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arms import PANDA, ArmSpec
 from ..core.contracts import Plan, dumps_json, motion_from_dict, read_json
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
@@ -19,7 +20,6 @@ from ..errors import PathError, SceneError
 from ..language import manner_of_sentence
 from .execute import check_waypoints, execute_path
 from .retarget import retarget
-from .sim.arms import PANDA, ArmSpec
 
 
 @dataclass

@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..arms import PANDA
 from ..embodiment.execute import grasp_candidates
 from ..embodiment.record import Recorder
-from ..embodiment.sim.arms import PANDA
 from ..embodiment.sim.camera import Camera, RenderSettings
 from ..embodiment.sim.grasp import attach, detach
 from ..embodiment.sim.primitives import Primitives

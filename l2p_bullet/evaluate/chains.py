@@ -24,11 +24,11 @@ from typing import Any
 
 import numpy as np
 
+from ..arms import PANDA, ArmSpec, fit_scene
 from ..chain import perform_chain
 from ..chain.clauses import Clause
 from ..chain.forecast import forecast
 from ..core.scene import Scene, random_scene
-from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import EvaluationError, L2PError
 from ..pipeline import resolve
 from ..plugins import registry
@@ -113,10 +113,10 @@ def run_chain(worker: Any, task: Task, row: dict) -> None:
     """Draw and perform ``task``'s chain in ``worker``'s world; fill ``row`` (the chain's row)."""
 
 
-    from ..embodiment import arm_plugins
+    from ..plugins import arms as arm_plugins
 
     arm = arm_plugins.get(task.arm)
-    scene = arm_plugins.fit_scene(Scene.from_dict(task.scene, source=task.scene_id).validate(), arm)
+    scene = fit_scene(Scene.from_dict(task.scene, source=task.scene_id).validate(), arm)
     steps, redraws = draw_chain(scene, task.chain_length, list(task.chain_actions),
                                 chain_rng(task.seed, task.chain_length), worker.plugins,
                                 planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,

@@ -182,7 +182,7 @@ def evaluate(config: EvaluationConfig | None, out_dir: str | Path, *, workers: i
     workers = check_workers(workers, ray)
     if config is not None:
         config.check()
-        from ..embodiment import arm_plugins
+        from ..plugins import arms as arm_plugins
 
         arm_plugins.get(config.arm)  # an unknown arm is refused before the folder is made
     # Everything that can fail on the settings fails here, before the folder or its table is made

@@ -97,7 +97,7 @@ class Worker:
         """This process's world (with or without the arm's visuals), made on first use."""
         key = visuals if arm == "panda" else (visuals, arm)
         if key not in self._worlds:
-            from ..embodiment import arm_plugins
+            from ..plugins import arms as arm_plugins
 
             self._worlds[key] = World(scene, arm=arm_plugins.get(arm), visuals=visuals)
         return self._worlds[key]

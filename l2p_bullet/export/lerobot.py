@@ -28,8 +28,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..embodiment import arm_plugins
+from ..embodiment import arm_measure
 from ..errors import MissingExtraError, PathError
+from ..plugins import arms as arm_plugins
 from .episodes import Episode
 
 CODEBASE_VERSION = "v3.0"
@@ -169,7 +170,7 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     (out / "meta" / "stats.json").write_text(json.dumps(stats, indent=1) + "\n")
     tick()
     info = {
-        "codebase_version": CODEBASE_VERSION, "robot_type": arm_plugins.robot_type(arm), "total_episodes": len(eps),
+        "codebase_version": CODEBASE_VERSION, "robot_type": arm_measure.robot_type(arm), "total_episodes": len(eps),
         "total_frames": total, "total_tasks": len(tasks), "chunks_size": 1000, "data_files_size_in_mb": 100,
         "video_files_size_in_mb": 200, "fps": int(round(fps)), "splits": {"train": f"0:{len(eps)}"},
         "data_path": DATA_PATH, "video_path": VIDEO_PATH if video else None, "features": features,
@@ -185,7 +186,7 @@ def _arm_joints(eps: list[Episode]):
         raise PathError(f"the episodes were performed by different arms ({', '.join(arms)}): a LeRobot dataset has "
                         "one robot, export each arm's runs on their own")
     arm = arm_plugins.get(arms[0])
-    return arm, arm_plugins.joint_names(arm)
+    return arm, arm_measure.joint_names(arm)
 
 
 def _fixed(pa, rows: list[np.ndarray], n: int):

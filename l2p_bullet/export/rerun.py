@@ -135,7 +135,7 @@ def _log_arm(rr, rec, traj: dict, frames: list[dict], time: list, root: str) -> 
     q = np.array([f["arm"] for f in frames], float)
     if q.shape[1:] != (len(joints),):
         raise DataError("trajectory.json: every frame's arm must have one value per joint of the arm")
-    from ..embodiment import arm_plugins
+    from ..plugins import arms as arm_plugins
 
     with World(_scene(traj, frames[0]), arm=arm_plugins.get(str(arm.get("name") or "panda")), visuals=True) as world:
         sim = world.sim

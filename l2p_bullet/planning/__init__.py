@@ -26,11 +26,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..actions import ActionSpec, Planning
+from ..arms import PANDA, ArmSpec
+from ..arms.reach import Wrist
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
-from ..embodiment.reach import Wrist
-from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.rules import RULE_SPECS
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
@@ -113,7 +113,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     comparisons).
 
     The world's obstacles are what the arm meets: the mover's outline, grown against each taller object
-    by the hand beside it (``embodiment.reach``). When the hand's orientation matters, each grasp angle
+    by the hand beside it (``arms.reach``). When the hand's orientation matters, each grasp angle
     whose hand clears the start (``reach.holds``) is planned and the plan reaching the higher progress is
     kept (``extra["grasp_angle_deg"]``, None when any multiple of 90 degrees will do). Paths that no grasp
     yaw can follow within the wrist's range are illegal.

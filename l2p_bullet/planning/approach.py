@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..embodiment.reach import Wrist
+from ..arms.reach import Wrist
 from ..errors import InfeasibleError
 from .world2d import World2D, segment_frames
 

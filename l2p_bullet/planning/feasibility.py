@@ -4,10 +4,10 @@ Every check is a *necessary* condition, measured with bounds that favour the arm
 real impossibility and never a guess (docs/perform.md lists them with examples):
 
 - ``grasp-width``: at no angle does the mover's footprint fit between the arm's open fingers
-  (``ArmSpec.gripper_opening``; the width is measured across the footprint, ``embodiment.reach.grasp_width``):
+  (``ArmSpec.gripper_opening``; the width is measured across the footprint, ``arms.reach.grasp_width``):
   a 10 cm ball, a 9 x 9 cm box. Only the mover must fit; such an object is a fine anchor or bystander.
 - ``grasp``: whichever way it turns (every 5 degrees), the hand coming down on the mover would meet
-  another object (taller blocks too close beside a small one: ``embodiment.reach``).
+  another object (taller blocks too close beside a small one: ``arms.reach``).
 - ``boxed-in``: no move at all is legal from the start: every short slide (72 directions) and every
   turn in place runs into another object or out of the workspace.
 - ``room-around``: the mover's centre must stay in the workspace, so around an anchor near the disk's rim
@@ -50,10 +50,9 @@ from collections.abc import Callable, Mapping
 import numpy as np
 
 from ..actions import ActionSpec
+from ..arms import PANDA, ArmSpec, reach
 from ..core.geometry import nearest_centres, separation
 from ..core.scene import GRIPPER_MARGIN, Scene
-from ..embodiment import reach
-from ..embodiment.sim.arms import PANDA, ArmSpec
 from ..errors import InfeasibleError, PluginError
 from ..judge.rules import RULE_SPECS, closer_room
 from . import sweep

@@ -15,9 +15,9 @@ from typing import Protocol
 
 import numpy as np
 
+from ..arms.reach import Wrist
 from ..core.contracts import Plan
 from ..core.geometry import wrap_angle
-from ..embodiment.reach import Wrist
 from .world2d import World2D, segment_frames
 
 FRAME_STEP = 0.25
@@ -45,7 +45,7 @@ class Node:
     """A path of straight moves: ``waypoints`` (n,3), its frames (T,3) and the model's final progress.
 
     ``yaw`` is the mover's yaw at the end, unwrapped along the path (the frames' yaws are wrapped);
-    ``wrist`` the range of :func:`~l2p_bullet.embodiment.reach.wrist_values` over the frames so far.
+    ``wrist`` the range of :func:`~l2p_bullet.arms.reach.wrist_values` over the frames so far.
     """
 
     waypoints: np.ndarray

@@ -12,7 +12,7 @@ Rules of the world (the same ones the arm obeys when it executes the path):
   grasps from above with closed fingers resting on the block's top, so nothing of it reaches down beside
   the block to the height of a block no taller than the mover; against a taller object the mover's
   outline is grown by what the hand puts at that object's height (``outlines``, from
-  :func:`l2p_bullet.embodiment.reach.hold_outlines`).
+  :func:`l2p_bullet.arms.reach.hold_outlines`).
 - A mover that starts closer than the margin to an object (blocks placed touching) may still move, as
   long as no move brings it closer to that object than it was where the move began: the margin of a move
   is the smaller of the margin and the gap at its start.

@@ -1,7 +1,7 @@
 """``l2p-bullet new-arm``: write a ready-to-install arm plugin package for a user's URDF.
 
 Like ``new-action`` (plugins/scaffold.py): a pyproject declaring the entry point in ``l2p_bullet.arms``, a module
-whose ``ARM`` is the :class:`~l2p_bullet.embodiment.sim.arms.ArmSpec` that ``embodiment.arm_guess`` read and
+whose ``ARM`` is the :class:`~l2p_bullet.arms.ArmSpec` that ``embodiment.arm_guess`` read and
 measured from the URDF (every field written out, to be read and corrected by the author), and a README. Plain
 text from templates: no network, no build step. The URDF stays where it is: a path inside pybullet_data is
 written relative to it (portable), any other path absolutely (move the description into the package and point
@@ -17,9 +17,10 @@ from pathlib import Path
 
 from .. import __version__
 from ..core.folders import check_writable
-from ..embodiment import arm_guess, arm_plugins
+from ..embodiment import arm_guess
 from ..embodiment.sim.arms import portable_path
 from ..errors import PluginError
+from . import arms as arm_plugins
 
 ARM_NAME = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 
@@ -134,7 +135,7 @@ Every field was read from the URDF or measured on it (l2p_bullet/embodiment/arm_
 correct what was guessed wrong, and run `l2p-bullet arms --check` after any change.
 """
 
-from l2p_bullet.embodiment.sim.arms import ArmSpec
+from l2p_bullet.arms import ArmSpec
 
 URDF = {urdf}
 

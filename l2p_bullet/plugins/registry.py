@@ -3,7 +3,8 @@
 An action plugin is any installed distribution that declares an entry point in the group
 ``l2p_bullet.actions``; its value names a module whose folder holds a bundle (``manifest.toml`` plus
 weights). The five built-in actions register the same way in the project's own pyproject, so a
-third-party action is a first-class citizen.
+third-party action is a first-class citizen; the entry points are found, and names settled (a plugin
+cannot take a built-in's name), by the one plugin finder of every kind (plugins/finder.py).
 
 Two phases, as in flake8 and llm:
 
@@ -16,7 +17,7 @@ Two phases, as in flake8 and llm:
 
 A plugin that cannot be located, has no or an invalid manifest, or fails to import (even by calling
 ``sys.exit``) is *reported* (name, package, reason) and the others keep working. Two plugins that claim
-the same phrase (or the same name) make that phrase ambiguous: it is left out of :func:`phrase_table`
+the same phrase make that phrase ambiguous: it is left out of :func:`phrase_table`
 and a sentence using it gets the :class:`PluginConflict` naming both (:func:`blocked_phrases`), since
 silently picking one would make sentences mean different things on different machines; every other
 phrase keeps working. The phrases of a broken plugin are blocked the same way, with its reason.
@@ -29,9 +30,8 @@ one kind at a time (actions unless asked), so nothing that reads single actions 
 
 from __future__ import annotations
 
-import importlib
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields, replace
 from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -48,40 +48,30 @@ from ..errors import (
     PluginError,
     UnknownActionError,
 )
+from . import finder
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
+from .finder import Plugin
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
 
-GROUP = "l2p_bullet.actions"
+GROUP = finder.GROUPS["action"]
 KINDS = ("action", "composite")
 """What a manifest's ``kind`` may say (default "action")."""
 
 
 @dataclass(frozen=True)
-class PluginInfo:
-    """One found plugin, as far as can be known without importing it.
+class PluginInfo(Plugin):
+    """One found action plugin (the finder's :class:`~l2p_bullet.plugins.finder.Plugin`), with what can be
+    known without importing it: its bundle folder and manifest. ``kind`` is the manifest's: "action" (the
+    default: a single action with a progress model) or "composite" (:data:`KINDS`).
 
     ``error`` is None for a usable plugin, otherwise the reason it cannot be used (shown by
     ``l2p-bullet actions`` and by :func:`load`).
     """
 
-    name: str  # the entry point's name: the canonical action name ("next-to")
-    module: str  # the entry point's value: the module whose folder holds the bundle
-    package: str  # the distribution that declares it ("l2p-bullet", "l2p-left-of")
-    package_version: str
     path: Path | None = None  # the bundle folder, when it could be located
     manifest: dict[str, Any] = field(default_factory=dict)
-    error: str | None = None
-
-    @property
-    def ok(self) -> bool:
-        return self.error is None
-
-    @property
-    def kind(self) -> str:
-        """The manifest's ``kind``: "action" (default) or "composite" (:data:`KINDS`)."""
-        return str(self.manifest.get("kind", "action"))
 
     @property
     def version(self) -> str:
@@ -112,17 +102,14 @@ class PluginInfo:
         m = self.manifest.get("metrics", {})
         return m if isinstance(m, dict) else {}
 
-    def label(self) -> str:
-        return f'"{self.name}" (package {self.package} {self.package_version})'
-
 
 # --- locating a module's folder without importing anything ------------------------------------------
 def _find_spec_no_import(fullname: str, path: list[str] | None):
     """Ask the meta-path finders for a spec, as the import system would, but execute nothing."""
     if fullname in sys.modules and getattr(sys.modules[fullname], "__spec__", None) is not None:
         return sys.modules[fullname].__spec__
-    for finder in sys.meta_path:
-        find_spec = getattr(finder, "find_spec", None)
+    for meta_finder in sys.meta_path:
+        find_spec = getattr(meta_finder, "find_spec", None)
         if find_spec is None:
             continue
         try:
@@ -218,27 +205,19 @@ def discover(kind: str = "action") -> list[PluginInfo]:
     """Every installed plugin of ``kind`` (:data:`KINDS`), usable or not, sorted by name. Imports no plugin
     code. A plugin whose manifest cannot be read counts as an action (its error is shown with them)."""
     found: list[PluginInfo] = []
-    packages: dict[int, tuple[str, str]] = {}  # parsing a package's METADATA once, not twice per action
-    for ep in metadata.entry_points(group=GROUP):
-        dist = getattr(ep, "dist", None)
-        if dist is None:
-            package, package_version = "unknown package", ""
-        else:
-            if id(dist) not in packages:
-                meta = dist.metadata
-                packages[id(dist)] = (meta["Name"], meta["Version"])
-            package, package_version = packages[id(dist)]
-        module = ep.value.split(":", 1)[0].strip()
-        base = dict(name=ep.name, module=module, package=package, package_version=package_version)
+    for plugin in finder.find("action"):
+        base = PluginInfo(**{f.name: getattr(plugin, f.name) for f in fields(Plugin)})
         try:
-            folder = locate_module_folder(module)
+            folder = locate_module_folder(base.module)
         except LookupError as e:
-            folder = _locate_from_files(dist, module)
+            folder = _locate_from_files(plugin.dist, base.module)
             if folder is None:
-                found.append(PluginInfo(**base, error=str(e)))
+                found.append(replace(base, error=str(e)))
                 continue
-        manifest, error = _check_manifest(ep.name, folder)
-        found.append(PluginInfo(**base, path=folder, manifest=manifest, error=error))
+        manifest, error = _check_manifest(plugin.name, folder)
+        found.append(replace(base, kind=str(manifest.get("kind", "action")), path=folder, manifest=manifest,
+                             error=error))
+    found = finder.settle(found)
     return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
 
 
@@ -255,8 +234,8 @@ def local(name: str, folder: Path) -> PluginInfo:
     as a plugin that :func:`load` reads without importing anything and never caches (it may be
     re-trained at any time). Pass it in the ``plugins`` list of ``perform`` instead of the installed one."""
     manifest, error = _check_manifest(name, folder)
-    return PluginInfo(name=name, module="", package="(not installed)", package_version="", path=folder,
-                      manifest=manifest, error=error)
+    return PluginInfo(kind=str(manifest.get("kind", "action")), name=name, package="(not installed)",
+                      package_version="", entry_point="", error=error, path=folder, manifest=manifest)
 
 
 def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
@@ -364,14 +343,7 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
         return _LOADED[key]
     folder = info.path
     if info.module:  # an installed plugin (not a folder being authored, see local())
-        try:
-            mod = importlib.import_module(info.module)
-        except KeyboardInterrupt:  # the person at the keyboard wants to stop: that is not the plugin's bug
-            raise
-        except BaseException as e:  # noqa: BLE001 - sys.exit(7) or a BaseException in a plugin's import must
-            # not end the program: it is the plugin's bug, reported with its name like any other
-            what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
-            raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: {what}"[:500]) from None
+        mod = finder.load(info)
         folder = _module_folder(mod) or info.path
 
     try:
@@ -433,14 +405,7 @@ def action_spec(name: str, plugins: list[PluginInfo] | None = None) -> ActionSpe
     info = find(name, plugins)
     if not info.module:
         return None
-    try:
-        mod = importlib.import_module(info.module)
-    except KeyboardInterrupt:
-        raise
-    except BaseException as e:  # noqa: BLE001 - the plugin's bug, reported with its name (as load does)
-        raise FailedToLoadPlugin(info.name, info.package, f"importing {info.module} failed: "
-                                 f"{type(e).__name__}: {e}"[:500]) from None
-    return _declared_spec(info, mod)
+    return _declared_spec(info, finder.load(info))
 
 
 def _declared_spec(info: PluginInfo, mod: Any) -> ActionSpec | None:

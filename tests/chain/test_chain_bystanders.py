@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import fit_scene
 from l2p_bullet.chain.clauses import Clause
 from l2p_bullet.chain.forecast import forecast
 from l2p_bullet.errors import InfeasibleError
@@ -208,19 +209,19 @@ def test_around_between_two_close_blocks_turns_the_block_and_goes_round(monkeypa
     # At none of the seven yaws does the 2-D world hold a way round B (the planner stalled at 0.70 of a turn);
     # turning the block from one yaw to the next on the way, it has one, and the plan goes round
     from l2p_bullet.core.scene import Scene
-    from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.judge.rules import AROUND_NEAR
     from l2p_bullet.pipeline import judged_plan, prepare
     from l2p_bullet.planning import detour
     from l2p_bullet.planning.feasibility import grasp_holds
     from l2p_bullet.planning.world2d import World2D
+    from l2p_bullet.plugins import arms as arm_plugins
 
     scene = Scene.from_dict({"objects": [
         {"name": "A", "color": "red", "size": 0.05, "xy": [0.16015, 0.03675], "yaw": 1.10905},
         {"name": "B", "color": "green", "size": 0.05, "xy": [0.07359, 0.13150], "yaw": 1.00483},
         {"name": "C", "color": "blue", "size": 0.05, "xy": [0.13232, 0.11971], "yaw": -0.46175},
         {"name": "D", "color": "yellow", "size": 0.05, "xy": [0.02523, 0.07093], "yaw": 1.05483}]})
-    fitted = arm_plugins.fit_scene(scene, arm_plugins.get("panda"))
+    fitted = fit_scene(scene, arm_plugins.get("panda"))
     world = World2D(fitted, "D", outlines=grasp_holds(fitted, "D")[0].outlines)
     route = detour.around_route(world, fitted.get("B").pose, AROUND_NEAR)
     assert route is not None and len(np.unique(np.round(route[1:, 2], 6))) >= 2  # the block turns on the way
@@ -236,19 +237,19 @@ def test_a_way_that_fits_only_square_to_a_neighbour_is_found(monkeypatch):
     # yaws, nor turning between them (the plan stalled at 0.67 of a turn); with the yaws that square B to the
     # blocks near C (detour._squared_offsets) it has one, and the plan goes round
     from l2p_bullet.core.scene import Scene
-    from l2p_bullet.embodiment import arm_plugins
     from l2p_bullet.judge.rules import AROUND_NEAR
     from l2p_bullet.pipeline import judged_plan, prepare
     from l2p_bullet.planning import detour
     from l2p_bullet.planning.feasibility import grasp_holds
     from l2p_bullet.planning.world2d import World2D
+    from l2p_bullet.plugins import arms as arm_plugins
 
     scene = Scene.from_dict({"objects": [
         {"name": "A", "color": "red", "size": 0.05, "xy": [-0.19199, -0.11559], "yaw": 0.58976},
         {"name": "B", "color": "green", "size": 0.05, "xy": [-0.03941, -0.0246], "yaw": 1.44382},
         {"name": "C", "color": "blue", "size": 0.05, "xy": [0.02196, 0.08651], "yaw": 1.52396},
         {"name": "D", "color": "yellow", "size": 0.05, "xy": [0.14276, 0.04181], "yaw": 0.40797}]})
-    fitted = arm_plugins.fit_scene(scene, arm_plugins.get("panda"))
+    fitted = fit_scene(scene, arm_plugins.get("panda"))
     world = World2D(fitted, "B", outlines=grasp_holds(fitted, "B")[0].outlines)
     assert detour.around_route(world, fitted.get("C").pose, AROUND_NEAR) is not None
     monkeypatch.setattr(detour, "_squared_offsets", lambda *_a: [])
@@ -259,9 +260,9 @@ def test_a_way_that_fits_only_square_to_a_neighbour_is_found(monkeypatch):
 
 def _panda_scene(objects):
     from l2p_bullet.core.scene import Scene
-    from l2p_bullet.embodiment import arm_plugins
+    from l2p_bullet.plugins import arms as arm_plugins
 
-    return arm_plugins.fit_scene(Scene(objects).validate(), arm_plugins.get("panda"))
+    return fit_scene(Scene(objects).validate(), arm_plugins.get("panda"))
 
 
 def _walls(monkeypatch, scene, mover, anchor):

@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import reach
 from l2p_bullet.core import shapes
 from l2p_bullet.core.scene import Scene, default_scene, load_scene, save_scene
-from l2p_bullet.embodiment import reach
 from l2p_bullet.errors import InfeasibleError, SceneError
 from l2p_bullet.planning import feasibility
 

@@ -8,11 +8,12 @@ import json
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import KUKA_IIWA, PANDA, XARM6, fit_scene, fit_workspace, problems
 from l2p_bullet.core.scene import Scene, SceneObject, Workspace
-from l2p_bullet.embodiment import arm_plugins
-from l2p_bullet.embodiment.sim.arms import KUKA_IIWA, PANDA, XARM6
+from l2p_bullet.embodiment import arm_measure
 from l2p_bullet.errors import SceneError, UnknownArmError
 from l2p_bullet.pipeline import perform
+from l2p_bullet.plugins import arms as arm_plugins
 
 ARMS = ("panda", "xarm6", "kuka-iiwa")
 
@@ -22,7 +23,7 @@ def test_the_built_in_arms_register_through_the_entry_point_group():
     assert set(ARMS) <= set(found)
     for name in ARMS:
         assert found[name].ok and found[name].package == "l2p-bullet", found[name]
-        assert found[name].value.startswith("l2p_bullet.embodiment.sim.arms:")
+        assert found[name].entry_point.startswith("l2p_bullet.arms.builtin:")
     assert arm_plugins.get("xarm6") is XARM6 and arm_plugins.get("KUKA_IIWA") is KUKA_IIWA
     assert arm_plugins.get(None) is PANDA
 
@@ -38,37 +39,37 @@ def test_an_unknown_arm_is_one_line_with_a_suggestion():
 def test_a_spec_whose_fields_disagree_is_reported():
     from dataclasses import replace
 
-    assert arm_plugins.problems(PANDA) is None
-    assert "home" in arm_plugins.problems(replace(PANDA, home=(0.0,) * 6))
-    assert "wrist joint" in arm_plugins.problems(replace(PANDA, wrist_joint=9))
-    assert "reach" in arm_plugins.problems(replace(PANDA, reach=(0.5, 0.4)))
+    assert problems(PANDA) is None
+    assert "home" in problems(replace(PANDA, home=(0.0,) * 6))
+    assert "wrist joint" in problems(replace(PANDA, wrist_joint=9))
+    assert "reach" in problems(replace(PANDA, reach=(0.5, 0.4)))
 
 
 def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refused_naming_the_arm():
     old = Workspace(radius=0.25)  # the old disk: the Panda's and the xArm6's rings hold it, it is untouched
-    assert arm_plugins.fit_workspace(old, PANDA) == old and arm_plugins.fit_workspace(old, XARM6) == old
+    assert fit_workspace(old, PANDA) == old and fit_workspace(old, XARM6) == old
     # the 0.35 m disk (2026-11-27) is cut by every shipped arm's ring
-    assert arm_plugins.fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.27, 0.79))
-    assert arm_plugins.fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.175, 0.675))
+    assert fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.27, 0.79))
+    assert fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.175, 0.675))
     for spec in (PANDA, XARM6, KUKA_IIWA):  # starts are drawn where the old disk's fitted workspace put them
-        assert arm_plugins.fit_workspace(Workspace(), spec).starts() == arm_plugins.fit_workspace(old, spec)
-    kuka = arm_plugins.fit_workspace(Workspace(), KUKA_IIWA)  # the disk cut by the KUKA's ring (issue 22)
+        assert fit_workspace(Workspace(), spec).starts() == fit_workspace(old, spec)
+    kuka = fit_workspace(Workspace(), KUKA_IIWA)  # the disk cut by the KUKA's ring (issue 22)
     assert kuka.center == (0.0, 0.0) and kuka.radius == 0.35 and kuka.ring == (-0.6, 0.0, 0.43, 0.77)
     assert kuka.inner_radius == pytest.approx(0.17)  # what it had before: the disk shrunk into the ring
     # (0.0, 0.2) was outside the old 0.17 m disk; it is 0.63 m from the KUKA's base, inside its ring
     scene = Scene([SceneObject("A", "red", 0.04, (0.0, 0.2)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
-    assert arm_plugins.fit_scene(scene, PANDA).objects == scene.objects
+    assert fit_scene(scene, PANDA).objects == scene.objects
     # (0, 0.33) is beyond the old disk, 0.62 m from the Panda's base: accepted; the ring's hole is refused
     far = Scene([SceneObject("A", "red", 0.04, (0.0, 0.33)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
-    assert arm_plugins.fit_scene(far, PANDA).workspace.ring == (-0.53, 0.0, 0.27, 0.79)
+    assert fit_scene(far, PANDA).workspace.ring == (-0.53, 0.0, 0.27, 0.79)
     hole = Scene([SceneObject("A", "red", 0.04, (-0.3, 0.0)), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
     with pytest.raises(SceneError, match=r'^object "A" .* the arm "panda", which reaches the table only 0\.27-0\.79 m'):
-        arm_plugins.fit_scene(hole, PANDA)
-    assert arm_plugins.fit_scene(scene, KUKA_IIWA).workspace == kuka
+        fit_scene(hole, PANDA)
+    assert fit_scene(scene, KUKA_IIWA).workspace == kuka
     for xy, way in (((-0.22, 0.0), "outward"), ((0.2, 0.0), "inward")):  # in the ring's hole; beyond its far edge
         near = Scene([SceneObject("A", "red", 0.04, xy), SceneObject("B", "green", 0.04, (0.0, 0.0))]).validate()
         with pytest.raises(SceneError) as e:
-            arm_plugins.fit_scene(near, KUKA_IIWA)
+            fit_scene(near, KUKA_IIWA)
         msg = str(e.value)
         assert "\n" not in msg and '"A"' in msg and 'the arm "kuka-iiwa"' in msg and "0.43-0.77 m from its base" in msg
         assert f"move it {way}" in msg
@@ -77,7 +78,7 @@ def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refu
 @pytest.mark.slow  # the xArm's STL meshes take 9 s to read
 @pytest.mark.parametrize("spec", [PANDA, XARM6, KUKA_IIWA], ids=lambda s: s.name)
 def test_the_stored_hand_profile_and_drop_are_what_the_simulator_collides_with(spec):
-    _, measured = arm_plugins.measure_hand(spec)
+    _, measured = arm_measure.measure_hand(spec)
     for (d, hx, hy), (_, mx, my) in zip(spec.hand_profile, measured, strict=True):
         assert mx - 1e-4 <= hx <= mx + 1e-3 and my - 1e-4 <= hy <= my + 1e-3, (spec.name, d, hx, hy, mx, my)
 
@@ -85,7 +86,7 @@ def test_the_stored_hand_profile_and_drop_are_what_the_simulator_collides_with(s
 @pytest.mark.slow
 @pytest.mark.parametrize("spec", [PANDA, XARM6, KUKA_IIWA], ids=lambda s: s.name)
 def test_the_stored_reach_is_measured(spec):
-    assert arm_plugins.measure_reach(spec) == pytest.approx(spec.reach, abs=0.011)
+    assert arm_measure.measure_reach(spec) == pytest.approx(spec.reach, abs=0.011)
 
 
 def test_the_reach_test_asks_every_height_a_lift_passes_through():
@@ -95,16 +96,16 @@ def test_the_reach_test_asks_every_height_a_lift_passes_through():
     with them the Panda's ring starts at 0.27 m, where it reaches every one of them."""
     from l2p_bullet.embodiment.sim.robot import Kinematics
 
-    heights = np.array(arm_plugins.REACH_HEIGHTS)
+    heights = np.array(arm_measure.REACH_HEIGHTS)
     assert heights[0] == 0.012 and heights[-1] == 0.19 and np.diff(heights).max() <= 0.02 + 1e-9
     kin = Kinematics(PANDA, PANDA.mount)
     try:
         near = PANDA.reach[0]
-        assert all(arm_plugins.reaches(kin, PANDA, near, az, z, w) for az in (0.0, -0.5, 0.5) for z in heights
-                   for w in arm_plugins.wrist_turns(PANDA))
+        assert all(arm_measure.reaches(kin, PANDA, near, az, z, w) for az in (0.0, -0.5, 0.5) for z in heights
+                   for w in arm_measure.wrist_turns(PANDA))
         # the old near edge: both end heights reached, the middle not (what two heights could not see)
-        assert arm_plugins.reaches(kin, PANDA, 0.26, 0.0, 0.012, 0.0) and arm_plugins.reaches(kin, PANDA, 0.26, 0.0, 0.19, 0.0)
-        assert not arm_plugins.reaches(kin, PANDA, 0.26, 0.0, 0.112, 0.0)
+        assert arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.012, 0.0) and arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.19, 0.0)
+        assert not arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.112, 0.0)
     finally:
         kin.close()
 
@@ -141,16 +142,16 @@ def _lerobot_names_the_arms_joints(tmp_path, arm: str, count: int) -> None:
     info = write_lerobot([ep], tmp_path / "lerobot", video=False)
     names = info["features"]["observation.joints"]["names"]
     assert len(names) == count == info["features"]["observation.joints"]["shape"][0]
-    assert info["robot_type"] == arm_plugins.robot_type(arm_plugins.get(arm)) != "franka_panda_sim"
+    assert info["robot_type"] == arm_measure.robot_type(arm_plugins.get(arm)) != "franka_panda_sim"
     other = Episode(ep.task, ep.frames, ep.fps, ep.mover, ep.anchor, "elsewhere", arm="panda")
     with pytest.raises(PathError, match="different arms"):
         write_lerobot([ep, other], tmp_path / "mixed", video=False)
 
 
 def test_the_joint_names_are_the_movable_joints_of_each_arm():
-    assert arm_plugins.joint_names(PANDA)[:2] == ["panda_joint1", "panda_joint2"] and len(arm_plugins.joint_names(PANDA)) == 9
-    assert arm_plugins.joint_names(XARM6)[:6] == [f"joint{i}" for i in range(1, 7)]
-    assert len(arm_plugins.joint_names(KUKA_IIWA)) == 9  # 7 arm joints and 2 fingers (the SDF's free joints made fixed)
+    assert arm_measure.joint_names(PANDA)[:2] == ["panda_joint1", "panda_joint2"] and len(arm_measure.joint_names(PANDA)) == 9
+    assert arm_measure.joint_names(XARM6)[:6] == [f"joint{i}" for i in range(1, 7)]
+    assert len(arm_measure.joint_names(KUKA_IIWA)) == 9  # 7 arm joints and 2 fingers (the SDF's free joints made fixed)
 
 
 def test_arms_lists_the_three_arms_as_json():
@@ -191,7 +192,7 @@ def test_an_unknown_arm_on_the_command_line_is_one_line_exit_2_and_writes_nothin
 def test_the_wrist_model_holds_along_a_long_turning_slide(spec):
     """As for the Panda (test_robustness.py): IK seeded continuously keeps the arm in its plane, so the wrist is
     offset + azimuth - yaw, what the planner's wrist check assumes."""
-    from l2p_bullet.embodiment import reach
+    from l2p_bullet.arms import reach
     from l2p_bullet.embodiment.record import Recorder
     from l2p_bullet.embodiment.sim.primitives import Primitives
     from l2p_bullet.embodiment.sim.world import World
@@ -220,11 +221,11 @@ def test_a_broken_arm_plugin_is_reported_and_the_others_keep_working(monkeypatch
 
     real = metadata.entry_points(group=arm_plugins.GROUP)
     fake = [metadata.EntryPoint("gone", "no_such_module_l2p:ARM", arm_plugins.GROUP),
-            metadata.EntryPoint("wrong", "l2p_bullet.embodiment.sim.arms:PANDA", arm_plugins.GROUP)]
-    monkeypatch.setattr(arm_plugins.metadata, "entry_points", lambda group: [*real, *fake])
+            metadata.EntryPoint("wrong", "l2p_bullet.arms.builtin:PANDA", arm_plugins.GROUP)]
+    monkeypatch.setattr(metadata, "entry_points", lambda group: [*real, *fake])
     found = {a.name: a for a in arm_plugins.discover()}
     assert "importing no_such_module_l2p:ARM failed: ModuleNotFoundError" in found["gone"].error
-    assert 'must be an l2p_bullet.embodiment.sim.arms.ArmSpec named "wrong"' in found["wrong"].error
+    assert 'must be an l2p_bullet.arms.ArmSpec named "wrong"' in found["wrong"].error
     assert arm_plugins.get("xarm6") is XARM6
     with pytest.raises(PluginError, match='arm plugin "gone" .* cannot be used: importing'):
         arm_plugins.get("gone")

@@ -1,5 +1,5 @@
 """The KUKA iiwa performs in its whole workspace: the disk cut by its reach ring (issue 22), not the 0.17 m disk it
-had before (core/workspace.py, embodiment/arm_plugins.py: fit_workspace)."""
+had before (core/workspace.py, arms/fit.py: fit_workspace)."""
 
 from __future__ import annotations
 
@@ -8,10 +8,9 @@ import json
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import KUKA_IIWA, fit_scene, fit_workspace
 from l2p_bullet.core.scene import Scene, SceneObject
-from l2p_bullet.embodiment import arm_plugins
 from l2p_bullet.embodiment.execute import check_waypoints
-from l2p_bullet.embodiment.sim.arms import KUKA_IIWA
 from l2p_bullet.errors import PathError, SceneError
 from l2p_bullet.pipeline import perform
 
@@ -33,11 +32,11 @@ def _mover_track(run) -> np.ndarray:
 ])
 def test_a_block_outside_the_old_disk_but_inside_the_ring_is_performed(sentence, a, b, tmp_path):
     scene = _scene(a, b)
-    assert np.hypot(*a) > arm_plugins.fit_workspace(scene.workspace, KUKA_IIWA).inner_radius
+    assert np.hypot(*a) > fit_workspace(scene.workspace, KUKA_IIWA).inner_radius
     r = perform(sentence, scene, out_dir=tmp_path / "run", render=False, seed=3, arm="kuka-iiwa")
     assert r.verdict["success"], r.verdict
     assert r.anchor_displacement_m < 0.001
-    ws = arm_plugins.fit_workspace(scene.workspace, KUKA_IIWA)
+    ws = fit_workspace(scene.workspace, KUKA_IIWA)
     assert ws.contains(_mover_track(tmp_path / "run"), margin=-0.002).all()  # the block stayed where the arm reaches
 
 
@@ -45,7 +44,7 @@ def test_blocks_either_side_of_the_rings_hole_are_brought_together_round_it(tmp_
     # A and B 0.44 m from the base, either side of its axis: the straight line between them passes 0.42 m from the
     # base, inside the ring's hole (0.43 m), so the planner must go round it and the arm must follow
     a, b = (-0.18, 0.13), (-0.18, -0.13)
-    ws = arm_plugins.fit_workspace(_scene(a, b).workspace, KUKA_IIWA)
+    ws = fit_workspace(_scene(a, b).workspace, KUKA_IIWA)
     assert not ws.segments_inside(np.array(a), np.array([b]))[0]
     r = perform("move A closer to B", _scene(a, b), out_dir=tmp_path / "run", render=False, seed=3, arm="kuka-iiwa")
     assert r.verdict["success"], r.verdict
@@ -66,7 +65,7 @@ def test_a_block_nearer_the_base_than_the_ring_is_refused_naming_the_arm(tmp_pat
 
 
 def test_a_path_through_the_hole_is_refused_before_anything_moves():
-    scene = arm_plugins.fit_scene(_scene((-0.18, 0.13), (0.05, -0.05)), KUKA_IIWA)
+    scene = fit_scene(_scene((-0.18, 0.13), (0.05, -0.05)), KUKA_IIWA)
     with pytest.raises(PathError, match="between waypoints 0 and 1"):
         check_waypoints(scene, "A", np.array([[-0.18, 0.13, 0.3], [-0.18, -0.13, 0.3]]))
     check_waypoints(scene, "A", np.array([[-0.18, 0.13, 0.3], [0.0, 0.0, 0.3], [-0.18, -0.13, 0.3]]))
@@ -86,7 +85,7 @@ def test_a_push_near_the_rings_hole_is_refused_up_front_not_half_way(tmp_path):
 def test_a_replayed_motion_is_pulled_out_of_the_rings_hole():
     from l2p_bullet.embodiment.retarget import retarget
 
-    scene = arm_plugins.fit_scene(_scene((-0.06, 0.0), (-0.12, 0.0)), KUKA_IIWA)
+    scene = fit_scene(_scene((-0.06, 0.0), (-0.12, 0.0)), KUKA_IIWA)
     t = np.linspace(0.0, 2 * np.pi, 80)
     demo = np.column_stack([0.45 * np.cos(t), 0.45 * np.sin(t), t])  # round the anchor at 3 sides (0.15 m blocks)
     out = retarget(demo, np.zeros(3), 0.15, scene, "A", "B")
@@ -114,10 +113,10 @@ def test_the_pushing_hand_stands_behind_the_block_and_goes_round_over_it_at_a_co
 def test_a_push_is_refused_only_when_its_hand_would_stand_in_the_rings_hole(ends, refused):
     # the Panda's ring (0.27 m from its base at x = -0.53) cuts its 0.35 m workspace: a block 0.29 m from the base
     # can be pushed with the hand beyond it, not with the hand between it and the base (the first bound refused both)
+    from l2p_bullet.arms import PANDA
     from l2p_bullet.embodiment.manners import push_refusal
-    from l2p_bullet.embodiment.sim.arms import PANDA
 
-    scene = arm_plugins.fit_scene(_scene(ends[0], (0.1, 0.2)), PANDA)
+    scene = fit_scene(_scene(ends[0], (0.1, 0.2)), PANDA)
     assert scene.workspace.ring is not None
     path = np.array([[*ends[0], 0.0], [*ends[1], 0.0]])
     why = push_refusal(scene, "A", path, PANDA)

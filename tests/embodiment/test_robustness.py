@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 from planning_fakes import FakeBundle
 
+from l2p_bullet.arms import reach
 from l2p_bullet.core.scene import ROBOT_BASE_XY, Scene, SceneObject
-from l2p_bullet.embodiment import reach
 from l2p_bullet.errors import InfeasibleError, ReachError
 from l2p_bullet.pipeline import disturbance_verdict, perform
 from l2p_bullet.planning import feasibility, plan

@@ -67,7 +67,7 @@ def test_yaw_follows_the_path_and_turns_in_place_are_chunks():
 
 
 def test_grasp_yaw_keeps_the_wrist_in_range():
-    from l2p_bullet.embodiment import reach
+    from l2p_bullet.arms import reach
     from l2p_bullet.embodiment.execute import grasp_candidates
 
     base = (-0.53, 0.0)

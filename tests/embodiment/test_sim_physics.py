@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import PANDA
 from l2p_bullet.core.scene import Scene, SceneObject, Workspace, default_scene
 from l2p_bullet.embodiment import motion
 from l2p_bullet.embodiment.execute import execute_path
-from l2p_bullet.embodiment.sim.arms import PANDA
 from l2p_bullet.embodiment.sim.camera import RenderSettings
 from l2p_bullet.embodiment.sim.robot import Kinematics
 from l2p_bullet.errors import PathError, ReachError, UnknownObjectError

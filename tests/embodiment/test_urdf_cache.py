@@ -8,8 +8,9 @@ from pathlib import Path
 
 import pytest
 
+from l2p_bullet.arms import PANDA
 from l2p_bullet.embodiment.sim import arms
-from l2p_bullet.embodiment.sim.arms import PANDA, arm_urdf
+from l2p_bullet.embodiment.sim.arms import arm_urdf
 
 
 @pytest.fixture

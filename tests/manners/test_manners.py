@@ -8,10 +8,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from l2p_bullet.arms import PANDA
 from l2p_bullet.core.scene import Scene, SceneObject, default_scene
 from l2p_bullet.embodiment.manners import carry_lift, carry_refusal, push_outline
-from l2p_bullet.embodiment.sim.arms import PANDA
-from l2p_bullet.errors import InfeasibleError, LanguageError, PluginError
+from l2p_bullet.errors import InfeasibleError, LanguageError
 from l2p_bullet.judge.manners import signature_verdict
 from l2p_bullet.language import parse
 from l2p_bullet.manners import registry
@@ -62,9 +62,12 @@ def test_an_unknown_verb_is_one_line_with_did_you_mean():
 
 
 def test_an_unknown_manner_is_one_line_with_did_you_mean():
-    with pytest.raises(PluginError, match=r'no manner called "cary" \(installed: carry, push, slide\)\. '
-                                          r'Did you mean "carry"\?'):
+    from l2p_bullet.errors import UnknownPluginError
+
+    with pytest.raises(UnknownPluginError, match=r'^unknown manner "cary" \(known: carry, push, slide\)\. '
+                                                 r'Did you mean "carry"\? List them with: l2p-bullet manners$') as e:
         registry.get("cary")
+    assert (e.value.kind, e.value.name, e.value.known) == ("manner", "cary", ("carry", "push", "slide"))
     assert registry.get(None).name == "slide"
     with pytest.raises(ValueError, match="motion must be one of"):
         MannerSpec("fly", ("fly",), motion="fly", signature="lifted")

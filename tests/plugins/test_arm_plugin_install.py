@@ -66,8 +66,8 @@ def test_new_arm_measures_the_opening_across_the_fingers_of_a_turned_hand():
     travel 2 x 4 cm, and the arm new-arm made from pybullet_data's panda.urdf could grasp no block of the default
     scene (5 cm). Measured along the hand's own axes, the boxes (Bullet's, grown by its collision margin, as for
     the xArm6's 8.3 cm) leave 7.2 cm."""
+    from l2p_bullet.arms import PANDA
     from l2p_bullet.embodiment.arm_guess import guess
-    from l2p_bullet.embodiment.sim.arms import PANDA
 
     spec = guess("my-panda", str(_data() / "franka_panda" / "panda.urdf"))
     assert 0.07 <= spec.gripper_opening <= PANDA.gripper_opening, spec.gripper_opening
@@ -113,8 +113,8 @@ def test_new_arm_writes_a_urdf_named_like_code_into_a_module_that_runs_none(tmp_
     import ast
     import dataclasses
 
+    from l2p_bullet.arms import PANDA
     from l2p_bullet.embodiment import arm_guess
-    from l2p_bullet.embodiment.sim.arms import PANDA
     from l2p_bullet.plugins.arm_scaffold import scaffold_arm
 
     urdf = tmp_path / filename

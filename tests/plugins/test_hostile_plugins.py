@@ -194,14 +194,20 @@ def test_a_plugin_claiming_a_builtin_phrase_blocks_only_that_phrase(site, tmp_pa
     assert r.exit_code == 0, r.output
 
 
-def test_a_plugin_named_like_a_builtin_blocks_only_that_action(site, tmp_path):
+def test_a_plugin_named_like_a_builtin_is_broken_and_the_builtin_kept(site, tmp_path):
+    """The one rule for names of every plugin kind: a plugin cannot take a built-in's name. It is listed as
+    broken naming its package, its own phrases are refused with that reason, and the built-in keeps working
+    (an action plugin named "around" used to make "move A around B" ambiguous)."""
     copy_builtin_as_plugin(site, "past", "around", ["circling"], dist="l2p-twin")
-    for sentence in ("move A around B", "move A circling B"):
-        with pytest.raises(PluginConflict) as e:
-            resolve(sentence, default_scene())
-        assert e.value.claim == "around"
+    assert resolve("move A around B", default_scene()).action == "around"
+    with pytest.raises(FailedToLoadPlugin) as e:
+        resolve("move A circling B", default_scene())
+    assert e.value.name == "around" and e.value.package == "l2p-twin" and "built-in" in e.value.reason
+    rows = [r for r in json.loads(CliRunner().invoke(main, ["actions", "--json"]).output)["actions"] if r["name"] == "around"]
+    assert [(r["package"], r["ok"]) for r in rows] == [("l2p-bullet", True), ("l2p-twin", False)], rows
+    assert 'the name "around" is the built-in action\'s' in rows[1]["error"] and "uninstall l2p-twin" in rows[1]["error"]
     assert resolve("move A past B", default_scene()).action == "past"
-    assert CliRunner().invoke(main, ["plan", "move A past B", "--out", str(tmp_path / "p")]).exit_code == 0
+    assert CliRunner().invoke(main, ["plan", "move A around B", "--out", str(tmp_path / "p")]).exit_code == 0
 
 
 def test_an_untrained_plugin_owning_the_phrase_is_named(site):

@@ -102,15 +102,18 @@ def test_duplicate_phrase_names_both_plugins(plugins_dir, tmp_path, monkeypatch)
     assert '"sideways"' in msg and "fake-plugins" in msg and "rival-plugin" in msg and '"rival"' in msg
 
 
-def test_duplicate_name_is_a_conflict(plugins_dir, tmp_path, monkeypatch):
+def test_two_plugins_of_one_name_are_both_broken(plugins_dir, tmp_path, monkeypatch):
     other = tmp_path / "other"
     make_bundle(other / "fk_twin", "sideways", ["twinned"])
     make_dist(other, "twin-plugin", {"sideways": "fk_twin"})
     monkeypatch.syspath_prepend(str(other))
     table = registry.phrase_table()
     assert "twinned" not in table and "sideways" not in table and table["nested in"] == "nested"
+    twins = [p for p in registry.discover() if p.name == "sideways"]
+    assert [p.package for p in twins] == ["fake-plugins", "twin-plugin"] and not any(p.ok for p in twins)
+    assert all('both named "sideways" (packages fake-plugins 0.3 and twin-plugin 0.3)' in p.error for p in twins)
     blocked = registry.blocked_phrases()
-    assert isinstance(blocked["twinned"], PluginConflict) and blocked["twinned"].claim == "sideways"
+    assert isinstance(blocked["twinned"], PluginError) and "both named" in str(blocked["twinned"])
     with pytest.raises(PluginConflict, match="both named"):
         registry.load("sideways")
 

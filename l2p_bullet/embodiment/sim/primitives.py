@@ -194,7 +194,7 @@ class Primitives:
 
         ``yaw_offset`` (a multiple of 90 deg) is the tool's yaw relative to the block's; or ``tool_yaw`` the
         tool's yaw itself, turned to exactly (not the short way), which decides where the wrist starts the
-        slide: choose it with :func:`l2p_bullet.embodiment.reach.wrist_offsets` (execute.py does) so the wrist
+        slide: choose it with :func:`l2p_bullet.arms.reach.wrist_offsets` (execute.py does) so the wrist
         stays inside its range while sliding.
         """
         if self.grasp is not None:

@@ -12,8 +12,9 @@ import math
 
 import numpy as np
 
+from ...arms import ArmSpec
 from ...errors import ReachError
-from .arms import ArmSpec, arm_urdf
+from .arms import arm_urdf
 from .bullet import Bullet
 
 ARM = "<arm>"  # the arm's body name, in the world's simulator and in the twin's

@@ -17,10 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ...arms import PANDA, ArmSpec
 from ...core.scene import COLORS, Scene
 from ...core.shapes import BLOCK_FRICTION
 from ...errors import SceneError
-from .arms import PANDA, ArmSpec
 from .bullet import Bullet
 from .robot import ARM, Robot
 

@@ -1,149 +1,19 @@
-"""Arms as plugins: every arm, the built-in Panda included, is an entry point of the group ``l2p_bullet.arms``
-whose value names an :class:`~l2p_bullet.embodiment.sim.arms.ArmSpec` (``module:ATTRIBUTE``).
+"""An arm measured in PyBullet: its joints' names, its reach ring and hand profile (``l2p-bullet arms --check``,
+``new-arm``) compared with what its :class:`~l2p_bullet.arms.ArmSpec` declares.
 
-As with actions (plugins/registry.py), a broken arm plugin is *reported* with its package and reason and the
-others keep working; an unknown name is a one-line :class:`UnknownArmError` with a suggestion. An arm module
-holds data only (numpy at most), so loading every arm to list them costs milliseconds and runs no simulator.
-
-What the arm reaches decides where blocks may stand: its ``reach`` ring (measured by :func:`measure_reach`,
-``l2p-bullet arms --check``) decides it: where the ring does not hold the scene's workspace disk, the
-workspace is the disk intersected with the ring (:func:`fit_workspace`, ``core/workspace.py``), and
-:func:`fit_scene` refuses a scene with a block outside it, naming the arm and its ring.
+The spec is data (``l2p_bullet/arms``); these functions load the arm's description in the simulator to
+measure what a spec declares, so a user's arm and a shipped one are held to the same test.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
-from importlib import metadata
+from dataclasses import replace
 
 import numpy as np
 
-from ..core.scene import Scene, Workspace
-from ..errors import PluginError, SceneError, UnknownArmError
-from .sim.arms import ArmSpec
-
-GROUP = "l2p_bullet.arms"
-DEFAULT = "panda"
-
-
-@dataclass(frozen=True)
-class ArmInfo:
-    """One found arm plugin; ``error`` says why it cannot be used (None: ``spec`` is usable)."""
-
-    name: str
-    value: str  # the entry point's value, "module:ATTRIBUTE"
-    package: str
-    package_version: str
-    spec: ArmSpec | None = None
-    error: str | None = None
-
-    @property
-    def ok(self) -> bool:
-        return self.error is None
-
-
-def problems(spec: ArmSpec) -> str | None:
-    """Why ``spec`` cannot drive the simulator (its fields disagree with each other), or None."""
-    n = len(spec.arm_joints)
-    if not n:
-        return "arm_joints is empty"
-    if len(spec.home) != n or any(len(s) != n for s in spec.ik_seeds):
-        return f"home and every IK seed must give {n} joint values (one per arm joint)"
-    if len(spec.finger_closed) != len(spec.finger_joints):
-        return "finger_closed must give one value per finger joint"
-    if spec.wrist_joint not in spec.arm_joints:
-        return f"the wrist joint {spec.wrist_joint} is not one of the arm joints"
-    if any(j not in range(n) for j in spec.swivel_joints):
-        return "swivel_joints are indices into arm_joints"
-    near, far = spec.reach
-    if not (0.0 <= near < far and math.isfinite(far)):
-        return f"reach must be (near, far) metres with 0 <= near < far (got {spec.reach})"
-    if not (0.0 < spec.gripper_opening < 1.0) or not (0.0 < spec.wrist_limit <= 2 * math.pi + 1e-3):
-        return "gripper_opening must be in (0, 1) m and wrist_limit in (0, 2 pi] rad"
-    if not (0.0 < spec.payload < 1000.0):
-        return f"payload must be in (0, 1000) kg (got {spec.payload})"
-    return None
-
-
-def discover() -> list[ArmInfo]:
-    """Every installed arm plugin, usable or not, sorted by name; each arm's module is imported (data only)."""
-    found = []
-    for ep in metadata.entry_points(group=GROUP):
-        dist = getattr(ep, "dist", None)
-        package, version = (dist.metadata["Name"], dist.metadata["Version"]) if dist is not None else ("unknown package", "")
-        base = dict(name=ep.name, value=ep.value, package=package, package_version=version)
-        try:
-            spec = ep.load()
-        except KeyboardInterrupt:
-            raise
-        except BaseException as e:  # noqa: BLE001 - a plugin's broken import is its bug, reported with its name
-            what = f"it called sys.exit({e.code!r})" if isinstance(e, SystemExit) else f"{type(e).__name__}: {e}"
-            found.append(ArmInfo(**base, error=f"importing {ep.value} failed: {what}"[:500]))
-            continue
-        if not isinstance(spec, ArmSpec) or spec.name != ep.name:
-            found.append(ArmInfo(**base, error=f'{ep.value} must be an l2p_bullet.embodiment.sim.arms.ArmSpec named "{ep.name}"'))
-            continue
-        found.append(ArmInfo(**base, spec=spec, error=problems(spec)))
-    return sorted(found, key=lambda a: (a.name, a.package))
-
-
-def names() -> list[str]:
-    """The usable arms' names."""
-    return [a.name for a in discover() if a.ok]
-
-
-def get(name: str | ArmSpec | None = None) -> ArmSpec:
-    """The arm called ``name`` (None: the default, the Panda); an ArmSpec is returned as it is."""
-    if isinstance(name, ArmSpec):
-        return name
-    name = DEFAULT if name is None else name
-    found = discover()
-    key = name.strip().lower().replace("_", "-")
-    matches = [a for a in found if a.name.lower() == key]
-    if not matches:
-        raise UnknownArmError(name, [a.name for a in found])
-    usable = [a for a in matches if a.ok]
-    if len(usable) > 1:
-        raise PluginError(f'two arm plugins are both named "{name}" (packages '
-                          f'{" and ".join(a.package for a in usable)}); uninstall one of the packages')
-    if not usable:
-        a = matches[0]
-        raise PluginError(f'arm plugin "{a.name}" (package {a.package}) cannot be used: {a.error or "broken"}')
-    return usable[0].spec
-
-
-# --- where the arm reaches ----------------------------------------------------------------------------
-def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
-    """The workspace an arm gets: unchanged when its reach ring around its mount holds the whole disk, else the disk
-    intersected with the ring (``Workspace.ring``): every shipped arm at the 0.35 m disk. Cutting keeps what
-    the arm reaches; shrinking the disk about its centre until the ring held it would leave the KUKA 0.17 m."""
-    cut = replace(workspace, ring=(float(spec.mount[0]), float(spec.mount[1]), float(spec.reach[0]), float(spec.reach[1])))
-    return workspace if cut.holds_disk(workspace.radius) else cut
-
-
-def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
-    """``scene`` with its workspace fitted to the arm (:func:`fit_workspace`); SceneError naming the arm and its ring
-    when a block stands outside what the arm reaches."""
-    ws = fit_workspace(scene.workspace, spec)
-    if ws == scene.workspace:
-        return scene
-    if ws.empty:
-        raise SceneError(f'the arm "{spec.name}" reaches the table only {spec.reach[0]:.2f}-{spec.reach[1]:.2f} m '
-                         f"from its base, which leaves nothing of the workspace around {scene.workspace.center}")
-    base = np.array(ws.ring[:2])
-    for o in scene.objects:
-        if not ws.contains(np.array(o.xy))[0]:
-            r = float(np.hypot(*(np.asarray(o.xy) - base)))
-            if spec.reach[0] <= r <= spec.reach[1]:  # in the ring but off the disk (an unvalidated scene)
-                raise SceneError(f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is outside the workspace of '
-                                 f'the arm "{spec.name}" ({ws.describe()})')
-            way = "outward" if r < spec.reach[0] else "inward"
-            raise SceneError(
-                f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is {r:.2f} m from the base of the arm "{spec.name}", '
-                f"which reaches the table only {spec.reach[0]:.2f}-{spec.reach[1]:.2f} m from its base; move it {way} "
-                f"or choose another arm (l2p-bullet arms)")
-    return replace(scene, workspace=ws)
+from ..arms import ArmSpec, fit_workspace
+from ..core.scene import Workspace
 
 
 def joint_names(spec: ArmSpec) -> list[str]:
@@ -294,7 +164,6 @@ def check(spec: ArmSpec) -> dict:
     the measured ring does not hold the workspace the spec promises (the largest disk about the centre, and
     for a ring-cut workspace the ring itself and every probe point of the region, :func:`region_unreached`) or
     the stored profile is narrower than the measured one (the planner would let the hand hit a block)."""
-    from ..core.scene import Workspace
     from ..errors import L2PError
 
     out: dict = {"name": spec.name, "declared_reach_m": list(spec.reach)}

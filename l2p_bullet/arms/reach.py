@@ -11,7 +11,7 @@ the hand. A taller block does: the fingers (about 2 x 4 to 3 x 6 cm, widening up
 ``depth = other's height - held block's height`` below its top, and from 4.6 cm above the fingertips the
 hand itself (21 cm long). A 2 cm block slid past an 8 cm one carries the hand into it. So, per other
 object, the mover's outline is grown by the arm's measured profile at that object's height
-(:func:`hold_outlines`); the arm's profile lives in :class:`~l2p_bullet.embodiment.sim.arms.ArmSpec`.
+(:func:`hold_outlines`); the arm's profile lives in :class:`~l2p_bullet.arms.ArmSpec`.
 
 The hand turns with the tool's yaw, which is the block's yaw plus the grasp's **angle** (fixed while the
 block is held). The hand's profile is symmetric under a half turn, so the angle counts modulo 180 degrees.
@@ -40,7 +40,8 @@ import numpy as np
 
 from ..core.geometry import convex_hull, separation
 from ..core.scene import ROBOT_BASE_XY, Scene
-from .sim.arms import PANDA, ArmSpec
+from .builtin import PANDA
+from .spec import ArmSpec
 
 HEIGHT_CLEARANCE = 0.002
 """An object whose top is less than this (m) below the held block's top still counts as reaching the
