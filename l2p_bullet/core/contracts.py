@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import L2PError, PathError
+from ..errors import L2PError, PathError, sizes
 from .bounded import read_bounded
 
 MAX_SEED = 2**32 - 1
@@ -268,7 +268,8 @@ def load_json_file(path: str | Path, error: type[L2PError] = PathError, what: st
     label = f"{what} {p}" if what else str(p)
     try:
         if p.is_file() and p.stat().st_size > MAX_JSON_BYTES:
-            raise error(f"{label} is {p.stat().st_size / 1e6:.0f} MB; the limit is {MAX_JSON_BYTES // 2**20} MiB")
+            have, most = sizes(p.stat().st_size, MAX_JSON_BYTES)
+            raise error(f"{label} is {have}; the limit is {most}")
     except OSError as e:
         raise error(f"cannot read {label}: {e.strerror or e}") from None
     raw = read_bounded(p, MAX_JSON_BYTES, error, label)  # /dev/zero or a FIFO: the size is found by reading
