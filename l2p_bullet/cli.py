@@ -31,7 +31,6 @@ from .commands import (
 )
 from .errors import L2PError
 
-
 _INVISIBLE = re.compile("[\x80-\x9f\xad\u061c\u180e\u200b-\u200f\u2028-\u202e\u2060-\u2069\ufeff\ufff9-\ufffb]")
 """Characters a terminal shows as nothing or that reorder what follows (C1 controls, zero-width and
 bidirectional marks): quoted from a user's file they would hide or reverse part of a message, so an error

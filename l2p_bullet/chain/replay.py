@@ -17,7 +17,7 @@ from ..errors import L2PError, PathError
 from ..judge import judge_for
 from ..language import Command, manner_of_sentence
 from ..plugins import registry
-from .clauses import Clause, resolve_clauses
+from .clauses import MAX_CLAUSES, Clause, resolve_clauses
 from .forecast import Step
 from .run import _execute
 
@@ -36,6 +36,8 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     from ..embodiment import arm_plugins
 
     source = "plan.json"
+    if len(doc["clauses"]) > MAX_CLAUSES:  # a chain stops at MAX_CLAUSES: this file is no chain run's
+        raise PathError(f"{source} lists {len(doc['clauses'])} clauses; a chain has at most {MAX_CLAUSES}")
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
     spec = arm_plugins.get(arm)

@@ -220,6 +220,20 @@ def hold_before(values: np.ndarray, first: int) -> np.ndarray:
     return np.r_[np.full(first, values[0] if len(values) else np.nan), values]
 
 
+MAX_FPS = 1000.0
+"""Highest frame rate a run folder may state (trajectories are recorded at 30 fps, videos at 10-30)."""
+
+
+def frame_rate(value: object, source: str, key: str = "fps") -> float:
+    """A run folder's frame rate, checked: a number above 0 and at most :data:`MAX_FPS` (0 divides by zero,
+    -30 or 1e300 would be written into an exported dataset's meta/info.json)."""
+    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    if not (ok and 0 < value <= MAX_FPS):
+        raise PathError(f'{source}: "{key}" must be a frame rate above 0 and at most {MAX_FPS:g} per second '
+                        f"(got {str(value)[:30]})")
+    return float(value)
+
+
 def action_from(doc: dict, source: str = "trajectory.json") -> int:
     """trajectory.json's ``action_from`` (a run whose plan came near first: the first frame of the action
     proper), checked against its frames; 0 where there is none (every other run: the whole episode)."""

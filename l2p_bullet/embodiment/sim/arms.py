@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.scene import ROBOT_BASE_XY
+from .urdf_check import check_urdf
 
 
 @dataclass(frozen=True)
@@ -122,6 +123,8 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     """
 
     src = arm_source(spec)
+    if not src.lower().endswith(".sdf"):
+        check_urdf(src)  # the user's file named in an error, not the stripped copy
     if visuals and collisions and not (spec.collision_free_links or spec.tool_frame or spec.fixed_joints):
         return src
     with open(src) as f:
