@@ -27,6 +27,13 @@ def is_chain_plan(doc: object) -> bool:
     return isinstance(doc, dict) and isinstance(doc.get("clauses"), list) and isinstance(doc.get("chain"), dict)
 
 
+def check_chain_plan(doc: dict, source: str = "plan.json") -> None:
+    """Refuse a chain plan.json with more clauses than a chain may have (a run stops at MAX_CLAUSES: a longer
+    list is no run's, and replaying it would run for as long as its author liked)."""
+    if len(doc["clauses"]) > MAX_CLAUSES:
+        raise PathError(f"{source} lists {len(doc['clauses'])} clauses; a chain has at most {MAX_CLAUSES}")
+
+
 def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_settings: Any = None, seed: int = 0,
                  on_stage=None, plugins: list | None = None, arm: str | None = None, path: str | None = None):
     """Execute the clauses' plans of ``doc`` (a chain's plan.json) into the run folder ``out``; returns the
@@ -36,8 +43,7 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     from ..embodiment import arm_plugins
 
     source = "plan.json"
-    if len(doc["clauses"]) > MAX_CLAUSES:  # a chain stops at MAX_CLAUSES: this file is no chain run's
-        raise PathError(f"{source} lists {len(doc['clauses'])} clauses; a chain has at most {MAX_CLAUSES}")
+    check_chain_plan(doc, source if path is None else str(path))
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
     spec = arm_plugins.get(arm)

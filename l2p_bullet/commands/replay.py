@@ -97,13 +97,14 @@ def _replay_chain(path_json: str, scene_path: str | None, out: str | None, force
                   arm: str = "panda", quiet: bool = False) -> bool:
     """Replay a chain run's plan.json (every clause, one episode; l2p_bullet/chain/replay.py) in the scene
     it was planned in (or ``--scene``); False when the file is no chain plan."""
-    from ..chain.replay import is_chain_plan, replay_chain
+    from ..chain.replay import check_chain_plan, is_chain_plan, replay_chain
     from ..core.contracts import read_json
     from ..core.runfolder import run_folder
 
     doc = read_json(path_json)
     if not is_chain_plan(doc):
         return False
+    check_chain_plan(doc, path_json)  # before the run folder is made
     scene = load_scene_or_default(scene_path) if scene_path is not None else None
     with run_folder(out, force=force, prefix="replay", command="replay",
                     inputs=tuple(p for p in (path_json, scene_path) if p)) as folder:

@@ -92,8 +92,7 @@ def episode_from_run(run: str | Path) -> Episode:
         action = traj.get("action") or "an action"
         task = f"move {traj['mover']} {action} {traj['anchor']}"
     fps = frame_rate(traj["fps"], f"{run}/trajectory.json")
-    if not isinstance(traj["frames"], list) or not traj["frames"]:
-        raise PathError(f'{run}/trajectory.json: "frames" must be a non-empty list')
+    _check_frames(traj["frames"], traj["mover"], traj["anchor"], f"{run}/trajectory.json")
     render = summary.get("render")
     images, image_fps = _read_images(run / "frames"), render.get("fps") if isinstance(render, dict) else None
     image_fps = frame_rate(image_fps, f"{run}/summary.json", "render.fps") if images and image_fps is not None else None
@@ -101,6 +100,29 @@ def episode_from_run(run: str | Path) -> Episode:
                    images or None, image_fps if images else None,
                    {"action": traj.get("action"), "success": summary.get("success")},
                    str((traj.get("arm") or {}).get("name") or "panda"))
+
+
+def _check_frames(frames: object, mover: object, anchor: object, source: str) -> None:
+    """What an export reads of every frame, checked before anything is written: the mover's and the anchor's
+    poses ([x, y, z, yaw]) and the tool's ``ee`` ([x, y, z]) of finite numbers, ``grasped``, and the arm's joints (as many in every
+    frame); a crafted trajectory.json is one line, not a KeyError in the middle of a dataset."""
+    if not isinstance(frames, list) or not frames:
+        raise PathError(f'{source}: "frames" must be a non-empty list')
+    if not (isinstance(mover, str) and isinstance(anchor, str)):
+        raise PathError(f'{source}: "mover" and "anchor" must be object names')
+    try:
+        for f in frames:
+            if "grasped" not in f:
+                raise KeyError("grasped")
+        values = np.array([[*f["poses"][mover], *f["poses"][anchor], *f["ee"]] for f in frames], float)
+        joints = np.array([f.get("arm") or [] for f in frames], float)
+        progress = np.array([np.nan if f.get("progress") is None else f["progress"] for f in frames], float)
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError) as e:
+        raise PathError(f"{source}: a malformed frame ({type(e).__name__}: {str(e)[:80]}); every frame needs "
+                        f'"poses" of {mover[:40]} and {anchor[:40]}, "ee" and "grasped"') from None
+    if values.shape != (len(frames), 11) or not np.all(np.isfinite(values)) or joints.ndim != 2 or progress.ndim != 1:
+        raise PathError(f'{source}: every frame\'s poses must be [x, y, z, yaw] and its "ee" [x, y, z] '
+                        '(finite numbers), its "arm" as many joint angles as the other frames\'')
 
 
 def episodes_from_run(run: str | Path) -> list[Episode]:
