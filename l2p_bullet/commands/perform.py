@@ -78,7 +78,8 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
         return
     v = r.verdict
     fp = "n/a" if r.final_progress is None else f"{r.final_progress:.2f}"
-    click.echo(f'{r.command.mover} {r.command.preposition} {" and ".join(r.command.anchors)}: action "{r.command.action}", '
+    how = "" if r.command.manner == "slide" else f"{r.command.manner}, "  # a carry is said: it is judged as one too
+    click.echo(f'{r.command.mover} {r.command.preposition} {" and ".join(r.command.anchors)}: {how}action "{r.command.action}", '
                f'{"success" if r.success else "FAILED"} ({v.get("reason", "")})')
     click.echo(f"final progress {fp} (planned {r.planned_progress:.2f}), "
                f"block within {r.max_deviation_m * 1000:.1f} mm of the plan, "
@@ -107,7 +108,8 @@ def _perform_chain(sentence: str, scene_path: str | None, seed: int, out: str | 
         return
     for c in r.results:
         fp = "n/a" if c.final_progress is None else f"{c.final_progress:.2f}"
-        click.echo(f'{c.clause.index}. {c.clause.command.sentence}: "{c.clause.command.action}", '
+        how = "" if c.clause.command.manner == "slide" else f"{c.clause.command.manner}, "
+        click.echo(f'{c.clause.index}. {c.clause.command.sentence}: {how}"{c.clause.command.action}", '
                    f'{"success" if c.success else "FAILED"} ({c.verdict.get("reason", "")}), final progress {fp}')
     v = r.verdict()
     if r.row is not None:  # a composite ("make a row of ..."): the whole judged too
