@@ -41,7 +41,7 @@ from .core.scene import Scene
 from .core.timing import StageClock
 from .embodiment import arm_plugins
 from .embodiment.manners import check_manner, manner_planning
-from .embodiment.sim.arms import PANDA, ArmSpec
+from .embodiment.sim.arms import PANDA, ArmSpec, check_description
 from .errors import ExecutionError, L2PError, LanguageError, PlanError, PluginError, SceneError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
@@ -173,6 +173,7 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     check_options(planner, seed, budget, threshold)  # a typo must fail before anything is loaded or written
     check_scene(scene)
     arm = arm_plugins.get(arm)
+    check_description(arm)  # a URDF PyBullet would crash on: refused before a folder is made
     scene = arm_plugins.fit_scene(scene, arm)
     plugins = registry.discover() if plugins is None else plugins
     cmd = resolve(sentence, scene, plugins)

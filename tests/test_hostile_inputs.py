@@ -182,6 +182,25 @@ def test_too_many_links_and_too_many_bytes_are_refused(tmp_path):
         check_urdf(str(tmp_path / "huge.urdf"))
 
 
+@pytest.mark.parametrize("chain", [False, True])
+def test_perform_with_an_arm_whose_urdf_has_two_roots_makes_no_folder(tmp_path, chain):
+    """``perform --arm`` of such an arm crashed PyBullet and left a partial run folder."""
+    import dataclasses
+
+    from l2p_bullet.chain import perform_chain
+    from l2p_bullet.embodiment.sim.arms import PANDA
+    from l2p_bullet.pipeline import perform
+
+    urdf = tmp_path / "bad.urdf"
+    urdf.write_text(URDFS["two-roots"][0])
+    arm = dataclasses.replace(PANDA, name="bad", urdf=str(urdf))
+    out = tmp_path / "run"
+    sentence = "move A closer to B, then move A away from B" if chain else "move A closer to B"
+    with pytest.raises(PluginError, match="has 2 root links"):
+        (perform_chain if chain else perform)(sentence, default_scene(), out_dir=out, render=False, arm=arm)
+    assert not out.exists()
+
+
 def _new_arm(tmp_path: Path, urdf: Path) -> subprocess.CompletedProcess:
     # a subprocess: on the old code PyBullet ended the process with a segmentation fault (exit 139)
     return subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "new-arm", "bad", "--urdf", str(urdf), "--out",

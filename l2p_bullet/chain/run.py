@@ -31,7 +31,7 @@ from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..embodiment import arm_plugins
 from ..embodiment.manners import manner_planning
-from ..embodiment.sim.arms import PANDA, ArmSpec
+from ..embodiment.sim.arms import PANDA, ArmSpec, check_description
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
 from ..judge.manners import manner_verdict
@@ -154,6 +154,7 @@ def perform_chain(sentence: str, scene: Scene, *, out_dir: str | Path | None = N
         check_render_settings(render_settings)
     plugins = registry.discover() if plugins is None else plugins
     arm = arm_plugins.get(arm)  # an unknown arm fails before anything is planned or written
+    check_description(arm)  # a URDF PyBullet would crash on: refused before a folder is made
     scene = arm_plugins.fit_scene(scene, arm)
     if steps is None:
         clauses = resolve_clauses(sentence, scene, plugins)
