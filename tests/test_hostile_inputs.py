@@ -398,6 +398,7 @@ COMPOSITES = {  # name: (how the bundle is spoilt, what the error says)
     "monotone-no": (lambda f: _edit_recipe(f, monotone="no"), '"monotone" must be true or false'),
     "aligned-one": (lambda f: _edit_recipe(f, aligned=1), '"aligned" must be true or false'),
     "nan-angle": (lambda f: _edit_recipe(f, axis_offset_deg=float("nan")), "NaN is not a JSON number"),
+    "demos-text": (lambda f: _edit_recipe(f, demos="6"), '"demos" must be a whole number'),
     "huge-angle": (lambda f: _edit_recipe(f, axis_offset_deg=1e9), "axis_offset_deg=1000000000"),
 }
 

@@ -135,6 +135,9 @@ class Recipe:
             for key in ("monotone", "aligned"):  # bool("no") is True: a recipe says true or false
                 if not isinstance(d[key], bool):
                     raise TypeError(f'"{key}" must be true or false (got {str(d[key])[:30]})')
+            for key in ("stays", "demos"):
+                if isinstance(d[key], bool) or not isinstance(d[key], int):
+                    raise TypeError(f'"{key}" must be a whole number (got {str(d[key])[:30]})')
             for key in ("spacing", "axis_offset_deg"):
                 if isinstance(d[key], bool) or not isinstance(d[key], int | float) or not math.isfinite(d[key]):
                     raise ValueError(f'"{key}" must be a finite number (got {str(d[key])[:30]})')
