@@ -41,6 +41,7 @@ import numpy as np
 from ..errors import SceneError, did_you_mean, sizes
 from .bounded import read_bounded
 from .geometry import convex_hull
+from .mesh_files import bounded_resolver
 
 SHAPES = ("cube", "box", "cylinder", "mesh")
 MESH_SUFFIXES = (".obj", ".stl", ".glb")
@@ -261,7 +262,7 @@ def mesh(path: str, scale: float, rpy: tuple[float, float, float], mtime_ns: int
     import trimesh
 
     raw = read_bounded(p, MAX_MESH_BYTES, SceneError, f"mesh {p.name}")
-    resolver = _bounded_resolver(p, MAX_MESH_BYTES - len(raw))
+    resolver = bounded_resolver(p, MAX_MESH_BYTES - len(raw), MAX_MESH_BYTES)
     try:
         m = trimesh.load(io.BytesIO(raw), force="mesh", process=True, file_type=p.suffix.lower()[1:],
                          resolver=resolver)
@@ -278,37 +279,6 @@ def mesh(path: str, scale: float, rpy: tuple[float, float, float], mtime_ns: int
         raise SceneError(f"mesh {p.name}: {len(m.faces)} triangles, more than the {MAX_MESH_FACES} a mesh may have")
     with np.errstate(all="ignore"):  # a flat mesh divides by its zero volume: refused just below
         return _measure(m, p, scale, rpy)
-
-
-def _bounded_resolver(p: Path, budget: int):
-    """trimesh's resolver for the files a mesh names (a GLB's external buffers and images, an OBJ's
-    materials and textures), reading them in the mesh's folder only and at most ``budget`` bytes in all: a
-    400-byte GLB may name a 3 GB buffer beside it, which trimesh would read whole before complaining."""
-    from trimesh.resolvers import FilePathResolver
-
-    class Bounded(FilePathResolver):
-        refused: SceneError | None = None
-
-        def get(self, name: str) -> bytes:
-            nonlocal budget
-            for candidate in (name.strip(), name.strip().lstrip("/"), os.path.split(name)[-1]):
-                try:
-                    path = self.absolute(candidate)
-                except ValueError:
-                    continue
-                if path.is_file():
-                    try:
-                        data = read_bounded(path, budget, SceneError)
-                    except SceneError:
-                        self.refused = SceneError(
-                            f"mesh {p.name} names {str(name)[:80]}, which takes it past the "
-                            f"{MAX_MESH_BYTES / 2**20:g} MiB a mesh may read in all (its file, buffers and images)")
-                        raise self.refused from None
-                    budget -= len(data)
-                    return data
-            raise FileNotFoundError(name)
-
-    return Bounded(str(p))
 
 
 def _measure(m, p: Path, scale: float, rpy: tuple[float, float, float]) -> Geometry:
