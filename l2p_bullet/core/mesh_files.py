@@ -15,7 +15,7 @@ def bounded_resolver(p: Path, budget: int, limit: int):
     materials and textures), reading them in the mesh's folder only and at most ``budget`` bytes in all: a
     400-byte GLB may name a 3 GB buffer beside it, which trimesh would read whole before complaining. ``limit``
     is what the message names (the whole mesh's); ``.refused`` holds the error once the budget is spent."""
-    from trimesh.resolvers import FilePathResolver
+    from trimesh.resolvers import FilePathResolver  # lazy: trimesh is imported only when a mesh is read
 
     class Bounded(FilePathResolver):
         refused: SceneError | None = None
