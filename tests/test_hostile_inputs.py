@@ -307,6 +307,22 @@ def test_a_crafted_run_folder_is_refused_and_export_leaves_nothing(tmp_path, cas
     assert r.exit_code == 0, r.output
 
 
+@pytest.mark.parametrize("case", ["fps-zero", "frames-no-pose", "segments-overlap", "segments-too-many"])
+def test_a_crafted_run_folder_leaves_no_partial_rerun_recording(tmp_path, case):
+    pytest.importorskip("rerun")
+    kwargs, said = BAD_RUNS[case]
+    run = _run(tmp_path / "runs" / "r", **kwargs)
+    if case == "fps-zero":  # the recording reads the images' rate: a rendered run's summary.json
+        (run / "trajectory.json").write_text((run / "trajectory.json").read_text().replace('"fps": 0', '"fps": 30'))
+        (run / "frames").mkdir()
+        (run / "summary.json").write_text(json.dumps({"ok": True, "render": {"fps": 0}}))
+        said = '"render.fps" must be a frame rate above 0'
+    out = tmp_path / "out.rrd"
+    line = _one_line_error(CliRunner().invoke(main, ["export", str(run), str(out), "--format", "rerun"]))
+    assert re.search(said, line), line
+    assert not out.exists()
+
+
 def test_a_refused_export_into_an_empty_folder_leaves_it_empty(tmp_path):
     run = _run(tmp_path / "runs" / "r", fps=0)
     out = tmp_path / "out"

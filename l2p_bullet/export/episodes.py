@@ -92,7 +92,7 @@ def episode_from_run(run: str | Path) -> Episode:
         action = traj.get("action") or "an action"
         task = f"move {traj['mover']} {action} {traj['anchor']}"
     fps = frame_rate(traj["fps"], f"{run}/trajectory.json")
-    _check_frames(traj["frames"], traj["mover"], traj["anchor"], f"{run}/trajectory.json")
+    check_frames(traj["frames"], traj["mover"], traj["anchor"], f"{run}/trajectory.json")
     render = summary.get("render")
     images, image_fps = _read_images(run / "frames"), render.get("fps") if isinstance(render, dict) else None
     image_fps = frame_rate(image_fps, f"{run}/summary.json", "render.fps") if images and image_fps is not None else None
@@ -102,7 +102,7 @@ def episode_from_run(run: str | Path) -> Episode:
                    str((traj.get("arm") or {}).get("name") or "panda"))
 
 
-def _check_frames(frames: object, mover: object, anchor: object, source: str) -> None:
+def check_frames(frames: object, mover: object, anchor: object, source: str) -> None:
     """What an export reads of every frame, checked before anything is written: the mover's and the anchor's
     poses ([x, y, z, yaw]) and the tool's ``ee`` ([x, y, z]) of finite numbers, ``grasped``, and the arm's joints (as many in every
     frame); a crafted trajectory.json is one line, not a KeyError in the middle of a dataset."""
