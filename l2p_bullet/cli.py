@@ -75,10 +75,17 @@ def _stopping_signals_interrupt() -> Iterator[None]:
                 signal.signal(s, h)
 
 
+_INVISIBLE = re.compile("[\x80-\x9f\xad\u061c\u180e\u200b-\u200f\u2028-\u202e\u2060-\u2069\ufeff\ufff9-\ufffb]")
+"""Characters a terminal shows as nothing or that reorder what follows (C1 controls, zero-width and
+bidirectional marks): quoted from a user's file they would hide or reverse part of a message, so an error
+shows them escaped (``\\u202e``)."""
+
+
 def one_line(message: str, limit: int = 1000) -> str:
     """An error message as one printable line: file contents it quotes may hold newlines or control
     characters, and an error must never scroll a terminal or fake a second line."""
     text = re.sub(r"[\x00-\x1f\x7f]", lambda m: " " if m.group() in "\n\r\t" else "?", message)
+    text = _INVISIBLE.sub(lambda m: f"\\u{ord(m.group()):04x}", text)
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 

@@ -185,6 +185,17 @@ def plural(n: int, noun: str) -> str:
     return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
+def sizes(n: int, limit: int) -> tuple[str, str]:
+    """A size and its limit as two texts precise enough to differ ("16.21 MiB", "16 MiB"): rounded alike,
+    a file 3 % over its limit read "17 MB is more than the 17 MB"."""
+    if n >= 2**20 and limit >= 2**20:
+        for digits in range(0, 4):
+            a, b = f"{n / 2**20:.{digits}f}", f"{limit / 2**20:.{digits}f}"
+            if a != b:
+                return f"{a} MiB", f"{b} MiB"
+    return f"{n:,} bytes", f"{limit:,} bytes"
+
+
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
     """Return ' Did you mean "x"?' for the closest choice, or '' when nothing is close.
 

@@ -18,6 +18,7 @@ from typing import Any
 from .arms import ArmSpec, fit_scene
 from .core.contracts import MAX_SEED
 from .core.scene import Scene
+from .embodiment.sim.arms import check_description
 from .embodiment.sim.camera import RenderSettings
 from .errors import ExecutionError, PlanError, SceneError
 from .planning import resolve_planner
@@ -71,6 +72,7 @@ def admit(scene: object, options: RunOptions) -> tuple[Scene, ArmSpec]:
     options.check()
     scene = check_scene(scene)
     arm = options.arm_spec()
+    check_description(arm)  # a URDF PyBullet would crash on: refused before a folder is made
     return fit_scene(scene, arm), arm
 
 

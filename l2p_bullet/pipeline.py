@@ -105,7 +105,8 @@ class PerformResult:
         c, v = self.command, self.verdict
         fp = "n/a" if self.final_progress is None else f"{self.final_progress:.2f}"
         video = self.files.get("video")
-        return [f'{c.mover} {c.preposition} {" and ".join(c.anchors)}: action "{c.action}", '
+        how = "" if c.manner == "slide" else f"{c.manner}, "  # the manner it was performed and judged in
+        return [f'{c.mover} {c.preposition} {" and ".join(c.anchors)}: {how}action "{c.action}", '
                 f'{"success" if self.success else "FAILED"} ({v.get("reason", "")})',
                 f"final progress {fp} (planned {self.planned_progress:.2f}), "
                 f"block within {self.max_deviation_m * 1000:.1f} mm of the plan, "

@@ -31,7 +31,7 @@ FOREIGN = frozenset(hide_plugins.key(ep) for group in hide_plugins.GROUPS for ep
 built-ins)."""
 
 if FOREIGN:
-    _site = Path(tempfile.mkdtemp(prefix="l2p-tests-site-"))
+    _site = Path(tempfile.mkdtemp(prefix=hide_plugins.SITE_PREFIX))
     atexit.register(shutil.rmtree, _site, True)
     shutil.copy(hide_plugins.__file__, _site / "sitecustomize.py")
     os.environ[hide_plugins.VARIABLE] = json.dumps(sorted(FOREIGN | hide_plugins.hidden()))

@@ -17,6 +17,9 @@ GROUPS = ("l2p_bullet.actions", "l2p_bullet.arms", "l2p_bullet.manners")
 """Every entry-point group l2p-bullet discovers plugins in: a user's arm or manner plugin changes what the
 tests' listings see as much as an action plugin does."""
 VARIABLE = "L2P_TESTS_HIDDEN_PLUGINS"
+SITE_PREFIX = "l2p-tests-site-"
+"""How the conftest's folder holding this file as sitecustomize.py is named: a test that starts a Python with
+an environment of its own keeps that folder on its PYTHONPATH (tests/plugins/test_plugin_install.py)."""
 
 
 def dist_name(ep: metadata.EntryPoint) -> str:

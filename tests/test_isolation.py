@@ -64,3 +64,25 @@ def test_the_suite_ignores_installed_plugins_and_the_working_directory(tmp_path)
             in r.stdout), r.stdout[:1000]
     assert " passed" in r.stdout and "failed" not in r.stdout
     assert not any(cwd.iterdir()), sorted(p.name for p in cwd.iterdir())  # nothing written where it ran
+
+
+@pytest.mark.slow
+def test_the_plugin_tests_venv_hides_a_plugin_installed_in_the_users_environment(tmp_path):
+    """The same with "left-of" installed in the environment itself (its site-packages, as pip puts it), which
+    tests/plugins/test_plugin_install.py layers its throw-away environment on: that environment saw the
+    user's plugin and `new-action left-of` refused the name, erroring 4 tests."""
+    import sysconfig
+
+    user = tmp_path / "user-env"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(user)], check=True)
+    site = next((user / "lib").glob("python3*/site-packages"))
+    (site / "zz_host_env.pth").write_text(f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
+    copy_builtin_as_plugin(site, "next-to", "left-of", ["to the left of"], dist="l2p-left-of", module="l2p_left_of")
+    python = user / "bin" / "python"
+    seen = subprocess.run([str(python), "-m", "l2p_bullet.cli", "actions", "--json"], capture_output=True, text=True,
+                          check=True, cwd=tmp_path).stdout
+    assert '"left-of"' in seen  # installed for l2p-bullet in that environment
+    test = TESTS / "plugins" / "test_plugin_install.py::test_the_tutorials_names_are_free_in_the_test_environment"
+    r = subprocess.run([str(python), "-m", "pytest", "-p", "no:cacheprovider", str(test)], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and "1 passed" in r.stdout, r.stdout[-3000:] + r.stderr[-2000:]

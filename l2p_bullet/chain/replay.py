@@ -26,7 +26,7 @@ from ..language import Command, manner_of_sentence
 from ..options import RunOptions
 from ..plugins import arms as arm_plugins
 from ..plugins import registry
-from .clause import Clause
+from .clause import MAX_CLAUSES, Clause
 from .clauses import resolve_clauses
 from .forecast import Step
 from .run import ChainResult, _execute
@@ -76,6 +76,7 @@ def replay(path: str | None, demo: str | None, options: RunOptions, *, scene_pat
     doc = read_json(path) if path is not None else None
     scene = None if scene_path is None else load_scene(scene_path, mesh_dirs)
     if is_chain_plan(doc):
+        check_chain_plan(doc, str(path))  # before the run folder is made
         with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay",
                         inputs=inputs) as folder:
             r = replay_chain(doc, folder, scene=scene, render_settings=render, seed=options.seed,
@@ -94,6 +95,13 @@ def is_chain_plan(doc: object) -> bool:
     return isinstance(doc, dict) and isinstance(doc.get("clauses"), list) and isinstance(doc.get("chain"), dict)
 
 
+def check_chain_plan(doc: dict, source: str = "plan.json") -> None:
+    """Refuse a chain plan.json with more clauses than a chain may have (a run stops at MAX_CLAUSES: a longer
+    list is no run's, and replaying it would run for as long as its author liked)."""
+    if len(doc["clauses"]) > MAX_CLAUSES:
+        raise PathError(f"{source} lists {len(doc['clauses'])} clauses; a chain has at most {MAX_CLAUSES}")
+
+
 def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_settings: Any = None, seed: int = 0,
                  on_stage=None, plugins: list | None = None, arm: str | None = None,
                  path: str | None = None) -> ChainResult:
@@ -102,6 +110,7 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
     executes it (default the Panda; the scene's workspace is fitted to its reach). ``path``: the file ``doc`` was
     read from, recorded as a one-clause replay records its source (plan.json's and summary.json's ``replay``)."""
     source = "plan.json"
+    check_chain_plan(doc, source if path is None else str(path))
     if scene is None:
         scene = Scene.from_dict(doc["chain"].get("scene"), source=f"{source}: chain.scene").validate()
     spec = arm_plugins.get(arm)

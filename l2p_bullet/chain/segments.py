@@ -14,6 +14,7 @@ from typing import Any
 from ..core.contracts import read_json, trajectory_poses
 from ..errors import PathError
 from ..progress.scoring import curve_from
+from .clauses import MAX_CLAUSES
 
 
 def segments_of(doc: dict, source: str = "trajectory.json") -> list[dict] | None:
@@ -23,11 +24,18 @@ def segments_of(doc: dict, source: str = "trajectory.json") -> list[dict] | None
         return None
     n = len(doc.get("frames") or [])
     names = set(doc.get("objects") or {})
+    if not isinstance(segs, list) or not 1 <= len(segs) <= MAX_CLAUSES:  # a chain stops at MAX_CLAUSES clauses
+        count = len(segs) if isinstance(segs, list) else type(segs).__name__
+        raise PathError(f'{source}: "segments" must list 1 to {MAX_CLAUSES} clauses (got {count})')
     try:
+        after = 0  # each clause's frames follow the previous clause's, from frame 0 on
         for s in segs:
             first, last = int(s["first_frame"]), int(s["last_frame"])
             if not 0 <= first <= last < n:
                 raise ValueError(f"frames {first}..{last} of {n}")
+            if first != after:
+                raise ValueError(f"frames {first}..{last} do not follow the previous clause's (next frame {after})")
+            after = last + 1
             if not first <= int(s.get("action_from", first)) <= last:
                 raise ValueError(f"action_from {s['action_from']} outside frames {first}..{last}")
             for name in [s["mover"], *s["anchors"]]:

@@ -12,7 +12,8 @@ from .common import MAX_SEED
 
 
 @click.command("evaluate")
-@click.option("--actions", default=None, help="Comma-separated actions (default: every installed one).")
+@click.option("--actions", default=None,
+              help="Comma-separated actions (default: the built-in ones; installed plugins are named, not run).")
 @click.option("--scenes", type=int, default=None, help="N seeded random scenes (default 10; seeds --seed .. --seed+N-1).")
 @click.option("--scene-file", type=click.Path(dir_okay=False), default=None,
               help="A JSON-lines file, one scene per line (optional id, mover, anchor, seed per line).")

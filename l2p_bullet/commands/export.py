@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import shutil
+from pathlib import Path
 
 import click
 
@@ -34,17 +36,10 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     broken off) is skipped with a note on stderr; one whose action failed is exported.
     """
     from ..core.folders import unfinished
-    from ..core.runfolder import run_folder
-    from ..errors import PathError, plural
+    from ..core.runfolder import run_folder, run_folder_state
+    from ..errors import L2PError, PathError, RunFolderError, plural
     from ..evaluate.progressbar import ProgressBar
-    from ..export.episodes import (
-        EXPORT_FILES,
-        demo_episodes,
-        demo_specs,
-        episodes_from_run,
-        run_folders,
-        write_jsonl,
-    )
+    from ..export.episodes import EXPORT_FILES, demo_specs, run_folders
 
     if not runs and not demos:
         raise PathError("nothing to export: give run folders and/or --demos")
@@ -65,39 +60,59 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
     specs = demo_specs(list(demos)) if demos else []
     # evaluate's progress bar on stderr: a rendered demonstration takes seconds each
     bar = ProgressBar(len(sources) + len(specs), unit="episodes", label="export: reading")
-    with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES, inputs=tuple(runs),
-                    option="OUT") as folder:  # export's folder is its argument OUT, not an --out option
-        bar.advance(0)  # a first line at once (the folder is claimed): the first rendered demonstration is slow
-        episodes = []
+    before = run_folder_state(Path(out))
+    try:
+        with run_folder(out, force=force, prefix="export", command="export", files=EXPORT_FILES, inputs=tuple(runs),
+                        option="OUT", restore_on_error=True) as folder:  # OUT: export's argument, not --out
+            _export(folder, out, fmt, sources, demos, no_video, as_json, bar)
+    except L2PError as e:
+        # a refused export (a crafted run, runs of different arms) leaves OUT as it was, so the retry just works:
+        # gone if it was not there, empty if it was (a finished export it was to replace is back: restore_on_error)
+        if before in ("missing", "empty", "incomplete") and not isinstance(e, RunFolderError):
+            shutil.rmtree(out, ignore_errors=True)
+            if before == "empty":
+                Path(out).mkdir(exist_ok=True)
+        raise
+
+
+def _export(folder, out: str, fmt: str, sources: list, demos: tuple[str, ...], no_video: bool, as_json: bool,
+            bar) -> None:
+    """Read ``sources`` (run folders) and ``demos`` and write them into the claimed ``folder`` in ``fmt``."""
+    from ..errors import plural
+    from ..evaluate.progressbar import ProgressBar
+    from ..export.episodes import demo_episodes, episodes_from_run, write_jsonl
+
+    bar.advance(0)  # a first line at once (the folder is claimed): the first rendered demonstration is slow
+    episodes = []
+    try:
+        for r in sources:
+            episodes.extend(episodes_from_run(r))  # a chain run gives one episode per clause
+            bar.advance()
+        for ep in demo_episodes(list(demos), render=not no_video and fmt == "lerobot") if demos else []:
+            episodes.append(ep)
+            bar.advance()
+    finally:
+        bar.close()
+    if fmt == "lerobot":
+        from ..export.lerobot import steps, write_lerobot
+
+        video = False if no_video else all(e.images is not None for e in episodes) or None
+        bar = ProgressBar(steps(episodes, bool(video)), unit="steps", label="export: writing")
         try:
-            for r in sources:
-                episodes.extend(episodes_from_run(r))  # a chain run gives one episode per clause
-                bar.advance()
-            for ep in demo_episodes(list(demos), render=not no_video and fmt == "lerobot") if demos else []:
-                episodes.append(ep)
-                bar.advance()
+            info = write_lerobot(episodes, folder, video=video, tick=bar.advance)
         finally:
             bar.close()
-        if fmt == "lerobot":
-            from ..export.lerobot import steps, write_lerobot
-
-            video = False if no_video else all(e.images is not None for e in episodes) or None
-            bar = ProgressBar(steps(episodes, bool(video)), unit="steps", label="export: writing")
-            try:
-                info = write_lerobot(episodes, folder, video=video, tick=bar.advance)
-            finally:
-                bar.close()
-            has_video = info["video_path"] is not None
-            result = {"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
-                      "tasks": info["total_tasks"], "fps": info["fps"], "video": has_video}
-            said = (f"wrote {plural(info['total_episodes'], 'episode')} ({info['total_frames']} frames at {info['fps']} "
-                    f"fps, {plural(info['total_tasks'], 'task')}, {'with' if has_video else 'without'} video) to {out}, "
-                    "a LeRobot v3.0 dataset")
-        else:
-            path = write_jsonl(episodes, folder)
-            result = {"out": str(path), "episodes": len(episodes)}
-            said = f"wrote {plural(len(episodes), 'episode')} ({sum(len(e.frames) for e in episodes)} frames) to {path}"
-        click.echo(json.dumps(result) if as_json else said)  # the JSON as export printed it always before --json
+        has_video = info["video_path"] is not None
+        result = {"out": out, "episodes": info["total_episodes"], "frames": info["total_frames"],
+                  "tasks": info["total_tasks"], "fps": info["fps"], "video": has_video}
+        said = (f"wrote {plural(info['total_episodes'], 'episode')} ({info['total_frames']} frames at {info['fps']} "
+                f"fps, {plural(info['total_tasks'], 'task')}, {'with' if has_video else 'without'} video) to {out}, "
+                "a LeRobot v3.0 dataset")
+    else:
+        path = write_jsonl(episodes, folder)
+        result = {"out": str(path), "episodes": len(episodes)}
+        said = f"wrote {plural(len(episodes), 'episode')} ({sum(len(e.frames) for e in episodes)} frames) to {path}"
+    click.echo(json.dumps(result) if as_json else said)  # the JSON as export printed it always before --json
 
 
 def _export_rerun(sources: list, out: str, demos: tuple[str, ...], force: bool) -> dict:

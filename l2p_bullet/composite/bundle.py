@@ -12,6 +12,7 @@ from ..core.atomic import write_atomic
 from ..core.bounded import read_bounded
 from ..errors import BundleError
 from ..plugins.bundle import MANIFEST, _write_manifest, read_manifest, sha256_file
+from ..plugins.validate import SHA256
 from .recipe import MAX_DEMOS, CompositeError, Demonstration, Recipe
 
 RECIPE_FILE = "recipe.json"
@@ -66,20 +67,34 @@ def read_recipe(folder: str | Path) -> Recipe:
     """The recipe of the composite bundle in ``folder``, checked against the manifest's digest."""
     folder = Path(folder)
     man = read_manifest(folder)
-    want = man.get("weights", {}).get(RECIPE_FILE, {}).get("sha256")
     path = folder / RECIPE_FILE
     if not path.is_file():
         raise CompositeError(f"{folder} has no {RECIPE_FILE}: teach the composite first (l2p-bullet teach ...)")
-    if want and sha256_file(path) != want:
-        raise CompositeError(f"{path} is not the file its manifest records (digest differs): re-train it")
+    # both files as learned: a recipe without its digest, or beside other demonstrations, is not what was taught
+    for name, hint in ((RECIPE_FILE, "teach it again"), (DEMOS_FILE, "teach it again (train on the page), or put "
+                                                                     "back the demos.json it was learned from")):
+        entry = (man.get("weights") or {}).get(name) if isinstance(man.get("weights"), dict) else None
+        want = entry.get("sha256") if isinstance(entry, dict) else None
+        if want is None and name == DEMOS_FILE and not (folder / name).is_file():
+            continue  # a recipe may ship without the rows it was learned from
+        if not (isinstance(want, str) and SHA256.fullmatch(want)):
+            raise CompositeError(f'{folder / MANIFEST}: [weights."{name}"] records no sha256 of {name}; {hint}')
+        if not (folder / name).is_file():
+            raise CompositeError(f"{folder / name} is missing, though its manifest records it; {hint}")
+        if sha256_file(folder / name) != want:
+            raise CompositeError(f"{folder / name} is not the file its manifest records (digest differs); {hint}")
     return Recipe.from_dict(_read(path))
+
+
+def _no_constant(name: str) -> float:
+    raise ValueError(f"{name} is not a JSON number")
 
 
 def _read(path: Path) -> dict:
     # bounded as read, not by st_size: a link to /dev/zero has size 0 and never ends
     raw = read_bounded(path, MAX_BYTES, CompositeError, str(path))
     try:
-        d = json.loads(raw.decode("utf-8"))
+        d = json.loads(raw.decode("utf-8"), parse_constant=_no_constant)  # NaN is no angle
     except (UnicodeDecodeError, json.JSONDecodeError, RecursionError, ValueError) as e:
         raise CompositeError(f"cannot read {path}: {type(e).__name__}: {str(e)[:120]}") from None
     if not isinstance(d, dict):

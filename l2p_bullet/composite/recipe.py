@@ -132,14 +132,24 @@ class Recipe:
     @classmethod
     def from_dict(cls, d: dict) -> Recipe:
         try:
+            for key in ("monotone", "aligned"):  # bool("no") is True: a recipe says true or false
+                if not isinstance(d[key], bool):
+                    raise TypeError(f'"{key}" must be true or false (got {str(d[key])[:30]})')
+            for key in ("stays", "demos"):
+                if isinstance(d[key], bool) or not isinstance(d[key], int):
+                    raise TypeError(f'"{key}" must be a whole number (got {str(d[key])[:30]})')
+            for key in ("spacing", "axis_offset_deg"):
+                if isinstance(d[key], bool) or not isinstance(d[key], int | float) or not math.isfinite(d[key]):
+                    raise ValueError(f'"{key}" must be a finite number (got {str(d[key])[:30]})')
             r = cls(str(d["action"]), str(d["anchor"]), int(d["stays"]), str(d["order"]), float(d["spacing"]),
                     bool(d["monotone"]), float(d["axis_offset_deg"]), bool(d["aligned"]), int(d["demos"]),
                     dict(d.get("evidence", {})), list(d.get("readings", [])))
         except (KeyError, TypeError, ValueError) as e:
             raise CompositeError(f"not a composite recipe ({type(e).__name__}: {e})") from None
-        if r.anchor not in ("previous", "first") or r.order != "named" or not 0 <= r.spacing <= 5 or r.stays != 0:
+        if (r.anchor not in ("previous", "first") or r.order != "named" or not 0 <= r.spacing <= 5 or r.stays != 0
+                or not -180 <= r.axis_offset_deg <= 180):
             raise CompositeError(f"a recipe this version cannot perform: anchor={r.anchor}, order={r.order}, "
-                                 f"stays={r.stays}, spacing={r.spacing}")
+                                 f"stays={r.stays}, spacing={r.spacing}, axis_offset_deg={r.axis_offset_deg}")
         return r
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import L2PError, PathError
+from ..errors import L2PError, PathError, sizes
 from .bounded import read_bounded
 
 MAX_SEED = 2**32 - 1
@@ -220,6 +220,20 @@ def hold_before(values: np.ndarray, first: int) -> np.ndarray:
     return np.r_[np.full(first, values[0] if len(values) else np.nan), values]
 
 
+MAX_FPS = 1000.0
+"""Highest frame rate a run folder may state (trajectories are recorded at 30 fps, videos at 10-30)."""
+
+
+def frame_rate(value: object, source: str, key: str = "fps") -> float:
+    """A run folder's frame rate, checked: a number above 0 and at most :data:`MAX_FPS` (0 divides by zero,
+    -30 or 1e300 would be written into an exported dataset's meta/info.json)."""
+    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    if not (ok and 0 < value <= MAX_FPS):
+        raise PathError(f'{source}: "{key}" must be a frame rate above 0 and at most {MAX_FPS:g} per second '
+                        f"(got {str(value)[:30]})")
+    return float(value)
+
+
 def action_from(doc: dict, source: str = "trajectory.json") -> int:
     """trajectory.json's ``action_from`` (a run whose plan came near first: the first frame of the action
     proper), checked against its frames; 0 where there is none (every other run: the whole episode)."""
@@ -268,7 +282,8 @@ def load_json_file(path: str | Path, error: type[L2PError] = PathError, what: st
     label = f"{what} {p}" if what else str(p)
     try:
         if p.is_file() and p.stat().st_size > MAX_JSON_BYTES:
-            raise error(f"{label} is {p.stat().st_size / 1e6:.0f} MB; the limit is {MAX_JSON_BYTES // 2**20} MiB")
+            have, most = sizes(p.stat().st_size, MAX_JSON_BYTES)
+            raise error(f"{label} is {have}; the limit is {most}")
     except OSError as e:
         raise error(f"cannot read {label}: {e.strerror or e}") from None
     raw = read_bounded(p, MAX_JSON_BYTES, error, label)  # /dev/zero or a FIFO: the size is found by reading

@@ -29,6 +29,7 @@ declared triangle count; then its face count (:data:`MAX_MESH_FACES`), watertigh
 
 from __future__ import annotations
 
+import io
 import math
 import os
 from dataclasses import dataclass
@@ -37,8 +38,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SceneError, did_you_mean
+from ..errors import SceneError, did_you_mean, sizes
+from .bounded import read_bounded
 from .geometry import convex_hull
+from .mesh_files import bounded_resolver
 
 SHAPES = ("cube", "box", "cylinder", "mesh")
 MESH_SUFFIXES = (".obj", ".stl", ".glb")
@@ -46,7 +49,11 @@ MIN_EXTENT, MAX_EXTENT = 0.01, 0.25
 """Every extent of a non-cube object (metres): thinner than 1 cm the fingertips miss it; wider than 25 cm it
 no longer fits the workspace's 25 cm radius with room to move."""
 MAX_MESH_BYTES = 16 * 1024 * 1024
-"""A mesh file larger than this is refused before it is read (a 10-million-face mesh is 500 MB)."""
+"""A mesh file larger than this is refused before it is read (a 10-million-face mesh is 500 MB); it bounds what
+a mesh reads in all, the files it names (a GLB's buffers and images, an OBJ's materials) included."""
+MIN_SCALE, MAX_SCALE = 1e-6, 1e6
+"""A mesh's ``scale``: from micrometres to kilometres per file unit; beyond, its volume (scale cubed) is no
+number (1e308 cubed overflows) and no object of 1-25 cm comes out anyway."""
 MAX_MESH_FACES = 200_000
 """A mesh with more triangles is refused (its hull is what the arm meets; decimate it first)."""
 CYLINDER_SIDES = 16
@@ -225,8 +232,9 @@ def _check_size(path: Path) -> None:
     """Refuse a file too large to read, before reading it (its size, and a binary STL's declared count)."""
     size = os.stat(path).st_size
     if size > MAX_MESH_BYTES:
-        raise SceneError(f"mesh {path.name}: {size / 1e6:.0f} MB is more than the {MAX_MESH_BYTES / 1e6:.0f} MB "
-                         "a mesh may have; decimate it (its convex hull is what the arm meets)")
+        have, most = sizes(size, MAX_MESH_BYTES)
+        raise SceneError(f"mesh {path.name}: {have} is more than the {most} a mesh may have; decimate it (its "
+                         "convex hull is what the arm meets)")
     if path.suffix.lower() == ".stl" and size >= 84:
         with open(path, "rb") as f:
             head = f.read(84)
@@ -248,14 +256,23 @@ def _rotation(rpy: tuple[float, float, float]) -> np.ndarray:
 def mesh(path: str, scale: float, rpy: tuple[float, float, float], mtime_ns: int = 0) -> Geometry:
     """A mesh file's geometry (cached per file, scale, rotation and modification time)."""
     p = Path(path)
+    if not (is_number(scale) and MIN_SCALE <= scale <= MAX_SCALE):
+        raise SceneError(f'mesh {p.name}: "scale" must be from {MIN_SCALE:g} to {MAX_SCALE:g} (got {str(scale)[:30]})')
     _check_size(p)
     import trimesh
 
+    raw = read_bounded(p, MAX_MESH_BYTES, SceneError, f"mesh {p.name}")
+    resolver = bounded_resolver(p, MAX_MESH_BYTES - len(raw), MAX_MESH_BYTES)
     try:
-        m = trimesh.load(str(p), force="mesh", process=True, file_type=p.suffix.lower()[1:])
+        m = trimesh.load(io.BytesIO(raw), force="mesh", process=True, file_type=p.suffix.lower()[1:],
+                         resolver=resolver)
     except Exception as e:  # any parser's complaint about a file that is not a mesh
+        if resolver.refused:
+            raise resolver.refused from None
         raise SceneError(f"mesh {p.name}: not a readable {p.suffix.lower()[1:].upper()} mesh "
                          f"({type(e).__name__}: {str(e)[:120]})") from None
+    if resolver.refused:  # a parser that shrugs off a missing material must not shrug off the limit
+        raise resolver.refused
     if not isinstance(m, trimesh.Trimesh) or len(m.faces) == 0:
         raise SceneError(f"mesh {p.name}: the file holds no triangles")
     if len(m.faces) > MAX_MESH_FACES:

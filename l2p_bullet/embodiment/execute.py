@@ -365,7 +365,8 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     files = {"trajectory": out_dir / "trajectory.json"}
     recorder.write_trajectory(files["trajectory"], meta, sizes)
     if recorder.film is not None:
-        caption = meta.get("sentence") if meta.get("manner") is None else f'{meta["manner"]}: {meta.get("sentence")}'
+        text = meta.get("sentence") or meta.get("caption")  # a replayed demonstration has no sentence of its own
+        caption = text if meta.get("manner") is None else f'{meta["manner"]}: {text}'
         files |= recorder.write_images(out_dir, render.video, caption)
     return files
 

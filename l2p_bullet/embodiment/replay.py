@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..actions import BUILTIN
 from ..arms import PANDA, ArmSpec
 from ..core.contracts import Plan, dumps_json, motion_from_dict, read_json
 from ..core.runfolder import write_summary
@@ -34,6 +35,7 @@ class Source:
     info: dict = field(default_factory=dict)
     manner: str = "slide"  # a plan's: what its sentence's verb asked for (a carried path crosses blocks)
     sentence: str | None = None  # a plan's sentence (trajectory.json's and summary.json's); None for a motion
+    caption: str | None = None  # the video's caption when there is no sentence: a demonstration's action as said
 
 
 def replay_scene(path_json: str | None, scene: Scene | None, scene_path: str | None = None,
@@ -84,7 +86,8 @@ def _motion_source(path_json: str | None, demo: str | None, scene: Scene, mover:
         d = get_demo(canonical_action(action), int(index))
         fit = retarget(d.event_mover, d.event_anchor, d.size, scene, mover, anchor)
         return Source(f"demonstration {d.id}", mover, anchor, fit.path, d.action,
-                      {"source": {"demo": d.id, "frames": [d.start, d.end]}, "retarget": _fit_info(fit)})
+                      {"source": {"demo": d.id, "frames": [d.start, d.end]}, "retarget": _fit_info(fit)},
+                      caption=demo_caption(d.action, mover, anchor))
 
     data = read_json(path_json)
     if "path" in data:  # plan.json: already in the scene frame
@@ -99,6 +102,13 @@ def _motion_source(path_json: str | None, demo: str | None, scene: Scene, mover:
     fit = retarget(m.mover, m.anchor, m.size, scene, mover, anchor)
     return Source(f"motion {Path(path_json).name}", mover, anchor, fit.path, m.action,
                   {"source": {"motion": str(path_json)}, "retarget": _fit_info(fit)})
+
+
+def demo_caption(action: str, mover: str, anchor: str) -> str:
+    """What a replayed demonstration shows, said as its action's example sentence with these blocks ("move C
+    around D"): the video's caption, where a performed run shows its sentence."""
+    words = BUILTIN[action].sentence.split() if action in BUILTIN else ["move", "A", action, "B"]
+    return " ".join([words[0], mover, *words[2:-1], anchor])
 
 
 def _fit_info(fit) -> dict:
@@ -129,6 +139,8 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
             "arm": arm.name}
     if source.sentence is not None:  # a plan's: the sentence it was planned for, as a chain's replay keeps its own
         meta["sentence"] = source.sentence
+    elif source.caption is not None:
+        meta["caption"] = source.caption
     ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
                       on_stage=on_stage, arm=arm, manner=source.manner)
     if plan_file is not None:

@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import os
 import signal
+import socket
+import threading
 from collections.abc import Callable, Iterable
 
 from ..errors import EvaluationError, MissingExtraError
@@ -46,6 +48,51 @@ class _Actor:
         return self.worker.run(Task(**task))
 
 
+CONNECT_TIMEOUT_S = 30.0
+"""How long joining a cluster may take: Ray itself retries an address nobody answers on forever."""
+
+
+def connect_timeout() -> float:
+    """:data:`CONNECT_TIMEOUT_S`, or the seconds in ``L2P_RAY_CONNECT_TIMEOUT`` (tests, slow networks)."""
+    try:
+        value = float(os.environ.get("L2P_RAY_CONNECT_TIMEOUT", CONNECT_TIMEOUT_S))
+    except ValueError:
+        value = CONNECT_TIMEOUT_S
+    return value if 0 < value < 1e6 else CONNECT_TIMEOUT_S
+
+
+def _connect(ray, address: str, timeout: float) -> None:
+    """``ray.init(address)`` given up after ``timeout`` seconds with a one-line EvaluationError. A
+    ``host:port`` that refuses a TCP connection is said at once; one that accepts but never answers as Ray
+    does (or ``auto`` naming a cluster that is gone) is given up when the timeout ends: ``ray.init`` runs in
+    a daemon thread, left behind blocked (nothing of it is used) when the command exits."""
+    hostport = address.removeprefix("ray://")
+    host, sep, port = hostport.rpartition(":")
+    if sep and host and port.isdigit():
+        try:
+            socket.create_connection((host.strip("[]"), int(port)), timeout=min(timeout, 10.0)).close()
+        except OSError as e:
+            raise EvaluationError(f'cannot reach Ray at "{address}": {e.strerror or type(e).__name__}; is a Ray '
+                                  "cluster running there (ray start --head)?") from None
+    outcome: dict = {}
+
+    def init() -> None:
+        try:
+            ray.init(address=address, log_to_driver=False, configure_logging=False, logging_level="ERROR")
+            outcome["ok"] = True
+        except BaseException as e:  # handed to the caller's thread
+            outcome["error"] = e
+
+    thread = threading.Thread(target=init, daemon=True, name="ray-connect")
+    thread.start()
+    thread.join(timeout)
+    if "error" in outcome:
+        raise outcome["error"]
+    if "ok" not in outcome:
+        raise EvaluationError(f'Ray at "{address}" did not answer within {timeout:g} s; check the address '
+                              "(ray status on the cluster) or set L2P_RAY_CONNECT_TIMEOUT")
+
+
 def run_ray(tasks: Iterable[Task], address: str, workers: int, on_row: Callable[[dict], None]) -> None:
     """Run ``tasks`` on Ray (see the module docstring); ``on_row`` gets every row as it arrives."""
     ray = _import_ray()
@@ -59,8 +106,10 @@ def run_ray(tasks: Iterable[Task], address: str, workers: int, on_row: Callable[
                 ray.init(num_cpus=max(1, workers), include_dashboard=False, log_to_driver=False,
                          configure_logging=False, logging_level="ERROR")
             else:
-                ray.init(address=address, log_to_driver=False, configure_logging=False, logging_level="ERROR")
+                _connect(ray, address, connect_timeout())
             started = True
+    except EvaluationError:
+        raise
     except Exception as e:  # ConnectionError, ValueError... from Ray: the user's address is wrong
         raise EvaluationError(f'cannot start or reach Ray at "{address}": {type(e).__name__}: {e}') from None
     try:

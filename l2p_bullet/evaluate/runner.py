@@ -47,7 +47,7 @@ more than the cores only costs memory. A Ray cluster's actors (``--ray ADDRESS``
 class EvaluationConfig:
     """What to evaluate (stored in the results table: ``--resume`` runs exactly this again)."""
 
-    actions: list[str] = field(default_factory=list)  # empty: every usable installed action
+    actions: list[str] = field(default_factory=list)  # empty: the usable built-in actions (_tasks)
     scenes: int | None = None  # N seeded random scenes (the default source: DEFAULT_SCENES)
     scene_file: str | None = None  # or a JSON-lines file of scenes
     study: bool = False  # or the original study's start configurations
@@ -240,11 +240,22 @@ def _resumed(config: EvaluationConfig | None, stored: dict | None) -> Evaluation
     return EvaluationConfig.from_dict(stored)
 
 
+BUILTIN_PACKAGE = "l2p-bullet"
+"""The distribution of the built-in actions: what ``evaluate`` runs unless ``--actions`` says otherwise."""
+
+
 def _tasks(config: EvaluationConfig, out: Path, plugins: list) -> tuple[list[Task], dict[str, str]]:
     """The evaluation's tasks, and why runs of some actions are left out (action -> note)."""
-    actions = config.actions or [p.name for p in plugins if p.ok]
+    # the built-in actions by default, whatever else is installed: the published tables stay reproducible
+    # without --actions, and an installed plugin is named (it is evaluated when --actions names it)
+    actions = config.actions or [p.name for p in plugins if p.ok and p.package == BUILTIN_PACKAGE]
+    extras = [] if config.actions else [p.name for p in plugins if p.ok and p.package != BUILTIN_PACKAGE]
+    if not actions:
+        actions, extras = extras, []  # no built-in action is usable here: the installed ones, as before
     if not actions:
         raise EvaluationError("no usable action plugin is installed (see: l2p-bullet actions)")
+    extra_notes = {name: f'the installed action "{name}" is not in the default set (the built-in actions); '
+                         f"evaluate it with --actions {','.join(actions + extras)}" for name in extras}
     resolve_planner(config.planner)  # a typo fails before anything runs
     scenes = config.scene_set()
     if config.chains:
@@ -255,8 +266,8 @@ def _tasks(config: EvaluationConfig, out: Path, plugins: list) -> tuple[list[Tas
         return make_chain_tasks(scenes, config.chains, actions, planner=config.planner,
                                 render_every=config.render_every, keep=config.keep, out_dir=str(out),
                                 plugins=plugins, budget=config.budget, threshold=config.threshold,
-                                arm=config.arm), {}
-    notes = skipped(scenes, actions, plugins)
+                                arm=config.arm), extra_notes
+    notes = extra_notes | skipped(scenes, actions, plugins)
     tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
                        render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,
                        budget=config.budget, threshold=config.threshold, arm=config.arm,

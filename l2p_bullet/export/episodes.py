@@ -15,7 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.contracts import load_json_file, trajectory_poses
+from ..core.contracts import frame_rate, load_json_file, trajectory_poses
+from ..core.folders import unfinished
+from ..core.runfolder import MARKER, run_folder_command
 from ..core.scene import default_scene
 from ..core.vocabulary import ACTIONS, canonical_action
 from ..data.demos import load_demos
@@ -49,11 +51,13 @@ def run_folders(paths: list[str | Path]) -> list[Path]:
     under another one named) is exported once."""
     out: list[Path] = []
     for p in map(Path, paths):
-        if (p / "trajectory.json").is_file():
+        if (p / "trajectory.json").is_file() or _broken_off(p):
             out.append(p)
         elif p.is_dir():
-            found = sorted(t.parent for t in p.rglob("trajectory.json")  # not hidden ones (a run put aside
-                           if not any(part.startswith(".") for part in t.relative_to(p).parts))  # by --force), as review
+            # not hidden ones (a run put aside by --force), as review
+            found = sorted({t.parent for name in ("trajectory.json", MARKER) for t in p.rglob(name)
+                            if not any(part.startswith(".") for part in t.relative_to(p).parent.parts)
+                            and (name == "trajectory.json" or _broken_off(t.parent))})
             if not found:
                 raise PathError(f"{p} holds no run folder (no trajectory.json in it or below it)")
             out += found
@@ -61,6 +65,13 @@ def run_folders(paths: list[str | Path]) -> list[Path]:
             raise PathError(f"{p} is not a run folder")
     seen: set[Path] = set()
     return [p for p in out if not (p.resolve() in seen or seen.add(p.resolve()))]
+
+
+def _broken_off(folder: Path) -> bool:
+    """A run folder whose run stopped before it wrote trajectory.json (interrupted, failed): the command
+    skips it with a note, as it skips one that stopped later, instead of refusing the whole export."""
+    return ((folder / MARKER).is_file() and not (folder / "trajectory.json").exists()
+            and run_folder_command(folder) not in ("evaluate", "export") and unfinished(folder) is not None)
 
 
 def episode_from_run(run: str | Path) -> Episode:
@@ -80,11 +91,38 @@ def episode_from_run(run: str | Path) -> Episode:
     if not task:
         action = traj.get("action") or "an action"
         task = f"move {traj['mover']} {action} {traj['anchor']}"
-    images, image_fps = _read_images(run / "frames"), (summary.get("render") or {}).get("fps")
-    return Episode(task, traj["frames"], float(traj["fps"]), traj["mover"], traj["anchor"], str(run),
-                   images or None, float(image_fps) if images and image_fps else None,
+    fps = frame_rate(traj["fps"], f"{run}/trajectory.json")
+    check_frames(traj["frames"], traj["mover"], traj["anchor"], f"{run}/trajectory.json")
+    render = summary.get("render")
+    images, image_fps = _read_images(run / "frames"), render.get("fps") if isinstance(render, dict) else None
+    image_fps = frame_rate(image_fps, f"{run}/summary.json", "render.fps") if images and image_fps is not None else None
+    return Episode(task, traj["frames"], fps, traj["mover"], traj["anchor"], str(run),
+                   images or None, image_fps if images else None,
                    {"action": traj.get("action"), "success": summary.get("success")},
                    str((traj.get("arm") or {}).get("name") or "panda"))
+
+
+def check_frames(frames: object, mover: object, anchor: object, source: str) -> None:
+    """What an export reads of every frame, checked before anything is written: the mover's and the anchor's
+    poses ([x, y, z, yaw]) and the tool's ``ee`` ([x, y, z]) of finite numbers, ``grasped``, and the arm's joints (as many in every
+    frame); a crafted trajectory.json is one line, not a KeyError in the middle of a dataset."""
+    if not isinstance(frames, list) or not frames:
+        raise PathError(f'{source}: "frames" must be a non-empty list')
+    if not (isinstance(mover, str) and isinstance(anchor, str)):
+        raise PathError(f'{source}: "mover" and "anchor" must be object names')
+    try:
+        for f in frames:
+            if "grasped" not in f:
+                raise KeyError("grasped")
+        values = np.array([[*f["poses"][mover], *f["poses"][anchor], *f["ee"]] for f in frames], float)
+        joints = np.array([f.get("arm") or [] for f in frames], float)
+        progress = np.array([np.nan if f.get("progress") is None else f["progress"] for f in frames], float)
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError) as e:
+        raise PathError(f"{source}: a malformed frame ({type(e).__name__}: {str(e)[:80]}); every frame needs "
+                        f'"poses" of {mover[:40]} and {anchor[:40]}, "ee" and "grasped"') from None
+    if values.shape != (len(frames), 11) or not np.all(np.isfinite(values)) or joints.ndim != 2 or progress.ndim != 1:
+        raise PathError(f'{source}: every frame\'s poses must be [x, y, z, yaw] and its "ee" [x, y, z] '
+                        '(finite numbers), its "arm" as many joint angles as the other frames\'')
 
 
 def episodes_from_run(run: str | Path) -> list[Episode]:

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.contracts import load_json_file
+from ..core.contracts import frame_rate, load_json_file
 from ..errors import DataError, PathError
 
 TIMELINE = "time"
@@ -49,6 +49,8 @@ def entity_name(run: Path) -> str:
 def write_rerun(runs: list[Path], out: Path) -> dict:
     """Write ``runs`` (run folders) into the recording ``out``; returns what was written."""
     rr = _rerun()
+    for run in runs:  # every run checked before the recording is opened: a refused one leaves no partial .rrd
+        check_run(run)
     rec = rr.RecordingStream("l2p_bullet", recording_id=f"l2p-export-{out.stem}")
     rec.save(str(out))
     names: list[str] = []
@@ -71,6 +73,23 @@ def _read(path: Path) -> dict:
     if not isinstance(doc, dict):
         raise DataError(f"{path}: not a JSON object")
     return doc
+
+
+def check_run(run: Path) -> None:
+    """What a crafted run folder may get wrong, said in one line before anything is written: its frames
+    (what an episode export reads), its segments (1 to 10, contiguous) and the rate of its images."""
+    from ..chain.segments import segments_of  # lazy, as episodes: they load the planner and the simulator
+    from .episodes import check_frames
+
+    source = f"{run}/trajectory.json"
+    traj = _read(run / "trajectory.json")
+    check_frames(traj.get("frames"), traj.get("mover"), traj.get("anchor"), source)
+    if traj.get("segments") is not None:
+        segments_of(traj, source)
+    if (run / "frames").is_dir() and (run / "summary.json").is_file():
+        render = _read(run / "summary.json").get("render")
+        if isinstance(render, dict) and render.get("fps") is not None:
+            frame_rate(render["fps"], f"{run}/summary.json", "render.fps")
 
 
 def log_run(rr, rec, run: Path, name: str) -> None:
@@ -162,7 +181,8 @@ def _log_images(rr, rec, run: Path, root: str) -> None:
     if not pngs:
         return
     summary = _read(run / "summary.json") if (run / "summary.json").is_file() else {}
-    fps = float(((summary.get("render") or {}).get("fps")) or 10.0)
+    render = summary.get("render") if isinstance(summary.get("render"), dict) else {}
+    fps = frame_rate(render["fps"], f"{run}/summary.json", "render.fps") if render.get("fps") is not None else 10.0
     for i, png in enumerate(pngs):
         rec.set_time(TIMELINE, duration=i / fps)
         rec.log(f"{root}/camera/image", rr.EncodedImage(path=png, media_type="image/png"))

@@ -19,7 +19,9 @@ from .. import __version__
 from ..core.folders import check_writable
 from ..embodiment import arm_guess
 from ..embodiment.sim.arms import portable_path
-from ..errors import PluginError
+from ..embodiment.sim.urdf_check import MAX_URDF_BYTES
+from ..embodiment.sim.urdf_check import check_urdf as sim_check_urdf
+from ..errors import PluginError, sizes
 from . import arms as arm_plugins
 
 ARM_NAME = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
@@ -74,9 +76,6 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     return ArmScaffold(root, module, dist, spec, sorted(texts))
 
 
-MAX_URDF_BYTES = 64 * 2**20
-
-
 def check_urdf(urdf: str) -> None:
     """A one-line ``PluginError`` for a file that is not a URDF (not XML, or its root is not ``<robot>``),
     said before pybullet tries it: pybullet only prints "Cannot load URDF file" and raises its own error."""
@@ -86,7 +85,8 @@ def check_urdf(urdf: str) -> None:
         return  # arm_guess.guess says what is wrong with the name or a missing file
     try:
         if os.path.getsize(urdf) > MAX_URDF_BYTES:
-            raise PluginError(f"{urdf} is larger than {MAX_URDF_BYTES >> 20} MiB: not a URDF new-arm reads")
+            have, most = sizes(os.path.getsize(urdf), MAX_URDF_BYTES)
+            raise PluginError(f"{urdf} is {have}, more than the {most} of a URDF new-arm reads")
         root = ET.parse(urdf).getroot()
     except ET.ParseError as e:
         raise PluginError(f"{urdf} is not a URDF: it is not valid XML ({e})") from None
@@ -94,6 +94,7 @@ def check_urdf(urdf: str) -> None:
         raise PluginError(f"cannot read {urdf}: {e.strerror or e}") from None
     if root.tag != "robot":
         raise PluginError(f"{urdf} is not a URDF: its root element is <{root.tag}>, not <robot>")
+    sim_check_urdf(urdf)  # one root link, links in bounds: what PyBullet would otherwise crash on
 
 
 def _docstring_text(text: str) -> str:

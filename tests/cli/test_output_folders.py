@@ -182,7 +182,7 @@ def test_new_action_refuses_an_unwritable_out(tmp_path, unwritable):
     ("not xml at all", "not valid XML"),
     ('<?xml version="1.0"?><sdf/>', "root element is <sdf>"),
     ('<robot name="x"><link name="a"/><joint name="j" type="revolute"><parent link="zz"/><child link="a"/>'
-     "</joint></robot>", "pybullet cannot load this URDF"),
+     "</joint></robot>", 'names the parent link "zz", which is not a link of the file'),
 ])
 def test_new_arm_says_what_is_wrong_with_a_urdf(tmp_path, text, expect):
     (tmp_path / "bad.urdf").write_text(text)

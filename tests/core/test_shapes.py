@@ -127,7 +127,7 @@ def test_huge_meshes_are_refused_before_they_are_read(tmp_path, monkeypatch):
     # a file over the size limit: refused from its size on disk (a sparse file: nothing is written or read)
     with open(tmp_path / "big.obj", "wb") as f:
         f.truncate(shapes.MAX_MESH_BYTES + 1)
-    with pytest.raises(SceneError, match="MB is more than"):
+    with pytest.raises(SceneError, match="bytes is more than the 16,777,216 bytes"):
         load_scene(_scene(tmp_path, [{"name": "A", "color": "red", "shape": "mesh", "mesh": "big.obj",
                                       "xy": [0.05, -0.1]}, CUBE_B]))
     # a parsed mesh with too many faces (the limit lowered so the test stays small)

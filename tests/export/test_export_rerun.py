@@ -80,8 +80,10 @@ def test_segments_are_logged_at_their_first_frames(run, tmp_path):
     chain = tmp_path / "chain"
     chain.mkdir()
     traj = json.loads((run / "trajectory.json").read_text())
-    traj["segments"] = [{"clause": 1, "text": "move A closer to B", "first_frame": 0, "last_frame": 9},
-                        {"clause": 2, "text": "move A away from B", "first_frame": 10, "last_frame": 20}]
+    traj["segments"] = [{"clause": 1, "text": "move A closer to B", "first_frame": 0, "last_frame": 9, "mover": "A",
+                         "anchors": ["B"]},
+                        {"clause": 2, "text": "move A away from B", "first_frame": 10, "last_frame": 20, "mover": "A",
+                         "anchors": ["B"]}]  # checked as every exporter checks a chain's segments
     (chain / "trajectory.json").write_text(json.dumps(traj))
     out = tmp_path / "c.rrd"
     r = CliRunner().invoke(main, ["export", str(chain), "--format", "rerun", str(out)])

@@ -118,7 +118,7 @@ def test_new_arm_writes_a_urdf_named_like_code_into_a_module_that_runs_none(tmp_
     from l2p_bullet.plugins.arm_scaffold import scaffold_arm
 
     urdf = tmp_path / filename
-    urdf.write_text('<robot name="r"/>\n')
+    urdf.write_text('<robot name="r"><link name="base"/></robot>\n')  # one link: new-arm checks that first
     monkeypatch.setattr(arm_guess, "guess", lambda name, path, **kw: dataclasses.replace(PANDA, name=name, urdf=path))
     made = scaffold_arm("named", str(urdf), tmp_path / "out")
     tree = ast.parse((made.root / made.module / "__init__.py").read_text())

@@ -26,6 +26,7 @@ import sys
 import sysconfig
 from pathlib import Path
 
+import hide_plugins
 import numpy as np
 import pytest
 
@@ -47,6 +48,13 @@ PLUGINS = {  # action: (phrase, new-action options)
 
 def _env() -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    # but the conftest's sitecustomize folder (tests/hide_plugins.py) stays: the environment made here is
+    # layered on the user's, so without it a user's own "left-of" would be seen and new-action would refuse
+    # the name the test scaffolds
+    hiding = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+              if p and Path(p).name.startswith(hide_plugins.SITE_PREFIX) and (Path(p) / "sitecustomize.py").is_file()]
+    if hiding:
+        env["PYTHONPATH"] = os.pathsep.join(hiding)
     env["PIP_NO_INPUT"] = "1"
     env["PIP_DISABLE_PIP_VERSION_CHECK"] = "1"
     return env
@@ -112,6 +120,14 @@ def installed(venv: Path, tmp_path_factory) -> Path:
     run([sys.executable, "-m", "pip", "--python", str(venv), "install", "--no-deps", "--no-build-isolation",
          "--no-index", "--quiet", *[str(work / f"l2p-{n}") for n in PLUGINS]], work, timeout=300)
     return work
+
+
+def test_the_tutorials_names_are_free_in_the_test_environment(venv: Path, tmp_path: Path):
+    """A user who followed the tutorial has "left-of" installed; the environment made here is layered on
+    theirs, and new-action refused the name ("already installed"), erroring every test of this module
+    (tests/test_isolation.py runs this with such a user's plugin installed)."""
+    r = run([str(venv), "-m", "l2p_bullet.cli", "new-action", "left-of", "--phrase", "to the left of"], tmp_path)
+    assert (tmp_path / "l2p-left-of" / "pyproject.toml").is_file(), r.stdout
 
 
 def test_installed_plugins_are_listed_with_their_declarations(venv: Path, installed: Path):

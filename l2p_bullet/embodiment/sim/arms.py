@@ -14,6 +14,7 @@ import tempfile
 import numpy as np
 
 from ...arms.spec import ArmSpec
+from .urdf_check import check_urdf
 
 
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:
@@ -26,7 +27,7 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
     rewritten), and only from a folder this user owns and nobody else can write (:func:`_cache_dir`).
     """
 
-    src = arm_source(spec)
+    src = check_description(spec)
     if visuals and collisions and not (spec.collision_free_links or spec.tool_frame or spec.fixed_joints):
         return src
     with open(src) as f:
@@ -54,6 +55,15 @@ def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> st
             f.write(data)
         os.replace(tmp, path)  # atomic: concurrent processes never read a half-written file
     return path
+
+
+def check_description(spec: ArmSpec) -> str:
+    """The arm's URDF checked before PyBullet reads it (urdf_check: it crashes on two root links), named as
+    the plugin gives it; called before a run folder is made, so a broken arm leaves none. Returns its path."""
+    src = arm_source(spec)
+    if not src.lower().endswith(".sdf"):
+        check_urdf(src)
+    return src
 
 
 def arm_source(spec: ArmSpec) -> str:

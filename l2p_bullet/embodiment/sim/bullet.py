@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import ExecutionError
+from .urdf_check import check_urdf
 
 Vec3 = Sequence[float]
 Quat = Sequence[float]
@@ -214,6 +215,7 @@ class Bullet:
         """Load a URDF as body ``name`` (names are unique within a client)."""
         if name in self._bodies:
             raise ValueError(f'a body named "{name}" is already loaded')
+        check_urdf(path)  # PyBullet kills the process on two root links or 200,000 chained ones
         self._bodies[name] = self._pb.loadURDF(path, list(position), list(orientation), useFixedBase=fixed,
                                                globalScaling=scale, physicsClientId=self._id)
 
