@@ -18,7 +18,7 @@ from ..core.contracts import approach_end_frame, trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import ExecutionError, PathError, ReachError
+from ..errors import ExecutionError, InfeasibleError, PathError, ReachError
 from ..manners.spec import MannerSpec
 from . import motion, reach
 from .manners import carry_lift, check_carry_path, check_manner, manner_of
@@ -242,7 +242,14 @@ def check_for(manner: MannerSpec, scene: Scene, mover: str, path: np.ndarray,
         raise PathError(f'the path starts at ({p[0, 0]:.3f}, {p[0, 1]:.3f}) but block "{mover}" is at '
                         f"({obj.xy[0]:.3f}, {obj.xy[1]:.3f}), {start_gap * 1000:.0f} mm away")
     check_carry_path(scene, mover, p)
-    return p, [None]
+    if obj.shape == "cube":
+        return p, [None]
+    # the fingers close across the object: only the angles whose width fits, narrowest first
+    angles = reach.width_angles(obj, arm)[:reach.MAX_WIDTH_HOLDS]
+    if not angles:
+        raise InfeasibleError(f'cannot carry "{mover}": no grasp angle fits it between the {arm.name}\'s fingers '
+                              f"({arm.gripper_opening * 100:.1f} cm); slide or push it instead")
+    return p, angles
 
 
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],

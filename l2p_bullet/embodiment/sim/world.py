@@ -20,6 +20,7 @@ import numpy as np
 from ...core.scene import COLORS, Scene
 from ...core.shapes import BLOCK_FRICTION
 from ...errors import SceneError
+from . import decompose
 from .arms import PANDA, ArmSpec
 from .bullet import Bullet
 from .robot import ARM, Robot
@@ -46,6 +47,15 @@ def _visual(o, g) -> tuple:
     if path.suffix.lower() == ".glb":
         return ("mesh", _obj_copy(g), 1.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
     return ("mesh", path, o.scale, g.file_origin, o.rpy)
+
+
+def _parts(o, g) -> tuple | None:
+    """A mesh's convex decomposition placed as its drawing is (``Bullet.load_convex``'s ``parts``); None for a
+    box or a cylinder (their hull is their shape) and where the decomposition finds no parts."""
+    if o.shape != "mesh":
+        return None
+    path = decompose.parts_file(o.mesh)
+    return None if path is None else ("mesh", path, o.scale, g.file_origin, o.rpy)
 
 
 def _obj_copy(g) -> str:
@@ -108,11 +118,11 @@ class World:
                 sim.load_urdf(o.name, urdf_path("block.urdf"), (o.xy[0], o.xy[1], o.size / 2), orn,
                               scale=o.size / BLOCK_URDF_SIZE)
                 rest = o.size / 2
-            else:  # its convex hull, its centre of mass at the body's origin (core/shapes.py)
+            else:  # its convex hull (a mesh: its convex parts), its centre of mass at the body's origin
                 g = o.geometry
                 rest = g.rest
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
-                                mass=o.mass_kg, visual=_visual(o, g))
+                                mass=o.mass_kg, visual=_visual(o, g), parts=_parts(o, g))
                 sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
             sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
