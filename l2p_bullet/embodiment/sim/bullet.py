@@ -405,6 +405,17 @@ class Bullet:
         pts = self._pb.getContactPoints(bodyA=self._bodies[a], bodyB=self._bodies[b], physicsClientId=self._id)
         return [(tuple(p[6]), float(p[9])) for p in pts]
 
+    def ray_heights(self, name: str, xy: np.ndarray, z_from: float, z_to: float) -> np.ndarray:
+        """Where vertical rays down through the points ``xy`` (N,2) from ``z_from`` to ``z_to`` first meet
+        body ``name`` (its collision shapes): the height per ray, nan where another body or nothing is hit."""
+        xy = np.asarray(xy, float).reshape(-1, 2)
+        if not len(xy):
+            return np.empty(0)
+        hits = self._pb.rayTestBatch([[x, y, z_from] for x, y in xy], [[x, y, z_to] for x, y in xy],
+                                     physicsClientId=self._id)
+        b = self._bodies[name]
+        return np.array([h[3][2] if h[0] == b else np.nan for h in hits], float)
+
     # --- camera ------------------------------------------------------------------------------
     def view_matrix(self, eye: Vec3, target: Vec3, up: Vec3) -> tuple[float, ...]:
         """Column-major 4x4 view matrix, as the renderer takes it."""

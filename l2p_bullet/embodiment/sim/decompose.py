@@ -22,6 +22,8 @@ import tempfile
 from functools import lru_cache
 from pathlib import Path
 
+import numpy as np
+
 from ...core.shapes import pybullet_data_root
 from .bullet import vhacd
 
@@ -54,7 +56,7 @@ def _folders(mesh: Path) -> list[Path]:
 
 def parts_file(mesh: str | Path) -> Path | None:
     """The OBJ file of the mesh's convex parts (mesh frame and units), decomposed now unless kept already;
-    None where V-HACD finds no parts (the simulator then collides with the mesh's convex hull)."""
+    None for a convex mesh and where V-HACD finds no parts (the simulator collides with the mesh's hull)."""
     p = Path(mesh)
     st = p.stat()
     return _parts_file(str(p), st.st_mtime_ns, st.st_size)
@@ -69,10 +71,15 @@ def _parts_file(path: str, mtime_ns: int, size: int) -> Path | None:
     for folder in folders:
         if (folder / name).is_file():
             return folder / name
+    import trimesh
+
+    m = trimesh.load(str(mesh), force="mesh", process=True, file_type=mesh.suffix.lower()[1:])
+    if _convex(m):  # its hull is its shape, exactly (V-HACD's voxels would grow it by half a voxel)
+        return None
     for folder in folders:
         try:
             folder.mkdir(parents=True, exist_ok=True)
-            return _decompose(mesh, folder / name)
+            return _decompose(m, mesh.name, folder / name)
         except PermissionError:  # a read-only folder: the next one
             continue
         except _NoParts:
@@ -80,15 +87,30 @@ def _parts_file(path: str, mtime_ns: int, size: int) -> Path | None:
     raise OSError(f"no folder to keep the decomposition of {mesh.name} in ({', '.join(map(str, folders))})")
 
 
+def _convex(m, tol: float = 1e-6) -> bool:
+    """Whether a mesh is a closed convex surface: every vertex on the inner side of every triangle's plane
+    (``tol`` of its size). Checked here in numpy (trimesh's own check needs scipy)."""
+    if not m.is_watertight or len(m.faces) * len(m.vertices) > 5e7:
+        return False
+    v = np.asarray(m.vertices, float)
+    tri = v[np.asarray(m.faces)]
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    n *= np.sign(float(m.volume)) or 1.0  # outwards
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    d = np.einsum("ij,ij->i", n, tri[:, 0])
+    size = float(np.ptp(v, axis=0).max())
+    for s in range(0, len(n), 4096):
+        if ((v @ n[s:s + 4096].T) - d[s:s + 4096] > tol * size).any():
+            return False
+    return True
+
+
 class _NoParts(Exception):
     """V-HACD wrote no convex part."""
 
 
-def _decompose(mesh: Path, out: Path) -> Path:
-    """V-HACD on the mesh's triangles (any format trimesh reads, as an OBJ), written atomically to ``out``."""
-    import trimesh
-
-    m = trimesh.load(str(mesh), force="mesh", process=True, file_type=mesh.suffix.lower()[1:])
+def _decompose(m, name: str, out: Path) -> Path:
+    """V-HACD on the mesh ``m``'s triangles (written as an OBJ), its parts written atomically to ``out``."""
     with tempfile.TemporaryDirectory(dir=out.parent) as tmp:
         src, dst, log = Path(tmp, "in.obj"), Path(tmp, "out.obj"), Path(tmp, "log.txt")
         lines = [f"v {x:.9g} {y:.9g} {z:.9g}" for x, y, z in m.vertices]
@@ -96,6 +118,6 @@ def _decompose(mesh: Path, out: Path) -> Path:
         src.write_text("\n".join(lines) + "\n")
         vhacd(str(src), str(dst), str(log), **PARAMS)
         if not dst.is_file() or "\nv " not in "\n" + dst.read_text(errors="replace"):
-            raise _NoParts(mesh.name)
+            raise _NoParts(name)
         os.replace(dst, out)
     return out

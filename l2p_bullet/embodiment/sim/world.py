@@ -58,6 +58,17 @@ def _parts(o, g) -> tuple | None:
     return None if path is None else ("mesh", path, o.scale, g.file_origin, o.rpy)
 
 
+def _parts_bottom(parts: tuple) -> float:
+    """The lowest point (body frame) of a decomposition placed as ``_parts`` says: a convex part's lowest
+    point is one of its vertices (Bullet's bounding box of a turned compound is looser, by millimetres)."""
+    from ...core.shapes import _rotation
+
+    _, path, scale, origin, rpy = parts
+    with open(path) as f:
+        v = np.array([[float(c) for c in line.split()[1:4]] for line in f if line.startswith("v ")])
+    return float(((v * scale) @ _rotation(tuple(rpy)).T)[:, 2].min() + origin[2])
+
+
 def _obj_copy(g) -> str:
     """An OBJ file of ``g``'s triangles (body frame) in the user's cache, named by its content."""
     import hashlib
@@ -121,8 +132,12 @@ class World:
             else:  # its convex hull (a mesh: its convex parts), its centre of mass at the body's origin
                 g = o.geometry
                 rest = g.rest
+                parts = _parts(o, g)
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
-                                mass=o.mass_kg, visual=_visual(o, g), parts=_parts(o, g))
+                                mass=o.mass_kg, visual=_visual(o, g), parts=parts)
+                if parts is not None:  # the parts' bottom, not the mesh's lowest vertex, stands on the table
+                    rest = -_parts_bottom(parts)
+                    sim.set_base_pose(o.name, (o.xy[0], o.xy[1], rest), orn)
                 sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
             sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
@@ -157,6 +172,29 @@ class World:
     def poses(self) -> dict[str, np.ndarray]:
         """Every block's :meth:`pose`, in scene order."""
         return {name: self.pose(name) for name in self.sizes}
+
+    def fingertip_height(self, name: str, tool_yaw: float) -> float:
+        """Where the closed fingertips come to rest when the hand, turned to ``tool_yaw``, is lowered straight
+        down over object ``name``'s centre of mass: the lowest height at which no layer of the hand's profile
+        (``ArmSpec.hand_profile``: its half extents at each height above the fingertips) is inside the object,
+        measured with vertical rays on its collision shapes. A box's, a cylinder's or a cube's is its top
+        (their tops are flat); a mesh's may be lower than its highest point, which can lie to one side
+        (a duck's head), so the fingers hold its body."""
+        top = self.heights[name]
+        if self.scene.get(name).shape != "mesh":
+            return top
+        x, y = self.pose(name)[:2]
+        c, s = math.cos(tool_yaw), math.sin(tool_yaw)
+        grid = np.linspace(-1.0, 1.0, 7)
+        pts, depth = [], []
+        for d, hx, hy in self.robot.spec.hand_profile or ((0.0, 0.01, 0.01),):
+            if d > top:
+                break
+            gx, gy = (a.ravel() for a in np.meshgrid(grid * hx, grid * hy))
+            pts.append(np.column_stack([x + c * gx - s * gy, y + s * gx + c * gy]))
+            depth.append(np.full(len(gx), d))
+        hit = self.sim.ray_heights(name, np.vstack(pts), top + 0.05, 0.0) - np.concatenate(depth)
+        return float(np.nanmax(hit)) if np.isfinite(hit).any() else top
 
     @property
     def time(self) -> float:
