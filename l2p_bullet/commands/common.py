@@ -124,3 +124,18 @@ def file_of_run_folder(path: str, name: str) -> str:
     if not (p / name).is_file():
         raise PathError(f"{p} is a folder without {name}: give a run folder or the file itself")
     return str(p / name)
+
+
+def moved_text(displacements_m: dict[str, float], anchors: tuple[str, ...] | list[str]) -> str:
+    """How far the anchor(s) and, apart, the furthest-moved bystander moved in a run ("anchor moved 0.1 mm,
+    bystander C moved 2.0 mm"): each figure named as whose it is, never one object's shift as another's."""
+    anchors = [a for a in anchors if a in displacements_m]
+    parts = []
+    if anchors:
+        word = "anchor" if len(anchors) == 1 else "anchors"
+        parts.append(f"{word} moved {max(displacements_m[a] for a in anchors) * 1000:.1f} mm")
+    others = {k: v for k, v in displacements_m.items() if k not in anchors}
+    if others:
+        name = max(others, key=others.get)
+        parts.append(f"bystander {name} moved {others[name] * 1000:.1f} mm")
+    return ", ".join(parts) or "no other object"

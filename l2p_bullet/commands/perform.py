@@ -10,6 +10,7 @@ from .common import (
     arm_option,
     force_option,
     load_scene_or_default,
+    moved_text,
     render_settings,
     scene_option,
     seed_option,
@@ -82,7 +83,7 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
                f'{"success" if r.success else "FAILED"} ({v.get("reason", "")})')
     click.echo(f"final progress {fp} (planned {r.planned_progress:.2f}), "
                f"block within {r.max_deviation_m * 1000:.1f} mm of the plan, "
-               f"anchor moved {r.anchor_displacement_m * 1000:.1f} mm, {r.timings.get('total', 0):.1f} s")
+               f"{moved_text(r.displacements_m, r.command.anchors)}, {r.timings.get('total', 0):.1f} s")
     video = r.files.get("video")
     click.echo(f"run folder: {r.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
 

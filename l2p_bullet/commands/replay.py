@@ -12,6 +12,7 @@ from .common import (
     force_option,
     load_scene_or_default,
     mesh_dirs,
+    moved_text,
     render_settings,
     scene_option,
     seed_option,
@@ -88,7 +89,7 @@ def replay(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no
         ex = run_replay(scene, source, folder, render, seed, on_stage=on_stage, arm=spec)
     click.echo(f"replayed {source.label}: {ex.duration_s:.1f} s simulated, "
                f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
-               f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm")
+               f"{moved_text(ex.displacements_m, [source.anchor] if source.anchor else [])}")
     video = ex.files.get("video")
     click.echo(f"run folder: {folder}" + (f"\nvideo: {video}" if video else " (no video: --no-render)"))
 

@@ -51,6 +51,7 @@ class Execution:
     stats: dict = field(default_factory=dict)
     displacements_m: dict[str, float] = field(default_factory=dict)  # per block not held: its largest displacement
     render: dict | None = None  # how the frames were drawn (renderer used, camera, workers, wait): summary.json
+    settled_m: dict[str, float] = field(default_factory=dict)  # per object, how far it moved settling (mesh scenes)
 
 
 def check_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> np.ndarray:
@@ -200,7 +201,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         execution = Execution(recorder.frames, {k: round(v, 4) for k, v in clock.timings.items()}, files,
                               max_deviation_m=deviation, anchor_displacement_m=max(displaced.values(), default=0.0),
                               max_lift_m=lift, constraint_removed=removed, duration_s=world.time, stats=stats,
-                              displacements_m=displaced, render=render_info(render, film))
+                              displacements_m=displaced, render=render_info(render, film),
+                              settled_m=dict(world.settled))
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
             if summary:
@@ -414,6 +416,8 @@ def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettin
             "max_lift_m": round(ex.max_lift_m, 6),
             "constraint_removed": ex.constraint_removed,
             **ex.stats,
+            # how far each object moved settling before the episode: its figures above count from there
+            **({"settled_m": {k: round(v, 6) for k, v in ex.settled_m.items()}} if ex.settled_m else {}),
         },
         "render": ex.render,
         "files": {k: v.name for k, v in ex.files.items()},

@@ -405,14 +405,21 @@ class Bullet:
         pts = self._pb.getContactPoints(bodyA=self._bodies[a], bodyB=self._bodies[b], physicsClientId=self._id)
         return [(tuple(p[6]), float(p[9])) for p in pts]
 
+    def is_resting(self, name: str, speed: float, spin: float) -> bool:
+        """Whether body ``name`` moves slower than ``speed`` (m/s) and turns slower than ``spin`` (rad/s)."""
+        v, w = self._pb.getBaseVelocity(self._bodies[name], physicsClientId=self._id)
+        return bool(np.linalg.norm(v) < speed and np.linalg.norm(w) < spin)
+
     def ray_heights(self, name: str, xy: np.ndarray, z_from: float, z_to: float) -> np.ndarray:
         """Where vertical rays down through the points ``xy`` (N,2) from ``z_from`` to ``z_to`` first meet
         body ``name`` (its collision shapes): the height per ray, nan where another body or nothing is hit."""
         xy = np.asarray(xy, float).reshape(-1, 2)
         if not len(xy):
             return np.empty(0)
-        hits = self._pb.rayTestBatch([[x, y, z_from] for x, y in xy], [[x, y, z_to] for x, y in xy],
-                                     physicsClientId=self._id)
+        hits = []
+        for s in range(0, len(xy), 8192):  # PyBullet takes at most 16,384 rays a batch
+            hits += self._pb.rayTestBatch([[x, y, z_from] for x, y in xy[s:s + 8192]],
+                                          [[x, y, z_to] for x, y in xy[s:s + 8192]], physicsClientId=self._id)
         b = self._bodies[name]
         return np.array([h[3][2] if h[0] == b else np.nan for h in hits], float)
 

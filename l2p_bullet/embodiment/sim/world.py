@@ -87,6 +87,49 @@ def _obj_copy(g) -> str:
     return str(out)
 
 
+RAY_SPACING = 0.002
+"""m between the rays that find where the hand meets a mesh, and the clearance kept above what they find."""
+SETTLE_MAX_S = 2.0
+"""Longest time (s) the objects may take to come to rest after being set down."""
+REST_SPEED, REST_SPIN = 0.002, 0.02
+"""At rest: every object slower than this (m/s) and turning slower than this (rad/s)."""
+MAX_REST_TILT = math.radians(20.0)
+"""An object that comes to rest tilted more than this has fallen over: its footprint is not what the
+planner was given."""
+
+
+def settle(world: World) -> dict[str, float]:
+    """Step ``world``'s objects (the arm not loaded yet: it is away) until every one is at rest, then put each
+    back at the scene's ``xy`` and ``yaw`` in the pose it settled into (resting on the table is the same
+    anywhere on it): a mesh that rocks onto its feet or slides a little when set down does so before the
+    episode, not in its first frames where it would be blamed on the arm. Returns how far (m) each object's
+    centre moved while settling; SceneError, naming the object and how far it moved, for one that is still
+    moving after :data:`SETTLE_MAX_S` or that falls over."""
+    sim, names = world.sim, list(world.sizes)
+    start = {n: world.pose(n) for n in names}
+    for step in range(round(SETTLE_MAX_S / world.dt)):
+        sim.step()
+        if step >= 12 and all(sim.is_resting(n, REST_SPEED, REST_SPIN) for n in names):
+            break
+    moved = {n: float(np.linalg.norm(world.pose(n)[:3] - start[n][:3])) for n in names}
+    for n in names:
+        if not sim.is_resting(n, REST_SPEED, REST_SPIN):
+            raise SceneError(f'object "{n}" does not come to rest on the table: it moved {moved[n] * 1000:.0f} mm in '
+                             f"the {SETTLE_MAX_S:g} s after it was set down (it rolls or rocks); turn it (\"rpy\") so "
+                             "that it stands")
+        if world.tilt(n) > MAX_REST_TILT:
+            raise SceneError(f'object "{n}" falls over when set down (it tilts {math.degrees(world.tilt(n)):.0f} deg, '
+                             f'moving {moved[n] * 1000:.0f} mm); turn it ("rpy") so that it stands')
+    for n in names:  # back where the scene put it, in the pose it rests in
+        now = world.pose(n)
+        turn = sim.quaternion(0.0, 0.0, float(start[n][3] - now[3]))
+        pos, orn = sim.base_pose(n)
+        _, orn = sim.compose(((0.0, 0.0, 0.0), turn), ((0.0, 0.0, 0.0), orn))
+        sim.set_base_pose(n, (start[n][0], start[n][1], pos[2]), orn)
+        world.rests[n] = float(pos[2])
+    return {n: round(m, 9) for n, m in moved.items()}
+
+
 class World:
     """Table + blocks + arm in one DIRECT simulator. Close it (or use ``with``) when done.
 
@@ -144,6 +187,9 @@ class World:
             self.sizes[o.name] = o.size
             self.heights[o.name] = o.height
             self.rests[o.name] = rest
+        self.settled: dict[str, float] = {}  # how far each object moved while settling (mesh scenes)
+        if any(o.shape == "mesh" for o in scene.objects):
+            self.settled = settle(self)
         self.robot.load()
 
     def reset(self, scene: Scene) -> None:
@@ -185,16 +231,17 @@ class World:
             return top
         x, y = self.pose(name)[:2]
         c, s = math.cos(tool_yaw), math.sin(tool_yaw)
-        grid = np.linspace(-1.0, 1.0, 7)
         pts, depth = [], []
         for d, hx, hy in self.robot.spec.hand_profile or ((0.0, 0.01, 0.01),):
             if d > top:
                 break
-            gx, gy = (a.ravel() for a in np.meshgrid(grid * hx, grid * hy))
+            # rays RAY_SPACING apart at most: a thin wall (a tray's, a mug's) between two would be missed
+            gx, gy = (a.ravel() for a in np.meshgrid(*(np.linspace(-h, h, 1 + math.ceil(2 * h / RAY_SPACING))
+                                                       for h in (hx, hy))))
             pts.append(np.column_stack([x + c * gx - s * gy, y + s * gx + c * gy]))
             depth.append(np.full(len(gx), d))
         hit = self.sim.ray_heights(name, np.vstack(pts), top + 0.05, 0.0) - np.concatenate(depth)
-        return float(np.nanmax(hit)) if np.isfinite(hit).any() else top
+        return min(top, float(np.nanmax(hit)) + RAY_SPACING) if np.isfinite(hit).any() else top
 
     @property
     def time(self) -> float:
