@@ -80,10 +80,10 @@ def _parts_file(path: str, mtime_ns: int, size: int) -> Path | None:
         try:
             folder.mkdir(parents=True, exist_ok=True)
             return _decompose(m, mesh.name, folder / name)
-        except PermissionError:  # a read-only folder: the next one
-            continue
         except _NoParts:
             return None
+        except OSError:  # a read-only folder (or a file in the cache folder's place): the next one
+            continue
     raise OSError(f"no folder to keep the decomposition of {mesh.name} in ({', '.join(map(str, folders))})")
 
 
