@@ -3,7 +3,7 @@
 Bullet collides moving bodies with convex shapes only, so a mesh is split into convex parts (PyBullet's
 built-in V-HACD, :func:`.bullet.vhacd`): a mug stays hollow, a concave part keeps its dent, a mesh with
 holes or open rims is decomposed as the solid its voxels enclose. V-HACD rather than CoACD (PyPI) because
-it ships with PyBullet and, on the meshes measured (docs/objects.md), it took seconds where CoACD took
+it ships with PyBullet and, on the meshes measured (docs/perform.md), it took a minute where CoACD took
 minutes, for a comparable fit.
 
 The result is an OBJ file of parts in the mesh file's own frame and units (the scene's ``scale`` and
