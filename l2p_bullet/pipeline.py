@@ -178,6 +178,10 @@ def prepare(sentence: str, scene: Scene, *, planner: str = "default", seed: int 
     cmd = resolve(sentence, scene, plugins)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins, arm)
+    if any(o.shape == "mesh" for o in scene.objects):  # a mesh that never comes to rest is refused now, by name
+        from .embodiment.sim.world import World
+
+        World(scene, arm=arm, visuals=False).close()  # decomposes new meshes (kept) and settles the scene
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched

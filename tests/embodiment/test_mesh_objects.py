@@ -146,3 +146,17 @@ def test_the_moved_line_names_whose_figure_it_is():
     assert moved_text({"B": 0.0001, "C": 0.0026}, ("B",)) == "anchor moved 0.1 mm, bystander C moved 2.6 mm"
     assert moved_text({"B": 0.0001}, ("B",)) == "anchor moved 0.1 mm"
     assert moved_text({"C": 0.002}, ()) == "bystander C moved 2.0 mm"
+
+
+def test_a_mesh_that_falls_over_is_refused_before_anything_is_planned(tmp_path):
+    import trimesh
+
+    from l2p_bullet.pipeline import prepare
+
+    stick = trimesh.creation.box(extents=(0.02, 0.02, 0.08))
+    _mesh(tmp_path / "stick.obj", stick.vertices, stick.faces)
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        *CUBES, {"name": "S", "color": "blue", "shape": "mesh", "mesh": "stick.obj", "rpy": [0.35, 0.0, 0.0],
+                 "xy": [-0.12, 0.1]}]}))
+    with pytest.raises(SceneError, match='"S" falls over'):
+        prepare("move A closer to B", load_scene(tmp_path / "scene.json"))

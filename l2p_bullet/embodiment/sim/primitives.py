@@ -299,9 +299,9 @@ class Primitives:
         g = self.grasp
         if g is None:
             return
-        if self.world.tilt(g.name) > MAX_TILT:
+        if self.world.tilt(g.name) - g.tilt > MAX_TILT:  # from how it rested when grasped
             raise ExecutionError(
-                f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name)):.0f} deg while held')
+                f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name) - g.tilt):.0f} deg while held')
         pos, _ = self.robot.tool_pose()
         block = self.world.pose(g.name)
         want = self.tool_targets(block[None, [0, 1, 3]])[0] + [0.0, 0.0, lift, 0.0]
