@@ -202,8 +202,8 @@ MESH_EXTENT = 0.06
 
 
 def mesh_scene(path: Path, entry: dict):
-    """The scene of ``--meshes``: the mesh M (scaled and turned as ``entry`` says, or to :data:`MESH_EXTENT`), a
-    4 cm cube B at the centre and a 4 cm cube A."""
+    """The scene of ``--meshes``: the mesh M (scaled and turned as ``entry`` says, or to :data:`MESH_EXTENT`) and
+    4 cm cubes B and A, where the four sentences plan successfully with a 4 cm cube as M."""
     import numpy as np
     import trimesh
 
@@ -216,9 +216,9 @@ def mesh_scene(path: Path, entry: dict):
         m = trimesh.load(str(path), force="mesh")
         scale = MESH_EXTENT / float(np.ptp(np.asarray(m.vertices) @ _rotation(tuple(rpy)).T, axis=0).max())
     mesh = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(path.resolve()), "scale": float(scale),
-            "rpy": rpy, "xy": [0.1, -0.1]}
-    return Scene.from_dict({"objects": [mesh, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.0]},
-                                        {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.1]}]}).validate()
+            "rpy": rpy, "xy": [0.1, -0.08]}
+    return Scene.from_dict({"objects": [mesh, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
+                                        {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]}).validate()
 
 
 def mesh_rows(folder: Path, tmp: Path) -> list[dict]:
