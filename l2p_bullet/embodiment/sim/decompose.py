@@ -3,8 +3,8 @@
 Bullet collides moving bodies with convex shapes only, so a mesh is split into convex parts (PyBullet's
 built-in V-HACD, :func:`.bullet.vhacd`): a mug stays hollow, a concave part keeps its dent, a mesh with
 holes or open rims is decomposed as the solid its voxels enclose. V-HACD rather than CoACD (PyPI) because
-it ships with PyBullet and, on the meshes measured (docs/perform.md), it took a minute where CoACD took
-minutes, for a comparable fit.
+it ships with PyBullet and, on the meshes measured (docs/perform.md), it needed a tenth of CoACD's CPU time
+for as close a fit.
 
 The result is an OBJ file of parts in the mesh file's own frame and units (the scene's ``scale`` and
 ``rpy`` apply to it as to the drawing), named by the SHA-256 of the mesh file's bytes and the parameters
