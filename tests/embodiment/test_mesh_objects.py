@@ -160,3 +160,25 @@ def test_a_mesh_that_falls_over_is_refused_before_anything_is_planned(tmp_path):
                  "xy": [-0.12, 0.1]}]}))
     with pytest.raises(SceneError, match='"S" falls over'):
         prepare("move A closer to B", load_scene(tmp_path / "scene.json"))
+
+
+def test_a_mesh_resting_tilted_is_slid_without_being_called_tilted(tmp_path):
+    """The held-tilt check counts from how the object rested when grasped: a mesh that rests 14 degrees
+    tilted on its feet failed every slide as 'tilted 14 deg while held'."""
+    import trimesh
+
+    from l2p_bullet.embodiment.execute import execute_path
+
+    box = trimesh.creation.box(extents=(0.04, 0.04, 0.04))
+    v = box.vertices.copy()
+    v[np.argmin(v.sum(axis=1)), 2] -= 0.010
+    _mesh(tmp_path / "r.obj", v, box.faces)
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        {"name": "R", "color": "blue", "shape": "mesh", "mesh": "r.obj", "xy": [0.06, -0.08]}, CUBES[1]]}))
+    scene = load_scene(tmp_path / "scene.json")
+    with World(scene, visuals=False) as world:
+        assert math.radians(12) < world.tilt("R") < math.radians(20)
+    a = scene.get("R")
+    path = np.array([[*a.xy, a.yaw], [a.xy[0] + 0.05, a.xy[1] - 0.03, a.yaw]])
+    ex = execute_path(scene, "R", path, out_dir=None, render=None)
+    assert ex.max_deviation_m < 0.003 and ex.constraint_removed
