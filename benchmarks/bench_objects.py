@@ -3,6 +3,7 @@
     .venv/bin/python benchmarks/bench_objects.py                       # 1,000 scenes x 5 actions, no rendering
     .venv/bin/python benchmarks/bench_objects.py --scenes 40           # a quick look while developing
     .venv/bin/python benchmarks/bench_objects.py --scenes 200 --jobs 2 --json rows.json
+    .venv/bin/python benchmarks/bench_objects.py --meshes DIR       # each mesh of DIR x 4 sentences, per mesh
 
 Scenes are drawn from seeds ``--seed-base + i`` (default 950000: no other benchmark or training run uses
 seeds there) by :func:`object_scene`. Every object is a cube (3-6 cm), a 2:1 box (short side 2.5-4 cm,
@@ -194,6 +195,79 @@ def _line(r: dict) -> str:
             f"{r.get('check', '') or r.get('error', '')[:100]}")
 
 
+MESH_SENTENCES = {"around": "move M around B", "next-to": "move A next to M", "push-past": "push M past B",
+                  "carry-closer": "carry M closer to B"}
+"""``--meshes``: each mesh M as the mover going around, as the anchor of next to, pushed past and carried closer."""
+MESH_EXTENT = 0.06
+"""m: a mesh with no entry in the folder's meshes.json is scaled so that its largest extent is this."""
+
+
+def mesh_scene(path: Path, entry: dict):
+    """The scene of ``--meshes``: the mesh M (scaled and turned as ``entry`` says, or to :data:`MESH_EXTENT`) and
+    4 cm cubes B and A, where the four sentences plan successfully with a 4 cm cube as M."""
+    import numpy as np
+    import trimesh
+
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.core.shapes import _rotation
+
+    rpy = [float(v) for v in entry.get("rpy", (0.0, 0.0, 0.0))]
+    scale = entry.get("scale")
+    if scale is None:
+        m = trimesh.load(str(path), force="mesh")
+        scale = MESH_EXTENT / float(np.ptp(np.asarray(m.vertices) @ _rotation(tuple(rpy)).T, axis=0).max())
+    mesh = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(path.resolve()), "scale": float(scale),
+            "rpy": rpy, "xy": [0.1, -0.08]}
+    return Scene.from_dict({"objects": [mesh, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
+                                        {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]}).validate()
+
+
+def mesh_rows(folder: Path, tmp: Path) -> list[dict]:
+    """Every mesh of ``folder`` x :data:`MESH_SENTENCES`, performed (no rendering) and classified; a scene that is
+    refused as it loads (a mesh that falls over, is too big) is one row per sentence with that refusal."""
+    from bench_robustness import classify
+
+    from l2p_bullet.errors import L2PError
+    from l2p_bullet.pipeline import perform
+    from l2p_bullet.planning.feasibility import CHECKS
+    from l2p_bullet.plugins import registry
+
+    plugins = registry.discover()
+    table = json.loads((folder / "meshes.json").read_text()) if (folder / "meshes.json").is_file() else {}
+    rows = []
+    for path in sorted(p for p in folder.iterdir() if p.suffix.lower() in (".obj", ".stl", ".glb")):
+        for action, sentence in MESH_SENTENCES.items():
+            row = {"mesh": path.name, "action": action}
+            t = time.perf_counter()
+            try:
+                scene = mesh_scene(path, table.get(path.name, {}))
+            except L2PError as e:
+                rows.append(row | {"outcome": "refused", "check": "scene", "error": str(e), "seconds": 0.0})
+                print(f"{path.name:<28} {action:<13} refused: {e}", flush=True)
+                continue
+            out = tmp / f"{path.stem}-{action}"
+            rows.append(classify(row, out, lambda s=sentence, sc=scene, o=out: perform(s, sc, out_dir=o, render=False,
+                                                                             plugins=plugins),
+                                 checks=CHECKS))
+            r = rows[-1]
+            r["seconds"] = round(time.perf_counter() - t, 3)
+            print(f"{path.name:<28} {action:<13} {r['outcome']:<12} {r['seconds']:6.1f}s "
+                  f"{r.get('reason') or r.get('error', '')}"[:240], flush=True)
+    return rows
+
+
+def print_meshes(rows: list[dict]) -> None:
+    """Per mesh: the outcome of each sentence, and how many runs moved another object more than 1 mm."""
+    actions = list(MESH_SENTENCES)
+    print(f"\n{'mesh':<28} " + " ".join(f"{a:<13}" for a in actions) + " disturbed")
+    for mesh in sorted({r["mesh"] for r in rows}):
+        rs = {r["action"]: r for r in rows if r["mesh"] == mesh}
+        print(f"{mesh:<28} " + " ".join(f"{rs[a]['outcome'] if a in rs else '-':<13}" for a in actions)
+              + f" {sum(1 for r in rs.values() if r.get('disturbed'))}")
+    n = collections.Counter(r["outcome"] for r in rows)
+    print(f"\n{len(rows)} runs: " + ", ".join(f"{o} {c}" for o, c in sorted(n.items())))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenes", type=int, default=1000, help="random object scenes (seeds seed-base .. +N-1)")
@@ -205,7 +279,19 @@ def main() -> None:
     ap.add_argument("--old-disk", action="store_true",
                     help="plan in the disk the scene was drawn in (the rows measured before 2026-11-27's 0.35 m "
                          "workspace), not the product's workspace")
+    ap.add_argument("--meshes", type=Path, default=None,
+                    help="a folder of meshes (.obj, .stl, .glb; an optional meshes.json gives each its scale and "
+                         "rpy): each x around, next to (as anchor), push past, carry closer, one table per mesh")
     args = ap.parse_args()
+    if args.meshes is not None:
+        import tempfile
+
+        with tempfile.TemporaryDirectory(prefix="bench-meshes-") as tmp:
+            rows = mesh_rows(args.meshes, Path(tmp))
+        print_meshes(rows)
+        if args.json:
+            args.json.write_text(json.dumps(rows, indent=1))
+        return
     actions = [a for a in args.actions.split(",") if a]
     jobs = [(a, args.seed_base + i) for i in range(args.scenes) for a in actions]
     t0 = time.perf_counter()

@@ -110,7 +110,7 @@ class PerformResult:
                 f'{"success" if self.success else "FAILED"} ({v.get("reason", "")})',
                 f"final progress {fp} (planned {self.planned_progress:.2f}), "
                 f"block within {self.max_deviation_m * 1000:.1f} mm of the plan, "
-                f"anchor moved {self.anchor_displacement_m * 1000:.1f} mm, {self.timings.get('total', 0):.1f} s",
+                f"{moved_text(self.displacements_m, c.anchors)}, {self.timings.get('total', 0):.1f} s",
                 f"run folder: {self.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)")]
 
 
@@ -201,6 +201,10 @@ def prepare_command(cmd: Command, scene: Scene, arm: ArmSpec, plugins: list, opt
     clock = clock or StageClock(options.on_stage)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins, arm)
+    if any(o.shape == "mesh" for o in scene.objects):  # a mesh that never comes to rest is refused now, by name
+        from .embodiment.sim.world import World
+
+        World(scene, arm=arm, visuals=False).close()  # decomposes new meshes (kept) and settles the scene
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
@@ -343,6 +347,21 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
     base["arm"] = p.arm.name
     write_summary(out / "summary.json", _summary(base, result, bundle, seed))  # written once, here
     return result
+
+
+def moved_text(displacements_m: dict[str, float], anchors: tuple[str, ...] | list[str]) -> str:
+    """How far the anchor(s) and, apart, the furthest-moved bystander moved in a run ("anchor moved 0.1 mm,
+    bystander C moved 2.0 mm"): each figure named as whose it is, never one object's shift as another's."""
+    anchors = [a for a in anchors if a in displacements_m]
+    parts = []
+    if anchors:
+        word = "anchor" if len(anchors) == 1 else "anchors"
+        parts.append(f"{word} moved {max(displacements_m[a] for a in anchors) * 1000:.1f} mm")
+    others = {k: v for k, v in displacements_m.items() if k not in anchors}
+    if others:
+        name = max(others, key=others.get)
+        parts.append(f"bystander {name} moved {others[name] * 1000:.1f} mm")
+    return ", ".join(parts) or "no other object"
 
 
 def disturbance_verdict(verdict: dict[str, Any], displacements_m: dict[str, float], anchor: str) -> dict[str, Any]:

@@ -188,8 +188,8 @@ def test_perform_with_an_arm_whose_urdf_has_two_roots_makes_no_folder(tmp_path, 
     """``perform --arm`` of such an arm crashed PyBullet and left a partial run folder."""
     import dataclasses
 
-    from l2p_bullet.chain import perform_chain
     from l2p_bullet.arms import PANDA
+    from l2p_bullet.chain import perform_chain
     from l2p_bullet.pipeline import perform
 
     urdf = tmp_path / "bad.urdf"

@@ -24,6 +24,7 @@ from ..errors import L2PError, PathError
 from ..judge import judge_for
 from ..language import Command, manner_of_sentence
 from ..options import RunOptions
+from ..pipeline import moved_text
 from ..plugins import arms as arm_plugins
 from ..plugins import registry
 from .clause import MAX_CLAUSES, Clause
@@ -39,12 +40,13 @@ class MotionReplay:
     label: str
     execution: Any  # embodiment.execute's result: duration, deviation, files
     out_dir: Path
+    anchor: str | None = None  # the motion's reference block, when it has one: named apart from bystanders
 
     def text(self) -> list[str]:
         ex, video = self.execution, self.execution.files.get("video")
         return [f"replayed {self.label}: {ex.duration_s:.1f} s simulated, "
                 f"block within {ex.max_deviation_m * 1000:.1f} mm of its path, "
-                f"other blocks moved {ex.anchor_displacement_m * 1000:.1f} mm",
+                f"{moved_text(ex.displacements_m, [self.anchor] if self.anchor else [])}",
                 f"run folder: {self.out_dir}" + (f"\nvideo: {video}" if video else " (no video: --no-render)")]
 
 
@@ -87,7 +89,7 @@ def replay(path: str | None, demo: str | None, options: RunOptions, *, scene_pat
     with run_folder(options.out_dir, force=options.force, prefix="replay", command="replay",
                     inputs=inputs) as folder:
         ex = run_replay(scene, source, folder, render, options.seed, on_stage=options.on_stage, arm=arm)
-    return MotionReplay(source.label, ex, folder)
+    return MotionReplay(source.label, ex, folder, source.anchor)
 
 
 def is_chain_plan(doc: object) -> bool:

@@ -7,8 +7,8 @@ object's own frame, whose origin is the **reference point**: the object's centre
 uniform density), which is a cube's, a box's and a cylinder's centre, as before. A scene's ``xy`` and ``yaw``
 place it, trajectory.json's ``z`` is its height above the table and the simulator's body frame is there:
 
-- ``points``: the collision points (the simulator takes their convex hull: a mesh is held and pushed by
-  its hull, which is what a gripper resting on its top and a table under it meet);
+- ``points``: the shape's points (the simulator collides a box or a cylinder with their convex hull, a mesh
+  with its convex decomposition, so a mug is hollow and a concave part has its dent);
 - ``footprint``: the convex outline on the table (the points seen from above), counter-clockwise;
 - ``height``, ``rest_z`` (the reference point's height above the table when the object stands on it),
   ``com`` (the centre of mass's offset from the bounding box's centre, for the record), ``volume``;
@@ -24,7 +24,9 @@ would make a flat plate "small" though it covers the table like a big block).
 
 trimesh is imported only for meshes (its import costs 0.3-0.5 s, paid by no cube, box or cylinder scene).
 A mesh file is bounded before it is parsed: its size on disk (:data:`MAX_MESH_BYTES`), a binary STL's
-declared triangle count; then its face count (:data:`MAX_MESH_FACES`), watertightness and volume.
+declared triangle count; then its face count (:data:`MAX_MESH_FACES`) and volume. A mesh need not be closed:
+a watertight one is weighed exactly, any other by what its surface winds round (``core/solid.py``); what the
+simulator collides with is its convex decomposition (``embodiment/sim/decompose.py``).
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError, did_you_mean, sizes
+from . import solid
 from .bounded import read_bounded
 from .geometry import convex_hull
 from .mesh_files import bounded_resolver
@@ -73,7 +76,7 @@ PYBULLET_DATA = "pybullet_data:"
 class Geometry:
     """One shape in its own frame (origin: the reference point, see the module docstring)."""
 
-    points: np.ndarray  # (N,3) collision points (the simulator uses their convex hull)
+    points: np.ndarray  # (N,3) the shape's points (a box's, a cylinder's collision hull; a mesh's vertices)
     faces: np.ndarray  # (M,3) triangles of ``points`` for drawing
     footprint: np.ndarray  # (K,2) convex outline on the table, counter-clockwise
     height: float
@@ -283,16 +286,18 @@ def mesh(path: str, scale: float, rpy: tuple[float, float, float], mtime_ns: int
 
 def _measure(m, p: Path, scale: float, rpy: tuple[float, float, float]) -> Geometry:
     m.merge_vertices(merge_tex=True, merge_norm=True)  # texture seams split vertices: not holes
-    if not m.is_watertight:
-        raise SceneError(f"mesh {p.name}: not watertight (it has holes), so it has no inside to weigh; close it")
     v = np.asarray(m.vertices, float) * scale @ _rotation(rpy).T
     if not np.all(np.isfinite(v)):
         raise SceneError(f"mesh {p.name}: non-finite vertex coordinates")
-    volume = abs(float(m.volume)) * scale**3
+    if m.is_watertight:  # a closed surface weighs exactly
+        volume, center = abs(float(m.volume)), np.asarray(m.center_mass, float)
+    else:  # holes, open rims, flipped triangles: what the surface winds round (core/solid.py)
+        volume, center = solid.solid(m.vertices, m.faces)
+    volume *= scale**3
     if not volume > 1e-12:
         raise SceneError(f"mesh {p.name}: no volume (a flat or inside-out surface)")
     lo, hi = v.min(axis=0), v.max(axis=0)
-    com = (np.asarray(m.center_mass, float) * scale) @ _rotation(rpy).T
+    com = (center * scale) @ _rotation(rpy).T
     v = v - com
     outline = simplify(convex_hull(v[:, :2]))
     return Geometry(v, np.asarray(m.faces, np.int64), outline, float(hi[2] - lo[2]),

@@ -19,7 +19,7 @@ from ..core.contracts import approach_end_frame, trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import ExecutionError, PathError, ReachError
+from ..errors import ExecutionError, InfeasibleError, PathError, ReachError
 from ..manners.spec import MannerSpec
 from . import motion, smoothing
 from .manners import carry_lift, check_carry_path, check_manner, manner_of
@@ -51,6 +51,7 @@ class Execution:
     stats: dict = field(default_factory=dict)
     displacements_m: dict[str, float] = field(default_factory=dict)  # per block not held: its largest displacement
     render: dict | None = None  # how the frames were drawn (renderer used, camera, workers, wait): summary.json
+    settled_m: dict[str, float] = field(default_factory=dict)  # per object, how far it moved settling (mesh scenes)
 
 
 def check_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> np.ndarray:
@@ -205,7 +206,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
         execution = Execution(recorder.frames, {k: round(v, 4) for k, v in clock.timings.items()}, files,
                               max_deviation_m=deviation, anchor_displacement_m=max(displaced.values(), default=0.0),
                               max_lift_m=lift, constraint_removed=removed, duration_s=world.time, stats=stats,
-                              displacements_m=displaced, render=render_info(render, film))
+                              displacements_m=displaced, render=render_info(render, film),
+                              settled_m=dict(world.settled))
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
             if summary:
@@ -247,7 +249,14 @@ def check_for(manner: MannerSpec, scene: Scene, mover: str, path: np.ndarray,
         raise PathError(f'the path starts at ({p[0, 0]:.3f}, {p[0, 1]:.3f}) but block "{mover}" is at '
                         f"({obj.xy[0]:.3f}, {obj.xy[1]:.3f}), {start_gap * 1000:.0f} mm away")
     check_carry_path(scene, mover, p)
-    return p, [None]
+    if obj.shape == "cube":
+        return p, [None]
+    # the fingers close across the object: only the angles whose width fits, narrowest first
+    angles = reach.width_angles(obj, arm)[:reach.MAX_WIDTH_HOLDS]
+    if not angles:
+        raise InfeasibleError(f'cannot carry "{mover}": no grasp angle fits it between the {arm.name}\'s fingers '
+                              f"({arm.gripper_opening * 100:.1f} cm); slide or push it instead")
+    return p, angles
 
 
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
@@ -413,6 +422,8 @@ def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettin
             "max_lift_m": round(ex.max_lift_m, 6),
             "constraint_removed": ex.constraint_removed,
             **ex.stats,
+            # how far each object moved settling before the episode: its figures above count from there
+            **({"settled_m": {k: round(v, 6) for k, v in ex.settled_m.items()}} if ex.settled_m else {}),
         },
         "render": ex.render,
         "files": {k: v.name for k, v in ex.files.items()},

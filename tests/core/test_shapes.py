@@ -104,7 +104,6 @@ def test_non_finite_dims_are_refused():
 
 
 @pytest.mark.parametrize("name, content, needle", [
-    ("open.obj", "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 2 3 4\n", "not watertight"),
     ("flat.obj", "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nf 1 2 3\nf 1 3 2\n", "no volume"),
     ("text.obj", "this is not a mesh\njust words\n", "no triangles"),
     ("junk.stl", "x" * 60, "mesh junk.stl: "),
@@ -211,3 +210,25 @@ def test_the_hand_keeps_clear_of_objects_taller_than_the_held_one(tmp_path):
     assert set(outlines) == {"T"}
     foot = scene.get("A").footprint(np.zeros(3))
     assert np.ptp(outlines["T"], axis=0).max() > np.ptp(foot, axis=0).max()  # the hand reaches beyond the box
+
+
+def test_a_mesh_with_holes_is_weighed_as_the_solid_it_winds_round(tmp_path):
+    """Meshes as packages ship them have holes: one is weighed by its winding numbers, not refused."""
+    import trimesh
+
+    from l2p_bullet.core import solid
+
+    closed = trimesh.creation.box(extents=(0.05, 0.03, 0.04))
+    closed.apply_translation((0.01, 0.0, 0.02))
+    volume, com = solid.solid(closed.vertices, closed.faces)  # the estimate against the exact closed answer
+    assert volume == pytest.approx(closed.volume, rel=0.02) and np.allclose(com, closed.center_mass, atol=1e-3)
+    lid = np.flatnonzero(closed.face_normals[:, 2] > 0.9)  # the top's two triangles taken off: a tray
+    tray = trimesh.Trimesh(closed.vertices, np.delete(closed.faces, lid, axis=0), process=False)
+    assert not tray.is_watertight
+    tray.export(tmp_path / "tray.obj")
+    scene = load_scene(_scene(tmp_path, [{"name": "A", "color": "red", "shape": "mesh", "mesh": "tray.obj",
+                                          "xy": [0.05, -0.1]}, CUBE_B]))
+    g = scene.get("A").geometry
+    assert g.height == pytest.approx(0.04) and g.narrowest()[0] == pytest.approx(0.03)
+    assert 0.3 * closed.volume < g.volume < 1.02 * closed.volume  # what the open top lets it wind round
+    assert g.rest < 0.02  # its centre of mass below the middle: the open top weighs least

@@ -87,6 +87,16 @@ def _obj_vertices(path: str) -> np.ndarray:
         return np.array([[float(v) for v in line.split()[1:4]] for line in f if line.startswith("v ")])
 
 
+def vhacd(source: str, target: str, log: str, **params: float) -> None:
+    """PyBullet's built-in V-HACD: the convex decomposition of the OBJ ``source`` written to the OBJ ``target``
+    (one ``o`` group per convex part, which :meth:`Bullet.load_convex` loads as one compound body). It prints
+    its progress on the C-level stdout: silenced."""
+    with quiet_stdout():
+        import pybullet as pb
+
+        pb.vhacd(source, target, log, **params)
+
+
 @dataclass(frozen=True)
 class JointInfo:
     """What the controller and IK need to know of one joint of a body."""
@@ -237,16 +247,25 @@ class Bullet:
         self._bodies[name] = b
 
     def load_convex(self, name: str, points: np.ndarray, position: Vec3, orientation: Quat, *, mass: float,
-                    visual: tuple) -> None:
+                    visual: tuple, parts: tuple | None = None) -> None:
         """A rigid body whose collision shape is the convex hull of ``points`` (N,3, body frame, whose origin
-        is the centre of mass), drawn as ``visual``: ("box", half extents), ("cylinder", radius, length) or
-        ("mesh", file, scale, frame position, frame roll-pitch-yaw). The EGL renderer draws no mesh given
-        by its vertices (measured: such bodies came out invisible), so a drawing is always a primitive or a
-        file."""
+        is the centre of mass), or with ``parts`` ("mesh", OBJ file of convex parts, scale, frame position,
+        frame roll-pitch-yaw) the compound of those parts; drawn as ``visual``: ("box", half extents),
+        ("cylinder", radius, length) or ("mesh", file, scale, frame position, frame roll-pitch-yaw). The EGL
+        renderer draws no mesh given by its vertices (measured: such bodies came out invisible), so a
+        drawing is always a primitive or a file."""
         if name in self._bodies:
             raise ValueError(f'a body named "{name}" is already loaded')
         pb, cid = self._pb, self._id
-        col = pb.createCollisionShape(pb.GEOM_MESH, vertices=np.asarray(points, float).tolist(), physicsClientId=cid)
+        if parts is None:
+            col = pb.createCollisionShape(pb.GEOM_MESH, vertices=np.asarray(points, float).tolist(),
+                                          physicsClientId=cid)
+        else:
+            _, path, scale, pos, rpy = parts
+            col = pb.createCollisionShape(pb.GEOM_MESH, fileName=str(path), meshScale=[scale] * 3,
+                                          collisionFramePosition=list(pos),
+                                          collisionFrameOrientation=pb.getQuaternionFromEuler(list(rpy)),
+                                          physicsClientId=cid)
         if visual[0] == "box":
             vis = pb.createVisualShape(pb.GEOM_BOX, halfExtents=list(visual[1]), physicsClientId=cid)
         elif visual[0] == "cylinder":
@@ -388,6 +407,24 @@ class Bullet:
         """Where bodies ``a`` and ``b`` touch after the last step: (point on ``b``, normal force in N) each."""
         pts = self._pb.getContactPoints(bodyA=self._bodies[a], bodyB=self._bodies[b], physicsClientId=self._id)
         return [(tuple(p[6]), float(p[9])) for p in pts]
+
+    def is_resting(self, name: str, speed: float, spin: float) -> bool:
+        """Whether body ``name`` moves slower than ``speed`` (m/s) and turns slower than ``spin`` (rad/s)."""
+        v, w = self._pb.getBaseVelocity(self._bodies[name], physicsClientId=self._id)
+        return bool(np.linalg.norm(v) < speed and np.linalg.norm(w) < spin)
+
+    def ray_heights(self, name: str, xy: np.ndarray, z_from: float, z_to: float) -> np.ndarray:
+        """Where vertical rays down through the points ``xy`` (N,2) from ``z_from`` to ``z_to`` first meet
+        body ``name`` (its collision shapes): the height per ray, nan where another body or nothing is hit."""
+        xy = np.asarray(xy, float).reshape(-1, 2)
+        if not len(xy):
+            return np.empty(0)
+        hits = []
+        for s in range(0, len(xy), 8192):  # PyBullet takes at most 16,384 rays a batch
+            hits += self._pb.rayTestBatch([[x, y, z_from] for x, y in xy[s:s + 8192]],
+                                          [[x, y, z_to] for x, y in xy[s:s + 8192]], physicsClientId=self._id)
+        b = self._bodies[name]
+        return np.array([h[3][2] if h[0] == b else np.nan for h in hits], float)
 
     # --- camera ------------------------------------------------------------------------------
     def view_matrix(self, eye: Vec3, target: Vec3, up: Vec3) -> tuple[float, ...]:

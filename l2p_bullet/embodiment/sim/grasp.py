@@ -26,6 +26,7 @@ class Grasp:
     tool_z: float
     yaw_offset: float  # tool yaw minus block yaw at grasp time
     offset_xy: np.ndarray  # tool x-y minus block x-y at grasp time, in the block's frame
+    tilt: float = 0.0  # the block's tilt (rad) at grasp time: a mesh may rest tilted on its feet
 
 
 def attach(world, name: str) -> Grasp:
@@ -38,7 +39,7 @@ def attach(world, name: str) -> Grasp:
     cy, sy = np.cos(block[3]), np.sin(block[3])
     d = np.array(t_pos[:2]) - block[:2]
     offset = np.array([cy * d[0] + sy * d[1], -sy * d[0] + cy * d[1]])
-    return Grasp(name, cid, float(t_pos[2]), float(tool_yaw - block[3]), offset)
+    return Grasp(name, cid, float(t_pos[2]), float(tool_yaw - block[3]), offset, float(world.tilt(name)))
 
 
 def detach(world, grasp: Grasp) -> None:

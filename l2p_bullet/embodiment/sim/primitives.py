@@ -175,17 +175,18 @@ class Primitives:
         self.run(line_plan(self.pose, target, self.pace.apply(limits), short_turn), stage)
 
     # --- the primitives ----------------------------------------------------------------------
-    def grasp_height(self, name: str) -> float:
-        """Tool height with the closed fingertips just touching the block's top."""
-        return self.world.heights[name] + self.robot.drop
+    def grasp_height(self, name: str, tool_yaw: float = 0.0) -> float:
+        """Tool height with the closed fingertips just touching the block's top (a mesh's: where the hand,
+        turned to ``tool_yaw``, comes to rest on it, ``World.fingertip_height``)."""
+        return self.world.fingertip_height(name, tool_yaw) + self.robot.drop
 
     def grasp_poses(self, name: str, yaw_offset: float = 0.0,
                     tool_yaw: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Tool poses above block ``name`` and with the fingertips on its top: the tool's yaw is the block's
         plus ``yaw_offset``, or ``tool_yaw`` exactly when given (an unwrapped value: it picks the wrist's branch)."""
         block = self.world.pose(name)
-        z = self.grasp_height(name)
         yaw = block[3] + yaw_offset if tool_yaw is None else float(tool_yaw)
+        z = self.grasp_height(name, yaw)
         down = np.array([block[0], block[1], z, yaw])
         return down + [0.0, 0.0, HOVER, 0.0], down
 
@@ -301,9 +302,9 @@ class Primitives:
         g = self.grasp
         if g is None:
             return
-        if self.world.tilt(g.name) > MAX_TILT:
+        if self.world.tilt(g.name) - g.tilt > MAX_TILT:  # from how it rested when grasped
             raise ExecutionError(
-                f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name)):.0f} deg while held')
+                f'block "{g.name}" tilted {math.degrees(self.world.tilt(g.name) - g.tilt):.0f} deg while held')
         pos, _ = self.robot.tool_pose()
         block = self.world.pose(g.name)
         want = self.tool_targets(block[None, [0, 1, 3]])[0] + [0.0, 0.0, lift, 0.0]

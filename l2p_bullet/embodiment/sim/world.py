@@ -21,6 +21,7 @@ from ...arms import PANDA, ArmSpec
 from ...core.scene import COLORS, Scene
 from ...core.shapes import BLOCK_FRICTION
 from ...errors import SceneError
+from . import decompose
 from .bullet import Bullet
 from .robot import ARM, Robot
 
@@ -48,6 +49,26 @@ def _visual(o, g) -> tuple:
     return ("mesh", path, o.scale, g.file_origin, o.rpy)
 
 
+def _parts(o, g) -> tuple | None:
+    """A mesh's convex decomposition placed as its drawing is (``Bullet.load_convex``'s ``parts``); None for a
+    box or a cylinder (their hull is their shape) and where the decomposition finds no parts."""
+    if o.shape != "mesh":
+        return None
+    path = decompose.parts_file(o.mesh)
+    return None if path is None else ("mesh", path, o.scale, g.file_origin, o.rpy)
+
+
+def _parts_bottom(parts: tuple) -> float:
+    """The lowest point (body frame) of a decomposition placed as ``_parts`` says: a convex part's lowest
+    point is one of its vertices (Bullet's bounding box of a turned compound is looser, by millimetres)."""
+    from ...core.shapes import _rotation
+
+    _, path, scale, origin, rpy = parts
+    with open(path) as f:
+        v = np.array([[float(c) for c in line.split()[1:4]] for line in f if line.startswith("v ")])
+    return float(((v * scale) @ _rotation(tuple(rpy)).T)[:, 2].min() + origin[2])
+
+
 def _obj_copy(g) -> str:
     """An OBJ file of ``g``'s triangles (body frame) in the user's cache, named by its content."""
     import hashlib
@@ -64,6 +85,49 @@ def _obj_copy(g) -> str:
             f.write(text)
         os.replace(f.name, out)
     return str(out)
+
+
+RAY_SPACING = 0.002
+"""m between the rays that find where the hand meets a mesh, and the clearance kept above what they find."""
+SETTLE_MAX_S = 2.0
+"""Longest time (s) the objects may take to come to rest after being set down."""
+REST_SPEED, REST_SPIN = 0.002, 0.02
+"""At rest: every object slower than this (m/s) and turning slower than this (rad/s)."""
+MAX_REST_TILT = math.radians(20.0)
+"""An object that comes to rest tilted more than this has fallen over: its footprint is not what the
+planner was given."""
+
+
+def settle(world: World) -> dict[str, float]:
+    """Step ``world``'s objects (the arm not loaded yet: it is away) until every one is at rest, then put each
+    back at the scene's ``xy`` and ``yaw`` in the pose it settled into (resting on the table is the same
+    anywhere on it): a mesh that rocks onto its feet or slides a little when set down does so before the
+    episode, not in its first frames where it would be blamed on the arm. Returns how far (m) each object's
+    centre moved while settling; SceneError, naming the object and how far it moved, for one that is still
+    moving after :data:`SETTLE_MAX_S` or that falls over."""
+    sim, names = world.sim, list(world.sizes)
+    start = {n: world.pose(n) for n in names}
+    for step in range(round(SETTLE_MAX_S / world.dt)):
+        sim.step()
+        if step >= 12 and all(sim.is_resting(n, REST_SPEED, REST_SPIN) for n in names):
+            break
+    moved = {n: float(np.linalg.norm(world.pose(n)[:3] - start[n][:3])) for n in names}
+    for n in names:
+        if not sim.is_resting(n, REST_SPEED, REST_SPIN):
+            raise SceneError(f'object "{n}" does not come to rest on the table: it moved {moved[n] * 1000:.0f} mm in '
+                             f"the {SETTLE_MAX_S:g} s after it was set down (it rolls or rocks); turn it (\"rpy\") so "
+                             "that it stands")
+        if world.tilt(n) > MAX_REST_TILT:
+            raise SceneError(f'object "{n}" falls over when set down (it tilts {math.degrees(world.tilt(n)):.0f} deg, '
+                             f'moving {moved[n] * 1000:.0f} mm); turn it ("rpy") so that it stands')
+    for n in names:  # back where the scene put it, in the pose it rests in
+        now = world.pose(n)
+        turn = sim.quaternion(0.0, 0.0, float(start[n][3] - now[3]))
+        pos, orn = sim.base_pose(n)
+        _, orn = sim.compose(((0.0, 0.0, 0.0), turn), ((0.0, 0.0, 0.0), orn))
+        sim.set_base_pose(n, (start[n][0], start[n][1], pos[2]), orn)
+        world.rests[n] = float(pos[2])
+    return {n: round(m, 9) for n, m in moved.items()}
 
 
 class World:
@@ -108,17 +172,24 @@ class World:
                 sim.load_urdf(o.name, urdf_path("block.urdf"), (o.xy[0], o.xy[1], o.size / 2), orn,
                               scale=o.size / BLOCK_URDF_SIZE)
                 rest = o.size / 2
-            else:  # its convex hull, its centre of mass at the body's origin (core/shapes.py)
+            else:  # its convex hull (a mesh: its convex parts), its centre of mass at the body's origin
                 g = o.geometry
                 rest = g.rest
+                parts = _parts(o, g)
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
-                                mass=o.mass_kg, visual=_visual(o, g))
+                                mass=o.mass_kg, visual=_visual(o, g), parts=parts)
+                if parts is not None:  # the parts' bottom, not the mesh's lowest vertex, stands on the table
+                    rest = -_parts_bottom(parts)
+                    sim.set_base_pose(o.name, (o.xy[0], o.xy[1], rest), orn)
                 sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
             sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
             sim.set_color(o.name, COLORS[o.color])
             self.sizes[o.name] = o.size
             self.heights[o.name] = o.height
             self.rests[o.name] = rest
+        self.settled: dict[str, float] = {}  # how far each object moved while settling (mesh scenes)
+        if any(o.shape == "mesh" for o in scene.objects):
+            self.settled = settle(self)
         self.robot.load()
 
     def reset(self, scene: Scene) -> None:
@@ -147,6 +218,30 @@ class World:
     def poses(self) -> dict[str, np.ndarray]:
         """Every block's :meth:`pose`, in scene order."""
         return {name: self.pose(name) for name in self.sizes}
+
+    def fingertip_height(self, name: str, tool_yaw: float) -> float:
+        """Where the closed fingertips come to rest when the hand, turned to ``tool_yaw``, is lowered straight
+        down over object ``name``'s centre of mass: the lowest height at which no layer of the hand's profile
+        (``ArmSpec.hand_profile``: its half extents at each height above the fingertips) is inside the object,
+        measured with vertical rays on its collision shapes. A box's, a cylinder's or a cube's is its top
+        (their tops are flat); a mesh's may be lower than its highest point, which can lie to one side
+        (a duck's head), so the fingers hold its body."""
+        top = self.heights[name]
+        if self.scene.get(name).shape != "mesh":
+            return top
+        x, y = self.pose(name)[:2]
+        c, s = math.cos(tool_yaw), math.sin(tool_yaw)
+        pts, depth = [], []
+        for d, hx, hy in self.robot.spec.hand_profile or ((0.0, 0.01, 0.01),):
+            if d > top:
+                break
+            # rays RAY_SPACING apart at most: a thin wall (a tray's, a mug's) between two would be missed
+            gx, gy = (a.ravel() for a in np.meshgrid(*(np.linspace(-h, h, 1 + math.ceil(2 * h / RAY_SPACING))
+                                                       for h in (hx, hy))))
+            pts.append(np.column_stack([x + c * gx - s * gy, y + s * gx + c * gy]))
+            depth.append(np.full(len(gx), d))
+        hit = self.sim.ray_heights(name, np.vstack(pts), top + 0.05, 0.0) - np.concatenate(depth)
+        return min(top, float(np.nanmax(hit)) + RAY_SPACING) if np.isfinite(hit).any() else top
 
     @property
     def time(self) -> float:

@@ -1,0 +1,184 @@
+"""Meshes as users bring them: carried across their real width, taken with holes (collision from a cached
+convex decomposition), and settled before the episode so that a mesh rocking onto its feet is not blamed on
+the arm."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from l2p_bullet.core.scene import load_scene
+from l2p_bullet.embodiment.sim import decompose
+from l2p_bullet.embodiment.sim.world import World
+from l2p_bullet.errors import SceneError
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "objects"
+CUBES = [{"name": "A", "color": "red", "size": 0.04, "xy": [0.08, -0.08]},
+         {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.0]}]
+
+
+def _perform(*args):
+    from click.testing import CliRunner
+
+    from l2p_bullet.cli import main
+
+    return CliRunner().invoke(main, ["perform", *args])
+
+
+def _mesh(path: Path, vertices, faces) -> Path:
+    import trimesh
+
+    trimesh.Trimesh(np.asarray(vertices, float), np.asarray(faces), process=False).export(path)
+    return path
+
+
+def _tray(folder: Path) -> Path:
+    """A 5 x 3 x 4 cm box without its lid: open, not watertight, concave."""
+    import trimesh
+
+    box = trimesh.creation.box(extents=(0.05, 0.03, 0.04))
+    lid = np.flatnonzero(box.face_normals[:, 2] > 0.9)
+    return _mesh(folder / "tray.obj", box.vertices, np.delete(box.faces, lid, axis=0))
+
+
+def _rocker(folder: Path) -> Path:
+    """A 4 cm box with one bottom corner 6 mm low: set down flat, it rocks onto that corner (about 4 mm)."""
+    import trimesh
+
+    box = trimesh.creation.box(extents=(0.04, 0.04, 0.04))
+    v = box.vertices.copy()
+    v[np.argmin(v.sum(axis=1)), 2] -= 0.006
+    return _mesh(folder / "rocker.obj", v, box.faces)
+
+
+@pytest.mark.slow
+def test_a_carried_mesh_performs(tmp_path):
+    """Carrying a mesh crashed (TypeError: the carry's grasp angle None was given to the width)."""
+    out = tmp_path / "run"
+    r = _perform("carry duck closer to B", "--scene", str(EXAMPLES / "objects.json"), "--no-render", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    assert "success" in r.output.splitlines()[-3], r.output
+    summary = json.loads((out / "summary.json").read_text())
+    grasp = summary["execution"]["grasp"]
+    assert 0.01 < grasp["width_m"] <= 0.08  # the fingers closed across the duck's width, within the opening
+    assert summary["execution"]["max_lift_m"] > 0.02  # carried, not slid
+
+
+@pytest.mark.slow
+def test_a_non_watertight_mesh_performs_and_its_decomposition_is_kept(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    tray = _tray(tmp_path)
+    scene_file = tmp_path / "scene.json"
+    scene_file.write_text(json.dumps({"objects": [
+        {"name": "T", "color": "red", "shape": "mesh", "mesh": "tray.obj", "xy": [0.08, -0.08], "yaw": 0.2},
+        CUBES[1]]}))
+    out = tmp_path / "run"
+    r = _perform("move T closer to B", "--scene", str(scene_file), "--no-render", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    assert "success" in r.output, r.output
+    kept = list((tmp_path / decompose.FOLDER).glob("tray-*.obj"))  # next to the mesh, named by its digest
+    assert len(kept) == 1 and decompose.digest(tray) in kept[0].name
+    assert kept[0].read_text().count("\no ") >= 2  # a tray is no convex part: several parts
+    assert decompose.parts_file(tray) == kept[0]  # found again, not decomposed again
+
+
+def test_a_decomposition_goes_to_the_user_cache_where_it_cannot_be_kept_beside_the_mesh(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    tray = _tray(tmp_path)
+    (tmp_path / decompose.FOLDER).write_text("a file where the cache folder would go")  # as unwritable as read-only
+    got = decompose.parts_file(tray)
+    assert got is not None and got.parent == decompose.user_cache() and got.is_file()
+
+
+def test_a_convex_mesh_keeps_its_exact_hull(tmp_path, monkeypatch):
+    import trimesh
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    box = trimesh.creation.box(extents=(0.05, 0.03, 0.04))
+    assert decompose.parts_file(_mesh(tmp_path / "box.obj", box.vertices, box.faces)) is None
+    assert not (tmp_path / decompose.FOLDER).exists()
+
+
+def test_a_settling_bystander_is_not_blamed_on_the_arm(tmp_path):
+    _rocker(tmp_path)
+    scene_file = tmp_path / "scene.json"
+    scene_file.write_text(json.dumps({"objects": [
+        *CUBES, {"name": "R", "color": "blue", "shape": "mesh", "mesh": "rocker.obj", "xy": [-0.1, 0.1]}]}))
+    scene = load_scene(scene_file)
+    with World(scene, visuals=False) as world:  # settled before anything is recorded, where the scene put it
+        assert world.settled["R"] > 0.002
+        pose = world.pose("R")
+        assert np.allclose(pose[:2], (-0.1, 0.1), atol=1e-9) and abs(pose[3]) < 1e-6
+        assert world.tilt("R") > math.radians(3)  # it rests on its low corner
+        assert pose[2] == pytest.approx(world.rests["R"], abs=1e-9)
+    out = tmp_path / "run"
+    r = _perform("move A closer to B", "--scene", str(scene_file), "--no-render", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    assert "success" in r.output and "the arm moved" not in r.output, r.output
+    line = r.output.splitlines()[-2]  # the anchor's own figure, the bystander's named as a bystander's
+    assert "anchor moved 0." in line and "bystander R moved 0." in line, line
+    execution = json.loads((out / "summary.json").read_text())["execution"]
+    assert execution["displacements_m"]["R"] < 0.001 and execution["settled_m"]["R"] > 0.002
+
+
+def test_an_object_that_falls_over_is_refused_by_name(tmp_path):
+    import trimesh
+
+    stick = trimesh.creation.box(extents=(0.02, 0.02, 0.08))
+    _mesh(tmp_path / "stick.obj", stick.vertices, stick.faces)
+    scene_file = tmp_path / "scene.json"
+    scene_file.write_text(json.dumps({"objects": [
+        *CUBES, {"name": "S", "color": "blue", "shape": "mesh", "mesh": "stick.obj", "rpy": [0.35, 0.0, 0.0],
+                 "xy": [-0.12, 0.1]}]}))
+    with pytest.raises(SceneError) as e:
+        World(load_scene(scene_file), visuals=False)
+    msg = str(e.value)
+    assert '"S"' in msg and "mm" in msg and "\n" not in msg
+
+
+def test_the_moved_line_names_whose_figure_it_is():
+    from l2p_bullet.pipeline import moved_text
+
+    assert moved_text({"B": 0.0001, "C": 0.0026}, ("B",)) == "anchor moved 0.1 mm, bystander C moved 2.6 mm"
+    assert moved_text({"B": 0.0001}, ("B",)) == "anchor moved 0.1 mm"
+    assert moved_text({"C": 0.002}, ()) == "bystander C moved 2.0 mm"
+
+
+def test_a_mesh_that_falls_over_is_refused_before_anything_is_planned(tmp_path):
+    import trimesh
+
+    from l2p_bullet.pipeline import prepare
+
+    stick = trimesh.creation.box(extents=(0.02, 0.02, 0.08))
+    _mesh(tmp_path / "stick.obj", stick.vertices, stick.faces)
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        *CUBES, {"name": "S", "color": "blue", "shape": "mesh", "mesh": "stick.obj", "rpy": [0.35, 0.0, 0.0],
+                 "xy": [-0.12, 0.1]}]}))
+    with pytest.raises(SceneError, match='"S" falls over'):
+        prepare("move A closer to B", load_scene(tmp_path / "scene.json"))
+
+
+def test_a_mesh_resting_tilted_is_slid_without_being_called_tilted(tmp_path):
+    """The held-tilt check counts from how the object rested when grasped: a mesh that rests 14 degrees
+    tilted on its feet failed every slide as 'tilted 14 deg while held'."""
+    import trimesh
+
+    from l2p_bullet.embodiment.execute import execute_path
+
+    box = trimesh.creation.box(extents=(0.04, 0.04, 0.04))
+    v = box.vertices.copy()
+    v[np.argmin(v.sum(axis=1)), 2] -= 0.010
+    _mesh(tmp_path / "r.obj", v, box.faces)
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        {"name": "R", "color": "blue", "shape": "mesh", "mesh": "r.obj", "xy": [0.06, -0.08]}, CUBES[1]]}))
+    scene = load_scene(tmp_path / "scene.json")
+    with World(scene, visuals=False) as world:
+        assert math.radians(12) < world.tilt("R") < math.radians(20)
+    a = scene.get("R")
+    path = np.array([[*a.xy, a.yaw], [a.xy[0] + 0.05, a.xy[1] - 0.03, a.yaw]])
+    ex = execute_path(scene, "R", path, out_dir=None, render=None)
+    assert ex.max_deviation_m < 0.003 and ex.constraint_removed
