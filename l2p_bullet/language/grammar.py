@@ -30,6 +30,7 @@ from .words import (
     drop_frames,
     gerund_to_verb,
     goal_to_verb,
+    skip_to_verb,
     strip_polite,
     take_extent,
     take_pace,
@@ -150,9 +151,11 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     taken out) and the pace the adverbs ask for; a word that names an object always stays."""
     keep = frozenset(scene.names)
     verbs = known_verbs()
+    heads = sorted({v.split()[0] for v in verbs})
     words = gerund_to_verb(tokens(text), verbs)
     words = strip_polite(goal_to_verb(gerund_to_verb(strip_polite(words, keep), verbs), verbs), keep)
-    return take_pace(words, keep)
+    words, pace = take_pace(words, keep)
+    return strip_polite(skip_to_verb(words, heads, keep), keep), pace
 
 
 def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:

@@ -27,7 +27,9 @@ SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "cylinder": "cylin
 ("the red box") the colour decides, since people call any block a box."""
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
 FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
-                            "and", "or", "then", "so", "it", "not", "no"})
+                            "and", "or", "then", "so", "it", "not", "no", "other", "another", "first", "second",
+                            "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
+"""Words never taken as an object's own adjective ("the second duck" is not "the duck")."""
 NAMED_AS = (("called",), ("named",))
 PRONOUNS_MOVER = ((("it",)), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
                   ("the", "same", "one"), ("the", "same", "object"), ("that",))
@@ -166,7 +168,11 @@ def _measure(o: SceneObject, what: str) -> float:
 
 def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
                 context: Context | None) -> str | None:
-    """Superlatives and relations: None when ``words`` hold none (then colours and names are tried)."""
+    """Superlatives and relations: None when ``words`` hold none (then colours and names are tried).
+
+    "Block" may mean any object or only the block-shaped ones (cubes and boxes): people differ. Where the two
+    readings pick different objects ("the smallest block": the cylinder, or three equal cubes), the
+    description is ambiguous and refused."""
     head = _head_end(low)
     if head is None:
         return None
@@ -175,23 +181,50 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
         if any(w.lower() not in NOUNS | set(COLORS) | set(SHAPE_NOUNS) for w in rest_words):
             return None
-        pool = _pool(" ".join(words[:at] + rest_words), scene)
+        described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
-        return _superlative(pool, lambda o: _measure(o, what), pick, kind)
-    pool = _pool(" ".join(words[:at]), scene)  # "the red block nearest B": the red ones only
+        return _either_reading(described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind))
     ref = _reference_point(rest_words, scene, role, context)
     if ref is None:
         return None
     ref_name, ref_xy = ref
-    pool = [o for o in pool if o.name != ref_name]
-    if kind in ("left", "right"):
-        side = 1.0 if kind == "left" else -1.0
-        beside = [o for o in pool if _bearing_off(np.subtract(o.xy, ref_xy), side) <= SIDE_CONE]
-        if not beside:
-            raise UnknownObjectError(f'nothing in the scene is {kind} of {ref_name or "the robot"} as the robot sees '
-                                     f"it (blocks: {describe(scene)})")
-        return _superlative(beside, lambda o: _distance(o, ref_xy), min, f"{kind} of")
-    return _superlative(pool, lambda o: _distance(o, ref_xy), min if kind in NEAREST else max, kind)
+
+    def choose(pool: list[SceneObject]) -> str:
+        pool = [o for o in pool if o.name != ref_name]
+        if kind in ("left", "right"):
+            side = 1.0 if kind == "left" else -1.0
+            beside = [o for o in pool if _bearing_off(np.subtract(o.xy, ref_xy), side) <= SIDE_CONE]
+            if not beside:
+                raise UnknownObjectError(f'nothing in the scene is {kind} of {ref_name or "the robot"} as the robot '
+                                         f"sees it (blocks: {describe(scene)})")
+            return _superlative(beside, lambda o: _distance(o, ref_xy), min, f"{kind} of")
+        return _superlative(pool, lambda o: _distance(o, ref_xy), min if kind in NEAREST else max, kind)
+
+    return _either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
+
+
+BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})
+BLOCK_SHAPES = frozenset({"cube", "box"})
+
+
+def _either_reading(described: list[str], scene: Scene, choose) -> str:
+    """``choose`` over the objects ``described`` allows; with "block" in it, over the block-shaped ones too, and
+    the description refused as ambiguous where the two readings differ."""
+    pool = _pool(" ".join(described), scene)
+    if not {w.lower() for w in described} & BLOCK_WORDS:
+        return choose(pool)
+    readings = []
+    for candidates in (pool, [o for o in pool if o.shape in BLOCK_SHAPES]):
+        try:
+            readings.append(choose(candidates))
+        except (LanguageError, UnknownObjectError) as e:
+            readings.append(e)
+    if isinstance(readings[0], str) and readings[0] == readings[1]:
+        return readings[0]
+    said = " ".join(described + ["..."])
+    picks = sorted({r for r in readings if isinstance(r, str)})
+    raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0] if picks else "none"}, as a block '
+                        f'(a cube or a box) {"another" if len(picks) > 1 else "not one"}; name the one you mean')
 
 
 def _distance(o: SceneObject, xy: tuple[float, float]) -> float:

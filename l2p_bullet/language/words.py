@@ -26,8 +26,9 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
 ))
 """Words that may open a command and ask for nothing (longest first where one starts another)."""
 POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
-    "please thanks", "please thank you", "thank you", "thanks", "please", "for me", "now", "would you",
-    "could you", "will you", "can you", "ok", "okay",
+    "please thanks", "please thank you", "thank you very much", "thank you so much", "thank you", "thanks",
+    "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
+    "and do it", "do it",
 ))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("would", "you", "mind"), ("do", "you", "mind"))
 """Openings followed by the verb's -ing form: "would you mind moving A past B"."""
@@ -40,7 +41,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
     "so that it ends up", "so that it is", "so that it's", "so that it goes", "so that it sits",
     "so that it lands", "so that it ends", "so it ends up", "so it is", "so it's", "so it goes", "so it sits",
     "so it lands", "so it ends", "such that it is", "such that it's", "until it is", "until it's",
-    "until it ends up", "so that", "so", "over so it's", "over so it is", "over", "back",
+    "until it ends up", "so that", "so", "over so it's", "over so it is", "over", "back", "down",
 ))
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
@@ -61,12 +62,21 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "right": "right", "directly": "right", "immediately": "right",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
-COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
-    ("far", "from"): ("away from", "far"),
-    ("farther", "from"): ("away from", None),
-    ("further", "from"): ("away from", None),
-}
-"""Phrases people use for "away from" that the away action does not list: (its phrase, the extent)."""
+COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {tuple(k.split()): v for k, v in {
+    "far from": ("away from", "far"),
+    "farther from": ("away from", None),
+    "further from": ("away from", None),
+    "more close to": ("closer to", None),
+    "in the direction of": ("toward", None),
+    "to the other side of": ("past", None),
+    "beyond": ("past", None),
+    "all the way around": ("around", None),
+    "in a loop around": ("around", None),
+}.items()}
+"""Phrases people use for a built-in action's that its manifest does not list: (its phrase, the extent). Each
+reads as that phrase only while an installed action owns it."""
+NEGATIONS = frozenset({"don't", "dont", "do", "not", "never", "no"})
+"""Words that, just before a verb, say not to do it ("don't carry it, just push A past B")."""
 
 
 def _starts(low: list[str], words: tuple[str, ...]) -> bool:
@@ -88,6 +98,21 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
             if len(low) > len(suf) and tuple(low[-len(suf):]) == suf and not set(words[-len(suf):]) & keep:
                 words, changed = words[: -len(suf)], True
                 break
+    return words
+
+
+def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = frozenset()) -> list[str]:
+    """The words from the first known verb on, when what comes before it names no object and the verb is not
+    negated: "Sorry to bother you, but could you drag B past C", "Your task is to push ...", "Don't carry it,
+    just push A past B". ``verbs`` are the verbs' first words."""
+    low = [w.lower() for w in words]
+    if not low or low[0] in verbs:
+        return words
+    for i, w in enumerate(low):
+        if set(words[:i]) & keep:
+            return words
+        if w in verbs and not (set(low[max(0, i - 2):i]) & NEGATIONS and "just" not in low[max(0, i - 1):i]):
+            return words[i:]
     return words
 
 
@@ -151,15 +176,17 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
 
 
 def take_extent(before: list[str]) -> tuple[list[str], str | None]:
-    """The words before a preposition without a qualifier at their end, and the extent it asks for."""
-    low = [w.lower() for w in before]
-    for k in sorted(EXTENTS, key=len, reverse=True):
-        if len(low) > len(k) and tuple(low[-len(k):]) == k:
-            rest, extent = before[: -len(k)], EXTENTS[k]
-            if extent == "far" and rest and rest[-1].lower() in ("far",):  # "far, far away from"
-                rest = rest[:-1]
-            return rest, extent
-    return before, None
+    """The words before a preposition without the qualifiers at their end, and the extent they ask for; the
+    outermost decides ("a little farther away": little, "a lot farther away": far)."""
+    extent = None
+    while True:
+        low = [w.lower() for w in before]
+        for k in sorted(EXTENTS, key=len, reverse=True):
+            if len(low) > len(k) and tuple(low[-len(k):]) == k:
+                before, extent = before[: -len(k)], EXTENTS[k]
+                break
+        else:
+            return before, extent
 
 
 def drop_frames(before: list[str]) -> list[str]:

@@ -28,9 +28,9 @@ class Case:
     expect: str
 
 
-def cases() -> list[Case]:
+def cases(name: str = "corpus.tsv") -> list[Case]:
     out = []
-    for line in (HERE / "corpus.tsv").read_text(encoding="utf-8").splitlines():
+    for line in (HERE / name).read_text(encoding="utf-8").splitlines():
         if line.strip() and not line.startswith("#"):
             cat, sentence, expect = line.split("\t")
             out.append(Case(cat, sentence, expect))
@@ -70,13 +70,13 @@ def resolve(sentence: str, the_scene, plugins) -> str:
         return REFUSE
 
 
-def score(plugins=None) -> tuple[dict[str, Counter], list[tuple[Case, str]]]:
+def score(plugins=None, name: str = "corpus.tsv") -> tuple[dict[str, Counter], list[tuple[Case, str]]]:
     """Per category, how many are right / refused / wrong; and every case that is not right."""
     plugins = registry.discover() if plugins is None else plugins
     the_scene = scene()
     table: dict[str, Counter] = defaultdict(Counter)
     misses = []
-    for case in cases():
+    for case in cases(name):
         got = resolve(case.sentence, the_scene, plugins)
         if got == case.expect:
             table[case.category]["right"] += 1
@@ -89,8 +89,10 @@ def score(plugins=None) -> tuple[dict[str, Counter], list[tuple[Case, str]]]:
     return table, misses
 
 
-if __name__ == "__main__":  # python tests/language/corpus.py: the table per category and the misses
-    t, m = score()
+if __name__ == "__main__":  # python tests/language/corpus.py [heldout.tsv]: the table per category, the misses
+    import sys
+
+    t, m = score(name=sys.argv[1] if len(sys.argv) > 1 else "corpus.tsv")
     total = Counter()
     print("| category | sentences | right | refused | wrong | rate |\n|---|---:|---:|---:|---:|---:|")
     for cat, c in t.items():
