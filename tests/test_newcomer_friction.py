@@ -24,7 +24,7 @@ def _result(manner: str) -> SimpleNamespace:
 
     r = SimpleNamespace(command=command, verdict={"reason": "the rules hold"}, final_progress=0.97, success=True,
                         planned_progress=0.98, max_deviation_m=0.001, anchor_displacement_m=0.0,
-                        timings={"total": 1.0}, files={}, out_dir=Path("runs/x"))
+                        timings={"total": 1.0}, files={}, out_dir=Path("runs/x"), displacements_m={"B": 0.0})
     r.text = lambda: PerformResult.text(r)  # perform prints what the result says of itself
     return r
 
