@@ -77,10 +77,10 @@ def episode_arrays(ep: Episode, step: int, objects: list[str] | None = None) -> 
     is NaN."""
     frames = ep.frames[::step]
     objects = object_names([ep]) if objects is None else objects
-    absent = [np.nan] * len(POSE_NAMES)
+    absent, width = [np.nan] * len(POSE_NAMES), len(STATE_NAMES) + len(POSE_NAMES) * len(objects)
     state = np.array([[*_xyyaw(f, ep.mover), *_xyyaw(f, ep.anchor), *f["ee"], float(f["grasped"] is not None),
                        *(v for o in objects for v in f["poses"].get(o, absent))]
-                      for f in frames], np.float32).reshape(len(frames), len(STATE_NAMES) + len(POSE_NAMES) * len(objects))
+                      for f in frames], np.float32).reshape(len(frames), width)
     action = np.concatenate([state[1:, 6:10], state[-1:, 6:10]]) if len(state) else np.zeros((0, 4), np.float32)
     progress = np.array([np.nan if f.get("progress") is None else f["progress"] for f in frames], np.float32)
     joints = np.array([f.get("arm") or [] for f in frames], np.float32)
