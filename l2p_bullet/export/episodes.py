@@ -103,9 +103,10 @@ def episode_from_run(run: str | Path) -> Episode:
 
 
 def check_frames(frames: object, mover: object, anchor: object, source: str) -> None:
-    """What an export reads of every frame, checked before anything is written: the mover's and the anchor's
-    poses ([x, y, z, yaw]) and the tool's ``ee`` ([x, y, z]) of finite numbers, ``grasped``, and the arm's joints (as many in every
-    frame); a crafted trajectory.json is one line, not a KeyError in the middle of a dataset."""
+    """What an export reads of every frame, checked before anything is written: every object's pose
+    ([x, y, z, yaw], the mover's and the anchor's among them) and the tool's ``ee`` ([x, y, z]) of finite
+    numbers, ``grasped``, and the arm's joints (as many in every frame); a crafted trajectory.json is one
+    line, not a KeyError in the middle of a dataset."""
     if not isinstance(frames, list) or not frames:
         raise PathError(f'{source}: "frames" must be a non-empty list')
     if not (isinstance(mover, str) and isinstance(anchor, str)):
@@ -117,10 +118,12 @@ def check_frames(frames: object, mover: object, anchor: object, source: str) -> 
         values = np.array([[*f["poses"][mover], *f["poses"][anchor], *f["ee"]] for f in frames], float)
         joints = np.array([f.get("arm") or [] for f in frames], float)
         progress = np.array([np.nan if f.get("progress") is None else f["progress"] for f in frames], float)
+        poses = [np.asarray(v, float) for f in frames for v in f["poses"].values()]
     except (KeyError, TypeError, ValueError, IndexError, AttributeError) as e:
         raise PathError(f"{source}: a malformed frame ({type(e).__name__}: {str(e)[:80]}); every frame needs "
                         f'"poses" of {mover[:40]} and {anchor[:40]}, "ee" and "grasped"') from None
-    if values.shape != (len(frames), 11) or not np.all(np.isfinite(values)) or joints.ndim != 2 or progress.ndim != 1:
+    if (values.shape != (len(frames), 11) or not np.all(np.isfinite(values)) or joints.ndim != 2 or progress.ndim != 1
+            or any(p.shape != (4,) or not np.isfinite(p).all() for p in poses)):
         raise PathError(f'{source}: every frame\'s poses must be [x, y, z, yaw] and its "ee" [x, y, z] '
                         '(finite numbers), its "arm" as many joint angles as the other frames\'')
 

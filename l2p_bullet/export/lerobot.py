@@ -9,11 +9,15 @@ Layout (LeRobotDataset v3.0: many episodes per file, episode boundaries in the m
     OUT/data/chunk-000/file-000.parquet             one row per frame
     OUT/videos/observation.images.front/chunk-000/file-000.mp4   every episode's frames, concatenated
 
-Per frame: ``observation.state`` (mover x, y, yaw; anchor x, y, yaw; end effector x, y, z; grasped),
+Per frame: ``observation.state`` (mover x, y, yaw; anchor x, y, yaw; end effector x, y, z; grasped; then
+every object's x, y, z, yaw in the scene's order, named ``<object>_x`` ... in info.json: a chain's other
+blocks too), ``observation.joints`` (the arm's movable joints, named as the arm names them),
 ``observation.progress`` (the action's learned progress), ``action`` (the end effector's position and the
 grasp at the next frame: where the arm was sent; the last frame repeats itself), the camera image when
 the runs were rendered, and LeRobot's ``timestamp``, ``frame_index``, ``episode_index``, ``index``,
-``task_index``. Metres and radians in the scene frame. With images the data is sampled at the video's
+``task_index``. Metres and radians in the scene frame. Episodes from scenes with different objects share
+one state layout (every object named in any of them, in order of appearance); an object an episode's
+scene lacks is NaN there, not a made-up pose. With images the data is sampled at the video's
 rate (15 fps by default: every second 30-fps trajectory frame, each matching one rendered image); without, at 30 fps.
 
 ``tasks.parquet`` carries pandas' metadata so that ``pandas.read_parquet`` gives LeRobot's table
@@ -40,6 +44,8 @@ VIDEO_PATH = "videos/{video_key}/chunk-{chunk_index:03d}/file-{file_index:03d}.m
 EPISODES_PATH = "meta/episodes/chunk-000/file-000.parquet"
 STATE_NAMES = ["mover_x", "mover_y", "mover_yaw", "anchor_x", "anchor_y", "anchor_yaw", "ee_x", "ee_y", "ee_z",
                "grasped"]
+"""The state's first values, by role; every object's pose follows (:func:`state_names`)."""
+POSE_NAMES = ("x", "y", "z", "yaw")
 ACTION_NAMES = ["ee_x", "ee_y", "ee_z", "grasp"]
 
 
@@ -53,11 +59,28 @@ def _pyarrow():
     return pa, pq
 
 
-def episode_arrays(ep: Episode, step: int) -> dict[str, np.ndarray]:
-    """State (T,10), action (T,4), progress (T,) of every ``step``-th frame."""
+def object_names(eps: Iterable[Episode]) -> list[str]:
+    """Every object the episodes' frames pose, in the scene's order (the order trajectory.json records them,
+    ``World.poses``); objects first met in a later episode follow."""
+    return list(dict.fromkeys(name for ep in eps for name in ep.frames[0]["poses"]))
+
+
+def state_names(objects: list[str]) -> list[str]:
+    """``observation.state``'s names: :data:`STATE_NAMES`, then each object's x, y, z, yaw."""
+    return STATE_NAMES + [f"{o}_{p}" for o in objects for p in POSE_NAMES]
+
+
+def episode_arrays(ep: Episode, step: int, objects: list[str] | None = None) -> dict[str, np.ndarray]:
+    """State (T, 10 + 4 per object), action (T,4), progress (T,), joints (T,J) of every ``step``-th frame.
+
+    ``objects``: whose poses follow the first ten values (default: the episode's own); one the frame lacks
+    is NaN."""
     frames = ep.frames[::step]
-    state = np.array([[*_xyyaw(f, ep.mover), *_xyyaw(f, ep.anchor), *f["ee"], float(f["grasped"] is not None)]
-                      for f in frames], np.float32)
+    objects = object_names([ep]) if objects is None else objects
+    absent, width = [np.nan] * len(POSE_NAMES), len(STATE_NAMES) + len(POSE_NAMES) * len(objects)
+    state = np.array([[*_xyyaw(f, ep.mover), *_xyyaw(f, ep.anchor), *f["ee"], float(f["grasped"] is not None),
+                       *(v for o in objects for v in f["poses"].get(o, absent))]
+                      for f in frames], np.float32).reshape(len(frames), width)
     action = np.concatenate([state[1:, 6:10], state[-1:, 6:10]]) if len(state) else np.zeros((0, 4), np.float32)
     progress = np.array([np.nan if f.get("progress") is None else f["progress"] for f in frames], np.float32)
     joints = np.array([f.get("arm") or [] for f in frames], np.float32)
@@ -103,6 +126,8 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     fps = float(fps_values.pop())
 
     arm, names = _arm_joints(eps)
+    objects = object_names(eps)
+    snames = state_names(objects)
     tasks = list(dict.fromkeys(e.task for e in eps))
     columns: dict[str, list] = {k: [] for k in ("observation.state", "observation.progress", "action", "timestamp",
                                                 "frame_index", "episode_index", "index", "task_index",
@@ -112,7 +137,7 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     total = 0
     for i, ep in enumerate(eps):
         step = max(1, round(ep.fps / fps))
-        arr = episode_arrays(ep, step)
+        arr = episode_arrays(ep, step, objects)
         n = len(arr["state"])
         if video:
             n = min(n, len(ep.images))
@@ -145,7 +170,7 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
     data_file = out / DATA_PATH.format(chunk_index=0, file_index=0)
     data_file.parent.mkdir(parents=True, exist_ok=True)
     table = pa.table({
-        "observation.state": _fixed(pa, columns["observation.state"], len(STATE_NAMES)),
+        "observation.state": _fixed(pa, columns["observation.state"], len(snames)),
         "observation.progress": pa.array(columns["observation.progress"], pa.float32()),
         "action": _fixed(pa, columns["action"], len(ACTION_NAMES)),
         "observation.joints": _fixed(pa, columns["observation.joints"], len(names)),
@@ -153,7 +178,7 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
         **{k: pa.array(columns[k], pa.int64()) for k in ("frame_index", "episode_index", "index", "task_index")},
     })
     pq.write_table(table, data_file, compression="snappy")
-    features = _features(video, all_images[0].shape if video else None, fps)
+    features = _features(video, all_images[0].shape if video else None, fps, snames)
     features["observation.joints"] = {"dtype": "float32", "shape": [len(names)], "names": names}
     if video:
         ends = {m["dataset_to_index"] for m in episodes_meta}
@@ -195,9 +220,9 @@ def _fixed(pa, rows: list[np.ndarray], n: int):
     return pa.FixedSizeListArray.from_arrays(pa.array(flat, pa.float32()), n)
 
 
-def _features(video: bool, shape: tuple | None, fps: float) -> dict:
+def _features(video: bool, shape: tuple | None, fps: float, snames: list[str]) -> dict:
     f = {
-        "observation.state": {"dtype": "float32", "shape": [len(STATE_NAMES)], "names": STATE_NAMES},
+        "observation.state": {"dtype": "float32", "shape": [len(snames)], "names": snames},
         "observation.progress": {"dtype": "float32", "shape": [1], "names": None},
         "action": {"dtype": "float32", "shape": [len(ACTION_NAMES)], "names": ACTION_NAMES},
     }
@@ -216,11 +241,14 @@ def _features(video: bool, shape: tuple | None, fps: float) -> dict:
 def _stats(arr: dict[str, np.ndarray], n: int, images: list[np.ndarray] | None) -> dict[str, dict]:
     """LeRobot's per-feature statistics (min, max, mean, std, count) as lists; images per channel in [0, 1]."""
     def one(x: np.ndarray) -> dict:
+        # per value, over the frames that have it: an object absent from some scenes (NaN there) and the
+        # progress of a run without a learned one must not blank the statistics of the rest
         x = np.asarray(x, np.float64)[:n].reshape(n, -1)
-        ok = ~np.isnan(x).any(axis=1)
-        x = x[ok] if ok.any() else np.zeros((1, x.shape[1]))
-        return {"min": x.min(0).tolist(), "max": x.max(0).tolist(), "mean": x.mean(0).tolist(),
-                "std": x.std(0).tolist(), "count": [int(ok.sum())]}
+        ok = ~np.isnan(x)
+        x = np.where(ok.any(0), x, 0.0)  # a value no frame has: zeros, as LeRobot's own empty statistics
+        with np.errstate(invalid="ignore"):
+            return {"min": np.nanmin(x, 0).tolist(), "max": np.nanmax(x, 0).tolist(), "mean": np.nanmean(x, 0).tolist(),
+                    "std": np.nanstd(x, 0).tolist(), "count": [int(ok.any(1).sum())]}
 
     out = {"observation.state": one(arr["state"]), "action": one(arr["action"]),
            "observation.progress": one(arr["progress"]), "observation.joints": one(arr["joints"])}
