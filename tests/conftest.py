@@ -60,7 +60,7 @@ def pytest_collection_modifyitems(config, items) -> None:
     worker; a test's own ``xdist_group`` mark groups tests across modules instead (the Ray tests, which
     must not start two clusters at once). The groups holding the most slow tests go first, so that the
     last unit handed out is a short one and the workers finish together."""
-    if getattr(config.option, "dist", "no") != "loadgroup":
+    if not getattr(config.option, "loadgroup", False):  # what an xdist worker is told of --dist loadgroup
         return
     group = {}
     for item in items:

@@ -25,10 +25,10 @@ SMALLEST: dict[str, list[str]] = {
     "bench_arms.py": ["--arms", "xarm6", "--actions", "closer", "--scenes", "1", "--timed", "0"],
     "bench_chains.py": ["--chains", "1", "--clauses", "2"],
     "bench_embodiment.py": ["--repeats", "1", "--resolution", "64x48"],
-    "bench_evaluate.py": ["--runs", "1", "--no-ray"],
+    "bench_evaluate.py": ["--runs", "1", "--actions", "closer", "--no-ray"],
     "bench_feedback.py": ["--quick", "--only", "shipped,head", "--head-seeds", "1"],
     "bench_generalise.py": ["--ensemble", "1", "--epochs", "1", "--cache", "cache"],
-    "bench_learning.py": ["--quick", "--skip-split"],
+    "bench_learning.py": ["--quick", "--skip-split", "--epochs", "1"],
     "bench_manners.py": ["--scenes", "1", "--manners", "push", "--actions", "closer"],
     "bench_objects.py": ["--scenes", "1", "--actions", "closer"],
     "bench_past.py": ["--sizes", "0.03", "--scenes", "1"],
@@ -52,8 +52,9 @@ def test_every_benchmark_has_a_smallest_size():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", sorted(SMALLEST))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xdist_group(n)) for n in sorted(SMALLEST)])
 def test_the_benchmark_runs_at_its_smallest_size(name: str, tmp_path: Path):
+    """(Each its own unit of work under pytest-xdist: they share nothing, and together they take minutes.)"""
     if name == "bench_review.py" and not os.path.exists(CHROMIUM):
         if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
             pytest.fail(f"{CHROMIUM} is missing")
