@@ -9,7 +9,6 @@ others wait on a lock.
 from __future__ import annotations
 
 import fcntl
-import os
 import shutil
 from pathlib import Path
 
@@ -44,10 +43,11 @@ def make_runs(root: Path, shared: Path) -> Path:
 
 
 @pytest.fixture
-def run_folder(tmp_path_factory) -> Path:
+def run_folder(tmp_path_factory, request) -> Path:
     """A fresh copy of the four real runs (tests may change or delete them)."""
     base = tmp_path_factory.getbasetemp()
-    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base  # the xdist workers' common folder
+    # an xdist worker's base folder lies in the run's own folder, which all its workers share
+    shared = base.parent if hasattr(request.config, "workerinput") else base
     return make_runs(tmp_path_factory.mktemp("runs") / "runs", shared)
 
 
