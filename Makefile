@@ -31,8 +31,10 @@ demo: install
 demo-row: install  # the composite taught on the teach page: a row of four blocks (docs/perform.md)
 	$(VENV)/bin/l2p-bullet perform "make a row of A, B, C and D" --scene examples/four_blocks.json --force --out runs/demo-row
 
+# pytest-xdist: one worker per core; --dist loadgroup keeps each test module on one worker (its shared
+# fixtures are made once), see tests/conftest.py
 test: lint
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n auto --dist loadgroup
 
 lint: install
 	$(VENV)/bin/ruff check l2p_bullet research tests benchmarks

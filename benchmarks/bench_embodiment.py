@@ -12,6 +12,7 @@ Timings are the best of ``--repeats`` runs (the machine is shared; the minimum i
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import sys
 import time
@@ -150,7 +151,7 @@ def micro():
     out["IK/s (project: seeded, FK-checked)"] = len(targets) / (time.perf_counter() - t)
     out["IK/s (bare calculateInverseKinematics, 10 it.)"] = len(targets) / bare_ik(targets)
     for w, h in ((320, 240), (640, 480)):
-        cam = Camera(world, RenderSettings(width=w, height=h))
+        cam = Camera(world, RenderSettings(width=w, height=h, renderer="tiny"))
         cam.render()
         t = time.perf_counter()
         for _ in range(10):
@@ -192,9 +193,13 @@ def bare_ik(targets) -> float:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--resolution", default=f"{RENDER.width}x{RENDER.height}",
+                    help="frame size of the rendered runs, WxH (a small one for a smoke run)")
     args = ap.parse_args()
+    w, h = (int(v) for v in args.resolution.split("x"))
+    render_settings = dataclasses.replace(RENDER, width=w, height=h)
     rows = []
-    for label, render in (("no rendering", None), ("rendering 320x240 @ 10 fps", RENDER)):
+    for label, render in (("no rendering", None), (f"rendering {w}x{h} @ {RENDER.fps:g} fps", render_settings)):
         proj = min((project_run(render) for _ in range(args.repeats)), key=lambda r: r[0])
         wall, ex, captured = proj
         bare = min((bare_run(captured, render) for _ in range(args.repeats)), key=lambda r: r[0])

@@ -170,8 +170,9 @@ def confusion_matrix(scenes: int, workers: int, out: Path | None) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--runs", type=int, default=20, help="runs per backend in part 1 (scenes x 5 actions)")
+    ap.add_argument("--runs", type=int, default=20, help="runs per backend in part 1 (scenes x actions)")
     ap.add_argument("--no-ray", action="store_true", help="skip --ray local")
+    ap.add_argument("--actions", default=",".join(ACTIONS), help="comma-separated actions of part 1")
     ap.add_argument("--confusion", type=int, default=0, help="part 2: scenes per action (0: skip)")
     ap.add_argument("--confusion-out", type=Path, default=None,
                     help="keep part 2's evaluation here (resumed if it exists; PNGs and report.json land there)")
@@ -181,7 +182,7 @@ def main() -> None:
     out: dict = {"load_before": load()}
     if args.runs:
         print(f"part 1: {args.runs} runs per backend, load {load()}", file=sys.stderr)
-        out["throughput"] = throughput(args.runs, list(ACTIONS), ray=not args.no_ray)
+        out["throughput"] = throughput(args.runs, [a for a in args.actions.split(",") if a], ray=not args.no_ray)
         print_throughput(out["throughput"])
     if args.confusion:
         print(f"part 2: {args.confusion} scenes per action, load {load()}", file=sys.stderr)

@@ -49,12 +49,12 @@ def study_scene(seed: int, size: float):
     raise RuntimeError(f"no study-like scene for seed {seed}")
 
 
-def measure(bundle, size: float) -> dict:
+def measure(bundle, size: float, seeds: range = SEEDS) -> dict:
     from l2p_bullet.judge.rules import rule_verdict
     from l2p_bullet.planning import plan
 
     rows = []
-    for seed in SEEDS:
+    for seed in seeds:
         p = plan(study_scene(seed, size), "A", "B", bundle, seed=seed)
         rel = (p.path[:, :2] - p.anchor_pose[:2]) / p.size
         d = np.linalg.norm(rel, axis=1)
@@ -76,7 +76,9 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--bundle", action="append", type=Path, default=[], help="a past bundle folder (repeatable)")
     ap.add_argument("--sizes", default="0.02,0.03", help="block sides (metres)")
+    ap.add_argument("--scenes", type=int, default=len(SEEDS), help="scenes per row (the first N seeds)")
     args = ap.parse_args()
+    seeds = SEEDS[: args.scenes]
 
     from l2p_bullet.plugins import registry
     from l2p_bullet.plugins.bundle import load_bundle
@@ -86,11 +88,11 @@ def main() -> None:
           "ends beyond (median, blocks) | ends < 1 block beyond | final progress |\n|---|---:|---:|---:|---:|---:|---:|---:|")
     for label, b in bundles:
         for size in (float(s) for s in args.sizes.split(",")):
-            r = measure(b, size)
+            r = measure(b, size, seeds)
             print(f"| {label} | {size:.2f} | {100 * r['success']:.0f} % | {r['near_median']:.2f} | "
                   f"{100 * r['far_pass']:.0f} % | {r['beyond_median']:.2f} | {100 * r['beside']:.0f} % | "
                   f"{r['progress']:.2f} |", flush=True)
-    print(f"\n{len(SEEDS)} study-like scenes per row (seeds {SEEDS.start}-{SEEDS.stop - 1}), default planner")
+    print(f"\n{len(seeds)} study-like scenes per row (seeds {seeds.start}-{seeds.stop - 1}), default planner")
 
 
 if __name__ == "__main__":

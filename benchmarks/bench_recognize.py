@@ -101,12 +101,22 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=0, help="Training seed of the session models.")
     ap.add_argument("--rule", choices=["final", "mse", "mae", "final-mae"], default="final",
                     help="How readings are ranked: final progress (recognize's rule) or a tried whole-curve rule.")
+    ap.add_argument("--quick", action="store_true",
+                    help="1 LSTM x 2 epochs per session model (smoke run; use its own --cache)")
     args = ap.parse_args()
+    recipe = None
+    if args.quick:
+        import dataclasses
+
+        from l2p_bullet.learning.recipes import SHIPPED
+
+        recipe = dataclasses.replace(SHIPPED, train=dataclasses.replace(SHIPPED.train, ensemble=1, epochs=2))
     cmd = "nice .venv/bin/python benchmarks/bench_recognize.py" + (
         f" --cache {args.cache}" if args.cache != "benchmarks/.cache/recognize" else "") + (
-        f" --seed {args.seed}" if args.seed else "") + (f" --rule {args.rule}" if args.rule != "final" else "")
+        f" --seed {args.seed}" if args.seed else "") + (f" --rule {args.rule}" if args.rule != "final" else "") + (
+        " --quick" if args.quick else "")
     t0 = time.perf_counter()
-    folders = {s: session_bundles(s, Path(args.cache) / s, seed=args.seed, command=cmd,
+    folders = {s: session_bundles(s, Path(args.cache) / s, seed=args.seed, command=cmd, recipe=recipe,
                                   log=lambda m: print(m, file=sys.stderr, flush=True)) for s in ("Session1", "Session2")}
     t_train = time.perf_counter() - t0
     recorded = {s: sum(bundle_seconds(f) for f in fs.values()) for s, fs in folders.items()}
@@ -116,9 +126,10 @@ def main() -> None:
         results[(train, test)] = evaluate_split(recognisers(folders[train]), test, args.rule)
     t_rec = time.perf_counter() - t1
     print(f"# Recognition on people the models never saw ({cmd})\n")
-    print("Session models: shipped recipe (5 LSTMs x 30 epochs, seed {}), trained in {:.0f} s (Session1) and "
+    size = "1 LSTM x 2 epochs" if args.quick else "5 LSTMs x 30 epochs"
+    print("Session models: shipped recipe ({}, seed {}), trained in {:.0f} s (Session1) and "
           "{:.0f} s (Session2) as recorded in their manifests; {:.0f} s spent training in this run (0 when cached)."
-          .format(args.seed, recorded["Session1"], recorded["Session2"], t_train))
+          .format(size, args.seed, recorded["Session1"], recorded["Session2"], t_train))
     print(f"Recognising the {sum(r['n'] for r in results.values())} demonstrations: {t_rec:.1f} s.\n")
     for (train, test), r in results.items():
         tag = " (settings looked at here)" if train == "Session1" else " (held out)"

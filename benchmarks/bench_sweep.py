@@ -33,8 +33,12 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenes", type=int, default=40, help="scenes per arm (seeds 974000.. panda, 975000.. xarm6, "
                                                               "976000.. kuka-iiwa)")
+    ap.add_argument("--arms", default=",".join(a for a, _ in ARMS), help="comma-separated arms (default: all three)")
     args = ap.parse_args()
     from l2p_bullet.arms import fit_scene, fit_workspace
+    arms = [(a, base) for a, base in ARMS if a in args.arms.split(",")]
+    if unknown := set(args.arms.split(",")) - {a for a, _ in ARMS}:
+        ap.error(f"--arms: unknown {', '.join(sorted(unknown))} (known: {', '.join(a for a, _ in ARMS)})")
     from l2p_bullet.core.geometry import posed_separation, separation
     from l2p_bullet.core.workspace import Workspace
     from l2p_bullet.planning import sweep, world2d
@@ -44,7 +48,7 @@ def main() -> None:
     ways = {"placed": lambda o, p, q: separation(place_outline(o, p), q), "per yaw": posed_separation}
     print("| arm | scenes | refused | placed s | per-yaw s | ratio | verdicts differing |\n|---|---:|---:|---:|---:|---:|---:|")
     try:
-        for arm, base in ARMS:
+        for arm, base in arms:
             radius = fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius
             seconds, verdicts = {w: 0.0 for w in ways}, {w: [] for w in ways}
             for i in range(args.scenes):

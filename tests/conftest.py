@@ -46,6 +46,36 @@ def pytest_report_header(config) -> str | None:
     return None
 
 
+def pytest_configure(config) -> None:
+    if getattr(config.option, "dist", "no") == "loadgroup":
+        # the modules are ordered here, longest first (pytest_collection_modifyitems); xdist's own reorder
+        # (by number of tests) would put a module of many quick tests before one of a few long ones
+        config.option.loadscopereorder = False
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items) -> None:
+    """Under pytest-xdist with ``--dist loadgroup`` (``make test``), each module is one unit of work, so
+    its module-scoped fixtures (a perform, a trained plugin, a virtual environment) are made once, on one
+    worker; a test's own ``xdist_group`` mark groups tests across modules instead (the Ray tests, which
+    must not start two clusters at once). The groups holding the most slow tests go first, so that the
+    last unit handed out is a short one and the workers finish together."""
+    if not getattr(config.option, "loadgroup", False):  # what an xdist worker is told of --dist loadgroup
+        return
+    group = {}
+    for item in items:
+        mark = item.get_closest_marker("xdist_group")
+        if mark is None:
+            group[item] = item.nodeid.split("::")[0]
+            item.add_marker(pytest.mark.xdist_group(group[item]))
+        else:
+            group[item] = str(mark.args[0] if mark.args else mark.kwargs.get("name", "default"))
+    slow: dict[str, int] = {}
+    for item in items:
+        slow[group[item]] = slow.get(group[item], 0) + (item.get_closest_marker("slow") is not None)
+    items.sort(key=lambda item: -slow[group[item]])
+
+
 @pytest.fixture(scope="session")
 def chromium_session():
     """Headless Debian Chromium through Playwright. CI (CI=true) must have it: there it fails, never skips."""

@@ -1,11 +1,14 @@
 """Real run folders, a live review server and a real Chromium for the review app's tests.
 
-The runs are made once per test process by ``perform`` (small renders, so it stays quick): three
-rendered runs and one without rendering (its only view is the 2-D animation).
+The runs are made once per test session by ``perform`` (small renders, so it stays quick): three
+rendered runs and one without rendering (its only view is the 2-D animation). Under pytest-xdist the
+workers share them: the first to need them makes them in the run's common temporary folder while the
+others wait on a lock.
 """
 
 from __future__ import annotations
 
+import fcntl
 import shutil
 from pathlib import Path
 
@@ -18,29 +21,34 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-back
 LABELS = ["closer", "away", "next-to", "past", "around"]
 RUNS = [("move A closer to B", 1, True), ("move A next to B", 2, True), ("move A past B", 3, True),
         ("move A away from B", 4, False)]
-_made: dict[str, Path] = {}
 
 
-def make_runs(root: Path) -> Path:
-    """Perform the four runs into ``root`` once per process; later calls copy them (cheap)."""
-    if "runs" not in _made:
-        from l2p_bullet.core.scene import random_scene
-        from l2p_bullet.embodiment.sim.camera import RenderSettings
-        from l2p_bullet.pipeline import perform
+def make_runs(root: Path, shared: Path) -> Path:
+    """Perform the four runs into ``shared`` once; every call copies them into ``root`` (cheap)."""
+    src = shared / "review-runs-original"
+    with open(shared / "review-runs.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file is closed
+        if not (shared / "review-runs.done").exists():
+            from l2p_bullet.core.scene import random_scene
+            from l2p_bullet.embodiment.sim.camera import RenderSettings
+            from l2p_bullet.pipeline import perform
 
-        src = root.parent / "review-runs-original"
-        for i, (sentence, seed, render) in enumerate(RUNS):
-            perform(sentence, random_scene(seed), out_dir=src / f"run{i}", render=render,
-                    render_settings=RenderSettings(width=320, height=240, fps=5, workers=0))
-        _made["runs"] = src
-    shutil.copytree(_made["runs"], root, dirs_exist_ok=True)
+            shutil.rmtree(src, ignore_errors=True)  # a worker that failed half-way
+            for i, (sentence, seed, render) in enumerate(RUNS):
+                perform(sentence, random_scene(seed), out_dir=src / f"run{i}", render=render,
+                        render_settings=RenderSettings(width=320, height=240, fps=5, workers=0))
+            (shared / "review-runs.done").touch()
+    shutil.copytree(src, root, dirs_exist_ok=True)
     return root
 
 
 @pytest.fixture
-def run_folder(tmp_path_factory) -> Path:
+def run_folder(tmp_path_factory, request) -> Path:
     """A fresh copy of the four real runs (tests may change or delete them)."""
-    return make_runs(tmp_path_factory.mktemp("runs") / "runs")
+    base = tmp_path_factory.getbasetemp()
+    # an xdist worker's base folder lies in the run's own folder, which all its workers share
+    shared = base.parent if hasattr(request.config, "workerinput") else base
+    return make_runs(tmp_path_factory.mktemp("runs") / "runs", shared)
 
 
 class Live:

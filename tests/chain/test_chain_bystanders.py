@@ -140,6 +140,7 @@ def test_around_from_afar_to_an_anchor_by_the_rim_with_a_bystander_at_its_side_i
     assert e.value.check == "blocked-around" and e.value.details["from_afar"] is True
 
 
+@pytest.mark.slow
 def test_around_from_afar_slides_to_where_there_is_a_way_round_not_into_a_pocket():
     # chain/5044 (analysis seeds): A starts 5.3 blocks from C. The first legal end of the approach slide lay 6.7 mm
     # from B, in a pocket from which no move is legal: the search ended at its first step and the arm swept 0.01 of
@@ -204,6 +205,7 @@ def test_where_no_one_yaw_goes_round_the_way_turns_the_block_once_where_it_must(
     assert sum(abs(q[2] - p[2]) for p, q in zip(way, way[1:], strict=False)) == 1
 
 
+@pytest.mark.slow
 def test_around_between_two_close_blocks_turns_the_block_and_goes_round(monkeypatch):
     # a chain clause start (seed 5387, clause "move D around B"): C stands 1.2 blocks from B, A 2.6 blocks off.
     # At none of the seven yaws does the 2-D world hold a way round B (the planner stalled at 0.70 of a turn);
@@ -232,6 +234,7 @@ def test_around_between_two_close_blocks_turns_the_block_and_goes_round(monkeypa
     assert verdict["success"], verdict["reason"]
 
 
+@pytest.mark.slow
 def test_a_way_that_fits_only_square_to_a_neighbour_is_found(monkeypatch):
     # a chain clause start (seed 5320, "move B around C"): the 2-D world holds no way round C at the mover's seven
     # yaws, nor turning between them (the plan stalled at 0.67 of a turn); with the yaws that square B to the

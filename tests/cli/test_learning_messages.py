@@ -94,6 +94,7 @@ def test_train_says_what_to_run_next(tmp_path):
 
 
 # --- improve ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_improve_interrupted_while_fine_tuning_leaves_no_bundle_and_says_how_to_go_on(tmp_path, monkeypatch):
     out = tmp_path / "imp"
     rd = out / "round-1"

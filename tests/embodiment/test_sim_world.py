@@ -87,6 +87,7 @@ def test_a_reused_world_records_what_a_fresh_world_records(tmp_path):
         shared.close()
 
 
+@pytest.mark.slow
 def test_a_world_without_visuals_is_filmed_by_the_films_own_world():
     """The simulating world never renders (embodiment/render.py draws its recorded states), so a caller's
     world loaded without the arm's visuals still gives a rendered run."""

@@ -52,6 +52,7 @@ def test_two_workers_and_ray_local_give_the_serial_rows(serial, tmp_path):
     assert len({r["worker"] for r in rows}) == 2  # both actors worked
 
 
+@pytest.mark.slow
 def test_resume_skips_recorded_runs_and_refuses_other_settings(serial, tmp_path):
     out = tmp_path / "e"
     cfg = EvaluationConfig(actions=["closer", "past"], scenes=2, seed=3)

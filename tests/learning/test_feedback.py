@@ -184,6 +184,7 @@ def test_train_cli_rejects_a_bad_feedback_file_in_one_line(tmp_path):
     assert not (tmp_path / "b").exists()
 
 
+@pytest.mark.slow
 def test_train_with_feedback_records_it_in_the_manifest(tmp_path):
     from l2p_bullet.plugins.bundle import load_bundle
 

@@ -188,6 +188,7 @@ def test_train_applies_trusted_own_when_the_shipped_recipe_has_it(tmp_path, monk
     assert t["data_digest"] == data_digest(rc.own_trusted(trusted, "around", demos)) != data_digest(demos)
 
 
+@pytest.mark.slow
 def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_out):
     """``near_starts`` (eighth round): closer's set is the shipped one plus, at its end, people's endings made
     short (start within 1.25-2.5 blocks, end 1.05-1.2 blocks from the anchor, labelled full); the other actions'

@@ -77,6 +77,7 @@ def test_a_bad_action_from_is_a_clear_error(far_run, tmp_path):
         segments_of(segs)
 
 
+@pytest.mark.slow
 def test_a_chain_clause_that_came_near_first_records_it_in_its_segment(tmp_path):
     scene = Scene.from_dict({"objects": [*FAR["objects"],
                                          {"name": "C", "color": "blue", "size": 0.04, "xy": [0.13, -0.17]}]})

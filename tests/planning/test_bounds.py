@@ -8,6 +8,7 @@ import functools
 import math
 
 import numpy as np
+import pytest
 
 from l2p_bullet.actions.closer import ACTION as CLOSER
 from l2p_bullet.actions.past import ACTION
@@ -89,6 +90,7 @@ def test_a_path_going_back_within_the_share_keeps_the_models_score_and_one_beyon
     assert np.allclose(w[1:], [math.exp(-1.0), math.exp(-3.0)])
 
 
+@pytest.mark.slow
 def test_closer_from_near_slides_in_instead_of_wiggling():
     # a chain clause start (analysis seed 5407, clause 1): D 1.39 blocks from C. Without the bound the model rated
     # a wiggle best (went back 0.37 block, closed 7 % of the room, learned progress 0.68) and the rule failed it

@@ -97,6 +97,7 @@ def test_moves_free_handles_batches_of_mixed_moves(seed):
     assert batch.tolist() == single
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)  # 60 free moves checked (about 100 drawn: 60 % of them are free)
 @given(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(-0.8, 0.8))
 def test_a_move_said_free_never_touches_the_anchor_on_the_way(x, y, turn):

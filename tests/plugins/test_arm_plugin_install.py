@@ -60,6 +60,7 @@ def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
     assert "my-xarm" not in arms
 
 
+@pytest.mark.slow
 def test_new_arm_measures_the_opening_across_the_fingers_of_a_turned_hand():
     """The Panda's hand sits turned 45 degrees on its flange, so at the URDF's zero pose its fingers open along a
     diagonal of the world: boxes aligned with the world's axes overlap there and read 3.0 cm for fingers that
