@@ -23,14 +23,17 @@ from dataclasses import dataclass
 import numpy as np
 
 FOV = 40.0  # vertical, degrees
-MARGIN = 0.06  # metres around the bounding box of what must be seen
-EDGE = 0.92  # the box's projection fills at most this share of the frame's half-width and half-height
-AZIMUTHS = tuple(range(-60, 61, 10))  # degrees, 0: looking along +x (from behind the robot), positive: from its left
+MARGIN = 0.03  # metres around the bounding box of what must be seen
+EDGE = 0.97  # the box's projection fills at most this share of the frame's half-width and half-height
+AZIMUTHS = tuple(range(-60, 61, 15))  # degrees, 0: looking along +x (from behind the robot), positive: from its left
 ELEVATIONS = (35.0, 45.0, 55.0)  # degrees above the table
 PREFERRED = (-31.0, 39.0)  # the viewer camera's azimuth and elevation: ties go to the nearest
 HAND_HEIGHT = 0.2  # the hand and wrist above the tool point, metres
+TIPS_HEIGHT = 0.03  # the fingertips only
+CUBE_PX = 1500  # an unoccluded 4 cm cube at the mover's start must cover this many pixels of a 480-row frame
+CUBE_AREA = 1.68  # a cube's pixel area over its side's squared pixel length, as seen from above at an angle
 HAND_HALF_WIDTH = 0.08  # half the Panda hand's width across its fingers, with a little room
-SAMPLES = 24  # path points scored per candidate
+SAMPLES = 16  # path points scored per candidate
 
 
 @dataclass(frozen=True)
@@ -66,9 +69,9 @@ def project(points: np.ndarray, eye: np.ndarray, target: np.ndarray, fov: float,
     return np.stack([(rel @ r) / (d * t * aspect), (rel @ u) / (d * t)], axis=1), depth
 
 
-def must_see(action: Action) -> np.ndarray:
+def must_see(action: Action, hand: float = HAND_HEIGHT) -> np.ndarray:
     """The corners of everything the frame holds: each object's box, each path swept by its block, the hand
-    at rest, all widened by :data:`MARGIN`."""
+    at rest (``hand`` metres of it above the tool point), all widened by :data:`MARGIN`."""
     pts = []
     for lo, hi in action.boxes:
         pts.append(_corners(np.array(lo) - MARGIN, np.array(hi) + MARGIN))
@@ -78,7 +81,7 @@ def must_see(action: Action) -> np.ndarray:
         pts.append(_corners(np.maximum(lo, [-np.inf, -np.inf, 0.0]), hi))
     h = np.array(action.hand_rest)
     w = np.array([HAND_HALF_WIDTH, HAND_HALF_WIDTH, 0.0])
-    pts.append(_corners(h - w - [0, 0, 0.02], h + w + [0, 0, HAND_HEIGHT]))
+    pts.append(_corners(h - w - [0, 0, 0.02], h + w + [0, 0, hand]))
     return np.concatenate(pts)
 
 
@@ -94,9 +97,9 @@ def fit(points: np.ndarray, azimuth: float, elevation: float, fov: float = FOV,
     target = (points.min(axis=0) + points.max(axis=0)) / 2
     span = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
     eye = target - d * span
-    for _ in range(4):  # centre, then pull back or in until the widest point sits on the edge
+    for _ in range(3):  # centre, then pull back or in until the widest point sits on the edge
         lo_d, hi_d = 0.05, 20.0
-        for _ in range(40):
+        for _ in range(22):  # to 5 micrometres
             mid = (lo_d + hi_d) / 2
             xy, depth = project(points, target - d * mid, target, fov, aspect)
             if depth.min() > 0.05 and np.abs(xy).max() <= EDGE:
@@ -159,17 +162,32 @@ def hidden_share(eye: np.ndarray, target: np.ndarray, action: Action, fov: float
     return bad / max(total, 1)
 
 
+def cube_px(eye: np.ndarray, centre: np.ndarray, fov: float = FOV, rows: int = 480) -> float:
+    """About how many pixels a 4 cm cube at ``centre`` covers in a frame ``rows`` pixels high."""
+    side = 0.04 / (float(np.linalg.norm(np.asarray(centre) - eye)) * math.tan(math.radians(fov) / 2)) * rows / 2
+    return CUBE_AREA * side * side
+
+
 def frame_action(action: Action, aspect: float = 4 / 3, fov: float = FOV) -> tuple[tuple, tuple, float]:
-    """(eye, target, fov) of the camera that frames ``action`` (see the module docstring)."""
-    pts = must_see(action)
+    """(eye, target, fov) of the camera that frames ``action`` (see the module docstring).
+
+    The whole hand at rest stays in the frame where a 4 cm cube at the mover's start still covers
+    :data:`CUBE_PX` pixels; where it would not (a high rest pose over blocks close together: the frame would
+    be mostly air), the fingertips at rest stay in it and the hand's body may be cut by the top edge."""
+    start = action.paths[0][0] if action.paths else np.mean([np.add(lo, hi) / 2 for lo, hi in action.boxes], axis=0)
     best = None
-    for el in ELEVATIONS:
-        for az in AZIMUTHS:
-            eye, target = fit(pts, az, el, fov, aspect)
-            score = (round(hidden_share(eye, target, action, fov, aspect), 6),
-                     math.hypot(az - PREFERRED[0], el - PREFERRED[1]))
-            if best is None or score < best[0]:
-                best = (score, eye, target)
+    for hand in (HAND_HEIGHT, TIPS_HEIGHT):
+        pts = must_see(action, hand)
+        for el in ELEVATIONS:
+            for az in AZIMUTHS:
+                eye, target = fit(pts, az, el, fov, aspect)
+                hidden = math.ceil(round(hidden_share(eye, target, action, fov, aspect), 6) * 20) / 20
+                small = cube_px(eye, start, fov) < CUBE_PX
+                score = (hidden, small, math.hypot(az - PREFERRED[0], el - PREFERRED[1]))
+                if best is None or score < best[0]:
+                    best = (score, eye, target)
+        if not best[0][1]:
+            break
     _, eye, target = best
     return tuple(round(float(v), 4) for v in eye), tuple(round(float(v), 4) for v in target), fov
 
