@@ -10,7 +10,15 @@ from l2p_bullet.core.scene import Scene, SceneObject
 from l2p_bullet.embodiment.overlay import BACKGROUND
 from l2p_bullet.embodiment.record import contact_sheet
 from l2p_bullet.embodiment.sim.camera import CAMERAS, RenderSettings, framed_for, parse_camera
-from l2p_bullet.embodiment.sim.framing import action_of, frame_action, must_see, project
+from l2p_bullet.embodiment.sim.framing import (
+    CUBE_PX,
+    TIPS_HEIGHT,
+    action_of,
+    cube_px,
+    frame_action,
+    must_see,
+    project,
+)
 
 REST, BASE = (-0.066, 0.0, 0.40), (-0.53, 0.0, 0.0)
 
@@ -26,8 +34,9 @@ def test_the_auto_camera_holds_every_object_the_path_and_the_hand_at_rest(manner
     path = np.array([[0.05, -0.1, 0.0], [0.1, 0.0, 0.0], [0.05, 0.12, 0.0], [-0.05, 0.15, 0.0]])
     action = action_of(scene, [("A", path, manner)], REST, BASE)
     eye, target, fov = frame_action(action)
-    xy, depth = project(must_see(action), np.array(eye), np.array(target), fov, 4 / 3)
-    assert (depth > 0).all() and np.abs(xy).max() <= 1.0
+    xy, depth = project(must_see(action, TIPS_HEIGHT), np.array(eye), np.array(target), fov, 4 / 3)
+    assert (depth > 0).all() and np.abs(xy).max() <= 1.0  # the hand at rest: its fingertips at least
+    assert cube_px(np.array(eye), action.paths[0][0]) >= CUBE_PX
     centres = [(*o.xy, o.height / 2) for o in scene.objects] + [tuple(p) for p in action.paths[0]]
     xy, _ = project(np.array(centres), np.array(eye), np.array(target), fov, 4 / 3)
     assert np.abs(xy).max() < 0.95  # with room to spare: the margin
@@ -67,3 +76,34 @@ def test_contact_sheet_panels_are_captioned_with_time_and_clause():
     assert (strip > 150).all(axis=2).sum() > 20  # ... with text on it
     first, last = sheet[48:panel_h, :64], sheet[panel_h + 48:, 64:]
     assert not np.array_equal(first, last)  # different times and clauses, different captions
+
+
+def test_a_shadow_falls_away_from_the_light_under_a_lifted_block():
+    from l2p_bullet.embodiment.render import SHADOW_LIFT, shadow_at
+    from l2p_bullet.embodiment.sim.camera import LIGHT_DIRECTION
+
+    x, y, z = shadow_at((0.1, 0.0, 0.1))
+    assert z == SHADOW_LIFT
+    assert np.sign(x - 0.1) == -np.sign(LIGHT_DIRECTION[0]) and np.sign(y) == -np.sign(LIGHT_DIRECTION[1])
+
+
+@pytest.mark.slow
+def test_a_carried_block_casts_a_visible_shadow_in_the_egl_video():
+    from l2p_bullet.core.scene import default_scene
+    from l2p_bullet.embodiment.render import Painter, capture
+
+    painter = Painter(default_scene(), RenderSettings(320, 240, camera=CAMERAS["viewer"]))
+    try:
+        if painter.renderer != "egl":
+            pytest.skip("EGL does not start here")
+        state = capture(painter.world)
+        (pos, orn), *rest = state.bodies
+        lifted = type(state)(state.t, state.joints, (((pos[0], pos[1], pos[2] + 0.07), orn), *rest))
+        with_shadow = painter.draw(lifted).astype(int)
+        for shadow in painter.shadows.values():
+            painter.world.sim.set_base_pose(shadow, (50.0, 50.0, 50.0), (0, 0, 0, 1))
+        without = painter.camera.render().astype(int)
+    finally:
+        painter.close()
+    darker = (with_shadow.sum(axis=2) < without.sum(axis=2) - 60).sum()
+    assert darker > 40  # the shadow: a patch of the table, away from the block, in shade
