@@ -8,8 +8,10 @@ target and distance are fitted per run to the bounding box of those, plus a marg
 Its direction is chosen per run too. From behind the robot (so the robot's left stays the picture's left,
 as the viewer-frame prepositions, the 2-D view and the rule judge have it), a camera at several angles
 is scored by how often, along the path, a simple model of the hand and forearm (spheres where the manner
-puts them: beside the block for a push, above it for a slide or a carry) hides more than half of the
-mover. The best one wins; among equals, the one nearest the ``viewer`` camera's angle.
+puts them: beside the block for a push, above it for a slide or a carry; the forearm and upper arm rising
+to a model elbow and the shoulder) hides more than half of the mover, and cameras that the model arm
+passes within :data:`CLEARANCE` of are refused (a link passing the lens fills the picture). The best one
+wins; among equals, the one nearest the ``viewer`` camera's angle.
 
 Pure geometry, no simulator: the same scene and plan always give the same camera.
 """
@@ -34,6 +36,9 @@ CUBE_PX = 1500  # an unoccluded 4 cm cube at the mover's start must cover this m
 CUBE_AREA = 1.68  # a cube's pixel area over its side's squared pixel length, as seen from above at an angle
 HAND_HALF_WIDTH = 0.08  # half the Panda hand's width across its fingers, with a little room
 SAMPLES = 16  # path points scored per candidate
+ELBOW = (0.45, 0.72)  # the model elbow: this share of the way from the base to the wrist, this high (m)
+SHOULDER_Z = 0.33  # the model shoulder's height above the base (m)
+CLEARANCE = 0.2  # m the eye keeps from the model arm: nearer, a link fills the picture as it passes
 
 
 @dataclass(frozen=True)
@@ -127,13 +132,30 @@ def hand_spheres(centre: np.ndarray, size: float, push: bool, heading: np.ndarra
         foot = centre + np.r_[-heading[:2] * (size / 2 + 0.035), 0.0]
         foot[2] = 0.03
     else:
-        foot = centre + [0.0, 0.0, size / 2 + 0.02]
+        foot = centre + [0.0, 0.0, size / 2 + 0.045]  # the fingers straddle the block, the hand above it
     spheres = [(*(foot + [0, 0, z]), 0.045) for z in np.arange(0.0, HAND_HEIGHT, 0.025)]
     wrist = foot + [0.0, 0.0, HAND_HEIGHT + 0.03]
-    elbow = np.array([*(base[:2] + 0.55 * (wrist[:2] - base[:2])), 0.55])
+    elbow = np.array([*(base[:2] + ELBOW[0] * (wrist[:2] - base[:2])), ELBOW[1]])
+    shoulder = np.array([base[0], base[1], SHOULDER_Z])
     for s in np.linspace(0.0, 1.0, 8):
         spheres.append((*(wrist + s * (elbow - wrist)), 0.055))
+    for s in np.linspace(0.0, 1.0, 6)[1:]:
+        spheres.append((*(elbow + s * (shoulder - elbow)), 0.07))
     return np.array(spheres, float)
+
+
+def clearance(eye: np.ndarray, action: Action) -> float:
+    """How near (m) the model arm comes to the eye along the paths (surface distance)."""
+    near = math.inf
+    for path, size, push in zip(action.paths, action.sizes, action.pushes, strict=True):
+        p = np.asarray(path, float)
+        for k in np.unique(np.linspace(0, len(p) - 1, SAMPLES).round().astype(int)) if len(p) else []:
+            ahead = p[min(k + 1, len(p) - 1)] - p[max(k - 1, 0)]
+            n = float(np.hypot(*ahead[:2]))
+            heading = ahead / n if n > 1e-9 else np.array([1.0, 0.0, 0.0])
+            spheres = hand_spheres(p[k], size, push, heading, np.asarray(action.base, float))
+            near = min(near, float((np.linalg.norm(spheres[:, :3] - eye, axis=1) - spheres[:, 3]).min()))
+    return near
 
 
 def hidden_share(eye: np.ndarray, target: np.ndarray, action: Action, fov: float = FOV,
@@ -183,10 +205,11 @@ def frame_action(action: Action, aspect: float = 4 / 3, fov: float = FOV) -> tup
                 eye, target = fit(pts, az, el, fov, aspect)
                 hidden = math.ceil(round(hidden_share(eye, target, action, fov, aspect), 6) * 20) / 20
                 small = cube_px(eye, start, fov) < CUBE_PX
-                score = (hidden, small, math.hypot(az - PREFERRED[0], el - PREFERRED[1]))
+                crowded = clearance(eye, action) < CLEARANCE
+                score = (crowded, hidden, small, math.hypot(az - PREFERRED[0], el - PREFERRED[1]))
                 if best is None or score < best[0]:
                     best = (score, eye, target)
-        if not best[0][1]:
+        if not best[0][2]:
             break
     _, eye, target = best
     return tuple(round(float(v), 4) for v in eye), tuple(round(float(v), 4) for v in target), fov
