@@ -98,7 +98,7 @@ def measure(run: Path) -> dict:
                                 physicsClientId=sim._id)
         cube_px = int((np.asarray(img[4]).reshape(settings.height, settings.width) == sim._bodies["cube"]).sum())
     return {"frames": len(seen), "visible": float(np.mean(seen)), "cube_px": cube_px,
-            "simulated_s": summary["simulated_s"], "camera": render["camera"]}
+            "simulated_s": summary["simulated_s"], "pose": render["camera"]}
 
 
 def main() -> None:
