@@ -231,7 +231,9 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
     try:
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
-        prims = ex.arm_primitives(world, settings, out)
+        prims = ex.arm_primitives(world, settings, out, [(s.clause.command.mover, s.forecast.path,
+                                                           manners.get(s.clause.command.manner).motion)
+                                                          for s in steps])
         prims.recorder.gripper = any(s.clause.command.manner != "slide" for s in steps)  # a carry grips
         rest = prims.pose.copy()
         prims.recorder()  # the first frame: the world before the arm moves

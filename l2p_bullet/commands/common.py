@@ -98,8 +98,9 @@ def video_options(f):
     f = click.option("--renderer", type=click.Choice(["egl", "tiny"]), default="egl", show_default=True,
                      help="egl: PyBullet's EGL plugin (Mesa's software driver without a GPU; falls back to tiny "
                           "with a note where it cannot start); tiny: TinyRenderer.")(f)
-    f = click.option("--camera", default="viewer", show_default=True, metavar="NAME|JSON",
-                     help="viewer (behind the robot: its left is the video's left), robot (facing it), side, top, "
+    f = click.option("--camera", default="auto", show_default=True, metavar="NAME|JSON",
+                     help="auto (framed on the action from behind the robot: its left is the video's left), "
+                          "viewer (fixed, behind the robot), robot (facing it), side, top, "
                           'or a JSON camera {"eye": [x, y, z], "target": [x, y, z], "fov": 45}.')(f)
     f = click.option("--fps", "fps", type=float, default=15.0, show_default=True,
                      help="Video frames per second of simulated time (1-60).")(f)

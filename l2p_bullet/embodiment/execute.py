@@ -25,7 +25,7 @@ from . import motion, smoothing
 from .manners import carry_lift, check_carry_path, check_manner, manner_of
 from .record import Recorder, versions
 from .render import Film
-from .sim.camera import RenderSettings
+from .sim.camera import RenderSettings, framed_for
 from .sim.primitives import Primitives
 from .sim.world import World
 
@@ -183,7 +183,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
     try:
         if not own:
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
-        prims = arm_primitives(world, render, out_dir)
+        prims = arm_primitives(world, render, out_dir, [(mover, p, how.motion)])
         prims.pace = smoothing.pace(pace)
         film = prims.recorder.film
         if how.name != "slide":
@@ -220,9 +220,12 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             world.close()
 
 
-def arm_primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None):
+def arm_primitives(world: World, render: RenderSettings | None, out_dir: Path | None = None, paths=None):
     """The arm's primitives with a recorder attached to ``world`` and, when rendering, the film that draws
-    its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes)."""
+    its frames (embodiment/render.py; their PNGs go to ``out_dir/frames``, or where the recorder writes).
+    ``paths`` ((mover, path, manner name) of each plan) frame the ``auto`` camera (sim/camera.py)."""
+    if render is not None and paths:
+        render = framed_for(render, world.scene, paths, world.robot.tool_pose()[0], world.robot.base_xyz)
 
     film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames",
                                             arm=world.robot.spec)
@@ -404,7 +407,7 @@ def render_info(render: RenderSettings | None, film) -> dict | None:
     if render is None or film is None:
         return None
     return {"width": render.width, "height": render.height, "fps": render.fps, "renderer": film.renderer,
-            "camera": render.camera.to_dict(), "workers": film.workers, "wait_s": round(film.wall_s, 4)}
+            "camera": film.settings.camera.to_dict(), "workers": film.workers, "wait_s": round(film.wall_s, 4)}
 
 
 def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:

@@ -117,6 +117,25 @@ def overlay(image: np.ndarray, sentence: str | None, progress: float | None) -> 
     return np.concatenate([img[:, :, :3].astype(np.uint8), np.asarray(strip, dtype=np.uint8)], axis=0)
 
 
+def panel_caption(image: np.ndarray, text: str) -> np.ndarray:
+    """``image`` with a one-line caption strip under it (a contact sheet's panel: its time, its clause);
+    the text shrinks, then wraps, to fit (caption_lines). Returns a new array; ``image`` is not modified."""
+    from PIL import Image, ImageDraw
+
+    img = np.asarray(image)[:, :, :3].astype(np.uint8)
+    h, w = img.shape[:2]
+    sh = max(18, round(h * 0.1))
+    strip = Image.new("RGB", (w, sh), BACKGROUND)
+    draw = ImageDraw.Draw(strip)
+    pad = max(2, sh // 8)
+    lines, font = caption_lines(draw, text, w - 2 * pad, sh - 2 * pad, max(MIN_FONT, sh - 2 * pad - 2))
+    step = int(getattr(font, "size", 11)) + 1
+    top = max(0, (sh - step * len(lines)) // 2)
+    for i, line in enumerate(lines):
+        draw.text((pad, top + i * step), line, fill=TEXT, font=font)
+    return np.concatenate([img, np.asarray(strip, dtype=np.uint8)], axis=0)
+
+
 def progress_at(times: list[float], frame_times: np.ndarray, frame_progress: list[float | None]) -> list[float | None]:
     """The progress shown at each image time: that of the last trajectory frame at or before it."""
     if not len(frame_times):

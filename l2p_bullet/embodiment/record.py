@@ -125,7 +125,8 @@ class Recorder:
         """The video and contact_sheet.png (frames/NNNN.png the film's workers wrote); returns name -> path.
 
         Only the video gets the caption strip (``sentence`` and the learned progress, embodiment/overlay.py);
-        the frames and the contact sheet stay the raw renders. ``sentence`` may be a list, one caption per
+        the frames stay the raw renders; the contact sheet's panels are captioned with their time (and, for
+        a chain, their clause). ``sentence`` may be a list, one caption per
         image (a chain captions each image with the clause being performed).
         """
         # lazy: imageio (and its ffmpeg plugin) only when a video is written
@@ -154,7 +155,9 @@ class Recorder:
                 for img in captioned:
                     writer.append_data(img)
         files["contact_sheet"] = out / "contact_sheet.png"
-        imageio.imwrite(files["contact_sheet"], contact_sheet(self.images))
+        clauses = sentence if isinstance(sentence, list) else None  # a chain's panels name their clause
+        imageio.imwrite(files["contact_sheet"], contact_sheet(
+            self.images, times=self.image_times if len(self.image_times) == len(self.images) else None, captions=clauses))
         return files
 
 
@@ -176,15 +179,27 @@ def _shape(world, name: str) -> dict:
     return {"shape": obj.shape, **shapes.fields(obj), "height": obj.height, "rest_z": world.rests[name]}
 
 
-def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4) -> np.ndarray:
-    """``n`` frames evenly spread over the episode (first and last included), in a grid."""
+def contact_sheet(images: list[np.ndarray], n: int = 8, cols: int = 4, times: list[float] | None = None,
+                  captions: list[str | None] | None = None) -> np.ndarray:
+    """``n`` frames evenly spread over the episode (first and last included), in a grid. With ``times``
+    (each image's simulated time, s) every panel gets a caption strip: its time and, from ``captions``
+    (one per image: a chain's clause being performed), its clause."""
+    from .overlay import panel_caption
+
     idx = np.unique(np.linspace(0, len(images) - 1, min(n, len(images))).round().astype(int))
-    h, w, _ = images[0].shape
+    panels = []
+    for i in idx:
+        if times is None:
+            panels.append(images[i])
+            continue
+        clause = captions[i] if captions is not None else None
+        panels.append(panel_caption(images[i], f"{times[i]:.1f} s" + (f"  {clause}" if clause else "")))
+    h, w, _ = panels[0].shape
     rows = -(-len(idx) // cols)
     sheet = np.full((rows * h, cols * w, 3), 255, dtype=np.uint8)
-    for k, i in enumerate(idx):
+    for k, panel in enumerate(panels):
         r, c = divmod(k, cols)
-        sheet[r * h : (r + 1) * h, c * w : (c + 1) * w] = images[i]
+        sheet[r * h : (r + 1) * h, c * w : (c + 1) * w] = panel
     return sheet
 
 

@@ -13,6 +13,7 @@ from l2p_bullet.embodiment.sim.camera import (
     CAMERAS,
     Camera,
     RenderSettings,
+    framed_for,
     parse_camera,
     parse_resolution,
 )
@@ -95,15 +96,17 @@ def test_move_a_to_the_left_of_b_ends_with_a_left_of_b_in_the_video(a_xy, b_xy):
     scene = Scene([SceneObject("A", "red", 0.05, a_xy), SceneObject("B", "green", 0.05, b_xy)]).validate()
     with World(scene, visuals=False) as world:
         state = capture(world)
-    for name, left in (("viewer", True), ("top", True), ("robot", False)):
-        painter = Painter(scene, RenderSettings(320, 240, camera=CAMERAS[name]))
+    path = np.array([[*a_xy, 0.0], [a_xy[0], a_xy[1] + 0.05, 0.0]])
+    auto = framed_for(RenderSettings(320, 240), scene, [("A", path, "slide")], (-0.07, 0.0, 0.4), (-0.53, 0, 0)).camera
+    for name, left in (("viewer", True), ("top", True), ("robot", False), ("auto", True)):
+        painter = Painter(scene, RenderSettings(320, 240, camera=auto if name == "auto" else CAMERAS[name]))
         try:
             img = painter.draw(state)
         finally:
             painter.close()
         a, b = _centroid(img, "red"), _centroid(img, "green")
         assert (a[0] < b[0]) == left, f"camera {name}: A at column {a[0]:.0f}, B at {b[0]:.0f}"
-    assert RenderSettings().camera.name == "viewer"  # and the default video is the viewer's
+    assert RenderSettings().camera.name == "auto"  # and the default video is the framed one
 
 
 def test_egl_that_cannot_start_falls_back_to_tiny_with_a_note(monkeypatch, capsys):

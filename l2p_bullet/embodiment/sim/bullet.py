@@ -229,6 +229,18 @@ class Bullet:
         self._bodies[name] = self._pb.loadURDF(path, list(position), list(orientation), useFixedBase=fixed,
                                                globalScaling=scale, physicsClientId=self._id)
 
+    def add_visual(self, name: str, shape: str, dims: Sequence[float], rgba: Sequence[float]) -> None:
+        """A body ``name`` that is only seen, never touched (no collision shape, no mass): ``shape`` "box"
+        (``dims``: half extents) or "cylinder" (``dims``: radius, length)."""
+        if name in self._bodies:
+            raise ValueError(f'a body named "{name}" is already loaded')
+        pb = self._pb
+        kw = ({"halfExtents": list(dims)} if shape == "box" else {"radius": dims[0], "length": dims[1]})
+        visual = pb.createVisualShape(pb.GEOM_BOX if shape == "box" else pb.GEOM_CYLINDER, rgbaColor=list(rgba),
+                                      physicsClientId=self._id, **kw)
+        self._bodies[name] = pb.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=-1,
+                                                baseVisualShapeIndex=visual, physicsClientId=self._id)
+
     def load_sdf(self, name: str, path: str, position: Vec3) -> None:
         """Load the one model of an SDF file as body ``name``, its base link's frame at ``position`` (an SDF
         places its model where the file says; a base of zero mass stays fixed there)."""
