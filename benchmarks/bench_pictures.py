@@ -35,10 +35,11 @@ CAMERAS = ("viewer", "auto")
 FAR = (50.0, 50.0, 50.0)
 
 
-def perform(sentence: str, camera: str, out: Path, renderer: str) -> float:
+def perform(sentence: str, camera: str, out: Path, renderer: str, fps: float | None = None) -> float:
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "perform", sentence, "--out", str(out), "--force", "-q",
-                    "--camera", camera, "--renderer", renderer], check=True, stdout=subprocess.DEVNULL)
+                    "--camera", camera, "--renderer", renderer, *([] if fps is None else ["--fps", str(fps)])],
+                   check=True, stdout=subprocess.DEVNULL)
     return time.perf_counter() - t0
 
 
@@ -105,15 +106,18 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--renderer", default="egl", choices=("egl", "tiny"))
     ap.add_argument("--json", type=Path, default=None)
+    ap.add_argument("--sentences", default=",".join(SENTENCES), help="comma-separated (default: both)")
+    ap.add_argument("--fps", type=float, default=None, help="video frames per second (default: perform's)")
     args = ap.parse_args()
+    sentences = [s for s in args.sentences.split(",") if s]
     load0 = os.getloadavg()
     print(f"cores {os.cpu_count()}, load average before {load0[0]:.1f} {load0[1]:.1f} {load0[2]:.1f}", flush=True)
     rows = []
     with tempfile.TemporaryDirectory(prefix="bench-pictures-") as td:
-        for sentence in SENTENCES:
+        for sentence in sentences:
             for camera in CAMERAS:
                 out = Path(td) / f"{camera}-{sentence.replace(' ', '_')}"
-                wall = perform(sentence, camera, out, args.renderer)
+                wall = perform(sentence, camera, out, args.renderer, args.fps)
                 m = measure(out)
                 rows.append({"sentence": sentence, "camera": camera, "wall_s": wall, **m,
                              "wall_over_sim": wall / m["simulated_s"]})
@@ -123,7 +127,7 @@ def main() -> None:
     print(f"load average after {load1[0]:.1f} {load1[1]:.1f} {load1[2]:.1f}")
     print(f"{'sentence':<18} {'visible (>=25 %)':>23} {'4 cm cube px':>19} {'wall/sim':>17}")
     print(f"{'':<18} {'viewer':>11} {'auto':>11} {'viewer':>9} {'auto':>9} {'viewer':>8} {'auto':>8}")
-    for sentence in SENTENCES:
+    for sentence in sentences:
         v, a = (next(r for r in rows if r["sentence"] == sentence and r["camera"] == c) for c in CAMERAS)
         print(f"{sentence:<18} {v['visible']:>11.0%} {a['visible']:>11.0%} {v['cube_px']:>9} {a['cube_px']:>9} "
               f"{v['wall_over_sim']:>8.2f} {a['wall_over_sim']:>8.2f}")

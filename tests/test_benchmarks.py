@@ -34,6 +34,7 @@ SMALLEST: dict[str, list[str]] = {
     "bench_objects.py": ["--scenes", "1", "--actions", "closer"],
     "bench_past.py": ["--sizes", "0.03", "--scenes", "1"],
     "bench_perform.py": ["--scenes", "1", "--render-scenes", "0", "--cold", "0", "--actions", "closer"],
+    "bench_pictures.py": ["--sentences", "push A past B", "--renderer", "tiny", "--fps", "2"],
     "bench_planning.py": ["--scenes", "1", "--planners", "default", "--actions", "closer"],
     "bench_prepositions.py": ["--scenes", "1", "--ensemble", "1", "--epochs", "1"],
     "bench_recognize.py": ["--quick", "--cache", "cache"],
