@@ -37,7 +37,7 @@ test: lint
 	$(PY) -m pytest -q -n auto --dist loadgroup
 
 lint: install
-	$(VENV)/bin/ruff check l2p_bullet research tests benchmarks
+	$(VENV)/bin/ruff check l2p_bullet research tests benchmarks examples
 
 bench: install  # every benchmark at its default size: hours on 2 cores (docs/benchmarks.md)
 	for b in benchmarks/bench_*.py; do $(PY) $$b || exit 1; done

@@ -148,9 +148,11 @@ def fresh_times(arm: str, seeds: list[int], actions: list[str], timed: int, tmp:
 
 
 def table(rows: list[dict], times: list[dict], actions: list[str], arms: list[str]) -> str:
-    lines = ["| arm | " + " | ".join(actions) + " | all | refused (check: n) | failed / crashed | anchor moved, max mm | "
-             "fresh perform median s (arm / Panda, same scenes) | ratio |",
-             "|---|" + "---|" * (len(actions) + 6)]
+    lines = [
+        "| arm | " + " | ".join(actions) + " | all | refused (check: n) | failed / crashed | anchor moved, max mm | "
+        "fresh perform median s (arm / Panda, same scenes) | ratio |",
+        "|---|" + "---|" * (len(actions) + 6),
+    ]
     for arm in arms:
         mine = [r for r in rows if r["arm"] == arm]
         cells = []

@@ -1,7 +1,8 @@
 """Benchmark of the embodiment: one replay of a circle of A around B on the default scene.
 
 Prints a table: physics steps per second, IK per second, ms per rendered frame, the cost of a new
-world against reusing one (World.reset), wall time per stage, and the project's execute_path against the same loop written as bare pybullet calls (same tool
+world against reusing one (World.reset), wall time per stage, and the project's execute_path against the same loop
+written as bare pybullet calls (same tool
 targets, same rates, same bodies), as a ratio, without and with rendering.
 
     .venv/bin/python benchmarks/bench_embodiment.py [--repeats 3]

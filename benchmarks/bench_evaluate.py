@@ -15,7 +15,8 @@ Each is timed from the command's start to its last row (process and Ray start-up
 in steady state (from the first row to the last, start-up excluded); runs/s per worker is the steady
 rate divided by the workers. For the pool it also reports the CPU seconds its workers used per run: on a
 shared machine the wall-clock ratio measures the other jobs too, while equal CPU per run with 1 and 2
-workers says the pool itself adds nothing that would keep 2 idle cores from doing twice the work. The rows of the three evaluate backends are checked equal apart from
+workers says the pool itself adds nothing that would keep 2 idle cores from doing twice the work. The rows of the three
+evaluate backends are checked equal apart from
 timings (and their success counted against the fresh processes' own verdicts).
 
 Part 2 (``--confusion N``): N seeded random scenes per action on the pool, and the 5 x 5 judge- and
@@ -110,7 +111,9 @@ def throughput(runs: int, actions: list[str], ray: bool) -> list[dict]:
         tmp = Path(td)
         plan = [(1, None), (2, None)] + ([(2, "local")] if ray else [])
         for workers, address in plan:
-            print(f"  {('ray ' if address else '') + f'{workers} worker(s)'}: load {load()}", file=sys.stderr, flush=True)
+            print(
+                f"  {('ray ' if address else '') + f'{workers} worker(s)'}: load {load()}", file=sys.stderr, flush=True
+            )
             res, rows = evaluate_backend(scenes, actions, tmp, workers, address)
             got = [comparable(r) for r in rows]
             reference = reference or got
@@ -140,8 +143,11 @@ def print_throughput(results: list[dict]) -> None:
     pool2 = next((r for r in results if r["backend"] == "evaluate --workers 2"), None)
     ray2 = next((r for r in results if "ray" in r["backend"]), None)
     if pool2 and ray2:
-        print(f"\nRay local vs the pool, 2 workers: steady {ray2['steady_runs_per_s'] / pool2['steady_runs_per_s']:.2f}x, "
-              f"with start-up {ray2['runs_per_s'] / pool2['runs_per_s']:.2f}x")
+        print(
+            f"\nRay local vs the pool, 2 workers: "
+            f"steady {ray2['steady_runs_per_s'] / pool2['steady_runs_per_s']:.2f}x, "
+            f"with start-up {ray2['runs_per_s'] / pool2['runs_per_s']:.2f}x"
+        )
 
 
 def _cpu(r: dict) -> str:

@@ -82,7 +82,9 @@ def main() -> None:
     cols = [c for c in args.only.split(",") if c]
     items = original_items()
     t0 = time.perf_counter()
-    tuner = FineTuner(all_demos(), cfg=cfg, log=log, base=_cached_base(args.base_cache, cfg) if args.base_cache else None)
+    tuner = FineTuner(
+        all_demos(), cfg=cfg, log=log, base=_cached_base(args.base_cache, cfg) if args.base_cache else None
+    )
     res: dict[str, dict] = {}
 
     if "shipped" in cols:

@@ -88,7 +88,9 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="1 LSTM x 10 epochs per model (smoke run)")
     ap.add_argument("--skip-split", action="store_true", help="skip the session split (10 trainings)")
-    ap.add_argument("--epochs", type=int, default=None, help="epochs per model (default: the recipe's; 10 with --quick)")
+    ap.add_argument(
+        "--epochs", type=int, default=None, help="epochs per model (default: the recipe's; 10 with --quick)"
+    )
     ap.add_argument("--write-metrics", action="store_true",
                     help="store the results in the shipped bundles' [metrics] (manifest only, weights untouched)")
     args = ap.parse_args()

@@ -9,7 +9,8 @@ Scenes are drawn from seeds ``--seed-base + i`` (default 950000: no other benchm
 seeds there) by :func:`object_scene`. Every object is a cube (3-6 cm), a 2:1 box (short side 2.5-4 cm,
 2-6 cm tall), a cylinder (radius 1.5-3 cm, 2-7 cm tall) or, exactly once per scene, a mesh: pybullet_data's
 duck (``duck_vhacd.obj`` standing up, scale 0.03-0.045: 5-7 cm long). The mover A and the anchor B are
-placed, in turn (by seed), with each mover shape, touching (a 0-5 mm gap between their footprints), 1.4-7.7 mover sizes apart centre to
+placed, in turn (by seed), with each mover shape, touching (a 0-5 mm gap between their footprints), 1.4-7.7 mover sizes
+apart centre to
 centre (the original study's range; a size is the side in blocks of ``core/shapes.py``), or one of them at
 the workspace's rim; 2-5 bystanders of the same mix lie anywhere in the workspace (the duck among them when
 it is neither A nor B). Every scene is valid (``Scene.validate``). Each is performed with each action by
@@ -86,7 +87,11 @@ def object_scene(seed: int, radius: float = 0.25, plan_in=None):
         u = np.array([math.cos(direction), math.sin(direction)])
         a = _object("A", "red", kinds[0], (0.0, 0.0), ya, rng)
         b = _object("B", "green", kinds[1], (0.0, 0.0), yb, rng)
-        dist = _distance_for_gap(a, b, u, rng.uniform(0.0, 0.005)) if kind == "touching" else rng.uniform(1.4, 7.7) * a.size
+        dist = (
+            _distance_for_gap(a, b, u, rng.uniform(0.0, 0.005))
+            if kind == "touching"
+            else rng.uniform(1.4, 7.7) * a.size
+        )
         p1 = p0 + dist * u
         b_xy, a_xy = (p0, p1) if rng.uniform() < 0.5 else (p1, p0)
         objects = [a.moved(np.array([a_xy[0], a_xy[1], ya])), b.moved(np.array([b_xy[0], b_xy[1], yb]))]
@@ -296,11 +301,24 @@ def main() -> None:
     jobs = [(a, args.seed_base + i) for i in range(args.scenes) for a in actions]
     t0 = time.perf_counter()
     save = (lambda rows: args.json.write_text(json.dumps(rows, indent=1))) if args.json else None
-    rows = run_jobs(jobs, args.jobs, _worker, run_one, "bench-objects-", extra=(args.arm, args.old_disk), split=16, line=_line,
-                    save=save)
+    rows = run_jobs(
+        jobs,
+        args.jobs,
+        _worker,
+        run_one,
+        "bench-objects-",
+        extra=(args.arm, args.old_disk),
+        split=16,
+        line=_line,
+        save=save,
+    )
     rows.sort(key=lambda r: (r["seed"], actions.index(r["action"])))
-    print(f"\nobjects: {args.scenes} mixed-shape scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
-          f"x {len(actions)} actions, arm {args.arm}, planned in {'the start disk' if args.old_disk else 'its workspace'}, no rendering, {time.perf_counter() - t0:.0f} s\n")
+    print(
+        f"\nobjects: {args.scenes} mixed-shape scenes (seeds {args.seed_base}..{args.seed_base + args.scenes - 1}) "
+        f"x {len(actions)} actions, arm {args.arm}, "
+        f"planned in {'the start disk' if args.old_disk else 'its workspace'}, "
+        f"no rendering, {time.perf_counter() - t0:.0f} s\n"
+    )
     print_table(rows, actions)
     print_shapes(rows)
     if args.json:

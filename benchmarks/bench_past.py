@@ -84,8 +84,11 @@ def main() -> None:
     from l2p_bullet.plugins.bundle import load_bundle
 
     bundles = [(str(b), load_bundle(b)) for b in args.bundle] or [("installed", registry.load("past"))]
-    print("| bundle | block m | success | closest approach (median, blocks) | passes > 3 blocks away | "
-          "ends beyond (median, blocks) | ends < 1 block beyond | final progress |\n|---|---:|---:|---:|---:|---:|---:|---:|")
+    print(
+        "| bundle | block m | success | closest approach (median, blocks) | passes > 3 blocks away | "
+        "ends beyond (median, blocks) | ends < 1 block beyond | final progress |\n"
+        "|---|---:|---:|---:|---:|---:|---:|---:|"
+    )
     for label, b in bundles:
         for size in (float(s) for s in args.sizes.split(",")):
             r = measure(b, size, seeds)

@@ -165,11 +165,14 @@ def summarise(rows: list[dict]) -> dict:
     def worst(key: str) -> float:
         return max((r[key] for r in ok), default=float("nan"))
     return {
-        "runs": len(rows), "errors": len(rows) - len(ok),
+        "runs": len(rows),
+        "errors": len(rows) - len(ok),
         "success_rate": sum(r["success"] for r in rows) / max(len(rows), 1),
         "mean_final_progress": statistics.fmean(r["final_progress"] or 0.0 for r in ok) if ok else float("nan"),
-        "mean_max_deviation_mm": 1000 * mean("max_deviation_m"), "worst_max_deviation_mm": 1000 * worst("max_deviation_m"),
-        "mean_final_error_mm": 1000 * mean("final_error_m"), "worst_anchor_displacement_mm": 1000 * worst("anchor_displacement_m"),
+        "mean_max_deviation_mm": 1000 * mean("max_deviation_m"),
+        "worst_max_deviation_mm": 1000 * worst("max_deviation_m"),
+        "mean_final_error_mm": 1000 * mean("final_error_m"),
+        "worst_anchor_displacement_mm": 1000 * worst("anchor_displacement_m"),
         "time_s": {s: statistics.fmean(r["timings"].get(s, 0.0) for r in ok) if ok else float("nan") for s in STAGES},
         "max_total_s": max((r["timings"]["total"] for r in ok), default=float("nan")),
     }
@@ -212,7 +215,11 @@ def main() -> None:
     fast = {a: summarise([r for r in rows if r["action"] == a and not r["render"]]) for a in actions}
     rendered = {a: summarise([r for r in rows if r["action"] == a and r["render"]]) for a in actions}
     h = help_time()
-    print_table(f"perform without rendering, {args.scenes} random scenes per action (l2p-bullet evaluate, stage seconds inside the worker)", fast)
+    print_table(
+        f"perform without rendering, {args.scenes} random scenes per action "
+        "(l2p-bullet evaluate, stage seconds inside the worker)",
+        fast,
+    )
     if args.render_scenes:
         print_table(f"perform with rendering, first {args.render_scenes} scenes per action", rendered)
     if cold:
@@ -221,9 +228,12 @@ def main() -> None:
         ratio = [c["perform_s"] / c["floor_s"] for c in cold]
         print(f"\ncold `l2p-bullet perform --no-render` (fresh process): median {statistics.median(perf):.2f} s, "
               f"max {max(perf):.2f} s over {len(cold)} runs (goal: median <= 0.5 s)")
-        print(f"the floor (fresh python: import pybullet and numpy, load the same bodies, step as many physics "
-              f"steps, median {statistics.median([c['steps'] for c in cold]):.0f}): median {statistics.median(floor):.2f} s; "
-              f"perform / floor, run by run: median {statistics.median(ratio):.2f}x, max {max(ratio):.2f}x")
+        print(
+            f"the floor (fresh python: import pybullet and numpy, load the same bodies, step as many physics "
+            f"steps, median {statistics.median([c['steps'] for c in cold]):.0f}): "
+            f"median {statistics.median(floor):.2f} s; "
+            f"perform / floor, run by run: median {statistics.median(ratio):.2f}x, max {max(ratio):.2f}x"
+        )
         print(f"`python -c pass`: median {python_start_time():.3f} s")
     if plan_cold:
         print(f"cold `l2p-bullet plan`: median {plan_cold['plot']:.2f} s with plan.png, "

@@ -70,8 +70,14 @@ def run(name: str, folder: Path, seeds: list[int], out: Path, score_with=None) -
                     plugins=plugins)
         m = load_motion(out / f"{name}-{seed}" / "trajectory.json")
         lat, _ = viewer_offset(m.mover[-1, :2], m.anchor[-1, :2], np.array(VIEWPOINTS["robot"]))
-        row = {"rules": r.success, "lateral": lat, "final": r.final_progress, "moved_mm": 1000 * r.anchor_displacement_m,
-               "plan": r.timings["plan"], "execute": r.timings["execute"]}
+        row = {
+            "rules": r.success,
+            "lateral": lat,
+            "final": r.final_progress,
+            "moved_mm": 1000 * r.anchor_displacement_m,
+            "plan": r.timings["plan"],
+            "execute": r.timings["execute"],
+        }
         if score_with is not None:
             row["other"] = float(score_with.final(m.mover, m.anchor, m.size))
         rows.append(row)

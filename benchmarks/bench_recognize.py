@@ -85,10 +85,14 @@ def evaluate_split(models: list[Recogniser], test: str, rule: str = "final") -> 
 
 
 def fmt(name: str, r: dict) -> str:
-    lines = [f"**{name}** ({r['n']} demonstrations): five-way {100 * r['five']:.1f} %, closer+next-to merged "
-             f"{100 * r['merged']:.1f} %, balanced (mean recall) {100 * np.mean(r['recall']):.1f} %, "
-             f"best reading names the real mover {100 * r['right_mover']:.0f} %", "",
-             "| shown \\ recognised | " + " | ".join(ACTIONS) + " | recall |", "|---" + "|---:" * (len(ACTIONS) + 1) + "|"]
+    lines = [
+        f"**{name}** ({r['n']} demonstrations): five-way {100 * r['five']:.1f} %, closer+next-to merged "
+        f"{100 * r['merged']:.1f} %, balanced (mean recall) {100 * np.mean(r['recall']):.1f} %, "
+        f"best reading names the real mover {100 * r['right_mover']:.0f} %",
+        "",
+        "| shown \\ recognised | " + " | ".join(ACTIONS) + " | recall |",
+        "|---" + "|---:" * (len(ACTIONS) + 1) + "|",
+    ]
     for i, a in enumerate(ACTIONS):
         cells = [f"**{v}**" if i == j else str(v) for j, v in enumerate(r["conf"][i])]
         lines.append(f"| {a} | " + " | ".join(cells) + f" | {100 * r['recall'][i]:.0f} % |")
@@ -116,8 +120,17 @@ def main() -> None:
         f" --seed {args.seed}" if args.seed else "") + (f" --rule {args.rule}" if args.rule != "final" else "") + (
         " --quick" if args.quick else "")
     t0 = time.perf_counter()
-    folders = {s: session_bundles(s, Path(args.cache) / s, seed=args.seed, command=cmd, recipe=recipe,
-                                  log=lambda m: print(m, file=sys.stderr, flush=True)) for s in ("Session1", "Session2")}
+    folders = {
+        s: session_bundles(
+            s,
+            Path(args.cache) / s,
+            seed=args.seed,
+            command=cmd,
+            recipe=recipe,
+            log=lambda m: print(m, file=sys.stderr, flush=True),
+        )
+        for s in ("Session1", "Session2")
+    }
     t_train = time.perf_counter() - t0
     recorded = {s: sum(bundle_seconds(f) for f in fs.values()) for s, fs in folders.items()}
     results = {}

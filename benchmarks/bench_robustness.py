@@ -197,8 +197,11 @@ def print_table(rows: list[dict], actions: list[str]) -> None:
         n = collections.Counter(r["outcome"] for r in rs)
         disturbed = sum(1 for r in rs if r.get("disturbed"))
         secs = [r["seconds"] for r in rs]
-        print(f"{action:<8} {len(rs):5d} " + " ".join(f"{n[o]:>{w}d}" for o, w in zip(
-            OUTCOMES, (8, 8, 8, 9, 9, 8), strict=True)) + f" {disturbed:9d} {statistics.median(secs):8.2f} {max(secs):7.2f}")
+        print(
+            f"{action:<8} {len(rs):5d} "
+            + " ".join(f"{n[o]:>{w}d}" for o, w in zip(OUTCOMES, (8, 8, 8, 9, 9, 8), strict=True))
+            + f" {disturbed:9d} {statistics.median(secs):8.2f} {max(secs):7.2f}"
+        )
     refused = collections.Counter((r["action"], r["check"]) for r in rows if r["outcome"] == "refused")
     if refused:
         print("\nrefused up front, by check:")

@@ -46,7 +46,10 @@ def main() -> None:
     from l2p_bullet.plugins import arms as arm_plugins
 
     ways = {"placed": lambda o, p, q: separation(place_outline(o, p), q), "per yaw": posed_separation}
-    print("| arm | scenes | refused | placed s | per-yaw s | ratio | verdicts differing |\n|---|---:|---:|---:|---:|---:|---:|")
+    print(
+        "| arm | scenes | refused | placed s | per-yaw s | ratio | verdicts differing |\n"
+        "|---|---:|---:|---:|---:|---:|---:|"
+    )
     try:
         for arm, base in arms:
             radius = fit_workspace(Workspace(), arm_plugins.get(arm)).starts().inner_radius

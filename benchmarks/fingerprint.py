@@ -165,8 +165,17 @@ def strip(x):
 
 
 def performs(tmp: Path, sc: list[tuple[str, dict]]) -> None:
-    picks = [("default", "around", 0), ("default", "past", 1), ("random1", "closer", 2), ("random2", "away", 3),
-             ("random3", "next-to", 4), ("bystander", "around", 5), ("random4", "around", 6), ("rim", "around", 7), ("rim", "closer", 8)]
+    picks = [
+        ("default", "around", 0),
+        ("default", "past", 1),
+        ("random1", "closer", 2),
+        ("random2", "away", 3),
+        ("random3", "next-to", 4),
+        ("bystander", "around", 5),
+        ("random4", "around", 6),
+        ("rim", "around", 7),
+        ("rim", "closer", 8),
+    ]
     for name, a, seed in picks:
         d = tmp / f"perform-{name}-{a}"
         code, err = invoke(["perform", f"move A {PHRASE[a]} B", "--scene", str(tmp / f"{name}.json"), "--seed",

@@ -34,7 +34,9 @@ def main(radii: list[float]) -> None:
                 g = np.arange(-radius, radius + 1e-9, 0.02)
                 gx, gy = np.meshgrid(g, g)
                 grid = np.column_stack([gx.ravel(), gy.ravel()])
-                pts = np.unique(np.round(np.vstack([arm_measure.region_probes(ws), grid[ws.contains(grid, 0.005)]]), 4), axis=0)
+                pts = np.unique(
+                    np.round(np.vstack([arm_measure.region_probes(ws), grid[ws.contains(grid, 0.005)]]), 4), axis=0
+                )
                 bad = [(round(x, 3), round(y, 3)) for x, y in arm_measure.unreached(kin, spec, pts)]
                 print(f"{name} R={radius}: ring {spec.reach} from ({base[0]}, {base[1]}); {len(pts)} probes, "
                       f"{len(bad)} unreached {bad[:5]}; area {ws.area():.4f} m^2 ({time.time() - t:.0f} s)", flush=True)

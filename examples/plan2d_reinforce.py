@@ -109,8 +109,13 @@ def main() -> None:
     t = time.perf_counter()
     policy, finals = train(args.action, args.episodes, args.batch, args.seed)
     k = max(1, min(len(finals) // 5, 50))
-    out = {"action": args.action, "episodes": args.episodes, "train_s": round(time.perf_counter() - t, 1),
-           "progress_first": round(float(np.mean(finals[:k])), 4), "progress_last": round(float(np.mean(finals[-k:])), 4)}
+    out = {
+        "action": args.action,
+        "episodes": args.episodes,
+        "train_s": round(time.perf_counter() - t, 1),
+        "progress_first": round(float(np.mean(finals[:k])), 4),
+        "progress_last": round(float(np.mean(finals[-k:])), 4),
+    }
     out |= perform(policy, args.action, seed=10**6 + args.seed, frame=args.frame)
     print(json.dumps(out))
 

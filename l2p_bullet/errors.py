@@ -116,7 +116,8 @@ class PlanError(L2PError):
 class InfeasibleError(L2PError):
     """The arm cannot do what is asked in this scene, found before anything is planned or moved.
 
-    ``check`` names the check that failed ("grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer",
+    ``check`` names the check that failed ("grasp", "boxed-in", "room-around", "far-around", "blocked-around",
+    "room-away", "room-closer",
     "no-motion" (after the search: a plan that leaves the mover where it is);
     docs/perform.md says what each means), ``details`` carries its numbers.
     """

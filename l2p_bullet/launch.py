@@ -5,7 +5,8 @@ exit 130), not print a KeyboardInterrupt traceback from inside an import. So :fu
 handler before it imports anything heavy, and this module imports only ``_signal`` (CPython's built-in C
 module: no Python code runs to import it, while ``import signal`` executes ``signal.py`` and its enum
 conversion, several milliseconds in which a Ctrl-C raised a traceback), ``sys`` (already imported by
-CPython's start-up) and the package (import-light: the handler itself is defined there). Importing it, or the package, installs nothing: only running the program
+CPython's start-up) and the package (import-light: the handler itself is defined there). Importing it, or the package,
+installs nothing: only running the program
 does, so a test or a library that imports ``l2p_bullet`` keeps its own Ctrl-C.
 """
 

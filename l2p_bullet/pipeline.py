@@ -225,9 +225,19 @@ def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: f
     ``time_limit`` (seconds) also ends the search (an evaluation's equal-time comparisons).
     """
     cmd, opts = p.command, RunOptions.of(options or p.options, **changes)
-    result = planning.plan(p.scene, cmd.mover, list(cmd.anchors), p.bundle, planner=opts.planner,
-                           seed=opts.seed, budget=opts.budget, threshold=opts.threshold, time_limit=time_limit, arm=p.arm,
-                           **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm))
+    result = planning.plan(
+        p.scene,
+        cmd.mover,
+        list(cmd.anchors),
+        p.bundle,
+        planner=opts.planner,
+        seed=opts.seed,
+        budget=opts.budget,
+        threshold=opts.threshold,
+        time_limit=time_limit,
+        arm=p.arm,
+        **manner_planning(manners.get(cmd.manner), p.scene.get(cmd.mover).size, p.arm),
+    )
     result = apply_extent(result, cmd.extent, p.judge, p.scene)  # "far away from", "a bit closer to"
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
@@ -437,20 +447,39 @@ def _summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> dict:
     d = r.to_dict()
     timings = summary.get("timings_s") if isinstance(summary.get("timings_s"), dict) else {}
     files = summary.get("files") if isinstance(summary.get("files"), dict) else {}
-    summary.update({
-        "schema": summary.get("schema", 1), "ok": True, "sentence": d["sentence"],
-        "command": {k: d[k] for k in ("verb", "mover", "preposition", "action", "anchor", "anchors", "pace", "extent")
-                    if k in d},
-        "verdict": d["verdict"], "success": r.success, "final_progress": d["final_progress"],
-        "planned_progress": d["planned_progress"], "planner": d["planner"], "stopped": d["stopped"],
-        "seed": seed, "final_error_m": d["final_error_m"],
-        "max_deviation_m": d["max_deviation_m"], "anchor_displacement_m": d["anchor_displacement_m"],
-        "displacements_m": d["displacements_m"], "disturbed": d["disturbed"], "grasp": d["grasp"],
-        "grasp_angle_deg": r.plan.extra.get("grasp_angle_deg"),
-        "plugin": {"name": bundle.name, "version": bundle.version, "path": str(bundle.path)},
-        # execute's sub-stages (check, setup, reach, engage, move, disengage, record) and perform's stages
-        # "evaluate": the judge stage's older name, still written for readers (contracts only grow)
-        "timings_s": {**timings, **d["timings"], **({"evaluate": d["timings"]["judge"]} if "judge" in d["timings"] else {})},
-        "files": {**files, "plan": "plan.json"},
-    })
+    summary.update(
+        {
+            "schema": summary.get("schema", 1),
+            "ok": True,
+            "sentence": d["sentence"],
+            "command": {
+                k: d[k]
+                for k in ("verb", "mover", "preposition", "action", "anchor", "anchors", "pace", "extent")
+                if k in d
+            },
+            "verdict": d["verdict"],
+            "success": r.success,
+            "final_progress": d["final_progress"],
+            "planned_progress": d["planned_progress"],
+            "planner": d["planner"],
+            "stopped": d["stopped"],
+            "seed": seed,
+            "final_error_m": d["final_error_m"],
+            "max_deviation_m": d["max_deviation_m"],
+            "anchor_displacement_m": d["anchor_displacement_m"],
+            "displacements_m": d["displacements_m"],
+            "disturbed": d["disturbed"],
+            "grasp": d["grasp"],
+            "grasp_angle_deg": r.plan.extra.get("grasp_angle_deg"),
+            "plugin": {"name": bundle.name, "version": bundle.version, "path": str(bundle.path)},
+            # execute's sub-stages (check, setup, reach, engage, move, disengage, record) and perform's stages
+            # "evaluate": the judge stage's older name, still written for readers (contracts only grow)
+            "timings_s": {
+                **timings,
+                **d["timings"],
+                **({"evaluate": d["timings"]["judge"]} if "judge" in d["timings"] else {}),
+            },
+            "files": {**files, "plan": "plan.json"},
+        }
+    )
     return summary

@@ -13,7 +13,8 @@ at on Session 1 -> 2 only, Session 2 -> 1 held out; docs/learning.md, "Recogniti
 - a block "moved" when it got at least :data:`MOVED_SIDES` of its side from where it started; if none
   did, the one that moved most is the mover (a tiny motion still gets readings);
 - motions captured from people (``--demo``) are smoothed as the training recipe smooths them
-  (``data.demos.SMOOTH_FRAMES``, the training recipe's window) and cut to the annotated event, as ``replay --demo`` executes it.
+  (``data.demos.SMOOTH_FRAMES``, the training recipe's window) and cut to the annotated event, as ``replay --demo``
+  executes it.
 Numpy only (no torch): the same models ``perform`` plans with.
 """
 

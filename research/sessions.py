@@ -44,7 +44,8 @@ def session_bundles(session: str, out: str | Path, *, actions: tuple[str, ...] =
                     command: str = "", log: Callable[[str], None] | None = None,
                     recipe: Recipe | None = None, untrusted: bool = True) -> dict[str, Path]:
     """Train each of ``actions`` on capture ``session`` (e.g. "Session1") into ``out/<action>/``, with
-    ``recipe`` (:mod:`l2p_bullet.learning.training_plan`; when None its :data:`SHIPPED`, what ``l2p-bullet train`` uses);
+    ``recipe`` (:mod:`l2p_bullet.learning.training_plan`; when None its :data:`SHIPPED`, what ``l2p-bullet train``
+    uses);
     ``untrusted`` False: without the demonstrations whose tracking is not trusted (``all_demos``).
 
     A folder whose manifest already records the same data digest, seed and recipe is kept as it is

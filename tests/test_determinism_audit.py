@@ -112,7 +112,9 @@ def test_rendering_adds_images_and_changes_no_motion(tmp_path):
     small = RenderSettings(width=64, height=48, fps=5.0, renderer="tiny", workers=0)
     perform("push A past B", scene, out_dir=tmp_path / "drawn", render=True, seed=2, render_settings=small)
     assert list((tmp_path / "drawn" / "frames").glob("*.png"))
-    assert (tmp_path / "plain" / "trajectory.json").read_bytes() == (tmp_path / "drawn" / "trajectory.json").read_bytes()
+    assert (tmp_path / "plain" / "trajectory.json").read_bytes() == (
+        tmp_path / "drawn" / "trajectory.json"
+    ).read_bytes()
     assert _json(tmp_path / "plain", "plan.json") == _json(tmp_path / "drawn", "plan.json")
     a, b = _json(tmp_path / "plain", "summary.json"), _json(tmp_path / "drawn", "summary.json")
     assert a["verdict"] == b["verdict"] and a["final_progress"] == b["final_progress"]
@@ -209,13 +211,33 @@ def test_a_push_does_not_depend_on_the_cpus_blas_kernel(tmp_path):
     scene = random_scene(11)
     save_scene(scene, tmp_path / "scene.json")
     for core in ("Haswell", "Prescott"):
-        r = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "perform", "push A past B", "--scene",
-                            str(tmp_path / "scene.json"), "--seed", "2", "--no-render", "-q", "--out", str(tmp_path / core)],
-                           cwd=tmp_path, env={**os.environ, "OPENBLAS_CORETYPE": core}, capture_output=True, text=True,
-                           timeout=120)
+        r = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "l2p_bullet.cli",
+                "perform",
+                "push A past B",
+                "--scene",
+                str(tmp_path / "scene.json"),
+                "--seed",
+                "2",
+                "--no-render",
+                "-q",
+                "--out",
+                str(tmp_path / core),
+            ],
+            cwd=tmp_path,
+            env={**os.environ, "OPENBLAS_CORETYPE": core},
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         if r.returncode != 0:  # a CPU without that kernel: not the difference this test is about
             pytest.skip(f"the {core} kernel does not run here: {r.stderr[-300:]}")
-    assert (tmp_path / "Haswell" / "trajectory.json").read_bytes() == (tmp_path / "Prescott" / "trajectory.json").read_bytes()
+    assert (tmp_path / "Haswell" / "trajectory.json").read_bytes() == (
+        tmp_path / "Prescott" / "trajectory.json"
+    ).read_bytes()
 
 
 @pytest.mark.slow
@@ -229,4 +251,6 @@ def test_training_in_two_processes_with_other_thread_counts_gives_the_same_weigh
     (tmp_path / "sub").mkdir()
     _cli([*args, "--out", "../b"], cwd=tmp_path / "sub", OMP_NUM_THREADS="2", MKL_NUM_THREADS="2",
          PYTHONHASHSEED="99")
-    assert (tmp_path / "a" / "progress.safetensors").read_bytes() == (tmp_path / "b" / "progress.safetensors").read_bytes()
+    assert (tmp_path / "a" / "progress.safetensors").read_bytes() == (
+        tmp_path / "b" / "progress.safetensors"
+    ).read_bytes()

@@ -234,9 +234,28 @@ def test_ray_at_an_address_nobody_answers_on_gives_up(tmp_path):
         for address, said in (("127.0.0.1:1", 'cannot reach Ray at "127.0.0.1:1"'),
                               (f"127.0.0.1:{s.getsockname()[1]}", "did not answer within 2 s")):
             t = time.monotonic()
-            r = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "evaluate", "--ray", address, "--scenes", "1",
-                                "--actions", "closer", "--no-render", "--out", str(tmp_path / address.replace(":", "-"))],
-                               capture_output=True, text=True, timeout=120, env=env, cwd=tmp_path)
+            r = subprocess.run(
+                [
+                    sys.executable,
+                    "-m",
+                    "l2p_bullet.cli",
+                    "evaluate",
+                    "--ray",
+                    address,
+                    "--scenes",
+                    "1",
+                    "--actions",
+                    "closer",
+                    "--no-render",
+                    "--out",
+                    str(tmp_path / address.replace(":", "-")),
+                ],
+                capture_output=True,
+                text=True,
+                timeout=120,
+                env=env,
+                cwd=tmp_path,
+            )
             errors = [line for line in r.stderr.splitlines() if line.startswith("error: ")]
             assert r.returncode == 2 and len(errors) == 1 and said in errors[0], r.stderr[-1500:]
             assert time.monotonic() - t < 60

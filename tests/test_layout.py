@@ -111,7 +111,8 @@ from l2p_bullet.review.original import import_original
 db = Path(tempfile.mkdtemp()) / 'r.sqlite'
 import_original(Store(db))
 assert len(load_grades(db)) == 180
-assert not loaded('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet'), 'load_grades: ' + str(loaded('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet')[:5])
+heavy = loaded('torch', 'fastapi', 'uvicorn', 'matplotlib', 'pybullet')
+assert not heavy, 'load_grades: ' + str(heavy[:5])
 
 from l2p_bullet.plugins import registry
 from l2p_bullet.language import parse

@@ -30,8 +30,11 @@ HISTORY = {
     "an issue number": re.compile(r"\bissues?[ -]?#?\d+", re.IGNORECASE),
     "an issue reference (#N)": re.compile(r"(?<![\w&\"'#/])#\d+\b(?![\"'\w])"),
     "a session or stop of the project's making": re.compile(
-        rf"\b{_ORDINAL}[ -](?:session|stop)\b|\bstops? \d+\b(?![.,]?\d*\s*(?:cm|mm|m|s|ms|blocks?|sides?|%|deg|degrees?|turns?)\b)|(?-i:\bsession \d+\b)"
-        r"|\b(?:this|last|previous|earlier|next) session\b", re.IGNORECASE),
+        rf"\b{_ORDINAL}[ -](?:session|stop)\b"
+        r"|\bstops? \d+\b(?![.,]?\d*\s*(?:cm|mm|m|s|ms|blocks?|sides?|%|deg|degrees?|turns?)\b)|(?-i:\bsession \d+\b)"
+        r"|\b(?:this|last|previous|earlier|next) session\b",
+        re.IGNORECASE,
+    ),
     "a round of an experiment": re.compile(rf"\b{_ORDINAL} round\b", re.IGNORECASE),
     "a date": re.compile(rf"\b20\d\d-\d\d-\d\d\b|\b{_MONTH}\.? (?:\d{{1,2}},? )?20\d\d\b"),
 }

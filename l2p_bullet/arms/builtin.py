@@ -34,7 +34,8 @@ PANDA = ArmSpec(
         (0.060, 0.0241, 0.1048), (0.065, 0.0253, 0.1051), (0.070, 0.0266, 0.1055), (0.075, 0.0278, 0.1058),
         (0.080, 0.0291, 0.1062),
     ),
-    reach=(0.27, 0.79),  # measured (l2p-bullet arms --check, every REACH_HEIGHTS height; 0.26 m with only 0.012 and 0.19)
+    # measured (l2p-bullet arms --check, every REACH_HEIGHTS height; 0.26 m with only 0.012 and 0.19)
+    reach=(0.27, 0.79),
     payload=3.0,  # Franka's rated payload
     description="Franka Emika Panda with its hand (pybullet_data franka_panda/panda.urdf); the default",
 )

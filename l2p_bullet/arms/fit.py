@@ -20,7 +20,9 @@ from .spec import ArmSpec
 def fit_workspace(workspace: Workspace, spec: ArmSpec) -> Workspace:
     """The workspace an arm gets: unchanged when its reach ring around its mount holds the whole disk, else the disk
     intersected with the ring (every shipped arm's ring cuts the 0.35 m disk)."""
-    cut = replace(workspace, ring=(float(spec.mount[0]), float(spec.mount[1]), float(spec.reach[0]), float(spec.reach[1])))
+    cut = replace(
+        workspace, ring=(float(spec.mount[0]), float(spec.mount[1]), float(spec.reach[0]), float(spec.reach[1]))
+    )
     return workspace if cut.holds_disk(workspace.radius) else cut
 
 
@@ -42,7 +44,9 @@ def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
                                  f'the arm "{spec.name}" ({ws.describe()})')
             way = "outward" if r < spec.reach[0] else "inward"
             raise SceneError(
-                f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is {r:.2f} m from the base of the arm "{spec.name}", '
+                f'object "{o.name}" at ({o.xy[0]:.3f}, {o.xy[1]:.3f}) is {r:.2f} m from the base of the arm '
+                f'"{spec.name}", '
                 f"which reaches the table only {spec.reach[0]:.2f}-{spec.reach[1]:.2f} m from its base; move it {way} "
-                f"or choose another arm (l2p-bullet arms)")
+                f"or choose another arm (l2p-bullet arms)"
+            )
     return replace(scene, workspace=ws)

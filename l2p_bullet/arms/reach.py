@@ -23,7 +23,8 @@ adds nothing beside the block at any other object's height, the angle is free (`
 
 **The wrist.** Pointing down, a Panda's tool yaw is set by its base joint (the azimuth of the tool seen
 from the base) and its wrist: wrist = pi/4 + azimuth - tool yaw, exactly, as long as the inverse
-kinematics keeps the arm in its vertical plane (it does, seeded continuously: tests/embodiment/test_robustness.py, the wrist tests). The
+kinematics keeps the arm in its vertical plane (it does, seeded continuously: tests/embodiment/test_robustness.py, the
+wrist tests). The
 wrist turns within +-2.97 rad, less than a full turn, so a block whose yaw keeps accumulating (around a
 circle, turning a little at every move) runs the wrist out of range. The grasp picks, among the offsets
 its angle allows (the angle plus any multiple of a half turn; any multiple of 90 degrees when the angle

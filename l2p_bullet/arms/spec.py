@@ -57,7 +57,8 @@ class ArmSpec:
     # (the grasp is a constraint, which would lift anything). 1 kg when unknown: a user's arm says its own.
     payload: float = 1.0
     # A tool point the description itself lacks (the xArm's and the KUKA's have no link between their
-    # fingertips): (parent link name, xyz in the parent's frame); :func:`~l2p_bullet.embodiment.sim.arms.arm_urdf` adds a fixed massless link
+    # fingertips): (parent link name, xyz in the parent's frame); :func:`~l2p_bullet.embodiment.sim.arms.arm_urdf` adds
+    # a fixed massless link
     # "l2p_tool" there, and ``tool_link`` is its index (the last joint).
     tool_frame: tuple[str, tuple[float, float, float]] | None = None
     # Joints made fixed in the loaded copy: free joints that are neither the arm's nor the fingers' (the

@@ -57,7 +57,11 @@ class RowSlot:
 
     def __call__(self, scene: Scene) -> np.ndarray:
         o, u = scene.get(self.stay), np.asarray(self.direction)
-        along = float((np.asarray(scene.get(self.previous).xy) - np.asarray(o.xy)) @ u) if self.previous != self.stay else 0.0
+        along = (
+            float((np.asarray(scene.get(self.previous).xy) - np.asarray(o.xy)) @ u)
+            if self.previous != self.stay
+            else 0.0
+        )
         xy = np.asarray(o.xy, float) + (along + self.pitch) * u
         return np.array([xy[0], xy[1], o.yaw if self.aligned else math.atan2(u[1], u[0])])
 
@@ -144,7 +148,9 @@ def choose_axis(scene: Scene, stay: str, movers: list[str], recipe: Recipe) -> n
     pitch = size * (1 + recipe.spacing)
     start = math.radians(recipe.axis_offset_deg) + base.yaw
     best, best_key = None, None
-    for j, a in enumerate([start + k * math.pi / 2 for k in range(4)] + [start + math.pi / 4 + k * math.pi / 2 for k in range(4)]):
+    for j, a in enumerate(
+        [start + k * math.pi / 2 for k in range(4)] + [start + math.pi / 4 + k * math.pi / 2 for k in range(4)]
+    ):
         u = np.array([math.cos(a), math.sin(a)])
         conflicts, room = 0, np.inf
         for k, m in enumerate(movers, start=1):

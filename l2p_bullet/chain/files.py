@@ -154,7 +154,8 @@ def _write_plans(path: Path, result: Any, steps: list, scene: Any, replay: dict 
         clauses.append({"clause": s.clause.index, "text": s.clause.text, "plan": executed,
                         "forecast": mark(s.forecast.to_dict())})
     head = result.results[0].plan if result.results and result.results[0].plan is not None else steps[0].forecast
-    doc = mark(head.to_dict()) | scene_fields(scene) | {  # scene, scene_sha256: the first clause's, as a one-clause run's
+    # scene, scene_sha256: the first clause's, as a one-clause run's
+    doc = mark(head.to_dict()) | scene_fields(scene) | {
         "clauses": clauses, "chain": {"sentence": result.sentence, "scene": scene.to_dict()},
         **({} if replay is None else {"replay": replay})}
     path.write_text(dumps_json(doc, indent=1) + "\n")

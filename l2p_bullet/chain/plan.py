@@ -49,8 +49,10 @@ class ChainPlan:
         out = []
         for c in d["clauses"]:
             fp = "n/a" if c["final_progress"] is None else f"{c['final_progress']:.2f}"
-            out.append(f'{c["clause"]}. {c["text"]}: "{c["action"]}", {"success" if c["success"] else "FAILED"} on '
-                       f'the plan ({c["reason"]}), final progress {fp}, {c["steps"]} steps of the {c["planner"]} planner')
+            out.append(
+                f'{c["clause"]}. {c["text"]}: "{c["action"]}", {"success" if c["success"] else "FAILED"} on '
+                f"the plan ({c['reason']}), final progress {fp}, {c['steps']} steps of the {c['planner']} planner"
+            )
         return out + [f'chain: {"success" if d["success"] else "FAILED"} on the plan, {len(d["clauses"])} clauses',
                       f"plan folder: {d['out']}"]
 
@@ -70,10 +72,17 @@ def plan_chain(sentence: str, scene: Scene, options: RunOptions | None = None, *
     steps = forecast(clauses, scene, plugins, replace(opts, arm=arm))
     with run_folder(opts.out_dir, force=opts.force, prefix="plan", command="plan",
                     files=("plan-*.png",)) as folder:
-        doc = steps[0].forecast.to_dict() | scene_fields(scene) | {  # scene, scene_sha256: as a one-clause plan.json
-            "clauses": [{"clause": s.clause.index, "text": s.clause.text, "plan": None, "forecast": s.forecast.to_dict()}
-                        for s in steps],
-            "chain": {"sentence": sentence, "scene": scene.to_dict()}}
+        doc = (
+            steps[0].forecast.to_dict()
+            | scene_fields(scene)
+            | {  # scene, scene_sha256: as a one-clause plan.json
+                "clauses": [
+                    {"clause": s.clause.index, "text": s.clause.text, "plan": None, "forecast": s.forecast.to_dict()}
+                    for s in steps
+                ],
+                "chain": {"sentence": sentence, "scene": scene.to_dict()},
+            }
+        )
         (folder / "plan.json").write_text(dumps_json(doc, indent=1) + "\n")
         if opts.plot:
             predicted = scene

@@ -137,7 +137,12 @@ def replay_chain(doc: dict, out: Path, *, scene: Scene | None = None, render_set
         bundle = registry.load(plan.action, plugins)
         manner = manner_of_sentence(text)  # "carry A past B": carried again (its path may cross blocks)
         cmd = said.get(i)
-        if cmd is None or (cmd.mover, cmd.action, cmd.anchors, cmd.manner) != (plan.mover, plan.action, anchors, manner):
+        if cmd is None or (cmd.mover, cmd.action, cmd.anchors, cmd.manner) != (
+            plan.mover,
+            plan.action,
+            anchors,
+            manner,
+        ):
             cmd = Command("move", plan.mover, plan.action, plan.action, plan.anchor, text, anchors, manner)
         steps.append(Step(Clause(i, text, cmd), bundle, bundle.progress_model(), judge_for(bundle), plan))
     if not steps:

@@ -120,7 +120,12 @@ class ChainResult:
         n = len(self.clauses)
         failed = next((r for r in self.results if not r.success), None)
         if failed is None and self.row is not None and not self.row["success"]:
-            return {"success": False, "completed": n, "clauses": n, "reason": f"all {n} clauses done, but {self.row['reason']}"}
+            return {
+                "success": False,
+                "completed": n,
+                "clauses": n,
+                "reason": f"all {n} clauses done, but {self.row['reason']}",
+            }
         if failed is None:
             return {"success": True, "completed": n, "clauses": n, "reason": f"all {n} clauses done"}
         return {"success": False, "completed": self.completed, "clauses": n, "failed_clause": failed.clause.index,
@@ -155,9 +160,17 @@ def _round(v: float | None) -> float | None:
     return None if v is None else round(float(v), 6)
 
 
-def perform_chain(sentence: str, scene: Scene, options: RunOptions | None = None, *,
-                  plugins: list | None = None, world: Any = None, bundles: dict | None = None, steps: list[Step] | None = None,
-                  **changes: Any) -> ChainResult | PerformResult:
+def perform_chain(
+    sentence: str,
+    scene: Scene,
+    options: RunOptions | None = None,
+    *,
+    plugins: list | None = None,
+    world: Any = None,
+    bundles: dict | None = None,
+    steps: list[Step] | None = None,
+    **changes: Any,
+) -> ChainResult | PerformResult:
     """Perform any sentence (the front door of ``perform``): resolve its clauses, forecast and execute them,
     judge each; write one run folder. ``options`` (with ``changes`` by name: ``RunOptions.of``) are checked
     once, up front, with the scene and the arm (its reach fits the scene's workspace first).

@@ -78,8 +78,9 @@ def score_segments(path: str | Path, model: Any) -> list[dict] | None:
         more = [trajectory_poses(frames, a) for a in anchors[1:]]
         kw = {"more_anchors": more} if more else {}
         size = float(doc["objects"][mover]["size"])
-        curve = curve_from(model, action_start(s), trajectory_poses(frames, mover), trajectory_poses(frames, anchors[0]),
-                           size, **kw)
+        curve = curve_from(
+            model, action_start(s), trajectory_poses(frames, mover), trajectory_poses(frames, anchors[0]), size, **kw
+        )
         out.append(entry | {"progress": [round(float(v), 4) for v in curve], "final": round(float(curve[-1]), 4)})
     return out
 

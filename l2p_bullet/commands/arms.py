@@ -68,9 +68,11 @@ def arms_cmd(names: tuple[str, ...], as_json: bool, check: bool) -> None:
                    f'carries {r["payload_kg"]:g} kg  {r["package"]} {r["package_version"]}  {r["description"]}')
         c = r.get("check")
         if c is not None and "measured_reach_m" in c:
-            click.echo(f'{"":<{w}}  check: reaches {c["measured_reach_m"][0]:.2f}-{c["measured_reach_m"][1]:.2f} m '
-                       f'(workspace {_words(c["measured_workspace"])}), fingertips '
-                       f'{c["fingertip_drop_m"] * 1000:.1f} mm below the tool point: ' + ("OK" if r["ok"] else r["error"]))
+            click.echo(
+                f"{'':<{w}}  check: reaches {c['measured_reach_m'][0]:.2f}-{c['measured_reach_m'][1]:.2f} m "
+                f"(workspace {_words(c['measured_workspace'])}), fingertips "
+                f"{c['fingertip_drop_m'] * 1000:.1f} mm below the tool point: " + ("OK" if r["ok"] else r["error"])
+            )
     bad = [r for r in rows if not r["ok"]]
     if bad:
         click.echo("\nbroken arms (not usable):")

@@ -11,7 +11,13 @@ import click
 
 from ..core.contracts import MAX_SEED
 
-seed_option = click.option("--seed", type=click.IntRange(0, MAX_SEED), default=0, show_default=True, help="Random seed (runs are deterministic for a seed).")
+seed_option = click.option(
+    "--seed",
+    type=click.IntRange(0, MAX_SEED),
+    default=0,
+    show_default=True,
+    help="Random seed (runs are deterministic for a seed).",
+)
 arm_option = click.option(
     "--arm", default="panda", show_default=True, metavar="NAME",
     help="The arm that performs (l2p-bullet arms lists them: panda, xarm6, kuka-iiwa and installed plugins).")

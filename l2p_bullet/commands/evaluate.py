@@ -14,7 +14,9 @@ from .common import MAX_SEED
 @click.command("evaluate")
 @click.option("--actions", default=None,
               help="Comma-separated actions (default: the built-in ones; installed plugins are named, not run).")
-@click.option("--scenes", type=int, default=None, help="N seeded random scenes (default 10; seeds --seed .. --seed+N-1).")
+@click.option(
+    "--scenes", type=int, default=None, help="N seeded random scenes (default 10; seeds --seed .. --seed+N-1)."
+)
 @click.option("--scene-file", type=click.Path(dir_okay=False), default=None,
               help="A JSON-lines file, one scene per line (optional id, mover, anchor, seed per line).")
 @click.option("--study", is_flag=True, default=None, help="The original study's start configurations (75 scenes).")
@@ -23,7 +25,9 @@ from .common import MAX_SEED
               help=f"First random scene seed, 0 to {MAX_SEED} (default 0).")
 @click.option("--planner", default=None, help="Planner for every run (default: each action's own).")
 @click.option("--plan-only", "plan_only", is_flag=True, default=None, help="Plan in 2-D only; no arm, no physics.")
-@click.option("--render-every", type=int, default=None, help="Render (and keep) every K-th run of each action (default 0: none).")
+@click.option(
+    "--render-every", type=int, default=None, help="Render (and keep) every K-th run of each action (default 0: none)."
+)
 @click.option("--no-render", is_flag=True, help="Render nothing (the same as --render-every 0).")
 @click.option("--keep", type=click.Choice(["none", "failed", "all"]), default=None,
               help="Run folders to keep besides the rendered ones (default: none).")
@@ -43,7 +47,9 @@ from .common import MAX_SEED
               help="Also write the results table as Parquet, to a new file (never overwritten).")
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary (and the report's numbers) as JSON.")
-@click.option("--arm", default=None, metavar="NAME", help="The arm that performs every run (default panda; l2p-bullet arms).")
+@click.option(
+    "--arm", default=None, metavar="NAME", help="The arm that performs every run (default panda; l2p-bullet arms)."
+)
 @click.option("--manners", default=None,
               help="Comma-separated manners of motion, every run in each (default: slide): slide,carry,push.")
 @click.option("--chains", type=int, default=None,

@@ -17,8 +17,12 @@ from .common import force_option
 @click.option("--format", "fmt", type=click.Choice(["json", "lerobot", "rerun"]), default="json", show_default=True,
               help="json: OUT/episodes.jsonl; lerobot: a LeRobot v3.0 dataset (needs l2p-bullet[export]); "
                    "rerun: the file OUT.rrd, a 3-D replay for the Rerun viewer (needs l2p-bullet[rerun]).")
-@click.option("--demos", multiple=True, metavar="SPEC",
-              help="Also the shipped human demonstrations, replayed by the arm: all, ACTION or ACTION:INDEX (repeatable).")
+@click.option(
+    "--demos",
+    multiple=True,
+    metavar="SPEC",
+    help="Also the shipped human demonstrations, replayed by the arm: all, ACTION or ACTION:INDEX (repeatable).",
+)
 @click.option("--no-video", is_flag=True, help="Leave the camera images out (lerobot), and render no demonstration.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print what was written as one JSON object (for scripts; export printed it always before).")
@@ -55,7 +59,9 @@ def export_cmd(runs: tuple[str, ...], out: str, fmt: str, demos: tuple[str, ...]
         raise PathError(f"nothing to export: none of the {len(found)} run folders given finished (see the notes above)")
     if fmt == "rerun":
         info = _export_rerun(sources, out, demos, force)
-        click.echo(json.dumps(info) if as_json else f"wrote {plural(info['runs'], 'run')} to {out} (view it: rerun {out})")
+        click.echo(
+            json.dumps(info) if as_json else f"wrote {plural(info['runs'], 'run')} to {out} (view it: rerun {out})"
+        )
         return
     specs = demo_specs(list(demos)) if demos else []
     # evaluate's progress bar on stderr: a rendered demonstration takes seconds each

@@ -30,8 +30,12 @@ from .common import file_of_run_folder, force_option, greedy_options, seed_optio
               help="Overwrite the manifest and progress weights if --out already holds a trained bundle of "
                    "ACTION (other files in it, e.g. policy.safetensors, are kept; a folder that is not a bundle "
                    "is never written to).")
-@click.option("--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer).")
-@click.option("--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer).")
+@click.option(
+    "--ensemble", type=click.IntRange(min=1), default=None, help="Number of LSTMs averaged (default from the trainer)."
+)
+@click.option(
+    "--epochs", type=click.IntRange(min=1), default=None, help="Epochs per ensemble member (default from the trainer)."
+)
 @click.option("--feedback", "feedback", multiple=True, metavar="SOURCE",
               help='People\'s grades to fine-tune on (repeatable): "original" (the study\'s 90 graded demos), '
                    "a review export (.csv, .jsonl) or a review database (.sqlite, .db).")
@@ -172,11 +176,18 @@ def _policy_next_step(action: str, folder: Path, copied: bool) -> str:
 
 @click.command("improve")
 @click.argument("action")
-@click.option("--rounds", type=click.IntRange(1, 40), default=2, show_default=True, help="Rounds of perform, grade, re-train.")
+@click.option(
+    "--rounds", type=click.IntRange(1, 40), default=2, show_default=True, help="Rounds of perform, grade, re-train."
+)
 @click.option("--scenes", type=click.IntRange(1, 100), default=10, show_default=True,
               help="Seeded scenes performed per round (seeds 1000 + 100 (round - 1) + i).")
-@click.option("--judge", default="rules", show_default=True, metavar="rules|FILE",
-              help="Who grades the runs: the rule judge, or people (a review database or export holding grades of the runs).")
+@click.option(
+    "--judge",
+    default="rules",
+    show_default=True,
+    metavar="rules|FILE",
+    help="Who grades the runs: the rule judge, or people (a review database or export holding grades of the runs).",
+)
 @click.option("--feedback", "feedback", multiple=True, metavar="SOURCE",
               help='Grades to fine-tune on in every round as well (repeatable), e.g. "original".')
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
@@ -210,9 +221,11 @@ def improve_cmd(action: str, rounds: int, scenes: int, judge: str, feedback: tup
         e.add_note("continue with: " + _improve_command(action, rounds, scenes, judge, feedback, out, seed, force))
         raise
     for r in results:
-        click.echo(f"round {r.round}: success {100 * r.success_rate:.0f} %, final progress {r.mean_final_progress:.2f}, "
-                   f"{plural(r.n_grades, 'grade')} (mean {r.mean_grade:.1f}), agreement {r.agreement_mean:.2f} "
-                   f"-> {r.bundle}")
+        click.echo(
+            f"round {r.round}: success {100 * r.success_rate:.0f} %, final progress {r.mean_final_progress:.2f}, "
+            f"{plural(r.n_grades, 'grade')} (mean {r.mean_grade:.1f}), agreement {r.agreement_mean:.2f} "
+            f"-> {r.bundle}"
+        )
     last = shlex.quote(results[-1].bundle)
     click.echo(f"next: l2p-bullet score {last} MOTION or l2p-bullet recognize MOTION --action {last}; its move "
                f"policy is the first bundle's: l2p-bullet train-policy {shlex.quote(action)} --bundle {last}")

@@ -24,8 +24,12 @@ from .common import (
 @seed_option
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Run folder (default: runs/perform-<timestamp>).")
-@click.option("--planner", default="default", show_default=True,
-              help="Planner: default (the action's choice), mixed, greedy, beam, discrete or reinforce (docs/planning.md).")
+@click.option(
+    "--planner",
+    default="default",
+    show_default=True,
+    help="Planner: default (the action's choice), mixed, greedy, beam, discrete or reinforce (docs/planning.md).",
+)
 @click.option("--no-render", is_flag=True, help="Skip frames and video (much faster).")
 @video_options
 @force_option

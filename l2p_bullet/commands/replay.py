@@ -37,14 +37,34 @@ from .common import (
 @click.option("--video", type=click.Choice(["mp4", "gif"]), default="mp4", show_default=True,
               help="Video format written next to the frames.")
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr (as perform's).")
-def replay_cmd(path_json, demo, scene_path, out, seed, force, arm, mover, anchor, no_render, resolution, fps, camera, renderer,
-           width, height, render_fps, video, quiet):
+def replay_cmd(
+    path_json,
+    demo,
+    scene_path,
+    out,
+    seed,
+    force,
+    arm,
+    mover,
+    anchor,
+    no_render,
+    resolution,
+    fps,
+    camera,
+    renderer,
+    width,
+    height,
+    render_fps,
+    video,
+    quiet,
+):
     """Execute a 2-D motion of a block with the arm in PyBullet.
 
     \b
     PATH_JSON is a scoring input {"size", "mover", "anchor"} (placed relative to the scene's anchor,
     scaled to its block size), a plan.json (in the scene frame, replayed on the scene it records;
-    --scene must then be that scene) or a run folder (its plan.json). --demo ACTION:INDEX replays a real human demonstration the same way.
+    --scene must then be that scene) or a run folder (its plan.json). --demo ACTION:INDEX replays a real human
+    demonstration the same way.
 
     \b
     Examples:

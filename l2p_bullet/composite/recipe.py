@@ -236,13 +236,26 @@ def learn(demos: list[Demonstration], recognisers: list) -> Recipe:
                              f"(stayed: {dict(stays)}); this version grows rows from the first named block")
     n = len(demos)
     return Recipe(
-        action=action, anchor=anchor, stays=stay, order="named" if named_order * 2 > n else "any",
-        spacing=round(float(np.median(gaps_all)), 4), monotone=monotone * 2 > n,
-        axis_offset_deg=round(float(np.median(offsets)), 2), aligned=bool(np.median(turns) < ALIGNED_DEG) if turns else True,
+        action=action,
+        anchor=anchor,
+        stays=stay,
+        order="named" if named_order * 2 > n else "any",
+        spacing=round(float(np.median(gaps_all)), 4),
+        monotone=monotone * 2 > n,
+        axis_offset_deg=round(float(np.median(offsets)), 2),
+        aligned=bool(np.median(turns) < ALIGNED_DEG) if turns else True,
         demos=n,
-        evidence={"segments": len(readings), "action_share": round(n_action / max(len(readings), 1), 4),
-                  "actions": dict(votes), "anchor_votes": dict(anchor_votes), "stays_share": round(n_stay / n, 4),
-                  "named_order_share": round(named_order / n, 4), "monotone_share": round(monotone / n, 4),
-                  "gaps_sides": [round(g, 4) for g in gaps_all], "axis_offsets_deg": [round(o, 2) for o in offsets],
-                  "turns_deg_median": round(float(np.median(turns)), 2) if turns else 0.0},
-        readings=readings)
+        evidence={
+            "segments": len(readings),
+            "action_share": round(n_action / max(len(readings), 1), 4),
+            "actions": dict(votes),
+            "anchor_votes": dict(anchor_votes),
+            "stays_share": round(n_stay / n, 4),
+            "named_order_share": round(named_order / n, 4),
+            "monotone_share": round(monotone / n, 4),
+            "gaps_sides": [round(g, 4) for g in gaps_all],
+            "axis_offsets_deg": [round(o, 2) for o in offsets],
+            "turns_deg_median": round(float(np.median(turns)), 2) if turns else 0.0,
+        },
+        readings=readings,
+    )

@@ -1,6 +1,7 @@
 """The file contracts of DESIGN.md section 4 that carry motions: plan.json, trajectory.json, scoring inputs.
 
-The plan (:class:`Plan`) is also what the planner hands to the executor. Readers accept the three formats of DESIGN.md section 4 and say clearly what is wrong with a bad file:
+The plan (:class:`Plan`) is also what the planner hands to the executor. Readers accept the three formats of DESIGN.md
+section 4 and say clearly what is wrong with a bad file:
 - the scoring input ``{"size", "mover": [[x, y, theta], ...], "anchor": [...]}``;
 - a run folder's ``plan.json``;
 - a run folder's ``trajectory.json``.
@@ -333,7 +334,9 @@ def motion_from_dict(d: dict, source: str = "motion") -> Motion:
     if "path" in d:  # plan.json
         plan = Plan.from_dict(d, source)
         anchor = np.repeat(plan.anchor_pose[None], len(plan.path), axis=0)
-        more = [np.repeat(p[None], len(plan.path), axis=0) for p in (plan.more_anchor_poses if plan.more_anchors else [])]
+        more = [
+            np.repeat(p[None], len(plan.path), axis=0) for p in (plan.more_anchor_poses if plan.more_anchors else [])
+        ]
         return Motion(plan.path, anchor, plan.size, plan.mover, plan.anchor, plan.action, more, plan.viewer)
     for key in ("size", "mover", "anchor"):
         if key not in d:

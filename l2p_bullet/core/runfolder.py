@@ -174,7 +174,8 @@ class _Claim:
 
     def restore_replaced(self) -> tuple[bool, str | None]:
         """Put back the finished run this one replaced (the new folder, incomplete, is deleted): (whether it is
-        back, a note for the user; None when there was none to put back). Called when the new run was interrupted, while this run
+        back, a note for the user; None when there was none to put back). Called when the new run was interrupted, while
+        this run
         still holds its marker's lock and under the parent's lock, so no other run can take the folder in
         between (a claim checks both)."""
         old, self.replaced = self.replaced, None
@@ -216,8 +217,10 @@ def _describe(path: Path, state: str, option: str = "--out") -> str:
     if not path.is_dir():
         return f"{path} exists and is not a folder; choose another {option}"
     names = _unknown_files(path, RUN_FILES)
-    return (f"{path} already exists and holds files l2p-bullet did not write ({listed(names)}); choose another {option} "
-            "(--force never deletes them)")
+    return (
+        f"{path} already exists and holds files l2p-bullet did not write ({listed(names)}); choose another {option} "
+        "(--force never deletes them)"
+    )
 
 
 def _protected(path: Path) -> bool:

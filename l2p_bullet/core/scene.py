@@ -4,7 +4,8 @@ Frame (the scene file's frame, DESIGN.md section 4): metres on the table top, or
 centre, +x pointing away from the robot's base, +y to the robot's left, yaw in radians about +z.
 
 The robot base stands off the table's near edge at ``ROBOT_BASE_XY``: a Panda with its gripper pointing
-down reaches grasp points at table height from about 0.27 m to 0.79 m from its base (DESIGN.md, reach note; at every height up to 0.19 m).
+down reaches grasp points at table height from about 0.27 m to 0.79 m from its base (DESIGN.md, reach note; at every
+height up to 0.19 m).
 A disk about the table's centre (0.35 m) bounds the
 workspace: every block centre, and every point of a planned path, must lie inside it. For an
 arm whose reach ring does not hold the disk (every shipped arm's), the
@@ -205,7 +206,9 @@ class Scene:
                     f"({MIN_SIZE}-{MAX_SIZE} m)"
                 )
             if o.shape != "cube":
-                shapes.check_extents(o.shape, o.dims, o.radius, o.height_m, o.mesh, o.scale, o.rpy, f'object "{o.name}"')
+                shapes.check_extents(
+                    o.shape, o.dims, o.radius, o.height_m, o.mesh, o.scale, o.rpy, f'object "{o.name}"'
+                )
             for key, hi in (("mass", MAX_MASS), ("friction", MAX_FRICTION)):
                 v = getattr(o, key)
                 if v is not None and not (_is_number(v) and 0.0 < v <= hi):
@@ -268,9 +271,13 @@ class Scene:
                 name = raw.get("name")
                 who = f" ({name[:MAX_NAME]})" if isinstance(name, str) else ""
                 key = str(unknown[0])[:MAX_NAME]
-                raise SceneError(f'{where}{who}: unknown field "{key}" (known: {", ".join(OBJECT_FIELDS)}).'
-                                 + did_you_mean(key, list(OBJECT_FIELDS)))
-            for key in ("name", "color", "size", "xy") if raw.get("shape", "cube") == "cube" else ("name", "color", "xy"):
+                raise SceneError(
+                    f'{where}{who}: unknown field "{key}" (known: {", ".join(OBJECT_FIELDS)}).'
+                    + did_you_mean(key, list(OBJECT_FIELDS))
+                )
+            for key in (
+                ("name", "color", "size", "xy") if raw.get("shape", "cube") == "cube" else ("name", "color", "xy")
+            ):
                 if key not in raw:
                     raise SceneError(f'{where} is missing the field "{key}"')
             if not isinstance(raw["name"], str) or not 0 < len(raw["name"]) <= MAX_NAME:

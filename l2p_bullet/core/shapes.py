@@ -333,7 +333,9 @@ def read_fields(raw: dict, where: str, base: Path | None, mesh_dirs: tuple[Path,
     SceneError naming the object); the geometry is built once here, so a bad mesh fails at load time."""
     shape = raw.get("shape", "cube")
     if shape not in SHAPES:
-        raise SceneError(f'{where}: unknown shape "{shape}" (known: {", ".join(SHAPES)}).' + did_you_mean(shape, SHAPES))
+        raise SceneError(
+            f'{where}: unknown shape "{shape}" (known: {", ".join(SHAPES)}).' + did_you_mean(shape, SHAPES)
+        )
     need = {"cube": (), "box": ("dims",), "cylinder": ("radius", "height"), "mesh": ("mesh",)}[shape]
     for key in need:
         if key not in raw:

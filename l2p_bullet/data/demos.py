@@ -127,8 +127,10 @@ def _check_npy_header(p: Path, zf: zipfile.ZipFile, info: zipfile.ZipInfo) -> bo
     for d in shape:
         count *= int(d)
     if dtype.hasobject or count * dtype.itemsize > info.file_size:
-        raise DataError(f'demonstration file {p}: the array "{info.filename.removesuffix(".npy")[:40]}" declares shape {shape} '
-                        f"({count * dtype.itemsize / 1e9:.3g} GB), more than the file holds")
+        raise DataError(
+            f'demonstration file {p}: the array "{info.filename.removesuffix(".npy")[:40]}" declares shape {shape} '
+            f"({count * dtype.itemsize / 1e9:.3g} GB), more than the file holds"
+        )
     return True
 
 
@@ -165,7 +167,12 @@ def load_session(path: str | Path) -> dict[str, np.ndarray]:
             raise DataError(f"demonstration file {p}: event_mover must be 0 (Shell) or 1 (Stella Artois)")
         return arrays
     movers, anchors = arrays["event_mover"], arrays["event_anchors"]
-    if not np.issubdtype(anchors.dtype, np.integer) or anchors.ndim != 2 or len(anchors) != len(ev) or not anchors.shape[1]:
+    if (
+        not np.issubdtype(anchors.dtype, np.integer)
+        or anchors.ndim != 2
+        or len(anchors) != len(ev)
+        or not anchors.shape[1]
+    ):
         raise DataError(f'demonstration file {p}: "event_anchors" must be integers of shape ({len(ev)}, n)')
     if not (np.isin(movers, np.arange(blocks)).all() and np.isin(anchors, np.arange(blocks)).all()):
         raise DataError(f"demonstration file {p}: event_mover and event_anchors must name blocks 0-{blocks - 1}")

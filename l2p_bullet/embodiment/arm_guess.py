@@ -149,7 +149,9 @@ def _closing(sim, body: str, joints, gripper: list[int], tips: list[int], hand: 
 
     lower = [joints[j].lower for j in gripper]
     upper = [joints[j].upper for j in gripper]
-    if any(hi <= lo or not math.isfinite(hi - lo) or hi - lo > 2 * math.pi for lo, hi in zip(lower, upper, strict=True)):
+    if any(
+        hi <= lo or not math.isfinite(hi - lo) or hi - lo > 2 * math.pi for lo, hi in zip(lower, upper, strict=True)
+    ):
         raise PluginError("a gripper joint has no usable limits (lower < upper, less than a turn apart): the closed "
                           "and the open positions cannot be read")
     base = sim.base_pose(body)

@@ -189,8 +189,10 @@ def check(spec: ArmSpec) -> dict:
                               f"{round(measured.inner_radius, 4)} m, not the {round(promised.inner_radius, 4)} m its "
                               "reach promises")
     elif promised.ring is not None and (near > spec.reach[0] + 0.011 or far < spec.reach[1] - 0.011):
-        problems_found.append(f"it reaches only {near:.2f}-{far:.2f} m from its base, not the "
-                              f"{spec.reach[0]:.2f}-{spec.reach[1]:.2f} m its spec declares (its workspace is cut to that ring)")
+        problems_found.append(
+            f"it reaches only {near:.2f}-{far:.2f} m from its base, not the "
+            f"{spec.reach[0]:.2f}-{spec.reach[1]:.2f} m its spec declares (its workspace is cut to that ring)"
+        )
     if unreached:
         problems_found.append(f"it does not reach {len(unreached)} point(s) of its workspace, e.g. "
                               f"({unreached[0][0]:.3f}, {unreached[0][1]:.3f})")

@@ -92,7 +92,9 @@ def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
                         f"it is {ws.describe()}")
 
 
-def checked_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
+def checked_path(
+    scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA
+) -> tuple[np.ndarray, list[float | None]]:
     """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
     (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
     square angles that do, else those of a 5 degree grid."""
@@ -108,9 +110,14 @@ def checked_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
     if not inside.all():
         k = int(np.argmin(inside))
         r = float(np.hypot(*(dense[k, :2] - np.array(scene.workspace.center))))
-        raise PathError(f'the path of "{mover}" leaves the workspace at ({dense[k, 0]:.3f}, {dense[k, 1]:.3f}), '
-                        + (f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)" if scene.workspace.ring is None
-                           else f"outside {scene.workspace.describe()}"))
+        raise PathError(
+            f'the path of "{mover}" leaves the workspace at ({dense[k, 0]:.3f}, {dense[k, 1]:.3f}), '
+            + (
+                f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)"
+                if scene.workspace.ring is None
+                else f"outside {scene.workspace.describe()}"
+            )
+        )
     hit = reach.blocked_by(scene, mover, dense, None, hand=False)  # the block itself
     if hit is not None:
         pose = dense[hit[1]]
@@ -120,7 +127,9 @@ def checked_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
         return p, [None]
     first_hit = None
     # a box, cylinder or mesh: only the angles its width fits, narrowest first (a cube fits any square one)
-    for angles in ((reach.width_angles(obj, arm),) if shaped else (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP))):
+    for angles in (
+        (reach.width_angles(obj, arm),) if shaped else (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP))
+    ):
         clear = []
         for angle in angles:
             hit = reach.blocked_by(scene, mover, dense, float(angle), arm)

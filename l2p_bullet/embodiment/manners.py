@@ -122,8 +122,10 @@ def push_refusal(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PAND
             continue
         r_o = float(np.linalg.norm(o.footprint() - np.asarray(o.xy), axis=1).max())
         if float(np.hypot(*(dense[:, :2] - np.asarray(o.xy)).T).min()) < reach_m + r_o:
-            return (f'no push can pass "{o.name}" ({o.height * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
-                    f"above the table and {2 * hand * 100:.0f} cm wide; carry or slide \"{mover}\" instead")
+            return (
+                f'no push can pass "{o.name}" ({o.height * 100:.0f} cm tall): the pushing hand is {clear * 100:.1f} cm '
+                f'above the table and {2 * hand * 100:.0f} cm wide; carry or slide "{mover}" instead'
+            )
     return None
 
 

@@ -156,8 +156,14 @@ class Recorder:
                     writer.append_data(img)
         files["contact_sheet"] = out / "contact_sheet.png"
         clauses = sentence if isinstance(sentence, list) else None  # a chain's panels name their clause
-        imageio.imwrite(files["contact_sheet"], contact_sheet(
-            self.images, times=self.image_times if len(self.image_times) == len(self.images) else None, captions=clauses))
+        imageio.imwrite(
+            files["contact_sheet"],
+            contact_sheet(
+                self.images,
+                times=self.image_times if len(self.image_times) == len(self.images) else None,
+                captions=clauses,
+            ),
+        )
         return files
 
 

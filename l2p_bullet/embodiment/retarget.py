@@ -83,8 +83,10 @@ def _check_numbers(mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
     with np.errstate(over="ignore", invalid="ignore"):
         extent = float(np.max(np.abs(mover[:, :2] - anchor[:1, :2]))) / size
     if not extent <= MAX_MOTION_BLOCKS:
-        raise PathError(f"the motion to replay reaches {extent:.3g} block sides from its anchor (blocks of {size:.3g} m);"
-                        f" at most {MAX_MOTION_BLOCKS:g}: are the poses in metres and the block size right?")
+        raise PathError(
+            f"the motion to replay reaches {extent:.3g} block sides from its anchor (blocks of {size:.3g} m);"
+            f" at most {MAX_MOTION_BLOCKS:g}: are the poses in metres and the block size right?"
+        )
 
 
 def retarget(mover: np.ndarray, anchor: np.ndarray, size: float, scene: Scene, mover_name: str,

@@ -47,7 +47,11 @@ def number(name: str, value: object, lo: float, hi: float = math.inf, *, lo_open
         v = float(value)
         ok = (v > lo if lo_open else v >= lo) and v <= hi
     if not ok:
-        rng = f"in {'(' if lo_open else '['}{lo:g}, {hi:g}]" if math.isfinite(hi) else f"{'>' if lo_open else '>='} {lo:g}"
+        rng = (
+            f"in {'(' if lo_open else '['}{lo:g}, {hi:g}]"
+            if math.isfinite(hi)
+            else f"{'>' if lo_open else '>='} {lo:g}"
+        )
         raise EnvError(f"{name} must be a finite number {rng}, got {value!r}")
     return float(value)
 
@@ -76,7 +80,9 @@ def check_options(options: object) -> tuple[Scene | None, str, str]:
     if options is None:
         options = {}
     if not isinstance(options, Mapping):
-        raise EnvError(f"reset options must be a dict with keys {', '.join(RESET_OPTIONS)}, got {type(options).__name__}")
+        raise EnvError(
+            f"reset options must be a dict with keys {', '.join(RESET_OPTIONS)}, got {type(options).__name__}"
+        )
     for key in options:
         if key not in RESET_OPTIONS:
             raise EnvError(f"unknown reset option {key!r} (known: {', '.join(RESET_OPTIONS)})."

@@ -84,8 +84,10 @@ def check_out_folder(folder: Path, *, resume: bool) -> dict | None:
     if folder.is_dir():
         names = foreign_files(folder)
         if names:
-            raise EvaluationError(f"{folder} already exists and holds files l2p-bullet did not write ({listed(names)}); "
-                                  "choose another --out")
+            raise EvaluationError(
+                f"{folder} already exists and holds files l2p-bullet did not write ({listed(names)}); "
+                "choose another --out"
+            )
     return None
 
 

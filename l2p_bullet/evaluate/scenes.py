@@ -117,7 +117,8 @@ def study_scenes(size: float = 0.05, seed: int = 0) -> list[SceneSpec]:
     """The distinct start configurations of the graded 2-D demonstrations, on our table.
 
     The study's blocks are 0.15 m squares on a +-1.2 m table; ours are ``size`` (5 cm) in a disk of
-    0.25 m (``START_RADIUS``; the planning disk is larger). Everything is expressed in block sizes first: the study's table centre becomes ours and every
+    0.25 m (``START_RADIUS``; the planning disk is larger). Everything is expressed in block sizes first: the study's
+    table centre becomes ours and every
     position is multiplied by ``size / 0.15`` (so the distance between the blocks, in block sizes, and
     both yaws are exactly the study's). Where that puts a block outside our workspace (the study's table
     is 16 blocks wide, our workspace 10), the whole configuration is translated, never scaled or turned,

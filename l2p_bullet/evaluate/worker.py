@@ -45,15 +45,44 @@ TIMING_FIELDS = ("plan_s", "execute_s", "total_s", "wall_s", "timings", "worker"
 def empty_row(task: Task) -> dict[str, Any]:
     """A row with the task's fields filled and every result field empty (an error row until filled)."""
     return {
-        "run_id": task.run_id, "idx": task.index, "scene_id": task.scene_id, "scene_source": task.scene_source,
-        "seed": task.seed, "sentence": task.sentence, "action": task.action, "planner": task.planner,
+        "run_id": task.run_id,
+        "idx": task.index,
+        "scene_id": task.scene_id,
+        "scene_source": task.scene_source,
+        "seed": task.seed,
+        "sentence": task.sentence,
+        "action": task.action,
+        "planner": task.planner,
         "manner": getattr(task, "manner", "slide"),
-        "planner_used": None, "mode": task.mode, "success": None, "score": None, "reason": None, "judge": None,
-        "final_progress": None, "planned_progress": None, "max_deviation_m": None, "anchor_displacement_m": None,
-        "final_error_m": None, "final_gap_blocks": None, "stopped": None, "plan_steps": None,
-        "judged": None, "scored": None, "timings": None, "plan_s": None, "execute_s": None, "total_s": None, "wall_s": None,
-        "worker": None, "run_dir": None, "error": None, "error_type": None, "finished_at": None,
-        "completed": None, "redraws": None, "clauses": None,
+        "planner_used": None,
+        "mode": task.mode,
+        "success": None,
+        "score": None,
+        "reason": None,
+        "judge": None,
+        "final_progress": None,
+        "planned_progress": None,
+        "max_deviation_m": None,
+        "anchor_displacement_m": None,
+        "final_error_m": None,
+        "final_gap_blocks": None,
+        "stopped": None,
+        "plan_steps": None,
+        "judged": None,
+        "scored": None,
+        "timings": None,
+        "plan_s": None,
+        "execute_s": None,
+        "total_s": None,
+        "wall_s": None,
+        "worker": None,
+        "run_dir": None,
+        "error": None,
+        "error_type": None,
+        "finished_at": None,
+        "completed": None,
+        "redraws": None,
+        "clauses": None,
     }
 
 
@@ -140,7 +169,9 @@ class Worker:
 
     def _perform(self, task: Task, row: dict) -> None:
         keep_always = task.render or task.keep == "all"
-        out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
+        out = (
+            Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else self.scratch() / "run"
+        )
         scene = Scene.from_dict(task.scene, source=task.scene_id)
         try:
             world = self.world(scene.validate(), visuals=task.render, arm=task.arm)

@@ -159,8 +159,12 @@ def write_lerobot(episodes: Iterable[Episode], out: str | Path, *, video: bool |
                 "meta/episodes/chunk_index": 0, "meta/episodes/file_index": 0, "l2p/source": ep.source,
                 "l2p/extra": json.dumps(ep.extra, default=str)}
         if video:
-            meta |= {f"videos/{VIDEO_KEY}/chunk_index": 0, f"videos/{VIDEO_KEY}/file_index": 0,
-                     f"videos/{VIDEO_KEY}/from_timestamp": total / fps, f"videos/{VIDEO_KEY}/to_timestamp": (total + n) / fps}
+            meta |= {
+                f"videos/{VIDEO_KEY}/chunk_index": 0,
+                f"videos/{VIDEO_KEY}/file_index": 0,
+                f"videos/{VIDEO_KEY}/from_timestamp": total / fps,
+                f"videos/{VIDEO_KEY}/to_timestamp": (total + n) / fps,
+            }
         meta |= {f"stats/{k}/{s}": v for k, st in _stats(arr, n, ep.images[:n] if video else None).items()
                  for s, v in st.items()}
         episodes_meta.append(meta)

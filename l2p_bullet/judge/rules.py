@@ -111,7 +111,9 @@ def _check_motion(mover: np.ndarray, anchor: np.ndarray, size: float) -> None:
     if not len(mover):
         raise PathError("the motion has no frames: a rule judges at least one pose of the mover")
     if not len(anchor) or (len(anchor) != 1 and len(anchor) != len(mover)):
-        raise PathError(f"the anchor has {len(anchor)} poses for the mover's {len(mover)}: give one pose, or one per frame")
+        raise PathError(
+            f"the anchor has {len(anchor)} poses for the mover's {len(mover)}: give one pose, or one per frame"
+        )
     if not (np.isfinite(mover).all() and np.isfinite(anchor).all()):
         raise PathError("the motion holds a pose that is not a finite number (NaN or infinity)")
     if isinstance(size, bool) or not isinstance(size, int | float | np.floating) or not 0 < size < np.inf:

@@ -21,6 +21,23 @@ from .grammar import (
 from .references import Context, resolve_object
 from .words import strip_polite
 
-__all__ = ["EXAMPLE", "MAX_SENTENCE", "TRAILING_JOINS", "VERBS", "Command", "command_words", "Context", "ListCommand", "extent_table", "known_verbs",
-           "manner_of_sentence", "parse", "parse_list", "phrase_tokens", "resolve_object", "split_verb",
-           "strip_polite", "tokens"]
+__all__ = [
+    "EXAMPLE",
+    "MAX_SENTENCE",
+    "TRAILING_JOINS",
+    "VERBS",
+    "Command",
+    "command_words",
+    "Context",
+    "ListCommand",
+    "extent_table",
+    "known_verbs",
+    "manner_of_sentence",
+    "parse",
+    "parse_list",
+    "phrase_tokens",
+    "resolve_object",
+    "split_verb",
+    "strip_polite",
+    "tokens",
+]

@@ -11,7 +11,8 @@ the longest wins ("to the left of" over "left of", "closer to" over "to").
 Around that core people add words: politeness and framing ("could you ...", "so that it is"), which
 are dropped, and qualifiers of the manner ("slowly") and of the preposition ("far away from"), which
 the command records (``pace``, ``extent``: language/words.py). Objects are named, described or pointed
-back to (language/references.py). Every failure is a :class:`LanguageError` (or :class:`UnknownObjectError`) that says which
+back to (language/references.py). Every failure is a :class:`LanguageError` (or :class:`UnknownObjectError`) that says
+which
 words were not understood and suggests the closest known ones, because the person typing the sentence
 cannot see the grammar.
 """

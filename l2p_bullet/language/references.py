@@ -183,7 +183,9 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
             return None
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
-        return _either_reading(described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind))
+        return _either_reading(
+            described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind)
+        )
     ref = _reference_point(rest_words, scene, role, context)
     if ref is None:
         return None

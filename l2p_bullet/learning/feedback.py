@@ -12,7 +12,8 @@ Where grades come from (:func:`load_feedback`), one :class:`FeedbackItem` per gr
   run's motion is read from its run folder's trajectory.json, and a run whose trajectory.json no longer
   has the sha256 that was reviewed is reported, never used;
 - the review app's SQLite database (``.sqlite``/``.db``), through ``l2p_bullet.data.grades.load_grades``;
-- the rule judge (:func:`~l2p_bullet.learning.feedback_targets.judge_items`): planner outputs graded 10 x the judge's score, the original
+- the rule judge (:func:`~l2p_bullet.learning.feedback_targets.judge_items`): planner outputs graded 10 x the judge's
+  score, the original
   project's "automatic feedback".
 
 How items become training sequences is :mod:`l2p_bullet.learning.feedback_targets`; the fine-tuning
@@ -175,7 +176,9 @@ def _label(value: str) -> str:
         return key  # a plugin action's name: still "another action"
 
 
-def items_from_rows(rows: Sequence[GradeRow], base: str | Path | None = None) -> tuple[list[FeedbackItem], list[Skipped]]:
+def items_from_rows(
+    rows: Sequence[GradeRow], base: str | Path | None = None
+) -> tuple[list[FeedbackItem], list[Skipped]]:
     """Group export rows by motion (``demo_id`` for the study's rows, else ``run_id``) into items.
 
     A run's motion is its run folder's trajectory.json (``run_path``, relative paths first against

@@ -362,10 +362,15 @@ def _metrics(k: int, bundle_dir: Path, final_dir: Path, seeds: list[int], summar
     graded = [it for it in original_items() if it.action == bundle.name]
     agree = folder_agreement(graded, score_items(bundle.progress_model(), graded))
     return RoundResult(
-        round=k, bundle=str(final_dir), seeds=seeds,
+        round=k,
+        bundle=str(final_dir),
+        seeds=seeds,
         success_rate=float(np.mean([bool(s.get("success")) for s in summaries])),
         mean_final_progress=float(np.mean([s.get("final_progress") or 0.0 for s in summaries])),
-        n_grades=len(items), n_grades_total=n_total,
+        n_grades=len(items),
+        n_grades_total=n_total,
         mean_grade=float(np.mean([it.grade for it in items if it.grade is not None] or [np.nan])),
-        agreement={f: round(float(v), 4) for f, v in agree.items()}, agreement_mean=float(np.mean(list(agree.values()))),
-        agreement_in_sample=any(it.source == "original" for it in static))
+        agreement={f: round(float(v), 4) for f, v in agree.items()},
+        agreement_mean=float(np.mean(list(agree.values()))),
+        agreement_in_sample=any(it.source == "original" for it in static),
+    )

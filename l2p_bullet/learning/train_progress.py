@@ -73,7 +73,11 @@ def all_demos(files: dict[str, list] | None = None, sessions: set[str] | None = 
     for a in ACTIONS:
         given = (files or {}).get(a)
         ds = load_demos(a, given)
-        out[a] = [d for d in ds if (sessions is None or d.session in sessions) and (given or untrusted or d.id not in UNTRUSTED)]
+        out[a] = [
+            d
+            for d in ds
+            if (sessions is None or d.session in sessions) and (given or untrusted or d.id not in UNTRUSTED)
+        ]
     return out
 
 
@@ -396,7 +400,9 @@ JUDGE_SEEDS = 5000
 1000-4999, REINFORCE 10 000 and up."""
 
 
-def _feedback_items(name: str, sources: Sequence[str], log: Callable[[str], None] | None) -> tuple[list[FeedbackItem], int]:
+def _feedback_items(
+    name: str, sources: Sequence[str], log: Callable[[str], None] | None
+) -> tuple[list[FeedbackItem], int]:
     """The graded motions of ``sources`` for ``train_bundle``, and how many reviewed runs were left out."""
     items, skipped = load_feedback(sources)
     for s in skipped:

@@ -356,7 +356,8 @@ def _copies(action: str, ev_m: np.ndarray, c: np.ndarray, size: float, dcfg: Dat
 
 
 NEAR_MISSES = 2
-"""Near misses per positive copy of a two-anchor or viewer-frame demonstration (``augment.displaced``, ``augment.twisted_end``)."""
+"""Near misses per positive copy of a two-anchor or viewer-frame demonstration (``augment.displaced``,
+``augment.twisted_end``)."""
 
 
 def _negatives(action: str, demos: dict[str, list[Demo]], qcfg: QSRConfig, dcfg: DataConfig,

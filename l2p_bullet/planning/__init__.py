@@ -89,7 +89,8 @@ BEAM_WIDTH = 4
 
 
 def resolve_planner(name: str, settings: dict | None = None) -> str:
-    """The concrete planner behind ``name`` ("default" follows the bundle's settings); UnknownPlannerError if unknown."""
+    """The concrete planner behind ``name`` ("default" follows the bundle's settings); UnknownPlannerError if
+    unknown."""
     key = name.strip().lower()
     if key not in PLANNERS:
         raise UnknownPlannerError(name, PLANNERS)
@@ -122,7 +123,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     weighted by the end's closeness to it and it is proposed from every node (target.py).
     ``airborne`` (a manner that carries the block, l2p_bullet/manners): objects other than the anchors are
     obstacles only where a move ends (the block may be set down there), not along the way (World2D's
-    ``over``); the anchors stay obstacles all the way (the block goes past or around them, not over them). ``outline`` (K,2,
+    ``over``); the anchors stay obstacles all the way (the block goes past or around them, not over them). ``outline``
+    (K,2,
     block frame): what the manner puts at block height, tested against every other object instead of the
     block and the hand beside it (a push: the block with the pusher, ``embodiment.manners.push_outline``).
     """
@@ -169,11 +171,20 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
         scorer = (_target_scorer(model, target, world) if target is not None
                   else BoundScorer(model, bound) if bound is not None else model)
         problem = Problem(
-            world=world, model=scorer, anchor_pose=anchor_obj.pose, size=world.size,
+            world=world,
+            model=scorer,
+            anchor_pose=anchor_obj.pose,
+            size=world.size,
             threshold=float(threshold if threshold is not None else settings.get("threshold", THRESHOLD)),
-            budget=int(budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)),
-            rng=np.random.default_rng(seed), wrist=wrist, more_anchor_poses=more_poses,
-            viewer=getattr(model, "viewpoint", None), lead_in=lead, check_cap=cap,
+            budget=int(
+                budget if budget is not None else BUDGETS[name] * (TARGET_BUDGET if target is not None else SHORT_REACH)
+            ),
+            rng=np.random.default_rng(seed),
+            wrist=wrist,
+            more_anchor_poses=more_poses,
+            viewer=getattr(model, "viewpoint", None),
+            lead_in=lead,
+            check_cap=cap,
             reach=lead_in.reach * world.size if lead_in else None,
         )
         problem.deadline = deadline
@@ -321,6 +332,8 @@ def _policy_proposer(bundle, required: bool = True):
     if net is None and not required:
         return None
     if net is None:
-        raise PlanError(f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
-                        f'"l2p-bullet train-policy {bundle.name}" or pick another planner (known: {", ".join(PLANNERS)})')
+        raise PlanError(
+            f'the action "{bundle.name}" has no trained policy in its bundle; train one with '
+            f'"l2p-bullet train-policy {bundle.name}" or pick another planner (known: {", ".join(PLANNERS)})'
+        )
     return policy.PolicyProposer(net)

@@ -7,7 +7,8 @@ up until its budget is spent, and the mover stops part of the way (0.26-0.76 of 
 mover's own, radii up to the judge's ``near``, a few fixed yaws near the mover's), the legal poses are
 found, and a breadth-first search finds the shortest chain of neighbouring legal poses at one yaw that sweeps
 :data:`GOAL_TURNS` of a turn either way (where no yaw has one, the cheapest chain that turns the block between
-neighbouring yaws on the way, those and the yaws square to the blocks near the anchor: :data:`TURN_COST`). Its corners (the poses a straight legal move can reach from the
+neighbouring yaws on the way, those and the yaws square to the blocks near the anchor: :data:`TURN_COST`). Its corners
+(the poses a straight legal move can reach from the
 previous one, farthest first) are proposed from every node of the search; the progress model still
 decides which move to make, as with every other proposal.
 """

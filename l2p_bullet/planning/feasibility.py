@@ -16,7 +16,8 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   along each bearing, whether the ray from that distance on meets the workspace at all, exactly).
 - ``far-around`` (raised by the planner, ``planning/approach.py``): the mover starts farther from the anchor
   than ``near`` blocks and no straight slide (at its yaw, within the wrist's range, clear of every object
-  and inside the workspace) brings it to where "around" is planned from. A start farther than ``near`` blocks is not refused as such:
+  and inside the workspace) brings it to where "around" is planned from. A start farther than ``near`` blocks is not
+  refused as such:
   the rule does not judge the approach.
 - ``blocked-around``: within ``near`` blocks of the anchor, the other objects and the workspace's rim leave
   the mover no legal pose (whatever its yaw) along some bearings, so no path sweeps the 0.8 turn: a
@@ -58,7 +59,17 @@ from ..judge.rules import RULE_SPECS, closer_room
 from . import sweep
 from .world2d import World2D, place_outline
 
-CHECKS = ("grasp-width", "grasp", "boxed-in", "room-around", "far-around", "blocked-around", "room-away", "room-closer", "no-motion")
+CHECKS = (
+    "grasp-width",
+    "grasp",
+    "boxed-in",
+    "room-around",
+    "far-around",
+    "blocked-around",
+    "room-away",
+    "room-closer",
+    "no-motion",
+)
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
 MIN_TURN_RAD = math.radians(10.0)
 
@@ -92,10 +103,12 @@ def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Ho
     other = scene.get(name)
     raise InfeasibleError(
         "grasp",
-        f'the arm "{arm.name}" cannot grasp "{mover}": its hand, coming down on the {m.height * 100:.0f} cm block, would hit '
+        f'the arm "{arm.name}" cannot grasp "{mover}": its hand, coming down on the {m.height * 100:.0f} cm block, '
+        "would hit "
         f'"{name}" ({other.height * 100:.0f} cm tall) or another taller block beside it whichever way it turns; '
         "move them apart",
-        {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}})
+        {"mover": mover, "blocking": name, "least_overlap_m": {k: round(-v, 6) for k, v in gaps.items() if v < 0}},
+    )
 
 
 def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None = None,

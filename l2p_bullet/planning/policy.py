@@ -114,9 +114,15 @@ class PolicyProposer:
 
     def __call__(self, problem: Problem, node: Node, n: int) -> np.ndarray:
         # the policy sees the action's own moves (after a lead-in), as it was trained
-        x, hand = policy_features([node.frames[problem.lead:]], problem.anchor_pose, problem.size,
-                                  np.array([node.progress]), np.array([node.moves - problem.lead_moves]), problem.world.center,
-                                  FEATURE_RADIUS)
+        x, hand = policy_features(
+            [node.frames[problem.lead :]],
+            problem.anchor_pose,
+            problem.size,
+            np.array([node.progress]),
+            np.array([node.moves - problem.lead_moves]),
+            problem.world.center,
+            FEATURE_RADIUS,
+        )
         mean, log_std = self.net(x.astype(np.float64))
         mean, std = mean[0], np.exp(log_std[0]) * self.spread
         acts = mean + std * problem.rng.normal(size=(max(n, 1), 3))

@@ -59,7 +59,9 @@ def refine(problem: Problem, node: Node, passes: int = PASSES) -> tuple[Node, in
     if node.parent is None:
         return node, 0
     spent, level = 0, 0
-    while spent < passes and level < len(SCALES) and (problem.deadline is None or time.perf_counter() < problem.deadline):
+    while (
+        spent < passes and level < len(SCALES) and (problem.deadline is None or time.perf_counter() < problem.deadline)
+    ):
         scale = SCALES[level]
         moved = stencil(problem, node.pose, scale)
         kids = problem.children([node.parent, node], [moved, moved])

@@ -56,7 +56,8 @@ def room_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROUND_
 
 SWEEP_GRID = (2.0, 0.05, 5.0)
 """The blocked-around grid: bearings every 2 degrees, centre distances every 0.05 of the mover's side, yaws every
-5 degrees (over a quarter turn for a square); the poses between grid points are accounted for by a slack in the gap (favouring the arm)."""
+5 degrees (over a quarter turn for a square); the poses between grid points are accounted for by a slack in the
+gap (favouring the arm)."""
 
 
 def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROUND_TURNS,
@@ -73,7 +74,8 @@ def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROU
     dyaw = math.radians(yaw_deg) / 2  # ... and half a step from a grid yaw
     bearings = np.radians(np.arange(0.0, 360.0, bearing_deg))
     quarter = np.allclose(np.sort(np.round(world.mover.outline @ np.array([[0.0, 1.0], [-1.0, 0.0]]), 9), axis=0),
-                          np.sort(np.round(world.mover.outline, 9), axis=0))  # a square looks the same a quarter turn on
+                          # a square looks the same a quarter turn on
+                          np.sort(np.round(world.mover.outline, 9), axis=0))
     yaws = np.radians(np.arange(0.0, 90.0 if quarter else 360.0, yaw_deg))
     t, r, y = np.meshgrid(bearings, radii, yaws, indexing="ij")
     poses = np.column_stack([a.xy[0] + (r * np.cos(t)).ravel(), a.xy[1] + (r * np.sin(t)).ravel(), y.ravel()])
@@ -124,7 +126,9 @@ def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROU
         # reads "around" from the first frame within near on, and frames are at most FRAME_STEP of a side apart,
         # so that frame is a legal pose less than FRAME_STEP inside the near circle (a cell of the outer radii):
         # what counts is the way round from such an entry, one way (the turn is the bearing's net change)
-        far_cells = (ok_far & (short >= -(slack + along))).reshape(len(bearings), len(radii), -1).any(2) & cross[:, None]
+        far_cells = (ok_far & (short >= -(slack + along))).reshape(len(bearings), len(radii), -1).any(2) & cross[
+            :, None
+        ]
         entries = [(int(k), int(j)) for k, j in np.argwhere(far_cells)
                    if radii[j] >= outer - FRAME_STEP * m.size - 2 * dr]
         way = entry_sweep(far_cells, entries) * bearing_deg

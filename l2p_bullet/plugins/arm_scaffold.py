@@ -65,11 +65,24 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     pkg.mkdir(parents=True)
     texts = {
         root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist, version=__version__),
-        pkg / "__init__.py": _INIT.format(name=name, src=_docstring_text(os.path.basename(urdf)), urdf=_urdf_expr(spec.urdf),
-                                          spec=arm_guess.spec_source(spec)),
-        root / "README.md": _README.format(name=name, dist=dist, module=module, root=root.name, urdf=spec.urdf,
-                                           near=spec.reach[0], far=spec.reach[1], mount=spec.mount[0],
-                                           opening=spec.gripper_opening * 100, joints=len(spec.arm_joints)),
+        pkg / "__init__.py": _INIT.format(
+            name=name,
+            src=_docstring_text(os.path.basename(urdf)),
+            urdf=_urdf_expr(spec.urdf),
+            spec=arm_guess.spec_source(spec),
+        ),
+        root / "README.md": _README.format(
+            name=name,
+            dist=dist,
+            module=module,
+            root=root.name,
+            urdf=spec.urdf,
+            near=spec.reach[0],
+            far=spec.reach[1],
+            mount=spec.mount[0],
+            opening=spec.gripper_opening * 100,
+            joints=len(spec.arm_joints),
+        ),
     }
     for path, text in texts.items():
         path.write_text(text, encoding="utf-8")

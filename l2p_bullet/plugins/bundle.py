@@ -146,8 +146,8 @@ def version_satisfies(version: str, spec: str) -> bool:
 
 
 _MODELS: dict[tuple[str, str, str], Any] = {}
-"""Numpy progress models by (bundle folder, weights digest, feature and model settings): the planner, the recorder and a benchmark
-performing many sentences all share one, read and checked once per process."""
+"""Numpy progress models by (bundle folder, weights digest, feature and model settings): the planner, the
+recorder and a benchmark performing many sentences all share one, read and checked once per process."""
 
 
 @dataclass
@@ -356,8 +356,10 @@ def check_bundle_target(out: Path, name: str, force: bool) -> None:
     except BundleError:
         man = None
     if not (man and man.get("schema") == SCHEMA and isinstance(man.get("name"), str) and "phrases" in man):
-        raise RunFolderError(f"{out} already exists and holds files that are not an action bundle's ({listed(entries)}); "
-                             "choose another --out (--force only replaces a bundle l2p-bullet wrote)")
+        raise RunFolderError(
+            f"{out} already exists and holds files that are not an action bundle's ({listed(entries)}); "
+            "choose another --out (--force only replaces a bundle l2p-bullet wrote)"
+        )
     if normalize_name(str(man["name"])) != normalize_name(name):
         raise RunFolderError(f'{out} holds the bundle of the action "{man["name"]}", not of "{name}"; '
                              "choose another --out")

@@ -106,7 +106,9 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     if not clean:
         raise PluginError('give at least one phrase, e.g. --phrase "to the left of"')
     if len(set(clean)) != len(clean):
-        raise PluginError("the same phrase is given twice: " + ", ".join(sorted({p for p in clean if clean.count(p) > 1})))
+        raise PluginError(
+            "the same phrase is given twice: " + ", ".join(sorted({p for p in clean if clean.count(p) > 1}))
+        )
     for p in clean:
         if not re.fullmatch(r"[a-z][a-z' ]*", p):
             raise PluginError(f'phrase "{p}" must be words made of letters (no digits or punctuation)')
@@ -124,22 +126,45 @@ def scaffold(name: str, phrases: list[str], out: str | Path | None = None, *,
     pkg.mkdir(parents=True)
     (root / "demos").mkdir()
     texts = {
-        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist_name, version=__version__,
-                                                   data=', "*.json"' if kind == "composite" else ""),
+        root / "pyproject.toml": _PYPROJECT.format(
+            name=name,
+            module=module,
+            dist=dist_name,
+            version=__version__,
+            data=', "*.json"' if kind == "composite" else "",
+        ),
         pkg / "__init__.py": _INIT.format(name=name),
-        pkg / "manifest.toml": (_COMPOSITE_HEADER if kind == "composite" else _HEADER).format(name=name) + _MANIFEST.format(
-            name=name, phrases=", ".join(f'"{p}"' for p in clean), version=__version__,
+        pkg / "manifest.toml": (_COMPOSITE_HEADER if kind == "composite" else _HEADER).format(name=name)
+        + _MANIFEST.format(
+            name=name,
+            phrases=", ".join(f'"{p}"' for p in clean),
+            version=__version__,
             # a TOML basic string, escaped as JSON escapes it: a quote, a backslash or a newline in the author's
             # description broke the manifest
-            description=json.dumps(description or (f"Put the blocks named in a row ({clean[0]} A, B and C)."
-                                                   if kind == "composite" else f"Slide a block {clean[0]} another block"
-                                                   + (" and a third" if anchors == 2 else "") + "."), ensure_ascii=False),
-            frame=frame, anchors=anchors,
-        ) + (_JUDGE.format(rules=judge) if judge else "") + (_COMPOSITE if kind == "composite" else ""),
+            description=json.dumps(
+                description
+                or (
+                    f"Put the blocks named in a row ({clean[0]} A, B and C)."
+                    if kind == "composite"
+                    else f"Slide a block {clean[0]} another block" + (" and a third" if anchors == 2 else "") + "."
+                ),
+                ensure_ascii=False,
+            ),
+            frame=frame,
+            anchors=anchors,
+        )
+        + (_JUDGE.format(rules=judge) if judge else "")
+        + (_COMPOSITE if kind == "composite" else ""),
         root / "README.md": (_COMPOSITE_README if kind == "composite" else _README).format(
-            name=name, module=module, dist=dist_name, phrase=clean[0], root=root.name,
-            phrases=", ".join(f'"{p}"' for p in clean), example=_example(clean[0], anchors, kind),
-            kind=_KIND.get(name, "left-of" if anchors == 1 else "between"), viewer=_viewer_arg(frame),
+            name=name,
+            module=module,
+            dist=dist_name,
+            phrase=clean[0],
+            root=root.name,
+            phrases=", ".join(f'"{p}"' for p in clean),
+            example=_example(clean[0], anchors, kind),
+            kind=_KIND.get(name, "left-of" if anchors == 1 else "between"),
+            viewer=_viewer_arg(frame),
         ),
         root / "demos" / ".gitkeep": "",
     }

@@ -136,7 +136,9 @@ def check_manifest(folder: Path, man: dict) -> None:
         raise c.fail("[model] arch", f'"{str(model.get("arch"))[:30]}" is not known (known: lstm)')
     n = c.number(model, "n_features", "[model] n_features", 1, 10_000, integer=True)
     if n != len(names):
-        raise c.fail("[model] n_features", f"is {n} but [features] computes {len(names)} features (re-train the bundle)")
+        raise c.fail(
+            "[model] n_features", f"is {n} but [features] computes {len(names)} features (re-train the bundle)"
+        )
     c.number(model, "hidden", "[model] hidden", *LIMITS["hidden"], integer=True)
     c.number(model, "ensemble", "[model] ensemble", *LIMITS["ensemble"], integer=True)
 

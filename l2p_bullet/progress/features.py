@@ -237,8 +237,11 @@ def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig 
     """Resample one motion (see :func:`resample_batch`); ``anchor`` (and each of ``more_anchors``) is
     ``(T,3)`` or one pose ``(3,)``."""
     anchor = np.asarray(anchor, float)
-    more = None if more_anchors is None else [np.asarray(x, float) if np.asarray(x).ndim == 1 else [np.asarray(x, float)]
-                                              for x in more_anchors]
+    more = (
+        None
+        if more_anchors is None
+        else [np.asarray(x, float) if np.asarray(x).ndim == 1 else [np.asarray(x, float)] for x in more_anchors]
+    )
     return resample_batch([mover], anchor if anchor.ndim == 1 else [anchor], size, cfg, more)[0]
 
 

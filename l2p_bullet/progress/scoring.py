@@ -137,5 +137,6 @@ def _one(more_anchors: list | None) -> list | None:
     """One motion's further anchors (each a pose or a track) in the batch calls' form."""
     if more_anchors is None:
         return None
-    return [x if np.asarray(x).ndim == 1 else [np.asarray(x, float)] for x in (np.asarray(a, float) for a in more_anchors)]
-
+    return [
+        x if np.asarray(x).ndim == 1 else [np.asarray(x, float)] for x in (np.asarray(a, float) for a in more_anchors)
+    ]

@@ -111,7 +111,10 @@ def create_app(queue: ReviewQueue, host: str = "127.0.0.1") -> FastAPI:
         run = _run(queue, key)
         if queue.mode == "blind" or run.video is None:  # the video's caption names the action
             raise NotFound("no video for this run here")
-        return FileResponse(_present(run.video, "video", run.path), media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif")
+        return FileResponse(
+            _present(run.video, "video", run.path),
+            media_type="video/mp4" if run.video.suffix == ".mp4" else "image/gif",
+        )
 
     @app.get("/api/media/{key}/frames/{index}")
     def frame(key: Key, index: int) -> FileResponse:

@@ -38,15 +38,19 @@ def import_original(store: Store) -> ImportResult:
         for d in demos:
             run_id = f"original:{d['id']}"
             sha = hashlib.sha256(json.dumps(d, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
-            conn.execute("INSERT OR IGNORE INTO runs (run_id, path, trajectory_sha256, action, sentence, registered_at, "
-                         "source, demo_id, folder) VALUES (?, '', ?, ?, ?, ?, 'original', ?, ?)",
-                         (run_id, sha, GRADED_FOLDERS[d["folder"]], d["action"], t, d["id"], d["folder"]))
+            conn.execute(
+                "INSERT OR IGNORE INTO runs (run_id, path, trajectory_sha256, action, sentence, registered_at, "
+                "source, demo_id, folder) VALUES (?, '', ?, ?, ?, ?, 'original', ?, ?)",
+                (run_id, sha, GRADED_FOLDERS[d["folder"]], d["action"], t, d["id"], d["folder"]),
+            )
             comments = {grader_name(k): v for k, v in (d.get("comments_vi") or {}).items()}
             for key, grade in d["scores_txt"].items():
                 who = grader_name(key)
                 grades += 1
-                cur = conn.execute("INSERT OR IGNORE INTO answers (run_id, trajectory_sha256, reviewer, mode, view, grade, "
-                                   "label, comment, created_at, updated_at) VALUES (?, ?, ?, 'graded', '2d', ?, NULL, ?, ?, ?)",
-                                   (run_id, sha, who, int(grade), comments.get(who) or "", t, t))
+                cur = conn.execute(
+                    "INSERT OR IGNORE INTO answers (run_id, trajectory_sha256, reviewer, mode, view, grade, "
+                    "label, comment, created_at, updated_at) VALUES (?, ?, ?, 'graded', '2d', ?, NULL, ?, ?, ?)",
+                    (run_id, sha, who, int(grade), comments.get(who) or "", t, t),
+                )
                 added += cur.rowcount
     return ImportResult(len(demos), grades, added)

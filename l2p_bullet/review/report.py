@@ -129,7 +129,9 @@ def problems(rows: list[GradeRow]) -> tuple[list[GradeRow], list[dict]]:
         why = "graded again after it changed (stale)" if r.stale else (
             status.get((r.run_path, r.trajectory_sha256)) if r.source == "app" else None)
         if why:
-            d = out.setdefault((r.run_id, why), {"run_id": r.run_id, "run_path": r.run_path, "problem": why, "answers": 0})
+            d = out.setdefault(
+                (r.run_id, why), {"run_id": r.run_id, "run_path": r.run_path, "problem": why, "answers": 0}
+            )
             d["answers"] += 1
     return good, list(out.values())
 
@@ -239,7 +241,10 @@ def _fmt(v, digits: int = 2) -> str:
 
 
 def _md(header: list[str], rows: list[list]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" if i == 0 else "---:" for i in range(len(header))) + "|"]
+    lines = [
+        "| " + " | ".join(header) + " |",
+        "|" + "|".join("---" if i == 0 else "---:" for i in range(len(header))) + "|",
+    ]
     lines += ["| " + " | ".join(_fmt(c) for c in r) + " |" for r in rows]
     return "\n".join(lines)
 
@@ -332,7 +337,9 @@ def _check_export(path: Path) -> None:
         try:
             records = [json.loads(line) for line in text.splitlines() if line.strip()]
         except (ValueError, RecursionError) as e:
-            raise ReviewError(f"{path} is not a grades export (not JSON lines: {type(e).__name__}: {str(e)[:120]})") from None
+            raise ReviewError(
+                f"{path} is not a grades export (not JSON lines: {type(e).__name__}: {str(e)[:120]})"
+            ) from None
     if not records:
         raise ReviewError(f"{path} holds no answers (an empty file): export the grades with l2p-bullet review --export")
     for r in records:

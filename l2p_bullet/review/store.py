@@ -99,8 +99,10 @@ class Store:
         try:
             st = self.path.stat()
         except OSError:
-            raise DatabaseUnavailable(f"the review database {self.path} was moved or deleted while the server was "
-                                      "running; nothing can be saved: put it back, or restart l2p-bullet review") from None
+            raise DatabaseUnavailable(
+                f"the review database {self.path} was moved or deleted while the server was "
+                "running; nothing can be saved: put it back, or restart l2p-bullet review"
+            ) from None
         if self._identity is not None and (st.st_dev, st.st_ino) != self._identity:
             raise DatabaseUnavailable(f"the review database {self.path} was replaced by another file while the server "
                                       "was running; nothing is saved to it: restart l2p-bullet review")
@@ -181,16 +183,23 @@ class Store:
             if (old[0] if old else None) != replaces:
                 if old is None:
                     raise AnswerConflict("the answer you are changing no longer exists; reload the page", "stale-edit")
-                raise AnswerConflict(f"{a.reviewer} already answered this run at {old[0]} (in another window?); "
-                                     "reload to see and change that answer", "answered" if replaces is None else "stale-edit")
+                raise AnswerConflict(
+                    f"{a.reviewer} already answered this run at {old[0]} (in another window?); "
+                    "reload to see and change that answer",
+                    "answered" if replaces is None else "stale-edit",
+                )
             if old is None:
-                conn.execute("INSERT INTO answers (run_id, trajectory_sha256, reviewer, mode, view, grade, label, comment,"
-                             " created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                             (*key, a.grade, a.label, a.comment, t, t))
+                conn.execute(
+                    "INSERT INTO answers (run_id, trajectory_sha256, reviewer, mode, view, grade, label, comment,"
+                    " created_at, updated_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                    (*key, a.grade, a.label, a.comment, t, t),
+                )
             else:
-                conn.execute("UPDATE answers SET grade = ?, label = ?, comment = ?, updated_at = ? WHERE run_id = ? AND "
-                             "trajectory_sha256 = ? AND reviewer = ? AND mode = ? AND view = ?",
-                             (a.grade, a.label, a.comment, t, *key))
+                conn.execute(
+                    "UPDATE answers SET grade = ?, label = ?, comment = ?, updated_at = ? WHERE run_id = ? AND "
+                    "trajectory_sha256 = ? AND reviewer = ? AND mode = ? AND view = ?",
+                    (a.grade, a.label, a.comment, t, *key),
+                )
             conn.execute("DELETE FROM skips WHERE run_id = ? AND trajectory_sha256 = ? AND reviewer = ? AND mode = ? "
                          "AND view = ?", key)
             self._log(conn, "answer" if old is None else "change", t, key, a)

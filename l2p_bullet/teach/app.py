@@ -3,7 +3,8 @@
 The same stack and conventions as the review app (``l2p_bullet/review/app.py``; served by its runner,
 ``web/server.py``): requests validated from type declarations (a bad
 payload is a 422 naming the field), JSON errors ``{"error": message}`` (400 a recording that cannot be
-saved (any L2PError), 404 an unknown run, 400 a demonstration to remove that is not there, 409 a training already under way or a recording saved already, 500 a one-line message with the traceback
+saved (any L2PError), 404 an unknown run, 400 a demonstration to remove that is not there, 409 a training already under
+way or a recording saved already, 500 a one-line message with the traceback
 in the server's log), static HTML/JS without a build step, no interactive API docs (they load scripts
 from a CDN; nothing here may reach outside the machine), bound to 127.0.0.1 unless told otherwise.
 """

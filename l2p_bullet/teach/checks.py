@@ -124,7 +124,8 @@ def first_collision(mover: SceneObject, path: np.ndarray, others: list[tuple[Sce
 
     Only the samples get the full footprint: the 30-fps frames, and the swept moves, lie between them,
     where a jump across a corner the page allowed cuts it by millimetres (:data:`TOLERANCE`). ``path``
-    must be the samples the track is built from (:func:`~l2p_bullet.data.tracking.page_samples`), else a detour among samples
+    must be the samples the track is built from (:func:`~l2p_bullet.data.tracking.page_samples`), else a detour among
+    samples
     the track drops is checked instead of the path saved."""
     poses, steps = swept(path, mover.size)
     first: tuple[int, str] | None = None

@@ -18,7 +18,8 @@ and appends it to the demos file:
   atomically and read back by ``load_session`` (``save_session``).
 
 Training runs in a thread (:meth:`Lesson.train`): the trainer the command hands over
-(``train_bundle`` with its settings; this module never imports torch) on every demos file of the plugin folder, then ``perform`` on a new random scene with the freshly trained bundle (the folder, not an
+(``train_bundle`` with its settings; this module never imports torch) on every demos file of the plugin folder, then
+``perform`` on a new random scene with the freshly trained bundle (the folder, not an
 installed copy), with video. :meth:`Lesson.status` reports progress for the page to show.
 """
 
@@ -227,7 +228,9 @@ class Lesson:
         t = s[:, 0] - s[0, 0]
         start, end = rec.start - s[0, 0], rec.end - s[0, 0]
         if not (math.isfinite(start) and math.isfinite(end) and 0 <= start < end <= t[-1] + 1e-6):
-            raise TeachError("mark the start, move the block, then mark the end (start before end, both while recording)")
+            raise TeachError(
+                "mark the start, move the block, then mark the end (start before end, both while recording)"
+            )
         mover = scene.get("A")
         if np.hypot(*(s[0, 1:3] - mover.xy)) > 0.002:
             raise TeachError("the recording does not start where block A stands in this scene")

@@ -97,8 +97,12 @@ class RowLesson(Lesson):
         }
 
     def config(self) -> dict[str, Any]:
-        return {**super().config(), "composite": True, "sentence": row_sentence(self.action.phrases[0], ["A", "B", "C"]),
-                "demos": str(self.action.bundle_dir / "demos.json")}
+        return {
+            **super().config(),
+            "composite": True,
+            "sentence": row_sentence(self.action.phrases[0], ["A", "B", "C"]),
+            "demos": str(self.action.bundle_dir / "demos.json"),
+        }
 
     def count(self) -> int:
         return len(read_demos(self.action.bundle_dir))
@@ -193,7 +197,8 @@ class RowLesson(Lesson):
     def _check_drag(scene: Scene, block: str, track: np.ndarray, poses: dict, k: int,
                     samples: np.ndarray | None = None) -> None:
         """The block's frames (``track``) stay on the table, and its path (``samples`` ``[t, x, y, yaw]``,
-        the poses the page placed it at that ``track`` is built from, :func:`~l2p_bullet.data.tracking.page_samples`, and
+        the poses the page placed it at that ``track`` is built from, :func:`~l2p_bullet.data.tracking.page_samples`,
+        and
         the jumps between them; ``track`` without them) never passes
         through another block where it then stood: :func:`~.checks.first_collision`, which allows a jump
         across a corner that the page allowed, not one through a block."""

@@ -125,7 +125,9 @@ class RequestGuard:
             if message["type"] == "http.response.start":
                 have = {k.lower() for k, _ in message.get("headers", [])}
                 message["headers"] = [*message.get("headers", []), *(h for h in SECURITY_HEADERS if h[0] not in have)]
-                if message["status"] >= 400 and dict(message["headers"]).get(b"content-type", b"").startswith(b"text/plain"):
+                if message["status"] >= 400 and dict(message["headers"]).get(b"content-type", b"").startswith(
+                    b"text/plain"
+                ):
                     held.append(message)  # starlette's own (a malformed Range header): JSON like ours
                     return
             elif held and message["type"] == "http.response.body":
@@ -205,8 +207,13 @@ async def _reply(send, status: int, error: str, headers: tuple = ()) -> None:
     import json
 
     body = json.dumps({"error": error}).encode()
-    await send({"type": "http.response.start", "status": status,
-                "headers": [*headers, (b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
+    await send(
+        {
+            "type": "http.response.start",
+            "status": status,
+            "headers": [*headers, (b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())],
+        }
+    )
     await send({"type": "http.response.body", "body": body})
 
 

@@ -22,7 +22,9 @@ def bind(host: str, port: int) -> socket.socket:
     except OSError as e:
         sock.close()
         if e.errno == errno.EADDRINUSE:
-            raise ReviewError(f"port {port} on {host} is in use; pass another --port (or --port 0 for a free one)") from None
+            raise ReviewError(
+                f"port {port} on {host} is in use; pass another --port (or --port 0 for a free one)"
+            ) from None
         raise ReviewError(f"cannot listen on {host}:{port}: {e.strerror or e}") from None
     sock.listen(128)
     return sock

@@ -67,7 +67,9 @@ def test_impossible_clause_refused_up_front_with_its_index(tmp_path):
     assert d["refused"]["check"] == "room-around" and d["refused"]["details"]["clause"] == 2
     assert d["error"].startswith('clause 2 ("move D around B") cannot be planned (room-around)')
     assert not out.exists()  # refused before the arm moved or anything was written
-    with pytest.raises(InfeasibleError, match=r'^clause 1 \("move D around B"\) cannot be planned \(room-around\)') as e:
+    with pytest.raises(
+        InfeasibleError, match=r'^clause 1 \("move D around B"\) cannot be planned \(room-around\)'
+    ) as e:
         perform_chain("move D around B; move A next to C", four_blocks(b_xy=(0.0, 0.335)), out_dir=out, render=False)
     assert e.value.check == "room-around" and e.value.details["clause"] == 1 and not out.exists()
 
@@ -155,7 +157,11 @@ def test_score_scores_each_segment_with_its_own_blocks(chain_runs):
     traj = chain_runs[0].out_dir / "trajectory.json"
     d = score_file("around", traj)
     segs = d["segments"]
-    assert [(s["clause"], s["mover"], s["anchors"]) for s in segs] == [(1, "A", ["B"]), (2, "C", ["A"]), (3, "D", ["B"])]
+    assert [(s["clause"], s["mover"], s["anchors"]) for s in segs] == [
+        (1, "A", ["B"]),
+        (2, "C", ["A"]),
+        (3, "D", ["B"]),
+    ]
     assert len(segs[2]["progress"]) == segs[2]["last_frame"] - segs[2]["first_frame"] + 1
     recorded = json.loads(traj.read_text())["frames"][-1]["progress"]  # clause 3 is "around": its own model
     assert segs[2]["final"] == pytest.approx(recorded, abs=1e-4)
@@ -232,7 +238,9 @@ def test_the_review_page_names_the_clause_being_performed(chain_runs, chromium, 
         page.wait_for_selector("#name")
         page.fill("#name", "ann")
         page.press("#name", "Enter")
-        page.wait_for_function("() => document.querySelector('#sentence').textContent.includes('now 1/3: move A next to B')")
+        page.wait_for_function(
+            "() => document.querySelector('#sentence').textContent.includes('now 1/3: move A next to B')"
+        )
         assert page.inner_text("#sentence").startswith(f"“{CHAIN}”")
         assert not errors, errors
     finally:

@@ -132,9 +132,14 @@ def test_around_from_afar_to_an_anchor_by_the_rim_with_a_bystander_at_its_side_i
     from l2p_bullet.core.scene import Scene, SceneObject, Workspace
     from l2p_bullet.planning import feasibility
 
-    scene = Scene([SceneObject("A", "red", 0.05, (0.13297, 0.01922), 0.64146),
-                   SceneObject("B", "green", 0.05, (-0.09566, -0.05213), 0.44082),
-                   SceneObject("C", "blue", 0.05, (0.18314, 0.05657), -0.92936)], workspace=Workspace(radius=0.25)).validate()
+    scene = Scene(
+        [
+            SceneObject("A", "red", 0.05, (0.13297, 0.01922), 0.64146),
+            SceneObject("B", "green", 0.05, (-0.09566, -0.05213), 0.44082),
+            SceneObject("C", "blue", 0.05, (0.18314, 0.05657), -0.92936),
+        ],
+        workspace=Workspace(radius=0.25),
+    ).validate()
     with pytest.raises(InfeasibleError) as e:
         feasibility.check(scene, "B", "C", "around")
     assert e.value.check == "blocked-around" and e.value.details["from_afar"] is True

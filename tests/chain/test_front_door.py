@@ -57,11 +57,16 @@ def test_a_lone_clause_is_planned_as_one_clause(tmp_path):
     assert door.text()[0] == one.text()[0] and door.text()[-1].endswith("(no plot: --no-plot)")
 
 
-@pytest.mark.parametrize("changes, error, match", [
-    ({"seed": -1}, PlanError, "seed"), ({"budget": 0}, PlanError, "budget"), ({"threshold": 2.0}, PlanError, "threshold"),
-    ({"planner": "nope"}, PlanError, "nope"),
-    ({"render_settings": RenderSettings(fps=0.0)}, ExecutionError, "fps|frames per second"),
-])
+@pytest.mark.parametrize(
+    "changes, error, match",
+    [
+        ({"seed": -1}, PlanError, "seed"),
+        ({"budget": 0}, PlanError, "budget"),
+        ({"threshold": 2.0}, PlanError, "threshold"),
+        ({"planner": "nope"}, PlanError, "nope"),
+        ({"render_settings": RenderSettings(fps=0.0)}, ExecutionError, "fps|frames per second"),
+    ],
+)
 def test_the_options_are_checked_once_before_anything_is_written(tmp_path, changes, error, match):
     with pytest.raises(error, match=match):
         RunOptions.of(**changes).check()

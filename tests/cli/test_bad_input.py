@@ -75,7 +75,9 @@ def test_a_trajectory_pose_with_three_elements(tmp_path):
 
 @pytest.mark.parametrize("size", [1e-300, 5e-324, 0.0, -1.0, 1e300])
 def test_a_score_size_out_of_range(tmp_path, size):
-    (tmp_path / "m.json").write_text(json.dumps({"size": size, "mover": [[0, 0, 0], [0.1, 0, 0]], "anchor": [[0, 0, 0]]}))
+    (tmp_path / "m.json").write_text(
+        json.dumps({"size": size, "mover": [[0, 0, 0], [0.1, 0, 0]], "anchor": [[0, 0, 0]]})
+    )
     assert '"size"' in one_line_error(cli("score", "past", str(tmp_path / "m.json")))
 
 

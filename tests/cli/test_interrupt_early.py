@@ -91,9 +91,13 @@ def python_start_s() -> float:
 def test_ctrl_c_while_the_command_starts_prints_no_traceback(tmp_path, program, python_start_s, delay_ms):
     late = 0.0
     for attempt in range(6):
-        p = subprocess.Popen([sys.executable, str(program), "plan", "move A past B", "--out", str(tmp_path / f"p{attempt}")],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                             preexec_fn=ctrl_c_as_at_a_terminal)
+        p = subprocess.Popen(
+            [sys.executable, str(program), "plan", "move A past B", "--out", str(tmp_path / f"p{attempt}")],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            preexec_fn=ctrl_c_as_at_a_terminal,
+        )
         time.sleep(python_start_s + late + delay_ms / 1000)
         p.send_signal(signal.SIGINT)
         _, err = p.communicate(timeout=60)

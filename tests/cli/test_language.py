@@ -133,5 +133,7 @@ def test_two_blocks_after_a_one_block_preposition_say_so(crowded):
     with pytest.raises(LanguageError, match='"around" takes one reference block, but "B and C" names two'):
         parse("move A around B and C", crowded, PHRASES)
     assert parse("move A around B", crowded, PHRASES).anchor == "B"  # and a block named like a join still parses
-    named = Scene([SceneObject("A", "red", 0.05, (0.1, 0.0)), SceneObject("then", "green", 0.05, (0.0, 0.1))]).validate()
+    named = Scene(
+        [SceneObject("A", "red", 0.05, (0.1, 0.0)), SceneObject("then", "green", 0.05, (0.0, 0.1))]
+    ).validate()
     assert parse("move A around then", named, PHRASES).anchor == "then"

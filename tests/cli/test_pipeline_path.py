@@ -31,7 +31,9 @@ def test_plan_and_the_evaluation_worker_give_one_plan_and_verdict(tmp_path):
         worker.close()
     assert row["error"] is None, row
     kept = json.loads((tmp_path / "worker" / "plan.json").read_text())
-    assert np.array_equal(np.asarray(kept["path"]), np.asarray(json.loads((r.out_dir / "plan.json").read_text())["path"]))
+    assert np.array_equal(
+        np.asarray(kept["path"]), np.asarray(json.loads((r.out_dir / "plan.json").read_text())["path"])
+    )
     assert kept["verdict"] == r.verdict and row["success"] == int(r.verdict["success"])
     assert row["score"] == r.verdict["score"] and kept["sentence"] == "move A next to B"
 
@@ -58,7 +60,9 @@ def test_perform_plans_and_judges_its_plan_as_plan_does_and_writes_one_summary(t
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     # execute's fields and perform's, in the one file written at the end
     assert summary["execution"]["max_deviation_m"] >= 0 and summary["verdict"] == p.verdict
-    assert {"check", "move", "record", "parse", "feasibility", "load", "plan", "execute", "total"} <= set(summary["timings_s"])
+    assert {"check", "move", "record", "parse", "feasibility", "load", "plan", "execute", "total"} <= set(
+        summary["timings_s"]
+    )
     assert summary["files"]["summary"] == "summary.json" and summary["files"]["plan"] == "plan.json"
 
 

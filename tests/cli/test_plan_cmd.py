@@ -37,7 +37,10 @@ def test_plan_writes_plan_json_and_a_plot(fake_actions, tmp_path):
     png = (out / "plan.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
     again = CliRunner().invoke(main, ["plan", "move A around B", "--out", str(tmp_path / "bare"), "--no-plot"])
-    assert again.exit_code == 0 and sorted(p.name for p in (tmp_path / "bare").iterdir()) == [".l2p-run.json", "plan.json"]
+    assert again.exit_code == 0 and sorted(p.name for p in (tmp_path / "bare").iterdir()) == [
+        ".l2p-run.json",
+        "plan.json",
+    ]
     # without --json: text in perform's style (issue 26)
     lines = again.stdout.strip().splitlines()
     assert lines[0].startswith('A around B: action "around", success on the plan (') and "final progress" in lines[1]

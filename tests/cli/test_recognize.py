@@ -201,7 +201,9 @@ def _bad_inputs(tmp_path: Path) -> list[tuple[list[str], str]]:
     (tmp_path / "empty").mkdir()
     (tmp_path / "bad.json").write_text("{not json")
     (tmp_path / "no_anchor.json").write_text(json.dumps({"size": 0.05, "mover": [[0, 0, 0], [0.1, 0, 0]]}))
-    (tmp_path / "km.json").write_text(json.dumps({"size": 0.05, "mover": [[0, 0, 0], [1e5, 0, 0]], "anchor": [0, 0, 0]}))
+    (tmp_path / "km.json").write_text(
+        json.dumps({"size": 0.05, "mover": [[0, 0, 0], [1e5, 0, 0]], "anchor": [0, 0, 0]})
+    )
     nan = _four_block_trajectory(tmp_path / "nan.json")
     nan.write_text(nan.read_text().replace('"D": [0.1, 0.15', '"D": [NaN, 0.15', 1))
     no_size = _four_block_trajectory(tmp_path / "no_size.json")

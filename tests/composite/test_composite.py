@@ -193,8 +193,14 @@ def test_the_axis_avoids_blocks_that_are_not_in_the_row_and_row_blocks_still_wai
     pitch = 0.04 * (1 + recipe.spacing)
 
     def scene(c_xy, d_xy):
-        return Scene([SceneObject("A", "red", 0.04, (0.0, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0, 0.15), 0.0),
-                      SceneObject("C", "blue", 0.04, c_xy, 0.0), SceneObject("D", "yellow", 0.04, d_xy, 0.0)]).validate()
+        return Scene(
+            [
+                SceneObject("A", "red", 0.04, (0.0, 0.0), 0.0),
+                SceneObject("B", "green", 0.04, (0.0, 0.15), 0.0),
+                SceneObject("C", "blue", 0.04, c_xy, 0.0),
+                SceneObject("D", "yellow", 0.04, d_xy, 0.0),
+            ]
+        ).validate()
 
     # C waits on +x's slot 1 (it moves second, after B fills slot 1); D (not in the row) sits on -x's slot 2
     u = choose_axis(scene((pitch, 0.0), (-2 * pitch, 0.0)), "A", ["B", "C"], recipe)
@@ -213,8 +219,18 @@ def test_perform_a_row_of_four_from_the_command_line(tmp_path):
     from l2p_bullet.cli import main
 
     out = tmp_path / "run"
-    r = CliRunner().invoke(main, ["perform", "make a row of A, B, C and D", "--scene", str(ROOT / "examples" / "four_blocks.json"),
-                                  "--no-render", "--out", str(out)])
+    r = CliRunner().invoke(
+        main,
+        [
+            "perform",
+            "make a row of A, B, C and D",
+            "--scene",
+            str(ROOT / "examples" / "four_blocks.json"),
+            "--no-render",
+            "--out",
+            str(out),
+        ],
+    )
     assert r.exit_code == 0, r.output
     assert "row: a row (largest gap" in r.output and "chain: success, 3 of 3 clauses done" in r.output
     summary = json.loads((out / "summary.json").read_text())
@@ -222,8 +238,18 @@ def test_perform_a_row_of_four_from_the_command_line(tmp_path):
     assert [c["text"] for c in summary["clauses"]] == ["move B next to A", "move C next to B", "move D next to C"]
     plan = json.loads((out / "plan.json").read_text())
     assert all(c["plan"]["target_error_m"] < 0.001 for c in plan["clauses"][1:])  # each clause reached its slot
-    bad = CliRunner().invoke(main, ["perform", "line up A, B and Z", "--scene", str(ROOT / "examples" / "four_blocks.json"),
-                                    "--no-render", "--out", str(tmp_path / "bad")])
+    bad = CliRunner().invoke(
+        main,
+        [
+            "perform",
+            "line up A, B and Z",
+            "--scene",
+            str(ROOT / "examples" / "four_blocks.json"),
+            "--no-render",
+            "--out",
+            str(tmp_path / "bad"),
+        ],
+    )
     assert bad.exit_code == 2 and 'no block called "Z"' in bad.output and not (tmp_path / "bad").exists()
 
 

@@ -100,8 +100,12 @@ def _default_signals() -> None:
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
 def test_sigterm_and_sighup_stop_a_force_run_as_ctrl_c_does(tmp_path, signum):
     out = tmp_path / "keep"
-    first = subprocess.run([*CLI, "perform", "move A past B", "--no-render", "--quiet", "--out", str(out)], capture_output=True, text=True,
-                           timeout=300)
+    first = subprocess.run(
+        [*CLI, "perform", "move A past B", "--no-render", "--quiet", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert first.returncode == 0, first.stderr
     before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
     proc = subprocess.Popen([*CLI, "perform", "move A around B", "--quiet", "--force", "--out", str(out)],

@@ -151,7 +151,9 @@ def test_mesh_paths_outside_the_scene_folder_are_refused(tmp_path):
             load_scene(src)
     # a symlink inside the folder that points out of it is outside too
     (folder / "link.obj").symlink_to(outside / "tetra.obj")
-    src = _scene(folder, [{"name": "A", "color": "red", "shape": "mesh", "mesh": "link.obj", "xy": [0.05, -0.1]}, CUBE_B])
+    src = _scene(
+        folder, [{"name": "A", "color": "red", "shape": "mesh", "mesh": "link.obj", "xy": [0.05, -0.1]}, CUBE_B]
+    )
     with pytest.raises(SceneError, match="is outside"):
         load_scene(src)
     # a folder the user names (the command line's --mesh-dir) is trusted, absolute or relative
@@ -195,7 +197,9 @@ def test_simplified_outlines_contain_the_object():
     edges = np.roll(outline, -1, axis=0) - outline
     rel = circle[None, :, :] - outline[:, None, :]
     assert (edges[:, None, 0] * rel[..., 1] - edges[:, None, 1] * rel[..., 0] >= -1e-12).all()  # all inside
-    area = 0.5 * abs(np.dot(outline[:, 0], np.roll(outline[:, 1], -1)) - np.dot(outline[:, 1], np.roll(outline[:, 0], -1)))
+    area = 0.5 * abs(
+        np.dot(outline[:, 0], np.roll(outline[:, 1], -1)) - np.dot(outline[:, 1], np.roll(outline[:, 0], -1))
+    )
     assert math.pi * 0.02**2 < area < 1.03 * math.pi * 0.02**2
 
 

@@ -104,7 +104,9 @@ def test_the_reach_test_asks_every_height_a_lift_passes_through():
         assert all(arm_measure.reaches(kin, PANDA, near, az, z, w) for az in (0.0, -0.5, 0.5) for z in heights
                    for w in arm_measure.wrist_turns(PANDA))
         # the old near edge: both end heights reached, the middle not (what two heights could not see)
-        assert arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.012, 0.0) and arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.19, 0.0)
+        assert arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.012, 0.0) and arm_measure.reaches(
+            kin, PANDA, 0.26, 0.0, 0.19, 0.0
+        )
         assert not arm_measure.reaches(kin, PANDA, 0.26, 0.0, 0.112, 0.0)
     finally:
         kin.close()
@@ -149,7 +151,10 @@ def _lerobot_names_the_arms_joints(tmp_path, arm: str, count: int) -> None:
 
 
 def test_the_joint_names_are_the_movable_joints_of_each_arm():
-    assert arm_measure.joint_names(PANDA)[:2] == ["panda_joint1", "panda_joint2"] and len(arm_measure.joint_names(PANDA)) == 9
+    assert (
+        arm_measure.joint_names(PANDA)[:2] == ["panda_joint1", "panda_joint2"]
+        and len(arm_measure.joint_names(PANDA)) == 9
+    )
     assert arm_measure.joint_names(XARM6)[:6] == [f"joint{i}" for i in range(1, 7)]
     assert len(arm_measure.joint_names(KUKA_IIWA)) == 9  # 7 arm joints and 2 fingers (the SDF's free joints made fixed)
 
@@ -164,7 +169,9 @@ def test_arms_lists_the_three_arms_as_json():
     rows = {a["name"]: a for a in json.loads(r.output)["arms"]}
     assert rows["panda"]["arm_joints"] == 7 and rows["xarm6"]["arm_joints"] == 6
     # workspace_radius_m keeps its meaning: the largest disk about the centre inside the arm's workspace
-    assert rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17) and rows["xarm6"]["workspace_radius_m"] == 0.25
+    assert (
+        rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17) and rows["xarm6"]["workspace_radius_m"] == 0.25
+    )
     assert rows["panda"]["workspace_radius_m"] == pytest.approx(0.26)
     assert rows["kuka-iiwa"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.35, "base_x": -0.6, "base_y": 0.0,
                                               "near": 0.43, "far": 0.77}

@@ -45,7 +45,9 @@ def test_every_shape_stands_still_on_the_table():
 def test_each_shape_is_slid_where_planned_and_the_anchor_stays(kind, tmp_path):
     scene = _scene(kind)
     a = scene.get("A")
-    path = np.array([[*a.xy, a.yaw], [a.xy[0] + 0.03, a.xy[1] - 0.04, a.yaw + 0.5], [a.xy[0] + 0.07, a.xy[1] - 0.02, a.yaw + 0.8]])
+    path = np.array(
+        [[*a.xy, a.yaw], [a.xy[0] + 0.03, a.xy[1] - 0.04, a.yaw + 0.5], [a.xy[0] + 0.07, a.xy[1] - 0.02, a.yaw + 0.8]]
+    )
     ex = execute_path(scene, "A", path, out_dir=tmp_path, render=None, meta={"anchor": "B"})
     end = ex.frames[-1]["poses"]["A"]
     assert math.hypot(end[0] - path[-1, 0], end[1] - path[-1, 1]) < 0.003
@@ -98,7 +100,9 @@ def test_mesh_dir_on_the_command_line_trusts_a_folder(tmp_path):
     meshes, scenes = tmp_path / "meshes", tmp_path / "scenes"
     meshes.mkdir()
     scenes.mkdir()
-    (meshes / "tetra.obj").write_text("v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+    (meshes / "tetra.obj").write_text(
+        "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
+    )
     src = scenes / "scene.json"
     src.write_text(json.dumps({"objects": [
         {"name": "T", "color": "red", "shape": "mesh", "mesh": str(meshes / "tetra.obj"), "xy": [0.05, -0.1]},

@@ -122,7 +122,9 @@ def test_bad_input_is_one_clear_line(tmp_path, args, message):
 
 def test_missing_path_file(tmp_path):
     r = _replay(str(tmp_path / "nope.json"), "--no-render", "--out", str(tmp_path / "x"))
-    assert r.exit_code == 2 and r.output == f"error: cannot read {tmp_path / 'nope.json'}: {os.strerror(errno.ENOENT)}\n"
+    assert (
+        r.exit_code == 2 and r.output == f"error: cannot read {tmp_path / 'nope.json'}: {os.strerror(errno.ENOENT)}\n"
+    )
     assert not (tmp_path / "x").exists()
 
 

@@ -31,7 +31,9 @@ def test_every_mode_passes_gymnasiums_checker(obs_mode, control_mode):
             assert obs["instruction"] == "move A closer to B"
             assert obs["rgb"].std() > 5, "the image shows nothing"
         if obs_mode == "rgbd":
-            assert obs["depth"].shape == (32, 48, 1) and 0.1 < float(obs["depth"].min()) < 3.0 <= float(obs["depth"].max())
+            assert obs["depth"].shape == (32, 48, 1) and 0.1 < float(obs["depth"].min()) < 3.0 <= float(
+                obs["depth"].max()
+            )
         obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
         assert np.isfinite(reward) and isinstance(info["success"], bool)
     finally:

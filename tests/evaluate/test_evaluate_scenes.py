@@ -40,14 +40,26 @@ def test_scene_file_reads_ids_roles_and_seeds(tmp_path):
     assert (b.id, b.seed, b.mover, b.anchor) == ("s.jsonl/1", 8, "B", "A")
 
 
-@pytest.mark.parametrize("bad, words", [
-    ("{not json", ["line 2", "not valid JSON"]),
-    (json.dumps({"objects": [{"name": "A", "color": "red", "size": 0.05, "xy": [0.9, 0]},
-                             {"name": "B", "color": "green", "size": 0.05, "xy": [0, 0]}]}), ["line 2", "off the table"]),
-    (_line(mover="Z"), ["line 2", '"Z"']),
-    (_line(id="x"), ["line 2", 'id "x"', "line 1"]),
-    (_line(seed="3"), ["line 2", "seed"]),
-])
+@pytest.mark.parametrize(
+    "bad, words",
+    [
+        ("{not json", ["line 2", "not valid JSON"]),
+        (
+            json.dumps(
+                {
+                    "objects": [
+                        {"name": "A", "color": "red", "size": 0.05, "xy": [0.9, 0]},
+                        {"name": "B", "color": "green", "size": 0.05, "xy": [0, 0]},
+                    ]
+                }
+            ),
+            ["line 2", "off the table"],
+        ),
+        (_line(mover="Z"), ["line 2", '"Z"']),
+        (_line(id="x"), ["line 2", 'id "x"', "line 1"]),
+        (_line(seed="3"), ["line 2", "seed"]),
+    ],
+)
 def test_scene_file_errors_name_the_line(tmp_path, bad, words):
     f = tmp_path / "s.jsonl"
     f.write_text(_line(id="x") + "\n" + bad + "\n")

@@ -42,7 +42,9 @@ def made_up(objects: list[str], n: int, seed: int, images: bool) -> Episode:
         frames.append({"t": t / 10, "poses": poses, "ee": [round(float(v), 6) for v in rng.uniform(-0.5, 0.5, 3)],
                        "grasped": "A" if t >= n // 2 else None, "progress": t / (n - 1),
                        "arm": [round(float(v), 6) for v in rng.uniform(-1, 1, JOINTS)]})
-    pictures = [np.full((48, 64, 3), (40 * seed + 20, 20 * t, 230 - 20 * t), np.uint8) for t in range(n)] if images else None
+    pictures = (
+        [np.full((48, 64, 3), (40 * seed + 20, 20 * t, 230 - 20 * t), np.uint8) for t in range(n)] if images else None
+    )
     return Episode(f"move A past {objects[1]}", frames, 10.0, "A", objects[1], f"made-up {seed}", pictures,
                    10.0 if images else None)
 

@@ -100,6 +100,8 @@ if __name__ == "__main__":  # python tests/language/corpus.py [heldout.tsv]: the
         total.update(c)
         print(f"| {cat} | {n} | {c['right']} | {c['refused']} | {c['wrong']} | {100 * c['right'] / n:.1f} % |")
     n = sum(total.values())
-    print(f"| all | {n} | {total['right']} | {total['refused']} | {total['wrong']} | {100 * total['right'] / n:.1f} % |")
+    print(
+        f"| all | {n} | {total['right']} | {total['refused']} | {total['wrong']} | {100 * total['right'] / n:.1f} % |"
+    )
     for case, got in m:
         print(f"{case.category}: {case.sentence!r}\n   expect {case.expect}\n   got    {got}")

@@ -49,7 +49,9 @@ def test_csv_and_jsonl_exports_round_trip(tmp_path):
     write_grades(rows, csv_path)
     assert read_grades(csv_path) == [GradeRow(**{**r.__dict__, "label": r.label}) for r in rows]
     jl = tmp_path / "g.jsonl"
-    jl.write_text("\n".join(json.dumps({k: getattr(r, k) for k in EXPORT_FIELDS} | {"extra": 1}) for r in rows) + "\n\n")
+    jl.write_text(
+        "\n".join(json.dumps({k: getattr(r, k) for k in EXPORT_FIELDS} | {"extra": 1}) for r in rows) + "\n\n"
+    )
     assert read_grades(jl) == read_grades(csv_path)
 
 
@@ -193,7 +195,9 @@ def test_train_with_feedback_records_it_in_the_manifest(tmp_path):
     assert r.exit_code == 0, r.output
     m = load_bundle(tmp_path / "b").manifest["training"]
     assert m["feedback"]["sources"] == ["original"] and m["feedback"]["n_items"] == 15
-    assert m["feedback"]["n_sequences"] == 15 * 2 * (1 + FeedbackConfig().copies) and "--feedback original" in m["command"]
+    assert (
+        m["feedback"]["n_sequences"] == 15 * 2 * (1 + FeedbackConfig().copies) and "--feedback original" in m["command"]
+    )
 
 
 @pytest.mark.slow
@@ -238,4 +242,6 @@ def test_train_with_the_rule_judge_grades_the_models_own_plans(tmp_path):
     fb = load_bundle(tmp_path / "a").manifest["training"]["feedback"]
     assert fb["judge"] == "rules" and fb["n_items"] == 3 and fb["judge_scenes"] == 1  # 3 plans of one scene
     r = CliRunner().invoke(main, [*args, "--out", str(tmp_path / "b")])
-    assert (tmp_path / "a" / "progress.safetensors").read_bytes() == (tmp_path / "b" / "progress.safetensors").read_bytes()
+    assert (tmp_path / "a" / "progress.safetensors").read_bytes() == (
+        tmp_path / "b" / "progress.safetensors"
+    ).read_bytes()

@@ -45,7 +45,10 @@ def test_the_current_recipe_is_the_shipped_training_set_bit_for_bit():
     cur = training_set(plans(1, 1)["current"], "past", demos, q)
     ref = build("past", demos, q, DataConfig())
     assert len(cur) == len(ref)
-    assert all(np.array_equal(a.x, b.x) and np.array_equal(a.y, b.y) and a.weight == b.weight for a, b in zip(cur, ref, strict=True))
+    assert all(
+        np.array_equal(a.x, b.x) and np.array_equal(a.y, b.y) and a.weight == b.weight
+        for a, b in zip(cur, ref, strict=True)
+    )
 
 
 @pytest.mark.slow
@@ -111,14 +114,18 @@ def test_strays_add_around_corners_out_on_the_far_rings_with_the_credit_near_lea
     assert len(same) < len(before) < len(after)  # strays sit among them, after each event's other extras
     old = {(a.x.tobytes(), a.y.tobytes()) for a in before}
     new = [s for s in after if (s.x.tobytes(), s.y.tobytes()) not in old]
-    assert len(after) - len(before) == len(new) and 0.9 * 2 * len(demos["around"]) <= len(new) <= 2 * len(demos["around"])
+    assert len(after) - len(before) == len(new) and 0.9 * 2 * len(demos["around"]) <= len(new) <= 2 * len(
+        demos["around"]
+    )
     assert all(s.positive and s.end == len(s.y) - 1 for s in new)
     ends = np.array([s.y[-1] for s in new])
     assert np.all(ends <= 0.6 + 1e-6) and np.sum(ends < 1e-6) > 0.2 * len(new) and np.sum(ends > 0.3) > 0.2 * len(new)
     assert STRAY_RINGS == (5.0, 6.5)
     for a in ("closer", "past"):
         x, y = training_set(r0, a, demos, q), training_set(r1, a, demos, q)
-        assert len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True))
+        assert len(x) == len(y) and all(
+            np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True)
+        )
 
 
 def test_trusted_own_leaves_untrusted_demos_out_of_the_own_list_only():
@@ -201,7 +208,9 @@ def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_o
     assert r1.extras_dict() == SHIPPED.extras_dict() | {"near_starts": True}
     base, near = training_set(r0, "closer", demos, q), training_set(r1, "closer", demos, q)
     assert len(near) > len(base)
-    assert all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(base, near[: len(base)], strict=True))
+    assert all(
+        np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(base, near[: len(base)], strict=True)
+    )
     assert all(s.positive and s.y[-1] == 1.0 for s in near[len(base):])
     rng = np.random.default_rng(0)
     for e in held_out["closer"]:
@@ -211,4 +220,6 @@ def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_o
             assert d[0] - d[-1] >= 0.1 - 1e-9
     for a in ("away", "next-to"):
         x, y = training_set(r0, a, demos, q), training_set(r1, a, demos, q)
-        assert len(x) == len(y) and all(np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True))
+        assert len(x) == len(y) and all(
+            np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True)
+        )

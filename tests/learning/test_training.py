@@ -158,5 +158,7 @@ def test_past_only_copies_leave_the_other_actions_training_sets_alone():
                                                              if k != "past"}, random_negatives=5, static_negatives=2)
     new = replace(plain, approach=DataConfig().approach, scale_ranges=DataConfig().scale_ranges)
     a, b = build("away", demos, q, plain), build("away", demos, q, new)
-    assert len(a) == len(b) and all(np.array_equal(x.x, y.x) and np.array_equal(x.y, y.y) for x, y in zip(a, b, strict=True))
+    assert len(a) == len(b) and all(
+        np.array_equal(x.x, y.x) and np.array_equal(x.y, y.y) for x, y in zip(a, b, strict=True)
+    )
     assert len(build("past", demos, q, new)) > len(build("past", demos, q, plain))

@@ -177,7 +177,9 @@ def test_the_planner_lets_a_carried_block_pass_over_bystanders_but_not_over_the_
     through_b = np.array([[-0.10, 0.0, 0.0]])
     start_c = np.array([0.10, 0.12, 0.0])
     slide = World2D(scene, "A")
-    assert not slide.moves_free(start, through_b)[0] and not slide.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]
+    assert (
+        not slide.moves_free(start, through_b)[0] and not slide.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]
+    )
     carry = World2D(scene, "A", over=frozenset({"C"}))  # C a bystander, B the anchor
     assert not carry.moves_free(start, through_b)[0]
     assert carry.moves_free(start_c, np.array([[-0.10, 0.12, 0.0]]))[0]  # over C
@@ -278,11 +280,15 @@ def test_a_plugin_that_sorts_first_cannot_take_a_builtins_verb_or_name(tmp_path)
     "(package l2p-bullet ...)": what to uninstall was the project itself. The built-ins are read first."""
     import json
 
-    site = _manner_package(tmp_path / "site", "l2p-poke", "0.1",
-                           "MANNER = MannerSpec(name='poke', verbs=('poke', 'push'), motion='push', signature='no-grasp')\n"
-                           "CARRY = MannerSpec(name='carry', verbs=('tote',), motion='carry', signature='lifted', "
-                           "airborne=True)\n",
-                           "poke = l2p_poke\naaa = l2p_poke:CARRY\n")
+    site = _manner_package(
+        tmp_path / "site",
+        "l2p-poke",
+        "0.1",
+        "MANNER = MannerSpec(name='poke', verbs=('poke', 'push'), motion='push', signature='no-grasp')\n"
+        "CARRY = MannerSpec(name='carry', verbs=('tote',), motion='carry', signature='lifted', "
+        "airborne=True)\n",
+        "poke = l2p_poke\naaa = l2p_poke:CARRY\n",
+    )
     rc, out = _manners_cli("--json", site=site)
     d = json.loads(out)
     assert rc == 1, out

@@ -50,7 +50,9 @@ def test_a_run_that_came_near_first_reads_its_progress_from_where_the_action_beg
     summary = json.loads((out / "summary.json").read_text())
     assert summary["final_progress"] == pytest.approx(r.final_progress, abs=1e-6)
 
-    scored = json.loads(CliRunner().invoke(main, ["score", "around", str(out / "trajectory.json")], catch_exceptions=False).output)
+    scored = json.loads(
+        CliRunner().invoke(main, ["score", "around", str(out / "trajectory.json")], catch_exceptions=False).output
+    )
     assert scored["final"] == pytest.approx(r.final_progress, abs=1e-3)
     assert len(scored["progress"]) == len(frames)  # one value per frame of the file, as before
     assert load_motion(out / "trajectory.json").action_from == k
@@ -60,7 +62,9 @@ def test_a_run_without_an_approach_has_no_action_from(tmp_path):
     near = {"objects": [dict(FAR["objects"][0], xy=[0.02, -0.02]), FAR["objects"][1]]}
     perform("move A around B", Scene.from_dict(near), out_dir=tmp_path / "run", render=False, seed=3)
     traj = json.loads((tmp_path / "run" / "trajectory.json").read_text())
-    assert "action_from" not in traj and "action_from" not in json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert "action_from" not in traj and "action_from" not in json.loads(
+        (tmp_path / "run" / "summary.json").read_text()
+    )
 
 
 def test_a_bad_action_from_is_a_clear_error(far_run, tmp_path):

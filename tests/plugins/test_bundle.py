@@ -185,7 +185,14 @@ def test_retraining_a_bundle_in_place_keeps_its_planner_threshold(tmp_path, acti
     shipped = load_bundle(folder)
     threshold = shipped.manifest["policy"]["threshold"]
     assert threshold > THRESHOLD  # closer 0.97, past 0.99: above the planners' default
-    write_progress_bundle(folder, action, shipped.arrays(PROGRESS_FILE), ModelConfig.from_dict(shipped.manifest["model"]),
-                          QSRConfig.from_dict(shipped.manifest["features"]), training={"seed": 0}, metrics={})
+    write_progress_bundle(
+        folder,
+        action,
+        shipped.arrays(PROGRESS_FILE),
+        ModelConfig.from_dict(shipped.manifest["model"]),
+        QSRConfig.from_dict(shipped.manifest["features"]),
+        training={"seed": 0},
+        metrics={},
+    )
     again = load_bundle(folder)
     assert again.manifest["policy"]["threshold"] == threshold and again.manifest["policy"]["file"] == POLICY_FILE

@@ -203,9 +203,15 @@ def test_a_plugin_named_like_a_builtin_is_broken_and_the_builtin_kept(site, tmp_
     with pytest.raises(FailedToLoadPlugin) as e:
         resolve("move A circling B", default_scene())
     assert e.value.name == "around" and e.value.package == "l2p-twin" and "built-in" in e.value.reason
-    rows = [r for r in json.loads(CliRunner().invoke(main, ["actions", "--json"]).output)["actions"] if r["name"] == "around"]
+    rows = [
+        r
+        for r in json.loads(CliRunner().invoke(main, ["actions", "--json"]).output)["actions"]
+        if r["name"] == "around"
+    ]
     assert [(r["package"], r["ok"]) for r in rows] == [("l2p-bullet", True), ("l2p-twin", False)], rows
-    assert 'the name "around" is the built-in action\'s' in rows[1]["error"] and "uninstall l2p-twin" in rows[1]["error"]
+    assert (
+        'the name "around" is the built-in action\'s' in rows[1]["error"] and "uninstall l2p-twin" in rows[1]["error"]
+    )
     assert resolve("move A past B", default_scene()).action == "past"
     assert CliRunner().invoke(main, ["plan", "move A around B", "--out", str(tmp_path / "p")]).exit_code == 0
 

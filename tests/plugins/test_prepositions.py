@@ -251,7 +251,9 @@ def test_viewer_training_set_has_no_positive_right_of_motions(tmp_path):
     pos_ends = [s.x[s.end, col] for s in seqs if s.positive]
     assert min(pos_ends) > 0  # every positive ends on the viewer's left: nothing was mirrored into a positive
     d = own[0]
-    kinds = [p for *_, p in mirrored_copies(d, d.mover, d.anchor, Context((), d.viewer), QSRConfig(frame="viewer"), (1, 0))]
+    kinds = [
+        p for *_, p in mirrored_copies(d, d.mover, d.anchor, Context((), d.viewer), QSRConfig(frame="viewer"), (1, 0))
+    ]
     assert kinds == [True, False, True, False]  # itself; left<->right: no; front<->behind: yes; both: no
 
 
@@ -368,7 +370,9 @@ def test_two_anchor_planning_leaves_both_anchors_untouched():
     p = plan(scene, "A", ["B", "C"], FakeBundle(), budget=10)
     assert p.anchors == ["B", "C"] and np.allclose(p.more_anchor_poses[0], scene.get("C").pose)
     assert World2D(scene, "A").path_free(np.array(p.extra["waypoints"]))
-    assert rule_verdict("between", p.path, p.anchor_pose, p.size, anchors=[p.anchor_pose, p.more_anchor_poses[0]]).success
+    assert rule_verdict(
+        "between", p.path, p.anchor_pose, p.size, anchors=[p.anchor_pose, p.more_anchor_poses[0]]
+    ).success
     with pytest.raises(PlanError, match=r'the action "between" takes 2 reference object\(s\), not 1 \(B\)'):
         plan(scene, "A", "B", FakeBundle())  # the model reads two anchors
 
@@ -411,7 +415,9 @@ def _random_bundle(folder, name: str, phrases: list[str], qsr: QSRConfig) -> Non
     arrays = {k: rng.normal(0, 0.1, shape).astype(np.float32) for k, shape in expected_shapes(mcfg).items()}
     folder.mkdir(parents=True)
     (folder / "__init__.py").write_text("")
-    (folder / "manifest.toml").write_text(f'schema = 1\nname = "{name}"\nversion = "0.1.0"\nphrases = {json.dumps(phrases)}\n')
+    (folder / "manifest.toml").write_text(
+        f'schema = 1\nname = "{name}"\nversion = "0.1.0"\nphrases = {json.dumps(phrases)}\n'
+    )
     write_progress_bundle(folder, name, arrays, mcfg, qsr, training={}, metrics={})
 
 

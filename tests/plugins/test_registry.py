@@ -139,7 +139,8 @@ def test_actions_check_loads_each_plugin(plugins_dir):
 
 
 def test_actions_check_ends_with_all_ok():
-    """With only the built-ins (the project's own environment), --check ends "all N action plugins OK" (N counts the actions, not the composites listed under them)."""
+    """With only the built-ins (the project's own environment), --check ends "all N action plugins OK" (N counts
+    the actions, not the composites listed under them)."""
     from l2p_bullet.plugins import registry as reg
 
     r = CliRunner().invoke(main, ["actions", "--check"])

@@ -61,5 +61,7 @@ def test_select_chooses_by_the_inner_folds_only():
     best, scores = select(trainer, items, [{"kind": "bad"}, {"kind": "good"}], k=3, seed=0)
     assert best == {"kind": "good"} and scores[1] > scores[0]
     rep = cross_validate(trainer, items, k=3, grid=[{"kind": "bad"}, {"kind": "good"}])
-    assert all(c["setting"] == {"kind": "good"} for c in rep.choices) and rep.spearman["SlidePast"] == pytest.approx(1.0)
+    assert all(c["setting"] == {"kind": "good"} for c in rep.choices) and rep.spearman["SlidePast"] == pytest.approx(
+        1.0
+    )
     assert folder_agreement(items, {it.id: it.grade for it in items}) == {"SlidePast": pytest.approx(1.0)}

@@ -134,7 +134,10 @@ BAD = [
     (json.dumps({"reviewer": "a\u0007b", "key": "KEY", "view": "VIEW", "grade": 7}).encode(), "name"),
     (json.dumps({"reviewer": "x" * 41, "key": "KEY", "view": "VIEW", "grade": 7}).encode(), "reviewer"),
     (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "admin": True}).encode(), "admin"),
-    (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "comment": "x" * 2001}).encode(), "comment"),
+    (
+        json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "comment": "x" * 2001}).encode(),
+        "comment",
+    ),
     (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW", "grade": 7, "label": "past"}).encode(), "label"),
     (json.dumps({"reviewer": "ann", "key": "KEY", "view": "VIEW"}).encode(), "grade"),
     (json.dumps({"reviewer": "ann", "key": "0123456789abcdef", "view": "VIEW", "grade": 7}).encode(), "no run"),

@@ -201,7 +201,9 @@ def test_the_default_video_plays_to_its_end_and_the_page_says_where_the_viewer_s
         assert "behind the robot: its left is your left" in page.inner_text("#viewname")
         page.wait_for_function("() => document.querySelector('#video').ended && document.body.dataset.ended === '1'",
                                timeout=60_000)
-        size = page.evaluate("[document.querySelector('#video').videoWidth, document.querySelector('#video').videoHeight]")
+        size = page.evaluate(
+            "[document.querySelector('#video').videoWidth, document.querySelector('#video').videoHeight]"
+        )
         assert size[0] == 640 and size[1] > 480  # the frame and the caption strip under it
         assert not errors
     finally:

@@ -39,7 +39,14 @@ def test_an_old_database_is_migrated_and_keeps_its_answers(tmp_path):
     with store.connect() as conn:
         assert schema.version(conn) == schema.SCHEMA_VERSION
     (row,) = store.grades()
-    assert (row.run_id, row.reviewer, row.grade, row.comment, row.source, row.demo_id) == ("r1", "ann", 6, "ok", "app", None)
+    assert (row.run_id, row.reviewer, row.grade, row.comment, row.source, row.demo_id) == (
+        "r1",
+        "ann",
+        6,
+        "ok",
+        "app",
+        None,
+    )
 
 
 def test_a_newer_database_is_refused_untouched(tmp_path):
@@ -121,7 +128,9 @@ def test_answers_are_never_overwritten_silently(tmp_path, run_folder):  # noqa: 
     changed = store.save_answer(Answer(run.run_id, "ann", "graded", "3d", 9), run.trajectory_sha256,
                                 replaces=first.updated_at)
     with pytest.raises(AnswerConflict) as e:  # changing from a stale copy
-        store.save_answer(Answer(run.run_id, "ann", "graded", "3d", 1), run.trajectory_sha256, replaces=first.updated_at)
+        store.save_answer(
+            Answer(run.run_id, "ann", "graded", "3d", 1), run.trajectory_sha256, replaces=first.updated_at
+        )
     assert e.value.reason == "stale-edit"
     store.save_answer(Answer(run.run_id, "bob", "graded", "3d", 3), run.trajectory_sha256)
     grades = {g.reviewer: g.grade for g in store.grades()}
@@ -236,9 +245,14 @@ def test_report_of_blind_labels_and_of_both_views(tmp_path, run_folder):  # noqa
         for action, label in picks.items():
             store.save_answer(Answer(by_action[action].run_id, who, "blind", "3d", 5, label),
                               by_action[action].trajectory_sha256)
-    for view, grades in (("2d", {"closer": 4, "next-to": 6, "past": 8}), ("3d", {"closer": 5, "next-to": 9, "past": 9})):
+    for view, grades in (
+        ("2d", {"closer": 4, "next-to": 6, "past": 8}),
+        ("3d", {"closer": 5, "next-to": 9, "past": 9}),
+    ):
         for action, g in grades.items():
-            store.save_answer(Answer(by_action[action].run_id, "ann", "graded", view, g), by_action[action].trajectory_sha256)
+            store.save_answer(
+                Answer(by_action[action].run_id, "ann", "graded", view, g), by_action[action].trajectory_sha256
+            )
     rep = build_report(store.grades())
     b = rep["blind"]
     assert b["confusion"]["rows"] == ["closer", "next-to", "past"]

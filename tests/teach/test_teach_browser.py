@@ -118,7 +118,10 @@ def test_a_scene_that_fails_to_load_keeps_the_recording_and_enter_twice_saves_on
     assert page.get_attribute("body", "data-state") == "recording", page.inner_text("#status")
     page.keyboard.press("Control+n")
     assert page.get_attribute("body", "data-seed") == "2"
-    a, b = np.array(page.evaluate("[window.teach.mover().x, window.teach.mover().y]")), np.array(s.lesson.scene(2).get("B").xy)
+    a, b = (
+        np.array(page.evaluate("[window.teach.mover().x, window.teach.mover().y]")),
+        np.array(s.lesson.scene(2).get("B").xy),
+    )
     to_page = "([x, y]) => window.teach.toPage(x, y)"
     page.mouse.move(*page.evaluate(to_page, a.tolist()))
     page.mouse.down()
@@ -137,7 +140,10 @@ def test_a_scene_that_fails_to_load_keeps_the_recording_and_enter_twice_saves_on
     page.keyboard.press("Enter")
     page.wait_for_function("() => document.body.dataset.saved === '1' && document.body.dataset.state === 'ready'")
     page.wait_for_timeout(300)
-    assert len(posts) == 1 and page.inner_text("#status").startswith("saved (1 in all)"), (posts, page.inner_text("#status"))
+    assert len(posts) == 1 and page.inner_text("#status").startswith("saved (1 in all)"), (
+        posts,
+        page.inner_text("#status"),
+    )
     assert page.get_attribute("body", "data-seed") == "3"
     assert not errors
 

@@ -27,7 +27,9 @@ class Rows:
         from l2p_bullet.teach.rows import RowLesson
         from l2p_bullet.web.server import start
 
-        self.action = find_action("blorp", scaffold("blorp", ["make a blorp of"], root / "l2p-blorp", kind="composite").root)
+        self.action = find_action(
+            "blorp", scaffold("blorp", ["make a blorp of"], root / "l2p-blorp", kind="composite").root
+        )
         self.lesson = RowLesson(self.action, None)
         self.server = start(create_app(self.lesson), name="teach-rows")
         self.call = lambda method, path, body=None, raw=None: http_client.call(self.server.url, method, path, body, raw)
@@ -197,7 +199,9 @@ def test_a_drag_hugging_a_block_around_its_corner_is_saved(rows, speed, cut):
 
 
 def test_the_composite_page_points_single_recordings_to_rows(rows):
-    status, r = rows.call("POST", "/api/demos", {"scene": 1, "samples": [[0, 0, 0, 0], [1, 0, 0, 0]], "start": 0, "end": 1})
+    status, r = rows.call(
+        "POST", "/api/demos", {"scene": 1, "samples": [[0, 0, 0, 0], [1, 0, 0, 0]], "start": 0, "end": 1}
+    )
     assert status == 400 and "/api/rows" in r["error"], r
     assert rows.action.sentence == rows.call("GET", "/api/config")[1]["sentence"] == "make a blorp of A, B and C"
 

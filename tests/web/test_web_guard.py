@@ -291,8 +291,11 @@ def test_a_foreign_host_is_refused_in_json_with_the_security_headers(review, liv
         assert _head(url, "/api/config", {"Host": "localhost:1"})[0] == 200
 
 
-@pytest.mark.parametrize("raw", [b'{"reviewer": "m\xff"}', b"[" * 100_000 + b"]" * 100_000, b'{"grade": ' + b"9" * 5000 + b"}"],
-                         ids=["invalid-utf8", "deep-nesting", "5000-digit-int"])
+@pytest.mark.parametrize(
+    "raw",
+    [b'{"reviewer": "m\xff"}', b"[" * 100_000 + b"]" * 100_000, b'{"grade": ' + b"9" * 5000 + b"}"],
+    ids=["invalid-utf8", "deep-nesting", "5000-digit-int"],
+)
 def test_bodies_json_cannot_parse_are_the_documented_422(review, live, raw):  # noqa: F811
     """They were ``400 "There was an error parsing the body"``."""
     teach = live().url

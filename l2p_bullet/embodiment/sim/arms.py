@@ -83,7 +83,8 @@ def portable_path(path: str) -> str:
 
 
 _TOOL = "l2p_tool"
-_INERTIAL = '<inertial><origin rpy="0 0 0" xyz="0 0 0"/><mass value="0.0"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'
+_INERTIAL = ('<inertial><origin rpy="0 0 0" xyz="0 0 0"/><mass value="0.0"/>'
+             '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>')
 
 
 def _urdf_edits(text: str, spec: ArmSpec) -> str:

@@ -331,7 +331,11 @@ class Bullet:
             if geom == pb.GEOM_MESH:
                 local = _obj_vertices(filename.decode() if isinstance(filename, bytes) else filename) * np.asarray(dims)
             elif geom == pb.GEOM_BOX:
-                local = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * np.asarray(dims) / 2
+                local = (
+                    np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+                    * np.asarray(dims)
+                    / 2
+                )
             else:
                 continue
             w_pos, w_orn = pb.multiplyTransforms(com_pos, com_orn, pos, orn)

@@ -53,7 +53,8 @@ AUTO = CameraPose(name="auto")
 CAMERAS: dict[str, CameraPose] = {
     "auto": AUTO,
     "viewer": CameraPose(),
-    "robot": CameraPose(eye=(0.5, -0.5, 0.6), target=(-0.15, 0.0, 0.1), fov=60.0, far=3.0, name="robot"),  # fov 60, not 50:
+    # fov 60, not 50:
+    "robot": CameraPose(eye=(0.5, -0.5, 0.6), target=(-0.15, 0.0, 0.1), fov=60.0, far=3.0, name="robot"),
     # at 50 a 2 cm block at the 0.35 m workspace's rim near the camera falls below the frame
     "side": CameraPose(eye=(0.0, -1.0, 0.6), target=(0.0, 0.0, 0.05), fov=45.0, name="side"),
     "top": CameraPose(eye=(0.0, 0.0, 1.3), target=(0.0, 0.0, 0.0), up=(1.0, 0.0, 0.0), fov=30.0, name="top"),

@@ -189,7 +189,8 @@ class Robot:
             if not len(v):
                 continue
             lo = np.asarray(self.sim.aabb(ARM, link)[0])
-            margin = max(float(v[:, 2].min() - lo[2]), 0.0)  # the bounding box's slack below a shape turned about z only
+            # the bounding box's slack below a shape turned about z only
+            margin = max(float(v[:, 2].min() - lo[2]), 0.0)
             rel = np.column_stack([(v[:, :2] - pos[:2]) @ rot.T, v[:, 2] - floor])
             links.append((rel, margin))
         out = []
@@ -203,7 +204,9 @@ class Robot:
                 pts = [below[:, :2]]
                 if len(above):
                     t = (cut - below[:, None, 2]) / (above[None, :, 2] - below[:, None, 2])
-                    pts.append((below[:, None, :2] + t[..., None] * (above[None, :, :2] - below[:, None, :2])).reshape(-1, 2))
+                    pts.append(
+                        (below[:, None, :2] + t[..., None] * (above[None, :, :2] - below[:, None, :2])).reshape(-1, 2)
+                    )
                 xy = np.abs(np.concatenate(pts))
                 hx, hy = max(hx, float(xy[:, 0].max()) + m), max(hy, float(xy[:, 1].max()) + m)
             out.append((float(d), hx, hy))

@@ -75,7 +75,9 @@ def _obj_copy(g) -> str:
     import os
     import tempfile
 
-    lines = [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in g.points] + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in g.faces]
+    lines = [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in g.points] + [
+        f"f {a + 1} {b + 1} {c + 1}" for a, b, c in g.faces
+    ]
     text = "\n".join(lines) + "\n"
     folder = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "l2p-bullet" / "meshes"
     folder.mkdir(parents=True, exist_ok=True)
