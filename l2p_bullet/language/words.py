@@ -62,19 +62,14 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "right": "right", "directly": "right", "immediately": "right",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
-COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {tuple(k.split()): v for k, v in {
-    "far from": ("away from", "far"),
-    "farther from": ("away from", None),
-    "further from": ("away from", None),
-    "more close to": ("closer to", None),
-    "in the direction of": ("toward", None),
-    "to the other side of": ("past", None),
-    "beyond": ("past", None),
-    "all the way around": ("around", None),
-    "in a loop around": ("around", None),
-}.items()}
-"""Phrases people use for a built-in action's that its manifest does not list: (its phrase, the extent). Each
-reads as that phrase only while an installed action owns it."""
+COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
+    ("far", "from"): ("away from", "far"),
+    ("farther", "from"): ("away from", None),
+    ("further", "from"): ("away from", None),
+}
+"""Comparatives people use for "away from" that say how far as well: (its phrase, the extent). They read as
+that phrase only while an installed action owns it; plain synonyms ("beyond", "in the direction of") are the
+actions' own phrases, in their manifests."""
 NEGATIONS = frozenset({"don't", "dont", "do", "not", "never", "no"})
 """Words that, just before a verb, say not to do it ("don't carry it, just push A past B")."""
 

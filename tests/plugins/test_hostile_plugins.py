@@ -124,7 +124,7 @@ CASES = {
         lambda f: (f / "__init__.py").write_text("class Boom(BaseException):\n    pass\nraise Boom('bang')\n"),
         "Boom: bang"),
     "untrained (no weights)": (lambda f: (f / "progress.safetensors").unlink(), "no trained weights"),
-    "manifest is not TOML": (lambda f: (f / MANIFEST).write_text('phrases = ["beyond"\n'), None),
+    "manifest is not TOML": (lambda f: (f / MANIFEST).write_text('phrases = ["athwart"\n'), None),
     # by structure, not by field (issue 27.2): each one used to be a RecursionError in every command
     "500 nested arrays": (lambda f: _append(f, "deep = " + "[" * 500 + "]" * 500 + "\n"), "nests"),
     "500 nested inline tables": (lambda f: _append(f, "deep = " + "{a = " * 500 + "1" + "}" * 500 + "\n"), "nests"),
@@ -155,7 +155,7 @@ def one_line_error(result) -> str:
 def test_a_broken_plugin_is_reported_named_and_harmless(site, tmp_path, case):
     damage, reason = CASES[case]
     name = "hostile-" + hashlib.sha1(case.encode()).hexdigest()[:6].translate(str.maketrans("0123456789", "ghijklmnop"))
-    phrase = "beyond"
+    phrase = "athwart"
     folder = copy_builtin_as_plugin(site, "past", name, [phrase], dist="l2p-hostile")
     damage(folder)
 
@@ -180,11 +180,11 @@ def test_a_broken_plugin_is_reported_named_and_harmless(site, tmp_path, case):
 
 
 def test_a_plugin_claiming_a_builtin_phrase_blocks_only_that_phrase(site, tmp_path):
-    copy_builtin_as_plugin(site, "around", "beyond", ["beyond", "past"], dist="l2p-squatter")
+    copy_builtin_as_plugin(site, "around", "athwart", ["athwart", "past"], dist="l2p-squatter")
     with pytest.raises(PluginConflict) as e:
         resolve("move A past B", default_scene())
-    assert e.value.claim == "past" and set(e.value.plugins) == {"past", "beyond"}
-    assert resolve("move A beyond B", default_scene()).action == "beyond"  # its other phrase is its own
+    assert e.value.claim == "past" and set(e.value.plugins) == {"past", "athwart"}
+    assert resolve("move A athwart B", default_scene()).action == "athwart"  # its other phrase is its own
     r = CliRunner().invoke(main, ["actions", "--check"])
     assert r.exit_code == 1 and 'the phrase "past" is claimed by several' in r.output
     line = one_line_error(CliRunner().invoke(main, ["perform", "move A past B", "--no-render", "-q",

@@ -90,12 +90,12 @@ def test_load_of_broken_or_unknown_plugin_is_a_clear_error(plugins_dir):
 
 def test_duplicate_phrase_names_both_plugins(plugins_dir, tmp_path, monkeypatch):
     other = tmp_path / "other"
-    make_bundle(other / "fk_rival", "rival", ["beyond", "sideways"])
+    make_bundle(other / "fk_rival", "rival", ["athwart", "sideways"])
     make_dist(other, "rival-plugin", {"rival": "fk_rival"})
     monkeypatch.syspath_prepend(str(other))
     # the contested phrase is blocked with an error naming both plugins; the others keep working
     table = registry.phrase_table()
-    assert "sideways" not in table and table["beyond"] == "rival" and table["to the side of"] == "sideways"
+    assert "sideways" not in table and table["athwart"] == "rival" and table["to the side of"] == "sideways"
     e = registry.blocked_phrases()["sideways"]
     assert isinstance(e, PluginConflict) and e.claim == "sideways" and set(e.plugins) == {"rival", "sideways"}
     msg = str(e)
