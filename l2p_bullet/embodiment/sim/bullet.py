@@ -113,27 +113,33 @@ class JointInfo:
 
 @contextlib.contextmanager
 def ctrl_c_deferred():
-    """Hold Ctrl-C back until the block is done, then deliver it.
+    """Hold Ctrl-C (and SIGTERM and SIGHUP, which the command turns into the same stop) back until the block
+    is done, then deliver it.
 
-    Why: a KeyboardInterrupt that lands inside ``BulletClient.__init__`` (while ``connect`` runs) leaves
-    a client connected but never recorded, and a half-made BulletClient whose ``__del__`` prints a
-    traceback at exit ("no attribute '_client'"). Making a client and registering its disconnection is
-    therefore one step that Ctrl-C cannot split; the interrupt is raised right after it. Only the main
-    thread receives Python's signals, and only a Python-level handler can be swapped here: elsewhere,
-    or when Ctrl-C is not turned into KeyboardInterrupt, this does nothing.
+    Why: an interrupt that lands inside ``BulletClient.__init__`` (while ``connect`` runs) leaves a client
+    connected but never recorded, and a half-made BulletClient whose ``__del__`` prints a traceback at exit
+    ("no attribute '_client'"). Making a client and registering its disconnection is therefore one step that
+    a stop cannot split; the stop is raised right after it, by the handler that was there. Only the main
+    thread receives Python's signals, and only Python-level handlers can be swapped here: elsewhere, or for a
+    signal left to its default action, this does nothing.
     """
-    if threading.current_thread() is not threading.main_thread() \
-            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
+    held = {s: h for s in _DEFERRED if callable(h := signal.getsignal(s))}
     caught: list[int] = []
-    signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    for s in held:
+        signal.signal(s, lambda signum, frame: caught.append(signum))
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        for s, h in held.items():
+            signal.signal(s, h)
         if caught:
-            raise KeyboardInterrupt
+            held[caught[0]](caught[0], None)
+
+
+_DEFERRED = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 
 
 def _disconnect(client) -> None:
