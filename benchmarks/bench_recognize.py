@@ -112,7 +112,7 @@ def main() -> None:
     if args.quick:
         import dataclasses
 
-        from l2p_bullet.learning.recipes import SHIPPED
+        from l2p_bullet.learning.training_plan import SHIPPED
 
         recipe = dataclasses.replace(SHIPPED, train=dataclasses.replace(SHIPPED.train, ensemble=1, epochs=2))
     cmd = "nice .venv/bin/python benchmarks/bench_recognize.py" + (

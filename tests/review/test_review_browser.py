@@ -198,7 +198,8 @@ def test_the_default_video_plays_to_its_end_and_the_page_says_where_the_viewer_s
         page, errors = _page(chromium, s.url)
         _login(page, "vic")
         assert not page.is_hidden("#video")
-        assert "behind the robot: its left is your left" in page.inner_text("#viewname")
+        assert "you stand behind the robot" in page.inner_text("#viewname")
+        assert "its left is your left" in page.inner_text("#viewname")
         page.wait_for_function("() => document.querySelector('#video').ended && document.body.dataset.ended === '1'",
                                timeout=60_000)
         size = page.evaluate(
