@@ -64,9 +64,10 @@ def test_a_worker_exits_when_its_parent_dies(tmp_path):
     """The lifeline alone: a grandchild watching its parent, which is then SIGKILLed."""
     code = ("import os, sys, time\n"
             "from l2p_bullet.core.lifeline import exit_with_parent\n"
+            "me = os.getpid()\n"  # named before the fork: a parent killed first is not mistaken for init
             "pid = os.fork()\n"
             "if pid == 0:\n"
-            "    exit_with_parent(os.getppid())\n"
+            "    exit_with_parent(me)\n"
             "    time.sleep(60)\n"
             "    os._exit(0)\n"
             "print(pid, flush=True)\n"
@@ -76,7 +77,7 @@ def test_a_worker_exits_when_its_parent_dies(tmp_path):
     assert _alive(child)
     parent.kill()
     parent.wait(timeout=10)
-    assert not _wait_gone({child}, 3.0), "the worker outlived its parent"
+    assert not _wait_gone({child}, 10.0), "the worker outlived its parent"
 
 
 def test_a_worker_whose_parent_is_already_gone_exits_at_once():
