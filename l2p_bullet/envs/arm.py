@@ -23,7 +23,6 @@ from ..arms import PANDA
 from ..embodiment.execute import grasp_candidates
 from ..embodiment.record import Recorder
 from ..embodiment.sim.camera import Camera, RenderSettings
-from ..embodiment.sim.grasp import attach, detach
 from ..embodiment.sim.primitives import Primitives
 from ..embodiment.sim.world import World
 from ..errors import L2PError
@@ -142,29 +141,20 @@ class ArmEnv(Plan2DEnv):
                             robot.kin.arm_upper)
         except L2PError as e:
             return str(e)
-        prev, n = prims.q, prims.steps_per_control
-        for i in range(1, n + 1):
-            robot.command(prev + (q - prev) * (i / n))
-            self._world.step()
-            prims.recorder()
-        prims.q = q
-        pos, _ = robot.tool_pose()
-        prims.pose = np.array([pos[0], pos[1], pos[2], robot.tool_yaw()])
+        prims.step_to(q)
         self._grip(float(a[-1]) > 0.0)
         return None
 
     def _grip(self, close: bool) -> None:
         """Close: grasp the mover when the closed fingers are on its top; open: let go."""
         prims = self._prims
-        if not close and prims.grasp is not None:
-            detach(self._world, prims.grasp)
-            prims.grasp, prims.recorder.grasped = None, None
-        elif close and prims.grasp is None:
+        if not close:
+            prims.let_go()
+        elif prims.grasp is None:
             block = self._world.pose(self.mover)
             above = prims.pose[2] - prims.grasp_height(self.mover)
             if np.hypot(*(prims.pose[:2] - block[:2])) <= self.block / 2 and -0.005 <= above <= modes.GRASP_REACH:
-                prims.grasp = attach(self._world, self.mover)
-                prims.recorder.grasped = self.mover
+                prims.take(self.mover)
 
     def _info(self) -> dict:
         return super()._info() | {"instruction": self.instruction}

@@ -120,16 +120,39 @@ class Primitives:
         if joints is None:
             joints = self._solve_stage(stage, self._control_samples(timed))
         self.timed.append((stage, timed))
-        prev = self.q
-        n = self.steps_per_control
         for q in joints:
-            for i in range(1, n + 1):
-                self.robot.command(prev + (q - prev) * (i / n))
-                self.world.step()
-                self.recorder()
-            prev = q
-        self.q = prev
+            self._period(q)
         self.pose = timed.poses[-1].copy()
+
+    def _period(self, q: np.ndarray) -> None:
+        """One control period: the joint targets go from the last commanded ``self.q`` to ``q`` over the physics
+        steps in between (the recorder sees each), then ``q`` is the commanded position."""
+        prev, n = self.q, self.steps_per_control
+        for i in range(1, n + 1):
+            self.robot.command(prev + (q - prev) * (i / n))
+            self.world.step()
+            self.recorder()
+        self.q = q
+
+    def step_to(self, q: np.ndarray) -> None:
+        """One control period to the joints ``q`` (a learner's low-level command, envs/arm.py); the tool pose
+        commanded next starts from where the tool then is."""
+        self._period(q)
+        pos, _ = self.robot.tool_pose()
+        self.pose = np.array([pos[0], pos[1], pos[2], self.robot.tool_yaw()])
+
+    def take(self, name: str) -> Grasp:
+        """Fix block ``name`` to the tool where both are now (the grasp by constraint)."""
+        self.grasp = attach(self.world, name)
+        self.recorder.grasped = name
+        return self.grasp
+
+    def let_go(self) -> None:
+        """Remove the grasp's constraint, if any."""
+        if self.grasp is not None:
+            detach(self.world, self.grasp)
+            self.grasp = None
+            self.recorder.grasped = None
 
     def in_plane(self, q: np.ndarray, pose: np.ndarray) -> np.ndarray:
         """``q`` moved into the arm's vertical plane through ``pose`` (ArmSpec.swivel_joints): base joint at
@@ -204,9 +227,7 @@ class Primitives:
         self.go(above, APPROACH, "approach", short_turn=tool_yaw is None)
         self.go(down, DESCEND, "descend")
         self.hold(SETTLE_S)
-        self.grasp = attach(self.world, name)
-        self.recorder.grasped = name
-        return self.grasp
+        return self.take(name)
 
     def tool_targets(self, block_poses: np.ndarray) -> np.ndarray:
         """Tool poses (M,4) that put the held block at ``block_poses`` (M,3), at the locked height."""
@@ -313,10 +334,7 @@ class Primitives:
 
     def disengage(self, rest: np.ndarray | None = None) -> None:
         """Remove the constraint, let go, retract straight up, then return to the rest pose."""
-        if self.grasp is not None:
-            detach(self.world, self.grasp)
-            self.grasp = None
-            self.recorder.grasped = None
+        self.let_go()
         self.hold(SETTLE_S)
         up = self.pose.copy()
         up[2] += HOVER
