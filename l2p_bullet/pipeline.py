@@ -45,7 +45,7 @@ from .embodiment.manners import check_manner, manner_planning
 from .errors import L2PError, LanguageError, PluginError, listed
 from .judge import judge_context, judge_for
 from .judge.manners import manner_verdict
-from .language import Command, Context, extent_table, parse
+from .language import Command, Context, parse
 from .manners import registry as manners
 from .options import RunOptions, admit
 from .planning import feasibility
@@ -137,7 +137,7 @@ def resolve(sentence: str, scene: Scene, plugins: list | None = None, context: C
                           f"{bad[0].label()}: {bad[0].error}); see: l2p-bullet actions")
     try:
         cmd = parse(sentence, scene, {**{p: BLOCKED + p for p in blocked}, **table}, registry.anchor_counts(plugins),
-                    extents=extent_table(plugins), context=context)
+                    extents=registry.extent_table(plugins), context=context)
     except LanguageError as e:
         unknown = [p for p in registry.broken(plugins) if not p.phrases]  # broken before its phrases were read
         if not unknown or "preposition" not in str(e):

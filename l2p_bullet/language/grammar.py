@@ -170,15 +170,6 @@ def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, 
     return sorted(out, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
 
 
-def extent_table(plugins: list) -> dict[str, frozenset[str]]:
-    """Action name -> the extents its manifest declares (``extents = ["far", "little"]``)."""
-    out = {}
-    for p in plugins:
-        raw = p.manifest.get("extents", []) if isinstance(getattr(p, "manifest", None), dict) else []
-        out[p.name] = frozenset(e for e in raw if isinstance(e, str)) if isinstance(raw, list) else frozenset()
-    return out
-
-
 def known_verbs() -> list[str]:
     """Every verb a sentence may start with (its first word): the old ones first, then the manners'."""
     out = list(VERBS)

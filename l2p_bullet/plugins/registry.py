@@ -89,6 +89,13 @@ class PluginInfo(Plugin):
         return a if isinstance(a, int) and not isinstance(a, bool) else 1
 
     @property
+    def extents(self) -> frozenset[str]:
+        """The qualifiers its phrase takes ("far", "little", "right": the manifest's ``extents``; none unless
+        declared): language/words.EXTENTS."""
+        raw = self.manifest.get("extents", [])
+        return frozenset(e for e in raw if isinstance(e, str)) if isinstance(raw, list) else frozenset()
+
+    @property
     def frame(self) -> str:
         """Where its relation is seen from (the manifest's ``frame``; "relative" unless declared)."""
         return str(self.manifest.get("frame", "relative"))
@@ -301,6 +308,12 @@ def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
     """Action name -> how many reference objects its sentences name, over the usable plugins."""
     plugins = discover() if plugins is None else plugins
     return {p.name: p.anchors for p in plugins if p.ok and p.kind == "action"}
+
+
+def extent_table(plugins: list[PluginInfo] | None = None) -> dict[str, frozenset[str]]:
+    """Action name -> the extents its sentences may ask for, over the usable plugins."""
+    plugins = discover() if plugins is None else plugins
+    return {p.name: p.extents for p in plugins if p.ok and p.kind == "action"}
 
 
 def broken(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
