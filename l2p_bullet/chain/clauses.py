@@ -16,12 +16,13 @@ from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
 from ..language import (
     MAX_SENTENCE,
-    TRAILING_JOINS,
     Command,
     Context,
     command_words,
+    dangling_join,
     known_verbs,
     phrase_tokens,
+    trailing_join,
 )
 from ..manners import registry as manners
 from ..pipeline import resolve
@@ -59,10 +60,9 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         if made is not None:
             return made
         return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
-    dangling = _dangling(sentence)
-    if dangling:
-        raise LanguageError(f'the sentence ends with "{dangling}" but no clause follows it; add the next clause '
-                            f'("..., {dangling} move C past A") or drop "{dangling}"')
+    said = trailing_join(sentence.rstrip(" .!?,").split())
+    if said is not None:  # "move A around B, then move C past A, then": the splitter drops the empty clause
+        raise dangling_join(said)
     if len(texts) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(texts)} clauses; a chain has at most {MAX_CLAUSES}")
     clauses: list[Clause] = []
@@ -84,15 +84,6 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
-
-
-def _dangling(sentence: str) -> str | None:
-    """The joining words a sentence ends with when no clause follows them ("move A around B, then")."""
-    words = sentence.rstrip(" .!?,").split()
-    for join in TRAILING_JOINS:
-        if len(words) > len(join) and tuple(w.lower() for w in words[-len(join):]) == join:
-            return " ".join(words[-len(join):])
-    return None
 
 
 def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:

@@ -4,11 +4,11 @@ objects a sentence names (references.py). One grammar, documented in docs/perfor
 from .grammar import (
     EXAMPLE,
     MAX_SENTENCE,
-    TRAILING_JOINS,
     VERBS,
     Command,
     ListCommand,
     command_words,
+    dangling_join,
     known_verbs,
     manner_of_sentence,
     parse,
@@ -16,6 +16,7 @@ from .grammar import (
     phrase_tokens,
     split_verb,
     tokens,
+    trailing_join,
 )
 from .references import Context, resolve_object
 from .words import strip_polite
@@ -23,10 +24,10 @@ from .words import strip_polite
 __all__ = [
     "EXAMPLE",
     "MAX_SENTENCE",
-    "TRAILING_JOINS",
     "VERBS",
     "Command",
     "command_words",
+    "dangling_join",
     "Context",
     "ListCommand",
     "known_verbs",
@@ -38,4 +39,5 @@ __all__ = [
     "split_verb",
     "strip_polite",
     "tokens",
+    "trailing_join",
 ]

@@ -267,17 +267,28 @@ TRAILING_JOINS = (("and", "then"), ("after", "that"), ("then",), ("and",))
 """Words that join a next clause (chain/clauses.py), left at a sentence's end with no clause after them."""
 
 
+def trailing_join(words: list[str]) -> str | None:
+    """The joining words (:data:`TRAILING_JOINS`) that ``words`` end with after something else, or None."""
+    low = tuple(w.lower() for w in words)
+    for join in TRAILING_JOINS:
+        if len(low) > len(join) and low[-len(join):] == join:
+            return " ".join(words[-len(join):])
+    return None
+
+
+def dangling_join(said: str) -> LanguageError:
+    """The error for a sentence that ends with the joining words ``said`` and no clause after them."""
+    return LanguageError(f'the sentence ends with "{said}" but no clause follows it; add the next clause '
+                         f'("..., {said} move C past A") or drop "{said}"')
+
+
 def _one_reference(words: list[str], scene: Scene, phrase: str) -> None:
     """Two slips that would otherwise read as 'no block called "B then"': a sentence that ends with a
     joining word and no clause after it ("move A around B, then"), and two blocks after a one-block
     preposition ("move A around B and C")."""
-    low = tuple(w.lower() for w in words)
-    for join in TRAILING_JOINS:
-        n = len(join)
-        if len(low) > n and low[-n:] == join and _try_object(" ".join(words[:-n]), scene) is not None:
-            said = " ".join(words[-n:])
-            raise LanguageError(f'the sentence ends with "{said}" but no clause follows it; add the next clause '
-                                f'("..., {said} move C past A") or drop "{said}"')
+    said = trailing_join(words)
+    if said is not None and _try_object(" ".join(words[: -len(said.split())]), scene) is not None:
+        raise dangling_join(said)
     if _try_pair(words, scene):
         raise LanguageError(f'"{phrase}" takes one reference block, but "{" ".join(words)}" names two; name one, '
                             f'as in "move A {phrase} B"')
