@@ -208,17 +208,19 @@ class Camera:
 
     def render_rgbd(self, shadows: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """An RGB image (H, W, 3) uint8 and the depth (H, W, 1) float32, metres from the camera."""
-        w, h = self.settings.width, self.settings.height
-        rgba, depth = self.sim.camera_image(w, h, self.view, self.proj, hardware=self.hardware,
-                                            light=LIGHT_DIRECTION if shadows else None, depth=True)
-        d = np.asarray(depth, np.float32).reshape(h, w, 1)
+        rgb, depth = self._shot(shadows, depth=True)
         near, far = self.pose.near, self.pose.far
-        metres = (far * near / (far - (far - near) * d)).astype(np.float32)
-        return np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3].copy(), metres
+        return rgb, (far * near / (far - (far - near) * depth[..., None])).astype(np.float32)
 
     def render(self, shadows: bool = True) -> np.ndarray:
         """An RGB image (H, W, 3) uint8 of the world as it is now, lit, with shadows (or without: half the cost)."""
+        return self._shot(shadows)[0]
+
+    def _shot(self, shadows: bool, depth: bool = False) -> tuple[np.ndarray, np.ndarray | None]:
+        """The image (H, W, 3) uint8 and, when asked, the renderer's depth buffer (H, W) in 0..1."""
         w, h = self.settings.width, self.settings.height
-        rgba = self.sim.camera_image(w, h, self.view, self.proj, hardware=self.hardware,
-                                     light=LIGHT_DIRECTION if shadows else None)
-        return np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3].copy()
+        out = self.sim.camera_image(w, h, self.view, self.proj, hardware=self.hardware,
+                                    light=LIGHT_DIRECTION if shadows else None, depth=depth)
+        rgba, buffer = out if depth else (out, None)
+        rgb = np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4)[:, :, :3].copy()
+        return rgb, None if buffer is None else np.asarray(buffer, np.float32).reshape(h, w)
