@@ -153,8 +153,7 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     keep = frozenset(scene.names)
     verbs = known_verbs()
     heads = sorted({v.split()[0] for v in verbs})
-    words = gerund_to_verb(tokens(text), verbs)
-    words = strip_polite(goal_to_verb(gerund_to_verb(strip_polite(words, keep), verbs), verbs), keep)
+    words = goal_to_verb(gerund_to_verb(strip_polite(tokens(text), keep), verbs), verbs)
     words, pace = take_pace(words, keep)
     return strip_polite(skip_to_verb(words, heads, keep), keep), pace
 

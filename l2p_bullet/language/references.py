@@ -31,7 +31,7 @@ FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", 
                             "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
 """Words never taken as an object's own adjective ("the second duck" is not "the duck")."""
 NAMED_AS = (("called",), ("named",))
-PRONOUNS_MOVER = ((("it",)), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
+PRONOUNS_MOVER = (("it",), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
                   ("the", "same", "one"), ("the", "same", "object"), ("that",))
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"))
@@ -104,7 +104,7 @@ def _pronoun(low: tuple[str, ...], context: Context | None, role: str) -> str | 
 def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
     """Colour, shape and name words ("the red block", "red A", "the orange duck", "the tall one")."""
     names = {n.lower(): n for n in scene.names}
-    colours = {COLOR_SYNONYMS.get(w, w) for w in low if COLOR_SYNONYMS.get(w, w) in COLORS}
+    colours = _colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS]
     shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
     tall = "tall" in low
@@ -126,6 +126,11 @@ def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, 
     if tall or short:
         fits = [o for o in fits if _is_tall(o) == tall]
     return _one(text, fits, scene, colours)
+
+
+def _colours(low) -> set[str]:
+    """The colours ``low`` (lower-case words) name, synonyms resolved ("grey" is gray)."""
+    return {c for w in low if (c := COLOR_SYNONYMS.get(w, w)) in COLORS}
 
 
 def _unknown(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:
@@ -258,7 +263,7 @@ def _pool(restrict: str, scene: Scene) -> list[SceneObject]:
     """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows."""
     low = [w.lower() for w in restrict.split()]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
-    colours = {COLOR_SYNONYMS.get(w, w) for w in low if COLOR_SYNONYMS.get(w, w) in COLORS}
+    colours = _colours(low)
     fits = list(scene.objects)
     if colours:
         fits = [o for o in fits if o.color in colours]

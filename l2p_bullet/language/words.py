@@ -30,8 +30,9 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
     "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
     "and do it", "do it",
 ))
-GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("would", "you", "mind"), ("do", "you", "mind"))
-"""Openings followed by the verb's -ing form: "would you mind moving A past B"."""
+GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",))
+"""Openings followed by the verb's -ing form: "do you mind moving A past B", and "would you mind ..." once its
+"would you" is read past as politeness."""
 
 GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
