@@ -78,27 +78,29 @@ def grasp_outline(size: float, depth: float, angle: float, arm: ArmSpec = PANDA)
     block's x axis)."""
     h = size / 2
     square = np.array([[h, -h], [h, h], [-h, h], [-h, -h]])
-    ext = hand_extent(depth, arm)
-    if ext is None:
-        return square
-    hx, hy = ext
-    c, s = math.cos(angle), math.sin(angle)
-    box = np.array([[hx, -hy], [hx, hy], [-hx, hy], [-hx, -hy]]) @ np.array([[c, s], [-s, c]])
-    if np.all(np.abs(box) <= h + 1e-9):
+    box = _hand_box(depth, angle, arm)
+    if box is None or np.all(np.abs(box) <= h + 1e-9):
         return square
     return convex_hull(np.vstack([square, box]))
 
 
 def shaped_outline(footprint: np.ndarray, depth: float, angle: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
     """:func:`grasp_outline` for any footprint (K,2, block frame): None when the hand adds nothing to it."""
+    box = _hand_box(depth, angle, arm)
+    if box is None:
+        return None
+    grown = convex_hull(np.vstack([footprint, box]))
+    return None if _area(grown) <= _area(footprint) + 1e-12 else grown
+
+
+def _hand_box(depth: float, angle: float, arm: ArmSpec) -> np.ndarray | None:
+    """The hand's rectangle at ``depth`` (block frame) for a grasp at ``angle``; None where the hand has none."""
     ext = hand_extent(depth, arm)
     if ext is None:
         return None
     hx, hy = ext
     c, s = math.cos(angle), math.sin(angle)
-    box = np.array([[hx, -hy], [hx, hy], [-hx, hy], [-hx, -hy]]) @ np.array([[c, s], [-s, c]])
-    grown = convex_hull(np.vstack([footprint, box]))
-    return None if _area(grown) <= _area(footprint) + 1e-12 else grown
+    return np.array([[hx, -hy], [hx, hy], [-hx, hy], [-hx, -hy]]) @ np.array([[c, s], [-s, c]])
 
 
 def _area(poly: np.ndarray) -> float:
