@@ -20,8 +20,10 @@ from ..language import (
     Context,
     command_words,
     dangling_join,
+    is_courtesy,
     known_verbs,
     phrase_tokens,
+    tokens,
     trailing_join,
 )
 from ..manners import registry as manners
@@ -30,14 +32,19 @@ from ..plugins import registry
 from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
 
-_JOINS = re.compile(r"\s*(?:;|,?\s*\band\s+then\b|,?\s*\bthen\b|,?\s*\bafter\s+that\b)\s*,?\s*", re.IGNORECASE)
+_JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?\s*\bthen\b"
+                    r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\bafterwards\b"
+                    r"|,?\s*\band\s+finally\b|,\s*finally\b)\s*,?\s*", re.IGNORECASE)
+"""What joins clauses: "then", "and then", "after that", "afterwards", "and finally", a semicolon, or a full stop
+between two sentences ("Carry C around B. Next, move D a bit closer to the duck.")."""
 
 
 def split_clauses(sentence: str) -> list[str]:
     """The clauses' texts, in order (empty pieces, e.g. a leading "then", dropped)."""
     if not isinstance(sentence, str):
         return []
-    return [p.strip(" ,.") for p in _JOINS.split(sentence) if p.strip(" ,.")]
+    pieces = [p.strip(" ,.") for p in _JOINS.split(sentence) if p.strip(" ,.")]
+    return [p for p in pieces if not is_courtesy(tokens(p))]
 
 
 def is_chain(sentence: str, plugins: list | None = None) -> bool:
@@ -59,7 +66,13 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         made = composite_clauses(sentence, scene, plugins)
         if made is not None:
             return made
-        return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
+        try:
+            return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
+        except L2PError:
+            pieces = _split_on_and(texts[0] if texts else str(sentence), None, scene, plugins)
+            if pieces is None:
+                raise
+            return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)]
     said = trailing_join(sentence.rstrip(" .!?,").split())
     if said is not None:  # "move A around B, then move C past A, then": the splitter drops the empty clause
         raise dangling_join(said)
@@ -73,17 +86,56 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         if made is not None:  # a composite's steps, numbered on from the clauses before it
             clauses.extend(replace(c, index=len(clauses) + 1) for c in made)
             continue
-        full = _complete(text, clauses[-1].command if clauses else None, scene, plugins)
         previous = clauses[-1].command if clauses else None
-        context = Context(previous.mover, previous.anchor) if previous is not None else None
         try:
-            cmd = resolve(full, scene, plugins, context)
+            pieces = _resolve_text(text, previous, scene, plugins)
         except L2PError as e:
             raise named(e, f'clause {i} ("{text}")') from None
-        clauses.append(Clause(len(clauses) + 1, text, cmd))
+        clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: list,
+                  depth: int = 0) -> list[tuple[str, Command]]:
+    """A clause's text -> its command; where it does not read as one clause but as two joined by "and" or a
+    comma ("shove D toward A and drag E around C", "put B next to the duck and A next to E"), both."""
+    context = Context(previous.mover, previous.anchor) if previous is not None else None
+    try:
+        return [(text, resolve(_complete(text, previous, scene, plugins), scene, plugins, context))]
+    except L2PError:
+        pieces = _split_on_and(text, previous, scene, plugins, depth)
+        if pieces is None:
+            raise
+        return pieces
+
+
+_AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
+
+
+def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: list,
+                  depth: int = 0) -> list[tuple[str, Command]] | None:
+    """The first split of ``text`` at an "and" or a comma into clauses that each resolve (the later ones may
+    leave out the verb, or the verb and the mover: :func:`_complete`); None when there is none. Only tried on a
+    text that does not resolve as one clause, so "lift A and put it next to B" and "between B and C" stay whole."""
+    if depth >= MAX_CLAUSES:
+        return None
+    for m in _AND_OR_COMMA.finditer(text):
+        left, right = text[:m.start()].strip(" ,"), text[m.end():].strip(" ,")
+        if not left or not right:
+            continue
+        context = Context(previous.mover, previous.anchor) if previous is not None else None
+        try:
+            first = resolve(_complete(left, previous, scene, plugins), scene, plugins, context)
+        except L2PError:
+            continue
+        try:
+            rest = _resolve_text(right, first, scene, plugins, depth + 1)
+        except L2PError:
+            continue
+        return [(left, first), *rest]
+    return None
 
 
 def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:

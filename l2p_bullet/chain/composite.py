@@ -32,7 +32,7 @@ from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..core.vocabulary import normalize_name
 from ..errors import InfeasibleError, L2PError, LanguageError, PluginError
-from ..language import parse_list, phrase_tokens, strip_polite, tokens
+from ..language import parse_list, phrase_matches, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
 from ..plugins import registry
 from .clause import MAX_CLAUSES, Clause, Group, named
@@ -77,7 +77,7 @@ def is_composite(sentence: str, plugins: list | None = None) -> bool:
         return False
     low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
     usable = composite_phrases(plugins)
-    if any(low[: len(t)] == t for t, _, _ in phrase_tokens(usable)):
+    if any(phrase_matches(low, t) for t, _, _ in phrase_tokens(usable)):
         return True
     return _broken_composite(sentence, plugins, usable) is not None  # composite_clauses then names it
 
@@ -130,7 +130,8 @@ def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str
     if not blocked or not isinstance(sentence, str):
         return None
     low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
-    return next((blocked[ph] for t, _, ph in phrase_tokens({ph: ph for ph in blocked}) if low[: len(t)] == t), None)
+    return next((blocked[ph] for t, _, ph in phrase_tokens({ph: ph for ph in blocked}) if phrase_matches(low, t)),
+                None)
 
 
 def _phrase_of(action: str, plugins: list | None) -> str:

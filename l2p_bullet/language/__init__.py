@@ -13,13 +13,14 @@ from .grammar import (
     manner_of_sentence,
     parse,
     parse_list,
+    phrase_matches,
     phrase_tokens,
     split_verb,
     tokens,
     trailing_join,
 )
 from .references import Context, resolve_object
-from .words import strip_polite
+from .words import is_courtesy, strip_polite
 
 __all__ = [
     "EXAMPLE",
@@ -30,10 +31,12 @@ __all__ = [
     "dangling_join",
     "Context",
     "ListCommand",
+    "is_courtesy",
     "known_verbs",
     "manner_of_sentence",
     "parse",
     "parse_list",
+    "phrase_matches",
     "phrase_tokens",
     "resolve_object",
     "split_verb",

@@ -28,9 +28,11 @@ from ..manners import registry as manners
 from .references import Context, resolve_object
 from .words import (
     COMPARATIVES,
+    by_gerund,
     drop_frames,
     gerund_to_verb,
     goal_to_verb,
+    passive_to_verb,
     skip_to_verb,
     strip_polite,
     take_extent,
@@ -123,9 +125,8 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
             if tuple(low[i : i + n]) != toks:
                 continue
             try:
-                before, extent = take_extent(rest[:i])
+                before, extent, mover = _mover(rest[:i], scene, context)
                 extent = extent or implied
-                mover = resolve_object(" ".join(drop_frames(before)), scene, "block to move", context)
                 refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1), context)
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
@@ -147,15 +148,31 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     raise _unknown_preposition(rest, middle, phrases, verb)
 
 
+def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:
+    """(the mover's words, the extent before the preposition, the mover's name): the qualifiers at the end are
+    an extent ("A a bit closer to"), unless the mover's description needs them ("the one on the far right")."""
+    before, extent = take_extent(words)
+    try:
+        return before, extent, resolve_object(" ".join(drop_frames(before)), scene, "block to move", context)
+    except (LanguageError, UnknownObjectError):
+        if extent is None:
+            raise
+        whole = _try_object(" ".join(drop_frames(words)), scene, context)
+        if whole is None:
+            raise
+        return words, None, whole
+
+
 def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     """The words of the command itself (politeness, a goal's or a gerund's opening and manner adverbs
     taken out) and the pace the adverbs ask for; a word that names an object always stays."""
     keep = frozenset(scene.names)
     verbs = known_verbs()
     heads = sorted({v.split()[0] for v in verbs})
-    words = goal_to_verb(gerund_to_verb(strip_polite(tokens(text), keep), verbs), verbs)
+    words = gerund_to_verb(strip_polite(tokens(text), keep), verbs)
+    words = goal_to_verb(passive_to_verb(words, verbs, lambda t: _try_object(t, scene) is not None), verbs)
     words, pace = take_pace(words, keep)
-    return strip_polite(skip_to_verb(words, heads, keep), keep), pace
+    return by_gerund(strip_polite(skip_to_verb(words, heads, keep), keep), verbs), pace
 
 
 def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:
@@ -217,7 +234,7 @@ def split_verb(words: list[str]) -> tuple[str, str, list[str]]:
         if not gap:
             return " ".join(head), manner, rest
         lrest = [w.lower() for w in rest]
-        at = next((i for i in range(1, len(rest) - len(gap) + 1) if tuple(lrest[i: i + len(gap)]) == gap), None)
+        at = next((i for i in range(1, len(rest) - len(gap) + 1) if _gap_at(lrest[i: i + len(gap)], gap)), None)
         if at is None:
             near_miss = near_miss or declared
             continue
@@ -230,6 +247,18 @@ def split_verb(words: list[str]) -> tuple[str, str, list[str]]:
     known = known_verbs()
     raise LanguageError(f'"{words[0]}" is not a verb I know (known: {", ".join(known)}).'
                         + did_you_mean(low[0], known) + f" {EXAMPLE[0].upper()}{EXAMPLE[1:]}")
+
+
+PLACING_VERBS = frozenset({"put", "place", "set", "drop", "lay", "carry", "move", "bring", "take", "lower"})
+"""A gap verb's last word may be any of these: "lift A and *set* it down next to B" is "lift ... and put"."""
+
+
+def _gap_at(words: list[str], gap: tuple[str, ...]) -> bool:
+    """Whether ``words`` are the gap ``gap``, a placing verb standing for another at its end."""
+    if tuple(words) == gap:
+        return True
+    return (len(words) == len(gap) and tuple(words[:-1]) == gap[:-1] and gap[-1] in PLACING_VERBS
+            and words[-1] in PLACING_VERBS)
 
 
 CONJUNCTIONS = frozenset({"and", "&"})
@@ -329,9 +358,9 @@ def _unknown_preposition(rest: list[str], middle: str | None, phrases: dict[str,
     return LanguageError(f'"{middle}" is not a preposition I know ({listing}).' + did_you_mean(middle.lower(), known))
 
 
-def _try_object(text: str, scene: Scene) -> str | None:
+def _try_object(text: str, scene: Scene, context: Context | None = None) -> str | None:
     try:
-        return resolve_object(text, scene)
+        return resolve_object(text, scene, context=context)
     except (LanguageError, UnknownObjectError):
         return None
 
@@ -359,9 +388,10 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
     start = next((i for i in range(len(words) - len(kept) + 1) if words[i:i + len(kept)] == kept), 0)
     low = [w.lower() for w in kept]
     for toks, phrase, action in phrase_tokens(phrases):
-        if tuple(low[: len(toks)]) != toks:
+        if not phrase_matches(low, toks):
             continue
-        rest = " ".join(raw[start + len(toks): start + len(kept)])
+        head, tail = _head_tail(toks)
+        rest = " ".join(raw[start + len(head): start + len(kept) - len(tail)])
         items = [i.strip(" .;:!?\"()[]") for part in rest.split(",") for i in _split_and(part)]
         items = [i for i in items if i]
         if len(items) < 2:
@@ -373,6 +403,23 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
             raise LanguageError(f'the list after "{phrase}" names {", ".join(twice)} more than once')
         return ListCommand(action, phrase, names, sentence.strip())
     return None
+
+
+def _head_tail(toks: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """A composite's phrase around its list: "make a row of" is all head; "arrange ... in a row" has a tail."""
+    if "..." not in toks:
+        return toks, ()
+    at = toks.index("...")
+    return toks[:at], toks[at + 1:]
+
+
+def phrase_matches(low: list[str] | tuple[str, ...], toks: tuple[str, ...]) -> bool:
+    """Whether the lower-case words ``low`` are a composite's sentence of phrase ``toks``: they start with it, or,
+    for a phrase with a gap for the list ("put ... in a row"), start with its head and end with its tail."""
+    head, tail = _head_tail(toks)
+    if tuple(low[:len(head)]) != head:
+        return False
+    return not tail or (len(low) > len(head) + len(tail) and tuple(low[len(low) - len(tail):]) == tail)
 
 
 def _split_and(text: str) -> list[str]:

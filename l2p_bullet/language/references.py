@@ -22,9 +22,20 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
-SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "cylinder": "cylinder", "can": "cylinder"}
+SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "cylinder": "cylinder", "can": "cylinder",
+               "cylinders": "cylinder"}
 """Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour
-("the red box") the colour decides, since people call any block a box."""
+("the red box") the colour decides, since people call any block a box or a cube."""
+STRICT_SHAPES = frozenset({"cylinder"})
+"""Shapes no one calls another shape by: "the red cylinder" is refused where the red object is a cube."""
+SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "long": "box", "cubic": "cube",
+                    "square": "cube", "cylindrical": "cylinder", "round": "cylinder"}
+"""Adjectives that name a shape: they restrict like a shape named alone, colour or not ("the yellow
+rectangular block" is a box)."""
+SOFT_ADJECTIVES = frozenset({"little", "small", "tiny", "big", "large", "flat", "toy", "rubber", "plastic",
+                             "wooden", "lone", "single"})
+"""Adjectives people add to a description that already picks one object ("the little red cube", "the toy
+duck"): read past. Alone they pick nothing, so "the small cube" among three cubes stays ambiguous."""
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
 FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
                             "and", "or", "then", "so", "it", "not", "no", "other", "another", "first", "second",
@@ -33,6 +44,8 @@ FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", 
 NAMED_AS = (("called",), ("named",))
 PRONOUNS_MOVER = (("it",), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
                   ("the", "same", "one"), ("the", "same", "object"), ("that",))
+SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
+"""Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"))
 NEAREST = frozenset({"nearest", "closest"})
@@ -46,8 +59,22 @@ TIE = 0.02
 TIE_M = 0.002
 """Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:
 the description is ambiguous."""
+TIE_PLACE = 0.45
+"""Where a superlative compares places (leftmost, nearest), two objects whose places differ by less than this
+many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""
+CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "center", "of", "the", "table"),
+                  ("in", "the", "centre", "of", "the", "table"), ("in", "the", "middle"), ("in", "the", "center"),
+                  ("in", "the", "centre"))
+"""A place on the table that names the object nearest the table's centre (the scene frame's origin)."""
+SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "right"): "rightmost",
+                ("on", "the", "left"): "leftmost", ("on", "the", "right"): "rightmost",
+                ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost"}
+"""Places that read as a superlative ("the object on the far right" is the rightmost)."""
 SIDE_CONE = math.radians(45)
 """"Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
+SIDES = {"left of": math.pi / 2, "right of": -math.pi / 2, "behind": 0.0, "in front of": math.pi}
+"""Relations to a reference as the robot sees it -> their direction in the scene (radians from +x, away from
+the robot): behind is further from the robot, in front nearer to it."""
 
 
 @dataclass(frozen=True)
@@ -93,6 +120,10 @@ def resolve_object(text: str, scene: Scene, role: str = "block", context: Contex
 
 
 def _pronoun(low: tuple[str, ...], context: Context | None, role: str) -> str | None:
+    same = any(low[:len(o)] == o and len(low) == len(o) + 1 and (low[-1] in NOUNS or low[-1] in SHAPE_NOUNS)
+               for o in SAME_WORDS)
+    if same:
+        low = ("it",)
     if low in PRONOUNS_MOVER or low in PRONOUNS_ANCHOR:
         if context is None or context.mover is None:
             raise LanguageError(f'"{" ".join(low)}" ({role}) points back to an earlier clause, and there is none; '
@@ -103,29 +134,51 @@ def _pronoun(low: tuple[str, ...], context: Context | None, role: str) -> str | 
 
 def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
     """Colour, shape and name words ("the red block", "red A", "the orange duck", "the tall one")."""
-    names = {n.lower(): n for n in scene.names}
+    names = _name_words(scene)
+    if set(low) - SOFT_ADJECTIVES:  # "the little red cube": the other words decide
+        kept = [(w, lw) for w, lw in zip(words, low, strict=True) if lw not in SOFT_ADJECTIVES or lw in names]
+        words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
     colours = _colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS]
     shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
+    shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
     tall = "tall" in low
     short = "short" in low
-    known = set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | {"tall", "short"} | set(names)
+    known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | {"tall", "short"}
+             | set(names))
     unknown = [w for w in low if w not in known]
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
             and low[0] not in FUNCTION_WORDS:
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
-    if unknown or not (colours or named or shapes or tall or short or set(low) & NOUNS):
+    if unknown or not (colours or named or shapes or shaped or tall or short or set(low) & NOUNS):
         _unknown(text, words, low, scene)
     fits = list(scene.objects)
     if named:
         fits = [o for o in fits if o.name in named]
     if colours:
         fits = [o for o in fits if o.color in colours]
+        strict = shapes & STRICT_SHAPES
+        if strict:
+            fits = [o for o in fits if o.shape in strict]
     elif shapes and not named:
         fits = [o for o in fits if o.shape in shapes]
+    if shaped:
+        fits = [o for o in fits if o.shape in shaped]
     if tall or short:
         fits = [o for o in fits if _is_tall(o) == tall]
     return _one(text, fits, scene, colours)
+
+
+def _name_words(scene: Scene) -> dict[str, str]:
+    """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
+    ("ducky", "duckie": the duck)."""
+    out = {}
+    for n in scene.names:
+        low = n.lower()
+        if len(low) >= 3 and low.isalpha():
+            out[low + "y"] = out[low + "ie"] = n
+    out.update({n.lower(): n for n in scene.names})
+    return out
 
 
 def _colours(low) -> set[str]:
@@ -178,6 +231,9 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     "Block" may mean any object or only the block-shaped ones (cubes and boxes): people differ. Where the two
     readings pick different objects ("the smallest block": the cylinder, or three equal cubes), the
     description is ambiguous and refused."""
+    placed = _placed(words, low, scene, role, context)
+    if placed is not None:
+        return placed
     head = _head_end(low)
     if head is None:
         return None
@@ -189,7 +245,7 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
         return _either_reading(
-            described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind)
+            described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind, what == "y")
         )
     ref = _reference_point(rest_words, scene, role, context)
     if ref is None:
@@ -198,16 +254,72 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
 
     def choose(pool: list[SceneObject]) -> str:
         pool = [o for o in pool if o.name != ref_name]
-        if kind in ("left", "right"):
-            side = 1.0 if kind == "left" else -1.0
-            beside = [o for o in pool if _bearing_off(np.subtract(o.xy, ref_xy), side) <= SIDE_CONE]
+        if kind in SIDES:
+            beside = [o for o in pool if _bearing_off(np.subtract(o.xy, ref_xy), SIDES[kind]) <= SIDE_CONE]
             if not beside:
-                raise UnknownObjectError(f'nothing in the scene is {kind} of {ref_name or "the robot"} as the robot '
+                raise UnknownObjectError(f'nothing in the scene is {kind} {ref_name or "the robot"} as the robot '
                                          f"sees it (blocks: {describe(scene)})")
-            return _superlative(beside, lambda o: _distance(o, ref_xy), min, f"{kind} of")
-        return _superlative(pool, lambda o: _distance(o, ref_xy), min if kind in NEAREST else max, kind)
+            return _superlative(beside, lambda o: _distance(o, ref_xy), min, f"{kind} of", place=True)
+        return _superlative(pool, lambda o: _distance(o, ref_xy), min if kind in NEAREST else max, kind, place=True)
 
     return _either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
+
+
+def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:
+    """Places on the table: "the cube in the middle (of the table)", "the object on the far right", "the cube
+    between A and C" (nearest the middle of the two, and lying between them); None when ``words`` name none."""
+    for phrase in CENTRE_PHRASES:
+        if len(low) > len(phrase) and low[-len(phrase):] == phrase:
+            return _either_reading(words[:-len(phrase)], scene, lambda pool: _superlative(
+                pool, lambda o: _distance(o, (0.0, 0.0)), min, "in the middle", place=True))
+    for phrase, kind in SIDE_PHRASES.items():
+        if len(low) > len(phrase) and low[-len(phrase):] == phrase:
+            what, pick = SIZE_SUPERLATIVES[kind]
+            said = " ".join(phrase)
+            return _either_reading(words[:-len(phrase)], scene, lambda pool, what=what, pick=pick, said=said:
+                                   _superlative(pool, lambda o: _measure(o, what), pick, said, place=True))
+    if "between" not in low[1:]:
+        return None
+    at = low.index("between", 1)
+    ends = _two_references(words[at + 1:], scene, role, context)
+    if ends is None:
+        return None
+    a, b = (np.asarray(scene.get(n).xy, float) for n in ends)
+    span = b - a
+    length = float(np.linalg.norm(span))
+
+    def choose(pool: list[SceneObject]) -> str:
+        inside = []
+        for o in pool:
+            if o.name in ends or length < 1e-9:
+                continue
+            t = float((np.asarray(o.xy) - a) @ span) / length ** 2
+            d = np.asarray(o.xy) - a
+            off = abs(float(span[0] * d[1] - span[1] * d[0])) / length
+            if 0.0 < t < 1.0 and off < 0.5 * length:
+                inside.append(o)
+        if not inside:
+            raise UnknownObjectError(f"nothing in the scene lies between {ends[0]} and {ends[1]} "
+                                     f"(blocks: {describe(scene)})")
+        mid = tuple((a + b) / 2)
+        return _superlative(inside, lambda o: _distance(o, mid), min, "between", place=True)
+
+    return _either_reading(words[:at], scene, choose)
+
+
+def _two_references(words: list[str], scene: Scene, role: str, context: Context | None) -> tuple[str, str] | None:
+    """"A and C", "the red and blue cubes" -> two different objects' names; None when ``words`` are not two."""
+    for k, w in enumerate(words):
+        if w.lower() not in ("and", "&") or not 0 < k < len(words) - 1:
+            continue
+        try:
+            pair = (resolve_object(" ".join(words[:k]), scene, role, context),
+                    resolve_object(" ".join(words[k + 1:]), scene, role, context))
+        except (LanguageError, UnknownObjectError):
+            continue
+        if pair[0] != pair[1]:
+            return pair
+    return None
 
 
 BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})
@@ -255,7 +367,11 @@ def _head_end(low: tuple[str, ...]) -> tuple[str, int, int] | None:
             start = i
             while start > 0 and low[start - 1] in ("to", "on", "the"):
                 start -= 1
-            return w, start, i + 2
+            return f"{w} of", start, i + 2
+        if w == "behind" and i > 0:
+            return w, i, i + 1
+        if low[i:i + 3] == ("in", "front", "of") and i > 0:
+            return "in front of", i, i + 3
     return None
 
 
@@ -287,18 +403,26 @@ def _reference_point(words: list[str], scene: Scene, role: str,
     return name, tuple(scene.get(name).xy)
 
 
-def _bearing_off(v: np.ndarray, side: float) -> float:
-    """The angle between ``v`` and the robot's left (side 1) or right (side -1)."""
+def _bearing_off(v: np.ndarray, direction: float) -> float:
+    """The angle between ``v`` and the scene direction ``direction`` (radians from +x: the robot's left is pi/2)."""
     ang = math.atan2(float(v[1]), float(v[0]))
-    return abs(math.remainder(ang - side * math.pi / 2, 2 * math.pi))
+    return abs(math.remainder(ang - direction, 2 * math.pi))
 
 
-def _superlative(pool: list[SceneObject], measure, pick, word: str) -> str:
+def _superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False) -> str:
+    """The one object of ``pool`` that ``pick`` (min or max) of ``measure`` chooses; ties are ambiguous. With
+    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
     values = {o.name: measure(o) for o in pool}
     best = pick(values.values())
-    tied = [n for n, v in values.items() if abs(v - best) <= max(TIE * abs(best), TIE_M)]
+    winner = next(o for o in pool if values[o.name] == best)
+
+    def tol(o: SceneObject) -> float:
+        t = max(TIE * abs(best), TIE_M)
+        return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place else t
+
+    tied = [o.name for o in pool if abs(values[o.name] - best) <= tol(o)]
     if len(tied) > 1:
         raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
     return tied[0]

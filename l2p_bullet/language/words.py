@@ -22,19 +22,26 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
     "can you please", "i would like you to", "i'd like you to", "i want you to", "i need you to",
     "go ahead and", "please could you", "please can you", "please", "kindly", "could you", "can you",
     "would you", "will you", "could u", "can u", "pls", "plz", "let's", "lets", "try to", "now", "then", "and",
-    "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot",
+    "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot", "alright", "all right",
+    "after that", "afterwards", "lastly", "next", "maybe", "also", "hello", "hi",
 ))
 """Words that may open a command and ask for nothing (longest first where one starts another)."""
+NOT_BEFORE_TO = frozenset({"next"})
+"""Openings that are part of a preposition when "to" follows them ("next to C" is a clause's preposition):
+read past only before another word."""
 POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
     "please thanks", "please thank you", "thank you very much", "thank you so much", "thank you", "thanks",
     "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
-    "and do it", "do it",
+    "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
+    "if you can", "if possible", "when you can", "if you would",
 ))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",))
 """Openings followed by the verb's -ing form: "do you mind moving A past B", and "would you mind ..." once its
 "would you" is read past as politeness."""
 
-GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"))
+GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"), ("i", "need"))
+DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"))
+"""Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
 
@@ -43,6 +50,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
     "so that it lands", "so that it ends", "so it ends up", "so it is", "so it's", "so it goes", "so it sits",
     "so it lands", "so it ends", "such that it is", "such that it's", "until it is", "until it's",
     "until it ends up", "so that", "so", "over so it's", "over so it is", "over", "back", "down",
+    "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
 ))
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
@@ -71,7 +79,7 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
 """Comparatives people use for "away from" that say how far as well: (its phrase, the extent). They read as
 that phrase only while an installed action owns it; plain synonyms ("beyond", "in the direction of") are the
 actions' own phrases, in their manifests."""
-NEGATIONS = frozenset({"don't", "dont", "do", "not", "never", "no"})
+NEGATIONS = frozenset({"don't", "dont", "not", "never", "no"})
 """Words that, just before a verb, say not to do it ("don't carry it, just push A past B")."""
 
 
@@ -86,7 +94,8 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
         changed = False
         low = [w.lower() for w in words]
         for pre in POLITE_PREFIXES:
-            if _starts(low, pre) and not set(words[: len(pre)]) & keep:
+            if _starts(low, pre) and not set(words[: len(pre)]) & keep and not (
+                    pre[-1] in NOT_BEFORE_TO and low[len(pre):len(pre) + 1] == ["to"]):
                 words, changed = words[len(pre):], True
                 break
         low = [w.lower() for w in words]
@@ -95,6 +104,20 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
                 words, changed = words[: -len(suf)], True
                 break
     return words
+
+
+def is_courtesy(words: list[str]) -> bool:
+    """Whether ``words`` are politeness alone ("Thank you!", "Cheers", "Hello"): a sentence of its own between
+    commands that asks for nothing."""
+    low = [w.lower() for w in words]
+    while low:
+        for pre in POLITE_PREFIXES + POLITE_SUFFIXES:
+            if _starts(low, pre):
+                low = low[len(pre):]
+                break
+        else:
+            return False
+    return bool(words)
 
 
 def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = frozenset()) -> list[str]:
@@ -107,9 +130,15 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
     for i, w in enumerate(low):
         if set(words[:i]) & keep:
             return words
-        if w in verbs and not (set(low[max(0, i - 2):i]) & NEGATIONS and "just" not in low[max(0, i - 1):i]):
+        noun = i + 1 < len(low) and low[i + 1] in NOUN_USE  # "your next move is to lift ..."
+        if w in verbs and not noun and not (set(low[max(0, i - 2):i]) & NEGATIONS
+                                            and "just" not in low[max(0, i - 1):i]):
             return words[i:]
     return words
+
+
+NOUN_USE = frozenset({"is", "was", "will", "should", "would", "must"})
+"""Words after which a verb's word is a noun ("your next move is to lift A ...")."""
 
 
 def gerund_to_verb(words: list[str], verbs: list[str]) -> list[str]:
@@ -131,6 +160,10 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     for pre in GOAL_PREFIXES:
         if _starts(low, pre) and len(words) > len(pre):
             rest = words[len(pre):]
+            for doer in DOERS:  # "I'd like the robot to move ...", "I want you to ..."
+                if tuple(w.lower() for w in rest[:len(doer)]) == doer and len(rest) > len(doer):
+                    rest = rest[len(doer) - 1:]
+                    break
             if rest[0].lower() == "to" and len(rest) > 1:
                 return rest[1:]
             if rest[0].lower() in verbs:
@@ -139,6 +172,59 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     if low[:1] == ["make"] and "go" in low[2:]:  # "make A go around B"
         at = low.index("go", 2)
         return ["move", *words[1:at], *words[at + 1:]]
+    return words
+
+
+IRREGULAR_PARTICIPLES = {"slide": "slid", "bring": "brought", "put": "put", "set": "set", "lay": "laid"}
+PASSIVE_AUX = (("to", "be"), ("be",), ("is",), ("gets",), ("get",))
+"""Words between an object and a participle that only make it passive ("for C to be moved next to B")."""
+
+
+def participles(verb: str) -> set[str]:
+    """The past participles a one-word verb may take ("move": moved, "drag": dragged, "carry": carried)."""
+    if verb in IRREGULAR_PARTICIPLES:
+        return {IRREGULAR_PARTICIPLES[verb]}
+    out = {verb + "ed", verb + "d", verb + verb[-1] + "ed"}
+    if verb.endswith("y"):
+        out.add(verb[:-1] + "ied")
+    return out
+
+
+def passive_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
+    """"I need the cylinder moved away from C", "the goal is for C to be pushed past B" -> "move the cylinder
+    away from C", "push C past B": an object described before the participle of a known verb, whatever opens
+    the sentence. ``is_object(text)`` says whether ``text`` names one object; the longest such description ending
+    at the participle is the mover. Words that start with a known verb are returned as they are."""
+    low = [w.lower() for w in words]
+    if not low or low[0] in verbs:
+        return words
+    forms = {p: v for v in verbs if " " not in v for p in participles(v)}
+    for k in range(1, len(low)):
+        if low[k] not in forms:
+            continue
+        end = k
+        for aux in PASSIVE_AUX:
+            if end > len(aux) and tuple(low[end - len(aux):end]) == aux:
+                end -= len(aux)
+                break
+        for j in range(end):
+            if is_object(" ".join(words[j:end])):
+                return [forms[low[k]], *words[j:end], *words[k + 1:]]
+        return words
+    return words
+
+
+def by_gerund(words: list[str], verbs: list[str]) -> list[str]:
+    """"move C toward A by pushing it" -> "push C toward A": a closing "by" + the -ing form of a known verb names
+    the manner; the sentence's own verb is then replaced."""
+    low = [w.lower() for w in words]
+    for tail in (2, 3):
+        if len(low) <= tail + 1 or low[-tail] != "by" or (tail == 3 and low[-1] not in ("it", "them")):
+            continue
+        ing = low[-tail + 1]
+        for v in verbs:
+            if " " not in v and ing in (v + "ing", v[:-1] + "ing", v + v[-1] + "ing"):
+                return [v, *words[1:-tail]]
     return words
 
 

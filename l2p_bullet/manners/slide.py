@@ -3,6 +3,7 @@
 from .spec import MannerSpec
 
 MANNER = MannerSpec(
-    name="slide", verbs=("slide", "move", "shift", "drag", "put"), motion="slide", signature="on-table",
+    name="slide", verbs=("slide", "move", "shift", "drag", "put", "place", "set", "position", "circle"),
+    motion="slide", signature="on-table",
     description="grasp from above and slide the block on the table (within 3 mm of it)", default=True,
 )

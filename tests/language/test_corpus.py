@@ -44,7 +44,18 @@ def test_the_second_authors_corpus_is_never_resolved_wrong(plugins):
     wrong = [(case.sentence, got) for case, got in misses if got != REFUSE]
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
-    assert right >= 129, f"{right}/147 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert right >= 142, f"{right}/147 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
+def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
+    """heldout3.tsv: 190 sentences a third author wrote from the scene and the notation alone, never reading the
+    grammar or the other corpora. Read once before any change (80.5 % right, 5 wrong: docs/language.md); the
+    general rules it prompted since make it a development figure now, kept here against regressions."""
+    table, misses = score(plugins, "heldout3.tsv")
+    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    right = sum(c["right"] for c in table.values())
+    assert right >= 185, f"{right}/190 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
 @pytest.mark.parametrize("sentence, said", [
