@@ -11,7 +11,9 @@ not depend on what the world did before.
 
 from __future__ import annotations
 
+import json
 import math
+from collections import OrderedDict
 from importlib import resources
 from pathlib import Path
 
@@ -132,6 +134,47 @@ def settle(world: World) -> dict[str, float]:
     return {n: round(m, 9) for n, m in moved.items()}
 
 
+SETTLED_KEPT = 8
+"""Settled scenes :func:`settled_state` keeps (a process settles each scene once)."""
+_settled: OrderedDict[str, dict] = OrderedDict()
+
+
+def _scene_key(scene: Scene) -> str:
+    """What decides how a scene settles: its objects as written, and each mesh file's size and time (a file
+    edited in place settles anew)."""
+    files = []
+    for o in scene.objects:
+        if o.shape == "mesh":
+            st = Path(o.mesh).stat()
+            files.append((str(o.mesh), st.st_size, st.st_mtime_ns))
+    return json.dumps([scene.to_dict(), files], sort_keys=True, default=str)
+
+
+def settled_state(scene: Scene) -> dict[str, tuple]:
+    """Each object's settled pose in ``scene``: name -> (position, orientation, centre's height above the
+    table, how far (m) it moved while settling), from :func:`settle` in a simulator of the table and the
+    objects alone (the arm is away while they settle), done once per scene and process: the feasibility
+    check that refuses an object that never rests and the world the run then executes in share one settling,
+    and every world of the scene starts from the same poses. SceneError as :func:`settle` raises it."""
+    key = _scene_key(scene)
+    if key in _settled:
+        _settled.move_to_end(key)
+        return _settled[key]
+    table = World.__new__(World)  # the table and the objects only: no arm, nothing drawn
+    table.sim, table.visuals, table.dt, table.robot = Bullet(), False, 1.0 / PHYSICS_HZ, None
+    try:
+        table.sim.set_physics(table.dt)
+        table._place(scene, drawn=False)
+        moved = settle(table)
+        state = {n: (*table.sim.base_pose(n), table.rests[n], moved[n]) for n in table.sizes}
+    finally:
+        table.close()
+    _settled[key] = state
+    while len(_settled) > SETTLED_KEPT:
+        _settled.popitem(last=False)
+    return state
+
+
 class World:
     """Table + blocks + arm in one DIRECT simulator. Close it (or use ``with``) when done.
 
@@ -156,8 +199,21 @@ class World:
             raise
 
     def _load(self, scene: Scene) -> None:
-        """Table, then the blocks in scene order, then the arm at home: the same order every time, so the
-        physics engine's internal order (which decides the last bits of a result) is the same too."""
+        """Table, then the blocks in scene order (a mesh scene's in the poses they settle into:
+        :func:`settled_state`), then the arm at home: the same order every time, so the physics engine's
+        internal order (which decides the last bits of a result) is the same too."""
+        self._place(scene)
+        self.settled: dict[str, float] = {}  # how far each object moved while settling (mesh scenes)
+        if any(o.shape == "mesh" for o in scene.objects):
+            for n, (pos, orn, rest, moved) in settled_state(scene).items():
+                self.sim.set_base_pose(n, pos, orn)
+                self.rests[n] = rest
+                self.settled[n] = moved
+        self.robot.load()
+
+    def _place(self, scene: Scene, drawn: bool = True) -> None:
+        """The table and the objects as the scene sets them down (not yet settled); ``drawn`` False gives a
+        non-cube object a token drawing instead of its own (nothing is drawn while a scene settles)."""
         reserved = [o.name for o in scene.objects if o.name in (TABLE, ARM)]
         if reserved:
             raise SceneError(f'"{reserved[0]}" is reserved for the simulator; name the block otherwise')
@@ -179,7 +235,7 @@ class World:
                 rest = g.rest
                 parts = _parts(o, g)
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
-                                mass=o.mass_kg, visual=_visual(o, g), parts=parts)
+                                mass=o.mass_kg, visual=_visual(o, g) if drawn else ("box", (1e-3,) * 3), parts=parts)
                 if parts is not None:  # the parts' bottom, not the mesh's lowest vertex, stands on the table
                     rest = -_parts_bottom(parts)
                     sim.set_base_pose(o.name, (o.xy[0], o.xy[1], rest), orn)
@@ -189,10 +245,6 @@ class World:
             self.sizes[o.name] = o.size
             self.heights[o.name] = o.height
             self.rests[o.name] = rest
-        self.settled: dict[str, float] = {}  # how far each object moved while settling (mesh scenes)
-        if any(o.shape == "mesh" for o in scene.objects):
-            self.settled = settle(self)
-        self.robot.load()
 
     def reset(self, scene: Scene) -> None:
         """Start over with ``scene``: old blocks and any grasp gone, the new blocks in place, the arm at
