@@ -71,6 +71,52 @@ def _parts_bottom(parts: tuple) -> float:
     return float(((v * scale) @ _rotation(tuple(rpy)).T)[:, 2].min() + origin[2])
 
 
+def _triangles(o, g, parts: tuple | None) -> np.ndarray:
+    """A mesh's collision surface (T,3,3) in the body frame: the triangles of its convex parts placed as
+    ``_parts`` says (each part's file lists its hull's faces), or, without parts, its own triangles (then
+    a convex mesh: its hull)."""
+    from ...core.shapes import _rotation
+
+    if parts is None:
+        return np.asarray(g.points, float)[np.asarray(g.faces, np.int64)]
+    _, path, scale, origin, rpy = parts
+    v, f = [], []
+    with open(path) as fh:
+        for line in fh:
+            if line.startswith("v "):
+                v.append([float(c) for c in line.split()[1:4]])
+            elif line.startswith("f "):
+                f.append([int(c.split("/")[0]) - 1 for c in line.split()[1:4]])
+    v = (np.asarray(v, float) * scale) @ _rotation(tuple(rpy)).T + np.asarray(origin, float)
+    return v[np.asarray(f, np.int64)]
+
+
+def _tops(tri: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Where a vertical ray through each point ``xy`` (N,2) first meets the triangles ``tri`` (T,3,3) coming
+    down: the highest crossing, nan where none is crossed. Exact, unlike Bullet's ray test, which misses a
+    convex hull without collision margin (measured: every ray through a 5 x 7.5 cm box)."""
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    e1, e2 = b[:, :2] - a[:, :2], c[:, :2] - a[:, :2]
+    den = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    # a wall seen edge-on is met by no vertical ray (either winding counts: a file may have them flipped)
+    keep = np.abs(den) > 1e-14
+    a, b, c, e1, e2, den = a[keep], b[keep], c[keep], e1[keep], e2[keep], den[keep]
+    out = np.full(len(xy), np.nan)
+    lo, hi = tri[..., :2].reshape(-1, 2).min(axis=0), tri[..., :2].reshape(-1, 2).max(axis=0)
+    near = np.flatnonzero(np.all((xy >= lo) & (xy <= hi), axis=1))  # only rays over the object can meet it
+    step = max(1, (1 << 20) // max(1, len(a)))
+    for s in range(0, len(near), step):
+        rays = near[s:s + step]
+        q = xy[rays, None, :] - a[None, :, :2]
+        u = (q[..., 0] * e2[:, 1] - q[..., 1] * e2[:, 0]) / den
+        w = (e1[:, 0] * q[..., 1] - e1[:, 1] * q[..., 0]) / den
+        inside = (u >= -1e-9) & (w >= -1e-9) & (u + w <= 1 + 1e-9)
+        z = np.where(inside, a[:, 2] + u * (b[:, 2] - a[:, 2]) + w * (c[:, 2] - a[:, 2]), -np.inf)
+        top = z.max(axis=1)
+        out[rays] = np.where(np.isfinite(top), top, np.nan)
+    return out
+
+
 def _obj_copy(g) -> str:
     """An OBJ file of ``g``'s triangles (body frame) in the user's cache, named by its content."""
     import hashlib
@@ -224,6 +270,7 @@ class World:
         self.sizes: dict[str, float] = {}
         self.heights: dict[str, float] = {}  # each object's top above the table, standing
         self.rests: dict[str, float] = {}  # each object's centre (of mass) above the table, standing
+        self.surfaces: dict[str, np.ndarray] = {}  # a mesh's collision triangles, body frame (fingertip_height)
         for o in scene.objects:
             orn = sim.quaternion(0.0, 0.0, o.yaw)
             if o.shape == "cube":
@@ -236,6 +283,8 @@ class World:
                 parts = _parts(o, g)
                 sim.load_convex(o.name, g.points, (o.xy[0], o.xy[1], rest), orn,
                                 mass=o.mass_kg, visual=_visual(o, g) if drawn else ("box", (1e-3,) * 3), parts=parts)
+                if o.shape == "mesh":
+                    self.surfaces[o.name] = _triangles(o, g, parts)
                 if parts is not None:  # the parts' bottom, not the mesh's lowest vertex, stands on the table
                     rest = -_parts_bottom(parts)
                     sim.set_base_pose(o.name, (o.xy[0], o.xy[1], rest), orn)
@@ -277,8 +326,8 @@ class World:
         """Where the closed fingertips come to rest when the hand, turned to ``tool_yaw``, is lowered straight
         down over object ``name``'s centre of mass: the lowest height at which no layer of the hand's profile
         (``ArmSpec.hand_profile``: its half extents at each height above the fingertips) is inside the object,
-        measured with vertical rays on its collision shapes. A box's, a cylinder's or a cube's is its top
-        (their tops are flat); a mesh's may be lower than its highest point, which can lie to one side
+        measured with vertical rays on its collision triangles (:func:`_tops`). A box's, a cylinder's or a
+        cube's is its top (their tops are flat); a mesh's may be lower than its highest point, which can lie to one side
         (a duck's head), so the fingers hold its body."""
         top = self.heights[name]
         if self.scene.get(name).shape != "mesh":
@@ -294,7 +343,9 @@ class World:
                                                        for h in (hx, hy))))
             pts.append(np.column_stack([x + c * gx - s * gy, y + s * gx + c * gy]))
             depth.append(np.full(len(gx), d))
-        hit = self.sim.ray_heights(name, np.vstack(pts), top + 0.05, 0.0) - np.concatenate(depth)
+        pos, orn = self.sim.base_pose(name)
+        tri = self.surfaces[name] @ np.asarray(self.sim.rotation_matrix(orn), float).reshape(3, 3).T + np.asarray(pos)
+        hit = _tops(tri, np.vstack(pts)) - np.concatenate(depth)
         return min(top, float(np.nanmax(hit)) + RAY_SPACING) if np.isfinite(hit).any() else top
 
     @property
