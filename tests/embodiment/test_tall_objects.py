@@ -52,3 +52,43 @@ def test_a_tall_object_is_held_with_softer_accelerations_and_a_cube_is_not():
     assert soft.acceleration == normal.acceleration * TALL_ACCELERATION and soft.jerk == normal.jerk * TALL_ACCELERATION
     assert soft.velocity == normal.velocity
     assert tall_pace(normal, shaped("M", "y", (0, 0), 0.0, shape="box", dims=(0.06, 0.03, 0.04))) is normal
+
+
+class _Enough(Exception):
+    pass
+
+
+def test_a_tall_object_is_slid_with_its_softer_pace_and_a_cube_is_not(monkeypatch):
+    import numpy as np
+
+    from l2p_bullet.embodiment import execute
+
+    seen = []
+
+    def stop(prims, *args, **kwargs):
+        seen.append(prims.pace)
+        raise _Enough
+
+    monkeypatch.setattr(execute, "_perform", stop)
+    for mover in (MILK, SceneObject("M", "yellow", 0.04, (0.1, -0.08), 0.0)):
+        path = np.array([[0.1, -0.08, 0.0], [0.13, -0.08, 0.0]])
+        with pytest.raises(_Enough):
+            execute.execute_path(_scene(mover), "M", path, out_dir=None, render=None)
+    assert seen[0].acceleration == TALL_ACCELERATION and seen[1] is pace(None)
+
+
+def test_a_chain_clause_holding_a_tall_object_takes_its_softer_pace(monkeypatch, tmp_path):
+    from l2p_bullet.chain.run import perform_chain
+    from l2p_bullet.embodiment import execute
+
+    seen = []
+
+    def stop(prims, *args, **kwargs):
+        seen.append(prims.pace)
+        raise _Enough
+
+    monkeypatch.setattr(execute, "act", stop)
+    with pytest.raises(_Enough):
+        perform_chain("move M closer to B and then move A closer to B", _scene(MILK), out_dir=tmp_path / "run",
+                      render=False)
+    assert seen and seen[0].acceleration == TALL_ACCELERATION
