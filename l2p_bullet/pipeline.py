@@ -202,9 +202,9 @@ def prepare_command(cmd: Command, scene: Scene, arm: ArmSpec, plugins: list, opt
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins, arm)
     if any(o.shape == "mesh" for o in scene.objects):  # a mesh that never comes to rest is refused now, by name
-        from .embodiment.sim.world import World
+        from .embodiment.sim.world import settled_state
 
-        World(scene, arm=arm, visuals=False).close()  # decomposes new meshes (kept) and settles the scene
+        settled_state(scene)  # decomposes new meshes (kept) and settles the scene once: the run's world starts there
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched

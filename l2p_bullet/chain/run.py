@@ -33,7 +33,7 @@ from ..core.contracts import Plan, approach_end_frame, trajectory_poses
 from ..core.runfolder import add_to_summary, run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..embodiment.manners import manner_planning
+from ..embodiment.manners import manner_planning, tall_pace
 from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
@@ -315,6 +315,8 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             stage = "reach" if name == "reach" else "execute"
 
         prims.pace = pace_of(cmd.pace)  # this clause's "slowly", "gently" (the next clause may differ)
+        if ex.manner_of(cmd.manner).motion != "push":  # a tall object held: softer starts and stops
+            prims.pace = tall_pace(prims.pace, now.get(cmd.mover))
         s0, s1, grasp = ex.act(prims, now, cmd.mover, p, angles, rest, ex.manner_of(cmd.manner), stage=on)
         slide = slice(s0 - first, s1 - first)
     except L2PError as e:

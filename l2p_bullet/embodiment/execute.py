@@ -22,7 +22,7 @@ from ..core.timing import StageClock
 from ..errors import ExecutionError, InfeasibleError, PathError, ReachError
 from ..manners.spec import MannerSpec
 from . import motion, smoothing
-from .manners import carry_lift, check_carry_path, check_manner, manner_of
+from .manners import carry_lift, check_carry_path, check_manner, manner_of, tall_pace
 from .record import Recorder, versions
 from .render import Film
 from .sim.camera import RenderSettings, framed_for
@@ -194,6 +194,8 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
             world.reset(scene)  # a caller's world; rendering happens in the film's own worlds
         prims = arm_primitives(world, render, out_dir, [(mover, p, how.motion)])
         prims.pace = smoothing.pace(pace)
+        if how.motion != "push":  # a tall object held: softer starts and stops (the push holds nothing)
+            prims.pace = tall_pace(prims.pace, scene.get(mover))
         film = prims.recorder.film
         if how.name != "slide":
             prims.recorder.gripper = True

@@ -182,3 +182,47 @@ def test_a_mesh_resting_tilted_is_slid_without_being_called_tilted(tmp_path):
     path = np.array([[*a.xy, a.yaw], [a.xy[0] + 0.05, a.xy[1] - 0.03, a.yaw]])
     ex = execute_path(scene, "R", path, out_dir=None, render=None)
     assert ex.max_deviation_m < 0.003 and ex.constraint_removed
+
+
+def test_a_mesh_scene_settles_once(tmp_path, monkeypatch):
+    """The feasibility stage settled a throw-away world (arm and all) to refuse an object that never rests,
+    then the run's world settled the scene again: now both use one settling, and every world of the scene
+    starts from the poses it found."""
+    from l2p_bullet.embodiment.sim import world as world_module
+    from l2p_bullet.pipeline import prepare
+
+    calls = []
+    real = world_module.settle
+    monkeypatch.setattr(world_module, "settle", lambda w: calls.append(w) or real(w))
+    _rocker(tmp_path)
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        *CUBES, {"name": "R", "color": "blue", "shape": "mesh", "mesh": "rocker.obj", "xy": [-0.1, 0.1]}]}))
+    scene = load_scene(tmp_path / "scene.json")
+    prepare("move A closer to B", scene)
+    with World(scene, visuals=False) as first, World(scene, visuals=False) as second:
+        assert len(calls) == 1
+        assert first.settled["R"] > 0.002 and first.settled == second.settled
+        assert np.array_equal(first.pose("R"), second.pose("R")) and first.rests == second.rests
+        assert first.tilt("R") > math.radians(3)
+
+
+@pytest.mark.slow
+def test_the_hand_comes_down_on_a_decomposed_box_s_top(tmp_path, monkeypatch):
+    """Bullet's ray test misses a convex part without collision margin: through a 5 x 7.5 x 5 cm box
+    (ManiSkill's cardboard box, decomposed into one part) most vertical rays met nothing or the table, the
+    hand was sent 1.7-2.2 cm into the box and pressed it through the table (a slide 'lifted' it 24.5 mm)."""
+    import trimesh
+
+    from l2p_bullet.core.scene import Scene
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    box = trimesh.creation.box(extents=(2.0, 3.0, 2.0))
+    hole = np.flatnonzero(box.face_normals[:, 2] < -0.9)[:1]  # one bottom triangle gone: not watertight
+    _mesh(tmp_path / "holed.obj", box.vertices, np.delete(box.faces, hole, axis=0))
+    scene = Scene.from_dict({"objects": [
+        {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(tmp_path / "holed.obj"), "scale": 0.025,
+         "xy": [0.1, -0.08]}, CUBES[1]]}).validate()
+    assert decompose.parts_file(scene.get("M").mesh) is not None
+    with World(scene, visuals=False) as world:
+        for yaw in np.linspace(0.0, math.pi, 7):
+            assert world.fingertip_height("M", float(yaw)) == pytest.approx(world.heights["M"], abs=0.0025)

