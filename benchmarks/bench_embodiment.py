@@ -6,8 +6,11 @@ written as bare pybullet calls (same tool
 targets, same rates, same bodies), as a ratio, without and with rendering.
 
     .venv/bin/python benchmarks/bench_embodiment.py [--repeats 3]
+    .venv/bin/python benchmarks/bench_embodiment.py --repeats 1 --arc 30 --samples 1 --resolution 64x48 --fps 2
 
 Timings are the best of ``--repeats`` runs (the machine is shared; the minimum is the least noisy).
+``--arc`` shortens the circle (degrees of it) and ``--samples`` the micro measures (tens of steps, frames,
+worlds): a smoke run goes through the same code in a few seconds.
 """
 
 from __future__ import annotations
@@ -31,15 +34,15 @@ from l2p_bullet.embodiment.sim.camera import RenderSettings  # noqa: E402
 RENDER = RenderSettings(width=320, height=240, fps=10.0)
 
 
-def circle_path(scene, n=121):
+def circle_path(scene, n=121, arc=360.0):
     a, b = scene.get("A"), scene.get("B")
     c, p0 = np.array(b.xy), np.array(a.xy)
     r = float(np.hypot(*(p0 - c)))
-    ang = math.atan2(p0[1] - c[1], p0[0] - c[0]) + np.linspace(0, 2 * math.pi, n)
+    ang = math.atan2(p0[1] - c[1], p0[0] - c[0]) + np.linspace(0, math.radians(arc), n)
     return np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang), np.full(n, a.yaw)])
 
 
-def project_run(render):
+def project_run(render, arc=360.0):
     """execute_path, also capturing the tool targets and stages it commanded (for the bare loop)."""
     scene = default_scene()
     captured: list[tuple[str, np.ndarray]] = []
@@ -52,7 +55,7 @@ def project_run(render):
     primitives.Primitives.run = spy
     try:
         t0 = time.perf_counter()
-        ex = execute_path(scene, "A", circle_path(scene), out_dir=None, render=render, meta={"anchor": "B"})
+        ex = execute_path(scene, "A", circle_path(scene, arc=arc), out_dir=None, render=render, meta={"anchor": "B"})
         wall = time.perf_counter() - t0
     finally:
         primitives.Primitives.run = original
@@ -61,7 +64,8 @@ def project_run(render):
 
 def bare_run(captured, render):
     """The same episode in bare pybullet: IK on the simulated arm per control step, interpolated joint
-    targets, 240 Hz physics, a fixed constraint, poses sampled at 30 fps, frames every 24 steps."""
+    targets, 240 Hz physics, a fixed constraint, poses sampled at 30 fps, frames at the render's fps (every 24
+    steps at 10 fps)."""
     import pybullet as pb
     import pybullet_data
 
@@ -89,6 +93,7 @@ def bare_run(captured, render):
         proj = pb.computeProjectionMatrixFOV(50, render.width / render.height, 0.05, 3.0)
     q_prev = np.array(PANDA.home)
     steps, frames, images, cons = 0, [], 0, None
+    every = max(1, round(240 / render.fps)) if render is not None else 0
     forces, gains = [87.0] * 4 + [12.0] * 3, [PANDA.position_gain] * 7
 
     def step():
@@ -98,7 +103,7 @@ def bare_run(captured, render):
         if steps % 8 == 0:
             frames.append([pb.getBasePositionAndOrientation(b, physicsClientId=cid) for b in blocks.values()]
                           + [pb.getLinkState(robot, 11, physicsClientId=cid)[4]])
-        if render is not None and steps % 24 == 0:
+        if render is not None and steps % every == 0:
             pb.getCameraImage(render.width, render.height, view, proj, renderer=pb.ER_TINY_RENDERER,
                               shadow=0, flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=cid)
             images += 1
@@ -132,19 +137,19 @@ def bare_run(captured, render):
     return time.perf_counter() - t0, steps, images
 
 
-def micro():
-    """Steps/s, IK/s and ms per frame measured on their own."""
+def micro(samples=10):
+    """Steps/s, IK/s and ms per frame measured on their own (``samples`` x 100 steps, x 40 IK, frames, worlds)."""
     from l2p_bullet.embodiment.sim.camera import Camera
     from l2p_bullet.embodiment.sim.world import World
 
     out = {}
     world = World(default_scene())
     t = time.perf_counter()
-    for _ in range(1000):
+    for _ in range(100 * samples):
         world.step()
-    out["physics steps/s (world.step, idle arm)"] = 1000 / (time.perf_counter() - t)
+    out["physics steps/s (world.step, idle arm)"] = 100 * samples / (time.perf_counter() - t)
     kin, q = world.robot.kin, np.array(world.robot.spec.home)
-    targets = [(0.1 * math.cos(a), 0.05 + 0.1 * math.sin(a), 0.061, 0.2) for a in np.linspace(0, 6.28, 400)]
+    targets = [(0.1 * math.cos(a), 0.05 + 0.1 * math.sin(a), 0.061, 0.2) for a in np.linspace(0, 6.28, 40 * samples)]
     q = kin.solve(targets[0][:3], targets[0][3], q, seeds=world.robot.spec.ik_seeds)
     t = time.perf_counter()
     for p in targets:
@@ -155,20 +160,20 @@ def micro():
         cam = Camera(world, RenderSettings(width=w, height=h, renderer="tiny"))
         cam.render()
         t = time.perf_counter()
-        for _ in range(10):
+        for _ in range(samples):
             cam.render()
-        out[f"ms per frame, tiny {w}x{h}"] = (time.perf_counter() - t) / 10 * 1000
+        out[f"ms per frame, tiny {w}x{h}"] = (time.perf_counter() - t) / samples * 1000
     world.close()
     for visuals in (False, True):
         t = time.perf_counter()
-        for _ in range(10):
+        for _ in range(samples):
             World(default_scene(), visuals=visuals).close()
-        out[f"ms per new World (visuals={visuals})"] = (time.perf_counter() - t) / 10 * 1000
+        out[f"ms per new World (visuals={visuals})"] = (time.perf_counter() - t) / samples * 1000
         with World(default_scene(), visuals=visuals) as world:
             t = time.perf_counter()
-            for _ in range(10):
+            for _ in range(samples):
                 world.reset(default_scene())
-            out[f"ms per World.reset (visuals={visuals})"] = (time.perf_counter() - t) / 10 * 1000
+            out[f"ms per World.reset (visuals={visuals})"] = (time.perf_counter() - t) / samples * 1000
     return out
 
 
@@ -196,16 +201,19 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--resolution", default=f"{RENDER.width}x{RENDER.height}",
                     help="frame size of the rendered runs, WxH (a small one for a smoke run)")
+    ap.add_argument("--fps", type=float, default=RENDER.fps, help="frames per second of the rendered runs")
+    ap.add_argument("--arc", type=float, default=360.0, help="degrees of the circle around B the runs go")
+    ap.add_argument("--samples", type=int, default=10, help="micro measures: x 100 steps, x 40 IK, frames, worlds")
     args = ap.parse_args()
     w, h = (int(v) for v in args.resolution.split("x"))
-    render_settings = dataclasses.replace(RENDER, width=w, height=h)
+    render_settings = dataclasses.replace(RENDER, width=w, height=h, fps=args.fps)
     rows = []
-    for label, render in (("no rendering", None), (f"rendering {w}x{h} @ {RENDER.fps:g} fps", render_settings)):
-        proj = min((project_run(render) for _ in range(args.repeats)), key=lambda r: r[0])
+    for label, render in (("no rendering", None), (f"rendering {w}x{h} @ {args.fps:g} fps", render_settings)):
+        proj = min((project_run(render, args.arc) for _ in range(args.repeats)), key=lambda r: r[0])
         wall, ex, captured = proj
         bare = min((bare_run(captured, render) for _ in range(args.repeats)), key=lambda r: r[0])
         rows.append((label, wall, ex, bare))
-    m = micro()
+    m = micro(args.samples)
     print("| measure | value |\n|---|---|")
     for k, v in m.items():
         print(f"| {k} | {v:,.1f} |")

@@ -23,6 +23,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # research/ sits b
 from l2p_bullet.core.vocabulary import ACTIONS  # noqa: E402
 from l2p_bullet.learning.training_plan import plans  # noqa: E402
 from research import generalise as g  # noqa: E402
+from research.heldout import FOLDS  # noqa: E402
 from research.sessions import run_suite  # noqa: E402
 
 
@@ -58,6 +59,8 @@ def main() -> None:
     ap.add_argument("--trusted-only", action="store_true",
                     help="train without the demonstrations whose tracking is not trusted (data.demos.UNTRUSTED; "
                          "they are never scored): the fifth round's variant (use its own --cache)")
+    ap.add_argument("--one-way", action="store_true",
+                    help="train on Session 1 and score on Session 2 only (5 trainings a recipe; a smoke run)")
     args = ap.parse_args()
     torch.set_num_threads(1)
     known = plans(args.ensemble, args.epochs)
@@ -69,7 +72,7 @@ def main() -> None:
     for n in names:
         t0 = time.perf_counter()
         reps = run_suite(known[n], args.cache, log=lambda s: print(s, file=sys.stderr, flush=True), seed=args.seed,
-                         untrusted=not args.trusted_only)
+                         untrusted=not args.trusted_only, folds=1 if args.one_way else len(FOLDS))
         print(table(f"{n} ({args.ensemble} LSTMs x {args.epochs} epochs, seed {args.seed})", reps) + "\n", flush=True)
         summary.append((n, g.suite_score(reps), g.strong_score(reps),
                         sum(sum(g.goals_met(r).values()) for r in reps.values()), time.perf_counter() - t0))

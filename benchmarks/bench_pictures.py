@@ -35,10 +35,12 @@ CAMERAS = ("viewer", "auto")
 FAR = (50.0, 50.0, 50.0)
 
 
-def perform(sentence: str, camera: str, out: Path, renderer: str, fps: float | None = None) -> float:
+def perform(sentence: str, camera: str, out: Path, renderer: str, fps: float | None = None,
+            resolution: str | None = None) -> float:
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-m", "l2p_bullet.cli", "perform", sentence, "--out", str(out), "--force", "-q",
-                    "--camera", camera, "--renderer", renderer, *([] if fps is None else ["--fps", str(fps)])],
+                    "--camera", camera, "--renderer", renderer, *([] if fps is None else ["--fps", str(fps)]),
+                    *([] if resolution is None else ["--resolution", resolution])],
                    check=True, stdout=subprocess.DEVNULL)
     return time.perf_counter() - t0
 
@@ -108,6 +110,8 @@ def main() -> None:
     ap.add_argument("--json", type=Path, default=None)
     ap.add_argument("--sentences", default=",".join(SENTENCES), help="comma-separated (default: both)")
     ap.add_argument("--fps", type=float, default=None, help="video frames per second (default: perform's)")
+    ap.add_argument("--resolution", default=None,
+                    help="video frame size WxH (default: perform's; the cube's pixels are then at that size)")
     args = ap.parse_args()
     sentences = [s for s in args.sentences.split(",") if s]
     load0 = os.getloadavg()
@@ -117,7 +121,7 @@ def main() -> None:
         for sentence in sentences:
             for camera in CAMERAS:
                 out = Path(td) / f"{camera}-{sentence.replace(' ', '_')}"
-                wall = perform(sentence, camera, out, args.renderer, args.fps)
+                wall = perform(sentence, camera, out, args.renderer, args.fps, args.resolution)
                 m = measure(out)
                 rows.append({"sentence": sentence, "camera": camera, "wall_s": wall, **m,
                              "wall_over_sim": wall / m["simulated_s"]})

@@ -87,27 +87,28 @@ def _current(folder: Path, digest: str, seed: int, recipe: Recipe) -> bool:
 
 
 def split_models(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
-                 seed: int = 0, untrusted: bool = True) -> list[dict[str, ProgressModel]]:
-    """Per fold of :data:`heldout.FOLDS`, every action's model trained on the fold's training session:
-    :func:`session_bundles` under ``cache/<recipe>/s<seed>/<session>/`` (a temporary folder when None)."""
+                 seed: int = 0, untrusted: bool = True, folds: int = len(FOLDS)) -> list[dict[str, ProgressModel]]:
+    """Per fold of :data:`heldout.FOLDS` (the first ``folds`` of them), every action's model trained on the fold's
+    training session: :func:`session_bundles` under ``cache/<recipe>/s<seed>/<session>/`` (a temporary folder
+    when None)."""
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp) if cache is None else Path(cache)
-        folds = []
-        for train_s, _ in FOLDS:
+        models = []
+        for train_s, _ in FOLDS[:folds]:
             folders = session_bundles(train_s, root / recipe.name / f"s{seed}" / train_s, seed=seed, recipe=recipe,
                                       log=log, command=f"bench_generalise recipe {recipe.name}", untrusted=untrusted)
-            folds.append({a: ProgressModel.from_bundle(load_bundle(f)) for a, f in folders.items()})
-        return folds
+            models.append({a: ProgressModel.from_bundle(load_bundle(f)) for a, f in folders.items()})
+        return models
 
 
 def run_suite(recipe: Recipe, cache: Path | None, log: Callable[[str], None] | None = None,
-              seed: int = 0, untrusted: bool = True) -> dict[str, g.ActionReport]:
+              seed: int = 0, untrusted: bool = True, folds: int = len(FOLDS)) -> dict[str, g.ActionReport]:
     """The suite for a recipe: its session-split models, scored on the other person's events, both ways
-    (with the ordered probes of :mod:`.ordered_probes`). The demonstrations whose tracking is not trusted
-    are never scored; ``untrusted`` False also trains without them."""
-    folds = split_models(recipe, cache, log, seed, untrusted)
+    (with the ordered probes of :mod:`.ordered_probes`; ``folds`` 1: one way only, a smoke run). The
+    demonstrations whose tracking is not trusted are never scored; ``untrusted`` False also trains without them."""
+    trained = split_models(recipe, cache, log, seed, untrusted, folds)
     reports = []
-    for (_, test_s), models in zip(FOLDS, folds, strict=True):
+    for (_, test_s), models in zip(FOLDS[:folds], trained, strict=True):
         test = {a: g.events(ds) for a, ds in all_demos(sessions={test_s}, untrusted=False).items()}
         fold = g.score_fold(models, test)
         for a, r in fold.items():

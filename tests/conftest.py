@@ -53,13 +53,21 @@ def pytest_configure(config) -> None:
         config.option.loadscopereorder = False
 
 
+SLOW_S, QUICK_S = 10.0, 0.3
+"""Seconds a slow test and another test take, as the suite's durations have them on the 2-core machine (a
+slow test takes 2 s or more, most 5-20 s; most quick ones a few tenths): only their ratio orders the groups."""
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items) -> None:
     """Under pytest-xdist with ``--dist loadgroup`` (``make test``), each module is one unit of work, so
     its module-scoped fixtures (a perform, a trained plugin, a virtual environment) are made once, on one
     worker; a test's own ``xdist_group`` mark groups tests across modules instead (the Ray tests, which
-    must not start two clusters at once). The groups holding the most slow tests go first, so that the
-    last unit handed out is a short one and the workers finish together."""
+    must not start two clusters at once). The longest groups go first, so that the last unit handed out is a
+    short one and the workers finish together: a group's length is guessed from its tests, SLOW_S for each
+    slow one (``slow(SECONDS)`` for one that takes far longer) and QUICK_S for each other (a module of a
+    hundred quick tests outlasts one of a single slow one; xdist hands a worker its next unit while its last
+    two tests still run)."""
     if not getattr(config.option, "loadgroup", False):  # what an xdist worker is told of --dist loadgroup
         return
     group = {}
@@ -70,10 +78,12 @@ def pytest_collection_modifyitems(config, items) -> None:
             item.add_marker(pytest.mark.xdist_group(group[item]))
         else:
             group[item] = str(mark.args[0] if mark.args else mark.kwargs.get("name", "default"))
-    slow: dict[str, int] = {}
+    length: dict[str, float] = {}
     for item in items:
-        slow[group[item]] = slow.get(group[item], 0) + (item.get_closest_marker("slow") is not None)
-    items.sort(key=lambda item: -slow[group[item]])
+        slow = item.get_closest_marker("slow")
+        guess = QUICK_S if slow is None else float(slow.args[0]) if slow.args else SLOW_S
+        length[group[item]] = length.get(group[item], 0.0) + guess
+    items.sort(key=lambda item: -length[group[item]])
 
 
 @pytest.fixture(scope="session")

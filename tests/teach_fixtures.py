@@ -55,3 +55,33 @@ def live(tmp_path):
     yield start
     for s in servers:
         s.stop()
+
+
+class Rows:
+    """The teach app of a composite plugin ("make a blorp of"), served on 127.0.0.1 in a thread."""
+
+    def __init__(self, root):
+        import http_client
+
+        from l2p_bullet.plugins.scaffold import scaffold
+        from l2p_bullet.teach.app import create_app
+        from l2p_bullet.teach.lesson import find_action
+        from l2p_bullet.teach.rows import RowLesson
+        from l2p_bullet.web.server import start
+
+        self.action = find_action(
+            "blorp", scaffold("blorp", ["make a blorp of"], root / "l2p-blorp", kind="composite").root
+        )
+        self.lesson = RowLesson(self.action, None)
+        self.server = start(create_app(self.lesson), name="teach-rows")
+        self.call = lambda method, path, body=None, raw=None: http_client.call(self.server.url, method, path, body, raw)
+        self.scene = self.lesson.scene(1)  # three blocks: A, B, C
+
+    def drag(self, block: str, dx: float = 0.0, dy: float = 0.12, n: int = 31, seconds: float = 1.0,
+             t0: float = 0.0) -> dict:
+        o = self.scene.get(block)
+        return {"block": block, "samples": [[t0 + seconds * i / (n - 1), o.xy[0] + dx * i / (n - 1),
+                                             o.xy[1] + dy * i / (n - 1), o.yaw] for i in range(n)]}
+
+    def post(self, *segments) -> tuple[int, dict]:
+        return self.call("POST", "/api/rows", {"scene": 1, "segments": list(segments)})

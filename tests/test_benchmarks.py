@@ -3,7 +3,8 @@
 A benchmark is run by hand, rarely, and its tables go into the docs; an import or option that a change
 broke would otherwise be found only at the next measurement. ``SMALLEST`` names, for every benchmark,
 the options that make it cheapest while it still goes through all its code (one scene, one action,
-one LSTM for one or two epochs); a new benchmark must add its own line (the first test says so). Each
+one LSTM for one or two epochs, one way of a session split, a few small frames); a new benchmark must add
+its own line (the first test says so), and one that has no small size yet gets an option for it. Each
 runs in an empty temporary folder, so a cache or output a benchmark keeps relative to where it runs
 stays out of the checkout. The numbers are not checked: only that it finishes and prints its table.
 """
@@ -16,7 +17,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from review_fixtures import CHROMIUM
+from review_fixtures import CHROMIUM, run_folder  # noqa: F401 - fixture
 
 ROOT = Path(__file__).resolve().parents[1]
 BENCHMARKS = ROOT / "benchmarks"
@@ -24,22 +25,23 @@ BENCHMARKS = ROOT / "benchmarks"
 SMALLEST: dict[str, list[str]] = {
     "bench_arms.py": ["--arms", "xarm6", "--actions", "closer", "--scenes", "1", "--timed", "0"],
     "bench_chains.py": ["--chains", "1", "--clauses", "2"],
-    "bench_embodiment.py": ["--repeats", "1", "--resolution", "64x48"],
+    "bench_embodiment.py": ["--repeats", "1", "--resolution", "64x48", "--fps", "2", "--arc", "30", "--samples", "1"],
     "bench_envs.py": ["--steps", "5", "--size", "32"],
     "bench_evaluate.py": ["--runs", "1", "--actions", "closer", "--no-ray"],
     "bench_feedback.py": ["--quick", "--only", "shipped,head", "--head-seeds", "1"],
-    "bench_generalise.py": ["--ensemble", "1", "--epochs", "1", "--cache", "cache"],
-    "bench_learning.py": ["--quick", "--skip-split", "--epochs", "1"],
+    "bench_generalise.py": ["--ensemble", "1", "--epochs", "1", "--cache", "cache", "--one-way"],
+    "bench_learning.py": ["--quick", "--skip-split", "--epochs", "1", "--actions", "closer"],
     "bench_manners.py": ["--scenes", "1", "--manners", "push", "--actions", "closer"],
     "bench_objects.py": ["--scenes", "1", "--actions", "closer"],
     "bench_past.py": ["--sizes", "0.03", "--scenes", "1"],
     "bench_perform.py": ["--scenes", "1", "--render-scenes", "0", "--cold", "0", "--actions", "closer"],
-    "bench_pictures.py": ["--sentences", "push A past B", "--renderer", "tiny", "--fps", "2"],
+    "bench_pictures.py": ["--sentences", "move A closer to B", "--renderer", "tiny", "--fps", "2",
+                          "--resolution", "160x120"],
     "bench_planning.py": ["--scenes", "1", "--planners", "default", "--actions", "closer"],
     "bench_prepositions.py": ["--scenes", "1", "--ensemble", "1", "--epochs", "1"],
-    "bench_recognize.py": ["--quick", "--cache", "cache"],
+    "bench_recognize.py": ["--quick", "--cache", "cache", "--one-way"],
     "bench_render.py": ["--only", "0"],
-    "bench_review.py": ["--runs", "1", "--no-watch"],
+    "bench_review.py": ["--runs", "1", "--no-watch"],  # and --runs-dir: the review tests' runs (below)
     "bench_robustness.py": ["--scenes", "1", "--actions", "closer"],
     "bench_rows.py": ["--scenes", "1", "--sizes", "3"],
     "bench_sweep.py": ["--scenes", "1", "--arms", "xarm6"],
@@ -55,8 +57,10 @@ def test_every_benchmark_has_a_smallest_size():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xdist_group(n)) for n in sorted(SMALLEST)])
-def test_the_benchmark_runs_at_its_smallest_size(name: str, tmp_path: Path):
-    """(Each its own unit of work under pytest-xdist: they share nothing, and together they take minutes.)"""
+def test_the_benchmark_runs_at_its_smallest_size(name: str, tmp_path: Path, request):
+    """(Each its own unit of work under pytest-xdist: together they take minutes.) bench_review grades the
+    review tests' four runs (``review_fixtures.run_folder``: performed once per test session, shared by the
+    workers) instead of performing one of its own."""
     if name == "bench_review.py" and not os.path.exists(CHROMIUM):
         if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
             pytest.fail(f"{CHROMIUM} is missing")
@@ -64,7 +68,10 @@ def test_the_benchmark_runs_at_its_smallest_size(name: str, tmp_path: Path):
     # the checkout first: a benchmark imports l2p_bullet (and research/) from the tree it belongs to
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p),
            "MPLBACKEND": "Agg"}
-    r = subprocess.run([sys.executable, str(BENCHMARKS / name), *SMALLEST[name]], cwd=tmp_path, env=env,
+    args = list(SMALLEST[name])
+    if name == "bench_review.py":
+        args += ["--runs-dir", str(request.getfixturevalue("run_folder"))]
+    r = subprocess.run([sys.executable, str(BENCHMARKS / name), *args], cwd=tmp_path, env=env,
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, f"{name} failed ({r.returncode}):\n{r.stdout[-2000:]}\n{r.stderr[-3000:]}"
     assert r.stdout.strip(), f"{name} printed nothing:\n{r.stderr[-2000:]}"

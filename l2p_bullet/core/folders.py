@@ -14,7 +14,8 @@ import os
 from pathlib import Path
 
 from ..errors import L2PError, RunFolderError
-from .runfolder import INTERRUPTED, _parked, _read_json, run_folder_command, run_folder_state
+from .runfiles import INTERRUPTED, read_json, run_folder_command, run_folder_state
+from .runfolder import _parked
 
 
 def unfinished(folder: Path) -> str | None:
@@ -29,7 +30,7 @@ def unfinished(folder: Path) -> str | None:
     state = run_folder_state(folder)
     if state == "running":
         return f"skipped {folder}: its run is still being written; wait for it to finish"
-    summary = _read_json(folder / "summary.json")
+    summary = read_json(folder / "summary.json")
     failed = isinstance(summary, dict) and summary.get("ok") is False
     if not failed and state != "incomplete":
         return None

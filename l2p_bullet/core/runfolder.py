@@ -28,14 +28,14 @@ Every command that writes a run folder (perform, plan, replay, and whatever come
 
 Callers validate every option *before* asking for the folder: a typo must never cost a previous run.
 Locks are POSIX ``flock`` (released by the kernel when a process dies, so a killed run never blocks
-the next one).
+the next one). What a folder holds and which state it is in (the marker, the files a run writes, summary.json)
+is read and written by ``runfiles.py``; this module makes, locks, replaces and puts back folders.
 """
 
 from __future__ import annotations
 
 import contextlib
 import fcntl
-import fnmatch
 import glob
 import json
 import os
@@ -47,85 +47,23 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from ..errors import RunFolderError, listed
-from .contracts import dumps_json
-
-MARKER = ".l2p-run.json"
-"""The file that makes a folder a run folder of ours: which command wrote it, when, by which process."""
-
-RUN_FILES: tuple[str, ...] = (
-    MARKER, "summary.json", "trajectory.json", "plan.json", "plan.png", "video.mp4", "video.gif",
-    "contact_sheet.png", "frames", "frames/*.png",
+from .runfiles import (
+    INTERRUPTED,
+    MARKER,
+    RUN_FILES,
+    add_to_summary,
+    mark_failed,
+    run_folder_command,
+    run_folder_state,
+    unknown_files,
+    write_summary,
 )
-"""Relative paths (fnmatch patterns) a run may write. A folder holding anything else is not replaced.
-A command that writes other files lists them in ``run_folder(..., files=...)``: they are recorded in
-the marker, so that a later ``--force`` recognises them."""
 
-INTERRUPTED = "interrupted"
-
-
-def run_folder_state(path: Path) -> str:
-    """What an existing folder is, for the rules above: ``"missing"``, ``"empty"``, ``"running"`` (its run
-    holds the lock), ``"incomplete"``, ``"finished"`` (run folders of ours) or ``"foreign"``."""
-    if not path.exists() and not path.is_symlink():
-        return "missing"
-    if path.is_symlink() or not path.is_dir():
-        return "foreign"
-    entries = list(path.iterdir())
-    if not entries:
-        return "empty"
-    marker = _read_json(path / MARKER)
-    summary = _read_json(path / "summary.json")
-    ours = isinstance(marker, dict) and marker.get("tool") == "l2p-bullet"
-    plan = _read_json(path / "plan.json") if not ours else None
-    legacy = (isinstance(summary, dict) and summary.get("schema") == 1 and "timings_s" in summary) or (
-        isinstance(plan, dict) and plan.get("schema") == 1 and "path" in plan and "planner" in plan)
-    if not (ours or legacy):
-        return "foreign"
-    extra = tuple(marker.get("files", ())) if ours and isinstance(marker.get("files"), list) else ()
-    if _unknown_files(path, RUN_FILES + tuple(str(f) for f in extra)):
-        return "foreign"
-    if ours and _locked(path / MARKER):
-        return "running"
-    interrupted = isinstance(summary, dict) and summary.get("failed_stage") == INTERRUPTED
-    if ours:
-        return "finished" if marker.get("finished") and not interrupted else "incomplete"
-    return "incomplete" if interrupted else "finished"
-
-
-def _read_json(p: Path) -> object:
-    try:
-        if p.is_symlink() or not p.is_file() or p.stat().st_size > 10_000_000:
-            return None
-        return json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, ValueError, RecursionError):
-        return None
-
-
-def _unknown_files(folder: Path, patterns: tuple[str, ...]) -> list[str]:
-    """Relative paths under ``folder`` that no pattern matches (symbolic links always count)."""
-    unknown = []
-    for root, dirs, files in os.walk(folder):
-        for name in dirs + files:
-            full = Path(root) / name
-            rel = full.relative_to(folder).as_posix()
-            if full.is_symlink() or not any(fnmatch.fnmatchcase(rel, p) for p in patterns):
-                unknown.append(rel)
-    return sorted(unknown)
-
-
-def _locked(marker: Path) -> bool:
-    """True while some process holds the marker's lock (its run is going on)."""
-    try:
-        fd = os.open(marker, os.O_RDONLY | os.O_NOFOLLOW)
-    except OSError:
-        return False
-    try:
-        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
-        return False
-    except BlockingIOError:
-        return True
-    finally:
-        os.close(fd)
+__all__ = [  # the run folder's own names; what a folder holds (runfiles.py) is re-exported for every caller
+    "INTERRUPTED", "LEGACY_COMMANDS", "MARKER", "RUN_FILES", "add_to_summary", "claim_run_folder",
+    "finish_run_folder", "mark_failed", "prepare_run_folder", "run_folder", "run_folder_command", "run_folder_state",
+    "write_summary",
+]
 
 
 @contextlib.contextmanager
@@ -216,7 +154,7 @@ def _describe(path: Path, state: str, option: str = "--out") -> str:
         return f"{path} is a symbolic link; give the folder itself as {option} (links are never replaced)"
     if not path.is_dir():
         return f"{path} exists and is not a folder; choose another {option}"
-    names = _unknown_files(path, RUN_FILES)
+    names = unknown_files(path, RUN_FILES)
     return (
         f"{path} already exists and holds files l2p-bullet did not write ({listed(names)}); choose another {option} "
         "(--force never deletes them)"
@@ -232,12 +170,6 @@ def _protected(path: Path) -> bool:
     except (RuntimeError, KeyError):
         home = None
     return real == cwd or real in cwd.parents or real == home or real == Path(real.anchor)
-
-
-def run_folder_command(path: Path) -> str | None:
-    """The command that wrote run folder ``path`` (its marker's), ``None`` for a folder from before the marker."""
-    marker = _read_json(path / MARKER)
-    return str(marker.get("command")) if isinstance(marker, dict) and marker.get("tool") == "l2p-bullet" else None
 
 
 LEGACY_COMMANDS = ("perform", "plan", "replay", "run")
@@ -446,27 +378,3 @@ def run_folder(out: str | Path | None, *, force: bool = False, prefix: str = "ru
         claim.drop_replaced()
 
 
-def mark_failed(folder: Path, stage: str | None, error: str) -> None:
-    """Leave ``folder/summary.json`` saying the run failed (``stage`` None: keep a failure already recorded)."""
-    path = folder / "summary.json"
-    summary = _read_json(path)
-    summary = summary if isinstance(summary, dict) else {"schema": 1}
-    if stage is None and summary.get("ok") is False:
-        return
-    summary.update({"ok": False, "failed_stage": stage or summary.get("failed_stage") or "unknown",
-                    "error": error[:2000]})
-    with contextlib.suppress(OSError):
-        write_summary(path, summary)
-
-
-def add_to_summary(folder: Path, fields: dict) -> None:
-    """Add ``fields`` to ``folder/summary.json`` (made when missing), keeping what it holds."""
-    summary = _read_json(folder / "summary.json")
-    summary = summary if isinstance(summary, dict) else {"schema": 1}
-    with contextlib.suppress(OSError):
-        write_summary(folder / "summary.json", {**summary, **fields})
-
-
-def write_summary(path: Path, summary: dict) -> None:
-    """Write a run folder's summary.json (numpy numbers and paths become plain JSON, NaN becomes null)."""
-    path.write_text(dumps_json(summary, indent=1) + "\n")

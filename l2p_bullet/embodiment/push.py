@@ -74,7 +74,6 @@ class Pusher:
         self.half = float(ext[0])  # the pusher's half thickness along the push
         self.z = TIP_Z + self.robot.drop
         self.dt = 1.0 / 60.0
-        self.n_steps = max(1, round(self.dt / self.world.dt))
         self.repositions, self.contact_frames, self.ticks = 0, 0, 0
         self.events: list[str] = []
         ext_top = reach.hand_extent(self.size - TIP_Z + 0.005, self.robot.spec) or (self.half, 0.03)
@@ -179,18 +178,15 @@ class Pusher:
     def tick(self, pose: np.ndarray) -> None:
         """One control period towards ``pose``: IK, then the physics steps, recording the contact."""
         prims = self.prims
-        q = prims.solve(pose[None])[0]
-        prev = prims.q
-        rec = prims.recorder
-        for i in range(1, self.n_steps + 1):
-            self.robot.command(prev + (q - prev) * (i / self.n_steps))
-            self.world.step()
-            pts = self.world.sim.contacts(ARM, self.mover)
-            rec.contact = list(np.mean([p for p, _ in pts], axis=0)) if pts else None
-            rec()
-        self.contact_frames += rec.contact is not None
-        prims.q, prims.pose = q, pose.copy()
+        prims._period(prims.solve(pose[None])[0], on_step=self._touch)
+        self.contact_frames += prims.recorder.contact is not None
+        prims.pose = pose.copy()
         self.ticks += 1
+
+    def _touch(self) -> None:
+        """After a physics step: where the hand touches the block (the mean contact point), for the recorder."""
+        pts = self.world.sim.contacts(ARM, self.mover)
+        self.prims.recorder.contact = list(np.mean([p for p, _ in pts], axis=0)) if pts else None
 
     def limited(self, b: np.ndarray, target: np.ndarray, side: float, dside: float) -> np.ndarray:
         """``target`` as far as the hand gets in one control period: at most :data:`SPEED` along the push

@@ -40,7 +40,7 @@ def test_rows_hold_the_run_and_every_actions_verdict(serial):
         assert r["max_deviation_m"] < 0.005 and r["anchor_displacement_m"] < 0.002
 
 
-@pytest.mark.slow
+@pytest.mark.slow(40)  # a local Ray cluster started
 def test_two_workers_and_ray_local_give_the_serial_rows(serial, tmp_path):
     evaluate(TEN, tmp_path / "pool", workers=2, progressbar=False)
     assert [comparable(r) for r in load_rows(tmp_path / "pool")] == serial

@@ -35,7 +35,7 @@ from l2p_bullet.data.demos import load_demos
 from l2p_bullet.learning.synthetic import write_sessions
 from l2p_bullet.plugins.bundle import load_bundle
 
-pytestmark = pytest.mark.slow
+pytestmark = pytest.mark.slow(30)  # each, with the plugins' training and install: the suite's longest module
 
 HERE = Path(__file__).resolve().parents[1]  # tests/: the shared helpers (plugin_runs.py)
 SCENES = 30

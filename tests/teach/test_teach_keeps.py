@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 from teach_fixtures import live  # noqa: F401 - fixture
 from test_teach import clear_scene, slide
-from test_teach_limits import Rows
 
 from l2p_bullet.composite import bundle as composite_bundle
 from l2p_bullet.composite.bundle import read_demos, write_demos
@@ -21,13 +20,6 @@ from l2p_bullet.composite.recipe import MAX_DEMOS, CompositeError
 from l2p_bullet.data.demos import load_demos, load_session
 from l2p_bullet.errors import TeachError
 from l2p_bullet.teach.lock import claim_plugin
-
-
-@pytest.fixture
-def rows(tmp_path):
-    r = Rows(tmp_path)
-    yield r
-    r.server.stop()
 
 
 # --- one teach per plugin folder ------------------------------------------------------------------------

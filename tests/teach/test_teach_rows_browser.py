@@ -14,7 +14,7 @@ import pytest
 from review_fixtures import open_page
 from teach_fixtures import small_video
 
-pytestmark = pytest.mark.slow
+pytestmark = pytest.mark.slow(50)  # a row of four blocks taught, trained and performed
 
 SEEDS = range(6)
 """Demonstrations recorded: scenes 0..5 (even seeds have 2 blocks, odd ones 3): 3 rows of 2, 3 of 3."""

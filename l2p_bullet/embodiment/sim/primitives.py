@@ -8,6 +8,7 @@ untouched) -> physics steps with the joint targets interpolated between control 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -124,13 +125,16 @@ class Primitives:
             self._period(q)
         self.pose = timed.poses[-1].copy()
 
-    def _period(self, q: np.ndarray) -> None:
+    def _period(self, q: np.ndarray, on_step: Callable[[], None] | None = None) -> None:
         """One control period: the joint targets go from the last commanded ``self.q`` to ``q`` over the physics
-        steps in between (the recorder sees each), then ``q`` is the commanded position."""
+        steps in between (the recorder sees each), then ``q`` is the commanded position. ``on_step`` runs after
+        each physics step, before the recorder (the push notes where the hand touches the block there)."""
         prev, n = self.q, self.steps_per_control
         for i in range(1, n + 1):
             self.robot.command(prev + (q - prev) * (i / n))
             self.world.step()
+            if on_step is not None:
+                on_step()
             self.recorder()
         self.q = q
 
