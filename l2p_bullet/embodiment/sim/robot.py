@@ -127,7 +127,7 @@ class Kinematics:
             if err < best[1]:
                 best = (q, err, ang, inside)
         q, err, ang, inside = best
-        why = (f"off by {err * 1000:.1f} mm and {math.degrees(ang):.1f} deg at best" if inside
+        why = (f"residual {err * 1000:.1f} mm, {math.degrees(ang):.1f} deg" if inside
                else "a joint limit would be violated")
         raise ReachError(
             f"the arm cannot reach ({pos[0]:.3f}, {pos[1]:.3f}, {pos[2]:.3f}) pointing down with yaw "
