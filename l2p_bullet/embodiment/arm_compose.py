@@ -105,7 +105,7 @@ def _copy_meshes(root: ET.Element, urdf: str | Path, dest: Path, sub: str) -> No
         name = mesh.get("filename", "")
         src = resolve_mesh(name, urdf)
         if not src.is_file():
-            missing.append(name)
+            missing += [name] if name not in missing else []
             continue
         tag = hashlib.sha256(str(src.parent.resolve()).encode()).hexdigest()[:8]
         folder = dest / "meshes" / sub / tag
