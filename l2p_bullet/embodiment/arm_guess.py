@@ -5,15 +5,22 @@
 - **Hand and chain**: the hand is the deepest link both fingers hang from; the arm's joints are the movable
   joints from the base to it, the wrist the last of them. Every movable joint below the hand belongs to the
   gripper (knuckles, mimics: PyBullet does not enforce URDF mimics, so all are held at their closed value).
-- **Closed**: all gripper joints at their lower or at their upper limit, whichever brings the fingertips (the
-  finger joints' deepest links) closer; the other gives the gripper's opening (the gap between the fingertips'
-  collision boxes, along the hand's own axes).
+- **Closed**: each leading gripper joint (one no URDF ``<mimic>`` ties to another) at the limit, lower or upper
+  whatever their signs, that brings the fingertips closer, every mimic joint following its leader (a Robotiq
+  2F-85's knuckles and inner fingers: a four-bar linkage); the leaders at their other limits give the gripper's
+  opening (the gap between the fingertips' collision boxes, along the hand's own axes). The fingertips are the
+  finger joints' deepest links (a Robotiq's pads); of more than two, the two farthest apart.
 - **Tool point**: a link ``l2p_tool`` added to the hand between the closed fingertips (``--tool-link`` names an
   existing one instead); the hand's +z must point from the hand towards the fingertips (the usual convention).
-- **Home, wrist model, reach, hand profile**: the home poses the tool 0.3 m above the table pointing down; the
-  wrist model (wrist = offset + azimuth - yaw) is measured and checked on a few poses; the reach ring and the
-  hand profile are measured as for the shipped arms (``arm_measure``); the arm is mounted where its ring best
-  holds the workspace. A chain that cannot reach the table pointing down is an error.
+- **Home, wrist model, reach, hand profile**: the home poses the tool 0.3 m above the table pointing down (of the
+  IK solutions from several first guesses, the one whose joints stand highest: elbow up); the wrist model (wrist
+  = offset + azimuth - yaw) is measured, with how far the wrist strays from it over the table
+  (``wrist_error``: a UR's tool stands off its base joint's plane); the reach ring and the hand profile are
+  measured as for the shipped arms (``arm_measure``); the arm is mounted where its ring best holds the
+  workspace. IK restarts from joints drawn within their limits when its seeds fail (``ik_restarts``). A chain
+  that cannot reach the table pointing down is an error.
+
+An arm and a gripper given as separate URDFs are composed into one first (``arm_compose``).
 """
 
 from __future__ import annotations
