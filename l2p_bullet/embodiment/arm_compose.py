@@ -12,7 +12,8 @@ writes that robot as one URDF into a folder of its own, so a plugin package can 
 - gripper links, joints and materials named like one of the arm's are renamed ``gripper_<name>`` (mimic
   references follow);
 - what PyBullet does not read (``transmission``, ``gazebo``, elements and attributes of other namespaces such as
-  drake's, which are not even bound in some vendors' files) is left out.
+  drake's, which are not even bound in some vendors' files) is left out, and what it needs but a vendor left out
+  (an ``<inertial>``'s ``<inertia>``) is supplied.
 
 A file that cannot be composed (not a URDF, a gripper with no movable joint or two roots, a mount link the arm
 lacks, a mesh that does not exist) is one :class:`~l2p_bullet.errors.PluginError` line.
@@ -121,6 +122,22 @@ def _copy_meshes(root: ET.Element, urdf: str | Path, dest: Path, sub: str) -> No
                           "them where the URDF says")
 
 
+def _complete_inertials(robot: ET.Element) -> None:
+    """Give an ``<inertial>`` without ``<inertia>`` (a Schunk gripper's base has only a mass) a 3 cm solid
+    sphere's, and one without ``<mass>`` 10 g: PyBullet refuses the whole file otherwise."""
+    for inertial in robot.iter("inertial"):
+        mass = inertial.find("mass")
+        if mass is None:
+            mass = ET.SubElement(inertial, "mass", value="0.01")
+        if inertial.find("inertia") is None:
+            try:
+                m = float(mass.get("value", "0.01"))
+            except ValueError:
+                m = 0.01
+            i = f"{0.4 * m * 0.03 ** 2:.3g}"
+            ET.SubElement(inertial, "inertia", ixx=i, ixy="0", ixz="0", iyy=i, iyz="0", izz=i)
+
+
 def _roots(robot: ET.Element) -> list[str]:
     children = {j.find("child").get("link") for j in robot.findall("joint") if j.find("child") is not None}
     return [link.get("name") for link in robot.findall("link") if link.get("name") not in children]
@@ -186,6 +203,8 @@ def compose(arm: str | Path, gripper: str | Path, dest: str | Path, name: str, m
         mimic = joint.find("mimic")
         if mimic is not None and mimic.get("joint") in joint_names:
             mimic.set("joint", joint_names[mimic.get("joint")])
+    _complete_inertials(a)
+    _complete_inertials(g)
     dest.mkdir(parents=True, exist_ok=True)
     _copy_meshes(a, arm, dest, "arm")
     _copy_meshes(g, gripper, dest, "gripper")

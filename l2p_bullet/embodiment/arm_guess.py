@@ -40,6 +40,8 @@ from .sim.arms import arm_source
 
 IK_RESTARTS = 12
 """First guesses IK draws for an arm new-arm makes when its seeds fail (``ArmSpec.ik_restarts``)."""
+HOME_NEARER = (0.45, 0.35)
+"""Distances (m, less 0.1) from the base where the home is sought when the mount's distance is out of reach."""
 WRIST_STRAY = 0.6
 """The most (rad) the wrist may stray from the model over the table: a UR's, 0.1-0.4 rad (its tool stands 13 cm off
 the plane of its base joint); more means the last joint does not turn the gripper about the vertical."""
@@ -312,22 +314,25 @@ def _home_and_wrist(spec: ArmSpec) -> ArmSpec:
         bent[1:4] = (-math.pi / 2, math.pi / 2, -math.pi / 2)[: max(0, min(3, n - 1))]
         starts = [np.zeros(n), np.clip(mid, -1.0, 1.0), *(np.full(n, s) * np.sign(np.arange(n) % 2 - 0.5)
                                                          for s in (0.5, 1.0)), bent, -bent]
-        r = math.hypot(*spec.mount[:2])
-        x, y = spec.mount[0] + r, spec.mount[1]
         found = []  # (mean link height, -k, joints, yaw): the home that keeps the arm highest above the table
-        for k, s in enumerate(starts):
-            for turned in (0.0, math.pi / 2, -math.pi / 2, math.pi):
-                try:
-                    q = kin.solve((x - 0.1, y, 0.3), turned, s)
-                except ReachError:
-                    continue
-                found.append((_link_height(kin, spec, q), -k, q, turned))
-                break
-            if len(found) >= 2 and not spec.ik_restarts:
+        first = math.hypot(*spec.mount[:2])
+        for r in (first, *HOME_NEARER):  # a small arm (a UR3e) reaches only nearer its base
+            x, y = spec.mount[0] + r, spec.mount[1]
+            for k, s in enumerate(starts):
+                for turned in (0.0, math.pi / 2, -math.pi / 2, math.pi):
+                    try:
+                        q = kin.solve((x - 0.1, y, 0.3), turned, s)
+                    except ReachError:
+                        continue
+                    found.append((_link_height(kin, spec, q), -k, q, turned))
+                    break
+                if len(found) >= 2 and not spec.ik_restarts:
+                    break
+            if found or not spec.ik_restarts:
                 break
         if not found:
-            raise PluginError(f"the arm cannot point its gripper down {r - 0.1:.2f} m in front of its base: its chain "
-                              "cannot reach the table")
+            raise PluginError(f"the arm cannot point its gripper down {first - 0.1:.2f} m in front of its base: its "
+                              "chain cannot reach the table")
         _, _, home, turned = max(found, key=lambda f: f[:2]) if spec.ik_restarts else found[0]
         wrist = spec.arm_joints.index(spec.wrist_joint)
         offset = float(home[wrist] + turned)  # straight ahead of the base (azimuth 0): wrist = offset - yaw
@@ -335,7 +340,12 @@ def _home_and_wrist(spec: ArmSpec) -> ArmSpec:
         spec = replace(spec, home=tuple(round(float(v), 4) for v in home), wrist_offset=round(offset, 4))
         seeds = []
         for z in (0.03, 0.15):
-            q = kin.solve((x, y, z), spec.wrist_offset, _in_plane(spec, home, 0.0, 0.0))
+            try:
+                q = kin.solve((x, y, z), spec.wrist_offset, _in_plane(spec, home, 0.0, 0.0))
+            except ReachError:
+                if not spec.ik_restarts:
+                    raise
+                q = kin.solve((x - 0.1, y, z), spec.wrist_offset, _in_plane(spec, home, 0.0, 0.0))
             seeds.append(tuple(round(float(v), 4) for v in q))
         spec = replace(spec, ik_seeds=tuple(seeds))
         stray = 0.0
