@@ -124,6 +124,10 @@ def guess(name: str, urdf: str, tool_link: str | None = None, fingers: list[str]
             raise PluginError(f"{urdf}: the finger joints {', '.join(f.name for f in finger)} all end in one link; "
                               "name the two fingers' joints with --fingers J,J")
         closed, opening, tips = _closing(sim, ARM, joints, below, tips, hand, mimic)
+        bare = [t for t in tips if not len(sim.collision_vertices(ARM, t))]
+        if bare:
+            raise PluginError(f'{urdf}: the fingertip link "{joints[bare[0]].link}" has no collision shape (a gripper '
+                              "described without its fingers): attach them, or name the fingers with --fingers J,J")
         tool, frame = _tool(sim, ARM, joints, hand, tips, below, closed, tool_link)
         wrist = arm[-1]
         lo, hi = joints[wrist].lower, joints[wrist].upper

@@ -42,10 +42,11 @@ def _files(tmp_path: Path) -> tuple[Path, Path]:
     for d in (arm_dir / "meshes", grip_dir / "meshes"):
         shutil.copy(_data() / "cube.obj", d / "part.obj")
     arm = arm_dir / "urdf" / "arm.urdf"
+    chain = "".join(_link(f"link{i}") + _joint(f"j{i}", f"link{i - 1}", f"link{i}") for i in range(2, 7))
     arm.write_text('<robot name="arm" xmlns:drake="http://drake.mit.edu">' + _link("base_link")
                    + _link("link1", "package://my_arm/meshes/part.obj") + _link("tool0")
-                   + _joint("j1", "base_link", "link1").replace("<limit", '<limit drake:acceleration="2"')
-                   + _joint("flange", "link1", "tool0", "fixed") + "<transmission name='t'/></robot>")
+                   + _joint("j1", "base_link", "link1").replace("<limit", '<limit drake:acceleration="2"') + chain
+                   + _joint("flange", "link6", "tool0", "fixed") + "<transmission name='t'/></robot>")
     gripper = grip_dir / "urdf" / "gripper.urdf"
     gripper.write_text(
         '<robot name="g">' + _link("base_link", "../meshes/part.obj") + _link("left") + _link("right")
@@ -76,7 +77,8 @@ def test_composition_resolves_every_mesh_path_and_renames_what_collides(tmp_path
     sim = Bullet()
     try:
         sim.load_urdf("r", str(out), (0.0, 0.0, 0.0), fixed=True)
-        assert {j.name for j in sim.joints("r") if j.movable} == {"j1", "left_finger", "right_finger"}
+        assert {j.name for j in sim.joints("r") if j.movable} == {f"j{i}" for i in range(1, 7)} | {"left_finger",
+                                                                                                "right_finger"}
     finally:
         sim.close()
 
@@ -87,6 +89,7 @@ def test_composition_resolves_every_mesh_path_and_renames_what_collides(tmp_path
     ("mount", 'has no link "wrist_9" to mount the gripper on'),
     ("not xml", "is not valid XML"),
     ("mesh", r"names 1 mesh file\(s\) that do not exist"),
+    ("bare", 'the fingertip link "left" has no collision shape'),
 ])
 def test_a_gripper_that_cannot_be_composed_is_one_line_and_leaves_nothing(tmp_path: Path, case: str, match: str):
     from l2p_bullet.plugins.arm_scaffold import scaffold_arm
@@ -99,6 +102,8 @@ def test_a_gripper_that_cannot_be_composed_is_one_line_and_leaves_nothing(tmp_pa
         text = text.replace("</robot>", _link("loose") + "</robot>")
     elif case == "not xml":
         text = text.replace("</robot>", "")
+    elif case == "bare":  # a gripper described without its fingers (airo-models' Schunk EGK40 alone)
+        text = text.replace(_link("left"), '<link name="left"/>').replace(_link("right"), '<link name="right"/>')
     elif case == "mesh":
         (gripper.parent.parent / "meshes" / "part.obj").unlink()
     gripper.write_text(text)
