@@ -82,6 +82,8 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     except Exception as e:  # pybullet.error (imported only in embodiment/sim/): XML it still cannot load
         if gripper is not None:
             shutil.rmtree(root, ignore_errors=True)  # what compose wrote: nothing of a refused arm is left
+            if isinstance(e, PluginError):  # named by the files the user gave, not by the removed composition
+                raise PluginError(str(e).replace(urdf, f"{source} (composed)")) from None
         if type(e).__module__ != "pybullet":
             raise
         raise PluginError(f"{urdf}: pybullet cannot load this URDF ({e}); its own message, printed above, "
