@@ -158,15 +158,13 @@ def _ur_robotiq(tmp_path: Path) -> Path:
     return compose(airo.get_urdf_path("ur5e"), airo.get_urdf_path("robotiq_2f_85"), tmp_path / "d", "ur5e-robotiq")
 
 
-def test_the_robotiq_mimic_joints_move_together(tmp_path: Path):
-    """PyBullet ignores <mimic>: driven by its one leading joint, the Robotiq's five mimic joints follow it (its
-    four-bar linkage stays closed), and its pads open 8 cm apart."""
+def _ur_spec(tmp_path: Path):
+    """The composed UR5e + Robotiq as an ArmSpec written by hand (tool0 its tool link; new-arm's measuring is the
+    slow test's), and the Robotiq's mimics: joint -> (leader, multiplier, offset)."""
     from l2p_bullet.arms import ArmSpec
-    from l2p_bullet.core.scene import Scene
     from l2p_bullet.embodiment import arm_guess
     from l2p_bullet.embodiment.sim.bullet import Bullet
     from l2p_bullet.embodiment.sim.robot import ARM
-    from l2p_bullet.embodiment.sim.world import World
 
     urdf = _ur_robotiq(tmp_path)
     sim = Bullet()
@@ -181,14 +179,26 @@ def test_the_robotiq_mimic_joints_move_together(tmp_path: Path):
     grip = [j.index for j in joints if j.movable and j.index not in arm]
     mimic = arm_guess._mimics(str(urdf), by, grip)
     lead = by["finger_joint"].index
-    assert len(mimic) == 5 and {m[0] for m in mimic.values()} == {lead}
     closed = arm_guess.follow({lead: 0.8}, mimic)
     spec = ArmSpec(name="ur-test", urdf=str(urdf), arm_joints=arm, tool_link=by["flange-tool0"].index,
                    finger_joints=tuple(grip), finger_closed=tuple(closed[j] for j in grip),
                    home=(0.0, -1.76, 1.85, -1.66, -1.57, 0.0), ik_seeds=(), wrist_joint=arm[-1],
                    fingertip_links=(by["left_inner_finger_pad_joint"].index, by["right_inner_finger_pad_joint"].index),
-                   wrist_limit=6.2832,
+                   wrist_limit=6.2832, mount=(-0.54, 0.0, 0.0),
                    finger_mimic=tuple((j, lead_, m, o) for j, (lead_, m, o) in sorted(mimic.items())))
+    return spec, mimic, lead
+
+
+def test_the_robotiq_mimic_joints_move_together(tmp_path: Path):
+    """PyBullet ignores <mimic>: driven by its one leading joint, the Robotiq's five mimic joints follow it (its
+    four-bar linkage stays closed), and its pads open 8 cm apart."""
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.embodiment.sim.robot import ARM
+    from l2p_bullet.embodiment.sim.world import World
+
+    spec, mimic, lead = _ur_spec(tmp_path)
+    assert len(mimic) == 5 and {m[0] for m in mimic.values()} == {lead}
+    grip = list(spec.finger_joints)
     with World(Scene([]), arm=spec, visuals=False) as world:
         robot = world.robot
         assert robot.finger_opening() == 0.0
@@ -200,3 +210,36 @@ def test_the_robotiq_mimic_joints_move_together(tmp_path: Path):
         for j, (lead_, mult, off) in mimic.items():
             assert q[j] == pytest.approx(mult * q[lead_] + off, abs=0.02), (j, q)
         assert robot.finger_opening() > 0.05
+
+
+def test_ik_restarts_reach_what_a_far_seed_misses(tmp_path: Path):
+    """From joints drawn anywhere, PyBullet's IK alone misses some poses pointing down in the UR5e's workspace (a
+    joint limit, or a residual); with the restarts ``new-arm`` writes (``ik_restarts``) it reaches all."""
+    import dataclasses
+    import math
+
+    import numpy as np
+
+    from l2p_bullet.embodiment.sim.robot import Kinematics
+    from l2p_bullet.errors import ReachError
+
+    spec, _, _ = _ur_spec(tmp_path)
+    reached = {}
+    for n in (0, 12):
+        kin = Kinematics(dataclasses.replace(spec, ik_restarts=n), spec.mount)
+        rng = np.random.default_rng(5)
+        reached[n] = 0
+        try:
+            for _ in range(30):
+                seed = rng.uniform(-math.pi, math.pi, 6)
+                pose = (-0.1 + rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), 0.25)
+                try:
+                    q = kin.solve(pose, rng.uniform(-3.0, 3.0), seed)
+                except ReachError as e:
+                    assert "cannot reach (" in str(e) and "pointing down with yaw" in str(e)
+                    continue
+                reached[n] += 1
+                assert np.all(q >= kin.arm_lower - 1e-6) and np.all(q <= kin.arm_upper + 1e-6)
+        finally:
+            kin.close()
+    assert reached[0] < 30 and reached[12] == 30, reached

@@ -121,6 +121,9 @@ class Kinematics:
                 best = (q, err, ang, inside)
         for s in self._restarts(pos, seed):
             q, err, ang = self._try(pos, orn, s, max(iterations, 50), rounds, True)
+            if IK_POS_TOL < err < 10 * IK_POS_TOL:  # the null-space variant stalls millimetres short: plain DLS on
+                q, err, ang = self._try(pos, orn, q, max(iterations, 50), rounds, False)
+            q = self._wrap(q)
             inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
@@ -147,6 +150,14 @@ class Kinematics:
         lo, hi = np.maximum(self.arm_lower, -math.pi), np.minimum(self.arm_upper, math.pi)
         rng = np.random.default_rng(0)
         return [turned, *(rng.uniform(lo, hi) for _ in range(n - 1))]
+
+    def _wrap(self, q: np.ndarray) -> np.ndarray:
+        """``q`` with each joint outside its limits turned by whole turns back inside them where that fits: the
+        same pose (a restart, drawn anywhere, lands a full turn off as often as not)."""
+        turns = np.round((np.clip(q, self.arm_lower, self.arm_upper) - q) / (2 * math.pi))
+        out = q + turns * 2 * math.pi
+        ok = (out >= self.arm_lower - 1e-6) & (out <= self.arm_upper + 1e-6)
+        return np.where(ok, out, q)
 
     def close(self) -> None:
         self.sim.close()
