@@ -124,7 +124,14 @@ def _copy_meshes(root: ET.Element, urdf: str | Path, dest: Path, sub: str) -> No
 
 def _complete_inertials(robot: ET.Element) -> None:
     """Give an ``<inertial>`` without ``<inertia>`` (a Schunk gripper's base has only a mass) a 3 cm solid
-    sphere's, and one without ``<mass>`` 10 g: PyBullet refuses the whole file otherwise."""
+    sphere's, and one without ``<mass>`` 10 g: PyBullet refuses the whole file otherwise. A link without any
+    (a frame such as ``tool0``, which ROS reads as massless) gets 1 g: PyBullet would give it 1 kg and a
+    1 kg m^2 inertia, and print a warning on stdout that would corrupt ``--json`` output."""
+    for link in robot.findall("link"):
+        if link.find("inertial") is None:
+            inertial = ET.SubElement(link, "inertial")
+            ET.SubElement(inertial, "mass", value="0.001")
+            ET.SubElement(inertial, "inertia", ixx="1e-07", ixy="0", ixz="0", iyy="1e-07", iyz="0", izz="1e-07")
     for inertial in robot.iter("inertial"):
         mass = inertial.find("mass")
         if mass is None:
