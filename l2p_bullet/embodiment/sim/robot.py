@@ -114,6 +114,8 @@ class Kinematics:
                                                   for ns in (False, True)]
         for s, null_space, its in attempts:
             q, err, ang = self._try(pos, orn, np.asarray(s, float), its, rounds, null_space)
+            if self.spec.ik_restarts:  # an arm without a fitted model: its joints may land whole turns off
+                q = self._near(q, np.asarray(seed, float))
             inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
@@ -123,7 +125,7 @@ class Kinematics:
             q, err, ang = self._try(pos, orn, s, max(iterations, 50), rounds, True)
             if IK_POS_TOL < err < 10 * IK_POS_TOL:  # the null-space variant stalls millimetres short: plain DLS on
                 q, err, ang = self._try(pos, orn, q, max(iterations, 50), rounds, False)
-            q = self._wrap(q)
+            q = self._near(q, np.asarray(seed, float))
             inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
@@ -151,13 +153,18 @@ class Kinematics:
         rng = np.random.default_rng(0)
         return [turned, *(rng.uniform(lo, hi) for _ in range(n - 1))]
 
-    def _wrap(self, q: np.ndarray) -> np.ndarray:
-        """``q`` with each joint outside its limits turned by whole turns back inside them where that fits: the
-        same pose (a restart, drawn anywhere, lands a full turn off as often as not)."""
-        turns = np.round((np.clip(q, self.arm_lower, self.arm_upper) - q) / (2 * math.pi))
-        out = q + turns * 2 * math.pi
-        ok = (out >= self.arm_lower - 1e-6) & (out <= self.arm_upper + 1e-6)
-        return np.where(ok, out, q)
+    def _near(self, q: np.ndarray, seed: np.ndarray) -> np.ndarray:
+        """``q`` with each joint turned by whole turns to lie nearest ``seed`` inside its limits: the same pose (a
+        restart, drawn anywhere, lands a full turn off as often as not, and a UR's joints turn +-2 turns), and the
+        motion from the seed (the previous solution) stays continuous instead of jumping a turn."""
+        out = q.copy()
+        for k in (np.round((seed - q) / (2 * math.pi)), np.round((np.clip(q, self.arm_lower, self.arm_upper) - q)
+                                                                 / (2 * math.pi))):
+            cand = q + k * 2 * math.pi
+            ok = (cand >= self.arm_lower - 1e-6) & (cand <= self.arm_upper + 1e-6)
+            out = np.where(ok & ((out < self.arm_lower - 1e-6) | (out > self.arm_upper + 1e-6)
+                                 | (np.abs(cand - seed) < np.abs(out - seed))), cand, out)
+        return out
 
     def close(self) -> None:
         self.sim.close()
