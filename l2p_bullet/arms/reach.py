@@ -264,9 +264,9 @@ def wrist_values(xy: np.ndarray, yaw: np.ndarray, base_xy: tuple[float, float] =
 def wrist_offsets(lo: float, hi: float, angle: float | None, arm: ArmSpec = PANDA,
                   margin: float = WRIST_MARGIN) -> list[float]:
     """Grasp offsets (``angle`` plus multiples of a half turn, or any multiple of 90 degrees when ``angle`` is
-    None) that keep every wrist value in [lo, hi] within the wrist's range less ``margin``, best centred
-    first."""
-    limit = arm.wrist_limit - margin
+    None) that keep every wrist value in [lo, hi] within the wrist's range less ``margin`` and less the arm's
+    measured stray from the model (``ArmSpec.wrist_error``), best centred first."""
+    limit = arm.wrist_limit - margin - arm.wrist_error
     if hi - lo > 2 * limit:
         return []
     base, step = (0.0, QUARTER) if angle is None else (angle, 2 * QUARTER)

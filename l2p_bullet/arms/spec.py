@@ -74,6 +74,18 @@ class ArmSpec:
     # the workspace disk, as a lab would mount it; the default is the Panda's (core.scene.ROBOT_BASE_XY).
     mount: tuple[float, float, float] = (ROBOT_BASE_XY[0], ROBOT_BASE_XY[1], 0.0)
     description: str = ""
+    # Extra first guesses IK tries when the seeds fail (0: none). The built-in arms' seeds and wrist model put
+    # every solve in the arm's plane; an arm made by ``new-arm`` (a UR5e, whose shoulder is off its base axis)
+    # has no such model, and its IK restarts from joints drawn within their limits (embodiment/sim/robot.py).
+    ik_restarts: int = 0
+    # How far (rad) the wrist joint strays from ``wrist_offset + azimuth - yaw`` over the reach ring, measured by
+    # ``new-arm``: the planner keeps the wrist this much further from its limits. 0 for the built-in arms, whose
+    # plane keeps the model exact.
+    wrist_error: float = 0.0
+    # Gripper joints that follow another (URDF ``<mimic>``, which PyBullet ignores): (joint, leader, multiplier,
+    # offset), joint indices. The fingers are driven together: every gripper joint's target is its leader's
+    # times the multiplier plus the offset, as a four-bar linkage (the Robotiq 2F-85's) moves.
+    finger_mimic: tuple[tuple[int, int, float, float], ...] = ()
 
 
 def problems(spec: ArmSpec) -> str | None:
@@ -94,6 +106,10 @@ def problems(spec: ArmSpec) -> str | None:
         return f"reach must be (near, far) metres with 0 <= near < far (got {spec.reach})"
     if not (0.0 < spec.gripper_opening < 1.0) or not (0.0 < spec.wrist_limit <= 2 * math.pi + 1e-3):
         return "gripper_opening must be in (0, 1) m and wrist_limit in (0, 2 pi] rad"
+    if spec.ik_restarts < 0 or not (0.0 <= spec.wrist_error < math.pi):
+        return "ik_restarts must be >= 0 and wrist_error in [0, pi) rad"
+    if any(j not in spec.finger_joints or lead not in spec.finger_joints for j, lead, _, _ in spec.finger_mimic):
+        return "finger_mimic names joints that are not finger joints"
     if not (0.0 < spec.payload < 1000.0):
         return f"payload must be in (0, 1000) kg (got {spec.payload})"
     return None

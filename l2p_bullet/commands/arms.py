@@ -138,8 +138,17 @@ COMMANDS: list[click.Command] = [arms_cmd]
 @click.option("--fingers", default=None, metavar="J,J", help='The finger joints (default: joints named "finger").')
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Folder to create (default: ./l2p-arm-NAME). Never overwritten.")
-def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None, out: str | None) -> None:
-    """Scaffold an installable arm plugin package for NAME from a URDF.
+@click.option("--gripper", default=None, type=click.Path(dir_okay=False),
+              help="The gripper's own URDF, bolted to the arm's --mount link (the arm's URDF then has no gripper); "
+                   "the two are written as one URDF, with their meshes, into the package.")
+@click.option("--mount", default=None, metavar="LINK", help="The arm's link the gripper is bolted to (default: tool0 "
+              "if the arm has it, else its last link).")
+@click.option("--mount-xyz", default="0,0,0", metavar="X,Y,Z",
+              help="The gripper's offset in the mount link's frame (m).")
+@click.option("--mount-rpy", default="0,0,0", metavar="R,P,Y", help="The gripper's rotation on the mount link (rad).")
+def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None, out: str | None,
+                gripper: str | None, mount: str | None, mount_xyz: str, mount_rpy: str) -> None:
+    """Scaffold an installable arm plugin package for NAME from a URDF (or an arm's URDF and a gripper's).
 
     It reads the joints, guesses the arm's chain, the fingers and the tool point between the fingertips,
     measures the gripper's opening, the hand profile and the reachable ring on the table, and writes the
@@ -148,14 +157,27 @@ def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None
     \b
     Example:
       l2p-bullet new-arm my-xarm --urdf path/to/xarm6_with_gripper.urdf
+      l2p-bullet new-arm my-ur5e --urdf ur5e.urdf --gripper robotiq_2f_85.urdf
       pip install ./l2p-arm-my-xarm && l2p-bullet arms --check
       l2p-bullet perform "move A around B" --arm my-xarm
     """
+    from ..errors import PluginError
     from ..plugins.arm_scaffold import scaffold_arm
 
+    def triple(text: str, option: str) -> tuple[float, float, float]:
+        try:
+            x, y, z = (float(v) for v in text.split(","))
+        except ValueError:
+            raise PluginError(f"{option} takes three numbers joined by commas, e.g. 0,0,0.01 (got {text!r})") from None
+        return x, y, z
+
+    xyz, rpy = triple(mount_xyz, "--mount-xyz"), triple(mount_rpy, "--mount-rpy")
+    if gripper is None and (mount is not None or mount_xyz != "0,0,0" or mount_rpy != "0,0,0"):
+        raise PluginError("--mount, --mount-xyz and --mount-rpy place a --gripper: give its URDF too")
     click.echo(f"reading and measuring {urdf} (a minute) ...", err=True)
     names = [f.strip() for f in fingers.split(",") if f.strip()] if fingers else None
-    made = scaffold_arm(name, urdf, out, tool_link=tool_link, fingers=names)
+    made = scaffold_arm(name, urdf, out, tool_link=tool_link, fingers=names, gripper=gripper, mount=mount,
+                        mount_xyz=xyz, mount_rpy=rpy)
     s = made.spec
     click.echo(f'wrote {made.root}/ for the arm "{name}": {len(s.arm_joints)} arm joints, '
                f"{len(s.finger_joints)} gripper joints, opens {s.gripper_opening * 100:.1f} cm, reaches "

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -24,6 +25,8 @@ from ..embodiment.sim.urdf_check import check_urdf as sim_check_urdf
 from ..errors import PluginError, sizes
 from . import arms as arm_plugins
 
+DESCRIPTION = "description"
+"""The folder inside a package made with ``--gripper`` that holds the composed URDF and its meshes."""
 ARM_NAME = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 
 
@@ -39,9 +42,15 @@ class ArmScaffold:
 
 
 def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_link: str | None = None,
-                 fingers: list[str] | None = None) -> ArmScaffold:
+                 fingers: list[str] | None = None, gripper: str | None = None, mount: str | None = None,
+                 mount_xyz: tuple[float, float, float] = (0.0, 0.0, 0.0),
+                 mount_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> ArmScaffold:
     """Guess and measure the arm in ``urdf`` (``arm_guess.guess``) and write its plugin project into ``out``
-    (default ``./l2p-arm-NAME``). Never overwrites; an installed arm of the same name is refused up front."""
+    (default ``./l2p-arm-NAME``). Never overwrites; an installed arm of the same name is refused up front.
+
+    With ``gripper``, the arm and the gripper (separate URDFs) are first composed into one URDF inside the package
+    (``embodiment.arm_compose``: the gripper bolted to ``mount`` at ``mount_xyz``/``mount_rpy``, every mesh copied
+    beside it), which the package ships: it works wherever pip installs it."""
     if not ARM_NAME.match(name):
         raise PluginError(f'"{name}" is not a valid arm name: use lower-case letters and digits joined by hyphens, '
                           'e.g. "my-ur5"')
@@ -53,22 +62,40 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
     if root.exists() or root.is_symlink():
         raise PluginError(f"{root} already exists; choose another --out (new-arm never overwrites)")
     check_writable(root, "--out", PluginError)
-    check_urdf(urdf)
+    pkg = root / module
+    source = os.path.basename(urdf)
+    if gripper is not None:
+        from ..embodiment.arm_compose import compose
+
+        source = f"{source} with {os.path.basename(gripper)}"
+        for path, role in ((urdf, "arm"), (gripper, "gripper")):
+            if not os.path.isfile(path):
+                raise PluginError(f"the {role} URDF {path}: no such file")
+        try:
+            urdf = str(compose(urdf, gripper, pkg / DESCRIPTION, name, mount, mount_xyz, mount_rpy))
+        except BaseException:
+            shutil.rmtree(root, ignore_errors=True)
+            raise
     try:
+        check_urdf(urdf)
         spec = arm_guess.guess(name, urdf, tool_link=tool_link, fingers=fingers)
     except Exception as e:  # pybullet.error (imported only in embodiment/sim/): XML it still cannot load
+        if gripper is not None:
+            shutil.rmtree(root, ignore_errors=True)  # what compose wrote: nothing of a refused arm is left
+            if isinstance(e, PluginError):  # named by the files the user gave, not by the removed composition
+                raise PluginError(str(e).replace(urdf, f"{source} (composed)")) from None
         if type(e).__module__ != "pybullet":
             raise
         raise PluginError(f"{urdf}: pybullet cannot load this URDF ({e}); its own message, printed above, "
                           "says why") from None
-    pkg = root / module
-    pkg.mkdir(parents=True)
+    pkg.mkdir(parents=True, exist_ok=gripper is not None)
     texts = {
-        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist, version=__version__),
-        pkg / "__init__.py": _INIT.format(
+        root / "pyproject.toml": _PYPROJECT.format(name=name, module=module, dist=dist, version=__version__)
+        + (_PACKAGE_DATA.format(module=module, folder=DESCRIPTION) if gripper is not None else ""),
+        pkg / "__init__.py": (_INIT_SHIPPED if gripper is not None else _INIT).format(
             name=name,
-            src=_docstring_text(os.path.basename(urdf)),
-            urdf=_urdf_expr(spec.urdf),
+            src=_docstring_text(source),
+            urdf=_urdf_expr(spec.urdf) if gripper is None else repr(f"{DESCRIPTION}/{name}.urdf"),
             spec=arm_guess.spec_source(spec),
         ),
         root / "README.md": _README.format(
@@ -76,7 +103,7 @@ def scaffold_arm(name: str, urdf: str, out: str | Path | None = None, *, tool_li
             dist=dist,
             module=module,
             root=root.name,
-            urdf=spec.urdf,
+            urdf=spec.urdf if gripper is None else source,
             near=spec.reach[0],
             far=spec.reach[1],
             mount=spec.mount[0],
@@ -152,6 +179,28 @@ correct what was guessed wrong, and run `l2p-bullet arms --check` after any chan
 from l2p_bullet.arms import ArmSpec
 
 URDF = {urdf}
+
+ARM = {spec}
+'''
+
+_PACKAGE_DATA = """
+# The composed URDF and its meshes ship inside the package.
+[tool.setuptools.package-data]
+{module} = ["{folder}/*.urdf", "{folder}/meshes/**/*"]
+"""
+
+_INIT_SHIPPED = '''"""Arm plugin "{name}" for l2p-bullet, made by `l2p-bullet new-arm` from {src}.
+
+The arm and its gripper are one URDF in the folder beside this module, with their meshes. Every field was read
+from it or measured on it (l2p_bullet/embodiment/arm_guess.py says how): check them, correct what was guessed
+wrong, and run `l2p-bullet arms --check` after any change.
+"""
+
+import os
+
+from l2p_bullet.arms import ArmSpec
+
+URDF = os.path.join(os.path.dirname(os.path.abspath(__file__)), {urdf})
 
 ARM = {spec}
 '''

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 import subprocess
 import sys
 import sysconfig
@@ -125,3 +126,29 @@ def test_new_arm_writes_a_urdf_named_like_code_into_a_module_that_runs_none(tmp_
     tree = ast.parse((made.root / made.module / "__init__.py").read_text())
     assert [type(s).__name__ for s in tree.body] == ["Expr", "ImportFrom", "Assign", "Assign"], ast.dump(tree)[:400]
     assert "made by `l2p-bullet new-arm` from " in ast.get_docstring(tree)
+
+
+@pytest.mark.slow
+def test_the_composed_ur5e_with_a_robotiq_is_installed_checked_and_performs_around(tmp_path: Path):
+    """The named goal: the UR5e and the Robotiq 2F-85 of airo-models, one new-arm command, pip-installed into a
+    throw-away environment layered on the project's (as test_arm_plugin_install.py does), ``arms --check`` OK,
+    and "move A around B" succeeds with the anchor untouched."""
+    airo = pytest.importorskip("airo_models.files")
+    env = tmp_path / "env"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env)], check=True)
+    site = next((env / "lib").glob("python3*/site-packages"))
+    (site / "zz_host_env.pth").write_text(f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
+    venv = env / "bin" / "python"
+    cli = [str(venv), "-m", "l2p_bullet.cli"]
+    out = run([*cli, "new-arm", "my-ur5e", "--urdf", airo.get_urdf_path("ur5e"), "--gripper",
+               airo.get_urdf_path("robotiq_2f_85")], tmp_path, timeout=600)
+    assert "wrote l2p-arm-my-ur5e/" in out.stdout and "6 arm joints" in out.stdout and "opens 8." in out.stdout
+    run([sys.executable, "-m", "pip", "--python", str(venv), "install", "--no-deps", "--no-build-isolation",
+         "--no-index", "--quiet", str(tmp_path / "l2p-arm-my-ur5e")], tmp_path)
+    shutil.rmtree(tmp_path / "l2p-arm-my-ur5e")  # the installed package carries its URDF and meshes
+    checked = json.loads(run([*cli, "arms", "my-ur5e", "--check", "--json"], tmp_path, timeout=900).stdout)
+    assert checked["arms"][0]["ok"], checked
+    r = json.loads(run([*cli, "perform", "move A around B", "--arm", "my-ur5e", "--no-render", "--json", "-q",
+                        "--out", str(tmp_path / "run")], tmp_path, timeout=300).stdout)
+    assert r["verdict"]["success"], r
+    assert r["anchor_displacement_m"] < 0.001 and r["final_error_m"] < 0.005

@@ -340,6 +340,12 @@ class Bullet:
         out = []
         for shape in pb.getCollisionShapeData(b, link, physicsClientId=self._id):
             geom, dims, filename, pos, orn = shape[2], shape[3], shape[4], shape[5], shape[6]
+            if geom == pb.GEOM_MESH and filename in (b"unknown_file", "unknown_file"):
+                # a URDF cylinder, which Bullet meshes itself and names no file: the link's box holds it
+                lo, hi = self.aabb(name, link)
+                corners = [(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+                out.append(np.array(corners))
+                continue
             if geom == pb.GEOM_MESH:
                 local = _obj_vertices(filename.decode() if isinstance(filename, bytes) else filename) * np.asarray(dims)
             elif geom == pb.GEOM_BOX:

@@ -46,6 +46,7 @@ class Kinematics:
 
     def __init__(self, spec: ArmSpec, base_xyz: tuple[float, float, float]):
         self.sim, self.spec = Bullet(), spec
+        self.base_xy = (float(base_xyz[0]), float(base_xyz[1]))
         try:
             load_arm(self.sim, arm_urdf(spec, visuals=False, collisions=False), base_xyz)
         except BaseException:
@@ -113,10 +114,22 @@ class Kinematics:
                                                   for ns in (False, True)]
         for s, null_space, its in attempts:
             q, err, ang = self._try(pos, orn, np.asarray(s, float), its, rounds, null_space)
+            if self.spec.ik_restarts:  # an arm without a fitted model: its joints may land whole turns off
+                q = self._near(q, np.asarray(seed, float))
             inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
             if best is None or err < best[1]:
+                best = (q, err, ang, inside)
+        for s in self._restarts(pos, seed):
+            q, err, ang = self._try(pos, orn, s, max(iterations, 50), rounds, True)
+            if IK_POS_TOL < err < 10 * IK_POS_TOL:  # the null-space variant stalls millimetres short: plain DLS on
+                q, err, ang = self._try(pos, orn, q, max(iterations, 50), rounds, False)
+            q = self._near(q, np.asarray(seed, float))
+            inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
+            if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
+                return q
+            if err < best[1]:
                 best = (q, err, ang, inside)
         q, err, ang, inside = best
         why = (f"residual {err * 1000:.1f} mm, {math.degrees(ang):.1f} deg" if inside
@@ -125,6 +138,33 @@ class Kinematics:
             f"the arm cannot reach ({pos[0]:.3f}, {pos[1]:.3f}, {pos[2]:.3f}) pointing down with yaw "
             f"{math.degrees(yaw):.0f} deg ({why}); keep paths inside the workspace"
         )
+
+    def _restarts(self, pos, seed: np.ndarray) -> list[np.ndarray]:
+        """First guesses for an arm without a fitted wrist model (``ArmSpec.ik_restarts``; none for the others,
+        whose seeds suffice): the seed with its base joint turned towards ``pos``, then joints drawn within their
+        limits (clipped to a half turn either side, where a chain's useful poses lie) from a generator seeded
+        alike every time, so that a solve is repeatable."""
+        n = self.spec.ik_restarts
+        if not n:
+            return []
+        turned = np.array(seed, float)
+        turned[0] = math.atan2(pos[1] - self.base_xy[1], pos[0] - self.base_xy[0])
+        lo, hi = np.maximum(self.arm_lower, -math.pi), np.minimum(self.arm_upper, math.pi)
+        rng = np.random.default_rng(0)
+        return [turned, *(rng.uniform(lo, hi) for _ in range(n - 1))]
+
+    def _near(self, q: np.ndarray, seed: np.ndarray) -> np.ndarray:
+        """``q`` with each joint turned by whole turns to lie nearest ``seed`` inside its limits: the same pose (a
+        restart, drawn anywhere, lands a full turn off as often as not, and a UR's joints turn +-2 turns), and the
+        motion from the seed (the previous solution) stays continuous instead of jumping a turn."""
+        out = q.copy()
+        for k in (np.round((seed - q) / (2 * math.pi)), np.round((np.clip(q, self.arm_lower, self.arm_upper) - q)
+                                                                 / (2 * math.pi))):
+            cand = q + k * 2 * math.pi
+            ok = (cand >= self.arm_lower - 1e-6) & (cand <= self.arm_upper + 1e-6)
+            out = np.where(ok & ((out < self.arm_lower - 1e-6) | (out > self.arm_upper + 1e-6)
+                                 | (np.abs(cand - seed) < np.abs(out - seed))), cand, out)
+        return out
 
     def close(self) -> None:
         self.sim.close()
@@ -211,6 +251,17 @@ class Robot:
                 hx, hy = max(hx, float(xy[:, 0].max()) + m), max(hy, float(xy[:, 1].max()) + m)
             out.append((float(d), hx, hy))
         return out
+
+    def drive_fingers(self, targets: dict[int, float]) -> None:
+        """Drive the gripper joints to ``targets`` (joint index -> position) with every mimic joint
+        (``ArmSpec.finger_mimic``) following its leader: PyBullet ignores a URDF's ``<mimic>``, and a linkage
+        whose joints are driven apart tears (a Robotiq's inner fingers would swing free of its knuckles)."""
+        goal = {j: float(v) for j, v in zip(self.spec.finger_joints, self.spec.finger_closed, strict=True)}
+        goal.update({int(j): float(v) for j, v in targets.items()})
+        for j, lead, mult, off in self.spec.finger_mimic:
+            goal[j] = mult * goal[lead] + off
+        joints = list(self.spec.finger_joints)
+        self.sim.control_joints(ARM, joints, [goal[j] for j in joints], [20.0] * len(joints))
 
     def command(self, q: np.ndarray) -> None:
         """Set the arm's joint targets (the motors track them during the next physics steps)."""
