@@ -59,14 +59,51 @@ def back_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, 
     return out
 
 
+def start_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, within: float) -> np.ndarray:
+    """Per path: 1 where it starts before the anchor, along its overall direction (start to end, as the rule
+    reads it), by at least the share ``within`` of its start distance, else exp(-(short of it) / (share start
+    distance)): the share is its own scale, as :func:`back_weight`'s. A path from beside the anchor that only
+    slides along it starts before it by little of its distance; one that crosses to its far side, by much."""
+    out = np.empty(len(movers))
+    a = np.asarray(anchor_pose, float)[:2]
+    for i, m in enumerate(movers):
+        rel = (np.asarray(m, float)[:, :2] - a) / size
+        travel = rel[-1] - rel[0]
+        length = float(np.linalg.norm(travel))
+        wanted = within * float(np.linalg.norm(rel[0]))
+        if length < 1e-9 or wanted <= 0.0:
+            out[i] = 1.0 if wanted <= 0.0 else float(np.exp(-1.0))
+            continue
+        before = -float(rel[0] @ travel) / length
+        out[i] = np.exp(-max(wanted - before, 0.0) / wanted)
+    return out
+
+
 WEIGHTS: dict[str, Callable[..., np.ndarray]] = {"passes-within": pass_weight,
-                                                  "goes-back-within": back_weight}
+                                                  "goes-back-within": back_weight,
+                                                  "starts-before": start_weight}
 """The bounds by kind (``actions.spec.Bound.kind``): each weighs a batch of candidate paths by its measure."""
 
 
 def people_weight(bound: Bound) -> functools.partial:
     """The weight ``(movers, anchor_pose, size) -> per path`` of a declared bound."""
     return functools.partial(WEIGHTS[bound.kind], within=bound.within)
+
+
+def product_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float,
+                   weights: tuple[Callable[..., np.ndarray], ...]) -> np.ndarray:
+    """Per path: the product of ``weights``' (several bounds held together)."""
+    out = np.ones(len(movers))
+    for w in weights:
+        out = out * w(movers, anchor_pose, size)
+    return out
+
+
+def people_weights(bounds: tuple[Bound, ...]) -> functools.partial:
+    """The weight of one or more declared bounds: one's own (:func:`people_weight`), several multiplied."""
+    if len(bounds) == 1:
+        return people_weight(bounds[0])
+    return functools.partial(product_weight, weights=tuple(people_weight(b) for b in bounds))
 
 
 class BoundScorer:
@@ -86,4 +123,5 @@ class BoundScorer:
         return self.model.curve(mover, anchor, size, **context)
 
 
-__all__ = ["BoundScorer", "back_weight", "pass_weight", "people_weight", "SCALE_SIDES", "WEIGHTS"]
+__all__ = ["BoundScorer", "back_weight", "pass_weight", "people_weight", "people_weights", "product_weight",
+           "start_weight", "SCALE_SIDES", "WEIGHTS"]
