@@ -1,13 +1,16 @@
 """Bounds from people's demonstrations on the candidates the search ranks (an action declares its own,
-``ActionSpec.planning.bound``, by one of the kinds of :data:`WEIGHTS`): where "past" passes, how far "closer"
-goes back.
+``ActionSpec.planning.bound`` and ``more_bounds``, by the kinds of :data:`WEIGHTS`): where "past" passes and
+where it starts, how far "closer" goes back.
 
 The learned models rate some motions done that no person made, and chains meet them where the 2-D study never
 started a motion:
 
-- "past" slid by the anchor 4-5 blocks away at 0.98-0.997, while people's 43 demonstrations pass it at most 3.70
-  blocks away (``ActionSpec.thresholds["passes_within"]`` of past, rounded up to 3.8; analysis seeds 5300-5399:
-  10 of past's 19 failed plans passed 4.0-4.9 blocks away; docs/planning.md);
+- "past" slid by the anchor 4-5 blocks away at 0.98-0.997, while 39 of people's 43 demonstrations pass it within
+  3.2 blocks (median 1.9; ``ActionSpec.thresholds["passes_within"]`` of past, their 90 % quantile; docs/planning.md);
+- "past" from beside the anchor (touching it, or level with it) slid along it, which the model rates done, while
+  39 of people's 43 started before it, along their overall direction, by at least half their distance from it
+  (``thresholds["starts_before"]`` of past, their 10 % quantile): two people's starts from beside it do not make
+  a slide along it "past";
 - "closer" from within 1.8 blocks wiggles: the model rates a back-and-forth higher than a straight slide to
   touching, while people's 41 demonstrations went back at most 0.176 of the room they had (start distance - 1
   block; ``thresholds["goes_back_within"]`` of closer, rounded up to 0.18).
