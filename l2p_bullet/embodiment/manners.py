@@ -214,11 +214,14 @@ def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np
 def push_pusher(size: float, arm: ArmSpec = PANDA) -> tuple[float, float]:
     """What the planner puts behind a pushed block along each move (``planning.World2D``'s ``pusher``): the
     closed fingers' depth along the push, where they come down :data:`PUSH_GAP` behind the block's face, and
-    their half width across it, 2 mm more (as :func:`push_outline`). Only behind: the fingers push the face
-    opposite the travel, so the block's front and the room beside it are the block's own (a 16-gon of the
-    pusher's reach all round kept a pushed block 1.4 sides or more from the anchor, too far for "closer")."""
+    their half width across it, 2 mm more (as :func:`push_outline`) less :data:`PUSH_SHIFT`, the most the pusher
+    slides along the face, away from another object, to keep clear of it (embodiment/push.py). Only behind: the
+    fingers push the face opposite the travel, so the block's front and the room beside it are the block's own (a
+    16-gon of the pusher's reach all round kept a pushed block 1.4 sides or more from the anchor, too far for
+    "closer"). With other objects on both sides of the block the shift can clear only one of them: the
+    controller's own clearance then decides (docs/manners.md)."""
     ext = reach.hand_extent(max(size - PUSH_TIP_Z, 1e-3), arm) or (0.0145, 0.03)
-    return 2.0 * float(ext[0]) + PUSH_GAP, float(ext[1]) + 0.002
+    return 2.0 * float(ext[0]) + PUSH_GAP, max(float(ext[1]) + 0.002 - PUSH_SHIFT, 1e-3)
 
 
 def manner_planning(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> dict:
