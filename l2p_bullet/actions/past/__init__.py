@@ -11,7 +11,7 @@ import math
 from ..spec import ActionSpec, Bound, Planning, Training, Violation
 
 THRESHOLDS = {"margin": 0.5, "near": 4.0, "max_turn_deg": 180.0,
-              # blocks: people's 43 passed the anchor at a median 1.9, nine in ten within 3.23 (their 90 % quantile), rounded
+              # blocks: people's 43 passed the anchor at a median 1.9, nine in ten within 3.23 (90 % quantile)
               "passes_within": 3.2,
               # share of the start distance: 39 of people's 43 (90 %, the 10 % quantile 0.512 rounded down)
               # started before the anchor by at least half their distance from it, along their overall direction
