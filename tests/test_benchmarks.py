@@ -25,6 +25,7 @@ BENCHMARKS = ROOT / "benchmarks"
 SMALLEST: dict[str, list[str]] = {
     "bench_arms.py": ["--arms", "xarm6", "--actions", "closer", "--scenes", "1", "--timed", "0"],
     "bench_chains.py": ["--chains", "1", "--clauses", "2"],
+    "bench_clauses.py": ["--every", "38", "--kinds", "level", "--manners", "push", "--actions", "closer"],
     "bench_embodiment.py": ["--repeats", "1", "--resolution", "64x48", "--fps", "2", "--arc", "30", "--samples", "1"],
     "bench_envs.py": ["--steps", "5", "--size", "32"],
     "bench_evaluate.py": ["--runs", "1", "--actions", "closer", "--no-ray"],

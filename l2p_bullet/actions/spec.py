@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 ROOM_CHECKS = ("room-closer", "room-away", "room-around", "blocked-around")
 """The room checks an action may declare (``Planning.checks``; ``planning.feasibility.ROOM_CHECKS``)."""
-BOUND_KINDS = ("passes-within", "goes-back-within")
+BOUND_KINDS = ("passes-within", "goes-back-within", "starts-before")
 """The kinds of bound from people's data (``Bound.kind``; ``planning.bounds.WEIGHTS`` weighs by them)."""
 WRONG_MOTIONS = ("backs-off", "out-and-back", "reversed", "to-closest-and-back", "half-round-and-back")
 """The kinds of wrong planner motion (``Training.wrong_motions``; ``training_plan.WRONG_MOTIONS``)."""
@@ -129,7 +129,9 @@ class Bound:
     """A bound from people's demonstrations on the candidates the planner ranks (``planning/bounds.py``): a
     candidate beyond it is scored down. ``kind`` names the measure (``planning.bounds.WEIGHTS``):
     "passes-within" (its closest centre distance to the anchor, blocks), "goes-back-within" (how far its
-    centre distance went back, as a share of its room); ``within``: the most people's demonstrations went."""
+    centre distance went back, as a share of its room); ``within``: the most people's demonstrations went;
+    "starts-before" (how far before the anchor it starts along its overall direction, as a share of its start
+    distance); ``within``: the least people's demonstrations started so (a least, not a most)."""
 
     kind: str
     within: float
@@ -148,6 +150,8 @@ class Planning:
     in this order with its thresholds."""
     bound: Bound | None = None
     lead_in: LeadIn | None = None
+    more_bounds: tuple[Bound, ...] = ()
+    """Bounds from people's data besides :attr:`bound`, all applied together (their weights multiply)."""
 
     def __post_init__(self) -> None:
         _known("room check", tuple(self.checks), ROOM_CHECKS)

@@ -253,18 +253,33 @@ def _no_room_to_start(scene: Scene, m, dense: np.ndarray, arm: ArmSpec) -> str |
 
 def planner_outline(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> np.ndarray | None:
     """The mover's outline the planner tests against every other object for ``manner`` (None: its own,
-    grown by the hand beside it where that matters, as for a slide)."""
-    return push_outline(size, arm) if manner.motion == "push" else None
+    grown by the hand beside it where that matters, as for a slide; a push's pusher is :func:`push_pusher`)."""
+    return None
+
+
+def push_pusher(size: float, arm: ArmSpec = PANDA) -> tuple[float, float]:
+    """What the planner puts behind a pushed block along each move (``planning.World2D``'s ``pusher``): the
+    closed fingers' depth along the push, where they come down :data:`PUSH_GAP` behind the block's face, and
+    their half width across it, 2 mm more (as :func:`push_outline`) less :data:`PUSH_SHIFT`, the most the pusher
+    slides along the face, away from another object, to keep clear of it (embodiment/push.py). Only behind: the
+    fingers push the face opposite the travel, so the block's front and the room beside it are the block's own (a
+    16-gon of the pusher's reach all round kept a pushed block 1.4 sides or more from the anchor, too far for
+    "closer"). With other objects on both sides of the block the shift can clear only one of them: the
+    controller's own clearance then decides (docs/manners.md)."""
+    ext = reach.hand_extent(max(size - PUSH_TIP_Z, 1e-3), arm) or (0.0145, 0.03)
+    return 2.0 * float(ext[0]) + PUSH_GAP, max(float(ext[1]) + 0.002 - PUSH_SHIFT, 1e-3)
 
 
 def manner_planning(manner: MannerSpec, size: float, arm: ArmSpec = PANDA) -> dict:
     """What ``planning.plan`` is told about the manner (docs/manners.md): a carried block passes above the
-    other objects (``airborne``: only where it is set down is tested); a pushed one has the pusher beside
-    it (``outline``: block and pusher, tested against every other object). Nothing for a slide, so its plans
-    are as before."""
+    other objects (``airborne``: only where it is set down is tested); a pushed one has the pusher behind
+    it (``pusher``: the fingers behind the block along every move, tested against every other object).
+    Nothing for a slide, so its plans are as before."""
     out: dict = {}
     if manner.airborne:
         out["airborne"] = True
+    if manner.motion == "push":
+        out["pusher"] = push_pusher(size, arm)
     shape = planner_outline(manner, size, arm)
     if shape is not None:
         out["outline"] = shape

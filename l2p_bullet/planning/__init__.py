@@ -34,7 +34,7 @@ from ..core.threads import torch_threads
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.rules import RULE_SPECS
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
-from .bounds import BoundScorer, people_weight
+from .bounds import BoundScorer, people_weights
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
 from .problem import FRAME_STEP, Problem, finish
@@ -104,7 +104,7 @@ def resolve_planner(name: str, settings: dict | None = None) -> str:
 def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, planner: str = "default", seed: int = 0,
          budget: int | None = None, threshold: float | None = None, time_limit: float | None = None,
          target: np.ndarray | None = None, arm: ArmSpec = PANDA, airborne: bool = False,
-         outline: np.ndarray | None = None) -> Plan:
+         outline: np.ndarray | None = None, pusher: tuple[float, float] | None = None) -> Plan:
     """Plan ``mover``'s path for the bundle's action relative to ``anchor`` in ``scene``.
 
     ``anchor`` is one object's name, or the names of every reference object of a two-anchor action
@@ -126,7 +126,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     ``over``); the anchors stay obstacles all the way (the block goes past or around them, not over them). ``outline``
     (K,2,
     block frame): what the manner puts at block height, tested against every other object instead of the
-    block and the hand beside it (a push: the block with the pusher, ``embodiment.manners.push_outline``).
+    block and the hand beside it. ``pusher`` (a push, ``embodiment.manners.push_pusher``): the fingers' depth and
+    half width, tested behind the block along every move (World2D); nothing is held, so no hand beside it.
     """
     settings = dict(getattr(bundle, "manifest", {}).get("policy", {}))
     name = resolve_planner(planner, settings)
@@ -154,8 +155,10 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             bounded = True  # the earlier grasps spent the plan's candidates: this one is not tried
             break
         outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
+        if pusher is not None:  # nothing is held: the block's own outline, the fingers behind it (World2D)
+            outlines = {} if outline is None else outlines
         over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
-        world = World2D(scene, mover, outlines=outlines, over=over)
+        world = World2D(scene, mover, outlines=outlines, over=over, pusher=pusher)
         wrist = Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm)
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)
         routes: dict[tuple, np.ndarray | None] = {}  # a way round from each approach end asked about
@@ -233,7 +236,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
 
 
 PEOPLE_BOUNDS: dict[str, functools.partial] = {
-    name: people_weight(spec.planning.bound) for name, spec in RULE_SPECS.items()
+    name: people_weights((spec.planning.bound, *spec.planning.more_bounds)) for name, spec in RULE_SPECS.items()
     if spec.planning.bound is not None}
 """Per rule judge, the bound from people's data its candidates are weighted by (bounds.py, declared by the
 action that declares the rule set: ``ActionSpec.planning.bound``); an action judged by that rule judge (a
@@ -255,7 +258,7 @@ def _people_bound(bundle, spec: ActionSpec | None) -> functools.partial | None:
     (:data:`PEOPLE_BOUNDS`), or the one a plugin's own spec declares."""
     if spec is None or spec is RULE_SPECS.get(_rules(bundle)):
         return PEOPLE_BOUNDS.get(_rules(bundle))
-    return None if spec.planning.bound is None else people_weight(spec.planning.bound)
+    return None if spec.planning.bound is None else people_weights((spec.planning.bound, *spec.planning.more_bounds))
 
 
 def _target_scorer(model, target: np.ndarray, world: World2D):

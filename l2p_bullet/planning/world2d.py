@@ -21,6 +21,10 @@ Rules of the world (the same ones the arm obeys when it executes the path):
   end points suffices; an arm whose reach ring bites into the disk (the KUKA iiwa's) makes the
   region non-convex, and a move must also keep its closest approach to the arm's base outside the ring's
   hole (``Workspace.segments_inside``).
+- A pushed block (``pusher``, l2p_bullet/manners) has the closed fingers behind it along each move, never
+  beside or ahead of it: each sub-pose of a move adds the pusher's rectangle behind the block's face opposite
+  the travel, so a block may be pushed right up to another ("closer", "next to") while a move away from a
+  block it touches needs room for the fingers between them.
 - Moves are interpolated at a given speed into frames (one frame every ``step`` metres of travel, or
   every ``rot_step`` radians of turn, whichever needs more), so a path can be scored by a progress
   model that reads pose sequences.
@@ -77,11 +81,14 @@ class World2D:
     ``outlines`` maps an obstacle's name to the mover's outline (block frame) to test against it: the block
     grown by the hand beside it at that obstacle's height. Obstacles not named use the block's footprint.
     ``over`` (a carried block, l2p_bullet/manners): the objects it passes above, so a move is tested against
-    them only where it ends (where the block could be set down), not along the way.
+    them only where it ends (where the block could be set down), not along the way. ``pusher`` (a pushed
+    block): the pushing fingers' depth along the push (m, from the block's face back, the gap it comes down
+    at included) and half width across it; every move is tested with them behind the block.
     """
 
     def __init__(self, scene: Scene, mover: str, margin: float = GRIPPER_MARGIN,
-                 outlines: dict[str, np.ndarray] | None = None, over: frozenset[str] = frozenset()):
+                 outlines: dict[str, np.ndarray] | None = None, over: frozenset[str] = frozenset(),
+                 pusher: tuple[float, float] | None = None):
         obj = scene.get(mover)
         self.scene = scene
         self.mover = Body(mover, obj.footprint(np.zeros(3)), obj.pose)
@@ -95,6 +102,10 @@ class World2D:
         self._obs_centres = np.array([b.pose[:2] for b in self.obstacles]).reshape(-1, 2)
         self._obs_radii = np.array([np.linalg.norm(b.outline, axis=1).max() for b in self.obstacles])
         self._mover_radii = np.array([np.linalg.norm(o, axis=1).max() for o in self._outlines])
+        self.pusher = None if pusher is None else (float(pusher[0]), float(pusher[1]))
+        if self.pusher is not None:  # the pusher's far corners reach beyond the block's
+            depth, half = self.pusher
+            self._mover_radii = np.hypot(self._mover_radii + depth, half)
         # obstacles grouped by the mover outline they are tested against (most share the block's own)
         groups: dict[bytes, list[int]] = {}
         for i, o in enumerate(self._outlines):
@@ -222,10 +233,15 @@ class World2D:
                 continue
             outline = self._outlines[group[0]]
             polys = place_outline(outline, sub[idx].reshape(-1, 3)).reshape(len(idx), n_sub + 1, -1, 2)
-            hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
             m_axes = np.concatenate(
                 [edge_normals(polys[:, :-1]), edge_normals(polys[:, 1:]),
                  np.broadcast_to(perp[idx, None, None, :], (len(idx), n_sub, 1, 2))], axis=2)
+            if self.pusher is not None:
+                polys = self._with_pusher(polys, sub[idx], perp[idx], length[idx, 0] > 1e-12)
+                along = np.stack([perp[idx, 1], -perp[idx, 0]], axis=-1)  # the travel direction: the pusher's sides
+                m_axes = np.concatenate([m_axes, np.broadcast_to(along[:, None, None, :], (len(idx), n_sub, 1, 2))],
+                                        axis=2)
+            hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
             for i in group:
                 j = np.flatnonzero(near[i, idx] & ok[idx])
                 if len(j) == 0:
@@ -238,6 +254,24 @@ class World2D:
                        | (po.max(-1) + margin <= pm.min(-1) + 1e-12))
                 ok[idx[j]] = sep.any(-1).all(-1)
         return ok
+
+    def _with_pusher(self, polys: np.ndarray, sub: np.ndarray, perp: np.ndarray, travels: np.ndarray) -> np.ndarray:
+        """The block's outline per sub-pose (M, S+1, K, 2) with the pusher's four corners added (M, S+1, K+4, 2):
+        a rectangle ``pusher[0]`` deep behind the block's face opposite the travel and ``2 * pusher[1]`` wide
+        across it. A move that does not travel has no pusher (its corners are put on the block's centre).
+        The separating axes then miss the hull's edges that bridge block and pusher, which only makes the
+        test more conservative."""
+        depth, half = self.pusher
+        u = np.stack([perp[:, 1], -perp[:, 0]], axis=-1)  # (M, 2) unit travel direction
+        centre = sub[..., :2]  # (M, S+1, 2)
+        face = np.einsum("mskd,md->msk", polys - centre[:, :, None, :], u).max(-1)  # the block's support along u
+        corners = []
+        for back in (face, face + depth):
+            for side in (-half, half):
+                corners.append(centre - back[..., None] * u[:, None, :] + side * perp[:, None, :])
+        pts = np.stack(corners, axis=2)  # (M, S+1, 4, 2)
+        pts = np.where(travels[:, None, None, None], pts, centre[:, :, None, :])
+        return np.concatenate([polys, pts], axis=2)
 
     def path_free(self, path: np.ndarray) -> bool:
         """Every straight move of the waypoint path (N,3) is legal."""
