@@ -144,7 +144,7 @@ class Recorder:
         shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
                             [f["progress"] for f in self.frames])
         texts = sentence if isinstance(sentence, list) else [sentence] * len(self.images)
-        captioned = [overlay(img, t, p) for img, t, p in zip(self.images, texts, shown, strict=True)]
+        captioned = [overlay(img, t, p) for img, t, p in zip(self._with_inset(), texts, shown, strict=True)]
         if video == "gif":
             files["video"] = out / "video.gif"
             imageio.mimwrite(files["video"], captioned, duration=1000.0 / fps, loop=0)
@@ -165,6 +165,21 @@ class Recorder:
             ),
         )
         return files
+
+    def _with_inset(self) -> list[np.ndarray]:
+        """The video's images with the top-view inset (embodiment/inset.py) drawn from each frame's state;
+        the images as they are where the film has no inset or its states do not match them."""
+        film = self.film
+        if not film.settings.inset or len(film.states) != len(self.images):
+            return self.images
+        from .inset import InsetPainter, plan_inset
+
+        s = film.settings
+        view = plan_inset(film.scene, film.paths, film.states, s.width, s.height, s.camera)
+        if view is None:
+            return self.images
+        painter = InsetPainter(view)
+        return [painter.draw(img, state) for img, state in zip(self.images, film.states, strict=True)]
 
 
 def _colour(world, name: str) -> dict:

@@ -203,6 +203,7 @@ class Film:
         self.scene, self.settings, self.arm = scene, settings.check(), arm
         self.folder = None if folder is None else Path(folder)
         self.states: list[State] = []
+        self.paths: list[tuple[str, np.ndarray]] = []  # (mover, planned path) each: the video's top-view inset
         self.workers = pool_size(settings) if workers is None else workers
         self._sent = 0
         self._futures: list[tuple[int, Future]] = []
