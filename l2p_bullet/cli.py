@@ -120,10 +120,9 @@ class Interrupted(SystemExit):
 def program(prog_name: str = "l2p-bullet") -> object:
     """Run the command line as a program. After a stop the process ends at once (``os._exit``, streams
     flushed) rather than through the interpreter's shutdown: everything the command owned is already
-    closed, and the shutdown's teardown of the simulator, the EGL driver and the worker pool's threads
-    could still kill the process by a signal (a rendering perform stopped by Ctrl-C, under load, ended by
-    SIGINT or SIGSEGV after printing "interrupted") instead of exiting 130. In-process callers (tests,
-    click's runner) call :data:`main` and get the SystemExit."""
+    closed, and the interpreter's shutdown could still end the process by a signal instead of exiting 130
+    (measured: a rendering perform stopped by Ctrl-C under load printed "interrupted", then died by
+    SIGINT). In-process callers (tests, click's runner) call :data:`main` and get the SystemExit."""
     try:
         return main(prog_name=prog_name)
     except Interrupted as e:
