@@ -21,9 +21,9 @@ def main() -> object:
     if _signal.getsignal(_signal.SIGINT) is _signal.default_int_handler:
         _signal.signal(_signal.SIGINT, interrupted_while_starting)
     try:
-        from .cli import main as command_line
+        from .cli import program
 
-        return command_line(prog_name="l2p-bullet")
+        return program("l2p-bullet")
     finally:
         # the interpreter's shutdown after the command is quiet too (Ctrl-C there: "interrupted", 130)
         if _signal.getsignal(_signal.SIGINT) is _signal.default_int_handler:

@@ -240,6 +240,8 @@ def arm_primitives(world: World, render: RenderSettings | None, out_dir: Path | 
 
     film = None if render is None else Film(world.scene, render, None if out_dir is None else Path(out_dir) / "frames",
                                             arm=world.robot.spec)
+    if film is not None:
+        film.paths = [(mover, path) for mover, path, *_ in paths or ()]
     try:  # the arm's set-up takes a while: a Ctrl-C there must not leave the film's workers behind
         return Primitives(world, Recorder(world, film))
     except BaseException:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import platform
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from importlib import metadata
 from pathlib import Path
 
@@ -144,14 +144,16 @@ class Recorder:
         shown = progress_at(self.image_times, np.array([f["t"] for f in self.frames]),
                             [f["progress"] for f in self.frames])
         texts = sentence if isinstance(sentence, list) else [sentence] * len(self.images)
-        captioned = [overlay(img, t, p) for img, t, p in zip(self.images, texts, shown, strict=True)]
+        # a generator: each frame is captioned while ffmpeg (another process) encodes the ones before it
+        captioned = (overlay(img, t, p) for img, t, p in zip(self._with_inset(), texts, shown, strict=True))
         if video == "gif":
             files["video"] = out / "video.gif"
-            imageio.mimwrite(files["video"], captioned, duration=1000.0 / fps, loop=0)
+            imageio.mimwrite(files["video"], list(captioned), duration=1000.0 / fps, loop=0)
         else:
             files["video"] = out / "video.mp4"
-            with imageio.get_writer(files["video"], fps=fps, codec="libx264", quality=7,
-                                    pixelformat="yuv420p", macro_block_size=8) as writer:
+            # x264's "veryfast" preset: half the encoding time of its default for a file about 8 % larger
+            with imageio.get_writer(files["video"], fps=fps, codec="libx264", quality=7, pixelformat="yuv420p",
+                                    macro_block_size=8, ffmpeg_params=["-preset", "veryfast"]) as writer:
                 for img in captioned:
                     writer.append_data(img)
         files["contact_sheet"] = out / "contact_sheet.png"
@@ -165,6 +167,24 @@ class Recorder:
             ),
         )
         return files
+
+    def _with_inset(self) -> Iterator[np.ndarray]:
+        """The video's images with the top-view inset (embodiment/inset.py) drawn from each frame's state;
+        the images as they are where the film has no inset or its states do not match them."""
+        film = self.film
+        if not film.settings.inset or len(film.states) != len(self.images):
+            yield from self.images
+            return
+        from .inset import InsetPainter, plan_inset
+
+        s = film.settings
+        view = plan_inset(film.scene, film.paths, film.states, s.width, s.height, s.camera)
+        if view is None:
+            yield from self.images
+            return
+        painter = InsetPainter(view)
+        for img, state in zip(self.images, film.states, strict=True):
+            yield painter.draw(img, state)
 
 
 def _colour(world, name: str) -> dict:

@@ -20,8 +20,10 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import struct
 import sys
 import time
+import zlib
 from concurrent.futures import Future, ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -151,7 +153,9 @@ def _start(scene: Scene, settings: RenderSettings, arm: ArmSpec = PANDA, parent:
     if parent is not None:
         exit_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the main process's: it stops the pool, quietly
-    os.environ.setdefault("LP_NUM_THREADS", "1")  # Mesa's software rasteriser: one thread per worker process
+    # Mesa's software rasteriser draws in the worker's own thread: no thread of its own per worker (the
+    # workers already fill the cores), and no hand-over between threads each frame (about 4 ms of 55)
+    os.environ.setdefault("LP_NUM_THREADS", "0")
     _PAINTER = Painter(scene, settings, arm)
 
 
@@ -169,11 +173,29 @@ def _paint(first: int, states: list[State], folder: str | None) -> tuple[str, li
 
 
 def write_pngs(folder: Path, first: int, images: list[np.ndarray]) -> None:
-    """``folder/NNNN.png`` from frame ``first`` on; zlib level 1: a third of level 6's time, 1.4x its size."""
-    from PIL import Image
-
+    """``folder/NNNN.png`` from frame ``first`` on (:func:`png_bytes`)."""
     for i, img in enumerate(images, start=first):
-        Image.fromarray(img).save(folder / f"{i:04d}.png", compress_level=1)
+        (folder / f"{i:04d}.png").write_bytes(png_bytes(img))
+
+
+def png_bytes(image: np.ndarray) -> bytes:
+    """A lossless PNG of ``image`` (H, W, 3) uint8: no row filter, zlib level 1.
+
+    Rendered frames are mostly flat colour, where zlib alone finds the runs: a third of the time of
+    Pillow's level 1 (which also tries a filter on every row) and a smaller file (measured on the default
+    video: 2.5 against 8 ms and 61 against 72 KB a 640x480 frame)."""
+    img = np.ascontiguousarray(np.asarray(image)[:, :, :3], dtype=np.uint8)
+    h, w, _ = img.shape
+    rows = np.empty((h, 1 + 3 * w), np.uint8)
+    rows[:, 0] = 0  # filter type "none" for every row
+    rows[:, 1:] = img.reshape(h, 3 * w)
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)  # 8 bits a channel, RGB, no interlace
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows.tobytes(), 1))
+            + chunk(b"IEND", b""))
 
 
 # --- the episode's side -----------------------------------------------------------------------------
@@ -203,6 +225,7 @@ class Film:
         self.scene, self.settings, self.arm = scene, settings.check(), arm
         self.folder = None if folder is None else Path(folder)
         self.states: list[State] = []
+        self.paths: list[tuple[str, np.ndarray]] = []  # (mover, planned path) each: the video's top-view inset
         self.workers = pool_size(settings) if workers is None else workers
         self._sent = 0
         self._futures: list[tuple[int, Future]] = []

@@ -15,6 +15,7 @@ full path speed, which bounds the x-y speed from above).
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -110,15 +111,28 @@ def curvature(poses: np.ndarray, step: float = 0.002) -> np.ndarray:
     return np.interp(arc, u[1:-1], k)
 
 
-def _profile(length: float, lim: Limits, v_max: float):
-    # lazy: ruckig only when a path is timed
-    from ruckig import InputParameter, Result, Ruckig, Trajectory
+def ruckig_module():
+    """The ruckig extension, imported on first use (only when a path is timed) with Ctrl-C held back.
 
-    otg, inp, traj = Ruckig(1), InputParameter(1), Trajectory(1)
+    A Ctrl-C whose KeyboardInterrupt is raised while the extension's module initialisation runs kills
+    the process by SIGSEGV (measured: a rendering perform Ctrl-C'd as its first clause was timed, the
+    fault in ``create_module``), so the import is one step a stop cannot split; the stop follows it."""
+    module = sys.modules.get("ruckig")
+    if module is None:
+        from .sim.bullet import ctrl_c_deferred
+
+        with ctrl_c_deferred():
+            import ruckig as module
+    return module
+
+
+def _profile(length: float, lim: Limits, v_max: float):
+    rk = ruckig_module()
+    otg, inp, traj = rk.Ruckig(1), rk.InputParameter(1), rk.Trajectory(1)
     inp.current_position, inp.target_position = [0.0], [float(length)]
     inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v_max], [lim.acceleration], [lim.jerk]
     result = otg.calculate(inp, traj)
-    if result not in (Result.Working, Result.Finished):  # pragma: no cover - ruckig rejects bad input
+    if result not in (rk.Result.Working, rk.Result.Finished):  # pragma: no cover - ruckig rejects bad input
         raise ValueError(f"ruckig could not time a path of length {length} ({result})")
     return traj
 

@@ -76,7 +76,8 @@ class RenderSettings:
     """What to render: image size, frames per second of simulated time, renderer, video format, camera.
 
     ``workers``: processes that render the recorded states (0 or 1: in this process; None: as many as
-    there are cores, at most 4).
+    there are cores, at most 4). ``inset``: the video shows a top view of the blocks and the path in a
+    corner (embodiment/inset.py); the frames' PNGs never do.
     """
 
     width: int = 640
@@ -86,6 +87,7 @@ class RenderSettings:
     video: str = "mp4"  # "mp4" or "gif"
     camera: CameraPose = field(default_factory=lambda: AUTO)
     workers: int | None = None
+    inset: bool = True
 
     def check(self) -> RenderSettings:
         """Self, once every field is valid; ExecutionError (one line) naming the first that is not."""
