@@ -67,6 +67,7 @@ class Search:
     seconds: float = 0.0
     kept_seconds: float = 0.0
     changed: list[int] = field(default_factory=list)
+    dead_ends: dict[str, int] = field(default_factory=dict)  # "clause N (check)" -> times the search met it
 
 
 @dataclass
@@ -99,12 +100,13 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
     stats = Search() if search is None else search
     t0 = time.perf_counter()
     try:
-        steps = _Searcher(clauses, plugins, opts, loaded, stats).steps(0, scene)
+        searcher = _Searcher(clauses, plugins, opts, loaded, stats)
+        steps = searcher.steps(0, scene)
     except _Dead as d:
         raise _refusal(d, clauses, stats) from None
     finally:
         stats.seconds += time.perf_counter() - t0
-    stats.kept_seconds = sum(float(s.forecast.extra.get("seconds", 0.0)) for s in steps)
+    stats.kept_seconds = sum(searcher.kept.get(id(s.forecast), 0.0) for s in steps)
     stats.changed = [s.clause.index for s in steps if s.end != DEFAULT]
     return steps
 
@@ -116,16 +118,20 @@ class _Searcher:
         self.clauses, self.plugins, self.opts, self.loaded, self.stats = clauses, plugins, opts, loaded, stats
         self.arm = opts.arm_spec()
         self.left = SEARCH_PLANS * len(clauses)
+        self.cost: dict[int, float] = {}  # id(plan) -> seconds to make it (a cut: to cut it)
+        self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
         if k == len(self.clauses):
             return []
         c = self.clauses[k]
         bundle, model, judge = self.loaded[c.command.action]
+        t0 = time.perf_counter()
         try:
             check_feasible(c.command, predicted, self.plugins, self.arm)
         except L2PError as e:  # no end state of this clause helps: the scene it starts from is what fails
             raise self._dead(c, e) from None
+        checked = time.perf_counter() - t0
         first: _Dead | None = None
         planned: dict[int, Plan | None] = {}  # seed offset -> its plan (None: it failed)
         for end in ENDS:
@@ -138,6 +144,8 @@ class _Searcher:
                     planned[end.seed] = self._plan(c, predicted, bundle, judge, end)
                 except _Dead as d:
                     first = first or d
+                    if isinstance(d.error, InfeasibleError) and d.error.check != "no-motion":
+                        break  # a check of the scene (no way in from afar...): another seed meets it again
                     continue
                 plan = planned[end.seed]
             elif planned[end.seed] is None:
@@ -150,6 +158,8 @@ class _Searcher:
                     continue
             if end.cut is not None and np.allclose(plan.path[-1], planned[end.seed].path[-1]):
                 continue  # the cut leaves the end where it was: nothing new to try
+            self.kept[id(plan)] = checked + self.cost[id(plan)] + (
+                self.cost[id(planned[end.seed])] if end.cut is not None else 0.0)
             step = self._step(c, bundle, model, judge, plan, end)
             try:
                 return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
@@ -170,7 +180,7 @@ class _Searcher:
             raise self._dead(c, e) from None
         finally:
             self.stats.plans += base is None
-        plan.extra.setdefault("seconds", round(time.perf_counter() - t0, 4))
+        self.cost[id(plan)] = time.perf_counter() - t0
         return plan
 
     def _step(self, c: Clause, bundle: Any, model: Any, judge: Any, plan: Plan, end: End) -> Step:
@@ -183,15 +193,24 @@ class _Searcher:
 
     def _dead(self, c: Clause, e: L2PError) -> _Dead:
         check = e.check if isinstance(e, InfeasibleError) else None
+        key = f"clause {c.index} ({check or _kind(e)})"
+        self.stats.dead_ends[key] = self.stats.dead_ends.get(key, 0) + 1
         reads = frozenset(c.command.anchors) | {c.command.mover} if check and check.startswith("room-") else None
         return _Dead(e, c.index, reads)
+
+
+def _kind(e: L2PError) -> str:
+    return "plan" if isinstance(e, PlanError) else "path" if isinstance(e, PathError) else type(e).__name__
 
 
 def _refusal(d: _Dead, clauses: list[Clause], stats: Search) -> L2PError:
     """The first failure, named by its clause, with what the search tried before it gave up."""
     c, e = clauses[d.clause - 1], d.error
-    tried = (f"; no other end state of the clauses before it keeps it possible ({stats.plans} plans tried)"
-             if d.clause > 1 and stats.plans > d.clause else "")
+    first = f"clause {c.index} ({e.check if isinstance(e, InfeasibleError) else _kind(e)})"
+    others = {k: n for k, n in stats.dead_ends.items() if k != first}
+    tried = "" if d.clause == 1 or not others else (
+        "; no other end state of the clauses before it keeps it possible (" + str(stats.plans) + " plans; "
+        + "the other end states tried met " + ", ".join(f"{k} x{n}" for k, n in others.items()) + ")")
     if isinstance(e, InfeasibleError):
         e.details["clause"] = c.index
         return named(e, f"{c.label()} cannot be planned ({e.check})", tried)

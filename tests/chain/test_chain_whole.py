@@ -1,0 +1,167 @@
+"""A chain planned as a whole (chain/forecast.py, chain/ends.py): a clause's end state is chosen so the later
+clauses stay possible, a refusal names the clause and why, the plan is deterministic, and the run re-plans
+each clause with the end state the chain chose."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from l2p_bullet.arms import PANDA, fit_scene
+from l2p_bullet.chain import forecast as chain_forecast
+from l2p_bullet.chain import perform_chain
+from l2p_bullet.chain import run as chain_run
+from l2p_bullet.chain.clauses import resolve_clauses
+from l2p_bullet.chain.ends import DEFAULT, End, plan_clause
+from l2p_bullet.chain.forecast import Search, forecast
+from l2p_bullet.core.contracts import Plan
+from l2p_bullet.core.scene import Scene, SceneObject
+from l2p_bullet.errors import InfeasibleError
+from l2p_bullet.evaluate.chains import chain_scenes
+from l2p_bullet.pipeline import check_feasible
+from l2p_bullet.plugins import registry
+
+
+@pytest.fixture(scope="module")
+def plugins():
+    return registry.discover()
+
+
+def four_blocks() -> Scene:
+    return Scene([SceneObject("A", "red", 0.04, (0.10, -0.08), 0.2), SceneObject("B", "green", 0.04, (0.0, 0.02), 0.0),
+                  SceneObject("C", "blue", 0.04, (-0.12, -0.06), 0.4),
+                  SceneObject("D", "yellow", 0.04, (-0.06, 0.10), 0.1)]).validate()
+
+
+RIM = np.array([0.30, -0.10, 0.0])
+"""Where the stand-in planner's own end (seed offset 0, no cut) leaves a block: the rim, in these tests."""
+
+
+def stand_in(calls: list):
+    """A planner that moves the mover straight to RIM for the planner's own end and elsewhere for every other
+    end (each end its own place), recording (clause, end) per call; a cut of the rim plan ends short of it."""
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+        calls.append((clause.index, end))
+        start = np.asarray(scene.get(clause.command.mover).pose, float)
+        goal = RIM.copy() if end.seed == 0 else np.array([-0.05 * end.seed, 0.20, 0.0])
+        if end.cut is not None:
+            goal = start + (goal - start) * (0.5 if end.cut == "half" else 0.3)
+        path = np.linspace(start, goal, 6)
+        anchor = scene.get(clause.command.anchor).pose
+        return Plan(clause.command.action, clause.command.mover, clause.command.anchor, 0.04, np.asarray(anchor),
+                    start, path, np.linspace(0, 1, 6), "stand-in", "threshold", {"final_progress": 1.0})
+
+    return plan
+
+
+def rim_refuses(check: str, *, reads: str, other: str | None = None):
+    """A feasibility check that refuses (``check``) a clause whose ``reads`` block stands at RIM, and (``other``)
+    every clause that moves ``reads`` from anywhere else."""
+
+    def feasible(cmd, scene, plugins, arm=PANDA):
+        at = np.asarray(scene.get(reads).xy)
+        if cmd.anchor == reads and np.allclose(at, RIM[:2]):
+            raise InfeasibleError(check, f'no room around "{reads}" on the rim')
+        if other is not None and cmd.anchor == reads:
+            raise InfeasibleError(other, f'"{reads}" is boxed in')
+
+    return feasible
+
+
+@pytest.fixture
+def stand_ins(monkeypatch):
+    """The search over stand-ins for the planner and the path check: what is tested is the search alone."""
+    calls: list = []
+    monkeypatch.setattr(chain_forecast, "plan_clause", stand_in(calls))
+    from l2p_bullet.embodiment import execute
+
+    monkeypatch.setattr(execute, "check_for", lambda *a, **k: None)
+    return calls
+
+
+def test_a_greedy_end_that_leaves_a_later_clause_impossible_is_replaced(plugins, stand_ins, monkeypatch):
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT]  # the first other end that keeps clause 2 possible
+    assert not np.allclose(steps[0].forecast.path[-1][:2], RIM[:2])
+    assert search.changed == [1] and search.dead_ends == {"clause 2 (room-around)": 1}
+
+
+def test_the_search_only_tries_again_the_clauses_that_moved_what_failed(plugins, stand_ins, monkeypatch):
+    """Clause 1 moves D, which the room check of clause 3 does not read: only clause 2 (it moved A) is tried
+    with other ends; clause 1 is planned once."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move D next to B, then move A away from B, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, End(0, "half"), DEFAULT]
+    assert [c for c, _ in stand_ins].count(1) == 1
+
+
+def test_a_refusal_names_the_clause_its_check_and_what_was_tried(plugins, stand_ins, monkeypatch):
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A", other="boxed-in"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    with pytest.raises(InfeasibleError) as e:
+        forecast(clauses, scene, plugins)
+    msg = str(e.value)
+    assert msg.startswith('clause 2 ("move C around A") cannot be planned (room-around): no room around "A"')
+    assert "no other end state of the clauses before it keeps it possible" in msg
+    assert "clause 2 (boxed-in) x8" in msg  # every other end of clause 1: two cuts and two seeds with theirs
+    assert e.value.check == "room-around" and e.value.details["clause"] == 2
+
+
+def test_a_clause_refused_from_the_scene_as_drawn_is_named_as_before(plugins, stand_ins, monkeypatch):
+    """Nothing before clause 1 could help: the refusal is the clause's own, word for word."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks().with_pose("A", RIM)
+    clauses = resolve_clauses("move C around A, then move A away from B", scene, plugins)
+    with pytest.raises(InfeasibleError) as e:
+        forecast(clauses, scene, plugins)
+    assert str(e.value) == 'clause 1 ("move C around A") cannot be planned (room-around): no room around "A" on the rim'
+    assert stand_ins == []
+
+
+def _case_7002(plugins):
+    """A chain found on the development chain scenes (seed 7002): "past" leaves C where B cannot get round
+    it; stopped halfway past B, it can."""
+    scene = fit_scene(chain_scenes(1, 7002)[0].scene, PANDA)
+    return scene, resolve_clauses("move C past B, then move B around C", scene, plugins)
+
+
+@pytest.mark.slow
+def test_a_chain_refused_for_a_greedy_end_now_plans_and_deterministically(plugins):
+    scene, clauses = _case_7002(plugins)
+    first = forecast(clauses[:1], scene, plugins, seed=7002)[0]
+    after = scene.with_pose("C", first.forecast.path[-1])
+    with pytest.raises(InfeasibleError) as e:  # what planning clause by clause met (the chain was refused)
+        check_feasible(clauses[1].command, after, plugins, PANDA)
+    assert e.value.check == "blocked-around"
+    steps = forecast(clauses, scene, plugins, seed=7002)
+    assert steps[0].end != DEFAULT and all(s.forecast.extra["verdict"]["success"] for s in steps)
+    assert steps[0].forecast.extra["end_state"] == steps[0].end.to_dict()  # plan.json says which end
+    again = forecast(clauses, scene, plugins, seed=7002)
+    assert [s.end for s in again] == [s.end for s in steps]
+    for a, b in zip(again, steps, strict=True):
+        assert np.array_equal(a.forecast.path, b.forecast.path)
+
+
+@pytest.mark.slow
+def test_the_run_replans_each_clause_with_the_end_the_chain_chose(plugins, tmp_path, monkeypatch):
+    scene, clauses = _case_7002(plugins)
+    steps = forecast(clauses, scene, plugins, seed=7002)
+    seen = []
+
+    def recording(clause, *args, **kwargs):
+        seen.append((clause.index, args[5] if len(args) > 5 else kwargs.get("end")))
+        return plan_clause(clause, *args, **kwargs)
+
+    monkeypatch.setattr(chain_run, "plan_clause", recording)
+    sentence = ", then ".join(c.text for c in clauses)
+    r = perform_chain(sentence, scene, out_dir=tmp_path / "run", render=False, seed=7002, steps=steps)
+    assert seen == [(2, steps[1].end)]  # clause 1 runs its forecast; clause 2 is planned again, with its end
+    assert r.completed >= 1
