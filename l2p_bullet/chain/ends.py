@@ -64,7 +64,8 @@ def plan_clause(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: 
         plan = apply_extent(plan, cmd.extent, judge, scene)  # "far away from", "a bit closer to"
     else:
         plan = base
-    if end.cut is not None and cmd.extent is None:  # an extent asked for ("far away from") stays as asked
+    # an extent asked for ("far away from") stays as asked, and a composite's slot is where its block must end
+    if end.cut is not None and cmd.extent is None and clause.target is None:
         plan = cut_short(plan, end.cut, judge, scene)
     if end != DEFAULT:  # a copy: the uncut plan may be tried again as it is
         plan = replace(plan, extra={**plan.extra, "end_state": end.to_dict()})
