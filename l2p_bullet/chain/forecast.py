@@ -133,6 +133,7 @@ class _Searcher:
             raise self._dead(c, e) from None
         checked = time.perf_counter() - t0
         first: _Dead | None = None
+        judged_short: tuple[Plan, End] | None = None  # the first end whose plan the judge does not accept
         planned: dict[int, Plan | None] = {}  # seed offset -> its plan (None: it failed)
         for end in ENDS:
             if end.seed not in planned:
@@ -161,12 +162,19 @@ class _Searcher:
             self.kept[id(plan)] = checked + self.cost[id(plan)] + (
                 self.cost[id(planned[end.seed])] if end.cut is not None else 0.0)
             step = self._step(c, bundle, model, judge, plan, end)
+            if not step.forecast.extra["verdict"]["success"]:
+                judged_short = judged_short or (plan, end)
+                continue  # another end of this clause may be one its judge accepts; this one is kept for last
             try:
                 return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
             except _Dead as d:
                 first = first or d
                 if d.blocks is not None and c.command.mover not in d.blocks:
                     raise first from None  # this clause's end does not move what failed: try an earlier one
+        if judged_short is not None:  # no end the judge accepts: planned as it was (the run judges what it does)
+            plan, end = judged_short
+            step = self._step(c, bundle, model, judge, plan, end)
+            return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
         raise first if first is not None else self._dead(c, PlanError("no end state left to try"))
 
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:

@@ -4,6 +4,8 @@ each clause with the end state the chain chose."""
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -69,11 +71,23 @@ def rim_refuses(check: str, *, reads: str, other: str | None = None):
     return feasible
 
 
+class Judge:
+    """A stand-in judge: accepts every path, or (``refuse_rim``) none that ends at RIM."""
+
+    def __init__(self, refuse_rim: bool = False):
+        self.refuse_rim = refuse_rim
+
+    def judge(self, path, anchor, size, **kwargs):
+        ok = not (self.refuse_rim and np.allclose(path[-1][:2], RIM[:2]))
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "judged"})
+
+
 @pytest.fixture
 def stand_ins(monkeypatch):
-    """The search over stand-ins for the planner and the path check: what is tested is the search alone."""
+    """The search over stand-ins for the planner, the judge and the path check: what is tested is the search."""
     calls: list = []
     monkeypatch.setattr(chain_forecast, "plan_clause", stand_in(calls))
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge())
     from l2p_bullet.embodiment import execute
 
     monkeypatch.setattr(execute, "check_for", lambda *a, **k: None)
@@ -100,6 +114,21 @@ def test_the_search_only_tries_again_the_clauses_that_moved_what_failed(plugins,
     steps = forecast(clauses, scene, plugins)
     assert [s.end for s in steps] == [DEFAULT, End(0, "half"), DEFAULT]
     assert [c for c, _ in stand_ins].count(1) == 1
+
+
+def test_an_end_the_judge_accepts_is_chosen_over_one_it_does_not(plugins, stand_ins, monkeypatch):
+    """The planner's own end is judged not done on the plan (it ends at RIM): another end of the same clause
+    that the judge accepts is chosen; when none is, the planner's own is kept (the run judges what it does)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge(refuse_rim=True))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B, then move C next to A", scene, plugins)
+    assert [s.end for s in forecast(clauses, scene, plugins)] == [End(0, "half")] * 2  # both stand-ins end at RIM
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda *a, **k: SimpleNamespace(to_dict=lambda: {"success": False})))
+    stand_ins.clear()
+    assert [s.end for s in forecast(clauses, scene, plugins)] == [DEFAULT, DEFAULT]
+    assert [e for c, e in stand_ins if c == 1 and e.cut is None] == [End(0), End(1), End(2)]  # each seed once
 
 
 def test_a_refusal_names_the_clause_its_check_and_what_was_tried(plugins, stand_ins, monkeypatch):
