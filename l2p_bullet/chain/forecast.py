@@ -6,8 +6,10 @@ planned from there, the earlier clauses' other end states (ends.py: other seeds,
 tried, latest first, depth first, so one clause's greedy end (a block left on the workspace's rim, a block
 already past its anchor) does not make the chain impossible when another end of the same clause would keep it
 possible. Only the clauses that moved a block the failed check reads are tried again (a room check reads the
-mover and the anchor; every other check, the whole scene). A chain is refused only when no combination tried
-works, with the first failure found (the clause and its check) and what was tried.
+mover and the anchor; every other check, the whole scene). An end the clause's judge does not accept on the
+plan comes after every end it does accept (kept, as planned, when none is: the run judges what it does). A
+chain is refused only when no combination tried works, with the first failure found (the clause and its
+check) and what was tried.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
