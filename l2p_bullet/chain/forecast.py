@@ -34,7 +34,7 @@ from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
 from .clause import Clause, named
-from .ends import DEFAULT, ENDS, End, plan_clause
+from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
 SEARCH_PLANS = 4
 """Plans a chain's search may make, per clause, before it refuses (each plan is one search of the planner; a
@@ -154,6 +154,10 @@ class _Searcher:
             elif planned[end.seed] is None:
                 continue
             else:
+                if end.turn:  # a turned end is planned to: a search, where there is one to plan to
+                    if self.left <= 0 or turned_goal(c, predicted, planned[end.seed], end.turn) is None:
+                        continue
+                    self.left -= 1
                 try:
                     plan = self._plan(c, predicted, bundle, judge, end, base=planned[end.seed])
                 except _Dead as d:
@@ -162,7 +166,7 @@ class _Searcher:
             if end.cut is not None and np.allclose(plan.path[-1], planned[end.seed].path[-1]):
                 continue  # the cut leaves the end where it was: nothing new to try
             self.kept[id(plan)] = checked + self.cost[id(plan)] + (
-                self.cost[id(planned[end.seed])] if end.cut is not None else 0.0)
+                self.cost[id(planned[end.seed])] if end.cut is not None or end.turn else 0.0)
             step = self._step(c, bundle, model, judge, plan, end)
             if not step.forecast.extra["verdict"]["success"]:
                 judged_short = judged_short or (plan, end)
@@ -189,7 +193,7 @@ class _Searcher:
         except L2PError as e:
             raise self._dead(c, e) from None
         finally:
-            self.stats.plans += base is None
+            self.stats.plans += base is None or bool(end.turn)
         self.cost[id(plan)] = time.perf_counter() - t0
         return plan
 
