@@ -2,19 +2,14 @@
 clauses' plans predict, so a clause that cannot be planned is refused up front, naming it and the check.
 
 Planned as a whole: each clause is planned with the planner's own end first; when a later clause cannot be
-planned from there, the earlier clauses' other end states (ends.py: other seeds, a path stopped short) are
-tried, latest first, depth first, so one clause's greedy end (a block left on the workspace's rim, a block
-already past its anchor) does not make the chain impossible when another end of the same clause would keep it
-possible. Only the clauses that moved a block the failed check reads are tried again (a room check reads the
-mover and the anchor; every other check, the whole scene). An end the clause's judge does not accept on the
-plan comes after every end it does accept (kept, as planned, when none is: the run judges what it does). A
-chain is refused only when no combination tried works, with the first failure found (the clause and its
-check) and what was tried.
-
-The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
-``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
-check (``path``: the planned path leaves the workspace or runs into a block). The forecast is a prediction:
-at run time each clause is planned again from where the simulated world really left the blocks.
+planned from there, the earlier clauses' other end states (ends.py: a path stopped short, other seeds, the
+end turned about the anchor) are tried, latest first, depth first, so one clause's greedy end (a block left
+on the workspace's rim, a block already past its anchor) does not make the chain impossible when another end
+of the same clause would keep it possible. Only the clauses that moved a block the failed check reads are
+tried again (a room check reads the mover and the anchor; every other check, the whole scene). An end the
+clause's judge does not accept on the plan comes after every end it does accept (kept, as planned, when none
+is: the run judges what it does). A chain is refused only when no combination tried works, with the first
+failure found (the clause and its check) and what was tried.
 """
 
 from __future__ import annotations
