@@ -10,6 +10,12 @@ tried again (a room check reads the mover and the anchor; every other check, the
 clause's judge does not accept on the plan comes after every end it does accept (kept, as planned, when none
 is: the run judges what it does). A chain is refused only when no combination tried works, with the first
 failure found (the clause and its check) and what was tried.
+
+The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
+``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
+check (``path``: the planned path leaves the workspace or runs into a block). The forecast is a prediction:
+at run time each clause is planned again, with the end state chosen for it, from where the simulated world
+really left the blocks.
 """
 
 from __future__ import annotations
