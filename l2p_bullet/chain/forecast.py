@@ -38,9 +38,10 @@ from .clause import Clause, named
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
 SEARCH_PLANS = 4
-"""Plans a chain's search may make, per clause, before it refuses (each plan is one search of the planner; a
-cut end costs none). A chain its clauses' own ends make possible is planned once per clause, as before;
-the rest is the room to look for another end (chosen on the development chains, docs/benchmarks.md)."""
+"""Plans a chain's search may make, per clause, to look for other ends (each plan is one search of the
+planner; a cut end costs none). A chain its clauses' own ends make possible is planned once per clause, as
+before. Once spent, the search goes on with the planner's own ends alone, so a chain planned clause by
+clause is never refused for the search's sake (chosen on the development chains, docs/benchmarks.md)."""
 
 
 @dataclass
@@ -139,9 +140,9 @@ class _Searcher:
         judged_short: tuple[Plan, End] | None = None  # the first end whose plan the judge does not accept
         planned: dict[int, Plan | None] = {}  # seed offset -> its plan (None: it failed)
         for end in ENDS:
+            if self.left <= 0 and end != DEFAULT:
+                break  # the search is spent: the planner's own ends only, as clause by clause
             if end.seed not in planned:
-                if self.left <= 0:
-                    break
                 self.left -= 1
                 planned[end.seed] = None
                 try:
@@ -156,7 +157,7 @@ class _Searcher:
                 continue
             else:
                 if end.turn:  # a turned end is planned to: a search, where there is one to plan to
-                    if self.left <= 0 or turned_goal(c, predicted, planned[end.seed], end.turn) is None:
+                    if turned_goal(c, predicted, planned[end.seed], end.turn) is None:
                         continue
                     self.left -= 1
                 try:

@@ -222,3 +222,22 @@ def test_away_then_around_it_plans_with_the_away_turned_off_the_rim(plugins):
     steps = forecast(clauses, scene, plugins, seed=7003)
     assert steps[0].end.turn != 0 and steps[0].forecast.extra["verdict"]["success"]
     check_feasible(clauses[1].command, scene.with_pose("A", steps[0].forecast.path[-1]), plugins, PANDA)
+
+
+def test_a_spent_search_goes_on_with_the_planners_own_ends(plugins, stand_ins, monkeypatch):
+    """Clause 1's own end is judged not done, and every other end of it leaves clause 2 impossible: once the
+    search has spent its plans, the chain is planned as clause by clause (clause 1's own end kept), not
+    refused for want of a plan for clause 2."""
+
+    def only_from_the_rim(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "A" and not np.allclose(scene.get("A").xy, RIM[:2]):
+            raise InfeasibleError("room-around", "no room")
+
+    monkeypatch.setattr(chain_forecast, "SEARCH_PLANS", 1)
+    monkeypatch.setattr(chain_forecast, "check_feasible", only_from_the_rim)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge(refuse_rim=True))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, DEFAULT]
+    assert not steps[0].forecast.extra["verdict"]["success"]
