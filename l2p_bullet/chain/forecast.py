@@ -7,9 +7,10 @@ end turned about the anchor) are tried, latest first, depth first, so one clause
 on the workspace's rim, a block already past its anchor) does not make the chain impossible when another end
 of the same clause would keep it possible. Only the clauses that moved a block the failed check reads are
 tried again (a room check reads the mover and the anchor; every other check, the whole scene). An end the
-clause's judge does not accept on the plan comes after every end it does accept (kept, as planned, when none
-is: the run judges what it does). A chain is refused only when no combination tried works, with the first
-failure found (the clause and its check) and what was tried.
+clause's judge does not accept on the plan is not chosen; the planner's own, so judged, is tried after every
+other end (and kept, as clause by clause, when none works: the run judges what it does). A chain is refused
+only when no combination tried works, with the first failure found (the clause and its check) and what was
+tried.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
@@ -137,7 +138,7 @@ class _Searcher:
             raise self._dead(c, e) from None
         checked = time.perf_counter() - t0
         first: _Dead | None = None
-        judged_short: tuple[Plan, End] | None = None  # the first end whose plan the judge does not accept
+        judged_short: tuple[Plan, End] | None = None  # the planner's own end, when the judge does not accept it
         planned: dict[int, Plan | None] = {}  # seed offset -> its plan (None: it failed)
         for end in ENDS:
             if self.left <= 0 and end != DEFAULT:
@@ -171,8 +172,9 @@ class _Searcher:
                 self.cost[id(planned[end.seed])] if end.cut is not None or end.turn else 0.0)
             step = self._step(c, bundle, model, judge, plan, end)
             if not step.forecast.extra["verdict"]["success"]:
-                judged_short = judged_short or (plan, end)
-                continue  # another end of this clause may be one its judge accepts; this one is kept for last
+                if end == DEFAULT:  # kept for last: clause by clause, it is what the chain would run
+                    judged_short = (plan, end)
+                continue  # another end of this clause may be one its judge accepts; no other end it rejects is
             try:
                 return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
             except _Dead as d:

@@ -241,3 +241,16 @@ def test_a_spent_search_goes_on_with_the_planners_own_ends(plugins, stand_ins, m
     steps = forecast(clauses, scene, plugins)
     assert [s.end for s in steps] == [DEFAULT, DEFAULT]
     assert not steps[0].forecast.extra["verdict"]["success"]
+
+
+def test_an_end_its_judge_rejects_is_never_chosen_to_keep_a_later_clause_possible(plugins, stand_ins, monkeypatch):
+    """Only the planner's own end (at RIM) is judged done, and it leaves clause 2 impossible: the chain is
+    refused, not planned with a clause 1 its judge rejects (that would fail when run, hiding a refusal)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda path, *a, **k: SimpleNamespace(to_dict=lambda: {"success": bool(np.allclose(path[-1][:2],
+                                                                                            RIM[:2]))})))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B, then move C around A", scene, plugins)
+    with pytest.raises(InfeasibleError, match=r'^clause 2 \("move C around A"\) cannot be planned \(room-around\)'):
+        forecast(clauses, scene, plugins)
