@@ -42,7 +42,8 @@ class Clause:
         return f'clause {self.index} ("{self.text}")'
 
 
-def named(e: L2PError, where: str) -> L2PError:
-    """``e`` (same type and attributes: an InfeasibleError keeps its ``check``) with its message prefixed."""
-    e.args = (f"{where}: {e}",) + e.args[1:]
+def named(e: L2PError, where: str, after: str = "") -> L2PError:
+    """``e`` (same type and attributes: an InfeasibleError keeps its ``check``) with its message prefixed
+    (and ``after`` appended)."""
+    e.args = (f"{where}: {e}{after}",) + e.args[1:]
     return e

@@ -27,13 +27,12 @@ from typing import Any
 
 import numpy as np
 
-from .. import planning
 from ..arms import ArmSpec
 from ..core.contracts import Plan, approach_end_frame, trajectory_poses
 from ..core.runfolder import add_to_summary, run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..embodiment.manners import manner_planning, tall_pace
+from ..embodiment.manners import tall_pace
 from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
@@ -41,12 +40,12 @@ from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..options import RunOptions, admit
 from ..pipeline import PerformResult, check_feasible, disturbance_verdict, perform_prepared, prepare_command
-from ..planning.extent import apply_extent
 from ..plugins import registry
 from ..progress.scoring import curve_from
 from .clause import Clause
 from .clauses import one_clause, resolve_clauses
 from .composite import judge_row
+from .ends import plan_clause
 from .files import merge_timings
 from .forecast import Step, forecast
 
@@ -299,12 +298,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
             check_feasible(cmd, now, plugins, arm)
-            target = step.clause.target
-            plan = planning.plan(now, cmd.mover, list(cmd.anchors), step.bundle, planner=options.planner,
-                                 seed=options.seed, budget=options.budget, threshold=options.threshold,
-                                 target=None if target is None else target(now),
-                                 arm=arm, **manner_planning(manners.get(cmd.manner), now.get(cmd.mover).size, arm))
-            plan = apply_extent(plan, cmd.extent, step.judge, now)
+            # the end state the chain was planned with (ends.py): the planner's own, or the one that keeps the
+            # later clauses possible
+            plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
             plan.extra.setdefault("sentence", step.clause.text)
         stage = "path"
         p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path, arm)

@@ -54,9 +54,12 @@ from .common import MAX_SEED
               help="Comma-separated manners of motion, every run in each (default: slide): slide,carry,push.")
 @click.option("--chains", type=int, default=None,
               help="K: one chain of K clauses per scene, scenes of 3-5 blocks (CALVIN-style; docs/evaluate.md).")
+@click.option("--chain-draw", type=click.Choice(["clause", "sentence"]), default=None,
+              help="How a chain is drawn: each clause until it plans (clause, the default), or the whole "
+                   "sentence first, then planned as a whole or refused (sentence).")
 def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, plan_only, render_every, no_render,
                  keep, workers, ray_address, out, resume, retry_errors, report, parquet, quiet, as_json,
-                 arm, chains, manners) -> None:
+                 arm, chains, manners, chain_draw) -> None:
     """Perform (or plan) every scene x action and record one row per run in OUT/results.sqlite.
 
     \b
@@ -67,6 +70,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
       l2p-bullet evaluate --out runs/big --resume          (after Ctrl-C)
       l2p-bullet evaluate --out runs/eval --report         (report what is recorded)
       l2p-bullet evaluate --chains 5 --scenes 50 --out runs/chains --report
+      l2p-bullet evaluate --chains 5 --chain-draw sentence --scenes 50 --report
       l2p-bullet evaluate --scenes 20 --manners slide,carry,push --report
     Every run is judged by every installed action's judge and scored by every progress model: the
     report's confusion matrices (rows = asked, columns = recognised).
@@ -80,6 +84,7 @@ def evaluate_cmd(actions, scenes, scene_file, study, bystanders, seed, planner, 
              "scenes": scenes, "scene_file": scene_file, "study": study, "bystanders": bystanders, "seed": seed,
              "planner": planner, "mode": "plan" if plan_only else None,
              "render_every": 0 if no_render else render_every, "keep": keep, "chains": chains, "arm": arm,
+             "chain_draw": chain_draw,
              "manners": [m.strip() for m in manners.split(",") if m.strip()] if manners else None}
     given = {k: v for k, v in given.items() if v is not None}
     folder = Path(out) if out else Path("runs") / f"evaluate-{time.strftime('%Y%m%d-%H%M%S')}"

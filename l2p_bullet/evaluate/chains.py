@@ -5,7 +5,11 @@ more blocks (:func:`~.scenes.add_bystanders`), 3-5 blocks in all, the count draw
 the worker from the task's seed, clause by clause, over the installed one-anchor actions and random
 mover/anchor pairs; a clause that cannot be planned from the state the previous clauses' plans predict
 (the forecast's refusals: feasibility checks, no legal move, a path into a block) is drawn again, and the
-re-draws are counted. The chain is then performed as ``perform`` performs it (l2p_bullet/chain), in the
+re-draws are counted (``--chain-draw clause``, the default). With ``--chain-draw sentence`` the whole chain's
+clauses are drawn first, as a person would say them, and the chain is planned as a whole (chain/forecast.py:
+each clause's end state chosen so the later clauses stay possible); a chain that no end states make possible
+is refused up front: its row has ``error_type`` "refused", ``completed`` 0 and the refusal as its ``error``
+(the clause and the check). The chain is then performed as ``perform`` performs it (l2p_bullet/chain), in the
 worker's reused world. A task's row depends on the task alone, so the pool and Ray give equal rows.
 
 Rows: one per chain in the results table (``mode`` "chain", ``completed`` clauses in a row, ``redraws``,
@@ -16,6 +20,7 @@ clause. The report: success of the first 1..K clauses and the average number com
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import statistics
 from dataclasses import replace
@@ -27,7 +32,7 @@ import numpy as np
 from ..arms import PANDA, ArmSpec, fit_scene
 from ..chain import perform_chain
 from ..chain.clauses import Clause
-from ..chain.forecast import forecast
+from ..chain.forecast import Search, forecast
 from ..core.scene import Scene, random_scene
 from ..errors import EvaluationError, L2PError
 from ..pipeline import resolve
@@ -40,6 +45,8 @@ CHAIN_BLOCK = 0.05
 MAX_DRAWS = 25
 """Draws per clause before a chain is given up as impossible to continue (an error row)."""
 MAX_CHAIN = 10
+DRAWS = ("clause", "sentence")
+"""How a chain is drawn (``--chain-draw``): clause by clause until each plans, or the whole sentence first."""
 
 
 def chain_scenes(n: int, seed: int = 0) -> list[SceneSpec]:
@@ -57,7 +64,7 @@ def chain_scenes(n: int, seed: int = 0) -> list[SceneSpec]:
 def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, planner: str = "default",
                      render_every: int = 0, keep: str = "none", out_dir: str | None = None,
                      plugins: list | None = None, budget: int | None = None,
-                     threshold: float | None = None, arm: str = "panda") -> list[Task]:
+                     threshold: float | None = None, arm: str = "panda", draw: str = "clause") -> list[Task]:
     """One chain of ``k`` clauses per scene, performed by ``arm``; the clauses are drawn by the worker (see the
     module docstring)."""
     if not 1 <= k <= MAX_CHAIN:
@@ -73,7 +80,7 @@ def make_chain_tasks(specs: list[SceneSpec], k: int, actions: list[str], *, plan
         tasks.append(Task(f"{spec.id}|chain{k}|{planner}|chain", i, spec.id, spec.source, spec.scene.to_dict(),
                           "", "", "chain", "", planner, spec.seed, "chain",
                           render_every > 0 and i % render_every == 0, keep, run_dir, budget, threshold,
-                          chain_length=k, chain_actions=one_anchor, arm=arm))
+                          chain_length=k, chain_actions=one_anchor, arm=arm, chain_draw=draw))
     return tasks
 
 
@@ -109,20 +116,49 @@ def draw_chain(scene: Scene, k: int, actions: list[str], rng: np.random.Generato
     return steps, redraws
 
 
+def draw_sentence(scene: Scene, k: int, actions: list[str], rng: np.random.Generator, plugins: list) -> list[Clause]:
+    """``k`` clauses drawn up front, each a random action with a random mover and anchor (``--chain-draw
+    sentence``): what is asked does not depend on what the planner can do."""
+    names, clauses = scene.names, []
+    for i in range(1, k + 1):
+        action = actions[int(rng.integers(len(actions)))]
+        m, a = (int(v) for v in rng.choice(len(names), 2, replace=False))
+        text = sentence_for(action, names[m], names[a], plugins)
+        clauses.append(Clause(i, text, resolve(text, scene, plugins)))
+    return clauses
+
+
 def run_chain(worker: Any, task: Task, row: dict) -> None:
     """Draw and perform ``task``'s chain in ``worker``'s world; fill ``row`` (the chain's row)."""
-
+    import time
 
     from ..plugins import arms as arm_plugins
 
     arm = arm_plugins.get(task.arm)
     scene = fit_scene(Scene.from_dict(task.scene, source=task.scene_id).validate(), arm)
-    steps, redraws = draw_chain(scene, task.chain_length, list(task.chain_actions),
-                                chain_rng(task.seed, task.chain_length), worker.plugins,
-                                planner=task.planner, seed=task.seed, budget=task.budget, threshold=task.threshold,
-                                arm=arm)
-    sentence = ", then ".join(s.clause.text for s in steps)
-    row.update(sentence=sentence, redraws=redraws)
+    rng = chain_rng(task.seed, task.chain_length)
+    if task.chain_draw == "sentence":
+        clauses = draw_sentence(scene, task.chain_length, list(task.chain_actions), rng, worker.plugins)
+        sentence = ", then ".join(c.text for c in clauses)
+        row.update(sentence=sentence, redraws=0)
+        search, t0 = Search(), time.perf_counter()
+        try:
+            steps = forecast(clauses, scene, worker.plugins, planner=task.planner, seed=task.seed,
+                             budget=task.budget, threshold=task.threshold, arm=arm, search=search)
+        except L2PError as e:
+            row.update(success=0, completed=0, error=str(e), error_type="refused", reason=f"refused: {e}",
+                       timings={"forecast": round(time.perf_counter() - t0, 5), "forecast_plans": search.plans})
+            return
+        forecast_timings = {"forecast": round(time.perf_counter() - t0, 5),
+                            "forecast_alone": round(search.kept_seconds, 5), "forecast_plans": search.plans,
+                            "ends_changed": len(search.changed)}
+    else:
+        steps, redraws = draw_chain(scene, task.chain_length, list(task.chain_actions), rng, worker.plugins,
+                                    planner=task.planner, seed=task.seed, budget=task.budget,
+                                    threshold=task.threshold, arm=arm)
+        sentence = ", then ".join(s.clause.text for s in steps)
+        row.update(sentence=sentence, redraws=redraws)
+        forecast_timings = {}
     keep_always = task.render or task.keep == "all"
     out = Path(task.run_dir) if (task.run_dir and (keep_always or task.keep == "failed")) else worker.scratch() / "run"
     world = worker.world(scene, visuals=task.render, arm=task.arm)
@@ -142,7 +178,7 @@ def run_chain(worker: Any, task: Task, row: dict) -> None:
                final_progress=r.results[-1].final_progress if r.results else None,
                max_deviation_m=max((c.max_deviation_m for c in r.results), default=None),
                anchor_displacement_m=max(others, default=None), total_s=r.timings.get("total"),
-               timings={k: round(t, 5) for k, t in r.timings.items()})
+               timings={k: round(t, 5) for k, t in r.timings.items()} | forecast_timings)
     kept = keep_always or (task.keep == "failed" and not r.success)
     if kept:
         row["run_dir"] = str(out)
@@ -179,6 +215,7 @@ def chain_report(rows: list[dict]) -> dict:
     """CALVIN's numbers: success of the first 1..K clauses over all chains, the average completed, and per
     clause: success per action, failures by stage, the largest move of a block that was not the mover."""
     rows = [r for r in rows if r.get("mode") == "chain"]
+    refused = [r for r in rows if r.get("error_type") == "refused"]
     k = max((int(str(r["run_id"]).split("|")[1][len("chain"):]) for r in rows), default=0)  # "chain/S|chainK|..."
     done = [int(r.get("completed") or 0) for r in rows]
     clauses = clause_rows(rows)
@@ -188,7 +225,10 @@ def chain_report(rows: list[dict]) -> dict:
         per_action[a] = {"clauses": len(cs), "success": sum(c["success"] for c in cs) / len(cs)}
     first = [c for c in clauses if c["clause"] == 1]
     return {
-        "chains": len(rows), "clauses_per_chain": k, "errors": sum(r.get("error") is not None for r in rows),
+        "chains": len(rows), "clauses_per_chain": k,
+        "errors": sum(r.get("error") is not None for r in rows) - len(refused),
+        "refused": len(refused), "refused_by": refusal_causes(refused),
+        "forecast_ratio": forecast_ratio(rows),
         "success_first": {str(i): (sum(d >= i for d in done) / len(rows) if rows else None) for i in range(1, k + 1)},
         "average_completed": statistics.fmean(done) if done else None,
         "redraws": sum(int(r.get("redraws") or 0) for r in rows),
@@ -201,10 +241,38 @@ def chain_report(rows: list[dict]) -> dict:
     }
 
 
+_REFUSAL = re.compile(r'clause (\d+) \(".*?"\) cannot be planned \(([\w-]+)\)')
+
+
+def refusal_causes(refused: list[dict]) -> dict[str, int]:
+    """Refused chains by cause: "clause N: check" ("clause 1" is the clause from the scene as drawn: no
+    earlier clause's end state could have helped), most frequent first."""
+    causes: dict[str, int] = {}
+    for r in refused:
+        m = _REFUSAL.search(str(r.get("error")))
+        key = f"clause {m.group(1)}: {m.group(2)}" if m else "other"
+        causes[key] = causes.get(key, 0) + 1
+    return dict(sorted(causes.items(), key=lambda kv: (-kv[1], kv[0])))
+
+
+def forecast_ratio(rows: list[dict]) -> dict | None:
+    """The chain's up-front planning against its clauses planned alone (``--chain-draw sentence``): the mean
+    of each planned chain's seconds over its kept plans' seconds, the same of the sums, and the worst."""
+    pairs = [(r["timings"]["forecast"], r["timings"]["forecast_alone"]) for r in rows
+             if isinstance(r.get("timings"), dict) and r["timings"].get("forecast_alone")]
+    if not pairs:
+        return None
+    ratios = [a / b for a, b in pairs]
+    return {"chains": len(pairs), "mean": statistics.fmean(ratios), "of_sums": sum(a for a, _ in pairs)
+            / sum(b for _, b in pairs), "max": max(ratios)}
+
+
 def chain_report_text(rep: dict) -> str:
     k = rep["clauses_per_chain"]
     lines = [f"chains of {k}: {rep['chains']} chains, {rep['errors']} errors, {rep['redraws']} clauses re-drawn "
              "(impossible from the predicted state)",
+             f"refused up front: {rep.get('refused', 0)} ({100 * rep.get('refused', 0) / max(rep['chains'], 1):.1f} %)"
+             + (": " + ", ".join(f"{c} {n}" for c, n in rep["refused_by"].items()) if rep.get("refused_by") else ""),
              "success of the first i clauses: " + "  ".join(f"{i}: {100 * v:.1f}%" for i, v in
                                                            rep["success_first"].items() if v is not None),
              f"average completed: {rep['average_completed'] or 0:.2f} of {k}",
@@ -212,6 +280,10 @@ def chain_report_text(rep: dict) -> str:
              + ", ".join(f"{a} {100 * s['success']:.0f}% of {s['clauses']}" for a, s in rep["per_action"].items()),
              f"failures by stage: {rep['failed_stage']}; largest move of a block not moved by its clause: "
              f"{rep['max_others_moved_mm']:.2f} mm"]
+    ratio = rep.get("forecast_ratio")
+    if ratio:
+        lines.append(f"planning a chain / planning its clauses alone: {ratio['mean']:.2f} mean, "
+                     f"{ratio['of_sums']:.2f} of the sums, {ratio['max']:.1f} at most ({ratio['chains']} chains)")
     return "\n".join(lines)
 
 

@@ -68,7 +68,9 @@ COLUMNS: dict[str, str] = {
 (every action's learned progress: {action: value}) are JSON text: the automatic confusion matrix;
 ``timings`` (JSON) has perform's stages (parse, load, plan, execute, judge, total) in seconds.
 A chain's row (``evaluate --chains``) adds ``completed`` (clauses done in a row), ``redraws`` and
-``clauses`` (JSON: one entry per clause performed, evaluate/chains.py). ``manner``: slide, carry,
+``clauses`` (JSON: one entry per clause performed, evaluate/chains.py); a chain drawn whole
+(``--chain-draw sentence``) adds ``forecast``, ``forecast_alone``, ``forecast_plans`` and ``ends_changed`` to
+its ``timings``, and one refused up front has ``error_type`` "refused". ``manner``: slide, carry,
 push (``evaluate --manners``); null in a table written before it."""
 JSON_COLUMNS = ("judged", "scored", "timings", "clauses")
 

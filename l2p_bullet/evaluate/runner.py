@@ -60,6 +60,7 @@ class EvaluationConfig:
     budget: int | None = None
     threshold: float | None = None
     chains: int = 0  # K > 0: one chain of K clauses per scene of 3-5 blocks (evaluate/chains.py)
+    chain_draw: str = "clause"  # how a chain is drawn: "clause" or "sentence" (evaluate/chains.py, DRAWS)
     arm: str = "panda"  # the arm that performs every run (l2p-bullet arms)
     manners: list[str] = field(default_factory=lambda: ["slide"])  # every run in each manner (l2p_bullet/manners)
 
@@ -100,6 +101,10 @@ class EvaluationConfig:
             raise EvaluationError(f'unknown --keep "{self.keep}" (known: {", ".join(KEEP)})')
         if self.chains:
             check_chains(self.chains)
+        from .chains import DRAWS
+
+        if self.chain_draw not in DRAWS:
+            raise EvaluationError(f'unknown --chain-draw "{self.chain_draw}" (known: {", ".join(DRAWS)})')
         return self
 
     def scene_set(self) -> list[SceneSpec]:
@@ -266,7 +271,7 @@ def _tasks(config: EvaluationConfig, out: Path, plugins: list) -> tuple[list[Tas
         return make_chain_tasks(scenes, config.chains, actions, planner=config.planner,
                                 render_every=config.render_every, keep=config.keep, out_dir=str(out),
                                 plugins=plugins, budget=config.budget, threshold=config.threshold,
-                                arm=config.arm), extra_notes
+                                arm=config.arm, draw=config.chain_draw), extra_notes
     notes = extra_notes | skipped(scenes, actions, plugins)
     tasks = make_tasks(scenes, actions, planner=config.planner, mode=config.mode,
                        render_every=config.render_every, keep=config.keep, out_dir=str(out), plugins=plugins,

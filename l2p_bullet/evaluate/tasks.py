@@ -46,6 +46,7 @@ class Task:
     time_limit: float | None = None  # seconds of planning (equal-time comparisons); plan mode only
     chain_length: int = 0  # chain mode: clauses per chain, drawn by the worker over chain_actions (chains.py)
     chain_actions: tuple[str, ...] = ()
+    chain_draw: str = "clause"  # chain mode: "clause" (each drawn until it plans) or "sentence" (drawn whole first)
     arm: str = "panda"  # the arm that performs it (l2p-bullet arms)
     more_anchors: tuple[str, ...] = ()  # a two-anchor action's further reference blocks ("between B and C": C)
     manner: str = "slide"  # the manner of motion (l2p_bullet/manners): the sentence's verb says it

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 
 from l2p_bullet.cli import main
 from l2p_bullet.errors import EvaluationError
-from l2p_bullet.evaluate.chains import chain_report, chain_scenes, clause_rows
+from l2p_bullet.evaluate.chains import chain_report, chain_report_text, chain_scenes, clause_rows
 from l2p_bullet.evaluate.results import comparable
 from l2p_bullet.evaluate.runner import EvaluationConfig, evaluate, load_rows
 
@@ -129,3 +129,38 @@ def test_chains_on_another_arm_are_drawn_and_performed_by_it(tmp_path):
         assert first["frames"][1] > first["frames"][0]
     summaries = list((tmp_path / "kept" / "runs").glob("*/summary.json"))
     assert summaries and {json.loads(p.read_text())["arm"] for p in summaries} == {"xarm6"}
+
+
+def test_refused_chains_count_as_none_completed_and_by_cause():
+    """``--chain-draw sentence``: a refused chain is no error, completes nothing and is counted by its clause
+    and check; the chain's planning is compared with its clauses planned alone."""
+
+    def row(i, completed, error=None, timings=None):
+        return {"run_id": f"chain/{i}|chain2|default|chain", "scene_id": f"chain/{i}", "seed": i, "mode": "chain",
+                "completed": completed, "clauses": [], "redraws": 0, "error": error,
+                "error_type": "refused" if error else None, "timings": timings}
+
+    refusal = 'clause {} ("move C around A") cannot be planned ({}): no room'
+    rows = [row(0, 2, timings={"forecast": 3.0, "forecast_alone": 2.0}),
+            row(1, 1, timings={"forecast": 1.0, "forecast_alone": 1.0}),
+            row(2, 0, refusal.format(2, "room-around")), row(3, 0, refusal.format(2, "room-around")),
+            row(4, 0, refusal.format(1, "far-around"))]
+    rep = chain_report(rows)
+    assert rep["refused"] == 3 and rep["errors"] == 0 and rep["average_completed"] == 0.6
+    assert rep["refused_by"] == {"clause 2: room-around": 2, "clause 1: far-around": 1}
+    assert rep["forecast_ratio"] == {"chains": 2, "mean": 1.25, "of_sums": 4 / 3, "max": 1.5}
+    assert "refused up front: 3 (60.0 %): clause 2: room-around 2" in chain_report_text(rep)
+
+
+def test_a_sentence_is_drawn_whole_and_the_same_from_the_same_seed(tmp_path):
+    from l2p_bullet.evaluate.chains import chain_rng, draw_sentence
+    from l2p_bullet.plugins import registry
+
+    plugins = registry.discover()
+    scene = chain_scenes(1, seed=7)[0].scene
+    a = draw_sentence(scene, 5, ["closer", "past"], chain_rng(7, 5), plugins)
+    b = draw_sentence(scene, 5, ["closer", "past"], chain_rng(7, 5), plugins)
+    assert [c.text for c in a] == [c.text for c in b] and [c.index for c in a] == [1, 2, 3, 4, 5]
+    with pytest.raises(EvaluationError, match="chain-draw"):
+        evaluate(EvaluationConfig(chains=2, scenes=1, chain_draw="whole"), tmp_path / "a", workers=0,
+                 progressbar=False)

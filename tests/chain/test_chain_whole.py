@@ -1,0 +1,256 @@
+"""A chain planned as a whole (chain/forecast.py, chain/ends.py): a clause's end state is chosen so the later
+clauses stay possible, a refusal names the clause and why, the plan is deterministic, and the run re-plans
+each clause with the end state the chain chose."""
+
+from __future__ import annotations
+
+import re
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from l2p_bullet.arms import PANDA, fit_scene
+from l2p_bullet.chain import forecast as chain_forecast
+from l2p_bullet.chain import perform_chain
+from l2p_bullet.chain import run as chain_run
+from l2p_bullet.chain.clauses import resolve_clauses
+from l2p_bullet.chain.ends import DEFAULT, End, plan_clause, turned_goal
+from l2p_bullet.chain.forecast import Search, forecast
+from l2p_bullet.core.contracts import Plan
+from l2p_bullet.core.scene import Scene, SceneObject
+from l2p_bullet.errors import InfeasibleError
+from l2p_bullet.evaluate.chains import chain_scenes
+from l2p_bullet.pipeline import check_feasible
+from l2p_bullet.plugins import registry
+
+
+@pytest.fixture(scope="module")
+def plugins():
+    return registry.discover()
+
+
+def four_blocks() -> Scene:
+    return Scene([SceneObject("A", "red", 0.04, (0.10, -0.08), 0.2), SceneObject("B", "green", 0.04, (0.0, 0.02), 0.0),
+                  SceneObject("C", "blue", 0.04, (-0.12, -0.06), 0.4),
+                  SceneObject("D", "yellow", 0.04, (-0.06, 0.10), 0.1)]).validate()
+
+
+RIM = np.array([0.30, -0.10, 0.0])
+"""Where the stand-in planner's own end (seed offset 0, no cut) leaves a block: the rim, in these tests."""
+
+
+def stand_in(calls: list):
+    """A planner that moves the mover straight to RIM for the planner's own end and elsewhere for every other
+    end (each end its own place), recording (clause, end) per call; a cut of the rim plan ends short of it."""
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+        calls.append((clause.index, end))
+        start = np.asarray(scene.get(clause.command.mover).pose, float)
+        goal = RIM.copy() if end.seed == 0 else np.array([-0.05 * end.seed, 0.20, 0.0])
+        if end.cut is not None:
+            goal = start + (goal - start) * (0.5 if end.cut == "half" else 0.3)
+        if end.turn:
+            goal = turned_goal(clause, scene, base, end.turn)
+        path = np.linspace(start, goal, 6)
+        anchor = scene.get(clause.command.anchor).pose
+        return Plan(clause.command.action, clause.command.mover, clause.command.anchor, 0.04, np.asarray(anchor),
+                    start, path, np.linspace(0, 1, 6), "stand-in", "threshold", {"final_progress": 1.0})
+
+    return plan
+
+
+def rim_refuses(check: str, *, reads: str, other: str | None = None):
+    """A feasibility check that refuses (``check``) a clause whose ``reads`` block stands at RIM, and (``other``)
+    every clause that moves ``reads`` from anywhere else."""
+
+    def feasible(cmd, scene, plugins, arm=PANDA):
+        at = np.asarray(scene.get(reads).xy)
+        if cmd.anchor == reads and np.allclose(at, RIM[:2]):
+            raise InfeasibleError(check, f'no room around "{reads}" on the rim')
+        if other is not None and cmd.anchor == reads:
+            raise InfeasibleError(other, f'"{reads}" is boxed in')
+
+    return feasible
+
+
+class Judge:
+    """A stand-in judge: accepts every path, or (``refuse_rim``) none that ends at RIM."""
+
+    def __init__(self, refuse_rim: bool = False):
+        self.refuse_rim = refuse_rim
+
+    def judge(self, path, anchor, size, **kwargs):
+        ok = not (self.refuse_rim and np.allclose(path[-1][:2], RIM[:2]))
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "judged"})
+
+
+@pytest.fixture
+def stand_ins(monkeypatch):
+    """The search over stand-ins for the planner, the judge and the path check: what is tested is the search."""
+    calls: list = []
+    monkeypatch.setattr(chain_forecast, "plan_clause", stand_in(calls))
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge())
+    from l2p_bullet.embodiment import execute
+
+    monkeypatch.setattr(execute, "check_for", lambda *a, **k: None)
+    return calls
+
+
+def test_a_greedy_end_that_leaves_a_later_clause_impossible_is_replaced(plugins, stand_ins, monkeypatch):
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT]  # the first other end that keeps clause 2 possible
+    assert not np.allclose(steps[0].forecast.path[-1][:2], RIM[:2])
+    assert search.changed == [1] and search.dead_ends == {"clause 2 (room-around)": 1}
+
+
+def test_the_search_only_tries_again_the_clauses_that_moved_what_failed(plugins, stand_ins, monkeypatch):
+    """Clause 1 moves D, which the room check of clause 3 does not read: only clause 2 (it moved A) is tried
+    with other ends; clause 1 is planned once."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move D next to B, then move A away from B, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, End(0, "half"), DEFAULT]
+    assert [c for c, _ in stand_ins].count(1) == 1
+
+
+def test_an_end_the_judge_accepts_is_chosen_over_one_it_does_not(plugins, stand_ins, monkeypatch):
+    """The planner's own end is judged not done on the plan (it ends at RIM): another end of the same clause
+    that the judge accepts is chosen; when none is, the planner's own is kept (the run judges what it does)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge(refuse_rim=True))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B, then move C next to A", scene, plugins)
+    assert [s.end for s in forecast(clauses, scene, plugins)] == [End(0, "half")] * 2  # both stand-ins end at RIM
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda *a, **k: SimpleNamespace(to_dict=lambda: {"success": False})))
+    stand_ins.clear()
+    assert [s.end for s in forecast(clauses, scene, plugins)] == [DEFAULT, DEFAULT]
+    searched = [e for c, e in stand_ins if c == 1 and e.cut is None]  # each a search: cuts cost none
+    assert searched[:3] == [End(0), End(1), End(0, None, 30)] and len(set(searched)) == len(searched)
+
+
+def test_a_refusal_names_the_clause_its_check_and_what_was_tried(plugins, stand_ins, monkeypatch):
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A", other="boxed-in"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    with pytest.raises(InfeasibleError) as e:
+        forecast(clauses, scene, plugins)
+    msg = str(e.value)
+    assert msg.startswith('clause 2 ("move C around A") cannot be planned (room-around): no room around "A"')
+    assert "no other end state of the clauses before it keeps it possible" in msg
+    assert re.search(r"; the other end states tried met clause 2 \(boxed-in\) x\d+\)$", msg)  # every other end
+    assert e.value.check == "room-around" and e.value.details["clause"] == 2
+
+
+def test_a_clause_refused_from_the_scene_as_drawn_is_named_as_before(plugins, stand_ins, monkeypatch):
+    """Nothing before clause 1 could help: the refusal is the clause's own, word for word."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks().with_pose("A", RIM)
+    clauses = resolve_clauses("move C around A, then move A away from B", scene, plugins)
+    with pytest.raises(InfeasibleError) as e:
+        forecast(clauses, scene, plugins)
+    assert str(e.value) == 'clause 1 ("move C around A") cannot be planned (room-around): no room around "A" on the rim'
+    assert stand_ins == []
+
+
+def _case_7002(plugins):
+    """A chain found on the development chain scenes (seed 7002): "past" leaves C where B cannot get round
+    it; stopped halfway past B, it can."""
+    scene = fit_scene(chain_scenes(1, 7002)[0].scene, PANDA)
+    return scene, resolve_clauses("move C past B, then move B around C", scene, plugins)
+
+
+@pytest.mark.slow
+def test_a_chain_refused_for_a_greedy_end_now_plans_and_deterministically(plugins):
+    scene, clauses = _case_7002(plugins)
+    first = forecast(clauses[:1], scene, plugins, seed=7002)[0]
+    after = scene.with_pose("C", first.forecast.path[-1])
+    with pytest.raises(InfeasibleError) as e:  # what planning clause by clause met (the chain was refused)
+        check_feasible(clauses[1].command, after, plugins, PANDA)
+    assert e.value.check == "blocked-around"
+    steps = forecast(clauses, scene, plugins, seed=7002)
+    assert steps[0].end != DEFAULT and all(s.forecast.extra["verdict"]["success"] for s in steps)
+    assert steps[0].forecast.extra["end_state"] == steps[0].end.to_dict()  # plan.json says which end
+    again = forecast(clauses, scene, plugins, seed=7002)
+    assert [s.end for s in again] == [s.end for s in steps]
+    for a, b in zip(again, steps, strict=True):
+        assert np.array_equal(a.forecast.path, b.forecast.path)
+
+
+@pytest.mark.slow
+def test_the_run_replans_each_clause_with_the_end_the_chain_chose(plugins, tmp_path, monkeypatch):
+    scene, clauses = _case_7002(plugins)
+    steps = forecast(clauses, scene, plugins, seed=7002)
+    seen = []
+
+    def recording(clause, *args, **kwargs):
+        seen.append((clause.index, args[5] if len(args) > 5 else kwargs.get("end")))
+        return plan_clause(clause, *args, **kwargs)
+
+    monkeypatch.setattr(chain_run, "plan_clause", recording)
+    sentence = ", then ".join(c.text for c in clauses)
+    r = perform_chain(sentence, scene, out_dir=tmp_path / "run", render=False, seed=7002, steps=steps)
+    assert seen == [(2, steps[1].end)]  # clause 1 runs its forecast; clause 2 is planned again, with its end
+    assert r.completed >= 1
+
+
+def test_a_turned_end_is_as_far_from_the_anchor_on_another_bearing(plugins):
+    scene = four_blocks()
+    clause = resolve_clauses("move A away from B, then move C next to B", scene, plugins)[0]
+    b = np.asarray(scene.get("B").xy)
+    base = SimpleNamespace(path=np.array([[0.10, -0.08, 0.2], [0.0, -0.12, 0.3]]))
+    goal = turned_goal(clause, scene, base, 90)
+    assert np.isclose(np.hypot(*(goal[:2] - b)), np.hypot(*(base.path[-1][:2] - b)))
+    assert np.allclose(goal[:2], b + (0.14, 0.0)) and goal[2] == 0.3  # a quarter turn anticlockwise, same yaw
+    assert turned_goal(clause, scene, SimpleNamespace(path=np.array([[0.0, -0.32, 0.0]])), 180) is None  # off the disk
+    far = resolve_clauses("move A far away from B", scene, plugins)[0]
+    assert turned_goal(far, scene, base, 90) is None  # an extent asked for is kept
+
+
+@pytest.mark.slow
+def test_away_then_around_it_plans_with_the_away_turned_off_the_rim(plugins):
+    """Development chain seed 7003: every cut and seed of "away" leaves A too near the rim for "around A"
+    (refused clause by clause: room-around); its end turned about C keeps the same distance inside."""
+    scene = fit_scene(chain_scenes(1, 7003)[0].scene, PANDA)
+    clauses = resolve_clauses("move A away from C, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins, seed=7003)
+    assert steps[0].end.turn != 0 and steps[0].forecast.extra["verdict"]["success"]
+    check_feasible(clauses[1].command, scene.with_pose("A", steps[0].forecast.path[-1]), plugins, PANDA)
+
+
+def test_a_spent_search_goes_on_with_the_planners_own_ends(plugins, stand_ins, monkeypatch):
+    """Clause 1's own end is judged not done, and every other end of it leaves clause 2 impossible: once the
+    search has spent its plans, the chain is planned as clause by clause (clause 1's own end kept), not
+    refused for want of a plan for clause 2."""
+
+    def only_from_the_rim(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "A" and not np.allclose(scene.get("A").xy, RIM[:2]):
+            raise InfeasibleError("room-around", "no room")
+
+    monkeypatch.setattr(chain_forecast, "SEARCH_PLANS", 1)
+    monkeypatch.setattr(chain_forecast, "check_feasible", only_from_the_rim)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge(refuse_rim=True))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, DEFAULT]
+    assert not steps[0].forecast.extra["verdict"]["success"]
+
+
+def test_an_end_its_judge_rejects_is_never_chosen_to_keep_a_later_clause_possible(plugins, stand_ins, monkeypatch):
+    """Only the planner's own end (at RIM) is judged done, and it leaves clause 2 impossible: the chain is
+    refused, not planned with a clause 1 its judge rejects (that would fail when run, hiding a refusal)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda path, *a, **k: SimpleNamespace(to_dict=lambda: {"success": bool(np.allclose(path[-1][:2],
+                                                                                            RIM[:2]))})))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B, then move C around A", scene, plugins)
+    with pytest.raises(InfeasibleError, match=r'^clause 2 \("move C around A"\) cannot be planned \(room-around\)'):
+        forecast(clauses, scene, plugins)
