@@ -33,17 +33,10 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from bench_manners import SENTENCES as MANNER_SENTENCES
+from bench_manners import SIZE, VERBS
 
-SENTENCES = {
-    "closer": "{verb} A closer to B",
-    "away": "{verb} A away from B",
-    "next-to": "{verb} A next to B",
-    "past": "{verb} A past B",
-    "around": "{verb} A around B",
-    "towards": "{verb} A towards B",
-}
-VERBS = {"slide": "move", "carry": "carry", "push": "push"}
-SIZE = 0.04
+SENTENCES = {**MANNER_SENTENCES, "towards": "{verb} A towards B"}
 SPLITS = {"dev": (slice(0, 38), 6100), "held-out": (slice(38, None), 6300)}
 KINDS = ("study", "touching", "level")
 

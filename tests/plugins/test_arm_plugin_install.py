@@ -25,14 +25,20 @@ def _data() -> Path:
     return Path(pybullet_data.getDataPath())
 
 
-@pytest.mark.slow
-def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
+def _layered_venv(tmp_path: Path) -> tuple[Path, list[str]]:
+    """A throw-away environment layered on the project's (its packages visible through a .pth), where a plugin is
+    pip-installed as a user would: its python, and the CLI run by it."""
     env = tmp_path / "env"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env)], check=True)
     site = next((env / "lib").glob("python3*/site-packages"))
     (site / "zz_host_env.pth").write_text(f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
     venv = env / "bin" / "python"
-    cli = [str(venv), "-m", "l2p_bullet.cli"]
+    return venv, [str(venv), "-m", "l2p_bullet.cli"]
+
+
+@pytest.mark.slow
+def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
+    venv, cli = _layered_venv(tmp_path)
     out = run([*cli, "new-arm", "my-xarm", "--urdf", str(_data() / "xarm" / "xarm6_with_gripper.urdf")], tmp_path,
               timeout=600)
     assert "wrote l2p-arm-my-xarm/" in out.stdout and "6 arm joints" in out.stdout
@@ -134,12 +140,7 @@ def test_the_composed_ur5e_with_a_robotiq_is_installed_checked_and_performs_arou
     throw-away environment layered on the project's (as test_arm_plugin_install.py does), ``arms --check`` OK,
     and "move A around B" succeeds with the anchor untouched."""
     airo = pytest.importorskip("airo_models.files")
-    env = tmp_path / "env"
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env)], check=True)
-    site = next((env / "lib").glob("python3*/site-packages"))
-    (site / "zz_host_env.pth").write_text(f"import site; site.addsitedir({sysconfig.get_paths()['purelib']!r})\n")
-    venv = env / "bin" / "python"
-    cli = [str(venv), "-m", "l2p_bullet.cli"]
+    venv, cli = _layered_venv(tmp_path)
     out = run([*cli, "new-arm", "my-ur5e", "--urdf", airo.get_urdf_path("ur5e"), "--gripper",
                airo.get_urdf_path("robotiq_2f_85")], tmp_path, timeout=600)
     assert "wrote l2p-arm-my-ur5e/" in out.stdout and "6 arm joints" in out.stdout and "opens 8." in out.stdout
