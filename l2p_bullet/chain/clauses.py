@@ -121,11 +121,11 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
     text that does not resolve as one clause, so "lift A and put it next to B" and "between B and C" stay whole."""
     if depth >= MAX_CLAUSES:
         return None
+    context = Context(previous.mover, previous.anchor) if previous is not None else None
     for m in _AND_OR_COMMA.finditer(text):
         left, right = text[:m.start()].strip(" ,"), text[m.end():].strip(" ,")
         if not left or not right:
             continue
-        context = Context(previous.mover, previous.anchor) if previous is not None else None
         try:
             first = resolve(_complete(left, previous, scene, plugins), scene, plugins, context)
         except L2PError:

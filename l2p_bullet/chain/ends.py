@@ -66,10 +66,8 @@ def plan_clause(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: 
     if end.turn:
         return _turned(clause, scene, bundle, judge, options, arm, end, base)
     if base is None:
-        plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=options.planner,
-                             seed=options.seed + end.seed, budget=options.budget, threshold=options.threshold,
-                             target=None if clause.target is None else clause.target(scene), arm=arm,
-                             **manner_planning(manners.get(cmd.manner), scene.get(cmd.mover).size, arm))
+        plan = _search(clause, scene, bundle, options, arm, end.seed,
+                       None if clause.target is None else clause.target(scene))
         plan = apply_extent(plan, cmd.extent, judge, scene)  # "far away from", "a bit closer to"
     else:
         plan = base
@@ -84,16 +82,22 @@ def plan_clause(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: 
 def _turned(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: RunOptions, arm: ArmSpec, end: End,
             base: Plan | None) -> Plan:
     """The plan to the planner's end (``base``, or planned here) turned ``end.turn`` degrees about the anchor."""
-    cmd = clause.command
     base = base if base is not None else plan_clause(clause, scene, bundle, judge, options, arm, End(end.seed))
     goal = turned_goal(clause, scene, base, end.turn)
     if goal is None:
         raise PlanError(f"the end turned {end.turn} degrees about the anchor is outside the workspace")
-    plan = planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=options.planner,
-                         seed=options.seed + end.seed, budget=options.budget, threshold=options.threshold,
-                         target=goal, arm=arm,
-                         **manner_planning(manners.get(cmd.manner), scene.get(cmd.mover).size, arm))
+    plan = _search(clause, scene, bundle, options, arm, end.seed, goal)
     return replace(plan, extra={**plan.extra, "end_state": end.to_dict()})
+
+
+def _search(clause: Clause, scene: Scene, bundle: Any, options: RunOptions, arm: ArmSpec, seed: int,
+            target: np.ndarray | None) -> Plan:
+    """One search of the planner for ``clause`` with the options' seed plus ``seed``, towards ``target`` if any."""
+    cmd = clause.command
+    return planning.plan(scene, cmd.mover, list(cmd.anchors), bundle, planner=options.planner,
+                         seed=options.seed + seed, budget=options.budget, threshold=options.threshold,
+                         target=target, arm=arm,
+                         **manner_planning(manners.get(cmd.manner), scene.get(cmd.mover).size, arm))
 
 
 def turned_goal(clause: Clause, scene: Scene, base: Plan, turn: int) -> np.ndarray | None:

@@ -293,8 +293,8 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
         for o in pool:
             if o.name in ends or length < 1e-9:
                 continue
-            t = float((np.asarray(o.xy) - a) @ span) / length ** 2
             d = np.asarray(o.xy) - a
+            t = float(d @ span) / length ** 2
             off = abs(float(span[0] * d[1] - span[1] * d[0])) / length
             if 0.0 < t < 1.0 and off < 0.5 * length:
                 inside.append(o)

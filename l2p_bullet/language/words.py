@@ -40,10 +40,10 @@ GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",)
 "would you" is read past as politeness."""
 
 GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"), ("i", "need"))
-DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"))
-"""Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
+DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"))
+"""Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
 
 FRAMES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
     "so that it ends up", "so that it is", "so that it's", "so that it goes", "so that it sits",
@@ -146,11 +146,15 @@ def gerund_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     low = [w.lower() for w in words]
     for pre in GERUND_PREFIXES:
         if _starts(low, pre) and len(words) > len(pre):
-            ing = low[len(pre)]
-            for v in verbs:
-                if ing in (v + "ing", v[:-1] + "ing", v + v[-1] + "ing"):
-                    return [v, *words[len(pre) + 1:]]
+            verb = verb_of_gerund(low[len(pre)], verbs)
+            if verb is not None:
+                return [verb, *words[len(pre) + 1:]]
     return words
+
+
+def verb_of_gerund(word: str, verbs: list[str]) -> str | None:
+    """The known one-word verb whose -ing form ``word`` is ("moving": move, "dragging": drag), or None."""
+    return next((v for v in verbs if " " not in v and word in (v + "ing", v[:-1] + "ing", v + v[-1] + "ing")), None)
 
 
 def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
@@ -221,10 +225,9 @@ def by_gerund(words: list[str], verbs: list[str]) -> list[str]:
     for tail in (2, 3):
         if len(low) <= tail + 1 or low[-tail] != "by" or (tail == 3 and low[-1] not in ("it", "them")):
             continue
-        ing = low[-tail + 1]
-        for v in verbs:
-            if " " not in v and ing in (v + "ing", v[:-1] + "ing", v + v[-1] + "ing"):
-                return [v, *words[1:-tail]]
+        verb = verb_of_gerund(low[-tail + 1], verbs)
+        if verb is not None:
+            return [verb, *words[1:-tail]]
     return words
 
 

@@ -218,19 +218,12 @@ def test_perform_a_row_of_four_from_the_command_line(tmp_path):
 
     from l2p_bullet.cli import main
 
+    def perform(sentence: str, out: Path):
+        scene = str(ROOT / "examples" / "four_blocks.json")
+        return CliRunner().invoke(main, ["perform", sentence, "--scene", scene, "--no-render", "--out", str(out)])
+
     out = tmp_path / "run"
-    r = CliRunner().invoke(
-        main,
-        [
-            "perform",
-            "make a row of A, B, C and D",
-            "--scene",
-            str(ROOT / "examples" / "four_blocks.json"),
-            "--no-render",
-            "--out",
-            str(out),
-        ],
-    )
+    r = perform("make a row of A, B, C and D", out)
     assert r.exit_code == 0, r.output
     assert "row: a row (largest gap" in r.output and "chain: success, 3 of 3 clauses done" in r.output
     summary = json.loads((out / "summary.json").read_text())
@@ -238,18 +231,7 @@ def test_perform_a_row_of_four_from_the_command_line(tmp_path):
     assert [c["text"] for c in summary["clauses"]] == ["move B next to A", "move C next to B", "move D next to C"]
     plan = json.loads((out / "plan.json").read_text())
     assert all(c["plan"]["target_error_m"] < 0.001 for c in plan["clauses"][1:])  # each clause reached its slot
-    bad = CliRunner().invoke(
-        main,
-        [
-            "perform",
-            "line up A, B and Z",
-            "--scene",
-            str(ROOT / "examples" / "four_blocks.json"),
-            "--no-render",
-            "--out",
-            str(tmp_path / "bad"),
-        ],
-    )
+    bad = perform("line up A, B and Z", tmp_path / "bad")
     assert bad.exit_code == 2 and 'no block called "Z"' in bad.output and not (tmp_path / "bad").exists()
 
 

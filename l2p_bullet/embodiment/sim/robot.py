@@ -116,7 +116,7 @@ class Kinematics:
             q, err, ang = self._try(pos, orn, np.asarray(s, float), its, rounds, null_space)
             if self.spec.ik_restarts:  # an arm without a fitted model: its joints may land whole turns off
                 q = self._near(q, np.asarray(seed, float))
-            inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
+            inside = self._inside(q)
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
             if best is None or err < best[1]:
@@ -126,7 +126,7 @@ class Kinematics:
             if IK_POS_TOL < err < 10 * IK_POS_TOL:  # the null-space variant stalls millimetres short: plain DLS on
                 q, err, ang = self._try(pos, orn, q, max(iterations, 50), rounds, False)
             q = self._near(q, np.asarray(seed, float))
-            inside = bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
+            inside = self._inside(q)
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
             if err < best[1]:
@@ -138,6 +138,10 @@ class Kinematics:
             f"the arm cannot reach ({pos[0]:.3f}, {pos[1]:.3f}, {pos[2]:.3f}) pointing down with yaw "
             f"{math.degrees(yaw):.0f} deg ({why}); keep paths inside the workspace"
         )
+
+    def _inside(self, q: np.ndarray) -> bool:
+        """Whether every arm joint of ``q`` is within its limits (PyBullet's IK may return one outside)."""
+        return bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
 
     def _restarts(self, pos, seed: np.ndarray) -> list[np.ndarray]:
         """First guesses for an arm without a fitted wrist model (``ArmSpec.ik_restarts``; none for the others,

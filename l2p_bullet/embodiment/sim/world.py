@@ -60,25 +60,11 @@ def _parts(o, g) -> tuple | None:
     return None if path is None else ("mesh", path, o.scale, g.file_origin, o.rpy)
 
 
-def _parts_bottom(parts: tuple) -> float:
-    """The lowest point (body frame) of a decomposition placed as ``_parts`` says: a convex part's lowest
-    point is one of its vertices (Bullet's bounding box of a turned compound is looser, by millimetres)."""
+def _placed_parts(parts: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices (V,3; body frame) and triangles (T,3 vertex indices) of a decomposition's file, placed as
+    ``_parts`` says (each convex part's file lists its hull's faces)."""
     from ...core.shapes import _rotation
 
-    _, path, scale, origin, rpy = parts
-    with open(path) as f:
-        v = np.array([[float(c) for c in line.split()[1:4]] for line in f if line.startswith("v ")])
-    return float(((v * scale) @ _rotation(tuple(rpy)).T)[:, 2].min() + origin[2])
-
-
-def _triangles(o, g, parts: tuple | None) -> np.ndarray:
-    """A mesh's collision surface (T,3,3) in the body frame: the triangles of its convex parts placed as
-    ``_parts`` says (each part's file lists its hull's faces), or, without parts, its own triangles (then
-    a convex mesh: its hull)."""
-    from ...core.shapes import _rotation
-
-    if parts is None:
-        return np.asarray(g.points, float)[np.asarray(g.faces, np.int64)]
     _, path, scale, origin, rpy = parts
     v, f = [], []
     with open(path) as fh:
@@ -88,7 +74,22 @@ def _triangles(o, g, parts: tuple | None) -> np.ndarray:
             elif line.startswith("f "):
                 f.append([int(c.split("/")[0]) - 1 for c in line.split()[1:4]])
     v = (np.asarray(v, float) * scale) @ _rotation(tuple(rpy)).T + np.asarray(origin, float)
-    return v[np.asarray(f, np.int64)]
+    return v, np.asarray(f, np.int64).reshape(-1, 3)
+
+
+def _parts_bottom(parts: tuple) -> float:
+    """The lowest point (body frame) of a decomposition placed as ``_parts`` says: a convex part's lowest
+    point is one of its vertices (Bullet's bounding box of a turned compound is looser, by millimetres)."""
+    return float(_placed_parts(parts)[0][:, 2].min())
+
+
+def _triangles(o, g, parts: tuple | None) -> np.ndarray:
+    """A mesh's collision surface (T,3,3) in the body frame: the triangles of its convex parts placed as
+    ``_parts`` says, or, without parts, its own triangles (then a convex mesh: its hull)."""
+    if parts is None:
+        return np.asarray(g.points, float)[np.asarray(g.faces, np.int64)]
+    v, f = _placed_parts(parts)
+    return v[f]
 
 
 def _tops(tri: np.ndarray, xy: np.ndarray) -> np.ndarray:
