@@ -37,8 +37,11 @@ def cases(name: str = "corpus.tsv") -> list[Case]:
     return out
 
 
-def scene():
-    return load_scene(HERE / "corpus_scene.json")
+def scene(name: str = "corpus.tsv"):
+    """The scene a corpus is written against: ``<stem>_scene.json`` beside it where there is one (a corpus
+    written for another table), else ``corpus_scene.json``."""
+    own = HERE / f"{Path(name).stem}_scene.json"
+    return load_scene(own if own.exists() else HERE / "corpus_scene.json")
 
 
 def notation(clauses: list) -> str:
@@ -73,7 +76,7 @@ def resolve(sentence: str, the_scene, plugins) -> str:
 def score(plugins=None, name: str = "corpus.tsv") -> tuple[dict[str, Counter], list[tuple[Case, str]]]:
     """Per category, how many are right / refused / wrong; and every case that is not right."""
     plugins = registry.discover() if plugins is None else plugins
-    the_scene = scene()
+    the_scene = scene(name)
     table: dict[str, Counter] = defaultdict(Counter)
     misses = []
     for case in cases(name):
