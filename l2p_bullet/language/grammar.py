@@ -25,7 +25,7 @@ from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
-from .references import Context, resolve_object
+from .references import CONJUNCTIONS, Context, object_pairs, resolve_object
 from .words import (
     COMPARATIVES,
     by_gerund,
@@ -261,10 +261,6 @@ def _gap_at(words: list[str], gap: tuple[str, ...]) -> bool:
             and words[-1] in PLACING_VERBS)
 
 
-CONJUNCTIONS = frozenset({"and", "&"})
-"""Words that join a two-anchor action's reference objects ("between B and C")."""
-
-
 def _references(words: list[str], scene: Scene, phrase: str, count: int,
                 context: Context | None = None) -> tuple[str, ...]:
     """The ``count`` reference objects named by ``words`` (after the preposition)."""
@@ -272,23 +268,19 @@ def _references(words: list[str], scene: Scene, phrase: str, count: int,
     if count == 1:
         _one_reference(words, scene, phrase)
         return (resolve_object(" ".join(words), scene, role, context),)
-    joins = [k for k, w in enumerate(words) if w.lower() in CONJUNCTIONS and 0 < k < len(words) - 1]
-    if not joins:
-        raise LanguageError(f'"{phrase}" needs two reference blocks, as in "move A {phrase} B and C"'
-                            + (f' (got "{" ".join(words)}")' if words else ""))
     first_error: Exception | None = None
-    for k in joins:
-        try:
-            b = resolve_object(" ".join(words[:k]), scene, role=f"first {role}")
-            c = resolve_object(" ".join(words[k + 1 :]), scene, role=f"second {role}")
-        except (LanguageError, UnknownObjectError) as e:
-            first_error = first_error or e
+    for pair in object_pairs(words, scene, (f"first {role}", f"second {role}"), context):
+        if not isinstance(pair, tuple):
+            first_error = first_error or pair
             continue
-        if b == c:
-            raise LanguageError(f'the two reference blocks are both "{b}": "{phrase}" needs two different blocks')
-        return (b, c)
-    assert first_error is not None
-    raise first_error
+        if pair[0] == pair[1]:
+            raise LanguageError(f'the two reference blocks are both "{pair[0]}": "{phrase}" needs two different '
+                                "blocks")
+        return pair
+    if first_error is not None:
+        raise first_error
+    raise LanguageError(f'"{phrase}" needs two reference blocks, as in "move A {phrase} B and C"'
+                        + (f' (got "{" ".join(words)}")' if words else ""))
 
 
 TRAILING_JOINS = (("and", "then"), ("after", "that"), ("then",), ("and",))

@@ -13,6 +13,7 @@ the robot's (the scene's +y is its left, DESIGN.md section 4), the view of a per
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -120,13 +121,14 @@ def resolve_object(text: str, scene: Scene, role: str = "block", context: Contex
 
 
 def _pronoun(low: tuple[str, ...], context: Context | None, role: str) -> str | None:
+    said = " ".join(low)  # what the user wrote, for the error: "that same cube" reads as "it" below
     same = any(low[:len(o)] == o and len(low) == len(o) + 1 and (low[-1] in NOUNS or low[-1] in SHAPE_NOUNS)
                for o in SAME_WORDS)
     if same:
         low = ("it",)
     if low in PRONOUNS_MOVER or low in PRONOUNS_ANCHOR:
         if context is None or context.mover is None:
-            raise LanguageError(f'"{" ".join(low)}" ({role}) points back to an earlier clause, and there is none; '
+            raise LanguageError(f'"{said}" ({role}) points back to an earlier clause, and there is none; '
                                 "name the block")
         return context.mover if low in PRONOUNS_MOVER else context.anchor
     return None
@@ -309,17 +311,26 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
 
 def _two_references(words: list[str], scene: Scene, role: str, context: Context | None) -> tuple[str, str] | None:
     """"A and C", "the red and blue cubes" -> two different objects' names; None when ``words`` are not two."""
+    return next((p for p in object_pairs(words, scene, (role, role), context) if isinstance(p, tuple) and p[0] != p[1]),
+                None)
+
+
+CONJUNCTIONS = frozenset({"and", "&"})
+"""Words that join two reference objects ("between B and C", "the cube between A and C")."""
+
+
+def object_pairs(words: list[str], scene: Scene, roles: tuple[str, str],
+                 context: Context | None) -> Iterator[tuple[str, str] | LanguageError | UnknownObjectError]:
+    """Each reading of ``words`` as two objects joined by a conjunction, split by split: the pair of names, or
+    the one-line error of that split (the caller decides which split wins and which error to show)."""
     for k, w in enumerate(words):
-        if w.lower() not in ("and", "&") or not 0 < k < len(words) - 1:
+        if w.lower() not in CONJUNCTIONS or not 0 < k < len(words) - 1:
             continue
         try:
-            pair = (resolve_object(" ".join(words[:k]), scene, role, context),
-                    resolve_object(" ".join(words[k + 1:]), scene, role, context))
-        except (LanguageError, UnknownObjectError):
-            continue
-        if pair[0] != pair[1]:
-            return pair
-    return None
+            yield (resolve_object(" ".join(words[:k]), scene, roles[0], context),
+                   resolve_object(" ".join(words[k + 1:]), scene, roles[1], context))
+        except (LanguageError, UnknownObjectError) as e:
+            yield e
 
 
 BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})

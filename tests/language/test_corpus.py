@@ -62,6 +62,7 @@ def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
     ("move the cube past A", ['"the cube" is ambiguous', "A, B, C"]),
     ("move the block next to B", ["ambiguous", "A, B, C, D, duck, E"]),
     ("move it next to B", ['"it"', "no", "earlier clause"]),
+    ("move that same cube next to B", ['"that same cube"', "earlier clause"]),
     ("move A around B slowly and quickly", ["different paces"]),
     ("move A far around B", ['"far around"', "does not have"]),
     ("move the shortest one next to B", ["ambiguous", "A, B, C, D"]),
