@@ -27,6 +27,12 @@ TOPIC = re.compile(r"^\s*(?P<what>.+?)\s+[-\u2013\u2014:]\s+(?P<rest>.+)$")
 SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
                   r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube"."""
+GOAL_AFTER = re.compile(r"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it(?:'s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits)"
+                        r"|until\s+it(?:'s|\s+is|\s+ends\s+up|\s+gets))\s+(?P<goal>.+)$", re.IGNORECASE)
+"""A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
+NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
+                      r"(?:\s+it)?\s*,\s*", re.IGNORECASE)
+"""A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
 BOTH = re.compile(r"\b(?:them\s+both|both\s+of\s+them|both|them)\b", re.IGNORECASE)
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
@@ -72,6 +78,21 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
             raise LanguageError(f'"{text}": {mover} is what the previous clause moved {previous.preposition}; '
                                 "name another block")
         return [replace(previous, mover=mover, sentence=text)]
+    if NOT_THAT.search(text):
+        try:
+            return [resolve(NOT_THAT.sub(" ", text, count=1), scene, plugins, context)]
+        except L2PError:
+            pass
+    m = GOAL_AFTER.match(text)
+    if m is not None:
+        try:
+            head = resolve(m.group("head"), scene, plugins, context)
+            goal = resolve(f"{head.verb} {head.mover} {m.group('goal')}", scene, plugins,
+                           Context(head.anchor, head.mover))  # "beside it": the block it moved toward
+        except L2PError:
+            goal = None
+        if goal is not None:
+            return [replace(goal, manner=head.manner, pace=head.pace or goal.pace, sentence=text)]
     for what, rest, lifting in _splits(text):
         objects = _objects(what, scene, context)
         if objects is None:

@@ -411,6 +411,10 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
         rest = " ".join(raw[start + len(head): start + len(kept) - len(tail)])
         items = [i.strip(" .;:!?\"()[]") for part in rest.split(",") for i in _split_and(part)]
         items = [i for i in items if i]
+        if len(items) == 1 and len(items[0].split()) > 1:  # "line up c b a": names without commas
+            loose = [_try_object(w, scene) for w in items[0].split()]
+            if all(loose):
+                items = items[0].split()
         if len(items) < 2:
             raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'
                                 + (f' (got "{rest}")' if rest else ""))

@@ -41,7 +41,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "if you can", "if possible", "when you can", "if you would",
-    "pls", "plz", "pls ty", "pls thx", "ty", "tia", "many thanks", "thanks in advance", "thank you in advance", "much appreciated", "that would be great",
+    "pls", "plz", "pls ty", "pls thx", "ty", "tia", "many thanks", "thanks in advance", "thank you in advance",
+    "much appreciated", "that would be great",
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",))
@@ -64,7 +65,8 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
 PACES: dict[str, str] = {
-    "slowly": "slow", "slow": "slow", "quickly": "fast", "fast": "fast", "rapidly": "fast", "swiftly": "fast",
+    "slowly": "slow", "slow": "slow", "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast",
+    "swiftly": "fast",
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful",
 }
 """Manner adverbs -> the pace they ask for."""
@@ -111,7 +113,7 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
         changed = False
         low = [w.lower() for w in words]
         for pre in POLITE_PREFIXES:
-            if _starts(low, pre) and (not set(words[: len(pre)]) & keep or pre[-1] in ADDRESSEES) and not (
+            if _starts(low, pre) and (not set(words[: len(pre)]) & keep or set(pre) & ADDRESSEES) and not (
                     pre[-1] in NOT_BEFORE_TO and low[len(pre):len(pre) + 1] == ["to"]):
                 words, changed = words[len(pre):], True
                 break
