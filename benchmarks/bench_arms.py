@@ -77,10 +77,10 @@ IK_KINDS = ("installed", "fitted", "general")
 def ik_variant(spec, kind: str):
     """``spec`` with the inverse kinematics ``kind``: "installed" as the arm declares it; "fitted" without restarts
     (``ik_restarts`` 0: the seeds put in the arm's plane by its wrist model, nothing else); "general" with the
-    restarts ``new-arm`` writes (``embodiment.arm_guess.IK_RESTARTS``) and joints unwrapped by whole turns."""
+    restarts ``new-arm`` writes (``arms.spec.IK_RESTARTS``) and joints unwrapped by whole turns."""
     from dataclasses import replace
 
-    from l2p_bullet.embodiment.arm_guess import IK_RESTARTS
+    from l2p_bullet.arms.spec import IK_RESTARTS
 
     if kind == "installed":
         return spec
@@ -170,7 +170,7 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
                 world = World(scene, arm=spec, visuals=False)
             for action in actions:
                 row = {"arm": label, "seed": seed, "action": action, "outcome": "success"}
-                t = time.perf_counter()
+                t, cpu = time.perf_counter(), time.process_time()
                 try:
                     r = perform(SENTENCES[action], scene, out_dir=tmp / f"{arm}-{seed}-{action}", render=False,
                                 force=True, seed=seed, world=world, arm=spec)
@@ -185,6 +185,7 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
                 except Exception as e:  # noqa: BLE001 - a crash is a defect the table must show
                     row.update(success=False, outcome="crash", reason=f"{type(e).__name__}: {e}")
                 row["wall_s"] = round(time.perf_counter() - t, 3)
+                row["cpu_s"] = round(time.process_time() - cpu, 3)  # steadier than wall time on a shared machine
                 rows.append(row)
                 print(f"  {label} {seed} {action}: {row['outcome']} ({row['wall_s']} s)", file=sys.stderr, flush=True)
     finally:
@@ -295,13 +296,18 @@ def main() -> None:
     print(table(rows, times, actions, labels))
     if accuracy:
         print("\n| arm [IK] | ring poses solved | cold (home seed only) | position error, median / max mm | "
-              "yaw error, max deg | in-process perform, median s | solve, median / max ms |\n"
-              "|---|---|---|---|---|---|---|")
+              "yaw error, max deg | in-process perform, median wall / CPU s | CPU vs the first IK, paired median | "
+              "solve, median / max ms |\n|---|---|---|---|---|---|---|---|")
         for a in accuracy:
             walls = [r["wall_s"] for r in rows if r["arm"] == a["arm"]]
+            cpus = {(r["seed"], r["action"]): r["cpu_s"] for r in rows if r["arm"] == a["arm"]}
+            first = {(r["seed"], r["action"]): r["cpu_s"] for r in rows
+                     if r["arm"] == f"{a['arm'].split(' [')[0]} [{iks[0]}]"}
+            ratio = statistics.median(cpus[k] / first[k] for k in cpus if first.get(k))
             print(f"| {a['arm']} | {a['solved']} / {a['tried']} | {a['cold_solved']} / {a['cold_tried']} | "
                   f"{a['pos_mm_median']} / {a['pos_mm_max']} | "
-                  f"{a['yaw_deg_max']} | {statistics.median(walls):.3f} | "
+                  f"{a['yaw_deg_max']} | {statistics.median(walls):.3f} / {statistics.median(cpus.values()):.3f} | "
+                  f"{ratio:.2f}x | "
                   f"{a['solve_ms_median']} / {a['solve_ms_max']} |")
     for r in rows:
         if r["outcome"] in ("failed", "crash", "unsuccessful"):
