@@ -97,7 +97,7 @@ KUKA_IIWA = ArmSpec(
     swivel_joints=(2, 4),
     wrist_offset=math.pi,
     # the tool point 2.4 cm off the wrist's axis strays it 0.060 rad from the model (embodiment.arm_measure.wrist_stray,
-    # tests/embodiment/test_arms.py), and 0.02 rad for what the samples miss, as new-arm adds
+    # tests/embodiment/test_general_ik.py), and 0.02 rad for what the samples miss, as new-arm adds
     wrist_error=0.08,
     tool_frame=("base_link", (0.0, 0.024, 0.232)),
     fixed_joints=("gripper_to_arm", "left_base_tip_joint", "right_base_tip_joint"),

@@ -85,7 +85,7 @@ class ArmSpec:
     # half a turn off) needs them. 0 turns them off.
     ik_restarts: int = IK_RESTARTS
     # How far (rad) the wrist joint strays from ``wrist_offset + azimuth - yaw`` over the reach ring, measured by
-    # ``new-arm`` and for the built-in arms by tests/embodiment/test_arms.py (embodiment.arm_measure.wrist_stray):
+    # ``new-arm`` and for the built-in arms by tests/embodiment/test_general_ik.py (embodiment.arm_measure.wrist_stray):
     # the planner keeps the wrist this much further from its limits.
     wrist_error: float = 0.0
     # Gripper joints that follow another (URDF ``<mimic>``, which PyBullet ignores): (joint, leader, multiplier,
