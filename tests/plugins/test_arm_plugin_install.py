@@ -55,7 +55,7 @@ def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
         assert arms["my-xarm"]["workspace_radius_m"] >= 0.25 - 0.01  # as the built-in xarm6's
         # the ring the built-in measures (0.105-0.685 m), to a step of the measurement: not the 0.07 m the IK reaches
         # near the base with the gripper through the arm's base
-        near, far = arms["my-xarm"]["declared_reach_m"]
+        near, far = arms["my-xarm"]["reach_m"]
         assert abs(near - XARM6.reach[0]) <= 0.011 and abs(far - XARM6.reach[1]) <= 0.011, (near, far)
         r = json.loads(run([*cli, "perform", "move A around B", "--arm", "my-xarm", "--no-render", "--json", "-q",
                             "--out", str(tmp_path / "run")], tmp_path, timeout=300).stdout)
