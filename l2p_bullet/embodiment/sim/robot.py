@@ -14,10 +14,9 @@ import numpy as np
 
 from ...arms import ArmSpec
 from ...errors import ReachError
-from .arms import arm_urdf
+from .arms import ARM, arm_urdf, load_arm
 from .bullet import Bullet
 
-ARM = "<arm>"  # the arm's body name, in the world's simulator and in the twin's
 IK_POS_TOL = 0.002  # metres between the commanded and the reached tool point
 IK_ANG_TOL = math.radians(2.0)  # tool orientation error
 
@@ -31,14 +30,6 @@ def quat_angle(a, b) -> float:
     """Angle (radians) between two unit quaternions (x, y, z, w)."""
     d = abs(float(np.dot(a, b)))
     return 2.0 * math.acos(min(1.0, d))
-
-
-def load_arm(sim: Bullet, path: str, base_xyz) -> None:
-    """Load the arm's description (a URDF, or an SDF like the KUKA's) as body :data:`ARM`, base fixed."""
-    if path.lower().endswith(".sdf"):
-        sim.load_sdf(ARM, path, tuple(base_xyz))
-    else:
-        sim.load_urdf(ARM, path, tuple(base_xyz), fixed=True)
 
 
 class Kinematics:

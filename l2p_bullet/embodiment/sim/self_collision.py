@@ -14,7 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...arms import ArmSpec
-from .arms import arm_urdf
+from .arms import ARM, arm_urdf, load_arm
 from .bullet import Bullet
 
 OVERLAP = 0.001
@@ -23,13 +23,11 @@ OVERLAP = 0.001
 
 class SelfCollision:
     """The arm with all its collision shapes; :meth:`overlap` tells whether joints put two of its links into each
-    other. Pairs joined by a joint touch by construction and are not checked, nor pairs already touching at the
+    other. Pairs joined by a joint touch by construction and are not checked, nor pairs already overlapping at the
     arm's home (meshes that overlap where they are mounted, a gripper's linkage), nor the gripper's links among
     themselves (the fingers are held closed, against each other)."""
 
     def __init__(self, spec: ArmSpec, base_xyz):
-        from .robot import ARM, load_arm
-
         self.spec, self.sim = spec, Bullet()
         try:
             load_arm(self.sim, arm_urdf(replace(spec, collision_free_links=()), visuals=False), tuple(base_xyz))
@@ -41,32 +39,28 @@ class SelfCollision:
             pairs = [(a, b) for i, a in enumerate(links) for b in links[i + 1:]
                      if parent.get(b) != a and parent.get(a) != b and not (a in gripper and b in gripper)]
             self.set(np.asarray(spec.home, float))
-            self.pairs = [(a, b) for a, b in pairs if self.sim.link_distance(ARM, a, b, 0.0) is None
-                          or self.sim.link_distance(ARM, a, b, 0.0) > -OVERLAP]
+            self.pairs = [(a, b) for a, b in pairs if not self._overlapping(a, b)]
         except BaseException:
             self.sim.close()
             raise
 
     def set(self, q: np.ndarray) -> None:
-        from .robot import ARM
-
         self.sim.reset_joints(ARM, self.spec.arm_joints, q)
 
     def overlap(self, q: np.ndarray) -> tuple[str, str] | None:
         """The names of the first two links the arm's joints ``q`` put into each other (more than :data:`OVERLAP`),
         or None."""
-        from .robot import ARM
-
         self.set(np.asarray(q, float))
         for a, b in self.pairs:
-            d = self.sim.link_distance(ARM, a, b, 0.0)
-            if d is not None and d < -OVERLAP:
+            if self._overlapping(a, b):
                 return self._name(a), self._name(b)
         return None
 
-    def _name(self, link: int) -> str:
-        from .robot import ARM
+    def _overlapping(self, a: int, b: int) -> bool:
+        d = self.sim.link_distance(ARM, a, b, 0.0)
+        return d is not None and d < -OVERLAP
 
+    def _name(self, link: int) -> str:
         return "base" if link < 0 else self.sim.link_name(ARM, link)
 
     def close(self) -> None:
