@@ -3,6 +3,7 @@
     .venv/bin/python benchmarks/bench_arms.py                      # 20 scenes per arm, 3 timed per action
     .venv/bin/python benchmarks/bench_arms.py --scenes 6 --timed 1 # a quick look while developing
     .venv/bin/python benchmarks/bench_arms.py --arms xarm6 --json rows.json
+    .venv/bin/python benchmarks/bench_arms.py --ik fitted,general --scenes 4 --timed 0   # the IKs side by side
 
 Scenes: for each arm, seeds ``--seed-base + i`` (default 220000, used by nothing else) draw a study-like
 start (:func:`study_like_scene`): two 4 cm cubes, the mover 1.4-7.7 of its sides from the anchor (the original
@@ -70,9 +71,85 @@ def study_like_scene(seed: int, workspace):
     raise RuntimeError(f"no valid scene for seed {seed}")  # pragma: no cover
 
 
-def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of: str | None = None) -> list[dict]:
+IK_KINDS = ("installed", "fitted", "general")
+
+
+def ik_variant(spec, kind: str):
+    """``spec`` with the inverse kinematics ``kind``: "installed" as the arm declares it; "fitted" without restarts
+    (``ik_restarts`` 0: the seeds put in the arm's plane by its wrist model, nothing else); "general" with the
+    restarts ``new-arm`` writes (``arms.spec.IK_RESTARTS``) and joints unwrapped by whole turns."""
+    from dataclasses import replace
+
+    from l2p_bullet.arms.spec import IK_RESTARTS
+
+    if kind == "installed":
+        return spec
+    return replace(spec, ik_restarts=0 if kind == "fitted" else IK_RESTARTS)
+
+
+def ik_accuracy(spec, label: str) -> dict:
+    """The IK on the arm's reach ring: 5 distances from its near to its far edge, azimuths 0 and +-0.5 rad, the
+    grasp, mid and hover heights, the wrist at 0 and +-1 rad, seeded as the ring measurement seeds it
+    (``arm_measure.reaches``): how many it solves, the position and yaw error of what it returns (forward
+    kinematics), and the time per solve."""
+    import numpy as np
+
+    from l2p_bullet.embodiment import arm_measure
+    from l2p_bullet.embodiment.sim.robot import Kinematics
+    from l2p_bullet.errors import ReachError
+
+    kin = Kinematics(spec, spec.mount)
+    near, far = spec.reach
+    solved = tried = 0
+    pos_err, yaw_err, times = [], [], []
+    try:
+        for r in np.linspace(near, far, 5):
+            for az in (0.0, -0.5, 0.5):
+                for z in (0.012, 0.1, 0.19):
+                    for w in arm_measure.wrist_turns(spec):
+                        x, y = spec.mount[0] + r * math.cos(az), spec.mount[1] + r * math.sin(az)
+                        yaw = spec.wrist_offset + az - w
+                        seeds = [arm_measure._in_plane(spec, np.asarray(s, float), az, w)
+                                 for s in (spec.home, *spec.ik_seeds)]
+                        tried += 1
+                        t = time.perf_counter()
+                        try:
+                            q = kin.solve((x, y, z), yaw, seeds[0], seeds=tuple(tuple(s) for s in seeds[1:]))
+                        except ReachError:
+                            times.append(time.perf_counter() - t)
+                            continue
+                        times.append(time.perf_counter() - t)
+                        solved += 1
+                        got, orn = kin.fk(q)
+                        m = kin.sim.rotation_matrix(orn)
+                        pos_err.append(float(np.linalg.norm(got - (x, y, z))))
+                        yaw_err.append(abs(math.remainder(math.atan2(m[3], m[0]) - yaw, 2 * math.pi)))
+        # cold: from the home alone, not put in the arm's plane, no other seed (what a first guess far off leaves)
+        cold = 0
+        for r in np.linspace(near, far, 5):
+            for az in (-0.5, 0.5):
+                for w in arm_measure.wrist_turns(spec):
+                    x, y = spec.mount[0] + r * math.cos(az), spec.mount[1] + r * math.sin(az)
+                    try:
+                        kin.solve((x, y, 0.1), spec.wrist_offset + az - w, np.asarray(spec.home, float))
+                        cold += 1
+                    except ReachError:
+                        pass
+    finally:
+        kin.close()
+    return {"arm": label, "solved": solved, "tried": tried, "cold_solved": cold, "cold_tried": 30,
+            "pos_mm_max": round(max(pos_err, default=0.0) * 1000, 3),
+            "pos_mm_median": round(statistics.median(pos_err) * 1000, 3) if pos_err else None,
+            "yaw_deg_max": round(math.degrees(max(yaw_err, default=0.0)), 3),
+            "solve_ms_median": round(statistics.median(times) * 1000, 2),
+            "solve_ms_max": round(max(times) * 1000, 1)}
+
+
+def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of: str | None = None,
+            ik: str = "installed") -> list[dict]:
     """Every action on every scene with ``arm``, in this process (one world kept); one row per run. ``scenes_of``:
-    draw the scenes for that arm's workspace instead (the Panda on the KUKA's smaller disk)."""
+    draw the scenes for that arm's workspace instead (the Panda on the KUKA's smaller disk); ``ik``: the arm's
+    inverse kinematics (:func:`ik_variant`), named in the rows' label unless "installed"."""
     from l2p_bullet.arms import fit_workspace
     from l2p_bullet.core.scene import Workspace
     from l2p_bullet.embodiment.sim.world import World
@@ -80,9 +157,10 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
     from l2p_bullet.pipeline import perform
     from l2p_bullet.plugins import arms as arm_plugins
 
-    spec = arm_plugins.get(arm)
+    spec = ik_variant(arm_plugins.get(arm), ik)
     ws = fit_workspace(Workspace(), arm_plugins.get(scenes_of or arm))
     label = arm if scenes_of is None or scenes_of == arm else f"{arm} ({scenes_of}'s scenes)"
+    label += "" if ik == "installed" else f" [{ik}]"
     rows = []
     world = None
     try:
@@ -92,7 +170,7 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
                 world = World(scene, arm=spec, visuals=False)
             for action in actions:
                 row = {"arm": label, "seed": seed, "action": action, "outcome": "success"}
-                t = time.perf_counter()
+                t, cpu = time.perf_counter(), time.process_time()
                 try:
                     r = perform(SENTENCES[action], scene, out_dir=tmp / f"{arm}-{seed}-{action}", render=False,
                                 force=True, seed=seed, world=world, arm=spec)
@@ -107,6 +185,7 @@ def run_arm(arm: str, seeds: list[int], actions: list[str], tmp: Path, scenes_of
                 except Exception as e:  # noqa: BLE001 - a crash is a defect the table must show
                     row.update(success=False, outcome="crash", reason=f"{type(e).__name__}: {e}")
                 row["wall_s"] = round(time.perf_counter() - t, 3)
+                row["cpu_s"] = round(time.process_time() - cpu, 3)  # steadier than wall time on a shared machine
                 rows.append(row)
                 print(f"  {label} {seed} {action}: {row['outcome']} ({row['wall_s']} s)", file=sys.stderr, flush=True)
     finally:
@@ -182,16 +261,30 @@ def main() -> None:
     ap.add_argument("--timed", type=int, default=3, help="scenes per action timed as fresh processes (0: none)")
     ap.add_argument("--seed-base", type=int, default=SEED_BASE)
     ap.add_argument("--json", default=None, help="write every row and timing here")
+    ap.add_argument("--ik", default="installed",
+                    help="comma-separated inverse kinematics to run each arm with, side by side on the same scenes: "
+                         "installed (as the arm declares it), fitted (no restarts), general (restarts); with more "
+                         "than one, also each one's accuracy on the arm's reach ring")
     args = ap.parse_args()
+    iks = [k.strip() for k in args.ik.split(",") if k.strip()]
+    if any(k not in IK_KINDS for k in iks):
+        ap.error(f"--ik takes {', '.join(IK_KINDS)}")
     arms = [a.strip() for a in args.arms.split(",") if a.strip()]
     actions = [a.strip() for a in args.actions.split(",") if a.strip()]
     seeds = list(range(args.seed_base, args.seed_base + args.scenes))
-    rows, times = [], []
-    labels = list(arms)
+    rows, times, accuracy = [], [], []
+    labels = list(arms) if iks == ["installed"] else [f"{a} [{k}]" for a in arms for k in iks]
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="bench-arms-") as d:
         tmp = Path(d)
         for arm in arms:
+            if iks != ["installed"]:
+                from l2p_bullet.plugins import arms as arm_plugins
+
+                for k in iks:
+                    rows += run_arm(arm, seeds, actions, tmp, ik=k)
+                    accuracy.append(ik_accuracy(ik_variant(arm_plugins.get(arm), k), f"{arm} [{k}]"))
+                continue
             rows += run_arm(arm, seeds, actions, tmp)
             if arm != "panda" and "panda" in arms and study_workspace(arm) != study_workspace("panda"):
                 rows += run_arm("panda", seeds, actions, tmp, scenes_of=arm)  # the same scenes, for comparison
@@ -201,11 +294,26 @@ def main() -> None:
     print(f"{args.scenes} study-like scenes per arm (seeds {seeds[0]}-{seeds[-1]}), {len(rows)} runs, "
           f"{time.perf_counter() - t0:.0f} s\n")
     print(table(rows, times, actions, labels))
+    if accuracy:
+        print("\n| arm [IK] | ring poses solved | cold (home seed only) | position error, median / max mm | "
+              "yaw error, max deg | in-process perform, median wall / CPU s | CPU vs the first IK, paired median | "
+              "solve, median / max ms |\n|---|---|---|---|---|---|---|---|")
+        for a in accuracy:
+            walls = [r["wall_s"] for r in rows if r["arm"] == a["arm"]]
+            cpus = {(r["seed"], r["action"]): r["cpu_s"] for r in rows if r["arm"] == a["arm"]}
+            first = {(r["seed"], r["action"]): r["cpu_s"] for r in rows
+                     if r["arm"] == f"{a['arm'].split(' [')[0]} [{iks[0]}]"}
+            ratio = statistics.median(cpus[k] / first[k] for k in cpus if first.get(k))
+            print(f"| {a['arm']} | {a['solved']} / {a['tried']} | {a['cold_solved']} / {a['cold_tried']} | "
+                  f"{a['pos_mm_median']} / {a['pos_mm_max']} | "
+                  f"{a['yaw_deg_max']} | {statistics.median(walls):.3f} / {statistics.median(cpus.values()):.3f} | "
+                  f"{ratio:.2f}x | "
+                  f"{a['solve_ms_median']} / {a['solve_ms_max']} |")
     for r in rows:
         if r["outcome"] in ("failed", "crash", "unsuccessful"):
             print(f"  {r['arm']} {r['action']} seed {r['seed']}: {r['outcome']}: {r.get('reason')}")
     if args.json:
-        Path(args.json).write_text(json.dumps({"rows": rows, "times": times}, indent=1) + "\n")
+        Path(args.json).write_text(json.dumps({"rows": rows, "times": times, "ik_accuracy": accuracy}, indent=1) + "\n")
 
 
 if __name__ == "__main__":

@@ -14,6 +14,10 @@ from dataclasses import dataclass
 
 from ..core.scene import ROBOT_BASE_XY
 
+IK_RESTARTS = 12
+"""First guesses IK draws within the joint limits when an arm's seeds fail (``ArmSpec.ik_restarts``): enough for a
+UR5e from a seed half a turn off (tests/embodiment/test_arm_compose.py); they cost nothing where a seed succeeds."""
+
 
 @dataclass(frozen=True)
 class ArmSpec:
@@ -36,7 +40,8 @@ class ArmSpec:
     # plane at the base joint's angle, the tool's azimuth seen from the base is the base joint's angle and
     # wrist = wrist_offset + azimuth - tool yaw. IK first guesses are put in that plane (the 7th joint's
     # freedom would otherwise let solutions drift out of it over a long motion, until a joint limit
-    # forces a flip), so the wrist model of arms/reach.py holds.
+    # forces a flip), so the wrist model of arms/reach.py holds. ``wrist_offset`` is measured, as ``new-arm``
+    # measures it (embodiment.arm_measure.wrist_offset), for every arm.
     swivel_joints: tuple[int, ...] = ()
     wrist_offset: float = 0.0
     # Links loaded without collision shapes: they stay far above every block (for the Panda the base, the
@@ -70,17 +75,18 @@ class ArmSpec:
     # disk, the workspace is the disk cut by the ring (core/workspace.py), which keeps all the arm reaches.
     reach: tuple[float, float] = (0.25, 0.78)
     # Where the arm's base frame stands in the scene frame (m): off the table's near edge, facing +x. An arm
-    # whose reach ring is narrower or shifted (the xArm6's is 0.17-0.67 m) stands where its ring best holds
+    # whose reach ring is narrower or shifted (the KUKA's is 0.43-0.77 m) stands where its ring best holds
     # the workspace disk, as a lab would mount it; the default is the Panda's (core.scene.ROBOT_BASE_XY).
     mount: tuple[float, float, float] = (ROBOT_BASE_XY[0], ROBOT_BASE_XY[1], 0.0)
     description: str = ""
-    # Extra first guesses IK tries when the seeds fail (0: none). The built-in arms' seeds and wrist model put
-    # every solve in the arm's plane; an arm made by ``new-arm`` (a UR5e, whose shoulder is off its base axis)
-    # has no such model, and its IK restarts from joints drawn within their limits (embodiment/sim/robot.py).
-    ik_restarts: int = 0
+    # Extra first guesses IK tries when the seeds fail: joints drawn within their limits (embodiment/sim/robot.py),
+    # one inverse kinematics for every arm, the built-in ones included. Their seeds succeed wherever the ring
+    # measurement looked, so restarts cost only a refusal's time; an arm whose seeds miss (a UR5e from a seed
+    # half a turn off) needs them. 0 turns them off.
+    ik_restarts: int = IK_RESTARTS
     # How far (rad) the wrist joint strays from ``wrist_offset + azimuth - yaw`` over the reach ring, measured by
-    # ``new-arm``: the planner keeps the wrist this much further from its limits. 0 for the built-in arms, whose
-    # plane keeps the model exact.
+    # ``new-arm`` and for the built-in arms by tests/embodiment/test_general_ik.py (embodiment.arm_measure.wrist_stray):
+    # the planner keeps the wrist this much further from its limits.
     wrist_error: float = 0.0
     # Gripper joints that follow another (URDF ``<mimic>``, which PyBullet ignores): (joint, leader, multiplier,
     # offset), joint indices. The fingers are driven together: every gripper joint's target is its leader's

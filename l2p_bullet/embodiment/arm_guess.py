@@ -33,18 +33,14 @@ from dataclasses import replace
 import numpy as np
 
 from ..arms import ArmSpec
+from ..arms.spec import IK_RESTARTS
 from ..core.scene import ROBOT_BASE_XY
 from ..errors import PluginError, ReachError
 from . import arm_measure
 from .sim.arms import arm_source
 
-IK_RESTARTS = 12
-"""First guesses IK draws for an arm new-arm makes when its seeds fail (``ArmSpec.ik_restarts``)."""
 HOME_NEARER = (0.45, 0.35)
 """Distances (m, less 0.1) from the base where the home is sought when the mount's distance is out of reach."""
-FLIPPED = 1.5
-"""A wrist further than this (rad) from the model is on another branch of the IK (elbow or wrist flipped), not
-strayed: a tool off the base joint's plane by d strays asin(d / r) < pi / 2."""
 WRIST_STRAY = 0.6
 """The most (rad) the wrist may stray from the model over the table: a UR's, 0.1-0.4 rad (its tool stands 13 cm off
 the plane of its base joint); more means the last joint does not turn the gripper about the vertical."""
@@ -376,31 +372,12 @@ def _home_and_wrist(spec: ArmSpec) -> ArmSpec:
 
 
 def _wrist_error(spec: ArmSpec) -> ArmSpec:
-    """``spec`` with ``wrist_error`` measured over its whole reach ring (near edge, middle, far edge; three
-    azimuths, two yaws): a tool that stands off the base joint's plane strays most near the base (a UR3e's, 13 cm
-    off, by a radian 15 cm from its base)."""
-    from .sim.robot import Kinematics
-
-    near, far = spec.reach
-    kin = Kinematics(spec, spec.mount)
-    try:
-        wrist = spec.arm_joints.index(spec.wrist_joint)
-        stray = spec.wrist_error
-        for r in (near, (near + far) / 2, far):
-            for az in (-0.5, 0.0, 0.5):
-                for yaw in (-1.0, 1.0):
-                    want = spec.wrist_offset + az - yaw
-                    px, py = spec.mount[0] + r * math.cos(az), spec.mount[1] + r * math.sin(az)
-                    try:
-                        q = kin.solve((px, py, 0.05), yaw, _in_plane(spec, spec.home, az, want), seeds=spec.ik_seeds)
-                    except ReachError:
-                        continue
-                    off = abs(math.remainder(q[wrist] - want, 2 * math.pi))
-                    if off < FLIPPED:  # more is the solver on another branch (seeded runs stay on theirs)
-                        stray = max(stray, off + 0.02)
-        return replace(spec, wrist_error=round(min(stray, 3.0), 3))
-    finally:
-        kin.close()
+    """``spec`` with ``wrist_error`` measured over its whole reach ring (``arm_measure.wrist_stray``), 0.02 rad
+    added for what the samples miss."""
+    stray = arm_measure.wrist_stray(spec)
+    if stray is not None:
+        spec = replace(spec, wrist_error=max(spec.wrist_error, stray + 0.02))
+    return replace(spec, wrist_error=round(min(spec.wrist_error, 3.0), 3))
 
 
 def _link_height(kin, spec: ArmSpec, q) -> float:

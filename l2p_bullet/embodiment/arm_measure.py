@@ -58,7 +58,8 @@ def _in_plane(spec: ArmSpec, q: np.ndarray, az: float, wrist: float) -> np.ndarr
 
 def reaches(kin, spec: ArmSpec, r: float, az: float, z: float, wrist: float) -> bool:
     """Whether the tool reaches the point ``r`` m from the base at azimuth ``az``, height ``z``, pointing down with
-    the wrist at ``wrist`` (rad), from the arm's home and IK seeds put in its plane."""
+    the wrist at ``wrist`` (rad), from the arm's home and IK seeds put in its plane, without the arm folding into
+    itself (``Kinematics.self_collision``: near its base an arm reaches the table only through its own base)."""
     from ..errors import ReachError
 
     base_xy = spec.mount[:2]
@@ -66,10 +67,10 @@ def reaches(kin, spec: ArmSpec, r: float, az: float, z: float, wrist: float) -> 
     yaw = spec.wrist_offset + az - wrist
     seeds = [_in_plane(spec, np.asarray(s, float), az, wrist) for s in (spec.home, *spec.ik_seeds)]
     try:
-        kin.solve((x, y, z), yaw, seeds[0], seeds=tuple(tuple(s) for s in seeds[1:]))
+        q = kin.solve((x, y, z), yaw, seeds[0], seeds=tuple(tuple(s) for s in seeds[1:]))
     except ReachError:
         return False
-    return True
+    return kin.self_collision(q) is None
 
 
 def wrist_turns(spec: ArmSpec) -> tuple[float, float, float]:
@@ -117,6 +118,63 @@ def measure_reach(spec: ArmSpec, step: float = 0.01) -> tuple[float, float]:
         while far + step < 1.5 and ok(far + step):
             far += step
         return (round(near, 3), round(far, 3))
+    finally:
+        kin.close()
+
+
+FLIPPED = 1.5
+"""A wrist further than this (rad) from the model is on another branch of the IK (elbow or wrist flipped), not
+strayed: a tool off the base joint's plane by d strays asin(d / r) < pi / 2."""
+
+
+def wrist_offset(spec: ArmSpec) -> float:
+    """The wrist model's offset measured (wrist = offset + azimuth - yaw pointing down), in (-pi, pi]: the tool where
+    the arm's home puts it (pointing down, in the arm's plane), the yaw read there, solved again pointing exactly
+    down; nothing taken from the offset the spec declares."""
+    from .sim.robot import Kinematics
+
+    kin = Kinematics(spec, spec.mount)
+    try:
+        home = np.asarray(spec.home, float)
+        pos, orn = kin.fk(home)
+        m = kin.sim.rotation_matrix(orn)
+        yaw = math.atan2(m[3], m[0])
+        q = kin.solve(pos, yaw, home, seeds=spec.ik_seeds)
+        az = math.atan2(pos[1] - spec.mount[1], pos[0] - spec.mount[0])
+        return math.remainder(float(q[spec.arm_joints.index(spec.wrist_joint)]) - az + yaw, 2 * math.pi)
+    finally:
+        kin.close()
+
+
+def wrist_stray(spec: ArmSpec) -> float | None:
+    """How far (rad) the wrist joint strays from the model (``wrist_offset + azimuth - yaw``) over the reach ring: its
+    near edge, middle and far edge, azimuths 0 and +-0.5 rad, the wrist at :func:`wrist_turns` (as the ring is
+    measured: a yaw the wrist cannot turn to in the plane would be answered on another branch), 5 cm above the
+    table; None when the arm reaches none of these. A tool off the base joint's plane strays most near the base (a
+    UR3e's, 13 cm off, by a radian 15 cm from its base); answers on another branch (more than :data:`FLIPPED`) do
+    not count."""
+    from ..errors import ReachError
+    from .sim.robot import Kinematics
+
+    near, far = spec.reach
+    kin = Kinematics(spec, spec.mount)
+    stray = None
+    try:
+        wrist = spec.arm_joints.index(spec.wrist_joint)
+        for r in (near, (near + far) / 2, far):
+            for az in (-0.5, 0.0, 0.5):
+                for want in wrist_turns(spec):
+                    yaw = spec.wrist_offset + az - want
+                    px, py = spec.mount[0] + r * math.cos(az), spec.mount[1] + r * math.sin(az)
+                    try:
+                        q = kin.solve((px, py, 0.05), yaw, _in_plane(spec, np.asarray(spec.home, float), az, want),
+                                      seeds=spec.ik_seeds)
+                    except ReachError:
+                        continue
+                    off = abs(math.remainder(q[wrist] - want, 2 * math.pi))
+                    if off < FLIPPED:  # more is the solver on another branch (seeded runs stay on theirs)
+                        stray = off if stray is None else max(stray, off)
+        return stray
     finally:
         kin.close()
 

@@ -50,7 +50,7 @@ def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refu
     assert fit_workspace(old, PANDA) == old and fit_workspace(old, XARM6) == old
     # the 0.35 m disk (2026-11-27) is cut by every shipped arm's ring
     assert fit_workspace(Workspace(), PANDA) == Workspace(ring=(-0.53, 0.0, 0.27, 0.79))
-    assert fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.175, 0.675))
+    assert fit_workspace(Workspace(), XARM6) == Workspace(ring=(-0.425, 0.0, 0.105, 0.685))
     for spec in (PANDA, XARM6, KUKA_IIWA):  # starts are drawn where the old disk's fitted workspace put them
         assert fit_workspace(Workspace(), spec).starts() == fit_workspace(old, spec)
     kuka = fit_workspace(Workspace(), KUKA_IIWA)  # the disk cut by the KUKA's ring (issue 22)
@@ -170,7 +170,8 @@ def test_arms_lists_the_three_arms_as_json():
     assert rows["panda"]["arm_joints"] == 7 and rows["xarm6"]["arm_joints"] == 6
     # workspace_radius_m keeps its meaning: the largest disk about the centre inside the arm's workspace
     assert (
-        rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17) and rows["xarm6"]["workspace_radius_m"] == 0.25
+        rows["kuka-iiwa"]["workspace_radius_m"] == pytest.approx(0.17)
+        and rows["xarm6"]["workspace_radius_m"] == pytest.approx(0.26)  # its ring's far edge, 0.685 m from -0.425
     )
     assert rows["panda"]["workspace_radius_m"] == pytest.approx(0.26)
     assert rows["kuka-iiwa"]["workspace"] == {"x": 0.0, "y": 0.0, "r": 0.35, "base_x": -0.6, "base_y": 0.0,

@@ -38,6 +38,8 @@ def _layered_venv(tmp_path: Path) -> tuple[Path, list[str]]:
 
 @pytest.mark.slow
 def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
+    from l2p_bullet.arms import XARM6
+
     venv, cli = _layered_venv(tmp_path)
     out = run([*cli, "new-arm", "my-xarm", "--urdf", str(_data() / "xarm" / "xarm6_with_gripper.urdf")], tmp_path,
               timeout=600)
@@ -50,7 +52,11 @@ def test_new_arm_makes_an_installable_plugin_that_performs(tmp_path: Path):
     try:
         arms = {a["name"]: a for a in json.loads(run([*cli, "arms", "--json"], tmp_path).stdout)["arms"]}
         assert arms["my-xarm"]["ok"] and arms["my-xarm"]["package"] == "l2p-arm-my-xarm", arms["my-xarm"]
-        assert arms["my-xarm"]["workspace_radius_m"] >= 0.25 - 0.01  # the built-in xarm6 (fitted seeds) measures 0.25
+        assert arms["my-xarm"]["workspace_radius_m"] >= 0.25 - 0.01  # as the built-in xarm6's
+        # the ring the built-in measures (0.105-0.685 m), to a step of the measurement: not the 0.07 m the IK reaches
+        # near the base with the gripper through the arm's base
+        near, far = arms["my-xarm"]["reach_m"]
+        assert abs(near - XARM6.reach[0]) <= 0.011 and abs(far - XARM6.reach[1]) <= 0.011, (near, far)
         r = json.loads(run([*cli, "perform", "move A around B", "--arm", "my-xarm", "--no-render", "--json", "-q",
                             "--out", str(tmp_path / "run")], tmp_path, timeout=300).stdout)
         assert r["verdict"]["success"], r

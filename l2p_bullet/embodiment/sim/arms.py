@@ -16,6 +16,17 @@ import numpy as np
 from ...arms.spec import ArmSpec
 from .urdf_check import check_urdf
 
+ARM = "<arm>"  # the arm's body name, in the world's simulator and in every private copy (IK's, self-collision's)
+
+
+def load_arm(sim, path: str, base_xyz) -> None:
+    """Load the arm's description (a URDF, or an SDF like the KUKA's) into ``sim`` (a :class:`.bullet.Bullet`) as
+    body :data:`ARM`, base fixed."""
+    if path.lower().endswith(".sdf"):
+        sim.load_sdf(ARM, path, tuple(base_xyz))
+    else:
+        sim.load_urdf(ARM, path, tuple(base_xyz), fixed=True)
+
 
 def arm_urdf(spec: ArmSpec, visuals: bool = True, collisions: bool = True) -> str:
     """Path of the arm's URDF, stripped of visual and/or collision elements when they are not needed.

@@ -442,6 +442,17 @@ class Bullet:
         pts = self._pb.getContactPoints(bodyA=self._bodies[a], bodyB=self._bodies[b], physicsClientId=self._id)
         return [(tuple(p[6]), float(p[9])) for p in pts]
 
+    def has_collision(self, name: str, link: int) -> bool:
+        """Whether link ``link`` of body ``name`` (-1: its base) has a collision shape."""
+        return bool(self._pb.getCollisionShapeData(self._bodies[name], link, physicsClientId=self._id))
+
+    def link_distance(self, name: str, a: int, b: int, within: float) -> float | None:
+        """The signed distance (m; negative: overlapping) between the collision shapes of links ``a`` and ``b`` of
+        body ``name`` as they stand now, or None when they are farther apart than ``within``."""
+        pts = self._pb.getClosestPoints(bodyA=self._bodies[name], bodyB=self._bodies[name], distance=within,
+                                        linkIndexA=a, linkIndexB=b, physicsClientId=self._id)
+        return min(float(p[8]) for p in pts) if pts else None
+
     def is_resting(self, name: str, speed: float, spin: float) -> bool:
         """Whether body ``name`` moves slower than ``speed`` (m/s) and turns slower than ``spin`` (rad/s)."""
         v, w = self._pb.getBaseVelocity(self._bodies[name], physicsClientId=self._id)

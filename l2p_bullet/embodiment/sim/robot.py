@@ -14,10 +14,9 @@ import numpy as np
 
 from ...arms import ArmSpec
 from ...errors import ReachError
-from .arms import arm_urdf
+from .arms import ARM, arm_urdf, load_arm
 from .bullet import Bullet
 
-ARM = "<arm>"  # the arm's body name, in the world's simulator and in the twin's
 IK_POS_TOL = 0.002  # metres between the commanded and the reached tool point
 IK_ANG_TOL = math.radians(2.0)  # tool orientation error
 
@@ -33,20 +32,14 @@ def quat_angle(a, b) -> float:
     return 2.0 * math.acos(min(1.0, d))
 
 
-def load_arm(sim: Bullet, path: str, base_xyz) -> None:
-    """Load the arm's description (a URDF, or an SDF like the KUKA's) as body :data:`ARM`, base fixed."""
-    if path.lower().endswith(".sdf"):
-        sim.load_sdf(ARM, path, tuple(base_xyz))
-    else:
-        sim.load_urdf(ARM, path, tuple(base_xyz), fixed=True)
-
-
 class Kinematics:
     """IK and FK on a private copy of the arm. ``solve`` raises :class:`ReachError` on failure."""
 
     def __init__(self, spec: ArmSpec, base_xyz: tuple[float, float, float]):
         self.sim, self.spec = Bullet(), spec
-        self.base_xy = (float(base_xyz[0]), float(base_xyz[1]))
+        self.base_xyz = tuple(float(v) for v in base_xyz)
+        self.base_xy = self.base_xyz[:2]
+        self._shapes = None  # the copy with collision shapes (self_collision), loaded when first asked
         try:
             load_arm(self.sim, arm_urdf(spec, visuals=False, collisions=False), base_xyz)
         except BaseException:
@@ -103,33 +96,21 @@ class Kinematics:
               seeds: tuple[tuple[float, ...], ...] = ()) -> np.ndarray:
         """Joints putting the tool at ``pos`` pointing down with ``yaw``; ReachError when impossible.
 
-        Tries ``seed`` first (the previous solution: cheap and continuous), then ``seeds``.
+        Tries ``seed`` first (the previous solution: cheap and continuous), then ``seeds``, then the arm's
+        restarts (:meth:`_attempts`), each answer turned by whole turns to lie nearest ``seed``.
         A solution counts only if its forward kinematics lands within tolerance and every joint is
         inside its limits: PyBullet's IK returns its best effort without saying it failed.
         """
         pos = np.asarray(pos, float)
         orn = down_quaternion(self.sim, self.spec, yaw)
+        seed = np.asarray(seed, float)
         best = None
-        attempts = [(seed, False, iterations)] + [(s, ns, max(iterations, 50)) for s in (seed, *seeds)
-                                                  for ns in (False, True)]
-        for s, null_space, its in attempts:
-            q, err, ang = self._try(pos, orn, np.asarray(s, float), its, rounds, null_space)
-            if self.spec.ik_restarts:  # an arm without a fitted model: its joints may land whole turns off
-                q = self._near(q, np.asarray(seed, float))
+        for q, err, ang in self._attempts(pos, orn, seed, seeds, iterations, rounds):
+            q = self._near(q, seed)
             inside = self._inside(q)
             if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
                 return q
             if best is None or err < best[1]:
-                best = (q, err, ang, inside)
-        for s in self._restarts(pos, seed):
-            q, err, ang = self._try(pos, orn, s, max(iterations, 50), rounds, True)
-            if IK_POS_TOL < err < 10 * IK_POS_TOL:  # the null-space variant stalls millimetres short: plain DLS on
-                q, err, ang = self._try(pos, orn, q, max(iterations, 50), rounds, False)
-            q = self._near(q, np.asarray(seed, float))
-            inside = self._inside(q)
-            if err <= IK_POS_TOL and ang <= IK_ANG_TOL and inside:
-                return q
-            if err < best[1]:
                 best = (q, err, ang, inside)
         q, err, ang, inside = best
         why = (f"residual {err * 1000:.1f} mm, {math.degrees(ang):.1f} deg" if inside
@@ -139,15 +120,31 @@ class Kinematics:
             f"{math.degrees(yaw):.0f} deg ({why}); keep paths inside the workspace"
         )
 
+    def _attempts(self, pos, orn, seed: np.ndarray, seeds, iterations: int, rounds: int):
+        """The answers :meth:`solve` weighs, (joints, position error, angle error) each, cheapest first and made
+        only when the one before failed: ``seed`` with ``iterations``, then ``seed`` and each of ``seeds`` with
+        more iterations, plain and null-space; then the restarts (:meth:`_restarts`), null-space first (it keeps a
+        far first guess within the joint limits), finished by plain damped least squares when it stalls
+        millimetres short."""
+        its = max(iterations, 50)
+        yield self._try(pos, orn, seed, iterations, rounds, False)
+        for s in (seed, *seeds):
+            for null_space in (False, True):
+                yield self._try(pos, orn, np.asarray(s, float), its, rounds, null_space)
+        for s in self._restarts(pos, seed):
+            q, err, ang = self._try(pos, orn, s, its, rounds, True)
+            if IK_POS_TOL < err < 10 * IK_POS_TOL:
+                q, err, ang = self._try(pos, orn, q, its, rounds, False)
+            yield q, err, ang
+
     def _inside(self, q: np.ndarray) -> bool:
         """Whether every arm joint of ``q`` is within its limits (PyBullet's IK may return one outside)."""
         return bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
 
     def _restarts(self, pos, seed: np.ndarray) -> list[np.ndarray]:
-        """First guesses for an arm without a fitted wrist model (``ArmSpec.ik_restarts``; none for the others,
-        whose seeds suffice): the seed with its base joint turned towards ``pos``, then joints drawn within their
-        limits (clipped to a half turn either side, where a chain's useful poses lie) from a generator seeded
-        alike every time, so that a solve is repeatable."""
+        """First guesses when the seeds fail (``ArmSpec.ik_restarts`` of them): the seed with its base joint turned
+        towards ``pos``, then joints drawn within their limits (clipped to a half turn either side, where a chain's
+        useful poses lie) from a generator seeded alike every time, so that a solve is repeatable."""
         n = self.spec.ik_restarts
         if not n:
             return []
@@ -170,7 +167,18 @@ class Kinematics:
                                  | (np.abs(cand - seed) < np.abs(out - seed))), cand, out)
         return out
 
+    def self_collision(self, q: np.ndarray) -> tuple[str, str] | None:
+        """The two links of the arm that joints ``q`` put into each other, or None (:class:`.SelfCollision`, on a
+        copy with every collision shape, loaded on the first call: IK itself never needs it)."""
+        if self._shapes is None:
+            from .self_collision import SelfCollision
+
+            self._shapes = SelfCollision(self.spec, self.base_xyz)
+        return self._shapes.overlap(q)
+
     def close(self) -> None:
+        if self._shapes is not None:
+            self._shapes.close()
         self.sim.close()
 
 
