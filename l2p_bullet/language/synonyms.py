@@ -1,0 +1,106 @@
+"""The words people use for an object besides its name: common names of its kind, size words, and the typos
+of the reference vocabulary a reader still understands.
+
+An object is called by its kind: its name when the name is a word ("mug", "duck", "can"), and the stem of its
+mesh file ("duck_vhacd.obj": a duck). People use the kind's everyday names too ("the cup", "the coffee mug",
+"the bird", "the tin can"); such a word resolves only where exactly one object is of that kind, never by a
+guess between two.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+
+from ..core.scene import Scene, SceneObject
+
+KIND_SYNONYMS = {"cup": "mug", "cups": "mug", "teacup": "mug", "mugs": "mug", "bird": "duck", "duckling": "duck",
+                 "ducks": "duck", "tin": "can", "tins": "can"}
+"""An everyday name -> the kind it names (an object named, or meshed as, that kind)."""
+KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks"})
+"""Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
+duck"): read past there."""
+BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant"})
+SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini"})
+TALL = frozenset({"tall", "taller"})
+SHORT = frozenset({"short", "shorter", "low", "lower"})
+SIZE_WORDS = BIG | SMALL | TALL | SHORT
+"""Size adjectives: they decide among the objects the rest of a description leaves (big/small by footprint,
+tall/short by height) when the sizes differ clearly; with one object left they are read past."""
+TIE_SIZE = 0.25
+"""Two sizes closer than this fraction of the smaller one are a tie for "the big / small / tall one": a plain
+size adjective asks for a difference a person sees at a glance (a 4 cm and a 5 cm cube, not 4.0 and 4.2 cm)."""
+
+
+def kinds_of(o: SceneObject) -> set[str]:
+    """The kinds an object is called by: its name when a word of 3+ letters, its mesh file's stem's first word."""
+    out = set()
+    name = o.name.lower()
+    if len(name) >= 3 and name.isalpha():
+        out.add(name)
+    mesh = getattr(o, "mesh", None)
+    if isinstance(mesh, str) and mesh:
+        stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
+        first = re.split(r"[^a-z]+", stem.lower())[0]
+        if len(first) >= 3:
+            out.add(first)
+    return out
+
+
+def kind_words(scene: Scene) -> dict[str, str]:
+    """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
+    (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
+    by_kind: dict[str, set[str]] = {}
+    for o in scene.objects:
+        for k in kinds_of(o):
+            by_kind.setdefault(k, set()).add(o.name)
+    out = {}
+    for k, names in by_kind.items():
+        if len(names) == 1:
+            out[k] = next(iter(names))
+    for word, kind in KIND_SYNONYMS.items():
+        names = by_kind.get(kind, set())
+        if len(names) == 1 and word not in out:
+            out[word] = next(iter(names))
+    return out
+
+
+COMMON_WORDS = frozenset({
+    "they", "them", "then", "than", "thee", "there", "these", "those", "this", "that", "what", "when", "with",
+    "read", "reed", "rod", "bed", "bad", "bold", "blur", "glue", "clue", "true", "grey", "gray", "greed", "queen",
+    "bow", "fox", "ox", "lock", "rick", "brisk", "brink", "ones", "once", "own", "tone", "bone", "done", "gone",
+    "none", "objects", "items", "pieces", "things", "thin", "thine", "tube", "cub", "cane", "cone", "coin",
+    "call", "tale", "tail", "toll", "tell", "stall", "small", "mall", "shirt", "sport", "shot", "bit", "big",
+    "tiny", "tin", "pin", "hint", "white", "while", "whit", "blew", "blues", "rex", "reds", "bled", "side",
+    "sides", "edge", "table", "left", "right", "front", "back", "near", "far", "next", "past", "around",
+    "away", "toward", "towards", "closer", "beside", "between", "behind", "above", "below", "until", "into",
+})
+"""English words a reference word is one letter away from, never read as its typo ("they" is not "the",
+"read" is not "red")."""
+
+
+def _one_edit(a: str, b: str) -> bool:
+    """Whether ``a`` becomes ``b`` by one deletion, insertion or swap of neighbours, or (words of 5+ letters) one
+    substitution: a slip of the keyboard. Three-letter words take no substitution ("bed" is not "red")."""
+    if a == b:
+        return False
+    la, lb = len(a), len(b)
+    if la == lb:
+        diff = [i for i in range(la) if a[i] != b[i]]
+        if len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]:
+            return True
+        return len(diff) == 1 and la >= 5
+    if abs(la - lb) != 1:
+        return False
+    short, long_ = (a, b) if la < lb else (b, a)
+    return any(long_[:i] + long_[i + 1:] == short for i in range(len(long_)))
+
+
+def typo_of(word: str, vocabulary: Iterable[str], known: frozenset[str] | set[str]) -> str | None:
+    """The one vocabulary word ``word`` is a slip for ("blu": blue, "cylnder": cylinder, "teh": the), or None
+    when it is a word in its own right, too short, or one slip from none or from two."""
+    w = word.lower()
+    if len(w) < 3 or not w.isalpha() or w in known or w in COMMON_WORDS:
+        return None
+    close = {v for v in vocabulary if len(v) >= 3 and _one_edit(w, v)}
+    return next(iter(close)) if len(close) == 1 else None
