@@ -20,7 +20,7 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_words, typo_of
+from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_groups, kind_words, typo_of
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
@@ -181,7 +181,7 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
     said = " ".join(low)  # what the user wrote, for the error: "that same cube" reads as "it" below
     kinds = _name_words(scene)
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
-    if opening is not None and (low[-1] in SHAPE_NOUNS or low[-1] in kinds) and low[-1] not in NOUNS:
+    if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
     if opening is not None and low[-1] in NOUNS:
         low = ("it",)
@@ -282,8 +282,9 @@ def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     are for :func:`_described`); an unknown word is a one-line error."""
     names = _name_words(scene)
     drop = SOFT_ADJECTIVES | SIZE_WORDS
+    heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can" is a can, whether named so or a cylinder
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
-            if lw in names or not (lw in drop or (lw in KIND_MODIFIERS and i + 1 < len(low) and low[i + 1] in names))]
+            if lw in names or not (lw in drop or (lw in KIND_MODIFIERS and i + 1 < len(low) and low[i + 1] in heads))]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS for lw in low)
     if kept:  # "the little red cube": the other words decide
         words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
@@ -293,19 +294,23 @@ def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         return list(scene.objects)  # "the tall": size words alone
     colours = _colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS]
+    groups = kind_groups(scene)
+    kinds = [groups[w] for w in low if w in groups and w not in names]  # "the red mug" among two mugs
     shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
     shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
     known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
-             | {"things", "objects", "ones"} | set(names))
+             | {"things", "objects", "ones"} | set(names) | set(groups))
     unknown = [w for w in low if w not in known]
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
             and low[0] not in FUNCTION_WORDS:
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
-    if unknown or not (colours or named or shapes or shaped or sized or set(low) & (NOUNS | BLOCK_WORDS)):
+    if unknown or not (colours or named or kinds or shapes or shaped or sized or set(low) & (NOUNS | BLOCK_WORDS)):
         _unknown(text, words, low, scene)
     fits = list(scene.objects)
     if named:
         fits = [o for o in fits if o.name in named]
+    for group in kinds:
+        fits = [o for o in fits if o.name in group]
     if colours:
         fits = [o for o in fits if o.color in colours]
     if shapes and not named:

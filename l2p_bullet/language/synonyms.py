@@ -47,22 +47,24 @@ def kinds_of(o: SceneObject) -> set[str]:
     return out
 
 
-def kind_words(scene: Scene) -> dict[str, str]:
-    """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
-    (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
+def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
+    """Lower-case words that call objects by their kind -> the names of every object of that kind ("mug": both
+    mugs): a noun that restricts a description ("the red mug") and alone fits them all."""
     by_kind: dict[str, set[str]] = {}
     for o in scene.objects:
         for k in kinds_of(o):
             by_kind.setdefault(k, set()).add(o.name)
-    out = {}
-    for k, names in by_kind.items():
-        if len(names) == 1:
-            out[k] = next(iter(names))
+    out = {k: frozenset(v) for k, v in by_kind.items()}
     for word, kind in KIND_SYNONYMS.items():
-        names = by_kind.get(kind, set())
-        if len(names) == 1 and word not in out:
-            out[word] = next(iter(names))
+        if kind in out and word not in out:
+            out[word] = out[kind]
     return out
+
+
+def kind_words(scene: Scene) -> dict[str, str]:
+    """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
+    (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
+    return {w: next(iter(names)) for w, names in kind_groups(scene).items() if len(names) == 1}
 
 
 COMMON_WORDS = frozenset({
