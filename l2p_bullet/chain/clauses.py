@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from dataclasses import replace
 
-from ..core.scene import Scene
+from ..core.scene import COLORS, Scene
 from ..errors import L2PError, LanguageError
 from ..language import (
     MAX_SENTENCE,
@@ -25,6 +25,7 @@ from ..language import (
     phrase_tokens,
     tokens,
     trailing_join,
+    typos,
 )
 from ..manners import registry as manners
 from ..pipeline import resolve
@@ -43,8 +44,12 @@ def split_clauses(sentence: str) -> list[str]:
     """The clauses' texts, in order (empty pieces, e.g. a leading "then", dropped)."""
     if not isinstance(sentence, str):
         return []
-    pieces = [p.strip(" ,.") for p in _JOINS.split(sentence) if p.strip(" ,.")]
-    return [p for p in pieces if not is_courtesy(tokens(p))]
+    return [p for p in _pieces(sentence) if not is_courtesy(tokens(p))]
+
+
+def _pieces(sentence: str) -> list[str]:
+    """The texts between the joins, courtesies ("Thanks!") included."""
+    return [p.strip(" ,.") for p in _JOINS.split(sentence) if p.strip(" ,.")]
 
 
 def is_chain(sentence: str, plugins: list | None = None) -> bool:
@@ -55,6 +60,26 @@ def is_chain(sentence: str, plugins: list | None = None) -> bool:
 
 
 def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
+    """:func:`read_clauses`; where the sentence is refused as written, read again with its typing slips mended
+    (language/typos.py: "mvoe teh red cube"); the first refusal stands where the mended sentence is refused
+    too or there is nothing to mend."""
+    try:
+        return read_clauses(sentence, scene, plugins)
+    except L2PError:
+        if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
+            raise
+        known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS)
+        mended = typos.mend(sentence, known, scene.names)
+        if mended == sentence:
+            raise
+        try:
+            return read_clauses(mended, scene, plugins)
+        except L2PError:
+            pass
+        raise
+
+
+def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """Every clause parsed against ``scene`` and the installed phrases; the first problem raised as a
     one-line error of its own type (LanguageError, UnknownObjectError...) that names the clause.
 
@@ -69,6 +94,11 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         try:
             return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
         except L2PError:
+            if texts and len(_pieces(sentence)) > 1:  # "Hello! Move A past B. Thanks.": the command alone
+                try:
+                    return [Clause(1, texts[0], resolve(texts[0], scene, plugins))]
+                except L2PError:
+                    pass
             pieces = _split_on_and(texts[0] if texts else str(sentence), None, scene, plugins)
             if pieces is None:
                 raise

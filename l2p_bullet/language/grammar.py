@@ -34,6 +34,7 @@ from .words import (
     goal_to_verb,
     passive_to_verb,
     skip_to_verb,
+    state_to_verb,
     strip_polite,
     take_extent,
     take_pace,
@@ -170,7 +171,8 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     verbs = known_verbs()
     heads = sorted({v.split()[0] for v in verbs})
     words = gerund_to_verb(strip_polite(tokens(text), keep), verbs)
-    words = goal_to_verb(passive_to_verb(words, verbs, lambda t: _try_object(t, scene) is not None), verbs)
+    is_object = lambda t: _try_object(t, scene) is not None  # noqa: E731
+    words = goal_to_verb(state_to_verb(passive_to_verb(words, verbs, is_object), verbs, is_object), verbs)
     words, pace = take_pace(words, keep)
     return by_gerund(strip_polite(skip_to_verb(words, heads, keep), keep), verbs), pace
 

@@ -1,0 +1,94 @@
+"""Typing slips in a sentence the grammar refused ("mvoe teh red cube", "the yelow box", "the blu cylnder").
+
+A slip is read as the known word it is one keystroke from: one letter swapped with its neighbour, left out,
+added or replaced (Damerau-Levenshtein distance 1), when exactly one known word is that near. Words of three
+letters are read only through a swap or a left-out letter ("teh", "blu"): a replaced letter in so short a
+word is as likely another word. A word that is known, or that names an object in the scene, is never
+changed.
+
+Only a sentence that was refused as written is read again with its slips mended (``chain/clauses.py``), so
+a slip can turn a refusal into an answer but never change the answer to a sentence that already read.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+
+from . import references, words
+
+_WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
+
+COMMON = frozenset("""
+a an the this that these those it its them they one ones some all both each other another same to of from at
+in on onto into by with without for and or but then so is are be been being was were do does did don't not
+no yes me my you your we our i i'd i'm let's lets here there where what which who whatever as than up down
+over under near nearer nearest far farther further away next toward towards around round past beyond close
+closer beside left right front back behind middle side end top bottom edge table again too also very just
+only now first second third last until while when if could would should will can may might must shall
+please thanks thank mind go goes get gets make sure want like need needs task goal job keep see look there's
+bit little lot much more less way little slightly
+""".split())
+"""Everyday words a sentence holds that no table of the grammar lists; known, so never mended."""
+
+
+def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
+    """Every word the grammar knows: the installed phrases' and verbs' words, the colour names, the words of
+    politeness, framing, pace and extent (language/words.py), of references (language/references.py), and
+    :data:`COMMON`."""
+    known: set[str] = set(COMMON)
+    for text in (*phrases, *verbs, *colours):
+        known.update(_WORD.findall(text.lower()))
+    for table in (words.POLITE_PREFIXES, words.POLITE_SUFFIXES, words.FRAMES, words.GERUND_PREFIXES,
+                  words.GOAL_PREFIXES, words.STATE_LINKS, tuple(words.EXTENTS)):
+        for phrase in table:
+            known.update(phrase)
+    known.update(words.PACES)
+    known.update(words.COMPARATIVE_WORDS)
+    for table in (references.DETERMINERS, references.NOUNS, references.SHAPE_NOUNS, references.SHAPE_ADJECTIVES,
+                  references.SOFT_ADJECTIVES, references.COLOR_SYNONYMS, references.FUNCTION_WORDS,
+                  references.NEAREST, references.FARTHEST, references.SIZE_SUPERLATIVES):
+        known.update(table)
+    return frozenset(w for w in known if w.isascii())
+
+
+def near(word: str, known: frozenset[str]) -> str | None:
+    """The one known word ``word`` is a slip of, or None (no such word, or more than one)."""
+    if len(word) < 3 or not word.isalpha():
+        return None
+    hits = {k for k in known if abs(len(k) - len(word)) <= 1 and _one_slip(word, k)}
+    return hits.pop() if len(hits) == 1 else None
+
+
+def _one_slip(word: str, known: str) -> bool:
+    """Whether ``known`` is one keystroke from ``word`` (in a three-letter word: a swap or a left-out letter)."""
+    if word == known:
+        return False
+    if len(word) == len(known):
+        diff = [i for i, (a, b) in enumerate(zip(word, known, strict=True)) if a != b]
+        swap = len(diff) == 2 and diff[1] == diff[0] + 1 and word[diff[0]] == known[diff[1]] \
+            and word[diff[1]] == known[diff[0]]
+        return swap or (len(diff) == 1 and len(word) > 3)
+    if len(word) + 1 == len(known):  # a letter left out
+        return any(known[:i] + known[i + 1:] == word for i in range(len(known)))
+    if len(word) == len(known) + 1 and len(word) > 3:  # a letter added
+        return any(word[:i] + word[i + 1:] == known for i in range(len(word)))
+    return False
+
+
+def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
+    """``sentence`` with each slip replaced by the known word it is one keystroke from (its case as typed for
+    the first letter); every other character as it was."""
+    keep = {n.lower() for n in names}
+
+    def fix(m: re.Match) -> str:
+        w = m.group(0)
+        low = w.lower()
+        if low in known or low in keep:
+            return w
+        hit = near(low, known)
+        if hit is None:
+            return w
+        return hit.capitalize() if w[0].isupper() else hit
+
+    return _WORD.sub(fix, sentence)
