@@ -20,7 +20,7 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_groups, kind_words, typo_of
+from .synonyms import BIG, KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_groups, kind_words
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
@@ -35,9 +35,9 @@ SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "
                     "square": "cube", "cylindrical": "cylinder", "round": "cylinder"}
 """Adjectives that name a shape: they restrict like a shape named alone, colour or not ("the yellow
 rectangular block" is a box)."""
-SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"})
-"""Adjectives people add to a description that already picks one object ("the toy duck", "the flat yellow
-box"): read past. Size words (synonyms.SIZE_WORDS) decide among what the rest leaves instead."""
+SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
+"""Adjectives people add to a description that already picks one object ("the toy duck", "the little red
+cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
 FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
                             "and", "or", "then", "so", "it", "not", "no", "other", "another", "first", "second",
@@ -103,31 +103,8 @@ def describe(scene: Scene) -> str:
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
-    """The name of the object ``text`` refers to; a one-line error when none or several fit.
-
-    A description nothing fits is read once more with its typos mended ("the blu cylnder": the blue cylinder;
-    synonyms.typo_of); the first reading's error stands when the mended one fails too."""
-    try:
-        return _resolve(text, scene, role, context)
-    except UnknownObjectError as first:
-        mended = _mended(text, scene)
-        if mended is None:
-            raise
-        try:
-            return _resolve(mended, scene, role, context)
-        except (LanguageError, UnknownObjectError):
-            raise first from None
-
-
-def _mended(text: str, scene: Scene) -> str | None:
-    """``text`` with each reference word's typo mended; None when nothing is to mend."""
-    names = _name_words(scene)
-    vocabulary = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | SIZE_WORDS
-                  | DETERMINERS | set(names))
-    known = vocabulary | FUNCTION_WORDS | NEAREST | FARTHEST | set(SIZE_SUPERLATIVES) | {w.lower() for w in scene.names}
-    words = text.split()
-    out = [typo_of(w, vocabulary, known) or w for w in words]
-    return " ".join(out) if out != words else None
+    """The name of the object ``text`` refers to; a one-line error when none or several fit."""
+    return _resolve(text, scene, role, context)
 
 
 def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str:
@@ -281,8 +258,8 @@ def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     """The objects the name, colour and shape words of a description allow (size words and "block"'s preference
     are for :func:`_described`); an unknown word is a one-line error."""
     names = _name_words(scene)
-    drop = SOFT_ADJECTIVES | SIZE_WORDS
-    heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can" is a can, whether named so or a cylinder
+    drop = SOFT_ADJECTIVES
+    heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can": named so or a cylinder
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
             if lw in names or not (lw in drop or (lw in KIND_MODIFIERS and i + 1 < len(low) and low[i + 1] in heads))]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS for lw in low)
@@ -506,6 +483,10 @@ def object_pairs(words: list[str], scene: Scene, roles: tuple[str, str],
 
 BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})
 BLOCK_SHAPES = frozenset({"cube", "box"})
+REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
+                            | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
+"""Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",
+"you"): known words, which a reader of typing slips leaves as they are."""
 
 
 def _either_reading(described: list[str], scene: Scene, choose) -> str:

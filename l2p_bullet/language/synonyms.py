@@ -1,5 +1,4 @@
-"""The words people use for an object besides its name: common names of its kind, size words, and the typos
-of the reference vocabulary a reader still understands.
+"""The words people use for an object besides its name: common names of its kind and size words.
 
 An object is called by its kind: its name when the name is a word ("mug", "duck", "can"), and the stem of its
 mesh file ("duck_vhacd.obj": a duck). People use the kind's everyday names too ("the cup", "the coffee mug",
@@ -10,7 +9,6 @@ guess between two.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
 
 from ..core.scene import Scene, SceneObject
 
@@ -65,44 +63,3 @@ def kind_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
     (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
     return {w: next(iter(names)) for w, names in kind_groups(scene).items() if len(names) == 1}
-
-
-COMMON_WORDS = frozenset({
-    "they", "them", "then", "than", "thee", "there", "these", "those", "this", "that", "what", "when", "with",
-    "read", "reed", "rod", "bed", "bad", "bold", "blur", "glue", "clue", "true", "grey", "gray", "greed", "queen",
-    "bow", "fox", "ox", "lock", "rick", "brisk", "brink", "ones", "once", "own", "tone", "bone", "done", "gone",
-    "none", "objects", "items", "pieces", "things", "thin", "thine", "tube", "cub", "cane", "cone", "coin",
-    "call", "tale", "tail", "toll", "tell", "stall", "small", "mall", "shirt", "sport", "shot", "bit", "big",
-    "tiny", "tin", "pin", "hint", "white", "while", "whit", "blew", "blues", "rex", "reds", "bled", "side",
-    "sides", "edge", "table", "left", "right", "front", "back", "near", "far", "next", "past", "around",
-    "away", "toward", "towards", "closer", "beside", "between", "behind", "above", "below", "until", "into",
-})
-"""English words a reference word is one letter away from, never read as its typo ("they" is not "the",
-"read" is not "red")."""
-
-
-def _one_edit(a: str, b: str) -> bool:
-    """Whether ``a`` becomes ``b`` by one deletion, insertion or swap of neighbours, or (words of 5+ letters) one
-    substitution: a slip of the keyboard. Three-letter words take no substitution ("bed" is not "red")."""
-    if a == b:
-        return False
-    la, lb = len(a), len(b)
-    if la == lb:
-        diff = [i for i in range(la) if a[i] != b[i]]
-        if len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]:
-            return True
-        return len(diff) == 1 and la >= 5
-    if abs(la - lb) != 1:
-        return False
-    short, long_ = (a, b) if la < lb else (b, a)
-    return any(long_[:i] + long_[i + 1:] == short for i in range(len(long_)))
-
-
-def typo_of(word: str, vocabulary: Iterable[str], known: frozenset[str] | set[str]) -> str | None:
-    """The one vocabulary word ``word`` is a slip for ("blu": blue, "cylnder": cylinder, "teh": the), or None
-    when it is a word in its own right, too short, or one slip from none or from two."""
-    w = word.lower()
-    if len(w) < 3 or not w.isalpha() or w in known or w in COMMON_WORDS:
-        return None
-    close = {v for v in vocabulary if len(v) >= 3 and _one_edit(w, v)}
-    return next(iter(close)) if len(close) == 1 else None

@@ -93,8 +93,8 @@ def test_language_errors_say_what_was_not_understood(scene, sentence, words):
 @pytest.mark.parametrize("sentence, words", [
     ("move C around B", ['"C"', "A (red), B (green)"]),
     ("move the purple block around B", ["no purple block"]),
-    ("move the red blk around B", ['Did you mean "the red block"?']),  # two slips from "block": not mended
-    ("move the rdd block around B", ['"rdd" is not a colour', 'Did you mean "red"?']),
+    ("move the red bloc around B", ['Did you mean "the red block"?']),
+    ("move the rde block around B", ['"rde" is not a colour', 'Did you mean "red"?']),
 ])
 def test_unknown_objects(scene, sentence, words):
     with pytest.raises(UnknownObjectError) as e:

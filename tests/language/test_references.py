@@ -10,7 +10,7 @@ import pytest
 from corpus import REFUSE, resolve, scene
 
 from l2p_bullet.core.scene import Scene, SceneObject
-from l2p_bullet.errors import L2PError, LanguageError, UnknownObjectError
+from l2p_bullet.errors import LanguageError, UnknownObjectError
 from l2p_bullet.language import Context, resolve_object
 from l2p_bullet.plugins import registry
 
@@ -145,15 +145,17 @@ def test_a_relative_clause_reads_as_the_adjective(six):
     assert resolve_object("the block which is closest to the duck", six) == "B"
 
 
-@pytest.mark.parametrize("text, name", [
-    ("the blu cylnder", "F"), ("teh green box", "D"), ("the whte cube", "C"), ("the white bloc", "C"),
+@pytest.mark.parametrize("sentence, expect", [
+    ("Please, move the blu cylnder around the mug.", "slide:around F mug"),
+    ("move teh big red cube past the mug", "slide:past A mug"),
+    ("move the tiny red blok past the cup", "slide:past B mug"),
 ])
-def test_typos_in_reference_words_are_mended(two_reds, text, name):
-    assert resolve_object(text, two_reds) == name
+def test_slips_in_reference_words_are_mended_in_a_refused_sentence(plugins, two_reds, sentence, expect):
+    """The reader of typing slips (language/typos.py) knows the reference words, size words and kinds' names."""
+    assert resolve(sentence, two_reds, plugins) == expect
 
 
-def test_words_in_their_own_right_are_not_typos(six):
-    assert resolve_object("the yelow box", six) == "D"
-    for text in ("they", "the bed cube", "read"):
-        with pytest.raises(L2PError):
-            resolve_object(text, six)
+def test_kind_names_and_size_words_are_known_words():
+    from l2p_bullet.language.references import REFERENCE_WORDS
+
+    assert {"cup", "bird", "tiny", "bigger", "you", "whatever"} <= REFERENCE_WORDS
