@@ -30,6 +30,7 @@ from ..language import (
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
+from . import pointing
 from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
 
@@ -99,7 +100,10 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                     return [Clause(1, texts[0], resolve(texts[0], scene, plugins))]
                 except L2PError:
                     pass
-            pieces = _split_on_and(texts[0] if texts else str(sentence), None, scene, plugins)
+            text = texts[0] if texts else str(sentence)
+            pieces = _split_on_and(text, None, scene, plugins)
+            if pieces is None:
+                pieces = [(text, c) for c in pointing.pointed(text, None, None, scene, plugins) or ()] or None
             if pieces is None:
                 raise
             return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)]
@@ -109,49 +113,85 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(texts) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(texts)} clauses; a chain has at most {MAX_CLAUSES}")
     clauses: list[Clause] = []
+    show: pointing.Shown | None = None  # objects the clause before showed without a command ("See E?")
+    pair: pointing.Shown | None = None  # the last two objects shown, for "the other one" later on
     for i, text in enumerate(texts, start=1):
         if len(text) > MAX_SENTENCE:
             raise LanguageError(f'clause {i} is {len(text)} characters long; a clause has at most {MAX_SENTENCE}')
         made = composite_clauses(text, scene, plugins)
         if made is not None:  # a composite's steps, numbered on from the clauses before it
             clauses.extend(replace(c, index=len(clauses) + 1) for c in made)
+            show = None
             continue
         previous = clauses[-1].command if clauses else None
+        context = show.context if show is not None else (_after(previous, pair) if previous else None)
         try:
-            pieces = _resolve_text(text, previous, scene, plugins)
+            pieces = _resolve_text(text, previous, scene, plugins, context=context, pair=pair)
         except L2PError as e:
+            shows = pointing.shown(text, scene, context) if i < len(texts) else None
+            if shows is not None:
+                show = shows
+                pair = shows if len(shows.objects) == 2 else pair
+                continue
             raise named(e, f'clause {i} ("{text}")') from None
+        pieces = [(piece, pointing.carried(cmd, show)) for piece, cmd in pieces]
+        show = None
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
 
 
-def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: list,
-                  depth: int = 0) -> list[tuple[str, Command]]:
+def _context(previous: Command | None) -> Context | None:
+    """What the next clause's pronouns point back to: the previous command's mover and anchor."""
+    return Context(previous.mover, previous.anchor) if previous is not None else None
+
+
+def _after(previous: Command, pair: pointing.Shown | None) -> Context:
+    """The next clause's context; after a pair was shown and one of it moved, "the other one" is the other of the
+    pair ("You see A and C? Move A next to B and the other one next to D")."""
+    if pair is not None and previous.mover in pair.objects:
+        return Context(previous.mover, next(o for o in pair.objects if o != previous.mover))
+    return Context(previous.mover, previous.anchor)
+
+
+def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int = 0,
+                  context: Context | None = None, pair: pointing.Shown | None = None) -> list[tuple[str, Command]]:
     """A clause's text -> its command; where it does not read as one clause but as two joined by "and" or a
-    comma ("shove D toward A and drag E around C", "put B next to the duck and A next to E"), both."""
-    context = Context(previous.mover, previous.anchor) if previous is not None else None
+    comma ("shove D toward A and drag E around C", "put B next to the duck and A next to E"), both; else as
+    one of chain/pointing.py's readings ("do the same with C", "move them both ...")."""
+    context = context or _context(previous)
     try:
         return [(text, resolve(_complete(text, previous, scene, plugins), scene, plugins, context))]
     except L2PError:
-        pieces = _split_on_and(text, previous, scene, plugins, depth)
+        if previous is not None and context == _context(previous):
+            # "move B toward C, then past it": "it" cannot be the block being moved, so it is the other one
+            try:
+                turned = Context(previous.anchor, previous.mover)
+                return [(text, resolve(_complete(text, previous, scene, plugins), scene, plugins, turned))]
+            except L2PError:
+                pass
+        pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
         if pieces is None:
-            raise
+            commands = pointing.pointed(text, previous, context, scene, plugins)
+            if not commands:
+                raise
+            pieces = [(text, c) for c in commands]
         return pieces
 
 
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
 
 
-def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: list,
-                  depth: int = 0) -> list[tuple[str, Command]] | None:
+def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int = 0,
+                  context: Context | None = None,
+                  pair: pointing.Shown | None = None) -> list[tuple[str, Command]] | None:
     """The first split of ``text`` at an "and" or a comma into clauses that each resolve (the later ones may
     leave out the verb, or the verb and the mover: :func:`_complete`); None when there is none. Only tried on a
     text that does not resolve as one clause, so "lift A and put it next to B" and "between B and C" stay whole."""
     if depth >= MAX_CLAUSES:
         return None
-    context = Context(previous.mover, previous.anchor) if previous is not None else None
+    context = context or _context(previous)
     for m in _AND_OR_COMMA.finditer(text):
         left, right = text[:m.start()].strip(" ,"), text[m.end():].strip(" ,")
         if not left or not right:
@@ -161,7 +201,7 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
         except L2PError:
             continue
         try:
-            rest = _resolve_text(right, first, scene, plugins, depth + 1)
+            rest = _resolve_text(right, first, scene, plugins, depth + 1, _after(first, pair), pair)
         except L2PError:
             continue
         return [(left, first), *rest]

@@ -114,6 +114,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     if not words:
         raise LanguageError(f'"{sentence.strip()}" asks for nothing; {EXAMPLE}')
     verb, manner, rest = split_verb(words)
+    rest = _on_the_table(rest, manner, sentence)
     if not rest:
         raise LanguageError(f'"{sentence.strip()}" does not say what to {verb}; {EXAMPLE}')
     low = [w.lower() for w in rest]
@@ -147,6 +148,28 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     if first_error is not None and (middle is None or _contains_phrase(middle, phrases)):
         raise first_error
     raise _unknown_preposition(rest, middle, phrases, verb)
+
+
+ON_THE_TABLE = tuple(tuple(p.split()) for p in (
+    "without lifting it up", "without lifting it", "without lifting", "without picking it up",
+    "without picking it", "keeping it on the table", "keeping it down", "maintaining contact with the table surface",
+    "maintaining contact with the table", "along the table surface",
+))
+"""Closing words that say the object stays on the table: what a slide or a push does anyway, and what a carry
+cannot do."""
+
+
+def _on_the_table(rest: list[str], manner: str, sentence: str) -> list[str]:
+    """``rest`` without closing words of :data:`ON_THE_TABLE`; a one-line error where the manner lifts the object
+    ("carry A past B without lifting it" asks for two things at once)."""
+    low = tuple(w.lower() for w in rest)
+    for tail in ON_THE_TABLE:
+        if len(low) > len(tail) and low[-len(tail):] == tail:
+            if manners.get(manner).airborne:
+                raise LanguageError(f'"{sentence.strip()}" asks to {manner} the object and to keep it on the table; '
+                                    "say one of them")
+            return rest[:-len(tail)]
+    return rest
 
 
 def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:

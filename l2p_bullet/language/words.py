@@ -41,7 +41,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "if you can", "if possible", "when you can", "if you would",
-    "many thanks", "thanks in advance", "thank you in advance", "much appreciated", "that would be great",
+    "pls", "plz", "pls ty", "pls thx", "ty", "tia", "many thanks", "thanks in advance", "thank you in advance", "much appreciated", "that would be great",
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",))

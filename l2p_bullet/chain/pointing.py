@@ -1,0 +1,137 @@
+"""What a clause points at beyond a plain pronoun: an object shown before the command ("See the cylinder? Move
+it next to C", "Take the blue cube and slide it toward E", "the green cube - move it past B"), both objects of
+the previous clause ("then move them both away from E") and the previous command again on another object
+("Now do the same with the red cube").
+
+Each reading is tried only on a clause that does not resolve as it stands (``chain/clauses.py``), so it adds
+sentences the grammar understands and changes none it already did.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, replace
+
+from ..core.scene import Scene
+from ..errors import L2PError, LanguageError, UnknownObjectError
+from ..language import Command, Context, resolve_object
+from ..language.references import object_pairs
+from ..pipeline import resolve
+
+_SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
+         r"|take|grab|get|pick\s+up|lift)")
+SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
+"""A clause that only shows objects: "See the cylinder?", "Pick up the duck"."""
+TOPIC = re.compile(r"^\s*(?P<what>.+?)\s+[-\u2013\u2014:]\s+(?P<rest>.+)$")
+"""An object named first, then the command about it: "the green cube - move it toward the blue one"."""
+SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
+                  r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
+"""The previous command again on another object: "Now do the same with the red cube"."""
+BOTH = re.compile(r"\b(?:them\s+both|both\s+of\s+them|both|them)\b", re.IGNORECASE)
+LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
+PLACING = frozenset({"put", "place", "set", "drop", "lay"})
+
+
+@dataclass(frozen=True)
+class Shown:
+    """Objects a clause showed without a command: what the next clause's pronouns point at; ``lifted`` when it
+    picked them up ("Pick up the duck. Put it next to D." is a carry)."""
+
+    objects: tuple[str, ...]
+    lifted: bool = False
+
+    @property
+    def context(self) -> Context:
+        return Context(self.objects[0], self.objects[1] if len(self.objects) > 1 else None)
+
+
+def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
+    """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
+    m = SHOWN.match(text)
+    if m is None:
+        return None
+    objects = _objects(m.group("what"), scene, context)
+    return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
+
+
+def carried(command: Command, after: Shown | None) -> Command:
+    """A placing command after a clause that picked its mover up is a carry ("Pick up A. Put it next to B.")."""
+    if after is not None and after.lifted and command.mover in after.objects and command.manner == "slide" \
+            and command.verb.lower() in PLACING:
+        return replace(command, manner="carry")
+    return command
+
+
+def pointed(text: str, previous: Command | None, context: Context | None, scene: Scene,
+            plugins: list) -> list[Command] | None:
+    """The commands of a clause read by one of the module's readings, or None when none applies."""
+    m = SAME.match(text)
+    if m is not None and previous is not None:
+        mover = resolve_object(m.group("what"), scene, "block to do the same with", context)
+        if mover in previous.anchors:
+            raise LanguageError(f'"{text}": {mover} is what the previous clause moved {previous.preposition}; '
+                                "name another block")
+        return [replace(previous, mover=mover, sentence=text)]
+    for what, rest, lifting in _splits(text):
+        objects = _objects(what, scene, context)
+        if objects is None:
+            continue
+        commands = _each(rest, Context(*objects) if len(objects) == 2 else Context(objects[0]), objects, scene,
+                         plugins)
+        if commands is not None:
+            return [carried(c, Shown(objects, lifting)) for c in commands]
+    if previous is not None and BOTH.search(text):
+        pair = (previous.mover, previous.anchor)
+        return _each(text, Context(*pair), pair, scene, plugins)
+    return None
+
+
+def _splits(text: str) -> list[tuple[str, str, bool]]:
+    """(the objects' words, the command's words, whether they were picked up) for every way ``text`` reads as
+    objects shown and then a command: at each "and" after a showing verb, and at a dash or colon."""
+    out = []
+    m = SHOWN.match(text)
+    if m is not None:
+        what = m.group("what")
+        for j in re.finditer(r"(?:\s*,\s*|\s+)and\s+", what):
+            out.append((what[:j.start()], what[j.end():], bool(LIFTING.match(text))))
+    m = TOPIC.match(text)
+    if m is not None:
+        out.append((m.group("what"), m.group("rest"), False))
+    return out
+
+
+def _each(text: str, context: Context, objects: tuple[str, ...], scene: Scene,
+          plugins: list) -> list[Command] | None:
+    """``text`` resolved with ``context``; where it says "them (both)" and ``objects`` are two, once per object."""
+    if len(objects) == 2 and BOTH.search(text):
+        try:
+            return [resolve(BOTH.sub(name, text, count=1), scene, plugins, context) for name in objects]
+        except L2PError:
+            return None
+    try:
+        return [resolve(text, scene, plugins, context)]
+    except L2PError:
+        return None
+
+
+def _objects(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:
+    """One object ("the cylinder") or two ("the red and the blue cubes", "B and E") that ``text`` names."""
+    try:
+        return (resolve_object(text, scene, "block", context),)
+    except (LanguageError, UnknownObjectError):
+        pass
+    words = text.split()
+    pair = next((p for p in object_pairs(words, scene, ("block", "block"), context)
+                 if isinstance(p, tuple) and p[0] != p[1]), None)
+    if pair is None and len(words) >= 4 and words[-1].lower().rstrip("s") in ("cube", "block", "object", "one"):
+        noun = words[-1].rstrip("sS")  # "the red and the blue cubes": each colour with the noun
+        split = [w.lower() for w in words].index("and") if "and" in (w.lower() for w in words) else -1
+        if split > 0:
+            first = " ".join([*words[:split], noun])
+            second = " ".join([*words[split + 1:-1], noun])
+            try:
+                pair = (resolve_object(first, scene, "block", context), resolve_object(second, scene, "block", context))
+            except (LanguageError, UnknownObjectError):
+                pair = None
+    return pair if pair is not None and pair[0] != pair[1] else None
