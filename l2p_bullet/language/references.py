@@ -213,15 +213,16 @@ def _the_other(said: str, words: list[str], context: Context | None, role: str, 
 
 
 def _no_twin(said: str, context: Context, scene: Scene) -> None:
-    """Refuses "the other one" where the previous mover has a twin of its colour besides the anchor: after "the
-    small red cube", "the other one" may be the other red cube as well as the anchor."""
-    if context.mover not in scene.names:
+    """Refuses "the other one" where a third object shares the colour of one of the previous clause's two: after
+    "move the small red cube next to F", "the other one" may be the other red cube as well as F."""
+    pair = [n for n in (context.mover, context.anchor) if n is not None and n in scene.names]
+    if len(pair) < 2:
         return
-    colour = scene.get(context.mover).color
-    twins = [o.name for o in scene.objects if o.color == colour and o.name not in (context.mover, context.anchor)]
-    if twins and context.anchor is not None:
-        raise LanguageError(f'"{said}" is ambiguous: the previous clause\'s other block ({context.anchor}) or the '
-                            f"other {colour} one ({', '.join(twins)}); name the one you mean")
+    colours = {scene.get(n).color for n in pair}
+    twins = [o.name for o in scene.objects if o.color in colours and o.name not in pair]
+    if twins:
+        raise LanguageError(f'"{said}" is ambiguous: {context.anchor} (of the previous clause) or {", ".join(twins)} '
+                            f"(the other of its colour); name the one you mean")
 
 
 def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
