@@ -107,6 +107,19 @@ def resolve_object(text: str, scene: Scene, role: str = "block", context: Contex
     return _resolve(text, scene, role, context)
 
 
+def measured_from(text: str, scene: Scene, context: Context | None = None) -> str | None:
+    """The object a relational description measures from ("the object nearest the cylinder": the cylinder), or
+    None (no relation, or one to the robot): what "it" later in the same clause means ("move the object nearest
+    the cylinder away from it"), since the block moved cannot be moved away from itself."""
+    words = _plain_order(text.split(), scene)
+    low = tuple(w.lower() for w in words)
+    head = _head_end(low)
+    if head is None or head[0] in SIZE_SUPERLATIVES:
+        return None
+    ref = _reference_point(words[head[2]:], scene, "reference block", context)
+    return ref[0] if ref is not None else None
+
+
 def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str:
     words = text.split()
     if not words:

@@ -159,3 +159,13 @@ def test_kind_names_and_size_words_are_known_words():
     from l2p_bullet.language.references import REFERENCE_WORDS
 
     assert {"cup", "bird", "tiny", "bigger", "you", "whatever"} <= REFERENCE_WORDS
+
+
+def test_what_a_relation_measures_from(six, two_reds):
+    """For "move the object nearest the cylinder away from it": "it" is what the mover's relation measures from."""
+    from l2p_bullet.language.references import measured_from
+
+    assert measured_from("the object nearest the cylinder", six) == "E"
+    assert measured_from("the object closest to the green box", two_reds) == "D"
+    assert measured_from("the object nearest to you", two_reds) is None
+    assert measured_from("the big red cube", two_reds) is None
