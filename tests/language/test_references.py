@@ -7,7 +7,7 @@ Two tables: the corpus's (three 4 cm cubes, a flat box, the duck, a tall cylinde
 from __future__ import annotations
 
 import pytest
-from corpus import REFUSE, resolve, scene
+from corpus import REFUSE, resolve, scene, score
 
 from l2p_bullet.core.scene import Scene, SceneObject
 from l2p_bullet.errors import LanguageError, UnknownObjectError
@@ -169,3 +169,18 @@ def test_what_a_relation_measures_from(six, two_reds):
     assert measured_from("the object closest to the green box", two_reds) == "D"
     assert measured_from("the object nearest to you", two_reds) is None
     assert measured_from("the big red cube", two_reds) is None
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, reached", [("heldout4.tsv", {"reference": 19, "relation": 19}),
+                                           ("heldout5.tsv", {"reference": 19, "relation": 18})])
+def test_the_fourth_and_fifth_authors_references(plugins, name, reached):
+    """Written cold and read once (docs/language.md); the reference rules they prompted keep their references and
+    relations reached, and no reference, relation or pronoun sentence resolved wrong (a refusal beats a wrong
+    block)."""
+    table, misses = score(plugins, name)
+    wrong = [(c.sentence, got) for c, got in misses
+             if got != REFUSE and c.category in ("reference", "relation", "pronoun")]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    for category, least in reached.items():
+        assert table[category]["right"] >= least, (category, dict(table[category]))
