@@ -26,8 +26,8 @@ DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
 SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "cylinder": "cylinder",
                "can": "cylinder", "cylinders": "cylinder"}
-"""Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour or a size
-("the red box", "the white cube") any block-shaped object (a cube or a box: people call any block a box or a
+"""Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red
+box", "the white cube") any block-shaped object (a cube or a box: people call any block a box or a
 cube), never a cylinder or a mesh."""
 STRICT_SHAPES = frozenset({"cylinder"})
 """Shapes no one calls another shape by: "the red cylinder" is refused where the red object is a cube."""
@@ -380,12 +380,13 @@ def _one(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) ->
 
 
 def _measure(o: SceneObject, what: str) -> float:
-    """A length in metres: the footprint's side (its area's square root), the height, or y (leftness)."""
+    """A length in metres: the footprint's side (its area's square root), the height, y (leftness) or x (how far
+    back from the robot)."""
     if what == "area":
         return float(o.size)
     if what == "height":
         return float(o.geometry.height)
-    return float(o.xy[1])
+    return float(o.xy[0] if what == "x" else o.xy[1])
 
 
 def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
@@ -408,8 +409,9 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
             return None
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
+        place = what in ("x", "y")
         return _either_reading(
-            described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind, what == "y")
+            described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind, place)
         )
     ref = _reference_point(rest_words, scene, role, context)
     if ref is None:

@@ -131,6 +131,8 @@ def test_the_other_one_after_one_of_a_pair_is_refused(plugins, two_reds, six):
     ("the red cube nearer to you", "B"),
     ("the red cube at the back", "A"),
     ("the red cube in the front", "B"),
+    ("the object at the back", "can"),   # x 0.15 (away from the robot), A 0.10
+    ("the frontmost object", "F"),       # x -0.15, B -0.12
     ("whatever is closest to the big red cube", "mug"),
     ("the object directly behind the white cube", "can"),
     ("the object farthest from the small red cube", "can"),
