@@ -1,0 +1,65 @@
+"""The words people use for an object besides its name: common names of its kind and size words.
+
+An object is called by its kind: its name when the name is a word ("mug", "duck", "can"), and the stem of its
+mesh file ("duck_vhacd.obj": a duck). People use the kind's everyday names too ("the cup", "the coffee mug",
+"the bird", "the tin can"); such a word resolves only where exactly one object is of that kind, never by a
+guess between two.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..core.scene import Scene, SceneObject
+
+KIND_SYNONYMS = {"cup": "mug", "cups": "mug", "teacup": "mug", "mugs": "mug", "bird": "duck", "duckling": "duck",
+                 "ducks": "duck", "tin": "can", "tins": "can"}
+"""An everyday name -> the kind it names (an object named, or meshed as, that kind)."""
+KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks"})
+"""Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
+duck"): read past there."""
+BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant"})
+SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini"})
+TALL = frozenset({"tall", "taller"})
+SHORT = frozenset({"short", "shorter", "low", "lower"})
+SIZE_WORDS = BIG | SMALL | TALL | SHORT
+"""Size adjectives: they decide among the objects the rest of a description leaves (big/small by footprint,
+tall/short by height) when the sizes differ clearly; with one object left they are read past."""
+TIE_SIZE = 0.25
+"""Two sizes closer than this fraction of the smaller one are a tie for "the big / small / tall one": a plain
+size adjective asks for a difference a person sees at a glance (a 4 cm and a 5 cm cube, not 4.0 and 4.2 cm)."""
+
+
+def kinds_of(o: SceneObject) -> set[str]:
+    """The kinds an object is called by: its name when a word of 3+ letters, its mesh file's stem's first word."""
+    out = set()
+    name = o.name.lower()
+    if len(name) >= 3 and name.isalpha():
+        out.add(name)
+    mesh = getattr(o, "mesh", None)
+    if isinstance(mesh, str) and mesh:
+        stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
+        first = re.split(r"[^a-z]+", stem.lower())[0]
+        if len(first) >= 3:
+            out.add(first)
+    return out
+
+
+def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
+    """Lower-case words that call objects by their kind -> the names of every object of that kind ("mug": both
+    mugs): a noun that restricts a description ("the red mug") and alone fits them all."""
+    by_kind: dict[str, set[str]] = {}
+    for o in scene.objects:
+        for k in kinds_of(o):
+            by_kind.setdefault(k, set()).add(o.name)
+    out = {k: frozenset(v) for k, v in by_kind.items()}
+    for word, kind in KIND_SYNONYMS.items():
+        if kind in out and word not in out:
+            out[word] = out[kind]
+    return out
+
+
+def kind_words(scene: Scene) -> dict[str, str]:
+    """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
+    (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
+    return {w: next(iter(names)) for w, names in kind_groups(scene).items() if len(names) == 1}
