@@ -164,7 +164,7 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
     try:
         return [(text, resolve(_complete(text, previous, scene, plugins), scene, plugins, context))]
     except L2PError:
-        if previous is not None and context == _context(previous):
+        if previous is not None and context == _context(previous) and re.search(r"\bit\b", text, re.IGNORECASE):
             # "move B toward C, then past it": "it" cannot be the block being moved, so it is the other one
             try:
                 turned = Context(previous.anchor, previous.mover)

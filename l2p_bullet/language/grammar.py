@@ -25,7 +25,7 @@ from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
-from .references import CONJUNCTIONS, Context, object_pairs, resolve_object
+from .references import CONJUNCTIONS, Context, measured_from, object_pairs, resolve_object
 from .words import (
     COMPARATIVES,
     by_gerund,
@@ -129,7 +129,8 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
             try:
                 before, extent, mover = _mover(rest[:i], scene, context)
                 extent = extent or implied
-                refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1), context)
+                refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1),
+                                   context or _measured_context(before, scene))
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
@@ -170,6 +171,13 @@ def _on_the_table(rest: list[str], manner: str, sentence: str) -> list[str]:
                                     "say one of them")
             return rest[:-len(tail)]
     return rest
+
+
+def _measured_context(before: list[str], scene: Scene) -> Context | None:
+    """What "it" after the preposition means in a first clause: the object the mover's description measures
+    from ("move the object nearest the cylinder away from it": the cylinder), or nothing."""
+    source = measured_from(" ".join(drop_frames(before)), scene)
+    return Context(source) if source is not None else None
 
 
 def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:

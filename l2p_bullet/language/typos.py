@@ -47,7 +47,8 @@ def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[s
     known.update(words.COMPARATIVE_WORDS)
     for table in (references.DETERMINERS, references.NOUNS, references.SHAPE_NOUNS, references.SHAPE_ADJECTIVES,
                   references.SOFT_ADJECTIVES, references.COLOR_SYNONYMS, references.FUNCTION_WORDS,
-                  references.NEAREST, references.FARTHEST, references.SIZE_SUPERLATIVES):
+                  references.NEAREST, references.FARTHEST, references.SIZE_SUPERLATIVES,
+                  references.REFERENCE_WORDS):
         known.update(table)
     return frozenset(w for w in known if w.isascii())
 

@@ -335,6 +335,6 @@ def drop_frames(before: list[str]) -> list[str]:
     low = [w.lower() for w in before]
     for f in FRAMES:
         n = len(f)
-        if len(low) > n and tuple(low[-n:]) == f:
-            return drop_frames(before[:-n])
+        if len(low) > n and tuple(low[-n:]) == f and low[-n - 2:-n] not in (["at", "the"], ["in", "the"]):
+            return drop_frames(before[:-n])  # "the cube at the back" keeps its "back": a place, not a frame
     return before

@@ -58,6 +58,24 @@ def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
     assert right >= 185, f"{right}/190 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
+BRING = "bring"
+"""The one word the authors disagree on: heldout.tsv's author reads "bring" as a carry (5 sentences), heldout4's
+and heldout5's as a slide (4); the toolkit keeps the carry (docs/language.md), so those 4 read otherwise."""
+
+
+@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 151), ("heldout5.tsv", 147)])
+def test_the_fourth_and_fifth_authors_corpora_are_never_resolved_wrong(plugins, name, floor):
+    """heldout4.tsv (the corpus table) and heldout5.tsv (its own table: two red cubes, a white cube and a white
+    mug, a can): 160 sentences each, written cold, read once (71.2 % right / 4 wrong and 51.9 % / 3 wrong:
+    docs/language.md); development figures since, kept here against regressions. Wrong only where the authors
+    disagree on "bring"."""
+    table, misses = score(plugins, name)
+    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and BRING not in case.sentence.lower()]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    right = sum(c["right"] for c in table.values())
+    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
 @pytest.mark.parametrize("sentence, said", [
     ("move the cube past A", ['"the cube" is ambiguous', "A, B, C"]),
     ("move the block next to B", ["ambiguous", "A, B, C, D, duck, E"]),
