@@ -134,7 +134,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 pair = shows if len(shows.objects) == 2 else pair
                 continue
             raise named(e, f'clause {i} ("{text}")') from None
-        pieces = [(piece, pointing.carried(cmd, show)) for piece, cmd in pieces]
+        pieces = [(piece, pointing.set_down(pointing.carried(cmd, show), previous, piece)) for piece, cmd in pieces]
         show = None
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:

@@ -68,6 +68,17 @@ def carried(command: Command, after: Shown | None) -> Command:
     return command
 
 
+def set_down(command: Command, previous: Command | None, text: str) -> Command:
+    """Setting down what the clause before carried is the end of that carry ("carry A around B, then set it down
+    next to F"): a placing verb with "down", or drop / lay, on the carried object."""
+    if previous is None or previous.manner != "carry" or command.mover != previous.mover or command.manner != "slide":
+        return command
+    verb = command.verb.lower()
+    if verb in ("drop", "lay") or (verb in PLACING and re.search(r"\bdown\b", text, re.IGNORECASE)):
+        return replace(command, manner="carry")
+    return command
+
+
 def pointed(text: str, previous: Command | None, context: Context | None, scene: Scene,
             plugins: list) -> list[Command] | None:
     """The commands of a clause read by one of the module's readings, or None when none applies."""
@@ -114,7 +125,7 @@ def _splits(text: str) -> list[tuple[str, str, bool]]:
     m = SHOWN.match(text)
     if m is not None:
         what = m.group("what")
-        for j in re.finditer(r"(?:\s*,\s*|\s+)and\s+", what):
+        for j in re.finditer(r"\s*,\s*(?:and\s+|then\s+)?|\s+and\s+(?:then\s+)?", what):
             out.append((what[:j.start()], what[j.end():], bool(LIFTING.match(text))))
     m = TOPIC.match(text)
     if m is not None:

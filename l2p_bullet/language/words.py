@@ -42,14 +42,16 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "if you can", "if possible", "when you can", "if you would",
     "pls", "plz", "pls ty", "pls thx", "ty", "tia", "many thanks", "thanks in advance", "thank you in advance",
-    "much appreciated", "that would be great",
+    "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
+    "and let go", "and let go of it", "and set it down there", "and put it down there",
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",))
 """Openings followed by the verb's -ing form: "do you mind moving A past B", and "would you mind ..." once its
 "would you" is read past as politeness."""
 
-GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"), ("i", "need"))
+GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"), ("i", "need"),
+                                              ("have",))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
 DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"))

@@ -47,6 +47,11 @@ def read(sentence: str, plugins, name: str = "corpus.tsv") -> str:
     # slips of the keyboard
     ("pls mvoe the bleu cube past teh red one", "slide:past C A"),
     ("Slide the yelow box around B.", "slide:around D B"),
+    ("Lift E, carry it past C, and set it down.", "carry:past E C"),
+    ("Carry A around B, then set it down next to C.", "carry:around A B ; carry:next-to A C"),
+    ("Carry A around B, then put it next to C.", "carry:around A B ; slide:next-to A C"),  # no "down": a slide
+    ("Let's have C next to the duck.", "slide:next-to C duck"),
+    ("Move B in a circle around C.", "slide:around B C"),
     # rows
     ("Make a row: A, C, B.", "row A,C,B"),
     ("line up a c b", "row A,C,B"),
