@@ -147,5 +147,5 @@ class BoundScorer:
         return self.model.curve(mover, anchor, size, **context)
 
 
-__all__ = ["BoundScorer", "back_weight", "close_weight", "pass_weight", "people_weight", "people_weights", "product_weight",
-           "start_weight", "SCALE_SIDES", "WEIGHTS"]
+__all__ = ["BoundScorer", "back_weight", "close_weight", "pass_weight", "people_weight", "people_weights",
+           "product_weight", "start_weight", "SCALE_SIDES", "WEIGHTS"]
