@@ -71,6 +71,7 @@ CHECKS = (
     "no-motion",
 )
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
+MIN_TRAVEL_FLOOR = 0.05  # ... or than this, nearer the anchor than half a block (min_travel)
 MIN_TURN_RAD = math.radians(10.0)
 
 
@@ -235,15 +236,27 @@ READS: dict[str, tuple[str, ...]] = {"room-closer": ("share",), "room-away": ("g
 """The thresholds (blocks, turns) each room check reads from the action's spec."""
 
 
+def min_travel(scene: Scene, mover: str, anchor: str) -> float:
+    """The least travel (m) of a plan that moves: :data:`MIN_TRAVEL_SIDES` of the mover's side, or, where the mover
+    starts nearer the anchor than that room allows, half the way it can come towards it (its gap less what the
+    planner keeps, world2d.py), at least :data:`MIN_TRAVEL_FLOOR` sides. A block level with the anchor 10 mm
+    away can come 5 mm nearer: "closer" from there travels 3-5 mm, a real move, not a plan that stays."""
+    m, a = scene.get(mover), scene.get(anchor)
+    g0 = max(float(separation(m.footprint()[None], a.footprint())[0]), 0.0)
+    room = g0 - min(GRIPPER_MARGIN, g0)
+    return float(np.clip(room / 2, MIN_TRAVEL_FLOOR * m.size, MIN_TRAVEL_SIDES * m.size))
+
+
 def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, action: str, stopped: str,
                 progress: float, steps: int) -> None:
-    """InfeasibleError ("no-motion") for a plan that does not move the mover, unless the action was
-    already done at the start (the search stopped at its threshold)."""
+    """InfeasibleError ("no-motion") for a plan that does not move the mover (:func:`min_travel`), unless the
+    action was already done at the start (the search stopped at its threshold)."""
     p = np.asarray(path, float).reshape(-1, 3)
     m, a = scene.get(mover), scene.get(anchor)
     travel = float(np.max(np.hypot(*(p[:, :2] - p[0, :2]).T))) if len(p) else 0.0
     turn = float(np.max(np.abs(p[:, 2] - p[0, 2]))) if len(p) else 0.0
-    if stopped == "threshold" or (len(p) >= 2 and (travel >= MIN_TRAVEL_SIDES * m.size or turn >= MIN_TURN_RAD)):
+    moved = travel >= min_travel(scene, mover, anchor) or turn >= MIN_TURN_RAD
+    if stopped == "threshold" or (len(p) >= 2 and moved):
         return
     sides = float(np.hypot(*(np.asarray(m.xy) - np.asarray(a.xy)))) / m.size
     ratio = max(m.size, a.size) / min(m.size, a.size)

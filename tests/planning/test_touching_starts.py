@@ -47,6 +47,8 @@ def test_a_candidate_closing_less_than_half_its_room_is_weighted_down_by_how_muc
     assert w[:2] == pytest.approx([1.0, 1.0])
     assert w[2] == pytest.approx(math.exp(-1.0)) and w[3] == pytest.approx(math.exp(-0.5))
     assert w[4] < w[2]  # going away is worse than staying
+    far = [np.array([[3.0, 0.0, 0.0], [2.9, 0.0, 0.0]])]  # from 3 blocks the model has a slope of its own
+    assert close_weight(far, np.zeros(3), 1.0, 0.5) == pytest.approx([1.0])
 
 
 def test_two_squares_come_no_nearer_than_their_yaws_allow():
@@ -120,3 +122,19 @@ def test_push_away_from_a_block_it_touches_plans_a_way_out():
     plan, verdict = judged_plan(prepare("push A away from B", scene, seed=6100))
     assert verdict["success"], verdict["reason"]
     assert len(plan.path) > 2
+
+
+def test_a_few_millimetres_towards_a_level_anchor_is_a_move_and_staying_is_not():
+    from l2p_bullet.planning.feasibility import MIN_TRAVEL_SIDES, check_moves, min_travel
+
+    level = _touching(0.0, gap=0.0106)  # 10.6 mm face to face: 5.6 mm before the planner's 5 mm margin
+    assert min_travel(level, "A", "B") == pytest.approx(0.0028)
+    assert min_travel(_touching(0.0, gap=0.002), "A", "B") == pytest.approx(0.05 * SIZE)  # the floor
+    assert min_travel(_touching(0.0, gap=3 * SIZE), "A", "B") == pytest.approx(MIN_TRAVEL_SIDES * SIZE)
+    a = np.asarray(level.get("A").pose, float)
+    closer = np.array([a, a - [0.004, 0.0, 0.0]])  # 4 mm towards B (west of A)
+    check_moves(level, "A", "B", closer, action="closer", stopped="budget", progress=0.03, steps=100)
+    with pytest.raises(InfeasibleError) as e:
+        check_moves(level, "A", "B", np.array([a, a - [0.001, 0.0, 0.0]]), action="closer", stopped="budget",
+                    progress=0.03, steps=100)
+    assert e.value.check == "no-motion"
