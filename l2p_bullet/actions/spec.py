@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 ROOM_CHECKS = ("room-closer", "room-away", "room-around", "blocked-around")
 """The room checks an action may declare (``Planning.checks``; ``planning.feasibility.ROOM_CHECKS``)."""
-BOUND_KINDS = ("passes-within", "goes-back-within", "starts-before")
+BOUND_KINDS = ("passes-within", "goes-back-within", "starts-before", "closes-at-least")
 """The kinds of bound from people's data (``Bound.kind``; ``planning.bounds.WEIGHTS`` weighs by them)."""
 WRONG_MOTIONS = ("backs-off", "out-and-back", "reversed", "to-closest-and-back", "half-round-and-back")
 """The kinds of wrong planner motion (``Training.wrong_motions``; ``training_plan.WRONG_MOTIONS``)."""
@@ -131,7 +131,9 @@ class Bound:
     "passes-within" (its closest centre distance to the anchor, blocks), "goes-back-within" (how far its
     centre distance went back, as a share of its room); ``within``: the most people's demonstrations went;
     "starts-before" (how far before the anchor it starts along its overall direction, as a share of its start
-    distance); ``within``: the least people's demonstrations started so (a least, not a most)."""
+    distance); ``within``: the least people's demonstrations started so (a least, not a most); "closes-at-least"
+    (how much its centre distance closed from start to end, as a share of its room); ``within``: the least
+    the rule accepts (a least)."""
 
     kind: str
     within: float

@@ -140,6 +140,21 @@ class Pusher:
                     return np.array([xy[0], xy[1], self.z, yaw]), True
         return pose, False
 
+    def come_down(self, b: np.ndarray, phi: float) -> tuple[np.ndarray, bool]:
+        """(tool pose, clear): where the hand comes down to push along ``phi``: :data:`GAP` behind the block's face,
+        or nearer it (down to a quarter of that) where another object leaves no room for the gap. The planner keeps
+        room behind a pushed block for the fingers and the gap together, and the block, pushed a few millimetres
+        aside on the way, can leave the gap short between it and a block it was pushed along (measured: a study start
+        touching the anchor, pushed along it and then away, stopped "blocked" at the turn); the fingers come down
+        straight, so a smaller gap still clears the block."""
+        pose, clear = self.contact_pose(b, phi, 0.0, GAP)
+        for back in (GAP / 2, GAP / 4):
+            if clear:
+                break
+            nearer, clear = self.contact_pose(b, phi, 0.0, back)
+            pose = nearer if clear else pose
+        return pose, clear
+
     def clear(self, xy: np.ndarray, phi: float) -> bool:
         """Whether the pusher (a rectangle: ``half`` along ``phi``, ``width`` across) centred at ``xy`` keeps
         :data:`CLEARANCE` from every other object's footprint where it is now."""
@@ -212,7 +227,10 @@ class Pusher:
         when that side has no room for the hand (it would come down on another object: measured once,
         random_scene(5004) "next to", the anchor thrown 86 cm)."""
         prims = self.prims
-        target, clear = self.contact_pose(b, phi, 0.0, GAP)
+        target, clear = self.come_down(b, phi)
+        if not clear:  # the path's own direction here, which the planner kept room behind the block for
+            phi = self.leg()
+            target, clear = self.come_down(b, phi)
         if not clear:
             return False
         top = float(self.world.heights[self.mover]) + CLEAR + self.robot.drop  # over its top, whatever its shape
@@ -234,7 +252,7 @@ class Pusher:
         b = self.block()
         phi = self._aim(b)
         # from the rest pose: above the pushing side, then down beside the block
-        start, clear = self.contact_pose(b, phi, 0.0, GAP)
+        start, clear = self.come_down(b, phi)
         start[3] = self.yaw_for(phi, prims.pose[3], start)
         blocked = not clear  # no room to come down (push_refusal says so before anything moves)
         if not blocked:
@@ -323,6 +341,14 @@ class Pusher:
             err = (math.atan2(d[1], d[0]) - s0 + math.pi) % (2 * math.pi) - math.pi
             self.bias += BIAS_GAIN * (err - self.bias)
         return float(np.clip(self.bias, -BIAS_MAX, BIAS_MAX))
+
+    def leg(self) -> float:
+        """The direction of the path's straight leg the block is on (at :attr:`sigma`): the planner's move, behind
+        which it kept room for the fingers. The aim (:data:`LOOKAHEAD` ahead of a block that lags the path by a
+        few millimetres) turns past it at a corner, towards the object the block was pushed along."""
+        i = int(np.clip(np.searchsorted(self.arc, self.sigma + 1e-9, side="right") - 1, 0, len(self.xy) - 2))
+        d = self.xy[i + 1] - self.xy[i]
+        return math.atan2(d[1], d[0])
 
     def _aim(self, b: np.ndarray) -> float:
         s = self.sigma

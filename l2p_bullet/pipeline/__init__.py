@@ -101,8 +101,10 @@ def check_feasible(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PAN
     info = next((p for p in plugins if p.name == cmd.action), None)
     spec = (info.manifest.get("judge") if info is not None else None) or {}
     rules = spec.get("rules") if isinstance(spec, dict) else None
-    feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None, arm)
-    check_manner(manners.get(cmd.manner), scene, cmd.mover, arm)
+    manner = manners.get(cmd.manner)
+    feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None, arm,
+                      turns=manner.motion != "push")  # a push does not turn the block (embodiment/push.py)
+    check_manner(manner, scene, cmd.mover, arm)
 
 
 @dataclass

@@ -12,6 +12,11 @@ started a motion:
   39 of people's 43 started before it, along their overall direction, by at least half their distance from it
   (``thresholds["starts_before"]`` of past, their 10 % quantile): two people's starts from beside it do not make
   a slide along it "past";
+- "closer" from a block touching the anchor, or level with it a fraction of a block away, found no move at all:
+  the model rates every short move there 0.01-0.04, so the search saw no slope; the rule asks that the centre
+  distance close at least ``thresholds["share"]`` of the room (0.5), and a candidate closing less is weighted down
+  by how much less (``"closes-at-least"``, from within half a block of room only: from farther out the model has a
+  slope of its own);
 - "closer" from within 1.8 blocks wiggles: the model rates a back-and-forth higher than a straight slide to
   touching, while people's 41 demonstrations went back at most 0.176 of the room they had (start distance - 1
   block; ``thresholds["goes_back_within"]`` of closer, rounded up to 0.18).
@@ -83,9 +88,33 @@ def start_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float,
     return out
 
 
+CLOSE_ROOM = 0.5
+"""Blocks of room (``closer_room``) up to which "closes-at-least" weighs a candidate: a start touching the anchor or
+level with it half a block away or nearer, where the model is flat; from farther its own slope leads (weighing it
+there too reranked the search's first moves and left a start 1.6 blocks from the anchor short of half its room)."""
+
+
+def close_weight(movers: list[np.ndarray], anchor_pose: np.ndarray, size: float, within: float) -> np.ndarray:
+    """Per path from within :data:`CLOSE_ROOM` of the anchor: 1 where its centre distance closed at least the
+    share ``within`` of its room (start distance less one block, at least a quarter: the rule's ``closer_room``)
+    from start to end, else exp(-(short of it) / (share room)): the share is its own scale, as
+    :func:`back_weight`'s; 1 for a path from farther out. From face to face, or a fraction of a block apart, the
+    model rates every short move alike (0.01-0.04): this ranks the moves that close the little room there is
+    above those that do not, where the model alone sees no slope."""
+    out = np.ones(len(movers))
+    for i, m in enumerate(movers):
+        d = _distances(m, anchor_pose, size)
+        room = closer_room(float(d[0]))
+        if room <= CLOSE_ROOM:
+            wanted = within * room
+            out[i] = np.exp(-max(wanted - (float(d[0]) - float(d[-1])), 0.0) / wanted)
+    return out
+
+
 WEIGHTS: dict[str, Callable[..., np.ndarray]] = {"passes-within": pass_weight,
                                                   "goes-back-within": back_weight,
-                                                  "starts-before": start_weight}
+                                                  "starts-before": start_weight,
+                                                  "closes-at-least": close_weight}
 """The bounds by kind (``actions.spec.Bound.kind``): each weighs a batch of candidate paths by its measure."""
 
 
@@ -127,5 +156,5 @@ class BoundScorer:
         return self.model.curve(mover, anchor, size, **context)
 
 
-__all__ = ["BoundScorer", "back_weight", "pass_weight", "people_weight", "people_weights", "product_weight",
-           "start_weight", "SCALE_SIDES", "WEIGHTS"]
+__all__ = ["BoundScorer", "back_weight", "close_weight", "pass_weight", "people_weight", "people_weights",
+           "product_weight", "start_weight", "CLOSE_ROOM", "SCALE_SIDES", "WEIGHTS"]

@@ -71,6 +71,7 @@ CHECKS = (
     "no-motion",
 )
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
+MIN_TRAVEL_FLOOR = 0.05  # ... or than this, nearer the anchor than half a block (min_travel)
 MIN_TURN_RAD = math.radians(10.0)
 
 
@@ -112,10 +113,11 @@ def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Ho
 
 
 def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None = None,
-          arm: ArmSpec = PANDA) -> list[reach.Hold]:
+          arm: ArmSpec = PANDA, *, turns: bool = True) -> list[reach.Hold]:
     """Run every check that applies; return the usable holds. ``rules``: the action's spec, or the name of the
     rule set it is judged by (its manifest's ``[judge] rules``: the checks of the action that declares that
-    rule set), None (or a rule set no action declares) for the arm's checks only."""
+    rule set), None (or a rule set no action declares) for the arm's checks only. ``turns``: whether the manner
+    turns the mover as it moves it (a push does not: ``room-closer`` then keeps the mover's yaw)."""
     spec = RULE_SPECS.get(rules) if isinstance(rules, str) else rules
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
@@ -125,6 +127,9 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None 
             raise PluginError(f'the action "{spec.name}" declares the room check "{name}", which reads the '
                               f"thresholds {', '.join(READS[name])}: add {', '.join(missing)} to its "
                               "ActionSpec")
+        if name == "room-closer" and not turns:
+            _room_closer(scene, mover, anchor, holds, spec.thresholds, turns=False)
+            continue
         ROOM_CHECKS[name](scene, mover, anchor, holds, spec.thresholds)
     return holds
 
@@ -173,22 +178,40 @@ def clearance(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | N
     return max(0.0, min(GRIPPER_MARGIN, max(g0, 0.0) - 1e-9))
 
 
+def nearest_at_yaws(m, a) -> float:
+    """How near (m) the two objects' centres can come with both yaws kept: the distance from the anchor's centre
+    to the nearest edge of the Minkowski sum of its footprint and the mover's mirrored one (both convex outlines;
+    the sum's edge normals are those of the two outlines). Two squares turned 45 degrees to each other: 1.21
+    sides; face to face: 1, as :func:`~l2p_bullet.core.geometry.nearest_centres`, which never exceeds it."""
+    fm = m.footprint() - np.asarray(m.xy)
+    fa = a.footprint() - np.asarray(a.xy)
+    normals = []
+    for f in (fm, fa):
+        e = np.roll(f, -1, axis=0) - f
+        n = np.column_stack([e[:, 1], -e[:, 0]])
+        normals.append(n / np.maximum(np.hypot(*n.T), 1e-18)[:, None])
+    n = np.vstack(normals)
+    support = (fa @ n.T).max(axis=0) + (-fm @ n.T).max(axis=0)  # h_A(n) + h_(-M)(n), per normal
+    return max(float(support.min()), nearest_centres(m, a))
+
+
 def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None,
-                 thresholds: Mapping[str, float]) -> None:
+                 thresholds: Mapping[str, float], turns: bool = True) -> None:
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
     room = closer_room(d0)
     target = d0 - thresholds["share"] * room
     gap = clearance(scene, mover, anchor, holds)
-    nearest = (nearest_centres(m, a) + gap) / m.size
+    nearest = ((nearest_centres(m, a) if turns else nearest_at_yaws(m, a)) + gap) / m.size
     if nearest > target + 1e-9:
+        kept = "" if turns else f' at the yaws they have now (a push does not turn "{mover}")'
         raise InfeasibleError(
             "room-closer",
             f'"{mover}" cannot come closer to "{anchor}" by the half of the room that "closer" asks for: their '
-            f"centres are {d0:.3f} blocks apart, closer needs {target:.3f}, and the blocks' sizes with the "
+            f"centres are {d0:.3f} blocks apart, closer needs {target:.3f}, and the blocks' sizes{kept} with the "
             f"{gap * 1000:.1f} mm the planner keeps between them leave them at least {nearest:.3f} apart",
             {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3), "nearest_blocks": round(nearest, 3),
-             "clearance_m": round(gap, 6)})
+             "clearance_m": round(gap, 6), "turns": turns})
 
 
 def _room_around(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold],
@@ -213,15 +236,27 @@ READS: dict[str, tuple[str, ...]] = {"room-closer": ("share",), "room-away": ("g
 """The thresholds (blocks, turns) each room check reads from the action's spec."""
 
 
+def min_travel(scene: Scene, mover: str, anchor: str) -> float:
+    """The least travel (m) of a plan that moves: :data:`MIN_TRAVEL_SIDES` of the mover's side, or, where the mover
+    starts nearer the anchor than that room allows, half the way it can come towards it (its gap less what the
+    planner keeps, world2d.py), at least :data:`MIN_TRAVEL_FLOOR` sides. A block level with the anchor 10 mm
+    away can come 5 mm nearer: "closer" from there travels 3-5 mm, a real move, not a plan that stays."""
+    m, a = scene.get(mover), scene.get(anchor)
+    g0 = max(float(separation(m.footprint()[None], a.footprint())[0]), 0.0)
+    room = g0 - min(GRIPPER_MARGIN, g0)
+    return float(np.clip(room / 2, MIN_TRAVEL_FLOOR * m.size, MIN_TRAVEL_SIDES * m.size))
+
+
 def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, action: str, stopped: str,
                 progress: float, steps: int) -> None:
-    """InfeasibleError ("no-motion") for a plan that does not move the mover, unless the action was
-    already done at the start (the search stopped at its threshold)."""
+    """InfeasibleError ("no-motion") for a plan that does not move the mover (:func:`min_travel`), unless the
+    action was already done at the start (the search stopped at its threshold)."""
     p = np.asarray(path, float).reshape(-1, 3)
     m, a = scene.get(mover), scene.get(anchor)
     travel = float(np.max(np.hypot(*(p[:, :2] - p[0, :2]).T))) if len(p) else 0.0
     turn = float(np.max(np.abs(p[:, 2] - p[0, 2]))) if len(p) else 0.0
-    if stopped == "threshold" or (len(p) >= 2 and (travel >= MIN_TRAVEL_SIDES * m.size or turn >= MIN_TURN_RAD)):
+    moved = travel >= min_travel(scene, mover, anchor) or turn >= MIN_TURN_RAD
+    if stopped == "threshold" or (len(p) >= 2 and moved):
         return
     sides = float(np.hypot(*(np.asarray(m.xy) - np.asarray(a.xy)))) / m.size
     ratio = max(m.size, a.size) / min(m.size, a.size)

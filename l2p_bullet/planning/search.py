@@ -18,7 +18,9 @@ def greedy(problem: Problem, proposer: Proposer, candidates: int) -> tuple[Node,
 
     Backing up marks the abandoned move as dead at its parent, so a deterministic proposal set (the
     discrete space) tries its next-best move instead of the same one again; with such a set, a start
-    from which no move helps ends the search (nothing new can happen).
+    from which no move helps ends the search (nothing new can happen). A random set draws new moves each
+    step, so a batch with no legal move at the start is drawn again: from a block touching the anchor most
+    moves run into it, or put a pusher's fingers into it, and one batch of them says nothing of the next.
     """
     fixed = getattr(proposer, "deterministic", False)
     root = problem.root()
@@ -35,8 +37,8 @@ def greedy(problem: Problem, proposer: Proposer, candidates: int) -> tuple[Node,
         elif len(stack) > 1:
             stack.pop()
             stack[-1].dead.append(node.pose.copy())
-        elif top is None or fixed:
-            break  # nothing (new) to try from the start: no point spending the budget
+        elif fixed:
+            break  # nothing new to try from the start: no point spending the budget
     return best, ("threshold" if best.progress >= problem.threshold else "budget"), steps
 
 

@@ -71,3 +71,19 @@ def test_a_path_that_crosses_itself_is_pushed_to_its_end(tmp_path):
     # push used to stop
     r, push = _push("push A around B", 5010, tmp_path)
     assert r.success, r.verdict
+
+
+@pytest.mark.slow
+def test_a_block_pushed_along_the_anchor_it_touched_is_then_pushed_away(tmp_path):
+    # a study start slid to 4 mm from the anchor (benchmarks/bench_clauses.py, development split): the plan pushes
+    # it along the anchor, then away; at the turn the aim, ahead of a block lagging the path by 7 mm, put the
+    # hand's place on the anchor and the push stopped "blocked" 0.7 blocks out; the leg's own direction has room
+    from l2p_bullet.core.scene import Scene, SceneObject
+
+    scene = Scene([SceneObject("A", "red", 0.04, (0.06892133854646196, 0.09238579045968268), 1.29202),
+                   SceneObject("B", "green", 0.04, (0.08083866666666667, 0.1434352), 0.407494)]).validate()
+    r = perform("push A away from B", scene, out_dir=tmp_path, seed=6100, render=False)
+    push = json.loads((tmp_path / "summary.json").read_text())["grasp"]["push"]
+    assert push["stopped"] == "end", push
+    assert r.success, r.verdict
+    assert r.anchor_displacement_m < 0.001
