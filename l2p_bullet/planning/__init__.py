@@ -140,7 +140,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     more_poses = [scene.get(a).pose for a in anchors[1:]]
     model = bundle.progress_model()
     # the objects' real footprints for the model's gap features, where one is not a cube (progress/features.py)
-    outlines = outlines_of([scene.get(o) for o in (mover, *anchors)]) if getattr(model, "reads_outlines", False) \
+    footprints = outlines_of([scene.get(o) for o in (mover, *anchors)]) if getattr(model, "reads_outlines", False) \
         else None
     needed = getattr(model, "anchors", 1)
     if len(anchors) != needed:
@@ -193,7 +193,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             lead_in=lead,
             check_cap=cap,
             reach=lead_in.reach * world.size if lead_in else None,
-            outlines=outlines,
+            outlines=footprints,
         )
         problem.deadline = deadline
         if not (arcs and lead_in):
