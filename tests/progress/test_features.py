@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -163,3 +164,29 @@ def test_the_gap_to_a_2_to_1_box_is_to_its_real_outline():
     towards_end = towards_face[:, [1, 0, 2]]
     f, _ = motion_features(towards_end, box.pose, 0.04, outlines=outlines)
     assert np.isclose(f[-1, COL["gap"]] * 5, -0.015 / 0.04, atol=1e-6)  # 1.5 cm into its end: overlapping
+
+
+@pytest.mark.slow
+def test_the_planner_gives_the_model_the_footprints_only_where_an_object_is_not_a_cube(monkeypatch):
+    from l2p_bullet import planning
+    from l2p_bullet.core.scene import Scene, SceneObject, shaped
+    from l2p_bullet.plugins import registry
+    from l2p_bullet.progress.scoring import ScoringMixin
+
+    seen = []
+    real = ScoringMixin.final_batch
+
+    def spy(self, movers, anchors, size, **kw):
+        seen.append(kw.get("outlines"))
+        return real(self, movers, anchors, size, **kw)
+
+    monkeypatch.setattr(ScoringMixin, "final_batch", spy)
+    bundle = registry.load("next-to")
+    cube = SceneObject("A", "red", 0.04, (-0.1, 0.0))
+    box = Scene([cube, shaped("B", "green", (0.0, 0.1), dims=(0.12, 0.06, 0.04))]).validate()
+    planning.plan(box, "A", "B", bundle, budget=2)
+    assert seen and all(o is not None and len(o) == 2 and np.ptp(o[1][:, 0]) == pytest.approx(0.12) for o in seen)
+    seen.clear()
+    cubes = Scene([cube, SceneObject("B", "green", 0.06, (0.0, 0.1))]).validate()
+    planning.plan(cubes, "A", "B", bundle, budget=2)
+    assert seen and all(o is None for o in seen)
