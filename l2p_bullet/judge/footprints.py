@@ -1,6 +1,7 @@
 """The geometry every rule set reads, in units of block size: footprints of objects, the gap between two,
 the distance at which two touch, the motion in the anchor's frame, and how far a "steady" change may wobble
-(``rules.py`` and ``rulesets/``; the learned features read :func:`radial_extent` too).
+(``rules.py`` and ``rulesets/``); how far an outline reaches in a direction, which the learned features read
+too, is ``core.geometry.radial_extent`` (the features' floor is below the judges').
 
 **Which footprint.** A verdict reads each object's real outline (``SceneObject.footprint``: the polygon the
 planner keeps clear, in the object's own frame, turned with its yaw at every frame of the motion) wherever
@@ -21,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.geometry import convex_hull, polygons_overlap
+from ..core.geometry import convex_hull, polygons_overlap, radial_extent
 
 WOBBLE = 0.5
 """Blocks a 'steady' change may go back against its running best (motion-capture jitter in the human
@@ -92,22 +93,6 @@ def overlap(a: np.ndarray, b: np.ndarray, size: float, shapes: Sequence[np.ndarr
     if shapes is None:
         return overlaps(a, b)
     return polygons_overlap(placed(shapes[0], a, size), placed(shapes[1], b, size), margin=-OVERLAP_SLIVER)
-
-
-def radial_extent(outline: np.ndarray, phi: np.ndarray) -> np.ndarray:
-    """Distance from an outline's origin to its boundary in the directions ``phi`` (radians, the outline's
-    frame; any shape of array), in the outline's units. The origin is inside (a convex outline around the
-    object's centre of mass). For a unit square it is ``0.5 / max(|cos phi|, |sin phi|)``."""
-    poly = np.asarray(outline, float)
-    e = np.roll(poly, -1, axis=0) - poly
-    n = np.column_stack([e[:, 1], -e[:, 0]]) / np.maximum(np.linalg.norm(e, axis=1), 1e-15)[:, None]
-    n *= np.where(np.sum(n * poly, axis=1) < 0, -1.0, 1.0)[:, None]  # outward, whichever way the outline turns
-    h = np.sum(n * poly, axis=1)  # each edge's distance from the origin
-    phi = np.asarray(phi, float)
-    dots = np.cos(phi)[..., None] * n[:, 0] + np.sin(phi)[..., None] * n[:, 1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.where(dots > 1e-12, h / dots, np.inf)
-    return r.min(axis=-1)
 
 
 def touching(a: np.ndarray, b: np.ndarray, size: float, shapes: Sequence[np.ndarray]) -> float:

@@ -28,7 +28,7 @@ Two declarations of an action's manifest (:mod:`l2p_bullet.core.frames`) append 
 reaches from its centre towards the other: for cubes, unit squares of the mover's side (what the bundles were
 trained on); where an object is not a cube, and the caller gives its real outline (``outlines``, metres, the
 mover's first: ``judge.footprints.outlines_of``), how far that outline reaches in that direction
-(``judge.footprints.radial_extent``, which is the unit square's own formula for a unit square). Without
+(``core.geometry.radial_extent``, which is the unit square's own formula for a unit square). Without
 ``outlines`` every column is what it always was, bit for bit. docs/learning.md says what this means for
 the trained bundles.
 """
@@ -41,8 +41,8 @@ from dataclasses import asdict, dataclass, field, fields
 import numpy as np
 
 from ..core.frames import RELATIVE, parse_anchors, parse_frame, viewer_offset
+from ..core.geometry import radial_extent
 from ..errors import MotionError
-from ..judge.footprints import radial_extent
 
 MAX_BLOCKS = 1000.0
 """Longest path and widest spread of a motion, in block sides, that is scored. The human demonstrations
