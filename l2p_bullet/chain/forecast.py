@@ -31,6 +31,7 @@ from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_context, judge_for
+from ..judge.footprints import outlines_of
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
@@ -170,7 +171,7 @@ class _Searcher:
                 continue  # the cut leaves the end where it was: nothing new to try
             self.kept[id(plan)] = checked + self.cost[id(plan)] + (
                 self.cost[id(planned[end.seed])] if end.cut is not None or end.turn else 0.0)
-            step = self._step(c, bundle, model, judge, plan, end)
+            step = self._step(c, bundle, model, judge, plan, end, predicted)
             if not step.forecast.extra["verdict"]["success"]:
                 if end == DEFAULT:  # kept for last: clause by clause, it is what the chain would run
                     judged_short = (plan, end)
@@ -183,7 +184,7 @@ class _Searcher:
                     raise first from None  # this clause's end does not move what failed: try an earlier one
         if judged_short is not None:  # no end the judge accepts: planned as it was (the run judges what it does)
             plan, end = judged_short
-            step = self._step(c, bundle, model, judge, plan, end)
+            step = self._step(c, bundle, model, judge, plan, end, predicted)
             return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
         raise first if first is not None else self._dead(c, PlanError("no end state left to try"))
 
@@ -201,11 +202,13 @@ class _Searcher:
         self.cost[id(plan)] = time.perf_counter() - t0
         return plan
 
-    def _step(self, c: Clause, bundle: Any, model: Any, judge: Any, plan: Plan, end: End) -> Step:
+    def _step(self, c: Clause, bundle: Any, model: Any, judge: Any, plan: Plan, end: End, scene: Scene) -> Step:
         poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
+        outlines = outlines_of([scene.get(o) for o in (c.command.mover, *c.command.anchors)])
         plan.extra["verdict"] = judge.judge(plan.path, plan.anchor_pose, plan.size,
                                             final_progress=plan.extra.get("final_progress"),
-                                            **judge_context(poses, plan.viewer)).to_dict()
+                                            **judge_context(poses, plan.viewer, judge=judge,
+                                                            outlines=outlines)).to_dict()
         plan.extra.setdefault("sentence", c.text)
         return Step(c, bundle, model, judge, plan, end)
 

@@ -36,6 +36,7 @@ from ..embodiment.manners import tall_pace
 from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
 from ..judge import judge_context
+from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..options import RunOptions, admit
@@ -329,6 +330,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     frames = rec.frames[first:last + 1]
     size = now.get(cmd.mover).size
     kw = {"more_anchors": [trajectory_poses(frames, a) for a in cmd.more_anchors]} if cmd.more_anchors else {}
+    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
+    if outlines is not None and getattr(step.model, "reads_outlines", False):
+        kw["outlines"] = outlines
     mover, anchor = trajectory_poses(frames, cmd.mover), trajectory_poses(frames, cmd.anchor)
     start = 0 if plan.approach_to is None else approach_end_frame(mover, plan.approach_to, size)
     values = curve_from(step.model, start, mover, anchor, size, **kw)  # after an approach, as planned
@@ -336,7 +340,8 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         f["progress"] = round(float(v), 6)
     deviation, _lift, displaced = ex.honesty(frames, cmd.mover, p, slide, prims.world.rests)
     final_progress = float(values[-1]) if len(values) else None
-    context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer)
+    context = judge_context([trajectory_poses(frames, a) for a in cmd.anchors], step.viewer, judge=step.judge,
+                            outlines=outlines)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
     verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, now.get(cmd.mover).rest)

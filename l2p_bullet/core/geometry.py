@@ -131,3 +131,19 @@ def nearest_centres(m, a) -> float:
     if m.shape == "cube" and a.shape == "cube":
         return (m.size + a.size) / 2
     return m.inradius + a.inradius
+
+
+def radial_extent(outline: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """Distance from an outline's origin to its boundary in the directions ``phi`` (radians, the outline's
+    frame; any shape of array), in the outline's units. The origin is inside (a convex outline around the
+    object's centre of mass). For a unit square it is ``0.5 / max(|cos phi|, |sin phi|)``."""
+    poly = np.asarray(outline, float)
+    e = np.roll(poly, -1, axis=0) - poly
+    n = np.column_stack([e[:, 1], -e[:, 0]]) / np.maximum(np.linalg.norm(e, axis=1), 1e-15)[:, None]
+    n *= np.where(np.sum(n * poly, axis=1) < 0, -1.0, 1.0)[:, None]  # outward, whichever way the outline turns
+    h = np.sum(n * poly, axis=1)  # each edge's distance from the origin
+    phi = np.asarray(phi, float)
+    dots = np.cos(phi)[..., None] * n[:, 0] + np.sin(phi)[..., None] * n[:, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(dots > 1e-12, h / dots, np.inf)
+    return r.min(axis=-1)

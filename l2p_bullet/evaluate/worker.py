@@ -33,7 +33,8 @@ from ..core.scene import Scene
 from ..embodiment.sim.world import World
 from ..errors import L2PError
 from ..judge import judge_context, judge_for
-from ..judge.rules import square_gap
+from ..judge.footprints import gap as footprint_gap
+from ..judge.footprints import outlines_of
 from ..pipeline import judged_plan, prepare
 from ..plugins import registry
 from .tasks import Task
@@ -194,7 +195,8 @@ class Worker:
                 plan_s=r.timings.get("plan"), execute_s=r.timings.get("execute"), total_s=r.timings.get("total"),
                 timings={k: round(v, 5) for k, v in r.timings.items()},
             )
-            self._confusion(row, mover, anchor, size, more)
+            self._confusion(row, mover, anchor, size, more,
+                            outlines_of([scene.get(o) for o in (task.mover, task.anchor, *task.more_anchors)]))
             kept = keep_always or (task.keep == "failed" and not r.success)
         except BaseException:
             kept = task.keep in ("failed", "all") or task.render
@@ -219,7 +221,8 @@ class Worker:
         anchor = np.repeat(np.asarray(plan.anchor_pose, float)[None], len(plan.path), axis=0)
         more = [np.repeat(np.asarray(q, float)[None], len(plan.path), axis=0)
                 for q in ([] if plan.more_anchor_poses is None else plan.more_anchor_poses)]
-        self._confusion(row, np.asarray(plan.path, float), anchor, plan.size, more)
+        self._confusion(row, np.asarray(plan.path, float), anchor, plan.size, more,
+                        outlines_of([scene.get(o) for o in (task.mover, task.anchor, *task.more_anchors)]))
         if task.keep == "all" and task.run_dir:
             out = Path(task.run_dir)
             out.mkdir(parents=True, exist_ok=True)
@@ -228,12 +231,13 @@ class Worker:
             row["run_dir"] = str(out)
 
     def _confusion(self, row: dict, mover: np.ndarray, anchor: np.ndarray, size: float,
-                   more: list[np.ndarray] | None = None) -> None:
+                   more: list[np.ndarray] | None = None, outlines: list[np.ndarray] | None = None) -> None:
         """Every installed action's verdict and learned progress on this motion; the final gap to the anchor.
 
         ``more``: the tracks of the run's further reference blocks (a two-anchor run's C). An action
         judges the run when it reads as many reference blocks as the run has, or one (the first anchor):
         "between" cannot judge a one-anchor motion, but every one-anchor action can judge a "between" run.
+        ``outlines``: the objects' real footprints where one is not a cube (judge/footprints.py), else None.
         """
         more = more or []
         judged, scored = {}, {}
@@ -243,13 +247,17 @@ class Worker:
                 continue
             extra = more[: need - 1]
             kw = {"more_anchors": extra} if extra else {}
+            shapes = None if outlines is None else outlines[: 1 + need]
+            if shapes is not None and getattr(model, "reads_outlines", False):
+                kw["outlines"] = shapes
             progress = float(model.final(mover, anchor, size, **kw))
-            v = judge.judge(mover, anchor, size, final_progress=progress, **judge_context([anchor, *extra], None))
+            v = judge.judge(mover, anchor, size, final_progress=progress,
+                            **judge_context([anchor, *extra], None, judge=judge, outlines=shapes))
             judged[name] = {"success": bool(v.success), "score": round(float(v.score), 6)}
             scored[name] = round(progress, 6)
         rel = np.r_[(mover[-1, :2] - anchor[-1, :2]) / size, mover[-1, 2]]
         row.update(judged=judged, scored=scored,
-                   final_gap_blocks=round(square_gap(rel, np.array([0.0, 0.0, anchor[-1, 2]])), 6))
+                   final_gap_blocks=round(footprint_gap(rel, np.array([0.0, 0.0, anchor[-1, 2]]), size, outlines), 6))
 
 
 _WORKER: Worker | None = None

@@ -41,6 +41,11 @@ class Judge(Protocol):
       the first being ``anchor`` ("between B and C": ``[B, C]``);
     - ``viewer``: a viewer-frame action's viewpoint (2,) in the same metric frame (the robot's base in
       the scene frame for ``frame = "viewer"``).
+
+    A third, ``outlines``, is passed only to a judge that sets ``reads_outlines = True`` (the rule and the
+    progress-model judges), and only where an object the verdict reads is not a cube: each object's real
+    footprint (K,2) in metres in its own frame, the mover's first, then every anchor's
+    (``judge/footprints.py``).
     """
 
     name: str
@@ -49,14 +54,18 @@ class Judge(Protocol):
               final_progress: float | None = None, **context: Any) -> Verdict: ...
 
 
-def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None) -> dict[str, Any]:
+def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None, *, judge: Any = None,
+                  outlines: list[np.ndarray] | None = None) -> dict[str, Any]:
     """The keywords a judge gets besides mover, anchor and size: ``anchors`` (every reference object's
     poses) only for a two-anchor action and ``viewer`` only for a viewer-frame one, so a plugin's judge
-    written for one-anchor relative actions keeps working unchanged."""
+    written for one-anchor relative actions keeps working unchanged; ``outlines`` (``footprints.outlines_of``:
+    None where every object is a cube) only to a ``judge`` that reads them (:class:`Judge`)."""
     kw: dict[str, Any] = {}
     if len(anchors) > 1:
         kw["anchors"] = anchors
     if viewer is not None:
         kw["viewer"] = np.asarray(viewer, float)
+    if outlines is not None and getattr(judge, "reads_outlines", False):
+        kw["outlines"] = outlines
     return kw
 

@@ -20,16 +20,19 @@ class LearnedJudge:
     """Success when the action's learned progress at the end of the motion reaches ``threshold``."""
 
     name = "progress-model"
+    reads_outlines = True  # its features measure gaps between the objects' real footprints
 
     def __init__(self, action: str, model: Any, threshold: float = THRESHOLD):
         self.action, self.model, self.threshold = action, model, float(threshold)
 
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
               final_progress: float | None = None, anchors: list | None = None,
-              viewer: np.ndarray | None = None) -> Verdict:
+              viewer: np.ndarray | None = None, outlines: list[np.ndarray] | None = None) -> Verdict:
         kw: dict[str, Any] = {} if viewer is None else {"viewer": viewer}
         if anchors is not None and len(anchors) > 1:
             kw["more_anchors"] = list(anchors[1:])
+        if outlines is not None and getattr(self.model, "reads_outlines", False):
+            kw["outlines"] = outlines
         fp = float(self.model.final(mover, anchor, size, **kw)) if final_progress is None else float(final_progress)
         return Verdict(fp >= self.threshold, fp,
                        f"no rule-based judge for the plugin action {self.action}; its own progress model gives "

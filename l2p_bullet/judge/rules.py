@@ -9,8 +9,9 @@ from the meaning of the words, in **units of block size** (the original evaluato
 thresholds, which broke as soon as the blocks changed size, and its "next to" rule was wrong):
 
 - closer:  the centre distance shrinks steadily and closes at least half of the room there was
-           (room = start distance - 1 block, the distance at which two squares touch face to face);
-           the score also grows with the distance covered (people graded short moves down);
+           (room = start distance - the distance at which the two touch: 1 block for two cubes, where two
+           squares touch face to face); the score also grows with the distance covered (people graded
+           short moves down);
 - away:    the centre distance grows steadily, by at least one block (score: the growth less the
            largest step back);
 - next-to: the mover ends adjacent: the gap between the two footprints is at most half a block (and
@@ -39,6 +40,13 @@ The numbers above are declared by each built-in action (``l2p_bullet/actions/<na
 "Steadily" allows wobbles of half a block against the running best. Every rule also gives a graded
 ``score`` in [0, 1] (used for the correlation with people's grades; ``success`` is the yes/no verdict).
 Motions are read in the anchor's frame (mover minus anchor), so a moving anchor is handled too.
+
+**Footprints.** Where an object a verdict reads is not a cube, the caller gives ``outlines`` (each object's
+real footprint, ``footprints.outlines_of``) and the rules that read footprints measure them: the gap and the
+overlap of "next to", "between" and the viewer-frame sides, and the touching distance of "closer"'s room.
+The rules that read where the mover goes relative to the anchor's centre ("away", "past", "around": centre
+distances and turns, their thresholds fitted on people's demonstrations that way) read centres for every
+shape. Without ``outlines`` (every object a cube) every rule reads unit squares, bit for bit as before.
 """
 
 from __future__ import annotations
@@ -79,10 +87,13 @@ bound, lead-in), which the stages look up for any action judged by that rule set
 
 
 def rule_verdict(action: str, mover: np.ndarray, anchor: np.ndarray, size: float, *,
-                 anchors: list[np.ndarray] | None = None, viewer: np.ndarray | None = None) -> Verdict:
+                 anchors: list[np.ndarray] | None = None, viewer: np.ndarray | None = None,
+                 outlines: list[np.ndarray] | None = None) -> Verdict:
     """Judge a motion by the rules named ``action``: ``mover`` (T,3) and ``anchor`` (T,3) or (3,) poses in
     metres, blocks of side ``size``; ``anchors`` every reference object of a two-anchor rule, ``viewer``
-    the viewpoint (2,) of a viewer-frame rule (default: the robot's base, scene frame).
+    the viewpoint (2,) of a viewer-frame rule (default: the robot's base, scene frame); ``outlines`` the
+    objects' real footprints (mover, then every anchor; metres, own frames) where one is not a cube, None
+    for unit squares (module docstring).
 
     Frames must be dense enough that the mover turns less than half a turn around the anchor between
     two of them (``planning.world2d.interpolate`` gives that).
@@ -100,7 +111,7 @@ def rule_verdict(action: str, mover: np.ndarray, anchor: np.ndarray, size: float
     if len(anchor_arr) == 1:
         anchor_arr = np.repeat(anchor_arr, len(mover), axis=0)
     rel, d = relative(mover, anchor_arr, size)
-    context = {k: v for k, v in (("anchors", anchors), ("viewer", viewer)) if v is not None}
+    context = {k: v for k, v in (("anchors", anchors), ("viewer", viewer), ("outlines", outlines)) if v is not None}
     return RULES[name](rel, d, mover, anchor_arr, size, **context)
 
 
@@ -124,6 +135,7 @@ class RuleJudge:
     """The :class:`~l2p_bullet.judge.base.Judge` over one of :data:`RULES` (the progress model is not asked)."""
 
     name = "rules"
+    reads_outlines = True  # given the objects' footprints where one is not a cube (judge_context)
 
     def __init__(self, rules: str):
         if rules not in RULES:
@@ -132,5 +144,5 @@ class RuleJudge:
 
     def judge(self, mover: np.ndarray, anchor: np.ndarray, size: float, *,
               final_progress: float | None = None, anchors: list[np.ndarray] | None = None,
-              viewer: np.ndarray | None = None) -> Verdict:
-        return rule_verdict(self.rules, mover, anchor, size, anchors=anchors, viewer=viewer)
+              viewer: np.ndarray | None = None, outlines: list[np.ndarray] | None = None) -> Verdict:
+        return rule_verdict(self.rules, mover, anchor, size, anchors=anchors, viewer=viewer, outlines=outlines)

@@ -46,6 +46,7 @@ from ..core.timing import StageClock
 from ..embodiment.manners import check_manner, manner_planning
 from ..errors import L2PError, LanguageError, PluginError, listed
 from ..judge import judge_context, judge_for
+from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
 from ..language import Command, Context, parse
 from ..manners import registry as manners
@@ -188,9 +189,10 @@ def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: f
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
+    outlines = outlines_of([p.scene.get(o) for o in (cmd.mover, *cmd.anchors)])
     verdict = p.judge.judge(result.path, result.anchor_pose, result.size,
                             final_progress=result.extra.get("final_progress"),
-                            **judge_context(poses, result.viewer)).to_dict()
+                            **judge_context(poses, result.viewer, judge=p.judge, outlines=outlines)).to_dict()
     return result, verdict
 
 
@@ -257,9 +259,12 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
     clock.stop()
     plan.save(out / "plan.json")
     viewer = getattr(model, "viewpoint", None)
+    outlines = outlines_of([scene.get(o) for o in (cmd.mover, *cmd.anchors)])
 
     def progress_fn(mover: np.ndarray, anchor: np.ndarray, more: list | None = None) -> np.ndarray:
         kw = {"more_anchors": more} if more else {}
+        if outlines is not None and getattr(model, "reads_outlines", False):
+            kw["outlines"] = outlines
         return np.asarray(model.curve(mover, anchor, size, **kw), float).reshape(-1)
 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
@@ -282,7 +287,8 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
     prog = [f.get("progress") for f in ex.frames]
     final_progress = float(prog[-1]) if prog and prog[-1] is not None else None
-    context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer)
+    context = judge_context([trajectory_poses(ex.frames, a) for a in cmd.anchors], viewer, judge=judge,
+                            outlines=outlines)
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
     verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, scene.get(cmd.mover).rest)

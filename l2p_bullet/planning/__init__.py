@@ -32,6 +32,7 @@ from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
+from ..judge.footprints import outlines_of
 from ..judge.rules import RULE_SPECS
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
 from .bounds import BoundScorer, people_weights
@@ -138,6 +139,9 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     anchor_obj = scene.get(anchor)
     more_poses = [scene.get(a).pose for a in anchors[1:]]
     model = bundle.progress_model()
+    # the objects' real footprints for the model's gap features, where one is not a cube (progress/features.py)
+    footprints = outlines_of([scene.get(o) for o in (mover, *anchors)]) if getattr(model, "reads_outlines", False) \
+        else None
     needed = getattr(model, "anchors", 1)
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '
@@ -189,6 +193,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             lead_in=lead,
             check_cap=cap,
             reach=lead_in.reach * world.size if lead_in else None,
+            outlines=footprints,
         )
         problem.deadline = deadline
         if not (arcs and lead_in):

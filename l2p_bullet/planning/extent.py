@@ -26,6 +26,8 @@ import numpy as np
 
 from ..core.contracts import Plan
 from ..core.scene import Scene
+from ..judge.base import judge_context
+from ..judge.footprints import outlines_of
 from .world2d import World2D, interpolate
 
 FAR_TRAVEL = 2.0
@@ -42,11 +44,14 @@ def apply_extent(plan: Plan, extent: str | None, judge: Any, scene: Scene) -> Pl
     if extent is None:
         return plan
     dense = interpolate(plan.path, STEP)
+    # the objects' real footprints where one is not a cube, for a judge that reads them (judge/footprints.py)
+    kw = judge_context([plan.anchor_pose], None, judge=judge,
+                       outlines=outlines_of([scene.get(plan.mover), scene.get(plan.anchor)]))
     length = float(np.hypot(*np.diff(dense[:, :2], axis=0).T).sum()) if len(dense) > 1 else 0.0
     if extent == "little":
-        new = _least(dense, plan, judge, int(math.ceil(LITTLE_MARGIN * plan.size / STEP)))
+        new = _least(dense, plan, judge, int(math.ceil(LITTLE_MARGIN * plan.size / STEP)), kw)
     elif extent == "far":
-        new = _farther(dense, plan, judge, World2D(scene, plan.mover), FAR_TRAVEL * length - length)
+        new = _farther(dense, plan, judge, World2D(scene, plan.mover), FAR_TRAVEL * length - length, kw)
     elif extent == "right":
         new = _closer_to_anchor(dense, plan, World2D(scene, plan.mover))
     else:
@@ -57,20 +62,20 @@ def apply_extent(plan: Plan, extent: str | None, judge: Any, scene: Scene) -> Pl
     return replace(plan, path=new, progress=progress, extra=extra)
 
 
-def _accepts(judge: Any, plan: Plan, poses: np.ndarray) -> bool:
-    return bool(judge.judge(poses, plan.anchor_pose, plan.size).success)
+def _accepts(judge: Any, plan: Plan, poses: np.ndarray, context: dict) -> bool:
+    return bool(judge.judge(poses, plan.anchor_pose, plan.size, **context).success)
 
 
-def _least(dense: np.ndarray, plan: Plan, judge: Any, margin: int) -> np.ndarray:
+def _least(dense: np.ndarray, plan: Plan, judge: Any, margin: int, context: dict) -> np.ndarray:
     """The shortest start of the path the judge accepts and ``margin`` poses more (the whole path when no
     shorter start is accepted)."""
     for k in range(2, len(dense)):
-        if _accepts(judge, plan, dense[:k]):
+        if _accepts(judge, plan, dense[:k], context):
             return dense[:min(len(dense), k + margin)]
     return dense
 
 
-def _farther(dense: np.ndarray, plan: Plan, judge: Any, world: World2D, more: float) -> np.ndarray:
+def _farther(dense: np.ndarray, plan: Plan, judge: Any, world: World2D, more: float, context: dict) -> np.ndarray:
     """The path continued along its last heading by up to ``more`` metres while the moves stay legal; the
     longest continuation the judge accepts."""
     tail = dense[-1, :2] - dense[max(0, len(dense) - 6), :2]
@@ -87,7 +92,7 @@ def _farther(dense: np.ndarray, plan: Plan, judge: Any, world: World2D, more: fl
         out.append(nxt)
     longer = np.vstack([dense, np.array(out[1:]).reshape(-1, 3)])
     for k in range(len(longer), len(dense), -1):
-        if _accepts(judge, plan, longer[:k]):
+        if _accepts(judge, plan, longer[:k], context):
             return longer[:k]
     return dense
 

@@ -29,8 +29,10 @@ real impossibility and never a guess (docs/perform.md lists them with examples):
   wall no way round crosses. Both "around" checks live in ``sweep.py``.
 - ``room-away``: no point of the workspace is one block farther from the anchor than the mover is now
   (the farthest point measured exactly, ``Workspace.farthest_from``).
-- ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for: two
-  squares' centres are never nearer than the sum of their half sides plus the clearance the planner keeps
+- ``room-closer``: the mover cannot get close enough to close half the room "closer" asks for (the room
+  its rule reads: to where two cubes touch face to face, or where the real footprints touch when one is not a
+  cube, ``judge/rulesets/closer.py``): two objects' centres are never nearer than the sum of their inradii
+  (two squares' half sides) plus the clearance the planner keeps
   between them (the world's margin, or the gap at the start where that is smaller: world2d.py's touching
   starts; measured with each hold's outline, the least over the holds, which favours the arm).
 - ``no-motion`` (after the search, before anything is executed, :func:`check_moves`): the planner found
@@ -55,7 +57,9 @@ from ..arms import PANDA, ArmSpec, reach
 from ..core.geometry import nearest_centres, separation
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..errors import InfeasibleError, PluginError
+from ..judge.footprints import outlines_of
 from ..judge.rules import RULE_SPECS, closer_room
+from ..judge.rulesets.closer import touch_distance
 from . import sweep
 from .world2d import World2D, place_outline
 
@@ -199,7 +203,9 @@ def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] 
                  thresholds: Mapping[str, float], turns: bool = True) -> None:
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
-    room = closer_room(d0)
+    outlines = outlines_of([m, a])  # the judge's room: to where the real footprints touch, unless both are cubes
+    room = closer_room(d0) if outlines is None else closer_room(
+        d0, touch_distance((np.asarray(m.xy) - a.xy) / m.size, m.pose, a.pose, m.size, outlines))
     target = d0 - thresholds["share"] * room
     gap = clearance(scene, mover, anchor, holds)
     nearest = ((nearest_centres(m, a) if turns else nearest_at_yaws(m, a)) + gap) / m.size

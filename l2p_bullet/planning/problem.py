@@ -32,7 +32,8 @@ class ProgressScorer(Protocol):
     """The part of a learned ProgressModel the planners use (see docs/INTERFACES.md, Learning).
 
     ``context`` (``more_anchors``, ``viewer``) is only passed for actions that declare a second anchor or
-    a viewer frame (:attr:`Problem.context`), so a scorer of relative one-anchor actions may ignore it.
+    a viewer frame (:attr:`Problem.context`), so a scorer of relative one-anchor actions may ignore it;
+    ``outlines`` only to a scorer that sets ``reads_outlines = True``, where an object is not a cube.
     """
 
     def final_batch(self, movers: list[np.ndarray], anchors: object, size: float, **context) -> np.ndarray: ...
@@ -94,15 +95,21 @@ class Problem:
     check_cap: int | None = None
     checked: int = 0  # candidate moves proposed to ``children`` so far
     bounded: bool = False  # the cap ended the search (it would have gone on)
+    # the objects' real footprints (judge/footprints.py outlines_of) for a model that reads them, where one
+    # is not a cube; None: the model reads unit squares, as it was trained
+    outlines: list[np.ndarray] | None = None
 
     @property
     def context(self) -> dict:
-        """What the model reads besides the mover and the anchor (empty for a relative one-anchor action)."""
+        """What the model reads besides the mover and the anchor (empty for a relative one-anchor action among
+        cubes)."""
         kw: dict = {}
         if self.more_anchor_poses:
             kw["more_anchors"] = list(self.more_anchor_poses)
         if self.viewer is not None:
             kw["viewer"] = self.viewer
+        if self.outlines is not None:
+            kw["outlines"] = self.outlines
         return kw
 
     def go_on(self, best: Node, steps: int) -> bool:

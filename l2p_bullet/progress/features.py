@@ -23,6 +23,14 @@ Two declarations of an action's manifest (:mod:`l2p_bullet.core.frames`) append 
 - ``frame = "viewer"``: the mover's offset from the anchor as a viewer sees it (left/right, in front/
   behind), which turning the scene changes: "to the left of" needs it, and only it;
 - ``anchors = 2``: the mover's place relative to the segment between the two anchors ("between").
+
+**Footprints.** The ``gap`` columns (``gap``, ``gap2``) are the centre distance less how far each object
+reaches from its centre towards the other: for cubes, unit squares of the mover's side (what the bundles were
+trained on); where an object is not a cube, and the caller gives its real outline (``outlines``, metres, the
+mover's first: ``judge.footprints.outlines_of``), how far that outline reaches in that direction
+(``core.geometry.radial_extent``, which is the unit square's own formula for a unit square). Without
+``outlines`` every column is what it always was, bit for bit. docs/learning.md says what this means for
+the trained bundles.
 """
 
 from __future__ import annotations
@@ -33,6 +41,7 @@ from dataclasses import asdict, dataclass, field, fields
 import numpy as np
 
 from ..core.frames import RELATIVE, parse_anchors, parse_frame, viewer_offset
+from ..core.geometry import radial_extent
 from ..errors import MotionError
 
 MAX_BLOCKS = 1000.0
@@ -245,24 +254,31 @@ def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig 
     return resample_batch([mover], anchor if anchor.ndim == 1 else [anchor], size, cfg, more)[0]
 
 
-def _half_extent(phi: np.ndarray) -> np.ndarray:
-    """Distance from a unit square's centre to its boundary in direction ``phi`` (square frame)."""
-    return 0.5 / np.maximum(np.abs(np.cos(phi)), np.abs(np.sin(phi)))
+def _half_extent(phi: np.ndarray, outline: np.ndarray | None = None) -> np.ndarray:
+    """Distance from an object's centre to its footprint's boundary in direction ``phi`` (its own frame):
+    a unit square's without ``outline``, else that outline's (block units, own frame)."""
+    if outline is None:
+        return 0.5 / np.maximum(np.abs(np.cos(phi)), np.abs(np.sin(phi)))
+    return radial_extent(outline, phi)
 
 
 def features(mover: np.ndarray, anchor: np.ndarray, cfg: QSRConfig = QSRConfig(), *,
-             more: list[np.ndarray] | None = None, viewer: np.ndarray | None = None) -> np.ndarray:
+             more: list[np.ndarray] | None = None, viewer: np.ndarray | None = None,
+             shapes: list[np.ndarray] | None = None) -> np.ndarray:
     """Per-frame features ``(K, F)`` of resampled poses in block units (see :func:`feature_names`);
-    ``more`` the further anchors' resampled poses, ``viewer`` the viewpoint ``(2,)`` in block units."""
+    ``more`` the further anchors' resampled poses, ``viewer`` the viewpoint ``(2,)`` in block units,
+    ``shapes`` the objects' outlines in block units (mover, anchors; None: unit squares)."""
     return features_batch(mover[None], anchor[None], np.array([len(mover)]), cfg,
                           more=None if more is None else [x[None] for x in more],
-                          viewers=None if viewer is None else np.asarray(viewer, float)[None])[0]
+                          viewers=None if viewer is None else np.asarray(viewer, float)[None], shapes=shapes)[0]
 
 
 def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
                    cfg: QSRConfig = QSRConfig(), *, more: list[np.ndarray] | None = None,
-                   viewers: np.ndarray | None = None) -> np.ndarray:
+                   viewers: np.ndarray | None = None, shapes: list[np.ndarray] | None = None) -> np.ndarray:
     """Features of a padded batch ``(B, K, 3)`` of block-unit poses; frames past ``lengths`` are 0.
+    ``shapes``: the outlines (K,2) of the mover and each anchor in block units, own frames, shared by the
+    whole batch (None: unit squares, module docstring).
 
     Columns in :func:`feature_names` order: the continuous quantities, the one-hot cardinal direction
     and QDC bins, MV and QTC-C, then the frame-to-frame changes; then, when the configuration asks for
@@ -278,7 +294,8 @@ def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
     d_dist = np.diff(g.rc, axis=1, prepend=g.rc[:, :1]) / cfg.spacing
     d_swept = np.diff(g.swept, axis=1, prepend=g.swept[:, :1]) / cfg.spacing
     d_rot = np.sin(np.diff(g.rot, axis=1, prepend=g.rot[:, :1]))
-    parts = [_continuous(g, cfg), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc], mv, qtc,
+    shapes = [None, None, None] if shapes is None else list(shapes) + [None] * (3 - len(shapes))
+    parts = [_continuous(g, cfg, shapes[0], shapes[1]), np.eye(n_cd)[cd], np.eye(len(cfg.qdc_edges) + 1)[qdc], mv, qtc,
              np.stack([np.clip(d_dist, -2, 2), np.clip(d_swept, -2, 2), d_rot,
                        _changed(cd), _changed(qdc), _changed(qtc)], axis=-1)]
     if cfg.viewer:
@@ -288,7 +305,7 @@ def features_batch(movers: np.ndarray, anchors: np.ndarray, lengths: np.ndarray,
     if cfg.anchors == 2:
         if not more:
             raise ValueError("two-anchor features need the second anchor's poses")
-        parts.append(_two_anchor_columns(g, np.asarray(more[0], float), cfg))
+        parts.append(_two_anchor_columns(g, np.asarray(more[0], float), cfg, shapes[0], shapes[2]))
     out = np.concatenate(parts, axis=-1)
     out[~g.valid] = 0.0
     return out.astype(np.float32)
@@ -329,10 +346,11 @@ class _Geometry:
                    np.diff(m[..., :2], axis=1, prepend=m[:, :1, :2]), np.diff(a[..., :2], axis=1, prepend=a[:, :1, :2]))
 
 
-def _continuous(g: _Geometry, cfg: QSRConfig) -> np.ndarray:
+def _continuous(g: _Geometry, cfg: QSRConfig, mover_shape: np.ndarray | None = None,
+                anchor_shape: np.ndarray | None = None) -> np.ndarray:
     """The continuous columns (B, K, 15): how close, how far it turned, how aligned, how far it went."""
     B, K = g.r.shape
-    gap = g.r - _half_extent(g.phi_a) - _half_extent(g.phi_m)
+    gap = g.r - _half_extent(g.phi_a, anchor_shape) - _half_extent(g.phi_m, mover_shape)
     r0 = g.r_safe[:, :1]
     path = np.cumsum(np.linalg.norm(g.step_m, axis=-1), axis=1)
     disp = np.linalg.norm(g.m[..., :2] - g.m[:, :1, :2], axis=-1)
@@ -359,7 +377,8 @@ def _viewer_columns(g: _Geometry, viewers: np.ndarray, cfg: QSRConfig) -> np.nda
                      _clipped_change(lat, cfg.spacing), _clipped_change(dep, cfg.spacing)], axis=-1)
 
 
-def _two_anchor_columns(g: _Geometry, c: np.ndarray, cfg: QSRConfig) -> np.ndarray:
+def _two_anchor_columns(g: _Geometry, c: np.ndarray, cfg: QSRConfig, mover_shape: np.ndarray | None = None,
+                        second_shape: np.ndarray | None = None) -> np.ndarray:
     """The two-anchor columns (B, K, 8) of :data:`TWO_ANCHOR_NAMES`; ``c`` the second anchor (B, K, 3)."""
     b, m = g.a[..., :2], g.m[..., :2]
     e = c[..., :2] - b
@@ -374,7 +393,8 @@ def _two_anchor_columns(g: _Geometry, c: np.ndarray, cfg: QSRConfig) -> np.ndarr
     d2 = m - c[..., :2]
     r2 = np.linalg.norm(d2, axis=-1)
     bearing2 = np.arctan2(d2[..., 1], d2[..., 0])
-    gap2 = r2 - _half_extent(bearing2 - c[..., 2]) - _half_extent(bearing2 + np.pi - g.m[..., 2])
+    gap2 = r2 - _half_extent(bearing2 - c[..., 2], second_shape) - _half_extent(bearing2 + np.pi - g.m[..., 2],
+                                                                               mover_shape)
     mx = cfg.max_distance
     return np.stack([np.clip(t, -2.0, 3.0), np.minimum(lateral, mx) / 5.0, np.minimum(seg, mx) / 5.0,
                      np.minimum(mid, mx) / 5.0, np.minimum(r2, mx) / 5.0, np.clip(gap2, -1.0, mx) / 5.0,
@@ -407,25 +427,34 @@ def _changed(x: np.ndarray) -> np.ndarray:
 
 
 def motion_features(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig(), *,
-                    more_anchors: list | None = None, viewer: np.ndarray | None = None
-                    ) -> tuple[np.ndarray, Resampled]:
+                    more_anchors: list | None = None, viewer: np.ndarray | None = None,
+                    outlines: list[np.ndarray] | None = None) -> tuple[np.ndarray, Resampled]:
     """Resample a metric motion and compute its features: ``(K, F)`` and the resampling.
 
-    ``viewer`` is the viewpoint ``(2,)`` in the motion's metric frame (viewer-frame configurations).
+    ``viewer`` is the viewpoint ``(2,)`` in the motion's metric frame (viewer-frame configurations);
+    ``outlines`` the objects' real footprints in metres (module docstring), None for unit squares.
     """
     rs = resample(mover, anchor, size, cfg, more_anchors)
     v = None if viewer is None else np.asarray(viewer, float)[:2] / size
-    return features(rs.mover, rs.anchor, cfg, more=rs.more or None, viewer=v), rs
+    return features(rs.mover, rs.anchor, cfg, more=rs.more or None, viewer=v, shapes=_in_blocks(outlines, size)), rs
+
+
+def _in_blocks(outlines: list[np.ndarray] | None, size: float) -> list[np.ndarray] | None:
+    """Outlines in metres as block units (None stays None: unit squares)."""
+    return None if outlines is None else [np.asarray(o, float) / size for o in outlines]
 
 
 def batch_features(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
                    cfg: QSRConfig = QSRConfig(), *, more_anchors: list | None = None,
-                   viewer: np.ndarray | list | None = None) -> tuple[np.ndarray, np.ndarray, list[Resampled]]:
+                   viewer: np.ndarray | list | None = None, outlines: list[np.ndarray] | None = None
+                   ) -> tuple[np.ndarray, np.ndarray, list[Resampled]]:
     """Resample every motion, pad, and compute features in one vectorised pass.
 
     Returns ``(B, K, F)`` features, ``(B,)`` lengths and the resamplings (to map back to input frames).
     ``anchors`` may be one pose ``(3,)`` shared by every motion, or one track/pose per motion; so may
     each entry of ``more_anchors``. ``viewer`` is one viewpoint ``(2,)`` (metres) for all, or one per motion.
+    ``outlines``: the objects' real footprints in metres, mover first, shared by every motion (module
+    docstring); None reads unit squares.
     """
     rss = resample_batch(movers, anchors, size, cfg, more_anchors)
     lengths = np.array([len(rs.arc) for rs in rss])
@@ -442,4 +471,5 @@ def batch_features(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndar
     viewers = None
     if viewer is not None:
         viewers = np.broadcast_to(np.asarray(viewer, float).reshape(-1, 2), (len(rss), 2))[:, :2] / size
-    return features_batch(M, A, lengths, cfg, more=X or None, viewers=viewers), lengths, rss
+    return (features_batch(M, A, lengths, cfg, more=X or None, viewers=viewers, shapes=_in_blocks(outlines, size)),
+            lengths, rss)

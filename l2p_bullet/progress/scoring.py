@@ -39,10 +39,13 @@ class ScoringMixin:
     (:mod:`l2p_bullet.core.frames`): ``more_anchors``, one entry per further anchor (a two-anchor
     action's second reference object; the same forms as ``anchors``), and ``viewer``, the viewpoint
     ``(2,)`` in the motions' metric frame (a viewer-frame action; default: its declared viewpoint in the
-    scene frame, the robot's base for ``frame = "viewer"``).
+    scene frame, the robot's base for ``frame = "viewer"``). A third, ``outlines``, gives the objects' real
+    footprints (metres, own frames, the mover's first) where one is not a cube: the gap columns measure
+    them (:mod:`l2p_bullet.progress.features`); without it they read unit squares, as the bundles were trained.
     """
 
     qsr_cfg: QSRConfig
+    reads_outlines = True
 
     def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
         raise NotImplementedError
@@ -58,7 +61,7 @@ class ScoringMixin:
         return parse_frame(self.qsr_cfg.frame).viewpoint_xy()
 
     def _run(self, movers: list[np.ndarray], anchors: Any, size: float, more_anchors: list | None = None,
-             viewer: Any = None):
+             viewer: Any = None, outlines: list | None = None):
         movers = [np.asarray(m, float) for m in movers]
         n_more = self.qsr_cfg.anchors - 1
         if len(more_anchors or []) != n_more:
@@ -68,24 +71,26 @@ class ScoringMixin:
             kw["more_anchors"] = more_anchors
         if self.qsr_cfg.viewer:
             kw["viewer"] = self.viewpoint if viewer is None else viewer
+        if outlines is not None:
+            kw["outlines"] = outlines
         feats, lengths, rss = batch_features(movers, anchors, size, self.qsr_cfg, **kw)
         return self.forward_features(feats, lengths), lengths, rss
 
     def final_batch(self, movers: list[np.ndarray], anchors: Any, size: float, *, more_anchors: list | None = None,
-                    viewer: Any = None) -> np.ndarray:
+                    viewer: Any = None, outlines: list | None = None) -> np.ndarray:
         """Final progress ``(B,)`` of every motion, in one forward pass for the whole batch."""
         if len(movers) == 0:
             return np.zeros(0)
-        out, lengths, _ = self._run(movers, anchors, size, more_anchors, viewer)
+        out, lengths, _ = self._run(movers, anchors, size, more_anchors, viewer, outlines)
         return out[np.arange(len(lengths)), lengths - 1]
 
     def curve_batch(self, movers: list[np.ndarray], anchors: Any, size: float, *, more_anchors: list | None = None,
-                    viewer: Any = None) -> list[np.ndarray]:
+                    viewer: Any = None, outlines: list | None = None) -> list[np.ndarray]:
         """Per-input-frame progress of every motion (a frame gets the value of the last resampled frame
         at or before its arc length: frames where the block stands still repeat the value)."""
         if len(movers) == 0:
             return []
-        out, lengths, rss = self._run(movers, anchors, size, more_anchors, viewer)
+        out, lengths, rss = self._run(movers, anchors, size, more_anchors, viewer, outlines)
         curves = []
         for i, rs in enumerate(rss):
             k = np.searchsorted(rs.arc, rs.input_arc + 1e-9, side="right") - 1
@@ -93,29 +98,29 @@ class ScoringMixin:
         return curves
 
     def curve(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
-              viewer: Any = None) -> np.ndarray:
+              viewer: Any = None, outlines: list | None = None) -> np.ndarray:
         """Per-input-frame progress ``(T,)`` of one motion; ``anchor`` is ``(T, 3)`` or one pose ``(3,)``."""
         anchor = np.asarray(anchor, float)
         return self.curve_batch([mover], anchor if anchor.ndim == 1 else [anchor], size,
-                                more_anchors=_one(more_anchors), viewer=viewer)[0]
+                                more_anchors=_one(more_anchors), viewer=viewer, outlines=outlines)[0]
 
     def resampled(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
-                  viewer: Any = None) -> tuple[np.ndarray, np.ndarray]:
+                  viewer: Any = None, outlines: list | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Progress on the model's own arc-length resampling of one motion, and each resampled frame's
         share of the motion's arc length (0 to 1): the ramp the training label follows on an event, so a
         benchmark can compare the whole curve with it (docs/learning.md, recognition's third pass)."""
         anchor = np.asarray(anchor, float)
         out, lengths, rss = self._run([mover], anchor if anchor.ndim == 1 else [anchor], size,
-                                      _one(more_anchors), viewer)
+                                      _one(more_anchors), viewer, outlines)
         arc = np.asarray(rss[0].arc, float)
         share = arc / arc[-1] if arc[-1] > 0 else np.linspace(0.0, 1.0, len(arc))
         return out[0, : lengths[0]], share
 
     def final(self, mover: np.ndarray, anchor: np.ndarray, size: float, *, more_anchors: list | None = None,
-              viewer: Any = None) -> float:
+              viewer: Any = None, outlines: list | None = None) -> float:
         anchor = np.asarray(anchor, float)
         return float(self.final_batch([mover], anchor if anchor.ndim == 1 else [anchor], size,
-                                      more_anchors=_one(more_anchors), viewer=viewer)[0])
+                                      more_anchors=_one(more_anchors), viewer=viewer, outlines=outlines)[0])
 
 
 def curve_from(model: Any, first: int, mover: np.ndarray, anchor: np.ndarray, size: float, *,

@@ -112,3 +112,91 @@ def test_a_motion_no_rule_can_read_is_a_clear_error(mover, anchor, size, message
     for rules in RULES:
         with pytest.raises(PathError, match=message):
             rule_verdict(rules, mover, anchor, size)
+
+
+# --- footprints: the real outline where an object is not a cube, unit squares between cubes -----------------
+
+
+def _box_scene():
+    """A 4 cm cube A and a 12 x 6 cm box B (2:1) at the origin, its long faces along x."""
+    from l2p_bullet.core.scene import SceneObject, shaped
+
+    return SceneObject("A", "red", 0.04, (0.0, 0.2)), shaped("B", "green", (0.0, 0.0), shape="box",
+                                                               dims=(0.12, 0.06, 0.04))
+
+
+def test_next_to_a_2_to_1_box_long_face_is_judged_by_the_real_gap():
+    from l2p_bullet.judge.footprints import outlines_of
+
+    a, b = _box_scene()
+    outlines = outlines_of([a, b])
+    size = a.size
+    # 1.5 cm from the long face (0.38 blocks): next to it; read as a 4 cm square at B's centre it was 0.62 blocks
+    beside = np.array([[0.0, 0.2, 0.0], [0.0, 0.03 + 0.02 + 0.015, 0.0]])
+    v = rule_verdict("next-to", beside, b.pose, size, outlines=outlines)
+    assert v.success and "0.38 blocks" in v.reason
+    assert not rule_verdict("next-to", beside, b.pose, size).success  # the square reading misses it
+    # beside the long face near its end: still 1.5 cm from the face
+    off_centre = np.array([[0.0, 0.2, 0.0], [0.05, 0.065, 0.0]])
+    assert rule_verdict("next-to", off_centre, b.pose, size, outlines=outlines).success
+    # 4.5 cm from the long face is not next to it; with the box turned a quarter turn (its yaw read at the
+    # end), the same place is 1.5 cm from its end
+    farther = np.array([[0.0, 0.2, 0.0], [0.0, 0.095, 0.0]])
+    v = rule_verdict("next-to", farther, b.pose, size, outlines=outlines)
+    assert not v.success and "1.12 blocks" in v.reason
+    turned = np.r_[b.pose[:2], math.pi / 2]
+    v = rule_verdict("next-to", farther, turned, size, outlines=outlines)
+    assert v.success and "0.38 blocks" in v.reason
+    # overlapping the box's real outline is not next to it (a square at its centre would not reach there)
+    inside = np.array([[0.0, 0.2, 0.0], [0.07, 0.0, 0.0]])
+    v = rule_verdict("next-to", inside, b.pose, size, outlines=outlines)
+    assert not v.success and "overlapping" in v.reason
+
+
+def test_closer_room_ends_where_the_real_footprints_touch():
+    from l2p_bullet.judge.footprints import outlines_of, touching
+    from l2p_bullet.judge.rulesets.closer import closer_room
+
+    a, b = _box_scene()
+    outlines, size = outlines_of([a, b]), a.size
+    # coming at the long face: they touch 5 cm apart (1.25 blocks), at the end 8 cm apart (2 blocks)
+    assert touching(np.r_[0.0, 5.0, 0.0], np.zeros(3), size, outlines) == pytest.approx(1.25)
+    assert touching(np.r_[5.0, 0.0, 0.0], np.zeros(3), size, outlines) == pytest.approx(2.0)
+    # from 5 blocks off the end, 3.4 blocks closes 3.4 / (5 - 2) of the room: done; read as squares, 3.4 / 4
+    path = _path([(5, 0), (1.6 + 0.0, 0)], size)
+    v = rule_verdict("closer", path, b.pose, size, outlines=outlines)
+    assert v.success and "closed 113%" in v.reason
+    assert "closed 85%" in rule_verdict("closer", path, b.pose, size).reason
+    assert closer_room(5.0) == closer_room(5.0, 1.0) == 4.0
+
+
+def test_cubes_read_unit_squares_bit_for_bit():
+    from l2p_bullet.core.scene import SceneObject
+    from l2p_bullet.judge.footprints import gap, outlines_of, unit_square
+
+    cubes = [SceneObject("A", "red", 0.04, (0.1, 0.0)), SceneObject("B", "green", 0.06, (0.0, 0.0))]
+    assert outlines_of(cubes) is None  # no outlines: every rule reads unit squares, as it was fitted
+    rng = np.random.default_rng(3)
+    unit = unit_square(np.zeros(3))
+    for _ in range(50):  # a unit square given as an outline measures exactly what square_gap measures
+        m, a = np.r_[rng.uniform(-3, 3, 2), rng.uniform(-4, 4)], np.r_[0.0, 0.0, rng.uniform(-4, 4)]
+        assert gap(m, a, 1.0, [unit, unit]) == square_gap(m, a)
+    path = _path([(3, 0.3), (1.2, 0.1)], 0.05)
+    for action in ("next-to", "closer", "away", "past", "around"):
+        assert rule_verdict(action, path, ANCHOR, 0.05) == rule_verdict(action, path, ANCHOR, 0.05, outlines=None)
+
+
+def test_outlines_reach_only_judges_that_read_them():
+    from l2p_bullet.judge import RuleJudge, judge_context
+
+    outlines = [np.zeros((4, 2)), np.zeros((4, 2))]
+    assert "outlines" in judge_context([ANCHOR], None, judge=RuleJudge("next-to"), outlines=outlines)
+
+    class Plugin:  # a plugin's judge written with the one-anchor signature
+        name = "mine"
+
+        def judge(self, mover, anchor, size, *, final_progress=None):
+            raise AssertionError
+
+    assert judge_context([ANCHOR], None, judge=Plugin(), outlines=outlines) == {}
+    assert judge_context([ANCHOR], None, judge=RuleJudge("next-to"), outlines=None) == {}

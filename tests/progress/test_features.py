@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -127,3 +128,65 @@ def test_config_round_trip_and_names():
     assert cfg.n_features == len(feature_names(cfg))
     f, _ = motion_features(np.array([[3.0, 0, 0], [0, 3.0, 0]]), np.zeros(3), 1.0, cfg)
     assert f.shape[1] == cfg.n_features and f.dtype == np.float32
+
+
+def test_a_cube_s_features_are_the_unit_square_s_bit_for_bit():
+    """Without outlines (every object a cube) the gap column is the unit squares' formula the bundles were
+    trained on, exactly; a cube's own square given as an outline measures the same gap."""
+    mover, anchor = _motion(5, size=0.05)
+    f, rs = motion_features(mover, anchor, 0.05)
+    d = rs.mover[:, :2] - rs.anchor[:, :2]
+    r = np.linalg.norm(d, axis=1)
+    bearing = np.arctan2(d[:, 1], d[:, 0])
+
+    def half(phi):
+        return 0.5 / np.maximum(np.abs(np.cos(phi)), np.abs(np.sin(phi)))
+
+    gap = r - half(bearing - rs.anchor[:, 2]) - half(bearing + np.pi - rs.mover[:, 2])
+    assert np.array_equal(f[:, COL["gap"]], (np.clip(gap, -1.0, 12.0) / 5.0).astype(np.float32))
+    square = np.array([[-0.025, -0.025], [0.025, -0.025], [0.025, 0.025], [-0.025, 0.025]])
+    g, _ = motion_features(mover, anchor, 0.05, outlines=[square, square])
+    assert np.allclose(g, f, atol=1e-6)
+
+
+def test_the_gap_to_a_2_to_1_box_is_to_its_real_outline():
+    """A 4 cm cube coming at a 12 x 6 cm box: the gap column reads the box's long face, then its end."""
+    from l2p_bullet.core.scene import SceneObject, shaped
+    from l2p_bullet.judge.footprints import outlines_of
+
+    cube, box = SceneObject("A", "red", 0.04, (0.0, 0.1)), shaped("B", "green", (0.0, 0.0), dims=(0.12, 0.06, 0.04))
+    outlines = outlines_of([cube, box])
+    towards_face = np.column_stack([np.zeros(20), np.linspace(0.2, 0.065, 20), np.zeros(20)])
+    f, _ = motion_features(towards_face, box.pose, 0.04, outlines=outlines)
+    assert np.isclose(f[-1, COL["gap"]] * 5, 0.015 / 0.04, atol=1e-6)  # 1.5 cm from the long face
+    square, _ = motion_features(towards_face, box.pose, 0.04)
+    assert np.isclose(square[-1, COL["gap"]] * 5, 0.025 / 0.04, atol=1e-6)  # a 4 cm square at its centre
+    towards_end = towards_face[:, [1, 0, 2]]
+    f, _ = motion_features(towards_end, box.pose, 0.04, outlines=outlines)
+    assert np.isclose(f[-1, COL["gap"]] * 5, -0.015 / 0.04, atol=1e-6)  # 1.5 cm into its end: overlapping
+
+
+@pytest.mark.slow
+def test_the_planner_gives_the_model_the_footprints_only_where_an_object_is_not_a_cube(monkeypatch):
+    from l2p_bullet import planning
+    from l2p_bullet.core.scene import Scene, SceneObject, shaped
+    from l2p_bullet.plugins import registry
+    from l2p_bullet.progress.scoring import ScoringMixin
+
+    seen = []
+    real = ScoringMixin.final_batch
+
+    def spy(self, movers, anchors, size, **kw):
+        seen.append(kw.get("outlines"))
+        return real(self, movers, anchors, size, **kw)
+
+    monkeypatch.setattr(ScoringMixin, "final_batch", spy)
+    bundle = registry.load("next-to")
+    cube = SceneObject("A", "red", 0.04, (-0.1, 0.0))
+    box = Scene([cube, shaped("B", "green", (0.0, 0.1), dims=(0.12, 0.06, 0.04))]).validate()
+    planning.plan(box, "A", "B", bundle, budget=2)
+    assert seen and all(o is not None and len(o) == 2 and np.ptp(o[1][:, 0]) == pytest.approx(0.12) for o in seen)
+    seen.clear()
+    cubes = Scene([cube, SceneObject("B", "green", 0.06, (0.0, 0.1))]).validate()
+    planning.plan(cubes, "A", "B", bundle, budget=2)
+    assert seen and all(o is None for o in seen)
