@@ -25,7 +25,7 @@ really left the blocks.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -198,9 +198,9 @@ class _Searcher:
                                                                                            plan.path[-1]))]
             except _Dead as d:
                 if aimed or not self._needed(at, d):
-                    raise
+                    raise _wider(d, c) from None
                 at.first = d  # what the aimed ends are measured against, and refused with if none works
-        raise at.first if at.first is not None else self._dead(c, PlanError("no end state left to try"))
+        raise _wider(at.first, c) if at.first is not None else self._dead(c, PlanError("no end state left to try"))
 
     def _try(self, at: _Clause, end: End) -> list[Step] | object | None:
         """Plan ``at``'s clause with ``end`` and the later clauses after it: their steps, None when this end
@@ -319,6 +319,13 @@ class _Searcher:
         check = self._count(c, e)
         reads = frozenset(c.command.anchors) | {c.command.mover} if check and check.startswith("room-") else None
         return _Dead(e, c.index, reads, scene, c.command)
+
+
+def _wider(d: _Dead, c: Clause) -> _Dead:
+    """``d`` raised past ``c`` once every end of ``c`` failed: which ends ``c`` has depends on where its anchors
+    stand too (a block sent past an anchor on the workspace's rim ends by the rim), so a clause that moved
+    one of them is tried again as well."""
+    return d if d.blocks is None else replace(d, blocks=d.blocks | set(c.command.anchors))
 
 
 def _kind(e: L2PError) -> str:
