@@ -253,10 +253,12 @@ class _Searcher:
             return None
 
     def _needed(self, at: _Clause, d: _Dead) -> bool:
-        """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one; whether
-        it is new."""
-        if not d.room or d.clause <= at.clause.index or any((n.clause, n.room) == (d.clause, d.room)
-                                                             for n in at.needs):
+        """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads
+        where ``at``'s mover stands (its mover or anchor: not a clause sent back for its anchor's sake); whether it
+        is new."""
+        reads = (d.command.mover, *d.command.anchors) if d.command is not None else ()
+        if not d.room or d.clause <= at.clause.index or at.clause.command.mover not in reads or any(
+                (n.clause, n.room) == (d.clause, d.room) for n in at.needs):
             return False
         at.needs.append(d)
         return True
