@@ -9,7 +9,8 @@ of the same clause would keep it possible. Only the clauses that moved a block t
 tried again (a room check reads the mover and the anchor; every other check, the whole scene), and once a
 later clause's room check has failed on where a clause left a block, that clause's other ends that leave it
 where the same check fails again are not planned past (the check reads nothing else, so it would fail
-again), and the places nearest the planner's end where it passes are tried as ends too (aims.py). An end the
+again), and the places nearest the planner's end where it passes are tried as ends (aims.py), right after
+the planner's own end and its cuts: the other ends are blind to what the later check needs. An end the
 clause's judge does not accept on the plan is not chosen; the planner's own, so judged, is tried after every
 other end (and kept, as clause by clause, when none works: the run judges what it does). A chain is refused
 only when no combination tried works, with the first failure found (the clause and its check) and what was
@@ -173,22 +174,28 @@ class _Searcher:
         except L2PError as e:  # no end state of this clause helps: the scene it starts from is what fails
             raise self._dead(c, e, predicted) from None
         at = _Clause(k, c, predicted, *self.loaded[c.command.action], checked=time.perf_counter() - t0)
+        aimed = fell_back = False
         for end in ENDS:
             if self.left <= 0 and end != DEFAULT:
                 break  # the search is spent: the planner's own ends only, as clause by clause
+            if at.needs and not aimed and (end.seed or end.turn):
+                # a later room check failed on the planner's end and its cuts: aimed there before other
+                # searches, which are blind to what it needs (aims.py)
+                aimed = True
+                found = self._aimed(at)
+                if found is not None:
+                    return found
             found = self._try(at, end)
             if found is _SCENE:
                 break
             if found is not None:
                 return found
-        aimed = fell_back = False
         while True:
-            if at.needs and not aimed:  # aimed where the later room checks pass (aims.py)
+            if at.needs and not aimed:
                 aimed = True
-                for end in self._aims(at):
-                    found = self._try(at, end)
-                    if isinstance(found, list):
-                        return found
+                found = self._aimed(at)
+                if found is not None:
+                    return found
             if at.judged_short is None or fell_back:
                 break
             fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
@@ -263,15 +270,19 @@ class _Searcher:
         at.needs.append(d)
         return True
 
-    def _aims(self, at: _Clause):
-        """The aimed ends of ``at``'s clause (aims.py), while the search has plans left."""
+    def _aimed(self, at: _Clause) -> list[Step] | None:
+        """``at``'s clause planned with its aimed ends (aims.py) while the search has plans left: the steps of
+        the first that works, or None."""
         if at.planned.get(0) is None or self.left <= 0:
-            return
+            return None
         for pose in aimed_goals(at.predicted, at.clause.command.mover, at.planned[0], at.judge,
                                 lambda q: self._keeps(at, q), scenes=tuple(d.scene for d in at.needs)):
             if self.left <= 0:
-                return
-            yield End(0, aim=tuple(float(v) for v in pose))
+                break
+            found = self._try(at, End(0, aim=tuple(float(v) for v in pose)))
+            if isinstance(found, list):
+                return found
+        return None
 
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:
         from ..embodiment.execute import check_for  # lazy: the arm's modules load only when a chain is forecast

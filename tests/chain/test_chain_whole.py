@@ -283,6 +283,8 @@ def test_an_end_aimed_where_the_later_room_check_passes_keeps_the_chain(plugins,
     assert np.hypot(*(np.asarray(aim[:2]) - RIM[:2])) <= 0.1 + 1e-9  # near the planner's own end: 2 blocks
     assert steps[0].end.to_dict()["aim"] == [round(v, 6) for v in aim]  # plan.json's end_state says where
     assert search.changed == [1]
+    # aimed right after the planner's own end and its cuts, before the blind searches (other seeds, turns)
+    assert all(e.seed == 0 and not e.turn for c, e in stand_ins if c == 1)
 
 
 def _all_past(x: float, calls: list):
