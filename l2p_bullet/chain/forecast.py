@@ -6,15 +6,17 @@ planned from there, the earlier clauses' other end states (ends.py: a path stopp
 end turned about the anchor) are tried, latest first, depth first, so one clause's greedy end (a block left
 on the workspace's rim, a block already past its anchor) does not make the chain impossible when another end
 of the same clause would keep it possible. Only the clauses that moved a block the failed check reads are
-tried again (a room check reads the mover and the anchor; every other check, the whole scene), and once a
-later clause's room check has failed on where a clause left a block, that clause's other ends that leave it
-where the same check fails again are not planned past (the check reads nothing else, so it would fail
-again), and the places nearest the planner's end where it passes are tried as ends (aims.py), right after
-the planner's own end and its cuts: the other ends are blind to what the later check needs. An end the
-clause's judge does not accept on the plan is not chosen; the planner's own, so judged, is tried after every
-other end (and kept, as clause by clause, when none works: the run judges what it does). A chain is refused
-only when no combination tried works, with the first failure found (the clause and its check) and what was
-tried.
+tried again (a room check reads the mover and the anchor; every other check, the whole scene), and, once
+every end of a clause failed, the clauses that moved its anchors (where they stand decides its ends).
+
+Once a later clause's room check has failed on where a clause left its mover, that clause's other ends that
+leave it where the same check fails again are not planned past (the check reads nothing else, so it would
+fail again; a turned end whose goal is such a place is not planned at all), and the places nearest the
+planner's end where the check passes are tried as ends (aims.py), right after the planner's own end and its
+cuts: the other ends are blind to what the later check needs. An end the clause's judge does not accept on
+the plan is not chosen; the planner's own, so judged, is tried after every other end (and kept, as clause
+by clause, when none works: the run judges what it does). A chain is refused only when no combination tried
+works, with the first failure found (the clause and its check) and what was tried.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
