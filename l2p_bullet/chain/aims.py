@@ -32,22 +32,27 @@ from ..planning.world2d import World2D, segment_frames
 RINGS_SIDES = tuple(float(r) for r in np.arange(0.5, 8.01, 0.5))
 """Distances (blocks) from the planner's end of the places tried: the workspace is about 14 blocks across."""
 BEARINGS = 24
-"""Places per ring (every 15 degrees)."""
+"""Places per ring (every 15 degrees) from 1.5 blocks out; nearer rings have fewer (8 at half a block, 16 at
+one), about a block apart or less."""
 AIMS = 2
 """Places returned per clause: each costs the search a plan."""
+CHECKS = 96
+"""Places at most asked ``keeps`` per clause (nearest first): a later "around"'s check sweeps a grid of poses,
+so the time a hopeless aim costs stays bounded."""
 
 
 def aimed_goals(scene: Scene, mover: str, base: Plan, judge: Any, keeps: Callable[[np.ndarray], bool], *,
                 scenes: tuple[Scene, ...] = (), limit: int = AIMS) -> list[np.ndarray]:
     """Up to ``limit`` target poses (x, y, yaw: the planner's end's yaw) for ``mover``, nearest ``base``'s end
     first, each one the mover fits at in ``scene`` and ``scenes``, a straight slide to which ``judge`` accepts,
-    and at which ``keeps`` (pose -> whether the later clauses' checks pass) holds."""
+    and at which ``keeps`` (pose -> whether the later clauses' checks pass) holds, among the first
+    :data:`CHECKS` such places asked."""
     end = np.asarray(base.path[-1], float)
     size = scene.get(mover).size
-    t = np.arange(BEARINGS) * (2 * math.pi / BEARINGS)
-    r = np.repeat(np.asarray(RINGS_SIDES) * size, BEARINGS)
-    poses = np.column_stack([end[0] + r * np.cos(np.tile(t, len(RINGS_SIDES))),
-                             end[1] + r * np.sin(np.tile(t, len(RINGS_SIDES))), np.full(len(r), end[2])])
+    rings = [(r, min(BEARINGS, round(16 * r))) for r in RINGS_SIDES]
+    r = np.concatenate([np.full(n, ring * size) for ring, n in rings])
+    t = np.concatenate([np.arange(n) * (2 * math.pi / n) for _, n in rings])
+    poses = np.column_stack([end[0] + r * np.cos(t), end[1] + r * np.sin(t), np.full(len(r), end[2])])
     fits = np.ones(len(poses), bool)
     for s in (scene, *scenes):
         world = World2D(s, mover)
@@ -56,10 +61,14 @@ def aimed_goals(scene: Scene, mover: str, base: Plan, judge: Any, keeps: Callabl
             fits &= world.shortfall(poses, np.full(len(world.obstacles), world.margin), mask=fits) >= 0.0
     starts = _slide_starts(base)
     out: list[np.ndarray] = []
+    asked = 0
     for pose in poses[fits]:
         if not any(_accepts(judge, base, np.vstack([s, segment_frames(s[-1], pose, FRAME_STEP * size)]))
                    for s in starts):
             continue
+        asked += 1
+        if asked > CHECKS:
+            break
         if keeps(pose):
             out.append(pose)
             if len(out) >= limit:

@@ -337,3 +337,29 @@ def test_a_clause_with_no_end_left_sends_the_search_back_to_who_moved_its_anchor
     clauses = resolve_clauses("move A away from B, then move C past A, then move D around C", scene, plugins)
     steps = forecast(clauses, scene, plugins)
     assert steps[0].end != DEFAULT and steps[0].forecast.path[-1][0] + 0.075 <= 0.3
+
+
+def test_aimed_places_are_the_nearest_that_fit_pass_and_are_judged_and_asked_at_most_checks(plugins):
+    """aims.py on a real scene with stand-in checks: the places come nearest the planner's end first, inside
+    the workspace and clear of the other blocks, each one ``keeps`` accepts; ``keeps`` is asked at most
+    CHECKS times."""
+    from l2p_bullet.chain import aims
+
+    scene = four_blocks()
+    base = SimpleNamespace(path=np.array([[0.10, -0.08, 0.2], [0.28, -0.10, 0.2]]), anchor_pose=np.zeros(3),
+                           more_anchor_poses=None, size=0.04, viewer=None)
+    asked = []
+
+    def keeps(q):
+        asked.append(q)
+        return q[0] <= 0.21
+
+    judge = SimpleNamespace(judge=lambda *a, **k: SimpleNamespace(to_dict=lambda: {"success": True}))
+    got = aims.aimed_goals(scene, "A", base, judge, keeps)
+    assert len(got) == aims.AIMS and all(q[0] <= 0.21 and q[2] == 0.2 for q in got)
+    d = [np.hypot(*(q[:2] - base.path[-1][:2])) for q in got]
+    assert d == sorted(d) and d[0] <= 0.08 + 1e-9  # the first ring that reaches x <= 0.2 from x = 0.28
+    assert all(np.hypot(*q[:2]) <= 0.35 for q in asked)  # only places in the workspace are asked about
+    asked.clear()
+    assert aims.aimed_goals(scene, "A", base, judge, lambda q: asked.append(q) and False) == []
+    assert len(asked) == aims.CHECKS
