@@ -36,14 +36,16 @@ from .clause import Clause
 class End:
     """How a clause is planned: the planner's seed offset from the run's seed, and where its path stops:
     ``cut`` None (the planned end), "least" (the least the judge accepts, plus the "a bit" extent's margin:
-    ``planning.extent``) or "half" (halfway from there to the planned end); or ``turn``."""
+    ``planning.extent``) or "half" (halfway from there to the planned end); or ``turn``; or ``aim``."""
 
     seed: int = 0
     cut: str | None = None
     turn: int = 0  # degrees: the planned end turned about the anchor, then planned to as a target
+    aim: tuple[float, float, float] | None = None  # x, y, yaw: a place planned to as a target (aims.py)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"seed_offset": self.seed, "cut": self.cut, **({"turn_deg": self.turn} if self.turn else {})}
+        return {"seed_offset": self.seed, "cut": self.cut, **({"turn_deg": self.turn} if self.turn else {}),
+                **({"aim": [round(v, 6) for v in self.aim]} if self.aim is not None else {})}
 
 
 DEFAULT = End()
@@ -65,6 +67,9 @@ def plan_clause(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: 
     cmd = clause.command
     if end.turn:
         return _turned(clause, scene, bundle, judge, options, arm, end, base)
+    if end.aim is not None:
+        plan = _search(clause, scene, bundle, options, arm, end.seed, np.asarray(end.aim, float))
+        return replace(plan, extra={**plan.extra, "end_state": end.to_dict()})
     if base is None:
         plan = _search(clause, scene, bundle, options, arm, end.seed,
                        None if clause.target is None else clause.target(scene))

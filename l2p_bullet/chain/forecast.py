@@ -6,11 +6,17 @@ planned from there, the earlier clauses' other end states (ends.py: a path stopp
 end turned about the anchor) are tried, latest first, depth first, so one clause's greedy end (a block left
 on the workspace's rim, a block already past its anchor) does not make the chain impossible when another end
 of the same clause would keep it possible. Only the clauses that moved a block the failed check reads are
-tried again (a room check reads the mover and the anchor; every other check, the whole scene). An end the
-clause's judge does not accept on the plan is not chosen; the planner's own, so judged, is tried after every
-other end (and kept, as clause by clause, when none works: the run judges what it does). A chain is refused
-only when no combination tried works, with the first failure found (the clause and its check) and what was
-tried.
+tried again (a room check reads the mover and the anchor; every other check, the whole scene), and, once
+every end of a clause failed, the clauses that moved its anchors (where they stand decides its ends).
+
+Once a later clause's room check has failed on where a clause left its mover, that clause's other ends that
+leave it where the same check fails again are not planned past (the check reads nothing else, so it would
+fail again; a turned end whose goal is such a place is not planned at all), and the places nearest the
+planner's end where the check passes are tried as ends (aims.py), right after the planner's own end and its
+cuts: the other ends are blind to what the later check needs. An end the clause's judge does not accept on
+the plan is not chosen; the planner's own, so judged, is tried after every other end (and kept, as clause
+by clause, when none works: the run judges what it does). A chain is refused only when no combination tried
+works, with the first failure found (the clause and its check) and what was tried.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
@@ -22,7 +28,7 @@ really left the blocks.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -30,12 +36,13 @@ import numpy as np
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
-from ..judge import judge_context, judge_for
+from ..judge import judge_for
 from ..judge.footprints import outlines_of
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
+from .aims import aimed_goals, verdict
 from .clause import Clause, named
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
@@ -84,6 +91,18 @@ class _Dead(Exception):
     error: L2PError
     clause: int
     blocks: frozenset[str] | None
+    scene: Scene | None = None  # the predicted scene the failed check was made in
+    command: Any = None  # the failed clause's command
+
+    @property
+    def room(self) -> str | None:
+        """The room check that failed (one an earlier clause's end can meet: AIM_CHECKS), else None."""
+        check = self.error.check if isinstance(self.error, InfeasibleError) else None
+        return check if check in AIM_CHECKS and self.scene is not None else None
+
+
+AIM_CHECKS = ("room-around", "blocked-around", "room-away", "room-closer")
+"""The feasibility checks an earlier clause's end can be aimed to pass (aims.py): they read where blocks stand."""
 
 
 def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOptions | None = None, *,
@@ -117,6 +136,33 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
     return steps
 
 
+_SCENE = object()
+"""``_Searcher._try``'s answer when the clause's planner met a check of the scene: no other seed does better."""
+
+
+@dataclass
+class _Clause:
+    """One clause's place in the search: where it starts, what it loaded, and what its ends have met."""
+
+    k: int
+    clause: Clause
+    predicted: Scene
+    bundle: Any
+    model: Any
+    judge: Any
+    checked: float  # seconds its feasibility checks took
+    first: _Dead | None = None  # the first failure met: what it is refused with if no end works
+    judged_short: tuple[Plan, End] | None = None  # the planner's own end, when the judge does not accept it
+    planned: dict[int, Plan | None] = field(default_factory=dict)  # seed offset -> its plan (None: it failed)
+    needs: list[_Dead] = field(default_factory=list)  # later room checks that failed on where it left its mover
+
+
+def _outlines(at: _Clause) -> list[np.ndarray] | None:
+    """The real outlines of the clause's mover and anchors, as its judge reads them (None for cubes)."""
+    c = at.clause.command
+    return outlines_of([at.predicted.get(o) for o in (c.mover, *c.anchors)])
+
+
 class _Searcher:
     """Depth first over the clauses' end states, back-jumping past clauses that moved no block a failure reads."""
 
@@ -131,62 +177,122 @@ class _Searcher:
         if k == len(self.clauses):
             return []
         c = self.clauses[k]
-        bundle, model, judge = self.loaded[c.command.action]
         t0 = time.perf_counter()
         try:
             check_feasible(c.command, predicted, self.plugins, self.arm)
         except L2PError as e:  # no end state of this clause helps: the scene it starts from is what fails
-            raise self._dead(c, e) from None
-        checked = time.perf_counter() - t0
-        first: _Dead | None = None
-        judged_short: tuple[Plan, End] | None = None  # the planner's own end, when the judge does not accept it
-        planned: dict[int, Plan | None] = {}  # seed offset -> its plan (None: it failed)
+            raise self._dead(c, e, predicted) from None
+        at = _Clause(k, c, predicted, *self.loaded[c.command.action], checked=time.perf_counter() - t0)
+        aimed = fell_back = False
         for end in ENDS:
             if self.left <= 0 and end != DEFAULT:
                 break  # the search is spent: the planner's own ends only, as clause by clause
-            if end.seed not in planned:
-                self.left -= 1
-                planned[end.seed] = None
-                try:
-                    planned[end.seed] = self._plan(c, predicted, bundle, judge, end)
-                except _Dead as d:
-                    first = first or d
-                    if isinstance(d.error, InfeasibleError) and d.error.check != "no-motion":
-                        break  # a check of the scene (no way in from afar...): another seed meets it again
-                    continue
-                plan = planned[end.seed]
-            elif planned[end.seed] is None:
-                continue
-            else:
-                if end.turn:  # a turned end is planned to: a search, where there is one to plan to
-                    if turned_goal(c, predicted, planned[end.seed], end.turn) is None:
-                        continue
-                    self.left -= 1
-                try:
-                    plan = self._plan(c, predicted, bundle, judge, end, base=planned[end.seed])
-                except _Dead as d:
-                    first = first or d
-                    continue
-            if end.cut is not None and np.allclose(plan.path[-1], planned[end.seed].path[-1]):
-                continue  # the cut leaves the end where it was: nothing new to try
-            self.kept[id(plan)] = checked + self.cost[id(plan)] + (
-                self.cost[id(planned[end.seed])] if end.cut is not None or end.turn else 0.0)
-            step = self._step(c, bundle, model, judge, plan, end, predicted)
-            if not step.forecast.extra["verdict"]["success"]:
-                if end == DEFAULT:  # kept for last: clause by clause, it is what the chain would run
-                    judged_short = (plan, end)
-                continue  # another end of this clause may be one its judge accepts; no other end it rejects is
+            if at.needs and not aimed and (end.seed or end.turn):
+                # a later room check failed on the planner's end and its cuts: aimed there before other
+                # searches, which are blind to what it needs (aims.py)
+                aimed = True
+                found = self._aimed(at)
+                if found is not None:
+                    return found
+            found = self._try(at, end)
+            if found is _SCENE:
+                break
+            if found is not None:
+                return found
+        while True:
+            if at.needs and not aimed:
+                aimed = True
+                found = self._aimed(at)
+                if found is not None:
+                    return found
+            if at.judged_short is None or fell_back:
+                break
+            fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
+            plan, end = at.judged_short
             try:
-                return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
+                return [self._step(at, plan, end), *self.steps(k + 1, predicted.with_pose(c.command.mover,
+                                                                                           plan.path[-1]))]
             except _Dead as d:
-                first = first or d
-                if d.blocks is not None and c.command.mover not in d.blocks:
-                    raise first from None  # this clause's end does not move what failed: try an earlier one
-        if judged_short is not None:  # no end the judge accepts: planned as it was (the run judges what it does)
-            plan, end = judged_short
-            step = self._step(c, bundle, model, judge, plan, end, predicted)
-            return [step, *self.steps(k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
-        raise first if first is not None else self._dead(c, PlanError("no end state left to try"))
+                if aimed or not self._needed(at, d):
+                    raise _wider(d, c) from None
+                at.first = d  # what the aimed ends are measured against, and refused with if none works
+        raise _wider(at.first, c) if at.first is not None else self._dead(c, PlanError("no end state left to try"))
+
+    def _try(self, at: _Clause, end: End) -> list[Step] | object | None:
+        """Plan ``at``'s clause with ``end`` and the later clauses after it: their steps, None when this end
+        leads nowhere (another may), or _SCENE when no other seed can do better (a check of the scene)."""
+        c, predicted = at.clause, at.predicted
+        if end.seed not in at.planned:
+            self.left -= 1
+            at.planned[end.seed] = None
+            try:
+                at.planned[end.seed] = self._plan(c, predicted, at.bundle, at.judge, end)
+            except _Dead as d:
+                at.first = at.first or d
+                if isinstance(d.error, InfeasibleError) and d.error.check != "no-motion":
+                    return _SCENE  # a check of the scene (no way in from afar...): another seed meets it again
+                return None
+            plan = at.planned[end.seed]
+        elif at.planned[end.seed] is None:
+            return None
+        else:
+            if end.turn:  # a turned end is planned to: a search, where there is one to plan to
+                goal = turned_goal(c, predicted, at.planned[end.seed], end.turn)
+                if goal is None or not self._keeps(at, goal, known=True):
+                    return None
+            if end.turn or end.aim is not None:
+                self.left -= 1
+            try:
+                plan = self._plan(c, predicted, at.bundle, at.judge, end, base=at.planned[end.seed])
+            except _Dead as d:
+                at.first = at.first or d
+                return None
+        base = at.planned[end.seed]
+        if end.cut is not None and np.allclose(plan.path[-1], base.path[-1]):
+            return None  # the cut leaves the end where it was: nothing new to try
+        if not self._keeps(at, plan.path[-1], known=True):
+            return None  # a later room check already failed for this mover's place there: it would again
+        self.kept[id(plan)] = at.checked + self.cost[id(plan)] + (
+            self.cost[id(base)] if end.cut is not None or end.turn or end.aim is not None else 0.0)
+        step = self._step(at, plan, end)
+        if not step.forecast.extra["verdict"]["success"]:
+            if end == DEFAULT:  # kept for last: clause by clause, it is what the chain would run
+                at.judged_short = (plan, end)
+            return None  # another end of this clause may be one its judge accepts; no other end it rejects is
+        try:
+            return [step, *self.steps(at.k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
+        except _Dead as d:
+            at.first = at.first or d
+            if d.blocks is not None and c.command.mover not in d.blocks:
+                raise at.first from None  # this clause's end does not move what failed: try an earlier one
+            self._needed(at, d)
+            return None
+
+    def _needed(self, at: _Clause, d: _Dead) -> bool:
+        """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads
+        where ``at``'s mover stands (its mover or anchor: not a clause sent back for its anchor's sake); whether it
+        is new."""
+        reads = (d.command.mover, *d.command.anchors) if d.command is not None else ()
+        if not d.room or d.clause <= at.clause.index or at.clause.command.mover not in reads or any(
+                (n.clause, n.room) == (d.clause, d.room) for n in at.needs):
+            return False
+        at.needs.append(d)
+        return True
+
+    def _aimed(self, at: _Clause) -> list[Step] | None:
+        """``at``'s clause planned with its aimed ends (aims.py) while the search has plans left: the steps of
+        the first that works, or None."""
+        if at.planned.get(0) is None or self.left <= 0:
+            return None
+        for pose in aimed_goals(at.predicted, at.clause.command.mover, at.planned[0], at.judge,
+                                lambda q: self._keeps(at, q), scenes=tuple(d.scene for d in at.needs),
+                                outlines=_outlines(at)):
+            if self.left <= 0:
+                break
+            found = self._try(at, End(0, aim=tuple(float(v) for v in pose)))
+            if isinstance(found, list):
+                return found
+        return None
 
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:
         from ..embodiment.execute import check_for  # lazy: the arm's modules load only when a chain is forecast
@@ -196,28 +302,54 @@ class _Searcher:
             plan = plan_clause(c, predicted, bundle, judge, self.opts, self.arm, end, base=base)
             check_for(manners.get(c.command.manner), predicted, c.command.mover, plan.path, self.arm)
         except L2PError as e:
-            raise self._dead(c, e) from None
+            raise self._dead(c, e, predicted) from None
         finally:
-            self.stats.plans += base is None or bool(end.turn)
+            self.stats.plans += base is None or bool(end.turn) or end.aim is not None
         self.cost[id(plan)] = time.perf_counter() - t0
         return plan
 
-    def _step(self, c: Clause, bundle: Any, model: Any, judge: Any, plan: Plan, end: End, scene: Scene) -> Step:
-        poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
-        outlines = outlines_of([scene.get(o) for o in (c.command.mover, *c.command.anchors)])
-        plan.extra["verdict"] = judge.judge(plan.path, plan.anchor_pose, plan.size,
-                                            final_progress=plan.extra.get("final_progress"),
-                                            **judge_context(poses, plan.viewer, judge=judge,
-                                                            outlines=outlines)).to_dict()
+    def _step(self, at: _Clause, plan: Plan, end: End) -> Step:
+        c, bundle, model, judge = at.clause, at.bundle, at.model, at.judge
+        plan.extra["verdict"] = verdict(judge, plan, final_progress=plan.extra.get("final_progress"),
+                                        outlines=_outlines(at))
         plan.extra.setdefault("sentence", c.text)
         return Step(c, bundle, model, judge, plan, end)
 
-    def _dead(self, c: Clause, e: L2PError) -> _Dead:
+    def _keeps(self, at: _Clause, pose: np.ndarray, known: bool = False) -> bool:
+        """Whether every later check ``at`` needs passes with its clause's mover at ``pose`` (in the scene it
+        failed in). ``known``: only the room checks that read nothing but the mover and the anchor (their
+        failure again is certain), and only their own failure counts (counted as a dead end, as if met)."""
+        c = at.clause
+        for d in at.needs:
+            if known and d.blocks is None:
+                continue
+            try:
+                check_feasible(d.command, d.scene.with_pose(c.command.mover, pose), self.plugins, self.arm)
+            except L2PError as e:
+                if not known:
+                    return False
+                if isinstance(e, InfeasibleError) and e.check == d.room:
+                    self._count(self.clauses[d.clause - 1], e)
+                    return False
+        return True
+
+    def _count(self, c: Clause, e: L2PError) -> str | None:
         check = e.check if isinstance(e, InfeasibleError) else None
         key = f"clause {c.index} ({check or _kind(e)})"
         self.stats.dead_ends[key] = self.stats.dead_ends.get(key, 0) + 1
+        return check
+
+    def _dead(self, c: Clause, e: L2PError, scene: Scene | None = None) -> _Dead:
+        check = self._count(c, e)
         reads = frozenset(c.command.anchors) | {c.command.mover} if check and check.startswith("room-") else None
-        return _Dead(e, c.index, reads)
+        return _Dead(e, c.index, reads, scene, c.command)
+
+
+def _wider(d: _Dead, c: Clause) -> _Dead:
+    """``d`` raised past ``c`` once every end of ``c`` failed: which ends ``c`` has depends on where its anchors
+    stand too (a block sent past an anchor on the workspace's rim ends by the rim), so a clause that moved
+    one of them is tried again as well."""
+    return d if d.blocks is None else replace(d, blocks=d.blocks | set(c.command.anchors))
 
 
 def _kind(e: L2PError) -> str:

@@ -52,6 +52,8 @@ def stand_in(calls: list):
             goal = start + (goal - start) * (0.5 if end.cut == "half" else 0.3)
         if end.turn:
             goal = turned_goal(clause, scene, base, end.turn)
+        if getattr(end, "aim", None) is not None:
+            goal = np.asarray(end.aim, float)
         path = np.linspace(start, goal, 6)
         anchor = scene.get(clause.command.anchor).pose
         return Plan(clause.command.action, clause.command.mover, clause.command.anchor, 0.04, np.asarray(anchor),
@@ -214,13 +216,14 @@ def test_a_turned_end_is_as_far_from_the_anchor_on_another_bearing(plugins):
 
 
 @pytest.mark.slow
-def test_away_then_around_it_plans_with_the_away_turned_off_the_rim(plugins):
+def test_away_then_around_it_plans_with_the_away_ended_off_the_rim(plugins):
     """Development chain seed 7003: every cut and seed of "away" leaves A too near the rim for "around A"
-    (refused clause by clause: room-around); its end turned about C keeps the same distance inside."""
+    (refused clause by clause: room-around); its end aimed where "around A" has room (tried before the other
+    seeds and the turns; a turn of -60 degrees about C did it before) is judged away and keeps clause 2."""
     scene = fit_scene(chain_scenes(1, 7003)[0].scene, PANDA)
     clauses = resolve_clauses("move A away from C, then move C around A", scene, plugins)
     steps = forecast(clauses, scene, plugins, seed=7003)
-    assert steps[0].end.turn != 0 and steps[0].forecast.extra["verdict"]["success"]
+    assert steps[0].end.aim is not None and steps[0].forecast.extra["verdict"]["success"]
     check_feasible(clauses[1].command, scene.with_pose("A", steps[0].forecast.path[-1]), plugins, PANDA)
 
 
@@ -254,3 +257,109 @@ def test_an_end_its_judge_rejects_is_never_chosen_to_keep_a_later_clause_possibl
     clauses = resolve_clauses("move A past B, then move C around A", scene, plugins)
     with pytest.raises(InfeasibleError, match=r'^clause 2 \("move C around A"\) cannot be planned \(room-around\)'):
         forecast(clauses, scene, plugins)
+
+
+def beyond(x: float, check: str = "room-around"):
+    """A room check that refuses "around A" wherever A stands at x > ``x`` (the stand-in's rim side)."""
+
+    def feasible(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "A" and scene.get("A").xy[0] > x:
+            raise InfeasibleError(check, 'no room around "A" by the rim')
+
+    return feasible
+
+
+def test_an_end_aimed_where_the_later_room_check_passes_keeps_the_chain(plugins, stand_ins, monkeypatch):
+    """Every end of clause 1 that the planner makes leaves A where "around A" has no room (x > 0.2); the place
+    nearest the planner's end where the check passes is planned to as a target, and the chain is planned."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", beyond(0.2))
+    monkeypatch.setattr(chain_forecast, "plan_clause", _all_past(0.2, stand_ins))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    aim = steps[0].end.aim
+    assert aim is not None and aim[0] <= 0.2 and steps[1].end == DEFAULT
+    assert np.allclose(steps[0].forecast.path[-1], aim)
+    assert np.hypot(*(np.asarray(aim[:2]) - RIM[:2])) <= 0.1 + 1e-9  # near the planner's own end: 2 blocks
+    assert steps[0].end.to_dict()["aim"] == [round(v, 6) for v in aim]  # plan.json's end_state says where
+    assert search.changed == [1]
+    # aimed right after the planner's own end and its cuts, before the blind searches (other seeds, turns)
+    assert all(e.seed == 0 and not e.turn for c, e in stand_ins if c == 1)
+
+
+def _all_past(x: float, calls: list):
+    """The stand-in planner with every end it makes itself (seeds, cuts, turns) beyond ``x``; an aimed end
+    goes where it is aimed."""
+    base = stand_in(calls)
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base_plan=None, **kw):
+        p = base(clause, scene, bundle, judge, options, arm, end, **kw)
+        if getattr(end, "aim", None) is None and clause.index == 1:
+            p.path[-1][0] = max(p.path[-1][0], x + 0.05 + 0.01 * end.seed)
+        return p
+
+    return plan
+
+
+def test_ends_a_known_room_failure_meets_again_are_not_planned_past(plugins, stand_ins, monkeypatch):
+    """Clause 3's room check reads only A, which clause 2 does not move: once it failed on A's place, clause 1's
+    other ends that leave A where it fails again are not planned past (clause 2 is planned once per clause 1
+    end that can work, not for every end)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", beyond(0.2))
+    monkeypatch.setattr(chain_forecast, "plan_clause", _all_past(0.2, stand_ins))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move D next to B, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert steps[0].end.aim is not None
+    assert [c for c, _ in stand_ins].count(2) == 2  # after the planner's own end, and after the aimed one
+
+
+def test_a_clause_with_no_end_left_sends_the_search_back_to_who_moved_its_anchor(plugins, stand_ins, monkeypatch):
+    """Clause 2 always leaves C a block and a half beyond A, whichever end; "around C" has no room when C is at
+    x > 0.3. No end of clause 2 helps; clause 1, which moved clause 2's anchor A, is tried again, and its end
+    cut short keeps the chain possible (before, clause 1 was skipped: it moves no block the check reads)."""
+
+    def around_c(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "C" and scene.get("C").xy[0] > 0.3:
+            raise InfeasibleError("room-around", 'no room around "C" by the rim')
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+        p = stand_in(stand_ins)(clause, scene, bundle, judge, options, arm, end, base=base)
+        if clause.index == 2:
+            p.path[-1][:2] = np.asarray(scene.get("A").xy) + (0.075, 0.0)
+        return p
+
+    monkeypatch.setattr(chain_forecast, "check_feasible", around_c)
+    monkeypatch.setattr(chain_forecast, "plan_clause", plan)
+    monkeypatch.setattr(chain_forecast, "aimed_goals", lambda *a, **k: [])  # no aimed end rescues clause 2
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C past A, then move D around C", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert steps[0].end != DEFAULT and steps[0].forecast.path[-1][0] + 0.075 <= 0.3
+
+
+def test_aimed_places_are_the_nearest_that_fit_pass_and_are_judged_and_asked_at_most_checks(plugins):
+    """aims.py on a real scene with stand-in checks: the places come nearest the planner's end first, inside
+    the workspace and clear of the other blocks, each one ``keeps`` accepts; ``keeps`` is asked at most
+    CHECKS times."""
+    from l2p_bullet.chain import aims
+
+    scene = four_blocks()
+    base = SimpleNamespace(path=np.array([[0.10, -0.08, 0.2], [0.28, -0.10, 0.2]]), anchor_pose=np.zeros(3),
+                           more_anchor_poses=None, size=0.04, viewer=None)
+    asked = []
+
+    def keeps(q):
+        asked.append(q)
+        return q[0] <= 0.21
+
+    judge = SimpleNamespace(judge=lambda *a, **k: SimpleNamespace(to_dict=lambda: {"success": True}))
+    got = aims.aimed_goals(scene, "A", base, judge, keeps)
+    assert len(got) == aims.AIMS and all(q[0] <= 0.21 and q[2] == 0.2 for q in got)
+    d = [np.hypot(*(q[:2] - base.path[-1][:2])) for q in got]
+    assert d == sorted(d) and d[0] <= 0.08 + 1e-9  # the first ring that reaches x <= 0.2 from x = 0.28
+    assert all(np.hypot(*q[:2]) <= 0.35 for q in asked)  # only places in the workspace are asked about
+    asked.clear()
+    assert aims.aimed_goals(scene, "A", base, judge, lambda q: asked.append(q) and False) == []
+    assert len(asked) == aims.CHECKS
