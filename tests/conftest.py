@@ -30,6 +30,16 @@ FOREIGN = frozenset(hide_plugins.key(ep) for group in hide_plugins.GROUPS for ep
 """Plugins (actions, arms, manners) installed in the environment before the tests started (not l2p-bullet's
 built-ins)."""
 
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+"""One BLAS / OpenMP thread in the tests and in every Python they start, unless the person running them chose:
+the suite runs a pytest-xdist worker per core, and numpy's OpenBLAS, which scores the planner's moves with the
+progress LSTMs in ``perform``, spins a second thread per process on those small products (a planned small mover
+by a tall anchor: 6.0 CPU s with it, 2.0 without, on the 2-core machine). Set here, before numpy is imported,
+so the xdist workers and the subprocesses inherit it; results do not depend on it (test_determinism_audit.py
+compares runs across thread counts)."""
+for _name in BLAS_THREADS:
+    os.environ.setdefault(_name, "1")
+
 if FOREIGN:
     _site = Path(tempfile.mkdtemp(prefix=hide_plugins.SITE_PREFIX))
     atexit.register(shutil.rmtree, _site, True)

@@ -104,19 +104,15 @@ def test_an_evaluation_workers_kept_folder_after_other_runs_is_a_fresh_perform(t
 
 
 @pytest.mark.slow
-def test_rendering_adds_images_and_changes_no_motion(tmp_path):
+def test_rendering_adds_images_and_changes_no_motion(push_run, tmp_path):
     from l2p_bullet.embodiment.sim.camera import RenderSettings
 
-    scene = random_scene(11)
-    perform("push A past B", scene, out_dir=tmp_path / "plain", render=False, seed=2)
     small = RenderSettings(width=64, height=48, fps=5.0, renderer="tiny", workers=0)
-    perform("push A past B", scene, out_dir=tmp_path / "drawn", render=True, seed=2, render_settings=small)
+    perform("push A past B", random_scene(11), out_dir=tmp_path / "drawn", render=True, seed=2, render_settings=small)
     assert list((tmp_path / "drawn" / "frames").glob("*.png"))
-    assert (tmp_path / "plain" / "trajectory.json").read_bytes() == (
-        tmp_path / "drawn" / "trajectory.json"
-    ).read_bytes()
-    assert _json(tmp_path / "plain", "plan.json") == _json(tmp_path / "drawn", "plan.json")
-    a, b = _json(tmp_path / "plain", "summary.json"), _json(tmp_path / "drawn", "summary.json")
+    assert (push_run / "trajectory.json").read_bytes() == (tmp_path / "drawn" / "trajectory.json").read_bytes()
+    assert _json(push_run, "plan.json") == _json(tmp_path / "drawn", "plan.json")
+    a, b = _json(push_run, "summary.json"), _json(tmp_path / "drawn", "summary.json")
     assert a["verdict"] == b["verdict"] and a["final_progress"] == b["final_progress"]
 
 
@@ -155,26 +151,39 @@ def _replay(plan: Path, out: Path) -> None:
     assert r.exit_code == 0, r.output
 
 
+@pytest.fixture(scope="module")
+def push_run(tmp_path_factory) -> Path:
+    """"push A past B" on random_scene(11) with seed 2, unrendered: performed once for the tests that compare a
+    rendered run or a replay with it (they only read it)."""
+    out = tmp_path_factory.mktemp("push") / "run"
+    perform("push A past B", random_scene(11), out_dir=out, render=False, seed=2)
+    return out
+
+
+@pytest.fixture(scope="module")
+def push_replay(push_run, tmp_path_factory) -> Path:
+    """``push_run``'s plan.json replayed once (read only)."""
+    out = tmp_path_factory.mktemp("push-replay") / "once"
+    _replay(push_run / "plan.json", out)
+    return out
+
+
 def _poses(folder: Path) -> np.ndarray:
     frames = json.loads((folder / "trajectory.json").read_text())["frames"]
     return np.array([[v for name in sorted(f["poses"]) for v in f["poses"][name]] for f in frames])
 
 
 @pytest.mark.slow
-def test_a_replay_of_a_replay_is_byte_identical(tmp_path):
+def test_a_replay_of_a_replay_is_byte_identical(push_replay, tmp_path):
     """A replay's plan.json holds exactly the path it executed, so replaying it again repeats it."""
-    perform("push A past B", random_scene(11), out_dir=tmp_path / "run", render=False, seed=2)
-    _replay(tmp_path / "run" / "plan.json", tmp_path / "once")
-    _replay(tmp_path / "once" / "plan.json", tmp_path / "twice")
-    assert (tmp_path / "once" / "trajectory.json").read_bytes() == (tmp_path / "twice" / "trajectory.json").read_bytes()
+    _replay(push_replay / "plan.json", tmp_path / "twice")
+    assert (push_replay / "trajectory.json").read_bytes() == (tmp_path / "twice" / "trajectory.json").read_bytes()
 
 
 @pytest.mark.slow
-def test_replaying_a_push_runs_plan_reproduces_the_run(tmp_path):
+def test_replaying_a_push_runs_plan_reproduces_the_run(push_run, push_replay):
     """plan.json holds the path as executed: rounded to 1e-6 m, the replayed push ended 1 mm and 6 degrees away."""
-    perform("push A past B", random_scene(11), out_dir=tmp_path / "run", render=False, seed=2)
-    _replay(tmp_path / "run" / "plan.json", tmp_path / "replay")
-    run, again = _poses(tmp_path / "run"), _poses(tmp_path / "replay")
+    run, again = _poses(push_run), _poses(push_replay)
     assert run.shape == again.shape and np.array_equal(run, again)
 
 

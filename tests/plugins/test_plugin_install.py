@@ -5,9 +5,9 @@ demonstrations in the capture-session format (:mod:`l2p_bullet.learning.syntheti
 train`` them into their packages, ``pip install`` the packages, and perform:
 
 - "to the left of" and "to the right of", declared in the viewer frame (as seen from the robot's base):
-  on 30 seeded scenes each, the block ends on the asked side of the anchor as the robot sees it, and the
+  on 12 seeded scenes each, the block ends on the asked side of the anchor as the robot sees it, and the
   left-of model scores right-of motions low (the old relative features could not tell them apart);
-- "between", declared with two anchors: on 30 seeded three-block scenes the block ends between the two
+- "between", declared with two anchors: on 12 seeded three-block scenes the block ends between the two
   without touching either, and neither anchor moves.
 
 The environment is made cheap: a bare ``venv`` (no pip of its own) whose ``.pth`` file adds the
@@ -38,7 +38,7 @@ from l2p_bullet.plugins.bundle import load_bundle
 pytestmark = pytest.mark.slow(30)  # each, with the plugins' training and install: the suite's longest module
 
 HERE = Path(__file__).resolve().parents[1]  # tests/: the shared helpers (plugin_runs.py)
-SCENES = 30
+SCENES = 12
 PLUGINS = {  # action: (phrase, new-action options)
     "left-of": ("to the left of", ["--frame", "viewer", "--judge", "left-of"]),
     "right-of": ("to the right of", ["--frame", "viewer", "--judge", "right-of"]),
