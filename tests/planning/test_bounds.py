@@ -127,8 +127,8 @@ def test_closers_share_is_the_most_of_its_room_any_person_went_back():
         shares.append(float(np.max(dist - np.minimum.accumulate(dist))) / closer_room(float(dist[0])))
     assert len(shares) == 41
     assert CLOSER_GOES_BACK_WITHIN == CLOSER.thresholds["goes_back_within"] == math.ceil(max(shares) * 100) / 100
-    back = PEOPLE_BOUNDS[CLOSER.rules].keywords["weights"][0]  # with the share it closes (test_touching_starts)
-    assert back.func is back_weight and back.keywords == {"within": CLOSER_GOES_BACK_WITHIN}
+    assert PEOPLE_BOUNDS[CLOSER.rules].func is back_weight
+    assert PEOPLE_BOUNDS[CLOSER.rules].keywords == {"within": CLOSER_GOES_BACK_WITHIN}
 
 
 def test_a_path_going_back_within_the_share_keeps_the_models_score_and_one_beyond_loses_a_share_per_share():

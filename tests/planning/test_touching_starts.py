@@ -33,10 +33,11 @@ def _touching(turn: float, gap: float = 0.002) -> Scene:
     return _pair((SIZE / 2 + gap + half, 0.0), turn)
 
 
-def test_closer_plans_within_the_share_of_its_room_the_rule_asks():
-    back, close = PEOPLE_BOUNDS[CLOSER.rules].keywords["weights"]
-    assert back.func is back_weight and close.func is close_weight
-    assert close.keywords == {"within": CLOSER.thresholds["share"]}
+def test_closer_plans_with_its_goes_back_bound_alone():
+    """"closes-at-least" is a bound a plugin may declare; the built-in "closer" does not: measured on chains of
+    seeds 9600-9699, it left five clauses from 1.25 blocks short of half their room (docs/planning.md)."""
+    bound = PEOPLE_BOUNDS[CLOSER.rules]
+    assert bound.func is back_weight and bound.keywords == {"within": CLOSER.thresholds["goes_back_within"]}
 
 
 def test_a_candidate_closing_less_than_half_its_room_is_weighted_down_by_how_much_less():
