@@ -52,7 +52,7 @@ PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("you",), ("yourself",),
                ("your", "base"))
 """The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
-NEAREST = frozenset({"nearest", "closest", "nearer", "closer"})
+NEAREST = frozenset("nearest closest nearer closer".split())  # English words of place ("the cube closer to you")
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
 OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),

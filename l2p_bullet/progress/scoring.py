@@ -45,7 +45,9 @@ class ScoringMixin:
     """
 
     qsr_cfg: QSRConfig
-    reads_outlines = True
+    # False: the bundles were trained on unit squares; fed real outlines, the planner slid a tray onto its anchor
+    # (it rode up 3.5 mm: not a slide). A model trained on outlines sets True; the rule judges read them anyway.
+    reads_outlines = False
 
     def forward_features(self, feats: np.ndarray, lengths: np.ndarray | None = None) -> np.ndarray:
         raise NotImplementedError

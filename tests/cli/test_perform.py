@@ -90,7 +90,8 @@ def test_perform_api_judges_the_executed_trajectory(tmp_path):
 
 def test_bad_sentence_is_one_line_error_and_no_folder(tmp_path):
     out = tmp_path / "never"
-    result = CliRunner().invoke(main, ["perform", "move A arround B", "--no-render", "--out", str(out)])
+    # "arround" is mended to "around" (language/typos.py: one keystroke); "arrond" is two from it
+    result = CliRunner().invoke(main, ["perform", "move A arrond B", "--no-render", "--out", str(out)])
     assert result.exit_code != 0
     lines = result.output.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and "Traceback" not in result.output

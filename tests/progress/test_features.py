@@ -182,6 +182,8 @@ def test_the_planner_gives_the_model_the_footprints_only_where_an_object_is_not_
 
     monkeypatch.setattr(ScoringMixin, "final_batch", spy)
     bundle = registry.load("next-to")
+    assert not bundle.progress_model().reads_outlines  # the built-in bundles were trained on squares
+    monkeypatch.setattr(ScoringMixin, "reads_outlines", True)  # a model trained on outlines declares it
     cube = SceneObject("A", "red", 0.04, (-0.1, 0.0))
     box = Scene([cube, shaped("B", "green", (0.0, 0.1), dims=(0.12, 0.06, 0.04))]).validate()
     planning.plan(box, "A", "B", bundle, budget=2)
