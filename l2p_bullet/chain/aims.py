@@ -25,7 +25,7 @@ import numpy as np
 
 from ..core.contracts import Plan
 from ..core.scene import Scene
-from ..judge import judge_context
+from ..judge import plan_verdict
 from ..planning.problem import FRAME_STEP
 from ..planning.world2d import World2D, segment_frames
 
@@ -85,15 +85,5 @@ def _slide_starts(base: Plan) -> list[np.ndarray]:
     return [path[:1], path[:k + 1]] if k > 0 else [path[:1]]
 
 
-def verdict(judge: Any, plan: Plan, path: np.ndarray | None = None, final_progress: float | None = None,
-            outlines: list[np.ndarray] | None = None) -> dict:
-    """``judge``'s verdict on ``path`` (default ``plan``'s) with ``plan``'s anchors, size and viewpoint, and the
-    objects' real ``outlines`` (``judge.footprints.outlines_of``; None for cubes)."""
-    poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
-    return judge.judge(plan.path if path is None else path, plan.anchor_pose, plan.size,
-                       final_progress=final_progress,
-                       **judge_context(poses, plan.viewer, judge=judge, outlines=outlines)).to_dict()
-
-
 def _accepts(judge: Any, base: Plan, path: np.ndarray, outlines: list[np.ndarray] | None = None) -> bool:
-    return bool(verdict(judge, base, path, outlines=outlines)["success"])
+    return bool(plan_verdict(judge, base, path, outlines=outlines)["success"])

@@ -161,14 +161,14 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
     comma ("shove D toward A and drag E around C", "put B next to the duck and A next to E"), both; else as
     one of chain/pointing.py's readings ("do the same with C", "move them both ...")."""
     context = context or _context(previous)
+    full = _complete(text, previous, scene, plugins)
     try:
-        return [(text, resolve(_complete(text, previous, scene, plugins), scene, plugins, context))]
+        return [(text, resolve(full, scene, plugins, context))]
     except L2PError:
         if previous is not None and context == _context(previous) and re.search(r"\bit\b", text, re.IGNORECASE):
             # "move B toward C, then past it": "it" cannot be the block being moved, so it is the other one
             try:
-                turned = Context(previous.anchor, previous.mover)
-                return [(text, resolve(_complete(text, previous, scene, plugins), scene, plugins, turned))]
+                return [(text, resolve(full, scene, plugins, Context(previous.anchor, previous.mover)))]
             except L2PError:
                 pass
         pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)

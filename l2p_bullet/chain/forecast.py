@@ -36,13 +36,13 @@ import numpy as np
 from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
-from ..judge import judge_for
+from ..judge import judge_for, plan_verdict
 from ..judge.footprints import outlines_of
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
-from .aims import aimed_goals, verdict
+from .aims import aimed_goals
 from .clause import Clause, named
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
@@ -310,8 +310,8 @@ class _Searcher:
 
     def _step(self, at: _Clause, plan: Plan, end: End) -> Step:
         c, bundle, model, judge = at.clause, at.bundle, at.model, at.judge
-        plan.extra["verdict"] = verdict(judge, plan, final_progress=plan.extra.get("final_progress"),
-                                        outlines=_outlines(at))
+        plan.extra["verdict"] = plan_verdict(judge, plan, final_progress=plan.extra.get("final_progress"),
+                                             outlines=_outlines(at))
         plan.extra.setdefault("sentence", c.text)
         return Step(c, bundle, model, judge, plan, end)
 

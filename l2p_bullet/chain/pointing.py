@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object
-from ..language.references import object_pairs
+from ..language.references import two_references
 from ..pipeline import resolve
 
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
@@ -154,8 +154,7 @@ def _objects(text: str, scene: Scene, context: Context | None) -> tuple[str, ...
     except (LanguageError, UnknownObjectError):
         pass
     words = text.split()
-    pair = next((p for p in object_pairs(words, scene, ("block", "block"), context)
-                 if isinstance(p, tuple) and p[0] != p[1]), None)
+    pair = two_references(words, scene, "block", context)
     if pair is None and len(words) >= 4 and words[-1].lower().rstrip("s") in ("cube", "block", "object", "one"):
         noun = words[-1].rstrip("sS")  # "the red and the blue cubes": each colour with the noun
         split = [w.lower() for w in words].index("and") if "and" in (w.lower() for w in words) else -1

@@ -24,11 +24,12 @@ import importlib
 from typing import Any
 
 from ..errors import FailedToLoadPlugin, L2PError
-from .base import Judge, Verdict, judge_context
+from .base import Judge, Verdict, judge_context, plan_verdict
 from .learned import THRESHOLD, LearnedJudge
 from .rules import RULES, TWO_ANCHOR_RULES, RuleJudge, rule_verdict
 
-__all__ = ["Judge", "Verdict", "RuleJudge", "LearnedJudge", "RULES", "rule_verdict", "judge_for", "judge_context"]
+__all__ = ["Judge", "Verdict", "RuleJudge", "LearnedJudge", "RULES", "rule_verdict", "judge_for", "judge_context",
+           "plan_verdict"]
 
 
 def judge_for(bundle: Any) -> Judge:

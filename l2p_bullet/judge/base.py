@@ -69,3 +69,14 @@ def judge_context(anchors: list[np.ndarray], viewer: np.ndarray | None, *, judge
         kw["outlines"] = outlines
     return kw
 
+
+def plan_verdict(judge: Judge, plan: Any, path: np.ndarray | None = None, *, final_progress: float | None = None,
+                 outlines: list[np.ndarray] | None = None) -> dict[str, Any]:
+    """``judge``'s verdict (as a dict) on ``path`` (default: the plan's own) with the plan's anchors, block size
+    and viewpoint (a :class:`~l2p_bullet.core.contracts.Plan`), and the objects' real ``outlines`` (None for
+    cubes): how ``perform`` and a chain's forecast judge a plan before anything moves."""
+    poses = [plan.anchor_pose, *([] if plan.more_anchor_poses is None else list(plan.more_anchor_poses))]
+    return judge.judge(plan.path if path is None else path, plan.anchor_pose, plan.size,
+                       final_progress=final_progress,
+                       **judge_context(poses, plan.viewer, judge=judge, outlines=outlines)).to_dict()
+

@@ -179,13 +179,17 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
         return _the_other(said, words[2:], context, role, scene)
     if low in PRONOUNS_MOVER or low in PRONOUNS_ANCHOR:
         if context is None or context.mover is None:
-            raise LanguageError(f'"{said}" ({role}) points back to an earlier clause, and there is none; '
-                                "name the block")
+            raise _no_earlier(said, role)
         if low in PRONOUNS_MOVER:
             return context.mover
         _no_twin(said, context, scene)
         return context.anchor
     return None
+
+
+def _no_earlier(said: str, role: str) -> LanguageError:
+    """The error for a word that points back ("it", "that cylinder", "the other red cube") in a first clause."""
+    return LanguageError(f'"{said}" ({role}) points back to an earlier clause, and there is none; name the block')
 
 
 def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
@@ -204,7 +208,7 @@ def _that_kind(said: str, noun: str, context: Context | None, role: str, scene: 
     if context is None or context.mover is None:
         if noun in _name_words(scene):
             return None  # "that duck" in a first clause: the duck
-        raise LanguageError(f'"{said}" ({role}) points back to an earlier clause, and there is none; name the block')
+        raise _no_earlier(said, role)
     for name in (context.mover, context.anchor):
         if name is not None and name in scene.names and _fits_kind(scene.get(name), noun, scene):
             return name
@@ -215,7 +219,7 @@ def _the_other(said: str, words: list[str], context: Context | None, role: str, 
     """"the other red cube", "the other white object": what the rest describes, other than the previous clause's
     mover; refused unless exactly one object is left."""
     if context is None or context.mover is None:
-        raise LanguageError(f'"{said}" ({role}) points back to an earlier clause, and there is none; name the block')
+        raise _no_earlier(said, role)
     low = tuple(w.lower() for w in words)
     fits = [o for o in _candidates(said, words, low, scene) if o.name != context.mover]
     if len(fits) != 1:
@@ -325,7 +329,7 @@ def _by_size(text: str, pool: list[SceneObject], sizes: list[str], scene: Scene,
         for word in sizes:
             height = word in TALL or word not in BIG | SMALL
             pick = max if word in BIG | TALL else min
-            values = {o.name: float(o.geometry.height if height else o.size) for o in pool}
+            values = {o.name: _measure(o, "height" if height else "area") for o in pool}
             best = pick(values.values())
             tied = [o for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
             if len(tied) > 1 and len(tied) < len(pool):
@@ -447,7 +451,7 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
     if "between" not in low[1:]:
         return None
     at = low.index("between", 1)
-    ends = _two_references(words[at + 1:], scene, role, context)
+    ends = two_references(words[at + 1:], scene, role, context)
     if ends is None:
         return None
     a, b = (np.asarray(scene.get(n).xy, float) for n in ends)
@@ -473,7 +477,7 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
     return _either_reading(words[:at], scene, choose)
 
 
-def _two_references(words: list[str], scene: Scene, role: str, context: Context | None) -> tuple[str, str] | None:
+def two_references(words: list[str], scene: Scene, role: str, context: Context | None) -> tuple[str, str] | None:
     """"A and C", "the red and blue cubes" -> two different objects' names; None when ``words`` are not two."""
     return next((p for p in object_pairs(words, scene, (role, role), context) if isinstance(p, tuple) and p[0] != p[1]),
                 None)

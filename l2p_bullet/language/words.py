@@ -41,7 +41,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "if you can", "if possible", "when you can", "if you would",
-    "pls", "plz", "pls ty", "pls thx", "ty", "tia", "many thanks", "thanks in advance", "thank you in advance",
+    "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
     "and let go", "and let go of it", "and set it down there", "and put it down there",
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
@@ -259,12 +259,12 @@ def state_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
     if not low or low[0] in verbs:
         return words
     for k in range(1, len(low)):
-        for link in STATE_LINKS:
-            if tuple(low[k:k + len(link)]) != link or k + len(link) >= len(low):
-                continue
-            for j in range(k):
-                if is_object(" ".join(words[j:k])):
-                    return ["move", *words[j:k], *words[k + len(link):]]
+        link = next((t for t in STATE_LINKS if tuple(low[k:k + len(t)]) == t and k + len(t) < len(low)), None)
+        if link is None:
+            continue
+        for j in range(k):  # the mover's words end at k whichever link follows: searched once
+            if is_object(" ".join(words[j:k])):
+                return ["move", *words[j:k], *words[k + len(link):]]
     return words
 
 

@@ -45,7 +45,7 @@ from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..embodiment.manners import check_manner, manner_planning
 from ..errors import L2PError, LanguageError, PluginError, listed
-from ..judge import judge_context, judge_for
+from ..judge import judge_context, judge_for, plan_verdict
 from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
 from ..language import Command, Context, parse
@@ -188,11 +188,8 @@ def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: f
     result = apply_extent(result, cmd.extent, p.judge, p.scene)  # "far away from", "a bit closer to"
     result.extra.setdefault("sentence", cmd.sentence)
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
-    poses = [result.anchor_pose, *([] if result.more_anchor_poses is None else list(result.more_anchor_poses))]
-    outlines = outlines_of([p.scene.get(o) for o in (cmd.mover, *cmd.anchors)])
-    verdict = p.judge.judge(result.path, result.anchor_pose, result.size,
-                            final_progress=result.extra.get("final_progress"),
-                            **judge_context(poses, result.viewer, judge=p.judge, outlines=outlines)).to_dict()
+    verdict = plan_verdict(p.judge, result, final_progress=result.extra.get("final_progress"),
+                           outlines=outlines_of([p.scene.get(o) for o in (cmd.mover, *cmd.anchors)]))
     return result, verdict
 
 

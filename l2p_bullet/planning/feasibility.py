@@ -204,8 +204,7 @@ def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] 
     m, a = scene.get(mover), scene.get(anchor)
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / m.size
     outlines = outlines_of([m, a])  # the judge's room: to where the real footprints touch, unless both are cubes
-    room = closer_room(d0) if outlines is None else closer_room(
-        d0, touch_distance((np.asarray(m.xy) - a.xy) / m.size, m.pose, a.pose, m.size, outlines))
+    room = closer_room(d0, touch_distance((np.asarray(m.xy) - a.xy) / m.size, m.pose, a.pose, m.size, outlines))
     target = d0 - thresholds["share"] * room
     gap = clearance(scene, mover, anchor, holds)
     nearest = ((nearest_centres(m, a) if turns else nearest_at_yaws(m, a)) + gap) / m.size

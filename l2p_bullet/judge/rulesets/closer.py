@@ -45,8 +45,7 @@ def went_back(d: np.ndarray) -> float:
 
 def closer(rel: np.ndarray, d: np.ndarray, mover: np.ndarray, anchor: np.ndarray, size: float, *,
            outlines: list[np.ndarray] | None = None, **_: object) -> Verdict:
-    room = closer_room(float(d[0])) if outlines is None else closer_room(
-        float(d[0]), touch_distance(rel[0], mover[0], anchor[0], size, outlines))
+    room = closer_room(float(d[0]), touch_distance(rel[0], mover[0], anchor[0], size, outlines))
     moved = float(d[0]) - float(d[-1])
     closed = moved / room
     rise = went_back(d)
