@@ -25,7 +25,8 @@ from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
-from .references import CONJUNCTIONS, Context, measured_from, object_pairs, resolve_object
+from .reference_words import CONJUNCTIONS
+from .references import Context, measured_from, object_pairs, resolve_object
 from .words import (
     COMPARATIVES,
     by_gerund,

@@ -12,7 +12,6 @@ the robot's (the scene's +y is its left, DESIGN.md section 4), the view of a per
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -20,74 +19,34 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .synonyms import BIG, KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_groups, kind_words
-
-DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
-NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
-SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "cylinder": "cylinder",
-               "can": "cylinder", "cylinders": "cylinder"}
-"""Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red
-box", "the white cube") any block-shaped object (a cube or a box: people call any block a box or a
-cube), never a cylinder or a mesh."""
-STRICT_SHAPES = frozenset({"cylinder"})
-"""Shapes no one calls another shape by: "the red cylinder" is refused where the red object is a cube."""
-SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "long": "box", "cubic": "cube",
-                    "square": "cube", "cylindrical": "cylinder", "round": "cylinder"}
-"""Adjectives that name a shape: they restrict like a shape named alone, colour or not ("the yellow
-rectangular block" is a box)."""
-SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
-"""Adjectives people add to a description that already picks one object ("the toy duck", "the little red
-cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
-COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
-FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
-                            "and", "or", "then", "so", "it", "not", "no", "other", "another", "first", "second",
-                            "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
-"""Words never taken as an object's own adjective ("the second duck" is not "the duck")."""
-NAMED_AS = (("called",), ("named",))
-PRONOUNS_MOVER = (("it",), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
-                  ("the", "same", "one"), ("the", "same", "object"), ("that",))
-SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
-"""Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
-PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
-ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("you",), ("yourself",),
-               ("your", "base"))
-"""The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
-NEAREST = frozenset("nearest closest nearer closer".split())  # English words of place ("the cube closer to you")
-FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
-"""Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
-OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),
-            ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")}
-"""Free relatives that open a description ("whatever is closest to A"): the one that is."""
-RELATIVES = (("that", "is"), ("which", "is"), ("that's",), ("thats",), ("which's",))
-"""A relative clause after a noun ("the cube that is red", "the block that's closest to E"): its words describe
-the noun as if they stood before it."""
-SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smallest": ("area", min),
-                     "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
-                     "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
-                     "backmost": ("x", max), "frontmost": ("x", min)}
-TIE = 0.02
-TIE_M = 0.002
-"""Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:
-the description is ambiguous."""
-TIE_PLACE = 0.45
-"""Where a superlative compares places (leftmost, nearest), two objects whose places differ by less than this
-many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""
-CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "center", "of", "the", "table"),
-                  ("in", "the", "centre", "of", "the", "table"), ("in", "the", "middle"), ("in", "the", "center"),
-                  ("in", "the", "centre"))
-"""A place on the table that names the object nearest the table's centre (the scene frame's origin)."""
-SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "right"): "rightmost",
-                ("on", "the", "left"): "leftmost", ("on", "the", "right"): "rightmost",
-                ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost",
-                ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
-                ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"}
-"""Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
-the one farthest from the robot, along the scene's +x)."""
-SIDE_CONE = math.radians(45)
-""""Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
-SIDES = {"left of": math.pi / 2, "right of": -math.pi / 2, "behind": 0.0, "in front of": math.pi}
-"""Relations to a reference as the robot sees it -> their direction in the scene (radians from +x, away from
-the robot): behind is further from the robot, in front nearer to it."""
+from .places import bearing_off, distance_to, either_reading, measure, named_colours, relation_head, superlative
+from .reference_words import (
+    BLOCK_SHAPES,
+    BLOCK_WORDS,
+    CENTRE_PHRASES,
+    COLOR_SYNONYMS,
+    CONJUNCTIONS,
+    DETERMINERS,
+    FUNCTION_WORDS,
+    NAMED_AS,
+    NEAREST,
+    NOUNS,
+    OPENINGS,
+    PRONOUNS_ANCHOR,
+    PRONOUNS_MOVER,
+    RELATIVES,
+    ROBOT_WORDS,
+    SAME_WORDS,
+    SHAPE_ADJECTIVES,
+    SHAPE_NOUNS,
+    SIDE_CONE,
+    SIDE_PHRASES,
+    SIDES,
+    SIZE_SUPERLATIVES,
+    SOFT_ADJECTIVES,
+    STRICT_SHAPES,
+)
+from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_groups, kind_words
 
 
 @dataclass(frozen=True)
@@ -113,7 +72,7 @@ def measured_from(text: str, scene: Scene, context: Context | None = None) -> st
     the cylinder away from it"), since the block moved cannot be moved away from itself."""
     words = _plain_order(text.split(), scene)
     low = tuple(w.lower() for w in words)
-    head = _head_end(low)
+    head = relation_head(low)
     if head is None or head[0] in SIZE_SUPERLATIVES:
         return None
     ref = _reference_point(words[head[2]:], scene, "reference block", context)
@@ -259,7 +218,7 @@ def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, 
     readings: list[str | Exception] = []
     for pool in pools:
         try:
-            readings.append(_by_size(text, pool, sizes, scene, _colours(low)))
+            readings.append(_by_size(text, pool, sizes, scene, named_colours(low)))
         except (LanguageError, UnknownObjectError) as e:
             readings.append(e)
     picked = sorted({r for r in readings if isinstance(r, str)})
@@ -287,7 +246,7 @@ def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         _unknown(text, words, low, scene)
     else:
         return list(scene.objects)  # "the tall": size words alone
-    colours = _colours(low)
+    colours = named_colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS]
     groups = kind_groups(scene)
     kinds = [groups[w] for w in low if w in groups and w not in names]  # "the red mug" among two mugs
@@ -329,7 +288,7 @@ def _by_size(text: str, pool: list[SceneObject], sizes: list[str], scene: Scene,
         for word in sizes:
             height = word in TALL or word not in BIG | SMALL
             pick = max if word in BIG | TALL else min
-            values = {o.name: _measure(o, "height" if height else "area") for o in pool}
+            values = {o.name: measure(o, "height" if height else "area") for o in pool}
             best = pick(values.values())
             tied = [o for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
             if len(tied) > 1 and len(tied) < len(pool):
@@ -351,11 +310,6 @@ def _name_words(scene: Scene) -> dict[str, str]:
     out.update(kind_words(scene))
     out.update({n.lower(): n for n in scene.names})
     return out
-
-
-def _colours(low) -> set[str]:
-    """The colours ``low`` (lower-case words) name, synonyms resolved ("grey" is gray)."""
-    return {c for w in low if (c := COLOR_SYNONYMS.get(w, w)) in COLORS}
 
 
 def _unknown(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:
@@ -383,16 +337,6 @@ def _one(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) ->
     raise LanguageError(f'"{text}" is ambiguous: it fits {len(fits)} objects ({listed}); name the one you mean')
 
 
-def _measure(o: SceneObject, what: str) -> float:
-    """A length in metres: the footprint's side (its area's square root), the height, y (leftness) or x (how far
-    back from the robot)."""
-    if what == "area":
-        return float(o.size)
-    if what == "height":
-        return float(o.geometry.height)
-    return float(o.xy[0] if what == "x" else o.xy[1])
-
-
 def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
                 context: Context | None) -> str | None:
     """Superlatives and relations: None when ``words`` hold none (then colours and names are tried).
@@ -403,7 +347,7 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     placed = _placed(words, low, scene, role, context)
     if placed is not None:
         return placed
-    head = _head_end(low)
+    head = relation_head(low)
     if head is None:
         return None
     kind, at, end = head
@@ -414,8 +358,8 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
         place = what in ("x", "y")
-        return _either_reading(
-            described, scene, lambda pool: _superlative(pool, lambda o: _measure(o, what), pick, kind, place)
+        return either_reading(
+            described, scene, lambda pool: superlative(pool, lambda o: measure(o, what), pick, kind, place)
         )
     ref = _reference_point(rest_words, scene, role, context)
     if ref is None:
@@ -425,14 +369,14 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     def choose(pool: list[SceneObject]) -> str:
         pool = [o for o in pool if o.name != ref_name]
         if kind in SIDES:
-            beside = [o for o in pool if _bearing_off(np.subtract(o.xy, ref_xy), SIDES[kind]) <= SIDE_CONE]
+            beside = [o for o in pool if bearing_off(np.subtract(o.xy, ref_xy), SIDES[kind]) <= SIDE_CONE]
             if not beside:
                 raise UnknownObjectError(f'nothing in the scene is {kind} {ref_name or "the robot"} as the robot '
                                          f"sees it (blocks: {describe(scene)})")
-            return _superlative(beside, lambda o: _distance(o, ref_xy), min, f"{kind} of", place=True)
-        return _superlative(pool, lambda o: _distance(o, ref_xy), min if kind in NEAREST else max, kind, place=True)
+            return superlative(beside, lambda o: distance_to(o, ref_xy), min, f"{kind} of", place=True)
+        return superlative(pool, lambda o: distance_to(o, ref_xy), min if kind in NEAREST else max, kind, place=True)
 
-    return _either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
+    return either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
 
 
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:
@@ -440,14 +384,14 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
     between A and C" (nearest the middle of the two, and lying between them); None when ``words`` name none."""
     for phrase in CENTRE_PHRASES:
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
-            return _either_reading(words[:-len(phrase)], scene, lambda pool: _superlative(
-                pool, lambda o: _distance(o, (0.0, 0.0)), min, "in the middle", place=True))
+            return either_reading(words[:-len(phrase)], scene, lambda pool: superlative(
+                pool, lambda o: distance_to(o, (0.0, 0.0)), min, "in the middle", place=True))
     for phrase, kind in SIDE_PHRASES.items():
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
             what, pick = SIZE_SUPERLATIVES[kind]
             said = " ".join(phrase)
-            return _either_reading(words[:-len(phrase)], scene, lambda pool, what=what, pick=pick, said=said:
-                                   _superlative(pool, lambda o: _measure(o, what), pick, said, place=True))
+            return either_reading(words[:-len(phrase)], scene, lambda pool, what=what, pick=pick, said=said:
+                                   superlative(pool, lambda o: measure(o, what), pick, said, place=True))
     if "between" not in low[1:]:
         return None
     at = low.index("between", 1)
@@ -472,19 +416,15 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
             raise UnknownObjectError(f"nothing in the scene lies between {ends[0]} and {ends[1]} "
                                      f"(blocks: {describe(scene)})")
         mid = tuple((a + b) / 2)
-        return _superlative(inside, lambda o: _distance(o, mid), min, "between", place=True)
+        return superlative(inside, lambda o: distance_to(o, mid), min, "between", place=True)
 
-    return _either_reading(words[:at], scene, choose)
+    return either_reading(words[:at], scene, choose)
 
 
 def two_references(words: list[str], scene: Scene, role: str, context: Context | None) -> tuple[str, str] | None:
     """"A and C", "the red and blue cubes" -> two different objects' names; None when ``words`` are not two."""
     return next((p for p in object_pairs(words, scene, (role, role), context) if isinstance(p, tuple) and p[0] != p[1]),
                 None)
-
-
-CONJUNCTIONS = frozenset({"and", "&"})
-"""Words that join two reference objects ("between B and C", "the cube between A and C")."""
 
 
 def object_pairs(words: list[str], scene: Scene, roles: tuple[str, str],
@@ -501,77 +441,6 @@ def object_pairs(words: list[str], scene: Scene, roles: tuple[str, str],
             yield e
 
 
-BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})
-BLOCK_SHAPES = frozenset({"cube", "box"})
-REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
-                            | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
-"""Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",
-"you"): known words, which a reader of typing slips leaves as they are."""
-
-
-def _either_reading(described: list[str], scene: Scene, choose) -> str:
-    """``choose`` over the objects ``described`` allows; with "block" in it, over the block-shaped ones too, and
-    the description refused as ambiguous where the two readings differ."""
-    pool = _pool(" ".join(described), scene)
-    if not {w.lower() for w in described} & BLOCK_WORDS:
-        return choose(pool)
-    readings = []
-    for candidates in (pool, [o for o in pool if o.shape in BLOCK_SHAPES]):
-        try:
-            readings.append(choose(candidates))
-        except (LanguageError, UnknownObjectError) as e:
-            readings.append(e)
-    if isinstance(readings[0], str) and readings[0] == readings[1]:
-        return readings[0]
-    said = " ".join(described + ["..."])
-    picks = sorted({r for r in readings if isinstance(r, str)})
-    raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0] if picks else "none"}, as a block '
-                        f'(a cube or a box) {"another" if len(picks) > 1 else "not one"}; name the one you mean')
-
-
-def _distance(o: SceneObject, xy: tuple[float, float]) -> float:
-    """Centre to ``xy`` in metres: what "nearest" and "farthest" compare."""
-    return float(np.hypot(o.xy[0] - xy[0], o.xy[1] - xy[1]))
-
-
-def _head_end(low: tuple[str, ...]) -> tuple[str, int, int] | None:
-    """(the relation's word, where its phrase starts, where its reference starts) or None."""
-    for i, w in enumerate(low):
-        if w in SIZE_SUPERLATIVES:
-            return w, i, i + 1
-        if w in NEAREST | FARTHEST:
-            j = i + 1
-            if j < len(low) and low[j] in NOUNS:  # "the closest block to the duck"
-                j += 1
-            if j < len(low) and low[j] in ("to", "from"):
-                j += 1
-            return w, i, j
-        if w in ("left", "right") and i + 1 < len(low) and low[i + 1] == "of":
-            start = i
-            while start > 0 and low[start - 1] in ("to", "on", "the"):
-                start -= 1
-            return f"{w} of", start, i + 2
-        if w == "behind" and i > 0:
-            return w, i, i + 1
-        if low[i:i + 3] == ("in", "front", "of") and i > 0:
-            return "in front of", i, i + 3
-    return None
-
-
-def _pool(restrict: str, scene: Scene) -> list[SceneObject]:
-    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows."""
-    low = [w.lower() for w in restrict.split()]
-    low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
-    colours = _colours(low)
-    fits = list(scene.objects)
-    if colours:
-        fits = [o for o in fits if o.color in colours]
-    shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
-    if shapes:
-        fits = [o for o in fits if o.shape in shapes]
-    return fits
-
-
 def _reference_point(words: list[str], scene: Scene, role: str,
                      context: Context | None) -> tuple[str | None, tuple[float, float]] | None:
     low = tuple(w.lower() for w in words)
@@ -586,26 +455,3 @@ def _reference_point(words: list[str], scene: Scene, role: str,
     return name, tuple(scene.get(name).xy)
 
 
-def _bearing_off(v: np.ndarray, direction: float) -> float:
-    """The angle between ``v`` and the scene direction ``direction`` (radians from +x: the robot's left is pi/2)."""
-    ang = math.atan2(float(v[1]), float(v[0]))
-    return abs(math.remainder(ang - direction, 2 * math.pi))
-
-
-def _superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False) -> str:
-    """The one object of ``pool`` that ``pick`` (min or max) of ``measure`` chooses; ties are ambiguous. With
-    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides."""
-    if not pool:
-        raise UnknownObjectError(f'no object in the scene is the "{word}" one')
-    values = {o.name: measure(o) for o in pool}
-    best = pick(values.values())
-    winner = next(o for o in pool if values[o.name] == best)
-
-    def tol(o: SceneObject) -> float:
-        t = max(TIE * abs(best), TIE_M)
-        return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place else t
-
-    tied = [o.name for o in pool if abs(values[o.name] - best) <= tol(o)]
-    if len(tied) > 1:
-        raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
-    return tied[0]

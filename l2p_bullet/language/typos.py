@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from . import references, words
+from . import reference_words, words
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -34,7 +34,7 @@ bit little lot much more less way little slightly
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
     """Every word the grammar knows: the installed phrases' and verbs' words, the colour names, the words of
-    politeness, framing, pace and extent (language/words.py), of references (language/references.py), and
+    politeness, framing, pace and extent (language/words.py), of references (language/reference_words.py), and
     :data:`COMMON`."""
     known: set[str] = set(COMMON)
     for text in (*phrases, *verbs, *colours):
@@ -45,10 +45,9 @@ def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[s
             known.update(phrase)
     known.update(words.PACES)
     known.update(words.COMPARATIVE_WORDS)
-    for table in (references.DETERMINERS, references.NOUNS, references.SHAPE_NOUNS, references.SHAPE_ADJECTIVES,
-                  references.SOFT_ADJECTIVES, references.COLOR_SYNONYMS, references.FUNCTION_WORDS,
-                  references.NEAREST, references.FARTHEST, references.SIZE_SUPERLATIVES,
-                  references.REFERENCE_WORDS):
+    r = reference_words
+    for table in (r.DETERMINERS, r.NOUNS, r.SHAPE_NOUNS, r.SHAPE_ADJECTIVES, r.SOFT_ADJECTIVES, r.COLOR_SYNONYMS,
+                  r.FUNCTION_WORDS, r.NEAREST, r.FARTHEST, r.SIZE_SUPERLATIVES, r.REFERENCE_WORDS):
         known.update(table)
     return frozenset(w for w in known if w.isascii())
 

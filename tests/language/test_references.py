@@ -158,7 +158,7 @@ def test_slips_in_reference_words_are_mended_in_a_refused_sentence(plugins, two_
 
 
 def test_kind_names_and_size_words_are_known_words():
-    from l2p_bullet.language.references import REFERENCE_WORDS
+    from l2p_bullet.language.reference_words import REFERENCE_WORDS
 
     assert {"cup", "bird", "tiny", "bigger", "you", "whatever"} <= REFERENCE_WORDS
 

@@ -1,0 +1,132 @@
+"""Places and measures among the scene's objects: what "nearest", "leftmost", "the biggest" and "left of B"
+compare, and when two objects tie (a refusal beats a wrong block).
+
+Pure functions of the scene's objects; resolving the words that name a reference object is
+language/references.py's, which calls these.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.scene import COLORS, Scene, SceneObject
+from ..errors import LanguageError, UnknownObjectError
+from .reference_words import (
+    BLOCK_SHAPES,
+    BLOCK_WORDS,
+    COLOR_SYNONYMS,
+    DETERMINERS,
+    FARTHEST,
+    NEAREST,
+    NOUNS,
+    SHAPE_NOUNS,
+    SIZE_SUPERLATIVES,
+    TIE,
+    TIE_M,
+    TIE_PLACE,
+)
+
+
+def named_colours(low) -> set[str]:
+    """The colours ``low`` (lower-case words) name, synonyms resolved ("grey" is gray)."""
+    return {c for w in low if (c := COLOR_SYNONYMS.get(w, w)) in COLORS}
+
+
+def measure(o: SceneObject, what: str) -> float:
+    """A length in metres: the footprint's side (its area's square root), the height, y (leftness) or x (how far
+    back from the robot)."""
+    if what == "area":
+        return float(o.size)
+    if what == "height":
+        return float(o.geometry.height)
+    return float(o.xy[0] if what == "x" else o.xy[1])
+
+
+def distance_to(o: SceneObject, xy: tuple[float, float]) -> float:
+    """Centre to ``xy`` in metres: what "nearest" and "farthest" compare."""
+    return float(np.hypot(o.xy[0] - xy[0], o.xy[1] - xy[1]))
+
+
+def bearing_off(v: np.ndarray, direction: float) -> float:
+    """The angle between ``v`` and the scene direction ``direction`` (radians from +x: the robot's left is pi/2)."""
+    ang = math.atan2(float(v[1]), float(v[0]))
+    return abs(math.remainder(ang - direction, 2 * math.pi))
+
+
+def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
+    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows."""
+    low = [w.lower() for w in restrict.split()]
+    low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
+    colours = named_colours(low)
+    fits = list(scene.objects)
+    if colours:
+        fits = [o for o in fits if o.color in colours]
+    shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
+    if shapes:
+        fits = [o for o in fits if o.shape in shapes]
+    return fits
+
+
+def either_reading(described: list[str], scene: Scene, choose) -> str:
+    """``choose`` over the objects ``described`` allows; with "block" in it, over the block-shaped ones too, and
+    the description refused as ambiguous where the two readings differ."""
+    pool = pool_of(" ".join(described), scene)
+    if not {w.lower() for w in described} & BLOCK_WORDS:
+        return choose(pool)
+    readings = []
+    for candidates in (pool, [o for o in pool if o.shape in BLOCK_SHAPES]):
+        try:
+            readings.append(choose(candidates))
+        except (LanguageError, UnknownObjectError) as e:
+            readings.append(e)
+    if isinstance(readings[0], str) and readings[0] == readings[1]:
+        return readings[0]
+    said = " ".join(described + ["..."])
+    picks = sorted({r for r in readings if isinstance(r, str)})
+    raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0] if picks else "none"}, as a block '
+                        f'(a cube or a box) {"another" if len(picks) > 1 else "not one"}; name the one you mean')
+
+
+def relation_head(low: tuple[str, ...]) -> tuple[str, int, int] | None:
+    """(the relation's word, where its phrase starts, where its reference starts) or None."""
+    for i, w in enumerate(low):
+        if w in SIZE_SUPERLATIVES:
+            return w, i, i + 1
+        if w in NEAREST | FARTHEST:
+            j = i + 1
+            if j < len(low) and low[j] in NOUNS:  # "the closest block to the duck"
+                j += 1
+            if j < len(low) and low[j] in ("to", "from"):
+                j += 1
+            return w, i, j
+        if w in ("left", "right") and i + 1 < len(low) and low[i + 1] == "of":
+            start = i
+            while start > 0 and low[start - 1] in ("to", "on", "the"):
+                start -= 1
+            return f"{w} of", start, i + 2
+        if w == "behind" and i > 0:
+            return w, i, i + 1
+        if low[i:i + 3] == ("in", "front", "of") and i > 0:
+            return "in front of", i, i + 3
+    return None
+
+
+def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False) -> str:
+    """The one object of ``pool`` that ``pick`` (min or max) of ``measure`` chooses; ties are ambiguous. With
+    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides."""
+    if not pool:
+        raise UnknownObjectError(f'no object in the scene is the "{word}" one')
+    values = {o.name: measure(o) for o in pool}
+    best = pick(values.values())
+    winner = next(o for o in pool if values[o.name] == best)
+
+    def tol(o: SceneObject) -> float:
+        t = max(TIE * abs(best), TIE_M)
+        return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place else t
+
+    tied = [o.name for o in pool if abs(values[o.name] - best) <= tol(o)]
+    if len(tied) > 1:
+        raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
+    return tied[0]

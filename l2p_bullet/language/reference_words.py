@@ -1,0 +1,90 @@
+"""The words of object references: determiners, nouns, shapes, colours' synonyms, pronouns, places and
+superlatives.
+
+Tables only, kept apart from the readers that use them (language/references.py resolves a description,
+language/places.py measures places, language/typos.py mends slips into these words), so that each reader
+imports the words without importing another reader.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS
+
+DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
+NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
+SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "cylinder": "cylinder",
+               "can": "cylinder", "cylinders": "cylinder"}
+"""Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red
+box", "the white cube") any block-shaped object (a cube or a box: people call any block a box or a
+cube), never a cylinder or a mesh."""
+STRICT_SHAPES = frozenset({"cylinder"})
+"""Shapes no one calls another shape by: "the red cylinder" is refused where the red object is a cube."""
+SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "long": "box", "cubic": "cube",
+                    "square": "cube", "cylindrical": "cylinder", "round": "cylinder"}
+"""Adjectives that name a shape: they restrict like a shape named alone, colour or not ("the yellow
+rectangular block" is a box)."""
+SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
+"""Adjectives people add to a description that already picks one object ("the toy duck", "the little red
+cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
+COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
+FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
+                            "and", "or", "then", "so", "it", "not", "no", "other", "another", "first", "second",
+                            "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
+"""Words never taken as an object's own adjective ("the second duck" is not "the duck")."""
+NAMED_AS = (("called",), ("named",))
+PRONOUNS_MOVER = (("it",), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
+                  ("the", "same", "one"), ("the", "same", "object"), ("that",))
+SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
+"""Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
+PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
+ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("you",), ("yourself",),
+               ("your", "base"))
+"""The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
+NEAREST = frozenset("nearest closest nearer closer".split())  # English words of place ("the cube closer to you")
+FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
+"""Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
+OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),
+            ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")}
+"""Free relatives that open a description ("whatever is closest to A"): the one that is."""
+RELATIVES = (("that", "is"), ("which", "is"), ("that's",), ("thats",), ("which's",))
+"""A relative clause after a noun ("the cube that is red", "the block that's closest to E"): its words describe
+the noun as if they stood before it."""
+SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smallest": ("area", min),
+                     "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
+                     "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
+                     "backmost": ("x", max), "frontmost": ("x", min)}
+TIE = 0.02
+TIE_M = 0.002
+"""Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:
+the description is ambiguous."""
+TIE_PLACE = 0.45
+"""Where a superlative compares places (leftmost, nearest), two objects whose places differ by less than this
+many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""
+CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "center", "of", "the", "table"),
+                  ("in", "the", "centre", "of", "the", "table"), ("in", "the", "middle"), ("in", "the", "center"),
+                  ("in", "the", "centre"))
+"""A place on the table that names the object nearest the table's centre (the scene frame's origin)."""
+SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "right"): "rightmost",
+                ("on", "the", "left"): "leftmost", ("on", "the", "right"): "rightmost",
+                ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost",
+                ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
+                ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"}
+"""Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
+the one farthest from the robot, along the scene's +x)."""
+SIDE_CONE = math.radians(45)
+""""Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
+SIDES = {"left of": math.pi / 2, "right of": -math.pi / 2, "behind": 0.0, "in front of": math.pi}
+"""Relations to a reference as the robot sees it -> their direction in the scene (radians from +x, away from
+the robot): behind is further from the robot, in front nearer to it."""
+
+
+CONJUNCTIONS = frozenset({"and", "&"})
+"""Words that join two reference objects ("between B and C", "the cube between A and C")."""
+BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})
+BLOCK_SHAPES = frozenset({"cube", "box"})
+REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
+                            | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
+"""Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",
+"you"): known words, which a reader of typing slips leaves as they are."""
