@@ -44,7 +44,7 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     \b
     Sentences: VERB MOVER PREPOSITION ANCHOR, e.g.
       "move A around B"   "Please slide the red block next to the green one."
-    Verbs: move, slide, shift, drag, put (a slide); carry, bring, "lift / pick up A and
+    Verbs: move, slide, shift, drag, put, bring (a slide); carry, "lift / pick up A and
     put / place it ..." (a carry); push, nudge, shove (a push). Prepositions: those of the
     installed actions (l2p-bullet actions). The run folder gets trajectory.json,
     plan.json, summary.json and, unless --no-render, frames and a video.

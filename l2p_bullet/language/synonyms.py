@@ -12,12 +12,37 @@ import re
 
 from ..core.scene import Scene, SceneObject
 
-KIND_SYNONYMS = {"cup": "mug", "cups": "mug", "teacup": "mug", "mugs": "mug", "bird": "duck", "duckling": "duck",
-                 "ducks": "duck", "tin": "can", "tins": "can"}
-"""An everyday name -> the kind it names (an object named, or meshed as, that kind)."""
-KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks"})
+KIND_NAMES = {
+    "mug": ("cup", "cups", "teacup", "mugs"),
+    "duck": ("bird", "duckling", "ducks"),
+    "can": ("tin", "tins"),
+    "teddy": ("bear", "bears", "teddies", "teddybear", "plush", "plushie"),
+    "bunny": ("rabbit", "rabbits", "bunnies", "hare"),
+    "stone": ("rock", "rocks", "pebble", "pebbles", "stones"),
+    "soccerball": ("ball", "football", "soccer"),
+    "ball": ("balls", "football"),
+    "bottle": ("bottles", "flask"),
+    "bowl": ("bowls", "dish"),
+    "apple": ("apples",),
+    "lemon": ("lemons",),
+    "bread": ("loaf",),
+    "milk": ("carton",),
+}
+"""A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
+KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
+                "toy": ("duck", "teddy", "bunny"), "fruit": ("apple", "lemon")}
+"""Words for a class of kinds ("the stuffed animal"): like a kind's name, they resolve only where exactly one
+object is of a kind of the class."""
+KIND_SYNONYMS: dict[str, tuple[str, ...]] = {}
+for _kind, _names in KIND_NAMES.items():
+    for _word in _names:
+        KIND_SYNONYMS[_word] = (*KIND_SYNONYMS.get(_word, ()), _kind)
+KIND_SYNONYMS.update(KIND_CLASSES)
+"""An everyday name -> the kinds it names (an object named, or meshed as, one of those kinds)."""
+KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks",
+                            "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
-duck"): read past there."""
+duck", "teddy bear", "stuffed animal"): read past there."""
 BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant"})
 SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini"})
 TALL = frozenset({"tall", "taller"})
@@ -53,9 +78,10 @@ def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
         for k in kinds_of(o):
             by_kind.setdefault(k, set()).add(o.name)
     out = {k: frozenset(v) for k, v in by_kind.items()}
-    for word, kind in KIND_SYNONYMS.items():
-        if kind in out and word not in out:
-            out[word] = out[kind]
+    for word, kinds in KIND_SYNONYMS.items():
+        named = frozenset().union(*(out[k] for k in kinds if k in out))
+        if named and word not in out:
+            out[word] = named
     return out
 
 

@@ -39,12 +39,13 @@ def test_corpus_resolves_right_and_never_wrong(plugins):
 def test_the_second_authors_corpus_is_never_resolved_wrong(plugins):
     """heldout.tsv: 147 sentences another author wrote without seeing the grammar (docs/language.md). It was
     read once before the grammar saw it (68.0 % right, 2 wrong) and has guided changes since, so it guards
-    against regressions: no wrong resolution, and what was reached stays reached."""
+    against regressions: no wrong resolution, and what was reached stays reached. Its author reads "bring" as
+    a carry, the four later authors as a slide, and the toolkit follows the four (:data:`BRING`)."""
     table, misses = score(plugins, "heldout.tsv")
-    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE]
+    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and BRING not in case.sentence.lower()]
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
-    assert right >= 142, f"{right}/147 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert right >= 140, f"{right}/147 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
 def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
@@ -59,18 +60,18 @@ def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
 
 
 BRING = "bring"
-"""The one word the authors disagree on: heldout.tsv's author reads "bring" as a carry (5 sentences), heldout4's
-and heldout5's as a slide (4); the toolkit keeps the carry (docs/language.md), so those 4 read otherwise."""
+"""The one word the authors disagree on: heldout.tsv's author reads "bring" as a carry (5 sentences), the fourth
+to seventh authors (heldout4-7) as a slide; the toolkit reads it as a slide, as most people did
+(docs/language.md), so heldout.tsv's five read otherwise."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 151), ("heldout5.tsv", 147)])
+@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 155), ("heldout5.tsv", 152)])
 def test_the_fourth_and_fifth_authors_corpora_are_never_resolved_wrong(plugins, name, floor):
     """heldout4.tsv (the corpus table) and heldout5.tsv (its own table: two red cubes, a white cube and a white
     mug, a can): 160 sentences each, written cold, read once (71.2 % right / 4 wrong and 51.9 % / 3 wrong:
-    docs/language.md); development figures since, kept here against regressions. Wrong only where the authors
-    disagree on "bring"."""
+    docs/language.md); development figures since, kept here against regressions."""
     table, misses = score(plugins, name)
-    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and BRING not in case.sentence.lower()]
+    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE]
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
