@@ -30,6 +30,12 @@ please thanks thank mind go goes get gets make sure want like need needs task go
 bit little lot much more less way little slightly
 """.split())
 """Everyday words a sentence holds that no table of the grammar lists; known, so never mended."""
+SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from", "n": "and", "r": "are",
+             "u": "you", "ur": "your", "thru": "through", "w": "with", "abt": "about", "bc": "because",
+             "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
+             "plz": "please", "nr": "near", "twd": "toward", "twds": "towards", "awy": "away", "arnd": "around",
+             "rnd": "round"}
+"""Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
@@ -84,7 +90,11 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
     def fix(m: re.Match) -> str:
         w = m.group(0)
         low = w.lower()
-        if low in known or low in keep:
+        if low in keep:
+            return w
+        if low in SHORTHAND and SHORTHAND[low] in known:
+            return SHORTHAND[low]
+        if low in known:
             return w
         hit = near(low, known)
         if hit is None:

@@ -86,7 +86,9 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a lot": "far", "much": "far", "way": "far", "well": "far",
     "a tiny bit": "little", "a little bit": "little", "a little": "little", "a bit": "little",
     "only slightly": "little", "slightly": "little", "somewhat": "little", "just": "little",
-    "right": "right", "directly": "right", "immediately": "right",
+    "a tad": "little", "just a tad": "little", "a touch": "little", "a smidge": "little", "a smidgen": "little",
+    "marginally": "little", "a hair": "little", "little bit": "little", "a long way": "far", "a good way": "far",
+    "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
