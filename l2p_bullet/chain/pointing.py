@@ -16,14 +16,19 @@ from ..core.scene import Scene
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object
 from ..language.references import two_references
+from ..language.words import strip_polite
 from ..pipeline import resolve
 
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
          r"|take|grab|get|pick\s+up|lift)")
 SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
 """A clause that only shows objects: "See the cylinder?", "Pick up the duck"."""
-TOPIC = re.compile(r"^\s*(?P<what>.+?)\s+[-\u2013\u2014:]\s+(?P<rest>.+)$")
-"""An object named first, then the command about it: "the green cube - move it toward the blue one"."""
+TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,])\s+(?P<rest>.+)$")
+"""An object named first, then the command about it: "the green cube - move it toward the blue one", "the
+teddy, put it beside the can", "Q and R: slide them both toward P"."""
+STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
+"""A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
+looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
 SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
                   r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube"."""
@@ -54,10 +59,29 @@ class Shown:
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
     m = SHOWN.match(text)
-    if m is None:
-        return None
-    objects = _objects(m.group("what"), scene, context)
-    return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
+    if m is not None:
+        objects = _objects(m.group("what"), scene, context)
+        return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
+    objects = _pointed_at(text, scene, context)
+    return None if objects is None else Shown(objects)
+
+
+def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:
+    """The objects a clause that asks for nothing points at: a description alone ("the teddy", "ok now the box")
+    or a statement about it ("The white box is in the way"); None for anything else."""
+    m = STATEMENT.match(text)
+    if m is not None and not _names_a_place(m.group("said")):
+        objects = _objects(m.group("what"), scene, context)
+        if objects is not None:
+            return objects
+    return _objects(text, scene, context)
+
+
+def _names_a_place(said: str) -> bool:
+    """Whether a statement's words name a relation to another object ("A is next to B"): it may be a goal
+    stated badly, never only a pointer."""
+    return bool(re.search(r"\b(?:to|from|of|past|beyond|around|beside|by|toward|towards|near|nearer|closer)\b",
+                          said, re.IGNORECASE))
 
 
 def carried(command: Command, after: Shown | None) -> Command:
@@ -105,7 +129,7 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         if goal is not None:
             return [replace(goal, manner=head.manner, pace=head.pace or goal.pace, sentence=text)]
     for what, rest, lifting in _splits(text):
-        objects = _objects(what, scene, context)
+        objects = _pointed_at(what, scene, context)
         if objects is None:
             continue
         commands = _each(rest, Context(*objects) if len(objects) == 2 else Context(objects[0]), objects, scene,
@@ -148,7 +172,9 @@ def _each(text: str, context: Context, objects: tuple[str, ...], scene: Scene,
 
 
 def _objects(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:
-    """One object ("the cylinder") or two ("the red and the blue cubes", "B and E") that ``text`` names."""
+    """One object ("the cylinder") or two ("the red and the blue cubes", "B and E") that ``text`` names; politeness
+    around them is read past ("ok now the box")."""
+    text = " ".join(strip_polite(text.split(), frozenset(scene.names))) or text
     try:
         return (resolve_object(text, scene, "block", context),)
     except (LanguageError, UnknownObjectError):
