@@ -27,7 +27,9 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "hey there", "hi there", "hello there", "good morning", "good afternoon", "good evening", "dear robot",
     "you can", "you", "when you get a chance", "when you have a moment", "if you could", "if you can",
     "i would be very grateful if you could", "i would be grateful if you could", "i'd be grateful if you could",
-    "for this one", "for the next one", "right", "so",
+    "for this one", "for the next one", "right", "so", "why don't you", "why dont you", "why not", "basically",
+    "so basically", "ok so basically", "ok so", "it would be nice if", "it would be great if", "it'd be nice if",
+    "it'd be great if", "it would be good if", "i wish", "your task", "your job", "here's what to do",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 ADDRESSEES = frozenset({"you", "u"})
@@ -45,25 +47,32 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
     "and let go", "and let go of it", "and set it down there", "and put it down there",
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
+    "shall we", "can you do that", "could you do that", "lol", "when you have a moment", "when you get a chance",
+    "if you don't mind", "if you dont mind", "yeah", "ok thanks",
 )), key=len, reverse=True))
-GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",))
+GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
+                                                ("how", "about"), ("what", "about"))
 """Openings followed by the verb's -ing form: "do you mind moving A past B", and "would you mind ..." once its
 "would you" is read past as politeness."""
 
-GOAL_PREFIXES: tuple[tuple[str, ...], ...] = (("i", "want"), ("i", "would", "like"), ("i'd", "like"), ("i", "need"),
-                                              ("have",))
+GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
+    "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
+    "what i'd like is", "what i'm after is", "i want to see", "i'd like to see", "i would like to see",
+    "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
+)), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
-DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"))
+DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"), ("for", "you", "to"),
+         ("for", "the", "robot", "to"), ("that", "you"))
 """Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
 
-FRAMES: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in (
-    "so that it ends up", "so that it is", "so that it's", "so that it goes", "so that it sits",
-    "so that it lands", "so that it ends", "so it ends up", "so it is", "so it's", "so it goes", "so it sits",
-    "so it lands", "so it ends", "such that it is", "such that it's", "until it is", "until it's",
-    "until it ends up", "so that", "so", "over so it's", "over so it is", "over", "back", "down",
+_RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests", "stands", "gets")
+FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
+    *(f"{lead} {rest}".replace(" 's", "'s") for lead in ("so that it", "so it", "such that it", "until it")
+      for rest in _RESTS),
+    "so that", "so", "over so it's", "over so it is", "over", "back", "down",
     "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
-))
+)), key=len, reverse=True))
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
 PACES: dict[str, str] = {
@@ -74,6 +83,8 @@ PACES: dict[str, str] = {
 """Manner adverbs -> the pace they ask for."""
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "take your time and": "slow", "take your time": "slow", "in a hurry": "fast", "as fast as you can": "fast",
+    "hurry up": "fast", "hurry up and": "fast", "in a slow way": "slow", "in slow way": "slow",
+    "in a careful way": "careful",
     "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
@@ -189,7 +200,7 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
             rest = words[len(pre):]
             for doer in DOERS:  # "I'd like the robot to move ...", "I want you to ..."
                 if tuple(w.lower() for w in rest[:len(doer)]) == doer and len(rest) > len(doer):
-                    rest = rest[len(doer) - 1:]
+                    rest = rest[len(doer) - (doer[-1] == "to"):]
                     break
             if rest[0].lower() == "to" and len(rest) > 1:
                 return rest[1:]
@@ -246,6 +257,7 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "to end up", "ends up", "end up", "should end up", "needs to end up", "to be", "is", "be", "should be",
     "needs to be", "need to be", "has to be", "must be", "to go", "goes", "go", "to get", "gets", "should go",
     "sits", "lies", "to sit", "to lie", "to land", "lands", "is placed", "is put", "to stand", "stands",
+    "were", "was", "ended up", "would be", "has to go", "needs to go", "must go",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""
