@@ -27,6 +27,7 @@ from .reference_words import (
     TIE_M,
     TIE_PLACE,
 )
+from .synonyms import TIE_SIZE
 
 
 def named_colours(low) -> set[str]:
@@ -35,13 +36,43 @@ def named_colours(low) -> set[str]:
 
 
 def measure(o: SceneObject, what: str) -> float:
-    """A length in metres: the footprint's side (its area's square root), the height, y (leftness) or x (how far
-    back from the robot)."""
+    """A length in metres: the footprint's side (its area's square root), the long side of the footprint's
+    smallest enclosing rectangle, the height, y (leftness) or x (how far back from the
+    robot)."""
     if what == "area":
         return float(o.size)
+    if what == "length":
+        return outline_sides(o)[0]
     if what == "height":
         return float(o.geometry.height)
     return float(o.xy[0] if what == "x" else o.xy[1])
+
+
+def outline_sides(o: SceneObject) -> tuple[float, float]:
+    """(long, short) sides of the smallest rectangle around the object's footprint, in metres: a 10 x 3 cm bar is
+    (0.10, 0.03) whatever its yaw, a cube its side twice."""
+    pts = np.asarray(o.geometry.footprint, float)
+    best = (math.inf, 0.0, 0.0)
+    for a, b in zip(pts, np.roll(pts, -1, axis=0), strict=True):
+        edge = b - a
+        n = float(np.hypot(*edge))
+        if n < 1e-12:
+            continue
+        u = edge / n
+        along, across = pts @ u, pts @ np.array([-u[1], u[0]])
+        w, h = float(np.ptp(along)), float(np.ptp(across))
+        if w * h < best[0]:
+            best = (w * h, max(w, h), min(w, h))
+    return best[1], best[2]
+
+
+FLAT_RATIO = 0.5
+"""An object is flat where its height is at most this fraction of its footprint's short side: a 5 x 5 x 1.7 cm
+stone or a 7 x 5 x 2.5 cm tray, not a 10 x 3 x 3 cm bar or a cube."""
+
+
+def is_flat(o: SceneObject) -> bool:
+    return float(o.geometry.height) <= FLAT_RATIO * outline_sides(o)[1]
 
 
 def distance_to(o: SceneObject, xy: tuple[float, float]) -> float:
@@ -111,6 +142,27 @@ def relation_head(low: tuple[str, ...]) -> tuple[str, int, int] | None:
         if low[i:i + 3] == ("in", "front", "of") and i > 0:
             return "in front of", i, i + 3
     return None
+
+
+def bulk_superlative(pool: list[SceneObject], pick, word: str) -> str:
+    """"The biggest / smallest": the object whose bulk (the volume of the box around it: its footprint's
+    rectangle times its height) is the extreme, where no other's is within :data:`TIE_SIZE` of it. A long flat
+    bar and a tall thin can are judged by the space they take, as people judged them (a duck wider than a tall
+    cylinder is the bigger; a cylinder, a teddy and a cube within a fifth of each other are a tie)."""
+    if not pool:
+        raise UnknownObjectError(f'no object in the scene is the "{word}" one')
+    values = {o.name: bulk(o) for o in pool}
+    best = pick(values.values())
+    tied = [o.name for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
+    if len(tied) > 1:
+        raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
+    return tied[0]
+
+
+def bulk(o: SceneObject) -> float:
+    """The volume of the box around the object, in cubic metres: how much space it seems to take."""
+    long, short = outline_sides(o)
+    return long * short * float(o.geometry.height)
 
 
 def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False) -> str:

@@ -54,7 +54,7 @@ the noun as if they stood before it."""
 SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smallest": ("area", min),
                      "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
                      "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
-                     "backmost": ("x", max), "frontmost": ("x", min)}
+                     "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max)}
 TIE = 0.02
 TIE_M = 0.002
 """Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:

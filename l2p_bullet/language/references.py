@@ -19,7 +19,16 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .places import bearing_off, distance_to, either_reading, measure, named_colours, relation_head, superlative
+from .places import (
+    bearing_off,
+    bulk_superlative,
+    distance_to,
+    either_reading,
+    measure,
+    named_colours,
+    relation_head,
+    superlative,
+)
 from .reference_words import (
     BLOCK_SHAPES,
     BLOCK_WORDS,
@@ -358,6 +367,8 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
         place = what in ("x", "y")
+        if what == "area":
+            return either_reading(described, scene, lambda pool: bulk_superlative(pool, pick, kind))
         return either_reading(
             described, scene, lambda pool: superlative(pool, lambda o: measure(o, what), pick, kind, place)
         )
