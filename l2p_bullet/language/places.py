@@ -136,12 +136,23 @@ def relation_head(low: tuple[str, ...]) -> tuple[str, int, int] | None:
             start = i
             while start > 0 and low[start - 1] in ("to", "on", "the"):
                 start -= 1
-            return f"{w} of", start, i + 2
+            return _direct(low, f"{w} of", start, i + 2)
         if w == "behind" and i > 0:
-            return w, i, i + 1
+            return _direct(low, w, i, i + 1)
         if low[i:i + 3] == ("in", "front", "of") and i > 0:
-            return "in front of", i, i + 3
+            return _direct(low, "in front of", i, i + 3)
     return None
+
+
+DIRECTLY = frozenset({"directly", "straight", "right", "just", "exactly", "immediately"})
+"""Words before a side relation that narrow it: "the object directly behind B" lies on B's line to the back."""
+
+
+def _direct(low: tuple[str, ...], kind: str, start: int, end: int) -> tuple[str, int, int]:
+    """(``kind``, start, end), or ("directly " + kind, start - 1, end) where a word of :data:`DIRECTLY` precedes."""
+    if start > 1 and low[start - 1] in DIRECTLY:
+        return f"directly {kind}", start - 1, end
+    return kind, start, end
 
 
 def bulk_superlative(pool: list[SceneObject], pick, word: str) -> str:

@@ -14,7 +14,8 @@ from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
-SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "cylinder": "cylinder",
+SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "bar": "box", "bars": "box",
+               "cylinder": "cylinder",
                "can": "cylinder", "cylinders": "cylinder"}
 """Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red
 box", "the white cube") any block-shaped object (a cube or a box: people call any block a box or a
@@ -22,7 +23,8 @@ cube), never a cylinder or a mesh."""
 STRICT_SHAPES = frozenset({"cylinder"})
 """Shapes no one calls another shape by: "the red cylinder" is refused where the red object is a cube."""
 SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "long": "box", "cubic": "cube",
-                    "square": "cube", "cylindrical": "cylinder", "round": "cylinder"}
+                    "square": "cube", "cylindrical": "cylinder", "round": "cylinder", "cube-shaped": "cube",
+                    "box-shaped": "box", "cylinder-shaped": "cylinder", "barrel-shaped": "cylinder"}
 """Adjectives that name a shape: they restrict like a shape named alone, colour or not ("the yellow
 rectangular block" is a box)."""
 SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
@@ -40,7 +42,7 @@ SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("
 """Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("you",), ("yourself",),
-               ("your", "base"))
+               ("your", "base"), ("me",), ("us",), ("the", "viewer"))
 """The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
 NEAREST = frozenset("nearest closest nearer closer".split())  # English words of place ("the cube closer to you")
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
@@ -74,6 +76,8 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
 """Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
 the one farthest from the robot, along the scene's +x)."""
 SIDE_CONE = math.radians(45)
+DIRECT_CONE = math.radians(20)
+""""Directly behind B": within this angle of the direction."""
 """"Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
 SIDES = {"left of": math.pi / 2, "right of": -math.pi / 2, "behind": 0.0, "in front of": math.pi}
 """Relations to a reference as the robot sees it -> their direction in the scene (radians from +x, away from

@@ -36,6 +36,7 @@ from .reference_words import (
     COLOR_SYNONYMS,
     CONJUNCTIONS,
     DETERMINERS,
+    DIRECT_CONE,
     FUNCTION_WORDS,
     NAMED_AS,
     NEAREST,
@@ -379,8 +380,10 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
 
     def choose(pool: list[SceneObject]) -> str:
         pool = [o for o in pool if o.name != ref_name]
-        if kind in SIDES:
-            beside = [o for o in pool if bearing_off(np.subtract(o.xy, ref_xy), SIDES[kind]) <= SIDE_CONE]
+        side = kind.removeprefix("directly ")
+        if side in SIDES:
+            cone = SIDE_CONE if side == kind else DIRECT_CONE
+            beside = [o for o in pool if bearing_off(np.subtract(o.xy, ref_xy), SIDES[side]) <= cone]
             if not beside:
                 raise UnknownObjectError(f'nothing in the scene is {kind} {ref_name or "the robot"} as the robot '
                                          f"sees it (blocks: {describe(scene)})")
