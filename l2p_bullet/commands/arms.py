@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shlex
 import sys
 
 import click
@@ -183,7 +184,11 @@ def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None
                f"{len(s.finger_joints)} gripper joints, opens {s.gripper_opening * 100:.1f} cm, reaches "
                f"{s.reach[0]:.2f}-{s.reach[1]:.2f} m (mounted at x={s.mount[0]:.3f} m); payload {s.payload:g} kg "
                "(a URDF does not say: set your arm's rated payload in its ArmSpec)")
-    click.echo(f"next: {sys.executable.rsplit('/', 1)[0]}/pip install ./{made.root}   then   l2p-bullet arms --check")
+    # pip run by this interpreter installs into the environment that runs l2p-bullet, also where its bin/ has no
+    # pip of its own (pipx, a venv layered on another); an --out path is named as given, relative or absolute
+    target = str(made.root) if made.root.is_absolute() else f"./{made.root}"
+    click.echo(f"next: {shlex.quote(sys.executable)} -m pip install {shlex.quote(target)}   then   "
+               "l2p-bullet arms --check")
 
 
 COMMANDS.append(new_arm_cmd)
