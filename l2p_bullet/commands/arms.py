@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import shlex
 import sys
 
 import click
@@ -184,11 +183,9 @@ def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None
                f"{len(s.finger_joints)} gripper joints, opens {s.gripper_opening * 100:.1f} cm, reaches "
                f"{s.reach[0]:.2f}-{s.reach[1]:.2f} m (mounted at x={s.mount[0]:.3f} m); payload {s.payload:g} kg "
                "(a URDF does not say: set your arm's rated payload in its ArmSpec)")
-    # pip run by this interpreter installs into the environment that runs l2p-bullet, also where its bin/ has no
-    # pip of its own (pipx, a venv layered on another); an --out path is named as given, relative or absolute
-    target = str(made.root) if made.root.is_absolute() else f"./{made.root}"
-    click.echo(f"next: {shlex.quote(sys.executable)} -m pip install {shlex.quote(target)}   then   "
-               "l2p-bullet arms --check")
+    from .actions import pip_install_command  # new-action's: this environment's pip, the folder as a path
+
+    click.echo(f"next: {pip_install_command(made.root)}   then   l2p-bullet arms --check")
 
 
 COMMANDS.append(new_arm_cmd)

@@ -195,14 +195,16 @@ def test_new_arm_says_what_is_wrong_with_a_urdf(tmp_path, text, expect):
 
 @pytest.mark.parametrize("out, target", [(None, "./l2p-arm-myarm"), ("abs", "{tmp}/made")])
 def test_new_arm_next_step_installs_with_this_pythons_pip_at_the_folder_written(tmp_path, monkeypatch, out, target):
-    """The printed pip command works where the environment's bin/ has no pip (a venv layered on another, pipx) and
-    names an absolute --out as it is (``./`` before it named a folder under the current one)."""
+    """The printed pip command works where the environment's bin/ has no pip (a venv layered on another, pipx: then
+    this Python's ``-m pip``) and names an absolute --out as it is (``./`` before it named a folder under the
+    current one)."""
     import sys
 
     from l2p_bullet.arms import PANDA
     from l2p_bullet.plugins import arm_scaffold
 
     monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "prefix", str(tmp_path / "env"))  # an environment whose bin/ holds no pip
     root = Path("l2p-arm-myarm") if out is None else tmp_path / "made"
     made = arm_scaffold.ArmScaffold(root, "l2p_arm_myarm", "l2p-arm-myarm", PANDA, [])
     monkeypatch.setattr(arm_scaffold, "scaffold_arm", lambda name, *a, **kw: made)
