@@ -183,7 +183,9 @@ def new_arm_cmd(name: str, urdf: str, tool_link: str | None, fingers: str | None
                f"{len(s.finger_joints)} gripper joints, opens {s.gripper_opening * 100:.1f} cm, reaches "
                f"{s.reach[0]:.2f}-{s.reach[1]:.2f} m (mounted at x={s.mount[0]:.3f} m); payload {s.payload:g} kg "
                "(a URDF does not say: set your arm's rated payload in its ArmSpec)")
-    click.echo(f"next: {sys.executable.rsplit('/', 1)[0]}/pip install ./{made.root}   then   l2p-bullet arms --check")
+    from .actions import pip_install_command  # new-action's: this environment's pip, the folder as a path
+
+    click.echo(f"next: {pip_install_command(made.root)}   then   l2p-bullet arms --check")
 
 
 COMMANDS.append(new_arm_cmd)

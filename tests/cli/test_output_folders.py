@@ -193,6 +193,28 @@ def test_new_arm_says_what_is_wrong_with_a_urdf(tmp_path, text, expect):
     assert not (tmp_path / "arm").exists()
 
 
+@pytest.mark.parametrize("out, target", [(None, "./l2p-arm-myarm"), ("abs", "{tmp}/made")])
+def test_new_arm_next_step_installs_with_this_pythons_pip_at_the_folder_written(tmp_path, monkeypatch, out, target):
+    """The printed pip command works where the environment's bin/ has no pip (a venv layered on another, pipx: then
+    this Python's ``-m pip``) and names an absolute --out as it is (``./`` before it named a folder under the
+    current one)."""
+    import sys
+
+    from l2p_bullet.arms import PANDA
+    from l2p_bullet.plugins import arm_scaffold
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "prefix", str(tmp_path / "env"))  # an environment whose bin/ holds no pip
+    root = Path("l2p-arm-myarm") if out is None else tmp_path / "made"
+    made = arm_scaffold.ArmScaffold(root, "l2p_arm_myarm", "l2p-arm-myarm", PANDA, [])
+    monkeypatch.setattr(arm_scaffold, "scaffold_arm", lambda name, *a, **kw: made)
+    (tmp_path / "arm.urdf").write_text('<robot name="r"><link name="base"/></robot>\n')
+    r = cli("new-arm", "myarm", "--urdf", "arm.urdf", *([] if out is None else ["--out", str(root)]))
+    assert r.exit_code == 0, r.output
+    nxt = r.output.strip().splitlines()[-1]
+    assert nxt.startswith(f"next: {sys.executable} -m pip install {target.format(tmp=tmp_path)}   then"), nxt
+
+
 # --- report -----------------------------------------------------------------------------------------
 @pytest.fixture
 def grades(tmp_path) -> Path:
