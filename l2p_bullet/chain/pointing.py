@@ -32,8 +32,9 @@ looks lonely"; what comes next points at them ("... slide it past the cylinder")
 SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
                   r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube"."""
-GOAL_AFTER = re.compile(r"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it(?:'s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits)"
-                        r"|until\s+it(?:'s|\s+is|\s+ends\s+up|\s+gets))\s+(?P<goal>.+)$", re.IGNORECASE)
+_RESTS = r"(?:'s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
+GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
+                        re.IGNORECASE)
 """A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
 NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
                       r"(?:\s+it)?\s*,\s*", re.IGNORECASE)

@@ -278,8 +278,15 @@ def state_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
             if is_object(" ".join(words[j:k])):
+                if link[-1] in GOING and low[k + len(link)] == "by":
+                    raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '
+                                        "staying beside; say which")
                 return ["move", *words[j:k], *words[k + len(link):]]
     return words
+
+
+GOING = frozenset({"go", "goes", "went", "pass", "passes"})
+"""Links of motion: "go by B" may mean past B or beside B (people differ), so it is asked, never guessed."""
 
 
 def by_gerund(words: list[str], verbs: list[str]) -> list[str]:
