@@ -57,6 +57,12 @@ SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smalle
                      "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
                      "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
                      "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max)}
+COMPARATIVE_OF = {"larger": "largest", "bigger": "biggest", "smaller": "smallest", "taller": "tallest",
+                  "shorter": "shortest", "longer": "longest"}
+"""Comparatives that pick one of a group named after them ("the larger of the cubes")."""
+PLACE_ADJECTIVES = {"front": "frontmost", "back": "backmost", "rear": "backmost", "left": "leftmost",
+                    "right": "rightmost", "far": "backmost", "near": "frontmost"}
+"""Places used as adjectives right after "the" ("the front blue cube", "the left one"): their superlatives."""
 TIE = 0.02
 TIE_M = 0.002
 """Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:

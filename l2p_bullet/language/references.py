@@ -34,6 +34,7 @@ from .reference_words import (
     BLOCK_WORDS,
     CENTRE_PHRASES,
     COLOR_SYNONYMS,
+    COMPARATIVE_OF,
     CONJUNCTIONS,
     DETERMINERS,
     DIRECT_CONE,
@@ -42,6 +43,7 @@ from .reference_words import (
     NEAREST,
     NOUNS,
     OPENINGS,
+    PLACE_ADJECTIVES,
     PRONOUNS_ANCHOR,
     PRONOUNS_MOVER,
     RELATIVES,
@@ -121,8 +123,10 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
 
 def _plain_order(words: list[str], scene: Scene) -> list[str]:
     """``words`` with a free relative's opening ("whatever is closest to A": the one closest to A) and a relative
-    clause's "that is" ("the cube that is red": the cube red) taken out; the other readers take words in any
-    order."""
+    clause's "that is" ("the cube that is red": the cube red) taken out, a comparative among a group as its
+    superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
+    ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
+    words = _places_as_superlatives(_comparative_of(words))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
@@ -132,6 +136,24 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
         for rel in RELATIVES:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
                 return words[:i] + words[i + len(rel):]
+    return words
+
+
+def _comparative_of(words: list[str]) -> list[str]:
+    """"the larger of the cubes" -> "the largest cube"; other words as they are."""
+    low = [w.lower() for w in words]
+    if len(low) >= 4 and low[0] == "the" and low[1] in COMPARATIVE_OF and low[2:4] == ["of", "the"] \
+            and len(low) == 5 and low[4].endswith("s"):
+        return ["the", COMPARATIVE_OF[low[1]], words[4][:-1]]
+    return words
+
+
+def _places_as_superlatives(words: list[str]) -> list[str]:
+    """"the front blue cube", "the left one" -> "the frontmost blue cube", "the leftmost one": a place word right
+    after the determiner, before the rest of the description (never "the left of", "the back side")."""
+    low = [w.lower() for w in words]
+    if len(low) >= 3 and low[0] in DETERMINERS and low[1] in PLACE_ADJECTIVES and low[2] not in ("of", "side", "edge"):
+        return [words[0], PLACE_ADJECTIVES[low[1]], *words[2:]]
     return words
 
 
@@ -436,9 +458,28 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
 
 
 def two_references(words: list[str], scene: Scene, role: str, context: Context | None) -> tuple[str, str] | None:
-    """"A and C", "the red and blue cubes" -> two different objects' names; None when ``words`` are not two."""
+    """"A and C", "the red and blue cubes", "the two blue cubes" -> two different objects' names; None when
+    ``words`` are not two."""
+    group = _the_two(words, scene)
+    if group is not None:
+        return group
     return next((p for p in object_pairs(words, scene, (role, role), context) if isinstance(p, tuple) and p[0] != p[1]),
                 None)
+
+
+def _the_two(words: list[str], scene: Scene) -> tuple[str, str] | None:
+    """"the two blue cubes", "both red blocks": the two objects the plural description fits, in the scene's
+    order; None where it is no such phrase or fits another number."""
+    low = [w.lower() for w in words]
+    for opening in (("the", "two"), ("both", "the"), ("both",)):
+        if tuple(low[:len(opening)]) == opening and len(low) > len(opening) and low[-1].endswith("s"):
+            rest = [*words[len(opening):-1], words[-1][:-1]]
+            try:
+                fits = _candidates(" ".join(rest), rest, tuple(w.lower() for w in rest), scene)
+            except (LanguageError, UnknownObjectError):
+                return None
+            return (fits[0].name, fits[1].name) if len(fits) == 2 else None
+    return None
 
 
 def object_pairs(words: list[str], scene: Scene, roles: tuple[str, str],
