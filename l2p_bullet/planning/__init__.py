@@ -143,9 +143,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     # the objects' real footprints for the model's gap features, where one is not a cube (progress/features.py)
     footprints = outlines_of([scene.get(o) for o in (mover, *anchors)]) if getattr(model, "reads_outlines", False) \
         else None
-    # a model that reads squares is asked about a non-cube's motion as squares at its real gaps (squares.py)
-    model = squares_scorer(model, outlines_of([scene.get(o) for o in (mover, *anchors)]) if footprints is None
-                           else None, len(anchors))
+    # a model that reads squares is asked about an anchor that is not a cube as a square at its real gaps
+    model = squares_scorer(model, anchor_obj, len(anchors))
     needed = getattr(model, "anchors", 1)
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '

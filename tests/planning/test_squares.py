@@ -1,5 +1,6 @@
-"""A model that reads squares, asked about objects that are not squares (planning/squares.py): each pose moved
-to where two squares have the real gap, so that a cube beside a wide anchor reads "next to" where it is."""
+"""A model that reads squares, asked about an anchor that is not one (planning/squares.py): each pose moved to
+where the square it reads has the real anchor's gap, so that a cube beside a wide anchor reads "next to" where it
+is."""
 
 from __future__ import annotations
 
@@ -23,35 +24,38 @@ def _gap(pose, anchor, mover_outline, anchor_outline):
             - float(radial_extent(mover_outline, phi + math.pi - pose[2])))
 
 
-def test_two_squares_of_the_mover_s_side_are_left_where_they_are():
+def test_a_square_anchor_of_the_mover_s_side_is_left_where_it_is():
     path = np.array([[0.2, 0.1, 0.3], [0.1, 0.05, 0.2], [0.06, 0.0, 0.0]])
-    out = as_squares(path, np.array([0.0, 0.0, 0.4]), SIZE, [SQUARE, SQUARE])
+    out = as_squares(path, np.array([0.0, 0.0, 0.4]), SIZE, SQUARE)
     assert np.allclose(out, path, atol=1e-12)
 
 
 def test_each_pose_is_moved_to_the_squares_with_the_real_gap():
     anchor = np.array([0.1, -0.08, 0.3])
     path = np.array([[-0.1, 0.0, 0.0], [0.0, 0.0, 0.2], [0.1 - 0.062, -0.08, 0.0]])
-    out = as_squares(path, anchor, SIZE, [SQUARE, WIDE])
+    out = as_squares(path, anchor, SIZE, WIDE)
     for p, q in zip(path, out, strict=True):
         assert _gap(q, anchor, SQUARE, SQUARE) == pytest.approx(_gap(p, anchor, SQUARE, WIDE), abs=1e-9)
         bearing = [math.atan2(*(x[1::-1] - anchor[1::-1])) for x in (p, q)]
         assert bearing[0] == pytest.approx(bearing[1]) and q[2] == p[2]
 
 
-def test_only_a_one_anchor_model_that_reads_squares_is_wrapped():
+def test_only_a_one_anchor_model_that_reads_squares_is_wrapped_and_only_for_an_anchor_that_is_no_cube():
+    from l2p_bullet.core.scene import SceneObject, shaped
+
     class Model:
         reads_outlines = False
 
     class Reads:
         reads_outlines = True
 
-    m = Model()
-    assert isinstance(squares_scorer(m, [SQUARE, WIDE]), SquaresScorer)
-    assert squares_scorer(m, None) is m  # cubes only
-    assert squares_scorer(m, [SQUARE, WIDE, WIDE], anchors=2) is m
-    r = Reads()
-    assert squares_scorer(r, [SQUARE, WIDE]) is r
+    m, r = Model(), Reads()
+    can = shaped("B", "green", (0.0, 0.1), 0.0, shape="cylinder", radius=0.035, height_m=0.1)
+    cube = SceneObject("B", "green", 0.06, (0.0, 0.1), 0.0)
+    assert isinstance(squares_scorer(m, can), SquaresScorer)
+    assert squares_scorer(m, cube) is m  # a cube anchor of any size: as before
+    assert squares_scorer(m, can, anchors=2) is m
+    assert squares_scorer(r, can) is r
 
 
 @pytest.mark.slow
