@@ -66,7 +66,7 @@ def test_a_cube_goes_next_to_a_tall_wide_mesh(tmp_path):
     import trimesh
 
     from l2p_bullet.core.scene import Scene
-    from l2p_bullet.pipeline import plan_sentence
+    from l2p_bullet.pipeline import perform, plan_sentence
 
     bottle = trimesh.creation.cylinder(radius=0.028, height=0.16, sections=32)
     path = tmp_path / "bottle.obj"
@@ -76,3 +76,7 @@ def test_a_cube_goes_next_to_a_tall_wide_mesh(tmp_path):
                                          {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
     r = plan_sentence("move A next to M", scene.validate(), out_dir=tmp_path / "plan", plot=False)
     assert r.verdict["success"], r.verdict
+    # performed, the progress recorded per frame is read as the plan was scored: the same at the end
+    done = perform("move A next to M", scene.validate(), out_dir=tmp_path / "run", render=False)
+    assert done.verdict["success"], done.verdict
+    assert done.final_progress == pytest.approx(done.planned_progress, abs=0.05)
