@@ -125,8 +125,8 @@ class Pusher:
     def support(self, b: np.ndarray, phi: float) -> float:
         """The block's face distance from its centre along direction ``phi``: its footprint's support (for a
         cube the square's, ``size / 2 (|cos| + |sin|)``). The square of a round or long object's size reaches
-        past its real face on some sides, where the bite would then be too shallow to move it (a lemon pushed
-        on a diagonal stalled)."""
+        past its real face on some sides (5 mm on a 4 cm round object's diagonal), where a bite measured from it
+        is too shallow to move the object: the hand presses until the push's time runs out."""
         a = phi - b[2]
         if self.outline is not None:
             return float(np.max(self.outline @ np.array([math.cos(a), math.sin(a)])))

@@ -1,12 +1,12 @@
 """A model that reads squares asked about an anchor that is not one: each pose moved to where the square it reads
 has the real anchor's gap.
 
-The built-in progress models read the anchor as a square of the mover's side, whatever the anchor is (they were
-trained on people's equal squares, and fed real outlines they planned a tray onto its anchor: docs/learning.md).
+The built-in progress models read the anchor as a square of the mover's side, whatever the anchor is (they are
+trained on people's equal squares, and fed real outlines they plan a tray onto its anchor: docs/learning.md).
 Beside an anchor wider than that square (a 16 cm bottle 5.6 cm across beside a 4 cm cube) the square's gap is
 larger than the real one by the difference of their reaches, so the closest the hand lets the mover come still
 reads as half a block apart: the model never rates it "next to", and the search settles wherever the model
-overrates some other path (the bottle's "next to" ended 2.2 blocks away).
+overrates some other path, blocks away.
 
 So the model is shown the motion it was trained on: every mover pose is moved along its bearing from the anchor by
 the difference between the anchor's real reach towards it (its outline, ``core.geometry.radial_extent``) and the
