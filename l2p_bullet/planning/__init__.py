@@ -42,6 +42,7 @@ from .problem import FRAME_STEP, Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .refine import refine
 from .search import beam, greedy
+from .squares import squares_scorer
 from .world2d import World2D
 
 PLANNERS: dict[str, str] = {
@@ -142,6 +143,8 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     # the objects' real footprints for the model's gap features, where one is not a cube (progress/features.py)
     footprints = outlines_of([scene.get(o) for o in (mover, *anchors)]) if getattr(model, "reads_outlines", False) \
         else None
+    # a model that reads squares is asked about an anchor that is not a cube as a square at its real gaps
+    model = squares_scorer(model, anchor_obj, len(anchors))
     needed = getattr(model, "anchors", 1)
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '

@@ -226,3 +226,30 @@ def test_the_hand_comes_down_on_a_decomposed_box_s_top(tmp_path, monkeypatch):
     with World(scene, visuals=False) as world:
         for yaw in np.linspace(0.0, math.pi, 7):
             assert world.fingertip_height("M", float(yaw)) == pytest.approx(world.heights["M"], abs=0.0025)
+
+
+def _round(folder: Path) -> Path:
+    """A 4 cm round mesh (a 32-sided prism, 4 cm tall): the square of its size reaches 5 mm past its real face
+    on a diagonal."""
+    import trimesh
+
+    c = trimesh.creation.cylinder(radius=0.02, height=0.04, sections=32)
+    return _mesh(folder / "round.obj", c.vertices, c.faces)
+
+
+@pytest.mark.slow
+def test_a_round_mesh_pushed_on_a_diagonal_moves(tmp_path):
+    """The pusher bit a square's support deep: on a diagonal, 5 mm short of a round object's real face, it
+    pressed without moving it until the push ran out of time (the lemon of bench_objects --meshes, pushed
+    past: the same scene)."""
+    from l2p_bullet.core.scene import Scene
+    from l2p_bullet.pipeline import perform
+
+    m = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(_round(tmp_path)), "scale": 1.0,
+         "xy": [0.1, -0.08]}
+    scene = Scene.from_dict({"objects": [m, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
+                                         {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
+    r = perform("push M past B", scene.validate(), out_dir=tmp_path / "run", render=False)
+    assert r.grasp["push"]["stopped"] == "end", r.grasp
+    assert r.verdict["success"], r.verdict
+    assert max(r.displacements_m.get(k, 0.0) for k in ("A", "B")) < 0.001

@@ -36,6 +36,16 @@ def test_timing_respects_limits_and_stays_on_the_path():
     assert np.allclose(np.hypot(t.poses[:, 0], t.poses[:, 1]), 0.1, atol=2e-5)
 
 
+def test_a_path_on_ruckig_s_profile_border_is_timed():
+    """1 cm plus one ulp at the slide's limits lies on the border between two of ruckig's profile shapes, where
+    its search raised RuckigError (a 1 cm slide of a cube next to a bottle crashed the run)."""
+    length = 0.01000000000000001
+    line = np.column_stack([np.linspace(0.0, length, 5), np.zeros((5, 3))])
+    t = time_parameterise(line, LIM, DT)
+    assert t.s[0] == 0.0 and t.s[-1] == length and t.poses[-1, 0] == pytest.approx(length, abs=1e-12)
+    assert 0.39 < t.s.size * DT < 0.42  # the 0.4 s of a 1 cm rest-to-rest move
+
+
 def test_curvature_caps_the_speed():
     theta = np.linspace(0, math.pi, 400)
     r = 0.01  # v^2/r at 0.1 m/s would be 1 m/s^2, twice the lateral limit
