@@ -36,6 +36,7 @@ from .reference_words import (
     COLOR_SYNONYMS,
     COMPARATIVE_OF,
     CONJUNCTIONS,
+    DEMONSTRATIVES,
     DETERMINERS,
     DIRECT_CONE,
     FUNCTION_WORDS,
@@ -142,9 +143,9 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
 def _comparative_of(words: list[str]) -> list[str]:
     """"the larger of the cubes" -> "the largest cube"; other words as they are."""
     low = [w.lower() for w in words]
-    if len(low) >= 4 and low[0] == "the" and low[1] in COMPARATIVE_OF and low[2:4] == ["of", "the"] \
-            and len(low) == 5 and low[4].endswith("s"):
-        return ["the", COMPARATIVE_OF[low[1]], words[4][:-1]]
+    if len(low) >= 5 and low[0] == "the" and low[1] in COMPARATIVE_OF and low[2:4] == ["of", "the"] \
+            and low[-1].endswith("s"):
+        return ["the", COMPARATIVE_OF[low[1]], *words[4:-1], words[-1][:-1]]
     return words
 
 
@@ -164,6 +165,10 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
     if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
+    if (low in DEMONSTRATIVES or (opening in DEMONSTRATIVES and low[-1] in NOUNS)) and context is not None \
+            and context.mover is not None and context.anchor not in (None, context.mover):
+        raise LanguageError(f'"{said}" is ambiguous: {context.mover} (moved in the previous clause) or '
+                            f'{context.anchor} (named last); name the one you mean, or say "it"')
     if opening is not None and low[-1] in NOUNS:
         low = ("it",)
     if low[:2] == ("the", "other") and len(low) > 2 and low not in PRONOUNS_ANCHOR:

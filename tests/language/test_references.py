@@ -105,7 +105,9 @@ def test_that_cylinder_is_the_previous_clauses_cylinder(plugins, two_reds):
                   two_reds, plugins)
     assert got == "slide:closer D F ; slide:closer F mug"
     assert resolve_object("this cube", two_reds, context=Context("F", "C")) == "C"
-    assert resolve_object("that block", two_reds, context=Context("F", "C")) == "F"
+    with pytest.raises(LanguageError, match="ambiguous: F .* or C"):  # the block moved, or the one named last
+        resolve_object("that block", two_reds, context=Context("F", "C"))
+    assert resolve_object("that same block", two_reds, context=Context("F", "C")) == "F"
     assert "earlier clause" in _refused("that cylinder", two_reds)
 
 
