@@ -181,8 +181,10 @@ def gerund_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     for pre in GERUND_PREFIXES:
         if _starts(low, pre) and len(words) > len(pre):
             verb = verb_of_gerund(low[len(pre)], verbs)
-            if verb is not None:
-                return [verb, *words[len(pre) + 1:]]
+            if verb is not None:  # "... lifting A and placing it next to B": both verbs as commands
+                rest = words[len(pre) + 1:]
+                return [verb, *(verb_of_gerund(w.lower(), verbs) or w if k and rest[k - 1].lower() == "and" else w
+                                for k, w in enumerate(rest))]
     return words
 
 
