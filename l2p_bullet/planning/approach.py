@@ -18,10 +18,10 @@ the workspace) and the wrist's range for the grasp being planned.
 
 Where no straight slide gets there (a block between the mover and the anchor's near side, one beside it, the
 rim), the mover goes there as a person would reach round what is in the way: two straight slides at its yaw,
-the first to a corner that stays farther than ``near`` from the anchor (the rule reads "around" from the first
-frame within ``near``: a first slide that dipped in and out again would be read as leaving), the second from
-there to the approach circle, people's start first and the shortest such pair on it first (:func:`_round_the_way`). Only where neither gets
-there is the start refused (``far-around``).
+the first to a corner that stays farther than ``near`` from the anchor (the rule reads "around" from the
+first frame within ``near``: a first slide that dipped in and out again would be read as leaving), the
+second from there to the approach circle, people's start first and the shortest such pair on it first
+(:func:`_round_the_way`). Only where neither gets there is the start refused (``far-around``).
 """
 
 from __future__ import annotations
@@ -94,7 +94,8 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
     raise InfeasibleError(
         "far-around",
         f'"{mover}" starts {d0 / world.size:.2f} blocks from "{anchor}", and no straight slide brings it to '
-        f"{approach_sides:g}-{near_sides:g} blocks from it, nor two round what is in the way (other objects, the workspace's rim or the wrist's range "
+        f"{approach_sides:g}-{near_sides:g} blocks from it, nor two round what is in the way (other objects, the "
+        "workspace's rim or the wrist's range "
         f"are in the way): around must come within {near_sides:g} blocks first; move it closer first",
         {"start_blocks": round(d0 / world.size, 3), "near_blocks": near_sides, "approach_blocks": approach_sides})
 
@@ -105,11 +106,12 @@ circles about the anchor from half a block beyond ``near`` out to two blocks bey
 
 
 def _round_the_way(world: World2D, start: np.ndarray, a: np.ndarray, near_sides: float, approach_sides: float,
-                   step: float, wrist: Wrist | None, way_round: Callable[[np.ndarray], bool] | None) -> np.ndarray | None:
-    """Frames of two straight slides at the start's yaw to the approach circles (any bearing), turning at a corner
-    whose first slide stays farther than ``near_sides`` from the anchor: on the nearest circle to people's start
-    that has one, the shortest legal pair, or among the first :data:`WAY_TRIES` legal pairs the first whose end has a way round (``way_round``); None when none is
-    legal."""
+                   step: float, wrist: Wrist | None,
+                   way_round: Callable[[np.ndarray], bool] | None) -> np.ndarray | None:
+    """Frames of two straight slides at the start's yaw to the approach circles (any bearing), turning at a
+    corner whose first slide stays farther than ``near_sides`` from the anchor: on the nearest circle to people's
+    start that has one, the shortest legal pair, or among the first :data:`WAY_TRIES` legal pairs the first whose
+    end has a way round (``way_round``); None when none is legal."""
     size, yaw = world.size, float(start[2])
     d0 = float(np.hypot(*(start[:2] - a))) / size
     radii = np.arange(near_sides + CORNER_STEP[1], d0 + 2.0 + 1e-9, CORNER_STEP[1]) * size
