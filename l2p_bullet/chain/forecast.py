@@ -95,6 +95,7 @@ class _Dead(Exception):
     blocks: frozenset[str] | None
     scene: Scene | None = None  # the predicted scene the failed check was made in
     command: Any = None  # the failed clause's command
+    reads: frozenset[str] | None = None  # the blocks its check reads (``blocks`` before it was widened)
 
     @property
     def room(self) -> str | None:
@@ -274,8 +275,7 @@ class _Searcher:
         """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads
         where ``at``'s mover stands (its mover or anchor: not a clause sent back for its anchor's sake); whether it
         is new."""
-        reads = () if d.command is None else (
-            _reads(d.room, d.command) or (d.command.mover, *d.command.anchors))
+        reads = () if d.command is None else d.reads or (d.command.mover, *d.command.anchors)
         if not d.room or d.clause <= at.clause.index or at.clause.command.mover not in reads or any(
                 (n.clause, n.room) == (d.clause, d.room) for n in at.needs):
             return False
@@ -347,7 +347,7 @@ class _Searcher:
         reads = _reads(check, c.command)
         if check == "blocked-around" and scene is not None:
             reads = _around_reads(scene, c.command, self.loaded[c.command.action][0])
-        return _Dead(e, c.index, reads, scene, c.command)
+        return _Dead(e, c.index, reads, scene, c.command, reads)
 
 
 ANCHOR_ONLY = ("room-around",)
@@ -366,16 +366,19 @@ def _reads(check: str | None, command: Any) -> frozenset[str] | None:
 
 
 def _around_reads(scene: Scene, command: Any, bundle: Any) -> frozenset[str]:
-    """The blocks "blocked-around" reads (planning/sweep.py): the mover (where it starts decides where it comes
-    near), the anchors, and every block a pose of the mover within ``near`` blocks of the anchor can touch. A block
-    farther out is not in the way: another end of the clause that left it there cannot clear the way round."""
+    """The blocks "blocked-around" reads (planning/sweep.py): the anchors, and every block a pose of the mover
+    within ``near`` blocks of the anchor can touch; the mover too when it starts within ``near`` (its way round
+    must start where it stands; from afar the check reads every place it can first come near, wherever it
+    starts). A block farther out is not in the way: another end of the clause that left it there cannot clear
+    the way round."""
     from ..planning import rule_spec  # lazy, as _plan's import
 
     spec = rule_spec(bundle)
     near = (spec.thresholds.get("near") if spec is not None else None) or AROUND_NEAR
     m, a = scene.get(command.mover), np.asarray(scene.get(command.anchor).xy, float)
     reach = near * m.size + _radius(m) + GRIPPER_MARGIN + 1e-6
-    return frozenset({command.mover, *command.anchors} | {
+    starts_near = float(np.hypot(*(np.asarray(m.xy, float) - a))) <= near * m.size + 1e-9
+    return frozenset({*command.anchors} | ({command.mover} if starts_near else set()) | {
         o.name for o in scene.objects if float(np.hypot(*(np.asarray(o.xy, float) - a))) - _radius(o) <= reach})
 
 

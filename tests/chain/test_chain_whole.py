@@ -377,11 +377,13 @@ def test_room_around_sends_the_search_back_past_a_clause_that_moved_only_its_mov
     assert [c for c, _ in stand_ins].count(2) == 2  # after clause 1's own end, and after its end cut short
 
 
+@pytest.mark.parametrize("second", ["move D closer to C", "move C away from D"])
 def test_blocked_around_sends_the_search_back_past_a_clause_whose_block_is_not_in_the_way(plugins, stand_ins,
-                                                                                        monkeypatch):
-    """"blocked-around" reads the blocks near enough the anchor to be in the way: clause 2 leaves D far from A,
-    so no end of it can clear the way round A; it is planned once per end of clause 1 (before, every check but
-    a room check sent the search through every earlier clause's ends)."""
+                                                                                        monkeypatch, second):
+    """"blocked-around" reads the blocks near enough the anchor to be in the way: clause 2 leaves its block far
+    from A (a bystander, or the mover of "around", which from afar may come near wherever it starts), so no end
+    of it can clear the way round A; it is planned once per end of clause 1 (before, every check but a room
+    check sent the search through every earlier clause's ends)."""
 
     def blocked_by_the_rim(cmd, scene, plugins, arm=PANDA):
         if cmd.anchor == "A" and np.allclose(scene.get("A").xy, RIM[:2]):
@@ -396,7 +398,7 @@ def test_blocked_around_sends_the_search_back_past_a_clause_whose_block_is_not_i
     monkeypatch.setattr(chain_forecast, "check_feasible", blocked_by_the_rim)
     monkeypatch.setattr(chain_forecast, "plan_clause", plan)
     scene = four_blocks()
-    clauses = resolve_clauses("move A away from B, then move D closer to C, then move C around A", scene, plugins)
+    clauses = resolve_clauses(f"move A away from B, then {second}, then move C around A", scene, plugins)
     steps = forecast(clauses, scene, plugins)
     assert steps[0].end != DEFAULT and [s.end for s in steps[1:]] == [DEFAULT, DEFAULT]
     assert [c for c, _ in stand_ins].count(2) == 2
