@@ -6,7 +6,8 @@ planned from there, the earlier clauses' other end states (ends.py: a path stopp
 end turned about the anchor) are tried, latest first, depth first, so one clause's greedy end (a block left
 on the workspace's rim, a block already past its anchor) does not make the chain impossible when another end
 of the same clause would keep it possible. Only the clauses that moved a block the failed check reads are
-tried again (a room check reads the mover and the anchor; every other check, the whole scene), and, once
+tried again (a room check reads the mover and the anchor, "room-around" the anchor alone; "blocked-around"
+those and the blocks near enough the anchor to be in the way; every other check, the whole scene), and, once
 every end of a clause failed, the clauses that moved its anchors (where they stand decides its ends).
 
 Once a later clause's room check has failed on where a clause left its mover, that clause's other ends that
@@ -34,10 +35,11 @@ from typing import Any
 import numpy as np
 
 from ..core.contracts import Plan
-from ..core.scene import Scene
+from ..core.scene import GRIPPER_MARGIN, Scene
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge import judge_for, plan_verdict
 from ..judge.footprints import outlines_of
+from ..judge.rules import AROUND_NEAR
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
@@ -93,6 +95,7 @@ class _Dead(Exception):
     blocks: frozenset[str] | None
     scene: Scene | None = None  # the predicted scene the failed check was made in
     command: Any = None  # the failed clause's command
+    reads: frozenset[str] | None = None  # the blocks its check reads (``blocks`` before it was widened)
 
     @property
     def room(self) -> str | None:
@@ -272,7 +275,7 @@ class _Searcher:
         """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads
         where ``at``'s mover stands (its mover or anchor: not a clause sent back for its anchor's sake); whether it
         is new."""
-        reads = (d.command.mover, *d.command.anchors) if d.command is not None else ()
+        reads = () if d.command is None else d.reads or (d.command.mover, *d.command.anchors)
         if not d.room or d.clause <= at.clause.index or at.clause.command.mover not in reads or any(
                 (n.clause, n.room) == (d.clause, d.room) for n in at.needs):
             return False
@@ -321,8 +324,8 @@ class _Searcher:
         failure again is certain), and only their own failure counts (counted as a dead end, as if met)."""
         c = at.clause
         for d in at.needs:
-            if known and d.blocks is None:
-                continue
+            if known and (d.blocks is None or not d.blocks <= {d.command.mover, *d.command.anchors}):
+                continue  # it reads other blocks too, which the clauses between may move
             try:
                 check_feasible(d.command, d.scene.with_pose(c.command.mover, pose), self.plugins, self.arm)
             except L2PError as e:
@@ -341,8 +344,47 @@ class _Searcher:
 
     def _dead(self, c: Clause, e: L2PError, scene: Scene | None = None) -> _Dead:
         check = self._count(c, e)
-        reads = frozenset(c.command.anchors) | {c.command.mover} if check and check.startswith("room-") else None
-        return _Dead(e, c.index, reads, scene, c.command)
+        reads = _reads(check, c.command)
+        if check == "blocked-around" and scene is not None:
+            reads = _around_reads(scene, c.command, self.loaded[c.command.action][0])
+        return _Dead(e, c.index, reads, scene, c.command, reads)
+
+
+ANCHOR_ONLY = ("room-around",)
+"""The room checks that read where the anchor stands and not where the mover does (the room round an anchor is
+the workspace's about it; the mover's size alone counts): an earlier clause that moved only the mover cannot
+change them, so the search goes straight back to the clauses that moved the anchor."""
+
+
+def _reads(check: str | None, command: Any) -> frozenset[str] | None:
+    """The blocks whose poses a failed check reads: a room check's anchors (and its mover, but for
+    :data:`ANCHOR_ONLY`); any other check's, every block (None)."""
+    if not check or not check.startswith("room-"):
+        return None
+    anchors = frozenset(command.anchors)
+    return anchors if check in ANCHOR_ONLY else anchors | {command.mover}
+
+
+def _around_reads(scene: Scene, command: Any, bundle: Any) -> frozenset[str]:
+    """The blocks "blocked-around" reads (planning/sweep.py): the anchors, and every block a pose of the mover
+    within ``near`` blocks of the anchor can touch; the mover too when it starts within ``near`` (its way round
+    must start where it stands; from afar the check reads every place it can first come near, wherever it
+    starts). A block farther out is not in the way: another end of the clause that left it there cannot clear
+    the way round."""
+    from ..planning import rule_spec  # lazy, as _plan's import
+
+    spec = rule_spec(bundle)
+    near = (spec.thresholds.get("near") if spec is not None else None) or AROUND_NEAR
+    m, a = scene.get(command.mover), np.asarray(scene.get(command.anchor).xy, float)
+    reach = near * m.size + _radius(m) + GRIPPER_MARGIN + 1e-6
+    starts_near = float(np.hypot(*(np.asarray(m.xy, float) - a))) <= near * m.size + 1e-9
+    return frozenset({*command.anchors} | ({command.mover} if starts_near else set()) | {
+        o.name for o in scene.objects if float(np.hypot(*(np.asarray(o.xy, float) - a))) - _radius(o) <= reach})
+
+
+def _radius(o: Any) -> float:
+    """How far the object's footprint reaches from its centre."""
+    return float(np.hypot(*(o.footprint() - np.asarray(o.xy, float)).T).max())
 
 
 def _wider(d: _Dead, c: Clause) -> _Dead:

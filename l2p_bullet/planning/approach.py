@@ -15,6 +15,13 @@ whole circle has no room (a small mover by a big anchor), at circles a quarter b
 ``near``. Each
 slide is checked as the search checks its moves: the 2-D world (the mover's outline grown by the hand,
 the workspace) and the wrist's range for the grasp being planned.
+
+Where no straight slide gets there (a block between the mover and the anchor's near side, one beside it, the
+rim), the mover goes there as a person would reach round what is in the way: two straight slides at its yaw,
+the first to a corner that stays farther than ``near`` from the anchor (the rule reads "around" from the
+first frame within ``near``: a first slide that dipped in and out again would be read as leaving), the
+second from there to the approach circle, people's start first and the shortest such pair on it first
+(:func:`_round_the_way`). Only where neither gets there is the start refused (``far-around``).
 """
 
 from __future__ import annotations
@@ -81,12 +88,71 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
                 return first
     if first is not None:
         return first
+    found = _round_the_way(world, start, a, near_sides, approach_sides, step, wrist, way_round)
+    if found is not None:
+        return found
     raise InfeasibleError(
         "far-around",
         f'"{mover}" starts {d0 / world.size:.2f} blocks from "{anchor}", and no straight slide brings it to '
-        f"{approach_sides:g}-{near_sides:g} blocks from it (other objects, the workspace's rim or the wrist's range "
+        f"{approach_sides:g}-{near_sides:g} blocks from it, nor two round what is in the way (other objects, the "
+        "workspace's rim or the wrist's range "
         f"are in the way): around must come within {near_sides:g} blocks first; move it closer first",
         {"start_blocks": round(d0 / world.size, 3), "near_blocks": near_sides, "approach_blocks": approach_sides})
+
+
+CORNER_STEP = (15.0, 0.5)
+"""Bearing step (degrees) and radius step (blocks) of the corners a slide round what is in the way may turn at:
+circles about the anchor from half a block beyond ``near`` out to two blocks beyond the mover's start."""
+
+
+def _round_the_way(world: World2D, start: np.ndarray, a: np.ndarray, near_sides: float, approach_sides: float,
+                   step: float, wrist: Wrist | None,
+                   way_round: Callable[[np.ndarray], bool] | None) -> np.ndarray | None:
+    """Frames of two straight slides at the start's yaw to the approach circles (any bearing), turning at a
+    corner whose first slide stays farther than ``near_sides`` from the anchor: on the nearest circle to people's
+    start that has one, the shortest legal pair, or among the first :data:`WAY_TRIES` legal pairs the first whose
+    end has a way round (``way_round``); None when none is legal."""
+    size, yaw = world.size, float(start[2])
+    d0 = float(np.hypot(*(start[:2] - a))) / size
+    radii = np.arange(near_sides + CORNER_STEP[1], d0 + 2.0 + 1e-9, CORNER_STEP[1]) * size
+    bearings = np.radians(np.arange(0.0, 360.0, CORNER_STEP[0]))
+    r, b = (v.ravel() for v in np.meshgrid(radii, bearings, indexing="ij"))
+    corners = np.column_stack([a[0] + r * np.cos(b), a[1] + r * np.sin(b), np.full(len(r), yaw)])
+    corners = corners[_segment_distance(start[:2], corners[:, :2], a) > near_sides * size]
+    corners = corners[world.moves_free(start, corners)] if len(corners) else corners
+    if not len(corners):
+        return None
+    ends_b = np.radians(np.arange(0.0, 360.0, 10.0))
+    rings = approach_radii(approach_sides, near_sides)
+    ends = np.vstack([np.column_stack([a[0] + s * size * np.cos(ends_b), a[1] + s * size * np.sin(ends_b),
+                                       np.full(len(ends_b), yaw)]) for s in rings])
+    ring = np.repeat(np.arange(len(rings)), len(ends_b))
+    pairs = []
+    for corner in corners:
+        first = float(np.hypot(*(corner[:2] - start[:2])))
+        free = world.moves_free(corner, ends)
+        for end, k in zip(ends[free], ring[free], strict=True):
+            pairs.append((int(k), first + float(np.hypot(*(end[:2] - corner[:2]))), corner, end))
+    pairs.sort(key=lambda p: p[:2])  # people's start first, as a straight slide's; then the shortest way there
+    chosen, tried = None, 0
+    for _, _, corner, end in pairs:
+        frames = np.vstack([start[None], segment_frames(start, corner, step), segment_frames(corner, end, step)])
+        if wrist is not None and not wrist.fits(*wrist.span(frames[:, :2], frames[:, 2])):
+            continue
+        if way_round is None or way_round(end):
+            return frames
+        chosen = frames if chosen is None else chosen
+        tried += 1
+        if tried >= WAY_TRIES:
+            break
+    return chosen
+
+
+def _segment_distance(p: np.ndarray, q: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Per segment from ``p`` (2,) to each of ``q`` (N,2): its least distance to the point ``c`` (2,)."""
+    d = q - p
+    t = np.clip(((c - p) @ d.T) / np.maximum((d * d).sum(1), 1e-18), 0.0, 1.0)
+    return np.hypot(*(p + t[:, None] * d - c).T)
 
 
 __all__ = ["lead_in", "approach_radii", "AIM_OFFSETS_DEG", "RADIUS_STEP", "WAY_TRIES"]

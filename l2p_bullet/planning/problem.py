@@ -85,8 +85,9 @@ class Problem:
     wrist: Wrist | None = None  # the arm's wrist range: paths no grasp yaw can follow are illegal
     more_anchor_poses: list[np.ndarray] = field(default_factory=list)  # a two-anchor action's second anchor
     viewer: np.ndarray | None = None  # (2,) the viewpoint of a viewer-frame action (scene frame, metres)
-    # (T0,3) frames of a straight slide from the mover's start that comes before the action (approach.py:
-    # "around" from afar): every node starts with it, and the model scores only what follows its last frame
+    # (T0,3) frames of the straight slide (or two, round what is in the way) from the mover's start that comes
+    # before the action (approach.py: "around" from afar): every node starts with it, and the model scores only
+    # what follows its last frame
     lead_in: np.ndarray | None = None
     # metres from the anchor that no move may end beyond ("around": as far as people went round, planning/__init__)
     reach: float | None = None
@@ -98,6 +99,7 @@ class Problem:
     # the objects' real footprints (judge/footprints.py outlines_of) for a model that reads them, where one
     # is not a cube; None: the model reads unit squares, as it was trained
     outlines: list[np.ndarray] | None = None
+    _lead_moves: int | None = field(default=None, repr=False)  # lead_moves, counted once
 
     @property
     def context(self) -> dict:
@@ -132,13 +134,17 @@ class Problem:
 
     @property
     def lead_moves(self) -> int:
-        """Moves of a node's path before the action's own (the lead-in's one straight slide, or none)."""
-        return 0 if self.lead_in is None else 1
+        """Moves of a node's path before the action's own (the lead-in's straight slides, or none)."""
+        if self.lead_in is None:
+            return 0
+        if self._lead_moves is None:
+            self._lead_moves = len(lead_corners(self.lead_in)) - 1
+        return self._lead_moves
 
     def root(self) -> Node:
         start = self.world.mover.pose.copy()
         frames = start[None].copy() if self.lead_in is None else np.asarray(self.lead_in, float).copy()
-        waypoints = start[None].copy() if self.lead_in is None else np.stack([start, frames[-1]])
+        waypoints = start[None].copy() if self.lead_in is None else lead_corners(frames)
         p = float(self.model.final_batch([frames[self.lead:]], self.anchor_pose, self.size, **self.context)[0])
         self.forward_passes += 1
         wrist = self.wrist.span(frames[:, :2], frames[:, 2]) if self.wrist is not None else (0.0, 0.0)
@@ -176,6 +182,16 @@ class Problem:
             for k, s in zip(kids, scores, strict=True):
                 k.progress = float(s)
         return kids
+
+
+def lead_corners(frames: np.ndarray) -> np.ndarray:
+    """The waypoints of a lead-in's frames: its start, each frame where its heading turns, its end (a straight
+    slide: its two ends; a slide round what is in the way, approach.py: its corner too)."""
+    frames = np.asarray(frames, float)
+    d = np.diff(frames[:, :2], axis=0)
+    sine = (d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0]) / np.maximum(np.hypot(*d[:-1].T) * np.hypot(*d[1:].T), 1e-18)
+    turn = np.abs(sine) > 1e-6
+    return np.vstack([frames[:1], frames[1:-1][turn], frames[-1:]])
 
 
 Proposer = Callable[[Problem, Node, int], np.ndarray]

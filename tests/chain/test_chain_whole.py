@@ -363,3 +363,42 @@ def test_aimed_places_are_the_nearest_that_fit_pass_and_are_judged_and_asked_at_
     asked.clear()
     assert aims.aimed_goals(scene, "A", base, judge, lambda q: asked.append(q) and False) == []
     assert len(asked) == aims.CHECKS
+
+
+def test_room_around_sends_the_search_back_past_a_clause_that_moved_only_its_mover(plugins, stand_ins, monkeypatch):
+    """"room-around" reads where the anchor stands, not the mover: clause 2 moved C, the mover of clause 3, and
+    no end of it can make room round A, so it is planned once per end of clause 1 (the one that moved A) and
+    not searched over (before, its ends spent the search's plans)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", rim_refuses("room-around", reads="A"))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C next to D, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT, DEFAULT]
+    assert [c for c, _ in stand_ins].count(2) == 2  # after clause 1's own end, and after its end cut short
+
+
+@pytest.mark.parametrize("second", ["move D closer to C", "move C away from D"])
+def test_blocked_around_sends_the_search_back_past_a_clause_whose_block_is_not_in_the_way(plugins, stand_ins,
+                                                                                        monkeypatch, second):
+    """"blocked-around" reads the blocks near enough the anchor to be in the way: clause 2 leaves its block far
+    from A (a bystander, or the mover of "around", which from afar may come near wherever it starts), so no end
+    of it can clear the way round A; it is planned once per end of clause 1 (before, every check but a room
+    check sent the search through every earlier clause's ends)."""
+
+    def blocked_by_the_rim(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "A" and np.allclose(scene.get("A").xy, RIM[:2]):
+            raise InfeasibleError("blocked-around", 'no way round "A" by the rim')
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+        p = stand_in(stand_ins)(clause, scene, bundle, judge, options, arm, end, base=base)
+        if clause.index == 2:
+            p.path[-1][:2] = (-0.20, 0.15)
+        return p
+
+    monkeypatch.setattr(chain_forecast, "check_feasible", blocked_by_the_rim)
+    monkeypatch.setattr(chain_forecast, "plan_clause", plan)
+    scene = four_blocks()
+    clauses = resolve_clauses(f"move A away from B, then {second}, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert steps[0].end != DEFAULT and [s.end for s in steps[1:]] == [DEFAULT, DEFAULT]
+    assert [c for c, _ in stand_ins].count(2) == 2

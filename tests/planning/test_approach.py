@@ -77,15 +77,39 @@ def test_a_start_that_is_near_already_has_no_approach():
     assert "approach" not in plan.extra and not verdict["reason"].startswith("came within")
 
 
-def test_around_from_afar_is_refused_up_front_when_a_wall_blocks_every_way_near():
-    wall = [{"name": n, "color": c, "shape": "box", "dims": [0.08, 0.02, 0.03], "xy": [x, -0.03]}
-            for n, c, x in (("C", "blue", -0.085), ("D", "yellow", 0.0), ("E", "orange", 0.085))]
+def _wall(xs) -> list[dict]:
+    colors = ("blue", "yellow", "orange", "purple", "cyan", "pink", "gray", "white", "black")
+    return [{"name": f"W{i}", "color": colors[i % len(colors)], "shape": "box", "dims": [0.08, 0.02, 0.03],
+             "xy": [x, -0.03]} for i, x in enumerate(xs)]
+
+
+def test_around_from_afar_goes_round_a_wall_in_two_straight_slides():
+    # a wall between the mover and the anchor: no straight slide gets near, so the mover slides to a corner
+    # beyond the wall's end, never within 4 blocks of the anchor (the rule would read it as leaving), then near
     scene = Scene.from_dict({"objects": [dict(FAR["objects"][0], xy=[0.0, -0.17], yaw=0.0),
-                                         dict(FAR["objects"][1], xy=[0.0, 0.09]), *wall]})
+                                         dict(FAR["objects"][1], xy=[0.0, 0.09]), *_wall((-0.085, 0.0, 0.085))]})
+    plan, verdict = judged_plan(prepare("move A around B", scene), seed=0)
+    frames = plan.extra["approach"]["frames"]
+    lead = plan.path[:frames]
+    d = _blocks(lead, plan.anchor_pose, plan.size)
+    assert d[-1] == pytest.approx(AROUND_APPROACH, abs=1e-6)
+    corners = np.asarray(plan.extra["waypoints"])[:3]
+    assert np.allclose(corners[0], lead[0]) and np.allclose(corners[2], lead[-1])  # start, corner, end
+    corner = int(np.argmin(np.hypot(*(lead[:, :2] - corners[1, :2]).T)))
+    assert (d[:corner + 1] > AROUND_NEAR).all() and abs(corners[1, 0]) > 0.125  # beyond the wall's end
+    assert np.allclose(lead[:, 2], lead[0, 2])  # one yaw
+    assert verdict["success"], verdict["reason"]
+
+
+def test_around_from_afar_is_refused_up_front_when_a_wall_blocks_every_way_near():
+    # the wall spans the workspace (the arm's reach ring to the disk's rim): neither one straight slide nor two get near
+    scene = Scene.from_dict({"objects": [dict(FAR["objects"][0], xy=[0.0, -0.17], yaw=0.0),
+                                         dict(FAR["objects"][1], xy=[0.0, 0.09]),
+                                         *_wall(np.arange(6) * 0.084 - 0.21)]})
     with pytest.raises(InfeasibleError) as e:
         judged_plan(prepare("move A around B", scene), seed=0)
     assert e.value.check == "far-around" and "\n" not in str(e.value)
-    assert "no straight slide brings it to 2.5-4 blocks" in str(e.value)
+    assert "no straight slide brings it to 2.5-4 blocks from it, nor two" in str(e.value)
 
 
 def test_the_rule_reads_around_from_the_first_frame_near():
