@@ -17,10 +17,12 @@ from .reference_words import (
     BLOCK_SHAPES,
     BLOCK_WORDS,
     COLOR_SYNONYMS,
+    COMPARATIVE_OF,
     DETERMINERS,
     FARTHEST,
     NEAREST,
     NOUNS,
+    PLACE_ADJECTIVES,
     SHAPE_NOUNS,
     SIZE_SUPERLATIVES,
     TIE,
@@ -193,3 +195,21 @@ def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool =
     if len(tied) > 1:
         raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
     return tied[0]
+
+
+def comparative_of(words: list[str]) -> list[str]:
+    """"the larger of the cubes" -> "the largest cube"; other words as they are."""
+    low = [w.lower() for w in words]
+    if len(low) >= 5 and low[0] == "the" and low[1] in COMPARATIVE_OF and low[2:4] == ["of", "the"] \
+            and low[-1].endswith("s"):
+        return ["the", COMPARATIVE_OF[low[1]], *words[4:-1], words[-1][:-1]]
+    return words
+
+
+def places_as_superlatives(words: list[str]) -> list[str]:
+    """"the front blue cube", "the left one" -> "the frontmost blue cube", "the leftmost one": a place word right
+    after the determiner, before the rest of the description (never "the left of", "the back side")."""
+    low = [w.lower() for w in words]
+    if len(low) >= 3 and low[0] in DETERMINERS and low[1] in PLACE_ADJECTIVES and low[2] not in ("of", "side", "edge"):
+        return [words[0], PLACE_ADJECTIVES[low[1]], *words[2:]]
+    return words

@@ -22,10 +22,12 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from .places import (
     bearing_off,
     bulk_superlative,
+    comparative_of,
     distance_to,
     either_reading,
     measure,
     named_colours,
+    places_as_superlatives,
     relation_head,
     superlative,
 )
@@ -34,7 +36,6 @@ from .reference_words import (
     BLOCK_WORDS,
     CENTRE_PHRASES,
     COLOR_SYNONYMS,
-    COMPARATIVE_OF,
     CONJUNCTIONS,
     DEMONSTRATIVES,
     DETERMINERS,
@@ -44,7 +45,6 @@ from .reference_words import (
     NEAREST,
     NOUNS,
     OPENINGS,
-    PLACE_ADJECTIVES,
     PRONOUNS_ANCHOR,
     PRONOUNS_MOVER,
     RELATIVES,
@@ -127,7 +127,7 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     clause's "that is" ("the cube that is red": the cube red) taken out, a comparative among a group as its
     superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
     ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
-    words = _places_as_superlatives(_comparative_of(words))
+    words = places_as_superlatives(comparative_of(words))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
@@ -137,24 +137,6 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
         for rel in RELATIVES:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
                 return words[:i] + words[i + len(rel):]
-    return words
-
-
-def _comparative_of(words: list[str]) -> list[str]:
-    """"the larger of the cubes" -> "the largest cube"; other words as they are."""
-    low = [w.lower() for w in words]
-    if len(low) >= 5 and low[0] == "the" and low[1] in COMPARATIVE_OF and low[2:4] == ["of", "the"] \
-            and low[-1].endswith("s"):
-        return ["the", COMPARATIVE_OF[low[1]], *words[4:-1], words[-1][:-1]]
-    return words
-
-
-def _places_as_superlatives(words: list[str]) -> list[str]:
-    """"the front blue cube", "the left one" -> "the frontmost blue cube", "the leftmost one": a place word right
-    after the determiner, before the rest of the description (never "the left of", "the back side")."""
-    low = [w.lower() for w in words]
-    if len(low) >= 3 and low[0] in DETERMINERS and low[1] in PLACE_ADJECTIVES and low[2] not in ("of", "side", "edge"):
-        return [words[0], PLACE_ADJECTIVES[low[1]], *words[2:]]
     return words
 
 
