@@ -48,7 +48,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "and let go", "and let go of it", "and set it down there", "and put it down there",
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
     "shall we", "can you do that", "could you do that", "lol", "when you have a moment", "when you get a chance",
-    "if you don't mind", "if you dont mind", "yeah", "ok thanks",
+    "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
+    "in one full circle", "in one full loop", "in a full loop", "all the way",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
                                                 ("how", "about"), ("what", "about"))
