@@ -35,6 +35,7 @@ from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.footprints import outlines_of
 from ..judge.rules import RULE_SPECS
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
+from .already import already, standing_plan
 from .bounds import BoundScorer, people_weights
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
@@ -146,9 +147,13 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '
                         f"not {len(anchors)} ({', '.join(anchors)})")
+    spec = rule_spec(bundle)
+    if target is None:  # a composite's slot is planned to the slot, wherever the mover stands
+        verdict = already(scene, mover, anchors, spec)
+        if verdict is not None:  # the relation already holds: nothing to move (already.py)
+            return standing_plan(scene, mover, anchors, str(bundle.name), name, verdict, model)
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
-    spec = rule_spec(bundle)
     # a composite's slot (target) is planned to the slot alone: no lead-in and no bound from people's data
     lead_in = spec.planning.lead_in if target is None and spec is not None else None
     bound = None if target is not None else _people_bound(bundle, spec)  # bounds.py
