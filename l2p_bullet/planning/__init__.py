@@ -39,11 +39,12 @@ from .already import already, standing_plan
 from .bounds import BoundScorer, people_weights
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
-from .problem import FRAME_STEP, Problem, finish
+from .nearer import nearer_path
+from .problem import FRAME_STEP, Node, Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .refine import refine
 from .search import beam, greedy
-from .world2d import World2D
+from .world2d import World2D, interpolate
 
 PLANNERS: dict[str, str] = {
     "greedy": "random search with back-up (the paper's baseline)",
@@ -226,6 +227,16 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     problem, node, stopped, steps, hold, refined = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
+    if target is None and pusher is None:  # "closer" from touching: the room is in turning square (nearer.py)
+        way = nearer_path(scene, mover, anchor, spec, result.path[-1], problem.world, problem.wrist)
+        if way is not None:
+            searched = result.path[-1].round(6).tolist()
+            frames = interpolate(way, FRAME_STEP * problem.size)
+            p = float(problem.model.final_batch([frames], problem.anchor_pose, problem.size, **problem.context)[0])
+            result = finish(problem, Node(way, frames, p, yaw=float(way[-1, 2])), action=str(bundle.name),
+                            mover=mover, anchor=anchor, planner=name, stopped=stopped, steps=steps,
+                            more_anchors=anchors[1:])
+            result.extra["nearer"] = {"from": "touching", "searched_end": searched}
     check_moves(scene, mover, anchor, result.path, action=str(bundle.name), stopped=stopped,
                 progress=float(node.progress), steps=steps)  # a plan that goes nowhere is never a run
     if refined:
