@@ -5,12 +5,14 @@ From a start within the world's margin of the anchor (the blocks touch, corner t
 was 2.25 blocks apart), and its search either finds no move that raises the progress or a nudge that closes a
 fifth of the room the rule asks half of. What room there is lies in turning: two squares touching corner to
 face have centres 1.1-1.5 blocks apart, face to face 1. So where the search ends short of the share of the
-room the action's rule asks for (``room-closer``'s reading: ``judge/rulesets/closer.py``), the mover is planned
-to a target (``target.py``): turned square to the anchor's nearest face, its centre in front of that face with
-the gap it started with (no nearer: the world keeps it, ``world2d.py``) and slid along the face as far as the
-share needs. People graded "closer" motions that ended in contact down, so the end keeps its gap rather than
-touching (docs/perform.md, "Closer from touching"). A push does not turn the block: none is planned for it, and
-the room check (``feasibility.py``) refuses it up front where the yaws leave no room.
+room the action's rule asks for (``room-closer``'s reading: ``judge/rulesets/closer.py``), the mover's path is
+built here instead: turned square to the anchor's nearest face while it slides in, its centre ending in front
+of that face, slid along it as far as the share needs. The world never lets a move bring the mover nearer the
+anchor than the move's start (``world2d.py``: the hand beside it needs the room), so the gap grows a little at
+every waypoint; corner to corner, where the world lets the mover only leave, it first goes out to the margin,
+then squares up. People graded "closer" motions that ended in contact down, so the end keeps its gap rather
+than touching (docs/perform.md, "Closer from touching"). A push does not turn the block: none is built for
+it, and the room check (``feasibility.py``) refuses it up front where the yaws leave no room.
 """
 
 from __future__ import annotations
@@ -43,9 +45,10 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
                 wrist: Wrist | None) -> np.ndarray | None:
     """Waypoints (N,3, scene frame, from the start) that bring ``mover``, starting within the margin of
     ``anchor``, square to the anchor's nearest face where the plan's ``end`` closes less than the share of the
-    room ``spec``'s rule asks for: straight there, or first turned square a little way back from the face
-    (:data:`BACK`), each move legal in ``world`` and followable by the ``wrist``. None where none applies (not
-    such an action or start, not cubes of one size, the search's end enough) or none is legal."""
+    room ``spec``'s rule asks for: turned while it slides in (1-8 waypoints, the least gap kept first), or out
+    to the margin and then square; each move legal in ``world`` and followable by the ``wrist``. None where
+    none applies (not such an action or start, not cubes of one size, the search's end enough) or none is
+    legal."""
     if spec is None or CHECK not in spec.planning.checks or "share" not in spec.thresholds:
         return None
     m, a = scene.get(mover), scene.get(anchor)
