@@ -72,6 +72,13 @@ def test_a_touching_next_to_is_performed_standing_still(tmp_path):
     assert len(frames) == 1 and frames[0]["grasped"] is None
     a = frames[0]["poses"]["A"]
     assert a[:2] == pytest.approx(list(scene.get("A").xy), abs=1e-4)
+    # replayed, the plan of one pose moves nothing either (the arm does not come down to the block)
+    from l2p_bullet.embodiment.replay import motion_source, run_replay
+
+    source = motion_source(str(tmp_path / "run" / "plan.json"), None, scene, "A", "B")
+    (tmp_path / "replay").mkdir()
+    ex = run_replay(scene, source, tmp_path / "replay", None)
+    assert len(ex.frames) == 1 and ex.frames[0]["grasped"] is None
 
 
 @pytest.mark.slow
