@@ -227,8 +227,9 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     problem, node, stopped, steps, hold, refined = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
-    if target is None and pusher is None:  # "closer" from touching: the room is in turning square (nearer.py)
-        way = nearer_path(scene, mover, anchor, spec, result.path[-1], problem.world, problem.wrist)
+    if target is None:  # "closer" from touching or level: the room is in turning square, sliding in (nearer.py)
+        way = nearer_path(scene, mover, anchor, spec, result.path[-1], problem.world, problem.wrist,
+                          turns=pusher is None)
         if way is not None:
             searched = result.path[-1].round(6).tolist()
             frames = interpolate(way, FRAME_STEP * problem.size)
@@ -236,7 +237,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             result = finish(problem, Node(way, frames, p, yaw=float(way[-1, 2])), action=str(bundle.name),
                             mover=mover, anchor=anchor, planner=name, stopped=stopped, steps=steps,
                             more_anchors=anchors[1:])
-            result.extra["nearer"] = {"from": "touching", "searched_end": searched}
+            result.extra["nearer"] = {"searched_end": searched}
     check_moves(scene, mover, anchor, result.path, action=str(bundle.name), stopped=stopped,
                 progress=float(node.progress), steps=steps)  # a plan that goes nowhere is never a run
     if refined:

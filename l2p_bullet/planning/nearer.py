@@ -38,11 +38,14 @@ is not judged on the rule's edge."""
 LEAST_SPARE = 0.01
 """Blocks of spare taken where :data:`SPARE` leaves no room face to face."""
 KEEP_M = 0.001
+NEAR = 0.5
+"""Blocks between the footprints within which this applies: where "next to" and a level start leave the mover
+(the learned model is flat there too: from a start level with the anchor the search closed 26-47 % of the room)."""
 """Metres added to the start's gap at the end: the world never lets the mover nearer than it started."""
 
 
 def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, end: np.ndarray, world: World2D,
-                wrist: Wrist | None) -> np.ndarray | None:
+                wrist: Wrist | None, *, turns: bool = True) -> np.ndarray | None:
     """Waypoints (N,3, scene frame, from the start) that bring ``mover``, starting within the margin of
     ``anchor``, square to the anchor's nearest face where the plan's ``end`` closes less than the share of the
     room ``spec``'s rule asks for: turned while it slides in (1-8 waypoints, the least gap kept first), or out
@@ -55,8 +58,9 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     if outlines_of([m, a]) is not None or not math.isclose(m.size, a.size, rel_tol=1e-6):
         return None
     g0 = _gap(m, m.pose, a)
-    if g0 > GRIPPER_MARGIN:
+    if g0 > NEAR * m.size:
         return None
+    base = min(g0, GRIPPER_MARGIN)  # the least gap the world lets the first move come to
     s = m.size
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / s
     need = d0 - spec.thresholds["share"] * closer_room(d0)  # blocks: the centre distance the rule asks for
@@ -69,8 +73,9 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     normal_dir = axis * math.copysign(1.0, u if abs(u) >= abs(v) else v)  # out of the anchor's nearest face
     along_dir = np.array([-normal_dir[1], normal_dir[0]])
     quarter = math.pi / 2
-    yaw = a.yaw + round((m.yaw - a.yaw) / quarter) * quarter  # square to the anchor, the least turn
-    normal = 1.0 + (g0 + KEEP_M) / s
+    # square to the anchor, the least turn; a push keeps the yaw (the fingers push a face, never turn it)
+    yaw = a.yaw + round((m.yaw - a.yaw) / quarter) * quarter if turns else m.yaw
+    normal = 1.0 + (base + KEEP_M) / s
     reach = next((need - spare for spare in (SPARE, LEAST_SPARE) if normal < need - spare), None)
     if reach is None:
         return None  # not even face to face closes enough with the gap kept
@@ -78,7 +83,7 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     lat0 = float(rel @ along_dir) / s
     lat1 = float(np.clip(lat0, -lateral, lateral))
     start = np.asarray(m.pose, float)
-    for gap in g0 + KEEP_M * np.arange(1, 11):  # the least gap kept at the end whose way in is legal
+    for gap in base + KEEP_M * np.arange(1, 11):  # the least gap kept at the end whose way in is legal
         if 1.0 + gap / s >= reach:
             break
         for steps in STEPS:  # turned and slid in together, the gap growing a little at every waypoint
@@ -93,7 +98,7 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
                 return path
     # corner to corner the world's test lets the mover only leave: out to the margin, then square and along
     gap = GRIPPER_MARGIN + KEEP_M
-    if 1.0 + gap / s >= reach:
+    if g0 >= GRIPPER_MARGIN or 1.0 + gap / s >= reach:
         return None
     out = _at_gap(m, a, normal_dir, along_dir, lat0 * s, start[2], gap)
     goal = _at_gap(m, a, normal_dir, along_dir, lat1 * s, yaw, gap)
