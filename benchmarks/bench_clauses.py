@@ -117,6 +117,8 @@ def one(sentence: str, scene, seed: int, out: Path, world, plan_only: bool) -> d
         return {"refused": e.check != "no-motion", "check": e.check, "success": False, "reason": str(e)[:160]}
     except L2PError as e:
         return {"refused": False, "success": False, "reason": str(e)[:160]}
+    except Exception as e:  # noqa: BLE001  a crash is a failure of that run, not the end of the benchmark
+        return {"refused": False, "success": False, "crashed": type(e).__name__, "reason": f"crashed: {e!r}"[:160]}
     traj = json.loads((out / "trajectory.json").read_text())
     xy = np.array([f["poses"]["A"][:2] for f in traj["frames"]])
     b = scene.get("B").xy

@@ -154,6 +154,10 @@ class Planning:
     lead_in: LeadIn | None = None
     more_bounds: tuple[Bound, ...] = ()
     """Bounds from people's data besides :attr:`bound`, all applied together (their weights multiply)."""
+    holds_within: float | None = None
+    """Blocks: where the footprints start at most this far apart and the rule judge accepts the start as it
+    stands, the relation already holds and nothing is moved (``planning/already.py``: the run says so and
+    succeeds); None: never (the action asks for a motion, as "closer" and "away" do)."""
 
     def __post_init__(self) -> None:
         _known("room check", tuple(self.checks), ROOM_CHECKS)

@@ -41,6 +41,7 @@ from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..options import RunOptions, admit
 from ..pipeline import PerformResult, check_feasible, disturbance_verdict, perform_prepared, prepare_command
+from ..planning.already import already_said, is_standing
 from ..plugins import registry
 from ..progress.scoring import curve_from
 from .clause import Clause
@@ -293,7 +294,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     from ..embodiment import execute as ex
 
     cmd, rec = step.clause.command, prims.recorder
-    plan, stage = None, "plan"
+    plan, stage, standing = None, "plan", False
     try:
         if not replan:
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
@@ -303,19 +304,24 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             # later clauses possible
             plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
             plan.extra.setdefault("sentence", step.clause.text)
-        stage = "path"
-        p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path, arm)
-        stage = "reach"
+        standing = is_standing(plan)  # the relation already holds: the world stands still, the arm at rest
+        if standing:
+            prims.hold(rec.traj_every * prims.world.dt)  # exactly one trajectory frame
+            p, slide, grasp = plan.path, slice(0, 0), {}
+        else:
+            stage = "path"
+            p, angles = ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path, arm)
+            stage = "reach"
 
-        def on(name: str) -> None:
-            nonlocal stage
-            stage = "reach" if name == "reach" else "execute"
+            def on(name: str) -> None:
+                nonlocal stage
+                stage = "reach" if name == "reach" else "execute"
 
-        prims.pace = pace_of(cmd.pace)  # this clause's "slowly", "gently" (the next clause may differ)
-        if ex.manner_of(cmd.manner).motion != "push":  # a tall object held: softer starts and stops
-            prims.pace = tall_pace(prims.pace, now.get(cmd.mover))
-        s0, s1, grasp = ex.act(prims, now, cmd.mover, p, angles, rest, ex.manner_of(cmd.manner), stage=on)
-        slide = slice(s0 - first, s1 - first)
+            prims.pace = pace_of(cmd.pace)  # this clause's "slowly", "gently" (the next clause may differ)
+            if ex.manner_of(cmd.manner).motion != "push":  # a tall object held: softer starts and stops
+                prims.pace = tall_pace(prims.pace, now.get(cmd.mover))
+            s0, s1, grasp = ex.act(prims, now, cmd.mover, p, angles, rest, ex.manner_of(cmd.manner), stage=on)
+            slide = slice(s0 - first, s1 - first)
     except L2PError as e:
         _let_go(prims, rest)
         if len(rec.frames) <= first:
@@ -344,7 +350,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
                             outlines=outlines)
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
-    verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, now.get(cmd.mover).rest)
+    if not standing:  # nothing moved, in no manner: the verb's manner has nothing to show
+        verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, now.get(cmd.mover).rest)
+    verdict = already_said(verdict, plan)
     return ClauseResult(step.clause, plan, verdict, first, last, action_from=first + start if start else None,
                         final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),

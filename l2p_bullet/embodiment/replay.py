@@ -141,8 +141,17 @@ def run_replay(scene: Scene, source: Source, out_dir: Path | None, render, seed:
         meta["sentence"] = source.sentence
     elif source.caption is not None:
         meta["caption"] = source.caption
-    ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
-                      on_stage=on_stage, arm=arm, manner=source.manner)
+    if len(source.path) == 1:  # a plan that moves nothing (the relation already held): the world stands still
+        from .execute import execution_summary
+        from .still import stand_still
+
+        ex = stand_still(start, source.mover, out_dir=out_dir, meta=meta, arm=arm, on_stage=on_stage)
+        if out_dir is not None:
+            ex.files["summary"] = Path(out_dir) / "summary.json"
+            write_summary(ex.files["summary"], execution_summary(ex, meta, seed, None))
+    else:
+        ex = execute_path(start, source.mover, source.path, out_dir=out_dir, render=render, seed=seed, meta=meta,
+                          on_stage=on_stage, arm=arm, manner=source.manner)
     if plan_file is not None:
         ex.files["plan"] = plan_file
         summary_file = ex.files.get("summary")

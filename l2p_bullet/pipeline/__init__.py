@@ -52,6 +52,7 @@ from ..language import Command, Context, parse
 from ..manners import registry as manners
 from ..options import RunOptions, admit
 from ..planning import feasibility
+from ..planning.already import already_said, is_standing
 from ..planning.extent import apply_extent
 from ..planning.plot import plot_plan
 from ..planning.squares import squares_scorer
@@ -191,7 +192,7 @@ def judged_plan(p: Prepared, options: RunOptions | None = None, *, time_limit: f
     result.extra.update(scene_fields(p.scene))  # replay PLAN.json executes it on this scene
     verdict = plan_verdict(p.judge, result, final_progress=result.extra.get("final_progress"),
                            outlines=outlines_of([p.scene.get(o) for o in (cmd.mover, *cmd.anchors)]))
-    return result, verdict
+    return result, already_said(verdict, result)
 
 
 def perform(sentence: str, scene: Scene, options: RunOptions | None = None, *, plugins: list | None = None,
@@ -273,14 +274,22 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
         meta["manner"] = cmd.manner
     if viewer is not None:
         meta["viewer"] = [float(v) for v in viewer]
-    clock.stage("execute", "executing with the arm" + ("" if render else " (no rendering)"))
     kwargs: dict[str, Any] = {"render": None}
     if render:
         kwargs = {} if render_settings is None else {"render": render_settings}
     stage_cb = (lambda s: clock.on_stage(f"  execute: {s}")) if clock.on_stage else None
-    ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
-                              meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm, manner=cmd.manner,
-                              approach_to=plan.approach_to, pace=cmd.pace, **kwargs)
+    if is_standing(plan):  # the relation already holds: the arm stays at rest (planning/already.py)
+        from ..embodiment.still import stand_still
+
+        clock.stage("execute", "nothing to move: the relation already holds")
+        kwargs = {"render": None}
+        ex = stand_still(scene, cmd.mover, out_dir=out, progress_fn=progress_fn, meta=meta, world=world, arm=p.arm,
+                         on_stage=stage_cb)
+    else:
+        clock.stage("execute", "executing with the arm" + ("" if render else " (no rendering)"))
+        ex = execute.execute_path(scene, cmd.mover, plan.path, out_dir=out, seed=seed, progress_fn=progress_fn,
+                                  meta=meta, on_stage=stage_cb, world=world, summary=False, arm=p.arm,
+                                  manner=cmd.manner, approach_to=plan.approach_to, pace=cmd.pace, **kwargs)
 
     clock.stage("judge")
     mover, anchor = trajectory_poses(ex.frames, cmd.mover), trajectory_poses(ex.frames, cmd.anchor)
@@ -290,7 +299,9 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
                             outlines=outlines)
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
-    verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, scene.get(cmd.mover).rest)
+    if not is_standing(plan):  # nothing moved, in no manner: the verb's manner has nothing to show
+        verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, scene.get(cmd.mover).rest)
+    verdict = already_said(verdict, plan)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()
     clock.timings["total"] = clock.elapsed

@@ -57,6 +57,8 @@ class PerformResult:
             **({} if c.manner == "slide" else {"manner": c.manner}),  # a slide's output names no manner
             **({} if c.pace is None else {"pace": c.pace}),  # the sentence's "slowly", "gently"
             **({} if c.extent is None else {"extent": c.extent}),  # "far away", "a bit closer"
+            # the relation held where the mover stood: nothing moved (planning/already.py)
+            **({"already": self.plan.extra["already"]} if "already" in self.plan.extra else {}),
         }
 
     def text(self) -> list[str]:
@@ -172,4 +174,6 @@ def perform_summary(summary: dict, r: PerformResult, bundle: Any, seed: int) -> 
             "files": {**files, "plan": "plan.json"},
         }
     )
+    if "already" in d:  # an added field, only where the relation already held (planning/already.py)
+        summary["already"] = d["already"]
     return summary

@@ -35,15 +35,17 @@ from ..errors import InfeasibleError, PlanError, UnknownPlannerError
 from ..judge.footprints import outlines_of
 from ..judge.rules import RULE_SPECS
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
+from .already import already, standing_plan
 from .bounds import BoundScorer, people_weights
 from .detour import around_route
 from .feasibility import check_moves, grasp_holds
-from .problem import FRAME_STEP, Problem, finish
+from .nearer import nearer_path
+from .problem import FRAME_STEP, Node, Problem, finish
 from .proposals import MixedProposer, discrete_moves, random_moves
 from .refine import refine
 from .search import beam, greedy
 from .squares import squares_scorer
-from .world2d import World2D
+from .world2d import World2D, interpolate
 
 PLANNERS: dict[str, str] = {
     "greedy": "random search with back-up (the paper's baseline)",
@@ -149,9 +151,13 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     if len(anchors) != needed:
         raise PlanError(f'the action "{bundle.name}" takes {needed} reference object(s), '
                         f"not {len(anchors)} ({', '.join(anchors)})")
+    spec = rule_spec(bundle)
+    if target is None:  # a composite's slot is planned to the slot, wherever the mover stands
+        verdict = already(scene, mover, anchors, spec)
+        if verdict is not None:  # the relation already holds: nothing to move (already.py)
+            return standing_plan(scene, mover, anchors, str(bundle.name), name, verdict, model)
     holds = grasp_holds(scene, mover, arm)  # InfeasibleError when no grasp's hand clears the start
     deadline = None if time_limit is None else time.perf_counter() + time_limit
-    spec = rule_spec(bundle)
     # a composite's slot (target) is planned to the slot alone: no lead-in and no bound from people's data
     lead_in = spec.planning.lead_in if target is None and spec is not None else None
     bound = None if target is not None else _people_bound(bundle, spec)  # bounds.py
@@ -224,6 +230,17 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     problem, node, stopped, steps, hold, refined = best
     result = finish(problem, node, action=str(bundle.name), mover=mover, anchor=anchor, planner=name,
                     stopped=stopped, steps=steps, more_anchors=anchors[1:])
+    if target is None:  # "closer" from touching or level: the room is in turning square, sliding in (nearer.py)
+        way = nearer_path(scene, mover, anchor, spec, result.path[-1], problem.world, problem.wrist,
+                          turns=pusher is None)
+        if way is not None:
+            searched = result.path[-1].round(6).tolist()
+            frames = interpolate(way, FRAME_STEP * problem.size)
+            p = float(problem.model.final_batch([frames], problem.anchor_pose, problem.size, **problem.context)[0])
+            result = finish(problem, Node(way, frames, p, yaw=float(way[-1, 2])), action=str(bundle.name),
+                            mover=mover, anchor=anchor, planner=name, stopped=stopped, steps=steps,
+                            more_anchors=anchors[1:])
+            result.extra["nearer"] = {"searched_end": searched}
     check_moves(scene, mover, anchor, result.path, action=str(bundle.name), stopped=stopped,
                 progress=float(node.progress), steps=steps)  # a plan that goes nowhere is never a run
     if refined:

@@ -28,6 +28,7 @@ from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..judge.base import judge_context
 from ..judge.footprints import outlines_of
+from .already import STOPPED as STANDING
 from .world2d import World2D, interpolate
 
 FAR_TRAVEL = 2.0
@@ -40,8 +41,9 @@ a millimetre or two of the plan) is not judged on the very edge of the rule."""
 
 
 def apply_extent(plan: Plan, extent: str | None, judge: Any, scene: Scene) -> Plan:
-    """``plan`` changed as ``extent`` asks (None: unchanged); see the module docstring."""
-    if extent is None:
+    """``plan`` changed as ``extent`` asks (None: unchanged); see the module docstring. A plan that moves
+    nothing because the relation already holds (``already.py``) is kept: there is no motion to extend."""
+    if extent is None or plan.stopped == STANDING:
         return plan
     dense = interpolate(plan.path, STEP)
     # the objects' real footprints where one is not a cube, for a judge that reads them (judge/footprints.py)

@@ -77,6 +77,7 @@ CHECKS = (
 MIN_TRAVEL_SIDES = 0.25  # a plan whose mover ends up nearer its start than this (and barely turned) did not move
 MIN_TRAVEL_FLOOR = 0.05  # ... or than this, nearer the anchor than half a block (min_travel)
 MIN_TURN_RAD = math.radians(10.0)
+TOUCHING_M = 0.001  # two objects nearer than this touch, as far as a refusal's words go
 
 
 def grasp_width(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> None:
@@ -210,9 +211,11 @@ def _room_closer(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] 
     nearest = ((nearest_centres(m, a) if turns else nearest_at_yaws(m, a)) + gap) / m.size
     if nearest > target + 1e-9:
         kept = "" if turns else f' at the yaws they have now (a push does not turn "{mover}")'
+        touches = f'"{mover}" already touches "{anchor}"; ' if gap < TOUCHING_M else ""
         raise InfeasibleError(
             "room-closer",
-            f'"{mover}" cannot come closer to "{anchor}" by the half of the room that "closer" asks for: their '
+            f'{touches}"{mover}" cannot come closer to "{anchor}" by the half of the room that "closer" asks for: '
+            "their "
             f"centres are {d0:.3f} blocks apart, closer needs {target:.3f}, and the blocks' sizes{kept} with the "
             f"{gap * 1000:.1f} mm the planner keeps between them leave them at least {nearest:.3f} apart",
             {"start_blocks": round(d0, 3), "needed_blocks": round(target, 3), "nearest_blocks": round(nearest, 3),
@@ -265,7 +268,11 @@ def check_moves(scene: Scene, mover: str, anchor: str, path: np.ndarray, *, acti
         return
     sides = float(np.hypot(*(np.asarray(m.xy) - np.asarray(a.xy)))) / m.size
     ratio = max(m.size, a.size) / min(m.size, a.size)
-    hint = (f"; the {m.size * 100:.0f} cm mover starts {sides:.1f} of its sides from the {a.size * 100:.0f} cm "
+    g0 = max(float(separation(m.footprint()[None], a.footprint())[0]), 0.0)
+    hint = (f'; "{mover}" starts {g0 * 1000:.1f} mm from "{anchor}" and the planner lets no move bring them nearer '
+            f"than they start (it keeps {GRIPPER_MARGIN * 1000:.0f} mm for the hand): the moves left lead along or "
+            "away" if g0 < GRIPPER_MARGIN else
+            f"; the {m.size * 100:.0f} cm mover starts {sides:.1f} of its sides from the {a.size * 100:.0f} cm "
             "anchor, and the built-in actions measure distances in the mover's sides (learned from two blocks "
             "of one size): try blocks of similar size, nearer each other" if ratio > 1.5 or sides > 4.0
             else "; another --planner or --seed may find one")

@@ -1,0 +1,136 @@
+"""Where "closer" goes from a start touching the anchor: square to the anchor's nearest face, not touching.
+
+From a start within the world's margin of the anchor (the blocks touch, corner to face), the learned
+"closer" model has nothing to climb: nobody in the study started a "closer" that near (people's nearest start
+was 2.25 blocks apart), and its search either finds no move that raises the progress or a nudge that closes a
+fifth of the room the rule asks half of. What room there is lies in turning: two squares touching corner to
+face have centres 1.1-1.5 blocks apart, face to face 1. So where the search ends short of the share of the
+room the action's rule asks for (``room-closer``'s reading: ``judge/rulesets/closer.py``), the mover's path is
+built here instead: turned square to the anchor's nearest face while it slides in, its centre ending in front
+of that face, slid along it as far as the share needs. The world never lets a move bring the mover nearer the
+anchor than the move's start (``world2d.py``: the hand beside it needs the room), so the gap grows a little at
+every waypoint; corner to corner, where the world lets the mover only leave, it first goes out to the margin,
+then squares up. People graded "closer" motions that ended in contact down, so the end keeps its gap rather
+than touching (docs/perform.md, "Closer from touching"). A push does not turn the block: none is built for
+it, and the room check (``feasibility.py``) refuses it up front where the yaws leave no room.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..actions import ActionSpec
+from ..arms.reach import Wrist
+from ..core.geometry import separation
+from ..core.scene import GRIPPER_MARGIN, Scene
+from ..judge.footprints import outlines_of
+from ..judge.rulesets.closer import closer_room
+from .problem import FRAME_STEP
+from .world2d import World2D, interpolate
+
+CHECK = "room-closer"
+"""The room check of the actions this applies to (``ActionSpec.planning.checks``)."""
+SPARE = 0.05
+"""Blocks of the share beyond what the rule asks, so the executed run (within a millimetre or two of the plan)
+is not judged on the rule's edge."""
+LEAST_SPARE = 0.01
+"""Blocks of spare taken where :data:`SPARE` leaves no room face to face."""
+KEEP_M = 0.001
+NEAR = 0.5
+"""Blocks between the footprints within which this applies: where "next to" and a level start leave the mover
+(the learned model is flat there too: from a start level with the anchor the search closed 26-47 % of the room)."""
+"""Metres added to the start's gap at the end: the world never lets the mover nearer than it started."""
+
+
+def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, end: np.ndarray, world: World2D,
+                wrist: Wrist | None, *, turns: bool = True) -> np.ndarray | None:
+    """Waypoints (N,3, scene frame, from the start) that bring ``mover``, starting within the margin of
+    ``anchor``, square to the anchor's nearest face where the plan's ``end`` closes less than the share of the
+    room ``spec``'s rule asks for: turned while it slides in (1-8 waypoints, the least gap kept first), or out
+    to the margin and then square; each move legal in ``world`` and followable by the ``wrist``. None where
+    none applies (not such an action or start, not cubes of one size, the search's end enough) or none is
+    legal."""
+    if spec is None or CHECK not in spec.planning.checks or "share" not in spec.thresholds:
+        return None
+    m, a = scene.get(mover), scene.get(anchor)
+    if outlines_of([m, a]) is not None or not math.isclose(m.size, a.size, rel_tol=1e-6):
+        return None
+    g0 = _gap(m, m.pose, a)
+    if g0 > NEAR * m.size:
+        return None
+    base = min(g0, GRIPPER_MARGIN)  # the least gap the world lets the first move come to
+    s = m.size
+    d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / s
+    need = d0 - spec.thresholds["share"] * closer_room(d0)  # blocks: the centre distance the rule asks for
+    if float(np.hypot(*(np.asarray(end[:2]) - a.xy))) / s <= need - SPARE:
+        return None  # the search's own plan already closes enough
+    c, sn = math.cos(a.yaw), math.sin(a.yaw)
+    rel = np.asarray(m.xy) - a.xy
+    u, v = c * rel[0] + sn * rel[1], -sn * rel[0] + c * rel[1]  # the mover's centre in the anchor's frame
+    axis = np.array([c, sn]) if abs(u) >= abs(v) else np.array([-sn, c])
+    normal_dir = axis * math.copysign(1.0, u if abs(u) >= abs(v) else v)  # out of the anchor's nearest face
+    along_dir = np.array([-normal_dir[1], normal_dir[0]])
+    quarter = math.pi / 2
+    # square to the anchor, the least turn; a push keeps the yaw (the fingers push a face, never turn it)
+    yaw = a.yaw + round((m.yaw - a.yaw) / quarter) * quarter if turns else m.yaw
+    normal = 1.0 + (base + KEEP_M) / s
+    reach = next((need - spare for spare in (SPARE, LEAST_SPARE) if normal < need - spare), None)
+    if reach is None:
+        return None  # not even face to face closes enough with the gap kept
+    lateral = math.sqrt(reach * reach - normal * normal) - 1e-3
+    lat0 = float(rel @ along_dir) / s
+    lat1 = float(np.clip(lat0, -lateral, lateral))
+    start = np.asarray(m.pose, float)
+    for gap in base + KEEP_M * np.arange(1, 11):  # the least gap kept at the end whose way in is legal
+        if 1.0 + gap / s >= reach:
+            break
+        for steps in STEPS:  # turned and slid in together, the gap growing a little at every waypoint
+            way = [start]
+            for k in range(1, steps + 1):
+                t = k / steps
+                turn, lat = start[2] + t * (yaw - start[2]), lat0 + t * (lat1 - lat0)
+                way.append(_at_gap(m, a, normal_dir, along_dir, lat * s, turn, g0 + t * (gap - g0)))
+            path = np.asarray(way)
+            if float(np.hypot(*(path[-1, :2] - a.xy))) / s <= reach and world.path_free(path) \
+                    and _followable(path, wrist, s):
+                return path
+    # corner to corner the world's test lets the mover only leave: out to the margin, then square and along
+    gap = GRIPPER_MARGIN + KEEP_M
+    if g0 >= GRIPPER_MARGIN or 1.0 + gap / s >= reach:
+        return None
+    out = _at_gap(m, a, normal_dir, along_dir, lat0 * s, start[2], gap)
+    goal = _at_gap(m, a, normal_dir, along_dir, lat1 * s, yaw, gap)
+    path = np.vstack([start, out, goal])
+    if float(np.hypot(*(goal[:2] - a.xy))) / s <= reach and world.path_free(path) and _followable(path, wrist, s):
+        return path
+    return None
+
+
+STEPS = (1, 2, 4, 8)
+"""Waypoints of the turn tried: a straight move between two of them dips less than the gap grows between them."""
+
+
+def _at_gap(m, a, normal_dir: np.ndarray, along_dir: np.ndarray, along: float, yaw: float, gap: float) -> np.ndarray:
+    """The pose at ``yaw`` and ``along`` metres along the anchor's face whose footprint is ``gap`` from the
+    anchor's, found along the face's normal (the gap grows with the distance out)."""
+    lo, hi = 0.0, 3.0 * m.size
+    for _ in range(40):
+        mid = (lo + hi) / 2
+        xy = np.asarray(a.xy) + mid * normal_dir + along * along_dir
+        lo, hi = (mid, hi) if _gap(m, np.r_[xy, yaw], a) < gap else (lo, mid)
+    xy = np.asarray(a.xy) + hi * normal_dir + along * along_dir
+    return np.r_[xy, yaw]
+
+
+def _gap(m, pose: np.ndarray, a) -> float:
+    """Metres between ``m``'s footprint at ``pose`` and ``a``'s (0 where they touch or overlap)."""
+    return max(float(separation(m.footprint(pose)[None], a.footprint())[0]), 0.0)
+
+
+def _followable(path: np.ndarray, wrist: Wrist | None, size: float) -> bool:
+    if wrist is None:
+        return True
+    frames = interpolate(path, FRAME_STEP * size)
+    return wrist.fits(*wrist.span(frames[:, :2], frames[:, 2]))
