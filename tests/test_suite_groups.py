@@ -3,10 +3,18 @@ its module-scoped fixtures are made once, on one worker (tests/conftest.py)."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from types import SimpleNamespace
 
-import conftest
 import pytest
+
+HERE = Path(__file__).resolve().parent
+
+
+def _conftest(config):
+    """tests/conftest.py as pytest loaded it (``import conftest`` may find another folder's conftest)."""
+    return next(p for p in config.pluginmanager.get_plugins()
+                if Path(getattr(p, "__file__", "") or "/").resolve() == HERE / "conftest.py")
 
 
 def test_a_node_id_ends_with_the_group_xdist_splits_on(request):
@@ -17,7 +25,7 @@ def test_a_node_id_ends_with_the_group_xdist_splits_on(request):
     node_id = type(request.node._id)
     for plain in (str(request.node.nodeid).split("@")[0], "tests/x/test_y.py::test_z[a-b@c]"):
         item = SimpleNamespace(_id=node_id.parse(plain))
-        conftest._name_the_group(item, "tests/elsewhere.py")
+        _conftest(request.config)._name_the_group(item, "tests/elsewhere.py")
         assert str(item._id) == f"{plain}@tests/elsewhere.py"
         assert LoadGroupScheduling._split_scope(None, str(item._id)) == "tests/elsewhere.py"
         assert (item._id.path, item._id.names, item._id.params) == (lambda p: (p.path, p.names, p.params))(
