@@ -14,6 +14,7 @@ another directory.
 from __future__ import annotations
 
 import atexit
+import dataclasses
 import json
 import os
 import shutil
@@ -88,12 +89,27 @@ def pytest_collection_modifyitems(config, items) -> None:
             item.add_marker(pytest.mark.xdist_group(group[item]))
         else:
             group[item] = str(mark.args[0] if mark.args else mark.kwargs.get("name", "default"))
+        _name_the_group(item, group[item])
     length: dict[str, float] = {}
     for item in items:
         slow = item.get_closest_marker("slow")
         guess = QUICK_S if slow is None else float(slow.args[0]) if slow.args else SLOW_S
         length[group[item]] = length.get(group[item], 0.0) + guess
     items.sort(key=lambda item: -length[group[item]])
+
+
+def _name_the_group(item, name: str) -> None:
+    """End the item's node id with ``@name``, the suffix by which pytest-xdist's scheduler knows a group. xdist
+    writes it to ``item._nodeid``, which pytest 9.2 no longer reads (a node's id is its structured ``_id``): without
+    this every test would be a unit of its own, a module's tests spread over both workers, and its module-scoped
+    fixtures (a trained plugin, a perform) made on each. Where ``_id`` is not pytest's structured id, xdist's own
+    suffix works and nothing is done here."""
+    node_id = getattr(item, "_id", None)
+    if node_id is None or not dataclasses.is_dataclass(node_id) or not hasattr(node_id, "_str_cache"):
+        return
+    grouped = dataclasses.replace(node_id)  # the same path, names and parameters; only its text gains the suffix
+    object.__setattr__(grouped, "_str_cache", f"{node_id}@{name}")
+    item._id = grouped
 
 
 @pytest.fixture(scope="session")

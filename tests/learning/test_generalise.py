@@ -17,6 +17,17 @@ def held_out() -> dict[str, list[g.Event]]:
     return {a: g.events(ds) for a, ds in all_demos(sessions={"Session2"}).items()}
 
 
+_SETS: dict[tuple[str, str], list] = {}
+
+
+def _session2_set(plan: str, action: str) -> list:
+    """``training_set(plans(1, 1)[plan], action, <Session2's demonstrations>)``, built once for the module: several
+    tests compare the same sets (a second or so each); they only read them."""
+    if (plan, action) not in _SETS:
+        _SETS[plan, action] = training_set(plans(1, 1)[plan], action, all_demos(sessions={"Session2"}), QSRConfig())
+    return _SETS[plan, action]
+
+
 def test_planner_domain_keeps_the_ends_and_moves_in_straight_lines(held_out):
     e = held_out["closer"][0]
     s = g.domain(e, "straight", 3)
@@ -159,12 +170,12 @@ def test_trusted_own_changes_around_set_alone():
                                         for u, v in zip(x, y, strict=True))
 
     for a in ("closer", "away", "next-to", "past"):
-        assert same(training_set(r0, a, demos, q), training_set(r1, a, demos, q))
+        assert same(_session2_set(r0.name, a), training_set(r1, a, demos, q))
     without = {**demos, "around": [d for d in demos["around"] if d.id != "around/Session2/e05"]}
     assert len(without["around"]) == len(demos["around"]) - 1
     trusted = training_set(r1, "around", demos, q)
     assert same(trusted, training_set(r0, "around", without, q))
-    assert not same(trusted, training_set(r0, "around", demos, q))
+    assert not same(trusted, _session2_set(r0.name, "around"))
 
 
 @pytest.mark.slow
@@ -206,7 +217,7 @@ def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_o
     q = QSRConfig()
     r0, r1 = plans(1, 1)["planner-graded-nogrid"], plans(1, 1)["planner-graded-nogrid-near"]
     assert r1.extras_dict() == SHIPPED.extras_dict() | {"near_starts": True}
-    base, near = training_set(r0, "closer", demos, q), training_set(r1, "closer", demos, q)
+    base, near = _session2_set(r0.name, "closer"), training_set(r1, "closer", demos, q)
     assert len(near) > len(base)
     assert all(
         np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(base, near[: len(base)], strict=True)
@@ -219,7 +230,7 @@ def test_near_starts_are_short_full_closers_added_after_closers_set_alone(held_o
             assert NEAR_END[0] - 1e-9 <= d[-1] <= NEAR_END[1] + 1e-9 and d[0] <= NEAR_START[1] + 1e-9
             assert d[0] - d[-1] >= 0.1 - 1e-9
     for a in ("away", "next-to"):
-        x, y = training_set(r0, a, demos, q), training_set(r1, a, demos, q)
+        x, y = _session2_set(r0.name, a), training_set(r1, a, demos, q)
         assert len(x) == len(y) and all(
             np.array_equal(u.x, v.x) and np.array_equal(u.y, v.y) for u, v in zip(x, y, strict=True)
         )
