@@ -27,7 +27,7 @@ second from there to the approach circle, people's start first and the shortest 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -71,21 +71,16 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
         return None
     b0 = math.atan2(rel[1], rel[0])
     bearings = b0 + np.radians(AIM_OFFSETS_DEG)
-    first, tried = None, 0
-    for sides in approach_radii(approach_sides, near_sides):
-        r = sides * world.size
-        ends = np.column_stack([a[0] + r * np.cos(bearings), a[1] + r * np.sin(bearings),
-                                np.full(len(bearings), start[2])])
-        for end in ends[world.moves_free(start, ends)]:
-            frames = np.vstack([start[None], segment_frames(start, end, step)])
-            if wrist is not None and not wrist.fits(*wrist.span(frames[:, :2], frames[:, 2])):
-                continue
-            if way_round is None or way_round(end):
-                return frames
-            first = frames if first is None else first
-            tried += 1
-            if tried >= WAY_TRIES:
-                return first
+
+    def straight() -> Iterator[tuple[np.ndarray, np.ndarray]]:
+        for sides in approach_radii(approach_sides, near_sides):
+            r = sides * world.size
+            ends = np.column_stack([a[0] + r * np.cos(bearings), a[1] + r * np.sin(bearings),
+                                    np.full(len(bearings), start[2])])
+            for end in ends[world.moves_free(start, ends)]:
+                yield np.vstack([start[None], segment_frames(start, end, step)]), end
+
+    first = _first_way_round(straight(), wrist, way_round)
     if first is not None:
         return first
     found = _round_the_way(world, start, a, near_sides, approach_sides, step, wrist, way_round)
@@ -134,18 +129,26 @@ def _round_the_way(world: World2D, start: np.ndarray, a: np.ndarray, near_sides:
         for end, k in zip(ends[free], ring[free], strict=True):
             pairs.append((int(k), first + float(np.hypot(*(end[:2] - corner[:2]))), corner, end))
     pairs.sort(key=lambda p: p[:2])  # people's start first, as a straight slide's; then the shortest way there
-    chosen, tried = None, 0
-    for _, _, corner, end in pairs:
-        frames = np.vstack([start[None], segment_frames(start, corner, step), segment_frames(corner, end, step)])
+    return _first_way_round(((np.vstack([start[None], segment_frames(start, corner, step),
+                                         segment_frames(corner, end, step)]), end) for _, _, corner, end in pairs),
+                            wrist, way_round)
+
+
+def _first_way_round(candidates: Iterable[tuple[np.ndarray, np.ndarray]], wrist: Wrist | None,
+                     way_round: Callable[[np.ndarray], bool] | None) -> np.ndarray | None:
+    """The first candidate (frames, end) the wrist can follow whose end has a way round; else the first the wrist
+    can follow among the first :data:`WAY_TRIES` of them; None when the wrist can follow none."""
+    first, tried = None, 0
+    for frames, end in candidates:
         if wrist is not None and not wrist.fits(*wrist.span(frames[:, :2], frames[:, 2])):
             continue
         if way_round is None or way_round(end):
             return frames
-        chosen = frames if chosen is None else chosen
+        first = frames if first is None else first
         tried += 1
         if tried >= WAY_TRIES:
             break
-    return chosen
+    return first
 
 
 def _segment_distance(p: np.ndarray, q: np.ndarray, c: np.ndarray) -> np.ndarray:
