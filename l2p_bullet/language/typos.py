@@ -33,8 +33,7 @@ bit little lot much more less way little slightly
 SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from", "n": "and", "r": "are",
              "u": "you", "ur": "your", "thru": "through", "w": "with", "abt": "about", "bc": "because",
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
-             "plz": "please", "nr": "near", "twd": "toward", "twds": "towards", "awy": "away", "arnd": "around",
-             "rnd": "round"}
+             "plz": "please", "nr": "near", "twd": "toward", "twds": "towards", "rnd": "round"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 
