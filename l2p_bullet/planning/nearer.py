@@ -38,10 +38,10 @@ is not judged on the rule's edge."""
 LEAST_SPARE = 0.01
 """Blocks of spare taken where :data:`SPARE` leaves no room face to face."""
 KEEP_M = 0.001
+"""Metres added to the start's gap at the end: the world never lets the mover nearer than it started."""
 NEAR = 0.5
 """Blocks between the footprints within which this applies: where "next to" and a level start leave the mover
 (the learned model is flat there too: from a start level with the anchor the search closed 26-47 % of the room)."""
-"""Metres added to the start's gap at the end: the world never lets the mover nearer than it started."""
 
 
 def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, end: np.ndarray, world: World2D,
