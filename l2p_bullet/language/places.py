@@ -52,29 +52,13 @@ def measure(o: SceneObject, what: str) -> float:
 
 def outline_sides(o: SceneObject) -> tuple[float, float]:
     """(long, short) sides of the smallest rectangle around the object's footprint, in metres: a 10 x 3 cm bar is
-    (0.10, 0.03) whatever its yaw, a cube its side twice."""
-    pts = np.asarray(o.geometry.footprint, float)
-    best = (math.inf, 0.0, 0.0)
-    for a, b in zip(pts, np.roll(pts, -1, axis=0), strict=True):
-        edge = b - a
-        n = float(np.hypot(*edge))
-        if n < 1e-12:
-            continue
-        u = edge / n
-        along, across = pts @ u, pts @ np.array([-u[1], u[0]])
-        w, h = float(np.ptp(along)), float(np.ptp(across))
-        if w * h < best[0]:
-            best = (w * h, max(w, h), min(w, h))
-    return best[1], best[2]
-
-
-FLAT_RATIO = 0.5
-"""An object is flat where its height is at most this fraction of its footprint's short side: a 5 x 5 x 1.7 cm
-stone or a 7 x 5 x 2.5 cm tray, not a 10 x 3 x 3 cm bar or a cube."""
-
-
-def is_flat(o: SceneObject) -> bool:
-    return float(o.geometry.height) <= FLAT_RATIO * outline_sides(o)[1]
+    (0.10, 0.03) whatever its yaw, a cube its side twice. The smallest rectangle has a side along one of the
+    outline's edges."""
+    g = o.geometry
+    edges = np.roll(g.footprint, -1, axis=0) - g.footprint
+    sides = [(g.width(float(a)), g.width(float(a) + math.pi / 2)) for a in np.arctan2(edges[:, 1], edges[:, 0])]
+    w, h = min(sides, key=lambda wh: wh[0] * wh[1])
+    return max(w, h), min(w, h)
 
 
 def distance_to(o: SceneObject, xy: tuple[float, float]) -> float:
@@ -164,12 +148,18 @@ def bulk_superlative(pool: list[SceneObject], pick, word: str) -> str:
     cylinder is the bigger; a cylinder, a teddy and a cube within a fifth of each other are a tie)."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
-    values = {o.name: bulk(o) for o in pool}
-    best = pick(values.values())
-    tied = [o.name for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
+    tied = [o.name for o in size_tied(pool, bulk, pick)]
     if len(tied) > 1:
         raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
     return tied[0]
+
+
+def size_tied(pool: list[SceneObject], size, pick) -> list[SceneObject]:
+    """The objects of ``pool`` whose ``size`` is within :data:`TIE_SIZE` of the extreme ``pick`` (min or max)
+    chooses: sizes a person does not tell apart at a glance."""
+    values = {o.name: size(o) for o in pool}
+    best = pick(values.values())
+    return [o for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
 
 
 def bulk(o: SceneObject) -> float:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -29,6 +30,7 @@ from .places import (
     named_colours,
     places_as_superlatives,
     relation_head,
+    size_tied,
     superlative,
 )
 from .reference_words import (
@@ -59,7 +61,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     STRICT_SHAPES,
 )
-from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, TIE_SIZE, kind_groups, kind_words
+from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, kind_groups, kind_words
 
 
 @dataclass(frozen=True)
@@ -305,11 +307,9 @@ def _by_size(text: str, pool: list[SceneObject], sizes: list[str], scene: Scene,
     the size words are read past, with several left the description is ambiguous."""
     if len(pool) > 1:
         for word in sizes:
-            height = word in TALL or word not in BIG | SMALL
+            what = "height" if word in TALL or word not in BIG | SMALL else "area"
             pick = max if word in BIG | TALL else min
-            values = {o.name: measure(o, "height" if height else "area") for o in pool}
-            best = pick(values.values())
-            tied = [o for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
+            tied = size_tied(pool, partial(measure, what=what), pick)
             if len(tied) > 1 and len(tied) < len(pool):
                 listed = ", ".join(o.name for o in tied)
                 raise LanguageError(f'"{text}" is ambiguous: {listed} are all but equally {word}; '

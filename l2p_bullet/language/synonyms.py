@@ -33,11 +33,10 @@ KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy
                 "toy": ("duck", "teddy", "bunny"), "fruit": ("apple", "lemon")}
 """Words for a class of kinds ("the stuffed animal"): like a kind's name, they resolve only where exactly one
 object is of a kind of the class."""
-KIND_SYNONYMS: dict[str, tuple[str, ...]] = {}
-for _kind, _names in KIND_NAMES.items():
-    for _word in _names:
-        KIND_SYNONYMS[_word] = (*KIND_SYNONYMS.get(_word, ()), _kind)
-KIND_SYNONYMS.update(KIND_CLASSES)
+KIND_SYNONYMS: dict[str, tuple[str, ...]] = {
+    word: tuple(kind for kind, names in KIND_NAMES.items() if word in names)
+    for word in dict.fromkeys(w for names in KIND_NAMES.values() for w in names)
+} | KIND_CLASSES
 """An everyday name -> the kinds it names (an object named, or meshed as, one of those kinds)."""
 KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks",
                             "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard"})
