@@ -60,17 +60,22 @@ def is_chain(sentence: str, plugins: list | None = None) -> bool:
     return len(split_clauses(sentence)) > 1 or is_composite(sentence, plugins)
 
 
+ASIDE = re.compile(r"\s*\([^()0-9]*\)")
+"""Words in brackets without a number: an aside ("the object behind the cylinder (larger x)"), read past in a
+sentence refused as written; a bracket with a number may carry a distance, which must still be refused."""
+
+
 def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """:func:`read_clauses`; where the sentence is refused as written, read again with its typing slips mended
-    (language/typos.py: "mvoe teh red cube"); the first refusal stands where the mended sentence is refused
-    too or there is nothing to mend."""
+    (language/typos.py: "mvoe teh red cube") and its asides in brackets read past (:data:`ASIDE`); the first
+    refusal stands where the mended sentence is refused too or there is nothing to mend."""
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:
         if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
             raise
         known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS)
-        mended = typos.mend(sentence, known, scene.names)
+        mended = typos.mend(ASIDE.sub("", sentence), known, scene.names)
         if mended == sentence:
             raise
         try:
@@ -101,9 +106,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 except L2PError:
                     pass
             text = texts[0] if texts else str(sentence)
-            pieces = _split_on_and(text, None, scene, plugins)
-            if pieces is None:
-                pieces = [(text, c) for c in pointing.pointed(text, None, None, scene, plugins) or ()] or None
+            pieces = _other_readings(text, None, scene, plugins)
             if pieces is None:
                 raise
             return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)]
@@ -144,7 +147,12 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
 def _context(previous: Command | None) -> Context | None:
     """What the next clause's pronouns point back to: the previous command's mover and anchor."""
-    return Context(previous.mover, previous.anchor) if previous is not None else None
+    return Context(previous.mover, previous.anchor, described=_described(previous)) if previous is not None else None
+
+
+def _described(command: Command) -> bool:
+    """Whether the command's sentence described its mover ("the small red cube") rather than naming it."""
+    return not re.search(rf"(?<!\w){re.escape(command.mover)}(?!\w)", command.sentence, re.IGNORECASE)
 
 
 def _after(previous: Command, pair: pointing.Shown | None) -> Context:
@@ -152,7 +160,7 @@ def _after(previous: Command, pair: pointing.Shown | None) -> Context:
     pair ("You see A and C? Move A next to B and the other one next to D")."""
     if pair is not None and previous.mover in pair.objects:
         return Context(previous.mover, next(o for o in pair.objects if o != previous.mover))
-    return Context(previous.mover, previous.anchor)
+    return Context(previous.mover, previous.anchor, described=_described(previous))
 
 
 def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int = 0,
@@ -171,13 +179,39 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
                 return [(text, resolve(full, scene, plugins, Context(previous.anchor, previous.mover)))]
             except L2PError:
                 pass
-        pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
+        pieces = _other_readings(text, previous, scene, plugins, depth, context, pair)
         if pieces is None:
-            commands = pointing.pointed(text, previous, context, scene, plugins)
-            if not commands:
-                raise
-            pieces = [(text, c) for c in commands]
+            raise
         return pieces
+
+
+def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int = 0,
+                    context: Context | None = None,
+                    pair: pointing.Shown | None = None) -> list[tuple[str, Command]] | None:
+    """A text that does not resolve as one clause read as two joined by "and" or a comma, as a group shown and
+    then clauses about it, or as one of chain/pointing.py's readings; None when none applies."""
+    pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
+    if pieces is None:
+        pieces = _group_first(text, previous, scene, plugins, depth, context)
+    if pieces is None:
+        pieces = [(text, c) for c in pointing.pointed(text, previous, context, scene, plugins) or ()] or None
+    return pieces
+
+
+def _group_first(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int,
+                 context: Context | None) -> list[tuple[str, Command]] | None:
+    """"there r two cylinders, move the short one towards the bunny and the other one away from it": a group
+    shown before a comma or colon, then clauses that pick among it (one object shown is pointing.py's)."""
+    m = pointing.TOPIC.match(text)
+    if m is None or depth >= MAX_CLAUSES:
+        return None
+    shows = pointing.shown(m.group("what"), scene, context)
+    if shows is None or len(shows.objects) < 2:
+        return None
+    try:
+        return _resolve_text(m.group("rest"), previous, scene, plugins, depth + 1, shows.context, shows)
+    except L2PError:
+        return None
 
 
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)

@@ -29,6 +29,9 @@ teddy, put it beside the can", "Q and R: slide them both toward P"."""
 STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
 """A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
 looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
+THERE = re.compile(r"^\s*there\s+(?:are|r|is)\s+(?P<what>.+?)\s*[.!]?\s*$", re.IGNORECASE)
+"""A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
+("... push the big one toward S and the other one away from the bunny")."""
 SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
                   r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube"."""
@@ -54,7 +57,7 @@ class Shown:
 
     @property
     def context(self) -> Context:
-        return Context(self.objects[0], self.objects[1] if len(self.objects) > 1 else None)
+        return Context(self.objects[0], self.objects[1] if len(self.objects) > 1 else None, among=self.objects)
 
 
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
@@ -70,6 +73,9 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
 def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:
     """The objects a clause that asks for nothing points at: a description alone ("the teddy", "ok now the box")
     or a statement about it ("The white box is in the way"); None for anything else."""
+    m = THERE.match(text)
+    if m is not None and not _names_a_place(m.group("what")):
+        return _objects(m.group("what"), scene, context)
     m = STATEMENT.match(text)
     if m is not None and not _names_a_place(m.group("said")):
         objects = _objects(m.group("what"), scene, context)

@@ -273,7 +273,8 @@ def split_verb(words: list[str]) -> tuple[str, str, list[str]]:
             near_miss = near_miss or declared
             continue
         end = at + len(gap) + (1 if at + len(gap) < len(rest) and lrest[at + len(gap)] in OBJECT_PRONOUNS else 0)
-        return " ".join(head), manner, rest[:at] + rest[end:]
+        held = rest[:at][:-1] if at > 1 and lrest[at - 1] == "up" else rest[:at]  # "lift the bottle up and ..."
+        return " ".join(head), manner, _over_then_side(held, rest[end:])
     if near_miss is not None:
         head, _, gap = near_miss.partition("...")
         raise LanguageError(f'"{head.strip()}" asks for "{near_miss}": say what to do with the block, as in '
@@ -281,6 +282,20 @@ def split_verb(words: list[str]) -> tuple[str, str, list[str]]:
     known = known_verbs()
     raise LanguageError(f'"{words[0]}" is not a verb I know (known: {", ".join(known)}).'
                         + did_you_mean(low[0], known) + f" {EXAMPLE[0].upper()}{EXAMPLE[1:]}")
+
+
+def _over_then_side(held: list[str], after: list[str]) -> list[str]:
+    """"lift Q over P and put it down on the other side": the side is P's, so the words read "Q on the other
+    side of P"; any other gap sentence is returned as it is."""
+    low_held, low_after = [w.lower() for w in held], [w.lower() for w in after]
+    if "over" not in low_held[1:]:
+        return held + after
+    k = low_held.index("over", 1)
+    side = low_after[1:] if low_after[:1] == ["down"] else low_after
+    if len(side) == 4 and side[0] in ("on", "to") and side[1] == "the" and side[2] in ("other", "far") \
+            and side[3] == "side":
+        return held[:k] + after[len(after) - 4:] + ["of"] + held[k + 1:]
+    return held + after
 
 
 PLACING_VERBS = frozenset({"put", "place", "set", "drop", "lay", "carry", "move", "bring", "take", "lower"})
@@ -417,7 +432,12 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
         if not phrase_matches(low, toks):
             continue
         head, tail = _head_tail(toks)
-        rest = " ".join(raw[start + len(head): start + len(kept) - len(tail)])
+        joined = _joined_at(low, head, tail)
+        if joined is None:
+            rest = " ".join(raw[start + len(head): start + len(kept) - len(tail)])
+        else:  # "put P in a row with Q and R": the block before the tail leads the list
+            rest = " ".join(raw[start + len(head): start + joined]) + ", " + " ".join(
+                raw[start + joined + len(tail) + 1: start + len(kept)])
         items = [i.strip(" .;:!?\"()[]") for part in rest.split(",") for i in _split_and(part)]
         items = [i for i in items if i]
         if len(items) == 1 and len(items[0].split()) > 1:  # "line up c b a": names without commas
@@ -449,7 +469,17 @@ def phrase_matches(low: list[str] | tuple[str, ...], toks: tuple[str, ...]) -> b
     head, tail = _head_tail(toks)
     if tuple(low[:len(head)]) != head:
         return False
-    return not tail or (len(low) > len(head) + len(tail) and tuple(low[len(low) - len(tail):]) == tail)
+    return not tail or (len(low) > len(head) + len(tail) and tuple(low[len(low) - len(tail):]) == tail) \
+        or _joined_at(low, head, tail) is not None
+
+
+def _joined_at(low: list[str] | tuple[str, ...], head: tuple[str, ...], tail: tuple[str, ...]) -> int | None:
+    """Where a gap phrase's tail is followed by "with" and more of the list ("put P in a row with Q and R",
+    "line A up with B"): the tail's index in ``low``; None where the sentence has no such join."""
+    for i in range(len(head) + 1, len(low) - len(tail) - 1):
+        if tuple(low[i:i + len(tail)]) == tail and low[i + len(tail)] == "with":
+            return i
+    return None
 
 
 def _split_and(text: str) -> list[str]:

@@ -22,6 +22,7 @@ from .reference_words import (
     FARTHEST,
     NEAREST,
     NOUNS,
+    PERIPHRASTIC,
     PLACE_ADJECTIVES,
     SHAPE_NOUNS,
     SIZE_SUPERLATIVES,
@@ -29,7 +30,7 @@ from .reference_words import (
     TIE_M,
     TIE_PLACE,
 )
-from .synonyms import TIE_SIZE
+from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE
 
 
 def named_colours(low) -> set[str]:
@@ -203,3 +204,50 @@ def places_as_superlatives(words: list[str]) -> list[str]:
     if len(low) >= 3 and low[0] in DETERMINERS and low[1] in PLACE_ADJECTIVES and low[2] not in ("of", "side", "edge"):
         return [words[0], PLACE_ADJECTIVES[low[1]], *words[2:]]
     return words
+
+
+def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneObject]:
+    """The objects of ``pool`` the size words keep (big/small by bulk, as "the biggest" compares; tall/short by
+    height), each in turn keeping the objects within :data:`~l2p_bullet.language.synonyms.TIE_SIZE` of the
+    extreme; with one object the size words are read past. A size word that splits the pool into tied
+    objects and the rest is a one-line error naming the tied ones."""
+    if len(pool) > 1:
+        for word in sizes:
+            if word in MEDIUM:
+                pool = [_medium(text, pool)]
+                continue
+            size = bulk if word in BIG | SMALL else (lambda o: measure(o, "height"))
+            pick = max if word in BIG | TALL else min
+            tied = size_tied(pool, size, pick)
+            if len(tied) > 1 and len(tied) < len(pool):
+                listed = ", ".join(o.name for o in tied)
+                raise LanguageError(f'"{text}" is ambiguous: {listed} are all but equally {word}; '
+                                    "name the one you mean")
+            pool = tied
+    return pool
+
+
+def _medium(text: str, pool: list[SceneObject]) -> SceneObject:
+    """"The medium-sized cube": the middle one of three by bulk, each clearly apart from the other two."""
+    if len(pool) != 3:
+        listed = ", ".join(o.name for o in pool)
+        raise LanguageError(f'"{text}" is ambiguous: "medium" picks the middle of three, and it fits {listed}; '
+                            "name the one you mean")
+    small, middle, big = sorted(pool, key=bulk)
+    for a, b in ((small, middle), (middle, big)):
+        if bulk(b) - bulk(a) < TIE_SIZE * bulk(a):
+            raise LanguageError(f'"{text}" is ambiguous: {a.name} and {b.name} are all but equally big; '
+                                "name the one you mean")
+    return middle
+
+
+def one_word_comparisons(words: list[str]) -> list[str]:
+    """"most far" as "farthest", "more close" as "closer": :data:`PERIPHRASTIC`."""
+    out: list[str] = []
+    for w in words:
+        pair = (out[-1].lower(), w.lower()) if out else None
+        if pair in PERIPHRASTIC:
+            out[-1] = PERIPHRASTIC[pair]
+        else:
+            out.append(w)
+    return out

@@ -30,7 +30,12 @@ rectangular block" is a box)."""
 SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
 """Adjectives people add to a description that already picks one object ("the toy duck", "the little red
 cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
-COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan"}
+COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan", "silver": "gray",
+                  "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
+                  "lilac": "purple", "crimson": "red", "scarlet": "red"}
+NEAR_COLOURS = {"blue": "cyan", "cyan": "blue", "purple": "pink", "pink": "purple"}
+"""Colours people call each other by: where nothing on the table has the colour said ("the blue bottle" on a
+table with a cyan bottle and nothing blue), the near one is meant."""
 FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", "into", "onto", "over", "under",
                             "and", "or", "then", "so", "it", "not", "no", "other", "another", "first", "second",
                             "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
@@ -51,6 +56,9 @@ ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", 
 NEAREST = frozenset("nearest closest nearer closer".split())  # English words of place ("the cube closer to you")
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
+PERIPHRASTIC = {("most", "far"): "farthest", ("more", "far"): "farther", ("most", "close"): "closest",
+                ("most", "near"): "nearest", ("more", "close"): "closer", ("more", "near"): "nearer"}
+"""Comparisons built with most / more, as learners of English write them ("the thing most far from the cube")."""
 OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),
             ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")}
 """Free relatives that open a description ("whatever is closest to A"): the one that is."""

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from functools import partial
 
 import numpy as np
 
@@ -23,14 +22,15 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from .places import (
     bearing_off,
     bulk_superlative,
+    by_size,
     comparative_of,
     distance_to,
     either_reading,
     measure,
     named_colours,
+    one_word_comparisons,
     places_as_superlatives,
     relation_head,
-    size_tied,
     superlative,
 )
 from .reference_words import (
@@ -44,6 +44,7 @@ from .reference_words import (
     DIRECT_CONE,
     FUNCTION_WORDS,
     NAMED_AS,
+    NEAR_COLOURS,
     NEAREST,
     NOUNS,
     OPENINGS,
@@ -61,7 +62,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     STRICT_SHAPES,
 )
-from .synonyms import BIG, KIND_MODIFIERS, SIZE_WORDS, SMALL, TALL, kind_groups, kind_words
+from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_groups, kind_words
 
 
 @dataclass(frozen=True)
@@ -70,6 +71,8 @@ class Context:
 
     mover: str | None = None
     anchor: str | None = None
+    among: tuple[str, ...] = ()  # a group shown before ("There are two green cubes"): "the big one" is of it
+    described: bool = False  # the mover was described, not named ("the small red cube"): see _twin
 
 
 def describe(scene: Scene) -> str:
@@ -106,6 +109,12 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     pointed = _pronoun(words, low, context, role, scene)
     if pointed is not None:
         return pointed
+    if context is not None and len(context.among) > 1 and len(low) > 2 and low[-1] == "one":
+        group = Scene([o for o in scene.objects if o.name in context.among], scene.table, scene.workspace)
+        try:  # "the big one" after "There are two green cubes": the bigger of those two
+            return _resolve(text, group, role, None)
+        except UnknownObjectError:
+            pass  # "the yellow one": none of the group, so one of the scene
     for i in range(1, len(low) - 1):
         if low[i - 1] in NOUNS and low[i:i + 1] in NAMED_AS:  # "the block called A"
             return resolve_object(" ".join(words[i + 1:]), scene, role, context)
@@ -129,7 +138,7 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     clause's "that is" ("the cube that is red": the cube red) taken out, a comparative among a group as its
     superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
     ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
-    words = places_as_superlatives(comparative_of(words))
+    words = places_as_superlatives(comparative_of(one_word_comparisons(words)))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
@@ -162,8 +171,7 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
             raise _no_earlier(said, role)
         if low in PRONOUNS_MOVER:
             return context.mover
-        _no_twin(said, context, scene)
-        return context.anchor
+        return _twin(said, context, scene) or context.anchor
     return None
 
 
@@ -209,17 +217,25 @@ def _the_other(said: str, words: list[str], context: Context | None, role: str, 
     return fits[0].name
 
 
-def _no_twin(said: str, context: Context, scene: Scene) -> None:
-    """Refuses "the other one" where a third object shares the colour of one of the previous clause's two: after
-    "move the small red cube next to F", "the other one" may be the other red cube as well as F."""
+def _twin(said: str, context: Context, scene: Scene) -> str | None:
+    """"The other one" where a third object shares the colour of one of the previous clause's two: after "move
+    the small red cube next to F" it is the other red cube, as the authors who wrote so meant it, when the mover
+    was described and that cube is its only twin of colour and shape; where the mover was named ("move B next to
+    F") or twins are several, the anchor and the twins are both readings, and the user is asked. None: no
+    twin, the anchor is meant."""
     pair = [n for n in (context.mover, context.anchor) if n is not None and n in scene.names]
     if len(pair) < 2:
-        return
+        return None
     colours = {scene.get(n).color for n in pair}
     twins = [o.name for o in scene.objects if o.color in colours and o.name not in pair]
-    if twins:
-        raise LanguageError(f'"{said}" is ambiguous: {context.anchor} (of the previous clause) or {", ".join(twins)} '
-                            f"(the other of its colour); name the one you mean")
+    if not twins:
+        return None
+    mover = scene.get(pair[0])
+    alike = [n for n in twins if scene.get(n).color == mover.color and scene.get(n).shape == mover.shape]
+    if context.described and alike == twins and len(alike) == 1:
+        return alike[0]
+    raise LanguageError(f'"{said}" is ambiguous: {context.anchor} (of the previous clause) or {", ".join(twins)} '
+                        f"(the other of its colour); name the one you mean")
 
 
 def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
@@ -239,7 +255,7 @@ def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, 
     readings: list[str | Exception] = []
     for pool in pools:
         try:
-            readings.append(_by_size(text, pool, sizes, scene, named_colours(low)))
+            readings.append(_one(text, by_size(text, pool, sizes), scene, named_colours(low)))
         except (LanguageError, UnknownObjectError) as e:
             readings.append(e)
     picked = sorted({r for r in readings if isinstance(r, str)})
@@ -287,6 +303,8 @@ def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     for group in kinds:
         fits = [o for o in fits if o.name in group]
     if colours:
+        if not any(o.color in colours for o in scene.objects):
+            colours = {NEAR_COLOURS.get(c, c) for c in colours}
         fits = [o for o in fits if o.color in colours]
     if shapes and not named:
         strict = shapes & STRICT_SHAPES
@@ -299,23 +317,6 @@ def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if shaped:
         fits = [o for o in fits if o.shape in shaped]
     return fits
-
-
-def _by_size(text: str, pool: list[SceneObject], sizes: list[str], scene: Scene, colours: set[str]) -> str:
-    """The one object of ``pool`` the size words pick (big/small by footprint, tall/short by height), each in turn
-    keeping the objects within :data:`~l2p_bullet.language.synonyms.TIE_SIZE` of the extreme; with one object
-    the size words are read past, with several left the description is ambiguous."""
-    if len(pool) > 1:
-        for word in sizes:
-            what = "height" if word in TALL or word not in BIG | SMALL else "area"
-            pick = max if word in BIG | TALL else min
-            tied = size_tied(pool, partial(measure, what=what), pick)
-            if len(tied) > 1 and len(tied) < len(pool):
-                listed = ", ".join(o.name for o in tied)
-                raise LanguageError(f'"{text}" is ambiguous: {listed} are all but equally {word}; '
-                                    "name the one you mean")
-            pool = tied
-    return _one(text, pool, scene, colours)
 
 
 def _name_words(scene: Scene) -> dict[str, str]:
@@ -458,7 +459,7 @@ def _the_two(words: list[str], scene: Scene) -> tuple[str, str] | None:
     """"the two blue cubes", "both red blocks": the two objects the plural description fits, in the scene's
     order; None where it is no such phrase or fits another number."""
     low = [w.lower() for w in words]
-    for opening in (("the", "two"), ("both", "the"), ("both",)):
+    for opening in (("the", "two"), ("both", "the"), ("both",), ("two",), ("2",)):
         if tuple(low[:len(opening)]) == opening and len(low) > len(opening) and low[-1].endswith("s"):
             rest = [*words[len(opening):-1], words[-1][:-1]]
             try:

@@ -46,8 +46,9 @@ BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant"})
 SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini"})
 TALL = frozenset({"tall", "taller"})
 SHORT = frozenset({"short", "shorter", "low", "lower"})
-SIZE_WORDS = BIG | SMALL | TALL | SHORT
-"""Size adjectives: they decide among the objects the rest of a description leaves (big/small by footprint,
+MEDIUM = frozenset({"medium", "medium-sized", "medium-size", "mid-sized", "mid-size", "midsize", "middle-sized"})
+SIZE_WORDS = BIG | SMALL | TALL | SHORT | MEDIUM
+"""Size adjectives: they decide among the objects the rest of a description leaves (big/small by bulk,
 tall/short by height) when the sizes differ clearly; with one object left they are read past."""
 TIE_SIZE = 0.25
 """Two sizes closer than this fraction of the smaller one are a tie for "the big / small / tall one": a plain

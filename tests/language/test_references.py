@@ -76,7 +76,10 @@ def test_size_adjectives_decide_among_what_the_rest_leaves(two_reds, text, name)
 
 def test_sizes_that_differ_little_are_a_tie(two_reds, six):
     assert "mug, can" in _refused("the tall one", two_reds)      # 10 and 11 cm
-    assert "B, F" in _refused("the small one", two_reds)         # 3.0 and 3.6 cm
+    # big / small compare bulk, as "the biggest" does: a 3 cm cube (27 cm3) is smaller than a 4 cm-wide, 4 cm-tall
+    # cylinder (64 cm3) though their footprints' areas are 3.0 and 3.6 cm squared
+    assert resolve_object("the small one", two_reds) == "B"
+    assert "A, B, C" in _refused("the big cube", six)            # three 4 cm cubes
     assert "A, B, C" in _refused("the small cube", six)          # three 4 cm cubes
     assert resolve_object("the tall one", six) == "E"            # 9 cm among 4-6 cm
     assert resolve_object("the little red cube", six) == "A"     # one red object: the size word is read past
@@ -120,10 +123,12 @@ def test_the_other_one_of_a_kind(plugins, two_reds):
     assert got == "slide:away C can ; slide:closer mug can"
 
 
-def test_the_other_one_after_one_of_a_pair_is_refused(plugins, two_reds, six):
-    """After "the small red cube", "the other one" may be the other red cube as well as the anchor."""
+def test_the_other_one_after_one_of_a_described_pair_is_its_twin(plugins, two_reds, six):
+    """After "the small red cube", "the other one" is the other red cube (both authors who wrote so meant it);
+    after a mover named by its letter it may as well be the anchor, and is asked."""
     assert resolve("Move the small red cube next to F, then move the other one next to the mug.",
-                   two_reds, plugins) == REFUSE
+                   two_reds, plugins) == "slide:next-to B F ; slide:next-to A mug"
+    assert resolve("Move B next to F, then move the other one next to the mug.", two_reds, plugins) == REFUSE
     assert resolve("move A next to B, then move the other one around C", six, plugins) == \
         "slide:next-to A B ; slide:around B C"
 

@@ -57,8 +57,15 @@ def test_an_unknown_verb_is_one_line_with_did_you_mean():
     with pytest.raises(LanguageError, match=r'"crry" is not a verb I know \(known: move, slide, push, shift, put, '
                                             r'.*carry.*\)\. Did you mean "carry"\?'):
         parse("crry A past B", default_scene(), PHRASES)
-    with pytest.raises(LanguageError, match=r'"lift" asks for "lift \.\.\. and put"'):
-        parse("lift A past B", default_scene(), PHRASES)
+    with pytest.raises(LanguageError, match=r'"pick" asks for "pick \.\.\. up and put"'):
+        parse("pick A up past B", default_scene(), PHRASES)
+
+
+def test_lifting_toward_a_place_is_a_carry():
+    """"lift A past B", "pick up A next to B": the lift says the manner, the preposition where it ends."""
+    for sentence, action in (("lift A past B", "past"), ("pick up A next to B", "next-to")):
+        cmd = parse(sentence, default_scene(), PHRASES)
+        assert (cmd.manner, cmd.action, cmd.mover, cmd.anchor) == ("carry", action, "A", "B")
 
 
 def test_an_unknown_manner_is_one_line_with_did_you_mean():
