@@ -190,9 +190,21 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
                     pair: pointing.Shown | None = None) -> list[tuple[str, Command]] | None:
     """A text that does not resolve as one clause read as two joined by "and" or a comma, as a group shown and
     then clauses about it, or as one of chain/pointing.py's readings; None when none applies."""
+    one_step = pointing.over_and_put(text)
+    if one_step != text and depth < MAX_CLAUSES:
+        try:
+            return [(text, c) for _, c in _resolve_text(one_step, previous, scene, plugins, depth + 1, context, pair)]
+        except L2PError:
+            pass
     pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)
+    if pieces is None and context is not None and context.anchor is not None and AWAY_END.search(text):
+        try:  # "The football is too close to the cup. Move it away.": away from what the clause before named
+            full = AWAY_END.sub(f" away from {context.anchor}", text)
+            pieces = [(text, resolve(_complete(full, previous, scene, plugins), scene, plugins, context))]
+        except L2PError:
+            pieces = None
     if pieces is None:
         pieces = [(text, c) for c in pointing.pointed(text, previous, context, scene, plugins) or ()] or None
     return pieces
@@ -214,6 +226,8 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         return None
 
 
+AWAY_END = re.compile(r"\s+away(?:\s+again)?\s*[?.!]*\s*$", re.IGNORECASE)
+"""A clause that ends with "away" and names nothing to move away from."""
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
 
 

@@ -29,16 +29,28 @@ teddy, put it beside the can", "Q and R: slide them both toward P"."""
 STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
 """A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
 looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
+TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|'s|sits|stands)\s+(?:(?:far|way|much|a\s+bit)\s+)?"
+                       r"(?:too\s+(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
+                       re.IGNORECASE)
+"""A statement of what is wrong between two objects: "The cup is too near to the duck", "The stone is in the way
+of the jar"; what comes next moves the first ("Move it away": from the second)."""
 THERE = re.compile(r"^\s*there\s+(?:are|r|is)\s+(?P<what>.+?)\s*[.!]?\s*$", re.IGNORECASE)
 """A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
 ("... push the big one toward S and the other one away from the bunny")."""
 SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
                   r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube"."""
-_RESTS = r"(?:'s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
+_RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
                         re.IGNORECASE)
 """A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
+_PUT_IT = r"\s+and\s+(?:set|put|place|drop|lay)\s+it(?:\s+down)?\s+"
+OVER_TO_AND_PUT = re.compile(rf"\s+over\s+to\s+(?P<to>.+?){_PUT_IT}(?P<how>.+?)(?P<it>\s+it)?\s*[.!?]*\s*$",
+                             re.IGNORECASE)
+OVER_AND_PUT = re.compile(rf"\s+over{_PUT_IT}", re.IGNORECASE)
+"""A carry told as two steps: "carry the mug over to the jar and set it down beside it" is "carry the mug beside
+the jar"; "carry the jar over and set it beside the stone" is "carry the jar beside the stone", and so is
+"carry the jar over to the stone and set it down beside the stone"."""
 NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
                       r"(?:\s+it)?\s*,\s*", re.IGNORECASE)
 """A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
@@ -54,14 +66,22 @@ class Shown:
 
     objects: tuple[str, ...]
     lifted: bool = False
+    about: bool = False  # the first object is the one talked about, the second where it is wrong ("too close to")
 
     @property
     def context(self) -> Context:
-        return Context(self.objects[0], self.objects[1] if len(self.objects) > 1 else None, among=self.objects)
+        return Context(self.objects[0], self.objects[1] if len(self.objects) > 1 else None,
+                       among=() if self.about else self.objects)
 
 
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
+    text = " ".join(strip_polite(text.split(), frozenset(scene.names))) or text  # "Please lift the blue cup."
+    m = TOO_CLOSE.match(text)
+    if m is not None:
+        what, other = _objects(m.group("what"), scene, context), _objects(m.group("other"), scene, context)
+        if what is not None and other is not None and len(what) == len(other) == 1 and what != other:
+            return Shown((what[0], other[0]), about=True)
     m = SHOWN.match(text)
     if m is not None:
         objects = _objects(m.group("what"), scene, context)
@@ -89,6 +109,14 @@ def _names_a_place(said: str) -> bool:
     stated badly, never only a pointer."""
     return bool(re.search(r"\b(?:to|from|of|past|beyond|around|beside|by|toward|towards|near|nearer|closer)\b",
                           said, re.IGNORECASE))
+
+
+def over_and_put(text: str) -> str:
+    """``text`` with a carry told as two steps (:data:`OVER_TO_AND_PUT`) said as one; else ``text`` itself."""
+    m = OVER_TO_AND_PUT.search(text)
+    if m is not None:  # "... beside it": beside what it was carried over to; "... beside the red cube": that
+        return f"{text[:m.start()]} {m.group('how')}" + (f" {m.group('to')}" if m.group("it") else "")
+    return OVER_AND_PUT.sub(" ", text, count=1)
 
 
 def carried(command: Command, after: Shown | None) -> Command:
@@ -139,8 +167,7 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         objects = _pointed_at(what, scene, context)
         if objects is None:
             continue
-        commands = _each(rest, Context(*objects) if len(objects) == 2 else Context(objects[0]), objects, scene,
-                         plugins)
+        commands = _each(rest, Shown(objects).context, objects, scene, plugins)
         if commands is not None:
             return [carried(c, Shown(objects, lifting)) for c in commands]
     if previous is not None and BOTH.search(text):

@@ -19,7 +19,8 @@ cannot see the grammar.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import re
+from dataclasses import dataclass, replace
 
 from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
@@ -82,9 +83,13 @@ class Command:
         return self.anchors[1:]
 
 
+ARROWS = frozenset({"->", "-->", "=>", "\u2192"})
+"""Arrows typed for "goes" ("the mug -> around the box"): read past, leaving a command without its verb."""
+
+
 def tokens(sentence: str) -> list[str]:
-    """Words without surrounding punctuation ("one." -> "one"); apostrophes inside words are kept."""
-    words = [w.strip(".,;:!?\"()[]") for w in sentence.split()]
+    """Words without surrounding punctuation ("one." -> "one") and arrows; apostrophes inside words are kept."""
+    words = [w.strip(".,;:!?\"()[]") for w in sentence.split() if w not in ARROWS]
     return [w for w in words if w]
 
 
@@ -114,7 +119,16 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     words, pace = command_words(sentence, scene)
     if not words:
         raise LanguageError(f'"{sentence.strip()}" asks for nothing; {EXAMPLE}')
-    verb, manner, rest = split_verb(words)
+    try:
+        verb, manner, rest = split_verb(words)
+    except LanguageError as no_verb:
+        if not _verbless(words, phrases):
+            raise
+        try:  # "duck closer to ball": a note of the end wanted, the verb left out
+            cmd = parse(f"move {' '.join(words)}", scene, phrases, anchors, extents=extents, context=context)
+            return replace(cmd, pace=cmd.pace or pace, sentence=sentence.strip())
+        except (LanguageError, UnknownObjectError):
+            raise no_verb from None
     rest = _on_the_table(rest, manner, sentence)
     if not rest:
         raise LanguageError(f'"{sentence.strip()}" does not say what to {verb}; {EXAMPLE}')
@@ -135,6 +149,10 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
+            if context is not None and _it_again(rest[i + n:], context, mover) and (
+                    mover in refs or (TOO_END.search(sentence) and refs[0] == context.mover)):
+                # "bring it away from it": the second "it" is the other one; "then W next to it too": W as well
+                refs = (context.anchor, *refs[1:])
             if mover in refs:
                 first_error = first_error or LanguageError(
                     f'the block to move and the reference block are both "{mover}": '
@@ -150,6 +168,26 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     if first_error is not None and (middle is None or _contains_phrase(middle, phrases)):
         raise first_error
     raise _unknown_preposition(rest, middle, phrases, verb)
+
+
+TOO_END = re.compile(r"\b(?:too|as\s+well|also)\s*[.!?]*\s*$", re.IGNORECASE)
+"""A clause that ends by saying it repeats the clause before for another mover ("then W next to it too")."""
+
+
+def _it_again(words: list[str], context: Context | None, mover: str) -> bool:
+    """Whether the reference is "it" again after "it" moved ("The cup is too near to the duck. Bring it away from
+    it."; "slide the rock toward the cup, then shove it past it"): the other object of the clause before."""
+    return context is not None and context.anchor not in (None, mover) and [w.lower() for w in words] == ["it"]
+
+
+def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
+    """Whether ``words`` read as a command with its verb left out, as notes are typed ("W closer to stone", "cup
+    just a touch closer to duck"): an installed phrase after at least one word, and no word that says something
+    is or should be so ("the cup is next to the box" states, it does not ask)."""
+    low = [w.lower() for w in words]
+    if set(low) & {"is", "are", "was", "were", "be", "should", "must", "isn't", "aren't", "not"}:
+        return False
+    return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in _readings(phrases) for i in range(1, len(low)))
 
 
 ON_THE_TABLE = tuple(tuple(p.split()) for p in (

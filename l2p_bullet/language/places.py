@@ -144,12 +144,13 @@ def _direct(low: tuple[str, ...], kind: str, start: int, end: int) -> tuple[str,
 
 def bulk_superlative(pool: list[SceneObject], pick, word: str) -> str:
     """"The biggest / smallest": the object whose bulk (the volume of the box around it: its footprint's
-    rectangle times its height) is the extreme, where no other's is within :data:`TIE_SIZE` of it. A long flat
-    bar and a tall thin can are judged by the space they take, as people judged them (a duck wider than a tall
-    cylinder is the bigger; a cylinder, a teddy and a cube within a fifth of each other are a tie)."""
+    rectangle times its height) is the extreme, where no other's is within :data:`TIE_SIZE` of it
+    (:func:`seen_size`). A long flat bar and a tall thin can are judged by the space they take, as people judged
+    them (a duck wider than a tall cylinder is the bigger; a cylinder, a teddy and a cube within a fifth of each
+    other are a tie)."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
-    tied = [o.name for o in size_tied(pool, bulk, pick)]
+    tied = [o.name for o in size_tied(pool, seen_size(pool), pick)]
     if len(tied) > 1:
         raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
     return tied[0]
@@ -161,6 +162,16 @@ def size_tied(pool: list[SceneObject], size, pick) -> list[SceneObject]:
     values = {o.name: size(o) for o in pool}
     best = pick(values.values())
     return [o for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
+
+
+def seen_size(pool: list[SceneObject]):
+    """What "big" and "small" compare among ``pool``: objects of one shape by their side (the bulk's cube root:
+    a 3.5 and a 4 cm cube are a tie, as an author who compared them said), objects of different shapes by
+    their bulk (a wide duck is bigger than a tall thin cylinder of three quarters its bulk, as two authors
+    said; a 3 cm cube is smaller than a 4 cm-wide cylinder)."""
+    if len({o.shape for o in pool}) == 1:
+        return lambda o: bulk(o) ** (1 / 3)
+    return bulk
 
 
 def bulk(o: SceneObject) -> float:
@@ -216,7 +227,7 @@ def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneO
             if word in MEDIUM:
                 pool = [_medium(text, pool)]
                 continue
-            size = bulk if word in BIG | SMALL else (lambda o: measure(o, "height"))
+            size = seen_size(pool) if word in BIG | SMALL else (lambda o: measure(o, "height"))
             pick = max if word in BIG | TALL else min
             tied = size_tied(pool, size, pick)
             if len(tied) > 1 and len(tied) < len(pool):

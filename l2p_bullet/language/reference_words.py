@@ -15,6 +15,7 @@ from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
 SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "bar": "box", "bars": "box",
+               "stick": "box", "sticks": "box", "brick": "box", "bricks": "box",
                "cylinder": "cylinder",
                "can": "cylinder", "cylinders": "cylinder"}
 """Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red
@@ -32,7 +33,7 @@ SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone
 cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan", "silver": "gray",
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
-                  "lilac": "purple", "crimson": "red", "scarlet": "red"}
+                  "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black"}
 NEAR_COLOURS = {"blue": "cyan", "cyan": "blue", "purple": "pink", "pink": "purple"}
 """Colours people call each other by: where nothing on the table has the colour said ("the blue bottle" on a
 table with a cyan bottle and nothing blue), the near one is meant."""
@@ -53,7 +54,7 @@ PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("you",), ("yourself",),
                ("your", "base"), ("me",), ("us",), ("the", "viewer"))
 """The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
-NEAREST = frozenset("nearest closest nearer closer".split())  # English words of place ("the cube closer to you")
+NEAREST = frozenset("nearest closest nearer closer near".split())  # English words of place ("the cube closer to you")
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
 PERIPHRASTIC = {("most", "far"): "farthest", ("more", "far"): "farther", ("most", "close"): "closest",
@@ -94,9 +95,14 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
 """Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
 the one farthest from the robot, along the scene's +x)."""
 SIDE_CONE = math.radians(45)
+""""Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
 DIRECT_CONE = math.radians(20)
 """"Directly behind B": within this angle of the direction."""
-""""Left of B": the object's bearing from B is within this angle of the robot's left (+y)."""
+SIDE_DOUBT = math.radians(80)
+DOUBT_RATIO = 2.5
+"""An object off a side by less than SIDE_DOUBT but outside its cone may be called on that side too ("behind the
+stone" for a cube behind and well to the left): where it is off by less than DOUBT_RATIO times the angle of the
+straightest object in the cone, the side names either, and is asked."""
 SIDES = {"left of": math.pi / 2, "right of": -math.pi / 2, "behind": 0.0, "in front of": math.pi}
 """Relations to a reference as the robot sees it -> their direction in the scene (radians from +x, away from
 the robot): behind is further from the robot, in front nearer to it."""

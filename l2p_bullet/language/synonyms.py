@@ -14,6 +14,8 @@ from ..core.scene import Scene, SceneObject
 
 KIND_NAMES = {
     "mug": ("cup", "cups", "teacup", "mugs"),
+    "cup": ("mug", "mugs", "cups", "teacup"),
+    "jar": ("jars", "canister", "container", "pot"),
     "duck": ("bird", "duckling", "ducks"),
     "can": ("tin", "tins"),
     "teddy": ("bear", "bears", "teddies", "teddybear", "plush", "plushie"),
@@ -30,7 +32,7 @@ KIND_NAMES = {
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
-                "toy": ("duck", "teddy", "bunny"), "fruit": ("apple", "lemon")}
+                "toy": ("duck", "teddy", "bunny", "ball", "soccerball"), "fruit": ("apple", "lemon")}
 """Words for a class of kinds ("the stuffed animal"): like a kind's name, they resolve only where exactly one
 object is of a kind of the class."""
 KIND_SYNONYMS: dict[str, tuple[str, ...]] = {

@@ -30,6 +30,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "for this one", "for the next one", "right", "so", "why don't you", "why dont you", "why not", "basically",
     "so basically", "ok so basically", "ok so", "it would be nice if", "it would be great if", "it'd be nice if",
     "it'd be great if", "it would be good if", "i wish", "your task", "your job", "here's what to do",
+    "here's what i need", "here is what i need", "here's the task", "here is the task", "here's the plan",
+    "the task is simple", "the task is easy", "two steps", "three steps", "four steps", "five steps",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 ADDRESSEES = frozenset({"you", "u"})
@@ -40,7 +42,7 @@ NOT_BEFORE_TO = frozenset({"next"})
 read past only before another word."""
 POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "please thanks", "please thank you", "thank you very much", "thank you so much", "thank you", "thanks",
-    "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too",
+    "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "if you can", "if possible", "when you can", "if you would",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
@@ -60,6 +62,7 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
     "what i'd like is", "what i'm after is", "i want to see", "i'd like to see", "i would like to see",
     "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
+    "goal", "want", "end state", "target", "objective", "wanted",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
@@ -71,7 +74,7 @@ _RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests
 FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     *(f"{lead} {rest}".replace(" 's", "'s") for lead in ("so that it", "so it", "such that it", "until it")
       for rest in _RESTS),
-    "so that", "so", "over so it's", "over so it is", "over", "back", "down",
+    "so that", "so", "over so it's", "over so it is", "over", "back", "down", "until its", "so its", "so that its",
     "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
 )), key=len, reverse=True))
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
@@ -101,6 +104,9 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a tad": "little", "just a tad": "little", "a touch": "little", "a smidge": "little", "a smidgen": "little",
     "marginally": "little", "a hair": "little", "little bit": "little", "a long way": "far", "a good way": "far",
     "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
+    "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",
+    "only a little": "little", "only a bit": "little", "an inch or so": "little", "an inch": "little",
+    "very tight": "right", "tight": "right", "very tightly": "right", "snug": "right",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
@@ -110,6 +116,9 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     ("far", "from"): ("away from", "far"),
     ("farther", "from"): ("away from", None),
     ("further", "from"): ("away from", None),
+    ("more", "far", "from"): ("away from", None),
+    ("a", "long", "way", "from"): ("away from", "far"),
+    ("a", "good", "distance", "from"): ("away from", "far"),
 }
 """Comparatives people use for "away from" that say how far as well: (its phrase, the extent). They read as
 that phrase only while an installed action owns it; plain synonyms ("beyond", "in the direction of") are the
@@ -145,6 +154,8 @@ def is_courtesy(words: list[str]) -> bool:
     """Whether ``words`` are politeness alone ("Thank you!", "Cheers", "Hello"): a sentence of its own between
     commands that asks for nothing."""
     low = [w.lower() for w in words]
+    if low[:3] == ["thank", "you", "for"] or low[:2] == ["thanks", "for"]:
+        return True  # "Thank you for the help before."
     while low:
         for pre in POLITE_PREFIXES + POLITE_SUFFIXES:
             if _starts(low, pre):

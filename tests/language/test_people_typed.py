@@ -187,3 +187,57 @@ def test_what_the_remaining_misses_of_seven_corpora_prompted_reads_as_meant(plug
 def test_what_those_rules_leave_asked(plugins, sentence, table):
     with pytest.raises(L2PError):
         read(sentence, plugins, table)
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # notes without a verb, arrows, labels
+    ("C closer to the duck", "slide:closer C duck", "corpus.tsv"),
+    ("B -> around C", "slide:around B C", "corpus.tsv"),
+    ("goal: A next to D", "slide:next-to A D", "corpus.tsv"),
+    # everyday names, colours and shape nouns
+    ("slide the mug past L", "slide:past cup L", "heldout8.tsv"),
+    ("push the canister toward U", "push:closer jar U", "heldout9.tsv"),
+    ("move the stick next to V", "slide:next-to plank V", "heldout9.tsv"),
+    ("move the dark cube past the jar", "slide:past V jar", "heldout9.tsv"),
+    ("push the ball-looking thing toward J", "push:closer ball J", "heldout8.tsv"),
+    # extents and prepositions as people type them
+    ("push A waaay past B", "push:past A B extent=far", "corpus.tsv"),
+    ("move A a good distance away from B", "slide:away A B extent=far", "corpus.tsv"),
+    ("nudge C an inch or so toward A", "push:closer C A extent=little", "corpus.tsv"),
+    ("put D very tight next to A", "slide:next-to D A extent=right", "corpus.tsv"),
+    ("move B a long way from C", "slide:away B C extent=far", "corpus.tsv"),
+    ("move B more far from C", "slide:away B C", "corpus.tsv"),
+    ("move A near to B", "slide:closer A B", "corpus.tsv"),
+    ("slide the duck around of B", "slide:around duck B", "corpus.tsv"),
+    ("shift A to beside B", "slide:next-to A B", "corpus.tsv"),
+    ("keep sliding A toward B until its right next to it", "slide:next-to A B extent=right", "corpus.tsv"),
+    # what is wrong said first, then the motion
+    ("The duck is too close to A. Move it away.", "slide:away duck A", "corpus.tsv"),
+    ("E is in the way of C. Push it away from C.", "push:away E C", "corpus.tsv"),
+    ("The duck is too near to B. Slide it away from it.", "slide:away duck B", "corpus.tsv"),
+    ("Here's what I need. Push A past B.", "push:past A B", "corpus.tsv"),
+    ("Thanks for earlier. Move C next to D.", "slide:next-to C D", "corpus.tsv"),
+    # "too" repeats the clause before for another mover; "the cube" of the clause before
+    ("move A next to B, then C next to it too", "slide:next-to A B ; slide:next-to C B", "corpus.tsv"),
+    ("Move the duck next to the red cube, then push the cube past E", "slide:next-to duck A ; push:past A E",
+     "corpus.tsv"),
+    # a carry told in two steps
+    ("carry A over to B and put it down next to it", "carry:next-to A B", "corpus.tsv"),
+    ("carry the duck over and set it beside C", "carry:next-to duck C", "corpus.tsv"),
+    # "big" among one shape compares sides
+    ("move the big cube past the jar", "slide:past V jar", "heldout9.tsv"),
+])
+def test_what_the_eighth_and_ninth_authors_prompted_reads_as_meant(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence, table", [
+    ("A and C are in the way, move it past B", "corpus.tsv"),  # "it" is either
+    ("push the object left of B toward E", "corpus.tsv"),  # D is left of B, the duck partly
+    ("push the thing between the jar and the plank past V", "heldout9.tsv"),  # two lie near the line
+    ("move the small cube past the jar", "heldout9.tsv"),  # 3.5 and 4 cm cubes
+    ("move the toy next to the cup", "heldout8.tsv"),  # the duck and the ball are toys
+])
+def test_what_the_eighth_and_ninth_authors_asked_about_stays_refused(plugins, sentence, table):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, table)
