@@ -55,8 +55,9 @@ def fit_workspace(workspace: Workspace, spec: ArmSpec, heights=None) -> Workspac
 def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
     """``scene`` with its workspace fitted to the arm and to its objects' heights (:func:`fit_workspace`);
     SceneError naming the arm and its ring when a block stands outside what the arm reaches."""
-    near, far = reach_for(spec, [o.height for o in scene.objects])
-    ws = fit_workspace(scene.workspace, spec, [o.height for o in scene.objects])
+    heights = [o.height for o in scene.objects]
+    near, far = reach_for(spec, heights)
+    ws = fit_workspace(scene.workspace, spec, heights)
     if ws == scene.workspace:
         return scene
     if ws.empty:

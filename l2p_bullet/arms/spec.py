@@ -93,10 +93,11 @@ class ArmSpec:
     # times the multiplier plus the offset, as a four-bar linkage (the Robotiq 2F-85's) moves.
     finger_mimic: tuple[tuple[int, int, float, float], ...] = ()
     # The reach ring at each tool height alone: ((height, near, far), ...) metres, one row per height the ring is
-    # measured at (embodiment/arm_measure.py: REACH_HEIGHTS), written by ``new-arm``; ``reach`` is the least of
-    # them. A scene is held to the rows its blocks ask for (arms/fit.py: ``reach_for``), not to an 8 cm block's
-    # hover and a 2 cm block's grasp both: pointing down, a UR3e reaches 4 cm cubes 0.19-0.48 m from its base and
-    # every height only 0.21-0.46 m. () holds every scene to ``reach``.
+    # measured at (embodiment/arm_measure.py: REACH_HEIGHTS), written by ``new-arm``; ``reach`` is their narrowest
+    # (the greatest near, the least far). A scene is held to the rows its blocks ask for (arms/fit.py:
+    # ``reach_for``), not to an 8 cm block's hover and a 2 cm block's grasp both: pointing down, a UR3e with a
+    # Robotiq reaches 4 cm cubes 0.18-0.49 m from its base and every height only 0.21-0.46 m. () holds every
+    # scene to ``reach``.
     reach_heights: tuple[tuple[float, float, float], ...] = ()
 
 
