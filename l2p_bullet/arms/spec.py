@@ -92,6 +92,13 @@ class ArmSpec:
     # offset), joint indices. The fingers are driven together: every gripper joint's target is its leader's
     # times the multiplier plus the offset, as a four-bar linkage (the Robotiq 2F-85's) moves.
     finger_mimic: tuple[tuple[int, int, float, float], ...] = ()
+    # The reach ring at each tool height alone: ((height, near, far), ...) metres, one row per height the ring is
+    # measured at (embodiment/arm_measure.py: REACH_HEIGHTS), written by ``new-arm``; ``reach`` is their narrowest
+    # (the greatest near, the least far). A scene is held to the rows its blocks ask for (arms/fit.py:
+    # ``reach_for``), not to an 8 cm block's hover and a 2 cm block's grasp both: pointing down, a UR3e with a
+    # Robotiq reaches 4 cm cubes 0.18-0.49 m from its base and every height only 0.21-0.46 m. () holds every
+    # scene to ``reach``.
+    reach_heights: tuple[tuple[float, float, float], ...] = ()
 
 
 def problems(spec: ArmSpec) -> str | None:
@@ -118,4 +125,6 @@ def problems(spec: ArmSpec) -> str | None:
         return "finger_mimic names joints that are not finger joints"
     if not (0.0 < spec.payload < 1000.0):
         return f"payload must be in (0, 1000) kg (got {spec.payload})"
+    if any(len(row) != 3 or not 0.0 <= row[1] < row[2] for row in spec.reach_heights):
+        return "reach_heights rows must be (height, near, far) metres with 0 <= near < far"
     return None

@@ -392,12 +392,14 @@ def _link_height(kin, spec: ArmSpec, q) -> float:
 def _mount(spec: ArmSpec) -> ArmSpec:
     """Measure the reach ring and stand the arm where it best holds the workspace disk; an error when the
     workspace left is smaller than :data:`MIN_WORKSPACE`."""
-    near, far = arm_measure.measure_reach(spec)
+    rows = arm_measure.measure_reach_heights(spec)  # the ring at every height is the narrowest of its rows
+    near, far = (max(r[1] for r in rows), min(r[2] for r in rows)) if rows else (0.0, 0.0)
     if far <= near:
         raise PluginError(f"the arm cannot reach the table pointing down {math.hypot(*spec.mount[:2]):.2f} m from its "
                           "base at every height and yaw a run uses: its chain cannot reach the table")
     centre = (near + far) / 2
-    spec = replace(spec, mount=(-round(centre, 3), 0.0, 0.0), reach=(round(near, 3), round(far, 3)))
+    spec = replace(spec, mount=(-round(centre, 3), 0.0, 0.0), reach=(round(near, 3), round(far, 3)),
+                   reach_heights=rows)
     radius = min(0.25, spec.reach[1] + spec.mount[0], -spec.mount[0] - spec.reach[0])
     if radius < MIN_WORKSPACE:
         raise PluginError(f"the arm reaches the table only {near:.2f}-{far:.2f} m from its base: a workspace of "

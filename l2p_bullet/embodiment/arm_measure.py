@@ -122,6 +122,38 @@ def measure_reach(spec: ArmSpec, step: float = 0.01) -> tuple[float, float]:
         kin.close()
 
 
+def measure_reach_heights(spec: ArmSpec, step: float = 0.01) -> tuple[tuple[float, float, float], ...]:
+    """Per height of :data:`REACH_HEIGHTS`, (height, near, far): the ring :func:`measure_reach` walks, at that height
+    alone (the same start, steps and test poses): the greatest near and the least far over the rows are its ring;
+    () when the centre itself is out of reach. Why: a scene of 4 cm cubes needs the tool at 3-15 cm only
+    (``arms/fit.py: reach_for``), and an arm's ring at every height can be much narrower than there (a UR3e's)."""
+    from .sim.robot import Kinematics
+
+    kin = Kinematics(spec, spec.mount)
+    wrists = wrist_turns(spec)
+
+    def ok(r: float, zs: tuple[float, ...]) -> bool:
+        return all(reaches(kin, spec, r, az, z, w) for az in (0.0, -0.5, 0.5) for z in zs for w in wrists)
+
+    try:
+        mid = float(math.hypot(*spec.mount[:2]))
+        if not ok(mid, REACH_HEIGHTS):
+            mid = next((r for r in (0.4, 0.3, 0.65, 0.25, 0.8) if ok(r, REACH_HEIGHTS)), None)
+            if mid is None:
+                return ()
+        rows = []
+        for z in REACH_HEIGHTS:
+            near = far = mid
+            while near - step > 0.05 and ok(near - step, (z,)):
+                near -= step
+            while far + step < 1.5 and ok(far + step, (z,)):
+                far += step
+            rows.append((z, round(near, 3), round(far, 3)))
+        return tuple(rows)
+    finally:
+        kin.close()
+
+
 FLIPPED = 1.5
 """A wrist further than this (rad) from the model is on another branch of the IK (elbow or wrist flipped), not
 strayed: a tool off the base joint's plane by d strays asin(d / r) < pi / 2."""

@@ -346,7 +346,9 @@ def choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | N
     """The tool's yaw at the grasp (unwrapped: it decides the wrist's branch) whose whole episode the arm
     reaches: candidates from the wrist model, best centred first (``grasp_candidates``); for each, the
     approach, descent, slide, retract and return IK are solved as the arm will run them, before anything
-    moves. ReachError (the first candidate's) if none works."""
+    moves. Every candidate is tried: a wrist turning +-2 turns (a UR's) has eight, and the approach from where
+    the arm rests can leave its range on the best-centred three (bench_arms.py seed 220017 "around" on the
+    UR3e + Robotiq: the fourth reaches). ReachError (the first candidate's) if none works."""
     base = (prims.robot.base_xyz[0], prims.robot.base_xyz[1])
     obj = prims.world.scene.get(mover)
     widths = None if obj.shape == "cube" else [reach.grasp_width(obj, a) for a in angles]
@@ -355,7 +357,7 @@ def choose_grasp_yaw(prims, mover: str, path: np.ndarray, angles: list[float | N
         raise ReachError(f'no grasp keeps the arm\'s wrist inside its range while "{mover}" turns along this path '
                          f"({np.ptp(path[:, 2]):.1f} rad); turn the block less")
     first_error = None
-    for off in candidates[:3]:
+    for off in candidates:
         tool_yaw = float(path[0, 2] + off)
         try:
             prims.check_engage_and_slide(mover, path, tool_yaw, rest, lift)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -88,6 +89,34 @@ def test_grasp_yaw_keeps_the_wrist_in_range():
     assert np.all(np.abs(wrist) <= math.pi / 4 + 0.2)
     odd = grasp_candidates(path, [math.pi / 2], base)  # the hand must point across the block
     assert odd and all(round(o / (math.pi / 2)) % 2 == 1 for o in odd)
+
+
+def test_every_grasp_candidate_is_tried_before_the_grasp_is_refused():
+    """A wrist that turns +-2 turns (a UR's) has more candidates than the best-centred three, and the approach from
+    where the arm rests can leave its range on those three: the next one is tried (seed 220017 on a UR3e)."""
+    from types import SimpleNamespace
+
+    from l2p_bullet.arms import PANDA
+    from l2p_bullet.core.scene import default_scene
+    from l2p_bullet.embodiment.execute import choose_grasp_yaw, grasp_candidates
+    from l2p_bullet.errors import ReachError
+
+    ur = replace(PANDA, wrist_limit=2 * math.pi)
+    path = np.array([[0.0, 0.0, 0.3], [0.05, 0.02, 0.5]])
+    base = (-0.53, 0.0)
+    candidates = grasp_candidates(path, [None], base, ur)
+    assert len(candidates) > 4
+    tried = []
+
+    def check(mover, p, tool_yaw, rest, lift):
+        tried.append(tool_yaw)
+        if len(tried) <= 3:
+            raise ReachError("the arm would have to flip its configuration")
+
+    prims = SimpleNamespace(robot=SimpleNamespace(base_xyz=(*base, 0.0), spec=ur),
+                            world=SimpleNamespace(scene=default_scene()), check_engage_and_slide=check)
+    yaw, _ = choose_grasp_yaw(prims, "A", path, [None], np.zeros(4))
+    assert len(tried) == 4 and yaw == pytest.approx(0.3 + candidates[3])
 
 
 def test_relative_and_place_round_trip():
