@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 ROOM_CHECKS = ("room-closer", "room-away", "room-around", "blocked-around")
 """The room checks an action may declare (``Planning.checks``; ``planning.feasibility.ROOM_CHECKS``)."""
-BOUND_KINDS = ("passes-within", "goes-back-within", "starts-before", "closes-at-least")
+BOUND_KINDS = ("passes-within", "goes-back-within", "starts-before", "closes-at-least", "grows-at-least")
 """The kinds of bound from people's data (``Bound.kind``; ``planning.bounds.WEIGHTS`` weighs by them)."""
 WRONG_MOTIONS = ("backs-off", "out-and-back", "reversed", "to-closest-and-back", "half-round-and-back")
 """The kinds of wrong planner motion (``Training.wrong_motions``; ``training_plan.WRONG_MOTIONS``)."""
@@ -133,7 +133,8 @@ class Bound:
     "starts-before" (how far before the anchor it starts along its overall direction, as a share of its start
     distance); ``within``: the least people's demonstrations started so (a least, not a most); "closes-at-least"
     (how much its centre distance closed from start to end, as a share of its room); ``within``: the least
-    the rule accepts (a least)."""
+    the rule accepts (a least); "grows-at-least" (how many blocks its centre distance grew from start to end,
+    from afar); ``within``: the least people's demonstrations grew it (a least)."""
 
     kind: str
     within: float

@@ -2,8 +2,9 @@
 clauses' plans predict, so a clause that cannot be planned is refused up front, naming it and the check.
 
 Planned as a whole: each clause is planned with the planner's own end first; when a later clause cannot be
-planned from there, the earlier clauses' other end states (ends.py: a path stopped short, other seeds, the
-end turned about the anchor) are tried, latest first, depth first, so one clause's greedy end (a block left
+planned from there, or its judge accepts none of its ends there (a block left on the rim, then "around" it),
+the earlier clauses' other end states (ends.py: a path stopped short, other seeds, the end turned about the
+anchor) are tried, latest first, depth first, so one clause's greedy end (a block left
 on the workspace's rim, a block already past its anchor) does not make the chain impossible when another end
 of the same clause would keep it possible. Only the clauses that moved a block the failed check reads are
 tried again (a room check reads the mover and the anchor, "room-around" the anchor alone; "blocked-around"
@@ -53,6 +54,9 @@ SEARCH_PLANS = 4
 planner; a cut end costs none). A chain its clauses' own ends make possible is planned once per clause, as
 before. Once spent, the search goes on with the planner's own ends alone, so a chain planned clause by
 clause is never refused for the search's sake (chosen on the development chains, docs/benchmarks.md)."""
+SHORT_PLANS = 8
+"""Plans the search may still make, once a clause's judge accepted none of its ends, to find earlier ends that let it
+accept one (the development chain 9705 needed 7); then the chain is planned as clause by clause would plan it."""
 
 
 @dataclass
@@ -128,8 +132,17 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
     stats = Search() if search is None else search
     t0 = time.perf_counter()
     try:
-        searcher = _Searcher(clauses, plugins, opts, loaded, stats)
-        steps = searcher.steps(0, scene)
+        searcher = _Searcher(clauses, plugins, opts, loaded, stats, short_ok=False)
+        try:
+            steps = searcher.steps(0, scene)
+        except _Dead:
+            if not searcher.short_met:
+                raise
+            # no ends found that every judge accepts: the chain as clause by clause would plan it, the plans
+            # already made reused (the search again, with a clause's own end kept where its judge accepts none)
+            stats.dead_ends.clear()
+            searcher = _Searcher(clauses, plugins, opts, loaded, stats, memo=searcher.memo, cost=searcher.cost)
+            steps = searcher.steps(0, scene)
     except _Dead as d:
         raise _refusal(d, clauses, stats) from None
     finally:
@@ -169,11 +182,16 @@ def _outlines(at: _Clause) -> list[np.ndarray] | None:
 class _Searcher:
     """Depth first over the clauses' end states, back-jumping past clauses that moved no block a failure reads."""
 
-    def __init__(self, clauses: list[Clause], plugins: list, opts: RunOptions, loaded: dict, stats: Search):
+    def __init__(self, clauses: list[Clause], plugins: list, opts: RunOptions, loaded: dict, stats: Search, *,
+                 short_ok: bool = True, memo: dict | None = None, cost: dict | None = None):
         self.clauses, self.plugins, self.opts, self.loaded, self.stats = clauses, plugins, opts, loaded, stats
         self.arm = opts.arm_spec()
         self.left = SEARCH_PLANS * len(clauses)
-        self.cost: dict[int, float] = {}  # id(plan) -> seconds to make it (a cut: to cut it)
+        # short_ok False: a clause whose judge accepts none of its ends is a dead end, so the earlier clauses' other
+        # ends are tried first (a block the greedy end left on the rim, then "around" it, sweeps short of the rule)
+        self.short_ok, self.short_met = short_ok, False
+        self.memo: dict[tuple, Plan | L2PError] = {} if memo is None else memo  # a plan made, or the error met
+        self.cost: dict[int, float] = {} if cost is None else cost  # id(plan) -> seconds to make it (a cut: to cut it)
         self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
@@ -210,6 +228,12 @@ class _Searcher:
                     return found
             if at.judged_short is None or fell_back:
                 break
+            if not self.short_ok:
+                if not self.short_met:  # the earlier clauses' other ends, within a few plans more
+                    self.left = min(self.left, SHORT_PLANS)
+                self.short_met = True
+                reason = at.judged_short[0].extra["verdict"].get("reason", "")
+                raise self._dead(c, PlanError(f"its judge accepts none of its ends ({reason})"), predicted)
             fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
             plan, end = at.judged_short
             try:
@@ -300,15 +324,23 @@ class _Searcher:
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:
         from ..embodiment.execute import check_for  # lazy: the arm's modules load only when a chain is forecast
 
+        key = (c.index, end, id(base), tuple((o.name, *np.round(o.pose, 9)) for o in predicted.objects))
+        made = self.memo.get(key)
+        if isinstance(made, L2PError):
+            raise self._dead(c, made, predicted)
+        if made is not None:
+            return made
         t0 = time.perf_counter()
         try:
             plan = plan_clause(c, predicted, bundle, judge, self.opts, self.arm, end, base=base)
             check_for(manners.get(c.command.manner), predicted, c.command.mover, plan.path, self.arm)
         except L2PError as e:
+            self.memo[key] = e
             raise self._dead(c, e, predicted) from None
         finally:
             self.stats.plans += base is None or bool(end.turn) or end.aim is not None
         self.cost[id(plan)] = time.perf_counter() - t0
+        self.memo[key] = plan
         return plan
 
     def _step(self, at: _Clause, plan: Plan, end: End) -> Step:

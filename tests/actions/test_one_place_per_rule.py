@@ -90,7 +90,7 @@ def test_the_scan_sees_a_branch_on_a_name(tmp_path):
 def test_each_rule_set_is_planned_by_the_spec_that_declares_it():
     assert RULE_SPECS == {s.rules: s for s in BUILTIN.values()}
     bounded = {n for n, s in RULE_SPECS.items() if s.planning.bound is not None}
-    assert set(PEOPLE_BOUNDS) == bounded == {"past", "closer"}
+    assert set(PEOPLE_BOUNDS) == bounded == {"past", "closer", "away"}
     assert [n for n, s in RULE_SPECS.items() if s.planning.lead_in is not None] == ["around"]
     for spec in BUILTIN.values():
         assert set(spec.planning.checks) <= set(feasibility.ROOM_CHECKS) <= set(feasibility.CHECKS)

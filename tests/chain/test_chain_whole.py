@@ -218,12 +218,12 @@ def test_a_turned_end_is_as_far_from_the_anchor_on_another_bearing(plugins):
 @pytest.mark.slow
 def test_away_then_around_it_plans_with_the_away_ended_off_the_rim(plugins):
     """Development chain seed 7003: every cut and seed of "away" leaves A too near the rim for "around A"
-    (refused clause by clause: room-around); its end aimed where "around A" has room (tried before the other
-    seeds and the turns; a turn of -60 degrees about C did it before) is judged away and keeps clause 2."""
+    (refused clause by clause: room-around); another end of it (aimed where "around A" has room, or, since "away"
+    from afar grows the distance as people do, its path cut halfway) is judged away and keeps clause 2."""
     scene = fit_scene(chain_scenes(1, 7003)[0].scene, PANDA)
     clauses = resolve_clauses("move A away from C, then move C around A", scene, plugins)
     steps = forecast(clauses, scene, plugins, seed=7003)
-    assert steps[0].end.aim is not None and steps[0].forecast.extra["verdict"]["success"]
+    assert steps[0].end != DEFAULT and steps[0].forecast.extra["verdict"]["success"]
     check_feasible(clauses[1].command, scene.with_pose("A", steps[0].forecast.path[-1]), plugins, PANDA)
 
 
@@ -402,3 +402,33 @@ def test_blocked_around_sends_the_search_back_past_a_clause_whose_block_is_not_i
     steps = forecast(clauses, scene, plugins)
     assert steps[0].end != DEFAULT and [s.end for s in steps[1:]] == [DEFAULT, DEFAULT]
     assert [c for c, _ in stand_ins].count(2) == 2
+
+
+def test_a_later_clause_no_end_of_which_its_judge_accepts_sends_the_search_back(plugins, stand_ins, monkeypatch):
+    """Clause 1's own end leaves A at RIM, where clause 2's judge accepts no plan of "around A" (a block on the
+    rim, then around it: the sweep falls short) though its room check passes: clause 1's other ends are tried
+    before clause 2 is kept as its planner ends it; where none helps, the chain is planned as clause by clause,
+    and the plans already made are not made again."""
+    monkeypatch.setattr(chain_forecast, "SEARCH_PLANS", 8)  # clause 2's own ends spend the default's 8 of 2 clauses
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+
+    def anchor_off_the_rim(path, anchor, size, **kwargs):
+        ok = not np.allclose(np.asarray(anchor)[:2], RIM[:2])
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "swept short"})
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=anchor_off_the_rim))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT]
+    assert [s.forecast.extra["verdict"]["success"] for s in steps] == [True, True]
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda path, anchor, size, **k: SimpleNamespace(to_dict=lambda: {"success": False, "reason": "no"})))
+    stand_ins.clear()
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert [s.end for s in steps] == [DEFAULT, DEFAULT]  # clause by clause: each planner's own end
+    made = [(c, e) for c, e in stand_ins]
+    assert len(made) == len(set(made))  # the second pass made no plan again
+    assert search.dead_ends == {}
