@@ -461,6 +461,7 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
     chain's). The objects are separated by commas and/or "and"; at least two, all different."""
     if not isinstance(sentence, str) or not phrases or len(sentence) > MAX_SENTENCE:
         return None
+    sentence = IN_ORDER.sub("", re.sub(r"(?i)\bw/\s*", "with ", sentence))
     raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]")]
     words = tokens(sentence)
     kept = strip_polite(list(words))
@@ -478,10 +479,12 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
                 raw[start + joined + len(tail) + 1: start + len(kept)])
         items = [i.strip(" .;:!?\"()[]") for part in rest.split(",") for i in _split_and(part)]
         items = [i for i in items if i]
-        if len(items) == 1 and len(items[0].split()) > 1:  # "line up c b a": names without commas
-            loose = [_try_object(w, scene) for w in items[0].split()]
-            if all(loose):
-                items = items[0].split()
+        if items:  # "line up the mug, the jar and the stone in a row": the row said again at the end
+            items[-1] = ROW_AGAIN.sub("", items[-1]).strip() or items[-1]
+        named = {n.lower() for n in scene.names}
+        loose = [i.split() if len(i.split()) > 1 and all(w.lower() in named for w in i.split()) else [i]
+                 for i in items]  # "line up c b a", "line up U V W and stone": names without commas
+        items = [w for group in loose for w in group]
         if len(items) < 2:
             raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'
                                 + (f' (got "{rest}")' if rest else ""))
@@ -491,6 +494,11 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
             raise LanguageError(f'the list after "{phrase}" names {", ".join(twice)} more than once')
         return ListCommand(action, phrase, names, sentence.strip())
     return None
+
+
+IN_ORDER = re.compile(r",?\s*in\s+(?:that|this|the\s+same|the\s+given)\s+order\s*(?=[.!?]*\s*$)", re.IGNORECASE)
+"""", in that order" after a list: the order named is the order anyway."""
+ROW_AGAIN = re.compile(r"\s+in\s+(?:a|one|a\s+single)\s+(?:row|line)\s*$", re.IGNORECASE)
 
 
 def _head_tail(toks: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:

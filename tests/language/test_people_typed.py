@@ -226,6 +226,13 @@ def test_what_those_rules_leave_asked(plugins, sentence, table):
     ("carry the duck over and set it beside C", "carry:next-to duck C", "corpus.tsv"),
     # "big" among one shape compares sides
     ("move the big cube past the jar", "slide:past V jar", "heldout9.tsv"),
+    # rows said other ways
+    ("row: C, A, B", "row C,A,B", "corpus.tsv"),
+    ("line up the duck, C and E in a row, in that order", "row duck,C,E", "corpus.tsv"),
+    ("make a line w/ A, B and the duck", "row A,B,duck", "corpus.tsv"),
+    ("Put E, D and A in one row.", "row E,D,A", "corpus.tsv"),
+    ("line up B C A and E", "row B,C,A,E", "corpus.tsv"),
+    ("Put in a row the duck, the blue cube and the yellow box.", "row duck,C,D", "corpus.tsv"),
 ])
 def test_what_the_eighth_and_ninth_authors_prompted_reads_as_meant(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
