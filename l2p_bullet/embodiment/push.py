@@ -30,7 +30,8 @@ import numpy as np
 from ..arms import reach
 from ..core.geometry import separation
 from ..errors import ReachError
-from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
+from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z, push_tip_ceiling
+from .push_height import push_height
 from .push_path import drop_spurs
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
@@ -73,7 +74,12 @@ class Pusher:
         self.sigma = 0.0
         ext = reach.hand_extent(self.size / 2, self.robot.spec) or (0.0145, 0.03)
         self.half = float(ext[0])  # the pusher's half thickness along the push
-        self.z = TIP_Z + self.robot.drop
+        obj = self.world.scene.get(mover)
+        # a mesh's sides may slope where the default height meets them: the height where they stand upright
+        surface = self.world.surfaces.get(mover)
+        self.tip_z = TIP_Z if surface is None else push_height(surface, self.robot.spec.hand_profile, TIP_Z,
+                                                               push_tip_ceiling(obj, self.robot.spec))
+        self.z = self.tip_z + self.robot.drop
         self.dt = 1.0 / 60.0
         self.repositions, self.contact_frames, self.ticks = 0, 0, 0
         self.events: list[str] = []
@@ -81,7 +87,6 @@ class Pusher:
         self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
         self.others = [n for n in self.world.sizes if n != mover]
         self.shifted = 0
-        obj = self.world.scene.get(mover)
         # a shape's own outline (its frame) for the face's support; a cube keeps the square's formula
         self.outline = None if obj.shape == "cube" else np.asarray(obj.footprint(np.zeros(3)), float)
 
@@ -123,13 +128,16 @@ class Pusher:
         return self.sigma
 
     def support(self, b: np.ndarray, phi: float) -> float:
-        """The block's face distance from its centre along direction ``phi``: its footprint's support (for a
-        cube the square's, ``size / 2 (|cos| + |sin|)``). The square of a round or long object's size reaches
-        past its real face on some sides (5 mm on a 4 cm round object's diagonal), where a bite measured from it
-        is too shallow to move the object: the hand presses until the push's time runs out."""
+        """The distance from the block's centre to its face opposite direction ``phi`` (the face the hand pushes
+        when it pushes along ``phi``): its footprint's support there (for a cube the square's, ``size / 2 (|cos|
+        + |sin|)``). The square of a round or long object's size reaches past its real face on some sides (5 mm
+        on a 4 cm round object's diagonal), where a bite measured from it is too shallow to move the object: the
+        hand presses until the push's time runs out. An outline that is not symmetric about the centre (a camera
+        whose body reaches 5.5 cm ahead of its centre of mass and 3.5 cm behind) is measured on the pushed side:
+        its far side's support put the fingers 2 cm short of the face they push."""
         a = phi - b[2]
         if self.outline is not None:
-            return float(np.max(self.outline @ np.array([math.cos(a), math.sin(a)])))
+            return float(np.max(self.outline @ -np.array([math.cos(a), math.sin(a)])))
         return self.size / 2 * (abs(math.cos(a)) + abs(math.sin(a)))
 
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> tuple[np.ndarray, bool]:
@@ -333,7 +341,7 @@ class Pusher:
             "stopped": stopped, "repositions": self.repositions, "control_ticks": self.ticks,
             "shifted_ticks": self.shifted,
             "contact_ticks": self.contact_frames, "tipped": stopped == "tipped", "escaped": stopped == "escaped",
-            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": TIP_Z}}
+            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": self.tip_z}}
 
     def drift(self, b: np.ndarray, side: float) -> float:
         """How far (rad, signed, at most :data:`BIAS_MAX`) the block's own motion turns from the direction
