@@ -210,6 +210,24 @@ def test_a_mesh_resting_tilted_is_slid_without_being_called_tilted(tmp_path):
     assert ex.max_deviation_m < 0.003 and ex.constraint_removed
 
 
+
+@pytest.mark.slow
+def test_a_mesh_that_settles_tilted_is_judged_on_the_table_from_how_it_rests(tmp_path):
+    """A mesh that settles tilted rests lower than standing flat: its slide was judged from the standing
+    height ('stayed within 6.2 mm of the table ... not a slide' for a gamepad that never left the table)."""
+    import trimesh
+
+    box = trimesh.creation.box(extents=(0.06, 0.04, 0.03))
+    v = box.vertices.copy()
+    v[np.argmin(v.sum(axis=1)), 2] -= 0.012  # one bottom corner 12 mm low: it rests tilted on it
+    _mesh(tmp_path / "r.obj", v, box.faces)
+    (tmp_path / "scene.json").write_text(json.dumps({"objects": [
+        {"name": "R", "color": "blue", "shape": "mesh", "mesh": "r.obj", "xy": [0.12, -0.1]}, CUBES[1]]}))
+    out = tmp_path / "run"
+    r = _perform("slide R closer to B", "--scene", str(tmp_path / "scene.json"), "--no-render", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    assert "success" in r.output and "not a slide" not in r.output, r.output
+
 def test_a_mesh_scene_settles_once(tmp_path, monkeypatch):
     """The feasibility stage settled a throw-away world (arm and all) to refuse an object that never rests,
     then the run's world settled the scene again: now both use one settling, and every world of the scene
