@@ -31,7 +31,7 @@ from ..arms import reach
 from ..core.geometry import separation
 from ..errors import ReachError
 from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z, push_tip_ceiling
-from .push_height import push_height
+from .push_height import contact_reach, push_height
 from .push_path import drop_spurs
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
@@ -58,6 +58,9 @@ CLEARANCE = PUSH_CLEARANCE  # m kept between the pusher and every other object
 WRIST_MARGIN = 0.25  # rad kept from the wrist's limits
 TIME_PER_M = 40.0  # s of pushing allowed per metre of path (plus SLACK_S): then the push stops where it is
 SLACK_S = 20.0
+DEEPEN = 0.00025  # m per control period a mesh's bite deepens while the hand is at its target touching nothing
+DEEPEST = 0.02  # m: the most a mesh's bite deepens beyond PRESS
+STILL = 0.00005  # m in a control period: a mesh that moved less than this, the hand at its target, is not pushed
 
 
 class Pusher:
@@ -89,6 +92,12 @@ class Pusher:
         self.shifted = 0
         # a shape's own outline (its frame) for the face's support; a cube keeps the square's formula
         self.outline = None if obj.shape == "cube" else np.asarray(obj.footprint(np.zeros(3)), float)
+        # a mesh's sides met by the fingers themselves (its frame): where they touch it from each side
+        self.reach = contact_reach(surface, self.robot.spec.hand_profile, self.tip_z) if surface is not None else None
+        # how much deeper than PRESS the hand presses a mesh: its face is estimated (the hand's profile is its
+        # collision shapes' bounding boxes, a concave side lets the fingers in), and a hand that reached its
+        # target without moving the object (short of it, or touching it too lightly) presses on
+        self.deeper = 0.0
 
     # --- geometry ----------------------------------------------------------------------------------
     def block(self) -> np.ndarray:
@@ -143,8 +152,17 @@ class Pusher:
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> tuple[np.ndarray, bool]:
         """(tool pose, clear): the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
         that face (up to :data:`SHIFT`) when its middle would touch another object; ``clear`` is False when no
-        place was (the unslid pose is given then)."""
-        r = self.support(b, phi) + self.half + back
+        place was (the unslid pose is given then). A mesh's face is where the hand's front meets its side
+        (:func:`contact_reach`) where that lies nearer than the outline's support plus the hand's widest half
+        thickness: the fingertips taper, and a side that slopes or a mesh resting tilted stands inside its
+        outline, so a bite measured from the outline ended millimetres short of the object (measured: a
+        gamepad's push stopped 2.2 mm short and never moved it)."""
+        r = self.support(b, phi) + self.half
+        if self.reach is not None and len(self.reach[0]):  # a mesh: the hand's front where it meets its side
+            angles, reach = self.reach
+            a = (phi - b[2] + math.pi) % (2 * math.pi)  # from the object's centre towards the hand
+            r = min(r, float(np.interp(a, np.append(angles, 2 * math.pi), np.append(reach, reach[0]))))
+        r += back
         pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
         if self.clear(pose[:2], phi):
             return pose, True
@@ -260,6 +278,7 @@ class Pusher:
         prims.go(over, APPROACH, "push-over", short_turn=False)
         prims.go(target, DESCEND, "push-down")
         self.repositions += 1
+        self.deeper = 0.0  # another side: its own face
         return True
 
     def run(self) -> dict:
@@ -329,10 +348,14 @@ class Pusher:
             dside = float(np.clip((phi - side + math.pi) % (2 * math.pi) - math.pi,
                                   -TURN_RATE * self.dt, TURN_RATE * self.dt))
             side += dside
-            target, _ = self.contact_pose(b, side, 0.0, -PRESS)
+            target, _ = self.contact_pose(b, side, 0.0, -PRESS - self.deeper)
             target[3] = prims.pose[3] + float(np.clip(want_yaw - prims.pose[3], -TURN_RATE * self.dt,
                                                       TURN_RATE * self.dt))
-            self.tick(self.limited(b, target, side, abs(dside)))
+            step = self.limited(b, target, side, abs(dside))
+            self.tick(step)
+            if (self.reach is not None and float(np.hypot(*(step[:2] - target[:2]))) < 1e-4
+                    and float(np.hypot(*(self.block()[:2] - b[:2]))) < STILL):
+                self.deeper = min(self.deeper + DEEPEN, DEEPEST)
         end_frame = len(prims.recorder.frames)
         self.retreat()
         if stopped != "end":

@@ -113,3 +113,66 @@ def push_height(tri: np.ndarray, profile: tuple, default: float, ceiling: float)
     if float(costs.min()) > base - GAIN:
         return default
     return round(float(tips[int(np.argmin(costs))]), 6)
+
+
+
+CONTACT_DIRECTIONS = 72
+"""Directions round the object (its frame) in which :func:`contact_reach` measures where the hand meets it."""
+
+
+def contact_reach(tri: np.ndarray, profile: tuple, tip: float,
+                  directions: int = CONTACT_DIRECTIONS) -> tuple[np.ndarray, np.ndarray]:
+    """(angles (D,), reach (D,)): how far from the object's centre (its frame's origin, m) the tool's axis is
+    when the hand, fingertips ``tip`` m above the table and its axis on a line through the centre, first
+    touches the object advancing on it from each direction (angle: from the centre towards the hand). Each
+    slice of the object is met only within the hand's half width across the push at that height: a concave
+    side (between a gamepad's two grips) lets the fingers in past its outline until they meet the body.
+    Empty arrays where no slice is above ``tip`` (nothing there to meet)."""
+    tri = np.asarray(tri, float)
+    if not len(tri) or not profile:
+        return np.zeros(0), np.zeros(0)
+    tri = tri - np.array([0.0, 0.0, float(tri[..., 2].min())])
+    heights = np.arange(tip + STEP / 2, float(tri[..., 2].max()), STEP)
+    a = np.arange(directions) * 2 * math.pi / directions
+    dirs = np.column_stack([np.cos(a), np.sin(a)])
+    across = np.column_stack([-dirs[:, 1], dirs[:, 0]])
+    d = np.array([p[0] for p in profile], float)
+    half_x, half_y = (np.array([p[k] for p in profile], float) for k in (1, 2))
+    best = np.full(directions, -np.inf)
+    for z in heights:
+        seg = _cut(tri, float(z))
+        if not len(seg):
+            continue
+        w = float(np.interp(z - tip, d, half_y))
+        along0, along1 = seg[:, 0] @ dirs.T, seg[:, 1] @ dirs.T  # (S, D)
+        side0, side1 = seg[:, 0] @ across.T, seg[:, 1] @ across.T
+        step = side1 - side0
+        flat = np.abs(step) < 1e-12
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ta, tb = (-w - side0) / step, (w - side0) / step
+        lo = np.where(flat, np.where(np.abs(side0) <= w, 0.0, 2.0), np.clip(np.minimum(ta, tb), 0.0, None))
+        hi = np.where(flat, 1.0, np.clip(np.maximum(ta, tb), None, 1.0))
+        met = np.maximum(along0 + lo * (along1 - along0), along0 + hi * (along1 - along0))
+        met = np.where(lo <= hi, met, -np.inf).max(axis=0)
+        best = np.maximum(best, met + float(np.interp(z - tip, d, half_x)))
+    if not np.isfinite(best).any():
+        return np.zeros(0), np.zeros(0)
+    return a, best
+
+
+def _cut(tri: np.ndarray, z: float) -> np.ndarray:
+    """(S, 2, 2): the segments in which the triangles ``tri`` (T,3,3) cross the plane at height ``z``."""
+    v = tri[:, :, 2] - z
+    nxt = [1, 2, 0]
+    p, q = tri, tri[:, nxt]
+    dp, dq = v, v[:, nxt]
+    cross = (dp * dq <= 0.0) & (dp != dq)  # (T, 3): the edges that cross
+    keep = cross.sum(axis=1) >= 2
+    if not keep.any():
+        return np.zeros((0, 2, 2))
+    p, q, dp, dq, cross = p[keep], q[keep], dp[keep], dq[keep], cross[keep]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(cross, dp / (dp - dq), 0.0)
+    pts = p[..., :2] + t[..., None] * (q[..., :2] - p[..., :2])  # (T, 3, 2)
+    order = np.argsort(~cross, axis=1, kind="stable")[:, :2]  # the first two edges that cross
+    return np.take_along_axis(pts, order[..., None], axis=1)
