@@ -96,3 +96,56 @@ def test_a_mesh_pushed_corner_first_moves(tmp_path):
     assert r.grasp["push"]["stopped"] == "end", r.grasp
     assert r.verdict["success"], r.verdict
     assert max(r.displacements_m.get(k, 0.0) for k in ("A", "B")) < 0.001
+
+
+def _u_shape(folder=None):
+    """A 9 x 5 x 3 cm U (a gamepad's two grips and its body), open towards -y: a 6 cm wide, 3 cm deep notch
+    between its arms, wider than the closed fingers."""
+    import trimesh
+
+    parts = [trimesh.creation.box(extents=e, transform=trimesh.transformations.translation_matrix(c))
+             for e, c in (((0.09, 0.02, 0.03), (0.0, 0.015, 0.015)), ((0.015, 0.031, 0.03), (-0.0375, -0.0095, 0.015)),
+                          ((0.015, 0.031, 0.03), (0.0375, -0.0095, 0.015)))]
+    u = trimesh.util.concatenate(parts)  # three closed boxes in one file, as model packages ship them
+    if folder is None:
+        return u
+    path = folder / "u.obj"
+    u.export(path)
+    return path
+
+
+def test_the_hand_meets_a_concave_side_where_its_fingers_fit_in():
+    """The hand advancing on the U's open side fits between its arms and meets its body, 3 cm behind the
+    outline's support there; on its closed side it meets the outline's support plus its own half thickness."""
+    from l2p_bullet.embodiment.push_height import contact_reach, hand_front
+
+    u = _u_shape()
+    angles, reach = contact_reach(_triangles(u), PANDA.hand_profile, PUSH_TIP_Z)
+    top = float(hand_front(PANDA.hand_profile, np.array([0.03 - PUSH_TIP_Z]))[0])
+    back, mouth = np.argmin(np.abs(angles - math.pi / 2)), np.argmin(np.abs(angles - 3 * math.pi / 2))
+    assert reach[back] == pytest.approx(0.025 + top, abs=0.0015)
+    assert reach[mouth] == pytest.approx(-0.005 + top, abs=0.0015)  # the body, not the arms' ends at -0.025
+    side = np.argmin(np.abs(angles))
+    assert reach[side] == pytest.approx(0.045 + top, abs=0.0015)
+
+
+@pytest.mark.slow
+def test_a_mesh_pushed_on_its_concave_side_moves(tmp_path, monkeypatch):
+    """Pushed on its open side (bench_objects' "push past" scene), the fingers fit between the U's arms: the
+    push measured from its outline stopped them inside the notch, short of its body, and pressed nothing until
+    the push's time ran out (a gamepad of the held-out meshes did the same)."""
+    import json
+
+    from l2p_bullet.pipeline import perform
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    m = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(_u_shape(tmp_path)), "scale": 1.0,
+         "xy": [0.1, -0.08], "yaw": -0.14}
+    scene = Scene.from_dict({"objects": [m, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
+                                         {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
+    r = perform("push M past B", scene.validate(), out_dir=tmp_path / "run", render=False)
+    frames = json.loads((tmp_path / "run" / "trajectory.json").read_text())["frames"]
+    moved = np.hypot(*(np.array(frames[-1]["poses"]["M"][:2]) - frames[0]["poses"]["M"][:2]))
+    assert moved > 0.1, r.grasp
+    assert r.verdict["success"], r.verdict
+    assert max(r.displacements_m.get(k, 0.0) for k in ("A", "B")) < 0.001
