@@ -152,16 +152,16 @@ class Pusher:
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> tuple[np.ndarray, bool]:
         """(tool pose, clear): the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
         that face (up to :data:`SHIFT`) when its middle would touch another object; ``clear`` is False when no
-        place was (the unslid pose is given then). A mesh's face is where the hand's front meets its side
-        (:func:`contact_reach`) where that lies nearer than the outline's support plus the hand's widest half
-        thickness: the fingertips taper, and a side that slopes or a mesh resting tilted stands inside its
-        outline, so a bite measured from the outline ended millimetres short of the object (measured: a
-        gamepad's push stopped 2.2 mm short and never moved it)."""
+        place was (the unslid pose is given then). A mesh's face is where the hand's front meets it
+        (:func:`contact_reach`), not its outline's support plus a half thickness: the fingers fit into a
+        concave side (a gamepad's, between its grips: they stopped inside it, never touching, until the push's
+        time ran out), and the hand's body, thicker than the fingers, meets a tall object first (a 12.5 cm
+        potion bottle bitten 15 mm deep 5 cm up turned and tipped over)."""
         r = self.support(b, phi) + self.half
-        if self.reach is not None and len(self.reach[0]):  # a mesh: the hand's front where it meets its side
+        if self.reach is not None and len(self.reach[0]):  # a mesh: where the hand's front meets it
             angles, reach = self.reach
             a = (phi - b[2] + math.pi) % (2 * math.pi)  # from the object's centre towards the hand
-            r = min(r, float(np.interp(a, np.append(angles, 2 * math.pi), np.append(reach, reach[0]))))
+            r = float(np.interp(a, np.append(angles, 2 * math.pi), np.append(reach, reach[0])))
         r += back
         pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
         if self.clear(pose[:2], phi):
