@@ -149,3 +149,25 @@ def test_a_mesh_pushed_on_its_concave_side_moves(tmp_path, monkeypatch):
     assert moved > 0.1, r.grasp
     assert r.verdict["success"], r.verdict
     assert max(r.displacements_m.get(k, 0.0) for k in ("A", "B")) < 0.001
+
+
+@pytest.mark.slow
+def test_a_tall_mesh_is_pushed_from_where_the_hand_s_body_meets_it(tmp_path, monkeypatch):
+    """A 12.5 cm box 4.2 cm thin (the tip check lets its push through) is met first by the hand's body, 5 cm up
+    and 7 mm thicker than the fingers: bitten from the fingers' front, the body pressed it 15 mm deep there,
+    and it turned and tipped over before the end of the push."""
+    import trimesh
+
+    from l2p_bullet.pipeline import perform
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    box = trimesh.creation.box(extents=(0.06, 0.042, 0.125),
+                               transform=trimesh.transformations.translation_matrix((0.0, 0.0, 0.0625)))
+    box.export(tmp_path / "tall.obj")
+    m = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(tmp_path / "tall.obj"), "scale": 1.0,
+         "xy": [0.1, -0.08], "yaw": 0.5, "mass": 0.1}
+    scene = Scene.from_dict({"objects": [m, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
+                                         {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
+    r = perform("push M past B", scene.validate(), out_dir=tmp_path / "run", render=False)
+    assert r.grasp["push"]["stopped"] == "end" and not r.grasp["push"]["tipped"], r.grasp
+    assert r.verdict["success"], r.verdict
