@@ -58,7 +58,7 @@ CLEARANCE = PUSH_CLEARANCE  # m kept between the pusher and every other object
 WRIST_MARGIN = 0.25  # rad kept from the wrist's limits
 TIME_PER_M = 40.0  # s of pushing allowed per metre of path (plus SLACK_S): then the push stops where it is
 SLACK_S = 20.0
-DEEPEN = 0.00025  # m per control period a mesh's bite deepens while the hand is at its target touching nothing
+DEEPEN = 0.00025  # m per control period a mesh's bite deepens while the hand is at its target and it stays put
 DEEPEST = 0.02  # m: the most a mesh's bite deepens beyond PRESS
 STILL = 0.00005  # m in a control period: a mesh that moved less than this, the hand at its target, is not pushed
 
@@ -92,7 +92,7 @@ class Pusher:
         self.shifted = 0
         # a shape's own outline (its frame) for the face's support; a cube keeps the square's formula
         self.outline = None if obj.shape == "cube" else np.asarray(obj.footprint(np.zeros(3)), float)
-        # a mesh's sides met by the fingers themselves (its frame): where they touch it from each side
+        # where the hand's front meets a mesh from each side (its frame)
         self.reach = contact_reach(surface, self.robot.spec.hand_profile, self.tip_z) if surface is not None else None
         # how much deeper than PRESS the hand presses a mesh: its face is estimated (the hand's profile is its
         # collision shapes' bounding boxes, a concave side lets the fingers in), and a hand that reached its

@@ -115,7 +115,6 @@ def push_height(tri: np.ndarray, profile: tuple, default: float, ceiling: float)
     return round(float(tips[int(np.argmin(costs))]), 6)
 
 
-
 CONTACT_DIRECTIONS = 72
 """Directions round the object (its frame) in which :func:`contact_reach` measures where the hand meets it."""
 
