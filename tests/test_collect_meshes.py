@@ -1,5 +1,5 @@
 """benchmarks/collect_meshes.py: the everyday meshes of bench_objects' ``--meshes``, copied out of the model
-packages' wheels into a tuned and three held-out folders with each one's scale, turn and source."""
+packages' wheels into a tuned and four held-out folders with each one's scale, turn and source."""
 
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ def test_the_meshes_are_copied_into_tuned_and_held_out_with_their_sources(tmp_pa
                 if pkg == package:
                     z.writestr(inner, _msh() if inner.endswith(".msh") else f"mesh {name}")
     tables = cm.collect(tmp_path / "out", wheels)
-    assert set(tables) == {"tuned", "held-out", "held-out-2", "held-out-3"}
+    assert set(tables) == {"tuned", "held-out", "held-out-2", "held-out-3", "held-out-4"}
     assert len(tables["held-out"]) * 3 >= len(tables["tuned"]) + len(tables["held-out"]) - 1
     assert len(tables["held-out-2"]) >= 6
     names = [set(t) for t in tables.values()]
@@ -53,6 +53,9 @@ def test_the_meshes_are_copied_into_tuned_and_held_out_with_their_sources(tmp_pa
     used |= {e["source"].split()[0] for e in tables["held-out-2"].values()}
     assert len(tables["held-out-3"]) == 6
     assert not used & {e["source"].split()[0] for e in tables["held-out-3"].values()}
+    used |= {e["source"].split()[0] for e in tables["held-out-3"].values()}
+    assert len(tables["held-out-4"]) == 6
+    assert not used & {e["source"].split()[0] for e in tables["held-out-4"].values()}
     for group, table in tables.items():
         assert json.loads((tmp_path / "out" / group / "meshes.json").read_text()) == table
         for name, entry in table.items():
