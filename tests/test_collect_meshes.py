@@ -1,5 +1,5 @@
 """benchmarks/collect_meshes.py: the everyday meshes of bench_objects' ``--meshes``, copied out of the model
-packages' wheels into a tuned and two held-out folders with each one's scale, turn and source."""
+packages' wheels into a tuned and four held-out folders with each one's scale, turn and source."""
 
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ def test_the_meshes_are_copied_into_tuned_and_held_out_with_their_sources(tmp_pa
                 if pkg == package:
                     z.writestr(inner, _msh() if inner.endswith(".msh") else f"mesh {name}")
     tables = cm.collect(tmp_path / "out", wheels)
-    assert set(tables) == {"tuned", "held-out", "held-out-2"}
+    assert set(tables) == {"tuned", "held-out", "held-out-2", "held-out-3", "held-out-4"}
     assert len(tables["held-out"]) * 3 >= len(tables["tuned"]) + len(tables["held-out"]) - 1
     assert len(tables["held-out-2"]) >= 6
     names = [set(t) for t in tables.values()]
@@ -49,6 +49,13 @@ def test_the_meshes_are_copied_into_tuned_and_held_out_with_their_sources(tmp_pa
     # the new held-out set comes from packages the other two never used
     used = {e["source"].split()[0] for g in ("tuned", "held-out") for e in tables[g].values()}
     assert not used & {e["source"].split()[0] for e in tables["held-out-2"].values()}
+    # and the newest from a package none of the others used
+    used |= {e["source"].split()[0] for e in tables["held-out-2"].values()}
+    assert len(tables["held-out-3"]) == 6
+    assert not used & {e["source"].split()[0] for e in tables["held-out-3"].values()}
+    used |= {e["source"].split()[0] for e in tables["held-out-3"].values()}
+    assert len(tables["held-out-4"]) == 6
+    assert not used & {e["source"].split()[0] for e in tables["held-out-4"].values()}
     for group, table in tables.items():
         assert json.loads((tmp_path / "out" / group / "meshes.json").read_text()) == table
         for name, entry in table.items():
@@ -82,3 +89,17 @@ def test_a_file_that_is_no_msh_is_refused_in_one_line():
         cm.msh_to_obj(_msh()[:-4])
     obj = cm.msh_to_obj(_msh()).decode().splitlines()
     assert len(obj) == 8 and obj[0] == "v 0 0 0" and obj[4] == "f 1 3 2"
+
+
+def test_a_package_with_only_a_foreign_wheel_is_downloaded_with_its_pip_arguments(tmp_path, monkeypatch):
+    """Roboschool publishes only a CPython 3.6 wheel: pip is told that platform, or it finds nothing to fetch."""
+    cm = _module()
+    calls = []
+
+    def run(cmd, check):
+        calls.append(cmd)
+        (tmp_path / "roboschool-1.0.49-cp36-cp36m-manylinux1_x86_64.whl").write_bytes(b"")
+
+    monkeypatch.setattr(cm.subprocess, "run", run)
+    assert cm.wheel("roboschool", tmp_path).name.startswith("roboschool-1.0.49-")
+    assert calls and all(a in calls[0] for a in cm.PIP_ARGS["roboschool"]) and calls[0][-1] == "roboschool==1.0.49"

@@ -351,7 +351,8 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
     verdict = disturbance_verdict(step.judge.judge(mover, anchor, size, final_progress=final_progress,
                                                    **context).to_dict(), displaced, cmd.anchor)
     if not standing:  # nothing moved, in no manner: the verb's manner has nothing to show
-        verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover, now.get(cmd.mover).rest)
+        verdict = manner_verdict(verdict, manners.get(cmd.manner), frames, cmd.mover,
+                                 prims.world.rests[cmd.mover])
     verdict = already_said(verdict, plan)
     return ClauseResult(step.clause, plan, verdict, first, last, action_from=first + start if start else None,
                         final_progress=final_progress,

@@ -52,6 +52,9 @@ class Execution:
     displacements_m: dict[str, float] = field(default_factory=dict)  # per block not held: its largest displacement
     render: dict | None = None  # how the frames were drawn (renderer used, camera, workers, wait): summary.json
     settled_m: dict[str, float] = field(default_factory=dict)  # per object, how far it moved settling (mesh scenes)
+    # per object, its centre's height above the table as it rests at the start (settled, in a mesh scene): what
+    # the manner judges measure 'on the table' from
+    rests_m: dict[str, float] = field(default_factory=dict)
 
 
 def check_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> np.ndarray:
@@ -218,7 +221,7 @@ def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | 
                               max_deviation_m=deviation, anchor_displacement_m=max(displaced.values(), default=0.0),
                               max_lift_m=lift, constraint_removed=removed, duration_s=world.time, stats=stats,
                               displacements_m=displaced, render=render_info(render, film),
-                              settled_m=dict(world.settled))
+                              settled_m=dict(world.settled), rests_m=dict(world.rests))
         if out_dir is not None:
             files["summary"] = Path(out_dir) / "summary.json"
             if summary:

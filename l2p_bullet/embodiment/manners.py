@@ -118,6 +118,20 @@ def tip_refusal(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> str | None:
             f"the pushing hand meets it up to {meets * 100:.1f} cm above the table; carry or slide \"{mover}\" instead")
 
 
+def push_tip_ceiling(obj, arm: ArmSpec = PANDA) -> float:
+    """The highest fingertip height (m above the table) at which :func:`tip_refusal`'s rule still lets a push of
+    ``obj`` through (inf where no height tips it): a push made at another height than :data:`PUSH_TIP_Z`
+    (embodiment/push_height.py) keeps below it, so the check that passed it still holds."""
+    width = _narrowest(obj)
+    if obj.shape == "cube" or obj.height <= width:
+        return math.inf
+    friction = TIP_FRICTION * (obj.friction if obj.friction is not None else BLOCK_FRICTION) / BLOCK_FRICTION
+    if friction * float(obj.height) <= width / 2:
+        return math.inf
+    widen = next((d for d, _, hy in arm.hand_profile if hy > 0.05), None)
+    return PUSH_TIP_Z if widen is None else width / 2 / friction - widen
+
+
 def tall_pace(pace: Pace, obj) -> Pace:
     """``pace`` for a motion holding ``obj``: with :data:`TALL_ACCELERATION` where the object is tall."""
     if obj.shape == "cube" or obj.height <= TALL_RATIO * _narrowest(obj):

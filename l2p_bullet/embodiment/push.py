@@ -30,7 +30,8 @@ import numpy as np
 from ..arms import reach
 from ..core.geometry import separation
 from ..errors import ReachError
-from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z
+from .manners import PUSH_CLEARANCE, PUSH_FACE_TURN, PUSH_GAP, PUSH_LOOKAHEAD, PUSH_SHIFT, PUSH_TIP_Z, push_tip_ceiling
+from .push_height import contact_reach, push_height
 from .push_path import drop_spurs
 from .sim.primitives import APPROACH, DESCEND, HOVER, SETTLE_S
 from .sim.robot import ARM
@@ -57,6 +58,9 @@ CLEARANCE = PUSH_CLEARANCE  # m kept between the pusher and every other object
 WRIST_MARGIN = 0.25  # rad kept from the wrist's limits
 TIME_PER_M = 40.0  # s of pushing allowed per metre of path (plus SLACK_S): then the push stops where it is
 SLACK_S = 20.0
+DEEPEN = 0.00025  # m per control period a mesh's bite deepens while the hand is at its target and it stays put
+DEEPEST = 0.02  # m: the most a mesh's bite deepens beyond PRESS
+STILL = 0.00005  # m in a control period: a mesh that moved less than this, the hand at its target, is not pushed
 
 
 class Pusher:
@@ -73,7 +77,12 @@ class Pusher:
         self.sigma = 0.0
         ext = reach.hand_extent(self.size / 2, self.robot.spec) or (0.0145, 0.03)
         self.half = float(ext[0])  # the pusher's half thickness along the push
-        self.z = TIP_Z + self.robot.drop
+        obj = self.world.scene.get(mover)
+        # a mesh's sides may slope where the default height meets them: the height where they stand upright
+        surface = self.world.surfaces.get(mover)
+        self.tip_z = TIP_Z if surface is None else push_height(surface, self.robot.spec.hand_profile, TIP_Z,
+                                                               push_tip_ceiling(obj, self.robot.spec))
+        self.z = self.tip_z + self.robot.drop
         self.dt = 1.0 / 60.0
         self.repositions, self.contact_frames, self.ticks = 0, 0, 0
         self.events: list[str] = []
@@ -81,9 +90,14 @@ class Pusher:
         self.width = float(ext_top[1])  # the pusher's half width across the push, up to above the block
         self.others = [n for n in self.world.sizes if n != mover]
         self.shifted = 0
-        obj = self.world.scene.get(mover)
         # a shape's own outline (its frame) for the face's support; a cube keeps the square's formula
         self.outline = None if obj.shape == "cube" else np.asarray(obj.footprint(np.zeros(3)), float)
+        # where the hand's front meets a mesh from each side (its frame)
+        self.reach = contact_reach(surface, self.robot.spec.hand_profile, self.tip_z) if surface is not None else None
+        # how much deeper than PRESS the hand presses a mesh: its face is estimated (the hand's profile is its
+        # collision shapes' bounding boxes, a concave side lets the fingers in), and a hand that reached its
+        # target without moving the object (short of it, or touching it too lightly) presses on
+        self.deeper = 0.0
 
     # --- geometry ----------------------------------------------------------------------------------
     def block(self) -> np.ndarray:
@@ -123,20 +137,32 @@ class Pusher:
         return self.sigma
 
     def support(self, b: np.ndarray, phi: float) -> float:
-        """The block's face distance from its centre along direction ``phi``: its footprint's support (for a
-        cube the square's, ``size / 2 (|cos| + |sin|)``). The square of a round or long object's size reaches
-        past its real face on some sides (5 mm on a 4 cm round object's diagonal), where a bite measured from it
-        is too shallow to move the object: the hand presses until the push's time runs out."""
+        """The distance from the block's centre to its face opposite direction ``phi`` (the face the hand pushes
+        when it pushes along ``phi``): its footprint's support there (for a cube the square's, ``size / 2 (|cos|
+        + |sin|)``). The square of a round or long object's size reaches past its real face on some sides (5 mm
+        on a 4 cm round object's diagonal), where a bite measured from it is too shallow to move the object: the
+        hand presses until the push's time runs out. An outline that is not symmetric about the centre (a camera
+        whose body reaches 5.5 cm ahead of its centre of mass and 3.5 cm behind) is measured on the pushed side:
+        its far side's support put the fingers 2 cm short of the face they push."""
         a = phi - b[2]
         if self.outline is not None:
-            return float(np.max(self.outline @ np.array([math.cos(a), math.sin(a)])))
+            return float(np.max(self.outline @ -np.array([math.cos(a), math.sin(a)])))
         return self.size / 2 * (abs(math.cos(a)) + abs(math.sin(a)))
 
     def contact_pose(self, b: np.ndarray, phi: float, yaw: float, back: float) -> tuple[np.ndarray, bool]:
         """(tool pose, clear): the pusher's face ``back`` m behind the block's face opposite ``phi``, slid along
         that face (up to :data:`SHIFT`) when its middle would touch another object; ``clear`` is False when no
-        place was (the unslid pose is given then)."""
-        r = self.support(b, phi) + self.half + back
+        place was (the unslid pose is given then). A mesh's face is where the hand's front meets it
+        (:func:`contact_reach`), not its outline's support plus a half thickness: the fingers fit into a
+        concave side (a gamepad's, between its grips: they stopped inside it, never touching, until the push's
+        time ran out), and the hand's body, thicker than the fingers, meets a tall object first (a 12.5 cm
+        potion bottle bitten 15 mm deep 5 cm up turned and tipped over)."""
+        r = self.support(b, phi) + self.half
+        if self.reach is not None and len(self.reach[0]):  # a mesh: where the hand's front meets it
+            angles, reach = self.reach
+            a = (phi - b[2] + math.pi) % (2 * math.pi)  # from the object's centre towards the hand
+            r = float(np.interp(a, np.append(angles, 2 * math.pi), np.append(reach, reach[0])))
+        r += back
         pose = np.array([b[0] - r * math.cos(phi), b[1] - r * math.sin(phi), self.z, yaw])
         if self.clear(pose[:2], phi):
             return pose, True
@@ -252,6 +278,7 @@ class Pusher:
         prims.go(over, APPROACH, "push-over", short_turn=False)
         prims.go(target, DESCEND, "push-down")
         self.repositions += 1
+        self.deeper = 0.0  # another side: its own face
         return True
 
     def run(self) -> dict:
@@ -321,10 +348,14 @@ class Pusher:
             dside = float(np.clip((phi - side + math.pi) % (2 * math.pi) - math.pi,
                                   -TURN_RATE * self.dt, TURN_RATE * self.dt))
             side += dside
-            target, _ = self.contact_pose(b, side, 0.0, -PRESS)
+            target, _ = self.contact_pose(b, side, 0.0, -PRESS - self.deeper)
             target[3] = prims.pose[3] + float(np.clip(want_yaw - prims.pose[3], -TURN_RATE * self.dt,
                                                       TURN_RATE * self.dt))
-            self.tick(self.limited(b, target, side, abs(dside)))
+            step = self.limited(b, target, side, abs(dside))
+            self.tick(step)
+            if (self.reach is not None and float(np.hypot(*(step[:2] - target[:2]))) < 1e-4
+                    and float(np.hypot(*(self.block()[:2] - b[:2]))) < STILL):
+                self.deeper = min(self.deeper + DEEPEN, DEEPEST)
         end_frame = len(prims.recorder.frames)
         self.retreat()
         if stopped != "end":
@@ -333,7 +364,7 @@ class Pusher:
             "stopped": stopped, "repositions": self.repositions, "control_ticks": self.ticks,
             "shifted_ticks": self.shifted,
             "contact_ticks": self.contact_frames, "tipped": stopped == "tipped", "escaped": stopped == "escaped",
-            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": TIP_Z}}
+            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": self.tip_z}}
 
     def drift(self, b: np.ndarray, side: float) -> float:
         """How far (rad, signed, at most :data:`BIAS_MAX`) the block's own motion turns from the direction

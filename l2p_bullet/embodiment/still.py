@@ -46,7 +46,8 @@ def stand_still(scene: Scene, mover: str, *, out_dir: Path | None, progress_fn: 
                          duration_s=world.time, stats={"physics_steps": world.steps, "ik_solves": 0,
                                                        "rendered_frames": 0, "render_s": 0.0,
                                                        "max_lateral_acc": 0.0},
-                         displacements_m=displaced, render=None, settled_m=dict(world.settled))
+                         displacements_m=displaced, render=None, settled_m=dict(world.settled),
+                         rests_m=dict(world.rests))
     finally:
         if own:
             world.close()

@@ -151,9 +151,10 @@ def prepare_command(cmd: Command, scene: Scene, arm: ArmSpec, plugins: list, opt
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
     check_feasible(cmd, scene, plugins, arm)
     if any(o.shape == "mesh" for o in scene.objects):  # a mesh that never comes to rest is refused now, by name
-        from ..embodiment.sim.world import settled_state
+        from ..embodiment.sim.world import settled_scene
 
-        settled_state(scene)  # decomposes new meshes (kept) and settles the scene once: the run's world starts there
+        # decomposes new meshes (kept) and settles the scene once: the run starts from the poses it rests in
+        scene = settled_scene(scene)
     clock.stage("load", f'loading the plugin "{cmd.action}" and its progress model')
     if bundle is None:
         bundle = registry.load(cmd.action, plugins)  # a broken plugin fails here, before the disk is touched
@@ -300,7 +301,8 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
     verdict = disturbance_verdict(judge.judge(mover, anchor, size, final_progress=final_progress, **context).to_dict(),
                                   ex.displacements_m, cmd.anchor)
     if not is_standing(plan):  # nothing moved, in no manner: the verb's manner has nothing to show
-        verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover, scene.get(cmd.mover).rest)
+        verdict = manner_verdict(verdict, manners.get(cmd.manner), ex.frames, cmd.mover,
+                                 ex.rests_m.get(cmd.mover, scene.get(cmd.mover).rest))
     verdict = already_said(verdict, plan)
     final_error = float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2])))
     clock.stop()

@@ -144,9 +144,9 @@ SETTLE_MAX_S = 2.0
 """Longest time (s) the objects may take to come to rest after being set down."""
 REST_SPEED, REST_SPIN = 0.002, 0.02
 """At rest: every object slower than this (m/s) and turning slower than this (rad/s)."""
-MAX_REST_TILT = math.radians(20.0)
-"""An object that comes to rest tilted more than this has fallen over: its footprint is not what the
-planner was given."""
+ADOPT_TILT = math.radians(1.0)
+"""A mesh that comes to rest tilted more than this lies otherwise than it was set down (it rocked onto a
+corner, or fell over and rests on its side): :func:`settled_scene` makes the pose it rests in its own."""
 
 
 def settle(world: World) -> dict[str, float]:
@@ -155,7 +155,8 @@ def settle(world: World) -> dict[str, float]:
     anywhere on it): a mesh that rocks onto its feet or slides a little when set down does so before the
     episode, not in its first frames where it would be blamed on the arm. Returns how far (m) each object's
     centre moved while settling; SceneError, naming the object and how far it moved, for one that is still
-    moving after :data:`SETTLE_MAX_S` or that falls over."""
+    moving after :data:`SETTLE_MAX_S`. One that falls over and then rests is at rest: it lies on its side
+    (:func:`settled_scene`)."""
     sim, names = world.sim, list(world.sizes)
     start = {n: world.pose(n) for n in names}
     for step in range(round(SETTLE_MAX_S / world.dt)):
@@ -168,9 +169,6 @@ def settle(world: World) -> dict[str, float]:
             raise SceneError(f'object "{n}" does not come to rest on the table: it moved {moved[n] * 1000:.0f} mm in '
                              f"the {SETTLE_MAX_S:g} s after it was set down (it rolls or rocks); turn it (\"rpy\") so "
                              "that it stands")
-        if world.tilt(n) > MAX_REST_TILT:
-            raise SceneError(f'object "{n}" falls over when set down (it tilts {math.degrees(world.tilt(n)):.0f} deg, '
-                             f'moving {moved[n] * 1000:.0f} mm); turn it ("rpy") so that it stands')
     for n in names:  # back where the scene put it, in the pose it rests in
         now = world.pose(n)
         turn = sim.quaternion(0.0, 0.0, float(start[n][3] - now[3]))
@@ -220,6 +218,51 @@ def settled_state(scene: Scene) -> dict[str, tuple]:
     while len(_settled) > SETTLED_KEPT:
         _settled.popitem(last=False)
     return state
+
+
+def settled_scene(scene: Scene) -> Scene:
+    """``scene`` with every mesh that comes to rest tilted (more than :data:`ADOPT_TILT`) turned as it rests:
+    its ``rpy`` the turn it settled into, so that its footprint, height, centre's height and grasp, and every
+    world loaded from the returned scene, are those of how it lies, not of how the scene set it down (a long
+    object stood on its end lies on its side). The same ``scene`` where nothing tilts; SceneError as
+    :func:`settled_state` raises it. The returned scene's settled state is the same settling's, so it is
+    neither settled again nor different."""
+    from dataclasses import replace
+
+    from ...core.shapes import _rotation
+
+    if not any(o.shape == "mesh" for o in scene.objects):
+        return scene
+    state = settled_state(scene)
+    objects, level = [], {}
+    for o in scene.objects:
+        pos, orn, rest, moved = state[o.name]
+        m = _matrix(orn)
+        if o.shape != "mesh" or math.acos(min(1.0, abs(m[2, 2]))) <= ADOPT_TILT:
+            objects.append(o)
+            continue
+        turn = _rotation((0.0, 0.0, -o.yaw)) @ m  # how it rests, less the scene's own yaw
+        r = turn @ _rotation(o.rpy)
+        rpy = (math.atan2(r[2, 1], r[2, 2]), -math.asin(max(-1.0, min(1.0, r[2, 0]))), math.atan2(r[1, 0], r[0, 0]))
+        turned = replace(o, rpy=tuple(float(v) for v in rpy))
+        objects.append(replace(turned, size=turned.geometry.size))
+        half = o.yaw / 2
+        level[o.name] = (pos, (0.0, 0.0, math.sin(half), math.cos(half)), rest, moved)  # its body frame level now
+    if not level:
+        return scene
+    out = replace(scene, objects=objects).validate()
+    _settled[_scene_key(out)] = {n: level.get(n, s) for n, s in state.items()}
+    while len(_settled) > SETTLED_KEPT:
+        _settled.popitem(last=False)
+    return out
+
+
+def _matrix(orn) -> np.ndarray:
+    """The rotation matrix of quaternion ``orn`` (x, y, z, w)."""
+    x, y, z, w = (float(c) for c in orn)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 class World:
