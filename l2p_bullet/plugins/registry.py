@@ -30,6 +30,8 @@ one kind at a time (actions unless asked), so nothing that reads single actions 
 
 from __future__ import annotations
 
+import copy
+import functools
 import sys
 from dataclasses import dataclass, field, fields, replace
 from importlib import metadata
@@ -174,6 +176,14 @@ def _locate_from_files(dist: metadata.Distribution | None, module: str) -> Path 
 
 
 # --- discovery --------------------------------------------------------------------------------------
+@functools.lru_cache(maxsize=64)
+def _parsed(raw: bytes, label: str) -> dict[str, Any]:
+    """``raw`` parsed as a manifest, kept by its bytes: every sentence read asks :func:`discover` again (a
+    composite's phrases, a broken one's), and parsing the installed manifests was half of reading one. The bytes
+    are read anew each time, so an edited manifest is parsed anew; a failure is never kept."""
+    return loads_toml(raw, BundleError, label)
+
+
 def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None]:
     """Read the manifest and check what discovery can check cheaply (no weights are read)."""
     path = folder / MANIFEST
@@ -181,7 +191,8 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
     if not path.is_file():
         return {}, f"no {MANIFEST} in {folder} ({train_hint})"
     try:
-        manifest = loads_toml(read_bounded(path, MAX_TOML_BYTES, BundleError), BundleError, str(path))
+        # a copy: the caller owns what it gets (a PluginInfo's manifest), the kept one stays as parsed
+        manifest = copy.deepcopy(_parsed(read_bounded(path, MAX_TOML_BYTES, BundleError), str(path)))
     except BundleError as e:
         return {}, str(e)
     phrases = manifest.get("phrases")

@@ -176,3 +176,35 @@ def test_a_python_the_tests_start_sees_the_plugins_the_test_sees():
     code = "from l2p_bullet.plugins import registry; print(sorted(p.name for p in registry.discover()))"
     there = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert there.strip() == str(sorted(p.name for p in registry.discover()))
+
+
+def test_a_manifest_is_parsed_once_until_its_bytes_change(tmp_path, monkeypatch):
+    """Every sentence read asks discover() again (a composite's phrases, a broken one's), and parsing the installed
+    manifests was half of reading one: an unchanged manifest is parsed once. Its bytes are read each time, so an
+    edit shows at once (here one of the same length, in the same tick); a failure is never kept; and what one caller
+    does to the manifest it got is not what the next one gets."""
+    root = tmp_path / "site"  # module names of its own: other tests here import their fk_* modules
+    make_bundle(root / "fk_once", "once", ["once", "to the side of"])
+    make_bundle(root / "fk_once_bad", "oncebad", [], manifest="phrases = [unterminated\n")
+    make_dist(root, "fake-once", {"once": "fk_once", "oncebad": "fk_once_bad"})
+    monkeypatch.syspath_prepend(str(root))
+    parsed = []
+
+    def counting(raw, error, label, **kw):
+        parsed.append(label)
+        return loads_toml(raw, error, label, **kw)
+
+    loads_toml = registry.loads_toml
+    monkeypatch.setattr(registry, "loads_toml", counting)
+    registry._parsed.cache_clear()
+    good, bad = str(root / "fk_once" / "manifest.toml"), str(root / "fk_once_bad" / "manifest.toml")
+    first = by_name(registry.discover())
+    assert parsed.count(good) == 1 and first["once"].phrases == ("once", "to the side of")
+    first["once"].manifest["phrases"].append("beside")  # a caller's own copy
+    again = by_name(registry.discover())
+    assert parsed.count(good) == 1 and again["once"].manifest["phrases"] == ["once", "to the side of"]
+    assert parsed.count(bad) == 2 and not again["oncebad"].ok  # an error is read again, as the file may be mended
+    path = root / "fk_once" / "manifest.toml"
+    path.write_text(path.read_text().replace('"once", "to the side of"', '"once", "to the back of"'))
+    edited = by_name(registry.discover())
+    assert parsed.count(good) == 2 and edited["once"].phrases == ("once", "to the back of")
