@@ -117,6 +117,7 @@ def _slid_in(m, a, world: World2D, anchor: str, wrist: Wrist | None, g0: float, 
     gap = margin + KEEP_M
     if g0 >= margin or 1.0 + gap / s >= reach:
         return None
+    lat1 = float(np.clip(lat0, *(np.array([-1.0, 1.0]) * (math.sqrt(reach * reach - (1.0 + gap / s) ** 2) - 1e-3))))
     out = _at_gap(m, a, normal_dir, along_dir, lat0 * s, start[2], gap)
     goal = _at_gap(m, a, normal_dir, along_dir, lat1 * s, yaw, gap)
     path = np.vstack([start, out, goal])
@@ -170,8 +171,9 @@ def face_clearance(scene: Scene, mover: str, anchor: str, holds: list | None) ->
     return FACE_MARGIN + KEEP_M + LEAST_SPARE * m.size
 
 
-STEPS = (1, 2, 4, 8)
-"""Waypoints of the turn tried: a straight move between two of them dips less than the gap grows between them."""
+STEPS = (1, 2, 4, 8, 16, 32)
+"""Waypoints of the turn tried: a straight move between two of them dips less than the gap grows between them,
+and the world's swept test (conservative by about the mover's radius times each move's turn) passes it."""
 
 
 def _at_gap(m, a, normal_dir: np.ndarray, along_dir: np.ndarray, along: float, yaw: float, gap: float) -> np.ndarray:

@@ -73,3 +73,22 @@ def test_closer_from_a_level_start_a_centimetre_away_closes_half_its_room(verb):
     assert verdict["success"], verdict["reason"]
     end = _gap(scene, plan.path[-1])
     assert FACE_MARGIN < end < GRIPPER_MARGIN + 0.001
+
+
+@pytest.mark.parametrize("a_pose,b_pose", [
+    # turned 36 deg to B, 1.9 mm from it (development start SlideToward/12, touching): squared up in 16 moves
+    ((-0.09491925509209428, -0.08947512886316385, 1.108437), (-0.14472453333333332, -0.0776872, 0.476385)),
+    # corner to corner 0.8 mm apart (SlideAway/3, touching): out to the face margin, then square
+    ((-0.02635574559398878, 0.052525615492478354, 0.442999), (-0.016196266666666667, 0.1083376, 0.764349)),
+])
+def test_a_turned_touching_start_squares_up_to_the_face_margin(a_pose, b_pose):
+    from l2p_bullet.planning.nearer import nearer_path
+
+    scene = Scene([SceneObject("A", "red", SIZE, a_pose[:2], a_pose[2]),
+                   SceneObject("B", "green", SIZE, b_pose[:2], b_pose[2])]).validate()
+    start = np.asarray(scene.get("A").pose, float)
+    path = nearer_path(scene, "A", "B", CLOSER, start, World2D(scene, "A"), None)
+    assert path is not None
+    d = [float(np.hypot(*(p[:2] - np.asarray(b_pose[:2])))) / SIZE for p in (path[0], path[-1])]
+    need = d[0] - CLOSER.thresholds["share"] * max(d[0] - 1.0, 0.25)
+    assert d[1] < need and _gap(scene, path[-1]) >= FACE_MARGIN
