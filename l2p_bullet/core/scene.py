@@ -65,6 +65,12 @@ The arm grasps from above with its fingers closed and resting on the block's top
 like a suction cup), so nothing of the gripper reaches down beside the block: obstacles are inflated
 only by this safety margin, not by the fingers' footprint (DESIGN.md, the finger note)."""
 
+FACE_MARGIN: float = 0.001
+"""Clearance (metres) a "closer" may end at where the mover meets the anchor face to face and nothing of the hand
+is between them (planning/nearer.py): the held block tracks its plan within a millimetre (DESIGN.md: gain 0.6,
+0.7 mm), so two bare faces set down this far apart do not touch. :data:`GRIPPER_MARGIN` would keep a start level
+with the anchor 1-1.2 cm away from closing the half of the room the rule asks for."""
+
 MIN_SIZE, MAX_SIZE = 0.02, 0.08
 """Block sides the gripper can hold (metres): the Panda's fingers open to 0.08 m."""
 

@@ -162,17 +162,20 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     lead_in = spec.planning.lead_in if target is None and spec is not None else None
     bound = None if target is not None else _people_bound(bundle, spec)  # bounds.py
     best, refused, bounded, spent = None, None, False, 0
+    def world_of(hold) -> tuple[World2D, Wrist]:
+        outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
+        if pusher is not None:  # nothing is held: the block's own outline, the fingers behind it (World2D)
+            outlines = {} if outline is None else outlines
+        over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
+        return (World2D(scene, mover, outlines=outlines, over=over, pusher=pusher),
+                Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm))
+
     for hold in holds:
         cap = None if budget is not None or CHECK_CAP is None else CHECK_CAP - spent
         if cap is not None and cap <= 0:
             bounded = True  # the earlier grasps spent the plan's candidates: this one is not tried
             break
-        outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
-        if pusher is not None:  # nothing is held: the block's own outline, the fingers behind it (World2D)
-            outlines = {} if outline is None else outlines
-        over = frozenset(o.name for o in scene.objects if airborne and o.name != mover and o.name not in anchors)
-        world = World2D(scene, mover, outlines=outlines, over=over, pusher=pusher)
-        wrist = Wrist(hold.angle, base_xy=arm.mount[:2], arm=arm)
+        world, wrist = world_of(hold)
         arcs = target is None and any(b.name not in anchors for b in world.obstacles)
         routes: dict[tuple, np.ndarray | None] = {}  # a way round from each approach end asked about
         way_round = functools.partial(_way_round, world, anchor_obj.pose, routes, lead_in)
@@ -233,6 +236,9 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     if target is None:  # "closer" from touching or level: the room is in turning square, sliding in (nearer.py)
         way = nearer_path(scene, mover, anchor, spec, result.path[-1], problem.world, problem.wrist,
                           turns=pusher is None)
+        for other in (h for h in holds if way is None and h is not hold):  # a grasp with the fingers aside
+            way = nearer_path(scene, mover, anchor, spec, result.path[-1], *world_of(other), turns=pusher is None)
+            hold = other if way is not None else hold
         if way is not None:
             searched = result.path[-1].round(6).tolist()
             frames = interpolate(way, FRAME_STEP * problem.size)

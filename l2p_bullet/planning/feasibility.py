@@ -61,6 +61,7 @@ from ..judge.footprints import outlines_of
 from ..judge.rules import RULE_SPECS, closer_room
 from ..judge.rulesets.closer import touch_distance
 from . import sweep
+from .nearer import face_clearance
 from .world2d import World2D, place_outline
 
 CHECKS = (
@@ -170,7 +171,8 @@ def _room_away(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold],
 
 
 def clearance(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | None = None) -> float:
-    """The least gap (m) the planner ever lets the mover's footprint come to the anchor's: the world's margin, or
+    """The least gap (m) the planner ever lets the mover's footprint come to the anchor's: the world's margin (the
+    smaller one a "closer" face to face with the anchor ends at, ``nearer.face_clearance``, where it applies), or
     the gap where the mover starts when that is smaller (world2d.py: a move's margin is the smaller of the
     margin and the gap at its start, so no move brings it nearer than it started). The start's gap is measured
     with each hold's outline (the block grown by the hand against a taller anchor; that outline's gap is what
@@ -180,7 +182,8 @@ def clearance(scene: Scene, mover: str, anchor: str, holds: list[reach.Hold] | N
     poly = a.footprint(a.pose)
     outlines = [h.outlines.get(anchor, own) for h in holds] if holds else [own]
     g0 = min(float(separation(place_outline(np.asarray(o, float), m.pose)[None], poly)[0]) for o in outlines)
-    return max(0.0, min(GRIPPER_MARGIN, max(g0, 0.0) - 1e-9))
+    face = face_clearance(scene, mover, anchor, holds)  # a bare face may end nearer than the margin (nearer.py)
+    return max(0.0, min(GRIPPER_MARGIN if face is None else face, max(g0, 0.0) - 1e-9))
 
 
 def nearest_at_yaws(m, a) -> float:

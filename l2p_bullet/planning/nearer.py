@@ -24,11 +24,11 @@ import numpy as np
 from ..actions import ActionSpec
 from ..arms.reach import Wrist
 from ..core.geometry import separation
-from ..core.scene import GRIPPER_MARGIN, Scene
+from ..core.scene import FACE_MARGIN, GRIPPER_MARGIN, Scene
 from ..judge.footprints import outlines_of
 from ..judge.rulesets.closer import closer_room
 from .problem import FRAME_STEP
-from .world2d import World2D, interpolate
+from .world2d import World2D, interpolate, place_outline
 
 CHECK = "room-closer"
 """The room check of the actions this applies to (``ActionSpec.planning.checks``)."""
@@ -60,7 +60,6 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     g0 = _gap(m, m.pose, a)
     if g0 > NEAR * m.size:
         return None
-    base = min(g0, GRIPPER_MARGIN)  # the least gap the world lets the first move come to
     s = m.size
     d0 = float(np.hypot(*(np.asarray(m.xy) - a.xy))) / s
     need = d0 - spec.thresholds["share"] * closer_room(d0)  # blocks: the centre distance the rule asks for
@@ -75,12 +74,30 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     quarter = math.pi / 2
     # square to the anchor, the least turn; a push keeps the yaw (the fingers push a face, never turn it)
     yaw = a.yaw + round((m.yaw - a.yaw) / quarter) * quarter if turns else m.yaw
+    lat0 = float(rel @ along_dir) / s
+    # face to face with nothing of the hand between, the mover may end nearer than the world's margin
+    for margin in (FACE_MARGIN, GRIPPER_MARGIN):
+        path = _slid_in(m, a, world.nearer_to(anchor, margin) if margin < world.margin else world, anchor, wrist,
+                        g0, margin, need, (normal_dir, along_dir), lat0, yaw)
+        if path is not None:
+            return path
+    return None
+
+
+def _slid_in(m, a, world: World2D, anchor: str, wrist: Wrist | None, g0: float, margin: float, need: float,
+             dirs: tuple[np.ndarray, np.ndarray], lat0: float, yaw: float) -> np.ndarray | None:
+    """The way in of :func:`nearer_path` in ``world``, which keeps ``margin`` (m) from the anchor: turned and slid
+    in together (the least gap kept first), else (corner to corner) out to the margin and then square; None
+    where none closes to ``need`` blocks less the spare, none is legal, or something of the hand comes between
+    the two nearer than the world's own margin (:func:`_bare_face`)."""
+    s = m.size
+    normal_dir, along_dir = dirs
+    base = min(g0, margin)  # the least gap the world lets the first move come to
     normal = 1.0 + (base + KEEP_M) / s
     reach = next((need - spare for spare in (SPARE, LEAST_SPARE) if normal < need - spare), None)
     if reach is None:
         return None  # not even face to face closes enough with the gap kept
     lateral = math.sqrt(reach * reach - normal * normal) - 1e-3
-    lat0 = float(rel @ along_dir) / s
     lat1 = float(np.clip(lat0, -lateral, lateral))
     start = np.asarray(m.pose, float)
     for gap in base + KEEP_M * np.arange(1, 11):  # the least gap kept at the end whose way in is legal
@@ -93,23 +110,70 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
                 turn, lat = start[2] + t * (yaw - start[2]), lat0 + t * (lat1 - lat0)
                 way.append(_at_gap(m, a, normal_dir, along_dir, lat * s, turn, g0 + t * (gap - g0)))
             path = np.asarray(way)
-            if float(np.hypot(*(path[-1, :2] - a.xy))) / s <= reach and world.path_free(path) \
-                    and _followable(path, wrist, s):
+            if float(np.hypot(*(path[-1, :2] - a.xy))) / s <= reach and _bare_face(world, anchor, path, normal_dir) \
+                    and world.path_free(path) and _followable(path, wrist, s):
                 return path
     # corner to corner the world's test lets the mover only leave: out to the margin, then square and along
-    gap = GRIPPER_MARGIN + KEEP_M
-    if g0 >= GRIPPER_MARGIN or 1.0 + gap / s >= reach:
+    gap = margin + KEEP_M
+    if g0 >= margin or 1.0 + gap / s >= reach:
         return None
+    lat1 = float(np.clip(lat0, *(np.array([-1.0, 1.0]) * (math.sqrt(reach * reach - (1.0 + gap / s) ** 2) - 1e-3))))
     out = _at_gap(m, a, normal_dir, along_dir, lat0 * s, start[2], gap)
     goal = _at_gap(m, a, normal_dir, along_dir, lat1 * s, yaw, gap)
     path = np.vstack([start, out, goal])
-    if float(np.hypot(*(goal[:2] - a.xy))) / s <= reach and world.path_free(path) and _followable(path, wrist, s):
+    if float(np.hypot(*(goal[:2] - a.xy))) / s <= reach and _bare_face(world, anchor, path, normal_dir) \
+            and world.path_free(path) and _followable(path, wrist, s):
         return path
     return None
 
 
-STEPS = (1, 2, 4, 8)
-"""Waypoints of the turn tried: a straight move between two of them dips less than the gap grows between them."""
+PUSH_HEADING = math.cos(math.pi / 4)
+"""Least cosine between a pushed move and the way in to the anchor for the fingers behind the block to count as
+not beside it: pushed more sideways, their rectangle behind the block may reach past the face toward the anchor."""
+
+
+def _bare_face(world: World2D, anchor: str, path: np.ndarray, normal_dir: np.ndarray) -> bool:
+    """Whether nothing of the hand comes between mover and anchor along ``path``, where ``world`` lets the mover
+    nearer the anchor than the world's margin (else True: the margin keeps room for it): at every waypoint the
+    outline tested against the anchor (the block grown by the hand at the anchor's height, ``arms.reach``)
+    reaches no farther toward the anchor than the block's own face, and a pushed block's fingers (World2D's
+    ``pusher``) stay behind it, every move heading in to the anchor."""
+    if world.margin_to(anchor) >= world.margin:
+        return True
+    toward = -np.asarray(normal_dir, float)
+    held = place_outline(world.outline_against(anchor), path) @ toward
+    own = place_outline(world.mover.outline, path) @ toward
+    if bool((held.max(-1) > own.max(-1) + 1e-6).any()):
+        return False
+    if world.pusher is None:
+        return True
+    travel = np.diff(np.asarray(path, float)[:, :2], axis=0)
+    length = np.hypot(*travel.T)
+    moving = length > 1e-9
+    return bool(((travel[moving] @ toward) >= PUSH_HEADING * length[moving]).all())
+
+
+def face_clearance(scene: Scene, mover: str, anchor: str, holds: list | None) -> float | None:
+    """The least gap (m) :func:`nearer_path` may end a "closer" at, face to face with the anchor (what the room
+    check reads, ``feasibility.clearance``): :data:`FACE_MARGIN`, the :data:`KEEP_M` it adds and the
+    :data:`LEAST_SPARE` it keeps on the share (a start that needs nearer is refused, not failed), where it applies
+    (two cubes of one size within :data:`NEAR` blocks) and some grasp of ``holds`` leaves the face bare: the hand
+    adds nothing at the anchor's height, or both square grasps clear the start (one has its fingers on the faces
+    that do not face the anchor); None where the world's margin stays."""
+    m, a = scene.get(mover), scene.get(anchor)
+    if outlines_of([m, a]) is not None or not math.isclose(m.size, a.size, rel_tol=1e-6) \
+            or _gap(m, m.pose, a) > NEAR * m.size:
+        return None
+    angles = {round(math.degrees(h.angle) % 180.0, 6) for h in holds or ()
+              if anchor in h.outlines and h.angle is not None}
+    if holds and not any(anchor not in h.outlines for h in holds) and not {0.0, 90.0} <= angles:
+        return None
+    return FACE_MARGIN + KEEP_M + LEAST_SPARE * m.size
+
+
+STEPS = (1, 2, 4, 8, 16, 32)
+"""Waypoints of the turn tried: a straight move between two of them dips less than the gap grows between them,
+and the world's swept test (conservative by about the mover's radius times each move's turn) passes it."""
 
 
 def _at_gap(m, a, normal_dir: np.ndarray, along_dir: np.ndarray, along: float, yaw: float, gap: float) -> np.ndarray:

@@ -16,6 +16,8 @@ Rules of the world (the same ones the arm obeys when it executes the path):
 - A mover that starts closer than the margin to an object (blocks placed touching) may still move, as
   long as no move brings it closer to that object than it was where the move began: the margin of a move
   is the smaller of the margin and the gap at its start.
+- One obstacle may be given a smaller margin (:meth:`World2D.nearer_to`): the anchor a "closer" ends face to
+  face with, where nothing of the hand comes between the two (``planning/nearer.py``).
 - A move is rejected when the grasp point (the mover's centre) leaves the workspace, the region the arm
   reaches pointing down (``core/workspace.py``). The disk is convex, so for it checking a straight move's
   end points suffices; an arm whose reach ring bites into the disk (the KUKA iiwa's) makes the
@@ -37,6 +39,7 @@ direction proves the move free; none found counts as a collision (conservative).
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 
@@ -95,6 +98,7 @@ class World2D:
         self.size = obj.size
         self.margin = margin
         self.obstacles = [Body(o.name, o.footprint(np.zeros(3)), o.pose) for o in scene.objects if o.name != mover]
+        self._margins = np.full(len(self.obstacles), margin)  # per obstacle: the world's unless nearer_to says
         outlines = outlines or {}
         self._outlines = [np.asarray(outlines.get(b.name, self.mover.outline), float) for b in self.obstacles]
         self._obs_polys = [b.polygon() for b in self.obstacles]
@@ -133,7 +137,27 @@ class World2D:
         """Per obstacle, the margin a pose of the mover must keep from it: the world's, or the gap where the mover
         starts when that is smaller (a close start may stay as close, never come closer), ``less`` taken off
         that gap (the way round takes 1e-9 off, so that its start cell passes)."""
-        return np.minimum(self.margin, np.maximum(self.gaps(self.mover.pose), 0.0) - less)
+        return np.minimum(self._margins, np.maximum(self.gaps(self.mover.pose), 0.0) - less)
+
+    def margin_to(self, name: str) -> float:
+        """The margin (m) the mover keeps from the obstacle ``name`` (the world's, unless :meth:`nearer_to`)."""
+        return float(self._margins[self._index(name)])
+
+    def outline_against(self, name: str) -> np.ndarray:
+        """The mover's outline (block frame) tested against the obstacle ``name``: the block grown by what the
+        hand puts at that obstacle's height, or the block's own."""
+        return self._outlines[self._index(name)]
+
+    def _index(self, name: str) -> int:
+        return [b.name for b in self.obstacles].index(name)
+
+    def nearer_to(self, name: str, margin: float) -> World2D:
+        """A copy of this world in which the mover may come to ``margin`` (m) of the obstacle ``name`` instead of
+        the world's margin: where the mover meets that obstacle with a bare face, nothing of the hand between
+        (``planning/nearer.py`` decides where). Every other obstacle keeps its margin."""
+        out = copy.copy(self)
+        out._margins = np.where([b.name == name for b in self.obstacles], margin, self._margins)
+        return out
 
     def shortfall(self, poses: np.ndarray, margins: np.ndarray, mask: np.ndarray | None = None,
                   within: float | None = None) -> np.ndarray:
@@ -176,12 +200,12 @@ class World2D:
         near = per.any(0)
         if not near.any():
             return ok
-        margins = np.full(len(self.obstacles), self.margin)
+        margins = self._margins.copy()
         if relax:
             close = self._near(start[:2], start[None, :2], per_obstacle=True)[:, 0]
             if close.any():
                 gaps = self.gaps(start)
-                margins = np.where(close, np.minimum(self.margin, np.maximum(gaps, 0.0) - 1e-9), margins)
+                margins = np.where(close, np.minimum(margins, np.maximum(gaps, 0.0) - 1e-9), margins)
         if self._over.any():  # objects passed over: tested only where each move ends (a zero-length sweep)
             ends_only = np.where(self._over, margins, -np.inf)
             margins = np.where(self._over, -np.inf, margins)
