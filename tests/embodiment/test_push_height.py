@@ -81,21 +81,26 @@ def test_a_mesh_pushed_corner_first_moves(tmp_path):
     """Pushed corner first (bench_objects' "push past" scene), the hand meets the triangle's flat back 1.7 cm
     from its centre; measured on the corner ahead it stopped 9 mm short and pressed nothing until the push's
     time ran out (a camera of the held-out meshes did the same)."""
-    import json
-
-    from l2p_bullet.pipeline import perform
-
-    m = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(_prism(tmp_path)), "scale": 1.0,
-         "xy": [0.1, -0.08], "yaw": 0.506}
-    scene = Scene.from_dict({"objects": [m, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
-                                         {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
-    r = perform("push M past B", scene.validate(), out_dir=tmp_path / "run", render=False)
-    frames = json.loads((tmp_path / "run" / "trajectory.json").read_text())["frames"]
-    moved = np.hypot(*(np.array(frames[-1]["poses"]["M"][:2]) - frames[0]["poses"]["M"][:2]))
+    r, moved = _push_past(tmp_path, _prism(tmp_path), 0.506)
     assert moved > 0.1, r.grasp
     assert r.grasp["push"]["stopped"] == "end", r.grasp
     assert r.verdict["success"], r.verdict
     assert max(r.displacements_m.get(k, 0.0) for k in ("A", "B")) < 0.001
+
+
+def _push_past(tmp_path, mesh, yaw: float):
+    """``mesh`` pushed past B in bench_objects' "push past" scene: the result and how far the mesh moved (m)."""
+    import json
+
+    from l2p_bullet.pipeline import perform
+
+    m = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(mesh), "scale": 1.0, "xy": [0.1, -0.08],
+         "yaw": yaw}
+    scene = Scene.from_dict({"objects": [m, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
+                                         {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
+    r = perform("push M past B", scene.validate(), out_dir=tmp_path / "run", render=False)
+    frames = json.loads((tmp_path / "run" / "trajectory.json").read_text())["frames"]
+    return r, float(np.hypot(*(np.array(frames[-1]["poses"]["M"][:2]) - frames[0]["poses"]["M"][:2])))
 
 
 def _u_shape(folder=None):
@@ -134,18 +139,8 @@ def test_a_mesh_pushed_on_its_concave_side_moves(tmp_path, monkeypatch):
     """Pushed on its open side (bench_objects' "push past" scene), the fingers fit between the U's arms: the
     push measured from its outline stopped them inside the notch, short of its body, and pressed nothing until
     the push's time ran out (a gamepad of the held-out meshes did the same)."""
-    import json
-
-    from l2p_bullet.pipeline import perform
-
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
-    m = {"name": "M", "color": "yellow", "shape": "mesh", "mesh": str(_u_shape(tmp_path)), "scale": 1.0,
-         "xy": [0.1, -0.08], "yaw": -0.14}
-    scene = Scene.from_dict({"objects": [m, {"name": "B", "color": "green", "size": 0.04, "xy": [0.0, 0.1]},
-                                         {"name": "A", "color": "red", "size": 0.04, "xy": [-0.1, 0.0]}]})
-    r = perform("push M past B", scene.validate(), out_dir=tmp_path / "run", render=False)
-    frames = json.loads((tmp_path / "run" / "trajectory.json").read_text())["frames"]
-    moved = np.hypot(*(np.array(frames[-1]["poses"]["M"][:2]) - frames[0]["poses"]["M"][:2]))
+    r, moved = _push_past(tmp_path, _u_shape(tmp_path), -0.14)
     assert moved > 0.1, r.grasp
     assert r.verdict["success"], r.verdict
     assert max(r.displacements_m.get(k, 0.0) for k in ("A", "B")) < 0.001
