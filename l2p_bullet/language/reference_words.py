@@ -58,7 +58,7 @@ NEAREST = frozenset("nearest closest nearer closer near".split())  # English wor
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
 PERIPHRASTIC = {("most", "far"): "farthest", ("more", "far"): "farther", ("most", "close"): "closest",
-                ("most", "near"): "nearest", ("more", "close"): "closer", ("more", "near"): "nearer"}
+                ("most", "near"): "nearest", ("more", "close"): "nearer", ("more", "near"): "nearer"}
 """Comparisons built with most / more, as learners of English write them ("the thing most far from the cube")."""
 OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),
             ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")}

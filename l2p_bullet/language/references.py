@@ -18,16 +18,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
-from ..errors import LanguageError, UnknownObjectError, did_you_mean
+from ..errors import LanguageError, UnknownObjectError
+from .descriptions import candidates, describe, described, looks, name_words
 from .places import (
     bearing_off,
     bulk_superlative,
-    by_size,
     comparative_of,
     distance_to,
     either_reading,
     measure,
-    named_colours,
     one_word_comparisons,
     places_as_superlatives,
     relation_head,
@@ -35,17 +34,13 @@ from .places import (
 )
 from .reference_words import (
     BLOCK_SHAPES,
-    BLOCK_WORDS,
     CENTRE_PHRASES,
-    COLOR_SYNONYMS,
     CONJUNCTIONS,
     DEMONSTRATIVES,
     DETERMINERS,
     DIRECT_CONE,
     DOUBT_RATIO,
-    FUNCTION_WORDS,
     NAMED_AS,
-    NEAR_COLOURS,
     NEAREST,
     NOUNS,
     OPENINGS,
@@ -54,18 +49,15 @@ from .reference_words import (
     RELATIVES,
     ROBOT_WORDS,
     SAME_WORDS,
-    SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SIDE_CONE,
     SIDE_DOUBT,
     SIDE_PHRASES,
     SIDES,
     SIZE_SUPERLATIVES,
-    SOFT_ADJECTIVES,
     STRICT_SHAPES,
     TIE_M,
 )
-from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_groups, kind_words
 
 
 @dataclass(frozen=True)
@@ -76,10 +68,6 @@ class Context:
     anchor: str | None = None
     among: tuple[str, ...] = ()  # a group shown before ("There are two green cubes"): "the big one" is of it
     described: bool = False  # the mover was described, not named ("the small red cube"): see _twin
-
-
-def describe(scene: Scene) -> str:
-    return ", ".join(f"{o.name} ({o.color})" for o in scene.objects)
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -134,7 +122,7 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     if relational is not None:
         return relational
     try:
-        return _described(text, words, low, scene, determined)
+        return described(text, words, low, scene, determined)
     except LanguageError:
         named = _named_before(text, scene, role, context) if determined else None
         if named is None:
@@ -161,12 +149,12 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     clause's "that is" ("the cube that is red": the cube red) taken out, a comparative among a group as its
     superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
     ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
-    words = places_as_superlatives(comparative_of(one_word_comparisons(_looks(words, scene))))
+    words = places_as_superlatives(comparative_of(one_word_comparisons(looks(words, scene))))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
             return list(plain) + words[len(opening):]
-    nouns = NOUNS | set(SHAPE_NOUNS) | set(_name_words(scene))
+    nouns = NOUNS | set(SHAPE_NOUNS) | set(name_words(scene))
     for i in range(1, len(low) - 1):
         for rel in RELATIVES:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
@@ -174,20 +162,10 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     return words
 
 
-def _looks(words: list[str], scene: Scene) -> list[str]:
-    """"the football-looking thing", "the duck-like one": the kind or shape named before the suffix."""
-    nouns = set(SHAPE_NOUNS) | set(_name_words(scene))
-    out = []
-    for w in words:
-        stem, _, suffix = w.lower().rpartition("-")
-        out.append(stem if suffix in ("looking", "like", "shaped") and stem in nouns else w)
-    return out
-
-
 def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, role: str,
              scene: Scene) -> str | None:
     said = " ".join(low)  # what the user wrote, for the error: "that same cube" reads as "it" below
-    kinds = _name_words(scene)
+    kinds = name_words(scene)
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
     if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
@@ -219,7 +197,7 @@ def _no_earlier(said: str, role: str) -> LanguageError:
 def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
     """Whether ``noun`` ("cylinder", "cube", "duck") may name ``o``: a shape noun its shape (a cube or a box for
     "cube" and "box"), a kind word the object it names."""
-    kinds = _name_words(scene)
+    kinds = name_words(scene)
     if noun in kinds:
         return kinds[noun] == o.name
     shape = SHAPE_NOUNS[noun]
@@ -230,7 +208,7 @@ def _that_kind(said: str, noun: str, context: Context | None, role: str, scene: 
     """"that cylinder", "this cube": the object of that kind among the previous clause's (its mover first, then
     its anchor); with none of that kind there, what "the cylinder" names in the scene (None: read on)."""
     if context is None or context.mover is None:
-        if noun in _name_words(scene):
+        if noun in name_words(scene):
             return None  # "that duck" in a first clause: the duck
         raise _no_earlier(said, role)
     for name in (context.mover, context.anchor):
@@ -245,7 +223,7 @@ def _the_other(said: str, words: list[str], context: Context | None, role: str, 
     if context is None or context.mover is None:
         raise _no_earlier(said, role)
     low = tuple(w.lower() for w in words)
-    fits = [o for o in _candidates(said, words, low, scene) if o.name != context.mover]
+    fits = [o for o in candidates(said, words, low, scene) if o.name != context.mover]
     if len(fits) != 1:
         listed = ", ".join(o.name for o in fits) or "none"
         raise LanguageError(f'"{said}" is ambiguous: other than {context.mover} it fits {listed}; '
@@ -273,125 +251,6 @@ def _twin(said: str, context: Context, scene: Scene) -> str | None:
         return alike[0]
     raise LanguageError(f'"{said}" is ambiguous: {context.anchor} (of the previous clause) or {", ".join(twins)} '
                         f"(the other of its colour); name the one you mean")
-
-
-def _described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
-    """Colour, shape, size and name words ("the red block", "red A", "the orange duck", "the tall one", "the big
-    red cube").
-
-    "Block" covers any object ("the purple block" is the cylinder where nothing else is purple), but where the
-    other words leave several and one of them is block-shaped (a cube or a box), that one is meant ("the white
-    block": the cube, not the white mug); the two readings are refused where they pick different objects."""
-    names = _name_words(scene)
-    sizes = [w for w in low if w in SIZE_WORDS and w not in names]
-    fits = _candidates(text, words, low, scene, determined)
-    pools = [fits]
-    blocky = [o for o in fits if o.shape in BLOCK_SHAPES]
-    if set(low) & BLOCK_WORDS and 0 < len(blocky) < len(fits) and not set(low) & set(names):
-        pools.append(blocky)
-    readings: list[str | Exception] = []
-    for pool in pools:
-        try:
-            readings.append(_one(text, by_size(text, pool, sizes), scene, named_colours(low)))
-        except (LanguageError, UnknownObjectError) as e:
-            readings.append(e)
-    picked = sorted({r for r in readings if isinstance(r, str)})
-    if len(picked) == 1:
-        return picked[0]
-    if len(picked) > 1:
-        raise LanguageError(f'"{text}" is ambiguous: as any object it is {readings[0]}, as a block (a cube or a '
-                            f"box) {readings[1]}; name the one you mean")
-    raise readings[0]
-
-
-def _candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
-                determined: bool = True) -> list[SceneObject]:
-    """The objects the name, colour and shape words of a description allow (size words and "block"'s preference
-    are for :func:`_described`); an unknown word is a one-line error."""
-    names = _name_words(scene)
-    drop = SOFT_ADJECTIVES
-    heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can": named so or a cylinder
-    kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
-            if lw in names or not (lw in drop or (lw in KIND_MODIFIERS and i + 1 < len(low) and low[i + 1] in heads))]
-    sized = len(kept) < len(low) and any(lw in SIZE_WORDS for lw in low)
-    if kept:  # "the little red cube": the other words decide
-        words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
-    elif not sized:
-        _unknown(text, words, low, scene)
-    else:
-        return list(scene.objects)  # "the tall": size words alone
-    colours = named_colours(low)
-    named = [names[w] for w in low if w in names and w not in NOUNS]
-    groups = kind_groups(scene)
-    kinds = [groups[w] for w in low if w in groups and w not in names]  # "the red mug" among two mugs
-    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
-    shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
-    known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
-             | {"things", "objects", "ones"} | set(names) | set(groups))
-    unknown = [w for w in low if w not in known]
-    if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
-            and low[0] not in FUNCTION_WORDS:
-        unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
-    if unknown or not (colours or named or kinds or shapes or shaped or sized or set(low) & (NOUNS | BLOCK_WORDS)):
-        _unknown(text, words, low, scene)
-    fits = list(scene.objects)
-    if named:
-        fits = [o for o in fits if o.name in named]
-    for group in kinds:
-        fits = [o for o in fits if o.name in group]
-    if colours:
-        if not any(o.color in colours for o in scene.objects):
-            colours = {NEAR_COLOURS.get(c, c) for c in colours}
-        fits = [o for o in fits if o.color in colours]
-    if shapes and not named:
-        strict = shapes & STRICT_SHAPES
-        if strict:
-            fits = [o for o in fits if o.shape in strict]
-        elif colours:  # "the white cube", "the red box": block-shaped, never the white mug or a cylinder
-            fits = [o for o in fits if o.shape in BLOCK_SHAPES]
-        else:
-            fits = [o for o in fits if o.shape in shapes]
-    if shaped:
-        fits = [o for o in fits if o.shape in shaped]
-    return fits
-
-
-def _name_words(scene: Scene) -> dict[str, str]:
-    """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
-    ("ducky", "duckie": the duck)."""
-    out = {}
-    for n in scene.names:
-        low = n.lower()
-        if len(low) >= 3 and low.isalpha():
-            out[low + "y"] = out[low + "ie"] = n
-    out.update(kind_words(scene))
-    out.update({n.lower(): n for n in scene.names})
-    return out
-
-
-def _unknown(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:
-    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:
-        raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {describe(scene)}).'
-                                 + did_you_mean(low[0], COLORS))
-    choices = scene.names + [f"the {o.color} block" for o in scene.objects]
-    raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {describe(scene)}).'
-                             + did_you_mean(text, choices))
-
-
-def _one(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) -> str:
-    if len(fits) == 1:
-        return fits[0].name
-    if not fits:
-        if colours and not any(o.color in colours for o in scene.objects):
-            colour = sorted(colours)[0]
-            raise UnknownObjectError(f"there is no {colour} block in the scene (blocks: {describe(scene)})."
-                                     + did_you_mean(colour, sorted({o.color for o in scene.objects})))
-        raise UnknownObjectError(f'nothing in the scene is "{text}" (blocks: {describe(scene)})')
-    listed = ", ".join(o.name for o in fits)
-    if colours and len(colours) == 1 and all(o.color in colours for o in fits):
-        raise LanguageError(f'"{text}" is ambiguous: {len(fits)} {next(iter(colours))} blocks ({listed}); '
-                            "name the one you mean")
-    raise LanguageError(f'"{text}" is ambiguous: it fits {len(fits)} objects ({listed}); name the one you mean')
 
 
 def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
@@ -521,7 +380,7 @@ def _the_two(words: list[str], scene: Scene) -> tuple[str, str] | None:
         if tuple(low[:len(opening)]) == opening and len(low) > len(opening) and low[-1].endswith("s"):
             rest = [*words[len(opening):-1], words[-1][:-1]]
             try:
-                fits = _candidates(" ".join(rest), rest, tuple(w.lower() for w in rest), scene)
+                fits = candidates(" ".join(rest), rest, tuple(w.lower() for w in rest), scene)
             except (LanguageError, UnknownObjectError):
                 return None
             return (fits[0].name, fits[1].name) if len(fits) == 2 else None

@@ -1,0 +1,162 @@
+"""What an object is called by: its name, colour, shape, size and kind words ("the red block", "the tall one",
+"the rubber duck", "the football-looking thing"), resolved among the scene's objects.
+
+The leaf of the resolver (language/references.py): these readings look at the objects themselves, never at
+places, relations or the clause before, so they import nothing of the resolver; a description that fits
+several objects or none is a one-line error that names them.
+"""
+
+from __future__ import annotations
+
+from ..core.scene import COLORS, Scene, SceneObject
+from ..errors import LanguageError, UnknownObjectError, did_you_mean
+from .places import (
+    by_size,
+    named_colours,
+)
+from .reference_words import (
+    BLOCK_SHAPES,
+    BLOCK_WORDS,
+    COLOR_SYNONYMS,
+    FUNCTION_WORDS,
+    NEAR_COLOURS,
+    NOUNS,
+    SHAPE_ADJECTIVES,
+    SHAPE_NOUNS,
+    SOFT_ADJECTIVES,
+    STRICT_SHAPES,
+)
+from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_groups, kind_words
+
+
+def describe(scene: Scene) -> str:
+    return ", ".join(f"{o.name} ({o.color})" for o in scene.objects)
+
+
+def looks(words: list[str], scene: Scene) -> list[str]:
+    """"the football-looking thing", "the duck-like one": the kind or shape named before the suffix."""
+    nouns = set(SHAPE_NOUNS) | set(name_words(scene))
+    out = []
+    for w in words:
+        stem, _, suffix = w.lower().rpartition("-")
+        out.append(stem if suffix in ("looking", "like", "shaped") and stem in nouns else w)
+    return out
+
+
+def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
+    """Colour, shape, size and name words ("the red block", "red A", "the orange duck", "the tall one", "the big
+    red cube").
+
+    "Block" covers any object ("the purple block" is the cylinder where nothing else is purple), but where the
+    other words leave several and one of them is block-shaped (a cube or a box), that one is meant ("the white
+    block": the cube, not the white mug); the two readings are refused where they pick different objects."""
+    names = name_words(scene)
+    sizes = [w for w in low if w in SIZE_WORDS and w not in names]
+    fits = candidates(text, words, low, scene, determined)
+    pools = [fits]
+    blocky = [o for o in fits if o.shape in BLOCK_SHAPES]
+    if set(low) & BLOCK_WORDS and 0 < len(blocky) < len(fits) and not set(low) & set(names):
+        pools.append(blocky)
+    readings: list[str | Exception] = []
+    for pool in pools:
+        try:
+            readings.append(one_of(text, by_size(text, pool, sizes), scene, named_colours(low)))
+        except (LanguageError, UnknownObjectError) as e:
+            readings.append(e)
+    picked = sorted({r for r in readings if isinstance(r, str)})
+    if len(picked) == 1:
+        return picked[0]
+    if len(picked) > 1:
+        raise LanguageError(f'"{text}" is ambiguous: as any object it is {readings[0]}, as a block (a cube or a '
+                            f"box) {readings[1]}; name the one you mean")
+    raise readings[0]
+
+
+def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
+                determined: bool = True) -> list[SceneObject]:
+    """The objects the name, colour and shape words of a description allow (size words and "block"'s preference
+    are for :func:`described`); an unknown word is a one-line error."""
+    names = name_words(scene)
+    drop = SOFT_ADJECTIVES
+    heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can": named so or a cylinder
+    kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
+            if lw in names or not (lw in drop or (lw in KIND_MODIFIERS and i + 1 < len(low) and low[i + 1] in heads))]
+    sized = len(kept) < len(low) and any(lw in SIZE_WORDS for lw in low)
+    if kept:  # "the little red cube": the other words decide
+        words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
+    elif not sized:
+        unknown_object(text, words, low, scene)
+    else:
+        return list(scene.objects)  # "the tall": size words alone
+    colours = named_colours(low)
+    named = [names[w] for w in low if w in names and w not in NOUNS]
+    groups = kind_groups(scene)
+    kinds = [groups[w] for w in low if w in groups and w not in names]  # "the red mug" among two mugs
+    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
+    shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
+    known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
+             | {"things", "objects", "ones"} | set(names) | set(groups))
+    unknown = [w for w in low if w not in known]
+    if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
+            and low[0] not in FUNCTION_WORDS:
+        unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
+    if unknown or not (colours or named or kinds or shapes or shaped or sized or set(low) & (NOUNS | BLOCK_WORDS)):
+        unknown_object(text, words, low, scene)
+    fits = list(scene.objects)
+    if named:
+        fits = [o for o in fits if o.name in named]
+    for group in kinds:
+        fits = [o for o in fits if o.name in group]
+    if colours:
+        if not any(o.color in colours for o in scene.objects):
+            colours = {NEAR_COLOURS.get(c, c) for c in colours}
+        fits = [o for o in fits if o.color in colours]
+    if shapes and not named:
+        strict = shapes & STRICT_SHAPES
+        if strict:
+            fits = [o for o in fits if o.shape in strict]
+        elif colours:  # "the white cube", "the red box": block-shaped, never the white mug or a cylinder
+            fits = [o for o in fits if o.shape in BLOCK_SHAPES]
+        else:
+            fits = [o for o in fits if o.shape in shapes]
+    if shaped:
+        fits = [o for o in fits if o.shape in shaped]
+    return fits
+
+
+def name_words(scene: Scene) -> dict[str, str]:
+    """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
+    ("ducky", "duckie": the duck)."""
+    out = {}
+    for n in scene.names:
+        low = n.lower()
+        if len(low) >= 3 and low.isalpha():
+            out[low + "y"] = out[low + "ie"] = n
+    out.update(kind_words(scene))
+    out.update({n.lower(): n for n in scene.names})
+    return out
+
+
+def unknown_object(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:
+    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:
+        raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {describe(scene)}).'
+                                 + did_you_mean(low[0], COLORS))
+    choices = scene.names + [f"the {o.color} block" for o in scene.objects]
+    raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {describe(scene)}).'
+                             + did_you_mean(text, choices))
+
+
+def one_of(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) -> str:
+    if len(fits) == 1:
+        return fits[0].name
+    if not fits:
+        if colours and not any(o.color in colours for o in scene.objects):
+            colour = sorted(colours)[0]
+            raise UnknownObjectError(f"there is no {colour} block in the scene (blocks: {describe(scene)})."
+                                     + did_you_mean(colour, sorted({o.color for o in scene.objects})))
+        raise UnknownObjectError(f'nothing in the scene is "{text}" (blocks: {describe(scene)})')
+    listed = ", ".join(o.name for o in fits)
+    if colours and len(colours) == 1 and all(o.color in colours for o in fits):
+        raise LanguageError(f'"{text}" is ambiguous: {len(fits)} {next(iter(colours))} blocks ({listed}); '
+                            "name the one you mean")
+    raise LanguageError(f'"{text}" is ambiguous: it fits {len(fits)} objects ({listed}); name the one you mean')
