@@ -23,6 +23,7 @@ from ..language import (
     is_courtesy,
     known_verbs,
     phrase_tokens,
+    split_verb,
     tokens,
     trailing_join,
     typos,
@@ -131,6 +132,12 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         try:
             pieces = _resolve_text(text, previous, scene, plugins, context=context, pair=pair)
         except L2PError as e:
+            if i < len(texts) and pointing.about_us(text, scene):
+                continue  # "We're setting up for the demo."
+            done = _done_so(text, clauses[-1]) if clauses else None
+            if done is not None:  # "The jar needs to be next to the mug. Slide it over."
+                clauses[-1] = done
+                continue
             shows = pointing.shown(text, scene, context) if i < len(texts) else None
             if shows is not None:
                 show = shows
@@ -143,6 +150,19 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+def _done_so(text: str, before: Clause) -> Clause | None:
+    """The clause before, done in the manner ``text``'s verb names, where ``text`` only says to do it so ("push it
+    there", "slide it over"); None for any other text or a clause before that moved something else."""
+    m = pointing.DO_IT.match(text)
+    if m is None or before.target is not None:
+        return None
+    try:
+        verb, manner, _ = split_verb(m.group("verb").split())
+    except L2PError:
+        return None
+    return replace(before, command=replace(before.command, verb=verb, manner=manner))
 
 
 def _context(previous: Command | None) -> Context | None:

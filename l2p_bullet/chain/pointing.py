@@ -12,9 +12,11 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 
-from ..core.scene import Scene
+from ..core.scene import COLORS, Scene
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object
+from ..language.descriptions import name_words
+from ..language.reference_words import BLOCK_WORDS, COLOR_SYNONYMS, NOUNS, SHAPE_NOUNS
 from ..language.references import two_references
 from ..language.words import strip_polite
 from ..pipeline import resolve
@@ -27,6 +29,10 @@ TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,])\s+(?P<rest>
 """An object named first, then the command about it: "the green cube - move it toward the blue one", "the
 teddy, put it beside the can", "Q and R: slide them both toward P"."""
 STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
+TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)\s+"
+                      r"(?:together|to\s+each\s+other)\s*[.!]?\s*$", re.IGNORECASE)
+"""What a statement about two objects says when it only points at them: "The mug and the jar are too close
+together"."""
 """A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
 looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
 TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|'s|sits|stands)\s+(?:(?:far|way|much|a\s+bit)\s+)?"
@@ -34,11 +40,13 @@ TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|'s|sits|stands)\s+(?:(?:f
                        re.IGNORECASE)
 """A statement of what is wrong between two objects: "The cup is too near to the duck", "The stone is in the way
 of the jar"; what comes next moves the first ("Move it away": from the second)."""
-THERE = re.compile(r"^\s*there\s+(?:are|r|is)\s+(?P<what>.+?)\s*[.!]?\s*$", re.IGNORECASE)
+THERE = re.compile(r"^\s*(?:there\s+(?:are|r|is)\s+(?P<what>.+?)(?:\s+(?:here|there|on\s+the\s+table))?"
+                   r"|of\s+(?P<of>the\s+two\s+.+?))\s*[.!]?\s*$", re.IGNORECASE)
 """A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
 ("... push the big one toward S and the other one away from the bunny")."""
-SAME = re.compile(r"^\s*(?:now\s+|and\s+)?(?:do|repeat)\s+(?:the\s+same|that|it)(?:\s+thing)?(?:\s+again)?\s+"
-                  r"(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$", re.IGNORECASE)
+SAME = re.compile(r"^\s*(?:now\s+|and\s+|after\s*,?\s*)?(?:(?:do|repeat)\s+(?:the\s+same|that|it)|the\s+same)"
+                  r"(?:\s+thing)?(?:\s+again)?\s+(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$",
+                  re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube"."""
 _RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
@@ -51,6 +59,10 @@ OVER_AND_PUT = re.compile(rf"\s+over{_PUT_IT}", re.IGNORECASE)
 """A carry told as two steps: "carry the mug over to the jar and set it down beside it" is "carry the mug beside
 the jar"; "carry the jar over and set it beside the stone" is "carry the jar beside the stone", and so is
 "carry the jar over to the stone and set it down beside the stone"."""
+DO_IT = re.compile(r"^\s*(?P<verb>[a-z]+(?:\s+up)?)\s+it\s+(?:over\s+)?(?:there|over|so|that\s+way|like\s+that)"
+                   r"\s*[,.!?]*\s*(?:please|pls|lol|thanks)?\s*[.!?]*\s*$", re.IGNORECASE)
+"""A motion said after the end it should reach ("The jar needs to be next to the mug. Slide it over."): the
+clause before, in this verb's manner."""
 NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
                       r"(?:\s+it)?\s*,\s*", re.IGNORECASE)
 """A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
@@ -94,14 +106,28 @@ def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, 
     """The objects a clause that asks for nothing points at: a description alone ("the teddy", "ok now the box")
     or a statement about it ("The white box is in the way"); None for anything else."""
     m = THERE.match(text)
-    if m is not None and not _names_a_place(m.group("what")):
-        return _objects(m.group("what"), scene, context)
+    if m is not None and not _names_a_place(m.group("what") or m.group("of")):
+        return _objects(m.group("what") or m.group("of"), scene, context)
     m = STATEMENT.match(text)
-    if m is not None and not _names_a_place(m.group("said")):
+    if m is not None and (not _names_a_place(m.group("said")) or TOGETHER.match(m.group("said"))):
         objects = _objects(m.group("what"), scene, context)
         if objects is not None:
             return objects
     return _objects(text, scene, context)
+
+
+ABOUT_US = frozenset({"we're", "we", "we've", "i'm", "i", "i've", "it's", "this", "that's", "our", "my"})
+"""Openings of a sentence that tells about the person or the occasion ("We're setting up for the demo")."""
+
+
+def about_us(text: str, scene: Scene) -> bool:
+    """Whether a clause only tells about the person or the occasion: it opens so (:data:`ABOUT_US`) and no word
+    of it names an object, a colour or a shape; read past between commands, as a greeting is."""
+    words = [w.strip(".,;:!?\"()").lower() for w in text.split()]
+    if not words or words[0] not in ABOUT_US:
+        return False
+    naming = set(name_words(scene)) | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS
+    return not naming & set(words)
 
 
 def _names_a_place(said: str) -> bool:

@@ -100,9 +100,9 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     pointed = _pronoun(words, low, context, role, scene)
     if pointed is not None:
         return pointed
-    if context is not None and len(context.among) > 1 and len(low) > 2 and low[-1] == "one":
+    if context is not None and len(context.among) > 1 and len(low) > 1 and low[0] == "the":
         group = Scene([o for o in scene.objects if o.name in context.among], scene.table, scene.workspace)
-        try:  # "the big one" after "There are two green cubes": the bigger of those two
+        try:  # "the big one", "the cube" after "There are two grey things": the one of those two
             return _resolve(text, group, role, None)
         except UnknownObjectError:
             pass  # "the yellow one": none of the group, so one of the scene
@@ -181,7 +181,8 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
         if context is None or context.mover is None:
             raise _no_earlier(said, role)
         if low in PRONOUNS_MOVER:
-            if len(context.among) > 1 and context.mover in context.among:  # "the jar n the cup r in the way, move it"
+            if len(context.among) > 1 and context.mover in context.among and "reference" not in role:
+                # "the jar n the cup r in the way, move it": either; "move the jar away from it": the other
                 raise LanguageError(f'"{said}" is ambiguous: it may be any of {", ".join(context.among)}; '
                                     "name the one you mean")
             return context.mover

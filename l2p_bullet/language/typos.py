@@ -27,13 +27,13 @@ over under near nearer nearest far farther further away next toward towards arou
 closer beside left right front back behind middle side end top bottom edge table again too also very just
 only now first second third last until while when if could would should will can may might must shall
 please thanks thank mind go goes get gets make sure want like need needs task goal job keep see look there's
-bit little lot much more less way little slightly
+bit little lot much more less way little slightly real
 """.split())
 """Everyday words a sentence holds that no table of the grammar lists; known, so never mended."""
 SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from", "n": "and", "r": "are",
              "u": "you", "ur": "your", "thru": "through", "w": "with", "abt": "about", "bc": "because",
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
-             "plz": "please", "nr": "near", "twd": "toward", "twds": "towards", "rnd": "round"}
+             "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 

@@ -31,7 +31,7 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "so basically", "ok so basically", "ok so", "it would be nice if", "it would be great if", "it'd be nice if",
     "it'd be great if", "it would be good if", "i wish", "your task", "your job", "here's what to do",
     "here's what i need", "here is what i need", "here's the task", "here is the task", "here's the plan",
-    "the task is simple", "the task is easy", "two steps", "three steps", "four steps", "five steps",
+    "the task is simple", "the task is easy", "ideally", "two steps", "three steps", "four steps", "five steps",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 ADDRESSEES = frozenset({"you", "u"})
@@ -51,7 +51,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "that'd be great", "that would be nice", "that would be lovely", "please and thanks",
     "shall we", "can you do that", "could you do that", "lol", "when you have a moment", "when you get a chance",
     "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
-    "in one full circle", "in one full loop", "in a full loop", "all the way",
+    "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
+    "at the end", "in the end",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
                                                 ("how", "about"), ("what", "about"))
@@ -89,7 +90,8 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "take your time and": "slow", "take your time": "slow", "in a hurry": "fast", "as fast as you can": "fast",
     "hurry up": "fast", "hurry up and": "fast", "in a slow way": "slow", "in slow way": "slow",
     "in a careful way": "careful",
-    "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle",
+    "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle", "real quick": "fast",
+    "real quickly": "fast", "real slow": "slow", "real slowly": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 PACE_INTENSIFIERS = frozenset({"very", "really", "quite", "extra", "super"})
@@ -154,8 +156,8 @@ def is_courtesy(words: list[str]) -> bool:
     """Whether ``words`` are politeness alone ("Thank you!", "Cheers", "Hello"): a sentence of its own between
     commands that asks for nothing."""
     low = [w.lower() for w in words]
-    if low[:3] == ["thank", "you", "for"] or low[:2] == ["thanks", "for"]:
-        return True  # "Thank you for the help before."
+    if low[:2] == ["thank", "you"] or low[:1] == ["thanks"]:
+        return True  # "Thank you for the help before.", "Thank you ever so much."
     while low:
         for pre in POLITE_PREFIXES + POLITE_SUFFIXES:
             if _starts(low, pre):
@@ -271,7 +273,8 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "to end up", "ends up", "end up", "should end up", "needs to end up", "to be", "is", "be", "should be",
     "needs to be", "need to be", "has to be", "must be", "to go", "goes", "go", "to get", "gets", "should go",
     "sits", "lies", "to sit", "to lie", "to land", "lands", "is placed", "is put", "to stand", "stands",
-    "were", "was", "ended up", "would be", "has to go", "needs to go", "must go",
+    "were", "was", "ended up", "would be", "has to go", "needs to go", "must go", "would end up", "should stand",
+    "should sit", "should finish", "finishes", "to finish", "should lie",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""

@@ -288,8 +288,8 @@ def test_a_boxed_in_mover_is_refused():
     ("away", (0.0, 0.34), (0.0, -0.34), "room-away"),  # already as far apart as the workspace allows
     ("closer", (0.0, 0.0), (0.0, 0.055), "room-closer"),  # 1.1 blocks apart: the judge's room is 0.25 block
     ("closer", (0.0, 0.0), (0.0, 0.08), None),  # 1.6 blocks apart: closing half the room is possible
-    # 1.2 blocks face to face: closer needs 1.075, the planner keeps its 5 mm (0.1 block) clearance: 1.1 at best
-    ("closer", (0.0, 0.0), (0.0, 0.06), "room-closer"),
+    # 1.2 blocks face to face: closer needs 1.075; a bare face may end 2.4 mm (0.048 block) from the anchor
+    ("closer", (0.0, 0.0), (0.0, 0.06), None),
     ("closer", (0.0, 0.0), (0.0, 0.0625), None),  # 1.25 (left by "next to"): needs 1.125, 1.1 is reachable
 ])
 def test_room_checks_refuse_only_impossible_actions(rules, a_xy, b_xy, check):
@@ -302,11 +302,12 @@ def test_room_checks_refuse_only_impossible_actions(rules, a_xy, b_xy, check):
     assert e.value.check == check
 
 
-@pytest.mark.parametrize("size, sides, refused", [(0.04, 1.2, True), (0.04, 1.25, False), (0.04, 1.6, False)])
+@pytest.mark.parametrize("size, sides, refused", [(0.04, 1.15, True), (0.04, 1.2, False), (0.04, 1.25, False),
+                                                  (0.04, 1.6, False)])
 def test_room_closer_counts_the_planners_clearance(size, sides, refused):
-    """4 cm cubes face to face keep the planner's 5 mm (0.125 side) apart: from 1.2 sides closer needs 1.075 and
-    1.125 is the nearest, refused with the check and the numbers; from 1.25 it needs exactly 1.125, which the
-    planner may reach (a tie is not an impossibility); from 1.6 there is room."""
+    """4 cm cubes face to face, nothing of the hand between them, may end 2.4 mm (0.06 side) apart
+    (planning/nearer.py): from 1.15 sides closer needs 1.025 and 1.06 is the nearest, refused with the check and
+    the numbers; from 1.2 it needs 1.075, which is reachable; from 1.25 and 1.6 there is room."""
     scene = _scene(("A", "red", size, (0.0, 0.0), 0.0), ("B", "green", size, (sides * size, 0.0), 0.0))
     if not refused:
         feasibility.check(scene, "A", "B", "closer")
@@ -314,8 +315,8 @@ def test_room_closer_counts_the_planners_clearance(size, sides, refused):
     with pytest.raises(InfeasibleError) as e:
         feasibility.check(scene, "A", "B", "closer")
     assert e.value.check == "room-closer" and "\n" not in str(e.value)
-    assert f"{sides:.3f} blocks apart" in str(e.value) and "5.0 mm the planner keeps" in str(e.value)
-    assert e.value.details["clearance_m"] == pytest.approx(0.005)
+    assert f"{sides:.3f} blocks apart" in str(e.value) and "2.4 mm the planner keeps" in str(e.value)
+    assert e.value.details["clearance_m"] == pytest.approx(0.0024)
 
 
 

@@ -233,6 +233,20 @@ def test_what_those_rules_leave_asked(plugins, sentence, table):
     ("Put E, D and A in one row.", "row E,D,A", "corpus.tsv"),
     ("line up B C A and E", "row B,C,A,E", "corpus.tsv"),
     ("Put in a row the duck, the blue cube and the yellow box.", "row duck,C,D", "corpus.tsv"),
+    # the end stated, then the motion that reaches it; sentences about the occasion; thanks of any length
+    ("C should be next to the duck. Push it there.", "push:next-to C duck", "corpus.tsv"),
+    ("B needs to be past E. Carry it over, please.", "carry:past B E", "corpus.tsv"),
+    ("We're testing the arm today. Move A past B.", "slide:past A B", "corpus.tsv"),
+    ("Move C toward A. Thank you so very much for this.", "slide:closer C A", "corpus.tsv"),
+    ("Ideally A would end up next to the duck.", "slide:next-to A duck", "corpus.tsv"),
+    # a pair said to be too close, a group picked from, "the same with" without "do"
+    ("A and B are too close together. Move B away from it.", "slide:away B A", "corpus.tsv"),
+    ("Of the two blue cubes, slide the back one toward G.", "slide:closer A G", "heldout6.tsv"),
+    ("There are two blue cubes here. Slide the back one toward G.", "slide:closer A G", "heldout6.tsv"),
+    ("Push A toward B. After, the same with C.", "push:closer A B ; push:closer C B", "corpus.tsv"),
+    # pace and shorthand
+    ("mv C next to A real quick", "slide:next-to C A pace=fast", "corpus.tsv"),
+    ("push A toward B, then push it back away from it again", "push:closer A B ; push:away A B", "corpus.tsv"),
 ])
 def test_what_the_eighth_and_ninth_authors_prompted_reads_as_meant(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
@@ -244,7 +258,15 @@ def test_what_the_eighth_and_ninth_authors_prompted_reads_as_meant(plugins, sent
     ("push the thing between the jar and the plank past V", "heldout9.tsv"),  # two lie near the line
     ("move the small cube past the jar", "heldout9.tsv"),  # 3.5 and 4 cm cubes
     ("move the toy next to the cup", "heldout8.tsv"),  # the duck and the ball are toys
+    ("We need to make a circle. Move A past B.", "corpus.tsv"),  # "make a circle" names no object, yet asks
 ])
 def test_what_the_eighth_and_ninth_authors_asked_about_stays_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
         read(sentence, plugins, table)
+
+
+def test_an_opening_that_names_objects_is_not_read_past(plugins):
+    """"Of the two blue cubes, push the front one past G": the front one of the two blue cubes (B), never the
+    front object of the table (the teddy), which reading past the opening as politeness gave."""
+    assert read("Of the two blue cubes, push the front one past G.", plugins, "heldout6.tsv") == "push:past B G"
+    assert read("yo can u move the teddy past G", plugins, "heldout6.tsv") == "slide:past teddy G"
