@@ -1,24 +1,23 @@
-"""Sentence -> what to do: the grammar (grammar.py), the words around a command (words.py) and the
-objects a sentence names (references.py). One grammar, documented in docs/perform.md ("Sentences")."""
+"""Sentence -> what to do: the grammar (grammar.py), the words around a command (words.py), the objects a
+sentence names (references.py, descriptions.py) and lists of objects for composites (lists.py). One grammar,
+documented in docs/perform.md ("Sentences")."""
 
 from .grammar import (
     EXAMPLE,
     MAX_SENTENCE,
     VERBS,
     Command,
-    ListCommand,
     command_words,
     dangling_join,
     known_verbs,
     manner_of_sentence,
     parse,
-    parse_list,
-    phrase_matches,
     phrase_tokens,
     split_verb,
     tokens,
     trailing_join,
 )
+from .lists import ListCommand, parse_list, phrase_matches
 from .references import Context, resolve_object
 from .words import is_courtesy, strip_polite
 

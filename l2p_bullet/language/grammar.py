@@ -27,7 +27,7 @@ from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
 from .descriptions import name_words
-from .reference_words import COLOR_SYNONYMS, CONJUNCTIONS, SHAPE_NOUNS
+from .reference_words import COLOR_SYNONYMS, SHAPE_NOUNS
 from .references import Context, measured_from, object_pairs, resolve_object
 from .words import (
     COMPARATIVES,
@@ -453,99 +453,3 @@ def _try_object(text: str, scene: Scene, context: Context | None = None) -> str 
         return resolve_object(text, scene, context=context)
     except (LanguageError, UnknownObjectError):
         return None
-
-
-# --- composite actions: a phrase followed by a list of objects ----------------------------------------
-@dataclass(frozen=True)
-class ListCommand:
-    """A composite action's sentence ("make a row of A, B, C and D"): the objects in the order named."""
-
-    action: str
-    phrase: str
-    objects: tuple[str, ...]
-    sentence: str = ""
-
-
-def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCommand | None:
-    """``[polite words] PHRASE OBJECT, OBJECT ... and OBJECT`` for the composite ``phrases`` (phrase ->
-    action); None when the sentence does not start with one of them (it is then a single action's or a
-    chain's). The objects are separated by commas and/or "and"; at least two, all different."""
-    if not isinstance(sentence, str) or not phrases or len(sentence) > MAX_SENTENCE:
-        return None
-    sentence = IN_ORDER.sub("", re.sub(r"(?i)\bw/\s*", "with ", sentence))
-    raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]")]
-    words = tokens(sentence)
-    kept = strip_polite(list(words))
-    start = next((i for i in range(len(words) - len(kept) + 1) if words[i:i + len(kept)] == kept), 0)
-    low = [w.lower() for w in kept]
-    for toks, phrase, action in phrase_tokens(phrases):
-        if not phrase_matches(low, toks):
-            continue
-        head, tail = _head_tail(toks)
-        joined = _joined_at(low, head, tail)
-        if joined is None:
-            rest = " ".join(raw[start + len(head): start + len(kept) - len(tail)])
-        else:  # "put P in a row with Q and R": the block before the tail leads the list
-            rest = " ".join(raw[start + len(head): start + joined]) + ", " + " ".join(
-                raw[start + joined + len(tail) + 1: start + len(kept)])
-        items = [i.strip(" .;:!?\"()[]") for part in rest.split(",") for i in _split_and(part)]
-        items = [i for i in items if i]
-        if items:  # "line up the mug, the jar and the stone in a row": the row said again at the end
-            items[-1] = ROW_AGAIN.sub("", items[-1]).strip() or items[-1]
-        named = {n.lower() for n in scene.names}
-        loose = [i.split() if len(i.split()) > 1 and all(w.lower() in named for w in i.split()) else [i]
-                 for i in items]  # "line up c b a", "line up U V W and stone": names without commas
-        items = [w for group in loose for w in group]
-        if len(items) < 2:
-            raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'
-                                + (f' (got "{rest}")' if rest else ""))
-        names = tuple(resolve_object(i, scene, role=f'block {k + 1} after "{phrase}"') for k, i in enumerate(items))
-        twice = sorted({n for n in names if names.count(n) > 1})
-        if twice:
-            raise LanguageError(f'the list after "{phrase}" names {", ".join(twice)} more than once')
-        return ListCommand(action, phrase, names, sentence.strip())
-    return None
-
-
-IN_ORDER = re.compile(r",?\s*in\s+(?:that|this|the\s+same|the\s+given)\s+order\s*(?=[.!?]*\s*$)", re.IGNORECASE)
-"""", in that order" after a list: the order named is the order anyway."""
-ROW_AGAIN = re.compile(r"\s+in\s+(?:a|one|a\s+single)\s+(?:row|line)\s*$", re.IGNORECASE)
-
-
-def _head_tail(toks: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """A composite's phrase around its list: "make a row of" is all head; "arrange ... in a row" has a tail."""
-    if "..." not in toks:
-        return toks, ()
-    at = toks.index("...")
-    return toks[:at], toks[at + 1:]
-
-
-def phrase_matches(low: list[str] | tuple[str, ...], toks: tuple[str, ...]) -> bool:
-    """Whether the lower-case words ``low`` are a composite's sentence of phrase ``toks``: they start with it, or,
-    for a phrase with a gap for the list ("put ... in a row"), start with its head and end with its tail."""
-    head, tail = _head_tail(toks)
-    if tuple(low[:len(head)]) != head:
-        return False
-    return not tail or (len(low) > len(head) + len(tail) and tuple(low[len(low) - len(tail):]) == tail) \
-        or _joined_at(low, head, tail) is not None
-
-
-def _joined_at(low: list[str] | tuple[str, ...], head: tuple[str, ...], tail: tuple[str, ...]) -> int | None:
-    """Where a gap phrase's tail is followed by "with" and more of the list ("put P in a row with Q and R",
-    "line A up with B"): the tail's index in ``low``; None where the sentence has no such join."""
-    for i in range(len(head) + 1, len(low) - len(tail) - 1):
-        if tuple(low[i:i + len(tail)]) == tail and low[i + len(tail)] == "with":
-            return i
-    return None
-
-
-def _split_and(text: str) -> list[str]:
-    words = text.split()
-    out, cur = [], []
-    for w in words:
-        if w.lower() in CONJUNCTIONS:
-            out.append(" ".join(cur))
-            cur = []
-        else:
-            cur.append(w)
-    return [*out, " ".join(cur)]
