@@ -11,8 +11,11 @@ of that face, slid along it as far as the share needs. The world never lets a mo
 anchor than the move's start (``world2d.py``: the hand beside it needs the room), so the gap grows a little at
 every waypoint; corner to corner, where the world lets the mover only leave, it first goes out to the margin,
 then squares up. People graded "closer" motions that ended in contact down, so the end keeps its gap rather
-than touching (docs/perform.md, "Closer from touching"). A push does not turn the block: none is built for
-it, and the room check (``feasibility.py``) refuses it up front where the yaws leave no room.
+than touching (docs/perform.md, "Closer from touching"). A push does not turn the block: its way in keeps the
+yaw (the mover, turned to the anchor, meets it nearer than face to face: the gap is measured at that yaw), and a
+pushed move that does not head in to the anchor runs along its face, pushed from the block's trailing side with
+the fingers clear of the anchor; the room check (``feasibility.py``) refuses it up front where the yaws leave
+no room.
 """
 
 from __future__ import annotations
@@ -94,6 +97,9 @@ def _slid_in(m, a, world: World2D, anchor: str, wrist: Wrist | None, g0: float, 
     normal_dir, along_dir = dirs
     base = min(g0, margin)  # the least gap the world lets the first move come to
     normal = 1.0 + (base + KEEP_M) / s
+    quarter = math.pi / 2
+    if abs((yaw - a.yaw + quarter / 2) % quarter - quarter / 2) > 1e-9:  # kept turned (a push): its corner meets
+        normal = float(np.hypot(*(_at_gap(m, a, normal_dir, along_dir, 0.0, yaw, base + KEEP_M)[:2] - a.xy))) / s
     reach = next((need - spare for spare in (SPARE, LEAST_SPARE) if normal < need - spare), None)
     if reach is None:
         return None  # not even face to face closes enough with the gap kept
@@ -127,6 +133,16 @@ def _slid_in(m, a, world: World2D, anchor: str, wrist: Wrist | None, g0: float, 
     return None
 
 
+FINGERS_CLEAR = 0.003
+"""Metres a push keeps between its fingers and every other object (``embodiment.manners.PUSH_CLEARANCE``, which
+the closed-loop push keeps too): where a pushed move runs along the anchor's face, not into it."""
+FINGERS_SHIFT = 0.012
+"""Metres the push may slide its fingers along the block's face (``embodiment.manners.PUSH_SHIFT``), which World2D's
+``pusher`` takes off their half width: along the anchor's face they are tested at their full width."""
+ALONG_OUT = math.sin(math.radians(15.0))
+"""Most sine of the angle a pushed move that does not head in to the anchor may head out of its face by: the push
+runs along the face. Pushed out from beside the anchor's corner, the flat fingers turn the block's corner into
+the anchor (measured in the simulator: the anchor moved 9-11 mm)."""
 PUSH_HEADING = math.cos(math.pi / 4)
 """Least cosine between a pushed move and the way in to the anchor for the fingers behind the block to count as
 not beside it: pushed more sideways, their rectangle behind the block may reach past the face toward the anchor."""
@@ -137,7 +153,8 @@ def _bare_face(world: World2D, anchor: str, path: np.ndarray, normal_dir: np.nda
     nearer the anchor than the world's margin (else True: the margin keeps room for it): at every waypoint the
     outline tested against the anchor (the block grown by the hand at the anchor's height, ``arms.reach``)
     reaches no farther toward the anchor than the block's own face, and a pushed block's fingers (World2D's
-    ``pusher``) stay behind it, every move heading in to the anchor."""
+    ``pusher``) stay behind it, every move heading in to the anchor, or all the moves that do not running along
+    its face (:data:`ALONG_OUT`) with the fingers, at their full width, :data:`FINGERS_CLEAR` from it."""
     if world.margin_to(anchor) >= world.margin:
         return True
     toward = -np.asarray(normal_dir, float)
@@ -150,7 +167,35 @@ def _bare_face(world: World2D, anchor: str, path: np.ndarray, normal_dir: np.nda
     travel = np.diff(np.asarray(path, float)[:, :2], axis=0)
     length = np.hypot(*travel.T)
     moving = length > 1e-9
-    return bool(((travel[moving] @ toward) >= PUSH_HEADING * length[moving]).all())
+    heading_in = (travel @ toward) >= PUSH_HEADING * length
+    if bool(heading_in[moving].all()):
+        return True
+    along = moving & ~heading_in
+    return bool(((travel[along] @ toward) >= -ALONG_OUT * length[along]).all()) \
+        and _fingers_clear(world, anchor, path, along)
+
+
+def _fingers_clear(world: World2D, anchor: str, path: np.ndarray, moves: np.ndarray) -> bool:
+    """Whether the pushed block's fingers (World2D's ``pusher`` rectangle behind the face opposite the travel,
+    sampled along each of the ``moves`` flagged) keep :data:`FINGERS_CLEAR` from ``anchor``: a move along the
+    anchor's face pushes the block from its trailing side, where the fingers stand clear of the anchor, so only
+    the block itself comes to the face margin."""
+    depth, half = world.pusher
+    half += FINGERS_SHIFT  # the hand's full width: the push slides it along the face only to clear an object
+    poly = next(b.polygon() for b in world.obstacles if b.name == anchor)
+    path = np.asarray(path, float)
+    for i in np.flatnonzero(moves):
+        u = (path[i + 1, :2] - path[i, :2]) / float(np.hypot(*(path[i + 1, :2] - path[i, :2])))
+        perp = np.array([-u[1], u[0]])
+        for t in np.linspace(0.0, 1.0, 9):
+            pose = path[i] + t * (path[i + 1] - path[i])
+            block = place_outline(world.mover.outline, pose[None])[0]
+            face = float(((block - pose[:2]) @ u).max())
+            rect = np.array([pose[:2] - b * u + side * perp for b in (face, face + depth) for side in (-half, half)])
+            rect = rect[[0, 1, 3, 2]]  # the four corners in order round the rectangle
+            if float(separation(rect[None], poly)[0]) < FINGERS_CLEAR - 1e-9:
+                return False
+    return True
 
 
 def face_clearance(scene: Scene, mover: str, anchor: str, holds: list | None) -> float | None:

@@ -92,3 +92,46 @@ def test_a_turned_touching_start_squares_up_to_the_face_margin(a_pose, b_pose):
     d = [float(np.hypot(*(p[:2] - np.asarray(b_pose[:2])))) / SIZE for p in (path[0], path[-1])]
     need = d[0] - CLOSER.thresholds["share"] * max(d[0] - 1.0, 0.25)
     assert d[1] < need and _gap(scene, path[-1]) >= FACE_MARGIN
+
+
+def _pushed_in(a_pose, b_pose):
+    from l2p_bullet.embodiment.manners import push_pusher
+    from l2p_bullet.planning.nearer import nearer_path
+
+    scene = Scene([SceneObject("A", "red", SIZE, a_pose[:2], a_pose[2]),
+                   SceneObject("B", "green", SIZE, b_pose[:2], b_pose[2])]).validate()
+    world = World2D(scene, "A", pusher=push_pusher(SIZE))
+    return scene, world, nearer_path(scene, "A", "B", CLOSER, np.asarray(scene.get("A").pose, float), world, None,
+                                     turns=False)
+
+
+@pytest.mark.parametrize("a_pose,b_pose", [
+    # turned 2 deg to B, touching it beside its face (development start SlideToward/3, touching)
+    ((0.05972793589761988, -0.06226583713427432, 0.162139), (0.09784933333333333, -0.030810133333333333, 0.201357)),
+    # turned 8 deg to B, off its corner (SlideAway/14, touching)
+    ((-0.061968825145341425, -0.06340569624408243, 1.008121), (-0.005726133333333333, -0.06123413333333333, 0.861925)),
+])
+def test_a_push_from_a_turned_touching_start_slides_along_the_face_at_its_yaw(a_pose, b_pose):
+    # a push keeps the yaw: the block slides along B's face toward B's centre line, pushed from its trailing
+    # side with the fingers clear of B, and ends within half the room (both performed: 54 % and 62 % closed)
+    scene, world, path = _pushed_in(a_pose, b_pose)
+    assert path is not None
+    assert np.allclose(path[:, 2], a_pose[2])  # never turned
+    d = [float(np.hypot(*(p[:2] - np.asarray(b_pose[:2])))) / SIZE for p in (path[0], path[-1])]
+    need = d[0] - CLOSER.thresholds["share"] * max(d[0] - 1.0, 0.25)
+    assert d[1] < need and _gap(scene, path[-1]) >= FACE_MARGIN
+    assert world.nearer_to("B", FACE_MARGIN).path_free(path)
+
+
+def test_a_push_does_not_slide_the_block_out_from_beside_the_anchors_corner():
+    # turned 17 deg, its corner past B's (SlideToward/10, touching): the way along the face first heads out of
+    # it, where the flat fingers turned the block into B in the simulator (B moved 9 mm): no such path
+    assert _pushed_in((0.06243704374523812, -0.11489298709460316, 0.486512),
+                      (0.11974826666666667, -0.11838213333333333, 0.790743))[2] is None
+
+
+def test_the_planner_keeps_the_fingers_as_clear_as_the_push_does():
+    from l2p_bullet.embodiment.manners import PUSH_CLEARANCE
+    from l2p_bullet.planning.nearer import FINGERS_CLEAR
+
+    assert FINGERS_CLEAR == PUSH_CLEARANCE
