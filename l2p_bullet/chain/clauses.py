@@ -210,12 +210,12 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
                     pair: pointing.Shown | None = None) -> list[tuple[str, Command]] | None:
     """A text that does not resolve as one clause read as two joined by "and" or a comma, as a group shown and
     then clauses about it, or as one of chain/pointing.py's readings; None when none applies."""
-    one_step = pointing.over_and_put(text)
-    if one_step != text and depth < MAX_CLAUSES:
-        try:
-            return [(text, c) for _, c in _resolve_text(one_step, previous, scene, plugins, depth + 1, context, pair)]
-        except L2PError:
-            pass
+    for said in [pointing.over_and_put(text), *pointing.in_other_words(text)]:
+        if said != text and depth < MAX_CLAUSES:
+            try:
+                return [(text, c) for _, c in _resolve_text(said, previous, scene, plugins, depth + 1, context, pair)]
+            except L2PError:
+                pass
     pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)

@@ -137,6 +137,28 @@ def _names_a_place(said: str) -> bool:
                           said, re.IGNORECASE))
 
 
+IN_THE_AIR = re.compile(r"^\s*(?:take|move|bring|get|lift)\s+(?P<what>.+?)\s+(?:up\s+)?(?:in|into|through)\s+the\s+air"
+                        r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay)\s+it(?:\s+down)?\s+(?P<rest>.+)$",
+                        re.IGNORECASE)
+"""A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball"."""
+YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
+"""The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
+yellow cube"."""
+
+
+def in_other_words(text: str) -> list[str]:
+    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s or :data:`YOU_VERB`'s ways; the
+    caller resolves each (one that does not resolve is no reading)."""
+    out = []
+    m = IN_THE_AIR.match(text)
+    if m is not None:
+        out.append(f"carry {m.group('what')} {m.group('rest')}")
+    m = YOU_VERB.match(text)
+    if m is not None:
+        out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
+    return out
+
+
 def over_and_put(text: str) -> str:
     """``text`` with a carry told as two steps (:data:`OVER_TO_AND_PUT`) said as one; else ``text`` itself."""
     m = OVER_TO_AND_PUT.search(text)

@@ -247,6 +247,9 @@ def test_what_those_rules_leave_asked(plugins, sentence, table):
     # pace and shorthand
     ("mv C next to A real quick", "slide:next-to C A pace=fast", "corpus.tsv"),
     ("push A toward B, then push it back away from it again", "push:closer A B ; push:away A B", "corpus.tsv"),
+    # a carry said by the air it goes through; the object before "you" and the verb
+    ("Take C in the air and set it down past A.", "carry:past C A", "corpus.tsv"),
+    ("The duck you push away from B.", "push:away duck B", "corpus.tsv"),
 ])
 def test_what_the_eighth_and_ninth_authors_prompted_reads_as_meant(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
