@@ -55,11 +55,10 @@ def fit_workspace(workspace: Workspace, spec: ArmSpec, heights=None) -> Workspac
 def fit_scene(scene: Scene, spec: ArmSpec) -> Scene:
     """``scene`` with its workspace fitted to the arm and to its objects' heights (:func:`fit_workspace`);
     SceneError naming the arm and its ring when a block stands outside what the arm reaches."""
-    heights = [o.height for o in scene.objects]
-    near, far = reach_for(spec, heights)
-    ws = fit_workspace(scene.workspace, spec, heights)
+    ws = fit_workspace(scene.workspace, spec, [o.height for o in scene.objects])
     if ws == scene.workspace:
         return scene
+    near, far = ws.ring[2:]  # the ring fit_workspace cut the workspace with
     if ws.empty:
         raise SceneError(f'the arm "{spec.name}" reaches the table only {near:.2f}-{far:.2f} m '
                          f"from its base, which leaves nothing of the workspace around {scene.workspace.center}")

@@ -12,11 +12,11 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 
-from ..core.scene import COLORS, Scene
+from ..core.scene import Scene
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object
-from ..language.descriptions import name_words
-from ..language.reference_words import BLOCK_WORDS, COLOR_SYNONYMS, NOUNS, SHAPE_NOUNS
+from ..language.descriptions import name_words, naming_words
+from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
 from ..language.references import two_references
 from ..language.words import strip_polite
 from ..pipeline import resolve
@@ -29,12 +29,12 @@ TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,])\s+(?P<rest>
 """An object named first, then the command about it: "the green cube - move it toward the blue one", "the
 teddy, put it beside the can", "Q and R: slide them both toward P"."""
 STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
+"""A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
+looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
 TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)\s+"
                       r"(?:together|to\s+each\s+other)\s*[.!]?\s*$", re.IGNORECASE)
 """What a statement about two objects says when it only points at them: "The mug and the jar are too close
 together"."""
-"""A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
-looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
 TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|'s|sits|stands)\s+(?:(?:far|way|much|a\s+bit)\s+)?"
                        r"(?:too\s+(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
                        re.IGNORECASE)
@@ -126,7 +126,7 @@ def about_us(text: str, scene: Scene) -> bool:
     words = [w.strip(".,;:!?\"()").lower() for w in text.split()]
     if not words or words[0] not in ABOUT_US:
         return False
-    naming = set(name_words(scene)) | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS
+    naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS
     return not naming & set(words)
 
 

@@ -124,6 +124,15 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     return fits
 
 
+def naming_words(scene: Scene) -> frozenset[str]:
+    """Lower-case words that name or describe objects: kind words and names of 3+ letters, colours and their
+    synonyms, shape nouns. Not "can" as a shape ("can you ..." asks; a can object is a kind word) nor a one-letter
+    name ("u" is "you" as typed: U is named as "U")."""
+    shapes = frozenset(SHAPE_NOUNS) - {"can", "cans"}
+    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3)
+    return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
+
+
 def name_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
     ("ducky", "duckie": the duck)."""

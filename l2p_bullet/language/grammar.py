@@ -22,12 +22,11 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 
-from ..core.scene import COLORS, Scene
+from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
-from .descriptions import name_words
-from .reference_words import COLOR_SYNONYMS, SHAPE_NOUNS
+from .descriptions import naming_words
 from .references import Context, measured_from, object_pairs, resolve_object
 from .words import (
     COMPARATIVES,
@@ -245,17 +244,9 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     is_object = lambda t: _try_object(t, scene) is not None  # noqa: E731
     words = goal_to_verb(state_to_verb(passive_to_verb(words, verbs, is_object), verbs, is_object), verbs)
     words, pace = take_pace(words, keep)
-    said = {w.lower() for w in words}  # words before the verb that name objects are never skipped over
-    naming = keep | frozenset(w for w in words if w.lower() in _naming_words(scene) and w.lower() in said)
+    describing = naming_words(scene)  # "Of the two blue cubes, push ...": an opening about objects is not skipped
+    naming = keep | frozenset(w for w in words if w.lower() in describing)
     return by_gerund(strip_polite(skip_to_verb(words, heads, naming), keep), verbs), pace
-
-
-def _naming_words(scene: Scene) -> frozenset[str]:
-    """Lower-case words that name or describe objects: names and kind words, colours, shape nouns ("Of the two
-    blue cubes, push the front one ..." is about those cubes: its opening is not politeness to read past)."""
-    shapes = frozenset(SHAPE_NOUNS) - {"can", "cans"}  # "can you ..." asks; a can object is in name_words
-    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3)  # "u" is "you" as typed: a name only as "U"
-    return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
 
 
 def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:

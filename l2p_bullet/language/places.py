@@ -40,8 +40,7 @@ def named_colours(low) -> set[str]:
 
 def measure(o: SceneObject, what: str) -> float:
     """A length in metres: the footprint's side (its area's square root), the long side of the footprint's
-    smallest enclosing rectangle, the height, y (leftness) or x (how far back from the
-    robot)."""
+    smallest enclosing rectangle, the height, y (leftness) or x (how far back from the robot)."""
     if what == "area":
         return float(o.size)
     if what == "length":
@@ -161,7 +160,12 @@ def size_tied(pool: list[SceneObject], size, pick) -> list[SceneObject]:
     chooses: sizes a person does not tell apart at a glance."""
     values = {o.name: size(o) for o in pool}
     best = pick(values.values())
-    return [o for o in pool if abs(values[o.name] - best) < TIE_SIZE * min(values[o.name], best)]
+    return [o for o in pool if _alike(values[o.name], best)]
+
+
+def _alike(a: float, b: float) -> bool:
+    """Whether two sizes are closer than :data:`TIE_SIZE` of the smaller: a person does not tell them apart."""
+    return abs(a - b) < TIE_SIZE * min(a, b)
 
 
 def seen_size(pool: list[SceneObject]):
@@ -246,7 +250,7 @@ def _medium(text: str, pool: list[SceneObject]) -> SceneObject:
                             "name the one you mean")
     small, middle, big = sorted(pool, key=bulk)
     for a, b in ((small, middle), (middle, big)):
-        if bulk(b) - bulk(a) < TIE_SIZE * bulk(a):
+        if _alike(bulk(a), bulk(b)):
             raise LanguageError(f'"{text}" is ambiguous: {a.name} and {b.name} are all but equally big; '
                                 "name the one you mean")
     return middle
