@@ -51,6 +51,12 @@ hand's height: fingertips resting on a block may sink a little into it, and bloc
 WRIST_MARGIN = 0.12
 """Radians kept from the wrist's limit: the tracking lag and the model's residual stay well inside it."""
 
+PUSH_SHIFT = 0.012
+"""Metres a push may slide its fingers along the block's face to keep clear of another object (the closed-loop
+push, embodiment/push.py, and the planner's pushed moves along an anchor's face, planning/nearer.py)."""
+PUSH_CLEARANCE = 0.003
+"""Metres a push keeps between its fingers and every other object (the same two)."""
+
 QUARTER = math.pi / 2
 
 

@@ -77,8 +77,8 @@ PUSH_TIP_Z = 0.006
 """m: the fingertips' height above the table while pushing (embodiment/push.py reads it, and the next four)."""
 PUSH_LOOKAHEAD = 0.6  # block sides ahead along the path: where a push aims
 PUSH_GAP = 0.012  # m between the pusher and the block when the hand comes down beside it
-PUSH_SHIFT = 0.012  # m the pusher may slide along the block's face to keep clear of another object
-PUSH_CLEARANCE = 0.003  # m kept between the pusher and every other object
+PUSH_SHIFT = reach.PUSH_SHIFT  # m the pusher may slide along the block's face to keep clear of another object
+PUSH_CLEARANCE = reach.PUSH_CLEARANCE  # m kept between the pusher and every other object
 PUSH_FACE_TURN = math.radians(55.0)  # rad: a turn beyond this from the pushing side changes face (go round)
 
 

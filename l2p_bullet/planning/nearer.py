@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from ..actions import ActionSpec
-from ..arms.reach import Wrist
+from ..arms.reach import PUSH_CLEARANCE, PUSH_SHIFT, Wrist
 from ..core.geometry import separation
 from ..core.scene import FACE_MARGIN, GRIPPER_MARGIN, Scene
 from ..judge.footprints import outlines_of
@@ -133,12 +133,12 @@ def _slid_in(m, a, world: World2D, anchor: str, wrist: Wrist | None, g0: float, 
     return None
 
 
-FINGERS_CLEAR = 0.003
-"""Metres a push keeps between its fingers and every other object (``embodiment.manners.PUSH_CLEARANCE``, which
-the closed-loop push keeps too): where a pushed move runs along the anchor's face, not into it."""
-FINGERS_SHIFT = 0.012
-"""Metres the push may slide its fingers along the block's face (``embodiment.manners.PUSH_SHIFT``), which World2D's
-``pusher`` takes off their half width: along the anchor's face they are tested at their full width."""
+FINGERS_CLEAR = PUSH_CLEARANCE
+"""Metres a push keeps between its fingers and every other object (the closed-loop push's own): where a pushed move
+runs along the anchor's face, not into it."""
+FINGERS_SHIFT = PUSH_SHIFT
+"""Metres the push may slide its fingers along the block's face, which World2D's ``pusher`` takes off their half
+width: along the anchor's face they are tested at their full width."""
 ALONG_OUT = math.sin(math.radians(15.0))
 """Most sine of the angle a pushed move that does not head in to the anchor may head out of its face by: the push
 runs along the face. Pushed out from beside the anchor's corner, the flat fingers turn the block's corner into
