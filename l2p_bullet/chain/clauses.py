@@ -22,6 +22,7 @@ from ..language import (
     dangling_join,
     is_courtesy,
     known_verbs,
+    lenient,
     phrase_tokens,
     split_verb,
     tokens,
@@ -69,7 +70,8 @@ sentence refused as written; a bracket with a number may carry a distance, which
 def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """:func:`read_clauses`; where the sentence is refused as written, read again with its typing slips mended
     (language/typos.py: "mvoe teh red cube") and its asides in brackets read past (:data:`ASIDE`); the first
-    refusal stands where the mended sentence is refused too or there is nothing to mend."""
+    refusal stands where the mended sentence is refused too or there is nothing to mend, and where the lenient
+    reading (language/lenient.py), tried last, refuses both."""
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:
@@ -77,13 +79,27 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             raise
         known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS)
         mended = typos.mend(ASIDE.sub("", sentence), known, scene.names)
-        if mended == sentence:
+        if mended != sentence:
+            try:
+                return read_clauses(mended, scene, plugins)
+            except L2PError:
+                pass
+        read = _read_past(sentence, mended, scene, plugins)
+        if read is None:
             raise
-        try:
-            return read_clauses(mended, scene, plugins)
-        except L2PError:
-            pass
-        raise
+        return read
+
+
+def _read_past(sentence: str, mended: str | None, scene: Scene, plugins: list) -> list[Clause] | None:
+    """The sentence's mended form (then the sentence as typed) read once more with the lenient reading allowed
+    (language/lenient.py); None where that refuses too."""
+    with lenient.reading_past():
+        for text in dict.fromkeys(t for t in (mended, sentence) if t is not None):
+            try:
+                return read_clauses(text, scene, plugins)
+            except L2PError:
+                pass
+    return None
 
 
 def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:

@@ -26,6 +26,7 @@ from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
+from . import lenient
 from .descriptions import naming_words
 from .references import Context, measured_from, object_pairs, resolve_object
 from .words import (
@@ -107,8 +108,27 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
     ``anchors`` says how many reference objects each action's sentences name (action -> 1 or 2; 1 when
     not listed): a two-anchor action reads "B and C" after its phrase. ``extents`` says which qualifiers
     ("far", "a bit", "right": language/words.EXTENTS) each action accepts (none when not listed);
-    ``context`` is what pronouns ("it", "the other one") point back to: the previous clause.
+    ``context`` is what pronouns ("it", "the other one") point back to: the previous clause. Where the
+    grammar refuses it inside :func:`lenient.reading_past`, the lenient reading is tried (language/lenient.py).
     """
+    try:
+        return _parse(sentence, scene, phrases, anchors, extents=extents, context=context)
+    except (LanguageError, UnknownObjectError):
+        if not lenient.allowed() or not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE:
+            raise
+        keep = frozenset(scene.names)  # the words as typed: no verb made from a statement ("A was next to B")
+        words, pace = take_pace(strip_polite(tokens(sentence), keep), keep)
+        found = lenient.read(words, scene, _readings(phrases), [(h, d, m) for h, _, d, m in _verb_patterns()],
+                             anchors or {}, extents or {}, context)
+        if found is None:
+            raise
+        return Command(found.verb, found.mover, found.phrase, found.action, found.anchors[0], sentence.strip(),
+                       found.anchors, found.manner, pace, found.extent)
+
+
+def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None, *,
+           extents: dict[str, frozenset[str]] | None = None, context: Context | None = None) -> Command:
+    """:func:`parse` as the grammar reads a sentence."""
     if not isinstance(sentence, str) or not sentence.strip():
         raise LanguageError(f"the sentence is empty; {EXAMPLE}")
     if len(sentence) > MAX_SENTENCE:
@@ -125,7 +145,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
         if not _verbless(words, phrases):
             raise
         try:  # "duck closer to ball": a note of the end wanted, the verb left out
-            cmd = parse(f"move {' '.join(words)}", scene, phrases, anchors, extents=extents, context=context)
+            cmd = _parse(f"move {' '.join(words)}", scene, phrases, anchors, extents=extents, context=context)
             return replace(cmd, pace=cmd.pace or pace, sentence=sentence.strip())
         except (LanguageError, UnknownObjectError):
             raise no_verb from None
@@ -182,11 +202,13 @@ def _it_again(words: list[str], context: Context | None, mover: str) -> bool:
 
 def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
     """Whether ``words`` read as a command with its verb left out, as notes are typed ("W closer to stone", "cup
-    just a touch closer to duck"): an installed phrase after at least one word, and no word that says something
-    is or should be so ("the cup is next to the box" states, it does not ask)."""
+    just a touch closer to duck"): an installed phrase after at least one word, no word that says something
+    is or should be so ("the cup is next to the box" states, it does not ask), and no verb later on."""
     low = [w.lower() for w in words]
     if set(low) & {"is", "are", "was", "were", "be", "should", "must", "isn't", "aren't", "not"}:
         return False
+    if set(low[1:]) & {v.split()[0] for v in known_verbs()}:
+        return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
     return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in _readings(phrases) for i in range(1, len(low)))
 
 

@@ -27,6 +27,8 @@ from .reference_words import (
     SHAPE_NOUNS,
     SIZE_SUPERLATIVES,
     TIE,
+    TIE_DISTANCE,
+    TIE_DISTANCE_M,
     TIE_M,
     TIE_PLACE,
 )
@@ -184,9 +186,11 @@ def bulk(o: SceneObject) -> float:
     return long * short * float(o.geometry.height)
 
 
-def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False) -> str:
+def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False,
+                distance: bool = False) -> str:
     """The one object of ``pool`` that ``pick`` (min or max) of ``measure`` chooses; ties are ambiguous. With
-    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides."""
+    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides;
+    with ``distance`` it is a distance, and a tie is also within :data:`TIE_DISTANCE` of it."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
     values = {o.name: measure(o) for o in pool}
@@ -195,7 +199,9 @@ def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool =
 
     def tol(o: SceneObject) -> float:
         t = max(TIE * abs(best), TIE_M)
-        return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place else t
+        if distance:
+            t = max(t, TIE_DISTANCE_M + TIE_DISTANCE * abs(best))
+        return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place or distance else t
 
     tied = [o.name for o in pool if abs(values[o.name] - best) <= tol(o)]
     if len(tied) > 1:

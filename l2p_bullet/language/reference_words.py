@@ -80,6 +80,12 @@ TIE = 0.02
 TIE_M = 0.002
 """Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:
 the description is ambiguous."""
+TIE_DISTANCE = 0.06
+TIE_DISTANCE_M = 0.012
+"""Where a superlative compares distances ("nearest the robot", "closest to the jar"), two objects whose distances
+differ by less than TIE_DISTANCE_M metres plus TIE_DISTANCE of the shorter are a tie: people judge a gap against
+the distance. The authors of the held-out corpora called 3 cm between 12 and 15 cm clear and 1.5 cm between 12 and
+14 cm a tie; 2.7-3.2 cm at 40-70 cm a tie and 6.4-7.9 cm at 56-69 cm clear (docs/language.md)."""
 TIE_PLACE = 0.45
 """Where a superlative compares places (leftmost, nearest), two objects whose places differ by less than this
 many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""

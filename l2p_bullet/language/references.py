@@ -97,6 +97,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return text
     words = _plain_order(words, scene)
     low = tuple(w.lower() for w in words)
+    if set(low) & CONJUNCTIONS and "between" not in low:  # "the tray and the other one closer to the can"
+        raise LanguageError(f'"{text}" names more than one object; name the {role}')
     pointed = _pronoun(words, low, context, role, scene)
     if pointed is not None:
         return pointed
@@ -305,8 +307,9 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
             if side == kind and doubt:
                 raise LanguageError(f'"{kind}" {ref_name or "the robot"} is ambiguous: {beside[0].name} is, and '
                                     f'{", ".join(doubt)} partly; name the one you mean')
-            return superlative(beside, lambda o: distance_to(o, ref_xy), min, f"{kind} of", place=True)
-        return superlative(pool, lambda o: distance_to(o, ref_xy), min if kind in NEAREST else max, kind, place=True)
+            return superlative(beside, lambda o: distance_to(o, ref_xy), min, f"{kind} of", distance=True)
+        return superlative(pool, lambda o: distance_to(o, ref_xy), min if kind in NEAREST else max, kind,
+                           distance=True)
 
     return either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
 
@@ -402,9 +405,20 @@ def object_pairs(words: list[str], scene: Scene, roles: tuple[str, str],
             continue
         try:
             yield (resolve_object(" ".join(words[:k]), scene, roles[0], context),
-                   resolve_object(" ".join(words[k + 1:]), scene, roles[1], context))
+                   resolve_object(" ".join(_one_as(words[k + 1:], words[:k])), scene, roles[1], context))
         except (LanguageError, UnknownObjectError) as e:
             yield e
+
+
+def _one_as(second: list[str], first: list[str]) -> list[str]:
+    """"the one on the right" after "the blue cube on the left": "one" stands for the first's noun with its
+    adjectives ("the blue cube on the right"); ``second`` as it is where it does not open with "the one" or the
+    first names no noun."""
+    low = [w.lower() for w in first]
+    if [w.lower() for w in second[:2]] != ["the", "one"] or len(second) < 3:
+        return second
+    noun = next((i for i, w in enumerate(low) if w in NOUNS | set(SHAPE_NOUNS) and w != "one"), None)
+    return second if noun is None else [*first[:noun + 1], *second[2:]]
 
 
 def _reference_point(words: list[str], scene: Scene, role: str,

@@ -58,11 +58,14 @@ def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[s
 
 
 def near(word: str, known: frozenset[str]) -> str | None:
-    """The one known word ``word`` is a slip of, or None (no such word, or more than one)."""
+    """The one known word ``word`` is a slip of, or None (no such word, or several that mean different things;
+    "carefuly" is "careful" or "carefully", one pace either way)."""
     if len(word) < 3 or not word.isalpha():
         return None
     hits = {k for k in known if abs(len(k) - len(word)) <= 1 and _one_slip(word, k)}
-    return hits.pop() if len(hits) == 1 else None
+    if len({words.PACES.get(h, h) for h in hits}) != 1:
+        return None
+    return max(sorted(hits), key=len)
 
 
 def _one_slip(word: str, known: str) -> bool:

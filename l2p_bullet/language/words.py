@@ -83,7 +83,8 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
 PACES: dict[str, str] = {
     "slowly": "slow", "slow": "slow", "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast",
     "swiftly": "fast",
-    "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful",
+    "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
+    "gentle": "gentle",
 }
 """Manner adverbs -> the pace they ask for."""
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {

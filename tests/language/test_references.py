@@ -134,7 +134,7 @@ def test_the_other_one_after_one_of_a_described_pair_is_its_twin(plugins, two_re
 
 
 @pytest.mark.parametrize("text, name", [
-    ("the object nearest to you", "F"),
+    ("the cube nearest to you", "B"),
     ("the red cube nearer to you", "B"),
     ("the red cube at the back", "A"),
     ("the red cube in the front", "B"),
@@ -147,6 +147,12 @@ def test_the_other_one_after_one_of_a_described_pair_is_its_twin(plugins, two_re
 ])
 def test_relations_as_people_say_them(two_reds, text, name):
     assert resolve_object(text, two_reds) == name
+
+
+def test_distances_are_told_apart_against_their_length(two_reds, six):
+    """3 cm decide "nearest" between 12 and 15 cm, not between 38.5 and 41.3 cm (F and B from the robot): asked."""
+    assert "B, F" in _refused("the object nearest to you", two_reds)
+    assert resolve_object("the one nearest A", six) == "E"  # E 12.0 cm from A, B 15.0 cm
 
 
 def test_a_relative_clause_reads_as_the_adjective(six):

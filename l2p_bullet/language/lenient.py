@@ -1,0 +1,217 @@
+"""The last reading of a sentence the grammar refuses: the command's parts found among words it does not know.
+
+People wrap a command in words of their own ("What I'm after is the rubber duck sitting on the other side of
+the yellow cube", "Push with the fingers the cup around the duck"). Where every reading of the grammar
+(grammar.py, chain/clauses.py) has refused a sentence, it is read once more, clause by clause, looking only for
+what a command must have: one installed phrase, one object named before it and the reference objects after it,
+and a verb anywhere (the manner it names) or a wish ("I'd like", "should"). The other words are read past, but
+only where none of them could change the meaning, because a refusal is better than a wrong block:
+
+- no negation or correction ("not", "don't", "instead", "sorry", "rather", "or", "if"), no number;
+- no second phrase, and no two verbs of different manners;
+- no word left over that describes or points at an object (a colour, a shape, an object's name, "big", "left",
+  "other", "it", "both"), nor one that asks how far or how fast away from its place (an extent stands right
+  before the phrase, as the grammar reads it);
+- no object named that the command does not use, no "and" before the phrase, and no word a motion the five actions cannot make would use
+  ("stack", "back", "rotate").
+
+It is allowed only inside :func:`reading_past`, which ``chain/clauses.resolve_clauses`` enters for its last
+try, so a sentence the grammar reads is read exactly as before.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass
+
+from ..core.scene import Scene
+from ..errors import LanguageError, UnknownObjectError
+from .descriptions import naming_words
+from .reference_words import (
+    COMPARATIVE_OF,
+    FARTHEST,
+    NEAREST,
+    PLACE_ADJECTIVES,
+    SIZE_SUPERLATIVES,
+)
+from .references import Context, resolve_object
+from .synonyms import SIZE_WORDS
+from .words import EXTENTS, NEGATIONS, PACES, participles, take_extent
+
+_ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
+
+STOPS = NEGATIONS | frozenset({
+    "isn't", "aren't", "doesn't", "won't", "can't", "cannot", "nothing", "without", "instead", "sorry", "rather",
+    "actually", "except", "unless", "or", "nor", "but", "if", "wait", "oops", "correction", "mean", "meant",
+    "stack", "rotate", "turn", "flip", "spin", "throw", "toss", "swap", "switch", "tip", "knock", "remove",
+    "hide", "return", "back", "undo", "under", "onto", "into", "inside", "above", "below", "top", "then",
+    "was", "were", "already",
+    "pass", "passes", "passed", "passing", "touch", "touches", "touched", "touching", "hit", "bump", "cross",
+    "avoid", "follow",
+})
+"""Words that stop the reading: they may change what the rest means ("touching" asks for a tight gap, "pass it
+by" for past), join a clause the sentence did not split, or ask for what the actions cannot do."""
+AMBIGUOUS_PHRASES = frozenset({"by"})
+"""Phrases never read leniently: "by B" may mean beside B or past it, and the verb that tells is the word the
+lenient reading would read past."""
+POINTING = frozenset({
+    "it", "its", "this", "that", "these", "those", "them", "they", "one", "ones", "other", "another", "same",
+    "both", "either", "all", "each", "every", "two", "three", "first", "second", "third", "last", "between",
+    "middle", "center", "centre", "behind", "front", "left", "right", "him", "her", "his", "em", "'em",
+}) | SIZE_WORDS | frozenset(SIZE_SUPERLATIVES) | frozenset(COMPARATIVE_OF) | frozenset(PLACE_ADJECTIVES) \
+    | NEAREST | FARTHEST
+"""Words that describe or point at an object: left over, they would have picked another object."""
+WISHES = frozenset({
+    "want", "wants", "wanted", "like", "need", "needs", "needed", "should", "must", "goal", "after", "wish",
+    "would", "could", "can", "let's", "lets", "have", "has", "please", "pls", "try", "make", "aim", "target",
+    "ideally", "hope", "hoping",
+})
+"""Words that ask for an end state when no verb says how to move ("the ball should be away from the box")."""
+GENERIC_VERBS = frozenset({"move", "put", "place", "set", "position", "get", "take", "bring", "relocate",
+                           "reposition", "send", "translate", "displace", "circle"})
+"""Verbs that name no manner of their own: with a manner's verb in the same clause, that one decides."""
+MAX_SPAN = 7
+"""Longest description tried for one object, in words."""
+
+
+@dataclass(frozen=True)
+class Reading:
+    """What the lenient reading found: the grammar builds its Command from it."""
+
+    verb: str
+    manner: str
+    mover: str
+    phrase: str
+    action: str
+    anchors: tuple[str, ...]
+    extent: str | None
+
+
+@contextmanager
+def reading_past() -> Iterator[None]:
+    """Allow :func:`read` inside the block (the last try of a sentence refused as written)."""
+    token = _ALLOWED.set(True)
+    try:
+        yield
+    finally:
+        _ALLOWED.reset(token)
+
+
+def allowed() -> bool:
+    """Whether :func:`read` may be tried now."""
+    return _ALLOWED.get()
+
+
+def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple[str, ...], str, str]],
+         anchors: dict[str, int], extents: dict[str, frozenset[str]], context: Context | None) -> Reading | None:
+    """The command in ``words`` (a clause's words, politeness and pace taken out), or None where any rule above
+    stops it. ``readings`` are the grammar's (tokens, phrase, action, implied extent), longest first; ``verbs``
+    (head tokens, verb as declared, manner)."""
+    low = [w.lower() for w in words]
+    if set(low) & STOPS or any(ch.isdigit() for w in low for ch in w):
+        return None
+    found = _phrases(low, readings)
+    if len(found) != 1:
+        return None
+    start, end, phrase, action, implied = found[0]
+    if phrase in AMBIGUOUS_PHRASES:
+        return None
+    manner_verb = _manner(low, verbs)
+    if manner_verb is None:
+        return None
+    verb, manner = manner_verb
+    before, extent = take_extent(words[:start])
+    extent = extent or implied
+    if extent is not None and extent not in extents.get(action, frozenset()):
+        return None
+    movers, left_before = _mentions(before, scene, context)
+    refs, left_after = _mentions(words[end:], scene, context)
+    count = anchors.get(action, 1)
+    if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
+        return None
+    describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | _extent_words() | set(PACES)
+    if any(w.lower() in describing for w in left_before + left_after) or \
+            {w.lower() for w in left_before} & {"and", "&"}:
+        return None  # "and" before the phrase lists objects or joins a second command
+    return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
+
+
+def _phrases(low: list[str], readings: list) -> list[tuple[int, int, str, str, str | None]]:
+    """Every installed phrase in ``low``, longest first and not overlapping: (start, end, phrase, action, extent)."""
+    taken = [False] * len(low)
+    out = []
+    for toks, phrase, action, implied in readings:
+        n = len(toks)
+        for i in range(len(low) - n + 1):
+            if tuple(low[i:i + n]) == toks and not any(taken[i:i + n]):
+                taken[i:i + n] = [True] * n
+                out.append((i, i + n, phrase, action, implied))
+    return out
+
+
+def _manner(low: list[str], verbs: list[tuple[tuple[str, ...], str, str]]) -> tuple[str, str] | None:
+    """(verb, manner) of the clause: the one manner its specific verbs name, a generic verb's slide, or a slide
+    where a wish stands in for the verb; None for two manners, or neither verb nor wish."""
+    specific: dict[str, str] = {}
+    generic = None
+    for head, _declared, manner in verbs:
+        first = head[0]
+        if any(_inflects(w, first) for w in low):
+            if first in GENERIC_VERBS:
+                generic = generic or (first, manner)
+            else:
+                specific.setdefault(manner, first)
+    if len(specific) > 1:
+        return None
+    if specific:
+        manner, verb = next(iter(specific.items()))
+        return verb, manner
+    if generic is not None:
+        return generic
+    return ("move", "slide") if set(low) & WISHES else None
+
+
+def _inflects(word: str, verb: str) -> bool:
+    """Whether ``word`` is ``verb`` or one of its forms ("pushed", "pushing", "carries", "slid")."""
+    if word == verb or word in participles(verb):
+        return True
+    stem = verb[:-1] if verb.endswith("e") else verb
+    forms = {verb + "s", verb + "es", stem + "ing", stem + "ed", verb + "ed"}
+    if verb.endswith("y"):
+        forms |= {verb[:-1] + "ies", verb[:-1] + "ied", verb + "ing"}
+    return word in forms
+
+
+def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], list[str]]:
+    """(the objects ``words`` name, in order; the words that named none): the longest description that resolves
+    at each word, of at most :data:`MAX_SPAN` words."""
+    found: list[str] = []
+    left: list[str] = []
+    i = 0
+    while i < len(words):
+        for j in range(min(len(words), i + MAX_SPAN), i, -1):
+            name = _object(" ".join(words[i:j]), scene, context)
+            if name is not None:
+                found.append(name)
+                i = j
+                break
+        else:
+            left.append(words[i])
+            i += 1
+    return found, left
+
+
+def _object(text: str, scene: Scene, context: Context | None) -> str | None:
+    try:
+        return resolve_object(text, scene, context=context)
+    except (LanguageError, UnknownObjectError):
+        return None
+
+
+def _extent_words() -> set[str]:
+    return {w for k in EXTENTS for w in k if w not in ("a", "an", "so", "or", "only", "just", "well")}
+
+
+__all__ = ["Reading", "allowed", "read", "reading_past"]
