@@ -84,8 +84,9 @@ class Command:
         return self.anchors[1:]
 
 
-ARROWS = frozenset({"->", "-->", "=>", "\u2192"})
-"""Arrows typed for "goes" ("the mug -> around the box"): read past, leaving a command without its verb."""
+ARROWS = frozenset({"->", "-->", "=>", "\u2192", "-", "--", "\u2013", "\u2014"})
+"""Arrows typed for "goes" ("the mug -> around the box") and lone dashes: read past, leaving a command without its
+verb."""
 
 
 def tokens(sentence: str) -> list[str]:
@@ -273,9 +274,14 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
 
 def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:
     """(tokens, phrase, action, implied extent) for every phrase, longest first; the comparatives people
-    use for "away from" ("farther from", "far from") read as its phrase when it is installed."""
+    use for "away from" ("farther from", "far from") read as its phrase when it is installed, and a phrase typed
+    without its article ("to other side of") as the phrase."""
     out = [(t, p, a, None) for t, p, a in phrase_tokens(phrases)]
     table = {normalize_phrase(p): a for p, a in phrases.items()}
+    for toks, phrase, action, _ in list(out):  # "to other side of", "in direction of": the article left out
+        bare = tuple(w for w in toks if w != "the")
+        if len(bare) > 1 and bare != toks and " ".join(bare) not in table:
+            out.append((bare, phrase, action, None))
     for toks, (phrase, extent) in COMPARATIVES.items():
         if phrase in table and " ".join(toks) not in table:
             out.append((toks, phrase, table[phrase], extent))

@@ -12,8 +12,8 @@ only where none of them could change the meaning, because a refusal is better th
 - no word left over that describes or points at an object (a colour, a shape, an object's name, "big", "left",
   "other", "it", "both"), nor one that asks how far or how fast away from its place (an extent stands right
   before the phrase, as the grammar reads it);
-- no object named that the command does not use, no "and" before the phrase, and no word a motion the five actions cannot make would use
-  ("stack", "back", "rotate").
+- no object named that the command does not use, no "and" before the phrase, and no word a motion the five
+  actions cannot make would use ("stack", "back", "rotate").
 
 It is allowed only inside :func:`reading_past`, which ``chain/clauses.resolve_clauses`` enters for its last
 try, so a sentence the grammar reads is read exactly as before.
@@ -110,12 +110,13 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     stops it. ``readings`` are the grammar's (tokens, phrase, action, implied extent), longest first; ``verbs``
     (head tokens, verb as declared, manner)."""
     low = [w.lower() for w in words]
-    if set(low) & STOPS or any(ch.isdigit() for w in low for ch in w):
-        return None
     found = _phrases(low, readings)
     if len(found) != 1:
         return None
     start, end, phrase, action, implied = found[0]
+    outside = low[:start] + low[end:]  # "not so close to" is a phrase; "not" elsewhere stops the reading
+    if set(outside) & STOPS or any(ch.isdigit() for w in outside for ch in w):
+        return None
     if phrase in AMBIGUOUS_PHRASES:
         return None
     manner_verb = _manner(low, verbs)

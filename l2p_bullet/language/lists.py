@@ -11,7 +11,7 @@ import re
 from dataclasses import dataclass
 
 from ..core.scene import Scene
-from ..errors import LanguageError
+from ..errors import LanguageError, UnknownObjectError
 from .grammar import MAX_SENTENCE, phrase_tokens, tokens
 from .reference_words import CONJUNCTIONS
 from .references import resolve_object
@@ -57,7 +57,7 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
         named = {n.lower() for n in scene.names}
         loose = [i.split() if len(i.split()) > 1 and all(w.lower() in named for w in i.split()) else [i]
                  for i in items]  # "line up c b a", "line up U V W and stone": names without commas
-        items = [w for group in loose for w in group]
+        items = [part for group in loose for w in group for part in _by_article(w, scene)]
         if len(items) < 2:
             raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'
                                 + (f' (got "{rest}")' if rest else ""))
@@ -99,6 +99,25 @@ def _joined_at(low: list[str] | tuple[str, ...], head: tuple[str, ...], tail: tu
         if tuple(low[i:i + len(tail)]) == tail and low[i + len(tail)] == "with":
             return i
     return None
+
+
+def _by_article(item: str, scene: Scene) -> list[str]:
+    """"the ball the lid" -> "the ball", "the lid": a list typed without commas, split where each "the" opens an
+    object; the item as it is where it names one object or the pieces do not each name one."""
+    words = item.split()
+    starts = [k for k, w in enumerate(words) if w.lower() == "the"]
+    if len(starts) < 2 or starts[0] != 0 or _names_one(item, scene):
+        return [item]
+    pieces = [" ".join(words[a:b]) for a, b in zip(starts, [*starts[1:], len(words)], strict=True)]
+    return pieces if all(_names_one(p, scene) for p in pieces) else [item]
+
+
+def _names_one(text: str, scene: Scene) -> bool:
+    try:
+        resolve_object(text, scene)
+    except (LanguageError, UnknownObjectError):
+        return False
+    return True
 
 
 def _split_and(text: str) -> list[str]:

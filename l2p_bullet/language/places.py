@@ -214,7 +214,8 @@ def comparative_of(words: list[str]) -> list[str]:
     low = [w.lower() for w in words]
     if len(low) >= 5 and low[0] == "the" and low[1] in COMPARATIVE_OF and low[2:4] == ["of", "the"] \
             and low[-1].endswith("s"):
-        return ["the", COMPARATIVE_OF[low[1]], *words[4:-1], words[-1][:-1]]
+        skip = 5 if low[4:5] == ["two"] and len(low) > 5 else 4  # "the larger of the two red cubes"
+        return ["the", COMPARATIVE_OF[low[1]], *words[skip:-1], words[-1][:-1]]
     return words
 
 

@@ -29,6 +29,8 @@ KIND_NAMES = {
     "lemon": ("lemons",),
     "bread": ("loaf",),
     "milk": ("carton",),
+    "lid": ("lids", "disc", "disk", "puck", "cap"),
+    "brick": ("bricks",),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),

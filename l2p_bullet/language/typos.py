@@ -33,7 +33,8 @@ bit little lot much more less way little slightly real
 SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from", "n": "and", "r": "are",
              "u": "you", "ur": "your", "thru": "through", "w": "with", "abt": "about", "bc": "because",
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
-             "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round"}
+             "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
+             "yel": "yellow", "wht": "white", "grn": "green"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 

@@ -24,7 +24,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "would you", "will you", "could u", "can u", "pls", "plz", "let's", "lets", "try to", "now", "then", "and",
     "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot", "alright", "all right",
     "after that", "afterwards", "lastly", "next", "maybe", "also", "hello", "hi",
-    "hey there", "hi there", "hello there", "good morning", "good afternoon", "good evening", "dear robot",
+    "hey there", "hi there", "hello there", "good morning", "yo", "thx in advance", "thanks in advance",
+    "good afternoon", "good evening", "dear robot",
     "you can", "you", "when you get a chance", "when you have a moment", "if you could", "if you can",
     "i would be very grateful if you could", "i would be grateful if you could", "i'd be grateful if you could",
     "for this one", "for the next one", "right", "so", "why don't you", "why dont you", "why not", "basically",
@@ -52,7 +53,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "shall we", "can you do that", "could you do that", "lol", "when you have a moment", "when you get a chance",
     "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
-    "at the end", "in the end",
+    "at the end", "in the end", "make it happen", "would you see to that", "could you see to that",
+    "see to that", "that's it", "that's all",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
                                                 ("how", "about"), ("what", "about"))
@@ -122,6 +124,11 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     ("more", "far", "from"): ("away from", None),
     ("a", "long", "way", "from"): ("away from", "far"),
     ("a", "good", "distance", "from"): ("away from", "far"),
+    ("not", "so", "close", "to"): ("away from", None),
+    ("not", "so", "near", "to"): ("away from", None),
+    ("not", "so", "near"): ("away from", None),
+    ("not", "as", "close", "to"): ("away from", None),
+    ("less", "close", "to"): ("away from", None),
 }
 """Comparatives people use for "away from" that say how far as well: (its phrase, the extent). They read as
 that phrase only while an installed action owns it; plain synonyms ("beyond", "in the direction of") are the
