@@ -5,8 +5,9 @@ append:
 - ``anchors = 2``: the mover's place relative to the segment between the two anchors (:data:`TWO_ANCHOR_NAMES`).
 
 Apart from the computation (``features.py``) and the resampling (``resample.py``), which both read it, because
-a bundle's manifest, its validation and the recogniser need the declaration alone; ``features.py`` re-exports
-these names, where every caller has read them.
+it is a declaration, not a computation: a bundle's manifest records it and its validation checks it
+(plugins/bundle.py, plugins/validate.py) without computing a column. ``features.py`` re-exports these names,
+where every caller reads them.
 """
 
 from __future__ import annotations

@@ -7,8 +7,9 @@ A motion is refused (:class:`~l2p_bullet.errors.MotionError`) before it is resam
 bounded memory: non-finite poses, a block size that is not a positive number, or a motion that travels or
 spreads beyond :data:`MAX_BLOCKS` block sides.
 
-Apart from the features (``features.py``, which re-exports these names) because the training sets, the scorer
-and the tests resample without computing columns, and the resampling's bounds are its own.
+Apart from the features (``features.py``, which re-exports these names) because it is the step before them, with
+its own question (where the frames fall, and whether a motion can be scored at all) and its own bounds; the
+features read only the resampled poses.
 """
 
 from __future__ import annotations
