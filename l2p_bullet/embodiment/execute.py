@@ -3,12 +3,13 @@
 This is the embodiment's one entry point (docs/INTERFACES.md): ``perform`` and ``replay`` both call it.
 The path is checked before anything is simulated (inside the workspace, no collision with another
 block, starts where the block is, reachable by the arm), so a bad path fails fast with a clear error.
+The checks are in ``path_checks.py`` and what an execution leaves (its record, honesty measures and summary)
+in ``outcome.py``; their names are re-exported here, where every caller reads them.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -19,11 +20,13 @@ from ..core.contracts import approach_end_frame, trajectory_poses
 from ..core.runfolder import write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
-from ..errors import ExecutionError, InfeasibleError, PathError, ReachError
+from ..errors import ExecutionError, ReachError
 from ..manners.spec import MannerSpec
 from . import motion, smoothing
-from .manners import carry_lift, check_carry_path, check_manner, manner_of, tall_pace
-from .record import Recorder, versions
+from .manners import carry_lift, manner_of, tall_pace
+from .outcome import Execution, execution_summary, honesty, render_info
+from .path_checks import MAX_YAW_RAD, START_TOLERANCE, check_for, check_path, check_waypoints, checked_path
+from .record import Recorder
 from .render import Film
 from .sim.camera import RenderSettings, framed_for
 from .sim.primitives import Primitives
@@ -32,121 +35,13 @@ from .sim.world import World
 if TYPE_CHECKING:  # the simulator loads only when a path is executed
     from .sim.world import World
 
-START_TOLERANCE = 0.003  # m: a path must start where its block is
+__all__ = [  # execute.py's own names and those of path_checks.py and outcome.py, which callers read from here
+    "DEFAULT_RENDER", "MAX_YAW_RAD", "START_TOLERANCE", "Execution", "act", "arm_primitives", "check_for",
+    "check_path", "check_waypoints", "checked_path", "choose_grasp_yaw", "execute_path", "execution_summary",
+    "grasp_candidates", "honesty", "manner_of", "render_info",
+]
+
 DEFAULT_RENDER = RenderSettings()
-
-
-@dataclass
-class Execution:
-    """What happened. ``frames`` are trajectory.json's frames; distances in metres."""
-
-    frames: list[dict]
-    timings: dict[str, float]
-    files: dict[str, Path]
-    max_deviation_m: float  # the held block's largest distance from the planned path while sliding
-    anchor_displacement_m: float  # the largest displacement of any block that was not held
-    max_lift_m: float = 0.0  # how far the held block rose above resting on the table
-    constraint_removed: bool = True
-    duration_s: float = 0.0  # simulated time of the episode
-    stats: dict = field(default_factory=dict)
-    displacements_m: dict[str, float] = field(default_factory=dict)  # per block not held: its largest displacement
-    render: dict | None = None  # how the frames were drawn (renderer used, camera, workers, wait): summary.json
-    settled_m: dict[str, float] = field(default_factory=dict)  # per object, how far it moved settling (mesh scenes)
-    # per object, its centre's height above the table as it rests at the start (settled, in a mesh scene): what
-    # the manner judges measure 'on the table' from
-    rests_m: dict[str, float] = field(default_factory=dict)
-
-
-def check_path(scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA) -> np.ndarray:
-    """Validate a mover path against the scene; return it cleaned (yaw unwrapped, repeats merged)."""
-    return checked_path(scene, mover, path, arm)[0]
-
-
-MAX_YAW_RAD = 1e4
-"""A yaw beyond this many radians (1,600 turns) is a unit mistake or garbage, not a motion."""
-
-
-def check_waypoints(scene: Scene, mover: str, path: np.ndarray) -> None:
-    """Finite numbers, sane yaws and every waypoint inside the workspace: checked on the waypoints
-    *before* the path is densified (the disk is convex, so a path between waypoints inside it stays inside;
-    with an arm's reach ring each straight move is checked against the ring's hole too,
-    ``Workspace.path_inside``). A waypoint 1e5 m away used to ask for gigabytes of dense points before being
-    refused."""
-    try:
-        p = np.asarray(path, dtype=float)
-    except (TypeError, ValueError, OverflowError) as e:
-        raise PathError(f'the path of "{mover}" is not a list of [x, y, yaw] numbers ({str(e)[:80]})') from None
-    if p.ndim != 2 or p.shape[1] != 3 or len(p) == 0:
-        raise PathError(f'the path of "{mover}" must be a list of [x, y, yaw] waypoints (got shape {p.shape})')
-    if not np.isfinite(p).all():
-        k = int(np.argmin(np.isfinite(p).all(axis=1)))
-        raise PathError(f'the path of "{mover}" has a number that is not finite at waypoint {k}')
-    if np.abs(p[:, 2]).max() > MAX_YAW_RAD:
-        raise PathError(f'the path of "{mover}" turns the block by more than {MAX_YAW_RAD:g} rad (a unit mistake?)')
-    ws = scene.workspace
-    k = ws.path_inside(p)
-    if k is not None and ws.ring is None:
-        r = float(np.hypot(*(p[k, :2] - np.array(ws.center))))
-        raise PathError(f'the path of "{mover}" leaves the workspace at waypoint {k} ({p[k, 0]:.4g}, {p[k, 1]:.4g}), '
-                        f"{r:.4g} m from its centre (radius {ws.radius} m)")
-    if k is not None:
-        what = f"at waypoint {k}" if k == 0 or not ws.contains(p[k, :2])[0] else f"between waypoints {k - 1} and {k}"
-        raise PathError(f'the path of "{mover}" leaves the workspace {what} ({p[k, 0]:.4g}, {p[k, 1]:.4g}): '
-                        f"it is {ws.describe()}")
-
-
-def checked_path(
-    scene: Scene, mover: str, path: np.ndarray, arm: ArmSpec = PANDA
-) -> tuple[np.ndarray, list[float | None]]:
-    """:func:`check_path`, and the grasp angles whose hand clears every other object along the whole path
-    (``[None]`` when the hand never reaches beyond the block: any multiple of 90 degrees will do): the
-    square angles that do, else those of a 5 degree grid."""
-    obj = scene.get(mover)
-    check_waypoints(scene, mover, path)
-    p = motion.clean_path(path)
-    start_gap = float(np.hypot(*(p[0, :2] - np.array(obj.xy))))
-    if start_gap > START_TOLERANCE:
-        raise PathError(f'the path starts at ({p[0, 0]:.3f}, {p[0, 1]:.3f}) but block "{mover}" is at '
-                        f"({obj.xy[0]:.3f}, {obj.xy[1]:.3f}), {start_gap * 1000:.0f} mm away")
-    dense = np.concatenate(motion.slide_chunks(p, radius=0.0)) if len(p) > 1 else p
-    inside = scene.workspace.contains(dense[:, :2])
-    if not inside.all():
-        k = int(np.argmin(inside))
-        r = float(np.hypot(*(dense[k, :2] - np.array(scene.workspace.center))))
-        raise PathError(
-            f'the path of "{mover}" leaves the workspace at ({dense[k, 0]:.3f}, {dense[k, 1]:.3f}), '
-            + (
-                f"{r:.3f} m from its centre (radius {scene.workspace.radius} m)"
-                if scene.workspace.ring is None
-                else f"outside {scene.workspace.describe()}"
-            )
-        )
-    hit = reach.blocked_by(scene, mover, dense, None, hand=False)  # the block itself
-    if hit is not None:
-        pose = dense[hit[1]]
-        raise PathError(f'the path of "{mover}" runs into "{hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f})')
-    shaped = obj.shape != "cube"
-    if not shaped and not reach.hand_matters(scene, mover, arm):
-        return p, [None]
-    first_hit = None
-    # a box, cylinder or mesh: only the angles its width fits, narrowest first (a cube fits any square one)
-    for angles in (
-        (reach.width_angles(obj, arm),) if shaped else (reach.SQUARE_ANGLES, np.arange(0.0, np.pi, reach.ANGLE_STEP))
-    ):
-        clear = []
-        for angle in angles:
-            hit = reach.blocked_by(scene, mover, dense, float(angle), arm)
-            if hit is None:
-                clear.append(float(angle))
-            elif first_hit is None:
-                first_hit = hit
-        if clear:
-            return p, clear
-    if first_hit is None:
-        raise PathError(f'no grasp angle fits "{mover}" between the open fingers (see the "grasp-width" check)')
-    pose = dense[first_hit[1]]
-    raise PathError(f'the hand holding "{mover}" would knock "{first_hit[0]}" at ({pose[0]:.3f}, {pose[1]:.3f}) '
-                    "whichever way it turns")
 
 
 def execute_path(scene: Scene, mover: str, path: np.ndarray, *, out_dir: Path | None,
@@ -253,29 +148,6 @@ def arm_primitives(world: World, render: RenderSettings | None, out_dir: Path | 
         raise
 
 
-def check_for(manner: MannerSpec, scene: Scene, mover: str, path: np.ndarray,
-              arm: ArmSpec = PANDA) -> tuple[np.ndarray, list[float | None]]:
-    """:func:`checked_path` as the manner needs it: a carried block may pass over other objects (only where it is
-    set down must be clear, and the hand is above everything), an object the manner cannot handle is refused."""
-    check_manner(manner, scene, mover, arm, path=np.asarray(path, float) if manner.motion == "push" else None)
-    if manner.motion != "carry":
-        return checked_path(scene, mover, path, arm)
-    check_waypoints(scene, mover, path)
-    p = motion.clean_path(path)
-    obj = scene.get(mover)
-    start_gap = float(np.hypot(*(p[0, :2] - np.array(obj.xy))))
-    if start_gap > START_TOLERANCE:
-        raise PathError(f'the path starts at ({p[0, 0]:.3f}, {p[0, 1]:.3f}) but block "{mover}" is at '
-                        f"({obj.xy[0]:.3f}, {obj.xy[1]:.3f}), {start_gap * 1000:.0f} mm away")
-    check_carry_path(scene, mover, p)
-    if obj.shape == "cube":
-        return p, [None]
-    # the fingers close across the object: only the angles whose width fits, narrowest first
-    angles = reach.width_angles(obj, arm)[:reach.MAX_WIDTH_HOLDS]
-    if not angles:
-        raise InfeasibleError(f'cannot carry "{mover}": no grasp angle fits it between the {arm.name}\'s fingers '
-                              f"({arm.gripper_opening * 100:.1f} cm); slide or push it instead")
-    return p, angles
 
 
 def _perform(prims, mover: str, path: np.ndarray, angles: list[float | None],
@@ -401,53 +273,3 @@ def _write_files(recorder, out_dir: Path | None, meta: dict, sizes: dict[str, fl
     return files
 
 
-def honesty(frames: list[dict], mover: str, path: np.ndarray, slide: slice,
-             rests: dict[str, float]) -> tuple[float, float, dict[str, float]]:
-    """Deviation of the held block from the planned path (while sliding), its lift (above ``rests``, each
-    object's centre height standing: a cube's half side), each other block's largest displacement from
-    where it started."""
-    deviation = 0.0
-    if frames[slide]:
-        pts = trajectory_poses(frames[slide], mover)[:, :2]
-        deviation = float(motion.polyline_distance(pts, path[:, :2]).max())
-    lift = max(f["poses"][mover][2] for f in frames) - rests[mover]
-    displaced = {}
-    for name in rests:
-        if name != mover:
-            xy = trajectory_poses(frames, name)[:, :2]
-            displaced[name] = float(np.hypot(*(xy - xy[0]).T).max())
-    return deviation, float(lift), displaced
-
-
-def render_info(render: RenderSettings | None, film) -> dict | None:
-    """summary.json's ``render``: the settings asked for and what the film did (the renderer it could start,
-    EGL or Tiny; its workers; how long the episode waited for its frames)."""
-    if render is None or film is None:
-        return None
-    return {"width": render.width, "height": render.height, "fps": render.fps, "renderer": film.renderer,
-            "camera": film.settings.camera.to_dict(), "workers": film.workers, "wait_s": round(film.wall_s, 4)}
-
-
-def execution_summary(ex: Execution, meta: dict, seed: int, render: RenderSettings | None) -> dict:
-    """What summary.json says about an execution (a replay's whole summary; the start of perform's)."""
-    return {
-        "schema": 1,
-        **{k: meta.get(k) for k in ("sentence", "action", "mover", "anchor")},
-        "seed": seed,
-        "timings_s": ex.timings,
-        "simulated_s": round(ex.duration_s, 4),
-        "execution": {
-            "max_deviation_m": round(ex.max_deviation_m, 6),
-            "anchor_displacement_m": round(ex.anchor_displacement_m, 6),
-            "displacements_m": {k: round(v, 6) for k, v in ex.displacements_m.items()},
-            "max_lift_m": round(ex.max_lift_m, 6),
-            "constraint_removed": ex.constraint_removed,
-            **ex.stats,
-            # how far each object moved settling before the episode: its figures above count from there
-            **({"settled_m": {k: round(v, 6) for k, v in ex.settled_m.items()}} if ex.settled_m else {}),
-        },
-        "render": ex.render,
-        "files": {k: v.name for k, v in ex.files.items()},
-        "versions": versions(),
-        **{k: v for k, v in meta.items() if k not in ("sentence", "action", "mover", "anchor")},
-    }

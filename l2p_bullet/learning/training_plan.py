@@ -9,7 +9,7 @@ A training plan is the current training set (:func:`trainset.build`, unchanged: 
 are those of ``l2p-bullet train``) plus optional extra sequences appended after it, drawn from their own
 generator so the current part stays bit-identical. Which extras an action gets, and of which kind, its spec
 declares (``ActionSpec.training``: ``wrong_motions``, ``graded_wrong``, ``grid_copies``, ``strays``,
-``near_starts``); the kinds are made here (:data:`WRONG_MOTIONS`, :data:`GRADED_WRONGS`):
+``near_starts``); the kinds are made in :mod:`.extra_motions` (:data:`WRONG_MOTIONS`, :data:`GRADED_WRONGS`):
 
 - ``planner_positives``: each own event (and its mirror image) as the planners make motions, straight
   moves through 1-3 of its own poses snapped to the discrete planner's rings (around also snapped to the
@@ -46,7 +46,8 @@ everything made from its own events), and kept wherever they are another action'
 actions' sets are bit-identical (:func:`own_trusted`; docs/learning.md, "untrusted demonstrations": it passed the suite
 and the planning checks but lowered around's agreement with people in SlideAround, so it is not shipped).
 
-The training options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest. The trainer
+The motions these extras are made of are in :mod:`.extra_motions` (its kinds re-exported here). The training
+options of :class:`ProgressTrainConfig` (weight decay, an ordinal head) are the rest. The trainer
 (:mod:`l2p_bullet.learning.train_progress`) reads a plan; a plan never calls the trainer.
 
 Nothing here reads a grade.
@@ -65,8 +66,27 @@ from ..actions import BUILTIN, ActionSpec, Training
 from ..data.demos import UNTRUSTED, Demo
 from ..progress.features import QSRConfig
 from . import motions as g
-from .augment import mirror
+from .extra_motions import (
+    GRADED_FAR,
+    GRADED_WRONGS,
+    NEAR_END,
+    NEAR_MIN_CLOSING,
+    NEAR_START,
+    STRAY_RINGS,
+    WRONG_MOTIONS,
+    _event_views,
+    _graded,
+    _near,
+    _strayed,
+    _wrong,
+)
 from .trainset import DataConfig, TrainingSequence, _labelled, build
+
+__all__ = [  # the plans' own names and the kinds of extra motion (extra_motions.py), read from here
+    "GRADED_FAR", "GRADED_WRONGS", "NEAR_END", "NEAR_MIN_CLOSING", "NEAR_START", "PARTIAL_CUTS", "SHIPPED",
+    "STRAY_RINGS", "WRONG_MOTIONS", "ProgressTrainConfig", "TrainingPlan", "declared", "extend", "extras",
+    "own_trusted", "plans", "shipped_extension", "training_set",
+]
 
 
 @dataclass(frozen=True)
@@ -200,144 +220,6 @@ def plans(ensemble: int, epochs: int) -> dict[str, TrainingPlan]:
         # the shipped plan with closer's endings made short (chains start closer from near)
         TrainingPlan("planner-graded-nogrid-near", train=t, **graded, grid=False, near_starts=True),
     ]}
-
-
-def _event_views(d: Demo, dcfg: DataConfig) -> list[g.Event]:
-    """A demonstration's event and its mirror image, smoothed (metres)."""
-    e = g.events([d], dcfg.smooth_frames)[0]
-    return [e, dataclasses.replace(e, mover=mirror(e.mover), anchor=mirror(e.anchor[None])[0])]
-
-
-def _backs_off(e: g.Event, rng: np.random.Generator) -> np.ndarray:
-    """Out 1.5-4 blocks from its start, away from the anchor, and back to about its start distance."""
-    p0, c = e.mover[0], e.anchor
-    d = p0[:2] - c[:2]
-    r0 = max(float(np.linalg.norm(d)), 1e-9)
-    out, back = p0.copy(), p0.copy()
-    out[:2] = p0[:2] + d / r0 * rng.uniform(1.5, 4.0) * e.size
-    back[:2] = c[:2] + d / r0 * (r0 + rng.uniform(-0.3, 0.3) * e.size)
-    return np.array([p0, out, back])
-
-
-def _out_and_back(e: g.Event, rng: np.random.Generator) -> np.ndarray:
-    """To its end and back to near its start."""
-    p0, p1 = e.mover[0], e.mover[-1]
-    return np.array([p0, p1, p0 + np.r_[rng.normal(0, 0.3 * e.size, 2), 0.0]])
-
-
-def _reversed(e: g.Event, rng: np.random.Generator) -> np.ndarray:
-    """From its end straight back to its start."""
-    return np.array([e.mover[-1], e.mover[0]])
-
-
-def _to_closest_and_back(e: g.Event, rng: np.random.Generator) -> np.ndarray:
-    """To its closest approach to the anchor and straight back."""
-    m, c = e.mover, e.anchor
-    k = int(np.argmin(np.hypot(*(m[:, :2] - c[:2]).T)))
-    return np.array([m[0], m[k], m[0]])
-
-
-def _half_round_and_back(e: g.Event, rng: np.random.Generator) -> np.ndarray:
-    """Half of it (two straight moves) and straight back."""
-    half = g.waypoints(e.mover[: max(2, len(e.mover) // 2)], 2)
-    return np.concatenate([half, half[-2::-1]])
-
-
-WRONG_MOTIONS: dict[str, Callable[[g.Event, np.random.Generator], np.ndarray]] = {
-    "backs-off": _backs_off, "out-and-back": _out_and_back, "reversed": _reversed,
-    "to-closest-and-back": _to_closest_and_back, "half-round-and-back": _half_round_and_back,
-}
-"""The wrong motions by kind (``Training.wrong_motions``): each makes the waypoints of one from an own
-event."""
-
-
-def _wrong(e: g.Event, rng: np.random.Generator, kinds: tuple[str, ...]) -> list[np.ndarray]:
-    """Wrong piecewise-straight motions made from an own event (module docstring), of the kinds its action
-    declares."""
-    return [g.straight_moves(WRONG_MOTIONS[k](e, rng), 0.25 * e.size) for k in kinds]
-
-
-def _goes_back(e: g.Event, rng: np.random.Generator) -> tuple[np.ndarray, float]:
-    """Back a share u of the way to the start: 1 - u of it is left."""
-    p0, p1 = e.mover[0], e.mover[-1]
-    u = rng.uniform(0.2, 1.0)
-    return (p1 + u * (p0 - p1))[None], 1.0 - u
-
-
-def _moves_out(e: g.Event, rng: np.random.Generator) -> tuple[np.ndarray, float]:
-    """k blocks straight out from its place beside the anchor: 1 - k / :data:`GRADED_FAR` of it is left."""
-    p1, c = e.mover[-1], e.anchor
-    k = rng.uniform(1.0, 5.0)
-    q = p1.copy()
-    q[:2] = c[:2] + (p1 - c)[:2] * (1 + k * e.size / max(float(np.linalg.norm((p1 - c)[:2])), 1e-9))
-    return q[None], max(0.0, 1.0 - k / GRADED_FAR)
-
-
-GRADED_WRONGS: dict[str, Callable[[g.Event, np.random.Generator], tuple[np.ndarray, float]]] = {
-    "goes-back": _goes_back, "moves-out": _moves_out}
-"""The graded wrong motions by kind (``Training.graded_wrong``): what follows the event, and the share of its
-final label left at the end."""
-
-
-def _graded(e: g.Event, rng: np.random.Generator,
-            kind: str | None) -> list[tuple[np.ndarray, np.ndarray, float]]:
-    """Wrong planner motions that keep part of the credit (``graded_wrongs``): (the event as straight moves'
-    waypoints, what follows it, the share of the event's final label left at the end); none for an action that
-    declares no kind (the waypoints are drawn all the same, so every action's extras stay as they were)."""
-    whole = g.waypoints(e.mover, int(rng.integers(1, 4)))
-    if kind is None:
-        return []
-    tail, left = GRADED_WRONGS[kind](e, rng)
-    return [(whole, tail, left)]
-
-
-GRADED_FAR = 5.0
-"""Blocks past its place at which a next-to keeps no credit (the planner's second-widest ring)."""
-
-STRAY_RINGS = tuple(g.DISTANCES[-2:])
-"""Where ``strays`` moves one of around's corners to (blocks from the anchor): the discrete planner's two
-outer rings (``planning.proposals.DISTANCES``); at the outer one no credit is left."""
-
-
-def _strayed(e: g.Event, rng: np.random.Generator, near: float) -> tuple[np.ndarray, float, float, float] | None:
-    """around's ``strays`` copy of an own event: (waypoints with one moved out, where along the straight
-    moves' length the move out to it starts and ends (fractions), the share of the label left from there);
-    None when the chosen pose is already that far out."""
-    n = int(rng.integers(4, 7))
-    way = g.waypoints(e.mover, n)
-    k = int(rng.integers(1, n + 1))
-    far = float(rng.choice(STRAY_RINGS))
-    r = float(np.linalg.norm(way[k, :2] - e.anchor[:2]))
-    if r >= far * e.size or r < 1e-9:
-        return None
-    way = g.pushed_out(way, k, e.anchor, far, e.size)
-    seg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(way[:, :2], axis=0).T))])
-    left = max(0.0, 1.0 - (far - near) / (STRAY_RINGS[-1] - near))
-    return way, seg[k - 1] / seg[-1], seg[k] / seg[-1], left
-
-
-NEAR_END = (1.05, 1.2)
-"""Blocks (centre to centre) from the anchor at which a ``near_starts`` copy ends: touching, with the margin."""
-NEAR_START = (1.25, 2.5)
-"""Blocks from the anchor within which a ``near_starts`` copy starts (chains' "closer" clauses start 1.25-1.75)."""
-NEAR_MIN_CLOSING = 0.1
-"""Blocks a ``near_starts`` crop must close, or it is not made."""
-
-
-def _near(e: g.Event, rng: np.random.Generator) -> list[np.ndarray]:
-    """closer's ``near_starts`` copies of an own event: shrunk about the anchor to end :data:`NEAR_END` from it,
-    cropped to start within :data:`NEAR_START`; as it is and as one straight move (none if it closes too little)."""
-    c, size = e.anchor[:2], e.size
-    d = np.hypot(*(e.mover[:, :2] - c).T) / size
-    end, start = rng.uniform(*NEAR_END), rng.uniform(*NEAR_START)
-    k = end / max(float(d[-1]), 1e-9)
-    m = e.mover.copy()
-    m[:, :2] = c + (m[:, :2] - c) * k
-    i0 = int(np.flatnonzero(d * k <= start)[0])  # the last frame is at ``end`` < ``start``
-    crop = m[i0:]
-    if len(crop) < 2 or (d[i0] - d[-1]) * k < NEAR_MIN_CLOSING:
-        return []
-    return [crop, g.straight_moves(crop[[0, -1]], 0.25 * size)]
 
 
 def declared(action: str, spec: ActionSpec | None = None) -> Training:

@@ -10,8 +10,8 @@ Two phases, as in flake8 and llm:
 
 - **found** (:func:`discover`): entry points are read from installed metadata and each module's folder
   is located with the import system's finders *without executing any module* (not even the plugin's
-  parent packages), then ``manifest.toml`` is read with :mod:`tomllib`. No torch, no plugin code, no
-  weights: listing actions and parsing a sentence stay fast and cannot be broken by one bad plugin.
+  parent packages; plugins/folders.py), then ``manifest.toml`` is read with :mod:`tomllib`. No torch, no
+  plugin code, no weights: listing actions and parsing a sentence stay fast and cannot be broken by one bad plugin.
 - **loaded** (:func:`load`): only the plugin a command needs is imported and its bundle validated and
   read by :func:`l2p_bullet.plugins.bundle.load_bundle`.
 
@@ -32,9 +32,7 @@ from __future__ import annotations
 
 import copy
 import functools
-import sys
 from dataclasses import dataclass, field, fields, replace
-from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -53,6 +51,7 @@ from ..errors import (
 from . import finder
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 from .finder import Plugin
+from .folders import locate_from_files, locate_module_folder, module_folder
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
@@ -112,69 +111,6 @@ class PluginInfo(Plugin):
         return m if isinstance(m, dict) else {}
 
 
-# --- locating a module's folder without importing anything ------------------------------------------
-def _find_spec_no_import(fullname: str, path: list[str] | None):
-    """Ask the meta-path finders for a spec, as the import system would, but execute nothing."""
-    if fullname in sys.modules and getattr(sys.modules[fullname], "__spec__", None) is not None:
-        return sys.modules[fullname].__spec__
-    for meta_finder in sys.meta_path:
-        find_spec = getattr(meta_finder, "find_spec", None)
-        if find_spec is None:
-            continue
-        try:
-            spec = find_spec(fullname, path)
-        except (ImportError, ValueError, OSError):
-            continue
-        if spec is not None:
-            return spec
-    return None
-
-
-def locate_module_folder(module: str) -> Path:
-    """The folder of ``module`` (a package's directory, or the directory holding a plain module).
-
-    Walks the dotted name level by level with the meta-path finders and each parent's search
-    locations, which is what ``import`` does, minus executing the parents' ``__init__``. Raises
-    :class:`LookupError` with a readable reason when the module cannot be found.
-    """
-    parts = module.split(".")
-    if not all(p.isidentifier() for p in parts):
-        raise LookupError(f'"{module}" is not a module name')
-    locations: list[str] | None = None
-    spec = None
-    for i in range(len(parts)):
-        fullname = ".".join(parts[: i + 1])
-        spec = _find_spec_no_import(fullname, locations)
-        if spec is None:
-            raise LookupError(f"module {fullname} is not installed (no finder knows it)")
-        if i < len(parts) - 1:
-            if spec.submodule_search_locations is None:
-                raise LookupError(f"{fullname} is a module, not a package, so it has no {parts[i + 1]}")
-            locations = list(spec.submodule_search_locations)
-    assert spec is not None
-    if spec.submodule_search_locations is not None:  # a package (regular or namespace)
-        for loc in spec.submodule_search_locations:
-            if Path(loc).is_dir():
-                return Path(loc)
-        raise LookupError(f"package {module} has no folder on disk")
-    if spec.origin and Path(spec.origin).is_file():
-        return Path(spec.origin).parent
-    raise LookupError(f"module {module} has no file on disk (origin {spec.origin!r})")
-
-
-def _locate_from_files(dist: metadata.Distribution | None, module: str) -> Path | None:
-    """Fallback for installs whose files are listed in RECORD but not reachable by the finders."""
-    if dist is None or not dist.files:
-        return None
-    parts = tuple(module.split("."))
-    for f in dist.files:
-        if f.parts[: len(parts)] == parts and f.name in (MANIFEST, "__init__.py") and len(f.parts) == len(parts) + 1:
-            folder = Path(str(dist.locate_file(f))).parent
-            if folder.is_dir():
-                return folder
-    return None
-
-
 # --- discovery --------------------------------------------------------------------------------------
 @functools.lru_cache(maxsize=64)
 def _parsed(raw: bytes, label: str) -> dict[str, Any]:
@@ -228,7 +164,7 @@ def discover(kind: str = "action") -> list[PluginInfo]:
         try:
             folder = locate_module_folder(base.module)
         except LookupError as e:
-            folder = _locate_from_files(plugin.dist, base.module)
+            folder = locate_from_files(plugin.dist, base.module)
             if folder is None:
                 found.append(replace(base, error=str(e)))
                 continue
@@ -368,7 +304,7 @@ def load(name: str, plugins: list[PluginInfo] | None = None) -> Bundle:
     folder = info.path
     if info.module:  # an installed plugin (not a folder being authored, see local())
         mod = finder.load(info)
-        folder = _module_folder(mod) or info.path
+        folder = module_folder(mod) or info.path
 
     try:
         bundle = load_bundle(folder)
@@ -396,14 +332,6 @@ def locate(spec: str, plugins: list[PluginInfo] | None = None) -> tuple[str, Pat
         raise FailedToLoadPlugin(info.name, info.package, info.error or "its bundle folder cannot be found")
     return info.name, info.path
 
-
-def _module_folder(mod: Any) -> Path | None:
-    paths = list(getattr(mod, "__path__", []) or [])
-    for p in paths:
-        if Path(p).is_dir():
-            return Path(p)
-    f = getattr(mod, "__file__", None)
-    return Path(f).parent if f else None
 
 
 def load_problem(name: str, plugins: list[PluginInfo] | None = None) -> str | None:

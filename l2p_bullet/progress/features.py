@@ -13,13 +13,12 @@ Invariances (property-tested in ``tests/progress/test_features.py``):
 - scaling the scene together with the block size changes nothing: every length is divided by the
   block side before anything else.
 
-Sequences are first resampled by **arc length** of the mover's path (``spacing`` blocks apart): the
-progress of "around" depends on where the block went, not on how fast a person slid it, and a
-planner's straight moves given by their end points become frames like a demonstration's.
-Everything is vectorised numpy; a batch is a padded ``(B, T, F)`` array.
+Sequences are first resampled by **arc length** of the mover's path (``resample.py``: where the block
+went, not how fast it was slid). Everything is vectorised numpy; a batch is a padded ``(B, T, F)`` array.
 
-Two declarations of an action's manifest (:mod:`l2p_bullet.core.frames`) append columns; without them
-(the five built-in actions) the columns above are all there is, unchanged:
+Two declarations of an action's manifest (:mod:`l2p_bullet.core.frames`; the configuration and the column
+names are in ``qsr.py``) append columns; without them (the five built-in actions) the columns above are all
+there is, unchanged:
 - ``frame = "viewer"``: the mover's offset from the anchor as a viewer sees it (left/right, in front/
   behind), which turning the scene changes: "to the left of" needs it, and only it;
 - ``anchors = 2``: the mover's place relative to the segment between the two anchors ("between").
@@ -35,223 +34,19 @@ the trained bundles.
 
 from __future__ import annotations
 
-import math
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.frames import RELATIVE, parse_anchors, parse_frame, viewer_offset
+from ..core.frames import viewer_offset
 from ..core.geometry import radial_extent
-from ..errors import MotionError
+from .qsr import TWO_ANCHOR_NAMES, VIEWER_NAMES, QSRConfig, feature_names
+from .resample import MAX_BLOCKS, Resampled, resample, resample_batch
 
-MAX_BLOCKS = 1000.0
-"""Longest path and widest spread of a motion, in block sides, that is scored. The human demonstrations
-travel at most 29 block sides (59 with the training set's augmentations) and stay within 14 of the
-anchor; the planner's paths within a 0.25 m disk. A motion beyond this is a unit mistake (millimetres
-read as metres, a wrong block size): resampling it every 0.25 block would take gigabytes."""
-
-
-@dataclass(frozen=True)
-class QSRConfig:
-    """Feature parameters. Every length is in blocks (units of the block side), angles in radians."""
-
-    spacing: float = 0.25
-    """Arc-length distance between resampled frames (DESIGN.md section 5: 0.25 beat time sampling)."""
-    cd_sectors: int = 8
-    """Cardinal-direction sectors around the anchor (8: the compass rose N, NE, E, ...)."""
-    qdc_edges: tuple[float, ...] = (1.5, 3.0, 5.0)
-    """QDC bins on the centre distance: touching/adjacent < 1.5 <= near < 3 <= far < 5 <= very far."""
-    moving_eps: float = 0.02
-    """A block moving less than this per resampled frame is static (MV and QTC's 0)."""
-    max_distance: float = 12.0
-    """Distances are clipped here before scaling (the network sees bounded inputs)."""
-    frame: str = RELATIVE
-    """Where the relation is seen from (``core/frames.py``): "relative", or "viewer[:name]" for the
-    viewer-frame columns."""
-    anchors: int = 1
-    """Reference objects: 2 appends the columns of the mover relative to the segment between them."""
-
-    def to_dict(self) -> dict:
-        d = asdict(self)
-        d["qdc_edges"] = list(self.qdc_edges)
-        # Left out at their defaults: a relative one-anchor manifest reads exactly as it did before
-        # frames and second anchors existed.
-        if self.frame == RELATIVE:
-            d.pop("frame")
-        if self.anchors == 1:
-            d.pop("anchors")
-        return d
-
-    @classmethod
-    def from_dict(cls, d: dict) -> QSRConfig:
-        known = {f.name for f in fields(cls)}
-        kw = {k: v for k, v in d.items() if k in known}
-        if "qdc_edges" in kw:
-            kw["qdc_edges"] = tuple(float(v) for v in kw["qdc_edges"])
-        if "frame" in kw:
-            kw["frame"] = parse_frame(kw["frame"]).name
-        if "anchors" in kw:
-            kw["anchors"] = parse_anchors(kw["anchors"])
-        return cls(**kw)
-
-    @property
-    def viewer(self) -> bool:
-        """Whether the features need a viewpoint (a viewer frame)."""
-        return self.frame != RELATIVE
-
-    @property
-    def n_features(self) -> int:
-        return len(feature_names(self))
-
-
-def feature_names(cfg: QSRConfig = QSRConfig()) -> list[str]:
-    """Names of the feature columns, in order (written to the manifest so a bundle documents itself)."""
-    names = ["dist", "log_dist", "gap", "dist_change_from_start", "log_dist_ratio", "bearing_cos",
-             "bearing_sin", "swept", "swept_abs", "face_alignment", "rot_cos", "rot_sin",
-             "path_length", "displacement", "first_frame"]
-    names += [f"cd_{i}" for i in range(cfg.cd_sectors)]
-    names += [f"qdc_{i}" for i in range(len(cfg.qdc_edges) + 1)]
-    names += ["mv_mover", "mv_anchor", "qtc_k_mover", "qtc_k_anchor", "qtc_l_mover", "qtc_l_anchor"]
-    names += ["d_dist", "d_swept", "d_rot", "cd_changed", "qdc_changed", "qtc_changed"]
-    if cfg.viewer:
-        names += VIEWER_NAMES
-    if cfg.anchors == 2:
-        names += TWO_ANCHOR_NAMES
-    return names
-
-
-VIEWER_NAMES = ["view_lateral", "view_depth", "view_cos", "view_sin", "d_view_lateral", "d_view_depth"]
-"""Viewer-frame columns: the mover's offset from the anchor seen from the viewpoint (lateral > 0 is the
-viewer's left, depth > 0 behind the anchor), its bearing from the line of sight, and their changes."""
-
-TWO_ANCHOR_NAMES = ["seg_t", "seg_lateral", "seg_dist", "mid_dist", "dist2", "gap2", "anchor_sep", "d_seg_dist"]
-"""Two-anchor columns: where the mover projects on the segment from anchor 1 (0) to anchor 2 (1), how far
-it is from that line, from the segment and from its midpoint, its distance and gap to anchor 2, how far
-apart the anchors are, and the change of the distance to the segment."""
-
-
-@dataclass
-class Resampled:
-    """A motion resampled by arc length: poses in block units and where each input frame falls."""
-
-    mover: np.ndarray  # (K, 3), x/y in blocks
-    anchor: np.ndarray  # (K, 3)
-    arc: np.ndarray  # (K,) arc length of each resampled frame (blocks)
-    input_arc: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (T,) arc length of input frames
-    times: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (K,) fractional input-frame index
-    more: list[np.ndarray] = field(default_factory=list)  # (K, 3) per further anchor, blocks
-
-
-def _as_track(poses: np.ndarray, n: int) -> np.ndarray:
-    a = np.asarray(poses, dtype=float)
-    if a.ndim == 1:
-        a = np.repeat(a[None], n, axis=0)
-    return a
-
-
-def _tracks(anchors: list[np.ndarray] | np.ndarray, ms: list[np.ndarray], what: str = "anchor") -> list[np.ndarray]:
-    """One ``(T,3)`` track per motion from one shared pose ``(3,)``, or one track/pose per motion."""
-    shared = not isinstance(anchors, list)
-    if shared and np.asarray(anchors).ndim != 1:
-        anchors = [np.asarray(anchors, float)] if len(ms) == 1 else list(anchors)
-        shared = False
-    as_ = [_as_track(anchors if shared else anchors[i], len(m)) for i, m in enumerate(ms)]
-    for m, a in zip(ms, as_, strict=True):
-        if a.shape != m.shape:
-            raise ValueError(f"{what} must be (3,) or {m.shape}, got {a.shape}")
-    return as_
-
-
-def resample_batch(movers: list[np.ndarray], anchors: list[np.ndarray] | np.ndarray, size: float,
-                   cfg: QSRConfig = QSRConfig(), more_anchors: list | None = None) -> list[Resampled]:
-    """Resample motions at arc lengths 0, spacing, 2 spacing, ... of the mover's path, plus its end.
-
-    The grid is fixed (not stretched to fit each path), so a path's prefix resamples to the same frames
-    as the path itself: scoring many candidates that extend one path shares their common prefix.
-    ``anchors`` is one pose ``(3,)`` for all, or one ``(T,3)`` track or ``(3,)`` pose per motion;
-    ``more_anchors`` one such entry per further anchor (two-anchor actions).
-    Angles are unwrapped before interpolating. A motion that does not move becomes a single frame:
-    standing still is never a long sequence. One vectorised pass for the whole batch.
-    """
-    ms = [np.asarray(m, dtype=float) for m in movers]
-    for m in ms:
-        if m.ndim != 2 or m.shape[1] != 3 or len(m) == 0:
-            raise ValueError(f"mover must be (T, 3) poses, got shape {m.shape}")
-    as_ = _tracks(anchors, ms)
-    T = np.array([len(m) for m in ms])
-    first = np.concatenate([[0], np.cumsum(T)[:-1]])
-    M, A = np.concatenate(ms), np.concatenate(as_)
-    _check_extent(M, A, T, first, size)
-    M_raw = M
-    M = np.column_stack([M[:, :2] / size, np.unwrap(M[:, 2])])
-    A = np.column_stack([A[:, :2] / size, np.unwrap(A[:, 2])])
-    step = np.linalg.norm(np.diff(M[:, :2], axis=0, prepend=M[:1, :2]), axis=1)
-    step[first] = 0.0
-    cum = np.cumsum(step)
-    arc = cum - np.repeat(cum[first], T)  # per-path arc length of every input frame
-    total = arc[first + T - 1]
-    if not np.all(total <= MAX_BLOCKS):
-        raise MotionError(f"the mover travels {float(np.max(total)):.3g} block sides (blocks of {size:.3g} m); at most "
-                          f"{MAX_BLOCKS:g} are scored: are the poses in metres and the block size right?",
-                          float(np.max(total)), MAX_BLOCKS)
-    total = np.where(total < 1e-9, 0.0, total)
-    # query arc lengths: the fixed grid below the total, then the total itself
-    n_grid = np.where(total > 0, np.floor(total / cfg.spacing - 1e-9).astype(int) + 1, 0)
-    K = n_grid + 1
-    path_of_q = np.repeat(np.arange(len(ms)), K)
-    k_in_path = np.arange(K.sum()) - np.repeat(np.concatenate([[0], np.cumsum(K)[:-1]]), K)
-    q = np.where(k_in_path < n_grid[path_of_q], k_in_path * cfg.spacing, total[path_of_q])
-    # one global monotone abscissa: paths separated by offsets, static frames by a tiny epsilon
-    offset = np.concatenate([[0.0], np.cumsum(total + 1.0)[:-1]])
-    local = np.arange(len(M)) - np.repeat(first, T)
-    xs = arc + np.repeat(offset, T) + local * 1e-9
-    t_glob = np.interp(q + offset[path_of_q] + 0.5e-9 * (q > 0), xs, np.arange(len(M), dtype=float))
-    t_glob = np.clip(t_glob, first[path_of_q], (first + T - 1)[path_of_q])
-    i0 = np.floor(t_glob).astype(int)
-    i1 = np.minimum(i0 + 1, (first + T - 1)[path_of_q])
-    w = (t_glob - i0)[:, None]
-    Mq, Aq = M[i0] * (1 - w) + M[i1] * w, A[i0] * (1 - w) + A[i1] * w
-    Xq = []
-    for extra in more_anchors or []:
-        X = np.concatenate(_tracks(extra, ms, "a further anchor"))
-        _check_extent(M_raw, X, T, first, size)
-        X = np.column_stack([X[:, :2] / size, np.unwrap(X[:, 2])])
-        Xq.append(X[i0] * (1 - w) + X[i1] * w)
-    out, qs = [], np.concatenate([[0], np.cumsum(K)])
-    for i in range(len(ms)):
-        sl = slice(qs[i], qs[i + 1])
-        out.append(Resampled(Mq[sl], Aq[sl], q[sl], arc[first[i]:first[i] + T[i]], t_glob[sl] - first[i],
-                             [x[sl] for x in Xq]))
-    return out
-
-
-def _check_extent(M: np.ndarray, A: np.ndarray, T: np.ndarray, first: np.ndarray, size: float) -> None:
-    """Refuse (:class:`MotionError`) what cannot be scored in bounded memory: a block size that is not a
-    positive number, non-finite poses, or poses farther than MAX_BLOCKS block sides from the anchor's start."""
-    if not (isinstance(size, int | float | np.floating) and math.isfinite(size) and size > 0):
-        raise MotionError(f"the block size must be a positive number of metres (got {size!r:.30})")
-    if not (np.all(np.isfinite(M)) and np.all(np.isfinite(A))):
-        raise MotionError("the motion contains non-finite poses (NaN or infinity)")
-    ref = np.repeat(A[first, :2], T, axis=0)
-    with np.errstate(over="ignore"):
-        extent = max(float(np.max(np.abs(M[:, :2] - ref))), float(np.max(np.abs(A[:, :2] - ref)))) / size
-    if not extent <= MAX_BLOCKS:
-        raise MotionError(f"the motion spreads over {extent:.3g} block sides (blocks of {size:.3g} m); at most "
-                          f"{MAX_BLOCKS:g} are scored: are the poses in metres and the block size right?",
-                          extent, MAX_BLOCKS)
-
-
-def resample(mover: np.ndarray, anchor: np.ndarray, size: float, cfg: QSRConfig = QSRConfig(),
-             more_anchors: list | None = None) -> Resampled:
-    """Resample one motion (see :func:`resample_batch`); ``anchor`` (and each of ``more_anchors``) is
-    ``(T,3)`` or one pose ``(3,)``."""
-    anchor = np.asarray(anchor, float)
-    more = (
-        None
-        if more_anchors is None
-        else [np.asarray(x, float) if np.asarray(x).ndim == 1 else [np.asarray(x, float)] for x in more_anchors]
-    )
-    return resample_batch([mover], anchor if anchor.ndim == 1 else [anchor], size, cfg, more)[0]
+__all__ = [  # the features' own names, and those of qsr.py and resample.py, which callers read from here
+    "MAX_BLOCKS", "TWO_ANCHOR_NAMES", "VIEWER_NAMES", "QSRConfig", "Resampled", "batch_features", "feature_names",
+    "features", "features_batch", "motion_features", "resample", "resample_batch",
+]
 
 
 def _half_extent(phi: np.ndarray, outline: np.ndarray | None = None) -> np.ndarray:
