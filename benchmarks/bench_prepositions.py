@@ -2,9 +2,11 @@
 
     .venv/bin/python benchmarks/bench_prepositions.py                      # default training (5 x 30)
     .venv/bin/python benchmarks/bench_prepositions.py --ensemble 2 --epochs 12 --scenes 10
+    .venv/bin/python benchmarks/bench_prepositions.py --scenes 1 --ensemble 1 --epochs 4 --events 4   # smoke run
 
 For "to the left of", "to the right of" (``frame = "viewer"``) and "between" (``anchors = 2``): scaffold
-the plugin, write the generated demonstrations (``learning.synthetic``, 2 sessions x 16 events, seed 0),
+the plugin, write the generated demonstrations (``learning.synthetic``, 2 sessions x 16 events, seed 0;
+``--events`` sets the events per session: fewer make a smaller training set, for a smoke run),
 train it with ``l2p-bullet train``'s code, then ``perform`` (executed by the arm, no rendering) on the
 test's scenes (seeds 0..N-1: ``random_scene`` / ``random_between_scene``) and on held-out scenes no
 choice was made on (seeds 1000..1000+N-1). The freshly trained folder is used directly
@@ -36,7 +38,7 @@ PLUGINS = {  # action: (phrase, frame, anchors, rules, sentence)
 }
 
 
-def build(root: Path, name: str, ensemble: int | None, epochs: int | None) -> tuple[Path, float]:
+def build(root: Path, name: str, ensemble: int | None, epochs: int | None, events: int = 16) -> tuple[Path, float]:
     """Scaffold, generate demonstrations and train one plugin; its bundle folder and training seconds."""
     import dataclasses
 
@@ -46,7 +48,7 @@ def build(root: Path, name: str, ensemble: int | None, epochs: int | None) -> tu
 
     phrase, frame, anchors, rules, _ = PLUGINS[name]
     s = scaffold(name, [phrase], root / f"l2p-{name}", frame=frame, anchors=anchors, judge=rules)
-    files = write_sessions(s.root / "demos", name, sessions=2, events=16, seed=0)
+    files = write_sessions(s.root / "demos", name, sessions=2, events=events, seed=0)
     cfg = ProgressTrainConfig()
     cfg = dataclasses.replace(cfg, ensemble=ensemble or cfg.ensemble, epochs=epochs or cfg.epochs)
     t = time.perf_counter()
@@ -89,6 +91,7 @@ def main() -> None:
     ap.add_argument("--scenes", type=int, default=30)
     ap.add_argument("--ensemble", type=int, default=None)
     ap.add_argument("--epochs", type=int, default=None)
+    ap.add_argument("--events", type=int, default=16, help="generated demonstrations per session (2 sessions)")
     args = ap.parse_args()
     from l2p_bullet.data.demos import load_demos
     from l2p_bullet.learning.synthetic import write_sessions
@@ -98,7 +101,7 @@ def main() -> None:
         root = Path(tmp)
         folders, train_s = {}, {}
         for name in PLUGINS:
-            folders[name], train_s[name] = build(root, name, args.ensemble, args.epochs)
+            folders[name], train_s[name] = build(root, name, args.ensemble, args.epochs, args.events)
         left_model = load_bundle(folders["left-of"]).progress_model()
         sets = {f"test seeds 0-{args.scenes - 1}": list(range(args.scenes)),
                 f"held-out seeds 1000-{999 + args.scenes}": list(range(1000, 1000 + args.scenes))}
@@ -119,9 +122,10 @@ def main() -> None:
         print("\nDiscrimination (the left-of model's final progress):")
         print(f"- on the executed right-of runs: mean {np.mean(scored):.3f}, max {np.max(scored):.3f}")
         for kind in ("right-of", "left-of"):
-            demos = load_demos(kind, write_sessions(root / f"held-{kind}", kind, sessions=1, events=16, seed=7))
+            demos = load_demos(kind, write_sessions(root / f"held-{kind}", kind, sessions=1, events=args.events,
+                                                    seed=7))
             f = [left_model.final(d.mover[: d.end + 1], d.anchor[: d.end + 1], d.size, viewer=d.viewer) for d in demos]
-            print(f"- on 16 generated {kind} demonstrations of another seed: mean {np.mean(f):.3f}, "
+            print(f"- on {len(f)} generated {kind} demonstrations of another seed: mean {np.mean(f):.3f}, "
                   f"min {np.min(f):.3f}, max {np.max(f):.3f}")
 
 

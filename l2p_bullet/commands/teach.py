@@ -47,7 +47,7 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     import dataclasses
     from pathlib import Path
 
-    from ..learning.train_progress import BundleTrainer, ProgressTrainConfig
+    from ..learning.training_plan import ProgressTrainConfig
     from ..teach.lesson import Lesson, find_action
 
     taught = find_action(action, plugin_dir, demos)  # a wrong name fails before anything listens
@@ -57,7 +57,7 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     from ..teach.rows import RowLesson
 
     composite = read_manifest(taught.bundle_dir).get("kind") == "composite"
-    lesson = (RowLesson if composite else Lesson)(taught, BundleTrainer(cfg), seed=seed)
+    lesson = (RowLesson if composite else Lesson)(taught, _Trainer(cfg), seed=seed)
     lesson.count()  # an unreadable demos file is a one-line error now, not on the first save
 
     from ..teach.app import create_app
@@ -78,6 +78,30 @@ def teach_cmd(action: str, plugin_dir: str | None, demos: str | None, host: str,
     click.echo(f"teaching \"{taught.sentence}\": open {url_of(sock)} (Ctrl+C to stop)", err=True)
     click.echo(f"demonstrations go to {Path(lesson.config()['demos'])}", err=True)
     serve(create_app(lesson, host), sock)
+
+
+class _Trainer:
+    """The page's trainer, ``learning.train_progress.BundleTrainer``, made when the page first trains: its module
+    imports torch, seconds of the page's start that a page refused (another teach holds the plugin), closed
+    unused, or teaching a composite (whose recipe needs no LSTM) would spend for nothing."""
+
+    def __init__(self, cfg) -> None:
+        self.cfg = cfg
+        self._made = None
+
+    def _trainer(self):
+        if self._made is None:
+            from ..learning.train_progress import BundleTrainer
+
+            self._made = BundleTrainer(self.cfg)
+        return self._made
+
+    @property
+    def ticks(self) -> int:
+        return self._trainer().ticks
+
+    def __call__(self, *args, **kwargs):
+        return self._trainer()(*args, **kwargs)
 
 
 COMMANDS: list[click.Command] = [teach_cmd]

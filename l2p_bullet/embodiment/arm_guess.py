@@ -66,6 +66,19 @@ def missing_meshes(path: str) -> list[str]:
 def guess(name: str, urdf: str, tool_link: str | None = None, fingers: list[str] | None = None) -> ArmSpec:
     """The arm in ``urdf`` as an ArmSpec named ``name``, every field guessed or measured (module docstring);
     PluginError with one line saying what is wrong when it cannot be used."""
+    spec = read_arm(name, urdf, tool_link, fingers)
+    spec = _home_and_wrist(spec)
+    spec = _mount(spec)
+    if spec.ik_restarts:
+        spec = _wrist_error(spec)
+    _, profile = arm_measure.measure_hand(spec)
+    return replace(spec, hand_profile=profile)
+
+
+def read_arm(name: str, urdf: str, tool_link: str | None = None, fingers: list[str] | None = None) -> ArmSpec:
+    """What :func:`guess` reads from the URDF alone: the chain, the fingers (their mimics, closed pose and opening),
+    the tool point and the wrist's limit, with the home, mount, reach and hand profile not yet measured. Separate
+    because these take milliseconds and the measurements seconds to minutes (inverse kinematics over the ring)."""
     from .sim.bullet import Bullet
     from .sim.robot import ARM
 
@@ -140,13 +153,7 @@ def guess(name: str, urdf: str, tool_link: str | None = None, fingers: list[str]
                    finger_mimic=tuple((j, lead, mult, off) for j, (lead, mult, off) in sorted(mimic.items())),
                    ik_restarts=IK_RESTARTS,
                    description=f"{name}: made by l2p-bullet new-arm from {os.path.basename(src)}")
-    spec = _reindex(spec, {j.index: j.name for j in joints})
-    spec = _home_and_wrist(spec)
-    spec = _mount(spec)
-    if spec.ik_restarts:
-        spec = _wrist_error(spec)
-    _, profile = arm_measure.measure_hand(spec)
-    return replace(spec, hand_profile=profile)
+    return _reindex(spec, {j.index: j.name for j in joints})
 
 
 def _reindex(spec: ArmSpec, names: dict[int, str]) -> ArmSpec:

@@ -14,7 +14,9 @@ The environment is made cheap: a bare ``venv`` (no pip of its own) whose ``.pth`
 project's environment as a site directory (so torch, pybullet and l2p-bullet are importable without
 copying them), and the project's pip installs into it with ``--python``, ``--no-deps`` and
 ``--no-build-isolation`` (no network). The project's own environment never sees the plugins.
-Small ensembles (2 LSTMs, 12 epochs): this tests the path a user follows, at a fraction of the cost.
+Small ensembles (2 LSTMs, 6 epochs, ``train``'s own ``--ensemble`` and ``--epochs``): this tests the path a user
+follows, at a fraction of the cost. Trained so, the left-of model gives its own runs 0.97 (at least 0.91) and the
+right-of runs 0.014 (at most 0.030), and every side and rule check is 12/12: the bounds below hold with room.
 """
 
 from __future__ import annotations
@@ -109,7 +111,7 @@ def installed(venv: Path, tmp_path_factory) -> Path:
         files = write_sessions(pkg / "demos", name, sessions=2, events=16, seed=0)
         # as documented: `--demos DIR/demos/*.npz`, which the shell expands to several files after one --demos
         trains.append([*cli, "train", name, "--demos", *map(str, files), "--out", str(module_dir),
-                       "--ensemble", "2", "--epochs", "12"])
+                       "--ensemble", "2", "--epochs", "6"])
     run_all(trains, work)
     for name in PLUGINS:
         manifest = (work / f"l2p-{name}" / f"l2p_{name.replace('-', '_')}" / "manifest.toml").read_text()
