@@ -30,7 +30,6 @@ from ..core.contracts import read_json
 from ..core.geometry import polygons_overlap
 from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
-from ..core.vocabulary import normalize_name
 from ..errors import InfeasibleError, L2PError, LanguageError, PluginError
 from ..language import parse_list, phrase_matches, phrase_tokens, strip_polite, tokens
 from ..pipeline import resolve
@@ -66,8 +65,8 @@ class RowSlot:
         return np.array([xy[0], xy[1], o.yaw if self.aligned else math.atan2(u[1], u[0])])
 
 
-def composite_phrases(plugins: list | None) -> dict[str, str]:
-    return {ph: p.name for p in registry.composites(plugins) for ph in p.phrases}
+def composite_phrases(plugins: list | None, installed: list | None = None) -> dict[str, str]:
+    return {ph: p.name for p in registry.composites(plugins, installed) for ph in p.phrases}
 
 
 def is_composite(sentence: str, plugins: list | None = None) -> bool:
@@ -76,10 +75,11 @@ def is_composite(sentence: str, plugins: list | None = None) -> bool:
     if not isinstance(sentence, str):
         return False
     low = tuple(w.lower() for w in strip_polite(tokens(sentence)))
-    usable = composite_phrases(plugins)
+    installed = registry.discover("composite")
+    usable = composite_phrases(plugins, installed)
     if any(phrase_matches(low, t) for t, _, _ in phrase_tokens(usable)):
         return True
-    return _broken_composite(sentence, plugins, usable) is not None  # composite_clauses then names it
+    return _broken_composite(sentence, plugins, usable, installed) is not None  # composite_clauses names it
 
 
 def load_recipe(action: str, plugins: list | None) -> Recipe:
@@ -89,10 +89,11 @@ def load_recipe(action: str, plugins: list | None) -> Recipe:
 
 def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list | None:
     """The chain's clauses for a composite sentence, each with its slot; None for any other sentence."""
-    phrases = composite_phrases(plugins)
+    installed = registry.discover("composite")
+    phrases = composite_phrases(plugins, installed)
     lc = parse_list(sentence, scene, phrases) if phrases else None
     if lc is None:
-        untaught = _broken_composite(sentence, plugins, phrases)
+        untaught = _broken_composite(sentence, plugins, phrases, installed)
         if untaught is not None:
             raise untaught
         return None
@@ -119,13 +120,12 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
     return clauses
 
 
-def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str]) -> PluginError | None:
+def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str],
+                      installed: list) -> PluginError | None:
     """The error naming a composite that cannot be used (not taught yet, say) when ``sentence`` starts with one
     of its phrases that no usable plugin owns: as a broken single action's phrase is named
     (:func:`~l2p_bullet.plugins.registry.blocked_phrases`, the same rule), not "cannot find a preposition"."""
-    given = [p for p in (plugins or []) if p.kind == "composite"]
-    names = {normalize_name(p.name) for p in given}
-    pool = given + [p for p in registry.discover("composite") if normalize_name(p.name) not in names]
+    pool = registry.composites(plugins, installed, usable=False)
     blocked = {ph: e for ph, e in registry.blocked_phrases(pool).items() if ph not in usable}
     if not blocked or not isinstance(sentence, str):
         return None

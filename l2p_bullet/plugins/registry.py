@@ -175,12 +175,15 @@ def discover(kind: str = "action") -> list[PluginInfo]:
     return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
 
 
-def composites(plugins: list[PluginInfo] | None = None) -> list[PluginInfo]:
-    """The usable composite plugins: those in ``plugins`` (a folder being taught, :func:`local`) first, then
-    the installed ones of other names."""
-    given = [p for p in (plugins or []) if p.ok and p.kind == "composite"]
+def composites(plugins: list[PluginInfo] | None = None, installed: list[PluginInfo] | None = None,
+               usable: bool = True) -> list[PluginInfo]:
+    """The usable composite plugins (every one, usable or not, with ``usable=False``): those in ``plugins`` (a
+    folder being taught, :func:`local`) first, then the installed ones of other names; ``installed`` is
+    ``discover("composite")`` where the caller has it already (reading a sentence asks twice)."""
+    given = [p for p in (plugins or []) if (p.ok or not usable) and p.kind == "composite"]
     names = {normalize_name(p.name) for p in given}
-    return given + [p for p in discover("composite") if p.ok and normalize_name(p.name) not in names]
+    pool = discover("composite") if installed is None else installed
+    return given + [p for p in pool if (p.ok or not usable) and normalize_name(p.name) not in names]
 
 
 def local(name: str, folder: Path) -> PluginInfo:
