@@ -249,13 +249,13 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
 def _group_first(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int,
                  context: Context | None) -> list[tuple[str, Command]] | None:
     """"there r two cylinders, move the short one towards the bunny and the other one away from it": a group
-    shown before a comma or colon, then clauses that pick among it (one object shown is pointing.py's)."""
+    shown before a comma or colon, then clauses that pick among it, or one object that "it" then means."""
     m = pointing.TOPIC.match(text)
     if m is None or depth >= MAX_CLAUSES:
         return None
     shows = pointing.shown(m.group("what"), scene, context)
-    if shows is None or len(shows.objects) < 2:
-        return None
+    if shows is None or (len(shows.objects) < 2 and shows.lifted):
+        return None  # one object shown is what "it" then means ("About the can: move it past Q"); lifted, a carry
     try:
         return _resolve_text(m.group("rest"), previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:

@@ -66,6 +66,8 @@ clause before, in this verb's manner."""
 NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
                       r"(?:\s+it)?\s*,\s*", re.IGNORECASE)
 """A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
+ABOUT = re.compile(r"^\s*(?:about|regarding|as\s+for|now\s+for)\s+(?=\S)", re.IGNORECASE)
+"""An opening that says which object the next words are about ("About the can: move it ...")."""
 BOTH = re.compile(r"\b(?:them\s+both|both\s+of\s+them|both|them)\b", re.IGNORECASE)
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
@@ -89,6 +91,7 @@ class Shown:
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
     text = " ".join(strip_polite(text.split(), frozenset(scene.names))) or text  # "Please lift the blue cup."
+    text = ABOUT.sub("", text) or text  # "About the can: move it past Q"
     m = TOO_CLOSE.match(text)
     if m is not None:
         what, other = _objects(m.group("what"), scene, context), _objects(m.group("other"), scene, context)

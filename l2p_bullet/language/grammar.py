@@ -222,10 +222,23 @@ ON_THE_TABLE = tuple(tuple(p.split()) for p in (
 cannot do."""
 
 
+WITH_FINGERS = tuple(tuple(p.split()) for p in (
+    "with your fingers", "with the fingers", "with its fingers", "using your fingers", "using the fingers",
+    "with your fingertips", "with the fingertips",
+))
+"""Closing words that say how a push is done: read past after a push's verb ("bump the tray toward the bear with
+your fingers"); after another verb they are left, and the sentence is refused as written."""
+
+
 def _on_the_table(rest: list[str], manner: str, sentence: str) -> list[str]:
-    """``rest`` without closing words of :data:`ON_THE_TABLE`; a one-line error where the manner lifts the object
-    ("carry A past B without lifting it" asks for two things at once)."""
+    """``rest`` without closing words of :data:`ON_THE_TABLE` (or of :data:`WITH_FINGERS` after a push); a
+    one-line error where the manner lifts the object ("carry A past B without lifting it" asks for two things at
+    once)."""
     low = tuple(w.lower() for w in rest)
+    if manner == "push":
+        tail = next((t for t in WITH_FINGERS if len(low) > len(t) and low[-len(t):] == t), None)
+        if tail is not None:
+            return _on_the_table(rest[:-len(tail)], manner, sentence)
     for tail in ON_THE_TABLE:
         if len(low) > len(tail) and low[-len(tail):] == tail:
             if manners.get(manner).airborne:

@@ -60,6 +60,7 @@ POINTING = frozenset({
     "it", "its", "this", "that", "these", "those", "them", "they", "one", "ones", "other", "another", "same",
     "both", "either", "all", "each", "every", "two", "three", "first", "second", "third", "last", "between",
     "middle", "center", "centre", "behind", "front", "left", "right", "him", "her", "his", "em", "'em",
+    "latter", "former",
 }) | SIZE_WORDS | frozenset(SIZE_SUPERLATIVES) | frozenset(COMPARATIVE_OF) | frozenset(PLACE_ADJECTIVES) \
     | NEAREST | FARTHEST
 """Words that describe or point at an object: left over, they would have picked another object."""
@@ -72,6 +73,9 @@ WISHES = frozenset({
 GENERIC_VERBS = frozenset({"move", "put", "place", "set", "position", "get", "take", "bring", "relocate",
                            "reposition", "send", "translate", "displace", "circle"})
 """Verbs that name no manner of their own: with a manner's verb in the same clause, that one decides."""
+HINTS = {"fingers": "push", "finger": "push", "fingertips": "push", "air": "carry"}
+"""Words that say the manner as a verb would: "with your fingers" is how a push is done, "through the air" how a
+carry goes (the verb they stand for, looked up among the manners' verbs)."""
 MAX_SPAN = 7
 """Longest description tried for one object, in words."""
 
@@ -164,6 +168,11 @@ def _manner(low: list[str], verbs: list[tuple[tuple[str, ...], str, str]]) -> tu
                 generic = generic or (first, manner)
             else:
                 specific.setdefault(manner, first)
+    for word, verb in HINTS.items():
+        if word in low:
+            manner = next((m for head, _, m in verbs if head == (verb,)), None)
+            if manner is not None:
+                specific.setdefault(manner, verb)
     if len(specific) > 1:
         return None
     if specific:

@@ -182,6 +182,10 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
                             f'{context.anchor} (named last); name the one you mean, or say "it"')
     if opening is not None and low[-1] in NOUNS:
         low = ("it",)
+    if low in (("the", "latter"), ("the", "former")):  # the clause before's two objects, in the order named
+        if context is None or context.mover is None or context.anchor in (None, context.mover):
+            raise _no_earlier(said, role)
+        return context.anchor if low[1] == "latter" else context.mover
     if low[:2] == ("the", "other") and len(low) > 2 and low not in PRONOUNS_ANCHOR:
         return _the_other(said, words[2:], context, role, scene)
     if low in PRONOUNS_MOVER or low in PRONOUNS_ANCHOR:

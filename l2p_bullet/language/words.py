@@ -111,7 +111,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
     "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",
     "only a little": "little", "only a bit": "little", "an inch or so": "little", "an inch": "little",
-    "very tight": "right", "tight": "right", "very tightly": "right", "snug": "right",
+    "very tight": "right", "tight": "right", "right up": "right", "very tightly": "right", "snug": "right",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})

@@ -90,7 +90,7 @@ DISAGREED = {
 smallest); "leftmost" / "rightmost" 2-3 cm apart is clear for the three authors of the corpus table."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 140), ("heldout11.tsv", 138)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 143), ("heldout11.tsv", 139)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %

@@ -273,3 +273,38 @@ def test_an_opening_that_names_objects_is_not_read_past(plugins):
     front object of the table (the teddy), which reading past the opening as politeness gave."""
     assert read("Of the two blue cubes, push the front one past G.", plugins, "heldout6.tsv") == "push:past B G"
     assert read("yo can u move the teddy past G", plugins, "heldout6.tsv") == "slide:past teddy G"
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # phrases typed without their article, as a homophone, or said by what is not wanted
+    ("Move A to other side of B.", "slide:past A B", "corpus.tsv"),
+    ("push A in direction of the duck", "push:closer A duck", "corpus.tsv"),
+    ("move C passed the duck", "slide:past C duck", "corpus.tsv"),
+    ("I need that A is not so close to B.", "slide:away A B", "corpus.tsv"),
+    # openings, closings, dashes; push said by the fingers
+    ("yo can you move A next to B plz", "slide:next-to A B", "corpus.tsv"),
+    ("thx in advance - A closer to B pls", "slide:closer A B", "corpus.tsv"),
+    ("A should be next to the duck, make it happen", "slide:next-to A duck", "corpus.tsv"),
+    ("bump C toward A w ur fingers", "push:closer C A", "corpus.tsv"),
+    ("move C toward A with your fingers", "push:closer C A", "corpus.tsv"),
+    ("Move A right up beside B.", "slide:next-to A B extent=right", "corpus.tsv"),
+    # references: the latter, a topic said first, a comparative of two, a list without commas
+    ("Place A beside B. Then move the latter around C.", "slide:next-to A B ; slide:around B C", "corpus.tsv"),
+    ("About the duck: move it past A, then move it around B.", "slide:past duck A ; slide:around duck B",
+     "corpus.tsv"),
+    ("Move the larger of the two red cubes next to the tin.", "slide:next-to R can", "heldout10.tsv"),
+    ("line up the duck the green cube and the blue cube", "row duck,B,C", "corpus.tsv"),
+    ("Make row from A, B and C.", "row A,B,C", "corpus.tsv"),
+])
+def test_what_the_tenth_and_eleventh_authors_prompted_reads_as_meant(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence, table", [
+    ("slide C toward A through the air", "corpus.tsv"),       # a slide through the air asks two manners
+    ("Move the latter around C.", "corpus.tsv"),                # no clause before names two objects
+    ("line up the duck the cube and the blue cube", "corpus.tsv"),  # "the cube" is one of three
+])
+def test_what_the_tenth_and_eleventh_authors_prompted_still_asks(plugins, sentence, table):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, table)
