@@ -61,10 +61,6 @@ SLACK_S = 20.0
 DEEPEN = 0.00025  # m per control period a mesh's bite deepens while the hand is at its target and it stays put
 DEEPEST = 0.02  # m: the most a mesh's bite deepens beyond PRESS
 STILL = 0.00005  # m in a control period: a mesh that moved less than this, the hand at its target, is not pushed
-TURN_TOL = math.radians(2.0)  # rad: a turn asked for (a path that starts turning in place) is done within this
-TURN_INNER = 0.35  # block sides from the block's centre line to the turning pusher's inner edge: the face's outer part
-TURN_STALL_S = 2.0  # s without 1 degree of turn: the turn is stuck, the push goes on at the yaw it has
-TURN_TIME_S = 30.0  # s: the most a turn takes
 
 
 class Pusher:
@@ -74,13 +70,6 @@ class Pusher:
         self.prims, self.world, self.robot = prims, prims.world, prims.world.robot
         self.mover, self.size = mover, float(prims.world.sizes[mover])
         xy = np.asarray(path, float)[:, :2]
-        # a path that starts with a turn in place (the planner's, where a pushed block must turn square first,
-        # planning/nearer.py) asks the block turned to that yaw before it is pushed along the rest
-        still = np.flatnonzero(np.hypot(*(xy - xy[0]).T) > 1e-9)  # the frames of that turn: up to the first that moves
-        last = (int(still[0]) if len(still) else len(xy)) - 1
-        turn = float(np.asarray(path, float)[last, 2] - np.asarray(path, float)[0, 2])
-        self.turn_to = float(np.asarray(path, float)[last, 2]) if abs(turn) > TURN_TOL else None
-        self.turned: dict | None = None
         keep = np.concatenate([[True], np.hypot(*np.diff(xy, axis=0).T) > 1e-9])
         self.xy = drop_spurs(xy[keep], self.size)
         seg = np.hypot(*np.diff(self.xy, axis=0).T) if len(self.xy) > 1 else np.zeros(0)
@@ -296,12 +285,9 @@ class Pusher:
         prims = self.prims
         end = self.xy[-1]
         total = float(self.arc[-1])
-        if self.turn_to is not None:
-            self.turned = self.turn(self.turn_to)
-            self._from_here()
         b = self.block()
         phi = self._aim(b)
-        # from the rest pose (or above the turned block): above the pushing side, then down beside the block
+        # from the rest pose: above the pushing side, then down beside the block
         start, clear = self.come_down(b, phi)
         start[3] = self.yaw_for(phi, prims.pose[3], start)
         blocked = not clear  # no room to come down (push_refusal says so before anything moves)
@@ -378,104 +364,7 @@ class Pusher:
             "stopped": stopped, "repositions": self.repositions, "control_ticks": self.ticks,
             "shifted_ticks": self.shifted,
             "contact_ticks": self.contact_frames, "tipped": stopped == "tipped", "escaped": stopped == "escaped",
-            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": self.tip_z}
-            | ({"turn": self.turned} if self.turned is not None else {})}
-
-    def turn(self, yaw: float) -> dict:
-        """Turn the block in place to ``yaw`` (its faces square to it: modulo a quarter turn) before it is pushed:
-        the flat pusher, turned square to one of the block's faces, presses only that face's outer part
-        (its inner edge :data:`TURN_INNER` sides out from the block's centre line), so the push turns the block
-        as it nudges it along that face. Of the four faces the one whose pusher keeps :data:`CLEARANCE` from every
-        other object and whose push heads least toward them (along the anchor's face, not into it, where the
-        block touches the anchor). The pusher stays square to the face as the block turns. Returns what
-        happened (``from_deg``, ``to_deg``, ``left_deg``: the turn still missing, ``stopped``)."""
-        prims = self.prims
-        quarter = math.pi / 2
-
-        def left(b: np.ndarray) -> float:  # the turn still to make, within an eighth of a turn either way
-            return (yaw - b[2] + quarter / 2) % quarter - quarter / 2
-
-        b = b0 = self.block()
-        first = left(b)
-        sign = math.copysign(1.0, first)
-        others = [np.array(self.world.pose(n)[:2]) for n in self.others]
-
-        def pose_for(b: np.ndarray, k: int) -> tuple[np.ndarray, float]:
-            phi = b[2] + k * quarter  # the push direction: into the face opposite it
-            perp = np.array([-math.sin(phi), math.cos(phi)])
-            e = -sign * (TURN_INNER * self.size + self.width)  # the torque about the centre is -e per unit force
-            r = self.size / 2 + self.half
-            xy = b[:2] - r * np.array([math.cos(phi), math.sin(phi)]) + e * perp
-            return np.array([xy[0], xy[1], self.z, 0.0]), phi
-
-        best = None
-        for k in range(4):
-            pose, phi = pose_for(b, k)
-            if not self.clear(pose[:2], phi):
-                continue
-            u = np.array([math.cos(phi), math.sin(phi)])
-            # the push's heading toward (or away from: "closer" would go back) each other object, and whether the
-            # pusher stands on its side of the block
-            aside = (pose[:2] - b[:2]) / float(np.hypot(*(pose[:2] - b[:2])))
-            score = max((abs(float(np.dot(u, w))) + 2.0 * max(float(np.dot(aside, w)), 0.0)
-                         for w in ((o - b[:2]) / max(float(np.hypot(*(o - b[:2]))), 1e-9) for o in others)),
-                        default=0.0)
-            if best is None or score < best[0]:
-                best = (score, k)
-        out = {"from_deg": round(math.degrees(first), 2)}
-        if best is None or abs(first) <= TURN_TOL:
-            return out | {"to_deg": round(math.degrees(first), 2), "left_deg": round(math.degrees(first), 2),
-                          "stopped": "no-room" if best is None else "square"}
-        k = best[1]
-        pose, phi = pose_for(b, k)
-        pose[3] = self.yaw_for(phi, prims.pose[3], pose)
-        above = pose.copy()
-        above[2] = max(pose[2], float(self.world.heights[self.mover]) + CLEAR + self.robot.drop) + HOVER
-        prims.go(above, APPROACH, "turn-approach", short_turn=False)
-        prims.go(pose, DESCEND, "turn-down")
-        t0 = best_t = self.world.time
-        best_left, stopped = abs(first), "time"
-        while self.world.time - t0 < TURN_TIME_S:
-            b = self.block()
-            now = left(b)
-            if abs(now) <= TURN_TOL or (now * sign < 0 and abs(now) < quarter / 4):  # square, or just past it
-                stopped = "square"
-                break
-            if abs(now) < best_left - math.radians(1.0):
-                best_left, best_t = abs(now), self.world.time
-            elif self.world.time - best_t > TURN_STALL_S:
-                stopped = "stalled"
-                break
-            if self.world.tilt(self.mover) > math.radians(20.0):
-                stopped = "tipped"
-                break
-            target, phi = pose_for(b, k)
-            target[:2] += PRESS * np.array([math.cos(phi), math.sin(phi)])
-            target[3] = prims.pose[3] + float(np.clip(self.yaw_for(phi, prims.pose[3], target, WRIST_MARGIN / 2)
-                                                      - prims.pose[3], -TURN_RATE * self.dt, TURN_RATE * self.dt))
-            step = prims.pose.copy()
-            d = target[:2] - prims.pose[:2]
-            n = float(np.hypot(*d))
-            lim = SPEED * self.prims.pace.velocity * self.dt
-            step[:2] += d * min(1.0, lim / max(n, 1e-12))
-            step[3] = target[3]
-            self.tick(step)
-        up = prims.pose.copy()
-        up[2] = float(self.world.heights[self.mover]) + CLEAR + self.robot.drop
-        prims.recorder.contact = None
-        prims.go(up, DESCEND, "turn-up")
-        after = self.block()
-        now = left(after)
-        return out | {"to_deg": round(math.degrees(first - now), 2), "left_deg": round(math.degrees(now), 2),
-                      "moved_m": round(float(np.hypot(*(after[:2] - b0[:2]))), 4), "stopped": stopped}
-
-    def _from_here(self) -> None:
-        """After a turn in place: the path from where the block is now, straight to the path's end (the turn nudged
-        the block along a face; the planned way in from where it started lies beside it, or behind it)."""
-        b = self.block()
-        self.xy = np.array([b[:2], self.xy[-1]])
-        self.arc = np.array([0.0, float(np.hypot(*(self.xy[1] - self.xy[0])))])
-        self.sigma = 0.0
+            "pusher_half_thickness_m": round(self.half, 6), "fingertips_z_m": self.tip_z}}
 
     def drift(self, b: np.ndarray, side: float) -> float:
         """How far (rad, signed, at most :data:`BIAS_MAX`) the block's own motion turns from the direction
