@@ -25,8 +25,8 @@ Rules of the world (the same ones the arm obeys when it executes the path):
   hole (``Workspace.segments_inside``).
 - A pushed block (``pusher``, l2p_bullet/manners) has the closed fingers behind it along each move, never
   beside or ahead of it: each sub-pose of a move has the pusher's rectangle behind the block's face opposite
-  the travel (tested as its own polygon), so a block may be pushed right up to another ("closer", "next to") while a move away from a
-  block it touches needs room for the fingers between them.
+  the travel (tested as its own polygon), so a block may be pushed right up to another ("closer", "next to")
+  while a move away from a block it touches needs room for the fingers between them.
 - Moves are interpolated at a given speed into frames (one frame every ``step`` metres of travel, or
   every ``rot_step`` radians of turn, whichever needs more), so a path can be scored by a progress
   model that reads pose sequences.
