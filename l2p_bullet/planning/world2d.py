@@ -24,9 +24,9 @@ Rules of the world (the same ones the arm obeys when it executes the path):
   region non-convex, and a move must also keep its closest approach to the arm's base outside the ring's
   hole (``Workspace.segments_inside``).
 - A pushed block (``pusher``, l2p_bullet/manners) has the closed fingers behind it along each move, never
-  beside or ahead of it: each sub-pose of a move adds the pusher's rectangle behind the block's face opposite
-  the travel, so a block may be pushed right up to another ("closer", "next to") while a move away from a
-  block it touches needs room for the fingers between them.
+  beside or ahead of it: each sub-pose of a move has the pusher's rectangle behind the block's face opposite
+  the travel (tested as its own polygon), so a block may be pushed right up to another ("closer", "next to")
+  while a move away from a block it touches needs room for the fingers between them.
 - Moves are interpolated at a given speed into frames (one frame every ``step`` metres of travel, or
   every ``rot_step`` radians of turn, whichever needs more), so a path can be scored by a progress
   model that reads pose sequences.
@@ -260,42 +260,48 @@ class World2D:
             m_axes = np.concatenate(
                 [edge_normals(polys[:, :-1]), edge_normals(polys[:, 1:]),
                  np.broadcast_to(perp[idx, None, None, :], (len(idx), n_sub, 1, 2))], axis=2)
-            if self.pusher is not None:
-                polys = self._with_pusher(polys, sub[idx], perp[idx], length[idx, 0] > 1e-12)
-                along = np.stack([perp[idx, 1], -perp[idx, 0]], axis=-1)  # the travel direction: the pusher's sides
-                m_axes = np.concatenate([m_axes, np.broadcast_to(along[:, None, None, :], (len(idx), n_sub, 1, 2))],
-                                        axis=2)
             hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
+            parts = [(hulls, m_axes)]
+            if self.pusher is not None:  # the fingers' rectangle, tested on its own (below)
+                rects = self._pusher_rects(polys, sub[idx], perp[idx], length[idx, 0] > 1e-12)
+                along = np.stack([perp[idx, 1], -perp[idx, 0]], axis=-1)  # the travel direction: the pusher's sides
+                r_axes = np.broadcast_to(np.stack([perp[idx], along], axis=1)[:, None], (len(idx), n_sub, 2, 2))
+                parts.append((np.concatenate([rects[:, :-1], rects[:, 1:]], axis=2), r_axes))
             for i in group:
                 j = np.flatnonzero(near[i, idx] & ok[idx])
                 if len(j) == 0:
                     continue
                 poly, normals, margin = self._obs_polys[i], self._obs_normals[i], margins[i]
-                axes = np.concatenate([m_axes[j], np.broadcast_to(normals, (len(j), n_sub, *normals.shape))], axis=2)
-                pm = np.einsum("msad,mskd->msak", axes, hulls[j])
-                po = np.einsum("msad,kd->msak", axes, poly)
-                sep = ((pm.max(-1) + margin <= po.min(-1) + 1e-12)
-                       | (po.max(-1) + margin <= pm.min(-1) + 1e-12))
-                ok[idx[j]] = sep.any(-1).all(-1)
+                free = np.ones(len(j), bool)
+                for shapes, s_axes in parts:
+                    axes = np.concatenate([s_axes[j], np.broadcast_to(normals, (len(j), n_sub, *normals.shape))],
+                                          axis=2)
+                    pm = np.einsum("msad,mskd->msak", axes, shapes[j])
+                    po = np.einsum("msad,kd->msak", axes, poly)
+                    sep = ((pm.max(-1) + margin <= po.min(-1) + 1e-12)
+                           | (po.max(-1) + margin <= pm.min(-1) + 1e-12))
+                    free &= sep.any(-1).all(-1)
+                ok[idx[j]] = free
         return ok
 
-    def _with_pusher(self, polys: np.ndarray, sub: np.ndarray, perp: np.ndarray, travels: np.ndarray) -> np.ndarray:
-        """The block's outline per sub-pose (M, S+1, K, 2) with the pusher's four corners added (M, S+1, K+4, 2):
-        a rectangle ``pusher[0]`` deep behind the block's face opposite the travel and ``2 * pusher[1]`` wide
-        across it. A move that does not travel has no pusher (its corners are put on the block's centre).
-        The separating axes then miss the hull's edges that bridge block and pusher, which only makes the
-        test more conservative."""
+    def _pusher_rects(self, polys: np.ndarray, sub: np.ndarray, perp: np.ndarray, travels: np.ndarray) -> np.ndarray:
+        """The pusher's four corners per sub-pose of each move (M, S+1, 4, 2): a rectangle ``pusher[0]`` deep behind
+        the block's face opposite the travel (``polys``: the block's outline per sub-pose) and ``2 * pusher[1]``
+        wide across it. A move that does not travel has no pusher (its corners are put on the block's centre).
+        Tested apart from the block, not as one hull with it: the fingers touch a turned block at its corner
+        only, and the hull filled the notch between the block's slanting back and the fingers' flat front, where
+        the anchor's corner stands when the block touches the anchor beside that corner (a block pushed along
+        the anchor's face found no legal first move)."""
         depth, half = self.pusher
         u = np.stack([perp[:, 1], -perp[:, 0]], axis=-1)  # (M, 2) unit travel direction
         centre = sub[..., :2]  # (M, S+1, 2)
         face = np.einsum("mskd,md->msk", polys - centre[:, :, None, :], u).max(-1)  # the block's support along u
         corners = []
-        for back in (face, face + depth):
-            for side in (-half, half):
+        for back, sides in ((face, (-half, half)), (face + depth, (half, -half))):  # in order round the rectangle
+            for side in sides:
                 corners.append(centre - back[..., None] * u[:, None, :] + side * perp[:, None, :])
         pts = np.stack(corners, axis=2)  # (M, S+1, 4, 2)
-        pts = np.where(travels[:, None, None, None], pts, centre[:, :, None, :])
-        return np.concatenate([polys, pts], axis=2)
+        return np.where(travels[:, None, None, None], pts, centre[:, :, None, :])
 
     def path_free(self, path: np.ndarray) -> bool:
         """Every straight move of the waypoint path (N,3) is legal."""

@@ -42,3 +42,20 @@ def test_push_towards_from_a_level_start_moves_the_block_and_passes_the_judge():
     moved = float(np.hypot(*(plan.path[-1, :2] - plan.path[0, :2]))) / 0.04
     assert verdict["success"], verdict["reason"]
     assert moved > 0.25  # it closes the room, not a sliver of it
+
+
+def test_a_block_touching_beside_the_anchors_corner_is_pushed_along_its_face():
+    """A block turned 16 degrees whose corner is 4.8 mm from the anchor's face, its centre level with the anchor's
+    corner (development start SlideToward/6 touching, in the anchor's frame): pushed along the face past that
+    corner the fingers stay 6.5 mm from the anchor, though one hull of block and fingers would cover the anchor's
+    corner (no pushed move was legal, and "push A past B" found no plan)."""
+    s = 0.04
+    scene = Scene([SceneObject("A", "red", s, (-1.144 * s, 0.498 * s), np.radians(-16.0)),
+                   SceneObject("B", "green", s, (0.0, 0.0), 0.0)])
+    start = np.array([-1.144 * s, 0.498 * s, np.radians(-16.0)])
+    along = start + np.array([0.0, 0.02, 0.0])
+    assert World2D(scene, "A").moves_free(start, along[None])[0]
+    assert World2D(scene, "A", pusher=push_pusher(s)).moves_free(start, along[None])[0]
+    away = start + np.array([-0.02, 0.0, 0.0])  # straight away from B the fingers would come down between them
+    assert World2D(scene, "A").moves_free(start, away[None])[0]
+    assert not World2D(scene, "A", pusher=push_pusher(s)).moves_free(start, away[None])[0]
