@@ -38,16 +38,32 @@ from .composite import composite_clauses, is_composite
 
 _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?\s*\bthen\b"
                     r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\bafterwards\b"
+                    r"|,\s*and\s+after\b"
                     r"|,?\s*\band\s+finally\b|,\s*finally\b)\s*,?\s*", re.IGNORECASE)
-"""What joins clauses: "then", "and then", "after that", "afterwards", "and finally", a semicolon, or a full stop
-between two sentences ("Carry C around B. Next, move D a bit closer to the duck.")."""
+"""What joins clauses: "then", "and then", "after that", "afterwards", ", and after", "and finally", a semicolon, or a
+full stop between two sentences ("Carry C around B. Next, move D a bit closer to the duck.")."""
 
 
 def split_clauses(sentence: str) -> list[str]:
-    """The clauses' texts, in order (empty pieces, e.g. a leading "then", dropped)."""
+    """The clauses' texts, in order (empty pieces, e.g. a leading "then", dropped); a list told item by item after a
+    colon ("make a row: first the cube, then the duck, then the cup") stays one clause, its items as a list."""
     if not isinstance(sentence, str):
         return []
+    m = ITEM_BY_ITEM.match(sentence)
+    if m is not None:
+        items = [i for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]
+        verbs = set(known_verbs())
+        if len(items) >= 2 and not any(i.split()[0].lower() in verbs for i in items):  # items, not steps
+            listed = ", ".join(i.strip(" ,.") for i in items[:-1]) + " and " + items[-1].strip(" ,.!?")
+            return [f"{m.group('head').strip()} {listed}"]
     return [p for p in _pieces(sentence) if not is_courtesy(tokens(p))]
+
+
+ITEM_BY_ITEM = re.compile(r"^(?P<head>[^:;]+?):\s*first\s+(?P<items>[^:;]+?)[.!?]*\s*$", re.IGNORECASE)
+ITEM_JOINS = re.compile(r",?\s*\b(?:and\s+then|then|next|and\s+finally|finally|and\s+last(?:ly)?|last(?:ly)?)\b"
+                        r"\s*,?\s*", re.IGNORECASE)
+"""A list told item by item after a colon: "Please make a row: first the yellow cube, then the duck, then the red
+cube" (whether its head is a composite's phrase is for the composite to say: anything else is refused as before)."""
 
 
 def _pieces(sentence: str) -> list[str]:
@@ -111,7 +127,8 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     longer chain a composite may stand anywhere ("make a row of A, B and C, then move D next to C")."""
     texts = split_clauses(sentence)
     if len(texts) <= 1:
-        made = composite_clauses(sentence, scene, plugins)
+        listed = texts[0] if texts and ITEM_BY_ITEM.match(sentence) else sentence  # told item by item
+        made = composite_clauses(listed, scene, plugins)
         if made is not None:
             return made
         try:

@@ -308,3 +308,12 @@ def test_what_the_tenth_and_eleventh_authors_prompted_reads_as_meant(plugins, se
 def test_what_the_tenth_and_eleventh_authors_prompted_still_asks(plugins, sentence, table):
     with pytest.raises(L2PError):
         read(sentence, plugins, table)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Please make a row: first the duck, then the green cube, then A.", "row duck,B,A"),
+    ("Make a row with A, B and C, and after push the duck away from E.", "row A,B,C ; push:away duck E"),
+    ("Steps: first move A past B, then push C toward the duck", "slide:past A B ; push:closer C duck"),
+])
+def test_lists_told_item_by_item_and_a_row_then_after(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
