@@ -150,8 +150,8 @@ def test_among_bystanders_the_slide_ends_where_a_way_round_starts():
     first = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step)
     asked: list[np.ndarray] = []
 
-    def not_the_first(end: np.ndarray) -> bool:
-        asked.append(end)
+    def not_the_first(frames: np.ndarray) -> bool:
+        asked.append(frames[-1])
         return len(asked) > 2
 
     chosen = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step, way_round=not_the_first)
@@ -159,5 +159,5 @@ def test_among_bystanders_the_slide_ends_where_a_way_round_starts():
     assert not np.allclose(chosen[-1], first[-1]) and world.path_free(chosen[[0, -1]])
     asked.clear()
     never = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step,
-                             way_round=lambda end: asked.append(end) is not None)
+                             way_round=lambda frames: asked.append(frames[-1]) is not None)
     assert len(asked) == approach.WAY_TRIES and np.array_equal(never, first)
