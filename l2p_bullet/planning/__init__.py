@@ -204,7 +204,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             viewer=getattr(model, "viewpoint", None),
             lead_in=lead,
             check_cap=cap,
-            reach=lead_in.reach * world.size if lead_in else None,
+            reach=_reach(lead_in) * world.size if lead_in else None,
             outlines=footprints,
         )
         problem.deadline = deadline
@@ -320,6 +320,13 @@ def _follow(problem: Problem, route: np.ndarray, best, stopped: str):
     if node.progress <= best.progress:
         return best, stopped
     return node, ("threshold" if node.progress >= problem.threshold else stopped)
+
+
+def _reach(lead_in) -> float:
+    """How far from the anchor (blocks) a move of the search may end: the lead-in's ``reach`` (as far as people
+    went), but never beyond ``near``, which the rule allows once the mover came near: a move ending between the two
+    makes a plan the judge rejects ("around" a whole turn round, out to 4.08 blocks)."""
+    return min(lead_in.reach, lead_in.near)
 
 
 def _route_key(world: World2D, anchor_pose: np.ndarray, lead_in, frames: np.ndarray) -> tuple:
