@@ -3,6 +3,7 @@
     .venv/bin/python benchmarks/bench_chains.py                       # 50 chains of 5, 1 worker
     .venv/bin/python benchmarks/bench_chains.py --chains 1000 --workers 8 --json out.json   # the goal size
     .venv/bin/python benchmarks/bench_chains.py --draw sentence --chains 100 --seed 8000   # drawn whole, refusals
+    .venv/bin/python benchmarks/bench_chains.py --plan-only --chains 200 --seed 11000   # refusals, nothing run
 
 Random scenes of 3-5 blocks (``evaluate/chains.py``: seeded, seeds --seed .. --seed+N-1), one chain of K
 clauses each, drawn over the installed one-anchor actions and random mover/anchor pairs; a clause that
@@ -18,6 +19,10 @@ Goal (issue 21): on 1,000 chains of 5, average completed >= 4.8, one-clause succ
 single-action success within 1 %, no block other than the mover moved > 1 mm, no crash, no failure
 half-way through a clause's execution. The default size here (50) is what a shared machine runs in
 minutes; the goal size is 1,000.
+
+``--plan-only`` (drawn whole): the chains are drawn and planned as a whole as ``--draw sentence`` does, in this
+process, and nothing is performed: printed are the refusals by clause and check, the planning ratio, and how many
+planned clauses their judge accepts on the plan (what the run would have to do). Seconds, not minutes, a chain.
 """
 
 from __future__ import annotations
@@ -40,7 +45,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workers", type=int, default=1, help="worker processes")
     ap.add_argument("--out", default=None, help="evaluation folder (default: a temporary one)")
     ap.add_argument("--json", dest="json_out", default=None, help="also write the numbers here")
+    ap.add_argument("--plan-only", action="store_true",
+                    help="draw whole and plan only: refusals and the planning ratio, nothing performed")
+    ap.add_argument("--list", action="store_true", help="with --plan-only: one line per chain")
     args = ap.parse_args(argv)
+    if args.plan_only:
+        return plan_only(args)
 
     from l2p_bullet.evaluate.chains import chain_report, chain_report_text
     from l2p_bullet.evaluate.runner import EvaluationConfig, evaluate, load_rows
@@ -62,6 +72,78 @@ def main(argv: list[str] | None = None) -> int:
           f"{rep['seconds_per_chain']} s per chain in the worker")
     if args.json_out:
         Path(args.json_out).write_text(json.dumps(rep, indent=1, default=float) + "\n")
+    return 0
+
+
+def plan_chain(seed: int, clauses_k: int, plugins: list, actions: list[str]) -> dict:
+    """One chain of ``--draw sentence`` drawn and planned as the worker does (evaluate/chains.py: run_chain), not
+    performed: its refusal or the judge's verdicts on its planned clauses, and its planning seconds."""
+    from l2p_bullet.arms import fit_scene
+    from l2p_bullet.chain.forecast import Search, forecast
+    from l2p_bullet.errors import L2PError
+    from l2p_bullet.evaluate.chains import chain_rng, chain_scenes, draw_sentence
+    from l2p_bullet.plugins import arms as arm_plugins
+
+    spec = chain_scenes(1, seed)[0]
+    arm = arm_plugins.get("panda")
+    scene = fit_scene(spec.scene.validate(), arm)
+    clauses = draw_sentence(scene, clauses_k, actions, chain_rng(seed, clauses_k), plugins)
+    search, t0 = Search(), time.perf_counter()
+    row = {"seed": seed, "sentence": ", then ".join(c.text for c in clauses)}
+    try:
+        steps = forecast(clauses, scene, plugins, planner="default", seed=seed, arm=arm, search=search)
+    except L2PError as e:
+        return row | {"refused": str(e), "plans": search.plans, "forecast": time.perf_counter() - t0}
+    return row | {"refused": None, "plans": search.plans, "forecast": time.perf_counter() - t0,
+                  "alone": search.kept_seconds, "changed": list(search.changed),
+                  "accepted": [bool(s.forecast.extra["verdict"]["success"]) for s in steps]}
+
+
+def plan_only(args: argparse.Namespace) -> int:
+    """``--plan-only``: the chains planned as a whole, refusals and planning ratio counted, nothing performed."""
+    import os
+    import statistics
+
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):  # one core, as a pool's worker
+        os.environ.setdefault(name, "1")  # (numpy not imported yet: its threads fight on a shared machine)
+
+    from l2p_bullet.evaluate.chains import refusal_causes
+    from l2p_bullet.evaluate.runner import BUILTIN_PACKAGE
+    from l2p_bullet.plugins import registry
+
+    plugins = registry.discover()
+    actions = [p.name for p in plugins if p.ok and p.package == BUILTIN_PACKAGE]
+    t0 = time.perf_counter()
+    rows = []
+    for seed in range(args.seed, args.seed + args.chains):
+        r = plan_chain(seed, args.clauses, plugins, actions)
+        rows.append(r)
+        if args.list:
+            what = r["refused"] or (f"planned, judge accepts {sum(r['accepted'])}/{len(r['accepted'])}, "
+                                    f"ratio {r['forecast'] / max(r['alone'], 1e-9):.2f}, changed {r['changed']}")
+            print(f"{seed}: {what} [{r['plans']} plans] :: {r['sentence']}", flush=True)
+    refused = [r for r in rows if r["refused"]]
+    planned = [r for r in rows if not r["refused"]]
+    ratios = [r["forecast"] / r["alone"] for r in planned if r["alone"]]
+    causes = refusal_causes([{"error": r["refused"]} for r in refused])
+    rejected = sum(not a for r in planned for a in r["accepted"])
+    rep = {"chains": len(rows), "refused": len(refused), "refused_by": causes,
+           "refused_seeds": [r["seed"] for r in refused],
+           "ratio_mean": statistics.fmean(ratios) if ratios else None,
+           "ratio_of_sums": (sum(r["forecast"] for r in planned) / sum(r["alone"] for r in planned)) if planned
+           else None, "ratio_max": max(ratios, default=None),
+           "clauses_judge_rejects": rejected, "ends_changed": sum(bool(r["changed"]) for r in planned),
+           "wall_s": round(time.perf_counter() - t0, 1)}
+    print(f"plan only, {len(rows)} chains from seed {args.seed}: refused {len(refused)} "
+          f"({100 * len(refused) / max(len(rows), 1):.1f} %)" + (": " + ", ".join(f"{c} {n}" for c, n in
+                                                                          causes.items()) if causes else ""))
+    print(f"refused seeds: {rep['refused_seeds']}")
+    if ratios:
+        print(f"planning a chain / its clauses alone: {rep['ratio_mean']:.2f} mean, {rep['ratio_of_sums']:.2f} of "
+              f"the sums, {rep['ratio_max']:.1f} at most; planned clauses their judge rejects on the plan: "
+              f"{rejected}; chains with another end: {rep['ends_changed']}; {rep['wall_s']:.0f} s")
+    if args.json_out:
+        Path(args.json_out).write_text(json.dumps(rep | {"rows": rows}, indent=1, default=float) + "\n")
     return 0
 
 

@@ -78,3 +78,21 @@ def test_the_benchmark_runs_at_its_smallest_size(name: str, tmp_path: Path, requ
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, f"{name} failed ({r.returncode}):\n{r.stdout[-2000:]}\n{r.stderr[-3000:]}"
     assert r.stdout.strip(), f"{name} printed nothing:\n{r.stderr[-2000:]}"
+
+
+@pytest.mark.slow
+def test_bench_chains_plan_only_counts_refusals_and_the_planning_ratio_without_running(tmp_path: Path):
+    import json
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)}
+    out = tmp_path / "plan.json"
+    r = subprocess.run([sys.executable, str(BENCHMARKS / "bench_chains.py"), "--plan-only", "--chains", "1",
+                        "--clauses", "2", "--seed", "9700", "--json", str(out)], cwd=tmp_path, env=env,
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    rep = json.loads(out.read_text())
+    assert rep["chains"] == 1 and rep["refused"] + len([x for x in rep["rows"] if not x["refused"]]) == 1
+    (row,) = rep["rows"]
+    assert row["sentence"].count(", then ") == 1 and (row["refused"] or len(row["accepted"]) == 2)
+    assert "planning a chain / its clauses alone" in r.stdout or row["refused"]
+    assert not (tmp_path / "eval").exists()  # nothing performed, nothing written but the numbers

@@ -204,17 +204,17 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             viewer=getattr(model, "viewpoint", None),
             lead_in=lead,
             check_cap=cap,
-            reach=lead_in.reach * world.size if lead_in else None,
+            reach=_reach(lead_in) * world.size if lead_in else None,
             outlines=footprints,
         )
         problem.deadline = deadline
         if not (arcs and lead_in):
             route = None
-        elif lead is not None and tuple(lead[-1]) in routes:
-            route = routes[tuple(lead[-1])]
+        elif lead is not None and _route_key(world, anchor_obj.pose, lead_in, lead) in routes:
+            route = routes[_route_key(world, anchor_obj.pose, lead_in, lead)]
         else:
-            route = around_route(world, anchor_obj.pose, lead_in.near,
-                                 start=None if lead is None else lead[-1])
+            route = around_route(world, anchor_obj.pose, lead_in.near, start=None if lead is None else lead[-1],
+                                 swept=0.0 if lead is None else _route_key(world, anchor_obj.pose, lead_in, lead)[-1])
         with torch_threads(1):  # a test double or a caller may score in torch: small batches, one thread
             node, stopped, steps = _search(name, problem, bundle, target, arcs=arcs, route=route)
             if route is not None and stopped != "threshold":  # the search stalled: the way round as it is
@@ -322,11 +322,26 @@ def _follow(problem: Problem, route: np.ndarray, best, stopped: str):
     return node, ("threshold" if node.progress >= problem.threshold else stopped)
 
 
-def _way_round(world: World2D, anchor_pose: np.ndarray, routes: dict, lead_in, end: np.ndarray) -> bool:
-    """Whether the 2-D world has a way round the anchor within ``lead_in.near`` from ``end`` (detour.py); kept
-    in ``routes``, so the approach end's way is not searched twice."""
-    routes[tuple(end)] = around_route(world, anchor_pose, lead_in.near, start=end)
-    return routes[tuple(end)] is not None
+def _reach(lead_in) -> float:
+    """How far from the anchor (blocks) a move of the search may end: the lead-in's ``reach`` (as far as people
+    went), but never beyond ``near``, which the rule allows once the mover came near: a move ending between the two
+    makes a plan the judge rejects ("around" a whole turn round, out to 4.08 blocks)."""
+    return min(lead_in.reach, lead_in.near)
+
+
+def _route_key(world: World2D, anchor_pose: np.ndarray, lead_in, frames: np.ndarray) -> tuple:
+    """An approach's end pose and how far round the anchor it went since it came near (approach.swept_near)."""
+    swept = approach.swept_near(frames, anchor_pose, lead_in.near * world.size)
+    return (*np.asarray(frames, float)[-1], swept)
+
+
+def _way_round(world: World2D, anchor_pose: np.ndarray, routes: dict, lead_in, frames: np.ndarray) -> bool:
+    """Whether the 2-D world has a way round the anchor within ``lead_in.near`` from the end of the approach
+    ``frames``, its turn counted from where they came near, as the rule counts it (detour.py); kept in
+    ``routes``, so the approach's way is not searched twice."""
+    key = _route_key(world, anchor_pose, lead_in, frames)
+    routes[key] = around_route(world, anchor_pose, lead_in.near, start=frames[-1], swept=key[-1])
+    return routes[key] is not None
 
 
 def _rules(bundle) -> str | None:

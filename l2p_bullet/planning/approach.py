@@ -59,10 +59,11 @@ def lead_in(world: World2D, anchor_pose: np.ndarray, near_sides: float, approach
     anchor, the start included; None when the mover already starts within ``near_sides`` blocks.
     InfeasibleError ``far-around`` when no such slide is legal.
 
-    ``way_round`` (end pose -> whether the 2-D world has a way round the anchor from there: detour.py): the
-    first of the first :data:`WAY_TRIES` legal ends from which it has one, else the first legal end. Why:
-    among bystanders the nearest legal end can lie in a pocket between the anchor and another block, from
-    which no move at all is legal (analysis chain/5044: the search ended at its first step, 0.01 of a turn)."""
+    ``way_round`` (a slide's frames -> whether the 2-D world has a way round the anchor from its end, counted
+    from where it came near, :func:`swept_near`: detour.py): the first of the first :data:`WAY_TRIES` legal
+    slides from whose end it has one, else the first legal slide. Why: among bystanders the nearest legal end
+    can lie in a pocket between the anchor and another block, from which no move at all is legal (analysis
+    chain/5044: the search ended at its first step, 0.01 of a turn)."""
     start = np.asarray(world.mover.pose, float)
     a = np.asarray(anchor_pose, float)[:2]
     rel = start[:2] - a
@@ -139,16 +140,31 @@ def _first_way_round(candidates: Iterable[tuple[np.ndarray, np.ndarray]], wrist:
     """The first candidate (frames, end) the wrist can follow whose end has a way round; else the first the wrist
     can follow among the first :data:`WAY_TRIES` of them; None when the wrist can follow none."""
     first, tried = None, 0
-    for frames, end in candidates:
+    for frames, _end in candidates:
         if wrist is not None and not wrist.fits(*wrist.span(frames[:, :2], frames[:, 2])):
             continue
-        if way_round is None or way_round(end):
+        if way_round is None or way_round(frames):
             return frames
         first = frames if first is None else first
         tried += 1
         if tried >= WAY_TRIES:
             break
     return first
+
+
+def swept_near(frames: np.ndarray, anchor_xy: np.ndarray, near_m: float) -> float:
+    """How far round the anchor (radians, signed, bearings unwrapped) ``frames`` go from their first frame within
+    ``near_m`` of it to their last; 0 when none is within. Why: the rule reads "around" from the first frame
+    within ``near`` on, so a slide from afar that comes near on one bearing and ends on another has already
+    swept (or spent) that much of the turn: a second slide round what is in the way crosses in beside a
+    bystander and ends farther round (development chain 9707, "move D around A": a way round 0.9 of a turn from
+    the slide's end was none, though one from where it came near was)."""
+    p = np.asarray(frames, float).reshape(-1, 3)[:, :2] - np.asarray(anchor_xy, float)[:2]
+    inside = np.flatnonzero(np.hypot(*p.T) <= near_m + 1e-9)
+    if not len(inside):
+        return 0.0
+    b = np.unwrap(np.arctan2(p[inside[0]:, 1], p[inside[0]:, 0]))
+    return float(b[-1] - b[0])
 
 
 def _segment_distance(p: np.ndarray, q: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -158,4 +174,4 @@ def _segment_distance(p: np.ndarray, q: np.ndarray, c: np.ndarray) -> np.ndarray
     return np.hypot(*(p + t[:, None] * d - c).T)
 
 
-__all__ = ["lead_in", "approach_radii", "AIM_OFFSETS_DEG", "RADIUS_STEP", "WAY_TRIES"]
+__all__ = ["lead_in", "approach_radii", "swept_near", "AIM_OFFSETS_DEG", "RADIUS_STEP", "WAY_TRIES"]

@@ -150,8 +150,8 @@ def test_among_bystanders_the_slide_ends_where_a_way_round_starts():
     first = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step)
     asked: list[np.ndarray] = []
 
-    def not_the_first(end: np.ndarray) -> bool:
-        asked.append(end)
+    def not_the_first(frames: np.ndarray) -> bool:
+        asked.append(frames[-1])
         return len(asked) > 2
 
     chosen = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step, way_round=not_the_first)
@@ -159,5 +159,25 @@ def test_among_bystanders_the_slide_ends_where_a_way_round_starts():
     assert not np.allclose(chosen[-1], first[-1]) and world.path_free(chosen[[0, -1]])
     asked.clear()
     never = approach.lead_in(world, anchor, AROUND_NEAR, AROUND_APPROACH, step,
-                             way_round=lambda end: asked.append(end) is not None)
+                             way_round=lambda frames: asked.append(frames[-1]) is not None)
     assert len(asked) == approach.WAY_TRIES and np.array_equal(never, first)
+
+
+def test_the_search_ends_no_move_beyond_the_rules_near(monkeypatch):
+    # people went as far as 4.09 blocks round (the lead-in's reach, 4.1), but the rule rejects any frame beyond 4
+    # once near: a move ending between the two made a plan the judge rejects (a whole turn out to 4.08 blocks)
+    from l2p_bullet import planning
+
+    seen: list[float] = []
+    real = planning.Problem
+
+    def problem(*args, **kwargs):
+        seen.append(kwargs["reach"])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(planning, "Problem", problem)
+    plan, verdict = judged_plan(prepare("move A around B", Scene.from_dict(FAR)), seed=3)
+    assert seen and all(r <= AROUND_NEAR * plan.size + 1e-12 for r in seen)
+    lead = plan.extra["approach"]["frames"] - 1
+    assert _blocks(plan.path[lead:], plan.anchor_pose, plan.size).max() <= AROUND_NEAR + 1e-9
+    assert verdict["success"], verdict["reason"]
