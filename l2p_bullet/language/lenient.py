@@ -26,10 +26,11 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 
-from ..core.scene import Scene
+from ..core.scene import COLORS, Scene
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import naming_words
 from .reference_words import (
+    COLOR_SYNONYMS,
     COMPARATIVE_OF,
     FARTHEST,
     NEAREST,
@@ -76,6 +77,10 @@ GENERIC_VERBS = frozenset({"move", "put", "place", "set", "position", "get", "ta
 HINTS = {"fingers": "push", "finger": "push", "fingertips": "push", "air": "carry"}
 """Words that say the manner as a verb would: "with your fingers" is how a push is done, "through the air" how a
 carry goes (the verb they stand for, looked up among the manners' verbs)."""
+BEFORE_PHRASE = frozenset({"over", "up", "down", "be", "is", "go", "goes", "sitting", "sits", "standing", "stands",
+                           "end", "ends", "lands", "somewhere", "like", "itself", "stay", "stays", "remain", "remains",
+                           "sit", "stand", "lie", "circuit", "loop", "lap", "circle", "full", "complete", "whole"})
+"""Words left over right before the phrase that ask no extent ("slide A over next to B", "A sitting beside B")."""
 MAX_SPAN = 7
 """Longest description tried for one object, in words."""
 
@@ -132,6 +137,8 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     if extent is not None and extent not in extents.get(action, frozenset()):
         return None
     movers, left_before = _mentions(before, scene, context)
+    if before and left_before and left_before[-1] is before[-1] and not _asks_no_extent(before, verbs, scene):
+        return None  # an unknown word where an extent stands ("move duck rite next to K"): it may be one
     refs, left_after = _mentions(words[end:], scene, context)
     count = anchors.get(action, 1)
     if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
@@ -141,6 +148,17 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
+
+
+def _asks_no_extent(before: list[str], verbs: list, scene: Scene) -> bool:
+    """Whether the last word before the phrase, left over, surely asks no extent: a word of
+    :data:`BEFORE_PHRASE`, a form of a manner's verb ("The beam is to be shifted toward the jar"), or the noun
+    of a description that names only a colour or a size ("the white plate", "the red dice")."""
+    last = before[-1].lower()
+    if last in BEFORE_PHRASE or any(_inflects(last, head[0]) for head, _, _ in verbs):
+        return True
+    adjectives = set(COLORS) | set(COLOR_SYNONYMS) | SIZE_WORDS
+    return len(before) >= 2 and before[-2].lower() in adjectives and last.isalpha()
 
 
 def _phrases(low: list[str], readings: list) -> list[tuple[int, int, str, str, str | None]]:

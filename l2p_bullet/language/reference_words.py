@@ -51,7 +51,8 @@ asked, never guessed; "it" and "the same one" are the block moved."""
 SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
 """Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
-ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("you",), ("yourself",),
+ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("the", "robot", "base"),
+               ("robot", "base"), ("the", "base"), ("you",), ("yourself",),
                ("your", "base"), ("me",), ("us",), ("the", "viewer"))
 """The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
 NEAREST = frozenset("nearest closest nearer closer near".split())  # English words of place ("the cube closer to you")
@@ -94,6 +95,8 @@ CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "
                   ("in", "the", "centre"))
 """A place on the table that names the object nearest the table's centre (the scene frame's origin)."""
 SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "right"): "rightmost",
+                ("on", "the", "left", "side"): "leftmost", ("on", "the", "right", "side"): "rightmost",
+                ("on", "the", "left-hand", "side"): "leftmost", ("on", "the", "right-hand", "side"): "rightmost",
                 ("on", "the", "left"): "leftmost", ("on", "the", "right"): "rightmost",
                 ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost",
                 ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",

@@ -35,6 +35,7 @@ from .places import (
 from .reference_words import (
     BLOCK_SHAPES,
     CENTRE_PHRASES,
+    COLOR_SYNONYMS,
     CONJUNCTIONS,
     DEMONSTRATIVES,
     DETERMINERS,
@@ -44,17 +45,21 @@ from .reference_words import (
     NEAREST,
     NOUNS,
     OPENINGS,
+    PLACE_ADJECTIVES,
     PRONOUNS_ANCHOR,
     PRONOUNS_MOVER,
+    REFERENCE_WORDS,
     RELATIVES,
     ROBOT_WORDS,
     SAME_WORDS,
+    SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SIDE_CONE,
     SIDE_DOUBT,
     SIDE_PHRASES,
     SIDES,
     SIZE_SUPERLATIVES,
+    SOFT_ADJECTIVES,
     STRICT_SHAPES,
     TIE_M,
 )
@@ -279,6 +284,8 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     if head is None:
         return None
     kind, at, end = head
+    if not _describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
+        return None
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
         if any(w.lower() not in NOUNS | set(COLORS) | set(SHAPE_NOUNS) for w in rest_words):
@@ -327,6 +334,17 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     """How far the object's centre is from the line through ``a`` along ``span`` (metres)."""
     d = np.asarray(o.xy) - a
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
+
+
+def _describes(low: tuple[str, ...], scene: Scene) -> bool:
+    """Whether every word before a relation is one a description is made of (a determiner, noun, colour, shape,
+    size, kind or name): a word of another kind ("mv", "move", "of the two ... move the one") means the words are
+    not one description, and the relation is not read."""
+    known = (DETERMINERS | NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES)
+             | SOFT_ADJECTIVES | REFERENCE_WORDS | set(name_words(scene)) | set(PLACE_ADJECTIVES)
+             | {"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and", "sitting",
+                "standing", "lying", "located", "placed", "resting", "positioned", "directly", "right", "just"})
+    return all(w in known for w in low)
 
 
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:

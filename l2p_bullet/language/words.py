@@ -91,7 +91,7 @@ PACES: dict[str, str] = {
 """Manner adverbs -> the pace they ask for."""
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "take your time and": "slow", "take your time": "slow", "in a hurry": "fast", "as fast as you can": "fast",
-    "hurry up": "fast", "hurry up and": "fast", "in a slow way": "slow", "in slow way": "slow",
+    "hurry up": "fast", "hurry up and": "fast", "hurry and": "fast", "in a slow way": "slow", "in slow way": "slow",
     "in a careful way": "careful",
     "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle", "real quick": "fast",
     "real quickly": "fast", "real slow": "slow", "real slowly": "slow",

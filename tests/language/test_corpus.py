@@ -84,13 +84,15 @@ def test_the_fourth_to_ninth_authors_corpora_are_never_resolved_wrong(plugins, n
 DISAGREED = {
     "heldout10.tsv": {"Move the small cube away from the teddy."},
     "heldout11.tsv": {"leftmost thing away from the ball", "the rightmost thing, push it toward the bottle"},
+    "heldout13.tsv": {"Move the biggest thing next to the jar."},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
-smallest); "leftmost" / "rightmost" 2-3 cm apart is clear for the three authors of the corpus table."""
+smallest); "leftmost" / "rightmost" 2-3 cm apart is clear for the three authors of the corpus table; "the
+biggest thing" is the object of the greatest bulk (the mug, against a long thin beam and a jar)."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 143), ("heldout11.tsv", 139)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 143), ("heldout11.tsv", 141)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
@@ -98,6 +100,20 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     figures since. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and case.sentence not in DISAGREED[name]]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    right = sum(c["right"] for c in table.values())
+    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
+@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 136), ("heldout13.tsv", 113)])
+def test_the_twelfth_and_thirteenth_authors_corpora(plugins, name, floor):
+    """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
+    ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong
+    (75.6 % / 2 and 66.2 % / 3 on the grammar of the session's start; docs/language.md); development figures since.
+    Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
+    table, misses = score(plugins, name)
+    wrong = [(case.sentence, got) for case, got in misses
+             if got != REFUSE and case.sentence not in DISAGREED.get(name, ())]
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"

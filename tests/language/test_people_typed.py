@@ -317,3 +317,23 @@ def test_what_the_tenth_and_eleventh_authors_prompted_still_asks(plugins, senten
 ])
 def test_lists_told_item_by_item_and_a_row_then_after(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("mv A closer to B then push it away from the duck", "slide:closer A B ; push:away A duck"),
+    ("hurry and slide A past B", "slide:past A B pace=fast"),
+    ("The duck is to be shifted toward A.", "slide:closer duck A"),
+    ("move the red dice toward the duck", "slide:closer A duck"),
+    ("Slide the cube nearest the robot base toward the duck.", "slide:closer C duck"),
+])
+def test_what_the_twelfth_and_thirteenth_authors_prompted_reads_as_meant(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "move the duck rite next to A",            # an unknown word where an extent stands
+    "move A a few centimetres closer to B",    # an extent the actions cannot take in centimetres
+])
+def test_an_unknown_word_where_an_extent_stands_is_asked(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
