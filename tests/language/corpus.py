@@ -44,6 +44,11 @@ def scene(name: str = "corpus.tsv"):
     return load_scene(own if own.exists() else HERE / "corpus_scene.json")
 
 
+def read(sentence: str, plugins, name: str = "corpus.tsv") -> str:
+    """``sentence`` resolved against corpus ``name``'s table, in the corpus's notation (a refusal raises)."""
+    return notation(resolve_clauses(sentence, scene(name), plugins))
+
+
 def notation(clauses: list) -> str:
     """The clauses in the corpus's notation: a composite's steps as one ``row`` item."""
     items: list[str] = []

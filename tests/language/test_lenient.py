@@ -4,9 +4,8 @@ after every other reading refused, and refused itself wherever a word read past 
 from __future__ import annotations
 
 import pytest
-from corpus import notation, scene
+from corpus import read, scene
 
-from l2p_bullet.chain.clauses import resolve_clauses
 from l2p_bullet.errors import L2PError
 from l2p_bullet.language import lenient, parse
 from l2p_bullet.plugins import registry
@@ -15,10 +14,6 @@ from l2p_bullet.plugins import registry
 @pytest.fixture(scope="module")
 def plugins():
     return registry.discover()
-
-
-def read(sentence: str, plugins, name: str = "corpus.tsv") -> str:
-    return notation(resolve_clauses(sentence, scene(name), plugins))
 
 
 @pytest.mark.parametrize("sentence, expect", [
