@@ -68,7 +68,9 @@ NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:car
 """A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
 ABOUT = re.compile(r"^\s*(?:about|regarding|as\s+for|now\s+for)\s+(?=\S)", re.IGNORECASE)
 """An opening that says which object the next words are about ("About the can: move it ...")."""
-BOTH = re.compile(r"\b(?:them\s+both|both\s+of\s+them|both|them)\b", re.IGNORECASE)
+BOTH = re.compile(r"(?:\b(?:them\s+both|both\s+of\s+them|each\s+of\s+them|both|them)"
+                  r"|(?<![\w'])'?em\s+both|(?<![\w'])'?em)\b", re.IGNORECASE)
+"""Words for the two objects shown before: "them (both)", "each of them", and "em" as typed."""
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
 

@@ -333,3 +333,11 @@ def test_what_the_twelfth_and_thirteenth_authors_prompted_reads_as_meant(plugins
 def test_an_unknown_word_where_an_extent_stands_is_asked(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("A and C: push em toward the duck", "push:closer A duck ; push:closer C duck"),
+    ("Take A and C and move each of them past B", "slide:past A B ; slide:past C B"),
+])
+def test_em_and_each_of_them_are_both(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
