@@ -13,6 +13,7 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from .places import (
     by_size,
     named_colours,
+    outline_sides,
 )
 from .reference_words import (
     BLOCK_SHAPES,
@@ -117,11 +118,29 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             fits = [o for o in fits if o.shape in strict]
         elif colours:  # "the white cube", "the red box": block-shaped, never the white mug or a cylinder
             fits = [o for o in fits if o.shape in BLOCK_SHAPES]
+            if len(fits) > 1 and ("cube" in shapes or set(low) & LONG_NOUNS):
+                # "the blue cube" beside a long blue beam is the cube-like one, "the blue stick" the long one
+                kept = [o for o in fits if _cube_like(o) == ("cube" in shapes)]
+                fits = kept if len(kept) == 1 else fits
         else:
             fits = [o for o in fits if o.shape in shapes]
     if shaped:
         fits = [o for o in fits if o.shape in shaped]
     return fits
+
+
+LONG_NOUNS = frozenset({"stick", "sticks", "bar", "bars"})
+"""Shape nouns that name a long block."""
+CUBE_LIKE = 1.5
+"""Longest side over shortest side up to which a block looks like a cube: "the blue cube" is the blue cube, not a
+14 x 3 x 3 cm beam of the same colour (a careful author named them apart); where only one block has the colour, any
+block is its cube, as the earlier authors called boxes cubes."""
+
+
+def _cube_like(o: SceneObject) -> bool:
+    g = o.geometry
+    sides = [float(v) for v in (*outline_sides(o), g.height)]
+    return max(sides) <= CUBE_LIKE * min(sides)
 
 
 def naming_words(scene: Scene) -> frozenset[str]:

@@ -105,7 +105,7 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 136), ("heldout13.tsv", 113)])
+@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 136), ("heldout13.tsv", 139)])
 def test_the_twelfth_and_thirteenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong

@@ -341,3 +341,12 @@ def test_an_unknown_word_where_an_extent_stands_is_asked(plugins, sentence):
 ])
 def test_em_and_each_of_them_are_both(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    ("move the blue cube closer to the mug", "slide:closer M mug", "heldout13.tsv"),   # M, not the 14 cm beam
+    ("move the ball away from the blue stick", "slide:away ball beam", "heldout13.tsv"),
+    ("move the yellow cube past B", "slide:past D B", "corpus.tsv"),  # the one yellow block, a 6 x 3 x 4 cm box
+])
+def test_a_cube_is_the_cube_like_block_of_its_colour(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
