@@ -124,8 +124,9 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
     A sentence of one clause is the chain of that one clause, resolved whole as ``perform`` always resolved
     it (its own words, its own errors: nothing to name a clause by); a composite's sentence is its steps. In a
-    longer chain a composite may stand anywhere ("make a row of A, B and C, then move D next to C")."""
-    texts = split_clauses(sentence)
+    longer chain a composite may stand anywhere ("make a row of A, B and C, then move D next to C"), also after a
+    comma ("move S next to P, line up the can, the tray and the teddy, then ...")."""
+    texts = _rows_after_commas(split_clauses(sentence), plugins)
     if len(texts) <= 1:
         listed = texts[0] if texts and ITEM_BY_ITEM.match(sentence) else sentence  # told item by item
         made = composite_clauses(listed, scene, plugins)
@@ -183,6 +184,26 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+ROW_OPENING = re.compile(r",\s*(?:and\s+)?(?=(?:line|make|form|arrange|put|place|set)\b)", re.IGNORECASE)
+"""A comma before what may open a composite's sentence ("..., line up the can, the tray and the teddy")."""
+
+
+def _rows_after_commas(texts: list[str], plugins: list) -> list[str]:
+    """``texts`` with a clause that goes on, after a comma, into a composite's sentence split in two there: the
+    clause before it, and the composite (whose list holds commas of its own). A text that is a composite's
+    sentence itself stays whole."""
+    out: list[str] = []
+    for text in texts:
+        for m in ROW_OPENING.finditer(text):
+            left, right = text[:m.start()].strip(), text[m.end():].strip()
+            if left and not is_composite(text, plugins) and is_composite(right, plugins):
+                out.extend([left, right])
+                break
+        else:
+            out.append(text)
+    return out
 
 
 def _done_so(text: str, before: Clause) -> Clause | None:

@@ -66,7 +66,7 @@ to seventh authors (heldout4-7) as a slide; the toolkit reads it as a slide, as 
 
 
 @pytest.mark.parametrize("name, floor", [("heldout4.tsv", 155), ("heldout5.tsv", 154), ("heldout6.tsv", 151),
-                                         ("heldout7.tsv", 156), ("heldout8.tsv", 143), ("heldout9.tsv", 149)])
+                                         ("heldout7.tsv", 156), ("heldout8.tsv", 151), ("heldout9.tsv", 151)])
 def test_the_fourth_to_ninth_authors_corpora_are_never_resolved_wrong(plugins, name, floor):
     """heldout4.tsv (the corpus table), heldout5.tsv (its own table: two red cubes, a white cube and a white
     mug, a can), heldout6.tsv (two blue cubes, a teddy, a stone, a long white box), heldout7.tsv (cubes P Q R,
@@ -92,7 +92,7 @@ smallest); "leftmost" / "rightmost" 2-3 cm apart is clear for the three authors 
 biggest thing" is the object of the greatest bulk (the mug, against a long thin beam and a jar)."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 143), ("heldout11.tsv", 141)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 144), ("heldout11.tsv", 141)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
@@ -105,7 +105,7 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 136), ("heldout13.tsv", 139)])
+@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 137), ("heldout13.tsv", 140)])
 def test_the_twelfth_and_thirteenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong

@@ -350,3 +350,14 @@ def test_em_and_each_of_them_are_both(plugins, sentence, expect):
 ])
 def test_a_cube_is_the_cube_like_block_of_its_colour(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("move C next to A, line up B, E and the duck, then push A a bit closer to B",
+     "slide:next-to C A ; row B,E,duck ; push:closer A B extent=little"),
+    ("Slide A closer to the duck, make a row of B, C and E, and finally push D away from B.",
+     "slide:closer A duck ; row B,C,E ; push:away D B"),
+    ("make a row of A, B and C, then move D next to C", "row A,B,C ; slide:next-to D C"),
+])
+def test_a_row_after_a_comma_in_a_chain(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
