@@ -194,16 +194,19 @@ def _rows_after_commas(texts: list[str], plugins: list) -> list[str]:
     """``texts`` with a clause that goes on, after a comma, into a composite's sentence split in two there: the
     clause before it, and the composite (whose list holds commas of its own). A text that is a composite's
     sentence itself stays whole."""
-    out: list[str] = []
-    for text in texts:
-        for m in ROW_OPENING.finditer(text):
-            left, right = text[:m.start()].strip(), text[m.end():].strip()
-            if left and not is_composite(text, plugins) and is_composite(right, plugins):
-                out.extend([left, right])
-                break
-        else:
-            out.append(text)
-    return out
+    return [piece for text in texts for piece in _row_after_comma(text, plugins) or [text]]
+
+
+def _row_after_comma(text: str, plugins: list) -> list[str] | None:
+    """(the clause before, the composite's sentence) where ``text`` goes on into one after a comma; else None."""
+    openings = list(ROW_OPENING.finditer(text))
+    if not openings or is_composite(text, plugins):
+        return None
+    for m in openings:
+        left, right = text[:m.start()].strip(), text[m.end():].strip()
+        if left and is_composite(right, plugins):
+            return [left, right]
+    return None
 
 
 def _done_so(text: str, before: Clause) -> Clause | None:

@@ -28,7 +28,7 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
 from . import lenient
 from .descriptions import naming_words
-from .references import Context, measured_from, object_pairs, resolve_object
+from .references import Context, measured_from, object_pairs, resolve_object, try_object
 from .words import (
     COMPARATIVES,
     by_gerund,
@@ -264,7 +264,7 @@ def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[lis
     except (LanguageError, UnknownObjectError):
         if extent is None:
             raise
-        whole = _try_object(" ".join(drop_frames(words)), scene, context)
+        whole = try_object(" ".join(drop_frames(words)), scene, context)
         if whole is None:
             raise
         return words, None, whole
@@ -277,7 +277,7 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     verbs = known_verbs()
     heads = sorted({v.split()[0] for v in verbs})
     words = gerund_to_verb(strip_polite(tokens(text), keep), verbs)
-    is_object = lambda t: _try_object(t, scene) is not None  # noqa: E731
+    is_object = lambda t: try_object(t, scene) is not None  # noqa: E731
     words = goal_to_verb(state_to_verb(passive_to_verb(words, verbs, is_object), verbs, is_object), verbs)
     words, pace = take_pace(words, keep)
     describing = naming_words(scene)  # "Of the two blue cubes, push ...": an opening about objects is not skipped
@@ -437,7 +437,7 @@ def _one_reference(words: list[str], scene: Scene, phrase: str) -> None:
     joining word and no clause after it ("move A around B, then"), and two blocks after a one-block
     preposition ("move A around B and C")."""
     said = trailing_join(words)
-    if said is not None and _try_object(" ".join(words[: -len(said.split())]), scene) is not None:
+    if said is not None and try_object(" ".join(words[: -len(said.split())]), scene) is not None:
         raise dangling_join(said)
     if _try_pair(words, scene):
         raise LanguageError(f'"{phrase}" takes one reference block, but "{" ".join(words)}" names two; name one, '
@@ -461,10 +461,10 @@ def _contains_phrase(text: str, phrases: dict[str, str]) -> bool:
 def _unplaced_words(rest: list[str], scene: Scene) -> str | None:
     """The words between the longest object description at the start and one at the end, if any."""
     for i in range(len(rest) - 1, 0, -1):
-        if _try_object(" ".join(rest[:i]), scene) is None:
+        if try_object(" ".join(rest[:i]), scene) is None:
             continue
         for j in range(i + 1, len(rest)):
-            if _try_object(" ".join(rest[j:]), scene) is not None or _try_pair(rest[j:], scene):
+            if try_object(" ".join(rest[j:]), scene) is not None or _try_pair(rest[j:], scene):
                 return " ".join(rest[i:j])
     return None
 
@@ -478,10 +478,3 @@ def _unknown_preposition(rest: list[str], middle: str | None, phrases: dict[str,
             return LanguageError(f'cannot find a preposition in "{" ".join(rest)}" ({listing}); {EXAMPLE}')
         return LanguageError(f"the sentence does not say where to {verb} the block: no preposition ({listing})")
     return LanguageError(f'"{middle}" is not a preposition I know ({listing}).' + did_you_mean(middle.lower(), known))
-
-
-def _try_object(text: str, scene: Scene, context: Context | None = None) -> str | None:
-    try:
-        return resolve_object(text, scene, context=context)
-    except (LanguageError, UnknownObjectError):
-        return None

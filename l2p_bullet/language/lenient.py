@@ -27,7 +27,6 @@ from contextvars import ContextVar
 from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
-from ..errors import LanguageError, UnknownObjectError
 from .descriptions import naming_words
 from .reference_words import (
     COLOR_SYNONYMS,
@@ -37,7 +36,7 @@ from .reference_words import (
     PLACE_ADJECTIVES,
     SIZE_SUPERLATIVES,
 )
-from .references import Context, resolve_object
+from .references import Context, try_object
 from .synonyms import SIZE_WORDS
 from .words import EXTENTS, NEGATIONS, PACES, participles, take_extent
 
@@ -81,6 +80,8 @@ BEFORE_PHRASE = frozenset({"over", "up", "down", "be", "is", "go", "goes", "sitt
                            "end", "ends", "lands", "somewhere", "like", "itself", "stay", "stays", "remain", "remains",
                            "sit", "stand", "lie", "circuit", "loop", "lap", "circle", "full", "complete", "whole"})
 """Words left over right before the phrase that ask no extent ("slide A over next to B", "A sitting beside B")."""
+EXTENT_WORDS = frozenset(w for k in EXTENTS for w in k if w not in ("a", "an", "so", "or", "only", "just", "well"))
+"""The words of the extents ("far", "bit", "slightly"): left over away from their place, they may ask one."""
 MAX_SPAN = 7
 """Longest description tried for one object, in words."""
 
@@ -137,20 +138,20 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     if extent is not None and extent not in extents.get(action, frozenset()):
         return None
     movers, left_before = _mentions(before, scene, context)
-    if before and left_before and left_before[-1] is before[-1] and not _asks_no_extent(before, verbs, scene):
+    if before and left_before and left_before[-1] is before[-1] and not _asks_no_extent(before, verbs):
         return None  # an unknown word where an extent stands ("move duck rite next to K"): it may be one
     refs, left_after = _mentions(words[end:], scene, context)
     count = anchors.get(action, 1)
     if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
         return None
-    describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | _extent_words() | set(PACES)
+    describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES)
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
 
 
-def _asks_no_extent(before: list[str], verbs: list, scene: Scene) -> bool:
+def _asks_no_extent(before: list[str], verbs: list) -> bool:
     """Whether the last word before the phrase, left over, surely asks no extent: a word of
     :data:`BEFORE_PHRASE`, a form of a manner's verb ("The beam is to be shifted toward the jar"), or the noun
     of a description that names only a colour or a size ("the white plate", "the red dice")."""
@@ -203,12 +204,12 @@ def _manner(low: list[str], verbs: list[tuple[tuple[str, ...], str, str]]) -> tu
 
 def _inflects(word: str, verb: str) -> bool:
     """Whether ``word`` is ``verb`` or one of its forms ("pushed", "pushing", "carries", "slid")."""
-    if word == verb or word in participles(verb):
+    if word == verb or word in participles(verb):  # the -ed forms
         return True
     stem = verb[:-1] if verb.endswith("e") else verb
-    forms = {verb + "s", verb + "es", stem + "ing", stem + "ed", verb + "ed"}
+    forms = {verb + "s", verb + "es", stem + "ing"}
     if verb.endswith("y"):
-        forms |= {verb[:-1] + "ies", verb[:-1] + "ied", verb + "ing"}
+        forms.add(verb[:-1] + "ies")
     return word in forms
 
 
@@ -220,7 +221,7 @@ def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[
     i = 0
     while i < len(words):
         for j in range(min(len(words), i + MAX_SPAN), i, -1):
-            name = _object(" ".join(words[i:j]), scene, context)
+            name = try_object(" ".join(words[i:j]), scene, context)
             if name is not None:
                 found.append(name)
                 i = j
@@ -231,15 +232,6 @@ def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[
     return found, left
 
 
-def _object(text: str, scene: Scene, context: Context | None) -> str | None:
-    try:
-        return resolve_object(text, scene, context=context)
-    except (LanguageError, UnknownObjectError):
-        return None
-
-
-def _extent_words() -> set[str]:
-    return {w for k in EXTENTS for w in k if w not in ("a", "an", "so", "or", "only", "just", "well")}
 
 
 __all__ = ["Reading", "allowed", "read", "reading_past"]

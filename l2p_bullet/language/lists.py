@@ -11,10 +11,10 @@ import re
 from dataclasses import dataclass
 
 from ..core.scene import Scene
-from ..errors import LanguageError, UnknownObjectError
+from ..errors import LanguageError
 from .grammar import MAX_SENTENCE, phrase_tokens, tokens
 from .reference_words import CONJUNCTIONS
-from .references import resolve_object
+from .references import resolve_object, try_object
 from .words import strip_polite
 
 
@@ -106,18 +106,10 @@ def _by_article(item: str, scene: Scene) -> list[str]:
     object; the item as it is where it names one object or the pieces do not each name one."""
     words = item.split()
     starts = [k for k, w in enumerate(words) if w.lower() == "the"]
-    if len(starts) < 2 or starts[0] != 0 or _names_one(item, scene):
+    if len(starts) < 2 or starts[0] != 0 or try_object(item, scene) is not None:
         return [item]
     pieces = [" ".join(words[a:b]) for a, b in zip(starts, [*starts[1:], len(words)], strict=True)]
-    return pieces if all(_names_one(p, scene) for p in pieces) else [item]
-
-
-def _names_one(text: str, scene: Scene) -> bool:
-    try:
-        resolve_object(text, scene)
-    except (LanguageError, UnknownObjectError):
-        return False
-    return True
+    return pieces if all(try_object(p, scene) is not None for p in pieces) else [item]
 
 
 def _split_and(text: str) -> list[str]:

@@ -80,6 +80,14 @@ def resolve_object(text: str, scene: Scene, role: str = "block", context: Contex
     return _resolve(text, scene, role, context)
 
 
+def try_object(text: str, scene: Scene, context: Context | None = None) -> str | None:
+    """:func:`resolve_object`, or None where ``text`` names no one object: for readers that try several spans."""
+    try:
+        return resolve_object(text, scene, context=context)
+    except (LanguageError, UnknownObjectError):
+        return None
+
+
 def measured_from(text: str, scene: Scene, context: Context | None = None) -> str | None:
     """The object a relational description measures from ("the object nearest the cylinder": the cylinder), or
     None (no relation, or one to the robot): what "it" later in the same clause means ("move the object nearest
@@ -340,11 +348,16 @@ def _describes(low: tuple[str, ...], scene: Scene) -> bool:
     """Whether every word before a relation is one a description is made of (a determiner, noun, colour, shape,
     size, kind or name): a word of another kind ("mv", "move", "of the two ... move the one") means the words are
     not one description, and the relation is not read."""
-    known = (DETERMINERS | NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES)
-             | SOFT_ADJECTIVES | REFERENCE_WORDS | set(name_words(scene)) | set(PLACE_ADJECTIVES)
-             | {"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and", "sitting",
-                "standing", "lying", "located", "placed", "resting", "positioned", "directly", "right", "just"})
-    return all(w in known for w in low)
+    names = name_words(scene)
+    return all(w in DESCRIBING or w in names for w in low)
+
+
+DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)
+              | frozenset(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES | REFERENCE_WORDS | frozenset(PLACE_ADJECTIVES)
+              | frozenset({"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and",
+                           "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "directly",
+                           "right", "just"}))
+"""The words a description before a relation is made of, besides the scene's own names (:func:`_describes`)."""
 
 
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:
