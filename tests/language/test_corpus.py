@@ -15,11 +15,6 @@ from l2p_bullet.pipeline import resolve as resolve_one
 from l2p_bullet.plugins import registry
 
 
-@pytest.fixture(scope="module")
-def plugins():
-    return registry.discover()
-
-
 def test_the_corpus_is_large_and_varied():
     all_cases = cases()
     assert len(all_cases) >= 300

@@ -11,11 +11,6 @@ from l2p_bullet.language import lenient, parse
 from l2p_bullet.plugins import registry
 
 
-@pytest.fixture(scope="module")
-def plugins():
-    return registry.discover()
-
-
 @pytest.mark.parametrize("sentence, expect", [
     # a manner said in passing, between the verb and the object
     ("Push with the fingers A around B, slow please.", "push:around A B pace=slow"),

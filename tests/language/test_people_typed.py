@@ -9,12 +9,6 @@ from corpus import read, scene
 from l2p_bullet.chain.clauses import resolve_clauses
 from l2p_bullet.errors import L2PError
 from l2p_bullet.language import typos
-from l2p_bullet.plugins import registry
-
-
-@pytest.fixture(scope="module")
-def plugins():
-    return registry.discover()
 
 
 @pytest.mark.parametrize("sentence, expect", [

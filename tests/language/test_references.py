@@ -12,12 +12,6 @@ from corpus import REFUSE, resolve, scene, score
 from l2p_bullet.core.scene import Scene, SceneObject
 from l2p_bullet.errors import LanguageError, UnknownObjectError
 from l2p_bullet.language import Context, resolve_object
-from l2p_bullet.plugins import registry
-
-
-@pytest.fixture(scope="module")
-def plugins():
-    return registry.discover()
 
 
 @pytest.fixture(scope="module")
