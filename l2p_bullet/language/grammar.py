@@ -40,6 +40,7 @@ from .words import (
     state_to_verb,
     strip_polite,
     take_extent,
+    take_extent_tail,
     take_pace,
 )
 
@@ -165,12 +166,16 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
             try:
                 before, extent, mover = _mover(rest[:i], scene, context)
                 extent = extent or implied
-                refs = _references(rest[i + n :], scene, phrase, (anchors or {}).get(action, 1),
+                after, closing = take_extent_tail(rest[i + n:])
+                if closing is not None and extent not in (None, closing):
+                    raise LanguageError(f'"{sentence.strip()}" asks for a {extent} and a {closing} extent; say one')
+                extent = extent or closing
+                refs = _references(after, scene, phrase, (anchors or {}).get(action, 1),
                                    context or _measured_context(before, scene))
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
-            if context is not None and _it_again(rest[i + n:], context, mover) and (
+            if context is not None and _it_again(after, context, mover) and (
                     mover in refs or (TOO_END.search(sentence) and refs[0] == context.mover)):
                 # "bring it away from it": the second "it" is the other one; "then W next to it too": W as well
                 refs = (context.anchor, *refs[1:])

@@ -14,7 +14,8 @@ from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
-SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "box": "box", "boxes": "box", "bar": "box", "bars": "box",
+SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "dice": "cube", "die": "cube",
+               "box": "box", "boxes": "box", "bar": "box", "bars": "box",
                "stick": "box", "sticks": "box", "brick": "box", "bricks": "box",
                "cylinder": "cylinder",
                "can": "cylinder", "cylinders": "cylinder"}

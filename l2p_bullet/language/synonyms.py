@@ -31,6 +31,9 @@ KIND_NAMES = {
     "milk": ("carton",),
     "lid": ("lids", "disc", "disk", "puck", "cap"),
     "brick": ("bricks",),
+    "slab": ("slabs", "board", "tile", "slate"),
+    "beam": ("beams", "plank", "girder", "rod"),
+    "plank": ("planks", "board", "beam"),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
@@ -46,8 +49,8 @@ KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "pl
                             "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal"): read past there."""
-BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant"})
-SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini"})
+BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant", "chunky", "bulky", "hefty"})
+SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini", "teeny", "wee"})
 TALL = frozenset({"tall", "taller"})
 SHORT = frozenset({"short", "shorter", "low", "lower"})
 MEDIUM = frozenset({"medium", "medium-sized", "medium-size", "mid-sized", "mid-size", "midsize", "middle-sized"})

@@ -83,7 +83,8 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
 PACES: dict[str, str] = {
-    "slowly": "slow", "slow": "slow", "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast",
+    "slowly": "slow", "slow": "slow", "asap": "fast", "pronto": "fast",
+    "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast",
     "swiftly": "fast",
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
     "gentle": "gentle",
@@ -112,6 +113,11 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",
     "only a little": "little", "only a bit": "little", "an inch or so": "little", "an inch": "little",
     "very tight": "right", "tight": "right", "right up": "right", "very tightly": "right", "snug": "right",
+    "a teeny bit": "little", "a teeny tiny bit": "little", "a teensy bit": "little", "a wee bit": "little",
+    "a few centimetres": "little", "a few centimeters": "little", "a few cm": "little",
+    "a couple of centimetres": "little",
+    "a couple of centimeters": "little", "a couple centimeters": "little", "a couple of cm": "little",
+    "flush": "right", "rite": "right",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
@@ -359,6 +365,34 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
         raise LanguageError(f'"{said}" asks for {len(distinct)} different paces ({", ".join(distinct)}); '
                             "say one of them")
     return out, (distinct[0] if distinct else None)
+
+
+EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
+    "leaving no gap": "right", "with no gap": "right", "with no gap to speak of": "right", "no gap": "right",
+    "without a gap": "right", "without any gap": "right", "with no gap in between": "right",
+    "no gap in between": "right",
+    "almost touching": "right", "nearly touching": "right", "touching": "right", "basically touching": "right",
+    "touching basically": "right", "so they touch": "right", "so that they touch": "right",
+    "only a few centimetres": "little", "but only a few centimetres": "little", "but only few centimetres": "little",
+    "only a few centimeters": "little", "but only a few centimeters": "little", "only a few cm": "little",
+    "but only a few cm": "little", "but only a bit": "little", "but only a little": "little", "just a bit": "little",
+    "just a little": "little", "only a bit": "little", "only a little": "little", "only slightly": "little",
+    "but only slightly": "little", "a little bit": "little",
+    "by a lot": "far", "a long way": "far", "a good distance": "far", "really far": "far", "very far": "far",
+}.items()}
+"""Closing words after the reference object that say how far, as people add them after a comma ("slide A next to B,
+leaving no gap", "move G away from the lid, but only a few centimetres"). Only word groups that cannot describe the
+reference object are here: "a bit" alone stays out ("next to the cube a bit" is not said)."""
+
+
+def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:
+    """The words after a preposition without the closing extent words at their end (:data:`EXTENT_TAILS`), and the
+    extent those ask for; the words as they are, and None, where they end otherwise or would be left empty."""
+    low = [w.lower() for w in after]
+    for k in sorted(EXTENT_TAILS, key=len, reverse=True):
+        if len(low) > len(k) and tuple(low[-len(k):]) == k:
+            return after[: -len(k)], EXTENT_TAILS[k]
+    return after, None
 
 
 def take_extent(before: list[str]) -> tuple[list[str], str | None]:

@@ -321,8 +321,8 @@ def test_what_the_twelfth_and_thirteenth_authors_prompted_reads_as_meant(plugins
 
 
 @pytest.mark.parametrize("sentence", [
-    "move the duck rite next to A",            # an unknown word where an extent stands
-    "move A a few centimetres closer to B",    # an extent the actions cannot take in centimetres
+    "move the duck zorp next to A",            # an unknown word where an extent stands
+    "move A 3 centimetres closer to B",        # an extent the actions cannot take in centimetres
 ])
 def test_an_unknown_word_where_an_extent_stands_is_asked(plugins, sentence):
     with pytest.raises(L2PError):
