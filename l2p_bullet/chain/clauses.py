@@ -49,6 +49,9 @@ def split_clauses(sentence: str) -> list[str]:
     colon ("make a row: first the cube, then the duck, then the cup") stays one clause, its items as a list."""
     if not isinstance(sentence, str):
         return []
+    order = pointing.ORDER.search(sentence)
+    if order is not None and order.group("lead") and order.start() > 0:  # "..., first the blue, then the red"
+        sentence = sentence[:order.start()] + re.sub(r"(?i)\b(?:and\s+)?then\b", "after", order.group(0))
     m = ITEM_BY_ITEM.match(sentence)
     if m is not None:
         items = [i for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]

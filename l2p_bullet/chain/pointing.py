@@ -14,8 +14,9 @@ from dataclasses import dataclass, replace
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError, UnknownObjectError
-from ..language import Command, Context, resolve_object
+from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
+from ..language.grammar import ARROWS
 from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
 from ..language.references import two_references
 from ..language.words import strip_polite
@@ -44,10 +45,19 @@ THERE = re.compile(r"^\s*(?:there\s+(?:are|r|is)\s+(?P<what>.+?)(?:\s+(?:here|th
                    r"|of\s+(?P<of>the\s+two\s+.+?))\s*[.!]?\s*$", re.IGNORECASE)
 """A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
 ("... push the big one toward S and the other one away from the bunny")."""
-SAME = re.compile(r"^\s*(?:now\s+|and\s+|after\s*,?\s*)?(?:(?:do|repeat)\s+(?:the\s+same|that|it)|the\s+same)"
+SAME = re.compile(r"^\s*(?:now\s+|and\s+|after\s*,?\s*)?(?:(?:do|repeat)\s+(?:(?:the\s+)?same|that|it)|(?:the\s+)?same)"
                   r"(?:\s+thing)?(?:\s+again)?\s+(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$",
                   re.IGNORECASE)
-"""The previous command again on another object: "Now do the same with the red cube"."""
+"""The previous command again on another object: "Now do the same with the red cube", "then same for the duck"."""
+TOO = re.compile(r"^\s*(?:and\s+)?(?P<what>.+?)\s+(?:too|as\s+well|also)\s*[.!]?\s*$", re.IGNORECASE)
+"""The previous command again on another object, said by the object alone: "..., and the black one too"."""
+ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s+first"
+                   r"|first\s+(?P<lead>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s*,?\s*"
+                   r"(?:then|after|afterwards|and\s+then)\s+(?:the\s+)?[\w-]+(?:\s+[\w-]+)?(?:\s+one)?)\s*[.!]?\s*$",
+                   re.IGNORECASE)
+"""Which of two objects moved alike goes first, said at the end: ", the red one first", ", white first", ", first
+the big, after the small"."""
+AND_SIGNS = re.compile(r"\s+[+&]\s+")
 _RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
                         re.IGNORECASE)
@@ -201,6 +211,9 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
             raise LanguageError(f'"{text}": {mover} is what the previous clause moved {previous.preposition}; '
                                 "name another block")
         return [replace(previous, mover=mover, sentence=text)]
+    again = _again(text, previous, scene, context)
+    if again is not None:
+        return [again]
     if NOT_THAT.search(text):
         try:
             return [resolve(NOT_THAT.sub(" ", text, count=1), scene, plugins, context)]
@@ -216,16 +229,75 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
             goal = None
         if goal is not None:
             return [replace(goal, manner=head.manner, pace=head.pace or goal.pace, sentence=text)]
+    m = ORDER.search(text)
+    first = m.group("first") or m.group("lead") if m is not None and m.start() > 0 else None
+    text = text[:m.start()] if first is not None else text
     for what, rest, lifting in _splits(text):
         objects = _pointed_at(what, scene, context)
         if objects is None:
             continue
         commands = _each(rest, Shown(objects).context, objects, scene, plugins)
         if commands is not None:
-            return [carried(c, Shown(objects, lifting)) for c in commands]
+            return _ordered([carried(c, Shown(objects, lifting)) for c in commands], first, scene)
     if previous is not None and BOTH.search(text):
         pair = (previous.mover, previous.anchor)
-        return _each(text, Context(*pair), pair, scene, plugins)
+        return _ordered(_each(text, Context(*pair), pair, scene, plugins), first, scene)
+    return _ordered(_two_movers(text, context, scene, plugins), first, scene)
+
+
+def _again(text: str, previous: Command | None, scene: Scene, context: Context | None) -> Command | None:
+    """The previous command again on the object ``text`` names with "too" ("..., and the black one too"); None where
+    ``text`` is not said so, names no one object, or names what the previous command moved or moved it to."""
+    m = TOO.match(text)
+    if m is None or previous is None:
+        return None
+    try:
+        mover = resolve_object(m.group("what"), scene, "block to do the same with", context)
+    except (LanguageError, UnknownObjectError):
+        return None
+    return None if mover == previous.mover or mover in previous.anchors else replace(previous, mover=mover,
+                                                                                        sentence=text)
+
+
+def _two_movers(text: str, context: Context | None, scene: Scene, plugins: list) -> list[Command] | None:
+    """One command per object where two objects stand where the mover does ("Move both the blue cube and the red
+    cube closer to the mug", "white cube + small yellow cube -> both around lid"), in the order named; None where
+    ``text`` does not read so. A note without its verb is a slide, as a one-object note is."""
+    words = [w for w in AND_SIGNS.sub(" and ", text).split() if w not in ARROWS]
+    try:
+        verb, _, rest = split_verb(words)
+    except LanguageError:
+        verb, rest = "move", words
+    rest = rest[1:] if rest and rest[0].lower() == "both" else rest
+    for j in range(2, len(rest) - 1):
+        pair = _objects(" ".join(rest[:j]), scene, context)
+        if pair is None or len(pair) != 2:
+            continue
+        tail = rest[j + 1:] if rest[j].lower() == "both" else rest[j:]
+        try:
+            return [resolve(f"{verb} {name} {' '.join(tail)}", scene, plugins, context) for name in pair]
+        except L2PError:
+            continue
+    return None
+
+
+def _ordered(commands: list[Command] | None, first: str | None, scene: Scene) -> list[Command] | None:
+    """``commands`` with the one whose mover ``first`` describes (:data:`ORDER`) first; None where ``first`` is said
+    and does not pick one of two movers."""
+    if commands is None or first is None:
+        return commands
+    movers = tuple(c.mover for c in commands)
+    if len(commands) != 2 or movers[0] == movers[1]:
+        return None
+    among = Context(movers[0], movers[1], among=movers)
+    bare = re.sub(r"(?i)^the\s+", "", first)
+    for said in (f"the {bare} one", f"the {bare}"):
+        try:
+            pick = resolve_object(said, scene, "block to move first", among)
+        except (LanguageError, UnknownObjectError):
+            continue
+        if pick in movers:
+            return commands if pick == movers[0] else commands[::-1]
     return None
 
 
