@@ -37,10 +37,12 @@ from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
 
 _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?\s*\bthen\b"
-                    r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\bafterwards\b"
+                    r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\b(?:afterwards|thereafter)\b"
+                    r"|,\s*after\s+(?=(?![a-z]+ing\b)[a-z]+\s+(?:the|it|them)\b)"
                     r"|,\s*and\s+after\b"
                     r"|,?\s*\band\s+finally\b|,\s*finally\b)\s*,?\s*", re.IGNORECASE)
-"""What joins clauses: "then", "and then", "after that", "afterwards", ", and after", "and finally", a semicolon, or a
+"""What joins clauses: "then", "and then", "after that", "afterwards", "thereafter", ", and after", ", after" before a
+verb and its object ("..., after push the brick away"), "and finally", a semicolon, or a
 full stop between two sentences ("Carry C around B. Next, move D a bit closer to the duck.")."""
 
 

@@ -34,6 +34,59 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
     chain's). The objects are separated by commas and/or "and"; at least two, all different."""
     if not isinstance(sentence, str) or not phrases or len(sentence) > MAX_SENTENCE:
         return None
+    plain = said_plainly(sentence, scene)
+    if plain == sentence:
+        return _parse_list(sentence, scene, phrases)
+    try:
+        read = _parse_list(plain, scene, phrases)
+    except LanguageError:
+        read = None
+    return read if read is not None else _parse_list(sentence, scene, phrases)
+
+
+ROW_ADJECTIVES = re.compile(r"\bin\s+(?:a|one)\s+(?:neat|nice|tidy|single|straight|long|perfect|clean)\s+(row|line)\b",
+                            re.IGNORECASE)
+UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
+THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
+                           r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
+                           re.IGNORECASE)
+GROUP = re.compile(r"\bthe\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?(?P<kind>cubes|blocks|boxes|objects|things)\b",
+                   re.IGNORECASE)
+GROUP_ITEMS = re.compile(r"\s*(?::|\s-+|[\u2013\u2014]|,)\s*(?P<items>[^:;\-\u2013\u2014]+?)"
+                         r"\s*(?:-+|[\u2013\u2014])?\s*$")
+COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
+"""A composite's sentence said in other words: "in a neat row", "line A, B and C up in a row", "a row of the following
+objects: ...", and a group named first and its items after ("Put the three cubes in a row: red, blue, black", "Line
+the four cubes up - big red, small red, blue, purple -"), each item the group's noun with the words said."""
+
+
+def said_plainly(sentence: str, scene: Scene) -> str:
+    """``sentence`` with a composite's sentence said in other words (the patterns above) said as a plain list is;
+    ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
+    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", sentence))
+    text = THE_FOLLOWING.sub(" of ", text, count=1)
+    group = GROUP.search(text)
+    if group is None:
+        return text
+    after = text[group.end():]
+    for sep in re.finditer(r"\s*(?::|\s-+\s|[\u2013\u2014]|,)\s*", after):
+        m = GROUP_ITEMS.match(after[sep.start():])
+        if m is None:
+            continue
+        items = [i.strip(" .!?") for part in m.group("items").split(",") for i in _split_and(part) if i.strip(" .!?")]
+        count = group.group("count")
+        if len(items) < 2 or (count is not None and COUNTS.get(count.lower(), int(count) if count.isdigit() else 0)
+                              != len(items)) or any(len(i.split()) > 3 for i in items):
+            return text
+        noun = group.group("kind").lower().rstrip("s")
+        said = [i if i.lower().startswith("the ") or noun in ("object", "thing") else f"the {i} {noun}" for i in items]
+        listed = ", ".join(said[:-1]) + " and " + said[-1]
+        return f"{text[:group.start()]}{listed}{after[:sep.start()]}"
+    return text
+
+
+def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCommand | None:
+    """:func:`parse_list` of the sentence as it is said."""
     sentence = IN_ORDER.sub("", re.sub(r"(?i)\bw/\s*", "with ", sentence))
     raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]")]
     words = tokens(sentence)

@@ -31,7 +31,7 @@ KIND_NAMES = {
     "milk": ("carton",),
     "lid": ("lids", "disc", "disk", "puck", "cap"),
     "brick": ("bricks",),
-    "slab": ("slabs", "board", "tile", "slate"),
+    "slab": ("slabs", "board", "tile", "slate", "plate"),
     "beam": ("beams", "plank", "girder", "rod"),
     "plank": ("planks", "board", "beam"),
 }

@@ -1,0 +1,36 @@
+"""Rows said in other words: a group named first and its items after, "in a neat row", "line ... up in a row", "the
+following objects: ...", "row up", "make row", and the joins "thereafter" and ", after" before a verb; the rules the
+tenth to thirteenth authors' misses prompted, checked on sentences of each kind (not the corpora's own lines)."""
+
+from __future__ import annotations
+
+import pytest
+from corpus import read
+
+from l2p_bullet.errors import L2PError
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Put the three cubes in a row: blue, red, green.", "row C,A,B"),
+    ("line up the cubes - green, blue, red - then move the duck past A", "row B,C,A ; slide:past duck A"),
+    ("Line the cubes up in this order: red, green, blue.", "row A,B,C"),
+    ("row up the two cubes, red and blue", "row A,C"),
+    ("Arrange the duck, A and E in a tidy row.", "row duck,A,E"),
+    ("Please line A, C and the duck up in a row, then push B past E.", "row A,C,duck ; push:past B E"),
+    ("make a row out of the following three objects: the duck, the red cube, the yellow box", "row duck,A,D"),
+    ("make row: duck, red cube, blue cube", "row duck,A,C"),
+    ("Put A, B and C in a single line; thereafter, move the duck away from E.", "row A,B,C ; slide:away duck E"),
+    ("Make a row of A, B and C, after push the duck past E.", "row A,B,C ; push:past duck E"),
+])
+def test_rows_said_in_other_words(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "Put the two cubes in a row: red, blue, green.",   # three items for "the two cubes"
+    "Put the three cubes in a row: red, blue, pink.",  # no pink cube
+    "move A past B, after the duck",                   # "after" before an object joins nothing
+])
+def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
