@@ -171,8 +171,9 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         try:
             pieces = _resolve_text(text, previous, scene, plugins, context=context, pair=pair)
         except L2PError as e:
-            if i < len(texts) and pointing.about_us(text, scene):
-                continue  # "We're setting up for the demo."
+            if (i < len(texts) and pointing.about_us(text, scene)) or pointing.asks_nothing(text, scene,
+                                                                                             known_verbs()):
+                continue  # "We're setting up for the demo.", "Here's the situation.", "Would you see to that?"
             done = _done_so(text, clauses[-1]) if clauses else None
             if done is not None:  # "The jar needs to be next to the mug. Slide it over."
                 clauses[-1] = done

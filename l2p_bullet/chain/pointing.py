@@ -19,7 +19,7 @@ from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
 from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
 from ..language.references import two_references
-from ..language.words import strip_polite
+from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
@@ -36,7 +36,7 @@ TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)
                       r"(?:together|to\s+each\s+other)\s*[.!]?\s*$", re.IGNORECASE)
 """What a statement about two objects says when it only points at them: "The mug and the jar are too close
 together"."""
-TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|'s|sits|stands)\s+(?:(?:far|way|much|a\s+bit)\s+)?"
+TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands)|'s)\s+(?:(?:far|way|much|a\s+bit)\s+)?"
                        r"(?:too\s+(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
                        re.IGNORECASE)
 """A statement of what is wrong between two objects: "The cup is too near to the duck", "The stone is in the way
@@ -83,6 +83,13 @@ BOTH = re.compile(r"(?:\b(?:them\s+both|both\s+of\s+them|each\s+of\s+them|both|t
 """Words for the two objects shown before: "them (both)", "each of them", and "em" as typed."""
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
+PLACE_WORDS = frozenset({"it", "them", "one", "ones", "left", "right", "front", "back", "behind", "middle", "both",
+                         "each", "same", "far", "near", "closer", "nearer", "around", "round", "past", "away"})
+PACE_WORDS = frozenset(PACES)
+OTHER_ASKS = frozenset({"again", "twice", "also", "too", "repeat", "back", "undo", "no", "not",
+                        "don't", "dont", "never", "wait", "stop", "cancel", "instead", "actually", "rather", "but",
+                        "except", "unless", "meant", "mean", "mistake", "wrong", "oops", "hold", "scratch", "forget"})
+"""Words by which a clause that names nothing still asks something ("Do that again", "No, wait"): never read past."""
 
 
 @dataclass(frozen=True)
@@ -120,6 +127,9 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
 def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:
     """The objects a clause that asks for nothing points at: a description alone ("the teddy", "ok now the box")
     or a statement about it ("The white box is in the way"); None for anything else."""
+    m = WHERE.search(text)
+    if m is not None:
+        return _objects(m.group("what"), scene, context)
     m = THERE.match(text)
     if m is not None and not _names_a_place(m.group("what") or m.group("of")):
         return _objects(m.group("what") or m.group("of"), scene, context)
@@ -133,6 +143,8 @@ def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, 
 
 ABOUT_US = frozenset({"we're", "we", "we've", "i'm", "i", "i've", "it's", "this", "that's", "our", "my"})
 """Openings of a sentence that tells about the person or the occasion ("We're setting up for the demo")."""
+WHERE = re.compile(r"\bwhere\s+(?P<what>.+?)\s+(?:is|are|sits|stands|lies)\b", re.IGNORECASE)
+"""A clause about where an object is ("I don't like where the can is"): it points at the object."""
 
 
 def about_us(text: str, scene: Scene) -> bool:
@@ -143,6 +155,20 @@ def about_us(text: str, scene: Scene) -> bool:
         return False
     naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS
     return not naming & set(words)
+
+
+def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
+    """Whether a clause asks for nothing and points at nothing ("Here's the situation", "Would you see to that?",
+    "go"): no word of it names an object, a colour, a shape, a place, a pace or a pronoun, and it does not open with
+    a verb of motion (an unfinished command, "move it", is refused, not read past)."""
+    words = [w.strip(".,;:!?\"()").lower() for w in strip_polite(text.split(), frozenset(scene.names))]
+    words = [w for w in words if w]
+    if not words or words[0] in {v.split()[0] for v in verbs} - {"get", "take"}:
+        return False
+    naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS | PLACE_WORDS
+    said = {w.strip(".,;:!?\"()").lower() for w in text.split()}
+    return not (naming | PACE_WORDS) & set(words) and not OTHER_ASKS & said and not _names_a_place(text) \
+        and not any(c.isdigit() for c in text)
 
 
 def _names_a_place(said: str) -> bool:

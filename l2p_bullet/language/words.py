@@ -65,7 +65,8 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
     "what i'd like is", "what i'm after is", "i want to see", "i'd like to see", "i would like to see",
     "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
-    "goal", "want", "end state", "target", "objective", "wanted",
+    "goal", "want", "end state", "target", "objective", "wanted", "expected result", "desired result", "end result",
+    "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
@@ -172,6 +173,8 @@ def is_courtesy(words: list[str]) -> bool:
     low = [w.lower() for w in words]
     if low[:2] == ["thank", "you"] or low[:1] == ["thanks"]:
         return True  # "Thank you for the help before.", "Thank you ever so much."
+    if {"again", "twice"} & set(low) and {"do", "repeat", "same", "that", "it"} & set(low):
+        return False  # "Then do that again" asks for the move once more: never read past
     while low:
         for pre in POLITE_PREFIXES + POLITE_SUFFIXES:
             if _starts(low, pre):
@@ -288,7 +291,8 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "needs to be", "need to be", "has to be", "must be", "to go", "goes", "go", "to get", "gets", "should go",
     "sits", "lies", "to sit", "to lie", "to land", "lands", "is placed", "is put", "to stand", "stands",
     "were", "was", "ended up", "would be", "has to go", "needs to go", "must go", "would end up", "should stand",
-    "should sit", "should finish", "finishes", "to finish", "should lie",
+    "should sit", "should finish", "finishes", "to finish", "should lie", "ought to be", "ought to end up",
+    "ought to go", "ought to sit",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""

@@ -1,0 +1,39 @@
+"""Sentences around the command: ones that ask for nothing ("Here's the situation.", "go"), ones that point at an
+object ("I don't like where the duck is.", "The duck's too close to A."), and ends stated ("Expected result: ...",
+"A ought to be further from B"); the rules the tenth to thirteenth authors' misses prompted, checked on sentences of
+each kind (not the corpora's own lines), and what must stay refused."""
+
+from __future__ import annotations
+
+import pytest
+from corpus import read
+
+from l2p_bullet.errors import L2PError
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Here's the situation. The duck is crowding A. Move it away from B.", "slide:away duck B"),
+    ("Let me explain. Push C past B.", "push:past C B"),
+    ("end state: A next to B. go", "slide:next-to A B"),
+    ("Move C around B. Can you manage that?", "slide:around C B"),
+    ("I don't like where the duck is. Move it closer to C.", "slide:closer duck C"),
+    ("The duck's too close to B. Could you move the duck away from it?", "slide:away duck B"),
+    ("Expected result: A adjacent to the duck.", "slide:next-to A duck"),
+    ("Desired outcome: C beside B", "slide:next-to C B"),
+    ("C ought to be further from the duck. Would you see to that?", "slide:away C duck"),
+])
+def test_sentences_around_the_command(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "Move A past B. No, wait.",                 # a correction: asked, never read past
+    "Move A past B. Then do that again.",       # a repeat asked for: not dropped as politeness
+    "Move A past B. Then move it.",             # an unfinished command
+    "Move A past B. Do it slowly.",             # a pace for a move already read
+    "Here's the situation. Move it past B.",    # "it" points at nothing
+    "Move A past B. 3 times.",                  # a number
+])
+def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
