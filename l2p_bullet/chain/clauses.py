@@ -282,9 +282,9 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
     pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)
-    if pieces is None and context is not None and context.anchor is not None and AWAY_END.search(text):
+    full = _to_the_anchor(text, context, plugins) if pieces is None else None
+    if full is not None:
         try:  # "The football is too close to the cup. Move it away.": away from what the clause before named
-            full = AWAY_END.sub(f" away from {context.anchor}", text)
             pieces = [(text, resolve(_complete(full, previous, scene, plugins), scene, plugins, context))]
         except L2PError:
             pieces = None
@@ -309,8 +309,21 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         return None
 
 
-AWAY_END = re.compile(r"\s+away(?:\s+again)?\s*[?.!]*\s*$", re.IGNORECASE)
-"""A clause that ends with "away" and names nothing to move away from."""
+BARE_END = re.compile(r"\s+(?:back\s+)?(?P<word>[a-z]+)(?:\s+again)?\s*[?.!]*\s*$", re.IGNORECASE)
+"""A clause that ends with the first word of a two-word phrase and names nothing after it ("Move it away", "bring it
+back closer")."""
+
+
+def _to_the_anchor(text: str, context: Context | None, plugins: list) -> str | None:
+    """``text`` with the phrase its last word opens and the object the clause before named as the reference ("Move it
+    away" after "The football is too close to the cup": away from the cup); None where it does not end so."""
+    m = BARE_END.search(text)
+    if m is None or context is None or context.anchor is None:
+        return None
+    word = m.group("word").lower()
+    table = registry.phrase_table(plugins)
+    phrase = next((p for p in table if p.split()[0] == word and len(p.split()) == 2), None)
+    return None if phrase is None or word in table else f"{text[:m.start()]} {phrase} {context.anchor}"
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
 
 

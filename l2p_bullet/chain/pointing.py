@@ -29,7 +29,7 @@ SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
 TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,])\s+(?P<rest>.+)$")
 """An object named first, then the command about it: "the green cube - move it toward the blue one", "the
 teddy, put it beside the can", "Q and R: slide them both toward P"."""
-STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
+STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|r|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
 """A clause that says something about objects and asks for nothing: "The white box is in the way", "The teddy
 looks lonely"; what comes next points at them ("... slide it past the cylinder")."""
 TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)\s+"
@@ -178,20 +178,23 @@ def _names_a_place(said: str) -> bool:
                           said, re.IGNORECASE))
 
 
-IN_THE_AIR = re.compile(r"^\s*(?:take|move|bring|get|lift)\s+(?P<what>.+?)\s+(?:up\s+)?(?:in|into|through)\s+the\s+air"
-                        r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay)\s+it(?:\s+down)?\s+(?P<rest>.+)$",
-                        re.IGNORECASE)
-"""A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball"."""
+_AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab)"
+_AIR = r"(?:up\s+)?(?:in|into|through)\s+the\s+air"
+_AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
+IN_THE_AIR = re.compile(rf"^\s*{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
+AIR_FIRST = re.compile(rf"^\s*{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
+"""A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
+in the air the cube and bring it near the bottle"."""
 YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
 """The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
 yellow cube"."""
 
 
 def in_other_words(text: str) -> list[str]:
-    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s or :data:`YOU_VERB`'s ways; the
-    caller resolves each (one that does not resolve is no reading)."""
+    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s or
+    :data:`YOU_VERB`'s ways; the caller resolves each (one that does not resolve is no reading)."""
     out = []
-    m = IN_THE_AIR.match(text)
+    m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:
         out.append(f"carry {m.group('what')} {m.group('rest')}")
     m = YOU_VERB.match(text)

@@ -8,6 +8,8 @@ several objects or none is a one-line error that names them.
 
 from __future__ import annotations
 
+import re
+
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from .places import (
@@ -53,7 +55,11 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     block": the cube, not the white mug); the two readings are refused where they pick different objects."""
     names = name_words(scene)
     sizes = [w for w in low if w in SIZE_WORDS and w not in names]
+    words, low, measure = said_measure(words, low)
     fits = candidates(text, words, low, scene, determined)
+    if measure is not None:  # "the 5 cm cube": the objects whose longest side is about that long
+        fits = [o for o in fits if abs(max(*outline_sides(o), o.geometry.height) - measure)
+                <= max(MEASURE_TOLERANCE * measure, MEASURE_TOLERANCE_M)]
     pools = [fits]
     blocky = [o for o in fits if o.shape in BLOCK_SHAPES]
     if set(low) & BLOCK_WORDS and 0 < len(blocky) < len(fits) and not set(low) & set(names):
@@ -71,6 +77,26 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
         raise LanguageError(f'"{text}" is ambiguous: as any object it is {readings[0]}, as a block (a cube or a '
                             f"box) {readings[1]}; name the one you mean")
     raise readings[0]
+
+
+MEASURE = re.compile(r"^(?P<n>\d+(?:[.,]\d+)?)-?(?P<unit>cm|mm|centimet(?:er|re)s?|millimet(?:er|re)s?)$")
+UNITS = {"c": 0.01, "m": 0.001}
+MEASURE_TOLERANCE = 0.15
+MEASURE_TOLERANCE_M = 0.004
+"""A size said in centimetres or millimetres ("the 5 cm cube", "the 6cm one") fits an object whose longest side is
+within 15 % (at least 4 mm) of it: a 4 cm and a 5 cm cube are told apart, a 3.5 and a 4 cm one are asked about."""
+
+
+def said_measure(words: list[str], low: tuple[str, ...]) -> tuple[list[str], tuple[str, ...], float | None]:
+    """``words`` and ``low`` without a size said in centimetres or millimetres ("5 cm", "6cm", "50-mm"), and that
+    size in metres; None where none is said."""
+    for i in range(len(low)):
+        for n in (2, 1):
+            m = MEASURE.match("".join(low[i:i + n]))
+            if m is not None and i + n <= len(low):
+                size = float(m.group("n").replace(",", ".")) * UNITS[m.group("unit")[0]]
+                return words[:i] + words[i + n:], low[:i] + low[i + n:], size
+    return words, low, None
 
 
 def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,

@@ -158,7 +158,7 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
     # The longest phrase wins; among its positions the first that names two objects. If no phrase
     # gives a valid reading, the error of the longest phrase's first reading is the most useful one.
     first_error: Exception | None = None
-    for toks, phrase, action, implied in _readings(phrases):
+    for toks, phrase, action, implied in _readings(phrases) + _without_to(phrases):
         n = len(toks)
         for i in range(0, len(low) - n + 1):
             if tuple(low[i : i + n]) != toks:
@@ -304,6 +304,17 @@ def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, 
         if phrase in table and " ".join(toks) not in table:
             out.append((toks, phrase, table[phrase], extent))
     return sorted(out, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
+
+
+def _without_to(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:
+    """Phrases that end in "to" typed without it ("move the ball next the cube", "push A closer the duck"): read
+    after every phrase as written has failed, and never by the lenient reading, which counts phrases."""
+    table = {normalize_phrase(p): a for p, a in phrases.items()}
+    out = []
+    for toks, phrase, action in phrase_tokens(phrases):
+        if len(toks) > 1 and toks[-1] == "to" and " ".join(toks[:-1]) not in table:
+            out.append((toks[:-1], phrase, action, None))
+    return out
 
 
 def known_verbs() -> list[str]:

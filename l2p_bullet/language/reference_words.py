@@ -63,7 +63,9 @@ PERIPHRASTIC = {("most", "far"): "farthest", ("more", "far"): "farther", ("most"
                 ("most", "near"): "nearest", ("more", "close"): "nearer", ("more", "near"): "nearer"}
 """Comparisons built with most / more, as learners of English write them ("the thing most far from the cube")."""
 OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),
-            ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")}
+            ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")} | {
+    (free, noun, "is"): ("the", noun) for free in ("whichever", "whatever") for noun in ("thing", "one", "object",
+                                                                                         "block", "cube", "item")}
 """Free relatives that open a description ("whatever is closest to A"): the one that is."""
 RELATIVES = (("that", "is"), ("which", "is"), ("that's",), ("thats",), ("which's",))
 """A relative clause after a noun ("the cube that is red", "the block that's closest to E"): its words describe
@@ -71,7 +73,8 @@ the noun as if they stood before it."""
 SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smallest": ("area", min),
                      "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
                      "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
-                     "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max)}
+                     "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max),
+                     "flattest": ("height", min)}
 COMPARATIVE_OF = {"larger": "largest", "bigger": "biggest", "smaller": "smallest", "taller": "tallest",
                   "shorter": "shortest", "longer": "longest"}
 """Comparatives that pick one of a group named after them ("the larger of the cubes")."""
@@ -102,6 +105,7 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost",
                 ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
                 ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"}
+SIDE_PHRASES |= {(*p[:2], "very", *p[2:]): v for p, v in SIDE_PHRASES.items() if "far" not in p}
 """Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
 the one farthest from the robot, along the scene's +x)."""
 SIDE_CONE = math.radians(45)

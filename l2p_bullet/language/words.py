@@ -33,6 +33,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "it'd be great if", "it would be good if", "i wish", "your task", "your job", "here's what to do",
     "here's what i need", "here is what i need", "here's the task", "here is the task", "here's the plan",
     "the task is simple", "the task is easy", "ideally", "two steps", "three steps", "four steps", "five steps",
+    "if it's no trouble", "if it is no trouble", "if it's not too much trouble", "if you don't mind",
+    "if you dont mind", "if possible", "if you would", "do me a favour and", "do me a favor and",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 ADDRESSEES = frozenset({"you", "u"})
@@ -54,7 +56,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
     "at the end", "in the end", "make it happen", "would you see to that", "could you see to that",
-    "see to that", "that's it", "that's all",
+    "see to that", "that's it", "that's all", "ta", "if it's no trouble", "if it is no trouble",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
                                                 ("how", "about"), ("what", "about"))

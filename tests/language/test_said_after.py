@@ -54,3 +54,36 @@ def test_objects_called_by_other_nouns(plugins, sentence, expect, table):
 def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # a size said in centimetres
+    ("Move the 6 cm cube past the teddy.", "slide:past R teddy", "heldout10.tsv"),
+    ("push the 3cm cube toward the can", "push:closer S can", "heldout10.tsv"),
+    ("slide the 15 cm box away from the can", "slide:away tray can", "heldout10.tsv"),
+    # a phrase typed without its "to"
+    ("Move the duck next A.", "slide:next-to duck A", "corpus.tsv"),
+    ("push C closer the duck", "push:closer C duck", "corpus.tsv"),
+    # the reference left out after the phrase's first word: the clause before's
+    ("move A away from B, then bring it back closer", "slide:away A B ; slide:closer A B", "corpus.tsv"),
+    # carries said through the air, openings and closings of politeness, "flattest", "whichever thing is"
+    ("Carry in the air the duck and put it next to B.", "carry:next-to duck B", "corpus.tsv"),
+    ("Transport A through the air and set it down beside C.", "carry:next-to A C", "corpus.tsv"),
+    ("If it's no trouble, move A past B.", "slide:past A B", "corpus.tsv"),
+    ("do me a favor and push C around B, ta", "push:around C B", "corpus.tsv"),
+    ("the flattest thing, move it past the duck", "slide:past slab duck", "heldout12.tsv"),
+    ("whichever cube is at the very back, move it toward E", "slide:closer A E", "corpus.tsv"),
+    ("A and C r in the way, shove em both away from the duck", "push:away A duck ; push:away C duck", "corpus.tsv"),
+])
+def test_more_said_otherwise(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence, table", [
+    ("move the 4 cm cube past the can", "heldout10.tsv"),   # P and Q are both 4 cm
+    ("move the 9 cm cube past the can", "heldout10.tsv"),   # no cube is 9 cm
+    ("move A past B, then move it back", "corpus.tsv"),      # "back" alone says no phrase
+])
+def test_more_what_a_person_would_ask_about_stays_refused(plugins, sentence, table):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, table)
