@@ -29,6 +29,7 @@ from ..language import (
     trailing_join,
     typos,
 )
+from ..language.lists import GROUP
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -54,21 +55,37 @@ def split_clauses(sentence: str) -> list[str]:
     order = pointing.ORDER.search(sentence)
     if order is not None and order.group("lead") and order.start() > 0:  # "..., first the blue, then the red"
         sentence = sentence[:order.start()] + re.sub(r"(?i)\b(?:and\s+)?then\b", "after", order.group(0))
+    out = []
+    for part in SENTENCE_ENDS.split(sentence):  # a list told item by item is one sentence of several
+        listed = _item_by_item(part)
+        out.extend([listed] if listed is not None else [p for p in _pieces(part) if not is_courtesy(tokens(p))])
+    return out
+
+
+SENTENCE_ENDS = re.compile(r"(?<=[a-z0-9])[.!?]\s+(?=\S)", re.IGNORECASE)
+
+
+def _item_by_item(sentence: str) -> str | None:
+    """A list told item by item after a colon (:data:`ITEM_BY_ITEM`) said as one list ("make a row: A, B and C"); None
+    for any other sentence, and where the items are steps (each opens with a verb)."""
     m = ITEM_BY_ITEM.match(sentence)
-    if m is not None:
-        items = [i for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]
-        verbs = set(known_verbs())
-        if len(items) >= 2 and not any(i.split()[0].lower() in verbs for i in items):  # items, not steps
-            listed = ", ".join(i.strip(" ,.") for i in items[:-1]) + " and " + items[-1].strip(" ,.!?")
-            return [f"{m.group('head').strip()} {listed}"]
-    return [p for p in _pieces(sentence) if not is_courtesy(tokens(p))]
+    if m is None or not (m.group("first") or GROUP.search(m.group("head"))):  # "first the cube", "the three cubes:"
+        return None
+    items = [i for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]
+    verbs = set(known_verbs())
+    if len(items) < 2 or any(i.split()[0].lower() in verbs for i in items):
+        return None
+    listed = ", ".join(i.strip(" ,.") for i in items[:-1]) + " and " + items[-1].strip(" ,.!?")
+    return f"{m.group('head').strip()}: {listed}"
 
 
-ITEM_BY_ITEM = re.compile(r"^(?P<head>[^:;]+?):\s*first\s+(?P<items>[^:;]+?)[.!?]*\s*$", re.IGNORECASE)
+ITEM_BY_ITEM = re.compile(r"^(?P<head>[^:;]+?):\s*(?P<first>first\s+)?(?P<items>(?:[^:;.!?]|[.!?](?!\s))+?)[.!?]*\s*$",
+                          re.IGNORECASE)
 ITEM_JOINS = re.compile(r",?\s*\b(?:and\s+then|then|next|and\s+finally|finally|and\s+last(?:ly)?|last(?:ly)?)\b"
                         r"\s*,?\s*", re.IGNORECASE)
 """A list told item by item after a colon: "Please make a row: first the yellow cube, then the duck, then the red
-cube" (whether its head is a composite's phrase is for the composite to say: anything else is refused as before)."""
+cube", "Put the three cubes in a row: the white one, then the big red one, then the small one" (whether its head is a
+composite's phrase is for the composite to say: anything else is refused as before)."""
 
 
 def _pieces(sentence: str) -> list[str]:
@@ -303,10 +320,21 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
     shows = pointing.shown(m.group("what"), scene, context)
     if shows is None or (len(shows.objects) < 2 and shows.lifted):
         return None  # one object shown is what "it" then means ("About the can: move it past Q"); lifted, a carry
+    rest = m.group("rest")
+    if len(shows.objects) == 2 and all(said.search(rest) for said in ORDINALS):
+        # "the stone and the teddy: move the first one ..., the second one ...": "it" after them is asked about
+        rest = ORDINALS[1].sub(shows.objects[1], ORDINALS[0].sub(shows.objects[0], rest))
+        if re.search(r"\bit\b", rest, re.IGNORECASE):
+            return None
     try:
-        return _resolve_text(m.group("rest"), previous, scene, plugins, depth + 1, shows.context, shows)
+        return _resolve_text(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:
         return None
+
+
+ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),
+            re.compile(r"\bthe\s+second(?:\s+one)?\b", re.IGNORECASE))
+"""Of two objects shown together, the one named first and the one named second."""
 
 
 BARE_END = re.compile(r"\s+(?:back\s+)?(?P<word>[a-z]+)(?:\s+again)?\s*[?.!]*\s*$", re.IGNORECASE)

@@ -76,6 +76,9 @@ clause before, in this verb's manner."""
 NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
                       r"(?:\s+it)?\s*,\s*", re.IGNORECASE)
 """A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
+NOT_THIS = re.compile(r"\s*,\s*(?:but\s+)?not\s+(?P<other>(?:the|that|this)\s+[^,]+?)\s*,\s*", re.IGNORECASE)
+"""An object ruled out after a description ("the grey cube, not the stone,"): it must be another object than the ones
+the command names."""
 ABOUT = re.compile(r"^\s*(?:about|regarding|as\s+for|now\s+for)\s+(?=\S)", re.IGNORECASE)
 """An opening that says which object the next words are about ("About the can: move it ...")."""
 BOTH = re.compile(r"(?:\b(?:them\s+both|both\s+of\s+them|each\s+of\s+them|both|them)"
@@ -243,6 +246,15 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
     again = _again(text, previous, scene, context)
     if again is not None:
         return [again]
+    m = NOT_THIS.search(text)
+    if m is not None:  # "Push the grey cube, not the stone, toward the jar": the stone is not what moves
+        try:
+            other = resolve_object(m.group("other"), scene, "block not meant", context)
+            command = resolve(f"{text[:m.start()]} {text[m.end():]}", scene, plugins, context)
+        except L2PError:
+            command = None
+        if command is not None and other not in (command.mover, *command.anchors):
+            return [replace(command, sentence=text)]
     if NOT_THAT.search(text):
         try:
             return [resolve(NOT_THAT.sub(" ", text, count=1), scene, plugins, context)]

@@ -75,11 +75,13 @@ def said_plainly(sentence: str, scene: Scene) -> str:
             continue
         items = [i.strip(" .!?") for part in m.group("items").split(",") for i in _split_and(part) if i.strip(" .!?")]
         count = group.group("count")
-        if len(items) < 2 or (count is not None and COUNTS.get(count.lower(), int(count) if count.isdigit() else 0)
-                              != len(items)) or any(len(i.split()) > 3 for i in items):
+        said_count = COUNTS.get(count.lower(), int(count) if count.isdigit() else 0) if count else len(items)
+        long = any(len([w for w in i.split() if w.lower() != "the"]) > 3 for i in items)
+        if len(items) < 2 or said_count != len(items) or long:
             return text
         noun = group.group("kind").lower().rstrip("s")
-        said = [i if i.lower().startswith("the ") or noun in ("object", "thing") else f"the {i} {noun}" for i in items]
+        said = [i if noun in ("object", "thing") else re.sub(r"(?i)\s+one$", f" {noun}", i)
+                if i.lower().startswith("the ") else f"the {i} {noun}" for i in items]
         listed = ", ".join(said[:-1]) + " and " + said[-1]
         return f"{text[:group.start()]}{listed}{after[:sep.start()]}"
     return text
@@ -122,7 +124,8 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
     return None
 
 
-IN_ORDER = re.compile(r",?\s*in\s+(?:that|this|the\s+same|the\s+given)\s+order\s*(?=[.!?]*\s*$)", re.IGNORECASE)
+IN_ORDER = re.compile(r",?\s*in\s+(?:that|this|the\s+same|the\s+given)\s+order\s*[\-\u2013\u2014]*\s*(?=[.!?]*\s*$)",
+                      re.IGNORECASE)
 """", in that order" after a list: the order named is the order anyway."""
 ROW_AGAIN = re.compile(r"\s+in\s+(?:a|one|a\s+single)\s+(?:row|line)\s*$", re.IGNORECASE)
 

@@ -79,7 +79,8 @@ COMPARATIVE_OF = {"larger": "largest", "bigger": "biggest", "smaller": "smallest
                   "shorter": "shortest", "longer": "longest"}
 """Comparatives that pick one of a group named after them ("the larger of the cubes")."""
 PLACE_ADJECTIVES = {"front": "frontmost", "back": "backmost", "rear": "backmost", "left": "leftmost",
-                    "right": "rightmost", "far": "backmost", "near": "frontmost"}
+                    "right": "rightmost", "far": "backmost", "near": "frontmost", "left-hand": "leftmost",
+                    "right-hand": "rightmost"}
 """Places used as adjectives right after "the" ("the front blue cube", "the left one"): their superlatives."""
 TIE = 0.02
 TIE_M = 0.002

@@ -296,7 +296,7 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         return None
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
-        if any(w.lower() not in NOUNS | set(COLORS) | set(SHAPE_NOUNS) for w in rest_words):
+        if any(w.lower() not in NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) for w in rest_words):
             return None
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]

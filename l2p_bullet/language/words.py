@@ -378,6 +378,7 @@ EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "without a gap": "right", "without any gap": "right", "with no gap in between": "right",
     "no gap in between": "right",
     "almost touching": "right", "nearly touching": "right", "touching": "right", "basically touching": "right",
+    "touching it": "right", "so it touches": "right", "so that it touches": "right", "so they're touching": "right",
     "touching basically": "right", "so they touch": "right", "so that they touch": "right",
     "only a few centimetres": "little", "but only a few centimetres": "little", "but only few centimetres": "little",
     "only a few centimeters": "little", "but only a few centimeters": "little", "only a few cm": "little",

@@ -34,3 +34,13 @@ def test_rows_said_in_other_words(plugins, sentence, expect):
 def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Put the three cubes in a row: the blue one, the red one and the green one.", "row C,A,B"),
+    ("Put the three cubes in a row: the green one, then the red one, then the blue one. After that, move the duck "
+     "past E.", "row B,A,C ; slide:past duck E"),
+    ("Line up A, the duck and C, in that order - then move B next to E.", "row A,duck,C ; slide:next-to B E"),
+])
+def test_rows_told_item_by_item_after_a_group(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect

@@ -87,3 +87,12 @@ def test_more_said_otherwise(plugins, sentence, expect, table):
 def test_more_what_a_person_would_ask_about_stays_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
         read(sentence, plugins, table)
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    ("Slide the right-hand grey object around the mug.", "slide:around W mug", "heldout9.tsv"),
+    ("move the leftmost grey one past the jar", "slide:past stone jar", "heldout9.tsv"),
+    ("Set the duck right beside A, touching it if you can.", "slide:next-to duck A extent=right", "corpus.tsv"),
+])
+def test_places_and_touching_said_otherwise(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect

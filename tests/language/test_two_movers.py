@@ -35,3 +35,22 @@ def test_two_objects_moved_alike(plugins, sentence, expect):
 def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("A and C: move the first one past B and the second one next to the duck",
+     "slide:past A B ; slide:next-to C duck"),
+    ("the duck and A: the first one goes around B, the second one goes past E", "slide:around duck B ; slide:past A E"),
+    ("Push the blue cube, not the red one, toward the duck.", "push:closer C duck"),
+])
+def test_two_objects_shown_then_each_named(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "A and C: move the first one past B and the second one away from it",  # "it": B, or A?
+    "Push the blue cube, not the blue cube, toward the duck.",             # rules out what it moves
+])
+def test_what_is_asked_about_when_shown_then_named(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
