@@ -25,11 +25,13 @@ from ..language import (
     lenient,
     phrase_tokens,
     split_verb,
+    strip_polite,
     tokens,
     trailing_join,
     typos,
 )
 from ..language.lists import GROUP
+from ..language.words import participles
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -53,13 +55,32 @@ def split_clauses(sentence: str) -> list[str]:
     if not isinstance(sentence, str):
         return []
     order = pointing.ORDER.search(sentence)
-    if order is not None and order.group("lead") and order.start() > 0:  # "..., first the blue, then the red"
+    if order is not None and (order.group("lead") or order.group("then")) and order.start() > 0:
+        # "..., first the blue, then the red", "..., the small one first and then the big one"
         sentence = sentence[:order.start()] + re.sub(r"(?i)\b(?:and\s+)?then\b", "after", order.group(0))
+    sentence = _after_you(sentence)
     out = []
     for part in SENTENCE_ENDS.split(sentence):  # a list told item by item is one sentence of several
         listed = _item_by_item(part)
         out.extend([listed] if listed is not None else [p for p in _pieces(part) if not is_courtesy(tokens(p))])
     return out
+
+
+AFTER_YOU = re.compile(r"^\s*(?:after|once|when)\s+(?:you've|you\s+have|you're\s+done|you\s+are\s+done)\s+"
+                       r"(?P<verb>[a-z]+)\s+(?P<done>[^,]+?),\s*(?P<then>.+)$", re.IGNORECASE)
+"""What to do first said in the past, before the next step: "After you've moved the white cube next to the domino,
+would you line up ..." is "move the white cube next to the domino, then ..."."""
+
+
+def _after_you(sentence: str) -> str:
+    """``sentence`` with a first step said as done (:data:`AFTER_YOU`) said as a step; ``sentence`` itself where its
+    participle is no known verb's."""
+    m = AFTER_YOU.match(sentence)
+    if m is None:
+        return sentence
+    said = m.group("verb").lower()
+    verb = next((v for v in known_verbs() if " " not in v and said in participles(v)), None)
+    return sentence if verb is None else f"{verb} {m.group('done')}, then {m.group('then')}"
 
 
 SENTENCE_ENDS = re.compile(r"(?<=[a-z0-9])[.!?]\s+(?=\S)", re.IGNORECASE)
@@ -69,14 +90,16 @@ def _item_by_item(sentence: str) -> str | None:
     """A list told item by item after a colon (:data:`ITEM_BY_ITEM`) said as one list ("make a row: A, B and C"); None
     for any other sentence, and where the items are steps (each opens with a verb)."""
     m = ITEM_BY_ITEM.match(sentence)
-    if m is None or not (m.group("first") or GROUP.search(m.group("head"))):  # "first the cube", "the three cubes:"
+    if m is None or not (m.group("first") or GROUP.search(m.group("head")) or is_composite(m.group("head"))):
+        # "first the cube", "the three cubes:", "Row please: the cube, then ..."
         return None
     items = [i for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]
     verbs = set(known_verbs())
     if len(items) < 2 or any(i.split()[0].lower() in verbs for i in items):
         return None
     listed = ", ".join(i.strip(" ,.") for i in items[:-1]) + " and " + items[-1].strip(" ,.!?")
-    return f"{m.group('head').strip()}: {listed}"
+    head = " ".join(strip_polite(m.group("head").split())) or m.group("head").strip()  # "Row please:"
+    return f"{head}: {listed}"
 
 
 ITEM_BY_ITEM = re.compile(r"^(?P<head>[^:;]+?):\s*(?P<first>first\s+)?(?P<items>(?:[^:;.!?]|[.!?](?!\s))+?)[.!?]*\s*$",
@@ -235,7 +258,7 @@ def _row_after_comma(text: str, plugins: list) -> list[str] | None:
 def _done_so(text: str, before: Clause) -> Clause | None:
     """The clause before, done in the manner ``text``'s verb names, where ``text`` only says to do it so ("push it
     there", "slide it over"); None for any other text or a clause before that moved something else."""
-    m = pointing.DO_IT.match(text)
+    m = pointing.DO_IT.match(" ".join(strip_polite(text.split())) or text)  # "Just slide it over."
     if m is None or before.target is not None:
         return None
     try:

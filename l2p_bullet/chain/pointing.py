@@ -52,12 +52,13 @@ SAME = re.compile(r"^\s*(?:now\s+|and\s+|after\s*,?\s*)?(?:(?:do|repeat)\s+(?:(?
 TOO = re.compile(r"^\s*(?:and\s+)?(?P<what>.+?)\s+(?:too|as\s+well|also)\s*[.!]?\s*$", re.IGNORECASE)
 """The previous command again on another object, said by the object alone: "..., and the black one too"."""
 ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s+first"
+                   r"(?P<then>\s*,?\s*(?:and\s+)?(?:then|after)\s+(?:the\s+)?[\w-]+(?:\s+[\w-]+)?(?:\s+one)?)?"
                    r"|first\s+(?P<lead>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s*,?\s*"
                    r"(?:then|after|afterwards|and\s+then)\s+(?:the\s+)?[\w-]+(?:\s+[\w-]+)?(?:\s+one)?)\s*[.!]?\s*$",
                    re.IGNORECASE)
 """Which of two objects moved alike goes first, said at the end: ", the red one first", ", white first", ", first
 the big, after the small"."""
-AND_SIGNS = re.compile(r"\s+[+&]\s+")
+AND_SIGNS = re.compile(r"\s+[+&]\s+|\s*,\s*(?:both|each)(?:\s+of\s+them)?\s*,\s*")
 _RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
                         re.IGNORECASE)
@@ -193,13 +194,25 @@ YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>
 yellow cube"."""
 
 
+GIVE_A = re.compile(r"^\s*give\s+(?P<what>.+?)\s+an?\s+(?:(?P<size>little|small|slight|tiny|wee|lil|gentle|soft|"
+                    r"quick|fast)\s+)?(?P<how>push|nudge|shove|poke|tap|bump)\s+(?P<rest>.+)$", re.IGNORECASE)
+GIVE_SIZES = {"little": "a bit", "small": "a bit", "slight": "a bit", "tiny": "a bit", "wee": "a bit", "lil": "a bit",
+              "gentle": "gently", "soft": "gently", "quick": "quickly", "fast": "quickly"}
+"""A push said as a noun with its size or pace: "Give the duck a little shove toward the pot" is "shove the duck a bit
+toward the pot"."""
+
+
 def in_other_words(text: str) -> list[str]:
-    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s or
-    :data:`YOU_VERB`'s ways; the caller resolves each (one that does not resolve is no reading)."""
+    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s
+    or :data:`YOU_VERB`'s ways; the caller resolves each (one that does not resolve is no reading)."""
     out = []
     m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:
         out.append(f"carry {m.group('what')} {m.group('rest')}")
+    m = GIVE_A.match(text)
+    if m is not None:
+        said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
+        out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
     m = YOU_VERB.match(text)
     if m is not None:
         out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
@@ -300,21 +313,27 @@ def _again(text: str, previous: Command | None, scene: Scene, context: Context |
                                                                                         sentence=text)
 
 
+GOES = frozenset({"go", "goes"})
+
+
 def _two_movers(text: str, context: Context | None, scene: Scene, plugins: list) -> list[Command] | None:
     """One command per object where two objects stand where the mover does ("Move both the blue cube and the red
     cube closer to the mug", "white cube + small yellow cube -> both around lid"), in the order named; None where
     ``text`` does not read so. A note without its verb is a slide, as a one-object note is."""
-    words = [w for w in AND_SIGNS.sub(" and ", text).split() if w not in ARROWS]
+    words = [w for w in AND_SIGNS.sub(lambda m: " and " if m.group().strip() in "+&" else " ", text).split()
+             if w not in ARROWS]
     try:
         verb, _, rest = split_verb(words)
     except LanguageError:
         verb, rest = "move", words
-    rest = rest[1:] if rest and rest[0].lower() == "both" else rest
     for j in range(2, len(rest) - 1):
         pair = _objects(" ".join(rest[:j]), scene, context)
+        if (pair is None or len(pair) != 2) and rest[0].lower() == "both":  # "both the red cube and ..."
+            pair = _objects(" ".join(rest[1:j]), scene, context)
         if pair is None or len(pair) != 2:
             continue
         tail = rest[j + 1:] if rest[j].lower() == "both" else rest[j:]
+        tail = tail[1:] if tail and tail[0].lower() in GOES else tail  # "Both green cubes go next to the duck"
         try:
             return [resolve(f"{verb} {name} {' '.join(tail)}", scene, plugins, context) for name in pair]
         except L2PError:

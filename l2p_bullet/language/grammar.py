@@ -31,6 +31,7 @@ from .descriptions import naming_words
 from .references import Context, measured_from, object_pairs, resolve_object, try_object
 from .words import (
     COMPARATIVES,
+    TIGHT_PHRASES,
     by_gerund,
     drop_frames,
     gerund_to_verb,
@@ -47,6 +48,8 @@ from .words import (
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
 """The plain verbs of a slide; every installed manner's verbs are known too (:func:`known_verbs`)."""
 OBJECT_PRONOUNS = frozenset({"it", "them"})
+TIGHT = "right"
+"""The extent of a tight gap ("right next to")."""
 """What may follow a manner's gap phrase: "lift A and put *it* next to B"."""
 EXAMPLE = 'try for example "move A around B" or "slide the red block next to the green one"'
 MAX_SENTENCE = 200
@@ -185,6 +188,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
                     f"a block cannot be moved {phrase} itself")
                 continue
             accepted = (extents or {}).get(action, frozenset())
+            if extent == TIGHT and implied == TIGHT and TIGHT not in accepted and phrase in TIGHT_PHRASES:
+                extent = None  # "against" of an action without a tight gap: the phrase alone asks for none
             if extent is not None and extent not in accepted:
                 said = " ".join(rest[len(before):i]) or phrase
                 raise LanguageError(f'"{said} {phrase}" asks for a {extent} extent, which "{phrase}" does not have '
@@ -227,6 +232,26 @@ ON_THE_TABLE = tuple(tuple(p.split()) for p in (
 cannot do."""
 
 
+IN_THE_AIR = tuple(tuple(p.split()) for p in (
+    "up off the table", "off the table", "through the air", "in the air", "into the air", "up in the air",
+))
+"""Words that say the object is lifted: read past, wherever they stand, after a verb that lifts it."""
+
+
+def _without(words: list[str], phrases: tuple[tuple[str, ...], ...]) -> list[str]:
+    """``words`` without every occurrence of ``phrases`` (longest first)."""
+    out, i, low = [], 0, [w.lower() for w in words]
+    ordered = sorted(phrases, key=len, reverse=True)
+    while i < len(words):
+        hit = next((p for p in ordered if tuple(low[i:i + len(p)]) == p), None)
+        if hit is None:
+            out.append(words[i])
+            i += 1
+        else:
+            i += len(hit)
+    return out
+
+
 WITH_FINGERS = tuple(tuple(p.split()) for p in (
     "with your fingers", "with the fingers", "with its fingers", "using your fingers", "using the fingers",
     "with your fingertips", "with the fingertips",
@@ -239,6 +264,8 @@ def _on_the_table(rest: list[str], manner: str, sentence: str) -> list[str]:
     """``rest`` without closing words of :data:`ON_THE_TABLE` (or of :data:`WITH_FINGERS` after a push); a
     one-line error where the manner lifts the object ("carry A past B without lifting it" asks for two things at
     once)."""
+    if manners.get(manner).airborne:  # "lift the rabbit up off the table and take it through the air past X"
+        rest = _without(rest, IN_THE_AIR)
     low = tuple(w.lower() for w in rest)
     if manner == "push":
         tail = next((t for t in WITH_FINGERS if len(low) > len(t) and low[-len(t):] == t), None)
@@ -294,7 +321,7 @@ def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, 
     """(tokens, phrase, action, implied extent) for every phrase, longest first; the comparatives people
     use for "away from" ("farther from", "far from") read as its phrase when it is installed, and a phrase typed
     without its article ("to other side of") as the phrase."""
-    out = [(t, p, a, None) for t, p, a in phrase_tokens(phrases)]
+    out = [(t, p, a, TIGHT if p in TIGHT_PHRASES else None) for t, p, a in phrase_tokens(phrases)]
     table = {normalize_phrase(p): a for p, a in phrases.items()}
     for toks, phrase, action, _ in list(out):  # "to other side of", "in direction of": the article left out
         bare = tuple(w for w in toks if w != "the")

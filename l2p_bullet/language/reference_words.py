@@ -59,7 +59,10 @@ ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", 
 NEAREST = frozenset("nearest closest nearer closer near".split())  # English words of place ("the cube closer to you")
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
-PERIPHRASTIC = {("most", "far"): "farthest", ("more", "far"): "farther", ("most", "close"): "closest",
+PERIPHRASTIC = {("farthest", "back"): "backmost", ("furthest", "back"): "backmost", ("most", "back"): "backmost",
+                ("farthest", "left"): "leftmost", ("furthest", "left"): "leftmost", ("farthest", "right"): "rightmost",
+                ("furthest", "right"): "rightmost", ("most", "left"): "leftmost", ("most", "right"): "rightmost",
+                ("most", "far"): "farthest", ("more", "far"): "farther", ("most", "close"): "closest",
                 ("most", "near"): "nearest", ("more", "close"): "nearer", ("more", "near"): "nearer"}
 """Comparisons built with most / more, as learners of English write them ("the thing most far from the cube")."""
 OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),

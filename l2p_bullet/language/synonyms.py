@@ -34,6 +34,7 @@ KIND_NAMES = {
     "slab": ("slabs", "board", "tile", "slate", "plate"),
     "beam": ("beams", "plank", "girder", "rod"),
     "plank": ("planks", "board", "beam"),
+    "plate": ("plates", "dish", "saucer"),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),

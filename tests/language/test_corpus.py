@@ -60,8 +60,8 @@ to seventh authors (heldout4-7) as a slide; the toolkit reads it as a slide, as 
 (docs/language.md), so heldout.tsv's five read otherwise."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 155), ("heldout5.tsv", 154), ("heldout6.tsv", 151),
-                                         ("heldout7.tsv", 156), ("heldout8.tsv", 151), ("heldout9.tsv", 151)])
+@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 156), ("heldout5.tsv", 156), ("heldout6.tsv", 153),
+                                         ("heldout7.tsv", 156), ("heldout8.tsv", 153), ("heldout9.tsv", 154)])
 def test_the_fourth_to_ninth_authors_corpora_are_never_resolved_wrong(plugins, name, floor):
     """heldout4.tsv (the corpus table), heldout5.tsv (its own table: two red cubes, a white cube and a white
     mug, a can), heldout6.tsv (two blue cubes, a teddy, a stone, a long white box), heldout7.tsv (cubes P Q R,
@@ -80,6 +80,7 @@ DISAGREED = {
     "heldout10.tsv": {"Move the small cube away from the teddy."},
     "heldout11.tsv": {"leftmost thing away from the ball", "the rightmost thing, push it toward the bottle"},
     "heldout13.tsv": {"Move the biggest thing next to the jar."},
+    "heldout15.tsv": {"Move the cube closest to the teddy toward the bottle."},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -87,7 +88,7 @@ smallest); "leftmost" / "rightmost" 2-3 cm apart is clear for the three authors 
 biggest thing" is the object of the greatest bulk (the mug, against a long thin beam and a jar)."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 144), ("heldout11.tsv", 141)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 153), ("heldout11.tsv", 150)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
@@ -100,12 +101,15 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 137), ("heldout13.tsv", 140)])
-def test_the_twelfth_and_thirteenth_authors_corpora(plugins, name, floor):
+@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 154), ("heldout13.tsv", 155), ("heldout14.tsv", 154),
+                                         ("heldout15.tsv", 151)])
+def test_the_twelfth_to_fifteenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong
-    (75.6 % / 2 and 66.2 % / 3 on the grammar of the session's start; docs/language.md); development figures since.
-    Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
+    (75.6 % / 2 and 66.2 % / 3 on the grammar of the session's start); heldout14.tsv (cubes X Y Z, a domino, a bunny,
+    a pot, a duck) and heldout15.tsv (cubes A B C, a plate, a bottle, a teddy, a stone): written cold, read once in the
+    middle of the next session: 92.5 % / 2 and 89.4 % / 1 (90.6 % / 2 and 88.1 % / 1 on its start; docs/language.md);
+    development figures since. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
              if got != REFUSE and case.sentence not in DISAGREED.get(name, ())]

@@ -88,7 +88,7 @@ def test_a_sentence_that_reads_as_typed_is_never_mended(plugins):
     ("scoot A toward B", "slide:closer A B", "corpus.tsv"),
     ("displace C past A", "slide:past C A", "corpus.tsv"),
     ("put A adjacent to B", "slide:next-to A B", "corpus.tsv"),
-    ("set C up against D", "slide:next-to C D", "corpus.tsv"),
+    ("set C up against D", "slide:next-to C D extent=right", "corpus.tsv"),
     ("move B nearer the duck", "slide:closer B duck", "corpus.tsv"),
     ("slide A to the far side of B", "slide:past A B", "corpus.tsv"),
     ("shift B a tad closer to C", "slide:closer B C extent=little", "corpus.tsv"),

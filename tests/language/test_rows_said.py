@@ -44,3 +44,7 @@ def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
 ])
 def test_rows_told_item_by_item_after_a_group(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
+
+
+def test_a_row_told_item_by_item_after_its_own_word(plugins):
+    assert read("Row please: the duck, then A, then C.", plugins) == "row duck,A,C"

@@ -96,3 +96,35 @@ def test_more_what_a_person_would_ask_about_stays_refused(plugins, sentence, tab
 ])
 def test_places_and_touching_said_otherwise(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # what the fourteenth and fifteenth authors' misses prompted
+    ("Push soft C past the duck.", "push:past C duck pace=gentle", "corpus.tsv"),
+    ("move the soft duck past C", "slide:past duck C", "corpus.tsv"),                # "soft" describes here
+    ("Slide A up against B.", "slide:next-to A B extent=right", "corpus.tsv"),
+    ("push C against the duck", "push:next-to C duck extent=right", "corpus.tsv"),
+    ("push B a lil closer to C", "push:closer B C extent=little", "corpus.tsv"),
+    ("Give A a little shove toward B.", "push:closer A B extent=little", "corpus.tsv"),
+    ("give C a gentle nudge past the duck", "push:past C duck pace=gentle", "corpus.tsv"),
+    ("Lift A up off the table and take it through the air past B.", "carry:past A B", "corpus.tsv"),
+    ("pick up the duck and bring it next to C", "carry:next-to duck C", "corpus.tsv"),
+    ("carry C next to the duck, and be gentle", "carry:next-to C duck pace=gentle", "corpus.tsv"),
+    ("A should be closer to B than it is now.", "slide:closer A B", "corpus.tsv"),
+    ("The duck is too close to A. Fix that by moving it away from A.", "slide:away duck A", "corpus.tsv"),
+    ("Could we end up with C beside B? Just slide it over.", "slide:next-to C B", "corpus.tsv"),
+    ("push the cube farthest back past the duck", "push:past A duck", "corpus.tsv"),
+    ("After you've moved A next to B, would you push C past the duck?", "slide:next-to A B ; push:past C duck",
+     "corpus.tsv"),
+])
+def test_what_the_fourteenth_and_fifteenth_authors_prompted(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "slide C through the air past the duck",     # a slide through the air asks two manners
+    "push C past the duck against B",            # "against" after a reference: two references
+])
+def test_what_the_fourteenth_and_fifteenth_authors_prompted_still_asks(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)

@@ -54,3 +54,12 @@ def test_two_objects_shown_then_each_named(plugins, sentence, expect):
 def test_what_is_asked_about_when_shown_then_named(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Move A and C, both of them, closer to the duck.", "slide:closer A duck ; slide:closer C duck"),
+    ("move both cubes A and C past B", "slide:past A B ; slide:past C B"),
+    ("A and C go next to the duck, C first and then A", "slide:next-to C duck ; slide:next-to A duck"),
+])
+def test_two_objects_said_otherwise(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
