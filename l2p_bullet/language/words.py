@@ -57,6 +57,9 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
     "at the end", "in the end", "make it happen", "would you see to that", "could you see to that",
     "see to that", "that's it", "that's all", "ta", "than it is now", "than it is", "than now", "than it was",
+    "don't knock anything over", "don't knock anything", "don't knock anything else over",
+    "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
+    "without touching anything else", "don't touch anything else",
     "if it's no trouble", "if it is no trouble",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
@@ -417,13 +420,21 @@ def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:
     return after, None
 
 
+FILLERS = frozenset({"like", "kinda", "sorta", "basically", "literally"})
+"""Words people put before how far without meaning anything ("put the ball like right next to the lid")."""
+
+
 def take_extent(before: list[str]) -> tuple[list[str], str | None]:
     """The words before a preposition without the qualifiers at their end, and the extent they ask for; the
-    outermost decides ("a little farther away": little, "a lot farther away": far)."""
+    outermost decides ("a little farther away": little, "a lot farther away": far). A filler before the qualifier
+    (:data:`FILLERS`) goes with it."""
     extent = None
     while True:
         low = [w.lower() for w in before]
         if len(low) > 1 and low[-1] in COMPARATIVE_WORDS:  # "further away": a comparative alone says no extent
+            before = before[:-1]
+            continue
+        if extent is not None and len(low) > 1 and low[-1] in FILLERS:
             before = before[:-1]
             continue
         for k in sorted(EXTENTS, key=len, reverse=True):

@@ -128,3 +128,11 @@ def test_what_the_fourteenth_and_fifteenth_authors_prompted(plugins, sentence, e
 def test_what_the_fourteenth_and_fifteenth_authors_prompted_still_asks(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Push A away from B - carefully, don't knock anything over.", "push:away A B pace=careful"),
+    ("put the duck like right next to C", "slide:next-to duck C extent=right"),
+])
+def test_cautions_and_fillers_read_past(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
