@@ -31,7 +31,7 @@ from ..language import (
     typos,
 )
 from ..language.lists import GROUP
-from ..language.words import participles
+from ..language.words import participles, take_pace
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -196,6 +196,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(texts) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(texts)} clauses; a chain has at most {MAX_CLAUSES}")
     clauses: list[Clause] = []
+    pending: str | None = None  # a pace said alone before its clause ("Hurry!! Slide A ...")
     show: pointing.Shown | None = None  # objects the clause before showed without a command ("See E?")
     pair: pointing.Shown | None = None  # the last two objects shown, for "the other one" later on
     for i, text in enumerate(texts, start=1):
@@ -211,6 +212,13 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         try:
             pieces = _resolve_text(text, previous, scene, plugins, context=context, pair=pair)
         except L2PError as e:
+            pace = _pace_alone(text, scene)
+            if pace is not None and (i < len(texts) or clauses):  # "Hurry!! Slide A ...", "... B. Slowly please."
+                if i < len(texts):
+                    pending = pace
+                else:
+                    clauses[-1] = _paced(clauses[-1], pace)
+                continue
             if (i < len(texts) and pointing.about_us(text, scene)) or pointing.asks_nothing(text, scene,
                                                                                              known_verbs()):
                 continue  # "We're setting up for the demo.", "Here's the situation.", "Would you see to that?"
@@ -225,6 +233,8 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 continue
             raise named(e, f'clause {i} ("{text}")') from None
         pieces = [(piece, pointing.set_down(pointing.carried(cmd, show), previous, piece)) for piece, cmd in pieces]
+        if pending is not None:
+            pieces, pending = [(piece, _paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces], None
         show = None
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:
@@ -253,6 +263,24 @@ def _row_after_comma(text: str, plugins: list) -> list[str] | None:
         if left and is_composite(right, plugins):
             return [left, right]
     return None
+
+
+def _pace_alone(text: str, scene: Scene) -> str | None:
+    """The pace a clause asks for when it says nothing else ("Hurry!!", "Slowly please"); None otherwise."""
+    keep = frozenset(scene.names)
+    try:
+        words, pace = take_pace(strip_polite(tokens(text), keep), keep)
+    except L2PError:
+        return None
+    return pace if not strip_polite(words, keep) else None
+
+
+def _paced(clause: Clause, pace: str) -> Clause:
+    """``clause`` at ``pace``; a clause that asks for another pace of its own is a one-line error."""
+    if clause.command.pace not in (None, pace):
+        raise LanguageError(f'"{clause.text}" asks for a {clause.command.pace} pace, and the sentence around it for a '
+                            f"{pace} one; say one of them")
+    return replace(clause, command=replace(clause.command, pace=pace))
 
 
 def _done_so(text: str, before: Clause) -> Clause | None:
@@ -399,6 +427,9 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
             rest = _resolve_text(right, first, scene, plugins, depth + 1, _after(first, pair), pair)
         except L2PError:
             continue
+        then = rest[0][1]
+        if (then.mover, then.anchors) == (first.mover, first.anchors) and then.action != first.action:
+            continue  # "closer to the mug and away from the mug": two ends at once, not two steps
         return [(left, first), *rest]
     return None
 

@@ -23,6 +23,7 @@ from .descriptions import candidates, describe, described, looks, name_words
 from .places import (
     bearing_off,
     bulk_superlative,
+    by_size,
     comparative_of,
     distance_to,
     either_reading,
@@ -63,6 +64,7 @@ from .reference_words import (
     STRICT_SHAPES,
     TIE_M,
 )
+from .synonyms import SIZE_WORDS
 
 
 @dataclass(frozen=True)
@@ -195,6 +197,9 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
                             f'{context.anchor} (named last); name the one you mean, or say "it"')
     if opening is not None and low[-1] in NOUNS:
         low = ("it",)
+    twin = _sized_twin(said, low, context, scene)
+    if twin is not None:
+        return twin
     if low in (("the", "latter"), ("the", "former")):  # the clause before's two objects, in the order named
         if context is None or context.mover is None or context.anchor in (None, context.mover):
             raise _no_earlier(said, role)
@@ -229,17 +234,38 @@ def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
     return o.shape == shape if shape in STRICT_SHAPES else o.shape in BLOCK_SHAPES
 
 
+def _sized_twin(said: str, low: tuple[str, ...], context: Context | None, scene: Scene) -> str | None:
+    """"the big one" after a clause that moved one of two or more objects of the same colour and shape ("move the
+    small red cube ..., then slide the big one ..."): the one of them the size word picks; None where it is not said
+    so or picks no single one."""
+    if context is None or context.mover not in scene.names or low[:1] != ("the",) or low[2:] not in ((), ("one",)) \
+            or len(low) < 2 or low[1] not in SIZE_WORDS:
+        return None
+    was = scene.get(context.mover)
+    twins = [o for o in scene.objects if o.color == was.color and o.shape == was.shape]
+    if len(twins) < 2:
+        return None
+    try:
+        picked = by_size(said, twins, [low[1]])
+    except (LanguageError, UnknownObjectError):
+        return None
+    return picked[0].name if len(picked) == 1 else None
+
+
 def _that_kind(said: str, noun: str, context: Context | None, role: str, scene: Scene) -> str | None:
     """"that cylinder", "this cube": the object of that kind among the previous clause's (its mover first, then
-    its anchor); with none of that kind there, what "the cylinder" names in the scene (None: read on)."""
+    its anchor; where both are blocks and only one is of the shape the noun names, that one); with none of that kind
+    there, what "the cylinder" names in the scene (None: read on)."""
     if context is None or context.mover is None:
         if noun in name_words(scene):
             return None  # "that duck" in a first clause: the duck
         raise _no_earlier(said, role)
-    for name in (context.mover, context.anchor):
-        if name is not None and name in scene.names and _fits_kind(scene.get(name), noun, scene):
-            return name
-    return None
+    named = [n for n in (context.mover, context.anchor) if n is not None and n in scene.names]
+    fits = [n for n in named if _fits_kind(scene.get(n), noun, scene)]
+    exact = [n for n in fits if scene.get(n).shape == SHAPE_NOUNS.get(noun)]
+    if len(exact) == 1 and len(fits) > 1:  # "move the yellow block next to the blue cube, then push that cube"
+        return exact[0]
+    return fits[0] if fits else None
 
 
 def _the_other(said: str, words: list[str], context: Context | None, role: str, scene: Scene) -> str:

@@ -93,7 +93,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
 PACES: dict[str, str] = {
-    "slowly": "slow", "slow": "slow", "asap": "fast", "pronto": "fast",
+    "slowly": "slow", "slow": "slow", "asap": "fast", "pronto": "fast", "hurry": "fast", "hurriedly": "fast",
     "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast",
     "swiftly": "fast",
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
@@ -363,6 +363,8 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
         if phrase is not None and not set(words[i:i + len(phrase)]) & keep:
             paces.append(PACE_PHRASES[phrase])
             i += len(phrase)
+            if out and out[-1].lower() == "and" and i >= len(words):  # "push A past B, and take your time"
+                out.pop()
             continue
         if words[i] not in keep and w in EDGE_PACES and i in (1, len(words) - 1):
             paces.append(EDGE_PACES[w])  # "Push soft the duck ...", "... toward the pot, soft"
@@ -374,7 +376,7 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
                 out.pop()
             if tuple(x.lower() for x in out[-2:]) == NICE_AND:
                 del out[-2:]
-            if out and out[-1].lower() == "and" and paces[:-1]:
+            if out and out[-1].lower() == "and" and (paces[:-1] or i + 1 >= len(words)):
                 out.pop()
             i += 1
             continue

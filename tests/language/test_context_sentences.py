@@ -37,3 +37,27 @@ def test_sentences_around_the_command(plugins, sentence, expect):
 def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Hurry!! slide A closer to B", "slide:closer A B pace=fast"),
+    ("Slide A closer to B. Slowly please.", "slide:closer A B pace=slow"),
+    ("Push A past B, and take your time.", "push:past A B pace=slow"),
+    ("Move D next to C, and then push that cube away from B.", "slide:next-to D C ; push:away C B"),
+])
+def test_paces_said_apart_and_that_cube(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+def test_the_big_one_after_its_small_twin(plugins):
+    assert read("Move the small red cube past the teddy, then slide the big one away from the can.", plugins,
+                "heldout10.tsv") == "slide:past P teddy ; slide:away R can"
+
+
+@pytest.mark.parametrize("sentence", [
+    "Quickly! Move A slowly past B",                      # two paces
+    "Move A closer to the duck and away from the duck.",  # two ends at once
+])
+def test_paces_and_ends_that_contradict_are_asked(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
