@@ -24,9 +24,14 @@ def _copy(s: trainset.TrainingSequence) -> trainset.TrainingSequence:
     return dataclasses.replace(s, x=s.x.copy(), y=s.y.copy(), frame_w=None if s.frame_w is None else s.frame_w.copy())
 
 
-@pytest.fixture(scope="session", autouse=True)
+KEPT: dict[bytes, trainset.TrainingSequence] = {}
+"""Labellings by digest, for the whole session; they are handed out only while a module of this folder runs."""
+
+
+@pytest.fixture(scope="module", autouse=True)
 def _labelled_once():
-    real, kept = trainset._labelled, {}
+    """Labelling kept for this module's tests (put back after it: tests elsewhere label anew)."""
+    real, kept = trainset._labelled, KEPT
 
     def labelled(*args, **kwargs) -> trainset.TrainingSequence:
         key = hashlib.sha256(pickle.dumps((args, sorted(kwargs.items())), protocol=5)).digest()
