@@ -52,10 +52,10 @@ def _same_run(a: Path, b: Path) -> None:
     assert _json(a, "summary.json") == _json(b, "summary.json")
 
 
-def _cli(args: list[str], cwd: Path, **env) -> subprocess.CompletedProcess:
+def _cli(args: list[str], cwd: Path, python: tuple[str, ...] = (), **env) -> subprocess.CompletedProcess:
     full = {**os.environ, **env}
-    r = subprocess.run([sys.executable, "-m", "l2p_bullet.cli", *args], cwd=cwd, env=full, capture_output=True,
-                       text=True, timeout=120)
+    r = subprocess.run([sys.executable, *python, "-m", "l2p_bullet.cli", *args], cwd=cwd, env=full,
+                       capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-2000:]
     return r
 
@@ -253,12 +253,19 @@ def test_a_push_does_not_depend_on_the_cpus_blas_kernel(tmp_path):
 
 @pytest.mark.slow
 def test_training_in_two_processes_with_other_thread_counts_gives_the_same_weights(tmp_path):
-    """tests/cli/test_score.py trains twice in one process; here two processes, 1 and 2 threads, another folder."""
+    """tests/cli/test_score.py trains twice in one process; here two processes, 1 and 2 threads, another folder.
+    The first lists its imports (``-X importtime``): a Python that trains does not import ``torch._dynamo``, which
+    torch.optim's classes import (1.2 s; learning/adam.py, whose numbers tests/learning/test_adam.py holds to
+    theirs)."""
     from l2p_bullet.data.demos import data_dir
 
     session = data_dir() / "captures" / "SlidePast_Session1.npz"
     args = ["train", "past", "--demos", str(session), "--ensemble", "1", "--epochs", "2", "--seed", "3"]
-    _cli([*args, "--out", str(tmp_path / "a")], cwd=tmp_path, OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    first = _cli([*args, "--out", str(tmp_path / "a")], cwd=tmp_path, python=("-X", "importtime"),
+                 OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    imported = {line.rsplit("|", 1)[-1].strip() for line in first.stderr.splitlines()
+                if line.startswith("import time:")}
+    assert "torch" in imported and "torch._dynamo" not in imported
     (tmp_path / "sub").mkdir()
     _cli([*args, "--out", "../b"], cwd=tmp_path / "sub", OMP_NUM_THREADS="2", MKL_NUM_THREADS="2",
          PYTHONHASHSEED="99")

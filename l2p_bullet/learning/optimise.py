@@ -16,6 +16,7 @@ import numpy as np
 import torch
 
 from ..core.threads import torch_threads
+from .adam import Adam, CosineDecay
 from .feedback_targets import FeedbackConfig
 from .progress_net import ProgressNet
 from .training_plan import ProgressTrainConfig
@@ -51,7 +52,7 @@ def _batches(seqs: list[TrainingSequence], batch: int) -> list[tuple[torch.Tenso
     return [_pad([seqs[j] for j in order[i : i + batch]]) for i in range(0, len(order), batch)]
 
 
-def _step(net: ProgressNet, opt: torch.optim.Optimizer, batch: tuple[torch.Tensor, ...], total_w: float,
+def _step(net: ProgressNet, opt: Adam, batch: tuple[torch.Tensor, ...], total_w: float,
           times: float, end_weight: float) -> float:
     """One Adam step on a padded batch: its weighted error / ``total_w`` (the epoch's) x ``times``."""
     x, y, mask, endw = batch
@@ -75,9 +76,9 @@ def _train_net(seqs: list[TrainingSequence], n_features: int, cfg: ProgressTrain
     torch.manual_seed(seed)
     rng = np.random.default_rng(seed)
     net = ProgressNet(n_features, cfg.hidden, cfg.levels)
-    opt = (torch.optim.AdamW(net.parameters(), lr=cfg.lr, weight_decay=cfg.weight_decay) if cfg.weight_decay > 0
-           else torch.optim.Adam(net.parameters(), lr=cfg.lr))
-    sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=cfg.epochs)
+    opt = (Adam(net.parameters(), lr=cfg.lr, weight_decay=cfg.weight_decay, decoupled=True) if cfg.weight_decay > 0
+           else Adam(net.parameters(), lr=cfg.lr))
+    sched = CosineDecay(opt, cfg.epochs)
     batches = _batches(seqs, cfg.batch)
     total_w = sum(s.weight for s in seqs)
     history = []
@@ -114,8 +115,8 @@ def fine_tune(nets: Sequence[ProgressNet], demo_seqs: list[TrainingSequence], fb
             torch.manual_seed(seed * 1000 + i)
             rng = np.random.default_rng(seed * 1000 + i)
             net = copy.deepcopy(base).train()
-            opt = torch.optim.Adam(net.parameters(), lr=fcfg.lr)
-            sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=max(fcfg.epochs, 1))
+            opt = Adam(net.parameters(), lr=fcfg.lr)
+            sched = CosineDecay(opt, max(fcfg.epochs, 1))
             for _ in range(fcfg.epochs):
                 chosen = [(b, 1.0 / frac) for b in rng.choice(len(demo_b), n_demo, replace=False)] if n_demo else []
                 plan = [(demo_b[b], s) for b, s in chosen] + [(b, 1.0) for b in fb_b]

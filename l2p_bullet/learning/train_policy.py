@@ -37,6 +37,7 @@ from ..plugins.bundle import (
     read_manifest,
     write_weights,
 )
+from .adam import Adam
 from .policy_net import GaussianPolicy
 from .progress_net import ProgressModel
 
@@ -121,7 +122,7 @@ def _train_policy(model, cfg: PolicyTrainConfig, log, tick: Tick | None) -> tupl
     torch.manual_seed(cfg.seed)
     rng = np.random.default_rng(cfg.seed)
     net = GaussianPolicy()
-    opt = torch.optim.Adam(net.parameters(), lr=cfg.lr)
+    opt = Adam(net.parameters(), lr=cfg.lr)
     history: list[float] = []
     best, best_it, best_state = -np.inf, cfg.iterations - 1, None
     t0 = time.perf_counter()

@@ -191,6 +191,10 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
     None if there is no such chain; but where ``least`` is given, the cheapest chain to the cell farthest round
     (the first found) if that is ``least`` steps round or more."""
     ny, n, m = legal.shape
+    # nested lists and a set of steps keyed as the search meets them: a cell's test and a step's are made millions
+    # of times, an array's element and :func:`_edge`'s key are slower to make than the search's own work
+    open_ = legal.tolist()
+    blocked = {step for a, b in banned if a <= b for step in ((a, b), (b, a))}  # _edge(c0, c1) in banned
     dist: dict[tuple[int, int, int], float] = {}
     prev: dict[tuple[int, int, int], tuple[int, int, int] | None] = {}
     heap: list = []
@@ -199,6 +203,7 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
         dist[(k, j, y)], prev[(k, j, y)] = 0.0, None
         heapq.heappush(heap, (0.0, next(count), (k, j, y)))
     yaw_steps = (-1, 0, 1) if ny > 1 else (0,)
+    steps = [(dk, dj, dy) for dk in (-1, 0, 1) for dj in (-1, 0, 1) for dy in yaw_steps if dk or dj or dy]
     farthest = None  # (steps round, cost, cell): the farthest cell round reached, for ``least``
 
     def back(c: float, cell: tuple[int, int, int]) -> tuple[float, list]:
@@ -216,19 +221,17 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
             return back(c, cell)
         if least is not None and (farthest is None or abs(k + credit) > farthest[0]):
             farthest = (abs(k + credit), c, cell)
-        for dk in (-1, 0, 1):
-            for dj in (-1, 0, 1):
-                for dy in yaw_steps:
-                    nk, nj, ny_ = k + dk, j + dj, y + dy
-                    nxt = (nk, nj, ny_)
-                    if (not (dk or dj or dy) or not 0 <= nj < m or not 0 <= ny_ < ny or abs(nk + credit) > goal
-                            or not legal[ny_, nk % n, nj]
-                            or (banned and _edge(cell, nxt, n) in banned)):
-                        continue
-                    nc = c + 1.0 + (turns[min(y, ny_)] if dy else 0.0)
-                    if nc < dist.get(nxt, math.inf):
-                        dist[nxt], prev[nxt] = nc, cell
-                        heapq.heappush(heap, (nc, next(count), nxt))
+        here = (k % n, j, y)
+        for dk, dj, dy in steps:
+            nk, nj, ny_ = k + dk, j + dj, y + dy
+            if (not 0 <= nj < m or not 0 <= ny_ < ny or abs(nk + credit) > goal or not open_[ny_][nk % n][nj]
+                    or (blocked and (here, (nk % n, nj, ny_)) in blocked)):
+                continue
+            nxt = (nk, nj, ny_)
+            nc = c + 1.0 + (turns[min(y, ny_)] if dy else 0.0)
+            if nc < dist.get(nxt, math.inf):
+                dist[nxt], prev[nxt] = nc, cell
+                heapq.heappush(heap, (nc, next(count), nxt))
     if farthest is not None and farthest[0] >= least:
         return back(farthest[1], farthest[2])
     return None

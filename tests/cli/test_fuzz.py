@@ -34,9 +34,13 @@ FUZZ = settings(max_examples=40, deadline=None, derandomize=True, database=None,
 
 
 class Worker:
-    def __init__(self, cwd: Path):
+    """The CLI in a worker process with a memory limit (tests/fuzz_worker.py); ``fork``: each request in a worker of
+    its own, forked from this one after its start-up (``limit`` is then the last request's)."""
+
+    def __init__(self, cwd: Path, fork: bool = False):
         env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-        self.proc = subprocess.Popen([sys.executable, str(Path(__file__).parents[1] / "fuzz_worker.py"), str(MARGIN)],
+        self.proc = subprocess.Popen([sys.executable, str(Path(__file__).parents[1] / "fuzz_worker.py"), str(MARGIN),
+                                      *(["--fork"] if fork else [])],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env, cwd=cwd)
         ready = json.loads(self.proc.stdout.readline())
         self.limit = ready["limit"]
@@ -46,7 +50,9 @@ class Worker:
         self.proc.stdin.flush()
         line = self.proc.stdout.readline()
         assert line, f"the worker died on {args}"
-        return json.loads(line)
+        resp = json.loads(line)
+        self.limit = resp.get("limit", self.limit)
+        return resp
 
     def close(self) -> None:
         self.proc.stdin.close()
@@ -56,6 +62,14 @@ class Worker:
 @pytest.fixture(scope="module")
 def worker(tmp_path_factory):
     w = Worker(tmp_path_factory.mktemp("fuzz"))
+    yield w
+    w.close()
+
+
+@pytest.fixture(scope="module")
+def fresh(tmp_path_factory):
+    """A worker of its own for each request (forked after start-up, its limit set there)."""
+    w = Worker(tmp_path_factory.mktemp("fresh"), fork=True)
     yield w
     w.close()
 
@@ -299,7 +313,7 @@ RUN_READERS = {
 
 @pytest.mark.parametrize("command", list(RUN_READERS))
 @pytest.mark.parametrize("trajectory", ["linked to /dev/zero", "nested 100,000 deep"])
-def test_a_run_folder_from_elsewhere_is_read_bounded(tmp_path, command, trajectory):
+def test_a_run_folder_from_elsewhere_is_read_bounded(fresh, tmp_path, command, trajectory):
     """A run folder someone hands over (a tarball keeps links) whose trajectory.json never ends or nests past
     the recursion limit: review and export used to read /dev/zero until memory ran out, and print a
     RecursionError traceback. A worker of its own: the Rerun SDK's threads take much of a shared worker's
@@ -310,15 +324,11 @@ def test_a_run_folder_from_elsewhere_is_read_bounded(tmp_path, command, trajecto
         (run / "trajectory.json").symlink_to("/dev/zero")
     else:
         (run / "trajectory.json").write_text("[" * 100_000 + "]" * 100_000)
-    worker = Worker(tmp_path)
-    try:
-        resp = worker.run(RUN_READERS[command], tmp_path)
-    finally:
-        worker.close()
+    resp = fresh.run(RUN_READERS[command], tmp_path)
     assert resp["exception"] is None, resp["exception"]
     last = resp["output"].strip().splitlines()[-1]  # export's progress line may come first
     assert resp["exit_code"] == 2 and last.startswith("error: ") and "trajectory.json" in last, resp["output"][-3000:]
-    assert resp["peak_rss"] < worker.limit
+    assert resp["peak_rss"] < resp["limit"]
 
 
 def _grades_file(folder: Path, kind: str) -> str:
@@ -344,36 +354,28 @@ GRADE_READERS = {"report": lambda f: ["report", "--db", f, "--out", "rep"],
 @pytest.mark.parametrize("command", list(GRADE_READERS))
 @pytest.mark.parametrize("kind", ["a CSV cell of 200,000 characters", "JSON lines nested 100,000 deep",
                                   "linked to /dev/zero"])
-def test_a_grades_file_from_elsewhere_is_a_one_line_error(tmp_path, command, kind):
+def test_a_grades_file_from_elsewhere_is_a_one_line_error(fresh, tmp_path, command, kind):
     """``report --db`` and ``train --feedback`` read grades files people hand over: csv's field limit and
     JSON's recursion limit were tracebacks, and report read a link to /dev/zero until memory ran out.
     (train --feedback refuses a link to a device before reading it: no file.)"""
     name = _grades_file(tmp_path, kind)
-    worker = Worker(tmp_path)
-    try:
-        resp = worker.run(GRADE_READERS[command](name), tmp_path)
-    finally:
-        worker.close()
+    resp = fresh.run(GRADE_READERS[command](name), tmp_path)
     assert resp["exception"] is None, resp["exception"]
     last = resp["output"].strip().splitlines()[-1]
     assert resp["exit_code"] == 2 and last.startswith("error: ") and name in last, resp["output"][-3000:]
-    assert resp["peak_rss"] < worker.limit
+    assert resp["peak_rss"] < resp["limit"]
 
 
 @pytest.mark.parametrize("content", ["linked to /dev/zero", "nested 100,000 deep"])
-def test_an_evaluation_scene_file_is_read_bounded(tmp_path, content):
+def test_an_evaluation_scene_file_is_read_bounded(fresh, tmp_path, content):
     """``evaluate --scene-file``'s JSON lines: a line nested past the recursion limit was a RecursionError
     traceback, and a file linked to /dev/zero was read until memory ran out."""
     if content == "linked to /dev/zero":
         (tmp_path / "scenes.jsonl").symlink_to("/dev/zero")
     else:
         (tmp_path / "scenes.jsonl").write_text("[" * 100_000 + "]" * 100_000 + "\n")
-    worker = Worker(tmp_path)
-    try:
-        resp = worker.run(["evaluate", "--scene-file", "scenes.jsonl", "--out", "ev"], tmp_path)
-    finally:
-        worker.close()
-    check(resp, worker)
+    resp = fresh.run(["evaluate", "--scene-file", "scenes.jsonl", "--out", "ev"], tmp_path)
+    check(resp, fresh)
     assert resp["exit_code"] == 2 and "scenes.jsonl" in resp["output"], resp["output"][-3000:]
 
 
@@ -413,3 +415,11 @@ def test_an_npz_member_the_loader_does_not_read_is_left_alone(tmp_path):
         zf.writestr("notes.txt", b"captured on Tuesday")
     arrays = load_session(tmp_path / "notes.npz")
     assert sorted(arrays) == ["event_mover", "event_start_end", "shell_pose", "stella_pose"]
+
+
+def test_a_forked_workers_limit_is_a_fresh_workers(worker, fresh, tmp_path):
+    """A request answered in a worker forked for it alone is capped as in a worker started for it: its start-up
+    footprint plus :data:`MARGIN` (the two start-ups differ by what the last one imported, not by gigabytes)."""
+    resp = fresh.run(["perform", "move A past B", "--scene", "missing.json", "--no-render", "--out", "r"], tmp_path)
+    assert resp["exit_code"] == 2 and resp["exception"] is None, resp
+    assert abs(resp["limit"] - worker.limit) < MARGIN // 4 and resp["peak_rss"] < resp["limit"]

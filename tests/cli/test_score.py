@@ -98,6 +98,10 @@ def test_train_is_deterministic_and_writes_a_loadable_bundle(tmp_path):
     session = data_dir() / "captures" / "SlidePast_Session1.npz"
     args = ["train", "past", "--demos", str(session), "--ensemble", "1", "--epochs", "2", "--seed", "3"]
     runner = CliRunner()
+    from l2p_bullet.learning import trainset
+
+    # the two trainings label every sequence anew (tests/learning keeps labellings only while its modules run)
+    assert trainset._labelled.__qualname__ == "_labelled"
     r1 = runner.invoke(main, [*args, "--out", str(tmp_path / "a")])
     assert r1.exit_code == 0, r1.output
     # progress with an ETA on stderr, also when it is not a terminal (issue 26: 30 s of silence)

@@ -75,12 +75,29 @@ def test_the_workspace_is_fitted_to_the_arms_reach_and_a_block_beyond_it_is_refu
         assert f"move it {way}" in msg
 
 
-@pytest.mark.slow  # the xArm's STL meshes take 9 s to read
 @pytest.mark.parametrize("spec", [PANDA, XARM6, KUKA_IIWA], ids=lambda s: s.name)
 def test_the_stored_hand_profile_and_drop_are_what_the_simulator_collides_with(spec):
     _, measured = arm_measure.measure_hand(spec)
     for (d, hx, hy), (_, mx, my) in zip(spec.hand_profile, measured, strict=True):
         assert mx - 1e-4 <= hx <= mx + 1e-3 and my - 1e-4 <= hy <= my + 1e-3, (spec.name, d, hx, hy, mx, my)
+
+
+def test_the_widest_crossing_is_the_widest_of_every_vertex_pair():
+    """The hand profile forms only the vertex pairs that can stick out past the part below a height: the number is
+    the one every pair gives, to the bit, on clouds whose widest crossings lie at, inside and past the part below."""
+    from l2p_bullet.embodiment.sim.robot import _widest_crossing
+
+    rng = np.random.default_rng(3)
+    for case in range(60):
+        below = np.column_stack([rng.normal(0, 0.03, (200, 2)), rng.uniform(-0.02, 0.0, 200)])
+        above = np.column_stack([rng.normal(0, 0.01 + 0.002 * case, (300, 2)), rng.uniform(1e-3, 0.05, 300)])
+        if case % 3 == 0:  # every vertex above stands on one below: no crossing is wider than the part below
+            above[:, :2] = np.resize(below[:, :2], (300, 2))
+        t = (0.0 - below[:, None, 2]) / (above[None, :, 2] - below[:, None, 2])
+        every = np.abs(below[:, None, :2] + t[..., None] * (above[None, :, :2] - below[:, None, :2])).reshape(-1, 2)
+        for axis in (0, 1):
+            widest = float(np.abs(below[:, axis]).max())
+            assert max(widest, _widest_crossing(below, above, 0.0, axis, widest)) == max(widest, every[:, axis].max())
 
 
 @pytest.mark.slow

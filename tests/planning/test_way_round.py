@@ -75,3 +75,70 @@ def test_swept_near_counts_from_the_first_frame_within_near():
     frames = np.column_stack([radii * np.cos(bearings), radii * np.sin(bearings), np.zeros(5)])
     assert approach.swept_near(frames, np.zeros(2), near) == pytest.approx(math.radians(30.0))
     assert approach.swept_near(frames[:2], np.zeros(2), near) == 0.0  # never near
+
+
+def _reference_way(legal, entries, goal, banned=frozenset(), turns=(), credit=0.0, least=None):
+    """The search as first written (each cell read from the array, each step keyed by ``detour._edge``): what
+    the faster search must find, cell for cell, ties included."""
+    import heapq
+    import itertools
+
+    ny, n, m = legal.shape
+    dist, prev, heap, count = {}, {}, [], itertools.count()
+    for cell in entries:
+        dist[cell], prev[cell] = 0.0, None
+        heapq.heappush(heap, (0.0, next(count), cell))
+    farthest = None
+
+    def back(c, cell):
+        way = [cell]
+        while prev[way[-1]] is not None:
+            way.append(prev[way[-1]])
+        return c, way[::-1]
+
+    while heap:
+        c, _, cell = heapq.heappop(heap)
+        if c > dist[cell]:
+            continue
+        k, j, y = cell
+        if abs(k + credit) >= goal:
+            return back(c, cell)
+        if least is not None and (farthest is None or abs(k + credit) > farthest[0]):
+            farthest = (abs(k + credit), c, cell)
+        for dk in (-1, 0, 1):
+            for dj in (-1, 0, 1):
+                for dy in ((-1, 0, 1) if ny > 1 else (0,)):
+                    nxt = (k + dk, j + dj, y + dy)
+                    if (not (dk or dj or dy) or not 0 <= nxt[1] < m or not 0 <= nxt[2] < ny
+                            or abs(nxt[0] + credit) > goal or not legal[nxt[2], nxt[0] % n, nxt[1]]
+                            or (banned and detour._edge(cell, nxt, n) in banned)):
+                        continue
+                    nc = c + 1.0 + (turns[min(y, nxt[2])] if dy else 0.0)
+                    if nc < dist.get(nxt, math.inf):
+                        dist[nxt], prev[nxt] = nc, cell
+                        heapq.heappush(heap, (nc, next(count), nxt))
+    return back(farthest[1], farthest[2]) if farthest is not None and farthest[0] >= least else None
+
+
+def test_the_search_finds_the_ways_the_plain_search_finds():
+    """On random grids of one to three yaws, with banned steps, turn costs, a credit and a least turn."""
+    rng = np.random.default_rng(0)
+    found = 0
+    for _ in range(150):
+        ny, n, m = int(rng.choice([1, 1, 2, 3])), int(rng.integers(8, 40)), int(rng.integers(2, 7))
+        legal = rng.random((ny, n, m)) < rng.uniform(0.5, 0.95)
+        entries = [(0, int(rng.integers(0, m)), int(rng.integers(0, ny))) for _ in range(int(rng.integers(1, 3)))]
+        goal = int(rng.integers(2, n + 3))
+        turns = [float(rng.uniform(0, 3)) for _ in range(ny - 1)]
+        credit = float(rng.choice([0.0, rng.uniform(-3, 3)]))
+        least = None if rng.random() < 0.5 else int(rng.integers(1, goal + 1))
+        banned = set()
+        for _ in range(int(rng.integers(0, 40))):
+            c0 = (int(rng.integers(-n, 2 * n)), int(rng.integers(0, m)), int(rng.integers(0, ny)))
+            c1 = (c0[0] + int(rng.integers(-1, 2)), int(np.clip(c0[1] + rng.integers(-1, 2), 0, m - 1)),
+                  int(np.clip(c0[2] + rng.integers(-1, 2), 0, ny - 1)))
+            banned.add(detour._edge(c0, c1, n))
+        way = detour._shortest_way(legal, entries, goal, banned, turns, credit, least)
+        assert way == _reference_way(legal, entries, goal, banned, turns, credit, least)
+        found += way is not None
+    assert 50 < found < 150  # ways found and not found

@@ -253,14 +253,11 @@ class Robot:
                 below, above = rel[rel[:, 2] <= cut], rel[rel[:, 2] > cut]
                 if not len(below):
                     continue
-                pts = [below[:, :2]]
+                wide = np.abs(below[:, :2]).max(axis=0)
+                hx, hy = max(hx, float(wide[0]) + m), max(hy, float(wide[1]) + m)
                 if len(above):
-                    t = (cut - below[:, None, 2]) / (above[None, :, 2] - below[:, None, 2])
-                    pts.append(
-                        (below[:, None, :2] + t[..., None] * (above[None, :, :2] - below[:, None, :2])).reshape(-1, 2)
-                    )
-                xy = np.abs(np.concatenate(pts))
-                hx, hy = max(hx, float(xy[:, 0].max()) + m), max(hy, float(xy[:, 1].max()) + m)
+                    hx = max(hx, _widest_crossing(below, above, cut, 0, float(wide[0])) + m)
+                    hy = max(hy, _widest_crossing(below, above, cut, 1, float(wide[1])) + m)
             out.append((float(d), hx, hy))
         return out
 
@@ -304,3 +301,21 @@ class Robot:
     def close(self) -> None:
         """Disconnect the IK twin (the world's simulator is the world's to close)."""
         self.kin.close()
+
+
+CROSSING_SLACK = 1e-12
+"""Metres by which a crossing point's computed coordinate may exceed both of its ends' (rounding: about 1e-16)."""
+
+
+def _widest_crossing(below: np.ndarray, above: np.ndarray, cut: float, axis: int, widest: float) -> float:
+    """The largest ``|coordinate axis|`` of the points where the segments from each vertex of ``below`` to each of
+    ``above`` cross the height ``cut``; ``-inf`` where none of them can be wider than ``widest``. Why only the
+    vertices above that stick out past ``widest``: a crossing lies between its two ends, so a pair whose ends are
+    both within ``widest`` (less :data:`CROSSING_SLACK`) crosses within it, and the hull's vertex pairs (millions on
+    a meshed hand) need not all be formed. The pairs kept are computed as every pair would be, so the maximum is
+    the same number."""
+    above = above[np.abs(above[:, axis]) > widest - CROSSING_SLACK]
+    if not len(above):
+        return -math.inf
+    t = (cut - below[:, None, 2]) / (above[None, :, 2] - below[:, None, 2])
+    return float(np.abs(below[:, None, axis] + t * (above[None, :, axis] - below[:, None, axis])).max())
