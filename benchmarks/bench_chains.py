@@ -78,6 +78,8 @@ def main(argv: list[str] | None = None) -> int:
 def plan_chain(seed: int, clauses_k: int, plugins: list, actions: list[str]) -> dict:
     """One chain of ``--draw sentence`` drawn and planned as the worker does (evaluate/chains.py: run_chain), not
     performed: its refusal or the judge's verdicts on its planned clauses, and its planning seconds."""
+    import numpy as np
+
     from l2p_bullet.arms import fit_scene
     from l2p_bullet.chain.forecast import Search, forecast
     from l2p_bullet.errors import L2PError
@@ -96,6 +98,8 @@ def plan_chain(seed: int, clauses_k: int, plugins: list, actions: list[str]) -> 
         return row | {"refused": str(e), "plans": search.plans, "forecast": time.perf_counter() - t0}
     return row | {"refused": None, "plans": search.plans, "forecast": time.perf_counter() - t0,
                   "alone": search.kept_seconds, "changed": list(search.changed),
+                  "ends": [s.end.to_dict() for s in steps], "plan_ends": [np.round(s.forecast.path[-1], 6).tolist()
+                                                                     for s in steps],
                   "accepted": [bool(s.forecast.extra["verdict"]["success"]) for s in steps]}
 
 

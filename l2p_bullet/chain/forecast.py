@@ -44,7 +44,7 @@ from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
-from .aims import aimed_goals, slide_accepted
+from .aims import CHECKS, aimed_goals, slide_accepted
 from .clause import Clause
 from .deadends import Dead, around_reads, kind, reads_of, refusal, wider
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
@@ -149,12 +149,19 @@ class _Clause:
     judged_short: tuple[Plan, End] | None = None  # the planner's own end, when the judge does not accept it
     planned: dict[int, Plan | None] = field(default_factory=dict)  # seed offset -> its plan (None: it failed)
     needs: list[Dead] = field(default_factory=list)  # later room checks that failed on where it left its mover
+    nowhere: bool = False  # no place its judge accepts keeps its needs (aims.py asked every one): no other end can
 
 
 def _outlines(at: _Clause) -> list[np.ndarray] | None:
     """The real outlines of the clause's mover and anchors, as its judge reads them (None for cubes)."""
     c = at.clause.command
     return outlines_of([at.predicted.get(o) for o in (c.mover, *c.anchors)])
+
+
+def _known(d: Dead) -> bool:
+    """Whether ``d``'s check reads nothing but its own clause's mover and anchors: where an earlier clause left
+    one of them decides it, whatever the clauses between do with the others."""
+    return d.blocks is not None and d.blocks <= {d.command.mover, *d.command.anchors}
 
 
 class _Searcher:
@@ -171,6 +178,10 @@ class _Searcher:
         self.memo: dict[tuple, Plan | L2PError] = {} if memo is None else memo  # a plan made, or the error met
         self.cost: dict[int, float] = {} if cost is None else cost  # id(plan) -> seconds to make it (a cut: to cut it)
         self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
+        # the clauses whose judge accepted none of their ends (short_ok False): from the other starts the earlier
+        # clauses' ends give them, only their own end is planned (the other seeds and turns were judged short
+        # for what the clause asks, which a slightly other start does not change, and each costs a search)
+        self.shorts: set[int] = set()
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
         if k == len(self.clauses):
@@ -193,6 +204,10 @@ class _Searcher:
                 found = self._aimed(at)
                 if found is not None:
                     return found
+                if at.nowhere:
+                    break  # the other ends end where its judge accepts them, and no such place keeps it possible
+            if k in self.shorts and (end.seed or end.turn):
+                break  # its judge accepted none of its ends from an earlier start: its own end, cut, alone now
             found = self._try(at, end)
             if found is _SCENE:
                 break
@@ -210,6 +225,7 @@ class _Searcher:
                 if not self.short_met:  # the earlier clauses' other ends, within a few plans more
                     self.left = min(self.left, SHORT_PLANS)
                 self.short_met = True
+                self.shorts.add(k)
                 reason = at.judged_short[0].extra["verdict"].get("reason", "")
                 raise self._dead(c, PlanError(f"its judge accepts none of its ends ({reason})"), predicted)
             fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
@@ -292,9 +308,19 @@ class _Searcher:
         the first that works, or None."""
         if at.planned.get(0) is None or self.left <= 0:
             return None
-        for pose in aimed_goals(at.predicted, at.clause.command.mover, at.planned[0], at.judge,
-                                lambda q: self._keeps(at, q), scenes=tuple(d.scene for d in at.needs),
-                                outlines=_outlines(at)):
+        asked = []
+
+        def keeps(q: np.ndarray) -> bool:
+            asked.append(q)
+            return self._keeps(at, q)
+
+        goals = aimed_goals(at.predicted, at.clause.command.mover, at.planned[0], at.judge, keeps,
+                            scenes=tuple(d.scene for d in at.needs), outlines=_outlines(at))
+        # every place its judge accepts a slide to was asked, none keeps a later check that reads nothing but
+        # where its mover stands possible: no other end its judge accepts can (the other seeds and turns end
+        # in such places too), so they are not searched
+        at.nowhere = not goals and len(asked) < CHECKS and all(_known(d) for d in at.needs)
+        for pose in goals:
             if self.left <= 0:
                 break
             found = self._try(at, End(0, aim=tuple(float(v) for v in pose)))
@@ -337,7 +363,7 @@ class _Searcher:
         failure again is certain), and only their own failure counts (counted as a dead end, as if met)."""
         c = at.clause
         for d in at.needs:
-            if known and (d.blocks is None or not d.blocks <= {d.command.mover, *d.command.anchors}):
+            if known and not _known(d):
                 continue  # it reads other blocks too, which the clauses between may move
             try:
                 check_feasible(d.command, d.scene.with_pose(c.command.mover, pose), self.plugins, self.arm)

@@ -134,7 +134,31 @@ def test_an_end_the_judge_accepts_is_chosen_over_one_it_does_not(plugins, stand_
     stand_ins.clear()
     assert [s.end for s in forecast(clauses, scene, plugins)] == [DEFAULT, DEFAULT]
     searched = [e for c, e in stand_ins if c == 1 and e.cut is None]  # each a search: cuts cost none
-    assert searched[:3] == [End(0), End(1), End(0, None, 30)] and len(set(searched)) == len(searched)
+    # no turned end: a judge that rejects every path rejects a straight slide to it, so it is not searched to
+    assert searched == [End(0), End(1), End(2)]
+
+
+class AsFarAsRim:
+    """A stand-in judge that accepts a path ending as far from the anchor as RIM is, but not at RIM: only the
+    planner's end turned about the anchor (or a straight slide there)."""
+
+    def judge(self, path, anchor, size, **kwargs):
+        end, a = np.asarray(path[-1][:2], float), np.asarray(anchor[:2], float)
+        ok = abs(np.hypot(*(end - a)) - np.hypot(*(RIM[:2] - a))) < 1e-6 and not np.allclose(end, RIM[:2])
+        return SimpleNamespace(to_dict=lambda: {"success": bool(ok), "reason": "judged"})
+
+
+def test_a_turned_end_is_searched_to_only_where_its_judge_accepts_a_straight_slide_there(plugins, stand_ins,
+                                                                                         monkeypatch):
+    """A turned end costs a search to a target; the clause's judge is asked first about a straight slide there
+    (as an aimed end's is), so a turn that cannot fix what the judge rejects costs nothing."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: AsFarAsRim())
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B", scene, plugins)
+    [step] = forecast(clauses, scene, plugins)
+    assert step.end.turn and step.forecast.extra["verdict"]["success"]
+    assert [e for _, e in stand_ins if e.turn] == [step.end]  # the first turn with room, searched once
 
 
 def test_a_refusal_names_the_clause_its_check_and_what_was_tried(plugins, stand_ins, monkeypatch):
