@@ -456,3 +456,40 @@ def test_a_later_clause_no_end_of_which_its_judge_accepts_sends_the_search_back(
     made = [(c, e) for c, e in stand_ins]
     assert len(made) == len(set(made))  # the second pass made no plan again
     assert search.dead_ends == {}
+
+
+def test_a_clause_no_place_its_judge_accepts_keeps_possible_is_not_searched_past_its_aims(plugins, stand_ins,
+                                                                                        monkeypatch):
+    """Clause 1's judge accepts only ends by the rim (x >= 0.25), and "around A" has no room wherever A stands
+    at x > 0.2 (a check that reads A alone): the aimed places, every one its judge accepts, all fail it, so
+    the other seeds and turns (each a search, each ending where its judge accepts it) are not planned; the
+    chain is refused for clause 2 as before."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", beyond(0.2))
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda path, *a, **k: SimpleNamespace(to_dict=lambda: {"success": bool(path[-1][0] >= 0.25)})))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    with pytest.raises(InfeasibleError, match=r'^clause 2 \("move C around A"\) cannot be planned \(room-around\)'):
+        forecast(clauses, scene, plugins)
+    assert [e for c, e in stand_ins if c == 1 and e.cut is None] == [DEFAULT]
+
+
+def test_a_clause_its_judge_rejects_in_every_end_is_planned_with_its_own_end_alone_from_later_starts(
+        plugins, stand_ins, monkeypatch):
+    """Clause 2's judge accepts none of its ends: the search sends clause 1 to its other ends, and from each
+    new start clause 2 is planned with its own end (and its cuts) alone, not searched over again; with none
+    accepted the chain is planned as clause by clause would plan it."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    c_pose = four_blocks().get("C").pose
+
+    def judge(path, anchor, *a, **k):  # "past C" is never done; every other clause is
+        return SimpleNamespace(to_dict=lambda: {"success": not np.allclose(anchor, c_pose), "reason": "judged"})
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=judge))
+    scene = four_blocks()
+    clauses = resolve_clauses("move D next to B, then move A past C", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, DEFAULT] and not steps[1].forecast.extra["verdict"]["success"]
+    clause2 = [e for c, e in stand_ins if c == 2 and e.cut is None]
+    assert clause2.count(End(1)) == 1 and clause2.count(End(2)) == 1  # from clause 1's own end alone
+    assert clause2.count(DEFAULT) > 1  # from clause 1's other ends too
