@@ -20,6 +20,16 @@ the plan is not chosen; the planner's own, so judged, is tried after every other
 by clause, when none works: the run judges what it does). A chain is refused only when no combination tried
 works, with the first failure found (the clause and its check) and what was tried.
 
+Each other end but a cut costs a search of the planner, often longer than the clause's own (a turned or aimed
+end is a search to a target, which runs to its budget where the model does not rate the target as the
+action), so the search asks cheap stand-ins before it pays for one: a turned end is searched to only where its
+judge accepts a straight slide there (as an aimed end's place is chosen); once every place its judge accepts
+a slide to was asked and none keeps the later room checks possible that read nothing but where the clause's
+mover stands (aims.py), the other seeds and turns are not searched (they end in such places too); and a clause
+whose judge accepted none of its ends from one start is planned with its own end alone from the other starts
+the earlier clauses' ends give it (what the judge rejects is what the clause asks of where it starts, which
+an earlier clause cut short barely moves).
+
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
 check (``path``: the planned path leaves the workspace or runs into a block). The forecast is a prediction:
