@@ -8,7 +8,7 @@ planning/sweep.py), not about the order the search tries ends in.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -16,9 +16,6 @@ from ..core.scene import GRIPPER_MARGIN, Scene
 from ..errors import InfeasibleError, L2PError, PathError, PlanError
 from ..judge.rules import AROUND_NEAR
 from .clause import Clause, named
-
-if TYPE_CHECKING:
-    from .forecast import Search
 
 
 @dataclass
@@ -92,13 +89,13 @@ def kind(e: L2PError) -> str:
     return "plan" if isinstance(e, PlanError) else "path" if isinstance(e, PathError) else type(e).__name__
 
 
-def refusal(d: Dead, clauses: list[Clause], stats: Search) -> L2PError:
+def refusal(d: Dead, clauses: list[Clause], plans: int, dead_ends: dict[str, int]) -> L2PError:
     """The first failure, named by its clause, with what the search tried before it gave up."""
     c, e = clauses[d.clause - 1], d.error
     first = f"clause {c.index} ({e.check if isinstance(e, InfeasibleError) else kind(e)})"
-    others = {k: n for k, n in stats.dead_ends.items() if k != first}
+    others = {k: n for k, n in dead_ends.items() if k != first}
     tried = "" if d.clause == 1 or not others else (
-        "; no other end state of the clauses before it keeps it possible (" + str(stats.plans) + " plans; "
+        "; no other end state of the clauses before it keeps it possible (" + str(plans) + " plans; "
         + "the other end states tried met " + ", ".join(f"{k} x{n}" for k, n in others.items()) + ")")
     if isinstance(e, InfeasibleError):
         e.details["clause"] = c.index

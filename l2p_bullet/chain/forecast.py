@@ -132,7 +132,7 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
             searcher = _Searcher(clauses, plugins, opts, loaded, stats, memo=searcher.memo, cost=searcher.cost)
             steps = searcher.steps(0, scene)
     except Dead as d:
-        raise refusal(d, clauses, stats) from None
+        raise refusal(d, clauses, stats.plans, stats.dead_ends) from None
     finally:
         stats.seconds += time.perf_counter() - t0
     stats.kept_seconds = sum(searcher.kept.get(id(s.forecast), 0.0) for s in steps)
