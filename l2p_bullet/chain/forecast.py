@@ -216,8 +216,11 @@ class _Searcher:
                     return found
                 if at.nowhere:
                     break  # the other ends end where its judge accepts them, and no such place keeps it possible
-            if k in self.shorts and (end.seed or end.turn):
-                break  # its judge accepted none of its ends from an earlier start: its own end, cut, alone now
+            if (end.seed or end.turn) and (k in self.shorts or (
+                    at.judged_short is not None and not self.short_ok and k > 0 and not at.needs)):
+                # its judge rejects its own end: the earlier clauses' other ends first (from another start its
+                # own end may be done), its other seeds and turns only when none is (the search again, below)
+                break
             found = self._try(at, end)
             if found is _SCENE:
                 break
