@@ -25,10 +25,11 @@ end is a search to a target, which runs to its budget where the model does not r
 action), so the search asks cheap stand-ins before it pays for one: a turned end is searched to only where its
 judge accepts a straight slide there (as an aimed end's place is chosen); once every place its judge accepts
 a slide to was asked and none keeps the later room checks possible that read nothing but where the clause's
-mover stands (aims.py), the other seeds and turns are not searched (they end in such places too); and a clause
-whose judge accepted none of its ends from one start is planned with its own end alone from the other starts
-the earlier clauses' ends give it (what the judge rejects is what the clause asks of where it starts, which
-an earlier clause cut short barely moves).
+mover stands (aims.py), the other seeds and turns are not searched (they end in such places too); a later
+clause whose judge rejects its own end sends the search back to the earlier clauses' ends (mostly cuts, free)
+before its own seeds and turns are searched, which they are, from where the earlier clauses' own ends left
+it, when none of those works (the search again, below); and a clause whose judge accepted none of its ends
+from one start is planned with its own end alone from the others.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
@@ -188,10 +189,7 @@ class _Searcher:
         self.memo: dict[tuple, Plan | L2PError] = {} if memo is None else memo  # a plan made, or the error met
         self.cost: dict[int, float] = {} if cost is None else cost  # id(plan) -> seconds to make it (a cut: to cut it)
         self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
-        # the clauses whose judge accepted none of their ends (short_ok False): from the other starts the earlier
-        # clauses' ends give them, only their own end is planned (the other seeds and turns were judged short
-        # for what the clause asks, which a slightly other start does not change, and each costs a search)
-        self.shorts: set[int] = set()
+        self.shorts: set[int] = set()  # clauses whose judge accepted no end (short_ok False): their own end alone now
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
         if k == len(self.clauses):
@@ -218,8 +216,9 @@ class _Searcher:
                     break  # the other ends end where its judge accepts them, and no such place keeps it possible
             if (end.seed or end.turn) and (k in self.shorts or (
                     at.judged_short is not None and not self.short_ok and k > 0 and not at.needs)):
-                # its judge rejects its own end: the earlier clauses' other ends first (from another start its
-                # own end may be done), its other seeds and turns only when none is (the search again, below)
+                # its judge rejects its own end here (or every end from an earlier start): the earlier clauses'
+                # other ends first, from whose starts its own end may be done (each other seed or turn costs a
+                # search); its other seeds and turns only when none is (the search again, forecast())
                 break
             found = self._try(at, end)
             if found is _SCENE:
