@@ -493,3 +493,30 @@ def test_a_clause_its_judge_rejects_in_every_end_is_planned_with_its_own_end_alo
     clause2 = [e for c, e in stand_ins if c == 2 and e.cut is None]
     assert clause2.count(End(1)) == 1 and clause2.count(End(2)) == 1  # from clause 1's own end alone
     assert clause2.count(DEFAULT) > 1  # from clause 1's other ends too
+
+
+def test_a_later_clause_its_judge_rejects_tries_the_earlier_clauses_ends_before_its_own_seeds(plugins, stand_ins,
+                                                                                              monkeypatch):
+    """Clause 2's own end is judged not done from where clause 1's own end leaves D (its plan then ends at RIM),
+    and done from where clause 1 cut short leaves it: the cut (no search) is tried before clause 2's other seeds
+    (each a search), and chosen."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge(refuse_rim=True))
+    base = stand_in(stand_ins)
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, **kw):
+        p = base(clause, scene, bundle, judge, options, arm, end, **kw)
+        if clause.index == 1 and end == DEFAULT:
+            p.path[-1] = (0.25, 0.05, 0.0)  # clause 1's own end, judged done
+        if clause.index == 2 and end.seed == 0:  # from there clause 2's own end, cut or not, ends at RIM; from
+            done = not np.allclose(scene.get("D").xy, (0.25, 0.05))  # another start it is done
+            p.path[-1] = (0.25, -0.02, 0.0) if done else RIM
+        return p
+
+    monkeypatch.setattr(chain_forecast, "plan_clause", plan)
+    scene = four_blocks()
+    clauses = resolve_clauses("move D next to B, then move A past C", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT]
+    assert all(s.forecast.extra["verdict"]["success"] for s in steps)
+    assert [e for c, e in stand_ins if c == 2 and e.cut is None] == [DEFAULT, DEFAULT]  # no other seed searched
