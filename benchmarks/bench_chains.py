@@ -23,6 +23,8 @@ minutes; the goal size is 1,000.
 ``--plan-only`` (drawn whole): the chains are drawn and planned as a whole as ``--draw sentence`` does, in this
 process, and nothing is performed: printed are the refusals by clause and check, the planning ratio, and how many
 planned clauses their judge accepts on the plan (what the run would have to do). Seconds, not minutes, a chain.
+With ``--json`` each chain's row carries every clause's chosen end and its planned end pose, so two commits' runs
+can be compared plan for plan.
 """
 
 from __future__ import annotations
@@ -78,6 +80,8 @@ def main(argv: list[str] | None = None) -> int:
 def plan_chain(seed: int, clauses_k: int, plugins: list, actions: list[str]) -> dict:
     """One chain of ``--draw sentence`` drawn and planned as the worker does (evaluate/chains.py: run_chain), not
     performed: its refusal or the judge's verdicts on its planned clauses, and its planning seconds."""
+    import numpy as np
+
     from l2p_bullet.arms import fit_scene
     from l2p_bullet.chain.forecast import Search, forecast
     from l2p_bullet.errors import L2PError
@@ -96,6 +100,8 @@ def plan_chain(seed: int, clauses_k: int, plugins: list, actions: list[str]) -> 
         return row | {"refused": str(e), "plans": search.plans, "forecast": time.perf_counter() - t0}
     return row | {"refused": None, "plans": search.plans, "forecast": time.perf_counter() - t0,
                   "alone": search.kept_seconds, "changed": list(search.changed),
+                  "ends": [s.end.to_dict() for s in steps], "plan_ends": [np.round(s.forecast.path[-1], 6).tolist()
+                                                                     for s in steps],
                   "accepted": [bool(s.forecast.extra["verdict"]["success"]) for s in steps]}
 
 

@@ -64,8 +64,7 @@ def aimed_goals(scene: Scene, mover: str, base: Plan, judge: Any, keeps: Callabl
     out: list[np.ndarray] = []
     asked = 0
     for pose in poses[fits]:
-        if not any(_accepts(judge, base, np.vstack([s, segment_frames(s[-1], pose, FRAME_STEP * size)]), outlines)
-                   for s in starts):
+        if not slide_accepted(judge, base, pose, size, outlines, starts):
             continue
         asked += 1
         if asked > CHECKS:
@@ -75,6 +74,16 @@ def aimed_goals(scene: Scene, mover: str, base: Plan, judge: Any, keeps: Callabl
             if len(out) >= limit:
                 break
     return out
+
+
+def slide_accepted(judge: Any, base: Plan, pose: np.ndarray, size: float, outlines: list[np.ndarray] | None = None,
+                   starts: list[np.ndarray] | None = None) -> bool:
+    """Whether ``judge`` accepts a straight slide to ``pose`` after one of :func:`_slide_starts` (``starts``:
+    those of ``base``, computed once by a caller that asks many places): the cheap stand-in for a plan to
+    ``pose`` as a target, asked before that search is paid for."""
+    starts = _slide_starts(base) if starts is None else starts
+    return any(_accepts(judge, base, np.vstack([s, segment_frames(s[-1], pose, FRAME_STEP * size)]), outlines)
+               for s in starts)
 
 
 def _slide_starts(base: Plan) -> list[np.ndarray]:

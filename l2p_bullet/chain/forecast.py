@@ -20,6 +20,17 @@ the plan is not chosen; the planner's own, so judged, is tried after every other
 by clause, when none works: the run judges what it does). A chain is refused only when no combination tried
 works, with the first failure found (the clause and its check) and what was tried.
 
+Each other end but a cut costs a search of the planner, often longer than the clause's own (a turned or aimed
+end is a search to a target, which runs to its budget where the model does not rate the target as the
+action), so the search asks cheap stand-ins before it pays for one: a turned end is searched to only where its
+judge accepts a straight slide there (as an aimed end's place is chosen); once every place its judge accepts
+a slide to was asked and none keeps the later room checks possible that read nothing but where the clause's
+mover stands (aims.py), the other seeds and turns are not searched (they end in such places too); a later
+clause whose judge rejects its own end sends the search back to the earlier clauses' ends (mostly cuts, free)
+before its own seeds and turns are searched, which they are, from where the earlier clauses' own ends left
+it, when none of those works (the search again, below); and a clause whose judge accepted none of its ends
+from one start is planned with its own end alone from the others.
+
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
 check (``path``: the planned path leaves the workspace or runs into a block). The forecast is a prediction:
@@ -30,23 +41,23 @@ really left the blocks.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..core.contracts import Plan
-from ..core.scene import GRIPPER_MARGIN, Scene
-from ..errors import InfeasibleError, L2PError, PathError, PlanError
+from ..core.scene import Scene
+from ..errors import InfeasibleError, L2PError, PlanError
 from ..judge import judge_for, plan_verdict
 from ..judge.footprints import outlines_of
-from ..judge.rules import AROUND_NEAR
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
-from .aims import aimed_goals
-from .clause import Clause, named
+from .aims import CHECKS, aimed_goals, slide_accepted
+from .clause import Clause
+from .deadends import Dead, around_reads, kind, reads_of, refusal, wider
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
 SEARCH_PLANS = 4
@@ -89,28 +100,6 @@ class Search:
     dead_ends: dict[str, int] = field(default_factory=dict)  # "clause N (check)" -> times the search met it
 
 
-@dataclass
-class _Dead(Exception):
-    """A subtree of the search with no way through: the first failure found (already named) and the blocks
-    whose poses its check reads (None: every block)."""
-
-    error: L2PError
-    clause: int
-    blocks: frozenset[str] | None
-    scene: Scene | None = None  # the predicted scene the failed check was made in
-    command: Any = None  # the failed clause's command
-    reads: frozenset[str] | None = None  # the blocks its check reads (``blocks`` before it was widened)
-
-    @property
-    def room(self) -> str | None:
-        """The room check that failed (one an earlier clause's end can meet: AIM_CHECKS), else None."""
-        check = self.error.check if isinstance(self.error, InfeasibleError) else None
-        return check if check in AIM_CHECKS and self.scene is not None else None
-
-
-AIM_CHECKS = ("room-around", "blocked-around", "room-away", "room-closer")
-"""The feasibility checks an earlier clause's end can be aimed to pass (aims.py): they read where blocks stand."""
-
 
 def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOptions | None = None, *,
              bundles: dict | None = None, search: Search | None = None, **changes: Any) -> list[Step]:
@@ -135,7 +124,7 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
         searcher = _Searcher(clauses, plugins, opts, loaded, stats, short_ok=False)
         try:
             steps = searcher.steps(0, scene)
-        except _Dead:
+        except Dead:
             if not searcher.short_met:
                 raise
             # no ends found that every judge accepts: the chain as clause by clause would plan it, the plans
@@ -143,8 +132,8 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
             stats.dead_ends.clear()
             searcher = _Searcher(clauses, plugins, opts, loaded, stats, memo=searcher.memo, cost=searcher.cost)
             steps = searcher.steps(0, scene)
-    except _Dead as d:
-        raise _refusal(d, clauses, stats) from None
+    except Dead as d:
+        raise refusal(d, clauses, stats.plans, stats.dead_ends) from None
     finally:
         stats.seconds += time.perf_counter() - t0
     stats.kept_seconds = sum(searcher.kept.get(id(s.forecast), 0.0) for s in steps)
@@ -167,16 +156,23 @@ class _Clause:
     model: Any
     judge: Any
     checked: float  # seconds its feasibility checks took
-    first: _Dead | None = None  # the first failure met: what it is refused with if no end works
+    first: Dead | None = None  # the first failure met: what it is refused with if no end works
     judged_short: tuple[Plan, End] | None = None  # the planner's own end, when the judge does not accept it
     planned: dict[int, Plan | None] = field(default_factory=dict)  # seed offset -> its plan (None: it failed)
-    needs: list[_Dead] = field(default_factory=list)  # later room checks that failed on where it left its mover
+    needs: list[Dead] = field(default_factory=list)  # later room checks that failed on where it left its mover
+    nowhere: bool = False  # no place its judge accepts keeps its needs (aims.py asked every one): no other end can
 
 
 def _outlines(at: _Clause) -> list[np.ndarray] | None:
     """The real outlines of the clause's mover and anchors, as its judge reads them (None for cubes)."""
     c = at.clause.command
     return outlines_of([at.predicted.get(o) for o in (c.mover, *c.anchors)])
+
+
+def _known(d: Dead) -> bool:
+    """Whether ``d``'s check reads nothing but its own clause's mover and anchors: where an earlier clause left
+    one of them decides it, whatever the clauses between do with the others."""
+    return d.blocks is not None and d.blocks <= {d.command.mover, *d.command.anchors}
 
 
 class _Searcher:
@@ -193,6 +189,7 @@ class _Searcher:
         self.memo: dict[tuple, Plan | L2PError] = {} if memo is None else memo  # a plan made, or the error met
         self.cost: dict[int, float] = {} if cost is None else cost  # id(plan) -> seconds to make it (a cut: to cut it)
         self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
+        self.shorts: set[int] = set()  # clauses whose judge accepted no end (short_ok False): their own end alone now
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
         if k == len(self.clauses):
@@ -215,6 +212,14 @@ class _Searcher:
                 found = self._aimed(at)
                 if found is not None:
                     return found
+                if at.nowhere:
+                    break  # the other ends end where its judge accepts them, and no such place keeps it possible
+            if (end.seed or end.turn) and (k in self.shorts or (
+                    at.judged_short is not None and not self.short_ok and k > 0 and not at.needs)):
+                # its judge rejects its own end here (or every end from an earlier start): the earlier clauses'
+                # other ends first, from whose starts its own end may be done (each other seed or turn costs a
+                # search); its other seeds and turns only when none is (the search again, forecast())
+                break
             found = self._try(at, end)
             if found is _SCENE:
                 break
@@ -232,6 +237,7 @@ class _Searcher:
                 if not self.short_met:  # the earlier clauses' other ends, within a few plans more
                     self.left = min(self.left, SHORT_PLANS)
                 self.short_met = True
+                self.shorts.add(k)
                 reason = at.judged_short[0].extra["verdict"].get("reason", "")
                 raise self._dead(c, PlanError(f"its judge accepts none of its ends ({reason})"), predicted)
             fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
@@ -239,11 +245,11 @@ class _Searcher:
             try:
                 return [self._step(at, plan, end), *self.steps(k + 1, predicted.with_pose(c.command.mover,
                                                                                            plan.path[-1]))]
-            except _Dead as d:
+            except Dead as d:
                 if aimed or not self._needed(at, d):
-                    raise _wider(d, c) from None
+                    raise wider(d, c) from None
                 at.first = d  # what the aimed ends are measured against, and refused with if none works
-        raise _wider(at.first, c) if at.first is not None else self._dead(c, PlanError("no end state left to try"))
+        raise wider(at.first, c) if at.first is not None else self._dead(c, PlanError("no end state left to try"))
 
     def _try(self, at: _Clause, end: End) -> list[Step] | object | None:
         """Plan ``at``'s clause with ``end`` and the later clauses after it: their steps, None when this end
@@ -254,7 +260,7 @@ class _Searcher:
             at.planned[end.seed] = None
             try:
                 at.planned[end.seed] = self._plan(c, predicted, at.bundle, at.judge, end)
-            except _Dead as d:
+            except Dead as d:
                 at.first = at.first or d
                 if isinstance(d.error, InfeasibleError) and d.error.check != "no-motion":
                     return _SCENE  # a check of the scene (no way in from afar...): another seed meets it again
@@ -267,11 +273,14 @@ class _Searcher:
                 goal = turned_goal(c, predicted, at.planned[end.seed], end.turn)
                 if goal is None or not self._keeps(at, goal, known=True):
                     return None
+                if not slide_accepted(at.judge, at.planned[end.seed], goal, predicted.get(c.command.mover).size,
+                                      _outlines(at)):
+                    return None  # its judge rejects even a straight slide there: the search to it would be judged so
             if end.turn or end.aim is not None:
                 self.left -= 1
             try:
                 plan = self._plan(c, predicted, at.bundle, at.judge, end, base=at.planned[end.seed])
-            except _Dead as d:
+            except Dead as d:
                 at.first = at.first or d
                 return None
         base = at.planned[end.seed]
@@ -288,14 +297,14 @@ class _Searcher:
             return None  # another end of this clause may be one its judge accepts; no other end it rejects is
         try:
             return [step, *self.steps(at.k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
-        except _Dead as d:
+        except Dead as d:
             at.first = at.first or d
             if d.blocks is not None and c.command.mover not in d.blocks:
                 raise at.first from None  # this clause's end does not move what failed: try an earlier one
             self._needed(at, d)
             return None
 
-    def _needed(self, at: _Clause, d: _Dead) -> bool:
+    def _needed(self, at: _Clause, d: Dead) -> bool:
         """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads
         where ``at``'s mover stands (its mover or anchor: not a clause sent back for its anchor's sake); whether it
         is new."""
@@ -311,9 +320,19 @@ class _Searcher:
         the first that works, or None."""
         if at.planned.get(0) is None or self.left <= 0:
             return None
-        for pose in aimed_goals(at.predicted, at.clause.command.mover, at.planned[0], at.judge,
-                                lambda q: self._keeps(at, q), scenes=tuple(d.scene for d in at.needs),
-                                outlines=_outlines(at)):
+        asked = []
+
+        def keeps(q: np.ndarray) -> bool:
+            asked.append(q)
+            return self._keeps(at, q)
+
+        goals = aimed_goals(at.predicted, at.clause.command.mover, at.planned[0], at.judge, keeps,
+                            scenes=tuple(d.scene for d in at.needs), outlines=_outlines(at))
+        # every place its judge accepts a slide to was asked, none keeps a later check that reads nothing but
+        # where its mover stands possible: no other end its judge accepts can (the other seeds and turns end
+        # in such places too), so they are not searched
+        at.nowhere = not goals and len(asked) < CHECKS and all(_known(d) for d in at.needs)
+        for pose in goals:
             if self.left <= 0:
                 break
             found = self._try(at, End(0, aim=tuple(float(v) for v in pose)))
@@ -356,7 +375,7 @@ class _Searcher:
         failure again is certain), and only their own failure counts (counted as a dead end, as if met)."""
         c = at.clause
         for d in at.needs:
-            if known and (d.blocks is None or not d.blocks <= {d.command.mover, *d.command.anchors}):
+            if known and not _known(d):
                 continue  # it reads other blocks too, which the clauses between may move
             try:
                 check_feasible(d.command, d.scene.with_pose(c.command.mover, pose), self.plugins, self.arm)
@@ -370,79 +389,14 @@ class _Searcher:
 
     def _count(self, c: Clause, e: L2PError) -> str | None:
         check = e.check if isinstance(e, InfeasibleError) else None
-        key = f"clause {c.index} ({check or _kind(e)})"
+        key = f"clause {c.index} ({check or kind(e)})"
         self.stats.dead_ends[key] = self.stats.dead_ends.get(key, 0) + 1
         return check
 
-    def _dead(self, c: Clause, e: L2PError, scene: Scene | None = None) -> _Dead:
+    def _dead(self, c: Clause, e: L2PError, scene: Scene | None = None) -> Dead:
         check = self._count(c, e)
-        reads = _reads(check, c.command)
+        reads = reads_of(check, c.command)
         if check == "blocked-around" and scene is not None:
-            reads = _around_reads(scene, c.command, self.loaded[c.command.action][0])
-        return _Dead(e, c.index, reads, scene, c.command, reads)
+            reads = around_reads(scene, c.command, self.loaded[c.command.action][0])
+        return Dead(e, c.index, reads, scene, c.command, reads)
 
-
-ANCHOR_ONLY = ("room-around",)
-"""The room checks that read where the anchor stands and not where the mover does (the room round an anchor is
-the workspace's about it; the mover's size alone counts): an earlier clause that moved only the mover cannot
-change them, so the search goes straight back to the clauses that moved the anchor."""
-
-
-def _reads(check: str | None, command: Any) -> frozenset[str] | None:
-    """The blocks whose poses a failed check reads: a room check's anchors (and its mover, but for
-    :data:`ANCHOR_ONLY`); any other check's, every block (None)."""
-    if not check or not check.startswith("room-"):
-        return None
-    anchors = frozenset(command.anchors)
-    return anchors if check in ANCHOR_ONLY else anchors | {command.mover}
-
-
-def _around_reads(scene: Scene, command: Any, bundle: Any) -> frozenset[str]:
-    """The blocks "blocked-around" reads (planning/sweep.py): the anchors, and every block a pose of the mover
-    within ``near`` blocks of the anchor can touch; the mover too when it starts within ``near`` (its way round
-    must start where it stands; from afar the check reads every place it can first come near, wherever it
-    starts). A block farther out is not in the way: another end of the clause that left it there cannot clear
-    the way round."""
-    from ..planning import rule_spec  # lazy, as _plan's import
-
-    spec = rule_spec(bundle)
-    near = (spec.thresholds.get("near") if spec is not None else None) or AROUND_NEAR
-    m, a = scene.get(command.mover), np.asarray(scene.get(command.anchor).xy, float)
-    reach = near * m.size + _radius(m) + GRIPPER_MARGIN + 1e-6
-    starts_near = float(np.hypot(*(np.asarray(m.xy, float) - a))) <= near * m.size + 1e-9
-    return frozenset({*command.anchors} | ({command.mover} if starts_near else set()) | {
-        o.name for o in scene.objects if float(np.hypot(*(np.asarray(o.xy, float) - a))) - _radius(o) <= reach})
-
-
-def _radius(o: Any) -> float:
-    """How far the object's footprint reaches from its centre."""
-    return float(np.hypot(*(o.footprint() - np.asarray(o.xy, float)).T).max())
-
-
-def _wider(d: _Dead, c: Clause) -> _Dead:
-    """``d`` raised past ``c`` once every end of ``c`` failed: which ends ``c`` has depends on where its anchors
-    stand too (a block sent past an anchor on the workspace's rim ends by the rim), so a clause that moved
-    one of them is tried again as well."""
-    return d if d.blocks is None else replace(d, blocks=d.blocks | set(c.command.anchors))
-
-
-def _kind(e: L2PError) -> str:
-    return "plan" if isinstance(e, PlanError) else "path" if isinstance(e, PathError) else type(e).__name__
-
-
-def _refusal(d: _Dead, clauses: list[Clause], stats: Search) -> L2PError:
-    """The first failure, named by its clause, with what the search tried before it gave up."""
-    c, e = clauses[d.clause - 1], d.error
-    first = f"clause {c.index} ({e.check if isinstance(e, InfeasibleError) else _kind(e)})"
-    others = {k: n for k, n in stats.dead_ends.items() if k != first}
-    tried = "" if d.clause == 1 or not others else (
-        "; no other end state of the clauses before it keeps it possible (" + str(stats.plans) + " plans; "
-        + "the other end states tried met " + ", ".join(f"{k} x{n}" for k, n in others.items()) + ")")
-    if isinstance(e, InfeasibleError):
-        e.details["clause"] = c.index
-        return named(e, f"{c.label()} cannot be planned ({e.check})", tried)
-    if isinstance(e, PlanError):
-        return named(PlanError(str(e)), f"{c.label()} cannot be planned (plan)", tried)
-    if isinstance(e, PathError):
-        return named(PathError(str(e)), f"{c.label()} cannot be planned (path)", tried)
-    return named(e, c.label(), tried)

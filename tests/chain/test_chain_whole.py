@@ -134,7 +134,31 @@ def test_an_end_the_judge_accepts_is_chosen_over_one_it_does_not(plugins, stand_
     stand_ins.clear()
     assert [s.end for s in forecast(clauses, scene, plugins)] == [DEFAULT, DEFAULT]
     searched = [e for c, e in stand_ins if c == 1 and e.cut is None]  # each a search: cuts cost none
-    assert searched[:3] == [End(0), End(1), End(0, None, 30)] and len(set(searched)) == len(searched)
+    # no turned end: a judge that rejects every path rejects a straight slide to it, so it is not searched to
+    assert searched == [End(0), End(1), End(2)]
+
+
+class AsFarAsRim:
+    """A stand-in judge that accepts a path ending as far from the anchor as RIM is, but not at RIM: only the
+    planner's end turned about the anchor (or a straight slide there)."""
+
+    def judge(self, path, anchor, size, **kwargs):
+        end, a = np.asarray(path[-1][:2], float), np.asarray(anchor[:2], float)
+        ok = abs(np.hypot(*(end - a)) - np.hypot(*(RIM[:2] - a))) < 1e-6 and not np.allclose(end, RIM[:2])
+        return SimpleNamespace(to_dict=lambda: {"success": bool(ok), "reason": "judged"})
+
+
+def test_a_turned_end_is_searched_to_only_where_its_judge_accepts_a_straight_slide_there(plugins, stand_ins,
+                                                                                         monkeypatch):
+    """A turned end costs a search to a target; the clause's judge is asked first about a straight slide there
+    (as an aimed end's is), so a turn that cannot fix what the judge rejects costs nothing."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: AsFarAsRim())
+    scene = four_blocks()
+    clauses = resolve_clauses("move A past B", scene, plugins)
+    [step] = forecast(clauses, scene, plugins)
+    assert step.end.turn and step.forecast.extra["verdict"]["success"]
+    assert [e for _, e in stand_ins if e.turn] == [step.end]  # the first turn with room, searched once
 
 
 def test_a_refusal_names_the_clause_its_check_and_what_was_tried(plugins, stand_ins, monkeypatch):
@@ -432,3 +456,67 @@ def test_a_later_clause_no_end_of_which_its_judge_accepts_sends_the_search_back(
     made = [(c, e) for c, e in stand_ins]
     assert len(made) == len(set(made))  # the second pass made no plan again
     assert search.dead_ends == {}
+
+
+def test_a_clause_no_place_its_judge_accepts_keeps_possible_is_not_searched_past_its_aims(plugins, stand_ins,
+                                                                                        monkeypatch):
+    """Clause 1's judge accepts only ends by the rim (x >= 0.25), and "around A" has no room wherever A stands
+    at x > 0.2 (a check that reads A alone): the aimed places, every one its judge accepts, all fail it, so
+    the other seeds and turns (each a search, each ending where its judge accepts it) are not planned; the
+    chain is refused for clause 2 as before."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", beyond(0.2))
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
+        judge=lambda path, *a, **k: SimpleNamespace(to_dict=lambda: {"success": bool(path[-1][0] >= 0.25)})))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    with pytest.raises(InfeasibleError, match=r'^clause 2 \("move C around A"\) cannot be planned \(room-around\)'):
+        forecast(clauses, scene, plugins)
+    assert [e for c, e in stand_ins if c == 1 and e.cut is None] == [DEFAULT]
+
+
+def test_a_clause_its_judge_rejects_in_every_end_is_planned_with_its_own_end_alone_from_later_starts(
+        plugins, stand_ins, monkeypatch):
+    """Clause 2's judge accepts none of its ends: the search sends clause 1 to its other ends, and from each
+    new start clause 2 is planned with its own end (and its cuts) alone, not searched over again; with none
+    accepted the chain is planned as clause by clause would plan it."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    c_pose = four_blocks().get("C").pose
+
+    def judge(path, anchor, *a, **k):  # "past C" is never done; every other clause is
+        return SimpleNamespace(to_dict=lambda: {"success": not np.allclose(anchor, c_pose), "reason": "judged"})
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=judge))
+    scene = four_blocks()
+    clauses = resolve_clauses("move D next to B, then move A past C", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, DEFAULT] and not steps[1].forecast.extra["verdict"]["success"]
+    clause2 = [e for c, e in stand_ins if c == 2 and e.cut is None]
+    assert clause2.count(End(1)) == 1 and clause2.count(End(2)) == 1  # from clause 1's own end alone
+    assert clause2.count(DEFAULT) > 1  # from clause 1's other ends too
+
+
+def test_a_later_clause_its_judge_rejects_tries_the_earlier_clauses_ends_before_its_own_seeds(plugins, stand_ins,
+                                                                                              monkeypatch):
+    """Clause 2's own end is judged not done from where clause 1's own end leaves D (its plan then ends at RIM),
+    and done from where clause 1 cut short leaves it: the cut (no search) is tried before clause 2's other seeds
+    (each a search), and chosen."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: Judge(refuse_rim=True))
+    base = stand_in(stand_ins)
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, **kw):
+        p = base(clause, scene, bundle, judge, options, arm, end, **kw)
+        if clause.index == 1 and end == DEFAULT:
+            p.path[-1] = (0.25, 0.05, 0.0)  # clause 1's own end, judged done
+        if clause.index == 2 and end.seed == 0:  # from there clause 2's own end, cut or not, ends at RIM; from
+            done = not np.allclose(scene.get("D").xy, (0.25, 0.05))  # another start it is done
+            p.path[-1] = (0.25, -0.02, 0.0) if done else RIM
+        return p
+
+    monkeypatch.setattr(chain_forecast, "plan_clause", plan)
+    scene = four_blocks()
+    clauses = resolve_clauses("move D next to B, then move A past C", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT]
+    assert all(s.forecast.extra["verdict"]["success"] for s in steps)
+    assert [e for c, e in stand_ins if c == 2 and e.cut is None] == [DEFAULT, DEFAULT]  # no other seed searched
