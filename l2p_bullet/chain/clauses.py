@@ -341,6 +341,8 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
                     pair: pointing.Shown | None = None) -> list[tuple[str, Command]] | None:
     """A text that does not resolve as one clause read as two joined by "and" or a comma, as a group shown and
     then clauses about it, or as one of chain/pointing.py's readings; None when none applies."""
+    if len(text) > MAX_SENTENCE:
+        return None  # a clause too long to read: refused as it stands, at once
     for said in [pointing.over_and_put(text), *pointing.in_other_words(text)]:
         if said != text and depth < MAX_CLAUSES:
             try:

@@ -88,7 +88,7 @@ BOTH = re.compile(r"(?:\b(?:them\s+both|both\s+of\s+them|each\s+of\s+them|both|t
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
 PLACE_WORDS = frozenset({"it", "them", "one", "ones", "left", "right", "front", "back", "behind", "middle", "both",
-                         "each", "same", "far", "near", "closer", "nearer", "around", "round", "past", "away"})
+                         "each", "same", "far"})
 PACE_WORDS = frozenset(PACES)
 OTHER_ASKS = frozenset({"again", "twice", "also", "too", "repeat", "back", "undo", "no", "not",
                         "don't", "dont", "never", "wait", "stop", "cancel", "instead", "actually", "rather", "but",
@@ -178,8 +178,8 @@ def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
 def _names_a_place(said: str) -> bool:
     """Whether a statement's words name a relation to another object ("A is next to B"): it may be a goal
     stated badly, never only a pointer."""
-    return bool(re.search(r"\b(?:to|from|of|past|beyond|around|beside|by|toward|towards|near|nearer|closer)\b",
-                          said, re.IGNORECASE))
+    return bool(re.search(r"\b(?:to|from|of|past|beyond|around|round|away|beside|by|toward|towards|near|nearer"
+                          r"|closer)\b", said, re.IGNORECASE))
 
 
 _AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab)"
@@ -322,6 +322,8 @@ def _two_movers(text: str, context: Context | None, scene: Scene, plugins: list)
     ``text`` does not read so. A note without its verb is a slide, as a one-object note is."""
     words = [w for w in AND_SIGNS.sub(lambda m: " and " if m.group().strip() in "+&" else " ", text).split()
              if w not in ARROWS]
+    if len(words) < 4:
+        return None
     try:
         verb, _, rest = split_verb(words)
     except LanguageError:

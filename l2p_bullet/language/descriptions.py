@@ -178,6 +178,11 @@ def naming_words(scene: Scene) -> frozenset[str]:
     return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
 
 
+WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOUNS) | frozenset(COLORS)
+                      | frozenset(COLOR_SYNONYMS) | KIND_MODIFIERS)
+"""Words a name's fond form may spell ("tin" + "y" is "tiny"): never read as the name."""
+
+
 def name_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
     ("ducky", "duckie": the duck)."""
@@ -185,7 +190,7 @@ def name_words(scene: Scene) -> dict[str, str]:
     for n in scene.names:
         low = n.lower()
         if len(low) >= 3 and low.isalpha():
-            out[low + "y"] = out[low + "ie"] = n
+            out.update({fond: n for fond in (low + "y", low + "ie") if fond not in WORDS_OF_THEIR_OWN})
     out.update(kind_words(scene))
     out.update({n.lower(): n for n in scene.names})
     return out

@@ -136,3 +136,8 @@ def test_what_the_fourteenth_and_fifteenth_authors_prompted_still_asks(plugins, 
 ])
 def test_cautions_and_fillers_read_past(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
+
+
+def test_a_size_word_is_never_a_names_fond_form(plugins):
+    """"tin" + "y" spells "tiny": the tiny red cube is the small red cube, not the tin."""
+    assert read("move the tin away from the tiny red cube", plugins, "heldout16.tsv") == "slide:away tin R"
