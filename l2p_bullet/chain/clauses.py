@@ -31,7 +31,7 @@ from ..language import (
     typos,
 )
 from ..language.lists import GROUP
-from ..language.words import participles, take_pace
+from ..language.words import participles, take_extent, take_pace
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -41,7 +41,7 @@ from .composite import composite_clauses, is_composite
 
 _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?\s*\bthen\b"
                     r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\b(?:afterwards|thereafter)\b"
-                    r"|,\s*after\s+(?=(?![a-z]+ing\b)[a-z]+\s+(?:the|it|them)\b)"
+                    r"|,\s*after\s+(?=(?![a-z]+ing\b)[a-z]+\s+(?:the|it|them|a|an)\b)"
                     r"|,\s*and\s+after\b"
                     r"|,?\s*\band\s+finally\b|,\s*finally\b)\s*,?\s*", re.IGNORECASE)
 """What joins clauses: "then", "and then", "after that", "afterwards", "thereafter", ", and after", ", after" before a
@@ -89,14 +89,17 @@ SENTENCE_ENDS = re.compile(r"(?<=[a-z0-9])[.!?]\s+(?=\S)", re.IGNORECASE)
 def _item_by_item(sentence: str) -> str | None:
     """A list told item by item after a colon (:data:`ITEM_BY_ITEM`) said as one list ("make a row: A, B and C"); None
     for any other sentence, and where the items are steps (each opens with a verb)."""
-    m = ITEM_BY_ITEM.match(sentence)
-    if m is None or not (m.group("first") or GROUP.search(m.group("head")) or is_composite(m.group("head"))):
-        # "first the cube", "the three cubes:", "Row please: the cube, then ..."
-        return None
-    items = [i for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]
+    m, longest = ITEM_BY_ITEM.match(sentence), MAX_SENTENCE
+    if m is None:  # "Put the three cubes in a row, big red first, then blue, then small red"
+        m, longest = ITEM_AFTER_GROUP.match(sentence), MAX_ITEM_WORDS
+        if m is None or not GROUP.search(m.group("head")):
+            return None
+    elif not (m.group("first") or GROUP.search(m.group("head")) or is_composite(m.group("head"))):
+        return None  # "first the cube", "the three cubes:", "Row please: the cube, then ..." are lists
+    items = [FIRST_AFTER.sub("", i) for i in ITEM_JOINS.split(m.group("items")) if i.strip(" ,.")]
     verbs = set(known_verbs())
-    if len(items) < 2 or any(i.split()[0].lower() in verbs for i in items):
-        return None
+    if len(items) < 2 or any(i.split()[0].lower() in verbs or len(i.split()) > longest for i in items):
+        return None  # steps, not items
     listed = ", ".join(i.strip(" ,.") for i in items[:-1]) + " and " + items[-1].strip(" ,.!?")
     head = " ".join(strip_polite(m.group("head").split())) or m.group("head").strip()  # "Row please:"
     return f"{head}: {listed}"
@@ -104,6 +107,12 @@ def _item_by_item(sentence: str) -> str | None:
 
 ITEM_BY_ITEM = re.compile(r"^(?P<head>[^:;]+?):\s*(?P<first>first\s+)?(?P<items>(?:[^:;.!?]|[.!?](?!\s))+?)[.!?]*\s*$",
                           re.IGNORECASE)
+ITEM_AFTER_GROUP = re.compile(r"^(?P<head>[^:;,]+?),\s*(?P<first>first\s+)?(?P<items>(?:[^:;.!?]|[.!?](?!\s))+?)"
+                              r"[.!?]*\s*$", re.IGNORECASE)
+MAX_ITEM_WORDS = 5
+"""An item of a list told one by one after a comma is an object's description ("big red", "the small red one"), never
+a step ("gently nudge the can away from the tray")."""
+FIRST_AFTER = re.compile(r"\s+first[\s,]*$", re.IGNORECASE)
 ITEM_JOINS = re.compile(r",?\s*\b(?:and\s+then|then|next|and\s+finally|finally|and\s+last(?:ly)?|last(?:ly)?)\b"
                         r"\s*,?\s*", re.IGNORECASE)
 """A list told item by item after a colon: "Please make a row: first the yellow cube, then the duck, then the red
@@ -173,7 +182,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     comma ("move S next to P, line up the can, the tray and the teddy, then ...")."""
     texts = _rows_after_commas(split_clauses(sentence), plugins)
     if len(texts) <= 1:
-        listed = texts[0] if texts and ITEM_BY_ITEM.match(sentence) else sentence  # told item by item
+        listed = texts[0] if texts and _item_by_item(sentence) is not None else sentence  # told item by item
         made = composite_clauses(listed, scene, plugins)
         if made is not None:
             return made
@@ -212,6 +221,10 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         try:
             pieces = _resolve_text(text, previous, scene, plugins, context=context, pair=pair)
         except L2PError as e:
+            extent = _extent_alone(text) if clauses else None
+            if extent is not None:  # "Move the tin away from the mug. Just a tiny bit though."
+                clauses[-1] = _extended(clauses[-1], extent, plugins)
+                continue
             pace = _pace_alone(text, scene)
             if pace is not None and (i < len(texts) or clauses):  # "Hurry!! Slide A ...", "... B. Slowly please."
                 if i < len(texts):
@@ -273,6 +286,24 @@ def _pace_alone(text: str, scene: Scene) -> str | None:
     except L2PError:
         return None
     return pace if not strip_polite(words, keep) else None
+
+
+def _extent_alone(text: str) -> str | None:
+    """How far a clause asks when it says nothing else ("Just a tiny bit though.", "But only a little"); None
+    otherwise."""
+    words = [w for w in strip_polite(tokens(text)) if w.lower() not in ("though", "but", "only")]
+    rest, extent = take_extent(["_", *words])
+    return extent if rest == ["_"] else None
+
+
+def _extended(clause: Clause, extent: str, plugins: list) -> Clause:
+    """``clause`` asked to go ``extent`` far by the sentence after it; a one-line error where its action takes no such
+    extent or it asked for another."""
+    command = clause.command
+    if command.extent not in (None, extent) or extent not in registry.extent_table(plugins).get(command.action, ()):
+        raise LanguageError(f'"{clause.text}" cannot also go a {extent} way ("{command.preposition}" takes: '
+                            f"{', '.join(sorted(registry.extent_table(plugins).get(command.action, ()))) or 'none'})")
+    return replace(clause, command=replace(command, extent=extent))
 
 
 def _paced(clause: Clause, pace: str) -> Clause:

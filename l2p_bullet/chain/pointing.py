@@ -26,7 +26,7 @@ _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|the
          r"|take|grab|get|pick\s+up|lift)")
 SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
 """A clause that only shows objects: "See the cylinder?", "Pick up the duck"."""
-TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,])\s+(?P<rest>.+)$")
+TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,]|\s*(?:\.\.\.|\u2026))\s+(?P<rest>.+)$")
 """An object named first, then the command about it: "the green cube - move it toward the blue one", "the
 teddy, put it beside the can", "Q and R: slide them both toward P"."""
 STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|r|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)
@@ -49,7 +49,8 @@ SAME = re.compile(r"^\s*(?:now\s+|and\s+|after\s*,?\s*)?(?:(?:do|repeat)\s+(?:(?
                   r"(?:\s+thing)?(?:\s+again)?\s+(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$",
                   re.IGNORECASE)
 """The previous command again on another object: "Now do the same with the red cube", "then same for the duck"."""
-TOO = re.compile(r"^\s*(?:and\s+)?(?P<what>.+?)\s+(?:too|as\s+well|also)\s*[.!]?\s*$", re.IGNORECASE)
+TOO = re.compile(r"^\s*(?:and\s+)?(?P<what>.+?)\s*,?\s+(?:too|as\s+well|also|same\s+thing|the\s+same)\s*[.!]?\s*$",
+                 re.IGNORECASE)
 """The previous command again on another object, said by the object alone: "..., and the black one too"."""
 ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s+first"
                    r"(?P<then>\s*,?\s*(?:and\s+)?(?:then|after)\s+(?:the\s+)?[\w-]+(?:\s+[\w-]+)?(?:\s+one)?)?"
@@ -59,7 +60,7 @@ ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+
 """Which of two objects moved alike goes first, said at the end: ", the red one first", ", white first", ", first
 the big, after the small"."""
 AND_SIGNS = re.compile(r"\s+[+&]\s+|\s*,\s*(?:both|each)(?:\s+of\s+them)?\s*,\s*")
-_RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands)"
+_RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands|\s+moves|\s+goes)"
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
                         re.IGNORECASE)
 """A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""

@@ -47,7 +47,7 @@ from .words import (
 
 VERBS: tuple[str, ...] = ("move", "slide", "push", "shift", "put")
 """The plain verbs of a slide; every installed manner's verbs are known too (:func:`known_verbs`)."""
-OBJECT_PRONOUNS = frozenset({"it", "them"})
+OBJECT_PRONOUNS = frozenset({"it", "them", "him", "her"})
 TIGHT = "right"
 """The extent of a tight gap ("right next to")."""
 """What may follow a manner's gap phrase: "lift A and put *it* next to B"."""

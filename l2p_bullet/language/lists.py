@@ -52,8 +52,8 @@ THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|w
                            re.IGNORECASE)
 GROUP = re.compile(r"\bthe\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?(?P<kind>cubes|blocks|boxes|objects|things)\b",
                    re.IGNORECASE)
-GROUP_ITEMS = re.compile(r"\s*(?::|\s-+|[\u2013\u2014]|,)\s*(?P<items>[^:;\-\u2013\u2014]+?)"
-                         r"\s*(?:-+|[\u2013\u2014])?\s*$")
+GROUP_ITEMS = re.compile(r"\s*(?::|\s-+|[\u2013\u2014]|,|\()\s*(?P<items>[^:;()\-\u2013\u2014]+?)"
+                         r"\s*(?:-+|[\u2013\u2014]|\))?\s*$")
 COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
 """A composite's sentence said in other words: "in a neat row", "line A, B and C up in a row", "a row of the following
 objects: ...", and a group named first and its items after ("Put the three cubes in a row: red, blue, black", "Line
@@ -64,12 +64,13 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     """``sentence`` with a composite's sentence said in other words (the patterns above) said as a plain list is;
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", sentence))
+    text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*:", ":", text)  # "Row please: A, B, C"
     text = THE_FOLLOWING.sub(" of ", text, count=1)
     group = GROUP.search(text)
     if group is None:
         return text
     after = text[group.end():]
-    for sep in re.finditer(r"\s*(?::|\s-+\s|[\u2013\u2014]|,)\s*", after):
+    for sep in re.finditer(r"\s*(?::|\s-+\s|[\u2013\u2014]|,|\()\s*", after):
         m = GROUP_ITEMS.match(after[sep.start():])
         if m is None:
             continue

@@ -225,6 +225,9 @@ def places_as_superlatives(words: list[str]) -> list[str]:
     low = [w.lower() for w in words]
     if len(low) >= 3 and low[0] in DETERMINERS and low[1] in PLACE_ADJECTIVES and low[2] not in ("of", "side", "edge"):
         return [words[0], PLACE_ADJECTIVES[low[1]], *words[2:]]
+    if len(low) >= 2 and low[0] in PLACE_ADJECTIVES and low[1] not in ("of", "side", "edge", "to", "from") \
+            and low[0] not in ("far", "near"):  # "front white cube", typed without its article
+        return ["the", PLACE_ADJECTIVES[low[0]], *words[1:]]
     return words
 
 

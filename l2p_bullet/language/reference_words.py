@@ -43,7 +43,8 @@ FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", 
                             "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
 """Words never taken as an object's own adjective ("the second duck" is not "the duck")."""
 NAMED_AS = (("called",), ("named",))
-PRONOUNS_MOVER = (("it",), ("that", "one"), ("that", "block"), ("this", "one"), ("the", "same", "block"),
+PRONOUNS_MOVER = (("it",), ("him",), ("her",), ("that", "one"), ("that", "block"), ("this", "one"),
+                  ("the", "same", "block"),
                   ("the", "same", "one"), ("the", "same", "object"), ("that",))
 DEMONSTRATIVES = (("that", "one"), ("that", "block"), ("this", "one"), ("that",))
 """Pointers that may mean the block the previous clause moved or the one it named last ("push P toward R, then move

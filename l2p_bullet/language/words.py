@@ -56,7 +56,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
     "at the end", "in the end", "make it happen", "would you see to that", "could you see to that",
-    "see to that", "that's it", "that's all", "ta", "than it is now", "than it is", "than now", "than it was",
+    "see to that", "that's it", "that's all", "ta", "appreciate it", "i appreciate it", "much obliged",
+    "than it is now", "than it is", "than now", "than it was",
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
     "without touching anything else", "don't touch anything else",
@@ -73,6 +74,7 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
     "what i'd like is", "what i'm after is", "i want to see", "i'd like to see", "i would like to see",
     "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
+    "the idea is that", "the goal is that", "the plan is that", "the aim is that", "the idea is for",
     "could we end up with", "can we end up with", "let's end up with", "i'd like to end up with", "end up with",
     "goal", "want", "end state", "target", "objective", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
@@ -83,7 +85,7 @@ DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", 
          ("for", "the", "robot", "to"), ("that", "you"))
 """Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
 
-_RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests", "stands", "gets")
+_RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests", "stands", "gets", "moves", "comes")
 FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     *(f"{lead} {rest}".replace(" 's", "'s") for lead in ("so that it", "so it", "such that it", "until it")
       for rest in _RESTS),
@@ -305,6 +307,8 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "sits", "lies", "to sit", "to lie", "to land", "lands", "is placed", "is put", "to stand", "stands",
     "were", "was", "ended up", "would be", "has to go", "needs to go", "must go", "would end up", "should stand",
     "should sit", "should finish", "finishes", "to finish", "should lie", "ought to be", "ought to end up",
+    "must finish", "must end up",
+    "should end",
     "ought to go", "ought to sit",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it

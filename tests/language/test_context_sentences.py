@@ -61,3 +61,33 @@ def test_the_big_one_after_its_small_twin(plugins):
 def test_paces_and_ends_that_contradict_are_asked(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # what the sixteenth and seventeenth authors' misses prompted
+    ("Move C away from the duck. Just a tiny bit though.", "slide:away C duck extent=little", "corpus.tsv"),
+    ("move the duck past A? appreciate it", "slide:past duck A", "corpus.tsv"),
+    ("push A closer to the duck, then C, same thing", "push:closer A duck ; push:closer C duck", "corpus.tsv"),
+    ("the duck - carry him around B", "carry:around duck B", "corpus.tsv"),
+    ("ok so the duck... move it all the way around B", "slide:around duck B", "corpus.tsv"),
+    ("push C so it moves next to A", "push:next-to C A", "corpus.tsv"),
+    ("move front white cube next to L", "slide:next-to K L", "heldout17.tsv"),
+    ("Put in a line the duck, A and C.", "row duck,A,C", "corpus.tsv"),
+    ("Row please: C, the duck, A.", "row C,duck,A", "corpus.tsv"),
+    ("Put the three cubes in a row, green first, then red, then blue.", "row B,A,C", "corpus.tsv"),
+    ("Move the duck past E, line up the three cubes (blue, red, green), then push D toward E.",
+     "slide:past duck E ; row C,A,B ; push:closer D E", "corpus.tsv"),
+    ("Move E away from the duck, after make a row with A, B and C.", "slide:away E duck ; row A,B,C", "corpus.tsv"),
+])
+def test_what_the_sixteenth_and_seventeenth_authors_prompted(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "Move C around the duck. Just a tiny bit though.",   # "around" takes no extent
+    "Move C far away from the duck. Just a tiny bit.",   # far, then a little
+    "Put the two cubes in a row, green first, then red, then blue.",  # three items for two
+])
+def test_what_the_sixteenth_and_seventeenth_authors_prompted_still_asks(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
