@@ -232,16 +232,16 @@ def test_an_untaught_composite_owning_the_phrase_is_named(site, tmp_path):
     from l2p_bullet.core.scene import load_scene
     from l2p_bullet.plugins.scaffold import scaffold
 
-    made = scaffold("row2", ["put in a line"], tmp_path / "l2p-row2", kind="composite")
+    made = scaffold("row2", ["queue up"], tmp_path / "l2p-row2", kind="composite")
     shutil.copytree(made.package_dir, site / made.package_dir.name)
     make_dist(site, "l2p-row2", {"row2": made.package_dir.name})
     scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "four_blocks.json")
     with pytest.raises(FailedToLoadPlugin) as e:
-        resolve_clauses("Please put in a line A, B and C", scene, registry.discover())
+        resolve_clauses("Please queue up A, B and C", scene, registry.discover())
     assert e.value.name == "row2" and e.value.package == "l2p-row2" and "recipe.json missing" in e.value.reason
     assert [c.command.action for c in resolve_clauses("make a row of A, B and C", scene, registry.discover())] == [
         "next-to", "next-to"]  # the built-in composite is untouched
-    r = CliRunner().invoke(main, ["plan", "put in a line A, B and C", "--scene",
+    r = CliRunner().invoke(main, ["plan", "queue up A, B and C", "--scene",
                                   str(Path(__file__).resolve().parents[2] / "examples" / "four_blocks.json"),
                                   "--no-plot", "--out", str(tmp_path / "p")])
     assert 'action plugin "row2" (package l2p-row2) cannot be used' in one_line_error(r)
