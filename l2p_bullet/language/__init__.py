@@ -18,7 +18,8 @@ from .grammar import (
     trailing_join,
 )
 from .lists import ListCommand, parse_list, phrase_matches
-from .references import Context, resolve_object
+from .pronouns import Context
+from .references import resolve_object
 from .words import is_courtesy, strip_polite
 
 __all__ = [

@@ -28,7 +28,8 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
 from . import lenient
 from .descriptions import naming_words
-from .references import Context, measured_from, object_pairs, resolve_object, try_object
+from .pronouns import Context
+from .references import measured_from, object_pairs, resolve_object, try_object
 from .words import (
     COMPARATIVES,
     TIGHT_PHRASES,
