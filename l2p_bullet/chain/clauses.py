@@ -29,7 +29,8 @@ from ..language import (
     trailing_join,
     typos,
 )
-from ..language.words import take_extent, take_pace
+from ..language.extents import take_extent
+from ..language.words import take_pace
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry

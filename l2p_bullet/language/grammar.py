@@ -27,12 +27,11 @@ from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from . import lenient
 from .descriptions import naming_words
+from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_tail
 from .pronouns import Context
 from .references import measured_from, object_pairs, resolve_object, try_object
 from .verbs import EXAMPLE, _on_the_table, _verb_patterns, known_verbs, split_verb
 from .words import (
-    COMPARATIVES,
-    TIGHT_PHRASES,
     by_gerund,
     drop_frames,
     gerund_to_verb,
@@ -41,8 +40,6 @@ from .words import (
     skip_to_verb,
     state_to_verb,
     strip_polite,
-    take_extent,
-    take_extent_tail,
     take_pace,
 )
 
@@ -70,7 +67,7 @@ class Command:
     anchors: tuple[str, ...] = ()
     manner: str = "slide"  # the manner of motion the verb asks for (l2p_bullet/manners)
     pace: str | None = None  # "slowly", "gently"...: language/words.PACES (None: the manner's own pace)
-    extent: str | None = None  # "far away", "a bit closer", "right next to": language/words.EXTENTS
+    extent: str | None = None  # "far away", "a bit closer", "right next to": language/extents.EXTENTS
 
     def __post_init__(self) -> None:
         if not self.anchors:
@@ -108,7 +105,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
 
     ``anchors`` says how many reference objects each action's sentences name (action -> 1 or 2; 1 when
     not listed): a two-anchor action reads "B and C" after its phrase. ``extents`` says which qualifiers
-    ("far", "a bit", "right": language/words.EXTENTS) each action accepts (none when not listed);
+    ("far", "a bit", "right": language/extents.EXTENTS) each action accepts (none when not listed);
     ``context`` is what pronouns ("it", "the other one") point back to: the previous clause. Where the
     grammar refuses it inside :func:`lenient.reading_past`, the lenient reading is tried (language/lenient.py).
     """

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
 from .descriptions import naming_words
+from .extents import EXTENTS, take_extent
 from .pronouns import Context
 from .reference_words import (
     COLOR_SYNONYMS,
@@ -39,7 +40,7 @@ from .reference_words import (
 )
 from .references import try_object
 from .synonyms import SIZE_WORDS
-from .words import EXTENTS, NEGATIONS, PACES, participles, take_extent
+from .words import NEGATIONS, PACES, participles
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
 
