@@ -1,24 +1,22 @@
-"""Sentence -> what to do: the grammar (grammar.py), the words around a command (words.py), the objects a
-sentence names (references.py, descriptions.py) and lists of objects for composites (lists.py). One grammar,
-documented in docs/perform.md ("Sentences")."""
+"""Sentence -> what to do: the grammar (grammar.py), its verb and manner (verbs.py), the words around a command
+(words.py), the objects a sentence names (references.py, descriptions.py, pronouns.py) and lists of objects for
+composites (lists.py). One grammar, documented in docs/perform.md ("Sentences")."""
 
 from .grammar import (
-    EXAMPLE,
     MAX_SENTENCE,
-    VERBS,
     Command,
     command_words,
     dangling_join,
-    known_verbs,
     manner_of_sentence,
     parse,
     phrase_tokens,
-    split_verb,
     tokens,
     trailing_join,
 )
 from .lists import ListCommand, parse_list, phrase_matches
-from .references import Context, resolve_object
+from .pronouns import Context
+from .references import resolve_object
+from .verbs import EXAMPLE, VERBS, known_verbs, split_verb
 from .words import is_courtesy, strip_polite
 
 __all__ = [

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
 from .descriptions import naming_words
+from .extents import EXTENTS, take_extent
+from .pronouns import Context
 from .reference_words import (
     COLOR_SYNONYMS,
     COMPARATIVE_OF,
@@ -36,9 +38,9 @@ from .reference_words import (
     PLACE_ADJECTIVES,
     SIZE_SUPERLATIVES,
 )
-from .references import Context, try_object
+from .references import try_object
 from .synonyms import SIZE_WORDS
-from .words import EXTENTS, NEGATIONS, PACES, participles, take_extent
+from .words import NEGATIONS, PACES, participles
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
 

@@ -3,7 +3,8 @@
 People name objects many ways: by name ("A", "block A", "the duck"), colour ("the red one"), shape
 ("the box", "the cylinder", "the tall one"), a superlative ("the biggest one", "the block nearest the
 robot", "the leftmost block"), a relation to another object ("the one left of B") or a pronoun that
-points back to the previous clause ("it", "that one": its mover; "the other one": its anchor).
+points back to the previous clause ("it", "that one": its mover; "the other one": its anchor), which
+language/pronouns.py reads.
 
 Every reading is checked against the scene: a description that fits several objects is a one-line
 error that lists them (a refusal beats a wrong block), and so is one that fits none. Left and right are
@@ -13,7 +14,6 @@ the robot's (the scene's +y is its left, DESIGN.md section 4), the view of a per
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -23,7 +23,6 @@ from .descriptions import candidates, describe, described, looks, name_words
 from .places import (
     bearing_off,
     bulk_superlative,
-    by_size,
     comparative_of,
     distance_to,
     either_reading,
@@ -33,12 +32,11 @@ from .places import (
     relation_head,
     superlative,
 )
+from .pronouns import Context, _pronoun
 from .reference_words import (
-    BLOCK_SHAPES,
     CENTRE_PHRASES,
     COLOR_SYNONYMS,
     CONJUNCTIONS,
-    DEMONSTRATIVES,
     DETERMINERS,
     DIRECT_CONE,
     DOUBT_RATIO,
@@ -47,12 +45,9 @@ from .reference_words import (
     NOUNS,
     OPENINGS,
     PLACE_ADJECTIVES,
-    PRONOUNS_ANCHOR,
-    PRONOUNS_MOVER,
     REFERENCE_WORDS,
     RELATIVES,
     ROBOT_WORDS,
-    SAME_WORDS,
     SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SIDE_CONE,
@@ -61,20 +56,8 @@ from .reference_words import (
     SIDES,
     SIZE_SUPERLATIVES,
     SOFT_ADJECTIVES,
-    STRICT_SHAPES,
     TIE_M,
 )
-from .synonyms import SIZE_WORDS
-
-
-@dataclass(frozen=True)
-class Context:
-    """What pronouns point back to: the previous clause's mover and anchor (None: there is none)."""
-
-    mover: str | None = None
-    anchor: str | None = None
-    among: tuple[str, ...] = ()  # a group shown before ("There are two green cubes"): "the big one" is of it
-    described: bool = False  # the mover was described, not named ("the small red cube"): see _twin
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -182,126 +165,6 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
                 return words[:i] + words[i + len(rel):]
     return words
-
-
-def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, role: str,
-             scene: Scene) -> str | None:
-    said = " ".join(low)  # what the user wrote, for the error: "that same cube" reads as "it" below
-    kinds = name_words(scene)
-    opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
-    if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
-        return _that_kind(said, low[-1], context, role, scene)
-    if (low in DEMONSTRATIVES or (opening in DEMONSTRATIVES and low[-1] in NOUNS)) and context is not None \
-            and context.mover is not None and context.anchor not in (None, context.mover):
-        raise LanguageError(f'"{said}" is ambiguous: {context.mover} (moved in the previous clause) or '
-                            f'{context.anchor} (named last); name the one you mean, or say "it"')
-    if opening is not None and low[-1] in NOUNS:
-        low = ("it",)
-    twin = _sized_twin(said, low, context, scene)
-    if twin is not None:
-        return twin
-    if low in (("the", "latter"), ("the", "former")):  # the clause before's two objects, in the order named
-        if context is None or context.mover is None or context.anchor in (None, context.mover):
-            raise _no_earlier(said, role)
-        return context.anchor if low[1] == "latter" else context.mover
-    if low[:2] == ("the", "other") and len(low) > 2 and low not in PRONOUNS_ANCHOR:
-        return _the_other(said, words[2:], context, role, scene)
-    if low in PRONOUNS_MOVER or low in PRONOUNS_ANCHOR:
-        if context is None or context.mover is None:
-            raise _no_earlier(said, role)
-        if low in PRONOUNS_MOVER:
-            if len(context.among) > 1 and context.mover in context.among and "reference" not in role:
-                # "the jar n the cup r in the way, move it": either; "move the jar away from it": the other
-                raise LanguageError(f'"{said}" is ambiguous: it may be any of {", ".join(context.among)}; '
-                                    "name the one you mean")
-            return context.mover
-        return _twin(said, context, scene) or context.anchor
-    return None
-
-
-def _no_earlier(said: str, role: str) -> LanguageError:
-    """The error for a word that points back ("it", "that cylinder", "the other red cube") in a first clause."""
-    return LanguageError(f'"{said}" ({role}) points back to an earlier clause, and there is none; name the block')
-
-
-def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
-    """Whether ``noun`` ("cylinder", "cube", "duck") may name ``o``: a shape noun its shape (a cube or a box for
-    "cube" and "box"), a kind word the object it names."""
-    kinds = name_words(scene)
-    if noun in kinds:
-        return kinds[noun] == o.name
-    shape = SHAPE_NOUNS[noun]
-    return o.shape == shape if shape in STRICT_SHAPES else o.shape in BLOCK_SHAPES
-
-
-def _sized_twin(said: str, low: tuple[str, ...], context: Context | None, scene: Scene) -> str | None:
-    """"the big one" after a clause that moved one of two or more objects of the same colour and shape ("move the
-    small red cube ..., then slide the big one ..."): the one of them the size word picks; None where it is not said
-    so or picks no single one."""
-    if context is None or context.mover not in scene.names or low[:1] != ("the",) or low[2:] not in ((), ("one",)) \
-            or len(low) < 2 or low[1] not in SIZE_WORDS:
-        return None
-    was = scene.get(context.mover)
-    twins = [o for o in scene.objects if o.color == was.color and o.shape == was.shape]
-    if len(twins) < 2:
-        return None
-    try:
-        picked = by_size(said, twins, [low[1]])
-    except (LanguageError, UnknownObjectError):
-        return None
-    return picked[0].name if len(picked) == 1 else None
-
-
-def _that_kind(said: str, noun: str, context: Context | None, role: str, scene: Scene) -> str | None:
-    """"that cylinder", "this cube": the object of that kind among the previous clause's (its mover first, then
-    its anchor; where both are blocks and only one is of the shape the noun names, that one); with none of that kind
-    there, what "the cylinder" names in the scene (None: read on)."""
-    if context is None or context.mover is None:
-        if noun in name_words(scene):
-            return None  # "that duck" in a first clause: the duck
-        raise _no_earlier(said, role)
-    named = [n for n in (context.mover, context.anchor) if n is not None and n in scene.names]
-    fits = [n for n in named if _fits_kind(scene.get(n), noun, scene)]
-    exact = [n for n in fits if scene.get(n).shape == SHAPE_NOUNS.get(noun)]
-    if len(exact) == 1 and len(fits) > 1:  # "move the yellow block next to the blue cube, then push that cube"
-        return exact[0]
-    return fits[0] if fits else None
-
-
-def _the_other(said: str, words: list[str], context: Context | None, role: str, scene: Scene) -> str:
-    """"the other red cube", "the other white object": what the rest describes, other than the previous clause's
-    mover; refused unless exactly one object is left."""
-    if context is None or context.mover is None:
-        raise _no_earlier(said, role)
-    low = tuple(w.lower() for w in words)
-    fits = [o for o in candidates(said, words, low, scene) if o.name != context.mover]
-    if len(fits) != 1:
-        listed = ", ".join(o.name for o in fits) or "none"
-        raise LanguageError(f'"{said}" is ambiguous: other than {context.mover} it fits {listed}; '
-                            "name the one you mean")
-    return fits[0].name
-
-
-def _twin(said: str, context: Context, scene: Scene) -> str | None:
-    """"The other one" where a third object shares the colour of one of the previous clause's two: after "move
-    the small red cube next to F" it is the other red cube, as the authors who wrote so meant it, when the mover
-    was described and that cube is its only twin of colour and shape (an object of the anchor's colour is not
-    "the other" of the mover's kind); where the mover was named ("move B next to
-    F") or twins are several, the anchor and the twins are both readings, and the user is asked. None: no
-    twin, the anchor is meant."""
-    pair = [n for n in (context.mover, context.anchor) if n is not None and n in scene.names]
-    if len(pair) < 2:
-        return None
-    colours = {scene.get(n).color for n in pair}
-    twins = [o.name for o in scene.objects if o.color in colours and o.name not in pair]
-    if not twins:
-        return None
-    mover = scene.get(pair[0])
-    alike = [n for n in twins if scene.get(n).color == mover.color and scene.get(n).shape == mover.shape]
-    if context.described and len(alike) == 1:
-        return alike[0]
-    raise LanguageError(f'"{said}" is ambiguous: {context.anchor} (of the previous clause) or {", ".join(twins)} '
-                        f"(the other of its colour); name the one you mean")
 
 
 def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
@@ -494,5 +357,4 @@ def _reference_point(words: list[str], scene: Scene, role: str,
     except (LanguageError, UnknownObjectError):
         return None
     return name, tuple(scene.get(name).xy)
-
 

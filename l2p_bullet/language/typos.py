@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from . import reference_words, words
+from . import extents, reference_words, words
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -40,17 +40,17 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
     """Every word the grammar knows: the installed phrases' and verbs' words, the colour names, the words of
-    politeness, framing, pace and extent (language/words.py), of references (language/reference_words.py), and
-    :data:`COMMON`."""
+    politeness, framing and pace (language/words.py), of extent (language/extents.py), of references
+    (language/reference_words.py), and :data:`COMMON`."""
     known: set[str] = set(COMMON)
     for text in (*phrases, *verbs, *colours):
         known.update(_WORD.findall(text.lower()))
     for table in (words.POLITE_PREFIXES, words.POLITE_SUFFIXES, words.FRAMES, words.GERUND_PREFIXES,
-                  words.GOAL_PREFIXES, words.STATE_LINKS, tuple(words.EXTENTS)):
+                  words.GOAL_PREFIXES, words.STATE_LINKS, tuple(extents.EXTENTS)):
         for phrase in table:
             known.update(phrase)
     known.update(words.PACES)
-    known.update(words.COMPARATIVE_WORDS)
+    known.update(extents.COMPARATIVE_WORDS)
     r = reference_words
     for table in (r.DETERMINERS, r.NOUNS, r.SHAPE_NOUNS, r.SHAPE_ADJECTIVES, r.SOFT_ADJECTIVES, r.COLOR_SYNONYMS,
                   r.FUNCTION_WORDS, r.NEAREST, r.FARTHEST, r.SIZE_SUPERLATIVES, r.REFERENCE_WORDS):

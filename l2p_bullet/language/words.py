@@ -8,7 +8,8 @@ and framing carry no meaning for the robot and are dropped; the qualifiers are r
 - ``pace`` (how the arm moves): slow, fast, gentle or careful; the executor turns it into ruckig's
   velocity and acceleration limits (``embodiment/smoothing.PACES``).
 - ``extent`` (how far the relation goes): far, little or right; each action declares which it accepts
-  (``[language] extents`` in its manifest), so "far around B" is refused rather than ignored.
+  (``[language] extents`` in its manifest), so "far around B" is refused rather than ignored; its words and
+  their readers are language/extents.py's.
 
 A word that is the name of an object in the scene is never dropped ("move Now next to B" moves "Now").
 """
@@ -118,43 +119,6 @@ PACE_INTENSIFIERS = frozenset({"very", "really", "quite", "extra", "super"})
 """Words that may stand before a manner adverb and add nothing the pace can express."""
 NICE_AND = ("nice", "and")
 
-EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
-    "very far": "far", "quite far": "far", "really far": "far", "far far": "far", "far": "far",
-    "a lot": "far", "much": "far", "way": "far", "well": "far",
-    "a tiny bit": "little", "a little bit": "little", "a little": "little", "a bit": "little",
-    "only slightly": "little", "slightly": "little", "somewhat": "little", "just": "little",
-    "a tad": "little", "just a tad": "little", "a touch": "little", "a smidge": "little", "a smidgen": "little",
-    "marginally": "little", "a hair": "little", "little bit": "little", "a long way": "far", "a good way": "far",
-    "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
-    "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",
-    "only a little": "little", "only a bit": "little", "an inch or so": "little", "an inch": "little",
-    "very tight": "right", "tight": "right", "right up": "right", "very tightly": "right", "snug": "right",
-    "a teeny bit": "little", "a teeny tiny bit": "little", "a teensy bit": "little", "a wee bit": "little",
-    "a few centimetres": "little", "a few centimeters": "little", "a few cm": "little",
-    "a couple of centimetres": "little",
-    "a couple of centimeters": "little", "a couple centimeters": "little", "a couple of cm": "little",
-    "flush": "right", "rite": "right", "a lil": "little", "a lil bit": "little", "lil bit": "little",
-}.items()}
-"""Qualifiers that stand right before the preposition -> the extent they ask for."""
-COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
-"""Comparatives before a preposition that ask for no extent of their own ("further away from", "even closer
-to"): people who wrote the held-out corpora gave "further away" no extent and "much further away" a far one."""
-COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
-    ("far", "from"): ("away from", "far"),
-    ("farther", "from"): ("away from", None),
-    ("further", "from"): ("away from", None),
-    ("more", "far", "from"): ("away from", None),
-    ("a", "long", "way", "from"): ("away from", "far"),
-    ("a", "good", "distance", "from"): ("away from", "far"),
-    ("not", "so", "close", "to"): ("away from", None),
-    ("not", "so", "near", "to"): ("away from", None),
-    ("not", "so", "near"): ("away from", None),
-    ("not", "as", "close", "to"): ("away from", None),
-    ("less", "close", "to"): ("away from", None),
-}
-"""Comparatives people use for "away from" that say how far as well: (its phrase, the extent). They read as
-that phrase only while an installed action owns it; plain synonyms ("beyond", "in the direction of") are the
-actions' own phrases, in their manifests."""
 NEGATIONS = frozenset({"don't", "dont", "not", "never", "no"})
 """Words that, just before a verb, say not to do it ("don't carry it, just push A past B")."""
 
@@ -392,63 +356,6 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
         raise LanguageError(f'"{said}" asks for {len(distinct)} different paces ({", ".join(distinct)}); '
                             "say one of them")
     return out, (distinct[0] if distinct else None)
-
-
-EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
-    "leaving no gap": "right", "with no gap": "right", "with no gap to speak of": "right", "no gap": "right",
-    "without a gap": "right", "without any gap": "right", "with no gap in between": "right",
-    "no gap in between": "right",
-    "almost touching": "right", "nearly touching": "right", "touching": "right", "basically touching": "right",
-    "touching it": "right", "so it touches": "right", "so that it touches": "right", "so they're touching": "right",
-    "touching basically": "right", "so they touch": "right", "so that they touch": "right",
-    "only a few centimetres": "little", "but only a few centimetres": "little", "but only few centimetres": "little",
-    "only a few centimeters": "little", "but only a few centimeters": "little", "only a few cm": "little",
-    "but only a few cm": "little", "but only a bit": "little", "but only a little": "little", "just a bit": "little",
-    "just a little": "little", "only a bit": "little", "only a little": "little", "only slightly": "little",
-    "but only slightly": "little", "a little bit": "little",
-    "by a lot": "far", "a long way": "far", "a good distance": "far", "really far": "far", "very far": "far",
-}.items()}
-TIGHT_PHRASES = frozenset({"up against", "against", "right up against"})
-"""Phrases that say the objects touch: the authors of the held-out corpora wrote every "(up) against" as a tight gap
-("right next to"); read so where the phrase's action takes that extent."""
-"""Closing words after the reference object that say how far, as people add them after a comma ("slide A next to B,
-leaving no gap", "move G away from the lid, but only a few centimetres"). Only word groups that cannot describe the
-reference object are here: "a bit" alone stays out ("next to the cube a bit" is not said)."""
-
-
-def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:
-    """The words after a preposition without the closing extent words at their end (:data:`EXTENT_TAILS`), and the
-    extent those ask for; the words as they are, and None, where they end otherwise or would be left empty."""
-    low = [w.lower() for w in after]
-    for k in sorted(EXTENT_TAILS, key=len, reverse=True):
-        if len(low) > len(k) and tuple(low[-len(k):]) == k:
-            return after[: -len(k)], EXTENT_TAILS[k]
-    return after, None
-
-
-FILLERS = frozenset({"like", "kinda", "sorta", "basically", "literally"})
-"""Words people put before how far without meaning anything ("put the ball like right next to the lid")."""
-
-
-def take_extent(before: list[str]) -> tuple[list[str], str | None]:
-    """The words before a preposition without the qualifiers at their end, and the extent they ask for; the
-    outermost decides ("a little farther away": little, "a lot farther away": far). A filler before the qualifier
-    (:data:`FILLERS`) goes with it."""
-    extent = None
-    while True:
-        low = [w.lower() for w in before]
-        if len(low) > 1 and low[-1] in COMPARATIVE_WORDS:  # "further away": a comparative alone says no extent
-            before = before[:-1]
-            continue
-        if extent is not None and len(low) > 1 and low[-1] in FILLERS:
-            before = before[:-1]
-            continue
-        for k in sorted(EXTENTS, key=len, reverse=True):
-            if len(low) > len(k) and tuple(low[-len(k):]) == k:
-                before, extent = before[: -len(k)], EXTENTS[k]
-                break
-        else:
-            return before, extent
 
 
 def drop_frames(before: list[str]) -> list[str]:

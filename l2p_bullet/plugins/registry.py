@@ -92,7 +92,7 @@ class PluginInfo(Plugin):
     @property
     def extents(self) -> frozenset[str]:
         """The qualifiers its phrase takes ("far", "little", "right": the manifest's ``extents``; none unless
-        declared): language/words.EXTENTS."""
+        declared): language/extents.EXTENTS."""
         raw = self.manifest.get("extents", [])
         return frozenset(e for e in raw if isinstance(e, str)) if isinstance(raw, list) else frozenset()
 
