@@ -34,7 +34,7 @@ from ..language.words import take_pace
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
-from . import pointing
+from . import corrections, pointing
 from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
@@ -266,7 +266,7 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
     then clauses about it, or as one of chain/pointing.py's readings; None when none applies."""
     if len(text) > MAX_SENTENCE:
         return None  # a clause too long to read: refused as it stands, at once
-    for said in [pointing.over_and_put(text), *pointing.in_other_words(text)]:
+    for said in [pointing.over_and_put(text), *pointing.in_other_words(text), *corrections.corrected(text, scene)]:
         if said != text and depth < MAX_CLAUSES:
             try:
                 return [(text, c) for _, c in _resolve_text(said, previous, scene, plugins, depth + 1, context, pair)]

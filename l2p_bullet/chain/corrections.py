@@ -1,0 +1,55 @@
+"""A person correcting themselves mid-sentence: "move U toward V - no sorry, toward W", "Move the red ball - sorry, I
+mean the rabbit - past the cube", "not the black cube, the white one - slide that one next to the vase".
+
+Each correction is said again as the sentence the person meant; the caller resolves it like any other reading
+(chain/clauses.py), so a correction that does not make a whole command leaves the sentence refused. Only a
+correction that is said as one ("sorry", "I mean", "not X, Y") is read: a sentence that names two places or two
+objects without saying which it meant is still asked about.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..core.scene import Scene
+from ..language.references import try_object
+
+SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*(?:no\s*,?\s*)?(?:sorry|oops|my\s+bad)\s*,?\s*"
+                   r"(?:i\s+mean[t]?\s+|make\s+that\s+)?(?P<right>[^-\u2013\u2014]+?)\s*"
+                   r"(?:[-\u2013\u2014]+\s*(?P<after>.*?))?\s*[.!?]*\s*$", re.IGNORECASE)
+"""What was said, a word of correction, what was meant, and the rest of the command after a second dash."""
+NOT_THIS_BUT = re.compile(r"^\s*not\s+(?P<wrong>[^,]+?)\s*,\s*(?:it's\s+|it\s+is\s+)?(?P<right>[^-\u2013\u2014:]+?)"
+                          r"(?:\s+i\s+mean[t]?)?\s*[-\u2013\u2014:]+\s*(?P<rest>.+)$", re.IGNORECASE)
+"""An object ruled out before the one meant, then the command about it: "not the black cube, the white one - ..."."""
+
+
+def corrected(text: str, scene: Scene) -> list[str]:
+    """``text`` as the person meant it, where they corrected themselves in it; none where they did not."""
+    out = []
+    m = NOT_THIS_BUT.match(text)
+    if m is not None:
+        wrong, right = try_object(m.group("wrong"), scene), try_object(m.group("right"), scene)
+        if wrong is not None and right is not None and wrong != right:
+            out.append(f"{m.group('right')} - {m.group('rest')}")
+    m = SORRY.match(text)
+    if m is not None:
+        out.extend(_meant(m.group("before"), m.group("right"), m.group("after") or "", scene))
+    return out
+
+
+def _meant(before: str, right: str, after: str, scene: Scene) -> list[str]:
+    """The sentence with what was meant in place of what was said: a place said again from its first word ("toward
+    W" for the last "toward V"), or an object for the object the words before the correction end with."""
+    words, said = before.split(), right.split()
+    head = said[0].lower()
+    at = max((i for i, w in enumerate(words) if w.lower() == head), default=None)
+    if at is not None and not after:  # "move U toward V - no sorry, toward W"
+        return [" ".join([*words[:at], *said])]
+    meant = try_object(right, scene)
+    if meant is None:
+        return []
+    for start in range(len(words) - 1, 0, -1):  # the longest object description the words before end with
+        if try_object(" ".join(words[start:]), scene) is not None and (
+                start == 1 or try_object(" ".join(words[start - 1:]), scene) is None):
+            return [" ".join([*words[:start], right, after]).strip()]
+    return []
