@@ -192,9 +192,10 @@ def _extended(clause: Clause, extent: str, plugins: list) -> Clause:
     """``clause`` asked to go ``extent`` far by the sentence after it; a one-line error where its action takes no such
     extent or it asked for another."""
     command = clause.command
-    if command.extent not in (None, extent) or extent not in registry.extent_table(plugins).get(command.action, ()):
+    accepted = registry.extent_table(plugins).get(command.action, frozenset())
+    if command.extent not in (None, extent) or extent not in accepted:
         raise LanguageError(f'"{clause.text}" cannot also go a {extent} way ("{command.preposition}" takes: '
-                            f"{', '.join(sorted(registry.extent_table(plugins).get(command.action, ()))) or 'none'})")
+                            f"{', '.join(sorted(accepted)) or 'none'})")
     return replace(clause, command=replace(command, extent=extent))
 
 

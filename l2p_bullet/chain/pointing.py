@@ -18,7 +18,7 @@ from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
 from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
-from ..language.references import two_references
+from ..language.references import try_object, two_references
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 
@@ -90,7 +90,6 @@ LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
 PLACE_WORDS = frozenset({"it", "them", "one", "ones", "left", "right", "front", "back", "behind", "middle", "both",
                          "each", "same", "far"})
-PACE_WORDS = frozenset(PACES)
 OTHER_ASKS = frozenset({"again", "twice", "also", "too", "repeat", "back", "undo", "no", "not",
                         "don't", "dont", "never", "wait", "stop", "cancel", "instead", "actually", "rather", "but",
                         "except", "unless", "meant", "mean", "mistake", "wrong", "oops", "hold", "scratch", "forget"})
@@ -172,7 +171,7 @@ def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
         return False
     naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS | PLACE_WORDS
     said = {w.strip(".,;:!?\"()").lower() for w in text.split()}
-    return not (naming | PACE_WORDS) & set(words) and not OTHER_ASKS & said and not _names_a_place(text) \
+    return not (naming | PACES.keys()) & set(words) and not OTHER_ASKS & said and not _names_a_place(text) \
         and not any(c.isdigit() for c in text)
 
 
@@ -306,12 +305,10 @@ def _again(text: str, previous: Command | None, scene: Scene, context: Context |
     m = TOO.match(text)
     if m is None or previous is None:
         return None
-    try:
-        mover = resolve_object(m.group("what"), scene, "block to do the same with", context)
-    except (LanguageError, UnknownObjectError):
+    mover = try_object(m.group("what"), scene, context)
+    if mover is None or mover == previous.mover or mover in previous.anchors:
         return None
-    return None if mover == previous.mover or mover in previous.anchors else replace(previous, mover=mover,
-                                                                                        sentence=text)
+    return replace(previous, mover=mover, sentence=text)
 
 
 GOES = frozenset({"go", "goes"})
@@ -355,10 +352,7 @@ def _ordered(commands: list[Command] | None, first: str | None, scene: Scene) ->
     among = Context(movers[0], movers[1], among=movers)
     bare = re.sub(r"(?i)^the\s+", "", first)
     for said in (f"the {bare} one", f"the {bare}"):
-        try:
-            pick = resolve_object(said, scene, "block to move first", among)
-        except (LanguageError, UnknownObjectError):
-            continue
+        pick = try_object(said, scene, among)
         if pick in movers:
             return commands if pick == movers[0] else commands[::-1]
     return None

@@ -92,8 +92,8 @@ def said_measure(words: list[str], low: tuple[str, ...]) -> tuple[list[str], tup
     size in metres; None where none is said."""
     for i in range(len(low)):
         for n in (2, 1):
-            m = MEASURE.match("".join(low[i:i + n]))
-            if m is not None and i + n <= len(low):
+            m = MEASURE.match("".join(low[i:i + n])) if i + n <= len(low) else None
+            if m is not None:
                 size = float(m.group("n").replace(",", ".")) * UNITS[m.group("unit")[0]]
                 return words[:i] + words[i + n:], low[:i] + low[i + n:], size
     return words, low, None

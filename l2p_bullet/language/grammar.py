@@ -160,12 +160,12 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
             if tuple(low[i : i + n]) != toks:
                 continue
             try:
-                before, extent, mover = _mover(rest[:i], scene, context)
-                extent = extent or implied
+                before, said, mover = _mover(rest[:i], scene, context)
+                extent = said or implied
                 after, closing = take_extent_tail(rest[i + n:])
                 if closing is not None and extent not in (None, closing):
                     raise LanguageError(f'"{sentence.strip()}" asks for a {extent} and a {closing} extent; say one')
-                extent = extent or closing
+                said, extent = said or closing, extent or closing
                 refs = _references(after, scene, phrase, (anchors or {}).get(action, 1),
                                    context or _measured_context(before, scene))
             except (LanguageError, UnknownObjectError) as e:
@@ -181,7 +181,7 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
                     f"a block cannot be moved {phrase} itself")
                 continue
             accepted = (extents or {}).get(action, frozenset())
-            if extent == TIGHT and implied == TIGHT and TIGHT not in accepted and phrase in TIGHT_PHRASES:
+            if said is None and implied == TIGHT and TIGHT not in accepted:
                 extent = None  # "against" of an action without a tight gap: the phrase alone asks for none
             if extent is not None and extent not in accepted:
                 said = " ".join(rest[len(before):i]) or phrase

@@ -4,6 +4,8 @@ lines), and what must stay refused."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from corpus import read
 
@@ -141,3 +143,17 @@ def test_cautions_and_fillers_read_past(plugins, sentence, expect):
 def test_a_size_word_is_never_a_names_fond_form(plugins):
     """"tin" + "y" spells "tiny": the tiny red cube is the small red cube, not the tin."""
     assert read("move the tin away from the tiny red cube", plugins, "heldout16.tsv") == "slide:away tin R"
+
+
+def test_against_without_a_tight_gap_asks_only_what_was_said():
+    """An action that owns "against" but takes no tight gap reads the phrase alone without one; a tight gap said in
+    words ("right", ", leaving no gap") is still refused, as any extent the action does not take."""
+    from l2p_bullet.core.scene import load_scene
+    from l2p_bullet.language import parse
+
+    scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "four_blocks.json")
+    phrases, extents = {"up against": "lean"}, {"lean": frozenset()}
+    assert parse("move A up against B", scene, phrases, extents=extents).extent is None
+    for sentence in ("move A right up against B", "move A up against B, leaving no gap"):
+        with pytest.raises(L2PError):
+            parse(sentence, scene, phrases, extents=extents)
