@@ -282,8 +282,11 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
             pieces = [(text, resolve(_complete(full, previous, scene, plugins), scene, plugins, context))]
         except L2PError:
             pieces = None
-    if pieces is None:
-        pieces = [(text, c) for c in pointing.pointed(text, previous, context, scene, plugins) or ()] or None
+    if pieces is None:  # then "Push them away" after "A and B are too close to C": each away from C
+        for said in dict.fromkeys(t for t in (text, full) if t is not None):
+            pieces = [(text, c) for c in pointing.pointed(said, previous, context, scene, plugins) or ()] or None
+            if pieces is not None:
+                break
     return pieces
 
 

@@ -36,7 +36,8 @@ TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)
                       r"(?:together|to\s+each\s+other)\s*[.!]?\s*$", re.IGNORECASE)
 """What a statement about two objects says when it only points at them: "The mug and the jar are too close
 together"."""
-TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands)|'s)\s+(?:(?:far|way|much|a\s+bit)\s+)?"
+TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands|sit|stand)|'s|'re)\s+(?:both\s+)?"
+                       r"(?:(?:far|way|much|a\s+bit)\s+)?"
                        r"(?:too\s+(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
                        re.IGNORECASE)
 """A statement of what is wrong between two objects: "The cup is too near to the duck", "The stone is in the way
@@ -104,9 +105,12 @@ class Shown:
     objects: tuple[str, ...]
     lifted: bool = False
     about: bool = False  # the first object is the one talked about, the second where it is wrong ("too close to")
+    other: str | None = None  # where two objects talked about are wrong ("A and B are too close to C"): "it" next
 
     @property
     def context(self) -> Context:
+        if self.other is not None:  # "Move them away from it": each of the two, from the other object
+            return Context(self.objects[0], self.other, among=self.objects)
         return Context(self.objects[0], self.objects[1] if len(self.objects) > 1 else None,
                        among=() if self.about else self.objects)
 
@@ -118,8 +122,10 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     m = TOO_CLOSE.match(text)
     if m is not None:
         what, other = _objects(m.group("what"), scene, context), _objects(m.group("other"), scene, context)
-        if what is not None and other is not None and len(what) == len(other) == 1 and what != other:
-            return Shown((what[0], other[0]), about=True)
+        if what is not None and other is not None and len(other) == 1 and other[0] not in what:
+            if len(what) == 1:
+                return Shown((what[0], other[0]), about=True)
+            return Shown(what, about=True, other=other[0])  # "The teddy and the rock are both too close to it"
     m = SHOWN.match(text)
     if m is not None:
         objects = _objects(m.group("what"), scene, context)
@@ -293,6 +299,10 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         commands = _each(rest, Shown(objects).context, objects, scene, plugins)
         if commands is not None:
             return _ordered([carried(c, Shown(objects, lifting)) for c in commands], first, scene)
+    if context is not None and len(context.among) == 2 and BOTH.search(text):  # "See A and C? Move them ..."
+        commands = _each(text, context, context.among, scene, plugins)
+        if commands is not None:
+            return _ordered(commands, first, scene)
     if previous is not None and BOTH.search(text):
         pair = (previous.mover, previous.anchor)
         return _ordered(_each(text, Context(*pair), pair, scene, plugins), first, scene)

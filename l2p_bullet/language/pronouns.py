@@ -63,11 +63,13 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
         if context is None or context.mover is None:
             raise _no_earlier(said, role)
         if low in PRONOUNS_MOVER:
-            if len(context.among) > 1 and context.mover in context.among and "reference" not in role:
-                # "the jar n the cup r in the way, move it": either; "move the jar away from it": the other
-                raise LanguageError(f'"{said}" is ambiguous: it may be any of {", ".join(context.among)}; '
-                                    "name the one you mean")
-            return context.mover
+            if len(context.among) > 1 and context.mover in context.among:
+                if "reference" not in role:  # "the jar n the cup r in the way, move it": either
+                    raise LanguageError(f'"{said}" is ambiguous: it may be any of {", ".join(context.among)}; '
+                                        "name the one you mean")
+                if context.anchor is not None and context.anchor not in context.among:
+                    return context.anchor  # "A and B are too close to C. Move each of them away from it": C
+            return context.mover  # "move the jar away from it": the other of the two
         return _twin(said, context, scene) or context.anchor
     return None
 

@@ -111,6 +111,9 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "in a careful way": "careful",
     "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle", "real quick": "fast",
     "real quickly": "fast", "real slow": "slow", "real slowly": "slow",
+    "no rush": "slow", "no hurry": "slow", "there's no rush": "slow", "theres no rush": "slow",
+    "no need to rush": "slow", "no need to hurry": "slow", "don't rush": "slow", "dont rush": "slow",
+    "don't hurry": "slow", "dont hurry": "slow", "without rushing": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}
