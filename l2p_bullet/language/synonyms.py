@@ -21,8 +21,8 @@ KIND_NAMES = {
     "teddy": ("bear", "bears", "teddies", "teddybear", "plush", "plushie"),
     "bunny": ("rabbit", "rabbits", "bunnies", "hare"),
     "stone": ("rock", "rocks", "pebble", "pebbles", "stones"),
-    "soccerball": ("ball", "football", "soccer"),
-    "ball": ("balls", "football"),
+    "soccerball": ("ball", "football", "soccer", "footy", "footie"),
+    "ball": ("balls", "football", "footy", "footie"),
     "bottle": ("bottles", "flask"),
     "bowl": ("bowls", "dish"),
     "apple": ("apples",),
@@ -35,6 +35,13 @@ KIND_NAMES = {
     "beam": ("beams", "plank", "girder", "rod"),
     "plank": ("planks", "board", "beam"),
     "plate": ("plates", "dish", "saucer"),
+    "torus": ("ring", "rings", "donut", "donuts", "doughnut", "doughnuts", "hoop", "hoops"),
+    "ring": ("rings", "donut", "donuts", "doughnut", "doughnuts", "hoop", "hoops", "torus"),
+    "donut": ("donuts", "doughnut", "doughnuts", "ring", "rings", "hoop", "hoops", "torus"),
+    "doughnut": ("doughnuts", "donut", "donuts", "ring", "rings", "hoop", "hoops", "torus"),
+    "lego": ("legos", "brick", "bricks"),
+    "cone": ("cones", "pylon", "pylons"),
+    "prism": ("prisms", "triangle", "triangles"),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
@@ -47,13 +54,13 @@ KIND_SYNONYMS: dict[str, tuple[str, ...]] = {
 } | KIND_CLASSES
 """An everyday name -> the kinds it names (an object named, or meshed as, one of those kinds)."""
 KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks",
-                            "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard"})
+                            "traffic", "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal"): read past there."""
 BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant", "chunky", "bulky", "hefty"})
 SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini", "teeny", "wee"})
 TALL = frozenset({"tall", "taller"})
-SHORT = frozenset({"short", "shorter", "low", "lower"})
+SHORT = frozenset({"short", "shorter", "low", "lower", "flat", "flatter"})
 MEDIUM = frozenset({"medium", "medium-sized", "medium-size", "mid-sized", "mid-size", "midsize", "middle-sized"})
 SIZE_WORDS = BIG | SMALL | TALL | SHORT | MEDIUM
 """Size adjectives: they decide among the objects the rest of a description leaves (big/small by bulk,
