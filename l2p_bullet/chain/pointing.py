@@ -208,9 +208,18 @@ GIVE_SIZES = {"little": "a bit", "small": "a bit", "slight": "a bit", "tiny": "a
 toward the pot"."""
 
 
+TO_THEN = re.compile(r"^(?P<head>.+?)\s+(?:over\s+)?to\s+(?P<rest>(?:right\s+)?(?:next|beside|alongside|near|nearer"
+                     r"|closer|past|around|round|away)\b.*)$", re.IGNORECASE)
+"""A "to" before the relation it leads to: "Carry the donut to next to the small cube", "move it over to right beside
+B"."""
+OVER_TO = re.compile(r"^(?P<head>.+?)\s+over\s+to\s+(?P<rest>\S.*)$", re.IGNORECASE)
+"""A motion said by where it goes to and nothing more: "bring the ring over to the lego" brings it closer; where more
+is said ("over to the other side of", "over to B and set it down beside it") those readings win first."""
+
+
 def in_other_words(text: str) -> list[str]:
-    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s
-    or :data:`YOU_VERB`'s ways; the caller resolves each (one that does not resolve is no reading)."""
+    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
+    :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve is no reading)."""
     out = []
     m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:
@@ -222,6 +231,12 @@ def in_other_words(text: str) -> list[str]:
     m = YOU_VERB.match(text)
     if m is not None:
         out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
+    m = TO_THEN.match(text)
+    if m is not None:
+        out.append(f"{m.group('head')} {m.group('rest')}")
+    m = OVER_TO.match(text)
+    if m is not None and TO_THEN.match(text) is None:
+        out.append(f"{m.group('head')} toward {m.group('rest')}")
     return out
 
 
