@@ -294,9 +294,11 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
                  context: Context | None) -> list[tuple[str, Command]] | None:
     """"there r two cylinders, move the short one towards the bunny and the other one away from it": a group
     shown before a comma or colon, then clauses that pick among it, or one object that "it" then means."""
-    m = pointing.TOPIC.match(text)
-    if m is None or depth >= MAX_CLAUSES:
+    if depth >= MAX_CLAUSES:
         return None
+    m = pointing.TOPIC.match(text)
+    if m is None:
+        return _of_group(text, previous, scene, plugins, depth)
     shows = pointing.shown(m.group("what"), scene, context)
     if shows is None or (len(shows.objects) < 2 and shows.lifted):
         return None  # one object shown is what "it" then means ("About the can: move it past Q"); lifted, a carry
@@ -310,6 +312,23 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         return _resolve_text(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:
         return None
+
+
+def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list,
+              depth: int) -> list[tuple[str, Command]] | None:
+    """"of the 2 rectangular blocks move the one closer to the robot next to the jar": a group said first without a
+    comma, then a clause that picks among it."""
+    words = text.split()
+    for i in range(3, len(words) - 2):
+        group = pointing.group_said(" ".join(words[:i]), scene)
+        if group is None:
+            continue
+        shows = pointing.Shown(group)
+        try:
+            return _resolve_text(" ".join(words[i:]), previous, scene, plugins, depth + 1, shows.context, shows)
+        except L2PError:
+            return None
+    return None
 
 
 ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),

@@ -18,7 +18,7 @@ from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
 from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
-from ..language.references import try_object, two_references
+from ..language.references import group_of, try_object, two_references
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 
@@ -115,9 +115,23 @@ class Shown:
                        among=() if self.about else self.objects)
 
 
+OF_THE = re.compile(r"^\s*of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?(?P<group>.+?)\s*$",
+                    re.IGNORECASE)
+"""A group said before what is picked among it: "Of the three cubes, ...", "of the 2 rectangular blocks move ..."."""
+
+
+def group_said(text: str, scene: Scene) -> tuple[str, ...] | None:
+    """The objects :data:`OF_THE` names, or None."""
+    m = OF_THE.match(text)
+    return group_of(m.group("group"), scene, m.group("count")) if m is not None else None
+
+
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
     text = " ".join(strip_polite(text.split(), frozenset(scene.names))) or text  # "Please lift the blue cup."
+    group = group_said(text, scene)
+    if group is not None:
+        return Shown(group)
     text = ABOUT.sub("", text) or text  # "About the can: move it past Q"
     m = TOO_CLOSE.match(text)
     if m is not None:
@@ -219,7 +233,8 @@ is said ("over to the other side of", "over to B and set it down beside it") tho
 
 def in_other_words(text: str) -> list[str]:
     """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
-    :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve is no reading)."""
+    :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve
+    is no reading)."""
     out = []
     m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:

@@ -118,8 +118,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     colours = named_colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS]
     groups = kind_groups(scene)
-    kinds = [groups[w] for w in low if w in groups and w not in names]  # "the red mug" among two mugs
-    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS}
+    kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS]  # among two mugs
+    either = [(groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and w not in names and w in SHAPE_NOUNS]
+    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS and w not in groups}
     shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
     known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
              | {"things", "objects", "ones"} | set(names) | set(groups))
@@ -134,6 +135,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         fits = [o for o in fits if o.name in named]
     for group in kinds:
         fits = [o for o in fits if o.name in group]
+    for group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
+        fits = [o for o in fits if o.name in group or o.shape == shape]
     if colours:
         if not any(o.color in colours for o in scene.objects):
             colours = {NEAR_COLOURS.get(c, c) for c in colours}

@@ -29,6 +29,7 @@ from . import lenient
 from .descriptions import naming_words
 from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_tail
 from .pronouns import Context
+from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
 from .references import measured_from, object_pairs, resolve_object, try_object
 from .verbs import EXAMPLE, _on_the_table, _verb_patterns, known_verbs, split_verb
 from .words import (
@@ -244,11 +245,13 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     keep = frozenset(scene.names)
     verbs = known_verbs()
     heads = sorted({v.split()[0] for v in verbs})
-    words = gerund_to_verb(strip_polite(tokens(text), keep), verbs)
+    said = tokens(text)
+    words = gerund_to_verb(strip_polite(said, keep), verbs)
     is_object = lambda t: try_object(t, scene) is not None  # noqa: E731
-    words = goal_to_verb(state_to_verb(passive_to_verb(words, verbs, is_object), verbs, is_object), verbs)
+    words = goal_to_verb(state_to_verb(passive_to_verb(words, verbs, is_object), verbs, is_object, said), verbs)
     words, pace = take_pace(words, keep)
-    describing = naming_words(scene)  # "Of the two blue cubes, push ...": an opening about objects is not skipped
+    describing = naming_words(scene) | BLOCK_WORDS | frozenset(SHAPE_ADJECTIVES)  # "Of the two blue cubes, push
+    # ...", "of the 2 rectangular blocks move ...": an opening about objects is not skipped
     naming = keep | frozenset(w for w in words if w.lower() in describing)
     return by_gerund(strip_polite(skip_to_verb(words, heads, naming), keep), verbs), pace
 

@@ -31,6 +31,7 @@ from .reference_words import (
     TIE_DISTANCE_M,
     TIE_M,
     TIE_PLACE,
+    TIE_PLACE_M,
 )
 from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE
 
@@ -189,7 +190,8 @@ def bulk(o: SceneObject) -> float:
 def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool = False,
                 distance: bool = False) -> str:
     """The one object of ``pool`` that ``pick`` (min or max) of ``measure`` chooses; ties are ambiguous. With
-    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides;
+    ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides or
+    :data:`TIE_PLACE_M`;
     with ``distance`` it is a distance, and a tie is also within :data:`TIE_DISTANCE` of it."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
@@ -201,6 +203,8 @@ def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool =
         t = max(TIE * abs(best), TIE_M)
         if distance:
             t = max(t, TIE_DISTANCE_M + TIE_DISTANCE * abs(best))
+        if place and not distance:
+            t = max(t, TIE_PLACE_M)
         return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place or distance else t
 
     tied = [o.name for o in pool if abs(values[o.name] - best) <= tol(o)]

@@ -99,6 +99,9 @@ the distance. The authors of the held-out corpora called 3 cm between 12 and 15 
 TIE_PLACE = 0.45
 """Where a superlative compares places (leftmost, nearest), two objects whose places differ by less than this
 many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""
+TIE_PLACE_M = 0.03
+"""And two places closer than this (m) are a tie whatever the sizes: four authors called 2 cm between places a tie and
+left 3-4.5 cm out as unclear, and 4.5 cm and more clear (docs/language.md)."""
 CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "center", "of", "the", "table"),
                   ("in", "the", "centre", "of", "the", "table"), ("in", "the", "middle"), ("in", "the", "center"),
                   ("in", "the", "centre"))
@@ -109,7 +112,8 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("on", "the", "left"): "leftmost", ("on", "the", "right"): "rightmost",
                 ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost",
                 ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
-                ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"}
+                ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"} | {
+    (far, "to", "the", side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")}
 SIDE_PHRASES |= {(*p[:2], "very", *p[2:]): v for p, v in SIDE_PHRASES.items() if "far" not in p}
 """Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
 the one farthest from the robot, along the scene's +x)."""

@@ -13,6 +13,7 @@ the robot's (the scene's +y is its left, DESIGN.md section 4), the view of a per
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 import numpy as np
@@ -124,9 +125,51 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return described(text, words, low, scene, determined)
     except LanguageError:
         named = _named_before(text, scene, role, context) if determined else None
+        named = named or _partitive(text, scene, role)
         if named is None:
             raise
         return named
+    except UnknownObjectError:
+        named = _partitive(text, scene, role)
+        if named is None:
+            raise
+        return named
+
+
+PARTITIVE = re.compile(r"^(?P<head>.+?)\s+of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
+                       r"(?P<group>[\w\s-]+?(?:s|es))$", re.IGNORECASE)
+"""One object picked among a group said in the plural: "the smallest of the cubes", "the one nearer the robot of the
+two boxes"."""
+COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
+
+
+def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ...] | None:
+    """The objects a plural description fits ("the cubes", "2 rectangular blocks"), in the scene's order; None where
+    it fits fewer than two, or not the number said."""
+    words = [w for w in text.split() if w.lower() != "the"]
+    if not words or not words[-1].lower().endswith("s"):
+        return None
+    last = words[-1].lower()
+    words[-1] = last[:-2] if last.endswith(("xes", "ches")) else last[:-1]
+    try:
+        fits = candidates(text, words, tuple(w.lower() for w in words), scene)
+    except (LanguageError, UnknownObjectError):
+        return None
+    said = COUNTS.get(count.lower(), int(count) if count.isdigit() else 0) if count else len(fits)
+    return tuple(o.name for o in fits) if len(fits) >= 2 and said == len(fits) else None
+
+
+def _partitive(text: str, scene: Scene, role: str) -> str | None:
+    """The object :data:`PARTITIVE`'s head picks among its group; None where ``text`` is not said so or either part
+    does not resolve."""
+    m = PARTITIVE.match(text)
+    group = group_of(m.group("group"), scene, m.group("count")) if m is not None else None
+    if group is None:
+        return None
+    try:
+        return _resolve(m.group("head"), _only(scene, group), role, None)
+    except (LanguageError, UnknownObjectError):
+        return None
 
 
 def _named_before(text: str, scene: Scene, role: str, context: Context | None) -> str | None:

@@ -282,15 +282,16 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""
 
 
-def state_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
+def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str] | None = None) -> list[str]:
     """A sentence that states the end instead of the motion -> "move MOVER ...": the mover is the longest
     description that names one object and ends right before a linking phrase (:data:`STATE_LINKS`), whatever
     opens the sentence ("The goal is for the duck to end up next to B", "Make sure F ends up closer to the
     can"). Words that start with a known verb are returned as they are; so are words where no object stands
-    before a link (the caller's error then names the first word)."""
+    before a link (the caller's error then names the first word), and a sentence ``said`` with words of how the
+    table is now (:data:`NOW`)."""
     low = [w.lower() for w in words]
-    if not low or low[0] in verbs:
-        return words
+    if not low or low[0] in verbs or said_now([w.lower() for w in said or words]):
+        return words  # "Right now the ring is far from the cone": how the table is, not how it should end
     for k in range(1, len(low)):
         link = next((t for t in STATE_LINKS if tuple(low[k:k + len(t)]) == t and k + len(t) < len(low)), None)
         if link is None:
@@ -302,6 +303,15 @@ def state_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
                                         "staying beside; say which")
                 return ["move", *words[j:k], *words[k + len(link):]]
     return words
+
+
+NOW = (("right", "now"), ("currently",), ("at", "the", "moment"), ("at", "present"), ("presently",),
+       ("as", "it", "stands"), ("as", "of", "now"), ("at", "this", "point"), ("still",))
+"""Words that tell how the table is now, not how it should end: a statement with them is no goal."""
+
+
+def said_now(low: list[str]) -> bool:
+    return any(tuple(low[i:i + len(n)]) == n for n in NOW for i in range(len(low)))
 
 
 GOING = frozenset({"go", "goes", "went", "pass", "passes"})
