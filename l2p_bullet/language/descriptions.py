@@ -8,6 +8,7 @@ several objects or none is a one-line error that names them.
 
 from __future__ import annotations
 
+import functools
 import re
 
 from ..core.scene import COLORS, Scene, SceneObject
@@ -29,7 +30,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     STRICT_SHAPES,
 )
-from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_groups, kind_words
+from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_groups, kind_words_of, scene_key
 
 
 def describe(scene: Scene) -> str:
@@ -189,13 +190,21 @@ WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOU
 def name_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
     ("ducky", "duckie": the duck)."""
+    return dict(name_words_of(scene_key(scene)))
+
+
+@functools.lru_cache(maxsize=256)
+def name_words_of(objects: tuple[tuple[str, str | None], ...]) -> dict[str, str]:
+    """name_words of a :func:`~.synonyms.scene_key`, kept: made once per scene, not once per word read (a caller must
+    not change it; name_words hands out copies)."""
+    names = [name for name, _ in objects]
     out = {}
-    for n in scene.names:
+    for n in names:
         low = n.lower()
         if len(low) >= 3 and low.isalpha():
             out.update({fond: n for fond in (low + "y", low + "ie") if fond not in WORDS_OF_THEIR_OWN})
-    out.update(kind_words(scene))
-    out.update({n.lower(): n for n in scene.names})
+    out.update(kind_words_of(objects))
+    out.update({n.lower(): n for n in names})
     return out
 
 

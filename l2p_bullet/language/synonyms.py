@@ -8,6 +8,7 @@ guess between two.
 
 from __future__ import annotations
 
+import functools
 import re
 
 from ..core.scene import Scene, SceneObject
@@ -72,26 +73,48 @@ size adjective asks for a difference a person sees at a glance (a 4 cm and a 5 c
 
 def kinds_of(o: SceneObject) -> set[str]:
     """The kinds an object is called by: its name when a word of 3+ letters, its mesh file's stem's first word."""
-    out = set()
-    name = o.name.lower()
-    if len(name) >= 3 and name.isalpha():
-        out.add(name)
+    return set(_kinds(*_kind_key(o)))
+
+
+def _kind_key(o: SceneObject) -> tuple[str, str | None]:
+    """What an object's kinds depend on: its name and its mesh file (None for none)."""
     mesh = getattr(o, "mesh", None)
-    if isinstance(mesh, str) and mesh:
+    return o.name, mesh if isinstance(mesh, str) and mesh else None
+
+
+def _kinds(name: str, mesh: str | None) -> tuple[str, ...]:
+    out = []
+    low = name.lower()
+    if len(low) >= 3 and low.isalpha():
+        out.append(low)
+    if mesh is not None:
         stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
         first = re.split(r"[^a-z]+", stem.lower())[0]
-        if len(first) >= 3:
-            out.add(first)
-    return out
+        if len(first) >= 3 and first not in out:
+            out.append(first)
+    return tuple(out)
+
+
+def scene_key(scene: Scene) -> tuple[tuple[str, str | None], ...]:
+    """Each object's (name, mesh file): all that the words for a scene's objects depend on (a key to keep them by)."""
+    return tuple(_kind_key(o) for o in scene.objects)
 
 
 def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
     """Lower-case words that call objects by their kind -> the names of every object of that kind ("mug": both
     mugs): a noun that restricts a description ("the red mug") and alone fits them all."""
+    return dict(kind_groups_of(scene_key(scene)))
+
+
+@functools.lru_cache(maxsize=256)
+def kind_groups_of(objects: tuple[tuple[str, str | None], ...]) -> dict[str, frozenset[str]]:
+    """kind_groups of a :func:`scene_key`, kept: made once per scene, not once per word looked up (reading one
+    sentence asks for it hundreds of times). Kept answers are shared: a caller must not change one (kind_groups
+    hands out copies)."""
     by_kind: dict[str, set[str]] = {}
-    for o in scene.objects:
-        for k in kinds_of(o):
-            by_kind.setdefault(k, set()).add(o.name)
+    for name, mesh in objects:
+        for k in _kinds(name, mesh):
+            by_kind.setdefault(k, set()).add(name)
     out = {k: frozenset(v) for k, v in by_kind.items()}
     for word, kinds in KIND_SYNONYMS.items():
         named = frozenset().union(*(out[k] for k in kinds if k in out))
@@ -103,4 +126,10 @@ def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
 def kind_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
     (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
-    return {w: next(iter(names)) for w, names in kind_groups(scene).items() if len(names) == 1}
+    return dict(kind_words_of(scene_key(scene)))
+
+
+@functools.lru_cache(maxsize=256)
+def kind_words_of(objects: tuple[tuple[str, str | None], ...]) -> dict[str, str]:
+    """kind_words of a :func:`scene_key`, kept as :func:`kind_groups_of` (a caller must not change it)."""
+    return {w: next(iter(names)) for w, names in kind_groups_of(objects).items() if len(names) == 1}

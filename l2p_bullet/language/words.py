@@ -130,19 +130,32 @@ def _starts(low: list[str], words: tuple[str, ...]) -> bool:
     return tuple(low[: len(words)]) == words
 
 
+def _by_word(table: tuple[tuple[str, ...], ...], at: int) -> dict[str, tuple[tuple[str, ...], ...]]:
+    """The table's entries by their word at ``at`` (0: the first, -1: the last), each list in the table's order: only
+    those can match where a command starts or ends with that word (the first match is the one taken)."""
+    out: dict[str, list[tuple[str, ...]]] = {}
+    for entry in table:
+        out.setdefault(entry[at], []).append(entry)
+    return {k: tuple(v) for k, v in out.items()}
+
+
+_PREFIXES_BY_FIRST = _by_word(POLITE_PREFIXES, 0)
+_SUFFIXES_BY_LAST = _by_word(POLITE_SUFFIXES, -1)
+
+
 def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[str]:
     """``words`` without the politeness around the command; a word in ``keep`` (an object's name) stays."""
     changed = True
     while changed and words:
         changed = False
         low = [w.lower() for w in words]
-        for pre in POLITE_PREFIXES:
+        for pre in _PREFIXES_BY_FIRST.get(low[0], ()):
             if _starts(low, pre) and (not set(words[: len(pre)]) & keep or set(pre) & ADDRESSEES) and not (
                     pre[-1] in NOT_BEFORE_TO and low[len(pre):len(pre) + 1] == ["to"]):
                 words, changed = words[len(pre):], True
                 break
         low = [w.lower() for w in words]
-        for suf in POLITE_SUFFIXES:
+        for suf in _SUFFIXES_BY_LAST.get(low[-1], ()) if low else ():
             if len(low) > len(suf) and tuple(low[-len(suf):]) == suf and not set(words[-len(suf):]) & keep:
                 words, changed = words[: -len(suf)], True
                 break

@@ -15,6 +15,8 @@ decides which move to make, as with every other proposal.
 
 from __future__ import annotations
 
+import collections
+import functools
 import heapq
 import itertools
 import math
@@ -202,8 +204,16 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
     for k, j, y in entries:
         dist[(k, j, y)], prev[(k, j, y)] = 0.0, None
         heapq.heappush(heap, (0.0, next(count), (k, j, y)))
+    if ny == 1:  # every step costs 1: first in, first out is the heap's own order (cost, then arrival), unsorted
+        todo: list | collections.deque = collections.deque(sorted(heap))
+        push, pop = todo.append, todo.popleft
+    else:
+        todo, push, pop = heap, functools.partial(heapq.heappush, heap), functools.partial(heapq.heappop, heap)
     yaw_steps = (-1, 0, 1) if ny > 1 else (0,)
-    steps = [(dk, dj, dy) for dk in (-1, 0, 1) for dj in (-1, 0, 1) for dy in yaw_steps if dk or dj or dy]
+    # the neighbours in the order (bearing, radius, yaw step), each test made at the loop it depends on: a yaw's
+    # steps that stay on the grid are listed once per yaw
+    on_grid = [tuple(dy for dy in yaw_steps if 0 <= y + dy < ny) for y in range(ny)]
+    inf = math.inf
     farthest = None  # (steps round, cost, cell): the farthest cell round reached, for ``least``
 
     def back(c: float, cell: tuple[int, int, int]) -> tuple[float, list]:
@@ -212,26 +222,38 @@ def _shortest_way(legal: np.ndarray, entries: list[tuple[int, int, int]], goal: 
             way.append(prev[way[-1]])
         return c, way[::-1]
 
-    while heap:
-        c, _, cell = heapq.heappop(heap)
+    while todo:
+        c, _, cell = pop()
         if c > dist[cell]:
             continue  # reached again more cheaply since
         k, j, y = cell
-        if abs(k + credit) >= goal:
+        round_ = abs(k + credit)
+        if round_ >= goal:
             return back(c, cell)
-        if least is not None and (farthest is None or abs(k + credit) > farthest[0]):
-            farthest = (abs(k + credit), c, cell)
+        if least is not None and (farthest is None or round_ > farthest[0]):
+            farthest = (round_, c, cell)
         here = (k % n, j, y)
-        for dk, dj, dy in steps:
-            nk, nj, ny_ = k + dk, j + dj, y + dy
-            if (not 0 <= nj < m or not 0 <= ny_ < ny or abs(nk + credit) > goal or not open_[ny_][nk % n][nj]
-                    or (blocked and (here, (nk % n, nj, ny_)) in blocked)):
+        dys = on_grid[y]
+        for dk in (-1, 0, 1):
+            nk = k + dk
+            if abs(nk + credit) > goal:
                 continue
-            nxt = (nk, nj, ny_)
-            nc = c + 1.0 + (turns[min(y, ny_)] if dy else 0.0)
-            if nc < dist.get(nxt, math.inf):
-                dist[nxt], prev[nxt] = nc, cell
-                heapq.heappush(heap, (nc, next(count), nxt))
+            nkm = nk % n
+            for dj in (-1, 0, 1):
+                nj = j + dj
+                if not 0 <= nj < m:
+                    continue
+                for dy in dys:
+                    if not (dk or dj or dy):
+                        continue
+                    ny_ = y + dy
+                    if not open_[ny_][nkm][nj] or (blocked and (here, (nkm, nj, ny_)) in blocked):
+                        continue
+                    nxt = (nk, nj, ny_)
+                    nc = c + 1.0 + (turns[min(y, ny_)] if dy else 0.0)
+                    if nc < dist.get(nxt, inf):
+                        dist[nxt], prev[nxt] = nc, cell
+                        push((nc, next(count), nxt))
     if farthest is not None and farthest[0] >= least:
         return back(farthest[1], farthest[2])
     return None

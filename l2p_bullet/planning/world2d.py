@@ -257,8 +257,9 @@ class World2D:
                 continue
             outline = self._outlines[group[0]]
             polys = place_outline(outline, sub[idx].reshape(-1, 3)).reshape(len(idx), n_sub + 1, -1, 2)
+            normals = edge_normals(polys)  # each sub-pose's once: a sub-step pairs it with the next
             m_axes = np.concatenate(
-                [edge_normals(polys[:, :-1]), edge_normals(polys[:, 1:]),
+                [normals[:, :-1], normals[:, 1:],
                  np.broadcast_to(perp[idx, None, None, :], (len(idx), n_sub, 1, 2))], axis=2)
             hulls = np.concatenate([polys[:, :-1], polys[:, 1:]], axis=2)  # (M, S, 2K, 2) sub-step pairs
             parts = [(hulls, m_axes)]

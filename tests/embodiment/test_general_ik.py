@@ -89,3 +89,34 @@ def test_the_arm_at_home_does_not_collide_with_itself():
             assert kin.self_collision(np.array(spec.home)) is None
         finally:
             kin.close()
+
+
+def test_the_whole_turn_shortcut_answers_what_weighing_every_turn_answers():
+    """A solve turns its answer by whole turns to lie nearest its seed (``Kinematics._near``); where no joint would
+    turn (``_no_turn``: almost every solve of a run) it keeps the answer as it is. Both ways give the same joints, to
+    the bit, for answers inside and outside the limits, next to and turns away from their seeds, and on the half-turn
+    boundary, where rounding decides."""
+    kin = Kinematics(XARM6, XARM6.mount)
+    try:
+        rng = np.random.default_rng(5)
+        lo, hi = kin.arm_lower, kin.arm_upper
+        turned = 0
+        for case in range(3000):
+            q = rng.uniform(np.maximum(lo, -7) - (case % 3) * 0.5, np.minimum(hi, 7) + (case % 3) * 0.5)
+            seed = q + rng.normal(0.0, (0.1, 1.0, 3.0, 6.0)[case % 4], len(q))
+            if case % 5 == 0:  # exactly half a turn from the seed: rounds to no turn (half to even)
+                seed = q + np.where(rng.uniform(size=len(q)) < 0.5, math.pi, -math.pi)
+            shortcut = kin._no_turn(q, seed)
+            turned += not shortcut
+            full = kin._near(q, seed)
+            if shortcut:
+                assert full.tobytes() == q.tobytes()
+            # the weighing itself, without the shortcut: the same joints
+            kin._no_turn = lambda q, s: False
+            try:
+                assert kin._near(q, seed).tobytes() == full.tobytes(), (q, seed)
+            finally:
+                del kin._no_turn
+        assert 300 < turned < 2700  # both ways were taken
+    finally:
+        kin.close()

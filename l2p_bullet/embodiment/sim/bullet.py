@@ -383,7 +383,8 @@ class Bullet:
     def reset_joints(self, name: str, joints: Sequence[int], positions: Sequence[float]) -> None:
         """Teleport the joints to ``positions``, at rest (no physics; for set-up and the IK twin)."""
         # One multi-joint call (the IK twin makes several per solve); velocities default to zero.
-        self._pb.resetJointStatesMultiDof(self._bodies[name], joints, [[float(v)] for v in positions],
+        values = positions.tolist() if isinstance(positions, np.ndarray) else positions  # plain floats: no scalars
+        self._pb.resetJointStatesMultiDof(self._bodies[name], joints, [[float(v)] for v in values],
                                           physicsClientId=self._id)
 
     def control_joints(self, name: str, joints: Sequence[int], targets: Sequence[float], forces: Sequence[float],

@@ -54,6 +54,9 @@ class Kinematics:
         self.arm_lower = self.lower[self.ik_index]
         self.arm_upper = self.upper[self.ik_index]
         self.movable = movable
+        # the limits as _inside and _near compare with them, made once (a solve runs thousands of times a run)
+        self._lo_list, self._hi_list = self.arm_lower.tolist(), self.arm_upper.tolist()
+        self._inside_bounds = [(lo - 1e-6, hi + 1e-6) for lo, hi in zip(self._lo_list, self._hi_list, strict=True)]
         self.current: np.ndarray | None = None  # the twin's joints now (skips a reset when unchanged)
         self.joint_ids = list(spec.arm_joints)
         self.sim.reset_joints(ARM, spec.finger_joints, spec.finger_closed)
@@ -80,14 +83,16 @@ class Kinematics:
         q = np.asarray(seed, float)
         err = ang = math.inf
         for _ in range(rounds):
-            if self.current is None or not np.array_equal(self.current, q):
+            # after the first pass the twin stands at the last answer, the very array q is (no comparison)
+            if self.current is not q and (self.current is None or not np.array_equal(self.current, q)):
                 self.set(q)
             sol = self.sim.inverse_kinematics(ARM, self.spec.tool_link, pos, orn, iterations=iterations,
                                               threshold=1e-6, **extra)
             q = np.asarray(sol)[self.ik_index]
             got, got_orn = self.fk(q)
             self.current = q
-            err, ang = float(np.linalg.norm(got - pos)), quat_angle(got_orn, orn)
+            d = got - pos
+            err, ang = float(math.sqrt(d.dot(d))), quat_angle(got_orn, orn)  # np.linalg.norm's own sum
             if err < IK_POS_TOL * 0.25 and ang < IK_ANG_TOL * 0.25:
                 break
         return q, err, ang
@@ -139,7 +144,7 @@ class Kinematics:
 
     def _inside(self, q: np.ndarray) -> bool:
         """Whether every arm joint of ``q`` is within its limits (PyBullet's IK may return one outside)."""
-        return bool(np.all(q >= self.arm_lower - 1e-6) and np.all(q <= self.arm_upper + 1e-6))
+        return all(lo <= v <= hi for v, (lo, hi) in zip(q.tolist(), self._inside_bounds, strict=True))
 
     def _restarts(self, pos, seed: np.ndarray) -> list[np.ndarray]:
         """First guesses when the seeds fail (``ArmSpec.ik_restarts`` of them): the seed with its base joint turned
@@ -158,6 +163,8 @@ class Kinematics:
         """``q`` with each joint turned by whole turns to lie nearest ``seed`` inside its limits: the same pose (a
         restart, drawn anywhere, lands a full turn off as often as not, and a UR's joints turn +-2 turns), and the
         motion from the seed (the previous solution) stays continuous instead of jumping a turn."""
+        if self._no_turn(q, seed):  # almost always (an answer next to its seed, inside the limits): q as it is
+            return q.copy()
         out = q.copy()
         for k in (np.round((seed - q) / (2 * math.pi)), np.round((np.clip(q, self.arm_lower, self.arm_upper) - q)
                                                                  / (2 * math.pi))):
@@ -166,6 +173,16 @@ class Kinematics:
             out = np.where(ok & ((out < self.arm_lower - 1e-6) | (out > self.arm_upper + 1e-6)
                                  | (np.abs(cand - seed) < np.abs(out - seed))), cand, out)
         return out
+
+    def _no_turn(self, q: np.ndarray, seed: np.ndarray) -> bool:
+        """Whether :meth:`_near` turns no joint: both its whole-turn counts round to 0 for every joint (the same
+        float steps as its numpy arrays; NaN is not 0), so every candidate it weighs is ``q`` itself. In plain
+        floats: a solve makes thousands of these seven-element checks, where numpy's per-call cost is the cost."""
+        two_pi = 2 * math.pi
+        for v, s, lo, hi in zip(q.tolist(), seed.tolist(), self._lo_list, self._hi_list, strict=True):
+            if not (abs((s - v) / two_pi) <= 0.5 and abs((min(max(v, lo), hi) - v) / two_pi) <= 0.5):
+                return False
+        return True
 
     def self_collision(self, q: np.ndarray) -> tuple[str, str] | None:
         """The two links of the arm that joints ``q`` put into each other, or None (:class:`.SelfCollision`, on a
