@@ -1,7 +1,7 @@
 """The search ends where the model rates a path done only if the action's rule judge accepts it too.
 
 A learned model can rate a path done that its rule rejects (a "closer" that closed a little of the gap, a "past"
-a few millimetres short of its margin); the search used to stop there, and the clause ran and failed. Here a
+a few millimetres short of its margin); a search stopping there hands on a plan that runs and fails. Here a
 stand-in model rates "closer" done after any approach of a tenth of a block, which the rule (half the room) rejects.
 """
 
