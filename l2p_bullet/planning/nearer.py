@@ -74,11 +74,12 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     quarter = math.pi / 2
     # square to the anchor, the least turn; a push keeps the yaw (the fingers push a face, never turn it)
     yaw = a.yaw + round((m.yaw - a.yaw) / quarter) * quarter if turns else m.yaw
-    # the anchor's nearest face first, then the other face on the mover's side: from a start on the anchor's
-    # diagonal (corner to corner) the two are as near, and the way in to one can run into the anchor's corner
-    # where the way in to the other is free
+    # the anchor's nearest face first, then (a block turned as it slides) the other face on the mover's side: from
+    # a start on the anchor's diagonal (corner to corner) the two are as near, and the way in to one can be blocked
+    # by another object where the way in to the other is free; a push keeps to the nearest face (along the other,
+    # from beside the anchor's corner, the flat fingers turn the block into the anchor)
     faces = sorted(((u, np.array([c, sn])), (v, np.array([-sn, c]))), key=lambda f: -abs(f[0]))
-    for coordinate, axis in faces:
+    for coordinate, axis in faces if turns else faces[:1]:
         normal_dir = axis * math.copysign(1.0, coordinate)  # out of that face of the anchor
         along_dir = np.array([-normal_dir[1], normal_dir[0]])
         lat0 = float(rel @ along_dir) / s
