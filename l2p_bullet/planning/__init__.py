@@ -13,7 +13,8 @@ docs/planning.md):
 - ``default``   an alias (``DEFAULT``), unless the bundle's ``[policy]`` section names another planner.
 
 Every planner maximises the action's learned progress model: the model alone decides which move is
-better. The 2-D simulator only says which moves are legal; the judge (``judge/``) judges the result afterwards.
+better. The 2-D simulator only says which moves are legal; the judge (``judge/``) judges the result afterwards,
+and an action's rule judge also says whether a path the model rates done may end the search (problem.held_short).
 """
 
 from __future__ import annotations
