@@ -35,7 +35,7 @@ from ..core.timing import StageClock
 from ..embodiment.manners import tall_pace
 from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
-from ..judge import judge_context
+from ..judge import judge_context, plan_verdict
 from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
@@ -302,7 +302,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             check_feasible(cmd, now, plugins, arm)
             # the end state the chain was planned with (ends.py): the planner's own, or the one that keeps the
             # later clauses possible
-            plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
+            plan = replanned(step, now, options, arm)
             plan.extra.setdefault("sentence", step.clause.text)
         standing = is_standing(plan)  # the relation already holds: the world stands still, the arm at rest
         if standing:
@@ -358,6 +358,39 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
                         final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),
                         displacements_m=displaced, grasp=grasp)
+
+
+OTHER_SEEDS = (1, 2)
+"""Seed offsets (added to the chosen end's) a clause re-planned from the real state is planned with again where its
+rule judge rejects the plan: the forecast planned it from the predicted state, and a block a few millimetres from
+where it was predicted can turn the same seed's search to another end (a "past" from touching that starts 0.49
+blocks before the anchor where the rule asks 0.5), which another seed's search does not share."""
+
+
+def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec) -> Plan:
+    """``step``'s clause planned from ``now`` with the end the chain chose for it; where its judge rejects that plan,
+    the first plan with :data:`OTHER_SEEDS` that its judge accepts and whose path the arm can follow (kept in
+    ``extra["replanned"]``), else the plan with the chosen end (the run judges what it does). A plan that moves
+    nothing because the relation already holds is kept as it is."""
+    from ..embodiment import execute as ex
+
+    cmd = step.clause.command
+    plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
+    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
+    if is_standing(plan) or plan_verdict(step.judge, plan, outlines=outlines)["success"]:
+        return plan
+    for offset in OTHER_SEEDS:
+        end = replace(step.end, seed=step.end.seed + offset)
+        try:
+            other = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, end)
+            ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, other.path, arm)
+        except L2PError:
+            continue
+        if not is_standing(other) and plan_verdict(step.judge, other, outlines=outlines)["success"]:
+            other.extra["replanned"] = {"seed_offset": end.seed, "rejected": plan_verdict(
+                step.judge, plan, outlines=outlines)["reason"]}
+            return other
+    return plan
 
 
 def _let_go(prims: Any, rest: np.ndarray) -> None:

@@ -13,7 +13,8 @@ docs/planning.md):
 - ``default``   an alias (``DEFAULT``), unless the bundle's ``[policy]`` section names another planner.
 
 Every planner maximises the action's learned progress model: the model alone decides which move is
-better. The 2-D simulator only says which moves are legal; the judge (``judge/``) judges the result afterwards.
+better. The 2-D simulator only says which moves are legal; the judge (``judge/``) judges the result afterwards,
+and an action's rule judge also says whether a path the model rates done may end the search (problem.held_short).
 """
 
 from __future__ import annotations
@@ -32,8 +33,9 @@ from ..core.contracts import Plan
 from ..core.scene import Scene
 from ..core.threads import torch_threads
 from ..errors import InfeasibleError, PlanError, UnknownPlannerError
+from ..judge.base import judge_context
 from ..judge.footprints import outlines_of
-from ..judge.rules import RULE_SPECS
+from ..judge.rules import RULE_SPECS, RULES, RuleJudge
 from . import approach, policy  # called as policy.load_policy: a test stands in a policy there
 from .already import already, standing_plan
 from .bounds import BoundScorer, people_weights
@@ -161,6 +163,9 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
     # a composite's slot (target) is planned to the slot alone: no lead-in and no bound from people's data
     lead_in = spec.planning.lead_in if target is None and spec is not None else None
     bound = None if target is not None else _people_bound(bundle, spec)  # bounds.py
+    # a composite's slot is planned to the slot alone; elsewhere the model's "done" ends the search only where
+    # the action's rule judge agrees (problem.held_short)
+    accepts = None if target is not None else _rule_accepts(bundle, scene, mover, anchors, model)
     best, refused, bounded, spent = None, None, False, 0
     def world_of(hold) -> tuple[World2D, Wrist]:
         outlines = hold.outlines if outline is None else {o.name: outline for o in scene.objects if o.name != mover}
@@ -206,6 +211,7 @@ def plan(scene: Scene, mover: str, anchor: str | Sequence[str], bundle, *, plann
             check_cap=cap,
             reach=_reach(lead_in) * world.size if lead_in else None,
             outlines=footprints,
+            accepts=accepts,
         )
         problem.deadline = deadline
         if not (arcs and lead_in):
@@ -290,6 +296,26 @@ def _people_bound(bundle, spec: ActionSpec | None) -> functools.partial | None:
     if spec is None or spec is RULE_SPECS.get(_rules(bundle)):
         return PEOPLE_BOUNDS.get(_rules(bundle))
     return None if spec.planning.bound is None else people_weights((spec.planning.bound, *spec.planning.more_bounds))
+
+
+def _rule_accepts(bundle, scene: Scene, mover: str, anchors: list[str], model):
+    """Whether the action's rule judge (its manifest's ``[judge] rules``) accepts a path's frames, judged as a
+    chain's forecast and ``perform`` judge a plan (``judge.plan_verdict``): the anchors' poses, the viewpoint, the
+    real outlines where an object is not a cube. None for an action judged otherwise (a learned or a plugin's
+    own judge): the model alone then says when the search is done."""
+    rules = _rules(bundle)
+    if rules not in RULES:
+        return None
+    judge = RuleJudge(rules)
+    poses = [scene.get(a).pose for a in anchors]
+    context = judge_context(poses, getattr(model, "viewpoint", None), judge=judge,
+                            outlines=outlines_of([scene.get(o) for o in (mover, *anchors)]))
+    size = scene.get(mover).size
+
+    def accepts(frames: np.ndarray) -> bool:
+        return bool(judge.judge(frames, poses[0], size, **context).success)
+
+    return accepts
 
 
 def _target_scorer(model, target: np.ndarray, world: World2D):

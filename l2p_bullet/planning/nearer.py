@@ -71,19 +71,24 @@ def nearer_path(scene: Scene, mover: str, anchor: str, spec: ActionSpec | None, 
     c, sn = math.cos(a.yaw), math.sin(a.yaw)
     rel = np.asarray(m.xy) - a.xy
     u, v = c * rel[0] + sn * rel[1], -sn * rel[0] + c * rel[1]  # the mover's centre in the anchor's frame
-    axis = np.array([c, sn]) if abs(u) >= abs(v) else np.array([-sn, c])
-    normal_dir = axis * math.copysign(1.0, u if abs(u) >= abs(v) else v)  # out of the anchor's nearest face
-    along_dir = np.array([-normal_dir[1], normal_dir[0]])
     quarter = math.pi / 2
     # square to the anchor, the least turn; a push keeps the yaw (the fingers push a face, never turn it)
     yaw = a.yaw + round((m.yaw - a.yaw) / quarter) * quarter if turns else m.yaw
-    lat0 = float(rel @ along_dir) / s
-    # face to face with nothing of the hand between, the mover may end nearer than the world's margin
-    for margin in (FACE_MARGIN, GRIPPER_MARGIN):
-        path = _slid_in(m, a, world.nearer_to(anchor, margin) if margin < world.margin else world, anchor, wrist,
-                        g0, margin, need, (normal_dir, along_dir), lat0, yaw)
-        if path is not None:
-            return path
+    # the anchor's nearest face first, then (a block turned as it slides) the other face on the mover's side: from
+    # a start on the anchor's diagonal (corner to corner) the two are as near, and the way in to one can be blocked
+    # by another object where the way in to the other is free; a push keeps to the nearest face (along the other,
+    # from beside the anchor's corner, the flat fingers turn the block into the anchor)
+    faces = sorted(((u, np.array([c, sn])), (v, np.array([-sn, c]))), key=lambda f: -abs(f[0]))
+    for coordinate, axis in faces if turns else faces[:1]:
+        normal_dir = axis * math.copysign(1.0, coordinate)  # out of that face of the anchor
+        along_dir = np.array([-normal_dir[1], normal_dir[0]])
+        lat0 = float(rel @ along_dir) / s
+        # face to face with nothing of the hand between, the mover may end nearer than the world's margin
+        for margin in (FACE_MARGIN, GRIPPER_MARGIN):
+            path = _slid_in(m, a, world.nearer_to(anchor, margin) if margin < world.margin else world, anchor, wrist,
+                            g0, margin, need, (normal_dir, along_dir), lat0, yaw)
+            if path is not None:
+                return path
     return None
 
 

@@ -16,7 +16,8 @@ model on the whole path, with moves on a shrinking local stencil:
 A candidate is kept only if it raises the model's progress by more than the search's ``IMPROVE``; the 2-D
 world and the wrist judge every candidate exactly as they judge the search's (``problem.children``). The
 stencil starts at :data:`SCALES`[0] and shrinks when nothing helps. Each pass is one forward pass of the
-model; at most :data:`PASSES`. The rule judge is never read: only the learned progress decides.
+model; at most :data:`PASSES`. Only the learned progress decides (a path it rates done that the action's rule
+judge rejects is held short of the threshold, as in the search: ``problem.held_short``).
 """
 
 from __future__ import annotations
