@@ -57,7 +57,7 @@ from ..pipeline import check_feasible
 from ..plugins import registry
 from .aims import CHECKS, aimed_goals, slide_accepted
 from .clause import Clause
-from .deadends import Dead, around_reads, kind, reads_of, refusal, wider
+from .deadends import Ahead, Dead, ahead_fails, ahead_of, around_reads, kind, reads_of, refusal, wider
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
 SEARCH_PLANS = 4
@@ -190,6 +190,7 @@ class _Searcher:
         self.cost: dict[int, float] = {} if cost is None else cost  # id(plan) -> seconds to make it (a cut: to cut it)
         self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
         self.shorts: set[int] = set()  # clauses whose judge accepted no end (short_ok False): their own end alone now
+        self.ahead: dict[int, list[Ahead]] = {}  # clause position -> the later room checks its end decides
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
         if k == len(self.clauses):
@@ -295,6 +296,11 @@ class _Searcher:
             if end == DEFAULT:  # kept for last: clause by clause, it is what the chain would run
                 at.judged_short = (plan, end)
             return None  # another end of this clause may be one its judge accepts; no other end it rejects is
+        ahead = self._ahead(at, plan.path[-1])
+        if ahead is not None:  # a later clause fails here whatever the clauses between do: met without planning them
+            at.first = at.first or ahead
+            self._needed(at, ahead)
+            return None
         try:
             return [step, *self.steps(at.k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
         except Dead as d:
@@ -303,6 +309,18 @@ class _Searcher:
                 raise at.first from None  # this clause's end does not move what failed: try an earlier one
             self._needed(at, d)
             return None
+
+    def _ahead(self, at: _Clause, pose: np.ndarray) -> Dead | None:
+        """The dead end a later clause meets when ``at``'s mover ends at ``pose``, where one of its room checks that
+        reads nothing the clauses between move fails there (deadends.ahead_of), else None."""
+        if at.k not in self.ahead:
+            self.ahead[at.k] = ahead_of(self.clauses, at.k, self.plugins)
+        scene = at.predicted.with_pose(at.clause.command.mover, pose)
+        for a in self.ahead[at.k]:
+            e = ahead_fails(a, scene)
+            if e is not None:
+                return self._dead(a.clause, e, scene)
+        return None
 
     def _needed(self, at: _Clause, d: Dead) -> bool:
         """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads

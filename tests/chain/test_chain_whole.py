@@ -520,3 +520,32 @@ def test_a_later_clause_its_judge_rejects_tries_the_earlier_clauses_ends_before_
     assert [s.end for s in steps] == [End(0, "half"), DEFAULT]
     assert all(s.forecast.extra["verdict"]["success"] for s in steps)
     assert [e for c, e in stand_ins if c == 2 and e.cut is None] == [DEFAULT, DEFAULT]  # no other seed searched
+
+
+def test_a_later_room_check_no_clause_between_can_change_is_met_before_they_are_planned(plugins, stand_ins,
+                                                                                         monkeypatch):
+    """Clause 1's own end leaves A on the rim, where "around A" (clause 3) has no room; clause 2 moves D, which
+    that check does not read. The check is made on clause 1's end as soon as it is planned, so clause 2 is planned
+    only after the end that keeps clause 3 possible (before, it was planned after the doomed end too: a search
+    that could not help)."""
+    from l2p_bullet.planning.sweep import room_around
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+        p = stand_in(stand_ins)(clause, scene, bundle, judge, options, arm, end, base=base)
+        if clause.index == 1 and end == DEFAULT:
+            p.path[-1][:2] = (0.33, 0.0)  # the real room-around check fails here (234 of 288 degrees)
+        return p
+
+    def feasible(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "A":
+            room_around(scene, cmd.mover, "A")
+
+    monkeypatch.setattr(chain_forecast, "plan_clause", plan)
+    monkeypatch.setattr(chain_forecast, "check_feasible", feasible)
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move D next to B, then move C around A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT, DEFAULT]
+    assert [c for c, _ in stand_ins].count(2) == 1
+    assert search.dead_ends == {"clause 3 (room-around)": 1}
