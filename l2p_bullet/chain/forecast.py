@@ -55,7 +55,7 @@ from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
-from .aims import CHECKS, aimed_goals, slide_accepted
+from .aims import CHECKS, accepted_via, aimed_goals, slide_accepted
 from .clause import Clause
 from .deadends import Ahead, Dead, ahead_fails, ahead_of, around_reads, kind, reads_of, refusal, wider
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
@@ -277,7 +277,7 @@ class _Searcher:
                 if not slide_accepted(at.judge, at.planned[end.seed], goal, predicted.get(c.command.mover).size,
                                       _outlines(at)):
                     return None  # its judge rejects even a straight slide there: the search to it would be judged so
-            if end.turn or end.aim is not None:
+            if end.turn or (end.aim is not None and end.via is None):
                 self.left -= 1
             try:
                 plan = self._plan(c, predicted, at.bundle, at.judge, end, base=at.planned[end.seed])
@@ -350,12 +350,17 @@ class _Searcher:
         # where its mover stands possible: no other end its judge accepts can (the other seeds and turns end
         # in such places too), so they are not searched
         at.nowhere = not goals and len(asked) < CHECKS and all(_known(d) for d in at.needs)
+        size = at.predicted.get(at.clause.command.mover).size
         for pose in goals:
-            if self.left <= 0:
-                break
-            found = self._try(at, End(0, aim=tuple(float(v) for v in pose)))
-            if isinstance(found, list):
-                return found
+            aim = tuple(float(v) for v in pose)
+            # first the slide its judge accepted there (no search), then a search to it as a target
+            via = accepted_via(at.judge, at.planned[0], pose, size, _outlines(at))
+            for end in ((End(0, aim=aim, via=via),) if via is not None else ()) + (End(0, aim=aim),):
+                if self.left <= 0:
+                    return None
+                found = self._try(at, end)
+                if isinstance(found, list):
+                    return found
         return None
 
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:
@@ -369,13 +374,13 @@ class _Searcher:
             return made
         t0 = time.perf_counter()
         try:
-            plan = plan_clause(c, predicted, bundle, judge, self.opts, self.arm, end, base=base)
+            plan = plan_clause(c, predicted, bundle, judge, self.opts, self.arm, end, base=base, slide_only=True)
             check_for(manners.get(c.command.manner), predicted, c.command.mover, plan.path, self.arm)
         except L2PError as e:
             self.memo[key] = e
             raise self._dead(c, e, predicted) from None
         finally:
-            self.stats.plans += base is None or bool(end.turn) or end.aim is not None
+            self.stats.plans += base is None or bool(end.turn) or (end.aim is not None and end.via is None)
         self.cost[id(plan)] = time.perf_counter() - t0
         self.memo[key] = plan
         return plan
