@@ -4,7 +4,8 @@ Why: a clause's other end states (ends.py: cuts, other seeds, turns) are blind t
 where all of them leave the mover where a later clause's room check fails (a block sent past an anchor by the
 workspace's rim, then "around" it: ``room-around``), the chain was refused though other places on the same
 side of the anchor keep it possible. The later check names what it needs; this module finds the places
-nearest the planner's own end that meet it, and the search (forecast.py) plans the clause to each as a target
+nearest the planner's own end that meet it, and the search (forecast.py) tries each first as the straight slide
+its judge accepted there (:func:`slide_parts`, ends.py: no search), then plans the clause to it as a target,
 and judges the plan as any other end's.
 
 Places are tried on rings round the planner's end (:data:`RINGS_SIDES`, :data:`BEARINGS`), nearest first. A

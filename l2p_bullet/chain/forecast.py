@@ -11,6 +11,10 @@ tried again (a room check reads the mover and the anchor, "room-around" the anch
 those and the blocks near enough the anchor to be in the way; every other check, the whole scene), and, once
 every end of a clause failed, the clauses that moved its anchors (where they stand decides its ends).
 
+A later clause's room check that reads nothing but its mover, its anchor and the workspace ("room-around",
+"room-away": deadends.ahead_of), where the clauses between move neither, is made on a clause's end as soon as
+it is planned: the later clause would fail there whatever the clauses between do, so they are not planned.
+
 Once a later clause's room check has failed on where a clause left its mover, that clause's other ends that
 leave it where the same check fails again are not planned past (the check reads nothing else, so it would
 fail again; a turned end whose goal is such a place is not planned at all), and the places nearest the
