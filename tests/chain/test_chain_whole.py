@@ -602,3 +602,16 @@ def test_the_forecast_tries_an_aimed_place_first_as_the_slide_its_judge_accepted
     assert steps[0].end.aim is not None and steps[0].end.via == "start"
     assert steps[0].end.to_dict()["via"] == "start"
     assert search.plans == 2  # clause 1's own end and clause 2's: the slide and the cuts cost none
+
+
+@pytest.mark.slow
+def test_past_aimed_where_around_it_has_room_keeps_its_close_pass(plugins):
+    """A chain of the evaluation's scenes (seed 21158): "past" leaves C by the rim, where "A around C" has no
+    room; the places with room that its judge accepts a slide to are reached by the planner's pass of B, then a
+    straight slide (the search to them as targets passed B 4.9 blocks off, and its judge refused every one: the
+    chain was refused up front)."""
+    scene = fit_scene(chain_scenes(1, 21158)[0].scene, PANDA)
+    clauses = resolve_clauses("move B away from C, then move C away from B, then move C past B, then move A around C",
+                              scene, plugins)
+    steps = forecast(clauses, scene, plugins, seed=21158)
+    assert steps[2].end.via == "nearest" and all(s.forecast.extra["verdict"]["success"] for s in steps)
