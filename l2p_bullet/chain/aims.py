@@ -96,7 +96,7 @@ def accepted_via(judge: Any, base: Plan, pose: np.ndarray, size: float, outlines
 
 
 VIAS = ("start", "nearest")
-"""Where a straight slide to an aimed place starts (:func:`slide_path`): the mover's start, or the end of the
+"""Where a straight slide to an aimed place starts (:func:`slide_parts`): the mover's start, or the end of the
 planner's path up to where it came nearest the anchor."""
 
 
