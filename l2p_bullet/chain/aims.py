@@ -4,7 +4,8 @@ Why: a clause's other end states (ends.py: cuts, other seeds, turns) are blind t
 where all of them leave the mover where a later clause's room check fails (a block sent past an anchor by the
 workspace's rim, then "around" it: ``room-around``), the chain was refused though other places on the same
 side of the anchor keep it possible. The later check names what it needs; this module finds the places
-nearest the planner's own end that meet it, and the search (forecast.py) plans the clause to each as a target
+nearest the planner's own end that meet it, and the search (forecast.py) tries each first as the straight slide
+its judge accepted there (:func:`slide_parts`, ends.py: no search), then plans the clause to it as a target,
 and judges the plan as any other end's.
 
 Places are tried on rings round the planner's end (:data:`RINGS_SIDES`, :data:`BEARINGS`), nearest first. A
@@ -81,9 +82,30 @@ def slide_accepted(judge: Any, base: Plan, pose: np.ndarray, size: float, outlin
     """Whether ``judge`` accepts a straight slide to ``pose`` after one of :func:`_slide_starts` (``starts``:
     those of ``base``, computed once by a caller that asks many places): the cheap stand-in for a plan to
     ``pose`` as a target, asked before that search is paid for."""
+    return accepted_via(judge, base, pose, size, outlines, starts) is not None
+
+
+def accepted_via(judge: Any, base: Plan, pose: np.ndarray, size: float, outlines: list[np.ndarray] | None = None,
+                 starts: list[np.ndarray] | None = None) -> str | None:
+    """Which of :data:`VIAS` the first straight slide to ``pose`` that ``judge`` accepts comes after, or None."""
     starts = _slide_starts(base) if starts is None else starts
-    return any(_accepts(judge, base, np.vstack([s, segment_frames(s[-1], pose, FRAME_STEP * size)]), outlines)
-               for s in starts)
+    for via, s in zip(VIAS, starts, strict=False):
+        if _accepts(judge, base, np.vstack([s, segment_frames(s[-1], pose, FRAME_STEP * size)]), outlines):
+            return via
+    return None
+
+
+VIAS = ("start", "nearest")
+"""Where a straight slide to an aimed place starts (:func:`slide_parts`): the mover's start, or the end of the
+planner's path up to where it came nearest the anchor."""
+
+
+def slide_parts(base: Plan, pose: np.ndarray, size: float, via: str) -> tuple[np.ndarray, np.ndarray]:
+    """``via``'s start of ``base`` (:data:`VIAS`) and the straight slide from its end to ``pose``: the path
+    :func:`slide_accepted` judges, in two parts."""
+    starts = _slide_starts(base)
+    s = starts[min(VIAS.index(via), len(starts) - 1)]
+    return s, segment_frames(s[-1], np.asarray(pose, float), FRAME_STEP * size)
 
 
 def _slide_starts(base: Plan) -> list[np.ndarray]:

@@ -7,6 +7,7 @@ planning/sweep.py), not about the order the search tries ends in.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -45,6 +46,55 @@ ANCHOR_ONLY = ("room-around",)
 """The room checks that read where the anchor stands and not where the mover does (the room round an anchor is
 the workspace's about it; the mover's size alone counts): an earlier clause that moved only the mover cannot
 change them, so the search goes straight back to the clauses that moved the anchor."""
+
+
+AHEAD_CHECKS = ("room-around", "room-away")
+"""The room checks a clause's end is measured against as soon as it is planned, before the clauses between: they
+read the later clause's mover, its anchor and the workspace alone (no hold, no bystander), so where the clause
+leaves its mover decides them exactly when no clause between moves what they read."""
+
+
+@dataclass(frozen=True)
+class Ahead:
+    """A later clause's room check that an earlier clause's end decides (:func:`ahead_of`)."""
+
+    clause: Clause
+    check: str
+    thresholds: Mapping[str, float]
+
+
+def ahead_of(clauses: list[Clause], k: int, plugins: list) -> list[Ahead]:
+    """The room checks of the clauses after ``clauses[k]`` (:data:`AHEAD_CHECKS`, those their actions declare,
+    as ``pipeline.check_feasible`` finds them) that read ``clauses[k]``'s mover and nothing any clause between
+    moves: a chain whose clause ``k`` leaves its mover where one fails is certain to fail there, so the search
+    knows it before it plans the clauses between (each a search) and aims the clause's end at once."""
+    from ..judge.rules import RULE_SPECS  # lazy, as the checks' own imports
+
+    mover, out = clauses[k].command.mover, []
+    for later in clauses[k + 1:]:
+        cmd = later.command
+        info = next((p for p in plugins if p.name == cmd.action), None)
+        judge = (info.manifest.get("judge") if info is not None else None) or {}
+        rules = judge.get("rules") if isinstance(judge, dict) else None
+        spec = RULE_SPECS.get(rules) if isinstance(rules, str) else None
+        between = {c.command.mover for c in clauses[k + 1:later.index - 1]}
+        for check in spec.planning.checks if spec is not None else ():
+            reads = reads_of(check, cmd) if check in AHEAD_CHECKS else None
+            if reads is not None and mover in reads and not reads & between:
+                out.append(Ahead(later, check, spec.thresholds))
+    return out
+
+
+def ahead_fails(a: Ahead, scene: Scene) -> InfeasibleError | None:
+    """``a``'s check made in ``scene`` (the later clause's mover and anchor where they will stand): its error, or
+    None when it passes."""
+    from ..planning.feasibility import ROOM_CHECKS  # lazy: the planner loads only when a chain is forecast
+
+    try:
+        ROOM_CHECKS[a.check](scene, a.clause.command.mover, a.clause.command.anchor, [], a.thresholds)
+    except InfeasibleError as e:
+        return e
+    return None
 
 
 def reads_of(check: str | None, command: Any) -> frozenset[str] | None:

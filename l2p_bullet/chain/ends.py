@@ -28,7 +28,8 @@ from ..errors import PlanError
 from ..manners import registry as manners
 from ..options import RunOptions
 from ..planning.extent import STEP, apply_extent
-from ..planning.world2d import interpolate
+from ..planning.world2d import World2D, interpolate
+from .aims import slide_parts
 from .clause import Clause
 
 
@@ -42,10 +43,12 @@ class End:
     cut: str | None = None
     turn: int = 0  # degrees: the planned end turned about the anchor, then planned to as a target
     aim: tuple[float, float, float] | None = None  # x, y, yaw: a place planned to as a target (aims.py)
+    via: str | None = None  # with ``aim``: reached by a straight slide after this start of the plan (aims.VIAS)
 
     def to_dict(self) -> dict[str, Any]:
         return {"seed_offset": self.seed, "cut": self.cut, **({"turn_deg": self.turn} if self.turn else {}),
-                **({"aim": [round(v, 6) for v in self.aim]} if self.aim is not None else {})}
+                **({"aim": [round(v, 6) for v in self.aim]} if self.aim is not None else {}),
+                **({"via": self.via} if self.via is not None else {})}
 
 
 DEFAULT = End()
@@ -60,13 +63,23 @@ chains "away" then "around" that anchor needed 60.)"""
 
 
 def plan_clause(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: RunOptions, arm: ArmSpec,
-                end: End = DEFAULT, *, base: Plan | None = None) -> Plan:
+                end: End = DEFAULT, *, base: Plan | None = None, slide_only: bool = False) -> Plan:
     """``clause`` planned from ``scene`` with ``end``'s seed, its extent and ``end``'s cut applied.
     ``base``: the same clause already planned with ``end``'s seed from ``scene`` (only the cut is left to do).
-    The caller runs the feasibility and path checks."""
+    ``slide_only``: an aimed slide that is not free here is a PlanError (the forecast, whose search tries the
+    search to that place as an end of its own); else (the run, from where the world really left the blocks) the
+    place is searched to as a target instead. The caller runs the feasibility and path checks."""
     cmd = clause.command
     if end.turn:
         return _turned(clause, scene, bundle, judge, options, arm, end, base)
+    if end.aim is not None and end.via is not None:
+        try:
+            return _slid(clause, scene, bundle, judge, options, arm, end, base)
+        except PlanError:
+            if slide_only:
+                raise
+            plan = plan_clause(clause, scene, bundle, judge, options, arm, replace(end, via=None), base=base)
+            return replace(plan, extra={**plan.extra, "end_state": end.to_dict()})
     if end.aim is not None:
         plan = _search(clause, scene, bundle, options, arm, end.seed, np.asarray(end.aim, float))
         return replace(plan, extra={**plan.extra, "end_state": end.to_dict()})
@@ -93,6 +106,27 @@ def _turned(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: RunO
         raise PlanError(f"the end turned {end.turn} degrees about the anchor is outside the workspace")
     plan = _search(clause, scene, bundle, options, arm, end.seed, goal)
     return replace(plan, extra={**plan.extra, "end_state": end.to_dict()})
+
+
+def _slid(clause: Clause, scene: Scene, bundle: Any, judge: Any, options: RunOptions, arm: ArmSpec, end: End,
+          base: Plan | None) -> Plan:
+    """The planner's plan (``base``, or planned here) up to ``end.via``'s start, then a straight slide to
+    ``end.aim`` (aims.slide_parts: the path the judge accepted when the place was chosen), costing no search.
+    Why: a search to the place as a target goes its own way there and can lose what the place was chosen with
+    (a "past" whose planner passed the anchor close by passes it far off when searched to its aimed end). The
+    slide is held to the planner's rule for a move (World2D.moves_free), and its frames keep the progress of
+    where it starts (the model does not rate them: ``final_progress`` is left to the judge)."""
+    base = base if base is not None else plan_clause(clause, scene, bundle, judge, options, arm, End(end.seed))
+    head, slide = slide_parts(base, np.asarray(end.aim, float), scene.get(clause.command.mover).size, end.via)
+    world = World2D(scene, clause.command.mover)
+    if not world.inside(slide[:, :2]).all() or not world.moves_free(head[-1], slide[-1:])[0]:
+        raise PlanError("the straight slide to the aimed end runs into another object or out of the workspace")
+    n = len(base.path)
+    planned = np.interp(np.arange(n), np.linspace(0, n - 1, len(base.progress)), np.asarray(base.progress, float)) \
+        if len(base.progress) else np.zeros(n)
+    progress = np.concatenate([planned[:len(head)], np.full(len(slide), planned[len(head) - 1])])
+    return replace(base, path=np.vstack([head, slide]), progress=progress,
+                   extra={**base.extra, "final_progress": None, "end_state": end.to_dict()})
 
 
 def _search(clause: Clause, scene: Scene, bundle: Any, options: RunOptions, arm: ArmSpec, seed: int,

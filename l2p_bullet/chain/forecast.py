@@ -11,6 +11,10 @@ tried again (a room check reads the mover and the anchor, "room-around" the anch
 those and the blocks near enough the anchor to be in the way; every other check, the whole scene), and, once
 every end of a clause failed, the clauses that moved its anchors (where they stand decides its ends).
 
+A later clause's room check that reads nothing but its mover, its anchor and the workspace ("room-around",
+"room-away": deadends.ahead_of), where the clauses between move neither, is made on a clause's end as soon as
+it is planned: the later clause would fail there whatever the clauses between do, so they are not planned.
+
 Once a later clause's room check has failed on where a clause left its mover, that clause's other ends that
 leave it where the same check fails again are not planned past (the check reads nothing else, so it would
 fail again; a turned end whose goal is such a place is not planned at all), and the places nearest the
@@ -55,9 +59,9 @@ from ..manners import registry as manners
 from ..options import RunOptions
 from ..pipeline import check_feasible
 from ..plugins import registry
-from .aims import CHECKS, aimed_goals, slide_accepted
+from .aims import CHECKS, accepted_via, aimed_goals, slide_accepted
 from .clause import Clause
-from .deadends import Dead, around_reads, kind, reads_of, refusal, wider
+from .deadends import Ahead, Dead, ahead_fails, ahead_of, around_reads, kind, reads_of, refusal, wider
 from .ends import DEFAULT, ENDS, End, plan_clause, turned_goal
 
 SEARCH_PLANS = 4
@@ -190,6 +194,7 @@ class _Searcher:
         self.cost: dict[int, float] = {} if cost is None else cost  # id(plan) -> seconds to make it (a cut: to cut it)
         self.kept: dict[int, float] = {}  # id(plan) -> seconds to check and plan its clause alone
         self.shorts: set[int] = set()  # clauses whose judge accepted no end (short_ok False): their own end alone now
+        self.ahead: dict[int, list[Ahead]] = {}  # clause position -> the later room checks its end decides
 
     def steps(self, k: int, predicted: Scene) -> list[Step]:
         if k == len(self.clauses):
@@ -276,7 +281,7 @@ class _Searcher:
                 if not slide_accepted(at.judge, at.planned[end.seed], goal, predicted.get(c.command.mover).size,
                                       _outlines(at)):
                     return None  # its judge rejects even a straight slide there: the search to it would be judged so
-            if end.turn or end.aim is not None:
+            if end.turn or (end.aim is not None and end.via is None):
                 self.left -= 1
             try:
                 plan = self._plan(c, predicted, at.bundle, at.judge, end, base=at.planned[end.seed])
@@ -295,6 +300,11 @@ class _Searcher:
             if end == DEFAULT:  # kept for last: clause by clause, it is what the chain would run
                 at.judged_short = (plan, end)
             return None  # another end of this clause may be one its judge accepts; no other end it rejects is
+        ahead = self._ahead(at, plan.path[-1])
+        if ahead is not None:  # a later clause fails here whatever the clauses between do: met without planning them
+            at.first = at.first or ahead
+            self._needed(at, ahead)
+            return None
         try:
             return [step, *self.steps(at.k + 1, predicted.with_pose(c.command.mover, plan.path[-1]))]
         except Dead as d:
@@ -303,6 +313,18 @@ class _Searcher:
                 raise at.first from None  # this clause's end does not move what failed: try an earlier one
             self._needed(at, d)
             return None
+
+    def _ahead(self, at: _Clause, pose: np.ndarray) -> Dead | None:
+        """The dead end a later clause meets when ``at``'s mover ends at ``pose``, where one of its room checks that
+        reads nothing the clauses between move fails there (deadends.ahead_of), else None."""
+        if at.k not in self.ahead:
+            self.ahead[at.k] = ahead_of(self.clauses, at.k, self.plugins)
+        scene = at.predicted.with_pose(at.clause.command.mover, pose)
+        for a in self.ahead[at.k]:
+            e = ahead_fails(a, scene)
+            if e is not None:
+                return self._dead(a.clause, e, scene)
+        return None
 
     def _needed(self, at: _Clause, d: Dead) -> bool:
         """Note ``d`` among the later room checks ``at``'s ends are measured against, where it is one that reads
@@ -332,12 +354,17 @@ class _Searcher:
         # where its mover stands possible: no other end its judge accepts can (the other seeds and turns end
         # in such places too), so they are not searched
         at.nowhere = not goals and len(asked) < CHECKS and all(_known(d) for d in at.needs)
+        size = at.predicted.get(at.clause.command.mover).size
         for pose in goals:
-            if self.left <= 0:
-                break
-            found = self._try(at, End(0, aim=tuple(float(v) for v in pose)))
-            if isinstance(found, list):
-                return found
+            aim = tuple(float(v) for v in pose)
+            # first the slide its judge accepted there (no search), then a search to it as a target
+            via = accepted_via(at.judge, at.planned[0], pose, size, _outlines(at))
+            for end in ((End(0, aim=aim, via=via),) if via is not None else ()) + (End(0, aim=aim),):
+                if self.left <= 0:
+                    return None
+                found = self._try(at, end)
+                if isinstance(found, list):
+                    return found
         return None
 
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:
@@ -351,13 +378,13 @@ class _Searcher:
             return made
         t0 = time.perf_counter()
         try:
-            plan = plan_clause(c, predicted, bundle, judge, self.opts, self.arm, end, base=base)
+            plan = plan_clause(c, predicted, bundle, judge, self.opts, self.arm, end, base=base, slide_only=True)
             check_for(manners.get(c.command.manner), predicted, c.command.mover, plan.path, self.arm)
         except L2PError as e:
             self.memo[key] = e
             raise self._dead(c, e, predicted) from None
         finally:
-            self.stats.plans += base is None or bool(end.turn) or end.aim is not None
+            self.stats.plans += base is None or bool(end.turn) or (end.aim is not None and end.via is None)
         self.cost[id(plan)] = time.perf_counter() - t0
         self.memo[key] = plan
         return plan

@@ -44,7 +44,7 @@ def stand_in(calls: list):
     """A planner that moves the mover straight to RIM for the planner's own end and elsewhere for every other
     end (each end its own place), recording (clause, end) per call; a cut of the rim plan ends short of it."""
 
-    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None, **_):
         calls.append((clause.index, end))
         start = np.asarray(scene.get(clause.command.mover).pose, float)
         goal = RIM.copy() if end.seed == 0 else np.array([-0.05 * end.seed, 0.20, 0.0])
@@ -348,7 +348,7 @@ def test_a_clause_with_no_end_left_sends_the_search_back_to_who_moved_its_anchor
         if cmd.anchor == "C" and scene.get("C").xy[0] > 0.3:
             raise InfeasibleError("room-around", 'no room around "C" by the rim')
 
-    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None, **_):
         p = stand_in(stand_ins)(clause, scene, bundle, judge, options, arm, end, base=base)
         if clause.index == 2:
             p.path[-1][:2] = np.asarray(scene.get("A").xy) + (0.075, 0.0)
@@ -413,7 +413,7 @@ def test_blocked_around_sends_the_search_back_past_a_clause_whose_block_is_not_i
         if cmd.anchor == "A" and np.allclose(scene.get("A").xy, RIM[:2]):
             raise InfeasibleError("blocked-around", 'no way round "A" by the rim')
 
-    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None):
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None, **_):
         p = stand_in(stand_ins)(clause, scene, bundle, judge, options, arm, end, base=base)
         if clause.index == 2:
             p.path[-1][:2] = (-0.20, 0.15)
@@ -520,3 +520,98 @@ def test_a_later_clause_its_judge_rejects_tries_the_earlier_clauses_ends_before_
     assert [s.end for s in steps] == [End(0, "half"), DEFAULT]
     assert all(s.forecast.extra["verdict"]["success"] for s in steps)
     assert [e for c, e in stand_ins if c == 2 and e.cut is None] == [DEFAULT, DEFAULT]  # no other seed searched
+
+
+def test_a_later_room_check_no_clause_between_can_change_is_met_before_they_are_planned(plugins, stand_ins,
+                                                                                         monkeypatch):
+    """Clause 1's own end leaves A on the rim, where "around A" (clause 3) has no room; clause 2 moves D, which
+    that check does not read. The check is made on clause 1's end as soon as it is planned, so clause 2 is planned
+    only after the end that keeps clause 3 possible (before, it was planned after the doomed end too: a search
+    that could not help)."""
+    from l2p_bullet.planning.sweep import room_around
+
+    def plan(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None, **_):
+        p = stand_in(stand_ins)(clause, scene, bundle, judge, options, arm, end, base=base)
+        if clause.index == 1 and end == DEFAULT:
+            p.path[-1][:2] = (0.33, 0.0)  # the real room-around check fails here (234 of 288 degrees)
+        return p
+
+    def feasible(cmd, scene, plugins, arm=PANDA):
+        if cmd.anchor == "A":
+            room_around(scene, cmd.mover, "A")
+
+    monkeypatch.setattr(chain_forecast, "plan_clause", plan)
+    monkeypatch.setattr(chain_forecast, "check_feasible", feasible)
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move D next to B, then move C around A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT, DEFAULT]
+    assert [c for c, _ in stand_ins].count(2) == 1
+    assert search.dead_ends == {"clause 3 (room-around)": 1}
+
+
+def _base_plan(clause, scene, path) -> Plan:
+    anchor = scene.get(clause.command.anchor).pose
+    path = np.asarray(path, float)
+    return Plan(clause.command.action, clause.command.mover, clause.command.anchor, 0.04, np.asarray(anchor),
+                path[0], path, np.linspace(0, 1, len(path)), "stand-in", "threshold", {"final_progress": 1.0})
+
+
+def test_an_aimed_end_is_the_slide_its_judge_accepted_after_the_planners_pass_with_no_search(plugins, monkeypatch):
+    """An aimed end with ``via`` is the planner's path up to where it came nearest the anchor, then a straight
+    slide to the place (what the judge accepted when the place was chosen): no search. A slide into a block is a
+    PlanError in the forecast, and searched to as a target at run time."""
+    from l2p_bullet.chain import ends
+    from l2p_bullet.errors import PlanError
+    from l2p_bullet.options import RunOptions
+
+    searched = []
+    monkeypatch.setattr(ends, "_search", lambda *a, **k: searched.append(a[-1]) or base)
+    scene = four_blocks()  # A (0.10, -0.08), B (0.0, 0.02)
+    clause = resolve_clauses("move A past B", scene, plugins)[0]
+    base = _base_plan(clause, scene, [[0.10, -0.08, 0.2], [0.06, 0.0, 0.2], [0.0, 0.08, 0.2], [-0.05, 0.20, 0.2]])
+    aim = (0.03, 0.25, 0.3)
+    opts = RunOptions()
+    plan = plan_clause(clause, scene, None, None, opts, PANDA, End(0, aim=aim, via="nearest"), base=base,
+                       slide_only=True)
+    assert not searched
+    assert np.allclose(plan.path[:3], base.path[:3]) and np.allclose(plan.path[-1], aim)  # nearest B at (0, 0.08)
+    steps = np.hypot(*np.diff(plan.path[2:, :2], axis=0).T)
+    assert np.allclose(steps, steps[0]) and len(plan.progress) == len(plan.path)  # one straight slide
+    assert plan.extra["end_state"] == {"seed_offset": 0, "cut": None, "aim": list(aim), "via": "nearest"}
+    start = plan_clause(clause, scene, None, None, opts, PANDA, End(0, aim=aim, via="start"), base=base)
+    assert len(start.path) > 1 and np.allclose(start.path[0], base.path[0]) and np.allclose(start.path[-1], aim)
+    into_c = End(0, aim=(-0.12, -0.06, 0.2), via="start")  # C stands there
+    with pytest.raises(PlanError):
+        plan_clause(clause, scene, None, None, opts, PANDA, into_c, base=base, slide_only=True)
+    assert not searched
+    plan_clause(clause, scene, None, None, opts, PANDA, into_c, base=base)  # the run: searched to instead
+    assert len(searched) == 1 and np.allclose(searched[0], into_c.aim)
+
+
+def test_the_forecast_tries_an_aimed_place_first_as_the_slide_its_judge_accepted(plugins, stand_ins, monkeypatch):
+    """The aimed end first tried is the slide (``via``) its judge accepted there, which costs no search of the
+    planner: the chain is planned with one plan per clause."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", beyond(0.2))
+    monkeypatch.setattr(chain_forecast, "plan_clause", _all_past(0.2, stand_ins))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert steps[0].end.aim is not None and steps[0].end.via == "start"
+    assert steps[0].end.to_dict()["via"] == "start"
+    assert search.plans == 2  # clause 1's own end and clause 2's: the slide and the cuts cost none
+
+
+@pytest.mark.slow
+def test_past_aimed_where_around_it_has_room_keeps_its_close_pass(plugins):
+    """A chain of the evaluation's scenes (seed 21158): "past" leaves C by the rim, where "A around C" has no
+    room; the places with room that its judge accepts a slide to are reached by the planner's pass of B, then a
+    straight slide (the search to them as targets passed B 4.9 blocks off, and its judge refused every one: the
+    chain was refused up front)."""
+    scene = fit_scene(chain_scenes(1, 21158)[0].scene, PANDA)
+    clauses = resolve_clauses("move B away from C, then move C away from B, then move C past B, then move A around C",
+                              scene, plugins)
+    steps = forecast(clauses, scene, plugins, seed=21158)
+    assert steps[2].end.via == "nearest" and all(s.forecast.extra["verdict"]["success"] for s in steps)
