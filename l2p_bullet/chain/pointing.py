@@ -42,6 +42,9 @@ TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands|sit|sta
                        re.IGNORECASE)
 """A statement of what is wrong between two objects: "The cup is too near to the duck", "The stone is in the way
 of the jar"; what comes next moves the first ("Move it away": from the second)."""
+NOW_SAID = re.compile(r"^\s*(?:right\s+now|currently|at\s+the\s+moment|at\s+present|as\s+it\s+stands|presently)"
+                      r"\s*,?\s+(?P<rest>.+)$", re.IGNORECASE)
+"""A statement of how the table is now, said first: what comes next points at its subject."""
 THERE = re.compile(r"^\s*(?:there\s+(?:are|r|is)\s+(?P<what>.+?)(?:\s+(?:here|there|on\s+the\s+table))?"
                    r"|of\s+(?P<of>the\s+two\s+.+?))\s*[.!]?\s*$", re.IGNORECASE)
 """A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
@@ -128,6 +131,8 @@ def group_said(text: str, scene: Scene) -> tuple[str, ...] | None:
 
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
+    now = NOW_SAID.match(text)
+    text = now.group("rest") if now is not None else text
     text = " ".join(strip_polite(text.split(), frozenset(scene.names))) or text  # "Please lift the blue cup."
     group = group_said(text, scene)
     if group is not None:
@@ -145,6 +150,9 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
         objects = _objects(m.group("what"), scene, context)
         return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
     objects = _pointed_at(text, scene, context)
+    said = STATEMENT.match(text) if objects is None and now is not None else None
+    if said is not None:  # "Right now the ring is far from the cone": how the table is; it points at the ring
+        objects = _objects(said.group("what"), scene, context)
     return None if objects is None else Shown(objects)
 
 

@@ -28,9 +28,10 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from . import lenient
 from .descriptions import naming_words
 from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_tail
-from .pronouns import Context
+from .pronouns import Context, sized_twin
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
 from .references import measured_from, object_pairs, resolve_object, try_object
+from .synonyms import SIZE_WORDS
 from .verbs import EXAMPLE, _on_the_table, _verb_patterns, known_verbs, split_verb
 from .words import (
     by_gerund,
@@ -38,6 +39,7 @@ from .words import (
     gerund_to_verb,
     goal_to_verb,
     passive_to_verb,
+    said_now,
     skip_to_verb,
     state_to_verb,
     strip_polite,
@@ -116,7 +118,10 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
         if not lenient.allowed() or not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE:
             raise
         keep = frozenset(scene.names)  # the words as typed: no verb made from a statement ("A was next to B")
-        words, pace = take_pace(strip_polite(tokens(sentence), keep), keep)
+        said = tokens(sentence)
+        if said_now([w.lower() for w in said]):  # "Right now A is far from B": how it is, not a wish
+            raise
+        words, pace = take_pace(strip_polite(said, keep), keep)
         found = lenient.read(words, scene, _readings(phrases), [(h, d, m) for h, _, d, m in _verb_patterns()],
                              anchors or {}, extents or {}, context)
         if found is None:
@@ -167,8 +172,9 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
                 if closing is not None and extent not in (None, closing):
                     raise LanguageError(f'"{sentence.strip()}" asks for a {extent} and a {closing} extent; say one')
                 said, extent = said or closing, extent or closing
-                refs = _references(after, scene, phrase, (anchors or {}).get(action, 1),
-                                   context or _measured_context(before, scene))
+                twin = _twin_of(after, mover, before, scene)
+                refs = (twin,) if twin is not None else _references(
+                    after, scene, phrase, (anchors or {}).get(action, 1), context or _measured_context(before, scene))
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
@@ -215,6 +221,15 @@ def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
     if set(low[1:]) & {v.split()[0] for v in known_verbs()}:
         return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
     return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in _readings(phrases) for i in range(1, len(low)))
+
+
+def _twin_of(after: list[str], mover: str, before: list[str], scene: Scene) -> str | None:
+    """"Push the small brown cube toward the big one": "the big one" after a mover described by its size is its twin
+    of that colour and shape the size word picks (language/pronouns.py: sized_twin); None where not said so."""
+    low = tuple(w.lower().strip(".,!?") for w in after)
+    if mover in before or not set(w.lower() for w in before) & SIZE_WORDS:
+        return None
+    return sized_twin(" ".join(after), low, Context(mover, described=True), scene)
 
 
 def _measured_context(before: list[str], scene: Scene) -> Context | None:

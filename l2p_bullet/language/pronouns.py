@@ -50,7 +50,7 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
                             f'{context.anchor} (named last); name the one you mean, or say "it"')
     if opening is not None and low[-1] in NOUNS:
         low = ("it",)
-    twin = _sized_twin(said, low, context, scene)
+    twin = sized_twin(said, low, context, scene)
     if twin is not None:
         return twin
     if low in (("the", "latter"), ("the", "former")):  # the clause before's two objects, in the order named
@@ -89,7 +89,7 @@ def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
     return o.shape == shape if shape in STRICT_SHAPES else o.shape in BLOCK_SHAPES
 
 
-def _sized_twin(said: str, low: tuple[str, ...], context: Context | None, scene: Scene) -> str | None:
+def sized_twin(said: str, low: tuple[str, ...], context: Context | None, scene: Scene) -> str | None:
     """"the big one" after a clause that moved one of two or more objects of the same colour and shape ("move the
     small red cube ..., then slide the big one ..."): the one of them the size word picks; None where it is not said
     so or picks no single one."""

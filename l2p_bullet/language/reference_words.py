@@ -99,9 +99,10 @@ the distance. The authors of the held-out corpora called 3 cm between 12 and 15 
 TIE_PLACE = 0.45
 """Where a superlative compares places (leftmost, nearest), two objects whose places differ by less than this
 many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""
-TIE_PLACE_M = 0.03
-"""And two places closer than this (m) are a tie whatever the sizes: four authors called 2 cm between places a tie and
-left 3-4.5 cm out as unclear, and 4.5 cm and more clear (docs/language.md)."""
+TIE_PLACE_M = 0.029
+"""And two places under 3 cm apart are a tie whatever the sizes: four authors called 2 cm between places a tie,
+left 3-4.5 cm out as unclear and called 4.5 cm and more clear; the corpus table's author called 3 cm clear
+(docs/language.md)."""
 CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "center", "of", "the", "table"),
                   ("in", "the", "centre", "of", "the", "table"), ("in", "the", "middle"), ("in", "the", "center"),
                   ("in", "the", "centre"))
