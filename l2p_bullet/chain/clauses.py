@@ -133,8 +133,10 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             continue
         previous = clauses[-1].command if clauses else None
         context = show.context if show is not None else (_after(previous, pair) if previous else None)
+        said = _ordinals(text, show)
         try:
-            pieces = _resolve_text(text, previous, scene, plugins, context=context, pair=pair)
+            pieces = [(text if piece == said else piece, cmd)
+                      for piece, cmd in _resolve_text(said, previous, scene, plugins, context=context, pair=pair)]
         except L2PError as e:
             extent = _extent_alone(text) if clauses else None
             if extent is not None:  # "Move the tin away from the mug. Just a tiny bit though."
@@ -329,6 +331,16 @@ def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list,
         except L2PError:
             return None
     return None
+
+
+def _ordinals(text: str, show: pointing.Shown | None) -> str:
+    """``text`` with "the first one" and "the second one" said as the two objects the clause before showed ("Take the
+    bar and the cup. Move the first one around the second one."); ``text`` itself where it says neither, or says "it"
+    as well (which of the two it means is asked)."""
+    if show is None or len(show.objects) != 2 or not any(o.search(text) for o in ORDINALS) \
+            or re.search(r"\bit\b", text, re.IGNORECASE):
+        return text
+    return ORDINALS[1].sub(show.objects[1], ORDINALS[0].sub(show.objects[0], text))
 
 
 ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),

@@ -36,12 +36,14 @@ TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)
                       r"(?:together|to\s+each\s+other)\s*[.!]?\s*$", re.IGNORECASE)
 """What a statement about two objects says when it only points at them: "The mug and the jar are too close
 together"."""
-TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands|sit|stand)|'s|'re)\s+(?:both\s+)?"
-                       r"(?:(?:far|way|much|a\s+bit)\s+)?"
-                       r"(?:too\s+(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
+TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands|sit|stand)(?:\s+(?:sitting|standing))?|'s|'re"
+                       r"|\s+(?:shouldn't|should\s+not|mustn't)\s+be)\s+(?:both\s+)?"
+                       r"(?:(?:far|way|much|a\s+bit|rather|really|quite|very|so|this|that|awfully|kinda)\s+)?"
+                       r"(?:(?:too\s+)?(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
                        re.IGNORECASE)
 """A statement of what is wrong between two objects: "The cup is too near to the duck", "The stone is in the way
-of the jar"; what comes next moves the first ("Move it away": from the second)."""
+of the jar", "The white cube is rather close to the cup", "A shouldn't be so near B"; what comes next moves the first
+("Move it away": from the second)."""
 NOW_SAID = re.compile(r"^\s*(?:right\s+now|currently|at\s+the\s+moment|at\s+present|as\s+it\s+stands|presently)"
                       r"\s*,?\s+(?P<rest>.+)$", re.IGNORECASE)
 """A statement of how the table is now, said first: what comes next points at its subject."""
@@ -199,8 +201,13 @@ def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
         return False
     naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS | PLACE_WORDS
     said = {w.strip(".,;:!?\"()").lower() for w in text.split()}
-    return not (naming | PACES.keys()) & set(words) and not OTHER_ASKS & said and not _names_a_place(text) \
-        and not any(c.isdigit() for c in text)
+    return not (naming | PACES.keys()) & set(words) and not (OTHER_ASKS | HOW_FAR) & said \
+        and not _names_a_place(text) and not any(c.isdigit() for c in text)
+
+
+HOW_FAR = frozenset({"close", "closer", "far", "farther", "further", "near", "nearer", "touching", "touch", "gap",
+                     "bit", "little", "lot", "slightly", "possible", "tight", "distance", "way"})
+"""Words by which a clause that names nothing asks how far ("as close as possible"): never read past."""
 
 
 def _names_a_place(said: str) -> bool:
@@ -334,7 +341,11 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         objects = _pointed_at(what, scene, context)
         if objects is None:
             continue
-        commands = _each(rest, Shown(objects).context, objects, scene, plugins)
+        told = Shown(objects).context
+        if len(objects) == 1 and context is not None and len(context.among) == 2 and objects[0] in context.among:
+            # "There are two brown cubes. Take the bigger one and move it past the other one."
+            told = Context(objects[0], next(o for o in context.among if o != objects[0]))
+        commands = _each(rest, told, objects, scene, plugins)
         if commands is not None:
             return _ordered([carried(c, Shown(objects, lifting)) for c in commands], first, scene)
     if context is not None and len(context.among) == 2 and BOTH.search(text):  # "See A and C? Move them ..."

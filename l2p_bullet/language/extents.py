@@ -25,6 +25,8 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a couple of centimetres": "little",
     "a couple of centimeters": "little", "a couple centimeters": "little", "a couple of cm": "little",
     "flush": "right", "rite": "right", "a lil": "little", "a lil bit": "little", "lil bit": "little",
+    "a good long way": "far", "a long long way": "far", "loads": "far", "ever so slightly": "little",
+    "ever so little": "little", "just ever so slightly": "little",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
@@ -61,13 +63,16 @@ EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "just a little": "little", "only a bit": "little", "only a little": "little", "only slightly": "little",
     "but only slightly": "little", "a little bit": "little",
     "by a lot": "far", "a long way": "far", "a good distance": "far", "really far": "far", "very far": "far",
+    "as close as you can get it": "right", "as close as you can": "right", "as close as possible": "right",
+    "practically touching": "right", "like practically touching": "right", "like touching": "right",
+    "like actually touching it": "right", "actually touching it": "right",
 }.items()}
-TIGHT_PHRASES = frozenset({"up against", "against", "right up against"})
-"""Phrases that say the objects touch: the authors of the held-out corpora wrote every "(up) against" as a tight gap
-("right next to"); read so where the phrase's action takes that extent."""
 """Closing words after the reference object that say how far, as people add them after a comma ("slide A next to B,
 leaving no gap", "move G away from the lid, but only a few centimetres"). Only word groups that cannot describe the
 reference object are here: "a bit" alone stays out ("next to the cube a bit" is not said)."""
+TIGHT_PHRASES = frozenset({"up against", "against", "right up against"})
+"""Phrases that say the objects touch: the authors of the held-out corpora wrote every "(up) against" as a tight gap
+("right next to"); read so where the phrase's action takes that extent."""
 
 
 def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:

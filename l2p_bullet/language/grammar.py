@@ -191,8 +191,9 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
             if said is None and implied == TIGHT and TIGHT not in accepted:
                 extent = None  # "against" of an action without a tight gap: the phrase alone asks for none
             if extent is not None and extent not in accepted:
-                said = " ".join(rest[len(before):i]) or phrase
-                raise LanguageError(f'"{said} {phrase}" asks for a {extent} extent, which "{phrase}" does not have '
+                said = " ".join(rest[len(before):i])
+                asked, said = (f"{said} {phrase}", said) if said else (" ".join(rest[i + n + len(after):]),) * 2
+                raise LanguageError(f'"{asked}" asks for a {extent} extent, which "{phrase}" does not have '
                                     f"(it takes: {', '.join(sorted(accepted)) or 'none'}); drop \"{said}\"")
             return Command(verb, mover, phrase, action, refs[0], sentence.strip(), refs, manner, pace, extent)
     middle = _unplaced_words(rest, scene)

@@ -46,6 +46,12 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
 
 ROW_ADJECTIVES = re.compile(r"\bin\s+(?:a|one)\s+(?:neat|nice|tidy|single|straight|long|perfect|clean)\s+(row|line)\b",
                             re.IGNORECASE)
+IN_ONE = re.compile(r"\bin\s+(?:one|a\s+single)\s+(row|line)\b", re.IGNORECASE)
+ROW_FIRST = re.compile(r"^(?P<verb>\s*(?:please\s+)?(?:put|place|set|arrange))\s+in\s+a\s+(?P<row>row|line)\s+"
+                       r"(?P<items>[^.;!?]+?)(?=\s*(?:[.;!?]|$))", re.IGNORECASE)
+LINE_FROM = re.compile(r"\b(make\s+a\s+(?:row|line))\s+(?:from|out\s+of|using)\s+", re.IGNORECASE)
+"""More ways to say a row: "in one line", "Put in one row the ball, the mug and the tile", "Make a line from A, B and
+C", "row pls - A, B, C"."""
 UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
 THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
                            r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
@@ -63,8 +69,10 @@ the four cubes up - big red, small red, blue, purple -"), each item the group's 
 def said_plainly(sentence: str, scene: Scene) -> str:
     """``sentence`` with a composite's sentence said in other words (the patterns above) said as a plain list is;
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
-    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", sentence))
-    text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*:", ":", text)  # "Row please: A, B, C"
+    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", sentence)))
+    text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])", ":", text)  # "Row please: A, B, C"
+    text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
+    text = LINE_FROM.sub(r"\1 of ", text, count=1)
     text = THE_FOLLOWING.sub(" of ", text, count=1)
     group = GROUP.search(text)
     if group is None:

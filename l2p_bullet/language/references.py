@@ -59,6 +59,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     TIE_M,
 )
+from .synonyms import KIND_MODIFIERS
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -130,7 +131,7 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
             raise
         return named
     except UnknownObjectError:
-        named = _partitive(text, scene, role)
+        named = _partitive(text, scene, role) or _of_compound(text, scene, role)
         if named is None:
             raise
         return named
@@ -157,6 +158,31 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
         return None
     said = COUNTS.get(count.lower(), int(count) if count.isdigit() else 0) if count else len(fits)
     return tuple(o.name for o in fits) if len(fits) >= 2 and said == len(fits) else None
+
+
+CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit"})
+"""Words for how much of a kind there is ("a bar of soap"): the kind is what the object is."""
+
+
+def _of_compound(text: str, scene: Scene, role: str) -> str | None:
+    """A kind said with "of" ("the bar of soap": the soap; "the duck of rubber", as learners write "rubber duck": the
+    duck); None where ``text`` is not said so or names no one object."""
+    words = text.split()
+    low = [w.lower() for w in words]
+    if low.count("of") != 1 or low.index("of") in (0, len(low) - 1):
+        return None
+    at = low.index("of")
+    head, tail = low[:at], low[at + 1:]
+    if head[-1] in CONTAINERS and len(tail) <= 2 and len(tail[-1]) >= 3 and tail[-1].isalpha():
+        said = " ".join(["the", *tail[-1:]])
+    elif len(tail) == 1 and tail[0] in KIND_MODIFIERS:
+        said = " ".join([*head[:-1], tail[0], head[-1]])
+    else:
+        return None
+    try:
+        return _resolve(said, scene, role, None)
+    except (LanguageError, UnknownObjectError):
+        return None
 
 
 def _partitive(text: str, scene: Scene, role: str) -> str | None:

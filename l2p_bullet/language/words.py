@@ -46,7 +46,8 @@ NOT_BEFORE_TO = frozenset({"next"})
 read past only before another word."""
 POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "please thanks", "please thank you", "thank you very much", "thank you so much", "thank you", "thanks",
-    "please", "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
+    "please", "if you please", "if you would",
+    "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "if you can", "if possible", "when you can", "if you would",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",

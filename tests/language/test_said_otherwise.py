@@ -69,3 +69,33 @@ def test_what_a_person_would_ask_about_stays_refused(plugins, sentence):
     table = "corpus.tsv" if sentence.startswith(("A ", "move A")) else NEW_TABLE
     with pytest.raises(L2PError):
         read(sentence, plugins, table)
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    ("Put A, B and C in one line.", "row A,B,C", "corpus.tsv"),
+    ("Put in one row A, C and the duck.", "row A,C,duck", "corpus.tsv"),
+    ("Make a line from A, B and C. After, move D around E.", "row A,B,C ; slide:around D E", "corpus.tsv"),
+    ("move the bar of soap past G", "slide:past soap G", "heldout20.tsv"),
+    ("Slide the duck of rubber away from the jar.", "slide:away duck jar", "heldout20.tsv"),
+    ("Take A a good long way away from B", "slide:away A B extent=far", "corpus.tsv"),
+    ("Nudge A ever so slightly nearer B", "push:closer A B extent=little", "corpus.tsv"),
+    ("Move A next to B, as close as you can get it.", "slide:next-to A B extent=right", "corpus.tsv"),
+    ("There are two brown cubes. Take the smaller one and push it toward the other one.", "push:closer N U",
+     "heldout21.tsv"),
+    ("Take A and the duck. Move the first one around the second one.", "slide:around A duck", "corpus.tsv"),
+    ("A shouldn't be so near B. Move it away.", "slide:away A B", "corpus.tsv"),
+    ("A is rather close to B. Push it a bit further from B.", "push:away A B extent=little", "corpus.tsv"),
+    ("Move A round B, if you please.", "slide:around A B", "corpus.tsv"),
+])
+def test_more_said_otherwise(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "move A closer to B, as close as possible",   # as close as possible is a tight gap, which closer does not take
+    "See A and the duck? Move the first one past it.",  # "it": the duck, or one of the two?
+    "move the bar of A past B",                   # a bar of what?
+])
+def test_more_that_stays_refused(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)
