@@ -138,6 +138,15 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             pieces = [(text if piece == said else piece, cmd)
                       for piece, cmd in _resolve_text(said, previous, scene, plugins, context=context, pair=pair)]
         except L2PError as e:
+            meant = corrections.instead_of(text) if clauses and not show else None
+            if meant is not None:  # "Move G away from the jar. Actually no, move it past the jar instead."
+                taken = clauses.pop()
+                try:
+                    pieces = _resolve_text(meant, previous, scene, plugins, context=context, pair=pair)
+                except L2PError:
+                    raise named(e, f'clause {i} ("{text}")') from None
+                clauses.extend(Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
+                continue
             extent = _extent_alone(text) if clauses else None
             if extent is not None:  # "Move the tin away from the mug. Just a tiny bit though."
                 clauses[-1] = _extended(clauses[-1], extent, plugins)

@@ -14,13 +14,25 @@ import re
 from ..core.scene import Scene
 from ..language.references import try_object
 
-SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*(?:no\s*,?\s*)?(?:sorry|oops|my\s+bad)\s*,?\s*"
+SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*(?:no\s*,?\s*)?"
+                   r"(?:sorry|oops|my\s+bad|wait(?:\s*,?\s*no)?)\s*,?\s*"
                    r"(?:i\s+mean[t]?\s+|make\s+that\s+)?(?P<right>[^-\u2013\u2014]+?)\s*"
                    r"(?:[-\u2013\u2014]+\s*(?P<after>.*?))?\s*[.!?]*\s*$", re.IGNORECASE)
 """What was said, a word of correction, what was meant, and the rest of the command after a second dash."""
 NOT_THIS_BUT = re.compile(r"^\s*not\s+(?P<wrong>[^,]+?)\s*,\s*(?:it's\s+|it\s+is\s+)?(?P<right>[^-\u2013\u2014:]+?)"
                           r"(?:\s+i\s+mean[t]?)?\s*[-\u2013\u2014:]+\s*(?P<rest>.+)$", re.IGNORECASE)
 """An object ruled out before the one meant, then the command about it: "not the black cube, the white one - ..."."""
+
+
+INSTEAD = re.compile(r"^\s*(?:(?:actually|no|wait|sorry|oops|hmm)\s*[,.!]*\s*)+(?P<meant>.+?)\s*,?\s+instead"
+                     r"\s*[.!]*\s*$", re.IGNORECASE)
+"""A clause that takes the one before back and says what was meant: "Actually no, move it past the jar instead"."""
+
+
+def instead_of(text: str) -> str | None:
+    """The command an :data:`INSTEAD` clause means in place of the clause before, or None where it is not said so."""
+    m = INSTEAD.match(text)
+    return m.group("meant") if m is not None else None
 
 
 def corrected(text: str, scene: Scene) -> list[str]:

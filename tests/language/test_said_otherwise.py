@@ -99,3 +99,17 @@ def test_more_said_otherwise(plugins, sentence, expect, table):
 def test_more_that_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
         read(sentence, plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Move A away from B. Actually no, move it past B instead.", "slide:past A B"),
+    ("Move A away from B. No wait, push it toward the duck instead.", "push:closer A duck"),
+    ("move A -- no wait, C -- next to the duck", "slide:next-to C duck"),
+])
+def test_a_correction_said_as_one(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+def test_a_correction_that_makes_no_command_is_refused(plugins):
+    with pytest.raises(L2PError):
+        read("Move A away from B. Actually no, the other one instead.", plugins)
