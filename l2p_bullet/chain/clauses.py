@@ -23,18 +23,13 @@ from ..language import (
     known_verbs,
     lenient,
     phrase_tokens,
-    split_verb,
-    strip_polite,
-    tokens,
     trailing_join,
     typos,
 )
-from ..language.extents import take_extent
-from ..language.words import take_pace
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
-from . import corrections, pointing
+from . import apart, corrections, pointing, rephrased
 from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
@@ -147,21 +142,21 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                     raise named(e, f'clause {i} ("{text}")') from None
                 clauses.extend(Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
                 continue
-            extent = _extent_alone(text) if clauses else None
+            extent = apart.extent_alone(text) if clauses else None
             if extent is not None:  # "Move the tin away from the mug. Just a tiny bit though."
-                clauses[-1] = _extended(clauses[-1], extent, plugins)
+                clauses[-1] = apart.extended(clauses[-1], extent, plugins)
                 continue
-            pace = _pace_alone(text, scene)
+            pace = apart.pace_alone(text, scene)
             if pace is not None and (i < len(texts) or clauses):  # "Hurry!! Slide A ...", "... B. Slowly please."
                 if i < len(texts):
                     pending = pace
                 else:
-                    clauses[-1] = _paced(clauses[-1], pace)
+                    clauses[-1] = apart.paced(clauses[-1], pace)
                 continue
             if (i < len(texts) and pointing.about_us(text, scene)) or pointing.asks_nothing(text, scene,
                                                                                              known_verbs()):
                 continue  # "We're setting up for the demo.", "Here's the situation.", "Would you see to that?"
-            done = _done_so(text, clauses[-1]) if clauses else None
+            done = (apart.done_so(text, clauses[-1]) or apart.manner_after(text, clauses[-1])) if clauses else None
             if done is not None:  # "The jar needs to be next to the mug. Slide it over."
                 clauses[-1] = done
                 continue
@@ -173,62 +168,13 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             raise named(e, f'clause {i} ("{text}")') from None
         pieces = [(piece, pointing.set_down(pointing.carried(cmd, show), previous, piece)) for piece, cmd in pieces]
         if pending is not None:
-            pieces, pending = [(piece, _paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces], None
+            pieces = [(piece, apart.paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces]
+            pending = None
         show = None
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
-
-
-def _pace_alone(text: str, scene: Scene) -> str | None:
-    """The pace a clause asks for when it says nothing else ("Hurry!!", "Slowly please"); None otherwise."""
-    keep = frozenset(scene.names)
-    try:
-        words, pace = take_pace(strip_polite(tokens(text), keep), keep)
-    except L2PError:
-        return None
-    return pace if not strip_polite(words, keep) else None
-
-
-def _extent_alone(text: str) -> str | None:
-    """How far a clause asks when it says nothing else ("Just a tiny bit though.", "But only a little"); None
-    otherwise."""
-    words = [w for w in strip_polite(tokens(text)) if w.lower() not in ("though", "but", "only")]
-    rest, extent = take_extent(["_", *words])
-    return extent if rest == ["_"] else None
-
-
-def _extended(clause: Clause, extent: str, plugins: list) -> Clause:
-    """``clause`` asked to go ``extent`` far by the sentence after it; a one-line error where its action takes no such
-    extent or it asked for another."""
-    command = clause.command
-    accepted = registry.extent_table(plugins).get(command.action, frozenset())
-    if command.extent not in (None, extent) or extent not in accepted:
-        raise LanguageError(f'"{clause.text}" cannot also go a {extent} way ("{command.preposition}" takes: '
-                            f"{', '.join(sorted(accepted)) or 'none'})")
-    return replace(clause, command=replace(command, extent=extent))
-
-
-def _paced(clause: Clause, pace: str) -> Clause:
-    """``clause`` at ``pace``; a clause that asks for another pace of its own is a one-line error."""
-    if clause.command.pace not in (None, pace):
-        raise LanguageError(f'"{clause.text}" asks for a {clause.command.pace} pace, and the sentence around it for a '
-                            f"{pace} one; say one of them")
-    return replace(clause, command=replace(clause.command, pace=pace))
-
-
-def _done_so(text: str, before: Clause) -> Clause | None:
-    """The clause before, done in the manner ``text``'s verb names, where ``text`` only says to do it so ("push it
-    there", "slide it over"); None for any other text or a clause before that moved something else."""
-    m = pointing.DO_IT.match(" ".join(strip_polite(text.split())) or text)  # "Just slide it over."
-    if m is None or before.target is not None:
-        return None
-    try:
-        verb, manner, _ = split_verb(m.group("verb").split())
-    except L2PError:
-        return None
-    return replace(before, command=replace(before.command, verb=verb, manner=manner))
 
 
 def _context(previous: Command | None) -> Context | None:
@@ -278,7 +224,7 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
     then clauses about it, or as one of chain/pointing.py's readings; None when none applies."""
     if len(text) > MAX_SENTENCE:
         return None  # a clause too long to read: refused as it stands, at once
-    for said in [pointing.over_and_put(text), *pointing.in_other_words(text), *corrections.corrected(text, scene)]:
+    for said in [rephrased.over_and_put(text), *rephrased.in_other_words(text), *corrections.corrected(text, scene)]:
         if said != text and depth < MAX_CLAUSES:
             try:
                 return [(text, c) for _, c in _resolve_text(said, previous, scene, plugins, depth + 1, context, pair)]
@@ -357,9 +303,11 @@ ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),
 """Of two objects shown together, the one named first and the one named second."""
 
 
-BARE_END = re.compile(r"\s+(?:back\s+)?(?P<word>[a-z]+)(?:\s+again)?\s*[?.!]*\s*$", re.IGNORECASE)
+BARE_END = re.compile(r"\s+(?:back\s+)?(?P<word>[a-z]+)(?:\s+again)?"
+                      r"(?P<far>\s+(?:a\s+(?:little\s+)?bit|a\s+little|slightly|a\s+lot|far))?\s*[?.!]*\s*$",
+                      re.IGNORECASE)
 """A clause that ends with the first word of a two-word phrase and names nothing after it ("Move it away", "bring it
-back closer")."""
+back closer", "move it away a bit")."""
 
 
 def _to_the_anchor(text: str, context: Context | None, plugins: list) -> str | None:
@@ -371,7 +319,8 @@ def _to_the_anchor(text: str, context: Context | None, plugins: list) -> str | N
     word = m.group("word").lower()
     table = registry.phrase_table(plugins)
     phrase = next((p for p in table if p.split()[0] == word and len(p.split()) == 2), None)
-    return None if phrase is None or word in table else f"{text[:m.start()]} {phrase} {context.anchor}"
+    far = m.group("far") or ""  # "move it away a bit": how far before the phrase, where the grammar reads it
+    return None if phrase is None or word in table else f"{text[:m.start()]}{far} {phrase} {context.anchor}"
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
 
 

@@ -36,7 +36,7 @@ TOGETHER = re.compile(r"^\s*(?:(?:far|way|much|a\s+bit)\s+)?too\s+(?:close|near)
                       r"(?:together|to\s+each\s+other)\s*[.!]?\s*$", re.IGNORECASE)
 """What a statement about two objects says when it only points at them: "The mug and the jar are too close
 together"."""
-TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:\s+(?:is|are|'s|sits|stands|sit|stand)(?:\s+(?:sitting|standing))?|'s|'re"
+TOO_CLOSE = re.compile(r"^\s*(?P<what>.+?)(?:(?:\s+(?:is|are|sits|stands|sit|stand)|'s|'re)(?:\s+(?:sitting|standing))?"
                        r"|\s+(?:shouldn't|should\s+not|mustn't)\s+be)\s+(?:both\s+)?"
                        r"(?:(?:far|way|much|a\s+bit|rather|really|quite|very|so|this|that|awfully|kinda)\s+)?"
                        r"(?:(?:too\s+)?(?:close|near)(?:\s+to)?|in\s+the\s+way\s+of)\s+(?P<other>.+?)\s*[.!]?\s*$",
@@ -67,17 +67,13 @@ ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+
 the big, after the small"."""
 AND_SIGNS = re.compile(r"\s+[+&]\s+|\s*,\s*(?:both|each)(?:\s+of\s+them)?\s*,\s*")
 _RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands|\s+moves|\s+goes)"
-GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|until\s+it{_RESTS})\s+(?P<goal>.+)$",
-                        re.IGNORECASE)
+GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|(?:until|till|til|'til)\s+it{_RESTS})"
+                        r"\s+(?P<goal>.+)$", re.IGNORECASE)
+TOUCHING = re.compile(r"^\s*(?:right\s+)?(?:touching|touches|against)\s+(?=\S)", re.IGNORECASE)
+"""A goal said as touching ("until it is touching the prism"): right next to it."""
 """A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
-_PUT_IT = r"\s+and\s+(?:set|put|place|drop|lay)\s+it(?:\s+down)?\s+"
-OVER_TO_AND_PUT = re.compile(rf"\s+over\s+to\s+(?P<to>.+?){_PUT_IT}(?P<how>.+?)(?P<it>\s+it)?\s*[.!?]*\s*$",
-                             re.IGNORECASE)
-OVER_AND_PUT = re.compile(rf"\s+over{_PUT_IT}", re.IGNORECASE)
-"""A carry told as two steps: "carry the mug over to the jar and set it down beside it" is "carry the mug beside
-the jar"; "carry the jar over and set it beside the stone" is "carry the jar beside the stone", and so is
-"carry the jar over to the stone and set it down beside the stone"."""
 DO_IT = re.compile(r"^\s*(?P<verb>[a-z]+(?:\s+up)?)\s+it\s+(?:over\s+)?(?:there|over|so|that\s+way|like\s+that)"
+                   r"(?:\s*,?\s*(?:but\s+)?(?:don't|dont|do\s+not)\s+(?P<not>[a-z]+)\s+it)?"
                    r"\s*[,.!?]*\s*(?:please|pls|lol|thanks)?\s*[.!?]*\s*$", re.IGNORECASE)
 """A motion said after the end it should reach ("The jar needs to be next to the mug. Slide it over."): the
 clause before, in this verb's manner."""
@@ -205,7 +201,7 @@ def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
         and not _names_a_place(text) and not any(c.isdigit() for c in text)
 
 
-HOW_FAR = frozenset({"close", "closer", "far", "farther", "further", "near", "nearer", "touching", "touch", "gap",
+HOW_FAR = frozenset({"close", "far", "farther", "further", "near", "nearer", "touching", "touch", "gap",
                      "bit", "little", "lot", "slightly", "possible", "tight", "distance", "way"})
 """Words by which a clause that names nothing asks how far ("as close as possible"): never read past."""
 
@@ -215,67 +211,6 @@ def _names_a_place(said: str) -> bool:
     stated badly, never only a pointer."""
     return bool(re.search(r"\b(?:to|from|of|past|beyond|around|round|away|beside|by|toward|towards|near|nearer"
                           r"|closer)\b", said, re.IGNORECASE))
-
-
-_AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab)"
-_AIR = r"(?:up\s+)?(?:in|into|through)\s+the\s+air"
-_AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
-IN_THE_AIR = re.compile(rf"^\s*{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
-AIR_FIRST = re.compile(rf"^\s*{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
-"""A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
-in the air the cube and bring it near the bottle"."""
-YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
-"""The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
-yellow cube"."""
-
-
-GIVE_A = re.compile(r"^\s*give\s+(?P<what>.+?)\s+an?\s+(?:(?P<size>little|small|slight|tiny|wee|lil|gentle|soft|"
-                    r"quick|fast)\s+)?(?P<how>push|nudge|shove|poke|tap|bump)\s+(?P<rest>.+)$", re.IGNORECASE)
-GIVE_SIZES = {"little": "a bit", "small": "a bit", "slight": "a bit", "tiny": "a bit", "wee": "a bit", "lil": "a bit",
-              "gentle": "gently", "soft": "gently", "quick": "quickly", "fast": "quickly"}
-"""A push said as a noun with its size or pace: "Give the duck a little shove toward the pot" is "shove the duck a bit
-toward the pot"."""
-
-
-TO_THEN = re.compile(r"^(?P<head>.+?)\s+(?:over\s+)?to\s+(?P<rest>(?:right\s+)?(?:next|beside|alongside|near|nearer"
-                     r"|closer|past|around|round|away)\b.*)$", re.IGNORECASE)
-"""A "to" before the relation it leads to: "Carry the donut to next to the small cube", "move it over to right beside
-B"."""
-OVER_TO = re.compile(r"^(?P<head>.+?)\s+over\s+to\s+(?P<rest>\S.*)$", re.IGNORECASE)
-"""A motion said by where it goes to and nothing more: "bring the ring over to the lego" brings it closer; where more
-is said ("over to the other side of", "over to B and set it down beside it") those readings win first."""
-
-
-def in_other_words(text: str) -> list[str]:
-    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
-    :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve
-    is no reading)."""
-    out = []
-    m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
-    if m is not None:
-        out.append(f"carry {m.group('what')} {m.group('rest')}")
-    m = GIVE_A.match(text)
-    if m is not None:
-        said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
-        out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
-    m = YOU_VERB.match(text)
-    if m is not None:
-        out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
-    m = TO_THEN.match(text)
-    if m is not None:
-        out.append(f"{m.group('head')} {m.group('rest')}")
-    m = OVER_TO.match(text)
-    if m is not None and TO_THEN.match(text) is None:
-        out.append(f"{m.group('head')} toward {m.group('rest')}")
-    return out
-
-
-def over_and_put(text: str) -> str:
-    """``text`` with a carry told as two steps (:data:`OVER_TO_AND_PUT`) said as one; else ``text`` itself."""
-    m = OVER_TO_AND_PUT.search(text)
-    if m is not None:  # "... beside it": beside what it was carried over to; "... beside the red cube": that
-        return f"{text[:m.start()]} {m.group('how')}" + (f" {m.group('to')}" if m.group("it") else "")
-    return OVER_AND_PUT.sub(" ", text, count=1)
 
 
 def carried(command: Command, after: Shown | None) -> Command:
@@ -328,12 +263,18 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
     if m is not None:
         try:
             head = resolve(m.group("head"), scene, plugins, context)
-            goal = resolve(f"{head.verb} {head.mover} {m.group('goal')}", scene, plugins,
-                           Context(head.anchor, head.mover))  # "beside it": the block it moved toward
+            goal = resolve(f"{head.verb} {head.mover} {TOUCHING.sub('right next to ', m.group('goal'))}", scene,
+                           plugins, Context(head.anchor, head.mover))  # "beside it": the block it moved toward
         except L2PError:
             goal = None
         if goal is not None:
             return [replace(goal, manner=head.manner, pace=head.pace or goal.pace, sentence=text)]
+        try:  # "Slide the teacup over until it is touching the prism": the motion names no place of its own
+            said = re.sub(r"(?i)\s+over$", "", m.group("head"))
+            return [replace(resolve(f"{said} {TOUCHING.sub('right next to ', m.group('goal'))}", scene, plugins,
+                                    context), sentence=text)]
+        except L2PError:
+            pass
     m = ORDER.search(text)
     first = m.group("first") or m.group("lead") if m is not None and m.start() > 0 else None
     text = text[:m.start()] if first is not None else text

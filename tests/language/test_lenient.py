@@ -26,7 +26,7 @@ def test_a_command_among_unknown_words_is_read(plugins, sentence, expect):
 
 @pytest.mark.parametrize("sentence", [
     "Push A, not B, toward C.",                     # a negation may pick another object
-    "could you move A toward B - no wait, toward C",  # a correction not said as one ("sorry", "I mean")
+    "could you move A toward B - or rather C",      # a correction not said as one ("sorry", "no wait")
     "Please, can you pass A by B?",                 # "by": beside or past, and "pass" says which
     "Slide A over toward B so they touch.",         # "touch" asks for a tight gap
     "I noticed the duck standing next to C yesterday.",  # a statement asks for nothing

@@ -105,6 +105,7 @@ def test_more_that_stays_refused(plugins, sentence):
     ("Move A away from B. Actually no, move it past B instead.", "slide:past A B"),
     ("Move A away from B. No wait, push it toward the duck instead.", "push:closer A duck"),
     ("move A -- no wait, C -- next to the duck", "slide:next-to C duck"),
+    ("could you move A toward B - no wait, toward C", "slide:closer A C"),
 ])
 def test_a_correction_said_as_one(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
@@ -113,3 +114,24 @@ def test_a_correction_said_as_one(plugins, sentence, expect):
 def test_a_correction_that_makes_no_command_is_refused(plugins):
     with pytest.raises(L2PError):
         read("Move A away from B. Actually no, the other one instead.", plugins)
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("Move A past B. Don't lift it.", "slide:past A B"),
+    ("Move A toward B. Do it by pushing.", "push:closer A B"),
+    ("It would be great if A ended up past B. Carry it over, don't drag it.", "carry:past A B"),
+    ("push A toward B till it's right next to it", "push:next-to A B extent=right"),
+    ("Slide A over until it is touching B.", "slide:next-to A B extent=right"),
+    ("A's sitting too close to B, move it away a bit.", "slide:away A B extent=little"),
+])
+def test_how_and_how_far_said_apart(plugins, sentence, expect):
+    assert read(sentence, plugins) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "Carry A past B. Don't lift it.",                        # a carry is lifted
+    "Push A toward B. Push it over, don't push it.",          # says and rules out the same manner
+])
+def test_a_manner_said_apart_that_contradicts_is_refused(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins)

@@ -1,0 +1,101 @@
+"""What a sentence says about a clause apart from it: a pace or how far said alone ("Hurry!!", "Just a tiny bit
+though."), a motion said after the end it should reach ("The jar needs to be next to the mug. Slide it over."), a
+manner said apart ("Don't lift it.", "do it by carrying"). ``chain/clauses.py`` asks these where a clause does not
+read as a command of its own.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+from ..core.scene import Scene
+from ..errors import L2PError, LanguageError
+from ..language import known_verbs, split_verb, strip_polite, tokens
+from ..language.extents import take_extent
+from ..language.words import take_pace, verb_of_gerund
+from ..plugins import registry
+from . import pointing
+from .clause import Clause
+
+
+def pace_alone(text: str, scene: Scene) -> str | None:
+    """The pace a clause asks for when it says nothing else ("Hurry!!", "Slowly please"); None otherwise."""
+    keep = frozenset(scene.names)
+    try:
+        words, pace = take_pace(strip_polite(tokens(text), keep), keep)
+    except L2PError:
+        return None
+    return pace if not strip_polite(words, keep) else None
+
+
+def extent_alone(text: str) -> str | None:
+    """How far a clause asks when it says nothing else ("Just a tiny bit though.", "But only a little"); None
+    otherwise."""
+    words = [w for w in strip_polite(tokens(text)) if w.lower() not in ("though", "but", "only")]
+    rest, extent = take_extent(["_", *words])
+    return extent if rest == ["_"] else None
+
+
+def extended(clause: Clause, extent: str, plugins: list) -> Clause:
+    """``clause`` asked to go ``extent`` far by the sentence after it; a one-line error where its action takes no such
+    extent or it asked for another."""
+    command = clause.command
+    accepted = registry.extent_table(plugins).get(command.action, frozenset())
+    if command.extent not in (None, extent) or extent not in accepted:
+        raise LanguageError(f'"{clause.text}" cannot also go a {extent} way ("{command.preposition}" takes: '
+                            f"{', '.join(sorted(accepted)) or 'none'})")
+    return replace(clause, command=replace(command, extent=extent))
+
+
+def paced(clause: Clause, pace: str) -> Clause:
+    """``clause`` at ``pace``; a clause that asks for another pace of its own is a one-line error."""
+    if clause.command.pace not in (None, pace):
+        raise LanguageError(f'"{clause.text}" asks for a {clause.command.pace} pace, and the sentence around it for a '
+                            f"{pace} one; say one of them")
+    return replace(clause, command=replace(clause.command, pace=pace))
+
+
+def done_so(text: str, before: Clause) -> Clause | None:
+    """The clause before, done in the manner ``text``'s verb names, where ``text`` only says to do it so ("push it
+    there", "slide it over"); None for any other text or a clause before that moved something else."""
+    m = pointing.DO_IT.match(" ".join(strip_polite(text.split())) or text)  # "Just slide it over."
+    if m is None or before.target is not None:
+        return None
+    try:
+        verb, manner, _ = split_verb(m.group("verb").split())
+        ruled_out = split_verb([m.group("not")])[1] if m.group("not") else None  # "Carry it over, don't drag it."
+    except L2PError:
+        return None
+    if ruled_out == manner:
+        return None
+    return replace(before, command=replace(before.command, verb=verb, manner=manner))
+
+
+NOT_LIFTED = re.compile(r"^\s*(?:and\s+)?(?:please\s+)?(?:don't|dont|do\s+not|never|no)\s+"
+                        r"(?:lift|lifting|carry|carrying|pick|picking)(?:\s+it)?(?:\s+up)?(?:\s+please)?\s*[.!]*\s*$",
+                        re.IGNORECASE)
+BY_MANNER = re.compile(r"^\s*(?:and\s+)?(?:do\s+it\s+|please\s+)?by\s+(?P<how>[a-z]+ing)(?:\s+it)?\s*[.!]*\s*$",
+                       re.IGNORECASE)
+"""A manner said apart after its clause: "Don't lift it." keeps a slide a slide; "do it by carrying" makes it a
+carry."""
+
+
+def manner_after(text: str, before: Clause) -> Clause | None:
+    """The clause before in the manner ``text`` says apart (:data:`NOT_LIFTED`, :data:`BY_MANNER`); None for any other
+    text, or where it rules out the manner the clause before asked for."""
+    if before.target is not None:
+        return None
+    if NOT_LIFTED.match(text):
+        return before if before.command.manner == "slide" else None
+    m = BY_MANNER.match(text)
+    if m is None:
+        return None
+    verb = verb_of_gerund(m.group("how").lower(), known_verbs())
+    try:
+        verb, manner, _ = split_verb([verb]) if verb is not None else (None, None, None)
+    except L2PError:
+        return None
+    if verb is None:
+        return None
+    return replace(before, command=replace(before.command, verb=verb, manner=manner))

@@ -1,0 +1,77 @@
+"""A command said in other words, said again the usual way before it is resolved: a carry told by where the object
+goes on the way ("Take the duck in the air and put it down near the ball"), a push said as a noun ("Give the duck a
+little shove toward the pot"), the object before "you" and the verb ("The ball you move closer to the cube"), "over to"
+("bring the ring over to the lego"), "to next to", and a carry told as two steps ("carry the mug over to the jar and set
+it down beside it"). ``chain/clauses.py`` resolves each; one that does not resolve is no reading.
+"""
+
+from __future__ import annotations
+
+import re
+
+_PUT_IT = r"\s+and\s+(?:set|put|place|drop|lay)\s+it(?:\s+down)?\s+"
+OVER_TO_AND_PUT = re.compile(rf"\s+over\s+to\s+(?P<to>.+?){_PUT_IT}(?P<how>.+?)(?P<it>\s+it)?\s*[.!?]*\s*$",
+                             re.IGNORECASE)
+OVER_AND_PUT = re.compile(rf"\s+over{_PUT_IT}", re.IGNORECASE)
+"""A carry told as two steps: "carry the mug over to the jar and set it down beside it" is "carry the mug beside
+the jar"; "carry the jar over and set it beside the stone" is "carry the jar beside the stone", and so is
+"carry the jar over to the stone and set it down beside the stone"."""
+_AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab)"
+_AIR = r"(?:up\s+)?(?:in|into|through)\s+the\s+air"
+_AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
+IN_THE_AIR = re.compile(rf"^\s*{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
+AIR_FIRST = re.compile(rf"^\s*{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
+"""A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
+in the air the cube and bring it near the bottle"."""
+YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
+"""The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
+yellow cube"."""
+
+
+GIVE_A = re.compile(r"^\s*give\s+(?P<what>.+?)\s+an?\s+(?:(?P<size>little|small|slight|tiny|wee|lil|gentle|soft|"
+                    r"quick|fast)\s+)?(?P<how>push|nudge|shove|poke|tap|bump)\s+(?P<rest>.+)$", re.IGNORECASE)
+GIVE_SIZES = {"little": "a bit", "small": "a bit", "slight": "a bit", "tiny": "a bit", "wee": "a bit", "lil": "a bit",
+              "gentle": "gently", "soft": "gently", "quick": "quickly", "fast": "quickly"}
+"""A push said as a noun with its size or pace: "Give the duck a little shove toward the pot" is "shove the duck a bit
+toward the pot"."""
+
+
+TO_THEN = re.compile(r"^(?P<head>.+?)\s+(?:over\s+)?to\s+(?P<rest>(?:right\s+)?(?:next|beside|alongside|near|nearer"
+                     r"|closer|past|around|round|away)\b.*)$", re.IGNORECASE)
+"""A "to" before the relation it leads to: "Carry the donut to next to the small cube", "move it over to right beside
+B"."""
+OVER_TO = re.compile(r"^(?P<head>.+?)\s+over\s+to\s+(?P<rest>\S.*)$", re.IGNORECASE)
+"""A motion said by where it goes to and nothing more: "bring the ring over to the lego" brings it closer; where more
+is said ("over to the other side of", "over to B and set it down beside it") those readings win first."""
+
+
+def in_other_words(text: str) -> list[str]:
+    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
+    :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve
+    is no reading)."""
+    out = []
+    m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
+    if m is not None:
+        out.append(f"carry {m.group('what')} {m.group('rest')}")
+    m = GIVE_A.match(text)
+    if m is not None:
+        said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
+        out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
+    m = YOU_VERB.match(text)
+    if m is not None:
+        out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
+    m = TO_THEN.match(text)
+    if m is not None:
+        out.append(f"{m.group('head')} {m.group('rest')}")
+    m = OVER_TO.match(text)
+    if m is not None and TO_THEN.match(text) is None:
+        out.append(f"{m.group('head')} toward {m.group('rest')}")
+    return out
+
+
+def over_and_put(text: str) -> str:
+    """``text`` with a carry told as two steps (:data:`OVER_TO_AND_PUT`) said as one; else ``text`` itself."""
+    m = OVER_TO_AND_PUT.search(text)
+    if m is not None:  # "... beside it": beside what it was carried over to; "... beside the red cube": that
+        return f"{text[:m.start()]} {m.group('how')}" + (f" {m.group('to')}" if m.group("it") else "")
+    return OVER_AND_PUT.sub(" ", text, count=1)
