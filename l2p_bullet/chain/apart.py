@@ -92,10 +92,10 @@ def manner_after(text: str, before: Clause) -> Clause | None:
     if m is None:
         return None
     verb = verb_of_gerund(m.group("how").lower(), known_verbs())
-    try:
-        verb, manner, _ = split_verb([verb]) if verb is not None else (None, None, None)
-    except L2PError:
-        return None
     if verb is None:
+        return None
+    try:
+        verb, manner, _ = split_verb([verb])
+    except L2PError:
         return None
     return replace(before, command=replace(before.command, verb=verb, manner=manner))

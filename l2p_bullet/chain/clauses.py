@@ -262,9 +262,9 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
     rest = m.group("rest")
     if len(shows.objects) == 2 and all(said.search(rest) for said in ORDINALS):
         # "the stone and the teddy: move the first one ..., the second one ...": "it" after them is asked about
-        rest = ORDINALS[1].sub(shows.objects[1], ORDINALS[0].sub(shows.objects[0], rest))
         if re.search(r"\bit\b", rest, re.IGNORECASE):
             return None
+        rest = _ordinals(rest, shows)
     try:
         return _resolve_text(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:

@@ -60,11 +60,11 @@ def in_other_words(text: str) -> list[str]:
     m = YOU_VERB.match(text)
     if m is not None:
         out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
-    m = TO_THEN.match(text)
-    if m is not None:
-        out.append(f"{m.group('head')} {m.group('rest')}")
+    to_then = TO_THEN.match(text)
+    if to_then is not None:
+        out.append(f"{to_then.group('head')} {to_then.group('rest')}")
     m = OVER_TO.match(text)
-    if m is not None and TO_THEN.match(text) is None:
+    if m is not None and to_then is None:
         out.append(f"{m.group('head')} toward {m.group('rest')}")
     return out
 

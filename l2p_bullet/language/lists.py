@@ -14,7 +14,7 @@ from ..core.scene import Scene
 from ..errors import LanguageError
 from .grammar import MAX_SENTENCE, phrase_tokens, tokens
 from .reference_words import CONJUNCTIONS
-from .references import resolve_object, try_object
+from .references import number_said, resolve_object, try_object
 from .words import strip_polite
 
 
@@ -60,7 +60,6 @@ GROUP = re.compile(r"\bthe\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?(?P<kin
                    re.IGNORECASE)
 GROUP_ITEMS = re.compile(r"\s*(?::|\s-+|[\u2013\u2014]|,|\()\s*(?P<items>[^:;()\-\u2013\u2014]+?)"
                          r"\s*(?:-+|[\u2013\u2014]|\))?\s*$")
-COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
 """A composite's sentence said in other words: "in a neat row", "line A, B and C up in a row", "a row of the following
 objects: ...", and a group named first and its items after ("Put the three cubes in a row: red, blue, black", "Line
 the four cubes up - big red, small red, blue, purple -"), each item the group's noun with the words said."""
@@ -84,7 +83,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
             continue
         items = [i.strip(" .!?") for part in m.group("items").split(",") for i in _split_and(part) if i.strip(" .!?")]
         count = group.group("count")
-        said_count = COUNTS.get(count.lower(), int(count) if count.isdigit() else 0) if count else len(items)
+        said_count = number_said(count, len(items))
         long = any(len([w for w in i.split() if w.lower() != "the"]) > 3 for i in items)
         if len(items) < 2 or said_count != len(items) or long:
             return text

@@ -144,6 +144,13 @@ two boxes"."""
 COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
 
 
+def number_said(count: str | None, otherwise: int) -> int:
+    """How many a group's number word or digits say ("three", "3"); ``otherwise`` where none is said."""
+    if not count:
+        return otherwise
+    return COUNTS.get(count.lower(), int(count) if count.isdigit() else 0)
+
+
 def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ...] | None:
     """The objects a plural description fits ("the cubes", "2 rectangular blocks"), in the scene's order; None where
     it fits fewer than two, or not the number said."""
@@ -156,8 +163,7 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
         fits = candidates(text, words, tuple(w.lower() for w in words), scene)
     except (LanguageError, UnknownObjectError):
         return None
-    said = COUNTS.get(count.lower(), int(count) if count.isdigit() else 0) if count else len(fits)
-    return tuple(o.name for o in fits) if len(fits) >= 2 and said == len(fits) else None
+    return tuple(o.name for o in fits) if len(fits) >= 2 and number_said(count, len(fits)) == len(fits) else None
 
 
 CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit"})
