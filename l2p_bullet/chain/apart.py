@@ -11,9 +11,10 @@ from dataclasses import replace
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from ..language import known_verbs, split_verb, strip_polite, tokens
+from ..language import Command, known_verbs, split_verb, strip_polite, tokens
 from ..language.extents import take_extent
 from ..language.words import take_pace, verb_of_gerund
+from ..pipeline import resolve
 from ..plugins import registry
 from . import pointing
 from .clause import Clause
@@ -62,6 +63,8 @@ def done_so(text: str, before: Clause) -> Clause | None:
     m = pointing.DO_IT.match(" ".join(strip_polite(text.split())) or text)  # "Just slide it over."
     if m is None or before.target is not None:
         return None
+    if m.group("tail") is None and _has_verb(before.text):
+        return None  # "Move A past B. Then move it.": a step left unsaid, not how to do the one before
     try:
         verb, manner, _ = split_verb(m.group("verb").split())
         ruled_out = split_verb([m.group("not")])[1] if m.group("not") else None  # "Carry it over, don't drag it."
@@ -70,6 +73,15 @@ def done_so(text: str, before: Clause) -> Clause | None:
     if ruled_out == manner:
         return None
     return replace(before, command=replace(before.command, verb=verb, manner=manner))
+
+
+def _has_verb(text: str) -> bool:
+    """Whether a clause's words start with a verb (after politeness): "N right up against the bar" has none."""
+    try:
+        split_verb(strip_polite(text.split()) or text.split())
+    except L2PError:
+        return False
+    return True
 
 
 NOT_LIFTED = re.compile(r"^\s*(?:and\s+)?(?:please\s+)?(?:don't|dont|do\s+not|never|no)\s+"
@@ -99,3 +111,19 @@ def manner_after(text: str, before: Clause) -> Clause | None:
     except L2PError:
         return None
     return replace(before, command=replace(before.command, verb=verb, manner=manner))
+
+
+def away_from_shown(text: str, show: pointing.Shown | None, scene: Scene, plugins: list) -> list[Command] | None:
+    """"The mug and the domino are too close together. Fix that by moving the mug.": a clause that only moves one of
+    two objects said to be too close moves it away from the other; None where it does not read so."""
+    if show is None or not show.crowded or len(show.objects) != 2:
+        return None
+    read = []
+    for other in show.objects:
+        try:
+            cmd = resolve(f"{text.rstrip(' .!?')} away from {other}", scene, plugins, None)
+        except L2PError:
+            continue
+        if cmd.mover in show.objects and cmd.mover != other:
+            read.append(replace(cmd, sentence=text))
+    return read if len(read) == 1 else None

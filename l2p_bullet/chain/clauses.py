@@ -26,6 +26,7 @@ from ..language import (
     trailing_join,
     typos,
 )
+from ..language.descriptions import naming_words
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -57,7 +58,7 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     except L2PError:
         if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
             raise
-        known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS)
+        known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
         mended = typos.mend(ASIDE.sub("", sentence), known, scene.names)
         if mended != sentence:
             try:
@@ -156,6 +157,11 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             if (i < len(texts) and pointing.about_us(text, scene)) or pointing.asks_nothing(text, scene,
                                                                                              known_verbs()):
                 continue  # "We're setting up for the demo.", "Here's the situation.", "Would you see to that?"
+            away = apart.away_from_shown(text, show, scene, plugins)
+            if away is not None:  # "A and B are too close together. Fix that by moving A."
+                clauses.extend(Clause(len(clauses) + 1, text, cmd) for cmd in away)
+                show = None
+                continue
             done = (apart.done_so(text, clauses[-1]) or apart.manner_after(text, clauses[-1])) if clauses else None
             if done is not None:  # "The jar needs to be next to the mug. Slide it over."
                 clauses[-1] = done

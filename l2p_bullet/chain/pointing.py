@@ -21,6 +21,7 @@ from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
 from ..language.references import group_of, try_object, two_references
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
+from .goal_after import goal_after
 
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
          r"|take|grab|get|pick\s+up|lift)")
@@ -66,17 +67,13 @@ ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+
 """Which of two objects moved alike goes first, said at the end: ", the red one first", ", white first", ", first
 the big, after the small"."""
 AND_SIGNS = re.compile(r"\s+[+&]\s+|\s*,\s*(?:both|each)(?:\s+of\s+them)?\s*,\s*")
-_RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands|\s+moves|\s+goes)"
-GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|(?:until|till|til|'til)\s+it{_RESTS})"
-                        r"\s+(?P<goal>.+)$", re.IGNORECASE)
-TOUCHING = re.compile(r"^\s*(?:right\s+)?(?:touching|touches|against)\s+(?=\S)", re.IGNORECASE)
-"""A goal said as touching ("until it is touching the prism"): right next to it."""
-"""A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
-DO_IT = re.compile(r"^\s*(?P<verb>[a-z]+(?:\s+up)?)\s+it\s+(?:over\s+)?(?:there|over|so|that\s+way|like\s+that)"
+DO_IT = re.compile(r"^\s*(?P<verb>[a-z]+(?:\s+up)?)\s+it"
+                   r"(?P<tail>\s+(?:over\s+)?(?:there|over|so|that\s+way|like\s+that))?"
                    r"(?:\s*,?\s*(?:but\s+)?(?:don't|dont|do\s+not)\s+(?P<not>[a-z]+)\s+it)?"
                    r"\s*[,.!?]*\s*(?:please|pls|lol|thanks)?\s*[.!?]*\s*$", re.IGNORECASE)
-"""A motion said after the end it should reach ("The jar needs to be next to the mug. Slide it over."): the
-clause before, in this verb's manner."""
+"""A motion said after the end it should reach ("The jar needs to be next to the mug. Slide it over."): the clause
+before, in this verb's manner; "slide it." alone only after an end said without a verb ("N right up against the bar.
+slide it."), as after "Move A past B." it is a step left unsaid."""
 NOT_THAT = re.compile(r"\s*,\s*(?:but\s+)?(?:don't|dont|do\s+not|never)\s+(?:carry|lift|drag|push|slide|shove)"
                       r"(?:\s+it)?\s*,\s*", re.IGNORECASE)
 """A manner ruled out between the verb and the object: "Slide, don't carry, the cylinder ..." is a slide."""
@@ -107,6 +104,7 @@ class Shown:
     lifted: bool = False
     about: bool = False  # the first object is the one talked about, the second where it is wrong ("too close to")
     other: str | None = None  # where two objects talked about are wrong ("A and B are too close to C"): "it" next
+    crowded: bool = False  # said to be too close: moving one of them alone next moves it away from the other
 
     @property
     def context(self) -> Context:
@@ -131,7 +129,10 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     """The objects ``text`` only shows ("See the cylinder?", "You see the red and the blue cubes?"), or None."""
     now = NOW_SAID.match(text)
     text = now.group("rest") if now is not None else text
-    text = " ".join(strip_polite(text.split(), frozenset(scene.names))) or text  # "Please lift the blue cup."
+    said = [w.rstrip(":") for w in text.split()]  # "Here's the thing: the cup is ...", "Please lift the blue cup."
+    kept = strip_polite(said, frozenset(scene.names))
+    start = next((i for i in range(len(said) - len(kept) + 1) if said[i:i + len(kept)] == kept), 0)
+    text = " ".join(text.split()[start:start + len(kept)]) if kept else text
     group = group_said(text, scene)
     if group is not None:
         return Shown(group)
@@ -141,7 +142,7 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
         what, other = _objects(m.group("what"), scene, context), _objects(m.group("other"), scene, context)
         if what is not None and other is not None and len(other) == 1 and other[0] not in what:
             if len(what) == 1:
-                return Shown((what[0], other[0]), about=True)
+                return Shown((what[0], other[0]), about=True, crowded=True)
             return Shown(what, about=True, other=other[0])  # "The teddy and the rock are both too close to it"
     m = SHOWN.match(text)
     if m is not None:
@@ -151,7 +152,10 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     said = STATEMENT.match(text) if objects is None and now is not None else None
     if said is not None:  # "Right now the ring is far from the cone": how the table is; it points at the ring
         objects = _objects(said.group("what"), scene, context)
-    return None if objects is None else Shown(objects)
+    told = STATEMENT.match(text)
+    crowded = told is not None and TOGETHER.match(told.group("said")) is not None and objects is not None \
+        and len(objects) == 2
+    return None if objects is None else Shown(objects, crowded=crowded)
 
 
 def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:
@@ -259,22 +263,9 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
             return [resolve(NOT_THAT.sub(" ", text, count=1), scene, plugins, context)]
         except L2PError:
             pass
-    m = GOAL_AFTER.match(text)
-    if m is not None:
-        try:
-            head = resolve(m.group("head"), scene, plugins, context)
-            goal = resolve(f"{head.verb} {head.mover} {TOUCHING.sub('right next to ', m.group('goal'))}", scene,
-                           plugins, Context(head.anchor, head.mover))  # "beside it": the block it moved toward
-        except L2PError:
-            goal = None
-        if goal is not None:
-            return [replace(goal, manner=head.manner, pace=head.pace or goal.pace, sentence=text)]
-        try:  # "Slide the teacup over until it is touching the prism": the motion names no place of its own
-            said = re.sub(r"(?i)\s+over$", "", m.group("head"))
-            return [replace(resolve(f"{said} {TOUCHING.sub('right next to ', m.group('goal'))}", scene, plugins,
-                                    context), sentence=text)]
-        except L2PError:
-            pass
+    reached = goal_after(text, scene, plugins, context)
+    if reached is not None:
+        return reached
     m = ORDER.search(text)
     first = m.group("first") or m.group("lead") if m is not None and m.start() > 0 else None
     text = text[:m.start()] if first is not None else text

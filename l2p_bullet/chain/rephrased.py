@@ -1,8 +1,9 @@
 """A command said in other words, said again the usual way before it is resolved: a carry told by where the object
 goes on the way ("Take the duck in the air and put it down near the ball"), a push said as a noun ("Give the duck a
 little shove toward the pot"), the object before "you" and the verb ("The ball you move closer to the cube"), "over to"
-("bring the ring over to the lego"), "to next to", and a carry told as two steps ("carry the mug over to the jar and set
-it down beside it"). ``chain/clauses.py`` resolves each; one that does not resolve is no reading.
+("bring the ring over to the lego"), "to" an object ("move the roll to the milk"), "to next to", and a carry told as
+two steps ("carry the mug over to the jar and set it down beside it"). ``chain/clauses.py`` resolves each; one that
+does not resolve is no reading.
 """
 
 from __future__ import annotations
@@ -45,6 +46,13 @@ OVER_TO = re.compile(r"^(?P<head>.+?)\s+over\s+to\s+(?P<rest>\S.*)$", re.IGNOREC
 is said ("over to the other side of", "over to B and set it down beside it") those readings win first."""
 
 
+TO_OBJECT = re.compile(r"^(?P<head>.+?)\s+to\s+(?P<rest>(?:the|a|an)\s+(?!(?:right|left|back|front|rear|far|near"
+                       r"|middle|centre|center|corner|edge|side|end|top|bottom|other|same|table|robot)\b)\S.*)$",
+                       re.IGNORECASE)
+"""A motion said by the object it goes to: "Move the roll to the milk" brings it closer, as "over to" does; never a
+place ("to the corner", "to the right of"), which no action takes."""
+
+
 def in_other_words(text: str) -> list[str]:
     """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
     :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve
@@ -65,6 +73,9 @@ def in_other_words(text: str) -> list[str]:
         out.append(f"{to_then.group('head')} {to_then.group('rest')}")
     m = OVER_TO.match(text)
     if m is not None and to_then is None:
+        out.append(f"{m.group('head')} toward {m.group('rest')}")
+    m = TO_OBJECT.match(text) if m is None and to_then is None else None
+    if m is not None:
         out.append(f"{m.group('head')} toward {m.group('rest')}")
     return out
 

@@ -19,18 +19,23 @@ from .places import (
     outline_sides,
 )
 from .reference_words import (
+    BLOCK_KINDS,
     BLOCK_SHAPES,
     BLOCK_WORDS,
+    BOX_KINDS,
     COLOR_SYNONYMS,
+    COLOUR_NOUNS,
+    DETERMINERS,
     FUNCTION_WORDS,
     NEAR_COLOURS,
     NOUNS,
+    ROUND_KINDS,
     SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SOFT_ADJECTIVES,
     STRICT_SHAPES,
 )
-from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_groups, kind_words_of, scene_key
+from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS, kind_groups, kind_words_of, kinds_of, scene_key
 
 
 def describe(scene: Scene) -> str:
@@ -100,11 +105,22 @@ def said_measure(words: list[str], low: tuple[str, ...]) -> tuple[list[str], tup
     return words, low, None
 
 
+def _colour_of_compound(word: str) -> str:
+    """A colour said with a shade before it ("lime-green", "sky-blue", "dark-red"): the colour; else ``word``."""
+    head, _, last = word.rpartition("-")
+    return last if head and (last in COLORS or last in COLOR_SYNONYMS) else word
+
+
 def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
                 determined: bool = True) -> list[SceneObject]:
     """The objects the name, colour and shape words of a description allow (size words and "block"'s preference
     are for :func:`described`); an unknown word is a one-line error."""
     names = name_words(scene)
+    low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
+    said = [w for w in low if w not in DETERMINERS]
+    if len(said) == 1 and said[0] in COLOUR_NOUNS and said[0] not in names:
+        raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
+                                 f'say "the {said[0]} one" or name it')
     drop = SOFT_ADJECTIVES
     heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can": named so or a cylinder
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
@@ -127,7 +143,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
              | {"things", "objects", "ones"} | set(names) | set(groups))
     unknown = [w for w in low if w not in known]
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
-            and low[0] not in FUNCTION_WORDS:
+            and low[0] not in FUNCTION_WORDS and low[0] not in KIND_SYNONYMS:  # "the triangular toy": another kind
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
     if unknown or not (colours or named or kinds or shapes or shaped or sized or set(low) & (NOUNS | BLOCK_WORDS)):
         unknown_object(text, words, low, scene)
@@ -147,15 +163,17 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         if strict:
             fits = [o for o in fits if o.shape in strict]
         elif colours:  # "the white cube", "the red box": block-shaped, never the white mug or a cylinder
-            fits = [o for o in fits if o.shape in BLOCK_SHAPES]
+            fits = [o for o in fits if o.shape in BLOCK_SHAPES or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
             if len(fits) > 1 and ("cube" in shapes or set(low) & LONG_NOUNS):
                 # "the blue cube" beside a long blue beam is the cube-like one, "the blue stick" the long one
                 kept = [o for o in fits if _cube_like(o) == ("cube" in shapes)]
                 fits = kept if len(kept) == 1 else fits
-        else:
-            fits = [o for o in fits if o.shape in shapes]
+        else:  # "the box": a box, or a mesh that is one ("the cereal box")
+            fits = [o for o in fits if o.shape in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
     if shaped:
-        fits = [o for o in fits if o.shape in shaped]
+        fits = [o for o in fits if o.shape in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
+    if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
+        fits = [o for o in fits if o.shape != "mesh" or kinds_of(o) & BLOCK_KINDS]
     return fits
 
 

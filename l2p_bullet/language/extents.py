@@ -82,7 +82,17 @@ def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:
     for k in sorted(EXTENT_TAILS, key=len, reverse=True):
         if len(low) > len(k) and tuple(low[-len(k):]) == k:
             return after[: -len(k)], EXTENT_TAILS[k]
+    for k in sorted(EXTENTS, key=len, reverse=True):  # "..., but only a smidge", "... just a tad"
+        if EXTENTS[k] == "little" and len(low) > len(k) and tuple(low[-len(k):]) == k:
+            head = low[:-len(k)]
+            said = next((q for q in HEDGES if len(head) > len(q) and tuple(head[-len(q):]) == q), None)
+            if said is not None:
+                return after[: -len(k) - len(said)], "little"
     return after, None
+
+
+HEDGES = (("but", "only"), ("but", "just"), ("only",), ("just",))
+"""Words that, before a small extent closing the clause, say it is all that is asked ("but only a smidge")."""
 
 
 FILLERS = frozenset({"like", "kinda", "sorta", "basically", "literally"})

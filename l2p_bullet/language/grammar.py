@@ -25,14 +25,15 @@ from dataclasses import dataclass, replace
 from ..core.scene import Scene
 from ..core.vocabulary import normalize_phrase
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
+from ..manners import registry as manners
 from . import lenient
+from .anchors import measured_context, mover_in_relation, noun_carried, twin_of
 from .descriptions import naming_words
 from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_tail
-from .pronouns import Context, sized_twin
+from .pronouns import Context
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
-from .references import measured_from, object_pairs, resolve_object, try_object
-from .synonyms import SIZE_WORDS
-from .verbs import EXAMPLE, _on_the_table, _verb_patterns, known_verbs, split_verb
+from .references import object_pairs, resolve_object, try_object
+from .verbs import EXAMPLE, IN_THE_AIR, _on_the_table, _verb_patterns, _without, known_verbs, split_verb
 from .words import (
     by_gerund,
     drop_frames,
@@ -84,7 +85,7 @@ class Command:
         return self.anchors[1:]
 
 
-ARROWS = frozenset({"->", "-->", "=>", "\u2192", "-", "--", "\u2013", "\u2014"})
+ARROWS = frozenset({"->", "-->", "=>", "=", "\u2192", "-", "--", "\u2013", "\u2014"})
 """Arrows typed for "goes" ("the mug -> around the box") and lone dashes: read past, leaving a command without its
 verb."""
 
@@ -153,6 +154,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
             return replace(cmd, pace=cmd.pace or pace, sentence=sentence.strip())
         except (LanguageError, UnknownObjectError):
             raise no_verb from None
+    if manner == manners.DEFAULT and verb.lower() in NEUTRAL_VERBS and _without(rest, IN_THE_AIR) != rest:
+        manner = "carry"  # "Move the small red cube through the air away from the bar": a carry
     rest = _on_the_table(rest, manner, sentence)
     if not rest:
         raise LanguageError(f'"{sentence.strip()}" does not say what to {verb}; {EXAMPLE}')
@@ -172,9 +175,10 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
                 if closing is not None and extent not in (None, closing):
                     raise LanguageError(f'"{sentence.strip()}" asks for a {extent} and a {closing} extent; say one')
                 said, extent = said or closing, extent or closing
-                twin = _twin_of(after, mover, before, scene)
+                twin = twin_of(after, mover, before, scene)
                 refs = (twin,) if twin is not None else _references(
-                    after, scene, phrase, (anchors or {}).get(action, 1), context or _measured_context(before, scene))
+                    noun_carried(after, before), scene, phrase, (anchors or {}).get(action, 1),
+                    context or measured_context(before, scene) or mover_in_relation(after, mover))
             except (LanguageError, UnknownObjectError) as e:
                 first_error = first_error or e
                 continue
@@ -202,6 +206,9 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
     raise _unknown_preposition(rest, middle, phrases, verb)
 
 
+NEUTRAL_VERBS = frozenset({"move", "take", "bring", "get", "shift", "put", "place", "transport", "translate"})
+"""Verbs that say nothing of how: with words that lift the object ("through the air") they are a carry."""
+
 TOO_END = re.compile(r"\b(?:too|as\s+well|also)\s*[.!?]*\s*$", re.IGNORECASE)
 """A clause that ends by saying it repeats the clause before for another mover ("then W next to it too")."""
 
@@ -222,22 +229,6 @@ def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
     if set(low[1:]) & {v.split()[0] for v in known_verbs()}:
         return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
     return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in _readings(phrases) for i in range(1, len(low)))
-
-
-def _twin_of(after: list[str], mover: str, before: list[str], scene: Scene) -> str | None:
-    """"Push the small brown cube toward the big one": "the big one" after a mover described by its size is its twin
-    of that colour and shape the size word picks (language/pronouns.py: sized_twin); None where not said so."""
-    low = tuple(w.lower().strip(".,!?") for w in after)
-    if mover in before or not set(w.lower() for w in before) & SIZE_WORDS:
-        return None
-    return sized_twin(" ".join(after), low, Context(mover, described=True), scene)
-
-
-def _measured_context(before: list[str], scene: Scene) -> Context | None:
-    """What "it" after the preposition means in a first clause: the object the mover's description measures
-    from ("move the object nearest the cylinder away from it": the cylinder), or nothing."""
-    source = measured_from(" ".join(drop_frames(before)), scene)
-    return Context(source) if source is not None else None
 
 
 def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:

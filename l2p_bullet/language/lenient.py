@@ -39,7 +39,7 @@ from .reference_words import (
     SIZE_SUPERLATIVES,
 )
 from .references import try_object
-from .synonyms import SIZE_WORDS
+from .synonyms import KIND_SYNONYMS, SIZE_WORDS
 from .words import NEGATIONS, PACES, participles
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
@@ -146,7 +146,8 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     count = anchors.get(action, 1)
     if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
         return None
-    describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES)
+    describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES) \
+        | set(KIND_SYNONYMS)  # "the triangular toy" on a table with no prism
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from ..core.scene import Scene
 from ..errors import LanguageError
-from .grammar import MAX_SENTENCE, phrase_tokens, tokens
+from .grammar import ARROWS, MAX_SENTENCE, phrase_tokens, tokens
 from .reference_words import CONJUNCTIONS
 from .references import number_said, resolve_object, try_object
 from .words import strip_polite
@@ -69,7 +69,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     """``sentence`` with a composite's sentence said in other words (the patterns above) said as a plain list is;
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", sentence)))
-    text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])", ":", text)  # "Row please: A, B, C"
+    text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"\1 of ", text, count=1)
     text = THE_FOLLOWING.sub(" of ", text, count=1)
@@ -98,7 +98,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
 def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCommand | None:
     """:func:`parse_list` of the sentence as it is said."""
     sentence = IN_ORDER.sub("", re.sub(r"(?i)\bw/\s*", "with ", sentence))
-    raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]")]
+    raw = [w for w in sentence.split() if w.strip(".,;:!?\"()[]") and w not in ARROWS]
     words = tokens(sentence)
     kept = strip_polite(list(words))
     start = next((i for i in range(len(words) - len(kept) + 1) if words[i:i + len(kept)] == kept), 0)

@@ -105,6 +105,8 @@ def either_reading(described: list[str], scene: Scene, choose) -> str:
         return readings[0]
     said = " ".join(described + ["..."])
     picks = sorted({r for r in readings if isinstance(r, str)})
+    if not picks:
+        raise readings[0]  # neither reading picks one: why the first does not (a tie, nothing on that side)
     raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0] if picks else "none"}, as a block '
                         f'(a cube or a box) {"another" if len(picks) > 1 else "not one"}; name the one you mean')
 
@@ -192,7 +194,8 @@ def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool =
     """The one object of ``pool`` that ``pick`` (min or max) of ``measure`` chooses; ties are ambiguous. With
     ``place`` the measure is a place (metres along the table), and a tie is closer than :data:`TIE_PLACE` sides or
     :data:`TIE_PLACE_M`;
-    with ``distance`` it is a distance, and a tie is also within :data:`TIE_DISTANCE` of it."""
+    with ``distance`` it is a distance, and a tie is also within :data:`TIE_DISTANCE` of it (and, as for places,
+    under :data:`TIE_PLACE_M`)."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
     values = {o.name: measure(o) for o in pool}
@@ -203,7 +206,7 @@ def superlative(pool: list[SceneObject], measure, pick, word: str, place: bool =
         t = max(TIE * abs(best), TIE_M)
         if distance:
             t = max(t, TIE_DISTANCE_M + TIE_DISTANCE * abs(best))
-        if place and not distance:
+        if place or distance:
             t = max(t, TIE_PLACE_M)
         return max(t, TIE_PLACE * min(float(o.size), float(winner.size))) if place or distance else t
 

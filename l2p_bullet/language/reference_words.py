@@ -29,6 +29,13 @@ SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "
                     "box-shaped": "box", "cylinder-shaped": "cylinder", "barrel-shaped": "cylinder"}
 """Adjectives that name a shape: they restrict like a shape named alone, colour or not ("the yellow
 rectangular block" is a box)."""
+COLOUR_NOUNS = frozenset({"orange"})
+"""Colours that are also things: "the orange" alone may be the fruit, so it is asked about where no orange is on the
+table ("the orange one", "the orange box" read as colours)."""
+ROUND_KINDS = frozenset({"ball", "soccerball", "football", "sphere", "textured", "torus", "ring", "donut", "doughnut",
+                         "lemon", "apple", "orange", "bowl", "plate", "cup", "mug", "can", "jar", "beaker", "pingpong",
+                         "bottle"})
+"""Meshes people call round as they call a cylinder round ("the round white thing" is the ball): "round" keeps them."""
 SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
 """Adjectives people add to a description that already picks one object ("the toy duck", "the little red
 cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
@@ -79,6 +86,7 @@ SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smalle
                      "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
                      "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max),
                      "flattest": ("height", min)}
+SIZE_SUPERLATIVES |= {f"{side}-most": SIZE_SUPERLATIVES[f"{side}most"] for side in ("left", "right", "back", "front")}
 COMPARATIVE_OF = {"larger": "largest", "bigger": "biggest", "smaller": "smallest", "taller": "tallest",
                   "shorter": "shortest", "longer": "longest"}
 """Comparatives that pick one of a group named after them ("the larger of the cubes")."""
@@ -101,8 +109,9 @@ TIE_PLACE = 0.45
 many times the smaller one's side are a tie: a person does not tell a centimetre apart between 4 cm blocks."""
 TIE_PLACE_M = 0.029
 """And two places under 3 cm apart are a tie whatever the sizes: four authors called 2 cm between places a tie,
-left 3-4.5 cm out as unclear and called 4.5 cm and more clear; the corpus table's author called 3 cm clear
-(docs/language.md)."""
+left 3-4.5 cm out as unclear and called 4.5 cm and more clear; the corpus table's author called 3 cm clear.
+Distances between objects tie under it too: four more authors called 1.6-2.9 cm between distances of 10-70 cm a
+tie and 3.5 cm and more clear (docs/language.md)."""
 CENTRE_PHRASES = (("in", "the", "middle", "of", "the", "table"), ("in", "the", "center", "of", "the", "table"),
                   ("in", "the", "centre", "of", "the", "table"), ("in", "the", "middle"), ("in", "the", "center"),
                   ("in", "the", "centre"))
@@ -136,6 +145,12 @@ CONJUNCTIONS = frozenset({"and", "&"})
 """Words that join two reference objects ("between B and C", "the cube between A and C")."""
 BLOCK_WORDS = frozenset({"block", "blocks", "brick", "bricks"})
 BLOCK_SHAPES = frozenset({"cube", "box"})
+BLOCK_KINDS = frozenset({"lego", "brick", "domino", "block", "box", "cardboard", "crate", "tile", "cereal", "wooden",
+                         "gelatin"})
+"""Meshes that are blocks to look at: "block" and "brick" name them, cubes, boxes and cylinders, never a bottle, a mug
+or a teddy ("the big green block" beside a green bottle is the green cube)."""
+BOX_KINDS = frozenset({"box", "cardboard", "crate", "cereal", "gelatin", "wooden"})
+"""Meshes that are boxes: "the box", "the red box" name them as they name a box ("the cereal box")."""
 REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
                             | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
 """Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",

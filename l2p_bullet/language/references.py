@@ -282,6 +282,9 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
             cone = SIDE_CONE if side == kind else DIRECT_CONE
             off = {o.name: bearing_off(np.subtract(o.xy, ref_xy), SIDES[side]) for o in pool}
             beside = [o for o in pool if off[o.name] <= cone]
+            half = [o for o in pool if off[o.name] <= SIDE_DOUBT]
+            if not beside and side == kind and len(half) == 1 and len(pool) < len(scene.objects) - 1:
+                return half[0].name  # "the blue cube behind the cylinder": of the blue cubes, the one on that side
             if not beside:
                 raise UnknownObjectError(f'nothing in the scene is {kind} {ref_name or "the robot"} as the robot '
                                          f"sees it (blocks: {describe(scene)})")
@@ -290,6 +293,11 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
             if side == kind and doubt:
                 raise LanguageError(f'"{kind}" {ref_name or "the robot"} is ambiguous: {beside[0].name} is, and '
                                     f'{", ".join(doubt)} partly; name the one you mean')
+            nearest = min(beside, key=lambda o: distance_to(o, ref_xy))
+            if side == kind and off[nearest.name] > DIRECT_CONE and off[nearest.name] > straightest:
+                raise LanguageError(f'"{kind}" {ref_name or "the robot"} is ambiguous: {nearest.name} is nearer, '
+                                    f'{min(beside, key=lambda o: off[o.name]).name} more straight {kind} it; name the '
+                                    "one you mean")
             return superlative(beside, lambda o: distance_to(o, ref_xy), min, f"{kind} of", distance=True)
         return superlative(pool, lambda o: distance_to(o, ref_xy), min if kind in NEAREST else max, kind,
                            distance=True)
@@ -333,6 +341,8 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
                 pool, lambda o: distance_to(o, (0.0, 0.0)), min, "in the middle", place=True))
     for phrase, kind in SIDE_PHRASES.items():
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
+            if relation_head(low[:-len(phrase)]) is not None:
+                continue  # "the thing in front of the red cube on the right": the side picks the red cube
             what, pick = SIZE_SUPERLATIVES[kind]
             said = " ".join(phrase)
             return either_reading(words[:-len(phrase)], scene, lambda pool, what=what, pick=pick, said=said:

@@ -27,9 +27,9 @@ KIND_NAMES = {
     "bottle": ("bottles", "flask"),
     "bowl": ("bowls", "dish"),
     "apple": ("apples",),
-    "lemon": ("lemons",),
-    "bread": ("loaf",),
-    "milk": ("carton",),
+    "lemon": ("lemons", "citrus"),
+    "bread": ("loaf", "roll", "rolls", "bun", "buns"),
+    "milk": ("carton", "cartons", "milkbox"),
     "lid": ("lids", "disc", "disk", "puck", "cap"),
     "brick": ("bricks",),
     "slab": ("slabs", "board", "tile", "slate", "plate"),
@@ -42,7 +42,9 @@ KIND_NAMES = {
     "doughnut": ("doughnuts", "donut", "donuts", "ring", "rings", "hoop", "hoops", "torus"),
     "lego": ("legos", "brick", "bricks"),
     "cone": ("cones", "pylon", "pylons"),
-    "prism": ("prisms", "triangle", "triangles"),
+    "prism": ("prisms", "triangle", "triangles", "triangular", "toblerone", "wedge", "wedges"),
+    "domino": ("dominoes", "dominos", "tile", "tiles"),
+    "cereal": ("cornflakes",),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),

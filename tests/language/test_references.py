@@ -47,10 +47,16 @@ def test_block_covers_any_object_when_the_rest_picks_one(six):
     assert resolve_object("the red box", six) == "A"
 
 
+def test_a_block_is_never_a_mesh_of_another_kind(two_reds, six):
+    """A mug, a duck or a bottle is no block: "the big white block" beside a big white mug is the white cube, and
+    "the block" alone never lists the duck."""
+    assert resolve_object("the big white block", two_reds) == "C"
+    assert "duck" not in _refused("the block", six)
+
+
 @pytest.mark.parametrize("text, said", [
     ("the blue cube", "nothing in the scene"),  # the only blue object is a cylinder
     ("the white one", "C, mug"),
-    ("the big white block", "as any object it is mug, as a block"),  # "big" picks the mug, "block" the cube
     ("the cylinder", "can, F"),
 ])
 def test_a_shape_noun_that_fits_nothing_or_two_readings_is_refused(two_reds, text, said):
@@ -144,14 +150,16 @@ def test_relations_as_people_say_them(two_reds, text, name):
 
 
 def test_distances_are_told_apart_against_their_length(two_reds, six):
-    """3 cm decide "nearest" between 12 and 15 cm, not between 38.5 and 41.3 cm (F and B from the robot): asked."""
+    """3 cm decide "nearest" between 12 and 15 cm, not between 38.5 and 41.3 cm (F and B from the robot): asked;
+    under 3 cm is asked at any length (B 16.4 cm and A 19.0 cm from the duck)."""
     assert "B, F" in _refused("the object nearest to you", two_reds)
     assert resolve_object("the one nearest A", six) == "E"  # E 12.0 cm from A, B 15.0 cm
+    assert "A, B" in _refused("the block nearest the duck", six)
 
 
 def test_a_relative_clause_reads_as_the_adjective(six):
     assert resolve_object("the cube that is red", six) == "A"
-    assert resolve_object("the block which is closest to the duck", six) == "B"
+    assert resolve_object("the block which is closest to C", six) == "B"
 
 
 @pytest.mark.parametrize("sentence, expect", [
