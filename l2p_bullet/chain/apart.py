@@ -11,9 +11,10 @@ from dataclasses import replace
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from ..language import Command, known_verbs, split_verb, strip_polite, tokens
+from ..language import Command, known_verbs, resolve_object, split_verb, strip_polite, tokens
 from ..language.extents import take_extent
 from ..language.words import take_pace, verb_of_gerund
+from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
 from . import pointing
@@ -127,3 +128,35 @@ def away_from_shown(text: str, show: pointing.Shown | None, scene: Scene, plugin
         if cmd.mover in show.objects and cmd.mover != other:
             read.append(replace(cmd, sentence=text))
     return read if len(read) == 1 else None
+
+
+CONFIRM = re.compile(r"^\s*(?:and\s+)?(?:so\s+)?(?:please\s+)?(?:just\s+)?(?P<verb>[a-z]+)\s+(?P<what>.+?)"
+                     r"(?:\s*,?\s+(?:but\s+)?not\s+(?P<not>.+?)|\s+only|\s*,?\s+(?:and\s+)?leave\s+(?P<leave>.+?)"
+                     r"(?:\s+(?:where\s+it\s+is|alone|be))?)?\s*[.!]*\s*$", re.IGNORECASE)
+"""A clause that only says which of the two objects the clause before named is to move: "Move the box, not the cube.",
+"Move obj4 only.", "move the cylinder"."""
+DASH_THEN = re.compile(r"^(?P<before>.+?)\s+[-\u2013\u2014]+\s+(?P<after>[a-z]+\s+.+)$", re.IGNORECASE)
+"""An end said, a dash, then which object moves: "Make it so the cylinder isn't so close to the cup - move the
+cylinder"."""
+
+
+def confirmed(text: str, before: Clause, scene: Scene) -> Clause | None:
+    """The clause before, where ``text`` (:data:`CONFIRM`) names its mover as the one to move (and its reference, if
+    at all, as the one not to), in the manner the verb names where it names one; None for any other text."""
+    m = CONFIRM.match(text)
+    if m is None or before.target is not None:
+        return None
+    cmd = before.command
+    named = Scene([o for o in scene.objects if o.name in (cmd.mover, *cmd.anchors)], scene.table, scene.workspace)
+    try:  # "the cube" is the cube of the two the clause before named
+        verb, manner, rest = split_verb([m.group("verb")])
+        what = resolve_object(m.group("what"), named, "block to move")
+        kept = m.group("not") or m.group("leave")
+        other = resolve_object(kept, named, "block to leave") if kept else None
+    except L2PError:
+        return None
+    if rest or what != cmd.mover or (other is not None and other not in cmd.anchors):
+        return None
+    if manner != manners.DEFAULT:  # "Push the box, not the cube": how, as well as which
+        cmd = replace(cmd, verb=verb, manner=manner)
+    return replace(before, command=cmd)

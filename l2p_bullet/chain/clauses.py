@@ -162,7 +162,8 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 clauses.extend(Clause(len(clauses) + 1, text, cmd) for cmd in away)
                 show = None
                 continue
-            done = (apart.done_so(text, clauses[-1]) or apart.manner_after(text, clauses[-1])) if clauses else None
+            done = (apart.done_so(text, clauses[-1]) or apart.manner_after(text, clauses[-1])
+                    or apart.confirmed(text, clauses[-1], scene)) if clauses else None
             if done is not None:  # "The jar needs to be next to the mug. Slide it over."
                 clauses[-1] = done
                 continue
@@ -237,6 +238,14 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
             except L2PError:
                 pass
     pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
+    dash = apart.DASH_THEN.match(text) if pieces is None and depth < MAX_CLAUSES else None
+    if dash is not None:  # "Make it so the cylinder isn't so close to the cup - move the cylinder"
+        try:
+            read = _resolve_text(dash.group("before"), previous, scene, plugins, depth + 1, context, pair)
+        except L2PError:
+            read = []
+        told = apart.confirmed(dash.group("after"), Clause(1, text, read[0][1]), scene) if len(read) == 1 else None
+        pieces = [(text, told.command)] if told is not None else None
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)
     full = _to_the_anchor(text, context, plugins) if pieces is None else None

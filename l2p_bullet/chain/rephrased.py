@@ -53,6 +53,13 @@ TO_OBJECT = re.compile(r"^(?P<head>.+?)\s+to\s+(?P<rest>(?:the|a|an)\s+(?!(?:rig
 place ("to the corner", "to the right of"), which no action takes."""
 
 
+NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
+                          r"(?:isn't|isnt|is\s+not|wasn't|was\s+not)\s+(?:so|too|as|that)\s+(?:close|near)(?:\s+(?:to|of))?\s+(?P<other>.+?)"
+                          r"(?:\s+any\s*more)?\s*[.!]*\s*$", re.IGNORECASE)
+"""An end said as a closeness undone: "Make it so the cylinder isn't so close to the cup any more", "It would be good
+when the bread is not so near to the cereal anymore": the first away from the second."""
+
+
 def in_other_words(text: str) -> list[str]:
     """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
     :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve
@@ -77,6 +84,9 @@ def in_other_words(text: str) -> list[str]:
     m = TO_OBJECT.match(text) if m is None and to_then is None else None
     if m is not None:
         out.append(f"{m.group('head')} toward {m.group('rest')}")
+    m = NOT_SO_CLOSE.search(text)
+    if m is not None:
+        out.append(f"{text[:m.start()]}{m.group('what')} is away from {m.group('other')}")
     return out
 
 

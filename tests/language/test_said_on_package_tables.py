@@ -58,6 +58,12 @@ TOYS = "heldout22.tsv"
     ("Push with your fingers the bar toward R, but slowly.", "push:closer W R pace=slow", BLOCKS),
     ("Result wanted: V closer to T.", "slide:closer V T", BLOCKS),
     ("Drag V toward X, taking your time.", "slide:closer V X pace=slow", BLOCKS),
+    # a closeness undone is away; a second sentence that only says which of the two moves confirms the first
+    ("Make it so the lemon isn't so close to the cup any more.", "slide:away obj5 obj4", GENERIC),
+    ("It would be good when the lemon is not so near to the cup anymore - push the lemon.", "push:away obj5 obj4",
+     GENERIC),
+    ("I want the cup further from the lemon. Move the cup, not the lemon.", "slide:away obj4 obj5", GENERIC),
+    ("Goal: the cup next to the red cube. Push the cup only.", "push:next-to obj4 obj6", GENERIC),
     # an end said without a verb, then the verb that says how
     ("V right up against W. push it.", "push:next-to V W extent=right", BLOCKS),
     ("the thing right in front of the red cube on the right, move it next to the mug", "slide:next-to teddy mug",
@@ -77,6 +83,8 @@ def test_said_on_the_new_tables(plugins, sentence, expect, table):
     ("move the bottle to the corner", PACKAGES),               # a place, not an object
     ("move the bottle to the right of the milk", PACKAGES),
     ("S and V are too close together. Move it.", BLOCKS),      # which one
+    ("I want the cup further from the lemon. Move the lemon, not the cup.", GENERIC),  # the other way round
+    ("Move the lemon past the cup. Move the cup.", GENERIC),   # a second move with no place
 ])
 def test_what_stays_refused_on_the_new_tables(plugins, sentence, table):
     with pytest.raises(L2PError):
