@@ -73,26 +73,52 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"\1 of ", text, count=1)
     text = THE_FOLLOWING.sub(" of ", text, count=1)
-    group = GROUP.search(text)
+    group = GROUP.search(text) or COLOURED_GROUP.search(text)
     if group is None:
         return text
-    after = text[group.end():]
+    extra = EXTRA.match(text, group.end())  # "the two red cubes and the green one - small red, big red, green"
+    after = text[extra.end() if extra else group.end():]
     for sep in re.finditer(r"\s*(?::|\s-+\s|[\u2013\u2014]|,|\()\s*", after):
         m = GROUP_ITEMS.match(after[sep.start():])
         if m is None:
             continue
-        items = [i.strip(" .!?") for part in m.group("items").split(",") for i in _split_and(part) if i.strip(" .!?")]
+        items = [_told(i) for part in m.group("items").split(",") for i in _split_and(part) if i.strip(" .!?")]
         count = group.group("count")
-        said_count = number_said(count, len(items))
+        said_count = number_said(count, len(items) - bool(extra)) + bool(extra)
         long = any(len([w for w in i.split() if w.lower() != "the"]) > 3 for i in items)
         if len(items) < 2 or said_count != len(items) or long:
             return text
         noun = group.group("kind").lower().rstrip("s")
         said = [i if noun in ("object", "thing") else re.sub(r"(?i)\s+one$", f" {noun}", i)
-                if i.lower().startswith("the ") else f"the {i} {noun}" for i in items]
+                if i.lower().startswith("the ") else _item(i, noun, scene, extra) for i in items]
         listed = ", ".join(said[:-1]) + " and " + said[-1]
         return f"{text[:group.start()]}{listed}{after[:sep.start()]}"
     return text
+
+
+COLOURED_GROUP = re.compile(r"\bthe\s+(?P<count>two|three|four|five|[2-5])\s+[a-z]+\s+(?P<kind>cubes|blocks|boxes)\b",
+                            re.IGNORECASE)
+"""A group said with one word more ("the two red cubes"): each item told after it says that word itself."""
+EXTRA = re.compile(r"\s+and\s+the\s+[\w-]+(?:\s+(?!in\b|into\b)[\w-]+)?(?=\s|$|[,:;(])", re.IGNORECASE)
+"""One more object named after a group ("the two blue cubes and the lemon"): its item is told among the group's."""
+
+
+def _told(item: str) -> str:
+    """An item told in order ("then the small one", "big blue one first") without its order words."""
+    item = re.sub(r"(?i)^(?:and\s+)?(?:then|next|finally|last(?:ly)?|first)\s+", "", item.strip(" .!?"))
+    item = re.sub(r"(?i)\s+(?:first|last|next)$", "", item)
+    return f"the {item}" if item.lower().endswith(" one") and not item.lower().startswith("the ") else item
+
+
+def _item(said: str, noun: str, scene: Scene, extra: re.Match | None) -> str:
+    """An item told after a group ("small red", "lemon") as a description: with the group's noun, or as said where
+    that is the one object named after the group ("the two blue cubes and the lemon - small blue, lemon, ...")."""
+    with_noun = f"the {said} {noun}"
+    if extra is not None and try_object(with_noun, scene) is None:
+        named = try_object(extra.group(0).strip()[len("and "):].strip(), scene)
+        if named is not None and try_object(f"the {said}", scene) == named:
+            return f"the {said}"
+    return with_noun
 
 
 def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCommand | None:

@@ -64,6 +64,10 @@ TOYS = "heldout22.tsv"
      GENERIC),
     ("I want the cup further from the lemon. Move the cup, not the lemon.", "slide:away obj4 obj5", GENERIC),
     ("Goal: the cup next to the red cube. Push the cup only.", "push:next-to obj4 obj6", GENERIC),
+    # a row of a group and one more, its order told after it
+    ("Put the two blue cubes and the cup in a row - big blue, cup, small blue.", "row obj1,obj4,obj2", GENERIC),
+    ("Line up the two red cubes and the bar: small red one first, then the big one, then the bar.", "row R,S,W",
+     BLOCKS),
     # an end said without a verb, then the verb that says how
     ("V right up against W. push it.", "push:next-to V W extent=right", BLOCKS),
     ("the thing right in front of the red cube on the right, move it next to the mug", "slide:next-to teddy mug",
