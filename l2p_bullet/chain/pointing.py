@@ -24,6 +24,7 @@ from ..pipeline import resolve
 from .goal_after import goal_after
 
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
+         r"|(?:have\s+you\s+)?got"
          r"|take|grab|get|pick\s+up|lift)")
 SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
 """A clause that only shows objects: "See the cylinder?", "Pick up the duck"."""

@@ -95,8 +95,9 @@ HEDGES = (("but", "only"), ("but", "just"), ("only",), ("just",))
 """Words that, before a small extent closing the clause, say it is all that is asked ("but only a smidge")."""
 
 
-FILLERS = frozenset({"like", "kinda", "sorta", "basically", "literally"})
-"""Words people put before how far without meaning anything ("put the ball like right next to the lid")."""
+FILLERS = frozenset({"like", "kinda", "sorta", "basically", "literally", "up"})
+"""Words people put before how far without meaning anything ("put the ball like right next to the lid", "drag the
+domino up snug against B")."""
 
 
 def take_extent(before: list[str]) -> tuple[list[str], str | None]:

@@ -169,7 +169,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
             if tuple(low[i : i + n]) != toks:
                 continue
             try:
-                before, said, mover = _mover(rest[:i], scene, context)
+                lead = rest[:i - 1] if implied and i > 1 and low[i - 1] in INTENSIFIERS else rest[:i]
+                before, said, mover = _mover(lead, scene, context)  # "really far from": far, as "far from"
                 extent = said or implied
                 after, closing = take_extent_tail(rest[i + n:])
                 if closing is not None and extent not in (None, closing):
@@ -206,6 +207,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
     raise _unknown_preposition(rest, middle, phrases, verb)
 
 
+INTENSIFIERS = frozenset({"really", "very", "super", "so", "quite", "extra"})
+"""Words before a phrase that says how far itself ("really far from", "very far away from"): read past."""
 NEUTRAL_VERBS = frozenset({"move", "take", "bring", "get", "shift", "put", "place", "transport", "translate"})
 """Verbs that say nothing of how: with words that lift the object ("through the air") they are a carry."""
 

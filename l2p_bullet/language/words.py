@@ -51,6 +51,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "please", "if you please", "if you would",
     "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
+    "not the other way round", "not the other way around", "and not the other way round",
     "if you can", "if possible", "when you can", "if you would", "dear", "please dear", "mate", "buddy", "pal",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",

@@ -68,6 +68,10 @@ TOYS = "heldout22.tsv"
     ("Put the two blue cubes and the cup in a row - big blue, cup, small blue.", "row obj1,obj4,obj2", GENERIC),
     ("Line up the two red cubes and the bar: small red one first, then the big one, then the bar.", "row R,S,W",
      BLOCKS),
+    ("Get the bottle really far from the bread.", "slide:away bottle bread extent=far", PACKAGES),
+    ("drag the milk up snug against the bottle", "slide:next-to milk bottle extent=right", PACKAGES),
+    ("The milk should be pushed away from the bread, not the other way round.", "push:away milk bread", PACKAGES),
+    ("got the bread? carry it past the bottle", "carry:past bread bottle", PACKAGES),
     # an end said without a verb, then the verb that says how
     ("V right up against W. push it.", "push:next-to V W extent=right", BLOCKS),
     ("the thing right in front of the red cube on the right, move it next to the mug", "slide:next-to teddy mug",
