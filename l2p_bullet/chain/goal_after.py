@@ -15,7 +15,8 @@ from ..pipeline import resolve
 
 _RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\s+rests|\s+stands|\s+moves|\s+goes)"
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|(?:until|till|til|'til)\s+it{_RESTS}"
-                        r"|(?:until|till|til|'til)\s+(?:they're|theyre|they\s+are)(?=\s+(?:side|next|beside|touching)))"
+                        r"|(?:until|till|til|'til)\s+(?:they're|theyre|they\s+are|the\s+two\s+are|both\s+are)"
+                        r"(?=\s+(?:side|next|beside|touching|nearer|closer)))"
                         r"\s+(?P<goal>.+)$", re.IGNORECASE)
 """A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
 TOUCHING = re.compile(r"^\s*(?:right\s+)?(?:touching|touches|against)\s+(?=\S)", re.IGNORECASE)
@@ -29,6 +30,8 @@ def _goal_said(goal: str) -> str:
     """The end a GOAL_AFTER clause names, said as a preposition and its block."""
     if re.fullmatch(r"\s*touching(?:\s+each\s+other)?\s*[.!]*\s*", goal, re.IGNORECASE):
         return "right next to it"  # "until they're touching"
+    if re.fullmatch(r"\s*(?:nearer|closer)(?:\s+to)?\s+(?:each\s+other|together)\s*[.!]*\s*", goal, re.IGNORECASE):
+        return "closer to it"  # "until they're nearer each other"
     return SIDE_BY_SIDE.sub("next to it", TOUCHING.sub("right next to ", goal))
 
 

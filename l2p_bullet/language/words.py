@@ -52,6 +52,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "not the other way round", "not the other way around", "and not the other way round",
+    "nothing else moved", "and nothing else", "this is what i want", "that's what i want", "that is what i want",
     "if you can", "if possible", "when you can", "if you would", "dear", "please dear", "mate", "buddy", "pal",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
@@ -82,7 +83,7 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "the idea is that", "the goal is that", "the plan is that", "the aim is that", "the idea is for",
     "could we end up with", "can we end up with", "let's end up with", "i'd like to end up with", "end up with",
     "goal", "want", "end state", "target", "objective", "goal state", "target state", "task", "the task",
-    "result wanted", "wanted result", "what i want", "wanted", "expected result", "desired result", "end result",
+    "result wanted", "wanted result", "what i want", "let", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
@@ -294,7 +295,7 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "were", "was", "ended up", "would be", "has to go", "needs to go", "must go", "would end up", "should stand",
     "should sit", "should finish", "finishes", "to finish", "should lie", "ought to be", "ought to end up",
     "must finish", "must end up",
-    "should end",
+    "should end", "end",
     "ought to go", "ought to sit",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it

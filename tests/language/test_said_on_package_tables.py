@@ -72,6 +72,10 @@ TOYS = "heldout22.tsv"
     ("drag the milk up snug against the bottle", "slide:next-to milk bottle extent=right", PACKAGES),
     ("The milk should be pushed away from the bread, not the other way round.", "push:away milk bread", PACKAGES),
     ("got the bread? carry it past the bottle", "carry:past bread bottle", PACKAGES),
+    ("Push R toward V until the two are side by side.", "push:next-to R V", BLOCKS),
+    ("Nudge V toward T until they're nearer each other.", "push:closer V T", BLOCKS),
+    ("Result wanted: R closer to T, nothing else moved.", "slide:closer R T", BLOCKS),
+    ("Let V end beside the yellow bar, this is what I want.", "slide:next-to V W", BLOCKS),
     # an end said without a verb, then the verb that says how
     ("V right up against W. push it.", "push:next-to V W extent=right", BLOCKS),
     ("the thing right in front of the red cube on the right, move it next to the mug", "slide:next-to teddy mug",
