@@ -76,8 +76,9 @@ accept one (the development chain 9705 needed 7); then the chain is planned as c
 
 @dataclass
 class Step:
-    """What one clause needs at run time: the clause, its loaded action, its forecast plan, and the end state
-    the chain chose for it (ends.py; run.py plans the clause again with it)."""
+    """What one clause needs at run time: the clause, its loaded action, its forecast plan, the end state
+    the chain chose for it (ends.py; run.py plans the clause again with it) and the state it was forecast from
+    (run.py follows the forecast plan where the world is still that state)."""
 
     clause: Clause
     bundle: Any
@@ -85,6 +86,7 @@ class Step:
     judge: Any
     forecast: Plan
     end: End = DEFAULT
+    scene: Scene | None = None  # the predicted state the forecast planned the clause from (None: not known)
 
     @property
     def viewer(self):
@@ -394,7 +396,7 @@ class _Searcher:
         plan.extra["verdict"] = plan_verdict(judge, plan, final_progress=plan.extra.get("final_progress"),
                                              outlines=_outlines(at))
         plan.extra.setdefault("sentence", c.text)
-        return Step(c, bundle, model, judge, plan, end)
+        return Step(c, bundle, model, judge, plan, end, at.predicted)
 
     def _keeps(self, at: _Clause, pose: np.ndarray, known: bool = False) -> bool:
         """Whether every later check ``at`` needs passes with its clause's mover at ``pose`` (in the scene it

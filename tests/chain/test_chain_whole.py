@@ -220,6 +220,7 @@ def test_the_run_replans_each_clause_with_the_end_the_chain_chose(plugins, tmp_p
         return plan_clause(clause, *args, **kwargs)
 
     monkeypatch.setattr(chain_run, "plan_clause", recording)
+    monkeypatch.setattr(chain_run, "FOLLOW_TOL_M", -1.0)  # never the forecast's state: every clause planned again
     sentence = ", then ".join(c.text for c in clauses)
     r = perform_chain(sentence, scene, out_dir=tmp_path / "run", render=False, seed=7002, steps=steps)
     assert seen == [(2, steps[1].end)]  # clause 1 runs its forecast; clause 2 is planned again, with its end

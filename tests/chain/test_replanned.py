@@ -84,3 +84,74 @@ def test_where_every_seed_is_rejected_the_chosen_end_is_kept(plugins, monkeypatc
     plan = chain_run.replanned(_step(plugins), _scene(), RunOptions(), PANDA)
     assert calls == [DEFAULT, End(1), End(2)]
     assert np.allclose(plan.path[-1], SHORT) and "replanned" not in plan.extra
+
+
+def _forecast_step(plugins, scene: Scene) -> Step:
+    """A step whose forecast plan ends at (-0.1, 0.15), planned from ``scene``."""
+    clause = resolve_clauses("move A past B", scene, plugins)[0]
+    start = np.asarray(scene.get("A").pose, float)
+    path = np.linspace(start, [-0.1, 0.15, 0.0], 6)
+    plan = Plan("past", "A", "B", 0.04, np.asarray(scene.get("B").pose), start, path, np.linspace(0, 1, 6),
+                "stand-in", "threshold", {"final_progress": 1.0})
+    return Step(clause, None, None, Judge(), plan, DEFAULT, scene)
+
+
+def _nudged(scene: Scene, name: str, dx: float) -> Scene:
+    pose = np.asarray(scene.get(name).pose, float)
+    return scene.with_pose(name, pose + [dx, 0.0, 0.0])
+
+
+def test_where_the_world_is_the_forecast_state_its_plan_is_followed(plugins, monkeypatch, no_path_check):
+    calls: list = []
+    monkeypatch.setattr(chain_run, "plan_clause", _stand_in(calls))
+    step = _forecast_step(plugins, _scene())
+    now = _nudged(_nudged(_scene(), "A", 0.0004), "B", -0.0003)  # the arm left them a few tenths of a mm off
+    plan = chain_run.replanned(step, now, RunOptions(), PANDA)
+    assert calls == []  # not planned again: a new search from a start a hair off can end elsewhere
+    assert np.allclose(plan.path[-1], [-0.1, 0.15, 0.0]) and plan.extra["followed_forecast"] is True
+    assert np.allclose(plan.path[0], now.get("A").pose) and np.allclose(plan.start, now.get("A").pose)
+    assert np.allclose(plan.anchor_pose, now.get("B").pose)
+
+
+def test_a_block_off_the_forecast_state_is_planned_again(plugins, monkeypatch, no_path_check):
+    calls: list = []
+    monkeypatch.setattr(chain_run, "plan_clause", _stand_in(calls))
+    step = _forecast_step(plugins, _scene())
+    plan = chain_run.replanned(step, _nudged(_scene(), "B", 0.005), RunOptions(), PANDA)
+    assert calls == [DEFAULT, End(1)] and "followed_forecast" not in plan.extra
+
+
+def test_a_forecast_plan_its_judge_rejects_from_the_real_state_is_planned_again(plugins, monkeypatch,
+                                                                                 no_path_check):
+    calls: list = []
+    monkeypatch.setattr(chain_run, "plan_clause", _stand_in(calls))
+    step = _forecast_step(plugins, _scene())
+    step.forecast.path[-1] = SHORT  # where the stand-in judge rejects it
+    plan = chain_run.replanned(step, _scene(), RunOptions(), PANDA)
+    assert calls == [DEFAULT, End(1)] and "followed_forecast" not in plan.extra
+
+
+def test_a_forecast_path_the_arm_cannot_follow_there_is_planned_again(plugins, monkeypatch):
+    from l2p_bullet.embodiment import execute
+    from l2p_bullet.errors import PathError
+
+    def blocked(manner, scene, mover, path, arm):
+        raise PathError("runs into B")
+
+    calls: list = []
+    monkeypatch.setattr(chain_run, "plan_clause", _stand_in(calls))
+    monkeypatch.setattr(execute, "check_for", blocked)
+    plan = chain_run.replanned(_forecast_step(plugins, _scene()), _scene(), RunOptions(), PANDA)
+    assert calls[0] == DEFAULT and "followed_forecast" not in plan.extra
+
+
+def test_the_forecast_keeps_the_state_each_clause_was_planned_from(plugins):
+    from l2p_bullet.chain.forecast import forecast
+
+    scene = Scene([SceneObject("A", "red", 0.05, (0.12, -0.10), 0.0),
+                   SceneObject("B", "green", 0.05, (-0.02, 0.02), 0.0)]).validate()
+    clauses = resolve_clauses("move A away from B, then move B closer to A", scene, plugins)
+    steps = forecast(clauses, scene, plugins, planner="discrete", seed=0)
+    assert steps[0].scene is scene
+    assert np.allclose(steps[1].scene.get("A").pose, steps[0].forecast.path[-1])
+    assert np.allclose(steps[1].scene.get("B").pose, scene.get("B").pose)
