@@ -6,8 +6,9 @@ really left the blocks.
     forecast   the whole chain planned in 2-D from the predicted end states (forecast.py): a clause that
                cannot be planned is refused with its index and the check, before anything moves or is
                written
-    execute    per clause: plan from the simulated world's real poses (the first clause's forecast is
-               already that), check the path, choose the grasp, engage, slide, release, retreat to rest;
+    execute    per clause: the plan for the simulated world's real poses (replan.py: the forecast's own where
+               the world stands where it was predicted, else planned again), check the path, choose the grasp,
+               engage, slide, release, retreat to rest;
                one recorder keeps sampling across clauses, so the frames are one episode
     judge      per clause, on its own frames: the action's judge, and the 1 mm rule for every block it does
                not move; the first clause that fails stops the chain and says why
@@ -35,7 +36,7 @@ from ..core.timing import StageClock
 from ..embodiment.manners import tall_pace
 from ..embodiment.smoothing import pace as pace_of
 from ..errors import ExecutionError, InfeasibleError, L2PError
-from ..judge import judge_context, plan_verdict
+from ..judge import judge_context
 from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
@@ -47,9 +48,9 @@ from ..progress.scoring import curve_from
 from .clause import Clause
 from .clauses import one_clause, resolve_clauses
 from .composite import judge_row
-from .ends import plan_clause
 from .files import merge_timings
 from .forecast import Step, forecast
+from .replan import replanned
 
 
 @dataclass
@@ -358,77 +359,6 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
                         final_progress=final_progress,
                         max_deviation_m=deviation, final_error_m=float(np.hypot(*(mover[-1, :2] - plan.path[-1, :2]))),
                         displacements_m=displaced, grasp=grasp)
-
-
-OTHER_SEEDS = (1, 2)
-"""Seed offsets (added to the chosen end's) a clause re-planned from the real state is planned with again where its
-rule judge rejects the plan: the forecast planned it from the predicted state, and a block a few millimetres from
-where it was predicted can turn the same seed's search to another end (a "past" from touching that starts 0.49
-blocks before the anchor where the rule asks 0.5), which another seed's search does not share."""
-
-
-FOLLOW_TOL_M = 0.002
-"""How far (m) any block may stand from where the forecast predicted it, at a clause's start, for the run to follow
-the forecast's plan of that clause instead of planning it again. Why: the planner's search is not smooth in its
-start; planned again from a state a few tenths of a millimetre off the predicted one, it can end a clause centimetres
-from the forecast's end (chain/25305: "move D around C" 27 mm, then "move D closer to C" 39 mm), where a later
-clause the chain was planned for has no way left ("move C around D": 1.07 of a turn on the forecast, 0.62 run).
-Two millimetres: the blocks stand within half a millimetre of the forecast after a clause, and a path may start
-3 mm from a block (embodiment/path_checks.py)."""
-
-
-def followed(step: Step, now: Scene, arm: ArmSpec) -> Plan | None:
-    """``step``'s forecast plan, started from where its mover really stands, where every block of ``now`` stands
-    within :data:`FOLLOW_TOL_M` of the state it was forecast from (``step.scene``), the arm can follow its path
-    there and its judge accepts it from there (the anchors where they really are); else None (planned again)."""
-    from ..embodiment import execute as ex
-
-    plan, cmd, predicted = step.forecast, step.clause.command, step.scene
-    if plan is None or predicted is None or is_standing(plan) or sorted(predicted.names) != sorted(now.names):
-        return None
-    if any(np.hypot(*np.subtract(o.xy, predicted.get(o.name).xy)) > FOLLOW_TOL_M for o in now.objects):
-        return None
-    path = np.array(plan.path, float)
-    path[0] = now.get(cmd.mover).pose
-    more = None if plan.more_anchor_poses is None else np.array([now.get(a).pose for a in plan.more_anchors])
-    kept = replace(plan, start=path[0].copy(), path=path, anchor_pose=np.asarray(now.get(plan.anchor).pose, float),
-                   more_anchor_poses=more, extra={**plan.extra, "followed_forecast": True})
-    try:
-        ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, kept.path, arm)
-    except L2PError:
-        return None
-    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
-    return kept if plan_verdict(step.judge, kept, outlines=outlines)["success"] else None
-
-
-def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec) -> Plan:
-    """``step``'s clause as the forecast planned it, where the world is still the state it was forecast from
-    (:func:`followed`); else planned from ``now`` with the end the chain chose for it; where its judge rejects that
-    plan, the first plan with :data:`OTHER_SEEDS` that its judge accepts and whose path the arm can follow (kept in
-    ``extra["replanned"]``), else the plan with the chosen end (the run judges what it does). A plan that moves
-    nothing because the relation already holds is kept as it is."""
-    from ..embodiment import execute as ex
-
-    kept = followed(step, now, arm)
-    if kept is not None:
-        return kept
-    cmd = step.clause.command
-    plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
-    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
-    if is_standing(plan) or plan_verdict(step.judge, plan, outlines=outlines)["success"]:
-        return plan
-    for offset in OTHER_SEEDS:
-        end = replace(step.end, seed=step.end.seed + offset)
-        try:
-            other = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, end)
-            ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, other.path, arm)
-        except L2PError:
-            continue
-        if not is_standing(other) and plan_verdict(step.judge, other, outlines=outlines)["success"]:
-            other.extra["replanned"] = {"seed_offset": end.seed, "rejected": plan_verdict(
-                step.judge, plan, outlines=outlines)["reason"]}
-            return other
-    return plan
 
 
 def _let_go(prims: Any, rest: np.ndarray) -> None:

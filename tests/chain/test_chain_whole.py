@@ -13,7 +13,7 @@ import pytest
 from l2p_bullet.arms import PANDA, fit_scene
 from l2p_bullet.chain import forecast as chain_forecast
 from l2p_bullet.chain import perform_chain
-from l2p_bullet.chain import run as chain_run
+from l2p_bullet.chain import replan as chain_replan
 from l2p_bullet.chain.clauses import resolve_clauses
 from l2p_bullet.chain.ends import DEFAULT, End, plan_clause, turned_goal
 from l2p_bullet.chain.forecast import Search, forecast
@@ -219,8 +219,8 @@ def test_the_run_replans_each_clause_with_the_end_the_chain_chose(plugins, tmp_p
         seen.append((clause.index, args[5] if len(args) > 5 else kwargs.get("end")))
         return plan_clause(clause, *args, **kwargs)
 
-    monkeypatch.setattr(chain_run, "plan_clause", recording)
-    monkeypatch.setattr(chain_run, "FOLLOW_TOL_M", -1.0)  # never the forecast's state: every clause planned again
+    monkeypatch.setattr(chain_replan, "plan_clause", recording)
+    monkeypatch.setattr(chain_replan, "FOLLOW_TOL_M", -1.0)  # never the forecast's state: every clause planned again
     sentence = ", then ".join(c.text for c in clauses)
     r = perform_chain(sentence, scene, out_dir=tmp_path / "run", render=False, seed=7002, steps=steps)
     assert seen == [(2, steps[1].end)]  # clause 1 runs its forecast; clause 2 is planned again, with its end

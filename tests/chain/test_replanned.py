@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from l2p_bullet.arms import PANDA
-from l2p_bullet.chain import run as chain_run
+from l2p_bullet.chain import replan as chain_run
 from l2p_bullet.chain.clauses import resolve_clauses
 from l2p_bullet.chain.ends import DEFAULT, End
 from l2p_bullet.chain.forecast import Step
