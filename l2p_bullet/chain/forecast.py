@@ -126,13 +126,25 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
     t0 = time.perf_counter()
     try:
         searcher = _Searcher(clauses, plugins, opts, loaded, stats, short_ok=False)
+        steps: list[Step] | None = []
         try:
             steps = searcher.steps(0, scene)
         except Dead:
             if not searcher.short_met:
                 raise
-            # no ends found that every judge accepts: the chain as clause by clause would plan it, the plans
-            # already made reused (the search again, with a clause's own end kept where its judge accepts none)
+            steps = None
+            # no ends found that every judge accepts within the plans left: the earlier clauses' cuts first, every
+            # one of them (they cost no search, only the clauses after them planned again), where the search above
+            # spent its plans on the seeds and turns of the clause just before the rejected one
+            cuts = _Searcher(clauses, plugins, opts, loaded, stats, short_ok=False, memo=searcher.memo,
+                             cost=searcher.cost, cuts_only=True)
+            try:
+                steps, searcher = cuts.steps(0, scene), cuts
+            except Dead:
+                pass
+        if steps is None:
+            # none: the chain as clause by clause would plan it, the plans already made reused (the search
+            # again, with a clause's own end kept where its judge accepts none)
             stats.dead_ends.clear()
             searcher = _Searcher(clauses, plugins, opts, loaded, stats, memo=searcher.memo, cost=searcher.cost)
             steps = searcher.steps(0, scene)
@@ -183,10 +195,12 @@ class _Searcher:
     """Depth first over the clauses' end states, back-jumping past clauses that moved no block a failure reads."""
 
     def __init__(self, clauses: list[Clause], plugins: list, opts: RunOptions, loaded: dict, stats: Search, *,
-                 short_ok: bool = True, memo: dict | None = None, cost: dict | None = None):
+                 short_ok: bool = True, memo: dict | None = None, cost: dict | None = None, cuts_only: bool = False):
         self.clauses, self.plugins, self.opts, self.loaded, self.stats = clauses, plugins, opts, loaded, stats
         self.arm = opts.arm_spec()
-        self.left = SEARCH_PLANS * len(clauses)
+        # cuts_only: every clause's own end and its cuts alone (no search but the clauses after each re-planned)
+        self.cuts_only = cuts_only
+        self.left = SHORT_PLANS if cuts_only else SEARCH_PLANS * len(clauses)
         # short_ok False: a clause whose judge accepts none of its ends is a dead end, so the earlier clauses' other
         # ends are tried first (a block the greedy end left on the rim, then "around" it, sweeps short of the rule)
         self.short_ok, self.short_met = short_ok, False
@@ -208,7 +222,7 @@ class _Searcher:
         at = _Clause(k, c, predicted, *self.loaded[c.command.action], checked=time.perf_counter() - t0)
         aimed = fell_back = False
         for end in ENDS:
-            if self.left <= 0 and end != DEFAULT:
+            if (self.left <= 0 and end != DEFAULT) or (self.cuts_only and (end.seed or end.turn)):
                 break  # the search is spent: the planner's own ends only, as clause by clause
             if at.needs and not aimed and (end.seed or end.turn):
                 # a later room check failed on the planner's end and its cuts: aimed there before other
@@ -231,7 +245,7 @@ class _Searcher:
             if found is not None:
                 return found
         while True:
-            if at.needs and not aimed:
+            if at.needs and not aimed and not self.cuts_only:
                 aimed = True
                 found = self._aimed(at)
                 if found is not None:

@@ -21,6 +21,7 @@ layout (DESIGN.md section 4), so ``perform`` and every caller take one path for 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -50,6 +51,7 @@ from .composite import judge_row
 from .ends import plan_clause
 from .files import merge_timings
 from .forecast import Step, forecast
+from .replan import forecast_from, later_fails, noted, on_rim
 
 
 @dataclass
@@ -257,7 +259,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             clock.stage(f"clause {c.index}", f"{c.label()}: planning from the blocks' real poses, then executing")
             first = 0 if k == 0 else len(prims.recorder.frames)
             r = _clause(step, scene_now(scene, world), prims, rest, plugins, options, arm, first=first,
-                        replan=replan and k > 0)
+                        replan=replan and k > 0, later=steps[k + 1:])
             results.append(r)
             if not r.success:
                 break
@@ -288,9 +290,10 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
 
 
 def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, options: RunOptions,
-            arm: ArmSpec, *, first: int, replan: bool) -> ClauseResult:
+            arm: ArmSpec, *, first: int, replan: bool, later: Sequence[Step] = ()) -> ClauseResult:
     """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
-    planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
+    planned from this very state; ``later``: the clauses after it, whose checks its re-plan keeps passing where it
+    can), execute it with the arm, judge its frames (from frame ``first`` on)."""
     from ..embodiment import execute as ex
 
     cmd, rec = step.clause.command, prims.recorder
@@ -299,10 +302,11 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         if not replan:
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
+            now = on_rim(now)  # a block the arm left a hair beyond the workspace's edge: planned from the edge
             check_feasible(cmd, now, plugins, arm)
             # the end state the chain was planned with (ends.py): the planner's own, or the one that keeps the
             # later clauses possible
-            plan = replanned(step, now, options, arm)
+            plan = replanned(step, now, options, arm, later=later, plugins=plugins)
             plan.extra.setdefault("sentence", step.clause.text)
         standing = is_standing(plan)  # the relation already holds: the world stands still, the arm at rest
         if standing:
@@ -367,29 +371,50 @@ where it was predicted can turn the same seed's search to another end (a "past" 
 blocks before the anchor where the rule asks 0.5), which another seed's search does not share."""
 
 
-def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec) -> Plan:
-    """``step``'s clause planned from ``now`` with the end the chain chose for it; where its judge rejects that plan,
-    the first plan with :data:`OTHER_SEEDS` that its judge accepts and whose path the arm can follow (kept in
-    ``extra["replanned"]``), else the plan with the chosen end (the run judges what it does). A plan that moves
-    nothing because the relation already holds is kept as it is."""
+def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec, *, later: Sequence[Step] = (),
+              plugins: list | None = None) -> Plan:
+    """``step``'s clause planned from ``now`` with the end the chain chose for it, where its judge accepts that plan and
+    the ``later`` clauses' up-front checks pass after it (replan.py); else the first other plan that does, of the
+    forecast's own path from the real start and the plans with :data:`OTHER_SEEDS` (each followable by the arm; why
+    kept in ``extra["replanned"]``); else the first of them its judge accepts, else the plan with the chosen end (the
+    run judges what it does). A plan that moves nothing because the relation already holds is kept as it is."""
     from ..embodiment import execute as ex
 
     cmd = step.clause.command
     plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
     outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
-    if is_standing(plan) or plan_verdict(step.judge, plan, outlines=outlines)["success"]:
+    if is_standing(plan):
         return plan
-    for offset in OTHER_SEEDS:
-        end = replace(step.end, seed=step.end.seed + offset)
+    plugins = registry.discover() if later and plugins is None else plugins
+
+    def fails(p: Plan) -> str | None:
+        return later_fails(p, now, later, plugins, arm) if later else None
+
+    verdict = plan_verdict(step.judge, plan, outlines=outlines)
+    why = None if verdict["success"] else verdict["reason"]
+    why = why or fails(plan)
+    if why is None:
+        return plan
+    accepted = None  # the first other plan its judge accepts: taken where none keeps the later clauses possible
+    for how in ({"forecast": True}, *({"seed_offset": step.end.seed + k} for k in OTHER_SEEDS)):
         try:
-            other = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, end)
+            if "forecast" in how:
+                other = forecast_from(step, now)
+                if other is None:
+                    continue
+            else:
+                other = plan_clause(step.clause, now, step.bundle, step.judge, options, arm,
+                                    replace(step.end, seed=how["seed_offset"]))
             ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, other.path, arm)
         except L2PError:
             continue
-        if not is_standing(other) and plan_verdict(step.judge, other, outlines=outlines)["success"]:
-            other.extra["replanned"] = {"seed_offset": end.seed, "rejected": plan_verdict(
-                step.judge, plan, outlines=outlines)["reason"]}
-            return other
+        if is_standing(other) or not plan_verdict(step.judge, other, outlines=outlines)["success"]:
+            continue
+        if fails(other) is None:
+            return noted(other, how, why)
+        accepted = accepted or (other, how)
+    if accepted is not None and not verdict["success"]:
+        return noted(*accepted, why)
     return plan
 
 
