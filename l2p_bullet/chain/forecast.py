@@ -33,7 +33,9 @@ mover stands (aims.py), the other seeds and turns are not searched (they end in 
 clause whose judge rejects its own end sends the search back to the earlier clauses' ends (mostly cuts, free)
 before its own seeds and turns are searched, which they are, from where the earlier clauses' own ends left
 it, when none of those works (the search again, below); and a clause whose judge accepted none of its ends
-from one start is planned with its own end alone from the others.
+from one start is planned with its own end alone from the others. Where the plans that search may make run out
+(on the seeds and turns of the clause just before the rejected one, say), every earlier clause's cuts are tried
+before the chain is planned as clause by clause would plan it.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path

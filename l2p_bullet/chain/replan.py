@@ -70,6 +70,20 @@ def forecast_from(step: Step, now: Scene) -> Plan | None:
                    more_anchor_poses=more, extra=dict(f.extra))
 
 
+SAME_END = (0.001, 0.02)
+"""Metres and radians within which a re-plan's end is the forecast's own: its later clauses were checked there (a
+plan executed ends within a tenth of a millimetre of itself), so they are not checked again."""
+
+
+def same_end(plan: Plan, forecast: Plan | None) -> bool:
+    """Whether ``plan`` ends where ``forecast`` does, within :data:`SAME_END`."""
+    if forecast is None or not len(forecast.path):
+        return False
+    a, b = np.asarray(plan.path[-1], float), np.asarray(forecast.path[-1], float)
+    turn = abs((a[2] - b[2] + np.pi) % (2 * np.pi) - np.pi)
+    return float(np.hypot(*(a[:2] - b[:2]))) <= SAME_END[0] and turn <= SAME_END[1]
+
+
 def later_fails(plan: Plan, now: Scene, later: Sequence[Step], plugins: list, arm: ArmSpec) -> str | None:
     """The first of the ``later`` clauses whose up-front checks fail when ``plan``'s mover ends where it does and
     each clause between ends where the forecast has it (as the forecast checked them), named with its check; None

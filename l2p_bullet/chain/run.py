@@ -51,7 +51,7 @@ from .composite import judge_row
 from .ends import plan_clause
 from .files import merge_timings
 from .forecast import Step, forecast
-from .replan import forecast_from, later_fails, noted, on_rim
+from .replan import forecast_from, later_fails, noted, on_rim, same_end
 
 
 @dataclass
@@ -388,7 +388,7 @@ def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec, *, late
     plugins = registry.discover() if later and plugins is None else plugins
 
     def fails(p: Plan) -> str | None:
-        return later_fails(p, now, later, plugins, arm) if later else None
+        return later_fails(p, now, later, plugins, arm) if later and not same_end(p, step.forecast) else None
 
     verdict = plan_verdict(step.judge, plan, outlines=outlines)
     why = None if verdict["success"] else verdict["reason"]

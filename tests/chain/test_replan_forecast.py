@@ -87,10 +87,15 @@ def test_a_replan_that_leaves_no_room_for_the_next_clause_runs_the_forecast(plug
 
 
 def test_a_replan_that_keeps_the_next_clause_possible_is_run(plugins, monkeypatch, no_path_check):
-    monkeypatch.setattr(chain_run, "plan_clause", lambda clause, scene, *a, **k: _plan(clause, scene, FORECAST))
-    first, later = _steps(plugins, Judge())
-    plan = chain_run.replanned(first, _scene(), RunOptions(), PANDA, later=[later], plugins=plugins)
-    assert np.allclose(plan.path[0], START) and "replanned" not in plan.extra
+    asked = []
+    monkeypatch.setattr(chain_run, "later_fails", lambda *a: asked.append(a) or None)
+    for goal in (FORECAST + [0.003, 0.0, 0.0], FORECAST + [0.0003, 0.0, 0.005]):
+        monkeypatch.setattr(chain_run, "plan_clause",
+                            lambda clause, scene, *a, goal=goal, **k: _plan(clause, scene, goal))
+        first, later = _steps(plugins, Judge())
+        plan = chain_run.replanned(first, _scene(), RunOptions(), PANDA, later=[later], plugins=plugins)
+        assert np.allclose(plan.path[-1], goal) and "replanned" not in plan.extra
+    assert len(asked) == 1  # not where the re-plan ends where the forecast did: its later clauses were checked there
 
 
 def test_a_replan_its_judge_rejects_runs_the_forecast_before_other_seeds(plugins, monkeypatch, no_path_check):
