@@ -637,3 +637,23 @@ def test_the_earlier_clauses_cuts_are_all_tried_before_a_rejected_clause_is_kept
     assert [s.end for s in steps] == [End(0, "half"), DEFAULT, DEFAULT]
     assert [s.forecast.extra["verdict"]["success"] for s in steps] == [True, True, True]
     assert any(c == 2 and e.seed for c, e in stand_ins)  # clause 2's seeds were searched first, as before
+
+
+def test_the_earlier_clauses_turns_are_tried_once_their_cuts_fail(plugins, stand_ins, monkeypatch):
+    """Clause 3's judge accepts "past D" only with D turned about B, away from where clause 2's own end, its cuts and
+    its other seeds leave it (seed 25090: "move B next to C" on C's side facing A, then "move C closer to A" backs
+    off round B): the search back spends its plans on clause 2's seeds and first turn; every earlier clause's cuts,
+    then its turns, are tried before the chain is kept with a clause its judge rejects."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    b = four_blocks().get("B").xy
+
+    def judge(path, anchor, size, **kwargs):
+        ok = bool(np.allclose(np.asarray(anchor)[:2], b) or anchor[1] < -0.15)
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "backed off"})
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=judge))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move D next to B, then move C past D", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, End(0, None, -30), DEFAULT]
+    assert all(s.forecast.extra["verdict"]["success"] for s in steps)
