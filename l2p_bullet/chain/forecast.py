@@ -33,7 +33,9 @@ mover stands (aims.py), the other seeds and turns are not searched (they end in 
 clause whose judge rejects its own end sends the search back to the earlier clauses' ends (mostly cuts, free)
 before its own seeds and turns are searched, which they are, from where the earlier clauses' own ends left
 it, when none of those works (the search again, below); and a clause whose judge accepted none of its ends
-from one start is planned with its own end alone from the others.
+from one start is planned with its own end alone from the others. Where the plans that search may make run out
+(on the seeds of the clause just before the rejected one, say), every earlier clause's cuts, then its cuts and
+turns, are tried before the chain is planned as clause by clause would plan it.
 
 The checks per clause, in order: the arm's and the judge's feasibility checks (``grasp``, ``boxed-in``,
 ``room-*``: planning.feasibility), the planner itself (``plan``: no legal move), and the execution's path
@@ -128,13 +130,28 @@ def forecast(clauses: list[Clause], scene: Scene, plugins: list, options: RunOpt
     t0 = time.perf_counter()
     try:
         searcher = _Searcher(clauses, plugins, opts, loaded, stats, short_ok=False)
+        steps: list[Step] | None = []
         try:
             steps = searcher.steps(0, scene)
         except Dead:
             if not searcher.short_met:
                 raise
-            # no ends found that every judge accepts: the chain as clause by clause would plan it, the plans
-            # already made reused (the search again, with a clause's own end kept where its judge accepts none)
+            steps = None
+            # no ends found that every judge accepts within the plans left, which may all have gone to the seeds of
+            # the clause just before the rejected one (whose ends stay on one side of its anchor): every earlier
+            # clause's cuts (no search), then its cuts and turns (where its block stands about its anchor), each
+            # with as many plans again
+            for only in ("cuts", "turns"):
+                again = _Searcher(clauses, plugins, opts, loaded, stats, short_ok=False, memo=searcher.memo,
+                                  cost=searcher.cost, only=only)
+                try:
+                    steps, searcher = again.steps(0, scene), again
+                    break
+                except Dead:
+                    pass
+        if steps is None:
+            # none: the chain as clause by clause would plan it, the plans already made reused (the search
+            # again, with a clause's own end kept where its judge accepts none)
             stats.dead_ends.clear()
             searcher = _Searcher(clauses, plugins, opts, loaded, stats, memo=searcher.memo, cost=searcher.cost)
             steps = searcher.steps(0, scene)
@@ -185,10 +202,12 @@ class _Searcher:
     """Depth first over the clauses' end states, back-jumping past clauses that moved no block a failure reads."""
 
     def __init__(self, clauses: list[Clause], plugins: list, opts: RunOptions, loaded: dict, stats: Search, *,
-                 short_ok: bool = True, memo: dict | None = None, cost: dict | None = None):
+                 short_ok: bool = True, memo: dict | None = None, cost: dict | None = None, only: str | None = None):
         self.clauses, self.plugins, self.opts, self.loaded, self.stats = clauses, plugins, opts, loaded, stats
         self.arm = opts.arm_spec()
-        self.left = SEARCH_PLANS * len(clauses)
+        # only "cuts": every clause's own end and its cuts alone; "turns": and its turns (no other seed, no aim)
+        self.only = only
+        self.left = SHORT_PLANS if only else SEARCH_PLANS * len(clauses)
         # short_ok False: a clause whose judge accepts none of its ends is a dead end, so the earlier clauses' other
         # ends are tried first (a block the greedy end left on the rim, then "around" it, sweeps short of the rule)
         self.short_ok, self.short_met = short_ok, False
@@ -210,9 +229,11 @@ class _Searcher:
         at = _Clause(k, c, predicted, *self.loaded[c.command.action], checked=time.perf_counter() - t0)
         aimed = fell_back = False
         for end in ENDS:
+            if self.only and (end.seed or (end.turn and self.only == "cuts")):
+                continue
             if self.left <= 0 and end != DEFAULT:
                 break  # the search is spent: the planner's own ends only, as clause by clause
-            if at.needs and not aimed and (end.seed or end.turn):
+            if at.needs and not aimed and (end.seed or end.turn) and not self.only:
                 # a later room check failed on the planner's end and its cuts: aimed there before other
                 # searches, which are blind to what it needs (aims.py)
                 aimed = True
@@ -233,7 +254,7 @@ class _Searcher:
             if found is not None:
                 return found
         while True:
-            if at.needs and not aimed:
+            if at.needs and not aimed and not self.only:
                 aimed = True
                 found = self._aimed(at)
                 if found is not None:
@@ -377,6 +398,7 @@ class _Searcher:
         if isinstance(made, L2PError):
             raise self._dead(c, made, predicted)
         if made is not None:
+            self.left += bool(self.only) and base is None  # made before: the plans left to it count plans made
             return made
         t0 = time.perf_counter()
         try:

@@ -22,6 +22,7 @@ layout (DESIGN.md section 4), so ``perform`` and every caller take one path for 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -50,7 +51,7 @@ from .clauses import one_clause, resolve_clauses
 from .composite import judge_row
 from .files import merge_timings
 from .forecast import Step, forecast
-from .replan import replanned
+from .replan import on_rim, replanned
 
 
 @dataclass
@@ -258,7 +259,7 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
             clock.stage(f"clause {c.index}", f"{c.label()}: planning from the blocks' real poses, then executing")
             first = 0 if k == 0 else len(prims.recorder.frames)
             r = _clause(step, scene_now(scene, world), prims, rest, plugins, options, arm, first=first,
-                        replan=replan and k > 0)
+                        replan=replan and k > 0, later=steps[k + 1:])
             results.append(r)
             if not r.success:
                 break
@@ -289,9 +290,10 @@ def _execute(sentence: str, scene: Scene, steps: list[Step], out: Path, clock: S
 
 
 def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list, options: RunOptions,
-            arm: ArmSpec, *, first: int, replan: bool) -> ClauseResult:
+            arm: ArmSpec, *, first: int, replan: bool, later: Sequence[Step] = ()) -> ClauseResult:
     """Plan ``step``'s clause from ``now`` (or take its forecast when not ``replan``: the first clause's was
-    planned from this very state), execute it with the arm, judge its frames (from frame ``first`` on)."""
+    planned from this very state; ``later``: the clauses after it, whose checks its re-plan keeps passing where it
+    can), execute it with the arm, judge its frames (from frame ``first`` on)."""
     from ..embodiment import execute as ex
 
     cmd, rec = step.clause.command, prims.recorder
@@ -300,10 +302,11 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         if not replan:
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
+            now = on_rim(now)  # a block the arm left a hair beyond the workspace's edge: planned from the edge
             check_feasible(cmd, now, plugins, arm)
             # the end state the chain was planned with (ends.py): the planner's own, or the one that keeps the
             # later clauses possible
-            plan = replanned(step, now, options, arm)
+            plan = replanned(step, now, options, arm, later=later, plugins=plugins)
             plan.extra.setdefault("sentence", step.clause.text)
         standing = is_standing(plan)  # the relation already holds: the world stands still, the arm at rest
         if standing:

@@ -616,3 +616,45 @@ def test_past_aimed_where_around_it_has_room_keeps_its_close_pass(plugins):
                               scene, plugins)
     steps = forecast(clauses, scene, plugins, seed=21158)
     assert steps[2].end.via == "nearest" and all(s.forecast.extra["verdict"]["success"] for s in steps)
+
+
+def test_the_earlier_clauses_cuts_are_all_tried_before_a_rejected_clause_is_kept(plugins, stand_ins, monkeypatch):
+    """Clause 1's own end leaves A at RIM, where clause 3's judge accepts no "past A"; clause 1 cut short does not.
+    The search back from clause 3 spends the plans it has left on clause 2's seeds and turns (each a search, and
+    clause 3 planned again after each) before it comes back to clause 1: the cuts of every earlier clause (no
+    search, the clauses after them planned again) are then tried before the chain is kept as clause by clause
+    would plan it, with a clause its judge rejects (seed 25023: "away" to the rim, then "past" it)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+
+    def anchor_off_the_rim(path, anchor, size, **kwargs):
+        ok = not np.allclose(np.asarray(anchor)[:2], RIM[:2])
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "ended before the anchor"})
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=anchor_off_the_rim))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move D next to B, then move C past A", scene, plugins)
+    search = Search()
+    steps = forecast(clauses, scene, plugins, search=search)
+    assert [s.end for s in steps] == [End(0, "half"), DEFAULT, DEFAULT]
+    assert [s.forecast.extra["verdict"]["success"] for s in steps] == [True, True, True]
+    assert any(c == 2 and e.seed for c, e in stand_ins)  # clause 2's seeds were searched first, as before
+
+
+def test_the_earlier_clauses_turns_are_tried_once_their_cuts_fail(plugins, stand_ins, monkeypatch):
+    """Clause 3's judge accepts "past D" only with D turned about B, away from where clause 2's own end, its cuts and
+    its other seeds leave it (seed 25090: "move B next to C" on C's side facing A, then "move C closer to A" backs
+    off round B): the search back spends its plans on clause 2's seeds and first turn; every earlier clause's cuts,
+    then its turns, are tried before the chain is kept with a clause its judge rejects."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    b = four_blocks().get("B").xy
+
+    def judge(path, anchor, size, **kwargs):
+        ok = bool(np.allclose(np.asarray(anchor)[:2], b) or anchor[1] < -0.15)
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "backed off"})
+
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=judge))
+    scene = four_blocks()
+    clauses = resolve_clauses("move A away from B, then move D next to B, then move C past D", scene, plugins)
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, End(0, None, -30), DEFAULT]
+    assert all(s.forecast.extra["verdict"]["success"] for s in steps)

@@ -118,7 +118,9 @@ def test_a_block_off_the_forecast_state_is_planned_again(plugins, monkeypatch, n
     monkeypatch.setattr(chain_run, "plan_clause", _stand_in(calls))
     step = _forecast_step(plugins, _scene())
     plan = chain_run.replanned(step, _nudged(_scene(), "B", 0.005), RunOptions(), PANDA)
-    assert calls == [DEFAULT, End(1)] and "followed_forecast" not in plan.extra
+    assert calls[0] == DEFAULT and "followed_forecast" not in plan.extra  # planned again first
+    # the re-plan its judge rejects gives way to the forecast's path from the real start, before any other seed
+    assert calls == [DEFAULT] and plan.extra["replanned"]["forecast"] is True
 
 
 def test_a_forecast_plan_its_judge_rejects_from_the_real_state_is_planned_again(plugins, monkeypatch,
