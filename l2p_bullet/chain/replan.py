@@ -128,8 +128,8 @@ FOLLOW_TOL_M = 0.002
 """How far (m) any block may stand from where the forecast predicted it, at a clause's start, for the run to follow
 the forecast's plan of that clause instead of planning it again. Why: the planner's search is not smooth in its
 start; planned again from a state a few tenths of a millimetre off the predicted one, it can end a clause centimetres
-from the forecast's end (chain/25305: "move D around C" 27 mm, then "move D closer to C" 39 mm), where a later
-clause the chain was planned for has no way left ("move C around D": 1.07 of a turn on the forecast, 0.62 run).
+from the forecast's end, where a later clause the chain was planned for has no way left (an "around" the forecast
+swept a whole turn finds less than the 0.8 its judge asks; docs/benchmarks.md, "Chains drawn whole").
 Two millimetres: the blocks stand within half a millimetre of the forecast after a clause, and a path may start
 3 mm from a block (embodiment/path_checks.py)."""
 
