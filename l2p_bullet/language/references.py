@@ -21,6 +21,7 @@ import numpy as np
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates, describe, described, looks, name_words
+from .other_than import other_than
 from .places import (
     bearing_off,
     bulk_superlative,
@@ -95,6 +96,9 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     names = scene.names
     if text in names:  # an exact name first: a block may well be called "a" or "the cube"
         return text
+    other = other_than(text, scene, role, resolve_object)  # "the cube that isn't red"
+    if other is not None:
+        return other
     words = _plain_order(words, scene)
     low = tuple(w.lower() for w in words)
     if set(low) & CONJUNCTIONS and "between" not in low:  # "the tray and the other one closer to the can"

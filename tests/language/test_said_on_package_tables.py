@@ -76,6 +76,9 @@ TOYS = "heldout22.tsv"
     ("Nudge V toward T until they're nearer each other.", "push:closer V T", BLOCKS),
     ("Result wanted: R closer to T, nothing else moved.", "slide:closer R T", BLOCKS),
     ("Let V end beside the yellow bar, this is what I want.", "slide:next-to V W", BLOCKS),
+    # an object said by what it is not
+    ("move the cube that isn't red past the mug", "slide:past B mug", TOYS),
+    ("Take the red one that isn't the big one and push it toward the bar.", "push:closer R W", BLOCKS),
     # an end said without a verb, then the verb that says how
     ("V right up against W. push it.", "push:next-to V W extent=right", BLOCKS),
     ("the thing right in front of the red cube on the right, move it next to the mug", "slide:next-to teddy mug",
@@ -97,6 +100,8 @@ def test_said_on_the_new_tables(plugins, sentence, expect, table):
     ("S and V are too close together. Move it.", BLOCKS),      # which one
     ("I want the cup further from the lemon. Move the lemon, not the cup.", GENERIC),  # the other way round
     ("Move the lemon past the cup. Move the cup.", GENERIC),   # a second move with no place
+    ("move the cube that isn't blue away from the teddy", TOYS),  # two red cubes left
+    ("move the cube that isn't green past the teddy", TOYS),      # no green cube: nothing is left out
 ])
 def test_what_stays_refused_on_the_new_tables(plugins, sentence, table):
     with pytest.raises(L2PError):
