@@ -134,14 +134,24 @@ Two millimetres: the blocks stand within half a millimetre of the forecast after
 3 mm from a block (embodiment/path_checks.py)."""
 
 
-def followed(step: Step, now: Scene, arm: ArmSpec) -> Plan | None:
-    """``step``'s forecast plan, started from where its mover really stands (:func:`forecast_from`), where every block
-    of ``now`` stands within :data:`FOLLOW_TOL_M` of the state it was forecast from (``step.scene``), the arm can
-    follow its path there and its judge accepts it from there (the anchors where they really are); else None
-    (planned again)."""
+def _runs(plan: Plan, step: Step, now: Scene, arm: ArmSpec, outlines: Any) -> bool:
+    """Whether the arm can follow ``plan``'s path in ``now`` and ``step``'s judge accepts it (``outlines``: the mover's
+    and the anchors' where they really are)."""
     from ..embodiment import execute as ex
 
-    plan, cmd, predicted = step.forecast, step.clause.command, step.scene
+    cmd = step.clause.command
+    try:
+        ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, plan.path, arm)
+    except L2PError:
+        return False
+    return bool(plan_verdict(step.judge, plan, outlines=outlines)["success"])
+
+
+def followed(step: Step, now: Scene, arm: ArmSpec, outlines: Any) -> Plan | None:
+    """``step``'s forecast plan, started from where its mover really stands (:func:`forecast_from`), where every block
+    of ``now`` stands within :data:`FOLLOW_TOL_M` of the state it was forecast from (``step.scene``), the arm can
+    follow its path there and its judge accepts it from there (:func:`_runs`); else None (planned again)."""
+    plan, predicted = step.forecast, step.scene
     if plan is None or predicted is None or is_standing(plan) or sorted(predicted.names) != sorted(now.names):
         return None
     if any(np.hypot(*np.subtract(o.xy, predicted.get(o.name).xy)) > FOLLOW_TOL_M for o in now.objects):
@@ -150,12 +160,7 @@ def followed(step: Step, now: Scene, arm: ArmSpec) -> Plan | None:
     if kept is None:
         return None
     kept.extra["followed_forecast"] = True
-    try:
-        ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, kept.path, arm)
-    except L2PError:
-        return None
-    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
-    return kept if plan_verdict(step.judge, kept, outlines=outlines)["success"] else None
+    return kept if _runs(kept, step, now, arm, outlines) else None
 
 
 def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec, *, later: Sequence[Step] = (),
@@ -166,14 +171,12 @@ def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec, *, late
     forecast's own path from the real start and the plans with :data:`OTHER_SEEDS` (each followable by the arm; why
     kept in ``extra["replanned"]``); else the first of them its judge accepts, else the plan with the chosen end (the
     run judges what it does). A plan that moves nothing because the relation already holds is kept as it is."""
-    from ..embodiment import execute as ex
-
-    kept = followed(step, now, arm)
+    cmd = step.clause.command
+    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
+    kept = followed(step, now, arm, outlines)
     if kept is not None:
         return kept
-    cmd = step.clause.command
     plan = plan_clause(step.clause, now, step.bundle, step.judge, options, arm, step.end)
-    outlines = outlines_of([now.get(o) for o in (cmd.mover, *cmd.anchors)])
     if is_standing(plan):
         return plan
     plugins = registry.discover() if later and plugins is None else plugins
@@ -188,18 +191,15 @@ def replanned(step: Step, now: Scene, options: RunOptions, arm: ArmSpec, *, late
         return plan
     accepted = None  # the first other plan its judge accepts: taken where none keeps the later clauses possible
     for how in ({"forecast": True}, *({"seed_offset": step.end.seed + k} for k in OTHER_SEEDS)):
-        try:
-            if "forecast" in how:
-                other = forecast_from(step, now)
-                if other is None:
-                    continue
-            else:
+        if "forecast" in how:
+            other = forecast_from(step, now)
+        else:
+            try:
                 other = plan_clause(step.clause, now, step.bundle, step.judge, options, arm,
                                     replace(step.end, seed=how["seed_offset"]))
-            ex.check_for(ex.manner_of(cmd.manner), now, cmd.mover, other.path, arm)
-        except L2PError:
-            continue
-        if is_standing(other) or not plan_verdict(step.judge, other, outlines=outlines)["success"]:
+            except L2PError:
+                continue
+        if other is None or is_standing(other) or not _runs(other, step, now, arm, outlines):
             continue
         if fails(other) is None:
             return noted(other, how, why)
