@@ -147,7 +147,7 @@ def confirmed(text: str, before: Clause, scene: Scene) -> Clause | None:
     if m is None or before.target is not None:
         return None
     cmd = before.command
-    named = Scene([o for o in scene.objects if o.name in (cmd.mover, *cmd.anchors)], scene.table, scene.workspace)
+    named = scene.only((cmd.mover, *cmd.anchors))
     try:  # "the cube" is the cube of the two the clause before named
         verb, manner, rest = split_verb([m.group("verb")])
         what = resolve_object(m.group("what"), named, "block to move")

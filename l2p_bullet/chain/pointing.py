@@ -150,10 +150,10 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
         objects = _objects(m.group("what"), scene, context)
         return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
     objects = _pointed_at(text, scene, context)
-    said = STATEMENT.match(text) if objects is None and now is not None else None
-    if said is not None:  # "Right now the ring is far from the cone": how the table is; it points at the ring
-        objects = _objects(said.group("what"), scene, context)
     told = STATEMENT.match(text)
+    if told is not None and objects is None and now is not None:
+        # "Right now the ring is far from the cone": how the table is; it points at the ring
+        objects = _objects(told.group("what"), scene, context)
     crowded = told is not None and TOGETHER.match(told.group("said")) is not None and objects is not None \
         and len(objects) == 2
     return None if objects is None else Shown(objects, crowded=crowded)

@@ -78,11 +78,8 @@ def in_other_words(text: str) -> list[str]:
     to_then = TO_THEN.match(text)
     if to_then is not None:
         out.append(f"{to_then.group('head')} {to_then.group('rest')}")
-    m = OVER_TO.match(text)
-    if m is not None and to_then is None:
-        out.append(f"{m.group('head')} toward {m.group('rest')}")
-    m = TO_OBJECT.match(text) if m is None and to_then is None else None
-    if m is not None:
+    m = (OVER_TO.match(text) or TO_OBJECT.match(text)) if to_then is None else None
+    if m is not None:  # "over to" first, then "to" an object
         out.append(f"{m.group('head')} toward {m.group('rest')}")
     m = NOT_SO_CLOSE.search(text)
     if m is not None:

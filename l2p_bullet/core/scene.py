@@ -190,6 +190,11 @@ class Scene:
         self.get(name)
         return Scene([o.moved(pose) if o.name == name else o for o in self.objects], self.table, self.workspace)
 
+    def only(self, names) -> Scene:
+        """This scene with only the objects ``names`` (its table and workspace kept): where a description is read
+        among a group the sentence named before ("the cube" of the two a clause named)."""
+        return Scene([o for o in self.objects if o.name in names], self.table, self.workspace)
+
     def validate(self) -> Scene:
         """Raise :class:`SceneError` naming the first problem found; return self when all is well."""
         if not self.objects:

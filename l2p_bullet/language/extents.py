@@ -75,14 +75,19 @@ TIGHT_PHRASES = frozenset({"up against", "against", "right up against"})
 ("right next to"); read so where the phrase's action takes that extent."""
 
 
+LONGEST_FIRST = tuple(sorted(EXTENTS, key=len, reverse=True))
+TAILS_LONGEST_FIRST = tuple(sorted(EXTENT_TAILS, key=len, reverse=True))
+"""The qualifiers and the closing words, longest first (the longest said wins), sorted once."""
+
+
 def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:
     """The words after a preposition without the closing extent words at their end (:data:`EXTENT_TAILS`), and the
     extent those ask for; the words as they are, and None, where they end otherwise or would be left empty."""
     low = [w.lower() for w in after]
-    for k in sorted(EXTENT_TAILS, key=len, reverse=True):
+    for k in TAILS_LONGEST_FIRST:
         if len(low) > len(k) and tuple(low[-len(k):]) == k:
             return after[: -len(k)], EXTENT_TAILS[k]
-    for k in sorted(EXTENTS, key=len, reverse=True):  # "..., but only a smidge", "... just a tad"
+    for k in LONGEST_FIRST:  # "..., but only a smidge", "... just a tad"
         if EXTENTS[k] == "little" and len(low) > len(k) and tuple(low[-len(k):]) == k:
             head = low[:-len(k)]
             said = next((q for q in HEDGES if len(head) > len(q) and tuple(head[-len(q):]) == q), None)
@@ -113,7 +118,7 @@ def take_extent(before: list[str]) -> tuple[list[str], str | None]:
         if extent is not None and len(low) > 1 and low[-1] in FILLERS:
             before = before[:-1]
             continue
-        for k in sorted(EXTENTS, key=len, reverse=True):
+        for k in LONGEST_FIRST:
             if len(low) > len(k) and tuple(low[-len(k):]) == k:
                 before, extent = before[: -len(k)], EXTENTS[k]
                 break

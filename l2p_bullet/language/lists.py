@@ -78,6 +78,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
         return text
     extra = EXTRA.match(text, group.end())  # "the two red cubes and the green one - small red, big red, green"
     after = text[extra.end() if extra else group.end():]
+    named = try_object(extra.group("named"), scene) if extra else None
     for sep in re.finditer(r"\s*(?::|\s-+\s|[\u2013\u2014]|,|\()\s*", after):
         m = GROUP_ITEMS.match(after[sep.start():])
         if m is None:
@@ -90,7 +91,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
             return text
         noun = group.group("kind").lower().rstrip("s")
         said = [i if noun in ("object", "thing") else re.sub(r"(?i)\s+one$", f" {noun}", i)
-                if i.lower().startswith("the ") else _item(i, noun, scene, extra) for i in items]
+                if i.lower().startswith("the ") else _item(i, noun, scene, named) for i in items]
         listed = ", ".join(said[:-1]) + " and " + said[-1]
         return f"{text[:group.start()]}{listed}{after[:sep.start()]}"
     return text
@@ -99,7 +100,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
 COLOURED_GROUP = re.compile(r"\bthe\s+(?P<count>two|three|four|five|[2-5])\s+[a-z]+\s+(?P<kind>cubes|blocks|boxes)\b",
                             re.IGNORECASE)
 """A group said with one word more ("the two red cubes"): each item told after it says that word itself."""
-EXTRA = re.compile(r"\s+and\s+the\s+[\w-]+(?:\s+(?!in\b|into\b)[\w-]+)?(?=\s|$|[,:;(])", re.IGNORECASE)
+EXTRA = re.compile(r"\s+and\s+(?P<named>the\s+[\w-]+(?:\s+(?!in\b|into\b)[\w-]+)?)(?=\s|$|[,:;(])", re.IGNORECASE)
 """One more object named after a group ("the two blue cubes and the lemon"): its item is told among the group's."""
 
 
@@ -110,14 +111,12 @@ def _told(item: str) -> str:
     return f"the {item}" if item.lower().endswith(" one") and not item.lower().startswith("the ") else item
 
 
-def _item(said: str, noun: str, scene: Scene, extra: re.Match | None) -> str:
+def _item(said: str, noun: str, scene: Scene, named: str | None) -> str:
     """An item told after a group ("small red", "lemon") as a description: with the group's noun, or as said where
-    that is the one object named after the group ("the two blue cubes and the lemon - small blue, lemon, ...")."""
+    that is ``named``, the one object named after the group ("the two blue cubes and the lemon - small blue, lemon")."""
     with_noun = f"the {said} {noun}"
-    if extra is not None and try_object(with_noun, scene) is None:
-        named = try_object(extra.group(0).strip()[len("and "):].strip(), scene)
-        if named is not None and try_object(f"the {said}", scene) == named:
-            return f"the {said}"
+    if named is not None and try_object(with_noun, scene) is None and try_object(f"the {said}", scene) == named:
+        return f"the {said}"
     return with_noun
 
 

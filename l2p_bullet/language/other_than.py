@@ -28,7 +28,7 @@ def other_than(text: str, scene: Scene, role: str, resolve: Callable[..., str]) 
     pool = pool_of(m.group("base"), scene)
     if len(pool) < 2:
         return None
-    group = Scene(pool, scene.table, scene.workspace)
+    group = scene.only({o.name for o in pool})
     said = m.group("not").strip(" .!?")
     said = said if said.lower().startswith("the ") else f"the {said} one"
     left_out = {o.name for o in pool_of(said, group)}

@@ -107,7 +107,7 @@ def either_reading(described: list[str], scene: Scene, choose) -> str:
     picks = sorted({r for r in readings if isinstance(r, str)})
     if not picks:
         raise readings[0]  # neither reading picks one: why the first does not (a tie, nothing on that side)
-    raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0] if picks else "none"}, as a block '
+    raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0]}, as a block '
                         f'(a cube or a box) {"another" if len(picks) > 1 else "not one"}; name the one you mean')
 
 

@@ -108,7 +108,7 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return pointed
     if context is not None and len(context.among) > 1 and len(low) > 1 and low[0] == "the":
         try:  # "the big one", "the cube" after "There are two grey things": the one of those two
-            return _resolve(text, _only(scene, context.among), role, None)
+            return _resolve(text, scene.only(context.among), role, None)
         except UnknownObjectError:
             pass  # "the yellow one": none of the group, so one of the scene
     for i in range(1, len(low) - 1):
@@ -203,7 +203,7 @@ def _partitive(text: str, scene: Scene, role: str) -> str | None:
     if group is None:
         return None
     try:
-        return _resolve(m.group("head"), _only(scene, group), role, None)
+        return _resolve(m.group("head"), scene.only(group), role, None)
     except (LanguageError, UnknownObjectError):
         return None
 
@@ -217,15 +217,9 @@ def _named_before(text: str, scene: Scene, role: str, context: Context | None) -
     if len(before) < 2:
         return None
     try:
-        return _resolve(text, _only(scene, before), role, None)
+        return _resolve(text, scene.only(before), role, None)
     except (LanguageError, UnknownObjectError):
         return None
-
-
-def _only(scene: Scene, names) -> Scene:
-    """``scene`` with only the objects ``names`` (its table and workspace kept): where a description is read
-    among a group the sentence named before."""
-    return Scene([o for o in scene.objects if o.name in names], scene.table, scene.workspace)
 
 
 def _plain_order(words: list[str], scene: Scene) -> list[str]:

@@ -99,9 +99,9 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
             return SHORTHAND[low]
         if low in known:
             return w
-        squeezed = RUNS.sub(r"\1", low)  # "wayyy", "waaay", "sooo"
-        if squeezed != low and (squeezed in known or RUNS.sub(r"\1\1", low) in known):
-            return squeezed if squeezed in known else RUNS.sub(r"\1\1", low)
+        squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
+        if squeezed is not None:  # "wayyy", "waaay", "sooo"
+            return squeezed
         hit = near(low, known)
         if hit is None:
             return w

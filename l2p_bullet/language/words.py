@@ -17,6 +17,7 @@ A word that is the name of an object in the scene is never dropped ("move Now ne
 from __future__ import annotations
 
 from ..errors import LanguageError
+from .reference_words import DETERMINERS
 
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
@@ -53,7 +54,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "not the other way round", "not the other way around", "and not the other way round",
     "nothing else moved", "and nothing else", "this is what i want", "that's what i want", "that is what i want",
-    "if you can", "if possible", "when you can", "if you would", "dear", "please dear", "mate", "buddy", "pal",
+    "if you can", "if possible", "when you can", "dear", "please dear", "mate", "buddy", "pal",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
     "and let go", "and let go of it", "and set it down there", "and put it down there",
@@ -319,7 +320,7 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
             if is_object(" ".join(words[j:k])):
                 if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
-                    first = low[0] if low[0] in ("the", "a", "an", "this", "that") else words[0]
+                    first = low[0] if low[0] in DETERMINERS else words[0]
                     mover = " ".join([first, *words[1:k]])
                     raise LanguageError(f'"{" ".join(words)}" tells how the table is and asks for nothing; say what to '
                                         f'do, as in "move {mover} {" ".join(words[k + len(link):])}"')
