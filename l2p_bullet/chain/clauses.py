@@ -143,6 +143,10 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                     raise named(e, f'clause {i} ("{text}")') from None
                 clauses.extend(Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
                 continue
+            again = _taken_back(text, clauses, scene, plugins, pair) if not show else None
+            if again is not None:  # "... closer to the ball. no wait, closer to the jello."
+                clauses[-1:] = again
+                continue
             extent = apart.extent_alone(text) if clauses else None
             if extent is not None:  # "Move the tin away from the mug. Just a tiny bit though."
                 clauses[-1] = apart.extended(clauses[-1], extent, plugins)
@@ -184,6 +188,22 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     return clauses
 
 
+def _taken_back(text: str, clauses: list[Clause], scene: Scene, plugins: list,
+                pair: pointing.Shown | None) -> list[Clause] | None:
+    """The clauses a clause that takes the one before back means in its place (chain/corrections.taken_back), read as
+    said after it: its verb and mover complete a place said alone, and "it" is its mover; None where there is none or
+    it does not resolve."""
+    meant = corrections.taken_back(text) if clauses else None
+    if meant is None:
+        return None
+    taken = clauses[-1]
+    try:
+        pieces = _resolve_text(meant, taken.command, scene, plugins, context=_after(taken.command, pair), pair=pair)
+    except L2PError:
+        return None
+    return [Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces)]
+
+
 def _context(previous: Command | None) -> Context | None:
     """What the next clause's pronouns point back to: the previous command's mover and anchor."""
     return Context(previous.mover, previous.anchor, described=_described(previous)) if previous is not None else None
@@ -197,8 +217,9 @@ def _described(command: Command) -> bool:
 def _after(previous: Command, pair: pointing.Shown | None) -> Context:
     """The next clause's context; after a pair was shown and one of it moved, "the other one" is the other of the
     pair ("You see A and C? Move A next to B and the other one next to D")."""
-    if pair is not None and previous.mover in pair.objects:
-        return Context(previous.mover, next(o for o in pair.objects if o != previous.mover))
+    other = next((o for o in pair.objects if o != previous.mover), None) if pair is not None else None
+    if other is not None and previous.mover in pair.objects:
+        return Context(previous.mover, other)
     return Context(previous.mover, previous.anchor, described=_described(previous))
 
 
@@ -352,9 +373,8 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
         left, right = text[:m.start()].strip(" ,"), text[m.end():].strip(" ,")
         if not left or not right:
             continue
-        try:
-            first = resolve(_complete(left, previous, scene, plugins), scene, plugins, context)
-        except L2PError:
+        first = _first_said(left, previous, scene, plugins, context)
+        if first is None:
             continue
         try:
             rest = _resolve_text(right, first, scene, plugins, depth + 1, _after(first, pair), pair)
@@ -364,6 +384,18 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
         if (then.mover, then.anchors) == (first.mover, first.anchors) and then.action != first.action:
             continue  # "closer to the mug and away from the mug": two ends at once, not two steps
         return [(left, first), *rest]
+    return None
+
+
+def _first_said(text: str, previous: Command | None, scene: Scene, plugins: list,
+                context: Context | None) -> Command | None:
+    """The first clause of a split: ``text`` as it stands, else said the usual way (chain/rephrased.py: "b->g fast, nudge
+    E past F"); None where neither resolves."""
+    for said in (text, *rephrased.in_other_words(text)):
+        try:
+            return resolve(_complete(said, previous, scene, plugins), scene, plugins, context)
+        except L2PError:
+            continue
     return None
 
 

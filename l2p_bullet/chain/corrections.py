@@ -14,8 +14,8 @@ import re
 from ..core.scene import Scene
 from ..language.references import try_object
 
-SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*(?:no\s*,?\s*)?"
-                   r"(?:sorry|oops|my\s+bad|wait(?:\s*,?\s*no)?)\s*,?\s*"
+SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*"
+                   r"(?:no\s*,?\s*(?:sorry|oops|my\s+bad|wait)?|sorry|oops|my\s+bad|wait(?:\s*,?\s*no)?)\s*,?\s*"
                    r"(?:i\s+mean[t]?\s+|make\s+that\s+)?(?P<right>[^-\u2013\u2014]+?)\s*"
                    r"(?:[-\u2013\u2014]+\s*(?P<after>.*?))?\s*[.!?]*\s*$", re.IGNORECASE)
 """What was said, a word of correction, what was meant, and the rest of the command after a second dash."""
@@ -29,9 +29,24 @@ INSTEAD = re.compile(r"^\s*(?:(?:actually|no|wait|sorry|oops|hmm)\s*[,.!]*\s*)+(
 """A clause that takes the one before back and says what was meant: "Actually no, move it past the jar instead"."""
 
 
+TAKEN_BACK = re.compile(r"^\s*(?:(?:ok(?:ay)?|hmm|ugh|actually)\s*[,.!]*\s*)*"
+                        r"(?:no+(?:\s*,?\s*(?:wait|sorry))?|wait\s*,?\s*no|sorry|oops|my\s+bad)\s*[,.!:\-\u2013\u2014]+\s*"
+                        r"(?:i\s+mean[t]?\s+|make\s+that\s+)?(?P<meant>\S.*?)\s*[.!]*\s*$", re.IGNORECASE)
+"""A clause that opens by taking the one before back, then says what was meant: "no wait, closer to the jello",
+"wait no, put it by E", "no, the nut next to the bolt"."""
+
+
 def instead_of(text: str) -> str | None:
     """The command an :data:`INSTEAD` clause means in place of the clause before, or None where it is not said so."""
     m = INSTEAD.match(text)
+    return m.group("meant") if m is not None else None
+
+
+def taken_back(text: str) -> str | None:
+    """What a :data:`TAKEN_BACK` clause means in place of the clause before it, or None where it is not said so; the
+    caller reads it as said after the clause it takes back ("no wait, closer to the jello": that clause's verb and
+    mover; "wait no, put it by E": "it" is that clause's mover)."""
+    m = TAKEN_BACK.match(text)
     return m.group("meant") if m is not None else None
 
 

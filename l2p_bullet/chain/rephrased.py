@@ -46,11 +46,15 @@ OVER_TO = re.compile(r"^(?P<head>.+?)\s+over\s+to\s+(?P<rest>\S.*)$", re.IGNOREC
 is said ("over to the other side of", "over to B and set it down beside it") those readings win first."""
 
 
-TO_OBJECT = re.compile(r"^(?P<head>.+?)\s+to\s+(?P<rest>(?:the|a|an)\s+(?!(?:right|left|back|front|rear|far|near"
-                       r"|middle|centre|center|corner|edge|side|end|top|bottom|other|same|table|robot)\b)\S.*)$",
-                       re.IGNORECASE)
-"""A motion said by the object it goes to: "Move the roll to the milk" brings it closer, as "over to" does; never a
-place ("to the corner", "to the right of"), which no action takes."""
+_NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|center|corner|edge|side|end|top|bottom|other"
+                  r"|same|table|robot|it|them|there|here|where)\b)")
+_TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks))*\s*[.!]*"
+TO_OBJECT = re.compile(rf"^(?P<head>.+?)(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*|{_NOT_AN_OBJECT}[\w-]+{_TAIL})"
+                       rf"|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$", re.IGNORECASE)
+"""A motion said by the object it goes to: "Move the roll to the milk", "push a to d quick", "e->c" (an arrow to an
+object) bring it closer, as "over to" does; never a place ("to the corner", "to the right of"), which no action
+takes. Without an article, "to" is followed by one word ("to d"), so "the lego to circle the cube" is not read so; an
+arrow before a relation ("cup -> past the jar") is read by the grammar, before this."""
 
 
 NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
@@ -80,7 +84,7 @@ def in_other_words(text: str) -> list[str]:
         out.append(f"{to_then.group('head')} {to_then.group('rest')}")
     m = (OVER_TO.match(text) or TO_OBJECT.match(text)) if to_then is None else None
     if m is not None:  # "over to" first, then "to" an object
-        out.append(f"{m.group('head')} toward {m.group('rest')}")
+        out.append(f"{m.group('head')} toward {m.group('rest') or m.group('arrow')}")
     m = NOT_SO_CLOSE.search(text)
     if m is not None:
         out.append(f"{text[:m.start()]}{m.group('what')} is away from {m.group('other')}")

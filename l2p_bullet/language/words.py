@@ -17,7 +17,7 @@ A word that is the name of an object in the scene is never dropped ("move Now ne
 from __future__ import annotations
 
 from ..errors import LanguageError
-from .reference_words import DETERMINERS
+from .reference_words import DETERMINERS, NOUNS
 
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
@@ -196,8 +196,12 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
     if not low or low[0] in verbs:
         return words
     for i, w in enumerate(low):
-        if set(words[:i]) & keep:
-            return words
+        said = {x.strip(",.:;!?") for x in words[:i]}
+        nouns = {x.lower() for x in said} & NOUNS
+        arrow = any(a in x for x in said for a in ("->", "=>", "\u2192")) or {x.lower() for x in said} & RELATING
+        # "b->g fast, nudge E past F", "b toward g, nudge ...": a command of its own before the verb, never read past
+        if said & keep or arrow or nouns and not (nouns == {"one"} and {"that", "this"} & said):
+            return words  # "the other one, put it ...": a topic, kept ("yeah that one, carry it ...": the same)
         noun = i + 1 < len(low) and low[i + 1] in NOUN_USE  # "your next move is to lift ..."
         if w in verbs and not noun and not (set(low[max(0, i - 2):i]) & NEGATIONS
                                             and "just" not in low[max(0, i - 1):i]):
@@ -205,6 +209,8 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
     return words
 
 
+RELATING = frozenset({"toward", "towards", "past", "around", "beside", "closer", "nearer", "away"})
+"""Words of a relation: words before a verb that hold one say a command of their own."""
 NOUN_USE = frozenset({"is", "was", "will", "should", "would", "must"})
 """Words after which a verb's word is a noun ("your next move is to lift A ...")."""
 
