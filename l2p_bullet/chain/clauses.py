@@ -389,8 +389,8 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
 
 def _first_said(text: str, previous: Command | None, scene: Scene, plugins: list,
                 context: Context | None) -> Command | None:
-    """The first clause of a split: ``text`` as it stands, else said the usual way (chain/rephrased.py: "b->g fast, nudge
-    E past F"); None where neither resolves."""
+    """The first clause of a split: ``text`` as it stands, else said the usual way (chain/rephrased.py: "b->g fast,
+    nudge E past F"); None where neither resolves."""
     for said in (text, *rephrased.in_other_words(text)):
         try:
             return resolve(_complete(said, previous, scene, plugins), scene, plugins, context)

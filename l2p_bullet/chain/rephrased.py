@@ -46,11 +46,12 @@ OVER_TO = re.compile(r"^(?P<head>.+?)\s+over\s+to\s+(?P<rest>\S.*)$", re.IGNOREC
 is said ("over to the other side of", "over to B and set it down beside it") those readings win first."""
 
 
-_NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|center|corner|edge|side|end|top|bottom|other"
-                  r"|same|table|robot|it|them|there|here|where)\b)")
+_NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|center|corner|edge|side|end|top|bottom"
+                  r"|other|same|table|robot|it|them|there|here|where)\b)")
 _TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks))*\s*[.!]*"
-TO_OBJECT = re.compile(rf"^(?P<head>.+?)(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*|{_NOT_AN_OBJECT}[\w-]+{_TAIL})"
-                       rf"|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$", re.IGNORECASE)
+TO_OBJECT = re.compile(rf"^(?P<head>.+?)(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*"
+                       rf"|{_NOT_AN_OBJECT}[\w-]+{_TAIL})|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$",
+                       re.IGNORECASE)
 """A motion said by the object it goes to: "Move the roll to the milk", "push a to d quick", "e->c" (an arrow to an
 object) bring it closer, as "over to" does; never a place ("to the corner", "to the right of"), which no action
 takes. Without an article, "to" is followed by one word ("to d"), so "the lego to circle the cube" is not read so; an

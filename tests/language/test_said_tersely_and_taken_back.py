@@ -35,8 +35,8 @@ HOUSEHOLD = "heldout27.tsv"
     ("move the nut away from P. oops, the bolt away from P.", "slide:away bolt P", HARDWARE),
     ("drag G toward D, no, toward F", "slide:closer G F", LINE),
     # a topic before the command is the object "it" means, not a word to read past
-    ("Move O next to the lamp. The bigger one, put it beside the crate.", "slide:next-to O lamp ; slide:next-to Q crate",
-     HOUSEHOLD),
+    ("Move O next to the lamp. The bigger one, put it beside the crate.",
+     "slide:next-to O lamp ; slide:next-to Q crate", HOUSEHOLD),
     ("The small orange cube, push it toward the saucer, and the other one, push it toward the lamp.",
      "push:closer O saucer ; push:closer Q lamp", HOUSEHOLD),
 ])
