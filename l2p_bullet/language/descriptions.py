@@ -73,8 +73,15 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     other words leave several and one of them is block-shaped (a cube or a box), that one is meant ("the white
     block": the cube, not the white mug); the two readings are refused where they pick different objects."""
     spelled = spelled_name(words, scene)
-    if spelled is not None:
-        return spelled
+    if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too
+        try:
+            others = [o.name for o in candidates(text, words, low, scene, determined) if o.name != spelled]
+        except (LanguageError, UnknownObjectError):
+            others = []
+        if not others:
+            return spelled
+        raise LanguageError(f'"{text}" is ambiguous: it is {spelled} by name, and {", ".join(others)} fits it too; '
+                            "name the one you mean")
     names = name_words(scene)
     sizes = [w for w in low if w in SIZE_WORDS and w not in names]
     words, low, measure = said_measure(words, low)
@@ -161,6 +168,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     names = name_words(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
     low = spoken_letter(low, scene)
+    low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
     if len(said) == 1 and said[0] in COLOUR_NOUNS and said[0] not in names:
         raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
@@ -222,6 +230,14 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
         fits = [o for o in fits if o.shape != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
     return fits
+
+
+def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:
+    """``low`` with "light" before a colour ("the light blue block") read as a shade, a word no table knows (so
+    refused, lamp or none), never as the lamp "light" names alone."""
+    colours = set(COLORS) | set(COLOR_SYNONYMS)
+    return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in colours else w
+                 for i, w in enumerate(low))
 
 
 def _before_head(low: tuple[str, ...], i: int, heads: set[str]) -> bool:

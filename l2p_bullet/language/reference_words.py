@@ -158,9 +158,10 @@ SPOKEN_LETTERS = {"ay": "a", "bee": "b", "be": "b", "cee": "c", "see": "c", "sea
                   "vee": "v", "double-u": "w", "doubleyou": "w", "ex": "x", "why": "y", "wye": "y", "zed": "z",
                   "zee": "z"}
 """A letter as it is said, and so as dictation writes it ("block cue", "cube oh"): the one-letter name it spells."""
-SPOKEN_ONLY_AFTER_NOUN = frozenset({"be", "bee", "see", "sea", "eye", "oh", "owe", "are", "tea", "you", "why"})
-"""Spellings that are words of their own ("you" is the robot, "see" a verb): a letter only right after a noun that
-names an object ("cube oh", "block see"), never alone."""
+SPOKEN_ONLY_AFTER_NOUN = frozenset({"ay", "be", "bee", "see", "sea", "gee", "eye", "kay", "em", "oh", "owe", "are",
+                                    "tea", "you", "ex", "why"})
+"""Spellings that are words of their own ("you" is the robot, "see" a verb, "em" them as typed, "kay" okay): a
+letter only right after a noun that names an object ("cube oh", "block see"), never alone."""
 REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
                             | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
 """Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",

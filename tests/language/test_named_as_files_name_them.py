@@ -57,6 +57,7 @@ MESHES = Path(__file__).parent / "meshes"
     ("slide the gelatine box next to the screw", "slide:next-to jello bolt", WORKSHOP),
     ("push the M6 nut toward the hex bolt", "push:closer nut bolt", WORKSHOP),
     ("move the metal nut past the cam", "slide:past nut camera", WORKSHOP),
+    ("push the round piece toward the green box", "push:closer D E", "heldout29.tsv"),
     # a letter said as dictation writes it, where a one-letter name exists
     ("slide block cue past the saucer", "slide:past Q saucer", HOUSEHOLD),
     ("push the cube oh toward the lamp", "push:closer O lamp", HOUSEHOLD),
@@ -78,6 +79,8 @@ def test_named_as_files_name_them(sentence: str, expect: str, table: str, plugin
     ("move oh next to the lamp", HOUSEHOLD),  # "oh" alone is a word of its own
     ("move the lamp next to you", HOUSEHOLD),  # "you" is the robot, and U is not on the table
     ("slide the zucchini toward cube zed", HOUSEHOLD),  # no Z on the table
+    ("move the lamp next to em", HOUSEHOLD),  # "em" alone is "them" as typed
+    ("push the light orange cube toward the crate", HOUSEHOLD),  # a shade, never the lamp
     ("move the cucumber past the lamp", HOUSEHOLD),  # a cucumber is not a courgette
 ])
 def test_what_stays_refused(sentence: str, table: str, plugins) -> None:
@@ -121,6 +124,16 @@ def test_a_names_words_name_it(said: str, expect: str) -> None:
 def test_a_word_two_names_share_is_asked(said: str) -> None:
     with pytest.raises(L2PError):
         resolve_object(said, _pantry())
+
+
+def test_a_name_said_as_a_description_that_fits_another_is_asked() -> None:
+    scene = Scene([SceneObject("red_cube", "red", 0.05, (0.1, 0.0)), SceneObject("B", "red", 0.05, (0.0, 0.1)),
+                   SceneObject("cube_a", "green", 0.05, (-0.1, 0.0)), SceneObject("A", "green", 0.04, (0.0, -0.1))])
+    for said in ("the red cube", "cube a"):
+        with pytest.raises(L2PError):
+            resolve_object(said, scene)
+    assert resolve_object("red_cube", scene) == "red_cube"
+    assert resolve_object("cube_a", scene) == "cube_a"
 
 
 def test_a_names_words_split_as_files_join_them() -> None:
