@@ -33,9 +33,22 @@ from .reference_words import (
     SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SOFT_ADJECTIVES,
+    SPOKEN_LETTERS,
+    SPOKEN_ONLY_AFTER_NOUN,
     STRICT_SHAPES,
 )
-from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS, kind_groups, kind_words_of, kinds_of, scene_key
+from .synonyms import (
+    KIND_MODIFIERS,
+    KIND_SYNONYMS,
+    SIZE_WORDS,
+    is_modifier,
+    kind_groups,
+    kind_words_of,
+    kinds_of,
+    name_parts,
+    own_kinds_of,
+    scene_key,
+)
 
 
 def describe(scene: Scene) -> str:
@@ -59,6 +72,16 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     "Block" covers any object ("the purple block" is the cylinder where nothing else is purple), but where the
     other words leave several and one of them is block-shaped (a cube or a box), that one is meant ("the white
     block": the cube, not the white mug); the two readings are refused where they pick different objects."""
+    spelled = spelled_name(words, scene)
+    if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too
+        try:
+            others = [o.name for o in candidates(text, words, low, scene, determined) if o.name != spelled]
+        except (LanguageError, UnknownObjectError):
+            others = []
+        if not others:
+            return spelled
+        raise LanguageError(f'"{text}" is ambiguous: it is {spelled} by name, and {", ".join(others)} fits it too; '
+                            "name the one you mean")
     names = name_words(scene)
     sizes = [w for w in low if w in SIZE_WORDS and w not in names]
     words, low, measure = said_measure(words, low)
@@ -83,6 +106,33 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
         raise LanguageError(f'"{text}" is ambiguous: as any object it is {readings[0]}, as a block (a cube or a '
                             f"box) {readings[1]}; name the one you mean")
     raise readings[0]
+
+
+def spelled_name(words: list[str], scene: Scene) -> str | None:
+    """The object whose name of several words the words spell, however the name joins them ("cube b", "Cube-B" for
+    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2); None where none or several do."""
+    said = name_parts(" ".join(words))
+    if len(said) < 2:
+        return None
+    fits = [n for n in scene.names if name_parts(n) == said]
+    return fits[0] if len(fits) == 1 else None
+
+
+def spoken_letter(low: tuple[str, ...], scene: Scene) -> tuple[str, ...]:
+    """``low`` with a letter said as a word at its end read as the one-letter name it spells ("block cue": block q,
+    "cube oh": cube o, "cue" alone), where the scene has an object of that name and nothing is called by the word;
+    a spelling that is a word of its own ("oh", "see", "you") only right after a noun ("cube oh")."""
+    if not low:
+        return low
+    word = low[-1]
+    letter = SPOKEN_LETTERS.get(word)
+    if letter is None or word in name_words(scene) or word in kind_groups(scene) \
+            or letter not in {n.lower() for n in scene.names}:
+        return low
+    after_noun = len(low) >= 2 and (low[-2] in NOUNS or low[-2] in BLOCK_WORDS or low[-2] in SHAPE_NOUNS)
+    if after_noun or (len(low) == 1 and word not in SPOKEN_ONLY_AFTER_NOUN):
+        return (*low[:-1], letter)
+    return low
 
 
 MEASURE = re.compile(r"^(?P<n>\d+(?:[.,]\d+)?)-?(?P<unit>cm|mm|centimet(?:er|re)s?|millimet(?:er|re)s?)$")
@@ -117,6 +167,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     are for :func:`described`); an unknown word is a one-line error."""
     names = name_words(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
+    low = spoken_letter(low, scene)
+    low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
     if len(said) == 1 and said[0] in COLOUR_NOUNS and said[0] not in names:
         raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
@@ -124,7 +176,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     drop = SOFT_ADJECTIVES
     heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can": named so or a cylinder
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
-            if lw in names or not (lw in drop or (lw in KIND_MODIFIERS and i + 1 < len(low) and low[i + 1] in heads))]
+            if lw in names or not (lw in drop or (is_modifier(lw) and _before_head(low, i, heads)))]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS for lw in low)
     if kept:  # "the little red cube": the other words decide
         words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
@@ -133,10 +185,11 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     else:
         return list(scene.objects)  # "the tall": size words alone
     colours = named_colours(low)
-    named = [names[w] for w in low if w in names and w not in NOUNS]
+    literal = {n.lower() for n in scene.names}  # "can" as a word of "soup_can.obj" is a kind, not a name
+    named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)]
     groups = kind_groups(scene)
     kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS]  # among two mugs
-    either = [(groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and w not in names and w in SHAPE_NOUNS]
+    either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and w not in literal and w in SHAPE_NOUNS]
     shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS and w not in groups}
     shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
     known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
@@ -145,15 +198,17 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
             and low[0] not in FUNCTION_WORDS and low[0] not in KIND_SYNONYMS:  # "the triangular toy": another kind
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
-    if unknown or not (colours or named or kinds or shapes or shaped or sized or set(low) & (NOUNS | BLOCK_WORDS)):
+    if unknown or not (colours or named or kinds or either or shapes or shaped or sized
+                       or set(low) & (NOUNS | BLOCK_WORDS)):
         unknown_object(text, words, low, scene)
     fits = list(scene.objects)
     if named:
         fits = [o for o in fits if o.name in named]
     for group in kinds:
         fits = [o for o in fits if o.name in group]
-    for group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
-        fits = [o for o in fits if o.name in group or o.shape == shape]
+    for word, group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
+        fits = [o for o in fits if o.name in group or o.shape == shape
+                or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too
     if colours:
         if not any(o.color in colours for o in scene.objects):
             colours = {NEAR_COLOURS.get(c, c) for c in colours}
@@ -173,8 +228,24 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if shaped:
         fits = [o for o in fits if o.shape in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
-        fits = [o for o in fits if o.shape != "mesh" or kinds_of(o) & BLOCK_KINDS]
+        fits = [o for o in fits if o.shape != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
     return fits
+
+
+def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:
+    """``low`` with "light" before a colour ("the light blue block") read as a shade, a word no table knows (so
+    refused, lamp or none), never as the lamp "light" names alone."""
+    colours = set(COLORS) | set(COLOR_SYNONYMS)
+    return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in colours else w
+                 for i, w in enumerate(low))
+
+
+def _before_head(low: tuple[str, ...], i: int, heads: set[str]) -> bool:
+    """Whether the words after ``low[i]`` are more modifiers, then a kind's name ("video game controller")."""
+    j = i + 1
+    while j < len(low) and is_modifier(low[j]) and low[j] not in heads:
+        j += 1
+    return j < len(low) and low[j] in heads
 
 
 LONG_NOUNS = frozenset({"stick", "sticks", "bar", "bars"})
@@ -193,10 +264,11 @@ def _cube_like(o: SceneObject) -> bool:
 
 def naming_words(scene: Scene) -> frozenset[str]:
     """Lower-case words that name or describe objects: kind words and names of 3+ letters, colours and their
-    synonyms, shape nouns. Not "can" as a shape ("can you ..." asks; a can object is a kind word) nor a one-letter
-    name ("u" is "you" as typed: U is named as "U")."""
+    synonyms, shape nouns. Not "can" as a shape ("can you ..." asks; an object named "can" is a kind word, a can a
+    mesh file or a longer name calls so is not) nor a one-letter name ("u" is "you" as typed: U is named as "U")."""
     shapes = frozenset(SHAPE_NOUNS) - {"can", "cans"}
-    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3)
+    literal = {n.lower() for n in scene.names}
+    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3 and (w in literal or w not in SHAPE_NOUNS))
     return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
 
 

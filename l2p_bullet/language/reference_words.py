@@ -13,7 +13,7 @@ import math
 from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
-NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item"})
+NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item", "part"})
 SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "dice": "cube", "die": "cube",
                "box": "box", "boxes": "box", "bar": "box", "bars": "box",
                "stick": "box", "sticks": "box", "brick": "box", "bricks": "box",
@@ -149,8 +149,19 @@ BLOCK_KINDS = frozenset({"lego", "brick", "domino", "block", "box", "cardboard",
                          "gelatin"})
 """Meshes that are blocks to look at: "block" and "brick" name them, cubes, boxes and cylinders, never a bottle, a mug
 or a teddy ("the big green block" beside a green bottle is the green cube)."""
-BOX_KINDS = frozenset({"box", "cardboard", "crate", "cereal", "gelatin", "wooden"})
+BOX_KINDS = frozenset({"box", "cardboard", "crate", "cereal", "gelatin", "wooden", "carton"})
 """Meshes that are boxes: "the box", "the red box" name them as they name a box ("the cereal box")."""
+SPOKEN_LETTERS = {"ay": "a", "bee": "b", "be": "b", "cee": "c", "see": "c", "sea": "c", "dee": "d", "ee": "e",
+                  "ef": "f", "eff": "f", "gee": "g", "aitch": "h", "haitch": "h", "eye": "i", "jay": "j", "kay": "k",
+                  "el": "l", "ell": "l", "em": "m", "en": "n", "oh": "o", "owe": "o", "pee": "p", "cue": "q",
+                  "queue": "q", "kew": "q", "ar": "r", "are": "r", "ess": "s", "tee": "t", "tea": "t", "you": "u",
+                  "vee": "v", "double-u": "w", "doubleyou": "w", "ex": "x", "why": "y", "wye": "y", "zed": "z",
+                  "zee": "z"}
+"""A letter as it is said, and so as dictation writes it ("block cue", "cube oh"): the one-letter name it spells."""
+SPOKEN_ONLY_AFTER_NOUN = frozenset({"ay", "be", "bee", "see", "sea", "gee", "eye", "kay", "em", "oh", "owe", "are",
+                                    "tea", "you", "ex", "why"})
+"""Spellings that are words of their own ("you" is the robot, "see" a verb, "em" them as typed, "kay" okay): a
+letter only right after a noun that names an object ("cube oh", "block see"), never alone."""
 REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
                             | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
 """Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",

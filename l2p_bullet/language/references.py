@@ -60,7 +60,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     TIE_M,
 )
-from .synonyms import KIND_MODIFIERS
+from .synonyms import is_modifier
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -172,11 +172,15 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
 
 CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit"})
 """Words for how much of a kind there is ("a bar of soap"): the kind is what the object is."""
+VESSELS = frozenset({"tin", "can", "bottle", "carton", "box", "jar", "packet", "bag", "cup", "mug", "bowl", "pot",
+                     "tub", "tube"})
+"""Kinds that hold what they are named by ("the tin of soup", "the box of milk"): the vessel and its content both
+describe the object ("the soup tin")."""
 
 
 def _of_compound(text: str, scene: Scene, role: str) -> str | None:
     """A kind said with "of" ("the bar of soap": the soap; "the duck of rubber", as learners write "rubber duck": the
-    duck); None where ``text`` is not said so or names no one object."""
+    duck; "the tin of soup": the soup tin); None where ``text`` is not said so or names no one object."""
     words = text.split()
     low = [w.lower() for w in words]
     if low.count("of") != 1 or low.index("of") in (0, len(low) - 1):
@@ -185,8 +189,8 @@ def _of_compound(text: str, scene: Scene, role: str) -> str | None:
     head, tail = low[:at], low[at + 1:]
     if head[-1] in CONTAINERS and len(tail) <= 2 and len(tail[-1]) >= 3 and tail[-1].isalpha():
         said = " ".join(["the", *tail[-1:]])
-    elif len(tail) == 1 and tail[0] in KIND_MODIFIERS:
-        said = " ".join([*head[:-1], tail[0], head[-1]])
+    elif all(is_modifier(w) for w in tail) or (head[-1] in VESSELS and len(tail) <= 2 and tail[-1].isalpha()):
+        said = " ".join([*head[:-1], *tail, head[-1]])  # "the controller of video games", "the tin of soup"
     else:
         return None
     try:

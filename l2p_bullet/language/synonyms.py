@@ -1,9 +1,10 @@
 """The words people use for an object besides its name: common names of its kind and size words.
 
-An object is called by its kind: its name when the name is a word ("mug", "duck", "can"), and the stem of its
-mesh file ("duck_vhacd.obj": a duck). People use the kind's everyday names too ("the cup", "the coffee mug",
-"the bird", "the tin can"); such a word resolves only where exactly one object is of that kind, never by a
-guess between two.
+An object is called by its kind: its name when the name is a word ("mug", "duck", "can"), each word of a name of
+several ("coffee_mug": a mug, and coffee; "cube_b": a cube), and the words of its mesh file's stem ("duck_vhacd.obj":
+a duck; "soup_can.obj": soup and a can; "tablelamp.obj": a lamp). People use the kind's everyday names too ("the
+cup", "the coffee mug", "the bird", "the tin can"); such a word resolves only where exactly one object is of that
+kind, never by a guess between two.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from __future__ import annotations
 import functools
 import re
 
-from ..core.scene import Scene, SceneObject
+from ..core.scene import COLORS, Scene, SceneObject
 
 KIND_NAMES = {
     "mug": ("cup", "cups", "teacup", "mugs"),
@@ -35,7 +36,7 @@ KIND_NAMES = {
     "slab": ("slabs", "board", "tile", "slate", "plate"),
     "beam": ("beams", "plank", "girder", "rod"),
     "plank": ("planks", "board", "beam"),
-    "plate": ("plates", "dish", "saucer"),
+    "plate": ("plates", "dish", "dishes", "saucer", "saucers"),
     "torus": ("ring", "rings", "donut", "donuts", "doughnut", "doughnuts", "hoop", "hoops"),
     "ring": ("rings", "donut", "donuts", "doughnut", "doughnuts", "hoop", "hoops", "torus"),
     "donut": ("donuts", "doughnut", "doughnuts", "ring", "rings", "hoop", "hoops", "torus"),
@@ -45,21 +46,50 @@ KIND_NAMES = {
     "prism": ("prisms", "triangle", "triangles", "triangular", "toblerone", "wedge", "wedges"),
     "domino": ("dominoes", "dominos", "tile", "tiles"),
     "cereal": ("cornflakes",),
+    "zucchini": ("zucchinis", "courgette", "courgettes", "marrow", "marrows", "squash"),
+    "gamepad": ("gamepads", "controller", "controllers", "joystick", "joysticks", "joypad", "joypads"),
+    "joypad": ("joypads", "controller", "controllers", "joystick", "joysticks", "gamepad", "gamepads"),
+    "lamp": ("lamps", "light", "lights"),
+    "saucer": ("saucers", "plate", "plates", "dish", "dishes"),
+    "camera": ("cameras", "cam", "cams", "webcam"),
+    "pingpong": ("ping-pong",),
+    "jello": ("jell-o", "jelly", "gelatin", "gelatine"),
+    "gelatin": ("gelatine", "jello", "jell-o", "jelly"),
+    "box": ("packet", "packets"),
+    "ketchup": ("catsup", "sauce"),
+    "bolt": ("bolts", "screw", "screws"),
+    "nut": ("nuts",),
+    "soup": ("soups",),
+    "crate": ("crates",),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
-                "toy": ("duck", "teddy", "bunny", "ball", "soccerball"), "fruit": ("apple", "lemon")}
-"""Words for a class of kinds ("the stuffed animal"): like a kind's name, they resolve only where exactly one
-object is of a kind of the class."""
+                "toy": ("duck", "teddy", "bunny", "ball", "soccerball"), "fruit": ("apple", "lemon")} | {
+    word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
+    for word in ("vegetable", "vegetables", "veg", "veggie", "veggies")} | {
+    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")}
+"""Words for a class of kinds ("the stuffed animal", "the veg", "the metal part"): like a kind's name, they resolve
+only where exactly one object is of a kind of the class (a nut and a bolt: "the metal part" is asked)."""
 KIND_SYNONYMS: dict[str, tuple[str, ...]] = {
     word: tuple(kind for kind, names in KIND_NAMES.items() if word in names)
     for word in dict.fromkeys(w for names in KIND_NAMES.values() for w in names)
 } | KIND_CLASSES
 """An everyday name -> the kinds it names (an object named, or meshed as, one of those kinds)."""
 KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks",
-                            "traffic", "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard"})
+                            "traffic", "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard",
+                            "video", "game", "games", "ping", "pong", "table-tennis", "hex", "hexagonal", "desk",
+                            "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
-duck", "teddy bear", "stuffed animal"): read past there."""
+duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut"): read past there,
+a run of them too ("video game")."""
+THREAD_SIZE = re.compile(r"^m\d+(?:x\d+(?:[.,]\d+)?)?$")
+"""A metric thread size before a fastener's kind ("the M8 bolt", "an m6x1.0 nut"): read past as a modifier."""
+
+
+def is_modifier(word: str) -> bool:
+    """Whether ``word`` (lower case) may open a compound before a kind's name (:data:`KIND_MODIFIERS`, a thread
+    size)."""
+    return word in KIND_MODIFIERS or THREAD_SIZE.match(word) is not None
 BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant", "chunky", "bulky", "hefty"})
 SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini", "teeny", "wee"})
 TALL = frozenset({"tall", "taller"})
@@ -78,23 +108,54 @@ def kinds_of(o: SceneObject) -> set[str]:
     return set(_kinds(*_kind_key(o)))
 
 
+def own_kinds_of(o: SceneObject) -> set[str]:
+    """The kinds an object is by itself: its name when one word, its mesh file's words; not the words of a name of
+    several, which say what a user calls it ("butter_box" is called a box; its mesh, butter, is not a block)."""
+    name, mesh = _kind_key(o)
+    return set(_kinds(name if len(name_parts(name)) == 1 else "", mesh))
+
+
 def _kind_key(o: SceneObject) -> tuple[str, str | None]:
     """What an object's kinds depend on: its name and its mesh file (None for none)."""
     mesh = getattr(o, "mesh", None)
     return o.name, mesh if isinstance(mesh, str) and mesh else None
 
 
+NAME_PART = re.compile(r"[A-Z]?[a-z]+|[A-Z]+(?![a-z])|\d+")
+"""A word of a name as a user's file spells it: split at "_", "-", spaces, a change of case and digits
+("coffee_mug", "milk-carton", "RedCube2", "obj3")."""
+PLAIN_PARTS = frozenset({"obj", "object", "objects", "item", "thing", "block", "piece", "part", "model", "mesh",
+                         "one"}) | SIZE_WORDS
+"""Words of a name that say nothing of what the object is ("obj3", "big_block"): no kind."""
+MESH_JARGON = frozenset({"vhacd", "chs", "coacd", "textured", "smooth", "visual", "vis", "collision", "col", "convex",
+                         "hull", "simplified", "simple", "decomp", "lowpoly", "poly", "scaled", "final", "processed",
+                         "watertight", "centered", "new", "old", "obj", "stl", "glb"})
+"""Words a mesh file's stem holds about the file, not the thing ("duck_vhacd", "sphere_smooth"): no kind."""
+
+
+def name_parts(name: str) -> tuple[str, ...]:
+    """The words of a name, lower case (:data:`NAME_PART`): ("coffee", "mug"), ("cube", "b"), ("red", "cube", "2")."""
+    return tuple(p.lower() for p in NAME_PART.findall(name))
+
+
 def _kinds(name: str, mesh: str | None) -> tuple[str, ...]:
-    out = []
+    """The kinds an object is called by. A name of one word is its kind; of several, each of its words that says
+    what the object is ("butter_box": butter and a box; never a colour, a size or "obj"). A mesh file's stem's words
+    are kinds too, and a known kind a stem ends with ("tablelamp": a lamp)."""
+    out: list[str] = []
     low = name.lower()
-    if len(low) >= 3 and low.isalpha():
+    parts = name_parts(name)
+    if len(parts) > 1:
+        out.extend(p for p in parts if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS and p not in COLORS)
+    elif len(low) >= 3 and low.isalpha():
         out.append(low)
     if mesh is not None:
         stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
-        first = re.split(r"[^a-z]+", stem.lower())[0]
-        if len(first) >= 3 and first not in out:
-            out.append(first)
-    return tuple(out)
+        for part in name_parts(stem):
+            if len(part) >= 3 and part.isalpha() and part not in MESH_JARGON and part not in PLAIN_PARTS:
+                out.append(part)
+                out.extend(k for k in KIND_NAMES if part.endswith(k) and len(part) - len(k) >= 3)
+    return tuple(dict.fromkeys(out))
 
 
 def scene_key(scene: Scene) -> tuple[tuple[str, str | None], ...]:
