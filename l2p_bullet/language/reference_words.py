@@ -159,7 +159,7 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"} | {
     (far, "to", "the", side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")}
 SIDE_PHRASES |= {(prep, "the", *far, side, "end"): f"{side}most" for prep in ("on", "at") for far in ((), ("far",))
-                 for side in ("left", "right")}
+                 for side in ("left", "right", "front", "back")}
 SIDE_PHRASES |= {(prep, "the", corner, *said): f"{corner}most" for prep in ("on", "at", "in")
                  for corner in set(CORNERS.values()) for said in ((), ("corner",))}
 SIDE_PHRASES |= {(*p[:2], "very", *p[2:]): v for p, v in SIDE_PHRASES.items() if "far" not in p}
