@@ -33,6 +33,7 @@ from .reference_words import (
     TABLE_WORDS,
     TIE_PLACE,
     TIE_PLACE_M,
+    VIEWPOINTS,
 )
 
 GENERIC = frozenset({"one", "object", "thing", "piece", "item", "ones", "objects", "things", "items", "pieces", "bit",
@@ -55,6 +56,11 @@ def table_sides(words: list[str]) -> list[str]:
     a Portuguese speaker's "of the right" / "of the middle" as "on the right" / the middle one, and a coordinate
     superlative as the place superlative ("with the largest y": leftmost)."""
     low = [w.lower() for w in words]
+    for view in VIEWPOINTS:  # "furthest to the right, as the robot sees it": every side is the robot's
+        if len(low) > len(view) + 2 and tuple(low[-len(view):]) == view:
+            return table_sides([*words[:-len(view) - 1], words[-len(view) - 1].rstrip(",")])
+    if "robot's" in low[1:-1] and low[low.index("robot's", 1) + 1] in ("left", "right"):  # "on the robot's left"
+        return table_sides([w for i, w in enumerate(words) if i != low.index("robot's", 1)])
     if len(low) >= 3 and low[-3:-1] == ["of", "the"] and low[-1] in TABLE_WORDS and low[-4:-3] \
             and (low[-4] in DIRECTIONS or low[-4] in EDGE_WORDS):  # "at the back of the table"
         return table_sides(words[:-3])
@@ -96,12 +102,29 @@ def in_group(words: list[str], low: tuple[str, ...], scene: Scene) -> str | None
         return _nearest_centre(words[:centre], scene)
     if low and low[0] in MIDDLE_WORDS and len(low) > 1:
         return _among(words[1:], scene, lambda pool: _middle(pool, " ".join(words)))
-    if low and low[0] in ORDINALS and len(low) > 1:
-        said, side = _counted_from(words[1:])
-        if not said:
-            return None
-        return _among(said, scene, lambda pool: _nth(pool, ORDINALS[low[0]], side, " ".join(words)))
+    ordinal = _ordinal(low)
+    if ordinal is not None:
+        n, at, end = ordinal
+        counted = _counted_from([*words[:at], *words[end:]])
+        if counted is None or at > 0 and counted[1] is None:
+            return None  # "one second from the left" is counted; "A first" is not an ordinal of a group
+        return _among(counted[0], scene, lambda pool: _nth(pool, n, counted[1], " ".join(words)))
     return _half(words, low, scene)
+
+
+def _ordinal(low: tuple[str, ...]) -> tuple[int, int, int] | None:
+    """(the place counted: 2 for "second", -2 for "second to last"; where its words start; where they end) in
+    "second red one", "second-to-last one", "the block third from the right"; None where ``low`` holds none."""
+    for at, w in enumerate(low[:3]):
+        joined = "-" in w
+        parts = tuple(w.split("-")) if joined else low[at:at + 3]
+        if parts[0] in ORDINALS and ORDINALS[parts[0]] > 0:
+            for tail in (("to", "last"), ("last",)):  # "second to last", "second-last"
+                if parts[1:1 + len(tail)] == tail:
+                    return -ORDINALS[parts[0]], at, at + (1 if joined else 1 + len(tail))
+        if w in ORDINALS and len(low) > at + 1 and (at == 0 or low[at + 1] == "from"):
+            return ORDINALS[w], at, at + 1
+    return None
 
 
 def _centre_of_everything(low: tuple[str, ...]) -> int | None:
@@ -122,19 +145,19 @@ def _nearest_centre(words: list[str], scene: Scene) -> str:
                                                           "in the middle of everything", distance=True))
 
 
-def _counted_from(words: list[str]) -> tuple[list[str], str | None]:
+def _counted_from(words: list[str]) -> tuple[list[str], str | None] | None:
     """(the description, the side counted from) of "red one from the left", "cube counting from the front"; the
-    side None where none is said."""
+    side None where none is said; None where "from" says something else."""
     low = [w.lower() for w in words]
-    for i in range(1, len(low)):
+    for i in range(len(low)):
         if low[i] != "from":
             continue
         rest = low[i + 1:]
         rest = rest[1:] if rest[:1] == ["the"] else rest
         if rest and rest[0] in DIRECTIONS and all(r in EDGE_WORDS for r in rest[1:]) and len(rest) <= 2:
-            end = i - 1 if low[i - 1] in ("counting", "counted", "starting") else i
+            end = i - 1 if i > 0 and low[i - 1] in ("counting", "counted", "starting") else i
             return words[:end], rest[0]
-        return [], None
+        return None
     return words, None
 
 
@@ -201,9 +224,10 @@ def _nth(pool: list[SceneObject], n: int, side: str | None, said: str) -> str:
     """The ``n``-th of the group counted from ``side`` (``n`` -1: the last). Counted from no side said, the group
     must stand in a line and the place name one object counted from either end (the second of three: the middle
     one); else the reading depends on where the speaker stands, and is asked."""
-    k = n - 1 if n > 0 else len(pool) - 1
+    k = n - 1 if n > 0 else len(pool) + n
     if not 0 <= k < len(pool):
-        raise UnknownObjectError(f'"{said}": there are {len(pool)} such objects ({", ".join(o.name for o in pool)})')
+        raise UnknownObjectError(f'"{said}": only {len(pool)} such objects are on the table '
+                                 f'({", ".join(o.name for o in pool) or "none"})')
     if side is not None:
         u = np.asarray(DIRECTIONS[side])
         ordered = sorted(pool, key=lambda o: -float(np.dot(o.xy[:2], u)))

@@ -125,6 +125,12 @@ GROUP_CENTRE_WORDS = frozenset({"everything", "everyone", "all", "them", "the", 
 them all"): the object nearest their centre."""
 LINE_WORDS = frozenset({"row", "line", "group", "three", "five", "lineup", "line-up", "set"})
 """Words after "in the middle of" that name a group in a line ("the red cube in the middle of the row")."""
+VIEWPOINTS = (("as", "the", "robot", "sees", "it"), ("as", "seen", "by", "the", "robot"),
+              ("as", "seen", "from", "the", "robot"), ("from", "the", "robot's", "view"),
+              ("from", "the", "robot's", "point", "of", "view"), ("from", "the", "robot's", "perspective"),
+              ("from", "the", "robot's", "viewpoint"), ("from", "the", "robot's", "side"))
+"""The robot's view said after a place ("the thing furthest to the right, as the robot sees it"): the view every
+side is read in already, so read past."""
 IN_A_LINE = 0.15
 """A group stands in a line where no object is off the line through it (its long axis) by more than this fraction
 of the line's length, or by more than a place tie: 3 cm off a 24 cm line is a line, a triangle is not."""

@@ -327,8 +327,8 @@ def _describes(low: tuple[str, ...], scene: Scene) -> bool:
 DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)
               | frozenset(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES | REFERENCE_WORDS | frozenset(PLACE_ADJECTIVES)
               | frozenset({"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and",
-                           "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "directly",
-                           "right", "just"}))
+                           "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "kept",
+                           "directly", "right", "just"}))
 """The words a description before a relation is made of, besides the scene's own names (:func:`_describes`)."""
 
 

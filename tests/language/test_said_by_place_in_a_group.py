@@ -50,6 +50,9 @@ def table() -> Scene:
     ("move the last yellow cube from the front toward O2", "slide:closer Y5 O2"),
     ("move the first green cylinder from the right toward O2", "slide:closer G1 O2"),
     ("move the 2nd green cylinder from the left around O2", "slide:around G2 O2"),
+    ("move the second-to-last yellow cube from the front toward O1", "slide:closer Y4 O1"),
+    ("move the second last cylinder from the left toward O1", "slide:closer G2 O1"),
+    ("move the yellow cube second from the front toward O1", "slide:closer Y2 O1"),
     # counted from no side: the same object from either end
     ("move the third yellow one toward O1", "slide:closer Y3 O1"),
     ("move the second green cylinder toward O1", "slide:closer G2 O1"),
@@ -69,6 +72,10 @@ def table() -> Scene:
     ("move the orange cube farthest from the left edge toward Y1", "slide:closer O1 Y1"),
     ("move the cylinder at the front of the table toward O2", "slide:closer G1 O2"),
     ("move the orange block with the smallest y toward Y1", "slide:closer O1 Y1"),
+    # the robot's view said, and a place said with "kept"
+    ("move the cylinder furthest to the left, as the robot sees it, toward O2", "slide:closer G3 O2"),
+    ("move the orange cube on the robot's left toward Y1", "slide:closer O2 Y1"),
+    ("push the cube kept at the back right toward Y1", "push:closer O1 Y1"),
     # a half of the table beside the robot
     ("move the cylinder nearest the robot on the right side toward O2", "slide:closer G1 O2"),
 ])
@@ -88,6 +95,9 @@ def test_said_by_place(plugins, table, sentence, expect):
     "move the middle red cube toward O1",  # none is red
     "move the second purple cube from the left toward O1",
     "move the thing in the middle of everything toward O1",  # Y2 and Y3 all but equally near the centre
+    "move the second to last yellow cube toward O1",  # Y4 from the front, Y2 from the back
+    "move the first from the left toward O1",  # K1 and K2 side by side on the left
+    "move the cylinder nearest the robot on the left side toward O1",  # every cylinder is on the right
 ])
 def test_stays_refused(plugins, table, sentence):
     assert resolve(sentence, table, plugins) == REFUSE
