@@ -18,7 +18,9 @@ from .reference_words import (
     BLOCK_WORDS,
     COLOR_SYNONYMS,
     COMPARATIVE_OF,
+    CORNERS,
     DETERMINERS,
+    DIRECTIONS,
     FARTHEST,
     NEAREST,
     NOUNS,
@@ -50,7 +52,16 @@ def measure(o: SceneObject, what: str) -> float:
         return outline_sides(o)[0]
     if what == "height":
         return float(o.geometry.height)
-    return float(o.xy[0] if what == "x" else o.xy[1])
+    if what in ("x", "y"):
+        return float(o.xy[0] if what == "x" else o.xy[1])
+    return toward(o, what.split("-"))
+
+
+def toward(o: SceneObject, sides: list[str]) -> float:
+    """How far the object's centre lies toward the sides said (metres along their direction from the table's
+    centre): "left" is +y, "front" -x, a corner ("back", "right") the diagonal between its two sides."""
+    u = np.sum([DIRECTIONS[s] for s in sides], axis=0)
+    return float(np.dot(o.xy[:2], u / np.linalg.norm(u)))
 
 
 def outline_sides(o: SceneObject) -> tuple[float, float]:
@@ -89,10 +100,10 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
     return fits
 
 
-def either_reading(described: list[str], scene: Scene, choose) -> str:
-    """``choose`` over the objects ``described`` allows; with "block" in it, over the block-shaped ones too, and
-    the description refused as ambiguous where the two readings differ."""
-    pool = pool_of(" ".join(described), scene)
+def either_reading(described: list[str], scene: Scene, choose, pool: list[SceneObject] | None = None) -> str:
+    """``choose`` over the objects ``described`` allows (``pool`` where the caller chose them); with "block" in it,
+    over the block-shaped ones too, and the description refused as ambiguous where the two readings differ."""
+    pool = pool_of(" ".join(described), scene) if pool is None else pool
     if not {w.lower() for w in described} & BLOCK_WORDS:
         return choose(pool)
     readings = []
@@ -229,13 +240,40 @@ def comparative_of(words: list[str]) -> list[str]:
 def places_as_superlatives(words: list[str]) -> list[str]:
     """"the front blue cube", "the left one" -> "the frontmost blue cube", "the leftmost one": a place word right
     after the determiner, before the rest of the description (never "the left of", "the back side")."""
+    words = _corners_joined(words)
     low = [w.lower() for w in words]
+    if len(low) >= 3 and low[0] in DETERMINERS and low[1] in CORNER_WORDS and low[2] not in ("of", "corner"):
+        return [words[0], f"{low[1]}most", *words[2:]]  # "the back-right thing": the one farthest that way
+    if len(low) >= 2 and low[0] in CORNER_WORDS and low[1] not in ("of", "corner"):
+        return ["the", f"{low[0]}most", *words[1:]]
+    if len(low) >= 4 and low[0] in DETERMINERS and low[1] == "far" and low[2] in ("left", "right") \
+            and low[3] not in ("of", "side", "edge", "end"):  # "the far right one": the rightmost
+        return [words[0], f"{low[2]}most", *words[3:]]
     if len(low) >= 3 and low[0] in DETERMINERS and low[1] in PLACE_ADJECTIVES and low[2] not in ("of", "side", "edge"):
         return [words[0], PLACE_ADJECTIVES[low[1]], *words[2:]]
     if len(low) >= 2 and low[0] in PLACE_ADJECTIVES and low[1] not in ("of", "side", "edge", "to", "from") \
             and low[0] not in ("far", "near"):  # "front white cube", typed without its article
         return ["the", PLACE_ADJECTIVES[low[0]], *words[1:]]
     return words
+
+
+CORNER_WORDS = frozenset(CORNERS.values())
+
+
+def _corners_joined(words: list[str]) -> list[str]:
+    """``words`` with two sides said together as one corner word ("front left", "rear-left", "left front":
+    "front-left"), where the pair is said before the noun or ends a place ("at the back right")."""
+    out: list[str] = []
+    for w in words:
+        low = w.lower()
+        pair = tuple(low.split("-")) if "-" in low else ((out[-1].lower(), low) if out else None)
+        if pair in CORNERS:
+            if "-" not in low:
+                out.pop()
+            out.append(CORNERS[pair])
+        else:
+            out.append(w)
+    return out
 
 
 def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneObject]:

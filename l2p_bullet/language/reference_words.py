@@ -87,13 +87,53 @@ SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smalle
                      "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max),
                      "flattest": ("height", min)}
 SIZE_SUPERLATIVES |= {f"{side}-most": SIZE_SUPERLATIVES[f"{side}most"] for side in ("left", "right", "back", "front")}
+CORNERS = {(depth, side): f"{depth}-{side}" for depth in ("front", "back") for side in ("left", "right")}
+CORNERS |= {("rear", side): f"back-{side}" for side in ("left", "right")}
+CORNERS |= {(side, depth): corner for (depth, side), corner in list(CORNERS.items())}
+"""Two sides said together ("front-left", "back right", "rear-left", "left front"): a corner of the table."""
+SIZE_SUPERLATIVES |= {f"{corner}most": (corner, max) for corner in set(CORNERS.values())}
+"""A corner as a superlative ("the front-left cube": the one farthest toward that corner, measured along the
+diagonal between its two sides, as language/places.measure does)."""
+PLACE_MEASURES = frozenset({"x", "y"} | set(CORNERS.values()))
+"""What a place superlative measures: a place, whose ties are place ties (language/places.superlative)."""
 COMPARATIVE_OF = {"larger": "largest", "bigger": "biggest", "smaller": "smallest", "taller": "tallest",
                   "shorter": "shortest", "longer": "longest"}
 """Comparatives that pick one of a group named after them ("the larger of the cubes")."""
 PLACE_ADJECTIVES = {"front": "frontmost", "back": "backmost", "rear": "backmost", "left": "leftmost",
                     "right": "rightmost", "far": "backmost", "near": "frontmost", "left-hand": "leftmost",
                     "right-hand": "rightmost"}
+PLACE_ADJECTIVES |= {"far-left": "leftmost", "far-right": "rightmost"}
 """Places used as adjectives right after "the" ("the front blue cube", "the left one"): their superlatives."""
+DIRECTIONS = {"left": (0.0, 1.0), "right": (0.0, -1.0), "front": (-1.0, 0.0), "back": (1.0, 0.0),
+              "rear": (1.0, 0.0)}
+"""Sides of the table as the robot sees it -> the scene direction toward them (its left is +y, its front -x)."""
+SIDE_SUPERLATIVE = {"left": "leftmost", "right": "rightmost", "front": "frontmost", "back": "backmost",
+                    "rear": "backmost"}
+ORDINALS = {"first": 1, "1st": 1, "second": 2, "2nd": 2, "third": 3, "3rd": 3, "fourth": 4, "4th": 4, "fifth": 5,
+            "5th": 5, "last": -1}
+"""Places in a group counted along a direction ("the second red one from the left"); "last" counts from the other
+end."""
+MIDDLE_WORDS = frozenset({"middle", "center", "centre", "central", "midmost"})
+"""Adjectives that pick the middle one of a group in a line ("the middle red block")."""
+TABLE_WORDS = frozenset({"table", "workspace", "desk", "tabletop", "workbench", "bench", "surface", "area"})
+EDGE_WORDS = frozenset({"edge", "side", "end", "part", "border", "rim", "half"})
+"""Words after a side that name the table's side itself ("the front edge", "the left end"): the side."""
+GROUP_CENTRE_WORDS = frozenset({"everything", "everyone", "all", "them", "the", "others", "other", "rest", "group",
+                                "pile", "bunch", "lot", "cluster", "junk", "stuff", "things", "objects", "items",
+                                "blocks", "it", "of"})
+"""Words after "in the middle of" that name every object on the table ("of everything", "of all the junk", "of
+them all"): the object nearest their centre."""
+LINE_WORDS = frozenset({"row", "line", "group", "three", "five", "lineup", "line-up", "set"})
+"""Words after "in the middle of" that name a group in a line ("the red cube in the middle of the row")."""
+VIEWPOINTS = (("as", "the", "robot", "sees", "it"), ("as", "seen", "by", "the", "robot"),
+              ("as", "seen", "from", "the", "robot"), ("from", "the", "robot's", "view"),
+              ("from", "the", "robot's", "point", "of", "view"), ("from", "the", "robot's", "perspective"),
+              ("from", "the", "robot's", "viewpoint"), ("from", "the", "robot's", "side"))
+"""The robot's view said after a place ("the thing furthest to the right, as the robot sees it"): the view every
+side is read in already, so read past."""
+IN_A_LINE = 0.15
+"""A group stands in a line where no object is off the line through it (its long axis) by more than this fraction
+of the line's length, or by more than a place tie: 3 cm off a 24 cm line is a line, a triangle is not."""
 TIE = 0.02
 TIE_M = 0.002
 """Two objects whose measures (lengths) differ by less than TIE of the best or TIE_M metres are a tie:
@@ -124,6 +164,10 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
                 ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"} | {
     (far, "to", "the", side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")}
+SIDE_PHRASES |= {(prep, "the", *far, side, "end"): f"{side}most" for prep in ("on", "at") for far in ((), ("far",))
+                 for side in ("left", "right", "front", "back")}
+SIDE_PHRASES |= {(prep, "the", corner, *said): f"{corner}most" for prep in ("on", "at", "in")
+                 for corner in set(CORNERS.values()) for said in ((), ("corner",))}
 SIDE_PHRASES |= {(*p[:2], "very", *p[2:]): v for p, v in SIDE_PHRASES.items() if "far" not in p}
 """Places that read as a superlative ("the object on the far right" is the rightmost; "the red cube at the back"
 the one farthest from the robot, along the scene's +x)."""
@@ -163,6 +207,7 @@ SPOKEN_ONLY_AFTER_NOUN = frozenset({"ay", "be", "bee", "see", "sea", "gee", "eye
 """Spellings that are words of their own ("you" is the robot, "see" a verb, "em" them as typed, "kay" okay): a
 letter only right after a noun that names an object ("cube oh", "block see"), never alone."""
 REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
-                            | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p})
+                            | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p}
+                            | set(ORDINALS) | MIDDLE_WORDS | EDGE_WORDS | set(CORNERS.values()))
 """Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",
 "you"): known words, which a reader of typing slips leaves as they are."""

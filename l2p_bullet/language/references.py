@@ -21,6 +21,7 @@ import numpy as np
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates, describe, described, looks, name_words
+from .group_places import in_group, table_sides
 from .other_than import other_than
 from .places import (
     bearing_off,
@@ -47,6 +48,7 @@ from .reference_words import (
     NOUNS,
     OPENINGS,
     PLACE_ADJECTIVES,
+    PLACE_MEASURES,
     REFERENCE_WORDS,
     RELATIVES,
     ROBOT_WORDS,
@@ -231,7 +233,7 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     clause's "that is" ("the cube that is red": the cube red) taken out, a comparative among a group as its
     superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
     ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
-    words = places_as_superlatives(comparative_of(one_word_comparisons(looks(words, scene))))
+    words = places_as_superlatives(comparative_of(one_word_comparisons(table_sides(looks(words, scene)))))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
@@ -266,7 +268,7 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
             return None
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
-        place = what in ("x", "y")
+        place = what in PLACE_MEASURES
         if what == "area":
             return either_reading(described, scene, lambda pool: bulk_superlative(pool, pick, kind))
         return either_reading(
@@ -329,14 +331,18 @@ def _describes(low: tuple[str, ...], scene: Scene) -> bool:
 DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)
               | frozenset(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES | REFERENCE_WORDS | frozenset(PLACE_ADJECTIVES)
               | frozenset({"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and",
-                           "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "directly",
-                           "right", "just"}))
+                           "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "kept",
+                           "directly", "right", "just"}))
 """The words a description before a relation is made of, besides the scene's own names (:func:`_describes`)."""
 
 
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:
     """Places on the table: "the cube in the middle (of the table)", "the object on the far right", "the cube
-    between A and C" (nearest the middle of the two, and lying between them); None when ``words`` name none."""
+    between A and C" (nearest the middle of the two, and lying between them), a place in a group (the middle
+    one, the second from the left: language/group_places.py); None when ``words`` name none."""
+    grouped = in_group(words, low, scene)
+    if grouped is not None:
+        return grouped
     for phrase in CENTRE_PHRASES:
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
             return either_reading(words[:-len(phrase)], scene, lambda pool: superlative(
