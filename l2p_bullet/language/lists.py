@@ -44,7 +44,8 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
     return read if read is not None else _parse_list(sentence, scene, phrases)
 
 
-ROW_ADJECTIVES = re.compile(r"\bin\s+(?:a|one)\s+(?:neat|nice|tidy|single|straight|long|perfect|clean)\s+(row|line)\b",
+ROW_ADJECTIVES = re.compile(r"\bin\s+(?:a|one)\s+(?:(?:neat|nice|tidy|single|straight|long|perfect|clean),?\s+)+"
+                            r"(row|line)\b",
                             re.IGNORECASE)
 IN_ONE = re.compile(r"\bin\s+(?:one|a\s+single)\s+(row|line)\b", re.IGNORECASE)
 ROW_FIRST = re.compile(r"^(?P<verb>\s*(?:please\s+)?(?:put|place|set|arrange))\s+in\s+a\s+(?P<row>row|line)\s+"
@@ -157,9 +158,12 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
     return None
 
 
-IN_ORDER = re.compile(r",?\s*in\s+(?:that|this|the\s+same|the\s+given)\s+order\s*[\-\u2013\u2014]*\s*(?=[.!?]*\s*$)",
-                      re.IGNORECASE)
-"""", in that order" after a list: the order named is the order anyway."""
+IN_ORDER = re.compile(r",?\s*in\s+(?:(?:that|this|the\s+same|the\s+given)\s+order|the\s+order\s+(?:i\s+(?:have\s+)?"
+                      r"(?:named|said|gave|listed|wrote)(?:\s+them)?|given|named|listed))"
+                      r"(?:\s*,?\s*(?:please|pls|plz|thanks|thank\s+you|thx|ty|grazie|obrigado|danke))*"
+                      r"\s*[\-\u2013\u2014]*\s*(?=[.!?]*\s*$)", re.IGNORECASE)
+""", in that order" after a list ("in that order please", "in the order I have named them"): the order named is the
+order anyway."""
 ROW_AGAIN = re.compile(r"\s+in\s+(?:a|one|a\s+single)\s+(?:row|line)\s*$", re.IGNORECASE)
 
 

@@ -34,7 +34,7 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "u": "you", "ur": "your", "thru": "through", "w": "with", "abt": "about", "bc": "because",
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
-             "yel": "yellow", "wht": "white", "grn": "green"}
+             "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 

@@ -86,6 +86,8 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "goal", "want", "end state", "target", "objective", "goal state", "target state", "task", "the task",
     "result wanted", "wanted result", "what i want", "let", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
+    "expected final state", "desired final state", "end goal", "final goal", "the goal is", "goal is", "the idea is",
+    "i just want", "just want", "need", "i want that",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
@@ -189,19 +191,16 @@ def is_courtesy(words: list[str]) -> bool:
 
 
 def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = frozenset()) -> list[str]:
-    """The words from the first known verb on, when what comes before it names no object and the verb is not
-    negated: "Sorry to bother you, but could you drag B past C", "Your task is to push ...", "Don't carry it,
-    just push A past B". ``verbs`` are the verbs' first words."""
+    """The words from the first known verb on, when what comes before it is not the command's own (:func:`_own_words`)
+    and the verb is not negated: "Sorry to bother you, but could you drag B past C", "Your task is to push ...",
+    "Don't carry it, just push A past B". ``verbs`` are the verbs' first words."""
     low = [w.lower() for w in words]
     if not low or low[0] in verbs:
         return words
+    told = low[0] in STATEMENT_OPENINGS or low[0] in {"this", "that", "here", "it"} and low[1:2] == ["is"]
     for i, w in enumerate(low):
-        said = {x.strip(",.:;!?") for x in words[:i]}
-        nouns = {x.lower() for x in said} & NOUNS
-        arrow = any(a in x for x in said for a in ("->", "=>", "\u2192")) or {x.lower() for x in said} & RELATING
-        # "b->g fast, nudge E past F", "b toward g, nudge ...": a command of its own before the verb, never read past
-        if said & keep or arrow or nouns and not (nouns == {"one"} and {"that", "this"} & said):
-            return words  # "the other one, put it ...": a topic, kept ("yeah that one, carry it ...": the same)
+        if _own_words(words[:i], keep, told):
+            return words
         noun = i + 1 < len(low) and low[i + 1] in NOUN_USE  # "your next move is to lift ..."
         if w in verbs and not noun and not (set(low[max(0, i - 2):i]) & NEGATIONS
                                             and "just" not in low[max(0, i - 1):i]):
@@ -209,8 +208,22 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
     return words
 
 
+def _own_words(before: list[str], keep: frozenset[str], told: bool) -> bool:
+    """Whether words before the verb belong to the command: an object's name or a description ("the other one, put it
+    ...": a topic; but "yeah that one", and a noun in a sentence that tells about the command, "this is the important
+    part"), a relation or an arrow ("b->g fast, nudge E past F", "b toward g, nudge ...": a command of its own)."""
+    said = {x.strip(",.:;!?") for x in before}
+    lowered = {x.lower() for x in said}
+    if said & keep or lowered & RELATING or any(a in x for x in said for a in ("->", "=>", "\u2192")):
+        return True
+    nouns = lowered & NOUNS
+    return bool(nouns) and not told and not (nouns == {"one"} and {"that", "this"} & lowered)
+
+
 RELATING = frozenset({"toward", "towards", "past", "around", "beside", "closer", "nearer", "away"})
 """Words of a relation: words before a verb that hold one say a command of their own."""
+STATEMENT_OPENINGS = frozenset({"this's", "that's", "here's", "it's", "thats", "heres"})
+"""Openings of a sentence about the command, not about an object ("that's the plan, now move ..."): read past."""
 NOUN_USE = frozenset({"is", "was", "will", "should", "would", "must"})
 """Words after which a verb's word is a noun ("your next move is to lift A ...")."""
 
@@ -304,6 +317,11 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "must finish", "must end up",
     "should end", "end",
     "ought to go", "ought to sit",
+    "to be standing", "to be sitting", "to be lying", "be standing", "be sitting", "be lying", "ends up sat",
+    "end up sat", "ends up sitting", "end up sitting", "to end up sitting", "to find itself", "finds itself",
+    "should come", "to come", "comes", "be positioned", "to be positioned", "is positioned", "be placed",
+    "to be placed", "ending up", "finish", "stays", "should stay", "to stay", "were to find itself",
+    "were to end up", "were to be",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""

@@ -1,0 +1,46 @@
+"""Ends said as wishes in more ways ("What I should like is for the saucer to be standing beside the lamp", "goal is
+the ball ending up past the nut", "need Q clear of the lamp"), relations said as learners and hurried typists say them
+("near of", "close to", "more far of", "out of the way of", "as close as possible to", "rly far from") and rows with
+their order or their look said after them. Checked on sentences of each kind (not the corpora's own lines), and what
+must stay refused."""
+
+from __future__ import annotations
+
+import pytest
+from corpus import read
+
+from l2p_bullet.errors import L2PError
+
+HOUSEHOLD = "heldout27.tsv"
+"""A zucchini, a gamepad, a white lamp, a brown crate, a white saucer, orange cubes O (4 cm) and Q (5 cm)."""
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("What I'd really like, if possible, is for the crate to be sitting beside the saucer.",
+     "slide:next-to crate saucer"),
+    ("Ideally the lamp ends up sat beside the crate.", "slide:next-to lamp crate"),
+    ("the saucer should come near to the gamepad", "slide:closer saucer gamepad"),
+    ("goal is the crate ending up past the lamp", "slide:past crate lamp"),
+    ("It would be lovely if the gamepad were to end up beside the saucer.", "slide:next-to gamepad saucer"),
+    ("need O clear of the zucchini", "slide:away O zucchini"),
+    ("get the crate out of the way of the lamp", "slide:away crate lamp"),
+    ("Push Q as close as possible to the crate.", "push:next-to Q crate extent=right"),
+    ("I want that the crate stays more far of the lamp", "slide:away crate lamp"),
+    ("bring the saucer near of the lamp", "slide:closer saucer lamp"),
+    ("move the lamp close to the crate", "slide:closer lamp crate"),
+    ("put the saucer rly far from the crate", "slide:away saucer crate extent=far"),
+    ("arrange the lamp, the crate and O in a line, in that order thanks", "row lamp,crate,O"),
+    ("put the saucer, Q and the crate in a nice neat row", "row saucer,Q,crate"),
+])
+def test_said_otherwise(plugins, sentence, expect):
+    assert read(sentence, plugins, HOUSEHOLD) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "The lamp is close to the crate.",      # how the table is: nothing asked
+    "put the crate close",                  # close to what
+    "move the saucer near of",              # no object after the relation
+])
+def test_what_stays_refused(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, HOUSEHOLD)
