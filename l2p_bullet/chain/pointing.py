@@ -23,7 +23,8 @@ from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 from .goal_after import goal_after
 
-_SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|see|look\s+at|there's|there\s+is|here's|here\s+is|find"
+_SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|(?:who|everyone|everybody)\s+(?:can\s+)?see|see|look\s+at"
+         r"|watch|there's|there\s+is|here's|here\s+is|find"
          r"|(?:have\s+you\s+)?got"
          r"|take|grab|get|pick\s+up|lift)")
 SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
@@ -147,7 +148,7 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
             return Shown(what, about=True, other=other[0])  # "The teddy and the rock are both too close to it"
     m = SHOWN.match(text)
     if m is not None:
-        objects = _objects(m.group("what"), scene, context)
+        objects = _objects(m.group("what"), scene, context) or _plural(m.group("what"), scene)
         return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
     objects = _pointed_at(text, scene, context)
     told = STATEMENT.match(text)
@@ -157,6 +158,17 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     crowded = told is not None and TOGETHER.match(told.group("said")) is not None and objects is not None \
         and len(objects) == 2
     return None if objects is None else Shown(objects, crowded=crowded)
+
+
+PLURAL = re.compile(r"^\s*(?:all\s+)?(?:the|those|these)\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
+                    r"(?P<group>.+s)\s*$", re.IGNORECASE)
+"""A group shown by its plural ("Look at the three red blocks"): what comes next picks among it."""
+
+
+def _plural(text: str, scene: Scene) -> tuple[str, ...] | None:
+    """The objects a plural description shown names (:data:`PLURAL`), or None."""
+    m = PLURAL.match(text)
+    return group_of(m.group("group"), scene, m.group("count")) if m is not None else None
 
 
 def _pointed_at(text: str, scene: Scene, context: Context | None) -> tuple[str, ...] | None:

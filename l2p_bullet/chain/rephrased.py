@@ -58,6 +58,17 @@ takes. Without an article, "to" is followed by one word ("to d"), so "the lego t
 arrow before a relation ("cup -> past the jar") is read by the grammar, before this."""
 
 
+WHY = re.compile(r"(?:\s*,\s*|\s+)(?:so\s+(?:that\s+)?(?:i|i'll|i\s+can|we|my|everyone|everybody|you\s+can|he|she|they"
+                 r"|people)\b|because\b|cause\b|coz\b|cuz\b|since\b|before\b|b4\b|for\s+when\b"
+                 r"|when\s+(?:you're|you\s+are|you've|you're\s+done|i|i'm|he|she|we)\b|that's\s+(?:where|why|how|what)\b"
+                 r"|it(?:'s|s)?\s+(?:gonna|going\s+to|keeps|will|should|might|may|could|always)\b"
+                 r"|my\s+\w+\s+(?:keeps|will|is|leaves|always)\b|keeping\s+it\s+off\b|as\s+far\s+as\s+it\s+will\b"
+                 r"|i\.?e\.?(?:\s*,)?\s)[^.;!?]*[.!]*\s*$", re.IGNORECASE)
+"""A reason, a time or a restatement said after the command ("... away from the ketchup, it's gonna spill", "... closer
+to the mug so I can reach it", "... before my kid grabs it", "..., i.e. past it"): read past where the command before it
+is whole."""
+
+
 NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
                           r"(?:isn't|isnt|is\s+not|wasn't|was\s+not)\s+(?:so|too|as|that)\s+(?:close|near)(?:\s+(?:to|of))?\s+(?P<other>.+?)"
                           r"(?:\s+any\s*more)?\s*[.!]*\s*$", re.IGNORECASE)
@@ -86,6 +97,9 @@ def in_other_words(text: str) -> list[str]:
     m = (OVER_TO.match(text) or TO_OBJECT.match(text)) if to_then is None else None
     if m is not None:  # "over to" first, then "to" an object
         out.append(f"{m.group('head')} toward {m.group('rest') or m.group('arrow')}")
+    m = WHY.search(text)
+    if m is not None and m.start() > 0:
+        out.append(text[:m.start()])
     m = NOT_SO_CLOSE.search(text)
     if m is not None:
         out.append(f"{text[:m.start()]}{m.group('what')} is away from {m.group('other')}")

@@ -35,7 +35,7 @@ def split_clauses(sentence: str) -> list[str]:
     if order is not None and (order.group("lead") or order.group("then")) and order.start() > 0:
         # "..., first the blue, then the red", "..., the small one first and then the big one"
         sentence = sentence[:order.start()] + re.sub(r"(?i)\b(?:and\s+)?then\b", "after", order.group(0))
-    sentence = _after_you(sentence)
+    sentence = _after_you(ABBREVIATED.sub(lambda m: m.group(0).replace(".", ""), sentence))
     out = []
     for part in SENTENCE_ENDS.split(sentence):  # a list told item by item is one sentence of several
         listed = _item_by_item(part)
@@ -43,6 +43,8 @@ def split_clauses(sentence: str) -> list[str]:
     return out
 
 
+ABBREVIATED = re.compile(r"\b(?:i\.e\.|e\.g\.)", re.IGNORECASE)
+"""Abbreviations whose full stops end no sentence ("..., i.e. past it")."""
 AFTER_YOU = re.compile(r"^\s*(?:after|once|when)\s+(?:you've|you\s+have|you're\s+done|you\s+are\s+done)\s+"
                        r"(?P<verb>[a-z]+)\s+(?P<done>[^,]+?),\s*(?P<then>.+)$", re.IGNORECASE)
 """What to do first said in the past, before the next step: "After you've moved the white cube next to the domino,

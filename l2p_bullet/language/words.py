@@ -318,6 +318,7 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "should end", "end",
     "ought to go", "ought to sit",
     "to be standing", "to be sitting", "to be lying", "be standing", "be sitting", "be lying", "ends up sat",
+    "should be sitting", "should be standing", "should be lying",
     "end up sat", "ends up sitting", "end up sitting", "to end up sitting", "to find itself", "finds itself",
     "should come", "to come", "comes", "be positioned", "to be positioned", "is positioned", "be placed",
     "to be placed", "ending up", "finish", "stays", "should stay", "to stay", "were to find itself",

@@ -13,6 +13,9 @@ from l2p_bullet.errors import L2PError
 
 HOUSEHOLD = "heldout27.tsv"
 """A zucchini, a gamepad, a white lamp, a brown crate, a white saucer, orange cubes O (4 cm) and Q (5 cm)."""
+LINE = "heldout29.tsv"
+"""Red cubes A, B, C in a line across the front; D a blue cylinder, E a green bar, F a white 5 cm cube, G a yellow
+3 cm cube."""
 
 
 @pytest.mark.parametrize("sentence, expect", [
@@ -34,6 +37,27 @@ HOUSEHOLD = "heldout27.tsv"
 ])
 def test_said_otherwise(plugins, sentence, expect):
     assert read(sentence, plugins, HOUSEHOLD) == expect
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    # a reason, a time or a restatement after the command is read past
+    ("move G away from D, it keeps falling over", "slide:away G D"),
+    ("push F closer to E so I can reach it", "push:closer F E"),
+    ("put the cylinder beside the bar before my boss sees it", "slide:next-to D E"),
+    ("slide G past F because it's in the way", "slide:past G F"),
+    ("Final state: G on the far side of F, i.e. past it.", "slide:past G F"),
+    # a group or an object shown first, by whoever is told to look
+    ("Look at the red blocks. Push the one on the left end toward G.", "push:closer C G"),  # +y: the left
+    ("Everyone see the white cube? Robot, move it past the bar.", "slide:past F E"),
+    ("Watch the bar: move it around the cylinder.", "slide:around E D"),
+    # more verbs of sliding, and "until they touch"
+    ("tuck G right up against F", "slide:next-to G F extent=right"),
+    ("pop the cylinder next to the bar", "slide:next-to D E"),
+    ("keep pushing G toward F until they touch", "push:next-to G F extent=right"),
+    ("slide G toward F until both of them are touching, if you could", "slide:next-to G F extent=right"),
+])
+def test_said_with_more_around_it(plugins, sentence, expect):
+    assert read(sentence, plugins, LINE) == expect
 
 
 @pytest.mark.parametrize("sentence", [
