@@ -181,11 +181,20 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         if pending is not None:
             pieces = [(piece, apart.paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces]
             pending = None
-        show = None
+        show = _two_moved([cmd for _, cmd in pieces])
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+def _two_moved(commands: list[Command]) -> pointing.Shown | None:
+    """After one clause that moved two objects the same way ("Move O and Q away from the lamp"), what the next
+    clause's pronouns point at: "both of them" are the two moved, "it" as the block to move is either (asked), "it"
+    as the reference is the block they moved from; None after any other clause."""
+    if len(commands) != 2 or commands[0].mover == commands[1].mover or commands[0].anchors != commands[1].anchors:
+        return None
+    return pointing.Shown((commands[0].mover, commands[1].mover), other=commands[0].anchor)
 
 
 def _taken_back(text: str, clauses: list[Clause], scene: Scene, plugins: list,

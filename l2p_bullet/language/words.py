@@ -17,7 +17,7 @@ A word that is the name of an object in the scene is never dropped ("move Now ne
 from __future__ import annotations
 
 from ..errors import LanguageError
-from .reference_words import DETERMINERS, NOUNS
+from .reference_words import DETERMINERS, NOUNS, SHAPE_NOUNS
 
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
@@ -220,6 +220,7 @@ def _own_words(before: list[str], keep: frozenset[str], told: bool) -> bool:
     return bool(nouns) and not told and not (nouns == {"one"} and {"that", "this"} & lowered)
 
 
+SHAPE_WORDS = frozenset(SHAPE_NOUNS) - {"can", "cans"}  # "can we make it so ...": asks, names nothing
 RELATING = frozenset({"toward", "towards", "past", "around", "beside", "closer", "nearer", "away"})
 """Words of a relation: words before a verb that hold one say a command of their own."""
 STATEMENT_OPENINGS = frozenset({"this's", "that's", "here's", "it's", "thats", "heres"})
@@ -302,6 +303,8 @@ def passive_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
                 end -= len(aux)
                 break
         for j in range(end):
+            if _names_something(words[:j]):
+                return words  # "the cube by the butter moved ...": never the butter, its words dropped
             if is_object(" ".join(words[j:end])):
                 return [forms[low[k]], *words[j:end], *words[k + 1:]]
         return words
@@ -343,6 +346,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
         if link is None:
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
+            if _names_something(words[:j]):
+                return words  # "The cube by the butter should go ...": never the butter, its words dropped
             if is_object(" ".join(words[j:k])):
                 if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
                     first = low[0] if low[0] in DETERMINERS else words[0]
@@ -354,6 +359,12 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                                         "staying beside; say which")
                 return ["move", *words[j:k], *words[k + len(link):]]
     return words
+
+
+def _names_something(words: list[str]) -> bool:
+    """Whether words before a mover's description name a thing ("cube", "one", "block"): the description that follows
+    is then not the whole mover, so it is not taken for it."""
+    return bool({w.lower().strip(",.:;!?") for w in words} & (NOUNS | SHAPE_WORDS))
 
 
 NOW = (("right", "now"), ("currently",), ("at", "the", "moment"), ("at", "present"), ("presently",),

@@ -91,6 +91,7 @@ DISAGREED = {
                       "next to the big green one."},
     "heldout24.tsv": {"Move the small cube next to the big cube."},
     "heldout25.tsv": {"Move the biggest thing on the table next to the green cube."},
+    "heldout26.tsv": {"Make sure the butter ends up against the small cube."},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -100,7 +101,8 @@ smallest); "leftmost" / "rightmost" 3 cm apart is clear for the corpus table's a
 the duck for one; a bare "put" or "place" is a slide for every other author and a carry for the twenty-second (and
 "then put it" after a carry); "the big green one" after a row that named the big green cube is that cube for its
 author, where the toolkit reads the big green object of the table (a 16 cm bottle); "the big cube" among 3, 4 and 5 cm
-cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest thing" is the greatest bulk."""
+cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest thing" is the greatest bulk; a bare
+"against" is a plain next-to for the twenty-sixth author, a tight one ("up against", "snug against") for the others."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 153), ("heldout11.tsv", 152)])
@@ -120,7 +122,8 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
                                          ("heldout15.tsv", 155), ("heldout16.tsv", 150), ("heldout17.tsv", 150),
                                          ("heldout18.tsv", 154), ("heldout19.tsv", 151), ("heldout20.tsv", 151),
                                          ("heldout21.tsv", 146), ("heldout22.tsv", 139), ("heldout23.tsv", 147),
-                                         ("heldout24.tsv", 148), ("heldout25.tsv", 153)])
+                                         ("heldout24.tsv", 148), ("heldout25.tsv", 153), ("heldout26.tsv", 140),
+                                         ("heldout27.tsv", 139), ("heldout28.tsv", 131), ("heldout29.tsv", 133)])
 def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong
@@ -134,8 +137,10 @@ def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     87.5 % / 2 and 73.8 % / 2; heldout22.tsv to heldout25.tsv (a domino, a teddy and a mug; a milk carton, a cereal
     box, a bread roll and a bottle as a model package ships them; objects named obj1 ... obj7 with a cup and a lemon;
     seven plain blocks): written cold, read once at the following session's start: 80.6 % / 8, 73.1 % / 4, 85.6 % / 5
-    and 88.1 % / 2; development figures since. Wrong only where the author disagrees with most authors
-    (:data:`DISAGREED`)."""
+    and 88.1 % / 2; heldout26.tsv to heldout29.tsv (LIBERO's groceries named as a user's file names them, Roboschool's
+    household models, MyoSuite's and Genesis's hardware, three identical red cubes in a line): written cold, read once
+    at the next session's start: 48.1 % / 2, 61.9 % / 1 (and one traceback), 58.8 % / 1 and 56.2 % / 2; development
+    figures since. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
              if got != REFUSE and case.sentence not in DISAGREED.get(name, ())]

@@ -39,6 +39,11 @@ HOUSEHOLD = "heldout27.tsv"
      "slide:next-to O lamp ; slide:next-to Q crate", HOUSEHOLD),
     ("The small orange cube, push it toward the saucer, and the other one, push it toward the lamp.",
      "push:closer O saucer ; push:closer Q lamp", HOUSEHOLD),
+    # after two objects moved the same way, "both of them" are the two, "it" as the reference where they moved from
+    ("Move O and Q away from the lamp. Then push both of them toward the saucer.",
+     "slide:away O lamp ; slide:away Q lamp ; push:closer O saucer ; push:closer Q saucer", HOUSEHOLD),
+    ("Move O and Q away from the lamp. Then move the crate away from it.",
+     "slide:away O lamp ; slide:away Q lamp ; slide:away crate lamp", HOUSEHOLD),
 ])
 def test_said_tersely_or_taken_back(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
@@ -50,7 +55,18 @@ def test_said_tersely_or_taken_back(plugins, sentence, expect, table):
     ("the bar to circle the cylinder", LINE),  # "to" and a verb: nothing said how
     ("move G toward D. no, FAR far.", LINE),   # nothing a clause says
     ("h->a", LINE),                            # no h on the table
+    ("Move O and Q away from the lamp. Then move it next to the saucer.", HOUSEHOLD),  # O or Q
 ])
 def test_what_stays_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
         read(sentence, plugins, table)
+
+
+def test_a_mover_said_with_a_relation_is_never_the_object_it_is_related_to(plugins):
+    """"The cube by the saucer should go ...": the cube (Q, 10 cm from it) or a refusal, never the saucer, whose words
+    end the description."""
+    try:
+        got = read("The cube by the saucer should go around the lamp.", plugins, HOUSEHOLD)
+    except L2PError:
+        return
+    assert got == "slide:around Q lamp"
