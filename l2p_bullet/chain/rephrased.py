@@ -58,7 +58,7 @@ takes. Without an article, "to" is followed by one word ("to d"), so "the lego t
 arrow before a relation ("cup -> past the jar") is read by the grammar, before this."""
 
 
-WHY = re.compile(r"(?:\s*,\s*|\s+)(?:so\s+(?:that\s+)?(?:i|i'll|i\s+can|we|my|everyone|everybody|you\s+can|he|she|they"
+WHY = re.compile(r"(?:\s*,\s*|\s+)(?:so\s+(?:that\s+)?(?:i|i'll|i\s+can|we|my|everyone|everybody|you\s+can|he|she"
                  r"|people)\b|because\b|cause\b|coz\b|cuz\b|since\b|before\b|b4\b|for\s+when\b"
                  r"|when\s+(?:you're|you\s+are|you've|you're\s+done|i|i'm|he|she|we)\b|that's\s+(?:where|why|how|what)\b"
                  r"|it(?:'s|s)?\s+(?:gonna|going\s+to|keeps|will|should|might|may|could|always)\b"
