@@ -50,9 +50,32 @@ def taken_back(text: str) -> str | None:
     return m.group("meant") if m is not None else None
 
 
+APPOSITIVE = re.compile(r"^(?P<before>.+?)\s*,\s*(?P<said>(?:the|that)\s+(?:[\w-]+\s+){0,3}?one)"
+                        r"(?:\s+(?:that|which)\s+[^,]+?)?\s*,\s*(?P<after>\S.*)$", re.IGNORECASE)
+"""An object said again in other words right after its description ("Move the biggest box, the red one, away from
+the nut", "That little lamp, the white one that stands up, push it ...")."""
+
+
+def said_again(text: str, scene: Scene) -> list[str]:
+    """``text`` without an :data:`APPOSITIVE` that fits the object the words before it end with (it only says it
+    again); none where there is none, or it fits another object (the person then contradicts themselves: asked)."""
+    m = APPOSITIVE.match(text)
+    if m is None:
+        return []
+    words = m.group("before").split()
+    for start in range(len(words)):  # the longest object description the words before end with
+        meant = try_object(" ".join(words[start:]), scene)
+        if meant is not None:
+            fits = try_object(m.group("said"), scene.only((meant,)))
+            return [f"{m.group('before')} {m.group('after')}", f"{m.group('before')}, {m.group('after')}"] \
+                if fits == meant else []
+    return []
+
+
 def corrected(text: str, scene: Scene) -> list[str]:
-    """``text`` as the person meant it, where they corrected themselves in it; none where they did not."""
-    out = []
+    """``text`` as the person meant it, where they corrected themselves in it or said an object again in other words;
+    none where they did not."""
+    out = said_again(text, scene)
     m = NOT_THIS_BUT.match(text)
     if m is not None:
         wrong, right = try_object(m.group("wrong"), scene), try_object(m.group("right"), scene)

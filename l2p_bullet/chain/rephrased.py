@@ -69,6 +69,12 @@ to the mug so I can reach it", "... before my kid grabs it", "..., i.e. past it"
 is whole."""
 
 
+POLITE_INSIDE = re.compile(r"\s*,\s*(?:please|pls|plz|thanks|if\s+you\s+(?:would|could|can|please))\s*,\s*",
+                           re.IGNORECASE)
+"""Politeness said between commas inside the command ("Push the milk right next to the bottle, please, so they're
+touching"): read past."""
+
+
 NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
                           r"(?:isn't|isnt|is\s+not|wasn't|was\s+not)\s+(?:so|too|as|that)\s+(?:close|near)(?:\s+(?:to|of))?\s+(?P<other>.+?)"
                           r"(?:\s+any\s*more)?\s*[.!]*\s*$", re.IGNORECASE)
@@ -97,6 +103,8 @@ def in_other_words(text: str) -> list[str]:
     m = (OVER_TO.match(text) or TO_OBJECT.match(text)) if to_then is None else None
     if m is not None:  # "over to" first, then "to" an object
         out.append(f"{m.group('head')} toward {m.group('rest') or m.group('arrow')}")
+    if POLITE_INSIDE.search(text):
+        out.append(POLITE_INSIDE.sub(" ", text))
     m = WHY.search(text)
     if m is not None and m.start() > 0:
         out.append(text[:m.start()])

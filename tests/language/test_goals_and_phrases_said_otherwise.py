@@ -55,6 +55,8 @@ def test_said_otherwise(plugins, sentence, expect):
     ("pop the cylinder next to the bar", "slide:next-to D E"),
     ("keep pushing G toward F until they touch", "push:next-to G F extent=right"),
     ("slide G toward F until both of them are touching, if you could", "slide:next-to G F extent=right"),
+    ("Push G right next to F, please, so they're touching.", "push:next-to G F extent=right"),
+    ("move the cylinder, if you would, past the bar", "slide:past D E"),
 ])
 def test_said_with_more_around_it(plugins, sentence, expect):
     assert read(sentence, plugins, LINE) == expect

@@ -44,6 +44,9 @@ HOUSEHOLD = "heldout27.tsv"
      "slide:away O lamp ; slide:away Q lamp ; push:closer O saucer ; push:closer Q saucer", HOUSEHOLD),
     ("Move O and Q away from the lamp. Then move the crate away from it.",
      "slide:away O lamp ; slide:away Q lamp ; slide:away crate lamp", HOUSEHOLD),
+    # an object said again in other words right after its description
+    ("Move the biggest cube, the orange one, toward the saucer.", "slide:closer Q saucer", HOUSEHOLD),
+    ("That flat thing, the brown one, push it past the lamp.", "push:past crate lamp", HOUSEHOLD),
 ])
 def test_said_tersely_or_taken_back(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
@@ -56,6 +59,7 @@ def test_said_tersely_or_taken_back(plugins, sentence, expect, table):
     ("move G toward D. no, FAR far.", LINE),   # nothing a clause says
     ("h->a", LINE),                            # no h on the table
     ("Move O and Q away from the lamp. Then move it next to the saucer.", HOUSEHOLD),  # O or Q
+    ("Move the biggest cube, the white one, toward the saucer.", HOUSEHOLD),  # the biggest cube is orange
 ])
 def test_what_stays_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
