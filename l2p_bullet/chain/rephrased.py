@@ -69,6 +69,12 @@ to the mug so I can reach it", "... before my kid grabs it", "..., i.e. past it"
 is whole."""
 
 
+THAN_NOW = re.compile(r"\s+than\s+(?:it|they|he|she)\s+(?:(?:currently|presently)\s+)?"
+                      r"(?:is|are|was|were|'s|'re|stands|sits)"
+                      r"(?:\s+(?:now|right\s+now|currently|at\s+the\s+moment|at\s+present))?\s*[.!]*\s*$",
+                      re.IGNORECASE)
+"""A comparative's yardstick said as the table now ("farther from the white cube than it currently is"): the
+comparative says it already."""
 POLITE_INSIDE = re.compile(r"\s*,\s*(?:please|pls|plz|thanks|if\s+you\s+(?:would|could|can|please))\s*,\s*",
                            re.IGNORECASE)
 """Politeness said between commas inside the command ("Push the milk right next to the bottle, please, so they're
@@ -103,6 +109,9 @@ def in_other_words(text: str) -> list[str]:
     m = (OVER_TO.match(text) or TO_OBJECT.match(text)) if to_then is None else None
     if m is not None:  # "over to" first, then "to" an object
         out.append(f"{m.group('head')} toward {m.group('rest') or m.group('arrow')}")
+    m = THAN_NOW.search(text)
+    if m is not None:
+        out.append(text[:m.start()])
     if POLITE_INSIDE.search(text):
         out.append(POLITE_INSIDE.sub(" ", text))
     m = WHY.search(text)

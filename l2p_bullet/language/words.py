@@ -120,6 +120,7 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "in a careful way": "careful",
     "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle", "real quick": "fast",
     "real quickly": "fast", "real slow": "slow", "real slowly": "slow",
+    "no rush at all": "slow", "no hurry at all": "slow",
     "no rush": "slow", "no hurry": "slow", "there's no rush": "slow", "theres no rush": "slow",
     "no need to rush": "slow", "no need to hurry": "slow",
     "taking your time": "slow", "take it slow": "slow", "don't rush": "slow", "dont rush": "slow",

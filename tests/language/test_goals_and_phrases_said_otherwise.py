@@ -57,6 +57,11 @@ def test_said_otherwise(plugins, sentence, expect):
     ("slide G toward F until both of them are touching, if you could", "slide:next-to G F extent=right"),
     ("Push G right next to F, please, so they're touching.", "push:next-to G F extent=right"),
     ("move the cylinder, if you would, past the bar", "slide:past D E"),
+    # a comparative's yardstick said as the table now; a row's kind said before its items; a pace said alone
+    ("G should end up closer to F than it is now.", "slide:closer G F"),
+    ("put in a line: F, G, D", "row F,G,D"),
+    ("Arrange in a line, in this order: E, D, G.", "row E,D,G"),
+    ("Move G past the bar. No hurry at all.", "slide:past G E pace=slow"),
 ])
 def test_said_with_more_around_it(plugins, sentence, expect):
     assert read(sentence, plugins, LINE) == expect
