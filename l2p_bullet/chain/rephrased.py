@@ -17,11 +17,13 @@ OVER_AND_PUT = re.compile(rf"\s+over{_PUT_IT}", re.IGNORECASE)
 """A carry told as two steps: "carry the mug over to the jar and set it down beside it" is "carry the mug beside
 the jar"; "carry the jar over and set it beside the stone" is "carry the jar beside the stone", and so is
 "carry the jar over to the stone and set it down beside the stone"."""
-_AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab)"
+_AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab|pick)"
 _AIR = r"(?:up\s+)?(?:in|into|through)\s+the\s+air"
-_AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
-IN_THE_AIR = re.compile(rf"^\s*{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
-AIR_FIRST = re.compile(rf"^\s*{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
+_AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay|take)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
+_ASKING = (r"(?:(?:please|pls|now|can\s+you|could\s+you|would\s+you|can\s+the\s+(?:robot|arm)"
+           r"|could\s+the\s+(?:robot|arm))\s+)*")
+IN_THE_AIR = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
+AIR_FIRST = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
 """A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
 in the air the cube and bring it near the bottle"."""
 YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)

@@ -62,6 +62,10 @@ def test_said_otherwise(plugins, sentence, expect):
     ("put in a line: F, G, D", "row F,G,D"),
     ("Arrange in a line, in this order: E, D, G.", "row E,D,G"),
     ("Move G past the bar. No hurry at all.", "slide:past G E pace=slow"),
+    # touching said as the relation; a carry said by where the object goes, after a polite opening
+    ("put G touching F", "slide:next-to G F extent=right"),
+    ("goal: the cylinder touching the bar", "slide:next-to D E extent=right"),
+    ("could you pick G up in the air and take it around F", "carry:around G F"),
 ])
 def test_said_with_more_around_it(plugins, sentence, expect):
     assert read(sentence, plugins, LINE) == expect
@@ -71,6 +75,7 @@ def test_said_with_more_around_it(plugins, sentence, expect):
     "The lamp is close to the crate.",      # how the table is: nothing asked
     "put the crate close",                  # close to what
     "move the saucer near of",              # no object after the relation
+    "Move O past Q without touching it",    # "touching" there is how it passes, not where it ends
 ])
 def test_what_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
