@@ -313,7 +313,15 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
     try:
         return _resolve_text(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:
-        return None
+        pass
+    said = rest.split()
+    if len(shows.objects) == 1 and said and said[0].lower() not in {v.split()[0] for v in known_verbs()}:
+        # "biggest item, away from cam", "cube by the ball, over to P": where the object shown goes
+        try:
+            return _resolve_text(f"move it {rest}", previous, scene, plugins, depth + 1, shows.context, shows)
+        except L2PError:
+            pass
+    return None
 
 
 def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list,

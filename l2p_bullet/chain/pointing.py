@@ -29,7 +29,7 @@ _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|(?:who|everyone|everybody
          r"|take|grab|get|pick\s+up|lift)")
 SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
 """A clause that only shows objects: "See the cylinder?", "Pick up the duck"."""
-TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,]|\s*(?:\.\.\.|\u2026))\s+(?P<rest>.+)$")
+TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,]|\s*(?:\.\.+|\u2026))\s+(?P<rest>.+)$")
 """An object named first, then the command about it: "the green cube - move it toward the blue one", "the
 teddy, put it beside the can", "Q and R: slide them both toward P"."""
 STATEMENT = re.compile(r"^\s*(?P<what>.+?)\s+(?:is|are|r|looks|seems|sits|stands|lies)\b(?P<said>.*)$", re.IGNORECASE)

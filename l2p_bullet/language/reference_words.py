@@ -16,7 +16,8 @@ DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item", "part"})
 SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "dice": "cube", "die": "cube",
                "box": "box", "boxes": "box", "bar": "box", "bars": "box",
-               "stick": "box", "sticks": "box", "brick": "box", "bricks": "box",
+               "stick": "box", "sticks": "box", "brick": "box", "bricks": "box", "rectangle": "box",
+               "rectangles": "box",
                "cylinder": "cylinder",
                "can": "cylinder", "cylinders": "cylinder"}
 """Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red

@@ -66,6 +66,14 @@ def test_said_otherwise(plugins, sentence, expect):
     ("put G touching F", "slide:next-to G F extent=right"),
     ("goal: the cylinder touching the bar", "slide:next-to D E extent=right"),
     ("could you pick G up in the air and take it around F", "carry:around G F"),
+    # learners' and everyday relations; a topic and where it goes; a plan said as what will happen
+    ("slide G up to F", "slide:next-to G F"),
+    ("put the cylinder to the side of the bar", "slide:next-to D E"),
+    ("move G for the side of F", "slide:next-to G F"),
+    ("push G for the other side of F", "push:past G F"),
+    ("the bar, away from the cylinder.", "slide:away E D"),
+    ("the bar.. push it toward the white cube", "push:closer E F"),
+    ("The green rectangle is going to go past the cylinder.", "slide:past E D"),
 ])
 def test_said_with_more_around_it(plugins, sentence, expect):
     assert read(sentence, plugins, LINE) == expect
@@ -76,6 +84,7 @@ def test_said_with_more_around_it(plugins, sentence, expect):
     "put the crate close",                  # close to what
     "move the saucer near of",              # no object after the relation
     "Move O past Q without touching it",    # "touching" there is how it passes, not where it ends
+    "move the saucer up to the left",       # a place, not an object
 ])
 def test_what_stays_refused(plugins, sentence):
     with pytest.raises(L2PError):
