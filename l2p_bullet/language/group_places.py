@@ -10,6 +10,8 @@ counted from no end said that names different objects from the two ends).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from ..core.scene import Scene, SceneObject
@@ -94,9 +96,10 @@ def table_sides(words: list[str]) -> list[str]:
     return words
 
 
-def in_group(words: list[str], low: tuple[str, ...], scene: Scene) -> str | None:
+def in_group(words: list[str], low: tuple[str, ...], scene: Scene, read: Callable[[str, Scene], str]) -> str | None:
     """The object a place in a group names ("middle red block", "second red one from the left", "one in the middle
-    of everything"; ``words`` without their determiner), or None where ``words`` name no such place."""
+    of everything"; ``words`` without their determiner), or None where ``words`` name no such place. ``read`` resolves
+    a description among some of the objects (language/references.py's reader, passed in: it calls this module)."""
     centre = _centre_of_everything(low)
     if centre is not None:
         return _nearest_centre(words[:centre], scene)
@@ -109,7 +112,7 @@ def in_group(words: list[str], low: tuple[str, ...], scene: Scene) -> str | None
         if counted is None or at > 0 and counted[1] is None:
             return None  # "one second from the left" is counted; "A first" is not an ordinal of a group
         return _among(counted[0], scene, lambda pool: _nth(pool, n, counted[1], " ".join(words)))
-    return _half(words, low, scene)
+    return _half(words, low, scene, read)
 
 
 def _ordinal(low: tuple[str, ...]) -> tuple[int, int, int] | None:
@@ -244,7 +247,7 @@ def _nth(pool: list[SceneObject], n: int, side: str | None, said: str) -> str:
     return one.name
 
 
-def _half(words: list[str], low: tuple[str, ...], scene: Scene) -> str | None:
+def _half(words: list[str], low: tuple[str, ...], scene: Scene, read: Callable[[str, Scene], str]) -> str | None:
     """"The thing nearest the robot on the right side": the robot is on no side, so the side is the half of the
     table the object is in; refused where an object within a place tie of the table's centre line changes the
     pick. None where ``words`` are not so said."""
@@ -260,15 +263,13 @@ def _half(words: list[str], low: tuple[str, ...], scene: Scene) -> str | None:
         ref = ref[1:]
     if ref not in ROBOT_WORDS:
         return None
-    from . import references  # the reader of the relation before the side, which imports this module
-
     sign = DIRECTIONS[low[-n + 2]][1]
     picks = []
     for margin in (TIE_PLACE_M, -TIE_PLACE_M):  # the objects clearly on that side, then those not clearly off it
         half = [o.name for o in scene.objects if sign * float(o.xy[1]) > margin]
         if not half:
             raise UnknownObjectError(f'nothing in the scene is on the {low[-n + 2]} side of the table')
-        picks.append(references.resolve_object(" ".join(words[:-n]), scene.only(half)))
+        picks.append(read(" ".join(words[:-n]), scene.only(half)))
     if picks[0] != picks[1]:
         raise LanguageError(f'"{" ".join(words)}" is ambiguous: {picks[0]} or {picks[1]} (near the table\'s centre '
                             "line); name the one you mean")

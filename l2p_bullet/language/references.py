@@ -340,7 +340,7 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
     """Places on the table: "the cube in the middle (of the table)", "the object on the far right", "the cube
     between A and C" (nearest the middle of the two, and lying between them), a place in a group (the middle
     one, the second from the left: language/group_places.py); None when ``words`` name none."""
-    grouped = in_group(words, low, scene)
+    grouped = in_group(words, low, scene, resolve_object)
     if grouped is not None:
         return grouped
     for phrase in CENTRE_PHRASES:

@@ -212,18 +212,16 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
 def _own_words(before: list[str], keep: frozenset[str], told: bool) -> bool:
     """Whether words before the verb belong to the command: an object's name or a description ("the other one, put it
     ...": a topic; but "yeah that one", and a noun in a sentence that tells about the command, "this is the important
-    part"), a relation or an arrow ("b->g fast, nudge E past F", "b toward g, nudge ...": a command of its own)."""
+    part"), or an arrow ("b->g fast, nudge E past F": a command of its own)."""
     said = {x.strip(",.:;!?") for x in before}
     lowered = {x.lower() for x in said}
-    if said & keep or lowered & RELATING or any(a in x for x in said for a in ("->", "=>", "\u2192")):
+    if said & keep or any(a in x for x in said for a in ("->", "=>", "\u2192")):
         return True
     nouns = lowered & NOUNS
     return bool(nouns) and not told and not (nouns == {"one"} and {"that", "this"} & lowered)
 
 
 SHAPE_WORDS = frozenset(SHAPE_NOUNS) - {"can", "cans"}  # "can we make it so ...": asks, names nothing
-RELATING = frozenset({"toward", "towards", "past", "around", "beside", "closer", "nearer", "away"})
-"""Words of a relation: words before a verb that hold one say a command of their own."""
 STATEMENT_OPENINGS = frozenset({"this's", "that's", "here's", "it's", "thats", "heres"})
 """Openings of a sentence about the command, not about an object ("that's the plan, now move ..."): read past."""
 NOUN_USE = frozenset({"is", "was", "will", "should", "would", "must"})

@@ -23,7 +23,7 @@ from l2p_bullet.plugins import registry
 def plugins_dir(tmp_path, monkeypatch):
     """A site folder with one good plugin, one that explodes on import and several broken ones."""
     root = tmp_path / "site"
-    make_bundle(root / "fk_good", "sideways", ["sideways", "to the side of"])
+    make_bundle(root / "fk_good", "sideways", ["sideways", "off to the side of"])
     # Importing this module would raise: discovery must not import it.
     make_bundle(root / "fk_explodes", "upside", ["upside of"], init="raise RuntimeError('plugin bug: boom')\n")
     make_bundle(root / "fk_badtoml", "badtoml", [], manifest="phrases = [unterminated\n")
@@ -58,7 +58,7 @@ def test_discovery_reports_broken_plugins_without_importing(plugins_dir):
     assert not any(m.startswith("fk_") for m in sys.modules), "discovery imported plugin code"
     good = found["sideways"]
     assert good.ok and good.package == "fake-plugins" and good.package_version == "0.3"
-    assert good.phrases == ("sideways", "to the side of") and good.version == "1.2.0"
+    assert good.phrases == ("sideways", "off to the side of") and good.version == "1.2.0"
     assert good.metrics == {"final_progress": 0.91}
     assert found["nested"].ok and found["nested"].path == plugins_dir / "fk_parent" / "child"
     assert found["upside"].ok  # its bug only shows when it is loaded
@@ -70,7 +70,7 @@ def test_discovery_reports_broken_plugins_without_importing(plugins_dir):
     assert {"badtoml", "untrained", "nophrases", "missing"} <= broken
     # The others still work: their phrases are in the table.
     table = registry.phrase_table()
-    assert table["to the side of"] == "sideways" and table["nested in"] == "nested"
+    assert table["off to the side of"] == "sideways" and table["nested in"] == "nested"
     assert "untrained to" not in table
 
 
@@ -95,7 +95,7 @@ def test_duplicate_phrase_names_both_plugins(plugins_dir, tmp_path, monkeypatch)
     monkeypatch.syspath_prepend(str(other))
     # the contested phrase is blocked with an error naming both plugins; the others keep working
     table = registry.phrase_table()
-    assert "sideways" not in table and table["athwart"] == "rival" and table["to the side of"] == "sideways"
+    assert "sideways" not in table and table["athwart"] == "rival" and table["off to the side of"] == "sideways"
     e = registry.blocked_phrases()["sideways"]
     assert isinstance(e, PluginConflict) and e.claim == "sideways" and set(e.plugins) == {"rival", "sideways"}
     msg = str(e)
@@ -122,7 +122,7 @@ def test_actions_command_lists_good_and_broken(plugins_dir):
     result = CliRunner().invoke(main, ["actions", "--json"])
     assert result.exit_code == 0, result.output
     rows = {r["name"]: r for r in json.loads(result.output)["actions"]}
-    assert rows["sideways"]["ok"] and rows["sideways"]["phrases"] == ["sideways", "to the side of"]
+    assert rows["sideways"]["ok"] and rows["sideways"]["phrases"] == ["sideways", "off to the side of"]
     assert rows["sideways"]["metrics"] == {"final_progress": 0.91} and rows["sideways"]["package"] == "fake-plugins"
     assert not rows["missing"]["ok"] and "not installed" in rows["missing"]["error"]
     text = CliRunner().invoke(main, ["actions"]).output
@@ -184,7 +184,7 @@ def test_a_manifest_is_parsed_once_until_its_bytes_change(tmp_path, monkeypatch)
     edit shows at once (here one of the same length, in the same tick); a failure is never kept; and what one caller
     does to the manifest it got is not what the next one gets."""
     root = tmp_path / "site"  # module names of its own: other tests here import their fk_* modules
-    make_bundle(root / "fk_once", "once", ["once", "to the side of"])
+    make_bundle(root / "fk_once", "once", ["once", "off to the side of"])
     make_bundle(root / "fk_once_bad", "oncebad", [], manifest="phrases = [unterminated\n")
     make_dist(root, "fake-once", {"once": "fk_once", "oncebad": "fk_once_bad"})
     monkeypatch.syspath_prepend(str(root))
@@ -199,12 +199,12 @@ def test_a_manifest_is_parsed_once_until_its_bytes_change(tmp_path, monkeypatch)
     registry._parsed.cache_clear()
     good, bad = str(root / "fk_once" / "manifest.toml"), str(root / "fk_once_bad" / "manifest.toml")
     first = by_name(registry.discover())
-    assert parsed.count(good) == 1 and first["once"].phrases == ("once", "to the side of")
+    assert parsed.count(good) == 1 and first["once"].phrases == ("once", "off to the side of")
     first["once"].manifest["phrases"].append("beside")  # a caller's own copy
     again = by_name(registry.discover())
-    assert parsed.count(good) == 1 and again["once"].manifest["phrases"] == ["once", "to the side of"]
+    assert parsed.count(good) == 1 and again["once"].manifest["phrases"] == ["once", "off to the side of"]
     assert parsed.count(bad) == 2 and not again["oncebad"].ok  # an error is read again, as the file may be mended
     path = root / "fk_once" / "manifest.toml"
-    path.write_text(path.read_text().replace('"once", "to the side of"', '"once", "to the back of"'))
+    path.write_text(path.read_text().replace('"once", "off to the side of"', '"once", "to the back of"'))
     edited = by_name(registry.discover())
     assert parsed.count(good) == 2 and edited["once"].phrases == ("once", "to the back of")
