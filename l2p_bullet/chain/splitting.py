@@ -11,8 +11,8 @@ from __future__ import annotations
 import re
 
 from ..language import MAX_SENTENCE, is_courtesy, known_verbs, strip_polite, tokens
+from ..language.goals import participles
 from ..language.lists import GROUP
-from ..language.words import participles
 from . import pointing
 from .composite import is_composite
 

@@ -30,6 +30,7 @@ from . import lenient
 from .anchors import measured_context, mover_in_relation, noun_carried, twin_of
 from .descriptions import naming_words
 from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_tail
+from .goals import goal_to_verb, passive_to_verb, said_now, state_to_verb
 from .pronouns import Context
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
 from .references import object_pairs, resolve_object, try_object
@@ -38,11 +39,7 @@ from .words import (
     by_gerund,
     drop_frames,
     gerund_to_verb,
-    goal_to_verb,
-    passive_to_verb,
-    said_now,
     skip_to_verb,
-    state_to_verb,
     strip_polite,
     take_pace,
 )

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from ..core.scene import COLORS, Scene
 from .descriptions import naming_words
 from .extents import EXTENTS, take_extent
+from .goals import participles
 from .pronouns import Context
 from .reference_words import (
     COLOR_SYNONYMS,
@@ -40,7 +41,7 @@ from .reference_words import (
 )
 from .references import try_object
 from .synonyms import KIND_SYNONYMS, SIZE_WORDS
-from .words import NEGATIONS, PACES, participles
+from .words import NEGATIONS, PACES
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
 

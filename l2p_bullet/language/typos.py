@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from . import extents, reference_words, words
+from . import extents, goals, reference_words, words
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -46,7 +46,7 @@ def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[s
     for text in (*phrases, *verbs, *colours):
         known.update(_WORD.findall(text.lower()))
     for table in (words.POLITE_PREFIXES, words.POLITE_SUFFIXES, words.FRAMES, words.GERUND_PREFIXES,
-                  words.GOAL_PREFIXES, words.STATE_LINKS, tuple(extents.EXTENTS)):
+                  goals.GOAL_PREFIXES, goals.STATE_LINKS, tuple(extents.EXTENTS)):
         for phrase in table:
             known.update(phrase)
     known.update(words.PACES)

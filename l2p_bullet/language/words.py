@@ -17,7 +17,7 @@ A word that is the name of an object in the scene is never dropped ("move Now ne
 from __future__ import annotations
 
 from ..errors import LanguageError
-from .reference_words import DETERMINERS, NOUNS, SHAPE_NOUNS
+from .reference_words import NOUNS
 
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
@@ -77,24 +77,6 @@ GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",)
 """Openings followed by the verb's -ing form: "do you mind moving A past B", and "would you mind ..." once its
 "would you" is read past as politeness."""
 
-GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
-    "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
-    "what i'd like is", "what i'm after is", "i want to see", "i'd like to see", "i would like to see",
-    "the goal is to have", "the aim is to have", "the idea is to have", "the task is to have", "the goal is to get",
-    "the idea is that", "the goal is that", "the plan is that", "the aim is that", "the idea is for",
-    "could we end up with", "can we end up with", "let's end up with", "i'd like to end up with", "end up with",
-    "goal", "want", "end state", "target", "objective", "goal state", "target state", "task", "the task",
-    "result wanted", "wanted result", "what i want", "let", "wanted", "expected result", "desired result", "end result",
-    "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
-    "expected final state", "desired final state", "end goal", "final goal", "the goal is", "goal is", "the idea is",
-    "i just want", "just want", "need", "i want that",
-)), key=len, reverse=True))
-"""Openings that state the end instead of the motion: "I want the red block next to the green one" is
-"put the red block next to the green one"."""
-DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", "to"), ("for", "you", "to"),
-         ("for", "the", "robot", "to"), ("that", "you"))
-"""Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
-
 _RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests", "stands", "gets", "moves", "comes")
 FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     *(f"{lead} {rest}".replace(" 's", "'s") for lead in ("so that it", "so it", "such that it", "until it")
@@ -137,7 +119,7 @@ NEGATIONS = frozenset({"don't", "dont", "not", "never", "no"})
 """Words that, just before a verb, say not to do it ("don't carry it, just push A past B")."""
 
 
-def _starts(low: list[str], words: tuple[str, ...]) -> bool:
+def starts(low: list[str], words: tuple[str, ...]) -> bool:
     return tuple(low[: len(words)]) == words
 
 
@@ -161,7 +143,7 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
         changed = False
         low = [w.lower() for w in words]
         for pre in _PREFIXES_BY_FIRST.get(low[0], ()):
-            if _starts(low, pre) and (not set(words[: len(pre)]) & keep or set(pre) & ADDRESSEES) and not (
+            if starts(low, pre) and (not set(words[: len(pre)]) & keep or set(pre) & ADDRESSEES) and not (
                     pre[-1] in NOT_BEFORE_TO and low[len(pre):len(pre) + 1] == ["to"]):
                 words, changed = words[len(pre):], True
                 break
@@ -183,7 +165,7 @@ def is_courtesy(words: list[str]) -> bool:
         return False  # "Then do that again" asks for the move once more: never read past
     while low:
         for pre in POLITE_PREFIXES + POLITE_SUFFIXES:
-            if _starts(low, pre):
+            if starts(low, pre):
                 low = low[len(pre):]
                 break
         else:
@@ -221,7 +203,6 @@ def _own_words(before: list[str], keep: frozenset[str], told: bool) -> bool:
     return bool(nouns) and not told and not (nouns == {"one"} and {"that", "this"} & lowered)
 
 
-SHAPE_WORDS = frozenset(SHAPE_NOUNS) - {"can", "cans"}  # "can we make it so ...": asks, names nothing
 STATEMENT_OPENINGS = frozenset({"this's", "that's", "here's", "it's", "thats", "heres"})
 """Openings of a sentence about the command, not about an object ("that's the plan, now move ..."): read past."""
 NOUN_USE = frozenset({"is", "was", "will", "should", "would", "must"})
@@ -232,7 +213,7 @@ def gerund_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     """"would you mind moving A past B" -> "move A past B" (the -ing form of a known verb)."""
     low = [w.lower() for w in words]
     for pre in GERUND_PREFIXES:
-        if _starts(low, pre) and len(words) > len(pre):
+        if starts(low, pre) and len(words) > len(pre):
             verb = verb_of_gerund(low[len(pre)], verbs)
             if verb is not None:  # "... lifting A and placing it next to B": both verbs as commands
                 rest = words[len(pre) + 1:]
@@ -244,145 +225,6 @@ def gerund_to_verb(words: list[str], verbs: list[str]) -> list[str]:
 def verb_of_gerund(word: str, verbs: list[str]) -> str | None:
     """The known one-word verb whose -ing form ``word`` is ("moving": move, "dragging": drag), or None."""
     return next((v for v in verbs if " " not in v and word in (v + "ing", v[:-1] + "ing", v + v[-1] + "ing")), None)
-
-
-def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
-    """"I want the red block next to B" -> "put the red block next to B"; a known verb after the opening
-    ("I want to move ...") is kept as it is."""
-    low = [w.lower() for w in words]
-    for pre in GOAL_PREFIXES:
-        if _starts(low, pre) and len(words) > len(pre):
-            rest = words[len(pre):]
-            for doer in DOERS:  # "I'd like the robot to move ...", "I want you to ..."
-                if tuple(w.lower() for w in rest[:len(doer)]) == doer and len(rest) > len(doer):
-                    rest = rest[len(doer) - (doer[-1] == "to"):]
-                    break
-            if rest[0].lower() == "to" and len(rest) > 1:
-                return rest[1:]
-            if rest[0].lower() in verbs:
-                return rest
-            return ["put", *rest]
-    if low[:1] == ["make"] and "go" in low[2:]:  # "make A go around B"
-        at = low.index("go", 2)
-        return ["move", *words[1:at], *words[at + 1:]]
-    return words
-
-
-IRREGULAR_PARTICIPLES = {"slide": "slid", "bring": "brought", "put": "put", "set": "set", "lay": "laid"}
-PASSIVE_AUX = (("needs", "to", "be"), ("need", "to", "be"), ("has", "to", "be"), ("have", "to", "be"),
-              ("should", "be"), ("must", "be"), ("to", "be"), ("be",), ("is",), ("gets",), ("get",))
-"""Words between an object and a participle that only make it passive ("for C to be moved next to B")."""
-
-
-def participles(verb: str) -> set[str]:
-    """The past participles a one-word verb may take ("move": moved, "drag": dragged, "carry": carried)."""
-    if verb in IRREGULAR_PARTICIPLES:
-        return {IRREGULAR_PARTICIPLES[verb]}
-    out = {verb + "ed", verb + "d", verb + verb[-1] + "ed"}
-    if verb.endswith("y"):
-        out.add(verb[:-1] + "ied")
-    return out
-
-
-def passive_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
-    """"I need the cylinder moved away from C", "the goal is for C to be pushed past B" -> "move the cylinder
-    away from C", "push C past B": an object described before the participle of a known verb, whatever opens
-    the sentence. ``is_object(text)`` says whether ``text`` names one object; the longest such description ending
-    at the participle is the mover. Words that start with a known verb are returned as they are."""
-    low = [w.lower() for w in words]
-    if not low or low[0] in verbs:
-        return words
-    forms = {p: v for v in verbs if " " not in v for p in participles(v)}
-    for k in range(1, len(low)):
-        if low[k] not in forms:
-            continue
-        end = k
-        for aux in PASSIVE_AUX:
-            if end > len(aux) and tuple(low[end - len(aux):end]) == aux:
-                end -= len(aux)
-                break
-        for j in range(end):
-            if _names_something(words[:j]):
-                return words  # "the cube by the butter moved ...": never the butter, its words dropped
-            if is_object(" ".join(words[j:end])):
-                return [forms[low[k]], *words[j:end], *words[k + 1:]]
-        return words
-    return words
-
-
-STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
-    "to end up", "ends up", "end up", "should end up", "needs to end up", "to be", "is", "be", "should be",
-    "needs to be", "need to be", "has to be", "must be", "to go", "goes", "go", "to get", "gets", "should go",
-    "sits", "lies", "to sit", "to lie", "to land", "lands", "is placed", "is put", "to stand", "stands",
-    "were", "was", "ended up", "would be", "has to go", "needs to go", "must go", "would end up", "should stand",
-    "should sit", "should finish", "finishes", "to finish", "should lie", "ought to be", "ought to end up",
-    "must finish", "must end up",
-    "should end", "end",
-    "ought to go", "ought to sit",
-    "to be standing", "to be sitting", "to be lying", "be standing", "be sitting", "be lying", "ends up sat",
-    "should be sitting", "should be standing", "should be lying", "is going to go", "is gonna go", "will go",
-    "is going to end up", "is gonna end up",
-    "end up sat", "ends up sitting", "end up sitting", "to end up sitting", "to find itself", "finds itself",
-    "should come", "to come", "comes", "be positioned", "to be positioned", "is positioned", "be placed",
-    "to be placed", "ending up", "finish", "stays", "should stay", "to stay", "were to find itself",
-    "were to end up", "were to be",
-)), key=len, reverse=True))
-"""Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
-so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""
-
-
-def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str] | None = None) -> list[str]:
-    """A sentence that states the end instead of the motion -> "move MOVER ...": the mover is the longest
-    description that names one object and ends right before a linking phrase (:data:`STATE_LINKS`), whatever
-    opens the sentence ("The goal is for the duck to end up next to B", "Make sure F ends up closer to the
-    can"). Words that start with a known verb are returned as they are; so are words where no object stands
-    before a link (the caller's error then names the first word), and a sentence ``said`` with words of how the
-    table is now (:data:`NOW`)."""
-    low = [w.lower() for w in words]
-    if not low or low[0] in verbs or said_now([w.lower() for w in said or words]):
-        return words  # "Right now the ring is far from the cone": how the table is, not how it should end
-    for k in range(1, len(low)):
-        link = next((t for t in STATE_LINKS if tuple(low[k:k + len(t)]) == t and k + len(t) < len(low)), None)
-        if link is None:
-            continue
-        for j in range(k):  # the mover's words end at k whichever link follows: searched once
-            if _names_something(words[:j]):
-                return words  # "The cube by the butter should go ...": never the butter, its words dropped
-            if is_object(" ".join(words[j:k])):
-                if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
-                    first = low[0] if low[0] in DETERMINERS else words[0]
-                    mover = " ".join([first, *words[1:k]])
-                    raise LanguageError(f'"{" ".join(words)}" tells how the table is and asks for nothing; say what to '
-                                        f'do, as in "move {mover} {" ".join(words[k + len(link):])}"')
-                if link[-1] in GOING and low[k + len(link)] == "by":
-                    raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '
-                                        "staying beside; say which")
-                return ["move", *words[j:k], *words[k + len(link):]]
-    return words
-
-
-def _names_something(words: list[str]) -> bool:
-    """Whether words before a mover's description name a thing ("cube", "one", "block"): the description that follows
-    is then not the whole mover, so it is not taken for it."""
-    return bool({w.lower().strip(",.:;!?") for w in words} & (NOUNS | SHAPE_WORDS))
-
-
-NOW = (("right", "now"), ("currently",), ("at", "the", "moment"), ("at", "present"), ("presently",),
-       ("as", "it", "stands"), ("as", "of", "now"), ("at", "this", "point"), ("still",))
-"""Words that tell how the table is now, not how it should end: a statement with them is no goal."""
-
-
-def said_now(low: list[str]) -> bool:
-    return any(tuple(low[i:i + len(n)]) == n for n in NOW for i in range(len(low)))
-
-
-TELLING = frozenset({("is",), ("'s",), ("sits",), ("lies",), ("stands",), ("rests",), ("was",), ("were",)})
-"""Links that, with nothing before the object ("The mug is next to the domino."), tell how the table is: a goal
-needs words that ask ("I want", "the goal is", "should be", "make it so")."""
-
-
-GOING = frozenset({"go", "goes", "went", "pass", "passes"})
-"""Links of motion: "go by B" may mean past B or beside B (people differ), so it is asked, never guessed."""
 
 
 def by_gerund(words: list[str], verbs: list[str]) -> list[str]:
