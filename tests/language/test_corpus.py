@@ -7,7 +7,7 @@ wrong block), per category reported by ``python tests/language/corpus.py``.
 from __future__ import annotations
 
 import pytest
-from corpus import REFUSE, cases, resolve, scene, score
+from corpus import REFUSE, cases, read, resolve, scene, score
 
 from l2p_bullet.errors import L2PError
 from l2p_bullet.language import parse
@@ -147,6 +147,39 @@ def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
+OPEN = {
+    "heldout31.tsv": {
+        # "short": the shorter of two white boxes in length (block4) for the author, read as the lower (block5)
+        "Put the red block by the short white one.": "slide:next-to block3 block5",
+        # "the back one" after "the front green cube": the back green cube (block2), read as the backmost object
+        "the front green cube and the back one, put them both next to the red cube":
+            "slide:next-to block1 block3 ; slide:next-to block5 block3"},
+}
+"""Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
+(and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
+check below until the entry is removed."""
+
+
+@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 105), ("heldout31.tsv", 60)])
+def test_the_thirtieth_and_thirty_first_authors_corpora(plugins, name, floor):
+    """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
+    as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
+    ... block6): written cold at the end of the twenty-fifth session and read once on its last code, after every rule
+    of that session: 65.6 % / 0 wrong and 37.5 % / 2 wrong (:data:`OPEN`). Nothing since was chosen on them."""
+    table, misses = score(plugins, name)
+    wrong = [(case.sentence, got) for case, got in misses
+             if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    right = sum(c["right"] for c in table.values())
+    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
+@pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])
+def test_open_wrong_readings_are_still_as_recorded(plugins, name, sentence):
+    """An entry of :data:`OPEN` is how the toolkit reads the line now; once mended, remove the entry."""
+    assert read(sentence, plugins, name) == OPEN[name][sentence]
 
 
 @pytest.mark.parametrize("sentence, said", [
