@@ -33,6 +33,7 @@ from ..plugins import registry
 from . import apart, corrections, pointing, rephrased
 from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
+from .context import context_after, context_of, two_moved
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
 
 
@@ -128,7 +129,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             show = None
             continue
         previous = clauses[-1].command if clauses else None
-        context = show.context if show is not None else (_after(previous, pair) if previous else None)
+        context = show.context if show is not None else (context_after(previous, pair) if previous else None)
         said = _ordinals(text, show)
         try:
             pieces = [(text if piece == said else piece, cmd)
@@ -181,20 +182,11 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         if pending is not None:
             pieces = [(piece, apart.paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces]
             pending = None
-        show = _two_moved([cmd for _, cmd in pieces])
+        show = two_moved([cmd for _, cmd in pieces])
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
-
-
-def _two_moved(commands: list[Command]) -> pointing.Shown | None:
-    """After one clause that moved two objects the same way ("Move O and Q away from the lamp"), what the next
-    clause's pronouns point at: "both of them" are the two moved, "it" as the block to move is either (asked), "it"
-    as the reference is the block they moved from; None after any other clause."""
-    if len(commands) != 2 or commands[0].mover == commands[1].mover or commands[0].anchors != commands[1].anchors:
-        return None
-    return pointing.Shown((commands[0].mover, commands[1].mover), other=commands[0].anchor)
 
 
 def _taken_back(text: str, clauses: list[Clause], scene: Scene, plugins: list,
@@ -207,29 +199,11 @@ def _taken_back(text: str, clauses: list[Clause], scene: Scene, plugins: list,
         return None
     taken = clauses[-1]
     try:
-        pieces = _resolve_text(meant, taken.command, scene, plugins, context=_after(taken.command, pair), pair=pair)
+        pieces = _resolve_text(meant, taken.command, scene, plugins, context=context_after(taken.command, pair),
+                               pair=pair)
     except L2PError:
         return None
     return [Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces)]
-
-
-def _context(previous: Command | None) -> Context | None:
-    """What the next clause's pronouns point back to: the previous command's mover and anchor."""
-    return Context(previous.mover, previous.anchor, described=_described(previous)) if previous is not None else None
-
-
-def _described(command: Command) -> bool:
-    """Whether the command's sentence described its mover ("the small red cube") rather than naming it."""
-    return not re.search(rf"(?<!\w){re.escape(command.mover)}(?!\w)", command.sentence, re.IGNORECASE)
-
-
-def _after(previous: Command, pair: pointing.Shown | None) -> Context:
-    """The next clause's context; after a pair was shown and one of it moved, "the other one" is the other of the
-    pair ("You see A and C? Move A next to B and the other one next to D")."""
-    other = next((o for o in pair.objects if o != previous.mover), None) if pair is not None else None
-    if other is not None and previous.mover in pair.objects:
-        return Context(previous.mover, other)
-    return Context(previous.mover, previous.anchor, described=_described(previous))
 
 
 def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int = 0,
@@ -237,12 +211,12 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
     """A clause's text -> its command; where it does not read as one clause but as two joined by "and" or a
     comma ("shove D toward A and drag E around C", "put B next to the duck and A next to E"), both; else as
     one of chain/pointing.py's readings ("do the same with C", "move them both ...")."""
-    context = context or _context(previous)
+    context = context or context_of(previous)
     full = _complete(text, previous, scene, plugins)
     try:
         return [(text, resolve(full, scene, plugins, context))]
     except L2PError:
-        if previous is not None and context == _context(previous) and re.search(r"\bit\b", text, re.IGNORECASE):
+        if previous is not None and context == context_of(previous) and re.search(r"\bit\b", text, re.IGNORECASE):
             # "move B toward C, then past it": "it" cannot be the block being moved, so it is the other one
             try:
                 return [(text, resolve(full, scene, plugins, Context(previous.anchor, previous.mover)))]
@@ -385,7 +359,7 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
     text that does not resolve as one clause, so "lift A and put it next to B" and "between B and C" stay whole."""
     if depth >= MAX_CLAUSES:
         return None
-    context = context or _context(previous)
+    context = context or context_of(previous)
     for m in _AND_OR_COMMA.finditer(text):
         left, right = text[:m.start()].strip(" ,"), text[m.end():].strip(" ,")
         if not left or not right:
@@ -394,7 +368,7 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
         if first is None:
             continue
         try:
-            rest = _resolve_text(right, first, scene, plugins, depth + 1, _after(first, pair), pair)
+            rest = _resolve_text(right, first, scene, plugins, depth + 1, context_after(first, pair), pair)
         except L2PError:
             continue
         then = rest[0][1]
