@@ -1,9 +1,11 @@
 """A command said in other words, said again the usual way before it is resolved: a carry told by where the object
 goes on the way ("Take the duck in the air and put it down near the ball"), a push said as a noun ("Give the duck a
 little shove toward the pot"), the object before "you" and the verb ("The ball you move closer to the cube"), "over to"
-("bring the ring over to the lego"), "to" an object ("move the roll to the milk"), "to next to", and a carry told as
-two steps ("carry the mug over to the jar and set it down beside it"). ``chain/clauses.py`` resolves each; one that
-does not resolve is no reading.
+("bring the ring over to the lego"), "to" an object or an arrow to it ("move the roll to the milk", "e->c"), "to next
+to", a carry told as two steps ("carry the mug over to the jar and set it down beside it"), and a command with words
+after it that change nothing: a reason ("..., it's gonna spill"), a comparative's yardstick said as the table now
+("than it currently is"), politeness between commas. ``chain/clauses.py`` resolves each; one that does not resolve is
+no reading.
 """
 
 from __future__ import annotations
@@ -92,8 +94,8 @@ when the bread is not so near to the cereal anymore": the first away from the se
 
 def in_other_words(text: str) -> list[str]:
     """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
-    :data:`YOU_VERB`'s, :data:`TO_THEN`'s or :data:`OVER_TO`'s ways; the caller resolves each (one that does not resolve
-    is no reading)."""
+    :data:`YOU_VERB`'s, :data:`TO_THEN`'s, :data:`OVER_TO`'s or :data:`TO_OBJECT`'s ways, or with :data:`THAN_NOW`,
+    :data:`POLITE_INSIDE` or :data:`WHY` words; the caller resolves each (one that does not resolve is no reading)."""
     out = []
     m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:
