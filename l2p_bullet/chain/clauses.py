@@ -135,19 +135,15 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             pieces = [(text if piece == said else piece, cmd)
                       for piece, cmd in _resolve_text(said, previous, scene, plugins, context=context, pair=pair)]
         except L2PError as e:
-            meant = corrections.instead_of(text) if clauses and not show else None
-            if meant is not None:  # "Move G away from the jar. Actually no, move it past the jar instead."
-                taken = clauses.pop()
-                try:
-                    pieces = _resolve_text(meant, previous, scene, plugins, context=context, pair=pair)
-                except L2PError:
+            instead = corrections.instead_of(text) if clauses and not show else None
+            meant = instead or (corrections.taken_back(text) if clauses and not show else None)
+            if meant is not None:  # "Actually no, move it past the jar instead.", "no wait, closer to the jello."
+                again = _in_place_of(meant, clauses[-1], scene, plugins, pair)
+                if again is not None:
+                    clauses[-1:] = again
+                    continue
+                if instead is not None:  # said as a correction for sure: its own refusal, not another reading
                     raise named(e, f'clause {i} ("{text}")') from None
-                clauses.extend(Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
-                continue
-            again = _taken_back(text, clauses, scene, plugins, pair) if not show else None
-            if again is not None:  # "... closer to the ball. no wait, closer to the jello."
-                clauses[-1:] = again
-                continue
             extent = apart.extent_alone(text) if clauses else None
             if extent is not None:  # "Move the tin away from the mug. Just a tiny bit though."
                 clauses[-1] = apart.extended(clauses[-1], extent, plugins)
@@ -189,15 +185,11 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     return clauses
 
 
-def _taken_back(text: str, clauses: list[Clause], scene: Scene, plugins: list,
-                pair: pointing.Shown | None) -> list[Clause] | None:
-    """The clauses a clause that takes the one before back means in its place (chain/corrections.taken_back), read as
-    said after it: its verb and mover complete a place said alone, and "it" is its mover; None where there is none or
-    it does not resolve."""
-    meant = corrections.taken_back(text) if clauses else None
-    if meant is None:
-        return None
-    taken = clauses[-1]
+def _in_place_of(meant: str, taken: Clause, scene: Scene, plugins: list,
+                 pair: pointing.Shown | None) -> list[Clause] | None:
+    """The clauses ``meant`` says in place of the clause ``taken`` back (chain/corrections.instead_of, taken_back), read
+    as said after it: its verb and mover complete a place said alone, and "it" is its mover; None where it does not
+    resolve."""
     try:
         pieces = _resolve_text(meant, taken.command, scene, plugins, context=context_after(taken.command, pair),
                                pair=pair)

@@ -232,11 +232,13 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     return fits
 
 
+_COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
+
+
 def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:
     """``low`` with "light" before a colour ("the light blue block") read as a shade, a word no table knows (so
     refused, lamp or none), never as the lamp "light" names alone."""
-    colours = set(COLORS) | set(COLOR_SYNONYMS)
-    return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in colours else w
+    return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in _COLOUR_WORDS else w
                  for i, w in enumerate(low))
 
 
