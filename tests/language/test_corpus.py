@@ -156,18 +156,40 @@ OPEN = {
         # "the back one" after "the front green cube": the back green cube (block2), read as the backmost object
         "the front green cube and the back one, put them both next to the red cube":
             "slide:next-to block1 block3 ; slide:next-to block5 block3"},
+    "heldout32.tsv": {
+        # a bare "against": a plain next-to for the author, read as a tight one
+        "set the yellow cube against the blue bar": "slide:next-to block_yellow block_blue extent=right",
+        # "flat square": the 6 x 6 x 3 cm slab for the author, read as the cube
+        "put the flat square next to the bowl": "slide:next-to block_yellow bowl"},
+    "heldout33.tsv": {
+        # "the tube thing": the toy cylinder lying as a log, read as the toy cube
+        "move the tiny block past the tube thing": "slide:past cube_small cube",
+        # "the larger of the two cubes": the toy block named "cube", read as the small cube
+        "Kindly slide the larger of the two cubes toward the yellow triangle.": "slide:closer cube_small prism",
+        # a clause without a verb after a push: a slide for the author, read as the push again
+        "Push the ball to the mug. After, the same ball around the triangle.":
+            "push:closer soccerball mug ; push:around soccerball prism",
+        # "the block" with two cubes on the table (the toy block named "cube" and cube_small): refused by the author
+        "Put the block next to the ball.": "slide:next-to cube_small soccerball"},
+    "heldout34.tsv": {
+        # a bare "against" again
+        "push the 7 very softly against the 5": "push:next-to 7 5 pace=gentle extent=right"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
 check below until the entry is removed."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 105), ("heldout31.tsv", 60)])
-def test_the_thirtieth_and_thirty_first_authors_corpora(plugins, name, floor):
+@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 105), ("heldout31.tsv", 60), ("heldout32.tsv", 101),
+                                         ("heldout33.tsv", 102), ("heldout34.tsv", 114)])
+def test_the_thirtieth_to_thirty_fourth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
     ... block6): written cold at the end of the twenty-fifth session and read once on its last code, after every rule
-    of that session: 65.6 % / 0 wrong and 37.5 % / 2 wrong (:data:`OPEN`). Nothing since was chosen on them."""
+    of that session: 65.6 % / 0 wrong and 37.5 % / 2 wrong (:data:`OPEN`). heldout32.tsv to heldout34.tsv (a
+    CALVIN-style tabletop named block_red ... with a bowl and a coffee stirrer; pybullet's toy models named after
+    their files: cube, cylinder, prism, mug, soccerball; seven blocks named "1" to "7"): written cold at the
+    twenty-sixth session's start and read once on its start code: 63.1 % / 2, 63.8 % / 4 and 71.2 % / 1."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
              if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]
