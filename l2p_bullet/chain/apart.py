@@ -88,10 +88,13 @@ def _has_verb(text: str) -> bool:
 NOT_LIFTED = re.compile(r"^\s*(?:and\s+)?(?:please\s+)?(?:don't|dont|do\s+not|never|no)\s+"
                         r"(?:lift|lifting|carry|carrying|pick|picking)(?:\s+it)?(?:\s+up)?(?:\s+please)?\s*[.!]*\s*$",
                         re.IGNORECASE)
+NOT_DRAGGED = re.compile(r"^\s*(?:and\s+|but\s+)?(?:please\s+)?(?:don't|dont|do\s+not|never|no)\s+"
+                         r"(?:drag|dragging|slide|sliding)(?:\s+it)?(?:\s+(?:on|along|across)\s+the\s+table)?"
+                         r"(?:\s+please)?\s*[.!]*\s*$", re.IGNORECASE)
 BY_MANNER = re.compile(r"^\s*(?:and\s+)?(?:do\s+it\s+|please\s+)?by\s+(?P<how>[a-z]+ing)(?:\s+it)?\s*[.!]*\s*$",
                        re.IGNORECASE)
-"""A manner said apart after its clause: "Don't lift it." keeps a slide a slide; "do it by carrying" makes it a
-carry."""
+"""A manner said apart after its clause: "Don't lift it." keeps a slide a slide; "don't drag it" makes a slide a
+carry (the one way to move a block without dragging it), as "do it by carrying" does."""
 
 
 def manner_after(text: str, before: Clause) -> Clause | None:
@@ -101,6 +104,13 @@ def manner_after(text: str, before: Clause) -> Clause | None:
         return None
     if NOT_LIFTED.match(text):
         return before if before.command.manner == "slide" else None
+    if NOT_DRAGGED.match(text):
+        if before.command.manner == "carry" or (before.command.manner == "slide" and not _dragged(before)):
+            return replace(before, command=replace(before.command, verb="carry", manner="carry"))
+        if before.command.manner == "push":
+            return before
+        raise LanguageError(f'"{before.text}" drags the block and "{text.strip()}" asks not to; say "carry" or '
+                            '"lift" to have it lifted')
     m = BY_MANNER.match(text)
     if m is None:
         return None
@@ -112,6 +122,11 @@ def manner_after(text: str, before: Clause) -> Clause | None:
     except L2PError:
         return None
     return replace(before, command=replace(before.command, verb=verb, manner=manner))
+
+
+def _dragged(clause: Clause) -> bool:
+    """Whether the clause's own verb says to drag or slide (then "don't drag it" contradicts it)."""
+    return clause.command.verb.lower() in ("drag", "slide")
 
 
 def away_from_shown(text: str, show: pointing.Shown | None, scene: Scene, plugins: list) -> list[Command] | None:

@@ -17,7 +17,8 @@ _RESTS = r"(?:'s|s|\s+is|\s+ends\s+up|\s+ends|\s+lands|\s+sits|\s+gets|\s+lies|\
 GOAL_AFTER = re.compile(rf"^(?P<head>.+?)\s+(?:so\s+(?:that\s+)?it{_RESTS}|(?:until|till|til|'til)\s+it{_RESTS}"
                         r"|(?:until|till|til|'til)\s+(?:they're|theyre|they\s+are|the\s+two(?:\s+of\s+them)?\s+are"
                         r"|both(?:\s+of\s+them)?\s+are)(?=\s+(?:side|next|beside|touching|nearer|closer))"
-                        r"|(?:until|till|til|'til)\s+(?:they|the\s+two(?:\s+of\s+them)?|both(?:\s+of\s+them)?)(?=\s+touch\b))"
+                        r"|(?:until|till|til|'til)\s+(?:they|the\s+two(?:\s+of\s+them)?|both(?:\s+of\s+them)?)(?=\s+touch\b)"
+                        r"|(?:until|till|til|'til)\s+it(?=\s+touches\b))"
                         r"\s+(?P<goal>.+)$", re.IGNORECASE)
 """A motion and then where it should end: "slide A toward B until it is beside it" asks for "next to B"."""
 TOUCHING = re.compile(r"^\s*(?:right\s+)?(?:touching|touches|against)\s+(?=\S)", re.IGNORECASE)
@@ -35,7 +36,7 @@ def _goal_said(goal: str) -> str:
     """The end a GOAL_AFTER clause names, said as a preposition and its block (politeness after it read past: "...
     until the two of them are touching, if you would")."""
     goal = POLITE_AFTER.sub("", goal)
-    if re.fullmatch(r"\s*(?:touching|touch)(?:\s+each\s+other)?\s*[.!]*\s*", goal, re.IGNORECASE):
+    if re.fullmatch(r"\s*(?:touching|touch|touches)(?:\s+(?:each\s+other|it))?\s*[.!]*\s*", goal, re.IGNORECASE):
         return "right next to it"  # "until they're touching"
     if re.fullmatch(r"\s*(?:nearer|closer)(?:\s+to)?\s+(?:each\s+other|together)\s*[.!]*\s*", goal, re.IGNORECASE):
         return "closer to it"  # "until they're nearer each other"

@@ -2,9 +2,10 @@
 goes on the way ("Take the duck in the air and put it down near the ball"), a push said as a noun ("Give the duck a
 little shove toward the pot"), the object before "you" and the verb ("The ball you move closer to the cube"), "over to"
 ("bring the ring over to the lego"), "to" an object or an arrow to it ("move the roll to the milk", "e->c"), "to next
-to", a carry told as two steps ("carry the mug over to the jar and set it down beside it"), and a command with words
-after it that change nothing: a reason ("..., it's gonna spill"), a comparative's yardstick said as the table now
-("than it currently is"), politeness between commas. ``chain/clauses.py`` resolves each; one that does not resolve is
+to", a motion said as what the object is made to do ("make the 1 turn around the 4"), a carry told as two steps
+("carry the mug over to the jar and set it down beside it"), and a command with words after it that change nothing:
+a reason ("..., it's gonna spill"), a comparative's yardstick said as the table now ("than it currently is"),
+politeness between commas or between two words. ``chain/clauses.py`` resolves each; one that does not resolve is
 no reading.
 """
 
@@ -31,6 +32,15 @@ in the air the cube and bring it near the bottle"."""
 YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
 """The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
 yellow cube"."""
+
+
+MAKE_GO = re.compile(r"^\s*(?:(?:please|pls|now|can\s+you|could\s+you|would\s+you)[\s,]+)*make\s+(?P<what>.+?)"
+                     r"\s+(?:go|turn|move|travel|slide|circle|loop|pass)"
+                     r"\s+(?P<rest>(?:(?:a\s+)?(?:bit|little|lot|way|far|right|just|slightly)\s+)*"
+                     r"(?:around|round|past|beyond|by|next|beside|closer|nearer|toward|towards|away|over)\b.*)$",
+                     re.IGNORECASE)
+"""A motion said as what the object is made to do: "can you make the 1 turn around the 4?" is "move the 1 around the
+4"."""
 
 
 GIVE_A = re.compile(r"^\s*give\s+(?P<what>.+?)\s+an?\s+(?:(?P<size>little|small|slight|tiny|wee|lil|gentle|soft|"
@@ -82,7 +92,8 @@ comparative says it already."""
 POLITE_INSIDE = re.compile(r"\s*,\s*(?:please|pls|plz|thanks|if\s+you\s+(?:would|could|can|please))\s*,\s*",
                            re.IGNORECASE)
 """Politeness said between commas inside the command ("Push the milk right next to the bottle, please, so they're
-touching"): read past."""
+touching"), or between two words without them ("The red cube please only a little nearer to the ball."): read past."""
+POLITE_BARE = re.compile(r"(?<=\w)\s+(?:please|pls|plz|kindly)\s+(?=\w)", re.IGNORECASE)
 
 
 NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
@@ -104,6 +115,9 @@ def in_other_words(text: str) -> list[str]:
     if m is not None:
         said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
         out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
+    m = MAKE_GO.match(text)
+    if m is not None:
+        out.append(f"move {m.group('what')} {m.group('rest')}")
     m = YOU_VERB.match(text)
     if m is not None:
         out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
@@ -118,6 +132,8 @@ def in_other_words(text: str) -> list[str]:
         out.append(text[:m.start()])
     if POLITE_INSIDE.search(text):
         out.append(POLITE_INSIDE.sub(" ", text))
+    elif POLITE_BARE.search(text):
+        out.append(POLITE_BARE.sub(" ", text))
     m = WHY.search(text)
     if m is not None and m.start() > 0:
         out.append(text[:m.start()])

@@ -20,10 +20,13 @@ _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?
                     r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\b(?:afterwards|thereafter)\b"
                     r"|,\s*after\s+(?=(?![a-z]+ing\b)[a-z]+\s+(?:the|it|them|a|an)\b)"
                     r"|,\s*and\s+after\b"
-                    r"|,?\s*\band\s+finally\b|,\s*finally\b)\s*,?\s*", re.IGNORECASE)
+                    r"|,?\s*\band\s+finally\b|,\s*finally\b"
+                    r"|(?:,\s*|\s+)(?:(?:and|but)\s+)?(?=(?:don't|dont|do\s+not)\s+(?:drag|lift|carry)\s+it[\s.!]*$))"
+                    r"\s*,?\s*", re.IGNORECASE)
 """What joins clauses: "then", "and then", "after that", "afterwards", "thereafter", ", and after", ", after" before a
-verb and its object ("..., after push the brick away"), "and finally", a semicolon, or a
-full stop between two sentences ("Carry C around B. Next, move D a bit closer to the duck.")."""
+verb and its object ("..., after push the brick away"), "and finally", a semicolon, a
+full stop between two sentences ("Carry C around B. Next, move D a bit closer to the duck."), or a manner ruled out
+at the sentence's end ("..., but don't drag it": chain/apart.py reads it into the clause before)."""
 
 
 def split_clauses(sentence: str) -> list[str]:

@@ -79,9 +79,9 @@ EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
 """Closing words after the reference object that say how far, as people add them after a comma ("slide A next to B,
 leaving no gap", "move G away from the lid, but only a few centimetres"). Only word groups that cannot describe the
 reference object are here: "a bit" alone stays out ("next to the cube a bit" is not said)."""
-TIGHT_PHRASES = frozenset({"up against", "against", "right up against"})
-"""Phrases that say the objects touch: the authors of the held-out corpora wrote every "(up) against" as a tight gap
-("right next to"); read so where the phrase's action takes that extent."""
+TIGHT_PHRASES = frozenset({"up against", "right up against"})
+"""Phrases that say the objects touch: the authors of the held-out corpora wrote every "up against" as a tight gap
+("right next to") and a bare "against" as a plain one; read so where the phrase's action takes that extent."""
 
 
 LONGEST_FIRST = tuple(sorted(EXTENTS, key=len, reverse=True))
@@ -103,6 +103,17 @@ def take_extent_tail(after: list[str]) -> tuple[list[str], str | None]:
             if said is not None:
                 return after[: -len(k) - len(said)], "little"
     return after, None
+
+
+def take_extent_first(words: list[str]) -> tuple[list[str], str | None]:
+    """The words after the verb without a qualifier said before the object ("approach a little the crate to Q",
+    "move a bit the cube closer"), and the extent it asks for; only where an article follows it, so "a little cube"
+    stays a description."""
+    low = [w.lower() for w in words]
+    for k in LONGEST_FIRST:
+        if len(low) > len(k) + 1 and tuple(low[:len(k)]) == k and low[len(k)] in ("the", "this", "that"):
+            return words[len(k):], EXTENTS[k]
+    return words, None
 
 
 HEDGES = (("but", "only"), ("but", "just"), ("only",), ("just",))

@@ -124,6 +124,11 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
     low = [w.lower() for w in words]
     if not low or low[0] in verbs or said_now([w.lower() for w in said or words]):
         return words  # "Right now the ring is far from the cone": how the table is, not how it should end
+    if any(w.endswith(("'s", "\u2019s")) for w in low[1:-1]):  # "make it so the mug's not so close to the ball"
+        split = _contracted(words)
+        read = state_to_verb(split, verbs, is_object, _contracted(said or words))
+        if read is not split:
+            return read
     for k in range(1, len(low)):
         link = next((t for t in STATE_LINKS if tuple(low[k:k + len(t)]) == t and k + len(t) < len(low)), None)
         if link is None:
@@ -142,6 +147,12 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                                         "staying beside; say which")
                 return ["move", *words[j:k], *words[k + len(link):]]
     return words
+
+
+def _contracted(words: list[str]) -> list[str]:
+    """``words`` with "X's" said for "X is" ("the mug's not so close") as two words."""
+    return [part for w in words
+            for part in ((w[:-2], "is") if w.lower().endswith(("'s", "\u2019s")) and len(w) > 2 else (w,))]
 
 
 def _names_something(words: list[str]) -> bool:

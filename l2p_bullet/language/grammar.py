@@ -29,7 +29,7 @@ from ..manners import registry as manners
 from . import lenient
 from .anchors import measured_context, mover_in_relation, noun_carried, twin_of
 from .descriptions import naming_words
-from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_tail
+from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_first, take_extent_tail
 from .goals import goal_to_verb, passive_to_verb, said_now, state_to_verb
 from .pronouns import Context
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
@@ -87,10 +87,19 @@ ARROWS = frozenset({"->", "-->", "=>", "=", "\u2192", "-", "--", "\u2013", "\u20
 verb."""
 
 
+REPEATED = frozenset({"very", "really", "super", "so", "much"})
+"""Intensifiers people double for emphasis ("very very far from"): the second says nothing the first did not."""
+
+
 def tokens(sentence: str) -> list[str]:
-    """Words without surrounding punctuation ("one." -> "one") and arrows; apostrophes inside words are kept."""
+    """Words without surrounding punctuation ("one." -> "one") and arrows, a doubled intensifier once
+    (:data:`REPEATED`); apostrophes inside words are kept."""
     words = [w.strip(".,;:!?\"()[]") for w in sentence.split() if w not in ARROWS]
-    return [w for w in words if w]
+    out: list[str] = []
+    for w in words:
+        if w and not (out and w.lower() in REPEATED and out[-1].lower() == w.lower()):
+            out.append(w)
+    return out
 
 
 def phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str]]:
@@ -235,6 +244,9 @@ def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[lis
     """(the mover's words, the extent before the preposition, the mover's name): the qualifiers at the end are
     an extent ("A a bit closer to"), unless the mover's description needs them ("the one on the far right")."""
     before, extent = take_extent(words)
+    if extent is None:
+        first, extent = take_extent_first(before)
+        before = first if extent is not None else before
     try:
         return before, extent, resolve_object(" ".join(drop_frames(before)), scene, "block to move", context)
     except (LanguageError, UnknownObjectError):

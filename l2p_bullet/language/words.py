@@ -68,7 +68,9 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
     "without touching anything else", "don't touch anything else",
-    "if it's no trouble", "if it is no trouble",
+    "if it's no trouble", "if it is no trouble", "if it's not too much trouble", "if it is not too much trouble",
+    "if its not too much trouble", "if it's no bother", "if that's ok", "if that's okay", "if thats ok",
+    "thats it", "thats all",
 )), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
                                                 ("how", "about"), ("what", "about"), ("fix", "that", "by"),

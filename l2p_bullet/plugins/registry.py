@@ -30,7 +30,6 @@ one kind at a time (actions unless asked), so nothing that reads single actions 
 
 from __future__ import annotations
 
-import copy
 import functools
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
@@ -120,6 +119,17 @@ def _parsed(raw: bytes, label: str) -> dict[str, Any]:
     return loads_toml(raw, BundleError, label)
 
 
+def _copied(value: Any) -> Any:
+    """A parsed TOML document copied down to its leaves (tables and arrays new; strings, numbers, booleans and
+    dates are immutable and shared): what ``copy.deepcopy`` gives for such a tree, without its memo and dispatch
+    (a discovery of the built-in plugins 5.0 -> 4.7 ms; a sentence read discovers them once or twice)."""
+    if isinstance(value, dict):
+        return {k: _copied(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_copied(v) for v in value]
+    return value
+
+
 def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None]:
     """Read the manifest and check what discovery can check cheaply (no weights are read)."""
     path = folder / MANIFEST
@@ -128,7 +138,7 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
         return {}, f"no {MANIFEST} in {folder} ({train_hint})"
     try:
         # a copy: the caller owns what it gets (a PluginInfo's manifest), the kept one stays as parsed
-        manifest = copy.deepcopy(_parsed(read_bounded(path, MAX_TOML_BYTES, BundleError), str(path)))
+        manifest = _copied(_parsed(read_bounded(path, MAX_TOML_BYTES, BundleError), str(path)))
     except BundleError as e:
         return {}, str(e)
     phrases = manifest.get("phrases")

@@ -91,7 +91,6 @@ DISAGREED = {
                       "next to the big green one."},
     "heldout24.tsv": {"Move the small cube next to the big cube."},
     "heldout25.tsv": {"Move the biggest thing on the table next to the green cube."},
-    "heldout26.tsv": {"Make sure the butter ends up against the small cube."},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -157,8 +156,6 @@ OPEN = {
         "the front green cube and the back one, put them both next to the red cube":
             "slide:next-to block1 block3 ; slide:next-to block5 block3"},
     "heldout32.tsv": {
-        # a bare "against": a plain next-to for the author, read as a tight one
-        "set the yellow cube against the blue bar": "slide:next-to block_yellow block_blue extent=right",
         # "flat square": the 6 x 6 x 3 cm slab for the author, read as the cube
         "put the flat square next to the bowl": "slide:next-to block_yellow bowl"},
     "heldout33.tsv": {
@@ -170,10 +167,9 @@ OPEN = {
         "Push the ball to the mug. After, the same ball around the triangle.":
             "push:closer soccerball mug ; push:around soccerball prism",
         # "the block" with two cubes on the table (the toy block named "cube" and cube_small): refused by the author
-        "Put the block next to the ball.": "slide:next-to cube_small soccerball"},
-    "heldout34.tsv": {
-        # a bare "against" again
-        "push the 7 very softly against the 5": "push:next-to 7 5 pace=gentle extent=right"},
+        "Put the block next to the ball.": "slide:next-to cube_small soccerball",
+        # "the big cube": the toy block named "cube", read as the mug (a verbless line once refused for its form)
+        "The small cube please away from the big cube.": "slide:away cube_small mug"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the

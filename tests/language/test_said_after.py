@@ -105,7 +105,8 @@ def test_places_and_touching_said_otherwise(plugins, sentence, expect, table):
     ("Push soft C past the duck.", "push:past C duck pace=gentle", "corpus.tsv"),
     ("move the soft duck past C", "slide:past duck C", "corpus.tsv"),                # "soft" describes here
     ("Slide A up against B.", "slide:next-to A B extent=right", "corpus.tsv"),
-    ("push C against the duck", "push:next-to C duck extent=right", "corpus.tsv"),
+    ("push C against the duck", "push:next-to C duck", "corpus.tsv"),              # a bare "against": plain
+    ("push C up against the duck", "push:next-to C duck extent=right", "corpus.tsv"),
     ("push B a lil closer to C", "push:closer B C extent=little", "corpus.tsv"),
     ("Give A a little shove toward B.", "push:closer A B extent=little", "corpus.tsv"),
     ("give C a gentle nudge past the duck", "push:past C duck pace=gentle", "corpus.tsv"),

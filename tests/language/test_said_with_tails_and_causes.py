@@ -1,0 +1,76 @@
+"""Sentences with words people add after or inside a command, and motions said as what an object is made to do: a
+manner ruled out at the end ("..., but don't drag it"), politeness at the end or inside without commas, a goal said
+after "until it touches", "make X turn around Y", an extent said before the object ("approach a little the crate to
+Q"), a doubled intensifier, an end said with "X's" for "X is", and a bare "against" (a plain next-to, where "up
+against" is a tight one). Checked on sentences of each kind (not the corpora's own lines), and what must stay
+refused."""
+
+from __future__ import annotations
+
+import pytest
+from corpus import read
+
+from l2p_bullet.errors import L2PError
+
+LINE = "heldout29.tsv"
+"""Red cubes A, B, C in a line across the front; D a blue cylinder, E a green bar, F a white 5 cm cube, G a yellow
+3 cm cube."""
+HOUSEHOLD = "heldout27.tsv"
+"""A zucchini, a gamepad, a white lamp, a brown crate, a white saucer, orange cubes O (4 cm) and Q (5 cm)."""
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # a manner ruled out at the end: a slide or a carry not dragged is a carry; a push stays a push
+    ("move F next to D but don't drag it", "carry:next-to F D", LINE),
+    ("put G by D, and don't drag it.", "carry:next-to G D", LINE),
+    ("lift F around D, don't drag it", "carry:around F D", LINE),
+    ("push F past D, don't drag it", "push:past F D", LINE),
+    ("move F past D, don't lift it", "slide:past F D", LINE),
+    # politeness at the end and between words
+    ("move the crate closer to the lamp, if it's not too much trouble", "slide:closer crate lamp", HOUSEHOLD),
+    ("crate a bit closer to the lamp, thats it", "slide:closer crate lamp extent=little", HOUSEHOLD),
+    ("The crate please only a little nearer to the lamp.", "slide:closer crate lamp extent=little", HOUSEHOLD),
+    ("the saucer pls past the crate", "slide:past saucer crate", HOUSEHOLD),
+    # a goal after the motion: "until it touches"
+    ("keep pushing F toward D until it touches it", "push:next-to F D extent=right", LINE),
+    ("slide G toward E until it touches", "slide:next-to G E extent=right", LINE),
+    # a motion said as what the object is made to do
+    ("Please, can you make F turn around D?", "slide:around F D", LINE),
+    ("make G go past E", "slide:past G E", LINE),
+    ("make G go a bit closer to E", "slide:closer G E extent=little", LINE),
+    # verbs: "loop" (around), "approach ... to"
+    ("loop the crate round the lamp", "slide:around crate lamp", HOUSEHOLD),
+    ("approach the crate to the lamp", "slide:closer crate lamp", HOUSEHOLD),
+    # an extent said between the verb and the object
+    ("approach a little the crate to the lamp", "slide:closer crate lamp extent=little", HOUSEHOLD),
+    ("move a bit the saucer closer to O", "slide:closer saucer O extent=little", HOUSEHOLD),
+    ("move a little cube closer to the crate", "slide:closer O crate", HOUSEHOLD),  # "a little cube": the 4 cm one
+    # a doubled intensifier
+    ("move F very very far from D", "slide:away F D extent=far", LINE),
+    ("push G really really far away from E", "push:away G E extent=far", LINE),
+    # an end said with "X's" for "X is"
+    ("make it so the crate's not so close to the lamp", "slide:away crate lamp", HOUSEHOLD),
+    ("I want it so the saucer's farther from the crate", "slide:away saucer crate", HOUSEHOLD),
+    # a bare "against" is a plain next-to; "up against" a tight one
+    ("set G against E", "slide:next-to G E", LINE),
+    ("set G up against E", "slide:next-to G E extent=right", LINE),
+])
+def test_said_with_tails_and_causes(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+@pytest.mark.parametrize("sentence, table", [
+    ("drag F past D, don't drag it", LINE),              # asks two things
+    ("slide G past E, dont drag it", LINE),
+    ("the crate's next to the lamp", HOUSEHOLD),         # tells how the table is
+    ("make the crate", HOUSEHOLD),                       # says nothing of where
+    ("The duck please past the crate", HOUSEHOLD),       # no duck on this table
+])
+def test_what_stays_refused(plugins, sentence, table):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, table)
+
+
+def test_a_drag_ruled_out_after_a_drag_is_named(plugins):
+    with pytest.raises(L2PError, match='drags the block and "dont drag it" asks not to'):
+        read("slide G past E, dont drag it", plugins, LINE)
