@@ -23,10 +23,12 @@ from ..language import (
     known_verbs,
     lenient,
     phrase_tokens,
+    resolve_object,
     trailing_join,
     typos,
 )
 from ..language.descriptions import naming_words
+from ..language.numbers import apposed
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -267,10 +269,12 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
     m = pointing.TOPIC.match(text)
     if m is None:
         return _of_group(text, previous, scene, plugins, depth)
-    shows = pointing.shown(m.group("what"), scene, context)
+    what, rest = apposed(m.group("what"), m.group("rest"))  # "the red one, number 2 - move it ..."
+    shows = pointing.shown(what, scene, context)
+    if shows is None and what != m.group("what") and not {w.lower() for w in what.split()} & _VERB_HEADS:
+        resolve_object(what, scene)  # a description the number contradicts is refused as such, naming both
     if shows is None or (len(shows.objects) < 2 and shows.lifted):
         return None  # one object shown is what "it" then means ("About the can: move it past Q"); lifted, a carry
-    rest = m.group("rest")
     if len(shows.objects) == 2 and all(said.search(rest) for said in ORDINALS):
         # "the stone and the teddy: move the first one ..., the second one ...": "it" after them is asked about
         if re.search(r"\bit\b", rest, re.IGNORECASE):
@@ -288,6 +292,10 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         except L2PError:
             pass
     return None
+
+
+_VERB_HEADS = frozenset(v.split()[0] for v in known_verbs())
+"""The known verbs' first words: a topic that holds one is a command's start, not a description."""
 
 
 def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list,

@@ -46,8 +46,8 @@ def split_clauses(sentence: str) -> list[str]:
     return out
 
 
-ABBREVIATED = re.compile(r"\b(?:i\.e\.|e\.g\.)", re.IGNORECASE)
-"""Abbreviations whose full stops end no sentence ("..., i.e. past it")."""
+ABBREVIATED = re.compile(r"\b(?:i\.e\.|e\.g\.|(?:no|nr|num)\.(?=\s*#?\d))", re.IGNORECASE)
+"""Abbreviations whose full stops end no sentence ("..., i.e. past it", "cube no. 6")."""
 AFTER_YOU = re.compile(r"^\s*(?:after|once|when)\s+(?:you've|you\s+have|you're\s+done|you\s+are\s+done)\s+"
                        r"(?P<verb>[a-z]+)\s+(?P<done>[^,]+?),\s*(?P<then>.+)$", re.IGNORECASE)
 """What to do first said in the past, before the next step: "After you've moved the white cube next to the domino,

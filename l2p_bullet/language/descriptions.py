@@ -219,8 +219,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             fits = [o for o in fits if o.shape in strict]
         elif colours:  # "the white cube", "the red box": block-shaped, never the white mug or a cylinder
             fits = [o for o in fits if o.shape in BLOCK_SHAPES or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
-            if len(fits) > 1 and ("cube" in shapes or set(low) & LONG_NOUNS):
-                # "the blue cube" beside a long blue beam is the cube-like one, "the blue stick" the long one
+            if len(fits) > 1 and ("cube" in shapes or set(low) & (LONG_NOUNS | BRICK_NOUNS)):
+                # "the blue cube" beside a long blue beam is the cube-like one, "the blue stick" the long one, "the
+                # blue brick" beside a blue cube the brick-shaped box
                 kept = [o for o in fits if _cube_like(o) == ("cube" in shapes)]
                 fits = kept if len(kept) == 1 else fits
         else:  # "the box": a box, or a mesh that is one ("the cereal box")
@@ -252,6 +253,8 @@ def _before_head(low: tuple[str, ...], i: int, heads: set[str]) -> bool:
 
 LONG_NOUNS = frozenset({"stick", "sticks", "bar", "bars"})
 """Shape nouns that name a long block."""
+BRICK_NOUNS = frozenset({"brick", "bricks"})
+"""Shape nouns that name a block longer than it is wide: a cube is no brick where a box of a brick's shape is there."""
 CUBE_LIKE = 1.5
 """Longest side over shortest side up to which a block looks like a cube: "the blue cube" is the blue cube, not a
 14 x 3 x 3 cm beam of the same colour (a careful author named them apart); where only one block has the colour, any

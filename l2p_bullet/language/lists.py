@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from ..core.scene import Scene
 from ..errors import LanguageError
 from .grammar import ARROWS, MAX_SENTENCE, phrase_tokens, tokens
+from .numbers import number_name
 from .reference_words import CONJUNCTIONS
 from .references import number_said, resolve_object, try_object
 from .words import strip_polite
@@ -145,8 +146,9 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
         if items:  # "line up the mug, the jar and the stone in a row": the row said again at the end
             items[-1] = ROW_AGAIN.sub("", items[-1]).strip() or items[-1]
         named = {n.lower() for n in scene.names}
-        loose = [i.split() if len(i.split()) > 1 and all(w.lower() in named for w in i.split()) else [i]
-                 for i in items]  # "line up c b a", "line up U V W and stone": names without commas
+        loose = [i.split() if len(i.split()) > 1 and all(w.lower() in named or number_name(w, scene) for w in i.split())
+                 else [i] for i in items]  # "line up c b a", "line up U V W and stone", "four six and seven": names
+        # without commas
         items = [part for group in loose for w in group for part in _by_article(w, scene)]
         if len(items) < 2:
             raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'

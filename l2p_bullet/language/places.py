@@ -165,23 +165,35 @@ def bulk_superlative(pool: list[SceneObject], pick, word: str) -> str:
     other are a tie)."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
-    tied = [o.name for o in size_tied(pool, seen_size(pool), pick)]
+    tied = [o.name for o in size_tied(pool, seen_size(pool), pick, seen_tie(pool))]
     if len(tied) > 1:
         raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
     return tied[0]
 
 
-def size_tied(pool: list[SceneObject], size, pick) -> list[SceneObject]:
-    """The objects of ``pool`` whose ``size`` is within :data:`TIE_SIZE` of the extreme ``pick`` (min or max)
+def size_tied(pool: list[SceneObject], size, pick, tie: float = TIE_SIZE) -> list[SceneObject]:
+    """The objects of ``pool`` whose ``size`` is within ``tie`` (a fraction) of the extreme ``pick`` (min or max)
     chooses: sizes a person does not tell apart at a glance."""
     values = {o.name: size(o) for o in pool}
     best = pick(values.values())
-    return [o for o in pool if _alike(values[o.name], best)]
+    return [o for o in pool if _alike(values[o.name], best, tie)]
 
 
-def _alike(a: float, b: float) -> bool:
-    """Whether two sizes are closer than :data:`TIE_SIZE` of the smaller: a person does not tell them apart."""
-    return abs(a - b) < TIE_SIZE * min(a, b)
+def _alike(a: float, b: float, tie: float = TIE_SIZE) -> bool:
+    """Whether two sizes are closer than ``tie`` of the smaller: a person does not tell them apart."""
+    return abs(a - b) < tie * min(a, b)
+
+
+TIE_SIDE = 0.2
+"""Two objects of one shape whose sides differ by less than this fraction of the smaller are a tie for "the biggest",
+"the small one": a 3.5 and a 4 cm cube are (an author who compared them said so), a 5.5 cm cube beside two of 4.5 cm
+is clearly the biggest (an author said so), as a 4 and a 5 cm cube are told apart."""
+
+
+def seen_tie(pool: list[SceneObject]) -> float:
+    """The tie for what :func:`seen_size` compares among ``pool``: :data:`TIE_SIDE` of a side where the objects are of
+    one shape, :data:`TIE_SIZE` of a bulk where they are not."""
+    return TIE_SIDE if len({o.shape for o in pool}) == 1 else TIE_SIZE
 
 
 def seen_size(pool: list[SceneObject]):
@@ -286,9 +298,10 @@ def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneO
             if word in MEDIUM:
                 pool = [_medium(text, pool)]
                 continue
-            size = seen_size(pool) if word in BIG | SMALL else (lambda o: measure(o, "height"))
+            seen = word in BIG | SMALL
+            size = seen_size(pool) if seen else (lambda o: measure(o, "height"))
             pick = max if word in BIG | TALL else min
-            tied = size_tied(pool, size, pick)
+            tied = size_tied(pool, size, pick, seen_tie(pool) if seen else TIE_SIZE)
             if len(tied) > 1 and len(tied) < len(pool):
                 listed = ", ".join(o.name for o in tied)
                 raise LanguageError(f'"{text}" is ambiguous: {listed} are all but equally {word}; '

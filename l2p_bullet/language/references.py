@@ -22,6 +22,7 @@ from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates, describe, described, looks, name_words
 from .group_places import in_group, table_sides
+from .numbers import number_reference
 from .other_than import other_than
 from .places import (
     bearing_off,
@@ -98,6 +99,9 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     names = scene.names
     if text in names:  # an exact name first: a block may well be called "a" or "the cube"
         return text
+    numbered = number_reference(text, scene, role, resolve_object)  # "number 5", "cube 1", "the red one, #2"
+    if numbered is not None:
+        return numbered
     other = other_than(text, scene, role, resolve_object)  # "the cube that isn't red"
     if other is not None:
         return other

@@ -17,6 +17,7 @@ A word that is the name of an object in the scene is never dropped ("move Now ne
 from __future__ import annotations
 
 from ..errors import LanguageError
+from .numbers import number_of
 from .reference_words import NOUNS
 
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
@@ -144,6 +145,9 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
     while changed and words:
         changed = False
         low = [w.lower() for w in words]
+        if len(low) > 2 and low[0] in STEP_LABELS and words[0] not in keep and number_of(low[1]) is not None:
+            words, changed = words[2:], True  # "Step 1: move 7 ...": the step's number names no object
+            continue
         for pre in _PREFIXES_BY_FIRST.get(low[0], ()):
             if starts(low, pre) and (not set(words[: len(pre)]) & keep or set(pre) & ADDRESSEES) and not (
                     pre[-1] in NOT_BEFORE_TO and low[len(pre):len(pre) + 1] == ["to"]):
@@ -155,6 +159,12 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
                 words, changed = words[: -len(suf)], True
                 break
     return words
+
+
+STEP_LABELS = frozenset({"step", "test", "task", "stage", "phase", "trial", "case", "instruction", "command",
+                         "exercise", "example", "scenario"})
+"""Words that number a step before its instruction ("Step 1: move 7 ...", "Test 4: lift 5 ..."): the label and its
+number are read past, whatever the scene's objects are called ("1" may name a block; "Step 1" never does)."""
 
 
 def is_courtesy(words: list[str]) -> bool:
