@@ -21,7 +21,7 @@ OVER_AND_PUT = re.compile(rf"\s+over{_PUT_IT}", re.IGNORECASE)
 the jar"; "carry the jar over and set it beside the stone" is "carry the jar beside the stone", and so is
 "carry the jar over to the stone and set it down beside the stone"."""
 _AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab|pick)"
-_AIR = r"(?:up\s+)?(?:in|into|through)\s+the\s+air"
+_AIR = r"(?:up\s+)?(?:in|into|through|thru)\s+the\s+air"
 _AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay|take)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
 _ASKING = (r"(?:(?:please|pls|now|can\s+you|could\s+you|would\s+you|can\s+the\s+(?:robot|arm)"
            r"|could\s+the\s+(?:robot|arm))\s+)*")

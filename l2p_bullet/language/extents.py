@@ -66,6 +66,8 @@ EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "almost touching": "right", "nearly touching": "right", "touching": "right", "basically touching": "right",
     "touching it": "right", "so it touches": "right", "so that it touches": "right", "so they're touching": "right",
     "touching basically": "right", "so they touch": "right", "so that they touch": "right",
+    "really close touching it": "right", "very close touching it": "right", "really close": "right",
+    "very close": "right", "super close": "right",
     "only a few centimetres": "little", "but only a few centimetres": "little", "but only few centimetres": "little",
     "only a few centimeters": "little", "but only a few centimeters": "little", "only a few cm": "little",
     "but only a few cm": "little", "but only a bit": "little", "but only a little": "little", "just a bit": "little",

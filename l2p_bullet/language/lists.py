@@ -49,9 +49,10 @@ ROW_ADJECTIVES = re.compile(r"\bin\s+(?:a|one)\s+(?:(?:neat|nice|tidy|single|str
                             r"(row|line)\b",
                             re.IGNORECASE)
 IN_ONE = re.compile(r"\bin\s+(?:one|a\s+single)\s+(row|line)\b", re.IGNORECASE)
-ROW_FIRST = re.compile(r"^(?P<verb>\s*(?:please\s+)?(?:put|place|set|arrange))\s+in\s+a\s+(?P<row>row|line)"
+ROW_FIRST = re.compile(r"^(?P<verb>\s*(?:please\s+(?:to\s+)?)?(?:put|place|set|arrange))\s+in\s+a\s+(?P<row>row|line)"
                        r"(?:\s*,?\s*in\s+(?:this|that|the\s+following)\s+order)?\s*[:,\-\u2013\u2014]?\s+"
-                       r"(?P<items>[^.;!?]+?)(?=\s*(?:[.;!?]|$))", re.IGNORECASE)
+                       r"(?P<items>[^.;!?]+?)(?=\s*(?:,\s*(?:please|pls|plz|thanks|thank\s+you))?\s*(?:[.;!?]|$))",
+                       re.IGNORECASE)
 LINE_FROM = re.compile(r"\b(make\s+a\s+(?:row|line))\s+(?:from|out\s+of|using)\s+", re.IGNORECASE)
 """More ways to say a row: "in one line", "Put in one row the ball, the mug and the tile", "Make a line from A, B and
 C", "row pls - A, B, C"."""

@@ -106,7 +106,8 @@ cannot do."""
 
 
 IN_THE_AIR = tuple(tuple(p.split()) for p in (
-    "up off the table", "off the table", "through the air", "in the air", "into the air", "up in the air",
+    "up off the table", "off the table", "through the air", "thru the air", "in the air", "into the air",
+    "up in the air",
 ))
 """Words that say the object is lifted: read past, wherever they stand, after a verb that lifts it."""
 

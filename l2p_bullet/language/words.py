@@ -23,7 +23,7 @@ from .reference_words import NOUNS
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
     "can you please", "i would like you to", "i'd like you to", "i want you to", "i need you to",
-    "go ahead and", "please could you", "please can you", "please", "kindly", "could you", "can you",
+    "go ahead and", "please could you", "please can you", "please to", "please", "kindly", "could you", "can you",
     "would you", "will you", "could u", "can u", "pls", "plz", "let's", "lets", "try to", "now", "then", "and",
     "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot", "alright", "all right",
     "after that", "afterwards", "lastly", "next", "maybe", "also", "hello", "hi",

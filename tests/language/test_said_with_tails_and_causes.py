@@ -74,3 +74,18 @@ def test_what_stays_refused(plugins, sentence, table):
 def test_a_drag_ruled_out_after_a_drag_is_named(plugins):
     with pytest.raises(L2PError, match='drags the block and "dont drag it" asks not to'):
         read("slide G past E, dont drag it", plugins, LINE)
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    ("lift F thru the air past D", "carry:past F D", LINE),
+    ("get F next to D, really close, touching it", "slide:next-to F D extent=right", LINE),
+    ("Please to arrange in a line F, G and D.", "row F,G,D", LINE),
+    ("Put in a row D, E and F, please.", "row D,E,F", LINE),
+])
+def test_said_by_learners_and_texters(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+def test_a_closeness_said_after_a_motion_that_has_none_is_refused(plugins):
+    with pytest.raises(L2PError, match="right extent"):
+        read("move F away from D, really close", plugins, LINE)
