@@ -14,6 +14,7 @@ import numpy as np
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .reference_words import (
+    BLOCK_KINDS,
     BLOCK_SHAPES,
     BLOCK_WORDS,
     COLOR_SYNONYMS,
@@ -35,7 +36,7 @@ from .reference_words import (
     TIE_PLACE,
     TIE_PLACE_M,
 )
-from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE
+from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE, own_kinds_of, shape_of
 
 
 def named_colours(low) -> set[str]:
@@ -45,13 +46,16 @@ def named_colours(low) -> set[str]:
 
 def measure(o: SceneObject, what: str) -> float:
     """A length in metres: the footprint's side (its area's square root), the long side of the footprint's
-    smallest enclosing rectangle, the height, y (leftness) or x (how far back from the robot)."""
+    smallest enclosing rectangle, the height, the longest extent (the length of a lying bar, the height of a standing
+    bottle), y (leftness) or x (how far back from the robot)."""
     if what == "area":
         return float(o.size)
     if what == "length":
         return outline_sides(o)[0]
     if what == "height":
         return float(o.geometry.height)
+    if what == "extent":
+        return max(outline_sides(o)[0], float(o.geometry.height))
     if what in ("x", "y"):
         return float(o.xy[0] if what == "x" else o.xy[1])
     return toward(o, what.split("-"))
@@ -87,16 +91,19 @@ def bearing_off(v: np.ndarray, direction: float) -> float:
 
 
 def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
-    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows."""
+    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows; "block" and
+    "brick" a block to look at, never the bowl or the mug (as descriptions.candidates reads them)."""
     low = [w.lower() for w in restrict.split()]
+    fits = list(scene.objects)
+    if set(low) & BLOCK_WORDS:
+        fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
     colours = named_colours(low)
-    fits = list(scene.objects)
     if colours:
         fits = [o for o in fits if o.color in colours]
     shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
     if shapes:
-        fits = [o for o in fits if o.shape in shapes]
+        fits = [o for o in fits if shape_of(o) in shapes]
     return fits
 
 
@@ -107,7 +114,7 @@ def either_reading(described: list[str], scene: Scene, choose, pool: list[SceneO
     if not {w.lower() for w in described} & BLOCK_WORDS:
         return choose(pool)
     readings = []
-    for candidates in (pool, [o for o in pool if o.shape in BLOCK_SHAPES]):
+    for candidates in (pool, [o for o in pool if shape_of(o) in BLOCK_SHAPES]):
         try:
             readings.append(choose(candidates))
         except (LanguageError, UnknownObjectError) as e:
@@ -276,17 +283,23 @@ def _corners_joined(words: list[str]) -> list[str]:
     return out
 
 
+LENGTHWISE = frozenset({"short", "shorter"})
+"""Size words that measure an object along its length, lying or standing: between an 8 cm and a 12 cm bar lying
+down "the short one" is the 8 cm one though it is the taller; of two standing cylinders, the lower. "Low" is height."""
+
+
 def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneObject]:
-    """The objects of ``pool`` the size words keep (big/small by bulk, as "the biggest" compares; tall/short by
-    height), each in turn keeping the objects within :data:`~l2p_bullet.language.synonyms.TIE_SIZE` of the
-    extreme; with one object the size words are read past. A size word that splits the pool into tied
-    objects and the rest is a one-line error naming the tied ones."""
+    """The objects of ``pool`` the size words keep (big/small by bulk, as "the biggest" compares; tall/low by
+    height, short by length: :data:`LENGTHWISE`), each in turn keeping the objects within
+    :data:`~l2p_bullet.language.synonyms.TIE_SIZE` of the extreme; with one object the size words are read past. A
+    size word that splits the pool into tied objects and the rest is a one-line error naming the tied ones."""
     if len(pool) > 1:
         for word in sizes:
             if word in MEDIUM:
                 pool = [_medium(text, pool)]
                 continue
-            size = seen_size(pool) if word in BIG | SMALL else (lambda o: measure(o, "height"))
+            along = "extent" if word in LENGTHWISE else "height"
+            size = seen_size(pool) if word in BIG | SMALL else (lambda o, along=along: measure(o, along))
             pick = max if word in BIG | TALL else min
             tied = size_tied(pool, size, pick)
             if len(tied) > 1 and len(tied) < len(pool):
