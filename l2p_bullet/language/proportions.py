@@ -112,6 +112,9 @@ THING_KINDS = frozenset(KIND_NAMES) | frozenset(k for kinds in KIND_CLASSES.valu
 
 
 INF = math.inf
+MORE = (1e3, INF)
+"""An ideal no object reaches: the more of the measure the better, so that of two objects the one with clearly more
+of it fits clearly better ("the long one": the clearly longer of two bars, however long both are)."""
 
 
 @dataclass(frozen=True)
@@ -180,14 +183,16 @@ TUBE = Profile((Need("elongation", (1.0, INF), (1.5, INF)),), round=True)
 """Round, lying or standing ("tube", "pipe"): a 4 x 4 x 5 cm cylinder is "the black tube"."""
 POST = Profile((Need("standing", (0.9, INF), (1.5, INF)),))
 """Standing upright ("post", "pillar", "column", "tower")."""
-LONG = Profile((Need("lying_long", (1.3, INF), (6.0, INF)),), noun=False)
+LONG = Profile((Need("lying_long", (1.3, INF), MORE),), noun=False)
 """Long along the table ("the long block", "the elongated one"): the longer the better."""
-THIN = Profile((Need("thinness", (2.0, INF), (8.0, INF)),), noun=False)
+THIN = Profile((Need("thinness", (2.0, INF), MORE),), noun=False)
 """Thin, as a stick or a sheet ("the thin bar", "the skinny one")."""
-FLAT = Profile((Need("flatness", (1.25, INF), (4.0, INF)),), noun=False)
+FLAT = Profile((Need("flatness", (1.25, INF), MORE),), noun=False)
 """Lying flat ("the flat square", "the flat grey thing"): the flatter the better."""
 SQUARE = Profile((Need("squareness", (1.0, 1.25), (1.0, 1.1)),), noun=False)
 """Of a square footprint, never a round one ("the flat square", "the red square thing")."""
+UPRIGHT = Profile((Need("standing", (0.9, INF), MORE),), noun=False)
+"""Standing upright ("the upright fastener": the bolt, not the nut lying flat): the taller for its length the better."""
 STUBBY = Profile((Need("elongation", (1.0, 3.0), (1.0, 1.6)),), noun=False)
 """Short and thick ("the stubby white block"): the brick beside the bar."""
 
@@ -206,6 +211,7 @@ PROFILES: dict[str, Profile] = {
     **dict.fromkeys(("flat",), FLAT),
     **dict.fromkeys(("square", "squarish"), SQUARE),
     **dict.fromkeys(("stubby", "squat", "stocky"), STUBBY),
+    **dict.fromkeys(("upright", "vertical"), UPRIGHT),
 }
 """The words of proportions -> what they describe. The nouns are kinds of things people see in a block, a cylinder
 or a mesh; the adjectives describe any object."""

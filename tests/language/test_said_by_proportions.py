@@ -153,3 +153,24 @@ def test_every_word_of_proportions_is_a_word_the_reader_knows() -> None:
     for word, profile in PROFILES.items():
         known = SHAPE_NOUNS if profile.noun else set(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES
         assert word in known, word
+
+
+def test_upright_and_flat_describe_meshes_too() -> None:
+    scene = Scene([_mesh("nut", "gray", 0.05, -0.02, "nut.stl"), _mesh("bolt", "gray", 0.15, -0.10, "bolt.stl"),
+                   SceneObject("c", "red", 0.04, (-0.1, 0.1))])
+    assert resolve_object("the upright fastener", scene) == "bolt"
+    assert resolve_object("the flat gray thing", scene) == "nut"
+    assert resolve_object("the flat one", scene) == "nut"
+
+
+@pytest.mark.parametrize("said, expect", [
+    ("the block at the back on the right", "b2"), ("the block on the right at the back", "b2"),
+    ("the block on the left in front", "c1"),
+])
+def test_a_depth_and_a_side_said_together_are_a_corner(said: str, expect: str) -> None:
+    assert resolve_object(said, _stirrer_table()) == expect
+
+
+def test_a_corner_two_objects_are_about_as_far_toward_is_asked() -> None:
+    with pytest.raises(L2PError, match="c1, stirrer"):  # the red cube and the stirrer: 2 cm apart toward it
+        resolve_object("the one in front on the left", _stirrer_table())
