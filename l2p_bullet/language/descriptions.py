@@ -1,5 +1,6 @@
-"""What an object is called by: its name, colour, shape, size and kind words ("the red block", "the tall one",
-"the rubber duck", "the football-looking thing"), resolved among the scene's objects.
+"""What an object is called by: its name, colour, shape, size, proportions and kind words ("the red block", "the tall
+one", "the stick", "the flat square", "the rubber duck", "the football-looking thing"), resolved among the scene's
+objects (the proportions are language/proportions.py's).
 
 The leaf of the resolver (language/references.py): these readings look at the objects themselves, never at
 places, relations or the clause before, so they import nothing of the resolver; a description that fits
@@ -13,12 +14,8 @@ import re
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .places import (
-    by_size,
-    named_colours,
-    outline_sides,
-)
-from .proportions import PROFILES, PROPORTION_NOUNS, fitting
+from .places import by_size, named_colours
+from .proportions import PROFILES, PROPORTION_NOUNS, fitting, outline_sides
 from .reference_words import (
     BLOCK_KINDS,
     BLOCK_SHAPES,
@@ -77,7 +74,7 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     spelled = spelled_name(words, scene)
     if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too
         try:
-            others = [o.name for o in candidates(text, words, low, scene, determined) if o.name != spelled]
+            others = [o.name for o in candidates(text, words, low, scene, determined, best=True) if o.name != spelled]
         except (LanguageError, UnknownObjectError):
             others = []
         if not others:
@@ -87,7 +84,7 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     names = name_words(scene)
     sizes = [w for w in low if w in SIZE_WORDS and w not in names]
     words, low, measure = said_measure(words, low)
-    fits = candidates(text, words, low, scene, determined)
+    fits = candidates(text, words, low, scene, determined, best=True)
     if measure is not None:  # "the 5 cm cube": the objects whose longest side is about that long
         fits = [o for o in fits if abs(max(*outline_sides(o), o.geometry.height) - measure)
                 <= max(MEASURE_TOLERANCE * measure, MEASURE_TOLERANCE_M)]
@@ -164,9 +161,12 @@ def _colour_of_compound(word: str) -> str:
 
 
 def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
-                determined: bool = True) -> list[SceneObject]:
-    """The objects the name, colour and shape words of a description allow (size words and "block"'s preference
-    are for :func:`described`); an unknown word is a one-line error."""
+                determined: bool = True, best: bool = False) -> list[SceneObject]:
+    """The objects the name, colour, shape and proportion words of a description allow (size words and "block"'s
+    preference are for :func:`described`); an unknown word is a one-line error. ``best``: a word of proportions
+    keeps the one object it fits clearly best, as a description of one object means ("the stick": the stirrer, not
+    the 9 cm bar); else every object it admits, as a group does ("the sticks", "the other stick", "the second stick
+    from the left")."""
     names = name_words(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
     low = spoken_letter(low, scene)
@@ -187,7 +187,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     elif not sized:
         unknown_object(text, words, low, scene)
     else:
-        return fitting(proportioned, list(scene.objects), kind_groups(scene))  # "the tall", "the flat": alone
+        return fitting(proportioned, list(scene.objects), kind_groups(scene), best)  # "the tall", "the flat": alone
     colours = named_colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)]
     groups = kind_groups(scene)
@@ -232,7 +232,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
         fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
-    return fitting(proportioned, fits, groups)  # "the stick", "the long white one": by proportions
+    return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
 
 
 _COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
+from .proportions import PROFILES, admits, outline_sides
 from .reference_words import (
     BLOCK_KINDS,
     BLOCK_SHAPES,
@@ -36,7 +37,7 @@ from .reference_words import (
     TIE_PLACE,
     TIE_PLACE_M,
 )
-from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE, own_kinds_of, shape_of
+from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE, kind_groups, own_kinds_of, shape_of
 
 
 def named_colours(low) -> set[str]:
@@ -68,17 +69,6 @@ def toward(o: SceneObject, sides: list[str]) -> float:
     return float(np.dot(o.xy[:2], u / np.linalg.norm(u)))
 
 
-def outline_sides(o: SceneObject) -> tuple[float, float]:
-    """(long, short) sides of the smallest rectangle around the object's footprint, in metres: a 10 x 3 cm bar is
-    (0.10, 0.03) whatever its yaw, a cube its side twice. The smallest rectangle has a side along one of the
-    outline's edges."""
-    g = o.geometry
-    edges = np.roll(g.footprint, -1, axis=0) - g.footprint
-    sides = [(g.width(float(a)), g.width(float(a) + math.pi / 2)) for a in np.arctan2(edges[:, 1], edges[:, 0])]
-    w, h = min(sides, key=lambda wh: wh[0] * wh[1])
-    return max(w, h), min(w, h)
-
-
 def distance_to(o: SceneObject, xy: tuple[float, float]) -> float:
     """Centre to ``xy`` in metres: what "nearest" and "farthest" compare."""
     return float(np.hypot(o.xy[0] - xy[0], o.xy[1] - xy[1]))
@@ -92,7 +82,8 @@ def bearing_off(v: np.ndarray, direction: float) -> float:
 
 def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
     """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows; "block" and
-    "brick" a block to look at, never the bowl or the mug (as descriptions.candidates reads them)."""
+    "brick" a block to look at, never the bowl or the mug (as descriptions.candidates reads them), a word of
+    proportions ("the stick", "the long one") the objects it admits (language/proportions.py)."""
     low = [w.lower() for w in restrict.split()]
     fits = list(scene.objects)
     if set(low) & BLOCK_WORDS:
@@ -104,6 +95,8 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
     shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
     if shapes:
         fits = [o for o in fits if shape_of(o) in shapes]
+    for word in (w for w in low if w in PROFILES and w not in {n.lower() for n in scene.names}):
+        fits = [o for o in fits if admits(word, o, kind_groups(scene))]  # "the stick nearest the bowl": a stick
     return fits
 
 

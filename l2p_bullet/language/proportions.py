@@ -24,10 +24,22 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..core.scene import SceneObject
-from .places import outline_sides
 from .reference_words import BLOCK_KINDS, BOX_KINDS, ROUND_KINDS
 from .synonyms import KIND_CLASSES, KIND_NAMES, own_kinds_of, shape_of
+
+
+def outline_sides(o: SceneObject) -> tuple[float, float]:
+    """(long, short) sides of the smallest rectangle around the object's footprint, in metres: a 10 x 3 cm bar is
+    (0.10, 0.03) whatever its yaw, a cube its side twice. The smallest rectangle has a side along one of the
+    outline's edges."""
+    g = o.geometry
+    edges = np.roll(g.footprint, -1, axis=0) - g.footprint
+    sides = [(g.width(float(a)), g.width(float(a) + math.pi / 2)) for a in np.arctan2(edges[:, 1], edges[:, 0])]
+    w, h = min(sides, key=lambda wh: wh[0] * wh[1])
+    return max(w, h), min(w, h)
 
 
 @dataclass(frozen=True)
@@ -165,7 +177,7 @@ class Profile:
         return any(n.measure == "squareness" for n in self.needs)
 
 
-STICK = Profile((Need("elongation", (2.0, INF), (6.0, INF)),))
+STICK = Profile((Need("elongation", (2.2, INF), (6.0, INF)),))
 """Long and thin, lying or standing ("stick", "rod", "pole"): the longer the better; a 12 x 3 x 3 cm box is one."""
 BAR = Profile((Need("elongation", (1.4, INF), (3.0, 6.0)),), round=False)
 """Long with some bulk ("bar", "beam"): a bar of soap (7 x 4.5 cm) is one, a 16 x 1 x 1 cm stirrer hardly."""
@@ -226,11 +238,12 @@ word describes by this much (a log ratio: its proportion some 35 % farther from 
 block are the brick and the bar, two 12 cm bars are asked about."""
 
 
-def fitting(words: list[str], pool: list[SceneObject], named: dict[str, frozenset[str]]) -> list[SceneObject]:
-    """The objects of ``pool`` that each proportion word of ``words`` admits, in turn: of several, the one that fits
-    the word clearly best (:data:`CLEARLY`), else all it admits. An object called by the word as one of its kind's
-    names (``named``: word -> names, synonyms.kind_groups) fits it perfectly. An adjective is read past where the
-    pool holds one object, as a size word is."""
+def fitting(words: list[str], pool: list[SceneObject], named: dict[str, frozenset[str]],
+            best: bool = True) -> list[SceneObject]:
+    """The objects of ``pool`` that each proportion word of ``words`` admits, in turn, and with ``best`` (one object
+    is meant) of several the one that fits the word clearly best (:data:`CLEARLY`), else all it admits. An object
+    called by the word as one of its kind's names (``named``: word -> names, synonyms.kind_groups) fits it
+    perfectly. An adjective is read past where the pool holds one object, as a size word is."""
     for word in words:
         profile = PROFILES[word]
         if not profile.noun and len(pool) <= 1:
@@ -240,10 +253,10 @@ def fitting(words: list[str], pool: list[SceneObject], named: dict[str, frozense
             d = 0.0 if o.name in named.get(word, ()) else profile.distance(o, proportions(o))
             if d is not None:
                 scored.append((d, o))
-        scored.sort(key=lambda t: t[0])
-        if len(scored) > 1 and scored[1][0] - scored[0][0] >= CLEARLY:
-            scored = scored[:1]
-        pool = [o for _, o in scored]
+        ranked = sorted(d for d, _ in scored)
+        if best and len(ranked) > 1 and ranked[1] - ranked[0] >= CLEARLY:
+            scored = [(d, o) for d, o in scored if d == ranked[0]]
+        pool = [o for _, o in scored]  # in the pool's order: a group is named in the scene's
     return pool
 
 

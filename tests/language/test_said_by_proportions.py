@@ -16,7 +16,7 @@ from l2p_bullet.core.scene import Scene, SceneObject, shaped
 from l2p_bullet.errors import L2PError
 from l2p_bullet.language.proportions import PROFILES, fitting, proportions
 from l2p_bullet.language.reference_words import SHAPE_ADJECTIVES, SHAPE_NOUNS, SOFT_ADJECTIVES
-from l2p_bullet.language.references import resolve_object
+from l2p_bullet.language.references import group_of, resolve_object
 from l2p_bullet.language.synonyms import kind_groups, shape_of
 
 MESHES = Path(__file__).parent / "meshes"
@@ -174,3 +174,14 @@ def test_a_depth_and_a_side_said_together_are_a_corner(said: str, expect: str) -
 def test_a_corner_two_objects_are_about_as_far_toward_is_asked() -> None:
     with pytest.raises(L2PError, match="c1, stirrer"):  # the red cube and the stirrer: 2 cm apart toward it
         resolve_object("the one in front on the left", _stirrer_table())
+
+
+def test_a_group_or_a_relation_takes_every_object_a_word_admits() -> None:
+    """One object said ("the bar") is the clearly best fitting; a group ("the bars") or the objects a relation
+    chooses among ("the stick nearest the bowl") are all that the word admits, so a near tie there is asked."""
+    assert group_of("the bars", _brick_and_bar()) == ("w1", "w2")
+    assert resolve_object("the bar", _brick_and_bar()) == "w2"
+    table = _stirrer_table()
+    assert resolve_object("the bar nearest the bowl", table) == "b1"
+    with pytest.raises(L2PError, match="b1, stirrer"):
+        resolve_object("the stick nearest the bowl", table)
