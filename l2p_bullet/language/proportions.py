@@ -79,12 +79,6 @@ class Proportions:
         return self.width / self.height
 
     @property
-    def thinness(self) -> float:
-        """Longest extent over shortest: how thin it is, as a stick or as a sheet."""
-        a, _, c = self.extents
-        return a / c
-
-    @property
     def squareness(self) -> float:
         """Length over width of the footprint, 1 for a square one (:attr:`filled` tells it from a round one)."""
         return self.length / self.width
@@ -197,8 +191,9 @@ POST = Profile((Need("standing", (0.9, INF), (1.5, INF)),))
 """Standing upright ("post", "pillar", "column", "tower")."""
 LONG = Profile((Need("lying_long", (1.3, INF), MORE),), noun=False)
 """Long along the table ("the long block", "the elongated one"): the longer the better."""
-THIN = Profile((Need("thinness", (2.0, INF), MORE),), noun=False)
-"""Thin, as a stick or a sheet ("the thin bar", "the skinny one")."""
+THIN = Profile((Need("elongation", (2.0, INF), MORE),), noun=False)
+"""Thin for its length, lying or standing ("the long thin bar", "the tall thin carton", "the skinny one"): narrow as
+a stick is, the milk carton rather than the cereal box that is thin only as a book is."""
 FLAT = Profile((Need("flatness", (1.25, INF), MORE),), noun=False)
 """Lying flat ("the flat square", "the flat grey thing"): the flatter the better."""
 SQUARE = Profile((Need("squareness", (1.0, 1.25), (1.0, 1.1)),), noun=False)
