@@ -29,6 +29,7 @@ from ..language import (
 )
 from ..language.descriptions import naming_words
 from ..language.numbers import apposed
+from ..language.reference_words import FARTHEST, NEAREST
 from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import registry
@@ -280,6 +281,7 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         if re.search(r"\bit\b", rest, re.IGNORECASE):
             return None
         rest = _ordinals(rest, shows)
+    _same_in_apposition(what, rest, shows, scene)
     try:
         return _resolve_text(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:
@@ -292,6 +294,22 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         except L2PError:
             pass
     return None
+
+
+def _same_in_apposition(what: str, rest: str, shows: pointing.Shown, scene: Scene) -> None:
+    """A relation said after a description, before the verb ("The cube at the front, nearest the robot, put it ..."):
+    one object said twice, so where the two name different objects the sentence is refused naming both (the relation
+    alone would otherwise be what "it" means)."""
+    m = pointing.TOPIC.match(rest)
+    said = [w.lower() for w in (m.group("what").split() if m is not None else [])]
+    while said and said[0] in ("the", "one", "which", "that's", "is", "that"):
+        said = said[1:]
+    if m is None or len(shows.objects) != 1 or not said or said[0] not in NEAREST | FARTHEST:
+        return  # a description said again ("That flat thing, the brown one, ...") narrows the first: corrections.py
+    again = pointing.shown(m.group("what"), scene, shows.context)
+    if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
+        raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
+                            "object said two ways that name different objects; say which you mean")
 
 
 _VERB_HEADS = frozenset(v.split()[0] for v in known_verbs())

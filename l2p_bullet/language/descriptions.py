@@ -1,5 +1,6 @@
-"""What an object is called by: its name, colour, shape, size and kind words ("the red block", "the tall one",
-"the rubber duck", "the football-looking thing"), resolved among the scene's objects.
+"""What an object is called by: its name, colour, shape, size, proportions and kind words ("the red block", "the tall
+one", "the stick", "the flat square", "the rubber duck", "the football-looking thing"), resolved among the scene's
+objects (the proportions are language/proportions.py's).
 
 The leaf of the resolver (language/references.py): these readings look at the objects themselves, never at
 places, relations or the clause before, so they import nothing of the resolver; a description that fits
@@ -13,11 +14,8 @@ import re
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .places import (
-    by_size,
-    named_colours,
-    outline_sides,
-)
+from .places import by_size, named_colours
+from .proportions import PROFILES, PROPORTION_NOUNS, fitting, outline_sides
 from .reference_words import (
     BLOCK_KINDS,
     BLOCK_SHAPES,
@@ -48,6 +46,7 @@ from .synonyms import (
     name_parts,
     own_kinds_of,
     scene_key,
+    shape_of,
 )
 
 
@@ -75,7 +74,7 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     spelled = spelled_name(words, scene)
     if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too
         try:
-            others = [o.name for o in candidates(text, words, low, scene, determined) if o.name != spelled]
+            others = [o.name for o in candidates(text, words, low, scene, determined, best=True) if o.name != spelled]
         except (LanguageError, UnknownObjectError):
             others = []
         if not others:
@@ -85,12 +84,12 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     names = name_words(scene)
     sizes = [w for w in low if w in SIZE_WORDS and w not in names]
     words, low, measure = said_measure(words, low)
-    fits = candidates(text, words, low, scene, determined)
+    fits = candidates(text, words, low, scene, determined, best=True)
     if measure is not None:  # "the 5 cm cube": the objects whose longest side is about that long
         fits = [o for o in fits if abs(max(*outline_sides(o), o.geometry.height) - measure)
                 <= max(MEASURE_TOLERANCE * measure, MEASURE_TOLERANCE_M)]
     pools = [fits]
-    blocky = [o for o in fits if o.shape in BLOCK_SHAPES]
+    blocky = [o for o in fits if shape_of(o) in BLOCK_SHAPES]
     if set(low) & BLOCK_WORDS and 0 < len(blocky) < len(fits) and not set(low) & set(names):
         pools.append(blocky)
     readings: list[str | Exception] = []
@@ -162,9 +161,12 @@ def _colour_of_compound(word: str) -> str:
 
 
 def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
-                determined: bool = True) -> list[SceneObject]:
-    """The objects the name, colour and shape words of a description allow (size words and "block"'s preference
-    are for :func:`described`); an unknown word is a one-line error."""
+                determined: bool = True, best: bool = False) -> list[SceneObject]:
+    """The objects the name, colour, shape and proportion words of a description allow (size words and "block"'s
+    preference are for :func:`described`); an unknown word is a one-line error. ``best``: a word of proportions
+    keeps the one object it fits clearly best, as a description of one object means ("the stick": the stirrer, not
+    the 9 cm bar); else every object it admits, as a group does ("the sticks", "the other stick", "the second stick
+    from the left")."""
     names = name_words(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
     low = spoken_letter(low, scene)
@@ -174,31 +176,33 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
                                  f'say "the {said[0]} one" or name it')
     drop = SOFT_ADJECTIVES
-    heads = set(names) | set(kind_groups(scene)) | {"can", "cans"}  # "the tin can": named so or a cylinder
+    literal = {n.lower() for n in scene.names}  # "can" as a word of "soup_can.obj" is a kind, not a name
+    proportioned = [w for w in low if w in PROFILES and w not in literal]  # "the stick", "the flat square"
+    heads = set(names) | set(kind_groups(scene)) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
             if lw in names or not (lw in drop or (is_modifier(lw) and _before_head(low, i, heads)))]
-    sized = len(kept) < len(low) and any(lw in SIZE_WORDS for lw in low)
+    sized = len(kept) < len(low) and any(lw in SIZE_WORDS or lw in PROFILES for lw in low)
     if kept:  # "the little red cube": the other words decide
         words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
     elif not sized:
         unknown_object(text, words, low, scene)
     else:
-        return list(scene.objects)  # "the tall": size words alone
+        return fitting(proportioned, list(scene.objects), kind_groups(scene), best)  # "the tall", "the flat": alone
     colours = named_colours(low)
-    literal = {n.lower() for n in scene.names}  # "can" as a word of "soup_can.obj" is a kind, not a name
     named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)]
     groups = kind_groups(scene)
     kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS]  # among two mugs
-    either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and w not in literal and w in SHAPE_NOUNS]
-    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS and w not in groups}
-    shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES}
+    either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and (w not in literal or w in NOUNS)
+              and w in SHAPE_NOUNS and w not in PROFILES]  # "the big cube": the mesh named "cube" or another cube
+    shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS and w not in groups and w not in PROFILES}
+    shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES and w not in PROFILES}
     known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
              | {"things", "objects", "ones"} | set(names) | set(groups))
     unknown = [w for w in low if w not in known]
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
             and low[0] not in FUNCTION_WORDS and low[0] not in KIND_SYNONYMS:  # "the triangular toy": another kind
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
-    if unknown or not (colours or named or kinds or either or shapes or shaped or sized
+    if unknown or not (colours or named or kinds or either or shapes or shaped or sized or proportioned
                        or set(low) & (NOUNS | BLOCK_WORDS)):
         unknown_object(text, words, low, scene)
     fits = list(scene.objects)
@@ -207,7 +211,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     for group in kinds:
         fits = [o for o in fits if o.name in group]
     for word, group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
-        fits = [o for o in fits if o.name in group or o.shape == shape
+        fits = [o for o in fits if o.name in group or shape_of(o) == shape
                 or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too
     if colours:
         if not any(o.color in colours for o in scene.objects):
@@ -216,21 +220,19 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if shapes and not named:
         strict = shapes & STRICT_SHAPES
         if strict:
-            fits = [o for o in fits if o.shape in strict]
+            fits = [o for o in fits if shape_of(o) in strict]
         elif colours:  # "the white cube", "the red box": block-shaped, never the white mug or a cylinder
-            fits = [o for o in fits if o.shape in BLOCK_SHAPES or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
-            if len(fits) > 1 and ("cube" in shapes or set(low) & (LONG_NOUNS | BRICK_NOUNS)):
-                # "the blue cube" beside a long blue beam is the cube-like one, "the blue stick" the long one, "the
-                # blue brick" beside a blue cube the brick-shaped box
-                kept = [o for o in fits if _cube_like(o) == ("cube" in shapes)]
+            fits = [o for o in fits if shape_of(o) in BLOCK_SHAPES or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
+            if len(fits) > 1 and "cube" in shapes:  # "the blue cube" beside a long blue beam is the cube-like one
+                kept = [o for o in fits if _cube_like(o)]
                 fits = kept if len(kept) == 1 else fits
         else:  # "the box": a box, or a mesh that is one ("the cereal box")
-            fits = [o for o in fits if o.shape in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
+            fits = [o for o in fits if shape_of(o) in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
     if shaped:
-        fits = [o for o in fits if o.shape in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
+        fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
-        fits = [o for o in fits if o.shape != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
-    return fits
+        fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
+    return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
 
 
 _COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
@@ -251,10 +253,6 @@ def _before_head(low: tuple[str, ...], i: int, heads: set[str]) -> bool:
     return j < len(low) and low[j] in heads
 
 
-LONG_NOUNS = frozenset({"stick", "sticks", "bar", "bars"})
-"""Shape nouns that name a long block."""
-BRICK_NOUNS = frozenset({"brick", "bricks"})
-"""Shape nouns that name a block longer than it is wide: a cube is no brick where a box of a brick's shape is there."""
 CUBE_LIKE = 1.5
 """Longest side over shortest side up to which a block looks like a cube: "the blue cube" is the blue cube, not a
 14 x 3 x 3 cm beam of the same colour (a careful author named them apart); where only one block has the colour, any

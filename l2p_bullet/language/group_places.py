@@ -80,8 +80,15 @@ def table_sides(words: list[str]) -> list[str]:
         if side and side[0] in DIRECTIONS and all(r in EDGE_WORDS for r in rest) and len(rest) <= 1:
             place = SIDE_SUPERLATIVE[side[0]] if w in NEAREST else OPPOSITE[SIDE_SUPERLATIVE[side[0]]]
             return [*words[:i], *SIDE_SAID[place]]  # "the white object nearest the front": at the front
+    corner = _two_sides(low)
+    if corner is not None:  # "the block at the back on the right": at the back-right corner
+        return [*words[:-corner[0]], "at", "the", corner[1]]
     if len(low) >= 4 and low[-3:-1] == ["of", "the"] and low[-1] in ("left", "right"):
         return [*words[:-3], "on", "the", words[-1]]  # "the cube red of the right"
+    if len(low) >= 3 and low[-2:] == ["in", "front"]:
+        return [*words[:-2], "at", "the", "front"]  # "the green cube in front": the one at the front
+    if len(low) >= 2 and low[-1] in ("behind", "in-back") and low[-2] not in ("is", "are", "stands", "sits"):
+        return [*words[:-1], "at", "the", "back"]  # "the green cube behind": the one at the back
     if len(low) >= 4 and low[-3:] == ["of", "the", "middle"] and low[0] in DETERMINERS:
         return [words[0], "middle", *words[1:-3]]  # "the red cube of the middle": the middle red cube
     if len(low) >= 6 and low[-6:-2] == ["in", "the", "middle", "of"] and low[-2] in DETERMINERS \
@@ -94,6 +101,28 @@ def table_sides(words: list[str]) -> list[str]:
         start = 1 if low[0] in DETERMINERS else 0
         return ["the", word, *words[start:-4]]
     return words
+
+
+DEPTH_SAID = {("at", "the", "back"): "back", ("in", "the", "back"): "back", ("at", "the", "rear"): "back",
+              ("at", "the", "front"): "front", ("in", "the", "front"): "front", ("in", "front"): "front"}
+SIDE_SAID_AS = {("on", "the", "left"): "left", ("on", "the", "right"): "right", ("to", "the", "left"): "left",
+                ("to", "the", "right"): "right"}
+"""A depth and a side of the table said one after the other ("at the back on the right", "on the left in front"):
+together a corner, where either alone would leave the other out."""
+
+
+def _two_sides(low: list[str]) -> tuple[int, str] | None:
+    """(how many words, the corner) where ``low`` ends with a depth and a side of the table, in either order."""
+    for first, second in ((DEPTH_SAID, SIDE_SAID_AS), (SIDE_SAID_AS, DEPTH_SAID)):
+        for b, second_word in second.items():
+            if tuple(low[len(low) - len(b):]) != b:
+                continue
+            rest = low[:len(low) - len(b)]
+            for a, first_word in first.items():
+                if len(rest) > len(a) and tuple(rest[len(rest) - len(a):]) == a:
+                    depth, side = (first_word, second_word) if first is DEPTH_SAID else (second_word, first_word)
+                    return len(a) + len(b), f"{depth}-{side}"
+    return None
 
 
 def in_group(words: list[str], low: tuple[str, ...], scene: Scene, read: Callable[[str, Scene], str]) -> str | None:

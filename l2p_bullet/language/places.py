@@ -13,7 +13,9 @@ import numpy as np
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
+from .proportions import PROFILES, admits, outline_sides
 from .reference_words import (
+    BLOCK_KINDS,
     BLOCK_SHAPES,
     BLOCK_WORDS,
     COLOR_SYNONYMS,
@@ -35,7 +37,7 @@ from .reference_words import (
     TIE_PLACE,
     TIE_PLACE_M,
 )
-from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE
+from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE, kind_groups, own_kinds_of, shape_of
 
 
 def named_colours(low) -> set[str]:
@@ -45,13 +47,16 @@ def named_colours(low) -> set[str]:
 
 def measure(o: SceneObject, what: str) -> float:
     """A length in metres: the footprint's side (its area's square root), the long side of the footprint's
-    smallest enclosing rectangle, the height, y (leftness) or x (how far back from the robot)."""
+    smallest enclosing rectangle, the height, the longest extent (the length of a lying bar, the height of a standing
+    bottle), y (leftness) or x (how far back from the robot)."""
     if what == "area":
         return float(o.size)
     if what == "length":
         return outline_sides(o)[0]
     if what == "height":
         return float(o.geometry.height)
+    if what == "extent":
+        return max(outline_sides(o)[0], float(o.geometry.height))
     if what in ("x", "y"):
         return float(o.xy[0] if what == "x" else o.xy[1])
     return toward(o, what.split("-"))
@@ -62,17 +67,6 @@ def toward(o: SceneObject, sides: list[str]) -> float:
     centre): "left" is +y, "front" -x, a corner ("back", "right") the diagonal between its two sides."""
     u = np.sum([DIRECTIONS[s] for s in sides], axis=0)
     return float(np.dot(o.xy[:2], u / np.linalg.norm(u)))
-
-
-def outline_sides(o: SceneObject) -> tuple[float, float]:
-    """(long, short) sides of the smallest rectangle around the object's footprint, in metres: a 10 x 3 cm bar is
-    (0.10, 0.03) whatever its yaw, a cube its side twice. The smallest rectangle has a side along one of the
-    outline's edges."""
-    g = o.geometry
-    edges = np.roll(g.footprint, -1, axis=0) - g.footprint
-    sides = [(g.width(float(a)), g.width(float(a) + math.pi / 2)) for a in np.arctan2(edges[:, 1], edges[:, 0])]
-    w, h = min(sides, key=lambda wh: wh[0] * wh[1])
-    return max(w, h), min(w, h)
 
 
 def distance_to(o: SceneObject, xy: tuple[float, float]) -> float:
@@ -87,16 +81,22 @@ def bearing_off(v: np.ndarray, direction: float) -> float:
 
 
 def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
-    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows."""
+    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows; "block" and
+    "brick" a block to look at, never the bowl or the mug (as descriptions.candidates reads them), a word of
+    proportions ("the stick", "the long one") the objects it admits (language/proportions.py)."""
     low = [w.lower() for w in restrict.split()]
+    fits = list(scene.objects)
+    if set(low) & BLOCK_WORDS:
+        fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
     colours = named_colours(low)
-    fits = list(scene.objects)
     if colours:
         fits = [o for o in fits if o.color in colours]
     shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
     if shapes:
-        fits = [o for o in fits if o.shape in shapes]
+        fits = [o for o in fits if shape_of(o) in shapes]
+    for word in (w for w in low if w in PROFILES and w not in {n.lower() for n in scene.names}):
+        fits = [o for o in fits if admits(word, o, kind_groups(scene))]  # "the stick nearest the bowl": a stick
     return fits
 
 
@@ -107,7 +107,7 @@ def either_reading(described: list[str], scene: Scene, choose, pool: list[SceneO
     if not {w.lower() for w in described} & BLOCK_WORDS:
         return choose(pool)
     readings = []
-    for candidates in (pool, [o for o in pool if o.shape in BLOCK_SHAPES]):
+    for candidates in (pool, [o for o in pool if shape_of(o) in BLOCK_SHAPES]):
         try:
             readings.append(choose(candidates))
         except (LanguageError, UnknownObjectError) as e:
@@ -288,18 +288,24 @@ def _corners_joined(words: list[str]) -> list[str]:
     return out
 
 
+LENGTHWISE = frozenset({"short", "shorter"})
+"""Size words that measure an object along its length, lying or standing: between an 8 cm and a 12 cm bar lying
+down "the short one" is the 8 cm one though it is the taller; of two standing cylinders, the lower. "Low" is height."""
+
+
 def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneObject]:
-    """The objects of ``pool`` the size words keep (big/small by bulk, as "the biggest" compares; tall/short by
-    height), each in turn keeping the objects within :data:`~l2p_bullet.language.synonyms.TIE_SIZE` of the
-    extreme; with one object the size words are read past. A size word that splits the pool into tied
-    objects and the rest is a one-line error naming the tied ones."""
+    """The objects of ``pool`` the size words keep (big/small by bulk, as "the biggest" compares; tall/low by
+    height, short by length: :data:`LENGTHWISE`), each in turn keeping the objects within
+    :data:`~l2p_bullet.language.synonyms.TIE_SIZE` of the extreme; with one object the size words are read past. A
+    size word that splits the pool into tied objects and the rest is a one-line error naming the tied ones."""
     if len(pool) > 1:
         for word in sizes:
             if word in MEDIUM:
                 pool = [_medium(text, pool)]
                 continue
             seen = word in BIG | SMALL
-            size = seen_size(pool) if seen else (lambda o: measure(o, "height"))
+            along = "extent" if word in LENGTHWISE else "height"
+            size = seen_size(pool) if seen else (lambda o, along=along: measure(o, along))
             pick = max if word in BIG | TALL else min
             tied = size_tied(pool, size, pick, seen_tie(pool) if seen else TIE_SIZE)
             if len(tied) > 1 and len(tied) < len(pool):

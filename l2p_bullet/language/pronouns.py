@@ -14,6 +14,7 @@ from ..core.scene import Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates, name_words
 from .places import by_size
+from .proportions import PROFILES, admits
 from .reference_words import (
     BLOCK_SHAPES,
     DEMONSTRATIVES,
@@ -24,7 +25,7 @@ from .reference_words import (
     SHAPE_NOUNS,
     STRICT_SHAPES,
 )
-from .synonyms import SIZE_WORDS
+from .synonyms import SIZE_WORDS, kind_groups, shape_of
 
 
 @dataclass(frozen=True)
@@ -80,13 +81,15 @@ def _no_earlier(said: str, role: str) -> LanguageError:
 
 
 def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
-    """Whether ``noun`` ("cylinder", "cube", "duck") may name ``o``: a shape noun its shape (a cube or a box for
-    "cube" and "box"), a kind word the object it names."""
+    """Whether ``noun`` ("cylinder", "cube", "duck", "stick") may name ``o``: a shape noun its shape (a cube or a box
+    for "cube" and "box"), a kind word the object it names, a noun of proportions an object they admit."""
     kinds = name_words(scene)
     if noun in kinds:
         return kinds[noun] == o.name
+    if noun in PROFILES:
+        return admits(noun, o, kind_groups(scene))
     shape = SHAPE_NOUNS[noun]
-    return o.shape == shape if shape in STRICT_SHAPES else o.shape in BLOCK_SHAPES
+    return shape_of(o) == shape if shape in STRICT_SHAPES else shape_of(o) in BLOCK_SHAPES
 
 
 def sized_twin(said: str, low: tuple[str, ...], context: Context | None, scene: Scene) -> str | None:
@@ -117,7 +120,7 @@ def _that_kind(said: str, noun: str, context: Context | None, role: str, scene: 
         raise _no_earlier(said, role)
     named = [n for n in (context.mover, context.anchor) if n is not None and n in scene.names]
     fits = [n for n in named if _fits_kind(scene.get(n), noun, scene)]
-    exact = [n for n in fits if scene.get(n).shape == SHAPE_NOUNS.get(noun)]
+    exact = [n for n in fits if shape_of(scene.get(n)) == SHAPE_NOUNS.get(noun)]
     if len(exact) == 1 and len(fits) > 1:  # "move the yellow block next to the blue cube, then push that cube"
         return exact[0]
     return fits[0] if fits else None

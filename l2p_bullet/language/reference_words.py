@@ -23,6 +23,15 @@ SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "dice": "cube", "die": "cube",
 """Nouns that also name a shape: alone ("the box") they pick objects of that shape; with a colour ("the red
 box", "the white cube") any block-shaped object (a cube or a box: people call any block a box or a
 cube), never a cylinder or a mesh."""
+SHAPE_NOUNS |= dict.fromkeys(("rod", "rods", "pole", "poles", "dowel", "dowels", "skewer", "wand", "beam", "beams",
+                              "girder", "girders", "rail", "rails", "plank", "planks", "board", "boards", "ruler",
+                              "rulers", "slab",
+                              "slabs", "tile", "tiles", "slate", "slates", "post", "posts", "pillar", "pillars",
+                              "column", "columns", "tower", "towers"), "box")
+SHAPE_NOUNS |= dict.fromkeys(("disc", "discs", "disk", "disks", "puck", "pucks", "coin", "coins", "log", "logs",
+                              "roll", "rolls", "tube", "tubes", "pipe", "pipes"), "cylinder")
+"""And the nouns of proportions (language/proportions.py reads them: "the stick", "the slab", "the log"), with the
+shape they most often are, for the readers that ask a noun's shape ("that log" points back to a cylinder)."""
 STRICT_SHAPES = frozenset({"cylinder"})
 """Shapes no one calls another shape by: "the red cylinder" is refused where the red object is a cube."""
 SHAPE_ADJECTIVES = {"rectangular": "box", "oblong": "box", "elongated": "box", "long": "box", "cubic": "cube",
@@ -37,9 +46,12 @@ ROUND_KINDS = frozenset({"ball", "soccerball", "football", "sphere", "textured",
                          "lemon", "apple", "orange", "bowl", "plate", "cup", "mug", "can", "jar", "beaker", "pingpong",
                          "bottle"})
 """Meshes people call round as they call a cylinder round ("the round white thing" is the ball): "round" keeps them."""
-SOFT_ADJECTIVES = frozenset({"flat", "toy", "rubber", "plastic", "wooden", "lone", "single"}) | SIZE_WORDS
+SOFT_ADJECTIVES = frozenset({"flat", "flatter", "toy", "rubber", "plastic", "wooden", "lone", "single", "thin",
+                             "skinny", "slender", "narrow", "slim", "stubby", "squat", "stocky", "squarish",
+                             "lengthy", "upright", "vertical"}) | SIZE_WORDS
 """Adjectives people add to a description that already picks one object ("the toy duck", "the little red
-cube"): read past there. The size words among them (synonyms.SIZE_WORDS) decide where the rest leaves several."""
+cube"): read past there. The size words among them (synonyms.SIZE_WORDS) and the words of proportions ("flat",
+"thin": language/proportions.py) decide where the rest leaves several."""
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan", "silver": "gray",
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
                   "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black"}

@@ -23,10 +23,10 @@ KIND_NAMES = {
     "teddy": ("bear", "bears", "teddies", "teddybear", "plush", "plushie"),
     "bunny": ("rabbit", "rabbits", "bunnies", "hare"),
     "stone": ("rock", "rocks", "pebble", "pebbles", "stones"),
-    "soccerball": ("ball", "football", "soccer", "footy", "footie"),
-    "ball": ("balls", "football", "footy", "footie"),
+    "soccerball": ("ball", "football", "soccer", "footy", "footie", "sphere", "globe"),
+    "ball": ("balls", "football", "footy", "footie", "sphere", "spheres", "globe"),
     "bottle": ("bottles", "flask"),
-    "bowl": ("bowls", "dish"),
+    "bowl": ("bowls", "dish", "container", "basin"),
     "apple": ("apples",),
     "lemon": ("lemons", "citrus"),
     "bread": ("loaf", "roll", "rolls", "bun", "buns"),
@@ -61,6 +61,9 @@ KIND_NAMES = {
     "nut": ("nuts",),
     "soup": ("soups",),
     "crate": ("crates",),
+    "stirrer": ("stirrers", "stick", "sticks", "stirrer"),
+    "beaker": ("beakers", "cup", "cups", "glass", "glasses"),
+    "cylinder": ("tin", "tins"),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
@@ -75,13 +78,15 @@ KIND_SYNONYMS: dict[str, tuple[str, ...]] = {
     for word in dict.fromkeys(w for names in KIND_NAMES.values() for w in names)
 } | KIND_CLASSES
 """An everyday name -> the kinds it names (an object named, or meshed as, one of those kinds)."""
-KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "rubber", "toy", "plastic", "bath", "drink", "drinks",
+KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "measuring", "glass", "rubber", "toy", "plastic", "bath",
+                            "drink", "drinks",
                             "traffic", "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard",
                             "video", "game", "games", "ping", "pong", "table-tennis", "hex", "hexagonal", "desk",
-                            "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden"})
+                            "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden", "popsicle", "swizzle",
+                            "stir", "lolly"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
-duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut"): read past there,
-a run of them too ("video game")."""
+duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut", "swizzle
+stick", "popsicle stick"): read past there, a run of them too ("video game")."""
 THREAD_SIZE = re.compile(r"^m\d+(?:x\d+(?:[.,]\d+)?)?$")
 """A metric thread size before a fastener's kind ("the M8 bolt", "an m6x1.0 nut"): read past as a modifier."""
 
@@ -93,7 +98,7 @@ def is_modifier(word: str) -> bool:
 BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant", "chunky", "bulky", "hefty"})
 SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini", "teeny", "wee"})
 TALL = frozenset({"tall", "taller"})
-SHORT = frozenset({"short", "shorter", "low", "lower", "flat", "flatter"})
+SHORT = frozenset({"short", "shorter", "low", "lower"})
 MEDIUM = frozenset({"medium", "medium-sized", "medium-size", "mid-sized", "mid-size", "midsize", "middle-sized"})
 SIZE_WORDS = BIG | SMALL | TALL | SHORT | MEDIUM
 """Size adjectives: they decide among the objects the rest of a description leaves (big/small by bulk,
@@ -106,6 +111,19 @@ size adjective asks for a difference a person sees at a glance (a 4 cm and a 5 c
 def kinds_of(o: SceneObject) -> set[str]:
     """The kinds an object is called by: its name when a word of 3+ letters, its mesh file's stem's first word."""
     return set(_kinds(*_kind_key(o)))
+
+
+MESH_SHAPES = {"cube": "cube", "cubes": "cube", "cuboid": "box", "box": "box", "cylinder": "cylinder"}
+"""A mesh's own kind that names a shape ("cube.obj", a mesh named "cylinder"): the mesh is that shape to look at, as
+pybullet's toy blocks are (a 4.8 cm mesh cube is "the red block", "the red cube", one of "the two cubes")."""
+
+
+def shape_of(o: SceneObject) -> str:
+    """The shape an object looks like: its own ("cube", "box", "cylinder", "mesh"), or for a mesh whose own kind is a
+    shape (:data:`MESH_SHAPES`) that shape."""
+    if o.shape != "mesh":
+        return o.shape
+    return next((MESH_SHAPES[k] for k in sorted(own_kinds_of(o)) if k in MESH_SHAPES), "mesh")
 
 
 def own_kinds_of(o: SceneObject) -> set[str]:

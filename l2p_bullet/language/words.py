@@ -28,7 +28,7 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot", "alright", "all right",
     "after that", "afterwards", "lastly", "next", "maybe", "also", "hello", "hi",
     "hey there", "hi there", "hello there", "good morning", "yo", "thx in advance", "thanks in advance",
-    "good afternoon", "good evening", "dear robot",
+    "good afternoon", "good evening", "dear robot", "chat", "ok chat", "okay chat", "chat voted",
     "you can", "you", "when you get a chance", "when you have a moment", "if you could", "if you can",
     "i would be very grateful if you could", "i would be grateful if you could", "i'd be grateful if you could",
     "for this one", "for the next one", "right", "so", "why don't you", "why dont you", "why not", "basically",

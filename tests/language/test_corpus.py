@@ -40,7 +40,7 @@ def test_the_second_authors_corpus_is_never_resolved_wrong(plugins):
     wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and BRING not in case.sentence.lower()]
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
-    assert right >= 139, f"{right}/147 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert right >= 140, f"{right}/147 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
 def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
@@ -51,7 +51,7 @@ def test_the_third_authors_corpus_is_never_resolved_wrong(plugins):
     wrong = [(case.sentence, got) for case, got in misses if got != REFUSE]
     assert not wrong, f"wrong resolutions: {wrong}"
     right = sum(c["right"] for c in table.values())
-    assert right >= 185, f"{right}/190 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert right >= 188, f"{right}/190 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
 BRING = "bring"
@@ -60,8 +60,8 @@ to seventh authors (heldout4-7) as a slide; the toolkit reads it as a slide, as 
 (docs/language.md), so heldout.tsv's five read otherwise."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 156), ("heldout5.tsv", 156), ("heldout6.tsv", 153),
-                                         ("heldout7.tsv", 156), ("heldout8.tsv", 153), ("heldout9.tsv", 154)])
+@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 159), ("heldout5.tsv", 158), ("heldout6.tsv", 156),
+                                         ("heldout7.tsv", 158), ("heldout8.tsv", 156), ("heldout9.tsv", 157)])
 def test_the_fourth_to_ninth_authors_corpora_are_never_resolved_wrong(plugins, name, floor):
     """heldout4.tsv (the corpus table), heldout5.tsv (its own table: two red cubes, a white cube and a white
     mug, a can), heldout6.tsv (two blue cubes, a teddy, a stone, a long white box), heldout7.tsv (cubes P Q R,
@@ -104,7 +104,7 @@ cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest
 "against" is a plain next-to for the twenty-sixth author, a tight one ("up against", "snug against") for the others."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 153), ("heldout11.tsv", 152)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
@@ -117,12 +117,12 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 154), ("heldout13.tsv", 155), ("heldout14.tsv", 154),
-                                         ("heldout15.tsv", 156), ("heldout16.tsv", 151), ("heldout17.tsv", 151),
-                                         ("heldout18.tsv", 155), ("heldout19.tsv", 151), ("heldout20.tsv", 151),
-                                         ("heldout21.tsv", 148), ("heldout22.tsv", 140), ("heldout23.tsv", 148),
-                                         ("heldout24.tsv", 149), ("heldout25.tsv", 154), ("heldout26.tsv", 140),
-                                         ("heldout27.tsv", 141), ("heldout28.tsv", 134), ("heldout29.tsv", 139)])
+@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 157), ("heldout13.tsv", 157), ("heldout14.tsv", 157),
+                                         ("heldout15.tsv", 157), ("heldout16.tsv", 154), ("heldout17.tsv", 152),
+                                         ("heldout18.tsv", 156), ("heldout19.tsv", 152), ("heldout20.tsv", 152),
+                                         ("heldout21.tsv", 149), ("heldout22.tsv", 141), ("heldout23.tsv", 149),
+                                         ("heldout24.tsv", 150), ("heldout25.tsv", 155), ("heldout26.tsv", 142),
+                                         ("heldout27.tsv", 145), ("heldout28.tsv", 136), ("heldout29.tsv", 141)])
 def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong
@@ -150,34 +150,21 @@ def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
 
 OPEN = {
     "heldout31.tsv": {
-        # "short": the shorter of two white boxes in length (block4) for the author, read as the lower (block5)
-        "Put the red block by the short white one.": "slide:next-to block3 block5",
         # "the back one" after "the front green cube": the back green cube (block2), read as the backmost object
         "the front green cube and the back one, put them both next to the red cube":
             "slide:next-to block1 block3 ; slide:next-to block5 block3"},
-    "heldout32.tsv": {
-        # "flat square": the 6 x 6 x 3 cm slab for the author, read as the cube
-        "put the flat square next to the bowl": "slide:next-to block_yellow bowl"},
     "heldout33.tsv": {
-        # "the tube thing": the toy cylinder lying as a log, read as the toy cube
-        "move the tiny block past the tube thing": "slide:past cube_small cube",
-        # "the larger of the two cubes": the toy block named "cube", read as the small cube
-        "Kindly slide the larger of the two cubes toward the yellow triangle.": "slide:closer cube_small prism",
         # a clause without a verb after a push: a slide for the author, read as the push again
         "Push the ball to the mug. After, the same ball around the triangle.":
-            "push:closer soccerball mug ; push:around soccerball prism",
-        # "the block" with two cubes on the table (the toy block named "cube" and cube_small): refused by the author
-        "Put the block next to the ball.": "slide:next-to cube_small soccerball",
-        # "the big cube": the toy block named "cube", read as the mug (a verbless line once refused for its form)
-        "The small cube please away from the big cube.": "slide:away cube_small mug"},
+            "push:closer soccerball mug ; push:around soccerball prism"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
 check below until the entry is removed."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 105), ("heldout31.tsv", 60), ("heldout32.tsv", 101),
-                                         ("heldout33.tsv", 102), ("heldout34.tsv", 114)])
+@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 123), ("heldout31.tsv", 119), ("heldout32.tsv", 153),
+                                         ("heldout33.tsv", 145), ("heldout34.tsv", 155)])
 def test_the_thirtieth_to_thirty_fourth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1

@@ -89,3 +89,35 @@ def test_said_by_learners_and_texters(plugins, sentence, expect, table):
 def test_a_closeness_said_after_a_motion_that_has_none_is_refused(plugins):
     with pytest.raises(L2PError, match="right extent"):
         read("move F away from D, really close", plugins, LINE)
+
+
+SIMULATED = "heldout30.tsv"
+"""ManiSkill's apple and beaker, Roboschool's potion bottle, Cube_01 and Cube_02 (blue), Cube_03 (yellow) and a
+green Cylinder_01."""
+TWO_GREEN = "heldout31.tsv"
+"""block1 a green cube in front, block2 a green cube at the back, block3 red, block4 a white brick, block5 a white
+bar, block6 a black cylinder."""
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    ("move the green tin next to the apple", "slide:next-to Cylinder_01 Apple_01", SIMULATED),  # named a cylinder
+    ("put the white cup by the apple", "slide:next-to Beaker_01 Apple_01", SIMULATED),          # a beaker is a cup
+    ("Move the white measuring cup away from the big blue cube.", "slide:away Beaker_01 Cube_02", SIMULATED),
+    ("ok chat: cylinder past cube 2", "slide:past Cylinder_01 Cube_02", SIMULATED),
+    ("move the green cube in front next to the red cube", "slide:next-to block1 block3", TWO_GREEN),
+    ("Put the red cube next to the green cube behind.", "slide:next-to block3 block2", TWO_GREEN),
+])
+def test_kinds_and_places_said_otherwise(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+def test_a_tin_is_the_can_where_one_is_there(plugins):
+    """heldout5's table has a can and a plain cylinder F: "the tin" is the can, never a guess between the two."""
+    assert read("move the tin next to the mug", plugins, "heldout5.tsv") == "slide:next-to can mug"
+
+
+def test_one_object_said_two_ways_that_disagree_is_refused(plugins):
+    with pytest.raises(L2PError, match="said two ways"):
+        read("The yellow cube, nearest the robot, put it next to the beaker.", plugins, SIMULATED)
+    assert read("the yellow cube, the small one, put it next to the beaker", plugins, SIMULATED) == \
+        "slide:next-to Cube_03 Beaker_01"
