@@ -171,8 +171,9 @@ class Profile:
         return any(n.measure == "squareness" for n in self.needs)
 
 
-STICK = Profile((Need("elongation", (2.2, INF), (6.0, INF)),))
-"""Long and thin, lying or standing ("stick", "rod", "pole"): the longer the better; a 12 x 3 x 3 cm box is one."""
+STICK = Profile((Need("elongation", (1.8, INF), (6.0, INF)),))
+"""Long and thin, lying or standing ("stick", "rod", "pole"): the longer the better; a 12 x 3 x 3 cm box is one, and
+an 8 x 4 x 4 cm bar where nothing thinner is there ("the green stick" for the one long block on a table)."""
 BAR = Profile((Need("elongation", (1.4, INF), (3.0, 6.0)),), round=False)
 """Long with some bulk ("bar", "beam"): a bar of soap (7 x 4.5 cm) is one, a 16 x 1 x 1 cm stirrer hardly."""
 PLANK = Profile((Need("elongation", (1.4, INF), (3.0, 8.0)), Need("flatness", (1.0, INF), (1.5, INF))), round=False)

@@ -157,6 +157,9 @@ OPEN = {
         # a clause without a verb after a push: a slide for the author, read as the push again
         "Push the ball to the mug. After, the same ball around the triangle.":
             "push:closer soccerball mug ; push:around soccerball prism"},
+    "heldout36.tsv": {
+        # "the leftmost one in the middle row": D for the author, read as the middle row's middle object E
+        "Move the smallest object next to the leftmost one in the middle row.": "slide:next-to H E"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -173,6 +176,21 @@ def test_the_thirtieth_to_thirty_fourth_authors_corpora(plugins, name, floor):
     CALVIN-style tabletop named block_red ... with a bowl and a coffee stirrer; pybullet's toy models named after
     their files: cube, cylinder, prism, mug, soccerball; seven blocks named "1" to "7"): written cold at the
     twenty-sixth session's start and read once on its start code: 63.1 % / 2, 63.8 % / 4 and 71.2 % / 1."""
+    table, misses = score(plugins, name)
+    wrong = [(case.sentence, got) for case, got in misses
+             if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    right = sum(c["right"] for c in table.values())
+    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
+@pytest.mark.parametrize("name, floor", [("heldout35.tsv", 141), ("heldout36.tsv", 130)])
+def test_the_thirty_fifth_and_thirty_sixth_authors_corpora(plugins, name, floor):
+    """heldout35.tsv (a game engine's camelCase names: redCube, smallBox, Meta-World's coffee cup, robosuite's lemon
+    and soda can) and heldout36.tsv (eight objects A ... H in three rows): written cold during the twenty-sixth
+    session and read once on its last language code: 88.1 % / 0 wrong and 80.6 % / 1 wrong (:data:`OPEN`); on the
+    session's start code 88.1 % / 0 and 81.2 % / 1 (the line between, "the green stick" for an 8 x 4 cm bar, lost to
+    the proportions' stick and mended after the reading)."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
              if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]

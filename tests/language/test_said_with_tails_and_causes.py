@@ -121,3 +121,9 @@ def test_one_object_said_two_ways_that_disagree_is_refused(plugins):
         read("The yellow cube, nearest the robot, put it next to the beaker.", plugins, SIMULATED)
     assert read("the yellow cube, the small one, put it next to the beaker", plugins, SIMULATED) == \
         "slide:next-to Cube_03 Beaker_01"
+
+
+def test_the_one_long_block_on_a_table_is_the_stick(plugins):
+    """An 8 x 4 x 4 cm bar is "the stick" where nothing thinner is there; beside a 12 x 3 cm bar it is the brick."""
+    assert read("move the green stick next to H", plugins, "heldout36.tsv") == "slide:next-to G H"
+    assert read("put the white stick next to block3", plugins, TWO_GREEN) == "slide:next-to block5 block3"
