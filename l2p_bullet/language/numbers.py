@@ -36,9 +36,11 @@ GENERIC = frozenset({"object", "obj", "item", "thing", "piece", "part", "element
 BLOCKY = frozenset({"cube", "box", "brick", "block"})
 """Labels people give any block-shaped object, a cube or a box alike ("cube 4" for a brick-shaped box)."""
 RELATION_ENDS = frozenset({"to", "of", "from", "nearest", "closest", "farthest", "furthest", "than", "and", "or",
-                           "near", "by", "beside", "behind", "past", "around", "round", "between", "with", "at", "in",
-                           "on", "next", "toward", "towards", "under", "over", "besides", "except", "not"})
-"""Words a description before "number N" cannot end with: "the cube nearest number 2" measures from number 2."""
+                           "near", "by", "beside", "behind", "between", "with", "at", "in", "on", "next", "toward",
+                           "towards", "under", "over", "besides", "except", "not"})
+"""Words a description before "number N" cannot end with: "the cube nearest number 2" measures from number 2. The
+actions' own words are not listed (the actions declare them; a description ending in one is read, and refused where
+it names another object than the number)."""
 
 
 def number_of(word: str) -> int | None:
