@@ -148,11 +148,16 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
         return None
     describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES) \
-        | set(KIND_SYNONYMS)  # "the triangular toy" on a table with no prism
+        | set(KIND_SYNONYMS) | GROUPED  # "the triangular toy" on a table with no prism; "... in the middle row"
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
+
+
+GROUPED = frozenset({"row", "rows", "column", "columns", "line", "lines", "corner", "corners", "edge", "edges"})
+"""Words that place an object in a group or a part of the table ("the leftmost one in the middle row"): left over,
+the words before them would be read without them ("the leftmost one in the middle"), another object."""
 
 
 def _asks_no_extent(before: list[str], verbs: list) -> bool:

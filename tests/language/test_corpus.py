@@ -157,9 +157,6 @@ OPEN = {
         # a clause without a verb after a push: a slide for the author, read as the push again
         "Push the ball to the mug. After, the same ball around the triangle.":
             "push:closer soccerball mug ; push:around soccerball prism"},
-    "heldout36.tsv": {
-        # "the leftmost one in the middle row": D for the author, read as the middle row's middle object E
-        "Move the smallest object next to the leftmost one in the middle row.": "slide:next-to H E"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -179,9 +176,10 @@ def test_the_thirtieth_to_thirty_sixth_authors_corpora(plugins, name, floor):
     twenty-sixth session's start and read once on its start code: 63.1 % / 2, 63.8 % / 4 and 71.2 % / 1.
     heldout35.tsv (a game engine's camelCase names: redCube, smallBox, Meta-World's coffee cup, robosuite's lemon and
     soda can) and heldout36.tsv (eight objects A ... H in three rows): written cold during that session and read once
-    on its last language code: 88.1 % / 0 wrong and 80.6 % / 1 wrong (:data:`OPEN`); on its start code 88.1 % / 0
-    and 81.2 % / 1 (the line between, "the green stick" for an 8 x 4 cm bar, lost to the proportions' stick and
-    mended after the reading)."""
+    on its last language code: 88.1 % / 0 wrong and 80.6 % / 1 wrong; on its start code 88.1 % / 0 and 81.2 % / 1
+    (the line between, "the green stick" for an 8 x 4 cm bar, lost to the proportions' stick and mended after the
+    reading). The wrong one ("the leftmost one in the middle row" read without "row", the middle row's middle object)
+    is refused since: the lenient reading leaves no word of a row, a column, a corner or an edge over."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
              if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]

@@ -127,3 +127,10 @@ def test_the_one_long_block_on_a_table_is_the_stick(plugins):
     """An 8 x 4 x 4 cm bar is "the stick" where nothing thinner is there; beside a 12 x 3 cm bar it is the brick."""
     assert read("move the green stick next to H", plugins, "heldout36.tsv") == "slide:next-to G H"
     assert read("put the white stick next to block3", plugins, TWO_GREEN) == "slide:next-to block5 block3"
+
+
+def test_a_row_said_is_never_read_past(plugins):
+    """Rows of the table are not read yet: "the leftmost one in the middle row" is asked, never read as "the leftmost
+    one in the middle" (another object) by leaving "row" over."""
+    with pytest.raises(L2PError):
+        read("Move H next to the leftmost one in the middle row.", plugins, "heldout36.tsv")
