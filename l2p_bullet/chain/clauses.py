@@ -26,6 +26,7 @@ from ..language import (
     resolve_object,
     trailing_join,
     typos,
+    verb_heads,
 )
 from ..language.descriptions import naming_words
 from ..language.numbers import apposed
@@ -272,7 +273,7 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         return _of_group(text, previous, scene, plugins, depth)
     what, rest = apposed(m.group("what"), m.group("rest"))  # "the red one, number 2 - move it ..."
     shows = pointing.shown(what, scene, context)
-    if shows is None and what != m.group("what") and not {w.lower() for w in what.split()} & _VERB_HEADS:
+    if shows is None and what != m.group("what") and not {w.lower() for w in what.split()} & verb_heads():
         resolve_object(what, scene)  # a description the number contradicts is refused as such, naming both
     if shows is None or (len(shows.objects) < 2 and shows.lifted):
         return None  # one object shown is what "it" then means ("About the can: move it past Q"); lifted, a carry
@@ -287,7 +288,7 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
     except L2PError:
         pass
     said = rest.split()
-    if len(shows.objects) == 1 and said and said[0].lower() not in {v.split()[0] for v in known_verbs()}:
+    if len(shows.objects) == 1 and said and said[0].lower() not in verb_heads():
         # "biggest item, away from cam", "cube by the ball, over to P": where the object shown goes
         try:
             return _resolve_text(f"move it {rest}", previous, scene, plugins, depth + 1, shows.context, shows)
@@ -301,19 +302,17 @@ def _same_in_apposition(what: str, rest: str, shows: pointing.Shown, scene: Scen
     one object said twice, so where the two name different objects the sentence is refused naming both (the relation
     alone would otherwise be what "it" means)."""
     m = pointing.TOPIC.match(rest)
-    said = [w.lower() for w in (m.group("what").split() if m is not None else [])]
+    if m is None or len(shows.objects) != 1:
+        return
+    said = [w.lower() for w in m.group("what").split()]
     while said and said[0] in ("the", "one", "which", "that's", "is", "that"):
         said = said[1:]
-    if m is None or len(shows.objects) != 1 or not said or said[0] not in NEAREST | FARTHEST:
+    if not said or said[0] not in NEAREST | FARTHEST:
         return  # a description said again ("That flat thing, the brown one, ...") narrows the first: corrections.py
     again = pointing.shown(m.group("what"), scene, shows.context)
     if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
         raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
                             "object said two ways that name different objects; say which you mean")
-
-
-_VERB_HEADS = frozenset(v.split()[0] for v in known_verbs())
-"""The known verbs' first words: a topic that holds one is a command's start, not a description."""
 
 
 def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list,

@@ -23,8 +23,8 @@ the jar"; "carry the jar over and set it beside the stone" is "carry the jar bes
 _AIR_VERBS = r"(?:take|move|bring|get|lift|translate|transport|carry|raise|hoist|grab|pick)"
 _AIR = r"(?:up\s+)?(?:in|into|through|thru)\s+the\s+air"
 _AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay|take)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
-_ASKING = (r"(?:(?:please|pls|now|can\s+you|could\s+you|would\s+you|can\s+the\s+(?:robot|arm)"
-           r"|could\s+the\s+(?:robot|arm))\s+)*")
+_ASK = r"please|pls|now|can\s+you|could\s+you|would\s+you"
+_ASKING = rf"(?:(?:{_ASK}|can\s+the\s+(?:robot|arm)|could\s+the\s+(?:robot|arm))\s+)*"
 IN_THE_AIR = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
 AIR_FIRST = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
 """A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
@@ -34,7 +34,7 @@ YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>
 yellow cube"."""
 
 
-MAKE_GO = re.compile(r"^\s*(?:(?:please|pls|now|can\s+you|could\s+you|would\s+you)[\s,]+)*make\s+(?P<what>.+?)"
+MAKE_GO = re.compile(rf"^\s*(?:(?:{_ASK})[\s,]+)*make\s+(?P<what>.+?)"
                      r"\s+(?:go|turn|move|travel|slide|circle|loop|pass)"
                      r"\s+(?P<rest>(?:(?:a\s+)?(?:bit|little|lot|way|far|right|just|slightly)\s+)*"
                      r"(?:around|round|past|beyond|by|next|beside|closer|nearer|toward|towards|away|over)\b.*)$",

@@ -16,7 +16,7 @@ from .grammar import (
 from .lists import ListCommand, parse_list, phrase_matches
 from .pronouns import Context
 from .references import resolve_object
-from .verbs import EXAMPLE, VERBS, known_verbs, split_verb
+from .verbs import EXAMPLE, VERBS, known_verbs, split_verb, verb_heads
 from .words import is_courtesy, strip_polite
 
 __all__ = [
@@ -30,6 +30,7 @@ __all__ = [
     "ListCommand",
     "is_courtesy",
     "known_verbs",
+    "verb_heads",
     "manner_of_sentence",
     "parse",
     "parse_list",

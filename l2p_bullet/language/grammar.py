@@ -34,7 +34,7 @@ from .goals import goal_to_verb, passive_to_verb, said_now, state_to_verb
 from .pronouns import Context
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
 from .references import object_pairs, resolve_object, try_object
-from .verbs import EXAMPLE, IN_THE_AIR, _on_the_table, _verb_patterns, _without, known_verbs, split_verb
+from .verbs import EXAMPLE, IN_THE_AIR, _on_the_table, _verb_patterns, _without, known_verbs, split_verb, verb_heads
 from .words import (
     by_gerund,
     drop_frames,
@@ -235,7 +235,7 @@ def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
     low = [w.lower() for w in words]
     if set(low) & {"is", "are", "was", "were", "be", "should", "must", "isn't", "aren't", "not"}:
         return False
-    if set(low[1:]) & {v.split()[0] for v in known_verbs()}:
+    if set(low[1:]) & verb_heads():
         return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
     return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in _readings(phrases) for i in range(1, len(low)))
 

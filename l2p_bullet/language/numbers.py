@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
 from ..core.scene import Scene, SceneObject
 from ..errors import L2PError, LanguageError, UnknownObjectError
@@ -172,13 +172,7 @@ def _apposed(n: int, description: str, names: tuple[str, ...], said: str, scene:
              resolve: Callable[..., str]) -> str:
     """The one of ``names`` (the objects numbered ``n``) that ``description`` fits ("the red one, number 2"); refused
     where it fits none of them or picks another object by itself."""
-    fits = []
-    for name in names:
-        try:
-            if resolve(description, scene.only([name]), role) == name:
-                fits.append(name)
-        except L2PError:
-            pass
+    fits = _fits(description, names, scene, role, resolve)
     if not fits:
         if len(names) > 1:
             raise UnknownObjectError(f'nothing numbered {n} is "{description}" ({", ".join(names)})', said,
@@ -197,16 +191,22 @@ def _apposed(n: int, description: str, names: tuple[str, ...], said: str, scene:
     return name
 
 
+def _fits(description: str, names: Iterable[str], scene: Scene, role: str, resolve: Callable[..., str]) -> list[str]:
+    """Those of ``names`` that ``description`` fits, each asked alone (as if the only object on the table)."""
+    fits = []
+    for name in names:
+        try:
+            if resolve(description, scene.only([name]), role) == name:
+                fits.append(name)
+        except L2PError:
+            pass
+    return fits
+
+
 def _elsewhere(description: str, scene: Scene, role: str, resolve: Callable[..., str]) -> str:
     """", and "the blue one" is 3" (or "fits 3, 4") where the description fits other objects; "" where it fits
     none."""
-    fits = []
-    for o in scene.objects:
-        try:
-            if resolve(description, scene.only([o.name]), role) == o.name:
-                fits.append(o.name)
-        except L2PError:
-            pass
+    fits = _fits(description, scene.names, scene, role, resolve)
     if not fits:
         return ""
     return f', and "{description}" {"is" if len(fits) == 1 else "fits"} {", ".join(fits)}'

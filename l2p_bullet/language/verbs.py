@@ -28,6 +28,12 @@ def known_verbs() -> list[str]:
     return out
 
 
+def verb_heads() -> frozenset[str]:
+    """The known verbs' first words ("pick" of "pick up"): words that open a command, never a description. Asked
+    each time, as :func:`known_verbs` is, so a manner installed later counts."""
+    return frozenset(v.split()[0] for v in known_verbs())
+
+
 def _verb_patterns() -> list[tuple[tuple[str, ...], tuple[str, ...], str, str]]:
     """(head tokens, gap tokens, verb as declared, manner) for every installed manner's verb, longest first;
     the old verbs no manner claims are the default manner's."""
