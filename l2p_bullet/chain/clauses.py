@@ -246,6 +246,15 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
             read = []
         told = apart.confirmed(dash.group("after"), Clause(1, text, read[0][1]), scene) if len(read) == 1 else None
         pieces = [(text, told.command)] if told is not None else None
+    first = apart.NOT_DRAGGED_FIRST.match(text) if pieces is None and depth < MAX_CLAUSES else None
+    if first is not None:  # "Without dragging it across the table, move A ...": as "move A ..., without dragging it"
+        try:
+            read = _resolve_text(first.group("rest"), previous, scene, plugins, depth + 1, context, pair)
+        except L2PError:
+            read = []
+        told = apart.manner_after(f"without {first.group('how')} it", Clause(1, text, read[0][1])) if len(
+            read) == 1 else None
+        pieces = [(text, told.command)] if told is not None else None
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)
     full = _to_the_anchor(text, context, plugins) if pieces is None else None

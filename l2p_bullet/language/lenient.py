@@ -40,7 +40,7 @@ from .reference_words import (
     SIZE_SUPERLATIVES,
 )
 from .references import try_object
-from .synonyms import KIND_SYNONYMS, SIZE_WORDS
+from .synonyms import KIND_NAMES, KIND_SYNONYMS, SIZE_WORDS
 from .words import NEGATIONS, PACES
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
@@ -128,7 +128,8 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
         return None
     start, end, phrase, action, implied = found[0]
     outside = low[:start] + low[end:]  # "not so close to" is a phrase; "not" elsewhere stops the reading
-    if set(outside) & STOPS or any(ch.isdigit() for w in outside for ch in w):
+    named = {n.lower() for n in scene.names if not n.isdigit()}  # "block2" is a name; "5" may be a count as well
+    if set(outside) & STOPS or any(ch.isdigit() for w in outside if w not in named for ch in w):
         return None
     if phrase in AMBIGUOUS_PHRASES:
         return None
@@ -147,8 +148,9 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     count = anchors.get(action, 1)
     if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
         return None
+    # "the triangular toy", "the cereal box" on a table with neither; "... in the middle row"
     describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES) \
-        | set(KIND_SYNONYMS) | GROUPED  # "the triangular toy" on a table with no prism; "... in the middle row"
+        | set(KIND_SYNONYMS) | set(KIND_NAMES) | GROUPED
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command

@@ -23,12 +23,15 @@ from .reference_words import (
     CORNERS,
     DETERMINERS,
     DIRECTIONS,
+    EDGE_WORDS,
     FARTHEST,
+    MIDDLE_WORDS,
     NEAREST,
     NOUNS,
     PERIPHRASTIC,
     PLACE_ADJECTIVES,
     SHAPE_NOUNS,
+    SIDE_SUPERLATIVE,
     SIZE_SUPERLATIVES,
     TIE,
     TIE_DISTANCE,
@@ -80,12 +83,34 @@ def bearing_off(v: np.ndarray, direction: float) -> float:
     return abs(math.remainder(ang - direction, 2 * math.pi))
 
 
+PLAIN_NOUNS = frozenset({"one", "ones", "thing", "things", "object", "objects", "item", "items", "piece", "part"})
+"""Nouns that name no kind ("the one at the back"): every object."""
+UNREAD_PLACES = frozenset(DIRECTIONS) | frozenset(SIDE_SUPERLATIVE.values()) | EDGE_WORDS - {"part"} | MIDDLE_WORDS \
+    | {"behind", "corner", "corners", "row", "rows", "column", "columns"}
+"""Words of a place: in a description a relation reads beside another place, left unread, they would leave the other
+place to pick another object ("the one way over on the left side in the middle of the table")."""
+
+
 def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
-    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the") allows; "block" and
-    "brick" a block to look at, never the bowl or the mug (as descriptions.candidates reads them), a word of
-    proportions ("the stick", "the long one") the objects it admits (language/proportions.py)."""
+    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the box", "the") allows, as
+    descriptions.candidates reads a description ("the box at the back" is the box farthest back, never the plate
+    behind it). Where words it does not read are left ("the cube sitting"), its colour and shape words alone: "block"
+    and "brick" a block to look at, never the bowl or the mug, a word of proportions ("the stick", "the long one")
+    the objects it admits (language/proportions.py); an unread place word is refused (:data:`UNREAD_PLACES`)."""
     low = [w.lower() for w in restrict.split()]
     fits = list(scene.objects)
+    said = [w for w in restrict.split() if w.lower() not in DETERMINERS]
+    if {w.lower() for w in said} - PLAIN_NOUNS:
+        from .descriptions import candidates  # lazy: descriptions reads its sizes here
+
+        try:  # the objects the description names by kind, colour, shape and proportions ("the box": a box)
+            return candidates(restrict, said, tuple(w.lower() for w in said), scene)
+        except (LanguageError, UnknownObjectError):
+            said_before = low[:-1] if low[-1] == "right" else low  # "right in the middle": how near, not a side
+            placed = [w for w in said_before if w in UNREAD_PLACES]
+            if placed:  # "the one on the left side" before "in the middle": two places, one of them unread
+                raise LanguageError(f'"{restrict}" says a place ("{placed[0]}") before another; say one place, or '
+                                    "name the object") from None
     if set(low) & BLOCK_WORDS:
         fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]

@@ -91,9 +91,10 @@ OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "on
     (free, noun, "is"): ("the", noun) for free in ("whichever", "whatever") for noun in ("thing", "one", "object",
                                                                                          "block", "cube", "item")}
 """Free relatives that open a description ("whatever is closest to A"): the one that is."""
-RELATIVES = (("that", "is"), ("which", "is"), ("that's",), ("thats",), ("which's",))
-"""A relative clause after a noun ("the cube that is red", "the block that's closest to E"): its words describe
-the noun as if they stood before it."""
+RELATIVES = (("that", "is"), ("which", "is"), ("that's",), ("thats",), ("which's",)) + tuple(
+    (rel, verb) for rel in ("that", "which") for verb in ("stands", "sits", "lies", "rests", "stand", "sit", "lie"))
+"""A relative clause after a noun ("the cube that is red", "the block that's closest to E", "the carton that stands
+at the back"): its words describe the noun as if they stood before it."""
 SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smallest": ("area", min),
                      "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
                      "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),

@@ -176,8 +176,8 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
     return tuple(o.name for o in fits) if len(fits) >= 2 and number_said(count, len(fits)) == len(fits) else None
 
 
-CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit"})
-"""Words for how much of a kind there is ("a bar of soap"): the kind is what the object is."""
+CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit", "stick"})
+"""Words for how much of a kind there is ("a bar of soap", "a stick of butter"): the kind is what the object is."""
 VESSELS = frozenset({"tin", "can", "bottle", "carton", "box", "jar", "packet", "bag", "cup", "mug", "bowl", "pot",
                      "tub", "tube"})
 """Kinds that hold what they are named by ("the tin of soup", "the box of milk"): the vessel and its content both

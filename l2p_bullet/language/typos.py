@@ -34,7 +34,8 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "u": "you", "ur": "your", "thru": "through", "w": "with", "abt": "about", "bc": "because",
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
-             "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before"}
+             "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
+             "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 
@@ -107,7 +108,9 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
             return w
         return hit.capitalize() if w[0].isupper() else hit
 
-    return TWO_FOR_TO.sub(r"\1 to", _WORD.sub(fix, sentence))
+    mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, sentence)))
+    mended = TWO_BEFORE_THE.sub("to ", mended)
+    return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
 
 
 RUNS = re.compile(r"([a-z])\1{2,}")
@@ -116,3 +119,10 @@ TWO_FOR_TO = re.compile(r"\b(closer|close|nearer|near|next|up|over|back|right|on
                         re.IGNORECASE)
 """"2" texted for "to" after the word a preposition starts with ("closer 2 the white block", "next 2 it"); a number
 elsewhere is left as typed."""
+TWO_WARDS = re.compile(r"\b2(wards?)\b", re.IGNORECASE)
+""""2wards" texted for "towards"."""
+TWO_BEFORE_THE = re.compile(r"(?<=[a-z] )2 (?=the\b)", re.IGNORECASE)
+""""2" texted for "to" before an article ("move the green cube 2 the bowl"): no number stands before "the"."""
+ONE_FOR_ONE = re.compile(r"\b(red|green|blue|yellow|white|black|orange|purple|pink|grey|gray|brown|big|small|little|"
+                         r"other|front|back|left|right|tall|short|last|first)\s+1\b(?!\s*(?:cm|mm|m)\b)", re.IGNORECASE)
+""""1" texted for "one" after an adjective ("the blue 1", "the other 1"), where no object is named "1"."""

@@ -199,8 +199,14 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
         noun = i + 1 < len(low) and low[i + 1] in NOUN_USE  # "your next move is to lift ..."
         if w in verbs and not noun and not (set(low[max(0, i - 2):i]) & NEGATIONS
                                             and "just" not in low[max(0, i - 1):i]):
-            return words[i:]
+            # "Without dragging it, move A ...": the words before ask for a carry, which reading past would lose
+            return words if _not_dragged(low[:i]) else words[i:]
     return words
+
+
+def _not_dragged(low: list[str]) -> bool:
+    """Whether ``low`` says "without dragging" or "without sliding" (chain/apart.py reads it as a carry)."""
+    return any(w == "without" and low[i + 1:i + 2] in (["dragging"], ["sliding"]) for i, w in enumerate(low))
 
 
 def _own_words(before: list[str], keep: frozenset[str], told: bool) -> bool:
