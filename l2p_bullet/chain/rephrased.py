@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import re
 
+from ..language import verb_heads
+
 _PUT_IT = r"\s+and\s+(?:set|put|place|drop|lay)\s+it(?:\s+down)?\s+"
 OVER_TO_AND_PUT = re.compile(rf"\s+over\s+to\s+(?P<to>.+?){_PUT_IT}(?P<how>.+?)(?P<it>\s+it)?\s*[.!?]*\s*$",
                              re.IGNORECASE)
@@ -29,9 +31,13 @@ IN_THE_AIR = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_A
 AIR_FIRST = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
 """A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
 in the air the cube and bring it near the bottle"."""
-YOU_VERB = re.compile(r"^\s*(?P<what>.+?),?\s+you\s+(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
+YOU_VERB = re.compile(r"^\s*(?P<what>.+?)(?:,\s*(?:this|that)(?:\s+one)?)?,?\s+you\s+(?:should\s+|must\s+|can\s+)?"
+                      r"(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
 """The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
-yellow cube"."""
+yellow cube", "The small red cube, this you push to the box", "The block 1 you should move past the box"."""
+TOPIC_BARE = re.compile(r"^\s*(?P<what>.+?)\s+(?P<verb>[a-z]+)\s+(?P<it>it|that|this)\s+(?P<rest>.+)$", re.IGNORECASE)
+"""A topic said before the command without a comma: "okay the bowl move it closer to the blue cube" is "okay the
+bowl, move it closer to the blue cube" (the verb a known one, the topic not opening with one)."""
 
 
 MAKE_GO = re.compile(rf"^\s*(?:(?:{_ASK})[\s,]+)*make\s+(?P<what>.+?)"
@@ -121,6 +127,10 @@ def in_other_words(text: str) -> list[str]:
     m = YOU_VERB.match(text)
     if m is not None:
         out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
+    m = TOPIC_BARE.match(text)
+    if m is not None and "," not in m.group("what") and m.group("verb").lower() in verb_heads() \
+            and m.group("what").split()[0].lower() not in verb_heads():
+        out.append(f"{m.group('what')}, {m.group('verb')} {m.group('it')} {m.group('rest')}")
     to_then = TO_THEN.match(text)
     if to_then is not None:
         out.append(f"{to_then.group('head')} {to_then.group('rest')}")

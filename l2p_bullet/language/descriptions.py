@@ -211,6 +211,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     for group in kinds:
         fits = [o for o in fits if o.name in group]
     for word, group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
+        if word not in GEOMETRIC and any(o.name in group for o in fits):
+            fits = [o for o in fits if o.name in group]  # "the can": the soda can, not a plain cylinder beside it
+            continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape
                 or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too
     if colours:
@@ -243,6 +246,13 @@ def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:
     refused, lamp or none), never as the lamp "light" names alone."""
     return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in _COLOUR_WORDS else w
                  for i, w in enumerate(low))
+
+
+GEOMETRIC = frozenset({"cube", "cubes", "box", "boxes", "cylinder", "cylinders", "brick", "bricks", "rectangle",
+                       "rectangles"})
+"""Shape nouns that name a shape as such: an object of that kind ("cube.obj") and any other of that shape are both
+it. Every other shape noun is a thing's name ("can", "log", "tube", "disc"): where an object is that thing, it is
+meant, not another of its shape."""
 
 
 def _before_head(low: tuple[str, ...], i: int, heads: set[str]) -> bool:

@@ -17,7 +17,8 @@ import numpy as np
 from ..core.scene import Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates
-from .places import distance_to, either_reading, superlative
+from .places import distance_to, superlative
+from .pools import either_reading
 from .reference_words import (
     DETERMINERS,
     DIRECTIONS,
@@ -195,7 +196,7 @@ def _counted_from(words: list[str]) -> tuple[list[str], str | None] | None:
 
 def _among(described: list[str], scene: Scene, choose) -> str | None:
     """``choose`` over the objects ``described`` fits (every object where it says only "one", "thing"), both ways
-    where it says "block" (language/places.either_reading); None where ``described`` is no plain description
+    where it says "block" (language/pools.either_reading); None where ``described`` is no plain description
     ("one of the three red blocks": the reader of a group said after "of" takes it)."""
     said = [w for w in described if w.lower() not in DETERMINERS]
     if all(w.lower() in GENERIC for w in said):

@@ -1,6 +1,6 @@
 """An object described by what it is not: "the cube that isn't red", "the brown one that isn't the small one".
 
-The description before "that isn't" names a group (language/places.pool_of: its colour and shape); the words after
+The description before "that isn't" names a group (language/pools.pool_of: what it describes); the words after
 it name the ones left out, by colour or kind ("red") or as an object of the group ("the small one"). The one object
 left is meant; where several are left it is asked, and where none is, it is no reading of this kind.
 """
@@ -12,7 +12,7 @@ from collections.abc import Callable
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from .places import pool_of
+from .pools import pool_of
 
 OTHER_THAN = re.compile(r"^(?P<base>.+?)\s+(?:that|which)\s+(?:isn't|isnt|is\s+not)\s+(?P<not>.+?)\s*$",
                         re.IGNORECASE)

@@ -11,27 +11,20 @@ import math
 
 import numpy as np
 
-from ..core.scene import COLORS, Scene, SceneObject
+from ..core.scene import COLORS, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .proportions import PROFILES, admits, outline_sides
+from .proportions import outline_sides
 from .reference_words import (
-    BLOCK_KINDS,
-    BLOCK_SHAPES,
-    BLOCK_WORDS,
     COLOR_SYNONYMS,
     COMPARATIVE_OF,
     CORNERS,
     DETERMINERS,
     DIRECTIONS,
-    EDGE_WORDS,
     FARTHEST,
-    MIDDLE_WORDS,
     NEAREST,
     NOUNS,
     PERIPHRASTIC,
     PLACE_ADJECTIVES,
-    SHAPE_NOUNS,
-    SIDE_SUPERLATIVE,
     SIZE_SUPERLATIVES,
     TIE,
     TIE_DISTANCE,
@@ -40,7 +33,7 @@ from .reference_words import (
     TIE_PLACE,
     TIE_PLACE_M,
 )
-from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE, kind_groups, own_kinds_of, shape_of
+from .synonyms import BIG, MEDIUM, SMALL, TALL, TIE_SIZE
 
 
 def named_colours(low) -> set[str]:
@@ -81,70 +74,6 @@ def bearing_off(v: np.ndarray, direction: float) -> float:
     """The angle between ``v`` and the scene direction ``direction`` (radians from +x: the robot's left is pi/2)."""
     ang = math.atan2(float(v[1]), float(v[0]))
     return abs(math.remainder(ang - direction, 2 * math.pi))
-
-
-PLAIN_NOUNS = frozenset({"one", "ones", "thing", "things", "object", "objects", "item", "items", "piece", "part"})
-"""Nouns that name no kind ("the one at the back"): every object."""
-UNREAD_PLACES = frozenset(DIRECTIONS) | frozenset(SIDE_SUPERLATIVE.values()) | EDGE_WORDS - {"part"} | MIDDLE_WORDS \
-    | {"behind", "corner", "corners", "row", "rows", "column", "columns"}
-"""Words of a place: in a description a relation reads beside another place, left unread, they would leave the other
-place to pick another object ("the one way over on the left side in the middle of the table")."""
-
-
-def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
-    """The objects a relation chooses among: those that ``restrict`` ("the red block", "the box", "the") allows, as
-    descriptions.candidates reads a description ("the box at the back" is the box farthest back, never the plate
-    behind it). Where words it does not read are left ("the cube sitting"), its colour and shape words alone: "block"
-    and "brick" a block to look at, never the bowl or the mug, a word of proportions ("the stick", "the long one")
-    the objects it admits (language/proportions.py); an unread place word is refused (:data:`UNREAD_PLACES`)."""
-    low = [w.lower() for w in restrict.split()]
-    fits = list(scene.objects)
-    said = [w for w in restrict.split() if w.lower() not in DETERMINERS]
-    if {w.lower() for w in said} - PLAIN_NOUNS:
-        from .descriptions import candidates  # lazy: descriptions reads its sizes here
-
-        try:  # the objects the description names by kind, colour, shape and proportions ("the box": a box)
-            return candidates(restrict, said, tuple(w.lower() for w in said), scene)
-        except (LanguageError, UnknownObjectError):
-            said_before = low[:-1] if low[-1] == "right" else low  # "right in the middle": how near, not a side
-            placed = [w for w in said_before if w in UNREAD_PLACES]
-            if placed:  # "the one on the left side" before "in the middle": two places, one of them unread
-                raise LanguageError(f'"{restrict}" says a place ("{placed[0]}") before another; say one place, or '
-                                    "name the object") from None
-    if set(low) & BLOCK_WORDS:
-        fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
-    low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
-    colours = named_colours(low)
-    if colours:
-        fits = [o for o in fits if o.color in colours]
-    shapes = {SHAPE_NOUNS[w] for w in low if w in ("cube", "cylinder")}
-    if shapes:
-        fits = [o for o in fits if shape_of(o) in shapes]
-    for word in (w for w in low if w in PROFILES and w not in {n.lower() for n in scene.names}):
-        fits = [o for o in fits if admits(word, o, kind_groups(scene))]  # "the stick nearest the bowl": a stick
-    return fits
-
-
-def either_reading(described: list[str], scene: Scene, choose, pool: list[SceneObject] | None = None) -> str:
-    """``choose`` over the objects ``described`` allows (``pool`` where the caller chose them); with "block" in it,
-    over the block-shaped ones too, and the description refused as ambiguous where the two readings differ."""
-    pool = pool_of(" ".join(described), scene) if pool is None else pool
-    if not {w.lower() for w in described} & BLOCK_WORDS:
-        return choose(pool)
-    readings = []
-    for candidates in (pool, [o for o in pool if shape_of(o) in BLOCK_SHAPES]):
-        try:
-            readings.append(choose(candidates))
-        except (LanguageError, UnknownObjectError) as e:
-            readings.append(e)
-    if isinstance(readings[0], str) and readings[0] == readings[1]:
-        return readings[0]
-    said = " ".join(described + ["..."])
-    picks = sorted({r for r in readings if isinstance(r, str)})
-    if not picks:
-        raise readings[0]  # neither reading picks one: why the first does not (a tie, nothing on that side)
-    raise LanguageError(f'"{said}" is ambiguous: as any object it is {picks[0]}, as a block '
-                        f'(a cube or a box) {"another" if len(picks) > 1 else "not one"}; name the one you mean')
 
 
 def relation_head(low: tuple[str, ...]) -> tuple[str, int, int] | None:

@@ -29,13 +29,13 @@ from .places import (
     bulk_superlative,
     comparative_of,
     distance_to,
-    either_reading,
     measure,
     one_word_comparisons,
     places_as_superlatives,
     relation_head,
     superlative,
 )
+from .pools import either_reading
 from .pronouns import Context, _pronoun
 from .reference_words import (
     CENTRE_PHRASES,

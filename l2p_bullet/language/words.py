@@ -199,9 +199,14 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
         noun = i + 1 < len(low) and low[i + 1] in NOUN_USE  # "your next move is to lift ..."
         if w in verbs and not noun and not (set(low[max(0, i - 2):i]) & NEGATIONS
                                             and "just" not in low[max(0, i - 1):i]):
-            # "Without dragging it, move A ...": the words before ask for a carry, which reading past would lose
-            return words if _not_dragged(low[:i]) else words[i:]
+            # "Without dragging it, move A ...", "With much care, lift A ...": the words before ask for a carry or
+            # a pace, which reading past would lose
+            return words if _not_dragged(low[:i]) or {x.strip(",.:;!?") for x in low[:i]} & SKIP_NEVER else words[i:]
     return words
+
+
+SKIP_NEVER = frozenset(PACES) | {"care"}
+"""Words that, before the verb, ask how to move: never read past as a preamble."""
 
 
 def _not_dragged(low: list[str]) -> bool:

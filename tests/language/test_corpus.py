@@ -157,6 +157,10 @@ OPEN = {
         # a clause without a verb after a push: a slide for the author, read as the push again
         "Push the ball to the mug. After, the same ball around the triangle.":
             "push:closer soccerball mug ; push:around soccerball prism"},
+    "heldout41.tsv": {
+        # "up against" without "right": a plain next-to for this author (and two of heldout40's lines), a tight one
+        # for two earlier authors; read as tight
+        "um put the little blue box up against the cup": "slide:next-to blue cup extent=right"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -166,7 +170,7 @@ check below until the entry is removed."""
 @pytest.mark.parametrize("name, floor", [("heldout30.tsv", 133), ("heldout31.tsv", 127), ("heldout32.tsv", 153),
                                          ("heldout33.tsv", 145), ("heldout34.tsv", 155), ("heldout35.tsv", 141),
                                          ("heldout36.tsv", 130), ("heldout37.tsv", 133), ("heldout38.tsv", 130),
-                                         ("heldout39.tsv", 120)])
+                                         ("heldout39.tsv", 120), ("heldout40.tsv", 96), ("heldout41.tsv", 121)])
 def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
@@ -184,7 +188,10 @@ def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     to heldout39.tsv (a reinforcement-learning scene indexed cube_0 ... with a bowl and a flat goal marker, texted and
     dictated; LIBERO's grocery meshes named ketchup_1, butter_1, alphabet_soup_1 ...; block1 ... block5 and a box, a
     front row): written cold at the twenty-seventh session's start and read once on its start code: 73.1 % / 0,
-    71.2 % / 1 and 71.9 % / 1 wrong."""
+    71.2 % / 1 and 71.9 % / 1 wrong. heldout40.tsv (a Gazebo world's unit_box, unit_box_0, unit_cylinder with a coke
+    can, a beer bottle and a marker cube) and heldout41.tsv (cubes named after their colours, red ... yellow, a
+    ping-pong ball and a cup): written cold during that session and read once on its last language code: 50.0 % / 0
+    and 75.6 % / 1 wrong (:data:`OPEN`)."""
     table, misses = score(plugins, name)
     wrong = [(case.sentence, got) for case, got in misses
              if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]

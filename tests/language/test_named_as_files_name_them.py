@@ -109,6 +109,8 @@ def _pantry() -> Scene:
     ("the tin of soup", "alphabet_soup"), ("the mug", "coffee_mug"), ("the coffee beans", "coffeeBeans"),
     ("red cylinder 2", "RedCylinder2"), ("the milk carton", "milk-carton"), ("the milk", "milk-carton"),
     ("the blue cup", "coffee_mug"), ("the carton", "milk-carton"), ("the brown coffee", "coffeeBeans"),
+    # "can" names the soup can, a thing of that name, before the red cylinder it only looks like
+    ("the can", "alphabet_soup"), ("the red can", "alphabet_soup"),
 ])
 def test_a_names_words_name_it(said: str, expect: str) -> None:
     assert resolve_object(said, _pantry()) == expect
@@ -117,8 +119,6 @@ def test_a_names_words_name_it(said: str, expect: str) -> None:
 @pytest.mark.parametrize("said", [
     "the box",  # the butter box and the real box
     "the yellow box",
-    "the can",  # the soup can and the red cylinder
-    "the red can",
     "the coffee",  # the mug and the beans
 ])
 def test_a_word_two_names_share_is_asked(said: str) -> None:

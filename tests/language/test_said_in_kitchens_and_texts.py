@@ -1,9 +1,11 @@
 """Sentences of the kitchen table and of texting: a thing called by what it holds ("the ketchup bottle", "the butter
 packet", "the blue bottle"), a noun that narrows a place ("the box at the back" is the box farthest back, never
 the plate behind it), a relative clause with "stands" / "sits", "Without dragging it, ..." before the command,
-the words people add after a command on a table whose names hold digits ("block2, nice"), and texting ("da", "2"
-for "to", "the blue 1", "2wards"). Checked on sentences of each kind (not the corpora's own lines), and what must
-stay refused: two places where one is left unread, a kind no object is, a manner the verb contradicts."""
+the words people add after a command on a table whose names hold digits ("block2, nice"), a topic said before the
+command without a comma ("okay the bowl move it ..."), a thing's name said as a shape noun ("the can"), and
+texting ("da", "2" for "to", "the blue 1", "2wards"). Checked on sentences of each kind (not the corpora's own
+lines), and what must stay refused: two places where one is left unread, a kind no object is, a pace or a manner
+said before the verb that no reader reads or that the verb contradicts."""
 
 from __future__ import annotations
 
@@ -45,6 +47,12 @@ INDEXED = "heldout37.tsv"
     ("slide da small green cube 2 da target", "slide:closer cube_3 target", INDEXED),
     ("put cube 3 next 2 da red 1 in front", "slide:next-to cube_3 cube_0", INDEXED),
     ("push da bowl 2wards da blue 1", "push:closer bowl_0 cube_2", INDEXED),
+    # a topic before the command without a comma, and the object before "you" with "this" or a modal
+    ("ok the blue one move it past the bowl", "slide:past cube_2 bowl_0", INDEXED),
+    ("the green cube, this you push away from the target", "push:away cube_3 target", INDEXED),
+    ("The bowl you should move next to cube 0.", "slide:next-to bowl_0 cube_0", INDEXED),
+    # a thing's name said as a shape noun: the thing, not a plain cylinder beside it
+    ("put the can next to the marker", "slide:next-to coke_can marker", "heldout40.tsv"),
 ])
 def test_read(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
@@ -55,6 +63,8 @@ def test_read(plugins, sentence, expect, table):
     ("move the one far over on the right side in the middle of the table next to block1", BLOCKS),
     # a kind no object is, on a table whose names hold digits (the lenient reading must not read past it)
     ("move the cereal box next to block3", BLOCKS),
+    # a pace before the verb in words no reader reads: never read past
+    ("With much care, lift the can past the marker", "heldout40.tsv"),
     # the verb drags, and "without dragging it" asks not to
     ("Without dragging it, slide the mug past the milk", KITCHEN),
 ])
