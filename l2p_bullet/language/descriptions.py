@@ -64,6 +64,28 @@ def looks(words: list[str], scene: Scene) -> list[str]:
     return out
 
 
+THING_COLOURS = {"lemon": "yellow", "banana": "yellow", "sunflower": "yellow", "butter": "yellow", "grass": "green",
+                 "leaf": "green", "lime": "green", "sky": "blue", "ocean": "blue", "tomato": "red", "cherry": "red",
+                 "strawberry": "red", "blood": "red", "snow": "white", "coal": "black", "chocolate": "brown"}
+"""Things whose colour names a colour ("the lemon coloured cube", "the grass-colored one"): that colour."""
+_COLOURED = ("coloured", "colored", "colour", "color")
+
+
+def coloured_like(words: list[str]) -> list[str]:
+    """"the lemon coloured cube", "the banana-colored one" -> "the yellow cube", "the yellow one"."""
+    out: list[str] = []
+    for w in words:
+        low = w.lower()
+        thing, _, suffix = low.rpartition("-")
+        if thing in THING_COLOURS and suffix in _COLOURED:
+            out.append(THING_COLOURS[thing])
+        elif low in _COLOURED and out and out[-1].lower() in THING_COLOURS:
+            out[-1] = THING_COLOURS[out[-1].lower()]
+        else:
+            out.append(w)
+    return out
+
+
 def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
     """Colour, shape, size and name words ("the red block", "red A", "the orange duck", "the tall one", "the big
     red cube").

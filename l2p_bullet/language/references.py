@@ -20,7 +20,7 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .descriptions import candidates, describe, described, looks, name_words
+from .descriptions import candidates, coloured_like, describe, described, looks, name_words
 from .group_places import in_group, table_sides
 from .numbers import number_reference
 from .other_than import other_than
@@ -233,11 +233,13 @@ def _named_before(text: str, scene: Scene, role: str, context: Context | None) -
 
 
 def _plain_order(words: list[str], scene: Scene) -> list[str]:
-    """``words`` with a free relative's opening ("whatever is closest to A": the one closest to A) and a relative
-    clause's "that is" ("the cube that is red": the cube red) taken out, a comparative among a group as its
+    """``words`` with a colour said by a thing ("the lemon coloured cube": the yellow cube), a free relative's opening
+    ("whatever is closest to A": the one closest to A) and a relative clause's "that is" ("the cube that is red":
+    the cube red) taken out, a comparative among a group as its
     superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
     ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
-    words = places_as_superlatives(comparative_of(one_word_comparisons(table_sides(looks(words, scene)))))
+    words = table_sides(looks(coloured_like(words), scene))
+    words = places_as_superlatives(comparative_of(one_word_comparisons(words)))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):

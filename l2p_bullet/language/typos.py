@@ -108,7 +108,8 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
             return w
         return hit.capitalize() if w[0].isupper() else hit
 
-    mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, sentence)))
+    said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
+    mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
 
@@ -126,3 +127,7 @@ TWO_BEFORE_THE = re.compile(r"(?<=[a-z] )2 (?=the\b)", re.IGNORECASE)
 ONE_FOR_ONE = re.compile(r"\b(red|green|blue|yellow|white|black|orange|purple|pink|grey|gray|brown|big|small|little|"
                          r"other|front|back|left|right|tall|short|last|first)\s+1\b(?!\s*(?:cm|mm|m)\b)", re.IGNORECASE)
 """"1" texted for "one" after an adjective ("the blue 1", "the other 1"), where no object is named "1"."""
+FILLERS = re.compile(r"\b(?:u+m+|u+h+m*|e+r+m+|h+m+)\b[,.]*\s*", re.IGNORECASE)
+"""Hesitations a speech-to-text transcript or a typist leaves anywhere ("um the ball um move it ..."): read past."""
+FILLER_WORDS = frozenset({"um", "umm", "uh", "uhh", "uhm", "erm", "hmm", "hm"})
+"""Fillers as a scene might name an object: where one does, the fillers stay as typed."""

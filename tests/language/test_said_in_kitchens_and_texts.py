@@ -2,10 +2,11 @@
 packet", "the blue bottle"), a noun that narrows a place ("the box at the back" is the box farthest back, never
 the plate behind it), a relative clause with "stands" / "sits", "Without dragging it, ..." before the command,
 the words people add after a command on a table whose names hold digits ("block2, nice"), a topic said before the
-command without a comma ("okay the bowl move it ..."), a thing's name said as a shape noun ("the can"), and
-texting ("da", "2" for "to", "the blue 1", "2wards"). Checked on sentences of each kind (not the corpora's own
-lines), and what must stay refused: two places where one is left unread, a kind no object is, a pace or a manner
-said before the verb that no reader reads or that the verb contradicts."""
+command without a comma ("okay the bowl move it ..."), a thing's name said as a shape noun ("the can"), hesitations
+("um"), a colour said by a thing of that colour ("the lemon coloured cube"), and texting ("da", "2" for "to", "the
+blue 1", "2wards"). Checked on sentences of each kind (not the corpora's own lines), and what must stay refused: two
+places where one is left unread, a kind no object is, a pace or a manner said before the verb that no reader reads
+or that the verb contradicts."""
 
 from __future__ import annotations
 
@@ -53,6 +54,10 @@ INDEXED = "heldout37.tsv"
     ("The bowl you should move next to cube 0.", "slide:next-to bowl_0 cube_0", INDEXED),
     # a thing's name said as a shape noun: the thing, not a plain cylinder beside it
     ("put the can next to the marker", "slide:next-to coke_can marker", "heldout40.tsv"),
+    # hesitations anywhere, as a transcript leaves them; a colour said by a thing of that colour
+    ("um the blue cube um move it next to the ball", "slide:next-to blue ball", "heldout41.tsv"),
+    ("move the tomato coloured cube toward the cup", "slide:closer red cup", "heldout41.tsv"),
+    ("slide the sky-colored cube past the ball", "slide:past blue ball", "heldout41.tsv"),
 ])
 def test_read(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
