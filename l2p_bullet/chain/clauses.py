@@ -240,21 +240,13 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
     pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
     dash = apart.DASH_THEN.match(text) if pieces is None and depth < MAX_CLAUSES else None
     if dash is not None:  # "Make it so the cylinder isn't so close to the cup - move the cylinder"
-        try:
-            read = _resolve_text(dash.group("before"), previous, scene, plugins, depth + 1, context, pair)
-        except L2PError:
-            read = []
-        told = apart.confirmed(dash.group("after"), Clause(1, text, read[0][1]), scene) if len(read) == 1 else None
-        pieces = [(text, told.command)] if told is not None else None
+        pieces = _told_beside(dash.group("before"), text, lambda c: apart.confirmed(dash.group("after"), c, scene),
+                              previous, scene, plugins, depth, context, pair)
     first = apart.NOT_DRAGGED_FIRST.match(text) if pieces is None and depth < MAX_CLAUSES else None
     if first is not None:  # "Without dragging it across the table, move A ...": as "move A ..., without dragging it"
-        try:
-            read = _resolve_text(first.group("rest"), previous, scene, plugins, depth + 1, context, pair)
-        except L2PError:
-            read = []
-        told = apart.manner_after(f"without {first.group('how')} it", Clause(1, text, read[0][1])) if len(
-            read) == 1 else None
-        pieces = [(text, told.command)] if told is not None else None
+        pieces = _told_beside(first.group("rest"), text,
+                              lambda c: apart.manner_after(f"without {first.group('how')} it", c),
+                              previous, scene, plugins, depth, context, pair)
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)
     full = _to_the_anchor(text, context, plugins) if pieces is None else None
@@ -269,6 +261,18 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
             if pieces is not None:
                 break
     return pieces
+
+
+def _told_beside(said: str, text: str, tell, previous: Command | None, scene: Scene, plugins: list, depth: int,
+                 context: Context | None, pair: pointing.Shown | None) -> list[tuple[str, Command]] | None:
+    """``said`` read as one clause, then changed by ``tell`` (a chain/apart reading of the words said beside it, given
+    that clause): the one piece of ``text``, or None where ``said`` is not one clause or ``tell`` does not apply."""
+    try:
+        read = _resolve_text(said, previous, scene, plugins, depth + 1, context, pair)
+    except L2PError:
+        return None
+    told = tell(Clause(1, text, read[0][1])) if len(read) == 1 else None
+    return [(text, told.command)] if told is not None else None
 
 
 def _group_first(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int,

@@ -256,8 +256,14 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if shaped:
         fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
-        fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
+        fits = [o for o in fits if a_block_to_look_at(o)]
     return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
+
+
+def a_block_to_look_at(o: SceneObject) -> bool:
+    """Whether "block" and "brick" may name ``o``: a cube, a box or a cylinder, or a mesh of a block's kind (a lego
+    brick, a crate), never the bowl, the mug or the bottle."""
+    return shape_of(o) != "mesh" or bool(own_kinds_of(o) & BLOCK_KINDS)
 
 
 _COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)

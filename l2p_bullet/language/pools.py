@@ -10,11 +10,10 @@ from __future__ import annotations
 
 from ..core.scene import Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .descriptions import candidates
+from .descriptions import a_block_to_look_at, candidates
 from .places import named_colours
 from .proportions import PROFILES, admits
 from .reference_words import (
-    BLOCK_KINDS,
     BLOCK_SHAPES,
     BLOCK_WORDS,
     DETERMINERS,
@@ -25,7 +24,7 @@ from .reference_words import (
     SHAPE_NOUNS,
     SIDE_SUPERLATIVE,
 )
-from .synonyms import kind_groups, own_kinds_of, shape_of
+from .synonyms import kind_groups, shape_of
 
 PLAIN_NOUNS = frozenset({"one", "ones", "thing", "things", "object", "objects", "item", "items", "piece", "part"})
 """Nouns that name no kind ("the one at the back"): every object."""
@@ -54,7 +53,7 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
                 raise LanguageError(f'"{restrict}" says a place ("{placed[0]}") before another; say one place, or '
                                     "name the object") from None
     if set(low) & BLOCK_WORDS:
-        fits = [o for o in fits if shape_of(o) != "mesh" or own_kinds_of(o) & BLOCK_KINDS]
+        fits = [o for o in fits if a_block_to_look_at(o)]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]
     colours = named_colours(low)
     if colours:
