@@ -35,7 +35,7 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
-             "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over"}
+             "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 
