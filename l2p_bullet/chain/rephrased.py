@@ -121,6 +121,10 @@ BE_LAST = re.compile(rf"^\s*(?:(?:at|in)\s+the\s+end[\s,]+)?(?:(?:should|must)\s
 the plate be": what is wished."""
 
 
+PASS = re.compile(rf"^\s*(?:(?:{_ASK})[\s,]+)*pass\s+(?P<rest>.+?\s+(?:(?:just|only|slightly|a\s+bit)\s+)*"
+                  r"(?:past|beyond|(?:on\s+|to\s+)?the\s+(?:other|far)\s+side\s+of)\s.+)$", re.IGNORECASE)
+""""Pass the cup just beyond the green cube", "can you pass the red cube on the other side of the soup can": a move
+past it ("pass it by B" may be beside B as well: not read)."""
 NOT_DRAGGED_THEN = re.compile(r"^\s*(?:don't|dont|do\s+not)\s+(?:drag|slide)\s+(?P<what>[^,]+?)\s*,\s*"
                               r"(?P<verb>lift|pick\s+up|carry|raise)\s+it\b(?P<rest>.+)$", re.IGNORECASE)
 """A carry told by the slide it is not: "Don't drag the bowl, lift it and set it by the plate" is "lift the bowl and set
@@ -180,6 +184,9 @@ def in_other_words(text: str) -> list[str]:
     m = NOT_SO_CLOSE.search(text)
     if m is not None:
         out.append(f"{text[:m.start()]}{m.group('what')} is away from {m.group('other')}")
+    m = PASS.match(text)
+    if m is not None:
+        out.append(f"move {m.group('rest')}")
     m = NOT_DRAGGED_THEN.match(text)
     if m is not None:
         out.append(f"{m.group('verb')} {m.group('what')}{m.group('rest')}")

@@ -47,6 +47,7 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     ("as", "close", "as", "you", "can", "get", "it", "to"): ("next to", "right"),
     ("as", "near", "as", "possible", "to"): ("next to", "right"),
     ("touching",): ("next to", "right"),
+    ("hugging",): ("next to", "right"),
     ("a", "long", "way", "from"): ("away from", "far"),
     ("a", "good", "distance", "from"): ("away from", "far"),
     ("not", "so", "close", "to"): ("away from", None),

@@ -21,7 +21,8 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "result wanted", "wanted result", "what i want", "let", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
     "expected final state", "desired final state", "end goal", "final goal", "the goal is", "goal is", "the idea is",
-    "i just want", "just want", "need", "i want that", "i should like", "i should like to see",
+    "i just want", "just want", "need", "i want that", "i should like", "i should like to see", "target config",
+    "target configuration", "goal config", "goal configuration", "final config", "final configuration",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""

@@ -56,7 +56,7 @@ KIND_NAMES = {
     "pingpong": ("ping-pong",),
     "jello": ("jell-o", "jelly", "gelatin", "gelatine"),
     "gelatin": ("gelatine", "jello", "jell-o", "jelly"),
-    "box": ("packet", "packets"),
+    "box": ("packet", "packets", "carton", "cartons", "crate", "crates", "parcel", "parcels", "package"),
     "ketchup": ("catsup", "sauce", "bottle", "bottles"),
     "mustard": ("bottle", "bottles", "sauce"),
     "butter": ("packet", "packets", "pack", "packs", "stick", "sticks"),

@@ -76,6 +76,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
     "without touching anything else", "don't touch anything else",
     "if it's no trouble", "if it is no trouble", "if it's not too much trouble", "if it is not too much trouble",
+    "if it isn't too much bother", "if it's not too much bother", "if it is not too much bother",
+    "so they're together", "so they are together",
     "if its not too much trouble", "if it's no bother", "if that's ok", "if that's okay", "if thats ok",
     "thats it", "thats all",
 )), key=len, reverse=True))

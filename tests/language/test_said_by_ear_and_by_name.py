@@ -52,6 +52,16 @@ gelatin box, block_1 a red cube, block_2 a green cube."""
     ("slide the front mug next to the jello", "slide:next-to mug_1 box_1", CLEANUP),
     # a pace said before "make ... go" is kept
     ("Make slowly the red cube go to the box", "slide:closer block_1 box_1 pace=slow", CLEANUP),
+    # a heading, a box called by what it is, hugging
+    ("Target config: small_box next to the post", "slide:next-to small_box obstacle", TASK),
+    ("push the big crate toward the goal", "push:closer big_box goal", TASK),
+    ("slide the smaller carton past the post", "slide:past small_box obstacle", TASK),
+    ("I need right_block hugging the post", "slide:next-to right_block obstacle extent=right", TASK),
+    # "pass" before a preposition of passing; a clause with its extent and preposition alone is a step
+    ("pass the soup can just beyond the green cube", "slide:past can_2 block_2 extent=little", CLEANUP),
+    ("move the red cube past the box, then right next to the soup can",
+     "slide:past block_1 box_1 ; slide:next-to block_1 can_2 extent=right", CLEANUP),
+    ("carry the coke over beside the blue mug, if it isn't too much bother", "carry:next-to can_1 mug_2", CLEANUP),
     # what speech-to-text hears
     ("slide the lemon next two the bowel", "slide:next-to lemon bowl", FRUIT),
     ("move the apple a round the plate", "slide:around apple plate", FRUIT),
@@ -78,6 +88,8 @@ def test_read(plugins, sentence, expect, table):
     ("move the citrus next to the bowl", FRUIT),
     # a can said by neither its contents nor a place
     ("move the can next to the box", CLEANUP),
+    # "pass ... by" may be past or beside
+    ("pass the red cube by the soup can", CLEANUP),
 ])
 def test_stays_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
