@@ -155,12 +155,7 @@ def in_other_words(text: str) -> list[str]:
     if m is not None:
         said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
         out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
-    m = MAKE_GO.match(text)
-    if m is not None:
-        out.append(f"move {m.group('what')} {m.group('rest')}")
-    m = YOU_VERB.match(text)
-    if m is not None:
-        out.append(f"{m.group('verb')} {m.group('what')} {m.group('rest')}")
+    out += _said(MAKE_GO, r"move \g<what> \g<rest>", text) + _said(YOU_VERB, r"\g<verb> \g<what> \g<rest>", text)
     m = TOPIC_BARE.match(text)
     if m is not None and "," not in m.group("what") and m.group("verb").lower() in verb_heads() \
             and m.group("what").split()[0].lower() not in verb_heads():
@@ -184,13 +179,14 @@ def in_other_words(text: str) -> list[str]:
     m = NOT_SO_CLOSE.search(text)
     if m is not None:
         out.append(f"{text[:m.start()]}{m.group('what')} is away from {m.group('other')}")
-    m = PASS.match(text)
-    if m is not None:
-        out.append(f"move {m.group('rest')}")
-    m = NOT_DRAGGED_THEN.match(text)
-    if m is not None:
-        out.append(f"{m.group('verb')} {m.group('what')}{m.group('rest')}")
+    out += _said(PASS, r"move \g<rest>", text) + _said(NOT_DRAGGED_THEN, r"\g<verb> \g<what>\g<rest>", text)
     return out + _verb_last(text)
+
+
+def _said(pattern: re.Pattern, template: str, text: str) -> list[str]:
+    """``text`` said again by ``template`` (the groups ``pattern`` matched put in), or [] where it does not match."""
+    m = pattern.match(text)
+    return [] if m is None else [m.expand(template)]
 
 
 def over_and_put(text: str) -> str:
