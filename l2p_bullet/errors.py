@@ -217,3 +217,13 @@ def _closest(word: str, choices: tuple[str, ...]) -> str:
     close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
     return f' Did you mean "{close[0]}"?' if close else ""
 
+
+def copied(error: L2PError) -> L2PError:
+    """A new exception of ``error``'s type with its arguments and attributes (not its traceback or context), made
+    without calling ``__init__`` (whose parameters differ between errors): how a kept refusal is raised again,
+    as reading the words anew would raise a new one."""
+    copy = BaseException.__new__(type(error))
+    copy.args = error.args
+    copy.__dict__.update(error.__dict__)
+    copy.__cause__, copy.__suppress_context__ = error.__cause__, error.__suppress_context__
+    return copy
