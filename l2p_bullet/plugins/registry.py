@@ -46,6 +46,7 @@ from ..errors import (
     PluginConflict,
     PluginError,
     UnknownActionError,
+    copied,
 )
 from . import finder
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
@@ -237,7 +238,47 @@ def blocked_phrases(plugins: list[PluginInfo] | None = None) -> dict[str, Plugin
 
     Only those phrases are blocked: a plugin that claims "past" must not stop "move A around B".
     """
-    plugins = discover() if plugins is None else plugins
+    blocked = _tables(discover() if plugins is None else plugins)[1]
+    copies: dict[int, PluginError] = {}  # one error blocking several phrases stays one error
+    return {phrase: copies.setdefault(id(e), copied(e)) for phrase, e in blocked.items()}
+
+
+def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
+    """Phrase -> action name over the usable plugins, without the :func:`blocked_phrases`."""
+    return dict(_tables(discover() if plugins is None else plugins)[0])
+
+
+_TABLES: dict[tuple, tuple[dict[str, str], dict[str, PluginError]]] = {}
+"""(phrase table, blocked phrases) by :func:`_claims`: every clause read asks for both, of the same plugins."""
+
+
+def _tables(plugins: list[PluginInfo]) -> tuple[dict[str, str], dict[str, PluginError]]:
+    """(:func:`phrase_table`, :func:`blocked_phrases`) of ``plugins``, kept by what they are made of
+    (:func:`_claims`); callers hand out copies. Plugins that cannot be keyed are read each time."""
+    try:
+        key = _claims(plugins)
+        kept = _TABLES.get(key)
+    except (AttributeError, TypeError):
+        key, kept = None, None
+    if kept is None:
+        blocked = _blocked(plugins)
+        table = {phrase: p.name for p in plugins if p.ok and p.kind == "action" for phrase in p.phrases
+                 if phrase not in blocked}
+        kept = (table, blocked)
+        if key is not None:
+            if len(_TABLES) >= 64:
+                _TABLES.clear()
+            _TABLES[key] = kept
+    return kept
+
+
+def _claims(plugins: list[PluginInfo]) -> tuple:
+    """All that the phrase tables and their errors depend on, per plugin, in order (a key to keep them by)."""
+    return tuple((p.name, p.package, p.package_version, p.kind, p.error, p.phrases) for p in plugins)
+
+
+def _blocked(plugins: list[PluginInfo]) -> dict[str, PluginError]:
+    """:func:`blocked_phrases`, read."""
     out: dict[str, PluginError] = {}
     for c in conflicts(plugins):
         if all(normalize_name(n) == normalize_name(c.claim) for n in c.plugins):
@@ -254,14 +295,6 @@ def blocked_phrases(plugins: list[PluginInfo] | None = None) -> dict[str, Plugin
                 if phrase not in owned:
                     out.setdefault(phrase, FailedToLoadPlugin(p.name, p.package, p.error or "broken"))
     return out
-
-
-def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
-    """Phrase -> action name over the usable plugins, without the :func:`blocked_phrases`."""
-    plugins = discover() if plugins is None else plugins
-    blocked = blocked_phrases(plugins)
-    return {phrase: p.name for p in plugins if p.ok and p.kind == "action" for phrase in p.phrases
-            if phrase not in blocked}
 
 
 def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
