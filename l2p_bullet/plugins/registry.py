@@ -48,7 +48,7 @@ from ..errors import (
     UnknownActionError,
     copied,
 )
-from . import finder
+from . import finder, once
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 from .finder import Plugin
 from .folders import locate_from_files, locate_module_folder, module_folder
@@ -168,7 +168,14 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
 
 def discover(kind: str = "action") -> list[PluginInfo]:
     """Every installed plugin of ``kind`` (:data:`KINDS`), usable or not, sorted by name. Imports no plugin
-    code. A plugin whose manifest cannot be read counts as an action (its error is shown with them)."""
+    code. A plugin whose manifest cannot be read counts as an action (its error is shown with them). Read once
+    while one sentence is read (plugins/once.py)."""
+    found = once.kept("action plugins", _found, lambda kept: [replace(p, manifest=_copied(p.manifest)) for p in kept])
+    return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
+
+
+def _found() -> list[PluginInfo]:
+    """Every installed action plugin, composites too, with the one rule for names applied."""
     found: list[PluginInfo] = []
     for plugin in finder.find("action"):
         base = PluginInfo(**{f.name: getattr(plugin, f.name) for f in fields(Plugin)})
@@ -182,8 +189,7 @@ def discover(kind: str = "action") -> list[PluginInfo]:
         manifest, error = _check_manifest(plugin.name, folder)
         found.append(replace(base, kind=str(manifest.get("kind", "action")), path=folder, manifest=manifest,
                              error=error))
-    found = finder.settle(found)
-    return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
+    return finder.settle(found)
 
 
 def composites(plugins: list[PluginInfo] | None = None, installed: list[PluginInfo] | None = None,
