@@ -52,6 +52,7 @@ from . import finder, once
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 from .finder import Plugin
 from .folders import locate_from_files, locate_module_folder, module_folder
+from .phrases import conflicts, tables  # noqa: F401 - registry.conflicts is the actions command's
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
@@ -212,95 +213,20 @@ def local(name: str, folder: Path) -> PluginInfo:
                       package_version="", entry_point="", error=error, path=folder, manifest=manifest)
 
 
-def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
-    """Every name or phrase claimed by two usable plugins (empty when all is well)."""
-    out: list[PluginConflict] = []
-    usable = [p for p in plugins if p.ok]
-    by_name: dict[str, list[PluginInfo]] = {}
-    for p in usable:
-        by_name.setdefault(normalize_name(p.name), []).append(p)
-    for group in by_name.values():
-        if len(group) > 1:
-            out.append(PluginConflict(f'two action plugins are both named "{group[0].name}": '
-                                      + " and ".join(p.label() for p in group) + "; uninstall one of the packages",
-                                      group[0].name, [p.name for p in group]))
-    by_phrase: dict[str, list[PluginInfo]] = {}
-    for p in usable:
-        for phrase in dict.fromkeys(p.phrases):
-            by_phrase.setdefault(phrase, []).append(p)
-    for phrase, group in by_phrase.items():
-        if len({normalize_name(p.name) for p in group}) > 1:
-            out.append(PluginConflict(
-                f'the phrase "{phrase}" is claimed by several action plugins: '
-                + " and ".join(p.label() for p in group)
-                + "; uninstall one of the packages or remove the phrase from one manifest",
-                phrase, [p.name for p in group]))
-    return out
-
-
 def blocked_phrases(plugins: list[PluginInfo] | None = None) -> dict[str, PluginError]:
     """Phrases no sentence may use, each with the error that says why: the phrases of plugins in a name
     conflict, phrases claimed by two plugins, and the phrases of broken plugins that no usable one owns.
 
     Only those phrases are blocked: a plugin that claims "past" must not stop "move A around B".
     """
-    blocked = _tables(discover() if plugins is None else plugins)[1]
+    blocked = tables(discover() if plugins is None else plugins)[1]
     copies: dict[int, PluginError] = {}  # one error blocking several phrases stays one error
     return {phrase: copies.setdefault(id(e), copied(e)) for phrase, e in blocked.items()}
 
 
 def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
     """Phrase -> action name over the usable plugins, without the :func:`blocked_phrases`."""
-    return dict(_tables(discover() if plugins is None else plugins)[0])
-
-
-_TABLES: dict[tuple, tuple[dict[str, str], dict[str, PluginError]]] = {}
-"""(phrase table, blocked phrases) by :func:`_claims`: every clause read asks for both, of the same plugins."""
-
-
-def _tables(plugins: list[PluginInfo]) -> tuple[dict[str, str], dict[str, PluginError]]:
-    """(:func:`phrase_table`, :func:`blocked_phrases`) of ``plugins``, kept by what they are made of
-    (:func:`_claims`); callers hand out copies. Plugins that cannot be keyed are read each time."""
-    try:
-        key = _claims(plugins)
-        kept = _TABLES.get(key)
-    except (AttributeError, TypeError):
-        key, kept = None, None
-    if kept is None:
-        blocked = _blocked(plugins)
-        table = {phrase: p.name for p in plugins if p.ok and p.kind == "action" for phrase in p.phrases
-                 if phrase not in blocked}
-        kept = (table, blocked)
-        if key is not None:
-            if len(_TABLES) >= 64:
-                _TABLES.clear()
-            _TABLES[key] = kept
-    return kept
-
-
-def _claims(plugins: list[PluginInfo]) -> tuple:
-    """All that the phrase tables and their errors depend on, per plugin, in order (a key to keep them by)."""
-    return tuple((p.name, p.package, p.package_version, p.kind, p.error, p.phrases) for p in plugins)
-
-
-def _blocked(plugins: list[PluginInfo]) -> dict[str, PluginError]:
-    """:func:`blocked_phrases`, read."""
-    out: dict[str, PluginError] = {}
-    for c in conflicts(plugins):
-        if all(normalize_name(n) == normalize_name(c.claim) for n in c.plugins):
-            for p in plugins:  # a name conflict: every phrase of every plugin of that name
-                if p.ok and normalize_name(p.name) == normalize_name(c.claim):
-                    for phrase in p.phrases:
-                        out.setdefault(phrase, c)
-        else:
-            out.setdefault(c.claim, c)
-    owned = {phrase for p in plugins if p.ok for phrase in p.phrases}
-    for p in plugins:
-        if not p.ok:
-            for phrase in p.phrases:
-                if phrase not in owned:
-                    out.setdefault(phrase, FailedToLoadPlugin(p.name, p.package, p.error or "broken"))
-    return out
+    return dict(tables(discover() if plugins is None else plugins)[0])
 
 
 def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
