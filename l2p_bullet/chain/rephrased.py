@@ -109,6 +109,40 @@ NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
 when the bread is not so near to the cereal anymore": the first away from the second."""
 
 
+_CLOSING = r"(?:[\s,]+(?:bitte|danke|please|pls|thanks))?[\s.!]*$"
+VERB_LAST = re.compile(rf"^\s*(?P<lead>(?:(?:gently|slowly|carefully|quickly|softly|please|bitte|first|then)[\s,]+)*)"
+                       rf"(?P<rest>\S.*?)\s+(?P<verb>[a-z]+){_CLOSING}", re.IGNORECASE)
+"""The verb said last, in German order: "The green cube to the orange block push", "Gently the plate through the air
+to the green cube bring", "The bowl, the plate and the green cube in a row put" (a known verb, the words before it
+opening with none)."""
+BE_LAST = re.compile(rf"^\s*(?:(?:at|in)\s+the\s+end[\s,]+)?(?:(?:should|must)\s+(?P<asked>.+?)|(?P<said>.+?)\s+"
+                     rf"(?:should|must)\s+(?P<where>.+?))\s+be{_CLOSING}", re.IGNORECASE)
+"""An end state with its "be" last: "The plate must farther from the bowl be", "At the end should the lemon nearer to
+the plate be": what is wished."""
+
+
+PASS = re.compile(rf"^\s*(?:(?:{_ASK})[\s,]+)*pass\s+(?P<rest>.+?\s+(?:(?:just|only|slightly|a\s+bit)\s+)*"
+                  r"(?:past|beyond|(?:on\s+|to\s+)?the\s+(?:other|far)\s+side\s+of)\s.+)$", re.IGNORECASE)
+""""Pass the cup just beyond the green cube", "can you pass the red cube on the other side of the soup can": a move
+past it ("pass it by B" may be beside B as well: not read)."""
+NOT_DRAGGED_THEN = re.compile(r"^\s*(?:don't|dont|do\s+not)\s+(?:drag|slide)\s+(?P<what>[^,]+?)\s*,\s*"
+                              r"(?P<verb>lift|pick\s+up|carry|raise)\s+it\b(?P<rest>.+)$", re.IGNORECASE)
+"""A carry told by the slide it is not: "Don't drag the bowl, lift it and set it by the plate" is "lift the bowl and set
+it by the plate"."""
+
+
+def _verb_last(text: str) -> list[str]:
+    """:data:`VERB_LAST`'s and :data:`BE_LAST`'s sentences said the usual way; [] for any other."""
+    m = BE_LAST.match(text)
+    if m is not None:
+        return [f"I want {m.group('asked') or m.group('said') + ' ' + m.group('where')}"]
+    m = VERB_LAST.match(text)
+    heads = verb_heads()
+    if m is None or m.group("verb").lower() not in heads or m.group("rest").split()[0].lower() in heads:
+        return []
+    return [f"{m.group('lead')}{m.group('verb')} {m.group('rest')}"]
+
+
 def in_other_words(text: str) -> list[str]:
     """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
     :data:`YOU_VERB`'s, :data:`TO_THEN`'s, :data:`OVER_TO`'s or :data:`TO_OBJECT`'s ways, or with :data:`THAN_NOW`,
@@ -150,7 +184,13 @@ def in_other_words(text: str) -> list[str]:
     m = NOT_SO_CLOSE.search(text)
     if m is not None:
         out.append(f"{text[:m.start()]}{m.group('what')} is away from {m.group('other')}")
-    return out
+    m = PASS.match(text)
+    if m is not None:
+        out.append(f"move {m.group('rest')}")
+    m = NOT_DRAGGED_THEN.match(text)
+    if m is not None:
+        out.append(f"{m.group('verb')} {m.group('what')}{m.group('rest')}")
+    return out + _verb_last(text)
 
 
 def over_and_put(text: str) -> str:

@@ -38,6 +38,7 @@ def split_clauses(sentence: str) -> list[str]:
     if order is not None and (order.group("lead") or order.group("then")) and order.start() > 0:
         # "..., first the blue, then the red", "..., the small one first and then the big one"
         sentence = sentence[:order.start()] + re.sub(r"(?i)\b(?:and\s+)?then\b", "after", order.group(0))
+    sentence = LIST_MARKS.sub(lambda m: m.group("lead"), sentence)
     sentence = _after_you(ABBREVIATED.sub(lambda m: m.group(0).replace(".", ""), sentence))
     out = []
     for part in SENTENCE_ENDS.split(sentence):  # a list told item by item is one sentence of several
@@ -46,6 +47,9 @@ def split_clauses(sentence: str) -> list[str]:
     return out
 
 
+LIST_MARKS = re.compile(r"(?P<lead>^|[.!?;:]\s+)\s*(?:\(\d{1,2}\)|\d{1,2}[.)])\s+(?=[a-z])", re.IGNORECASE)
+"""A numbered step's mark where a sentence begins ("1. Move A past B. 2. Then ...", "1) Slide ..."): read past,
+whatever the scene's objects are called, as no sentence says a block's number alone before its verb."""
 ABBREVIATED = re.compile(r"\b(?:i\.e\.|e\.g\.|(?:no|nr|num)\.(?=\s*#?\d))", re.IGNORECASE)
 """Abbreviations whose full stops end no sentence ("..., i.e. past it", "cube no. 6")."""
 AFTER_YOU = re.compile(r"^\s*(?:after|once|when)\s+(?:you've|you\s+have|you're\s+done|you\s+are\s+done)\s+"

@@ -24,6 +24,7 @@ from .reference_words import (
     COLOR_SYNONYMS,
     COLOUR_NOUNS,
     DETERMINERS,
+    FRAMING_KINDS,
     FUNCTION_WORDS,
     NEAR_COLOURS,
     NOUNS,
@@ -36,6 +37,8 @@ from .reference_words import (
     STRICT_SHAPES,
 )
 from .synonyms import (
+    DRINKS,
+    FOODS,
     KIND_MODIFIERS,
     KIND_SYNONYMS,
     SIZE_WORDS,
@@ -95,8 +98,10 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     block": the cube, not the white mug); the two readings are refused where they pick different objects."""
     spelled = spelled_name(words, scene)
     if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too
+        sizes = [w for w in low if w in SIZE_WORDS]  # "the small box" is small_box where it is the smaller box
         try:
-            others = [o.name for o in candidates(text, words, low, scene, determined, best=True) if o.name != spelled]
+            fits = by_size(text, candidates(text, words, low, scene, determined, best=True), sizes)
+            others = [o.name for o in fits if o.name != spelled]
         except (LanguageError, UnknownObjectError):
             others = []
         if not others:
@@ -112,7 +117,8 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
                 <= max(MEASURE_TOLERANCE * measure, MEASURE_TOLERANCE_M)]
     pools = [fits]
     blocky = [o for o in fits if shape_of(o) in BLOCK_SHAPES]
-    if set(low) & BLOCK_WORDS and 0 < len(blocky) < len(fits) and not set(low) & set(names):
+    spoken = set(low) - colours_said(low, scene) - (NOUNS | BLOCK_WORDS)  # "the orange block" is no name said
+    if set(low) & BLOCK_WORDS and 0 < len(blocky) < len(fits) and not spoken & set(names):
         pools.append(blocky)
     readings: list[str | Exception] = []
     for pool in pools:
@@ -194,6 +200,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     low = spoken_letter(low, scene)
     low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
+    drink = bool(set(low) & DRINKS)
+    as_colour = colours_said(low, scene)  # "the orange block": the colour, not the fruit named "orange"
+    names = {w: n for w, n in names.items() if w not in as_colour}
     if len(said) == 1 and said[0] in COLOUR_NOUNS and said[0] not in names:
         raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
                                  f'say "the {said[0]} one" or name it')
@@ -213,14 +222,16 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     colours = named_colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)]
     groups = kind_groups(scene)
-    kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS]  # among two mugs
+    kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS  # among two mugs
+             and w not in as_colour]
     either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and (w not in literal or w in NOUNS)
               and w in SHAPE_NOUNS and w not in PROFILES]  # "the big cube": the mesh named "cube" or another cube
     shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS and w not in groups and w not in PROFILES}
     shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES and w not in PROFILES}
     unknown = [w for w in low if w not in DESCRIPTION_WORDS and w not in names and w not in groups]
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
-            and low[0] not in FUNCTION_WORDS and low[0] not in KIND_SYNONYMS:  # "the triangular toy": another kind
+            and low[0] not in FUNCTION_WORDS and (low[0] not in KIND_SYNONYMS or low[0] in FRAMING_KINDS):
+        # "the triangular toy" is another kind; "the goal: 6 ..." heads a wish
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
     if unknown or not (colours or named or kinds or either or shapes or shaped or sized or proportioned
                        or set(low) & (NOUNS | BLOCK_WORDS)):
@@ -255,6 +266,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
         fits = [o for o in fits if a_block_to_look_at(o)]
+    if drink and len(fits) > 1:  # "the soda can" beside a soup can
+        fits = [o for o in fits if not own_kinds_of(o) & FOODS] or fits
     return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
 
 
@@ -319,6 +332,17 @@ def naming_words(scene: Scene) -> frozenset[str]:
 WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOUNS) | frozenset(COLORS)
                       | frozenset(COLOR_SYNONYMS) | KIND_MODIFIERS)
 """Words a name's fond form may spell ("tin" + "y" is "tiny"): never read as the name."""
+
+
+def colours_said(low: tuple[str, ...], scene: Scene) -> set[str]:
+    """The words of ``low`` that name an object and a colour and stand before a noun, said as the colour: "the
+    orange block" is the orange-coloured block beside an orange (the fruit) named "orange", and "the orange thing"
+    is either; "the orange" alone stays the fruit."""
+    names = name_words(scene)
+    heads = NOUNS | BLOCK_WORDS | set(SHAPE_NOUNS) | set(kind_groups(scene)) | set(PROFILES)
+    return {w for w, after in zip(low, low[1:], strict=False)
+            if w in names and COLOR_SYNONYMS.get(w, w) in COLORS and after in heads
+            and COLOR_SYNONYMS.get(after, after) not in COLORS}  # "the red blue and green cubes": a list
 
 
 def name_words(scene: Scene) -> dict[str, str]:

@@ -26,7 +26,8 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a couple of centimeters": "little", "a couple centimeters": "little", "a couple of cm": "little",
     "flush": "right", "rite": "right", "a lil": "little", "a lil bit": "little", "lil bit": "little",
     "a good long way": "far", "a long long way": "far", "loads": "far", "ever so slightly": "little",
-    "ever so little": "little", "just ever so slightly": "little",
+    "ever so little": "little", "just ever so slightly": "little", "a good deal": "far", "a great deal": "far",
+    "tiny bit": "little", "a tiny little bit": "little", "so far": "far", "soo far": "far",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})
@@ -46,6 +47,7 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     ("as", "close", "as", "you", "can", "get", "it", "to"): ("next to", "right"),
     ("as", "near", "as", "possible", "to"): ("next to", "right"),
     ("touching",): ("next to", "right"),
+    ("hugging",): ("next to", "right"),
     ("a", "long", "way", "from"): ("away from", "far"),
     ("a", "good", "distance", "from"): ("away from", "far"),
     ("not", "so", "close", "to"): ("away from", None),

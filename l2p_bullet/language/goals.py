@@ -11,7 +11,7 @@ import functools
 
 from ..errors import LanguageError
 from .reference_words import DETERMINERS, NOUNS, SHAPE_NOUNS
-from .words import by_word, starts
+from .words import PACES, by_word, starts
 
 GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
@@ -23,7 +23,8 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "result wanted", "wanted result", "what i want", "let", "wanted", "expected result", "desired result", "end result",
     "expected outcome", "desired outcome", "result", "outcome", "final state", "desired state", "expected state",
     "expected final state", "desired final state", "end goal", "final goal", "the goal is", "goal is", "the idea is",
-    "i just want", "just want", "need", "i want that",
+    "i just want", "just want", "need", "i want that", "i should like", "i should like to see", "target config",
+    "target configuration", "goal config", "goal configuration", "final config", "final configuration",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
@@ -47,6 +48,8 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
             if rest[0].lower() in verbs:
                 return rest
             return ["put", *rest]
+    if low[:1] == ["keep"] and len(low) > 3 and not low[1].endswith("ing") and low[1:3] != ["it", "on"]:
+        return ["put", *words[1:]]  # "Kindly keep the box beside the goal": put it there ("keep it on the table" stays)
     if low[:1] == ["make"] and "go" in low[2:]:  # "make A go around B"
         at = low.index("go", 2)
         return ["move", *words[1:at], *words[at + 1:]]
@@ -112,7 +115,7 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "end up sat", "ends up sitting", "end up sitting", "to end up sitting", "to find itself", "finds itself",
     "should come", "to come", "comes", "be positioned", "to be positioned", "is positioned", "be placed",
     "to be placed", "ending up", "finish", "stays", "should stay", "to stay", "were to find itself",
-    "were to end up", "were to be",
+    "were to end up", "were to be", "went", "came", "ended",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""
@@ -152,7 +155,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                 if link[-1] in GOING and low[k + len(link)] == "by":
                     raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '
                                         "staying beside; say which")
-                return ["move", *words[j:k], *words[k + len(link):]]
+                paced = [w for w in words[:j] if w.lower() in PACES]  # "Make rapidly the cube go ...": kept
+                return ["move", *words[j:k], *words[k + len(link):], *paced]
     return words
 
 
@@ -165,7 +169,9 @@ def _contracted(words: list[str]) -> list[str]:
 def _names_something(words: list[str]) -> bool:
     """Whether words before a mover's description name a thing ("cube", "one", "block"): the description that follows
     is then not the whole mover, so it is not taken for it."""
-    return bool({w.lower().strip(",.:;!?") for w in words} & (NOUNS | SHAPE_WORDS))
+    low = [w.lower().strip(",.:;!?") for w in words]
+    return bool(set(low) & (NOUNS | SHAPE_WORDS)) or any(  # "the can closest to the red cube goes ...": the can
+        a in DETERMINERS and w in ("can", "cans") for a, w in zip(low, low[1:], strict=False))
 
 
 NOW = (("right", "now"), ("currently",), ("at", "the", "moment"), ("at", "present"), ("presently",),

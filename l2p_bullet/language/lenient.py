@@ -36,6 +36,7 @@ from .reference_words import (
     COLOR_SYNONYMS,
     COMPARATIVE_OF,
     FARTHEST,
+    FRAMING_KINDS,
     NEAREST,
     PLACE_ADJECTIVES,
     SIZE_SUPERLATIVES,
@@ -151,13 +152,20 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
         return None
     # "the triangular toy", "the cereal box" on a table with neither; "... in the middle row"
     describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES) \
-        | set(KIND_SYNONYMS) | set(KIND_NAMES) | GROUPED
+        | (set(KIND_SYNONYMS) | set(KIND_NAMES)) - FRAMING_KINDS | GROUPED
+    left = {w.lower() for w in left_before + left_after}
+    before_noun = SAID_BEFORE | SIZE_WORDS
+    if any(w in named and COLOR_SYNONYMS.get(w, w) in COLORS and after in left and ahead in before_noun
+           for ahead, w, after in zip(low, low[1:], low[2:], strict=False)):
+        return None  # "the orange Würfel": "orange" names the fruit, or is the colour of a thing the word names
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
 
 
+SAID_BEFORE = frozenset({"the", "a", "an", "this", "that"})
+"""Words before a colour that make it an adjective of the next word ("the orange Würfel")."""
 GROUPED = frozenset({"row", "rows", "column", "columns", "line", "lines", "corner", "corners", "edge", "edges"})
 """Words that place an object in a group or a part of the table ("the leftmost one in the middle row"): left over,
 the words before them would be read without them ("the leftmost one in the middle"), another object."""

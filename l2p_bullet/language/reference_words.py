@@ -220,7 +220,11 @@ SPOKEN_ONLY_AFTER_NOUN = frozenset({"ay", "be", "bee", "see", "sea", "gee", "eye
                                     "tea", "you", "ex", "why"})
 """Spellings that are words of their own ("you" is the robot, "see" a verb, "em" them as typed, "kay" okay): a
 letter only right after a noun that names an object ("cube oh", "block see"), never alone."""
-REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) | KIND_MODIFIERS | BLOCK_WORDS | NEAREST | FARTHEST
+FRAMING_KINDS = frozenset({"goal", "goals", "target", "targets"})
+"""Kinds' everyday names that also frame a wish ("Goal: H on the far side of E", "the target state: ..."): they
+describe an object only where the scene has one of that kind (its own words name it)."""
+REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) - FRAMING_KINDS | KIND_MODIFIERS | BLOCK_WORDS | NEAREST
+                            | FARTHEST
                             | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p}
                             | set(ORDINALS) | MIDDLE_WORDS | EDGE_WORDS | set(CORNERS.values()))
 """Every word a description may hold beyond the tables above (sizes, kinds' everyday names, "whatever is",

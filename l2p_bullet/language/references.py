@@ -20,7 +20,7 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .descriptions import candidates, coloured_like, describe, described, looks, name_words
+from .descriptions import candidates, coloured_like, describe, described, looks, name_words, spelled_name
 from .group_places import in_group, table_sides
 from .kept import SceneMemo
 from .numbers import number_reference
@@ -64,7 +64,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     TIE_M,
 )
-from .synonyms import is_modifier
+from .synonyms import is_modifier, kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -105,6 +105,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     names = scene.names
     if text in names:  # an exact name first: a block may well be called "a" or "the cube"
         return text
+    if len(words) > 1 and words[-1].lower() in EMPHATIC:  # "beside the goal itself", "nearer to the goal only"
+        return _resolve(" ".join(words[:-1]), scene, role, context)
     numbered = number_reference(text, scene, role, resolve_object)  # "number 5", "cube 1", "the red one, #2"
     if numbered is not None:
         return numbered
@@ -136,6 +138,10 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     if len(folded) == 1:
         return folded[0]
     relational = _relational(words, low, scene, role, context)
+    spelled = spelled_name([w for w in text.split() if w.lower() not in DETERMINERS], scene)
+    if relational is not None and spelled not in (None, relational):  # "the left block" beside left_block
+        raise LanguageError(f'"{text}" is ambiguous: it is {spelled} by name, and {relational} by where it is; '
+                            "name the one you mean")
     if relational is not None:
         return relational
     try:
@@ -153,6 +159,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return named
 
 
+EMPHATIC = frozenset({"itself", "only"})
+"""Words after a reference that stress it and name nothing more."""
 PARTITIVE = re.compile(r"^(?P<head>.+?)\s+of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
                        r"(?P<group>[\w\s-]+?(?:s|es))$", re.IGNORECASE)
 """One object picked among a group said in the plural: "the smallest of the cubes", "the one nearer the robot of the
@@ -276,7 +284,8 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         return None
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
-        if any(w.lower() not in NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) for w in rest_words):
+        heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene))  # "mug"
+        if any(w.lower() not in heads for w in rest_words):
             return None
         described = words[:at] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]

@@ -19,7 +19,7 @@ KIND_NAMES = {
     "cup": ("mug", "mugs", "cups", "teacup"),
     "jar": ("jars", "canister", "container", "pot"),
     "duck": ("bird", "duckling", "ducks"),
-    "can": ("tin", "tins"),
+    "can": ("tin", "tins", "soda", "coke", "cola", "pop"),
     "teddy": ("bear", "bears", "teddies", "teddybear", "plush", "plushie"),
     "bunny": ("rabbit", "rabbits", "bunnies", "hare"),
     "stone": ("rock", "rocks", "pebble", "pebbles", "stones"),
@@ -29,6 +29,7 @@ KIND_NAMES = {
     "bowl": ("bowls", "dish", "container", "basin"),
     "apple": ("apples",),
     "lemon": ("lemons", "citrus"),
+    "orange": ("oranges", "citrus", "tangerine", "mandarin", "clementine"),
     "bread": ("loaf", "roll", "rolls", "bun", "buns"),
     "milk": ("carton", "cartons", "milkbox"),
     "lid": ("lids", "disc", "disk", "puck", "cap"),
@@ -55,7 +56,7 @@ KIND_NAMES = {
     "pingpong": ("ping-pong",),
     "jello": ("jell-o", "jelly", "gelatin", "gelatine"),
     "gelatin": ("gelatine", "jello", "jell-o", "jelly"),
-    "box": ("packet", "packets"),
+    "box": ("packet", "packets", "carton", "cartons", "crate", "crates", "parcel", "parcels", "package"),
     "ketchup": ("catsup", "sauce", "bottle", "bottles"),
     "mustard": ("bottle", "bottles", "sauce"),
     "butter": ("packet", "packets", "pack", "packs", "stick", "sticks"),
@@ -66,10 +67,13 @@ KIND_NAMES = {
     "stirrer": ("stirrers", "stick", "sticks", "stirrer"),
     "beaker": ("beakers", "cup", "cups", "glass", "glasses"),
     "cylinder": ("tin", "tins"),
+    "goal": ("goals", "target", "targets", "marker", "markers"),
+    "target": ("targets", "goal", "goals", "marker", "markers"),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
-                "toy": ("duck", "teddy", "bunny", "ball", "soccerball"), "fruit": ("apple", "lemon")} | {
+                "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
+                "fruit": ("apple", "lemon", "orange", "banana", "pear", "peach", "plum")} | {
     word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
     for word in ("vegetable", "vegetables", "veg", "veggie", "veggies")} | {
     word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")}
@@ -89,6 +93,10 @@ KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "measuring", "glass"
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut", "swizzle
 stick", "popsicle stick"): read past there, a run of them too ("video game")."""
+DRINKS = frozenset({"soda", "coke", "cola", "pop", "beer", "drink", "drinks", "fizzy", "juice"})
+"""Words that say a thing holds a drink ("the soda can", "the coke"): never a food's tin or packet beside it."""
+FOODS = frozenset({"soup", "ketchup", "mustard", "butter", "cereal", "bread", "jello", "gelatin", "tomato"})
+"""Kinds that hold food: "the soda can" is not the soup can."""
 THREAD_SIZE = re.compile(r"^m\d+(?:x\d+(?:[.,]\d+)?)?$")
 """A metric thread size before a fastener's kind ("the M8 bolt", "an m6x1.0 nut"): read past as a modifier."""
 

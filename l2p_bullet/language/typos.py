@@ -35,7 +35,7 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "obj": "object", "blk": "block", "lil": "little", "tho": "though", "bout": "about", "pls": "please",
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
-             "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over"}
+             "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
 """Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
 
 
@@ -59,12 +59,15 @@ def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[s
     return frozenset(w for w in known if w.isascii())
 
 
-def near(word: str, known: frozenset[str]) -> str | None:
+def near(word: str, known: frozenset[str], named: frozenset[str] = frozenset()) -> str | None:
     """The one known word ``word`` is a slip of, or None (no such word, or several that mean different things;
-    "carefuly" is "careful" or "carefully", one pace either way)."""
+    "carefuly" is "careful" or "carefully", one pace either way). Of several, the one word that names an object of
+    the scene (``named``) is meant: "bowel" is the bowl on the table, not a dowel."""
     if len(word) < 3 or not word.isalpha():
         return None
     hits = {k for k in known if abs(len(k) - len(word)) <= 1 and _one_slip(word, k)}
+    if len(hits & named) == 1:
+        hits &= named
     if len({words.PACES.get(h, h) for h in hits}) != 1:
         return None
     return max(sorted(hits), key=len)
@@ -90,6 +93,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
     """``sentence`` with each slip replaced by the known word it is one keystroke from (its case as typed for
     the first letter); every other character as it was."""
     keep = {n.lower() for n in names}
+    named = frozenset(w for n in keep for w in _WORD.findall(n))
 
     def fix(m: re.Match) -> str:
         w = m.group(0)
@@ -103,7 +107,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
         squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
-        hit = near(low, known)
+        hit = near(low, known, named)
         if hit is None:
             return w
         return hit.capitalize() if w[0].isupper() else hit
@@ -111,13 +115,14 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
+    mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
 
 
 RUNS = re.compile(r"([a-z])\1{2,}")
 """A letter typed three or more times for emphasis ("wayyy past", "sooo slowly"): read once or twice."""
-TWO_FOR_TO = re.compile(r"\b(closer|close|nearer|near|next|up|over|back|right|on|onto|according)\s+2\b(?=\s+[a-z])",
-                        re.IGNORECASE)
+TWO_FOR_TO = re.compile(r"\b(closer|close|nearer|near|next|up|over|back|right|on|onto|according)\s+"
+                        r"(?:2\b(?=\s+[a-z])|two\b(?=\s+(?:the|it|that|this|them)\b))", re.IGNORECASE)
 """"2" texted for "to" after the word a preposition starts with ("closer 2 the white block", "next 2 it"); a number
 elsewhere is left as typed."""
 TWO_WARDS = re.compile(r"\b2(wards?)\b", re.IGNORECASE)
@@ -127,6 +132,20 @@ TWO_BEFORE_THE = re.compile(r"(?<=[a-z] )2 (?=the\b)", re.IGNORECASE)
 ONE_FOR_ONE = re.compile(r"\b(red|green|blue|yellow|white|black|orange|purple|pink|grey|gray|brown|big|small|little|"
                          r"other|front|back|left|right|tall|short|last|first)\s+1\b(?!\s*(?:cm|mm|m)\b)", re.IGNORECASE)
 """"1" texted for "one" after an adjective ("the blue 1", "the other 1"), where no object is named "1"."""
+HEARD = re.compile(r"\b(?:(?P<past>passed)|(?P<around>a\s+round))\s+(?=(?:the|it|that|this|them)\b)"
+                   r"|\b(?P<away>a\s+way)\s+(?=from\b)", re.IGNORECASE)
+"""What speech-to-text hears for a preposition ("passed the bowl", "a round the bowl", "a way from it"), read as the
+preposition before an article, a pronoun or "from" ("next two the plate": :data:`TWO_FOR_TO`)."""
+HEARD_PACES = re.compile(r"\b(slow|quick|careful|gentle)\s+lee\b", re.IGNORECASE)
+"""A pace adverb heard as two words ("slow Lee"): one word again."""
+PACE_OF = {"slow": "slowly", "quick": "quickly", "careful": "carefully", "gentle": "gently"}
+
+
+def _heard(m: re.Match) -> str:
+    said = next(k for k in ("past", "around", "away") if m.group(k))
+    return {"past": "past ", "around": "around ", "away": "away "}[said]
+
+
 FILLERS = re.compile(r"\b(?:u+m+|u+h+m*|e+r+m+|h+m+)\b[,.]*\s*", re.IGNORECASE)
 """Hesitations a speech-to-text transcript or a typist leaves anywhere ("um the ball um move it ..."): read past."""
 FILLER_WORDS = frozenset({"um", "umm", "uh", "uhh", "uhm", "erm", "hmm", "hm"})

@@ -108,7 +108,7 @@ def _over_then_side(held: list[str], after: list[str]) -> list[str]:
     return held + after
 
 
-PLACING_VERBS = frozenset({"put", "place", "set", "drop", "lay", "carry", "move", "bring", "take", "lower"})
+PLACING_VERBS = frozenset({"put", "place", "set", "drop", "lay", "carry", "move", "bring", "take", "lower", "stick"})
 """A gap verb's last word may be any of these: "lift A and *set* it down next to B" is "lift ... and put"."""
 
 

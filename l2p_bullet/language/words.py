@@ -40,6 +40,10 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "the task is simple", "the task is easy", "ideally", "two steps", "three steps", "four steps", "five steps",
     "if it's no trouble", "if it is no trouble", "if it's not too much trouble", "if you don't mind",
     "if you dont mind", "if possible", "if you would", "do me a favour and", "do me a favor and",
+    "if you would be so good", "if you would be so kind", "if you'd be so kind", "would u", "would u pls",
+    "it would be lovely if", "it'd be lovely if", "it would be wonderful if",
+    "do the needful and", "please do the needful and", "kindly do the needful and", "request you to",
+    "i request you to", "request you to kindly",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 ADDRESSEES = frozenset({"you", "u"})
@@ -55,7 +59,9 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "not the other way round", "not the other way around", "and not the other way round",
     "nothing else moved", "and nothing else", "this is what i want", "that's what i want", "that is what i want",
-    "if you can", "if possible", "when you can", "dear", "please dear", "mate", "buddy", "pal",
+    "if you can", "if possible", "when you can", "dear", "please dear", "mate", "buddy", "pal", "hun", "hon",
+    "sweetie", "thanks hun", "thanks hon", "i should think", "i think", "bro", "fr", "lol", "ez", "gg", "dude",
+    "bitte", "danke", "thanks chef", "chef", "only", "itself",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
     "and let go", "and let go of it", "and set it down there", "and put it down there",
@@ -70,6 +76,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
     "without touching anything else", "don't touch anything else",
     "if it's no trouble", "if it is no trouble", "if it's not too much trouble", "if it is not too much trouble",
+    "if it isn't too much bother", "if it's not too much bother", "if it is not too much bother",
+    "so they're together", "so they are together",
     "if its not too much trouble", "if it's no bother", "if that's ok", "if that's okay", "if thats ok",
     "thats it", "thats all",
 )), key=len, reverse=True))

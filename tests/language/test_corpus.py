@@ -15,6 +15,16 @@ from l2p_bullet.pipeline import resolve as resolve_one
 from l2p_bullet.plugins import registry
 
 
+def assert_read(plugins, name: str, floor: int, excused=lambda sentence, got: False) -> None:
+    """No line of corpus ``name`` read as another object or action than its author wrote, but where ``excused``
+    (an author who disagrees with most, an open reading kept visible), and at least ``floor`` lines read right."""
+    table, misses = score(plugins, name)
+    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and not excused(case.sentence, got)]
+    assert not wrong, f"wrong resolutions: {wrong}"
+    right = sum(c["right"] for c in table.values())
+    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+
+
 def test_the_corpus_is_large_and_varied():
     all_cases = cases()
     assert len(all_cases) >= 300
@@ -69,11 +79,7 @@ def test_the_fourth_to_ninth_authors_corpora_are_never_resolved_wrong(plugins, n
     heldout9.tsv (cubes U V W, a plank, a jar, a mug, a stone): 160 sentences each, written cold, read once
     (71.2 % right / 4 wrong, 51.9 % / 3, 59.4 % / 4, 68.8 % / 2, 63.8 % / 1, 67.5 % / 6: docs/language.md);
     development figures since, kept here against regressions."""
-    table, misses = score(plugins, name)
-    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE]
-    assert not wrong, f"wrong resolutions: {wrong}"
-    right = sum(c["right"] for c in table.values())
-    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert_read(plugins, name, floor)
 
 
 DISAGREED = {
@@ -91,6 +97,10 @@ DISAGREED = {
                       "next to the big green one."},
     "heldout24.tsv": {"Move the small cube next to the big cube."},
     "heldout25.tsv": {"Move the biggest thing on the table next to the green cube."},
+    "heldout42.tsv": {"Make it so the bowl's up against the green cube"},
+    "heldout43.tsv": {"bump the short box closer to the tall one"},
+    "heldout44.tsv": {"grab the soup and stick it next to the jello",
+                      "grab the soda can and the soup can and put them both next to the box"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -101,7 +111,11 @@ the duck for one; a bare "put" or "place" is a slide for every other author and 
 "then put it" after a carry); "the big green one" after a row that named the big green cube is that cube for its
 author, where the toolkit reads the big green object of the table (a 16 cm bottle); "the big cube" among 3, 4 and 5 cm
 cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest thing" is the greatest bulk; a bare
-"against" is a plain next-to for the twenty-sixth author, a tight one ("up against", "snug against") for the others."""
+"against" is a plain next-to for the twenty-sixth author, a tight one ("up against", "snug against") for the others.
+"up against" outside a line about extents is a plain next-to for the forty-second author (and heldout40's and
+heldout41's), a tight one for most; "the tall one" after "the short box" is the tallest thing for the forty-third, the
+taller box as most authors' sized twins read; "grab X and put it ..." is a carry for six authors, a slide for two
+and the forty-fourth."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -110,11 +124,7 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
     / 4 and 75.0 % / 5 with the lenient reading written before either was read: docs/language.md); development
     figures since. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
-    table, misses = score(plugins, name)
-    wrong = [(case.sentence, got) for case, got in misses if got != REFUSE and case.sentence not in DISAGREED[name]]
-    assert not wrong, f"wrong resolutions: {wrong}"
-    right = sum(c["right"] for c in table.values())
-    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED[name])
 
 
 @pytest.mark.parametrize("name, floor", [("heldout12.tsv", 157), ("heldout13.tsv", 157), ("heldout14.tsv", 157),
@@ -140,12 +150,7 @@ def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     household models, MyoSuite's and Genesis's hardware, three identical red cubes in a line): written cold, read once
     at the next session's start: 48.1 % / 2, 61.9 % / 1 (and one traceback), 58.8 % / 1 and 56.2 % / 2; development
     figures since. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
-    table, misses = score(plugins, name)
-    wrong = [(case.sentence, got) for case, got in misses
-             if got != REFUSE and case.sentence not in DISAGREED.get(name, ())]
-    assert not wrong, f"wrong resolutions: {wrong}"
-    right = sum(c["right"] for c in table.values())
-    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
 OPEN = {
@@ -192,12 +197,20 @@ def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     can, a beer bottle and a marker cube) and heldout41.tsv (cubes named after their colours, red ... yellow, a
     ping-pong ball and a cup): written cold during that session and read once on its last language code: 50.0 % / 0
     and 75.6 % / 1 wrong (:data:`OPEN`)."""
-    table, misses = score(plugins, name)
-    wrong = [(case.sentence, got) for case, got in misses
-             if got != REFUSE and OPEN.get(name, {}).get(case.sentence) != got]
-    assert not wrong, f"wrong resolutions: {wrong}"
-    right = sum(c["right"] for c in table.values())
-    assert right >= floor, f"{right}/160 right; misses: {[(c.sentence, g) for c, g in misses]}"
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout42.tsv", 126), ("heldout43.tsv", 147), ("heldout44.tsv", 137)])
+def test_the_forty_second_to_forty_fourth_authors_corpora(plugins, name, floor):
+    """heldout42.tsv (a cooking class's fruit, one of them named "orange", beside an orange cube named "block"; a
+    chef, a German speaker, a phone's dictation and a child), heldout43.tsv (a task file's left_block and right_block
+    standing where their names no longer say, boxes big_box and small_box, a goal disc and an obstacle post; Indian
+    English, numbered test steps, a gamer) and heldout44.tsv (a clean-up scene's mug_1, mug_2, a soda can and a soup
+    can, a gelatin box, two cubes; a polite elder, a parent, a French speaker, a QA tester): written cold at the
+    twenty-eighth session's start and read once on its start code: 50.6 % / 21 wrong (the fruit named "orange" read
+    for "the orange block"), 68.1 % / 2 and 63.1 % / 2. Wrong only where the author disagrees with most authors
+    (:data:`DISAGREED`)."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
 @pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])
