@@ -17,8 +17,10 @@ from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
-from ..language.reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS
+from ..language.numbers import number_of
+from ..language.reference_words import BLOCK_WORDS, FRAMING_KINDS, NOUNS, SHAPE_NOUNS
 from ..language.references import group_of, try_object, two_references
+from ..language.synonyms import KIND_NAMES, KIND_SYNONYMS
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 from .goal_after import goal_after
@@ -212,12 +214,17 @@ def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
     words = [w for w in words if w]
     if not words or words[0] in {v.split()[0] for v in verbs} - {"get", "take"}:
         return False
-    naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS | PLACE_WORDS
+    naming = naming_words(scene) | set(name_words(scene)) | set(SHAPE_NOUNS) | NOUNS | BLOCK_WORDS | PLACE_WORDS \
+        | KIND_WORDS  # "then footy two": a thing said, on the table or not, is never read past
     said = {w.strip(".,;:!?\"()").lower() for w in text.split()}
     return not (naming | PACES.keys()) & set(words) and not (OTHER_ASKS | HOW_FAR) & said \
-        and not _names_a_place(text) and not any(c.isdigit() for c in text)
+        and not _names_a_place(text) and not any(c.isdigit() for c in text) \
+        and not any(number_of(w) is not None for w in words)
 
 
+KIND_WORDS = (frozenset(KIND_NAMES) | frozenset(KIND_SYNONYMS)) - FRAMING_KINDS
+"""Every kind's name and everyday name ("That's the goal for this step" frames, and names no goal disc): a clause
+that says one names a thing."""
 HOW_FAR = frozenset({"close", "far", "farther", "further", "near", "nearer", "touching", "touch", "gap",
                      "bit", "little", "lot", "slightly", "possible", "tight", "distance", "way"})
 """Words by which a clause that names nothing asks how far ("as close as possible"): never read past."""

@@ -158,6 +158,9 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     if any(w in named and COLOR_SYNONYMS.get(w, w) in COLORS and after in left and ahead in before_noun
            for ahead, w, after in zip(low, low[1:], low[2:], strict=False)):
         return None  # "the orange Würfel": "orange" names the fruit, or is the colour of a thing the word names
+    if any(w in SIZE_WORDS and ahead in SAID_BEFORE and after in left for ahead, w, after in
+           zip(low, low[1:], low[2:], strict=False)):
+        return None  # "the bigger par sell": the word left after "the bigger" is the noun it describes
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command

@@ -38,6 +38,7 @@ from .places import (
 )
 from .pools import either_reading
 from .pronouns import Context, _pronoun
+from .proportions import PROPORTION_NOUNS
 from .reference_words import (
     CENTRE_PHRASES,
     COLOR_SYNONYMS,
@@ -147,7 +148,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     try:
         return described(text, words, low, scene, determined)
     except LanguageError:
-        named = _named_before(text, scene, role, context) if determined else None
+        proportioned = set(low) & PROPORTION_NOUNS - {n.lower() for n in scene.names}  # "the tube": a guess
+        named = _named_before(text, scene, role, context) if determined and not proportioned else None
         named = named or _partitive(text, scene, role)
         if named is None:
             raise

@@ -103,6 +103,10 @@ PACES: dict[str, str] = {
     "swiftly": "fast",
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
     "gentle": "gentle",
+    # said in Spanish among English words, as bilingual speakers do ("rapido!! move la lata ...")
+    "rapido": "fast", "rápido": "fast", "rapidito": "fast", "despacio": "slow", "despacito": "slow",
+    "lento": "slow", "lentamente": "slow", "suave": "gentle", "suavecito": "gentle", "suavemente": "gentle",
+    "cuidadosamente": "careful",
 }
 """Manner adverbs -> the pace they ask for."""
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
@@ -117,7 +121,8 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "no rush": "slow", "no hurry": "slow", "there's no rush": "slow", "theres no rush": "slow",
     "no need to rush": "slow", "no need to hurry": "slow",
     "taking your time": "slow", "take it slow": "slow", "don't rush": "slow", "dont rush": "slow",
-    "don't hurry": "slow", "dont hurry": "slow", "without rushing": "slow",
+    "don't hurry": "slow", "dont hurry": "slow", "without rushing": "slow", "con cuidado": "careful",
+    "with precaution": "careful",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}

@@ -101,6 +101,8 @@ DISAGREED = {
     "heldout43.tsv": {"bump the short box closer to the tall one"},
     "heldout44.tsv": {"grab the soup and stick it next to the jello",
                       "grab the soda can and the soup can and put them both next to the box"},
+    "heldout45.tsv": {"the biggest thing, move it next to the ball"},
+    "heldout46.tsv": {"3307 up against tote"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -115,7 +117,8 @@ cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest
 "up against" outside a line about extents is a plain next-to for the forty-second author (and heldout40's and
 heldout41's), a tight one for most; "the tall one" after "the short box" is the tallest thing for the forty-third, the
 taller box as most authors' sized twins read; "grab X and put it ..." is a carry for six authors, a slide for two
-and the forty-fourth."""
+and the forty-fourth; "the biggest thing" between a 9 x 6 x 4 cm box and a 6 x 10 cm can is the can (bulk) as
+for most, a question for the forty-fifth."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -166,6 +169,9 @@ OPEN = {
         # "up against" without "right": a plain next-to for this author (and two of heldout40's lines), a tight one
         # for two earlier authors; read as tight
         "um put the little blue box up against the cup": "slide:next-to blue cup extent=right"},
+    "heldout46.tsv": {
+        # dictated "the bigger par sell" (parcel) mended as "the bigger part well": the bigger object, the tote
+        "push the traffic cone toward the bigger par sell": "push:closer cone tote"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -200,17 +206,22 @@ def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout42.tsv", 126), ("heldout43.tsv", 147), ("heldout44.tsv", 137)])
-def test_the_forty_second_to_forty_fourth_authors_corpora(plugins, name, floor):
+@pytest.mark.parametrize("name, floor", [("heldout42.tsv", 126), ("heldout43.tsv", 147), ("heldout44.tsv", 138),
+                                         ("heldout45.tsv", 120), ("heldout46.tsv", 64)])
+def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
     """heldout42.tsv (a cooking class's fruit, one of them named "orange", beside an orange cube named "block"; a
     chef, a German speaker, a phone's dictation and a child), heldout43.tsv (a task file's left_block and right_block
     standing where their names no longer say, boxes big_box and small_box, a goal disc and an obstacle post; Indian
     English, numbered test steps, a gamer) and heldout44.tsv (a clean-up scene's mug_1, mug_2, a soda can and a soup
     can, a gelatin box, two cubes; a polite elder, a parent, a French speaker, a QA tester): written cold at the
     twenty-eighth session's start and read once on its start code: 50.6 % / 21 wrong (the fruit named "orange" read
-    for "the orange block"), 68.1 % / 2 and 63.1 % / 2. Wrong only where the author disagrees with most authors
-    (:data:`DISAGREED`)."""
-    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
+    for "the orange block"), 68.1 % / 2 and 63.1 % / 2. heldout45.tsv (a bilingual classroom's objects named in
+    Spanish: caja, pelota, taza, lata, cubo_rojo, cubo_azul) and heldout46.tsv (a packing station's parcels named by
+    SKU, a tote, a cone, a scanner; a dictating supervisor): written cold during that session and read once on its
+    last language code: 73.1 % / 4 wrong and 40.0 % / 5 wrong. Wrong only where the author disagrees with most
+    authors (:data:`DISAGREED`) or the reading is kept visible (:data:`OPEN`)."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
+                or OPEN.get(name, {}).get(sentence) == got)
 
 
 @pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])

@@ -3,9 +3,9 @@ orange block" beside the fruit named "orange"), a name with a place word in it w
 ("the left block" beside left_block on the right: asked), a name with a size word ("the small box" is small_box where
 it is the smaller box), numbered steps ("1. ...", "2) ..."), a target disc called goal, target or marker, the soda
 can beside the soup can, "the front mug", homophones a transcript leaves ("next two", "a round", "passed", "a way
-from", "slow Lee", "bowel"), the verb said last in German order, and the words of Indian English ("keep X beside
-Y", "do the needful", "itself"). Checked on sentences of each kind (not the corpora's own lines), and what must stay
-refused."""
+from", "slow Lee", "bowel"), the verb said last in German order, the words of Indian English ("keep X beside Y", "do
+the needful", "itself"), and a pace said in Spanish ("rapido", "con cuidado"). Checked on sentences of each kind (not
+the corpora's own lines), and what must stay refused."""
 
 from __future__ import annotations
 
@@ -20,6 +20,11 @@ orange 5 cm cube named "block" in the middle."""
 TASK = "heldout43.tsv"
 """Blue cubes left_block (standing back right) and right_block (front left), brown boxes big_box and small_box, a
 flat green disc named goal in the middle, a gray post named obstacle."""
+SPANISH = "heldout45.tsv"
+"""A bilingual classroom: caja (a box), pelota (a ball), taza (a mug), lata (a green can), cubo_rojo, cubo_azul."""
+PARCELS = "heldout46.tsv"
+"""Parcels SKU-1042 and SKU-3307 (brown boxes), SKU-2210 (a white tube standing), a blue tote, an orange cone (a
+4 x 7 cm cylinder), a black scanner."""
 CLEANUP = "heldout44.tsv"
 """mug_1 white (front left), mug_2 blue (back), can_1 a soda can, can_2 a soup can (both red), box_1 a yellow
 gelatin box, block_1 a red cube, block_2 a green cube."""
@@ -62,6 +67,9 @@ gelatin box, block_1 a red cube, block_2 a green cube."""
     ("move the red cube past the box, then right next to the soup can",
      "slide:past block_1 box_1 ; slide:next-to block_1 can_2 extent=right", CLEANUP),
     ("carry the coke over beside the blue mug, if it isn't too much bother", "carry:next-to can_1 mug_2", CLEANUP),
+    # a pace said in Spanish among English words
+    ("despacio, slide the pelota toward la caja", "slide:closer pelota caja pace=slow", SPANISH),
+    ("push la taza past the lata con cuidado", "push:past taza lata pace=careful", SPANISH),
     # what speech-to-text hears
     ("slide the lemon next two the bowel", "slide:next-to lemon bowl", FRUIT),
     ("move the apple a round the plate", "slide:around apple plate", FRUIT),
@@ -90,6 +98,10 @@ def test_read(plugins, sentence, expect, table):
     ("move the can next to the box", CLEANUP),
     # "pass ... by" may be past or beside
     ("pass the red cube by the soup can", CLEANUP),
+    # a word of proportions fits the cone and the tube alike: the clause before naming the cone does not choose it
+    ("slide the scanner around the cone, then push the tube toward the tote", PARCELS),
+    # a clause that names a thing is never read past as asking for nothing
+    ("slide the cone past the scanner, then footy two", PARCELS),
 ])
 def test_stays_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
