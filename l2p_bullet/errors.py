@@ -10,6 +10,7 @@ as attributes (like flake8's ``FailedToLoadPlugin(name, exception)``): an unknow
 from __future__ import annotations
 
 import difflib
+import functools
 from collections.abc import Iterable
 
 
@@ -202,5 +203,27 @@ def did_you_mean(word: str, choices: Iterable[str]) -> str:
 
     Used by every "unknown X" error so that the suggestion reads the same everywhere.
     """
+    choices = tuple(choices)
+    try:
+        return _closest(word, choices)
+    except TypeError:  # a word or choice that cannot be kept (unhashable): asked as it is
+        return _closest.__wrapped__(word, choices)
+
+
+@functools.lru_cache(maxsize=1024)
+def _closest(word: str, choices: tuple[str, ...]) -> str:
+    """:func:`did_you_mean`, kept by the word and the choices: a sentence's readings try the same words against the
+    same scene many times, and each refusal asks for its suggestion (difflib's ratios are the cost)."""
     close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
     return f' Did you mean "{close[0]}"?' if close else ""
+
+
+def copied(error: L2PError) -> L2PError:
+    """A new exception of ``error``'s type with its arguments and attributes (not its traceback or context), made
+    without calling ``__init__`` (whose parameters differ between errors): how a kept refusal is raised again,
+    as reading the words anew would raise a new one."""
+    copy = BaseException.__new__(type(error))
+    copy.args = error.args
+    copy.__dict__.update(error.__dict__)
+    copy.__cause__, copy.__suppress_context__ = error.__cause__, error.__suppress_context__
+    return copy

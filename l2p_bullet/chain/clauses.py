@@ -34,7 +34,7 @@ from ..language.numbers import apposed
 from ..language.reference_words import FARTHEST, NEAREST
 from ..manners import registry as manners
 from ..pipeline import resolve
-from ..plugins import registry
+from ..plugins import once, registry
 from . import apart, corrections, pointing, rephrased
 from .clause import MAX_CLAUSES, Clause, named
 from .composite import composite_clauses, is_composite
@@ -58,7 +58,13 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     """:func:`read_clauses`; where the sentence is refused as written, read again with its typing slips mended
     (language/typos.py: "mvoe teh red cube") and its asides in brackets read past (:data:`ASIDE`); the first
     refusal stands where the mended sentence is refused too or there is nothing to mend, and where the lenient
-    reading (language/lenient.py), tried last, refuses both."""
+    reading (language/lenient.py), tried last, refuses both. The installed plugins are read once for the sentence
+    (plugins/once.py)."""
+    with once.read_once():
+        return _resolve_clauses(sentence, scene, plugins)
+
+
+def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:

@@ -5,6 +5,7 @@ in the CLI, the registry, the demonstrations and the graded data.
 
 from __future__ import annotations
 
+import functools
 import re
 
 from ..actions import BUILTIN
@@ -30,8 +31,10 @@ def normalize_name(name: str) -> str:
     return name.strip().lower().replace("_", "-")
 
 
+@functools.lru_cache(maxsize=4096)
 def normalize_phrase(phrase: str) -> str:
-    """A phrase as compared everywhere: lower case, single spaces."""
+    """A phrase as compared everywhere: lower case, single spaces. Kept by the phrase: reading one sentence
+    normalises the installed phrases thousands of times (every phrase table is built anew from the plugins)."""
     return " ".join(phrase.lower().split())
 
 

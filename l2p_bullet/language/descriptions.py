@@ -228,9 +228,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
               and w in SHAPE_NOUNS and w not in PROFILES]  # "the big cube": the mesh named "cube" or another cube
     shapes = {SHAPE_NOUNS[w] for w in low if w in SHAPE_NOUNS and w not in groups and w not in PROFILES}
     shaped = {SHAPE_ADJECTIVES[w] for w in low if w in SHAPE_ADJECTIVES and w not in PROFILES}
-    known = (set(COLORS) | set(COLOR_SYNONYMS) | NOUNS | set(SHAPE_NOUNS) | set(SHAPE_ADJECTIVES) | BLOCK_WORDS
-             | {"things", "objects", "ones"} | set(names) | set(groups))
-    unknown = [w for w in low if w not in known]
+    unknown = [w for w in low if w not in DESCRIPTION_WORDS and w not in names and w not in groups]
     if determined and named and len(low) == 2 and unknown == [low[0]] and low[0].isalpha() \
             and low[0] not in FUNCTION_WORDS and (low[0] not in KIND_SYNONYMS or low[0] in FRAMING_KINDS):
         # "the triangular toy" is another kind; "the goal: 6 ..." heads a wish
@@ -271,6 +269,11 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if drink and len(fits) > 1:  # "the soda can" beside a soup can
         fits = [o for o in fits if not own_kinds_of(o) & FOODS] or fits
     return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
+
+
+DESCRIPTION_WORDS = (frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | NOUNS | frozenset(SHAPE_NOUNS)
+                     | frozenset(SHAPE_ADJECTIVES) | BLOCK_WORDS | frozenset({"things", "objects", "ones"}))
+"""The words of a description that every table knows (:func:`candidates`); a scene's names and kinds are known too."""
 
 
 def a_block_to_look_at(o: SceneObject) -> bool:

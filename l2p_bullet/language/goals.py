@@ -7,9 +7,11 @@ cone") asks for nothing and is not read so. Kept apart from language/words.py, w
 
 from __future__ import annotations
 
+import functools
+
 from ..errors import LanguageError
 from .reference_words import DETERMINERS, NOUNS, SHAPE_NOUNS
-from .words import PACES, starts
+from .words import PACES, by_word, starts
 
 GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "i want", "i would like", "i'd like", "i need", "have", "we need", "we want", "what i want is", "what i need is",
@@ -60,14 +62,16 @@ PASSIVE_AUX = (("needs", "to", "be"), ("need", "to", "be"), ("has", "to", "be"),
 """Words between an object and a participle that only make it passive ("for C to be moved next to B")."""
 
 
-def participles(verb: str) -> set[str]:
-    """The past participles a one-word verb may take ("move": moved, "drag": dragged, "carry": carried)."""
+@functools.lru_cache(maxsize=256)
+def participles(verb: str) -> frozenset[str]:
+    """The past participles a one-word verb may take ("move": moved, "drag": dragged, "carry": carried). Kept by
+    the verb: every clause read asks for every known verb's."""
     if verb in IRREGULAR_PARTICIPLES:
-        return {IRREGULAR_PARTICIPLES[verb]}
+        return frozenset({IRREGULAR_PARTICIPLES[verb]})
     out = {verb + "ed", verb + "d", verb + verb[-1] + "ed"}
     if verb.endswith("y"):
         out.add(verb[:-1] + "ied")
-    return out
+    return frozenset(out)
 
 
 def passive_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
@@ -115,6 +119,8 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""
+_LINKS_BY_FIRST = by_word(STATE_LINKS, 0)
+"""The links by their first word (only those can match where a word stands), the longest first as above."""
 
 
 def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str] | None = None) -> list[str]:
@@ -133,7 +139,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
         if read is not split:
             return read
     for k in range(1, len(low)):
-        link = next((t for t in STATE_LINKS if tuple(low[k:k + len(t)]) == t and k + len(t) < len(low)), None)
+        link = next((t for t in _LINKS_BY_FIRST.get(low[k], ()) if tuple(low[k:k + len(t)]) == t
+                     and k + len(t) < len(low)), None)
         if link is None:
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once

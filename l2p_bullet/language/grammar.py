@@ -29,8 +29,9 @@ from ..manners import registry as manners
 from . import lenient
 from .anchors import measured_context, mover_in_relation, noun_carried, twin_of
 from .descriptions import naming_words
-from .extents import COMPARATIVES, TIGHT_PHRASES, take_extent, take_extent_first, take_extent_tail
+from .extents import take_extent, take_extent_first, take_extent_tail
 from .goals import goal_to_verb, passive_to_verb, said_now, state_to_verb
+from .phrase_readings import TIGHT, phrase_tokens, readings, without_to
 from .pronouns import Context
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
 from .references import object_pairs, resolve_object, try_object
@@ -44,8 +45,6 @@ from .words import (
     take_pace,
 )
 
-TIGHT = "right"
-"""The extent of a tight gap ("right next to")."""
 MAX_SENTENCE = 200
 """Longest sentence read, in characters: a command is a few words; a longer text is refused at once
 (parsing is quadratic in the words, and an error must not echo kilobytes back)."""
@@ -102,13 +101,6 @@ def tokens(sentence: str) -> list[str]:
     return out
 
 
-def phrase_tokens(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str]]:
-    """(tokens, phrase, action) sorted longest first, so the longest phrase wins."""
-    table = {normalize_phrase(p): a for p, a in phrases.items()}
-    items = [(tuple(p.split()), p, a) for p, a in table.items() if p]
-    return sorted(items, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
-
-
 def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None, *,
           extents: dict[str, frozenset[str]] | None = None, context: Context | None = None) -> Command:
     """Parse ``sentence`` against the objects of ``scene`` and the installed ``phrases`` (phrase -> action).
@@ -129,7 +121,7 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
         if said_now([w.lower() for w in said]):  # "Right now A is far from B": how it is, not a wish
             raise
         words, pace = take_pace(strip_polite(said, keep), keep)
-        found = lenient.read(words, scene, _readings(phrases), [(h, d, m) for h, _, d, m in _verb_patterns()],
+        found = lenient.read(words, scene, readings(phrases), [(h, d, m) for h, _, d, m in _verb_patterns()],
                              anchors or {}, extents or {}, context)
         if found is None:
             raise
@@ -169,7 +161,7 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
     # The longest phrase wins; among its positions the first that names two objects. If no phrase
     # gives a valid reading, the error of the longest phrase's first reading is the most useful one.
     first_error: Exception | None = None
-    for toks, phrase, action, implied in _readings(phrases) + _without_to(phrases):
+    for toks, phrase, action, implied in readings(phrases) + without_to(phrases):
         n = len(toks)
         for i in range(0, len(low) - n + 1):
             if tuple(low[i : i + n]) != toks:
@@ -237,7 +229,7 @@ def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
         return False
     if set(low[1:]) & verb_heads():
         return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
-    return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in _readings(phrases) for i in range(1, len(low)))
+    return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in readings(phrases) for i in range(1, len(low)))
 
 
 def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:
@@ -273,33 +265,6 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     # ...", "of the 2 rectangular blocks move ...": an opening about objects is not skipped
     naming = keep | frozenset(w for w in words if w.lower() in describing)
     return by_gerund(strip_polite(skip_to_verb(words, heads, naming), keep), verbs), pace
-
-
-def _readings(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:
-    """(tokens, phrase, action, implied extent) for every phrase, longest first; the comparatives people
-    use for "away from" ("farther from", "far from") read as its phrase when it is installed, and a phrase typed
-    without its article ("to other side of") as the phrase."""
-    out = [(t, p, a, TIGHT if p in TIGHT_PHRASES else None) for t, p, a in phrase_tokens(phrases)]
-    table = {normalize_phrase(p): a for p, a in phrases.items()}
-    for toks, phrase, action, _ in list(out):  # "to other side of", "in direction of": the article left out
-        bare = tuple(w for w in toks if w != "the")
-        if len(bare) > 1 and bare != toks and " ".join(bare) not in table:
-            out.append((bare, phrase, action, None))
-    for toks, (phrase, extent) in COMPARATIVES.items():
-        if phrase in table and " ".join(toks) not in table:
-            out.append((toks, phrase, table[phrase], extent))
-    return sorted(out, key=lambda t: (-len(t[0]), -len(t[1]), t[1]))
-
-
-def _without_to(phrases: dict[str, str]) -> list[tuple[tuple[str, ...], str, str, str | None]]:
-    """Phrases that end in "to" typed without it ("move the ball next the cube", "push A closer the duck"): read
-    after every phrase as written has failed, and never by the lenient reading, which counts phrases."""
-    table = {normalize_phrase(p): a for p, a in phrases.items()}
-    out = []
-    for toks, phrase, action in phrase_tokens(phrases):
-        if len(toks) > 1 and toks[-1] == "to" and " ".join(toks[:-1]) not in table:
-            out.append((toks[:-1], phrase, action, None))
-    return out
 
 
 def manner_of_sentence(sentence: object) -> str:

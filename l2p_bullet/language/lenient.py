@@ -21,6 +21,7 @@ try, so a sentence the grammar reads is read exactly as before.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -226,13 +227,18 @@ def _manner(low: list[str], verbs: list[tuple[tuple[str, ...], str, str]]) -> tu
 
 def _inflects(word: str, verb: str) -> bool:
     """Whether ``word`` is ``verb`` or one of its forms ("pushed", "pushing", "carries", "slid")."""
-    if word == verb or word in participles(verb):  # the -ed forms
-        return True
+    return word == verb or word in _forms(verb)
+
+
+@functools.lru_cache(maxsize=256)
+def _forms(verb: str) -> frozenset[str]:
+    """The forms of ``verb`` (:func:`_inflects`), kept by the verb: every word of a clause is checked against every
+    manner's verbs."""
     stem = verb[:-1] if verb.endswith("e") else verb
-    forms = {verb + "s", verb + "es", stem + "ing"}
+    forms = {verb + "s", verb + "es", stem + "ing", *participles(verb)}  # participles: the -ed forms
     if verb.endswith("y"):
         forms.add(verb[:-1] + "ies")
-    return word in forms
+    return frozenset(forms)
 
 
 def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], list[str]]:

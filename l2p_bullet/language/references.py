@@ -22,6 +22,7 @@ from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates, coloured_like, describe, described, looks, name_words, spelled_name
 from .group_places import in_group, table_sides
+from .kept import SceneMemo
 from .numbers import number_reference
 from .other_than import other_than
 from .places import (
@@ -68,8 +69,13 @@ from .synonyms import is_modifier, kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
-    """The name of the object ``text`` refers to; a one-line error when none or several fit."""
-    return _resolve(text, scene, role, context)
+    """The name of the object ``text`` refers to; a one-line error when none or several fit. Kept per scene
+    (language/kept.py): a sentence's readings ask for the same words many times."""
+    return _RESOLVED.ask((text, role, context), scene, lambda: _resolve(text, scene, role, context))
+
+
+_RESOLVED = SceneMemo(4096)
+"""What :func:`resolve_object` answered, by words, role, context and the scene's objects."""
 
 
 def try_object(text: str, scene: Scene, context: Context | None = None) -> str | None:

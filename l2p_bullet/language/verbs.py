@@ -8,6 +8,8 @@ they contradict it. Kept apart from the grammar (language/grammar.py), which rea
 
 from __future__ import annotations
 
+import functools
+
 from ..errors import LanguageError, did_you_mean
 from ..manners import registry as manners
 
@@ -20,12 +22,18 @@ EXAMPLE = 'try for example "move A around B" or "slide the red block next to the
 
 def known_verbs() -> list[str]:
     """Every verb a sentence may start with (its first word): the old ones first, then the manners'."""
+    return list(_known_verbs(tuple(manners.verb_table())))
+
+
+@functools.lru_cache(maxsize=8)
+def _known_verbs(declared: tuple[str, ...]) -> tuple[str, ...]:
+    """:func:`known_verbs` of the manners' verbs as declared, kept by them: every clause read asks for them."""
     out = list(VERBS)
-    for v in manners.verb_table():
+    for v in declared:
         head = v.split("...")[0].strip()
         if head not in out:
             out.append(head)
-    return out
+    return tuple(out)
 
 
 def verb_heads() -> frozenset[str]:
@@ -34,17 +42,27 @@ def verb_heads() -> frozenset[str]:
     return frozenset(v.split()[0] for v in known_verbs())
 
 
-def _verb_patterns() -> list[tuple[tuple[str, ...], tuple[str, ...], str, str]]:
+Pattern = tuple[tuple[str, ...], tuple[str, ...], str, str]
+"""(head tokens, gap tokens, verb as declared, manner)."""
+
+
+def _verb_patterns() -> list[Pattern]:
     """(head tokens, gap tokens, verb as declared, manner) for every installed manner's verb, longest first;
     the old verbs no manner claims are the default manner's."""
-    table = dict(manners.verb_table())
+    return list(_patterns_of(tuple(manners.verb_table().items())))
+
+
+@functools.lru_cache(maxsize=8)
+def _patterns_of(declared: tuple[tuple[str, str], ...]) -> tuple[Pattern, ...]:
+    """:func:`_verb_patterns` of the manners' (verb, manner) pairs, kept by them: every clause read asks for them."""
+    table = dict(declared)
     for v in VERBS:
         table.setdefault(v, manners.DEFAULT)
     out = []
     for v, m in table.items():
         head, _, gap = v.partition("...")
         out.append((tuple(head.lower().split()), tuple(gap.lower().split()), v, m))
-    return sorted(out, key=lambda t: -len(t[0]) - len(t[1]))  # stable: a manner's own order among equals
+    return tuple(sorted(out, key=lambda t: -len(t[0]) - len(t[1])))  # stable: a manner's own order among equals
 
 
 def split_verb(words: list[str]) -> tuple[str, str, list[str]]:

@@ -139,7 +139,7 @@ def starts(low: list[str], words: tuple[str, ...]) -> bool:
     return tuple(low[: len(words)]) == words
 
 
-def _by_word(table: tuple[tuple[str, ...], ...], at: int) -> dict[str, tuple[tuple[str, ...], ...]]:
+def by_word(table: tuple[tuple[str, ...], ...], at: int) -> dict[str, tuple[tuple[str, ...], ...]]:
     """The table's entries by their word at ``at`` (0: the first, -1: the last), each list in the table's order: only
     those can match where a command starts or ends with that word (the first match is the one taken)."""
     out: dict[str, list[tuple[str, ...]]] = {}
@@ -148,8 +148,9 @@ def _by_word(table: tuple[tuple[str, ...], ...], at: int) -> dict[str, tuple[tup
     return {k: tuple(v) for k, v in out.items()}
 
 
-_PREFIXES_BY_FIRST = _by_word(POLITE_PREFIXES, 0)
-_SUFFIXES_BY_LAST = _by_word(POLITE_SUFFIXES, -1)
+_PREFIXES_BY_FIRST = by_word(POLITE_PREFIXES, 0)
+_PACES_BY_FIRST = by_word(tuple(PACE_PHRASES), 0)
+_SUFFIXES_BY_LAST = by_word(POLITE_SUFFIXES, -1)
 
 
 def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[str]:
@@ -285,7 +286,7 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
     low = [w.lower() for w in words]
     while i < len(words):
         w = low[i]
-        phrase = next((k for k in PACE_PHRASES if tuple(low[i:i + len(k)]) == k), None)
+        phrase = next((k for k in _PACES_BY_FIRST.get(w, ()) if tuple(low[i:i + len(k)]) == k), None)
         if phrase is not None and not set(words[i:i + len(phrase)]) & keep:
             paces.append(PACE_PHRASES[phrase])
             i += len(phrase)

@@ -46,11 +46,13 @@ from ..errors import (
     PluginConflict,
     PluginError,
     UnknownActionError,
+    copied,
 )
-from . import finder
+from . import finder, once
 from .bundle import MANIFEST, PROGRESS_FILE, load_bundle, read_manifest
 from .finder import Plugin
 from .folders import locate_from_files, locate_module_folder, module_folder
+from .phrases import conflicts, tables  # noqa: F401 - registry.conflicts is the actions command's
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bundle import Bundle
@@ -167,7 +169,14 @@ def _check_manifest(name: str, folder: Path) -> tuple[dict[str, Any], str | None
 
 def discover(kind: str = "action") -> list[PluginInfo]:
     """Every installed plugin of ``kind`` (:data:`KINDS`), usable or not, sorted by name. Imports no plugin
-    code. A plugin whose manifest cannot be read counts as an action (its error is shown with them)."""
+    code. A plugin whose manifest cannot be read counts as an action (its error is shown with them). Read once
+    while one sentence is read (plugins/once.py)."""
+    found = once.kept("action plugins", _found, lambda kept: [replace(p, manifest=_copied(p.manifest)) for p in kept])
+    return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
+
+
+def _found() -> list[PluginInfo]:
+    """Every installed action plugin, composites too, with the one rule for names applied."""
     found: list[PluginInfo] = []
     for plugin in finder.find("action"):
         base = PluginInfo(**{f.name: getattr(plugin, f.name) for f in fields(Plugin)})
@@ -181,8 +190,7 @@ def discover(kind: str = "action") -> list[PluginInfo]:
         manifest, error = _check_manifest(plugin.name, folder)
         found.append(replace(base, kind=str(manifest.get("kind", "action")), path=folder, manifest=manifest,
                              error=error))
-    found = finder.settle(found)
-    return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
+    return finder.settle(found)
 
 
 def composites(plugins: list[PluginInfo] | None = None, installed: list[PluginInfo] | None = None,
@@ -205,63 +213,20 @@ def local(name: str, folder: Path) -> PluginInfo:
                       package_version="", entry_point="", error=error, path=folder, manifest=manifest)
 
 
-def conflicts(plugins: list[PluginInfo]) -> list[PluginConflict]:
-    """Every name or phrase claimed by two usable plugins (empty when all is well)."""
-    out: list[PluginConflict] = []
-    usable = [p for p in plugins if p.ok]
-    by_name: dict[str, list[PluginInfo]] = {}
-    for p in usable:
-        by_name.setdefault(normalize_name(p.name), []).append(p)
-    for group in by_name.values():
-        if len(group) > 1:
-            out.append(PluginConflict(f'two action plugins are both named "{group[0].name}": '
-                                      + " and ".join(p.label() for p in group) + "; uninstall one of the packages",
-                                      group[0].name, [p.name for p in group]))
-    by_phrase: dict[str, list[PluginInfo]] = {}
-    for p in usable:
-        for phrase in dict.fromkeys(p.phrases):
-            by_phrase.setdefault(phrase, []).append(p)
-    for phrase, group in by_phrase.items():
-        if len({normalize_name(p.name) for p in group}) > 1:
-            out.append(PluginConflict(
-                f'the phrase "{phrase}" is claimed by several action plugins: '
-                + " and ".join(p.label() for p in group)
-                + "; uninstall one of the packages or remove the phrase from one manifest",
-                phrase, [p.name for p in group]))
-    return out
-
-
 def blocked_phrases(plugins: list[PluginInfo] | None = None) -> dict[str, PluginError]:
     """Phrases no sentence may use, each with the error that says why: the phrases of plugins in a name
     conflict, phrases claimed by two plugins, and the phrases of broken plugins that no usable one owns.
 
     Only those phrases are blocked: a plugin that claims "past" must not stop "move A around B".
     """
-    plugins = discover() if plugins is None else plugins
-    out: dict[str, PluginError] = {}
-    for c in conflicts(plugins):
-        if all(normalize_name(n) == normalize_name(c.claim) for n in c.plugins):
-            for p in plugins:  # a name conflict: every phrase of every plugin of that name
-                if p.ok and normalize_name(p.name) == normalize_name(c.claim):
-                    for phrase in p.phrases:
-                        out.setdefault(phrase, c)
-        else:
-            out.setdefault(c.claim, c)
-    owned = {phrase for p in plugins if p.ok for phrase in p.phrases}
-    for p in plugins:
-        if not p.ok:
-            for phrase in p.phrases:
-                if phrase not in owned:
-                    out.setdefault(phrase, FailedToLoadPlugin(p.name, p.package, p.error or "broken"))
-    return out
+    blocked = tables(discover() if plugins is None else plugins)[1]
+    copies: dict[int, PluginError] = {}  # one error blocking several phrases stays one error
+    return {phrase: copies.setdefault(id(e), copied(e)) for phrase, e in blocked.items()}
 
 
 def phrase_table(plugins: list[PluginInfo] | None = None) -> dict[str, str]:
     """Phrase -> action name over the usable plugins, without the :func:`blocked_phrases`."""
-    plugins = discover() if plugins is None else plugins
-    blocked = blocked_phrases(plugins)
-    return {phrase: p.name for p in plugins if p.ok and p.kind == "action" for phrase in p.phrases
-            if phrase not in blocked}
+    return dict(tables(discover() if plugins is None else plugins)[0])
 
 
 def anchor_counts(plugins: list[PluginInfo] | None = None) -> dict[str, int]:
