@@ -132,18 +132,18 @@ TWO_BEFORE_THE = re.compile(r"(?<=[a-z] )2 (?=the\b)", re.IGNORECASE)
 ONE_FOR_ONE = re.compile(r"\b(red|green|blue|yellow|white|black|orange|purple|pink|grey|gray|brown|big|small|little|"
                          r"other|front|back|left|right|tall|short|last|first)\s+1\b(?!\s*(?:cm|mm|m)\b)", re.IGNORECASE)
 """"1" texted for "one" after an adjective ("the blue 1", "the other 1"), where no object is named "1"."""
-HEARD = re.compile(r"\b(?:(?P<past>passed)|(?P<around>a\s+round))\s+(?=(?:the|it|that|this|them)\b)"
-                   r"|\b(?P<away>a\s+way)\s+(?=from\b)", re.IGNORECASE)
+HEARD = re.compile(r"\b(?:(?P<passed>passed)|(?P<a_round>a\s+round))\s+(?=(?:the|it|that|this|them)\b)"
+                   r"|\b(?P<a_way>a\s+way)\s+(?=from\b)", re.IGNORECASE)
 """What speech-to-text hears for a preposition ("passed the bowl", "a round the bowl", "a way from it"), read as the
 preposition before an article, a pronoun or "from" ("next two the plate": :data:`TWO_FOR_TO`)."""
+HEARD_AS = {"passed": "past ", "a_round": "around ", "a_way": "away "}
 HEARD_PACES = re.compile(r"\b(slow|quick|careful|gentle)\s+lee\b", re.IGNORECASE)
 """A pace adverb heard as two words ("slow Lee"): one word again."""
 PACE_OF = {"slow": "slowly", "quick": "quickly", "careful": "carefully", "gentle": "gently"}
 
 
 def _heard(m: re.Match) -> str:
-    said = next(k for k in ("past", "around", "away") if m.group(k))
-    return {"past": "past ", "around": "around ", "away": "away "}[said]
+    return next(HEARD_AS[group] for group, said in m.groupdict().items() if said)
 
 
 FILLERS = re.compile(r"\b(?:u+m+|u+h+m*|e+r+m+|h+m+)\b[,.]*\s*", re.IGNORECASE)
