@@ -29,7 +29,7 @@ from ..language import (
     verb_heads,
 )
 from ..language.descriptions import naming_words
-from ..language.extents import EXTENTS
+from ..language.extents import LONGEST_FIRST
 from ..language.numbers import apposed
 from ..language.reference_words import FARTHEST, NEAREST
 from ..manners import registry as manners
@@ -438,7 +438,7 @@ def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) 
 
     low = tuple(w.lower() for w in words)
     raw = tuple(w.lower().strip(",.!?;") for w in text.split())
-    said = next((len(k) for k in LEADING_EXTENTS if raw[:len(k)] == k), 0)  # "then right next to C"
+    said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
     for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
         if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
             return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
@@ -449,8 +449,6 @@ def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) 
 
 SAID_AGAIN = {("it",), ("them",), ("that",)}
 """Words a verbless clause's reference opens with when it repeats the clause before ("..., only slightly past it")."""
-LEADING_EXTENTS = sorted(EXTENTS, key=len, reverse=True)
-"""Extents a clause without verb or mover may open with before its preposition, longest first."""
 
 
 def _gapped(verb: str) -> bool:

@@ -18,9 +18,8 @@ from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
 from ..language.numbers import number_of
-from ..language.reference_words import BLOCK_WORDS, FRAMING_KINDS, NOUNS, SHAPE_NOUNS
+from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS, SHAPE_NOUNS
 from ..language.references import group_of, try_object, two_references
-from ..language.synonyms import KIND_NAMES, KIND_SYNONYMS
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 from .goal_after import goal_after
@@ -222,9 +221,6 @@ def asks_nothing(text: str, scene: Scene, verbs: list[str]) -> bool:
         and not any(number_of(w) is not None for w in words)
 
 
-KIND_WORDS = (frozenset(KIND_NAMES) | frozenset(KIND_SYNONYMS)) - FRAMING_KINDS
-"""Every kind's name and everyday name ("That's the goal for this step" frames, and names no goal disc): a clause
-that says one names a thing."""
 HOW_FAR = frozenset({"close", "far", "farther", "further", "near", "nearer", "touching", "touch", "gap",
                      "bit", "little", "lot", "slightly", "possible", "tight", "distance", "way"})
 """Words by which a clause that names nothing asks how far ("as close as possible"): never read past."""

@@ -35,14 +35,15 @@ from .pronouns import Context
 from .reference_words import (
     COLOR_SYNONYMS,
     COMPARATIVE_OF,
+    DETERMINERS,
     FARTHEST,
-    FRAMING_KINDS,
+    KIND_WORDS,
     NEAREST,
     PLACE_ADJECTIVES,
     SIZE_SUPERLATIVES,
 )
 from .references import try_object
-from .synonyms import KIND_NAMES, KIND_SYNONYMS, SIZE_WORDS
+from .synonyms import SIZE_WORDS
 from .words import NEGATIONS, PACES
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
@@ -152,26 +153,32 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
         return None
     # "the triangular toy", "the cereal box" on a table with neither; "... in the middle row"
     describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES) \
-        | (set(KIND_SYNONYMS) | set(KIND_NAMES)) - FRAMING_KINDS | GROUPED
-    left = {w.lower() for w in left_before + left_after}
-    before_noun = SAID_BEFORE | SIZE_WORDS
-    if any(w in named and COLOR_SYNONYMS.get(w, w) in COLORS and after in left and ahead in before_noun
-           for ahead, w, after in zip(low, low[1:], low[2:], strict=False)):
-        return None  # "the orange Würfel": "orange" names the fruit, or is the colour of a thing the word names
-    if any(w in SIZE_WORDS and ahead in SAID_BEFORE and after in left for ahead, w, after in
-           zip(low, low[1:], low[2:], strict=False)):
-        return None  # "the bigger par sell": the word left after "the bigger" is the noun it describes
+        | KIND_WORDS | GROUPED
+    if _noun_left(low, {w.lower() for w in left_before + left_after}, named):
+        return None
     if any(w.lower() in describing for w in left_before + left_after) or \
             {w.lower() for w in left_before} & {"and", "&"}:
         return None  # "and" before the phrase lists objects or joins a second command
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
 
 
-SAID_BEFORE = frozenset({"the", "a", "an", "this", "that"})
-"""Words before a colour that make it an adjective of the next word ("the orange Würfel")."""
 GROUPED = frozenset({"row", "rows", "column", "columns", "line", "lines", "corner", "corners", "edge", "edges"})
 """Words that place an object in a group or a part of the table ("the leftmost one in the middle row"): left over,
 the words before them would be read without them ("the leftmost one in the middle"), another object."""
+
+
+def _noun_left(low: list[str], left: set[str], named: set[str]) -> bool:
+    """Whether a word left unread stands where a description's noun does: after "the" (or a size word) and a colour
+    that names an object ("the orange Würfel": the fruit named "orange", or the colour of a thing the word names),
+    or after "the" and a size word ("the bigger par sell")."""
+    for ahead, w, after in zip(low, low[1:], low[2:], strict=False):
+        if after not in left:
+            continue
+        if w in named and COLOR_SYNONYMS.get(w, w) in COLORS and (ahead in DETERMINERS or ahead in SIZE_WORDS):
+            return True
+        if w in SIZE_WORDS and ahead in DETERMINERS:
+            return True
+    return False
 
 
 def _asks_no_extent(before: list[str], verbs: list) -> bool:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .synonyms import KIND_MODIFIERS, KIND_SYNONYMS, SIZE_WORDS
+from .synonyms import KIND_MODIFIERS, KIND_NAMES, KIND_SYNONYMS, SIZE_WORDS
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item", "part"})
@@ -223,6 +223,8 @@ letter only right after a noun that names an object ("cube oh", "block see"), ne
 FRAMING_KINDS = frozenset({"goal", "goals", "target", "targets"})
 """Kinds' everyday names that also frame a wish ("Goal: H on the far side of E", "the target state: ..."): they
 describe an object only where the scene has one of that kind (its own words name it)."""
+KIND_WORDS = (frozenset(KIND_NAMES) | frozenset(KIND_SYNONYMS)) - FRAMING_KINDS
+"""Every kind's name and everyday name but the framing ones: a word that says a thing, on the table or not."""
 REFERENCE_WORDS = frozenset(SIZE_WORDS | set(KIND_SYNONYMS) - FRAMING_KINDS | KIND_MODIFIERS | BLOCK_WORDS | NEAREST
                             | FARTHEST
                             | {w for p in (*OPENINGS, *RELATIVES, *ROBOT_WORDS) for w in p}
