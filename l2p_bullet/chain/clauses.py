@@ -18,25 +18,22 @@ from ..language import (
     MAX_SENTENCE,
     Command,
     Context,
-    command_words,
     dangling_join,
     known_verbs,
     lenient,
-    phrase_tokens,
     resolve_object,
     trailing_join,
     typos,
     verb_heads,
 )
 from ..language.descriptions import naming_words
-from ..language.extents import LONGEST_FIRST
 from ..language.numbers import apposed
 from ..language.reference_words import FARTHEST, NEAREST
-from ..manners import registry as manners
 from ..pipeline import resolve
 from ..plugins import once, registry
 from . import apart, corrections, pointing, rephrased
 from .clause import MAX_CLAUSES, Clause, named
+from .completion import complete, to_the_anchor
 from .composite import composite_clauses, is_composite
 from .context import context_after, context_of, two_moved
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
@@ -215,7 +212,7 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
     comma ("shove D toward A and drag E around C", "put B next to the duck and A next to E"), both; else as
     one of chain/pointing.py's readings ("do the same with C", "move them both ...")."""
     context = context or context_of(previous)
-    full = _complete(text, previous, scene, plugins)
+    full = complete(text, previous, scene, plugins)
     try:
         return [(text, resolve(full, scene, plugins, context))]
     except L2PError:
@@ -256,10 +253,10 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
                               previous, scene, plugins, depth, context, pair)
     if pieces is None:
         pieces = _group_first(text, previous, scene, plugins, depth, context)
-    full = _to_the_anchor(text, context, plugins) if pieces is None else None
+    full = to_the_anchor(text, context, plugins) if pieces is None else None
     if full is not None:
         try:  # "The football is too close to the cup. Move it away.": away from what the clause before named
-            pieces = [(text, resolve(_complete(full, previous, scene, plugins), scene, plugins, context))]
+            pieces = [(text, resolve(complete(full, previous, scene, plugins), scene, plugins, context))]
         except L2PError:
             pieces = None
     if pieces is None:  # then "Push them away" after "A and B are too close to C": each away from C
@@ -367,24 +364,6 @@ ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),
 """Of two objects shown together, the one named first and the one named second."""
 
 
-BARE_END = re.compile(r"\s+(?:back\s+)?(?P<word>[a-z]+)(?:\s+again)?"
-                      r"(?P<far>\s+(?:a\s+(?:little\s+)?bit|a\s+little|slightly|a\s+lot|far))?\s*[?.!]*\s*$",
-                      re.IGNORECASE)
-"""A clause that ends with the first word of a two-word phrase and names nothing after it ("Move it away", "bring it
-back closer", "move it away a bit")."""
-
-
-def _to_the_anchor(text: str, context: Context | None, plugins: list) -> str | None:
-    """``text`` with the phrase its last word opens and the object the clause before named as the reference ("Move it
-    away" after "The football is too close to the cup": away from the cup); None where it does not end so."""
-    m = BARE_END.search(text)
-    if m is None or context is None or context.anchor is None:
-        return None
-    word = m.group("word").lower()
-    table = registry.phrase_table(plugins)
-    phrase = next((p for p in table if p.split()[0] == word and len(p.split()) == 2), None)
-    far = m.group("far") or ""  # "move it away a bit": how far before the phrase, where the grammar reads it
-    return None if phrase is None or word in table else f"{text[:m.start()]}{far} {phrase} {context.anchor}"
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
 
 
@@ -421,39 +400,10 @@ def _first_said(text: str, previous: Command | None, scene: Scene, plugins: list
     nudge E past F"); None where neither resolves."""
     for said in (text, *rephrased.in_other_words(text)):
         try:
-            return resolve(_complete(said, previous, scene, plugins), scene, plugins, context)
+            return resolve(complete(said, previous, scene, plugins), scene, plugins, context)
         except L2PError:
             continue
     return None
-
-
-def _complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:
-    """The clause as a full sentence: the previous verb prepended when it has none, and the previous mover
-    too when it starts with a preposition ("then next to C" after "move A around B": "move A next to C")."""
-    words = command_words(text, scene)[0]
-    if previous is None or not words or words[0].lower() in known_verbs():
-        return text
-    # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
-    verb = previous.manner if _gapped(previous.verb) else previous.verb
-
-    low = tuple(w.lower() for w in words)
-    raw = tuple(w.lower().strip(",.!?;") for w in text.split())
-    said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
-    for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
-        if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
-            return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
-        if low[: len(toks)] == toks:
-            return f"{verb} {previous.mover} {text}" if text.split()[0].lower() == low[0] else f"{verb} {text}"
-    return f"{verb} {text}"
-
-
-SAID_AGAIN = {("it",), ("them",), ("that",)}
-"""Words a verbless clause's reference opens with when it repeats the clause before ("..., only slightly past it")."""
-
-
-def _gapped(verb: str) -> bool:
-    """Whether ``verb`` is the head of a manner's gap verb ("lift" of "lift ... and put")."""
-    return any(v.split("...")[0].strip() == verb and "..." in v for v in manners.verb_table())
 
 
 def one_clause(clauses: list[Clause]) -> bool:

@@ -1,0 +1,66 @@
+"""A clause said without its verb, or without its verb and mover, completed from the clause before it.
+
+"move A around B, then next to C" reads its second clause as "move A next to C"; "The football is too close to the
+cup. Move it away." reads "Move it away" as away from the cup. A clause that opens with a verb is left as it is, and
+the anchor is only filled in where the clause reads no other way (chain/clauses.py)."""
+
+from __future__ import annotations
+
+import re
+
+from ..core.scene import Scene
+from ..language import Command, Context, command_words, known_verbs, phrase_tokens
+from ..language.extents import LONGEST_FIRST
+from ..manners import registry as manners
+from ..plugins import registry
+
+
+def complete(text: str, previous: Command | None, scene: Scene, plugins: list) -> str:
+    """The clause as a full sentence: the previous verb prepended when it has none, and the previous mover
+    too when it starts with a preposition ("then next to C" after "move A around B": "move A next to C")."""
+    words = command_words(text, scene)[0]
+    if previous is None or not words or words[0].lower() in known_verbs():
+        return text
+    # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
+    verb = previous.manner if gapped(previous.verb) else previous.verb
+
+    low = tuple(w.lower() for w in words)
+    raw = tuple(w.lower().strip(",.!?;") for w in text.split())
+    said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
+    for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
+        if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
+            return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
+        if low[: len(toks)] == toks:
+            return f"{verb} {previous.mover} {text}" if text.split()[0].lower() == low[0] else f"{verb} {text}"
+    return f"{verb} {text}"
+
+
+SAID_AGAIN = {("it",), ("them",), ("that",)}
+"""Words a verbless clause's reference opens with when it repeats the clause before ("..., only slightly past it")."""
+
+
+def gapped(verb: str) -> bool:
+    """Whether ``verb`` is the head of a manner's gap verb ("lift" of "lift ... and put")."""
+    return any(v.split("...")[0].strip() == verb and "..." in v for v in manners.verb_table())
+
+
+BARE_END = re.compile(r"\s+(?:back\s+)?(?P<word>[a-z]+)(?:\s+again)?"
+                      r"(?P<far>\s+(?:a\s+(?:little\s+)?bit|a\s+little|slightly|a\s+lot|far))?\s*[?.!]*\s*$",
+                      re.IGNORECASE)
+"""A clause that ends with the first word of a two-word phrase and names nothing after it ("Move it away", "bring it
+back closer", "move it away a bit")."""
+
+
+def to_the_anchor(text: str, context: Context | None, plugins: list) -> str | None:
+    """``text`` with the phrase its last word opens and the object the clause before named as the reference ("Move it
+    away" after "The football is too close to the cup": away from the cup); None where it does not end so."""
+    m = BARE_END.search(text)
+    if m is None or context is None or context.anchor is None:
+        return None
+    word = m.group("word").lower()
+    table = registry.phrase_table(plugins)
+    phrase = next((p for p in table if p.split()[0] == word and len(p.split()) == 2), None)
+    far = m.group("far") or ""  # "move it away a bit": how far before the phrase, where the grammar reads it
+    return None if phrase is None or word in table else f"{text[:m.start()]}{far} {phrase} {context.anchor}"
+
+
