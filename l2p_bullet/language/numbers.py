@@ -97,6 +97,7 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
     words = [w for w in (x.strip(",;:") for x in text.split()) if w]
     if not table or not words:
         return None
+    words = _number_last(words, table)
     low = [w.lower() for w in words]
     n = number_of(low[-1])
     if n is None:
@@ -125,6 +126,29 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
     if low[end - 1] in RELATION_ENDS:
         return None
     return _apposed(n, " ".join(words[:end]), table[n], said, scene, role, resolve)
+
+
+UNITS = frozenset({"ml", "l", "cl", "dl", "ul", "\u00b5l", "g", "kg", "mg", "oz", "lb"})
+"""Units of what an object holds or weighs, said after a number that names it ("the 500 ml beaker" for beaker_500,
+"the 250ml"). Lengths are not among them: "the 5 cm cube" is a size (descriptions.said_measure), not block5."""
+MEASURED = re.compile(r"^(?P<n>\d{1,4})(?P<unit>[a-z\u00b5]{1,2})$", re.IGNORECASE)
+"""A number with its unit written on it ("250ml", "500mL")."""
+
+
+def _number_last(words: list[str], table: dict[int, tuple[str, ...]]) -> list[str]:
+    """``words`` with a number said before its noun moved after it: "the 500 ml beaker" -> "the beaker 500", "250
+    beaker" -> "beaker 250", "the 250ml" -> "the 250", "the 500 ml one" -> "the 500", where the scene numbers an object
+    so (beaker_500); ``words`` as they are where no number the scene has opens them after a determiner."""
+    low = [w.lower() for w in words]
+    i = next((k for k, w in enumerate(low) if w not in DETERMINERS), len(low))
+    if i >= len(low) - 1 and not (i < len(low) and MEASURED.match(low[i])):
+        return words
+    glued = MEASURED.match(low[i])
+    said = glued.group("n") if glued is not None and glued.group("unit").lower() in UNITS else low[i]
+    if not said.isdigit() or int(said) not in table:
+        return words
+    j = i + 1 + (i + 1 < len(low) and glued is None and low[i + 1] in UNITS)
+    return [*words[:i], *(w for w in words[j:] if w.lower() != "one"), said]
 
 
 def _stems(table: dict[int, tuple[str, ...]]) -> set[str]:
