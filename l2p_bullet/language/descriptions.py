@@ -97,6 +97,9 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     other words leave several and one of them is block-shaped (a cube or a box), that one is meant ("the white
     block": the cube, not the white mug); the two readings are refused where they pick different objects."""
     spelled = spelled_name(words, scene)
+    within = names_within(words, scene)
+    if len(within) > 1:  # "the butter dish salt shaker": two names run together, as a list without its commas says
+        raise LanguageError(f'"{text}" names more than one object ({", ".join(within)}); name the one you mean')
     if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too
         sizes = [w for w in low if w in SIZE_WORDS]  # "the small box" is small_box where it is the smaller box
         try:
@@ -143,6 +146,18 @@ def spelled_name(words: list[str], scene: Scene) -> str | None:
         return None
     fits = [n for n in scene.names if name_parts(n) == said]
     return fits[0] if len(fits) == 1 else None
+
+
+def names_within(words: list[str], scene: Scene) -> list[str]:
+    """The scene's names of several words that ``words`` spell whole, each somewhere in them ("the butter dish salt
+    shaker": butter dish and salt shaker), in the scene's order."""
+    said = name_parts(" ".join(words))
+    found = []
+    for n in scene.names:
+        parts = name_parts(n)
+        if len(parts) > 1 and any(said[i:i + len(parts)] == parts for i in range(len(said) - len(parts) + 1)):
+            found.append(n)
+    return found
 
 
 def spoken_letter(low: tuple[str, ...], scene: Scene) -> tuple[str, ...]:
@@ -208,10 +223,12 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
                                  f'say "the {said[0]} one" or name it')
     drop = SOFT_ADJECTIVES
     literal = {n.lower() for n in scene.names}  # "can" as a word of "soup_can.obj" is a kind, not a name
-    proportioned = [w for w in low if w in PROFILES and w not in literal]  # "the stick", "the flat square"
     heads = set(names) | set(kind_groups(scene)) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
+    compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
+    # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
+    proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound]
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
-            if lw in names or not (lw in drop or (is_modifier(lw) and _before_head(low, i, heads)))]
+            if lw in names or not (lw in drop or i in compound)]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS or lw in PROFILES for lw in low)
     if kept:  # "the little red cube": the other words decide
         words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)

@@ -198,10 +198,30 @@ def _joined_at(low: list[str] | tuple[str, ...], head: tuple[str, ...], tail: tu
     return None
 
 
+def _names_run(words: list[str], scene: Scene) -> list[str] | None:
+    """The scene's names that ``words`` are, one after another, each name perhaps after "the" ("the butter dish salt
+    shaker": butter dish, salt shaker); None where the words are anything else or only one name."""
+    names = sorted(((tuple(n.lower().split()), n) for n in scene.names), key=lambda t: -len(t[0]))
+    low = [w.lower() for w in words]
+    out, i = [], 0
+    while i < len(low):
+        i += low[i] == "the" and i + 1 < len(low)
+        hit = next(((toks, n) for toks, n in names if tuple(low[i:i + len(toks)]) == toks), None)
+        if hit is None:
+            return None
+        out.append(hit[1])
+        i += len(hit[0])
+    return out if len(out) > 1 else None
+
+
 def _by_article(item: str, scene: Scene) -> list[str]:
     """"the ball the lid" -> "the ball", "the lid": a list typed without commas, split where each "the" opens an
-    object; the item as it is where it names one object or the pieces do not each name one."""
+    object, or where names of several words follow one another ("butter dish salt shaker"); the item as it is where it
+    names one object or the pieces do not each name one."""
     words = item.split()
+    run = _names_run(words, scene)
+    if run is not None:
+        return run
     starts = [k for k, w in enumerate(words) if w.lower() == "the"]
     if len(starts) < 2 or starts[0] != 0 or try_object(item, scene) is not None:
         return [item]

@@ -345,10 +345,11 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
 
 def _describes(low: tuple[str, ...], scene: Scene) -> bool:
     """Whether every word before a relation is one a description is made of (a determiner, noun, colour, shape,
-    size, kind or name): a word of another kind ("mv", "move", "of the two ... move the one") means the words are
-    not one description, and the relation is not read."""
+    size, kind or name, or a kind several objects share): a word of another kind ("mv", "move", "of the two ... move
+    the one") means the words are not one description, and the relation is not read."""
     names = name_words(scene)
-    return all(w in DESCRIBING or w in names for w in low)
+    groups = kind_groups(scene)  # "the shaker nearest the cup": a kind two objects share names neither alone
+    return all(w in DESCRIBING or w in names or w in groups for w in low)
 
 
 DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)

@@ -15,8 +15,8 @@ import re
 from ..core.scene import COLORS, Scene, SceneObject
 
 KIND_NAMES = {
-    "mug": ("cup", "cups", "teacup", "mugs"),
-    "cup": ("mug", "mugs", "cups", "teacup"),
+    "mug": ("cup", "cups", "teacup", "mugs", "cuppa"),
+    "cup": ("mug", "mugs", "cups", "teacup", "cuppa"),
     "jar": ("jars", "canister", "container", "pot"),
     "duck": ("bird", "duckling", "ducks"),
     "can": ("tin", "tins", "soda", "coke", "cola", "pop"),
@@ -26,7 +26,7 @@ KIND_NAMES = {
     "soccerball": ("ball", "football", "soccer", "footy", "footie", "sphere", "globe"),
     "ball": ("balls", "football", "footy", "footie", "sphere", "spheres", "globe"),
     "bottle": ("bottles", "flask"),
-    "bowl": ("bowls", "dish", "container", "basin"),
+    "bowl": ("bowls", "dish", "container", "basin", "pot"),
     "apple": ("apples",),
     "lemon": ("lemons", "citrus"),
     "orange": ("oranges", "citrus", "tangerine", "mandarin", "clementine"),
@@ -67,6 +67,13 @@ KIND_NAMES = {
     "stirrer": ("stirrers", "stick", "sticks", "stirrer"),
     "beaker": ("beakers", "cup", "cups", "glass", "glasses"),
     "cylinder": ("tin", "tins"),
+    "shaker": ("shakers", "pot", "pots", "cellar", "cellars", "grinder", "grinders", "mill", "mills"),
+    "board": ("boards",),
+    "bucket": ("buckets", "pail", "pails"),
+    "flask": ("flasks", "erlenmeyer", "erlenmeyers"),
+    "rack": ("racks", "holder", "holders"),
+    "vial": ("vials", "bottle", "bottles", "ampoule", "ampule"),
+    "truck": ("trucks", "lorry", "lorries"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
 }
@@ -89,7 +96,8 @@ KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "measuring", "glass"
                             "traffic", "teddy", "stuffed", "plush", "soft", "fluffy", "cuddly", "water", "cardboard",
                             "video", "game", "games", "ping", "pong", "table-tennis", "hex", "hexagonal", "desk",
                             "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden", "popsicle", "swizzle",
-                            "stir", "lolly"})
+                            "stir", "lolly", "chopping", "cutting", "bread", "test", "tube", "pipette", "lab",
+                            "laboratory", "conical"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut", "swizzle
 stick", "popsicle stick"): read past there, a run of them too ("video game")."""
