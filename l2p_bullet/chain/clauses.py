@@ -22,6 +22,7 @@ from ..language import (
     known_verbs,
     lenient,
     resolve_object,
+    strip_polite,
     trailing_join,
     typos,
     verb_heads,
@@ -33,7 +34,7 @@ from ..pipeline import resolve
 from ..plugins import once, registry
 from . import apart, corrections, pointing, rephrased
 from .clause import MAX_CLAUSES, Clause, named
-from .completion import complete, to_the_anchor
+from .completion import complete, said_again, to_the_anchor
 from .composite import composite_clauses, is_composite
 from .context import context_after, context_of, two_moved
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
@@ -183,6 +184,8 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 continue
             raise named(e, f'clause {i} ("{text}")') from None
         pieces = [(piece, pointing.set_down(pointing.carried(cmd, show), previous, piece)) for piece, cmd in pieces]
+        if len(pieces) == 1 and pending is None and said_again(text, pieces[0][1], previous, scene):
+            continue  # "... a lot closer to the rack? much closer": the clause before, said once more
         if pending is not None:
             pieces = [(piece, apart.paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces]
             pending = None
@@ -243,9 +246,11 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
                 pass
     pieces = _split_on_and(text, previous, scene, plugins, depth, context, pair)
     dash = apart.DASH_THEN.match(text) if pieces is None and depth < MAX_CLAUSES else None
-    if dash is not None:  # "Make it so the cylinder isn't so close to the cup - move the cylinder"
-        pieces = _told_beside(dash.group("before"), text, lambda c: apart.confirmed(dash.group("after"), c, scene),
-                              previous, scene, plugins, depth, context, pair)
+    if dash is not None:  # "Make it so the cylinder isn't so close to the cup - move the cylinder"; "... - carry it"
+        after = dash.group("after")
+        pieces = _told_beside(dash.group("before"), text,
+                              lambda c: apart.confirmed(after, c, scene) or apart.done_so(after, c)
+                              or apart.manner_after(after, c), previous, scene, plugins, depth, context, pair)
     first = apart.NOT_DRAGGED_FIRST.match(text) if pieces is None and depth < MAX_CLAUSES else None
     if first is not None:  # "Without dragging it across the table, move A ...": as "move A ..., without dragging it"
         pieces = _told_beside(first.group("rest"), text,
@@ -304,14 +309,24 @@ def _group_first(text: str, previous: Command | None, scene: Scene, plugins: lis
         return _resolve_text(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:
         pass
-    said = rest.split()
-    if len(shows.objects) == 1 and said and said[0].lower() not in verb_heads():
-        # "biggest item, away from cam", "cube by the ball, over to P": where the object shown goes
-        try:
-            return _resolve_text(f"move it {rest}", previous, scene, plugins, depth + 1, shows.context, shows)
-        except L2PError:
-            pass
-    return None
+    said = strip_polite(rest.split(), frozenset(scene.names))
+    if len(shows.objects) != 1 or not said:
+        return None
+    if said[0].lower() not in verb_heads():
+        said = ["move", "it", *said]  # "biggest item, away from cam", "cube by the ball, over to P": where it goes
+    elif len(said) > 1 and said[1].lower() not in OBJECT_SAID:
+        said = [said[0], "it", *said[1:]]  # "Tip box, move past the vial": the verb's object is the one shown
+    else:
+        return None
+    try:
+        return _resolve_text(" ".join(said), previous, scene, plugins, depth + 1, shows.context, shows)
+    except L2PError:
+        return None
+
+
+OBJECT_SAID = frozenset({"it", "that", "this", "them", "the", "one", "same"})
+"""Words that open the object of a verb said after an object shown ("The cup, move it ...", "..., move the same ..."):
+the verb has its object, so none is put in."""
 
 
 def _same_in_apposition(what: str, rest: str, shows: pointing.Shown, scene: Scene) -> None:

@@ -27,7 +27,11 @@ def complete(text: str, previous: Command | None, scene: Scene, plugins: list) -
     low = tuple(w.lower() for w in words)
     raw = tuple(w.lower().strip(",.!?;") for w in text.split())
     said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
-    for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
+    table = registry.phrase_table(plugins)
+    if len(low) > 2 and low[0] == "back" and raw[0] == "back" and any(low[1:1 + len(t)] == t
+                                                                     for t, _, _ in phrase_tokens(table)):
+        return f"{verb} {previous.mover} {' '.join(text.split()[1:])}"  # "..., then back toward the vial"
+    for toks, _phrase, _action in phrase_tokens(table):
         if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
             return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
         if low[: len(toks)] == toks:
@@ -64,3 +68,20 @@ def to_the_anchor(text: str, context: Context | None, plugins: list) -> str | No
     return None if phrase is None or word in table else f"{text[:m.start()]}{far} {phrase} {context.anchor}"
 
 
+
+
+ONCE_MORE = re.compile(r"\b(?:again|more|even|further|farther|still|too|also|back)\b", re.IGNORECASE)
+"""Words that make a verbless clause a step of its own even where it repeats the clause before ("closer again")."""
+
+
+def said_again(text: str, command: Command, previous: Command | None, scene: Scene) -> bool:
+    """Whether ``text``, read as ``command``, only says the clause before once more: no verb of its own and the same
+    mover, action, anchors, extent and manner ("could the 500 be a lot closer to the rack? much closer"). Such a
+    clause asks for no second move."""
+    if previous is None or ONCE_MORE.search(text):
+        return False
+    words = command_words(text, scene)[0]
+    if not words or words[0].lower() in known_verbs():
+        return False
+    same = ("mover", "action", "anchors", "extent", "manner", "pace")
+    return all(getattr(command, f) == getattr(previous, f) for f in same)

@@ -72,7 +72,7 @@ the big, after the small"."""
 AND_SIGNS = re.compile(r"\s+[+&]\s+|\s*,\s*(?:both|each)(?:\s+of\s+them)?\s*,\s*")
 DO_IT = re.compile(r"^\s*(?P<verb>[a-z]+(?:\s+up)?)\s+it"
                    r"(?P<tail>\s+(?:over\s+)?(?:there|over|so|that\s+way|like\s+that))?"
-                   r"(?:\s*,?\s*(?:but\s+)?(?:don't|dont|do\s+not)\s+(?P<not>[a-z]+)\s+it)?"
+                   r"(?:\s*,?\s*(?:but\s+)?(?:don't|dont|do\s+not)\s+(?P<not>[a-z]+)(?:\s+it)?)?"
                    r"\s*[,.!?]*\s*(?:please|pls|lol|thanks)?\s*[.!?]*\s*$", re.IGNORECASE)
 """A motion said after the end it should reach ("The jar needs to be next to the mug. Slide it over."): the clause
 before, in this verb's manner; "slide it." alone only after an end said without a verb ("N right up against the bar.
