@@ -70,11 +70,12 @@ _NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|cent
                   r"|other|same|table|robot|it|them|there|here|where)\b)")
 _TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks))*\s*[.!]*"
 TO_OBJECT = re.compile(rf"^(?P<head>.+?)(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*"
-                       rf"|{_NOT_AN_OBJECT}[\w-]+{_TAIL})|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$",
+                       rf"|{_NOT_AN_OBJECT}[\w-]+(?:\s+{_NOT_AN_OBJECT}[\w-]+)?{_TAIL})|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$",
                        re.IGNORECASE)
 """A motion said by the object it goes to: "Move the roll to the milk", "push a to d quick", "e->c" (an arrow to an
 object) bring it closer, as "over to" does; never a place ("to the corner", "to the right of"), which no action
-takes. Without an article, "to" is followed by one word ("to d"), so "the lego to circle the cube" is not read so; an
+takes. Without an article, "to" is followed by a name of one or two words ("to d", "to tip box"), so "the lego to circle
+the cube" is not read so (and what follows must name an object); an
 arrow before a relation ("cup -> past the jar") is read by the grammar, before this."""
 
 

@@ -13,6 +13,7 @@ import re
 from ..language import MAX_SENTENCE, is_courtesy, known_verbs, strip_polite, tokens
 from ..language.goals import participles
 from ..language.lists import GROUP
+from ..language.words import STEP_LABELS
 from . import pointing
 from .composite import is_composite
 
@@ -47,9 +48,11 @@ def split_clauses(sentence: str) -> list[str]:
     return out
 
 
-LIST_MARKS = re.compile(r"(?P<lead>^|[.!?;:]\s+)\s*(?:\(\d{1,2}\)|\d{1,2}[.)])\s+(?=[a-z])", re.IGNORECASE)
-"""A numbered step's mark where a sentence begins ("1. Move A past B. 2. Then ...", "1) Slide ..."): read past,
-whatever the scene's objects are called, as no sentence says a block's number alone before its verb."""
+LIST_MARKS = re.compile(r"(?P<lead>^|[.!?;:]\s+)\s*(?:\(\d{1,2}\)|(?:(?:" + "|".join(sorted(STEP_LABELS))
+                        + r")\s+)?\d{1,2}[.)])\s+(?=[a-z])", re.IGNORECASE)
+"""A numbered step's mark where a sentence begins ("1. Move A past B. 2. Then ...", "1) Slide ...", "Step 4. Move
+..."): read past, whatever the scene's objects are called, as no sentence says a block's number alone before its
+verb."""
 ABBREVIATED = re.compile(r"\b(?:i\.e\.|e\.g\.|(?:no|nr|num)\.(?=\s*#?\d))", re.IGNORECASE)
 """Abbreviations whose full stops end no sentence ("..., i.e. past it", "cube no. 6")."""
 AFTER_YOU = re.compile(r"^\s*(?:after|once|when)\s+(?:you've|you\s+have|you're\s+done|you\s+are\s+done)\s+"

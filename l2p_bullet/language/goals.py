@@ -115,7 +115,9 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "end up sat", "ends up sitting", "end up sitting", "to end up sitting", "to find itself", "finds itself",
     "should come", "to come", "comes", "be positioned", "to be positioned", "is positioned", "be placed",
     "to be placed", "ending up", "finish", "stays", "should stay", "to stay", "were to find itself",
-    "were to end up", "were to be", "went", "came", "ended",
+    "were to end up", "were to be", "went", "came", "ended", "sat", "stood", "sitting", "standing",
+    "would be sitting", "would be standing", "wants to be", "wants to come", "wants to go", "wants to sit",
+    "needs to come", "needs to sit", "would be sat",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""

@@ -43,7 +43,7 @@ from .reference_words import (
     SIZE_SUPERLATIVES,
 )
 from .references import try_object
-from .synonyms import SIZE_WORDS
+from .synonyms import SIZE_WORDS, name_parts
 from .words import NEGATIONS, PACES
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
@@ -132,7 +132,8 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     start, end, phrase, action, implied = found[0]
     outside = low[:start] + low[end:]  # "not so close to" is a phrase; "not" elsewhere stops the reading
     named = {n.lower() for n in scene.names if not n.isdigit()}  # "block2" is a name; "5" may be a count as well
-    if set(outside) & STOPS or any(ch.isdigit() for w in outside if w not in named for ch in w):
+    stops = set(outside) & STOPS  # "tip" stops "tip it over", not "the tip box" where tip_box is on the table
+    if stops - _name_words(scene) or any(ch.isdigit() for w in outside if w not in named for ch in w):
         return None
     if phrase in AMBIGUOUS_PHRASES:
         return None
@@ -148,6 +149,8 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     if before and left_before and left_before[-1] is before[-1] and not _asks_no_extent(before, verbs):
         return None  # an unknown word where an extent stands ("move duck rite next to K"): it may be one
     refs, left_after = _mentions(words[end:], scene, context)
+    if stops & {w.lower() for w in left_before + left_after}:
+        return None
     count = anchors.get(action, 1)
     if len(movers) != 1 or len(refs) != count or movers[0] in refs or len(set(refs)) != count:
         return None
@@ -246,6 +249,11 @@ def _forms(verb: str) -> frozenset[str]:
     if verb.endswith("y"):
         forms.add(verb[:-1] + "ies")
     return frozenset(forms)
+
+
+def _name_words(scene: Scene) -> frozenset[str]:
+    """The words of the scene's names, lower case ("tip" of tip_box): a stop word that is one may be naming it."""
+    return frozenset(w for n in scene.names for w in name_parts(n))
 
 
 def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], list[str]]:

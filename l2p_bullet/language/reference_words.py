@@ -65,11 +65,13 @@ FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", 
 NAMED_AS = (("called",), ("named",))
 PRONOUNS_MOVER = (("it",), ("him",), ("her",), ("that", "one"), ("that", "block"), ("this", "one"),
                   ("the", "same", "block"),
-                  ("the", "same", "one"), ("the", "same", "object"), ("that",))
+                  ("the", "same", "one"), ("the", "same", "object"), ("that",), ("same",), ("same", "one"),
+                  ("the", "same"))
 DEMONSTRATIVES = (("that", "one"), ("that", "block"), ("this", "one"), ("that",))
 """Pointers that may mean the block the previous clause moved or the one it named last ("push P toward R, then move
 that one around the bottle": P or R? one author of the held-out sentences asked): after a clause with an anchor,
-asked, never guessed; "it" and "the same one" are the block moved."""
+asked, never guessed; "it" and "the same one" are the block moved, as is "same" as a protocol says it ("push same
+away from B")."""
 SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
 """Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))

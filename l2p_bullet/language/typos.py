@@ -98,7 +98,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
     def fix(m: re.Match) -> str:
         w = m.group(0)
         low = w.lower()
-        if low in keep:
+        if low in keep or low in named:  # "shaker" of "salt shaker" is no slip of "shakers"
             return w
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
@@ -116,6 +116,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
+    mended = HANDED.sub(r"\1-hand", mended)
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
 
 
@@ -137,6 +138,8 @@ HEARD = re.compile(r"\b(?:(?P<passed>passed)|(?P<a_round>a\s+round))\s+(?=(?:the
 """What speech-to-text hears for a preposition ("passed the bowl", "a round the bowl", "a way from it"), read as the
 preposition before an article, a pronoun or "from" ("next two the plate": :data:`TWO_FOR_TO`)."""
 HEARD_AS = {"passed": "past ", "a_round": "around ", "a_way": "away "}
+HANDED = re.compile(r"\b(left|right)\s+hand\b(?=\s+[a-z])", re.IGNORECASE)
+""""the right hand shaker", "on the left hand side": the side as one word, as the place readers know it."""
 HEARD_PACES = re.compile(r"\b(slow|quick|careful|gentle)\s+lee\b", re.IGNORECASE)
 """A pace adverb heard as two words ("slow Lee"): one word again."""
 PACE_OF = {"slow": "slowly", "quick": "quickly", "careful": "carefully", "gentle": "gently"}

@@ -43,7 +43,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if you would be so good", "if you would be so kind", "if you'd be so kind", "would u", "would u pls",
     "it would be lovely if", "it'd be lovely if", "it would be wonderful if",
     "do the needful and", "please do the needful and", "kindly do the needful and", "request you to",
-    "i request you to", "request you to kindly",
+    "i request you to", "request you to kindly", "sorry to be a pain", "sorry to be a pain but",
+    "sorry to bother you", "sorry to bother you but", "sorry to trouble you", "sorry to trouble you but",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 ADDRESSEES = frozenset({"you", "u"})
@@ -71,7 +72,11 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "in one full circle", "in one full loop", "in a full loop", "all the way", "again", "not far", "do that",
     "at the end", "in the end", "make it happen", "make it so", "would you see to that", "could you see to that",
     "see to that", "that's it", "that's all", "ta", "appreciate it", "i appreciate it", "much obliged",
-    "than it is now", "than it is", "than now", "than it was",
+    "if that's alright", "if that is alright", "if that's all right", "if that's ok", "if that's okay",
+    "if that is ok", "if that is okay", "please make like that", "make like that", "please make it like that",
+    "make it like that", "please do", "please do it", "please do so", "than it is now", "than it is", "than now",
+    "than it was", "while you're there", "whilst you're there",
+    "while you're at it", "whilst you're at it", "while you are at it", "whilst you are at it",
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
     "without touching anything else", "don't touch anything else",
