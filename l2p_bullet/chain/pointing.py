@@ -18,8 +18,9 @@ from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
 from ..language.numbers import number_of
+from ..language.partitives import group_of
 from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS, SHAPE_NOUNS
-from ..language.references import group_of, try_object, two_references
+from ..language.references import try_object, two_references
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 from .goal_after import goal_after

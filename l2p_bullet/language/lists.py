@@ -14,8 +14,9 @@ from ..core.scene import Scene
 from ..errors import LanguageError
 from .grammar import ARROWS, MAX_SENTENCE, phrase_tokens, tokens
 from .numbers import number_name
+from .partitives import number_said
 from .reference_words import CONJUNCTIONS
-from .references import number_said, resolve_object, try_object
+from .references import resolve_object, try_object
 from .words import strip_polite
 
 

@@ -13,7 +13,6 @@ the robot's (the scene's +y is its left, DESIGN.md section 4), the view of a per
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterator
 
 import numpy as np
@@ -25,6 +24,7 @@ from .group_places import in_group, table_sides
 from .kept import SceneMemo
 from .numbers import number_reference
 from .other_than import other_than
+from .partitives import of_compound, partitive
 from .places import (
     bearing_off,
     bulk_superlative,
@@ -65,7 +65,7 @@ from .reference_words import (
     SOFT_ADJECTIVES,
     TIE_M,
 )
-from .synonyms import is_modifier, kind_groups
+from .synonyms import kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -150,12 +150,12 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     except LanguageError:
         proportioned = set(low) & PROPORTION_NOUNS - {n.lower() for n in scene.names}  # "the tube": a guess
         named = _named_before(text, scene, role, context) if determined and not proportioned else None
-        named = named or _partitive(text, scene, role)
+        named = named or partitive(text, scene, role, _unremembered)
         if named is None:
             raise
         return named
     except UnknownObjectError:
-        named = _partitive(text, scene, role) or _of_compound(text, scene, role)
+        named = partitive(text, scene, role, _unremembered) or of_compound(text, scene, role, _unremembered)
         if named is None:
             raise
         return named
@@ -163,75 +163,9 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
 
 EMPHATIC = frozenset({"itself", "only"})
 """Words after a reference that stress it and name nothing more."""
-PARTITIVE = re.compile(r"^(?P<head>.+?)\s+of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
-                       r"(?P<group>[\w\s-]+?(?:s|es))$", re.IGNORECASE)
-"""One object picked among a group said in the plural: "the smallest of the cubes", "the one nearer the robot of the
-two boxes"."""
-COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
-
-
-def number_said(count: str | None, otherwise: int) -> int:
-    """How many a group's number word or digits say ("three", "3"); ``otherwise`` where none is said."""
-    if not count:
-        return otherwise
-    return COUNTS.get(count.lower(), int(count) if count.isdigit() else 0)
-
-
-def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ...] | None:
-    """The objects a plural description fits ("the cubes", "2 rectangular blocks"), in the scene's order; None where
-    it fits fewer than two, or not the number said."""
-    words = [w for w in text.split() if w.lower() != "the"]
-    if not words or not words[-1].lower().endswith("s"):
-        return None
-    last = words[-1].lower()
-    words[-1] = last[:-2] if last.endswith(("xes", "ches")) else last[:-1]
-    try:
-        fits = candidates(text, words, tuple(w.lower() for w in words), scene)
-    except (LanguageError, UnknownObjectError):
-        return None
-    return tuple(o.name for o in fits) if len(fits) >= 2 and number_said(count, len(fits)) == len(fits) else None
-
-
-CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit", "stick"})
-"""Words for how much of a kind there is ("a bar of soap", "a stick of butter"): the kind is what the object is."""
-VESSELS = frozenset({"tin", "can", "bottle", "carton", "box", "jar", "packet", "bag", "cup", "mug", "bowl", "pot",
-                     "tub", "tube"})
-"""Kinds that hold what they are named by ("the tin of soup", "the box of milk"): the vessel and its content both
-describe the object ("the soup tin")."""
-
-
-def _of_compound(text: str, scene: Scene, role: str) -> str | None:
-    """A kind said with "of" ("the bar of soap": the soap; "the duck of rubber", as learners write "rubber duck": the
-    duck; "the tin of soup": the soup tin); None where ``text`` is not said so or names no one object."""
-    words = text.split()
-    low = [w.lower() for w in words]
-    if low.count("of") != 1 or low.index("of") in (0, len(low) - 1):
-        return None
-    at = low.index("of")
-    head, tail = low[:at], low[at + 1:]
-    if head[-1] in CONTAINERS and len(tail) <= 2 and len(tail[-1]) >= 3 and tail[-1].isalpha():
-        said = " ".join(["the", *tail[-1:]])
-    elif all(is_modifier(w) for w in tail) or (head[-1] in VESSELS and len(tail) <= 2 and tail[-1].isalpha()):
-        said = " ".join([*head[:-1], *tail, head[-1]])  # "the controller of video games", "the tin of soup"
-    else:
-        return None
-    try:
-        return _resolve(said, scene, role, None)
-    except (LanguageError, UnknownObjectError):
-        return None
-
-
-def _partitive(text: str, scene: Scene, role: str) -> str | None:
-    """The object :data:`PARTITIVE`'s head picks among its group; None where ``text`` is not said so or either part
-    does not resolve."""
-    m = PARTITIVE.match(text)
-    group = group_of(m.group("group"), scene, m.group("count")) if m is not None else None
-    if group is None:
-        return None
-    try:
-        return _resolve(m.group("head"), scene.only(group), role, None)
-    except (LanguageError, UnknownObjectError):
-        return None
+def _unremembered(text: str, scene: Scene, role: str) -> str:
+    """:func:`_resolve` without a context, for the partitive readers that ask it again of a part of the words."""
+    return _resolve(text, scene, role, None)
 
 
 def _named_before(text: str, scene: Scene, role: str, context: Context | None) -> str | None:

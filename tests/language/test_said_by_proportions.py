@@ -14,9 +14,10 @@ import pytest
 from l2p_bullet.chain.clauses import resolve_clauses
 from l2p_bullet.core.scene import Scene, SceneObject, shaped
 from l2p_bullet.errors import L2PError
+from l2p_bullet.language.partitives import group_of
 from l2p_bullet.language.proportions import PROFILES, fitting, proportions
 from l2p_bullet.language.reference_words import SHAPE_ADJECTIVES, SHAPE_NOUNS, SOFT_ADJECTIVES
-from l2p_bullet.language.references import group_of, resolve_object
+from l2p_bullet.language.references import resolve_object
 from l2p_bullet.language.synonyms import kind_groups, shape_of
 
 MESHES = Path(__file__).parent / "meshes"

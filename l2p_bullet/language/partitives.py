@@ -1,0 +1,86 @@
+"""One object said by a group it is picked from or by what it is made of, and the groups themselves: "the smallest of
+the cubes", "the one nearer the robot of the two boxes" (partitives), "the bar of soap", "the tin of soup" (a kind
+said with "of"), "the cubes", "2 rectangular blocks" (a plural description's objects).
+
+The readers here ask the description reader again for a part of the words (``resolve``: language/references.py),
+which is passed in so that this module stays below it."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+
+from ..core.scene import Scene
+from ..errors import LanguageError, UnknownObjectError
+from .descriptions import candidates
+from .synonyms import is_modifier
+
+PARTITIVE = re.compile(r"^(?P<head>.+?)\s+of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
+                       r"(?P<group>[\w\s-]+?(?:s|es))$", re.IGNORECASE)
+"""One object picked among a group said in the plural: "the smallest of the cubes", "the one nearer the robot of the
+two boxes"."""
+COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5}
+
+
+def number_said(count: str | None, otherwise: int) -> int:
+    """How many a group's number word or digits say ("three", "3"); ``otherwise`` where none is said."""
+    if not count:
+        return otherwise
+    return COUNTS.get(count.lower(), int(count) if count.isdigit() else 0)
+
+
+def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ...] | None:
+    """The objects a plural description fits ("the cubes", "2 rectangular blocks"), in the scene's order; None where
+    it fits fewer than two, or not the number said."""
+    words = [w for w in text.split() if w.lower() != "the"]
+    if not words or not words[-1].lower().endswith("s"):
+        return None
+    last = words[-1].lower()
+    words[-1] = last[:-2] if last.endswith(("xes", "ches")) else last[:-1]
+    try:
+        fits = candidates(text, words, tuple(w.lower() for w in words), scene)
+    except (LanguageError, UnknownObjectError):
+        return None
+    return tuple(o.name for o in fits) if len(fits) >= 2 and number_said(count, len(fits)) == len(fits) else None
+
+
+CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit", "stick"})
+"""Words for how much of a kind there is ("a bar of soap", "a stick of butter"): the kind is what the object is."""
+VESSELS = frozenset({"tin", "can", "bottle", "carton", "box", "jar", "packet", "bag", "cup", "mug", "bowl", "pot",
+                     "tub", "tube"})
+"""Kinds that hold what they are named by ("the tin of soup", "the box of milk"): the vessel and its content both
+describe the object ("the soup tin")."""
+
+
+def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:
+    """A kind said with "of" ("the bar of soap": the soap; "the duck of rubber", as learners write "rubber duck": the
+    duck; "the tin of soup": the soup tin); None where ``text`` is not said so or names no one object."""
+    words = text.split()
+    low = [w.lower() for w in words]
+    if low.count("of") != 1 or low.index("of") in (0, len(low) - 1):
+        return None
+    at = low.index("of")
+    head, tail = low[:at], low[at + 1:]
+    if head[-1] in CONTAINERS and len(tail) <= 2 and len(tail[-1]) >= 3 and tail[-1].isalpha():
+        said = " ".join(["the", *tail[-1:]])
+    elif all(is_modifier(w) for w in tail) or (head[-1] in VESSELS and len(tail) <= 2 and tail[-1].isalpha()):
+        said = " ".join([*head[:-1], *tail, head[-1]])  # "the controller of video games", "the tin of soup"
+    else:
+        return None
+    try:
+        return resolve(said, scene, role)
+    except (LanguageError, UnknownObjectError):
+        return None
+
+
+def partitive(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:
+    """The object :data:`PARTITIVE`'s head picks among its group; None where ``text`` is not said so or either part
+    does not resolve."""
+    m = PARTITIVE.match(text)
+    group = group_of(m.group("group"), scene, m.group("count")) if m is not None else None
+    if group is None:
+        return None
+    try:
+        return resolve(m.group("head"), scene.only(group), role)
+    except (LanguageError, UnknownObjectError):
+        return None
