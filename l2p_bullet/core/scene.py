@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -99,7 +100,8 @@ class SceneObject:
     ``size`` is a cube's side in metres; for any other shape the side in blocks its footprint gives
     (:func:`shaped` computes it). A ``box`` has ``dims``, a ``cylinder`` ``radius`` and ``height``, a
     ``mesh`` the resolved file ``mesh``, ``scale`` and ``rpy``; ``mass`` (kg) and ``friction`` are optional
-    for every shape (None: the cube's 0.1 kg and 0.5).
+    for every shape (None: the cube's 0.1 kg and 0.5), and so is ``kind``, what the object is in everyday words,
+    which sentences may call it by where its name does not say ("the cow" for Daisy).
     """
 
     name: str
@@ -116,6 +118,7 @@ class SceneObject:
     rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
     mass: float | None = None  # kg; None: shapes.BLOCK_MASS
     friction: float | None = None
+    kind: str | None = None  # what the object is, in everyday words ("toy cow" for a toy named Daisy)
 
     @property
     def mass_kg(self) -> float:
@@ -249,6 +252,7 @@ class Scene:
             "objects": [
                 {"name": o.name, "color": o.color, "size": o.size, "xy": [o.xy[0], o.xy[1]], "yaw": o.yaw}
                 | ({} if o.shape == "cube" else {"shape": o.shape}) | shapes.fields(o)
+                | ({"kind": o.kind} if o.kind else {})
                 for o in self.objects
             ]
         }
@@ -306,6 +310,10 @@ class Scene:
             if not _is_number(yaw):
                 raise SceneError(f'{where} ({raw["name"]}): "yaw" must be a number (radians)')
             extra = shapes.read_fields(raw, f'{where} ({raw["name"]})', base, mesh_dirs)
+            kind = raw.get("kind")
+            if kind is not None and not (isinstance(kind, str) and len(kind) <= MAX_NAME and KIND.match(kind)):
+                raise SceneError(f'{where} ({raw["name"]}): "kind" must be words of letters saying what the object '
+                                 f'is, such as "toy cow" (at most {MAX_NAME} characters)')
             obj = SceneObject(
                 name=str(raw["name"]),
                 color=str(raw["color"]).lower(),
@@ -313,6 +321,7 @@ class Scene:
                 xy=(float(xy[0]), float(xy[1])),
                 yaw=float(yaw),
                 shape=str(raw.get("shape", "cube")),
+                kind=kind,
                 **extra,
             )
             out.append(obj if obj.shape == "cube" else replace(obj, size=obj.geometry.size))
@@ -328,12 +337,15 @@ def shaped(name: str, color: str, xy: tuple[float, float], yaw: float = 0.0, *, 
 
 
 OBJECT_FIELDS = ("name", "color", "size", "xy", "yaw", "shape", "dims", "radius", "height", "mesh", "scale", "rpy",
-                 "mass", "friction")
+                 "mass", "friction", "kind")
 """Every field a scene file's object may have (docs/DESIGN.md section 4, core/shapes.py); any other is refused."""
 MAX_OBJECTS = 100
 """Most objects a scene file may hold (the workspace fits far fewer blocks; validation is quadratic)."""
 MAX_NAME = 64
 """Longest object name, colour or shape a scene file may give (they are echoed in error messages)."""
+KIND = re.compile(r"^[^\W\d_]+(?:[ '-][^\W\d_]+)*$")
+"""An object's declared kind: words of letters joined by spaces, hyphens or apostrophes ("toy cow", "T-rex"), no
+longer than MAX_NAME (checked where it is read)."""
 
 
 def _m(v: float) -> str:

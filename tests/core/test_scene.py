@@ -117,3 +117,19 @@ def test_an_unknown_object_field_is_refused_with_a_suggestion():
     for scene in (default_scene(), shaped):  # what the project writes (boxes, cylinders, meshes) it reads back
         assert all(k in OBJECT_FIELDS for o in scene.to_dict()["objects"] for k in o)
         assert Scene.from_dict(scene.to_dict()).to_dict() == scene.to_dict()
+
+
+def test_a_declared_kind_is_kept_and_a_bad_one_refused(tmp_path):
+    """"kind" says what an object is where its name does not ("Daisy", a toy cow): read back as written, left out of
+    a scene that declares none (whose digest is unchanged), and refused on one line where it is no words."""
+    from l2p_bullet.core.scene import Scene
+
+    plain = load_scene(_write(tmp_path, [_obj("Daisy")]))
+    kinded = load_scene(_write(tmp_path, [{**_obj("Daisy"), "kind": "toy cow"}], "k.json"))
+    assert kinded.get("Daisy").kind == "toy cow" and plain.get("Daisy").kind is None
+    assert kinded.to_dict()["objects"][0]["kind"] == "toy cow" and "kind" not in plain.to_dict()["objects"][0]
+    assert Scene.from_dict(kinded.to_dict()).to_dict() == kinded.to_dict()
+    assert plain.digest() == Scene.from_dict({"objects": [_obj("Daisy")]}).digest() != kinded.digest()
+    for bad in ("", "cow 2", 7, "x" * 80, "cow; rm -rf"):
+        with pytest.raises(SceneError, match=r'object 0 \(Daisy\): "kind" must be words'):
+            load_scene(_write(tmp_path, [{**_obj("Daisy"), "kind": bad}], "bad.json"))
