@@ -140,12 +140,19 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
 
 def spelled_name(words: list[str], scene: Scene) -> str | None:
     """The object whose name of several words the words spell, however the name joins them ("cube b", "Cube-B" for
-    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2); None where none or several do."""
+    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box); None where none
+    or several do."""
     said = name_parts(" ".join(words))
     if len(said) < 2:
         return None
-    fits = [n for n in scene.names if name_parts(n) == said]
+    fits = [n for n in scene.names if said in (name_parts(n), _unnumbered(name_parts(n)))]
     return fits[0] if len(fits) == 1 else None
+
+
+def _unnumbered(parts: tuple[str, ...]) -> tuple[str, ...]:
+    """A name's words without the number it opens with ("002_master_chef_can": master, chef, can), as people say a
+    dataset's file names; the words themselves where it opens with none."""
+    return parts[1:] if len(parts) > 2 and parts[0].isdigit() else parts
 
 
 def names_within(words: list[str], scene: Scene) -> list[str]:
@@ -369,10 +376,10 @@ def name_words(scene: Scene) -> dict[str, str]:
 
 
 @functools.lru_cache(maxsize=256)
-def name_words_of(objects: tuple[tuple[str, str | None], ...]) -> dict[str, str]:
+def name_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, str]:
     """name_words of a :func:`~.synonyms.scene_key`, kept: made once per scene, not once per word read (a caller must
     not change it; name_words hands out copies)."""
-    names = [name for name, _ in objects]
+    names = [name for name, *_ in objects]
     out = {}
     for n in names:
         low = n.lower()

@@ -1,10 +1,12 @@
 """Objects named by numbers, as people say them: "6", "#6", "number 6", "no. 6", "object six", "cube 1" (for
 Cube_01), "block one" (for block1), and a description with the number in apposition ("the red one, number 2").
 
-A scene's names that are digits or end in digits ("1", "block1", "Cube_01", "obj3") are numbered; a number said
-names the object whose name ends in it (leading zeros aside), and a word before the number says which where several
-end so ("cube 1": Cube_01, not Apple_01). A number spelled out ("six") names an object only where the scene has that
-number, and never after a determiner ("the two cubes", "that one", "the two" are counts and pointers, not names).
+A scene's names that are digits or end in digits ("1", "block1", "Cube_01", "obj3") are numbered, and so are names
+that open with digits before their words ("002_master_chef_can", as the YCB object set names its files); a number said
+names the object whose name ends (or so opens) with it (leading zeros aside), and a word before the number says which
+where several end so ("cube 1": Cube_01, not Apple_01). A number spelled out ("six") names an object only where the
+scene has that number, and never after a determiner ("the two cubes", "that one", "the two" are counts and pointers,
+not names).
 
 A description said with the number ("the small green cube, number 7") must fit the numbered object, and where it picks
 another object by itself ("the big red one, number 1" with 2 the bigger red one) the line is refused, naming both: a
@@ -60,6 +62,8 @@ def _numbered_of(names: tuple[str, ...]) -> dict[int, tuple[str, ...]]:
         parts = NAME_PART.findall(name)
         if parts and parts[-1].isdigit() and len(parts[-1]) <= 4:
             out.setdefault(int(parts[-1]), []).append(name)
+        elif len(parts) > 1 and parts[0].isdigit() and len(parts[0]) <= 4:  # "002_master_chef_can", as YCB names
+            out.setdefault(int(parts[0]), []).append(name)
     return {k: tuple(v) for k, v in out.items()}
 
 
@@ -69,8 +73,12 @@ def numbered(scene: Scene) -> dict[int, tuple[str, ...]]:
 
 
 def stem(name: str) -> tuple[str, ...]:
-    """The words of a name before its number, lower case ("Cube_01": cube; "obj3": obj; "1": none)."""
-    return tuple(p.lower() for p in NAME_PART.findall(name)[:-1])
+    """The words of a name besides its number, lower case ("Cube_01": cube; "obj3": obj; "1": none;
+    "002_master_chef_can": master, chef, can)."""
+    parts = NAME_PART.findall(name)
+    if parts and not parts[-1].isdigit() and parts[0].isdigit():
+        return tuple(p.lower() for p in parts[1:])
+    return tuple(p.lower() for p in parts[:-1])
 
 
 def number_name(word: str, scene: Scene) -> str | None:

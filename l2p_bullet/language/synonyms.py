@@ -58,11 +58,11 @@ KIND_NAMES = {
     "gelatin": ("gelatine", "jello", "jell-o", "jelly"),
     "box": ("packet", "packets", "carton", "cartons", "crate", "crates", "parcel", "parcels", "package"),
     "ketchup": ("catsup", "sauce", "bottle", "bottles"),
-    "mustard": ("bottle", "bottles", "sauce"),
+    "mustard": ("bottle", "bottles", "sauce", "french's", "frenchs"),
     "butter": ("packet", "packets", "pack", "packs", "stick", "sticks"),
     "bolt": ("bolts", "screw", "screws"),
     "nut": ("nuts",),
-    "soup": ("soups",),
+    "soup": ("soups", "campbell's", "campbells", "campbell"),
     "crate": ("crates",),
     "stirrer": ("stirrers", "stick", "sticks", "stirrer"),
     "beaker": ("beakers", "cup", "cups", "glass", "glasses"),
@@ -74,11 +74,26 @@ KIND_NAMES = {
     "rack": ("racks", "holder", "holders"),
     "vial": ("vials", "bottle", "bottles", "ampoule", "ampule"),
     "truck": ("trucks", "lorry", "lorries"),
+    "cracker": ("crackers", "cheez-it", "cheez-its", "cheezit", "cheezits", "cheese-it", "cheezit's"),
+    "sugar": ("domino",),
+    "meat": ("spam",),
+    "chef": ("coffee",),
+    "tuna": ("starkist",),
+    "pudding": ("jell-o", "jello"),
+    "dinosaur": ("dinosaurs", "dino", "dinos", "t-rex", "trex", "rex"),
+    "cow": ("cows", "moo", "calf", "cattle"),
+    "dog": ("dogs", "doggy", "doggie", "doggo", "puppy", "pup", "pooch"),
+    "fish": ("fishes", "fishy", "fishie", "clownfish", "goldfish"),
+    "barn": ("barns", "house", "farmhouse", "stable", "shed"),
+    "pond": ("ponds", "water", "pool", "lake"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
 }
-"""A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by."""
-KIND_CLASSES = {"animal": ("duck", "teddy", "bunny"), "animals": ("duck", "teddy", "bunny"),
+"""A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by, brands among
+them where a benchmark's object set is a brand's product (the YCB set: the Master Chef can is the coffee, the Cheez-It
+box the crackers, Domino the sugar, Campbell's the soup, French's the mustard, Spam the potted meat)."""
+KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
+                "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
                 "fruit": ("apple", "lemon", "orange", "banana", "pear", "peach", "plum")} | {
     word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
@@ -147,14 +162,15 @@ def shape_of(o: SceneObject) -> str:
 def own_kinds_of(o: SceneObject) -> set[str]:
     """The kinds an object is by itself: its name when one word, its mesh file's words; not the words of a name of
     several, which say what a user calls it ("butter_box" is called a box; its mesh, butter, is not a block)."""
-    name, mesh = _kind_key(o)
-    return set(_kinds(name if len(name_parts(name)) == 1 else "", mesh))
+    name, mesh, kind = _kind_key(o)
+    return set(_kinds(name if len(name_parts(name)) == 1 else "", mesh, kind))
 
 
-def _kind_key(o: SceneObject) -> tuple[str, str | None]:
-    """What an object's kinds depend on: its name and its mesh file (None for none)."""
+def _kind_key(o: SceneObject) -> tuple[str, str | None, str | None]:
+    """What an object's kinds depend on: its name, its mesh file and the kind its scene file declares (None for
+    none)."""
     mesh = getattr(o, "mesh", None)
-    return o.name, mesh if isinstance(mesh, str) and mesh else None
+    return o.name, mesh if isinstance(mesh, str) and mesh else None, getattr(o, "kind", None) or None
 
 
 NAME_PART = re.compile(r"[A-Z]?[a-z]+|[A-Z]+(?![a-z])|\d+")
@@ -174,11 +190,12 @@ def name_parts(name: str) -> tuple[str, ...]:
     return tuple(p.lower() for p in NAME_PART.findall(name))
 
 
-def _kinds(name: str, mesh: str | None) -> tuple[str, ...]:
+def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, ...]:
     """The kinds an object is called by. A name of one word is its kind; of several, each of its words that says
     what the object is ("butter_box": butter and a box; never a colour, a size or "obj"). A mesh file's stem's words
-    are kinds too, and a known kind a stem ends with ("tablelamp": a lamp)."""
-    out: list[str] = []
+    are kinds too, and a known kind a stem ends with ("tablelamp": a lamp); so are the words of the kind the scene
+    file declares ("kind": "toy cow" for a toy named Daisy: a cow, and a toy)."""
+    out: list[str] = [p for p in name_parts(kind or "") if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS]
     low = name.lower()
     parts = name_parts(name)
     if len(parts) > 1:
@@ -194,8 +211,9 @@ def _kinds(name: str, mesh: str | None) -> tuple[str, ...]:
     return tuple(dict.fromkeys(out))
 
 
-def scene_key(scene: Scene) -> tuple[tuple[str, str | None], ...]:
-    """Each object's (name, mesh file): all that the words for a scene's objects depend on (a key to keep them by)."""
+def scene_key(scene: Scene) -> tuple[tuple[str, str | None, str | None], ...]:
+    """Each object's (name, mesh file, declared kind): all that the words for a scene's objects depend on (a key to
+    keep them by)."""
     return tuple(_kind_key(o) for o in scene.objects)
 
 
@@ -206,13 +224,13 @@ def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
 
 
 @functools.lru_cache(maxsize=256)
-def kind_groups_of(objects: tuple[tuple[str, str | None], ...]) -> dict[str, frozenset[str]]:
+def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, frozenset[str]]:
     """kind_groups of a :func:`scene_key`, kept: made once per scene, not once per word looked up (reading one
     sentence asks for it hundreds of times). Kept answers are shared: a caller must not change one (kind_groups
     hands out copies)."""
     by_kind: dict[str, set[str]] = {}
-    for name, mesh in objects:
-        for k in _kinds(name, mesh):
+    for name, mesh, kind in objects:
+        for k in _kinds(name, mesh, kind):
             by_kind.setdefault(k, set()).add(name)
     out = {k: frozenset(v) for k, v in by_kind.items()}
     for word, kinds in KIND_SYNONYMS.items():
@@ -229,6 +247,6 @@ def kind_words(scene: Scene) -> dict[str, str]:
 
 
 @functools.lru_cache(maxsize=256)
-def kind_words_of(objects: tuple[tuple[str, str | None], ...]) -> dict[str, str]:
+def kind_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, str]:
     """kind_words of a :func:`scene_key`, kept as :func:`kind_groups_of` (a caller must not change it)."""
     return {w: next(iter(names)) for w, names in kind_groups_of(objects).items() if len(names) == 1}
