@@ -69,7 +69,7 @@ def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]
         if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
             raise
         known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
-        mended = typos.mend(ASIDE.sub("", sentence), known, scene.names)
+        mended = typos.mend(ASIDE.sub("", sentence), known, scene.names, verb_heads())
         if mended != sentence:
             try:
                 return read_clauses(mended, scene, plugins)

@@ -146,7 +146,7 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
         if link is None:
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
-            if _names_something(words[:j]):
+            if _names_something(words[:j]) or _group_shown(words[:j], is_object):
                 return words  # "The cube by the butter should go ...": never the butter, its words dropped
             if is_object(" ".join(words[j:k])):
                 if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
@@ -160,6 +160,14 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                 paced = [w for w in words[:j] if w.lower() in PACES]  # "Make rapidly the cube go ...": kept
                 return ["move", *words[j:k], *words[k + len(link):], *paced]
     return words
+
+
+def _group_shown(words: list[str], is_object) -> bool:
+    """Whether ``words`` (those before the mover) name two objects ("Daisy and Max both need moving: Daisy goes
+    ..."): what follows picks among them ("the other one" is the other of the two), which a reading of the end alone
+    loses."""
+    named = {w.strip(",.:;!?") for w in words if len(w.strip(",.:;!?")) > 1 and is_object(w.strip(",.:;!?"))}
+    return len(named) >= 2
 
 
 def _contracted(words: list[str]) -> list[str]:

@@ -18,6 +18,7 @@ from .proportions import PROFILES, admits
 from .reference_words import (
     BLOCK_SHAPES,
     DEMONSTRATIVES,
+    GENDERED,
     NOUNS,
     PRONOUNS_ANCHOR,
     PRONOUNS_MOVER,
@@ -25,7 +26,7 @@ from .reference_words import (
     SHAPE_NOUNS,
     STRICT_SHAPES,
 )
-from .synonyms import SIZE_WORDS, kind_groups, shape_of
+from .synonyms import KIND_CLASSES, SIZE_WORDS, kind_groups, kinds_of, shape_of
 
 
 @dataclass(frozen=True)
@@ -45,8 +46,9 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
     if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
-    if (low in DEMONSTRATIVES or (opening in DEMONSTRATIVES and low[-1] in NOUNS)) and context is not None \
-            and context.mover is not None and context.anchor not in (None, context.mover):
+    asked = low in DEMONSTRATIVES or (opening in DEMONSTRATIVES and low[-1] in NOUNS) or (
+        low in GENDERED and context is not None and _animals(scene, context.mover, context.anchor))
+    if asked and context is not None and context.mover is not None and context.anchor not in (None, context.mover):
         raise LanguageError(f'"{said}" is ambiguous: {context.mover} (moved in the previous clause) or '
                             f'{context.anchor} (named last); name the one you mean, or say "it"')
     if opening is not None and low[-1] in NOUNS:
@@ -73,6 +75,12 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
             return context.mover  # "move the jar away from it": the other of the two
         return _twin(said, context, scene) or context.anchor
     return None
+
+
+def _animals(scene: Scene, *names: str | None) -> bool:
+    """Whether every one of ``names`` is an object of the scene of an animal's kind (a toy dog, a duck)."""
+    animal = set(KIND_CLASSES["animal"])
+    return all(n in scene.names and kinds_of(scene.get(n)) & animal for n in names)
 
 
 def _no_earlier(said: str, role: str) -> LanguageError:

@@ -72,6 +72,9 @@ DEMONSTRATIVES = (("that", "one"), ("that", "block"), ("this", "one"), ("that",)
 that one around the bottle": P or R? one author of the held-out sentences asked): after a clause with an anchor,
 asked, never guessed; "it" and "the same one" are the block moved, as is "same" as a protocol says it ("push same
 away from B")."""
+GENDERED = (("him",), ("her",))
+"""Pronouns some authors use for any object (the block moved, as "it") and others for an animal or a toy they named:
+after a clause whose mover and anchor are both animals ("move rex next to daisy, then push her ..."), asked."""
 SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
 """Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))

@@ -89,9 +89,11 @@ def _one_slip(word: str, known: str) -> bool:
     return False
 
 
-def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
+def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iterable[str] = ()) -> str:
     """``sentence`` with each slip replaced by the known word it is one keystroke from (its case as typed for
-    the first letter); every other character as it was."""
+    the first letter); every other character as it was. A word right after an article is never mended into one of
+    ``verbs``: "for a pic" is no "pick", which would make a slide a lift."""
+    verbs = frozenset(v.lower() for v in verbs)
     keep = {n.lower() for n in names}
     named = frozenset(w for n in keep for w in _WORD.findall(n))
 
@@ -108,7 +110,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named)
-        if hit is None:
+        if hit is None or (hit in verbs and ARTICLE_BEFORE.search(m.string, 0, m.start())):
             return w
         return hit.capitalize() if w[0].isupper() else hit
 
@@ -120,6 +122,8 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str]) -> str:
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
 
 
+ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
+"""An article right before a word: what follows names a thing, never a verb."""
 RUNS = re.compile(r"([a-z])\1{2,}")
 """A letter typed three or more times for emphasis ("wayyy past", "sooo slowly"): read once or twice."""
 TWO_FOR_TO = re.compile(r"\b(closer|close|nearer|near|next|up|over|back|right|on|onto|according)\s+"
