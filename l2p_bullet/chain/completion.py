@@ -27,10 +27,11 @@ def complete(text: str, previous: Command | None, scene: Scene, plugins: list) -
     low = tuple(w.lower() for w in words)
     raw = tuple(w.lower().strip(",.!?;") for w in text.split())
     said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
+    back = 1 if low[:1] == ("back",) else 0  # "..., then back toward I": the mover goes back, the way it came
     for toks, _phrase, _action in phrase_tokens(registry.phrase_table(plugins)):
         if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
             return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
-        if low[: len(toks)] == toks:
+        if low[back:back + len(toks)] == toks:
             return f"{verb} {previous.mover} {text}" if text.split()[0].lower() == low[0] else f"{verb} {text}"
     return f"{verb} {text}"
 

@@ -67,6 +67,8 @@ KIND_NAMES = {
     "stirrer": ("stirrers", "stick", "sticks", "stirrer"),
     "beaker": ("beakers", "cup", "cups", "glass", "glasses"),
     "cylinder": ("tin", "tins"),
+    "bucket": ("buckets", "pail", "pails"),
+    "pail": ("pails", "bucket", "buckets"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
 }
