@@ -27,10 +27,13 @@ _AIR = r"(?:up\s+)?(?:in|into|through|thru)\s+the\s+air"
 _AND_PUT_IT = r"\s+and\s+(?:put|bring|set|place|move|carry|drop|lay|take)\s+it(?:\s+down)?\s+(?P<rest>.+)$"
 _ASK = r"please|pls|now|can\s+you|could\s+you|would\s+you"
 _ASKING = rf"(?:(?:{_ASK}|can\s+the\s+(?:robot|arm)|could\s+the\s+(?:robot|arm))\s+)*"
-IN_THE_AIR = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_AND_PUT_IT}", re.IGNORECASE)
+_HOW = (r"(?:,?\s+(?P<how>nice\s+and\s+(?:slow|slowly|easy|gentle|gently)"
+        r"|(?:very\s+|really\s+)?(?:slowly|gently|carefully|quickly)))?,?")
+IN_THE_AIR = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+(?P<what>.+?)\s+{_AIR}{_HOW}{_AND_PUT_IT}", re.IGNORECASE)
 AIR_FIRST = re.compile(rf"^\s*{_ASKING}{_AIR_VERBS}\s+{_AIR}\s+(?P<what>.+?){_AND_PUT_IT}", re.IGNORECASE)
 """A carry said by where the object goes on the way: "Take the duck in the air and put it down near the ball", "Take
-in the air the cube and bring it near the bottle"."""
+in the air the cube and bring it near the bottle", "Carry the truck through the air, nice and slow, and set it down
+next to ..." (the pace said on the way kept)."""
 YOU_VERB = re.compile(r"^\s*(?P<what>.+?)(?:,\s*(?:this|that)(?:\s+one)?)?,?\s+you\s+(?:should\s+|must\s+|can\s+)?"
                       r"(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
 """The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
@@ -103,6 +106,11 @@ touching"), or between two words without them ("The red cube please only a littl
 POLITE_BARE = re.compile(r"(?<=\w)\s+(?:please|pls|plz|kindly)\s+(?=\w)", re.IGNORECASE)
 
 
+OVER_TO_SIDE = re.compile(r"^(?P<head>.+?)\s+over\s+(?P<what>(?!the\s+(?:other|far)\b).+?)\s+(?:to|on|onto)\s+the\s+"
+                          r"(?P<side>other|far)\s+side(?P<tail>\s+(?:quick|quickly|slowly|gently|carefully|please|pls))?"
+                          r"\s*[.!]*\s*$", re.IGNORECASE)
+"""Over an object to its other side: "lift O over the bucket to the other side" is "lift O to the other side of the
+bucket"."""
 NOT_SO_CLOSE = re.compile(r"\b(?P<what>(?:the\s+)?[\w-]+(?:\s+[\w-]+){0,3}?)\s+"
                           r"(?:isn't|isnt|is\s+not|wasn't|was\s+not)\s+(?:so|too|as|that)\s+(?:close|near)(?:\s+(?:to|of))?\s+(?P<other>.+?)"
                           r"(?:\s+any\s*more)?\s*[.!]*\s*$", re.IGNORECASE)
@@ -146,12 +154,13 @@ def _verb_last(text: str) -> list[str]:
 
 def in_other_words(text: str) -> list[str]:
     """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
-    :data:`YOU_VERB`'s, :data:`TO_THEN`'s, :data:`OVER_TO`'s or :data:`TO_OBJECT`'s ways, or with :data:`THAN_NOW`,
-    :data:`POLITE_INSIDE` or :data:`WHY` words; the caller resolves each (one that does not resolve is no reading)."""
+    :data:`YOU_VERB`'s, :data:`TO_THEN`'s, :data:`OVER_TO`'s, :data:`OVER_TO_SIDE`'s or :data:`TO_OBJECT`'s ways, or
+    with :data:`THAN_NOW`, :data:`POLITE_INSIDE` or :data:`WHY` words; the caller resolves each (one that does not
+    resolve is no reading)."""
     out = []
     m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:
-        out.append(f"carry {m.group('what')} {m.group('rest')}")
+        out.append(" ".join(w for w in ("carry", m.group("what"), m.groupdict().get("how"), m.group("rest")) if w))
     m = GIVE_A.match(text)
     if m is not None:
         said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
@@ -167,6 +176,9 @@ def in_other_words(text: str) -> list[str]:
     m = (OVER_TO.match(text) or TO_OBJECT.match(text)) if to_then is None else None
     if m is not None:  # "over to" first, then "to" an object
         out.append(f"{m.group('head')} toward {m.group('rest') or m.group('arrow')}")
+    m = OVER_TO_SIDE.match(text)
+    if m is not None:
+        out.append(f"{m.group('head')} to the {m.group('side')} side of {m.group('what')}{m.group('tail') or ''}")
     m = THAN_NOW.search(text)
     if m is not None:
         out.append(text[:m.start()])

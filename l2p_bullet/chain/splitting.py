@@ -22,12 +22,14 @@ _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?
                     r"|,\s*after\s+(?=(?![a-z]+ing\b)[a-z]+\s+(?:the|it|them|a|an)\b)"
                     r"|,\s*and\s+after\b"
                     r"|,?\s*\band\s+finally\b|,\s*finally\b"
+                    r"|(?:,\s*|\s+and\s+)(?:and\s+)?now\b(?=,?\s+[a-z])"
                     r"|(?:,\s*|\s+)(?:(?:and|but)\s+)?(?=(?:don't|dont|do\s+not)\s+(?:drag|lift|carry)\s+it[\s.!]*$))"
                     r"\s*,?\s*", re.IGNORECASE)
 """What joins clauses: "then", "and then", "after that", "afterwards", "thereafter", ", and after", ", after" before a
-verb and its object ("..., after push the brick away"), "and finally", a semicolon, a
-full stop between two sentences ("Carry C around B. Next, move D a bit closer to the duck."), or a manner ruled out
-at the sentence's end ("..., but don't drag it": chain/apart.py reads it into the clause before)."""
+verb and its object ("..., after push the brick away"), "and finally", "now" after a comma or "and" ("..., now push it
+past B, and now bring it ..."), a semicolon, a full stop between two sentences ("Carry C around B. Next, move D a
+bit closer to the duck."), or a manner ruled out at the sentence's end ("..., but don't drag it": chain/apart.py
+reads it into the clause before)."""
 
 
 def split_clauses(sentence: str) -> list[str]:

@@ -14,6 +14,7 @@ import re
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
+from .letters import letter_of, letters_of
 from .places import by_size, named_colours
 from .proportions import PROFILES, PROPORTION_NOUNS, fitting, outline_sides
 from .reference_words import (
@@ -32,8 +33,6 @@ from .reference_words import (
     SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SOFT_ADJECTIVES,
-    SPOKEN_LETTERS,
-    SPOKEN_ONLY_AFTER_NOUN,
     STRICT_SHAPES,
 )
 from .synonyms import (
@@ -167,23 +166,6 @@ def names_within(words: list[str], scene: Scene) -> list[str]:
     return found
 
 
-def spoken_letter(low: tuple[str, ...], scene: Scene) -> tuple[str, ...]:
-    """``low`` with a letter said as a word at its end read as the one-letter name it spells ("block cue": block q,
-    "cube oh": cube o, "cue" alone), where the scene has an object of that name and nothing is called by the word;
-    a spelling that is a word of its own ("oh", "see", "you") only right after a noun ("cube oh")."""
-    if not low:
-        return low
-    word = low[-1]
-    letter = SPOKEN_LETTERS.get(word)
-    if letter is None or word in name_words(scene) or word in kind_groups(scene) \
-            or letter not in {n.lower() for n in scene.names}:
-        return low
-    after_noun = len(low) >= 2 and (low[-2] in NOUNS or low[-2] in BLOCK_WORDS or low[-2] in SHAPE_NOUNS)
-    if after_noun or (len(low) == 1 and word not in SPOKEN_ONLY_AFTER_NOUN):
-        return (*low[:-1], letter)
-    return low
-
-
 MEASURE = re.compile(r"^(?P<n>\d+(?:[.,]\d+)?)-?(?P<unit>cm|mm|centimet(?:er|re)s?|millimet(?:er|re)s?)$")
 UNITS = {"c": 0.01, "m": 0.001}
 MEASURE_TOLERANCE = 0.15
@@ -219,7 +201,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     from the left")."""
     names = name_words(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
-    low = spoken_letter(low, scene)
+    low = letter_of(low, determined, letters_of(scene.names), set(name_words(scene)) | set(kind_groups(scene)))
     low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
     drink = bool(set(low) & DRINKS)
@@ -290,6 +272,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
         fits = [o for o in fits if a_block_to_look_at(o)]
+        if not shaped and not proportioned:  # "the yellow block": the cube, not the truck
+            fits = [o for o in fits if not a_thing_by_name(o)] or fits
     if drink and len(fits) > 1:  # "the soda can" beside a soup can
         fits = [o for o in fits if not own_kinds_of(o) & FOODS] or fits
     return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
@@ -304,6 +288,19 @@ def a_block_to_look_at(o: SceneObject) -> bool:
     """Whether "block" and "brick" may name ``o``: a cube, a box or a cylinder, or a mesh of a block's kind (a lego
     brick, a crate), never the bowl, the mug or the bottle."""
     return shape_of(o) != "mesh" or bool(own_kinds_of(o) & BLOCK_KINDS)
+
+
+BLOCKISH = BLOCK_KINDS | BLOCK_WORDS | frozenset(SHAPE_NOUNS) | PROPORTION_NOUNS | frozenset({"cube", "cubes"})
+"""Kinds a block may be named by and still be a block ("brick", "slab", "beam", "tile")."""
+
+
+def a_thing_by_name(o: SceneObject) -> bool:
+    """Whether ``o`` is named as a thing of its own kind that is no block ("truck", "tray", "scanner"): among
+    several that "block" fits, the plain blocks are meant ("the yellow block" beside a yellow toy truck is the
+    cube); alone it is still the block ("the yellow block" where the wedge is the only yellow thing), and a shape said
+    is a shape seen ("the rectangular block" is the brick or the bar of soap, as one author asked)."""
+    kinds = own_kinds_of(o)
+    return bool(kinds) and not kinds & BLOCKISH
 
 
 _COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)

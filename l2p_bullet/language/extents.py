@@ -28,6 +28,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a good long way": "far", "a long long way": "far", "loads": "far", "ever so slightly": "little",
     "ever so little": "little", "just ever so slightly": "little", "a good deal": "far", "a great deal": "far",
     "tiny bit": "little", "a tiny little bit": "little", "so far": "far", "soo far": "far",
+    "barely": "little", "just barely": "little", "only just": "little",
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})

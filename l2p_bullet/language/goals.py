@@ -32,6 +32,11 @@ DOERS = (("the", "robot", "to"), ("the", "arm", "to"), ("you", "to"), ("robot", 
          ("for", "the", "robot", "to"), ("that", "you"))
 """Who is to do it, between a goal's opening and its verb ("I'd like *the robot to* move A ...")."""
 
+POSTURES = frozenset({"sitting", "standing", "lying", "resting", "sat", "parked"})
+"""How a wished-for object rests where it should be ("I want the I block sitting next to the truck"): says nothing
+of the move."""
+
+
 def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     """"I want the red block next to B" -> "put the red block next to B"; a known verb after the opening
     ("I want to move ...") is kept as it is."""
@@ -47,6 +52,9 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
                 return rest[1:]
             if rest[0].lower() in verbs:
                 return rest
+            at = next((i for i, w in enumerate(rest) if i > 1 and w.lower() in POSTURES), None)
+            if at is not None and rest[at - 1].lower() not in DETERMINERS:  # "I want the I block sitting next to B"
+                rest = rest[:at] + rest[at + 1:]
             return ["put", *rest]
     if low[:1] == ["keep"] and len(low) > 3 and not low[1].endswith("ing") and low[1:3] != ["it", "on"]:
         return ["put", *words[1:]]  # "Kindly keep the box beside the goal": put it there ("keep it on the table" stays)

@@ -12,7 +12,9 @@ from dataclasses import dataclass
 
 from ..core.scene import Scene
 from ..errors import LanguageError
+from .descriptions import name_words
 from .grammar import ARROWS, MAX_SENTENCE, phrase_tokens, tokens
+from .letters import in_abc_order, said_letters
 from .numbers import number_name
 from .partitives import number_said
 from .reference_words import CONJUNCTIONS
@@ -73,7 +75,8 @@ the four cubes up - big red, small red, blue, purple -"), each item the group's 
 def said_plainly(sentence: str, scene: Scene) -> str:
     """``sentence`` with a composite's sentence said in other words (the patterns above) said as a plain list is;
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
-    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", sentence)))
+    text = in_abc_order(sentence, scene)  # "put the letter blocks in ABC order in a row"
+    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", text)))
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"\1 of ", text, count=1)
@@ -138,6 +141,9 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
             continue
         head, tail = _head_tail(toks)
         joined = _joined_at(low, head, tail)
+        if joined is not None and not tail and _with_itself(raw[start + len(head): start + len(kept)],
+                                                            joined - len(head), scene):
+            joined = None  # "make a row of O, I and the red block with the X": "with" describes the last one
         if joined is None:
             rest = " ".join(raw[start + len(head): start + len(kept) - len(tail)])
         else:  # "put P in a row with Q and R": the block before the tail leads the list
@@ -147,10 +153,11 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
         items = [i for i in items if i]
         if items:  # "line up the mug, the jar and the stone in a row": the row said again at the end
             items[-1] = ROW_AGAIN.sub("", items[-1]).strip() or items[-1]
-        named = {n.lower() for n in scene.names}
-        loose = [i.split() if len(i.split()) > 1 and all(w.lower() in named or number_name(w, scene) for w in i.split())
+        named, taken = {n.lower() for n in scene.names}, set(name_words(scene))
+        loose = [i.split() if len(i.split()) > 1 and (all(w.lower() in named or number_name(w, scene)
+                                                          for w in i.split()) or said_letters(i.split(), scene, taken))
                  else [i] for i in items]  # "line up c b a", "line up U V W and stone", "four six and seven": names
-        # without commas
+        # without commas, and "line up ay eye oh and ex": letters said aloud
         items = [part for group in loose for w in group for part in _by_article(w, scene)]
         if len(items) < 2:
             raise LanguageError(f'"{phrase}" needs a list of at least two blocks, as in "{phrase} A, B and C"'
@@ -170,6 +177,14 @@ IN_ORDER = re.compile(r",?\s*in\s+(?:(?:that|this|the\s+same|the\s+given)\s+orde
 """, in that order" after a list ("in that order please", "in the order I have named them"): the order named is the
 order anyway."""
 ROW_AGAIN = re.compile(r"\s+in\s+(?:a|one|a\s+single)\s+(?:row|line)\s*$", re.IGNORECASE)
+
+
+def _with_itself(said: list[str], at: int, scene: Scene) -> bool:
+    """Whether the last item before "with" (``said[at]``), with the words after it, names one object ("the red block
+    with the X"): "with" then describes it, and joins no more of the list."""
+    before = re.split(r",|\band\b|&", " ".join(said[:at]), flags=re.IGNORECASE)[-1].strip()
+    item = f"{before} {' '.join(said[at:])}".strip(" .;:!?\"()[]")
+    return bool(before) and try_object(item, scene) is not None
 
 
 def _head_tail(toks: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:

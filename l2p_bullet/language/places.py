@@ -21,6 +21,7 @@ from .reference_words import (
     DETERMINERS,
     DIRECTIONS,
     FARTHEST,
+    FARTHEST_FROM,
     NEAREST,
     NOUNS,
     PERIPHRASTIC,
@@ -85,6 +86,8 @@ def relation_head(low: tuple[str, ...]) -> tuple[str, int, int] | None:
             j = i + 1
             if j < len(low) and low[j] in NOUNS:  # "the closest block to the duck"
                 j += 1
+            if w in FARTHEST and " ".join(low[j:j + 2]) in FARTHEST_FROM:
+                j += 1  # "the block farthest away from the robot": farthest from it
             if j < len(low) and low[j] in ("to", "from"):
                 j += 1
             return w, i, j

@@ -85,6 +85,9 @@ ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", 
 NEAREST = frozenset("nearest closest nearer closer near".split())  # English words of place ("the cube closer to you")
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
+FARTHEST_FROM = frozenset({"away from"})
+"""Words after a "farthest" that say only "from" ("the block farthest away from the robot"): its first word is read
+past."""
 PERIPHRASTIC = {("farthest", "back"): "backmost", ("furthest", "back"): "backmost", ("most", "back"): "backmost",
                 ("farthest", "left"): "leftmost", ("furthest", "left"): "leftmost", ("farthest", "right"): "rightmost",
                 ("furthest", "right"): "rightmost", ("most", "left"): "leftmost", ("most", "right"): "rightmost",

@@ -22,6 +22,7 @@ from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates, coloured_like, describe, described, looks, name_words, spelled_name
 from .group_places import in_group, table_sides
 from .kept import SceneMemo
+from .letters import marked_with, named_after_the
 from .numbers import number_reference
 from .other_than import other_than
 from .partitives import of_compound, partitive
@@ -114,6 +115,9 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     other = other_than(text, scene, role, resolve_object)  # "the cube that isn't red"
     if other is not None:
         return other
+    marked = marked_with(text, scene, role, resolve_object)  # "the red one with the X on it"
+    if marked is not None:
+        return marked
     words = _plain_order(words, scene)
     low = tuple(w.lower() for w in words)
     if set(low) & CONJUNCTIONS and "between" not in low:  # "the tray and the other one closer to the can"
@@ -131,6 +135,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
             return resolve_object(" ".join(words[i + 1:]), scene, role, context)
     determined = False
     while len(low) > 1 and low[0] in DETERMINERS and words[0] not in names:
+        if determined and named_after_the(low[0], names):
+            break  # "the a block": no second article after "the", so the name A
         words, low, determined = words[1:], low[1:], True
     candidate = " ".join(words)
     if candidate in names:

@@ -86,6 +86,7 @@ KIND_NAMES = {
     "fish": ("fishes", "fishy", "fishie", "clownfish", "goldfish"),
     "barn": ("barns", "house", "farmhouse", "stable", "shed"),
     "pond": ("ponds", "water", "pool", "lake"),
+    "pail": ("pails", "bucket", "buckets"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
 }

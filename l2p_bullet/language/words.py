@@ -45,8 +45,14 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "do the needful and", "please do the needful and", "kindly do the needful and", "request you to",
     "i request you to", "request you to kindly", "sorry to be a pain", "sorry to be a pain but",
     "sorry to bother you", "sorry to bother you but", "sorry to trouble you", "sorry to trouble you but",
+    "can we", "could we", "can we please", "could we please",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
+VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
+             "you guys", "guys", "folks")
+"""Whom a teacher speaks to beside the robot ("Boys and girls, let's line up ...", "..., everyone!"): read past
+before or after the command, as a courtesy is."""
+POLITE_PREFIXES = tuple(sorted(POLITE_PREFIXES + tuple(tuple(v.split()) for v in VOCATIVES), key=len, reverse=True))
 ADDRESSEES = frozenset({"you", "u"})
 """A polite opening that ends by addressing the robot ("can you", "can u") is read past even where a word of it
 names an object: "can you push the can ..." asks the robot, whatever the can is called."""
@@ -55,7 +61,7 @@ NOT_BEFORE_TO = frozenset({"next"})
 read past only before another word."""
 POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "please thanks", "please thank you", "thank you very much", "thank you so much", "thank you", "thanks",
-    "please", "if you please", "if you would",
+    "please", "if you please", "if you would", "rn", "right now",
     "for me", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "not the other way round", "not the other way around", "and not the other way round",
@@ -84,8 +90,10 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if it isn't too much bother", "if it's not too much bother", "if it is not too much bother",
     "so they're together", "so they are together",
     "if its not too much trouble", "if it's no bother", "if that's ok", "if that's okay", "if thats ok",
-    "thats it", "thats all",
+    "thats it", "thats all", "when we're done", "when were done", "when we are done", "when you're done",
+    "when youre done", "when you are done", "at the end of it",
 )), key=len, reverse=True))
+POLITE_SUFFIXES = tuple(sorted(POLITE_SUFFIXES + tuple(tuple(v.split()) for v in VOCATIVES), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
                                                 ("how", "about"), ("what", "about"), ("fix", "that", "by"),
                                                 ("fix", "it", "by"), ("fix", "this", "by"), ("do", "that", "by"),
@@ -117,7 +125,8 @@ PACES: dict[str, str] = {
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "and be gentle": "gentle", "be gentle": "gentle", "and be careful": "careful", "be careful": "careful",
     "and be quick": "fast", "be quick": "fast", "and go slow": "slow",
-    "take your time and": "slow", "take your time": "slow", "in a hurry": "fast", "as fast as you can": "fast",
+    "take your time and": "slow", "take your time": "slow",
+    "take our time and": "slow", "take our time": "slow", "in a hurry": "fast", "as fast as you can": "fast",
     "hurry up": "fast", "hurry up and": "fast", "hurry and": "fast", "in a slow way": "slow", "in slow way": "slow",
     "in a careful way": "careful",
     "as quickly as you can": "fast", "with care": "careful", "nice and easy": "gentle", "real quick": "fast",
@@ -327,7 +336,8 @@ def drop_frames(before: list[str]) -> list[str]:
     low = [w.lower() for w in before]
     for f in FRAMES:
         n = len(f)
-        if len(low) > n and tuple(low[-n:]) == f and low[-n - 2:-n] not in (["at", "the"], ["in", "the"]) \
+        said = low[:-n - 1] if len(low) > n + 1 and low[-n - 1] in ("very", "far") else low[:-n]  # "at the very back"
+        if len(low) > n and tuple(low[-n:]) == f and said[-2:] not in (["at", "the"], ["in", "the"]) \
                 and low[-n - 1] not in ("farthest", "furthest", "most"):
             return drop_frames(before[:-n])  # "the cube at the back", "farthest back": a place, not a frame
     return before

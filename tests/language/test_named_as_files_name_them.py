@@ -76,7 +76,7 @@ def test_named_as_files_name_them(sentence: str, expect: str, table: str, plugin
     ("move the metal part toward the ball", WORKSHOP),  # the nut and the bolt
     ("push the fastener toward the camera", WORKSHOP),
     ("move the hardware past the jello", WORKSHOP),
-    ("move oh next to the lamp", HOUSEHOLD),  # "oh" alone is a word of its own
+    ("move owe next to the lamp", HOUSEHOLD),  # "owe" alone is a word of its own ("oh" alone is O: letters.py)
     ("move the lamp next to you", HOUSEHOLD),  # "you" is the robot, and U is not on the table
     ("slide the zucchini toward cube zed", HOUSEHOLD),  # no Z on the table
     ("move the lamp next to em", HOUSEHOLD),  # "em" alone is "them" as typed
