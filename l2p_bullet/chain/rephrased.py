@@ -38,6 +38,12 @@ YOU_VERB = re.compile(r"^\s*(?P<what>.+?)(?:,\s*(?:this|that)(?:\s+one)?)?,?\s+y
                       r"(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
 """The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
 yellow cube", "The small red cube, this you push to the box", "The block 1 you should move past the box"."""
+TAKE_AND = re.compile(r"^\s*(?:(?:now|then|ok|okay|so)\s+)?(?:take|get)\s+(?P<what>.+?)\s+and\s+"
+                      r"(?P<verb>bring|move|slide|shift|put|place|set|push|nudge|shove|carry)\s+it\s+(?P<rest>.+)$",
+                      re.IGNORECASE)
+"""An object taken first, then moved as "it": "Now take the sugar box and bring it closer to the can" is "bring the
+sugar box closer to the can" (the second verb's manner; "grab ... and put" is a carry of its own, read by the
+manners)."""
 TOPIC_BARE = re.compile(r"^\s*(?P<what>.+?)\s+(?P<verb>[a-z]+)\s+(?P<it>it|that|this)\s+(?P<rest>.+)$", re.IGNORECASE)
 """A topic said before the command without a comma: "okay the bowl move it closer to the blue cube" is "okay the
 bowl, move it closer to the blue cube" (the verb a known one, the topic not opening with one)."""
@@ -166,6 +172,7 @@ def in_other_words(text: str) -> list[str]:
         said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
         out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
     out += _said(MAKE_GO, r"move \g<what> \g<rest>", text) + _said(YOU_VERB, r"\g<verb> \g<what> \g<rest>", text)
+    out += _said(TAKE_AND, r"\g<verb> \g<what> \g<rest>", text)
     m = TOPIC_BARE.match(text)
     if m is not None and "," not in m.group("what") and m.group("verb").lower() in verb_heads() \
             and m.group("what").split()[0].lower() not in verb_heads():

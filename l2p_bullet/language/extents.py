@@ -25,7 +25,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a couple of centimetres": "little",
     "a couple of centimeters": "little", "a couple centimeters": "little", "a couple of cm": "little",
     "flush": "right", "rite": "right", "a lil": "little", "a lil bit": "little", "lil bit": "little",
-    "a good long way": "far", "a long long way": "far", "loads": "far", "ever so slightly": "little",
+    "a good long way": "far", "a long long way": "far", "loads": "far", "heaps": "far", "ever so slightly": "little",
     "ever so little": "little", "just ever so slightly": "little", "a good deal": "far", "a great deal": "far",
     "tiny bit": "little", "a tiny little bit": "little", "so far": "far", "soo far": "far",
     "barely": "little", "just barely": "little", "only just": "little",

@@ -184,6 +184,7 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("on", "the", "left"): "leftmost", ("on", "the", "right"): "rightmost",
                 ("at", "the", "far", "left"): "leftmost", ("at", "the", "far", "right"): "rightmost",
                 ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
+                ("up", "the", "back"): "backmost", ("up", "the", "front"): "frontmost",
                 ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"} | {
     (far, "to", "the", side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")}
 SIDE_PHRASES |= {(prep, "the", *far, side, "end"): f"{side}most" for prep in ("on", "at") for far in ((), ("far",))

@@ -4,8 +4,9 @@ doggy", "the red house", "the water") or by name and kind at once ("Rex the dino
 cow)"; a kind that names another object is asked); "him" and "her" after a clause that moved one animal next to
 another (asked, as either may be meant); and the YCB object set as its files name it ("002_master_chef_can"): by the
 number it opens with ("005", "obj 6", "item 010"), by its words without the number ("cracker_box"), by the products'
-brands ("the Spam", "the Cheez-It box", "the coffee"). Also what must not change a reading: "for a pic" is no
-"pick" (a lift). Checked on sentences of each kind (not the corpora's own lines), and what must stay refused."""
+brands ("the Spam", "the Cheez-It box", "the coffee"), with an Australian's "plonk", "stick", "heaps" and "up the
+front". Also what must not change a reading: "for a pic" is no "pick" (a lift). Checked on sentences of each kind (not
+the corpora's own lines), and what must stay refused."""
 
 from __future__ import annotations
 
@@ -41,6 +42,14 @@ YCB = "heldout50.tsv"
     ("move the Spam next to the Cheez-It box", "slide:next-to 010_potted_meat_can 003_cracker_box", YCB),
     ("slide the Campbell's can toward the coffee", "slide:closer 005_tomato_soup_can 002_master_chef_can", YCB),
     ("carry the French's around the Domino box", "carry:around 006_mustard_bottle 004_sugar_box", YCB),
+    # Australian turns: plonk, stick, heaps, up the front, "for us"; an object taken, then moved as "it"
+    ("plonk the coffee next to the Spam", "slide:next-to 002_master_chef_can 010_potted_meat_can", YCB),
+    ("push the mustard heaps further from the soup", "push:away 006_mustard_bottle 005_tomato_soup_can extent=far",
+     YCB),
+    ("the red one up the front, shove it toward the sugar", "push:closer 005_tomato_soup_can 004_sugar_box", YCB),
+    ("stick the Spam, the coffee and the soup in a row for us",
+     "row 010_potted_meat_can,002_master_chef_can,005_tomato_soup_can", YCB),
+    ("ok take the mustard and slide it past the Spam", "slide:past 006_mustard_bottle 010_potted_meat_can", YCB),
 ])
 def test_read(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
