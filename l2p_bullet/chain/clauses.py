@@ -28,7 +28,7 @@ from ..language import (
     verb_heads,
 )
 from ..language.descriptions import naming_words
-from ..language.numbers import apposed
+from ..language.numbers import apposed, codes_said
 from ..language.reference_words import FARTHEST, NEAREST
 from ..pipeline import resolve
 from ..plugins import once, registry
@@ -63,6 +63,8 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
 
 def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
+    if isinstance(sentence, str):
+        sentence = codes_said(sentence, scene)  # "the red two by four" for brick_2x4_red, before "by" is read
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import re
 
 from ..core.scene import Scene
-from ..language import Command, Context, command_words, known_verbs, phrase_tokens
+from ..language import Command, Context, command_words, known_verbs, phrase_tokens, typos
 from ..language.extents import LONGEST_FIRST
 from ..manners import registry as manners
 from ..plugins import registry
@@ -21,13 +21,19 @@ def complete(text: str, previous: Command | None, scene: Scene, plugins: list) -
     words = command_words(text, scene)[0]
     if previous is None or not words or words[0].lower() in known_verbs():
         return text
+    table = registry.phrase_table(plugins)
+    first = words[0].lower()
+    if len(words) > 1 and words[1].lower() in ("it", "them") and not any(t[0] == first for t, _, _ in
+                                                                         phrase_tokens(table)) \
+            and first != "leave" and typos.near(first, frozenset({previous.verb.lower()})) is None:
+        return text  # "..., then park it next to the mug": a verb of its own, unknown, is not the verb before (a
+        # slip of it is: "push A ..., then pish it away from C"; "leave it beside C" says where that move ends)
     # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
     verb = previous.manner if gapped(previous.verb) else previous.verb
 
     low = tuple(w.lower() for w in words)
     raw = tuple(w.lower().strip(",.!?;") for w in text.split())
     said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
-    table = registry.phrase_table(plugins)
     if len(low) > 2 and low[0] == "back" and raw[0] == "back" and any(low[1:1 + len(t)] == t
                                                                      for t, _, _ in phrase_tokens(table)):
         return f"{verb} {previous.mover} {' '.join(text.split()[1:])}"  # "..., then back toward the vial"

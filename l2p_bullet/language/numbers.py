@@ -22,7 +22,7 @@ from collections.abc import Callable, Iterable
 from ..core.scene import Scene, SceneObject
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from .reference_words import BLOCK_SHAPES, DETERMINERS, NOUNS, SHAPE_NOUNS
-from .synonyms import NAME_PART, kinds_of
+from .synonyms import NAME_PART, kinds_of, size_codes
 
 SPELLED = {w: n for n, w in enumerate(
     "zero one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen sixteen seventeen "
@@ -257,3 +257,22 @@ def apposed(what: str, rest: str) -> tuple[str, str]:
     if m is None or number_of(m.group("number").split()[-1]) is None:
         return what, rest
     return f"{what} {m.group('number')}", m.group("rest")
+
+
+CODE_SAID = re.compile(r"\b(\d{1,2}|" + "|".join(SPELLED) + r")\s*(?:x|\u00d7|by)\s*(\d{1,2}|" + "|".join(SPELLED)
+                       + r")\b", re.IGNORECASE)
+"""A size code as people say or type it: "2x4", "2 x 4", "2 by 4", "two by four"."""
+
+
+def codes_said(sentence: str, scene: Scene) -> str:
+    """``sentence`` with each size code said as the scene's names write it ("the red two by four" -> "the red 2x4"),
+    where some name holds that code; as it is otherwise (so "by" stays the preposition it is everywhere else)."""
+    codes = {c for n in scene.names for c in size_codes(n)}
+    if not codes:
+        return sentence
+
+    def code(m: re.Match) -> str:
+        said = f"{number_of(m.group(1))}x{number_of(m.group(2))}"
+        return said if said in codes else m.group(0)
+
+    return CODE_SAID.sub(code, sentence)

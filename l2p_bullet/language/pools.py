@@ -68,17 +68,24 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
 
 def either_reading(described: list[str], scene: Scene, choose, pool: list[SceneObject] | None = None) -> str:
     """``choose`` over the objects ``described`` allows (``pool`` where the caller chose them); with "block" in it,
-    over the block-shaped ones too, and the description refused as ambiguous where the two readings differ."""
+    over the block-shaped ones too, and the description refused as ambiguous where the two readings differ. Where the
+    scene names several objects with the word said ("brick_2x4_red", "brick_2x2_blue"), the names say which are
+    bricks: those alone."""
     pool = pool_of(" ".join(described), scene) if pool is None else pool
-    if not {w.lower() for w in described} & BLOCK_WORDS:
+    said_blocks = {w.lower() for w in described} & BLOCK_WORDS
+    if not said_blocks:
         return choose(pool)
     readings = []
+    groups = kind_groups(scene)  # "the leftmost brick" where the names say which are bricks (brick_2x4_red ...)
+    named = {n for w in said_blocks for n in groups.get(w, ())}
+    if len(named) > 1 and any(o.name not in named for o in pool) and any(o.name in named for o in pool):
+        return choose([o for o in pool if o.name in named])  # the names say which are bricks, not their shapes
     for among in (pool, [o for o in pool if shape_of(o) in BLOCK_SHAPES]):
         try:
             readings.append(choose(among))
         except (LanguageError, UnknownObjectError) as e:
             readings.append(e)
-    if isinstance(readings[0], str) and readings[0] == readings[1]:
+    if isinstance(readings[0], str) and all(r == readings[0] for r in readings):
         return readings[0]
     said = " ".join(described + ["..."])
     picks = sorted({r for r in readings if isinstance(r, str)})

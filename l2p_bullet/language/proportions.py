@@ -195,8 +195,9 @@ LONG = Profile((Need("lying_long", (1.3, INF), MORE),), noun=False)
 THIN = Profile((Need("elongation", (2.0, INF), MORE),), noun=False)
 """Thin for its length, lying or standing ("the long thin bar", "the tall thin carton", "the skinny one"): narrow as
 a stick is, the milk carton rather than the cereal box that is thin only as a book is."""
-FLAT = Profile((Need("flatness", (1.25, INF), MORE),), noun=False)
-"""Lying flat ("the flat square", "the flat grey thing"): the flatter the better."""
+FLAT = Profile((Need("flatness", (1.25, INF), (3.0, INF)),), noun=False)
+"""Lying flat ("the flat square", "the flat grey thing"): the flatter the better up to three times as wide as tall,
+past which people see no difference (a phone and a notebook lying 2 cm tall are both "the flat thing": asked)."""
 SQUARE = Profile((Need("squareness", (1.0, 1.25), (1.0, 1.1)),), noun=False)
 """Of a square footprint, never a round one ("the flat square", "the red square thing")."""
 UPRIGHT = Profile((Need("standing", (0.9, INF), MORE),), noun=False)

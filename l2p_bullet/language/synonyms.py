@@ -37,7 +37,7 @@ KIND_NAMES = {
     "slab": ("slabs", "board", "tile", "slate", "plate"),
     "beam": ("beams", "plank", "girder", "rod"),
     "plank": ("planks", "board", "beam"),
-    "plate": ("plates", "dish", "dishes", "saucer", "saucers"),
+    "plate": ("plates", "dish", "dishes", "saucer", "saucers", "baseplate", "baseplates"),
     "torus": ("ring", "rings", "donut", "donuts", "doughnut", "doughnuts", "hoop", "hoops"),
     "ring": ("rings", "donut", "donuts", "doughnut", "doughnuts", "hoop", "hoops", "torus"),
     "donut": ("donuts", "doughnut", "doughnuts", "ring", "rings", "hoop", "hoops", "torus"),
@@ -87,6 +87,8 @@ KIND_NAMES = {
     "barn": ("barns", "house", "farmhouse", "stable", "shed"),
     "pond": ("ponds", "water", "pool", "lake"),
     "pail": ("pails", "bucket", "buckets"),
+    "pen": ("pens", "pencil", "pencils"),
+    "minifig": ("minifigs", "minifigure", "minifigures", "fig", "figs"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
 }
@@ -113,7 +115,7 @@ KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "measuring", "glass"
                             "video", "game", "games", "ping", "pong", "table-tennis", "hex", "hexagonal", "desk",
                             "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden", "popsicle", "swizzle",
                             "stir", "lolly", "chopping", "cutting", "bread", "test", "tube", "pipette", "lab",
-                            "laboratory", "conical"})
+                            "laboratory", "conical", "base"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut", "swizzle
 stick", "popsicle stick"): read past there, a run of them too ("video game")."""
@@ -174,6 +176,13 @@ def _kind_key(o: SceneObject) -> tuple[str, str | None, str | None]:
     return o.name, mesh if isinstance(mesh, str) and mesh else None, getattr(o, "kind", None) or None
 
 
+SIZE_CODE = re.compile(r"(?<![a-z0-9])(\d{1,2})x(\d{1,2})(?![0-9])")
+"""A size code in a name, studs by studs as a parts list writes it ("brick_2x4_red": 2x4): a kind its name gives it."""
+def size_codes(name: str) -> set[str]:
+    """The size codes a name holds, each both ways round ("brick_2x4_red": 2x4 and 4x2, the same brick turned)."""
+    return {c for a, b in SIZE_CODE.findall(name.lower()) for c in (f"{int(a)}x{int(b)}", f"{int(b)}x{int(a)}")}
+
+
 NAME_PART = re.compile(r"[A-Z]?[a-z]+|[A-Z]+(?![a-z])|\d+")
 """A word of a name as a user's file spells it: split at "_", "-", spaces, a change of case and digits
 ("coffee_mug", "milk-carton", "RedCube2", "obj3")."""
@@ -197,6 +206,7 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
     are kinds too, and a known kind a stem ends with ("tablelamp": a lamp); so are the words of the kind the scene
     file declares ("kind": "toy cow" for a toy named Daisy: a cow, and a toy)."""
     out: list[str] = [p for p in name_parts(kind or "") if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS]
+    out.extend(sorted(size_codes(name)))  # "the red 2x4" (brick_2x4_red)
     low = name.lower()
     parts = name_parts(name)
     if len(parts) > 1:

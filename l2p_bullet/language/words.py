@@ -120,6 +120,8 @@ PACES: dict[str, str] = {
     "rapido": "fast", "rápido": "fast", "rapidito": "fast", "despacio": "slow", "despacito": "slow",
     "lento": "slow", "lentamente": "slow", "suave": "gentle", "suavecito": "gentle", "suavemente": "gentle",
     "cuidadosamente": "careful",
+    # and in Hindi, as Hinglish speakers do ("jaldi jaldi put the phone ...")
+    "jaldi": "fast", "jaldi-jaldi": "fast", "dheere": "slow", "dheere-dheere": "slow", "dhire": "slow",
 }
 """Manner adverbs -> the pace they ask for."""
 PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
@@ -229,12 +231,18 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
                                             and "just" not in low[max(0, i - 1):i]):
             # "Without dragging it, move A ...", "With much care, lift A ...": the words before ask for a carry or
             # a pace, which reading past would lose
-            return words if _not_dragged(low[:i]) or {x.strip(",.:;!?") for x in low[:i]} & SKIP_NEVER else words[i:]
+            before = {x.strip(",.:;!?") for x in low[:i]}
+            kept = _not_dragged(low[:i]) or before & SKIP_NEVER or (before & FAR_BEFORE and before <= FAR_BEFORE | {
+                "a", "just", "little", "very", "tiny"})
+            return words if kept else words[i:]
     return words
 
 
 SKIP_NEVER = frozenset(PACES) | {"care"}
 """Words that, before the verb, ask how to move: never read past as a preamble."""
+FAR_BEFORE = frozenset({"bit", "tad", "smidge", "smidgen", "thoda", "sa", "slightly"})
+"""Words of how far said alone before the verb ("Thoda sa move the pen holder towards the phone", "A bit, move ..."):
+not read past as a preamble, as the extent would be lost."""
 
 
 def _not_dragged(low: list[str]) -> bool:

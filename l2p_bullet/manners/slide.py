@@ -5,7 +5,7 @@ from .spec import MannerSpec
 MANNER = MannerSpec(
     name="slide", verbs=("slide", "move", "shift", "drag", "glide", "put", "place", "set", "position", "circle", "get",
                          "take", "relocate", "reposition", "bring", "scoot", "send", "tuck", "pop", "loop", "approach",
-                         "translate", "displace", "transfer", "drive", "plonk", "stick"),
+                         "translate", "displace", "transfer", "drive", "plonk", "stick", "park"),
     motion="slide", signature="on-table",
     description="grasp from above and slide the block on the table (within 3 mm of it)", default=True,
 )

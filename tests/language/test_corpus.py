@@ -103,6 +103,12 @@ DISAGREED = {
                       "grab the soda can and the soup can and put them both next to the box"},
     "heldout45.tsv": {"the biggest thing, move it next to the ball"},
     "heldout46.tsv": {"3307 up against tote"},
+    "heldout47.tsv": {"shift the sugar bowl up against the butter dish",
+                      "grab the salt and pepper and put them both next to the butter"},
+    "heldout51.tsv": {"move rex to the pond and then put the other one by the barn"},
+    "heldout52.tsv": {"grab the mouse, put it next to the phone",
+                      "grab the thing in the middle, put it next to the mouse",
+                      "shove the computer mouse up against the gray cylinder"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -169,9 +175,6 @@ OPEN = {
         # "up against" without "right": a plain next-to for this author (and two of heldout40's lines), a tight one
         # for two earlier authors; read as tight
         "um put the little blue box up against the cup": "slide:next-to blue cup extent=right"},
-    "heldout46.tsv": {
-        # dictated "the bigger par sell" (parcel) mended as "the bigger part well": the bigger object, the tote
-        "push the traffic cone toward the bigger par sell": "push:closer cone tote"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -222,6 +225,22 @@ def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
     authors (:data:`DISAGREED`) or the reading is kept visible (:data:`OPEN`)."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
                 or OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout47.tsv", 145), ("heldout48.tsv", 158), ("heldout49.tsv", 139),
+                                         ("heldout50.tsv", 142), ("heldout51.tsv", 133), ("heldout52.tsv", 114),
+                                         ("heldout53.tsv", 104)])
+def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
+    """Written cold in the twenty-ninth session, on tables whose names are not single words: heldout47.tsv (a
+    breakfast table named with two words, "salt shaker"), heldout48.tsv (alphabet blocks A, I, O, X) and heldout49.tsv
+    (a lab bench's beaker_250 and beaker_500), read once on its start code: 80.6 % / 4 wrong, 70.0 % / 1, 66.2 % / 1;
+    heldout50.tsv (the YCB set as its files name it, 002_master_chef_can ...) and heldout51.tsv (toys a child named
+    Rex, Daisy, Max, Nemo; their kinds declared in the scene file after the reading), read once mid-session: 33.8 % / 0
+    and 42.5 % / 4; heldout52.tsv (an office desk, Hinglish) and heldout53.tsv (bricks named as a parts list names
+    them, brick_2x4_red), read once on the session's last language code but one: 68.1 % / 8 and 31.9 % / 1. Wrong
+    only where the author disagrees with most authors (:data:`DISAGREED`: "grab X, put it" a slide, "up against" a
+    plain next-to, "the other one" after "move rex to the pond" asked)."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
 @pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])
