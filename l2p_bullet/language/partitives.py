@@ -1,6 +1,7 @@
-"""One object said by a group it is picked from or by what it is made of, and the groups themselves: "the smallest of
-the cubes", "the one nearer the robot of the two boxes" (partitives), "the bar of soap", "the tin of soup" (a kind
-said with "of"), "the cubes", "2 rectangular blocks" (a plural description's objects).
+"""One object said by a group it is picked from, by what it is made of or by what it is beside its name, and the groups
+themselves: "the smallest of the cubes", "the one nearer the robot of the two boxes" (partitives), "the bar of soap",
+"the tin of soup" (a kind said with "of"), "Rex the dinosaur" (a name with its kind), "the cubes", "2 rectangular
+blocks" (a plural description's objects).
 
 The readers here ask the description reader again for a part of the words (``resolve``: language/references.py),
 which is passed in so that this module stays below it."""
@@ -84,3 +85,29 @@ def partitive(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene,
         return resolve(m.group("head"), scene.only(group), role)
     except (LanguageError, UnknownObjectError):
         return None
+
+
+def name_and_kind(words: list[str], scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:
+    """A name said with what the object is ("Rex the dinosaur", "Max, our dog", "Daisy (the cow)"): the named object
+    where the description fits it; refused, naming both, where it picks another; None where ``words`` are not said
+    so."""
+    if len(words) < 3 or words[1].lower().strip(",(") not in APPOSING:
+        return None
+    named = [n for n in scene.names if n.lower() == words[0].strip(",(").lower()]
+    if len(named) != 1:
+        return None
+    said = " ".join(["the", *words[2:]]).strip(" ,()")
+    try:
+        other = resolve(said, scene, role)
+    except (LanguageError, UnknownObjectError):
+        other = None
+    if other == named[0]:
+        return other
+    if other is not None:
+        raise LanguageError(f'"{" ".join(words)}" names {named[0]} and calls it {said}, which is {other}; say which '
+                            "you mean")
+    return None
+
+
+APPOSING = frozenset({"the", "our", "my", "your", "his", "her", "their"})
+"""Words that open what a name is said to be, right after it ("Rex the dinosaur", "Max, our dog")."""

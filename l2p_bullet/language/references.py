@@ -25,7 +25,7 @@ from .kept import SceneMemo
 from .letters import marked_with, named_after_the
 from .numbers import number_reference
 from .other_than import other_than
-from .partitives import of_compound, partitive
+from .partitives import name_and_kind, of_compound, partitive
 from .places import (
     bearing_off,
     bulk_superlative,
@@ -144,7 +144,7 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     folded = [n for n in names if n.lower() == candidate.lower()]
     if len(folded) == 1:
         return folded[0]
-    apposed = _name_and_kind(words, scene, role)
+    apposed = name_and_kind(words, scene, role, _unremembered)
     if apposed is not None:
         return apposed
     relational = _relational(words, low, scene, role, context)
@@ -170,30 +170,6 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return named
 
 
-def _name_and_kind(words: list[str], scene: Scene, role: str) -> str | None:
-    """A name said with what the object is ("Rex the dinosaur", "Max, our dog", "Daisy (the cow)"): the named object
-    where the description fits it; refused, naming both, where it picks another; None where ``words`` are not said
-    so."""
-    if len(words) < 3 or words[1].lower().strip(",(") not in APPOSING:
-        return None
-    named = [n for n in scene.names if n.lower() == words[0].strip(",(").lower()]
-    if len(named) != 1:
-        return None
-    said = " ".join(["the", *words[2:]]).strip(" ,()")
-    try:
-        other = _resolve(said, scene, role, None)
-    except (LanguageError, UnknownObjectError):
-        other = None
-    if other == named[0]:
-        return other
-    if other is not None:
-        raise LanguageError(f'"{" ".join(words)}" names {named[0]} and calls it {said}, which is {other}; say which '
-                            "you mean")
-    return None
-
-
-APPOSING = frozenset({"the", "our", "my", "your", "his", "her", "their"})
-"""Words that open what a name is said to be, right after it ("Rex the dinosaur", "Max, our dog")."""
 EMPHATIC = frozenset({"itself", "only"})
 """Words after a reference that stress it and name nothing more."""
 def _unremembered(text: str, scene: Scene, role: str) -> str:
