@@ -1,0 +1,118 @@
+"""A group, or one object, shown before the clauses about it: "there r two cylinders, move the short one towards the
+bunny and the other one away from it", "Tip box, move past the vial", "of the 2 rectangular blocks move the one closer
+to the robot next to the jar", "the stone and the teddy: move the first one ..., the second one ...".
+
+Each reading asks chain/clauses.py's reader again for the words after the group (``read``), which is passed in so that
+this module stays below it."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+
+from ..core.scene import Scene
+from ..errors import L2PError, LanguageError
+from ..language import Command, Context, resolve_object, strip_polite, verb_heads
+from ..language.numbers import apposed
+from ..language.reference_words import FARTHEST, NEAREST
+from . import pointing
+from .clause import MAX_CLAUSES
+
+Read = Callable[..., list[tuple[str, Command]]]
+"""chain/clauses.py's reader of a clause's text: (text, previous, scene, plugins, depth, context, pair) -> pieces."""
+
+
+def group_first(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int,
+                context: Context | None, read: Read) -> list[tuple[str, Command]] | None:
+    """"there r two cylinders, move the short one towards the bunny and the other one away from it": a group
+    shown before a comma or colon, then clauses that pick among it, or one object that "it" then means (``read``:
+    how a clause's text is read, chain/clauses.py)."""
+    if depth >= MAX_CLAUSES:
+        return None
+    m = pointing.TOPIC.match(text)
+    if m is None:
+        return _of_group(text, previous, scene, plugins, depth, read)
+    what, rest = apposed(m.group("what"), m.group("rest"))  # "the red one, number 2 - move it ..."
+    shows = pointing.shown(what, scene, context)
+    if shows is None and what != m.group("what") and not {w.lower() for w in what.split()} & verb_heads():
+        resolve_object(what, scene)  # a description the number contradicts is refused as such, naming both
+    if shows is None or (len(shows.objects) < 2 and shows.lifted):
+        return None  # one object shown is what "it" then means ("About the can: move it past Q"); lifted, a carry
+    if len(shows.objects) == 2 and all(said.search(rest) for said in ORDINALS):
+        # "the stone and the teddy: move the first one ..., the second one ...": "it" after them is asked about
+        if re.search(r"\bit\b", rest, re.IGNORECASE):
+            return None
+        rest = ordinals(rest, shows)
+    _same_in_apposition(what, rest, shows, scene)
+    try:
+        return read(rest, previous, scene, plugins, depth + 1, shows.context, shows)
+    except L2PError:
+        pass
+    said = strip_polite(rest.split(), frozenset(scene.names))
+    if len(shows.objects) != 1 or not said:
+        return None
+    if said[0].lower() not in verb_heads():
+        said = ["move", "it", *said]  # "biggest item, away from cam", "cube by the ball, over to P": where it goes
+    elif len(said) > 1 and said[1].lower() not in OBJECT_SAID:
+        said = [said[0], "it", *said[1:]]  # "Tip box, move past the vial": the verb's object is the one shown
+    else:
+        return None
+    try:
+        return read(" ".join(said), previous, scene, plugins, depth + 1, shows.context, shows)
+    except L2PError:
+        return None
+
+
+OBJECT_SAID = frozenset({"it", "that", "this", "them", "the", "one", "same"})
+"""Words that open the object of a verb said after an object shown ("The cup, move it ...", "..., move the same ..."):
+the verb has its object, so none is put in."""
+
+
+def _same_in_apposition(what: str, rest: str, shows: pointing.Shown, scene: Scene) -> None:
+    """A relation said after a description, before the verb ("The cube at the front, nearest the robot, put it ..."):
+    one object said twice, so where the two name different objects the sentence is refused naming both (the relation
+    alone would otherwise be what "it" means)."""
+    m = pointing.TOPIC.match(rest)
+    if m is None or len(shows.objects) != 1:
+        return
+    said = [w.lower() for w in m.group("what").split()]
+    while said and said[0] in ("the", "one", "which", "that's", "is", "that"):
+        said = said[1:]
+    if not said or said[0] not in NEAREST | FARTHEST:
+        return  # a description said again ("That flat thing, the brown one, ...") narrows the first: corrections.py
+    again = pointing.shown(m.group("what"), scene, shows.context)
+    if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
+        raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
+                            "object said two ways that name different objects; say which you mean")
+
+
+def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int,
+              read: Read) -> list[tuple[str, Command]] | None:
+    """"of the 2 rectangular blocks move the one closer to the robot next to the jar": a group said first without a
+    comma, then a clause that picks among it."""
+    words = text.split()
+    for i in range(3, len(words) - 2):
+        group = pointing.group_said(" ".join(words[:i]), scene)
+        if group is None:
+            continue
+        shows = pointing.Shown(group)
+        try:
+            return read(" ".join(words[i:]), previous, scene, plugins, depth + 1, shows.context, shows)
+        except L2PError:
+            return None
+    return None
+
+
+def ordinals(text: str, show: pointing.Shown | None) -> str:
+    """``text`` with "the first one" and "the second one" said as the two objects the clause before showed ("Take the
+    bar and the cup. Move the first one around the second one."); ``text`` itself where it says neither, or says "it"
+    as well (which of the two it means is asked)."""
+    if show is None or len(show.objects) != 2 or not any(o.search(text) for o in ORDINALS) \
+            or re.search(r"\bit\b", text, re.IGNORECASE):
+        return text
+    return ORDINALS[1].sub(show.objects[1], ORDINALS[0].sub(show.objects[0], text))
+
+
+ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),
+            re.compile(r"\bthe\s+second(?:\s+one)?\b", re.IGNORECASE))
+"""Of two objects shown together, the one named first and the one named second."""
