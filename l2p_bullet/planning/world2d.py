@@ -210,7 +210,7 @@ class World2D:
             ends_only = np.where(self._over, margins, -np.inf)
             margins = np.where(self._over, -np.inf, margins)
             idx = np.flatnonzero(near)
-            ok[idx] = [bool(self._swept_free(e, e[None], ends_only)[0]) for e in ends[idx]]
+            ok[idx] = self._swept_free(ends[idx], ends[idx], ends_only)  # each end its own start: no sweep
             near = near & ok
             if not near.any():
                 return ok
@@ -230,6 +230,10 @@ class World2D:
     def _swept_free(self, start: np.ndarray, ends: np.ndarray, margins: np.ndarray,
                     near: np.ndarray | None = None) -> np.ndarray:
         """Per move from ``start`` to each of ``ends``: its swept area keeps ``margins`` from every obstacle.
+        ``start`` is one pose (3,) for every move, or one per move (M,3): ``ends`` as their own starts test each
+        end where it stands (a carried block's objects passed over) in one pass, since numpy's set-up per call
+        costs more than one end's test; every step is elementwise or per move, so each move's answer is the one
+        a call of its own gives.
 
         ``near`` (O, M): which obstacles each move comes near (``_near``); a move is tested only against those
         (one farther than the bounding circles plus twice the margin cannot touch it, the same pre-test that
@@ -238,13 +242,14 @@ class World2D:
         "closer": 42 of 54 s), mostly spent testing bystanders far from the move; the answers are the same.
         """
         ok = np.ones(len(ends), bool)
-        dyaw = wrap_angle(ends[:, 2] - start[2])
+        starts = np.broadcast_to(start, ends.shape)  # (M,3), one start per move
+        dyaw = wrap_angle(ends[:, 2] - starts[:, 2])
         n_sub = max(1, math.ceil(float(np.abs(dyaw).max()) / SUB_ROTATION))
         t = np.linspace(0.0, 1.0, n_sub + 1)
         sub = np.empty((len(ends), n_sub + 1, 3))
-        sub[..., :2] = start[:2] + t[None, :, None] * (ends[:, None, :2] - start[:2])
-        sub[..., 2] = start[2] + t[None, :] * dyaw[:, None]
-        travel = ends[:, :2] - start[:2]
+        sub[..., :2] = starts[:, None, :2] + t[None, :, None] * (ends[:, None, :2] - starts[:, None, :2])
+        sub[..., 2] = starts[:, 2, None] + t[None, :] * dyaw[:, None]
+        travel = ends[:, :2] - starts[:, :2]
         perp = np.stack([-travel[:, 1], travel[:, 0]], axis=-1)
         length = np.linalg.norm(perp, axis=-1, keepdims=True)
         # a move that does not travel has no travel direction: use the x axis there (a valid, redundant axis)

@@ -59,14 +59,25 @@ def look(azimuth: float, elevation: float) -> np.ndarray:
     return np.array([math.cos(e) * math.cos(a), -math.cos(e) * math.sin(a), -math.sin(e)])
 
 
+UP = (0.0, 0.0, 1.0)
+
+
+def _cross(a, b) -> np.ndarray:
+    """``np.cross`` of two 3-vectors, the same products and differences in the same order (so the same bits),
+    in plain floats: numpy's generic version costs 30 microseconds a call, and choosing a camera makes thousands."""
+    a0, a1, a2 = a.tolist() if isinstance(a, np.ndarray) else a
+    b0, b1, b2 = b.tolist() if isinstance(b, np.ndarray) else b
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+
+
 def project(points: np.ndarray, eye: np.ndarray, target: np.ndarray, fov: float,
             aspect: float) -> tuple[np.ndarray, np.ndarray]:
     """Normalised image coordinates (x right, y up, the frame's edges at +-1) and depth of ``points`` (M, 3)."""
     f = target - eye
     f = f / np.linalg.norm(f)
-    r = np.cross(f, [0.0, 0.0, 1.0])
+    r = _cross(f, UP)
     r /= np.linalg.norm(r)
-    u = np.cross(r, f)
+    u = _cross(r, f)
     rel = np.asarray(points, float) - eye
     depth = rel @ f
     t = math.tan(math.radians(fov) / 2)
@@ -115,9 +126,9 @@ def fit(points: np.ndarray, azimuth: float, elevation: float, fov: float = FOV,
         xy, depth = project(points, eye, target, fov, aspect)
         cx, cy = (xy.min(axis=0) + xy.max(axis=0)) / 2
         f = d
-        r = np.cross(f, [0.0, 0.0, 1.0])
+        r = _cross(f, UP)
         r /= np.linalg.norm(r)
-        u = np.cross(r, f)
+        u = _cross(r, f)
         t = math.tan(math.radians(fov) / 2)
         dist = float(np.median(depth))
         target = target + r * cx * dist * t * aspect + u * cy * dist * t
@@ -144,39 +155,54 @@ def hand_spheres(centre: np.ndarray, size: float, push: bool, heading: np.ndarra
     return np.array(spheres, float)
 
 
-def clearance(eye: np.ndarray, action: Action) -> float:
-    """How near (m) the model arm comes to the eye along the paths (surface distance)."""
-    near = math.inf
+@dataclass(frozen=True)
+class _Sample:
+    """One sampled point of a mover's path and what no camera changes there: the mover's test points (a 3 x 3 x 3
+    grid over its block) and the model arm's spheres (:func:`hand_spheres`)."""
+
+    points: np.ndarray  # (27, 3)
+    spheres: np.ndarray  # (K, 4)
+
+
+def samples(action: Action) -> tuple[tuple[_Sample, ...], ...]:
+    """Per path, its :data:`SAMPLES` points with the mover's grid and the arm's spheres there: made once per action,
+    since every camera a choice weighs (54 to 108) asks the same ones (:func:`clearance`, :func:`hidden_share`)."""
+    grid = np.array([[x, y, z] for x in (-.4, 0, .4) for y in (-.4, 0, .4) for z in (-.4, 0, .4)])
+    base = np.asarray(action.base, float)
+    out = []
     for path, size, push in zip(action.paths, action.sizes, action.pushes, strict=True):
         p = np.asarray(path, float)
+        rows = []
         for k in np.unique(np.linspace(0, len(p) - 1, SAMPLES).round().astype(int)) if len(p) else []:
             ahead = p[min(k + 1, len(p) - 1)] - p[max(k - 1, 0)]
             n = float(np.hypot(*ahead[:2]))
             heading = ahead / n if n > 1e-9 else np.array([1.0, 0.0, 0.0])
-            spheres = hand_spheres(p[k], size, push, heading, np.asarray(action.base, float))
-            near = min(near, float((np.linalg.norm(spheres[:, :3] - eye, axis=1) - spheres[:, 3]).min()))
+            rows.append(_Sample(p[k] + grid * size, hand_spheres(p[k], size, push, heading, base)))
+        out.append(tuple(rows))
+    return tuple(out)
+
+
+def clearance(eye: np.ndarray, action: Action, sampled: tuple | None = None) -> float:
+    """How near (m) the model arm comes to the eye along the paths (surface distance); ``sampled`` is
+    :func:`samples` of ``action`` when the caller made it already."""
+    near = math.inf
+    for rows in samples(action) if sampled is None else sampled:
+        for s in rows:
+            near = min(near, float((np.linalg.norm(s.spheres[:, :3] - eye, axis=1) - s.spheres[:, 3]).min()))
     return near
 
 
 def hidden_share(eye: np.ndarray, target: np.ndarray, action: Action, fov: float = FOV,
-                 aspect: float = 4 / 3) -> float:
-    """The share of sampled path points at which the model hand hides more than half of the mover."""
-    grid = np.array([[x, y, z] for x in (-.4, 0, .4) for y in (-.4, 0, .4) for z in (-.4, 0, .4)])
+                 aspect: float = 4 / 3, sampled: tuple | None = None) -> float:
+    """The share of sampled path points at which the model hand hides more than half of the mover; ``sampled`` is
+    :func:`samples` of ``action`` when the caller made it already."""
     t = math.tan(math.radians(fov) / 2)
     bad, total = 0, 0
-    for path, size, push in zip(action.paths, action.sizes, action.pushes, strict=True):
-        p = np.asarray(path, float)
-        if len(p) == 0:
-            continue
-        for k in np.unique(np.linspace(0, len(p) - 1, SAMPLES).round().astype(int)):
-            ahead = p[min(k + 1, len(p) - 1)] - p[max(k - 1, 0)]
-            n = float(np.hypot(*ahead[:2]))
-            heading = ahead / n if n > 1e-9 else np.array([1.0, 0.0, 0.0])
-            spheres = hand_spheres(p[k], size, push, heading, np.asarray(action.base, float))
-            pts = p[k] + grid * size
-            xy, depth = project(pts, eye, target, fov, aspect)
-            sxy, sdepth = project(spheres[:, :3], eye, target, fov, aspect)
-            radius = spheres[:, 3] / (np.maximum(sdepth, 1e-6) * t)  # in the image's vertical units
+    for rows in samples(action) if sampled is None else sampled:
+        for s in rows:
+            xy, depth = project(s.points, eye, target, fov, aspect)
+            sxy, sdepth = project(s.spheres[:, :3], eye, target, fov, aspect)
+            radius = s.spheres[:, 3] / (np.maximum(sdepth, 1e-6) * t)  # in the image's vertical units
             gap = np.hypot((xy[:, None, 0] - sxy[None, :, 0]) * aspect, xy[:, None, 1] - sxy[None, :, 1])
             hidden = ((gap < radius[None, :]) & (sdepth[None, :] < depth[:, None])).any(axis=1)
             bad += hidden.mean() > 0.5
@@ -197,15 +223,15 @@ def frame_action(action: Action, aspect: float = 4 / 3, fov: float = FOV) -> tup
     :data:`CUBE_PX` pixels; where it would not (a high rest pose over blocks close together: the frame would
     be mostly air), the fingertips at rest stay in it and the hand's body may be cut by the top edge."""
     start = action.paths[0][0] if action.paths else np.mean([np.add(lo, hi) / 2 for lo, hi in action.boxes], axis=0)
-    best = None
+    best, sampled = None, samples(action)
     for hand in (HAND_HEIGHT, TIPS_HEIGHT):
         pts = must_see(action, hand)
         for el in ELEVATIONS:
             for az in AZIMUTHS:
                 eye, target = fit(pts, az, el, fov, aspect)
-                hidden = math.ceil(round(hidden_share(eye, target, action, fov, aspect), 6) * 20) / 20
+                hidden = math.ceil(round(hidden_share(eye, target, action, fov, aspect, sampled), 6) * 20) / 20
                 small = cube_px(eye, start, fov) < CUBE_PX
-                crowded = clearance(eye, action) < CLEARANCE
+                crowded = clearance(eye, action, sampled) < CLEARANCE
                 score = (crowded, hidden, small, math.hypot(az - PREFERRED[0], el - PREFERRED[1]))
                 if best is None or score < best[0]:
                     best = (score, eye, target)
