@@ -21,28 +21,33 @@ def complete(text: str, previous: Command | None, scene: Scene, plugins: list) -
     words = command_words(text, scene)[0]
     if previous is None or not words or words[0].lower() in known_verbs():
         return text
-    table = registry.phrase_table(plugins)
-    first = words[0].lower()
-    if len(words) > 1 and words[1].lower() in ("it", "them") and not any(t[0] == first for t, _, _ in
-                                                                         phrase_tokens(table)) \
-            and first != "leave" and typos.near(first, frozenset({previous.verb.lower()})) is None:
-        return text  # "..., then park it next to the mug": a verb of its own, unknown, is not the verb before (a
-        # slip of it is: "push A ..., then pish it away from C"; "leave it beside C" says where that move ends)
+    phrases = phrase_tokens(registry.phrase_table(plugins))
+    if _verb_of_its_own(words, previous, phrases):
+        return text
     # "lift A and put it next to B, then around C": the gap verb needs its gap, the manner's name does not
     verb = previous.manner if gapped(previous.verb) else previous.verb
 
     low = tuple(w.lower() for w in words)
     raw = tuple(w.lower().strip(",.!?;") for w in text.split())
     said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
-    if len(low) > 2 and low[0] == "back" and raw[0] == "back" and any(low[1:1 + len(t)] == t
-                                                                     for t, _, _ in phrase_tokens(table)):
+    if len(low) > 2 and low[0] == "back" and raw[0] == "back" and any(low[1:1 + len(t)] == t for t, _, _ in phrases):
         return f"{verb} {previous.mover} {' '.join(text.split()[1:])}"  # "..., then back toward the vial"
-    for toks, _phrase, _action in phrase_tokens(table):
+    for toks, _phrase, _action in phrases:
         if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
             return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
         if low[: len(toks)] == toks:
             return f"{verb} {previous.mover} {text}" if text.split()[0].lower() == low[0] else f"{verb} {text}"
     return f"{verb} {text}"
+
+
+def _verb_of_its_own(words: list[str], previous: Command, phrases: list) -> bool:
+    """Whether a clause opens with a verb of its own that is not known: a word before "it" that opens no phrase and is
+    no slip of the verb before ("..., then park it next to the mug" is no push; "pish it" after a push is the push;
+    "leave it beside C" says where that move ends)."""
+    first = words[0].lower()
+    return len(words) > 1 and words[1].lower() in ("it", "them") and first != "leave" \
+        and not any(toks[0] == first for toks, _, _ in phrases) \
+        and typos.near(first, frozenset({previous.verb.lower()})) is None
 
 
 SAID_AGAIN = {("it",), ("them",), ("that",)}

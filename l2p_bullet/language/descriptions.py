@@ -200,8 +200,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     the 9 cm bar); else every object it admits, as a group does ("the sticks", "the other stick", "the second stick
     from the left")."""
     names = name_words(scene)
+    groups = kind_groups(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
-    low = letter_of(low, determined, letters_of(scene.names), set(name_words(scene)) | set(kind_groups(scene)))
+    low = letter_of(low, determined, letters_of(scene.names), set(names) | set(groups))
     low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
     drink = bool(set(low) & DRINKS)
@@ -212,7 +213,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
                                  f'say "the {said[0]} one" or name it')
     drop = SOFT_ADJECTIVES
     literal = {n.lower() for n in scene.names}  # "can" as a word of "soup_can.obj" is a kind, not a name
-    heads = set(names) | set(kind_groups(scene)) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
+    heads = set(names) | set(groups) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound]
@@ -224,10 +225,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     elif not sized:
         unknown_object(text, words, low, scene)
     else:
-        return fitting(proportioned, list(scene.objects), kind_groups(scene), best)  # "the tall", "the flat": alone
+        return fitting(proportioned, list(scene.objects), groups, best)  # "the tall", "the flat": alone
     colours = named_colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)]
-    groups = kind_groups(scene)
     kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS  # among two mugs
              and w not in as_colour]
     either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and (w not in literal or w in NOUNS)

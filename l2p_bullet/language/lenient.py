@@ -133,7 +133,7 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     outside = low[:start] + low[end:]  # "not so close to" is a phrase; "not" elsewhere stops the reading
     named = {n.lower() for n in scene.names if not n.isdigit()}  # "block2" is a name; "5" may be a count as well
     stops = set(outside) & STOPS  # "tip" stops "tip it over", not "the tip box" where tip_box is on the table
-    if stops - _name_words(scene) or any(ch.isdigit() for w in outside if w not in named for ch in w):
+    if (stops and stops - _name_words(scene)) or any(ch.isdigit() for w in outside if w not in named for ch in w):
         return None
     if phrase in AMBIGUOUS_PHRASES:
         return None

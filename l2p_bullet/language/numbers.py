@@ -149,9 +149,9 @@ def _number_last(words: list[str], table: dict[int, tuple[str, ...]]) -> list[st
     so (beaker_500); ``words`` as they are where no number the scene has opens them after a determiner."""
     low = [w.lower() for w in words]
     i = next((k for k, w in enumerate(low) if w not in DETERMINERS), len(low))
-    if i >= len(low) - 1 and not (i < len(low) and MEASURED.match(low[i])):
+    glued = MEASURED.match(low[i]) if i < len(low) else None
+    if i >= len(low) - 1 and glued is None:
         return words
-    glued = MEASURED.match(low[i])
     said = glued.group("n") if glued is not None and glued.group("unit").lower() in UNITS else low[i]
     if not said.isdigit() or int(said) not in table:
         return words

@@ -75,17 +75,17 @@ def either_reading(described: list[str], scene: Scene, choose, pool: list[SceneO
     said_blocks = {w.lower() for w in described} & BLOCK_WORDS
     if not said_blocks:
         return choose(pool)
-    readings = []
     groups = kind_groups(scene)  # "the leftmost brick" where the names say which are bricks (brick_2x4_red ...)
     named = {n for w in said_blocks for n in groups.get(w, ())}
     if len(named) > 1 and any(o.name not in named for o in pool) and any(o.name in named for o in pool):
         return choose([o for o in pool if o.name in named])  # the names say which are bricks, not their shapes
+    readings = []
     for among in (pool, [o for o in pool if shape_of(o) in BLOCK_SHAPES]):
         try:
             readings.append(choose(among))
         except (LanguageError, UnknownObjectError) as e:
             readings.append(e)
-    if isinstance(readings[0], str) and all(r == readings[0] for r in readings):
+    if isinstance(readings[0], str) and readings[0] == readings[1]:
         return readings[0]
     said = " ".join(described + ["..."])
     picks = sorted({r for r in readings if isinstance(r, str)})
