@@ -81,6 +81,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"\1 of ", text, count=1)
     text = THE_FOLLOWING.sub(" of ", text, count=1)
+    text = THEM_LISTED.sub(r"\g<items>\g<mid>", text, count=1)
     group = GROUP.search(text) or COLOURED_GROUP.search(text)
     if group is None:
         return text
@@ -105,6 +106,11 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     return text
 
 
+THEM_LISTED = re.compile(r"\b(?:them|these|those|these\s+ones|those\s+ones|em)\b(?P<mid>[^:;.!?]*?)"
+                         r"(?:\s*,?\s*(?:in\s+(?:this|that|the\s+following)\s+order|as\s+follows|like\s+this|like\s+so))?"
+                         r"\s*:\s*(?P<items>[^:;.!?]+?)\s*[.!?]*$", re.IGNORECASE)
+"""A row's objects said as "them" and listed after a colon ("row them up in this order: A, B, C"): the list stands
+where "them" is."""
 COLOURED_GROUP = re.compile(r"\bthe\s+(?P<count>two|three|four|five|[2-5])\s+[a-z]+\s+(?P<kind>cubes|blocks|boxes)\b",
                             re.IGNORECASE)
 """A group said with one word more ("the two red cubes"): each item told after it says that word itself."""

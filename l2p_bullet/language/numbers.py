@@ -259,9 +259,17 @@ def apposed(what: str, rest: str) -> tuple[str, str]:
     return f"{what} {m.group('number')}", m.group("rest")
 
 
-CODE_SAID = re.compile(r"\b(\d{1,2}|" + "|".join(SPELLED) + r")\s*(?:x|\u00d7|by)\s*(\d{1,2}|" + "|".join(SPELLED)
-                       + r")\b", re.IGNORECASE)
-"""A size code as people say or type it: "2x4", "2 x 4", "2 by 4", "two by four"."""
+HEARD_NUMBERS = {"won": 1, "to": 2, "too": 2, "tree": 3, "for": 4, "fore": 4, "ate": 8}
+"""Words speech-to-text writes for a number said in a size code ("the blue to buy to": the blue two by two)."""
+_NUMBER_SAID = r"(\d{1,2}|" + "|".join([*SPELLED, *HEARD_NUMBERS]) + r")"
+CODE_SAID = re.compile(r"\b" + _NUMBER_SAID + r"\s*(?:x|\u00d7|by|buy|bye)\s*" + _NUMBER_SAID + r"\b",
+                       re.IGNORECASE)
+"""A size code as people say or type it: "2x4", "2 x 4", "2 by 4", "two by four", and as speech-to-text hears it
+("to buy to", "one by for"); read as a code only where a name holds it."""
+
+
+def _said(word: str) -> int | None:
+    return HEARD_NUMBERS.get(word.lower(), number_of(word))
 
 
 def codes_said(sentence: str, scene: Scene) -> str:
@@ -272,7 +280,7 @@ def codes_said(sentence: str, scene: Scene) -> str:
         return sentence
 
     def code(m: re.Match) -> str:
-        said = f"{number_of(m.group(1))}x{number_of(m.group(2))}"
+        said = f"{_said(m.group(1))}x{_said(m.group(2))}"
         return said if said in codes else m.group(0)
 
     return CODE_SAID.sub(code, sentence)

@@ -95,13 +95,17 @@ KIND_NAMES = {
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by, brands among
 them where a benchmark's object set is a brand's product (the YCB set: the Master Chef can is the coffee, the Cheez-It
 box the crackers, Domino the sugar, Campbell's the soup, French's the mustard, Spam the potted meat)."""
+FIGURES = ("minifig", "figure", "figurine", "doll", "person", "man", "woman", "boy", "girl", "soldier", "astronaut")
+"""Kinds of a little person: "the little guy", "the figure", "the lego man" is the one object of such a kind."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
                 "fruit": ("apple", "lemon", "orange", "banana", "pear", "peach", "plum")} | {
     word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
     for word in ("vegetable", "vegetables", "veg", "veggie", "veggies")} | {
-    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")}
+    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")} | {
+    word: FIGURES for word in ("figure", "figurine", "person", "man", "guy", "fella", "fellow", "dude", "chap", "bloke",
+                               "character", "minifigure", "figures", "people", "guys")}
 """Words for a class of kinds ("the stuffed animal", "the veg", "the metal part"): like a kind's name, they resolve
 only where exactly one object is of a kind of the class (a nut and a bolt: "the metal part" is asked)."""
 KIND_SYNONYMS: dict[str, tuple[str, ...]] = {
@@ -115,7 +119,7 @@ KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "measuring", "glass"
                             "video", "game", "games", "ping", "pong", "table-tennis", "hex", "hexagonal", "desk",
                             "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden", "popsicle", "swizzle",
                             "stir", "lolly", "chopping", "cutting", "bread", "test", "tube", "pipette", "lab",
-                            "laboratory", "conical", "base"})
+                            "laboratory", "conical", "base", "lego"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut", "swizzle
 stick", "popsicle stick"): read past there, a run of them too ("video game")."""

@@ -36,7 +36,9 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
-"""Texting shorthand, read as the word it stands for in a refused sentence, as a slip is."""
+SHORTHAND |= {"blew": "blue"}
+"""Texting shorthand, and the colour speech-to-text hears as another word ("the blew block"), read as the word it
+stands for in a refused sentence, as a slip is."""
 
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
@@ -115,11 +117,26 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
+    said = _joined(said, keep | named)
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
     mended = HANDED.sub(r"\1-hand", mended)
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
+
+
+def _joined(sentence: str, named: set[str] | frozenset[str]) -> str:
+    """``sentence`` with a name said as two words written as one ("the note book" -> "the notebook", "the mini fig"
+    -> "the minifig"), where neither word is a name's word of its own."""
+    found = list(_WORD.finditer(sentence))
+    out, at = [], 0
+    for a, b in zip(found, found[1:], strict=False):
+        one = (a.group(0) + b.group(0)).lower()
+        if a.start() >= at and one in named and sentence[a.end():b.start()].isspace() \
+                and a.group(0).lower() not in named and b.group(0).lower() not in named:
+            out.append(sentence[at:a.start()] + one)
+            at = b.end()
+    return "".join(out) + sentence[at:]
 
 
 ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)

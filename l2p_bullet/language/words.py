@@ -45,7 +45,7 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "do the needful and", "please do the needful and", "kindly do the needful and", "request you to",
     "i request you to", "request you to kindly", "sorry to be a pain", "sorry to be a pain but",
     "sorry to bother you", "sorry to bother you but", "sorry to trouble you", "sorry to trouble you but",
-    "can we", "could we", "can we please", "could we please",
+    "can we", "could we", "can we please", "could we please", "request", "my request", "new request",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
@@ -81,7 +81,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if that's alright", "if that is alright", "if that's all right", "if that's ok", "if that's okay",
     "if that is ok", "if that is okay", "please make like that", "make like that", "please make it like that",
     "make it like that", "please do", "please do it", "please do so", "than it is now", "than it is", "than now",
-    "than it was", "while you're there", "whilst you're there",
+    "than it was", "than at present", "than it is at present", "than at the moment", "than it is at the moment",
+    "than currently", "than it is currently", "than before", "while you're there", "whilst you're there",
     "while you're at it", "whilst you're at it", "while you are at it", "whilst you are at it",
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
@@ -107,6 +108,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
       for rest in _RESTS),
     "so that", "so", "over so it's", "over so it is", "over", "back", "down", "until its", "so its", "so that its",
     "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
+    "until", "till", "untill", "til",
 )), key=len, reverse=True))
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
@@ -185,12 +187,17 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
                 break
         low = [w.lower() for w in words]
         for suf in _SUFFIXES_BY_LAST.get(low[-1], ()) if low else ():
-            if len(low) > len(suf) and tuple(low[-len(suf):]) == suf and not set(words[-len(suf):]) & keep:
+            if len(low) > len(suf) and tuple(low[-len(suf):]) == suf and not set(words[-len(suf):]) & keep and not (
+                    len(suf) == 1 and low[-2] in NOUN_OPENERS):
                 words, changed = words[: -len(suf)], True
                 break
     return words
 
 
+NOUN_OPENERS = frozenset({"the", "a", "an", "this", "that", "my", "your", "our", "his", "her", "little", "big", "small",
+                          "tiny", "wee", "old", "young"})
+"""Words a noun follows: a sign-off word after one is the noun it names ("away from the little dude", "next to the
+chef"), never read past as the courtesy it is after a command ("next to B, dude")."""
 STEP_LABELS = frozenset({"step", "test", "task", "stage", "phase", "trial", "case", "instruction", "command",
                          "exercise", "example", "scenario"})
 """Words that number a step before its instruction ("Step 1: move 7 ...", "Test 4: lift 5 ..."): the label and its
