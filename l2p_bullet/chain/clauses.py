@@ -21,6 +21,7 @@ from ..language import (
     dangling_join,
     known_verbs,
     lenient,
+    strip_polite,
     trailing_join,
     typos,
     verb_heads,
@@ -284,6 +285,9 @@ def _told_beside(said: str, text: str, tell, previous: Command | None, scene: Sc
     return [(text, told.command)] if told is not None else None
 
 
+COLOUR_LAST = re.compile(r"\b(?:" + "|".join(COLORS) + r")$", re.IGNORECASE)
+COLOURED_MANY = re.compile(r"(?:" + "|".join(COLORS) + r")\s+(?:[a-z]+\s+)?[a-z]+s\b", re.IGNORECASE)
+"""Two colours before one plural noun ("the red and blue blocks"): the "and" joins the colours."""
 _AND_OR_COMMA = re.compile(r",\s*(?:and\s+)?|\s+and\s+", re.IGNORECASE)
 
 
@@ -295,11 +299,15 @@ def _split_on_and(text: str, previous: Command | None, scene: Scene, plugins: li
     text that does not resolve as one clause, so "lift A and put it next to B" and "between B and C" stay whole."""
     if depth >= MAX_CLAUSES:
         return None
+    topic = pointing.TOPIC.match(text)
+    if topic is not None and pointing.group_said(
+            " ".join(strip_polite(topic.group("what").split(), frozenset(scene.names))), scene) is not None:
+        return None  # "the two in front, move the red one ... and the other one ...": the group's (chain/groups.py)
     context = context or context_of(previous)
     for m in _AND_OR_COMMA.finditer(text):
         left, right = text[:m.start()].strip(" ,"), text[m.end():].strip(" ,")
-        if not left or not right:
-            continue
+        if not left or not right or "," not in m.group(0) and COLOUR_LAST.search(left) and COLOURED_MANY.match(right):
+            continue  # "by the red and blue blocks": one group of two colours, not two clauses
         first = _first_said(left, previous, scene, plugins, context)
         if first is None:
             continue

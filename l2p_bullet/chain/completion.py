@@ -32,9 +32,12 @@ def complete(text: str, previous: Command | None, scene: Scene, plugins: list) -
     said = next((len(k) for k in LONGEST_FIRST if raw[:len(k)] == k), 0)  # "then right next to C"
     if len(low) > 2 and low[0] == "back" and raw[0] == "back" and any(low[1:1 + len(t)] == t for t, _, _ in phrases):
         return f"{verb} {previous.mover} {' '.join(text.split()[1:])}"  # "..., then back toward the vial"
-    for toks, _phrase, _action in phrases:
-        if said and raw[said:said + len(toks)] == toks and raw[said + len(toks):][:1] not in SAID_AGAIN:
-            return f"{verb} {previous.mover} {text}"  # "..., tight against it": the clause said again, no step
+    for toks, _phrase, action in phrases:
+        if said and raw[said:said + len(toks)] == toks and (raw[said + len(toks):][:1] not in SAID_AGAIN
+                                                             or action != previous.action):
+            # "..., tight against it" after a next-to: the clause said again, no step; "then a little past it" after
+            # a closer: a step of its own
+            return f"{verb} {previous.mover} {text}"
         if low[: len(toks)] == toks:
             return f"{verb} {previous.mover} {text}" if text.split()[0].lower() == low[0] else f"{verb} {text}"
     return f"{verb} {text}"

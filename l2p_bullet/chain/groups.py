@@ -44,6 +44,7 @@ def group_first(text: str, previous: Command | None, scene: Scene, plugins: list
             return None
         rest = ordinals(rest, shows)
     _same_in_apposition(what, rest, shows, scene)
+    rest = _restated(what, rest, shows, scene)
     try:
         return read(rest, previous, scene, plugins, depth + 1, shows.context, shows)
     except L2PError:
@@ -84,6 +85,26 @@ def _same_in_apposition(what: str, rest: str, shows: pointing.Shown, scene: Scen
     if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
         raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
                             "object said two ways that name different objects; say which you mean")
+
+
+RESTATED = re.compile(r"^\s*(?:the\s+one|which\s+is|that\s+one)\b", re.IGNORECASE)
+
+
+def _restated(what: str, rest: str, shows: pointing.Shown, scene: Scene) -> str:
+    """``rest`` without a description that says the one object shown again ("the cup, the one on the left, move it
+    ..."): the object is named already, and the words added name it or nothing the reader can tell. Where they name
+    another object the person said two things ("the cup, the one at the back" with the cup in front): asked."""
+    m = pointing.TOPIC.match(rest)
+    if m is None or len(shows.objects) != 1 or not RESTATED.match(m.group("what")):
+        return rest
+    try:
+        again = pointing.shown(m.group("what"), scene, shows.context)
+    except L2PError:
+        again = None
+    if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
+        raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
+                            "object said two ways that name different objects; say which you mean")
+    return m.group("rest")
 
 
 def _of_group(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int,

@@ -17,6 +17,7 @@ from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object, split_verb
 from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
+from ..language.group_places import placed_group
 from ..language.numbers import number_of
 from ..language.partitives import group_of
 from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS, SHAPE_NOUNS
@@ -124,9 +125,9 @@ OF_THE = re.compile(r"^\s*of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five
 
 
 def group_said(text: str, scene: Scene) -> tuple[str, ...] | None:
-    """The objects :data:`OF_THE` names, or None."""
+    """The objects :data:`OF_THE` names, or a group said by its place ("the two in front"); None where neither."""
     m = OF_THE.match(text)
-    return group_of(m.group("group"), scene, m.group("count")) if m is not None else None
+    return group_of(m.group("group"), scene, m.group("count")) if m is not None else placed_group(text, scene)
 
 
 def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:

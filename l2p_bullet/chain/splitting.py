@@ -46,8 +46,23 @@ def split_clauses(sentence: str) -> list[str]:
     out = []
     for part in SENTENCE_ENDS.split(sentence):  # a list told item by item is one sentence of several
         listed = _item_by_item(part)
-        out.extend([listed] if listed is not None else [p for p in _pieces(part) if not is_courtesy(tokens(p))])
+        out.extend([listed] if listed is not None else [c for p in _pieces(part) for c in _past_courtesy(p)])
     return out
+
+
+COURTESY_FIRST = re.compile(r"^(?P<courtesy>[^-\u2013\u2014:,]+?)\s*(?:[-\u2013\u2014:,]|\.{3})\s*(?P<rest>.+)$")
+"""A courtesy said before the command, set off by a dash, a colon or a comma ("thanks in advance - could you ...")."""
+
+
+def _past_courtesy(piece: str) -> list[str]:
+    """``piece`` as a clause's text; none where it is courtesy alone ("Thanks!"), and the command alone where a
+    courtesy set off before it opens it ("Thanks in advance - move A ...": no thanks is a clause, no command lost)."""
+    if not is_courtesy(tokens(piece)):
+        return [piece]
+    m = COURTESY_FIRST.match(piece)
+    if m is not None and is_courtesy(tokens(m.group("courtesy"))) and not is_courtesy(tokens(m.group("rest"))):
+        return [m.group("rest")]
+    return []
 
 
 LIST_MARKS = re.compile(r"(?P<lead>^|[.!?;:]\s+)\s*(?:\(\d{1,2}\)|(?:(?:" + "|".join(sorted(STEP_LABELS))

@@ -36,6 +36,7 @@ from .reference_words import (
     STRICT_SHAPES,
 )
 from .synonyms import (
+    CASUAL_PERSONS,
     DRINKS,
     FOODS,
     KIND_MODIFIERS,
@@ -73,8 +74,15 @@ THING_COLOURS = {"lemon": "yellow", "banana": "yellow", "sunflower": "yellow", "
 _COLOURED = ("coloured", "colored", "colour", "color")
 
 
+VARIETIES = {("granny", "smith"): "green", ("golden", "delicious"): "yellow", ("red", "delicious"): "red",
+             ("bramley",): "green", ("gala",): "red", ("fuji",): "red", ("honeycrisp",): "red"}
+"""Apples by variety, each of one colour ("the Granny Smith": the green apple)."""
+
+
 def coloured_like(words: list[str]) -> list[str]:
-    """"the lemon coloured cube", "the banana-colored one" -> "the yellow cube", "the yellow one"."""
+    """"the lemon coloured cube", "the banana-colored one" -> "the yellow cube", "the yellow one"; "the Granny Smith
+    (apple)" -> "the green apple"."""
+    words = _varieties(words)
     out: list[str] = []
     for w in words:
         low = w.lower()
@@ -86,6 +94,17 @@ def coloured_like(words: list[str]) -> list[str]:
         else:
             out.append(w)
     return out
+
+
+def _varieties(words: list[str]) -> list[str]:
+    """``words`` with an apple's variety said as its colour and "apple" (:data:`VARIETIES`)."""
+    low = [w.lower() for w in words]
+    for variety, colour in VARIETIES.items():
+        for i in range(len(low) - len(variety) + 1):
+            if tuple(low[i:i + len(variety)]) == variety:
+                apple = [] if low[i + len(variety):i + len(variety) + 1] in (["apple"], ["apples"]) else ["apple"]
+                return [*words[:i], colour, *apple, *words[i + len(variety):]]
+    return words
 
 
 def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
@@ -135,6 +154,27 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
         raise LanguageError(f'"{text}" is ambiguous: as any object it is {readings[0]}, as a block (a cube or a '
                             f"box) {readings[1]}; name the one you mean")
     raise readings[0]
+
+
+def shape_named(scene: Scene) -> set[str]:
+    """The names (lower case) that are a shape's own word where another object is of that shape too ("Cylinder" and
+    "Cylinder (1)", as a game engine names its shapes): said alone ("move Cylinder ...") the name; with an article or
+    other words ("the cylinder at the back", "the orange cylinder") the shape, as of any of them."""
+    out = set()
+    for name in scene.names:
+        word = name.lower()
+        if word in GEOMETRIC and sum(shape_of(o) == SHAPE_NOUNS[word] or word in name_parts(o.name)
+                                     for o in scene.objects) > 1:
+            out.add(word)
+    return out
+
+
+def kind_named(scene: Scene) -> set[str]:
+    """The names (lower case) of one word that are the kind of another object too ("apple" beside green_apple): with
+    other words said ("the apple at the back", "the red apple") the kind, as of either of them; alone ("the apple")
+    the one so named."""
+    groups = kind_groups(scene)
+    return {n.lower() for n in scene.names if len(groups.get(n.lower(), ())) > 1}
 
 
 def spelled_name(words: list[str], scene: Scene) -> str | None:
@@ -202,6 +242,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     names = name_words(scene)
     groups = kind_groups(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
+    if set(low) & CASUAL_PERSONS - set(groups):  # "the little yellow guy" where no figure stands: any object
+        low = tuple("one" if w in CASUAL_PERSONS and w not in groups else w for w in low)
+        words = [w if w.lower() not in CASUAL_PERSONS or w.lower() in groups else "one" for w in words]
     low = letter_of(low, determined, letters_of(scene.names), set(names) | set(groups))
     low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
@@ -212,7 +255,10 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
                                  f'say "the {said[0]} one" or name it')
     drop = SOFT_ADJECTIVES
-    literal = {n.lower() for n in scene.names}  # "can" as a word of "soup_can.obj" is a kind, not a name
+    # "can" as a word of "soup_can.obj" is a kind, not a name; "the orange cylinder" beside one named Cylinder a shape
+    group = len(said) > 1 or not best  # a pool a relation chooses among ("the apple at the back") is a group
+    literal = {n.lower() for n in scene.names} - (shape_named(scene) if determined or group else set())
+    shared = kind_named(scene) if group else set()  # "the apple at the back" beside green_apple: either apple
     heads = set(names) | set(groups) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
@@ -227,8 +273,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     else:
         return fitting(proportioned, list(scene.objects), groups, best)  # "the tall", "the flat": alone
     colours = named_colours(low)
-    named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)]
-    kinds = [groups[w] for w in low if w in groups and w not in names and w not in SHAPE_NOUNS  # among two mugs
+    named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)
+             and w not in shared]
+    kinds = [groups[w] for w in low if w in groups and (w not in names or w in shared) and w not in SHAPE_NOUNS  # mugs
              and w not in as_colour]
     either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and (w not in literal or w in NOUNS)
               and w in SHAPE_NOUNS and w not in PROFILES]  # "the big cube": the mesh named "cube" or another cube
@@ -250,6 +297,10 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     for word, group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
         if word not in GEOMETRIC and any(o.name in group for o in fits):
             fits = [o for o in fits if o.name in group]  # "the can": the soda can, not a plain cylinder beside it
+            continue
+        if word in ("box", "boxes") and not colours and any(o.name in group for o in fits) \
+                and all(o.name in group or _cube_like(o) for o in fits):
+            fits = [o for o in fits if o.name in group]  # "the box": big_box, not one of the cubes beside it
             continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape
                 or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too

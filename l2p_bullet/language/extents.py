@@ -16,7 +16,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "only slightly": "little", "slightly": "little", "somewhat": "little", "just": "little",
     "a tad": "little",
     "thoda": "little", "thoda sa": "little", "thodasa": "little", "just a tad": "little", "a touch": "little",
-    "a smidge": "little", "a smidgen": "little",
+    "a smidge": "little", "a smidgen": "little", "small": "little", "small small": "little",  # Nigerian English
     "marginally": "little", "a hair": "little", "little bit": "little", "a long way": "far", "a good way": "far",
     "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
     "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",

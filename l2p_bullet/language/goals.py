@@ -60,7 +60,8 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
         return ["put", *words[1:]]  # "Kindly keep the box beside the goal": put it there ("keep it on the table" stays)
     if low[:1] == ["make"] and "go" in low[2:]:  # "make A go around B"
         at = low.index("go", 2)
-        return ["move", *words[1:at], *words[at + 1:]]
+        if not set(low[1:at]) & set(verbs):  # "make you push A small go near B" says its own verb
+            return ["move", *words[1:at], *words[at + 1:]]
     return words
 
 
@@ -166,7 +167,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                     raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '
                                         "staying beside; say which")
                 paced = [w for w in words[:j] if w.lower() in PACES]  # "Make rapidly the cube go ...": kept
-                return ["move", *words[j:k], *words[k + len(link):], *paced]
+                said_verb = next((w for w in words[:j] if w.lower() in verbs), "move")  # "make you push A ... go"
+                return [said_verb, *words[j:k], *words[k + len(link):], *paced]
     return words
 
 

@@ -10,6 +10,7 @@ counted from no end said that names different objects from the two ends).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 
 import numpy as np
@@ -304,3 +305,37 @@ def _half(words: list[str], low: tuple[str, ...], scene: Scene, read: Callable[[
         raise LanguageError(f'"{" ".join(words)}" is ambiguous: {picks[0]} or {picks[1]} (near the table\'s centre '
                             "line); name the one you mean")
     return picks[0]
+
+
+PLACED_GROUP = re.compile(r"^\s*(?:the|those|these)\s+(?P<count>two|three|four|[2-4])\s+(?P<noun>[a-z]+s\s+)?"
+                          r"(?:(?:in|at|on)\s+(?:the\s+)?)?(?P<side>front|back|rear|left|right)(?:\s+side)?\s*$",
+                          re.IGNORECASE)
+"""A group said by how many and where ("the two in front", "the three cubes on the left", "those two at the back")."""
+COUNTS = {"two": 2, "three": 3, "four": 4, "2": 2, "3": 3, "4": 4}
+
+
+def placed_group(text: str, scene: Scene) -> tuple[str, ...] | None:
+    """The objects a :data:`PLACED_GROUP` names: the ``count`` farthest toward that side (of the noun's kind, where one
+    is said), in the scene's order; None where ``text`` is no such group or the next object stands within a place tie
+    of the last one counted (which two are "the two in front" is then unclear)."""
+    m = PLACED_GROUP.match(text)
+    if m is None:
+        return None
+    pool = list(scene.objects)
+    if m.group("noun") and m.group("noun").strip().lower() not in ("ones", "things", "objects", "items", "pieces"):
+        noun = m.group("noun").strip().lower()
+        singular = noun[:-2] if noun.endswith(("xes", "ches")) else noun[:-1]
+        try:
+            pool = candidates(singular, [singular], (singular,), scene)
+        except (LanguageError, UnknownObjectError):
+            return None
+    n = COUNTS[m.group("count").lower()]
+    if len(pool) <= n:
+        return None
+    toward = np.array(DIRECTIONS[m.group("side").lower()])
+    along = sorted(pool, key=lambda o: -float(np.dot(o.xy, toward)))
+    last, nxt = (float(np.dot(o.xy, toward)) for o in along[n - 1:n + 1])
+    if last - nxt < max(TIE_PLACE_M, TIE_PLACE * min(float(along[n - 1].size), float(along[n].size))):
+        return None
+    chosen = {o.name for o in along[:n]}
+    return tuple(o.name for o in scene.objects if o.name in chosen)

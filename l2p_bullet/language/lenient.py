@@ -28,7 +28,7 @@ from contextvars import ContextVar
 from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
-from .descriptions import naming_words
+from .descriptions import naming_words, shape_named
 from .extents import EXTENTS, take_extent
 from .goals import participles
 from .pronouns import Context
@@ -261,8 +261,13 @@ def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[
     at each word, of at most :data:`MAX_SPAN` words."""
     found: list[str] = []
     left: list[str] = []
+    shared = shape_named(scene)
     i = 0
     while i < len(words):
+        if words[i].lower() in DETERMINERS and i + 1 < len(words) and words[i + 1].lower() in shared:
+            left.extend(words[i:i + 2])  # "the cylinder" beside Cylinder and Cylinder (1): asked, never the name
+            i += 2
+            continue
         for j in range(min(len(words), i + MAX_SPAN), i, -1):
             name = try_object(" ".join(words[i:j]), scene, context)
             if name is not None:

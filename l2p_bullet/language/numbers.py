@@ -108,6 +108,8 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
     words = _number_last(words, table)
     low = [w.lower() for w in words]
     n = number_of(low[-1])
+    if n is None and low[-1] in HEARD_NUMBERS and len(low) > 1 and low[-2] in _stems(table):
+        n = HEARD_NUMBERS[low[-1]]  # "cube too", "cylinder won": the number as speech-to-text heard it
     if n is None:
         return None
     spelled = low[-1].lstrip("#").isalpha()

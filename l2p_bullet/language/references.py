@@ -19,7 +19,16 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .descriptions import candidates, coloured_like, describe, described, looks, name_words, spelled_name
+from .descriptions import (
+    candidates,
+    coloured_like,
+    describe,
+    described,
+    looks,
+    name_words,
+    shape_named,
+    spelled_name,
+)
 from .group_places import in_group, table_sides
 from .kept import SceneMemo
 from .letters import marked_with, named_after_the
@@ -142,8 +151,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     if candidate in names:
         return candidate
     folded = [n for n in names if n.lower() == candidate.lower()]
-    if len(folded) == 1:
-        return folded[0]
+    if len(folded) == 1 and not (determined and candidate.lower() in shape_named(scene)):
+        return folded[0]  # "the cylinder" beside Cylinder and Cylinder (1) is either: described below
     apposed = name_and_kind(words, scene, role, _unremembered)
     if apposed is not None:
         return apposed
@@ -232,14 +241,14 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene))  # "mug"
         if any(w.lower() not in heads for w in rest_words):
             return None
-        described = words[:at] + rest_words
+        rank = RANKS.get(low[at - 1], 1) if at > 0 else 1  # "the second tallest white one"
+        described = words[:at - (rank > 1)] + rest_words
         what, pick = SIZE_SUPERLATIVES[kind]
         place = what in PLACE_MEASURES
         if what == "area":
-            return either_reading(described, scene, lambda pool: bulk_superlative(pool, pick, kind))
-        return either_reading(
-            described, scene, lambda pool: superlative(pool, lambda o: measure(o, what), pick, kind, place)
-        )
+            return either_reading(described, scene, ranked(rank, lambda pool: bulk_superlative(pool, pick, kind)))
+        return either_reading(described, scene, ranked(
+            rank, lambda pool: superlative(pool, lambda o: measure(o, what), pick, kind, place)))
     ref = _reference_point(rest_words, scene, role, context)
     if ref is None:
         return None
@@ -273,6 +282,21 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
                            distance=True)
 
     return either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
+
+
+RANKS = {"second": 2, "2nd": 2, "third": 3, "3rd": 3}
+"""Ordinals before a superlative ("the second tallest"): the one after that many others, each clearly so."""
+
+
+def ranked(rank: int, choose):
+    """``choose`` (one object of a pool, ties refused) made to pick the ``rank``-th: the first ``rank`` - 1 picks are
+    taken out, each of them as clearly first as a superlative's one must be."""
+    def pick(pool: list[SceneObject]) -> str:
+        for _ in range(rank - 1):
+            first = choose(pool)
+            pool = [o for o in pool if o.name != first]
+        return choose(pool)
+    return pick
 
 
 BETWEEN_DOUBT = 2.0

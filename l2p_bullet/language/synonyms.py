@@ -29,6 +29,7 @@ KIND_NAMES = {
     "bowl": ("bowls", "dish", "container", "basin", "pot"),
     "apple": ("apples",),
     "lemon": ("lemons", "citrus"),
+    "lime": ("limes", "citrus"),
     "orange": ("oranges", "citrus", "tangerine", "mandarin", "clementine"),
     "bread": ("loaf", "roll", "rolls", "bun", "buns"),
     "milk": ("carton", "cartons", "milkbox"),
@@ -97,15 +98,19 @@ them where a benchmark's object set is a brand's product (the YCB set: the Maste
 box the crackers, Domino the sugar, Campbell's the soup, French's the mustard, Spam the potted meat)."""
 FIGURES = ("minifig", "figure", "figurine", "doll", "person", "man", "woman", "boy", "girl", "soldier", "astronaut")
 """Kinds of a little person: "the little guy", "the figure", "the lego man" is the one object of such a kind."""
+CASUAL_PERSONS = frozenset({"guy", "dude", "fella", "fellow", "chap", "bloke"})
+FIGURE_WORDS = CASUAL_PERSONS | {"figure", "figurine", "person", "man", "character", "minifigure", "figures", "people",
+                                 "guys"}
+"""Words for a little person. They name the scene's figures where it has one; where it has none they are no kind:
+"the bunny figurine" is the bunny, and the casual ones ("the little yellow guy") mean any object, as "one" does."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
-                "fruit": ("apple", "lemon", "orange", "banana", "pear", "peach", "plum")} | {
+                "fruit": ("apple", "lemon", "orange", "banana", "pear", "peach", "plum", "lime", "grape", "kiwi",
+                          "mango", "strawberry", "cherry", "melon", "grapefruit", "apricot", "pineapple")} | {
     word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
     for word in ("vegetable", "vegetables", "veg", "veggie", "veggies")} | {
-    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")} | {
-    word: FIGURES for word in ("figure", "figurine", "person", "man", "guy", "fella", "fellow", "dude", "chap", "bloke",
-                               "character", "minifigure", "figures", "people", "guys")}
+    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")}
 """Words for a class of kinds ("the stuffed animal", "the veg", "the metal part"): like a kind's name, they resolve
 only where exactly one object is of a kind of the class (a nut and a bolt: "the metal part" is asked)."""
 KIND_SYNONYMS: dict[str, tuple[str, ...]] = {
@@ -248,7 +253,7 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> d
         for k in _kinds(name, mesh, kind):
             by_kind.setdefault(k, set()).add(name)
     out = {k: frozenset(v) for k, v in by_kind.items()}
-    for word, kinds in KIND_SYNONYMS.items():
+    for word, kinds in [*KIND_SYNONYMS.items(), *((w, FIGURES) for w in FIGURE_WORDS)]:
         named = frozenset().union(*(out[k] for k in kinds if k in out))
         if named and word not in out:
             out[word] = named

@@ -17,8 +17,9 @@ A word that is the name of an object in the scene is never dropped ("move Now ne
 from __future__ import annotations
 
 from ..errors import LanguageError
-from .numbers import number_of
+from .numbers import HEARD_NUMBERS, number_of
 from .reference_words import NOUNS
+from .synonyms import name_parts
 
 POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "would you be so kind as to", "would you be so kind and", "would you please", "could you please",
@@ -82,7 +83,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if that is ok", "if that is okay", "please make like that", "make like that", "please make it like that",
     "make it like that", "please do", "please do it", "please do so", "than it is now", "than it is", "than now",
     "than it was", "than at present", "than it is at present", "than at the moment", "than it is at the moment",
-    "than currently", "than it is currently", "than before", "while you're there", "whilst you're there",
+    "than currently", "than it is currently", "than before", "lah", "leh", "lor", "ah", "hor", "sia", "or not",
+    "can or not", "ok lah", "okay lah", "thanks ah", "thank you ah", "while you're there", "whilst you're there",
     "while you're at it", "whilst you're at it", "while you are at it", "whilst you are at it",
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
@@ -122,6 +124,11 @@ PACES: dict[str, str] = {
     "rapido": "fast", "rápido": "fast", "rapidito": "fast", "despacio": "slow", "despacito": "slow",
     "lento": "slow", "lentamente": "slow", "suave": "gentle", "suavecito": "gentle", "suavemente": "gentle",
     "cuidadosamente": "careful",
+    # in French, as francophones do ("doucement, move the sucrier ...", "vite vite! push ...")
+    "doucement": "gentle", "vite": "fast", "rapidement": "fast", "lentement": "slow", "délicatement": "gentle",
+    "delicatement": "gentle", "prudemment": "careful",
+    # in Scots ("go canny an lift yon black tin ...")
+    "canny": "careful",
     # and in Hindi, as Hinglish speakers do ("jaldi jaldi put the phone ...")
     "jaldi": "fast", "jaldi-jaldi": "fast", "dheere": "slow", "dheere-dheere": "slow", "dhire": "slow",
 }
@@ -188,7 +195,7 @@ def strip_polite(words: list[str], keep: frozenset[str] = frozenset()) -> list[s
         low = [w.lower() for w in words]
         for suf in _SUFFIXES_BY_LAST.get(low[-1], ()) if low else ():
             if len(low) > len(suf) and tuple(low[-len(suf):]) == suf and not set(words[-len(suf):]) & keep and not (
-                    len(suf) == 1 and low[-2] in NOUN_OPENERS):
+                    len(suf) == 1 and (low[-2] in NOUN_OPENERS or _numbers_name(low[-2], suf[0], keep))):
                 words, changed = words[: -len(suf)], True
                 break
     return words
@@ -198,6 +205,13 @@ NOUN_OPENERS = frozenset({"the", "a", "an", "this", "that", "my", "your", "our",
                           "tiny", "wee", "old", "young"})
 """Words a noun follows: a sign-off word after one is the noun it names ("away from the little dude", "next to the
 chef"), never read past as the courtesy it is after a command ("next to B, dude")."""
+def _numbers_name(stem: str, word: str, names: frozenset[str]) -> bool:
+    """Whether ``word`` is a number as speech-to-text hears it that, after ``stem``, names an object ("closer to cube
+    too" for Cube (2)): then no courtesy ("too") to read past."""
+    n = HEARD_NUMBERS.get(word)
+    return n is not None and any(name_parts(name) == (stem, str(n)) for name in names)
+
+
 STEP_LABELS = frozenset({"step", "test", "task", "stage", "phase", "trial", "case", "instruction", "command",
                          "exercise", "example", "scenario"})
 """Words that number a step before its instruction ("Step 1: move 7 ...", "Test 4: lift 5 ..."): the label and its
