@@ -89,11 +89,12 @@ NOT_LIFTED = re.compile(r"^\s*(?:and\s+)?(?:please\s+)?(?:don't|dont|do\s+not|ne
                         r"(?:lift|lifting|carry|carrying|pick|picking)(?:\s+it)?(?:\s+up)?(?:\s+please)?\s*[.!]*\s*$",
                         re.IGNORECASE)
 NOT_DRAGGED = re.compile(r"^\s*(?:and\s+|but\s+)?(?:please\s+)?(?:don't|dont|do\s+not|never|no|without)\s+"
-                         r"(?:drag|dragging|slide|sliding)(?:\s+it)?(?:\s+(?:on|along|across)\s+the\s+table)?"
+                         r"(?:drag|dragging|slide|sliding)(?:\s+it)?(?:\s+(?:on|along|across|over)\s+the\s+(?:table|bench|workbench|desk|surface))?"
                          r"(?:\s+please)?\s*[.!]*\s*$", re.IGNORECASE)
 BY_MANNER = re.compile(r"^\s*(?:and\s+)?(?:do\s+it\s+|please\s+)?by\s+(?P<how>[a-z]+ing)(?:\s+it)?\s*[.!]*\s*$",
                        re.IGNORECASE)
-NOT_DRAGGED_FIRST = re.compile(r"^\s*without\s+(?P<how>dragging|sliding)\s+it(?:\s+(?:on|along|across)\s+the\s+table)?"
+NOT_DRAGGED_FIRST = re.compile(r"^\s*without\s+(?P<how>dragging|sliding)\s+it"
+                               r"(?:\s+(?:on|along|across|over)\s+the\s+(?:table|bench|workbench|desk|surface))?"
                                r"\s*,\s*(?P<rest>.+)$", re.IGNORECASE)
 """A manner said apart after its clause: "Don't lift it." keeps a slide a slide; "don't drag it" makes a slide a
 carry (the one way to move a block without dragging it), as "do it by carrying" does, and as "Without dragging it,"

@@ -28,6 +28,7 @@ from ..language import (
 )
 from ..language.descriptions import naming_words
 from ..language.numbers import codes_said
+from ..language.synonyms import kind_groups
 from ..pipeline import resolve
 from ..plugins import once, registry
 from . import apart, corrections, pointing, rephrased
@@ -70,7 +71,7 @@ def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]
         if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
             raise
         known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
-        mended = typos.mend(ASIDE.sub("", sentence), known, scene.names, verb_heads())
+        mended = typos.mend(ASIDE.sub("", sentence), known, scene.names, verb_heads(), kind_groups(scene))
         if mended != sentence:
             try:
                 return read_clauses(mended, scene, plugins)
@@ -207,7 +208,15 @@ def _in_place_of(meant: str, taken: Clause, scene: Scene, plugins: list,
                                pair=pair)
     except L2PError:
         return None
+    # "sorry, past it, past the box": the place meant, said twice, is one clause
+    pieces = [p for k, p in enumerate(pieces) if k == 0 or not _same_move(p[1], pieces[k - 1][1])]
     return [Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces)]
+
+
+def _same_move(a: Command, b: Command) -> bool:
+    """Whether two commands ask for the same move (mover, action, anchors, manner, pace and extent)."""
+    return (a.mover, a.action, a.anchors, a.manner, a.pace, a.extent) == (b.mover, b.action, b.anchors, b.manner,
+                                                                       b.pace, b.extent)
 
 
 def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: list, depth: int = 0,

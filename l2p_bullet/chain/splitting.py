@@ -23,7 +23,7 @@ _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?
                     r"|,\s*and\s+after\b"
                     r"|,?\s*\band\s+finally\b|,\s*finally\b"
                     r"|(?:,\s*|\s+and\s+)(?:and\s+)?now\b(?=,?\s+[a-z])"
-                    r"|(?:,\s*|\s+)(?:(?:and|but)\s+)?(?=(?:don't|dont|do\s+not)\s+(?:drag|lift|carry)\s+it[\s.!]*$))"
+                    r"|(?:,\s*|\s+)(?:(?:and|but)\s+)?(?=(?:don't|dont|do\s+not)\s+(?:drag|lift|carry)\s+it(?:\s+(?:across|along|over)\s+the\s+\w+)?[\s.!]*$))"
                     r"\s*,?\s*", re.IGNORECASE)
 """What joins clauses: "then", "and then", "after that", "afterwards", "thereafter", ", and after", ", after" before a
 verb and its object ("..., after push the brick away"), "and finally", "now" after a comma or "and" ("..., now push it

@@ -17,6 +17,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a tad": "little",
     "thoda": "little", "thoda sa": "little", "thodasa": "little", "just a tad": "little", "a touch": "little",
     "a smidge": "little", "a smidgen": "little", "small": "little", "small small": "little",  # Nigerian English
+    "a fraction": "little", "a wee": "little",
     "marginally": "little", "a hair": "little", "little bit": "little", "a long way": "far", "a good way": "far",
     "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
     "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",
@@ -44,6 +45,10 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     ("far", "of"): ("away from", "far"),
     ("more", "far", "of"): ("away from", None),
     ("out", "of", "the", "way", "of"): ("away from", None),
+    ("out", "the", "way", "of"): ("away from", None),
+    ("outta", "the", "way", "of"): ("away from", None),
+    ("miles", "away", "from"): ("away from", "far"),
+    ("miles", "from"): ("away from", "far"),
     ("clear", "of"): ("away from", None),
     ("as", "close", "as", "possible", "to"): ("next to", "right"),
     ("as", "close", "as", "you", "can", "to"): ("next to", "right"),

@@ -25,6 +25,7 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "expected final state", "desired final state", "end goal", "final goal", "the goal is", "goal is", "the idea is",
     "i just want", "just want", "need", "i want that", "i should like", "i should like to see", "target config",
     "target configuration", "goal config", "goal configuration", "final config", "final configuration",
+    "end result should be", "the end result should be",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""
@@ -65,7 +66,8 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     return words
 
 
-IRREGULAR_PARTICIPLES = {"slide": "slid", "bring": "brought", "put": "put", "set": "set", "lay": "laid"}
+IRREGULAR_PARTICIPLES = {"slide": "slid", "bring": "brought", "put": "put", "set": "set", "lay": "laid",
+                         "take": "taken"}
 PASSIVE_AUX = (("needs", "to", "be"), ("need", "to", "be"), ("has", "to", "be"), ("have", "to", "be"),
               ("should", "be"), ("must", "be"), ("to", "be"), ("be",), ("is",), ("gets",), ("get",))
 """Words between an object and a participle that only make it passive ("for C to be moved next to B")."""
@@ -126,7 +128,7 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "to be placed", "ending up", "finish", "stays", "should stay", "to stay", "were to find itself",
     "were to end up", "were to be", "went", "came", "ended", "sat", "stood", "sitting", "standing",
     "would be sitting", "would be standing", "wants to be", "wants to come", "wants to go", "wants to sit",
-    "needs to come", "needs to sit", "would be sat",
+    "needs to come", "needs to sit", "would be sat", "is sat", "is sitting", "is standing", "is lying",
 )), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
 so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""

@@ -22,7 +22,7 @@ from collections.abc import Callable, Iterable
 from ..core.scene import Scene, SceneObject
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from .reference_words import BLOCK_SHAPES, DETERMINERS, NOUNS, SHAPE_NOUNS
-from .synonyms import NAME_PART, kinds_of, size_codes
+from .synonyms import NAME_PART, kind_groups, kinds_of, size_codes
 
 SPELLED = {w: n for n, w in enumerate(
     "zero one two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen sixteen seventeen "
@@ -55,16 +55,43 @@ def number_of(word: str) -> int | None:
     return SPELLED.get(low)
 
 
+UNIT_SAID = {"mm": "mm", "mil": "mm", "mils": "mm", "millimeter": "mm", "millimeters": "mm", "millimetre": "mm",
+             "millimetres": "mm", "cm": "cm", "centimeter": "cm", "centimeters": "cm", "centimetre": "cm",
+             "centimetres": "cm", "ml": "ml", "milliliter": "ml", "milliliters": "ml", "millilitre": "ml",
+             "millilitres": "ml", "in": "in", "inch": "in", "inches": "in", "v": "v", "volt": "v", "volts": "v",
+             "w": "w", "watt": "w", "watts": "w", "g": "g", "gram": "g", "grams": "g", "kg": "kg", "l": "l",
+             "litre": "l", "liter": "l"}
+"""A measure's unit as people say it -> as a name writes it after its number ("wrench_10mm": "the 10 mil")."""
+
+
+def _number_at(parts: list[str]) -> int | None:
+    """Where in a name's words its number stands: last ("block1"), before a unit it measures ("wrench_10mm"), or
+    first ("002_master_chef_can", as YCB names); None where it has none."""
+    if parts and parts[-1].isdigit() and len(parts[-1]) <= 4:
+        return len(parts) - 1
+    if len(parts) > 2 and parts[-1].lower() in UNIT_SAID.values() and parts[-2].isdigit() and len(parts[-2]) <= 4:
+        return len(parts) - 2
+    if len(parts) > 1 and parts[0].isdigit() and len(parts[0]) <= 4:
+        return 0
+    return None
+
+
 @functools.lru_cache(maxsize=256)
 def _numbered_of(names: tuple[str, ...]) -> dict[int, tuple[str, ...]]:
     out: dict[int, list[str]] = {}
     for name in names:
         parts = NAME_PART.findall(name)
-        if parts and parts[-1].isdigit() and len(parts[-1]) <= 4:
-            out.setdefault(int(parts[-1]), []).append(name)
-        elif len(parts) > 1 and parts[0].isdigit() and len(parts[0]) <= 4:  # "002_master_chef_can", as YCB names
-            out.setdefault(int(parts[0]), []).append(name)
+        at = _number_at(parts)
+        if at is not None:
+            out.setdefault(int(parts[at]), []).append(name)
     return {k: tuple(v) for k, v in out.items()}
+
+
+def unit_of(name: str) -> str | None:
+    """The unit a name's number measures ("wrench_10mm": mm), or None."""
+    parts = NAME_PART.findall(name)
+    at = _number_at(parts)
+    return parts[-1].lower() if at is not None and at == len(parts) - 2 else None
 
 
 def numbered(scene: Scene) -> dict[int, tuple[str, ...]]:
@@ -76,9 +103,10 @@ def stem(name: str) -> tuple[str, ...]:
     """The words of a name besides its number, lower case ("Cube_01": cube; "obj3": obj; "1": none;
     "002_master_chef_can": master, chef, can)."""
     parts = NAME_PART.findall(name)
-    if parts and not parts[-1].isdigit() and parts[0].isdigit():
+    at = _number_at(parts)
+    if at == 0 and not parts[-1].isdigit():
         return tuple(p.lower() for p in parts[1:])
-    return tuple(p.lower() for p in parts[:-1])
+    return tuple(p.lower() for p in parts[:-1 if at is None or at == len(parts) - 1 else at])
 
 
 def number_name(word: str, scene: Scene) -> str | None:
@@ -130,7 +158,8 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
             raise _missing(n, table, said, scene)
         return None
     if not marked:
-        if len(before) == 1 and before[0] in LABELS | _stems(table):  # "object one", "cube 1", "block one"
+        if len(before) == 1 and (before[0] in LABELS | _stems(table) or before[0] in kind_groups(scene)):
+            # "object one", "cube 1", "block one", "the 10mm spanner" (wrench_10mm: a spanner is a wrench)
             return _labelled(n, before[0], table[n], said, scene, resolve)
         return None  # "the cube nearest block 2", "the red 1": other readers'
     if low[end - 1] in RELATION_ENDS:
@@ -154,10 +183,14 @@ def _number_last(words: list[str], table: dict[int, tuple[str, ...]]) -> list[st
     glued = MEASURED.match(low[i]) if i < len(low) else None
     if i >= len(low) - 1 and glued is None:
         return words
-    said = glued.group("n") if glued is not None and glued.group("unit").lower() in UNITS else low[i]
+    units = UNITS | {u for n in table for name in table[n] for u in UNIT_SAID if UNIT_SAID[u] == unit_of(name)}
+    said = glued.group("n") if glued is not None and glued.group("unit").lower() in units else low[i]
+    after = low[i + 1] if i + 1 < len(low) and glued is None else None
+    if after in units and number_of(said) is not None:  # "the ten millimeter wrench"
+        said = str(number_of(said))
     if not said.isdigit() or int(said) not in table:
         return words
-    j = i + 1 + (i + 1 < len(low) and glued is None and low[i + 1] in UNITS)
+    j = i + 1 + (after in units)
     return [*words[:i], *(w for w in words[j:] if w.lower() != "one"), said]
 
 

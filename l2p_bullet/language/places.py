@@ -122,7 +122,7 @@ def bulk_superlative(pool: list[SceneObject], pick, word: str) -> str:
     other are a tie)."""
     if not pool:
         raise UnknownObjectError(f'no object in the scene is the "{word}" one')
-    tied = [o.name for o in size_tied(pool, seen_size(pool), pick, seen_tie(pool))]
+    tied = [o.name for o in outlined(size_tied(pool, seen_size(pool), pick, seen_tie(pool)), pick)]
     if len(tied) > 1:
         raise LanguageError(f'"{word}" is ambiguous: {", ".join(tied)} are all but equally so; name the one you mean')
     return tied[0]
@@ -134,6 +134,26 @@ def size_tied(pool: list[SceneObject], size, pick, tie: float = TIE_SIZE) -> lis
     values = {o.name: size(o) for o in pool}
     best = pick(values.values())
     return [o for o in pool if _alike(values[o.name], best, tie)]
+
+
+def outlined(tied: list[SceneObject], pick) -> list[SceneObject]:
+    """Objects of one shape tied by their side, told apart by their outline seen from above: the one that ``pick``
+    (max or min) makes the extreme in both its longest side and its footprint, clearly apart from each other in one of
+    them ("the bigger spanner": 18 against 15 cm long, as flat as the other; a 4x4 plate beside a 1x4 brick of its
+    length); ``tied`` itself where the outline does not tell them apart or says otherwise than the bulk."""
+    if len(tied) < 2 or len({o.shape for o in tied}) > 1:
+        return tied
+    seen = {o.name: (max(outline_sides(o)), outline_sides(o)[0] * outline_sides(o)[1]) for o in tied}
+    best = pick(tied, key=lambda o: (seen[o.name][0], seen[o.name][1]))
+    for o in tied:
+        if o is best:
+            continue
+        for b, v in zip(seen[best.name], seen[o.name], strict=True):
+            if pick(b, v) != b and not _alike(b, v, TIE_SIDE):
+                return tied  # the outline says the other way: a tie stays a tie
+        if all(_alike(b, v, TIE_SIDE) for b, v in zip(seen[best.name], seen[o.name], strict=True)):
+            return tied
+    return [best]
 
 
 def _alike(a: float, b: float, tie: float = TIE_SIZE) -> bool:
@@ -265,6 +285,7 @@ def by_size(text: str, pool: list[SceneObject], sizes: list[str]) -> list[SceneO
             size = seen_size(pool) if seen else (lambda o, along=along: measure(o, along))
             pick = max if word in BIG | TALL else min
             tied = size_tied(pool, size, pick, seen_tie(pool) if seen else TIE_SIZE)
+            tied = outlined(tied, pick) if seen else tied
             if len(tied) > 1 and len(tied) < len(pool):
                 listed = ", ".join(o.name for o in tied)
                 raise LanguageError(f'"{text}" is ambiguous: {listed} are all but equally {word}; '

@@ -82,7 +82,8 @@ ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", 
                ("robot", "base"), ("the", "base"), ("you",), ("yourself",),
                ("your", "base"), ("me",), ("us",), ("the", "viewer"))
 """The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
-NEAREST = frozenset("nearest closest nearer closer near".split())  # English words of place ("the cube closer to you")
+NEAREST = frozenset("nearest closest nearer closer near by beside".split())
+"""Words of place that pick the object nearest what follows ("the cube closer to you", "the spanner by the hammer")."""
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})
 """Comparatives read as superlatives: "the red cube nearer to you" is the nearer of the red cubes."""
 FARTHEST_FROM = frozenset({"away from"})

@@ -73,9 +73,10 @@ from .reference_words import (
     SIDES,
     SIZE_SUPERLATIVES,
     SOFT_ADJECTIVES,
+    TABLE_WORDS,
     TIE_M,
 )
-from .synonyms import kind_groups
+from .synonyms import CASUAL_PERSONS, kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -206,13 +207,16 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     the cube red) taken out, a comparative among a group as its
     superlative ("the larger of the cubes": the largest cube) and a place as an adjective as its superlative
     ("the front blue cube": the frontmost blue cube); the other readers take words in any order."""
+    low = [w.lower() for w in words]
+    if len(low) > 4 and low[-3] in ("on", "upon") and low[-2] == "the" and low[-1] in TABLE_WORDS:
+        words = words[:-3]  # "the longest tool on the bench": every object is
     words = table_sides(looks(coloured_like(words), scene))
     words = places_as_superlatives(comparative_of(one_word_comparisons(words)))
     low = tuple(w.lower() for w in words)
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
             return list(plain) + words[len(opening):]
-    nouns = NOUNS | set(SHAPE_NOUNS) | set(name_words(scene))
+    nouns = NOUNS | set(SHAPE_NOUNS) | set(name_words(scene)) | set(kind_groups(scene)) | CASUAL_PERSONS
     for i in range(1, len(low) - 1):
         for rel in RELATIVES:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
@@ -321,6 +325,7 @@ def _describes(low: tuple[str, ...], scene: Scene) -> bool:
 
 DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)
               | frozenset(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES | REFERENCE_WORDS | frozenset(PLACE_ADJECTIVES)
+              | CASUAL_PERSONS
               | frozenset({"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and",
                            "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "kept",
                            "directly", "right", "just"}))

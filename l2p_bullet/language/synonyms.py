@@ -90,6 +90,13 @@ KIND_NAMES = {
     "pail": ("pails", "bucket", "buckets"),
     "pen": ("pens", "pencil", "pencils"),
     "minifig": ("minifigs", "minifigure", "minifigures", "fig", "figs"),
+    "wrench": ("wrenches", "spanner", "spanners"),
+    "spanner": ("spanners", "wrench", "wrenches"),
+    "mallet": ("mallets", "hammer", "hammers"),
+    "hammer": ("hammers", "mallet", "mallets"),
+    "screwdriver": ("screwdrivers", "driver", "drivers"),
+    "flat": ("flathead", "flat-head", "flatblade", "flat-blade", "slotted"),
+    "phillips": ("philips", "crosshead", "cross-head", "pozi", "pozidriv"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
 }
@@ -98,11 +105,11 @@ them where a benchmark's object set is a brand's product (the YCB set: the Maste
 box the crackers, Domino the sugar, Campbell's the soup, French's the mustard, Spam the potted meat)."""
 FIGURES = ("minifig", "figure", "figurine", "doll", "person", "man", "woman", "boy", "girl", "soldier", "astronaut")
 """Kinds of a little person: "the little guy", "the figure", "the lego man" is the one object of such a kind."""
-CASUAL_PERSONS = frozenset({"guy", "dude", "fella", "fellow", "chap", "bloke"})
-FIGURE_WORDS = CASUAL_PERSONS | {"figure", "figurine", "person", "man", "character", "minifigure", "figures", "people",
-                                 "guys"}
+CASUAL_PERSONS = frozenset({"guy", "dude", "fella", "fellow", "chap", "bloke", "figure"})
+FIGURE_WORDS = CASUAL_PERSONS | {"figurine", "person", "man", "character", "minifigure", "figures", "people", "guys"}
 """Words for a little person. They name the scene's figures where it has one; where it has none they are no kind:
-"the bunny figurine" is the bunny, and the casual ones ("the little yellow guy") mean any object, as "one" does."""
+"the bunny figurine" is the bunny, and the casual ones ("the little yellow guy", a chess set's "white figure") mean
+any object, as "one" does."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
@@ -110,7 +117,9 @@ KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "
                           "mango", "strawberry", "cherry", "melon", "grapefruit", "apricot", "pineapple")} | {
     word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
     for word in ("vegetable", "vegetables", "veg", "veggie", "veggies")} | {
-    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")}
+    word: ("bolt", "nut", "screw", "washer") for word in ("fastener", "fasteners", "metal", "hardware")} | {
+    word: ("wrench", "spanner", "screwdriver", "hammer", "mallet", "tape", "pliers", "saw", "drill", "chisel", "file",
+           "ruler", "scissors", "knife") for word in ("tool", "tools")}
 """Words for a class of kinds ("the stuffed animal", "the veg", "the metal part"): like a kind's name, they resolve
 only where exactly one object is of a kind of the class (a nut and a bolt: "the metal part" is asked)."""
 KIND_SYNONYMS: dict[str, tuple[str, ...]] = {

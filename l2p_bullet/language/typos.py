@@ -91,7 +91,8 @@ def _one_slip(word: str, known: str) -> bool:
     return False
 
 
-def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iterable[str] = ()) -> str:
+def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iterable[str] = (),
+         kinds: Iterable[str] = ()) -> str:
     """``sentence`` with each slip replaced by the known word it is one keystroke from (its case as typed for
     the first letter); every other character as it was. A word right after an article is never mended into one of
     ``verbs``: "for a pic" is no "pick", which would make a slide a lift."""
@@ -117,7 +118,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
-    said = _joined(said, keep | named)
+    said = _joined(said, keep | named | set(kinds))
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
@@ -126,14 +127,14 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
 
 
 def _joined(sentence: str, named: set[str] | frozenset[str]) -> str:
-    """``sentence`` with a name said as two words written as one ("the note book" -> "the notebook", "the mini fig"
-    -> "the minifig"), where neither word is a name's word of its own."""
+    """``sentence`` with a name or a kind said as two words written as one ("the note book" -> "the notebook", "the
+    mini fig" -> "the minifig", "the flat head" -> "the flathead"), where not both words name something of their own."""
     found = list(_WORD.finditer(sentence))
     out, at = [], 0
     for a, b in zip(found, found[1:], strict=False):
         one = (a.group(0) + b.group(0)).lower()
         if a.start() >= at and one in named and sentence[a.end():b.start()].isspace() \
-                and a.group(0).lower() not in named and b.group(0).lower() not in named:
+                and not (a.group(0).lower() in named and b.group(0).lower() in named):
             out.append(sentence[at:a.start()] + one)
             at = b.end()
     return "".join(out) + sentence[at:]

@@ -47,6 +47,7 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "i request you to", "request you to kindly", "sorry to be a pain", "sorry to be a pain but",
     "sorry to bother you", "sorry to bother you but", "sorry to trouble you", "sorry to trouble you but",
     "can we", "could we", "can we please", "could we please", "request", "my request", "new request",
+    "be a love and", "be a dear and", "be a star and", "be a pal and", "get it so", "get it so that",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
@@ -84,7 +85,9 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "make it like that", "please do", "please do it", "please do so", "than it is now", "than it is", "than now",
     "than it was", "than at present", "than it is at present", "than at the moment", "than it is at the moment",
     "than currently", "than it is currently", "than before", "lah", "leh", "lor", "ah", "hor", "sia", "or not",
-    "can or not", "ok lah", "okay lah", "thanks ah", "thank you ah", "while you're there", "whilst you're there",
+    "can or not", "ok lah", "okay lah", "thanks ah", "thank you ah", "that'd be grand", "that would be grand",
+    "that'd be grand cheers", "it's in the way", "its in the way", "it's in my way", "its in my way",
+    "it is in the way", "it is in my way", "while you're there", "whilst you're there",
     "while you're at it", "whilst you're at it", "while you are at it", "whilst you are at it",
     "don't knock anything over", "don't knock anything", "don't knock anything else over",
     "without knocking anything over", "without knocking anything", "don't hit anything", "without hitting anything",
@@ -110,7 +113,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
       for rest in _RESTS),
     "so that", "so", "over so it's", "over so it is", "over", "back", "down", "until its", "so its", "so that its",
     "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
-    "until", "till", "untill", "til",
+    "until", "till", "untill", "til", "along",
 )), key=len, reverse=True))
 """Words between the mover and the preposition that say where the mover ends, not how: dropped."""
 
