@@ -34,8 +34,8 @@ POLITE_AFTER = re.compile(r"\s*,\s*(?:if\s+you\s+(?:would|could|can|don't\s+mind
 
 def _goal_said(goal: str) -> str:
     """The end a GOAL_AFTER clause names, said as a preposition and its block (politeness after it read past: "...
-    until the two of them are touching, if you would")."""
-    goal = POLITE_AFTER.sub("", goal)
+    until the two of them are touching, if you would"; how it rests too: "until it's sitting beside it")."""
+    goal = re.sub(r"(?i)^\s*(?:sitting|standing|lying|resting|sat|stood)\s+", "", POLITE_AFTER.sub("", goal))
     if re.fullmatch(r"\s*(?:touching|touch|touches)(?:\s+(?:each\s+other|it))?\s*[.!]*\s*", goal, re.IGNORECASE):
         return "right next to it"  # "until they're touching"
     if re.fullmatch(r"\s*(?:nearer|closer)(?:\s+to)?\s+(?:each\s+other|together)\s*[.!]*\s*", goal, re.IGNORECASE):

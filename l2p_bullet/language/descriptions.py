@@ -262,9 +262,10 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     heads = set(names) | set(groups) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
-    proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound]
+    proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
+                    and w not in groups]  # "the tower": the rook where a chess set stands, not any tall thing
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
-            if lw in names or not (lw in drop or i in compound)]
+            if lw in names or (lw in groups and lw in PROFILES) or not (lw in drop or i in compound)]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS or lw in PROFILES for lw in low)
     if kept:  # "the little red cube": the other words decide
         words, low = [w for w, _ in kept], tuple(lw for _, lw in kept)
@@ -273,8 +274,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     else:
         return fitting(proportioned, list(scene.objects), groups, best)  # "the tall", "the flat": alone
     colours = named_colours(low)
-    named = [names[w] for w in low if w in names and w not in NOUNS and (w in literal or w not in SHAPE_NOUNS)
-             and w not in shared]
+    named = [names[w] for w in low if w in names and w not in NOUNS and w not in shared
+             and (w in literal or w not in SHAPE_NOUNS or w in PROFILES and w in groups)]  # "the tower": the rook
     kinds = [groups[w] for w in low if w in groups and (w not in names or w in shared) and w not in SHAPE_NOUNS  # mugs
              and w not in as_colour]
     either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and (w not in literal or w in NOUNS)
@@ -304,6 +305,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape
                 or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too
+        if word in ("box", "boxes"):  # "the big box": a parcel, not the tote beside it
+            fits = [o for o in fits if not a_thing_by_name(o)] or fits
     if colours:
         if not any(o.color in colours for o in scene.objects):
             colours = {NEAR_COLOURS.get(c, c) for c in colours}
@@ -317,8 +320,10 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             if len(fits) > 1 and "cube" in shapes:  # "the blue cube" beside a long blue beam is the cube-like one
                 kept = [o for o in fits if _cube_like(o)]
                 fits = kept if len(kept) == 1 else fits
-        else:  # "the box": a box, or a mesh that is one ("the cereal box")
+        else:  # "the box": a box, or a mesh that is one ("the cereal box"); a parcel, not the tote beside it
             fits = [o for o in fits if shape_of(o) in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
+            if "box" in shapes:
+                fits = [o for o in fits if not a_thing_by_name(o)] or fits
     if shaped:
         fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle

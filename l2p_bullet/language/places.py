@@ -138,12 +138,13 @@ def size_tied(pool: list[SceneObject], size, pick, tie: float = TIE_SIZE) -> lis
 
 def outlined(tied: list[SceneObject], pick) -> list[SceneObject]:
     """Objects of one shape tied by their side, told apart by their outline seen from above: the one that ``pick``
-    (max or min) makes the extreme in both its longest side and its footprint, clearly apart from each other in one of
-    them ("the bigger spanner": 18 against 15 cm long, as flat as the other; a 4x4 plate beside a 1x4 brick of its
-    length); ``tied`` itself where the outline does not tell them apart or says otherwise than the bulk."""
+    (max or min) makes the extreme in both its longest side and its footprint's side (the root of its area), clearly
+    apart from each other in one of them ("the bigger spanner": 18 against 15 cm long, as flat as the other; a 4x4
+    plate beside a 1x4 brick of its length); ``tied`` itself where the outline does not tell them apart or says
+    otherwise than the bulk."""
     if len(tied) < 2 or len({o.shape for o in tied}) > 1:
         return tied
-    seen = {o.name: (max(outline_sides(o)), outline_sides(o)[0] * outline_sides(o)[1]) for o in tied}
+    seen = {o.name: (max(outline_sides(o)), (outline_sides(o)[0] * outline_sides(o)[1]) ** 0.5) for o in tied}
     best = pick(tied, key=lambda o: (seen[o.name][0], seen[o.name][1]))
     for o in tied:
         if o is best:

@@ -12,7 +12,9 @@ import math
 
 from .synonyms import KIND_MODIFIERS, KIND_NAMES, KIND_SYNONYMS, SIZE_WORDS
 
-DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
+DETERMINERS = frozenset({"the", "a", "an", "this", "that", "la", "le", "les", "el", "los", "las"})
+"""Articles and demonstratives before a description, French and Spanish articles among them ("la tasse", "el cubo"):
+bilingual speakers say a name of their language with its article."""
 NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item", "part"})
 SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "dice": "cube", "die": "cube",
                "box": "box", "boxes": "box", "bar": "box", "bars": "box",

@@ -76,7 +76,7 @@ from .reference_words import (
     TABLE_WORDS,
     TIE_M,
 )
-from .synonyms import CASUAL_PERSONS, kind_groups
+from .synonyms import CASUAL_PERSONS, SIZE_WORDS, kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -111,7 +111,7 @@ def measured_from(text: str, scene: Scene, context: Context | None = None) -> st
 
 
 def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str:
-    words = text.split()
+    words = [part for w in text.split() for part in _elided(w)]
     if not words:
         raise LanguageError(f"the sentence does not name the {role}")
     names = scene.names
@@ -180,6 +180,13 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return named
 
 
+def _elided(word: str) -> list[str]:
+    """A French article run into its noun, apart ("l'assiette" -> "the", "assiette"); other words as they are."""
+    if len(word) > 3 and word[:2].lower() in ("l'", "l\u2019") and word[2].isalpha():
+        return ["the", word[2:]]
+    return [word]
+
+
 EMPHATIC = frozenset({"itself", "only"})
 """Words after a reference that stress it and name nothing more."""
 def _unremembered(text: str, scene: Scene, role: str) -> str:
@@ -190,8 +197,8 @@ def _unremembered(text: str, scene: Scene, role: str) -> str:
 def _named_before(text: str, scene: Scene, role: str, context: Context | None) -> str | None:
     """"The blue cup is in the way of the yellow cube. Slide it away from the cube": a definite description that
     fits several objects of the scene but one of the clause before's is that one; None otherwise."""
-    if context is None:
-        return None
+    if context is None or {w.lower() for w in text.split()} & SIZE_WORDS:
+        return None  # "the tall white one" is tall among the scene's, never among the clause before's two
     before = [n for n in dict.fromkeys((context.mover, context.anchor)) if n is not None and n in scene.names]
     if len(before) < 2:
         return None
@@ -240,6 +247,8 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     kind, at, end = head
     if not _describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
         return None
+    if kind in ("by", "beside") and (at == 0 or len({w for w in low[:at] if w in _lower_names(scene)}) > 1):
+        return None  # "closer by the white brick", "the théière, cuillère beside the tasse": a preposition's
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
         heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene))  # "mug"
@@ -312,6 +321,10 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     """How far the object's centre is from the line through ``a`` along ``span`` (metres)."""
     d = np.asarray(o.xy) - a
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
+
+
+def _lower_names(scene: Scene) -> set[str]:
+    return {n.lower() for n in scene.names}
 
 
 def _describes(low: tuple[str, ...], scene: Scene) -> bool:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import re
+import unicodedata
 
 from ..core.scene import COLORS, Scene, SceneObject
 
@@ -90,6 +91,12 @@ KIND_NAMES = {
     "pail": ("pails", "bucket", "buckets"),
     "pen": ("pens", "pencil", "pencils"),
     "minifig": ("minifigs", "minifigure", "minifigures", "fig", "figs"),
+    "king": ("kings", "k\u00f6nig", "konig", "koenig", "kink"),
+    "queen": ("queens", "lady", "dame", "dama"),
+    "rook": ("rooks", "castle", "castles", "tower", "towers", "turm", "rock"),
+    "knight": ("knights", "horse", "horses", "horsey", "horsie", "pony", "jumper", "springer", "night", "nite"),
+    "bishop": ("bishops", "runner", "l\u00e4ufer", "laufer"),
+    "pawn": ("pawns", "farmer", "bauer", "peasant", "prawn"),
     "wrench": ("wrenches", "spanner", "spanners"),
     "spanner": ("spanners", "wrench", "wrenches"),
     "mallet": ("mallets", "hammer", "hammers"),
@@ -110,6 +117,28 @@ FIGURE_WORDS = CASUAL_PERSONS | {"figurine", "person", "man", "character", "mini
 """Words for a little person. They name the scene's figures where it has one; where it has none they are no kind:
 "the bunny figurine" is the bunny, and the casual ones ("the little yellow guy", a chess set's "white figure") mean
 any object, as "one" does."""
+KIND_NAMES |= {
+    # French
+    "bol": ("bowl", "bowls"), "tasse": ("cup", "cups", "mug", "teacup"), "cuillere": ("spoon", "spoons", "teaspoon"),
+    "theiere": ("teapot", "teapots", "pot", "kettle"), "assiette": ("plate", "plates", "dish"),
+    "sucrier": ("sugar", "sugarbowl", "bowl"), "verre": ("glass", "glasses"), "bouteille": ("bottle", "bottles"),
+    "boite": ("box", "boxes"), "balle": ("ball", "balls"),
+    # Spanish
+    "caja": ("box", "boxes", "crate"), "pelota": ("ball", "balls"), "bola": ("ball", "balls"),
+    "taza": ("cup", "cups", "mug"), "lata": ("can", "cans", "tin"), "cubo": ("cube", "cubes"),
+    "botella": ("bottle", "bottles"), "vaso": ("glass", "glasses"), "plato": ("plate", "plates", "dish"),
+    "cuchara": ("spoon", "spoons"), "tetera": ("teapot", "pot"),
+    # German
+    "wurfel": ("cube", "cubes", "dice"), "becher": ("cup", "mug"), "kiste": ("box", "crate"), "schachtel": ("box",),
+    "dose": ("can", "tin"), "flasche": ("bottle",), "teller": ("plate", "dish"), "loffel": ("spoon",),
+    "schussel": ("bowl",), "kanne": ("pot", "teapot", "jug"),
+    # Italian
+    "tazza": ("cup", "mug"), "scatola": ("box",), "palla": ("ball",), "lattina": ("can", "tin"),
+    "bottiglia": ("bottle",), "piatto": ("plate", "dish"), "cucchiaio": ("spoon",), "ciotola": ("bowl",),
+    "teiera": ("teapot", "pot"), "bicchiere": ("glass", "cup"),
+}
+"""Objects a scene names in French, Spanish, German or Italian (its names without their accents, as kinds are): the
+English words a bilingual user also calls them by ("la tasse" is the cup, "the teapot" the théière)."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
@@ -214,8 +243,16 @@ MESH_JARGON = frozenset({"vhacd", "chs", "coacd", "textured", "smooth", "visual"
 
 
 def name_parts(name: str) -> tuple[str, ...]:
-    """The words of a name, lower case (:data:`NAME_PART`): ("coffee", "mug"), ("cube", "b"), ("red", "cube", "2")."""
-    return tuple(p.lower() for p in NAME_PART.findall(name))
+    """The words of a name, lower case and without accents (:data:`NAME_PART`): ("coffee", "mug"), ("cube", "b"),
+    ("red", "cube", "2"), ("theiere",) for théière, as people type it without them."""
+    return tuple(p.lower() for p in NAME_PART.findall(unaccented(name)))
+
+
+def unaccented(text: str) -> str:
+    """``text`` with its letters' accents taken off ("théière" -> "theiere", "König" -> "Konig")."""
+    if text.isascii():
+        return text
+    return "".join(c for c in unicodedata.normalize("NFKD", text) if not unicodedata.combining(c))
 
 
 def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, ...]:
@@ -230,7 +267,7 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
     if len(parts) > 1:
         out.extend(p for p in parts if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS and p not in COLORS)
     elif len(low) >= 3 and low.isalpha():
-        out.append(low)
+        out.extend(dict.fromkeys((low, unaccented(low))))
     if mesh is not None:
         stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
         for part in name_parts(stem):
