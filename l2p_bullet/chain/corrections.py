@@ -56,20 +56,32 @@ APPOSITIVE = re.compile(r"^(?P<before>.+?)\s*,\s*(?P<said>(?:the|that)\s+(?:[\w-
 the nut", "That little lamp, the white one that stands up, push it ...")."""
 
 
+TRAILING = re.compile(r"^(?P<before>.+?)\s*(?:,|\.\.+|\u2026)\s*(?P<said>(?:the|that|my)\s+[^,.]+?)"
+                      r"(?:\s*,?\s*(?:i\s+mean|yeah|right))?\s*[.!?]*\s*$", re.IGNORECASE)
+"""An object said once more at the end, after a comma or dots ("... next to the box, the cardboard box", "... toward
+the green block... the middle one I mean")."""
+
+
 def said_again(text: str, scene: Scene) -> list[str]:
-    """``text`` without an :data:`APPOSITIVE` that fits the object the words before it end with (it only says it
-    again); none where there is none, or it fits another object (the person then contradicts themselves: asked)."""
-    m = APPOSITIVE.match(text)
-    if m is None:
-        return []
-    words = m.group("before").split()
-    for start in range(len(words)):  # the longest object description the words before end with
-        meant = try_object(" ".join(words[start:]), scene)
-        if meant is not None:
-            fits = try_object(m.group("said"), scene.only((meant,)))
-            return [f"{m.group('before')} {m.group('after')}", f"{m.group('before')}, {m.group('after')}"] \
-                if fits == meant else []
-    return []
+    """``text`` without an :data:`APPOSITIVE` or a :data:`TRAILING` description that fits the object the words before
+    it end with (it only says it again); none where there is none, or it fits another object (the person then
+    contradicts themselves: asked)."""
+    out = []
+    for pattern in (APPOSITIVE, TRAILING):
+        m = pattern.match(text)
+        if m is None:
+            continue
+        words = m.group("before").split()
+        after = m.groupdict().get("after")
+        for start in range(len(words)):  # the longest object description the words before end with
+            meant = try_object(" ".join(words[start:]), scene)
+            if meant is not None:
+                whole = try_object(m.group("said"), scene)
+                if whole == meant or (whole is None and try_object(m.group("said"), scene.only((meant,))) == meant):
+                    out.extend([f"{m.group('before')} {after}", f"{m.group('before')}, {after}"]
+                               if after is not None else [m.group("before")])
+                break
+    return out
 
 
 def corrected(text: str, scene: Scene) -> list[str]:

@@ -263,7 +263,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
-                    and w not in groups]  # "the tower": the rook where a chess set stands, not any tall thing
+                    and (w not in groups or w in NOUNS)]  # "the tower": the rook in a chess set, not a tall thing
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
             if lw in names or (lw in groups and lw in PROFILES) or not (lw in drop or i in compound)]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS or lw in PROFILES for lw in low)
@@ -300,7 +300,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             fits = [o for o in fits if o.name in group]  # "the can": the soda can, not a plain cylinder beside it
             continue
         if word in ("box", "boxes") and not colours and any(o.name in group for o in fits) \
-                and all(o.name in group or _cube_like(o) for o in fits):
+                and all(o.name in group or _cube_like(o) or shape_of(o) not in BLOCK_SHAPES for o in fits):
             fits = [o for o in fits if o.name in group]  # "the box": big_box, not one of the cubes beside it
             continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape

@@ -197,15 +197,23 @@ def _unremembered(text: str, scene: Scene, role: str) -> str:
 def _named_before(text: str, scene: Scene, role: str, context: Context | None) -> str | None:
     """"The blue cup is in the way of the yellow cube. Slide it away from the cube": a definite description that
     fits several objects of the scene but one of the clause before's is that one; None otherwise."""
-    if context is None or {w.lower() for w in text.split()} & SIZE_WORDS:
-        return None  # "the tall white one" is tall among the scene's, never among the clause before's two
+    if context is None:
+        return None
     before = [n for n in dict.fromkeys((context.mover, context.anchor)) if n is not None and n in scene.names]
     if len(before) < 2:
         return None
     try:
-        return _resolve(text, scene.only(before), role, None)
+        chosen = _resolve(text, scene.only(before), role, None)
     except (LanguageError, UnknownObjectError):
         return None
+    if {w.lower() for w in text.split()} & SIZE_WORDS:  # "the tall white one" is tall among the scene's
+        for other in scene.names:
+            try:
+                if other not in before and _resolve(text, scene.only([*before, other]), role, None) == other:
+                    return None  # the king is the taller: not the knight the clause before moved
+            except (LanguageError, UnknownObjectError):
+                continue
+    return chosen
 
 
 def _plain_order(words: list[str], scene: Scene) -> list[str]:

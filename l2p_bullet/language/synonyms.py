@@ -121,7 +121,7 @@ KIND_NAMES |= {
     # French
     "bol": ("bowl", "bowls"), "tasse": ("cup", "cups", "mug", "teacup"), "cuillere": ("spoon", "spoons", "teaspoon"),
     "theiere": ("teapot", "teapots", "pot", "kettle"), "assiette": ("plate", "plates", "dish"),
-    "sucrier": ("sugar", "sugarbowl", "bowl"), "verre": ("glass", "glasses"), "bouteille": ("bottle", "bottles"),
+    "sucrier": ("sugar", "sugarbowl"), "verre": ("glass", "glasses"), "bouteille": ("bottle", "bottles"),
     "boite": ("box", "boxes"), "balle": ("ball", "balls"),
     # Spanish
     "caja": ("box", "boxes", "crate"), "pelota": ("ball", "balls"), "bola": ("ball", "balls"),

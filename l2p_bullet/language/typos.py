@@ -37,6 +37,11 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
 SHORTHAND |= {"blew": "blue"}
+SHORTHAND |= {"tae": "to", "fae": "from", "frae": "from", "awa": "away", "roon": "round", "roond": "round",
+              "yon": "the", "yin": "one", "pit": "put", "gie": "give", "richt": "right", "muckle": "big", "hae": "have",
+              "ye": "you", "dinnae": "don't", "tak": "take", "ower": "over", "wi": "with", "oot": "out",
+              "doon": "down", "aboot": "about", "cannae": "can't", "intae": "into", "ontae": "onto"}
+"""Scots words people type among English ones ("shift yon red cube awa fae the box", "a wee bit closer tae it")."""
 """Texting shorthand, and the colour speech-to-text hears as another word ("the blew block"), read as the word it
 stands for in a refused sentence, as a slip is."""
 
@@ -118,7 +123,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
-    said = _joined(said, keep | named | set(kinds))
+    said = _joined(DROPPED_LETTER.sub("", said), keep | named | set(kinds))
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
@@ -128,18 +133,20 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
 
 def _joined(sentence: str, named: set[str] | frozenset[str]) -> str:
     """``sentence`` with a name or a kind said as two words written as one ("the note book" -> "the notebook", "the
-    mini fig" -> "the minifig", "the flat head" -> "the flathead"), where not both words name something of their own."""
+    mini fig" -> "the minifig", "the flat head" -> "the flathead", "the sugar bowl" -> "the sugarbowl"); read only in a
+    sentence refused as written."""
     found = list(_WORD.finditer(sentence))
     out, at = [], 0
     for a, b in zip(found, found[1:], strict=False):
         one = (a.group(0) + b.group(0)).lower()
-        if a.start() >= at and one in named and sentence[a.end():b.start()].isspace() \
-                and not (a.group(0).lower() in named and b.group(0).lower() in named):
+        if a.start() >= at and one in named and sentence[a.end():b.start()].isspace():
             out.append(sentence[at:a.start()] + one)
             at = b.end()
     return "".join(out) + sentence[at:]
 
 
+DROPPED_LETTER = re.compile(r"(?<=[a-z])'(?=\s)")
+"""An apostrophe that marks a letter left off a word's end ("awa' fae", "o' the"): the word as typed."""
 ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
 """An article right before a word: what follows names a thing, never a verb."""
 RUNS = re.compile(r"([a-z])\1{2,}")

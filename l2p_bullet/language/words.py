@@ -48,6 +48,7 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "sorry to bother you", "sorry to bother you but", "sorry to trouble you", "sorry to trouble you but",
     "can we", "could we", "can we please", "could we please", "request", "my request", "new request",
     "be a love and", "be a dear and", "be a star and", "be a pal and", "get it so", "get it so that",
+    "abeg", "oya", "biko", "pls po", "please po", "po",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
@@ -86,6 +87,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "than it was", "than at present", "than it is at present", "than at the moment", "than it is at the moment",
     "than currently", "than it is currently", "than before", "lah", "leh", "lor", "ah", "hor", "sia", "or not",
     "can or not", "ok lah", "okay lah", "thanks ah", "thank you ah", "that'd be grand", "that would be grand",
+    "po", "salamat", "salamat po", "thanks po", "thank you po", "thank u po", "can", "aye", "cheers pal",
+    "much appreciated", "that is all", "that's all",
     "that'd be grand cheers", "it's in the way", "its in the way", "it's in my way", "its in my way",
     "it is in the way", "it is in my way", "while you're there", "whilst you're there",
     "while you're at it", "whilst you're at it", "while you are at it", "whilst you are at it",
@@ -150,7 +153,8 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "no need to rush": "slow", "no need to hurry": "slow",
     "taking your time": "slow", "take it slow": "slow", "don't rush": "slow", "dont rush": "slow",
     "don't hurry": "slow", "dont hurry": "slow", "without rushing": "slow", "con cuidado": "careful",
-    "with precaution": "careful",
+    "with precaution": "careful", "sharp sharp": "fast", "tak yer time": "slow", "tak yer time an": "slow",
+    "go canny": "careful", "go canny an": "careful", "dahan-dahan lang": "slow", "dahan-dahan": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}
