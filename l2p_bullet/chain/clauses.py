@@ -27,6 +27,7 @@ from ..language import (
     verb_heads,
 )
 from ..language.descriptions import naming_words
+from ..language.dictated import numbers_said
 from ..language.numbers import codes_said
 from ..language.synonyms import kind_groups
 from ..pipeline import resolve
@@ -64,7 +65,8 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
 def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if isinstance(sentence, str):
-        sentence = codes_said(sentence, scene)  # "the red two by four" for brick_2x4_red, before "by" is read
+        # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412
+        sentence = numbers_said(codes_said(sentence, scene), scene)
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:

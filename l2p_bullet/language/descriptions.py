@@ -36,12 +36,13 @@ from .reference_words import (
     STRICT_SHAPES,
 )
 from .synonyms import (
-    CASUAL_PERSONS,
     DRINKS,
     FOODS,
     KIND_MODIFIERS,
     KIND_SYNONYMS,
+    LOOSE_NOUNS,
     SIZE_WORDS,
+    abbreviated,
     is_modifier,
     kind_groups,
     kind_words_of,
@@ -242,9 +243,12 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     names = name_words(scene)
     groups = kind_groups(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
-    if set(low) & CASUAL_PERSONS - set(groups):  # "the little yellow guy" where no figure stands: any object
-        low = tuple("one" if w in CASUAL_PERSONS and w not in groups else w for w in low)
-        words = [w if w.lower() not in CASUAL_PERSONS or w.lower() in groups else "one" for w in words]
+    if any(w not in groups and w not in names and abbreviated(w, scene) for w in low):  # "the centrifuge": CENT-2
+        low = tuple(w if w in groups or w in names else abbreviated(w, scene) or w for w in low)
+        words = list(low)
+    if set(low) & LOOSE_NOUNS - set(groups):  # "the little yellow guy" where no figure stands: any object
+        low = tuple("one" if w in LOOSE_NOUNS and w not in groups else w for w in low)
+        words = [w if w.lower() not in LOOSE_NOUNS or w.lower() in groups else "one" for w in words]
     low = letter_of(low, determined, letters_of(scene.names), set(names) | set(groups))
     low = _shades_apart(low)
     said = [w for w in low if w not in DETERMINERS]
@@ -287,6 +291,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             and low[0] not in FUNCTION_WORDS and (low[0] not in KIND_SYNONYMS or low[0] in FRAMING_KINDS):
         # "the triangular toy" is another kind; "the goal: 6 ..." heads a wish
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
+    if named and len(low) >= 2 and unknown == [low[-1]] and low[-2] in names and low[-1].isalpha() \
+            and low[-1] not in FUNCTION_WORDS:
+        unknown = []  # a name said before the noun for what it is: "the Starbucks cup", "the Sharpie marker"
     if unknown or not (colours or named or kinds or either or shapes or shaped or sized or proportioned
                        or set(low) & (NOUNS | BLOCK_WORDS)):
         unknown_object(text, words, low, scene)
@@ -300,7 +307,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             fits = [o for o in fits if o.name in group]  # "the can": the soda can, not a plain cylinder beside it
             continue
         if word in ("box", "boxes") and not colours and any(o.name in group for o in fits) \
-                and all(o.name in group or _cube_like(o) or shape_of(o) not in BLOCK_SHAPES for o in fits):
+                and all(o.name in group or _cube_like(o) or shape_of(o) not in BLOCK_SHAPES or a_thing_by_name(o)
+                        for o in fits):
             fits = [o for o in fits if o.name in group]  # "the box": big_box, not one of the cubes beside it
             continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape

@@ -157,7 +157,7 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
         if link is None:
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
-            if _names_something(words[:j]) or _group_shown(words[:j], is_object):
+            if _names_something(words[:j]) or _group_shown(words[:j], is_object) or _linked(low[:j]):
                 return words  # "The cube by the butter should go ...": never the butter, its words dropped
             if is_object(" ".join(words[j:k])):
                 if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
@@ -172,6 +172,13 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                 said_verb = next((w for w in words[:j] if w.lower() in verbs), "move")  # "make you push A ... go"
                 return [said_verb, *words[j:k], *words[k + len(link):], *paced]
     return words
+
+
+def _linked(low: list[str]) -> bool:
+    """Whether the words before a mover hold a link of their own ("the goal is the sharp e ends up next to the cup and
+    the phone ends up ..."): an end stated before, never to be dropped."""
+    return any(tuple(low[i:i + len(t)]) == t for i in range(1, len(low)) for t in _LINKS_BY_FIRST.get(low[i], ())
+               if len(t) > 1 or t[0] not in ("is", "be", "end", "finish", "go"))
 
 
 def _group_shown(words: list[str], is_object) -> bool:

@@ -159,10 +159,18 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
         | KIND_WORDS | GROUPED
     if _noun_left(low, {w.lower() for w in left_before + left_after}, named):
         return None
+    after = [w.lower() for w in left_after]
     if any(w.lower() in describing for w in left_before + left_after) or \
-            {w.lower() for w in left_before} & {"and", "&"}:
-        return None  # "and" before the phrase lists objects or joins a second command
+            {w.lower() for w in left_before} & {"and", "&"} or _another_said(after):
+        return None  # "and" before the phrase lists objects or joins a second command; after it, one more object
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
+
+
+def _another_said(after: list[str]) -> bool:
+    """Whether the words left after the phrase's objects go on to another one ("... away from the rack, and the
+    centrifuge too"): "and" or "then" before an article, a thing unread that reading past would drop."""
+    return any(w in ("and", "&", "then", "plus") and nxt in DETERMINERS
+               for w, nxt in zip(after, after[1:], strict=False))
 
 
 GROUPED = frozenset({"row", "rows", "column", "columns", "line", "lines", "corner", "corners", "edge", "edges"})

@@ -76,7 +76,7 @@ from .reference_words import (
     TABLE_WORDS,
     TIE_M,
 )
-from .synonyms import CASUAL_PERSONS, SIZE_WORDS, kind_groups
+from .synonyms import LOOSE_NOUNS, SIZE_WORDS, kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -231,7 +231,7 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     for opening, plain in OPENINGS.items():
         if low[:len(opening)] == opening and len(low) > len(opening):
             return list(plain) + words[len(opening):]
-    nouns = NOUNS | set(SHAPE_NOUNS) | set(name_words(scene)) | set(kind_groups(scene)) | CASUAL_PERSONS
+    nouns = NOUNS | set(SHAPE_NOUNS) | set(name_words(scene)) | set(kind_groups(scene)) | LOOSE_NOUNS
     for i in range(1, len(low) - 1):
         for rel in RELATIVES:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
@@ -346,7 +346,7 @@ def _describes(low: tuple[str, ...], scene: Scene) -> bool:
 
 DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)
               | frozenset(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES | REFERENCE_WORDS | frozenset(PLACE_ADJECTIVES)
-              | CASUAL_PERSONS
+              | LOOSE_NOUNS
               | frozenset({"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and",
                            "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "kept",
                            "directly", "right", "just"}))

@@ -91,6 +91,19 @@ KIND_NAMES = {
     "pail": ("pails", "bucket", "buckets"),
     "pen": ("pens", "pencil", "pencils"),
     "minifig": ("minifigs", "minifigure", "minifigures", "fig", "figs"),
+    "sorter": ("box", "boxes", "shapesorter", "shape-sorter"),
+    "sharpie": ("sharpies", "marker", "markers", "pen", "felt-tip"),
+    "starbucks": ("cup", "coffee", "latte", "coffeecup", "drink"),
+    "moleskine": ("notebook", "notebooks", "journal", "notepad"),
+    "airpods": ("earbuds", "earphones", "headphones", "case"),
+    "pods": ("earbuds", "earphones", "headphones", "case"),
+    "post": ("notes", "sticky", "pad", "postit", "post-its", "postits"),
+    "phone": ("phones", "telephone", "cellphone", "cell", "mobile", "smartphone", "iphone"),
+    "ipad": ("tablet", "tablets"),
+    "kindle": ("tablet", "reader", "e-reader", "ereader"),
+    "thermos": ("flask", "bottle"),
+    "nutella": ("jar",),
+    "kleenex": ("tissues", "tissue"),
     "king": ("kings", "k\u00f6nig", "konig", "koenig", "kink"),
     "queen": ("queens", "lady", "dame", "dama"),
     "rook": ("rooks", "castle", "castles", "tower", "towers", "turm", "rock"),
@@ -117,6 +130,10 @@ FIGURE_WORDS = CASUAL_PERSONS | {"figurine", "person", "man", "character", "mini
 """Words for a little person. They name the scene's figures where it has one; where it has none they are no kind:
 "the bunny figurine" is the bunny, and the casual ones ("the little yellow guy", a chess set's "white figure") mean
 any object, as "one" does."""
+LOOSE_NOUNS = CASUAL_PERSONS | {"machine", "device", "gadget", "appliance", "instrument", "thingy", "thingamajig",
+                                "doodad", "whatsit", "doohickey"}
+"""Nouns that name any object where nothing on the table is of their kind ("the grey machine", "the little yellow
+guy"): read as "one" is."""
 KIND_NAMES |= {
     # French
     "bol": ("bowl", "bowls"), "tasse": ("cup", "cups", "mug", "teacup"), "cuillere": ("spoon", "spoons", "teaspoon"),
@@ -275,6 +292,21 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
                 out.append(part)
                 out.extend(k for k in KIND_NAMES if part.endswith(k) and len(part) - len(k) >= 3)
     return tuple(dict.fromkeys(out))
+
+
+def abbreviations(scene: Scene) -> frozenset[str]:
+    """The letters of names written as capital codes ("CENT-2", "RACK-A": cent, rack), lower case: a word that starts
+    with them ("the centrifuge") names that object, as a lab's inventory shortens its equipment's names."""
+    return frozenset(part.lower() for name in scene.names for part in re.findall(r"(?<![A-Za-z])[A-Z]{3,}(?![a-z])",
+                                                                                   unaccented(name)))
+
+
+def abbreviated(word: str, scene: Scene) -> str | None:
+    """The one capital code's letters ``word`` (lower case, five letters or more) starts with, or None."""
+    if len(word) < 5 or not word.isalpha():
+        return None
+    fits = [a for a in abbreviations(scene) if word.startswith(a) and word != a]
+    return fits[0] if len(fits) == 1 else None
 
 
 def scene_key(scene: Scene) -> tuple[tuple[str, str | None, str | None], ...]:

@@ -136,11 +136,16 @@ def _joined(sentence: str, named: set[str] | frozenset[str]) -> str:
     mini fig" -> "the minifig", "the flat head" -> "the flathead", "the sugar bowl" -> "the sugarbowl"); read only in a
     sentence refused as written."""
     found = list(_WORD.finditer(sentence))
+    targets = set(named) | {re.sub(r"[^a-z]", "", n) for n in named}  # "post it" for Post-it
     out, at = [], 0
     for a, b in zip(found, found[1:], strict=False):
         one = (a.group(0) + b.group(0)).lower()
-        if a.start() >= at and one in named and sentence[a.end():b.start()].isspace():
-            out.append(sentence[at:a.start()] + one)
+        if a.start() < at or not sentence[a.end():b.start()].isspace():
+            continue
+        meant = one if one in targets else next(
+            (t for t in sorted(targets) if len(one) >= 6 and len(t) >= 6 and _one_slip(one, t)), None)
+        if meant is not None:  # "the mole skin", "the sharp e": a slip of the name run together
+            out.append(sentence[at:a.start()] + meant)
             at = b.end()
     return "".join(out) + sentence[at:]
 

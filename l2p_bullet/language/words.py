@@ -48,7 +48,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "sorry to bother you", "sorry to bother you but", "sorry to trouble you", "sorry to trouble you but",
     "can we", "could we", "can we please", "could we please", "request", "my request", "new request",
     "be a love and", "be a dear and", "be a star and", "be a pal and", "get it so", "get it so that",
-    "abeg", "oya", "biko", "pls po", "please po", "po",
+    "abeg", "oya", "biko", "pls po", "please po", "po", "quick favor", "quick favour", "a quick favor",
+    "a quick favour", "quick question",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
@@ -327,6 +328,10 @@ def by_gerund(words: list[str], verbs: list[str]) -> list[str]:
     return words
 
 
+NOT_A_PACE_AFTER = frozenset({"favor", "favour", "question", "request", "thing", "note", "check", "one"})
+"""Nouns after which a pace word asks for no pace: "Quick favor - can you ...", "quick question"."""
+
+
 def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[list[str], str | None]:
     """``words`` without their manner adverbs, and the one pace they ask for (None: none asked).
     Two different paces ("slowly and quickly") are a one-line error: the arm cannot do both."""
@@ -347,7 +352,7 @@ def take_pace(words: list[str], keep: frozenset[str] = frozenset()) -> tuple[lis
             paces.append(EDGE_PACES[w])  # "Push soft the duck ...", "... toward the pot, soft"
             i += 1
             continue
-        if words[i] not in keep and w in PACES:
+        if words[i] not in keep and w in PACES and not (i + 1 < len(low) and low[i + 1] in NOT_A_PACE_AFTER):
             paces.append(PACES[w])
             while out and out[-1].lower() in PACE_INTENSIFIERS:
                 out.pop()
