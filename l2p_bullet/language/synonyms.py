@@ -153,8 +153,12 @@ KIND_NAMES |= {
     "tazza": ("cup", "mug"), "scatola": ("box",), "palla": ("ball",), "lattina": ("can", "tin"),
     "bottiglia": ("bottle",), "piatto": ("plate", "dish"), "cucchiaio": ("spoon",), "ciotola": ("bowl",),
     "teiera": ("teapot", "pot"), "bicchiere": ("glass", "cup"),
+    # Japanese, as romaji writes it
+    "koppu": ("cup", "cups", "glass", "mug"), "sara": ("plate", "plates", "dish"), "hako": ("box", "boxes"),
+    "hashi": ("chopsticks", "chopstick", "sticks"), "chawan": ("bowl", "ricebowl"), "kyusu": ("teapot", "pot"),
+    "yunomi": ("teacup", "cup"), "kappu": ("cup", "mug"), "bouru": ("bowl", "ball"),
 }
-"""Objects a scene names in French, Spanish, German or Italian (its names without their accents, as kinds are): the
+"""Objects a scene names in French, Spanish, German, Italian or Japanese (its names without accents, as kinds are): the
 English words a bilingual user also calls them by ("la tasse" is the cup, "the teapot" the théière)."""
 KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
                 "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),

@@ -16,6 +16,7 @@ import re
 from collections.abc import Iterable
 
 from . import extents, goals, reference_words, words
+from .sounds import heard_name
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -102,6 +103,9 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     the first letter); every other character as it was. A word right after an article is never mended into one of
     ``verbs``: "for a pic" is no "pick", which would make a slide a lift."""
     verbs = frozenset(v.lower() for v in verbs)
+    kinds = frozenset(kinds)
+    names = list(names)
+    spoken = [n for n in names if " " not in n]  # one-word names, as speech-to-text may hear them
     keep = {n.lower() for n in names}
     named = frozenset(w for n in keep for w in _WORD.findall(n))
 
@@ -112,18 +116,20 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return w
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
-        if low in known:
-            return w
+        if low in known:  # a kind no object here is, heard for a name ("the ball" for the bol): that name
+            return (heard_name(low, spoken) or w) if low in reference_words.KIND_WORDS and low not in kinds else w
         squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named)
-        if hit is None or (hit in verbs and ARTICLE_BEFORE.search(m.string, 0, m.start())):
+        if hit is None:
+            return heard_name(low, spoken) or w  # "the copper" for koppu, "the tease" for tasse
+        if hit in verbs and ARTICLE_BEFORE.search(m.string, 0, m.start()):
             return w
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
-    said = _joined(DROPPED_LETTER.sub("", said), keep | named | set(kinds))
+    said = _joined(DROPPED_LETTER.sub("", said), keep | named | set(kinds), spoken)
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
@@ -131,7 +137,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
 
 
-def _joined(sentence: str, named: set[str] | frozenset[str]) -> str:
+def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] = ()) -> str:
     """``sentence`` with a name or a kind said as two words written as one ("the note book" -> "the notebook", "the
     mini fig" -> "the minifig", "the flat head" -> "the flathead", "the sugar bowl" -> "the sugarbowl"); read only in a
     sentence refused as written."""
@@ -143,7 +149,8 @@ def _joined(sentence: str, named: set[str] | frozenset[str]) -> str:
         if a.start() < at or not sentence[a.end():b.start()].isspace():
             continue
         meant = one if one in targets else next(
-            (t for t in sorted(targets) if len(one) >= 6 and len(t) >= 6 and _one_slip(one, t)), None)
+            (t for t in sorted(targets) if len(one) >= 6 and len(t) >= 6 and _one_slip(one, t)), None) or (
+            heard_name(one, spoken) if not {a.group(0).lower(), b.group(0).lower()} & (named | COMMON) else None)
         if meant is not None:  # "the mole skin", "the sharp e": a slip of the name run together
             out.append(sentence[at:a.start()] + meant)
             at = b.end()

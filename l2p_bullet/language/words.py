@@ -89,6 +89,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "than currently", "than it is currently", "than before", "lah", "leh", "lor", "ah", "hor", "sia", "or not",
     "can or not", "ok lah", "okay lah", "thanks ah", "thank you ah", "that'd be grand", "that would be grand",
     "po", "salamat", "salamat po", "thanks po", "thank you po", "thank u po", "can", "aye", "cheers pal",
+    "onegaishimasu", "onegai shimasu", "onegai", "kudasai", "arigatou", "arigato", "arigatou gozaimasu",
+    "please onegaishimasu",
     "much appreciated", "that is all", "that's all",
     "that'd be grand cheers", "it's in the way", "its in the way", "it's in my way", "its in my way",
     "it is in the way", "it is in my way", "while you're there", "whilst you're there",

@@ -1,0 +1,40 @@
+"""A name as speech-to-text hears it: the English word that sounds like a name in another language ("copper" for
+koppu, "hockey" for hako, "Sarah" for sara, "tease" for tasse, "sucker" for sucrier).
+
+Words are compared by their consonants as heard (a rough phonetic key): "c" and "k" alike, "ph" as "f", "th" as "t",
+letters doubled once, vowels after the first letter and a silent "h" left out. A word is read as a name only in a
+sentence refused as written (language/typos.py), only where it is no word the grammar knows, and only where exactly
+one of the scene's one-word names sounds so: a refusal is better than a guess between two.
+"""
+
+from __future__ import annotations
+
+import re
+
+from .synonyms import unaccented
+
+_SPELLINGS = (("ph", "f"), ("ck", "k"), ("qu", "kw"), ("th", "t"), ("sh", "s"), ("ch", "k"), ("c", "k"), ("q", "k"),
+              ("x", "ks"), ("z", "s"), ("y", "i"))
+
+
+def heard_key(word: str) -> str:
+    """The consonants of ``word`` as heard: "hockey" and "hako" -> "hk", "copper" -> "kpr", "koppu" -> "kp"."""
+    w = re.sub(r"[^a-z]", "", unaccented(word).lower())
+    for spelt, heard in _SPELLINGS:
+        w = w.replace(spelt, heard)
+    if not w:
+        return ""
+    rest = re.sub(r"[aeiouh]", "", w[1:])
+    return re.sub(r"(.)\1+", r"\1", w[0] + rest)
+
+
+def heard_name(word: str, names: list[str]) -> str | None:
+    """The one name of ``names`` (one word of letters each) that ``word`` (four letters or more) sounds like; a final
+    "r" heard where the name ends in a vowel is allowed ("copper" for koppu). None where none or several do."""
+    if len(word) < 4 or not word.isalpha():
+        return None
+    said = heard_key(word)
+    keys = {said, said[:-1] if said.endswith("r") and len(said) > 2 else said}
+    fits = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and heard_key(n) in keys
+            and n.lower() != word.lower()]
+    return fits[0] if len(fits) == 1 else None
