@@ -76,8 +76,13 @@ def said_again(text: str, scene: Scene) -> list[str]:
         for start in range(len(words)):  # the longest object description the words before end with
             meant = try_object(" ".join(words[start:]), scene)
             if meant is not None:
-                whole = try_object(m.group("said"), scene)
-                if whole == meant or (whole is None and try_object(m.group("said"), scene.only((meant,))) == meant):
+                alone = try_object(m.group("said"), scene.only((meant,))) == meant
+                if after is not None:  # said before the rest: it fits the object said before it
+                    fits = alone
+                else:  # said last: it fits that object, and on the whole table names no other
+                    whole = try_object(m.group("said"), scene)
+                    fits = whole == meant or (alone and whole is None)
+                if fits:
                     out.extend([f"{m.group('before')} {after}", f"{m.group('before')}, {after}"]
                                if after is not None else [m.group("before")])
                 break

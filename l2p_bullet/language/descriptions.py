@@ -170,6 +170,11 @@ def shape_named(scene: Scene) -> set[str]:
     return out
 
 
+def _parts(scene: Scene) -> set[str]:
+    """The words the scene's names are made of ("brick" of brick_2x4_red)."""
+    return {p for n in scene.names for p in name_parts(n)}
+
+
 def kind_named(scene: Scene) -> set[str]:
     """The names (lower case) of one word that are the kind of another object too ("apple" beside green_apple): with
     other words said ("the apple at the back", "the red apple") the kind, as of either of them; alone ("the apple")
@@ -267,7 +272,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
-                    and (w not in groups or w in NOUNS)]  # "the tower": the rook in a chess set, not a tall thing
+                    and (w not in groups or w in NOUNS and w not in _parts(scene))]
+    # "the tower": the rook in a chess set, not any tall thing; "the brick" where names say which are bricks
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
             if lw in names or (lw in groups and lw in PROFILES) or not (lw in drop or i in compound)]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS or lw in PROFILES for lw in low)

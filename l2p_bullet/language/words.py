@@ -88,7 +88,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "than it was", "than at present", "than it is at present", "than at the moment", "than it is at the moment",
     "than currently", "than it is currently", "than before", "lah", "leh", "lor", "ah", "hor", "sia", "or not",
     "can or not", "ok lah", "okay lah", "thanks ah", "thank you ah", "that'd be grand", "that would be grand",
-    "po", "salamat", "salamat po", "thanks po", "thank you po", "thank u po", "can", "aye", "cheers pal",
+    "po", "salamat", "salamat po", "thanks po", "thank you po", "thank u po", "aye", "cheers pal",
     "onegaishimasu", "onegai shimasu", "onegai", "kudasai", "arigatou", "arigato", "arigatou gozaimasu",
     "please onegaishimasu",
     "much appreciated", "that is all", "that's all",
