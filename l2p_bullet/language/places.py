@@ -319,3 +319,18 @@ def one_word_comparisons(words: list[str]) -> list[str]:
         else:
             out.append(w)
     return out
+
+
+RANKS = {"second": 2, "2nd": 2, "third": 3, "3rd": 3}
+"""Ordinals before a superlative ("the second tallest"): the one after that many others, each clearly so."""
+
+
+def ranked(rank: int, choose):
+    """``choose`` (one object of a pool, ties refused) made to pick the ``rank``-th: the first ``rank`` - 1 picks are
+    taken out, each of them as clearly first as a superlative's one must be."""
+    def pick(pool: list[SceneObject]) -> str:
+        for _ in range(rank - 1):
+            first = choose(pool)
+            pool = [o for o in pool if o.name != first]
+        return choose(pool)
+    return pick

@@ -168,3 +168,26 @@ def _twin(said: str, context: Context, scene: Scene) -> str | None:
         return alike[0]
     raise LanguageError(f'"{said}" is ambiguous: {context.anchor} (of the previous clause) or {", ".join(twins)} '
                         f"(the other of its colour); name the one you mean")
+
+
+def named_before(text: str, scene: Scene, role: str, context: Context | None, resolve) -> str | None:
+    """"The blue cup is in the way of the yellow cube. Slide it away from the cube": a definite description that
+    fits several objects of the scene but one of the clause before's is that one; None otherwise (``resolve``: how a
+    description is read without a context, language/references.py)."""
+    if context is None:
+        return None
+    before = [n for n in dict.fromkeys((context.mover, context.anchor)) if n is not None and n in scene.names]
+    if len(before) < 2:
+        return None
+    try:
+        chosen = resolve(text, scene.only(before), role)
+    except (LanguageError, UnknownObjectError):
+        return None
+    if {w.lower() for w in text.split()} & SIZE_WORDS:  # "the tall white one" is tall among the scene's
+        for other in scene.names:
+            try:
+                if other not in before and resolve(text, scene.only([*before, other]), role) == other:
+                    return None  # the king is the taller: not the knight the clause before moved
+            except (LanguageError, UnknownObjectError):
+                continue
+    return chosen

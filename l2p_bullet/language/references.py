@@ -21,10 +21,8 @@ from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import (
     candidates,
-    coloured_like,
     describe,
     described,
-    looks,
     name_words,
     shape_named,
     spelled_name,
@@ -32,10 +30,12 @@ from .descriptions import (
 from .group_places import in_group, table_sides
 from .kept import SceneMemo
 from .letters import marked_with, named_after_the
+from .likeness import coloured_like, looks
 from .numbers import number_reference
 from .other_than import other_than
 from .partitives import name_and_kind, of_compound, partitive
 from .places import (
+    RANKS,
     bearing_off,
     bulk_superlative,
     comparative_of,
@@ -43,11 +43,12 @@ from .places import (
     measure,
     one_word_comparisons,
     places_as_superlatives,
+    ranked,
     relation_head,
     superlative,
 )
 from .pools import either_reading
-from .pronouns import Context, _pronoun
+from .pronouns import Context, _pronoun, named_before
 from .proportions import PROPORTION_NOUNS
 from .reference_words import (
     CENTRE_PHRASES,
@@ -76,7 +77,7 @@ from .reference_words import (
     TABLE_WORDS,
     TIE_M,
 )
-from .synonyms import LOOSE_NOUNS, SIZE_WORDS, kind_groups
+from .synonyms import LOOSE_NOUNS, kind_groups
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -168,7 +169,7 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
         return described(text, words, low, scene, determined)
     except LanguageError:
         proportioned = set(low) & PROPORTION_NOUNS - {n.lower() for n in scene.names}  # "the tube": a guess
-        named = _named_before(text, scene, role, context) if determined and not proportioned else None
+        named = named_before(text, scene, role, context, _unremembered) if determined and not proportioned else None
         named = named or partitive(text, scene, role, _unremembered)
         if named is None:
             raise
@@ -192,28 +193,6 @@ EMPHATIC = frozenset({"itself", "only"})
 def _unremembered(text: str, scene: Scene, role: str) -> str:
     """:func:`_resolve` without a context, for the partitive readers that ask it again of a part of the words."""
     return _resolve(text, scene, role, None)
-
-
-def _named_before(text: str, scene: Scene, role: str, context: Context | None) -> str | None:
-    """"The blue cup is in the way of the yellow cube. Slide it away from the cube": a definite description that
-    fits several objects of the scene but one of the clause before's is that one; None otherwise."""
-    if context is None:
-        return None
-    before = [n for n in dict.fromkeys((context.mover, context.anchor)) if n is not None and n in scene.names]
-    if len(before) < 2:
-        return None
-    try:
-        chosen = _resolve(text, scene.only(before), role, None)
-    except (LanguageError, UnknownObjectError):
-        return None
-    if {w.lower() for w in text.split()} & SIZE_WORDS:  # "the tall white one" is tall among the scene's
-        for other in scene.names:
-            try:
-                if other not in before and _resolve(text, scene.only([*before, other]), role, None) == other:
-                    return None  # the king is the taller: not the knight the clause before moved
-            except (LanguageError, UnknownObjectError):
-                continue
-    return chosen
 
 
 def _plain_order(words: list[str], scene: Scene) -> list[str]:
@@ -303,21 +282,6 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
                            distance=True)
 
     return either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
-
-
-RANKS = {"second": 2, "2nd": 2, "third": 3, "3rd": 3}
-"""Ordinals before a superlative ("the second tallest"): the one after that many others, each clearly so."""
-
-
-def ranked(rank: int, choose):
-    """``choose`` (one object of a pool, ties refused) made to pick the ``rank``-th: the first ``rank`` - 1 picks are
-    taken out, each of them as clearly first as a superlative's one must be."""
-    def pick(pool: list[SceneObject]) -> str:
-        for _ in range(rank - 1):
-            first = choose(pool)
-            pool = [o for o in pool if o.name != first]
-        return choose(pool)
-    return pick
 
 
 BETWEEN_DOUBT = 2.0
