@@ -106,7 +106,8 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     return text
 
 
-THEM_LISTED = re.compile(r"\b(?:them|these|those|these\s+ones|those\s+ones|em)\b(?P<mid>[^:;.!?]*?)"
+THEM_LISTED = re.compile(r"\b(?:them|these|those|these\s+ones|those\s+ones|em|all\s+(?:two|three|four|five|six)|"
+                         r"all\s+of\s+them)\b(?P<mid>[^:;.!?]*?)"
                          r"(?:\s*,?\s*(?:in\s+(?:this|that|the\s+following)\s+order|as\s+follows|like\s+this|like\s+so))?"
                          r"\s*:\s*(?P<items>[^:;.!?]+?)\s*[.!?]*$", re.IGNORECASE)
 """A row's objects said as "them" and listed after a colon ("row them up in this order: A, B, C"): the list stands

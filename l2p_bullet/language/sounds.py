@@ -29,12 +29,14 @@ def heard_key(word: str) -> str:
 
 
 def heard_name(word: str, names: list[str]) -> str | None:
-    """The one name of ``names`` (one word of letters each) that ``word`` (four letters or more) sounds like; a final
-    "r" heard where the name ends in a vowel is allowed ("copper" for koppu). None where none or several do."""
-    if len(word) < 4 or not word.isalpha():
+    """The one name of ``names`` (one word of letters each) that ``word`` (three letters or more) sounds like; a final
+    "r" heard where the name ends in a vowel is allowed ("copper" for koppu), and an "h" the speaker dropped ("the
+    art" for the heart). None where none or several do."""
+    if len(word) < 3 or not word.isalpha():
         return None
     said = heard_key(word)
     keys = {said, said[:-1] if said.endswith("r") and len(said) > 2 else said}
-    fits = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and heard_key(n) in keys
-            and n.lower() != word.lower()]
+    keys |= {k[1:] for k in keys if k[:1] in "aeiou" and len(k) > 2}  # "art" heard for heart: its vowel, no "h"
+    fits = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()
+            and (heard_key(n) in keys or heard_key(n).startswith("h") and heard_key(n)[1:] in keys)]  # "the art"
     return fits[0] if len(fits) == 1 else None

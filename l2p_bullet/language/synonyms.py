@@ -131,7 +131,7 @@ FIGURE_WORDS = CASUAL_PERSONS | {"figurine", "person", "man", "character", "mini
 "the bunny figurine" is the bunny, and the casual ones ("the little yellow guy", a chess set's "white figure") mean
 any object, as "one" does."""
 LOOSE_NOUNS = CASUAL_PERSONS | {"machine", "device", "gadget", "appliance", "instrument", "thingy", "thingamajig",
-                                "doodad", "whatsit", "doohickey"}
+                                "doodad", "whatsit", "doohickey", "shape"}
 """Nouns that name any object where nothing on the table is of their kind ("the grey machine", "the little yellow
 guy"): read as "one" is."""
 KIND_NAMES |= {

@@ -37,7 +37,7 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
-SHORTHAND |= {"blew": "blue"}
+SHORTHAND |= {"blew": "blue", "won": "one"}
 SHORTHAND |= {"tae": "to", "fae": "from", "frae": "from", "awa": "away", "roon": "round", "roond": "round",
               "yon": "the", "yin": "one", "pit": "put", "gie": "give", "richt": "right", "muckle": "big", "hae": "have",
               "ye": "you", "dinnae": "don't", "tak": "take", "ower": "over", "wi": "with", "oot": "out",
@@ -122,9 +122,13 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named)
+        after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
+        heard = heard_name(low, spoken) if hit is None or (after_article and hit not in named) else None
+        if heard is not None:  # "the copper" for koppu, "the tease" for tasse; "the art" is the heart, not "at"
+            return heard
         if hit is None:
-            return heard_name(low, spoken) or w  # "the copper" for koppu, "the tease" for tasse
-        if hit in verbs and ARTICLE_BEFORE.search(m.string, 0, m.start()):
+            return w
+        if hit in verbs and after_article:
             return w
         return hit.capitalize() if w[0].isupper() else hit
 

@@ -49,7 +49,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "can we", "could we", "can we please", "could we please", "request", "my request", "new request",
     "be a love and", "be a dear and", "be a star and", "be a pal and", "get it so", "get it so that",
     "abeg", "oya", "biko", "pls po", "please po", "po", "quick favor", "quick favour", "a quick favor",
-    "a quick favour", "quick question",
+    "a quick favour", "quick question", "help me", "help us", "can you help us", "can you help me",
+    "could you help us", "could you help me",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
