@@ -25,7 +25,8 @@ GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
     "expected final state", "desired final state", "end goal", "final goal", "the goal is", "goal is", "the idea is",
     "i just want", "just want", "need", "i want that", "i should like", "i should like to see", "target config",
     "target configuration", "goal config", "goal configuration", "final config", "final configuration",
-    "end result should be", "the end result should be", "i wanna see", "wanna see", "i wanna", "wanna", "wish",
+    "end result should be", "the end result should be", "final frame", "last frame", "end frame", "final shot",
+    "i wanna see", "wanna see", "i wanna", "wanna", "wish",
 )), key=len, reverse=True))
 """Openings that state the end instead of the motion: "I want the red block next to the green one" is
 "put the red block next to the green one"."""

@@ -29,6 +29,7 @@ KIND_NAMES = {
     "bottle": ("bottles", "flask"),
     "bowl": ("bowls", "dish", "container", "basin", "pot"),
     "apple": ("apples",),
+    "banana": ("bananas", "nana", "nanas", "nanner"),
     "lemon": ("lemons", "citrus"),
     "lime": ("limes", "citrus"),
     "orange": ("oranges", "citrus", "tangerine", "mandarin", "clementine"),
@@ -200,7 +201,7 @@ def is_modifier(word: str) -> bool:
     size)."""
     return word in KIND_MODIFIERS or THREAD_SIZE.match(word) is not None
 BIG = frozenset({"big", "large", "bigger", "larger", "huge", "giant", "chunky", "bulky", "hefty"})
-SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini", "teeny", "wee"})
+SMALL = frozenset({"small", "little", "tiny", "smaller", "littler", "mini", "teeny", "wee", "smol"})
 TALL = frozenset({"tall", "taller"})
 SHORT = frozenset({"short", "shorter", "low", "lower"})
 MEDIUM = frozenset({"medium", "medium-sized", "medium-size", "mid-sized", "mid-size", "midsize", "middle-sized"})
