@@ -39,6 +39,7 @@ from .synonyms import (
     DRINKS,
     FOODS,
     KIND_MODIFIERS,
+    KIND_NAMES,
     KIND_SYNONYMS,
     LOOSE_NOUNS,
     SIZE_WORDS,
@@ -247,8 +248,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             and low[0] not in FUNCTION_WORDS and (low[0] not in KIND_SYNONYMS or low[0] in FRAMING_KINDS):
         # "the triangular toy" is another kind; "the goal: 6 ..." heads a wish
         unknown = []  # one adjective of its own between "the" and a name: "the rubber duck"
-    if named and len(low) >= 2 and unknown == [low[-1]] and low[-2] in names and low[-1].isalpha() \
-            and low[-1] not in FUNCTION_WORDS:
+    if named and len(low) >= 2 and unknown == [low[-1]] and low[-2] in names \
+            and (low[-1] in KIND_SYNONYMS or low[-1] in KIND_NAMES):
         unknown = []  # a name said before the noun for what it is: "the Starbucks cup", "the Sharpie marker"
     if unknown or not (colours or named or kinds or either or shapes or shaped or sized or proportioned
                        or set(low) & (NOUNS | BLOCK_WORDS)):

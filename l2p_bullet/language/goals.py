@@ -158,7 +158,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
         if link is None:
             continue
         for j in range(k):  # the mover's words end at k whichever link follows: searched once
-            if _names_something(words[:j]) or _group_shown(words[:j], is_object) or _linked(low[:j]):
+            if _names_something(words[:j]) or _group_shown(words[:j], is_object) or (
+                    "and" in low[:j] and _linked(low[:j])):
                 return words  # "The cube by the butter should go ...": never the butter, its words dropped
             if is_object(" ".join(words[j:k])):
                 if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:

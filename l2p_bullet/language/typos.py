@@ -17,6 +17,7 @@ from collections.abc import Iterable
 
 from . import extents, goals, reference_words, words
 from .sounds import heard_name
+from .synonyms import name_parts
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -116,14 +117,15 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return w
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
-        if low in known:  # a kind no object here is, heard for a name ("the ball" for the bol): that name
-            return (heard_name(low, spoken) or w) if low in reference_words.KIND_WORDS and low not in kinds else w
+        if low in known:
+            return w
         squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named)
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
-        heard = heard_name(low, spoken) if hit is None or (after_article and hit not in named) else None
+        heard = heard_name(low, spoken) if (hit is None or (after_article and hit not in named)) \
+            and low not in reference_words.KIND_WORDS else None  # "the banana" is a banana, never the bunny
         if heard is not None:  # "the copper" for koppu, "the tease" for tasse; "the art" is the heart, not "at"
             return heard
         if hit is None:
@@ -143,17 +145,20 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
 
 def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] = ()) -> str:
     """``sentence`` with a name or a kind said as two words written as one ("the note book" -> "the notebook", "the
-    mini fig" -> "the minifig", "the flat head" -> "the flathead", "the sugar bowl" -> "the sugarbowl"); read only in a
-    sentence refused as written."""
+    mini fig" -> "the minifig", "the flat head" -> "the flathead", "the sugar bowl" -> "the sugarbowl"), or heard so
+    ("the cue sue" for kyusu); read only in a sentence refused as written. Two words of one name stay as said."""
+    pairs = {pair for n in spoken for parts in [name_parts(n)] for pair in zip(parts, parts[1:], strict=False)}
     found = list(_WORD.finditer(sentence))
-    targets = set(named) | {re.sub(r"[^a-z]", "", n) for n in named}  # "post it" for Post-it
+    targets = set(named) | {re.sub(r"[^a-z]", "", n) for n in named if "-" in n}  # "post it" for Post-it
     out, at = [], 0
     for a, b in zip(found, found[1:], strict=False):
         one = (a.group(0) + b.group(0)).lower()
-        if a.start() < at or not sentence[a.end():b.start()].isspace():
-            continue
+        if a.start() < at or not sentence[a.end():b.start()].isspace() \
+                or (a.group(0).lower(), b.group(0).lower()) in pairs:
+            continue  # "the left block", "the mustard bottle": a name's own words, read as they are
         meant = one if one in targets else next(
-            (t for t in sorted(targets) if len(one) >= 6 and len(t) >= 6 and _one_slip(one, t)), None) or (
+            (t for t in sorted(targets) if len(one) >= 6 and len(t) >= 6 and len(b.group(0)) > 1 and _one_slip(one, t)),
+            None) or (
             heard_name(one, spoken) if not {a.group(0).lower(), b.group(0).lower()} & (named | COMMON) else None)
         if meant is not None:  # "the mole skin", "the sharp e": a slip of the name run together
             out.append(sentence[at:a.start()] + meant)
