@@ -223,8 +223,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
-                    and (w not in groups or w in NOUNS and w not in _parts(scene))]
-    # "the tower": the rook in a chess set, not any tall thing; "the brick" where names say which are bricks
+                    and (not best or w not in groups or w in NOUNS and w not in _parts(scene))]
+    # "the tower": the rook in a chess set, not any tall thing; "the brick" where names say which are bricks; a group or
+    # a relation's pool still takes every object the word admits ("the stick nearest the bowl")
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
             if lw in names or (lw in groups and lw in PROFILES) or not (lw in drop or i in compound)]
     sized = len(kept) < len(low) and any(lw in SIZE_WORDS or lw in PROFILES for lw in low)
@@ -236,7 +237,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         return fitting(proportioned, list(scene.objects), groups, best)  # "the tall", "the flat": alone
     colours = named_colours(low)
     named = [names[w] for w in low if w in names and w not in NOUNS and w not in shared
-             and (w in literal or w not in SHAPE_NOUNS or w in PROFILES and w in groups)]  # "the tower": the rook
+             and (w in literal or w not in SHAPE_NOUNS or best and w in PROFILES and w in groups)]  # "the tower"
     kinds = [groups[w] for w in low if w in groups and (w not in names or w in shared) and w not in SHAPE_NOUNS  # mugs
              and w not in as_colour]
     either = [(w, groups[w], SHAPE_NOUNS[w]) for w in low if w in groups and (w not in literal or w in NOUNS)
@@ -264,14 +265,13 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             fits = [o for o in fits if o.name in group]  # "the can": the soda can, not a plain cylinder beside it
             continue
         if word in ("box", "boxes") and not colours and any(o.name in group for o in fits) \
-                and all(o.name in group or _cube_like(o) or shape_of(o) not in BLOCK_SHAPES or a_thing_by_name(o)
-                        for o in fits):
+                and not any(o.name not in group and _another_box(o) for o in fits):
             fits = [o for o in fits if o.name in group]  # "the box": big_box, not one of the cubes beside it
             continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape
                 or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too
         if word in ("box", "boxes"):  # "the big box": a parcel, not the tote beside it
-            fits = [o for o in fits if not a_thing_by_name(o)] or fits
+            fits = [o for o in fits if _boxy(o)] or fits
     if colours:
         if not any(o.color in colours for o in scene.objects):
             colours = {NEAR_COLOURS.get(c, c) for c in colours}
@@ -288,7 +288,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         else:  # "the box": a box, or a mesh that is one ("the cereal box"); a parcel, not the tote beside it
             fits = [o for o in fits if shape_of(o) in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
             if "box" in shapes:
-                fits = [o for o in fits if not a_thing_by_name(o)] or fits
+                fits = [o for o in fits if _boxy(o)] or fits
     if shaped:
         fits = [o for o in fits if shape_of(o) in shaped or ("round" in low and kinds_of(o) & ROUND_KINDS)]
     if set(low) & BLOCK_WORDS and not named and not kinds:  # "the big green block": the cube, never the bottle
@@ -303,6 +303,19 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
 DESCRIPTION_WORDS = (frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | NOUNS | frozenset(SHAPE_NOUNS)
                      | frozenset(SHAPE_ADJECTIVES) | BLOCK_WORDS | frozenset({"things", "objects", "ones"}))
 """The words of a description that every table knows (:func:`candidates`); a scene's names and kinds are known too."""
+
+
+def _boxy(o: SceneObject) -> bool:
+    """Whether "box" may name ``o`` among other block-shaped things: no thing with a name of its own (a tote, a star),
+    or one whose kind is a box's (the butter box, a carton)."""
+    return not a_thing_by_name(o) or bool(kinds_of(o) & BOX_KINDS)
+
+
+def _another_box(o: SceneObject) -> bool:
+    """Whether people would call ``o`` a box beside one named so: a box's kind (a carton, a crate), or a block that is
+    neither a cube nor a thing with a name of its own (a star, a tote)."""
+    return bool(kinds_of(o) & BOX_KINDS) or (shape_of(o) in BLOCK_SHAPES and not _cube_like(o)
+                                             and not a_thing_by_name(o))
 
 
 def a_block_to_look_at(o: SceneObject) -> bool:

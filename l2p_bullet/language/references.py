@@ -234,8 +234,13 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     kind, at, end = head
     if not _describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
         return None
-    if kind in ("by", "beside") and (at == 0 or len({w for w in low[:at] if w in _lower_names(scene)}) > 1):
-        return None  # "closer by the white brick", "the théière, cuillère beside the tasse": a preposition's
+    if kind in ("by", "beside") and (at == 0 or len({w for w in low[:at] if w in _lower_names(scene)}) > 1
+                                     or try_object(" ".join(w for w in words[:at]
+                                                             if w.lower() not in ("right", "just", "directly")),
+                                                   scene) is not None):
+        # "closer by the white brick", "the théière, cuillère beside the tasse", "the duck right beside A" (one duck):
+        # the clause's own preposition, not a relation that picks among several
+        return None
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
         heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene))  # "mug"
