@@ -44,6 +44,11 @@ TAKE_AND = re.compile(r"^\s*(?:(?:now|then|ok|okay|so)\s+)?(?:take|get)\s+(?P<wh
 """An object taken first, then moved as "it": "Now take the sugar box and bring it closer to the can" is "bring the
 sugar box closer to the can" (the second verb's manner; "grab ... and put" is a carry of its own, read by the
 manners)."""
+LIFT_THEN = re.compile(r"^\s*(?:(?:now|then|ok|okay|so|first)\s+)?(?:lift|pick\s+up|raise|hoist)\s+(?P<what>.+?)"
+                       r"(?:\s+up)?\s*(?:,|\s+and)\s+(?:then\s+)?(?:bring|move|put|place|set|slide|shift|take|carry)\s+"
+                       r"(?:it|them(?:\s+both)?|both\s+of\s+them)\s+(?P<rest>.+)$", re.IGNORECASE)
+"""An object lifted first, then moved as "it" or "them": "Lift the tasse, bring it next to the sucrier", "Pick up
+the phone and the notebook and move them both closer to the cup" is a carry of each."""
 TOPIC_BARE = re.compile(r"^\s*(?P<what>.+?)\s+(?P<verb>[a-z]+)\s+(?P<it>it|that|this)\s+(?P<rest>.+)$", re.IGNORECASE)
 """A topic said before the command without a comma: "okay the bowl move it closer to the blue cube" is "okay the
 bowl, move it closer to the blue cube" (the verb a known one, the topic not opening with one)."""
@@ -159,10 +164,10 @@ def _verb_last(text: str) -> list[str]:
 
 
 def in_other_words(text: str) -> list[str]:
-    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s, :data:`GIVE_A`'s,
-    :data:`YOU_VERB`'s, :data:`TO_THEN`'s, :data:`OVER_TO`'s, :data:`OVER_TO_SIDE`'s or :data:`TO_OBJECT`'s ways, or
-    with :data:`THAN_NOW`, :data:`POLITE_INSIDE` or :data:`WHY` words; the caller resolves each (one that does not
-    resolve is no reading)."""
+    """``text`` said the usual way, where it is said one of :data:`IN_THE_AIR`'s, :data:`AIR_FIRST`'s,
+    :data:`GIVE_A`'s, :data:`YOU_VERB`'s, :data:`LIFT_THEN`'s, :data:`TO_THEN`'s, :data:`OVER_TO`'s,
+    :data:`OVER_TO_SIDE`'s or :data:`TO_OBJECT`'s ways, or with :data:`THAN_NOW`, :data:`POLITE_INSIDE` or :data:`WHY`
+    words; the caller resolves each (one that does not resolve is no reading)."""
     out = []
     m = IN_THE_AIR.match(text) or AIR_FIRST.match(text)
     if m is not None:
@@ -172,7 +177,7 @@ def in_other_words(text: str) -> list[str]:
         said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
         out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
     out += _said(MAKE_GO, r"move \g<what> \g<rest>", text) + _said(YOU_VERB, r"\g<verb> \g<what> \g<rest>", text)
-    out += _said(TAKE_AND, r"\g<verb> \g<what> \g<rest>", text)
+    out += _said(TAKE_AND, r"\g<verb> \g<what> \g<rest>", text) + _said(LIFT_THEN, r"carry \g<what> \g<rest>", text)
     m = TOPIC_BARE.match(text)
     if m is not None and "," not in m.group("what") and m.group("verb").lower() in verb_heads() \
             and m.group("what").split()[0].lower() not in verb_heads():

@@ -186,9 +186,9 @@ DISC = Profile((Need("flatness", (1.5, INF), (3.0, INF)),), round=True)
 """Round and flat ("disc", "puck", "coin")."""
 LOG = Profile((Need("lying_long", (1.0, INF), (1.5, INF)),), round=True)
 """Round and lying along the table ("log", "roll")."""
-TUBE = Profile((Need("elongation", (1.2, INF), (1.5, INF)),), round=True)
-"""Round, lying or standing ("tube", "pipe"): a 4 x 4 x 5 cm cylinder is "the black tube"; a drum as long as it is
-wide (a 12 cm centrifuge 8 cm tall) is none."""
+TUBE = Profile((Need("elongation", (1.0, INF), (1.5, INF)), Need("flatness", (0.0, 1.4), (0.0, 1.4))), round=True)
+"""Round, lying or standing ("tube", "pipe"): a 4 x 4 x 5 cm cylinder is "the black tube", so is a 6 cm one 6 cm tall;
+a drum half again as wide as it is tall (a 12 cm centrifuge 8 cm tall) is none."""
 POST = Profile((Need("standing", (0.9, INF), (1.5, INF)),))
 """Standing upright ("post", "pillar", "column", "tower")."""
 LONG = Profile((Need("lying_long", (1.3, INF), MORE),), noun=False)

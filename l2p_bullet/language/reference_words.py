@@ -50,8 +50,8 @@ ROUND_KINDS = frozenset({"ball", "soccerball", "football", "sphere", "textured",
 """Meshes people call round as they call a cylinder round ("the round white thing" is the ball): "round" keeps them."""
 SOFT_ADJECTIVES = frozenset({"flat", "flatter", "toy", "rubber", "plastic", "wooden", "lone", "single", "thin",
                              "skinny", "slender", "narrow", "slim", "stubby", "squat", "stocky", "squarish",
-                             "lengthy", "upright", "vertical", "wicker", "empty", "paper", "cardboard", "glass",
-                             "metal", "ceramic", "woven"}) | SIZE_WORDS
+                             "lengthy", "upright", "vertical", "wicker", "empty", "paper", "cardboard", "ceramic",
+                             "woven"}) | SIZE_WORDS
 """Adjectives people add to a description that already picks one object ("the toy duck", "the little red
 cube"): read past there. The size words among them (synonyms.SIZE_WORDS) and the words of proportions ("flat",
 "thin": language/proportions.py) decide where the rest leaves several."""

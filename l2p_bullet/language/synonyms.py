@@ -98,7 +98,7 @@ KIND_NAMES = {
     "moleskine": ("notebook", "notebooks", "journal", "notepad"),
     "airpods": ("earbuds", "earphones", "headphones"),
     "pods": ("earbuds", "earphones", "headphones"),
-    "post": ("notes", "postit", "post-its", "postits"),
+    "post": ("notes", "postit", "post-its", "postits", "sticky", "stickies"),
     "phone": ("phones", "telephone", "cellphone", "cell", "mobile", "smartphone", "iphone"),
     "ipad": ("tablet", "tablets"),
     "kindle": ("tablet", "e-reader", "ereader"),
@@ -155,7 +155,7 @@ KIND_NAMES |= {
     "bottiglia": ("bottle",), "piatto": ("plate", "dish"), "cucchiaio": ("spoon",), "ciotola": ("bowl",),
     "teiera": ("teapot", "pot"), "bicchiere": ("glass", "cup"),
     # Japanese, as romaji writes it
-    "koppu": ("cup", "cups", "glass", "mug"), "sara": ("plate", "plates", "dish"), "hako": ("box", "boxes"),
+    "koppu": ("cup", "cups", "glass", "mug"), "sara": ("plate", "plates"), "hako": ("box", "boxes"),
     "hashi": ("chopsticks", "chopstick", "sticks"), "chawan": ("bowl", "ricebowl"), "kyusu": ("teapot", "pot"),
     "yunomi": ("teacup", "cup"), "kappu": ("cup", "mug"), "bouru": ("bowl", "ball"),
 }
