@@ -123,7 +123,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             pieces = _other_readings(text, None, scene, plugins)
             if pieces is None:
                 raise
-            return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)]
+            return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(_set_down(pieces, None, None), start=1)]
     said = trailing_join(sentence.rstrip(" .!?,").split())
     if said is not None:  # "move A around B, then move C past A, then": the splitter drops the empty clause
         raise dangling_join(said)
@@ -187,7 +187,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 pair = shows if len(shows.objects) == 2 else pair
                 continue
             raise named(e, f'clause {i} ("{text}")') from None
-        pieces = [(piece, pointing.set_down(pointing.carried(cmd, show), previous, piece)) for piece, cmd in pieces]
+        pieces = _set_down(pieces, previous, show)
         if len(pieces) == 1 and pending is None and said_again(text, pieces[0][1], previous, scene):
             continue  # "... a lot closer to the rack? much closer": the clause before, said once more
         if pending is not None:
@@ -198,6 +198,18 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+def _set_down(pieces: list[tuple[str, Command]], previous: Command | None,
+              show: pointing.Shown | None) -> list[tuple[str, Command]]:
+    """``pieces`` with a lift shown before carried on, and "set it down ..." after a carry a carry, each piece read
+    after the one before it ("carry H past F, and set it down next to C": both carried)."""
+    out = []
+    for piece, cmd in pieces:
+        cmd = pointing.set_down(pointing.carried(cmd, show), previous, piece)
+        out.append((piece, cmd))
+        previous = cmd
+    return out
 
 
 def _in_place_of(meant: str, taken: Clause, scene: Scene, plugins: list,
