@@ -89,6 +89,7 @@ DISAGREED = {
     "heldout17.tsv": {"Could you move the leftmost object closer to the rabbit?"},
     "heldout20.tsv": {"There are two green cubes - move the small one toward the duck and the other one away from it."},
     "heldout22.tsv": {"Put the teddy bear next to the blue cube.",
+                      "Put the toy bear right next to the bigger cube, the blue one.",
                       "Would you kindly place the teddy bear next to the plank? Thank you.",
                       "Put the domino right next to the plank.",
                       "Please place the teddy directly beside the domino, with no gap.",
@@ -109,6 +110,9 @@ DISAGREED = {
     "heldout52.tsv": {"grab the mouse, put it next to the phone",
                       "grab the thing in the middle, put it next to the mouse",
                       "shove the computer mouse up against the gray cylinder"},
+    "heldout58.tsv": {"Final frame: lemon by the banana, lime away from it."},
+    "heldout63.tsv": {"AirPods right up against the Post-it, asap.",
+                      "Move the biggest thing on the desk next to the iPhone."},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -124,7 +128,10 @@ cubes is the 5 cm one, as "the small cube" is the clearly smallest; "the biggest
 heldout41's), a tight one for most; "the tall one" after "the short box" is the tallest thing for the forty-third, the
 taller box as most authors' sized twins read; "grab X and put it ..." is a carry for six authors, a slide for two
 and the forty-fourth; "the biggest thing" between a 9 x 6 x 4 cm box and a 6 x 10 cm can is the can (bulk) as
-for most, a question for the forty-fifth."""
+for most, a question for the forty-fifth. "it" in "lemon by the banana, lime away from it" is the banana for the
+fifty-eighth author, where the toolkit reads "it" after a clause as the block that clause moved, as most authors do;
+"asap" asks for no pace for the sixty-third (a hurry for the toolkit), and "the biggest thing" of a cup 12 cm tall and
+a notebook of a larger footprint is a question for that author, the cup (bulk) for the toolkit as for most."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -240,6 +247,23 @@ def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     them, brick_2x4_red), read once on the session's last language code but one: 68.1 % / 8 and 31.9 % / 1. Wrong
     only where the author disagrees with most authors (:data:`DISAGREED`: "grab X, put it" a slide, "up against" a
     plain next-to, "the other one" after "move rex to the pond" asked)."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
+
+
+@pytest.mark.parametrize("name, floor", [("heldout54.tsv", 133), ("heldout55.tsv", 126), ("heldout56.tsv", 126),
+                                         ("heldout57.tsv", 109), ("heldout58.tsv", 143), ("heldout59.tsv", 133),
+                                         ("heldout60.tsv", 101), ("heldout61.tsv", 134), ("heldout62.tsv", 144),
+                                         ("heldout63.tsv", 136), ("heldout64.tsv", 135)])
+def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirtieth session, on tables whose names are not plain English words: heldout54.tsv (a chess
+    set, German and dictated piece names), heldout55.tsv (a game engine's default names, Cube, Cube (1), Cylinder),
+    heldout56.tsv (a French kitchen, théière), heldout57.tsv (people correcting themselves), heldout58.tsv (fruit, a
+    Granny Smith beside a red apple), heldout59.tsv (a workbench, wrench_10mm) and heldout60.tsv (Singlish, Nigerian,
+    Filipino and Scottish English), read once on 8c0f880: 36.2 % / 1 wrong, 59.4 % / 10, 41.2 % / 3, 52.5 % / 3,
+    61.9 % / 5, 23.8 % / 0, 46.9 % / 3; heldout61.tsv (a Japanese table, koppu, hako), heldout62.tsv (a shape sorter),
+    heldout63.tsv (brands, Sharpie, Starbucks) and heldout64.tsv (a lab's sample tubes S-0412 ... and CENT-2), read
+    once on b6d64bb: 44.4 % / 0, 68.8 % / 1, 36.2 % / 4, 60.0 % / 2. Wrong only where the author disagrees with most
+    authors (:data:`DISAGREED`)."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
