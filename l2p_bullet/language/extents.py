@@ -47,7 +47,7 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     ("out", "of", "the", "way", "of"): ("away from", None),
     ("out", "the", "way", "of"): ("away from", None),
     ("outta", "the", "way", "of"): ("away from", None),
-    ("miles", "away", "from"): ("away from", "far"),
+    tuple("miles away from".split()): ("away from", "far"),
     ("miles", "from"): ("away from", "far"),
     ("clear", "of"): ("away from", None),
     ("as", "close", "as", "possible", "to"): ("next to", "right"),

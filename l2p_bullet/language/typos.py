@@ -39,10 +39,10 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
 SHORTHAND |= {"blew": "blue", "won": "one"}
-SHORTHAND |= {"tae": "to", "fae": "from", "frae": "from", "awa": "away", "roon": "round", "roond": "round",
-              "yon": "the", "yin": "one", "pit": "put", "gie": "give", "richt": "right", "muckle": "big", "hae": "have",
-              "ye": "you", "dinnae": "don't", "tak": "take", "ower": "over", "wi": "with", "oot": "out",
-              "doon": "down", "aboot": "about", "cannae": "can't", "intae": "into", "ontae": "onto"}
+SHORTHAND |= dict(pair.split("=") for pair in """
+    tae=to fae=from frae=from awa=away roon=round roond=round yon=the yin=one pit=put gie=give richt=right muckle=big
+    hae=have ye=you dinnae=don't tak=take ower=over wi=with oot=out doon=down aboot=about cannae=can't intae=into
+    ontae=onto""".split())
 """Scots words people type among English ones ("shift yon red cube awa fae the box", "a wee bit closer tae it")."""
 """Texting shorthand, and the colour speech-to-text hears as another word ("the blew block"), read as the word it
 stands for in a refused sentence, as a slip is."""
