@@ -358,9 +358,17 @@ def _unplaced_words(rest: list[str], scene: Scene) -> str | None:
 
 
 def _unknown_preposition(rest: list[str], middle: str | None, phrases: dict[str, str], verb: str) -> LanguageError:
-    """Say which words sit where a preposition should be, and which prepositions are installed."""
+    """Say which words sit where a preposition should be, and which prepositions are installed: each action's first
+    phrase, and how many other ways to say them there are (a list of every phrase would run past an error's one line,
+    cutting off what follows it; `l2p-bullet actions` lists them all)."""
     known = sorted({normalize_phrase(p) for p in phrases})
-    listing = f"installed: {', '.join(known)}"
+    first: dict[str, str] = {}
+    for phrase, action in phrases.items():
+        first.setdefault(action, normalize_phrase(phrase))
+    shown = sorted(set(first.values()))
+    others = len(known) - len(shown)
+    listing = f"installed: {', '.join(shown)}" + (f", and {others} other ways to say them (l2p-bullet actions lists "
+                                                  "every phrase)" if others > 0 else "")
     if middle is None:
         if len(rest) >= 2:
             return LanguageError(f'cannot find a preposition in "{" ".join(rest)}" ({listing}); {EXAMPLE}')
