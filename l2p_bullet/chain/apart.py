@@ -64,16 +64,21 @@ def done_so(text: str, before: Clause) -> Clause | None:
     m = pointing.DO_IT.match(" ".join(strip_polite(text.split())) or text)  # "Just slide it over."
     if m is None or before.target is not None:
         return None
-    if m.group("tail") is None and _has_verb(before.text):
-        return None  # "Move A past B. Then move it.": a step left unsaid, not how to do the one before
     try:
         verb, manner, _ = split_verb(m.group("verb").split())
         ruled_out = split_verb([m.group("not")])[1] if m.group("not") else None  # "Carry it over, don't drag it."
     except L2PError:
         return None
+    if m.group("tail") is None and _has_verb(before.text) and (
+            manner == before.command.manner or not AFTERTHOUGHT.search(text)):
+        return None  # "Move A past B. Then push it.": a step left unsaid; "... lift it though" is how to do it
     if ruled_out == manner:
         return None
     return replace(before, command=replace(before.command, verb=verb, manner=manner))
+
+
+AFTERTHOUGHT = re.compile(r"\b(?:though|tho|instead|rather)\b", re.IGNORECASE)
+"""Words that say a clause is how to do the one before, not a step of its own ("... Lift it though")."""
 
 
 def _has_verb(text: str) -> bool:

@@ -12,10 +12,12 @@ from __future__ import annotations
 import re
 
 from ..core.scene import Scene
+from ..language.descriptions import naming_words
 from ..language.references import try_object
 
 SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*"
-                   r"(?:no\s*,?\s*(?:sorry|oops|my\s+bad|wait)?|sorry|oops|my\s+bad|wait(?:\s*,?\s*no)?)\s*,?\s*"
+                   r"(?:no\s*,?\s*(?:sorry|oops|my\s+bad|wait)?|sorry|oops|my\s+bad|wait(?:\s*,?\s*no)?"
+                   r"|scratch\s+that|actually(?:\s*,?\s*no)?)\s*,?\s*"
                    r"(?:i\s+mean[t]?\s+|make\s+that\s+)?(?P<right>[^-\u2013\u2014]+?)\s*"
                    r"(?:[-\u2013\u2014]+\s*(?P<after>.*?))?\s*[.!?]*\s*$", re.IGNORECASE)
 """What was said, a word of correction, what was meant, and the rest of the command after a second dash."""
@@ -100,8 +102,34 @@ def corrected(text: str, scene: Scene) -> list[str]:
             out.append(f"{m.group('right')} - {m.group('rest')}")
     m = SORRY.match(text)
     if m is not None:
-        out.extend(_meant(m.group("before"), m.group("right"), m.group("after") or "", scene))
+        right = MEANT_LAST.sub("", m.group("right"))  # "wait, closer to the cup i mean"
+        out.extend(_meant(m.group("before"), right, m.group("after") or "", scene))
+    m = MEANT_BETWEEN.match(text)
+    if m is not None:  # "slide the blue block past, I mean around, the box"
+        out.extend(_said_between(m.group("before"), m.group("right"), m.group("after"), scene))
     return out
+
+
+MEANT_LAST = re.compile(r"\s*,?\s+i\s+mean[t]?\s*$", re.IGNORECASE)
+""""I mean" after what was meant ("..., closer to the cup i mean"): read past."""
+MEANT_BETWEEN = re.compile(r"^(?P<before>.+?)\s*,\s*(?:i\s+mean|no|sorry|scratch\s+that|actually|or\s+rather|rather)"
+                           r"\s*,?\s+(?P<right>[^,]+?)\s*,\s*(?P<after>[^,]+?)\s*[.!?]*\s*$", re.IGNORECASE)
+"""A word or two said, then corrected between commas, and the rest of the command: "slide the blue block past, I mean
+around, the box"."""
+
+
+def _said_between(before: str, right: str, after: str, scene: Scene) -> list[str]:
+    """The sentence with what was meant (``right``) in place of the last words said before the correction that name
+    no object (at most three: "past" in "slide the blue block past"), then the rest; none where the words before end
+    with an object (that is what :func:`_meant` corrects)."""
+    words = before.split()
+    naming = naming_words(scene) | {n.lower() for n in scene.names}
+    tail = 0
+    while tail < min(3, len(words) - 1) and words[-1 - tail].lower() not in naming:
+        tail += 1
+    if tail == 0 or len(right.split()) > 4:
+        return []
+    return [" ".join([*words[:-tail], right, after])]
 
 
 def _meant(before: str, right: str, after: str, scene: Scene) -> list[str]:

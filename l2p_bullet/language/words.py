@@ -92,7 +92,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "po", "salamat", "salamat po", "thanks po", "thank you po", "thank u po", "aye", "cheers pal",
     "onegaishimasu", "onegai shimasu", "onegai", "kudasai", "arigatou", "arigato", "arigatou gozaimasu",
     "please onegaishimasu",
-    "much appreciated", "that is all", "that's all",
+    "much appreciated", "that is all", "that's all", "though", "tho",
     "that'd be grand cheers", "it's in the way", "its in the way", "it's in my way", "its in my way",
     "it is in the way", "it is in my way", "while you're there", "whilst you're there",
     "while you're at it", "whilst you're at it", "while you are at it", "whilst you are at it",

@@ -85,6 +85,12 @@ LAB = "heldout64.tsv"
     ("thanks so much - move the cup next to the box, the brown one", "slide:next-to cup big_box", BLOCKS),
     ("move the red block past the cup please? sorry, around it, around the cup", "slide:around red_block cup",
      BLOCKS),
+    # a word corrected between commas, "scratch that", "I mean" after what was meant, a manner said afterwards
+    ("push the cup toward, I mean past, the green block", "push:past cup green_block", BLOCKS),
+    ("yellow_block next to the cup, scratch that, next to the box", "slide:next-to yellow_block big_box", BLOCKS),
+    ("move the red block away from the cup, wait, away from the box i mean", "slide:away red_block big_box",
+     BLOCKS),
+    ("slide the green block around the cup. lift it though", "carry:around green_block cup", BLOCKS),
 ])
 def test_read(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
@@ -103,6 +109,8 @@ def test_read(plugins, sentence, expect, table):
     ("move four fourteen toward the rack", LAB),
     # one more object said after "and", one that is no object here: never dropped
     ("slide the bin away from the rack, and the fridge too", LAB),
+    # "push it" after a clause, with no word that it is how to do that one: a step left unsaid
+    ("move the cup past the red block. then push it", BLOCKS),
     # a Tagalog sentence is no English one
     ("ilayo mo yung pula sa asul", CLUB),
 ])
