@@ -81,10 +81,15 @@ def _same_in_apposition(what: str, rest: str, shows: pointing.Shown, scene: Scen
         said = said[1:]
     if not said or said[0] not in NEAREST | FARTHEST:
         return  # a description said again ("That flat thing, the brown one, ...") narrows the first: corrections.py
-    again = pointing.shown(m.group("what"), scene, shows.context)
+    _not_another(what, m.group("what"), pointing.shown(m.group("what"), scene, shows.context), shows)
+
+
+def _not_another(what: str, said: str, again: pointing.Shown | None, shows: pointing.Shown) -> None:
+    """Refuse, naming both, where ``said`` (what was said again after ``what``) shows one object other than the one
+    ``what`` showed."""
     if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
-        raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
-                            "object said two ways that name different objects; say which you mean")
+        raise LanguageError(f'"{what}" is {shows.objects[0]} and "{said}" is {again.objects[0]}: one object said two '
+                            "ways that name different objects; say which you mean")
 
 
 RESTATED = re.compile(r"^\s*(?:the\s+one|which\s+is|that\s+one)\b", re.IGNORECASE)
@@ -101,9 +106,7 @@ def _restated(what: str, rest: str, shows: pointing.Shown, scene: Scene) -> str:
         again = pointing.shown(m.group("what"), scene, shows.context)
     except L2PError:
         again = None
-    if again is not None and len(again.objects) == 1 and again.objects != shows.objects:
-        raise LanguageError(f'"{what}" is {shows.objects[0]} and "{m.group("what")}" is {again.objects[0]}: one '
-                            "object said two ways that name different objects; say which you mean")
+    _not_another(what, m.group("what"), again, shows)
     return m.group("rest")
 
 

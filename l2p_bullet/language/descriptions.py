@@ -14,6 +14,7 @@ import re
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
+from .kept import SceneMemo
 from .letters import letter_of, letters_of
 from .places import by_size, named_colours
 from .proportions import PROFILES, PROPORTION_NOUNS, fitting, outline_sides
@@ -108,29 +109,32 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     raise readings[0]
 
 
-def shape_named(scene: Scene) -> set[str]:
+def shape_named(scene: Scene) -> frozenset[str]:
     """The names (lower case) that are a shape's own word where another object is of that shape too ("Cylinder" and
     "Cylinder (1)", as a game engine names its shapes): said alone ("move Cylinder ...") the name; with an article or
-    other words ("the cylinder at the back", "the orange cylinder") the shape, as of any of them."""
-    out = set()
-    for name in scene.names:
-        word = name.lower()
-        if word in GEOMETRIC and sum(shape_of(o) == SHAPE_NOUNS[word] or word in name_parts(o.name)
-                                     for o in scene.objects) > 1:
-            out.add(word)
-    return out
+    other words ("the cylinder at the back", "the orange cylinder") the shape, as of any of them. Kept per scene:
+    every description asks."""
+    def read() -> frozenset[str]:
+        words = [n.lower() for n in scene.names if n.lower() in GEOMETRIC]
+        return frozenset(w for w in words if sum(shape_of(o) == SHAPE_NOUNS[w] or w in name_parts(o.name)
+                                                 for o in scene.objects) > 1)
+
+    return _SHAPE_NAMED.ask("shape_named", scene, read)
 
 
-def _parts(scene: Scene) -> set[str]:
+_SHAPE_NAMED = SceneMemo(64)
+
+
+@functools.lru_cache(maxsize=256)
+def _parts(names: tuple[str, ...]) -> frozenset[str]:
     """The words the scene's names are made of ("brick" of brick_2x4_red)."""
-    return {p for n in scene.names for p in name_parts(n)}
+    return frozenset(p for n in names for p in name_parts(n))
 
 
-def kind_named(scene: Scene) -> set[str]:
-    """The names (lower case) of one word that are the kind of another object too ("apple" beside green_apple): with
-    other words said ("the apple at the back", "the red apple") the kind, as of either of them; alone ("the apple")
-    the one so named."""
-    groups = kind_groups(scene)
+def kind_named(scene: Scene, groups: dict[str, frozenset[str]]) -> set[str]:
+    """The names (lower case) of one word that are the kind of another object too ("apple" beside green_apple;
+    ``groups``: the scene's :func:`~.synonyms.kind_groups`): with other words said ("the apple at the back", "the red
+    apple") the kind, as of either of them; alone ("the apple") the one so named."""
     return {n.lower() for n in scene.names if len(groups.get(n.lower(), ())) > 1}
 
 
@@ -218,12 +222,12 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     # "can" as a word of "soup_can.obj" is a kind, not a name; "the orange cylinder" beside one named Cylinder a shape
     group = len(said) > 1 or not best  # a pool a relation chooses among ("the apple at the back") is a group
     literal = {n.lower() for n in scene.names} - (shape_named(scene) if determined or group else set())
-    shared = kind_named(scene) if group else set()  # "the apple at the back" beside green_apple: either apple
+    shared = kind_named(scene, groups) if group else set()  # "the apple at the back" beside green_apple: either
     heads = set(names) | set(groups) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
-                    and (not best or w not in groups or w in NOUNS and w not in _parts(scene))]
+                    and (not best or w not in groups or w in NOUNS and w not in _parts(tuple(scene.names)))]
     # "the tower": the rook in a chess set, not any tall thing; "the brick" where names say which are bricks; a group or
     # a relation's pool still takes every object the word admits ("the stick nearest the bowl")
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
@@ -312,10 +316,9 @@ def _boxy(o: SceneObject) -> bool:
 
 
 def _another_box(o: SceneObject) -> bool:
-    """Whether people would call ``o`` a box beside one named so: a box's kind (a carton, a crate), or a block that is
-    neither a cube nor a thing with a name of its own (a star, a tote)."""
-    return bool(kinds_of(o) & BOX_KINDS) or (shape_of(o) in BLOCK_SHAPES and not _cube_like(o)
-                                             and not a_thing_by_name(o))
+    """Whether people would call ``o`` a box beside one named so: one "box" may name (:func:`_boxy`) that is of a box's
+    kind (a carton, a crate) or a block but no cube."""
+    return _boxy(o) and (bool(kinds_of(o) & BOX_KINDS) or shape_of(o) in BLOCK_SHAPES and not _cube_like(o))
 
 
 def a_block_to_look_at(o: SceneObject) -> bool:

@@ -16,9 +16,8 @@ from .numbers import SPELLED, numbered
 DIGITS = {w: n for w, n in SPELLED.items() if n < 10} | {"oh": 0, "o": 0, "nought": 0}
 """Words for one digit, "oh" among them (as people read a zero in a code)."""
 TENS = {"twenty": 20, "thirty": 30, "forty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90}
-NUMBER_WORD = re.compile(r"\b(?:" + "|".join(sorted([*SPELLED, *DIGITS, *TENS], key=len, reverse=True))
-                         + r")(?:[\s-]+(?:" + "|".join(sorted([*SPELLED, *DIGITS, *TENS], key=len, reverse=True))
-                         + r"))+\b", re.IGNORECASE)
+_ANY_NUMBER = "(?:" + "|".join(sorted([*SPELLED, *DIGITS, *TENS], key=len, reverse=True)) + ")"
+NUMBER_WORD = re.compile(r"\b" + _ANY_NUMBER + r"(?:[\s-]+" + _ANY_NUMBER + r")+\b", re.IGNORECASE)
 """A run of two or more number words."""
 
 
@@ -60,8 +59,7 @@ def _groups(words: list[str]) -> list[int] | None:
         w = words[i]
         if w in TENS:
             n = TENS[w]
-            if i + 1 < len(words) and words[i + 1] in DIGITS and DIGITS[words[i + 1]] > 0 and words[i + 1] not in (
-                    "oh", "o", "nought"):
+            if i + 1 < len(words) and DIGITS.get(words[i + 1], 0) > 0:  # "forty two"; never "forty oh"
                 n, i = n + DIGITS[words[i + 1]], i + 1
             out.append(n)
         elif w in SPELLED:

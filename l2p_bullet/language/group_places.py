@@ -18,6 +18,7 @@ import numpy as np
 from ..core.scene import Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates
+from .numbers import number_of
 from .places import distance_to, superlative
 from .pools import either_reading
 from .reference_words import (
@@ -311,7 +312,6 @@ PLACED_GROUP = re.compile(r"^\s*(?:the|those|these)\s+(?P<count>two|three|four|[
                           r"(?:(?:in|at|on)\s+(?:the\s+)?)?(?P<side>front|back|rear|left|right)(?:\s+side)?\s*$",
                           re.IGNORECASE)
 """A group said by how many and where ("the two in front", "the three cubes on the left", "those two at the back")."""
-COUNTS = {"two": 2, "three": 3, "four": 4, "2": 2, "3": 3, "4": 4}
 
 
 def placed_group(text: str, scene: Scene) -> tuple[str, ...] | None:
@@ -329,7 +329,7 @@ def placed_group(text: str, scene: Scene) -> tuple[str, ...] | None:
             pool = candidates(singular, [singular], (singular,), scene)
         except (LanguageError, UnknownObjectError):
             return None
-    n = COUNTS[m.group("count").lower()]
+    n = number_of(m.group("count"))
     if len(pool) <= n:
         return None
     toward = np.array(DIRECTIONS[m.group("side").lower()])

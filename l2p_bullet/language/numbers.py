@@ -87,6 +87,14 @@ def _numbered_of(names: tuple[str, ...]) -> dict[int, tuple[str, ...]]:
     return {k: tuple(v) for k, v in out.items()}
 
 
+@functools.lru_cache(maxsize=256)
+def units_said(names: tuple[str, ...]) -> frozenset[str]:
+    """The words people say for the units the scene's names carry after their numbers ("mil", "millimeter" where
+    wrench_10mm stands), kept per scene's names: a reference is read many times a sentence."""
+    carried = {unit_of(name) for name in names} - {None}
+    return frozenset(said for said, unit in UNIT_SAID.items() if unit in carried)
+
+
 def unit_of(name: str) -> str | None:
     """The unit a name's number measures ("wrench_10mm": mm), or None."""
     parts = NAME_PART.findall(name)
@@ -133,7 +141,7 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
     words = [w for w in (x.strip(",;:") for x in text.split()) if w]
     if not table or not words:
         return None
-    words = _number_last(words, table)
+    words = _number_last(words, table, UNITS | units_said(tuple(scene.names)))
     low = [w.lower() for w in words]
     n = number_of(low[-1])
     if n is None and low[-1] in HEARD_NUMBERS and len(low) > 1 and low[-2] in _stems(table):
@@ -174,16 +182,16 @@ MEASURED = re.compile(r"^(?P<n>\d{1,4})(?P<unit>[a-z\u00b5]{1,2})$", re.IGNORECA
 """A number with its unit written on it ("250ml", "500mL")."""
 
 
-def _number_last(words: list[str], table: dict[int, tuple[str, ...]]) -> list[str]:
+def _number_last(words: list[str], table: dict[int, tuple[str, ...]], units: frozenset[str]) -> list[str]:
     """``words`` with a number said before its noun moved after it: "the 500 ml beaker" -> "the beaker 500", "250
     beaker" -> "beaker 250", "the 250ml" -> "the 250", "the 500 ml one" -> "the 500", where the scene numbers an object
-    so (beaker_500); ``words`` as they are where no number the scene has opens them after a determiner."""
+    so (beaker_500); ``words`` as they are where no number the scene has opens them after a determiner. ``units``:
+    the units said after such a number (:data:`UNITS`, and those the scene's names carry)."""
     low = [w.lower() for w in words]
     i = next((k for k, w in enumerate(low) if w not in DETERMINERS), len(low))
     glued = MEASURED.match(low[i]) if i < len(low) else None
     if i >= len(low) - 1 and glued is None:
         return words
-    units = UNITS | {u for n in table for name in table[n] for u in UNIT_SAID if UNIT_SAID[u] == unit_of(name)}
     said = glued.group("n") if glued is not None and glued.group("unit").lower() in units else low[i]
     after = low[i + 1] if i + 1 < len(low) and glued is None else None
     if after in units and number_of(said) is not None:  # "the ten millimeter wrench"

@@ -234,12 +234,7 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     kind, at, end = head
     if not _describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
         return None
-    if kind in ("by", "beside") and (at == 0 or len({w for w in low[:at] if w in _lower_names(scene)}) > 1
-                                     or try_object(" ".join(w for w in words[:at]
-                                                             if w.lower() not in ("right", "just", "directly")),
-                                                   scene) is not None):
-        # "closer by the white brick", "the théière, cuillère beside the tasse", "the duck right beside A" (one duck):
-        # the clause's own preposition, not a relation that picks among several
+    if kind in ("by", "beside") and not _picks_among(words[:at], scene):
         return None
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
@@ -300,8 +295,15 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
 
 
-def _lower_names(scene: Scene) -> set[str]:
-    return {n.lower() for n in scene.names}
+def _picks_among(before: list[str], scene: Scene) -> bool:
+    """Whether the words before "by" or "beside" are one description that leaves several objects, so that the
+    relation picks among them ("the spanner by the hammer"); not where no words come before ("closer by the white
+    brick"), where two names do ("the théière, cuillère beside the tasse") or where they name one object alone ("the
+    duck right beside A"): there the words are the clause's own preposition."""
+    names = {n.lower() for n in scene.names}
+    if not before or len({w.lower() for w in before} & names) > 1:
+        return False
+    return try_object(" ".join(w for w in before if w.lower() not in ("right", "just", "directly")), scene) is None
 
 
 def _describes(low: tuple[str, ...], scene: Scene) -> bool:

@@ -299,18 +299,22 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
     return tuple(dict.fromkeys(out))
 
 
-def abbreviations(scene: Scene) -> frozenset[str]:
+@functools.lru_cache(maxsize=256)
+def abbreviations(names: tuple[str, ...]) -> frozenset[str]:
     """The letters of names written as capital codes ("CENT-2", "RACK-A": cent, rack), lower case: a word that starts
-    with them ("the centrifuge") names that object, as a lab's inventory shortens its equipment's names."""
-    return frozenset(part.lower() for name in scene.names for part in re.findall(r"(?<![A-Za-z])[A-Z]{3,}(?![a-z])",
-                                                                                   unaccented(name)))
+    with them ("the centrifuge") names that object, as a lab's inventory shortens its equipment's names. Kept per
+    scene's names: every description asks."""
+    return frozenset(part.lower() for name in names for part in CAPITAL_CODE.findall(unaccented(name)))
+
+
+CAPITAL_CODE = re.compile(r"(?<![A-Za-z])[A-Z]{3,}(?![a-z])")
 
 
 def abbreviated(word: str, scene: Scene) -> str | None:
     """The one capital code's letters ``word`` (lower case, five letters or more) starts with, or None."""
     if len(word) < 5 or not word.isalpha():
         return None
-    fits = [a for a in abbreviations(scene) if word.startswith(a) and word != a]
+    fits = [a for a in abbreviations(tuple(scene.names)) if word.startswith(a) and word != a]
     return fits[0] if len(fits) == 1 else None
 
 

@@ -43,9 +43,9 @@ SHORTHAND |= dict(pair.split("=") for pair in """
     tae=to fae=from frae=from awa=away roon=round roond=round yon=the yin=one pit=put gie=give richt=right muckle=big
     hae=have ye=you dinnae=don't tak=take ower=over wi=with oot=out doon=down aboot=about cannae=can't intae=into
     ontae=onto""".split())
-"""Scots words people type among English ones ("shift yon red cube awa fae the box", "a wee bit closer tae it")."""
-"""Texting shorthand, and the colour speech-to-text hears as another word ("the blew block"), read as the word it
-stands for in a refused sentence, as a slip is."""
+"""Texting shorthand, the colour speech-to-text hears as another word ("the blew block") and Scots words people type
+among English ones ("shift yon red cube awa fae the box"), read as the word each stands for in a refused sentence, as
+a slip is."""
 
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
@@ -150,16 +150,17 @@ def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] =
     pairs = {pair for n in spoken for parts in [name_parts(n)] for pair in zip(parts, parts[1:], strict=False)}
     found = list(_WORD.finditer(sentence))
     targets = set(named) | {re.sub(r"[^a-z]", "", n) for n in named if "-" in n}  # "post it" for Post-it
+    long_targets = sorted(t for t in targets if len(t) >= 6)
+    said_alone = named | COMMON  # words that say something of their own: never heard as half of a name
     out, at = [], 0
     for a, b in zip(found, found[1:], strict=False):
         one = (a.group(0) + b.group(0)).lower()
         if a.start() < at or not sentence[a.end():b.start()].isspace() \
                 or (a.group(0).lower(), b.group(0).lower()) in pairs:
             continue  # "the left block", "the mustard bottle": a name's own words, read as they are
-        meant = one if one in targets else next(
-            (t for t in sorted(targets) if len(one) >= 6 and len(t) >= 6 and len(b.group(0)) > 1 and _one_slip(one, t)),
-            None) or (
-            heard_name(one, spoken) if not {a.group(0).lower(), b.group(0).lower()} & (named | COMMON) else None)
+        slipped = len(one) >= 6 and len(b.group(0)) > 1
+        meant = one if one in targets else next((t for t in long_targets if slipped and _one_slip(one, t)), None) or (
+            heard_name(one, spoken) if not {a.group(0).lower(), b.group(0).lower()} & said_alone else None)
         if meant is not None:  # "the mole skin", "the sharp e": a slip of the name run together
             out.append(sentence[at:a.start()] + meant)
             at = b.end()
