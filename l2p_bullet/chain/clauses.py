@@ -28,6 +28,8 @@ from ..language import (
 )
 from ..language.descriptions import naming_words
 from ..language.dictated import numbers_said
+from ..language.emoji import emoji_said
+from ..language.learners import in_plain_english
 from ..language.numbers import codes_said
 from ..language.synonyms import kind_groups
 from ..pipeline import resolve
@@ -65,15 +67,16 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
 def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if isinstance(sentence, str):
-        # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412
-        sentence = numbers_said(codes_said(sentence, scene), scene)
+        # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412; "🔑 ➡️ 👛"
+        sentence = numbers_said(codes_said(emoji_said(sentence, scene), scene), scene)
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:
         if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
             raise
         known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
-        mended = typos.mend(ASIDE.sub("", sentence), known, scene.names, verb_heads(), kind_groups(scene))
+        mended = typos.mend(in_plain_english(ASIDE.sub("", sentence), scene), known, scene.names, verb_heads(),
+                            kind_groups(scene))
         if mended != sentence:
             try:
                 return read_clauses(mended, scene, plugins)
@@ -123,7 +126,9 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             pieces = _other_readings(text, None, scene, plugins)
             if pieces is None:
                 raise
-            return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(_set_down(pieces, None, None), start=1)]
+            pieces = _set_down(pieces, None, None)  # "beside the... the colander, yes, beside the colander": once
+            pieces = [p for k, p in enumerate(pieces) if k == 0 or not said_again(p[0], p[1], pieces[k - 1][1], scene)]
+            return [Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)]
     said = trailing_join(sentence.rstrip(" .!?,").split())
     if said is not None:  # "move A around B, then move C past A, then": the splitter drops the empty clause
         raise dangling_join(said)

@@ -19,6 +19,7 @@ block that is still waiting for its turn; ties go to the one with most room to t
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,6 +33,7 @@ from ..core.runfolder import write_summary
 from ..core.scene import GRIPPER_MARGIN, Scene
 from ..errors import InfeasibleError, L2PError, LanguageError, PluginError
 from ..language import parse_list, phrase_matches, phrase_tokens, strip_polite, tokens
+from ..language.verbs import verb_heads
 from ..pipeline import resolve
 from ..plugins import registry
 from .clause import MAX_CLAUSES, Clause, Group, named
@@ -92,6 +94,12 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
     installed = registry.discover("composite")
     phrases = composite_phrases(plugins, installed)
     lc = parse_list(sentence, scene, phrases) if phrases else None
+    if lc is None and phrases and isinstance(sentence, str) and ROW_LAST.search(sentence) \
+            and sentence.split()[0].lower() not in verb_heads():  # "the glasses, the keys, the cup in a row"
+        try:
+            lc = parse_list(f"put {sentence}", scene, phrases)
+        except L2PError:
+            lc = None
     if lc is None:
         untaught = _broken_composite(sentence, plugins, phrases, installed)
         if untaught is not None:
@@ -118,6 +126,10 @@ def composite_clauses(sentence: str, scene: Scene, plugins: list | None) -> list
                        size * (1 + recipe.spacing), recipe.aligned)
         clauses.append(Clause(k, text, cmd, slot, group))
     return clauses
+
+
+ROW_LAST = re.compile(r"\bin\s+(?:a|one)\s+(?:straight\s+)?(?:row|line)\b", re.IGNORECASE)
+"""A list said with where it goes and no verb ("blade, pickups, sponge in a row please"): as "put ... in a row"."""
 
 
 def _broken_composite(sentence: str, plugins: list | None, usable: dict[str, str],

@@ -78,6 +78,7 @@ from .reference_words import (
     TIE_M,
 )
 from .synonyms import LOOSE_NOUNS, kind_groups
+from .uses import used_for
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -129,6 +130,9 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     marked = marked_with(text, scene, role, resolve_object)  # "the red one with the X on it"
     if marked is not None:
         return marked
+    used = used_for(text, scene, try_object)  # "the thing you boil water in", "the one with all the holes"
+    if used is not None:
+        return used
     words = _plain_order(words, scene)
     low = tuple(w.lower() for w in words)
     if set(low) & CONJUNCTIONS and "between" not in low:  # "the tray and the other one closer to the can"
@@ -235,10 +239,10 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     if not _describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
         return None
     if kind in ("by", "beside") and not _picks_among(words[:at], scene):
-        return None
+        return _beside_as_said(words[:at], words[end:], scene, context)  # "the white one by the lamp"
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
-        heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene))  # "mug"
+        heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene)) | LOOSE_NOUNS
         if any(w.lower() not in heads for w in rest_words):
             return None
         rank = RANKS.get(low[at - 1], 1) if at > 0 else 1  # "the second tallest white one"
@@ -293,6 +297,21 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     """How far the object's centre is from the line through ``a`` along ``span`` (metres)."""
     d = np.asarray(o.xy) - a
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
+
+
+def _beside_as_said(before: list[str], after: list[str], scene: Scene, context: Context | None) -> str | None:
+    """The one object ``before`` names alone where it is also the object nearest the one ``after`` names ("the white
+    one next to the lamp": the cup, the lamp's nearest): a relation that only says more of it. None where it is not
+    the nearest (the words contradict), or ``before`` or ``after`` name no one object."""
+    said = try_object(" ".join(w for w in before if w.lower() not in ("right", "just", "directly")), scene) \
+        if before else None
+    ref = try_object(" ".join(after), scene, context) if after else None
+    if said is None or ref is None or said == ref:
+        return None
+    at = scene.get(ref).xy
+    others = [o for o in scene.objects if o.name != ref]
+    nearest = min(others, key=lambda o: float(np.hypot(*np.subtract(o.xy, at))))
+    return said if nearest.name == said else None
 
 
 def _picks_among(before: list[str], scene: Scene) -> bool:

@@ -1,0 +1,52 @@
+"""English as learners write it, said as the grammar reads it ("Put candle at book side", "Move the remote more far
+of the glass", "Separate the glass from the book", "the remote stuck to the candle", "until it touch the book").
+
+Each form is a construction of another language said word for word in English (Chinese 在书旁边 "at book side",
+Spanish "más lejos de" "more far of", "pegado a" "stuck to"), read only in a sentence refused as written
+(``chain/clauses.resolve_clauses``), so a sentence the grammar reads is read as before.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..core.scene import Scene
+from .references import try_object
+
+_SIDE = re.compile(r"\b(?:at|to|on|by|in)\s+(?P<the>the\s+)?(?P<what>[\w-]+?)(?:'s)?\s+side\b(?!\s+of\b)",
+                   re.IGNORECASE)
+"""An object's side as the place: "at book side", "to the candle's side", "bring bowl to candle side"."""
+_REWRITES = (
+    (re.compile(r"\bmore\s+far\s+(?:of|from)\b", re.IGNORECASE), "farther from"),
+    (re.compile(r"\bmore\s+(?:close|near)\s+(?:of|to)\b", re.IGNORECASE), "closer to"),
+    (re.compile(r"\bfar\s+of\b", re.IGNORECASE), "far from"),
+    (re.compile(r"\bnear\s+of\b", re.IGNORECASE), "near"),
+    (re.compile(r"\bbeside\s+(?:to|of)\b", re.IGNORECASE), "beside"),
+    (re.compile(r"\bstuck\s+(?:to|on)\b", re.IGNORECASE), "right next to"),
+    (re.compile(r"\buntil\s+it\s+touch\b", re.IGNORECASE), "until it touches"),
+    (re.compile(r"\bso\s+close\s+to\s+(?P<what>.+?)\s+as\s+(?:you\s+)?(?:can|possible)\b", re.IGNORECASE),
+     r"as close as you can to \g<what>"),
+    (re.compile(r"(?<!\ba)\s+little\s+bit\b", re.IGNORECASE), " a little bit"),
+    (re.compile(r"\bseparate\s+(?P<extent>(?:a\s+)?(?:bit|little)\s+)?(?P<what>.+?)\s+from\b", re.IGNORECASE),
+     r"move \g<what> \g<extent>away from"),
+    (re.compile(r",?\s*no\s+drag\b", re.IGNORECASE), ", don't drag it"),
+)
+"""Word-for-word constructions and what they say in the grammar's English."""
+
+
+def in_plain_english(sentence: str, scene: Scene) -> str:
+    """``sentence`` with each learner's construction said as the grammar reads it; unchanged where it has none. An
+    object's side is read as "next to" it only where the word before "side" names an object ("the other side",
+    "the left side" are places of their own)."""
+    def side(m: re.Match) -> str:
+        said = f"the {m.group('what')}"
+        return f"next to {m.group('the') or ''}{m.group('what')}" if try_object(said, scene) is not None \
+            else m.group(0)
+
+    out = _SIDE.sub(side, sentence)
+    for pattern, said in _REWRITES:
+        out = pattern.sub(said, out)
+    return out
+
+
+__all__ = ["in_plain_english"]
