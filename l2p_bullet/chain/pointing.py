@@ -20,6 +20,7 @@ from ..language.grammar import ARROWS
 from ..language.group_places import placed_group
 from ..language.numbers import number_of
 from ..language.partitives import group_of
+from ..language.pronouns import plural_named
 from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS, SHAPE_NOUNS
 from ..language.references import try_object, two_references
 from ..language.words import PACES, strip_polite
@@ -90,6 +91,9 @@ ABOUT = re.compile(r"^\s*(?:about|regarding|as\s+for|now\s+for)\s+(?=\S)", re.IG
 BOTH = re.compile(r"(?:\b(?:them\s+both|both\s+of\s+them|each\s+of\s+them|both|them)"
                   r"|(?<![\w'])'?em\s+both|(?<![\w'])'?em)\b", re.IGNORECASE)
 """Words for the two objects shown before: "them (both)", "each of them", and "em" as typed."""
+THEM = re.compile(r"(?<![\w'])(?:them|'?em)\b", re.IGNORECASE)
+BOTH_SAID = re.compile(r"\b(?:both|each|all)\b", re.IGNORECASE)
+""""them" alone, and the words that make it two ("them both", "each of them")."""
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
 PLACE_WORDS = frozenset({"it", "them", "one", "ones", "left", "right", "front", "back", "behind", "middle", "both",
@@ -302,6 +306,12 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         commands = _each(text, context, context.among, scene, plugins)
         if commands is not None:
             return _ordered(commands, first, scene)
+    if previous is not None and plural_named(previous.mover) and not plural_named(previous.anchor) \
+            and THEM.search(text) and not BOTH_SAID.search(text):
+        try:  # "slide the keys past the wallet, then bring em back ...": them are the keys
+            return [resolve(THEM.sub("it", text), scene, plugins, context)]
+        except L2PError:
+            pass
     if previous is not None and BOTH.search(text):
         pair = (previous.mover, previous.anchor)
         return _ordered(_each(text, Context(*pair), pair, scene, plugins), first, scene)

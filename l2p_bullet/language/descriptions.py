@@ -89,6 +89,8 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     if measure is not None:  # "the 5 cm cube": the objects whose longest side is about that long
         fits = [o for o in fits if abs(max(*outline_sides(o), o.geometry.height) - measure)
                 <= max(MEASURE_TOLERANCE * measure, MEASURE_TOLERANCE_M)]
+    if set(low) & BLOCK_WORDS:  # "the blue block" is no ball, no truck: a thing of another kind is no block
+        fits = [o for o in fits if not _other_than_block(o)]
     pools = [fits]
     blocky = [o for o in fits if shape_of(o) in BLOCK_SHAPES]
     spoken = set(low) - colours_said(low, scene) - (NOUNS | BLOCK_WORDS)  # "the orange block" is no name said
@@ -107,6 +109,20 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
         raise LanguageError(f'"{text}" is ambiguous: as any object it is {readings[0]}, as a block (a cube or a '
                             f"box) {readings[1]}; name the one you mean")
     raise readings[0]
+
+
+NOT_BLOCKS = frozenset({"ball", "soccerball", "football", "sphere", "pingpong", "teddy", "duck", "bunny", "dog", "cow",
+                        "dinosaur", "dino", "fish", "doll", "minifig", "truck", "car", "mug", "cup", "glass", "bottle",
+                        "bowl", "plate", "apple", "banana", "lemon", "lime", "orange", "vase", "lamp", "kettle",
+                        "teapot"})
+"""Kinds people never call a block: a ball, an animal, a doll, a vehicle, a cup or a fruit. "Block" covers any other
+object, of a kind or none ("the purple block" is the cylinder named C, "the yellow block" the wedge)."""
+
+
+def _other_than_block(o: SceneObject) -> bool:
+    """Whether ``o`` is of a kind of :data:`NOT_BLOCKS` and of no block's kind (a brick, a box)."""
+    kinds = kinds_of(o)
+    return bool(kinds & NOT_BLOCKS) and not kinds & (BLOCK_KINDS | GEOMETRIC)
 
 
 def shape_named(scene: Scene) -> frozenset[str]:

@@ -17,7 +17,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a tad": "little",
     "thoda": "little", "thoda sa": "little", "thodasa": "little", "just a tad": "little", "a touch": "little",
     "a smidge": "little", "a smidgen": "little", "small": "little", "small small": "little",  # Nigerian English
-    "a fraction": "little", "a wee": "little",
+    "a fraction": "little", "a wee": "little", "a hair's breadth": "little",
     "marginally": "little", "a hair": "little", "little bit": "little", "a long way": "far", "a good way": "far",
     "right": "right", "directly": "right", "immediately": "right", "snugly": "right", "tightly": "right",
     "waay": "far", "waaay": "far", "waaaay": "far", "a good distance": "far", "a great distance": "far",
@@ -137,6 +137,11 @@ FILLERS = frozenset({"like", "kinda", "sorta", "basically", "literally", "up"})
 domino up snug against B")."""
 
 
+SIDE_BEFORE_RIGHT = frozenset({"front", "back", "far", "rear", "the", "top", "bottom", "upper", "lower", "near"})
+"""Words after which "right" is a side of the table, not how near ("the instrument at the front right next to ...",
+"the one on the right next to ...")."""
+
+
 def take_extent(before: list[str]) -> tuple[list[str], str | None]:
     """The words before a preposition without the qualifiers at their end, and the extent they ask for; the
     outermost decides ("a little farther away": little, "a lot farther away": far). A filler before the qualifier
@@ -151,7 +156,8 @@ def take_extent(before: list[str]) -> tuple[list[str], str | None]:
             before = before[:-1]
             continue
         for k in LONGEST_FIRST:
-            if len(low) > len(k) and tuple(low[-len(k):]) == k:
+            if len(low) > len(k) and tuple(low[-len(k):]) == k and not (
+                    k == ("right",) and low[-2] in SIDE_BEFORE_RIGHT):
                 before, extent = before[: -len(k)], EXTENTS[k]
                 break
         else:

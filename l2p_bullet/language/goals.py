@@ -10,7 +10,7 @@ from __future__ import annotations
 import functools
 
 from ..errors import LanguageError
-from .reference_words import DETERMINERS, NOUNS, SHAPE_NOUNS
+from .reference_words import DETERMINERS, NOUNS, PLACE_ADJECTIVES, SHAPE_NOUNS
 from .words import PACES, by_word, starts
 
 GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
@@ -162,6 +162,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                     "and" in low[:j] and _linked(low[:j])):
                 return words  # "The cube by the butter should go ...": never the butter, its words dropped
             if is_object(" ".join(words[j:k])):
+                if j > 1 and low[j - 1].strip(",.:;") in RELATING:  # not an opening's ("By the end, F ...")
+                    return words  # "the toy next to the brick goes ...": the brick tells the mover, is not it
                 if j == 0 and link in TELLING and [w.lower() for w in (said or words)[:k]] == low[:k]:
                     first = low[0] if low[0] in DETERMINERS else words[0]
                     mover = " ".join([first, *words[1:k]])
@@ -174,6 +176,13 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                 said_verb = next((w for w in words[:j] if w.lower() in verbs), "move")  # "make you push A ... go"
                 return [said_verb, *words[j:k], *words[k + len(link):], *paced]
     return words
+
+
+RELATING = frozenset({"to", "toward", "towards", "near", "nearer", "by", "beside", "nearest", "closest", "farthest",
+                      "furthest", "of", "from", "behind", "than", "with", "between", "at", "on", "in", "beyond",
+                      "round"})
+"""Words after which an object is told *by* another ("the toy next to the brick goes ...", "carton nearest the scanner
+goes ..."): the object after them is the other one, never the mover, whose own words the reader does not know."""
 
 
 def _linked(low: list[str]) -> bool:
@@ -201,6 +210,8 @@ def _names_something(words: list[str]) -> bool:
     """Whether words before a mover's description name a thing ("cube", "one", "block"): the description that follows
     is then not the whole mover, so it is not taken for it."""
     low = [w.lower().strip(",.:;!?") for w in words]
+    if low[-1:] and low[-1] in PLACE_ADJECTIVES and low[-2:-1] and low[-2] in DETERMINERS | set(PLACE_ADJECTIVES):
+        return True  # "the front left thing goes ...": "the front" is the thing's own words, never dropped
     return bool(set(low) & (NOUNS | SHAPE_WORDS)) or any(  # "the can closest to the red cube goes ...": the can
         a in DETERMINERS and w in ("can", "cans") for a, w in zip(low, low[1:], strict=False))
 

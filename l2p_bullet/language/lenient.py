@@ -55,7 +55,7 @@ STOPS = NEGATIONS | frozenset({
     "hide", "return", "back", "undo", "under", "onto", "into", "inside", "above", "below", "top", "then",
     "was", "were", "already",
     "pass", "passes", "passed", "passing", "touch", "touches", "touched", "touching", "hit", "bump", "cross",
-    "avoid", "follow", "possible", "gap",
+    "avoid", "follow", "possible", "gap", "rush", "hurry",
 })
 """Words that stop the reading: they may change what the rest means ("touching" asks for a tight gap, "pass it
 by" for past), join a clause the sentence did not split, or ask for what the actions cannot do."""
@@ -156,7 +156,7 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
         return None
     # "the triangular toy", "the cereal box" on a table with neither; "... in the middle row"
     describing = naming_words(scene) | {n.lower() for n in scene.names} | POINTING | EXTENT_WORDS | set(PACES) \
-        | KIND_WORDS | GROUPED
+        | KIND_WORDS | GROUPED | {w for w in _name_words(scene) if len(w) > 2}  # "block" of red_block, not "i"
     if _noun_left(low, {w.lower() for w in left_before + left_after}, named):
         return None
     after = [w.lower() for w in left_after]

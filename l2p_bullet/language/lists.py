@@ -242,14 +242,13 @@ def _by_article(item: str, scene: Scene) -> list[str]:
     object, or where names of several words follow one another ("butter dish salt shaker"); the item as it is where it
     names one object or the pieces do not each name one."""
     words = item.split()
-    run = _names_run(words, scene)
-    if run is not None:
-        return run
     starts = [k for k, w in enumerate(words) if w.lower() == "the"]
-    if len(starts) < 2 or starts[0] != 0 or try_object(item, scene) is not None:
-        return [item]
-    pieces = [" ".join(words[a:b]) for a, b in zip(starts, [*starts[1:], len(words)], strict=True)]
-    return pieces if all(try_object(p, scene) is not None for p in pieces) else [item]
+    if len(starts) >= 2 and starts[0] == 0 and try_object(item, scene) is None:  # each "the" first: "the orange
+        pieces = [" ".join(words[a:b]) for a, b in zip(starts, [*starts[1:], len(words)], strict=True)]  # block"
+        if all(try_object(p, scene) is not None for p in pieces):  # is one object, not the orange and the block
+            return pieces
+    run = _names_run(words, scene)
+    return run if run is not None else [item]
 
 
 def _split_and(text: str) -> list[str]:

@@ -159,7 +159,8 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
         if n not in table or (spelled and not marked and end > 0):
             if marked:
                 raise _missing(n, table, said, scene)
-            return None  # "8": the other readers say it is no block's name
+            tail = _by_tail(low[-1], table)  # "the 72" for SKU-4472, as a picker says the last digits
+            return tail  # None for "8": the other readers say it is no block's name
         return _the_one(table[n], n, said)
     if n not in table:
         if marked or (len(before) == 1 and before[0] in LABELS):
@@ -173,6 +174,16 @@ def number_reference(text: str, scene: Scene, role: str, resolve: Callable[..., 
     if low[end - 1] in RELATION_ENDS:
         return None
     return _apposed(n, " ".join(words[:end]), table[n], said, scene, role, resolve)
+
+
+def _by_tail(said: str, table: dict[int, tuple[str, ...]]) -> str | None:
+    """The one object whose number of three digits or more ends in ``said`` (two digits or more, fewer than its own):
+    "the 72" for SKU-4472 beside SKU-4471. None where none or several do."""
+    if not said.isdigit() or len(said) < 2:
+        return None
+    fits = [names for n, names in table.items() if len(str(n)) >= 3 and len(str(n)) > len(said)
+            and str(n).endswith(said)]
+    return fits[0][0] if len(fits) == 1 and len(fits[0]) == 1 else None
 
 
 UNITS = frozenset({"ml", "l", "cl", "dl", "ul", "\u00b5l", "g", "kg", "mg", "oz", "lb"})

@@ -14,8 +14,8 @@ from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
 from .pools import pool_of
 
-OTHER_THAN = re.compile(r"^(?P<base>.+?)\s+(?:that|which)\s+(?:isn't|isnt|is\s+not)\s+(?P<not>.+?)\s*$",
-                        re.IGNORECASE)
+OTHER_THAN = re.compile(r"^(?P<base>.+?)\s+(?:(?:that|which)\s+(?:isn't|isnt|is\s+not)|(?:that's|thats|which's)\s+not)"
+                        r"\s+(?P<not>.+?)\s*$", re.IGNORECASE)
 
 
 def other_than(text: str, scene: Scene, role: str, resolve: Callable[..., str]) -> str | None:

@@ -26,7 +26,7 @@ from .reference_words import (
     SHAPE_NOUNS,
     STRICT_SHAPES,
 )
-from .synonyms import KIND_CLASSES, SIZE_WORDS, kind_groups, kinds_of, shape_of
+from .synonyms import FIGURES, KIND_CLASSES, SIZE_WORDS, kind_groups, kinds_of, name_parts, shape_of
 
 
 @dataclass(frozen=True)
@@ -46,6 +46,9 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
     if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
+    gendered = _by_gender(low, context, scene)
+    if gendered is not None:  # "move the doll toward teddy, then move him ...": teddy
+        return gendered
     asked = low in DEMONSTRATIVES or (opening in DEMONSTRATIVES and low[-1] in NOUNS) or (
         low in GENDERED and context is not None and _animals(scene, context.mover, context.anchor))
     if asked and context is not None and context.mover is not None and context.anchor not in (None, context.mover):
@@ -75,6 +78,32 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
             return context.mover  # "move the jar away from it": the other of the two
         return _twin(said, context, scene) or context.anchor
     return None
+
+
+FEMININE = frozenset({"doll", "dolly", "princess", "girl", "lady", "woman", "queen", "mermaid", "ballerina", "barbie",
+                      "fairy", "bride", "mom", "mum", "mother", "grandma", "sister", "aunt", "hen", "cow"})
+"""Kinds people call "she" / "her" (a doll, a queen): of two objects of the clause before, the one of such a kind is
+"her", and where the other is a figure or an animal, "him" is that other."""
+
+
+def _by_gender(low: tuple[str, ...], context: Context | None, scene: Scene) -> str | None:
+    """The one of the clause before's two objects that "him"/"he" or "her"/"she" means by the kinds' genders; None where
+    the genders do not tell (neither or both are of a feminine kind)."""
+    if low not in GENDERED or context is None or context.mover is None or context.anchor in (None, context.mover):
+        return None
+    pair = [n for n in (context.mover, context.anchor) if n in scene.names]
+    female = [n for n in pair if _kinds_said(scene.get(n)) & FEMININE]
+    if len(pair) != 2 or len(female) != 1:
+        return None
+    if low[0] in ("her", "she"):
+        return female[0]
+    other = next(n for n in pair if n != female[0])
+    return other if _animals(scene, other) or _kinds_said(scene.get(other)) & set(FIGURES) else None
+
+
+def _kinds_said(o: SceneObject) -> set[str]:
+    """An object's kinds and every word of its name ("white_queen": queen)."""
+    return kinds_of(o) | {w.lower() for w in name_parts(o.name)}
 
 
 def _animals(scene: Scene, *names: str | None) -> bool:
@@ -191,3 +220,19 @@ def named_before(text: str, scene: Scene, role: str, context: Context | None, re
             except (LanguageError, UnknownObjectError):
                 continue
     return chosen
+
+
+PLURALIA = frozenset({"glasses", "spectacles", "specs", "scissors", "forceps", "tongs", "pliers", "tweezers", "keys",
+                      "headphones", "earphones", "earbuds", "chopsticks", "binoculars", "clippers", "shears"})
+"""Things named in the plural though each is one object: "them" is the one ("slide the keys past the wallet, then bring
+em back")."""
+SINGULAR_IN_S = frozenset({"lens", "bus", "gas", "canvas", "atlas", "chess", "iris", "cactus", "octopus", "walrus",
+                           "citrus", "hummus", "bonus", "series", "species", "axis", "basis", "mars", "texas"})
+
+
+def plural_named(name: str | None) -> bool:
+    """Whether the object ``name`` is called by a plural noun ("keys", "forceps", "AirPods", "dominoes")."""
+    parts = name_parts(name) if name else []
+    last = parts[-1].lower() if parts else ""
+    return last in PLURALIA or (len(last) > 3 and last.isalpha() and last.endswith("s")
+                                and not last.endswith(("ss", "us", "is")) and last not in SINGULAR_IN_S)

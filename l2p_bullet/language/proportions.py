@@ -238,10 +238,13 @@ block are the brick and the bar, two 12 cm bars are asked about."""
 
 def fitting(words: list[str], pool: list[SceneObject], named: dict[str, frozenset[str]],
             best: bool = True) -> list[SceneObject]:
-    """The objects of ``pool`` that each proportion word of ``words`` admits, in turn, and with ``best`` (one object
-    is meant) of several the one that fits the word clearly best (:data:`CLEARLY`), else all it admits. An object
-    called by the word as one of its kind's names (``named``: word -> names, synonyms.kind_groups) fits it
-    perfectly. An adjective is read past where the pool holds one object, as a size word is."""
+    """The objects of ``pool`` that every proportion word of ``words`` admits, and with ``best`` (one object is meant)
+    of several the one that fits the words clearly best (:data:`CLEARLY`), else all they admit. Each word's best is
+    found among what all of them admit, so their order does not matter: where two words' bests differ ("the long flat
+    one" between a whisk and a board) all are left, and the caller asks. An object called by the word as one of its
+    kind's names (``named``: word -> names, synonyms.kind_groups) fits it perfectly. An adjective is read past where
+    the pool holds one object, as a size word is."""
+    scores: dict[str, list[tuple[float, SceneObject]]] = {}
     for word in words:
         profile = PROFILES[word]
         if not profile.noun and len(pool) <= 1:
@@ -251,11 +254,16 @@ def fitting(words: list[str], pool: list[SceneObject], named: dict[str, frozense
             d = 0.0 if o.name in named.get(word, ()) else profile.distance(o, proportions(o))
             if d is not None:
                 scored.append((d, o))
-        ranked = sorted(d for d, _ in scored)
-        if best and len(ranked) > 1 and ranked[1] - ranked[0] >= CLEARLY:
-            scored = [(d, o) for d, o in scored if d == ranked[0]]
+        scores[word] = scored
         pool = [o for _, o in scored]  # in the pool's order: a group is named in the scene's
-    return pool
+    if not best or len(pool) <= 1:
+        return pool
+    bests = set()
+    for scored in scores.values():
+        ranked = sorted((d, o.name) for d, o in scored if o in pool)
+        if len(ranked) > 1 and ranked[1][0] - ranked[0][0] >= CLEARLY:
+            bests.add(ranked[0][1])
+    return [o for o in pool if o.name in bests] if len(bests) == 1 else pool
 
 
 def admits(word: str, o: SceneObject, named: dict[str, frozenset[str]]) -> bool:

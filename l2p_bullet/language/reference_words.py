@@ -15,7 +15,7 @@ from .synonyms import KIND_MODIFIERS, KIND_NAMES, KIND_SYNONYMS, SIZE_WORDS
 DETERMINERS = frozenset({"the", "a", "an", "this", "that", "la", "le", "les", "el", "los", "las"})
 """Articles and demonstratives before a description, French and Spanish articles among them ("la tasse", "el cubo"):
 bilingual speakers say a name of their language with its article."""
-NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item", "part"})
+NOUNS = frozenset({"block", "cube", "box", "brick", "one", "object", "thing", "piece", "item", "part", "token"})
 SHAPE_NOUNS = {"cube": "cube", "cubes": "cube", "dice": "cube", "die": "cube",
                "box": "box", "boxes": "box", "bar": "box", "bars": "box",
                "stick": "box", "sticks": "box", "brick": "box", "bricks": "box", "rectangle": "box",
@@ -57,7 +57,8 @@ cube"): read past there. The size words among them (synonyms.SIZE_WORDS) and the
 "thin": language/proportions.py) decide where the rest leaves several."""
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan", "silver": "gray",
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
-                  "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black"}
+                  "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black", "steel": "gray",
+                  "stainless": "gray", "chrome": "gray", "metallic": "gray"}
 NEAR_COLOURS = {"blue": "cyan", "cyan": "blue", "purple": "pink", "pink": "purple"}
 """Colours people call each other by: where nothing on the table has the colour said ("the blue bottle" on a
 table with a cyan bottle and nothing blue), the near one is meant."""
@@ -66,7 +67,7 @@ FUNCTION_WORDS = frozenset({"on", "of", "to", "in", "at", "by", "with", "from", 
                             "third", "last", "next", "same", "new", "one", "two", "three", "both", "either"})
 """Words never taken as an object's own adjective ("the second duck" is not "the duck")."""
 NAMED_AS = (("called",), ("named",))
-PRONOUNS_MOVER = (("it",), ("him",), ("her",), ("that", "one"), ("that", "block"), ("this", "one"),
+PRONOUNS_MOVER = (("it",), ("him",), ("her",), ("he",), ("she",), ("that", "one"), ("that", "block"), ("this", "one"),
                   ("the", "same", "block"),
                   ("the", "same", "one"), ("the", "same", "object"), ("that",), ("same",), ("same", "one"),
                   ("the", "same"))
@@ -75,7 +76,7 @@ DEMONSTRATIVES = (("that", "one"), ("that", "block"), ("this", "one"), ("that",)
 that one around the bottle": P or R? one author of the held-out sentences asked): after a clause with an anchor,
 asked, never guessed; "it" and "the same one" are the block moved, as is "same" as a protocol says it ("push same
 away from B")."""
-GENDERED = (("him",), ("her",))
+GENDERED = (("him",), ("her",), ("he",), ("she",))
 """Pronouns some authors use for any object (the block moved, as "it") and others for an animal or a toy they named:
 after a clause whose mover and anchor are both animals ("move rex next to daisy, then push her ..."), asked."""
 SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
@@ -111,7 +112,8 @@ SIZE_SUPERLATIVES = {"biggest": ("area", max), "largest": ("area", max), "smalle
                      "tallest": ("height", max), "highest": ("height", max), "shortest": ("height", min),
                      "lowest": ("height", min), "leftmost": ("y", max), "rightmost": ("y", min),
                      "backmost": ("x", max), "frontmost": ("x", min), "longest": ("length", max),
-                     "flattest": ("height", min)}
+                     "flattest": ("height", min), "littlest": ("area", min), "tiniest": ("area", min),
+                     "hugest": ("area", max), "fattest": ("area", max)}
 SIZE_SUPERLATIVES |= {f"{side}-most": SIZE_SUPERLATIVES[f"{side}most"] for side in ("left", "right", "back", "front")}
 CORNERS = {(depth, side): f"{depth}-{side}" for depth in ("front", "back") for side in ("left", "right")}
 CORNERS |= {("rear", side): f"back-{side}" for side in ("left", "right")}

@@ -13,8 +13,8 @@ import re
 
 from .synonyms import unaccented
 
-_SPELLINGS = (("ph", "f"), ("ck", "k"), ("qu", "kw"), ("th", "t"), ("sh", "s"), ("ch", "k"), ("c", "k"), ("q", "k"),
-              ("x", "ks"), ("z", "s"), ("y", "i"))
+_SPELLINGS = (("ph", "f"), ("ck", "k"), ("qu", "kw"), ("th", "t"), ("sh", "s"), ("ch", "k"), ("ce", "se"), ("ci", "si"),
+              ("cy", "si"), ("c", "k"), ("q", "k"), ("x", "ks"), ("z", "s"), ("y", "i"), ("wh", "w"), ("ew", "u"))
 
 
 def heard_key(word: str) -> str:
@@ -28,15 +28,28 @@ def heard_key(word: str) -> str:
     return re.sub(r"(.)\1+", r"\1", w[0] + rest)
 
 
-def heard_name(word: str, names: list[str]) -> str | None:
+def heard_name(word: str, names: list[str], amiss: bool = False) -> str | None:
     """The one name of ``names`` (one word of letters each) that ``word`` (three letters or more) sounds like; a final
     "r" heard where the name ends in a vowel is allowed ("copper" for koppu), and an "h" the speaker dropped ("the
-    art" for the heart). None where none or several do."""
+    art" for the heart), and with ``amiss`` one consonant heard as another or left out ("kennel" for kettle). None
+    where none or several do."""
     if len(word) < 3 or not word.isalpha():
         return None
     said = heard_key(word)
     keys = {said, said[:-1] if said.endswith("r") and len(said) > 2 else said}
     keys |= {k[1:] for k in keys if k[:1] in "aeiou" and len(k) > 2}  # "art" heard for heart: its vowel, no "h"
-    fits = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()
-            and (heard_key(n) in keys or heard_key(n).startswith("h") and heard_key(n)[1:] in keys)]  # "the art"
+    names = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()]
+    fits = [n for n in names if heard_key(n) in keys or heard_key(n).startswith("h") and heard_key(n)[1:] in keys]
+    if not fits and amiss and len(word) >= 4:  # "the kennel" for the kettle, "the lady" for the ladle: one sound amiss
+        fits = [n for n in names if len(heard_key(n)) >= 3 and any(_one_sound(k, heard_key(n)) for k in keys)]
     return fits[0] if len(fits) == 1 else None
+
+
+def _one_sound(said: str, name: str) -> bool:
+    """Whether two consonant keys differ by one consonant heard as another, or one left out, past the first."""
+    if said[:1] != name[:1] or said == name:
+        return False
+    if len(said) == len(name):
+        return sum(a != b for a, b in zip(said, name, strict=True)) == 1
+    short, long_ = sorted((said, name), key=len)
+    return len(long_) == len(short) + 1 and any(long_[:i] + long_[i + 1:] == short for i in range(1, len(long_)))

@@ -76,7 +76,7 @@ KIND_NAMES = {
     "flask": ("flasks", "erlenmeyer", "erlenmeyers"),
     "rack": ("racks", "holder", "holders"),
     "vial": ("vials", "bottle", "bottles", "ampoule", "ampule"),
-    "truck": ("trucks", "lorry", "lorries"),
+    "truck": ("trucks", "lorry", "lorries", "firetruck", "firetrucks", "engine", "vehicle"),
     "cracker": ("crackers", "cheez-it", "cheez-its", "cheezit", "cheezits", "cheese-it", "cheezit's"),
     "sugar": ("domino",),
     "meat": ("spam",),
@@ -85,7 +85,33 @@ KIND_NAMES = {
     "pudding": ("jell-o", "jello"),
     "dinosaur": ("dinosaurs", "dino", "dinos", "t-rex", "trex", "rex"),
     "cow": ("cows", "moo", "calf", "cattle"),
-    "dog": ("dogs", "doggy", "doggie", "doggo", "puppy", "pup", "pooch"),
+    "dog": ("dogs", "doggy", "doggie", "doggo", "puppy", "pup", "pooch", "terrier", "scottie", "hound"),
+    "dino": ("dinos", "dinosaur", "dinosaurs", "t-rex", "trex", "rex", "dyno"),
+    "doll": ("dolls", "dolly", "dollie", "princess", "barbie"),
+    "car": ("cars", "racecar", "racecars", "racer", "vehicle", "motor", "auto", "automobile"),
+    "boot": ("boots", "shoe", "shoes", "footwear"),
+    "kettle": ("kettles", "teakettle"),
+    "colander": ("colanders", "strainer", "strainers", "sieve", "sieves", "drainer", "bowl"),
+    "whisk": ("whisks", "beater", "eggbeater"),
+    "ladle": ("ladles", "spoon", "spoons", "scoop", "dipper"),
+    "keys": ("key", "keyring", "keyrings", "keychain"),
+    "wallet": ("wallets", "billfold", "purse", "pocketbook"),
+    "glasses": ("specs", "spectacles", "eyeglasses", "readers"),
+    "vase": ("vases", "florero", "jarron", "jarr\u00f3n"),
+    "book": ("books", "novel", "paperback", "hardback", "libro"),
+    "candle": ("candles", "taper", "vela"),
+    "remote": ("remotes", "controller", "control", "clicker", "zapper", "pult", "mando"),
+    "glass": ("tumbler", "tumblers", "cup", "cups"),
+    "scanner": ("scanners", "gun", "scangun", "barcode", "scan"),
+    "tape": ("dispenser", "dispensers"),
+    "label": ("labels", "sticker", "stickers"),
+    "tote": ("totes", "bin", "bins", "container"),
+    "scalpel": ("scalpels", "blade", "knife", "lancet"),
+    "forceps": ("pickups", "tweezers", "tweezer", "pincers", "tongs"),
+    "syringe": ("syringes", "needle", "plunger"),
+    "gauze": ("sponge", "bandage", "dressing", "swab"),
+    "dish": ("dishes", "basin", "basins", "emesis"),
+    "bin": ("bins", "container", "bucket"),
     "fish": ("fishes", "fishy", "fishie", "clownfish", "goldfish"),
     "barn": ("barns", "house", "farmhouse", "stable", "shed"),
     "pond": ("ponds", "water", "pool", "lake"),
@@ -132,7 +158,8 @@ FIGURE_WORDS = CASUAL_PERSONS | {"figurine", "person", "man", "character", "mini
 "the bunny figurine" is the bunny, and the casual ones ("the little yellow guy", a chess set's "white figure") mean
 any object, as "one" does."""
 LOOSE_NOUNS = CASUAL_PERSONS | {"machine", "device", "gadget", "appliance", "instrument", "thingy", "thingamajig",
-                                "doodad", "whatsit", "doohickey", "shape"}
+                                "doodad", "whatsit", "doohickey", "shape", "tool", "tools", "utensil", "utensils",
+                                "implement", "gizmo", "contraption"}
 """Nouns that name any object where nothing on the table is of their kind ("the grey machine", "the little yellow
 guy"): read as "one" is."""
 KIND_NAMES |= {
@@ -161,9 +188,10 @@ KIND_NAMES |= {
 }
 """Objects a scene names in French, Spanish, German, Italian or Japanese (its names without accents, as kinds are): the
 English words a bilingual user also calls them by ("la tasse" is the cup, "the teapot" the théière)."""
-KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
-                "animals": ("duck", "teddy", "bunny", "dinosaur", "cow", "dog", "fish"),
-                "toy": ("duck", "teddy", "bunny", "ball", "soccerball"),
+KIND_CLASSES = {"animal": ("duck", "teddy", "bunny", "dinosaur", "dino", "cow", "dog", "fish"),
+                "animals": ("duck", "teddy", "bunny", "dinosaur", "dino", "cow", "dog", "fish"),
+                "toy": ("duck", "teddy", "bunny", "ball", "soccerball", "truck", "doll", "dino", "dinosaur", "brick",
+                        "lego"),
                 "fruit": ("apple", "lemon", "orange", "banana", "pear", "peach", "plum", "lime", "grape", "kiwi",
                           "mango", "strawberry", "cherry", "melon", "grapefruit", "apricot", "pineapple")} | {
     word: ("zucchini", "cucumber", "carrot", "eggplant", "aubergine", "potato", "broccoli")
@@ -184,7 +212,9 @@ KIND_MODIFIERS = frozenset({"coffee", "tea", "soda", "tin", "measuring", "glass"
                             "video", "game", "games", "ping", "pong", "table-tennis", "hex", "hexagonal", "desk",
                             "table", "bedside", "tomato", "sauce", "metal", "steel", "wooden", "popsicle", "swizzle",
                             "stir", "lolly", "chopping", "cutting", "bread", "test", "tube", "pipette", "lab",
-                            "laboratory", "conical", "base", "lego"})
+                            "laboratory", "conical", "base", "lego", "fire", "race", "shipping",
+                            "soup", "egg", "balloon", "kidney", "sharps", "biohazard", "emesis", "reading",
+                            "tv", "flower", "leather", "tape", "label"})
 """Words that, just before a kind's name, make a compound people use for it ("coffee mug", "tin can", "rubber
 duck", "teddy bear", "stuffed animal", "video game controller", "ping pong ball", "hex nut", "swizzle
 stick", "popsicle stick"): read past there, a run of them too ("video game")."""
@@ -264,6 +294,7 @@ MESH_JARGON = frozenset({"vhacd", "chs", "coacd", "textured", "smooth", "visual"
 """Words a mesh file's stem holds about the file, not the thing ("duck_vhacd", "sphere_smooth"): no kind."""
 
 
+@functools.lru_cache(maxsize=4096)
 def name_parts(name: str) -> tuple[str, ...]:
     """The words of a name, lower case and without accents (:data:`NAME_PART`): ("coffee", "mug"), ("cube", "b"),
     ("red", "cube", "2"), ("theiere",) for théière, as people type it without them."""

@@ -29,7 +29,7 @@ over under near nearer nearest far farther further away next toward towards arou
 closer beside left right front back behind middle side end top bottom edge table again too also very just
 only now first second third last until while when if could would should will can may might must shall
 please thanks thank mind go goes get gets make sure want like need needs task goal job keep see look there's
-bit little lot much more less way little slightly real
+bit little lot much more less way little slightly real time times row rows
 """.split())
 """Everyday words a sentence holds that no table of the grammar lists; known, so never mended."""
 SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from", "n": "and", "r": "are",
@@ -38,7 +38,8 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
-SHORTHAND |= {"blew": "blue", "won": "one"}
+SHORTHAND |= {"blew": "blue", "won": "one", "b": "be", "shld": "should", "shud": "should", "em": "them",
+              "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "pls": "please", "bk": "back"}
 SHORTHAND |= dict(pair.split("=") for pair in """
     tae=to fae=from frae=from awa=away roon=round roond=round yon=the yin=one pit=put gie=give richt=right muckle=big
     hae=have ye=you dinnae=don't tak=take ower=over wi=with oot=out doon=down aboot=about cannae=can't intae=into
@@ -107,6 +108,8 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     kinds = frozenset(kinds)
     names = list(names)
     spoken = [n for n in names if " " not in n]  # one-word names, as speech-to-text may hear them
+    heard_parts = list(dict.fromkeys([*spoken, *(w for n in names for w in name_parts(n) if len(name_parts(n)) > 1
+                                                  and w.isalpha() and len(w) >= 3)]))  # "the tape gone"
     keep = {n.lower() for n in names}
     named = frozenset(w for n in keep for w in _WORD.findall(n))
 
@@ -119,19 +122,24 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return SHORTHAND[low]
         if low in known:
             return w
+        if _dropped_g(low, verbs):  # "movin", "pushin", "puttin": a verb's -ing with its g left off
+            return w + "g"
         squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named)
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
-        heard = heard_name(low, spoken) if (hit is None or (after_article and hit not in named)) \
-            and low not in reference_words.KIND_WORDS else None  # "the banana" is a banana, never the bunny
+        amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
+        hyphened = "-" in m.string[max(0, m.start() - 1):m.start()] + m.string[m.end():m.end() + 1]
+        heard = heard_name(low, heard_parts, amiss) if (hit is None or (after_article and hit not in named)) \
+            and low not in reference_words.KIND_WORDS and SUBJECT_BEFORE.search(m.string, 0, m.start()) is None \
+            and not hyphened else None  # "the banana" is no bunny, "you boil water" no bowl, "bean-shaped" no bin
         if heard is not None:  # "the copper" for koppu, "the tease" for tasse; "the art" is the heart, not "at"
             return heard
         if hit is None:
             return w
-        if hit in verbs and after_article:
-            return w
+        if hit in verbs and after_article or hit in named and SUBJECT_BEFORE.search(m.string, 0, m.start()):
+            return w  # "for a pic" is no "pick"; "the thing you boil water in" is no bowl
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
@@ -141,6 +149,14 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
     mended = HANDED.sub(r"\1-hand", mended)
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
+
+
+def _dropped_g(low: str, verbs: frozenset[str]) -> bool:
+    """Whether ``low`` is a verb's -ing form typed without its g ("movin", "slidin", "puttin", "carryin")."""
+    if len(low) < 5 or not low.endswith("in"):
+        return False
+    stem = low[:-2]
+    return bool({stem, stem + "e", stem[:-1] if len(stem) > 2 and stem[-1] == stem[-2] else stem} & verbs)
 
 
 def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] = ()) -> str:
@@ -170,6 +186,10 @@ def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] =
 DROPPED_LETTER = re.compile(r"(?<=[a-z])'(?=\s)")
 """An apostrophe that marks a letter left off a word's end ("awa' fae", "o' the"): the word as typed."""
 ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
+SUBJECT_BEFORE = re.compile(r"\b(?:you|u|i|we|they|people)\s+$", re.IGNORECASE)
+"""A subject right before a word: what follows is what someone does, never a thing's name heard amiss."""
+THE_BEFORE = re.compile(r"\bthe\s+$", re.IGNORECASE)
+"""A thing said with "the" ("the kennel"): only such a word may be a name heard with one sound amiss."""
 """An article right before a word: what follows names a thing, never a verb."""
 RUNS = re.compile(r"([a-z])\1{2,}")
 """A letter typed three or more times for emphasis ("wayyy past", "sooo slowly"): read once or twice."""

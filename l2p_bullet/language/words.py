@@ -51,6 +51,11 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "abeg", "oya", "biko", "pls po", "please po", "po", "quick favor", "quick favour", "a quick favor",
     "a quick favour", "quick question", "help me", "help us", "can you help us", "can you help me",
     "could you help us", "could you help me",
+    "brother please", "brother", "sister please", "habibi", "my friend", "please if you can", "please if not difficult",
+    "if not difficult", "trouble you", "trouble you please", "thank you in advance", "todo", "to do",
+    "pretty please", "required end state", "required", "i'd be grateful if", "i would be grateful if",
+    "i'd be grateful if you could", "i'd be grateful if you would", "thank you robot", "thanks robot",
+    "ok robot", "okay robot", "alexa", "hey alexa", "siri", "hey siri", "hey google", "ok google",
 )), key=len, reverse=True))
 """Words that may open a command and ask for nothing (longest first, so "hey there" goes whole)."""
 VOCATIVES = ("boys and girls", "girls and boys", "kids", "children", "class", "everyone", "everybody", "friends",
@@ -105,6 +110,9 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "if its not too much trouble", "if it's no bother", "if that's ok", "if that's okay", "if thats ok",
     "thats it", "thats all", "when we're done", "when were done", "when we are done", "when you're done",
     "when youre done", "when you are done", "at the end of it",
+    "inshallah", "insha'allah", "habibi", "god bless you", "god bless", "my friend", "brother", "thank", "period",
+    "comma", "full stop", "if that makes sense", "rules are rules", "heard", "thanks a lot", "thank you robot",
+    "if you could sort that out", "when you get a sec", "when you have a sec",
 )), key=len, reverse=True))
 POLITE_SUFFIXES = tuple(sorted(POLITE_SUFFIXES + tuple(tuple(v.split()) for v in VOCATIVES), key=len, reverse=True))
 GERUND_PREFIXES: tuple[tuple[str, ...], ...] = (("do", "you", "mind"), ("mind",), ("keep",), ("start",),
@@ -159,6 +167,9 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "don't hurry": "slow", "dont hurry": "slow", "without rushing": "slow", "con cuidado": "careful",
     "with precaution": "careful", "sharp sharp": "fast", "tak yer time": "slow", "tak yer time an": "slow",
     "go canny": "careful", "go canny an": "careful", "dahan-dahan lang": "slow", "dahan-dahan": "slow",
+    "take ur time": "slow", "take ur time and": "slow", "take yr time": "slow", "take yr time and": "slow",
+    "take yer time": "slow", "take yer time and": "slow", "take yer time an": "slow",
+    "on the fly": "fast", "nice and gentle": "gentle", "nice and slow": "slow", "nice and slowly": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}
@@ -290,8 +301,13 @@ def _own_words(before: list[str], keep: frozenset[str], told: bool) -> bool:
     lowered = {x.lower() for x in said}
     if said & keep or any(a in x for x in said for a in ("->", "=>", "\u2192")):
         return True
-    nouns = lowered & NOUNS
+    nouns = lowered & (NOUNS | {n + "s" for n in NOUNS} | GROUP_COUNTS)  # "the two at the front, move the one ..."
     return bool(nouns) and not told and not (nouns == {"one"} and {"that", "this"} & lowered)
+
+
+GROUP_COUNTS = frozenset({"two", "three", "four", "both"})
+"""Counts that, before the verb, say a group the command picks from ("Of the two at the front, move the one on the
+left ..."): the command's own words, never read past."""
 
 
 STATEMENT_OPENINGS = frozenset({"this's", "that's", "here's", "it's", "thats", "heres"})
