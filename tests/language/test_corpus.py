@@ -113,6 +113,9 @@ DISAGREED = {
     "heldout58.tsv": {"Final frame: lemon by the banana, lime away from it."},
     "heldout63.tsv": {"AirPods right up against the Post-it, asap.",
                       "Move the biggest thing on the desk next to the iPhone."},
+    "heldout65.tsv": {"what I want is the board over by the kettle, and then the mug up against the board"},
+    "heldout67.tsv": {"Remote go far from bowl please", "Small thing, put next to book."},
+    "heldout68.tsv": {"move the gun next to the tote"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -131,7 +134,12 @@ and the forty-fourth; "the biggest thing" between a 9 x 6 x 4 cm box and a 6 x 1
 for most, a question for the forty-fifth. "it" in "lemon by the banana, lime away from it" is the banana for the
 fifty-eighth author, where the toolkit reads "it" after a clause as the block that clause moved, as most authors do;
 "asap" asks for no pace for the sixty-third (a hurry for the toolkit), and "the biggest thing" of a cup 12 cm tall and
-a notebook of a larger footprint is a question for that author, the cup (bulk) for the toolkit as for most."""
+a notebook of a larger footprint is a question for that author, the cup (bulk) for the toolkit as for most. "up
+against" is plain for the sixty-fifth author too; "go far from" is a plain "away" for the sixty-seventh (far, as every
+other author wrote "far from"), and "small thing" among three small and three big things is asked by that author, the
+clearly smallest for the toolkit as "the small one" is for most; "the gun" is the tape gun by its name for the
+toolkit, as "the cup" is the cup beside a mug, and asked by the sixty-eighth author, who calls the scanner a barcode
+gun."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -182,6 +190,13 @@ OPEN = {
         # "up against" without "right": a plain next-to for this author (and two of heldout40's lines), a tight one
         # for two earlier authors; read as tight
         "um put the little blue box up against the cup": "slide:next-to blue cup extent=right"},
+    "heldout66.tsv": {
+        # "the front left" of a cup 12 cm in front and 9 cm left and a lamp 6 cm in front and 20 cm left: both for the
+        # author, the lamp (farther along the corner's diagonal) for the toolkit
+        "the one in the front left \u27a1\ufe0f next to the keys": "slide:next-to lamp keys"},
+    "heldout67.tsv": {
+        # "vaso" is Spanish for a glass, and one letter from "vase": asked by the author, read as the slip of "vase"
+        "the vaso put it near to the book": "slide:closer vase book"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -265,6 +280,23 @@ def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     once on b6d64bb: 44.4 % / 0, 68.8 % / 1, 36.2 % / 4, 60.0 % / 2. Wrong only where the author disagrees with most
     authors (:data:`DISAGREED`)."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
+
+
+@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 139), ("heldout67.tsv", 124),
+                                         ("heldout68.tsv", 114), ("heldout69.tsv", 125), ("heldout70.tsv", 125),
+                                         ("heldout71.tsv", 134), ("heldout72.tsv", 131)])
+def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-first session, on everyday tables as people type about them: heldout65.tsv (a kitchen,
+    things said by their use: "the thing you boil water in"), heldout66.tsv (a bedside table, texting, typos, emoji),
+    heldout67.tsv (a living room, English as Chinese, Spanish, Russian and Arabic speakers write it), heldout68.tsv (a
+    packing station, SKU-4471 and SKU-4472 by their last digits), heldout69.tsv (six gray game tokens: a top hat, a
+    boot, a thimble), heldout70.tsv (blocks and jars said by what they are not, and by order), heldout71.tsv (a
+    child's toys, "him" and "her") and heldout72.tsv (a procedure tray, ward slang: "pickups", "the blade"), read once
+    on the session's start code (adbdc06): 43.1 % / 4 wrong, 68.8 % / 2, 64.4 % / 3, 56.9 % / 4, 58.1 % / 1, 76.9 % /
+    1, 66.9 % / 5, 56.2 % / 3. Wrong only where the author disagrees with most authors (:data:`DISAGREED`) or as
+    :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
+                or OPEN.get(name, {}).get(sentence) == got)
 
 
 @pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])

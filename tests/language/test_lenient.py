@@ -32,7 +32,7 @@ def test_a_command_among_unknown_words_is_read(plugins, sentence, expect):
     "I noticed the duck standing next to C yesterday.",  # a statement asks for nothing
     "Yesterday the duck was next to C, I noticed.",
     "move the fat purple thing A toward C",         # a colour read past would have named E
-    "grab A and B with care and put em toward C",   # two objects before the phrase
+    "grab A and B with care and put the things toward C",  # two objects before the phrase
     "move A toward B, then",                        # a join left over
     "push A 3 cm toward B",                         # a number the actions cannot take
 ])

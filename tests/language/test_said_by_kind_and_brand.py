@@ -33,6 +33,9 @@ YCB = "heldout50.tsv"
     ("push the dino toward the water", "push:closer Rex pond", FARM),
     ("slide the doggy past the moo cow", "slide:past Max Daisy", FARM),
     ("move the clownfish next to the red house", "slide:next-to Nemo barn", FARM),
+    # "her" after a clause that moved a dog next to a cow: the cow
+    ("slide Max next to Daisy, then push her toward the barn", "slide:next-to Max Daisy ; push:closer Daisy barn",
+     FARM),
     # a name said with its kind
     ("carry Nemo the fish around the pond", "carry:around Nemo pond", FARM),
     ("move Max, our dog, away from the barn", "slide:away Max barn", FARM),
@@ -74,8 +77,8 @@ def test_read(plugins, sentence, expect, table):
 @pytest.mark.parametrize("sentence, table", [
     # a name and a kind that name two objects
     ("move Rex the cow past the pond", FARM),
-    # "her" after a clause that moved one animal next to another: either
-    ("slide Max next to Daisy, then push her toward the barn", FARM),
+    # "her" after a clause that moved one animal next to another, neither of them a she by kind: either
+    ("slide Max next to Rex, then push her toward the barn", FARM),
     # two objects shown before a statement of the end: what follows picks among them
     ("Nemo and Max both need moving: Nemo goes next to Rex, and the other one goes around the pond", FARM),
     # "the can" fits three cans
