@@ -26,10 +26,10 @@ from ..language import (
     typos,
     verb_heads,
 )
-from ..language.descriptions import naming_words
 from ..language.dictated import numbers_said
 from ..language.emoji import emoji_said
 from ..language.learners import in_plain_english
+from ..language.naming import naming_words
 from ..language.numbers import codes_said
 from ..language.synonyms import kind_groups
 from ..pipeline import resolve

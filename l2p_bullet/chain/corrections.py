@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 
 from ..core.scene import Scene
-from ..language.descriptions import naming_words
+from ..language.naming import naming_words
 from ..language.references import try_object
 
 SORRY = re.compile(r"^(?P<before>.+?)\s*[-\u2013\u2014,]+\s*"

@@ -15,9 +15,9 @@ from dataclasses import dataclass, replace
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object, split_verb
-from ..language.descriptions import name_words, naming_words
 from ..language.grammar import ARROWS
 from ..language.group_places import placed_group
+from ..language.naming import name_words, naming_words
 from ..language.numbers import number_of
 from ..language.partitives import group_of
 from ..language.pronouns import plural_named

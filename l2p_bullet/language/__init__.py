@@ -1,6 +1,6 @@
 """Sentence -> what to do: the grammar (grammar.py), its verb and manner (verbs.py), the words around a command
-(words.py), the objects a sentence names (references.py, descriptions.py, pronouns.py) and lists of objects for
-composites (lists.py). One grammar, documented in docs/perform.md ("Sentences")."""
+(words.py), the objects a sentence names (references.py, descriptions.py, naming.py, pronouns.py) and lists of
+objects for composites (lists.py). One grammar, documented in docs/perform.md ("Sentences")."""
 
 from .grammar import (
     MAX_SENTENCE,

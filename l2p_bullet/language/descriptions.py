@@ -9,13 +9,12 @@ several objects or none is a one-line error that names them.
 
 from __future__ import annotations
 
-import functools
 import re
 
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
-from .kept import SceneMemo
 from .letters import letter_of, letters_of
+from .naming import GEOMETRIC, kind_named, name_words, names_within, parts_of, shape_named, spelled_name
 from .places import by_size, named_colours
 from .proportions import PROFILES, PROPORTION_NOUNS, fitting, outline_sides
 from .reference_words import (
@@ -39,7 +38,6 @@ from .reference_words import (
 from .synonyms import (
     DRINKS,
     FOODS,
-    KIND_MODIFIERS,
     KIND_NAMES,
     KIND_SYNONYMS,
     LOOSE_NOUNS,
@@ -47,11 +45,8 @@ from .synonyms import (
     abbreviated,
     is_modifier,
     kind_groups,
-    kind_words_of,
     kinds_of,
-    name_parts,
     own_kinds_of,
-    scene_key,
     shape_of,
 )
 
@@ -125,64 +120,6 @@ def _other_than_block(o: SceneObject) -> bool:
     return bool(kinds & NOT_BLOCKS) and not kinds & (BLOCK_KINDS | GEOMETRIC)
 
 
-def shape_named(scene: Scene) -> frozenset[str]:
-    """The names (lower case) that are a shape's own word where another object is of that shape too ("Cylinder" and
-    "Cylinder (1)", as a game engine names its shapes): said alone ("move Cylinder ...") the name; with an article or
-    other words ("the cylinder at the back", "the orange cylinder") the shape, as of any of them. Kept per scene:
-    every description asks."""
-    def read() -> frozenset[str]:
-        words = [n.lower() for n in scene.names if n.lower() in GEOMETRIC]
-        return frozenset(w for w in words if sum(shape_of(o) == SHAPE_NOUNS[w] or w in name_parts(o.name)
-                                                 for o in scene.objects) > 1)
-
-    return _SHAPE_NAMED.ask("shape_named", scene, read)
-
-
-_SHAPE_NAMED = SceneMemo(64)
-
-
-@functools.lru_cache(maxsize=256)
-def _parts(names: tuple[str, ...]) -> frozenset[str]:
-    """The words the scene's names are made of ("brick" of brick_2x4_red)."""
-    return frozenset(p for n in names for p in name_parts(n))
-
-
-def kind_named(scene: Scene, groups: dict[str, frozenset[str]]) -> set[str]:
-    """The names (lower case) of one word that are the kind of another object too ("apple" beside green_apple;
-    ``groups``: the scene's :func:`~.synonyms.kind_groups`): with other words said ("the apple at the back", "the red
-    apple") the kind, as of either of them; alone ("the apple") the one so named."""
-    return {n.lower() for n in scene.names if len(groups.get(n.lower(), ())) > 1}
-
-
-def spelled_name(words: list[str], scene: Scene) -> str | None:
-    """The object whose name of several words the words spell, however the name joins them ("cube b", "Cube-B" for
-    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box); None where none
-    or several do."""
-    said = name_parts(" ".join(words))
-    if len(said) < 2:
-        return None
-    fits = [n for n in scene.names if said in (name_parts(n), _unnumbered(name_parts(n)))]
-    return fits[0] if len(fits) == 1 else None
-
-
-def _unnumbered(parts: tuple[str, ...]) -> tuple[str, ...]:
-    """A name's words without the number it opens with ("002_master_chef_can": master, chef, can), as people say a
-    dataset's file names; the words themselves where it opens with none."""
-    return parts[1:] if len(parts) > 2 and parts[0].isdigit() else parts
-
-
-def names_within(words: list[str], scene: Scene) -> list[str]:
-    """The scene's names of several words that ``words`` spell whole, each somewhere in them ("the butter dish salt
-    shaker": butter dish and salt shaker), in the scene's order."""
-    said = name_parts(" ".join(words))
-    found = []
-    for n in scene.names:
-        parts = name_parts(n)
-        if len(parts) > 1 and any(said[i:i + len(parts)] == parts for i in range(len(said) - len(parts) + 1)):
-            found.append(n)
-    return found
-
-
 MEASURE = re.compile(r"^(?P<n>\d+(?:[.,]\d+)?)-?(?P<unit>cm|mm|centimet(?:er|re)s?|millimet(?:er|re)s?)$")
 UNITS = {"c": 0.01, "m": 0.001}
 MEASURE_TOLERANCE = 0.15
@@ -243,7 +180,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
-                    and (not best or w not in groups or w in NOUNS and w not in _parts(tuple(scene.names)))]
+                    and (not best or w not in groups or w in NOUNS and w not in parts_of(tuple(scene.names)))]
     # "the tower": the rook in a chess set, not any tall thing; "the brick" where names say which are bricks; a group or
     # a relation's pool still takes every object the word admits ("the stick nearest the bowl")
     kept = [(w, lw) for i, (w, lw) in enumerate(zip(words, low, strict=True))
@@ -366,13 +303,6 @@ def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:
                  for i, w in enumerate(low))
 
 
-GEOMETRIC = frozenset({"cube", "cubes", "box", "boxes", "cylinder", "cylinders", "brick", "bricks", "rectangle",
-                       "rectangles"})
-"""Shape nouns that name a shape as such: an object of that kind ("cube.obj") and any other of that shape are both
-it. Every other shape noun is a thing's name ("can", "log", "tube", "disc"): where an object is that thing, it is
-meant, not another of its shape."""
-
-
 def _before_head(low: tuple[str, ...], i: int, heads: set[str]) -> bool:
     """Whether the words after ``low[i]`` are more modifiers, then a kind's name ("video game controller")."""
     j = i + 1
@@ -393,21 +323,6 @@ def _cube_like(o: SceneObject) -> bool:
     return max(sides) <= CUBE_LIKE * min(sides)
 
 
-def naming_words(scene: Scene) -> frozenset[str]:
-    """Lower-case words that name or describe objects: kind words and names of 3+ letters, colours and their
-    synonyms, shape nouns. Not "can" as a shape ("can you ..." asks; an object named "can" is a kind word, a can a
-    mesh file or a longer name calls so is not) nor a one-letter name ("u" is "you" as typed: U is named as "U")."""
-    shapes = frozenset(SHAPE_NOUNS) - {"can", "cans"}
-    literal = {n.lower() for n in scene.names}
-    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3 and (w in literal or w not in SHAPE_NOUNS))
-    return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
-
-
-WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOUNS) | frozenset(COLORS)
-                      | frozenset(COLOR_SYNONYMS) | KIND_MODIFIERS)
-"""Words a name's fond form may spell ("tin" + "y" is "tiny"): never read as the name."""
-
-
 def colours_said(low: tuple[str, ...], scene: Scene) -> set[str]:
     """The words of ``low`` that name an object and a colour and stand before a noun, said as the colour: "the
     orange block" is the orange-coloured block beside an orange (the fruit) named "orange", and "the orange thing"
@@ -417,27 +332,6 @@ def colours_said(low: tuple[str, ...], scene: Scene) -> set[str]:
     return {w for w, after in zip(low, low[1:], strict=False)
             if w in names and COLOR_SYNONYMS.get(w, w) in COLORS and after in heads
             and COLOR_SYNONYMS.get(after, after) not in COLORS}  # "the red blue and green cubes": a list
-
-
-def name_words(scene: Scene) -> dict[str, str]:
-    """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
-    ("ducky", "duckie": the duck)."""
-    return dict(name_words_of(scene_key(scene)))
-
-
-@functools.lru_cache(maxsize=256)
-def name_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, str]:
-    """name_words of a :func:`~.synonyms.scene_key`, kept: made once per scene, not once per word read (a caller must
-    not change it; name_words hands out copies)."""
-    names = [name for name, *_ in objects]
-    out = {}
-    for n in names:
-        low = n.lower()
-        if len(low) >= 3 and low.isalpha():
-            out.update({fond: n for fond in (low + "y", low + "ie") if fond not in WORDS_OF_THEIR_OWN})
-    out.update(kind_words_of(objects))
-    out.update({n.lower(): n for n in names})
-    return out
 
 
 def unknown_object(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:

@@ -28,9 +28,9 @@ from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from ..manners import registry as manners
 from . import lenient
 from .anchors import measured_context, mover_in_relation, noun_carried, twin_of
-from .descriptions import naming_words
 from .extents import take_extent, take_extent_first, take_extent_tail
 from .goals import goal_to_verb, passive_to_verb, said_now, state_to_verb
+from .naming import naming_words
 from .phrase_readings import TIGHT, phrase_tokens, readings, without_to
 from .pronouns import Context
 from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES

@@ -28,9 +28,9 @@ from contextvars import ContextVar
 from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
-from .descriptions import naming_words, shape_named
 from .extents import EXTENTS, take_extent
 from .goals import participles
+from .naming import naming_words, shape_named
 from .pronouns import Context
 from .reference_words import (
     COLOR_SYNONYMS,

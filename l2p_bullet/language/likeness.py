@@ -6,7 +6,7 @@ apple's variety ("the Granny Smith": the green apple). The words are read before
 from __future__ import annotations
 
 from ..core.scene import Scene
-from .descriptions import name_words
+from .naming import name_words
 from .reference_words import SHAPE_NOUNS
 
 

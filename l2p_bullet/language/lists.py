@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 from ..core.scene import Scene
 from ..errors import LanguageError
-from .descriptions import name_words
 from .grammar import ARROWS, MAX_SENTENCE, phrase_tokens, tokens
 from .letters import in_abc_order, said_letters
+from .naming import name_words
 from .numbers import number_name
 from .partitives import number_said
 from .reference_words import CONJUNCTIONS

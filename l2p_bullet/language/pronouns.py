@@ -12,7 +12,8 @@ from dataclasses import dataclass
 
 from ..core.scene import Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .descriptions import candidates, name_words
+from .descriptions import candidates
+from .naming import name_words
 from .places import by_size
 from .proportions import PROFILES, admits
 from .reference_words import (

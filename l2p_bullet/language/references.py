@@ -19,18 +19,12 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
-from .descriptions import (
-    candidates,
-    describe,
-    described,
-    name_words,
-    shape_named,
-    spelled_name,
-)
+from .descriptions import candidates, describe, described
 from .group_places import in_group, table_sides
 from .kept import SceneMemo
 from .letters import marked_with, named_after_the
 from .likeness import coloured_like, looks
+from .naming import name_words, shape_named, spelled_name
 from .numbers import number_reference
 from .other_than import other_than
 from .partitives import name_and_kind, of_compound, partitive
@@ -61,22 +55,19 @@ from .reference_words import (
     NEAREST,
     NOUNS,
     OPENINGS,
-    PLACE_ADJECTIVES,
     PLACE_MEASURES,
-    REFERENCE_WORDS,
     RELATIVES,
     ROBOT_WORDS,
-    SHAPE_ADJECTIVES,
     SHAPE_NOUNS,
     SIDE_CONE,
     SIDE_DOUBT,
     SIDE_PHRASES,
     SIDES,
     SIZE_SUPERLATIVES,
-    SOFT_ADJECTIVES,
     TABLE_WORDS,
     TIE_M,
 )
+from .relating import beside_as_said, describes, picks_among
 from .synonyms import LOOSE_NOUNS, kind_groups
 from .uses import used_for
 
@@ -236,10 +227,10 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     if head is None:
         return None
     kind, at, end = head
-    if not _describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
+    if not describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
         return None
-    if kind in ("by", "beside") and not _picks_among(words[:at], scene):
-        return _beside_as_said(words[:at], words[end:], scene, context)  # "the white one by the lamp"
+    if kind in ("by", "beside") and not picks_among(words[:at], scene, try_object):
+        return beside_as_said(words[:at], words[end:], scene, context, try_object)  # "the white one by the lamp"
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
         heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene)) | LOOSE_NOUNS
@@ -297,50 +288,6 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     """How far the object's centre is from the line through ``a`` along ``span`` (metres)."""
     d = np.asarray(o.xy) - a
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
-
-
-def _beside_as_said(before: list[str], after: list[str], scene: Scene, context: Context | None) -> str | None:
-    """The one object ``before`` names alone where it is also the object nearest the one ``after`` names ("the white
-    one next to the lamp": the cup, the lamp's nearest): a relation that only says more of it. None where it is not
-    the nearest (the words contradict), or ``before`` or ``after`` name no one object."""
-    said = try_object(" ".join(w for w in before if w.lower() not in ("right", "just", "directly")), scene) \
-        if before else None
-    ref = try_object(" ".join(after), scene, context) if after else None
-    if said is None or ref is None or said == ref:
-        return None
-    at = scene.get(ref).xy
-    others = [o for o in scene.objects if o.name != ref]
-    nearest = min(others, key=lambda o: float(np.hypot(*np.subtract(o.xy, at))))
-    return said if nearest.name == said else None
-
-
-def _picks_among(before: list[str], scene: Scene) -> bool:
-    """Whether the words before "by" or "beside" are one description that leaves several objects, so that the
-    relation picks among them ("the spanner by the hammer"); not where no words come before ("closer by the white
-    brick"), where two names do ("the théière, cuillère beside the tasse") or where they name one object alone ("the
-    duck right beside A"): there the words are the clause's own preposition."""
-    names = {n.lower() for n in scene.names}
-    if not before or len({w.lower() for w in before} & names) > 1:
-        return False
-    return try_object(" ".join(w for w in before if w.lower() not in ("right", "just", "directly")), scene) is None
-
-
-def _describes(low: tuple[str, ...], scene: Scene) -> bool:
-    """Whether every word before a relation is one a description is made of (a determiner, noun, colour, shape,
-    size, kind or name, or a kind several objects share): a word of another kind ("mv", "move", "of the two ... move
-    the one") means the words are not one description, and the relation is not read."""
-    names = name_words(scene)
-    groups = kind_groups(scene)  # "the shaker nearest the cup": a kind two objects share names neither alone
-    return all(w in DESCRIBING or w in names or w in groups for w in low)
-
-
-DESCRIBING = (DETERMINERS | NOUNS | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | frozenset(SHAPE_NOUNS)
-              | frozenset(SHAPE_ADJECTIVES) | SOFT_ADJECTIVES | REFERENCE_WORDS | frozenset(PLACE_ADJECTIVES)
-              | LOOSE_NOUNS
-              | frozenset({"objects", "things", "items", "pieces", "ones", "cubes", "which", "that", "is", "of", "and",
-                           "sitting", "standing", "lying", "located", "placed", "resting", "positioned", "kept",
-                           "directly", "right", "just"}))
-"""The words a description before a relation is made of, besides the scene's own names (:func:`_describes`)."""
 
 
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:

@@ -9,8 +9,8 @@ from __future__ import annotations
 import itertools
 
 from l2p_bullet.core.scene import Scene, SceneObject
-from l2p_bullet.language import descriptions, synonyms, words
-from l2p_bullet.language.descriptions import name_words
+from l2p_bullet.language import naming, synonyms, words
+from l2p_bullet.language.naming import name_words
 from l2p_bullet.language.synonyms import kind_groups, kind_words
 
 
@@ -23,14 +23,14 @@ def _mugs() -> Scene:
 
 def test_a_scenes_words_are_made_once_and_follow_its_objects():
     synonyms.kind_groups_of.cache_clear()
-    descriptions.name_words_of.cache_clear()
+    naming.name_words_of.cache_clear()
     scene = _mugs()
     assert kind_groups(scene)["cup"] == frozenset({"m1", "m2"}) and kind_words(scene)["bird"] == "duck"
     first = name_words(scene)
     assert first["ducky"] == "duck" and first["m1"] == "m1" and "mug" not in first  # two mugs: "mug" names neither
     for _ in range(5):
         assert name_words(_mugs()) == first and kind_groups(scene) == kind_groups(_mugs())
-    assert synonyms.kind_groups_of.cache_info().misses == 1 and descriptions.name_words_of.cache_info().misses == 1
+    assert synonyms.kind_groups_of.cache_info().misses == 1 and naming.name_words_of.cache_info().misses == 1
     first["cup"] = "m1"  # what a caller does with its answer is its own
     kind_groups(scene)["mug"] = frozenset({"m1"})
     assert "cup" not in name_words(scene) and kind_groups(scene)["mug"] == frozenset({"m1", "m2"})

@@ -1,0 +1,115 @@
+"""What names an object in words: its name, the words its name is made of, the fond forms of a word name ("ducky"),
+its kinds, and the names that are another's shape or kind ("Cylinder" beside "Cylinder (1)", "apple" beside
+green_apple). Read by the descriptions (descriptions.py) and by every reader that must know whether a word names a
+thing before it reads it as something else (a verb, a courtesy, a slip).
+"""
+
+from __future__ import annotations
+
+import functools
+
+from ..core.scene import COLORS, Scene
+from .kept import SceneMemo
+from .reference_words import COLOR_SYNONYMS, NOUNS, SHAPE_NOUNS, SOFT_ADJECTIVES
+from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_words_of, name_parts, scene_key, shape_of
+
+GEOMETRIC = frozenset({"cube", "cubes", "box", "boxes", "cylinder", "cylinders", "brick", "bricks", "rectangle",
+                       "rectangles"})
+"""Shape nouns that name a shape as such: an object of that kind ("cube.obj") and any other of that shape are both
+it. Every other shape noun is a thing's name ("can", "log", "tube", "disc"): where an object is that thing, it is
+meant, not another of its shape."""
+
+
+
+def shape_named(scene: Scene) -> frozenset[str]:
+    """The names (lower case) that are a shape's own word where another object is of that shape too ("Cylinder" and
+    "Cylinder (1)", as a game engine names its shapes): said alone ("move Cylinder ...") the name; with an article or
+    other words ("the cylinder at the back", "the orange cylinder") the shape, as of any of them. Kept per scene:
+    every description asks."""
+    def read() -> frozenset[str]:
+        words = [n.lower() for n in scene.names if n.lower() in GEOMETRIC]
+        return frozenset(w for w in words if sum(shape_of(o) == SHAPE_NOUNS[w] or w in name_parts(o.name)
+                                                 for o in scene.objects) > 1)
+
+    return _SHAPE_NAMED.ask("shape_named", scene, read)
+
+
+_SHAPE_NAMED = SceneMemo(64)
+
+
+@functools.lru_cache(maxsize=256)
+def parts_of(names: tuple[str, ...]) -> frozenset[str]:
+    """The words the scene's names are made of ("brick" of brick_2x4_red)."""
+    return frozenset(p for n in names for p in name_parts(n))
+
+
+def kind_named(scene: Scene, groups: dict[str, frozenset[str]]) -> set[str]:
+    """The names (lower case) of one word that are the kind of another object too ("apple" beside green_apple;
+    ``groups``: the scene's :func:`~.synonyms.kind_groups`): with other words said ("the apple at the back", "the red
+    apple") the kind, as of either of them; alone ("the apple") the one so named."""
+    return {n.lower() for n in scene.names if len(groups.get(n.lower(), ())) > 1}
+
+
+def spelled_name(words: list[str], scene: Scene) -> str | None:
+    """The object whose name of several words the words spell, however the name joins them ("cube b", "Cube-B" for
+    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box); None where none
+    or several do."""
+    said = name_parts(" ".join(words))
+    if len(said) < 2:
+        return None
+    fits = [n for n in scene.names if said in (name_parts(n), _unnumbered(name_parts(n)))]
+    return fits[0] if len(fits) == 1 else None
+
+
+def _unnumbered(parts: tuple[str, ...]) -> tuple[str, ...]:
+    """A name's words without the number it opens with ("002_master_chef_can": master, chef, can), as people say a
+    dataset's file names; the words themselves where it opens with none."""
+    return parts[1:] if len(parts) > 2 and parts[0].isdigit() else parts
+
+
+def names_within(words: list[str], scene: Scene) -> list[str]:
+    """The scene's names of several words that ``words`` spell whole, each somewhere in them ("the butter dish salt
+    shaker": butter dish and salt shaker), in the scene's order."""
+    said = name_parts(" ".join(words))
+    found = []
+    for n in scene.names:
+        parts = name_parts(n)
+        if len(parts) > 1 and any(said[i:i + len(parts)] == parts for i in range(len(said) - len(parts) + 1)):
+            found.append(n)
+    return found
+
+
+def naming_words(scene: Scene) -> frozenset[str]:
+    """Lower-case words that name or describe objects: kind words and names of 3+ letters, colours and their
+    synonyms, shape nouns. Not "can" as a shape ("can you ..." asks; an object named "can" is a kind word, a can a
+    mesh file or a longer name calls so is not) nor a one-letter name ("u" is "you" as typed: U is named as "U")."""
+    shapes = frozenset(SHAPE_NOUNS) - {"can", "cans"}
+    literal = {n.lower() for n in scene.names}
+    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3 and (w in literal or w not in SHAPE_NOUNS))
+    return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
+
+
+WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOUNS) | frozenset(COLORS)
+                      | frozenset(COLOR_SYNONYMS) | KIND_MODIFIERS)
+"""Words a name's fond form may spell ("tin" + "y" is "tiny"): never read as the name."""
+
+
+def name_words(scene: Scene) -> dict[str, str]:
+    """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
+    ("ducky", "duckie": the duck)."""
+    return dict(name_words_of(scene_key(scene)))
+
+
+@functools.lru_cache(maxsize=256)
+def name_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, str]:
+    """name_words of a :func:`~.synonyms.scene_key`, kept: made once per scene, not once per word read (a caller must
+    not change it; name_words hands out copies)."""
+    names = [name for name, *_ in objects]
+    out = {}
+    for n in names:
+        low = n.lower()
+        if len(low) >= 3 and low.isalpha():
+            out.update({fond: n for fond in (low + "y", low + "ie") if fond not in WORDS_OF_THEIR_OWN})
+    out.update(kind_words_of(objects))
+    out.update({n.lower(): n for n in names})
+    return out
