@@ -19,13 +19,16 @@ from .reference_words import (
     DETERMINERS,
     DIRECTIONS,
     EDGE_WORDS,
+    KIND_WORDS,
     MIDDLE_WORDS,
     NOUNS,
     SHAPE_NOUNS,
     SIDE_SUPERLATIVE,
 )
-from .synonyms import kind_groups, shape_of
+from .synonyms import KIND_NAMES, kind_groups, kinds_of, shape_of
 
+BOX_WORDS = frozenset(KIND_NAMES["box"]) | {"box", "boxes"}
+"""A box's everyday words ("carton", "parcel", "package"): boxes a code names (SKU-4471) are them."""
 PLAIN_NOUNS = frozenset({"one", "ones", "thing", "things", "object", "objects", "item", "items", "piece", "part"})
 """Nouns that name no kind ("the one at the back"): every object."""
 UNREAD_PLACES = frozenset(DIRECTIONS) | frozenset(SIDE_SUPERLATIVE.values()) | EDGE_WORDS - {"part"} | MIDDLE_WORDS \
@@ -52,6 +55,12 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
             if placed:  # "the one on the left side" before "in the middle": two places, one of them unread
                 raise LanguageError(f'"{restrict}" says a place ("{placed[0]}") before another; say one place, or '
                                     "name the object") from None
+            groups = kind_groups(scene)
+            unread = [w for w in low if w in KIND_WORDS and w not in SHAPE_NOUNS and w not in groups]
+            if unread:  # "the carton by the tape gun" where nothing is a carton by name: the plain boxes, if any
+                boxes = BOX_WORDS.issuperset(unread) and [o for o in fits if shape_of(o) == "box"
+                                                          and not kinds_of(o) & KIND_WORDS]
+                return boxes or []  # a kind nothing is: none, never the nearest of all
     if set(low) & BLOCK_WORDS:
         fits = [o for o in fits if a_block_to_look_at(o)]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]

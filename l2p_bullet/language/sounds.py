@@ -41,11 +41,11 @@ def heard_name(word: str, names: list[str], amiss: bool = False) -> str | None:
     names = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()]
     fits = [n for n in names if heard_key(n) in keys or heard_key(n).startswith("h") and heard_key(n)[1:] in keys]
     if not fits and amiss and len(word) >= 4:  # "the kennel" for the kettle, "the lady" for the ladle: one sound amiss
-        fits = [n for n in names if len(heard_key(n)) >= 3 and any(_one_sound(k, heard_key(n)) for k in keys)]
+        fits = [n for n in names if len(heard_key(n)) >= 3 and any(one_sound_apart(k, heard_key(n)) for k in keys)]
     return fits[0] if len(fits) == 1 else None
 
 
-def _one_sound(said: str, name: str) -> bool:
+def one_sound_apart(said: str, name: str) -> bool:
     """Whether two consonant keys differ by one consonant heard as another, or one left out, past the first."""
     if said[:1] != name[:1] or said == name:
         return False

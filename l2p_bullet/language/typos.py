@@ -16,7 +16,7 @@ import re
 from collections.abc import Iterable
 
 from . import extents, goals, reference_words, words
-from .sounds import heard_name
+from .sounds import heard_key, heard_name, one_sound_apart
 from .synonyms import name_parts
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
@@ -143,12 +143,35 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
-    said = _joined(DROPPED_LETTER.sub("", said), keep | named | set(kinds), spoken)
+    said = _joined(_lettered(DROPPED_LETTER.sub("", said), names), keep | named | set(kinds), spoken)
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
     mended = HANDED.sub(r"\1-hand", mended)
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
+
+
+def _lettered(sentence: str, names: list[str]) -> str:
+    """``sentence`` with a name that ends in a letter said as dictation writes it ("toad bee", "tote bee" for
+    tote_B): the word before the letter heard as the name's word (as said, or with one sound amiss), then the
+    letter."""
+    def said(m: re.Match) -> str:
+        word, letter = m.group(1), reference_words.SPOKEN_LETTERS[m.group(2).lower()]
+        for n in names:
+            parts = name_parts(n)
+            heard, meant = heard_key(word), heard_key(parts[0]) if parts else ""
+            if len(parts) == 2 and parts[1] == letter and len(parts[0]) >= 3 and (
+                    word.lower() == parts[0] or heard == meant or one_sound_apart(heard, meant)):
+                return f"{parts[0]} {letter.upper()}"
+        return m.group(0)
+
+    return SAID_LETTER.sub(said, sentence)
+
+
+SAID_LETTER = re.compile(r"\b([A-Za-z]{3,})\s+("
+                         + "|".join(sorted(reference_words.SPOKEN_LETTERS, key=len, reverse=True)) + r")\b",
+                         re.IGNORECASE)
+"""A word, then a letter as it is said ("toad bee")."""
 
 
 def _dropped_g(low: str, verbs: frozenset[str]) -> bool:
