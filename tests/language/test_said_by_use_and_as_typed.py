@@ -63,6 +63,9 @@ TRAY = "heldout72.tsv"
     ("Candle go to book side, inshallah", "slide:next-to candle book", LIVING),
     # a name heard with a sound amiss; "him", "her" and "them" by what the things are
     ("move the kennel away from the whisk", "slide:away kettle whisk", KITCHEN),
+    ("slide toad bee past the scanner", "slide:past tote_B scanner", WAREHOUSE),
+    ("push the 72 toward the label roll", "push:closer SKU-4472 label_roll", WAREHOUSE),
+    ("push the carton by the tape gun toward the tote", "push:closer SKU-4472 tote_B", WAREHOUSE),
     ("move the doll toward the dino, then push her past the ball", "slide:closer doll dino ; push:past doll ball",
      TOYS),
     ("move the truck toward the doll, then move her next to the ball", "slide:closer truck doll ; "
@@ -90,11 +93,13 @@ def test_read(plugins, sentence, expect, table):
     ("move the barcode gun next to the tote", WAREHOUSE),
     # an object told by another before "goes": never the other one
     ("the thing next to the ball goes past the brick", TOYS),
-    ("the carton nearest the tote goes next to the scanner", WAREHOUSE),
+    ("the spanner nearest the tote goes next to the scanner", WAREHOUSE),
     # "the block nearest the red block": two blocks are about as near; a jar is no block
     ("move the block nearest the red block toward the big jar", CRAFT),
     # a use nothing on the table has
     ("move the thing you boil water in next to the book", LIVING),
+    # a relation among things of a kind nothing on the table is: none, never the nearest of all
+    ("push the mug by the tape gun toward the tote", WAREHOUSE),
     # an emoji of nothing on the table
     ("🍕 ➡️ 🔑", BEDSIDE),
 ])
