@@ -33,10 +33,11 @@ def group_first(text: str, previous: Command | None, scene: Scene, plugins: list
     if m is None:
         return _of_group(text, previous, scene, plugins, depth, read)
     what, rest = apposed(m.group("what"), m.group("rest"))  # "the red one, number 2 - move it ..."
-    shows = pointing.shown(what, scene, context)
     group = pointing.shown(what[3:], scene, context) if what.lower().startswith("of the ") else None
     if group is not None and len(group.objects) > 1:  # "Of the two at the front, move the one on the left ..."
         what, shows = what[3:], group
+    else:
+        shows = pointing.shown(what, scene, context)
     if shows is None and what != m.group("what") and not {w.lower() for w in what.split()} & verb_heads():
         resolve_object(what, scene)  # a description the number contradicts is refused as such, naming both
     if shows is None or (len(shows.objects) < 2 and shows.lifted):

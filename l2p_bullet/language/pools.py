@@ -57,10 +57,11 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
                                     "name the object") from None
             groups = kind_groups(scene)
             unread = [w for w in low if w in KIND_WORDS and w not in SHAPE_NOUNS and w not in groups]
-            if unread:  # "the carton by the tape gun" where nothing is a carton by name: the plain boxes, if any
-                boxes = BOX_WORDS.issuperset(unread) and [o for o in fits if shape_of(o) == "box"
-                                                          and not kinds_of(o) & KIND_WORDS]
-                return boxes or []  # a kind nothing is: none, never the nearest of all
+            if unread:  # a kind nothing is: none, never the nearest of all
+                if not BOX_WORDS.issuperset(unread):
+                    return []
+                # "the carton by the tape gun" where nothing is a carton by name: the boxes of no kind (SKU-4471)
+                return [o for o in fits if shape_of(o) == "box" and not kinds_of(o) & KIND_WORDS]
     if set(low) & BLOCK_WORDS:
         fits = [o for o in fits if a_block_to_look_at(o)]
     low = [w for w in low if w not in DETERMINERS and (w not in NOUNS or w in ("cube", "cylinder"))]

@@ -93,18 +93,13 @@ def _by_gender(low: tuple[str, ...], context: Context | None, scene: Scene) -> s
     if low not in GENDERED or context is None or context.mover is None or context.anchor in (None, context.mover):
         return None
     pair = [n for n in (context.mover, context.anchor) if n in scene.names]
-    female = [n for n in pair if _kinds_said(scene.get(n)) & FEMININE]
+    female = [n for n in pair if kinds_of(scene.get(n)) & FEMININE]
     if len(pair) != 2 or len(female) != 1:
         return None
     if low[0] in ("her", "she"):
         return female[0]
     other = next(n for n in pair if n != female[0])
-    return other if _animals(scene, other) or _kinds_said(scene.get(other)) & set(FIGURES) else None
-
-
-def _kinds_said(o: SceneObject) -> set[str]:
-    """An object's kinds and every word of its name ("white_queen": queen)."""
-    return kinds_of(o) | {w.lower() for w in name_parts(o.name)}
+    return other if _animals(scene, other) or kinds_of(scene.get(other)) & set(FIGURES) else None
 
 
 def _animals(scene: Scene, *names: str | None) -> bool:

@@ -35,8 +35,7 @@ def beside_as_said(before: list[str], after: list[str], scene: Scene, context: C
     """The one object ``before`` names alone where it is also the object nearest the one ``after`` names ("the white
     one next to the lamp": the cup, the lamp's nearest): a relation that only says more of it. None where it is not
     the nearest (the words contradict), or ``before`` or ``after`` name no one object."""
-    said = try_object(" ".join(w for w in before if w.lower() not in ("right", "just", "directly")), scene) \
-        if before else None
+    said = try_object(_said_alone(before), scene) if before else None
     ref = try_object(" ".join(after), scene, context) if after else None
     if said is None or ref is None or said == ref:
         return None
@@ -54,7 +53,12 @@ def picks_among(before: list[str], scene: Scene, try_object: Reader) -> bool:
     names = {n.lower() for n in scene.names}
     if not before or len({w.lower() for w in before} & names) > 1:
         return False
-    return try_object(" ".join(w for w in before if w.lower() not in ("right", "just", "directly")), scene) is None
+    return try_object(_said_alone(before), scene) is None
+
+
+def _said_alone(before: list[str]) -> str:
+    """The words before a relation without the ones that only say how near ("the duck right beside A")."""
+    return " ".join(w for w in before if w.lower() not in ("right", "just", "directly"))
 
 
 def describes(low: tuple[str, ...], scene: Scene) -> bool:

@@ -38,10 +38,10 @@ def heard_name(word: str, names: list[str], amiss: bool = False) -> str | None:
     said = heard_key(word)
     keys = {said, said[:-1] if said.endswith("r") and len(said) > 2 else said}
     keys |= {k[1:] for k in keys if k[:1] in "aeiou" and len(k) > 2}  # "art" heard for heart: its vowel, no "h"
-    names = [n for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()]
-    fits = [n for n in names if heard_key(n) in keys or heard_key(n).startswith("h") and heard_key(n)[1:] in keys]
+    keyed = [(n, heard_key(n)) for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()]
+    fits = [n for n, key in keyed if key in keys or key.startswith("h") and key[1:] in keys]
     if not fits and amiss and len(word) >= 4:  # "the kennel" for the kettle, "the lady" for the ladle: one sound amiss
-        fits = [n for n in names if len(heard_key(n)) >= 3 and any(one_sound_apart(k, heard_key(n)) for k in keys)]
+        fits = [n for n, key in keyed if len(key) >= 3 and any(one_sound_apart(k, key) for k in keys)]
     return fits[0] if len(fits) == 1 else None
 
 

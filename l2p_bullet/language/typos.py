@@ -39,7 +39,7 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
 SHORTHAND |= {"blew": "blue", "won": "one", "b": "be", "shld": "should", "shud": "should", "em": "them",
-              "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "pls": "please", "bk": "back"}
+              "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "bk": "back"}
 SHORTHAND |= dict(pair.split("=") for pair in """
     tae=to fae=from frae=from awa=away roon=round roond=round yon=the yin=one pit=put gie=give richt=right muckle=big
     hae=have ye=you dinnae=don't tak=take ower=over wi=with oot=out doon=down aboot=about cannae=can't intae=into
@@ -130,15 +130,16 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         hit = near(low, known, named)
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
         amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
+        after_subject = SUBJECT_BEFORE.search(m.string, 0, m.start()) is not None
         hyphened = "-" in m.string[max(0, m.start() - 1):m.start()] + m.string[m.end():m.end() + 1]
         heard = heard_name(low, heard_parts, amiss) if (hit is None or (after_article and hit not in named)) \
-            and low not in reference_words.KIND_WORDS and SUBJECT_BEFORE.search(m.string, 0, m.start()) is None \
+            and low not in reference_words.KIND_WORDS and not after_subject \
             and not hyphened else None  # "the banana" is no bunny, "you boil water" no bowl, "bean-shaped" no bin
         if heard is not None:  # "the copper" for koppu, "the tease" for tasse; "the art" is the heart, not "at"
             return heard
         if hit is None:
             return w
-        if hit in verbs and after_article or hit in named and SUBJECT_BEFORE.search(m.string, 0, m.start()):
+        if hit in verbs and after_article or hit in named and after_subject:
             return w  # "for a pic" is no "pick"; "the thing you boil water in" is no bowl
         return hit.capitalize() if w[0].isupper() else hit
 
@@ -157,9 +158,10 @@ def _lettered(sentence: str, names: list[str]) -> str:
     letter."""
     def said(m: re.Match) -> str:
         word, letter = m.group(1), reference_words.SPOKEN_LETTERS[m.group(2).lower()]
+        heard = heard_key(word)
         for n in names:
             parts = name_parts(n)
-            heard, meant = heard_key(word), heard_key(parts[0]) if parts else ""
+            meant = heard_key(parts[0]) if parts else ""
             if len(parts) == 2 and parts[1] == letter and len(parts[0]) >= 3 and (
                     word.lower() == parts[0] or heard == meant or one_sound_apart(heard, meant)):
                 return f"{parts[0]} {letter.upper()}"
@@ -209,11 +211,11 @@ def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] =
 DROPPED_LETTER = re.compile(r"(?<=[a-z])'(?=\s)")
 """An apostrophe that marks a letter left off a word's end ("awa' fae", "o' the"): the word as typed."""
 ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
+"""An article right before a word: what follows names a thing, never a verb."""
 SUBJECT_BEFORE = re.compile(r"\b(?:you|u|i|we|they|people)\s+$", re.IGNORECASE)
 """A subject right before a word: what follows is what someone does, never a thing's name heard amiss."""
 THE_BEFORE = re.compile(r"\bthe\s+$", re.IGNORECASE)
 """A thing said with "the" ("the kennel"): only such a word may be a name heard with one sound amiss."""
-"""An article right before a word: what follows names a thing, never a verb."""
 RUNS = re.compile(r"([a-z])\1{2,}")
 """A letter typed three or more times for emphasis ("wayyy past", "sooo slowly"): read once or twice."""
 TWO_FOR_TO = re.compile(r"\b(closer|close|nearer|near|next|up|over|back|right|on|onto|according)\s+"

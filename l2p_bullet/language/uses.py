@@ -26,7 +26,7 @@ from .reference_words import (
     PLACE_ADJECTIVES,
     SHAPE_NOUNS,
 )
-from .synonyms import KIND_NAMES, SIZE_WORDS, kinds_of, name_parts
+from .synonyms import KIND_NAMES, SIZE_WORDS, kinds_of
 
 _DRINK = ("drink", "drinking", "sip", "coffee", "tea")
 USES: dict[str, tuple[str, ...]] = {
@@ -61,8 +61,7 @@ USES: dict[str, tuple[str, ...]] = {
 }
 """A kind -> the words of its uses and parts; two words where the preposition tells a tool from what it works on."""
 
-OPENER = re.compile(r"^(?P<head>(?:(?:the|that|a|an|this|my|your)\s+)?(?:[\w-]+\s+){0,3}?"
-                    r"(?:thing|things|one|ones|thingy|stuff|whatsit|object|item|tool|[\w-]+))\s+"
+OPENER = re.compile(r"^(?P<head>(?:(?:the|that|a|an|this|my|your)\s+)?(?:[\w-]+\s+){0,3}?[\w-]+)\s+"
                     r"(?P<rest>(?:that|which|you|u|i|we|people|for|with|used)\b.+)$", re.IGNORECASE)
 """A description, then what the thing does or has: "the thing you ...", "thing for ...", "the one with ..."."""
 PLACED = NEAREST | FARTHEST | frozenset(PLACE_ADJECTIVES) | frozenset({
@@ -139,18 +138,14 @@ def _pool(head: list[str], scene: Scene) -> list[SceneObject]:
     noun = head[-1]
     if noun in GENERIC:
         return pool
-    return [o for o in pool if noun in _kinds(o) or any(noun in KIND_NAMES.get(k, ()) for k in _kinds(o))]
-
-
-def _kinds(o: SceneObject) -> set[str]:
-    return kinds_of(o) | {w.lower() for w in name_parts(o.name)}
+    return [o for o in pool if noun in kinds_of(o) or any(noun in KIND_NAMES.get(k, ()) for k in kinds_of(o))]
 
 
 def _has(o: SceneObject, said: list[str], named: bool = False) -> bool:
     """Whether a use or a part of one of ``o``'s kinds is among the words ``said`` (a use of two words, in order);
     with ``named`` (a use said before the noun), also the kind's own word ("the spoony thing": a spoon, the ladle)."""
     joined = " ".join(said)
-    for kind in _kinds(o):
+    for kind in kinds_of(o):
         if named and (kind in said or set(said) & set(KIND_NAMES.get(kind, ()))):
             return True
         for use in USES.get(kind, ()):
