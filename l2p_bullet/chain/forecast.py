@@ -47,7 +47,7 @@ really left the blocks.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -59,7 +59,7 @@ from ..judge import judge_for, plan_verdict
 from ..judge.footprints import outlines_of
 from ..manners import registry as manners
 from ..options import RunOptions
-from ..pipeline import check_feasible
+from ..pipeline import carried, check_feasible, feasible_as
 from ..plugins import registry
 from .aims import CHECKS, accepted_via, aimed_goals, slide_accepted
 from .clause import Clause
@@ -203,7 +203,8 @@ class _Searcher:
 
     def __init__(self, clauses: list[Clause], plugins: list, opts: RunOptions, loaded: dict, stats: Search, *,
                  short_ok: bool = True, memo: dict | None = None, cost: dict | None = None, only: str | None = None):
-        self.clauses, self.plugins, self.opts, self.loaded, self.stats = clauses, plugins, opts, loaded, stats
+        self.plugins, self.opts, self.loaded, self.stats = plugins, opts, loaded, stats
+        self.clauses = list(clauses)  # its own: a clause carried over the others stands in while it is tried
         self.arm = opts.arm_spec()
         # only "cuts": every clause's own end and its cuts alone; "turns": and its turns (no other seed, no aim)
         self.only = only
@@ -223,9 +224,11 @@ class _Searcher:
         c = self.clauses[k]
         t0 = time.perf_counter()
         try:
-            check_feasible(c.command, predicted, self.plugins, self.arm)
+            done_as = feasible_as(c.command, predicted, self.plugins, self.arm, check=check_feasible)
         except L2PError as e:  # no end state of this clause helps: the scene it starts from is what fails
             raise self._dead(c, e, predicted) from None
+        if done_as is not c.command:  # carried over the blocks in its slide's way from here (the run does so too)
+            c = replace(c, command=done_as)
         at = _Clause(k, c, predicted, *self.loaded[c.command.action], checked=time.perf_counter() - t0)
         aimed = fell_back = False
         for end in ENDS:
@@ -268,6 +271,9 @@ class _Searcher:
                 self.shorts.add(k)
                 reason = at.judged_short[0].extra["verdict"].get("reason", "")
                 raise self._dead(c, PlanError(f"its judge accepts none of its ends ({reason})"), predicted)
+            found = None if self.only else self._carried(at)  # no end of the slide: carried over the others
+            if found is not None:
+                return found
             fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
             plan, end = at.judged_short
             try:
@@ -278,6 +284,24 @@ class _Searcher:
                     raise wider(d, c) from None
                 at.first = d  # what the aimed ends are measured against, and refused with if none works
         raise wider(at.first, c) if at.first is not None else self._dead(c, PlanError("no end state left to try"))
+
+    def _carried(self, at: _Clause) -> list[Step] | None:
+        """``at``'s clause carried over the other objects where its judge accepts none of its slide's ends
+        (pipeline.carried: its verb names no manner), and the clauses after it: their steps when its judge
+        accepts the carried plan, else None (the slide's own end is kept, as before)."""
+        reason = at.judged_short[0].extra["verdict"].get("reason", "")
+        over = carried(at.clause.command, f"no end its judge accepts ({reason})")
+        if over is None or self.left <= 0:
+            return None
+        saved = self.clauses[at.k]
+        self.clauses[at.k] = replace(saved, command=over)
+        try:
+            steps = self.steps(at.k, at.predicted)
+        except Dead:
+            return None
+        finally:
+            self.clauses[at.k] = saved
+        return steps if steps[0].forecast.extra["verdict"]["success"] else None
 
     def _try(self, at: _Clause, end: End) -> list[Step] | object | None:
         """Plan ``at``'s clause with ``end`` and the later clauses after it: their steps, None when this end
@@ -393,7 +417,8 @@ class _Searcher:
     def _plan(self, c: Clause, predicted: Scene, bundle: Any, judge: Any, end: End, base: Plan | None = None) -> Plan:
         from ..embodiment.execute import check_for  # lazy: the arm's modules load only when a chain is forecast
 
-        key = (c.index, end, id(base), tuple((o.name, *np.round(o.pose, 9)) for o in predicted.objects))
+        key = (c.index, c.command.manner, end, id(base),
+               tuple((o.name, *np.round(o.pose, 9)) for o in predicted.objects))
         made = self.memo.get(key)
         if isinstance(made, L2PError):
             raise self._dead(c, made, predicted)

@@ -42,7 +42,14 @@ from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
 from ..manners import registry as manners
 from ..options import RunOptions, admit
-from ..pipeline import PerformResult, check_feasible, disturbance_verdict, perform_prepared, prepare_command
+from ..pipeline import (
+    PerformResult,
+    check_feasible,
+    disturbance_verdict,
+    feasible_as,
+    perform_prepared,
+    prepare_command,
+)
 from ..planning.already import already_said, is_standing
 from ..plugins import registry
 from ..progress.scoring import curve_from
@@ -89,6 +96,7 @@ class ClauseResult:
             "grasp": self.grasp, **({"failed_stage": self.failed_stage} if self.failed_stage else {}),
             **({"action_from": self.action_from} if self.action_from is not None else {}),
             **({} if c.manner == "slide" else {"manner": c.manner}),
+            **({"manner_why": c.manner_why} if c.manner_why else {}),
         }
 
 
@@ -303,7 +311,9 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
             plan = step.forecast  # planned from the very scene the world was loaded with (or replayed as is)
         else:
             now = on_rim(now)  # a block the arm left a hair beyond the workspace's edge: planned from the edge
-            check_feasible(cmd, now, plugins, arm)
+            done_as = feasible_as(cmd, now, plugins, arm, check=check_feasible)
+            if done_as != cmd:  # the manner the blocks leave it from here (a slide's way blocked: carried)
+                cmd, step = done_as, replace(step, clause=replace(step.clause, command=done_as))
             # the end state the chain was planned with (ends.py): the planner's own, or the one that keeps the
             # later clauses possible
             plan = replanned(step, now, options, arm, later=later, plugins=plugins)

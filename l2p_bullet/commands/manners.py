@@ -21,7 +21,7 @@ def manners_cmd(as_json: bool) -> None:
 
     rows = [{"name": m.name, "verbs": list(m.verbs), "motion": m.motion, "signature": m.signature,
              "airborne": m.airborne, "default": m.default, "description": m.description,
-             "package": registry.package(m.name)} for m in registry.discover()]
+             "loose": list(m.loose), "over": m.over, "package": registry.package(m.name)} for m in registry.discover()]
     bad = [{"name": b.name, "error": f"{b.error} (package {b.package} {b.package_version})", "package": b.package,
             "package_version": b.package_version, "entry_point": b.entry_point} for b in registry.broken()]
     if as_json:
@@ -32,6 +32,9 @@ def manners_cmd(as_json: bool) -> None:
         verbs = ", ".join(r["verbs"]) + (" (and any verb no manner claims)" if r["default"] else "")
         click.echo(f'{r["name"]:<{w}}  {verbs}  [{r["package"]}]')
         click.echo(f'{"":<{w}}  {r["description"]}' + (" (above the other objects)" if r["airborne"] else ""))
+        if r["over"] and r["loose"]:
+            click.echo(f'{"":<{w}}  where the other objects leave it no way round: {r["over"]} over them, for '
+                       f'{", ".join(r["loose"][:4])} and the other verbs that say where, not how')
     if bad:
         click.echo("\nbroken manners (not usable):")
         for b in bad:

@@ -68,6 +68,7 @@ class Command:
     manner: str = "slide"  # the manner of motion the verb asks for (l2p_bullet/manners)
     pace: str | None = None  # "slowly", "gently"...: language/words.PACES (None: the manner's own pace)
     extent: str | None = None  # "far away", "a bit closer", "right next to": language/extents.EXTENTS
+    manner_why: str | None = None  # why ``manner`` is not the verb's own (pipeline.feasible_as); None: it is
 
     def __post_init__(self) -> None:
         if not self.anchors:

@@ -28,6 +28,10 @@ class MannerSpec:
     ``verbs``: the words that start a sentence asking for it: one word ("carry"), a phrase ("pick up"),
     or a phrase with a gap for the mover ("lift ... and put": "lift A and put it next to B").
     ``default``: the manner of a verb no manner claims (one manner may say so: slide).
+    ``loose``: the verbs among ``verbs`` that say where the block goes and not how ("move", "put"); ``over``:
+    the airborne manner a loose verb's block is carried in where the other objects leave this manner no way
+    round ("move A around B" with C in the way: slide has none, so A is carried over C). A verb that says how
+    ("slide", "drag") keeps its manner and is refused.
     """
 
     name: str
@@ -37,6 +41,8 @@ class MannerSpec:
     description: str = ""
     airborne: bool = False  # the block passes above the other objects: the planner tests only where it is set down
     default: bool = False
+    loose: tuple[str, ...] = ()
+    over: str | None = None
 
     def __post_init__(self) -> None:
         if self.motion not in MOTIONS:
@@ -46,3 +52,6 @@ class MannerSpec:
                              f"(got {self.signature!r})")
         if not self.verbs or not all(isinstance(v, str) and v.strip() for v in self.verbs):
             raise ValueError(f'manner "{self.name}" declares no verbs')
+        stray = [v for v in self.loose if v not in self.verbs]
+        if stray:
+            raise ValueError(f'manner "{self.name}": its loose verbs must be among its verbs (not {", ".join(stray)})')

@@ -31,7 +31,8 @@ write (:class:`PerformResult`, :class:`PlanResult`, the disturbance rule, a run'
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -44,7 +45,7 @@ from ..core.runfolder import run_folder, write_summary
 from ..core.scene import Scene
 from ..core.timing import StageClock
 from ..embodiment.manners import check_manner, manner_planning
-from ..errors import L2PError, LanguageError, PluginError, listed
+from ..errors import InfeasibleError, L2PError, LanguageError, PluginError, listed
 from ..judge import judge_context, judge_for, plan_verdict
 from ..judge.footprints import outlines_of
 from ..judge.manners import manner_verdict
@@ -60,9 +61,9 @@ from ..plugins import registry
 from .results import DISTURBED_M, PerformResult, PlanResult, disturbance_verdict, moved_text, perform_summary
 
 __all__ = [  # the front door's names; the results' own (results.py) are re-exported for every caller
-    "BLOCKED", "DISTURBED_M", "PerformResult", "PlanResult", "Prepared", "check_feasible", "disturbance_verdict",
-    "judged_plan", "moved_text", "perform", "perform_prepared", "plan_prepared", "plan_sentence", "prepare",
-    "prepare_command", "resolve", "scene_fields",
+    "BLOCKED", "DISTURBED_M", "PerformResult", "PlanResult", "Prepared", "carried", "check_feasible",
+    "disturbance_verdict", "feasible_as", "judged_plan", "moved_text", "perform", "perform_prepared", "plan_prepared",
+    "plan_sentence", "prepare", "prepare_command", "resolve", "scene_fields",
 ]
 
 BLOCKED = "\0blocked:"
@@ -106,8 +107,44 @@ def check_feasible(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PAN
     rules = spec.get("rules") if isinstance(spec, dict) else None
     manner = manners.get(cmd.manner)
     feasibility.check(scene, cmd.mover, cmd.anchor, rules if isinstance(rules, str) else None, arm,
-                      turns=manner.motion != "push")  # a push does not turn the block (embodiment/push.py)
+                      turns=manner.motion != "push",  # a push does not turn the block (embodiment/push.py)
+                      airborne=manner.airborne)
     check_manner(manner, scene, cmd.mover, arm)
+
+
+OVER_CHECKS = ("blocked-around",)
+"""The refusals a loose verb's block is carried past (``MannerSpec.over``): the other objects in the way of the
+manner's path, which a block carried above them does not meet."""
+
+
+def feasible_as(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA, *,
+                check: Callable[..., None] = check_feasible) -> Command:
+    """``cmd`` as the arm can do it in ``scene``: itself when ``check`` (:func:`check_feasible`) passes; where the
+    other objects leave its manner no way round the anchor (:data:`OVER_CHECKS`), :func:`carried` over them when
+    that passes; else the first refusal."""
+    try:
+        check(cmd, scene, plugins, arm)
+        return cmd
+    except InfeasibleError as e:
+        over = carried(cmd, f'no way round "{cmd.anchor}" ({e})') if e.check in OVER_CHECKS else None
+        if over is None:
+            raise
+        try:
+            check(over, scene, plugins, arm)
+        except L2PError:
+            raise e from None
+        return over
+
+
+def carried(cmd: Command, why: str) -> Command | None:
+    """``cmd`` carried over the other objects (its manner's ``over``), where its verb names no manner ("move",
+    ``MannerSpec.loose``) and its manner leaves the block ``why`` (kept in ``manner_why``); None where the verb
+    says how ("slide"), the manner has no ``over``, or the manner is already not the verb's own."""
+    manner = manners.get(cmd.manner)
+    if not manner.over or cmd.verb not in manner.loose or cmd.manner_why:
+        return None
+    return replace(cmd, manner=manner.over, manner_why=f"carried over the other objects, which leave a {manner.name} "
+                   f"{why}")
 
 
 @dataclass
@@ -149,7 +186,7 @@ def prepare_command(cmd: Command, scene: Scene, arm: ArmSpec, plugins: list, opt
     model."""
     clock = clock or StageClock(options.on_stage)
     clock.stage("feasibility")  # not "check": that is execute's own first sub-stage in summary.json
-    check_feasible(cmd, scene, plugins, arm)
+    cmd = feasible_as(cmd, scene, plugins, arm)
     if any(o.shape == "mesh" for o in scene.objects):  # a mesh that never comes to rest is refused now, by name
         from ..embodiment.sim.world import settled_scene
 
@@ -273,6 +310,8 @@ def _run(p: Prepared, out: Path, clock: StageClock, world: Any = None) -> Perfor
         meta["anchors"] = list(cmd.anchors)
     if cmd.manner != manners.DEFAULT:  # a slide's files name no manner
         meta["manner"] = cmd.manner
+    if cmd.manner_why:
+        meta["manner_why"] = cmd.manner_why
     if viewer is not None:
         meta["viewer"] = [float(v) for v in viewer]
     kwargs: dict[str, Any] = {"render": None}

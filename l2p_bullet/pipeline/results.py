@@ -55,6 +55,7 @@ class PerformResult:
             "disturbed": sorted(k for k, v in self.displacements_m.items() if v > DISTURBED_M),
             "grasp": self.grasp,
             **({} if c.manner == "slide" else {"manner": c.manner}),  # a slide's output names no manner
+            **({"manner_why": c.manner_why} if c.manner_why else {}),  # not the verb's own manner: why
             **({} if c.pace is None else {"pace": c.pace}),  # the sentence's "slowly", "gently"
             **({} if c.extent is None else {"extent": c.extent}),  # "far away", "a bit closer"
             # the relation held where the mover stood: nothing moved (planning/already.py)
@@ -67,6 +68,8 @@ class PerformResult:
         fp = "n/a" if self.final_progress is None else f"{self.final_progress:.2f}"
         video = self.files.get("video")
         how = "" if c.manner == "slide" else f"{c.manner}, "  # the manner it was performed and judged in
+        if c.manner_why:  # "move" whose slide the other objects left no way: carried over them
+            how = f"{c.manner} over the other objects in the way, "
         return [f'{c.mover} {c.preposition} {" and ".join(c.anchors)}: {how}action "{c.action}", '
                 f'{"success" if self.success else "FAILED"} ({v.get("reason", "")})',
                 f"final progress {fp} (planned {self.planned_progress:.2f}), "

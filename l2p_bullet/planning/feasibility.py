@@ -119,11 +119,14 @@ def grasp_holds(scene: Scene, mover: str, arm: ArmSpec = PANDA) -> list[reach.Ho
 
 
 def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None = None,
-          arm: ArmSpec = PANDA, *, turns: bool = True) -> list[reach.Hold]:
+          arm: ArmSpec = PANDA, *, turns: bool = True, airborne: bool = False) -> list[reach.Hold]:
     """Run every check that applies; return the usable holds. ``rules``: the action's spec, or the name of the
     rule set it is judged by (its manifest's ``[judge] rules``: the checks of the action that declares that
     rule set), None (or a rule set no action declares) for the arm's checks only. ``turns``: whether the manner
-    turns the mover as it moves it (a push does not: ``room-closer`` then keeps the mover's yaw)."""
+    turns the mover as it moves it (a push does not: ``room-closer`` then keeps the mover's yaw). ``airborne``:
+    whether the manner carries the mover above the other objects (a carry): ``blocked-around`` then reads the
+    anchor and the workspace alone, as the planner does (the bystanders are obstacles only where it is set down,
+    and "around" may set it down anywhere past its turn)."""
     spec = RULE_SPECS.get(rules) if isinstance(rules, str) else rules
     holds = grasp_holds(scene, mover, arm)
     _boxed_in(scene, mover, holds)
@@ -135,6 +138,9 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None 
                               "ActionSpec")
         if name == "room-closer" and not turns:
             _room_closer(scene, mover, anchor, holds, spec.thresholds, turns=False)
+            continue
+        if name == "blocked-around" and airborne:
+            _blocked_around(scene.only((mover, anchor)), mover, anchor, holds, spec.thresholds)
             continue
         ROOM_CHECKS[name](scene, mover, anchor, holds, spec.thresholds)
     return holds

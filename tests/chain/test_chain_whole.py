@@ -5,6 +5,7 @@ each clause with the end state the chain chose."""
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -132,10 +133,51 @@ def test_an_end_the_judge_accepts_is_chosen_over_one_it_does_not(plugins, stand_
     monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(
         judge=lambda *a, **k: SimpleNamespace(to_dict=lambda: {"success": False})))
     stand_ins.clear()
-    assert [s.end for s in forecast(clauses, scene, plugins)] == [DEFAULT, DEFAULT]
+    steps = forecast(clauses, scene, plugins)
+    assert [s.end for s in steps] == [DEFAULT, DEFAULT]
+    assert [s.clause.command.manner for s in steps] == ["slide", "slide"]  # carried, it is rejected too: kept
     searched = [e for c, e in stand_ins if c == 1 and e.cut is None]  # each a search: cuts cost none
-    # no turned end: a judge that rejects every path rejects a straight slide to it, so it is not searched to
-    assert searched == [End(0), End(1), End(2)]
+    # no turned end: a judge that rejects every path rejects a straight slide to it, so it is not searched to;
+    # the slide's three seeds, then the clause carried over the others ("move" says where, not how), the same
+    assert searched == [End(0), End(1), End(2)] * 2
+
+
+class OnlyAt:
+    """A stand-in judge that accepts only a path ending at ``xy``."""
+
+    def __init__(self, xy):
+        self.xy = np.asarray(xy, float)
+
+    def judge(self, path, anchor, size, **kwargs):
+        ok = bool(np.allclose(path[-1][:2], self.xy))
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "ends elsewhere"})
+
+
+@pytest.mark.parametrize("verb, manner", [("move", "carry"), ("slide", "slide")])
+def test_a_clause_whose_slide_no_end_of_which_its_judge_accepts_is_carried_where_its_verb_says_where(
+        plugins, stand_ins, monkeypatch, verb, manner):
+    """"move" says where, not how: where its judge accepts no end of the slide (the bystanders in the way), the
+    clause is planned carried over them, and kept carried where its judge accepts that. "slide" says how: its
+    own end is kept, rejected, as before (the run judges what it does)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    over = np.array([-0.20, -0.15, 0.0])
+    slid = chain_forecast.plan_clause
+
+    def carried_elsewhere(clause, scene, bundle, judge, options, arm, end=DEFAULT, *, base=None, **_):
+        p = slid(clause, scene, bundle, judge, options, arm, end, base=base)
+        if clause.command.manner == "carry" and end == DEFAULT:  # a carried path is free of the others
+            p = replace(p, path=np.linspace(p.path[0], over, 6))
+        return p
+
+    monkeypatch.setattr(chain_forecast, "plan_clause", carried_elsewhere)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: OnlyAt(over[:2]))
+    scene = four_blocks()
+    [step] = forecast(resolve_clauses(f"{verb} A past B", scene, plugins), scene, plugins)
+    assert step.clause.command.manner == manner and step.forecast.extra["verdict"]["success"] == (manner == "carry")
+    if manner == "carry":
+        assert step.clause.command.manner_why == ("carried over the other objects, which leave a slide no end its "
+                                                  "judge accepts (ends elsewhere)")
+        assert np.allclose(step.forecast.path[-1], over)
 
 
 class AsFarAsRim:
@@ -443,7 +485,9 @@ def test_a_later_clause_no_end_of_which_its_judge_accepts_sends_the_search_back(
 
     monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=anchor_off_the_rim))
     scene = four_blocks()
-    clauses = resolve_clauses("move A away from B, then move C around A", scene, plugins)
+    # "slide" says how: no clause is carried over the others when its judge accepts no end (what is counted here is
+    # the search over a slide's ends)
+    clauses = resolve_clauses("slide A away from B, then slide C around A", scene, plugins)
     steps = forecast(clauses, scene, plugins)
     assert [s.end for s in steps] == [End(0, "half"), DEFAULT]
     assert [s.forecast.extra["verdict"]["success"] for s in steps] == [True, True]
@@ -488,7 +532,7 @@ def test_a_clause_its_judge_rejects_in_every_end_is_planned_with_its_own_end_alo
 
     monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: SimpleNamespace(judge=judge))
     scene = four_blocks()
-    clauses = resolve_clauses("move D next to B, then move A past C", scene, plugins)
+    clauses = resolve_clauses("move D next to B, then slide A past C", scene, plugins)  # "slide": never carried
     steps = forecast(clauses, scene, plugins)
     assert [s.end for s in steps] == [DEFAULT, DEFAULT] and not steps[1].forecast.extra["verdict"]["success"]
     clause2 = [e for c, e in stand_ins if c == 2 and e.cut is None]
