@@ -33,7 +33,7 @@ def manners_cmd(as_json: bool) -> None:
         click.echo(f'{r["name"]:<{w}}  {verbs}  [{r["package"]}]')
         click.echo(f'{"":<{w}}  {r["description"]}' + (" (above the other objects)" if r["airborne"] else ""))
         if r["over"] and r["loose"]:
-            click.echo(f'{"":<{w}}  where the other objects leave it no way round: {r["over"]} over them, for '
+            click.echo(f'{"":<{w}}  where the other objects block its way: {r["over"]} over them, for '
                        f'{", ".join(r["loose"][:4])} and the other verbs that say where, not how')
     if bad:
         click.echo("\nbroken manners (not usable):")

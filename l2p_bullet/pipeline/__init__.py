@@ -112,21 +112,22 @@ def check_feasible(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PAN
     check_manner(manner, scene, cmd.mover, arm)
 
 
-OVER_CHECKS = ("blocked-around",)
-"""The refusals a loose verb's block is carried past (``MannerSpec.over``): the other objects in the way of the
-manner's path, which a block carried above them does not meet."""
+OVER_CHECKS = {"blocked-around": 'no way round "{anchor}"', "boxed-in": "no move at all"}
+"""The refusals a loose verb's block is carried past (``MannerSpec.over``), with what they leave the manner: the
+other objects in the way of its path, which a block carried above them does not meet."""
 
 
 def feasible_as(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA, *,
                 check: Callable[..., None] = check_feasible) -> Command:
     """``cmd`` as the arm can do it in ``scene``: itself when ``check`` (:func:`check_feasible`) passes; where the
-    other objects leave its manner no way round the anchor (:data:`OVER_CHECKS`), :func:`carried` over them when
-    that passes; else the first refusal."""
+    other objects leave its manner no way round the anchor or no move at all (:data:`OVER_CHECKS`), :func:`carried`
+    over them when that passes; else the first refusal."""
     try:
         check(cmd, scene, plugins, arm)
         return cmd
     except InfeasibleError as e:
-        over = carried(cmd, f'no way round "{cmd.anchor}" ({e})') if e.check in OVER_CHECKS else None
+        over = carried(cmd, f"{OVER_CHECKS[e.check].format(anchor=cmd.anchor)} ({e})") if e.check in OVER_CHECKS \
+            else None
         if over is None:
             raise
         try:

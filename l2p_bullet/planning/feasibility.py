@@ -126,10 +126,11 @@ def check(scene: Scene, mover: str, anchor: str, rules: str | ActionSpec | None 
     turns the mover as it moves it (a push does not: ``room-closer`` then keeps the mover's yaw). ``airborne``:
     whether the manner carries the mover above the other objects (a carry): ``blocked-around`` then reads the
     anchor and the workspace alone, as the planner does (the bystanders are obstacles only where it is set down,
-    and "around" may set it down anywhere past its turn)."""
+    and "around" may set it down anywhere past its turn), and ``boxed-in`` the workspace alone (it is lifted)."""
     spec = RULE_SPECS.get(rules) if isinstance(rules, str) else rules
     holds = grasp_holds(scene, mover, arm)
-    _boxed_in(scene, mover, holds)
+    # a carried block is lifted straight up, whatever stands round it: only the workspace can box it in
+    _boxed_in(scene.only((mover,)) if airborne else scene, mover, holds)
     for name in spec.planning.checks if spec is not None else ():
         missing = [k for k in READS[name] if k not in spec.thresholds]
         if missing:  # a plugin's spec declares the check but not the numbers it reads

@@ -101,3 +101,42 @@ def test_perform_says_it_carried_and_why(walled, plugins, tmp_path):
     assert summary["manner"] == "carry" and "206 deg" in summary["manner_why"]
     assert result.to_dict()["manner_why"] == summary["manner_why"]
     assert summary["displacements_m"]["C"] < 0.001
+
+
+def _boxed_in():
+    """A between four blocks 1.5 mm off each face: no slide or turn of it is legal (the robustness tests' scene),
+    F free to come next to."""
+    from l2p_bullet.core.scene import Scene, SceneObject
+
+    return Scene([SceneObject("A", "red", 0.04, (0.0, 0.0), 0.0), SceneObject("B", "green", 0.04, (0.0415, 0.0), 0.0),
+                  SceneObject("C", "blue", 0.04, (-0.0415, 0.0), 0.0),
+                  SceneObject("D", "yellow", 0.04, (0.0, 0.0415), 0.0),
+                  SceneObject("E", "orange", 0.04, (0.0, -0.0415), 0.0),
+                  SceneObject("F", "purple", 0.04, (0.15, 0.10), 0.0)]).validate()
+
+
+def test_a_block_boxed_in_by_others_is_lifted_out_where_its_verb_says_where(plugins, tmp_path):
+    scene = _boxed_in()
+    with pytest.raises(InfeasibleError) as e:
+        feasible_as(resolve("slide A next to F", scene, plugins), scene, plugins, PANDA)
+    assert e.value.check == "boxed-in"
+    done = feasible_as(resolve("move A next to F", scene, plugins), scene, plugins, PANDA)
+    assert done.manner == "carry" and done.manner_why.startswith(
+        'carried over the other objects, which leave a slide no move at all ("A" cannot move at all')
+    from l2p_bullet.pipeline import perform
+
+    result = perform("move A next to F", scene, out_dir=tmp_path / "run", render=False, plugins=plugins)
+    assert result.success and result.command.manner == "carry"
+    assert max(result.displacements_m.values()) < 0.001  # F, and the four it was lifted out from
+
+
+def test_the_workspace_boxes_a_carried_block_in_as_it_does_a_slid_one(plugins):
+    # A a hair beyond the workspace's rim (chain_rim's case): lifting it helps nothing, so the refusal stands
+    from dataclasses import replace
+
+    from l2p_bullet.core.scene import Workspace
+
+    scene = replace(_boxed_in().only(("A", "F")), workspace=Workspace(radius=0.35, center=(0.35002, 0.0)))
+    with pytest.raises(InfeasibleError) as e:
+        feasible_as(resolve("move A next to F", scene, plugins), scene, plugins, PANDA)
+    assert e.value.check == "boxed-in"

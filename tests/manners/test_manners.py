@@ -261,7 +261,7 @@ def test_manners_lists_every_manner_with_its_verbs_and_package():
     assert got["push"]["signature"] == "no-grasp"
     assert got["carry"]["airborne"] and got["slide"]["default"]
     assert got["slide"]["over"] == "carry" and "move" in got["slide"]["loose"] and "drag" not in got["slide"]["loose"]
-    assert any("where the other objects leave it no way round: carry over them" in line for line in lines)
+    assert any("where the other objects block its way: carry over them" in line for line in lines)
 
 
 def test_a_third_party_manner_is_listed_and_a_broken_one_named_with_its_package(tmp_path):
