@@ -115,7 +115,10 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         if made is not None:
             return made
         try:
-            return [Clause(1, texts[0] if texts else str(sentence), resolve(sentence, scene, plugins))]
+            command = resolve(sentence, scene, plugins)
+            if isinstance(sentence, str):
+                _one_command(sentence, command, scene, plugins)
+            return [Clause(1, texts[0] if texts else str(sentence), command)]
         except L2PError:
             if texts and len(_pieces(sentence)) > 1:  # "Hello! Move A past B. Thanks.": the command alone
                 try:
@@ -232,6 +235,33 @@ def _in_place_of(meant: str, taken: Clause, scene: Scene, plugins: list,
     return [Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces)]
 
 
+def _moves_it(text: str) -> bool:
+    """Whether "it" is what the clause moves: right after its verb ("then move it next to the black one", "and pick it
+    up ..."), only words of a verb or "then", "now", "please" before it."""
+    words = re.findall(r"[a-z']+", text.lower())
+    if "it" not in words:
+        return False
+    i = words.index("it")
+    heads = verb_heads() | {w for v in known_verbs() for w in v.split() if w != "..."}
+    return 0 < i <= 4 and all(w in heads or w in ("then", "and", "now", "please", "just", "so") for w in words[:i])
+
+
+def _one_command(text: str, command: Command, scene: Scene, plugins: list) -> None:
+    """LanguageError where the words after the clause's last comma are a command of their own whose block to move the
+    reading took as its reference ("shampoo away from the edge, comb beside razor": read whole, "the edge, comb" was
+    the comb): two clauses, the first of which names no object."""
+    head, comma, tail = text.rpartition(",")
+    if not comma or len(tail.split()) < 3:
+        return
+    try:
+        own = resolve(tail.strip(), scene, plugins)
+    except L2PError:
+        return
+    if own.mover in command.anchors and own.mover != command.mover:
+        raise LanguageError(f'"{head.strip()}" and "{tail.strip()}" read as two commands, and "{head.strip()}" '
+                            "names no block on its own; say each as a command of its own")
+
+
 def _same_move(a: Command, b: Command) -> bool:
     """Whether two commands ask for the same move (mover, action, anchors, manner, pace and extent)."""
     return (a.mover, a.action, a.anchors, a.manner, a.pace, a.extent) == (b.mover, b.action, b.anchors, b.manner,
@@ -246,12 +276,19 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
     context = context or context_of(previous)
     full = complete(text, previous, scene, plugins)
     try:
-        return [(text, resolve(full, scene, plugins, context))]
+        command = resolve(full, scene, plugins, context)
+        _one_command(text, command, scene, plugins)
+        return [(text, command)]
     except L2PError:
         if previous is not None and context == context_of(previous) and re.search(r"\bit\b", text, re.IGNORECASE):
-            # "move B toward C, then past it": "it" cannot be the block being moved, so it is the other one
+            # "move B toward C, then past it": "it" cannot be the block being moved, so it is the other one; where
+            # "it" is the block moved ("put A by B, then move it away from A"), only if the other words name their
+            # block without the clause before (not "then move it next to the black one": either black one)
             try:
-                return [(text, resolve(full, scene, plugins, Context(previous.anchor, previous.mover)))]
+                other = resolve(full, scene, plugins, Context(previous.anchor, previous.mover))
+                if _moves_it(text):
+                    resolve(re.sub(r"\bit\b", other.mover, full, count=1, flags=re.IGNORECASE), scene, plugins)
+                return [(text, other)]
             except L2PError:
                 pass
         pieces = _other_readings(text, previous, scene, plugins, depth, context, pair)

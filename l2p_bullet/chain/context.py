@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 
 from ..language import Command, Context
+from ..language.synonyms import name_parts
 from . import pointing
 
 
@@ -16,8 +17,13 @@ def context_of(previous: Command | None) -> Context | None:
 
 
 def described(command: Command) -> bool:
-    """Whether the command's sentence described its mover ("the small red cube") rather than naming it."""
-    return not re.search(rf"(?<!\w){re.escape(command.mover)}(?!\w)", command.sentence, re.IGNORECASE)
+    """Whether the command's sentence described its mover ("the small red cube") rather than naming it (as written,
+    or its words apart or by their first letters: "pen 2", "p2" for pen_2)."""
+    parts = name_parts(command.mover)
+    spelled = r"[\s_\-]*".join(f"(?:{re.escape(p)}|{re.escape(p[0])})" if p.isalpha() and len(p) > 1 else re.escape(p)
+                                for p in parts)
+    return not any(re.search(rf"(?<!\w){said}(?!\w)", command.sentence, re.IGNORECASE)
+                   for said in (re.escape(command.mover), spelled) if said)
 
 
 def context_after(previous: Command, pair: pointing.Shown | None) -> Context:

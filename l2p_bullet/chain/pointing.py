@@ -306,10 +306,13 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         commands = _each(text, context, context.among, scene, plugins)
         if commands is not None:
             return _ordered(commands, first, scene)
-    if previous is not None and plural_named(previous.mover) and not plural_named(previous.anchor) \
-            and THEM.search(text) and not BOTH_SAID.search(text):
-        try:  # "slide the keys past the wallet, then bring em back ...": them are the keys
-            return [resolve(THEM.sub("it", text), scene, plugins, context)]
+    if previous is not None and THEM.search(text) and not BOTH_SAID.search(text) \
+            and plural_named(previous.mover) != plural_named(previous.anchor):
+        # "slide the keys past the wallet, then bring em back ...": them are the keys; "move the soup away from the
+        # scissors, then push the box back toward them": the scissors
+        them = previous.mover if plural_named(previous.mover) else previous.anchor
+        try:
+            return [resolve(THEM.sub("it" if them == previous.mover else them, text), scene, plugins, context)]
         except L2PError:
             pass
     if previous is not None and BOTH.search(text):

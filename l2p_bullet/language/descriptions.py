@@ -270,8 +270,10 @@ def _boxy(o: SceneObject) -> bool:
 
 def _another_box(o: SceneObject) -> bool:
     """Whether people would call ``o`` a box beside one named so: one "box" may name (:func:`_boxy`) that is of a box's
-    kind (a carton, a crate) or a block but no cube."""
-    return _boxy(o) and (bool(kinds_of(o) & BOX_KINDS) or shape_of(o) in BLOCK_SHAPES and not _cube_like(o))
+    kind (a carton, a crate) or a block but no cube, and not a thing named as its own kind (a banana or scissors
+    modelled as a box are no box beside the cracker box)."""
+    return _boxy(o) and (bool(kinds_of(o) & BOX_KINDS) or shape_of(o) in BLOCK_SHAPES and not _cube_like(o)
+                         and not a_thing_by_name(o))
 
 
 def a_block_to_look_at(o: SceneObject) -> bool:

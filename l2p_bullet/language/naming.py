@@ -58,7 +58,18 @@ def spelled_name(words: list[str], scene: Scene) -> str | None:
     if len(said) < 2:
         return None
     fits = [n for n in scene.names if said in (name_parts(n), _unnumbered(name_parts(n)))]
+    if not fits and any(p.isdigit() for p in said):  # "p2" for pen_2: a word's first letter and the number
+        fits = [n for n in scene.names if _initialled(said, name_parts(n))]
     return fits[0] if len(fits) == 1 else None
+
+
+def _initialled(said: tuple[str, ...], parts: tuple[str, ...]) -> bool:
+    """Whether ``said`` is ``parts`` with one word or more of letters said by its first letter ("p", "2": pen_2)."""
+    if len(said) != len(parts):
+        return False
+    pairs = list(zip(said, parts, strict=True))
+    return any(len(a) == 1 and a.isalpha() and len(b) > 1 for a, b in pairs) \
+        and all(a == b or len(a) == 1 and a.isalpha() and b.isalpha() and b[0] == a for a, b in pairs)
 
 
 def _unnumbered(parts: tuple[str, ...]) -> tuple[str, ...]:

@@ -139,6 +139,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
     for i in range(1, len(low) - 1):
         if low[i - 1] in NOUNS and low[i:i + 1] in NAMED_AS:  # "the block called A"
             return resolve_object(" ".join(words[i + 1:]), scene, role, context)
+    if len(low) > 1 and low[0] in POSSESSIVES and words[0] not in names:  # "my razor", "your mug": the razor, the mug
+        words, low = ["the", *words[1:]], ("the", *low[1:])
     determined = False
     while len(low) > 1 and low[0] in DETERMINERS and words[0] not in names:
         if determined and named_after_the(low[0], names):
@@ -183,6 +185,8 @@ def _elided(word: str) -> list[str]:
     return [word]
 
 
+POSSESSIVES = frozenset({"my", "your", "our", "his", "her", "their", "ur"})
+"""Whose a thing is, said where "the" would be ("my paste", "ur phone"): it names the thing as "the" does."""
 EMPHATIC = frozenset({"itself", "only"})
 """Words after a reference that stress it and name nothing more."""
 def _unremembered(text: str, scene: Scene, role: str) -> str:

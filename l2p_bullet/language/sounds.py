@@ -37,6 +37,8 @@ def heard_name(word: str, names: list[str], amiss: bool = False) -> str | None:
         return None
     said = heard_key(word)
     keys = {said, said[:-1] if said.endswith("r") and len(said) > 2 else said}
+    if word.lower().startswith("ch"):  # "the water char" for the water jar: "ch" and "j" heard alike
+        keys |= {"j" + k[1:] for k in keys}
     keys |= {k[1:] for k in keys if k[:1] in "aeiou" and len(k) > 2}  # "art" heard for heart: its vowel, no "h"
     keyed = [(n, heard_key(n)) for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()]
     fits = [n for n, key in keyed if key in keys or key.startswith("h") and key[1:] in keys]

@@ -146,6 +146,16 @@ KIND_NAMES = {
     "phillips": ("philips", "crosshead", "cross-head", "pozi", "pozidriv"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
     "target": ("targets", "goal", "goals", "marker", "markers"),
+    # a bathroom shelf, an art desk, an office desk: the everyday names, the brands on them, the British words
+    "toothbrush": ("toothbrushes",),
+    "toothpaste": ("tube", "colgate", "crest", "sensodyne"),
+    "razor": ("razors", "shaver", "gillette"),
+    "shampoo": ("bottle",),
+    "eraser": ("erasers", "rubber", "rubbers"),
+    "sketchbook": ("sketchpad", "sketchbooks", "notebook"),
+    "palette": ("palettes",),
+    "notepad": ("postit", "post-it", "post-its", "postits", "stickies"),
+    "stapler": ("staplers", "swingline"),
 }
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by, brands among
 them where a benchmark's object set is a brand's product (the YCB set: the Master Chef can is the coffee, the Cheez-It
@@ -262,10 +272,13 @@ def shape_of(o: SceneObject) -> str:
 
 
 def own_kinds_of(o: SceneObject) -> set[str]:
-    """The kinds an object is by itself: its name when one word, its mesh file's words; not the words of a name of
-    several, which say what a user calls it ("butter_box" is called a box; its mesh, butter, is not a block)."""
+    """The kinds an object is by itself: its name when one word (after a dataset's number: "011_banana"), its mesh
+    file's words; not the words of a name of several, which say what a user calls it ("butter_box" is called a box;
+    its mesh, butter, is not a block)."""
     name, mesh, kind = _kind_key(o)
-    return set(_kinds(name if len(name_parts(name)) == 1 else "", mesh, kind))
+    parts = name_parts(name)
+    word = parts[-1] if len(parts) == 2 and parts[0].isdigit() else name if len(parts) == 1 else ""
+    return set(_kinds(word, mesh, kind))
 
 
 def _kind_key(o: SceneObject) -> tuple[str, str | None, str | None]:
@@ -292,6 +305,11 @@ MESH_JARGON = frozenset({"vhacd", "chs", "coacd", "textured", "smooth", "visual"
                          "hull", "simplified", "simple", "decomp", "lowpoly", "poly", "scaled", "final", "processed",
                          "watertight", "centered", "new", "old", "obj", "stl", "glb"})
 """Words a mesh file's stem holds about the file, not the thing ("duck_vhacd", "sphere_smooth"): no kind."""
+COMPOUND_HEADS = ("brush", "book", "paste", "box", "bowl", "cup", "pot", "pad", "jar", "lamp", "ball", "bottle", "case",
+                  "board", "light", "phone", "glass", "tray", "pan", "plate", "stick", "bag", "bin", "clip", "knife",
+                  "mug", "brick", "block", "cube")
+"""The nouns a name written as one compound word ends with, which people say alone for it ("paintbrush", "the
+brush"; "sketchbook", "the book"; "toothpaste", "my paste"), where three letters or more come before them."""
 
 
 @functools.lru_cache(maxsize=4096)
@@ -321,6 +339,7 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
         out.extend(p for p in parts if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS and p not in COLORS)
     elif len(low) >= 3 and low.isalpha():
         out.extend(dict.fromkeys((low, unaccented(low))))
+    out.extend(h for p in parts if p.isalpha() for h in COMPOUND_HEADS if p.endswith(h) and len(p) - len(h) >= 3)
     if mesh is not None:
         stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
         for part in name_parts(stem):
@@ -371,8 +390,10 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> d
         for k in _kinds(name, mesh, kind):
             by_kind.setdefault(k, set()).add(name)
     out = {k: frozenset(v) for k, v in by_kind.items()}
+    own = dict(out)  # a word calls the objects of its kinds, never those another word called ("post-its": the
+    # notepad's, not the Moleskine called a notepad)
     for word, kinds in [*KIND_SYNONYMS.items(), *((w, FIGURES) for w in FIGURE_WORDS)]:
-        named = frozenset().union(*(out[k] for k in kinds if k in out))
+        named = frozenset().union(*(own[k] for k in kinds if k in own))
         if named and word not in out:
             out[word] = named
     return out

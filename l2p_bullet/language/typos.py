@@ -15,9 +15,13 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
+from ..core.scene import COLORS
 from . import extents, goals, reference_words, words
 from .sounds import heard_key, heard_name, one_sound_apart
 from .synonyms import name_parts
+
+COLOUR_WORDS = frozenset(COLORS) | frozenset(reference_words.COLOR_SYNONYMS)
+"""Colour words ("the orange thing"): never a name heard amiss."""
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -111,6 +115,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     heard_parts = list(dict.fromkeys([*spoken, *(w for n in names for w in name_parts(n) if len(name_parts(n)) > 1
                                                   and w.isalpha() and len(w) >= 3)]))  # "the tape gone"
     keep = {n.lower() for n in names}
+    parted = [name_parts(n) for n in names if len(name_parts(n)) > 1]
     named = frozenset(w for n in keep for w in _WORD.findall(n))
 
     def fix(m: re.Match) -> str:
@@ -121,6 +126,11 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
         if low in known:
+            if low in reference_words.KIND_WORDS and low not in kinds and low not in COLOUR_WORDS \
+                    and THE_BEFORE.search(m.string, 0, m.start()):
+                # "the racer" where no racer stands and the razor sounds just so: the razor ("the orange thing" is
+                # a colour, never the ring)
+                return heard_name(low, heard_parts) or w
             return w
         if _dropped_g(low, verbs):  # "movin", "pushin", "puttin": a verb's -ing with its g left off
             return w + "g"
@@ -128,6 +138,13 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named)
+        before = WORD_BEFORE.search(m.string, 0, m.start())
+        following = [p[i + 1] for p in parted if before is not None for i in range(len(p) - 1)
+                     if p[i] == before.group(1).lower()]
+        if following:  # "the water char" for water_jar: after a name's word, its next word as heard
+            heard = heard_name(low, following, amiss=True)
+            if heard is not None and heard != hit:
+                return heard
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
         amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
         after_subject = SUBJECT_BEFORE.search(m.string, 0, m.start()) is not None
@@ -215,6 +232,8 @@ ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
 SUBJECT_BEFORE = re.compile(r"\b(?:you|u|i|we|they|people)\s+$", re.IGNORECASE)
 """A subject right before a word: what follows is what someone does, never a thing's name heard amiss."""
 THE_BEFORE = re.compile(r"\bthe\s+$", re.IGNORECASE)
+WORD_BEFORE = re.compile(r"\b([A-Za-z]+)\s+$")
+"""The word right before another (a name's first word: "water" before "char")."""
 """A thing said with "the" ("the kennel"): only such a word may be a name heard with one sound amiss."""
 RUNS = re.compile(r"([a-z])\1{2,}")
 """A letter typed three or more times for emphasis ("wayyy past", "sooo slowly"): read once or twice."""

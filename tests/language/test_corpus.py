@@ -116,6 +116,10 @@ DISAGREED = {
     "heldout65.tsv": {"what I want is the board over by the kettle, and then the mug up against the board"},
     "heldout67.tsv": {"Remote go far from bowl please", "Small thing, put next to book."},
     "heldout68.tsv": {"move the gun next to the tote"},
+    "heldout74.tsv": {"move the long thin flat thing next to the soap", "the biggest one next to the comb"},
+    "heldout75.tsv": {"Carry the cadmium red around the water pot; afterwards set it down right against the sketchpad.",
+                      "grab the eraser, put it next to the brush, then push the brush away from it"},
+    "heldout76.tsv": {"pen 1 up against the thing you staple with"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -139,7 +143,10 @@ against" is plain for the sixty-fifth author too; "go far from" is a plain "away
 other author wrote "far from"), and "small thing" among three small and three big things is asked by that author, the
 clearly smallest for the toolkit as "the small one" is for most; "the gun" is the tape gun by its name for the
 toolkit, as "the cup" is the cup beside a mug, and asked by the sixty-eighth author, who calls the scanner a barcode
-gun."""
+gun. For the seventy-fourth author "the long thin flat thing" is the toothbrush or the comb (the comb, 1 cm thick, is
+the flat one for the toolkit) and "the biggest one" a question (the shampoo, twice any other's bulk, for the toolkit);
+for the seventy-fifth "set it down" after a carry and "grab X, put it ..." are slides (carries for the toolkit, as for
+six earlier authors); "up against" is plain for the seventy-sixth."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -297,6 +304,19 @@ def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor)
     :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
                 or OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 131), ("heldout74.tsv", 126), ("heldout75.tsv", 107),
+                                         ("heldout76.tsv", 141)])
+def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-second session, on shelves and desks as people type about them: heldout73.tsv (a
+    robotics lab's YCB objects by their dataset names: "003_cracker_box", "the 005", "ycb 25", "the Cheez-It box"),
+    heldout74.tsv (a bathroom shelf: shaky typing, care notes, brands, dictation's "the come" and "the racer"),
+    heldout75.tsv (an art desk: a painter's words, a child's, someone across the desk saying "my left", dictation's
+    "the water char") and heldout76.tsv (three identical pens told apart by place, label and order: "pen 2", "p3",
+    "the pen by the mug"), read once on the session's start code (dc207bc): 79.4 % / 1 wrong, 61.9 % / 3, 40.0 % / 0,
+    82.5 % / 1. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
 @pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])
