@@ -59,7 +59,7 @@ from ..judge import judge_for, plan_verdict
 from ..judge.footprints import outlines_of
 from ..manners import registry as manners
 from ..options import RunOptions
-from ..pipeline import carried, check_feasible, feasible_as
+from ..pipeline import carried_over, check_feasible, feasible_as
 from ..plugins import registry
 from .aims import CHECKS, accepted_via, aimed_goals, slide_accepted
 from .clause import Clause
@@ -271,7 +271,7 @@ class _Searcher:
                 self.shorts.add(k)
                 reason = at.judged_short[0].extra["verdict"].get("reason", "")
                 raise self._dead(c, PlanError(f"its judge accepts none of its ends ({reason})"), predicted)
-            found = None if self.only else self._carried(at)  # no end of the slide: carried over the others
+            found = None if self.only else self._carried_over(at)  # no end of the slide: carried over the others
             if found is not None:
                 return found
             fell_back = True  # no end the judge accepts: planned as it was (the run judges what it does)
@@ -285,12 +285,12 @@ class _Searcher:
                 at.first = d  # what the aimed ends are measured against, and refused with if none works
         raise wider(at.first, c) if at.first is not None else self._dead(c, PlanError("no end state left to try"))
 
-    def _carried(self, at: _Clause) -> list[Step] | None:
+    def _carried_over(self, at: _Clause) -> list[Step] | None:
         """``at``'s clause carried over the other objects where its judge accepts none of its slide's ends
-        (pipeline.carried: its verb names no manner), and the clauses after it: their steps when its judge
+        (pipeline.carried_over: its verb names no manner), and the clauses after it: their steps when its judge
         accepts the carried plan, else None (the slide's own end is kept, as before)."""
         reason = at.judged_short[0].extra["verdict"].get("reason", "")
-        over = carried(at.clause.command, f"no end its judge accepts ({reason})")
+        over = carried_over(at.clause.command, f"no end its judge accepts ({reason})")
         if over is None or self.left <= 0:
             return None
         saved = self.clauses[at.k]

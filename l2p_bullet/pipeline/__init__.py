@@ -61,7 +61,7 @@ from ..plugins import registry
 from .results import DISTURBED_M, PerformResult, PlanResult, disturbance_verdict, moved_text, perform_summary
 
 __all__ = [  # the front door's names; the results' own (results.py) are re-exported for every caller
-    "BLOCKED", "DISTURBED_M", "PerformResult", "PlanResult", "Prepared", "carried", "check_feasible",
+    "BLOCKED", "DISTURBED_M", "PerformResult", "PlanResult", "Prepared", "carried_over", "check_feasible",
     "disturbance_verdict", "feasible_as", "judged_plan", "moved_text", "perform", "perform_prepared", "plan_prepared",
     "plan_sentence", "prepare", "prepare_command", "resolve", "scene_fields",
 ]
@@ -120,13 +120,13 @@ other objects in the way of its path, which a block carried above them does not 
 def feasible_as(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA, *,
                 check: Callable[..., None] = check_feasible) -> Command:
     """``cmd`` as the arm can do it in ``scene``: itself when ``check`` (:func:`check_feasible`) passes; where the
-    other objects leave its manner no way round the anchor or no move at all (:data:`OVER_CHECKS`), :func:`carried`
-    over them when that passes; else the first refusal."""
+    other objects leave its manner no way round the anchor or no move at all (:data:`OVER_CHECKS`), it
+    :func:`carried_over` them when that passes; else the first refusal."""
     try:
         check(cmd, scene, plugins, arm)
         return cmd
     except InfeasibleError as e:
-        over = carried(cmd, f"{OVER_CHECKS[e.check].format(anchor=cmd.anchor)} ({e})") if e.check in OVER_CHECKS \
+        over = carried_over(cmd, f"{OVER_CHECKS[e.check].format(anchor=cmd.anchor)} ({e})") if e.check in OVER_CHECKS \
             else None
         if over is None:
             raise
@@ -137,7 +137,7 @@ def feasible_as(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA,
         return over
 
 
-def carried(cmd: Command, why: str) -> Command | None:
+def carried_over(cmd: Command, why: str) -> Command | None:
     """``cmd`` carried over the other objects (its manner's ``over``), where its verb names no manner ("move",
     ``MannerSpec.loose``) and its manner leaves the block ``why`` (kept in ``manner_why``); None where the verb
     says how ("slide"), the manner has no ``over``, or the manner is already not the verb's own."""
