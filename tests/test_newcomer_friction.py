@@ -18,8 +18,9 @@ from l2p_bullet.evaluate.runner import EvaluationConfig, _tasks
 from l2p_bullet.plugins import registry
 
 
-def _result(manner: str) -> SimpleNamespace:
-    command = SimpleNamespace(mover="A", preposition="next to", anchors=("B",), action="next-to", manner=manner)
+def _result(manner: str, why: str | None = None) -> SimpleNamespace:
+    command = SimpleNamespace(mover="A", preposition="next to", anchors=("B",), action="next-to", manner=manner,
+                              manner_why=why)
     from l2p_bullet.pipeline import PerformResult
 
     r = SimpleNamespace(command=command, verdict={"reason": "the rules hold"}, final_progress=0.97, success=True,
@@ -33,9 +34,11 @@ def test_the_verdict_line_names_a_carry(monkeypatch):
     """"A next to B: action next-to" was all a carry said: the manner it was performed (and judged) in is named."""
     import l2p_bullet.chain as chain
 
-    for manner, said in (("carry", 'A next to B: carry, action "next-to", success'),
-                         ("slide", 'A next to B: action "next-to", success')):
-        monkeypatch.setattr(chain, "perform_chain", lambda *a, _m=manner, **k: _result(_m))
+    for manner, said, why in (("carry", 'A next to B: carry, action "next-to", success', None),
+                              ("slide", 'A next to B: action "next-to", success', None),
+                              ("carry", 'A next to B: carry over the other objects in the way, action "next-to"',
+                               "carried over the other objects, which leave a slide no move at all (...)")):
+        monkeypatch.setattr(chain, "perform_chain", lambda *a, _m=manner, _w=why, **k: _result(_m, _w))
         r = CliRunner().invoke(main, ["perform", f"{manner} A next to B", "--no-render", "-q"])
         assert r.exit_code == 0, r.output
         assert r.output.splitlines()[0].startswith(said), r.output

@@ -271,6 +271,11 @@ class _Searcher:
                 self.shorts.add(k)
                 reason = at.judged_short[0].extra["verdict"].get("reason", "")
                 raise self._dead(c, PlanError(f"its judge accepts none of its ends ({reason})"), predicted)
+            if not aimed and not self.only:  # its judge rejects each of its ends, from every start the earlier
+                aimed = True  # clauses give it: aimed at the places it accepts a slide to (aims.py)
+                found = self._aimed(at)
+                if found is not None:
+                    return found
             found = None if self.only else self._carried_over(at)  # no end of the slide: carried over the others
             if found is not None:
                 return found

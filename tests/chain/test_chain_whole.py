@@ -702,3 +702,24 @@ def test_the_earlier_clauses_turns_are_tried_once_their_cuts_fail(plugins, stand
     steps = forecast(clauses, scene, plugins)
     assert [s.end for s in steps] == [DEFAULT, End(0, None, -30), DEFAULT]
     assert all(s.forecast.extra["verdict"]["success"] for s in steps)
+
+
+class NearerThan:
+    """A stand-in judge that accepts a path ending south of y = -0.16 and within 0.25 m of B: no seed, cut or turn of
+    the stand-in planner ends there, an aimed slide can."""
+
+    def judge(self, path, anchor, size, **kwargs):
+        end = np.asarray(path[-1][:2], float)
+        ok = bool(end[1] <= -0.16 and np.hypot(*(end - np.asarray(anchor[:2], float))) < 0.25)
+        return SimpleNamespace(to_dict=lambda: {"success": ok, "reason": "ends elsewhere"})
+
+
+def test_a_clause_its_judge_rejects_at_every_end_is_aimed_at_a_place_it_accepts(plugins, stand_ins, monkeypatch):
+    """No end of "slide A past B" is one its judge accepts, and no earlier clause can help: before the rejected end is
+    kept, the clause is aimed at the nearest place its judge accepts a slide to (as for a later clause's check)."""
+    monkeypatch.setattr(chain_forecast, "check_feasible", lambda *a, **k: None)
+    monkeypatch.setattr(chain_forecast, "judge_for", lambda bundle: NearerThan())
+    scene = four_blocks()
+    [step] = forecast(resolve_clauses("slide A past B", scene, plugins), scene, plugins)
+    assert step.end.aim is not None and step.forecast.extra["verdict"]["success"]
+    assert step.clause.command.manner == "slide"
