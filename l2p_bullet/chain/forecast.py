@@ -293,19 +293,22 @@ class _Searcher:
     def _carried_over(self, at: _Clause) -> list[Step] | None:
         """``at``'s clause carried over the other objects where its judge accepts none of its slide's ends
         (pipeline.carried_over: its verb names no manner), and the clauses after it: their steps when its judge
-        accepts the carried plan, else None (the slide's own end is kept, as before)."""
+        accepts the carried plan, else None (the slide's own end is kept, as before). Within one clause's share of the
+        search's plans (:data:`SEARCH_PLANS`): a last resort, not a second search over the chain."""
         reason = at.judged_short[0].extra["verdict"].get("reason", "")
         over = carried_over(at.clause.command, f"no end its judge accepts ({reason})")
         if over is None or self.left <= 0:
             return None
-        saved = self.clauses[at.k]
+        saved, left = self.clauses[at.k], self.left
         self.clauses[at.k] = replace(saved, command=over)
+        self.left = granted = min(left, SEARCH_PLANS)
         try:
             steps = self.steps(at.k, at.predicted)
         except Dead:
             return None
         finally:
             self.clauses[at.k] = saved
+            self.left = left - (granted - self.left)
         return steps if steps[0].forecast.extra["verdict"]["success"] else None
 
     def _try(self, at: _Clause, end: End) -> list[Step] | object | None:
