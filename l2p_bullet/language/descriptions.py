@@ -24,6 +24,7 @@ from .reference_words import (
     BOX_KINDS,
     COLOR_SYNONYMS,
     COLOUR_NOUNS,
+    COLOUR_WORDS,
     DETERMINERS,
     FRAMING_KINDS,
     FUNCTION_WORDS,
@@ -295,13 +296,10 @@ def a_thing_by_name(o: SceneObject) -> bool:
     return bool(kinds) and not kinds & BLOCKISH
 
 
-_COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
-
-
 def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:
     """``low`` with "light" before a colour ("the light blue block") read as a shade, a word no table knows (so
     refused, lamp or none), never as the lamp "light" names alone."""
-    return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in _COLOUR_WORDS else w
+    return tuple("light-shade" if w == "light" and i + 1 < len(low) and low[i + 1] in COLOUR_WORDS else w
                  for i, w in enumerate(low))
 
 

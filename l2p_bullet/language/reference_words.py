@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from ..core.scene import COLORS
 from .synonyms import KIND_MODIFIERS, KIND_NAMES, KIND_SYNONYMS, SIZE_WORDS
 
 DETERMINERS = frozenset({"the", "a", "an", "this", "that", "la", "le", "les", "el", "los", "las"})
@@ -59,6 +60,9 @@ COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquo
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
                   "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black", "steel": "gray",
                   "stainless": "gray", "chrome": "gray", "metallic": "gray"}
+COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
+"""Every word that says a colour: a shade before it is a shade ("light blue"), and it is never a name heard amiss
+("the orange thing" beside a ring)."""
 NEAR_COLOURS = {"blue": "cyan", "cyan": "blue", "purple": "pink", "pink": "purple"}
 """Colours people call each other by: where nothing on the table has the colour said ("the blue bottle" on a
 table with a cyan bottle and nothing blue), the near one is meant."""

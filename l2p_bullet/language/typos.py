@@ -15,13 +15,9 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from ..core.scene import COLORS
 from . import extents, goals, reference_words, words
 from .sounds import heard_key, heard_name, one_sound_apart
 from .synonyms import name_parts
-
-COLOUR_WORDS = frozenset(COLORS) | frozenset(reference_words.COLOR_SYNONYMS)
-"""Colour words ("the orange thing"): never a name heard amiss."""
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -126,7 +122,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
         if low in known:
-            if low in reference_words.KIND_WORDS and low not in kinds and low not in COLOUR_WORDS \
+            if low in reference_words.KIND_WORDS and low not in kinds and low not in reference_words.COLOUR_WORDS \
                     and THE_BEFORE.search(m.string, 0, m.start()):
                 # "the racer" where no racer stands and the razor sounds just so: the razor ("the orange thing" is
                 # a colour, never the ring)
