@@ -242,8 +242,8 @@ def _moves_it(text: str) -> bool:
     if "it" not in words:
         return False
     i = words.index("it")
-    heads = verb_heads() | {w for v in known_verbs() for w in v.split() if w != "..."}
-    return 0 < i <= 4 and all(w in heads or w in ("then", "and", "now", "please", "just", "so") for w in words[:i])
+    said = {w for v in known_verbs() for w in v.split() if w != "..."}  # every word of a verb ("pick", "up")
+    return 0 < i <= 4 and all(w in said or w in ("then", "and", "now", "please", "just", "so") for w in words[:i])
 
 
 def _one_command(text: str, command: Command, scene: Scene, plugins: list) -> None:

@@ -312,7 +312,7 @@ def _clause(step: Step, now: Scene, prims: Any, rest: np.ndarray, plugins: list,
         else:
             now = on_rim(now)  # a block the arm left a hair beyond the workspace's edge: planned from the edge
             done_as = feasible_as(cmd, now, plugins, arm, check=check_feasible)
-            if done_as != cmd:  # the manner the blocks leave it from here (a slide's way blocked: carried)
+            if done_as is not cmd:  # the manner the blocks leave it from here (a slide's way blocked: carried)
                 cmd, step = done_as, replace(step, clause=replace(step.clause, command=done_as))
             # the end state the chain was planned with (ends.py): the planner's own, or the one that keeps the
             # later clauses possible
