@@ -68,7 +68,7 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if isinstance(sentence, str):
         # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412; "🔑 ➡️ 👛"
-        sentence = numbers_said(codes_said(emoji_said(sentence, scene), scene), scene)
+        sentence = rephrased.passed_by(numbers_said(codes_said(emoji_said(sentence, scene), scene), scene))
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:
@@ -179,6 +179,11 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             if (i < len(texts) and pointing.about_us(text, scene)) or pointing.asks_nothing(text, scene,
                                                                                              known_verbs()):
                 continue  # "We're setting up for the demo.", "Here's the situation.", "Would you see to that?"
+            placed = _placed(text, show, scene, plugins)
+            if placed is not None:  # "Plate. Away from the lemon.": the place where the object shown goes
+                clauses.append(Clause(len(clauses) + 1, text, placed))
+                show = None
+                continue
             away = apart.away_from_shown(text, show, scene, plugins)
             if away is not None:  # "A and B are too close together. Fix that by moving A."
                 clauses.extend(Clause(len(clauses) + 1, text, cmd) for cmd in away)
@@ -233,6 +238,19 @@ def _in_place_of(meant: str, taken: Clause, scene: Scene, plugins: list,
     # "sorry, past it, past the box": the place meant, said twice, is one clause
     pieces = [p for k, p in enumerate(pieces) if k == 0 or not _same_move(p[1], pieces[k - 1][1])]
     return [Clause(taken.index + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces)]
+
+
+def _placed(text: str, show: pointing.Shown | None, scene: Scene, plugins: list) -> Command | None:
+    """The command a place said alone makes of the one object the clause before showed ("Plate. Away from the lemon.",
+    "Red apple. Much closer to the Granny."), carried where it was picked up; None where it makes none."""
+    if show is None or len(show.objects) != 1 or show.about:
+        return None
+    try:
+        command = resolve(f"{'carry' if show.lifted else 'move'} {show.objects[0]} {text}", scene, plugins,
+                          show.context)
+    except L2PError:
+        return None
+    return replace(command, sentence=text)
 
 
 def _moves_it(text: str) -> bool:

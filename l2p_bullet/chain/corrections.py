@@ -31,11 +31,13 @@ INSTEAD = re.compile(r"^\s*(?:(?:actually|no|wait|sorry|oops|hmm)\s*[,.!]*\s*)+(
 """A clause that takes the one before back and says what was meant: "Actually no, move it past the jar instead"."""
 
 
-TAKEN_BACK = re.compile(r"^\s*(?:(?:ok(?:ay)?|hmm|ugh|actually)\s*[,.!]*\s*)*"
-                        r"(?:no+(?:\s*,?\s*(?:wait|sorry))?|wait\s*,?\s*no|sorry|oops|my\s+bad)\s*[,.!:\-\u2013\u2014]+\s*"
-                        r"(?:i\s+mean[t]?\s+|make\s+that\s+)?(?P<meant>\S.*?)\s*[.!]*\s*$", re.IGNORECASE)
+TAKEN_BACK = re.compile(r"^\s*(?:(?:ok(?:ay)?|hmm|ugh|actually|oh)\s*[,.!]*\s*)*"
+                        r"(?:(?:no+(?:\s*,?\s*(?:wait|sorry))?|wait\s*,?\s*no|sorry|oops|my\s+bad)"
+                        r"\s*[,.!:\-\u2013\u2014]+\s*(?:i\s+mean[t]?\s+|make\s+that\s+)?|make\s+that\s+)"
+                        r"(?P<meant>\S.*?)\s*[.!]*\s*$", re.IGNORECASE)
 """A clause that opens by taking the one before back, then says what was meant: "no wait, closer to the jello",
-"wait no, put it by E", "no, the nut next to the bolt"."""
+"wait no, put it by E", "no, the nut next to the bolt", "Oh sorry, closer to the blue can", "Actually make that around
+the blue cube"."""
 
 
 def instead_of(text: str) -> str | None:
@@ -105,17 +107,19 @@ def corrected(text: str, scene: Scene) -> list[str]:
         right = MEANT_LAST.sub("", m.group("right"))  # "wait, closer to the cup i mean"
         out.extend(_meant(m.group("before"), right, m.group("after") or "", scene))
     m = MEANT_BETWEEN.match(text)
-    if m is not None:  # "slide the blue block past, I mean around, the box"
+    if m is not None and try_object(m.group("right"), scene) is not None:  # "push A, sorry, the red can, past B"
+        out.extend(_meant(m.group("before"), m.group("right"), m.group("after"), scene))
+    elif m is not None:  # "slide the blue block past, I mean around, the box"
         out.extend(_said_between(m.group("before"), m.group("right"), m.group("after"), scene))
     return out
 
 
 MEANT_LAST = re.compile(r"\s*,?\s+i\s+mean[t]?\s*$", re.IGNORECASE)
 """"I mean" after what was meant ("..., closer to the cup i mean"): read past."""
-MEANT_BETWEEN = re.compile(r"^(?P<before>.+?)\s*,\s*(?:i\s+mean|no|sorry|scratch\s+that|actually|or\s+rather|rather)"
-                           r"\s*,?\s+(?P<right>[^,]+?)\s*,\s*(?P<after>[^,]+?)\s*[.!?]*\s*$", re.IGNORECASE)
+MEANT_BETWEEN = re.compile(r"^(?P<before>.+?)\s*,\s*(?:(?:i\s+mean|no|sorry|scratch\s+that|actually|or\s+rather|rather)"
+                           r"\s*,?\s*)+?\s(?P<right>[^,]+?)\s*,\s*(?P<after>[^,]+?)\s*[.!?]*\s*$", re.IGNORECASE)
 """A word or two said, then corrected between commas, and the rest of the command: "slide the blue block past, I mean
-around, the box"."""
+around, the box", "move the can near the front, sorry I mean the one at the back, around the cube"."""
 
 
 def _said_between(before: str, right: str, after: str, scene: Scene) -> list[str]:

@@ -58,10 +58,11 @@ THERE = re.compile(r"^\s*(?:there\s+(?:are|r|is)\s+(?P<what>.+?)(?:\s+(?:here|th
                    r"|of\s+(?P<of>the\s+two\s+.+?))\s*[.!]?\s*$", re.IGNORECASE)
 """A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
 ("... push the big one toward S and the other one away from the bunny")."""
-SAME = re.compile(r"^\s*(?:now\s+|and\s+|after\s*,?\s*)?(?:(?:do|repeat)\s+(?:(?:the\s+)?same|that|it)|(?:the\s+)?same)"
-                  r"(?:\s+thing)?(?:\s+again)?\s+(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?\s*$",
-                  re.IGNORECASE)
-"""The previous command again on another object: "Now do the same with the red cube", "then same for the duck"."""
+SAME = re.compile(r"^\s*(?:(?:ok(?:ay)?|now|and|then|after)\s*,?\s*)*(?:(?:do|repeat)\s+(?:(?:the\s+)?same|that|it)"
+                  r"|(?:the\s+)?same)(?:\s+thing)?(?:\s+again)?\s+(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?"
+                  r"(?:\s*,?\s*(?:please|pls|thanks|thank\s+you))*\s*[.!]*\s*$", re.IGNORECASE)
+"""The previous command again on another object: "Now do the same with the red cube", "then same for the duck", "ok
+now do the same with the blue cube, thank you"."""
 TOO = re.compile(r"^\s*(?:and\s+)?(?P<what>.+?)\s*,?\s+(?:too|as\s+well|also|same\s+thing|the\s+same)\s*[.!]?\s*$",
                  re.IGNORECASE)
 """The previous command again on another object, said by the object alone: "..., and the black one too"."""
@@ -258,6 +259,12 @@ def set_down(command: Command, previous: Command | None, text: str) -> Command:
     return command
 
 
+AGAIN_AT = re.compile(r"^\s*(?:(?:ok(?:ay)?|now|and|then)\s*,?\s*)*(?:(?:do|repeat)\s+(?:it|that|the\s+same)\s+again"
+                      r"|(?:the\s+)?same\s+again|again)\s*,?\s*(?:but\s+)?(?P<place>(?:around|round|past|beside|next\s+to"
+                      r"|closer\s+to|toward|towards|away\s+from)\s+.+?)\s*[.!]*\s*$", re.IGNORECASE)
+"""The previous command again to another place: "then do it again around the red can", "same again but past B"."""
+
+
 def pointed(text: str, previous: Command | None, context: Context | None, scene: Scene,
             plugins: list) -> list[Command] | None:
     """The commands of a clause read by one of the module's readings, or None when none applies."""
@@ -271,6 +278,10 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
     again = _again(text, previous, scene, context)
     if again is not None:
         return [again]
+    m = AGAIN_AT.match(text)
+    if m is not None and previous is not None:  # its verb, mover and pace; the place said now
+        command = resolve(f"{previous.verb} {previous.mover} {m.group('place')}", scene, plugins, context)
+        return [replace(command, sentence=text, pace=command.pace or previous.pace)]
     m = NOT_THIS.search(text)
     if m is not None:  # "Push the grey cube, not the stone, toward the jar": the stone is not what moves
         try:
@@ -395,10 +406,20 @@ def _splits(text: str) -> list[tuple[str, str, bool]]:
     return out
 
 
+PLACE_BEFORE = re.compile(r"\b(?:to|from|around|round|past|beyond|beside|by|near|toward|towards|between)\s+$",
+                          re.IGNORECASE)
+"""The last word of a place, right before "them both": what follows is where, not what moves."""
+
+
 def _each(text: str, context: Context, objects: tuple[str, ...], scene: Scene,
           plugins: list) -> list[Command] | None:
-    """``text`` resolved with ``context``; where it says "them (both)" and ``objects`` are two, once per object."""
-    if len(objects) == 2 and BOTH.search(text):
+    """``text`` resolved with ``context``; where it says "them (both)" and ``objects`` are two, once per object. None
+    where "them both" is the place ("then the green cube next to them both"): one move is made by one object, never
+    once beside each."""
+    both = BOTH.search(text)
+    if both is not None and PLACE_BEFORE.search(text, 0, both.start()):
+        return None
+    if len(objects) == 2 and both:
         try:
             return [resolve(BOTH.sub(name, text, count=1), scene, plugins, context) for name in objects]
         except L2PError:

@@ -94,13 +94,15 @@ arrow before a relation ("cup -> past the jar") is read by the grammar, before t
 
 
 WHY = re.compile(r"(?:\s*,\s*|\s+)(?:so\s+(?:that\s+)?(?:i|i'll|i\s+can|we|my|everyone|everybody|you\s+can|he|she"
-                 r"|people)\b|because\b|cause\b|coz\b|cuz\b|since\b|before\b|b4\b|for\s+when\b"
+                 r"|people)\b|so\s+(?:that\s+)?(?:it|they|the\s+[a-z]+)\s+(?:can|can't|cannot|won't|wont|doesn't|doesnt"
+                 r"|does\s+not|don't|dont|will)\b|because\b|cause\b|coz\b|cuz\b|since\b|before\b|b4\b|for\s+when\b"
                  r"|when\s+(?:you're|you\s+are|you've|you're\s+done|i|i'm|he|she|we)\b|that's\s+(?:where|why|how|what)\b"
                  r"|it(?:'s|s)?\s+(?:gonna|going\s+to|keeps|will|should|might|may|could|always)\b"
                  r"|my\s+\w+\s+(?:keeps|will|is|leaves|always)\b|keeping\s+it\s+off\b|as\s+far\s+as\s+it\s+will\b"
                  r"|i\.?e\.?(?:\s*,)?\s)[^.;!?]*[.!]*\s*$", re.IGNORECASE)
 """A reason, a time or a restatement said after the command ("... away from the ketchup, it's gonna spill", "... closer
-to the mug so I can reach it", "... before my kid grabs it", "..., i.e. past it"): read past where the command before it
+to the mug so I can reach it", "... so the baby can reach it", "... so it doesn't get bruised", "... before my kid
+grabs it", "..., i.e. past it"): read past where the command before it
 is whole."""
 
 
@@ -144,23 +146,56 @@ the plate be": what is wished."""
 PASS = re.compile(rf"^\s*(?:(?:{_ASK})[\s,]+)*pass\s+(?P<rest>.+?\s+(?:(?:just|only|slightly|a\s+bit)\s+)*"
                   r"(?:past|beyond|(?:on\s+|to\s+)?the\s+(?:other|far)\s+side\s+of)\s.+)$", re.IGNORECASE)
 """"Pass the cup just beyond the green cube", "can you pass the red cube on the other side of the soup can": a move
-past it ("pass it by B" may be beside B as well: not read)."""
+past it."""
+PASS_BY = re.compile(r"(?P<lead>^|[,;.]\s*|\b(?:and|then|after|please|to)\s+)pass\s+(?P<what>[^,;.]+?)\s+by\b",
+                     re.IGNORECASE)
+""""Pass the E by the C", "pass the one in the back by the cylinder": a move past it, as every author who wrote it
+meant (a person passes by what they go past; "go by B" may be past or beside B, and is asked)."""
+
+
+def passed_by(sentence: str) -> str:
+    """``sentence`` with each :data:`PASS_BY` said as the grammar reads it ("move the E past the C"), before it is read:
+    read as written, "pass" would be taken for a word of the object's description and "by" for beside."""
+    return PASS_BY.sub(r"\g<lead>move \g<what> past", sentence)
 NOT_DRAGGED_THEN = re.compile(r"^\s*(?:don't|dont|do\s+not)\s+(?:drag|slide)\s+(?P<what>[^,]+?)\s*,\s*"
                               r"(?P<verb>lift|pick\s+up|carry|raise)\s+it\b(?P<rest>.+)$", re.IGNORECASE)
 """A carry told by the slide it is not: "Don't drag the bowl, lift it and set it by the plate" is "lift the bowl and set
 it by the plate"."""
 
 
+POSTPOSITIONS = {"near": "near", "beside": "beside", "next": "next to", "around": "around", "round": "around",
+                 "past": "past", "away": "away from", "closer": "closer to", "toward": "toward", "towards": "towards"}
+"""A place said after its object, as Korean, Japanese and Turkish say it ("A to B near move", "C near put"): the words
+the grammar says before the object."""
+GO_FIRST = re.compile(r"^\s*(?P<what>.+?)\s+(?:go|goes|should\s+go|must\s+go)\s+(?P<rest>(?:to|around|round|past|beyond"
+                      r"|near|beside|next\s+to|closer|toward|towards|away)\b.+)$", re.IGNORECASE)
+"""An object that goes somewhere, said with nothing before it: "biggest one go around the middle one" is "move the
+biggest one around the middle one" ("goes by" may be past or beside: not read)."""
+
+
 def _verb_last(text: str) -> list[str]:
-    """:data:`VERB_LAST`'s and :data:`BE_LAST`'s sentences said the usual way; [] for any other."""
+    """:data:`VERB_LAST`'s, :data:`BE_LAST`'s and :data:`GO_FIRST`'s sentences said the usual way, a place said after
+    its object (:data:`POSTPOSITIONS`) said before it; [] for any other."""
     m = BE_LAST.match(text)
     if m is not None:
         return [f"I want {m.group('asked') or m.group('said') + ' ' + m.group('where')}"]
-    m = VERB_LAST.match(text)
     heads = verb_heads()
-    if m is None or m.group("verb").lower() not in heads or m.group("rest").split()[0].lower() in heads:
+    m = GO_FIRST.match(text)
+    if m is not None and m.group("what").split()[0].lower() not in heads | {"it", "that", "this", "then"}:
+        return [f"move {m.group('what')} {m.group('rest')}"]
+    m = VERB_LAST.match(text)
+    verb = m.group("verb").lower() if m is not None else ""
+    verb = "move" if verb in ("go", "goes") else verb
+    if m is None or verb not in heads or m.group("rest").split()[0].lower() in heads:
         return []
-    return [f"{m.group('lead')}{m.group('verb')} {m.group('rest')}"]
+    rest = m.group("rest").split()
+    said = POSTPOSITIONS.get(rest[-1].lower()) if len(rest) >= 3 else None
+    if said is None:
+        return [f"{m.group('lead')}{verb} {m.group('rest')}"]
+    body = rest[:-1]  # "A to B near": the object before "to" or "from" moves; else each way of cutting the words
+    cut = next((k for k, w in enumerate(body) if w.lower() in ("to", "from") and 0 < k < len(body) - 1), None)
+    cuts = [(body[:cut], body[cut + 1:])] if cut is not None else [(body[:k], body[k:]) for k in range(1, len(body))]
+    return [f"{m.group('lead')}{verb} {' '.join(what)} {said} {' '.join(where)}" for what, where in cuts]
 
 
 def in_other_words(text: str) -> list[str]:

@@ -243,8 +243,10 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             if len(fits) > 1 and "cube" in shapes:  # "the blue cube" beside a long blue beam is the cube-like one
                 kept = [o for o in fits if _cube_like(o)]
                 fits = kept if len(kept) == 1 else fits
-        else:  # "the box": a box, or a mesh that is one ("the cereal box"); a parcel, not the tote beside it
-            fits = [o for o in fits if shape_of(o) in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)]
+        else:  # "the box": a box, or a mesh that is one ("the cereal box"); a parcel, not the tote beside it; "the
+            # cube": a box as long as it is wide and tall too
+            fits = [o for o in fits if shape_of(o) in shapes or ("box" in shapes and kinds_of(o) & BOX_KINDS)
+                    or ("cube" in shapes and shape_of(o) == "box" and _cube_like(o, CUBE_SAID))]
             if "box" in shapes:
                 fits = [o for o in fits if _boxy(o)] or fits
     if shaped:
@@ -315,12 +317,15 @@ CUBE_LIKE = 1.5
 """Longest side over shortest side up to which a block looks like a cube: "the blue cube" is the blue cube, not a
 14 x 3 x 3 cm beam of the same colour (a careful author named them apart); where only one block has the colour, any
 block is its cube, as the earlier authors called boxes cubes."""
+CUBE_SAID = 1.2
+"""Longest side over shortest side up to which a box is "the cube" said alone (no colour): a 5 cm cube is, a 6 x 4 x 4
+cm box beside two cubes is not."""
 
 
-def _cube_like(o: SceneObject) -> bool:
+def _cube_like(o: SceneObject, ratio: float = CUBE_LIKE) -> bool:
     g = o.geometry
     sides = [float(v) for v in (*outline_sides(o), g.height)]
-    return max(sides) <= CUBE_LIKE * min(sides)
+    return max(sides) <= ratio * min(sides)
 
 
 def colours_said(low: tuple[str, ...], scene: Scene) -> set[str]:

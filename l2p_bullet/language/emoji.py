@@ -3,9 +3,10 @@
 Each emoji is read as the words it stands for before anything else reads the sentence: an arrow as the arrow the
 grammar reads for "goes" ("the mug -> around the box"), a circling arrow as "around", folded hands as "please", a
 tortoise as "slowly", a dash of wind as "quickly", a tick, a heart or a smile as nothing. Any other emoji is a thing:
-its Unicode name's words ("MOBILE PHONE", "KEY", "PURSE", "EYEGLASSES") are asked of the scene from the last word
-back (the name's own noun first), and the first that names one object is said as "the <word>"; an emoji that names
-none is said as its last word, so the sentence is refused with that word, never read past.
+its Unicode name's words ("MOBILE PHONE", "KEY", "PURSE", "EYEGLASSES") are asked of the scene, all of them together
+first ("GREEN APPLE"), then from the last word back (the name's own noun first), and the first that names one object
+is said as "the <word>"; an emoji that names none is said as its last word, so the sentence is refused with that word,
+never read past.
 """
 
 from __future__ import annotations
@@ -60,6 +61,8 @@ def _thing(ch: str, scene: Scene) -> str:
     if ch in THINGS and try_object(f"the {THINGS[ch]}", scene) is not None:
         return f"the {THINGS[ch]}"
     words = [w for w in unicodedata.name(ch, "").lower().split() if w not in _SKIP_WORDS]
+    if len(words) > 1 and try_object(f"the {' '.join(words)}", scene) is not None:
+        return f"the {' '.join(words)}"  # "GREEN APPLE" is the green apple, where the apple alone is the red one
     for word in reversed(words):
         if try_object(f"the {word}", scene) is not None:
             return f"the {word}"

@@ -1,9 +1,11 @@
 """English as learners write it, said as the grammar reads it ("Put candle at book side", "Move the remote more far
-of the glass", "Separate the glass from the book", "the remote stuck to the candle", "until it touch the book").
+of the glass", "Separate the glass from the book", "the remote stuck to the candle", "until it touch the book", "put
+the A in the side of the B", "the C passes by the D", "move it little away").
 
 Each form is a construction of another language said word for word in English (Chinese 在书旁边 "at book side",
-Spanish "más lejos de" "more far of", "pegado a" "stuck to"), read only in a sentence refused as written
-(``chain/clauses.resolve_clauses``), so a sentence the grammar reads is read as before.
+Spanish "más lejos de" "more far of", "pegado a" "stuck to", Portuguese "ao lado de" "in the side of", "passar por"
+"pass by"), read only in a sentence refused as written (``chain/clauses.resolve_clauses``), so a sentence the grammar
+reads is read as before.
 """
 
 from __future__ import annotations
@@ -22,6 +24,12 @@ _REWRITES = (
     (re.compile(r"\bfar\s+of\b", re.IGNORECASE), "far from"),
     (re.compile(r"\bnear\s+of\b", re.IGNORECASE), "near"),
     (re.compile(r"\bbeside\s+(?:to|of)\b", re.IGNORECASE), "beside"),
+    (re.compile(r"\b(?:in|at|on)\s+(?:the\s+)?side\s+of\b", re.IGNORECASE), "next to"),
+    (re.compile(r"\b(closer|nearer)\s+of\b", re.IGNORECASE), r"\1 to"),
+    (re.compile(r"\btogether\s+with\b", re.IGNORECASE), "next to"),
+    (re.compile(r"\bpass(?:es)?\s+by\b", re.IGNORECASE), "past"),
+    (re.compile(r"(?<!\ba)(?<!\bvery)\s+little\s+(?=(?:away|closer|nearer|past|further|farther|towards?)\b)",
+                re.IGNORECASE), " a little "),
     (re.compile(r"\bstuck\s+(?:to|on)\b", re.IGNORECASE), "right next to"),
     (re.compile(r"\buntil\s+it\s+touch\b", re.IGNORECASE), "until it touches"),
     (re.compile(r"\bso\s+close\s+to\s+(?P<what>.+?)\s+as\s+(?:you\s+)?(?:can|possible)\b", re.IGNORECASE),

@@ -61,9 +61,10 @@ def measure(o: SceneObject, what: str) -> float:
 
 def toward(o: SceneObject, sides: list[str]) -> float:
     """How far the object's centre lies toward the sides said (metres along their direction from the table's
-    centre): "left" is +y, "front" -x, a corner ("back", "right") the diagonal between its two sides."""
-    u = np.sum([DIRECTIONS[s] for s in sides], axis=0)
-    return float(np.dot(o.xy[:2], u / np.linalg.norm(u)))
+    centre): "left" is +y, "front" -x; toward a corner ("back", "right") as far as toward the nearer of its two sides,
+    as people see it: the thing in the front left is in front and on the left, not the one far to the left that
+    stands halfway back."""
+    return min(float(np.dot(o.xy[:2], DIRECTIONS[s])) for s in sides)
 
 
 def distance_to(o: SceneObject, xy: tuple[float, float]) -> float:

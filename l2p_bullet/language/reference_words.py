@@ -59,7 +59,7 @@ cube"): read past there. The size words among them (synonyms.SIZE_WORDS) and the
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan", "silver": "gray",
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
                   "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black", "steel": "gray",
-                  "stainless": "gray", "chrome": "gray", "metallic": "gray"}
+                  "stainless": "gray", "chrome": "gray", "metallic": "gray", "metal": "gray"}
 COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
 """Every word that says a colour: a shade before it is a shade ("light blue"), and it is never a name heard amiss
 ("the orange thing" beside a ring)."""

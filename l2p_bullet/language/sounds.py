@@ -1,10 +1,10 @@
 """A name as speech-to-text hears it: the English word that sounds like a name in another language ("copper" for
 koppu, "hockey" for hako, "Sarah" for sara, "tease" for tasse, "sucker" for sucrier).
 
-Words are compared by their consonants as heard (a rough phonetic key): "c" and "k" alike, "ph" as "f", "th" as "t",
-letters doubled once, vowels after the first letter and a silent "h" left out. A word is read as a name only in a
-sentence refused as written (language/typos.py), only where it is no word the grammar knows, and only where exactly
-one of the scene's one-word names sounds so: a refusal is better than a guess between two.
+Words are compared by their consonants as heard (a rough phonetic key): "c" and "k" alike, "wr" as "r" ("the ranch" for
+the wrench), "ph" as "f", "th" as "t", letters doubled once, vowels after the first letter and a silent "h" left out. A
+word is read as a name only in a sentence refused as written (language/typos.py), only where it is no word the grammar
+knows, and only where exactly one of the scene's one-word names sounds so: a refusal is better than a guess between two.
 """
 
 from __future__ import annotations
@@ -13,8 +13,9 @@ import re
 
 from .synonyms import unaccented
 
-_SPELLINGS = (("ph", "f"), ("ck", "k"), ("qu", "kw"), ("th", "t"), ("sh", "s"), ("ch", "k"), ("ce", "se"), ("ci", "si"),
-              ("cy", "si"), ("c", "k"), ("q", "k"), ("x", "ks"), ("z", "s"), ("y", "i"), ("wh", "w"), ("ew", "u"))
+_SPELLINGS = (("wr", "r"), ("ph", "f"), ("ck", "k"), ("qu", "kw"), ("th", "t"), ("sh", "s"), ("ch", "k"), ("ce", "se"),
+              ("ci", "si"), ("cy", "si"), ("c", "k"), ("q", "k"), ("x", "ks"), ("z", "s"), ("y", "i"), ("wh", "w"),
+              ("ew", "u"))
 
 
 def heard_key(word: str) -> str:

@@ -140,8 +140,9 @@ KIND_NAMES = {
     "wrench": ("wrenches", "spanner", "spanners"),
     "spanner": ("spanners", "wrench", "wrenches"),
     "mallet": ("mallets", "hammer", "hammers"),
-    "hammer": ("hammers", "mallet", "mallets"),
+    "hammer": ("hammers", "mallet", "mallets", "claw"),
     "screwdriver": ("screwdrivers", "driver", "drivers"),
+    "drill": ("drills", "makita", "dewalt", "bosch", "ryobi", "milwaukee"),
     "flat": ("flathead", "flat-head", "flatblade", "flat-blade", "slotted"),
     "phillips": ("philips", "crosshead", "cross-head", "pozi", "pozidriv"),
     "goal": ("goals", "target", "targets", "marker", "markers"),
@@ -337,6 +338,9 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
     parts = name_parts(name)
     if len(parts) > 1:
         out.extend(p for p in parts if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS and p not in COLORS)
+        if len(parts) == 2 and parts[1].isalpha() and len(parts[1]) >= 3 and parts[0] not in COLORS \
+                and parts[0].isalpha() and len(parts[0]) >= 3 and not parts[0].endswith("s"):
+            out.append(parts[0] + "s")  # "the screws" for screw_box: what a box of them is called by
     elif len(low) >= 3 and low.isalpha():
         out.extend(dict.fromkeys((low, unaccented(low))))
     out.extend(h for p in parts if p.isalpha() for h in COMPOUND_HEADS if p.endswith(h) and len(p) - len(h) >= 3)
@@ -392,11 +396,19 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> d
     out = {k: frozenset(v) for k, v in by_kind.items()}
     own = dict(out)  # a word calls the objects of its kinds, never those another word called ("post-its": the
     # notepad's, not the Moleskine called a notepad)
+    held = {name: set(name_parts(name)[:-1]) for name, *_ in objects if name_parts(name)[-1:][0] in CONTAINERS}
     for word, kinds in [*KIND_SYNONYMS.items(), *((w, FIGURES) for w in FIGURE_WORDS)]:
         named = frozenset().union(*(own[k] for k in kinds if k in own))
+        if word in KIND_CLASSES:  # "the metal thing" is no screw_box: what a box holds is not what it is
+            named = frozenset(n for n in named if not any(k in held.get(n, ()) for k in kinds))
         if named and word not in out:
             out[word] = named
     return out
+
+
+CONTAINERS = frozenset({"box", "jar", "bin", "bag", "dish", "tray", "tin", "pot", "bowl", "cup", "holder", "rack",
+                        "case", "tub", "crate", "basket", "bottle", "carton"})
+"""The last word of a name that says the object holds what the words before it name ("screw_box", "soap_dish")."""
 
 
 def kind_words(scene: Scene) -> dict[str, str]:

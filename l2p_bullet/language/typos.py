@@ -39,14 +39,15 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
 SHORTHAND |= {"blew": "blue", "won": "one", "b": "be", "shld": "should", "shud": "should", "em": "them",
-              "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "bk": "back"}
+              "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "bk": "back", "thn": "then",
+              "read": "red"}
 SHORTHAND |= dict(pair.split("=") for pair in """
     tae=to fae=from frae=from awa=away roon=round roond=round yon=the yin=one pit=put gie=give richt=right muckle=big
     hae=have ye=you dinnae=don't tak=take ower=over wi=with oot=out doon=down aboot=about cannae=can't intae=into
     ontae=onto""".split())
-"""Texting shorthand, the colour speech-to-text hears as another word ("the blew block") and Scots words people type
-among English ones ("shift yon red cube awa fae the box"), read as the word each stands for in a refused sentence, as
-a slip is."""
+"""Texting shorthand, the colour speech-to-text hears as another word ("the blew block", "the read cube") and Scots
+words people type among English ones ("shift yon red cube awa fae the box"), read as the word each stands for in a
+refused sentence, as a slip is."""
 
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
@@ -81,6 +82,33 @@ def near(word: str, known: frozenset[str], named: frozenset[str] = frozenset()) 
     if len({words.PACES.get(h, h) for h in hits}) != 1:
         return None
     return max(sorted(hits), key=len)
+
+
+def unvowelled(word: str, known: frozenset[str]) -> str | None:
+    """The one known word ``word`` is written as with its vowels left out, as people write notes ("psh", "gntly",
+    "bsde", "scrwdrvr"): the same first letter, the same consonants as written or heard, every letter in order and no
+    vowel typed but the first or the last letter. None where none or several words are so written ("thn": then, than
+    or thin)."""
+    if len(word) < 3 or not word.isalpha() or any(c in "aeiou" for c in word[1:-1]):
+        return None  # a vowel typed inside is a word of its own ("min" is no "mini", "par" no "paper")
+    said, written = heard_key(word), _consonants(word)
+    hits = {k for k in known if len(k) > len(word) and k[0] == word[0] and _in_order(word, k)
+            and (heard_key(k) == said or _consonants(k) == written)}
+    spelt = {k for k in hits if _consonants(k) == written}  # "gntly": gently, not gentle
+    hits = spelt if len(spelt) == 1 else hits
+    stem = min(hits, key=len, default="")
+    return stem if hits and all(h.startswith(stem) for h in hits) else None  # "push", not "pushes"
+
+
+def _consonants(word: str) -> str:
+    """``word``'s letters as written, without the vowels after its first letter, each letter once in a row."""
+    return re.sub(r"(.)\1+", r"\1", word[0] + re.sub(r"[aeiou]", "", word[1:]))
+
+
+def _in_order(word: str, known: str) -> bool:
+    """Whether every letter of ``word`` stands in ``known``, in the same order."""
+    letters = iter(known)
+    return all(c in letters for c in word)
 
 
 def _one_slip(word: str, known: str) -> bool:
@@ -133,7 +161,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
-        hit = near(low, known, named)
+        hit = near(low, known, named) or unvowelled(low, known | named)
         before = WORD_BEFORE.search(m.string, 0, m.start())
         following = [p[i + 1] for p in parted if before is not None for i in range(len(p) - 1)
                      if p[i] == before.group(1).lower()]
@@ -157,12 +185,29 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
-    said = _joined(_lettered(DROPPED_LETTER.sub("", said), names), keep | named | set(kinds), spoken)
+    if not any("\u0131" in n for n in names):  # "slıde C", "lıft ıt": a Turkish keyboard's dotless i
+        said = said.replace("\u0131", "i").replace("\u0130", "I")
+    said = _joined(_lettered(DROPPED_LETTER.sub("", _cut_short(said, names)), names), keep | named | set(kinds), spoken)
     mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
     mended = HANDED.sub(r"\1-hand", mended)
     return mended if "1" in keep else ONE_FOR_ONE.sub(r"\1 one", mended)
+
+
+CUT_NAME = re.compile(r"(?<![\w-])[A-Za-z0-9]+(?:_[A-Za-z0-9]+)+(?![\w-])")
+"""A name written with its underscore, perhaps cut short ("tape_meas")."""
+
+
+def _cut_short(sentence: str, names: list[str]) -> str:
+    """``sentence`` with a name cut short as a note writes it ("tape_meas" for tape_measure) written whole: the one
+    name that begins so, the cut keeping at least half of it."""
+    def whole(m: re.Match) -> str:
+        said = m.group(0).lower()
+        fits = [n for n in names if n.lower().startswith(said) and 2 * len(said) >= len(n)]
+        return fits[0] if len(fits) == 1 and m.group(0) not in names else m.group(0)
+
+    return CUT_NAME.sub(whole, sentence)
 
 
 def _lettered(sentence: str, names: list[str]) -> str:

@@ -26,7 +26,8 @@ POLITE_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "can you please", "i would like you to", "i'd like you to", "i want you to", "i need you to",
     "go ahead and", "please could you", "please can you", "please to", "please", "kindly", "could you", "can you",
     "would you", "will you", "could u", "can u", "pls", "plz", "let's", "lets", "try to", "now", "then", "and",
-    "first", "finally", "just", "hey robot", "hey", "ok", "okay", "robot", "alright", "all right",
+    "first", "finally", "just", "do me a favour", "do me a favor", "hey robot", "hey", "ok", "okay", "robot",
+    "alright", "all right",
     "after that", "afterwards", "lastly", "next", "maybe", "also", "hello", "hi",
     "hey there", "hi there", "hello there", "good morning", "yo", "thx in advance", "thanks in advance",
     "good afternoon", "good evening", "dear robot", "chat", "ok chat", "okay chat", "chat voted",
@@ -111,7 +112,8 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "thats it", "thats all", "when we're done", "when were done", "when we are done", "when you're done",
     "when youre done", "when you are done", "at the end of it",
     "inshallah", "insha'allah", "habibi", "god bless you", "god bless", "my friend", "brother", "thank", "period",
-    "comma", "full stop", "if that makes sense", "rules are rules", "heard", "thanks a lot", "thank you robot",
+    "comma", "full stop", "thank you sir", "thanks sir", "obrigado", "obrigada", "gracias", "merci",
+    "if that makes sense", "rules are rules", "heard", "thanks a lot", "thank you robot",
     "if you could sort that out", "when you get a sec", "when you have a sec",
 )), key=len, reverse=True))
 POLITE_SUFFIXES = tuple(sorted(POLITE_SUFFIXES + tuple(tuple(v.split()) for v in VOCATIVES), key=len, reverse=True))
@@ -134,7 +136,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
 
 PACES: dict[str, str] = {
     "slowly": "slow", "slow": "slow", "asap": "fast", "pronto": "fast", "hurry": "fast", "hurriedly": "fast",
-    "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast",
+    "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast", "sharpish": "fast",
     "swiftly": "fast",
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
     "gentle": "gentle",
@@ -145,6 +147,8 @@ PACES: dict[str, str] = {
     # in French, as francophones do ("doucement, move the sucrier ...", "vite vite! push ...")
     "doucement": "gentle", "vite": "fast", "rapidement": "fast", "lentement": "slow", "délicatement": "gentle",
     "delicatement": "gentle", "prudemment": "careful",
+    # written as notes without their vowels ("gntly push F to B"), read before the verb as paces are
+    "slwly": "slow", "qckly": "fast", "qkly": "fast", "gntly": "gentle", "crfly": "careful", "crfully": "careful",
     # in Scots ("go canny an lift yon black tin ...")
     "canny": "careful",
     # and in Hindi, as Hinglish speakers do ("jaldi jaldi put the phone ...")

@@ -120,6 +120,8 @@ DISAGREED = {
     "heldout75.tsv": {"Carry the cadmium red around the water pot; afterwards set it down right against the sketchpad.",
                       "grab the eraser, put it next to the brush, then push the brush away from it"},
     "heldout76.tsv": {"pen 1 up against the thing you staple with"},
+    "heldout79.tsv": {"the spanner by the claw, then the Makita up against the tape",
+                      "grab the one nearest the Makita and stick it by the claw, then shift the tape past the screws"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -146,7 +148,8 @@ toolkit, as "the cup" is the cup beside a mug, and asked by the sixty-eighth aut
 gun. For the seventy-fourth author "the long thin flat thing" is the toothbrush or the comb (the comb, 1 cm thick, is
 the flat one for the toolkit) and "the biggest one" a question (the shampoo, twice any other's bulk, for the toolkit);
 for the seventy-fifth "set it down" after a carry and "grab X, put it ..." are slides (carries for the toolkit, as for
-six earlier authors); "up against" is plain for the seventy-sixth."""
+six earlier authors); "up against" is plain for the seventy-sixth, and for the seventy-ninth, for whom "grab X and
+stick it ..." is a slide too."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -199,11 +202,24 @@ OPEN = {
         "um put the little blue box up against the cup": "slide:next-to blue cup extent=right"},
     "heldout66.tsv": {
         # "the front left" of a cup 12 cm in front and 9 cm left and a lamp 6 cm in front and 20 cm left: both for the
-        # author, the lamp (farther along the corner's diagonal) for the toolkit
-        "the one in the front left \u27a1\ufe0f next to the keys": "slide:next-to lamp keys"},
+        # author, the cup (farther toward the nearer of the corner's two sides) for the toolkit
+        "the one in the front left \u27a1\ufe0f next to the keys": "slide:next-to cup keys"},
     "heldout67.tsv": {
         # "vaso" is Spanish for a glass, and one letter from "vase": asked by the author, read as the slip of "vase"
         "the vaso put it near to the book": "slide:closer vase book"},
+    "heldout77.tsv": {
+        # "glued to": touching for the author; read past as a word the grammar does not know, and "to" as closer
+        "put the big blue glued to the white piece": "slide:closer D F"},
+    "heldout78.tsv": {
+        # "the apple by the lime, around the lemon": "by the lime" tells which apple for the author (and two apples as
+        # near the plate are asked); read as two commands, the first a "next to"
+        "The apple by the lime, around the lemon.": "slide:next-to apple lime ; slide:around apple lemon",
+        "The apple by the plate, round the lemon.": "slide:next-to apple plate ; slide:around apple lemon"},
+    "heldout80.tsv": {
+        # "the can near the front right, sorry I mean the one at the back right": the blue can meant; the correction is
+        # read as of "the front right", the place, and the red can moved
+        "move the can near the front right, sorry I mean the one at the back right, around the cube in the front left":
+            "slide:around red_can red_cube"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -317,6 +333,21 @@ def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor
     "the pen by the mug"), read once on the session's start code (dc207bc): 79.4 % / 1 wrong, 61.9 % / 3, 40.0 % / 0,
     82.5 % / 1. Wrong only where the author disagrees with most authors (:data:`DISAGREED`)."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
+
+
+@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 118), ("heldout78.tsv", 123), ("heldout79.tsv", 132),
+                                         ("heldout80.tsv", 140)])
+def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-third session, by learners, in notes and dictated: heldout77.tsv (six lettered blocks
+    said by Korean, Indian, Brazilian and Turkish writers of English: "block A to B near move", "put the A in the side
+    of the B", "slıde C"), heldout78.tsv (fruit on a kitchen counter: a chef, a parent, a voice assistant, a texting
+    teenager's emoji), heldout79.tsv (a workshop bench: trade words, "the Makita", a beginner, an engineer's notes:
+    "scrwdrvr", "tape_meas", dictation's "the ranch") and heldout80.tsv (cubes and cans said in steps, corrected, done
+    again: "Actually make that ...", "do the same with ..."), read once on the session's start code (ca2fec2): 51.9 % /
+    7 wrong, 68.1 % / 7, 49.4 % / 2, 83.1 % / 2. Wrong only where the author disagrees with most authors
+    (:data:`DISAGREED`) or as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
+                or OPEN.get(name, {}).get(sentence) == got)
 
 
 @pytest.mark.parametrize("name, sentence", [(n, s) for n, lines in OPEN.items() for s in lines])

@@ -172,9 +172,15 @@ def test_a_depth_and_a_side_said_together_are_a_corner(said: str, expect: str) -
     assert resolve_object(said, _stirrer_table()) == expect
 
 
-def test_a_corner_two_objects_are_about_as_far_toward_is_asked() -> None:
-    with pytest.raises(L2PError, match="c1, stirrer"):  # the red cube and the stirrer: 2 cm apart toward it
-        resolve_object("the one in front on the left", _stirrer_table())
+def test_a_corner_is_as_far_as_toward_the_nearer_of_its_sides() -> None:
+    """The red cube is 10 cm in front and 8 cm left; the stirrer 17 cm left but 2 cm behind the middle: in front on the
+    left is the cube, though the stirrer is about as far along the corner's diagonal. Two blocks as far in front and on
+    the left as each other are asked."""
+    assert resolve_object("the one in front on the left", _stirrer_table()) == "c1"
+    twins = Scene([SceneObject("p", "red", 0.04, (-0.10, 0.12)), SceneObject("q", "blue", 0.04, (-0.12, 0.10)),
+                   SceneObject("r", "green", 0.04, (0.10, -0.10))])
+    with pytest.raises(L2PError, match="p, q"):
+        resolve_object("the one in front on the left", twins)
 
 
 def test_a_group_or_a_relation_takes_every_object_a_word_admits() -> None:
