@@ -25,6 +25,7 @@ from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS, SHAPE_NOU
 from ..language.references import try_object, two_references
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
+from . import again
 from .goal_after import goal_after
 
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|(?:who|everyone|everybody)\s+(?:can\s+)?see|see|look\s+at"
@@ -58,14 +59,6 @@ THERE = re.compile(r"^\s*(?:there\s+(?:are|r|is)\s+(?P<what>.+?)(?:\s+(?:here|th
                    r"|of\s+(?P<of>the\s+two\s+.+?))\s*[.!]?\s*$", re.IGNORECASE)
 """A clause that says which objects there are: "There are two green cubes"; what comes next picks among them
 ("... push the big one toward S and the other one away from the bunny")."""
-SAME = re.compile(r"^\s*(?:(?:ok(?:ay)?|now|and|then|after)\s*,?\s*)*(?:(?:do|repeat)\s+(?:(?:the\s+)?same|that|it)"
-                  r"|(?:the\s+)?same)(?:\s+thing)?(?:\s+again)?\s+(?:with|for|to)\s+(?P<what>.+?)\s*(?:too|as\s+well)?"
-                  r"(?:\s*,?\s*(?:please|pls|thanks|thank\s+you))*\s*[.!]*\s*$", re.IGNORECASE)
-"""The previous command again on another object: "Now do the same with the red cube", "then same for the duck", "ok
-now do the same with the blue cube, thank you"."""
-TOO = re.compile(r"^\s*(?:and\s+)?(?P<what>.+?)\s*,?\s+(?:too|as\s+well|also|same\s+thing|the\s+same)\s*[.!]?\s*$",
-                 re.IGNORECASE)
-"""The previous command again on another object, said by the object alone: "..., and the black one too"."""
 ORDER = re.compile(r"\s*,?\s*(?:(?P<first>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s+first"
                    r"(?P<then>\s*,?\s*(?:and\s+)?(?:then|after)\s+(?:the\s+)?[\w-]+(?:\s+[\w-]+)?(?:\s+one)?)?"
                    r"|first\s+(?P<lead>(?:the\s+)?[\w-]+(?:\s+[\w-]+)?)(?:\s+one)?\s*,?\s*"
@@ -101,8 +94,10 @@ PLACE_WORDS = frozenset({"it", "them", "one", "ones", "left", "right", "front", 
                          "each", "same", "far"})
 OTHER_ASKS = frozenset({"again", "twice", "also", "too", "repeat", "back", "undo", "no", "not",
                         "don't", "dont", "never", "wait", "stop", "cancel", "instead", "actually", "rather", "but",
-                        "except", "unless", "meant", "mean", "mistake", "wrong", "oops", "hold", "scratch", "forget"})
-"""Words by which a clause that names nothing still asks something ("Do that again", "No, wait"): never read past."""
+                        "except", "unless", "meant", "mean", "mistake", "wrong", "oops", "hold", "scratch", "forget",
+                        "end", "order", "between", "and"})
+"""Words by which a clause that names nothing still asks something ("Do that again", "No, wait"), an order ("... then
+meds A and meds B at the end") or a list ("X and Y"): never read past."""
 
 
 @dataclass(frozen=True)
@@ -259,29 +254,12 @@ def set_down(command: Command, previous: Command | None, text: str) -> Command:
     return command
 
 
-AGAIN_AT = re.compile(r"^\s*(?:(?:ok(?:ay)?|now|and|then)\s*,?\s*)*(?:(?:do|repeat)\s+(?:it|that|the\s+same)\s+again"
-                      r"|(?:the\s+)?same\s+again|again)\s*,?\s*(?:but\s+)?(?P<place>(?:around|round|past|beside|next\s+to"
-                      r"|closer\s+to|toward|towards|away\s+from)\s+.+?)\s*[.!]*\s*$", re.IGNORECASE)
-"""The previous command again to another place: "then do it again around the red can", "same again but past B"."""
-
-
 def pointed(text: str, previous: Command | None, context: Context | None, scene: Scene,
             plugins: list) -> list[Command] | None:
     """The commands of a clause read by one of the module's readings, or None when none applies."""
-    m = SAME.match(text)
-    if m is not None and previous is not None:
-        mover = resolve_object(m.group("what"), scene, "block to do the same with", context)
-        if mover in previous.anchors:
-            raise LanguageError(f'"{text}": {mover} is what the previous clause moved {previous.preposition}; '
-                                "name another block")
-        return [replace(previous, mover=mover, sentence=text)]
-    again = _again(text, previous, scene, context)
-    if again is not None:
-        return [again]
-    m = AGAIN_AT.match(text)
-    if m is not None and previous is not None:  # its verb, mover and pace; the place said now
-        command = resolve(f"{previous.verb} {previous.mover} {m.group('place')}", scene, plugins, context)
-        return [replace(command, sentence=text, pace=command.pace or previous.pace)]
+    repeated = again.done_again(text, previous, context, scene, plugins)
+    if repeated is not None:
+        return repeated
     m = NOT_THIS.search(text)
     if m is not None:  # "Push the grey cube, not the stone, toward the jar": the stone is not what moves
         try:
@@ -330,18 +308,6 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         pair = (previous.mover, previous.anchor)
         return _ordered(_each(text, Context(*pair), pair, scene, plugins), first, scene)
     return _ordered(_two_movers(text, context, scene, plugins), first, scene)
-
-
-def _again(text: str, previous: Command | None, scene: Scene, context: Context | None) -> Command | None:
-    """The previous command again on the object ``text`` names with "too" ("..., and the black one too"); None where
-    ``text`` is not said so, names no one object, or names what the previous command moved or moved it to."""
-    m = TOO.match(text)
-    if m is None or previous is None:
-        return None
-    mover = try_object(m.group("what"), scene, context)
-    if mover is None or mover == previous.mover or mover in previous.anchors:
-        return None
-    return replace(previous, mover=mover, sentence=text)
 
 
 GOES = frozenset({"go", "goes"})

@@ -83,14 +83,15 @@ is said ("over to the other side of", "over to B and set it down beside it") tho
 _NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|center|corner|edge|side|end|top|bottom"
                   r"|other|same|table|robot|it|them|there|here|where)\b)")
 _TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks))*\s*[.!]*"
-TO_OBJECT = re.compile(rf"^(?P<head>.+?)(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*"
+_PLACE_WORD_BEFORE = r"(?<!\bnext)(?<!\bclose)(?<!\bcloser)(?<!\bnear)(?<!\bnearer)(?<!\bup)(?<!\bright)"
+TO_OBJECT = re.compile(rf"^(?P<head>.+?){_PLACE_WORD_BEFORE}(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*"
                        rf"|{_NOT_AN_OBJECT}[\w-]+(?:\s+{_NOT_AN_OBJECT}[\w-]+)?{_TAIL})|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$",
                        re.IGNORECASE)
 """A motion said by the object it goes to: "Move the roll to the milk", "push a to d quick", "e->c" (an arrow to an
 object) bring it closer, as "over to" does; never a place ("to the corner", "to the right of"), which no action
 takes. Without an article, "to" is followed by a name of one or two words ("to d", "to tip box"), so "the lego to circle
-the cube" is not read so (and what follows must name an object); an
-arrow before a relation ("cup -> past the jar") is read by the grammar, before this."""
+the cube" is not read so (and what follows must name an object); an arrow before a relation ("cup -> past the jar")
+is read by the grammar, before this. A "to" that ends a place ("next to", "close to", "up to") is never this "to"."""
 
 
 WHY = re.compile(r"(?:\s*,\s*|\s+)(?:so\s+(?:that\s+)?(?:i|i'll|i\s+can|we|my|everyone|everybody|you\s+can|he|she"

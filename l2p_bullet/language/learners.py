@@ -4,8 +4,9 @@ the A in the side of the B", "the C passes by the D", "move it little away").
 
 Each form is a construction of another language said word for word in English (Chinese 在书旁边 "at book side",
 Spanish "más lejos de" "more far of", "pegado a" "stuck to", Portuguese "ao lado de" "in the side of", "passar por"
-"pass by"), read only in a sentence refused as written (``chain/clauses.resolve_clauses``), so a sentence the grammar
-reads is read as before.
+"pass by", French "approcher X de Y" "approach X of Y", "faire le tour de" "make the tour of"), or as code calls it
+("obj_1.next_to(obj_2)"), read only in a sentence refused as written (``chain/clauses.resolve_clauses``), so a
+sentence the grammar reads is read as before.
 """
 
 from __future__ import annotations
@@ -13,11 +14,22 @@ from __future__ import annotations
 import re
 
 from ..core.scene import Scene
+from . import spanish
 from .references import try_object
 
 _SIDE = re.compile(r"\b(?:at|to|on|by|in)\s+(?P<the>the\s+)?(?P<what>[\w-]+?)(?:'s)?\s+side\b(?!\s+of\b)",
                    re.IGNORECASE)
 """An object's side as the place: "at book side", "to the candle's side", "bring bowl to candle side"."""
+_CALLED = r"next_to|away_from|closer_to|past|around|toward|towards|beside|nextto|awayfrom|closerto"
+
+
+def _called(m: re.Match) -> str:
+    """A command written as code calls it ("obj_1.next_to(obj_2)", "around(obj_5, obj_2)"), said in words."""
+    how = {"nextto": "next to", "awayfrom": "away from", "closerto": "closer to"}.get(m.group("how").lower(),
+                                                                                   m.group("how").replace("_", " "))
+    return f"move {m.group('what')} {how} {m.group('to')}"
+
+
 _REWRITES = (
     (re.compile(r"\bmore\s+far\s+(?:of|from)\b", re.IGNORECASE), "farther from"),
     (re.compile(r"\bmore\s+(?:close|near)\s+(?:of|to)\b", re.IGNORECASE), "closer to"),
@@ -38,6 +50,13 @@ _REWRITES = (
     (re.compile(r"\bseparate\s+(?P<extent>(?:a\s+)?(?:bit|little)\s+)?(?P<what>.+?)\s+from\b", re.IGNORECASE),
      r"move \g<what> \g<extent>away from"),
     (re.compile(r",?\s*no\s+drag\b", re.IGNORECASE), ", don't drag it"),
+    (re.compile(r"\bapproach\s+(?P<what>[^,]+?)\s+of\s+(?P<to>the\b)", re.IGNORECASE),
+     r"move \g<what> closer to \g<to>"),
+    (re.compile(r"\bdistance\s+(?P<what>[^,]+?)\s+from\b", re.IGNORECASE), r"move \g<what> away from"),
+    (re.compile(r"\bmake\s+the\s+tour\s+of\s+(?P<anchor>[^,]+?)\s+with\s+(?P<what>[^,]+)", re.IGNORECASE),
+     r"move \g<what> around \g<anchor>"),
+    (re.compile(rf"(?P<what>[\w-]+)\.(?P<how>{_CALLED})\(\s*(?P<to>[\w-]+)\s*\)", re.IGNORECASE), _called),
+    (re.compile(rf"\b(?P<how>{_CALLED})\(\s*(?P<what>[\w-]+)\s*,\s*(?P<to>[\w-]+)\s*\)", re.IGNORECASE), _called),
 )
 """Word-for-word constructions and what they say in the grammar's English."""
 
@@ -51,7 +70,7 @@ def in_plain_english(sentence: str, scene: Scene) -> str:
         return f"next to {m.group('the') or ''}{m.group('what')}" if try_object(said, scene) is not None \
             else m.group(0)
 
-    out = _SIDE.sub(side, sentence)
+    out = _SIDE.sub(side, spanish.in_english(sentence))
     for pattern, said in _REWRITES:
         out = pattern.sub(said, out)
     return out

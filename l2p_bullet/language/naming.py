@@ -55,12 +55,30 @@ def spelled_name(words: list[str], scene: Scene) -> str | None:
     cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box); None where none
     or several do."""
     said = name_parts(" ".join(words))
+    if len(words) == 1 and len(words[0]) == 1 and words[0].isupper():  # "B" for pill_bottle_b, its label alone
+        fits = [n for n in scene.names if len(name_parts(n)) >= 2 and name_parts(n)[-1] == said[0]]
+        return fits[0] if len(fits) == 1 and not any(n.lower() == said[0] for n in scene.names) else None
     if len(said) < 2:
         return None
-    fits = [n for n in scene.names if said in (name_parts(n), _unnumbered(name_parts(n)))]
+    plural = (*said[:-1], said[-1][:-1]) if said[-1].endswith("s") and len(said[-1]) > 3 else said
+    fits = [n for n in scene.names if {said, plural} & {name_parts(n), _unnumbered(name_parts(n))}]
     if not fits and any(p.isdigit() for p in said):  # "p2" for pen_2: a word's first letter and the number
         fits = [n for n in scene.names if _initialled(said, name_parts(n))]
+    if not fits and len(said) == 3 and said[1] == "of":  # "the box of screws", "the deck of cards": screw_box
+        held = said[2][:-1] if said[2].endswith("s") else said[2]
+        fits = [n for n in scene.names if name_parts(n) in ((held, said[0]), (said[2], said[0]))]
+    if not fits:  # "bottle B", "pills A" for pill_bottle_a: its label and a word or two of it
+        fits = [n for n in scene.names if _labelled(said, name_parts(n))]
     return fits[0] if len(fits) == 1 else None
+
+
+def _labelled(said: tuple[str, ...], parts: tuple[str, ...]) -> bool:
+    """Whether ``said`` is a name's label (its last word, a letter or a number) after one or more of its other words,
+    in their order, each as written or with a plural's "s" ("bottle b", "pills b", "pill bottle b")."""
+    if len(parts) < 3 or said[-1] != parts[-1] or not (len(parts[-1]) == 1 or parts[-1].isdigit()):
+        return False
+    words = iter(parts[:-1])
+    return all(any(w in (p, p + "s") for p in words) for w in said[:-1])
 
 
 def _initialled(said: tuple[str, ...], parts: tuple[str, ...]) -> bool:

@@ -43,7 +43,7 @@ class Context:
 def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, role: str,
              scene: Scene) -> str | None:
     said = " ".join(low)  # what the user wrote, for the error: "that same cube" reads as "it" below
-    kinds = name_words(scene)
+    kinds = set(name_words(scene)) | set(kind_groups(scene))  # "the same pawn": red_pawn's kind too
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
     if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
@@ -121,6 +121,8 @@ def _fits_kind(o: SceneObject, noun: str, scene: Scene) -> bool:
         return kinds[noun] == o.name
     if noun in PROFILES:
         return admits(noun, o, kind_groups(scene))
+    if noun not in SHAPE_NOUNS:  # a kind several objects share ("that pawn")
+        return o.name in kind_groups(scene).get(noun, ())
     shape = SHAPE_NOUNS[noun]
     return shape_of(o) == shape if shape in STRICT_SHAPES else shape_of(o) in BLOCK_SHAPES
 

@@ -176,12 +176,15 @@ STICK = Profile((Need("elongation", (1.8, INF), (6.0, INF)),))
 an 8 x 4 x 4 cm bar where nothing thinner is there ("the green stick" for the one long block on a table)."""
 BAR = Profile((Need("elongation", (1.4, INF), (3.0, 6.0)),), round=False)
 """Long with some bulk ("bar", "beam"): a bar of soap (7 x 4.5 cm) is one, a 16 x 1 x 1 cm stirrer hardly."""
-PLANK = Profile((Need("elongation", (1.4, INF), (3.0, 8.0)), Need("flatness", (1.0, INF), (1.5, INF))), round=False)
-"""Long and lying flat, never on edge ("plank", "board", "ruler")."""
+PLANK = Profile((Need("elongation", (2.0, INF), (3.0, 8.0)), Need("flatness", (1.0, INF), (1.5, INF))), round=False)
+"""Long and lying flat, never on edge ("plank", "board", "ruler"): twice as long as wide at least (a 9 x 6 cm deck of
+cards is no board)."""
 BRICK = Profile((Need("elongation", (1.0, INF), (1.6, 2.6)),), round=False)
 """A block about twice as long as it is wide ("brick"; any block is a brick to some, so a cube is admitted)."""
 SLAB = Profile((Need("flatness", (1.4, INF), (3.0, INF)),), round=False)
 """Wide and lying flat ("slab", "tile", "slate")."""
+PLATE = Profile((Need("flatness", (1.4, INF), (3.0, INF)),))
+"""Wide and lying flat, square or round ("plate", "pad"): a 9 x 9 x 2 cm square, a 6 cm disc 1 cm thick."""
 DISC = Profile((Need("flatness", (1.5, INF), (3.0, INF)),), round=True)
 """Round and flat ("disc", "puck", "coin")."""
 LOG = Profile((Need("lying_long", (1.0, INF), (1.5, INF)),), round=True)
@@ -212,6 +215,7 @@ PROFILES: dict[str, Profile] = {
     **dict.fromkeys(("plank", "planks", "board", "boards", "ruler", "rulers"), PLANK),
     **dict.fromkeys(("brick", "bricks"), BRICK),
     **dict.fromkeys(("slab", "slabs", "tile", "tiles", "slate", "slates"), SLAB),
+    **dict.fromkeys(("plate", "pad"), PLATE),
     **dict.fromkeys(("disc", "discs", "disk", "disks", "puck", "pucks", "coin", "coins"), DISC),
     **dict.fromkeys(("log", "logs", "roll", "rolls"), LOG),
     **dict.fromkeys(("tube", "tubes", "pipe", "pipes"), TUBE),

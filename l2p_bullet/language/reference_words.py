@@ -28,9 +28,8 @@ box", "the white cube") any block-shaped object (a cube or a box: people call an
 cube), never a cylinder or a mesh."""
 SHAPE_NOUNS |= dict.fromkeys(("rod", "rods", "pole", "poles", "dowel", "dowels", "skewer", "wand", "beam", "beams",
                               "girder", "girders", "rail", "rails", "plank", "planks", "board", "boards", "ruler",
-                              "rulers", "slab",
-                              "slabs", "tile", "tiles", "slate", "slates", "post", "posts", "pillar", "pillars",
-                              "column", "columns", "tower", "towers"), "box")
+                              "rulers", "slab", "slabs", "tile", "tiles", "slate", "slates", "plate", "pad", "post",
+                              "posts", "pillar", "pillars", "column", "columns", "tower", "towers"), "box")
 SHAPE_NOUNS |= dict.fromkeys(("disc", "discs", "disk", "disks", "puck", "pucks", "coin", "coins", "log", "logs",
                               "roll", "rolls", "tube", "tubes", "pipe", "pipes"), "cylinder")
 """And the nouns of proportions (language/proportions.py reads them: "the stick", "the slab", "the log"), with the
@@ -60,6 +59,11 @@ COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquo
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
                   "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black", "steel": "gray",
                   "stainless": "gray", "chrome": "gray", "metallic": "gray", "metal": "gray"}
+COLOR_SYNONYMS |= {  # French and Spanish colours among English words ("the cylinder jaune", "la ficha roja")
+    "rouge": "red", "bleu": "blue", "bleue": "blue", "vert": "green", "verte": "green", "jaune": "yellow",
+    "blanc": "white", "blanche": "white", "noir": "black", "noire": "black", "gris": "gray", "grise": "gray",
+    "rojo": "red", "roja": "red", "azul": "blue", "verde": "green", "amarillo": "yellow", "amarilla": "yellow",
+    "blanco": "white", "blanca": "white", "negro": "black", "negra": "black", "morado": "purple", "morada": "purple"}
 COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
 """Every word that says a colour: a shade before it is a shade ("light blue"), and it is never a name heard amiss
 ("the orange thing" beside a ring)."""
@@ -74,16 +78,17 @@ NAMED_AS = (("called",), ("named",))
 PRONOUNS_MOVER = (("it",), ("him",), ("her",), ("he",), ("she",), ("that", "one"), ("that", "block"), ("this", "one"),
                   ("the", "same", "block"),
                   ("the", "same", "one"), ("the", "same", "object"), ("that",), ("same",), ("same", "one"),
-                  ("the", "same"))
+                  ("the", "same"), *((*head, *who, *just, "moved") for head in (("the", "one"), ("what",))
+                                     for who in ((), ("i",), ("you",), ("we",), ("that",)) for just in ((), ("just",))))
 DEMONSTRATIVES = (("that", "one"), ("that", "block"), ("this", "one"), ("that",))
 """Pointers that may mean the block the previous clause moved or the one it named last ("push P toward R, then move
 that one around the bottle": P or R? one author of the held-out sentences asked): after a clause with an anchor,
 asked, never guessed; "it" and "the same one" are the block moved, as is "same" as a protocol says it ("push same
-away from B")."""
+away from B"), and so is "the one I just moved"."""
 GENDERED = (("him",), ("her",), ("he",), ("she",))
 """Pronouns some authors use for any object (the block moved, as "it") and others for an animal or a toy they named:
 after a clause whose mover and anchor are both animals ("move rex next to daisy, then push her ..."), asked."""
-SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",))
+SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("this",), ("same",))
 """Openings that, before a noun ("that same cube", "this object"), point back to the previous clause's mover."""
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("the", "robot", "base"),
@@ -228,8 +233,9 @@ BLOCK_KINDS = frozenset({"lego", "brick", "domino", "block", "box", "cardboard",
 or a teddy ("the big green block" beside a green bottle is the green cube)."""
 BOX_KINDS = frozenset({"box", "cardboard", "crate", "cereal", "gelatin", "wooden", "carton"})
 """Meshes that are boxes: "the box", "the red box" name them as they name a box ("the cereal box")."""
-SPOKEN_LETTERS = {"ay": "a", "bee": "b", "be": "b", "cee": "c", "see": "c", "sea": "c", "dee": "d", "ee": "e",
-                  "ef": "f", "eff": "f", "gee": "g", "aitch": "h", "haitch": "h", "eye": "i", "jay": "j", "kay": "k",
+SPOKEN_LETTERS = {"ay": "a", "hey": "a", "bee": "b", "be": "b", "cee": "c", "see": "c", "sea": "c", "dee": "d",
+                  "ee": "e", "ef": "f", "eff": "f", "gee": "g", "aitch": "h", "haitch": "h", "eye": "i", "jay": "j",
+                  "kay": "k",
                   "el": "l", "ell": "l", "em": "m", "en": "n", "oh": "o", "owe": "o", "pee": "p", "cue": "q",
                   "queue": "q", "kew": "q", "ar": "r", "are": "r", "ess": "s", "tee": "t", "tea": "t", "you": "u",
                   "vee": "v", "double-u": "w", "doubleyou": "w", "ex": "x", "why": "y", "wye": "y", "zed": "z",

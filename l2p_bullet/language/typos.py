@@ -79,9 +79,10 @@ def near(word: str, known: frozenset[str], named: frozenset[str] = frozenset()) 
     hits = {k for k in known if abs(len(k) - len(word)) <= 1 and _one_slip(word, k)}
     if len(hits & named) == 1:
         hits &= named
-    if len({words.PACES.get(h, h) for h in hits}) != 1:
+    meanings = {words.PACES.get(h, reference_words.COLOR_SYNONYMS.get(h, h)) for h in hits}
+    if len(meanings) != 1:  # "blu": blue or bleu, one colour either way
         return None
-    return max(sorted(hits), key=len)
+    return meanings.pop() if meanings <= hits else max(sorted(hits), key=len)
 
 
 def unvowelled(word: str, known: frozenset[str]) -> str | None:
@@ -147,6 +148,11 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         low = w.lower()
         if low in keep or low in named:  # "shaker" of "salt shaker" is no slip of "shakers"
             return w
+        following = _next_parts(m, parted)
+        heard = heard_name(low, following, amiss=True) if following and low not in kinds \
+            and low not in reference_words.COLOUR_WORDS else None
+        if heard is not None:  # "the water char", "the paint pit", "the glue stock": a name's next word as heard
+            return heard
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
         if low in known:
@@ -162,13 +168,6 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named) or unvowelled(low, known | named)
-        before = WORD_BEFORE.search(m.string, 0, m.start())
-        following = [p[i + 1] for p in parted if before is not None for i in range(len(p) - 1)
-                     if p[i] == before.group(1).lower()]
-        if following:  # "the water char" for water_jar: after a name's word, its next word as heard
-            heard = heard_name(low, following, amiss=True)
-            if heard is not None and heard != hit:
-                return heard
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
         amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
         after_subject = SUBJECT_BEFORE.search(m.string, 0, m.start()) is not None
@@ -188,7 +187,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     if not any("\u0131" in n for n in names):  # "slıde C", "lıft ıt": a Turkish keyboard's dotless i
         said = said.replace("\u0131", "i").replace("\u0130", "I")
     said = _joined(_lettered(DROPPED_LETTER.sub("", _cut_short(said, names)), names), keep | named | set(kinds), spoken)
-    mended = TWO_FOR_TO.sub(r"\1 to", TWO_WARDS.sub(r"to\1", _WORD.sub(fix, said)))
+    mended = TWO_FOR_TO.sub(r"\1 to", _WORD.sub(fix, TWO_WARDS.sub(r"to\1", said)))  # "2wards" first: no "2cards"
     mended = TWO_BEFORE_THE.sub("to ", mended)
     mended = HEARD_PACES.sub(lambda m: PACE_OF[m.group(1).lower()], HEARD.sub(_heard, mended))
     mended = HANDED.sub(r"\1-hand", mended)
@@ -210,19 +209,26 @@ def _cut_short(sentence: str, names: list[str]) -> str:
     return CUT_NAME.sub(whole, sentence)
 
 
+def _next_parts(m: re.Match, parted: list[tuple[str, ...]]) -> list[str]:
+    """The words that follow the word before ``m`` in the names of several words (``parted``): "pot" after "paint"."""
+    before = WORD_BEFORE.search(m.string, 0, m.start())
+    said = before.group(1).lower() if before is not None else None
+    return [p[i + 1] for p in parted for i in range(len(p) - 1) if p[i] == said]
+
+
 def _lettered(sentence: str, names: list[str]) -> str:
     """``sentence`` with a name that ends in a letter said as dictation writes it ("toad bee", "tote bee" for
-    tote_B): the word before the letter heard as the name's word (as said, or with one sound amiss), then the
-    letter."""
+    tote_B, "the pill bottle hey" for pill_bottle_a): the word before the letter heard as the name's word before its
+    letter (as said, or with one sound amiss), then the letter."""
     def said(m: re.Match) -> str:
         word, letter = m.group(1), reference_words.SPOKEN_LETTERS[m.group(2).lower()]
         heard = heard_key(word)
         for n in names:
             parts = name_parts(n)
-            meant = heard_key(parts[0]) if parts else ""
-            if len(parts) == 2 and parts[1] == letter and len(parts[0]) >= 3 and (
-                    word.lower() == parts[0] or heard == meant or one_sound_apart(heard, meant)):
-                return f"{parts[0]} {letter.upper()}"
+            meant = heard_key(parts[-2]) if len(parts) >= 2 else ""
+            if len(parts) >= 2 and parts[-1] == letter and len(parts[-2]) >= 3 and (
+                    word.lower() == parts[-2] or heard == meant or one_sound_apart(heard, meant)):
+                return f"{parts[-2]} {letter.upper()}"  # "the pill bottle hey": pill_bottle_a
         return m.group(0)
 
     return SAID_LETTER.sub(said, sentence)

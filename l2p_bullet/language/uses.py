@@ -57,6 +57,8 @@ USES: dict[str, tuple[str, ...]] = {
     "rack": ("hold tube", "holds tube"), "wrench": ("bolt", "nut", "tighten", "loosen"),
     "spanner": ("bolt", "nut", "tighten", "loosen"), "screwdriver": ("screw",), "mallet": ("hit", "bang", "pound"),
     "hammer": ("hit", "bang", "nail", "pound"), "measure": ("measure", "measuring"),
+    "ruler": ("measure", "measuring", "line", "lines"), "glue": ("glue", "stick on", "sticky", "gluing"),
+    "crayon": ("colour", "color", "colouring", "coloring", "draw"), "paint": ("paint", "painting"),
     "teddy": ("cuddle", "hug"), "dino": ("roar", "rawr"), "dog": ("bark", "woof"), "duck": ("quack", "bath"),
 }
 """A kind -> the words of its uses and parts; two words where the preposition tells a tool from what it works on."""
@@ -121,7 +123,10 @@ def _words(rest: str) -> list[str]:
 
 def _stems(word: str) -> list[str]:
     """What an adjective made of a word says: "stirry" -> stir, "holey" -> hole, "jingly" -> jingle, "spoony" ->
-    spoon."""
+    spoon, "cutting" -> cut."""
+    if word.endswith("ing") and len(word) > 5:  # "the cutting thing": cut; "the measuring one": measure
+        stem = word[:-3]
+        return list(dict.fromkeys([word, stem, stem + "e", stem[:-1] if stem[-1] == stem[-2] else stem]))
     m = _Y_FORM.match(word)
     if m is None:
         return [word, word[:-1]] if word.endswith("s") and len(word) > 4 else [word]
@@ -149,6 +154,8 @@ def _has(o: SceneObject, said: list[str], named: bool = False) -> bool:
         if named and (kind in said or set(said) & set(KIND_NAMES.get(kind, ()))):
             return True
         for use in USES.get(kind, ()):
+            if named and " " in use and use.split()[0] in said:  # "the cutting thing": what it cuts with
+                return True
             if (" " in use and re.search(rf"\b{use.split()[0]}\w*\s+(?:\w+\s+)?{use.split()[1]}\b", joined)) or (
                     " " not in use and use in said):
                 return True

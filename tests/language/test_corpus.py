@@ -122,6 +122,8 @@ DISAGREED = {
     "heldout76.tsv": {"pen 1 up against the thing you staple with"},
     "heldout79.tsv": {"the spanner by the claw, then the Makita up against the tape",
                       "grab the one nearest the Makita and stick it by the claw, then shift the tape past the screws"},
+    "heldout81.tsv": {"put glue stick to ruler", "little round pot, put to purple stick",
+                      "take scissor away from glue stick, then put it to crayon box"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -149,7 +151,8 @@ gun. For the seventy-fourth author "the long thin flat thing" is the toothbrush 
 the flat one for the toolkit) and "the biggest one" a question (the shampoo, twice any other's bulk, for the toolkit);
 for the seventy-fifth "set it down" after a carry and "grab X, put it ..." are slides (carries for the toolkit, as for
 six earlier authors); "up against" is plain for the seventy-sixth, and for the seventy-ninth, for whom "grab X and
-stick it ..." is a slide too."""
+stick it ..." is a slide too. "put X to Y" is "next to" for the eighty-first author, who was told so of one voice
+(the notation and every other author: closer)."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -220,6 +223,10 @@ OPEN = {
         # read as of "the front right", the place, and the red can moved
         "move the can near the front right, sorry I mean the one at the back right, around the cube in the front left":
             "slide:around red_can red_cube"},
+    "heldout83.tsv": {
+        # a clause without a verb after a push: a slide for the author (as for heldout33's), read as the push again
+        "push green toward blue. the one I just moved, now away from the deck":
+            "push:closer green_pawn blue_pawn ; push:away green_pawn card_deck"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -346,6 +353,20 @@ def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
     again: "Actually make that ...", "do the same with ..."), read once on the session's start code (ca2fec2): 51.9 % /
     7 wrong, 68.1 % / 7, 49.4 % / 2, 83.1 % / 2. Wrong only where the author disagrees with most authors
     (:data:`DISAGREED`) or as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
+                or OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout81.tsv", 127), ("heldout82.tsv", 126), ("heldout83.tsv", 132),
+                                         ("heldout84.tsv", 121)])
+def test_the_eighty_first_to_eighty_fourth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-third session after the rules of the seventy-seventh to eightieth: heldout81.tsv (a
+    classroom: a teacher, a child's words, a parent writing without articles, autocorrect's "paint pit"),
+    heldout82.tsv (a bedside table with two alike pill bottles: "bottle B", "the pill bottle hey", a carer's notes,
+    clock directions), heldout83.tsv (a board game: jargon, Spanish among English words, compass directions to refuse,
+    "the one I just moved") and heldout84.tsv (a lab's generic names obj_0 ...: code calls, a formal reviewer, French-
+    shaped English, negation), read once on aad7b98: 69.4 % / 3 wrong, 47.5 % / 1, 58.1 % / 2, 50.0 % / 0. Wrong only
+    where the author disagrees with most authors (:data:`DISAGREED`) or as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
                 or OPEN.get(name, {}).get(sentence) == got)
 
