@@ -130,6 +130,12 @@ def parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[st
                        found.anchors, found.manner, pace, found.extent)
 
 
+RELATIVE_ENDS = frozenset({("whatever", "is"), ("whatever's",), ("whatevers",), ("whichever", "is"),
+                           ("what", "is"), ("what's",), ("that", "is"), ("that's",), ("which", "is"), ("who", "is")})
+"""Words that end a description with a place of its own ("the one that is next to B", "whatever's by the cup"): the
+phrase after them is never the command's preposition."""
+
+
 def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None, *,
            extents: dict[str, frozenset[str]] | None = None, context: Context | None = None) -> Command:
     """:func:`parse` as the grammar reads a sentence."""
@@ -167,6 +173,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
         for i in range(0, len(low) - n + 1):
             if tuple(low[i : i + n]) != toks:
                 continue
+            if tuple(low[max(0, i - 2):i]) in RELATIVE_ENDS or tuple(low[max(0, i - 1):i]) in RELATIVE_ENDS:
+                continue  # "to whatever is next to the pincushion": a description's place, not the command's
             try:
                 lead = rest[:i - 1] if implied and i > 1 and low[i - 1] in INTENSIFIERS else rest[:i]
                 before, said, mover = _mover(lead, scene, context)  # "really far from": far, as "far from"

@@ -55,7 +55,7 @@ STOPS = NEGATIONS | frozenset({
     "hide", "return", "back", "undo", "under", "onto", "into", "inside", "above", "below", "top", "then",
     "was", "were", "already",
     "pass", "passes", "passed", "passing", "touch", "touches", "touched", "touching", "hit", "bump", "cross",
-    "avoid", "follow", "possible", "gap", "rush", "hurry",
+    "avoid", "follow", "possible", "gap", "rush", "hurry", "whatever",
 })
 """Words that stop the reading: they may change what the rest means ("touching" asks for a tight gap, "pass it
 by" for past), join a clause the sentence did not split, or ask for what the actions cannot do."""

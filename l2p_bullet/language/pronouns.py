@@ -40,6 +40,10 @@ class Context:
     described: bool = False  # the mover was described, not named ("the small red cube"): see _twin
 
 
+SAME_PLACE = frozenset({("the", "same", "one"), ("same", "one"), ("the", "same"), ("same",)})
+""""The same one" where a clause says where: the object the clause before moved to, not the one it moved."""
+
+
 def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, role: str,
              scene: Scene) -> str | None:
     said = " ".join(low)  # what the user wrote, for the error: "that same cube" reads as "it" below
@@ -47,6 +51,8 @@ def _pronoun(words: list[str], low: tuple[str, ...], context: Context | None, ro
     opening = next((o for o in SAME_WORDS if low[:len(o)] == o and len(low) == len(o) + 1), None)
     if opening is not None and (low[-1] in SHAPE_NOUNS or (low[-1] in kinds and low[-1] not in NOUNS)):
         return _that_kind(said, low[-1], context, role, scene)
+    if low in SAME_PLACE and "reference" in role and context is not None and context.anchor is not None:
+        return context.anchor  # "put A beside the lantern, then B beside the same one": the lantern again
     gendered = _by_gender(low, context, scene)
     if gendered is not None:  # "move the doll toward teddy, then move him ...": teddy
         return gendered

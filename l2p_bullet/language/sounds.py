@@ -44,8 +44,14 @@ def heard_name(word: str, names: list[str], amiss: bool = False) -> str | None:
     keyed = [(n, heard_key(n)) for n in names if len(n) >= 3 and unaccented(n).isalpha() and n.lower() != word.lower()]
     fits = [n for n, key in keyed if key in keys or key.startswith("h") and key[1:] in keys]
     if not fits and amiss and len(word) >= 4:  # "the kennel" for the kettle, "the lady" for the ladle: one sound amiss
-        fits = [n for n, key in keyed if len(key) >= 3 and any(one_sound_apart(k, key) for k in keys)]
+        fits = [n for n, key in keyed if len(key) >= 3 and any(one_sound_apart(k, key) for k in keys)
+                and _first_vowel(n) == _first_vowel(word)]  # the stressed vowel heard right: no "bobbin" for button
     return fits[0] if len(fits) == 1 else None
+
+
+def _first_vowel(word: str) -> str:
+    """The first vowel after a word's first letter ("kennel": e, "button": u), or "" where there is none."""
+    return next((c for c in unaccented(word).lower()[1:] if c in "aeiou"), "")
 
 
 def one_sound_apart(said: str, name: str) -> bool:

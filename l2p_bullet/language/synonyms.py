@@ -73,7 +73,7 @@ KIND_NAMES = {
     "shaker": ("shakers", "pot", "pots", "cellar", "cellars", "grinder", "grinders", "mill", "mills"),
     "board": ("boards",),
     "bucket": ("buckets", "pail", "pails"),
-    "flask": ("flasks", "erlenmeyer", "erlenmeyers"),
+    "flask": ("flasks", "erlenmeyer", "erlenmeyers", "glass", "conical"),
     "rack": ("racks", "holder", "holders"),
     "vial": ("vials", "bottle", "bottles", "ampoule", "ampule"),
     "truck": ("trucks", "lorry", "lorries", "firetruck", "firetrucks", "engine", "vehicle"),

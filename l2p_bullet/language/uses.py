@@ -31,7 +31,7 @@ from .synonyms import KIND_NAMES, SIZE_WORDS, kinds_of
 _DRINK = ("drink", "drinking", "sip", "coffee", "tea")
 USES: dict[str, tuple[str, ...]] = {
     "mug": (*_DRINK, "handle"), "cup": (*_DRINK, "handle"), "teacup": (*_DRINK, "handle"), "glass": _DRINK,
-    "tumbler": _DRINK, "beaker": _DRINK,
+    "tumbler": _DRINK, "beaker": _DRINK, "bottle": ("drink", "drinking", "sip", "water", "pour"),
     "kettle": ("boil", "boiling", "spout", "hot water", "whistle", "handle"),
     "teapot": ("tea", "pour", "spout", "brew", "handle"),
     "kyusu": ("tea", "pour", "spout", "brew"), "colander": ("hole", "drain", "strain", "pasta"),

@@ -174,6 +174,7 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "take ur time": "slow", "take ur time and": "slow", "take yr time": "slow", "take yr time and": "slow",
     "take yer time": "slow", "take yer time and": "slow", "take yer time an": "slow",
     "on the fly": "fast", "nice and gentle": "gentle", "nice and slow": "slow", "nice and slowly": "slow",
+    "taking care": "careful", "take care": "careful", "with great care": "careful",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}

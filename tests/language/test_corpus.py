@@ -124,6 +124,8 @@ DISAGREED = {
                       "grab the one nearest the Makita and stick it by the claw, then shift the tape past the screws"},
     "heldout81.tsv": {"put glue stick to ruler", "little round pot, put to purple stick",
                       "take scissor away from glue stick, then put it to crayon box"},
+    "heldout85.tsv": {"Move the biggest thing next to the smallest thing.", "Move the skinny one next to the map."},
+    "heldout86.tsv": {"Pin cushion - move it up against the tape.", "put the round one on the right beside the tape"},
 }
 """Lines where the tenth and eleventh authors read otherwise than most authors before them (docs/language.md):
 "the small cube" among 3, 4, 4 and 6 cm cubes is the 3 cm one for the others ("small" picks the clearly
@@ -152,7 +154,10 @@ the flat one for the toolkit) and "the biggest one" a question (the shampoo, twi
 for the seventy-fifth "set it down" after a carry and "grab X, put it ..." are slides (carries for the toolkit, as for
 six earlier authors); "up against" is plain for the seventy-sixth, and for the seventy-ninth, for whom "grab X and
 stick it ..." is a slide too. "put X to Y" is "next to" for the eighty-first author, who was told so of one voice
-(the notation and every other author: closer)."""
+(the notation and every other author: closer). For the eighty-fifth "the biggest thing" between a lantern of 1,020
+cm3 and a bottle of 850 cm3 is a question (the lantern, the greater bulk, for the toolkit) and so is "the skinny
+one" (the bottle, 7 cm across and 22 cm tall, for the toolkit); for the eighty-sixth "up against" is plain, and "the
+round one on the right" 3 cm further right than the other is a near tie (clear for the toolkit at 3 cm)."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
@@ -227,6 +232,10 @@ OPEN = {
         # a clause without a verb after a push: a slide for the author (as for heldout33's), read as the push again
         "push green toward blue. the one I just moved, now away from the deck":
             "push:closer green_pawn blue_pawn ; push:away green_pawn card_deck"},
+    "heldout88.tsv": {
+        # "closest to the robot": the burner and the goggles 2 cm apart in x for the author (asked); nearest the robot's
+        # base for the toolkit (the burner)
+        "Move whatever's closest to the robot away from the flask - it's probably hot.": "slide:away burner flask"},
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -367,6 +376,20 @@ def test_the_eighty_first_to_eighty_fourth_authors_corpora(plugins, name, floor)
     "the one I just moved") and heldout84.tsv (a lab's generic names obj_0 ...: code calls, a formal reviewer, French-
     shaped English, negation), read once on aad7b98: 69.4 % / 3 wrong, 47.5 % / 1, 58.1 % / 2, 50.0 % / 0. Wrong only
     where the author disagrees with most authors (:data:`DISAGREED`) or as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
+                or OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout85.tsv", 102), ("heldout86.tsv", 113), ("heldout87.tsv", 100),
+                                         ("heldout88.tsv", 49)])
+def test_the_eighty_fifth_to_eighty_eighth_authors_corpora(plugins, name, floor):
+    """Written cold at the end of the thirty-third session and read once on its last language code (0258a09):
+    heldout85.tsv (a camping table: Australian slang's "the billy", a scout leader, a smartwatch's dictation, sizes),
+    heldout86.tsv (a sewing table: a dressmaker's "the bobbin", capitals without punctuation, Irish English's "the
+    yoke", colours and shapes mixed up), heldout87.tsv (three brown boxes by size: warehouse shorthand, a safety
+    officer, comparisons, dictation's "the barrow") and heldout88.tsv (a chemistry bench: lab jargon, a student's "the
+    fire thing", safety asides, a German speaker's "the Becherglas"): 62.5 % / 6 wrong, 70.6 % / 12, 61.9 % / 1, 26.9 %
+    / 3. Wrong only where the author disagrees with most authors (:data:`DISAGREED`) or as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ())
                 or OPEN.get(name, {}).get(sentence) == got)
 
