@@ -52,8 +52,9 @@ def kind_named(scene: Scene, groups: dict[str, frozenset[str]]) -> set[str]:
 
 def spelled_name(words: list[str], scene: Scene) -> str | None:
     """The object whose name of several words the words spell, however the name joins them ("cube b", "Cube-B" for
-    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box); None where none
-    or several do."""
+    cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box; "the glasses
+    cases" for glasses_case; "the box of screws" for screw_box; "bottle B", "pills B" and "B" alone, capital, for
+    pill_bottle_b); None where none or several do."""
     said = name_parts(" ".join(words))
     if len(words) == 1 and len(words[0]) == 1 and words[0].isupper():  # "B" for pill_bottle_b, its label alone
         fits = [n for n in scene.names if len(name_parts(n)) >= 2 and name_parts(n)[-1] == said[0]]
