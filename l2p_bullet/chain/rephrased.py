@@ -164,10 +164,11 @@ NOT_DRAGGED_THEN = re.compile(r"^\s*(?:don't|dont|do\s+not)\s+(?:drag|slide)\s+(
 it by the plate"."""
 
 
-POSTPOSITIONS = {"near": "near", "beside": "beside", "next": "next to", "around": "around", "round": "around",
-                 "past": "past", "away": "away from", "closer": "closer to", "toward": "toward", "towards": "towards"}
-"""A place said after its object, as Korean, Japanese and Turkish say it ("A to B near move", "C near put"): the words
-the grammar says before the object."""
+POSTPOSITIONS = dict(zip("near beside next around round past away closer toward towards".split(),
+                         ("near", "beside", "next to", "round", "round", "beyond", "away from", "closer to", "toward",
+                          "towards"), strict=True))
+"""A place said after its object, as Korean, Japanese and Turkish say it ("A to B near move", "C near put") -> the words
+the grammar reads before the object (words, not actions: the installed phrases decide what they ask for)."""
 GO_FIRST = re.compile(r"^\s*(?P<what>.+?)\s+(?:go|goes|should\s+go|must\s+go)\s+(?P<rest>(?:to|around|round|past|beyond"
                       r"|near|beside|next\s+to|closer|toward|towards|away)\b.+)$", re.IGNORECASE)
 """An object that goes somewhere, said with nothing before it: "biggest one go around the middle one" is "move the

@@ -67,7 +67,7 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     if low[:1] == ["make"] and "pass" in low[2:]:  # "make the C pass by the D", "make A pass B": go past it
         at = low.index("pass", 2)
         if not set(low[1:at]) & set(verbs):
-            return ["move", *words[1:at], "past", *words[at + 1 + (low[at + 1:at + 2] == ["by"]):]]
+            return ["move", *words[1:at], "beyond", *words[at + 1 + (low[at + 1:at + 2] == ["by"]):]]
     return words
 
 
@@ -173,8 +173,8 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                     mover = " ".join([first, *words[1:k]])
                     raise LanguageError(f'"{" ".join(words)}" tells how the table is and asks for nothing; say what to '
                                         f'do, as in "move {mover} {" ".join(words[k + len(link):])}"')
-                if link[-1] in ("pass", "passes") and low[k + len(link)] == "by":  # "it passes by B": past B
-                    return [next((w for w in words[:j] if w.lower() in verbs), "move"), *words[j:k], "past",
+                if link[-1] in ("pass", "passes") and low[k + len(link)] == "by":  # "it passes by B": beyond B
+                    return [next((w for w in words[:j] if w.lower() in verbs), "move"), *words[j:k], "beyond",
                             *words[k + len(link) + 1:]]
                 if link[-1] in GOING and low[k + len(link)] == "by":
                     raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '

@@ -57,7 +57,8 @@ def test_importing_the_package_installs_no_signal_handler(module):
     code = (f"import sys; sys.argv[0] = '/usr/bin/l2p-bullet'; import signal, {module}; "
             "print(signal.getsignal(signal.SIGINT) is signal.default_int_handler, "
             "signal.getsignal(signal.SIGTERM) is signal.SIG_DFL)")
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                       preexec_fn=ctrl_c_as_at_a_terminal)  # as at a terminal, also when the suite runs behind "&"
     assert r.returncode == 0 and r.stdout.split() == ["True", "True"], (r.stdout, r.stderr)
 
 
