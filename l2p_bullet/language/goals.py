@@ -173,9 +173,6 @@ def state_to_verb(words: list[str], verbs: list[str], is_object, said: list[str]
                     mover = " ".join([first, *words[1:k]])
                     raise LanguageError(f'"{" ".join(words)}" tells how the table is and asks for nothing; say what to '
                                         f'do, as in "move {mover} {" ".join(words[k + len(link):])}"')
-                if link[-1] in ("pass", "passes") and low[k + len(link)] == "by":  # "it passes by B": beyond B
-                    return [next((w for w in words[:j] if w.lower() in verbs), "move"), *words[j:k], "beyond",
-                            *words[k + len(link) + 1:]]
                 if link[-1] in GOING and low[k + len(link)] == "by":
                     raise LanguageError(f'"{" ".join(words[k:k + len(link) + 1])}" may mean going past or '
                                         "staying beside; say which")
@@ -238,7 +235,8 @@ needs words that ask ("I want", "the goal is", "should be", "make it so")."""
 
 
 GOING = frozenset({"go", "goes", "went", "pass", "passes"})
-"""Links of motion: "go by B" may mean past B or beside B (people differ), so it is asked, never guessed."""
+"""Links of motion: "go by B" may mean past B or beside B (people differ), so it is asked, never guessed; "pass by B" is
+asked here too, then read as past where the sentence is read again (language/learners.py: every author meant past)."""
 
 
 SHAPE_WORDS = frozenset(SHAPE_NOUNS) - {"can", "cans"}  # "can we make it so ...": asks, names nothing

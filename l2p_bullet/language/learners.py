@@ -39,7 +39,7 @@ _REWRITES = (
     (re.compile(r"\b(?:in|at|on)\s+(?:the\s+)?side\s+of\b", re.IGNORECASE), "next to"),
     (re.compile(r"\b(closer|nearer)\s+of\b", re.IGNORECASE), r"\1 to"),
     (re.compile(r"\btogether\s+with\b", re.IGNORECASE), "next to"),
-    (re.compile(r"\bpass(?:es)?\s+by\b", re.IGNORECASE), "beyond"),
+    (re.compile(r"\bpass(es)?\s+by\b", re.IGNORECASE), lambda m: "goes beyond" if m.group(1) else "go beyond"),
     (re.compile(r"(?<!\ba)(?<!\bvery)\s+little\s+(?=(?:away|closer|nearer|past|further|farther|towards?)\b)",
                 re.IGNORECASE), " a little "),
     (re.compile(r"\bstuck\s+(?:to|on)\b", re.IGNORECASE), "right next to"),

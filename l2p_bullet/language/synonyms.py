@@ -400,7 +400,8 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> d
     out = {k: frozenset(v) for k, v in by_kind.items()}
     own = dict(out)  # a word calls the objects of its kinds, never those another word called ("post-its": the
     # notepad's, not the Moleskine called a notepad)
-    held = {name: set(name_parts(name)[:-1]) for name, *_ in objects if name_parts(name)[-1:][0] in CONTAINERS}
+    held = {name: set(parts[:-1]) for name, *_ in objects for parts in [name_parts(name)] if parts[-1:] and
+            parts[-1] in CONTAINERS}
     for word, kinds in [*KIND_SYNONYMS.items(), *((w, FIGURES) for w in FIGURE_WORDS)]:
         named = frozenset().union(*(own[k] for k in kinds if k in own))
         if word in KIND_CLASSES:  # "the metal thing" is no screw_box: what a box holds is not what it is

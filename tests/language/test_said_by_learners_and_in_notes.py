@@ -41,6 +41,8 @@ SHAPES = "heldout80.tsv"
     ("put the E in the side of the A", "slide:next-to E A", LETTERS),
     ("bring the F closer of the B", "slide:closer F B", LETTERS),
     ("pass the D by the E", "slide:past D E", LETTERS),
+    ("I want E to pass by F", "slide:past E F", LETTERS),
+    ("the A passes by the C", "slide:past A C", LETTERS),
     ("nudge C little away from A", "push:away C A extent=little", LETTERS),
     # a fruit emoji by its whole name
     ("put the \U0001f34f next to the plate", "slide:next-to green_apple plate", FRUIT),
