@@ -9,6 +9,7 @@ from __future__ import annotations
 import functools
 
 from ..core.scene import COLORS, Scene
+from . import lexicon
 from .kept import SceneMemo
 from .reference_words import COLOR_SYNONYMS, NOUNS, SHAPE_NOUNS, SOFT_ADJECTIVES
 from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_words_of, name_parts, scene_key, shape_of
@@ -127,11 +128,11 @@ WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOU
 def name_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that name an object -> its name: the name, and for a word name its fond forms
     ("ducky", "duckie": the duck)."""
-    return dict(name_words_of(scene_key(scene)))
+    return dict(name_words_of(scene_key(scene), lexicon.allowed()))
 
 
 @functools.lru_cache(maxsize=256)
-def name_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, str]:
+def name_words_of(objects: tuple[tuple[str, str | None, str | None], ...], looked_up: bool = False) -> dict[str, str]:
     """name_words of a :func:`~.synonyms.scene_key`, kept: made once per scene, not once per word read (a caller must
     not change it; name_words hands out copies)."""
     names = [name for name, *_ in objects]
@@ -140,6 +141,6 @@ def name_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> di
         low = n.lower()
         if len(low) >= 3 and low.isalpha():
             out.update({fond: n for fond in (low + "y", low + "ie") if fond not in WORDS_OF_THEIR_OWN})
-    out.update(kind_words_of(objects))
+    out.update(kind_words_of(objects, looked_up))
     out.update({n.lower(): n for n in names})
     return out

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..core.scene import COLORS, ROBOT_BASE_XY, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
+from . import lexicon
 from .descriptions import candidates, describe, described
 from .group_places import in_group, table_sides
 from .kept import SceneMemo
@@ -75,7 +76,7 @@ from .uses import used_for
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
     """The name of the object ``text`` refers to; a one-line error when none or several fit. Kept per scene
     (language/kept.py): a sentence's readings ask for the same words many times."""
-    return _RESOLVED.ask((text, role, context), scene, lambda: _resolve(text, scene, role, context))
+    return _RESOLVED.ask((text, role, context, lexicon.allowed()), scene, lambda: _resolve(text, scene, role, context))
 
 
 _RESOLVED = SceneMemo(4096)

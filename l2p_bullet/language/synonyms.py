@@ -14,6 +14,7 @@ import re
 import unicodedata
 
 from ..core.scene import COLORS, Scene, SceneObject
+from . import lexicon
 
 KIND_NAMES = {
     "mug": ("cup", "cups", "teacup", "mugs", "cuppa"),
@@ -385,14 +386,16 @@ def scene_key(scene: Scene) -> tuple[tuple[str, str | None, str | None], ...]:
 def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:
     """Lower-case words that call objects by their kind -> the names of every object of that kind ("mug": both
     mugs): a noun that restricts a description ("the red mug") and alone fits them all."""
-    return dict(kind_groups_of(scene_key(scene)))
+    return dict(kind_groups_of(scene_key(scene), lexicon.allowed()))
 
 
 @functools.lru_cache(maxsize=256)
-def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, frozenset[str]]:
+def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...],
+                   looked_up: bool = False) -> dict[str, frozenset[str]]:
     """kind_groups of a :func:`scene_key`, kept: made once per scene, not once per word looked up (reading one
     sentence asks for it hundreds of times). Kept answers are shared: a caller must not change one (kind_groups
-    hands out copies)."""
+    hands out copies). ``looked_up``: with the words WordNet relates to each kind (language/lexicon.py), where no
+    table here gives the word an object."""
     by_kind: dict[str, set[str]] = {}
     for name, mesh, kind in objects:
         for k in _kinds(name, mesh, kind):
@@ -408,6 +411,9 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> d
             named = frozenset(n for n in named if not any(k in held.get(n, ()) for k in kinds))
         if named and word not in out:
             out[word] = named
+    if looked_up:
+        for word, names in lexicon.groups_of(objects).items():
+            out.setdefault(word, names)
     return out
 
 
@@ -419,10 +425,10 @@ CONTAINERS = frozenset({"box", "jar", "bin", "bag", "dish", "tray", "tin", "pot"
 def kind_words(scene: Scene) -> dict[str, str]:
     """Lower-case words that call exactly one object by its kind -> its name: "duck" (the mesh's kind), "cup"
     (a mug's everyday name). A kind that two objects share names neither (the description is then refused)."""
-    return dict(kind_words_of(scene_key(scene)))
+    return dict(kind_words_of(scene_key(scene), lexicon.allowed()))
 
 
 @functools.lru_cache(maxsize=256)
-def kind_words_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, str]:
+def kind_words_of(objects: tuple[tuple[str, str | None, str | None], ...], looked_up: bool = False) -> dict[str, str]:
     """kind_words of a :func:`scene_key`, kept as :func:`kind_groups_of` (a caller must not change it)."""
-    return {w: next(iter(names)) for w, names in kind_groups_of(objects).items() if len(names) == 1}
+    return {w: next(iter(names)) for w, names in kind_groups_of(objects, looked_up).items() if len(names) == 1}

@@ -1,0 +1,180 @@
+"""Words for a thing that no table of the toolkit lists, looked up in WordNet: the last try of a refused sentence.
+
+People call an object by words no kind table (synonyms.py) can foresee: a trade's word ("the Erlenmeyer", "the
+Bunsen"), a more general one ("the specs" for goggles, "the vessel" for a mug) or a more particular one ("the
+beer mug"). Each author of a held-out corpus brings new ones, so a table grown one word at a time falls behind the
+next author. WordNet (Princeton's lexical database, nouns of physical things, shipped as ``data/wordnet/``) relates
+words by meaning: a word of a synset an object's kind is (its first :data:`OBJECT_SENSES` senses), of a synset up
+to :data:`UP` levels above one (more general) or :data:`DOWN` below (more particular), names that object.
+
+Only inside :func:`looking_up`, which ``chain/clauses.resolve_clauses`` enters once every other reading has refused
+a sentence, and only for words no table of the toolkit already gives an object: a sentence read without it is read
+exactly as before. A word that so names two objects names neither (the description is refused, as any kind two
+objects share).
+"""
+
+from __future__ import annotations
+
+import functools
+import gzip
+import json
+import re
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from importlib import resources
+
+from ..core.scene import COLORS
+
+_ALLOWED: ContextVar[bool] = ContextVar("l2p_lexicon_reading", default=False)
+
+OBJECT_SENSES = 2
+"""A kind word's senses, most used first, that say what an object on a table is: those among its first two that are
+things, or else its first that is ("mug", whose first senses are a mugful and a face): "can" is a tin can, not a
+toilet (its sixth sense), whose other words ("pot", "throne") would then name the can."""
+UP = 1
+"""Levels of more general words that name an object (goggles -> spectacles, "the specs"); two would reach words that
+name nearly anything ("instrumentality", "device", "component")."""
+DOWN = 2
+"""Levels of more particular words that name an object (burner -> gas burner -> Bunsen burner, "the Bunsen")."""
+MIN_LETTERS = 3
+"""Shorter words are not looked up: two letters are an abbreviation or a slip more often than a thing's name."""
+
+
+@contextmanager
+def looking_up() -> Iterator[None]:
+    """Allow the words looked up here inside the block (the last try of a sentence refused as written)."""
+    token = _ALLOWED.set(True)
+    try:
+        yield
+    finally:
+        _ALLOWED.reset(token)
+
+
+def allowed() -> bool:
+    """Whether words looked up in WordNet may name objects now."""
+    return _ALLOWED.get()
+
+
+@functools.lru_cache(maxsize=1)
+def _nouns() -> dict:
+    """The shipped slice of WordNet, with the inverse relations made once (about 0.2 s, on the first look-up)."""
+    with resources.files("l2p_bullet.data").joinpath("wordnet/words.json.gz").open("rb") as fh:
+        doc = json.loads(gzip.decompress(fh.read()))
+    hyponyms: list[list[int]] = [[] for _ in doc["hypernyms"]]
+    for child, parents in enumerate(doc["hypernyms"]):
+        for parent in parents:
+            hyponyms[parent].append(child)
+    words: list[list[str]] = [[] for _ in doc["hypernyms"]]
+    for lemma, senses in doc["lemmas"].items():
+        if " " not in lemma and "-" not in lemma and lemma.isalpha() and len(lemma) >= MIN_LETTERS:
+            for synset, _rank in senses:
+                words[synset].append(lemma)
+    eponyms: list[list[str]] = [[] for _ in doc["hypernyms"]]
+    for word, synsets in doc["eponyms"].items():
+        for synset in synsets:
+            eponyms[synset].append(word)
+    return {"lemmas": doc["lemmas"], "up": doc["hypernyms"], "down": hyponyms, "words": words, "eponyms": eponyms,
+            "plurals": doc["plurals"]}
+
+
+def singular(word: str) -> str | None:
+    """The WordNet lemma ``word`` (lower case) is, or the plural of; None where it is none."""
+    nouns = _nouns()
+    lemmas = nouns["lemmas"]
+    if word in lemmas:
+        return word
+    if word in nouns["plurals"]:
+        return nouns["plurals"][word]
+    for cut, add in (("ies", "y"), ("es", ""), ("s", "")):
+        if word.endswith(cut) and word[: -len(cut)] + add in lemmas:
+            return word[: -len(cut)] + add
+    return None
+
+
+@functools.lru_cache(maxsize=4096)
+def words_for(kind: str) -> frozenset[str]:
+    """Lower-case words, each with its plural, that name a thing of ``kind`` (a word an object is called by): each
+    word whose own first sense among things is one of the related synsets, so that a rare sense never names an object
+    ("keyboard" is a rack for keys only in its second sense)."""
+    lemma = singular(kind.lower())
+    if lemma is None:
+        return frozenset()
+    nouns = _nouns()
+    senses = [s for s, rank in nouns["lemmas"][lemma] if rank <= OBJECT_SENSES] or [nouns["lemmas"][lemma][0][0]]
+    related = set(senses)
+    for step, levels in (("up", UP), ("down", DOWN)):
+        front = set(senses)
+        for _ in range(levels):
+            front = {n for s in front for n in nouns[step][s]} - related
+            related |= front
+    out = set()
+    for s in related:
+        for word in nouns["words"][s]:
+            if nouns["lemmas"][word][0][0] in related:  # its first sense among things: "keyboard" is no key rack
+                out.update((word, plural(word)) if not word.endswith("s") or word.endswith("ss") else (word,))
+        out.update(nouns["eponyms"][s])
+    return frozenset(out)
+
+
+def _heads(name: str, mesh: str | None, kind: str | None) -> set[str]:
+    """The words that say what an object is, as a noun phrase's last word does: of its declared kind, its name and
+    its mesh file's stem, the last word of three letters or more ("coffee_cup": a cup, not coffee)."""
+    from .synonyms import MESH_JARGON, name_parts
+
+    stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0] if mesh else ""
+    heads = set()
+    for text in (kind or "", name, stem):
+        words = [p for p in name_parts(text) if len(p) >= 3 and p.isalpha() and p not in MESH_JARGON]
+        if words:
+            heads.add(words[-1])
+    return heads
+
+
+@functools.lru_cache(maxsize=256)
+def groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, frozenset[str]]:
+    """Words WordNet relates to the kinds of a scene's objects (``objects``: each one's name, mesh file and declared
+    kind) -> the names of the objects of those kinds; never a shape's noun, a colour or a word that says nothing of
+    the object, which have readings of their own."""
+    from .reference_words import SHAPE_NOUNS  # both read the kind tables, which read this module
+    from .synonyms import PLAIN_PARTS
+
+    plain = frozenset(SHAPE_NOUNS) | frozenset(COLORS) | PLAIN_PARTS
+    by_word: dict[str, set[str]] = {}
+    for name, mesh, kind in objects:
+        for k in _heads(name, mesh, kind):
+            if k in plain:
+                continue
+            for word in words_for(k):
+                if word not in plain:
+                    by_word.setdefault(word, set()).add(name)
+    return {w: frozenset(n) for w, n in by_word.items()}
+
+
+def plural(word: str) -> str:
+    """The regular plural of a noun ("box" -> "boxes", "battery" -> "batteries", "mug" -> "mugs")."""
+    if word.endswith(("s", "x", "z", "ch", "sh")):
+        return word + "es"
+    if word.endswith("y") and word[-2:-1] not in "aeiou":
+        return word[:-1] + "ies"
+    return word + "s"
+
+
+@functools.lru_cache(maxsize=1)
+def motion_verbs() -> frozenset[str]:
+    """One-word verbs whose first sense in WordNet changes where a thing is ("zoom", "park", "scoot", "run")."""
+    with resources.files("l2p_bullet.data").joinpath("wordnet/words.json.gz").open("rb") as fh:
+        return frozenset(json.loads(gzip.decompress(fh.read()))["motion_verbs"])
+
+
+def moving_verbs_read(text: str, known: frozenset[str], stops: frozenset[str]) -> str:
+    """``text`` with each word the toolkit does not know (``known``, lower case) that WordNet's first sense says moves a
+    thing written as "move" ("zoom the truck round the cone", "park the red car by the garage"), but for ``stops``,
+    words that ask for what the actions cannot do ("throw", "toss")."""
+    verbs = motion_verbs()
+
+    def read(word: str) -> str:
+        low = word.lower()
+        return "move" if low in verbs and low not in known and low not in stops else word
+
+    return " ".join(read(w) for w in text.split(" "))
