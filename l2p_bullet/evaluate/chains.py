@@ -1,7 +1,8 @@
 """``evaluate --chains K``: the chain benchmark, judged as CALVIN judges agents (how far a chain gets).
 
 Scenes: ``chain/S`` is :func:`~l2p_bullet.core.scene.random_scene` for seed S (blocks A and B) with 1-3
-more blocks (:func:`~.scenes.add_bystanders`), 3-5 blocks in all, the count drawn from S. Chains: drawn in
+more blocks (:func:`~.scenes.add_bystanders`), 3-5 blocks in all, the count drawn from S; with ``--bystanders K``
+every scene has 2 + K (``chain/S/5b`` for five), so that the same seeds are measured on fuller tables. Chains: drawn in
 the worker from the task's seed, clause by clause, over the installed one-anchor actions and random
 mover/anchor pairs; a clause that cannot be planned from the state the previous clauses' plans predict
 (the forecast's refusals: feasibility checks, no legal move, a path into a block) is drawn again, and the
@@ -49,15 +50,18 @@ DRAWS = ("clause", "sentence")
 """How a chain is drawn (``--chain-draw``): clause by clause until each plans, or the whole sentence first."""
 
 
-def chain_scenes(n: int, seed: int = 0) -> list[SceneSpec]:
-    """``n`` seeded scenes of 3-5 blocks, seeds ``seed`` .. ``seed + n - 1``."""
+def chain_scenes(n: int, seed: int = 0, blocks: int | None = None) -> list[SceneSpec]:
+    """``n`` seeded scenes, seeds ``seed`` .. ``seed + n - 1``, of 3-5 blocks drawn from the seed, or of ``blocks``
+    each."""
     if n < 0:
         raise EvaluationError(f"--scenes must be 0 or more (got {n})")
+    if blocks is not None and blocks < 2:
+        raise EvaluationError(f"a chain scene has at least 2 blocks (got {blocks})")
     out = []
     for s in range(seed, seed + n):
-        blocks = int(np.random.default_rng([s, 21]).integers(3, 6))
-        scene = add_bystanders(random_scene(s, CHAIN_BLOCK), blocks - 2, s)
-        out.append(SceneSpec(f"chain/{s}", scene, s, source="chain"))
+        count = int(np.random.default_rng([s, 21]).integers(3, 6)) if blocks is None else blocks
+        scene = add_bystanders(random_scene(s, CHAIN_BLOCK), count - 2, s)
+        out.append(SceneSpec(f"chain/{s}" if blocks is None else f"chain/{s}/{blocks}b", scene, s, source="chain"))
     return out
 
 

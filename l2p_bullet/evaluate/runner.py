@@ -112,12 +112,13 @@ class EvaluationConfig:
         if sum(sources) > 1:
             raise EvaluationError("choose one scene set: --scenes N, --scene-file F or --study")
         if self.chains:
-            if self.scene_file is not None or self.study or self.bystanders:
-                raise EvaluationError("--chains draws its own scenes of 3-5 blocks: no --scene-file, --study or "
-                                      "--bystanders")
+            if self.scene_file is not None or self.study:
+                raise EvaluationError("--chains draws its own scenes of 3-5 blocks (--bystanders K: 2 + K blocks "
+                                      "each): no --scene-file or --study")
             from .chains import chain_scenes
 
-            return chain_scenes(DEFAULT_SCENES if self.scenes is None else self.scenes, self.seed)
+            return chain_scenes(DEFAULT_SCENES if self.scenes is None else self.scenes, self.seed,
+                                blocks=2 + self.bystanders if self.bystanders else None)
         if self.scene_file is not None:
             specs = scene_file(self.scene_file, self.seed)
         elif self.study:

@@ -25,6 +25,16 @@ def test_chain_scenes_hold_3_to_5_blocks_and_are_seeded():
     assert [s.id for s in a[:2]] == ["chain/40", "chain/41"]
 
 
+def test_bystanders_fix_every_chain_scene_at_two_more_blocks():
+    """``--chains K --bystanders 3``: the same seeds, five blocks each (A and B where the seed puts them)."""
+    five = EvaluationConfig(chains=5, scenes=6, seed=40, bystanders=3).scene_set()
+    assert {len(s.scene.objects) for s in five} == {5}
+    assert [s.id for s in five[:2]] == ["chain/40/5b", "chain/41/5b"]
+    drawn = chain_scenes(6, seed=40)
+    assert [s.scene.objects[:2] for s in five] == [s.scene.objects[:2] for s in drawn]
+    assert five == EvaluationConfig(chains=5, scenes=6, seed=40, bystanders=3).scene_set()
+
+
 def test_bad_chain_settings_are_refused_before_anything_runs(tmp_path):
     with pytest.raises(EvaluationError, match="1 to 10"):
         evaluate(EvaluationConfig(chains=11, scenes=1), tmp_path / "a", workers=0, progressbar=False)
