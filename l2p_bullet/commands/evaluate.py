@@ -20,7 +20,8 @@ from .common import MAX_SEED
 @click.option("--scene-file", type=click.Path(dir_okay=False), default=None,
               help="A JSON-lines file, one scene per line (optional id, mover, anchor, seed per line).")
 @click.option("--study", is_flag=True, default=None, help="The original study's start configurations (75 scenes).")
-@click.option("--bystanders", type=int, default=None, help="Add K bystander blocks to every scene (0-10); with --chains, every scene has 2 + K blocks.")
+@click.option("--bystanders", type=int, default=None,
+              help="Add K bystander blocks to every scene (0-10); with --chains, every scene has 2 + K blocks.")
 @click.option("--seed", type=click.IntRange(0, MAX_SEED), default=None,
               help=f"First random scene seed, 0 to {MAX_SEED} (default 0).")
 @click.option("--planner", default=None, help="Planner for every run (default: each action's own).")
