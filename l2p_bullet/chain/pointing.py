@@ -21,8 +21,9 @@ from ..language.naming import name_words, naming_words
 from ..language.numbers import number_of
 from ..language.partitives import group_of
 from ..language.pronouns import plural_named
-from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS, SHAPE_NOUNS
+from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS
 from ..language.references import try_object, two_references
+from ..language.shape_words import SHAPE_NOUNS
 from ..language.words import PACES, strip_polite
 from ..pipeline import resolve
 from . import again

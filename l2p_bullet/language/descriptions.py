@@ -32,10 +32,10 @@ from .reference_words import (
     NOUNS,
     ROUND_KINDS,
     SHAPE_ADJECTIVES,
-    SHAPE_NOUNS,
     SOFT_ADJECTIVES,
     STRICT_SHAPES,
 )
+from .shape_words import SHAPE_NOUNS
 from .synonyms import (
     DRINKS,
     FOODS,

@@ -10,7 +10,8 @@ from __future__ import annotations
 import functools
 
 from ..errors import LanguageError
-from .reference_words import DETERMINERS, NOUNS, PLACE_ADJECTIVES, SHAPE_NOUNS
+from .reference_words import DETERMINERS, NOUNS, PLACE_ADJECTIVES
+from .shape_words import SHAPE_NOUNS
 from .words import PACES, by_word, starts
 
 GOAL_PREFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (

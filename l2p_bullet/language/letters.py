@@ -14,7 +14,8 @@ from collections.abc import Callable
 
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
-from .reference_words import BLOCK_WORDS, NOUNS, SHAPE_NOUNS, SPOKEN_LETTERS, SPOKEN_ONLY_AFTER_NOUN
+from .reference_words import BLOCK_WORDS, NOUNS, SPOKEN_LETTERS, SPOKEN_ONLY_AFTER_NOUN
+from .shape_words import SHAPE_NOUNS
 
 LETTER_NOUNS = frozenset({"letter"})
 """Nouns that say the next word is a letter ("the letter O", "letter eye"): a noun before a letter's name."""

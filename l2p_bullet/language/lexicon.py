@@ -18,13 +18,10 @@ from __future__ import annotations
 import functools
 import gzip
 import json
-import re
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from importlib import resources
-
-from ..core.scene import COLORS
 
 _ALLOWED: ContextVar[bool] = ContextVar("l2p_lexicon_reading", default=False)
 
@@ -117,36 +114,18 @@ def words_for(kind: str) -> frozenset[str]:
     return frozenset(out)
 
 
-def _heads(name: str, mesh: str | None, kind: str | None) -> set[str]:
-    """The words that say what an object is, as a noun phrase's last word does: of its declared kind, its name and
-    its mesh file's stem, the last word of three letters or more ("coffee_cup": a cup, not coffee)."""
-    from .synonyms import MESH_JARGON, name_parts
-
-    stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0] if mesh else ""
-    heads = set()
-    for text in (kind or "", name, stem):
-        words = [p for p in name_parts(text) if len(p) >= 3 and p.isalpha() and p not in MESH_JARGON]
-        if words:
-            heads.add(words[-1])
-    return heads
-
-
 @functools.lru_cache(maxsize=256)
-def groups_of(objects: tuple[tuple[str, str | None, str | None], ...]) -> dict[str, frozenset[str]]:
-    """Words WordNet relates to the kinds of a scene's objects (``objects``: each one's name, mesh file and declared
-    kind) -> the names of the objects of those kinds; never a shape's noun, a colour or a word that says nothing of
-    the object, which have readings of their own."""
-    from .reference_words import SHAPE_NOUNS  # both read the kind tables, which read this module
-    from .synonyms import PLAIN_PARTS
-
-    plain = frozenset(SHAPE_NOUNS) | frozenset(COLORS) | PLAIN_PARTS
+def groups_of(heads: tuple[tuple[str, tuple[str, ...]], ...], excluded: frozenset[str]) -> dict[str, frozenset[str]]:
+    """Words WordNet relates to the objects' kinds -> the names of the objects of those kinds. ``heads``: each
+    object's name and the words that say what it is (synonyms.py gives them); ``excluded``: words with readings of
+    their own (a shape's noun, a colour, a word that says nothing of the object), never looked up nor given."""
     by_word: dict[str, set[str]] = {}
-    for name, mesh, kind in objects:
-        for k in _heads(name, mesh, kind):
-            if k in plain:
+    for name, kinds in heads:
+        for k in kinds:
+            if k in excluded:
                 continue
             for word in words_for(k):
-                if word not in plain:
+                if word not in excluded:
                     by_word.setdefault(word, set()).add(name)
     return {w: frozenset(n) for w, n in by_word.items()}
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from ..core.scene import Scene
 from .naming import name_words
-from .reference_words import SHAPE_NOUNS
+from .shape_words import SHAPE_NOUNS
 
 
 def looks(words: list[str], scene: Scene) -> list[str]:

@@ -11,7 +11,8 @@ import functools
 from ..core.scene import COLORS, Scene
 from . import lexicon
 from .kept import SceneMemo
-from .reference_words import COLOR_SYNONYMS, NOUNS, SHAPE_NOUNS, SOFT_ADJECTIVES
+from .reference_words import COLOR_SYNONYMS, NOUNS, SOFT_ADJECTIVES
+from .shape_words import SHAPE_NOUNS
 from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_words_of, name_parts, scene_key, shape_of
 
 GEOMETRIC = frozenset({"cube", "cubes", "box", "boxes", "cylinder", "cylinders", "brick", "bricks", "rectangle",

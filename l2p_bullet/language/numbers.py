@@ -21,7 +21,8 @@ from collections.abc import Callable, Iterable
 
 from ..core.scene import Scene, SceneObject
 from ..errors import L2PError, LanguageError, UnknownObjectError
-from .reference_words import BLOCK_SHAPES, DETERMINERS, NOUNS, SHAPE_NOUNS
+from .reference_words import BLOCK_SHAPES, DETERMINERS, NOUNS
+from .shape_words import SHAPE_NOUNS
 from .synonyms import NAME_PART, kind_groups, kinds_of, size_codes
 
 SPELLED = {w: n for n, w in enumerate(

@@ -22,9 +22,9 @@ from .reference_words import (
     KIND_WORDS,
     MIDDLE_WORDS,
     NOUNS,
-    SHAPE_NOUNS,
     SIDE_SUPERLATIVE,
 )
+from .shape_words import SHAPE_NOUNS
 from .synonyms import KIND_NAMES, kind_groups, kinds_of, shape_of
 
 BOX_WORDS = frozenset(KIND_NAMES["box"]) | {"box", "boxes"}

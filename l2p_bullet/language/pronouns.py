@@ -24,9 +24,9 @@ from .reference_words import (
     PRONOUNS_ANCHOR,
     PRONOUNS_MOVER,
     SAME_WORDS,
-    SHAPE_NOUNS,
     STRICT_SHAPES,
 )
+from .shape_words import SHAPE_NOUNS
 from .synonyms import FIGURES, KIND_CLASSES, SIZE_WORDS, kind_groups, kinds_of, name_parts, shape_of
 
 

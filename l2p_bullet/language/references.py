@@ -59,7 +59,6 @@ from .reference_words import (
     PLACE_MEASURES,
     RELATIVES,
     ROBOT_WORDS,
-    SHAPE_NOUNS,
     SIDE_CONE,
     SIDE_DOUBT,
     SIDE_PHRASES,
@@ -69,6 +68,7 @@ from .reference_words import (
     TIE_M,
 )
 from .relating import beside_as_said, describes, picks_among
+from .shape_words import SHAPE_NOUNS
 from .synonyms import LOOSE_NOUNS, kind_groups
 from .uses import used_for
 

@@ -21,9 +21,9 @@ from .reference_words import (
     PLACE_ADJECTIVES,
     REFERENCE_WORDS,
     SHAPE_ADJECTIVES,
-    SHAPE_NOUNS,
     SOFT_ADJECTIVES,
 )
+from .shape_words import SHAPE_NOUNS
 from .synonyms import LOOSE_NOUNS, kind_groups
 
 Reader = Callable[..., "str | None"]

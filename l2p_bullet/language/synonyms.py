@@ -15,6 +15,7 @@ import unicodedata
 
 from ..core.scene import COLORS, Scene, SceneObject
 from . import lexicon
+from .shape_words import SHAPE_NOUNS
 
 KIND_NAMES = {
     "mug": ("cup", "cups", "teacup", "mugs", "cuppa"),
@@ -311,6 +312,9 @@ MESH_JARGON = frozenset({"vhacd", "chs", "coacd", "textured", "smooth", "visual"
                          "hull", "simplified", "simple", "decomp", "lowpoly", "poly", "scaled", "final", "processed",
                          "watertight", "centered", "new", "old", "obj", "stl", "glb"})
 """Words a mesh file's stem holds about the file, not the thing ("duck_vhacd", "sphere_smooth"): no kind."""
+LOOKED_UP_NOT = frozenset(SHAPE_NOUNS) | frozenset(COLORS) | PLAIN_PARTS
+"""Words never looked up in WordNet (language/lexicon.py) nor given an object by it: a shape's noun and a colour
+have readings of their own ("the box", "the red one"), and a plain word says nothing of what the object is."""
 COMPOUND_HEADS = ("brush", "book", "paste", "box", "bowl", "cup", "pot", "pad", "jar", "lamp", "ball", "bottle", "case",
                   "board", "light", "phone", "glass", "tray", "pan", "plate", "stick", "bag", "bin", "clip", "knife",
                   "mug", "brick", "block", "cube")
@@ -412,9 +416,22 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...],
         if named and word not in out:
             out[word] = named
     if looked_up:
-        for word, names in lexicon.groups_of(objects).items():
+        heads = tuple((name, tuple(sorted(_heads(name, mesh, kind)))) for name, mesh, kind in objects)
+        for word, names in lexicon.groups_of(heads, LOOKED_UP_NOT).items():
             out.setdefault(word, names)
     return out
+
+
+def _heads(name: str, mesh: str | None, kind: str | None) -> set[str]:
+    """The words that say what an object is, as a noun phrase's last word does: of its declared kind, its name and
+    its mesh file's stem, the last word of three letters or more ("coffee_cup": a cup, not coffee)."""
+    stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0] if mesh else ""
+    heads = set()
+    for text in (kind or "", name, stem):
+        words = [p for p in name_parts(text) if len(p) >= 3 and p.isalpha() and p not in MESH_JARGON]
+        if words:
+            heads.add(words[-1])
+    return heads
 
 
 CONTAINERS = frozenset({"box", "jar", "bin", "bag", "dish", "tray", "tin", "pot", "bowl", "cup", "holder", "rack",

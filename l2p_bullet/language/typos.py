@@ -16,6 +16,7 @@ import re
 from collections.abc import Iterable
 
 from . import extents, goals, reference_words, words
+from .shape_words import SHAPE_NOUNS
 from .sounds import heard_key, heard_name, one_sound_apart
 from .synonyms import name_parts
 
@@ -64,7 +65,7 @@ def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[s
     known.update(words.PACES)
     known.update(extents.COMPARATIVE_WORDS)
     r = reference_words
-    for table in (r.DETERMINERS, r.NOUNS, r.SHAPE_NOUNS, r.SHAPE_ADJECTIVES, r.SOFT_ADJECTIVES, r.COLOR_SYNONYMS,
+    for table in (r.DETERMINERS, r.NOUNS, SHAPE_NOUNS, r.SHAPE_ADJECTIVES, r.SOFT_ADJECTIVES, r.COLOR_SYNONYMS,
                   r.FUNCTION_WORDS, r.NEAREST, r.FARTHEST, r.SIZE_SUPERLATIVES, r.REFERENCE_WORDS):
         known.update(table)
     return frozenset(w for w in known if w.isascii())

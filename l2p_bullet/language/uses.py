@@ -24,8 +24,8 @@ from .reference_words import (
     NEAREST,
     NOUNS,
     PLACE_ADJECTIVES,
-    SHAPE_NOUNS,
 )
+from .shape_words import SHAPE_NOUNS
 from .synonyms import KIND_NAMES, SIZE_WORDS, kinds_of
 
 _DRINK = ("drink", "drinking", "sip", "coffee", "tea")

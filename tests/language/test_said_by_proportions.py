@@ -16,8 +16,9 @@ from l2p_bullet.core.scene import Scene, SceneObject, shaped
 from l2p_bullet.errors import L2PError
 from l2p_bullet.language.partitives import group_of
 from l2p_bullet.language.proportions import PROFILES, fitting, proportions
-from l2p_bullet.language.reference_words import SHAPE_ADJECTIVES, SHAPE_NOUNS, SOFT_ADJECTIVES
+from l2p_bullet.language.reference_words import SHAPE_ADJECTIVES, SOFT_ADJECTIVES
 from l2p_bullet.language.references import resolve_object
+from l2p_bullet.language.shape_words import SHAPE_NOUNS
 from l2p_bullet.language.synonyms import kind_groups, shape_of
 
 MESHES = Path(__file__).parent / "meshes"
