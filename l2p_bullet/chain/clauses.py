@@ -20,8 +20,6 @@ from ..language import (
     Context,
     dangling_join,
     known_verbs,
-    lenient,
-    lexicon,
     strip_polite,
     trailing_join,
     typos,
@@ -41,6 +39,7 @@ from .completion import complete, said_again, to_the_anchor
 from .composite import composite_clauses, is_composite
 from .context import context_after, context_of, two_moved
 from .groups import group_first, ordinals
+from .last_tries import read_past
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
 
 
@@ -83,34 +82,10 @@ def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]
                 return read_clauses(mended, scene, plugins)
             except L2PError:
                 pass
-        read = _read_past(sentence, mended, scene, plugins, known)
+        read = read_past(sentence, mended, scene, plugins, known, read_clauses)
         if read is None:
             raise
         return read
-
-
-def _read_past(sentence: str, mended: str | None, scene: Scene, plugins: list,
-               known: frozenset[str]) -> list[Clause] | None:
-    """The sentence's mended form (then the sentence as typed) read once more with the lenient reading allowed
-    (language/lenient.py), then again with words looked up in WordNet naming objects and moving them too
-    (language/lexicon.py: ``known``, the words the toolkit reads, are never looked up); None where that refuses
-    too."""
-    texts = dict.fromkeys(t for t in (mended, sentence) if t is not None)
-    with lenient.reading_past():
-        for text in texts:
-            try:
-                return read_clauses(text, scene, plugins)
-            except L2PError:
-                pass
-        with lexicon.looking_up():
-            # a verb looked up is read in the sentence as typed, never in its mended form: two guesses (a mended
-            # name, a looked-up verb) are not layered on one sentence
-            for text in dict.fromkeys((*texts, lexicon.moving_verbs_read(sentence, known, lenient.STOPS))):
-                try:
-                    return read_clauses(text, scene, plugins)
-                except L2PError:
-                    pass
-    return None
 
 
 def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:

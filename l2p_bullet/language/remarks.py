@@ -1,0 +1,74 @@
+"""A remark after the command: "move the jug next to the pot, thanks a million", "..., it's only in the way".
+
+People end an instruction with words for the listener ("good lad", "that is the requirement", "it gets hot dear")
+that no closing table can list, and the grammar then reads them as part of the last object's name ("no block called
+'the pot thanks a million'"). Where every other reading has refused a sentence, it is read once more without its
+last parts after a break (a comma, a full stop, a dash), one part at a time from the end, each dropped part a remark:
+none of its words could change what the command means (:func:`is_remark`). A refusal is better than a wrong block,
+so a part that names or points at an object, says how far, how fast or in what manner, corrects, negates, counts or
+joins another command is never dropped.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+
+from . import lenient
+from .words import NEGATIONS, PACES
+
+BREAK = re.compile(r"\s*(?:[,;!?]+|\.+|\s[-\u2013\u2014]+)\s+")
+"""Where a sentence breaks into parts: a comma, semicolon, full stop or question mark, a dash between words."""
+ABOUT_IT = frozenset({"it", "its", "it's", "itself", "that", "that's", "this", "thats", "there", "they", "they're"})
+"""Pointing words a remark about the object may hold ("it's only in the way", "that is the requirement"): the
+command before has said which object; these add nothing to it."""
+JOINS = frozenset({"then", "and", "after", "afterwards", "next", "also", "too", "again", "same", "first", "second",
+                   "third", "finally", "before", "once", "when", "while", "until", "till", "as", "instead", "do",
+                   "put", "move", "go", "goes", "make", "row", "line", "lift", "carry", "push"})
+"""Words that join or start another command ("then", "do the same", "and the cup too"): never a remark."""
+MANNER_WORDS = frozenset({"time", "easy", "care", "steady", "steadily", "speed", "rush", "delicate", "delicately",
+                          "drag", "dragging", "lifting", "air", "fingers", "handle"})
+"""Words of a manner or pace said in a phrase ("taking your time with it", "go easy", "don't drag it"): never a
+remark."""
+PAST = frozenset({"was", "were", "yesterday", "earlier"})
+"""Words that make what comes before a remark a report of the past ("Yesterday the duck was next to C, I noticed"):
+with the remark dropped it would read as a wish for that state."""
+MAX_PARTS = 2
+"""At most this many parts are dropped: a longer tail is more than a remark."""
+
+
+def is_remark(part: str, matters: frozenset[str]) -> bool:
+    """Whether ``part`` (words after a break) holds none of the words that could change the command: ``matters``
+    (the scene's names and kinds, colours, the installed phrases' and verbs' words), the lenient reading's stops and
+    pointing words but "it" (:data:`ABOUT_IT`), extents, paces, negations, joins and numbers."""
+    words = re.findall(r"[\w']+", part.lower())
+    if not words or any(ch.isdigit() for w in words for ch in w):
+        return False
+    stops = lenient.STOPS | (lenient.POINTING - ABOUT_IT) | (lenient.EXTENT_WORDS - {"good"}) | frozenset(PACES) \
+        | NEGATIONS | JOINS | MANNER_WORDS
+    return not any(w in stops or w in matters for w in words)
+
+
+def phrase_words(phrases: Iterable[str]) -> frozenset[str]:
+    """The words of the installed phrases that say a place ("next", "away", "past", "beside"), not the small words
+    they share with every sentence ("a", "to", "the"): a remark holding one may be asking for a place."""
+    return frozenset(w for p in phrases for w in p.lower().split() if len(w) >= 4 and w not in SMALL_WORDS)
+
+
+SMALL_WORDS = frozenset({"from", "with", "into", "onto", "over", "that", "this", "side", "just", "about", "them"})
+"""Words of four letters or more in phrases that say no place by themselves."""
+
+
+def without_remarks(sentence: str, matters: Iterable[str]) -> list[str]:
+    """``sentence`` with its last one, then two parts dropped where each is a remark (:func:`is_remark`), longest
+    first; empty where its last part is none. The caller reads a head only where it ends in a command, never in a
+    list ("line up: lemon, lime, Granny": the last item is no remark)."""
+    matters = frozenset(w.lower() for w in matters)
+    cuts = [m for m in BREAK.finditer(sentence) if m.end() < len(sentence)]
+    out = []
+    for m in reversed(cuts[-MAX_PARTS:] if cuts else []):
+        head, tail = sentence[:m.start()], sentence[m.end():]
+        if not head.strip() or not is_remark(tail, matters) or PAST & set(re.findall(r"[\w']+", head.lower())):
+            break
+        out.append(head)
+    return out

@@ -1,0 +1,44 @@
+"""A remark after the command (language/remarks.py): dropped only on the last try, and only where none of its
+words could change what the command means."""
+
+from __future__ import annotations
+
+import pytest
+from corpus import read
+
+from l2p_bullet.errors import L2PError
+from l2p_bullet.language import remarks
+
+TEA = "heldout93.tsv"  # kettle, teapot, sugar_jar, spoon, biscuit_tin, coaster, milk_jug
+FRUIT = "heldout78.tsv"
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("would you ever move the jug over next to the pot, thanks a million", "slide:next-to milk_jug teapot"),
+    ("teapot should be next to coaster, that is the requirement", "slide:next-to teapot coaster"),
+    ("move the jug next to the pot, good lad", "slide:next-to milk_jug teapot"),
+    ("move the spoon past the kettle - it drips, honestly", "slide:past spoon kettle"),
+])
+def test_a_remark_after_the_command_is_read_past(plugins, sentence, expect):
+    assert read(sentence, plugins, TEA) == expect
+
+
+@pytest.mark.parametrize("name, sentence", [
+    (TEA, "move the jug next to the pot, not the kettle"),  # a correction
+    (TEA, "move the jug next to the pot, then the spoon"),  # another command
+    (TEA, "move the jug next to the pot, the other way round"),  # points at another place
+    (TEA, "move the jug past the pot, a fair way"),  # an extent
+    (TEA, "move the jug past the pot, taking your time with it"),  # a pace said in a phrase
+    (FRUIT, "line up: the lemon, the lime, the zorblax"),  # a list's last item is no remark
+])
+def test_a_part_that_could_change_the_meaning_is_never_dropped(plugins, name, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, name)
+
+
+def test_remarks_are_dropped_from_the_end_one_part_at_a_time():
+    said = "move A next to B, it drips, honestly"
+    assert remarks.without_remarks(said, frozenset({"a", "b", "move", "next"})) == [
+        "move A next to B, it drips", "move A next to B"]
+    assert remarks.without_remarks("move A past B, it's in the way", frozenset()) == []  # "way": "way past"
+    assert remarks.without_remarks("move A next to B, C too", frozenset({"c"})) == []
