@@ -70,7 +70,7 @@ to seventh authors (heldout4-7) as a slide; the toolkit reads it as a slide, as 
 (docs/language.md), so heldout.tsv's five read otherwise."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 159), ("heldout5.tsv", 158), ("heldout6.tsv", 156),
+@pytest.mark.parametrize("name, floor", [("heldout4.tsv", 159), ("heldout5.tsv", 159), ("heldout6.tsv", 156),
                                          ("heldout7.tsv", 158), ("heldout8.tsv", 156), ("heldout9.tsv", 157)])
 def test_the_fourth_to_ninth_authors_corpora_are_never_resolved_wrong(plugins, name, floor):
     """heldout4.tsv (the corpus table), heldout5.tsv (its own table: two red cubes, a white cube and a white
@@ -160,7 +160,7 @@ one" (the bottle, 7 cm across and 22 cm tall, for the toolkit); for the eighty-s
 round one on the right" 3 cm further right than the other is a near tie (clear for the toolkit at 3 cm)."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 154)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 155)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
@@ -169,12 +169,12 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED[name])
 
 
-@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 157), ("heldout13.tsv", 157), ("heldout14.tsv", 157),
-                                         ("heldout15.tsv", 157), ("heldout16.tsv", 154), ("heldout17.tsv", 152),
-                                         ("heldout18.tsv", 156), ("heldout19.tsv", 152), ("heldout20.tsv", 152),
-                                         ("heldout21.tsv", 149), ("heldout22.tsv", 141), ("heldout23.tsv", 149),
-                                         ("heldout24.tsv", 150), ("heldout25.tsv", 155), ("heldout26.tsv", 142),
-                                         ("heldout27.tsv", 145), ("heldout28.tsv", 136), ("heldout29.tsv", 141)])
+@pytest.mark.parametrize("name, floor", [("heldout12.tsv", 157), ("heldout13.tsv", 158), ("heldout14.tsv", 157),
+                                         ("heldout15.tsv", 157), ("heldout16.tsv", 155), ("heldout17.tsv", 152),
+                                         ("heldout18.tsv", 156), ("heldout19.tsv", 153), ("heldout20.tsv", 154),
+                                         ("heldout21.tsv", 150), ("heldout22.tsv", 143), ("heldout23.tsv", 152),
+                                         ("heldout24.tsv", 155), ("heldout25.tsv", 155), ("heldout26.tsv", 147),
+                                         ("heldout27.tsv", 149), ("heldout28.tsv", 144), ("heldout29.tsv", 145)])
 def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
     ball): written cold at the end of a session, read once on its grammar: 83.8 % / 3 wrong and 70.6 % / 2 wrong
@@ -236,16 +236,107 @@ OPEN = {
         # "closest to the robot": the burner and the goggles 2 cm apart in x for the author (asked); nearest the robot's
         # base for the toolkit (the burner)
         "Move whatever's closest to the robot away from the flask - it's probably hot.": "slide:away burner flask"},
+    # heldout90-100: the thirty-fourth session's cold batches, read once and not yet examined line by line (the
+    # gardener's "the feed" mended as the seed tray's "seed" by a slip one keystroke away, seven times; "small
+    # shovel" as the gloves); kept as they read now
+    "heldout90.tsv": {
+        "would you mind sliding the larger pot beside the feed? cheers":
+            "slide:next-to pot_large seed_tray",
+        "please be so kind to move small shovel closer to big pot":
+            "push:closer gloves pot_large",
+        "result must be: fertilizer near small shovel":
+            "push:closer fertilizer gloves",
+        "bring the hand trowel slightly closer to the feed":
+            "slide:closer trowel seed_tray extent=little",
+        "the feed, put it right up against the can":
+            "slide:next-to seed_tray watering_can extent=right",
+        "slowly slide the hand trowel past the feed":
+            "slide:past trowel seed_tray pace=slow",
+        "slide the hand trowel beside the feed, then push it a little toward the module tray":
+            "slide:next-to trowel seed_tray ; push:closer trowel seed_tray extent=little",
+        "nudge the feed closer to the gloves, then pick the gloves up and carry them past it":
+            "push:closer seed_tray gloves ; carry:past gloves seed_tray",
+        "line up the glovs the seed tray thingy and the big pot pls":
+            "row seed_tray,pot_large",
+        "move the biggest thing next to the glovs":
+            "slide:next-to pot_large gloves",
+    },
+    "heldout91.tsv": {
+        "Please kindly move the shorter green bottle past the soap bar.":
+            "slide:past shampoo soap",
+        "the short green bottle go past the cup":
+            "slide:past shampoo toothbrush_cup",
+        "Take the small green bottle, the short one, and put it next to the cotton":
+            "slide:next-to shampoo cotton_pads",
+        "Please move the green bottle to near of the cup.":
+            "slide:closer shampoo toothbrush_cup",
+    },
+    "heldout92.tsv": {
+        "Translate car_1 slightly toward the garage at reduced velocity.":
+            "slide:closer car_1 garage extent=little",
+        "canny noo, move the green block next tae the lorry":
+            "slide:next-to block_green truck",
+        "make the fire engine go round the garage":
+            "slide:around truck garage",
+    },
+    "heldout93.tsv": {
+        "the flat thing by the kettle, move it away from the teapot":
+            "slide:next-to coaster kettle ; slide:away coaster teapot",
+    },
+    "heldout94.tsv": {
+        "get that bin WAY away from the bolt lmao 🚀":
+            "slide:away Bin_Parts Bolt_M8 pace=fast extent=far",
+        "slide the bolt next to the gear then the other one goes over toward the bin k? 👍":
+            "slide:next-to Bolt_M8 Gear_40T ; slide:closer Nut_M8 Bin_Parts",
+        "Deliverable: the threaded fastener, the long one, placed beside the drive gear.":
+            "slide:next-to Bracket_L Gear_40T",
+    },
+    "heldout96.tsv": {
+        "move the fluffy rolling thing next to the black tray":
+            "slide:next-to tape_roll paint_tray",
+        "sorry im new to this, can you put the fluffy rolling thing beside the paint can please":
+            "slide:next-to tape_roll paint_can",
+        "move the rolla uh right next to the paint tray":
+            "slide:next-to tape_roll paint_tray extent=right",
+        "push with softness the tray near of the tape":
+            "push:closer paint_tray tape_roll",
+        "um push the rolla slowly uh past the the wide brush":
+            "push:past tape_roll brush_wide pace=slow",
+        "um move the rolla next to the paint can and then uh move it past the rag":
+            "slide:next-to tape_roll paint_can ; slide:past tape_roll rag",
+        "the thing on the far left, move it closer to the fluffy rolling thing":
+            "slide:closer paint_tray tape_roll",
+        "move the smallest thing past the fluffy rolling thing":
+            "slide:past brush_thin tape_roll",
+        "move the one on the far right uh closer to the rolla":
+            "slide:closer rag tape_roll",
+        "um line up the paint can the rolla and the the rag":
+            "row paint_can,tape_roll,rag",
+    },
+    "heldout99.tsv": {
+        "Step 19: push K toward P3, fast. Expected: K closer to P3.":
+            "push:closer K P3 pace=fast ; push:closer K P3",
+        "Step 20: carry W slowly, well past P2. Expected: W lifted, ends far beyond P2.":
+            "carry:past W P2 pace=slow extent=far ; carry:past W P2 extent=far",
+        "Step 21: poke P2 away from Z gently. Expected: P2 displaced away from Z.":
+            "push:away P2 Z pace=gentle ; slide:away P2 Z",
+        "Step 24: move Z past P2, then move W next to it. Expected: Z beyond P2, W adjacent Z.":
+            "slide:past Z P2 ; slide:next-to W Z ; slide:past Z P2 ; slide:next-to W Z",
+    },
+    "heldout100.tsv": {
+        "slowwwly slide the crossword book next to the pills":
+            "slide:next-to crossword_book pill_organizer",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
 check below until the entry is removed."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 133), ("heldout31.tsv", 127), ("heldout32.tsv", 153),
-                                         ("heldout33.tsv", 145), ("heldout34.tsv", 155), ("heldout35.tsv", 141),
-                                         ("heldout36.tsv", 130), ("heldout37.tsv", 133), ("heldout38.tsv", 130),
-                                         ("heldout39.tsv", 120), ("heldout40.tsv", 96), ("heldout41.tsv", 131)])
+@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 138), ("heldout31.tsv", 132), ("heldout32.tsv", 160),
+                                         ("heldout33.tsv", 149), ("heldout34.tsv", 155), ("heldout35.tsv", 144),
+                                         ("heldout36.tsv", 136), ("heldout37.tsv", 139), ("heldout38.tsv", 137),
+                                         ("heldout39.tsv", 130), ("heldout40.tsv", 107), ("heldout41.tsv", 138)])
 def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
@@ -270,8 +361,8 @@ def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout42.tsv", 126), ("heldout43.tsv", 147), ("heldout44.tsv", 138),
-                                         ("heldout45.tsv", 120), ("heldout46.tsv", 64)])
+@pytest.mark.parametrize("name, floor", [("heldout42.tsv", 129), ("heldout43.tsv", 149), ("heldout44.tsv", 141),
+                                         ("heldout45.tsv", 132), ("heldout46.tsv", 91)])
 def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
     """heldout42.tsv (a cooking class's fruit, one of them named "orange", beside an orange cube named "block"; a
     chef, a German speaker, a phone's dictation and a child), heldout43.tsv (a task file's left_block and right_block
@@ -288,9 +379,9 @@ def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout47.tsv", 145), ("heldout48.tsv", 158), ("heldout49.tsv", 139),
-                                         ("heldout50.tsv", 142), ("heldout51.tsv", 133), ("heldout52.tsv", 114),
-                                         ("heldout53.tsv", 104)])
+@pytest.mark.parametrize("name, floor", [("heldout47.tsv", 148), ("heldout48.tsv", 159), ("heldout49.tsv", 142),
+                                         ("heldout50.tsv", 144), ("heldout51.tsv", 140), ("heldout52.tsv", 129),
+                                         ("heldout53.tsv", 147)])
 def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     """Written cold in the twenty-ninth session, on tables whose names are not single words: heldout47.tsv (a
     breakfast table named with two words, "salt shaker"), heldout48.tsv (alphabet blocks A, I, O, X) and heldout49.tsv
@@ -304,10 +395,10 @@ def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout54.tsv", 133), ("heldout55.tsv", 126), ("heldout56.tsv", 126),
-                                         ("heldout57.tsv", 112), ("heldout58.tsv", 143), ("heldout59.tsv", 133),
-                                         ("heldout60.tsv", 101), ("heldout61.tsv", 134), ("heldout62.tsv", 144),
-                                         ("heldout63.tsv", 136), ("heldout64.tsv", 135)])
+@pytest.mark.parametrize("name, floor", [("heldout54.tsv", 137), ("heldout55.tsv", 136), ("heldout56.tsv", 142),
+                                         ("heldout57.tsv", 113), ("heldout58.tsv", 143), ("heldout59.tsv", 134),
+                                         ("heldout60.tsv", 103), ("heldout61.tsv", 136), ("heldout62.tsv", 146),
+                                         ("heldout63.tsv", 145), ("heldout64.tsv", 138)])
 def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     """Written cold in the thirtieth session, on tables whose names are not plain English words: heldout54.tsv (a chess
     set, German and dictated piece names), heldout55.tsv (a game engine's default names, Cube, Cube (1), Cylinder),
@@ -321,9 +412,9 @@ def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 139), ("heldout67.tsv", 124),
-                                         ("heldout68.tsv", 128), ("heldout69.tsv", 125), ("heldout70.tsv", 125),
-                                         ("heldout71.tsv", 134), ("heldout72.tsv", 131)])
+@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 140), ("heldout67.tsv", 126),
+                                         ("heldout68.tsv", 129), ("heldout69.tsv", 127), ("heldout70.tsv", 127),
+                                         ("heldout71.tsv", 136), ("heldout72.tsv", 134)])
 def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-first session, on everyday tables as people type about them: heldout65.tsv (a kitchen,
     things said by their use: "the thing you boil water in"), heldout66.tsv (a bedside table, texting, typos, emoji),
@@ -338,7 +429,7 @@ def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor)
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 131), ("heldout74.tsv", 126), ("heldout75.tsv", 107),
+@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 133), ("heldout74.tsv", 132), ("heldout75.tsv", 108),
                                          ("heldout76.tsv", 141)])
 def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-second session, on shelves and desks as people type about them: heldout73.tsv (a
@@ -351,7 +442,7 @@ def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 118), ("heldout78.tsv", 123), ("heldout79.tsv", 132),
+@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 119), ("heldout78.tsv", 123), ("heldout79.tsv", 133),
                                          ("heldout80.tsv", 140)])
 def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-third session, by learners, in notes and dictated: heldout77.tsv (six lettered blocks
@@ -366,7 +457,7 @@ def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout81.tsv", 127), ("heldout82.tsv", 126), ("heldout83.tsv", 132),
+@pytest.mark.parametrize("name, floor", [("heldout81.tsv", 127), ("heldout82.tsv", 127), ("heldout83.tsv", 133),
                                          ("heldout84.tsv", 121)])
 def test_the_eighty_first_to_eighty_fourth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-third session after the rules of the seventy-seventh to eightieth: heldout81.tsv (a
@@ -380,8 +471,8 @@ def test_the_eighty_first_to_eighty_fourth_authors_corpora(plugins, name, floor)
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout85.tsv", 102), ("heldout86.tsv", 113), ("heldout87.tsv", 100),
-                                         ("heldout88.tsv", 49)])
+@pytest.mark.parametrize("name, floor", [("heldout85.tsv", 111), ("heldout86.tsv", 123), ("heldout87.tsv", 100),
+                                         ("heldout88.tsv", 72)])
 def test_the_eighty_fifth_to_eighty_eighth_authors_corpora(plugins, name, floor):
     """Written cold at the end of the thirty-third session and read once on its last language code (0258a09):
     heldout85.tsv (a camping table: Australian slang's "the billy", a scout leader, a smartwatch's dictation, sizes),
@@ -436,3 +527,17 @@ def test_pace_and_extent_are_recorded_on_the_command(plugins):
 def test_pronouns_follow_the_previous_clause(plugins):
     got = resolve("move A next to B, then move the other one around C, then move it past D", scene(), plugins)
     assert got == "slide:next-to A B ; slide:around B C ; slide:past B D"
+
+
+@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 81), ("heldout90.tsv", 85), ("heldout91.tsv", 107),
+                                         ("heldout92.tsv", 113), ("heldout93.tsv", 88), ("heldout94.tsv", 96),
+                                         ("heldout95.tsv", 103), ("heldout96.tsv", 68), ("heldout97.tsv", 113),
+                                         ("heldout98.tsv", 50), ("heldout99.tsv", 71), ("heldout100.tsv", 82)])
+def test_the_eighty_ninth_to_hundredth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-fourth session in three batches, from the notation and a scene file alone, and
+    read once each before the changes they were to measure (docs/language.md): heldout89-92 (an office desk, a
+    potting bench, a bathroom shelf, a toy table: 377 of 640 on the session's start, 17 wrong), heldout93-96 (a tea
+    tray, a CAD parts bench, six lettered blocks, a decorator's table: 344, 14 wrong; 350 with the WordNet look-up)
+    and heldout97-100 (a student's desk, a chopping area, test pieces, an elderly person's side table: 298, 5 wrong;
+    316 with the look-up and the remarks). Wrong only as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
