@@ -99,8 +99,9 @@ def relation_head(low: tuple[str, ...]) -> tuple[str, int, int] | None:
             return _direct(low, f"{w} of", start, i + 2)
         if w == "behind" and i > 0:
             return _direct(low, w, i, i + 1)
-        if low[i:i + 2] == ("next", "to") and i > 0:  # "the piece next to the boot": the nearest, as ties are told
-            return "nearest", i, i + 2
+        if low[i:i + 2] == ("next", "to") and i > 0 and not low[i - 1][:1].isdigit():
+            return "nearest", i, i + 2  # "the piece next to the boot": the nearest, as ties are told ("the white one,
+            # number 2, next to 6" is a command whose mover is said twice)
         if low[i:i + 3] == ("in", "front", "of") and i > 0:
             return _direct(low, "in front of", i, i + 3)
     return None
