@@ -171,9 +171,9 @@ def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
 
 @pytest.mark.parametrize("name, floor", [("heldout12.tsv", 157), ("heldout13.tsv", 158), ("heldout14.tsv", 157),
                                          ("heldout15.tsv", 157), ("heldout16.tsv", 155), ("heldout17.tsv", 152),
-                                         ("heldout18.tsv", 156), ("heldout19.tsv", 153), ("heldout20.tsv", 154),
-                                         ("heldout21.tsv", 150), ("heldout22.tsv", 143), ("heldout23.tsv", 152),
-                                         ("heldout24.tsv", 155), ("heldout25.tsv", 155), ("heldout26.tsv", 147),
+                                         ("heldout18.tsv", 156), ("heldout19.tsv", 153), ("heldout20.tsv", 155),
+                                         ("heldout21.tsv", 150), ("heldout22.tsv", 143), ("heldout23.tsv", 153),
+                                         ("heldout24.tsv", 156), ("heldout25.tsv", 156), ("heldout26.tsv", 148),
                                          ("heldout27.tsv", 149), ("heldout28.tsv", 144), ("heldout29.tsv", 145)])
 def test_the_twelfth_to_seventeenth_authors_corpora(plugins, name, floor):
     """heldout12.tsv (cubes H J K, a slab, a tube, a duck) and heldout13.tsv (cubes M N T, a mug, a jar, a beam, a
@@ -236,7 +236,7 @@ OPEN = {
         # "closest to the robot": the burner and the goggles 2 cm apart in x for the author (asked); nearest the robot's
         # base for the toolkit (the burner)
         "Move whatever's closest to the robot away from the flask - it's probably hot.": "slide:away burner flask"},
-    # heldout90-100: the thirty-fourth session's cold batches, read once and not yet examined line by line (the
+    # heldout90-104: the thirty-fourth session's cold batches, read once and not yet examined line by line (the
     # gardener's "the feed" mended as the seed tray's "seed" by a slip one keystroke away, seven times; "small
     # shovel" as the gloves); kept as they read now
     "heldout90.tsv": {
@@ -327,16 +327,34 @@ OPEN = {
         "slowwwly slide the crossword book next to the pills":
             "slide:next-to crossword_book pill_organizer",
     },
+    "heldout101.tsv": {
+        "smartly now, shift the shears clear of the tape measure":
+            "slide:away scissors tape_measure",
+    },
+    "heldout102.tsv": {
+        "green cube. closer to the yellow cylinder. we want green close to yellow.":
+            "slide:closer cube_green cyl_yellow ; slide:closer cube_green cyl_yellow",
+    },
+    "heldout103.tsv": {
+        "move the thing on the right over by the black thing":
+            "slide:next-to clipboard stethoscope",
+    },
+    "heldout104.tsv": {
+        "Move the dinosaur on the left toward the bucket.":
+            "slide:closer ball bucket",
+        "Wonderful job, everyone! Look how tidy our sandpit is.":
+            "",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
 check below until the entry is removed."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 138), ("heldout31.tsv", 132), ("heldout32.tsv", 160),
-                                         ("heldout33.tsv", 149), ("heldout34.tsv", 155), ("heldout35.tsv", 144),
-                                         ("heldout36.tsv", 136), ("heldout37.tsv", 139), ("heldout38.tsv", 137),
-                                         ("heldout39.tsv", 130), ("heldout40.tsv", 107), ("heldout41.tsv", 138)])
+@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 139), ("heldout31.tsv", 133), ("heldout32.tsv", 160),
+                                         ("heldout33.tsv", 150), ("heldout34.tsv", 155), ("heldout35.tsv", 144),
+                                         ("heldout36.tsv", 136), ("heldout37.tsv", 140), ("heldout38.tsv", 137),
+                                         ("heldout39.tsv", 130), ("heldout40.tsv", 108), ("heldout41.tsv", 138)])
 def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
@@ -362,7 +380,7 @@ def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout42.tsv", 129), ("heldout43.tsv", 149), ("heldout44.tsv", 141),
-                                         ("heldout45.tsv", 132), ("heldout46.tsv", 91)])
+                                         ("heldout45.tsv", 133), ("heldout46.tsv", 92)])
 def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
     """heldout42.tsv (a cooking class's fruit, one of them named "orange", beside an orange cube named "block"; a
     chef, a German speaker, a phone's dictation and a child), heldout43.tsv (a task file's left_block and right_block
@@ -379,8 +397,8 @@ def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout47.tsv", 148), ("heldout48.tsv", 159), ("heldout49.tsv", 142),
-                                         ("heldout50.tsv", 144), ("heldout51.tsv", 140), ("heldout52.tsv", 129),
+@pytest.mark.parametrize("name, floor", [("heldout47.tsv", 149), ("heldout48.tsv", 159), ("heldout49.tsv", 142),
+                                         ("heldout50.tsv", 144), ("heldout51.tsv", 142), ("heldout52.tsv", 129),
                                          ("heldout53.tsv", 147)])
 def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     """Written cold in the twenty-ninth session, on tables whose names are not single words: heldout47.tsv (a
@@ -395,10 +413,10 @@ def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout54.tsv", 137), ("heldout55.tsv", 136), ("heldout56.tsv", 142),
-                                         ("heldout57.tsv", 113), ("heldout58.tsv", 143), ("heldout59.tsv", 134),
-                                         ("heldout60.tsv", 103), ("heldout61.tsv", 136), ("heldout62.tsv", 146),
-                                         ("heldout63.tsv", 145), ("heldout64.tsv", 138)])
+@pytest.mark.parametrize("name, floor", [("heldout54.tsv", 138), ("heldout55.tsv", 136), ("heldout56.tsv", 142),
+                                         ("heldout57.tsv", 112), ("heldout58.tsv", 143), ("heldout59.tsv", 134),
+                                         ("heldout60.tsv", 103), ("heldout61.tsv", 138), ("heldout62.tsv", 146),
+                                         ("heldout63.tsv", 145), ("heldout64.tsv", 139)])
 def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     """Written cold in the thirtieth session, on tables whose names are not plain English words: heldout54.tsv (a chess
     set, German and dictated piece names), heldout55.tsv (a game engine's default names, Cube, Cube (1), Cylinder),
@@ -412,9 +430,9 @@ def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 140), ("heldout67.tsv", 126),
-                                         ("heldout68.tsv", 129), ("heldout69.tsv", 127), ("heldout70.tsv", 127),
-                                         ("heldout71.tsv", 136), ("heldout72.tsv", 134)])
+@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 141), ("heldout67.tsv", 126),
+                                         ("heldout68.tsv", 130), ("heldout69.tsv", 128), ("heldout70.tsv", 127),
+                                         ("heldout71.tsv", 136), ("heldout72.tsv", 135)])
 def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-first session, on everyday tables as people type about them: heldout65.tsv (a kitchen,
     things said by their use: "the thing you boil water in"), heldout66.tsv (a bedside table, texting, typos, emoji),
@@ -429,7 +447,7 @@ def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor)
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 133), ("heldout74.tsv", 132), ("heldout75.tsv", 108),
+@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 134), ("heldout74.tsv", 132), ("heldout75.tsv", 108),
                                          ("heldout76.tsv", 141)])
 def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-second session, on shelves and desks as people type about them: heldout73.tsv (a
@@ -442,7 +460,7 @@ def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 119), ("heldout78.tsv", 123), ("heldout79.tsv", 133),
+@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 120), ("heldout78.tsv", 124), ("heldout79.tsv", 134),
                                          ("heldout80.tsv", 140)])
 def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-third session, by learners, in notes and dictated: heldout77.tsv (six lettered blocks
@@ -458,7 +476,7 @@ def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout81.tsv", 127), ("heldout82.tsv", 127), ("heldout83.tsv", 133),
-                                         ("heldout84.tsv", 121)])
+                                         ("heldout84.tsv", 122)])
 def test_the_eighty_first_to_eighty_fourth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-third session after the rules of the seventy-seventh to eightieth: heldout81.tsv (a
     classroom: a teacher, a child's words, a parent writing without articles, autocorrect's "paint pit"),
@@ -471,8 +489,8 @@ def test_the_eighty_first_to_eighty_fourth_authors_corpora(plugins, name, floor)
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout85.tsv", 111), ("heldout86.tsv", 123), ("heldout87.tsv", 100),
-                                         ("heldout88.tsv", 72)])
+@pytest.mark.parametrize("name, floor", [("heldout85.tsv", 111), ("heldout86.tsv", 124), ("heldout87.tsv", 101),
+                                         ("heldout88.tsv", 73)])
 def test_the_eighty_fifth_to_eighty_eighth_authors_corpora(plugins, name, floor):
     """Written cold at the end of the thirty-third session and read once on its last language code (0258a09):
     heldout85.tsv (a camping table: Australian slang's "the billy", a scout leader, a smartwatch's dictation, sizes),
@@ -529,15 +547,19 @@ def test_pronouns_follow_the_previous_clause(plugins):
     assert got == "slide:next-to A B ; slide:around B C ; slide:past B D"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 81), ("heldout90.tsv", 85), ("heldout91.tsv", 107),
+@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 82), ("heldout90.tsv", 87), ("heldout91.tsv", 107),
                                          ("heldout92.tsv", 113), ("heldout93.tsv", 88), ("heldout94.tsv", 96),
-                                         ("heldout95.tsv", 103), ("heldout96.tsv", 68), ("heldout97.tsv", 113),
-                                         ("heldout98.tsv", 50), ("heldout99.tsv", 71), ("heldout100.tsv", 82)])
-def test_the_eighty_ninth_to_hundredth_authors_corpora(plugins, name, floor):
-    """Written cold in the thirty-fourth session in three batches, from the notation and a scene file alone, and
+                                         ("heldout95.tsv", 103), ("heldout96.tsv", 68), ("heldout97.tsv", 114),
+                                         ("heldout98.tsv", 50), ("heldout99.tsv", 72), ("heldout100.tsv", 82),
+                                         ("heldout101.tsv", 96), ("heldout102.tsv", 56), ("heldout103.tsv", 46),
+                                         ("heldout104.tsv", 99)])
+def test_the_eighty_ninth_to_hundred_and_fourth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-fourth session in four batches, from the notation and a scene file alone, and
     read once each before the changes they were to measure (docs/language.md): heldout89-92 (an office desk, a
     potting bench, a bathroom shelf, a toy table: 377 of 640 on the session's start, 17 wrong), heldout93-96 (a tea
     tray, a CAD parts bench, six lettered blocks, a decorator's table: 344, 14 wrong; 350 with the WordNet look-up)
-    and heldout97-100 (a student's desk, a chopping area, test pieces, an elderly person's side table: 298, 5 wrong;
-    316 with the look-up and the remarks). Wrong only as :data:`OPEN` records."""
+    heldout97-100 (a student's desk, a chopping area, test pieces, an elderly person's side table: 298, 5 wrong;
+    316 with the look-up and the remarks) and heldout101-104 (a knitting basket, colour sorting, a clinic trolley, a
+    sandpit: 284, 5 wrong; 297 with both, and with "next to" inside descriptions). Wrong only as :data:`OPEN`
+    records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
