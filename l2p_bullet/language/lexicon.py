@@ -157,3 +157,37 @@ def moving_verbs_read(text: str, known: frozenset[str], stops: frozenset[str]) -
         return "move" if low in verbs and low not in known and low not in stops else word
 
     return " ".join(read(w) for w in text.split(" "))
+
+
+BEFORE_ADJECTIVE = frozenset({"the", "a", "an", "my", "your", "our", "his", "her", "their", "this", "that", "these",
+                              "those", "ur", "da", "teh"})
+"""Words after which an unknown word may be an adjective of the description that follows ("the cheap silver spoon")."""
+
+
+def adjectives_read_past(text: str, known: frozenset[str], nouns: frozenset[str], describing: frozenset[str],
+                         stops: frozenset[str]) -> str:
+    """``text`` without the words that stand between an article (or a described word) and a noun of the scene
+    (``nouns``: its names, kinds, colours, sizes, "thing", "one") that the toolkit does not know (``known``) and that
+    WordNet does not know as a thing ("the cheap silver teaspoon", "my lovely old kettle"): said of the object, they
+    cannot pick another. Only after an article or a word that describes (``describing``: colours, sizes), never a
+    word of ``stops`` (a relation, a negation: "the cube between tray and can"); a noun the scene lacks is kept."""
+    words = text.split(" ")
+    low = [w.lower().strip(",.;:!?") for w in words]
+
+    def adjective(i: int) -> bool:
+        w = low[i]
+        return (w.isalpha() and len(w) >= 3 and w not in known and w not in nouns and w not in stops
+                and singular(w) is None and w not in motion_verbs())
+
+    keep = [True] * len(words)
+    for i in range(1, len(words)):
+        if not adjective(i) or words[i - 1][-1:] in ",.;:!?":
+            continue
+        before = low[i - 1] in BEFORE_ADJECTIVE or low[i - 1] in describing
+        j = i + 1
+        while j < len(words) and adjective(j) and words[j - 1][-1:] not in ",.;:!?":
+            j += 1
+        if before and j < len(words) and low[j] in nouns and words[j - 1][-1:] not in ",.;:!?":
+            for k in range(i, j):
+                keep[k] = False
+    return " ".join(w for w, k in zip(words, keep, strict=True) if k)

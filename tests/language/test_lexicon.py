@@ -65,3 +65,20 @@ def test_motion_verbs_are_read_only_where_the_toolkit_knows_no_word():
     assert lexicon.moving_verbs_read("zoom the cone", known, frozenset()) == "move the cone"
     assert lexicon.moving_verbs_read("slide the cone", known, frozenset()) == "slide the cone"
     assert lexicon.moving_verbs_read("toss the cone", known, frozenset({"toss"})) == "toss the cone"
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("slide the cheap silver teaspoon away from the sugar jar", "slide:away spoon sugar_jar"),
+    ("move my lovely old kettle next to the teapot", "slide:next-to kettle teapot"),
+])
+def test_an_adjective_no_one_knows_is_read_past_before_a_noun_of_the_scene(plugins, sentence, expect):
+    assert read(sentence, plugins, "heldout93.tsv") == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "move the porcelain saucer next to the kettle",  # a noun the scene lacks is kept, and refused
+    "slide the cube between tray and can closer to teddy",  # a relation is never an adjective
+])
+def test_a_word_that_could_pick_another_object_is_kept(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, "heldout93.tsv" if "saucer" in sentence else "heldout10.tsv")
