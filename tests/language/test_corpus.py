@@ -236,7 +236,7 @@ OPEN = {
         # "closest to the robot": the burner and the goggles 2 cm apart in x for the author (asked); nearest the robot's
         # base for the toolkit (the burner)
         "Move whatever's closest to the robot away from the flask - it's probably hot.": "slide:away burner flask"},
-    # heldout90-104: the thirty-fourth session's cold batches, read once and not yet examined line by line (the
+    # heldout90-108: the thirty-fourth session's cold batches, read once and not yet examined line by line (the
     # gardener's "the feed" mended as the seed tray's "seed" by a slip one keystroke away, seven times; "small
     # shovel" as the gloves); kept as they read now
     "heldout90.tsv": {
@@ -345,16 +345,22 @@ OPEN = {
         "Wonderful job, everyone! Look how tidy our sandpit is.":
             "",
     },
+    "heldout107.tsv": {
+        "get the pad away from the popcorn bowl":
+            "slide:away napkin popcorn_bowl",
+        "shift the popcorn along til its sat next to the pad":
+            "slide:next-to popcorn_bowl napkin",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
 check below until the entry is removed."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 139), ("heldout31.tsv", 133), ("heldout32.tsv", 160),
+@pytest.mark.parametrize("name, floor", [("heldout30.tsv", 140), ("heldout31.tsv", 133), ("heldout32.tsv", 160),
                                          ("heldout33.tsv", 150), ("heldout34.tsv", 155), ("heldout35.tsv", 144),
                                          ("heldout36.tsv", 136), ("heldout37.tsv", 140), ("heldout38.tsv", 137),
-                                         ("heldout39.tsv", 130), ("heldout40.tsv", 108), ("heldout41.tsv", 138)])
+                                         ("heldout39.tsv", 130), ("heldout40.tsv", 108), ("heldout41.tsv", 139)])
 def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
@@ -380,7 +386,7 @@ def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout42.tsv", 129), ("heldout43.tsv", 149), ("heldout44.tsv", 141),
-                                         ("heldout45.tsv", 133), ("heldout46.tsv", 92)])
+                                         ("heldout45.tsv", 133), ("heldout46.tsv", 93)])
 def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
     """heldout42.tsv (a cooking class's fruit, one of them named "orange", beside an orange cube named "block"; a
     chef, a German speaker, a phone's dictation and a child), heldout43.tsv (a task file's left_block and right_block
@@ -398,7 +404,7 @@ def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout47.tsv", 149), ("heldout48.tsv", 159), ("heldout49.tsv", 142),
-                                         ("heldout50.tsv", 144), ("heldout51.tsv", 142), ("heldout52.tsv", 129),
+                                         ("heldout50.tsv", 144), ("heldout51.tsv", 142), ("heldout52.tsv", 130),
                                          ("heldout53.tsv", 147)])
 def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     """Written cold in the twenty-ninth session, on tables whose names are not single words: heldout47.tsv (a
@@ -415,7 +421,7 @@ def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
 
 @pytest.mark.parametrize("name, floor", [("heldout54.tsv", 138), ("heldout55.tsv", 136), ("heldout56.tsv", 142),
                                          ("heldout57.tsv", 112), ("heldout58.tsv", 143), ("heldout59.tsv", 134),
-                                         ("heldout60.tsv", 103), ("heldout61.tsv", 138), ("heldout62.tsv", 146),
+                                         ("heldout60.tsv", 103), ("heldout61.tsv", 138), ("heldout62.tsv", 147),
                                          ("heldout63.tsv", 145), ("heldout64.tsv", 139)])
 def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     """Written cold in the thirtieth session, on tables whose names are not plain English words: heldout54.tsv (a chess
@@ -431,7 +437,7 @@ def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 141), ("heldout67.tsv", 126),
-                                         ("heldout68.tsv", 130), ("heldout69.tsv", 128), ("heldout70.tsv", 127),
+                                         ("heldout68.tsv", 131), ("heldout69.tsv", 128), ("heldout70.tsv", 127),
                                          ("heldout71.tsv", 136), ("heldout72.tsv", 135)])
 def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-first session, on everyday tables as people type about them: heldout65.tsv (a kitchen,
@@ -447,7 +453,7 @@ def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor)
                 or OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 134), ("heldout74.tsv", 132), ("heldout75.tsv", 108),
+@pytest.mark.parametrize("name, floor", [("heldout73.tsv", 134), ("heldout74.tsv", 132), ("heldout75.tsv", 110),
                                          ("heldout76.tsv", 141)])
 def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-second session, on shelves and desks as people type about them: heldout73.tsv (a
@@ -460,7 +466,7 @@ def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 120), ("heldout78.tsv", 124), ("heldout79.tsv", 134),
+@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 120), ("heldout78.tsv", 125), ("heldout79.tsv", 135),
                                          ("heldout80.tsv", 140)])
 def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-third session, by learners, in notes and dictated: heldout77.tsv (six lettered blocks
@@ -547,19 +553,22 @@ def test_pronouns_follow_the_previous_clause(plugins):
     assert got == "slide:next-to A B ; slide:around B C ; slide:past B D"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 82), ("heldout90.tsv", 87), ("heldout91.tsv", 107),
+@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 82), ("heldout90.tsv", 88), ("heldout91.tsv", 107),
                                          ("heldout92.tsv", 113), ("heldout93.tsv", 88), ("heldout94.tsv", 96),
                                          ("heldout95.tsv", 103), ("heldout96.tsv", 68), ("heldout97.tsv", 114),
-                                         ("heldout98.tsv", 50), ("heldout99.tsv", 72), ("heldout100.tsv", 82),
-                                         ("heldout101.tsv", 96), ("heldout102.tsv", 56), ("heldout103.tsv", 46),
-                                         ("heldout104.tsv", 99)])
-def test_the_eighty_ninth_to_hundred_and_fourth_authors_corpora(plugins, name, floor):
-    """Written cold in the thirty-fourth session in four batches, from the notation and a scene file alone, and
+                                         ("heldout98.tsv", 51), ("heldout99.tsv", 73), ("heldout100.tsv", 82),
+                                         ("heldout101.tsv", 96), ("heldout102.tsv", 56), ("heldout103.tsv", 47),
+                                         ("heldout104.tsv", 99),
+                                         ("heldout105.tsv", 65), ("heldout106.tsv", 107), ("heldout107.tsv", 39),
+                                         ("heldout108.tsv", 85)])
+def test_the_eighty_ninth_to_hundred_and_eighth_authors_corpora(plugins, name, floor):
+    """Written cold in the thirty-fourth session in five batches, from the notation and a scene file alone, and
     read once each before the changes they were to measure (docs/language.md): heldout89-92 (an office desk, a
     potting bench, a bathroom shelf, a toy table: 377 of 640 on the session's start, 17 wrong), heldout93-96 (a tea
     tray, a CAD parts bench, six lettered blocks, a decorator's table: 344, 14 wrong; 350 with the WordNet look-up)
     heldout97-100 (a student's desk, a chopping area, test pieces, an elderly person's side table: 298, 5 wrong;
     316 with the look-up and the remarks) and heldout101-104 (a knitting basket, colour sorting, a clinic trolley, a
-    sandpit: 284, 5 wrong; 297 with both, and with "next to" inside descriptions). Wrong only as :data:`OPEN`
-    records."""
+    sandpit: 284, 5 wrong; 297 with both, and with "next to" inside descriptions) and heldout105-108 (a camera kit,
+    coded blocks, a snack table, a carpenter's bench: 286, 2 wrong; 296 with all of them and adjectives read past).
+    Wrong only as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
