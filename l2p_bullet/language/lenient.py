@@ -22,12 +22,10 @@ try, so a sentence the grammar reads is read exactly as before.
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterator
-from contextlib import contextmanager
-from contextvars import ContextVar
 from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
+from .allowance import Allowance
 from .extents import EXTENTS, take_extent
 from .goals import participles
 from .naming import naming_words, shape_named
@@ -46,7 +44,7 @@ from .references import try_object
 from .synonyms import SIZE_WORDS, name_parts
 from .words import NEGATIONS, PACES
 
-_ALLOWED: ContextVar[bool] = ContextVar("l2p_lenient_reading", default=False)
+_ALLOWED = Allowance("l2p_lenient_reading")
 
 STOPS = NEGATIONS | frozenset({
     "isn't", "aren't", "doesn't", "won't", "can't", "cannot", "nothing", "without", "instead", "sorry", "rather",
@@ -105,19 +103,13 @@ class Reading:
     extent: str | None
 
 
-@contextmanager
-def reading_past() -> Iterator[None]:
-    """Allow :func:`read` inside the block (the last try of a sentence refused as written)."""
-    token = _ALLOWED.set(True)
-    try:
-        yield
-    finally:
-        _ALLOWED.reset(token)
+reading_past = _ALLOWED.inside
+"""Allow :func:`read` inside the block (the last try of a sentence refused as written)."""
 
 
 def allowed() -> bool:
     """Whether :func:`read` may be tried now."""
-    return _ALLOWED.get()
+    return _ALLOWED.now()
 
 
 def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple[str, ...], str, str]],

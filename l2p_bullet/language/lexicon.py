@@ -18,12 +18,11 @@ from __future__ import annotations
 import functools
 import gzip
 import json
-from collections.abc import Iterator
-from contextlib import contextmanager
-from contextvars import ContextVar
 from importlib import resources
 
-_ALLOWED: ContextVar[bool] = ContextVar("l2p_lexicon_reading", default=False)
+from .allowance import Allowance
+
+_ALLOWED = Allowance("l2p_lexicon_reading")
 
 OBJECT_SENSES = 2
 """A kind word's senses, most used first, that say what an object on a table is: those among its first two that are
@@ -38,19 +37,13 @@ MIN_LETTERS = 3
 """Shorter words are not looked up: two letters are an abbreviation or a slip more often than a thing's name."""
 
 
-@contextmanager
-def looking_up() -> Iterator[None]:
-    """Allow the words looked up here inside the block (the last try of a sentence refused as written)."""
-    token = _ALLOWED.set(True)
-    try:
-        yield
-    finally:
-        _ALLOWED.reset(token)
+looking_up = _ALLOWED.inside
+"""Allow the words looked up here inside the block (the last try of a sentence refused as written)."""
 
 
 def allowed() -> bool:
     """Whether words looked up in WordNet may name objects now."""
-    return _ALLOWED.get()
+    return _ALLOWED.now()
 
 
 @functools.lru_cache(maxsize=1)
