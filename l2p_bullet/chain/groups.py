@@ -144,3 +144,25 @@ def ordinals(text: str, show: pointing.Shown | None) -> str:
 ORDINALS = (re.compile(r"\bthe\s+first(?:\s+one)?\b", re.IGNORECASE),
             re.compile(r"\bthe\s+second(?:\s+one)?\b", re.IGNORECASE))
 """Of two objects shown together, the one named first and the one named second."""
+
+
+RESUMED = re.compile(r"\b(?:it|them|that one|this one)\b", re.IGNORECASE)
+"""A pointer in the command after a topic that takes the topic up again ("the red one by the lamp, move it ...")."""
+
+
+def topic_refusal(text: str, scene: Scene, context: Context | None) -> L2PError | None:
+    """Why "the item which is farthest from you, kindly keep it near to spoon" is refused, where no reading took it:
+    the object said first, then taken up by "it", is a description that does not resolve, and its own error ("nearest"
+    is ambiguous: ..., no block called ...) says more than the grammar's on the whole clause ("'the' is not a verb").
+    None where the text is no such topic or the topic resolves (then the command after it is what failed)."""
+    m = pointing.TOPIC.match(text)
+    if m is None or not RESUMED.search(m.group("rest")) or not m.group("what").strip():
+        return None
+    what = " ".join(strip_polite(m.group("what").split(), frozenset(scene.names))) or m.group("what")
+    if not what.strip() or what.split()[0].lower() in verb_heads():
+        return None  # "move A next to B, then push it": a command, not a topic
+    try:
+        resolve_object(what, scene, "block", context)
+    except L2PError as e:
+        return e
+    return None

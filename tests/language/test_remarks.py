@@ -1,5 +1,5 @@
 """A remark after the command (language/remarks.py): dropped only on the last try, and only where none of its
-words could change what the command means."""
+words could change what the command means. And what a topic said first is refused for, when it does not resolve."""
 
 from __future__ import annotations
 
@@ -42,3 +42,16 @@ def test_remarks_are_dropped_from_the_end_one_part_at_a_time():
         "move A next to B, it drips", "move A next to B"]
     assert remarks.without_remarks("move A past B, it's in the way", frozenset()) == []  # "way": "way past"
     assert remarks.without_remarks("move A next to B, C too", frozenset({"c"})) == []
+
+
+@pytest.mark.parametrize("name, sentence, said", [
+    ("heldout44.tsv", "the red thing nearest you, move it away from the green cube", '"nearest" is ambiguous'),
+    (TEA, "the item which is farthest from you, kindly keep it near to spoon", '"farthest" is ambiguous'),
+    (TEA, "the tallest thing on the tray, put it away from the pot", 'no block called "the tallest thing on the tray"'),
+])
+def test_a_topic_that_does_not_resolve_is_refused_for_its_own_reason(plugins, name, sentence, said):
+    """An object said first and taken up by "it" whose description resolves to none or to two: the refusal names the
+    description's own trouble, never the grammar's "'the' is not a verb"."""
+    with pytest.raises(L2PError) as refused:
+        read(sentence, plugins, name)
+    assert said in str(refused.value) and "not a verb" not in str(refused.value)
