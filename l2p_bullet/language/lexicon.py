@@ -47,10 +47,16 @@ def allowed() -> bool:
 
 
 @functools.lru_cache(maxsize=1)
-def _nouns() -> dict:
-    """The shipped slice of WordNet, with the inverse relations made once (about 0.2 s, on the first look-up)."""
+def _document() -> dict:
+    """The shipped slice of WordNet as stored (read once, on the first look-up)."""
     with resources.files("l2p_bullet.data").joinpath("wordnet/words.json.gz").open("rb") as fh:
-        doc = json.loads(gzip.decompress(fh.read()))
+        return json.loads(gzip.decompress(fh.read()))
+
+
+@functools.lru_cache(maxsize=1)
+def _nouns() -> dict:
+    """The nouns, with the inverse relations made once (about 0.2 s, on the first look-up)."""
+    doc = _document()
     hyponyms: list[list[int]] = [[] for _ in doc["hypernyms"]]
     for child, parents in enumerate(doc["hypernyms"]):
         for parent in parents:
@@ -135,8 +141,7 @@ def plural(word: str) -> str:
 @functools.lru_cache(maxsize=1)
 def motion_verbs() -> frozenset[str]:
     """One-word verbs whose first sense in WordNet changes where a thing is ("zoom", "park", "scoot", "run")."""
-    with resources.files("l2p_bullet.data").joinpath("wordnet/words.json.gz").open("rb") as fh:
-        return frozenset(json.loads(gzip.decompress(fh.read()))["motion_verbs"])
+    return frozenset(_document()["motion_verbs"])
 
 
 def moving_verbs_read(text: str, known: frozenset[str], stops: frozenset[str]) -> str:
