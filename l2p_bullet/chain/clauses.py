@@ -38,7 +38,7 @@ from .clause import MAX_CLAUSES, Clause, named
 from .completion import complete, said_again, to_the_anchor
 from .composite import composite_clauses, is_composite
 from .context import context_after, context_of, two_moved
-from .groups import group_first, ordinals, topic_refusal
+from .groups import group_first, ordinals, refuse_for_the_topic
 from .last_tries import read_past
 from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
 
@@ -116,9 +116,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             text = texts[0] if texts else str(sentence)
             pieces = _other_readings(text, None, scene, plugins)
             if pieces is None:
-                told = topic_refusal(text, scene, None)
-                if told is not None:  # "the item farthest from you, keep it ...": the topic's own reason
-                    raise told from None
+                refuse_for_the_topic(text, scene, None)
                 raise
             pieces = _set_down(pieces, None, None)  # "beside the... the colander, yes, beside the colander": once
             pieces = [p for k, p in enumerate(pieces) if k == 0 or not said_again(p[0], p[1], pieces[k - 1][1], scene)]
@@ -302,9 +300,7 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
                 pass
         pieces = _other_readings(text, previous, scene, plugins, depth, context, pair)
         if pieces is None:
-            told = topic_refusal(text, scene, context)
-            if told is not None:  # "the item farthest from you, keep it ...": the topic's own reason
-                raise told from None
+            refuse_for_the_topic(text, scene, context)
             raise
         return pieces
 

@@ -150,6 +150,13 @@ RESUMED = re.compile(r"\b(?:it|them|that one|this one)\b", re.IGNORECASE)
 """A pointer in the command after a topic that takes the topic up again ("the red one by the lamp, move it ...")."""
 
 
+def refuse_for_the_topic(text: str, scene: Scene, context: Context | None) -> None:
+    """Raise :func:`topic_refusal`'s error where there is one (the caller then raises its own)."""
+    told = topic_refusal(text, scene, context)
+    if told is not None:  # "the item farthest from you, keep it ...": the topic's own reason
+        raise told from None
+
+
 def topic_refusal(text: str, scene: Scene, context: Context | None) -> L2PError | None:
     """Why "the item which is farthest from you, kindly keep it near to spoon" is refused, where no reading took it:
     the object said first, then taken up by "it", is a description that does not resolve, and its own error ("nearest"

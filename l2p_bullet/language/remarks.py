@@ -33,6 +33,9 @@ remark."""
 PAST = frozenset({"was", "were", "yesterday", "earlier"})
 """Words that make what comes before a remark a report of the past ("Yesterday the duck was next to C, I noticed"):
 with the remark dropped it would read as a wish for that state."""
+NEVER_IN_A_REMARK = lenient.STOPS | (lenient.POINTING - ABOUT_IT) | (lenient.EXTENT_WORDS - {"good"}) \
+    | frozenset(PACES) | NEGATIONS | JOINS | MANNER_WORDS
+"""Every word that could change the command (:func:`is_remark`), the scene's own aside."""
 MAX_PARTS = 2
 """At most this many parts are dropped: a longer tail is more than a remark."""
 
@@ -44,9 +47,7 @@ def is_remark(part: str, matters: frozenset[str]) -> bool:
     words = re.findall(r"[\w']+", part.lower())
     if not words or any(ch.isdigit() for w in words for ch in w):
         return False
-    stops = lenient.STOPS | (lenient.POINTING - ABOUT_IT) | (lenient.EXTENT_WORDS - {"good"}) | frozenset(PACES) \
-        | NEGATIONS | JOINS | MANNER_WORDS
-    return not any(w in stops or w in matters for w in words)
+    return not any(w in NEVER_IN_A_REMARK or w in matters for w in words)
 
 
 def phrase_words(phrases: Iterable[str]) -> frozenset[str]:

@@ -354,12 +354,16 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
         out.extend(dict.fromkeys((low, unaccented(low))))
     out.extend(h for p in parts if p.isalpha() for h in COMPOUND_HEADS if p.endswith(h) and len(p) - len(h) >= 3)
     if mesh is not None:
-        stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0]
-        for part in name_parts(stem):
+        for part in name_parts(mesh_stem(mesh)):
             if len(part) >= 3 and part.isalpha() and part not in MESH_JARGON and part not in PLAIN_PARTS:
                 out.append(part)
                 out.extend(k for k in KIND_NAMES if part.endswith(k) and len(part) - len(k) >= 3)
     return tuple(dict.fromkeys(out))
+
+
+def mesh_stem(mesh: str) -> str:
+    """A mesh file's name without its folders and extensions ("meshes/duck_vhacd.obj" -> "duck_vhacd")."""
+    return re.split(r"[/:\\]", mesh)[-1].split(".")[0]
 
 
 @functools.lru_cache(maxsize=256)
@@ -425,9 +429,8 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...],
 def _heads(name: str, mesh: str | None, kind: str | None) -> set[str]:
     """The words that say what an object is, as a noun phrase's last word does: of its declared kind, its name and
     its mesh file's stem, the last word of three letters or more ("coffee_cup": a cup, not coffee)."""
-    stem = re.split(r"[/:\\]", mesh)[-1].split(".")[0] if mesh else ""
     heads = set()
-    for text in (kind or "", name, stem):
+    for text in (kind or "", name, mesh_stem(mesh) if mesh else ""):
         words = [p for p in name_parts(text) if len(p) >= 3 and p.isalpha() and p not in MESH_JARGON]
         if words:
             heads.add(words[-1])
