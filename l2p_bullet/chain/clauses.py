@@ -69,6 +69,12 @@ def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]
     if isinstance(sentence, str):
         # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412; "🔑 ➡️ 👛"
         sentence = rephrased.passed_by(numbers_said(codes_said(emoji_said(sentence, scene), scene), scene))
+        addressed = ADDRESSED.match(sentence)
+        if addressed is not None and "robot" not in naming_words(scene):  # "Robot, take the smallest block and ..."
+            sentence = sentence[addressed.end():]
+        if typos.RUNS.search(sentence.lower()):  # "slowwwly": the pace, not a word read past
+            sentence = typos.squeezed(sentence, typos.vocabulary(registry.phrase_table(plugins), known_verbs(),
+                                                                 COLORS) | naming_words(scene))
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:
@@ -190,16 +196,36 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 continue
             raise named(e, f'clause {i} ("{text}")') from None
         pieces = _set_down(pieces, previous, show)
-        if len(pieces) == 1 and pending is None and said_again(text, pieces[0][1], previous, scene):
-            continue  # "... a lot closer to the rack? much closer": the clause before, said once more
+        if len(pieces) == 1 and pending is None and any(said_again(text, pieces[0][1], c.command, scene)
+                                                        for c in reversed(clauses)):
+            continue  # "... a lot closer to the rack? much closer": a clause before, said once more
+        if clauses and OUTCOME.match(text) and all(_repeats(cmd, clauses) for _, cmd in pieces):
+            continue  # "Step 24: move Z past P2, then W next to it. Expected: Z beyond P2, W adjacent Z."
         if pending is not None:
             pieces = [(piece, apart.paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces]
             pending = None
         show = two_moved([cmd for _, cmd in pieces])
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
+    if not clauses:  # "Wonderful job, everyone! Look how tidy our sandpit is.": every part read past, none a move
+        raise LanguageError(f'"{sentence}" asks for no move; say which object to move and where')
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
+
+
+ADDRESSED = re.compile(r"\s*(?:(?:hey|hi|hello|ok|okay|oi|yo|dear|so|now|right)\s+)?robot\s*[,:!]\s*(?=\w)",
+                       re.IGNORECASE)
+"""The robot addressed before the sentence ("Robot, take ...", "Okay robot, find ..."): read past as a whole, so that
+the sentence's own frames ("take X and move it ...") read what follows."""
+OUTCOME = re.compile(r"\s*(?:expected|desired|target|goal|final)(?:\s+(?:end\s+)?(?:result|outcome|state))?\s*:",
+                     re.IGNORECASE)
+"""A label that says what a step should leave ("Expected: K closer to P3."): after the step, a check of it."""
+
+
+def _repeats(command: Command, clauses: list[Clause]) -> bool:
+    """Whether ``command`` moves the mover of a clause before as that clause did (the same action and anchors)."""
+    return any((c.command.mover, c.command.action, c.command.anchors) == (command.mover, command.action,
+                                                                          command.anchors) for c in clauses)
 
 
 def _set_down(pieces: list[tuple[str, Command]], previous: Command | None,

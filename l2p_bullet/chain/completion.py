@@ -90,12 +90,13 @@ ONCE_MORE = re.compile(r"\b(?:again|more|even|further|farther|still|too|also|bac
 
 def said_again(text: str, command: Command, previous: Command | None, scene: Scene) -> bool:
     """Whether ``text``, read as ``command``, only says the clause before once more: no verb of its own and the same
-    mover, action, anchors, extent and manner ("could the 500 be a lot closer to the rack? much closer"). Such a
-    clause asks for no second move."""
+    mover, action, anchors and extent ("could the 500 be a lot closer to the rack? much closer"), and the same pace
+    where it says one. Such a clause asks for no second move."""
     if previous is None or ONCE_MORE.search(text):
         return False
     words = command_words(text, scene)[0]
     if not words or words[0].lower() in known_verbs():
         return False
-    same = ("mover", "action", "anchors", "extent", "manner", "pace")
+    same = ("mover", "action", "anchors", "extent") + (("pace",) if command.pace is not None else ())
+    # a state said again keeps no manner or pace of its own ("push K toward P3, fast. Expected: K closer to P3.")
     return all(getattr(command, f) == getattr(previous, f) for f in same)

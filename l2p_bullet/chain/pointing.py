@@ -33,8 +33,10 @@ _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|(?:who|everyone|everybody
          r"|watch|there's|there\s+is|here's|here\s+is|find"
          r"|(?:have\s+you\s+)?got"
          r"|take|grab|get|pick\s+up|lift)")
-SHOWN = re.compile(rf"^\s*{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
-"""A clause that only shows objects: "See the cylinder?", "Pick up the duck"."""
+_ASKED = r"(?:(?:now|then|so|ok|okay|first|please|and|can\s+you|could\s+you|would\s+you)\s*,?\s+)*"
+SHOWN = re.compile(rf"^\s*{_ASKED}{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
+"""A clause that only shows objects: "See the cylinder?", "Pick up the duck", "Now find the little red cube",
+"Can you find the toy closest to you"."""
 TOPIC = re.compile(r"^\s*(?P<what>.+?)(?:\s+[-\u2013\u2014]|\s*[:,]|\s*(?:\.\.+|\u2026))\s+(?P<rest>.+)$")
 """An object named first, then the command about it: "the green cube - move it toward the blue one", "the
 teddy, put it beside the can", "Q and R: slide them both toward P"."""

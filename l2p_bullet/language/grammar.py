@@ -135,6 +135,17 @@ RELATIVE_ENDS = frozenset({("whatever", "is"), ("whatever's",), ("whatevers",), 
 """Words that end a description with a place of its own ("the one that is next to B", "whatever's by the cup"): the
 phrase after them is never the command's preposition."""
 
+ARTICLES = frozenset({"the", "this", "that", "these", "those"})
+DESCRIBED = frozenset({"one", "ones", "thing", "things", "object", "objects", "item", "items", "piece", "pieces"})
+"""Nouns a shape word can describe ("the round one"): a one-word phrase before them is an adjective."""
+
+
+def _adjective_here(low: list[str], i: int) -> bool:
+    """Whether the one-word phrase at ``low[i]``, a shape word too ("round"), stands as an adjective: after an article
+    ("the round block") or before a plain noun ("the littlest round one"). "Take the mat round the teapot" and "move
+    A round B" (never "a", which may be a block's name) keep their preposition."""
+    return (i > 0 and low[i - 1] in ARTICLES) or (i + 1 < len(low) and low[i + 1] in DESCRIBED)
+
 
 def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None, *,
            extents: dict[str, frozenset[str]] | None = None, context: Context | None = None) -> Command:
@@ -175,6 +186,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
                 continue
             if tuple(low[max(0, i - 2):i]) in RELATIVE_ENDS or tuple(low[max(0, i - 1):i]) in RELATIVE_ENDS:
                 continue  # "to whatever is next to the pincushion": a description's place, not the command's
+            if n == 1 and low[i] in SHAPE_ADJECTIVES and _adjective_here(low, i):
+                continue  # "the littlest round one": "round" describes, it is not "around"
             try:
                 lead = rest[:i - 1] if implied and i > 1 and low[i - 1] in INTENSIFIERS else rest[:i]
                 before, said, mover = _mover(lead, scene, context)  # "really far from": far, as "far from"

@@ -1,9 +1,11 @@
 """English as learners write it, said as the grammar reads it ("Put candle at book side", "Move the remote more far
 of the glass", "Separate the glass from the book", "the remote stuck to the candle", "until it touch the book", "put
-the A in the side of the B", "the C passes by the D", "move it little away").
+the A in the side of the B", "the C passes by the D", "move it little away", "the one in middle of table", "the
+block on far right").
 
 Each form is a construction of another language said word for word in English (Chinese 在书旁边 "at book side",
-Spanish "más lejos de" "more far of", "pegado a" "stuck to", Portuguese "ao lado de" "in the side of", "passar por"
+Spanish "más lejos de" "more far of", "pegado a" "stuck to", Russian, Polish, Chinese and Turkish without articles
+("at back", "in middle of table"), Portuguese "ao lado de" "in the side of", "passar por"
 "pass by", French "approcher X de Y" "approach X of Y", "faire le tour de" "make the tour of"), or as code calls it
 ("obj_1.next_to(obj_2)"), read only in a sentence refused as written (``chain/clauses.resolve_clauses``), so a
 sentence the grammar reads is read as before.
@@ -55,6 +57,10 @@ _REWRITES = (
     (re.compile(r"\bdistance\s+(?P<what>[^,]+?)\s+from\b", re.IGNORECASE), r"move \g<what> away from"),
     (re.compile(r"\bmake\s+the\s+tour\s+of\s+(?P<anchor>[^,]+?)\s+with\s+(?P<what>[^,]+)", re.IGNORECASE),
      r"move \g<what> around \g<anchor>"),
+    (re.compile(r"\b(in|on|at)\s+(?=(?:far|very)\s+(?:left|right|back|front)\b|(?:middle|centre|center|back|rear)\b"
+                r"|(?:left|right)\b(?!\s+of\b))", re.IGNORECASE), r"\1 the "),
+    (re.compile(r"\b(middle|centre|center|side|edge|end|corner)\s+of\s+(?=(?:table|desk|bench|tray|board|counter|shelf)\b)",
+                re.IGNORECASE), r"\1 of the "),
     (re.compile(rf"(?P<what>[\w-]+)\.(?P<how>{_CALLED})\(\s*(?P<to>[\w-]+)\s*\)", re.IGNORECASE), _called),
     (re.compile(rf"\b(?P<how>{_CALLED})\(\s*(?P<what>[\w-]+)\s*,\s*(?P<to>[\w-]+)\s*\)", re.IGNORECASE), _called),
 )

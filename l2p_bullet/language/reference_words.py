@@ -76,8 +76,9 @@ SAME_WORDS = (("that", "same"), ("this", "same"), ("the", "same"), ("that",), ("
 PRONOUNS_ANCHOR = (("the", "other", "one"), ("the", "other", "block"), ("the", "other"))
 ROBOT_WORDS = (("the", "robot"), ("robot",), ("the", "arm"), ("the", "robot's", "base"), ("the", "robot", "base"),
                ("robot", "base"), ("the", "base"), ("you",), ("yourself",),
-               ("your", "base"), ("me",), ("us",), ("the", "viewer"))
-"""The robot's base as a reference point; "you" is the robot, whom the sentence addresses."""
+               ("your", "base"), ("me",), ("us",), ("the", "viewer"), ("u",), ("ya",), ("you", "robot"),
+               ("the", "robot", "arm"), ("the", "robot's", "arm"))
+"""The robot's base as a reference point; "you" ("u", "ya") is the robot, whom the sentence addresses."""
 NEAREST = frozenset("nearest closest nearer closer near by beside".split())
 """Words of place that pick the object nearest what follows ("the cube closer to you", "the spanner by the hammer")."""
 FARTHEST = frozenset({"farthest", "furthest", "farther", "further"})

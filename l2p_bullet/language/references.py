@@ -59,6 +59,7 @@ from .reference_words import (
     PLACE_MEASURES,
     RELATIVES,
     ROBOT_WORDS,
+    SHAPE_ADJECTIVES,
     SIDE_CONE,
     SIDE_DOUBT,
     SIDE_PHRASES,
@@ -69,7 +70,7 @@ from .reference_words import (
 )
 from .relating import beside_as_said, describes, picks_among
 from .shape_words import SHAPE_NOUNS
-from .synonyms import LOOSE_NOUNS, kind_groups
+from .synonyms import LOOSE_NOUNS, kind_groups, kind_groups_of, scene_key
 from .uses import used_for
 
 
@@ -238,11 +239,13 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         return beside_as_said(words[:at], words[end:], scene, context, try_object)  # "the white one by the lamp"
     rest_words = words[end:]
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
-        heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene)) | LOOSE_NOUNS
+        heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene)) | LOOSE_NOUNS \
+            | set(SHAPE_ADJECTIVES)  # "the smallest round one"
         if any(w.lower() not in heads for w in rest_words):
             return None
         rank = RANKS.get(low[at - 1], 1) if at > 0 else 1  # "the second tallest white one"
         described = words[:at - (rank > 1)] + rest_words
+        _one_of_a_kind_looked_up(described, scene, kind)
         what, pick = SIZE_SUPERLATIVES[kind]
         place = what in PLACE_MEASURES
         if what == "area":
@@ -282,6 +285,19 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
                            distance=True)
 
     return either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
+
+
+def _one_of_a_kind_looked_up(described: list[str], scene: Scene, word: str) -> None:
+    """Refuse a superlative over a kind WordNet gave one object alone ("the tallest chessman" where the pawn is a
+    chessman by its first sense and the king and queen are not, theirs being monarchs): a superlative says there are
+    several of the kind, so the look-up has missed the others, and picking the one it found would be a guess."""
+    if not lexicon.allowed():
+        return
+    looked, own = kind_groups(scene), kind_groups_of(scene_key(scene))
+    for w in (w.lower() for w in described):
+        if w in looked and w not in own and len(looked[w]) == 1:
+            raise LanguageError(f'"{word}" asks which of several, and "{w}" names one object here '
+                                f"({next(iter(looked[w]))}); name the one you mean")
 
 
 BETWEEN_DOUBT = 2.0

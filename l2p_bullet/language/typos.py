@@ -129,6 +129,16 @@ def _one_slip(word: str, known: str) -> bool:
     return False
 
 
+def squeezed(sentence: str, known: frozenset[str]) -> str:
+    """``sentence`` with each word typed with a letter three or more times for emphasis ("slowwwly", "wayyy") read as
+    the known word it squeezes to, once or twice (:data:`RUNS`); other words as typed. Read before anything else: a
+    pace or an extent so typed is otherwise read past, and the move made without it."""
+    def fix(m: re.Match) -> str:
+        low = m.group(0).lower()
+        return next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s in known), m.group(0))
+    return re.sub(r"[A-Za-z]+", fix, sentence) if RUNS.search(sentence.lower()) else sentence
+
+
 def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iterable[str] = (),
          kinds: Iterable[str] = ()) -> str:
     """``sentence`` with each slip replaced by the known word it is one keystroke from (its case as typed for

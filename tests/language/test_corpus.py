@@ -160,7 +160,7 @@ one" (the bottle, 7 cm across and 22 cm tall, for the toolkit); for the eighty-s
 round one on the right" 3 cm further right than the other is a near tie (clear for the toolkit at 3 cm)."""
 
 
-@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 155), ("heldout11.tsv", 155)])
+@pytest.mark.parametrize("name, floor", [("heldout10.tsv", 156), ("heldout11.tsv", 155)])
 def test_the_tenth_and_eleventh_authors_corpora(plugins, name, floor):
     """heldout10.tsv (cubes P Q R S, a tray, a can, a teddy) and heldout11.tsv (cubes E F G, a brick, a lid, a
     bottle, a ball): written cold, read once (78.8 % right / 4 wrong and 67.5 % / 4 on the grammar as it was; 81.9 %
@@ -313,20 +313,6 @@ OPEN = {
         "um line up the paint can the rolla and the the rag":
             "row paint_can,tape_roll,rag",
     },
-    "heldout99.tsv": {
-        "Step 19: push K toward P3, fast. Expected: K closer to P3.":
-            "push:closer K P3 pace=fast ; push:closer K P3",
-        "Step 20: carry W slowly, well past P2. Expected: W lifted, ends far beyond P2.":
-            "carry:past W P2 pace=slow extent=far ; carry:past W P2 extent=far",
-        "Step 21: poke P2 away from Z gently. Expected: P2 displaced away from Z.":
-            "push:away P2 Z pace=gentle ; slide:away P2 Z",
-        "Step 24: move Z past P2, then move W next to it. Expected: Z beyond P2, W adjacent Z.":
-            "slide:past Z P2 ; slide:next-to W Z ; slide:past Z P2 ; slide:next-to W Z",
-    },
-    "heldout100.tsv": {
-        "slowwwly slide the crossword book next to the pills":
-            "slide:next-to crossword_book pill_organizer",
-    },
     "heldout101.tsv": {
         "smartly now, shift the shears clear of the tape measure":
             "slide:away scissors tape_measure",
@@ -342,21 +328,18 @@ OPEN = {
     "heldout104.tsv": {
         "Move the dinosaur on the left toward the bucket.":
             "slide:closer ball bucket",
-        "Wonderful job, everyone! Look how tidy our sandpit is.":
-            "",
     },
     "heldout107.tsv": {
         "get the pad away from the popcorn bowl":
             "slide:away napkin popcorn_bowl",
         "shift the popcorn along til its sat next to the pad":
             "slide:next-to popcorn_bowl napkin",
-    },    "heldout109.tsv": {
+    },
+    "heldout109.tsv": {
         "grab the rocks, lift it over by the mat, then bottle past it":
             "carry:next-to rocks_glass bar_mat ; carry:past bottle rocks_glass",
         "put the bottle away from the lime then line up the jogger shaker and rocks glass":
             "slide:away bottle lime ; row shaker,rocks_glass",
-        "you know the bartender's name? he's cute":
-            "",
         "move the cup next to the lime":
             "slide:next-to rocks_glass lime",
     },
@@ -365,16 +348,12 @@ OPEN = {
             "push:away bobber reel extent=little",
         "The box that is most to the left, put it past the spool.":
             "slide:past hook_box line_spool",
-        "the littlest round one goes next to the green box":
-            "slide:around lure pliers",
     },
     "heldout111.tsv": {
         "Move the blue die adjacent to the king at high speed.":
             "slide:next-to die_blue king",
         "ok chat step one blue die next to timer, step two push that one toward the pawn":
             "push:closer die_blue pawn",
-        "slide the tallest chessman toward the blue die":
-            "slide:closer pawn die_blue",
     },
     "heldout112.tsv": {
         "cable next to tin, go. now the tin, away from it. go":
@@ -391,9 +370,9 @@ check below until the entry is removed."""
 
 
 @pytest.mark.parametrize("name, floor", [("heldout30.tsv", 140), ("heldout31.tsv", 133), ("heldout32.tsv", 160),
-                                         ("heldout33.tsv", 150), ("heldout34.tsv", 155), ("heldout35.tsv", 144),
+                                         ("heldout33.tsv", 150), ("heldout34.tsv", 155), ("heldout35.tsv", 145),
                                          ("heldout36.tsv", 136), ("heldout37.tsv", 140), ("heldout38.tsv", 137),
-                                         ("heldout39.tsv", 130), ("heldout40.tsv", 108), ("heldout41.tsv", 139)])
+                                         ("heldout39.tsv", 131), ("heldout40.tsv", 109), ("heldout41.tsv", 139)])
 def test_the_thirtieth_to_thirty_ninth_authors_corpora(plugins, name, floor):
     """heldout30.tsv (an apple, a beaker and a potion bottle from ManiSkill and Roboschool, cubes and a cylinder named
     as a simulator names them: Apple_01, Cube_02) and heldout31.tsv (six plain objects a user's software named block1
@@ -437,7 +416,7 @@ def test_the_forty_second_to_forty_sixth_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout47.tsv", 149), ("heldout48.tsv", 159), ("heldout49.tsv", 142),
-                                         ("heldout50.tsv", 144), ("heldout51.tsv", 142), ("heldout52.tsv", 130),
+                                         ("heldout50.tsv", 144), ("heldout51.tsv", 142), ("heldout52.tsv", 131),
                                          ("heldout53.tsv", 147)])
 def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
     """Written cold in the twenty-ninth session, on tables whose names are not single words: heldout47.tsv (a
@@ -453,7 +432,7 @@ def test_the_forty_seventh_to_fifty_third_authors_corpora(plugins, name, floor):
 
 
 @pytest.mark.parametrize("name, floor", [("heldout54.tsv", 138), ("heldout55.tsv", 136), ("heldout56.tsv", 142),
-                                         ("heldout57.tsv", 112), ("heldout58.tsv", 143), ("heldout59.tsv", 134),
+                                         ("heldout57.tsv", 113), ("heldout58.tsv", 143), ("heldout59.tsv", 134),
                                          ("heldout60.tsv", 103), ("heldout61.tsv", 138), ("heldout62.tsv", 147),
                                          ("heldout63.tsv", 145), ("heldout64.tsv", 139)])
 def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
@@ -469,9 +448,9 @@ def test_the_fifty_fourth_to_sixty_fourth_authors_corpora(plugins, name, floor):
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 124), ("heldout66.tsv", 141), ("heldout67.tsv", 126),
-                                         ("heldout68.tsv", 131), ("heldout69.tsv", 128), ("heldout70.tsv", 127),
-                                         ("heldout71.tsv", 136), ("heldout72.tsv", 135)])
+@pytest.mark.parametrize("name, floor", [("heldout65.tsv", 125), ("heldout66.tsv", 144), ("heldout67.tsv", 128),
+                                         ("heldout68.tsv", 131), ("heldout69.tsv", 128), ("heldout70.tsv", 129),
+                                         ("heldout71.tsv", 137), ("heldout72.tsv", 135)])
 def test_the_sixty_fifth_to_seventy_second_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-first session, on everyday tables as people type about them: heldout65.tsv (a kitchen,
     things said by their use: "the thing you boil water in"), heldout66.tsv (a bedside table, texting, typos, emoji),
@@ -499,7 +478,7 @@ def test_the_seventy_third_to_seventy_sixth_authors_corpora(plugins, name, floor
     assert_read(plugins, name, floor, lambda sentence, got: sentence in DISAGREED.get(name, ()))
 
 
-@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 120), ("heldout78.tsv", 125), ("heldout79.tsv", 135),
+@pytest.mark.parametrize("name, floor", [("heldout77.tsv", 120), ("heldout78.tsv", 128), ("heldout79.tsv", 137),
                                          ("heldout80.tsv", 140)])
 def test_the_seventy_seventh_to_eightieth_authors_corpora(plugins, name, floor):
     """Written cold in the thirty-third session, by learners, in notes and dictated: heldout77.tsv (six lettered blocks
@@ -586,12 +565,12 @@ def test_pronouns_follow_the_previous_clause(plugins):
     assert got == "slide:next-to A B ; slide:around B C ; slide:past B D"
 
 
-@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 82), ("heldout90.tsv", 88), ("heldout91.tsv", 107),
-                                         ("heldout92.tsv", 113), ("heldout93.tsv", 88), ("heldout94.tsv", 96),
-                                         ("heldout95.tsv", 103), ("heldout96.tsv", 68), ("heldout97.tsv", 114),
-                                         ("heldout98.tsv", 51), ("heldout99.tsv", 73), ("heldout100.tsv", 82),
+@pytest.mark.parametrize("name, floor", [("heldout89.tsv", 85), ("heldout90.tsv", 89), ("heldout91.tsv", 107),
+                                         ("heldout92.tsv", 113), ("heldout93.tsv", 89), ("heldout94.tsv", 96),
+                                         ("heldout95.tsv", 109), ("heldout96.tsv", 68), ("heldout97.tsv", 114),
+                                         ("heldout98.tsv", 51), ("heldout99.tsv", 77), ("heldout100.tsv", 88),
                                          ("heldout101.tsv", 96), ("heldout102.tsv", 56), ("heldout103.tsv", 47),
-                                         ("heldout104.tsv", 99),
+                                         ("heldout104.tsv", 100),
                                          ("heldout105.tsv", 65), ("heldout106.tsv", 107), ("heldout107.tsv", 39),
                                          ("heldout108.tsv", 85)])
 def test_the_eighty_ninth_to_hundred_and_eighth_authors_corpora(plugins, name, floor):
@@ -607,10 +586,11 @@ def test_the_eighty_ninth_to_hundred_and_eighth_authors_corpora(plugins, name, f
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout109.tsv", 83), ("heldout110.tsv", 75), ("heldout111.tsv", 93),
+@pytest.mark.parametrize("name, floor", [("heldout109.tsv", 84), ("heldout110.tsv", 76), ("heldout111.tsv", 93),
                                          ("heldout112.tsv", 79)])
 def test_the_hundred_and_ninth_to_hundred_and_twelfth_authors_corpora(plugins, name, floor):
     """Written cold at the thirty-fifth session's start, from the notation and a scene file alone, and read once on
     that start (bdeaa3b) before any change they were to measure (docs/language.md): a bar counter, a fishing tackle
-    table, board-game pieces and a music studio desk: 330 of 640, 13 wrong. Wrong only as :data:`OPEN` records."""
+    table, board-game pieces and a music studio desk: 330 of 640, 13 wrong; 332 and 10 wrong on that session's last
+    code, where three of its wrong readings were examined and mended. Wrong only as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)

@@ -1,0 +1,79 @@
+"""Sentences addressed to the robot and sentences that state what a step should leave: the robot named before the
+sentence ("Robot, take ... and move it ..."), "u"/"ya" for the robot, a step's expected result after it ("Expected: K
+closer to P3."), a state said again with no manner of its own, a word typed with a letter held down ("slowwwly"),
+articles learners leave out of a place ("in middle of table", "on far right"), "find" before the object that moves,
+"round" as the shape of "the round one" and a superlative over round ones. And what must be refused: a text that
+asks for no move at all, "the tallest chessman" where WordNet makes only the pawn a chessman. Checked on sentences
+of each kind (not the corpora's own lines)."""
+
+from __future__ import annotations
+
+import pytest
+from corpus import read
+
+from l2p_bullet.errors import L2PError
+
+LETTERS = "heldout95.tsv"
+"""A and B red, C blue, D yellow, E green (cubes), F a long white bar."""
+PIECES = "heldout99.tsv"
+"""P1, P2 green cubes, P3 a small orange cube, K purple cylinder, W white domino, Z black puck."""
+KNITTING = "heldout101.tsv"
+"""yarn_ball, needles, scissors, pattern_book, button_jar, tape_measure (the round ones: ball, jar, tape)."""
+SANDPIT = "heldout104.tsv"
+"""dino_green, dino_purple, robot_toy, bucket, spade, ball."""
+GAME = "heldout111.tsv"
+"""king, queen, pawn (cylinders: WordNet's first sense makes the pawn a chessman, the king and queen monarchs),
+die_red, die_blue, timer."""
+BENCH = "heldout108.tsv"
+"""hammer, nail_box, level, pencil (nearest the robot), glue_bottle, sandpaper."""
+
+
+@pytest.mark.parametrize("sentence, expect, table", [
+    # the robot addressed first
+    ("Robot, take the smallest block and move it away from the yellow block.", "slide:away B D", LETTERS),
+    ("okay robot: take block A and block B and move them both away from block E",
+     "slide:away A E ; slide:away B E", LETTERS),
+    ("Now find the little red cube and move it toward the big red cube.", "slide:closer B A", LETTERS),
+    # a step and the state it should leave
+    ("Step 3: push K toward P3, fast. Expected: K closer to P3.", "push:closer K P3 pace=fast", PIECES),
+    ("Step 4: move Z past P2, then move W next to it. Expected result: Z beyond P2, W adjacent Z.",
+     "slide:past Z P2 ; slide:next-to W Z", PIECES),
+    ("Expected result: P3 adjacent to K.", "slide:next-to P3 K", PIECES),
+    # a letter held down, articles left out of a place
+    ("slowwwly slide W next to P1", "slide:next-to W P1 pace=slow", PIECES),
+    ("slide W wayyy away from P1", "slide:away W P1 extent=far", PIECES),
+    ("put the one in middle of table beside of the A", "slide:next-to C A", LETTERS),
+    ("the block on far left, move it next to A", "slide:next-to F A", LETTERS),
+    # "round" describing, and a superlative among the round ones
+    ("move the littlest round one next to the pattern book", "slide:next-to tape_measure pattern_book", KNITTING),
+    ("move the tallest round one next to the pattern book", "slide:next-to button_jar pattern_book", KNITTING),
+    ("take the yarn ball round the pattern book", "slide:around yarn_ball pattern_book", KNITTING),
+])
+def test_read_as_meant(plugins, sentence, expect, table):
+    assert read(sentence, plugins, table) == expect
+
+
+def test_the_robot_by_name_stays_an_object(plugins):
+    """Where an object is called "robot" (the toy robot), "robot, ..." names it, not the robot addressed."""
+    assert read("robot, move next to the bucket", plugins, SANDPIT) == "slide:next-to robot_toy bucket"
+
+
+@pytest.mark.parametrize("said", ["u", "ya", "the robot"])
+def test_u_is_the_robot(plugins, said):
+    assert read(f"move the thing nearest {said} next to the level", plugins, BENCH) == "slide:next-to pencil level"
+
+
+def test_a_state_said_again_after_a_new_move_is_a_move(plugins):
+    """A result that names a move no step made is a move of its own, not a check."""
+    assert read("Step 1: move P3 next to K. Expected: W past Z.", plugins, PIECES) \
+        == "slide:next-to P3 K ; slide:past W Z"
+
+
+@pytest.mark.parametrize("sentence, why, table", [
+    ("Wonderful job, everyone! Look how tidy our sandpit is.", "asks for no move", SANDPIT),
+    ("move the tallest chessman next to the timer", None, GAME),
+])
+def test_refused(plugins, sentence, why, table):
+    with pytest.raises(L2PError) as e:
+        read(sentence, plugins, table)
+    assert why is None or why in str(e.value)
