@@ -171,7 +171,8 @@ def discover(kind: str = "action") -> list[PluginInfo]:
     """Every installed plugin of ``kind`` (:data:`KINDS`), usable or not, sorted by name. Imports no plugin
     code. A plugin whose manifest cannot be read counts as an action (its error is shown with them). Read once
     while one sentence is read (plugins/once.py)."""
-    found = once.kept("action plugins", _found, lambda kept: [replace(p, manifest=_copied(p.manifest)) for p in kept])
+    found = once.kept("action plugins", _found,  # only ``kind``'s copied: a sentence asks for the composites often
+                      lambda kept: [replace(p, manifest=_copied(p.manifest)) for p in kept if p.kind == kind])
     return sorted([p for p in found if p.kind == kind], key=lambda p: (p.name, p.package))
 
 
