@@ -35,12 +35,12 @@ from ..pipeline import resolve
 from ..plugins import once, registry
 from . import apart, corrections, pointing, rephrased
 from .clause import MAX_CLAUSES, Clause, named
-from .completion import complete, said_again, to_the_anchor
+from .completion import checks_the_steps, complete, said_again, to_the_anchor
 from .composite import composite_clauses, is_composite
 from .context import context_after, context_of, two_moved
 from .groups import group_first, ordinals, refuse_for_the_topic
 from .last_tries import read_past
-from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses
+from .splitting import _item_by_item, _pieces, _rows_after_commas, split_clauses, unaddressed
 
 
 def is_chain(sentence: str, plugins: list | None = None) -> bool:
@@ -69,9 +69,7 @@ def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]
     if isinstance(sentence, str):
         # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412; "🔑 ➡️ 👛"
         sentence = rephrased.passed_by(numbers_said(codes_said(emoji_said(sentence, scene), scene), scene))
-        addressed = ADDRESSED.match(sentence)
-        if addressed is not None and "robot" not in naming_words(scene):  # "Robot, take the smallest block and ..."
-            sentence = sentence[addressed.end():]
+        sentence = unaddressed(sentence, "robot" in naming_words(scene))  # "Robot, take the smallest block and ..."
         if typos.RUNS.search(sentence.lower()):  # "slowwwly": the pace, not a word read past
             sentence = typos.squeezed(sentence, typos.vocabulary(registry.phrase_table(plugins), known_verbs(),
                                                                  COLORS) | naming_words(scene))
@@ -199,7 +197,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         if len(pieces) == 1 and pending is None and any(said_again(text, pieces[0][1], c.command, scene)
                                                         for c in reversed(clauses)):
             continue  # "... a lot closer to the rack? much closer": a clause before, said once more
-        if clauses and OUTCOME.match(text) and all(_repeats(cmd, clauses) for _, cmd in pieces):
+        if clauses and checks_the_steps(text, [cmd for _, cmd in pieces], [c.command for c in clauses]):
             continue  # "Step 24: move Z past P2, then W next to it. Expected: Z beyond P2, W adjacent Z."
         if pending is not None:
             pieces = [(piece, apart.paced(Clause(0, piece, cmd), pending).command) for piece, cmd in pieces]
@@ -211,21 +209,6 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses
-
-
-ADDRESSED = re.compile(r"\s*(?:(?:hey|hi|hello|ok|okay|oi|yo|dear|so|now|right)\s+)?robot\s*[,:!]\s*(?=\w)",
-                       re.IGNORECASE)
-"""The robot addressed before the sentence ("Robot, take ...", "Okay robot, find ..."): read past as a whole, so that
-the sentence's own frames ("take X and move it ...") read what follows."""
-OUTCOME = re.compile(r"\s*(?:expected|desired|target|goal|final)(?:\s+(?:end\s+)?(?:result|outcome|state))?\s*:",
-                     re.IGNORECASE)
-"""A label that says what a step should leave ("Expected: K closer to P3."): after the step, a check of it."""
-
-
-def _repeats(command: Command, clauses: list[Clause]) -> bool:
-    """Whether ``command`` moves the mover of a clause before as that clause did (the same action and anchors)."""
-    return any((c.command.mover, c.command.action, c.command.anchors) == (command.mover, command.action,
-                                                                          command.anchors) for c in clauses)
 
 
 def _set_down(pieces: list[tuple[str, Command]], previous: Command | None,

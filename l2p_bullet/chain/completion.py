@@ -100,3 +100,16 @@ def said_again(text: str, command: Command, previous: Command | None, scene: Sce
     same = ("mover", "action", "anchors", "extent") + (("pace",) if command.pace is not None else ())
     # a state said again keeps no manner or pace of its own ("push K toward P3, fast. Expected: K closer to P3.")
     return all(getattr(command, f) == getattr(previous, f) for f in same)
+
+
+OUTCOME = re.compile(r"\s*(?:expected|desired|target|goal|final)(?:\s+(?:end\s+)?(?:result|outcome|state))?\s*:",
+                     re.IGNORECASE)
+"""A label that says what a step should leave ("Expected: K closer to P3."): after the step, a check of it."""
+
+
+def checks_the_steps(text: str, commands: list[Command], before: list[Command]) -> bool:
+    """Whether ``text``, read as ``commands``, is the result the steps before it should leave, labelled so
+    (:data:`OUTCOME`): each of its moves moves a mover of ``before`` as that step did (the same action and anchors).
+    Such a text asks for no move; a result no step made is a move of its own."""
+    return bool(OUTCOME.match(text)) and all(
+        any((b.mover, b.action, b.anchors) == (c.mover, c.action, c.anchors) for b in before) for c in commands)

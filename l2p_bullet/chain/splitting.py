@@ -17,6 +17,19 @@ from ..language.words import STEP_LABELS
 from . import pointing
 from .composite import is_composite
 
+ADDRESSED = re.compile(r"\s*(?:(?:hey|hi|hello|ok|okay|oi|yo|dear|so|now|right)\s+)?robot\s*[,:!]\s*(?=\w)",
+                       re.IGNORECASE)
+"""The robot addressed before the sentence ("Robot, take ...", "Okay robot, find ...")."""
+
+
+def unaddressed(sentence: str, robot_named: bool) -> str:
+    """``sentence`` without the robot addressed before it (:data:`ADDRESSED`), read past as a whole so that the
+    sentence's own frames ("take X and move it ...") read what follows; as said where an object is called "robot"
+    (``robot_named``: "robot, move next to the bucket" moves the toy robot)."""
+    addressed = None if robot_named else ADDRESSED.match(sentence)
+    return sentence if addressed is None else sentence[addressed.end():]
+
+
 _JOINS = re.compile(r"\s*(?:;|(?<=[a-z0-9])[.!?]\s+(?=\S)|,?\s*\band\s+then\b|,?\s*\bthen\b"
                     r"|,?\s*(?:\band\s+)?\bafter\s+that\b|,?\s*(?:\band\s+)?\b(?:afterwards|thereafter)\b"
                     r"|,\s*after\s+(?=(?![a-z]+ing\b)[a-z]+\s+(?:the|it|them|a|an)\b)"
