@@ -121,7 +121,8 @@ def feasible_as(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA,
                 check: Callable[..., None] = check_feasible) -> Command:
     """``cmd`` as the arm can do it in ``scene``: itself when ``check`` (:func:`check_feasible`) passes; where the
     other objects leave its manner no way round the anchor or no move at all (:data:`OVER_CHECKS`), it
-    :func:`carried_over` them when that passes; else the first refusal."""
+    :func:`carried_over` them when that passes; else the first refusal, with the carry's own where it is refused
+    too (the rim alone leaves too little: moving the other objects would not help)."""
     try:
         check(cmd, scene, plugins, arm)
         return cmd
@@ -132,6 +133,9 @@ def feasible_as(cmd: Command, scene: Scene, plugins: list, arm: ArmSpec = PANDA,
             raise
         try:
             check(over, scene, plugins, arm)
+        except InfeasibleError as carried:  # the slide's reason first, then why lifting it does not help
+            raise InfeasibleError(e.check, f"{e}; carried over the other objects instead: {carried}", e.details) \
+                from None
         except L2PError:
             raise e from None
         return over

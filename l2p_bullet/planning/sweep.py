@@ -66,6 +66,9 @@ def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROU
     legal pose along enough bearings, or no connected way of 0.8 turn from the start (or, from afar, from where
     the mover can first come near). ``turns`` and ``near``: the rule's (the around rule's by default)."""
     m, a, ws = scene.get(mover), scene.get(anchor), scene.workspace
+    # what is in the way, as the refusal says it: a carry's check reads the anchor and the rim alone
+    walls = ("the other objects and the workspace's rim leave" if len(scene.objects) > 2
+             else "the workspace's rim leaves")
     world = World2D(scene, mover)  # the block's own outline: smaller than a hand-grown one, so it favours the arm
     bearing_deg, radius_sides, yaw_deg = SWEEP_GRID
     inner, outer = nearest_centres(m, a), near * m.size
@@ -101,8 +104,8 @@ def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROU
     if arc < turns * 360 - 2 * bearing_deg:
         raise InfeasibleError(
             "blocked-around",
-            f'no way round "{anchor}" for "{mover}": within {near:g} blocks of it, the other objects and the '
-            f"workspace's rim leave the mover room to pass only {arc:.0f} deg of the way round (at any yaw); "
+            f'no way round "{anchor}" for "{mover}": within {near:g} blocks of it, {walls} the mover room to '
+            f"pass only {arc:.0f} deg of the way round (at any yaw); "
             f"around needs {turns * 360:.0f} deg", {"arc_deg": round(arc, 1), "needed_deg": turns * 360})
     # the sweep must also be one connected way from the start: cells (bearing x radius) holding a legal pose
     # within half a step of each (any yaw), joined to their 8 neighbours (a continuous path's nearest cell
@@ -117,9 +120,9 @@ def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROU
         if way < turns * 360 - 2 * bearing_deg:
             raise InfeasibleError(
                 "blocked-around",
-                f'no way round "{anchor}" for "{mover}": within {near:g} blocks of it, the other objects and '
-                f"the workspace's rim leave the mover a way of only {way:.0f} deg round from where it starts (at any "
-                f"yaw); around needs {turns * 360:.0f} deg",
+                f'no way round "{anchor}" for "{mover}": within {near:g} blocks of it, {walls} the mover a '
+                f"way of only {way:.0f} deg round from where it starts (at any yaw); around needs "
+                f"{turns * 360:.0f} deg",
                 {"arc_deg": round(way, 1), "needed_deg": turns * 360, "connected": True})
     elif d0 > outer + 1e-9:
         # from afar the mover first comes near (approach.py, where that slide ends is the planner's); the rule
@@ -136,8 +139,8 @@ def blocked_around(scene: Scene, mover: str, anchor: str, *, turns: float = AROU
             raise InfeasibleError(
                 "blocked-around",
                 f'no way round "{anchor}" for "{mover}" from afar: it starts {d0 / m.size:.2f} blocks away, and from '
-                f"wherever it can come within {near:g} blocks the other objects and the workspace's rim leave "
-                f"it a way of only {way:.0f} deg round (at any yaw); around needs {turns * 360:.0f} deg",
+                f"wherever it can come within {near:g} blocks {walls} it a way of only {way:.0f} deg round "
+                f"(at any yaw); around needs {turns * 360:.0f} deg",
                 {"arc_deg": round(way, 1), "needed_deg": turns * 360, "connected": True, "from_afar": True})
 
 

@@ -140,3 +140,18 @@ def test_the_workspace_boxes_a_carried_block_in_as_it_does_a_slid_one(plugins):
     with pytest.raises(InfeasibleError) as e:
         feasible_as(resolve("move A next to F", scene, plugins), scene, plugins, PANDA)
     assert e.value.check == "boxed-in"
+
+
+def test_a_carry_refused_too_says_the_rim_is_what_is_in_the_way(plugins):
+    """chain/25572/5b: C stands where the workspace's rim alone leaves "around" 188 deg from where B starts. Lifting
+    B over the other objects does not help, and the refusal says so: the slide's reason, then the carry's, which
+    names the rim alone (moving the other objects first would not help either)."""
+    scene = fit_scene(chain_scenes(1, 25572, 5)[0].scene.validate(), PANDA)
+    with pytest.raises(InfeasibleError) as e:
+        feasible_as(resolve("move B around C", scene, plugins), scene, plugins, PANDA)
+    said = str(e.value)
+    assert e.value.check == "blocked-around"
+    assert said.startswith('no way round "C" for "B": within 4 blocks of it, the other objects and the workspace')
+    assert "; carried over the other objects instead: " in said
+    assert said.split("instead: ", 1)[1].startswith('no way round "C" for "B": within 4 blocks of it, the '
+                                                    "workspace's rim leaves the mover")
