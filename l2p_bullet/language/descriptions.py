@@ -345,7 +345,16 @@ def unknown_object(text: str, words: list[str], low: tuple[str, ...], scene: Sce
                                  + did_you_mean(low[0], COLORS))
     choices = scene.names + [f"the {o.color} block" for o in scene.objects]
     raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {describe(scene)}).'
-                             + did_you_mean(text, choices))
+                             + (did_you_mean(text, choices) or _own_word_hint(low)))
+
+
+def _own_word_hint(low: tuple[str, ...]) -> str:
+    """How to call an object by a word of one's own: the scene file's ``kind`` (each of its words calls the object),
+    with the description's last word as the example ("the tin": "kind": "tin")."""
+    word = next((w for w in reversed(low) if len(w) >= 3 and w.isalpha()), None)
+    said = f'call an object "{word}", give it "kind": "{word}"' if word else 'call an object by a word of your ' \
+        'own, give it a "kind" (such as "kind": "toy cow")'
+    return f" To {said} in the scene file."
 
 
 def one_of(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) -> str:

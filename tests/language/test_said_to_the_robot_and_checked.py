@@ -3,14 +3,19 @@ sentence ("Robot, take ... and move it ..."), "u"/"ya" for the robot, a step's e
 closer to P3."), a state said again with no manner of its own, a word typed with a letter held down ("slowwwly"),
 articles learners leave out of a place ("in middle of table", "on far right"), "find" before the object that moves,
 "round" as the shape of "the round one" and a superlative over round ones. And what must be refused: a text that
-asks for no move at all, "the tallest chessman" where WordNet makes only the pawn a chessman. Checked on sentences
-of each kind (not the corpora's own lines)."""
+asks for no move at all, "the tallest chessman" where WordNet makes only the pawn a chessman, and a word no object
+has, with how to give it one (the scene file's "kind"). Checked on sentences of each kind (not the corpora's own
+lines)."""
 
 from __future__ import annotations
 
-import pytest
-from corpus import read
+import json
 
+import pytest
+from corpus import HERE, read
+
+from l2p_bullet.chain.clauses import resolve_clauses
+from l2p_bullet.core.scene import load_scene
 from l2p_bullet.errors import L2PError
 
 LETTERS = "heldout95.tsv"
@@ -77,3 +82,16 @@ def test_refused(plugins, sentence, why, table):
     with pytest.raises(L2PError) as e:
         read(sentence, plugins, table)
     assert why is None or why in str(e.value)
+
+
+def test_a_word_of_ones_own_is_refused_with_how_to_teach_it_and_then_read(plugins, tmp_path):
+    """"the tin" names nothing on the bar counter: the refusal says how to give the shaker that word (the scene
+    file's "kind"), and with "kind": "shaker tin" the same sentence moves the shaker."""
+    with pytest.raises(L2PError) as e:
+        read("move the tin next to the lime", plugins, "heldout109.tsv")
+    assert str(e.value).endswith('To call an object "tin", give it "kind": "tin" in the scene file.')
+    table = json.loads((HERE / "heldout109_scene.json").read_text())
+    next(o for o in table["objects"] if o["name"] == "shaker")["kind"] = "shaker tin"
+    (tmp_path / "bar.json").write_text(json.dumps(table))
+    said = resolve_clauses("move the tin next to the lime", load_scene(tmp_path / "bar.json"), plugins)
+    assert [(c.command.mover, c.command.action, c.command.anchor) for c in said] == [("shaker", "next-to", "lime")]
