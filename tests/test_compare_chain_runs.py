@@ -2,31 +2,19 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import sqlite3
-import sys
 from pathlib import Path
 
 import pytest
-
-SCRIPT = Path(__file__).resolve().parents[1] / "benchmarks" / "compare_chain_runs.py"
+from benchmark_scripts import run_folder, script
 
 
 def _module():
-    spec = importlib.util.spec_from_file_location("compare_chain_runs", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclass looks its module up there
-    spec.loader.exec_module(module)
-    return module
+    return script("compare_chain_runs")
 
 
 def _run(folder: Path, rows: list[tuple]) -> Path:
-    folder.mkdir()
-    with sqlite3.connect(folder / "results.sqlite") as con:
-        con.execute("create table runs (seed integer, completed integer, error_type text, error text, timings text)")
-        con.executemany("insert into runs values (?, ?, ?, ?, ?)", rows)
-    return folder
+    return run_folder(folder, "seed integer, completed integer, error_type text, error text, timings text", rows)
 
 
 def test_seeds_both_ran_are_compared_and_a_worse_chain_says_why(tmp_path, capsys):

@@ -4,30 +4,18 @@ not."""
 
 from __future__ import annotations
 
-import importlib.util
-import sqlite3
-import sys
 from pathlib import Path
 
 import pytest
-
-SCRIPT = Path(__file__).resolve().parents[1] / "benchmarks" / "forced_refusals.py"
+from benchmark_scripts import run_folder, script
 
 
 def _module():
-    spec = importlib.util.spec_from_file_location("forced_refusals", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return script("forced_refusals")
 
 
 def _run(folder: Path, rows: list[tuple]) -> Path:
-    folder.mkdir()
-    with sqlite3.connect(folder / "results.sqlite") as con:
-        con.execute("create table runs (scene_id text, sentence text, error_type text, error text)")
-        con.executemany("insert into runs values (?, ?, ?, ?)", rows)
-    return folder
+    return run_folder(folder, "scene_id text, sentence text, error_type text, error text", rows)
 
 
 def test_a_refusal_the_start_forces_is_told_from_one_an_earlier_clause_could_change(tmp_path, capsys):
