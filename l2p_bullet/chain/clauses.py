@@ -66,27 +66,29 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
 
 def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
+    def known() -> frozenset[str]:  # every word the toolkit reads in this scene (made only where a reading needs it)
+        return typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
+
     if isinstance(sentence, str):
         # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412; "🔑 ➡️ 👛"
         sentence = rephrased.passed_by(numbers_said(codes_said(emoji_said(sentence, scene), scene), scene))
         sentence = unaddressed(sentence, "robot" in naming_words(scene))  # "Robot, take the smallest block and ..."
         if typos.RUNS.search(sentence.lower()):  # "slowwwly": the pace, not a word read past
-            sentence = typos.squeezed(sentence, typos.vocabulary(registry.phrase_table(plugins), known_verbs(),
-                                                                 COLORS) | naming_words(scene))
+            sentence = typos.squeezed(sentence, known())
     try:
         return read_clauses(sentence, scene, plugins)
     except L2PError:
         if not isinstance(sentence, str) or len(sentence) > MAX_SENTENCE * MAX_CLAUSES:
             raise
-        known = typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
-        mended = typos.mend(in_plain_english(ASIDE.sub("", sentence), scene), known, scene.names, verb_heads(),
+        words = known()
+        mended = typos.mend(in_plain_english(ASIDE.sub("", sentence), scene), words, scene.names, verb_heads(),
                             kind_groups(scene))
         if mended != sentence:
             try:
                 return read_clauses(mended, scene, plugins)
             except L2PError:
                 pass
-        read = read_past(sentence, mended, scene, plugins, known, read_clauses)
+        read = read_past(sentence, mended, scene, plugins, words, read_clauses)
         if read is None:
             raise
         return read
