@@ -30,6 +30,7 @@ from . import lenient
 from .anchors import measured_context, mover_in_relation, noun_carried, twin_of
 from .extents import take_extent, take_extent_first, take_extent_tail
 from .goals import goal_to_verb, passive_to_verb, said_now, state_to_verb
+from .group_places import GENERIC
 from .naming import naming_words
 from .phrase_readings import TIGHT, phrase_tokens, readings, without_to
 from .pronouns import Context
@@ -136,15 +137,14 @@ RELATIVE_ENDS = frozenset({("whatever", "is"), ("whatever's",), ("whatevers",), 
 phrase after them is never the command's preposition."""
 
 ARTICLES = frozenset({"the", "this", "that", "these", "those"})
-DESCRIBED = frozenset({"one", "ones", "thing", "things", "object", "objects", "item", "items", "piece", "pieces"})
-"""Nouns a shape word can describe ("the round one"): a one-word phrase before them is an adjective."""
 
 
 def _adjective_here(low: list[str], i: int) -> bool:
     """Whether the one-word phrase at ``low[i]``, a shape word too ("round"), stands as an adjective: after an article
-    ("the round block") or before a plain noun ("the littlest round one"). "Take the mat round the teapot" and "move
-    A round B" (never "a", which may be a block's name) keep their preposition."""
-    return (i > 0 and low[i - 1] in ARTICLES) or (i + 1 < len(low) and low[i + 1] in DESCRIBED)
+    ("the round block") or before a noun that names any object (:data:`~.group_places.GENERIC`: "the littlest round
+    one"). "Take the mat round the teapot" and "move A round B" (never "a", which may be a block's name) keep their
+    preposition."""
+    return (i > 0 and low[i - 1] in ARTICLES) or (i + 1 < len(low) and low[i + 1] in GENERIC)
 
 
 def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[str, int] | None = None, *,

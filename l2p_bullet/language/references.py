@@ -293,7 +293,8 @@ def _one_of_a_kind_looked_up(described: list[str], scene: Scene, word: str) -> N
     several of the kind, so the look-up has missed the others, and picking the one it found would be a guess."""
     if not lexicon.allowed():
         return
-    looked, own = kind_groups(scene), kind_groups_of(scene_key(scene))
+    key = scene_key(scene)
+    looked, own = kind_groups_of(key, True), kind_groups_of(key)  # the kept answers, only read here
     for w in (w.lower() for w in described):
         if w in looked and w not in own and len(looked[w]) == 1:
             raise LanguageError(f'"{word}" asks which of several, and "{w}" names one object here '

@@ -134,9 +134,14 @@ def squeezed(sentence: str, known: frozenset[str]) -> str:
     the known word it squeezes to, once or twice (:data:`RUNS`); other words as typed. Read before anything else: a
     pace or an extent so typed is otherwise read past, and the move made without it."""
     def fix(m: re.Match) -> str:
-        low = m.group(0).lower()
-        return next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s in known), m.group(0))
+        return _squeezed(m.group(0).lower(), known) or m.group(0)
     return re.sub(r"[A-Za-z]+", fix, sentence) if RUNS.search(sentence.lower()) else sentence
+
+
+def _squeezed(low: str, known: frozenset[str]) -> str | None:
+    """The known word ``low`` (lower case) is with its held-down letters (:data:`RUNS`) typed once, else twice; None
+    where it has none or neither is known."""
+    return next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
 
 
 def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iterable[str] = (),
@@ -175,7 +180,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return w
         if _dropped_g(low, verbs):  # "movin", "pushin", "puttin": a verb's -ing with its g left off
             return w + "g"
-        squeezed = next((s for s in (RUNS.sub(r"\1", low), RUNS.sub(r"\1\1", low)) if s != low and s in known), None)
+        squeezed = _squeezed(low, known)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named) or unvowelled(low, known | named)
