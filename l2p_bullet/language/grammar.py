@@ -168,8 +168,8 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
         try:  # "duck closer to ball": a note of the end wanted, the verb left out
             cmd = _parse(f"move {' '.join(words)}", scene, phrases, anchors, extents=extents, context=context)
             return replace(cmd, pace=cmd.pace or pace, sentence=sentence.strip())
-        except (LanguageError, UnknownObjectError):
-            raise no_verb from None
+        except (LanguageError, UnknownObjectError) as verbless:
+            raise (verbless if _mover_said(words, scene, phrases, context) else no_verb) from None
     if manner == manners.DEFAULT and verb.lower() in NEUTRAL_VERBS and _without(rest, IN_THE_AIR) != rest:
         manner = "carry"  # "Move the small red cube through the air away from the bar": a carry
     rest = _on_the_table(rest, manner, sentence)
@@ -252,6 +252,22 @@ def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
     if set(low[1:]) & verb_heads():
         return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
     return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in readings(phrases) for i in range(1, len(low)))
+
+
+def _mover_said(words: list[str], scene: Scene, phrases: dict[str, str], context: Context | None) -> bool:
+    """Whether the words of a verbless command before its first phrase are its mover: they name an object, with or
+    without an extent ("bottle past the wedge", "the bottle a bit past the wedge"), or are one word that is no slip of
+    a verb ("tin next to the wedge"). Then what its reading refused (the unknown "wedge", "tin") is the reason to
+    give, not that "bottle" or "tin" is no verb."""
+    low = [w.lower() for w in words]
+    starts = [i for i in range(1, len(low)) for t, _, _, _ in readings(phrases) if tuple(low[i:i + len(t)]) == t]
+    if not starts:
+        return False
+    before = words[:min(starts)]
+    if len(before) == 1:
+        return not did_you_mean(low[0], known_verbs())
+    return any(try_object(" ".join(drop_frames(said)), scene, context) is not None
+               for said in (before, take_extent(before)[0]) if said)
 
 
 def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:

@@ -95,3 +95,19 @@ def test_a_word_of_ones_own_is_refused_with_how_to_teach_it_and_then_read(plugin
     (tmp_path / "bar.json").write_text(json.dumps(table))
     said = resolve_clauses("move the tin next to the lime", load_scene(tmp_path / "bar.json"), plugins)
     assert [(c.command.mover, c.command.action, c.command.anchor) for c in said] == [("shaker", "next-to", "lime")]
+
+
+@pytest.mark.parametrize(("sentence", "why"), [
+    ("bottle past the wedge", 'no block called "the wedge"'),  # the bottle is on the table: the wedge is not
+    ("the bottle a bit past the wedge", 'no block called "the wedge"'),
+    ("tin next to the lime", 'no block called "tin"'),  # one word before "next to" is the mover, not a verb
+    ("scootch the bottle next to the lime", '"scootch" is not a verb I know'),  # a verb, then the mover
+    ("mvoe next to the lime", '"mvoe" is not a verb I know'),  # a slip of "move"
+])
+def test_a_verbless_command_is_refused_for_the_word_it_lacks(plugins, sentence, why):
+    """A command with its verb left out ("bottle past the wedge") is refused for what its reading could not find,
+    with how to teach that word, not because its first word is no verb."""
+    with pytest.raises(L2PError) as e:
+        read(sentence, plugins, "heldout109.tsv")
+    assert why in str(e.value)
+    assert ("scene file" in str(e.value)) == why.startswith("no block")
