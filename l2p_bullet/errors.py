@@ -27,9 +27,11 @@ class SceneError(L2PError):
 class UnknownObjectError(SceneError):
     """A sentence or path names an object that is not in the scene."""
 
-    def __init__(self, message: str, name: str = "", known: Iterable[str] = ()):
+    def __init__(self, message: str, name: str = "", known: Iterable[str] = (), word: str = ""):
         super().__init__(message)
-        self.name, self.known = name, tuple(known)
+        # ``word``: the word of the description a scene file's "kind" could give an object ("tin" of "the tin"), ""
+        # where the refusal suggests a name instead; ``perform`` asks which object it is (commands/asking.py)
+        self.name, self.known, self.word = name, tuple(known), word
 
 
 class ReachError(L2PError):

@@ -161,6 +161,8 @@ def error_json(sentence: str, e: Exception) -> dict:
     check = getattr(e, "check", None)
     if check is not None:
         out["refused"] = {"check": check, "details": getattr(e, "details", {})}
+    if getattr(e, "word", ""):  # a word no object has, which a scene file's "kind" could give one
+        out["unknown_word"] = e.word
     return out
 
 

@@ -36,9 +36,12 @@ from .common import (
 @arm_option
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
+@click.option("--ask/--no-ask", default=None,
+              help="Where the sentence calls an object by a word the scene does not know, ask which object it is, "
+                   "and offer to keep the word in the scene file (default: ask at a terminal, never with --json).")
 def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
                 no_render: bool, resolution: str, fps: float, camera: str, renderer: str, force: bool, arm: str,
-                quiet: bool, as_json: bool) -> None:
+                quiet: bool, as_json: bool, ask: bool | None) -> None:
     """Make the arm perform SENTENCE, e.g. "move A around B", and record the run.
 
     \b
@@ -52,15 +55,27 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     \b
     Chains: clauses joined by ", then", "and then", "then", "after that" or ";" run one
     after another in one episode, e.g. "move A next to B, then slide C past A".
+
+    \b
+    Your own words: "move the tin next to the lime" where no object is a "tin" asks
+    which object it is (at a terminal, or with --ask) and offers to keep the word in
+    the scene file as that object's "kind".
     """
     from ..chain import perform_chain
     from ..options import RunOptions
+    from ..plugins import registry
+    from .asking import ask_words, asking_by_default, keep_words
 
     with reporting(sentence, as_json):
         settings = None if no_render else render_settings(resolution, fps, camera, renderer)
         options = RunOptions(planner=planner, seed=seed, arm=arm, render=not no_render,
                              render_settings=settings, out_dir=out, force=force, on_stage=stage_printer(quiet))
-        r = perform_chain(sentence, load_scene_or_default(scene_path), options)
+        scene = load_scene_or_default(scene_path)
+        if asking_by_default(as_json) if ask is None else ask:
+            scene, taught = ask_words(sentence, scene, registry.discover())
+            if taught and scene_path is not None:
+                keep_words(scene_path, taught)
+        r = perform_chain(sentence, scene, options)
     say(r, as_json, indent=1)
 
 

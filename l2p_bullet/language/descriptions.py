@@ -344,14 +344,21 @@ def unknown_object(text: str, words: list[str], low: tuple[str, ...], scene: Sce
         raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {describe(scene)}).'
                                  + did_you_mean(low[0], COLORS))
     choices = scene.names + [f"the {o.color} block" for o in scene.objects]
+    suggested = did_you_mean(text, choices)
+    word = "" if suggested else own_word(low)
     raise UnknownObjectError(f'no block called "{text}" in the scene (blocks: {describe(scene)}).'
-                             + (did_you_mean(text, choices) or _own_word_hint(low)))
+                             + (suggested or _own_word_hint(word)), text, scene.names, word)
 
 
-def _own_word_hint(low: tuple[str, ...]) -> str:
+def own_word(low: tuple[str, ...]) -> str:
+    """The word of a description that a scene file's ``kind`` would give an object: its last word of letters, three
+    or more ("the tin": "tin"); "" where it has none."""
+    return next((w for w in reversed(low) if len(w) >= 3 and w.isalpha()), "")
+
+
+def _own_word_hint(word: str) -> str:
     """How to call an object by a word of one's own: the scene file's ``kind`` (each of its words calls the object),
-    with the description's last word as the example ("the tin": "kind": "tin")."""
-    word = next((w for w in reversed(low) if len(w) >= 3 and w.isalpha()), None)
+    with ``word`` as the example ("the tin": "kind": "tin")."""
     said = f'call an object "{word}", give it "kind": "{word}"' if word else 'call an object by a word of your ' \
         'own, give it a "kind" (such as "kind": "toy cow")'
     return f" To {said} in the scene file."

@@ -1,0 +1,115 @@
+"""Asking, at the terminal, which object a word means: what ``perform`` does where a sentence calls an object by a
+word the scene does not know ("move the tin next to the lime" on a bar whose shaker is called "shaker").
+
+People call things by their own words (a bartender's "tin" is the shaker), and no table of words can hold everyone's.
+The person who typed the word can say at once which object it is: ``perform`` asks, reads the sentence again with
+that word given to the object (its ``kind``, each of whose words calls it: docs/perform.md), and, once the sentence
+reads, offers to keep the words in the scene file, so that the next sentence reads them without asking. Nothing is
+written without a yes; the run itself records the scene as read, words included (plan.json's ``scene``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from collections.abc import Callable
+from dataclasses import replace
+from pathlib import Path
+
+import click
+
+from ..core.scene import KIND, MAX_NAME, Scene, load_scene
+from ..errors import L2PError, SceneError, UnknownObjectError
+from .common import mesh_dirs
+
+MAX_ASKED = 5
+"""Most words asked for one sentence: a sentence with more words no object has is refused as it stands."""
+
+Prompt = Callable[..., str]
+Confirm = Callable[..., bool]
+
+
+def asking_by_default(as_json: bool) -> bool:
+    """Ask only a person: stdin and stderr at a terminal, and not ``--json`` (a script reads the refusal there)."""
+    return not as_json and all(s is not None and s.isatty() for s in (sys.stdin, sys.stderr))
+
+
+def with_word(scene: Scene, name: str, word: str) -> Scene:
+    """``scene`` with ``word`` added to the ``kind`` of the object ``name`` (a kind it had is kept: "toy cow tin")."""
+    return Scene([replace(o, kind=_kind_with(o.kind, word)) if o.name == name else o for o in scene.objects],
+                 scene.table, scene.workspace)
+
+
+def _kind_with(kind: str | None, word: str) -> str:
+    return f"{kind} {word}" if kind and word not in kind.lower().split() else kind or word
+
+
+def ask_words(sentence: str, scene: Scene, plugins: list, *, prompt: Prompt = click.prompt,
+              confirm: Confirm = click.confirm) -> tuple[Scene, dict[str, str]]:
+    """``scene`` with the words the person said for the objects the sentence calls by unknown words, and those words
+    (word -> object). A refusal for anything else, or a word that cannot be a kind, is left for ``perform`` to
+    report; Enter instead of a name refuses the sentence with the reason it was refused for."""
+    from ..chain.clauses import resolve_clauses
+
+    taught: dict[str, str] = {}
+    while True:
+        try:
+            resolve_clauses(sentence, scene, plugins)
+            return scene, taught
+        except UnknownObjectError as e:
+            word = e.word
+            if not word or word in taught or len(taught) >= MAX_ASKED or not _fits_a_kind(word):
+                raise
+            click.echo(str(e).split(" To call an object")[0], err=True)  # the words are asked for, not taught
+            name = _which(word, scene, prompt)
+            if name is None:
+                raise
+            scene = with_word(scene, name, word)
+            taught[word] = name
+        except L2PError:  # refused for another reason: perform reads it again and says why
+            return scene, taught
+
+
+def _fits_a_kind(word: str) -> bool:
+    return bool(KIND.match(word)) and len(word) <= MAX_NAME
+
+
+def _which(word: str, scene: Scene, prompt: Prompt) -> str | None:
+    """The object the person names for ``word`` (by its name, any case), or None for Enter."""
+    names = scene.names
+    by_lower = {n.lower(): n for n in names}
+    while True:
+        said = prompt(f'Which object is "{word}"? ({", ".join(names)}; Enter to stop)', default="",
+                      show_default=False, err=True).strip()
+        if not said:
+            return None
+        if said.lower() in by_lower:
+            return by_lower[said.lower()]
+        click.echo(f'no object is called "{said}"; say one of: {", ".join(names)}', err=True)
+
+
+def keep_words(scene_path: str, taught: dict[str, str], confirm: Confirm = click.confirm) -> bool:
+    """Offer to add ``taught`` to the objects' kinds in the scene file; written (whole, then moved into place) only
+    on a yes, and only where the file still reads as a scene with those objects. Whether it was written."""
+    said = ", ".join(f'"{w}" for {n}' for w, n in taught.items())
+    if not confirm(f"Keep {said} in {scene_path} (each object's \"kind\"), so the next sentence reads them?",
+                   default=False, err=True):
+        return False
+    path = Path(scene_path)
+    new = path.with_name(f".{path.name}.new")
+    try:
+        raw = json.loads(path.read_text(encoding="utf-8"))
+        objects = {o["name"]: o for o in raw["objects"]}
+        for word, name in taught.items():
+            objects[name]["kind"] = _kind_with(objects[name].get("kind"), word)
+        text = json.dumps(raw, indent=2, ensure_ascii=False) + "\n"
+        new.write_text(text, encoding="utf-8")
+        load_scene(new, mesh_dirs())  # what is written must read back as a scene (a kind too long is refused here)
+    except (OSError, ValueError, KeyError, TypeError, SceneError) as e:
+        click.echo(f"not kept: {path} could not be written as a scene with these words ({e})", err=True)
+        new.unlink(missing_ok=True)
+        return False
+    os.replace(new, path)
+    click.echo(f"kept in {path}", err=True)
+    return True

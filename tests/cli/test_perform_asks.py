@@ -1,0 +1,90 @@
+"""``perform`` asks which object a word no object has means ("the tin" on a bar whose shaker is called "shaker"),
+performs with the answer, and keeps the word in the scene file only on a yes; Enter refuses as before, and a script
+(not a terminal, or ``--json``) is never asked."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from l2p_bullet.chain.clauses import resolve_clauses
+from l2p_bullet.cli import main
+from l2p_bullet.commands.asking import ask_words, keep_words
+from l2p_bullet.core.scene import load_scene
+from l2p_bullet.errors import UnknownObjectError
+from l2p_bullet.plugins import registry
+
+BAR = Path(__file__).parents[1] / "language" / "heldout109_scene.json"
+"""shaker, jigger, lime, rocks_glass, bottle, bar_mat."""
+
+
+def _bar(tmp_path: Path) -> Path:
+    return Path(shutil.copy(BAR, tmp_path / "bar.json"))
+
+
+def _perform(tmp_path: Path, *args: str, answers: str = ""):
+    return CliRunner().invoke(main, ["perform", "tin next to the wedge", "--scene", str(tmp_path / "bar.json"),
+                                     "--no-render", "-q", "--out", str(tmp_path / "run"), *args], input=answers)
+
+
+def test_the_words_asked_for_are_performed_and_kept_on_a_yes(tmp_path):
+    scene_file = _bar(tmp_path)
+    r = _perform(tmp_path, "--ask", answers="Shaker\ncork\nlime\ny\n")  # any case; a name no object has: asked again
+    assert r.exit_code == 0, r.output
+    assert 'Which object is "tin"?' in r.output and 'Which object is "wedge"?' in r.output
+    assert 'no object is called "cork"' in r.output
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert (summary["mover"], summary["anchor"], summary["success"]) == ("shaker", "lime", True)
+    kinds = {o["name"]: o.get("kind") for o in json.loads(scene_file.read_text())["objects"]}
+    assert kinds == {"shaker": "tin", "jigger": None, "lime": "wedge", "rocks_glass": None, "bottle": None,
+                     "bar_mat": None}
+    said = resolve_clauses("move the tin past the wedge", load_scene(scene_file), registry.discover())
+    assert [(c.command.mover, c.command.anchor) for c in said] == [("shaker", "lime")]  # read without asking
+
+
+def test_enter_refuses_as_before_and_nothing_is_written(tmp_path):
+    scene_file = _bar(tmp_path)
+    before = scene_file.read_bytes()
+    r = _perform(tmp_path, "--ask", answers="\n")
+    assert r.exit_code == 2 and 'error: no block called "tin"' in r.output
+    assert scene_file.read_bytes() == before and not (tmp_path / "run").exists()
+
+
+def test_a_script_is_never_asked(tmp_path):
+    _bar(tmp_path)
+    r = _perform(tmp_path, answers="shaker\nlime\ny\n")  # not a terminal: no question, the refusal
+    assert r.exit_code == 2 and "Which object" not in r.output
+    r = _perform(tmp_path, "--json", answers="shaker\nlime\ny\n")
+    out = json.loads(r.stdout)
+    assert (out["ok"], out["unknown_word"]) == (False, "tin") and "Which object" not in r.output
+
+
+def test_a_no_keeps_the_file_and_a_kind_it_had_is_kept(tmp_path):
+    scene_file = _bar(tmp_path)
+    raw = json.loads(scene_file.read_text())
+    raw["objects"][0]["kind"] = "cocktail shaker"
+    scene_file.write_text(json.dumps(raw))
+    answers = iter(["shaker", "lime"])
+    scene, taught = ask_words("move the tin next to the wedge", load_scene(scene_file), registry.discover(),
+                              prompt=lambda *a, **k: next(answers))
+    assert taught == {"tin": "shaker", "wedge": "lime"}
+    assert scene.get("shaker").kind == "cocktail shaker tin" and scene.get("lime").kind == "wedge"
+    before = scene_file.read_bytes()
+    assert not keep_words(str(scene_file), taught, confirm=lambda *a, **k: False)
+    assert scene_file.read_bytes() == before
+    assert keep_words(str(scene_file), taught, confirm=lambda *a, **k: True)
+    assert load_scene(scene_file).get("shaker").kind == "cocktail shaker tin"
+    assert not list(tmp_path.glob(".*.new"))
+
+
+def test_a_word_that_cannot_be_a_kind_is_not_asked(tmp_path):
+    _bar(tmp_path)
+    asked = []
+    with pytest.raises(UnknownObjectError) as e:  # digits: a kind is words of letters
+        ask_words("move the thing2 next to the lime", load_scene(tmp_path / "bar.json"), registry.discover(),
+                  prompt=lambda *a, **k: asked.append(a) or "shaker")
+    assert 'no block called "the thing2"' in str(e.value) and not asked
