@@ -29,6 +29,7 @@ ROOT = Path(__file__).resolve().parents[1]
 BENCHMARKS = ROOT / "benchmarks"
 
 SMALLEST: dict[str, list[str]] = {
+    "bench_asked.py": ["--corpora", "heldout109.tsv", "--workers", "0"],
     "bench_arms.py": ["--arms", "xarm6", "--actions", "closer", "--scenes", "1", "--timed", "0"],
     "bench_chains.py": ["--chains", "1", "--clauses", "2"],
     "bench_clauses.py": ["--every", "38", "--kinds", "level", "--manners", "push", "--actions", "closer"],

@@ -33,10 +33,11 @@ def _perform(tmp_path: Path, *args: str, answers: str = ""):
 
 def test_the_words_asked_for_are_performed_and_kept_on_a_yes(tmp_path):
     scene_file = _bar(tmp_path)
-    r = _perform(tmp_path, "--ask", answers="Shaker\ncork\nlime\ny\n")  # any case; a name no object has: asked again
+    r = _perform(tmp_path, "--ask", answers="Shaker\ncork\nlime\n\ny\n")  # any case; a name no object has: again
     assert r.exit_code == 0, r.output
     assert 'Which object is "tin"?' in r.output and 'Which object is "wedge"?' in r.output
     assert 'no object is called "cork"' in r.output
+    assert "Read with your words as: slide shaker next-to lime. Perform it?" in r.output
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert (summary["mover"], summary["anchor"], summary["success"]) == ("shaker", "lime", True)
     kinds = {o["name"]: o.get("kind") for o in json.loads(scene_file.read_text())["objects"]}
@@ -70,7 +71,7 @@ def test_a_no_keeps_the_file_and_a_kind_it_had_is_kept(tmp_path):
     scene_file.write_text(json.dumps(raw))
     answers = iter(["shaker", "lime"])
     scene, taught = ask_words("move the tin next to the wedge", load_scene(scene_file), registry.discover(),
-                              prompt=lambda *a, **k: next(answers))
+                              prompt=lambda *a, **k: next(answers), confirm=lambda *a, **k: True)
     assert taught == {"tin": "shaker", "wedge": "lime"}
     assert scene.get("shaker").kind == "cocktail shaker tin" and scene.get("lime").kind == "wedge"
     before = scene_file.read_bytes()
@@ -79,6 +80,14 @@ def test_a_no_keeps_the_file_and_a_kind_it_had_is_kept(tmp_path):
     assert keep_words(str(scene_file), taught, confirm=lambda *a, **k: True)
     assert load_scene(scene_file).get("shaker").kind == "cocktail shaker tin"
     assert not list(tmp_path.glob(".*.new"))
+
+
+def test_a_reading_the_person_says_no_to_is_not_performed(tmp_path):
+    scene_file = _bar(tmp_path)
+    before = scene_file.read_bytes()
+    r = _perform(tmp_path, "--ask", answers="shaker\nlime\nn\n")
+    assert r.exit_code == 2 and "read as slide shaker next-to lime is not what was meant" in r.output
+    assert scene_file.read_bytes() == before and not (tmp_path / "run").exists()
 
 
 def test_a_word_that_cannot_be_a_kind_is_not_asked(tmp_path):

@@ -1,0 +1,129 @@
+"""What asking the person for their own words gives (``perform --ask``, l2p_bullet/commands/asking.py), on the
+sentence corpora of tests/language.
+
+    .venv/bin/python benchmarks/bench_asked.py                       # every corpus, 2 processes (about 3 minutes)
+    .venv/bin/python benchmarks/bench_asked.py --corpora heldout109.tsv,heldout110.tsv --workers 0
+
+Each line is read as typed (as ``perform`` reads it). Where the reader refuses it for a word no object has that
+``perform`` would ask about, the word is answered as the line's author meant: with each object of the line's own
+answer in turn, and again for the next word asked (at most as many as ``perform`` asks). A line is *right* where
+some answer reads it as its author wrote; *wrong* where every answer reads it as something else (a second word
+read wrong that the refusal hid: why ``perform`` shows the reading before it moves anything); else refused. The
+author's answer stands in for the person at the terminal, who names the object they meant; a person would not
+answer a question about a word that is no object ("carefully"), which this count does answer, so its wrong column
+is an upper bound.
+
+Printed: per group of corpora (``--held-out``, by default the four newest authors, and the rest), the lines, right
+as typed and with the words answered, lines asked about, wrong as typed and with every asked reading performed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from multiprocessing import Pool
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+CORPORA = ROOT / "tests" / "language"
+HELD_OUT = tuple(f"heldout{i}.tsv" for i in range(109, 113))
+"""The newest four authors' corpora (written and read once before the asking was built)."""
+REFUSE = "REFUSE"
+
+
+def _meant(expect: str, names: list[str]) -> list[str]:
+    """The objects a line's answer names (movers, anchors, a row's objects), in order."""
+    if expect == REFUSE:
+        return []
+    said = (n for item in expect.split(" ; ") for part in item.split()[1:3] for n in part.split(","))
+    return list(dict.fromkeys(n for n in said if n in names))
+
+
+def _answered(scene, error, meant: list[str], read, askable, with_word) -> list[str]:
+    """Every reading of a refused line with each word asked about answered with each object ``meant``, word after
+    word (``read(scene)``: the line read on a scene; ``askable(error, asked)``: whether perform asks about it)."""
+    ends: list[str] = []
+    todo = [(scene, error, [])]
+    while todo:
+        the_scene, e, asked = todo.pop()
+        for name in meant:
+            told = with_word(the_scene, name, e.word)
+            reading, next_error = read(told)
+            if reading == REFUSE and askable(next_error, [*asked, e.word]):
+                todo.append((told, next_error, [*asked, e.word]))
+            else:
+                ends.append(reading)
+    return ends
+
+
+def read_corpus(name: str) -> tuple[str, list[tuple[str, str, str, int]]]:
+    """(corpus, [(expected, as typed, with the words answered, words asked)]) for every line of ``name``."""
+    sys.path[:0] = [str(ROOT), str(CORPORA)]
+    import corpus
+
+    from l2p_bullet.commands.asking import MAX_ASKED, MAX_DESCRIPTION, fits_a_kind, with_word
+    from l2p_bullet.errors import L2PError, UnknownObjectError
+    from l2p_bullet.plugins import registry
+
+    plugins = registry.discover()
+    scene = corpus.scene(name)
+
+    def read(the_scene, sentence: str) -> tuple[str, L2PError | None]:
+        try:
+            return corpus.notation(corpus.resolve_clauses(sentence, the_scene, plugins)), None
+        except L2PError as e:
+            return REFUSE, e
+
+    def askable(e: L2PError | None, asked: list[str]) -> bool:
+        return (isinstance(e, UnknownObjectError) and bool(e.word) and e.word not in asked and fits_a_kind(e.word)
+                and len(asked) < MAX_ASKED and len(e.name.split()) <= MAX_DESCRIPTION)
+
+    rows = []
+    for case in corpus.cases(name):
+        got, error = read(scene, case.sentence)
+        if got != REFUSE or not askable(error, []):
+            rows.append((case.expect, got, got, 0))
+            continue
+        ends = _answered(scene, error, _meant(case.expect, scene.names), lambda sc, s=case.sentence: read(sc, s),
+                         askable, with_word)
+        answered = case.expect if case.expect in ends else REFUSE if REFUSE in ends or not ends else ends[0]
+        rows.append((case.expect, got, answered, 1))
+    return name, rows
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--corpora", default="", help="comma-separated corpus files (default: every one)")
+    ap.add_argument("--held-out", default=",".join(HELD_OUT), help="the corpora reported apart")
+    ap.add_argument("--workers", type=int, default=2, help="processes (0: this one)")
+    args = ap.parse_args(argv)
+    names = [n for n in args.corpora.split(",") if n] or sorted(p.name for p in CORPORA.glob("*.tsv"))
+    missing = [n for n in names if not (CORPORA / n).is_file()]
+    if missing:
+        ap.error(f"no corpus {', '.join(missing)} in {CORPORA}")
+    if args.workers > 0:
+        with Pool(args.workers) as pool:
+            results = dict(pool.map(read_corpus, names, chunksize=1))
+    else:
+        results = dict(map(read_corpus, names))
+    held = set(args.held_out.split(","))
+    print("| corpora | lines | right as typed | right with the words answered | lines asked | wrong as typed | "
+          "wrong with every asked reading performed |\n|---|---:|---:|---:|---:|---:|---:|")
+    groups = (("held out", [n for n in names if n in held]), ("the others", [n for n in names if n not in held]))
+    for label, group in groups:
+        rows = [r for n in group for r in results[n]]
+        if not rows:
+            continue
+        lines = len(rows)
+        right = sum(exp == got for exp, got, _, _ in rows)
+        answered = sum(exp == ans for exp, _, ans, _ in rows)
+        wrong = sum(got not in (exp, REFUSE) for exp, got, _, _ in rows)
+        wrong_answered = sum(ans not in (exp, REFUSE) for exp, _, ans, _ in rows)
+        print(f"| {label} ({len(group)}) | {lines} | {right} ({100 * right / lines:.1f} %) | {answered} "
+              f"({100 * answered / lines:.1f} %) | {sum(a for *_, a in rows)} | {wrong} | {wrong_answered} |")
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    main()
