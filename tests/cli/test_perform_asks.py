@@ -47,11 +47,15 @@ def test_the_words_asked_for_are_performed_and_kept_on_a_yes(tmp_path):
     assert [(c.command.mover, c.command.anchor) for c in said] == [("shaker", "lime")]  # read without asking
 
 
-def test_enter_refuses_as_before_and_nothing_is_written(tmp_path):
+@pytest.mark.parametrize(("answers", "said"), [
+    ("\n", 'error: no block called "tin"'),  # Enter: refused as before
+    ("shaker\nlime\nn\n", "read as slide shaker next-to lime is not what was meant"),  # no to the reading
+])
+def test_enter_or_a_no_to_the_reading_performs_and_writes_nothing(tmp_path, answers, said):
     scene_file = _bar(tmp_path)
     before = scene_file.read_bytes()
-    r = _perform(tmp_path, "--ask", answers="\n")
-    assert r.exit_code == 2 and 'error: no block called "tin"' in r.output
+    r = _perform(tmp_path, "--ask", answers=answers)
+    assert r.exit_code == 2 and said in r.output
     assert scene_file.read_bytes() == before and not (tmp_path / "run").exists()
 
 
@@ -80,14 +84,6 @@ def test_a_no_keeps_the_file_and_a_kind_it_had_is_kept(tmp_path):
     assert keep_words(str(scene_file), taught, confirm=lambda *a, **k: True)
     assert load_scene(scene_file).get("shaker").kind == "cocktail shaker tin"
     assert not list(tmp_path.glob(".*.new"))
-
-
-def test_a_reading_the_person_says_no_to_is_not_performed(tmp_path):
-    scene_file = _bar(tmp_path)
-    before = scene_file.read_bytes()
-    r = _perform(tmp_path, "--ask", answers="shaker\nlime\nn\n")
-    assert r.exit_code == 2 and "read as slide shaker next-to lime is not what was meant" in r.output
-    assert scene_file.read_bytes() == before and not (tmp_path / "run").exists()
 
 
 def test_a_word_that_cannot_be_a_kind_is_not_asked(tmp_path):
