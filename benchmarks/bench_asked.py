@@ -20,6 +20,7 @@ as typed and with the words answered, lines asked about, wrong as typed and with
 from __future__ import annotations
 
 import argparse
+import itertools
 import os
 import sys
 from multiprocessing import Pool
@@ -57,8 +58,9 @@ def _answered(scene, error, meant: list[str], read, askable, with_word) -> list[
     return ends
 
 
-def read_corpus(name: str) -> tuple[str, list[tuple[str, str, str, int]]]:
-    """(corpus, [(expected, as typed, with the words answered, words asked)]) for every line of ``name``."""
+def read_corpus(name: str, longest: int | None = None) -> tuple[str, list[tuple[str, str, str, int]]]:
+    """(corpus, [(expected, as typed, with the words answered, words asked)]) for every line of ``name``; a
+    description of more than ``longest`` words is not asked about (default: as perform asks)."""
     sys.path[:0] = [str(ROOT), str(CORPORA)]
     import corpus
 
@@ -68,6 +70,7 @@ def read_corpus(name: str) -> tuple[str, list[tuple[str, str, str, int]]]:
 
     plugins = registry.discover()
     scene = corpus.scene(name)
+    longest = MAX_DESCRIPTION if longest is None else longest
 
     def read(the_scene, sentence: str) -> tuple[str, L2PError | None]:
         try:
@@ -77,7 +80,7 @@ def read_corpus(name: str) -> tuple[str, list[tuple[str, str, str, int]]]:
 
     def askable(e: L2PError | None, asked: list[str]) -> bool:
         return (isinstance(e, UnknownObjectError) and bool(e.word) and e.word not in asked and fits_a_kind(e.word)
-                and len(asked) < MAX_ASKED and len(e.name.split()) <= MAX_DESCRIPTION)
+                and len(asked) < MAX_ASKED and len(e.name.split()) <= longest)
 
     rows = []
     for case in corpus.cases(name):
@@ -97,16 +100,19 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--corpora", default="", help="comma-separated corpus files (default: every one)")
     ap.add_argument("--held-out", default=",".join(HELD_OUT), help="the corpora reported apart")
     ap.add_argument("--workers", type=int, default=2, help="processes (0: this one)")
+    ap.add_argument("--longest", type=int, default=None,
+                    help="ask about descriptions of at most this many words (default: as perform asks)")
     args = ap.parse_args(argv)
     names = [n for n in args.corpora.split(",") if n] or sorted(p.name for p in CORPORA.glob("*.tsv"))
     missing = [n for n in names if not (CORPORA / n).is_file()]
     if missing:
         ap.error(f"no corpus {', '.join(missing)} in {CORPORA}")
+    jobs = [(n, args.longest) for n in names]
     if args.workers > 0:
         with Pool(args.workers) as pool:
-            results = dict(pool.map(read_corpus, names, chunksize=1))
+            results = dict(pool.starmap(read_corpus, jobs, chunksize=1))
     else:
-        results = dict(map(read_corpus, names))
+        results = dict(itertools.starmap(read_corpus, jobs))
     held = set(args.held_out.split(","))
     print("| corpora | lines | right as typed | right with the words answered | lines asked | wrong as typed | "
           "wrong with every asked reading performed |\n|---|---:|---:|---:|---:|---:|---:|")
