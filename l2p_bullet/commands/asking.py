@@ -16,12 +16,15 @@ import sys
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
-from ..core.scene import KIND, MAX_NAME, Scene, load_scene
 from ..errors import L2PError, LanguageError, SceneError, UnknownObjectError
 from .common import mesh_dirs
+
+if TYPE_CHECKING:
+    from ..core.scene import Scene
 
 MAX_ASKED = 5
 """Most words asked for one sentence: a sentence with more words no object has is refused as it stands."""
@@ -42,9 +45,29 @@ def asking_by_default(as_json: bool) -> bool:
     return not as_json and all(s is not None and s.isatty() for s in (sys.stdin, sys.stderr))
 
 
+ask_option = click.option(
+    "--ask/--no-ask", default=None,
+    help="Where the sentence calls an object by a word the scene does not know, ask which object it is, and offer to "
+         "keep the word in the scene file (default: ask at a terminal, never with --json).")
+"""``perform``'s and ``plan``'s option: whether to ask (None: :func:`asking_by_default`)."""
+
+
+def scene_asked(sentence: str, scene: Scene, scene_path: str | None, ask: bool | None, as_json: bool) -> Scene:
+    """The scene a command reads ``sentence`` on: ``scene`` itself, or, where it asks (``ask``, or by default at a
+    terminal), with the words the person gave for objects, which are then offered for the file ``scene_path``."""
+    if not (asking_by_default(as_json) if ask is None else ask):
+        return scene
+    from ..plugins import registry
+
+    scene, taught = ask_words(sentence, scene, registry.discover())
+    if taught and scene_path is not None:
+        keep_words(scene_path, taught)
+    return scene
+
+
 def with_word(scene: Scene, name: str, word: str) -> Scene:
     """``scene`` with ``word`` added to the ``kind`` of the object ``name`` (a kind it had is kept: "toy cow tin")."""
-    return Scene([replace(o, kind=_kind_with(o.kind, word)) if o.name == name else o for o in scene.objects],
+    return type(scene)([replace(o, kind=_kind_with(o.kind, word)) if o.name == name else o for o in scene.objects],
                  scene.table, scene.workspace)
 
 
@@ -105,6 +128,8 @@ def read_as(clauses: list) -> str:
 
 
 def fits_a_kind(word: str) -> bool:
+    from ..core.scene import KIND, MAX_NAME
+
     return bool(KIND.match(word)) and len(word) <= MAX_NAME
 
 
@@ -125,6 +150,8 @@ def _which(word: str, scene: Scene, prompt: Prompt) -> str | None:
 def keep_words(scene_path: str, taught: dict[str, str], confirm: Confirm = click.confirm) -> bool:
     """Offer to add ``taught`` to the objects' kinds in the scene file; written (whole, then moved into place) only
     on a yes, and only where the file still reads as a scene with those objects. Whether it was written."""
+    from ..core.scene import load_scene
+
     said = ", ".join(f'"{w}" for {n}' for w, n in taught.items())
     if not confirm(f"Keep {said} in {scene_path} (each object's \"kind\"), so the next sentence reads them?",
                    default=False, err=True):

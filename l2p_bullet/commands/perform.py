@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .asking import ask_option, scene_asked
 from .common import (
     arm_option,
     force_option,
@@ -36,9 +37,7 @@ from .common import (
 @arm_option
 @click.option("--quiet", "-q", is_flag=True, help="No progress messages on stderr.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON on stdout.")
-@click.option("--ask/--no-ask", default=None,
-              help="Where the sentence calls an object by a word the scene does not know, ask which object it is, "
-                   "and offer to keep the word in the scene file (default: ask at a terminal, never with --json).")
+@ask_option
 def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | None, planner: str,
                 no_render: bool, resolution: str, fps: float, camera: str, renderer: str, force: bool, arm: str,
                 quiet: bool, as_json: bool, ask: bool | None) -> None:
@@ -63,18 +62,12 @@ def perform_cmd(sentence: str, scene_path: str | None, seed: int, out: str | Non
     """
     from ..chain import perform_chain
     from ..options import RunOptions
-    from ..plugins import registry
-    from .asking import ask_words, asking_by_default, keep_words
 
     with reporting(sentence, as_json):
         settings = None if no_render else render_settings(resolution, fps, camera, renderer)
         options = RunOptions(planner=planner, seed=seed, arm=arm, render=not no_render,
                              render_settings=settings, out_dir=out, force=force, on_stage=stage_printer(quiet))
-        scene = load_scene_or_default(scene_path)
-        if asking_by_default(as_json) if ask is None else ask:
-            scene, taught = ask_words(sentence, scene, registry.discover())
-            if taught and scene_path is not None:
-                keep_words(scene_path, taught)
+        scene = scene_asked(sentence, load_scene_or_default(scene_path), scene_path, ask, as_json)
         r = perform_chain(sentence, scene, options)
     say(r, as_json, indent=1)
 

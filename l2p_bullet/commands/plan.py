@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from .asking import ask_option, scene_asked
 from .common import arm_option, force_option, load_scene_or_default, reporting, say, scene_option, seed_option
 
 
@@ -24,8 +25,10 @@ from .common import arm_option, force_option, load_scene_or_default, reporting, 
 @seed_option
 @force_option
 @arm_option
+@ask_option
 def plan_cmd(sentence: str, scene_path: str | None, planner: str, out: str | None, budget: int | None,
-                 threshold: float | None, no_plot: bool, as_json: bool, seed: int, force: bool, arm: str) -> None:
+                 threshold: float | None, no_plot: bool, as_json: bool, seed: int, force: bool, arm: str,
+                 ask: bool | None) -> None:
     """Plan SENTENCE (e.g. "move A around B") in 2-D and write plan.json and a plot.
 
     \b
@@ -38,7 +41,8 @@ def plan_cmd(sentence: str, scene_path: str | None, planner: str, out: str | Non
     with reporting(sentence, as_json):
         options = RunOptions(planner=planner, seed=seed, budget=budget, threshold=threshold, arm=arm,
                              out_dir=out, force=force, plot=not no_plot)
-        result = plan_chain(sentence, load_scene_or_default(scene_path), options)
+        scene = scene_asked(sentence, load_scene_or_default(scene_path), scene_path, ask, as_json)
+        result = plan_chain(sentence, scene, options)
     say(result, as_json)
 
 

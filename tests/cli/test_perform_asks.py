@@ -93,3 +93,14 @@ def test_a_word_that_cannot_be_a_kind_is_not_asked(tmp_path):
         ask_words("move the thing2 next to the lime", load_scene(tmp_path / "bar.json"), registry.discover(),
                   prompt=lambda *a, **k: asked.append(a) or "shaker")
     assert 'no block called "the thing2"' in str(e.value) and not asked
+
+
+def test_plan_asks_too_and_its_plan_records_the_words(tmp_path):
+    _bar(tmp_path)
+    r = CliRunner().invoke(main, ["plan", "tin next to the wedge", "--scene", str(tmp_path / "bar.json"), "--ask",
+                                  "--no-plot", "--out", str(tmp_path / "plan")], input="shaker\nlime\n\nn\n")
+    assert r.exit_code == 0, r.output
+    plan = json.loads((tmp_path / "plan" / "plan.json").read_text())
+    kinds = {o["name"]: o.get("kind") for o in plan["scene"]["objects"]}
+    assert (kinds["shaker"], kinds["lime"]) == ("tin", "wedge")  # replay PLAN.json reads the same words
+    assert "kind" not in (tmp_path / "bar.json").read_text()  # no to keeping them
