@@ -101,9 +101,9 @@ def ask_words(sentence: str, scene: Scene, plugins: list, *, prompt: Prompt = cl
             scene = with_word(scene, name, word)
             taught[word] = name
             continue
-        except L2PError:  # refused for another reason: perform reads it again and says why
+        except L2PError:  # refused for another reason: the command reads it again and says why
             return scene, taught
-        if taught and not confirm(f"Read with your words as: {read_as(clauses)}. Perform it?", default=True, err=True):
+        if taught and not confirm(f"Read with your words as: {read_as(clauses)}. Go on?", default=True, err=True):
             raise LanguageError(f'stopped: "{sentence}" read as {read_as(clauses)} is not what was meant; nothing '
                                 "was performed or written")
         return scene, taught

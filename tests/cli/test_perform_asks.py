@@ -37,7 +37,7 @@ def test_the_words_asked_for_are_performed_and_kept_on_a_yes(tmp_path):
     assert r.exit_code == 0, r.output
     assert 'Which object is "tin"?' in r.output and 'Which object is "wedge"?' in r.output
     assert 'no object is called "cork"' in r.output
-    assert "Read with your words as: slide shaker next-to lime. Perform it?" in r.output
+    assert "Read with your words as: slide shaker next-to lime. Go on?" in r.output
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert (summary["mover"], summary["anchor"], summary["success"]) == ("shaker", "lime", True)
     kinds = {o["name"]: o.get("kind") for o in json.loads(scene_file.read_text())["objects"]}
