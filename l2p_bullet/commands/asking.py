@@ -1,8 +1,8 @@
-"""Asking, at the terminal, which object a word means: what ``perform`` does where a sentence calls an object by a
-word the scene does not know ("move the tin next to the lime" on a bar whose shaker is called "shaker").
+"""Asking, at the terminal, which object a word means: what ``perform`` and ``plan`` do where a sentence calls an
+object by a word the scene does not know ("move the tin next to the lime" on a bar whose shaker is called "shaker").
 
 People call things by their own words (a bartender's "tin" is the shaker), and no table of words can hold everyone's.
-The person who typed the word can say at once which object it is: ``perform`` asks, reads the sentence again with
+The person who typed the word can say at once which object it is: the command asks, reads the sentence again with
 that word given to the object (its ``kind``, each of whose words calls it: docs/perform.md), and, once the sentence
 reads, offers to keep the words in the scene file, so that the next sentence reads them without asking. Nothing is
 written without a yes; the run itself records the scene as read, words included (plan.json's ``scene``).
@@ -80,7 +80,7 @@ def ask_words(sentence: str, scene: Scene, plugins: list, *, prompt: Prompt = cl
     """``scene`` with the words the person said for the objects the sentence calls by unknown words, and those words
     (word -> object). A refusal for anything else, or a word that cannot be a kind, is left for ``perform`` to
     report; Enter instead of a name refuses the sentence with the reason it was refused for. Where a word was
-    answered, the sentence as then read is shown and performed only on a yes: an answer can bring to light a word
+    answered, the sentence as then read is shown and goes on only on a yes: an answer can bring to light a word
     read wrong beside it ("the crisps next to the pad", "pad" read as the napkin where its author meant the game
     pad), which a refusal had hidden."""
     from ..chain.clauses import resolve_clauses
