@@ -363,6 +363,19 @@ OPEN = {
         "take the smalest thing and put it by the cabel":
             "slide:next-to capo cable",
     },
+    "heldout113.tsv": {
+        # "the Blumentopf, the small one": the small pot, read as the smallest object (the seed packet)
+        "Shift the gloves near to the Blumentopf, the small one.":
+            "slide:closer gloves seed_packet",
+        # "the little digger": the trowel, read as the smallest object
+        "move the little digger next to the big orange pot":
+            "slide:next-to seed_packet pot_large",
+    },
+    "heldout114.tsv": {
+        # "Fastly": the pace, read past
+        "Fastly take the syringe box around the blister pack.":
+            "slide:around syringe_box blister_pack",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -593,4 +606,14 @@ def test_the_hundred_and_ninth_to_hundred_and_twelfth_authors_corpora(plugins, n
     that start (bdeaa3b) before any change they were to measure (docs/language.md): a bar counter, a fishing tackle
     table, board-game pieces and a music studio desk: 330 of 640, 13 wrong; 332 and 10 wrong on that session's last
     code, where three of its wrong readings were examined and mended. Wrong only as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout113.tsv", 120), ("heldout114.tsv", 88), ("heldout115.tsv", 120),
+                                         ("heldout116.tsv", 95)])
+def test_the_hundred_and_thirteenth_to_hundred_and_sixteenth_authors_corpora(plugins, name, floor):
+    """Written cold at the thirty-sixth session, from the notation and a scene file alone, and read once on that
+    session's last reader code before anything was changed for them (docs/language.md): a potting bench, a pharmacy
+    counter, a children's craft table and a picnic: 423 of 640, 3 wrong (the same on the session's start). Wrong only
+    as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
