@@ -49,6 +49,7 @@ from .synonyms import (
     kinds_of,
     own_kinds_of,
     shape_of,
+    unaccented,
 )
 
 
@@ -157,6 +158,11 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     names = name_words(scene)
     groups = kind_groups(scene)
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
+    if not all(w.isascii() for w in low):  # "the Gießkanne", "the théière" where the file writes them without
+        plain = tuple(w if w in groups or w in names or unaccented(w) not in groups and unaccented(w) not in names
+                      else unaccented(w) for w in low)
+        if plain != low:
+            low, words = plain, list(plain)
     if any(w not in groups and w not in names and abbreviated(w, scene) for w in low):  # "the centrifuge": CENT-2
         low = tuple(w if w in groups or w in names else abbreviated(w, scene) or w for w in low)
         words = list(low)

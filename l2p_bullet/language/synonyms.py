@@ -330,10 +330,11 @@ def name_parts(name: str) -> tuple[str, ...]:
 
 
 def unaccented(text: str) -> str:
-    """``text`` with its letters' accents taken off ("théière" -> "theiere", "König" -> "Konig")."""
+    """``text`` with its letters' accents taken off ("théière" -> "theiere", "König" -> "Konig"), and "ß" written
+    "ss" as German does without it ("Gießkanne" -> "Giesskanne": one word, not "Gie" and "kanne")."""
     if text.isascii():
         return text
-    return "".join(c for c in unicodedata.normalize("NFKD", text) if not unicodedata.combining(c))
+    return "".join(c for c in unicodedata.normalize("NFKD", text.replace("ß", "ss")) if not unicodedata.combining(c))
 
 
 def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, ...]:
@@ -342,6 +343,8 @@ def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, .
     are kinds too, and a known kind a stem ends with ("tablelamp": a lamp); so are the words of the kind the scene
     file declares ("kind": "toy cow" for a toy named Daisy: a cow, and a toy)."""
     out: list[str] = [p for p in name_parts(kind or "") if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS]
+    # a declared word with accents is called as written too ("the théière", "the Gießkanne"), as a one-word name is
+    out.extend(w for w in re.split(r"[ '-]", (kind or "").lower()) if len(w) >= 3 and w.isalpha() and not w.isascii())
     out.extend(sorted(size_codes(name)))  # "the red 2x4" (brick_2x4_red)
     low = name.lower()
     parts = name_parts(name)
