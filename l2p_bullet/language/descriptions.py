@@ -346,9 +346,10 @@ def colours_said(low: tuple[str, ...], scene: Scene) -> set[str]:
 
 
 def unknown_object(text: str, words: list[str], low: tuple[str, ...], scene: Scene) -> None:
-    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:
+    if len(low) == 2 and low[1] in NOUNS and low[0] not in COLORS:  # "the sanger box": a colour, or a word of one's own
+        suggested = did_you_mean(low[0], COLORS)
         raise UnknownObjectError(f'"{text}": "{words[0]}" is not a colour I know (blocks: {describe(scene)}).'
-                                 + did_you_mean(low[0], COLORS))
+                                 + suggested, text, scene.names, "" if suggested else own_word(low[:1]))
     choices = scene.names + [f"the {o.color} block" for o in scene.objects]
     suggested = did_you_mean(text, choices)
     word = "" if suggested else own_word(low)
@@ -358,7 +359,7 @@ def unknown_object(text: str, words: list[str], low: tuple[str, ...], scene: Sce
 
 def own_word(low: tuple[str, ...]) -> str:
     """The word of a description that a scene file's ``kind`` would give an object: its last word of letters, three
-    or more ("the tin": "tin"); "" where it has none."""
+    or more ("the tin": "tin"; "the sanger box": said of "sanger" alone); "" where it has none."""
     return next((w for w in reversed(low) if len(w) >= 3 and w.isalpha()), "")
 
 

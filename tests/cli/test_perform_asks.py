@@ -104,3 +104,16 @@ def test_plan_asks_too_and_its_plan_records_the_words(tmp_path):
     kinds = {o["name"]: o.get("kind") for o in plan["scene"]["objects"]}
     assert (kinds["shaker"], kinds["lime"]) == ("tin", "wedge")  # replay PLAN.json reads the same words
     assert "kind" not in (tmp_path / "bar.json").read_text()  # no to keeping them
+
+
+def test_a_word_read_as_a_colour_is_asked_too():
+    """"the tucker box" reads "tucker" as a colour no object has: asked, "tucker" calls the sandwich box ("the sanger
+    box" is not asked about: "sanger" may be a slip of "orange", and a colour's slip is never taught as a kind)."""
+    picnic = load_scene(Path(__file__).parents[1] / "language" / "heldout116_scene.json")
+    answers = iter(["napkins", "sandwich_box"])
+    scene, taught = ask_words("put the serviettes snug up against the tucker box", picnic, registry.discover(),
+                              prompt=lambda *a, **k: next(answers), confirm=lambda *a, **k: True)
+    assert taught == {"serviettes": "napkins", "tucker": "sandwich_box"}
+    with pytest.raises(UnknownObjectError, match="Did you mean"):
+        ask_words("put the napkins snug up against the sanger box", picnic, registry.discover(),
+                  prompt=lambda *a, **k: pytest.fail("asked about a slip of a colour"))
