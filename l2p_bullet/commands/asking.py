@@ -134,17 +134,23 @@ def fits_a_kind(word: str) -> bool:
 
 
 def _which(word: str, scene: Scene, prompt: Prompt) -> str | None:
-    """The object the person names for ``word`` (by its name, any case), or None for Enter."""
+    """The object the person names for ``word``: by its name (any case) or as a sentence describes one ("the green
+    one", "the tall can"); None for Enter. A description that fits none or several is asked again, with why."""
+    from ..language.references import resolve_object
+
     names = scene.names
     by_lower = {n.lower(): n for n in names}
     while True:
-        said = prompt(f'Which object is "{word}"? ({", ".join(names)}; Enter to stop)', default="",
-                      show_default=False, err=True).strip()
+        said = prompt(f'Which object is "{word}"? ({", ".join(names)}, or say it as you would, "the green one"; '
+                      "Enter to stop)", default="", show_default=False, err=True).strip()
         if not said:
             return None
         if said.lower() in by_lower:
             return by_lower[said.lower()]
-        click.echo(f'no object is called "{said}"; say one of: {", ".join(names)}', err=True)
+        try:
+            return resolve_object(said, scene)
+        except L2PError as e:
+            click.echo(f"{str(e).split(' To call an object')[0]} Say one of: {', '.join(names)}", err=True)
 
 
 def keep_words(scene_path: str, taught: dict[str, str], confirm: Confirm = click.confirm) -> bool:

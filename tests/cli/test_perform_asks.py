@@ -33,10 +33,11 @@ def _perform(tmp_path: Path, *args: str, answers: str = ""):
 
 def test_the_words_asked_for_are_performed_and_kept_on_a_yes(tmp_path):
     scene_file = _bar(tmp_path)
-    r = _perform(tmp_path, "--ask", answers="Shaker\ncork\nlime\n\ny\n")  # any case; a name no object has: again
+    r = _perform(tmp_path, "--ask", answers="Shaker\ncork\nthe green one\n\ny\n")  # a name in any case, a name no
+    # object has (asked again), a description ("the green one": the lime)
     assert r.exit_code == 0, r.output
     assert 'Which object is "tin"?' in r.output and 'Which object is "wedge"?' in r.output
-    assert 'no object is called "cork"' in r.output
+    assert 'no block called "cork"' in r.output and "Say one of: shaker, jigger" in r.output
     assert "Read with your words as: slide shaker next-to lime. Go on?" in r.output
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert (summary["mover"], summary["anchor"], summary["success"]) == ("shaker", "lime", True)
