@@ -67,8 +67,8 @@ def scene_asked(sentence: str, scene: Scene, scene_path: str | None, ask: bool |
 
 def with_word(scene: Scene, name: str, word: str) -> Scene:
     """``scene`` with ``word`` added to the ``kind`` of the object ``name`` (a kind it had is kept: "toy cow tin")."""
-    return type(scene)([replace(o, kind=_kind_with(o.kind, word)) if o.name == name else o for o in scene.objects],
-                 scene.table, scene.workspace)
+    objects = [replace(o, kind=_kind_with(o.kind, word)) if o.name == name else o for o in scene.objects]
+    return type(scene)(objects, scene.table, scene.workspace)
 
 
 def _kind_with(kind: str | None, word: str) -> str:
@@ -128,6 +128,7 @@ def read_as(clauses: list) -> str:
 
 
 def fits_a_kind(word: str) -> bool:
+    """Whether ``word`` may stand in a scene file's ``kind`` (words of letters: "tin", not "thing2" or "SM58")."""
     from ..core.scene import KIND, MAX_NAME
 
     return bool(KIND.match(word)) and len(word) <= MAX_NAME
@@ -162,7 +163,7 @@ def keep_words(scene_path: str, taught: dict[str, str], confirm: Confirm = click
     if not confirm(f"Keep {said} in {scene_path} (each object's \"kind\"), so the next sentence reads them?",
                    default=False, err=True):
         return False
-    path = Path(scene_path)
+    path = Path(scene_path).resolve()  # a link to the scene file stays a link: the file it names is rewritten
     new = path.with_name(f".{path.name}.new")
     try:
         raw = json.loads(path.read_text(encoding="utf-8"))

@@ -118,3 +118,11 @@ def test_a_word_read_as_a_colour_is_asked_too():
     with pytest.raises(UnknownObjectError, match="Did you mean"):
         ask_words("put the napkins snug up against the sanger box", picnic, registry.discover(),
                   prompt=lambda *a, **k: pytest.fail("asked about a slip of a colour"))
+
+
+def test_a_scene_file_given_by_a_link_stays_a_link(tmp_path):
+    target = _bar(tmp_path)
+    link = tmp_path / "link.json"
+    link.symlink_to(target)
+    assert keep_words(str(link), {"tin": "shaker"}, confirm=lambda *a, **k: True)
+    assert link.is_symlink() and load_scene(target).get("shaker").kind == "tin"
