@@ -41,18 +41,21 @@ def _meant(expect: str, names: list[str]) -> list[str]:
     return list(dict.fromkeys(n for n in said if n in names))
 
 
-def _answered(scene, error, meant: list[str], read, askable, with_word) -> list[str]:
+def _answered(scene, error, meant: list[str], read, to_ask, with_word) -> list[str]:
     """Every reading of a refused line with each word asked about answered with each object ``meant``, word after
-    word (``read(scene)``: the line read on a scene; ``askable(error, asked)``: whether perform asks about it)."""
+    word (``read(scene)``: the line read on a scene; ``to_ask(error, scene, taught)``: the word perform asks about
+    then, "" for none)."""
     ends: list[str] = []
-    todo = [(scene, error, [])]
+    todo = [(scene, to_ask(error, scene, {}), {})]
     while todo:
-        the_scene, e, asked = todo.pop()
+        the_scene, word, taught = todo.pop()
         for name in meant:
-            told = with_word(the_scene, name, e.word)
+            told = with_word(the_scene, name, word)
             reading, next_error = read(told)
-            if reading == REFUSE and askable(next_error, [*asked, e.word]):
-                todo.append((told, next_error, [*asked, e.word]))
+            now = {**taught, word: name}
+            next_word = to_ask(next_error, told, now) if reading == REFUSE else ""
+            if next_word:
+                todo.append((told, next_word, now))
             else:
                 ends.append(reading)
     return ends
@@ -64,7 +67,7 @@ def read_corpus(name: str, longest: int | None = None) -> tuple[str, list[tuple[
     sys.path[:0] = [str(ROOT), str(CORPORA)]
     import corpus
 
-    from l2p_bullet.commands.asking import MAX_ASKED, MAX_DESCRIPTION, fits_a_kind, with_word
+    from l2p_bullet.commands.asking import MAX_DESCRIPTION, with_word, word_to_ask
     from l2p_bullet.errors import L2PError, UnknownObjectError
     from l2p_bullet.plugins import registry
 
@@ -78,18 +81,17 @@ def read_corpus(name: str, longest: int | None = None) -> tuple[str, list[tuple[
         except L2PError as e:
             return REFUSE, e
 
-    def askable(e: L2PError | None, asked: list[str]) -> bool:
-        return (isinstance(e, UnknownObjectError) and bool(e.word) and e.word not in asked and fits_a_kind(e.word)
-                and len(asked) < MAX_ASKED and len(e.name.split()) <= longest)
+    def to_ask(e: L2PError | None, the_scene, taught: dict[str, str]) -> str:
+        return word_to_ask(e, the_scene, taught, longest) if isinstance(e, UnknownObjectError) else ""
 
     rows = []
     for case in corpus.cases(name):
         got, error = read(scene, case.sentence)
-        if got != REFUSE or not askable(error, []):
+        if got != REFUSE or not to_ask(error, scene, {}):
             rows.append((case.expect, got, got, 0))
             continue
         ends = _answered(scene, error, _meant(case.expect, scene.names), lambda sc, s=case.sentence: read(sc, s),
-                         askable, with_word)
+                         to_ask, with_word)
         answered = case.expect if case.expect in ends else REFUSE if REFUSE in ends or not ends else ends[0]
         rows.append((case.expect, got, answered, 1))
     return name, rows

@@ -90,9 +90,8 @@ def ask_words(sentence: str, scene: Scene, plugins: list, *, prompt: Prompt = cl
         try:
             clauses = resolve_clauses(sentence, scene, plugins)
         except UnknownObjectError as e:
-            word = e.word
-            if (not word or word in taught or len(taught) >= MAX_ASKED or not fits_a_kind(word)
-                    or len(e.name.split()) > MAX_DESCRIPTION):
+            word = word_to_ask(e, scene, taught)
+            if not word:
                 raise
             click.echo(str(e).split(" To call an object")[0], err=True)  # the words are asked for, not taught
             name = _which(word, scene, prompt)
@@ -107,6 +106,24 @@ def ask_words(sentence: str, scene: Scene, plugins: list, *, prompt: Prompt = cl
             raise LanguageError(f'stopped: "{sentence}" read as {read_as(clauses)} is not what was meant; nothing '
                                 "was performed or written")
         return scene, taught
+
+
+def word_to_ask(e: UnknownObjectError, scene: Scene, taught: dict[str, str], longest: int = MAX_DESCRIPTION) -> str:
+    """The word of ``e``'s description to ask about, or "" for none: its own word (``e.word``, "tin" of "the tin"), or,
+    where that word was answered already and the description still names nothing ("the tablet strip" once "strip"
+    calls the blister pack), its last word before it that no object is called by ("tablet"). Never a word a name was
+    suggested for instead (``e.word`` empty), one a kind cannot hold, past :data:`MAX_ASKED` words, or in a
+    description longer than ``longest`` words (:data:`MAX_DESCRIPTION`; benchmarks/bench_asked.py tries others)."""
+    if not e.word or len(taught) >= MAX_ASKED or len(e.name.split()) > longest:
+        return ""
+    if e.word not in taught:
+        return e.word if fits_a_kind(e.word) else ""
+    from ..language.naming import naming_words
+    from ..language.reference_words import DETERMINERS
+
+    known = naming_words(scene) | DETERMINERS | set(taught)
+    return next((w for w in reversed(e.name.lower().split()) if len(w) >= 3 and w not in known and fits_a_kind(w)),
+                "")
 
 
 def read_as(clauses: list) -> str:

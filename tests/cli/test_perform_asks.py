@@ -126,3 +126,16 @@ def test_a_scene_file_given_by_a_link_stays_a_link(tmp_path):
     link.symlink_to(target)
     assert keep_words(str(link), {"tin": "shaker"}, confirm=lambda *a, **k: True)
     assert link.is_symlink() and load_scene(target).get("shaker").kind == "tin"
+
+
+def test_a_description_still_unknown_after_its_word_asks_its_word_before():
+    """"the tablet strip": "strip" answered as the blister pack still leaves "tablet" unread, so "tablet" is asked."""
+    pharmacy = load_scene(Path(__file__).parents[1] / "language" / "heldout114_scene.json")
+    asked, answers = [], iter(["blister_pack", "blister_pack"])
+    scene, taught = ask_words("Put the tablet strip near to the cream tube.", pharmacy, registry.discover(),
+                              prompt=lambda q, **k: asked.append(q.split('"')[1]) or next(answers),
+                              confirm=lambda *a, **k: True)
+    assert asked == ["strip", "tablet"]  # "the cream tube" is the hand cream already
+    assert taught == {"strip": "blister_pack", "tablet": "blister_pack"}
+    said = resolve_clauses("Put the tablet strip near to the cream tube.", scene, registry.discover())
+    assert [(c.command.mover, c.command.anchor) for c in said] == [("blister_pack", "hand_cream")]
