@@ -93,7 +93,7 @@ def ask_words(sentence: str, scene: Scene, plugins: list, *, prompt: Prompt = cl
             word = word_to_ask(e, scene, taught)
             if not word:
                 raise
-            click.echo(str(e).split(" To call an object")[0], err=True)  # the words are asked for, not taught
+            click.echo(_reason(e), err=True)  # the word is asked for, not taught
             name = _which(word, scene, prompt)
             if name is None:
                 raise
@@ -144,6 +144,13 @@ def read_as(clauses: list) -> str:
     return "; ".join(items)
 
 
+def _reason(e: L2PError) -> str:
+    """A refusal without its hint on giving an object a word of one's own (the words are asked for here instead)."""
+    from ..language.descriptions import OWN_WORD_HINT
+
+    return str(e).split(OWN_WORD_HINT)[0]
+
+
 def fits_a_kind(word: str) -> bool:
     """Whether ``word`` may stand in a scene file's ``kind`` (words of letters: "tin", not "thing2" or "SM58")."""
     from ..core.scene import KIND, MAX_NAME
@@ -168,7 +175,7 @@ def _which(word: str, scene: Scene, prompt: Prompt) -> str | None:
         try:
             return resolve_object(said, scene)
         except L2PError as e:
-            click.echo(f"{str(e).split(' To call an object')[0]} Say one of: {', '.join(names)}", err=True)
+            click.echo(f"{_reason(e)} Say one of: {', '.join(names)}", err=True)
 
 
 def keep_words(scene_path: str, taught: dict[str, str], confirm: Confirm = click.confirm) -> bool:

@@ -363,12 +363,17 @@ def own_word(low: tuple[str, ...]) -> str:
     return next((w for w in reversed(low) if len(w) >= 3 and w.isalpha()), "")
 
 
+OWN_WORD_HINT = " To call an object"
+"""How the hint of :func:`_own_word_hint` starts: what a refusal says after its reason (``perform`` asks for the word
+instead, and shows the reason alone: commands/asking.py)."""
+
+
 def _own_word_hint(word: str) -> str:
     """How to call an object by a word of one's own: the scene file's ``kind`` (each of its words calls the object),
     with ``word`` as the example ("the tin": "kind": "tin")."""
-    said = f'call an object "{word}", give it "kind": "{word}"' if word else 'call an object by a word of your ' \
-        'own, give it a "kind" (such as "kind": "toy cow")'
-    return f" To {said} in the scene file."
+    said = f' "{word}", give it "kind": "{word}"' if word else ' by a word of your own, give it a "kind" (such as ' \
+        '"kind": "toy cow")'
+    return f"{OWN_WORD_HINT}{said} in the scene file."
 
 
 def one_of(text: str, fits: list[SceneObject], scene: Scene, colours: set[str]) -> str:

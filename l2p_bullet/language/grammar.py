@@ -251,7 +251,12 @@ def _verbless(words: list[str], phrases: dict[str, str]) -> bool:
         return False
     if set(low[1:]) & verb_heads():
         return False  # "Of the two small cubes, move the one ...": the verb is there, after an opening
-    return any(tuple(low[i:i + len(t)]) == t for t, _, _, _ in readings(phrases) for i in range(1, len(low)))
+    return bool(_phrase_starts(low, phrases))
+
+
+def _phrase_starts(low: list[str], phrases: dict[str, str]) -> list[int]:
+    """Where an installed phrase starts in the lower-case words ``low``, after at least one word."""
+    return [i for i in range(1, len(low)) for t, _, _, _ in readings(phrases) if tuple(low[i:i + len(t)]) == t]
 
 
 def _mover_said(words: list[str], scene: Scene, phrases: dict[str, str], context: Context | None) -> bool:
@@ -260,7 +265,7 @@ def _mover_said(words: list[str], scene: Scene, phrases: dict[str, str], context
     a verb ("tin next to the wedge"). Then what its reading refused (the unknown "wedge", "tin") is the reason to
     give, not that "bottle" or "tin" is no verb."""
     low = [w.lower() for w in words]
-    starts = [i for i in range(1, len(low)) for t, _, _, _ in readings(phrases) if tuple(low[i:i + len(t)]) == t]
+    starts = _phrase_starts(low, phrases)
     if not starts:
         return False
     before = words[:min(starts)]
