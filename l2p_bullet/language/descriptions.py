@@ -166,7 +166,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     if any(w not in groups and w not in names and abbreviated(w, scene) for w in low):  # "the centrifuge": CENT-2
         low = tuple(w if w in groups or w in names else abbreviated(w, scene) or w for w in low)
         words = list(low)
-    if set(low) & LOOSE_NOUNS - set(groups):  # "the little yellow guy" where no figure stands: any object
+    if any(w in LOOSE_NOUNS and w not in groups for w in low):  # "the little yellow guy", no figure: any object
         low = tuple("one" if w in LOOSE_NOUNS and w not in groups else w for w in low)
         words = [w if w.lower() not in LOOSE_NOUNS or w.lower() in groups else "one" for w in words]
     low = letter_of(low, determined, letters_of(scene.names), set(names) | set(groups))
@@ -174,7 +174,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     said = [w for w in low if w not in DETERMINERS]
     drink = bool(set(low) & DRINKS)
     as_colour = colours_said(low, scene)  # "the orange block": the colour, not the fruit named "orange"
-    names = {w: n for w, n in names.items() if w not in as_colour}
+    if as_colour:
+        names = {w: n for w, n in names.items() if w not in as_colour}
     if len(said) == 1 and said[0] in COLOUR_NOUNS and said[0] not in names:
         raise UnknownObjectError(f'"{text}" may be a colour or the fruit, and no {said[0]} fruit is on the table; '
                                  f'say "the {said[0]} one" or name it')
@@ -183,8 +184,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     group = len(said) > 1 or not best  # a pool a relation chooses among ("the apple at the back") is a group
     literal = {n.lower() for n in scene.names} - (shape_named(scene) if determined or group else set())
     shared = kind_named(scene, groups) if group else set()  # "the apple at the back" beside green_apple: either
-    heads = set(names) | set(groups) | PROPORTION_NOUNS | {"can", "cans"}  # "the tin can", "swizzle stick"
-    compound = {i for i, lw in enumerate(low) if lw not in names and is_modifier(lw) and _before_head(low, i, heads)}
+    modifiers = [i for i, lw in enumerate(low) if lw not in names and is_modifier(lw)]
+    heads = set(names) | set(groups) | PROPORTION_NOUNS | {"can", "cans"} if modifiers else set()  # "the tin can"
+    compound = {i for i in modifiers if _before_head(low, i, heads)}
     # "the stick", "the flat square"; not "tube" in "the tube rack", which says what the rack holds
     proportioned = [w for i, w in enumerate(low) if w in PROFILES and w not in literal and i not in compound
                     and (not best or w not in groups or w in NOUNS and w not in parts_of(tuple(scene.names)))]
@@ -339,6 +341,8 @@ def colours_said(low: tuple[str, ...], scene: Scene) -> set[str]:
     orange block" is the orange-coloured block beside an orange (the fruit) named "orange", and "the orange thing"
     is either; "the orange" alone stays the fruit."""
     names = name_words(scene)
+    if not any(w in names for w in low[:-1]):
+        return set()
     heads = NOUNS | BLOCK_WORDS | set(SHAPE_NOUNS) | set(kind_groups(scene)) | set(PROFILES)
     return {w for w, after in zip(low, low[1:], strict=False)
             if w in names and COLOR_SYNONYMS.get(w, w) in COLORS and after in heads

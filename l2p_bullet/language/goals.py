@@ -40,11 +40,14 @@ POSTURES = frozenset({"sitting", "standing", "lying", "resting", "sat", "parked"
 of the move."""
 
 
+_GOALS_BY_FIRST = by_word(GOAL_PREFIXES, 0)
+
+
 def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
     """"I want the red block next to B" -> "put the red block next to B"; a known verb after the opening
     ("I want to move ...") is kept as it is."""
     low = [w.lower() for w in words]
-    for pre in GOAL_PREFIXES:
+    for pre in _GOALS_BY_FIRST.get(low[0], ()) if low else ():
         if starts(low, pre) and len(words) > len(pre):
             rest = words[len(pre):]
             for doer in DOERS:  # "I'd like the robot to move ...", "I want you to ..."

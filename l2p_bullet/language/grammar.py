@@ -179,7 +179,10 @@ def _parse(sentence: str, scene: Scene, phrases: dict[str, str], anchors: dict[s
     # The longest phrase wins; among its positions the first that names two objects. If no phrase
     # gives a valid reading, the error of the longest phrase's first reading is the most useful one.
     first_error: Exception | None = None
+    present = set(low)  # a phrase none of whose first words is said is passed over in the order the loop tries them
     for toks, phrase, action, implied in readings(phrases) + without_to(phrases):
+        if toks and toks[0] not in present:
+            continue
         n = len(toks)
         for i in range(0, len(low) - n + 1):
             if tuple(low[i : i + n]) != toks:

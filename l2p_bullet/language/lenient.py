@@ -199,7 +199,10 @@ def _phrases(low: list[str], readings: list) -> list[tuple[int, int, str, str, s
     """Every installed phrase in ``low``, longest first and not overlapping: (start, end, phrase, action, extent)."""
     taken = [False] * len(low)
     out = []
+    present = set(low)
     for toks, phrase, action, implied in readings:
+        if toks and toks[0] not in present:
+            continue
         n = len(toks)
         for i in range(len(low) - n + 1):
             if tuple(low[i:i + n]) == toks and not any(taken[i:i + n]):

@@ -57,21 +57,28 @@ def spelled_name(words: list[str], scene: Scene) -> str | None:
     cube_b; "the coffee mug" for coffee_mug; "red cube 2" for RedCube2; "sugar_box" for 004_sugar_box; "the glasses
     cases" for glasses_case; "the box of screws" for screw_box; "bottle B", "pills B" and "B" alone, capital, for
     pill_bottle_b); None where none or several do."""
+    return _spelled(tuple(words), tuple(scene.names))
+
+
+@functools.lru_cache(maxsize=4096)
+def _spelled(words: tuple[str, ...], names: tuple[str, ...]) -> str | None:
+    """:func:`spelled_name` of the words and the scene's names, kept: a sentence's readings ask it of the same words
+    many times."""
     said = name_parts(" ".join(words))
     if len(words) == 1 and len(words[0]) == 1 and words[0].isupper():  # "B" for pill_bottle_b, its label alone
-        fits = [n for n in scene.names if len(name_parts(n)) >= 2 and name_parts(n)[-1] == said[0]]
-        return fits[0] if len(fits) == 1 and not any(n.lower() == said[0] for n in scene.names) else None
+        fits = [n for n in names if len(name_parts(n)) >= 2 and name_parts(n)[-1] == said[0]]
+        return fits[0] if len(fits) == 1 and not any(n.lower() == said[0] for n in names) else None
     if len(said) < 2:
         return None
     plural = (*said[:-1], said[-1][:-1]) if said[-1].endswith("s") and len(said[-1]) > 3 else said
-    fits = [n for n in scene.names if {said, plural} & {name_parts(n), _unnumbered(name_parts(n))}]
+    fits = [n for n in names if {said, plural} & {name_parts(n), _unnumbered(name_parts(n))}]
     if not fits and any(p.isdigit() for p in said):  # "p2" for pen_2: a word's first letter and the number
-        fits = [n for n in scene.names if _initialled(said, name_parts(n))]
+        fits = [n for n in names if _initialled(said, name_parts(n))]
     if not fits and len(said) == 3 and said[1] == "of":  # "the box of screws", "the deck of cards": screw_box
         held = said[2][:-1] if said[2].endswith("s") else said[2]
-        fits = [n for n in scene.names if name_parts(n) in ((held, said[0]), (said[2], said[0]))]
+        fits = [n for n in names if name_parts(n) in ((held, said[0]), (said[2], said[0]))]
     if not fits:  # "bottle B", "pills A" for pill_bottle_a: its label and a word or two of it
-        fits = [n for n in scene.names if _labelled(said, name_parts(n))]
+        fits = [n for n in names if _labelled(said, name_parts(n))]
     return fits[0] if len(fits) == 1 else None
 
 
@@ -115,10 +122,20 @@ def naming_words(scene: Scene) -> frozenset[str]:
     """Lower-case words that name or describe objects: kind words and names of 3+ letters, colours and their
     synonyms, shape nouns. Not "can" as a shape ("can you ..." asks; an object named "can" is a kind word, a can a
     mesh file or a longer name calls so is not) nor a one-letter name ("u" is "you" as typed: U is named as "U")."""
-    shapes = frozenset(SHAPE_NOUNS) - {"can", "cans"}
-    literal = {n.lower() for n in scene.names}
-    kinds = frozenset(w for w in name_words(scene) if len(w) >= 3 and (w in literal or w not in SHAPE_NOUNS))
-    return kinds | frozenset(COLORS) | frozenset(COLOR_SYNONYMS) | shapes
+    return _naming_words_of(scene_key(scene), lexicon.allowed())
+
+
+_SHAPES_SAID = frozenset(SHAPE_NOUNS) - {"can", "cans"}
+_COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
+
+
+@functools.lru_cache(maxsize=256)
+def _naming_words_of(objects: tuple[tuple[str, str | None, str | None], ...], looked_up: bool) -> frozenset[str]:
+    """:func:`naming_words` of a :func:`~.synonyms.scene_key`, kept: every reading of a sentence asks for them."""
+    literal = {name.lower() for name, *_ in objects}
+    kinds = frozenset(w for w in name_words_of(objects, looked_up) if len(w) >= 3
+                      and (w in literal or w not in SHAPE_NOUNS))
+    return kinds | _COLOUR_WORDS | _SHAPES_SAID
 
 
 WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOUNS) | frozenset(COLORS)

@@ -208,15 +208,22 @@ def _plain_order(words: list[str], scene: Scene) -> list[str]:
     words = table_sides(looks(coloured_like(words), scene))
     words = places_as_superlatives(comparative_of(one_word_comparisons(words)))
     low = tuple(w.lower() for w in words)
-    for opening, plain in OPENINGS.items():
+    for opening, plain in OPENINGS.items() if low and low[0] in _OPENING_WORDS else ():
         if low[:len(opening)] == opening and len(low) > len(opening):
             return list(plain) + words[len(opening):]
+    if not _RELATIVE_WORDS.intersection(low[1:-1]):
+        return words
     nouns = NOUNS | set(SHAPE_NOUNS) | set(name_words(scene)) | set(kind_groups(scene)) | LOOSE_NOUNS
     for i in range(1, len(low) - 1):
         for rel in RELATIVES:
             if low[i - 1] in nouns and low[i:i + len(rel)] == rel and i + len(rel) < len(low):
                 return words[:i] + words[i + len(rel):]
     return words
+
+
+_OPENING_WORDS = frozenset(opening[0] for opening in OPENINGS)
+_RELATIVE_WORDS = frozenset(rel[0] for rel in RELATIVES)
+"""The words an opening or a relative clause starts with: where none is said, none is looked for."""
 
 
 def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
@@ -312,6 +319,13 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
 
 
+_CENTRE_ENDS = frozenset(phrase[-1] for phrase in CENTRE_PHRASES)
+_SIDES_BY_LAST: dict[str, list[tuple[tuple[str, ...], str]]] = {}
+for _phrase, _kind in SIDE_PHRASES.items():
+    _SIDES_BY_LAST.setdefault(_phrase[-1], []).append((_phrase, _kind))
+"""The place phrases by their last word, each list in the table's order: only those can end a description."""
+
+
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:
     """Places on the table: "the cube in the middle (of the table)", "the object on the far right", "the cube
     between A and C" (nearest the middle of the two, and lying between them), a place in a group (the middle
@@ -319,11 +333,12 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
     grouped = in_group(words, low, scene, resolve_object)
     if grouped is not None:
         return grouped
-    for phrase in CENTRE_PHRASES:
+    last = low[-1] if low else ""
+    for phrase in CENTRE_PHRASES if last in _CENTRE_ENDS else ():
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
             return either_reading(words[:-len(phrase)], scene, lambda pool: superlative(
                 pool, lambda o: distance_to(o, (0.0, 0.0)), min, "in the middle", place=True))
-    for phrase, kind in SIDE_PHRASES.items():
+    for phrase, kind in _SIDES_BY_LAST.get(last, ()):
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
             if relation_head(low[:-len(phrase)]) is not None:
                 continue  # "the thing in front of the red cube on the right": the side picks the red cube

@@ -337,11 +337,13 @@ def unaccented(text: str) -> str:
     return "".join(c for c in unicodedata.normalize("NFKD", text.replace("ß", "ss")) if not unicodedata.combining(c))
 
 
+@functools.lru_cache(maxsize=4096)
 def _kinds(name: str, mesh: str | None, kind: str | None = None) -> tuple[str, ...]:
     """The kinds an object is called by. A name of one word is its kind; of several, each of its words that says
     what the object is ("butter_box": butter and a box; never a colour, a size or "obj"). A mesh file's stem's words
     are kinds too, and a known kind a stem ends with ("tablelamp": a lamp); so are the words of the kind the scene
-    file declares ("kind": "toy cow" for a toy named Daisy: a cow, and a toy)."""
+    file declares ("kind": "toy cow" for a toy named Daisy: a cow, and a toy). Kept by its words: every description
+    read asks it of every object."""
     out: list[str] = [p for p in name_parts(kind or "") if len(p) >= 3 and p.isalpha() and p not in PLAIN_PARTS]
     # a declared word with accents is called as written too ("the théière", "the Gießkanne"), as a one-word name is
     out.extend(w for w in re.split(r"[ '-]", (kind or "").lower()) if len(w) >= 3 and w.isalpha() and not w.isascii())
@@ -390,8 +392,24 @@ def abbreviated(word: str, scene: Scene) -> str | None:
 
 def scene_key(scene: Scene) -> tuple[tuple[str, str | None, str | None], ...]:
     """Each object's (name, mesh file, declared kind): all that the words for a scene's objects depend on (a key to
-    keep them by)."""
-    return tuple(_kind_key(o) for o in scene.objects)
+    keep them by). Kept by the objects themselves: reading one sentence asks it hundreds of times of the same
+    objects, and a :class:`SceneObject` is frozen (a moved or renamed one is a new object). Each kept key holds its
+    objects, so no other object can take their ids while it is kept; any other kind of object is read each time."""
+    objects = tuple(scene.objects)
+    ids = tuple(map(id, objects))
+    kept = _SCENE_KEYS.get(ids)
+    if kept is not None:
+        return kept[1]
+    key = tuple(_kind_key(o) for o in objects)
+    if all(type(o) is SceneObject for o in objects):
+        if len(_SCENE_KEYS) >= 256:
+            _SCENE_KEYS.clear()
+        _SCENE_KEYS[ids] = (objects, key)
+    return key
+
+
+_SCENE_KEYS: dict[tuple[int, ...], tuple[tuple[SceneObject, ...], tuple]] = {}
+""":func:`scene_key` by its objects' ids, with the objects it was made of."""
 
 
 def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:

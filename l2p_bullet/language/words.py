@@ -245,6 +245,9 @@ STEP_LABELS = frozenset({"step", "test", "task", "stage", "phase", "trial", "cas
 number are read past, whatever the scene's objects are called ("1" may name a block; "Step 1" never does)."""
 
 
+_COURTESIES_BY_FIRST = by_word(POLITE_PREFIXES + POLITE_SUFFIXES, 0)
+
+
 def is_courtesy(words: list[str]) -> bool:
     """Whether ``words`` are politeness alone ("Thank you!", "Cheers", "Hello"): a sentence of its own between
     commands that asks for nothing."""
@@ -254,7 +257,7 @@ def is_courtesy(words: list[str]) -> bool:
     if {"again", "twice"} & set(low) and {"do", "repeat", "same", "that", "it"} & set(low):
         return False  # "Then do that again" asks for the move once more: never read past
     while low:
-        for pre in POLITE_PREFIXES + POLITE_SUFFIXES:
+        for pre in _COURTESIES_BY_FIRST.get(low[0], ()):
             if starts(low, pre):
                 low = low[len(pre):]
                 break

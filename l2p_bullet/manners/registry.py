@@ -85,8 +85,17 @@ def get(name: str | None) -> MannerSpec:
 
 
 def verb_table() -> dict[str, str]:
-    """Verb (as the manners declare it, "pick up ... and put" included) -> manner name."""
-    return {v: m.name for m in discover() for v in m.verbs}
+    """Verb (as the manners declare it, "pick up ... and put" included) -> manner name. Made once per set of
+    manners found (every clause read asks for it), kept with them so their ids stay theirs; callers get a copy."""
+    found = discover()
+    ids = tuple(map(id, found))
+    if _VERB_TABLE.get(ids) is None:
+        _VERB_TABLE.clear()
+        _VERB_TABLE[ids] = (found, {v: m.name for m in found for v in m.verbs})
+    return dict(_VERB_TABLE[ids][1])
+
+
+_VERB_TABLE: dict[tuple[int, ...], tuple[list[MannerSpec], dict[str, str]]] = {}
 
 
 def sentence_verb(name: str) -> str:

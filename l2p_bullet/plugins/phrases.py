@@ -83,8 +83,15 @@ def tables(plugins: list[PluginInfo]) -> tuple[dict[str, str], dict[str, PluginE
 
 
 def _claims(plugins: list[PluginInfo]) -> tuple:
-    """All that the phrase tables and their errors depend on, per plugin, in order (a key to keep them by)."""
-    return tuple((p.name, p.package, p.package_version, p.kind, p.error, p.phrases) for p in plugins)
+    """All that the phrase tables and their errors depend on, per plugin, in order (a key to keep them by): the
+    phrases as the manifest writes them, which say what ``phrases`` reads from them, without reading them."""
+    return tuple((p.name, p.package, p.package_version, p.kind, p.error, _written(p.manifest.get("phrases")))
+                 for p in plugins)
+
+
+def _written(raw: object) -> tuple:
+    """A manifest's ``phrases`` as a key: the list's items, or nothing for anything else (which reads as none)."""
+    return tuple(raw) if isinstance(raw, list) else ()
 
 
 def _blocked(plugins: list[PluginInfo]) -> dict[str, PluginError]:
