@@ -19,6 +19,7 @@ cannot see the grammar.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass, replace
 
@@ -301,16 +302,23 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     taken out) and the pace the adverbs ask for; a word that names an object always stays."""
     keep = frozenset(scene.names)
     verbs = known_verbs()
-    heads = sorted({v.split()[0] for v in verbs})
+    heads = _first_words(tuple(verbs))
     said = tokens(text)
     words = gerund_to_verb(strip_polite(said, keep), verbs)
     is_object = lambda t: try_object(t, scene) is not None  # noqa: E731
     words = goal_to_verb(state_to_verb(passive_to_verb(words, verbs, is_object), verbs, is_object, said), verbs)
     words, pace = take_pace(words, keep)
-    describing = naming_words(scene) | BLOCK_WORDS | frozenset(SHAPE_ADJECTIVES)  # "Of the two blue cubes, push
-    # ...", "of the 2 rectangular blocks move ...": an opening about objects is not skipped
-    naming = keep | frozenset(w for w in words if w.lower() in describing)
+    named = naming_words(scene)  # "Of the two blue cubes, push ...", "of the 2 rectangular blocks move ...": an
+    # opening about objects is not skipped
+    naming = keep | frozenset(w for w in words if (low := w.lower()) in named or low in BLOCK_WORDS
+                              or low in SHAPE_ADJECTIVES)
     return by_gerund(strip_polite(skip_to_verb(words, heads, naming), keep), verbs), pace
+
+
+@functools.lru_cache(maxsize=8)
+def _first_words(verbs: tuple[str, ...]) -> list[str]:
+    """The verbs' first words, sorted: where a command's own words start. Kept by the verbs (every reading asks)."""
+    return sorted({v.split()[0] for v in verbs})
 
 
 def manner_of_sentence(sentence: object) -> str:

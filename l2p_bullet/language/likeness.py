@@ -12,6 +12,8 @@ from .shape_words import SHAPE_NOUNS
 
 def looks(words: list[str], scene: Scene) -> list[str]:
     """"the football-looking thing", "the duck-like one": the kind or shape named before the suffix."""
+    if not any("-" in w for w in words):
+        return list(words)
     nouns = set(SHAPE_NOUNS) | set(name_words(scene))
     out = []
     for w in words:
@@ -30,6 +32,9 @@ _COLOURED = ("coloured", "colored", "colour", "color")
 VARIETIES = {("granny", "smith"): "green", ("golden", "delicious"): "yellow", ("red", "delicious"): "red",
              ("bramley",): "green", ("gala",): "red", ("fuji",): "red", ("honeycrisp",): "red"}
 """Apples by variety, each of one colour ("the Granny Smith": the green apple)."""
+
+
+_VARIETY_WORDS = frozenset(variety[0] for variety in VARIETIES)
 
 
 def coloured_like(words: list[str]) -> list[str]:
@@ -52,6 +57,8 @@ def coloured_like(words: list[str]) -> list[str]:
 def _varieties(words: list[str]) -> list[str]:
     """``words`` with an apple's variety said as its colour and "apple" (:data:`VARIETIES`)."""
     low = [w.lower() for w in words]
+    if not _VARIETY_WORDS.intersection(low):
+        return words
     for variety, colour in VARIETIES.items():
         for i in range(len(low) - len(variety) + 1):
             if tuple(low[i:i + len(variety)]) == variety:

@@ -12,6 +12,7 @@ a slip can turn a refusal into an answer but never change the answer to a senten
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Iterable
 
@@ -54,7 +55,14 @@ refused sentence, as a slip is."""
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
     """Every word the grammar knows: the installed phrases' and verbs' words, the colour names, the words of
     politeness, framing and pace (language/words.py), of extent (language/extents.py), of references
-    (language/reference_words.py), and :data:`COMMON`."""
+    (language/reference_words.py), and :data:`COMMON`. Kept by the phrases, verbs and colours: every sentence
+    refused as typed asks for it."""
+    return _vocabulary(tuple(phrases), tuple(verbs), tuple(colours))
+
+
+@functools.lru_cache(maxsize=16)
+def _vocabulary(phrases: tuple[str, ...], verbs: tuple[str, ...], colours: tuple[str, ...]) -> frozenset[str]:
+    """:func:`vocabulary` of its words, made."""
     known: set[str] = set(COMMON)
     for text in (*phrases, *verbs, *colours):
         known.update(_WORD.findall(text.lower()))
@@ -77,13 +85,28 @@ def near(word: str, known: frozenset[str], named: frozenset[str] = frozenset()) 
     the scene (``named``) is meant: "bowel" is the bowl on the table, not a dowel."""
     if len(word) < 3 or not word.isalpha():
         return None
-    hits = {k for k in known if abs(len(k) - len(word)) <= 1 and _one_slip(word, k)}
+    lengths = (len(word) - 1, len(word), len(word) + 1)
+    words_near = (k for n in lengths for k in _by_length(known).get(n, ())) if len(known) > BY_LENGTH_FROM else known
+    hits = {k for k in words_near if len(k) in lengths and _one_slip(word, k)}
     if len(hits & named) == 1:
         hits &= named
     meanings = {words.PACES.get(h, reference_words.COLOR_SYNONYMS.get(h, h)) for h in hits}
     if len(meanings) != 1:  # "blu": blue or bleu, one colour either way
         return None
     return meanings.pop() if meanings <= hits else max(sorted(hits), key=len)
+
+
+BY_LENGTH_FROM = 64
+"""A vocabulary of more words than this is looked through by length (a sentence's vocabulary: thousands of words)."""
+
+
+@functools.lru_cache(maxsize=16)
+def _by_length(known: frozenset[str]) -> dict[int, tuple[str, ...]]:
+    """``known``'s words by their length: a slip is within one letter of the word's length."""
+    out: dict[int, list[str]] = {}
+    for k in known:
+        out.setdefault(len(k), []).append(k)
+    return {n: tuple(ws) for n, ws in out.items()}
 
 
 def unvowelled(word: str, known: frozenset[str]) -> str | None:
