@@ -35,8 +35,8 @@ from .group_places import GENERIC
 from .naming import naming_words
 from .phrase_readings import TIGHT, phrase_tokens, readings, without_to
 from .pronouns import Context
-from .reference_words import BLOCK_WORDS, SHAPE_ADJECTIVES
-from .references import object_pairs, resolve_object, try_object
+from .reference_words import BLOCK_WORDS, DETERMINERS, SHAPE_ADJECTIVES
+from .references import POSSESSIVES, object_pairs, resolve_object, try_object
 from .verbs import EXAMPLE, IN_THE_AIR, _on_the_table, _verb_patterns, _without, known_verbs, split_verb, verb_heads
 from .words import (
     by_gerund,
@@ -276,7 +276,26 @@ def _mover_said(words: list[str], scene: Scene, phrases: dict[str, str], context
     if len(before) == 1:
         return not did_you_mean(low[0], known_verbs())
     return any(try_object(" ".join(drop_frames(said)), scene, context) is not None
-               for said in (before, take_extent(before)[0]) if said)
+               for said in (before, take_extent(before)[0]) if said) or _a_description(take_extent(before)[0])
+
+
+VERBLESS_DESCRIPTION = 4
+"""Most words after its article a verbless command's unknown mover may have and still be read as a description ("the
+blue digger next to the red pot"): a longer run of words before the phrase says more than which object."""
+SAYS_WHAT_IS = frozenset({"goes", "go", "belongs", "needs", "need", "should", "shall", "will", "would", "has", "have",
+                          "gets", "ends", "stays", "sits", "wants", "want", "must", "can", "could", "moves", "is",
+                          "are", "been", "being", "i", "it", "you", "we", "they", "he", "she", "me"})
+"""Words that make the words before a phrase a clause of their own ("the blue digger goes next to ...", "the
+pastillero i want it more far of ..."), no description."""
+
+
+def _a_description(before: list[str]) -> bool:
+    """Whether ``before`` reads as a description of an object the scene does not know: an article, a demonstrative or
+    a possessive, then at most :data:`VERBLESS_DESCRIPTION` words, none of :data:`SAYS_WHAT_IS` ("the blue digger",
+    "my amber vial", "that red tin")."""
+    low = [w.lower() for w in before]
+    return 2 <= len(low) <= VERBLESS_DESCRIPTION + 1 and (low[0] in DETERMINERS or low[0] in POSSESSIVES) \
+        and not SAYS_WHAT_IS & set(low) and all(w.isalpha() for w in low)
 
 
 def _mover(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], str | None, str]:

@@ -103,6 +103,8 @@ def test_a_word_of_ones_own_is_refused_with_how_to_teach_it_and_then_read(plugin
     ("tin next to the lime", 'no block called "tin"'),  # one word before "next to" is the mover, not a verb
     ("scootch the bottle next to the lime", '"scootch" is not a verb I know'),  # a verb, then the mover
     ("mvoe next to the lime", '"mvoe" is not a verb I know'),  # a slip of "move"
+    ("the silver tin next to the lime", 'no block called "the silver tin"'),  # an article: a description
+    ("my old tin a bit closer to the lime", 'no block called "my old tin"'),
 ])
 def test_a_verbless_command_is_refused_for_the_word_it_lacks(plugins, sentence, why):
     """A command with its verb left out ("bottle past the wedge") is refused for what its reading could not find,
@@ -111,6 +113,14 @@ def test_a_verbless_command_is_refused_for_the_word_it_lacks(plugins, sentence, 
         read(sentence, plugins, "heldout109.tsv")
     assert why in str(e.value)
     assert ("scene file" in str(e.value)) == why.startswith("no block")
+
+
+@pytest.mark.parametrize("sentence", ["the silver tin goes next to the lime",  # a clause of its own
+                                      "the big silver cocktail tin thing next to the lime"])  # more than which one
+def test_words_before_a_verbless_phrase_that_say_more_than_which_object_are_no_description(plugins, sentence):
+    with pytest.raises(L2PError) as e:
+        read(sentence, plugins, "heldout109.tsv")
+    assert "no block called" not in str(e.value)
 
 
 @pytest.mark.parametrize(("kind", "said"), [
