@@ -141,15 +141,27 @@ def _one_slip(word: str, known: str) -> bool:
     if word == known:
         return False
     if len(word) == len(known):
-        diff = [i for i, (a, b) in enumerate(zip(word, known, strict=True)) if a != b]
+        diff: list[int] = []
+        for i, (a, b) in enumerate(zip(word, known, strict=True)):
+            if a != b:
+                diff.append(i)
+                if len(diff) > 2:
+                    return False
         swap = len(diff) == 2 and diff[1] == diff[0] + 1 and word[diff[0]] == known[diff[1]] \
             and word[diff[1]] == known[diff[0]]
         return swap or (len(diff) == 1 and len(word) > 3)
     if len(word) + 1 == len(known):  # a letter left out
-        return any(known[:i] + known[i + 1:] == word for i in range(len(known)))
+        return _one_left_out(known, word)
     if len(word) == len(known) + 1 and len(word) > 3:  # a letter added
-        return any(word[:i] + word[i + 1:] == known for i in range(len(word)))
+        return _one_left_out(word, known)
     return False
+
+
+def _one_left_out(longer: str, shorter: str) -> bool:
+    """Whether ``shorter`` is ``longer`` with one letter left out: where they first differ, the rest of ``longer``
+    after that letter is the rest of ``shorter`` (a letter left out of a run of one letter is left out at its end)."""
+    i = next((k for k, (a, b) in enumerate(zip(shorter, longer, strict=False)) if a != b), len(shorter))
+    return longer[i + 1:] == shorter[i:]
 
 
 def squeezed(sentence: str, known: frozenset[str]) -> str:
