@@ -139,3 +139,20 @@ def test_a_description_still_unknown_after_its_word_asks_its_word_before():
     assert taught == {"strip": "blister_pack", "tablet": "blister_pack"}
     said = resolve_clauses("Put the tablet strip near to the cream tube.", scene, registry.discover())
     assert [(c.command.mover, c.command.anchor) for c in said] == [("blister_pack", "hand_cream")]
+
+
+def test_a_verbless_commands_unknown_description_is_asked_about(tmp_path):
+    """"the old tin next to the wedge" (no verb, no object called so): its words are asked about as a command's."""
+    asked: list[str] = []
+    answers = iter(["shaker", "lime"])
+
+    def prompt(question: str, **_: object) -> str:
+        asked.append(question.split("?")[0])
+        return next(answers)
+
+    scene, taught = ask_words("the old tin next to the wedge", load_scene(BAR), registry.discover(), prompt=prompt,
+                              confirm=lambda *a, **k: True)
+    assert asked == ['Which object is "tin"', 'Which object is "wedge"']
+    assert taught == {"tin": "shaker", "wedge": "lime"}
+    said = resolve_clauses("the old tin next to the wedge", scene, registry.discover())
+    assert [(c.command.mover, c.command.action, c.command.anchor) for c in said] == [("shaker", "next-to", "lime")]
