@@ -19,6 +19,7 @@ from ..pipeline import resolve
 from ..plugins import registry
 from . import pointing
 from .clause import Clause
+from .completion import ONCE_MORE
 
 
 def pace_alone(text: str, scene: Scene) -> str | None:
@@ -75,6 +76,40 @@ def done_so(text: str, before: Clause) -> Clause | None:
     if ruled_out == manner:
         return None
     return replace(before, command=replace(before.command, verb=verb, manner=manner))
+
+
+def wishes_done(clauses: list[Clause]) -> list[Clause]:
+    """``clauses`` with a clause that only orders the end the clause before wished for ("The idea is that the globe is
+    not so near to the box, move it away") read as that one move (:func:`done_as_wished`), numbered again."""
+    out: list[Clause] = []
+    for c in clauses:
+        wished = done_as_wished(out[-1], c) if out else None
+        if wished is not None:
+            out[-1] = replace(wished, index=len(out))
+        else:
+            out.append(replace(c, index=len(out) + 1))
+    return out
+
+
+def done_as_wished(before: Clause, after: Clause) -> Clause | None:
+    """``before`` as ``after`` orders it, where ``before`` only wished for an end ("The idea is that the globe is not so
+    near to the chalk box") and ``after``, with a verb, refers back to it and asks for the same move ("move it away"):
+    one move, in ``after``'s manner and pace; None otherwise. A clause that says to go on ("move it further", "again")
+    is a move of its own. Read from the sentences the commands were read from: two pieces of one text share it."""
+    wished, said = before.command, after.command
+    if before.target is not None or after.target is not None or _has_verb(wished.sentence) \
+            or not _has_verb(said.sentence) or not IT.search(said.sentence) or ONCE_MORE.search(said.sentence):
+        return None
+    if (said.mover, said.action, said.anchors) != (wished.mover, wished.action, wished.anchors) \
+            or said.extent not in (None, wished.extent):
+        return None
+    text = before.text if after.text == before.text else f"{before.text} {after.text}".strip()
+    return replace(before, text=text, command=replace(said, extent=said.extent or wished.extent,
+                                                      pace=said.pace or wished.pace, sentence=wished.sentence))
+
+
+IT = re.compile(r"\b(?:it|that|this one|that one)\b", re.IGNORECASE)
+"""Words that point back at the object a clause before named."""
 
 
 AFTERTHOUGHT = re.compile(r"\b(?:though|tho|instead|rather)\b", re.IGNORECASE)

@@ -376,6 +376,29 @@ OPEN = {
         "Fastly take the syringe box around the blister pack.":
             "slide:around syringe_box blister_pack",
     },
+    "heldout117.tsv": {
+        # "the box" among a soap bar, a toothpaste tube and a razor, all box-shaped: asked, the author says; the
+        # boxiest (the soap bar), as "the box" is read beside long thin ones
+        "Move the box next to cup": "slide:next-to soap_bar toothbrush_cup",
+    },
+    "heldout119.tsv": {
+        # "the largest box", "the biggest box": the book, the largest box-shaped thing; read among what is called a box
+        # (the chalk box; reading both and asking where they differ turned 11 right lines of other corpora to refusals)
+        "Put the largest box beside the smallest object.": "slide:next-to chalk_box eraser",
+        "move the biggest box next to the globe": "slide:next-to chalk_box globe",
+        # a verbless description of where the mover stands ("the little one next to the globe, move it ..."), read as
+        # a move there first; heldout93's author means such a line as two moves
+        "the little one next to the globe, move it towards the apple":
+            "slide:next-to eraser globe ; slide:closer eraser apple",
+    },
+    "heldout120.tsv": {
+        # "real quick" said of when, not how fast, the author says
+        "diaper pack away from the cream real quick its in the way": "slide:away diaper_pack cream_tube pace=fast",
+        # "shaky" read past as an unknown adjective, "toy" then the teddy
+        "get the baby's shaky toy closer to the diapers": "slide:closer teddy diaper_pack",
+        # "what is next the wipes" ("next" without "to"): read as "what is next:", then the wipes
+        "move what is next the wipes closer to bottle": "slide:closer wipes baby_bottle",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -616,4 +639,14 @@ def test_the_hundred_and_thirteenth_to_hundred_and_sixteenth_authors_corpora(plu
     session's last reader code before anything was changed for them (docs/language.md): a potting bench, a pharmacy
     counter, a children's craft table and a picnic: 423 of 640, 3 wrong (the same on the session's start). Wrong only
     as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout117.tsv", 133), ("heldout118.tsv", 128), ("heldout119.tsv", 124),
+                                         ("heldout120.tsv", 118)])
+def test_the_hundred_and_seventeenth_to_hundred_and_twentieth_authors_corpora(plugins, name, floor):
+    """Written cold at the thirty-seventh session, from the notation and a scene file alone, and read once on that
+    session's reader code (13c72da) before anything was changed for them (docs/language.md): a bathroom counter, a
+    baker's counter, a teacher's desk and a baby changing table: 502 of 640, 8 wrong; one of the wrong mended since
+    (an end wished for and then ordered, read as one move). Wrong only as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)

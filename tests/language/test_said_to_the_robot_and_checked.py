@@ -137,3 +137,20 @@ def test_a_kind_with_accents_is_called_with_them_or_without(plugins, tmp_path, k
     (tmp_path / "bar.json").write_text(json.dumps(table, ensure_ascii=False), encoding="utf-8")
     read = resolve_clauses(f"move {said} next to the lime", load_scene(tmp_path / "bar.json"), plugins)
     assert [(c.command.mover, c.command.anchor) for c in read] == [("bottle", "lime")]
+
+
+@pytest.mark.parametrize(("sentence", "meant"), [
+    ("The idea is that the globe is not so near to the chalk box, move it away.", "slide:away globe chalk_box"),
+    ("The globe should be away from the chalk box. Push it away from the chalk box.", "push:away globe chalk_box"),
+    ("I'd like the apple closer to the bell, so slide it closer to the bell slowly.",
+     "slide:closer apple bell pace=slow"),
+    # said twice with a verb each time, or "again": two moves
+    ("Move the globe away from the chalk box. Move it away from the chalk box.",
+     "slide:away globe chalk_box ; slide:away globe chalk_box"),
+    ("The globe should be away from the chalk box. Move it away from the chalk box again.",
+     "slide:away globe chalk_box ; slide:away globe chalk_box"),
+])
+def test_an_end_wished_for_and_then_ordered_is_one_move(plugins, sentence, meant):
+    """A wish for an end ("The idea is that the globe is not so near to the chalk box") and then the order to bring it
+    about ("move it away") is one move, in the order's manner and pace, not the same move twice."""
+    assert read(sentence, plugins, "heldout119.tsv") == meant
