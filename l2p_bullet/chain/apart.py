@@ -78,12 +78,14 @@ def done_so(text: str, before: Clause) -> Clause | None:
     return replace(before, command=replace(before.command, verb=verb, manner=manner))
 
 
-def wishes_done(clauses: list[Clause]) -> list[Clause]:
+def wishes_done(clauses: list[Clause], scene: Scene, sentence: str) -> list[Clause]:
     """``clauses`` with a clause that only orders the end the clause before wished for ("The idea is that the globe is
-    not so near to the box, move it away") read as that one move (:func:`done_as_wished`), numbered again."""
+    not so near to the box, move it away") read as that one move (:func:`done_as_wished`), and a verbless clause that
+    only says which object the next one's "it" is ("the little one next to the globe, move it towards the apple")
+    read past (:func:`topic_first`); numbered again. ``sentence``: the text they were read from."""
     out: list[Clause] = []
     for c in clauses:
-        wished = done_as_wished(out[-1], c) if out else None
+        wished = (done_as_wished(out[-1], c) or topic_first(out[-1], c, scene, sentence)) if out else None
         if wished is not None:
             out[-1] = replace(wished, index=len(out))
         else:
@@ -106,6 +108,31 @@ def done_as_wished(before: Clause, after: Clause) -> Clause | None:
     text = before.text if after.text == before.text else f"{before.text} {after.text}".strip()
     return replace(before, text=text, command=replace(said, extent=said.extent or wished.extent,
                                                       pace=said.pace or wished.pace, sentence=wished.sentence))
+
+
+def topic_first(before: Clause, after: Clause, scene: Scene, sentence: str) -> Clause | None:
+    """``after`` alone where ``before``, read as a command without a verb ("the little one next to the globe"), is
+    only the object ``after`` then orders with "it", said first and described by where it stands ("the little one
+    next to the globe, move it towards the apple"): the two parts joined by a comma alone, the first a description
+    (an article first) whose words name that very object, and whose place alone names it too ("the one next to the
+    globe" is the eraser: it stands there already). With "then", a full stop or a step's number between them, or
+    where another object is the one so placed ("the apple next to the globe, ..."), they are two moves."""
+    wished, said = before.command, after.command
+    if before.target is not None or after.target is not None or _has_verb(wished.sentence) \
+            or not _has_verb(said.sentence) or not IT.search(said.sentence) or said.mover != wished.mover \
+            or f"{before.text}, {after.text}" not in sentence:
+        return None
+    whole = wished.sentence.strip(" .,;:!?")
+    parts = re.split(rf"\s+{re.escape(wished.preposition)}\s+", whole, maxsplit=1, flags=re.IGNORECASE)
+    if len(parts) != 2 or parts[0].split()[0].lower() not in ("the", "that", "this"):
+        return None
+    try:
+        if resolve_object(whole, scene) != wished.mover or \
+                resolve_object(f"the one {wished.preposition} {parts[1]}", scene) != wished.mover:
+            return None
+    except L2PError:
+        return None
+    return replace(after, text=f"{before.text}, {after.text}")
 
 
 IT = re.compile(r"\b(?:it|that|this one|that one)\b", re.IGNORECASE)

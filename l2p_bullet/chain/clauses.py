@@ -126,7 +126,8 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
                 raise
             pieces = _set_down(pieces, None, None)  # "beside the... the colander, yes, beside the colander": once
             pieces = [p for k, p in enumerate(pieces) if k == 0 or not said_again(p[0], p[1], pieces[k - 1][1], scene)]
-            return apart.wishes_done([Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)])
+            return apart.wishes_done([Clause(k, piece, cmd) for k, (piece, cmd) in enumerate(pieces, start=1)], scene,
+                                     str(sentence))
     said = trailing_join(sentence.rstrip(" .!?,").split())
     if said is not None:  # "move A around B, then move C past A, then": the splitter drops the empty clause
         raise dangling_join(said)
@@ -208,7 +209,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         clauses.extend(Clause(len(clauses) + 1 + k, piece, cmd) for k, (piece, cmd) in enumerate(pieces))
     if not clauses:  # "Wonderful job, everyone! Look how tidy our sandpit is.": every part read past, none a move
         raise LanguageError(f'"{sentence}" asks for no move; say which object to move and where')
-    clauses = apart.wishes_done(clauses)
+    clauses = apart.wishes_done(clauses, scene, sentence)
     if len(clauses) > MAX_CLAUSES:
         raise LanguageError(f"the chain has {len(clauses)} moves; a chain has at most {MAX_CLAUSES}")
     return clauses

@@ -84,7 +84,8 @@ BEFORE_PHRASE = frozenset({"over", "up", "down", "be", "is", "go", "goes", "sitt
                            "end", "ends", "lands", "somewhere", "like", "itself", "stay", "stays", "remain", "remains",
                            "sit", "stand", "lie", "circuit", "loop", "lap", "circle", "full", "complete", "whole"})
 """Words left over right before the phrase that ask no extent ("slide A over next to B", "A sitting beside B")."""
-EXTENT_WORDS = frozenset(w for k in EXTENTS for w in k if w not in ("a", "an", "so", "or", "only", "just", "well"))
+EXTENT_WORDS = frozenset(w for k in EXTENTS for w in k
+                         if w not in ("a", "an", "the", "so", "or", "only", "just", "well"))
 """The words of the extents ("far", "bit", "slightly"): left over away from their place, they may ask one."""
 MAX_SPAN = 7
 """Longest description tried for one object, in words."""

@@ -113,6 +113,23 @@ def words_for(kind: str) -> frozenset[str]:
     return frozenset(out)
 
 
+@functools.lru_cache(maxsize=4096)
+def same_as(word: str) -> frozenset[str]:
+    """Lower-case words, each with its plural, that WordNet gives the same first sense among things as ``word``
+    ("nappy" for "diaper"): what a package of them is called by the thing it holds ("the nappies": diaper_pack),
+    never a more general word ("cloth") nor a kind of it."""
+    lemma = singular(word.lower())
+    if lemma is None:
+        return frozenset()
+    nouns = _nouns()
+    first = nouns["lemmas"][lemma][0][0]
+    out = set()
+    for w in nouns["words"][first]:
+        if nouns["lemmas"][w][0][0] == first:
+            out.update((w, plural(w)) if not w.endswith("s") or w.endswith("ss") else (w,))
+    return frozenset(out)
+
+
 @functools.lru_cache(maxsize=256)
 def groups_of(heads: tuple[tuple[str, tuple[str, ...]], ...], excluded: frozenset[str]) -> dict[str, frozenset[str]]:
     """Words WordNet relates to the objects' kinds -> the names of the objects of those kinds. ``heads``: each

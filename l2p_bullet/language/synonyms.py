@@ -444,7 +444,16 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...],
         heads = tuple((name, tuple(sorted(_heads(name, mesh, kind)))) for name, mesh, kind in objects)
         for word, names in lexicon.groups_of(heads, LOOKED_UP_NOT).items():
             out.setdefault(word, names)
+        for name, *_ in objects:  # "the nappies" for diaper_pack: a package called by what it holds
+            parts = name_parts(name)
+            if len(parts) == 2 and parts[1] in PACKAGES and parts[0].isalpha() and parts[0] not in LOOKED_UP_NOT:
+                for word in lexicon.same_as(parts[0]) - LOOKED_UP_NOT:
+                    out.setdefault(word, frozenset({name}))
     return out
+
+
+PACKAGES = frozenset({"pack", "packet", "box", "carton", "bag", "sack", "jar", "tub", "tin", "case", "crate"})
+"""What a name's last word may call a package of what its first word names ("diaper_pack", "egg_carton")."""
 
 
 def _heads(name: str, mesh: str | None, kind: str | None) -> set[str]:

@@ -154,3 +154,41 @@ def test_an_end_wished_for_and_then_ordered_is_one_move(plugins, sentence, meant
     """A wish for an end ("The idea is that the globe is not so near to the chalk box") and then the order to bring it
     about ("move it away") is one move, in the order's manner and pace, not the same move twice."""
     assert read(sentence, plugins, "heldout119.tsv") == meant
+
+
+@pytest.mark.parametrize(("sentence", "meant"), [
+    ("take the ruler all the way past the apple", "slide:past ruler apple extent=far"),
+    ("get the chalk box ALL the way away from the globe", "slide:away chalk_box globe extent=far"),
+    ("put the globe super far away from the apple", "slide:away globe apple extent=far"),
+    ("move the bell all the way around the apple", "slide:around bell apple"),  # a full circle, no extent
+])
+def test_all_the_way_and_super_far_ask_for_a_far_extent(plugins, sentence, meant):
+    assert read(sentence, plugins, "heldout119.tsv") == meant
+
+
+@pytest.mark.parametrize(("sentence", "meant"), [
+    ("Please bring the teddy closer to the nappies, dear.", "slide:closer teddy diaper_pack"),  # diaper_pack
+    ("Move the wipes a little away from the nappy.", "slide:away wipes diaper_pack extent=little"),
+])
+def test_a_package_is_called_by_what_it_holds_in_other_words(plugins, sentence, meant):
+    """diaper_pack holds diapers, which WordNet gives the same sense as "nappy": "the nappies" is the pack."""
+    assert read(sentence, plugins, "heldout120.tsv") == meant
+
+
+def test_a_more_general_word_for_what_a_package_holds_names_nothing(plugins):
+    """A diaper is a cloth; the pack of them is none."""
+    with pytest.raises(L2PError, match='no block called "the cloth"'):
+        read("move the teddy near the cloth", plugins, "heldout120.tsv")
+
+
+@pytest.mark.parametrize(("sentence", "meant"), [
+    ("the little one next to the globe, move it towards the apple", "slide:closer eraser apple"),
+    # the apple is not the one next to the globe (the eraser is): a move there first
+    ("the apple next to the globe, move it towards the bell", "slide:next-to apple globe ; slide:closer apple bell"),
+    ("the eraser next to the globe, then move it towards the apple",
+     "slide:next-to eraser globe ; slide:closer eraser apple"),  # "then": two moves
+])
+def test_an_object_said_first_by_where_it_stands_is_the_next_clauses_it(plugins, sentence, meant):
+    """A description of where the mover stands said first ("the little one next to the globe") and then the order
+    about "it" is one move of that object; as two moves only where another object stands there or "then" says so."""
+    assert read(sentence, plugins, "heldout119.tsv") == meant
