@@ -54,7 +54,9 @@ def read_past(sentence: str, mended: str | None, scene: Scene, plugins: list, kn
                 return read
             named = naming_words(scene)
             matters = named | verb_heads() | remarks.phrase_words(registry.phrase_table(plugins))
-            heads = (h for t in texts for h in remarks.without_remarks(t, matters))
+            phrase_words = remarks.phrase_words(registry.phrase_table(plugins))
+            heads = (h for t in texts for h in (*remarks.without_remarks(t, matters),
+                                                *remarks.without_reason(t, phrase_words, verb_heads())))
             read = first((told for h in heads for told in (h, moved(h))),
                          lambda read: getattr(read[-1], "group", None) is None)  # a list's last item is no remark
             if read is not None:

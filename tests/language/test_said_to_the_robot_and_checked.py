@@ -192,3 +192,15 @@ def test_an_object_said_first_by_where_it_stands_is_the_next_clauses_it(plugins,
     """A description of where the mover stands said first ("the little one next to the globe") and then the order
     about "it" is one move of that object; as two moves only where another object stands there or "then" says so."""
     assert read(sentence, plugins, "heldout119.tsv") == meant
+
+
+@pytest.mark.parametrize(("sentence", "meant"), [
+    ("move the lime closer to the shaker bc it keeps rolling away", "slide:closer lime shaker"),
+    ("put the lime next to the shaker so i can reach it", "slide:next-to lime shaker"),
+    ("slide the lime toward the shaker since the bar is busy", "slide:closer lime shaker"),
+    ("put the lime next to the shaker so they're touching", "slide:next-to lime shaker extent=right"),  # how far
+    ("move the lime away from the shaker so then push it past the bottle",
+     "slide:away lime shaker ; push:past lime bottle"),  # another step
+])
+def test_a_reason_after_the_command_is_read_past_and_a_step_or_an_extent_in_it_is_not(plugins, sentence, meant):
+    assert read(sentence, plugins, "heldout109.tsv") == meant
