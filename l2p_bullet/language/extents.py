@@ -51,6 +51,9 @@ COMPARATIVES: dict[tuple[str, ...], tuple[str, str | None]] = {
     tuple("miles away from".split()): ("away from", "far"),
     ("miles", "from"): ("away from", "far"),
     ("clear", "of"): ("away from", None),
+    ("further", "off", "from"): ("away from", None),  # "further off from the bell"
+    ("farther", "off", "from"): ("away from", None),
+    ("far", "off", "from"): ("away from", "far"),
     ("as", "close", "as", "possible", "to"): ("next to", "right"),
     ("as", "close", "as", "you", "can", "to"): ("next to", "right"),
     ("as", "close", "as", "you", "can", "get", "it", "to"): ("next to", "right"),

@@ -129,6 +129,7 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "must finish", "must end up",
     "should end", "end",
     "ought to go", "ought to sit",
+    "wants to end up", "wants to be", "wants to go", "wants to sit",  # "the chalk box wants to end up nearer ..."
     "to be standing", "to be sitting", "to be lying", "be standing", "be sitting", "be lying", "ends up sat",
     "should be sitting", "should be standing", "should be lying", "is going to go", "is gonna go", "will go",
     "is going to end up", "is gonna end up",

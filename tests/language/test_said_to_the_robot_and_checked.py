@@ -204,3 +204,12 @@ def test_an_object_said_first_by_where_it_stands_is_the_next_clauses_it(plugins,
 ])
 def test_a_reason_after_the_command_is_read_past_and_a_step_or_an_extent_in_it_is_not(plugins, sentence, meant):
     assert read(sentence, plugins, "heldout109.tsv") == meant
+
+
+@pytest.mark.parametrize(("sentence", "meant"), [
+    ("apple wants to be further off from the bell", "slide:away apple bell"),
+    ("move the apple far off from the bell", "slide:away apple bell extent=far"),
+    ("chalk box wants to end up nearer the globe", "slide:closer chalk_box globe"),
+])
+def test_an_object_that_wants_to_end_up_somewhere_and_far_off_from(plugins, sentence, meant):
+    assert read(sentence, plugins, "heldout119.tsv") == meant
