@@ -80,10 +80,10 @@ REASON = re.compile(r"[\s,;.!?-]+(?:because|bc|b/c|cos|coz|cuz|'cause|since|so t
 "... beside the pattern so i can follow the chart")."""
 REASON_STOPS = frozenset({"then", "and", "also", "too", "again", "first", "next", "instead", "not", "don't", "dont",
                           "never", "no", "slowly", "quickly", "gently", "carefully", "fast", "slow", "touch", "touches",
-                          "touching", "touched", "tuching", "gap", "apart", "close", "closer", "near", "nearer", "far",
-                          "farther", "further", "tight", "snug", "space", "room"})
+                          "touching", "touched", "tuching", "gap", "apart", "far", "farther", "further", "tight",
+                          "snug", "space", "room"})
 """Words in a reason that may be another step, a manner or how far ("so then push it", "so they're touching"): such
-a part is kept, and the sentence refused as before."""
+a part is kept, and the sentence refused as before. The installed phrases' words ("closer", "near") are kept too."""
 
 
 def without_reason(sentence: str, phrase_words_: Iterable[str], verbs: Iterable[str]) -> list[str]:
