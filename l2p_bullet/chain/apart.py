@@ -99,8 +99,8 @@ def done_as_wished(before: Clause, after: Clause) -> Clause | None:
     one move, in ``after``'s manner and pace; None otherwise. A clause that says to go on ("move it further", "again")
     is a move of its own. Read from the sentences the commands were read from: two pieces of one text share it."""
     wished, said = before.command, after.command
-    if before.target is not None or after.target is not None or _has_verb(wished.sentence) \
-            or not _has_verb(said.sentence) or not IT.search(said.sentence) or ONCE_MORE.search(said.sentence):
+    if not _plain(before) or not _plain(after) or _has_verb(wished.sentence) or not _has_verb(said.sentence) \
+            or not IT.search(said.sentence) or ONCE_MORE.search(said.sentence):
         return None
     if (said.mover, said.action, said.anchors) != (wished.mover, wished.action, wished.anchors) \
             or said.extent not in (None, wished.extent):
@@ -118,13 +118,13 @@ def topic_first(before: Clause, after: Clause, scene: Scene, sentence: str) -> C
     globe" is the eraser: it stands there already). With "then", a full stop or a step's number between them, or
     where another object is the one so placed ("the apple next to the globe, ..."), they are two moves."""
     wished, said = before.command, after.command
-    if before.target is not None or after.target is not None or _has_verb(wished.sentence) \
-            or not _has_verb(said.sentence) or not IT.search(said.sentence) or said.mover != wished.mover \
+    if not _plain(before) or not _plain(after) or _has_verb(wished.sentence) or not _has_verb(said.sentence) \
+            or not IT.search(said.sentence) or said.mover != wished.mover \
             or f"{before.text}, {after.text}" not in sentence:
         return None
     whole = wished.sentence.strip(" .,;:!?")
     parts = re.split(rf"\s+{re.escape(wished.preposition)}\s+", whole, maxsplit=1, flags=re.IGNORECASE)
-    if len(parts) != 2 or parts[0].split()[0].lower() not in ("the", "that", "this"):
+    if len(parts) != 2 or parts[0].lower().split()[:1] not in (["the"], ["that"], ["this"]):
         return None
     try:
         if resolve_object(whole, scene) != wished.mover or \
@@ -133,6 +133,11 @@ def topic_first(before: Clause, after: Clause, scene: Scene, sentence: str) -> C
     except L2PError:
         return None
     return replace(after, text=f"{before.text}, {after.text}")
+
+
+def _plain(clause: Clause) -> bool:
+    """Whether ``clause`` is a move of its own, not a composite's step."""
+    return clause.target is None and clause.group is None
 
 
 IT = re.compile(r"\b(?:it|that|this one|that one)\b", re.IGNORECASE)

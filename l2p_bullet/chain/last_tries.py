@@ -53,10 +53,10 @@ def read_past(sentence: str, mended: str | None, scene: Scene, plugins: list, kn
             if read is not None:
                 return read
             named = naming_words(scene)
-            matters = named | verb_heads() | remarks.phrase_words(registry.phrase_table(plugins))
-            phrase_words = remarks.phrase_words(registry.phrase_table(plugins))
+            places = remarks.phrase_words(registry.phrase_table(plugins))
+            matters = named | verb_heads() | places
             heads = (h for t in texts for h in (*remarks.without_remarks(t, matters),
-                                                *remarks.without_reason(t, phrase_words, verb_heads())))
+                                                *remarks.without_reason(t, places, verb_heads())))
             read = first((told for h in heads for told in (h, moved(h))),
                          lambda read: getattr(read[-1], "group", None) is None)  # a list's last item is no remark
             if read is not None:

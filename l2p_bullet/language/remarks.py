@@ -78,26 +78,26 @@ def without_remarks(sentence: str, matters: Iterable[str]) -> list[str]:
 REASON = re.compile(r"[\s,;.!?-]+(?:because|bc|b/c|cos|coz|cuz|'cause|since|so that|so)\s+(?=\S)", re.IGNORECASE)
 """Where a reason or a purpose after the command starts ("... closer to the scissors bc the baby keeps grabbing it",
 "... beside the pattern so i can follow the chart")."""
-REASON_STOPS = frozenset({"then", "and", "also", "too", "again", "first", "next", "instead", "not", "don't", "dont",
-                          "never", "no", "slowly", "quickly", "gently", "carefully", "fast", "slow", "touch", "touches",
-                          "touching", "touched", "tuching", "gap", "apart", "far", "farther", "further", "tight",
-                          "snug", "space", "room"})
-"""Words in a reason that may be another step, a manner or how far ("so then push it", "so they're touching"): such
-a part is kept, and the sentence refused as before. The installed phrases' words ("closer", "near") are kept too."""
+REASON_STOPS = NEGATIONS | frozenset({"then", "and", "also", "too", "again", "first", "next", "instead", "touch",
+                                      "touches", "touching", "touched", "tuching", "gap", "apart", "far", "farther",
+                                      "further", "tight", "snug", "space", "room"})
+"""Words in a reason that may be another step, a negation or how far ("so then push it", "so they're touching"): such
+a part is kept, and the sentence refused as before. The installed phrases' words ("closer", "near"), the verbs, the
+extents and the paces are kept too (:func:`without_reason`)."""
 
 
-def without_reason(sentence: str, phrase_words_: Iterable[str], verbs: Iterable[str]) -> list[str]:
-    """``sentence`` without the reason or purpose its last part gives (:data:`REASON`): none where there is none, or
-    where that part holds a word of an installed phrase ("so it ends up next to B" says where), a verb, an extent or
-    one of :data:`REASON_STOPS`. The reason explains the move; it never changes it."""
-    found = list(REASON.finditer(sentence))
-    if not found:
+def without_reason(sentence: str, places: Iterable[str], verbs: Iterable[str]) -> list[str]:
+    """``sentence`` up to where its first reason or purpose starts (:data:`REASON`): none where there is none, where
+    fewer than three words come before it, or where the reason holds one of ``places`` (the installed phrases' words:
+    "so it ends up next to B" says where), of ``verbs``, an extent, a pace or one of :data:`REASON_STOPS`. The reason
+    explains the move; it never changes it."""
+    m = REASON.search(sentence)
+    if m is None:
         return []
-    m = found[0]
     head, tail = sentence[:m.start()], sentence[m.end():]
     if len(head.split()) < 3:
         return []
     words = set(re.findall(r"[\w']+", tail.lower()))
-    keep = frozenset(w.lower() for w in phrase_words_) | frozenset(v.lower() for v in verbs) | lenient.EXTENT_WORDS \
+    keep = frozenset(w.lower() for w in places) | frozenset(v.lower() for v in verbs) | lenient.EXTENT_WORDS \
         | REASON_STOPS | frozenset(PACES)
     return [] if words & keep else [head]
