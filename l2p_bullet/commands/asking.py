@@ -11,7 +11,6 @@ written without a yes; the run itself records the scene as read, words included 
 from __future__ import annotations
 
 import json
-import os
 import sys
 from collections.abc import Callable
 from dataclasses import replace
@@ -20,6 +19,7 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..core.atomic import atomic_file
 from ..errors import L2PError, LanguageError, SceneError, UnknownObjectError
 from .common import mesh_dirs
 
@@ -188,19 +188,17 @@ def keep_words(scene_path: str, taught: dict[str, str], confirm: Confirm = click
                    default=False, err=True):
         return False
     path = Path(scene_path).resolve()  # a link to the scene file stays a link: the file it names is rewritten
-    new = path.with_name(f".{path.name}.new")
     try:
         raw = json.loads(path.read_text(encoding="utf-8"))
         objects = {o["name"]: o for o in raw["objects"]}
         for word, name in taught.items():
             objects[name]["kind"] = _kind_with(objects[name].get("kind"), word)
-        text = json.dumps(raw, indent=2, ensure_ascii=False) + "\n"
-        new.write_text(text, encoding="utf-8")
-        load_scene(new, mesh_dirs())  # what is written must read back as a scene (a kind too long is refused here)
+        with atomic_file(path, suffix=".json") as f:  # replaced only where the block ends without an error
+            f.write((json.dumps(raw, indent=2, ensure_ascii=False) + "\n").encode("utf-8"))
+            f.flush()
+            load_scene(f.name, mesh_dirs())  # it must read back as a scene (a kind too long is refused here)
     except (OSError, ValueError, KeyError, TypeError, SceneError) as e:
         click.echo(f"not kept: {path} could not be written as a scene with these words ({e})", err=True)
-        new.unlink(missing_ok=True)
         return False
-    os.replace(new, path)
     click.echo(f"kept in {path}", err=True)
     return True

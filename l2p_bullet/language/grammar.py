@@ -275,8 +275,9 @@ def _mover_said(words: list[str], scene: Scene, phrases: dict[str, str], context
     before = words[:min(starts)]
     if len(before) == 1:
         return not did_you_mean(low[0], known_verbs())
+    plain = take_extent(before)[0]
     return any(try_object(" ".join(drop_frames(said)), scene, context) is not None
-               for said in (before, take_extent(before)[0]) if said) or _a_description(take_extent(before)[0])
+               for said in (before, plain) if said) or _a_description(plain)
 
 
 VERBLESS_DESCRIPTION = 4

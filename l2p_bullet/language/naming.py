@@ -11,7 +11,7 @@ import functools
 from ..core.scene import COLORS, Scene
 from . import lexicon
 from .kept import SceneMemo
-from .reference_words import COLOR_SYNONYMS, NOUNS, SOFT_ADJECTIVES
+from .reference_words import COLOR_SYNONYMS, COLOUR_WORDS, NOUNS, SOFT_ADJECTIVES
 from .shape_words import SHAPE_NOUNS
 from .synonyms import KIND_MODIFIERS, SIZE_WORDS, kind_words_of, name_parts, scene_key, shape_of
 
@@ -126,7 +126,6 @@ def naming_words(scene: Scene) -> frozenset[str]:
 
 
 _SHAPES_SAID = frozenset(SHAPE_NOUNS) - {"can", "cans"}
-_COLOUR_WORDS = frozenset(COLORS) | frozenset(COLOR_SYNONYMS)
 
 
 @functools.lru_cache(maxsize=256)
@@ -135,7 +134,7 @@ def _naming_words_of(objects: tuple[tuple[str, str | None, str | None], ...], lo
     literal = {name.lower() for name, *_ in objects}
     kinds = frozenset(w for w in name_words_of(objects, looked_up) if len(w) >= 3
                       and (w in literal or w not in SHAPE_NOUNS))
-    return kinds | _COLOUR_WORDS | _SHAPES_SAID
+    return kinds | COLOUR_WORDS | _SHAPES_SAID
 
 
 WORDS_OF_THEIR_OWN = (SIZE_WORDS | SOFT_ADJECTIVES | NOUNS | frozenset(SHAPE_NOUNS) | frozenset(COLORS)

@@ -72,6 +72,7 @@ from .relating import beside_as_said, describes, picks_among
 from .shape_words import SHAPE_NOUNS
 from .synonyms import LOOSE_NOUNS, kind_groups, kind_groups_of, scene_key
 from .uses import used_for
+from .words import by_word
 
 
 def resolve_object(text: str, scene: Scene, role: str = "block", context: Context | None = None) -> str:
@@ -319,11 +320,9 @@ def _off_line(o: SceneObject, a: np.ndarray, span: np.ndarray, length: float) ->
     return abs(float(span[0] * d[1] - span[1] * d[0])) / length
 
 
-_CENTRE_ENDS = frozenset(phrase[-1] for phrase in CENTRE_PHRASES)
-_SIDES_BY_LAST: dict[str, list[tuple[tuple[str, ...], str]]] = {}
-for _phrase, _kind in SIDE_PHRASES.items():
-    _SIDES_BY_LAST.setdefault(_phrase[-1], []).append((_phrase, _kind))
-"""The place phrases by their last word, each list in the table's order: only those can end a description."""
+_CENTRE_BY_LAST = by_word(CENTRE_PHRASES, -1)
+_SIDES_BY_LAST = by_word(tuple(SIDE_PHRASES), -1)
+"""The place phrases by their last word, each in the table's order: only those can end a description."""
 
 
 def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, context: Context | None) -> str | None:
@@ -334,15 +333,15 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
     if grouped is not None:
         return grouped
     last = low[-1] if low else ""
-    for phrase in CENTRE_PHRASES if last in _CENTRE_ENDS else ():
+    for phrase in _CENTRE_BY_LAST.get(last, ()):
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
             return either_reading(words[:-len(phrase)], scene, lambda pool: superlative(
                 pool, lambda o: distance_to(o, (0.0, 0.0)), min, "in the middle", place=True))
-    for phrase, kind in _SIDES_BY_LAST.get(last, ()):
+    for phrase in _SIDES_BY_LAST.get(last, ()):
         if len(low) > len(phrase) and low[-len(phrase):] == phrase:
             if relation_head(low[:-len(phrase)]) is not None:
                 continue  # "the thing in front of the red cube on the right": the side picks the red cube
-            what, pick = SIZE_SUPERLATIVES[kind]
+            what, pick = SIZE_SUPERLATIVES[SIDE_PHRASES[phrase]]
             said = " ".join(phrase)
             return either_reading(words[:-len(phrase)], scene, lambda pool, what=what, pick=pick, said=said:
                                    superlative(pool, lambda o: measure(o, what), pick, said, place=True))

@@ -15,6 +15,7 @@ import unicodedata
 
 from ..core.scene import COLORS, Scene, SceneObject
 from . import lexicon
+from .kept import SceneMemo
 from .shape_words import SHAPE_NOUNS
 
 KIND_NAMES = {
@@ -392,24 +393,12 @@ def abbreviated(word: str, scene: Scene) -> str | None:
 
 def scene_key(scene: Scene) -> tuple[tuple[str, str | None, str | None], ...]:
     """Each object's (name, mesh file, declared kind): all that the words for a scene's objects depend on (a key to
-    keep them by). Kept by the objects themselves: reading one sentence asks it hundreds of times of the same
-    objects, and a :class:`SceneObject` is frozen (a moved or renamed one is a new object). Each kept key holds its
-    objects, so no other object can take their ids while it is kept; any other kind of object is read each time."""
-    objects = tuple(scene.objects)
-    ids = tuple(map(id, objects))
-    kept = _SCENE_KEYS.get(ids)
-    if kept is not None:
-        return kept[1]
-    key = tuple(_kind_key(o) for o in objects)
-    if all(type(o) is SceneObject for o in objects):
-        if len(_SCENE_KEYS) >= 256:
-            _SCENE_KEYS.clear()
-        _SCENE_KEYS[ids] = (objects, key)
-    return key
+    keep them by). Kept by the objects themselves (language/kept.py): reading one sentence asks it hundreds of times
+    of the same objects."""
+    return _SCENE_KEYS.ask("scene_key", scene, lambda: tuple(_kind_key(o) for o in scene.objects))
 
 
-_SCENE_KEYS: dict[tuple[int, ...], tuple[tuple[SceneObject, ...], tuple]] = {}
-""":func:`scene_key` by its objects' ids, with the objects it was made of."""
+_SCENE_KEYS = SceneMemo(256)
 
 
 def kind_groups(scene: Scene) -> dict[str, frozenset[str]]:

@@ -85,17 +85,15 @@ def get(name: str | None) -> MannerSpec:
 
 
 def verb_table() -> dict[str, str]:
-    """Verb (as the manners declare it, "pick up ... and put" included) -> manner name. Made once per set of
-    manners found (every clause read asks for it), kept with them so their ids stay theirs; callers get a copy."""
-    found = discover()
-    ids = tuple(map(id, found))
-    if _VERB_TABLE.get(ids) is None:
-        _VERB_TABLE.clear()
-        _VERB_TABLE[ids] = (found, {v: m.name for m in found for v in m.verbs})
-    return dict(_VERB_TABLE[ids][1])
+    """Verb (as the manners declare it, "pick up ... and put" included) -> manner name."""
+    return dict(_verbs_of(tuple((m.name, tuple(m.verbs)) for m in discover())))
 
 
-_VERB_TABLE: dict[tuple[int, ...], tuple[list[MannerSpec], dict[str, str]]] = {}
+@lru_cache(maxsize=8)
+def _verbs_of(declared: tuple[tuple[str, tuple[str, ...]], ...]) -> dict[str, str]:
+    """:func:`verb_table` of the manners' (name, verbs), kept by them: every clause read asks for it (callers get a
+    copy)."""
+    return {v: name for name, verbs in declared for v in verbs}
 
 
 def sentence_verb(name: str) -> str:
