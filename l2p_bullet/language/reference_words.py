@@ -186,6 +186,8 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("up", "the", "back"): "backmost", ("up", "the", "front"): "frontmost",
                 ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"} | {
     (far, "to", "the", side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")}
+SIDE_PHRASES = {("most", "on", *the, side): f"{side}most" for the in ((), ("the",)) for side in ("left", "right")} \
+    | SIDE_PHRASES  # before "on the left": the longer phrase is read first
 SIDE_PHRASES |= {(prep, "the", *far, side, "end"): f"{side}most" for prep in ("on", "at") for far in ((), ("far",))
                  for side in ("left", "right", "front", "back")}
 SIDE_PHRASES |= {(prep, "the", corner, *said): f"{corner}most" for prep in ("on", "at", "in")

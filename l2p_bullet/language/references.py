@@ -243,15 +243,17 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     kind, at, end = head
     if not describes(low[:at], scene):  # "mv orange cube closer to tube" is a command, not a description
         return None
+    if at == 0 and kind in COMPARED:  # "further from the vase than it is now" says where to, it names no object
+        return None
     if kind in ("by", "beside") and not picks_among(words[:at], scene, try_object):
         return beside_as_said(words[:at], words[end:], scene, context, try_object)  # "the white one by the lamp"
     rest_words = words[end:]
+    rank = RANKS.get(low[at - 1], 1) if at > 0 else 1  # "the second tallest white one", "the second closest to you"
     if kind in SIZE_SUPERLATIVES:  # "the biggest red block": the words on both sides restrict
         heads = NOUNS | set(COLORS) | set(COLOR_SYNONYMS) | set(SHAPE_NOUNS) | set(kind_groups(scene)) | LOOSE_NOUNS \
             | set(SHAPE_ADJECTIVES)  # "the smallest round one"
         if any(w.lower() not in heads for w in rest_words):
             return None
-        rank = RANKS.get(low[at - 1], 1) if at > 0 else 1  # "the second tallest white one"
         described = words[:at - (rank > 1)] + rest_words
         _one_of_a_kind_looked_up(described, scene, kind)
         what, pick = SIZE_SUPERLATIVES[kind]
@@ -292,7 +294,12 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
         return superlative(pool, lambda o: distance_to(o, ref_xy), min if kind in NEAREST else max, kind,
                            distance=True)
 
-    return either_reading(words[:at], scene, choose)  # "the red block nearest B": the red ones only
+    # "the red block nearest B": the red ones only
+    return either_reading(words[:at - (rank > 1)], scene, ranked(rank, choose))
+
+
+COMPARED = frozenset({"farther", "further", "nearer", "closer"})
+"""Comparatives that describe an object only after words that name it ("the cube nearer to you")."""
 
 
 def _one_of_a_kind_looked_up(described: list[str], scene: Scene, word: str) -> None:
