@@ -149,14 +149,15 @@ SIDE_BEFORE_RIGHT = frozenset({"front", "back", "far", "rear", "the", "top", "bo
 def take_extent(before: list[str]) -> tuple[list[str], str | None]:
     """The words before a preposition without the qualifiers at their end, and the extent they ask for; the
     outermost decides ("a little farther away": little, "a lot farther away": far). A filler before the qualifier
-    (:data:`FILLERS`) goes with it."""
+    or the comparative (:data:`FILLERS`) goes with it ("up further away")."""
     extent = None
+    compared = False
     while True:
         low = [w.lower() for w in before]
         if len(low) > 1 and low[-1] in COMPARATIVE_WORDS:  # "further away": a comparative alone says no extent
-            before = before[:-1]
+            before, compared = before[:-1], True
             continue
-        if extent is not None and len(low) > 1 and low[-1] in FILLERS:
+        if (extent is not None or compared) and len(low) > 1 and low[-1] in FILLERS:
             before = before[:-1]
             continue
         for k in LONGEST_FIRST:

@@ -120,7 +120,7 @@ def passive_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
     return words
 
 
-STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
+_WRITTEN_LINKS = (
     "to end up", "ends up", "end up", "should end up", "needs to end up", "to be", "is", "be", "should be",
     "needs to be", "need to be", "has to be", "must be", "to go", "goes", "go", "to get", "gets", "should go",
     "sits", "lies", "to sit", "to lie", "to land", "lands", "is placed", "is put", "to stand", "stands",
@@ -139,9 +139,18 @@ STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p 
     "were to end up", "were to be", "went", "came", "ended", "sat", "stood", "sitting", "standing",
     "would be sitting", "would be standing", "wants to be", "wants to come", "wants to go", "wants to sit",
     "needs to come", "needs to sit", "would be sat", "is sat", "is sitting", "is standing", "is lying",
-)), key=len, reverse=True))
+    "to finish up", "finishes up", "finish up", "finished up", "to wind up", "winds up", "wind up",
+)
+_MODALS = ("should", "must", "needs to", "need to", "has to", "have to", "ought to", "wants to", "is going to",
+           "is gonna", "will", "has got to", "gotta", "got to", "is to")
+_WHERE_IT_STAYS = ("end up", "be", "go", "sit", "stand", "lie", "finish", "come", "stay", "land", "end up sitting",
+                   "end up sat", "be sitting", "be standing", "be lying", "be placed", "be positioned", "be put",
+                   "finish up", "wind up")
+STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted(dict.fromkeys(tuple(p.split()) for p in (
+    *_WRITTEN_LINKS, *(f"{modal} {stay}" for modal in _MODALS for stay in _WHERE_IT_STAYS))), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it
-so that A *is* closer to C", "the red cube *needs to be* closer to the blue one")."""
+so that A *is* closer to C", "the red cube *needs to be* closer to the blue one"): those people wrote, and each
+way of saying it must, should, has to ... with each way of saying where it stays."""
 _LINKS_BY_FIRST = by_word(STATE_LINKS, 0)
 """The links by their first word (only those can match where a word stands), the longest first as above."""
 

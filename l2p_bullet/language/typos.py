@@ -16,7 +16,7 @@ import functools
 import re
 from collections.abc import Iterable
 
-from . import extents, goals, reference_words, words
+from . import extents, goals, lexicon, reference_words, words
 from .shape_words import SHAPE_NOUNS
 from .sounds import heard_key, heard_name, one_sound_apart
 from .synonyms import name_parts
@@ -232,6 +232,8 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return w
         if hit in verbs and after_article or hit in named and after_subject:
             return w  # "for a pic" is no "pick"; "the thing you boil water in" is no bowl
+        if hit in words.PACES and lexicon.singular(low) is not None:
+            return w  # "closer to candy dish" names a thing (a WordNet noun), it asks for no "canny" pace
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
