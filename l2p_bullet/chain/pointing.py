@@ -93,6 +93,10 @@ BOTH_SAID = re.compile(r"\b(?:both|each|all)\b", re.IGNORECASE)
 """"them" alone, and the words that make it two ("them both", "each of them")."""
 LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
+HOISTING = re.compile(r"^\s*(?:pick\s+up|lift|raise|hoist)\b", re.IGNORECASE)
+MOVING = frozenset({"move", "bring", "take"})
+"""Verbs that carry on what was lifted, not grabbed: people wrote "Pick up A. Move it next to B." as a carry and "grab
+A, move it next to B" as a slide."""
 PLACE_WORDS = frozenset({"it", "them", "one", "ones", "left", "right", "front", "back", "behind", "middle", "both",
                          "each", "same", "far"})
 OTHER_ASKS = frozenset({"again", "twice", "also", "too", "repeat", "back", "undo", "no", "not",
@@ -110,6 +114,7 @@ class Shown:
 
     objects: tuple[str, ...]
     lifted: bool = False
+    hoisted: bool = False  # lifted by a word that says up (pick up, lift), not only grabbed
     about: bool = False  # the first object is the one talked about, the second where it is wrong ("too close to")
     other: str | None = None  # where two objects talked about are wrong ("A and B are too close to C"): "it" next
     crowded: bool = False  # said to be too close: moving one of them alone next moves it away from the other
@@ -155,7 +160,9 @@ def shown(text: str, scene: Scene, context: Context | None) -> Shown | None:
     m = SHOWN.match(text)
     if m is not None:
         objects = _objects(m.group("what"), scene, context) or _plural(m.group("what"), scene)
-        return None if objects is None else Shown(objects, bool(LIFTING.match(text)))
+        if objects is None:
+            return None
+        return Shown(objects, bool(LIFTING.match(text)), hoisted=bool(HOISTING.match(text)))
     objects = _pointed_at(text, scene, context)
     told = STATEMENT.match(text)
     if told is not None and objects is None and now is not None:
@@ -241,7 +248,7 @@ def _names_a_place(said: str) -> bool:
 def carried(command: Command, after: Shown | None) -> Command:
     """A placing command after a clause that picked its mover up is a carry ("Pick up A. Put it next to B.")."""
     if after is not None and after.lifted and command.mover in after.objects and command.manner == "slide" \
-            and command.verb.lower() in PLACING:
+            and (command.verb.lower() in PLACING or after.hoisted and command.verb.lower() in MOVING):
         return replace(command, manner="carry")
     return command
 
@@ -293,7 +300,8 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
             told = Context(objects[0], next(o for o in context.among if o != objects[0]))
         commands = _each(rest, told, objects, scene, plugins)
         if commands is not None:
-            return _ordered([carried(c, Shown(objects, lifting)) for c in commands], first, scene)
+            shown = Shown(objects, lifting, hoisted=lifting and bool(HOISTING.match(text)))
+            return _ordered([carried(c, shown) for c in commands], first, scene)
     if context is not None and len(context.among) == 2 and BOTH.search(text):  # "See A and C? Move them ..."
         commands = _each(text, context, context.among, scene, plugins)
         if commands is not None:
