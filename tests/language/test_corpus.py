@@ -392,6 +392,13 @@ OPEN = {
         # "what is next the wipes" ("next" without "to"): read as "what is next:", then the wipes
         "move what is next the wipes closer to bottle": "slide:closer wipes baby_bottle",
     },
+    "heldout121.tsv": {
+        # "grab ... and put them": a carry by the manners' verbs, as four authors wrote it; six wrote a slide
+        "grab the vase n the tape and put them both next to the card box":
+            "carry:next-to vase card_box ; carry:next-to tape_roll card_box",
+        # "the reel": the ribbon spool, the author says; read as the tape roll, whose "roll" it sounds like
+        "the watering thing next to the reel": "slide:next-to watering_can tape_roll",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -644,4 +651,15 @@ def test_the_hundred_and_seventeenth_to_hundred_and_twentieth_authors_corpora(pl
     wished for and then ordered read as one move, an object said first by where it stands as the next clause's "it",
     "all the way" and "super far" as far, a package called by what it holds in other words). Wrong only as
     :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout121.tsv", 136), ("heldout122.tsv", 123), ("heldout123.tsv", 133),
+                                         ("heldout124.tsv", 99)])
+def test_the_hundred_and_twenty_first_to_hundred_and_twenty_fourth_authors_corpora(plugins, name, floor):
+    """Written cold at the thirty-eighth session, from the notation and a scene file alone, and read once on the
+    session's start (03fd356) before anything was changed for them (docs/language.md): a florist's table, a nail
+    salon's table, a hotel reception desk and a model-railway table: 486 of 640, 8 wrong; 491 and 2 wrong since (an
+    ordinal before "closest", "most on the left", every must / should / has to with every way of staying, "up" before a
+    comparative, what was lifted and then moved a carry). Wrong only as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
