@@ -109,6 +109,21 @@ def _by_length(known: frozenset[str]) -> dict[int, tuple[str, ...]]:
     return {n: tuple(ws) for n, ws in out.items()}
 
 
+CLIPPED_FROM = 4
+"""The fewest letters a word clipped from an object's name keeps ("loco", "steth"): three are a slip or an
+abbreviation of anything ("pen", "tin")."""
+
+
+def clipped(word: str, named: frozenset[str], known: frozenset[str]) -> str | None:
+    """The one word of the scene's names that ``word`` is the start of, as people clip a long word ("the loco" for
+    the locomotive, "the steth" for the stethoscope), at least two letters longer; None where ``word`` is a word of its
+    own (the toolkit's or WordNet's: "pot" is no "potato"), is short, or starts several."""
+    if len(word) < CLIPPED_FROM or not word.isalpha() or word in known or lexicon.singular(word) is not None:
+        return None
+    fits = [n for n in named if len(n) >= len(word) + 2 and n.startswith(word) and n.isalpha()]
+    return fits[0] if len(fits) == 1 else None
+
+
 def unvowelled(word: str, known: frozenset[str]) -> str | None:
     """The one known word ``word`` is written as with its vowels left out, as people write notes ("psh", "gntly",
     "bsde", "scrwdrvr"): the same first letter, the same consonants as written or heard, every letter in order and no
@@ -218,7 +233,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         squeezed = _squeezed(low, known)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
-        hit = near(low, known, named) or unvowelled(low, known | named)
+        hit = near(low, known, named) or unvowelled(low, known | named) or clipped(low, named, known)
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
         amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
         after_subject = SUBJECT_BEFORE.search(m.string, 0, m.start()) is not None
