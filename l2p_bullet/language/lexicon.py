@@ -89,10 +89,13 @@ def singular(word: str) -> str | None:
 
 
 @functools.lru_cache(maxsize=4096)
-def words_for(kind: str) -> frozenset[str]:
+def words_for(kind: str, kinds_of_their_own: frozenset[str] = frozenset()) -> frozenset[str]:
     """Lower-case words, each with its plural, that name a thing of ``kind`` (a word an object is called by): each
     word whose own first sense among things is one of the related synsets, so that a rare sense never names an object
-    ("keyboard" is a rack for keys only in its second sense)."""
+    ("keyboard" is a rack for keys only in its second sense); and each word of the kind's own senses, which WordNet
+    gives as its synonyms whatever else they first mean ("engine" for the locomotive, "cork" for a fishing float),
+    but for ``kinds_of_their_own``: words that name a thing of their own that people look for ("phone" is a telephone
+    before it is a headphone, and a table without one has no phone)."""
     lemma = singular(kind.lower())
     if lemma is None:
         return frozenset()
@@ -107,7 +110,7 @@ def words_for(kind: str) -> frozenset[str]:
     out = set()
     for s in related:
         for word in nouns["words"][s]:
-            if nouns["lemmas"][word][0][0] in related:  # its first sense among things: "keyboard" is no key rack
+            if s in senses and word not in kinds_of_their_own or nouns["lemmas"][word][0][0] in related:
                 out.update((word, plural(word)) if not word.endswith("s") or word.endswith("ss") else (word,))
         out.update(nouns["eponyms"][s])
     return frozenset(out)
@@ -131,16 +134,18 @@ def same_as(word: str) -> frozenset[str]:
 
 
 @functools.lru_cache(maxsize=256)
-def groups_of(heads: tuple[tuple[str, tuple[str, ...]], ...], excluded: frozenset[str]) -> dict[str, frozenset[str]]:
+def groups_of(heads: tuple[tuple[str, tuple[str, ...]], ...], excluded: frozenset[str],
+              kinds_of_their_own: frozenset[str] = frozenset()) -> dict[str, frozenset[str]]:
     """Words WordNet relates to the objects' kinds -> the names of the objects of those kinds. ``heads``: each
     object's name and the words that say what it is (synonyms.py gives them); ``excluded``: words with readings of
-    their own (a shape's noun, a colour, a word that says nothing of the object), never looked up nor given."""
+    their own (a shape's noun, a colour, a word that says nothing of the object), never looked up nor given;
+    ``kinds_of_their_own``: as :func:`words_for` takes them."""
     by_word: dict[str, set[str]] = {}
     for name, kinds in heads:
         for k in kinds:
             if k in excluded:
                 continue
-            for word in words_for(k):
+            for word in words_for(k, kinds_of_their_own):
                 if word not in excluded:
                     by_word.setdefault(word, set()).add(name)
     return {w: frozenset(n) for w, n in by_word.items()}

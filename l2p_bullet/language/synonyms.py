@@ -431,7 +431,7 @@ def kind_groups_of(objects: tuple[tuple[str, str | None, str | None], ...],
             out[word] = named
     if looked_up:
         heads = tuple((name, tuple(sorted(_heads(name, mesh, kind)))) for name, mesh, kind in objects)
-        for word, names in lexicon.groups_of(heads, LOOKED_UP_NOT).items():
+        for word, names in lexicon.groups_of(heads, LOOKED_UP_NOT, frozenset(KIND_NAMES)).items():
             out.setdefault(word, names)
         for name, *_ in objects:  # "the nappies" for diaper_pack: a package called by what it holds
             parts = name_parts(name)
