@@ -136,6 +136,7 @@ FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
 
 PACES: dict[str, str] = {
     "slowly": "slow", "slow": "slow", "asap": "fast", "pronto": "fast", "hurry": "fast", "hurriedly": "fast",
+    "stat": "fast",  # a clinic's "at once"
     "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast", "sharpish": "fast",
     "swiftly": "fast",
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
