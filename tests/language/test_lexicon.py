@@ -60,6 +60,16 @@ def test_a_rare_sense_names_nothing():
     assert {"specs", "spectacles"} <= lexicon.words_for("goggles")
 
 
+def test_a_kinds_own_synonyms_name_it_unless_they_name_a_kind_people_look_for():
+    """The words of a kind's own senses name it whatever they first mean ("engine" is a motor first, a locomotive in
+    its third sense; "cork" a fishing float's), but a word that is a kind of its own ("phone": a telephone before a
+    headphone) names no other kind's object."""
+    assert {"engine", "engines"} <= lexicon.words_for("locomotive")
+    assert "cork" in lexicon.words_for("bobber")
+    assert "phone" in lexicon.words_for("headphones")
+    assert "phone" not in lexicon.words_for("headphones", frozenset({"phone"}))
+
+
 def test_motion_verbs_are_read_only_where_the_toolkit_knows_no_word():
     known = frozenset({"slide", "the", "cone"})
     assert lexicon.moving_verbs_read("zoom the cone", known, frozenset()) == "move the cone"

@@ -1,10 +1,12 @@
 """Ends said with any way of must / should / has to and any way of staying ("has to end up", "gotta sit", "is to
 finish up"), an ordinal before "closest" or "farthest" ("the second closest to you"), "most on the left" as the
 leftmost, "up" before a comparative read past ("move it up further away"), a thing's name that is no slip of a pace
-("candy"), and what was lifted and then moved as a carry ("Pick up A. Move it ...", "pick up A and hold it up while
-you move it ..."), while what was only grabbed and then moved stays a slide. And what must be refused: a comparative
-alone, which names no object ("up further from the vase than it is now"). Checked on sentences of each kind (not the
-corpora's own lines)."""
+("candy"), a long name clipped ("the loco", "the steth"), a word WordNet gives as the kind's synonym ("the engine" for
+the locomotive), "stat" as fast, and what was lifted and then moved as a carry ("Pick up A. Move it ...", "pick up A
+and hold it up while you move it ..."), while what was only grabbed and then moved stays a slide. And what must be
+refused: a comparative alone, which names no object ("up further from the vase than it is now"), a word that names a
+kind people look for ("the phone" beside headphones only) and a clipping of three letters. Checked on sentences of
+each kind (not the corpora's own lines)."""
 
 from __future__ import annotations
 
@@ -18,6 +20,12 @@ FLORIST = "heldout121.tsv"
 the tape roll third."""
 SALON = "heldout122.tsv"
 """polish_red, polish_clear, nail_file, cotton_jar, uv_lamp, towel."""
+RAILWAY = "heldout124.tsv"
+"""locomotive, wagon, paint_pot_a, paint_pot_b, glue_bottle, tree, station."""
+CLINIC = "heldout103.tsv"
+"""stethoscope, thermometer, glove_box, sanitizer, sharps_bin, clipboard."""
+STUDENT = "heldout97.tsv"
+"""laptop, headphones, water_bottle, notebook, mouse, charger: no phone."""
 DESK = "heldout123.tsv"
 """bell, keycard_box (the leftmost box), brochure_stand (the rightmost box), pen_cup (nearest the robot; the bell
 second), guest_book, mint_bowl (the leftmost object, round)."""
@@ -47,6 +55,11 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
     ("lift the towel and hold it up while you move it next to the cotton jar", "carry:next-to towel cotton_jar",
      SALON),
     ("grab the towel, then move it next to the cotton jar", "slide:next-to towel cotton_jar", SALON),
+    # a long name clipped, a kind's own synonym, a clinic's "stat"
+    ("shift the loco past the wagon", "slide:past locomotive wagon", RAILWAY),
+    ("move the thermo next to the steth", "slide:next-to thermometer stethoscope", CLINIC),
+    ("put the glue beside the engine", "slide:next-to glue_bottle locomotive", RAILWAY),
+    ("clipboard next to the gloves, stat", "slide:next-to clipboard glove_box pace=fast", CLINIC),
 ])
 def test_read_as_meant(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
@@ -55,6 +68,8 @@ def test_read_as_meant(plugins, sentence, expect, table):
 @pytest.mark.parametrize("sentence, table", [
     ("move the watering can up further from the vase than it is now", FLORIST),  # no object is "further from the vase"
     ("brown book closer to candy dsh", DESK),  # "candy" names a thing: never the pace "canny"
+    ("move the phone next to the bottle", STUDENT),  # a phone is looked for, the headphones are no phone
+    ("move the loc next to the tree", RAILWAY),  # three letters: a slip or anything's start, not a clipped name
 ])
 def test_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
