@@ -378,6 +378,8 @@ def _splits(text: str) -> list[tuple[str, str, bool]]:
         for j in re.finditer(r"\s*,\s*(?:and\s+|then\s+)?|\s+and\s+(?:then\s+)?", what):
             out.append((what[:j.start()], what[j.end():], bool(LIFTING.match(text))))
     m = TOPIC.match(text)
+    while m is not None and not strip_polite(m.group("what").split(), frozenset()):  # "Please, the vase, move it ..."
+        m = TOPIC.match(m.group("rest"))
     if m is not None:
         out.append((m.group("what"), m.group("rest"), False))
     return out

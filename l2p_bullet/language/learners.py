@@ -34,6 +34,9 @@ def _called(m: re.Match) -> str:
 
 _REWRITES = (
     (re.compile(r"\bmore\s+far\s+(?:of|from)\b", re.IGNORECASE), "farther from"),
+    (re.compile(r"\bmost\s+(?P<how>far|near|close)\b(?P<of>\s+of\b)?", re.IGNORECASE),  # "the one most far from you"
+     lambda m: {"far": "farthest", "near": "nearest", "close": "closest"}[m.group("how").lower()]
+     + ({"far": " from", "near": "", "close": " to"}[m.group("how").lower()] if m.group("of") else "")),
     (re.compile(r"\bmore\s+(?:close|near)\s+(?:of|to)\b", re.IGNORECASE), "closer to"),
     (re.compile(r"\bfar\s+of\b", re.IGNORECASE), "far from"),
     (re.compile(r"\bnear\s+of\b", re.IGNORECASE), "near"),

@@ -93,6 +93,7 @@ PERIPHRASTIC = {("farthest", "back"): "backmost", ("furthest", "back"): "backmos
                 ("most", "near"): "nearest", ("more", "close"): "nearer", ("more", "near"): "nearer"}
 """Comparisons built with most / more, as learners of English write them ("the thing most far from the cube")."""
 OPENINGS = {("whatever", "is"): ("the", "one"), ("whichever", "is"): ("the", "one"), ("whatever's",): ("the", "one"),
+            ("whatevers",): ("the", "one"), ("whichever's",): ("the", "one"), ("whichevers",): ("the", "one"),
             ("what", "is"): ("the", "one"), ("the", "one", "that", "is"): ("the", "one")} | {
     (free, noun, "is"): ("the", noun) for free in ("whichever", "whatever") for noun in ("thing", "one", "object",
                                                                                          "block", "cube", "item")}

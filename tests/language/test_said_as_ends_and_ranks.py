@@ -2,7 +2,8 @@
 finish up"), an ordinal before "closest" or "farthest" ("the second closest to you"), "most on the left" as the
 leftmost, "up" before a comparative read past ("move it up further away"), a thing's name that is no slip of a pace
 ("candy"), a long name clipped ("the loco", "the steth"), a word WordNet gives as the kind's synonym ("the engine" for
-the locomotive), "stat" as fast, and what was lifted and then moved as a carry ("Pick up A. Move it ...", "pick up A
+the locomotive), "stat" as fast, "whatevers" for "whatever's", a "please" before a topic, "most far" and "most near
+of" as learners write them, and what was lifted and then moved as a carry ("Pick up A. Move it ...", "pick up A
 and hold it up while you move it ..."), while what was only grabbed and then moved stays a slide. And what must be
 refused: a comparative alone, which names no object ("up further from the vase than it is now"), a word that names a
 kind people look for ("the phone" beside headphones only) and a clipping of three letters. Checked on sentences of
@@ -60,6 +61,10 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
     ("move the thermo next to the steth", "slide:next-to thermometer stethoscope", CLINIC),
     ("put the glue beside the engine", "slide:next-to glue_bottle locomotive", RAILWAY),
     ("clipboard next to the gloves, stat", "slide:next-to clipboard glove_box pace=fast", CLINIC),
+    # a free relative typed without its apostrophe, a politeness before a topic, "most far" as learners say it
+    ("whatevers furthest back, move it closer to the shears", "slide:closer watering_can shears", FLORIST),
+    ("Please, the shears, move it around the card box.", "slide:around shears card_box", FLORIST),
+    ("Move the thing that is most near of the robot past the vase.", "slide:past ribbon_spool vase", FLORIST),
 ])
 def test_read_as_meant(plugins, sentence, expect, table):
     assert read(sentence, plugins, table) == expect
