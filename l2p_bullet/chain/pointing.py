@@ -403,6 +403,8 @@ def _each(text: str, context: Context, objects: tuple[str, ...], scene: Scene,
             return [resolve(BOTH.sub(name, text, count=1), scene, plugins, context) for name in objects]
         except L2PError:
             return None
+    if len(objects) == 1 and plural_named(objects[0]) and not BOTH_SAID.search(text):
+        text = THEM.sub("it", text, count=1)  # "the shears, move them around the box": the one pair of shears
     try:
         return [resolve(text, scene, plugins, context)]
     except L2PError:

@@ -64,6 +64,7 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
     # a free relative typed without its apostrophe, a politeness before a topic, "most far" as learners say it
     ("whatevers furthest back, move it closer to the shears", "slide:closer watering_can shears", FLORIST),
     ("Please, the shears, move it around the card box.", "slide:around shears card_box", FLORIST),
+    ("the shears, move them past the vase", "slide:past shears vase", FLORIST),  # one pair, called in the plural
     ("Move the thing that is most near of the robot past the vase.", "slide:past ribbon_spool vase", FLORIST),
 ])
 def test_read_as_meant(plugins, sentence, expect, table):
