@@ -36,6 +36,8 @@ with the remark dropped it would read as a wish for that state."""
 NEVER_IN_A_REMARK = lenient.STOPS | (lenient.POINTING - ABOUT_IT) | (lenient.EXTENT_WORDS - {"good"}) \
     | frozenset(PACES) | NEGATIONS | JOINS | MANNER_WORDS
 """Every word that could change the command (:func:`is_remark`), the scene's own aside."""
+IN_THE_WAY = re.compile(r"\bin\s+(?:the|my|your|our|everyone's|every1s)\s+way\b")
+"""What is said of an object in the way ("it's only in the way", "its kinda in the way"): its "way" is no extent."""
 MAX_PARTS = 2
 """At most this many parts are dropped: a longer tail is more than a remark."""
 
@@ -44,7 +46,7 @@ def is_remark(part: str, matters: frozenset[str]) -> bool:
     """Whether ``part`` (words after a break) holds none of the words that could change the command: ``matters``
     (the scene's names and kinds, colours, the installed phrases' and verbs' words), the lenient reading's stops and
     pointing words but "it" (:data:`ABOUT_IT`), extents, paces, negations, joins and numbers."""
-    words = re.findall(r"[\w']+", part.lower())
+    words = re.findall(r"[\w']+", IN_THE_WAY.sub(" ", part.lower()))
     if not words or any(ch.isdigit() for w in words for ch in w):
         return False
     return not any(w in NEVER_IN_A_REMARK or w in matters for w in words)

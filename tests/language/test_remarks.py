@@ -18,6 +18,7 @@ FRUIT = "heldout78.tsv"
     ("teapot should be next to coaster, that is the requirement", "slide:next-to teapot coaster"),
     ("move the jug next to the pot, good lad", "slide:next-to milk_jug teapot"),
     ("move the spoon past the kettle - it drips, honestly", "slide:past spoon kettle"),
+    ("shift the tin away from the jug, its kinda in the way", "slide:away biscuit_tin milk_jug"),
 ])
 def test_a_remark_after_the_command_is_read_past(plugins, sentence, expect):
     assert read(sentence, plugins, TEA) == expect
@@ -40,7 +41,10 @@ def test_remarks_are_dropped_from_the_end_one_part_at_a_time():
     said = "move A next to B, it drips, honestly"
     assert remarks.without_remarks(said, frozenset({"a", "b", "move", "next"})) == [
         "move A next to B, it drips", "move A next to B"]
-    assert remarks.without_remarks("move A past B, it's in the way", frozenset()) == []  # "way": "way past"
+    # "in the way" is said of the object, never how far; "way" elsewhere may be ("a long way", "way past")
+    assert remarks.without_remarks("move A past B, it's only in the way", frozenset()) == ["move A past B"]
+    assert remarks.without_remarks("move A past B, a long way", frozenset()) == []
+    assert remarks.without_remarks("move A past B, way past", frozenset({"past"})) == []
     assert remarks.without_remarks("move A next to B, C too", frozenset({"c"})) == []
 
 
