@@ -48,9 +48,10 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
 CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit", "stick"})
 """Words for how much of a kind there is ("a bar of soap", "a stick of butter"): the kind is what the object is."""
 VESSELS = frozenset({"tin", "can", "bottle", "carton", "box", "jar", "packet", "bag", "cup", "mug", "bowl", "pot",
-                     "tub", "tube"})
-"""Kinds that hold what they are named by ("the tin of soup", "the box of milk"): the vessel and its content both
-describe the object ("the soup tin")."""
+                     "tub", "tube", "dish", "tray", "pack", "case", "holder", "rack", "basket", "crate", "bin", "roll",
+                     "reel", "spool"})
+"""Kinds that hold what they are named by ("the tin of soup", "the box of milk", "the dish of mints", "the roll of
+green tape"): the vessel and its content both describe the object ("the soup tin")."""
 
 
 def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:

@@ -1,13 +1,13 @@
-"""Ends said with any way of must / should / has to and any way of staying ("has to end up", "gotta sit", "is to
-finish up"), an ordinal before "closest" or "farthest" ("the second closest to you"), "most on the left" as the
-leftmost, "up" before a comparative read past ("move it up further away"), a thing's name that is no slip of a pace
-("candy"), a long name clipped ("the loco", "the steth"), a word WordNet gives as the kind's synonym ("the engine" for
-the locomotive), "stat" as fast, "whatevers" for "whatever's", a "please" before a topic, "most far" and "most near
-of" as learners write them, and what was lifted and then moved as a carry ("Pick up A. Move it ...", "pick up A
-and hold it up while you move it ..."), while what was only grabbed and then moved stays a slide. And what must be
-refused: a comparative alone, which names no object ("up further from the vase than it is now"), a word that names a
-kind people look for ("the phone" beside headphones only) and a clipping of three letters. Checked on sentences of
-each kind (not the corpora's own lines)."""
+"""Ends said with any way of must / should / has to and any way of staying ("has to end up", "gotta sit", "is to finish
+up"), an ordinal before "closest" or "farthest" ("the second closest to you"), "most on the left" as the leftmost,
+"up" before a comparative read past ("move it up further away"), a thing's name that is no slip of a pace ("candy"),
+a long name clipped ("the loco", "the steth"), a word WordNet gives as the kind's synonym ("the engine" for the
+locomotive), "stat" as fast, "whatevers" for "whatever's", a "please" before a topic, "most far" and "most near of"
+as learners write them, a vessel said with "of" what it holds ("the dish of mints"), and what was lifted and then
+moved as a carry ("Pick up A. Move it ...", "pick up A and hold it up while you move it ..."), while what was only
+grabbed and then moved stays a slide. And what must be refused: a comparative alone, which names no object ("up
+further from the vase than it is now"), a word that names a kind people look for ("the phone" beside headphones only)
+and a clipping of three letters. Checked on sentences of each kind (not the corpora's own lines)."""
 
 from __future__ import annotations
 
@@ -65,6 +65,9 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
     ("whatevers furthest back, move it closer to the shears", "slide:closer watering_can shears", FLORIST),
     ("Please, the shears, move it around the card box.", "slide:around shears card_box", FLORIST),
     ("the shears, move them past the vase", "slide:past shears vase", FLORIST),  # one pair, called in the plural
+    # a vessel said with "of" what it holds
+    ("put the roll of tape next to the vase", "slide:next-to tape_roll vase", FLORIST),
+    ("move the dish of mints toward the guest book", "slide:closer mint_bowl guest_book", DESK),
     ("Move the thing that is most near of the robot past the vase.", "slide:past ribbon_spool vase", FLORIST),
 ])
 def test_read_as_meant(plugins, sentence, expect, table):
