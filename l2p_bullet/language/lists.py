@@ -56,9 +56,11 @@ ROW_FIRST = re.compile(r"^(?P<verb>\s*(?:please\s+(?:to\s+)?)?(?:put|place|set|a
                        r"(?:\s*,?\s*in\s+(?:this|that|the\s+following)\s+order)?\s*[:,\-\u2013\u2014]?\s+"
                        r"(?P<items>[^.;!?]+?)(?=\s*(?:,\s*(?:please|pls|plz|thanks|thank\s+you))?\s*(?:[.;!?]|$))",
                        re.IGNORECASE)
-LINE_FROM = re.compile(r"\b(make\s+a\s+(?:row|line))\s+(?:from|out\s+of|using)\s+", re.IGNORECASE)
+LINE_FROM = re.compile(r"\b(?:make|form|create|build)\s+(?:a|one)\s+"
+                       r"(?:(?:neat|nice|tidy|single|straight|long|perfect|clean),?\s+)*"
+                       r"(row|line)\s+(?:from|out\s+of|outta|using|with|of)\s+", re.IGNORECASE)
 """More ways to say a row: "in one line", "Put in one row the ball, the mug and the tile", "Make a line from A, B and
-C", "row pls - A, B, C"."""
+C", "Form a straight line of A, B and C", "make a line outta A, B, C", "row pls - A, B, C"."""
 UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
 THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
                            r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
@@ -79,7 +81,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", text)))
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
-    text = LINE_FROM.sub(r"\1 of ", text, count=1)
+    text = LINE_FROM.sub(r"make a \1 of ", text, count=1)
     text = THE_FOLLOWING.sub(" of ", text, count=1)
     text = THEM_LISTED.sub(r"\g<items>\g<mid>", text, count=1)
     group = GROUP.search(text) or COLOURED_GROUP.search(text)
@@ -177,8 +179,8 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
     return None
 
 
-IN_ORDER = re.compile(r",?\s*in\s+(?:(?:that|this|the\s+same|the\s+given)\s+order|the\s+order\s+(?:i\s+(?:have\s+)?"
-                      r"(?:named|said|gave|listed|wrote)(?:\s+them)?|given|named|listed))"
+IN_ORDER = re.compile(r",?\s*in\s+(?:(?:that|this|the\s+same|the\s+given)\s+order|the\s+order\s+(?:i(?:'ve|\s+have)?\s+"
+                      r"(?:named|said|gave|given|listed|wrote|written|mentioned)(?:\s+them)?|given|named|listed))"
                       r"(?:\s*,?\s*(?:please|pls|plz|thanks|thank\s+you|thx|ty|grazie|obrigado|danke))*"
                       r"\s*[\-\u2013\u2014]*\s*(?=[.!?]*\s*$)", re.IGNORECASE)
 """, in that order" after a list ("in that order please", "in the order I have named them"): the order named is the

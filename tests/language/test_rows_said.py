@@ -1,6 +1,7 @@
 """Rows said in other words: a group named first and its items after, "in a neat row", "line ... up in a row", "the
-following objects: ...", "row up", "make row", and the joins "thereafter" and ", after" before a verb; the rules the
-tenth to thirteenth authors' misses prompted, checked on sentences of each kind (not the corpora's own lines)."""
+following objects: ...", "row up", "make row", "form / build a line with / outta", "in the order I've said them", and
+the joins "thereafter" and ", after" before a verb; the rules the tenth to thirteenth authors' misses prompted,
+checked on sentences of each kind (not the corpora's own lines)."""
 
 from __future__ import annotations
 
@@ -21,6 +22,10 @@ from l2p_bullet.errors import L2PError
     ("make row: duck, red cube, blue cube", "row duck,A,C"),
     ("Put A, B and C in a single line; thereafter, move the duck away from E.", "row A,B,C ; slide:away duck E"),
     ("Make a row of A, B and C, after push the duck past E.", "row A,B,C ; push:past duck E"),
+    ("Form a straight line of the duck, A and E.", "row duck,A,E"),
+    ("build a row with A, C and the duck, then push B past E", "row A,C,duck ; push:past B E"),
+    ("make a line outta E, A, C", "row E,A,C"),
+    ("line A, the duck and C up in a row, in the order I've said them", "row A,duck,C"),
 ])
 def test_rows_said_in_other_words(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
