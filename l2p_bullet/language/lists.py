@@ -61,6 +61,10 @@ LINE_FROM = re.compile(r"\b(?:make|form|create|build)\s+(?:a|one)\s+"
                        r"(row|line)\s+(?:from|out\s+of|outta|using|with|of)\s+", re.IGNORECASE)
 """More ways to say a row: "in one line", "Put in one row the ball, the mug and the tile", "Make a line from A, B and
 C", "Form a straight line of A, B and C", "make a line outta A, B, C", "row pls - A, B, C"."""
+WISHED_ROW = re.compile(r"^\s*(?:please\s*,?\s+)?(?:i'?d\s+like|i\s+would\s+like|i\s+want|i'?d\s+love|we'?d\s+like|"
+                        r"we\s+want|i\s+need|we\s+need|can\s+i\s+have|could\s+i\s+have)\s+(?P<items>.+?)\s+"
+                        r"(?:lined\s+up|in\s+(?:a|one)\s+(?:row|line))\b", re.IGNORECASE)
+"""A row wished for ("I'd like the bell, the cup and the bowl lined up, please"): as "put ... in a row"."""
 UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
 THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
                            r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
@@ -79,6 +83,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
     text = in_abc_order(sentence, scene)  # "put the letter blocks in ABC order in a row"
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", text)))
+    text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"make a \1 of ", text, count=1)

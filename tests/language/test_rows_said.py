@@ -26,6 +26,8 @@ from l2p_bullet.errors import L2PError
     ("build a row with A, C and the duck, then push B past E", "row A,C,duck ; push:past B E"),
     ("make a line outta E, A, C", "row E,A,C"),
     ("line A, the duck and C up in a row, in the order I've said them", "row A,duck,C"),
+    ("I'd like E, the duck and A lined up, please", "row E,duck,A"),  # a row wished for
+    ("we want A, C and E in a row, then move the duck past B", "row A,C,E ; slide:past duck B"),
 ])
 def test_rows_said_in_other_words(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
