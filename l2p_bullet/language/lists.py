@@ -48,19 +48,20 @@ def parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListComm
     return read if read is not None else _parse_list(sentence, scene, phrases)
 
 
-ROW_ADJECTIVES = re.compile(r"\bin\s+(?:a|one)\s+(?:(?:neat|nice|tidy|single|straight|long|perfect|clean),?\s+)+"
-                            r"(row|line)\b",
-                            re.IGNORECASE)
+_ROW_ADJECTIVE = r"(?:neat|nice|tidy|single|straight|long|perfect|clean|little|lil|proper|orderly|even)"
+"""Words said of a row that change nothing of it ("a neat little row")."""
+ROW_ADJECTIVES = re.compile(rf"\bin\s+(?:a|one)\s+(?:{_ROW_ADJECTIVE},?\s+)+(row|line)\b", re.IGNORECASE)
+IN_LINE = re.compile(r"\bin\s+(row|line)\b(?!\s+with\b)", re.IGNORECASE)
 IN_ONE = re.compile(r"\bin\s+(?:one|a\s+single)\s+(row|line)\b", re.IGNORECASE)
 ROW_FIRST = re.compile(r"^(?P<verb>\s*(?:please\s+(?:to\s+)?)?(?:put|place|set|arrange))\s+in\s+a\s+(?P<row>row|line)"
                        r"(?:\s*,?\s*in\s+(?:this|that|the\s+following)\s+order)?\s*[:,\-\u2013\u2014]?\s+"
                        r"(?P<items>[^.;!?]+?)(?=\s*(?:,\s*(?:please|pls|plz|thanks|thank\s+you))?\s*(?:[.;!?]|$))",
                        re.IGNORECASE)
-LINE_FROM = re.compile(r"\b(?:make|form|create|build)\s+(?:a|one)\s+"
-                       r"(?:(?:neat|nice|tidy|single|straight|long|perfect|clean),?\s+)*"
+LINE_FROM = re.compile(rf"\b(?:make|form|create|build)\s+(?:a|one)\s+(?:{_ROW_ADJECTIVE},?\s+)*"
                        r"(row|line)\s+(?:from|out\s+of|outta|using|with|of)\s+", re.IGNORECASE)
-"""More ways to say a row: "in one line", "Put in one row the ball, the mug and the tile", "Make a line from A, B and
-C", "Form a straight line of A, B and C", "make a line outta A, B, C", "row pls - A, B, C"."""
+"""More ways to say a row: "in one line", "in line" as learners write it (not "in line with"), "Put in one row the ball,
+the mug and the tile", "Make a line from A, B and C", "Form a straight line of A, B and C", "make a line outta A, B,
+C", "row pls - A, B, C"."""
 WISHED_ROW = re.compile(r"^\s*(?:please\s*,?\s+)?(?:i'?d\s+like|i\s+would\s+like|i\s+want|i'?d\s+love|we'?d\s+like|"
                         r"we\s+want|i\s+need|we\s+need|can\s+i\s+have|could\s+i\s+have)\s+(?P<items>.+?)\s+"
                         r"(?:lined\s+up|in\s+(?:a|one)\s+(?:row|line))\b", re.IGNORECASE)
@@ -82,7 +83,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     """``sentence`` with a composite's sentence said in other words (the patterns above) said as a plain list is;
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
     text = in_abc_order(sentence, scene)  # "put the letter blocks in ABC order in a row"
-    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", text)))
+    text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", IN_LINE.sub(r"in a \1", text))))
     text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)

@@ -28,6 +28,8 @@ from l2p_bullet.errors import L2PError
     ("line A, the duck and C up in a row, in the order I've said them", "row A,duck,C"),
     ("I'd like E, the duck and A lined up, please", "row E,duck,A"),  # a row wished for
     ("we want A, C and E in a row, then move the duck past B", "row A,C,E ; slide:past duck B"),
+    ("put in line E, C and A, after move the duck past B", "row E,C,A ; slide:past duck B"),  # "in line", a learner's
+    ("line up C, A and E in a nice little row", "row C,A,E"),
 ])
 def test_rows_said_in_other_words(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
