@@ -66,6 +66,12 @@ WISHED_ROW = re.compile(r"^\s*(?:please\s*,?\s+)?(?:i'?d\s+like|i\s+would\s+like
                         r"we\s+want|i\s+need|we\s+need|can\s+i\s+have|could\s+i\s+have)\s+(?P<items>.+?)\s+"
                         r"(?:lined\s+up|in\s+(?:a|one)\s+(?:row|line))\b", re.IGNORECASE)
 """A row wished for ("I'd like the bell, the cup and the bowl lined up, please"): as "put ... in a row"."""
+LISTED_THEN_LINED = re.compile(r"^\s*(?:(?:let'?s|now|ok|okay|so)\s+)*(?:(?:take|get|grab)\s+)?(?P<items>[^:;.!?]+?"
+                               r"(?:,|\s+and\s+)[^:;.!?]+?)\s*(?:,|:|\s+-+|\s*[\u2013\u2014]|\s+and)\s+"
+                               r"(?:(?:please|pls|now|just|then)\s+)*(?:put|place|set|arrange|line|lay|stick|row)\s+"
+                               r"(?:them|em|'em)(?:\s+all)?\s+(?:up|in\s+a\s+(?:row|line))\b", re.IGNORECASE)
+"""A row's objects named first, then lined up as "them" ("the bell, the cup and the bowl - line them up", "take A, B and
+C and put them in a row"): as "put ... in a row"."""
 UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
 THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
                            r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
@@ -85,6 +91,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     text = in_abc_order(sentence, scene)  # "put the letter blocks in ABC order in a row"
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", IN_LINE.sub(r"in a \1", text))))
     text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
+    text = LISTED_THEN_LINED.sub(r"put \g<items> in a row", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"make a \1 of ", text, count=1)

@@ -30,6 +30,8 @@ from l2p_bullet.errors import L2PError
     ("we want A, C and E in a row, then move the duck past B", "row A,C,E ; slide:past duck B"),
     ("put in line E, C and A, after move the duck past B", "row E,C,A ; slide:past duck B"),  # "in line", a learner's
     ("line up C, A and E in a nice little row", "row C,A,E"),
+    ("E, the duck, A - line them up", "row E,duck,A"),  # named first, then lined up as "them"
+    ("take A, C and E and put them in a row", "row A,C,E"),
 ])
 def test_rows_said_in_other_words(plugins, sentence, expect):
     assert read(sentence, plugins) == expect
