@@ -44,13 +44,14 @@ TAKE_AND = re.compile(r"^\s*(?:(?:now|then|ok|okay|so)\s+)?(?:take|get)\s+(?P<wh
 """An object taken first, then moved as "it": "Now take the sugar box and bring it closer to the can" is "bring the
 sugar box closer to the can" (the second verb's manner; "grab ... and put" is a carry of its own, read by the
 manners)."""
-LIFT_THEN = re.compile(r"^\s*(?:(?:now|then|ok|okay|so|first)\s+)?(?:lift|pick\s+up|raise|hoist)\s+(?P<what>.+?)"
+LIFT_THEN = re.compile(r"^\s*(?:(?:now|then|ok|okay|so|first)\s+)?(?:lift|pick\s+up|raise|hoist|carry)\s+(?P<what>.+?)"
                        r"(?:\s+up)?(?:\s*(?:,|\s+and)\s+hold\s+(?:it|them)(?:\s+up)?)?"
                        r"\s*(?:,|\s+and|\s+while\s+you)\s+(?:then\s+)?(?:bring|move|put|place|set|slide|shift|take|carry)\s+"
                        r"(?:it|them(?:\s+both)?|both\s+of\s+them)\s+(?P<rest>.+)$", re.IGNORECASE)
 """An object lifted first, then moved as "it" or "them": "Lift the tasse, bring it next to the sucrier", "Pick up
 the phone and the notebook and move them both closer to the cup" is a carry of each; so is one held up while it
-moves ("pick up the file and hold it up while you move it past the towel")."""
+moves ("pick up the file and hold it up while you move it past the towel") and one carried and then put ("Carry the
+shampoo and put it beside the soap")."""
 TOPIC_BARE = re.compile(r"^\s*(?P<what>.+?)\s+(?P<verb>[a-z]+)\s+(?P<it>it|that|this)\s+(?P<rest>.+)$", re.IGNORECASE)
 """A topic said before the command without a comma: "okay the bowl move it closer to the blue cube" is "okay the
 bowl, move it closer to the blue cube" (the verb a known one, the topic not opening with one)."""

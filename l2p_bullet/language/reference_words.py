@@ -186,7 +186,9 @@ SIDE_PHRASES = {("on", "the", "far", "left"): "leftmost", ("on", "the", "far", "
                 ("at", "the", "back"): "backmost", ("in", "the", "back"): "backmost",
                 ("up", "the", "back"): "backmost", ("up", "the", "front"): "frontmost",
                 ("at", "the", "front"): "frontmost", ("in", "the", "front"): "frontmost"} | {
-    (far, "to", "the", side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")}
+    (far, "to", the, side): f"{side}most" for far in ("farthest", "furthest", "most") for side in ("left", "right")
+    for the in ("the", "your")}  # "your left" is the robot's, as "the left" is
+SIDE_PHRASES |= {("on", "your", side): f"{side}most" for side in ("left", "right")}
 SIDE_PHRASES = {("most", "on", *the, side): f"{side}most" for the in ((), ("the",)) for side in ("left", "right")} \
     | SIDE_PHRASES  # before "on the left": the longer phrase is read first
 SIDE_PHRASES |= {(prep, "the", *far, side, "end"): f"{side}most" for prep in ("on", "at") for far in ((), ("far",))

@@ -3,11 +3,12 @@ up"), an ordinal before "closest" or "farthest" ("the second closest to you"), "
 "up" before a comparative read past ("move it up further away"), a thing's name that is no slip of a pace ("candy"),
 a long name clipped ("the loco", "the steth"), a word WordNet gives as the kind's synonym ("the engine" for the
 locomotive), "stat" as fast, "whatevers" for "whatever's", a "please" before a topic, "most far" and "most near of"
-as learners write them, a vessel said with "of" what it holds ("the dish of mints"), and what was lifted and then
-moved as a carry ("Pick up A. Move it ...", "pick up A and hold it up while you move it ..."), while what was only
-grabbed and then moved stays a slide. And what must be refused: a comparative alone, which names no object ("up
-further from the vase than it is now"), a word that names a kind people look for ("the phone" beside headphones only)
-and a clipping of three letters. Checked on sentences of each kind (not the corpora's own lines)."""
+as learners write them, a vessel said with "of" what it holds ("the dish of mints"), "to your left" as the robot's
+left, and what was lifted and then moved as a carry ("Pick up A. Move it ...", "pick up A and hold it up while you
+move it ..."), while what was only grabbed and then moved stays a slide. And what must be refused: a comparative
+alone, which names no object ("up further from the vase than it is now"), a word that names a kind people look for
+("the phone" beside headphones only) and a clipping of three letters. Checked on sentences of each kind (not the
+corpora's own lines)."""
 
 from __future__ import annotations
 
@@ -56,6 +57,9 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
     ("lift the towel and hold it up while you move it next to the cotton jar", "carry:next-to towel cotton_jar",
      SALON),
     ("grab the towel, then move it next to the cotton jar", "slide:next-to towel cotton_jar", SALON),
+    ("carry the towel and set it beside the cotton jar", "carry:next-to towel cotton_jar", SALON),
+    # "your left" is the robot's, as "the left" is
+    ("take whatever is furthest to your left and move it past the vase", "slide:past card_box vase", FLORIST),
     # a long name clipped, a kind's own synonym, a clinic's "stat"
     ("shift the loco past the wagon", "slide:past locomotive wagon", RAILWAY),
     ("move the thermo next to the steth", "slide:next-to thermometer stethoscope", CLINIC),
