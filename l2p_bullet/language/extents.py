@@ -33,6 +33,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "tiny bit": "little", "a tiny little bit": "little", "so far": "far", "soo far": "far",
     "barely": "little", "just barely": "little", "only just": "little",
     "all the way": "far", "super far": "far", "super super far": "far",  # "all the way past the jar": far
+    "exactly": "right", "precisely": "right",  # "exactly next to", "exactly touching": no gap; "exactly 5 cm" asks
 }.items()}
 """Qualifiers that stand right before the preposition -> the extent they ask for."""
 COMPARATIVE_WORDS = frozenset({"farther", "further", "more", "even"})

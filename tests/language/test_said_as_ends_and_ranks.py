@@ -58,6 +58,8 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
      SALON),
     ("grab the towel, then move it next to the cotton jar", "slide:next-to towel cotton_jar", SALON),
     ("carry the towel and set it beside the cotton jar", "carry:next-to towel cotton_jar", SALON),
+    # "exactly" before a place with no gap
+    ("set the towel exactly touching the cotton jar", "slide:next-to towel cotton_jar extent=right", SALON),
     # "your left" is the robot's, as "the left" is
     ("take whatever is furthest to your left and move it past the vase", "slide:past card_box vase", FLORIST),
     # a long name clipped, a kind's own synonym, a clinic's "stat"
@@ -83,6 +85,7 @@ def test_read_as_meant(plugins, sentence, expect, table):
     ("brown book closer to candy dsh", DESK),  # "candy" names a thing: never the pace "canny"
     ("move the phone next to the bottle", STUDENT),  # a phone is looked for, the headphones are no phone
     ("move the loc next to the tree", RAILWAY),  # three letters: a slip or anything's start, not a clipped name
+    ("move the towel exactly past the cotton jar", SALON),  # "exactly": no gap, which "past" has not
 ])
 def test_refused(plugins, sentence, table):
     with pytest.raises(L2PError):
