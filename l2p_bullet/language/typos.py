@@ -233,7 +233,10 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         squeezed = _squeezed(low, known)
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
-        hit = near(low, known, named) or unvowelled(low, known | named) or clipped(low, named, known)
+        hit = near(low, known, named) or unvowelled(low, known | named)
+        clip = clipped(low, named, known)
+        if clip is not None and (hit is None or hit not in named):
+            hit = clip  # "the calc": the calculator on the table, not a slip of "calf", which names nothing here
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
         amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
         after_subject = SUBJECT_BEFORE.search(m.string, 0, m.start()) is not None

@@ -26,6 +26,8 @@ RAILWAY = "heldout124.tsv"
 """locomotive, wagon, paint_pot_a, paint_pot_b, glue_bottle, tree, station."""
 CLINIC = "heldout103.tsv"
 """stethoscope, thermometer, glove_box, sanitizer, sharps_bin, clipboard."""
+OFFICE = "heldout89.tsv"
+"""stapler, mug, phone, tape_dispenser, pen_cup, eraser, calculator."""
 STUDENT = "heldout97.tsv"
 """laptop, headphones, water_bottle, notebook, mouse, charger: no phone."""
 DESK = "heldout123.tsv"
@@ -65,6 +67,7 @@ second), guest_book, mint_bowl (the leftmost object, round)."""
     # a long name clipped, a kind's own synonym, a clinic's "stat"
     ("shift the loco past the wagon", "slide:past locomotive wagon", RAILWAY),
     ("move the thermo next to the steth", "slide:next-to thermometer stethoscope", CLINIC),
+    ("put the eraser by the calc", "slide:next-to eraser calculator", OFFICE),  # the calculator, not a slip of "calf"
     ("put the glue beside the engine", "slide:next-to glue_bottle locomotive", RAILWAY),
     ("clipboard next to the gloves, stat", "slide:next-to clipboard glove_box pace=fast", CLINIC),
     # a free relative typed without its apostrophe, a politeness before a topic, "most far" as learners say it
