@@ -52,6 +52,7 @@ from .reference_words import (
     DETERMINERS,
     DIRECT_CONE,
     DOUBT_RATIO,
+    FARTHEST,
     NAMED_AS,
     NEAREST,
     NOUNS,
@@ -298,7 +299,7 @@ def _relational(words: list[str], low: tuple[str, ...], scene: Scene, role: str,
     return either_reading(words[:at - (rank > 1)], scene, ranked(rank, choose))
 
 
-COMPARED = frozenset({"farther", "further", "nearer", "closer"})
+COMPARED = frozenset(w for w in NEAREST | FARTHEST if w.endswith("er"))
 """Comparatives that describe an object only after words that name it ("the cube nearer to you")."""
 
 
