@@ -9,8 +9,9 @@ to :data:`UP` levels above one (more general) or :data:`DOWN` below (more partic
 
 Only inside :func:`looking_up`, which ``chain/clauses.resolve_clauses`` enters once every other reading has refused
 a sentence, and only for words no table of the toolkit already gives an object: a sentence read without it is read
-exactly as before. A word that so names two objects names neither (the description is refused, as any kind two
-objects share).
+exactly as before. Outside it, :func:`singular` only tells the slip mender (typos.py) that a word is a thing's name
+("candy", no slip of the pace "canny"; "calc", not a word, may be the calculator clipped). A word that so names two
+objects names neither (the description is refused, as any kind two objects share).
 """
 
 from __future__ import annotations

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from ..core.scene import Scene
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates
+from .synonyms import CONTAINERS as NAMED_CONTAINERS
 from .synonyms import is_modifier
 
 PARTITIVE = re.compile(r"^(?P<head>.+?)\s+of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
@@ -48,8 +49,7 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
 CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit", "stick"})
 """Words for how much of a kind there is ("a bar of soap", "a stick of butter"): the kind is what the object is."""
 VESSELS = frozenset({"tin", "can", "bottle", "carton", "box", "jar", "packet", "bag", "cup", "mug", "bowl", "pot",
-                     "tub", "tube", "dish", "tray", "pack", "case", "holder", "rack", "basket", "crate", "bin", "roll",
-                     "reel", "spool"})
+                     "tub", "tube", "pack", "roll", "reel", "spool"}) | NAMED_CONTAINERS
 """Kinds that hold what they are named by ("the tin of soup", "the box of milk", "the dish of mints", "the roll of
 green tape"): the vessel and its content both describe the object ("the soup tin")."""
 
