@@ -53,10 +53,10 @@ def read_past(sentence: str, mended: str | None, scene: Scene, plugins: list, kn
             if read is not None:
                 return read
             named = naming_words(scene)
-            places = remarks.phrase_words(registry.phrase_table(plugins))
-            matters = named | verb_heads() | places
+            places, verbs = remarks.phrase_words(registry.phrase_table(plugins)), verb_heads()
+            matters = named | verbs | places
             heads = (h for t in texts for h in (*remarks.without_remarks(t, matters),
-                                                *remarks.without_reason(t, places, verb_heads())))
+                                                *remarks.without_reason(t, places, verbs)))
             read = first((told for h in heads for told in (h, moved(h))),
                          lambda read: getattr(read[-1], "group", None) is None)  # a list's last item is no remark
             if read is not None:

@@ -17,6 +17,7 @@ import re
 
 from ..core.scene import Scene
 from . import spanish
+from .reference_words import PERIPHRASTIC
 from .references import try_object
 
 _SIDE = re.compile(r"\b(?:at|to|on|by|in)\s+(?P<the>the\s+)?(?P<what>[\w-]+?)(?:'s)?\s+side\b(?!\s+of\b)",
@@ -35,7 +36,7 @@ def _called(m: re.Match) -> str:
 _REWRITES = (
     (re.compile(r"\bmore\s+far\s+(?:of|from)\b", re.IGNORECASE), "farther from"),
     (re.compile(r"\bmost\s+(?P<how>far|near|close)\b(?P<of>\s+of\b)?", re.IGNORECASE),  # "the one most far from you"
-     lambda m: {"far": "farthest", "near": "nearest", "close": "closest"}[m.group("how").lower()]
+     lambda m: PERIPHRASTIC[("most", m.group("how").lower())]
      + ({"far": " from", "near": "", "close": " to"}[m.group("how").lower()] if m.group("of") else "")),
     (re.compile(r"\bmore\s+(?:close|near)\s+(?:of|to)\b", re.IGNORECASE), "closer to"),
     (re.compile(r"\bfar\s+of\b", re.IGNORECASE), "far from"),

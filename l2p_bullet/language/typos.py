@@ -118,10 +118,10 @@ def clipped(word: str, named: frozenset[str], known: frozenset[str]) -> str | No
     """The one word of the scene's names that ``word`` is the start of, as people clip a long word ("the loco" for
     the locomotive, "the steth" for the stethoscope), at least two letters longer; None where ``word`` is a word of its
     own (the toolkit's or WordNet's: "pot" is no "potato"), is short, or starts several."""
-    if len(word) < CLIPPED_FROM or not word.isalpha() or word in known or lexicon.singular(word) is not None:
+    if len(word) < CLIPPED_FROM or not word.isalpha() or word in known:
         return None
     fits = [n for n in named if len(n) >= len(word) + 2 and n.startswith(word) and n.isalpha()]
-    return fits[0] if len(fits) == 1 else None
+    return fits[0] if len(fits) == 1 and lexicon.singular(word) is None else None
 
 
 def unvowelled(word: str, known: frozenset[str]) -> str | None:
@@ -234,9 +234,8 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
         if squeezed is not None:  # "wayyy", "waaay", "sooo"
             return squeezed
         hit = near(low, known, named) or unvowelled(low, known | named)
-        clip = clipped(low, named, known)
-        if clip is not None and (hit is None or hit not in named):
-            hit = clip  # "the calc": the calculator on the table, not a slip of "calf", which names nothing here
+        if hit not in named:  # "the calc": the calculator on the table, not a slip of "calf", which names nothing here
+            hit = clipped(low, named, known) or hit
         after_article = ARTICLE_BEFORE.search(m.string, 0, m.start()) is not None
         amiss = THE_BEFORE.search(m.string, 0, m.start()) is not None
         after_subject = SUBJECT_BEFORE.search(m.string, 0, m.start()) is not None
