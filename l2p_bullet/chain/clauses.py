@@ -150,7 +150,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
         said = ordinals(text, show)
         try:
             pieces = [(text if piece == said else piece, cmd)
-                      for piece, cmd in _resolve_text(said, previous, scene, plugins, context=context, pair=pair)]
+                      for piece, cmd in _in_order(said, i < len(texts), previous, scene, plugins, context, pair)]
         except L2PError as e:
             instead = corrections.instead_of(text) if clauses and not show else None
             meant = instead or (corrections.taken_back(text) if clauses and not show else None)
@@ -357,6 +357,27 @@ def _other_readings(text: str, previous: Command | None, scene: Scene, plugins: 
             if pieces is not None:
                 break
     return pieces
+
+
+FIRST_SAID = re.compile(r"[\s,]+(?:first(?:\s+of\s+all)?|to\s+(?:begin|start)\s+with)[\s.!]*$", re.IGNORECASE)
+"""A clause's end that says only that it comes first ("move A next to B first, then ...")."""
+
+
+def _in_order(said: str, more: bool, previous: Command | None, scene: Scene, plugins: list, context: Context | None,
+              pair: pointing.Shown | None) -> list[tuple[str, Command]]:
+    """The pieces of a clause's text, read as said and, where that is refused and another clause follows it
+    (``more``), without a "first" at its end (:data:`FIRST_SAID`), which says only the order the clauses already
+    have; the refusal as said stands where that is refused too."""
+    try:
+        return _resolve_text(said, previous, scene, plugins, context=context, pair=pair)
+    except L2PError as refused:
+        plain = FIRST_SAID.sub("", said) if more else said
+        if plain == said:
+            raise
+        try:
+            return _resolve_text(plain, previous, scene, plugins, context=context, pair=pair)
+        except L2PError:
+            raise refused from None
 
 
 def _told_beside(said: str, text: str, tell, previous: Command | None, scene: Scene, plugins: list, depth: int,

@@ -10,6 +10,7 @@ from __future__ import annotations
 import functools
 
 from ..errors import LanguageError
+from . import lexicon
 from .reference_words import DETERMINERS, NOUNS, PLACE_ADJECTIVES
 from .shape_words import SHAPE_NOUNS
 from .words import PACES, by_word, starts
@@ -115,6 +116,9 @@ def passive_to_verb(words: list[str], verbs: list[str], is_object) -> list[str]:
             if _names_something(words[:j]):
                 return words  # "the cube by the butter moved ...": never the butter, its words dropped
             if is_object(" ".join(words[j:end])):
+                if j > 2 and low[j - 1] in ("for", "of", "with") and low[j - 3] in DETERMINERS \
+                        and lexicon.singular(low[j - 2]) is not None:
+                    return words  # "the soap for dogs put beside ...": the soap, never what it is for
                 return [forms[low[k]], *words[j:end], *words[k + 1:]]
         return words
     return words

@@ -25,10 +25,12 @@ import functools
 from dataclasses import dataclass
 
 from ..core.scene import COLORS, Scene
+from . import lexicon
 from .allowance import Allowance
 from .extents import EXTENTS, take_extent
 from .goals import participles
 from .naming import naming_words, shape_named
+from .partitives import VESSELS
 from .pronouns import Context
 from .reference_words import (
     COLOR_SYNONYMS,
@@ -37,6 +39,7 @@ from .reference_words import (
     FARTHEST,
     KIND_WORDS,
     NEAREST,
+    NOUNS,
     PLACE_ADJECTIVES,
     SIZE_SUPERLATIVES,
 )
@@ -53,10 +56,11 @@ STOPS = NEGATIONS | frozenset({
     "hide", "return", "back", "undo", "under", "onto", "into", "inside", "above", "below", "top", "then",
     "was", "were", "already",
     "pass", "passes", "passed", "passing", "touch", "touches", "touched", "touching", "hit", "bump", "cross",
-    "avoid", "follow", "possible", "gap", "rush", "hurry", "whatever",
+    "avoid", "follow", "possible", "gap", "rush", "hurry", "whatever", "line", "lines", "row", "rows",
 })
 """Words that stop the reading: they may change what the rest means ("touching" asks for a tight gap, "pass it
-by" for past), join a clause the sentence did not split, or ask for what the actions cannot do."""
+by" for past), join a clause the sentence did not split, or ask for what the actions cannot do or a row ("arrange to
+a line")."""
 AMBIGUOUS_PHRASES = frozenset({"by"})
 """Phrases never read leniently: "by B" may mean beside B or past it, and the verb that tells is the word the
 lenient reading would read past."""
@@ -138,7 +142,10 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
     extent = extent or implied
     if extent is not None and extent not in extents.get(action, frozenset()):
         return None
-    movers, left_before = _mentions(before, scene, context)
+    movers, unread = _read_at(before, scene, context)
+    left_before = [before[i] for i in sorted(unread)]
+    if _head_unread(before, unread):
+        return None
     if before and left_before and left_before[-1] is before[-1] and not _asks_no_extent(before, verbs):
         return None  # an unknown word where an extent stands ("move duck rite next to K"): it may be one
     refs, left_after = _mentions(words[end:], scene, context)
@@ -157,6 +164,28 @@ def read(words: list[str], scene: Scene, readings: list, verbs: list[tuple[tuple
             {w.lower() for w in left_before} & {"and", "&"} or _another_said(after):
         return None  # "and" before the phrase lists objects or joins a second command; after it, one more object
     return Reading(verb, manner, movers[0], phrase, action, tuple(refs), extent)
+
+
+HEAD_LINKS = frozenset({"for", "of", "with"})
+"""Words that join a description's noun to what follows it ("the soap for dogs", "the bottle of oil")."""
+
+
+def _head_unread(words: list[str], unread: frozenset[int]) -> bool:
+    """Whether an object is named only after the noun a description is about ("the soap for dogs" names the dog
+    brush only by what the soap is for): a thing WordNet knows, said after an article and left unread (``unread``:
+    where the words that named no object stand), right before "for", "of" or "with" and a description that names an
+    object."""
+    low = [w.lower() for w in words]
+    return any(low[k] in HEAD_LINKS and k - 1 in unread and k + 1 not in unread
+               and DETERMINERS & set(low[max(0, k - 3):k - 1]) and _a_thing_of_its_own(low[k - 1])
+               for k in range(2, len(words) - 1))
+
+
+def _a_thing_of_its_own(word: str) -> bool:
+    """Whether ``word`` names a thing the words after it cannot be: a noun WordNet knows, but for a word that stands
+    for any object ("the thing with the red handle") and a vessel, called by what it holds ("the pot with pens")."""
+    return (word.isalpha() and word not in NOUNS and word not in VESSELS and word.rstrip("s") not in VESSELS
+            and lexicon.singular(word) is not None)
 
 
 def _another_said(after: list[str]) -> bool:
@@ -263,13 +292,19 @@ def _name_words(scene: Scene) -> frozenset[str]:
 def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], list[str]]:
     """(the objects ``words`` name, in order; the words that named none): the longest description that resolves
     at each word, of at most :data:`MAX_SPAN` words."""
+    found, unread = _read_at(words, scene, context)
+    return found, [words[i] for i in sorted(unread)]
+
+
+def _read_at(words: list[str], scene: Scene, context: Context | None) -> tuple[list[str], frozenset[int]]:
+    """(the objects ``words`` name, in order; where the words that named none stand)."""
     found: list[str] = []
-    left: list[str] = []
+    left: list[int] = []
     shared = shape_named(scene)
     i = 0
     while i < len(words):
         if words[i].lower() in DETERMINERS and i + 1 < len(words) and words[i + 1].lower() in shared:
-            left.extend(words[i:i + 2])  # "the cylinder" beside Cylinder and Cylinder (1): asked, never the name
+            left.extend((i, i + 1))  # "the cylinder" beside Cylinder and Cylinder (1): asked, never the name
             i += 2
             continue
         for j in range(min(len(words), i + MAX_SPAN), i, -1):
@@ -279,9 +314,9 @@ def _mentions(words: list[str], scene: Scene, context: Context | None) -> tuple[
                 i = j
                 break
         else:
-            left.append(words[i])
+            left.append(i)
             i += 1
-    return found, left
+    return found, frozenset(left)
 
 
 

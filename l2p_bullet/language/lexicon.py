@@ -31,7 +31,9 @@ things, or else its first that is ("mug", whose first senses are a mugful and a 
 toilet (its sixth sense), whose other words ("pot", "throne") would then name the can."""
 UP = 1
 """Levels of more general words that name an object (goggles -> spectacles, "the specs"); two would reach words that
-name nearly anything ("instrumentality", "device", "component")."""
+name nearly anything ("instrumentality", "device", "component"). None above a kind whose senses among things are all
+rare ones, where the first is a guess: a stamp is first a stamp mill's pestle, a machine, and "the franking machine"
+is no rubber stamp."""
 DOWN = 2
 """Levels of more particular words that name an object (burner -> gas burner -> Bunsen burner, "the Bunsen")."""
 MIN_LETTERS = 3
@@ -101,9 +103,10 @@ def words_for(kind: str, kinds_of_their_own: frozenset[str] = frozenset()) -> fr
     if lemma is None:
         return frozenset()
     nouns = _nouns()
-    senses = [s for s, rank in nouns["lemmas"][lemma] if rank <= OBJECT_SENSES] or [nouns["lemmas"][lemma][0][0]]
+    common = [s for s, rank in nouns["lemmas"][lemma] if rank <= OBJECT_SENSES]
+    senses = common or [nouns["lemmas"][lemma][0][0]]
     related = set(senses)
-    for step, levels in (("up", UP), ("down", DOWN)):
+    for step, levels in (("up", UP if common else 0), ("down", DOWN)):
         front = set(senses)
         for _ in range(levels):
             front = {n for s in front for n in nouns[step][s]} - related

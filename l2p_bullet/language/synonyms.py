@@ -71,7 +71,7 @@ KIND_NAMES = {
     "soup": ("soups", "campbell's", "campbells", "campbell"),
     "crate": ("crates",),
     "stirrer": ("stirrers", "stick", "sticks", "stirrer"),
-    "beaker": ("beakers", "cup", "cups", "glass", "glasses"),
+    "beaker": ("beakers", "cup", "cups", "glass"),  # "glasses" are spectacles before they are two of them
     "cylinder": ("tin", "tins"),
     "shaker": ("shakers", "pot", "pots", "cellar", "cellars", "grinder", "grinders", "mill", "mills"),
     "board": ("boards",),

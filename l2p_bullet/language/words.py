@@ -128,7 +128,8 @@ _RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests
 FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     *(f"{lead} {rest}".replace(" 's", "'s") for lead in ("so that it", "so it", "such that it", "until it")
       for rest in _RESTS),
-    "so that", "so", "over so it's", "over so it is", "over", "back", "down", "until its", "so its", "so that its",
+    "so that", "so", "over so it's", "over so it is", "over", "back", "down", "up", "until its", "so its",
+    "so that its",
     "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
     "until", "till", "untill", "til", "along",
 )), key=len, reverse=True))
@@ -138,7 +139,7 @@ PACES: dict[str, str] = {
     "slowly": "slow", "slow": "slow", "asap": "fast", "pronto": "fast", "hurry": "fast", "hurriedly": "fast",
     "stat": "fast",  # a clinic's "at once"
     "quickly": "fast", "quick": "fast", "fast": "fast", "rapidly": "fast", "sharpish": "fast",
-    "swiftly": "fast",
+    "swiftly": "fast", "handsomely": "slow",  # a sailor's "slowly and with care"
     "gently": "gentle", "softly": "gentle", "carefully": "careful", "cautiously": "careful", "careful": "careful",
     "gentle": "gentle",
     # said in Spanish among English words, as bilingual speakers do ("rapido!! move la lata ...")
