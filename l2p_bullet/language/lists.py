@@ -72,6 +72,9 @@ LISTED_THEN_LINED = re.compile(r"^\s*(?:(?:let'?s|now|ok|okay|so)\s+)*(?:(?:take
                                r"(?:them|em|'em)(?:\s+all)?\s+(?:up|in\s+a\s+(?:row|line))\b", re.IGNORECASE)
 """A row's objects named first, then lined up as "them" ("the bell, the cup and the bowl - line them up", "take A, B and
 C and put them in a row"): as "put ... in a row"."""
+ALL_IN_A_ROW = re.compile(r"\s+(?:all|both|all\s+of\s+them)"
+                          r"(?=\s+(?:in\s+(?:a|one)\s+(?:row|line)|lined\s+up|up\s+in\b))", re.IGNORECASE)
+""""all" (or "both") said of the list right before its row ("the whisk, the board and the colander all in a line")."""
 UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
 THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
                            r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
@@ -90,6 +93,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
     text = in_abc_order(sentence, scene)  # "put the letter blocks in ABC order in a row"
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", IN_LINE.sub(r"in a \1", text))))
+    text = ALL_IN_A_ROW.sub("", text)
     text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
     text = LISTED_THEN_LINED.sub(r"put \g<items> in a row", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"

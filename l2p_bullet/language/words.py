@@ -79,7 +79,7 @@ POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) fo
     "nothing else moved", "and nothing else", "this is what i want", "that's what i want", "that is what i want",
     "if you can", "if possible", "when you can", "dear", "please dear", "mate", "buddy", "pal", "hun", "hon",
     "sweetie", "thanks hun", "thanks hon", "i should think", "i think", "bro", "fr", "lol", "ez", "gg", "dude",
-    "bitte", "danke", "thanks chef", "chef", "only", "itself",
+    "bitte", "danke", "thanks chef", "chef", "only", "itself", "go", "go go", "go go go",
     "pls", "plz", "pls ty", "pls thx", "tia", "many thanks", "thanks in advance", "thank you in advance",
     "much appreciated", "that would be great", "and set it down", "and put it down", "and drop it",
     "and let go", "and let go of it", "and set it down there", "and put it down there",
@@ -128,7 +128,7 @@ _RESTS = ("is", "'s", "ends up", "goes", "sits", "lands", "ends", "lies", "rests
 FRAMES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     *(f"{lead} {rest}".replace(" 's", "'s") for lead in ("so that it", "so it", "such that it", "until it")
       for rest in _RESTS),
-    "so that", "so", "over so it's", "over so it is", "over", "back", "down", "up", "until its", "so its",
+    "so that", "so", "over so it's", "over so it is", "over", "back", "down", "up", "all", "until its", "so its",
     "so that its",
     "along the table", "across the table", "over the table", "on the table", "to be", "to end up",
     "until", "till", "untill", "til", "along",

@@ -1,10 +1,11 @@
-"""A word WordNet knows as a thing is no slip of another thing's word nor of a pace ("the clock" is no block, "the
-soap" no soup), a kind whose every sense among things is rare names nothing more general ("the franking machine" is no
+"""A word WordNet knows as a thing is no slip of another thing's word nor of a pace ("the clock" is no block, "the soap"
+no soup), a kind whose every sense among things is rare names nothing more general ("the franking machine" is no
 rubber stamp), "glasses" are spectacles before they are two beakers, "up" between the mover and the phrase is read
 past ("bring the needles up toward the yarn"), "first" at the end of a clause another follows says only the order
-("move A next to B first, then ..."), "handsomely" is a sailor's slowly, a description's own noun is never read past
-for what it is for ("the soap for dogs"), and a lenient reading never reads past a row's word ("arrange to a line").
-Checked on sentences of each kind (not the corpora's own lines)."""
+("move A next to B first, then ..."), "all" before the phrase or a list's row ("all around", "A, B and C all in a
+line"), a "go" at the end that only starts the robot off, "handsomely" is a sailor's slowly, a description's own noun
+is never read past for what it is for ("the soap for dogs"), and a lenient reading never reads past a row's word
+("arrange to a line"). Checked on sentences of each kind (not the corpora's own lines)."""
 
 from __future__ import annotations
 
@@ -41,6 +42,11 @@ SCANNING = "heldout46.tsv"
      "slide:away loupe watch ; push:past brush parts_tray", BENCH),
     # "glasses" are spectacles: the goggles, where a beaker is a glass too
     ("put the glasses next to the burner", "slide:next-to goggles burner", LAB),
+    # "all" before the phrase or a list's row, and a "go" that starts the robot off
+    ("push the collar all around the leash", "push:around collar leash", GROOMER),
+    ("put the stamp, the parcel and the scale all in a row", "row stamp,parcel,scale", POST),
+    ("put them all in a line: the loupe, the watch, the brush", "row loupe,watch,brush", BENCH),
+    ("brush past the watch, go", "slide:past brush watch", BENCH),
     # a sailor's "handsomely": slowly
     ("handsomely, bring the parcel closer to the scale", "slide:closer parcel scale pace=slow", POST),
 ])
