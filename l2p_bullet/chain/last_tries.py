@@ -56,7 +56,8 @@ def read_past(sentence: str, mended: str | None, scene: Scene, plugins: list, kn
             places, verbs = remarks.phrase_words(registry.phrase_table(plugins)), verb_heads()
             matters = named | verbs | places
             heads = (h for t in texts for h in (*remarks.without_remarks(t, matters),
-                                                *remarks.without_reason(t, places, verbs)))
+                                                *remarks.without_reason(t, places, verbs),
+                                                *remarks.without_statement(t, places, verbs, named)))
             read = first((told for h in heads for told in (h, moved(h))),
                          lambda read: getattr(read[-1], "group", None) is None)  # a list's last item is no remark
             if read is not None:

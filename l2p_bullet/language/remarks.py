@@ -1,4 +1,5 @@
-"""A remark after the command: "move the jug next to the pot, thanks a million", "..., it's only in the way".
+"""A remark or a statement after the command: "move the jug next to the pot, thanks a million", "...; the dish has
+agar in it".
 
 People end an instruction with words for the listener ("good lad", "that is the requirement", "it gets hot dear")
 that no closing table can list, and the grammar then reads them as part of the last object's name ("no block called
@@ -6,7 +7,8 @@ that no closing table can list, and the grammar then reads them as part of the l
 last parts after a break (a comma, a full stop, a dash), one part at a time from the end, each dropped part a remark:
 none of its words could change what the command means (:func:`is_remark`). A refusal is better than a wrong block,
 so a part that names or points at an object, says how far, how fast or in what manner, corrects, negates, counts or
-joins another command is never dropped.
+joins another command is never dropped. A whole sentence after the command that only states how things are
+(:func:`without_statement`) may name the command's own objects, no other.
 """
 
 from __future__ import annotations
@@ -103,3 +105,37 @@ def without_reason(sentence: str, places: Iterable[str], verbs: Iterable[str]) -
     keep = frozenset(w.lower() for w in places) | frozenset(v.lower() for v in verbs) | lenient.EXTENT_WORDS \
         | REASON_STOPS | frozenset(PACES)
     return [] if words & keep else [head]
+
+
+SENTENCE_BREAK = re.compile(r"(?:(?<=[\w)'\"])[.!?]+|;|\s[-\u2013\u2014]+)\s+(?=\S)")
+"""Where a sentence ends and another starts: a full stop, a question or exclamation mark, a semicolon, a dash."""
+STATING = frozenset({"is", "are", "isn't", "aren't", "has", "have", "may", "might", "will", "would", "can", "could",
+                     "should", "must", "keeps", "keep", "stays", "cracks", "breaks", "melt", "melts", "spills",
+                     "gets", "it's", "that's", "there's", "they're", "we're", "i'm", "we've", "i've"})
+"""Words by which a sentence states what is, may be or should be ("the dish has agar in it", "it is tall and may fall
+over", "specs should be within reach"): a statement said after the command, not another command."""
+EXPECTED = re.compile(r"^\s*(?:expected|expect|expected\s+result|result|outcome)\s*:", re.IGNORECASE)
+"""A step's expected outcome, as a test plan writes it after the step ("Expected: distance W-P3 decreased.")."""
+
+
+def without_statement(sentence: str, places: Iterable[str], verbs: Iterable[str], named: Iterable[str]) -> list[str]:
+    """``sentence`` without its last sentence where that only states something about the scene (a word of
+    :data:`STATING`, and none of ``places``, ``verbs``, an extent, a pace, a join, a manner's word, a negation or
+    the past: "Bring the beaker to the petri dish; the dish has agar in it.") or gives the step's expected outcome
+    (:data:`EXPECTED`); none where it does neither or nothing comes before it. It may name only objects the command
+    names in the same words (``named``: the words that name the scene's objects): "..., it is the brush that
+    matters" may say which object was meant, and is kept."""
+    cuts = list(SENTENCE_BREAK.finditer(sentence))
+    if not cuts:
+        return []
+    last = cuts[-1]
+    head, tail = sentence[:last.start()], sentence[last.end():]
+    if len(head.split()) < 3:
+        return []
+    words = set(re.findall(r"[\w']+", tail.lower()))
+    unsaid = frozenset(w.lower() for w in named) - set(re.findall(r"[\w']+", head.lower()))
+    if EXPECTED.match(tail):
+        return [] if words & unsaid else [head]
+    keep = frozenset(w.lower() for w in places) | frozenset(v.lower() for v in verbs) | lenient.EXTENT_WORDS \
+        | REASON_STOPS | frozenset(PACES) | JOINS | MANNER_WORDS | PAST | (lenient.STOPS - {"if"}) | unsaid
+    return [head] if words & STATING and not words & keep else []

@@ -1,5 +1,5 @@
-"""A remark after the command (language/remarks.py): dropped only on the last try, and only where none of its
-words could change what the command means. And what a topic said first is refused for, when it does not resolve."""
+"""A remark or a statement after the command (language/remarks.py): dropped only on the last try, and only where none of
+its words could change what the command means. And what a topic said first is refused for, when it does not resolve."""
 
 from __future__ import annotations
 
@@ -59,3 +59,28 @@ def test_a_topic_that_does_not_resolve_is_refused_for_its_own_reason(plugins, na
     with pytest.raises(L2PError) as refused:
         read(sentence, plugins, name)
     assert said in str(refused.value) and "not a verb" not in str(refused.value)
+
+
+BENCH = "heldout125.tsv"  # loupe, tweezers, watch, parts_tray, oil_bottle, brush
+
+
+@pytest.mark.parametrize("sentence, expect", [
+    ("slide the brush toward the watch; the watch is an old one.", "slide:closer brush watch"),
+    ("Carry the oil bottle past the loupe - the bottle might leak.", "carry:past oil_bottle loupe"),
+    ("move the loupe next to the watch. Expected: loupe adjacent watch.", "slide:next-to loupe watch"),
+])
+def test_a_statement_after_the_command_is_read_past(plugins, sentence, expect):
+    """A sentence after the command that only states how things are, or the step's expected outcome, asks for
+    nothing more: read past on the last try."""
+    assert read(sentence, plugins, BENCH) == expect
+
+
+@pytest.mark.parametrize("sentence", [
+    "move the loupe next to the watch. it is the brush that matters",  # names another object: which was meant?
+    "move the loupe next to the watch. Expected: brush adjacent watch.",  # expects another object moved
+    "move the loupe next to the watch; it should be right up against it",  # says how far
+    "move the loupe next to the watch. the brush is next",  # another command, said as a state
+])
+def test_a_statement_that_could_change_the_command_is_kept(plugins, sentence):
+    with pytest.raises(L2PError):
+        read(sentence, plugins, BENCH)
