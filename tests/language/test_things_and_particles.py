@@ -47,6 +47,11 @@ SCANNING = "heldout46.tsv"
     ("put the stamp, the parcel and the scale all in a row", "row stamp,parcel,scale", POST),
     ("put them all in a line: the loupe, the watch, the brush", "row loupe,watch,brush", BENCH),
     ("brush past the watch, go", "slide:past brush watch", BENCH),
+    # lifted, then left, dropped or popped somewhere: a carry; two taken and moved as "them": each moved
+    ("pick up the watch and leave it next to the brush", "carry:next-to watch brush", BENCH),
+    ("lift the stamp, pop it down beside the parcel", "carry:next-to stamp parcel", POST),
+    ("take the collar and the leash and push them both toward the treat jar",
+     "push:closer collar treat_jar ; push:closer leash treat_jar", GROOMER),
     # a sailor's "handsomely": slowly
     ("handsomely, bring the parcel closer to the scale", "slide:closer parcel scale pace=slow", POST),
 ])
