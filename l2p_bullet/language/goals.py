@@ -144,12 +144,13 @@ _WRITTEN_LINKS = (
     "would be sitting", "would be standing", "wants to be", "wants to come", "wants to go", "wants to sit",
     "needs to come", "needs to sit", "would be sat", "is sat", "is sitting", "is standing", "is lying",
     "to finish up", "finishes up", "finish up", "finished up", "to wind up", "winds up", "wind up",
+    "become", "becomes", "to become",  # "make so the cable become more close to tuner"
 )
 _MODALS = ("should", "must", "needs to", "need to", "has to", "have to", "ought to", "wants to", "is going to",
            "is gonna", "will", "has got to", "gotta", "got to", "is to")
 _WHERE_IT_STAYS = ("end up", "be", "go", "sit", "stand", "lie", "finish", "come", "stay", "land", "end up sitting",
                    "end up sat", "be sitting", "be standing", "be lying", "be placed", "be positioned", "be put",
-                   "finish up", "wind up")
+                   "finish up", "wind up", "become")
 STATE_LINKS: tuple[tuple[str, ...], ...] = tuple(sorted(dict.fromkeys(tuple(p.split()) for p in (
     *_WRITTEN_LINKS, *(f"{modal} {stay}" for modal in _MODALS for stay in _WHERE_IT_STAYS))), key=len, reverse=True))
 """Words that link an object to where it should be ("the goal is for the duck *to end up* next to B", "make it

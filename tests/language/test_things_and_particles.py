@@ -52,6 +52,10 @@ SCANNING = "heldout46.tsv"
     ("lift the stamp, pop it down beside the parcel", "carry:next-to stamp parcel", POST),
     ("take the collar and the leash and push them both toward the treat jar",
      "push:closer collar treat_jar ; push:closer leash treat_jar", GROOMER),
+    # "in contact with" and "a good (long) way from" say how far; "become" links an object to where it should be
+    ("put the leash in contact with the collar", "slide:next-to leash collar extent=right", GROOMER),
+    ("move the parcel a good long way from the stamp", "slide:away parcel stamp extent=far", POST),
+    ("make it so the brush becomes closer to the loupe", "slide:closer brush loupe", BENCH),
     # a sailor's "handsomely": slowly
     ("handsomely, bring the parcel closer to the scale", "slide:closer parcel scale pace=slow", POST),
 ])
