@@ -20,7 +20,7 @@ from ..language.group_places import placed_group
 from ..language.naming import name_words, naming_words
 from ..language.numbers import number_of
 from ..language.partitives import group_of
-from ..language.pronouns import plural_named
+from ..language.pronouns import plural_named, said_in_plural
 from ..language.reference_words import BLOCK_WORDS, KIND_WORDS, NOUNS
 from ..language.references import try_object, two_references
 from ..language.shape_words import SHAPE_NOUNS
@@ -307,10 +307,11 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         if commands is not None:
             return _ordered(commands, first, scene)
     if previous is not None and THEM.search(text) and not BOTH_SAID.search(text) \
-            and plural_named(previous.mover) != plural_named(previous.anchor):
+            and _called_plural(previous.mover, previous) != _called_plural(previous.anchor, previous):
         # "slide the keys past the wallet, then bring em back ...": them are the keys; "move the soup away from the
-        # scissors, then push the box back toward them": the scissors
-        them = previous.mover if plural_named(previous.mover) else previous.anchor
+        # scissors, then push the box back toward them": the scissors; "pick up crayons put em by ruler then move
+        # them ...": the box of crayons
+        them = previous.mover if _called_plural(previous.mover, previous) else previous.anchor
         try:
             return [resolve(THEM.sub("it" if them == previous.mover else them, text), scene, plugins, context)]
         except L2PError:
@@ -319,6 +320,12 @@ def pointed(text: str, previous: Command | None, context: Context | None, scene:
         pair = (previous.mover, previous.anchor)
         return _ordered(_each(text, Context(*pair), pair, scene, plugins), first, scene)
     return _ordered(_two_movers(text, context, scene, plugins), first, scene)
+
+
+def _called_plural(name: str, command: Command) -> bool:
+    """Whether the object ``name`` of ``command`` is one thing people call by a plural: by its name ("the keys") or
+    as the clause called it ("the crayons" for the crayon box)."""
+    return plural_named(name) or said_in_plural(name, command.sentence)
 
 
 GOES = frozenset({"go", "goes"})

@@ -38,24 +38,24 @@ YOU_VERB = re.compile(r"^\s*(?P<what>.+?)(?:,\s*(?:this|that)(?:\s+one)?)?,?\s+y
                       r"(?P<verb>[a-z]+)\s+(?P<rest>.+)$", re.IGNORECASE)
 """The object before "you" and the verb, as learners of English may write it: "The ball you move closer to the
 yellow cube", "The small red cube, this you push to the box", "The block 1 you should move past the box"."""
-TAKE_AND = re.compile(r"^\s*(?:(?:now|then|ok|okay|so)\s+)?(?:take|get)\s+(?P<what>.+?)\s+and\s+"
+TAKE_AND = re.compile(r"^\s*(?:(?:now|then|ok|okay|so)\s+)?(?:take|get)\s+(?P<what>.+?)(?:\s*,\s*|\s+and\s+|\s+)"
                       r"(?P<verb>bring|move|slide|shift|put|place|set|push|nudge|shove|carry)"
                       r"\s+(?:it|them(?:\s+both)?|both\s+of\s+them)\s+(?P<rest>.+)$",
                       re.IGNORECASE)
 """An object taken first, then moved as "it": "Now take the sugar box and bring it closer to the can" is "bring the
 sugar box closer to the can" (the second verb's manner; "grab ... and put" is a carry of its own, read by the
 manners); two taken and moved as "them" are each moved so ("take the glove box and the sanitizer and move them closer
-to the clipboard")."""
+to the clipboard"); "grab" so too, and the two verbs may run on without "and" ("grab O move it next to Q")."""
 LIFT_THEN = re.compile(r"^\s*(?:(?:now|then|ok|okay|so|first)\s+)?(?:lift|pick\s+up|raise|hoist|carry)\s+(?P<what>.+?)"
                        r"(?:\s+up)?(?:\s*(?:,|\s+and)\s+hold\s+(?:it|them)(?:\s+up)?)?"
-                       r"\s*(?:,|\s+and|\s+while\s+you)\s+(?:then\s+)?(?:bring|move|put|place|set|slide|shift|take|carry"
+                       r"\s*(?:,|\s+and|\s+while\s+you|)\s+(?:then\s+)?(?:bring|move|put|place|set|slide|shift|take|carry"
                        r"|leave|drop|lay|pop|land|park|plonk|stick)\s+"
                        r"(?:it|them(?:\s+both)?|both\s+of\s+them)\s+(?P<rest>.+)$", re.IGNORECASE)
 """An object lifted first, then moved as "it" or "them": "Lift the tasse, bring it next to the sucrier", "Pick up
 the phone and the notebook and move them both closer to the cup" is a carry of each; so is one held up while it
 moves ("pick up the file and hold it up while you move it past the towel") and one carried and then put ("Carry the
 shampoo and put it beside the soap"); so is one lifted and then left, dropped or popped somewhere ("pick up the lime
-and leave it next to the bottle")."""
+and leave it next to the bottle"), also run on without "and" ("pick up the cup carry it past the pin")."""
 TOPIC_BARE = re.compile(r"^\s*(?P<what>.+?)\s+(?P<verb>[a-z]+)\s+(?P<it>it|that|this)\s+(?P<rest>.+)$", re.IGNORECASE)
 """A topic said before the command without a comma: "okay the bowl move it closer to the blue cube" is "okay the
 bowl, move it closer to the blue cube" (the verb a known one, the topic not opening with one)."""

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from ..core.scene import Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates
+from .lexicon import plural
 from .naming import name_words
 from .places import by_size
 from .proportions import PROFILES, admits
@@ -240,3 +241,10 @@ def plural_named(name: str | None) -> bool:
     last = parts[-1].lower() if parts else ""
     return last in PLURALIA or (len(last) > 3 and last.isalpha() and last.endswith("s")
                                 and not last.endswith(("ss", "us", "is")) and last not in SINGULAR_IN_S)
+
+
+def said_in_plural(name: str, sentence: str) -> bool:
+    """Whether ``sentence`` calls the object ``name`` by the plural of a word of its name, as people call a box of
+    crayons "the crayons" and a weighing scale "the scales": "them" may then be that one object."""
+    said = {w.strip(",.;:!?'\"").lower() for w in sentence.split()}
+    return any(p.isalpha() and len(p) > 2 and plural(p.lower()) in said for p in name_parts(name))

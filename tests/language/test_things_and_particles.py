@@ -56,6 +56,12 @@ SCANNING = "heldout46.tsv"
     ("put the leash in contact with the collar", "slide:next-to leash collar extent=right", GROOMER),
     ("move the parcel a good long way from the stamp", "slide:away parcel stamp extent=far", POST),
     ("make it so the brush becomes closer to the loupe", "slide:closer brush loupe", BENCH),
+    # the two verbs run on without "and"; "them" for one object called in the plural ("the treats": the treat jar)
+    ("pick up the watch carry it past the brush", "carry:past watch brush", BENCH),
+    ("pick up the treats put them by the leash then push them toward the collar",
+     "carry:next-to treat_jar leash ; push:closer treat_jar collar", GROOMER),
+    ("move the treats next to the leash, then push them toward the collar",
+     "slide:next-to treat_jar leash ; push:closer treat_jar collar", GROOMER),
     # a sailor's "handsomely": slowly
     ("handsomely, bring the parcel closer to the scale", "slide:closer parcel scale pace=slow", POST),
 ])
