@@ -32,7 +32,7 @@ from .goal_after import goal_after
 _SHOW = (r"(?:do\s+you\s+see|you\s+see|can\s+you\s+see|(?:who|everyone|everybody)\s+(?:can\s+)?see|see|look\s+at"
          r"|watch|there's|there\s+is|here's|here\s+is|find"
          r"|(?:have\s+you\s+)?got"
-         r"|take|grab|get|pick\s+up|lift)")
+         r"|take|grab|get|pick\s+up|lift|hold\s+up)")
 _ASKED = r"(?:(?:now|then|so|ok|okay|first|please|and|can\s+you|could\s+you|would\s+you)\s*,?\s+)*"
 SHOWN = re.compile(rf"^\s*{_ASKED}{_SHOW}\s+(?P<what>.+?)\s*\??\s*$", re.IGNORECASE)
 """A clause that only shows objects: "See the cylinder?", "Pick up the duck", "Now find the little red cube",
@@ -91,9 +91,9 @@ BOTH = re.compile(r"(?:\b(?:them\s+both|both\s+of\s+them|each\s+of\s+them|both|t
 THEM = re.compile(r"(?<![\w'])(?:them|'?em)\b", re.IGNORECASE)
 BOTH_SAID = re.compile(r"\b(?:both|each|all)\b", re.IGNORECASE)
 """"them" alone, and the words that make it two ("them both", "each of them")."""
-LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab)\b", re.IGNORECASE)
+LIFTING = re.compile(r"^\s*(?:pick\s+up|lift|grab|hold\s+up)\b", re.IGNORECASE)
 PLACING = frozenset({"put", "place", "set", "drop", "lay"})
-HOISTING = re.compile(r"^\s*(?:pick\s+up|lift|raise|hoist)\b", re.IGNORECASE)
+HOISTING = re.compile(r"^\s*(?:pick\s+up|lift|raise|hoist|hold\s+up)\b", re.IGNORECASE)
 MOVING = frozenset({"move", "bring", "take"})
 """Verbs that carry on what was lifted, not grabbed: people wrote "Pick up A. Move it next to B." as a carry and "grab
 A, move it next to B" as a slide."""

@@ -56,6 +56,10 @@ the phone and the notebook and move them both closer to the cup" is a carry of e
 moves ("pick up the file and hold it up while you move it past the towel") and one carried and then put ("Carry the
 shampoo and put it beside the soap"); so is one lifted and then left, dropped or popped somewhere ("pick up the lime
 and leave it next to the bottle"), also run on without "and" ("pick up the cup carry it past the pin")."""
+HELD_UP = re.compile(r"^(?P<lead>\s*(?:(?:now|then|ok|okay|so|first|would\s+you|could\s+you|please)\s+)*)hold\s+"
+                     r"(?:up\s+(?P<up>.+?)|(?P<what>.+?)\s+up)(?=\s*(?:,|\s+and\s|\s+while\s))", re.IGNORECASE)
+"""An object held up before it moves ("Hold the flask up and carry it past the burner", "hold up nut, bring near
+bracket"): lifted, as :data:`LIFT_THEN` reads it."""
 TOPIC_BARE = re.compile(r"^\s*(?P<what>.+?)\s+(?P<verb>[a-z]+)\s+(?P<it>it|that|this)\s+(?P<rest>.+)$", re.IGNORECASE)
 """A topic said before the command without a comma: "okay the bowl move it closer to the blue cube" is "okay the
 bowl, move it closer to the blue cube" (the verb a known one, the topic not opening with one)."""
@@ -221,7 +225,8 @@ def in_other_words(text: str) -> list[str]:
         said = GIVE_SIZES.get((m.group("size") or "").lower(), "")
         out.append(" ".join(w for w in (m.group("how"), m.group("what"), said, m.group("rest")) if w))
     out += _said(MAKE_GO, r"move \g<what> \g<rest>", text) + _said(YOU_VERB, r"\g<verb> \g<what> \g<rest>", text)
-    out += _said(TAKE_AND, r"\g<verb> \g<what> \g<rest>", text) + _said(LIFT_THEN, r"carry \g<what> \g<rest>", text)
+    held = HELD_UP.sub(lambda m: f"{m.group('lead')}lift {m.group('up') or m.group('what')}", text, count=1)
+    out += _said(TAKE_AND, r"\g<verb> \g<what> \g<rest>", text) + _said(LIFT_THEN, r"carry \g<what> \g<rest>", held)
     m = TOPIC_BARE.match(text)
     if m is not None and "," not in m.group("what") and m.group("verb").lower() in verb_heads() \
             and m.group("what").split()[0].lower() not in verb_heads():

@@ -79,6 +79,15 @@ UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECAS
 THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
                            r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
                            re.IGNORECASE)
+FOLLOWING_ROW = re.compile(r"^(?P<verb>\s*(?:please\s+)?(?:arrange|put|place|set|line\s+up))\s+the\s+following"
+                           r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*"
+                           r"(?:(?:in\s+(?:a|one)\s+(?:\w+\s+)?(?:row|line)|collinearly)\s*,?\s*)?"
+                           r"(?:in\s+(?:this|that|the\s+following)\s+order\s*)?:\s*(?P<items>.+?)\s*[.!]?\s*$",
+                           re.IGNORECASE)
+"""The objects of a row listed after a colon: "Arrange the following objects in a single row, in this order: block4,
+box, block5" is "arrange block4, box, block5 in a row"."""
+COLLINEAR = re.compile(r"\bcollinearly\b", re.IGNORECASE)
+"""A geometer's "in a line" ("Arrange Q, crate, O collinearly")."""
 GROUP = re.compile(r"\bthe\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?(?P<kind>cubes|blocks|boxes|objects|things)\b",
                    re.IGNORECASE)
 GROUP_ITEMS = re.compile(r"\s*(?::|\s-+|[\u2013\u2014]|,|\()\s*(?P<items>[^:;()\-\u2013\u2014]+?)"
@@ -93,7 +102,8 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     ``sentence`` itself where it has none of them. :func:`parse_list` reads the plain form first, then as typed."""
     text = in_abc_order(sentence, scene)  # "put the letter blocks in ABC order in a row"
     text = UP_IN_A_ROW.sub("up", ROW_ADJECTIVES.sub(r"in a \1", IN_ONE.sub(r"in a \1", IN_LINE.sub(r"in a \1", text))))
-    text = ALL_IN_A_ROW.sub("", text)
+    text = ALL_IN_A_ROW.sub("", COLLINEAR.sub("in a line", text))
+    text = FOLLOWING_ROW.sub(r"\g<verb> \g<items> in a row", text, count=1)
     text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
     text = LISTED_THEN_LINED.sub(r"put \g<items> in a row", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
@@ -196,7 +206,8 @@ def _parse_list(sentence: str, scene: Scene, phrases: dict[str, str]) -> ListCom
     return None
 
 
-IN_ORDER = re.compile(r",?\s*in\s+(?:(?:that|this|the\s+same|the\s+given)\s+order|the\s+order\s+(?:i(?:'ve|\s+have)?\s+"
+IN_ORDER = re.compile(r",?\s*in\s+(?:(?:(?:precisely|exactly|just|strictly)\s+)?(?:that|this|the\s+same|the\s+given)"
+                      r"\s+order|the\s+order\s+(?:i(?:'ve|\s+have)?\s+"
                       r"(?:named|said|gave|given|listed|wrote|written|mentioned)(?:\s+them)?|given|named|listed))"
                       r"(?:\s*,?\s*(?:please|pls|plz|thanks|thank\s+you|thx|ty|grazie|obrigado|danke))*"
                       r"\s*[\-\u2013\u2014]*\s*(?=[.!?]*\s*$)", re.IGNORECASE)

@@ -3,9 +3,10 @@ no soup), a kind whose every sense among things is rare names nothing more gener
 rubber stamp), "glasses" are spectacles before they are two beakers, "up" between the mover and the phrase is read
 past ("bring the needles up toward the yarn"), "first" at the end of a clause another follows says only the order
 ("move A next to B first, then ..."), "all" before the phrase or a list's row ("all around", "A, B and C all in a
-line"), a "go" at the end that only starts the robot off, "handsomely" is a sailor's slowly, a description's own noun
-is never read past for what it is for ("the soap for dogs"), and a lenient reading never reads past a row's word
-("arrange to a line"). Checked on sentences of each kind (not the corpora's own lines)."""
+line"), a "go" at the end that only starts the robot off, an object held up before it moves (a carry), a row's
+objects after "the following" or "collinearly", "handsomely" is a sailor's slowly, a description's own noun is never
+read past for what it is for ("the soap for dogs"), and a lenient reading never reads past a row's word ("arrange to
+a line"). Checked on sentences of each kind (not the corpora's own lines)."""
 
 from __future__ import annotations
 
@@ -62,6 +63,14 @@ SCANNING = "heldout46.tsv"
      "carry:next-to treat_jar leash ; push:closer treat_jar collar", GROOMER),
     ("move the treats next to the leash, then push them toward the collar",
      "slide:next-to treat_jar leash ; push:closer treat_jar collar", GROOMER),
+    # held up before it moves: a carry
+    ("hold the oil bottle up and take it around the tray", "carry:around oil_bottle parts_tray", BENCH),
+    ("hold up the parcel, then bring it next to the scale", "carry:next-to parcel scale", POST),
+    # a row's objects listed after "the following", in an order said more ways, "collinearly"
+    ("please arrange the following items in a neat row: the leash, the collar, the clipper",
+     "row leash,collar,clipper", GROOMER),
+    ("put the stamp, the scale and the parcel in a line, in exactly that order", "row stamp,scale,parcel", POST),
+    ("place the loupe, the tray and the brush collinearly", "row loupe,parts_tray,brush", BENCH),
     # a sailor's "handsomely": slowly
     ("handsomely, bring the parcel closer to the scale", "slide:closer parcel scale pace=slow", POST),
 ])
