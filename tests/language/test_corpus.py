@@ -687,12 +687,13 @@ def test_the_hundred_and_twenty_first_to_hundred_and_twenty_fourth_authors_corpo
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
 
 
-@pytest.mark.parametrize("name, floor", [("heldout125.tsv", 128), ("heldout126.tsv", 136), ("heldout127.tsv", 119),
-                                         ("heldout128.tsv", 128)])
+@pytest.mark.parametrize("name, floor", [("heldout125.tsv", 130), ("heldout126.tsv", 137), ("heldout127.tsv", 121),
+                                         ("heldout128.tsv", 130)])
 def test_the_hundred_and_twenty_fifth_to_hundred_and_twenty_eighth_authors_corpora(plugins, name, floor):
     """Written cold at the thirty-ninth session, from the notation and a scene file alone, and read once on the
     session's start (d7c8335) before anything was changed for them (docs/language.md): a watchmaker's bench, a school
-    chemistry bench, a dog groomer's table and a post-office counter: 508 of 640, 9 wrong; 511 and 5 wrong since (a
+    chemistry bench, a dog groomer's table and a post-office counter: 508 of 640, 9 wrong; 518 and 5 wrong since (a
     thing's own word no slip of another's, "glasses" as spectacles, "the soap for dogs" no dog brush, "the franking
-    machine" no stamp, "up" before the phrase, "first" before the next clause). Wrong only as :data:`OPEN` records."""
+    machine" no stamp, "up" before the phrase, "first" before the next clause, "all in a line", a statement after the
+    command, "hold ... up"). Wrong only as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
