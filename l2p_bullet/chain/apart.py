@@ -12,7 +12,7 @@ from dataclasses import replace
 from ..core.scene import Scene
 from ..errors import L2PError, LanguageError
 from ..language import Command, known_verbs, resolve_object, split_verb, strip_polite, tokens
-from ..language.extents import take_extent
+from ..language.extents import take_extent, take_extent_tail
 from ..language.words import take_pace, verb_of_gerund
 from ..manners import registry as manners
 from ..pipeline import resolve
@@ -33,10 +33,13 @@ def pace_alone(text: str, scene: Scene) -> str | None:
 
 
 def extent_alone(text: str) -> str | None:
-    """How far a clause asks when it says nothing else ("Just a tiny bit though.", "But only a little"); None
-    otherwise."""
+    """How far a clause asks when it says nothing else ("Just a tiny bit though.", "But only a little", "like actually
+    touching it"); None otherwise."""
     words = [w for w in strip_polite(tokens(text)) if w.lower() not in ("though", "but", "only")]
     rest, extent = take_extent(["_", *words])
+    if rest == ["_"]:
+        return extent
+    rest, extent = take_extent_tail(["_", *words])  # "... snug against the notebook. like actually touching it"
     return extent if rest == ["_"] else None
 
 

@@ -94,7 +94,7 @@ EXTENT_TAILS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "by a lot": "far", "a long way": "far", "a good distance": "far", "really far": "far", "very far": "far",
     "as close as you can get it": "right", "as close as you can": "right", "as close as possible": "right",
     "practically touching": "right", "like practically touching": "right", "like touching": "right",
-    "like actually touching it": "right", "actually touching it": "right",
+    "like actually touching it": "right", "actually touching it": "right", "like touching it": "right",
 }.items()}
 """Closing words after the reference object that say how far, as people add them after a comma ("slide A next to B,
 leaving no gap", "move G away from the lid, but only a few centimetres"). Only word groups that cannot describe the

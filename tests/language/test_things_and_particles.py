@@ -71,6 +71,9 @@ SCANNING = "heldout46.tsv"
      "row leash,collar,clipper", GROOMER),
     ("put the stamp, the scale and the parcel in a line, in exactly that order", "row stamp,scale,parcel", POST),
     ("place the loupe, the tray and the brush collinearly", "row loupe,parts_tray,brush", BENCH),
+    # how far, said after the place or alone after it: "like touching it"
+    ("slide the stamp right next to the ink pad, like touching it", "slide:next-to stamp ink_pad extent=right", POST),
+    ("put the collar by the leash. like actually touching it", "slide:next-to collar leash extent=right", GROOMER),
     # a sailor's "handsomely": slowly
     ("handsomely, bring the parcel closer to the scale", "slide:closer parcel scale pace=slow", POST),
 ])
