@@ -245,6 +245,6 @@ def plural_named(name: str | None) -> bool:
 
 def said_in_plural(name: str, sentence: str) -> bool:
     """Whether ``sentence`` calls the object ``name`` by the plural of a word of its name, as people call a box of
-    crayons "the crayons" and a weighing scale "the scales": "them" may then be that one object."""
+    crayons "the crayons" or a jar of treats "the treats": "them" may then be that one object."""
     said = {w.strip(",.;:!?'\"").lower() for w in sentence.split()}
     return any(p.isalpha() and len(p) > 2 and plural(p.lower()) in said for p in name_parts(name))

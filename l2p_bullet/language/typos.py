@@ -249,10 +249,11 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return w
         if hit in verbs and after_article or hit in named and after_subject:
             return w  # "for a pic" is no "pick"; "the thing you boil water in" is no bowl
+        # "candy dish", "the clock", "the soap": a thing of its own (a WordNet noun), no slip of the pace "canny", of
+        # "block" or of "soup"; only a name on the table is near enough ("the bowel": the bowl)
         if (hit in words.PACES or hit in reference_words.KIND_WORDS or hit in reference_words.NOUNS) \
                 and hit not in named and lexicon.singular(low) is not None:
-            return w  # "candy dish", "the clock", "the soap": a thing of its own (a WordNet noun), no slip of the pace
-            # "canny", of "block" or of "soup"; a name on the table is near enough ("the bowel": the bowl)
+            return w
         return hit.capitalize() if w[0].isupper() else hit
 
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
