@@ -76,11 +76,12 @@ ALL_IN_A_ROW = re.compile(r"\s+(?:all|both|all\s+of\s+them)"
                           r"(?=\s+(?:in\s+(?:a|one)\s+(?:row|line)|lined\s+up|up\s+in\b))", re.IGNORECASE)
 """"all" (or "both") said of the list right before its row ("the whisk, the board and the colander all in a line")."""
 UP_IN_A_ROW = re.compile(r"\bup\s+in\s+(?:a|one)\s+(?:row|line)\b", re.IGNORECASE)
-THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+the\s+following"
-                           r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*",
-                           re.IGNORECASE)
-FOLLOWING_ROW = re.compile(r"^(?P<verb>\s*(?:please\s+)?(?:arrange|put|place|set|line\s+up))\s+the\s+following"
-                           r"(?:\s+\w+)?\s+(?:objects|things|items|blocks)\s*,?\s*"
+_FOLLOWING = r"the\s+following(?:\s+\w+)?\s+(?:objects|things|items|blocks)"
+"""A list announced before its colon ("the following three objects")."""
+THE_FOLLOWING = re.compile(r"\s*,?\s*(?:consisting\s+of|made\s+(?:up\s+)?of|of|with)?\s+" + _FOLLOWING
+                           + r"\s*,?\s*(?:in\s+(?:this|that)\s+order\s*)?:\s*", re.IGNORECASE)
+FOLLOWING_ROW = re.compile(r"^(?P<verb>\s*(?:please\s+)?(?:arrange|put|place|set|line\s+up))\s+" + _FOLLOWING
+                           + r"\s*,?\s*"
                            r"(?:(?:in\s+(?:a|one)\s+(?:\w+\s+)?(?:row|line)|collinearly)\s*,?\s*)?"
                            r"(?:in\s+(?:this|that|the\s+following)\s+order\s*)?:\s*(?P<items>.+?)\s*[.!]?\s*$",
                            re.IGNORECASE)
