@@ -33,28 +33,13 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError, UnknownObjectError, did_you_mean
-from . import shapes
+from . import colours, shapes
+from .colours import COLORS  # the basic colours; a scene file may write a shade of one ("navy")
 from .contracts import load_json_file
 from .geometry import polygons_overlap
 from .shapes import MAX_FRICTION, MAX_MASS
 from .shapes import is_number as _is_number
 from .workspace import START_RADIUS, Workspace
-
-# Basic colour names a sentence may use ("the red block") and the RGBA the renderer gives them.
-COLORS: dict[str, tuple[float, float, float, float]] = {
-    "red": (0.85, 0.1, 0.1, 1.0),
-    "green": (0.1, 0.7, 0.2, 1.0),
-    "blue": (0.15, 0.3, 0.9, 1.0),
-    "yellow": (0.95, 0.85, 0.1, 1.0),
-    "orange": (1.0, 0.55, 0.0, 1.0),
-    "purple": (0.55, 0.2, 0.75, 1.0),
-    "white": (0.95, 0.95, 0.95, 1.0),
-    "black": (0.1, 0.1, 0.1, 1.0),
-    "gray": (0.5, 0.5, 0.5, 1.0),
-    "brown": (0.55, 0.35, 0.15, 1.0),
-    "pink": (1.0, 0.5, 0.7, 1.0),
-    "cyan": (0.0, 0.8, 0.85, 1.0),
-}
 
 ROBOT_BASE_XY: tuple[float, float] = (-0.53, 0.0)
 """Where the arm's base stands in the scene frame (off the table's near edge, facing +x)."""
@@ -119,6 +104,12 @@ class SceneObject:
     mass: float | None = None  # kg; None: shapes.BLOCK_MASS
     friction: float | None = None
     kind: str | None = None  # what the object is, in everyday words ("toy cow" for a toy named Daisy)
+    shade: str | None = None  # the colour as the scene file writes it, where it is not a basic one ("navy")
+
+    @property
+    def rgba(self) -> tuple[float, float, float, float]:
+        """What the renderer draws the object in: its shade's own colour, else its basic colour's."""
+        return colours.rgba(self.color, self.shade)
 
     @property
     def mass_kg(self) -> float:
@@ -211,9 +202,11 @@ class Scene:
             seen.add(o.name)
             if o.color not in COLORS:
                 raise SceneError(
-                    f'object "{o.name}": unknown colour "{o.color}" (known: {", ".join(COLORS)}).'
-                    + did_you_mean(o.color, COLORS)
+                    f'object "{o.name}": unknown colour "{o.color}" (known: {", ".join(COLORS)}, or a shade of '
+                    'one such as "navy", "light blue" or "#1f3a93").' + did_you_mean(o.color, colours.names())
                 )
+            if o.shade is not None and colours.basic_of(o.shade) != o.color:
+                raise SceneError(f'object "{o.name}": the shade "{o.shade}" is not a shade of {o.color}')
             if o.shape == "cube" and not (MIN_SIZE <= o.size <= MAX_SIZE):
                 raise SceneError(
                     f'object "{o.name}": size {o.size:.3g} m is outside what the gripper holds '
@@ -250,7 +243,7 @@ class Scene:
     def to_dict(self) -> dict:
         return {
             "objects": [
-                {"name": o.name, "color": o.color, "size": o.size, "xy": [o.xy[0], o.xy[1]], "yaw": o.yaw}
+                {"name": o.name, "color": o.shade or o.color, "size": o.size, "xy": [o.xy[0], o.xy[1]], "yaw": o.yaw}
                 | ({} if o.shape == "cube" else {"shape": o.shape}) | shapes.fields(o)
                 | ({"kind": o.kind} if o.kind else {})
                 for o in self.objects
@@ -314,9 +307,14 @@ class Scene:
             if kind is not None and not (isinstance(kind, str) and len(kind) <= MAX_NAME and KIND.match(kind)):
                 raise SceneError(f'{where} ({raw["name"]}): "kind" must be words of letters saying what the object '
                                  f'is, such as "toy cow" (at most {MAX_NAME} characters)')
+            try:
+                color, shade = colours.read(raw["color"])
+            except ValueError:
+                color, shade = " ".join(raw["color"].lower().split()), None  # validate() names it
             obj = SceneObject(
                 name=str(raw["name"]),
-                color=str(raw["color"]).lower(),
+                color=color,
+                shade=shade,
                 size=float(raw.get("size", 0.0)),
                 xy=(float(xy[0]), float(xy[1])),
                 yaw=float(yaw),

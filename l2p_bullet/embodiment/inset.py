@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.scene import COLORS, Scene
+from ..core.scene import Scene
 
 SHARE = 0.3  # the inset's side as a share of the frame's height: legible names, most of the picture free
 MIN_SIDE = 48  # px: below this the names are unreadable and the video goes without the inset
@@ -70,7 +70,7 @@ def plan_inset(scene: Scene, paths, states, width: int, height: int, camera=None
     left, top = _corner(scene, pts, width, height, side, camera)
     return TopView(left, top, side, tuple((lo + hi) / 2), float((hi - lo).max() / 2), names,
                    tuple(o.footprint(np.zeros(3)) for o in scene.objects),
-                   tuple(tuple(int(255 * c) for c in COLORS.get(o.color, (0.5, 0.5, 0.5, 1.0))[:3])
+                   tuple(tuple(int(255 * c) for c in o.rgba[:3])
                          for o in scene.objects),
                    tuple(pts), tuple(names.index(m) for m, _ in paths if m in names))
 

@@ -190,7 +190,7 @@ class Recorder:
 def _colour(world, name: str) -> dict:
     scene = getattr(world, "scene", None)
     obj = next((o for o in scene.objects if o.name == name), None) if scene is not None else None
-    return {} if obj is None else {"color": obj.color}
+    return {} if obj is None else {"color": obj.color} | ({"shade": obj.shade} if obj.shade else {})
 
 
 def _shape(world, name: str) -> dict:

@@ -33,7 +33,7 @@ import numpy as np
 from gymnasium import spaces
 
 from ..core.geometry import wrap_angle
-from ..core.scene import COLORS, Scene, random_scene
+from ..core.scene import Scene, random_scene
 from ..planning import THRESHOLD
 from ..planning.problem import FRAME_STEP, MAX_TURN
 from ..planning.world2d import World2D, segment_frames
@@ -201,7 +201,7 @@ def _draw(scene: Scene, mover: str, path: np.ndarray, pose: np.ndarray, px: int 
         ax.plot(arc[:, 0], arc[:, 1], color="0.6", lw=1)
     for o in scene.objects:
         fp = o.footprint(pose if o.name == mover else None)
-        ax.fill(fp[:, 0], fp[:, 1], color=COLORS[o.color][:3])
+        ax.fill(fp[:, 0], fp[:, 1], color=o.rgba[:3])
     ax.plot(path[:, 0], path[:, 1], "k.-", lw=1, ms=3)
     ax.set_xlim(-r * 1.05, r * 1.05)
     ax.set_ylim(-r * 1.05, r * 1.05)

@@ -108,7 +108,7 @@ def log_run(rr, rec, run: Path, name: str) -> None:
     objects = traj.get("objects") or {}
     for obj, info in objects.items():
         size = float(info.get("size", 0.05))
-        rgba = _rgba(info.get("color"))
+        rgba = _rgba(info.get("shade") or info.get("color"))
         path = f"{root}/world/objects/{entity_name(Path(obj))}"
         rec.log(path, rr.Boxes3D(half_sizes=[[size / 2] * 3], colors=[rgba], fill_mode="solid"), static=True)
         poses = np.array([f["poses"][obj] for f in frames], float)
@@ -201,9 +201,10 @@ def _scene(traj: dict, first: dict):
 
 
 def _rgba(colour: object) -> tuple[int, int, int, int]:
-    from ..core.scene import COLORS
+    """A trajectory's colour (its shade where it has one) as 8-bit RGBA; grey where it is no colour."""
+    from ..core import colours
 
-    r, g, b, a = COLORS.get(colour if isinstance(colour, str) else "", COLORS["gray"])
+    r, g, b, a = colours.rgba("gray", colour if isinstance(colour, str) else None)
     return (round(255 * r), round(255 * g), round(255 * b), round(255 * a))
 
 

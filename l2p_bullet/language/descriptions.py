@@ -54,7 +54,33 @@ from .synonyms import (
 
 
 def describe(scene: Scene) -> str:
-    return ", ".join(f"{o.name} ({o.color})" for o in scene.objects)
+    return ", ".join(f"{o.name} ({o.shade or o.color})" for o in scene.objects)
+
+
+def shades_said(words: list[str], low: tuple[str, ...], scene: Scene) -> tuple[list[str], tuple[str, ...], set[str]]:
+    """``words`` and ``low`` with a shade the scene file gives an object ("gold", "light blue", "navy") said as its
+    basic colour, and the shades so said: "the gold cup" is the yellow cup that is gold, "the silver one" beside a
+    grey one the silver one (:func:`candidates` keeps those)."""
+    shades = {tuple(o.shade.split()): o.color for o in scene.objects  # not "grey", the basic colour spelt so
+              if o.shade and not o.shade.startswith("#") and o.shade.replace("grey", "gray") != o.color}
+    if not shades:
+        return words, low, set()
+    out_w, out_l, said, i = [], [], set(), 0
+    while i < len(low):
+        for shade in sorted(shades, key=len, reverse=True):
+            if tuple(w.replace("-", " ") for w in low[i:i + len(shade)]) == shade or (
+                    len(shade) > 1 and low[i] == "-".join(shade)):
+                taken = len(shade) if low[i:i + len(shade)] == shade else 1
+                out_w.append(shades[shade])
+                out_l.append(shades[shade])
+                said.add(" ".join(shade))
+                i += taken
+                break
+        else:
+            out_w.append(words[i])
+            out_l.append(low[i])
+            i += 1
+    return out_w, tuple(out_l), said
 
 
 def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, determined: bool) -> str:
@@ -157,6 +183,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     from the left")."""
     names = name_words(scene)
     groups = kind_groups(scene)
+    words, low, shades = shades_said(words, low, scene)  # "the gold cup", "the light blue block" on a table saying so
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
     if not all(w.isascii() for w in low):  # "the Gießkanne", "the théière" where the file writes them without
         plain = tuple(w if w in groups or w in names or unaccented(w) not in groups and unaccented(w) not in names
@@ -265,6 +292,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             fits = [o for o in fits if not a_thing_by_name(o)] or fits
     if drink and len(fits) > 1:  # "the soda can" beside a soup can
         fits = [o for o in fits if not own_kinds_of(o) & FOODS] or fits
+    if shades:  # "the silver cube" beside a grey one: the one the scene file calls silver
+        fits = [o for o in fits if o.shade in shades] or fits
     return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
 
 

@@ -13,14 +13,14 @@ from pathlib import Path
 import numpy as np
 
 from ..core.contracts import Plan
-from ..core.scene import COLORS, Scene
+from ..core.scene import Scene, SceneObject
 
 SCALE = 2  # drawn at twice the size, then scaled down (anti-aliasing)
 SIZE = (900, 450)
 
 
-def _rgb(color: str, alpha: float = 1.0) -> tuple[int, int, int, int]:
-    r, g, b, _ = COLORS.get(color, (0.5, 0.5, 0.5, 1.0))
+def _rgb(o: SceneObject, alpha: float = 1.0) -> tuple[int, int, int, int]:
+    r, g, b, _ = o.rgba
     return int(r * 255), int(g * 255), int(b * 255), int(alpha * 255)
 
 
@@ -56,7 +56,7 @@ def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -
     for o in scene.objects:
         if o.name == plan.mover:
             continue
-        draw.polygon(to_px(o.footprint()), fill=_rgb(o.color, 0.9))
+        draw.polygon(to_px(o.footprint()), fill=_rgb(o, 0.9))
         (cx, cy), = to_px(o.xy)
         draw.text((cx, cy), o.name, fill=(255, 255, 255, 255), font=small, anchor="mm")
     mover = scene.get(plan.mover)
@@ -65,8 +65,8 @@ def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -
     for k, i in enumerate(idx):
         alpha = 0.25 + 0.75 * k / max(len(idx) - 1, 1)
         last = k == len(idx) - 1
-        over.polygon(to_px(mover.footprint(path[i])), fill=_rgb(mover.color, 0.5) if last else None,
-                     outline=_rgb(mover.color, alpha), width=SCALE)
+        over.polygon(to_px(mover.footprint(path[i])), fill=_rgb(mover, 0.5) if last else None,
+                     outline=_rgb(mover, alpha), width=SCALE)
     img = Image.alpha_composite(img, layer)
     draw = ImageDraw.Draw(img)
     draw.line(to_px(path[:, :2]), fill=(0, 0, 0, 255), width=SCALE)
@@ -101,7 +101,7 @@ def plot_plan(plan: Plan, scene: Scene, out: str | Path, footprints: int = 12) -
         draw.line([(a, ty), (min(a + 5 * SCALE, x1), ty)], fill=(128, 128, 128, 255), width=SCALE)
     draw.text((x1 - 4 * SCALE, ty + 4 * SCALE), "threshold", fill=(100, 100, 100, 255), font=small, anchor="ra")
     if len(prog) > 1:
-        draw.line(p_px(np.arange(len(prog)), prog), fill=_rgb(mover.color), width=2 * SCALE)
+        draw.line(p_px(np.arange(len(prog)), prog), fill=_rgb(mover), width=2 * SCALE)
     for v in (0.0, 0.5, 1.0):
         (_, vy), = p_px([0], [v])
         draw.text((pbox[0] - 6 * SCALE, vy), f"{v:.1f}", fill=(60, 60, 60, 255), font=small, anchor="rm")

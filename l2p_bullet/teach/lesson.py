@@ -36,7 +36,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..core.frames import VIEWPOINTS, Frame, declaration
-from ..core.scene import COLORS, Scene, random_between_scene, random_scene
+from ..core.scene import Scene, random_between_scene, random_scene
 from ..core.vocabulary import ACTIONS, normalize_name
 from ..data.demos import DEMO_BLOCK_SIZE, load_session, save_session
 from ..data.tracking import page_samples, page_track
@@ -186,7 +186,7 @@ class Lesson:
         return {
             "seed": seed, "sentence": self.action.sentence, "mover": "A",
             "anchors": ["B", "C"] if self.action.anchors == 2 else ["B"],
-            "objects": [{"name": o.name, "color": o.color, "rgb": [round(255 * c) for c in COLORS[o.color][:3]],
+            "objects": [{"name": o.name, "color": o.color, "rgb": [round(255 * c) for c in o.rgba[:3]],
                          "size": o.size, "x": o.xy[0], "y": o.xy[1], "yaw": o.yaw} for o in scene.objects],
             "workspace": scene.workspace.to_dict(),  # x, y, r; and the ring's fields for a ring
             "table": {"half_x": scene.table.half_x, "half_y": scene.table.half_y},

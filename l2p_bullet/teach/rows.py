@@ -25,7 +25,7 @@ from ..chain.composite import row_verdict
 from ..composite.bundle import read_demos, write_demos, write_recipe
 from ..composite.recipe import CompositeError, Demonstration, Segment, learn
 from ..core.contracts import read_json, trajectory_poses
-from ..core.scene import COLORS, Scene, random_scene
+from ..core.scene import Scene, random_scene
 from ..data.tracking import page_samples
 from ..errors import TeachError
 from ..evaluate.scenes import add_bystanders
@@ -90,7 +90,7 @@ class RowLesson(Lesson):
         return {
             "seed": seed, "sentence": row_sentence(self.action.phrases[0], names), "mover": None,
             "movers": names[1:], "anchors": [], "composite": True,
-            "objects": [{"name": o.name, "color": o.color, "rgb": [round(255 * c) for c in COLORS[o.color][:3]],
+            "objects": [{"name": o.name, "color": o.color, "rgb": [round(255 * c) for c in o.rgba[:3]],
                          "size": o.size, "x": o.xy[0], "y": o.xy[1], "yaw": o.yaw} for o in scene.objects],
             "workspace": scene.workspace.to_dict(),  # x, y, r; and the ring's fields for a ring
             "table": {"half_x": scene.table.half_x, "half_y": scene.table.half_y},

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ...arms import PANDA, ArmSpec
-from ...core.scene import COLORS, Scene
+from ...core.scene import Scene
 from ...core.shapes import BLOCK_FRICTION
 from ...errors import SceneError
 from . import decompose
@@ -334,7 +334,7 @@ class World:
                     sim.set_base_pose(o.name, (o.xy[0], o.xy[1], rest), orn)
                 sim.set_dynamics(o.name, friction=BLOCK_FRICTION)
             sim.set_dynamics(o.name, mass=o.mass, friction=o.friction)
-            sim.set_color(o.name, COLORS[o.color])
+            sim.set_color(o.name, o.rgba)
             self.sizes[o.name] = o.size
             self.heights[o.name] = o.height
             self.rests[o.name] = rest
