@@ -67,7 +67,8 @@ def resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
 
 def _resolve_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
     def known() -> frozenset[str]:  # every word the toolkit reads in this scene (made only where a reading needs it)
-        return typos.vocabulary(registry.phrase_table(plugins), known_verbs(), COLORS) | naming_words(scene)
+        shades = tuple(sorted({o.shade for o in scene.objects if o.shade}))  # "the mauve block" is never "move"
+        return typos.vocabulary(registry.phrase_table(plugins), known_verbs(), (*COLORS, *shades)) | naming_words(scene)
 
     if isinstance(sentence, str):
         # "the red two by four" for brick_2x4_red, before "by" is read; "four twelve" for S-0412; "🔑 ➡️ 👛"

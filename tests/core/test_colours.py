@@ -100,3 +100,15 @@ def test_a_basic_colour_two_shades_share_is_ambiguous_never_a_guess(tmp_path, se
     scene, _ = _shaded(tmp_path)
     with pytest.raises(L2PError, match="ambiguous"):
         resolve_clauses(sentence, scene, registry.discover())
+
+
+def test_a_shade_word_is_never_mended_into_another_word_and_a_slip_in_it_is_mended(tmp_path):
+    p = tmp_path / "s.json"
+    p.write_text(json.dumps({"objects": [{"name": "A", "color": "burgundy", "size": 0.04, "xy": [0.1, 0.1]},
+                                         {"name": "B", "color": "tan", "size": 0.04, "xy": [-0.1, 0.1]},
+                                         {"name": "C", "color": "mauve", "size": 0.04, "xy": [0.1, -0.1]}]}))
+    scene, plugins = load_scene(p), registry.discover()
+    for sentence, expect in (("mvoe the mauve block next to the tan one", ("C", "B")),  # not "move the move block"
+                             ("move the burgandy block past the mauve one", ("A", "C"))):
+        (clause,) = resolve_clauses(sentence, scene, plugins)
+        assert (clause.command.mover, *clause.command.anchors) == expect, sentence
