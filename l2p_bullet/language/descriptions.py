@@ -183,6 +183,7 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     from the left")."""
     names = name_words(scene)
     groups = kind_groups(scene)
+    plain = any(w in COLORS or w == "grey" for w in low)  # a basic colour said by its own name
     words, low, shades = shades_said(words, low, scene)  # "the gold cup", "the light blue block" on a table saying so
     low = tuple(_colour_of_compound(w) for w in low)  # "the lime-green block", "the sky-blue one"
     if not all(w.isascii() for w in low):  # "the Gießkanne", "the théière" where the file writes them without
@@ -294,6 +295,8 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
         fits = [o for o in fits if not own_kinds_of(o) & FOODS] or fits
     if shades:  # "the silver cube" beside a grey one: the one the scene file calls silver
         fits = [o for o in fits if o.shade in shades] or fits
+    elif plain and best and len(fits) > 1:  # "the grey box" beside a silver one: the one the file calls grey
+        fits = [o for o in fits if _plain_colour(o)] or fits
     return fitting(proportioned, fits, groups, best)  # "the stick", "the long white one": by proportions
 
 
@@ -333,6 +336,11 @@ def a_thing_by_name(o: SceneObject) -> bool:
     is a shape seen ("the rectangular block" is the brick or the bar of soap, as one author asked)."""
     kinds = own_kinds_of(o)
     return bool(kinds) and not kinds & BLOCKISH
+
+
+def _plain_colour(o: SceneObject) -> bool:
+    """Whether the scene file gives ``o`` its basic colour by that colour's own name ("gray", "grey"), not a shade."""
+    return o.shade is None or o.shade.replace("grey", "gray") == o.color
 
 
 def _shades_apart(low: tuple[str, ...]) -> tuple[str, ...]:

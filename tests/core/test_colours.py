@@ -95,11 +95,11 @@ def test_an_object_is_called_by_its_shade_or_its_basic_colour(tmp_path, sentence
     assert (clause.command.mover, *clause.command.anchors) == expect
 
 
-@pytest.mark.parametrize("sentence", ["move the grey block next to E", "move the blue block next to E"])
-def test_a_basic_colour_two_shades_share_is_ambiguous_never_a_guess(tmp_path, sentence):
+def test_a_basic_colour_said_among_shades_of_it_is_the_one_the_file_calls_so(tmp_path):
     scene, _ = _shaded(tmp_path)
-    with pytest.raises(L2PError, match="ambiguous"):
-        resolve_clauses(sentence, scene, registry.discover())
+    for sentence, expect in (("move the blue block next to E", ("D", "E")), ("move the grey block past C", ("B", "C"))):
+        (clause,) = resolve_clauses(sentence, scene, registry.discover())
+        assert (clause.command.mover, *clause.command.anchors) == expect, sentence
 
 
 def test_a_shade_word_is_never_mended_into_another_word_and_a_slip_in_it_is_mended(tmp_path):
@@ -112,3 +112,18 @@ def test_a_shade_word_is_never_mended_into_another_word_and_a_slip_in_it_is_mend
                              ("move the burgandy block past the mauve one", ("A", "C"))):
         (clause,) = resolve_clauses(sentence, scene, plugins)
         assert (clause.command.mover, *clause.command.anchors) == expect, sentence
+
+
+def test_a_basic_colour_said_by_its_own_name_is_the_object_the_file_calls_so(tmp_path):
+    """"the grey cube" beside a silver one is the grey one (people who mean the silver one say silver); "the blue
+    cube" beside a navy one and a light blue one, neither called blue by the file, stays ambiguous."""
+    p = tmp_path / "s.json"
+    p.write_text(json.dumps({"objects": [{"name": "A", "color": "silver", "size": 0.04, "xy": [0.1, 0.1]},
+                                         {"name": "B", "color": "grey", "size": 0.04, "xy": [-0.1, 0.1]},
+                                         {"name": "C", "color": "navy", "size": 0.04, "xy": [0.1, -0.1]},
+                                         {"name": "D", "color": "light blue", "size": 0.04, "xy": [-0.1, -0.1]}]}))
+    scene, plugins = load_scene(p), registry.discover()
+    (clause,) = resolve_clauses("move the grey cube next to the navy one", scene, plugins)
+    assert (clause.command.mover, *clause.command.anchors) == ("B", "C")
+    with pytest.raises(L2PError, match="ambiguous"):
+        resolve_clauses("move the blue cube next to the grey one", scene, plugins)
