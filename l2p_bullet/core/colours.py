@@ -100,6 +100,9 @@ SAID_AS: dict[str, str] = {
 }
 """The basic colour of shades whose hue alone would mislead (silver reads as white, navy as black, gold as orange)."""
 
+ALIKE: tuple[frozenset[str], ...] = (frozenset({"clear", "transparent", "glass", "see through", "seethrough"}),)
+"""Shades said in each other's words ("the see-through jar" is the clear one)."""
+
 LIGHTNESS: dict[str, float] = {"dark": 0.6, "deep": 0.7, "light": 1.45, "pale": 1.6, "bright": 1.15}
 """A word of lightness before a colour, and how it scales the colour's value (lighter ones also take saturation
 out: see :func:`rgb`)."""
@@ -194,6 +197,11 @@ def rgba(basic: str, shade: str | None = None) -> tuple[float, float, float, flo
     """What the renderer draws an object of ``basic`` colour and ``shade`` in."""
     colour = rgb(shade) if shade else None
     return (*colour, 1.0) if colour is not None else COLORS.get(basic, COLORS["gray"])
+
+
+def alike(shade: str) -> frozenset[str]:
+    """The other words that say ``shade`` (:data:`ALIKE`)."""
+    return next((group - {shade} for group in ALIKE if shade in group), frozenset())
 
 
 def names() -> list[str]:

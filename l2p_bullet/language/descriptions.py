@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 
+from ..core import colours
 from ..core.scene import COLORS, Scene, SceneObject
 from ..errors import LanguageError, UnknownObjectError, did_you_mean
 from .letters import letter_of, letters_of
@@ -58,22 +59,27 @@ def describe(scene: Scene) -> str:
 
 
 def shades_said(words: list[str], low: tuple[str, ...], scene: Scene) -> tuple[list[str], tuple[str, ...], set[str]]:
-    """``words`` and ``low`` with a shade the scene file gives an object ("gold", "light blue", "navy") said as its
-    basic colour, and the shades so said: "the gold cup" is the yellow cup that is gold, "the silver one" beside a
-    grey one the silver one (:func:`candidates` keeps those)."""
-    shades = {tuple(o.shade.split()): o.color for o in scene.objects  # not "grey", the basic colour spelt so
-              if o.shade and not o.shade.startswith("#") and o.shade.replace("grey", "gray") != o.color}
+    """``words`` and ``low`` with a shade the scene file gives an object ("gold", "light blue", "navy", "clear" and the
+    words alike to it: "see-through", "glass") said as its basic colour, and the shades so said: "the gold cup" is the
+    yellow cup that is gold, "the silver one" beside a grey one the silver one (:func:`candidates` keeps those)."""
+    shades: dict[tuple[str, ...], tuple[str, str]] = {}
+    for o in scene.objects:  # not "grey", the basic colour spelt so
+        if o.shade and not o.shade.startswith("#") and o.shade.replace("grey", "gray") != o.color:
+            for said_as in (o.shade, *colours.alike(o.shade)):
+                shades[tuple(said_as.split())] = (o.color, o.shade)
+    own = {tuple(o.shade.split()) for o in scene.objects if o.shade}
     if not shades:
         return words, low, set()
     out_w, out_l, said, i = [], [], set(), 0
     while i < len(low):
         for shade in sorted(shades, key=len, reverse=True):
-            if tuple(w.replace("-", " ") for w in low[i:i + len(shade)]) == shade or (
-                    len(shade) > 1 and low[i] == "-".join(shade)):
-                taken = len(shade) if low[i:i + len(shade)] == shade else 1
-                out_w.append(shades[shade])
-                out_l.append(shades[shade])
-                said.add(" ".join(shade))
+            taken = len(shade) if low[i:i + len(shade)] == shade else \
+                1 if len(shade) > 1 and tuple(low[i].split("-")) == shade else 0  # "light-blue", "see-through"
+            if taken and (shade in own or i + taken < len(low)):  # "the magnifying glass" is no glass-clear thing
+                basic, shade_of = shades[shade]
+                out_w.append(basic)
+                out_l.append(basic)
+                said.add(shade_of)
                 i += taken
                 break
         else:
@@ -255,8 +261,10 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
     for group in kinds:
         fits = [o for o in fits if o.name in group]
     for word, group, shape in either:  # "the red brick": a lego brick, or a brick-shaped block
-        if word not in GEOMETRIC and any(o.name in group for o in fits):
-            fits = [o for o in fits if o.name in group]  # "the can": the soda can, not a plain cylinder beside it
+        if word not in GEOMETRIC and any(o.name in group and (not colours or o.color in colours) for o in fits):
+            # "the can": the soda can, not a plain cylinder beside it; "the gold box" is the box-shaped gold watch
+            # case where no object named a box is gold
+            fits = [o for o in fits if o.name in group]
             continue
         if word in ("box", "boxes") and not colours and any(o.name in group for o in fits) \
                 and not any(o.name not in group and _another_box(o) for o in fits):
@@ -264,8 +272,9 @@ def candidates(text: str, words: list[str], low: tuple[str, ...], scene: Scene,
             continue
         fits = [o for o in fits if o.name in group or shape_of(o) == shape
                 or (word in ("box", "boxes") and kinds_of(o) & BOX_KINDS)]  # "the box": any box mesh too
-        if word in ("box", "boxes"):  # "the big box": a parcel, not the tote beside it
-            fits = [o for o in fits if _boxy(o)] or fits
+        if word in ("box", "boxes"):  # "the big box": a parcel, not the tote beside it; "the gold box" the case
+            boxy = [o for o in fits if _boxy(o)]
+            fits = boxy if boxy and (not colours or any(o.color in colours for o in boxy)) else fits
     if colours:
         if not any(o.color in colours for o in scene.objects):
             colours = {NEAR_COLOURS.get(c, c) for c in colours}

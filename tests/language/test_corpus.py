@@ -420,6 +420,10 @@ OPEN = {
         "Move the scales a bit nearer the parcel and then nudge them round the envelopes.":
             "slide:closer scale parcel extent=little ; push:around scale envelopes ; push:around parcel envelopes",
     },
+    "heldout130.tsv": {
+        # "the metal one": the steel kettle, "metal" read as its grey; the author would ask (the tea tin is metal too)
+        "move the metal one next to the mug": "slide:next-to kettle mug",
+    },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
 (and in docs/language.md) rather than tuned away unseen; each is asserted as it is now, so mending it fails the
@@ -696,4 +700,15 @@ def test_the_hundred_and_twenty_fifth_to_hundred_and_twenty_eighth_authors_corpo
     thing's own word no slip of another's, "glasses" as spectacles, "the soap for dogs" no dog brush, "the franking
     machine" no stamp, "up" before the phrase, "first" before the next clause, "all in a line", a statement after the
     command, "hold ... up"). Wrong only as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout129.tsv", 138), ("heldout130.tsv", 140)])
+def test_the_hundred_and_twenty_ninth_and_thirtieth_authors_corpora(plugins, name, floor):
+    """Written cold at the fortieth session on tables whose scene files write shades (a jeweller's counter: navy, gold,
+    clear, burgundy, silver beside grey; a kitchen counter: steel, clear, beige, teal, cream, dark green, light yellow),
+    and read once on bb42105, the shades' code, before anything was changed for them (docs/language.md): 132 and 137
+    of 160, 0 and 2 wrong; since, "the gold box" for a box-shaped gold thing where no object named a box is gold,
+    "see-through" and "transparent" for clear, "past of", and "would you lift X, put it ..." as a carry. Wrong only
+    as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
