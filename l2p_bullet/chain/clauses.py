@@ -123,7 +123,7 @@ def read_clauses(sentence: str, scene: Scene, plugins: list) -> list[Clause]:
             text = texts[0] if texts else str(sentence)
             pieces = _other_readings(text, None, scene, plugins)
             if pieces is None:
-                refuse_for_the_topic(text, scene, None)
+                refuse_for_the_topic(text, scene, None, plugins)
                 raise
             pieces = _set_down(pieces, None, None)  # "beside the... the colander, yes, beside the colander": once
             pieces = [p for k, p in enumerate(pieces) if k == 0 or not said_again(p[0], p[1], pieces[k - 1][1], scene)]
@@ -314,7 +314,7 @@ def _resolve_text(text: str, previous: Command | None, scene: Scene, plugins: li
                 pass
         pieces = _other_readings(text, previous, scene, plugins, depth, context, pair)
         if pieces is None:
-            refuse_for_the_topic(text, scene, context)
+            refuse_for_the_topic(text, scene, context, plugins)
             raise
         return pieces
 

@@ -11,10 +11,11 @@ import re
 from collections.abc import Callable
 
 from ..core.scene import Scene
-from ..errors import L2PError, LanguageError
+from ..errors import L2PError, LanguageError, UnknownObjectError
 from ..language import Command, Context, resolve_object, strip_polite, verb_heads
 from ..language.numbers import apposed
 from ..language.reference_words import FARTHEST, NEAREST
+from ..pipeline import resolve
 from . import pointing
 from .clause import MAX_CLAUSES
 
@@ -150,18 +151,20 @@ RESUMED = re.compile(r"\b(?:it|them|that one|this one)\b", re.IGNORECASE)
 """A pointer in the command after a topic that takes the topic up again ("the red one by the lamp, move it ...")."""
 
 
-def refuse_for_the_topic(text: str, scene: Scene, context: Context | None) -> None:
+def refuse_for_the_topic(text: str, scene: Scene, context: Context | None, plugins: list | None = None) -> None:
     """Raise :func:`topic_refusal`'s error where there is one (the caller then raises its own)."""
-    told = topic_refusal(text, scene, context)
+    told = topic_refusal(text, scene, context, plugins)
     if told is not None:  # "the item farthest from you, keep it ...": the topic's own reason
         raise told from None
 
 
-def topic_refusal(text: str, scene: Scene, context: Context | None) -> L2PError | None:
+def topic_refusal(text: str, scene: Scene, context: Context | None, plugins: list | None = None) -> L2PError | None:
     """Why "the item which is farthest from you, kindly keep it near to spoon" is refused, where no reading took it:
     the object said first, then taken up by "it", is a description that does not resolve, and its own error ("nearest"
     is ambiguous: ..., no block called ...) says more than the grammar's on the whole clause ("'the' is not a verb").
-    None where the text is no such topic or the topic resolves (then the command after it is what failed)."""
+    Where the topic resolves and the command after it names an object the table does not hold ("the scale, move it
+    next to the letters"), that command's error, read with "it" as the topic (given the installed ``plugins``).
+    None where the text is no such topic, or the topic resolves and the command after it fails otherwise."""
     m = pointing.TOPIC.match(text)
     if m is None or not RESUMED.search(m.group("rest")) or not m.group("what").strip():
         return None
@@ -169,7 +172,15 @@ def topic_refusal(text: str, scene: Scene, context: Context | None) -> L2PError 
     if not what.strip() or what.split()[0].lower() in verb_heads():
         return None  # "move A next to B, then push it": a command, not a topic
     try:
-        resolve_object(what, scene, "block", context)
+        name = resolve_object(what, scene, "block", context)
     except L2PError as e:
         return e
+    if plugins is None:
+        return None
+    try:
+        resolve(m.group("rest"), scene, plugins, Context(name))
+    except UnknownObjectError as e:
+        return e
+    except L2PError:
+        pass
     return None

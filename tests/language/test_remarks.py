@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 from corpus import read
 
-from l2p_bullet.errors import L2PError
+from l2p_bullet.errors import L2PError, UnknownObjectError
 from l2p_bullet.language import remarks
 
 TEA = "heldout93.tsv"  # kettle, teapot, sugar_jar, spoon, biscuit_tin, coaster, milk_jug
@@ -59,6 +59,25 @@ def test_a_topic_that_does_not_resolve_is_refused_for_its_own_reason(plugins, na
     with pytest.raises(L2PError) as refused:
         read(sentence, plugins, name)
     assert said in str(refused.value) and "not a verb" not in str(refused.value)
+
+
+@pytest.mark.parametrize("sentence, missing", [
+    ("the scale, move it next to the letters", "the letters"),
+    ("the gray thing, move it next to the letters", "the letters"),
+    ("the stamp - slide it past the mailbox", "the mailbox"),
+])
+def test_a_topic_that_resolves_is_refused_for_the_object_its_command_names_and_the_table_lacks(plugins, sentence,
+                                                                                                  missing):
+    """The topic names an object and "it" takes it up; the command after it names one the table does not hold: the
+    refusal says which (a word ``perform --ask`` can ask about), never the grammar's "'the' is not a verb"."""
+    with pytest.raises(UnknownObjectError) as refused:
+        read(sentence, plugins, "heldout128.tsv")  # stamp, ink_pad, envelopes, parcel, tape_gun, scale
+    assert f'no block called "{missing}"' in str(refused.value) and "not a verb" not in str(refused.value)
+
+
+def test_a_topic_whose_command_names_objects_on_the_table_is_read(plugins):
+    assert read("the gray thing, move it next to the envelopes", plugins, "heldout128.tsv") == (
+        "slide:next-to scale envelopes")
 
 
 BENCH = "heldout125.tsv"  # loupe, tweezers, watch, parts_tray, oil_bottle, brush
