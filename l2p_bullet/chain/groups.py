@@ -18,6 +18,7 @@ from ..language.reference_words import FARTHEST, NEAREST
 from ..pipeline import resolve
 from . import pointing
 from .clause import MAX_CLAUSES
+from .rephrased import TOPIC_BARE
 
 Read = Callable[..., list[tuple[str, Command]]]
 """chain/clauses.py's reader of a clause's text: (text, previous, scene, plugins, depth, context, pair) -> pieces."""
@@ -164,11 +165,14 @@ def topic_refusal(text: str, scene: Scene, context: Context | None, plugins: lis
     is ambiguous: ..., no block called ...) says more than the grammar's on the whole clause ("'the' is not a verb").
     Where the topic resolves and the command after it names an object the table does not hold ("the scale, move it
     next to the letters"), that command's error, read with "it" as the topic (given the installed ``plugins``).
-    None where the text is no such topic, or the topic resolves and the command after it fails otherwise."""
-    m = pointing.TOPIC.match(text)
-    if m is None or not RESUMED.search(m.group("rest")) or not m.group("what").strip():
+    The topic may stand without a comma before a known verb and "it" ("the thing nearest the parcel move it past
+    the scale": chain/rephrased.TOPIC_BARE). None where the text is no such topic, or the topic resolves and the
+    command after it fails otherwise."""
+    said = _topic_and_rest(text)
+    if said is None or not RESUMED.search(said[1]) or not said[0].strip():
         return None
-    what = " ".join(strip_polite(m.group("what").split(), frozenset(scene.names))) or m.group("what")
+    rest = said[1]
+    what = " ".join(strip_polite(said[0].split(), frozenset(scene.names))) or said[0]
     if not what.strip() or what.split()[0].lower() in verb_heads():
         return None  # "move A next to B, then push it": a command, not a topic
     try:
@@ -178,9 +182,21 @@ def topic_refusal(text: str, scene: Scene, context: Context | None, plugins: lis
     if plugins is None:
         return None
     try:
-        resolve(m.group("rest"), scene, plugins, Context(name))
+        resolve(rest, scene, plugins, Context(name))
     except UnknownObjectError as e:
         return e
     except L2PError:
         pass
+    return None
+
+
+def _topic_and_rest(text: str) -> tuple[str, str] | None:
+    """(the topic, the command after it) of a text said as a topic first, with a comma, dash or colon or, before a
+    known verb and "it", without one; None where it is not."""
+    m = pointing.TOPIC.match(text)
+    if m is not None:
+        return m.group("what"), m.group("rest")
+    m = TOPIC_BARE.match(text)
+    if m is not None and m.group("verb").lower() in verb_heads():
+        return m.group("what"), f"{m.group('verb')} {m.group('it')} {m.group('rest')}"
     return None
