@@ -48,7 +48,7 @@ manners); two taken and moved as "them" are each moved so ("take the glove box a
 to the clipboard"); the two verbs may run on without "and" ("take O move it next to Q"). Not "grab": people wrote "grab
 X, put it ..." as a carry and as a slide alike, and the manners read it."""
 LIFT_THEN = re.compile(r"^\s*(?:(?:now|then|ok|okay|so|first|would\s+you|could\s+you|can\s+you|please)\s+)*"
-                       r"(?:lift|pick\s+up|raise|hoist|carry)\s+(?P<what>.+?)"
+                       r"(?:lift|pick\s+up|take\s+up|raise|hoist|carry)\s+(?P<what>.+?)"
                        r"(?:\s+up)?(?:\s*(?:,|\s+and)\s+hold\s+(?:it|them)(?:\s+up)?)?"
                        r"\s*(?:,|\s+and|\s+while\s+you|)\s+(?:then\s+)?(?:bring|move|put|place|set|slide|shift|take|carry"
                        r"|leave|drop|lay|pop|land|park|plonk|stick)\s+"

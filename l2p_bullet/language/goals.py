@@ -134,6 +134,8 @@ _WRITTEN_LINKS = (
     "should end", "end",
     "ought to go", "ought to sit",
     "wants to end up", "wants to be", "wants to go", "wants to sit",  # "the chalk box wants to end up nearer ..."
+    "want to end up", "want to be", "are",  # an object named in the plural: "make sure the cards are by the pad"
+    "to finish up", "finishes up", "finish up", "should finish up",
     "to be standing", "to be sitting", "to be lying", "be standing", "be sitting", "be lying", "ends up sat",
     "should be sitting", "should be standing", "should be lying", "is going to go", "is gonna go", "will go",
     "is going to end up", "is gonna end up",
@@ -248,7 +250,7 @@ def said_now(low: list[str]) -> bool:
     return any(tuple(low[i:i + len(n)]) == n for n in NOW for i in range(len(low)))
 
 
-TELLING = frozenset({("is",), ("'s",), ("sits",), ("lies",), ("stands",), ("rests",), ("was",), ("were",)})
+TELLING = frozenset({("is",), ("'s",), ("are",), ("sits",), ("lies",), ("stands",), ("rests",), ("was",), ("were",)})
 """Links that, with nothing before the object ("The mug is next to the domino."), tell how the table is: a goal
 needs words that ask ("I want", "the goal is", "should be", "make it so")."""
 

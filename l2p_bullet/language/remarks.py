@@ -29,7 +29,7 @@ JOINS = frozenset({"then", "and", "after", "afterwards", "next", "also", "too", 
                    "put", "move", "go", "goes", "make", "row", "line", "lift", "carry", "push"})
 """Words that join or start another command ("then", "do the same", "and the cup too"): never a remark."""
 MANNER_WORDS = frozenset({"time", "easy", "care", "steady", "steadily", "speed", "rush", "delicate", "delicately",
-                          "drag", "dragging", "lifting", "air", "fingers", "handle"})
+                          "drag", "dragging", "lifting", "air", "fingers", "handle", "attention"})
 """Words of a manner or pace said in a phrase ("taking your time with it", "go easy", "don't drag it"): never a
 remark."""
 PAST = frozenset({"was", "were", "yesterday", "earlier"})

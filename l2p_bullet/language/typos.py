@@ -40,16 +40,16 @@ SHORTHAND = {"nxt": "next", "cyl": "cylinder", "cyls": "cylinders", "frm": "from
              "plz": "please", "nr": "near", "mv": "move", "twd": "toward", "twds": "towards", "rnd": "round",
              "yel": "yellow", "wht": "white", "grn": "green", "rly": "really", "rlly": "really", "b4": "before",
              "da": "the", "dat": "that", "dis": "this", "rite": "right", "wit": "with", "ova": "over", "roe": "row"}
-SHORTHAND |= {"blew": "blue", "won": "one", "b": "be", "shld": "should", "shud": "should", "em": "them",
-              "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "bk": "back", "thn": "then",
-              "read": "red"}
+SHORTHAND |= {"blew": "blue", "won": "one", "b": "be", "shld": "should", "shd": "should", "shud": "should",
+              "em": "them", "thx": "thanks", "thnx": "thanks", "ty": "thanks", "rn": "now", "bk": "back", "thn": "then",
+              "read": "red", "buy": "by"}
 SHORTHAND |= dict(pair.split("=") for pair in """
     tae=to fae=from frae=from awa=away roon=round roond=round yon=the yin=one pit=put gie=give richt=right muckle=big
     hae=have ye=you dinnae=don't tak=take ower=over wi=with oot=out doon=down aboot=about cannae=can't intae=into
-    ontae=onto""".split())
+    ontae=onto tek=take mek=make reet=right reight=right tha=you thee=you un=one""".split())
 """Texting shorthand, the colour speech-to-text hears as another word ("the blew block", "the read cube") and Scots
-words people type among English ones ("shift yon red cube awa fae the box"), read as the word each stands for in a
-refused sentence, as a slip is."""
+and Northern English words people type among English ones ("shift yon red cube awa fae the box", "tek t'big un past
+t'twine"), read as the word each stands for in a refused sentence, as a slip is."""
 
 
 def vocabulary(phrases: Iterable[str], verbs: Iterable[str], colours: Iterable[str]) -> frozenset[str]:
@@ -221,6 +221,8 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
             return heard
         if low in SHORTHAND and SHORTHAND[low] in known:
             return SHORTHAND[low]
+        if low in PACE_PHRASE_WORDS:  # "with care" is no slip of "with case" beside a glasses case
+            return w
         if low in known:
             if low in reference_words.KIND_WORDS and low not in kinds and low not in reference_words.COLOUR_WORDS \
                     and THE_BEFORE.search(m.string, 0, m.start()):
@@ -259,6 +261,9 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     said = sentence if keep & FILLER_WORDS else FILLERS.sub("", sentence)
     if not any("\u0131" in n for n in names):  # "slıde C", "lıft ıt": a Turkish keyboard's dotless i
         said = said.replace("\u0131", "i").replace("\u0130", "I")
+    said = OTHER_BARE.sub(r"\1the \2", NORTHERN.sub(lambda m: NORTHERN_FOR[m.lastgroup], said))
+    nouns = keep | named | set(kinds) | reference_words.COLOUR_WORDS | SIZES
+    said = DEMONSTRATIVE.sub(lambda m: "the " if m.group(1).lower() in nouns else m.group(0), said)
     said = _joined(_lettered(DROPPED_LETTER.sub("", _cut_short(said, names)), names), keep | named | set(kinds), spoken)
     mended = TWO_FOR_TO.sub(r"\1 to", _WORD.sub(fix, TWO_WARDS.sub(r"to\1", said)))  # "2wards" first: no "2cards"
     mended = TWO_BEFORE_THE.sub("to ", mended)
@@ -345,6 +350,21 @@ def _joined(sentence: str, named: set[str] | frozenset[str], spoken: list[str] =
     return "".join(out) + sentence[at:]
 
 
+PACE_PHRASE_WORDS = frozenset(w for phrase in words.PACE_PHRASES for w in phrase)
+"""The words of the pace phrases ("with care", "no rush"): never mended into another word, never a mend's target."""
+NORTHERN = re.compile(r"\b(?:(?P<the>t)['\u2019](?=[a-z])|(?P<and>an)['\u2019](?=\s)|(?P<of>o)['\u2019](?=\s))",
+                      re.IGNORECASE)
+"""Northern English as typed: "t'" for "the" before its noun ("put t'trowel by t'pot"), "an'" for "and", "o'" for
+"of" ("t'ball o' twine"), each said with its apostrophe (a word of its own without one is another word)."""
+NORTHERN_FOR = {"the": "the ", "and": "and", "of": "of"}
+OTHER_BARE = re.compile(r"(^\s*|[.;!?]\s+|\b(?:then|and|now)\s+)(other)\b(?=\s+[a-z])", re.IGNORECASE)
+"""A clause that opens on "other" without its article, as notes are typed ("red pawn by the bag. other pawn by the
+deck"): "the other"."""
+DEMONSTRATIVE = re.compile(r"\b(?:these|those|them)\s+(?=([A-Za-z]+))", re.IGNORECASE)
+"""A plural demonstrative before what an object is called: "those gloves" for the pair named gloves, "them cards" as
+many people say "those cards". Read as "the" only before a name, a kind, a colour or a size of the table; "them" before
+anything else is the pronoun."""
+SIZES = frozenset({"big", "small", "little", "large", "tiny", "wee"})
 DROPPED_LETTER = re.compile(r"(?<=[a-z])'(?=\s)")
 """An apostrophe that marks a letter left off a word's end ("awa' fae", "o' the"): the word as typed."""
 ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
