@@ -33,6 +33,10 @@ def _called(m: re.Match) -> str:
     return f"move {m.group('what')} {how} {m.group('to')}"
 
 
+COMPARED_AS = {"big": "bigger", "small": "smaller", "large": "larger", "tall": "taller", "short": "shorter",
+               "wide": "wider", "long": "longer"}
+"""A size said as Romance languages compare it ("più grande", "más pequeño"): the English comparative."""
+
 _REWRITES = (
     (re.compile(r"\bmore\s+far\s+(?:of|from)\b", re.IGNORECASE), "farther from"),
     (re.compile(r"\bmost\s+(?P<how>far|near|close)\b(?P<of>\s+of\b)?", re.IGNORECASE),  # "the one most far from you"
@@ -40,6 +44,10 @@ _REWRITES = (
      + ({"far": " from", "near": "", "close": " to"}[m.group("how").lower()] if m.group("of") else "")),
     (re.compile(r"\bmore\s+(?:close|near)\s+(?:of|to)\b", re.IGNORECASE), "closer to"),
     (re.compile(r"\bfar\s+of\b", re.IGNORECASE), "far from"),
+    (re.compile(r"\bmore\s+(big|small|large|tall|short|wide|long)\b", re.IGNORECASE),  # "the vase more big"
+     lambda m: COMPARED_AS[m.group(1).lower()]),
+    (re.compile(r"\bof\s+(?:a\s+|the\s+)?(?:colou?r\s+(?P<after>[a-z]+)|(?P<before>[a-z]+)\s+colou?r)\b",
+                re.IGNORECASE), lambda m: m.group("after") or m.group("before")),  # "the vase of brown colour"
     (re.compile(r"\bnear\s+of\b", re.IGNORECASE), "near"),
     (re.compile(r"\bbeside\s+(?:to|of)\b", re.IGNORECASE), "beside"),
     (re.compile(r"\b(?:in|at|on)\s+(?:the\s+)?side\s+of\b", re.IGNORECASE), "next to"),

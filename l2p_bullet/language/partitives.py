@@ -65,7 +65,8 @@ def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scen
     head, tail = low[:at], low[at + 1:]
     if head[-1] in CONTAINERS and len(tail) <= 2 and len(tail[-1]) >= 3 and tail[-1].isalpha():
         said = " ".join(["the", *tail[-1:]])
-    elif all(is_modifier(w) for w in tail) or (head[-1] in VESSELS and len(tail) <= 2 and tail[-1].isalpha()):
+    elif all(is_modifier(w) for w in tail) or (head[-1] in VESSELS and len(tail) <= 2 and tail[-1].isalpha()) \
+            or _declared(" ".join([head[-1], "of", *tail]), scene):  # "the ball of twine" as the scene file says
         said = " ".join([*head[:-1], *tail, head[-1]])  # "the controller of video games", "the tin of soup"
     else:
         return None
@@ -73,6 +74,29 @@ def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scen
         return resolve(said, scene, role)
     except (LanguageError, UnknownObjectError):
         return None
+
+
+HOLDING = re.compile(r"^(?P<head>.+?)\s+(?:with|full\s+of)\s+(?:the\s+|some\s+|all\s+the\s+)?(?P<what>[a-z]{3,})"
+                     r"(?:\s+in\s+(?:it|them))?$", re.IGNORECASE)
+"""An object said by what it holds: "the bag with the tokens (in it)", "the thingy with the sand in it"."""
+
+
+def holding(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:
+    """The one object :data:`HOLDING`'s head and what it holds both call ("the bag with the tokens": token_bag, whose
+    name or kind says tokens as well as bag); None where ``text`` is not said so, or the two words call no one
+    object together."""
+    m = HOLDING.match(text)
+    if m is None or m.group("head").lower().split()[-1] in ("the", "a", "one"):
+        return None
+    try:
+        return resolve(f"{m.group('head')} {m.group('what')}", scene, role)
+    except (LanguageError, UnknownObjectError):
+        return None
+
+
+def _declared(phrase: str, scene: Scene) -> bool:
+    """Whether an object's declared kind says ``phrase`` ("ball of twine", "deck of cards"): its words with "of"."""
+    return any(o.kind and f" {phrase} " in f" {o.kind.lower()} " for o in scene.objects)
 
 
 def partitive(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:

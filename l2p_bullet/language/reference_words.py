@@ -41,7 +41,8 @@ cube"): read past there. The size words among them (synonyms.SIZE_WORDS) and the
 COLOR_SYNONYMS = {"grey": "gray", "violet": "purple", "magenta": "pink", "turquoise": "cyan", "silver": "gray",
                   "aqua": "cyan", "teal": "cyan", "navy": "blue", "golden": "yellow", "beige": "brown",
                   "lilac": "purple", "crimson": "red", "scarlet": "red", "dark": "black", "steel": "gray",
-                  "stainless": "gray", "chrome": "gray", "metallic": "gray", "metal": "gray"}
+                  "stainless": "gray", "chrome": "gray", "metallic": "gray", "metal": "gray",
+                  "terracotta": "brown"}
 COLOR_SYNONYMS |= {  # French and Spanish colours among English words ("the cylinder jaune", "la ficha roja")
     "rouge": "red", "bleu": "blue", "bleue": "blue", "vert": "green", "verte": "green", "jaune": "yellow",
     "blanc": "white", "blanche": "white", "noir": "black", "noire": "black", "gris": "gray", "grise": "gray",

@@ -28,7 +28,7 @@ from .likeness import coloured_like, looks
 from .naming import name_words, shape_named, spelled_name
 from .numbers import number_reference
 from .other_than import other_than
-from .partitives import name_and_kind, of_compound, partitive
+from .partitives import holding, name_and_kind, of_compound, partitive
 from .places import (
     RANKS,
     bearing_off,
@@ -176,7 +176,8 @@ def _resolve(text: str, scene: Scene, role: str, context: Context | None) -> str
             raise
         return named
     except UnknownObjectError:
-        named = partitive(text, scene, role, _unremembered) or of_compound(text, scene, role, _unremembered)
+        named = partitive(text, scene, role, _unremembered) or of_compound(text, scene, role, _unremembered) \
+            or holding(text, scene, role, _unremembered)
         if named is None:
             raise
         return named
@@ -351,7 +352,10 @@ def _placed(words: list[str], low: tuple[str, ...], scene: Scene, role: str, con
                 continue  # "the thing in front of the red cube on the right": the side picks the red cube
             what, pick = SIZE_SUPERLATIVES[SIDE_PHRASES[phrase]]
             said = " ".join(phrase)
-            return either_reading(words[:-len(phrase)], scene, lambda pool, what=what, pick=pick, said=said:
+            before = words[:-len(phrase)]
+            if len(before) > 1 and before[-1].lower() in ("more", "most"):
+                before = before[:-1]  # "the pawn (which stands) more at the back": the one farthest back
+            return either_reading(before, scene, lambda pool, what=what, pick=pick, said=said:
                                    superlative(pool, lambda o: measure(o, what), pick, said, place=True))
     if "between" not in low[1:]:
         return None

@@ -141,6 +141,7 @@ KIND_NAMES = {
     "bishop": ("bishops", "runner", "l\u00e4ufer", "laufer"),
     "pawn": ("pawns", "farmer", "bauer", "peasant", "prawn", "meeple", "meeples", "token", "tokens", "counter"),
     "die": ("dice", "d6"), "deck": ("cards", "pack", "pile", "decks"),
+    "hourglass": ("hourglasses", "sandglass", "sanduhr", "clock"), "timer": ("timers", "clock"),
     "wrench": ("wrenches", "spanner", "spanners"),
     "spanner": ("spanners", "wrench", "wrenches"),
     "mallet": ("mallets", "hammer", "hammers"),
@@ -168,8 +169,10 @@ KIND_NAMES = {
 """A kind (an object's word name, or its mesh file's stem) -> the everyday names people also call it by, brands among
 them where a benchmark's object set is a brand's product (the YCB set: the Master Chef can is the coffee, the Cheez-It
 box the crackers, Domino the sugar, Campbell's the soup, French's the mustard, Spam the potted meat)."""
-FIGURES = ("minifig", "figure", "figurine", "doll", "person", "man", "woman", "boy", "girl", "soldier", "astronaut")
-"""Kinds of a little person: "the little guy", "the figure", "the lego man" is the one object of such a kind."""
+FIGURES = ("minifig", "figure", "figurine", "doll", "person", "man", "woman", "boy", "girl", "soldier", "astronaut",
+           "pawn", "king", "queen", "knight", "bishop", "rook", "meeple", "chessman")
+"""Kinds of a little person: "the little guy", "the figure", "the lego man" is the one object of such a kind. A board
+game's pieces are its men and figures ("the little red man", a German speaker's "the blue figure" for a pawn)."""
 CASUAL_PERSONS = frozenset({"guy", "dude", "fella", "fellow", "chap", "bloke", "figure"})
 FIGURE_WORDS = CASUAL_PERSONS | {"figurine", "person", "man", "character", "minifigure", "figures", "people", "guys"}
 """Words for a little person. They name the scene's figures where it has one; where it has none they are no kind:
