@@ -57,6 +57,7 @@ STOPS = NEGATIONS | frozenset({
     "was", "were", "already",
     "pass", "passes", "passed", "passing", "touch", "touches", "touched", "touching", "hit", "bump", "cross",
     "avoid", "follow", "possible", "gap", "rush", "hurry", "whatever", "line", "lines", "row", "rows",
+    "attention",  # "with great attention": a pace, never read past
 })
 """Words that stop the reading: they may change what the rest means ("touching" asks for a tight gap, "pass it
 by" for past), join a clause the sentence did not split, or ask for what the actions cannot do or a row ("arrange to

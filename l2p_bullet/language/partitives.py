@@ -14,8 +14,10 @@ from collections.abc import Callable
 from ..core.scene import Scene
 from ..errors import LanguageError, UnknownObjectError
 from .descriptions import candidates
+from .reference_words import COLOUR_WORDS, NOUNS
+from .shape_words import SHAPE_NOUNS
 from .synonyms import CONTAINERS as NAMED_CONTAINERS
-from .synonyms import is_modifier
+from .synonyms import LOOSE_NOUNS, is_modifier, kind_groups
 
 PARTITIVE = re.compile(r"^(?P<head>.+?)\s+of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
                        r"(?P<group>[\w\s-]+?(?:s|es))$", re.IGNORECASE)
@@ -76,22 +78,29 @@ def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scen
         return None
 
 
-HOLDING = re.compile(r"^(?P<head>.+?)\s+(?:with|full\s+of)\s+(?:the\s+|some\s+|all\s+the\s+)?(?P<what>[a-z]{3,})"
+HOLDING = re.compile(r"^(?P<head>.+?)\s+(?:with|full\s+of|for)\s+(?:the\s+|some\s+|all\s+the\s+)?(?P<what>[a-z]{3,})"
                      r"(?:\s+in\s+(?:it|them))?$", re.IGNORECASE)
-"""An object said by what it holds: "the bag with the tokens (in it)", "the thingy with the sand in it"."""
+"""An object said by what it holds or is for: "the bag with the tokens (in it)", "the thingy with the sand in it",
+"the notepad for the scores"."""
 
 
 def holding(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:
-    """The one object :data:`HOLDING`'s head and what it holds both call ("the bag with the tokens": token_bag, whose
-    name or kind says tokens as well as bag); None where ``text`` is not said so, or the two words call no one
-    object together."""
+    """The one object :data:`HOLDING`'s head and what it holds (or is for) both call ("the bag with the tokens":
+    token_bag, whose name or kind says tokens as well as bag); None where ``text`` is not said so, or the two words
+    call no one object together."""
     m = HOLDING.match(text)
     if m is None or m.group("head").lower().split()[-1] in ("the", "a", "one"):
         return None
+    groups = kind_groups(scene)
+    head, what = m.group("head").lower().split()[-1], m.group("what").lower()
     try:
-        return resolve(f"{m.group('head')} {m.group('what')}", scene, role)
+        name = resolve(f"{m.group('head')} {m.group('what')}", scene, role)
     except (LanguageError, UnknownObjectError):
         return None
+    # both words call it ("the soap for dogs" is no dog brush: nothing here is called soap), or what it has is its
+    # colour ("the screwdriver with the yellow handle")
+    said_head = name in groups.get(head, ()) or head in LOOSE_NOUNS or head in NOUNS or head in SHAPE_NOUNS
+    return name if said_head and (name in groups.get(what, ()) or what in COLOUR_WORDS) else None
 
 
 def _declared(phrase: str, scene: Scene) -> bool:

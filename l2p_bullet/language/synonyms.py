@@ -142,6 +142,9 @@ KIND_NAMES = {
     "pawn": ("pawns", "farmer", "bauer", "peasant", "prawn", "meeple", "meeples", "token", "tokens", "counter"),
     "die": ("dice", "d6"), "deck": ("cards", "pack", "pile", "decks"),
     "hourglass": ("hourglasses", "sandglass", "sanduhr", "clock"), "timer": ("timers", "clock"),
+    # a potting bench: the words people use for its tools and pots
+    "trowel": ("trowels", "scoop"), "flowerpot": ("flowerpots", "planter"), "pot": ("planter", "planters"),
+    "packet": ("envelope", "sachet"), "pad": ("notepad", "notebook", "scorepad"),
     "wrench": ("wrenches", "spanner", "spanners"),
     "spanner": ("spanners", "wrench", "wrenches"),
     "mallet": ("mallets", "hammer", "hammers"),

@@ -169,7 +169,8 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "hurry up": "fast", "hurry up and": "fast", "hurry and": "fast", "in a slow way": "slow", "in slow way": "slow",
     "in a careful way": "careful",
     "as quickly as you can": "fast", "with care": "careful", "with attention": "careful",
-    "with much care": "careful", "ever so slowly": "slow", "ever so gently": "gentle", "ever so carefully": "careful",
+    "with much care": "careful", "with the utmost care": "careful", "with utmost care": "careful",
+    "ever so slowly": "slow", "ever so gently": "gentle", "ever so carefully": "careful",
     "careful now": "careful", "gently does it": "gentle", "easy does it": "gentle", "nice and easy": "gentle",
     "real quick": "fast",
     "real quickly": "fast", "real slow": "slow", "real slowly": "slow",
@@ -298,7 +299,7 @@ def skip_to_verb(words: list[str], verbs: list[str], keep: frozenset[str] = froz
     return words
 
 
-SKIP_NEVER = frozenset(PACES) | {"care"}
+SKIP_NEVER = frozenset(PACES) | {"care", "attention"}
 """Words that, before the verb, ask how to move: never read past as a preamble."""
 FAR_BEFORE = frozenset({"bit", "tad", "smidge", "smidgen", "thoda", "sa", "slightly"})
 """Words of how far said alone before the verb ("Thoda sa move the pen holder towards the phone", "A bit, move ..."):

@@ -363,9 +363,6 @@ OPEN = {
         # "the Blumentopf, the small one": the small pot, read as the smallest object (the seed packet)
         "Shift the gloves near to the Blumentopf, the small one.":
             "slide:closer gloves seed_packet",
-        # "the little digger": the trowel, read as the smallest object
-        "move the little digger next to the big orange pot":
-            "slide:next-to seed_packet pot_large",
     },
     "heldout114.tsv": {
         # "Fastly": the pace, read past
@@ -423,6 +420,16 @@ OPEN = {
     "heldout130.tsv": {
         # "the metal one": the steel kettle, "metal" read as its grey; the author would ask (the tea tin is metal too)
         "move the metal one next to the mug": "slide:next-to kettle mug",
+    },
+    "heldout131.tsv": {
+        # "up against" read as a tight gap, as the other authors wrote it (102 of 116 lines); this one wrote a plain one
+        "pick up t'seed packet, carry it to t'gloves, then push t'twine up against it":
+            "carry:closer seed_packet gloves ; push:next-to twine seed_packet extent=right",
+    },
+    "heldout132.tsv": {
+        # "the biggest thing": the deck of cards (9 x 6.5 x 2.5 cm) by its outline, longer and wider than the bag of
+        # tokens (6 x 6 x 4 cm) of all but the same bulk; the author would ask which
+        "biggest thing away from the blue pawn": "slide:away card_deck pawn_blue",
     },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
@@ -711,4 +718,15 @@ def test_the_hundred_and_twenty_ninth_and_thirtieth_authors_corpora(plugins, nam
     of 160, 0 and 2 wrong; since, "the gold box" for a box-shaped gold thing where no object named a box is gold,
     "see-through" and "transparent" for clear, "past of", and "would you lift X, put it ..." as a carry. Wrong only
     as :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout131.tsv", 128), ("heldout132.tsv", 142)])
+def test_the_hundred_and_thirty_first_and_second_authors_corpora(plugins, name, floor):
+    """Written cold at the forty-first session (a gardener's potting bench whose scene file writes CSS shades, two
+    brown flower pots; a board-game table whose scene file writes hex colours) and read once on 8ce3c87, before
+    anything was changed for them (docs/language.md): 88 and 118 of 160, 2 and 2 wrong; since, Northern English ("t'",
+    "an'", "o'", tek, reet, "them gloves"), a kind said with "of", an object by what it holds, a board game's men and
+    figures, "more at the back", two sizes refused, "drop", "take up", a plural object's end state. Wrong only as
+    :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
