@@ -104,7 +104,8 @@ def described(text: str, words: list[str], low: tuple[str, ...], scene: Scene, d
     within = names_within(words, scene)
     if len(within) > 1:  # "the butter dish salt shaker": two names run together, as a list without its commas says
         raise LanguageError(f'"{text}" names more than one object ({", ".join(within)}); name the one you mean')
-    if (set(low) & BIG and set(low) & SMALL) or (set(low) & TALL and set(low) & SHORT):
+    said = set(low)
+    if (said & BIG and said & SMALL) or (said & TALL and said & SHORT):
         # "big pot small pot": two objects said as a list without its commas, never one that is both
         raise LanguageError(f'"{text}" says two sizes of one object; name the one you mean')
     if spelled is not None:  # "the red cube" is red_cube by name, and asked where another red cube fits too

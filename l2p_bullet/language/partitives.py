@@ -89,14 +89,15 @@ def holding(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, s
     token_bag, whose name or kind says tokens as well as bag); None where ``text`` is not said so, or the two words
     call no one object together."""
     m = HOLDING.match(text)
-    if m is None or m.group("head").lower().split()[-1] in ("the", "a", "one"):
+    head = m.group("head").lower().split()[-1] if m is not None else None
+    if head is None or head in ("the", "a", "one"):
         return None
-    groups = kind_groups(scene)
-    head, what = m.group("head").lower().split()[-1], m.group("what").lower()
+    what = m.group("what").lower()
     try:
         name = resolve(f"{m.group('head')} {m.group('what')}", scene, role)
     except (LanguageError, UnknownObjectError):
         return None
+    groups = kind_groups(scene)
     # both words call it ("the soap for dogs" is no dog brush: nothing here is called soap), or what it has is its
     # colour ("the screwdriver with the yellow handle")
     said_head = name in groups.get(head, ()) or head in LOOSE_NOUNS or head in NOUNS or head in SHAPE_NOUNS

@@ -19,7 +19,7 @@ from collections.abc import Iterable
 from . import extents, goals, lexicon, reference_words, words
 from .shape_words import SHAPE_NOUNS
 from .sounds import heard_key, heard_name, one_sound_apart
-from .synonyms import name_parts
+from .synonyms import BIG, SMALL, name_parts
 
 _WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
 
@@ -262,7 +262,7 @@ def mend(sentence: str, known: frozenset[str], names: Iterable[str], verbs: Iter
     if not any("\u0131" in n for n in names):  # "slıde C", "lıft ıt": a Turkish keyboard's dotless i
         said = said.replace("\u0131", "i").replace("\u0130", "I")
     said = OTHER_BARE.sub(r"\1the \2", NORTHERN.sub(lambda m: NORTHERN_FOR[m.lastgroup], said))
-    nouns = keep | named | set(kinds) | reference_words.COLOUR_WORDS | SIZES
+    nouns = keep | named | set(kinds) | reference_words.COLOUR_WORDS | BIG | SMALL
     said = DEMONSTRATIVE.sub(lambda m: "the " if m.group(1).lower() in nouns else m.group(0), said)
     said = _joined(_lettered(DROPPED_LETTER.sub("", _cut_short(said, names)), names), keep | named | set(kinds), spoken)
     mended = TWO_FOR_TO.sub(r"\1 to", _WORD.sub(fix, TWO_WARDS.sub(r"to\1", said)))  # "2wards" first: no "2cards"
@@ -364,7 +364,6 @@ DEMONSTRATIVE = re.compile(r"\b(?:these|those|them)\s+(?=([A-Za-z]+))", re.IGNOR
 """A plural demonstrative before what an object is called: "those gloves" for the pair named gloves, "them cards" as
 many people say "those cards". Read as "the" only before a name, a kind, a colour or a size of the table; "them" before
 anything else is the pronoun."""
-SIZES = frozenset({"big", "small", "little", "large", "tiny", "wee"})
 DROPPED_LETTER = re.compile(r"(?<=[a-z])'(?=\s)")
 """An apostrophe that marks a letter left off a word's end ("awa' fae", "o' the"): the word as typed."""
 ARTICLE_BEFORE = re.compile(r"\b(?:a|an|the)\s+$", re.IGNORECASE)
