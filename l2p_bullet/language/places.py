@@ -144,7 +144,8 @@ def outlined(tied: list[SceneObject], pick) -> list[SceneObject]:
     """Objects of one shape tied by their side, told apart by their outline seen from above: the one that ``pick``
     (max or min) makes the extreme in both its longest side and its footprint's side (the root of its area), clearly
     apart from each other in one of them ("the bigger spanner": 18 against 15 cm long, as flat as the other; a 4x4
-    plate beside a 1x4 brick of its length); ``tied`` itself where the outline does not tell them apart or says
+    plate beside a 1x4 brick of its length); where the outlines are alike, by their height ("the big lens": 7 cm
+    tall against 5, as wide as the other); ``tied`` itself where neither tells them apart or the outline says
     otherwise than the bulk."""
     if len(tied) < 2 or len({o.shape for o in tied}) > 1:
         return tied
@@ -157,6 +158,21 @@ def outlined(tied: list[SceneObject], pick) -> list[SceneObject]:
             if pick(b, v) != b and not _alike(b, v, TIE_SIDE):
                 return tied  # the outline says the other way: a tie stays a tie
         if all(_alike(b, v, TIE_SIDE) for b, v in zip(seen[best.name], seen[o.name], strict=True)):
+            return _by_height(tied, pick, seen)
+    return [best]
+
+
+def _by_height(tied: list[SceneObject], pick, seen: dict[str, tuple[float, float]]) -> list[SceneObject]:
+    """Objects whose outlines (``seen``) are alike told apart by their height: the one ``pick`` makes the extreme,
+    clearly apart from every other (:data:`TIE_SIDE`) and not the other way in its outline (a wider, lower shaker
+    beside a tall bottle is a tie); ``tied`` itself otherwise."""
+    height = {o.name: float(o.geometry.height) for o in tied}
+    best = pick(tied, key=lambda o: height[o.name])
+    for o in tied:
+        if o is best:
+            continue
+        if _alike(height[o.name], height[best.name], TIE_SIDE) or any(
+                pick(b, v) != b for b, v in zip(seen[best.name], seen[o.name], strict=True)):
             return tied
     return [best]
 
