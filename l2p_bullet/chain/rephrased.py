@@ -94,8 +94,8 @@ is said ("over to the other side of", "over to B and set it down beside it") tho
 
 
 _NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|center|corner|edge|side|end|top|bottom"
-                  r"|other|same|table|robot|it|them|there|here|where)\b)")
-_TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks))*\s*[.!]*"
+                  r"|other|same|table|robot|them|there|here|where)\b)")
+_TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks|too|also|aswell|as\s+well))*\s*[.!]*"
 _PLACE_WORD_BEFORE = r"(?<!\bnext)(?<!\bclose)(?<!\bcloser)(?<!\bnear)(?<!\bnearer)(?<!\bup)(?<!\bright)"
 TO_OBJECT = re.compile(rf"^(?P<head>.+?){_PLACE_WORD_BEFORE}(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*"
                        rf"|{_NOT_AN_OBJECT}[\w-]+(?:\s+{_NOT_AN_OBJECT}[\w-]+)?{_TAIL})|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$",

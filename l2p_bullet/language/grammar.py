@@ -236,7 +236,7 @@ INTENSIFIERS = frozenset({"really", "very", "super", "so", "quite", "extra"})
 NEUTRAL_VERBS = frozenset({"move", "take", "bring", "get", "shift", "put", "place", "transport", "translate"})
 """Verbs that say nothing of how: with words that lift the object ("through the air") they are a carry."""
 
-TOO_END = re.compile(r"\b(?:too|as\s+well|also)\s*[.!?]*\s*$", re.IGNORECASE)
+TOO_END = re.compile(r"\b(?:too|as\s*well|also)\s*[.!?]*\s*$", re.IGNORECASE)
 """A clause that ends by saying it repeats the clause before for another mover ("then W next to it too")."""
 
 
