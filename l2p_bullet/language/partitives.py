@@ -58,7 +58,8 @@ green tape"): the vessel and its content both describe the object ("the soup tin
 
 def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scene, str], str]) -> str | None:
     """A kind said with "of" ("the bar of soap": the soap; "the duck of rubber", as learners write "rubber duck": the
-    duck; "the tin of soup": the soup tin); None where ``text`` is not said so or names no one object."""
+    duck; "the tin of soup": the soup tin; "the card of memory" where the scene file declares a "memory card"); None
+    where ``text`` is not said so or names no one object."""
     words = text.split()
     low = [w.lower() for w in words]
     if low.count("of") != 1 or low.index("of") in (0, len(low) - 1):
@@ -68,7 +69,9 @@ def of_compound(text: str, scene: Scene, role: str, resolve: Callable[[str, Scen
     if head[-1] in CONTAINERS and len(tail) <= 2 and len(tail[-1]) >= 3 and tail[-1].isalpha():
         said = " ".join(["the", *tail[-1:]])
     elif all(is_modifier(w) for w in tail) or (head[-1] in VESSELS and len(tail) <= 2 and tail[-1].isalpha()) \
-            or _declared(" ".join([head[-1], "of", *tail]), scene):  # "the ball of twine" as the scene file says
+            or _declared(" ".join([head[-1], "of", *tail]), scene) \
+            or _declared(" ".join([*tail, head[-1]]), scene):  # "the ball of twine", "the card of memory" for a
+        # "memory card": the words of a kind the scene file declares, with "of" or turned about as learners write them
         said = " ".join([*head[:-1], *tail, head[-1]])  # "the controller of video games", "the tin of soup"
     else:
         return None

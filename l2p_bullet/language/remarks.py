@@ -114,6 +114,8 @@ STATING = frozenset({"is", "are", "isn't", "aren't", "has", "have", "may", "migh
                      "gets", "it's", "that's", "there's", "they're", "we're", "i'm", "we've", "i've"})
 """Words by which a sentence states what is, may be or should be ("the dish has agar in it", "it is tall and may fall
 over", "specs should be within reach"): a statement said after the command, not another command."""
+UNSURE = re.compile(r"\b(?:(?:i'?m|i\s+am|im)\s+)?not\s+(?:sure|certain)\b")
+"""A doubt said of a statement ("it might be glass, I'm not sure"): its "not" negates no step."""
 EXPECTED = re.compile(r"^\s*(?:expected|expect|expected\s+result|result|outcome)\s*:", re.IGNORECASE)
 """A step's expected outcome, as a test plan writes it after the step ("Expected: distance W-P3 decreased.")."""
 
@@ -132,7 +134,7 @@ def without_statement(sentence: str, places: Iterable[str], verbs: Iterable[str]
     head, tail = sentence[:last.start()], sentence[last.end():]
     if len(head.split()) < 3:
         return []
-    words = set(re.findall(r"[\w']+", tail.lower()))
+    words = set(re.findall(r"[\w']+", UNSURE.sub(" ", tail.lower())))
     unsaid = frozenset(w.lower() for w in named) - set(re.findall(r"[\w']+", head.lower()))
     if EXPECTED.match(tail):
         return [] if words & unsaid else [head]
