@@ -95,7 +95,8 @@ is said ("over to the other side of", "over to B and set it down beside it") tho
 
 _NOT_AN_OBJECT = (r"(?!(?:right|left|back|front|rear|far|near|middle|centre|center|corner|edge|side|end|top|bottom"
                   r"|other|same|table|robot|them|there|here|where)\b)")
-_TAIL = r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks|too|also|aswell|as\s+well))*\s*[.!]*"
+_TAIL = (r"(?:\s+(?:quick|quickly|fast|slow|slowly|gently|carefully|now|pls|plz|please|thx|thanks|too|also|aswell"
+         r"|as\s+well))*\s*[.!]*")
 _PLACE_WORD_BEFORE = r"(?<!\bnext)(?<!\bclose)(?<!\bcloser)(?<!\bnear)(?<!\bnearer)(?<!\bup)(?<!\bright)"
 TO_OBJECT = re.compile(rf"^(?P<head>.+?){_PLACE_WORD_BEFORE}(?:\s+to\s+(?P<rest>(?:the|a|an)\s+{_NOT_AN_OBJECT}\S.*"
                        rf"|{_NOT_AN_OBJECT}[\w-]+(?:\s+{_NOT_AN_OBJECT}[\w-]+)?{_TAIL})|\s*(?:->|-->|=>|\u2192)\s*(?P<arrow>{_NOT_AN_OBJECT}[^,;]+))$",
@@ -151,10 +152,10 @@ VERB_LAST = re.compile(rf"^\s*(?P<lead>(?:(?:gently|slowly|carefully|quickly|sof
 """The verb said last, in German order: "The green cube to the orange block push", "Gently the plate through the air
 to the green cube bring", "The bowl, the plate and the green cube in a row put" (a known verb, the words before it
 opening with none)."""
-BE_LAST = re.compile(rf"^\s*(?:(?:at|in)\s+the\s+end[\s,]+)?(?:(?:should|must)\s+(?P<asked>.+?)|(?P<said>.+?)\s+"
-                     rf"(?:should|must)\s+(?P<where>.+?))\s+be{_CLOSING}", re.IGNORECASE)
-"""An end state with its "be" last: "The plate must farther from the bowl be", "At the end should the lemon nearer to
-the plate be": what is wished."""
+BE_LAST = re.compile(rf"^\s*(?:(?:at|in)\s+the\s+end[\s,]+)?(?:(?:should|shall|must)\s+(?P<asked>.+?)|(?P<said>.+?)\s+"
+                     rf"(?:should|shall|must)\s+(?P<where>.+?))\s+(?:be|go|stand|lie|sit){_CLOSING}", re.IGNORECASE)
+"""An end state with its "be" (or "go", "stand", "lie", "sit") last: "The plate must farther from the bowl be", "At the
+end should the lemon nearer to the plate be", "the green dice shall around the blue dice go": what is wished."""
 
 
 PASS = re.compile(rf"^\s*(?:(?:{_ASK})[\s,]+)*pass\s+(?P<rest>.+?\s+(?:(?:just|only|slightly|a\s+bit)\s+)*"

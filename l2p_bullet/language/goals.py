@@ -79,7 +79,8 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
 IRREGULAR_PARTICIPLES = {"slide": "slid", "bring": "brought", "put": "put", "set": "set", "lay": "laid",
                          "take": "taken"}
 PASSIVE_AUX = (("needs", "to", "be"), ("need", "to", "be"), ("has", "to", "be"), ("have", "to", "be"),
-              ("should", "be"), ("must", "be"), ("to", "be"), ("be",), ("is",), ("gets",), ("get",))
+              ("should", "be"), ("shall", "be"), ("must", "be"), ("to", "be"), ("be",), ("is",), ("gets",),
+              ("get",))
 """Words between an object and a participle that only make it passive ("for C to be moved next to B")."""
 
 
@@ -148,7 +149,7 @@ _WRITTEN_LINKS = (
     "to finish up", "finishes up", "finish up", "finished up", "to wind up", "winds up", "wind up",
     "become", "becomes", "to become",  # "make so the cable become more close to tuner"
 )
-_MODALS = ("should", "must", "needs to", "need to", "has to", "have to", "ought to", "wants to", "is going to",
+_MODALS = ("should", "shall", "must", "needs to", "need to", "has to", "have to", "ought to", "wants to", "is going to",
            "is gonna", "will", "has got to", "gotta", "got to", "is to")
 _WHERE_IT_STAYS = ("end up", "be", "go", "sit", "stand", "lie", "finish", "come", "stay", "land", "end up sitting",
                    "end up sat", "be sitting", "be standing", "be lying", "be placed", "be positioned", "be put",

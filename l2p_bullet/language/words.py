@@ -75,7 +75,8 @@ read past only before another word."""
 POLITE_SUFFIXES: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in (
     "please thanks", "please thank you", "thank you very much", "thank you so much", "thank you", "thanks",
     "please", "if you please", "if you would", "rn", "right now",
-    "for me", "for us", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well", "aswell",
+    "for me", "for us", "now", "would you", "could you", "will you", "can you", "ok", "okay", "too", "as well",
+    "aswell",
     "and do it", "do it", "thx", "ty", "cheers", "thank u", "thanks a lot", "thanks so much", "please and thank you",
     "not the other way round", "not the other way around", "and not the other way round",
     "nothing else moved", "and nothing else", "this is what i want", "that's what i want", "that is what i want",
