@@ -108,6 +108,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
     text = LISTED_THEN_LINED.sub(r"put \g<items> in a row", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
+    text = _count_read_past(text)
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
     text = LINE_FROM.sub(r"make a \1 of ", text, count=1)
     text = THE_FOLLOWING.sub(" of ", text, count=1)
@@ -134,6 +135,23 @@ def said_plainly(sentence: str, scene: Scene) -> str:
         listed = ", ".join(said[:-1]) + " and " + said[-1]
         return f"{text[:group.start()]}{listed}{after[:sep.start()]}"
     return text
+
+
+COUNTED_ROW = re.compile(r"\b(?P<row>row|line)\s+of\s+(?:the\s+|all\s+)?(?P<count>two|three|four|five|six|[2-6])\s*:\s*"
+                         r"(?P<items>[^:;.!?]+)", re.IGNORECASE)
+"""A row's count said before its list ("row of four: tray, watch case, gift box, jar")."""
+
+
+def _count_read_past(text: str) -> str:
+    """``text`` with :data:`COUNTED_ROW`'s count read past where the list after it has that many items (split at its
+    commas and "and"s); ``text`` itself where it says another number, which is then refused as it stands."""
+    m = COUNTED_ROW.search(text)
+    if m is None:
+        return text
+    items = [i for part in m.group("items").split(",") for i in _split_and(part) if i.strip(" .!?")]
+    if number_said(m.group("count"), 0) != len(items):
+        return text
+    return f"{text[:m.start()]}{m.group('row')} of {text[m.start('items'):]}"
 
 
 THEM_LISTED = re.compile(r"\b(?:them|these|those|these\s+ones|those\s+ones|em|all\s+(?:two|three|four|five|six)|"
