@@ -107,6 +107,7 @@ def said_plainly(sentence: str, scene: Scene) -> str:
     text = FOLLOWING_ROW.sub(r"\g<verb> \g<items> in a row", text, count=1)
     text = WISHED_ROW.sub(r"put \g<items> in a row", text, count=1)
     text = LISTED_THEN_LINED.sub(r"put \g<items> in a row", text, count=1)
+    text = LINED_THEN_LISTED.sub(r"line up \g<items>", text, count=1)
     text = re.sub(r"(?i)\s+(?:please|pls|plz)\s*(?::|-+\s|[\u2013\u2014])\s*", ": ", text)  # "Row please: A, B, C"
     text = _count_read_past(text)
     text = ROW_FIRST.sub(r"\g<verb> \g<items> in a \g<row>", text, count=1)
@@ -154,6 +155,11 @@ def _count_read_past(text: str) -> str:
     return f"{text[:m.start()]}{m.group('row')} of {text[m.start('items'):]}"
 
 
+LINED_THEN_LISTED = re.compile(r"^\s*(?:(?:just|ok|okay|now|so|please|pls)[\s,]+)*line\s+(?:them|em|'em)"
+                               r"(?:\s+all)?\s+up(?:\s+(?:mate|dear|pls|please|now))?\s*(?:[,:;!]+|\.{2,}|\s-+)\s*(?P<items>\S.*)$",
+                               re.IGNORECASE)
+"""A row lined up as "them" first, then its objects listed ("line em up!! clicker, tea, hearing aid box", "line them up
+dear.. teapot kettle and spoon"): as "line up" and the list."""
 THEM_LISTED = re.compile(r"\b(?:them|these|those|these\s+ones|those\s+ones|em|all\s+(?:two|three|four|five|six)|"
                          r"all\s+of\s+them)\b(?P<mid>[^:;.!?]*?)"
                          r"(?:\s*,?\s*(?:in\s+(?:this|that|the\s+following)\s+order|as\s+follows|like\s+this|like\s+so))?"
