@@ -186,6 +186,9 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "take yer time": "slow", "take yer time and": "slow", "take yer time an": "slow",
     "on the fly": "fast", "nice and gentle": "gentle", "nice and slow": "slow", "nice and slowly": "slow",
     "taking care": "careful", "take care": "careful", "with great care": "careful",
+    # a manner's noun after "with", as learners say it ("with softness move the jar ...")
+    "with softness": "gentle", "with gentleness": "gentle", "with delicacy": "gentle", "with caution": "careful",
+    "with speed": "fast", "with slowness": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}
