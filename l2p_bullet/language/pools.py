@@ -37,6 +37,20 @@ UNREAD_PLACES = frozenset(DIRECTIONS) | frozenset(SIDE_SUPERLATIVE.values()) | E
 place to pick another object ("the one way over on the left side in the middle of the table")."""
 
 
+SHAPE_SAID = {"box": "box", "boxes": "box", "cylinder": "cylinder", "cylinders": "cylinder", "cube": "cube",
+              "cubes": "cube"}
+"""Shape nouns that a relation may choose among by shape ("the leftmost box" of three boxes, one of them a box of
+syringes by its kind)."""
+
+
+def _shaped_alike(said: list[str], scene: Scene) -> list[SceneObject]:
+    """The objects of the shape ``said`` names where it is one shape noun alone (:data:`SHAPE_SAID`), else none: a
+    relation asks for one of several, so where the kind word names one object ("box" for syringe_box) and the shape
+    several, it is the shape that is meant."""
+    shape = SHAPE_SAID.get(said[0].lower()) if len(said) == 1 else None
+    return [o for o in scene.objects if shape_of(o) == shape] if shape is not None else []
+
+
 def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
     """The objects a relation chooses among: those that ``restrict`` ("the red block", "the box", "the") allows, as
     descriptions.candidates reads a description ("the box at the back" is the box farthest back, never the plate
@@ -48,7 +62,9 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
     said = [w for w in restrict.split() if w.lower() not in DETERMINERS]
     if {w.lower() for w in said} - PLAIN_NOUNS:
         try:  # the objects the description names by kind, colour, shape and proportions ("the box": a box)
-            return candidates(restrict, said, tuple(w.lower() for w in said), scene)
+            found = candidates(restrict, said, tuple(w.lower() for w in said), scene)
+            shaped = _shaped_alike(said, scene)
+            return shaped if len(found) == 1 and len(shaped) > 1 else found
         except (LanguageError, UnknownObjectError):
             said_before = low[:-1] if low[-1] == "right" else low  # "right in the middle": how near, not a side
             placed = [w for w in said_before if w in UNREAD_PLACES]
