@@ -189,6 +189,7 @@ PACE_PHRASES: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     # a manner's noun after "with", as learners say it ("with softness move the jar ...")
     "with softness": "gentle", "with gentleness": "gentle", "with delicacy": "gentle", "with caution": "careful",
     "with speed": "fast", "with slowness": "slow",
+    "at high speed": "fast", "at full speed": "fast", "at top speed": "fast", "at low speed": "slow",
 }.items()}
 """Phrases that ask for a pace as a manner adverb does ("take your time and slide A ...")."""
 EDGE_PACES = {"soft": "gentle"}

@@ -294,8 +294,6 @@ OPEN = {
             "slide:next-to tape_roll paint_can",
         "move the rolla uh right next to the paint tray":
             "slide:next-to tape_roll paint_tray extent=right",
-        "push with softness the tray near of the tape":
-            "push:closer paint_tray tape_roll",
         "um push the rolla slowly uh past the the wide brush":
             "push:past tape_roll brush_wide pace=slow",
         "um move the rolla next to the paint can and then uh move it past the rag":
@@ -342,12 +340,8 @@ OPEN = {
     "heldout110.tsv": {
         "Move the bobber slightly away from the reel, just enough to give yourself finger room.":
             "push:away bobber reel extent=little",
-        "The box that is most to the left, put it past the spool.":
-            "slide:past hook_box line_spool",
     },
     "heldout111.tsv": {
-        "Move the blue die adjacent to the king at high speed.":
-            "slide:next-to die_blue king",
         "ok chat step one blue die next to timer, step two push that one toward the pawn":
             "push:closer die_blue pawn",
     },
@@ -430,6 +424,18 @@ OPEN = {
         # "the biggest thing": the deck of cards (9 x 6.5 x 2.5 cm) by its outline, longer and wider than the bag of
         # tokens (6 x 6 x 4 cm) of all but the same bulk; the author would ask which
         "biggest thing away from the blue pawn": "slide:away card_deck pawn_blue",
+    },
+    "heldout133.tsv": {
+        # a description said as a verbless move ("X, by the green box,") before the clause that moves it as "it"
+        "That little white bottle at the back, by the green box, could you bring it toward the thermometer?":
+            "slide:next-to pills_b syringe_box ; slide:closer pills_b thermometer",
+    },
+    "heldout134.tsv": {
+        # "them both" after two moves to two anchors: the last clause's mover and anchor, where the author meant the two
+        # moved
+        "put the 85 by the blower and the 50 by the battery, then slide them both closer to the camera":
+            "slide:next-to lens_85mm blower ; slide:next-to lens_50mm battery_1 ; slide:closer lens_50mm camera_body ; "
+            "slide:closer battery_1 camera_body",
     },
 }
 """Wrong readings found by a cold corpus read once on a session's last code and not mended since: kept visible here
@@ -729,4 +735,14 @@ def test_the_hundred_and_thirty_first_and_second_authors_corpora(plugins, name, 
     "an'", "o'", tek, reet, "them gloves"), a kind said with "of", an object by what it holds, a board game's men and
     figures, "more at the back", two sizes refused, "drop", "take up", a plural object's end state. Wrong only as
     :data:`OPEN` records."""
+    assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
+
+
+@pytest.mark.parametrize("name, floor", [("heldout133.tsv", 124), ("heldout134.tsv", 116)])
+def test_the_hundred_and_thirty_third_and_fourth_authors_corpora(plugins, name, floor):
+    """Written cold at the forty-second session (a veterinary exam table with two alike pill bottles; a photographer's
+    desk whose scene file writes hex colours, two lenses told apart by size) and read once on f7a802d, before anything
+    was changed for them (docs/language.md): 120 and 106 of 160, 3 and 1 wrong; since, one shape's objects told apart
+    by their height, "bring B back to it", "the card of memory", a doubt after the command, "shall", "row of ...",
+    "line em up!! A, B, C", "with softness", "the leftmost box" among boxes. Wrong only as :data:`OPEN` records."""
     assert_read(plugins, name, floor, lambda sentence, got: OPEN.get(name, {}).get(sentence) == got)
