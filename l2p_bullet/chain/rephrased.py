@@ -84,6 +84,11 @@ GIVE_SIZES = {"little": "a bit", "small": "a bit", "slight": "a bit", "tiny": "a
 toward the pot"."""
 
 
+CAREFUL_WITH = re.compile(r"^\s*(?P<how>careful|gentle|go\s+easy|easy)\s+(?:with|w/?)\s+(?P<what>[^,]+?)\s*,\s*"
+                          r"(?P<rest>\S.*\bit\b.*)$", re.IGNORECASE)
+CAREFUL_WITH_PACE = {"careful": "carefully", "gentle": "gently", "easy": "gently"}
+"""An object shown with the care it asks for, then moved as "it": "careful w the thermometer, slide it away from the
+green box", "easy with the betty, gently slide it ...": the object, then the clause at that pace."""
 TO_THEN = re.compile(r"^(?P<head>.+?)\s+(?:over\s+)?to\s+(?P<rest>(?:right\s+)?(?:next|beside|alongside|near|nearer"
                      r"|closer|past|around|round|away)\b.*)$", re.IGNORECASE)
 """A "to" before the relation it leads to: "Carry the donut to next to the small cube", "move it over to right beside
@@ -234,6 +239,9 @@ def in_other_words(text: str) -> list[str]:
     if m is not None and "," not in m.group("what") and m.group("verb").lower() in verb_heads() \
             and m.group("what").split()[0].lower() not in verb_heads():
         out.append(f"{m.group('what')}, {m.group('verb')} {m.group('it')} {m.group('rest')}")
+    m = CAREFUL_WITH.match(text)
+    if m is not None:  # "careful w the thermometer, slide it away from ...": the thermometer, carefully slid
+        out.append(f"{m.group('what')}, {CAREFUL_WITH_PACE[m.group('how').lower().split()[-1]]} {m.group('rest')}")
     to_then = TO_THEN.match(text)
     if to_then is not None:
         out.append(f"{to_then.group('head')} {to_then.group('rest')}")

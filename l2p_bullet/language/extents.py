@@ -15,6 +15,7 @@ EXTENTS: dict[tuple[str, ...], str] = {tuple(k.split()): v for k, v in {
     "a tiny bit": "little", "a little bit": "little", "a little": "little", "a bit": "little",
     "only slightly": "little", "slightly": "little", "somewhat": "little", "just": "little",
     "a tad": "little", "little": "little",  # "move it little away": a learner without the article
+    "a small bit": "little", "a small little bit": "little",
     "thoda": "little", "thoda sa": "little", "thodasa": "little", "just a tad": "little", "a touch": "little",
     "a smidge": "little", "a smidgen": "little", "small": "little", "small small": "little",  # Nigerian English
     "a fraction": "little", "a wee": "little", "a hair's breadth": "little",

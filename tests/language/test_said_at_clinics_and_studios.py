@@ -35,6 +35,9 @@ CLINIC, STUDIO = "heldout133.tsv", "heldout134.tsv"
     ("make pass the card beyond the flash", "slide:past sd_card flash", STUDIO),
     ("with gentleness push the card toward the flash", "push:closer sd_card flash pace=gentle", STUDIO),
     ("push the card past the flash at full speed", "push:past sd_card flash pace=fast", STUDIO),
+    # "a small bit" as a little extent, an object shown with the care it asks for
+    ("slide the card a small bit closer to the flash", "slide:closer sd_card flash extent=little", STUDIO),
+    ("careful with the blower, push it past the flash", "push:past blower flash pace=careful", STUDIO),
     # a relation over a shape noun that names one object by its kind: among the boxes
     ("slide the frontmost box toward the bandage", "slide:closer thermometer bandage_blue", CLINIC),
 ])
