@@ -109,9 +109,11 @@ def table_sides(words: list[str]) -> list[str]:
 DEPTH_SAID = {("at", "the", "back"): "back", ("in", "the", "back"): "back", ("at", "the", "rear"): "back",
               ("at", "the", "front"): "front", ("in", "the", "front"): "front", ("in", "front"): "front"}
 SIDE_SAID_AS = {("on", "the", "left"): "left", ("on", "the", "right"): "right", ("to", "the", "left"): "left",
-                ("to", "the", "right"): "right"}
-"""A depth and a side of the table said one after the other ("at the back on the right", "on the left in front"):
-together a corner, where either alone would leave the other out."""
+                ("to", "the", "right"): "right", ("on", "the", "left", "side"): "left",
+                ("on", "the", "right", "side"): "right", ("on", "left", "side"): "left",
+                ("on", "right", "side"): "right"}
+"""A depth and a side of the table said one after the other ("at the back on the right (side)", "on the left in
+front"): together a corner, where either alone would leave the other out."""
 
 
 def _two_sides(low: list[str]) -> tuple[int, str] | None:

@@ -38,6 +38,8 @@ CLINIC, STUDIO = "heldout133.tsv", "heldout134.tsv"
     # "a small bit" as a little extent, an object shown with the care it asks for
     ("slide the card a small bit closer to the flash", "slide:closer sd_card flash extent=little", STUDIO),
     ("careful with the blower, push it past the flash", "push:past blower flash pace=careful", STUDIO),
+    # a depth and a side said with "side" after it: a corner
+    ("move the thing at the back on the left side next to the flash", "slide:next-to lens_50mm flash", STUDIO),
     # a relation over a shape noun that names one object by its kind: among the boxes
     ("slide the frontmost box toward the bandage", "slide:closer thermometer bandage_blue", CLINIC),
 ])
