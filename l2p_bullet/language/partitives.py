@@ -40,12 +40,18 @@ def group_of(text: str, scene: Scene, count: str | None = None) -> tuple[str, ..
     if not words or not words[-1].lower().endswith("s"):
         return None
     last = words[-1].lower()
-    words[-1] = last[:-2] if last.endswith(("xes", "ches")) else last[:-1]
-    try:
-        fits = candidates(text, words, tuple(w.lower() for w in words), scene)
-    except (LanguageError, UnknownObjectError):
-        return None
-    return tuple(o.name for o in fits) if len(fits) >= 2 and number_said(count, len(fits)) == len(fits) else None
+    singulars = [last[:-2]] if last.endswith(("xes", "ches")) else [last[:-1]]
+    if last.endswith(("ses", "shes", "zes")):  # "the lenses", "the brushes": after "vases" and "cases" are tried
+        singulars.append(last[:-2])
+    for singular in singulars:
+        said = [*words[:-1], singular]
+        try:
+            fits = candidates(text, said, tuple(w.lower() for w in said), scene)
+        except (LanguageError, UnknownObjectError):
+            continue
+        if len(fits) >= 2 and number_said(count, len(fits)) == len(fits):
+            return tuple(o.name for o in fits)
+    return None
 
 
 CONTAINERS = frozenset({"bar", "piece", "lump", "chunk", "cake", "block", "bit", "stick"})
