@@ -69,7 +69,7 @@ def goal_to_verb(words: list[str], verbs: list[str]) -> list[str]:
         at = low.index("go", 2)
         if not set(low[1:at]) & set(verbs):  # "make you push A small go near B" says its own verb
             return ["move", *words[1:at], *words[at + 1:]]
-    if low[:2] == ["make", "pass"] and len(low) > 4 and {"beyond", "past", "side"} & set(low[3:]):
+    if low[:2] == ["make", "pass"] and len(low) > 4 and {"beyond", "side"} & set(low[3:]):
         return ["move", *words[2:]]  # "make pass the thermos beyond the apple", as French and Spanish say it
     if low[:1] == ["make"] and "pass" in low[2:]:  # "make the C pass by the D", "make A pass B": go past it
         at = low.index("pass", 2)
