@@ -132,9 +132,16 @@ OF_THE = re.compile(r"^\s*of\s+(?:all\s+)?the\s+(?:(?P<count>two|three|four|five
 """A group said before what is picked among it: "Of the three cubes, ...", "of the 2 rectangular blocks move ..."."""
 
 
+PLURAL_TOPIC = re.compile(r"^\s*(?:the|those|these)\s+(?:(?P<count>two|three|four|five|[2-5])\s+)?"
+                          r"(?P<group>[a-z]+s)\s*$", re.IGNORECASE)
+"""A group said by its kind's plural alone before the clauses about it ("the lenses, move the smaller one ...",
+"Those two lenses - take the smaller one ...")."""
+
+
 def group_said(text: str, scene: Scene) -> tuple[str, ...] | None:
-    """The objects :data:`OF_THE` names, or a group said by its place ("the two in front"); None where neither."""
-    m = OF_THE.match(text)
+    """The objects :data:`OF_THE` or :data:`PLURAL_TOPIC` names, or a group said by its place ("the two in front");
+    None where none."""
+    m = OF_THE.match(text) or PLURAL_TOPIC.match(text)
     return group_of(m.group("group"), scene, m.group("count")) if m is not None else placed_group(text, scene)
 
 

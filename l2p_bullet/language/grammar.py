@@ -37,6 +37,7 @@ from .phrase_readings import TIGHT, phrase_tokens, readings, without_to
 from .pronouns import Context
 from .reference_words import BLOCK_WORDS, DETERMINERS, SHAPE_ADJECTIVES
 from .references import POSSESSIVES, object_pairs, resolve_object, try_object
+from .synonyms import kind_groups
 from .verbs import EXAMPLE, IN_THE_AIR, _on_the_table, _verb_patterns, _without, known_verbs, split_verb, verb_heads
 from .words import (
     by_gerund,
@@ -330,9 +331,18 @@ def command_words(text: str, scene: Scene) -> tuple[list[str], str | None]:
     words, pace = take_pace(words, keep)
     named = naming_words(scene)  # "Of the two blue cubes, push ...", "of the 2 rectangular blocks move ...": an
     # opening about objects is not skipped
+    groups = kind_groups(scene)
     naming = keep | frozenset(w for w in words if (low := w.lower()) in named or low in BLOCK_WORDS
-                              or low in SHAPE_ADJECTIVES)
+                              or low in SHAPE_ADJECTIVES or _plural_of(low, groups))
     return by_gerund(strip_polite(skip_to_verb(words, heads, naming), keep), verbs), pace
+
+
+def _plural_of(word: str, groups: dict) -> bool:
+    """Whether ``word`` is the plural of a kind several objects share (``groups``: "lenses" where two lenses stand,
+    "dishes"): an opening that names a group ("the lenses, move the smaller one ...") is kept, never skipped as words
+    about nothing before the verb (the smaller one of all would be moved)."""
+    return len(word) > 3 and word.endswith("s") and (len(groups.get(word[:-1], ())) > 1
+                                                    or word.endswith("es") and len(groups.get(word[:-2], ())) > 1)
 
 
 @functools.lru_cache(maxsize=8)

@@ -38,6 +38,9 @@ CLINIC, STUDIO = "heldout133.tsv", "heldout134.tsv"
     # "a small bit" as a little extent, an object shown with the care it asks for
     ("slide the card a small bit closer to the flash", "slide:closer sd_card flash extent=little", STUDIO),
     ("careful with the blower, push it past the flash", "push:past blower flash pace=careful", STUDIO),
+    # a group said by its kind's plural before the clause that picks among it, never skipped
+    ("the lenses, move the smaller one beside the camera", "slide:next-to lens_50mm camera_body", STUDIO),
+    ("the lenses: push the bigger one toward the flash", "push:closer lens_85mm flash", STUDIO),
     # a depth and a side said with "side" after it: a corner
     ("move the thing at the back on the left side next to the flash", "slide:next-to lens_50mm flash", STUDIO),
     # a relation over a shape noun that names one object by its kind: among the boxes
@@ -52,6 +55,7 @@ def test_said_as_the_authors_said_it(plugins, sentence, expect, table):
     ("row of four: flash, card, blower", STUDIO),  # the count says another number
     ("make pass the card by the flash", STUDIO),  # "by" may be beside
     ("move the bigger pill bottle past the jar", CLINIC),  # two alike bottles, outline and height
+    ("the pill bottles, move the bigger one past the jar", CLINIC),  # the group said first: alike still
 ])
 def test_still_refused(plugins, sentence, table):
     assert resolve(sentence, scene(table), plugins) == REFUSE
