@@ -37,10 +37,9 @@ UNREAD_PLACES = frozenset(DIRECTIONS) | frozenset(SIDE_SUPERLATIVE.values()) | E
 place to pick another object ("the one way over on the left side in the middle of the table")."""
 
 
-SHAPE_SAID = {"box": "box", "boxes": "box", "cylinder": "cylinder", "cylinders": "cylinder", "cube": "cube",
-              "cubes": "cube"}
-"""Shape nouns that a relation may choose among by shape ("the leftmost box" of three boxes, one of them a box of
-syringes by its kind)."""
+SHAPE_SAID = {w: SHAPE_NOUNS[w] for w in ("box", "boxes", "cylinder", "cylinders", "cube", "cubes")}
+"""The plain shape nouns (of :data:`~.shape_words.SHAPE_NOUNS`, not its nouns of proportions) that a relation may
+choose among by shape ("the leftmost box" of three boxes, one of them a box of syringes by its kind)."""
 
 
 def _shaped_alike(said: list[str], scene: Scene) -> list[SceneObject]:
@@ -63,8 +62,11 @@ def pool_of(restrict: str, scene: Scene) -> list[SceneObject]:
     if {w.lower() for w in said} - PLAIN_NOUNS:
         try:  # the objects the description names by kind, colour, shape and proportions ("the box": a box)
             found = candidates(restrict, said, tuple(w.lower() for w in said), scene)
-            shaped = _shaped_alike(said, scene)
-            return shaped if len(found) == 1 and len(shaped) > 1 else found
+            if len(found) == 1:  # one object by its kind word: several of that shape are what a relation picks among
+                shaped = _shaped_alike(said, scene)
+                if len(shaped) > 1:
+                    return shaped
+            return found
         except (LanguageError, UnknownObjectError):
             said_before = low[:-1] if low[-1] == "right" else low  # "right in the middle": how near, not a side
             placed = [w for w in said_before if w in UNREAD_PLACES]
